@@ -1,0 +1,6 @@
+//! Source text → typed syntax tree ([`ast::File`]).
+
+pub mod ast;
+mod parse;
+
+pub use parse::parse;

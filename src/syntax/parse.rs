@@ -1,0 +1,328 @@
+//! pest pairs → [`ast::File`]. The grammar is in `grammar/lmd.pest`.
+
+use super::ast::*;
+use crate::diag::Diagnostic;
+use crate::span::{Span, Spanned};
+use pest::iterators::Pair;
+use pest::pratt_parser::{Assoc, Op, PrattParser};
+use pest::Parser;
+use std::sync::OnceLock;
+
+#[derive(pest_derive::Parser)]
+#[grammar = "../grammar/lmd.pest"]
+struct LmdParser;
+
+/// Deeper nesting than this is refused before parsing, so no input can exhaust the
+/// stack of the recursive-descent parser.
+const MAX_NESTING: usize = 64;
+
+/// Parses a whole file. pest stops at the first syntax error, so this returns one
+/// diagnostic; everything after parsing accumulates errors.
+pub fn parse(source: &str) -> Result<File, Diagnostic> {
+    check_nesting(source)?;
+    let mut pairs = LmdParser::parse(Rule::file, source).map_err(syntax_error)?;
+    let file = pairs.next().ok_or_else(|| Diagnostic::error("lmd::syntax", "empty parse"))?;
+    let stmts = file
+        .into_inner()
+        .filter(|p| p.as_rule() == Rule::stmt)
+        .map(stmt)
+        .collect::<Result<_, _>>()?;
+    Ok(File { stmts })
+}
+
+fn check_nesting(source: &str) -> Result<(), Diagnostic> {
+    let mut depth = 0usize;
+    for (i, c) in source.char_indices() {
+        match c {
+            '(' | '[' | '{' => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return Err(Diagnostic::error(
+                        "lmd::too-deep",
+                        format!("brackets are nested more than {MAX_NESTING} deep"),
+                    )
+                    .label(Span::new(i, i + 1), "this one is too deep")
+                    .help("split the expression with `let` constants"));
+                }
+            }
+            ')' | ']' | '}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+fn rule_name(r: &Rule) -> &'static str {
+    match r {
+        Rule::EOI => "end of file",
+        Rule::stmt => "a statement (like `width = 6 mm` or `bead wall { … }`)",
+        Rule::name => "a name",
+        Rule::assign => "`=`",
+        Rule::block => "`{`",
+        Rule::expr => "a value",
+        Rule::quantity | Rule::number => "a number",
+        Rule::unit | Rule::unit_atom | Rule::unit_factor => "a unit (mm, deg, mm/s, W, g/min, …)",
+        Rule::string | Rule::string_inner => "a string",
+        Rule::ident => "a name",
+        Rule::call => "a function call",
+        Rule::arg => "an argument",
+        Rule::list => "a list `[…]`",
+        Rule::range => "`..`",
+        Rule::add => "`+`",
+        Rule::sub | Rule::neg => "`-`",
+        Rule::mul => "`*`",
+        Rule::div => "`/`",
+        Rule::pow => "`^`",
+        Rule::pos => "`+`",
+        _ => "something else",
+    }
+}
+
+fn syntax_error(e: pest::error::Error<Rule>) -> Diagnostic {
+    use pest::error::{ErrorVariant, InputLocation};
+    let span = match e.location {
+        InputLocation::Pos(p) => Span::new(p, p),
+        InputLocation::Span((a, b)) => Span::new(a, b),
+    };
+    let expected = match &e.variant {
+        ErrorVariant::ParsingError { positives, .. } => {
+            let mut names: Vec<&str> = positives.iter().map(rule_name).collect();
+            names.sort_unstable();
+            names.dedup();
+            names
+        }
+        ErrorVariant::CustomError { .. } => Vec::new(),
+    };
+    let what = match expected.len() {
+        0 => "unexpected text".to_string(),
+        1 => format!("expected {}", expected[0]),
+        _ => {
+            let (last, rest) = expected.split_last().unwrap_or((&"", &[]));
+            format!("expected {} or {}", rest.join(", "), last)
+        }
+    };
+    Diagnostic::error("lmd::syntax", format!("syntax error: {what}"))
+        .label(span, what)
+        .help("every statement is `name = value` or `kind name { … }`; numbers carry their unit right after them, e.g. `6 mm` or `7 mm/s`")
+}
+
+fn span_of(p: &Pair<Rule>) -> Span {
+    p.as_span().into()
+}
+
+fn ident(p: Pair<Rule>) -> Ident {
+    Spanned::new(p.as_str().to_string(), span_of(&p))
+}
+
+fn stmt(p: Pair<Rule>) -> Result<Stmt, Diagnostic> {
+    let span = span_of(&p);
+    let mut kind = None;
+    let mut name = None;
+    let mut body = Body::None;
+    for c in p.into_inner() {
+        match c.as_rule() {
+            Rule::ident => kind = Some(ident(c)),
+            Rule::name => {
+                if let Some(n) = c.into_inner().next() {
+                    let s = span_of(&n);
+                    let text = match n.as_rule() {
+                        Rule::string => n.into_inner().as_str().to_string(),
+                        _ => n.as_str().to_string(),
+                    };
+                    name = Some(Spanned::new(text, s));
+                }
+            }
+            Rule::assign => {
+                if let Some(e) = c.into_inner().next() {
+                    body = Body::Assign(expr(e)?);
+                }
+            }
+            Rule::block => {
+                let bs = span_of(&c);
+                let inner = c.into_inner().map(stmt).collect::<Result<_, _>>()?;
+                body = Body::Block(inner, bs);
+            }
+            _ => {}
+        }
+    }
+    let kind = kind.ok_or_else(|| Diagnostic::error("lmd::syntax", "statement without a name"))?;
+    Ok(Stmt {
+        kind,
+        name,
+        body,
+        span,
+    })
+}
+
+fn pratt() -> &'static PrattParser<Rule> {
+    static P: OnceLock<PrattParser<Rule>> = OnceLock::new();
+    P.get_or_init(|| {
+        PrattParser::new()
+            .op(Op::infix(Rule::range, Assoc::Left))
+            .op(Op::infix(Rule::add, Assoc::Left) | Op::infix(Rule::sub, Assoc::Left))
+            .op(Op::infix(Rule::mul, Assoc::Left) | Op::infix(Rule::div, Assoc::Left))
+            .op(Op::prefix(Rule::neg) | Op::prefix(Rule::pos))
+            .op(Op::infix(Rule::pow, Assoc::Right))
+    })
+}
+
+fn expr(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
+    pratt()
+        .map_primary(primary)
+        .map_prefix(|op, rhs| {
+            let rhs = rhs?;
+            let span = span_of(&op).join(rhs.span);
+            let op = if op.as_rule() == Rule::neg {
+                UnOp::Neg
+            } else {
+                UnOp::Pos
+            };
+            Ok(Expr {
+                kind: ExprKind::Unary {
+                    op,
+                    expr: Box::new(rhs),
+                },
+                span,
+            })
+        })
+        .map_infix(|lhs, op, rhs| {
+            let (lhs, rhs) = (lhs?, rhs?);
+            let op = match op.as_rule() {
+                Rule::range => BinOp::Range,
+                Rule::add => BinOp::Add,
+                Rule::sub => BinOp::Sub,
+                Rule::mul => BinOp::Mul,
+                Rule::div => BinOp::Div,
+                _ => BinOp::Pow,
+            };
+            Ok(Expr {
+                span: lhs.span.join(rhs.span),
+                kind: ExprKind::Binary {
+                    op,
+                    lhs: Box::new(lhs),
+                    rhs: Box::new(rhs),
+                },
+            })
+        })
+        .parse(p.into_inner())
+}
+
+fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
+    let span = span_of(&p);
+    let kind = match p.as_rule() {
+        Rule::quantity => {
+            let mut value = 0.0;
+            let mut unit = None;
+            for c in p.into_inner() {
+                match c.as_rule() {
+                    Rule::number => {
+                        value = c.as_str().parse::<f64>().unwrap_or(f64::INFINITY);
+                        if !value.is_finite() {
+                            return Err(Diagnostic::error(
+                                "lmd::number",
+                                "this number is too large",
+                            )
+                            .label(span_of(&c), "not a finite number"));
+                        }
+                    }
+                    Rule::unit => unit = Some(Spanned::new(c.as_str().to_string(), span_of(&c))),
+                    _ => {}
+                }
+            }
+            ExprKind::Number { value, unit }
+        }
+        Rule::ident => ExprKind::Ident(p.as_str().to_string()),
+        Rule::string => ExprKind::Str(p.into_inner().as_str().to_string()),
+        Rule::list => ExprKind::List(p.into_inner().map(expr).collect::<Result<_, _>>()?),
+        Rule::call => {
+            let mut inner = p.into_inner();
+            let func = inner
+                .next()
+                .map(ident)
+                .ok_or_else(|| Diagnostic::error("lmd::syntax", "call without a name"))?;
+            let mut args = Vec::new();
+            for a in inner {
+                let mut parts = a.into_inner();
+                let first = parts.next();
+                let second = parts.next();
+                match (first, second) {
+                    (Some(n), Some(v)) => args.push(Arg {
+                        name: Some(ident(n)),
+                        value: expr(v)?,
+                    }),
+                    (Some(v), None) => args.push(Arg {
+                        name: None,
+                        value: expr(v)?,
+                    }),
+                    _ => {}
+                }
+            }
+            ExprKind::Call { func, args }
+        }
+        Rule::expr => return expr(p),
+        _ => {
+            return Err(Diagnostic::error("lmd::syntax", "unexpected expression").label(span, ""))
+        }
+    };
+    Ok(Expr { kind, span })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn one_expr(src: &str) -> Expr {
+        let f = parse(&format!("x = {src}")).unwrap();
+        match &f.stmts[0].body {
+            Body::Assign(e) => e.clone(),
+            b => panic!("{b:?}"),
+        }
+    }
+
+    #[test]
+    fn quantities_keep_their_units() {
+        match one_expr("7.5 mm/s").kind {
+            ExprKind::Number { value, unit } => {
+                assert_eq!(value, 7.5);
+                assert_eq!(unit.unwrap().node, "mm/s");
+            }
+            k => panic!("{k:?}"),
+        }
+    }
+
+    #[test]
+    fn precedence() {
+        // 1 mm + 2 mm * 3  ==  1 mm + (2 mm * 3)
+        match one_expr("1 mm + 2 mm * 3").kind {
+            ExprKind::Binary { op, rhs, .. } => {
+                assert_eq!(op, BinOp::Add);
+                assert!(matches!(rhs.kind, ExprKind::Binary { op: BinOp::Mul, .. }));
+            }
+            k => panic!("{k:?}"),
+        }
+        match one_expr("1 mm .. 2 mm").kind {
+            ExprKind::Binary { op, .. } => assert_eq!(op, BinOp::Range),
+            k => panic!("{k:?}"),
+        }
+    }
+
+    #[test]
+    fn a_unit_never_swallows_the_next_line() {
+        let f = parse("layers = 40\ng = 1").unwrap();
+        assert_eq!(f.stmts.len(), 2);
+    }
+
+    #[test]
+    fn statements_and_blocks() {
+        let f = parse("part duct\nlet R = 100 mm\nbead wall {\n width = 6 mm\n}\n").unwrap();
+        assert_eq!(f.stmts.len(), 3);
+        assert_eq!(f.stmts[0].name.as_ref().unwrap().node, "duct");
+        assert!(matches!(f.stmts[2].body, Body::Block(ref b, _) if b.len() == 1));
+    }
+
+    #[test]
+    fn deep_nesting_is_refused_not_a_crash() {
+        let src = format!("x = {}1{}", "(".repeat(10_000), ")".repeat(10_000));
+        assert_eq!(parse(&src).unwrap_err().code, "lmd::too-deep");
+    }
+}

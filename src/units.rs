@@ -1,0 +1,368 @@
+//! Physical quantities: dimensions, the unit table, and the typed values the rest of
+//! the compiler works with (so a speed can never be passed where a length belongs).
+//!
+//! Canonical internal units: mm, g, s, rad. Everything the user writes is converted
+//! to these when it is evaluated; the IR and the back ends convert once more to what
+//! their formats want (deg, mm/min, m/s, g/min).
+
+use std::fmt;
+
+/// Exponents of the base dimensions length, mass, time and angle. Angle is kept as a
+/// dimension of its own so that `60 mm + 45 deg` is an error.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub struct Dim {
+    /// Length exponent.
+    pub l: i8,
+    /// Mass exponent.
+    pub m: i8,
+    /// Time exponent.
+    pub t: i8,
+    /// Angle exponent.
+    pub a: i8,
+}
+
+impl Dim {
+    /// A pure number.
+    pub const NONE: Dim = Dim::new(0, 0, 0, 0);
+    /// mm
+    pub const LENGTH: Dim = Dim::new(1, 0, 0, 0);
+    /// rad
+    pub const ANGLE: Dim = Dim::new(0, 0, 0, 1);
+    /// s
+    pub const TIME: Dim = Dim::new(0, 0, 1, 0);
+    /// g
+    pub const MASS: Dim = Dim::new(0, 1, 0, 0);
+    /// mm/s
+    pub const SPEED: Dim = Dim::new(1, 0, -1, 0);
+    /// g/s
+    pub const MASS_FLOW: Dim = Dim::new(0, 1, -1, 0);
+    /// W = g·mm²/s³ (scaled)
+    pub const POWER: Dim = Dim::new(2, 1, -3, 0);
+    /// g/mm³
+    pub const DENSITY: Dim = Dim::new(-3, 1, 0, 0);
+
+    /// Builds a dimension from exponents.
+    pub const fn new(l: i8, m: i8, t: i8, a: i8) -> Dim {
+        Dim { l, m, t, a }
+    }
+
+    /// Product of two dimensions.
+    pub fn mul(self, o: Dim) -> Dim {
+        Dim::new(
+            self.l.saturating_add(o.l),
+            self.m.saturating_add(o.m),
+            self.t.saturating_add(o.t),
+            self.a.saturating_add(o.a),
+        )
+    }
+
+    /// Quotient of two dimensions.
+    pub fn div(self, o: Dim) -> Dim {
+        self.mul(o.powi(-1))
+    }
+
+    /// Integer power.
+    pub fn powi(self, n: i32) -> Dim {
+        let p = |e: i8| (e as i32 * n).clamp(-100, 100) as i8;
+        Dim::new(p(self.l), p(self.m), p(self.t), p(self.a))
+    }
+
+    /// A name a process engineer recognises, with an example unit.
+    pub fn describe(self) -> String {
+        let known = [
+            (Dim::NONE, "a plain number"),
+            (Dim::LENGTH, "a length (mm)"),
+            (Dim::ANGLE, "an angle (deg)"),
+            (Dim::TIME, "a time (s)"),
+            (Dim::MASS, "a mass (g)"),
+            (Dim::SPEED, "a speed (mm/s)"),
+            (Dim::MASS_FLOW, "a powder feed rate (g/min)"),
+            (Dim::POWER, "a power (W)"),
+            (Dim::DENSITY, "a density (g/cm^3)"),
+            (Dim::new(2, 0, 0, 0), "an area (mm^2)"),
+            (Dim::new(3, 0, 0, 0), "a volume (mm^3)"),
+            (Dim::new(2, 1, -2, 0), "an energy (J)"),
+        ];
+        for (d, name) in known {
+            if d == self {
+                return name.to_string();
+            }
+        }
+        format!("a quantity in {}", self.unit_string())
+    }
+
+    /// The dimension spelled in canonical units, e.g. `mm/s`.
+    pub fn unit_string(self) -> String {
+        let mut num = Vec::new();
+        let mut den = Vec::new();
+        for (e, u) in [(self.m, "g"), (self.l, "mm"), (self.a, "rad"), (self.t, "s")] {
+            let (list, e) = if e > 0 { (&mut num, e) } else { (&mut den, -e) };
+            match e {
+                0 => {}
+                1 => list.push(u.to_string()),
+                _ => list.push(format!("{u}^{e}")),
+            }
+        }
+        let n = if num.is_empty() {
+            "1".to_string()
+        } else {
+            num.join("·")
+        };
+        if den.is_empty() {
+            n
+        } else {
+            format!("{n}/{}", den.join("·"))
+        }
+    }
+}
+
+/// A unit the language knows: its name, its size in canonical units, its dimension.
+struct UnitDef {
+    name: &'static str,
+    factor: f64,
+    dim: Dim,
+}
+
+const W_FACTOR: f64 = 1e9; // 1 W = 1 kg·m²/s³ = 1e9 g·mm²/s³
+
+const UNITS: &[UnitDef] = &[
+    UnitDef { name: "mm", factor: 1.0, dim: Dim::LENGTH },
+    UnitDef { name: "cm", factor: 10.0, dim: Dim::LENGTH },
+    UnitDef { name: "m", factor: 1000.0, dim: Dim::LENGTH },
+    UnitDef { name: "um", factor: 1e-3, dim: Dim::LENGTH },
+    UnitDef { name: "µm", factor: 1e-3, dim: Dim::LENGTH },
+    UnitDef { name: "in", factor: 25.4, dim: Dim::LENGTH },
+    UnitDef { name: "deg", factor: std::f64::consts::PI / 180.0, dim: Dim::ANGLE },
+    UnitDef { name: "°", factor: std::f64::consts::PI / 180.0, dim: Dim::ANGLE },
+    UnitDef { name: "rad", factor: 1.0, dim: Dim::ANGLE },
+    UnitDef { name: "s", factor: 1.0, dim: Dim::TIME },
+    UnitDef { name: "ms", factor: 1e-3, dim: Dim::TIME },
+    UnitDef { name: "min", factor: 60.0, dim: Dim::TIME },
+    UnitDef { name: "h", factor: 3600.0, dim: Dim::TIME },
+    UnitDef { name: "g", factor: 1.0, dim: Dim::MASS },
+    UnitDef { name: "kg", factor: 1000.0, dim: Dim::MASS },
+    UnitDef { name: "mg", factor: 1e-3, dim: Dim::MASS },
+    UnitDef { name: "W", factor: W_FACTOR, dim: Dim::POWER },
+    UnitDef { name: "kW", factor: 1e3 * W_FACTOR, dim: Dim::POWER },
+    UnitDef { name: "J", factor: W_FACTOR, dim: Dim::new(2, 1, -2, 0) },
+    UnitDef { name: "Hz", factor: 1.0, dim: Dim::new(0, 0, -1, 0) },
+    UnitDef { name: "%", factor: 0.01, dim: Dim::NONE },
+];
+
+/// A number with a dimension, in canonical units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Quantity {
+    /// Value in canonical units (mm, g, s, rad).
+    pub value: f64,
+    /// Its dimension.
+    pub dim: Dim,
+}
+
+impl Quantity {
+    /// A pure number.
+    pub fn number(value: f64) -> Self {
+        Quantity {
+            value,
+            dim: Dim::NONE,
+        }
+    }
+}
+
+/// Error from [`parse_unit`]: the unit atom that is not known.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UnknownUnit(pub String);
+
+/// Parses a unit expression such as `mm/s`, `g/cm^3`, `kW` into (factor, dimension).
+/// Units are multiplied and divided left to right: `g/cm^3` is g·cm⁻³.
+pub fn parse_unit(text: &str) -> Result<(f64, Dim), UnknownUnit> {
+    let mut factor = 1.0;
+    let mut dim = Dim::NONE;
+    let mut divide = false;
+    let mut rest = text;
+    loop {
+        let end = rest.find(['/', '*', '·']).unwrap_or(rest.len());
+        let (atom, exp) = match rest[..end].split_once('^') {
+            Some((a, e)) => (a, e.parse::<i32>().map_err(|_| UnknownUnit(text.into()))?),
+            None => (&rest[..end], 1),
+        };
+        let def = UNITS
+            .iter()
+            .find(|u| u.name == atom)
+            .ok_or_else(|| UnknownUnit(atom.to_string()))?;
+        let exp = if divide { -exp } else { exp };
+        factor *= def.factor.powi(exp);
+        dim = dim.mul(def.dim.powi(exp));
+        if end == rest.len() {
+            break;
+        }
+        let sep = rest[end..].chars().next().unwrap_or('*');
+        divide = sep == '/';
+        rest = &rest[end + sep.len_utf8()..];
+    }
+    Ok((factor, dim))
+}
+
+macro_rules! typed_quantity {
+    ($(#[$doc:meta])* $name:ident, $dim:expr, $unit:literal) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, PartialEq, PartialOrd, Default)]
+        pub struct $name(pub f64);
+
+        impl $name {
+            /// The dimension values of this type have.
+            pub const DIM: Dim = $dim;
+
+            /// From a checked quantity, if the dimension matches.
+            pub fn from_quantity(q: Quantity) -> Option<Self> {
+                (q.dim == Self::DIM).then_some($name(q.value))
+            }
+        }
+
+        impl fmt::Display for $name {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "{} {}", crate::units::short(self.display_value()), $unit)
+            }
+        }
+    };
+}
+
+typed_quantity!(
+    /// A length in mm.
+    Length, Dim::LENGTH, "mm");
+typed_quantity!(
+    /// An angle in radians (shown in degrees).
+    Angle, Dim::ANGLE, "deg");
+typed_quantity!(
+    /// A speed in mm/s.
+    Speed, Dim::SPEED, "mm/s");
+typed_quantity!(
+    /// A power in canonical units (shown in W).
+    Power, Dim::POWER, "W");
+typed_quantity!(
+    /// A powder feed rate in g/s (shown in g/min).
+    MassFlow, Dim::MASS_FLOW, "g/min");
+typed_quantity!(
+    /// A density in g/mm³ (shown in g/cm³).
+    Density, Dim::DENSITY, "g/cm^3");
+typed_quantity!(
+    /// A time in s.
+    Time, Dim::TIME, "s");
+
+impl Length {
+    fn display_value(self) -> f64 {
+        self.0
+    }
+    /// In mm.
+    pub fn mm(self) -> f64 {
+        self.0
+    }
+}
+impl Angle {
+    fn display_value(self) -> f64 {
+        self.0.to_degrees()
+    }
+    /// From degrees.
+    pub fn from_deg(d: f64) -> Self {
+        Angle(d.to_radians())
+    }
+    /// In radians.
+    pub fn rad(self) -> f64 {
+        self.0
+    }
+    /// In degrees.
+    pub fn deg(self) -> f64 {
+        self.0.to_degrees()
+    }
+}
+impl Speed {
+    fn display_value(self) -> f64 {
+        self.0
+    }
+    /// In mm/s.
+    pub fn mm_s(self) -> f64 {
+        self.0
+    }
+}
+impl Power {
+    fn display_value(self) -> f64 {
+        self.watts()
+    }
+    /// From watts.
+    pub fn from_watts(w: f64) -> Self {
+        Power(w * W_FACTOR)
+    }
+    /// In watts.
+    pub fn watts(self) -> f64 {
+        self.0 / W_FACTOR
+    }
+}
+impl MassFlow {
+    fn display_value(self) -> f64 {
+        self.g_min()
+    }
+    /// In g/min.
+    pub fn g_min(self) -> f64 {
+        self.0 * 60.0
+    }
+}
+impl Density {
+    fn display_value(self) -> f64 {
+        self.0 * 1000.0
+    }
+}
+impl Time {
+    fn display_value(self) -> f64 {
+        self.0
+    }
+}
+
+/// Formats a number for messages: at most 4 significant decimals, no trailing zeros.
+pub fn short(v: f64) -> String {
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    let s = if v.abs() >= 100.0 {
+        format!("{v:.1}")
+    } else if v.abs() >= 1.0 {
+        format!("{v:.3}")
+    } else {
+        format!("{v:.4}")
+    };
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    };
+    if s == "-0" {
+        "0".into()
+    } else {
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn compound_units() {
+        let (f, d) = parse_unit("mm/s").unwrap();
+        assert_eq!((f, d), (1.0, Dim::SPEED));
+        let (f, d) = parse_unit("g/min").unwrap();
+        assert!((f - 1.0 / 60.0).abs() < 1e-15);
+        assert_eq!(d, Dim::MASS_FLOW);
+        let (f, d) = parse_unit("g/cm^3").unwrap();
+        assert!((f - 1e-3).abs() < 1e-18);
+        assert_eq!(d, Dim::DENSITY);
+        let (f, d) = parse_unit("kW").unwrap();
+        assert_eq!(Power(f).watts(), 1000.0);
+        assert_eq!(d, Dim::POWER);
+        assert!(parse_unit("furlong").is_err());
+    }
+
+    #[test]
+    fn describes_dimensions() {
+        assert_eq!(Dim::SPEED.describe(), "a speed (mm/s)");
+        assert_eq!(Dim::new(1, 0, -2, 0).unit_string(), "mm/s^2");
+    }
+}
