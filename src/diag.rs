@@ -234,7 +234,11 @@ pub fn render(diags: &Diagnostics, file_name: &str, source: &str, color: bool) -
             errors,
             if errors == 1 { "" } else { "s" },
             if warnings > 0 {
-                format!(", {} warning{}", warnings, if warnings == 1 { "" } else { "s" })
+                format!(
+                    ", {} warning{}",
+                    warnings,
+                    if warnings == 1 { "" } else { "s" }
+                )
             } else {
                 String::new()
             },

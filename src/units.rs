@@ -95,7 +95,12 @@ impl Dim {
     pub fn unit_string(self) -> String {
         let mut num = Vec::new();
         let mut den = Vec::new();
-        for (e, u) in [(self.m, "g"), (self.l, "mm"), (self.a, "rad"), (self.t, "s")] {
+        for (e, u) in [
+            (self.m, "g"),
+            (self.l, "mm"),
+            (self.a, "rad"),
+            (self.t, "s"),
+        ] {
             let (list, e) = if e > 0 { (&mut num, e) } else { (&mut den, -e) };
             match e {
                 0 => {}
@@ -126,27 +131,111 @@ struct UnitDef {
 const W_FACTOR: f64 = 1e9; // 1 W = 1 kg·m²/s³ = 1e9 g·mm²/s³
 
 const UNITS: &[UnitDef] = &[
-    UnitDef { name: "mm", factor: 1.0, dim: Dim::LENGTH },
-    UnitDef { name: "cm", factor: 10.0, dim: Dim::LENGTH },
-    UnitDef { name: "m", factor: 1000.0, dim: Dim::LENGTH },
-    UnitDef { name: "um", factor: 1e-3, dim: Dim::LENGTH },
-    UnitDef { name: "µm", factor: 1e-3, dim: Dim::LENGTH },
-    UnitDef { name: "in", factor: 25.4, dim: Dim::LENGTH },
-    UnitDef { name: "deg", factor: std::f64::consts::PI / 180.0, dim: Dim::ANGLE },
-    UnitDef { name: "°", factor: std::f64::consts::PI / 180.0, dim: Dim::ANGLE },
-    UnitDef { name: "rad", factor: 1.0, dim: Dim::ANGLE },
-    UnitDef { name: "s", factor: 1.0, dim: Dim::TIME },
-    UnitDef { name: "ms", factor: 1e-3, dim: Dim::TIME },
-    UnitDef { name: "min", factor: 60.0, dim: Dim::TIME },
-    UnitDef { name: "h", factor: 3600.0, dim: Dim::TIME },
-    UnitDef { name: "g", factor: 1.0, dim: Dim::MASS },
-    UnitDef { name: "kg", factor: 1000.0, dim: Dim::MASS },
-    UnitDef { name: "mg", factor: 1e-3, dim: Dim::MASS },
-    UnitDef { name: "W", factor: W_FACTOR, dim: Dim::POWER },
-    UnitDef { name: "kW", factor: 1e3 * W_FACTOR, dim: Dim::POWER },
-    UnitDef { name: "J", factor: W_FACTOR, dim: Dim::new(2, 1, -2, 0) },
-    UnitDef { name: "Hz", factor: 1.0, dim: Dim::new(0, 0, -1, 0) },
-    UnitDef { name: "%", factor: 0.01, dim: Dim::NONE },
+    UnitDef {
+        name: "mm",
+        factor: 1.0,
+        dim: Dim::LENGTH,
+    },
+    UnitDef {
+        name: "cm",
+        factor: 10.0,
+        dim: Dim::LENGTH,
+    },
+    UnitDef {
+        name: "m",
+        factor: 1000.0,
+        dim: Dim::LENGTH,
+    },
+    UnitDef {
+        name: "um",
+        factor: 1e-3,
+        dim: Dim::LENGTH,
+    },
+    UnitDef {
+        name: "µm",
+        factor: 1e-3,
+        dim: Dim::LENGTH,
+    },
+    UnitDef {
+        name: "in",
+        factor: 25.4,
+        dim: Dim::LENGTH,
+    },
+    UnitDef {
+        name: "deg",
+        factor: std::f64::consts::PI / 180.0,
+        dim: Dim::ANGLE,
+    },
+    UnitDef {
+        name: "°",
+        factor: std::f64::consts::PI / 180.0,
+        dim: Dim::ANGLE,
+    },
+    UnitDef {
+        name: "rad",
+        factor: 1.0,
+        dim: Dim::ANGLE,
+    },
+    UnitDef {
+        name: "s",
+        factor: 1.0,
+        dim: Dim::TIME,
+    },
+    UnitDef {
+        name: "ms",
+        factor: 1e-3,
+        dim: Dim::TIME,
+    },
+    UnitDef {
+        name: "min",
+        factor: 60.0,
+        dim: Dim::TIME,
+    },
+    UnitDef {
+        name: "h",
+        factor: 3600.0,
+        dim: Dim::TIME,
+    },
+    UnitDef {
+        name: "g",
+        factor: 1.0,
+        dim: Dim::MASS,
+    },
+    UnitDef {
+        name: "kg",
+        factor: 1000.0,
+        dim: Dim::MASS,
+    },
+    UnitDef {
+        name: "mg",
+        factor: 1e-3,
+        dim: Dim::MASS,
+    },
+    UnitDef {
+        name: "W",
+        factor: W_FACTOR,
+        dim: Dim::POWER,
+    },
+    UnitDef {
+        name: "kW",
+        factor: 1e3 * W_FACTOR,
+        dim: Dim::POWER,
+    },
+    UnitDef {
+        name: "J",
+        factor: W_FACTOR,
+        dim: Dim::new(2, 1, -2, 0),
+    },
+    UnitDef {
+        name: "Hz",
+        factor: 1.0,
+        dim: Dim::new(0, 0, -1, 0),
+    },
+    UnitDef {
+        name: "%",
+        factor: 0.01,
+        dim: Dim::NONE,
+    },
 ];
 
 /// A number with a dimension, in canonical units.

@@ -21,7 +21,9 @@ const MAX_NESTING: usize = 64;
 pub fn parse(source: &str) -> Result<File, Diagnostic> {
     check_nesting(source)?;
     let mut pairs = LmdParser::parse(Rule::file, source).map_err(syntax_error)?;
-    let file = pairs.next().ok_or_else(|| Diagnostic::error("lmd::syntax", "empty parse"))?;
+    let file = pairs
+        .next()
+        .ok_or_else(|| Diagnostic::error("lmd::syntax", "empty parse"))?;
     let stmts = file
         .into_inner()
         .filter(|p| p.as_rule() == Rule::stmt)
@@ -260,9 +262,7 @@ fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
             ExprKind::Call { func, args }
         }
         Rule::expr => return expr(p),
-        _ => {
-            return Err(Diagnostic::error("lmd::syntax", "unexpected expression").label(span, ""))
-        }
+        _ => return Err(Diagnostic::error("lmd::syntax", "unexpected expression").label(span, "")),
     };
     Ok(Expr { kind, span })
 }

@@ -1,0 +1,112 @@
+//! Back ends: verified IR → machine programs. They read only the IR (and the
+//! [`Verified`](crate::check::Verified) proof that it passed the checks), render the
+//! program's shape through tera templates and write the per-point lines with a
+//! tight fixed-precision loop (see ARCHITECTURE.md for why).
+
+pub mod fixed;
+pub mod gcode;
+pub mod krl;
+pub mod templates;
+
+use crate::check::Verified;
+use crate::diag::Diagnostics;
+use crate::ir::Machine;
+use std::io::{self, Write};
+pub use templates::Templates;
+
+/// Where a back end writes its files. The compiler core does no file I/O itself:
+/// the CLI supplies a sink that writes temporary files and renames them into place
+/// only when every program was emitted, tests use [`MemorySink`].
+pub trait Sink {
+    /// Opens a new output file called `name` (a bare file name, no directories).
+    fn create(&mut self, name: &str) -> io::Result<Box<dyn Write + '_>>;
+}
+
+/// A sink that keeps files in memory, in creation order.
+#[derive(Default, Debug)]
+pub struct MemorySink {
+    /// `(name, contents)` pairs.
+    pub files: Vec<(String, Vec<u8>)>,
+}
+
+impl MemorySink {
+    /// The contents of the file called `name`, as text.
+    pub fn text(&self, name: &str) -> Option<String> {
+        self.files
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, b)| String::from_utf8_lossy(b).into_owned())
+    }
+}
+
+struct MemFile<'a> {
+    buf: &'a mut Vec<u8>,
+}
+
+impl Write for MemFile<'_> {
+    fn write(&mut self, b: &[u8]) -> io::Result<usize> {
+        self.buf.extend_from_slice(b);
+        Ok(b.len())
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        Ok(())
+    }
+}
+
+impl Sink for MemorySink {
+    fn create(&mut self, name: &str) -> io::Result<Box<dyn Write + '_>> {
+        self.files.push((name.to_string(), Vec::new()));
+        let last = self.files.len() - 1;
+        Ok(Box::new(MemFile {
+            buf: &mut self.files[last].1,
+        }))
+    }
+}
+
+/// Why a back end could not emit a program.
+#[derive(Debug, thiserror::Error)]
+pub enum EmitError {
+    /// The plan cannot run on this machine (axis limits, missing axes, …).
+    #[error("the plan does not fit machine")]
+    Program(Diagnostics),
+    /// A template failed to render.
+    #[error("template error: {0}")]
+    Template(String),
+    /// Writing failed.
+    #[error(transparent)]
+    Io(#[from] io::Error),
+}
+
+/// Emits the program(s) for machine number `index` of the verified IR.
+pub fn emit(
+    program: &Verified,
+    index: usize,
+    templates: &Templates,
+    sink: &mut dyn Sink,
+) -> Result<(), EmitError> {
+    match program.ir().machines.get(index) {
+        Some(Machine::Robot(r)) => krl::emit(program, index, r, templates, sink),
+        Some(Machine::Cnc(c)) => gcode::emit(program, index, c, templates, sink),
+        None => Err(EmitError::Template(format!("no machine number {index}"))),
+    }
+}
+
+/// A file-name-safe identifier from `text`: letters, digits and `_`, starting with
+/// a letter, lower case, at most `max` characters.
+pub fn identifier(text: &str, max: usize) -> String {
+    let mut s: String = text
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if !s.starts_with(|c: char| c.is_ascii_alphabetic()) {
+        s.insert(0, 'p');
+    }
+    s.truncate(max);
+    s
+}

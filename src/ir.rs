@@ -1,0 +1,357 @@
+//! The IR: layer frames and process points. It is the contract between the front end
+//! (parse → check → geometry → slicing) and the back ends, serialisable as
+//! `<part>.ir.json` (`--emit ir`), documented in `docs/ir.md`.
+//!
+//! Units: mm, deg (only in machine poses), mm/s, W, g/min. Directions are unit
+//! vectors. Process values and directions are stored as `f32` to keep a point at 72
+//! bytes (the dense duct has 3.6 M of them); positions stay `f64`.
+
+use crate::span::Span;
+use serde::{Deserialize, Serialize};
+
+/// The IR format tag.
+pub const FORMAT: &str = "lmdc-ir";
+/// The IR version this compiler writes.
+pub const VERSION: u32 = 1;
+
+/// A whole compiled plan.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Program {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Always [`VERSION`].
+    pub version: u32,
+    /// The part's name (used for file names).
+    pub part: String,
+    /// Units of every number in this file.
+    pub units: Units,
+    /// Process limits every laser-on point must respect.
+    pub limits: Limits,
+    /// The machines to write programs for.
+    pub machines: Vec<Machine>,
+    /// Layers in build order.
+    pub layers: Vec<Layer>,
+    /// Source spans of the declarations the checks refer to; not serialised.
+    #[serde(skip)]
+    pub origins: Origins,
+}
+
+/// Units of the IR's numbers.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Units {
+    /// Positions and heights.
+    pub length: String,
+    /// Angles.
+    pub angle: String,
+    /// Speeds.
+    pub speed: String,
+    /// Laser power.
+    pub power: String,
+    /// Powder feed.
+    pub powder: String,
+}
+
+impl Default for Units {
+    fn default() -> Self {
+        Units {
+            length: "mm".into(),
+            angle: "deg".into(),
+            speed: "mm/s".into(),
+            power: "W".into(),
+            powder: "g/min".into(),
+        }
+    }
+}
+
+/// Limits from the bead model and the process window.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Limits {
+    /// Allowed layer height `[h_min, h_max]` in mm.
+    pub layer_height: [f64; 2],
+    /// Scan speeds the bead model is valid for, mm/s.
+    pub speed: [f64; 2],
+    /// Laser power range, W.
+    pub power: [f64; 2],
+}
+
+/// One layer: deposited on the plane at `station` of the spine.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Layer {
+    /// 0-based build order.
+    pub index: usize,
+    /// Position along the spine of the plane this layer is deposited on (0 = start
+    /// section, 1 = end section).
+    pub station: f64,
+    /// The section frame at that station.
+    pub frame: Frame,
+    /// Paths in deposition order.
+    pub paths: Vec<Path>,
+}
+
+/// A right-handed orthonormal frame.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Frame {
+    /// Origin, mm.
+    pub origin: [f64; 3],
+    /// Section reference direction (carries the twist).
+    pub x: [f64; 3],
+    /// `z × x`.
+    pub y: [f64; 3],
+    /// Build direction: the layer plane's normal (the beam points along −z).
+    pub z: [f64; 3],
+}
+
+/// What a path is for.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum PathKind {
+    /// A single-bead wall following the section.
+    Wall,
+    /// A contour pass of a filled solid.
+    Contour,
+    /// A raster infill track.
+    Infill,
+    /// A laser-off move between deposits.
+    Travel,
+}
+
+/// A polyline of process points.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Path {
+    /// What the path is.
+    pub kind: PathKind,
+    /// The points, in order.
+    pub points: Vec<Point>,
+}
+
+/// One process point: where the bead is laid, how the nozzle stands, and the
+/// process values from this point to the next.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Point {
+    /// Deposit point on the working plane, mm.
+    pub pos: [f64; 3],
+    /// Unit build direction; the beam points along −normal.
+    pub normal: [f32; 3],
+    /// Unit direction of travel.
+    pub tangent: [f32; 3],
+    /// Local height of this layer here, mm.
+    pub layer_height: f32,
+    /// Scan speed, mm/s.
+    pub speed: f32,
+    /// Laser power, W.
+    pub power: f32,
+    /// Powder feed, g/min.
+    pub powder: f32,
+    /// Distance of the focal plane from the working plane, mm (negative: focus
+    /// below the surface).
+    pub defocus: f32,
+    /// Whether the laser is on while moving to the next point.
+    pub laser_on: bool,
+}
+
+/// A machine to write a program for.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum Machine {
+    /// An industrial robot programmed in KRL.
+    Robot(Robot),
+    /// A CNC programmed in G-code.
+    Cnc(Cnc),
+}
+
+impl Machine {
+    /// The machine's name from the source.
+    pub fn name(&self) -> &str {
+        match self {
+            Machine::Robot(r) => &r.name,
+            Machine::Cnc(c) => &c.name,
+        }
+    }
+}
+
+/// A pose `X Y Z A B C` (mm, deg; KUKA ZYX Euler: R = Rz(A)·Ry(B)·Rx(C)).
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct Pose {
+    /// mm
+    pub x: f64,
+    /// mm
+    pub y: f64,
+    /// mm
+    pub z: f64,
+    /// deg, about Z
+    pub a: f64,
+    /// deg, about the new Y
+    pub b: f64,
+    /// deg, about the new X
+    pub c: f64,
+}
+
+/// A frame on the controller: an index into its table, and optionally a value the
+/// program sets.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct FrameRef {
+    /// `TOOL_DATA[n]` / `BASE_DATA[n]`.
+    pub index: u16,
+    /// Value written by the program, if declared in the source.
+    pub value: Option<Pose>,
+}
+
+/// An axis of the tool frame, with a sign.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum ToolAxis {
+    /// +X
+    PlusX,
+    /// −X
+    MinusX,
+    /// +Y
+    PlusY,
+    /// −Y
+    MinusY,
+    /// +Z
+    PlusZ,
+    /// −Z
+    MinusZ,
+}
+
+/// A KUKA robot cell.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Robot {
+    /// Name from the source; the program is named after the part and this.
+    pub name: String,
+    /// Tool (TCP at the laser focus).
+    pub tool: FrameRef,
+    /// Base the part is programmed in.
+    pub base: FrameRef,
+    /// Which tool axis the beam travels along.
+    pub beam: ToolAxis,
+    /// `$OUT[n]` that switches the laser on.
+    pub laser_out: u16,
+    /// `$ANOUT[n]` that sets the power.
+    pub power_out: u16,
+    /// Power at `$ANOUT = 1.0`, W.
+    pub full_scale_power: f64,
+    /// Highest path speed, mm/s.
+    pub max_speed: f64,
+    /// Axis angles of the home position, deg.
+    pub home: [f64; 6],
+    /// Most motion lines in one sub-program module.
+    pub max_points_per_module: usize,
+    /// Distance the nozzle backs off along the normal between paths that do not
+    /// join, mm.
+    pub clearance: f64,
+}
+
+/// How a CNC's axes move the nozzle relative to the part.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Kinematics {
+    /// X Y Z only: the nozzle always points down (−Z).
+    Xyz,
+    /// Tilting head: A about X, then C about Z. Tool-tip (TCP) programming.
+    HeadAc,
+    /// Tilting head: B about Y, then C about Z. Tool-tip (TCP) programming.
+    HeadBc,
+}
+
+/// Dialect details of a CNC control, from a built-in profile and overrides.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Dialect {
+    /// Profile name (`linuxcnc`, `fagor8070`, `sinumerik840d`, `m20`).
+    pub profile: String,
+    /// Line(s) that switch the laser on.
+    pub laser_on: String,
+    /// Line(s) that switch the laser off.
+    pub laser_off: String,
+    /// S word value per watt (S = power · s_per_watt).
+    pub s_per_watt: f64,
+    /// Decimals of the S word.
+    pub s_decimals: usize,
+    /// Lines at the start of the program (after the header comment).
+    pub preamble: Vec<String>,
+    /// Lines at the end of the program.
+    pub postamble: Vec<String>,
+    /// Line that switches tool-tip control on for 5-axis moves (empty if none).
+    pub tcp_on: String,
+    /// Line that switches it off.
+    pub tcp_off: String,
+    /// Comment delimiters: `(`…`)` or `;`.
+    pub comment: CommentStyle,
+    /// Use `G00`/`G01` rather than `G0`/`G1`.
+    pub padded_g: bool,
+}
+
+/// How comments are written.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum CommentStyle {
+    /// `(text)`
+    Parens,
+    /// `; text`
+    Semicolon,
+}
+
+/// A CNC cell.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Cnc {
+    /// Name from the source.
+    pub name: String,
+    /// 3 or 5.
+    pub axes: u8,
+    /// Axis arrangement.
+    pub kinematics: Kinematics,
+    /// Control dialect.
+    pub dialect: Dialect,
+    /// Travel limits of X Y Z (mm) and the rotary axes (deg): `[min, max]`.
+    pub limits: AxisLimits,
+    /// Highest feed, mm/s.
+    pub max_speed: f64,
+    /// Distance the nozzle backs off along the normal between paths that do not
+    /// join, mm.
+    pub clearance: f64,
+}
+
+/// Axis travel limits.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct AxisLimits {
+    /// mm
+    pub x: [f64; 2],
+    /// mm
+    pub y: [f64; 2],
+    /// mm
+    pub z: [f64; 2],
+    /// deg: the tilt axis (A or B)
+    pub tilt: [f64; 2],
+    /// deg: the C axis
+    pub rotary: [f64; 2],
+}
+
+/// Where in the source the things the checks talk about were declared, so an
+/// infeasible IR can be reported at the lines responsible. Not serialised (spans
+/// would make every IR snapshot churn when text moves).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Origins {
+    /// The bead model's height range.
+    pub bead_height: Option<Span>,
+    /// The bead model's speed range.
+    pub bead_speed: Option<Span>,
+    /// The laser power declaration.
+    pub power: Option<Span>,
+    /// The spine (bend radius).
+    pub spine: Option<Span>,
+    /// The slicing block.
+    pub slicing: Option<Span>,
+    /// Each machine's declaration, by index in [`Program::machines`].
+    pub machines: Vec<Span>,
+}
+
+impl Program {
+    /// Number of points in all layers.
+    pub fn point_count(&self) -> usize {
+        self.layers
+            .iter()
+            .flat_map(|l| &l.paths)
+            .map(|p| p.points.len())
+            .sum()
+    }
+}
