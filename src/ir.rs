@@ -279,6 +279,8 @@ pub struct Dialect {
     pub comment: CommentStyle,
     /// Use `G00`/`G01` rather than `G0`/`G1`.
     pub padded_g: bool,
+    /// File extension of the program, without the dot (`ngc`, `mpf`, `nc`).
+    pub extension: String,
 }
 
 /// How comments are written.

@@ -1,0 +1,19 @@
+mod support {
+    pub mod fixture;
+}
+use support::fixture::*;
+
+#[test]
+fn fixture_passes_the_checks() {
+    let p = bent_tube(
+        4,
+        12,
+        30.0,
+        vec![
+            lmdc::ir::Machine::Robot(robot()),
+            lmdc::ir::Machine::Cnc(cnc5()),
+        ],
+    );
+    assert_eq!(p.point_count(), 4 * 13 + 3);
+    lmdc::check::verify(p).expect("fixture is valid IR");
+}
