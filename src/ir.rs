@@ -347,6 +347,19 @@ pub struct Origins {
     pub machines: Vec<Span>,
 }
 
+impl Point {
+    /// Where the tool centre point goes: the laser focus, `defocus` along the
+    /// normal from the deposit point. Both back ends program this point.
+    pub fn focus(&self) -> [f64; 3] {
+        let d = self.defocus as f64;
+        [
+            self.pos[0] + d * self.normal[0] as f64,
+            self.pos[1] + d * self.normal[1] as f64,
+            self.pos[2] + d * self.normal[2] as f64,
+        ]
+    }
+}
+
 impl Program {
     /// Number of points in all layers.
     pub fn point_count(&self) -> usize {
