@@ -2,9 +2,15 @@
 #![warn(missing_docs)]
 
 pub mod back;
+pub mod bead;
 pub mod check;
 pub mod diag;
+pub mod geometry;
 pub mod ir;
+pub mod lower;
+pub mod pipeline;
+pub mod sema;
+pub mod slice;
 pub mod span;
 pub mod syntax;
 pub mod units;

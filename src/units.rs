@@ -47,7 +47,7 @@ impl Dim {
     }
 
     /// Product of two dimensions.
-    pub fn mul(self, o: Dim) -> Dim {
+    pub fn times(self, o: Dim) -> Dim {
         Dim::new(
             self.l.saturating_add(o.l),
             self.m.saturating_add(o.m),
@@ -57,8 +57,8 @@ impl Dim {
     }
 
     /// Quotient of two dimensions.
-    pub fn div(self, o: Dim) -> Dim {
-        self.mul(o.powi(-1))
+    pub fn per(self, o: Dim) -> Dim {
+        self.times(o.powi(-1))
     }
 
     /// Integer power.
@@ -280,7 +280,7 @@ pub fn parse_unit(text: &str) -> Result<(f64, Dim), UnknownUnit> {
             .ok_or_else(|| UnknownUnit(atom.to_string()))?;
         let exp = if divide { -exp } else { exp };
         factor *= def.factor.powi(exp);
-        dim = dim.mul(def.dim.powi(exp));
+        dim = dim.times(def.dim.powi(exp));
         if end == rest.len() {
             break;
         }

@@ -1,0 +1,104 @@
+//! Bead physics: how a bead's height follows the scan speed, and the inverse the
+//! slicer needs (the speed that lays a given height). Pure functions of the
+//! semantic model's [`HeightModel`].
+
+use crate::sema::model::HeightModel;
+use crate::units::{Length, Speed};
+
+/// Area of a circular segment of chord `w` and height `h` (mm, mm²): the
+/// cross-section of a bead (seed 001 eq. 6). Valid for `0 ≤ h < w`; heights
+/// above `w/2` are major segments.
+pub fn segment_area(w: f64, h: f64) -> f64 {
+    if h <= 0.0 {
+        return 0.0;
+    }
+    let half = w / 2.0;
+    let r = (half * half + h * h) / (2.0 * h);
+    let theta = 2.0 * half.atan2(r - h);
+    0.5 * r * r * theta - half * (r - h)
+}
+
+/// The height of the circular segment of chord `w` whose area is `area`, found by
+/// bisection (the area grows monotonically with the height). Capped at `w`.
+pub fn segment_height(w: f64, area: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, w);
+    if area <= 0.0 {
+        return 0.0;
+    }
+    if segment_area(w, hi) <= area {
+        return hi;
+    }
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if segment_area(w, mid) < area {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+        if hi - lo < 1e-12 {
+            break;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+impl HeightModel {
+    /// Bead height at scan speed `v` for a bead of width `w`.
+    pub fn height_at(&self, v: Speed, w: Length) -> Length {
+        match *self {
+            HeightModel::Linear { slope, intercept } => Length(slope * v.0 + intercept.0),
+            HeightModel::MassBalance {
+                feed,
+                efficiency,
+                density,
+            } => {
+                let area = efficiency * feed.0 / (density.0 * v.0);
+                Length(segment_height(w.0, area))
+            }
+        }
+    }
+
+    /// The scan speed that lays a bead of height `h` and width `w`.
+    pub fn speed_for(&self, h: Length, w: Length) -> Speed {
+        match *self {
+            HeightModel::Linear { slope, intercept } => Speed((h.0 - intercept.0) / slope),
+            HeightModel::MassBalance {
+                feed,
+                efficiency,
+                density,
+            } => Speed(efficiency * feed.0 / (density.0 * segment_area(w.0, h.0))),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn semicircle_area_and_inverse() {
+        // h = w/2 is a half disc.
+        let a = segment_area(6.0, 3.0);
+        assert!((a - std::f64::consts::PI * 9.0 / 2.0).abs() < 1e-9);
+        assert!((segment_height(6.0, a) - 3.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn flat_segment_matches_parabola() {
+        // For h ≪ w the segment is close to a parabola: A ≈ 2/3·w·h.
+        let a = segment_area(6.0, 0.01);
+        assert!((a / (2.0 / 3.0 * 6.0 * 0.01) - 1.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn seed_003_linear_map() {
+        let m = HeightModel::Linear {
+            slope: -0.135,
+            intercept: Length(1.82),
+        };
+        let w = Length(3.0);
+        assert!((m.height_at(Speed(4.0), w).0 - 1.28).abs() < 1e-9);
+        assert!((m.height_at(Speed(8.7), w).0 - 0.6455).abs() < 1e-9);
+        assert!((m.speed_for(Length(1.28), w).0 - 4.0).abs() < 1e-9);
+    }
+}

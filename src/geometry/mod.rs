@@ -1,0 +1,96 @@
+//! Geometry of the solid: sections, their morph, the spine and the twisted
+//! section frames, with nalgebra poses. Reads the semantic model only.
+
+pub mod section;
+pub mod spine;
+
+use crate::sema::model::{Loft, Spine};
+use nalgebra::{Point3, Vector3};
+use section::Blend;
+use spine::SpineFrame;
+
+/// A section frame: where the section at a station sits and how it is turned.
+#[derive(Clone, Copy, Debug)]
+pub struct SectionFrame {
+    /// The untwisted spine frame.
+    pub spine: SpineFrame,
+    /// Twist angle at this station, rad.
+    pub twist: f64,
+    /// Section x axis (carries the twist).
+    pub x: Vector3<f64>,
+    /// Section y axis: `z × x`.
+    pub y: Vector3<f64>,
+}
+
+impl SectionFrame {
+    /// The build direction.
+    pub fn z(&self) -> Vector3<f64> {
+        self.spine.tangent
+    }
+
+    /// The point at section coordinates `(u, v)`.
+    pub fn at(&self, u: f64, v: f64) -> Point3<f64> {
+        self.spine.origin + self.x * u + self.y * v
+    }
+}
+
+/// A loft's geometry, ready to be evaluated at any station and angle.
+#[derive(Clone, Copy, Debug)]
+pub struct LoftGeometry {
+    /// The spine.
+    pub spine: Spine,
+    /// Section outlines.
+    pub blend: Blend,
+    /// Total twist, rad.
+    pub twist: f64,
+}
+
+impl LoftGeometry {
+    /// The geometry of a checked loft.
+    pub fn new(loft: &Loft) -> Self {
+        LoftGeometry {
+            spine: loft.spine,
+            blend: Blend::new(loft.from, loft.to, loft.morph),
+            twist: loft.twist.0,
+        }
+    }
+
+    /// The section frame at station `s`.
+    pub fn frame(&self, s: f64) -> SectionFrame {
+        let sp = spine::frame(&self.spine, s);
+        let twist = self.twist * s;
+        let (sin, cos) = twist.sin_cos();
+        let side = sp.side();
+        let x = sp.inward * cos + side * sin;
+        let y = sp.tangent.cross(&x);
+        SectionFrame {
+            spine: sp,
+            twist,
+            x,
+            y,
+        }
+    }
+
+    /// The outline point at station `s`, angle `theta` in the section frame, with
+    /// its section coordinates.
+    pub fn point(&self, f: &SectionFrame, s: f64, theta: f64) -> (Point3<f64>, [f64; 2]) {
+        let r = self.blend.radius(s, theta);
+        let (sin, cos) = theta.sin_cos();
+        let (u, v) = (r * cos, r * sin);
+        (f.at(u, v), [u, v])
+    }
+
+    /// Distance from the bend axis of the point at section coordinates `uv` on
+    /// frame `f` (for a straight spine: `None`, there is no bend axis).
+    pub fn bend_distance(&self, f: &SectionFrame, uv: [f64; 2]) -> Option<f64> {
+        match self.spine {
+            Spine::Line { .. } => None,
+            Spine::Arc { radius, .. } => {
+                // Component of the offset toward the bend centre.
+                let (sin, cos) = f.twist.sin_cos();
+                let inward = uv[0] * cos - uv[1] * sin;
+                Some(radius.0 - inward)
+            }
+        }
+    }
+}

@@ -1,0 +1,39 @@
+//! Lowering: the semantic model → the IR. Slices the solid and attaches the
+//! limits, machines and the source spans the IR checks report at.
+
+use crate::diag::Diagnostics;
+use crate::ir::{Limits, Origins, Program, Units, FORMAT, VERSION};
+use crate::sema::model::Model;
+use crate::slice;
+
+/// Builds the IR of a checked model; returns it with the slicer's warnings, or
+/// the errors that make the part unbuildable.
+pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
+    let (layers, warnings) = slice::slice(model)?;
+    let bead = &model.bead;
+    let program = Program {
+        format: FORMAT.into(),
+        version: VERSION,
+        part: model.part.clone(),
+        units: Units::default(),
+        limits: Limits {
+            layer_height: [bead.height[0].0, bead.height[1].0],
+            speed: [bead.speed[0].0, bead.speed[1].0],
+            power: [
+                model.process.power_range[0].watts(),
+                model.process.power_range[1].watts(),
+            ],
+        },
+        machines: model.machines.iter().map(|(m, _)| m.clone()).collect(),
+        layers,
+        origins: Origins {
+            bead_height: Some(bead.height_span),
+            bead_speed: Some(bead.speed_span),
+            power: Some(model.process.power_span),
+            spine: Some(model.loft.spine_span),
+            slicing: Some(model.slicing.span),
+            machines: model.machines.iter().map(|(_, s)| *s).collect(),
+        },
+    };
+    Ok((program, warnings))
+}

@@ -1,0 +1,121 @@
+//! The whole pipeline, one direction: source → syntax → semantic model → IR
+//! (geometry and slicing) → checks → back ends. No file I/O here: the CLI
+//! reads the source and supplies the [`Sink`] the programs are written to.
+
+use crate::back::{self, EmitError, Sink, Templates};
+use crate::check::{self, Verified};
+use crate::diag::Diagnostics;
+use crate::{lower, sema, syntax};
+
+/// Told when each stage finishes (for `lmdc build --timings`).
+pub trait Observer {
+    /// Stage `name` just finished.
+    fn stage(&mut self, name: &'static str);
+}
+
+impl Observer for () {
+    fn stage(&mut self, _: &'static str) {}
+}
+
+/// The result of compiling a source: the verified IR when there were no errors,
+/// and every diagnostic (warnings too).
+pub struct Compiled {
+    /// The checked IR, if the program has no errors.
+    pub program: Option<Verified>,
+    /// Errors and warnings, in the order found.
+    pub diagnostics: Diagnostics,
+}
+
+/// Compiles `source` to verified IR.
+pub fn compile(source: &str, obs: &mut dyn Observer) -> Compiled {
+    let mut diagnostics = Diagnostics::new();
+    let fail = |diagnostics| Compiled {
+        program: None,
+        diagnostics,
+    };
+    let ast = match syntax::parse(source) {
+        Ok(a) => a,
+        Err(d) => {
+            diagnostics.push(d);
+            return fail(diagnostics);
+        }
+    };
+    obs.stage("parse");
+    let (model, d) = sema::check(&ast);
+    drop(ast);
+    diagnostics.extend(d);
+    obs.stage("check");
+    let Some(model) = model else {
+        return fail(diagnostics);
+    };
+    let program = match lower::lower(&model) {
+        Ok((p, w)) => {
+            diagnostics.extend(w);
+            p
+        }
+        Err(e) => {
+            diagnostics.extend(e);
+            return fail(diagnostics);
+        }
+    };
+    obs.stage("slice");
+    let verified = match check::verify(program) {
+        Ok(v) => v,
+        Err(e) => {
+            diagnostics.extend(e);
+            return fail(diagnostics);
+        }
+    };
+    diagnostics.extend(verified.warnings().clone());
+    obs.stage("verify");
+    Compiled {
+        program: Some(verified),
+        diagnostics,
+    }
+}
+
+/// The indices of the machines to emit: all, or the one called `name`.
+pub fn select_machines(program: &Verified, name: Option<&str>) -> Result<Vec<usize>, String> {
+    let machines = &program.ir().machines;
+    match name {
+        None => Ok((0..machines.len()).collect()),
+        Some(n) => match machines.iter().position(|m| m.name() == n) {
+            Some(i) => Ok(vec![i]),
+            None => Err(format!(
+                "there is no machine called `{n}`; this file declares: {}",
+                machines
+                    .iter()
+                    .map(|m| m.name())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )),
+        },
+    }
+}
+
+/// Emits the programs of the machines `which` into `sink`.
+pub fn emit(
+    program: &Verified,
+    which: &[usize],
+    templates: &Templates,
+    sink: &mut dyn Sink,
+    obs: &mut dyn Observer,
+) -> Result<(), EmitError> {
+    let mut problems = Diagnostics::new();
+    for &i in which {
+        match back::emit(program, i, templates, sink) {
+            Ok(()) => {}
+            Err(EmitError::Program(d)) => problems.extend(d),
+            Err(e) => return Err(e),
+        }
+        obs.stage(match program.ir().machines[i] {
+            crate::ir::Machine::Robot(_) => "emit KRL",
+            crate::ir::Machine::Cnc(_) => "emit G-code",
+        });
+    }
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(EmitError::Program(problems))
+    }
+}

@@ -1,0 +1,155 @@
+//! `bead NAME { width, height, speed, model }`: a bead model.
+
+use super::fields::Fields;
+use super::model::{Bead, HeightModel};
+use super::value::{Env, Value};
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::Stmt;
+use crate::units::{short, Density, Dim, Length, MassFlow, Speed};
+
+/// Reads a bead block.
+pub fn read<'a>(
+    env: &mut Env<'a>,
+    name: &str,
+    stmts: &'a [Stmt],
+    span: Span,
+    diags: &mut Diagnostics,
+) -> Option<Bead> {
+    let f = Fields::block(
+        env,
+        stmts,
+        &["width", "height", "speed", "model"],
+        &[],
+        format!("bead `{name}`"),
+        span,
+        diags,
+    );
+    let width = f.positive("width", Dim::LENGTH, Some("6 mm"), diags);
+    let speed = f.range("speed", Dim::SPEED, Some("7 mm/s .. 10 mm/s"), diags);
+    let height = f.range("height", Dim::LENGTH, None, diags);
+    let model = f.value(
+        "model",
+        Some("mass_balance(feed = 45.9 g/min, efficiency = 0.3, density = 7.9 g/cm^3)"),
+        diags,
+    );
+    let model_span = model.map(|m| m.span);
+    let model = match model.map(|m| &m.value) {
+        Some(Value::Call(c)) if c.func == "linear" => {
+            let a = Fields::call(c, &[], &["slope", "intercept"], diags);
+            let slope = a.quantity("slope", Dim::TIME, Some("-0.135 mm / (1 mm/s)"), diags);
+            let b = a.quantity("intercept", Dim::LENGTH, Some("1.82 mm"), diags);
+            let (slope, b) = (slope?, b?);
+            if slope.0 >= 0.0 {
+                diags.push(
+                    Diagnostic::error("lmd::out-of-range", "the slope of a bead's height over speed must be negative")
+                        .label(slope.1, format!("this is {} mm per mm/s", short(slope.0)))
+                        .help("a faster scan lays a lower bead: fit H = slope·v + intercept with slope < 0"),
+                );
+                return None;
+            }
+            Some(HeightModel::Linear {
+                slope: slope.0,
+                intercept: Length(b.0),
+            })
+        }
+        Some(Value::Call(c)) if c.func == "mass_balance" => {
+            let a = Fields::call(c, &[], &["feed", "efficiency", "density"], diags);
+            let feed = a.positive("feed", Dim::MASS_FLOW, Some("45.9 g/min"), diags);
+            let eff = a.positive("efficiency", Dim::NONE, Some("0.3"), diags);
+            let rho = a.positive("density", Dim::DENSITY, Some("7.9 g/cm^3"), diags);
+            let (feed, eff, rho) = (feed?, eff?, rho?);
+            if eff.0 > 1.0 {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::out-of-range",
+                        "catch efficiency must lie between 0 and 1",
+                    )
+                    .label(eff.1, format!("this is {}", short(eff.0)))
+                    .help("write it as a fraction (0.3) or a percentage (30 %)"),
+                );
+                return None;
+            }
+            Some(HeightModel::MassBalance {
+                feed: MassFlow(feed.0),
+                efficiency: eff.0,
+                density: Density(rho.0),
+            })
+        }
+        Some(other) => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::bad-choice",
+                    "a bead model is `linear(…)` or `mass_balance(…)`",
+                )
+                .label(
+                    model_span.unwrap_or(span),
+                    format!("this is {}", other.describe()),
+                )
+                .help("e.g. `model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm)`"),
+            );
+            None
+        }
+        None => None,
+    };
+    let (width, (speed, speed_span), model) = (width?, speed?, model?);
+    let w = Length(width.0);
+    if speed[0] <= 0.0 {
+        diags.push(
+            Diagnostic::error("lmd::out-of-range", "scan speeds must be greater than zero")
+                .label(speed_span, "the lower end must be > 0"),
+        );
+        return None;
+    }
+    // The model's heights at the ends of its speed range.
+    let h_hi = model.height_at(Speed(speed[0]), w).0;
+    let h_lo = model.height_at(Speed(speed[1]), w).0;
+    if h_lo <= 0.0 || !h_lo.is_finite() || !h_hi.is_finite() {
+        diags.push(
+            Diagnostic::error(
+                "lmd::infeasible-bead",
+                format!(
+                    "the bead model gives a height of {} at {}",
+                    Length(h_lo),
+                    Speed(speed[1])
+                ),
+            )
+            .label(speed_span, "speed range")
+            .label_opt(model_span, "model")
+            .help("narrow the speed range to where the model gives positive heights"),
+        );
+        return None;
+    }
+    let (height, height_span) = match height {
+        None => ([h_lo, h_hi], model_span.unwrap_or(span)),
+        Some(([lo, hi], hs)) => {
+            let (elo, ehi) = (lo.max(h_lo), hi.min(h_hi));
+            if lo <= 0.0 || elo > ehi {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::infeasible-bead",
+                        format!(
+                            "the allowed heights {} .. {} do not overlap what the model lays at {} .. {} ({} .. {})",
+                            Length(lo), Length(hi), Speed(speed[0]), Speed(speed[1]), Length(h_lo), Length(h_hi)
+                        ),
+                    )
+                    .label(hs, "allowed heights")
+                    .label(speed_span, "speed range")
+                    .help("widen the speed range or the height range so that they overlap"),
+                );
+                return None;
+            }
+            ([elo, ehi], hs)
+        }
+    };
+    Some(Bead {
+        name: name.to_string(),
+        width: w,
+        model,
+        speed: [Speed(speed[0]), Speed(speed[1])],
+        height: [Length(height[0]), Length(height[1])],
+        span,
+        height_span,
+        speed_span,
+    })
+}

@@ -1,0 +1,75 @@
+//! Built-in G-code dialect profiles. They are data the one G-code back end
+//! renders; a machine block can override any of their lines.
+
+use crate::ir::{CommentStyle, Dialect};
+
+/// Profile names.
+pub const PROFILES: &[&str] = &["linuxcnc", "fagor8070", "sinumerik840d", "m20"];
+
+/// The profile called `name`.
+pub fn profile(name: &str) -> Option<Dialect> {
+    let lines = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    Some(match name {
+        // LinuxCNC: M3/M5 switch the laser (spindle) and S is the power in W; tool-tip
+        // control comes from the machine's kinematics module (e.g. xyzac-trt-kins),
+        // not from a G-code.
+        "linuxcnc" => Dialect {
+            profile: name.into(),
+            laser_on: "M3".into(),
+            laser_off: "M5".into(),
+            s_per_watt: 1.0,
+            s_decimals: 0,
+            preamble: lines(&["G21 G90 G94 G17", "G64 P0.02"]),
+            postamble: lines(&["M5", "M2"]),
+            tcp_on: String::new(),
+            tcp_off: String::new(),
+            comment: CommentStyle::Parens,
+            padded_g: false,
+            extension: "ngc".into(),
+        },
+        "fagor8070" => Dialect {
+            profile: name.into(),
+            laser_on: "M3".into(),
+            laser_off: "M5".into(),
+            s_per_watt: 1.0,
+            s_decimals: 0,
+            preamble: lines(&["G71 G90 G94 G17"]),
+            postamble: lines(&["M5", "M30"]),
+            tcp_on: "#RTCP ON".into(),
+            tcp_off: "#RTCP OFF".into(),
+            comment: CommentStyle::Semicolon,
+            padded_g: false,
+            extension: "nc".into(),
+        },
+        "sinumerik840d" => Dialect {
+            profile: name.into(),
+            laser_on: "M3".into(),
+            laser_off: "M5".into(),
+            s_per_watt: 1.0,
+            s_decimals: 0,
+            preamble: lines(&["G71 G90 G94 G17"]),
+            postamble: lines(&["M5", "M30"]),
+            tcp_on: "TRAORI".into(),
+            tcp_off: "TRAFOOF".into(),
+            comment: CommentStyle::Semicolon,
+            padded_g: false,
+            extension: "mpf".into(),
+        },
+        // The dialect of seed 002's cell: M20 laser on, M21 off, S in W.
+        "m20" => Dialect {
+            profile: name.into(),
+            laser_on: "M20".into(),
+            laser_off: "M21".into(),
+            s_per_watt: 1.0,
+            s_decimals: 0,
+            preamble: lines(&["G21 G90 G94"]),
+            postamble: lines(&["M21", "M30"]),
+            tcp_on: String::new(),
+            tcp_off: String::new(),
+            comment: CommentStyle::Semicolon,
+            padded_g: true,
+            extension: "nc".into(),
+        },
+        _ => return None,
+    })
+}

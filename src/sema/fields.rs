@@ -1,0 +1,462 @@
+//! Reading the fields of a block (`bead b { width = 6 mm }`) or the arguments of
+//! a call (`circle(diameter = 60 mm)`) with the types the reader expects. Every
+//! problem — unknown field, duplicate, missing, wrong unit, out of range — is
+//! reported, and reading goes on.
+
+use super::suggest::did_you_mean;
+use super::value::{Call, Env, Spanned, Value};
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{Body, Stmt};
+use crate::units::{short, Dim, Quantity};
+
+/// One field: its key and its evaluated value (`None` if evaluation failed and was
+/// reported already), or the statements of a nested block.
+struct Entry<'a> {
+    key: String,
+    key_span: Span,
+    value: Option<Spanned>,
+    block: Option<(&'a [Stmt], Span)>,
+}
+
+/// The fields of one block or call.
+pub struct Fields<'a> {
+    entries: Vec<Entry<'a>>,
+    /// What the block is, for messages: "bead `wall`".
+    what: String,
+    /// Where to point when a field is missing.
+    at: Span,
+}
+
+/// The result of looking a field up.
+enum Lookup<'b> {
+    Missing,
+    Failed,
+    Found(&'b Spanned),
+}
+
+impl<'a> Fields<'a> {
+    /// Reads `stmts` as `key = value` fields (or `key { … }` where the key is in
+    /// `blocks`), reporting keys not in `allowed` and duplicates.
+    pub fn block(
+        env: &mut Env<'a>,
+        stmts: &'a [Stmt],
+        allowed: &[&str],
+        blocks: &[&str],
+        what: String,
+        at: Span,
+        diags: &mut Diagnostics,
+    ) -> Self {
+        let mut entries: Vec<Entry<'a>> = Vec::new();
+        for s in stmts {
+            let key = s.kind.node.as_str();
+            if !allowed.contains(&key) && !blocks.contains(&key) {
+                let mut d =
+                    Diagnostic::error("lmd::unknown-field", format!("{what} has no field `{key}`"))
+                        .label(s.kind.span, "unknown field");
+                d = match did_you_mean(key, allowed.iter().chain(blocks).copied()) {
+                    Some(m) => d.help(format!("did you mean `{m}`?")),
+                    None => d.help(format!(
+                        "fields of {what}: {}",
+                        allowed
+                            .iter()
+                            .chain(blocks)
+                            .copied()
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    )),
+                };
+                diags.push(d);
+                continue;
+            }
+            if let Some(prev) = entries.iter().find(|e| e.key == key) {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::duplicate",
+                        format!("`{key}` is given twice in {what}"),
+                    )
+                    .label(s.kind.span, "second time")
+                    .label(prev.key_span, "first time")
+                    .help("keep one of them"),
+                );
+                continue;
+            }
+            if let Some(n) = &s.name {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::syntax",
+                        format!("unexpected `{}` after `{key}`", n.node),
+                    )
+                    .label(n.span, "not expected here")
+                    .help(format!("write `{key} = value`")),
+                );
+                continue;
+            }
+            let is_block = blocks.contains(&key);
+            let entry = match (&s.body, is_block) {
+                (Body::Assign(e), false) => Entry {
+                    key: key.into(),
+                    key_span: s.kind.span,
+                    value: env.eval(e, diags),
+                    block: None,
+                },
+                (Body::Block(inner, span), true) => Entry {
+                    key: key.into(),
+                    key_span: s.kind.span,
+                    value: None,
+                    block: Some((inner.as_slice(), *span)),
+                },
+                (_, true) => {
+                    diags.push(
+                        Diagnostic::error("lmd::syntax", format!("`{key}` takes a block"))
+                            .label(s.span, "expected `{ … }`")
+                            .help(format!("write `{key} {{ … }}`")),
+                    );
+                    continue;
+                }
+                (_, false) => {
+                    diags.push(
+                        Diagnostic::error("lmd::syntax", format!("`{key}` needs a value"))
+                            .label(s.span, "expected `= value`")
+                            .help(format!("write `{key} = value`")),
+                    );
+                    continue;
+                }
+            };
+            entries.push(entry);
+        }
+        Fields { entries, what, at }
+    }
+
+    /// Reads the arguments of `call`. Positional arguments take the names in
+    /// `positional` in order.
+    pub fn call(
+        call: &Call,
+        positional: &[&str],
+        allowed: &[&str],
+        diags: &mut Diagnostics,
+    ) -> Self {
+        let what = format!("`{}(…)`", call.func);
+        let mut entries: Vec<Entry<'a>> = Vec::new();
+        let mut next_pos = 0;
+        for a in &call.args {
+            let (key, key_span) = match &a.name {
+                Some((n, s)) => (n.clone(), *s),
+                None => {
+                    if next_pos >= positional.len() {
+                        diags.push(
+                            Diagnostic::error(
+                                "lmd::argument",
+                                format!("too many unnamed arguments for {what}"),
+                            )
+                            .label(a.value.span, "name this argument")
+                            .help(format!("arguments of {what}: {}", allowed.join(", "))),
+                        );
+                        continue;
+                    }
+                    next_pos += 1;
+                    (positional[next_pos - 1].to_string(), a.value.span)
+                }
+            };
+            if !allowed.contains(&key.as_str()) {
+                let mut d =
+                    Diagnostic::error("lmd::argument", format!("{what} has no argument `{key}`"))
+                        .label(key_span, "unknown argument");
+                d = match did_you_mean(&key, allowed.iter().copied()) {
+                    Some(m) => d.help(format!("did you mean `{m}`?")),
+                    None => d.help(format!("arguments of {what}: {}", allowed.join(", "))),
+                };
+                diags.push(d);
+                continue;
+            }
+            if let Some(prev) = entries.iter().find(|e| e.key == key) {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::duplicate",
+                        format!("`{key}` is given twice to {what}"),
+                    )
+                    .label(key_span, "second time")
+                    .label(prev.key_span, "first time"),
+                );
+                continue;
+            }
+            entries.push(Entry {
+                key,
+                key_span,
+                value: Some(a.value.clone()),
+                block: None,
+            });
+        }
+        Fields {
+            entries,
+            what,
+            at: call.func_span,
+        }
+    }
+
+    fn lookup(&self, key: &str) -> Lookup<'_> {
+        match self.entries.iter().find(|e| e.key == key) {
+            None => Lookup::Missing,
+            Some(Entry { value: None, .. }) => Lookup::Failed,
+            Some(Entry { value: Some(v), .. }) => Lookup::Found(v),
+        }
+    }
+
+    /// Where field `key` is written, if it is.
+    pub fn span(&self, key: &str) -> Option<Span> {
+        self.entries
+            .iter()
+            .find(|e| e.key == key)
+            .map(|e| match &e.value {
+                Some(v) => e.key_span.join(v.span),
+                None => e.key_span,
+            })
+    }
+
+    /// Is `key` written?
+    pub fn has(&self, key: &str) -> bool {
+        self.entries.iter().any(|e| e.key == key)
+    }
+
+    /// The statements of the nested block `key`, if written.
+    pub fn nested(&self, key: &str) -> Option<(&'a [Stmt], Span)> {
+        self.entries
+            .iter()
+            .find(|e| e.key == key)
+            .and_then(|e| e.block)
+    }
+
+    fn missing(&self, key: &str, example: &str, diags: &mut Diagnostics) {
+        diags.push(
+            Diagnostic::error("lmd::missing-field", format!("{} needs `{key}`", self.what))
+                .label(self.at, format!("`{key}` is missing"))
+                .help(format!("add `{key} = {example}`")),
+        );
+    }
+
+    /// The raw value of `key`; `None` if missing (reported when `example` is
+    /// given, i.e. the field is required) or failed.
+    pub fn value(
+        &self,
+        key: &str,
+        required: Option<&str>,
+        diags: &mut Diagnostics,
+    ) -> Option<&Spanned> {
+        match self.lookup(key) {
+            Lookup::Found(v) => Some(v),
+            Lookup::Failed => None,
+            Lookup::Missing => {
+                if let Some(example) = required {
+                    self.missing(key, example, diags);
+                }
+                None
+            }
+        }
+    }
+
+    /// A quantity of dimension `dim` (canonical units).
+    pub fn quantity(
+        &self,
+        key: &str,
+        dim: Dim,
+        required: Option<&str>,
+        diags: &mut Diagnostics,
+    ) -> Option<(f64, Span)> {
+        let v = self.value(key, required, diags)?;
+        quantity(v, dim, key, diags).map(|q| (q, v.span))
+    }
+
+    /// A quantity of dimension `dim` that must be > 0.
+    pub fn positive(
+        &self,
+        key: &str,
+        dim: Dim,
+        required: Option<&str>,
+        diags: &mut Diagnostics,
+    ) -> Option<(f64, Span)> {
+        let (q, span) = self.quantity(key, dim, required, diags)?;
+        if q > 0.0 && q.is_finite() {
+            Some((q, span))
+        } else {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::out-of-range",
+                    format!("`{key}` must be greater than zero"),
+                )
+                .label(span, format!("this is {}", short(q)))
+                .help(format!("give {} a positive value", self.what)),
+            );
+            None
+        }
+    }
+
+    /// A range `lo .. hi` of dimension `dim`.
+    pub fn range(
+        &self,
+        key: &str,
+        dim: Dim,
+        required: Option<&str>,
+        diags: &mut Diagnostics,
+    ) -> Option<([f64; 2], Span)> {
+        let v = self.value(key, required, diags)?;
+        match &v.value {
+            Value::Range(a, b) if a.dim == dim => Some(([a.value, b.value], v.span)),
+            Value::Range(a, _) => {
+                wrong_unit(v.span, key, dim, a.dim, diags);
+                None
+            }
+            other => {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::type",
+                        format!("`{key}` must be a range of {}", dim.describe()),
+                    )
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help("write a range as `low .. high`, e.g. `7 mm/s .. 10 mm/s`"),
+                );
+                None
+            }
+        }
+    }
+
+    /// A whole number within `lo..=hi`.
+    pub fn count(
+        &self,
+        key: &str,
+        lo: usize,
+        hi: usize,
+        required: Option<&str>,
+        diags: &mut Diagnostics,
+    ) -> Option<(usize, Span)> {
+        let v = self.value(key, required, diags)?;
+        count(v, key, lo, hi, diags).map(|n| (n, v.span))
+    }
+
+    /// One of the words in `choices`.
+    pub fn symbol(
+        &self,
+        key: &str,
+        choices: &[&str],
+        required: Option<&str>,
+        diags: &mut Diagnostics,
+    ) -> Option<(String, Span)> {
+        let v = self.value(key, required, diags)?;
+        symbol(v, key, choices, diags).map(|s| (s, v.span))
+    }
+
+    /// A text.
+    pub fn text(
+        &self,
+        key: &str,
+        required: Option<&str>,
+        diags: &mut Diagnostics,
+    ) -> Option<(String, Span)> {
+        let v = self.value(key, required, diags)?;
+        match &v.value {
+            Value::Str(s) => Some((s.clone(), v.span)),
+            other => {
+                diags.push(
+                    Diagnostic::error("lmd::type", format!("`{key}` must be a text in quotes"))
+                        .label(v.span, format!("this is {}", other.describe()))
+                        .help(format!("write `{key} = \"…\"`")),
+                );
+                None
+            }
+        }
+    }
+}
+
+/// `v` as a quantity of dimension `dim`.
+pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Option<f64> {
+    match &v.value {
+        Value::Quantity(Quantity { value, dim: d }) if *d == dim => Some(*value),
+        Value::Quantity(q) => {
+            wrong_unit(v.span, key, dim, q.dim, diags);
+            None
+        }
+        other => {
+            let mut d =
+                Diagnostic::error("lmd::type", format!("`{key}` must be {}", dim.describe()))
+                    .label(v.span, format!("this is {}", other.describe()));
+            if let Value::Symbol(s) = other {
+                d = d.help(format!("`{s}` is not a constant; declare it with `let {s} = …` or write a number with a unit"));
+            }
+            diags.push(d);
+            None
+        }
+    }
+}
+
+fn wrong_unit(span: Span, key: &str, want: Dim, got: Dim, diags: &mut Diagnostics) {
+    let help = if got == Dim::NONE {
+        format!("add a unit: `{key}` is {}", want.describe())
+    } else {
+        format!("`{key}` is {}; check the unit", want.describe())
+    };
+    diags.push(
+        Diagnostic::error(
+            "lmd::unit-mismatch",
+            format!(
+                "`{key}` must be {}, not {}",
+                want.describe(),
+                got.describe()
+            ),
+        )
+        .label(span, got.describe())
+        .help(help),
+    );
+}
+
+/// `v` as a whole number within `lo..=hi`.
+pub fn count(
+    v: &Spanned,
+    key: &str,
+    lo: usize,
+    hi: usize,
+    diags: &mut Diagnostics,
+) -> Option<usize> {
+    match &v.value {
+        Value::Quantity(Quantity { value, dim }) if *dim == Dim::NONE && value.fract() == 0.0 => {
+            if *value >= lo as f64 && *value <= hi as f64 {
+                Some(*value as usize)
+            } else {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::out-of-range",
+                        format!("`{key}` must be between {lo} and {hi}"),
+                    )
+                    .label(v.span, format!("this is {}", short(*value))),
+                );
+                None
+            }
+        }
+        other => {
+            diags.push(
+                Diagnostic::error("lmd::type", format!("`{key}` must be a whole number"))
+                    .label(v.span, format!("this is {}", other.describe())),
+            );
+            None
+        }
+    }
+}
+
+/// `v` as one of the words in `choices`.
+pub fn symbol(v: &Spanned, key: &str, choices: &[&str], diags: &mut Diagnostics) -> Option<String> {
+    if let Value::Symbol(s) = &v.value {
+        if choices.contains(&s.as_str()) {
+            return Some(s.clone());
+        }
+    }
+    let mut d = Diagnostic::error(
+        "lmd::bad-choice",
+        format!("`{key}` must be one of: {}", choices.join(", ")),
+    )
+    .label(v.span, format!("this is {}", v.value.describe()));
+    if let Value::Symbol(s) = &v.value {
+        if let Some(m) = did_you_mean(s, choices.iter().copied()) {
+            d = d.help(format!("did you mean `{m}`?"));
+        }
+    }
+    diags.push(d);
+    None
+}

@@ -1,0 +1,230 @@
+//! `loft NAME { from, to, spine, twist, morph, size, wall }`: a solid swept from
+//! one section to another along a spine, built as a single-bead wall.
+
+use super::fields::Fields;
+use super::model::{Bead, Loft, Measure, Morph, Section, Spine};
+use super::section;
+use super::value::{unknown_name, Env, Spanned, Value};
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::Stmt;
+use crate::units::{Angle, Dim, Length};
+use std::collections::BTreeMap;
+
+/// Declared sections and beads, by name.
+pub struct Scope<'s> {
+    /// `section NAME = …`
+    pub sections: &'s BTreeMap<String, (Section, Span)>,
+    /// `bead NAME { … }`
+    pub beads: &'s BTreeMap<String, Bead>,
+    /// Every name declared, including those whose declaration had errors (so
+    /// a use of them is not reported a second time as unknown).
+    pub declared: &'s [String],
+}
+
+/// Reads a loft block; returns the loft and the name of its wall's bead model.
+pub fn read<'a>(
+    env: &mut Env<'a>,
+    name: &str,
+    stmts: &'a [Stmt],
+    span: Span,
+    scope: &Scope<'_>,
+    diags: &mut Diagnostics,
+) -> Option<(Loft, Bead)> {
+    let f = Fields::block(
+        env,
+        stmts,
+        &["from", "to", "spine", "twist", "morph", "size", "wall"],
+        &[],
+        format!("loft `{name}`"),
+        span,
+        diags,
+    );
+    let from = f
+        .value("from", Some("circle(diameter = 60 mm)"), diags)
+        .and_then(|v| section_value(v, scope, diags));
+    let to = f
+        .value("to", Some("square(side = 60 mm)"), diags)
+        .and_then(|v| section_value(v, scope, diags));
+    let spine = f
+        .value("spine", Some("arc(radius = 250 mm, angle = 45 deg)"), diags)
+        .and_then(|v| spine_value(v, diags));
+    let twist = f
+        .quantity("twist", Dim::ANGLE, None, diags)
+        .map(|t| Angle(t.0))
+        .or(if f.has("twist") {
+            None
+        } else {
+            Some(Angle(0.0))
+        });
+    let measure = match f.symbol("size", &["centre", "center", "outer"], None, diags) {
+        Some((s, _)) if s == "outer" => Some(Measure::Outer),
+        Some(_) => Some(Measure::Centre),
+        None if f.has("size") => None,
+        None => Some(Measure::Centre),
+    };
+    let morph = f.symbol("morph", &["superellipse", "radial"], None, diags);
+    let bead = match f.value("wall", Some("my_bead"), diags) {
+        Some(Spanned {
+            value: Value::Symbol(b),
+            span,
+        }) => match scope.beads.get(b) {
+            Some(bead) => Some(bead.clone()),
+            None if scope.declared.contains(b) => None,
+            None => {
+                let names: Vec<&str> = scope.beads.keys().map(String::as_str).collect();
+                diags.push(unknown_name(b, *span, "bead model", &names));
+                None
+            }
+        },
+        Some(v) => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::type",
+                    "`wall` names the bead model the wall is built with",
+                )
+                .label(v.span, format!("this is {}", v.value.describe()))
+                .help("declare `bead my_bead { … }` and write `wall = my_bead`"),
+            );
+            None
+        }
+        None => None,
+    };
+    let (from, to, (spine, spine_span), twist, measure, bead) =
+        (from?, to?, spine?, twist?, measure?, bead?);
+    let family = |s: &Section| {
+        matches!(
+            s,
+            Section::Circle { .. } | Section::Ellipse { .. } | Section::Rectangle { .. }
+        )
+    };
+    let morph = match morph {
+        Some((m, _)) if m == "radial" => Morph::Radial,
+        Some((_, ms)) => {
+            if !(family(&from) && family(&to)) {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::bad-choice",
+                        "a superellipse morph needs circle, ellipse, square or rectangle ends",
+                    )
+                    .label(ms, "superellipse")
+                    .help("use `morph = radial` for polygons and rounded rectangles"),
+                );
+                return None;
+            }
+            Morph::Superellipse
+        }
+        None if family(&from) && family(&to) => Morph::Superellipse,
+        None => Morph::Radial,
+    };
+    let spans = [f.span("from").unwrap_or(span), f.span("to").unwrap_or(span)];
+    let (from, to) = match measure {
+        Measure::Centre => (from, to),
+        Measure::Outer => {
+            let mut ok = true;
+            let mut shrink = |s: Section, at: Span| match s.inset(Length(bead.width.0 / 2.0)) {
+                Some(s) => s,
+                None => {
+                    ok = false;
+                    diags.push(
+                        Diagnostic::error(
+                            "lmd::out-of-range",
+                            format!("this section is too small for a {} wide bead measured at its outer face", bead.width),
+                        )
+                        .label(at, "section")
+                        .help("make the section larger or use `size = centre`"),
+                    );
+                    s
+                }
+            };
+            let r = (shrink(from, spans[0]), shrink(to, spans[1]));
+            if !ok {
+                return None;
+            }
+            r
+        }
+    };
+    let loft = Loft {
+        name: name.to_string(),
+        from,
+        to,
+        spine,
+        twist,
+        morph,
+        measure,
+        span,
+        spine_span,
+        section_spans: spans,
+    };
+    Some((loft, bead))
+}
+
+fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Option<Section> {
+    match &v.value {
+        Value::Symbol(s) => match scope.sections.get(s) {
+            Some((sec, _)) => Some(*sec),
+            None if scope.declared.contains(s) => None,
+            None => {
+                let names: Vec<&str> = scope.sections.keys().map(String::as_str).collect();
+                diags.push(unknown_name(s, v.span, "section", &names));
+                None
+            }
+        },
+        Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
+        other => {
+            diags.push(
+                Diagnostic::error("lmd::type", "expected a section")
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help(format!(
+                        "name a declared section or write one of: {}",
+                        section::SHAPES.join(", ")
+                    )),
+            );
+            None
+        }
+    }
+}
+
+fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
+    let spine = match &v.value {
+        Value::Call(c) if c.func == "line" => {
+            let f = Fields::call(c, &["length"], &["length"], diags);
+            Spine::Line {
+                length: Length(f.positive("length", Dim::LENGTH, Some("100 mm"), diags)?.0),
+            }
+        }
+        Value::Call(c) if c.func == "arc" => {
+            let f = Fields::call(c, &[], &["radius", "angle"], diags);
+            let r = f.positive("radius", Dim::LENGTH, Some("250 mm"), diags);
+            let a = f.positive("angle", Dim::ANGLE, Some("45 deg"), diags);
+            let (r, (a, aspan)) = (r?, a?);
+            if a > std::f64::consts::PI * 1.5 {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::out-of-range",
+                        "a bend angle above 270° makes the part collide with itself",
+                    )
+                    .label(aspan, format!("this is {}", Angle(a)))
+                    .help("bend angles up to 270° are supported"),
+                );
+                return None;
+            }
+            Spine::Arc {
+                radius: Length(r.0),
+                angle: Angle(a),
+            }
+        }
+        other => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::type",
+                    "a spine is `line(length = …)` or `arc(radius = …, angle = …)`",
+                )
+                .label(v.span, format!("this is {}", other.describe()))
+                .help("e.g. `spine = arc(radius = 250 mm, angle = 45 deg)`"),
+            );
+            return None;
+        }
+    };
+    Some((spine, v.span))
+}

@@ -1,0 +1,419 @@
+//! `machine NAME { kind = robot | cnc, … }`: the cells lmdc writes programs for.
+//! A machine is plain data, so the checked declaration is already the IR's
+//! [`Machine`].
+
+use super::dialect;
+use super::fields::{self, Fields};
+use super::value::{Env, Value};
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::ir::{AxisLimits, Cnc, FrameRef, Kinematics, Machine, Pose, Robot, ToolAxis};
+use crate::span::Span;
+use crate::syntax::ast::{Body, Stmt};
+use crate::units::{Dim, Power};
+
+const ROBOT_FIELDS: &[&str] = &[
+    "kind",
+    "tool",
+    "base",
+    "beam",
+    "laser",
+    "power_output",
+    "full_scale",
+    "max_speed",
+    "home",
+    "clearance",
+    "module_lines",
+];
+
+const CNC_FIELDS: &[&str] = &[
+    "kind",
+    "axes",
+    "kinematics",
+    "dialect",
+    "laser_on",
+    "laser_off",
+    "s_per_watt",
+    "s_decimals",
+    "preamble",
+    "postamble",
+    "tcp_on",
+    "tcp_off",
+    "max_speed",
+    "clearance",
+];
+
+/// Reads a machine block.
+pub fn read<'a>(
+    env: &mut Env<'a>,
+    name: &str,
+    stmts: &'a [Stmt],
+    span: Span,
+    diags: &mut Diagnostics,
+) -> Option<Machine> {
+    let kind = stmts.iter().find(|s| s.kind.node == "kind");
+    let kind = match kind.map(|s| &s.body) {
+        Some(Body::Assign(e)) => {
+            let v = env.eval(e, &mut Diagnostics::new())?;
+            fields::symbol(&v, "kind", &["robot", "cnc"], diags)?
+        }
+        _ => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::missing-field",
+                    format!("machine `{name}` needs `kind`"),
+                )
+                .label(span, "is it a robot or a CNC?")
+                .help("add `kind = robot` (KUKA, KRL) or `kind = cnc` (G-code)"),
+            );
+            return None;
+        }
+    };
+    if kind == "robot" {
+        let f = Fields::block(
+            env,
+            stmts,
+            ROBOT_FIELDS,
+            &[],
+            format!("robot `{name}`"),
+            span,
+            diags,
+        );
+        robot(name, &f, diags).map(Machine::Robot)
+    } else {
+        let f = Fields::block(
+            env,
+            stmts,
+            CNC_FIELDS,
+            &["limits"],
+            format!("CNC `{name}`"),
+            span,
+            diags,
+        );
+        let limits = match f.nested("limits") {
+            Some((inner, ls)) => {
+                let l = Fields::block(
+                    env,
+                    inner,
+                    &["x", "y", "z", "a", "b", "c"],
+                    &[],
+                    "limits".into(),
+                    ls,
+                    diags,
+                );
+                Some(l)
+            }
+            None => None,
+        };
+        cnc(name, &f, limits.as_ref(), diags).map(Machine::Cnc)
+    }
+}
+
+fn frame_ref(f: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<FrameRef> {
+    let v = f.value(key, None, diags);
+    let v = match v {
+        None if f.has(key) => return None,
+        None => {
+            return Some(FrameRef {
+                index: 1,
+                value: None,
+            })
+        }
+        Some(v) => v,
+    };
+    match &v.value {
+        Value::Call(c) if c.func == "frame" => {
+            let a = Fields::call(
+                c,
+                &["index"],
+                &["index", "x", "y", "z", "a", "b", "c"],
+                diags,
+            );
+            let index = a.count("index", 1, 32, Some("1"), diags);
+            let mut g = |k: &str, d: Dim| {
+                a.quantity(k, d, None, diags).map(|q| q.0).or(if a.has(k) {
+                    None
+                } else {
+                    Some(0.0)
+                })
+            };
+            let (x, y, z) = (
+                g("x", Dim::LENGTH),
+                g("y", Dim::LENGTH),
+                g("z", Dim::LENGTH),
+            );
+            let (aa, b, c) = (g("a", Dim::ANGLE), g("b", Dim::ANGLE), g("c", Dim::ANGLE));
+            Some(FrameRef {
+                index: index?.0 as u16,
+                value: Some(Pose {
+                    x: x?,
+                    y: y?,
+                    z: z?,
+                    a: aa?.to_degrees(),
+                    b: b?.to_degrees(),
+                    c: c?.to_degrees(),
+                }),
+            })
+        }
+        _ => {
+            let n = fields::count(v, key, 1, 32, diags)?;
+            Some(FrameRef {
+                index: n as u16,
+                value: None,
+            })
+        }
+    }
+}
+
+fn or_default<T>(f: &Fields<'_>, key: &str, got: Option<T>, default: T) -> Option<T> {
+    match got {
+        Some(x) => Some(x),
+        None if f.has(key) => None,
+        None => Some(default),
+    }
+}
+
+fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
+    let tool = frame_ref(f, "tool", diags);
+    let base = frame_ref(f, "base", diags);
+    let beam = f.symbol("beam", &["x", "-x", "y", "-y", "z", "-z"], None, diags);
+    let beam = or_default(
+        f,
+        "beam",
+        beam.map(|(b, _)| match b.as_str() {
+            "x" => ToolAxis::PlusX,
+            "-x" => ToolAxis::MinusX,
+            "y" => ToolAxis::PlusY,
+            "-y" => ToolAxis::MinusY,
+            "-z" => ToolAxis::MinusZ,
+            _ => ToolAxis::PlusZ,
+        }),
+        ToolAxis::PlusZ,
+    );
+    let laser = f.count("laser", 1, 4096, Some("1"), diags);
+    let anout = f.count("power_output", 1, 32, Some("1"), diags);
+    let full = f.positive("full_scale", Dim::POWER, Some("4000 W"), diags);
+    let vmax = f.positive("max_speed", Dim::SPEED, Some("250 mm/s"), diags);
+    let clearance = f
+        .positive("clearance", Dim::LENGTH, None, diags)
+        .map(|c| c.0);
+    let clearance = or_default(f, "clearance", clearance, 10.0);
+    let lines = f
+        .count("module_lines", 10, 100_000, None, diags)
+        .map(|c| c.0);
+    let lines = or_default(f, "module_lines", lines, 2000);
+    let home = match f.value("home", None, diags) {
+        None if f.has("home") => None,
+        None => Some([0.0, -90.0, 90.0, 0.0, 0.0, 0.0]),
+        Some(v) => match &v.value {
+            Value::List(items) if items.len() == 6 => {
+                let mut out = [0.0; 6];
+                let mut ok = true;
+                for (i, it) in items.iter().enumerate() {
+                    match fields::quantity(it, Dim::ANGLE, "home", diags) {
+                        Some(a) => out[i] = a.to_degrees(),
+                        None => ok = false,
+                    }
+                }
+                ok.then_some(out)
+            }
+            other => {
+                diags.push(
+                    Diagnostic::error("lmd::type", "`home` is the list of the six axis angles")
+                        .label(v.span, format!("this is {}", other.describe()))
+                        .help("e.g. `home = [0 deg, -90 deg, 90 deg, 0 deg, 0 deg, 0 deg]`"),
+                );
+                None
+            }
+        },
+    };
+    Some(Robot {
+        name: name.to_string(),
+        tool: tool?,
+        base: base?,
+        beam: beam?,
+        laser_out: laser?.0 as u16,
+        power_out: anout?.0 as u16,
+        full_scale_power: Power(full?.0).watts(),
+        max_speed: vmax?.0,
+        home: home?,
+        max_points_per_module: lines?,
+        clearance: clearance?,
+    })
+}
+
+fn cnc(
+    name: &str,
+    f: &Fields<'_>,
+    limits: Option<&Fields<'_>>,
+    diags: &mut Diagnostics,
+) -> Option<Cnc> {
+    let axes = f.count("axes", 3, 5, Some("5"), diags);
+    let axes = match axes {
+        Some((4, s)) => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::out-of-range",
+                    "a CNC has 3 axes (X Y Z) or 5 (X Y Z and a tilting head)",
+                )
+                .label(s, "4 axes")
+                .help("write `axes = 3` or `axes = 5`"),
+            );
+            None
+        }
+        a => a.map(|a| a.0 as u8),
+    };
+    let kin = f.symbol("kinematics", &["xyz", "head_ac", "head_bc"], None, diags);
+    let kin_span = kin.as_ref().map(|k| k.1);
+    let kin = kin.map(|(k, _)| match k.as_str() {
+        "head_ac" => Kinematics::HeadAc,
+        "head_bc" => Kinematics::HeadBc,
+        _ => Kinematics::Xyz,
+    });
+    let kin = match (axes, kin) {
+        (Some(3), None) if !f.has("kinematics") => Some(Kinematics::Xyz),
+        (Some(5), None) if !f.has("kinematics") => Some(Kinematics::HeadAc),
+        (Some(a), Some(k)) if (a == 3) != (k == Kinematics::Xyz) => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::bad-choice",
+                    format!(
+                        "kinematics `{}` does not fit a {a}-axis machine",
+                        kin_name(k)
+                    ),
+                )
+                .label_opt(kin_span, "kinematics")
+                .label_opt(f.span("axes"), "axes")
+                .help("3 axes take `kinematics = xyz`; 5 axes take `head_ac` or `head_bc`"),
+            );
+            None
+        }
+        (_, k) => k,
+    };
+    let profile = f.symbol("dialect", dialect::PROFILES, None, diags);
+    let mut d = match profile {
+        Some((p, _)) => dialect::profile(&p),
+        None if f.has("dialect") => None,
+        None => dialect::profile("linuxcnc"),
+    };
+    if let Some(d) = d.as_mut() {
+        let text = |k: &str, diags: &mut Diagnostics| f.text(k, None, diags).map(|t| t.0);
+        if let Some(t) = text("laser_on", diags) {
+            d.laser_on = t;
+        }
+        if let Some(t) = text("laser_off", diags) {
+            d.laser_off = t;
+        }
+        if let Some(t) = text("tcp_on", diags) {
+            d.tcp_on = t;
+        }
+        if let Some(t) = text("tcp_off", diags) {
+            d.tcp_off = t;
+        }
+        // S words are plain numbers on the control: `s_per_watt` is how many S
+        // units one watt is (1 when S is programmed in W).
+        if let Some((s, _)) = f.positive("s_per_watt", Dim::NONE, None, diags) {
+            d.s_per_watt = s;
+        }
+        if let Some((n, _)) = f.count("s_decimals", 0, 4, None, diags) {
+            d.s_decimals = n;
+        }
+        for key in ["preamble", "postamble"] {
+            if let Some(v) = f.value(key, None, diags) {
+                let lines = match &v.value {
+                    Value::List(items) => items
+                        .iter()
+                        .map(|i| match &i.value {
+                            Value::Str(s) => Some(s.clone()),
+                            _ => None,
+                        })
+                        .collect::<Option<Vec<_>>>(),
+                    Value::Str(s) => Some(vec![s.clone()]),
+                    _ => None,
+                };
+                match lines {
+                    Some(l) if key == "preamble" => d.preamble = l,
+                    Some(l) => d.postamble = l,
+                    None => diags.push(
+                        Diagnostic::error(
+                            "lmd::type",
+                            format!("`{key}` is a list of lines in quotes"),
+                        )
+                        .label(v.span, "expected texts")
+                        .help(format!("e.g. `{key} = [\"G21 G90\", \"G94\"]`")),
+                    ),
+                }
+            }
+        }
+    }
+    let vmax = f.positive("max_speed", Dim::SPEED, Some("100 mm/s"), diags);
+    let clearance = f
+        .positive("clearance", Dim::LENGTH, None, diags)
+        .map(|c| c.0);
+    let clearance = or_default(f, "clearance", clearance, 10.0);
+    let mut lim = AxisLimits {
+        x: [-1000.0, 1000.0],
+        y: [-1000.0, 1000.0],
+        z: [-1000.0, 1000.0],
+        tilt: [-110.0, 110.0],
+        rotary: [-360.0, 360.0],
+    };
+    let mut ok = true;
+    if let Some(l) = limits {
+        for (key, dim, slot) in [
+            ("x", Dim::LENGTH, &mut lim.x),
+            ("y", Dim::LENGTH, &mut lim.y),
+            ("z", Dim::LENGTH, &mut lim.z),
+        ] {
+            match l.range(key, dim, None, diags) {
+                Some((r, _)) => *slot = r,
+                None => ok &= !l.has(key),
+            }
+        }
+        let tilt_key = if kin == Some(Kinematics::HeadBc) {
+            "b"
+        } else {
+            "a"
+        };
+        let other = if tilt_key == "a" { "b" } else { "a" };
+        if let Some(s) = l.span(other) {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::unknown-field",
+                    format!("this machine's head has no {} axis", other.to_uppercase()),
+                )
+                .label(s, "not an axis of this machine")
+                .help(format!(
+                    "the tilt axis of this kinematics is {}",
+                    tilt_key.to_uppercase()
+                )),
+            );
+            ok = false;
+        }
+        for (key, slot) in [(tilt_key, &mut lim.tilt), ("c", &mut lim.rotary)] {
+            match l.range(key, Dim::ANGLE, None, diags) {
+                Some((r, _)) => *slot = [r[0].to_degrees(), r[1].to_degrees()],
+                None => ok &= !l.has(key),
+            }
+        }
+    }
+    if !ok {
+        return None;
+    }
+    Some(Cnc {
+        name: name.to_string(),
+        axes: axes?,
+        kinematics: kin?,
+        dialect: d?,
+        limits: lim,
+        max_speed: vmax?.0,
+        clearance: clearance?,
+    })
+}
+
+fn kin_name(k: Kinematics) -> &'static str {
+    match k {
+        Kinematics::Xyz => "xyz",
+        Kinematics::HeadAc => "head_ac",
+        Kinematics::HeadBc => "head_bc",
+    }
+}

@@ -1,0 +1,313 @@
+//! The checker: typed AST → [`Model`]. Resolves names, evaluates constants with
+//! units, checks every block's fields and ranges, and reports every problem it
+//! finds (pest stops at the first syntax error; this stage never stops early).
+
+mod bead;
+pub mod dialect;
+mod fields;
+mod loft;
+mod machine;
+pub mod model;
+mod process;
+mod section;
+pub mod slicing;
+mod suggest;
+pub mod value;
+
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{Body, File, Stmt};
+use model::{Model, Section};
+use std::collections::BTreeMap;
+use value::{Env, Value};
+
+/// Top-level statement kinds.
+const KINDS: &[&str] = &[
+    "part", "let", "section", "bead", "loft", "slicing", "process", "machine",
+];
+
+/// Checks a parsed file. Returns the model if there were no errors, and every
+/// diagnostic (errors and warnings) found.
+pub fn check(file: &File) -> (Option<Model>, Diagnostics) {
+    let mut diags = Diagnostics::new();
+    let model = check_into(file, &mut diags);
+    (model.filter(|_| !diags.has_errors()), diags)
+}
+
+fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
+    let mut env = Env::new();
+    let mut by_kind: BTreeMap<&str, Vec<&Stmt>> = BTreeMap::new();
+    for s in &file.stmts {
+        let k = s.kind.node.as_str();
+        if !KINDS.contains(&k) {
+            let mut d = Diagnostic::error(
+                "lmd::unknown-statement",
+                format!("`{k}` does not start a statement"),
+            )
+            .label(s.kind.span, "unknown");
+            d = match suggest::did_you_mean(k, KINDS.iter().copied()) {
+                Some(m) => d.help(format!("did you mean `{m}`?")),
+                None => d.help(format!("a file is made of: {}", KINDS.join(", "))),
+            };
+            diags.push(d);
+            continue;
+        }
+        by_kind.entry(k).or_default().push(s);
+    }
+    let get = |k: &str| by_kind.get(k).cloned().unwrap_or_default();
+
+    // Constants first: everything else may use them, in any order.
+    for s in get("let") {
+        match (&s.name, &s.body) {
+            (Some(n), Body::Assign(e)) => {
+                if let Some(prev) = env.declare(&n.node, n.span, e) {
+                    diags.push(
+                        Diagnostic::error(
+                            "lmd::duplicate",
+                            format!("`{}` is declared twice", n.node),
+                        )
+                        .label(n.span, "second declaration")
+                        .label(prev, "first declaration")
+                        .help("rename one of them"),
+                    );
+                }
+            }
+            _ => diags.push(shape_error(s, "let NAME = value", "let R1 = 250 mm")),
+        }
+    }
+    env.eval_all(diags);
+
+    let part = single(&get("part"), "part", "part my_part", diags).and_then(|s| {
+        match (&s.name, &s.body) {
+            (Some(n), Body::None) => Some(n.node.clone()),
+            _ => {
+                diags.push(shape_error(s, "part NAME", "part twisted_duct"));
+                None
+            }
+        }
+    });
+
+    let mut sections: BTreeMap<String, (Section, Span)> = BTreeMap::new();
+    for s in get("section") {
+        let (Some(n), Body::Assign(e)) = (&s.name, &s.body) else {
+            diags.push(shape_error(
+                s,
+                "section NAME = shape(…)",
+                "section inlet = circle(diameter = 60 mm)",
+            ));
+            continue;
+        };
+        let Some(v) = env.eval(e, diags) else {
+            continue;
+        };
+        let sec = match &v.value {
+            Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
+            other => {
+                diags.push(
+                    Diagnostic::error("lmd::type", format!("section `{}` must be a shape", n.node))
+                        .label(v.span, format!("this is {}", other.describe()))
+                        .help(format!("shapes: {}", section::SHAPES.join(", "))),
+                );
+                None
+            }
+        };
+        if let Some(prev) = sections.get(&n.node) {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::duplicate",
+                    format!("section `{}` is declared twice", n.node),
+                )
+                .label(n.span, "second declaration")
+                .label(prev.1, "first declaration"),
+            );
+        } else if let Some(sec) = sec {
+            sections.insert(n.node.clone(), (sec, n.span));
+        }
+    }
+
+    let mut beads = BTreeMap::new();
+    for s in get("bead") {
+        let (Some(n), Body::Block(stmts, _)) = (&s.name, &s.body) else {
+            diags.push(shape_error(
+                s,
+                "bead NAME { … }",
+                "bead wall { width = 6 mm … }",
+            ));
+            continue;
+        };
+        if let Some(b) = bead::read(&mut env, &n.node, stmts, s.span, diags) {
+            beads.insert(n.node.clone(), b);
+        }
+    }
+
+    let lofts = get("loft");
+    let declared: Vec<String> = get("section")
+        .iter()
+        .chain(&get("bead"))
+        .filter_map(|s| s.name.as_ref().map(|n| n.node.clone()))
+        .collect();
+    let scope = loft::Scope {
+        sections: &sections,
+        beads: &beads,
+        declared: &declared,
+    };
+    let loft = match lofts.as_slice() {
+        [] => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::missing-solid",
+                    "the file does not describe a solid to build",
+                )
+                .label(Span::new(0, 0), "no `loft` here")
+                .help("add `loft NAME { from = …, to = …, spine = …, wall = BEAD }`"),
+            );
+            None
+        }
+        [s, rest @ ..] => {
+            for extra in rest {
+                diags.push(
+                    Diagnostic::error("lmd::duplicate", "lmdc 0.1 builds one solid per file")
+                        .label(extra.kind.span, "second solid")
+                        .label(s.kind.span, "first solid")
+                        .help("put each part in its own file"),
+                );
+            }
+            match (&s.name, &s.body) {
+                (Some(n), Body::Block(stmts, _)) => {
+                    loft::read(&mut env, &n.node, stmts, s.span, &scope, diags)
+                }
+                _ => {
+                    diags.push(shape_error(
+                        s,
+                        "loft NAME { … }",
+                        "loft duct { from = inlet … }",
+                    ));
+                    None
+                }
+            }
+        }
+    };
+
+    let slicing = single(
+        &get("slicing"),
+        "slicing",
+        "slicing normal { layers = auto }",
+        diags,
+    )
+    .and_then(|s| match &s.body {
+        Body::Block(stmts, _) => slicing::read(&mut env, s.name.as_ref(), stmts, s.span, diags),
+        _ => {
+            diags.push(shape_error(
+                s,
+                "slicing STRATEGY { … }",
+                "slicing normal { layers = auto }",
+            ));
+            None
+        }
+    });
+    let process = single(
+        &get("process"),
+        "process",
+        "process { powder = 45.9 g/min, power = 2100 W }",
+        diags,
+    )
+    .and_then(|s| match (&s.name, &s.body) {
+        (None, Body::Block(stmts, _)) => process::read(&mut env, stmts, s.span, diags),
+        _ => {
+            diags.push(shape_error(
+                s,
+                "process { … }",
+                "process { power = 2100 W }",
+            ));
+            None
+        }
+    });
+
+    let mut machines = Vec::new();
+    let mut seen: BTreeMap<String, Span> = BTreeMap::new();
+    for s in get("machine") {
+        let (Some(n), Body::Block(stmts, _)) = (&s.name, &s.body) else {
+            diags.push(shape_error(
+                s,
+                "machine NAME { … }",
+                "machine kr60 { kind = robot … }",
+            ));
+            continue;
+        };
+        if let Some(prev) = seen.insert(n.node.clone(), n.span) {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::duplicate",
+                    format!("machine `{}` is declared twice", n.node),
+                )
+                .label(n.span, "second declaration")
+                .label(prev, "first declaration"),
+            );
+        }
+        if let Some(m) = machine::read(&mut env, &n.node, stmts, s.span, diags) {
+            machines.push((m, s.span));
+        }
+    }
+    if get("machine").is_empty() {
+        diags.push(
+            Diagnostic::error(
+                "lmd::missing-machine",
+                "the file declares no machine to write a program for",
+            )
+            .label(Span::new(0, 0), "no `machine` here")
+            .help("add `machine NAME { kind = robot … }` or `machine NAME { kind = cnc … }`"),
+        );
+    }
+
+    let (loft, bead) = loft?;
+    Some(Model {
+        part: part?,
+        loft,
+        bead,
+        slicing: slicing?,
+        process: process?,
+        machines,
+    })
+}
+
+/// The one statement of a kind that must appear exactly once.
+fn single<'s>(
+    stmts: &[&'s Stmt],
+    kind: &str,
+    example: &str,
+    diags: &mut Diagnostics,
+) -> Option<&'s Stmt> {
+    match stmts {
+        [] => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::missing-statement",
+                    format!("the file has no `{kind}` statement"),
+                )
+                .label(Span::new(0, 0), format!("`{kind}` is missing"))
+                .help(format!("add `{example}`")),
+            );
+            None
+        }
+        [s, rest @ ..] => {
+            for extra in rest {
+                diags.push(
+                    Diagnostic::error("lmd::duplicate", format!("`{kind}` is given twice"))
+                        .label(extra.kind.span, "second time")
+                        .label(s.kind.span, "first time")
+                        .help("keep one of them"),
+                );
+            }
+            Some(s)
+        }
+    }
+}
+
+fn shape_error(s: &Stmt, shape: &str, example: &str) -> Diagnostic {
+    Diagnostic::error(
+        "lmd::syntax",
+        format!("a `{}` statement is written `{shape}`", s.kind.node),
+    )
+    .label(s.span, "not in that shape")
+    .help(format!("e.g. `{example}`"))
+}

@@ -1,0 +1,384 @@
+//! Evaluation of expressions to values with units. Errors are pushed to the sink
+//! and the failed expression evaluates to `None`, so one mistake is reported once
+//! and does not cascade.
+
+use super::suggest::did_you_mean;
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{Arg, BinOp, Expr, ExprKind, UnOp};
+use crate::units::{parse_unit, short, Dim, Quantity};
+use std::collections::HashMap;
+
+/// An evaluated expression.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// A number with a dimension.
+    Quantity(Quantity),
+    /// `lo .. hi`, same dimension.
+    Range(Quantity, Quantity),
+    /// A bare name that is not a constant: a section, a bead, or a keyword such as
+    /// `auto`. The reader that expects it decides.
+    Symbol(String),
+    /// `"text"`
+    Str(String),
+    /// `f(…)`: interpreted by the reader that expects it.
+    Call(Call),
+    /// `[a, b]`
+    List(Vec<Spanned>),
+}
+
+/// A value and the source it came from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spanned {
+    /// The value.
+    pub value: Value,
+    /// Where it was written.
+    pub span: Span,
+}
+
+/// An evaluated call: `circle(diameter = 60 mm)`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Call {
+    /// The function name.
+    pub func: String,
+    /// Where the name is.
+    pub func_span: Span,
+    /// Arguments in order.
+    pub args: Vec<CallArg>,
+}
+
+/// One evaluated argument.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CallArg {
+    /// Its name, with span, if named.
+    pub name: Option<(String, Span)>,
+    /// Its value.
+    pub value: Spanned,
+}
+
+impl Value {
+    /// What kind of value this is, for messages.
+    pub fn describe(&self) -> String {
+        match self {
+            Value::Quantity(q) => q.dim.describe(),
+            Value::Range(q, _) => format!("a range of {}", plural(&q.dim.describe())),
+            Value::Symbol(s) => format!("the name `{s}`"),
+            Value::Str(_) => "a text".into(),
+            Value::Call(c) => format!("`{}(…)`", c.func),
+            Value::List(_) => "a list".into(),
+        }
+    }
+}
+
+fn plural(d: &str) -> String {
+    let d = d
+        .trim_start_matches("a ")
+        .trim_start_matches("an ")
+        .to_string();
+    match d.find(" (") {
+        Some(i) => format!("{}s{}", &d[..i], &d[i..]),
+        None => format!("{d}s"),
+    }
+}
+
+enum LetState<'a> {
+    Pending(&'a Expr),
+    Busy,
+    Done(Option<Value>),
+}
+
+/// The constants of a file, evaluated on demand (so order does not matter) with
+/// cycle detection.
+pub struct Env<'a> {
+    lets: HashMap<String, (Span, LetState<'a>)>,
+    /// Names of everything declared (constants, sections, beads, …), for
+    /// "did you mean" hints.
+    pub known: Vec<String>,
+}
+
+impl<'a> Env<'a> {
+    /// An environment with no constants.
+    pub fn new() -> Self {
+        Env {
+            lets: HashMap::new(),
+            known: Vec::new(),
+        }
+    }
+
+    /// Declares `let name = expr`. Returns the span of an earlier declaration of
+    /// the same name, if any.
+    pub fn declare(&mut self, name: &str, name_span: Span, expr: &'a Expr) -> Option<Span> {
+        if let Some((prev, _)) = self.lets.get(name) {
+            return Some(*prev);
+        }
+        self.lets
+            .insert(name.to_string(), (name_span, LetState::Pending(expr)));
+        self.known.push(name.to_string());
+        None
+    }
+
+    /// Is `name` a constant?
+    pub fn is_constant(&self, name: &str) -> bool {
+        self.lets.contains_key(name)
+    }
+
+    /// Evaluates every constant (so errors in unused ones are reported too).
+    pub fn eval_all(&mut self, diags: &mut Diagnostics) {
+        let mut names: Vec<_> = self.lets.keys().cloned().collect();
+        names.sort();
+        for n in names {
+            let span = self.lets[&n].0;
+            self.lookup(&n, span, diags);
+        }
+    }
+
+    fn lookup(&mut self, name: &str, at: Span, diags: &mut Diagnostics) -> Option<Option<Value>> {
+        let (decl, state) = self.lets.get_mut(name)?;
+        let decl = *decl;
+        match std::mem::replace(state, LetState::Busy) {
+            LetState::Done(v) => {
+                *state = LetState::Done(v.clone());
+                Some(v)
+            }
+            LetState::Busy => {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::cycle",
+                        format!("the constant `{name}` is defined in terms of itself"),
+                    )
+                    .label(at, "used here while it is being computed")
+                    .label(decl, "defined here")
+                    .help("break the cycle: give one of the constants a value that does not use the others"),
+                );
+                Some(None)
+            }
+            LetState::Pending(expr) => {
+                let v = self.eval(expr, diags).map(|s| s.value);
+                if let Some((_, st)) = self.lets.get_mut(name) {
+                    *st = LetState::Done(v.clone());
+                }
+                Some(v)
+            }
+        }
+    }
+
+    /// Evaluates an expression.
+    pub fn eval(&mut self, e: &Expr, diags: &mut Diagnostics) -> Option<Spanned> {
+        let value = match &e.kind {
+            ExprKind::Number { value, unit } => {
+                let (factor, dim) = match unit {
+                    None => (1.0, Dim::NONE),
+                    Some(u) => match parse_unit(&u.node) {
+                        Ok(x) => x,
+                        Err(bad) => {
+                            diags.push(
+                                Diagnostic::error(
+                                    "lmd::unknown-unit",
+                                    format!("`{}` is not a unit lmdc knows", bad.0),
+                                )
+                                .label(u.span, "unknown unit")
+                                .help("units: mm cm m um in, deg rad, s ms min h, g mg kg, W kW, J, Hz, %; combine with / * and ^, e.g. g/min or g/cm^3"),
+                            );
+                            return None;
+                        }
+                    },
+                };
+                Value::Quantity(Quantity {
+                    value: value * factor,
+                    dim,
+                })
+            }
+            ExprKind::Ident(name) => match self.lookup(name, e.span, diags) {
+                Some(v) => v?,
+                None => Value::Symbol(name.clone()),
+            },
+            ExprKind::Str(s) => Value::Str(s.clone()),
+            ExprKind::List(items) => {
+                let mut out = Vec::with_capacity(items.len());
+                let mut ok = true;
+                for it in items {
+                    match self.eval(it, diags) {
+                        Some(v) => out.push(v),
+                        None => ok = false,
+                    }
+                }
+                if !ok {
+                    return None;
+                }
+                Value::List(out)
+            }
+            ExprKind::Call { func, args } => {
+                let mut out = Vec::with_capacity(args.len());
+                let mut ok = true;
+                for Arg { name, value } in args {
+                    match self.eval(value, diags) {
+                        Some(v) => out.push(CallArg {
+                            name: name.as_ref().map(|n| (n.node.clone(), n.span)),
+                            value: v,
+                        }),
+                        None => ok = false,
+                    }
+                }
+                if !ok {
+                    return None;
+                }
+                Value::Call(Call {
+                    func: func.node.clone(),
+                    func_span: func.span,
+                    args: out,
+                })
+            }
+            ExprKind::Unary { op, expr } => {
+                let v = self.eval(expr, diags)?;
+                match (op, v.value) {
+                    (UnOp::Pos, v) => v,
+                    (UnOp::Neg, Value::Quantity(q)) => Value::Quantity(Quantity {
+                        value: -q.value,
+                        dim: q.dim,
+                    }),
+                    // `-z` names an axis direction: keep the sign in the symbol.
+                    (UnOp::Neg, Value::Symbol(s)) => Value::Symbol(format!("-{s}")),
+                    (UnOp::Neg, other) => {
+                        diags.push(
+                            Diagnostic::error(
+                                "lmd::type",
+                                format!("cannot negate {}", other.describe()),
+                            )
+                            .label(expr.span, "this is not a number"),
+                        );
+                        return None;
+                    }
+                }
+            }
+            ExprKind::Binary { op, lhs, rhs } => {
+                let l = self.eval(lhs, diags);
+                let r = self.eval(rhs, diags);
+                let (l, r) = (l?, r?);
+                binary(*op, l, r, diags)?
+            }
+        };
+        Some(Spanned {
+            value,
+            span: e.span,
+        })
+    }
+}
+
+impl Default for Env<'_> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<Value> {
+    let (lq, rq) = match (&l.value, &r.value) {
+        (Value::Quantity(a), Value::Quantity(b)) => (*a, *b),
+        _ => {
+            let bad = if matches!(l.value, Value::Quantity(_)) {
+                &r
+            } else {
+                &l
+            };
+            let mut d = Diagnostic::error(
+                "lmd::type",
+                format!("`{}` needs numbers on both sides", op.symbol()),
+            )
+            .label(bad.span, format!("this is {}", bad.value.describe()));
+            if let Value::Symbol(s) = &bad.value {
+                d = d.help(format!(
+                    "`{s}` is not a constant; declare it with `let {s} = …`"
+                ));
+            }
+            diags.push(d);
+            return None;
+        }
+    };
+    let q = |value: f64, dim: Dim| Some(Value::Quantity(Quantity { value, dim }));
+    match op {
+        BinOp::Add | BinOp::Sub | BinOp::Range => {
+            if lq.dim != rq.dim {
+                let what = match op {
+                    BinOp::Range => "the ends of a range",
+                    BinOp::Add => "added values",
+                    _ => "subtracted values",
+                };
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::unit-mismatch",
+                        format!(
+                            "{what} must have the same unit: {} and {}",
+                            lq.dim.describe(),
+                            rq.dim.describe()
+                        ),
+                    )
+                    .label(l.span, lq.dim.describe())
+                    .label(r.span, rq.dim.describe())
+                    .help("give both operands the same kind of unit, e.g. `60 mm + 2 mm` or `45 deg + 5 deg`"),
+                );
+                return None;
+            }
+            match op {
+                BinOp::Add => q(lq.value + rq.value, lq.dim),
+                BinOp::Sub => q(lq.value - rq.value, lq.dim),
+                _ => {
+                    if lq.value > rq.value {
+                        diags.push(
+                            Diagnostic::error(
+                                "lmd::empty-range",
+                                "the range's lower end is above its upper end",
+                            )
+                            .label(l.span.join(r.span), "write the smaller value first")
+                            .help("ranges are written `low .. high`, e.g. `7 mm/s .. 10 mm/s`"),
+                        );
+                        return None;
+                    }
+                    Some(Value::Range(lq, rq))
+                }
+            }
+        }
+        BinOp::Mul => q(lq.value * rq.value, lq.dim.times(rq.dim)),
+        BinOp::Div => {
+            if rq.value == 0.0 {
+                diags.push(
+                    Diagnostic::error("lmd::division-by-zero", "division by zero")
+                        .label(r.span, "this is zero"),
+                );
+                return None;
+            }
+            q(lq.value / rq.value, lq.dim.per(rq.dim))
+        }
+        BinOp::Pow => {
+            let n = rq.value;
+            if rq.dim != Dim::NONE || n.fract() != 0.0 || n.abs() > 16.0 {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::bad-exponent",
+                        format!(
+                            "exponent {} is not a whole number between -16 and 16",
+                            short(n)
+                        ),
+                    )
+                    .label(r.span, "exponent")
+                    .help("write powers with whole-number exponents such as `^2` or `^-1`"),
+                );
+                return None;
+            }
+            q(lq.value.powi(n as i32), lq.dim.powi(n as i32))
+        }
+    }
+}
+
+/// An "unknown name" error with a did-you-mean hint over `candidates`.
+pub fn unknown_name(name: &str, span: Span, what: &str, candidates: &[&str]) -> Diagnostic {
+    let mut d = Diagnostic::error(
+        "lmd::unknown-name",
+        format!("there is no {what} called `{name}`"),
+    )
+    .label(span, "not declared");
+    d = match did_you_mean(name, candidates.iter().copied()) {
+        Some(s) => d.help(format!("did you mean `{s}`?")),
+        None if candidates.is_empty() => d.help(format!("declare the {what} first")),
+        None => d.help(format!("known: {}", candidates.join(", "))),
+    };
+    d
+}

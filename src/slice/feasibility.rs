@@ -1,0 +1,191 @@
+//! Choosing the layer count of normal slicing, and explaining in the user's
+//! terms why a part cannot be built with its bead model.
+
+use crate::diag::Diagnostic;
+use crate::geometry::LoftGeometry;
+use crate::sema::model::{Bead, Loft, Slicing, Spine};
+use crate::units::{short, Length, Speed};
+
+/// How far the outline reaches toward (`inward`) and away from (`outward`) the
+/// bend centre, over all stations, mm.
+#[derive(Clone, Copy, Debug)]
+pub struct Reach {
+    /// Largest offset toward the bend centre.
+    pub inward: f64,
+    /// Largest offset away from it.
+    pub outward: f64,
+}
+
+/// Samples the loft's outline to find its reach. The exact points come later;
+/// the margin in [`choose_layers`] covers the sampling error.
+pub fn reach(geo: &LoftGeometry) -> Reach {
+    const STATIONS: usize = 128;
+    const ANGLES: usize = 720;
+    let (mut inward, mut outward) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for i in 0..=STATIONS {
+        let s = i as f64 / STATIONS as f64;
+        let f = geo.frame(s);
+        let (sin, cos) = f.twist.sin_cos();
+        for j in 0..ANGLES {
+            let th = j as f64 * std::f64::consts::TAU / ANGLES as f64;
+            let r = geo.blend.radius(s, th);
+            let (st, ct) = th.sin_cos();
+            let a = r * ct * cos - r * st * sin;
+            inward = inward.max(a);
+            outward = outward.max(-a);
+        }
+    }
+    Reach { inward, outward }
+}
+
+/// Relative margin on the sampled reach (see [`reach`]).
+const MARGIN: f64 = 1e-5;
+
+/// The number of layers and the step (Δδ in rad for an arc; the layer height
+/// for a line), or the reasons it cannot be built.
+pub fn choose_layers(
+    loft: &Loft,
+    geo: &LoftGeometry,
+    bead: &Bead,
+    slicing: &Slicing,
+) -> Result<(usize, f64), Diagnostic> {
+    let [h_min, h_max] = [bead.height[0].0, bead.height[1].0];
+    let (total, rho_min, rho_max) = match loft.spine {
+        Spine::Line { length } => (length.0, 1.0, 1.0),
+        Spine::Arc { radius, angle } => {
+            let r = reach(geo);
+            let rho_min = (radius.0 - r.inward) * (1.0 - MARGIN);
+            let rho_max = (radius.0 + r.outward) * (1.0 + MARGIN);
+            if rho_min <= 0.0 {
+                return Err(Diagnostic::error(
+                    "lmd::bend-too-tight",
+                    format!(
+                        "the section reaches {} toward the bend centre, past the bend radius {}",
+                        Length(r.inward),
+                        radius
+                    ),
+                )
+                .label(loft.spine_span, "bend radius")
+                .label(loft.section_spans[0], "section")
+                .help(format!(
+                    "the bend radius must exceed {} (and more for the bead model's height range)",
+                    Length(r.inward)
+                )));
+            }
+            let q_need = rho_max / rho_min;
+            let q_have = h_max / h_min;
+            if q_need > q_have {
+                return Err(too_tight(loft, bead, radius.0, r, q_need, q_have));
+            }
+            (angle.0, rho_min, rho_max)
+        }
+    };
+    // Layer heights run from rho_min·step to rho_max·step, step = total / n.
+    let n_lo = (rho_max * total / h_max).ceil().max(1.0);
+    let n_hi = (rho_min * total / h_min).floor();
+    let what = match loft.spine {
+        Spine::Line { .. } => "layer height",
+        Spine::Arc { .. } => "layer heights",
+    };
+    match slicing.layers {
+        None => {
+            if n_lo > n_hi {
+                return Err(Diagnostic::error(
+                    "lmd::no-layer-count",
+                    format!(
+                        "no whole number of layers gives {what} within {} .. {}",
+                        bead.height[0], bead.height[1]
+                    ),
+                )
+                .label(loft.spine_span, "spine")
+                .label(bead.height_span, "allowed heights")
+                .help("change the spine's length or widen the bead's height range"));
+            }
+            Ok((n_lo as usize, total / n_lo))
+        }
+        Some(n) => {
+            let nf = n as f64;
+            if nf < n_lo || nf > n_hi {
+                let (lo, hi) = (rho_min * total / nf, rho_max * total / nf);
+                let fix = if n_lo <= n_hi {
+                    format!(
+                        "use between {} and {} layers, or `layers = auto`",
+                        n_lo, n_hi
+                    )
+                } else {
+                    "no layer count works for this bend and bead model".to_string()
+                };
+                return Err(Diagnostic::error(
+                    "lmd::layer-height",
+                    format!(
+                        "with {n} layers the {what} run {} .. {}, outside the bead's {} .. {}",
+                        Length(lo),
+                        Length(hi),
+                        bead.height[0],
+                        bead.height[1]
+                    ),
+                )
+                .label_opt(slicing.layers_span, "layer count")
+                .label(bead.height_span, "allowed heights")
+                .help(fix));
+            }
+            Ok((n, total / nf))
+        }
+    }
+}
+
+fn too_tight(
+    loft: &Loft,
+    bead: &Bead,
+    radius: f64,
+    r: Reach,
+    q_need: f64,
+    q_have: f64,
+) -> Diagnostic {
+    // (R + out) ≤ q·(R − in)  ⇔  R ≥ (out + q·in)/(q − 1)
+    let r_need = (r.outward + q_have * r.inward) / (q_have - 1.0);
+    let scale = radius * (q_have - 1.0) / (r.outward + q_have * r.inward);
+    let h_top = bead
+        .model
+        .height_at(bead.speed[0], bead.width)
+        .0
+        .min(bead.height[1].0);
+    let v_fast = bead.model.speed_for(Length(h_top / q_need), bead.width);
+    let mut fixes = vec![format!(
+        "a bend radius of at least {}",
+        Length((r_need * 1.001).ceil())
+    )];
+    if v_fast.0.is_finite() && v_fast.0 > 0.0 {
+        fixes.push(format!(
+            "a bead model that spans the ratio (e.g. speeds up to {} if it holds that far)",
+            Speed((v_fast.0 * 10.0).ceil() / 10.0)
+        ));
+    }
+    fixes.push(format!(
+        "a section at most {}% of this size",
+        short((scale * 1000.0).floor() / 10.0)
+    ));
+    Diagnostic::error(
+        "lmd::bend-too-tight",
+        format!(
+            "outer/inner layer height ratio {:.2} needs h_max/h_min ≥ {:.2}; this bead model gives {:.2}",
+            q_need, q_need, q_have
+        ),
+    )
+    .label(
+        loft.spine_span,
+        format!(
+            "bend radius {}: layers are {:.2}× thicker at the outside ({}) than at the inside ({})",
+            Length(radius),
+            q_need,
+            Length(radius + r.outward),
+            Length(radius - r.inward)
+        ),
+    )
+    .label(
+        bead.height_span,
+        format!("h_max/h_min = {} / {} = {:.2}", bead.height[1], bead.height[0], q_have),
+    )
+    .label(bead.speed_span, "speed range")
+    .help(format!("this would work: {}", fixes.join("; or ")))
+}

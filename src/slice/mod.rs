@@ -1,0 +1,93 @@
+//! Slicing: the semantic model's solid → layers of process points (the IR's
+//! layers). Reads the model and the geometry built from it.
+
+pub mod feasibility;
+pub mod normal;
+
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::geometry::LoftGeometry;
+use crate::ir::Layer;
+use crate::sema::model::{Model, Resolution, Spine};
+use crate::sema::slicing::MAX_POINTS;
+use crate::units::{short, Angle};
+
+/// Most points a plan may hold (72 bytes each in the IR): 100 M ≈ 7 GB is
+/// already more than any deposition program needs.
+pub const MAX_TOTAL_POINTS: usize = 100_000_000;
+
+/// Slices the model's loft. Returns the layers and any warnings, or the errors.
+pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    let mut warnings = Diagnostics::new();
+    let geo = LoftGeometry::new(&model.loft);
+    let (layers, step) = feasibility::choose_layers(&model.loft, &geo, &model.bead, &model.slicing)
+        .map_err(Diagnostics::from)?;
+    let k = match model.slicing.resolution {
+        Resolution::Count(k) => k,
+        Resolution::ChordError(e) => {
+            // Chord error of polar sampling on the largest radius; a multiple of
+            // 8 puts a point on every corner of a square section.
+            let r = geo.blend.max_radius();
+            let dth = 2.0 * (1.0 - (e.0 / r).min(1.0)).acos();
+            let k = (std::f64::consts::TAU / dth).ceil().max(8.0);
+            let k = ((k / 8.0).ceil() * 8.0).min(1e12) as usize;
+            if k > MAX_POINTS {
+                return Err(Diagnostic::error(
+                    "lmd::too-many-points",
+                    format!(
+                        "a chord error of {} needs {k} points a layer, more than {MAX_POINTS}",
+                        e
+                    ),
+                )
+                .label(model.slicing.span, "slicing")
+                .help("allow a larger chord error")
+                .into());
+            }
+            k
+        }
+    };
+    if layers.saturating_mul(k + 1) > MAX_TOTAL_POINTS {
+        return Err(Diagnostic::error(
+            "lmd::too-many-points",
+            format!(
+                "{layers} layers × {} points is more than {MAX_TOTAL_POINTS} points",
+                k + 1
+            ),
+        )
+        .label(model.slicing.span, "slicing")
+        .help("use fewer points a layer (or a larger chord error)")
+        .into());
+    }
+    let plan = normal::Plan { layers, step, k };
+    let mut out = Vec::with_capacity(layers);
+    let mut seam_hits = Vec::new();
+    for i in 0..layers {
+        let (layer, seam) = normal::layer(model, &geo, &plan, i);
+        if let Some(x) = seam {
+            if !(0.02..=0.98).contains(&x) {
+                seam_hits.push(i);
+            }
+        }
+        out.push(layer);
+    }
+    if let (Some(first), Spine::Arc { .. }) = (seam_hits.first(), model.loft.spine) {
+        let seam = model.slicing.seam;
+        warnings.push(
+            Diagnostic::warning(
+                "lmd::seam-at-bend-extreme",
+                format!(
+                    "the seam (laser on/off) sits at the innermost or outermost point of the bend on {} layer{} (first: layer {})",
+                    seam_hits.len(),
+                    if seam_hits.len() == 1 { "" } else { "s" },
+                    first + 1
+                ),
+            )
+            .label(model.slicing.seam_span.unwrap_or(model.slicing.span), format!("seam at {}", Angle(seam.0)))
+            .label(model.loft.spine_span, "bend")
+            .help(format!(
+                "start and stop where the layer height is average, e.g. `seam = {} deg` (the side of the bend)",
+                short(90.0)
+            )),
+        );
+    }
+    Ok((out, warnings))
+}

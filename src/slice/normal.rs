@@ -1,0 +1,109 @@
+//! Continuous gradual ("normal") slicing of a loft: layer `i` is deposited on
+//! the section plane at station `i/n`; a point at distance ρ from the bend axis
+//! gets the local height ρ·Δδ (seed 000), and the speed that lays it.
+
+use crate::geometry::LoftGeometry;
+use crate::ir::{Frame, Layer, Path, PathKind, Point};
+use crate::sema::model::Model;
+use crate::units::{Length, Speed};
+use nalgebra::Vector3;
+
+/// Everything per-point generation needs, fixed per plan.
+pub struct Plan {
+    /// Number of layers.
+    pub layers: usize,
+    /// Δδ (rad) for an arc spine; the layer height (mm) for a line.
+    pub step: f64,
+    /// Points per layer (the path has one more: it closes on its start).
+    pub k: usize,
+}
+
+/// Generates layer `i`. Returns the layer and how its seam sits: the seam's
+/// offset toward the bend centre relative to the layer's extremes (0 = innermost
+/// … 1 = outermost), for arc spines.
+pub fn layer(model: &Model, geo: &LoftGeometry, plan: &Plan, i: usize) -> (Layer, Option<f64>) {
+    let s = i as f64 / plan.layers as f64;
+    let f = geo.frame(s);
+    let n = f.z();
+    let normal = [n.x as f32, n.y as f32, n.z as f32];
+    let bead = &model.bead;
+    let power = model.process.power.at(i).watts() as f32;
+    let powder = model.process.powder.g_min() as f32;
+    let defocus = model.process.defocus.0 as f32;
+    let k = plan.k;
+    let seam = model.slicing.seam.0;
+    let dth = std::f64::consts::TAU / k as f64;
+
+    let mut pos = Vec::with_capacity(k);
+    let mut heights = Vec::with_capacity(k);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for j in 0..k {
+        let th = seam + j as f64 * dth;
+        let (p, uv) = geo.point(&f, s, th);
+        let h = match geo.bend_distance(&f, uv) {
+            Some(rho) => {
+                lo = lo.min(rho);
+                hi = hi.max(rho);
+                rho * plan.step
+            }
+            None => plan.step,
+        };
+        pos.push(p);
+        heights.push(h);
+    }
+    let seam_at = (hi > lo).then(|| {
+        let rho0 = heights[0] / plan.step;
+        (rho0 - lo) / (hi - lo)
+    });
+
+    let mut points = Vec::with_capacity(k + 1);
+    for j in 0..=k {
+        let jj = j % k;
+        let prev = pos[(jj + k - 1) % k];
+        let next = pos[(jj + 1) % k];
+        // Central difference, kept exactly in the layer plane.
+        let mut t: Vector3<f64> = next - prev;
+        t -= n * t.dot(&n);
+        let t = t.try_normalize(1e-12).unwrap_or(f.y);
+        let h = heights[jj];
+        let v = bead.model.speed_for(Length(h), bead.width);
+        let p = pos[jj];
+        points.push(Point {
+            pos: [p.x, p.y, p.z],
+            normal,
+            tangent: [t.x as f32, t.y as f32, t.z as f32],
+            layer_height: h as f32,
+            speed: clamp_speed(v) as f32,
+            power,
+            powder,
+            defocus,
+            laser_on: j < k,
+        });
+    }
+    let o = f.spine.origin;
+    let layer = Layer {
+        index: i,
+        station: s,
+        frame: Frame {
+            origin: [o.x, o.y, o.z],
+            x: [f.x.x, f.x.y, f.x.z],
+            y: [f.y.x, f.y.y, f.y.z],
+            z: [n.x, n.y, n.z],
+        },
+        paths: vec![Path {
+            kind: PathKind::Wall,
+            points,
+        }],
+    };
+    (layer, seam_at)
+}
+
+/// A speed the IR can hold: non-finite results (which the checks would refuse
+/// anyway) become 0 so the checks report them as out of range, not as NaN.
+fn clamp_speed(v: Speed) -> f64 {
+    if v.0.is_finite() {
+        v.0
+    } else {
+        0.0
+    }
+}
