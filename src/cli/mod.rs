@@ -1,0 +1,263 @@
+//! The `lmdc` command line: argument parsing, reading the source, printing
+//! diagnostics, writing outputs atomically, exit codes.
+
+pub mod sink;
+pub mod timings;
+
+use clap::{Parser, Subcommand, ValueEnum};
+use lmdc::back::{EmitError, Templates};
+use lmdc::diag::{render, Diagnostics};
+use lmdc::pipeline::{self, Observer};
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+
+/// Exit code: the program has errors.
+pub const EXIT_PROGRAM: u8 = 1;
+/// Exit code: bad usage or an I/O problem.
+pub const EXIT_USAGE: u8 = 2;
+
+/// Largest source file lmdc reads.
+const MAX_SOURCE: u64 = 16 << 20;
+
+/// lmdc compiles a .lmd description of a laser metal deposition part into the
+/// programs that build it: KRL for KUKA robots, G-code for CNCs.
+#[derive(Parser, Debug)]
+#[command(name = "lmdc", version, about, long_about = None, after_help = "\
+Examples:
+  lmdc check part.lmd                    check the part and its process, write nothing
+  lmdc build part.lmd                    write every machine's program into out/
+  lmdc build part.lmd -o build --machine kr60 --emit ir
+                                         only the robot kr60, plus the plan as JSON
+Exit status: 0 success, 1 errors in the .lmd file, 2 usage or file errors.")]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+    /// Colour the error messages: auto (when printing to a terminal), always, never.
+    #[arg(long, global = true, value_enum, default_value_t = Color::Auto)]
+    color: Color,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum Color {
+    Auto,
+    Always,
+    Never,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Emit {
+    /// The machine programs (always written).
+    Programs,
+    /// The plan as JSON: OUT/<part>.ir.json (see docs/ir.md).
+    Ir,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Compile FILE and write the program of each machine it declares.
+    Build {
+        /// The .lmd file.
+        file: PathBuf,
+        /// Directory the programs are written to (created if missing).
+        #[arg(short = 'o', long = "out", value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+        /// Only write the program for this machine (its name in the file).
+        #[arg(long, value_name = "NAME")]
+        machine: Option<String>,
+        /// Also write the plan (layers and process points) as JSON.
+        #[arg(long, value_enum, value_name = "WHAT", value_delimiter = ',')]
+        emit: Vec<Emit>,
+        /// Use your own templates: files in DIR (e.g. DIR/krl/main.src.tera)
+        /// replace the built-in ones of the same name.
+        #[arg(long, value_name = "DIR")]
+        templates: Option<PathBuf>,
+        /// Print the time and peak memory of each compiler stage.
+        #[arg(long)]
+        timings: bool,
+    },
+    /// Check FILE (syntax, units, geometry, process limits) without writing anything.
+    Check {
+        /// The .lmd file.
+        file: PathBuf,
+    },
+}
+
+/// Runs the command line; returns the exit code.
+pub fn run(cli: Cli) -> u8 {
+    let color = match cli.color {
+        Color::Always => true,
+        Color::Never => false,
+        Color::Auto => std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
+    };
+    match cli.command {
+        Command::Check { file } => {
+            let Some(source) = read_source(&file) else {
+                return EXIT_USAGE;
+            };
+            let compiled = pipeline::compile(&source, &mut ());
+            print_diags(&compiled.diagnostics, &file, &source, color);
+            match compiled.program {
+                Some(p) => {
+                    eprintln!(
+                        "ok: {} layers, {} points, {} machine{}",
+                        p.ir().layers.len(),
+                        p.ir().point_count(),
+                        p.ir().machines.len(),
+                        if p.ir().machines.len() == 1 { "" } else { "s" }
+                    );
+                    0
+                }
+                None => EXIT_PROGRAM,
+            }
+        }
+        Command::Build {
+            file,
+            out,
+            machine,
+            emit,
+            templates,
+            timings,
+        } => build(
+            &file,
+            &out,
+            machine.as_deref(),
+            &emit,
+            templates.as_deref(),
+            timings,
+            color,
+        ),
+    }
+}
+
+fn build(
+    file: &Path,
+    out: &Path,
+    machine: Option<&str>,
+    emit: &[Emit],
+    templates: Option<&Path>,
+    timings: bool,
+    color: bool,
+) -> u8 {
+    let templates = match Templates::load(templates) {
+        Ok(t) => t,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_USAGE;
+        }
+    };
+    let Some(source) = read_source(file) else {
+        return EXIT_USAGE;
+    };
+    let mut clock = timings.then(timings::Timings::start);
+    let obs: &mut dyn Observer = match clock.as_mut() {
+        Some(t) => t,
+        None => &mut (),
+    };
+    let compiled = pipeline::compile(&source, obs);
+    print_diags(&compiled.diagnostics, file, &source, color);
+    let Some(program) = compiled.program else {
+        return EXIT_PROGRAM;
+    };
+    let which = match pipeline::select_machines(&program, machine) {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_USAGE;
+        }
+    };
+    let mut sink = match sink::AtomicDir::new(out) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!(
+                "error: cannot create the output directory {}: {e}",
+                out.display()
+            );
+            return EXIT_USAGE;
+        }
+    };
+    let obs: &mut dyn Observer = match clock.as_mut() {
+        Some(t) => t,
+        None => &mut (),
+    };
+    match pipeline::emit(&program, &which, &templates, &mut sink, obs) {
+        Ok(()) => {}
+        Err(EmitError::Program(d)) => {
+            print_diags(&d, file, &source, color);
+            return EXIT_PROGRAM;
+        }
+        Err(EmitError::Template(e)) => {
+            eprintln!("error: {e}");
+            return EXIT_USAGE;
+        }
+        Err(EmitError::Io(e)) => {
+            eprintln!("error: writing into {}: {e}", out.display());
+            return EXIT_USAGE;
+        }
+    }
+    if emit.contains(&Emit::Ir) {
+        let name = format!("{}.ir.json", lmdc::back::identifier(&program.ir().part, 64));
+        let written = (|| -> std::io::Result<()> {
+            use lmdc::back::Sink;
+            let mut w = sink.create(&name)?;
+            serde_json::to_writer(&mut w, program.ir()).map_err(std::io::Error::other)?;
+            w.write_all(b"\n")?;
+            w.flush()
+        })();
+        if let Err(e) = written {
+            eprintln!("error: writing {name}: {e}");
+            return EXIT_USAGE;
+        }
+        if let Some(t) = clock.as_mut() {
+            t.stage("emit IR");
+        }
+    }
+    let paths = match sink.commit() {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: writing into {}: {e}", out.display());
+            return EXIT_USAGE;
+        }
+    };
+    if let Some(t) = clock.as_mut() {
+        t.stage("write");
+        t.set_points(program.ir().point_count());
+        eprint!("{}", t.report());
+    }
+    for p in paths {
+        eprintln!("wrote {}", p.display());
+    }
+    0
+}
+
+fn read_source(file: &Path) -> Option<String> {
+    let fail = |why: String| {
+        eprintln!("error: cannot read {}: {why}", file.display());
+        None
+    };
+    match std::fs::metadata(file) {
+        Ok(m) if m.is_dir() => return fail("it is a directory".into()),
+        Ok(m) if m.len() > MAX_SOURCE => {
+            return fail(format!("it is larger than {} MB", MAX_SOURCE >> 20))
+        }
+        Ok(_) => {}
+        Err(e) => return fail(e.to_string()),
+    }
+    match std::fs::read(file) {
+        Ok(bytes) => match String::from_utf8(bytes) {
+            Ok(s) => Some(s),
+            Err(e) => fail(format!(
+                "it is not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            )),
+        },
+        Err(e) => fail(e.to_string()),
+    }
+}
+
+fn print_diags(d: &Diagnostics, file: &Path, source: &str, color: bool) {
+    if d.is_empty() {
+        return;
+    }
+    let name = file.display().to_string();
+    eprint!("{}", render(d, &name, source, color));
+}
