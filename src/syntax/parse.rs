@@ -32,13 +32,39 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
     Ok(File { stmts })
 }
 
+/// Checks brackets before pest runs: refuses nesting deeper than [`MAX_NESTING`]
+/// (so no input can exhaust the parser's stack) and reports an unclosed or
+/// mismatched bracket at the bracket itself, which says far more than pest's
+/// "expected …" at the place where it gave up. Skips comments and strings.
 fn check_nesting(source: &str) -> Result<(), Diagnostic> {
-    let mut depth = 0usize;
-    for (i, c) in source.char_indices() {
+    let mut open: Vec<(char, usize)> = Vec::new();
+    let bytes = source.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        let c = bytes[i];
         match c {
-            '(' | '[' | '{' => {
-                depth += 1;
-                if depth > MAX_NESTING {
+            b'/' if bytes.get(i + 1) == Some(&b'/') => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+                continue;
+            }
+            b'/' if bytes.get(i + 1) == Some(&b'*') => {
+                i = match source[i + 2..].find("*/") {
+                    Some(end) => i + 2 + end + 2,
+                    None => bytes.len(),
+                };
+                continue;
+            }
+            b'"' => {
+                i += 1;
+                while i < bytes.len() && bytes[i] != b'"' && bytes[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            b'(' | b'[' | b'{' => {
+                open.push((c as char, i));
+                if open.len() > MAX_NESTING {
                     return Err(Diagnostic::error(
                         "lmd::too-deep",
                         format!("brackets are nested more than {MAX_NESTING} deep"),
@@ -47,11 +73,56 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
                     .help("split the expression with `let` constants"));
                 }
             }
-            ')' | ']' | '}' => depth = depth.saturating_sub(1),
+            b')' | b']' | b'}' => {
+                let want = match c {
+                    b')' => '(',
+                    b']' => '[',
+                    _ => '{',
+                };
+                match open.pop() {
+                    Some((o, _)) if o == want => {}
+                    Some((o, at)) => {
+                        return Err(Diagnostic::error(
+                            "lmd::syntax",
+                            format!("`{o}` is closed by `{}`", c as char),
+                        )
+                        .label(Span::new(at, at + 1), format!("this `{o}` …"))
+                        .label(
+                            Span::new(i, i + 1),
+                            format!("… is closed here by `{}`", c as char),
+                        )
+                        .help(format!("close `{o}` with `{}` first", closer(o))));
+                    }
+                    None => {
+                        return Err(Diagnostic::error(
+                            "lmd::syntax",
+                            format!("`{}` closes nothing", c as char),
+                        )
+                        .label(Span::new(i, i + 1), "no matching opening bracket")
+                        .help("remove it, or add the opening bracket it belongs to"));
+                    }
+                }
+            }
             _ => {}
         }
+        i += 1;
+    }
+    if let Some((o, at)) = open.pop() {
+        return Err(
+            Diagnostic::error("lmd::syntax", format!("this `{o}` is never closed"))
+                .label(Span::new(at, at + 1), "opened here")
+                .help(format!("add `{}` where it should end", closer(o))),
+        );
     }
     Ok(())
+}
+
+fn closer(open: char) -> char {
+    match open {
+        '(' => ')',
+        '[' => ']',
+        _ => '}',
+    }
 }
 
 fn rule_name(r: &Rule) -> &'static str {
