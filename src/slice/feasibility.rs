@@ -74,15 +74,14 @@ pub fn choose_layers(
             }
             let q_need = rho_max / rho_min;
             let q_have = h_max / h_min;
-            if q_need > q_have {
-                return Err(too_tight(loft, bead, radius.0, r, q_need, q_have));
+            let (n_lo, n_hi) = layer_range(rho_min, rho_max, angle.0, h_min, h_max);
+            if q_need > q_have || (slicing.layers.is_none() && n_lo > n_hi) {
+                return Err(too_tight(loft, bead, radius.0, r, angle.0, q_need, q_have));
             }
             (angle.0, rho_min, rho_max)
         }
     };
-    // Layer heights run from rho_min·step to rho_max·step, step = total / n.
-    let n_lo = (rho_max * total / h_max).ceil().max(1.0);
-    let n_hi = (rho_min * total / h_min).floor();
+    let (n_lo, n_hi) = layer_range(rho_min, rho_max, total, h_min, h_max);
     let what = match loft.spine {
         Spine::Line { .. } => "layer height",
         Spine::Arc { .. } => "layer heights",
@@ -134,16 +133,41 @@ pub fn choose_layers(
     }
 }
 
+/// The layer counts whose heights, from `rho_min·total/n` to
+/// `rho_max·total/n`, fit within `h_min..h_max` (empty when `lo > hi`).
+fn layer_range(rho_min: f64, rho_max: f64, total: f64, h_min: f64, h_max: f64) -> (f64, f64) {
+    let lo = (rho_max * total / h_max).ceil().max(1.0);
+    let hi = (rho_min * total / h_min).floor();
+    (lo, hi)
+}
+
+/// The smallest whole-mm bend radius for which some layer count fits the
+/// bead's height range, by the same test [`choose_layers`] applies. The height
+/// ratio alone gives `R ≥ (out + q·in)/(q − 1)`; a whole number of layers may
+/// need a little more.
+fn suggest_radius(r: Reach, angle: f64, h_min: f64, h_max: f64) -> Option<f64> {
+    let q = h_max / h_min;
+    if q <= 1.0 {
+        return None;
+    }
+    let start = ((r.outward + q * r.inward) / (q - 1.0)).ceil().max(1.0);
+    (0..100_000).map(|i| start + i as f64).find(|&radius| {
+        let rho_min = (radius - r.inward) * (1.0 - MARGIN);
+        let rho_max = (radius + r.outward) * (1.0 + MARGIN);
+        let (lo, hi) = layer_range(rho_min, rho_max, angle, h_min, h_max);
+        rho_min > 0.0 && lo <= hi
+    })
+}
+
 fn too_tight(
     loft: &Loft,
     bead: &Bead,
     radius: f64,
     r: Reach,
+    angle: f64,
     q_need: f64,
     q_have: f64,
 ) -> Diagnostic {
-    // (R + out) ≤ q·(R − in)  ⇔  R ≥ (out + q·in)/(q − 1)
-    let r_need = (r.outward + q_have * r.inward) / (q_have - 1.0);
     let scale = radius * (q_have - 1.0) / (r.outward + q_have * r.inward);
     let h_top = bead
         .model
@@ -151,10 +175,10 @@ fn too_tight(
         .0
         .min(bead.height[1].0);
     let v_fast = bead.model.speed_for(Length(h_top / q_need), bead.width);
-    let mut fixes = vec![format!(
-        "a bend radius of at least {}",
-        Length((r_need * 1.001).ceil())
-    )];
+    let mut fixes = Vec::new();
+    if let Some(r_need) = suggest_radius(r, angle, bead.height[0].0, bead.height[1].0) {
+        fixes.push(format!("a bend radius of at least {}", Length(r_need)));
+    }
     if v_fast.0.is_finite() && v_fast.0 > 0.0 {
         fixes.push(format!(
             "a bead model that spans the ratio (e.g. speeds up to {} if it holds that far)",
@@ -167,10 +191,17 @@ fn too_tight(
     ));
     Diagnostic::error(
         "lmd::bend-too-tight",
-        format!(
-            "outer/inner layer height ratio {:.2} needs h_max/h_min ≥ {:.2}; this bead model gives {:.2}",
-            q_need, q_need, q_have
-        ),
+        if q_need > q_have {
+            format!(
+                "outer/inner layer height ratio {:.2} needs h_max/h_min ≥ {:.2}; this bead model gives {:.2}",
+                q_need, q_need, q_have
+            )
+        } else {
+            format!(
+                "outer/inner layer height ratio {:.2} is within the bead model's {:.2}, but no whole number of layers keeps every height within {} .. {}",
+                q_need, q_have, bead.height[0], bead.height[1]
+            )
+        },
     )
     .label(
         loft.spine_span,
