@@ -369,7 +369,29 @@ impl<'a> Fields<'a> {
 /// `v` as a quantity of dimension `dim`.
 pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Option<f64> {
     match &v.value {
-        Value::Quantity(Quantity { value, dim: d }) if *d == dim => Some(*value),
+        Value::Quantity(Quantity { value, dim: d }) if *d == dim => {
+            // Plausibility bounds keep absurd inputs from reaching the geometry
+            // (a 1e300 mm defocus would overflow every machine format).
+            let bound = match dim {
+                Dim::LENGTH => Some((1e5, "100 m")),
+                Dim::SPEED => Some((1e5, "100 m/s")),
+                _ => None,
+            };
+            match bound {
+                Some((b, text)) if value.abs() > b => {
+                    diags.push(
+                        Diagnostic::error(
+                            "lmd::out-of-range",
+                            format!("`{key}` is beyond what lmdc plans ({text})"),
+                        )
+                        .label(v.span, format!("this is {}", short(*value)))
+                        .help("check the value and its unit"),
+                    );
+                    None
+                }
+                _ => Some(*value),
+            }
+        }
         Value::Quantity(q) => {
             wrong_unit(v.span, key, dim, q.dim, diags);
             None

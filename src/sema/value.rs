@@ -257,6 +257,16 @@ impl<'a> Env<'a> {
                 binary(*op, l, r, diags)?
             }
         };
+        if let Value::Quantity(q) = &value {
+            if !q.value.is_finite() {
+                diags.push(
+                    Diagnostic::error("lmd::overflow", "this number is too large to compute with")
+                        .label(e.span, "not a finite number")
+                        .help("check the value and its unit"),
+                );
+                return None;
+            }
+        }
         Some(Spanned {
             value,
             span: e.span,

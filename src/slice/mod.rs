@@ -11,9 +11,10 @@ use crate::sema::model::{Model, Resolution, Spine};
 use crate::sema::slicing::MAX_POINTS;
 use crate::units::{short, Angle};
 
-/// Most points a plan may hold (72 bytes each in the IR): 100 M ≈ 7 GB is
-/// already more than any deposition program needs.
-pub const MAX_TOTAL_POINTS: usize = 100_000_000;
+/// Most points a plan may hold (72 bytes each in the IR, so at most ~1.5 GB):
+/// 20 M is over five times the dense benchmark duct, and bounds memory for any
+/// input.
+pub const MAX_TOTAL_POINTS: usize = 20_000_000;
 
 /// Slices the model's loft. Returns the layers and any warnings, or the errors.
 pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
