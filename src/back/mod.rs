@@ -1,5 +1,5 @@
 //! Back ends: verified IR → machine programs. They read only the IR (and the
-//! [`Verified`](crate::check::Verified) proof that it passed the checks), render the
+//! [`Verified`] proof that it passed the checks), render the
 //! program's shape through tera templates and write the per-point lines with a
 //! tight fixed-precision loop (see ARCHITECTURE.md for why).
 
