@@ -60,17 +60,29 @@ fn build_writes_every_machine_deterministically() {
     let a = out_dir("a");
     let b = out_dir("b");
     for d in [&a, &b] {
-        let o = lmdc(&["build", "examples/twisted_duct.lmd", "-o", d.to_str().unwrap()]);
+        let o = lmdc(&[
+            "build",
+            "examples/twisted_duct.lmd",
+            "-o",
+            d.to_str().unwrap(),
+        ]);
         assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     }
     let files = listing(&a);
     assert!(files.iter().any(|f| f.ends_with(".src")), "{files:?}");
     assert!(files.iter().any(|f| f.ends_with(".dat")), "{files:?}");
     assert!(files.iter().any(|f| f.ends_with(".ngc")), "{files:?}");
-    assert!(!files.iter().any(|f| f.starts_with('.')), "temporary files left: {files:?}");
+    assert!(
+        !files.iter().any(|f| f.starts_with('.')),
+        "temporary files left: {files:?}"
+    );
     assert_eq!(files, listing(&b));
     for f in &files {
-        assert_eq!(std::fs::read(a.join(f)).unwrap(), std::fs::read(b.join(f)).unwrap(), "{f} differs");
+        assert_eq!(
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+            "{f} differs"
+        );
     }
     let _ = std::fs::remove_dir_all(&a);
     let _ = std::fs::remove_dir_all(&b);
@@ -92,7 +104,10 @@ fn machine_selection_and_ir() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let files = listing(&d);
     assert!(files.iter().all(|f| !f.ends_with(".src")), "{files:?}");
-    assert!(files.contains(&"twisted_duct.ir.json".to_string()), "{files:?}");
+    assert!(
+        files.contains(&"twisted_duct.ir.json".to_string()),
+        "{files:?}"
+    );
     let ir: serde_json::Value =
         serde_json::from_slice(&std::fs::read(d.join("twisted_duct.ir.json")).unwrap()).unwrap();
     assert_eq!(ir["format"], "lmdc-ir");
@@ -105,7 +120,17 @@ fn machine_selection_and_ir() {
         assert_eq!(layer["frame"][k].as_array().unwrap().len(), 3);
     }
     let p = &layer["paths"][0]["points"][0];
-    for k in ["pos", "normal", "tangent", "layer_height", "speed", "power", "powder", "defocus", "laser_on"] {
+    for k in [
+        "pos",
+        "normal",
+        "tangent",
+        "layer_height",
+        "speed",
+        "power",
+        "powder",
+        "defocus",
+        "laser_on",
+    ] {
         assert!(!p[k].is_null(), "point lacks {k}");
     }
     // The IR reads back into the compiler's own type.
@@ -117,11 +142,23 @@ fn machine_selection_and_ir() {
 #[test]
 fn failures_write_nothing_and_exit_by_kind() {
     let d = out_dir("fail");
-    let o = lmdc(&["build", "examples/errors/unit_mismatch.lmd", "-o", d.to_str().unwrap()]);
+    let o = lmdc(&[
+        "build",
+        "examples/errors/unit_mismatch.lmd",
+        "-o",
+        d.to_str().unwrap(),
+    ]);
     assert_eq!(o.status.code(), Some(1));
     assert!(!d.exists(), "output directory created for a failed build");
 
-    let o = lmdc(&["build", "examples/twisted_duct.lmd", "-o", d.to_str().unwrap(), "--machine", "nope"]);
+    let o = lmdc(&[
+        "build",
+        "examples/twisted_duct.lmd",
+        "-o",
+        d.to_str().unwrap(),
+        "--machine",
+        "nope",
+    ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("kr60"), "{}", stderr(&o));
     assert!(!d.exists());
@@ -141,7 +178,14 @@ fn bad_template_directory_override_is_a_usage_error() {
     std::fs::create_dir_all(t.join("gcode")).unwrap();
     std::fs::write(t.join("gcode/header.tera"), "{% if %}").unwrap();
     let d = out_dir("tplout");
-    let o = lmdc(&["build", "examples/twisted_duct.lmd", "-o", d.to_str().unwrap(), "--templates", t.to_str().unwrap()]);
+    let o = lmdc(&[
+        "build",
+        "examples/twisted_duct.lmd",
+        "-o",
+        d.to_str().unwrap(),
+        "--templates",
+        t.to_str().unwrap(),
+    ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("gcode/header.tera"), "{}", stderr(&o));
     assert!(!d.exists());

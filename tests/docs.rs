@@ -42,7 +42,10 @@ fn every_diagnostic_code_is_documented() {
     source_codes(std::path::Path::new("src"), &mut used);
     let documented = codes_in(&std::fs::read_to_string("docs/diagnostics.md").unwrap());
     let missing: Vec<_> = used.difference(&documented).collect();
-    assert!(missing.is_empty(), "not in docs/diagnostics.md: {missing:?}");
+    assert!(
+        missing.is_empty(),
+        "not in docs/diagnostics.md: {missing:?}"
+    );
     let stale: Vec<_> = documented.difference(&used).collect();
     assert!(stale.is_empty(), "documented but never emitted: {stale:?}");
 }
