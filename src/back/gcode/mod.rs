@@ -1,4 +1,7 @@
 //! G-code back end (placeholder until implemented).
+
+pub mod kinematics;
+
 use super::{EmitError, Sink, Templates};
 use crate::check::Verified;
 use crate::ir::Cnc;
