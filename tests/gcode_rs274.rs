@@ -1,0 +1,268 @@
+//! Emitted programs run through LinuxCNC's own interpreter `rs274`: the path it
+//! interprets must be the IR's. Skipped when rs274 is not installed, except under
+//! CI (install it with `bash .ci/install-rs274.sh`, export LMDC_RS274).
+
+#[path = "gcode_common.rs"]
+mod common;
+#[path = "support/rs274.rs"]
+mod rs274;
+
+use common::fixture::*;
+use common::*;
+use lmdc::ir::*;
+use rs274::CanonCall;
+
+fn have_rs274(test: &str) -> bool {
+    if rs274::find_rs274().is_some() {
+        return true;
+    }
+    if rs274::in_ci() {
+        panic!(
+            "CI is set but rs274 is missing: run `bash .ci/install-rs274.sh` \
+             and export LMDC_RS274=<the path it prints>"
+        );
+    }
+    eprintln!("skipping {test}: rs274 not installed (bash .ci/install-rs274.sh)");
+    false
+}
+
+/// The nozzle direction of the axes, written out here rather than taken from the
+/// library, so a wrong formula there cannot agree with itself.
+fn tool_direction(kin: Kinematics, a: f64, b: f64, c: f64) -> [f64; 3] {
+    let c = c.to_radians();
+    match kin {
+        Kinematics::HeadAc => {
+            let a = a.to_radians();
+            [a.sin() * c.sin(), -a.sin() * c.cos(), a.cos()]
+        }
+        Kinematics::HeadBc => {
+            let b = b.to_radians();
+            [b.sin() * c.cos(), b.sin() * c.sin(), b.cos()]
+        }
+        Kinematics::Xyz => [0.0, 0.0, 1.0],
+    }
+}
+
+/// A move the IR asks for with the laser on: from one point of a path to the next.
+struct Deposit {
+    from: Point,
+    to: Point,
+    at: String,
+}
+
+fn deposits(p: &Program) -> Vec<Deposit> {
+    let mut out = Vec::new();
+    for (li, l) in p.layers.iter().enumerate() {
+        for (pi, path) in l.paths.iter().enumerate() {
+            for (k, w) in path.points.windows(2).enumerate() {
+                if w[0].laser_on {
+                    out.push(Deposit {
+                        from: w[0],
+                        to: w[1],
+                        at: format!("layer {li} path {pi} move {k}"),
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+fn near3(got: [f64; 3], want: [f64; 3], tol: f64) -> bool {
+    (0..3).all(|i| (got[i] - want[i]).abs() <= tol)
+}
+
+/// Rotates the whole part by `deg` about Z, so the normals lean towards another
+/// azimuth and C takes a less special value.
+fn rotate_about_z(mut p: Program, deg: f64) -> Program {
+    let (s, c) = deg.to_radians().sin_cos();
+    let rot = |v: [f64; 3]| [c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]];
+    let rot32 = |v: [f32; 3]| {
+        let r = rot([v[0] as f64, v[1] as f64, v[2] as f64]);
+        [r[0] as f32, r[1] as f32, r[2] as f32]
+    };
+    for l in &mut p.layers {
+        l.frame.origin = rot(l.frame.origin);
+        l.frame.x = rot(l.frame.x);
+        l.frame.y = rot(l.frame.y);
+        l.frame.z = rot(l.frame.z);
+        for path in &mut l.paths {
+            for pt in &mut path.points {
+                pt.pos = rot(pt.pos);
+                pt.normal = rot32(pt.normal);
+                pt.tangent = rot32(pt.tangent);
+            }
+        }
+    }
+    p
+}
+
+/// Emits machine 0 of `ir`, runs rs274 on it and compares the interpreted path with
+/// the IR. Returns the number of deposit moves checked.
+fn check_against_ir(ir: Program) -> usize {
+    let Machine::Cnc(cnc) = ir.machines[0].clone() else {
+        panic!("machine 0 must be a CNC")
+    };
+    let kin = lmdc::back::gcode::effective_kinematics(&cnc);
+    let v = verified(ir);
+    let (_, text) = emit(&v, 0);
+    let all = rs274::interpret_source(&text)
+        .unwrap_or_else(|e| panic!("rs274 refused the program: {e}\n{text}"));
+    assert!(all.contains(&CanonCall::ProgramEnd), "no program end");
+    let body = rs274::program_body(&all);
+
+    let want = deposits(v.ir());
+    let mut next = 0; // index into `want` of the next deposit move
+    let (mut feed, mut speed, mut laser) = (0.0f64, 0.0f64, false);
+    let mut prev_c: Option<f64> = None;
+    let s_tol = 0.5 * 10f64.powi(-(cnc.dialect.s_decimals as i32)) + 1e-9;
+    for call in body {
+        match *call {
+            CanonCall::FeedRate(f) => feed = f,
+            CanonCall::SpindleSpeed(s) => speed = s,
+            CanonCall::SpindleOn => {
+                assert!(!laser, "laser switched on twice");
+                laser = true;
+            }
+            CanonCall::SpindleOnCcw => panic!("M4 is not a laser switch"),
+            CanonCall::SpindleOff => laser = false,
+            CanonCall::Traverse { a, b, c, .. } => {
+                assert!(!laser, "G0 with the laser on");
+                let axes = match kin {
+                    Kinematics::HeadAc => b,
+                    Kinematics::HeadBc => a,
+                    Kinematics::Xyz => a.abs() + b.abs() + c.abs(),
+                };
+                assert_eq!(axes, 0.0, "an axis the machine lacks moved");
+                prev_c = Some(c);
+            }
+            CanonCall::Feed { x, y, z, a, b, c } => {
+                let d = want
+                    .get(next)
+                    .unwrap_or_else(|| panic!("more G1 moves than the IR has deposits"));
+                let pos = [x, y, z];
+                let (target, process) = if laser {
+                    next += 1;
+                    (d.to, d.from)
+                } else {
+                    // The approach to a path lands where the next deposit starts.
+                    (d.from, d.from)
+                };
+                assert!(
+                    near3(pos, target.focus(), 1e-3),
+                    "{}: G1 to {pos:?}, the IR's focus is {:?}",
+                    d.at,
+                    target.focus()
+                );
+                let n = target.normal.map(|v| v as f64);
+                let t = tool_direction(kin, a, b, c);
+                let want_t = if kin == Kinematics::Xyz {
+                    [0.0, 0.0, 1.0]
+                } else {
+                    n
+                };
+                assert!(
+                    near3(t, want_t, 1e-4),
+                    "{}: axes A{a} B{b} C{c} point the nozzle along {t:?}, the normal is {n:?}",
+                    d.at
+                );
+                match kin {
+                    Kinematics::HeadAc => assert_eq!(b, 0.0, "B moved on an A/C head"),
+                    Kinematics::HeadBc => assert_eq!(a, 0.0, "A moved on a B/C head"),
+                    Kinematics::Xyz => assert_eq!([a, b, c], [0.0; 3], "rotary axes moved"),
+                }
+                let f = process.speed as f64 * 60.0;
+                assert!(
+                    (feed - f).abs() <= 0.05 + 1e-6,
+                    "{}: feed {feed} mm/min, the IR's speed is {} mm/s",
+                    d.at,
+                    process.speed
+                );
+                let s = process.power as f64 * cnc.dialect.s_per_watt;
+                assert!(
+                    (speed - s).abs() <= s_tol,
+                    "{}: S{speed}, the IR's power is {} W",
+                    d.at,
+                    process.power
+                );
+                if let (true, Some(pc)) = (laser, prev_c) {
+                    // Within a deposit C follows the normal without jumps.
+                    assert!((c - pc).abs() < 90.0, "{}: C jumps {pc} -> {c}", d.at);
+                }
+                prev_c = Some(c);
+            }
+            _ => {}
+        }
+    }
+    assert_eq!(
+        next,
+        want.len(),
+        "the program deposits fewer moves than the IR"
+    );
+    assert!(!laser, "laser still on at the end");
+    want.len()
+}
+
+#[test]
+fn five_axis_ac_head_follows_the_ir() {
+    if !have_rs274("five_axis_ac_head_follows_the_ir") {
+        return;
+    }
+    let ir = rotate_about_z(bent_tube(6, 24, 45.0, vec![Machine::Cnc(cnc5())]), 30.0);
+    assert_eq!(check_against_ir(ir), 6 * 24);
+}
+
+#[test]
+fn five_axis_ac_head_unrotated_fixture() {
+    if !have_rs274("five_axis_ac_head_unrotated_fixture") {
+        return;
+    }
+    let ir = bent_tube(4, 12, 30.0, vec![Machine::Cnc(cnc5())]);
+    assert_eq!(check_against_ir(ir), 4 * 12);
+}
+
+#[test]
+fn five_axis_bc_head_follows_the_ir() {
+    if !have_rs274("five_axis_bc_head_follows_the_ir") {
+        return;
+    }
+    let ir = rotate_about_z(
+        bent_tube(
+            5,
+            16,
+            60.0,
+            vec![Machine::Cnc(cnc5_with(Kinematics::HeadBc))],
+        ),
+        -120.0,
+    );
+    assert_eq!(check_against_ir(ir), 5 * 16);
+}
+
+#[test]
+fn three_axis_planar_part_follows_the_ir() {
+    if !have_rs274("three_axis_planar_part_follows_the_ir") {
+        return;
+    }
+    let ir = planar(3, vec![Machine::Cnc(cnc3())]);
+    let n = deposits(&ir).len();
+    assert_eq!(check_against_ir(ir), n);
+    assert!(n > 0);
+}
+
+#[test]
+fn padded_g_words_run_in_rs274() {
+    // rs274 reads LinuxCNC's dialect only (the vendor profiles are checked as text
+    // in gcode_program.rs), but G00/G01 are plain RS274: the m20 dialect with
+    // LinuxCNC's laser words must interpret to the same path.
+    if !have_rs274("padded_g_words_run_in_rs274") {
+        return;
+    }
+    let mut cnc = cnc3();
+    cnc.dialect = m20();
+    cnc.dialect.laser_on = "M3".into();
+    cnc.dialect.laser_off = "M5".into();
+    cnc.dialect.postamble = vec!["M2".into()];
+    let ir = planar(2, vec![Machine::Cnc(cnc)]);
+    let n = deposits(&ir).len();
+    assert_eq!(check_against_ir(ir), n);
+}
