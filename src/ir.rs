@@ -281,6 +281,38 @@ pub struct Dialect {
     pub padded_g: bool,
     /// File extension of the program, without the dot (`ngc`, `mpf`, `nc`).
     pub extension: String,
+    /// Unit of the F word.
+    #[serde(default)]
+    pub feed: FeedUnit,
+}
+
+/// What the control's F word measures.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum FeedUnit {
+    /// mm/min (G94 on most controls).
+    #[default]
+    MmPerMin,
+    /// mm/s (the control of seed 002: `F10` is 10 mm/s).
+    MmPerS,
+}
+
+impl FeedUnit {
+    /// F per mm/s of speed.
+    pub fn per_mm_s(self) -> f64 {
+        match self {
+            FeedUnit::MmPerMin => 60.0,
+            FeedUnit::MmPerS => 1.0,
+        }
+    }
+
+    /// The unit as written in comments.
+    pub fn text(self) -> &'static str {
+        match self {
+            FeedUnit::MmPerMin => "mm/min",
+            FeedUnit::MmPerS => "mm/s",
+        }
+    }
 }
 
 /// How comments are written.

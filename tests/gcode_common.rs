@@ -71,6 +71,7 @@ pub fn fagor8070() -> Dialect {
         comment: CommentStyle::Semicolon,
         padded_g: false,
         extension: "nc".into(),
+        feed: FeedUnit::MmPerMin,
     }
 }
 
@@ -89,6 +90,7 @@ pub fn sinumerik840d() -> Dialect {
         comment: CommentStyle::Semicolon,
         padded_g: false,
         extension: "mpf".into(),
+        feed: FeedUnit::MmPerMin,
     }
 }
 
@@ -107,6 +109,7 @@ pub fn m20() -> Dialect {
         comment: CommentStyle::Semicolon,
         padded_g: true,
         extension: "nc".into(),
+        feed: FeedUnit::MmPerS,
     }
 }
 

@@ -338,6 +338,15 @@ fn m20_profile() {
     );
     let (starts, _) = check_modal(&text, &cnc.dialect);
     assert_eq!(starts, 2 * 3);
+    // Seed 002's control reads F in mm/s: `F10` is 10 mm/s.
+    let speed = p.ir().layers[0].paths[0].points[0].speed;
+    let want = format!(" F{}", {
+        let mut b = Vec::new();
+        lmdc::back::fixed::push_trimmed(&mut b, speed as f64, 1);
+        String::from_utf8(b).unwrap()
+    });
+    assert!(text.contains(&want), "want {want} in\n{text}");
+    assert!(text.contains("F mm/s"), "the header names the F unit");
 }
 
 #[test]

@@ -171,7 +171,8 @@ fn check_against_ir(ir: Program) -> usize {
                     Kinematics::HeadBc => assert_eq!(a, 0.0, "A moved on a B/C head"),
                     Kinematics::Xyz => assert_eq!([a, b, c], [0.0; 3], "rotary axes moved"),
                 }
-                let f = process.speed as f64 * 60.0;
+                // rs274 reports the F word as written, in the dialect's unit.
+                let f = process.speed as f64 * cnc.dialect.feed.per_mm_s();
                 assert!(
                     (feed - f).abs() <= 0.05 + 1e-6,
                     "{}: feed {feed} mm/min, the IR's speed is {} mm/s",
@@ -265,4 +266,42 @@ fn padded_g_words_run_in_rs274() {
     let ir = planar(2, vec![Machine::Cnc(cnc)]);
     let n = deposits(&ir).len();
     assert_eq!(check_against_ir(ir), n);
+}
+
+/// Every example under examples/ (not the error or benchmark ones): its G-code
+/// for each LinuxCNC machine runs in rs274 and follows the compiled IR.
+#[test]
+fn examples_run_in_rs274_and_follow_the_ir() {
+    if !have_rs274("examples_run_in_rs274_and_follow_the_ir") {
+        return;
+    }
+    let mut checked = 0;
+    let mut files: Vec<_> = std::fs::read_dir("examples")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "lmd"))
+        .collect();
+    files.sort();
+    for f in files {
+        let src = std::fs::read_to_string(&f).unwrap();
+        let ir = lmdc::pipeline::compile(&src, &mut ())
+            .program
+            .unwrap_or_else(|| panic!("{} does not compile", f.display()))
+            .into_ir();
+        for m in &ir.machines {
+            let Machine::Cnc(c) = m else { continue };
+            if c.dialect.profile != "linuxcnc" {
+                continue;
+            }
+            // The machine under test becomes machine 0 (check_against_ir's).
+            let mut one = ir.clone();
+            one.machines = vec![m.clone()];
+            one.origins.machines.truncate(1);
+            checked += check_against_ir(one);
+        }
+    }
+    assert!(
+        checked > 60_000,
+        "the duct example's deposits were not all checked"
+    );
 }

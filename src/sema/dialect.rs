@@ -1,7 +1,7 @@
 //! Built-in G-code dialect profiles. They are data the one G-code back end
 //! renders; a machine block can override any of their lines.
 
-use crate::ir::{CommentStyle, Dialect};
+use crate::ir::{CommentStyle, Dialect, FeedUnit};
 
 /// Profile names.
 pub const PROFILES: &[&str] = &["linuxcnc", "fagor8070", "sinumerik840d", "m20"];
@@ -26,6 +26,7 @@ pub fn profile(name: &str) -> Option<Dialect> {
             comment: CommentStyle::Parens,
             padded_g: false,
             extension: "ngc".into(),
+            feed: FeedUnit::MmPerMin,
         },
         "fagor8070" => Dialect {
             profile: name.into(),
@@ -40,6 +41,7 @@ pub fn profile(name: &str) -> Option<Dialect> {
             comment: CommentStyle::Semicolon,
             padded_g: false,
             extension: "nc".into(),
+            feed: FeedUnit::MmPerMin,
         },
         "sinumerik840d" => Dialect {
             profile: name.into(),
@@ -54,8 +56,9 @@ pub fn profile(name: &str) -> Option<Dialect> {
             comment: CommentStyle::Semicolon,
             padded_g: false,
             extension: "mpf".into(),
+            feed: FeedUnit::MmPerMin,
         },
-        // The dialect of seed 002's cell: M20 laser on, M21 off, S in W.
+        // The dialect of seed 002's cell: M20 laser on, M21 off, S in W, F in mm/s.
         "m20" => Dialect {
             profile: name.into(),
             laser_on: "M20".into(),
@@ -69,6 +72,7 @@ pub fn profile(name: &str) -> Option<Dialect> {
             comment: CommentStyle::Semicolon,
             padded_g: true,
             extension: "nc".into(),
+            feed: FeedUnit::MmPerS,
         },
         _ => return None,
     })

@@ -6,7 +6,7 @@ use super::dialect;
 use super::fields::{self, Fields};
 use super::value::{Env, Value};
 use crate::diag::{Diagnostic, Diagnostics};
-use crate::ir::{AxisLimits, Cnc, FrameRef, Kinematics, Machine, Pose, Robot, ToolAxis};
+use crate::ir::{AxisLimits, Cnc, FeedUnit, FrameRef, Kinematics, Machine, Pose, Robot, ToolAxis};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Dim, Power};
@@ -38,6 +38,7 @@ const CNC_FIELDS: &[&str] = &[
     "postamble",
     "tcp_on",
     "tcp_off",
+    "feed_units",
     "max_speed",
     "clearance",
 ];
@@ -313,6 +314,13 @@ fn cnc(
         // units one watt is (1 when S is programmed in W).
         if let Some((s, _)) = f.positive("s_per_watt", Dim::NONE, None, diags) {
             d.s_per_watt = s;
+        }
+        if let Some((u, _)) = f.symbol("feed_units", &["mm_per_min", "mm_per_s"], None, diags) {
+            d.feed = if u == "mm_per_s" {
+                FeedUnit::MmPerS
+            } else {
+                FeedUnit::MmPerMin
+            };
         }
         if let Some((n, _)) = f.count("s_decimals", 0, 4, None, diags) {
             d.s_decimals = n;

@@ -53,6 +53,7 @@ pub fn cnc5() -> Cnc {
             comment: CommentStyle::Parens,
             padded_g: false,
             extension: "ngc".into(),
+            feed: FeedUnit::MmPerMin,
         },
         limits: AxisLimits {
             x: [-500.0, 500.0],

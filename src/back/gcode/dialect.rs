@@ -17,6 +17,8 @@ pub(crate) struct Words {
     pub s_per_watt: f64,
     /// Decimals of the S word (at most 9, what the formatter can print).
     pub s_decimals: usize,
+    /// F per mm/s of speed (60 for mm/min).
+    pub f_per_mm_s: f64,
 }
 
 impl Words {
@@ -34,6 +36,7 @@ impl Words {
             laser_off: lines(&d.laser_off),
             s_per_watt: d.s_per_watt,
             s_decimals: d.s_decimals.min(9),
+            f_per_mm_s: d.feed.per_mm_s(),
         }
     }
 }

@@ -393,7 +393,7 @@ fn header_context(ctx: &mut tera::Context, p: &Verified, cnc: &Cnc, five: bool) 
         units.insert(k, comment_safe(v, style));
     }
     ctx.insert("units", &units);
-    ctx.insert("feed_unit", "mm/min");
+    ctx.insert("feed_unit", cnc.dialect.feed.text());
     ctx.insert("s_per_watt", &trimmed(cnc.dialect.s_per_watt, 6));
     ctx.insert("s_decimals", &cnc.dialect.s_decimals);
     ctx.insert("clearance", &trimmed(cnc.clearance, 3));

@@ -50,6 +50,7 @@ pub(crate) struct Writer<'w> {
     laser_off_text: Vec<u8>,
     s_per_watt: f64,
     s_decimals: usize,
+    f_per_mm_s: f64,
     /// `b'A'`/`b'B'` on a tilting head; `None` writes X Y Z only.
     tilt_letter: Option<u8>,
     /// Printed F and S as [`key`]s; `None` before the first.
@@ -91,6 +92,7 @@ impl<'w> Writer<'w> {
             laser_off_text: words.laser_off,
             s_per_watt: words.s_per_watt,
             s_decimals: words.s_decimals,
+            f_per_mm_s: words.f_per_mm_s,
             tilt_letter,
             f: None,
             s: None,
@@ -194,7 +196,7 @@ impl<'w> Writer<'w> {
         // Most lines repeat the previous speed and power exactly: skip the keys.
         if speed.to_bits() != self.f_raw {
             self.f_raw = speed.to_bits();
-            let f = speed as f64 * 60.0;
+            let f = speed as f64 * self.f_per_mm_s;
             let f_key = key(f, F_DECIMALS);
             if self.f != Some(f_key) {
                 b[at..at + 2].copy_from_slice(b" F");
@@ -317,7 +319,7 @@ impl<'w> Writer<'w> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ir::{CommentStyle, Dialect};
+    use crate::ir::{CommentStyle, Dialect, FeedUnit};
 
     fn dialect() -> Dialect {
         Dialect {
@@ -333,6 +335,7 @@ mod tests {
             comment: CommentStyle::Parens,
             padded_g: true,
             extension: "nc".into(),
+            feed: FeedUnit::MmPerMin,
         }
     }
 
