@@ -77,6 +77,12 @@ fn build_writes_every_machine_deterministically() {
         "temporary files left: {files:?}"
     );
     assert_eq!(files, listing(&b));
+    #[cfg(unix)]
+    for f in &files {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(a.join(f)).unwrap().permissions().mode();
+        assert_eq!(mode & 0o644, 0o644, "{f} is not readable by the cell's operators: {mode:o}");
+    }
     for f in &files {
         assert_eq!(
             std::fs::read(a.join(f)).unwrap(),

@@ -32,6 +32,13 @@ impl AtomicDir {
     pub fn commit(mut self) -> io::Result<Vec<PathBuf>> {
         let mut out = Vec::new();
         for (name, tmp) in std::mem::take(&mut self.files) {
+            // Temporary files are created private (0600); a program is an
+            // ordinary file the cell's operators must be able to read.
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::PermissionsExt;
+                tmp.as_file().set_permissions(fs::Permissions::from_mode(0o644))?;
+            }
             tmp.as_file().sync_all()?;
             let path = self.dir.join(&name);
             tmp.persist(&path).map_err(|e| e.error)?;

@@ -1,0 +1,23 @@
+//! Golden programs: every file lmdc writes for tests/golden/small_duct.lmd (a
+//! KUKA robot split into modules, LinuxCNC, Fagor 8070 and M20 CNCs), as insta
+//! snapshots. Review every diff line by line: these are what machines run.
+
+use lmdc::back::{MemorySink, Templates};
+use lmdc::pipeline::{compile, emit, select_machines};
+
+#[test]
+fn small_duct_programs() {
+    let src = std::fs::read_to_string("tests/golden/small_duct.lmd").unwrap();
+    let c = compile(&src, &mut ());
+    let p = c.program.expect("compiles");
+    let which = select_machines(&p, None).unwrap();
+    let mut sink = MemorySink::default();
+    emit(&p, &which, &Templates::builtin().unwrap(), &mut sink, &mut ()).expect("emits");
+    let mut names: Vec<&str> = sink.files.iter().map(|(n, _)| n.as_str()).collect();
+    names.sort();
+    insta::assert_snapshot!("files", names.join("\n"));
+    for (name, bytes) in &sink.files {
+        let text = String::from_utf8(bytes.clone()).expect("UTF-8");
+        insta::assert_snapshot!(name.replace('.', "_"), text);
+    }
+}
