@@ -81,7 +81,11 @@ fn build_writes_every_machine_deterministically() {
     for f in &files {
         use std::os::unix::fs::PermissionsExt;
         let mode = std::fs::metadata(a.join(f)).unwrap().permissions().mode();
-        assert_eq!(mode & 0o644, 0o644, "{f} is not readable by the cell's operators: {mode:o}");
+        assert_eq!(
+            mode & 0o644,
+            0o644,
+            "{f} is not readable by the cell's operators: {mode:o}"
+        );
     }
     for f in &files {
         assert_eq!(
@@ -196,4 +200,38 @@ fn bad_template_directory_override_is_a_usage_error() {
     assert!(stderr(&o).contains("gcode/header.tera"), "{}", stderr(&o));
     assert!(!d.exists());
     let _ = std::fs::remove_dir_all(&t);
+}
+
+#[test]
+fn timings_report_every_stage() {
+    let d = out_dir("timings");
+    let o = lmdc(&[
+        "build",
+        "examples/twisted_duct.lmd",
+        "-o",
+        d.to_str().unwrap(),
+        "--timings",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = stderr(&o);
+    for stage in [
+        "parse",
+        "check",
+        "slice",
+        "verify",
+        "emit KRL",
+        "emit G-code",
+        "write",
+        "total",
+    ] {
+        assert!(
+            text.lines().any(|l| l.starts_with(stage)),
+            "no {stage} row in\n{text}"
+        );
+    }
+    assert!(
+        text.contains("peak heap") && text.contains("per point"),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&d);
 }

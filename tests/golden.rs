@@ -12,7 +12,14 @@ fn small_duct_programs() {
     let p = c.program.expect("compiles");
     let which = select_machines(&p, None).unwrap();
     let mut sink = MemorySink::default();
-    emit(&p, &which, &Templates::builtin().unwrap(), &mut sink, &mut ()).expect("emits");
+    emit(
+        &p,
+        &which,
+        &Templates::builtin().unwrap(),
+        &mut sink,
+        &mut (),
+    )
+    .expect("emits");
     let mut names: Vec<&str> = sink.files.iter().map(|(n, _)| n.as_str()).collect();
     names.sort();
     insta::assert_snapshot!("files", names.join("\n"));

@@ -37,7 +37,8 @@ impl AtomicDir {
             #[cfg(unix)]
             {
                 use std::os::unix::fs::PermissionsExt;
-                tmp.as_file().set_permissions(fs::Permissions::from_mode(0o644))?;
+                tmp.as_file()
+                    .set_permissions(fs::Permissions::from_mode(0o644))?;
             }
             tmp.as_file().sync_all()?;
             let path = self.dir.join(&name);
