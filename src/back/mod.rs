@@ -3,6 +3,7 @@
 //! program's shape through tera templates and write the per-point lines with a
 //! tight fixed-precision loop (see ARCHITECTURE.md for why).
 
+pub mod context;
 pub mod fixed;
 pub mod gcode;
 pub mod krl;
@@ -109,4 +110,38 @@ pub fn identifier(text: &str, max: usize) -> String {
     }
     s.truncate(max);
     s
+}
+
+/// The stem of a program's file name: `identifier(part_machine)`, at most `max`
+/// characters. The part's name is shortened first, so two machines of one part
+/// keep distinct names.
+pub fn program_stem(part: &str, machine: &str, max: usize) -> String {
+    let mut full = identifier(&format!("{part}_{machine}"), usize::MAX);
+    if full.len() <= max {
+        return full;
+    }
+    // identifier() maps char for char, so the tail is "_" + the machine's name.
+    let tail = machine.chars().count() + 1;
+    if tail + 1 >= max {
+        full.truncate(max);
+        return full;
+    }
+    format!("{}{}", &full[..max - tail], &full[full.len() - tail..])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stems_keep_the_machine() {
+        assert_eq!(program_stem("bent tube", "mill5", 24), "bent_tube_mill5");
+        let s = program_stem("a very long part name indeed", "mill5", 24);
+        assert_eq!(s.len(), 24);
+        assert!(s.ends_with("_mill5"), "{s}");
+        assert_eq!(program_stem("42", "m", 24), "p42_m");
+        let s = program_stem("x", "a machine with a very long name", 24);
+        assert_eq!(s.len(), 24);
+        assert!(program_stem("part", "kr60", 19).len() <= 19);
+    }
 }

@@ -20,10 +20,10 @@ pub mod kinematics;
 mod limits;
 mod writer;
 
-use super::fixed::fixed;
-use super::{identifier, EmitError, Sink, Templates};
+use super::context::{counts, layer_context};
+use super::{program_stem, EmitError, Sink, Templates};
 use crate::check::Verified;
-use crate::ir::{AxisLimits, Cnc, Kinematics, Layer, Path, Point};
+use crate::ir::{AxisLimits, Cnc, Kinematics, Path, Point};
 use dialect::{comment_safe, delimiters, Words};
 use kinematics::Rotary;
 use limits::{Checker, Where};
@@ -46,21 +46,11 @@ const JOIN_NORMAL: f32 = 1e-5;
 /// the stem at most [`MAX_NAME`] characters (the part's name is shortened first, so
 /// two machines keep distinct names).
 pub fn file_name(part: &str, cnc: &Cnc) -> String {
-    format!("{}.{}", stem(part, &cnc.name), cnc.dialect.extension)
-}
-
-fn stem(part: &str, machine: &str) -> String {
-    let mut full = identifier(&format!("{part}_{machine}"), usize::MAX);
-    if full.len() <= MAX_NAME {
-        return full;
-    }
-    // identifier() maps char for char, so the tail is "_" + the machine's name.
-    let tail = machine.chars().count() + 1;
-    if tail + 1 >= MAX_NAME {
-        full.truncate(MAX_NAME);
-        return full;
-    }
-    format!("{}{}", &full[..MAX_NAME - tail], &full[full.len() - tail..])
+    format!(
+        "{}.{}",
+        program_stem(part, &cnc.name, MAX_NAME),
+        cnc.dialect.extension
+    )
 }
 
 /// The kinematics the program is written for: a machine declared with fewer than
@@ -367,16 +357,6 @@ fn trimmed(v: f64, decimals: usize) -> String {
     String::from_utf8(b).unwrap_or_default()
 }
 
-fn counts(ctx: &mut tera::Context, p: &Verified) {
-    let prog = p.ir();
-    ctx.insert("layers", &prog.layers.len());
-    ctx.insert(
-        "paths",
-        &prog.layers.iter().map(|l| l.paths.len()).sum::<usize>(),
-    );
-    ctx.insert("points", &prog.point_count());
-}
-
 fn header_context(ctx: &mut tera::Context, p: &Verified, cnc: &Cnc, five: bool) {
     let prog = p.ir();
     let style = cnc.dialect.comment;
@@ -401,36 +381,6 @@ fn header_context(ctx: &mut tera::Context, p: &Verified, cnc: &Cnc, five: bool) 
     ctx.insert("tcp_on", if five { cnc.dialect.tcp_on.trim() } else { "" });
 }
 
-fn layer_context(ctx: &mut tera::Context, li: usize, n_layers: usize, layer: &Layer) {
-    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-    let (mut any_on, mut points) = (false, 0usize);
-    for path in &layer.paths {
-        points += path.points.len();
-        for pt in &path.points {
-            // The deposit heights, or every point's if the layer deposits nothing.
-            if pt.laser_on && !any_on {
-                any_on = true;
-                (lo, hi) = (f32::INFINITY, f32::NEG_INFINITY);
-            }
-            if pt.laser_on || !any_on {
-                lo = lo.min(pt.layer_height);
-                hi = hi.max(pt.layer_height);
-            }
-        }
-    }
-    if points == 0 {
-        (lo, hi) = (0.0, 0.0);
-    }
-    ctx.insert("layer", &layer.index);
-    ctx.insert("number", &(li + 1));
-    ctx.insert("layers", &n_layers);
-    ctx.insert("station", &fixed(layer.station, 4));
-    ctx.insert("h_min", &fixed(lo as f64, 3));
-    ctx.insert("h_max", &fixed(hi as f64, 3));
-    ctx.insert("paths", &layer.paths.len());
-    ctx.insert("points", &points);
-}
-
 fn footer_context(ctx: &mut tera::Context, p: &Verified, cnc: &Cnc, five: bool, s: Stats) {
     counts(ctx, p);
     ctx.insert(
@@ -443,20 +393,4 @@ fn footer_context(ctx: &mut tera::Context, p: &Verified, cnc: &Cnc, five: bool, 
     ctx.insert("approaches", &s.approaches);
     ctx.insert("laser_switches", &s.laser_switches);
     ctx.insert("motion_lines", &(s.rapids + s.deposits + s.approaches));
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn stems_keep_the_machine() {
-        assert_eq!(stem("bent tube", "mill5"), "bent_tube_mill5");
-        let s = stem("a very long part name indeed", "mill5");
-        assert_eq!(s.len(), MAX_NAME);
-        assert!(s.ends_with("_mill5"), "{s}");
-        assert_eq!(stem("42", "m"), "p42_m");
-        let s = stem("x", "a machine with a very long name");
-        assert_eq!(s.len(), MAX_NAME);
-    }
 }

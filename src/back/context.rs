@@ -1,0 +1,49 @@
+//! Template variables shared by the back ends, so a layer's comment says the
+//! same thing in KRL and G-code.
+
+use super::fixed::fixed;
+use crate::check::Verified;
+use crate::ir::Layer;
+
+/// `layers`, `paths`, `points`: the program's totals.
+pub fn counts(ctx: &mut tera::Context, p: &Verified) {
+    let prog = p.ir();
+    ctx.insert("layers", &prog.layers.len());
+    ctx.insert(
+        "paths",
+        &prog.layers.iter().map(|l| l.paths.len()).sum::<usize>(),
+    );
+    ctx.insert("points", &prog.point_count());
+}
+
+/// The variables of a layer's comment block: `layer` (0-based index), `number`
+/// (1-based), `layers`, `station`, `h_min`/`h_max` (deposit heights in mm, every
+/// point's if the layer deposits nothing), `paths`, `points`.
+pub fn layer_context(ctx: &mut tera::Context, li: usize, n_layers: usize, layer: &Layer) {
+    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+    let (mut any_on, mut points) = (false, 0usize);
+    for path in &layer.paths {
+        points += path.points.len();
+        for pt in &path.points {
+            if pt.laser_on && !any_on {
+                any_on = true;
+                (lo, hi) = (f32::INFINITY, f32::NEG_INFINITY);
+            }
+            if pt.laser_on || !any_on {
+                lo = lo.min(pt.layer_height);
+                hi = hi.max(pt.layer_height);
+            }
+        }
+    }
+    if points == 0 {
+        (lo, hi) = (0.0, 0.0);
+    }
+    ctx.insert("layer", &layer.index);
+    ctx.insert("number", &(li + 1));
+    ctx.insert("layers", &n_layers);
+    ctx.insert("station", &fixed(layer.station, 4));
+    ctx.insert("h_min", &fixed(lo as f64, 3));
+    ctx.insert("h_max", &fixed(hi as f64, 3));
+    ctx.insert("paths", &layer.paths.len());
+    ctx.insert("points", &points);
+}
