@@ -1,0 +1,356 @@
+//! KRL programs read back by an independent checker (tests/support/krl_check.rs)
+//! and compared with the IR they were written from: every deposit is a LIN with
+//! the laser on to the focus, at the IR's speed and power, with the beam along
+//! −normal; splitting into modules changes nothing the robot does; numbers and
+//! names are what KRL accepts.
+
+#[path = "gcode_common.rs"]
+mod common;
+#[path = "support/krl_check.rs"]
+mod krl;
+
+use common::fixture;
+use common::{planar, verified};
+use lmdc::back::krl::orient::Orienter;
+use lmdc::back::{EmitError, MemorySink, Templates};
+use lmdc::check::Verified;
+use lmdc::ir::*;
+use proptest::prelude::*;
+
+fn robot_files(p: &Verified, index: usize) -> Result<krl::Files, EmitError> {
+    let Machine::Robot(r) = &p.ir().machines[index] else {
+        panic!("machine {index} is not a robot")
+    };
+    let mut sink = MemorySink::default();
+    lmdc::back::krl::emit(p, index, r, &Templates::builtin().unwrap(), &mut sink)?;
+    Ok(sink
+        .files
+        .into_iter()
+        .map(|(n, b)| (n, String::from_utf8(b).expect("KRL is UTF-8")))
+        .collect())
+}
+
+fn main_name(files: &krl::Files) -> String {
+    // The main program is the .src no module name extends.
+    let srcs: Vec<&String> = files.keys().filter(|n| n.ends_with(".src")).collect();
+    srcs.iter()
+        .map(|n| n.trim_end_matches(".src").to_string())
+        .find(|stem| {
+            srcs.iter()
+                .all(|o| o.trim_end_matches(".src") == stem || o.starts_with(&format!("{stem}_m")))
+        })
+        .expect("a main program")
+}
+
+fn run(p: &Verified, index: usize) -> (krl::Files, krl::Trace) {
+    let Machine::Robot(r) = &p.ir().machines[index] else {
+        panic!()
+    };
+    let files = robot_files(p, index).unwrap_or_else(|e| panic!("emit failed: {e:?}"));
+    let main = main_name(&files);
+    let trace = krl::run(&files, &main, r.laser_out, r.power_out)
+        .unwrap_or_else(|e| panic!("KRL check failed: {e}"));
+    (files, trace)
+}
+
+fn beam_axis(b: ToolAxis) -> (usize, f64) {
+    match b {
+        ToolAxis::PlusX => (0, 1.0),
+        ToolAxis::MinusX => (0, -1.0),
+        ToolAxis::PlusY => (1, 1.0),
+        ToolAxis::MinusY => (1, -1.0),
+        ToolAxis::PlusZ => (2, 1.0),
+        ToolAxis::MinusZ => (2, -1.0),
+    }
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// Every IR deposit (a segment whose start has the laser on), in order.
+fn deposits(p: &Program) -> Vec<(Point, Point)> {
+    p.layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .flat_map(|path| path.points.windows(2))
+        .filter(|w| w[0].laser_on)
+        .map(|w| (w[0], w[1]))
+        .collect()
+}
+
+/// The trace does what the IR asks: laser-on LINs are exactly the IR's deposits,
+/// to the focus, at their speed and power, nozzle along the normal; every speed
+/// within the robot's limit; laser off at the end.
+fn assert_follows(p: &Verified, index: usize, trace: &krl::Trace) {
+    let ir = p.ir();
+    let Machine::Robot(r) = &ir.machines[index] else {
+        panic!()
+    };
+    let want = deposits(ir);
+    let got: Vec<&krl::Lin> = trace.lins.iter().filter(|l| l.laser).collect();
+    assert_eq!(got.len(), want.len(), "one laser-on LIN per IR deposit");
+    let (axis, sign) = beam_axis(r.beam);
+    for (k, ((from, to), lin)) in want.iter().zip(&got).enumerate() {
+        let at = format!("deposit {k}: {lin:?}");
+        assert!(dist(lin.pos, to.focus()) <= 0.0009, "{at}: position");
+        assert!(
+            (lin.speed - from.speed as f64).abs() <= 0.0006,
+            "{at}: speed {} want {}",
+            lin.speed,
+            from.speed
+        );
+        let x = from.power as f64 / r.full_scale_power;
+        assert!((lin.anout - x).abs() <= 0.00006, "{at}: $ANOUT want {x}");
+        let m = krl::matrix(lin.abc);
+        let beam = krl::column(&m, axis);
+        let n = to.normal;
+        for i in 0..3 {
+            assert!(
+                (beam[i] * sign + n[i] as f64).abs() < 1e-4,
+                "{at}: beam {beam:?} not along −normal {n:?}"
+            );
+        }
+    }
+    for lin in &trace.lins {
+        assert!(lin.speed <= r.max_speed + 1e-9, "{lin:?} beyond max_speed");
+        assert!(lin.pos.iter().chain(&lin.abc).all(|v| v.is_finite()));
+    }
+    // Only where the laser switches is a LIN exact; it is on for no travel.
+    for w in trace.lins.windows(2) {
+        if w[0].laser != w[1].laser {
+            assert!(
+                !w[0].approximated,
+                "switch after an approximated LIN: {w:?}"
+            );
+        }
+    }
+    assert!(!trace.laser_at_end);
+    assert_eq!(trace.ptps, 2, "home at start and end");
+}
+
+fn planar_robot(robot: Robot) -> Verified {
+    verified(planar(3, vec![Machine::Robot(robot)]))
+}
+
+#[test]
+fn planar_program_follows_the_ir() {
+    let p = planar_robot(fixture::robot());
+    let (_, trace) = run(&p, 0);
+    assert_follows(&p, 0, &trace);
+    // The fixture's 3 layers × 3 paths: the raster joins the contour, the island
+    // does not; each transition is retract (none for the first), travel, approach.
+    let transitions = 3 * 2;
+    let lins = deposits(p.ir()).len() + 3 /* laser-off raster gaps */;
+    assert_eq!(trace.lins.len(), lins + 3 * transitions - 1 + 1);
+}
+
+#[test]
+fn every_beam_axis_points_the_nozzle_along_the_normal() {
+    for beam in [
+        ToolAxis::PlusX,
+        ToolAxis::MinusX,
+        ToolAxis::PlusY,
+        ToolAxis::MinusY,
+        ToolAxis::PlusZ,
+        ToolAxis::MinusZ,
+    ] {
+        let mut r = fixture::robot();
+        r.beam = beam;
+        let p = verified(fixture::bent_tube(6, 24, 60.0, vec![Machine::Robot(r)]));
+        let (_, trace) = run(&p, 0);
+        assert_follows(&p, 0, &trace);
+    }
+}
+
+#[test]
+fn modules_split_the_motion_without_changing_it() {
+    let mut small = fixture::robot();
+    small.max_points_per_module = 10;
+    let mut whole = fixture::robot();
+    whole.max_points_per_module = 100_000;
+    let (files, split) = run(&planar_robot(small), 0);
+    let (_, one) = run(&planar_robot(whole), 0);
+    assert!(split.calls.len() > 3, "{:?}", split.calls);
+    assert_eq!(one.calls.len(), 1);
+    for (m, n) in &split.lines_per_module {
+        assert!(*n <= 10, "{m} has {n} LIN lines");
+    }
+    let strip = |t: &krl::Trace| -> Vec<_> {
+        t.lins
+            .iter()
+            .map(|l| (l.pos, l.abc, l.speed, l.laser, l.anout))
+            .collect()
+    };
+    assert_eq!(strip(&split), strip(&one));
+    // Every called module was written, as .src and .dat, and nothing else was.
+    assert_eq!(files.len(), 2 * (split.calls.len() + 1));
+}
+
+#[test]
+fn long_names_stay_valid_krl_names() {
+    let mut r = fixture::robot();
+    r.name = "the robot in the north cell".into();
+    let mut ir = planar(1, vec![Machine::Robot(r)]);
+    ir.part = "a rather long part name, with punctuation!".into();
+    let p = verified(ir);
+    let (files, _) = run(&p, 0);
+    for name in files.keys() {
+        let stem = name.rsplit_once('.').unwrap().0;
+        assert!(stem.len() <= 24, "{name}");
+    }
+}
+
+#[test]
+fn power_beyond_full_scale_is_refused_with_nothing_written() {
+    let mut r = fixture::robot();
+    r.full_scale_power = 1000.0;
+    let p = planar_robot(r.clone());
+    let mut sink = MemorySink::default();
+    let e = lmdc::back::krl::emit(&p, 0, &r, &Templates::builtin().unwrap(), &mut sink);
+    let Err(EmitError::Program(d)) = e else {
+        panic!("want lmd::analog-range, got {e:?}")
+    };
+    let d: Vec<_> = d.iter().collect();
+    assert_eq!(d.len(), 1);
+    assert_eq!(d[0].code, "lmd::analog-range");
+    // The planar fixture's hottest point: 1700 W + 200 W in layer 3.
+    assert!(d[0].message.contains("1900 W"), "{}", d[0].message);
+    assert!(
+        d[0].message.contains("$ANOUT[1] = 1.900"),
+        "{}",
+        d[0].message
+    );
+    assert!(sink.files.is_empty());
+}
+
+#[test]
+fn same_ir_same_bytes() {
+    let p = verified(fixture::bent_tube(
+        5,
+        30,
+        45.0,
+        vec![Machine::Robot(fixture::robot())],
+    ));
+    assert_eq!(robot_files(&p, 0).unwrap(), robot_files(&p, 0).unwrap());
+}
+
+#[test]
+fn examples_pass_the_checker_and_follow_their_ir() {
+    let mut sources = vec!["tests/golden/small_duct.lmd".to_string()];
+    for e in std::fs::read_dir("examples").unwrap() {
+        let path = e.unwrap().path();
+        if path.extension().is_some_and(|x| x == "lmd") {
+            sources.push(path.to_string_lossy().into_owned());
+        }
+    }
+    let mut robots = 0;
+    for s in sources {
+        let src = std::fs::read_to_string(&s).unwrap();
+        let p = lmdc::pipeline::compile(&src, &mut ())
+            .program
+            .unwrap_or_else(|| panic!("{s} compiles"));
+        for (i, m) in p.ir().machines.iter().enumerate() {
+            if let Machine::Robot(r) = m {
+                let (_, trace) = run(&p, i);
+                assert_follows(&p, i, &trace);
+                for n in trace.lines_per_module.values() {
+                    assert!(*n <= r.max_points_per_module);
+                }
+                robots += 1;
+            }
+        }
+    }
+    assert!(robots >= 2);
+}
+
+fn hand_beam(abc: [f64; 3], beam: ToolAxis) -> [f64; 3] {
+    let (axis, sign) = beam_axis(beam);
+    let c = krl::column(&krl::matrix(abc), axis);
+    [c[0] * sign, c[1] * sign, c[2] * sign]
+}
+
+fn beam_strategy() -> impl Strategy<Value = ToolAxis> {
+    prop_oneof![
+        Just(ToolAxis::PlusX),
+        Just(ToolAxis::MinusX),
+        Just(ToolAxis::PlusY),
+        Just(ToolAxis::MinusY),
+        Just(ToolAxis::PlusZ),
+        Just(ToolAxis::MinusZ),
+    ]
+}
+
+fn unit(v: [f64; 3]) -> Option<[f32; 3]> {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (n > 1e-3).then(|| [(v[0] / n) as f32, (v[1] / n) as f32, (v[2] / n) as f32])
+}
+
+/// Angle (deg) of the rotation between two KUKA orientations.
+fn rotation_between(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let (ma, mb) = (krl::matrix(a), krl::matrix(b));
+    // trace(Maᵀ·Mb) = 1 + 2 cos θ
+    let tr: f64 = (0..3)
+        .map(|i| (0..3).map(|k| ma[k][i] * mb[k][i]).sum::<f64>())
+        .sum();
+    ((tr - 1.0) / 2.0).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+proptest! {
+    /// A B C put the beam along −normal for any normal and beam axis, including
+    /// the gimbal lock (B = ±90°: a beam along X pointing straight down), and stay
+    /// in KUKA's ranges.
+    #[test]
+    fn abc_round_trips_to_the_normal(
+        beam in beam_strategy(),
+        raw in prop::collection::vec(
+            prop_oneof![
+                (-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0).prop_map(|(x, y, z)| [x, y, z]),
+                Just([0.0, 0.0, 1.0]),
+                Just([1.0, 0.0, 0.0]),
+                Just([0.0, -1.0, 0.0]),
+                Just([1e-7, 0.0, 1.0]),
+            ],
+            1..12,
+        ),
+    ) {
+        let mut o = Orienter::new(beam);
+        for v in raw {
+            let Some(n) = unit(v) else { continue };
+            let abc = o.abc(n);
+            let abc = [abc.a, abc.b, abc.c];
+            prop_assert!(abc[0] > -180.0 && abc[0] <= 180.0);
+            prop_assert!(abc[1].abs() <= 90.0);
+            prop_assert!(abc[2] > -180.0 && abc[2] <= 180.0);
+            let b = hand_beam(abc, beam);
+            for i in 0..3 {
+                prop_assert!((b[i] + n[i] as f64).abs() < 1e-6, "{abc:?} {n:?}");
+            }
+        }
+    }
+
+    /// Between two normals θ apart the tool turns by little more than θ: it never
+    /// spins about the beam (which would whip the wrist round).
+    #[test]
+    fn orientation_moves_with_the_normal(
+        beam in beam_strategy(),
+        start in (-1.0f64..1.0, -1.0f64..1.0, 0.2f64..1.0),
+        steps in prop::collection::vec((-0.05f64..0.05, -0.05f64..0.05, -0.05f64..0.05), 1..40),
+    ) {
+        let mut o = Orienter::new(beam);
+        let mut v = [start.0, start.1, start.2];
+        let Some(mut n) = unit(v) else { return Ok(()) };
+        let mut prev = o.abc(n);
+        for d in steps {
+            v = [v[0] + d.0, v[1] + d.1, v[2] + d.2];
+            let Some(m) = unit(v) else { continue };
+            let theta = (n[0] as f64 * m[0] as f64 + n[1] as f64 * m[1] as f64
+                + n[2] as f64 * m[2] as f64).clamp(-1.0, 1.0).acos().to_degrees();
+            let next = o.abc(m);
+            let turn = rotation_between([prev.a, prev.b, prev.c], [next.a, next.b, next.c]);
+            prop_assert!(turn <= theta * 1.05 + 1e-3, "turned {turn}° for a {theta}° change");
+            prev = next;
+            n = m;
+        }
+    }
+}

@@ -1,0 +1,422 @@
+//! A strict reader of the KRL subset lmdc writes: it checks each file's
+//! structure (header, `DEF name( )` … `END` with the file's name, `DEFDAT` …
+//! `ENDDAT`), every statement against the forms lmdc may emit, identifiers (≤ 24
+//! characters) and numbers (plain decimals: no exponent, NaN or inf), then
+//! *executes* the main program — following module calls — into a trace of
+//! motions with the speed, laser and power state each one runs with. It refuses
+//! redundant writes (a `$VEL.CP` equal to the current one in the same module, a
+//! `TRIGGER` that sets the laser to the state it already has) and triggers not
+//! followed by a motion.
+//!
+//! Written independently of the emitter: it reads text, not lmdc's types.
+#![allow(dead_code)]
+
+use std::collections::BTreeMap;
+
+/// One `LIN` as the robot runs it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lin {
+    /// X Y Z, mm.
+    pub pos: [f64; 3],
+    /// A B C, deg.
+    pub abc: [f64; 3],
+    /// `$VEL.CP` in force, converted to mm/s.
+    pub speed: f64,
+    /// `$OUT[laser]` during the motion.
+    pub laser: bool,
+    /// `$ANOUT[power]` during the motion.
+    pub anout: f64,
+    /// Ends with `C_DIS`.
+    pub approximated: bool,
+    /// Module it is in.
+    pub module: String,
+}
+
+/// What running the main program did.
+#[derive(Debug, Default)]
+pub struct Trace {
+    /// The LIN motions in execution order.
+    pub lins: Vec<Lin>,
+    /// `PTP` motions.
+    pub ptps: usize,
+    /// Modules called, in order.
+    pub calls: Vec<String>,
+    /// LIN lines per module.
+    pub lines_per_module: BTreeMap<String, usize>,
+    /// Final `$OUT[laser]`.
+    pub laser_at_end: bool,
+}
+
+/// The KRL files of one robot program: name → text.
+pub type Files = BTreeMap<String, String>;
+
+/// Reads and runs `<main>.src`, with `laser`/`power` the `$OUT`/`$ANOUT`
+/// indices the program must use.
+pub fn run(files: &Files, main: &str, laser: u16, power: u16) -> Result<Trace, String> {
+    for (name, text) in files {
+        if let Some(stem) = name.strip_suffix(".dat") {
+            check_dat(stem, text).map_err(|e| format!("{name}: {e}"))?;
+        } else if !name.ends_with(".src") {
+            return Err(format!("unexpected file {name}"));
+        }
+    }
+    let mut st = State {
+        files,
+        laser_no: laser,
+        power_no: power,
+        trace: Trace::default(),
+        vel: None,
+        laser: false,
+        anout: 0.0,
+        depth: 0,
+    };
+    st.module(main, true)?;
+    st.trace.laser_at_end = st.laser;
+    Ok(st.trace)
+}
+
+struct State<'a> {
+    files: &'a Files,
+    laser_no: u16,
+    power_no: u16,
+    trace: Trace,
+    /// m/s
+    vel: Option<f64>,
+    laser: bool,
+    anout: f64,
+    depth: usize,
+}
+
+fn check_name(name: &str) -> Result<(), String> {
+    let ok = name.len() <= 24
+        && name.starts_with(|c: char| c.is_ascii_alphabetic())
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if ok {
+        Ok(())
+    } else {
+        Err(format!(
+            "`{name}` is not a KRL name (letter, then [A-Za-z0-9_], ≤ 24)"
+        ))
+    }
+}
+
+fn header<'t>(lines: &mut impl Iterator<Item = (usize, &'t str)>) -> Result<(), String> {
+    for want in ["&ACCESS RVP", "&REL 1"] {
+        match lines.next() {
+            Some((_, l)) if l == want => {}
+            other => return Err(format!("want `{want}`, got {other:?}")),
+        }
+    }
+    Ok(())
+}
+
+fn check_dat(stem: &str, text: &str) -> Result<(), String> {
+    let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
+    header(&mut lines)?;
+    match lines.next() {
+        Some((_, l)) if l == format!("DEFDAT {stem}") => {}
+        other => return Err(format!("want `DEFDAT {stem}`, got {other:?}")),
+    }
+    check_name(stem)?;
+    let rest: Vec<_> = lines.collect();
+    match rest.last() {
+        Some((_, "ENDDAT")) => {}
+        other => return Err(format!("must end with ENDDAT, ends with {other:?}")),
+    }
+    for (n, l) in &rest[..rest.len() - 1] {
+        if !l.trim_start().starts_with(';') && !l.trim().is_empty() {
+            return Err(format!("line {n}: unexpected data `{l}`"));
+        }
+    }
+    Ok(())
+}
+
+/// A plain decimal: optional `-`, digits, optional `.digits`.
+pub fn number(s: &str) -> Result<f64, String> {
+    let t = s.strip_prefix('-').unwrap_or(s);
+    let (int, frac) = t.split_once('.').unwrap_or((t, "0"));
+    let digits = |p: &str| !p.is_empty() && p.bytes().all(|b| b.is_ascii_digit());
+    if !digits(int) || !digits(frac) {
+        return Err(format!("`{s}` is not a plain decimal number"));
+    }
+    s.parse::<f64>().map_err(|e| format!("`{s}`: {e}"))
+}
+
+/// `{K1 v1,K2 v2,…}` with exactly the keys `keys`.
+fn aggregate(s: &str, keys: &[&str]) -> Result<Vec<f64>, String> {
+    let inner = s
+        .strip_prefix('{')
+        .and_then(|s| s.strip_suffix('}'))
+        .ok_or_else(|| format!("`{s}` is not an aggregate"))?;
+    let parts: Vec<&str> = inner.split(',').collect();
+    if parts.len() != keys.len() {
+        return Err(format!("`{s}`: want components {keys:?}"));
+    }
+    parts
+        .iter()
+        .zip(keys)
+        .map(|(p, k)| {
+            let v = p
+                .strip_prefix(k)
+                .and_then(|v| v.strip_prefix(' '))
+                .ok_or_else(|| format!("`{s}`: want `{k} <number>`, got `{p}`"))?;
+            number(v)
+        })
+        .collect()
+}
+
+fn strip_comment(l: &str) -> &str {
+    l.split(';').next().unwrap_or("").trim()
+}
+
+#[derive(Clone, Copy)]
+enum Trig {
+    Laser(bool),
+    Power(f64),
+}
+
+impl State<'_> {
+    fn module(&mut self, name: &str, main: bool) -> Result<(), String> {
+        check_name(name)?;
+        self.depth += 1;
+        if self.depth > 4 {
+            return Err(format!("{name}: calls nest too deep"));
+        }
+        let file = format!("{name}.src");
+        let text = self
+            .files
+            .get(&file)
+            .ok_or_else(|| format!("{name} is called but {file} was not written"))?;
+        let at = |n: usize, e: String| format!("{file}:{n}: {e}");
+        let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
+        header(&mut lines).map_err(|e| at(1, e))?;
+        match lines.next() {
+            Some((_, l)) if l == format!("DEF {name}( )") => {}
+            other => return Err(at(3, format!("want `DEF {name}( )`, got {other:?}"))),
+        }
+        if !main {
+            // A module starts with no speed of its own: the first motion sets one.
+            self.vel = None;
+        }
+        let mut triggers: Vec<Trig> = Vec::new();
+        let mut ended = false;
+        for (n, raw) in lines {
+            if ended {
+                if raw.trim().is_empty() {
+                    continue;
+                }
+                return Err(at(n, "text after END".into()));
+            }
+            let l = strip_comment(raw);
+            if l.is_empty() {
+                continue;
+            }
+            let r = self.statement(name, main, l, &mut triggers);
+            match r {
+                Ok(true) => ended = true,
+                Ok(false) => {}
+                Err(e) => return Err(at(n, format!("{e} in `{raw}`"))),
+            }
+        }
+        if !ended {
+            return Err(format!("{file}: no END"));
+        }
+        if !triggers.is_empty() {
+            return Err(format!("{file}: TRIGGER without a following motion"));
+        }
+        self.depth -= 1;
+        Ok(())
+    }
+
+    /// Runs one statement; `Ok(true)` at END.
+    fn statement(
+        &mut self,
+        module: &str,
+        main: bool,
+        l: &str,
+        triggers: &mut Vec<Trig>,
+    ) -> Result<bool, String> {
+        let out = format!("$OUT[{}]", self.laser_no);
+        let anout = format!("$ANOUT[{}]", self.power_no);
+        if l == "END" {
+            return Ok(true);
+        }
+        if let Some(v) = l.strip_prefix("$VEL.CP = ") {
+            let v = number(v)?;
+            if !(v > 0.0 && v <= 3.0) {
+                return Err(format!("$VEL.CP {v} m/s outside (0, 3]"));
+            }
+            if self.vel == Some(v) {
+                return Err("$VEL.CP repeats the speed in force".into());
+            }
+            self.vel = Some(v);
+            return Ok(false);
+        }
+        if let Some(t) = l.strip_prefix("TRIGGER WHEN DISTANCE=0 DELAY=0 DO ") {
+            let (lhs, rhs) = t.split_once('=').ok_or("TRIGGER without assignment")?;
+            if lhs == out {
+                let on = match rhs {
+                    "TRUE" => true,
+                    "FALSE" => false,
+                    _ => return Err(format!("{out} needs TRUE/FALSE")),
+                };
+                triggers.push(Trig::Laser(on));
+            } else if lhs == anout {
+                let x = number(rhs)?;
+                if !(0.0..=1.0).contains(&x) {
+                    return Err(format!("{anout} = {x} outside 0..1"));
+                }
+                triggers.push(Trig::Power(x));
+            } else {
+                return Err(format!("TRIGGER sets `{lhs}`, neither {out} nor {anout}"));
+            }
+            return Ok(false);
+        }
+        if let Some(rest) = l.strip_prefix("LIN ") {
+            let (agg, approx) = match rest.strip_suffix(" C_DIS") {
+                Some(a) => (a, true),
+                None => (rest, false),
+            };
+            let v = aggregate(agg, &["X", "Y", "Z", "A", "B", "C"])?;
+            for (k, a) in v[3..].iter().enumerate() {
+                let lim = if k == 1 { 90.0 } else { 180.0 };
+                if a.abs() > lim || (k != 1 && *a == -180.0) {
+                    return Err(format!("orientation angle {a} outside its range"));
+                }
+            }
+            let vel = self.vel.ok_or("LIN before any $VEL.CP in this module")?;
+            for t in triggers.drain(..) {
+                match t {
+                    Trig::Laser(on) => {
+                        if on == self.laser {
+                            return Err("TRIGGER switches the laser to the state it has".into());
+                        }
+                        self.laser = on;
+                    }
+                    Trig::Power(x) => self.anout = x,
+                }
+            }
+            *self
+                .trace
+                .lines_per_module
+                .entry(module.to_string())
+                .or_default() += 1;
+            self.trace.lins.push(Lin {
+                pos: [v[0], v[1], v[2]],
+                abc: [v[3], v[4], v[5]],
+                speed: vel * 1000.0,
+                laser: self.laser,
+                anout: self.anout,
+                approximated: approx,
+                module: module.to_string(),
+            });
+            return Ok(false);
+        }
+        if !triggers.is_empty() {
+            return Err("a TRIGGER must be followed by its motion".into());
+        }
+        if !main {
+            return Err("statement not allowed in a motion module".into());
+        }
+        // The main program's statements.
+        if let Some(p) = l.strip_prefix("PTP ") {
+            let v = aggregate(p, &["A1", "A2", "A3", "A4", "A5", "A6"])?;
+            if v.iter().any(|a| a.abs() > 360.0) {
+                return Err("axis angle beyond ±360".into());
+            }
+            if self.laser {
+                return Err("PTP with the laser on".into());
+            }
+            self.trace.ptps += 1;
+            return Ok(false);
+        }
+        if let Some(callee) = l.strip_suffix("( )") {
+            self.trace.calls.push(callee.to_string());
+            return self.module(callee, false).map(|_| false);
+        }
+        if let Some(rhs) = l.strip_prefix(&format!("{out} = ")) {
+            self.laser = match rhs {
+                "TRUE" => return Err("the main program never switches the laser on".into()),
+                "FALSE" => false,
+                _ => return Err("TRUE/FALSE".into()),
+            };
+            return Ok(false);
+        }
+        if let Some(rhs) = l.strip_prefix(&format!("{anout} = ")) {
+            self.anout = number(rhs)?;
+            return Ok(false);
+        }
+        if let Some(rhs) = l
+            .strip_prefix("$TOOL = ")
+            .or_else(|| l.strip_prefix("$BASE = "))
+        {
+            let is_table = ["TOOL_DATA[", "BASE_DATA["]
+                .iter()
+                .any(|t| rhs.starts_with(t) && rhs.ends_with(']'));
+            if !is_table {
+                aggregate(rhs, &["X", "Y", "Z", "A", "B", "C"])?;
+            }
+            return Ok(false);
+        }
+        if let Some(v) = l.strip_prefix("$APO.CDIS = ") {
+            let v = number(v)?;
+            return if v > 0.0 {
+                Ok(false)
+            } else {
+                Err("CDIS ≤ 0".into())
+            };
+        }
+        if let Some(v) = l.strip_prefix("$ADVANCE = ") {
+            let v = number(v)?;
+            return if (1.0..=5.0).contains(&v) {
+                Ok(false)
+            } else {
+                Err("$ADVANCE outside 1..5".into())
+            };
+        }
+        let fixed = [
+            "BAS(#INITMOV,0)",
+            "$IPO_MODE = #BASE",
+            "$ORI_TYPE = #VAR",
+            "WAIT SEC 0",
+        ];
+        if fixed.contains(&l) {
+            return Ok(false);
+        }
+        if let Some(p) = l
+            .strip_prefix("BAS(#PTP_PARAMS,")
+            .and_then(|p| p.strip_suffix(')'))
+        {
+            let v = number(p)?;
+            return if v > 0.0 && v <= 100.0 {
+                Ok(false)
+            } else {
+                Err("PTP speed outside 0..100 %".into())
+            };
+        }
+        Err("not a statement lmdc writes".into())
+    }
+}
+
+/// The rotation matrix of KUKA `A B C` (deg), R = Rz(A)·Ry(B)·Rx(C), written out
+/// by hand.
+pub fn matrix(abc: [f64; 3]) -> [[f64; 3]; 3] {
+    let (a, b, c) = (
+        abc[0].to_radians(),
+        abc[1].to_radians(),
+        abc[2].to_radians(),
+    );
+    let (sa, ca) = a.sin_cos();
+    let (sb, cb) = b.sin_cos();
+    let (sc, cc) = c.sin_cos();
+    [
+        [ca * cb, ca * sb * sc - sa * cc, ca * sb * cc + sa * sc],
+        [sa * cb, sa * sb * sc + ca * cc, sa * sb * cc - ca * sc],
+        [-sb, cb * sc, cb * cc],
+    ]
+}
+
+/// Column `k` of `m` (a tool axis in base coordinates).
+pub fn column(m: &[[f64; 3]; 3], k: usize) -> [f64; 3] {
+    [m[0][k], m[1][k], m[2][k]]
+}
