@@ -5,6 +5,7 @@
 
 pub mod context;
 pub mod fixed;
+pub(crate) mod fmt;
 pub mod gcode;
 pub mod krl;
 pub mod templates;

@@ -15,7 +15,6 @@
 //! start, approach.
 
 mod dialect;
-mod fmt;
 pub mod kinematics;
 mod limits;
 mod writer;

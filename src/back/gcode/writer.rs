@@ -6,8 +6,8 @@
 //! allocation and no `memcpy` call per line (see [`super::fmt`]).
 
 use super::dialect::Words;
-use super::fmt::{key, put_fixed, put_trimmed, MAX_NUMBER};
 use super::kinematics::Rotary;
+use crate::back::fmt::{key, put_fixed, put_trimmed, MAX_NUMBER};
 use std::io::{self, Write};
 
 /// Bytes handed to the output at a time.

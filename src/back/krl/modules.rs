@@ -9,6 +9,7 @@
 
 use super::orient::Abc;
 use crate::back::fixed::{push_fixed, push_trimmed, push_u64};
+use crate::back::fmt::{put_fixed, MAX_NUMBER};
 use crate::back::{EmitError, Sink, Templates};
 use std::io::Write;
 
@@ -18,6 +19,8 @@ pub const POS_DECIMALS: usize = 3;
 pub const VEL_DECIMALS: usize = 6;
 /// Decimals of `$ANOUT` (fraction of full scale).
 pub const ANOUT_DECIMALS: usize = 4;
+/// Room for one LIN line: its words and six numbers.
+const LINE: usize = 32 + 6 * (3 + MAX_NUMBER);
 /// Marker the module template's `body` variable is rendered as, where the motion
 /// lines go.
 const BODY: &str = "\u{1}lmdc-body\u{1}";
@@ -175,19 +178,27 @@ impl<'a> Modules<'a> {
                 self.stats.laser_ons += 1;
             }
         }
-        b.extend_from_slice(b"LIN {X ");
-        push_fixed(b, pos[0], POS_DECIMALS);
-        b.extend_from_slice(b",Y ");
-        push_fixed(b, pos[1], POS_DECIMALS);
-        b.extend_from_slice(b",Z ");
-        push_fixed(b, pos[2], POS_DECIMALS);
-        b.extend_from_slice(b",A ");
-        push_angle(b, abc.a);
-        b.extend_from_slice(b",B ");
-        push_fixed(b, abc.b, POS_DECIMALS);
-        b.extend_from_slice(b",C ");
-        push_angle(b, abc.c);
-        b.push(b'}');
+        // One line, formatted in place on the stack and appended with one copy.
+        let mut line = [0u8; LINE];
+        line[..7].copy_from_slice(b"LIN {X ");
+        let mut at = put_fixed(&mut line, 7, pos[0], POS_DECIMALS);
+        for (word, v, angle) in [
+            (b",Y ", pos[1], false),
+            (b",Z ", pos[2], false),
+            (b",A ", abc.a, true),
+            (b",B ", abc.b, false),
+            (b",C ", abc.c, true),
+        ] {
+            line[at..at + 3].copy_from_slice(word);
+            at = put_fixed(
+                &mut line,
+                at + 3,
+                if angle { angle_value(v) } else { v },
+                POS_DECIMALS,
+            );
+        }
+        line[at] = b'}';
+        b.extend_from_slice(&line[..at + 1]);
         self.pending = true;
         self.lines += 1;
         self.stats.lin += 1;
@@ -268,10 +279,12 @@ impl<'a> Modules<'a> {
     }
 }
 
-/// An angle with [`POS_DECIMALS`], written as +180 rather than −180 when it rounds
-/// there (the two are the same orientation; KUKA's range is (−180, 180]).
-fn push_angle(b: &mut Vec<u8>, deg: f64) {
-    let scale = 10f64.powi(POS_DECIMALS as i32);
-    let r = (deg * scale).round() / scale;
-    push_fixed(b, if r <= -180.0 { r + 360.0 } else { r }, POS_DECIMALS);
+/// An angle as written: +180 rather than −180 when it rounds there (the same
+/// orientation; KUKA's range is (−180, 180]).
+fn angle_value(deg: f64) -> f64 {
+    if deg < -179.9995 {
+        deg + 360.0
+    } else {
+        deg
+    }
 }
