@@ -115,6 +115,7 @@ pub fn emit(
         cursor: None,
         laser: false,
         anout: None,
+        power_bits: 0,
     };
     let n_layers = prog.layers.len();
     for (li, layer) in prog.layers.iter().enumerate() {
@@ -239,6 +240,8 @@ struct Motion<'a> {
     laser: bool,
     /// The last `$ANOUT` value set, in 1/10⁴ of full scale.
     anout: Option<i64>,
+    /// The power (f32 bits) it was set for.
+    power_bits: u32,
 }
 
 fn up(normal: [f32; 3]) -> [f64; 3] {
@@ -263,6 +266,11 @@ impl Motion<'_> {
 
     /// The `$ANOUT` value to set before depositing at `power`, if it changed.
     fn power(&mut self, power: f32) -> Option<f64> {
+        // Most points repeat the power of the point before.
+        if self.anout.is_some() && power.to_bits() == self.power_bits {
+            return None;
+        }
+        self.power_bits = power.to_bits();
         let x = anout(power, self.robot);
         let key = (x * 1e4).round() as i64;
         if self.anout == Some(key) {

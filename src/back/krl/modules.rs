@@ -8,8 +8,8 @@
 //! no tera per line.
 
 use super::orient::Abc;
-use crate::back::fixed::{push_fixed, push_trimmed, push_u64};
-use crate::back::fmt::{put_fixed, MAX_NUMBER};
+use crate::back::fixed::{push_fixed, push_u64};
+use crate::back::fmt::{key, put_fixed, put_trimmed, MAX_NUMBER};
 use crate::back::{EmitError, Sink, Templates};
 use std::io::Write;
 
@@ -19,8 +19,10 @@ pub const POS_DECIMALS: usize = 3;
 pub const VEL_DECIMALS: usize = 6;
 /// Decimals of `$ANOUT` (fraction of full scale).
 pub const ANOUT_DECIMALS: usize = 4;
-/// Room for one LIN line: its words and six numbers.
-const LINE: usize = 32 + 6 * (3 + MAX_NUMBER);
+/// Room for `,A …,B …,C …}`.
+const ABC_BYTES: usize = 1 + 3 * (3 + MAX_NUMBER);
+/// Room for one LIN line: its words, X Y Z and the orientation.
+const LINE: usize = 8 + 3 * (3 + MAX_NUMBER) + ABC_BYTES;
 /// Marker the module template's `body` variable is rendered as, where the motion
 /// lines go.
 const BODY: &str = "\u{1}lmdc-body\u{1}";
@@ -59,8 +61,12 @@ pub struct Modules<'a> {
     lines: usize,
     /// The last LIN line awaits its approximation word.
     pending: bool,
-    /// `$VEL.CP` written in this module, in µm/s.
+    /// `$VEL.CP` written in this module, as a [`key`].
     vel: Option<i64>,
+    /// The orientation of the last LIN and its text `,A …,B …,C …}`.
+    abc_last: Option<Abc>,
+    abc_text: [u8; ABC_BYTES],
+    abc_len: usize,
     /// Layer numbers (1-based) whose comment blocks are in this module.
     layers: Option<(usize, usize)>,
     /// A layer comment block waiting for the layer's first motion, and its number.
@@ -98,6 +104,9 @@ impl<'a> Modules<'a> {
             lines: 0,
             pending: false,
             vel: None,
+            abc_last: None,
+            abc_text: [0; ABC_BYTES],
+            abc_len: 0,
             layers: None,
             pre: Vec::new(),
             pre_layer: None,
@@ -152,14 +161,18 @@ impl<'a> Modules<'a> {
             self.roll();
         }
         self.place_pre();
-        let b = &mut self.body;
-        let key = (speed * 1000.0).round() as i64;
+        // The same printed speed is the same key; both are m/s at VEL_DECIMALS.
+        let v = speed / 1000.0;
+        let key = key(v, VEL_DECIMALS);
         if self.vel != Some(key) {
             self.vel = Some(key);
-            b.extend_from_slice(b"$VEL.CP = ");
-            push_trimmed(b, key as f64 / 1e6, VEL_DECIMALS);
-            b.push(b'\n');
+            let mut line = [0u8; 16 + MAX_NUMBER];
+            line[..10].copy_from_slice(b"$VEL.CP = ");
+            let at = put_trimmed(&mut line, 10, v, VEL_DECIMALS);
+            line[at] = b'\n';
+            self.body.extend_from_slice(&line[..at + 1]);
         }
+        let b = &mut self.body;
         if let Some(x) = anout {
             b.extend_from_slice(b"TRIGGER WHEN DISTANCE=0 DELAY=0 DO $ANOUT[");
             push_u64(b, self.power_out as u64);
@@ -178,27 +191,30 @@ impl<'a> Modules<'a> {
                 self.stats.laser_ons += 1;
             }
         }
+        // Most lines repeat the orientation of the line before: keep its text.
+        if self.abc_last != Some(abc) {
+            self.abc_last = Some(abc);
+            let t = &mut self.abc_text;
+            t[..3].copy_from_slice(b",A ");
+            let at = put_fixed(t, 3, angle_value(abc.a), POS_DECIMALS);
+            t[at..at + 3].copy_from_slice(b",B ");
+            let at = put_fixed(t, at + 3, abc.b, POS_DECIMALS);
+            t[at..at + 3].copy_from_slice(b",C ");
+            let at = put_fixed(t, at + 3, angle_value(abc.c), POS_DECIMALS);
+            t[at] = b'}';
+            self.abc_len = at + 1;
+        }
         // One line, formatted in place on the stack and appended with one copy.
         let mut line = [0u8; LINE];
         line[..7].copy_from_slice(b"LIN {X ");
         let mut at = put_fixed(&mut line, 7, pos[0], POS_DECIMALS);
-        for (word, v, angle) in [
-            (b",Y ", pos[1], false),
-            (b",Z ", pos[2], false),
-            (b",A ", abc.a, true),
-            (b",B ", abc.b, false),
-            (b",C ", abc.c, true),
-        ] {
-            line[at..at + 3].copy_from_slice(word);
-            at = put_fixed(
-                &mut line,
-                at + 3,
-                if angle { angle_value(v) } else { v },
-                POS_DECIMALS,
-            );
-        }
-        line[at] = b'}';
-        b.extend_from_slice(&line[..at + 1]);
+        line[at..at + 3].copy_from_slice(b",Y ");
+        at = put_fixed(&mut line, at + 3, pos[1], POS_DECIMALS);
+        line[at..at + 3].copy_from_slice(b",Z ");
+        at = put_fixed(&mut line, at + 3, pos[2], POS_DECIMALS);
+        line[at..at + self.abc_len].copy_from_slice(&self.abc_text[..self.abc_len]);
+        at += self.abc_len;
+        self.body.extend_from_slice(&line[..at]);
         self.pending = true;
         self.lines += 1;
         self.stats.lin += 1;
