@@ -3,6 +3,8 @@
 //! over millions of coordinates; scaling to an integer and printing that with
 //! `itoa`-style digit loops is exact for the magnitudes a machine can reach.
 
+use super::fmt::POW10;
+
 /// Appends `v` with exactly `decimals` digits after the point (0–9). Values are
 /// rounded half away from zero; `-0.000` is written as `0.000`. Non-finite values
 /// never reach a back end (the checks refuse them), but would be written as `0`.
@@ -74,19 +76,6 @@ pub fn rounded(v: f64, decimals: usize) -> f64 {
     let s = POW10[decimals.min(9)] as f64;
     (v * s).round() / s
 }
-
-const POW10: [u64; 10] = [
-    1,
-    10,
-    100,
-    1_000,
-    10_000,
-    100_000,
-    1_000_000,
-    10_000_000,
-    100_000_000,
-    1_000_000_000,
-];
 
 /// Formats into a new `String` (for templates and tests).
 pub fn fixed(v: f64, decimals: usize) -> String {

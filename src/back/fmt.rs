@@ -6,7 +6,7 @@
 //! `extend_from_slice` of a runtime length is a `memcpy` call, and `f64::round` is a
 //! libm call on baseline x86-64.
 
-const POW10: [u64; 10] = [
+pub(crate) const POW10: [u64; 10] = [
     1,
     10,
     100,

@@ -93,6 +93,22 @@ pub fn emit(
     }
 }
 
+/// A path joins the previous one (no transition between them) when it starts
+/// within this distance (mm) of where the previous one ended ...
+pub const JOIN_MM: f64 = 1e-3;
+
+/// ... with a normal whose components differ by at most this (about 0.0006°).
+pub const JOIN_NORMAL: f32 = 1e-5;
+
+/// Whether a path starting at `next` joins one that ended with its focus at
+/// `focus` and normal `normal`: same place, same nozzle direction, so motion goes
+/// on without retracting. Both back ends decide joins by this rule.
+pub fn joins(focus: [f64; 3], normal: [f32; 3], next: &crate::ir::Point) -> bool {
+    let f = next.focus();
+    let d2 = (0..3).map(|i| (f[i] - focus[i]).powi(2)).sum::<f64>();
+    d2 <= JOIN_MM * JOIN_MM && (0..3).all(|i| (next.normal[i] - normal[i]).abs() <= JOIN_NORMAL)
+}
+
 /// A file-name-safe identifier from `text`: letters, digits and `_`, starting with
 /// a letter, lower case, at most `max` characters.
 pub fn identifier(text: &str, max: usize) -> String {

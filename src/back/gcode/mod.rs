@@ -33,14 +33,6 @@ pub use limits::NEEDS_TILT_DEG;
 /// Longest file name stem: Sinumerik 840D program names have at most 24 characters.
 pub const MAX_NAME: usize = 24;
 
-/// A path joins the previous one (no transition) when it starts this close (mm) to
-/// where the previous one ended, with the same normal.
-pub const JOIN_MM: f64 = 1e-3;
-
-/// Largest difference of a normal's components that still counts as the same
-/// normal for joining (about 0.0006°).
-const JOIN_NORMAL: f32 = 1e-5;
-
 /// The file name of the program for `cnc`: `identifier(part_machine).extension`,
 /// the stem at most [`MAX_NAME`] characters (the part's name is shortened first, so
 /// two machines keep distinct names).
@@ -157,10 +149,7 @@ struct Cursor {
 
 impl Cursor {
     fn joins(&self, p: &Point) -> bool {
-        let f = p.focus();
-        let d2 = (0..3).map(|i| (f[i] - self.focus[i]).powi(2)).sum::<f64>();
-        d2 <= JOIN_MM * JOIN_MM
-            && (0..3).all(|i| (p.normal[i] - self.normal[i]).abs() <= JOIN_NORMAL)
+        super::joins(self.focus, self.normal, p)
     }
 }
 

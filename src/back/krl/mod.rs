@@ -40,11 +40,6 @@ pub const APPROX_MM: f64 = 0.2;
 /// Speed of the move from home to the first point, % of the axes' maximum.
 pub const HOME_PERCENT: u32 = 20;
 
-/// A path joins the previous one (no transition) when it starts this close (mm)
-/// to where the previous one ended, with the same normal (as in G-code).
-const JOIN_MM: f64 = 1e-3;
-const JOIN_NORMAL: f32 = 1e-5;
-
 /// KRL keywords a name made of the part and machine could collide with.
 const RESERVED: &[&str] = &[
     "C_DIS", "C_ORI", "C_PTP", "C_VEL", "C_SPL", "WAIT_SEC", "SPTP_REL", "SLIN_REL",
@@ -223,10 +218,7 @@ struct Cursor {
 
 impl Cursor {
     fn joins(&self, p: &Point) -> bool {
-        let f = p.focus();
-        let d2 = (0..3).map(|i| (f[i] - self.focus[i]).powi(2)).sum::<f64>();
-        d2 <= JOIN_MM * JOIN_MM
-            && (0..3).all(|i| (p.normal[i] - self.normal[i]).abs() <= JOIN_NORMAL)
+        super::joins(self.focus, self.normal, p)
     }
 }
 
