@@ -354,3 +354,30 @@ proptest! {
         }
     }
 }
+
+/// What a user sees when the analog output cannot reach the power: the power
+/// declaration and the robot, the numbers, and the full scale to declare.
+#[test]
+fn analog_range_diagnostic() {
+    let src = std::fs::read_to_string("examples/twisted_duct.lmd")
+        .unwrap()
+        .replace("full_scale = 4000 W", "full_scale = 3000 W");
+    let p = lmdc::pipeline::compile(&src, &mut ())
+        .program
+        .expect("compiles");
+    let which = lmdc::pipeline::select_machines(&p, None).unwrap();
+    let mut sink = MemorySink::default();
+    let e = lmdc::pipeline::emit(
+        &p,
+        &which,
+        &Templates::builtin().unwrap(),
+        &mut sink,
+        &mut (),
+    );
+    let Err(EmitError::Program(d)) = e else {
+        panic!("want lmd::analog-range, got {e:?}")
+    };
+    let text = lmdc::diag::render(&d, "examples/twisted_duct.lmd", &src, false);
+    assert!(text.contains("at least 4000"), "{text}");
+    insta::assert_snapshot!(text);
+}
