@@ -11,6 +11,10 @@ use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Dim, Power};
 
+/// Highest `$VEL.CP` a KUKA controller accepts (its `$VEL_MA.CP` is at most
+/// 3 m/s), mm/s.
+pub const ROBOT_VEL_CP_MAX: f64 = 3000.0;
+
 const ROBOT_FIELDS: &[&str] = &[
     "kind",
     "tool",
@@ -193,7 +197,29 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
     let laser = f.count("laser", 1, 4096, Some("1"), diags);
     let anout = f.count("power_output", 1, 32, Some("1"), diags);
     let full = f.positive("full_scale", Dim::POWER, Some("4000 W"), diags);
-    let vmax = f.positive("max_speed", Dim::SPEED, Some("250 mm/s"), diags);
+    let vmax = f
+        .positive("max_speed", Dim::SPEED, Some("250 mm/s"), diags)
+        .and_then(|(v, span)| {
+            if v <= ROBOT_VEL_CP_MAX {
+                return Some((v, span));
+            }
+            diags.push(
+                Diagnostic::error(
+                    "lmd::out-of-range",
+                    format!(
+                        "`max_speed` {} mm/s is beyond what a KUKA controller takes for $VEL.CP",
+                        v
+                    ),
+                )
+                .label(span, "lmdc moves at this speed between paths")
+                .help(format!(
+                    "$VEL.CP is capped by the controller's $VEL_MA.CP, at most {} mm/s (3 m/s); \
+                     declare the robot's real path speed limit",
+                    ROBOT_VEL_CP_MAX
+                )),
+            );
+            None
+        });
     let clearance = f
         .positive("clearance", Dim::LENGTH, None, diags)
         .map(|c| c.0);
