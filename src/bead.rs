@@ -55,6 +55,7 @@ impl HeightModel {
                 let area = efficiency * feed.0 / (density.0 * v.0);
                 Length(segment_height(w.0, area))
             }
+            HeightModel::Measured { height, .. } => height,
         }
     }
 
@@ -67,8 +68,24 @@ impl HeightModel {
                 efficiency,
                 density,
             } => Speed(efficiency * feed.0 / (density.0 * segment_area(w.0, h.0))),
+            HeightModel::Measured { speed, .. } => speed,
         }
     }
+}
+
+/// How much a planar layer rises: a single track adds its cross-section `A` spread
+/// over its width (`A/w`); tracks laid side by side at offset `d` add `A` every
+/// `d` (`A/d`) — seed 001's eq. 6 and the reason its fixed lift of `A/w`
+/// undershot on overlapped layers. `offset` is `None` for a single track.
+pub fn planar_lift(w: Length, h: Length, offset: Option<Length>) -> Length {
+    let a = segment_area(w.0, h.0);
+    Length(a / offset.map_or(w.0, |d| d.0))
+}
+
+/// The offset between tracks that keeps an overlapped layer flat: each track
+/// fills the strip `d` wide at the bead's height, `d = A/h`.
+pub fn flat_top_offset(w: Length, h: Length) -> Length {
+    Length(segment_area(w.0, h.0) / h.0)
 }
 
 #[cfg(test)]
@@ -100,5 +117,16 @@ mod tests {
         assert!((m.height_at(Speed(4.0), w).0 - 1.28).abs() < 1e-9);
         assert!((m.height_at(Speed(8.7), w).0 - 0.6455).abs() < 1e-9);
         assert!((m.speed_for(Length(1.28), w).0 - 4.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn seed_001_lifts() {
+        // DOMAIN.md: w 2.2 mm, h 0.7 mm → A ≈ 1.1056 mm², A/w ≈ 0.5025 mm,
+        // A/d ≈ 0.691 mm at d = 1.6 mm, flat top at d = A/h ≈ 1.58 mm.
+        let (w, h) = (Length(2.2), Length(0.7));
+        assert!((segment_area(2.2, 0.7) - 1.1056).abs() < 5e-4);
+        assert!((planar_lift(w, h, None).0 - 0.5025).abs() < 5e-4);
+        assert!((planar_lift(w, h, Some(Length(1.6))).0 - 0.691).abs() < 5e-4);
+        assert!((flat_top_offset(w, h).0 - 1.58).abs() < 5e-3);
     }
 }

@@ -3,7 +3,7 @@
 
 use crate::diag::Diagnostics;
 use crate::ir::{Limits, Origins, Program, Units, FORMAT, VERSION};
-use crate::sema::model::Model;
+use crate::sema::model::{Model, Plan};
 use crate::slice;
 
 /// Builds the IR of a checked model; returns it with the slicer's warnings, or
@@ -30,8 +30,14 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             bead_height: Some(bead.height_span),
             bead_speed: Some(bead.speed_span),
             power: Some(model.process.power_span),
-            spine: Some(model.loft.spine_span),
-            slicing: Some(model.slicing.span),
+            spine: match &model.plan {
+                Plan::Duct { loft, .. } => Some(loft.spine_span),
+                Plan::Block { .. } => None,
+            },
+            slicing: Some(match &model.plan {
+                Plan::Duct { slicing, .. } => slicing.span,
+                Plan::Block { slicing, .. } => slicing.span,
+            }),
             machines: model.machines.iter().map(|(_, s)| *s).collect(),
         },
     };

@@ -26,7 +26,13 @@ pub fn read<'a>(
         diags,
     );
     let width = f.positive("width", Dim::LENGTH, Some("6 mm"), diags);
-    let speed = f.range("speed", Dim::SPEED, Some("7 mm/s .. 10 mm/s"), diags);
+    // A measured bead brings its speed; every other model needs the range.
+    let measured = matches!(
+        f.value("model", None, &mut Diagnostics::new()).map(|m| &m.value),
+        Some(Value::Call(c)) if c.func == "measured"
+    );
+    let required = (!measured).then_some("7 mm/s .. 10 mm/s");
+    let speed = f.range("speed", Dim::SPEED, required, diags);
     let height = f.range("height", Dim::LENGTH, None, diags);
     let model = f.value(
         "model",
@@ -76,11 +82,20 @@ pub fn read<'a>(
                 density: Density(rho.0),
             })
         }
+        Some(Value::Call(c)) if c.func == "measured" => {
+            let a = Fields::call(c, &[], &["height", "speed"], diags);
+            let h = a.positive("height", Dim::LENGTH, Some("0.7 mm"), diags);
+            let v = a.positive("speed", Dim::SPEED, Some("6 mm/s"), diags);
+            Some(HeightModel::Measured {
+                height: Length(h?.0),
+                speed: Speed(v?.0),
+            })
+        }
         Some(other) => {
             diags.push(
                 Diagnostic::error(
                     "lmd::bad-choice",
-                    "a bead model is `linear(…)` or `mass_balance(…)`",
+                    "a bead model is `linear(…)`, `mass_balance(…)` or `measured(…)`",
                 )
                 .label(
                     model_span.unwrap_or(span),
@@ -92,7 +107,17 @@ pub fn read<'a>(
         }
         None => None,
     };
-    let (width, (speed, speed_span), model) = (width?, speed?, model?);
+    let model = model?;
+    // A measured bead is valid at the speed it was measured at, unless the file
+    // says over which range it holds.
+    let speed = match (speed, model) {
+        (Some(s), _) => Some(s),
+        (None, HeightModel::Measured { speed: v, .. }) if !f.has("speed") => {
+            Some(([v.0, v.0], model_span.unwrap_or(span)))
+        }
+        (None, _) => None,
+    };
+    let (width, (speed, speed_span)) = (width?, speed?);
     let w = Length(width.0);
     if speed[0] <= 0.0 {
         diags.push(
@@ -120,9 +145,16 @@ pub fn read<'a>(
         );
         return None;
     }
-    let (height, height_span) = match height {
-        None => ([h_lo, h_hi], model_span.unwrap_or(span)),
-        Some(([lo, hi], hs)) => {
+    let (height, height_span) = match (height, model) {
+        // Planar layers of a measured bead rise by A/w (one track) up to h (tracks
+        // at the flat-top offset A/h): the heights it can build.
+        (None, HeightModel::Measured { height: h, .. }) => (
+            [crate::bead::planar_lift(w, h, None).0, h.0],
+            model_span.unwrap_or(span),
+        ),
+        (Some(([lo, hi], hs)), HeightModel::Measured { .. }) => ([lo, hi], hs),
+        (None, _) => ([h_lo, h_hi], model_span.unwrap_or(span)),
+        (Some(([lo, hi], hs)), _) => {
             let (elo, ehi) = (lo.max(h_lo), hi.min(h_hi));
             if lo <= 0.0 || elo > ehi {
                 diags.push(

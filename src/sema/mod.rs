@@ -4,11 +4,13 @@
 
 mod bead;
 pub mod dialect;
+mod extrude;
 mod fields;
 mod loft;
 mod machine;
 pub mod model;
 mod process;
+mod profile;
 mod section;
 pub mod slicing;
 mod suggest;
@@ -16,14 +18,14 @@ pub mod value;
 
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
-use crate::syntax::ast::{Body, File, Stmt};
-use model::{Model, Section};
+use crate::syntax::ast::{Body, Expr, File, Stmt};
+use model::{Model, Plan, Section};
 use std::collections::BTreeMap;
 use value::{Env, Value};
 
 /// Top-level statement kinds.
 const KINDS: &[&str] = &[
-    "part", "let", "section", "bead", "loft", "slicing", "process", "machine",
+    "part", "let", "section", "profile", "bead", "loft", "extrude", "slicing", "process", "machine",
 ];
 
 /// Checks a parsed file. Returns the model if there were no errors, and every
@@ -125,6 +127,36 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         }
     }
 
+    let mut profiles: BTreeMap<String, (&Expr, Span)> = BTreeMap::new();
+    for s in get("profile") {
+        let (Some(n), Body::Assign(e)) = (&s.name, &s.body) else {
+            diags.push(shape_error(
+                s,
+                "profile NAME = outline(…)",
+                "profile tooth = outline([0 mm, 0 mm], [40 mm, 0 mm], [40 mm, 20 mm])",
+            ));
+            continue;
+        };
+        // Checked once here (at layer 0); the extrusion evaluates it per layer.
+        let ok = env
+            .eval(e, diags)
+            .and_then(|v| profile::shape(&v, &format!("profile `{}`", n.node), diags))
+            .is_some();
+        let prev = profiles
+            .get(&n.node)
+            .map(|p| p.1)
+            .or(sections.get(&n.node).map(|p| p.1));
+        if let Some(prev) = prev {
+            diags.push(
+                Diagnostic::error("lmd::duplicate", format!("`{}` is declared twice", n.node))
+                    .label(n.span, "second declaration")
+                    .label(prev, "first declaration"),
+            );
+        } else if ok {
+            profiles.insert(n.node.clone(), (e, n.span));
+        }
+    }
+
     let mut beads = BTreeMap::new();
     for s in get("bead") {
         let (Some(n), Body::Block(stmts, _)) = (&s.name, &s.body) else {
@@ -140,9 +172,9 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         }
     }
 
-    let lofts = get("loft");
     let declared: Vec<String> = get("section")
         .iter()
+        .chain(&get("profile"))
         .chain(&get("bead"))
         .filter_map(|s| s.name.as_ref().map(|n| n.node.clone()))
         .collect();
@@ -151,36 +183,57 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         beads: &beads,
         declared: &declared,
     };
-    let loft = match lofts.as_slice() {
+    let escope = extrude::Scope {
+        sections: &sections,
+        profiles: &profiles,
+        beads: &beads,
+        declared: &declared,
+    };
+    let mut solids: Vec<&Stmt> = get("loft");
+    solids.extend(get("extrude"));
+    solids.sort_by_key(|s| s.span.start);
+    let solid = match solids.as_slice() {
         [] => {
             diags.push(
                 Diagnostic::error(
                     "lmd::missing-solid",
                     "the file does not describe a solid to build",
                 )
-                .label(Span::new(0, 0), "no `loft` here")
-                .help("add `loft NAME { from = …, to = …, spine = …, wall = BEAD }`"),
+                .label(Span::new(0, 0), "no `loft` or `extrude` here")
+                .help("add `loft NAME { from = …, to = …, spine = …, wall = BEAD }` or `extrude NAME { profile = …, bead = BEAD }`"),
             );
             None
         }
         [s, rest @ ..] => {
             for extra in rest {
                 diags.push(
-                    Diagnostic::error("lmd::duplicate", "lmdc 0.1 builds one solid per file")
+                    Diagnostic::error("lmd::duplicate", "lmdc builds one solid per file")
                         .label(extra.kind.span, "second solid")
                         .label(s.kind.span, "first solid")
                         .help("put each part in its own file"),
                 );
             }
-            match (&s.name, &s.body) {
-                (Some(n), Body::Block(stmts, _)) => {
-                    loft::read(&mut env, &n.node, stmts, s.span, &scope, diags)
+            match (s.kind.node.as_str(), &s.name, &s.body) {
+                ("loft", Some(n), Body::Block(stmts, _)) => {
+                    loft::read(&mut env, &n.node, stmts, s.span, &scope, diags).map(Solid::Loft)
                 }
-                _ => {
+                ("extrude", Some(n), Body::Block(stmts, _)) => {
+                    extrude::read(&mut env, &n.node, stmts, s.span, &escope, diags)
+                        .map(Solid::Extrude)
+                }
+                ("loft", _, _) => {
                     diags.push(shape_error(
                         s,
                         "loft NAME { … }",
                         "loft duct { from = inlet … }",
+                    ));
+                    None
+                }
+                _ => {
+                    diags.push(shape_error(
+                        s,
+                        "extrude NAME { … }",
+                        "extrude tooth { profile = tooth, bead = track }",
                     ));
                     None
                 }
@@ -259,18 +312,54 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         );
     }
 
-    let (loft, bead) = loft?;
+    let process = process?;
+    let (plan, bead) = match (solid?, slicing?) {
+        (Solid::Loft((loft, bead)), slicing::Spec::Normal(slicing)) => {
+            (Plan::Duct { loft, slicing }, bead)
+        }
+        (Solid::Extrude(w), slicing::Spec::Planar(spec)) => {
+            let bead = w.bead.clone();
+            let (extrusion, slicing) = extrude::assemble(&mut env, w, spec, &process, diags)?;
+            (Plan::Block { extrusion, slicing }, bead)
+        }
+        (solid, spec) => {
+            let (solid_kind, strategy) = match (&solid, &spec) {
+                (Solid::Loft(_), _) => ("a loft", "planar"),
+                (Solid::Extrude(_), _) => ("an extrusion", "normal"),
+            };
+            let at = get("slicing")
+                .first()
+                .map(|s| s.span)
+                .unwrap_or(Span::new(0, 0));
+            diags.push(
+                Diagnostic::error(
+                    "lmd::bad-choice",
+                    format!("{strategy} slicing does not build {solid_kind}"),
+                )
+                .label(at, "slicing")
+                .help(match solid {
+                    Solid::Loft(_) => "slice a loft with `slicing normal { … }`",
+                    Solid::Extrude(_) => "slice an extrusion with `slicing planar { … }`",
+                }),
+            );
+            return None;
+        }
+    };
     Some(Model {
         part: part?,
-        loft,
+        plan,
         bead,
-        slicing: slicing?,
-        process: process?,
+        process,
         machines,
     })
 }
 
-/// The one statement of a kind that must appear exactly once.
+/// The solid a file describes, as read.
+enum Solid<'a> {
+    Loft((model::Loft, model::Bead)),
+    Extrude(extrude::Written<'a>),
+}
+
 fn single<'s>(
     stmts: &[&'s Stmt],
     kind: &str,

@@ -10,12 +10,10 @@ use crate::units::{Angle, Density, Length, MassFlow, Power, Speed};
 pub struct Model {
     /// The part's name.
     pub part: String,
-    /// The solid and how it is built.
-    pub loft: Loft,
-    /// The bead model the wall is built with.
+    /// The solid and how it is cut into layers.
+    pub plan: Plan,
+    /// The bead model the part is built with.
     pub bead: Bead,
-    /// How the solid is cut into layers.
-    pub slicing: Slicing,
     /// Process values.
     pub process: Process,
     /// Machines to write programs for, with their declaration spans.
@@ -144,6 +142,14 @@ pub enum HeightModel {
         /// Density of the deposited metal.
         density: Density,
     },
+    /// A bead measured at one process point: this height at this speed (seed
+    /// 001's 0.7 mm at 6 mm/s).
+    Measured {
+        /// Bead height.
+        height: Length,
+        /// The scan speed it was measured at.
+        speed: Speed,
+    },
 }
 
 /// A bead model.
@@ -231,6 +237,8 @@ impl PowerSchedule {
 /// Process values.
 #[derive(Clone, Debug)]
 pub struct Process {
+    /// Scan speed of planar layers (`speed = …`), and where it was declared.
+    pub speed: Option<(Speed, Span)>,
     /// Powder feed.
     pub powder: MassFlow,
     /// Focal plane relative to the working plane (negative: below).
@@ -275,5 +283,145 @@ impl Section {
                 }
             }
         })
+    }
+}
+
+/// A solid with the slicing strategy that builds it: each strategy takes the
+/// solids it can slice, so a mismatch cannot reach the slicer.
+#[derive(Clone, Debug)]
+pub enum Plan {
+    /// A thin-walled loft, sliced normal to its spine (seed 000).
+    Duct {
+        /// The loft.
+        loft: Loft,
+        /// Normal slicing.
+        slicing: Slicing,
+    },
+    /// A profile extruded and built in flat, filled layers (seed 001).
+    Block {
+        /// The extrusion, its profile evaluated for every layer.
+        extrusion: Extrusion,
+        /// Planar slicing and the fill.
+        slicing: PlanarSlicing,
+    },
+}
+
+/// Which way an arc turns, seen along the outline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Turn {
+    /// Counter-clockwise: a convex corner of a counter-clockwise outline.
+    Left,
+    /// Clockwise.
+    Right,
+}
+
+/// A piece of an outline, from the end of the previous one.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Segment {
+    /// A straight line to a point.
+    Line {
+        /// End point `[x, y]`.
+        to: [Length; 2],
+    },
+    /// The shorter circular arc of a radius to a point.
+    Arc {
+        /// End point `[x, y]`.
+        to: [Length; 2],
+        /// Radius.
+        radius: Length,
+        /// Which way it turns.
+        turn: Turn,
+    },
+}
+
+/// A closed outline of lines and arcs; it closes with a line back to `start`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outline {
+    /// First point.
+    pub start: [Length; 2],
+    /// The pieces after it.
+    pub segments: Vec<Segment>,
+}
+
+/// A 2-D shape to extrude.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A parametric section, centred on the origin.
+    Section(Section),
+    /// An outline of lines and arcs.
+    Outline(Outline),
+}
+
+/// `extrude NAME { profile, height, size, bead }`.
+#[derive(Clone, Debug)]
+pub struct Extrusion {
+    /// Its name.
+    pub name: String,
+    /// The shape of every layer, in build order (one entry per layer; equal
+    /// entries when the profile does not depend on the layer).
+    pub layers: Vec<Shape>,
+    /// Whether the profile's size is the outer face or the bead centre line.
+    pub measure: Measure,
+    /// Lift of every layer, mm.
+    pub lift: Length,
+    /// Whether the lift was derived from the bead model (`layer_height = auto`).
+    pub lift_derived: bool,
+    /// The extrude block.
+    pub span: Span,
+    /// The profile's declaration.
+    pub profile_span: Span,
+}
+
+/// Order of raster tracks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pattern {
+    /// Every other track runs back (no travel between tracks).
+    Serpentine,
+    /// All tracks run the same way.
+    OneWay,
+}
+
+/// `infill = raster(…)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Raster {
+    /// Track direction on the first layer, from +X counter-clockwise.
+    pub angle: Angle,
+    /// Added to the direction on every layer.
+    pub rotate: Angle,
+    /// Serpentine or one-way.
+    pub pattern: Pattern,
+    /// Most a track end is extended where the boundary curves (seed 001's
+    /// ΔX ≤ d).
+    pub extend: Length,
+}
+
+/// `slicing planar { … }`.
+#[derive(Clone, Debug)]
+pub struct PlanarSlicing {
+    /// Contour passes around each layer.
+    pub contours: usize,
+    /// Offset between neighbouring tracks (contours and raster), mm.
+    pub offset: Length,
+    /// Whether the offset was derived for a flat top (`offset = auto`, d = A/h).
+    pub offset_derived: bool,
+    /// The infill, if any.
+    pub infill: Option<Raster>,
+    /// Largest distance of a flattened arc from the true one.
+    pub chord_error: Length,
+    /// Scan speed of every track.
+    pub speed: Speed,
+    /// The slicing block.
+    pub span: Span,
+    /// The offset's declaration, if written.
+    pub offset_span: Option<Span>,
+    /// The layer height's declaration, if written.
+    pub lift_span: Option<Span>,
+}
+
+impl PlanarSlicing {
+    /// Whether a layer is more than one track wide, so that it rises by `A/d`
+    /// rather than `A/w`.
+    pub fn overlapped(&self) -> bool {
+        self.infill.is_some() || self.contours > 1
     }
 }

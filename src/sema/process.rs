@@ -6,7 +6,7 @@ use super::value::{Env, Value};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{Dim, Length, MassFlow, Power};
+use crate::units::{Dim, Length, MassFlow, Power, Speed};
 
 /// Reads the process block.
 pub fn read<'a>(
@@ -18,7 +18,7 @@ pub fn read<'a>(
     let f = Fields::block(
         env,
         stmts,
-        &["powder", "defocus", "power", "power_range"],
+        &["powder", "defocus", "power", "power_range", "speed"],
         &[],
         "process".into(),
         span,
@@ -77,7 +77,14 @@ pub fn read<'a>(
         None if f.has("power_range") => return None,
         None => [Power(lo), Power(hi)],
     };
+    let speed = f
+        .positive("speed", Dim::SPEED, None, diags)
+        .map(|(v, sp)| (Speed(v), sp));
+    if f.has("speed") && speed.is_none() {
+        return None;
+    }
     Some(Process {
+        speed,
         powder: MassFlow(powder?.0),
         defocus: defocus?,
         power,

@@ -1,15 +1,45 @@
-//! `slicing normal { layers, points | chord_error, seam }`.
+//! `slicing normal { layers, points | chord_error, seam }` and
+//! `slicing planar { layer_height, layers, contours, offset, infill, chord_error }`.
 
-use super::fields::Fields;
-use super::model::{Resolution, Slicing};
-use super::value::{Env, Value};
+use super::fields::{self, Fields};
+use super::model::{Pattern, Raster, Resolution, Slicing};
+use super::value::{Call, Env, Spanned as SpannedValue, Value};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::{Span, Spanned};
 use crate::syntax::ast::Stmt;
 use crate::units::{Angle, Dim, Length};
 
-/// Strategies the language knows (more come with planar fills).
-pub const STRATEGIES: &[&str] = &["normal"];
+/// Strategies the language knows.
+pub const STRATEGIES: &[&str] = &["normal", "planar"];
+
+/// A slicing block as written, before the solid is known.
+#[derive(Clone, Debug)]
+pub enum Spec {
+    /// `slicing normal { … }`
+    Normal(Slicing),
+    /// `slicing planar { … }`
+    Planar(PlanarSpec),
+}
+
+/// `slicing planar { … }` as written: the lift and offset may be `auto`, to be
+/// derived from the bead model.
+#[derive(Clone, Debug)]
+pub struct PlanarSpec {
+    /// `layer_height`, or `None` for auto.
+    pub lift: Option<(Length, Span)>,
+    /// `layers`, if given.
+    pub layers: Option<(usize, Span)>,
+    /// Contour passes.
+    pub contours: usize,
+    /// `offset`, or `None` for auto (flat top).
+    pub offset: Option<(Length, Span)>,
+    /// The infill; its `extend` is `None` for auto (= the offset).
+    pub infill: Option<(Raster, Option<Length>)>,
+    /// Chord error of flattened arcs.
+    pub chord_error: Length,
+    /// The block.
+    pub span: Span,
+}
 
 /// Most layers and points per layer a plan may have: 10⁸ points in all keeps
 /// memory bounded (the IR holds 72 bytes a point).
@@ -24,8 +54,9 @@ pub fn read<'a>(
     stmts: &'a [Stmt],
     span: Span,
     diags: &mut Diagnostics,
-) -> Option<Slicing> {
+) -> Option<Spec> {
     match strategy {
+        Some(s) if s.node == "planar" => return planar(env, stmts, span, diags).map(Spec::Planar),
         Some(s) if STRATEGIES.contains(&s.node.as_str()) => {}
         Some(s) => {
             diags.push(
@@ -34,7 +65,7 @@ pub fn read<'a>(
                     format!("lmdc does not know the slicing strategy `{}`", s.node),
                 )
                 .label(s.span, "unknown strategy")
-                .help("use `slicing normal { … }`: continuous gradual slicing normal to the spine (planar for a straight spine)"),
+                .help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine) or `slicing planar { … }` (flat filled layers of an extrusion)"),
             );
             return None;
         }
@@ -89,12 +120,160 @@ pub fn read<'a>(
         None if f.has("seam") => None,
         None => Some(Angle::from_deg(90.0)),
     };
-    Some(Slicing {
+    Some(Spec::Normal(Slicing {
         layers: layers?,
         resolution: resolution?,
         seam: seam?,
         span,
         layers_span: f.span("layers"),
         seam_span: f.span("seam"),
+    }))
+}
+
+/// Most contour passes a layer may have.
+pub const MAX_CONTOURS: usize = 1000;
+
+fn auto_or_length(
+    f: &Fields<'_>,
+    key: &str,
+    diags: &mut Diagnostics,
+) -> Option<Option<(Length, Span)>> {
+    match f.value(key, None, diags) {
+        None if f.has(key) => None,
+        None => Some(None),
+        Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
+        Some(_) => f
+            .positive(key, Dim::LENGTH, None, diags)
+            .map(|(l, sp)| Some((Length(l), sp))),
+    }
+}
+
+fn planar<'a>(
+    env: &mut Env<'a>,
+    stmts: &'a [Stmt],
+    span: Span,
+    diags: &mut Diagnostics,
+) -> Option<PlanarSpec> {
+    let f = Fields::block(
+        env,
+        stmts,
+        &[
+            "layer_height",
+            "layers",
+            "contours",
+            "offset",
+            "infill",
+            "chord_error",
+        ],
+        &[],
+        "planar slicing".into(),
+        span,
+        diags,
+    );
+    let lift = auto_or_length(&f, "layer_height", diags);
+    let offset = auto_or_length(&f, "offset", diags);
+    let layers = match f.value("layers", None, diags) {
+        None if f.has("layers") => None,
+        None => Some(None),
+        Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
+        Some(_) => f.count("layers", 1, MAX_LAYERS, None, diags).map(Some),
+    };
+    let infill = match f.value("infill", None, diags) {
+        None if f.has("infill") => None,
+        None => Some(None),
+        Some(v) if v.value == Value::Symbol("none".into()) => Some(None),
+        Some(SpannedValue {
+            value: Value::Call(c),
+            ..
+        }) if c.func == "raster" => raster(c, diags).map(Some),
+        Some(v) => {
+            diags.push(
+                Diagnostic::error("lmd::bad-choice", "an infill is `raster(…)` or `none`")
+                    .label(v.span, format!("this is {}", v.value.describe()))
+                    .help("e.g. `infill = raster(angle = 0 deg, pattern = serpentine)`"),
+            );
+            None
+        }
+    };
+    let infill = infill?;
+    let contours = match f.count("contours", 0, MAX_CONTOURS, None, diags) {
+        Some((n, sp)) => {
+            if n == 0 && infill.is_none() {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::out-of-range",
+                        "a layer with no contour and no infill deposits nothing",
+                    )
+                    .label(sp, "no contour")
+                    .help("add `infill = raster(…)` or at least one contour"),
+                );
+                return None;
+            }
+            Some(n)
+        }
+        None if f.has("contours") => None,
+        // A raster alone fills seed 001's layers; a profile alone is a wall.
+        None => Some(if infill.is_some() { 0 } else { 1 }),
+    };
+    let chord_error = match f.positive("chord_error", Dim::LENGTH, None, diags) {
+        Some((e, _)) => Some(Length(e)),
+        None if f.has("chord_error") => None,
+        None => Some(Length(0.05)),
+    };
+    Some(PlanarSpec {
+        lift: lift?,
+        layers: layers?,
+        contours: contours?,
+        offset: offset?,
+        infill,
+        chord_error: chord_error?,
+        span,
     })
+}
+
+fn raster(c: &Call, diags: &mut Diagnostics) -> Option<(Raster, Option<Length>)> {
+    let a = Fields::call(c, &[], &["angle", "rotate", "pattern", "extend"], diags);
+    let angle = match a.quantity("angle", Dim::ANGLE, None, diags) {
+        Some((x, _)) => Some(Angle(x)),
+        None if a.has("angle") => None,
+        None => Some(Angle(0.0)),
+    };
+    let rotate = match a.quantity("rotate", Dim::ANGLE, None, diags) {
+        Some((x, _)) => Some(Angle(x)),
+        None if a.has("rotate") => None,
+        None => Some(Angle(0.0)),
+    };
+    let pattern = match a.symbol("pattern", &["serpentine", "one_way"], None, diags) {
+        Some((p, _)) if p == "one_way" => Some(Pattern::OneWay),
+        Some(_) => Some(Pattern::Serpentine),
+        None if a.has("pattern") => None,
+        None => Some(Pattern::Serpentine),
+    };
+    let extend = match a.value("extend", None, diags) {
+        None if a.has("extend") => None,
+        None => Some(None),
+        Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
+        Some(v) => fields::quantity(v, Dim::LENGTH, "extend", diags).and_then(|e| {
+            if e < 0.0 {
+                diags.push(
+                    Diagnostic::error("lmd::out-of-range", "`extend` cannot be negative")
+                        .label(v.span, "negative")
+                        .help("0 mm keeps tracks where they meet the boundary"),
+                );
+                None
+            } else {
+                Some(Some(Length(e)))
+            }
+        }),
+    };
+    let extend = extend?;
+    Some((
+        Raster {
+            angle: angle?,
+            rotate: rotate?,
+            pattern: pattern?,
+            extend: extend.unwrap_or(Length(0.0)),
+        },
+        extend,
+    ))
 }

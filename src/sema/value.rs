@@ -84,13 +84,23 @@ fn plural(d: &str) -> String {
 enum LetState<'a> {
     Pending(&'a Expr),
     Busy,
-    Done(Option<Value>),
+    /// The value, and whether it depends on the layer number.
+    Done(Option<Value>, bool),
 }
+
+/// The name of the built-in layer number (0-based) that profile expressions may
+/// use: `let R = min(layer + 2, 10) * d`.
+pub const LAYER: &str = "layer";
 
 /// The constants of a file, evaluated on demand (so order does not matter) with
 /// cycle detection.
 pub struct Env<'a> {
-    lets: HashMap<String, (Span, LetState<'a>)>,
+    lets: HashMap<String, (Span, LetState<'a>, &'a Expr)>,
+    /// The value of [`LAYER`] (0 outside a per-layer evaluation).
+    layer: usize,
+    /// Counts reads of [`LAYER`], directly or through a constant that uses it, so
+    /// a constant knows whether it must be recomputed for another layer.
+    layer_reads: u64,
     /// Names of everything declared (constants, sections, beads, …), for
     /// "did you mean" hints.
     pub known: Vec<String>,
@@ -101,6 +111,8 @@ impl<'a> Env<'a> {
     pub fn new() -> Self {
         Env {
             lets: HashMap::new(),
+            layer: 0,
+            layer_reads: 0,
             known: Vec::new(),
         }
     }
@@ -108,11 +120,11 @@ impl<'a> Env<'a> {
     /// Declares `let name = expr`. Returns the span of an earlier declaration of
     /// the same name, if any.
     pub fn declare(&mut self, name: &str, name_span: Span, expr: &'a Expr) -> Option<Span> {
-        if let Some((prev, _)) = self.lets.get(name) {
+        if let Some((prev, _, _)) = self.lets.get(name) {
             return Some(*prev);
         }
         self.lets
-            .insert(name.to_string(), (name_span, LetState::Pending(expr)));
+            .insert(name.to_string(), (name_span, LetState::Pending(expr), expr));
         self.known.push(name.to_string());
         None
     }
@@ -133,11 +145,23 @@ impl<'a> Env<'a> {
     }
 
     fn lookup(&mut self, name: &str, at: Span, diags: &mut Diagnostics) -> Option<Option<Value>> {
-        let (decl, state) = self.lets.get_mut(name)?;
+        let Some((decl, state, _)) = self.lets.get_mut(name) else {
+            if name == LAYER {
+                self.layer_reads += 1;
+                return Some(Some(Value::Quantity(Quantity {
+                    value: self.layer as f64,
+                    dim: Dim::NONE,
+                })));
+            }
+            return None;
+        };
         let decl = *decl;
         match std::mem::replace(state, LetState::Busy) {
-            LetState::Done(v) => {
-                *state = LetState::Done(v.clone());
+            LetState::Done(v, dependent) => {
+                *state = LetState::Done(v.clone(), dependent);
+                if dependent {
+                    self.layer_reads += 1;
+                }
                 Some(v)
             }
             LetState::Busy => {
@@ -153,13 +177,42 @@ impl<'a> Env<'a> {
                 Some(None)
             }
             LetState::Pending(expr) => {
+                let before = self.layer_reads;
                 let v = self.eval(expr, diags).map(|s| s.value);
-                if let Some((_, st)) = self.lets.get_mut(name) {
-                    *st = LetState::Done(v.clone());
+                let dependent = self.layer_reads > before;
+                if let Some((_, st, _)) = self.lets.get_mut(name) {
+                    *st = LetState::Done(v.clone(), dependent);
                 }
                 Some(v)
             }
         }
+    }
+
+    /// Evaluates `f` with [`LAYER`] = `layer`: constants that depend on the layer
+    /// are recomputed, the others keep their values.
+    pub fn at_layer<R>(&mut self, layer: usize, f: impl FnOnce(&mut Self) -> R) -> R {
+        let old = std::mem::replace(&mut self.layer, layer);
+        self.forget_layer_values();
+        let r = f(self);
+        self.layer = old;
+        self.forget_layer_values();
+        r
+    }
+
+    fn forget_layer_values(&mut self) {
+        for (_, state, expr) in self.lets.values_mut() {
+            if matches!(state, LetState::Done(_, true)) {
+                *state = LetState::Pending(expr);
+            }
+        }
+    }
+
+    /// Whether evaluating `e` reads the layer number.
+    pub fn depends_on_layer(&mut self, e: &Expr) -> bool {
+        let before = self.layer_reads;
+        let mut scratch = Diagnostics::new();
+        self.eval(e, &mut scratch);
+        self.layer_reads > before
     }
 
     /// Evaluates an expression.
@@ -222,11 +275,17 @@ impl<'a> Env<'a> {
                 if !ok {
                     return None;
                 }
-                Value::Call(Call {
-                    func: func.node.clone(),
-                    func_span: func.span,
-                    args: out,
-                })
+                if matches!(func.node.as_str(), "min" | "max")
+                    && !self.lets.contains_key(&func.node)
+                {
+                    min_max(&func.node, e.span, &out, diags)?
+                } else {
+                    Value::Call(Call {
+                        func: func.node.clone(),
+                        func_span: func.span,
+                        args: out,
+                    })
+                }
             }
             ExprKind::Unary { op, expr } => {
                 let v = self.eval(expr, diags)?;
@@ -374,6 +433,59 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
                 return None;
             }
             q(lq.value.powi(n as i32), lq.dim.powi(n as i32))
+        }
+    }
+}
+
+/// `min(a, b, …)` / `max(a, b, …)` of quantities of one dimension.
+fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) -> Option<Value> {
+    let mut best: Option<Quantity> = None;
+    for a in args {
+        let q = match (&a.name, &a.value.value) {
+            (None, Value::Quantity(q)) => *q,
+            (_, other) => {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::type",
+                        format!("`{func}` takes numbers, without names"),
+                    )
+                    .label(a.value.span, format!("this is {}", other.describe()))
+                    .help(format!("e.g. `{func}(layer + 2, 10)`")),
+                );
+                return None;
+            }
+        };
+        if let Some(b) = best {
+            if b.dim != q.dim {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::unit-mismatch",
+                        format!(
+                            "`{func}` compares values of one kind: {} and {}",
+                            b.dim.describe(),
+                            q.dim.describe()
+                        ),
+                    )
+                    .label(a.value.span, q.dim.describe())
+                    .help("give every argument the same kind of unit"),
+                );
+                return None;
+            }
+        }
+        best = Some(match best {
+            None => q,
+            Some(b) if (func == "min") == (q.value < b.value) => q,
+            Some(b) => b,
+        });
+    }
+    match best {
+        Some(q) => Some(Value::Quantity(q)),
+        None => {
+            diags.push(
+                Diagnostic::error("lmd::type", format!("`{func}` needs at least one value"))
+                    .label(span, "nothing to compare"),
+            );
+            None
         }
     }
 }

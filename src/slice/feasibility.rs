@@ -67,10 +67,17 @@ pub fn choose_layers(
                 )
                 .label(loft.spine_span, "bend radius")
                 .label(loft.section_spans[0], "section")
-                .help(format!(
-                    "the bend radius must exceed {} (and more for the bead model's height range)",
-                    Length(r.inward)
-                )));
+                .help(match suggest_radius(r, angle.0, h_min, h_max) {
+                    Some(need) => format!(
+                        "the bend radius must exceed {}; with this bead model's height range, use a bend radius of at least {}",
+                        Length(r.inward),
+                        Length(need)
+                    ),
+                    None => format!(
+                        "the bend radius must exceed {} (and more for the bead model's height range)",
+                        Length(r.inward)
+                    ),
+                }));
             }
             let q_need = rho_max / rho_min;
             let q_have = h_max / h_min;

@@ -3,11 +3,12 @@
 
 pub mod feasibility;
 pub mod normal;
+pub mod planar;
 
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::geometry::LoftGeometry;
 use crate::ir::Layer;
-use crate::sema::model::{Model, Resolution, Spine};
+use crate::sema::model::{Loft, Model, Plan, Resolution, Slicing, Spine};
 use crate::sema::slicing::MAX_POINTS;
 use crate::units::{short, Angle};
 
@@ -16,13 +17,25 @@ use crate::units::{short, Angle};
 /// input.
 pub const MAX_TOTAL_POINTS: usize = 20_000_000;
 
-/// Slices the model's loft. Returns the layers and any warnings, or the errors.
+/// Slices the model's solid. Returns the layers and any warnings, or the errors.
 pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    match &model.plan {
+        Plan::Duct { loft, slicing } => duct(model, loft, slicing),
+        Plan::Block { extrusion, slicing } => planar::slice(model, extrusion, slicing),
+    }
+}
+
+/// Normal (continuous gradual) slicing of a loft.
+fn duct(
+    model: &Model,
+    loft: &Loft,
+    slicing: &Slicing,
+) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     let mut warnings = Diagnostics::new();
-    let geo = LoftGeometry::new(&model.loft);
-    let (layers, step) = feasibility::choose_layers(&model.loft, &geo, &model.bead, &model.slicing)
-        .map_err(Diagnostics::from)?;
-    let k = match model.slicing.resolution {
+    let geo = LoftGeometry::new(loft);
+    let (layers, step) =
+        feasibility::choose_layers(loft, &geo, &model.bead, slicing).map_err(Diagnostics::from)?;
+    let k = match slicing.resolution {
         Resolution::Count(k) => k,
         Resolution::ChordError(e) => {
             // Chord error of polar sampling on the largest radius; a multiple of
@@ -39,7 +52,7 @@ pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
                         e
                     ),
                 )
-                .label(model.slicing.span, "slicing")
+                .label(slicing.span, "slicing")
                 .help("allow a larger chord error")
                 .into());
             }
@@ -54,11 +67,16 @@ pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
                 k + 1
             ),
         )
-        .label(model.slicing.span, "slicing")
+        .label(slicing.span, "slicing")
         .help("use fewer points a layer (or a larger chord error)")
         .into());
     }
-    let plan = normal::Plan { layers, step, k };
+    let plan = normal::Plan {
+        seam: slicing.seam.0,
+        layers,
+        step,
+        k,
+    };
     let mut out = Vec::with_capacity(layers);
     let mut seam_hits = Vec::new();
     for i in 0..layers {
@@ -70,8 +88,8 @@ pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
         }
         out.push(layer);
     }
-    if let (Some(first), Spine::Arc { .. }) = (seam_hits.first(), model.loft.spine) {
-        let seam = model.slicing.seam;
+    if let (Some(first), Spine::Arc { .. }) = (seam_hits.first(), loft.spine) {
+        let seam = slicing.seam;
         warnings.push(
             Diagnostic::warning(
                 "lmd::seam-at-bend-extreme",
@@ -82,8 +100,8 @@ pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
                     first + 1
                 ),
             )
-            .label(model.slicing.seam_span.unwrap_or(model.slicing.span), format!("seam at {}", Angle(seam.0)))
-            .label(model.loft.spine_span, "bend")
+            .label(slicing.seam_span.unwrap_or(slicing.span), format!("seam at {}", Angle(seam.0)))
+            .label(loft.spine_span, "bend")
             .help(format!(
                 "start and stop where the layer height is average, e.g. `seam = {} deg` (the side of the bend)",
                 short(90.0)

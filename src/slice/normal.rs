@@ -10,6 +10,8 @@ use nalgebra::Vector3;
 
 /// Everything per-point generation needs, fixed per plan.
 pub struct Plan {
+    /// Seam position (rad from the section's x axis).
+    pub seam: f64,
     /// Number of layers.
     pub layers: usize,
     /// Δδ (rad) for an arc spine; the layer height (mm) for a line.
@@ -31,7 +33,7 @@ pub fn layer(model: &Model, geo: &LoftGeometry, plan: &Plan, i: usize) -> (Layer
     let powder = model.process.powder.g_min() as f32;
     let defocus = model.process.defocus.0 as f32;
     let k = plan.k;
-    let seam = model.slicing.seam.0;
+    let seam = plan.seam;
     let dth = std::f64::consts::TAU / k as f64;
 
     let mut pos = Vec::with_capacity(k);

@@ -1,0 +1,336 @@
+//! `extrude NAME { profile, height, size, bead }`: a profile built up in flat
+//! layers, and its assembly with `slicing planar { … }` into a [`Plan::Block`]:
+//! the lift and track offset derived from the bead model where they are `auto`,
+//! the layer count, and the profile evaluated on every layer.
+//!
+//! [`Plan::Block`]: super::model::Plan::Block
+
+use super::fields::Fields;
+use super::model::{Bead, Extrusion, HeightModel, Measure, PlanarSlicing, Process, Shape};
+use super::profile;
+use super::slicing::{PlanarSpec, MAX_LAYERS};
+use super::value::{unknown_name, Env, Spanned, Value};
+use crate::bead::{flat_top_offset, planar_lift};
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{Expr, Stmt};
+use crate::units::{Dim, Length, Speed};
+use std::collections::BTreeMap;
+
+/// Tracks closer than this fraction of the bead width overlap so much that the
+/// layer piles up instead of levelling (seed 001: level at about 33 % overlap).
+pub const MIN_OFFSET_RATIO: f64 = 0.3;
+
+/// What an extrusion may refer to.
+pub struct Scope<'s, 'a> {
+    /// `section NAME = …`
+    pub sections: &'s BTreeMap<String, (super::model::Section, Span)>,
+    /// `profile NAME = …`, kept as expressions: they may depend on `layer`.
+    pub profiles: &'s BTreeMap<String, (&'a Expr, Span)>,
+    /// `bead NAME { … }`
+    pub beads: &'s BTreeMap<String, Bead>,
+    /// Every name declared, including failed ones (no second report).
+    pub declared: &'s [String],
+}
+
+/// Where an extrusion's shape comes from.
+#[derive(Clone, Debug)]
+enum Source<'a> {
+    Fixed(Shape),
+    Expr(&'a Expr),
+}
+
+/// An extrude block as written.
+pub struct Written<'a> {
+    name: String,
+    source: Source<'a>,
+    height: Option<(Length, Span)>,
+    measure: Measure,
+    /// The bead model it is built with.
+    pub bead: Bead,
+    span: Span,
+    profile_span: Span,
+}
+
+/// Reads an extrude block.
+pub fn read<'a>(
+    env: &mut Env<'a>,
+    name: &str,
+    stmts: &'a [Stmt],
+    span: Span,
+    scope: &Scope<'_, 'a>,
+    diags: &mut Diagnostics,
+) -> Option<Written<'a>> {
+    let f = Fields::block(
+        env,
+        stmts,
+        &["profile", "height", "size", "bead"],
+        &[],
+        format!("extrude `{name}`"),
+        span,
+        diags,
+    );
+    let profile = f.value("profile", Some("my_profile"), diags);
+    let profile_span = profile.map(|p| p.span).unwrap_or(span);
+    let source = profile.and_then(|v| source(v, scope, diags));
+    let height = match f.positive("height", Dim::LENGTH, None, diags) {
+        Some((h, sp)) => Some(Some((Length(h), sp))),
+        None if f.has("height") => None,
+        None => Some(None),
+    };
+    let measure = match f.symbol("size", &["centre", "center", "outer"], None, diags) {
+        Some((s, _)) if s == "outer" => Some(Measure::Outer),
+        Some(_) => Some(Measure::Centre),
+        None if f.has("size") => None,
+        None => Some(Measure::Centre),
+    };
+    let bead = match f.value("bead", Some("my_bead"), diags) {
+        Some(Spanned {
+            value: Value::Symbol(b),
+            span,
+        }) => match scope.beads.get(b) {
+            Some(bead) => Some(bead.clone()),
+            None if scope.declared.contains(b) => None,
+            None => {
+                let names: Vec<&str> = scope.beads.keys().map(String::as_str).collect();
+                diags.push(unknown_name(b, *span, "bead model", &names));
+                None
+            }
+        },
+        Some(v) => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::type",
+                    "`bead` names the bead model the layers are built with",
+                )
+                .label(v.span, format!("this is {}", v.value.describe()))
+                .help("declare `bead my_bead { … }` and write `bead = my_bead`"),
+            );
+            None
+        }
+        None => None,
+    };
+    Some(Written {
+        name: name.to_string(),
+        source: source?,
+        height: height?,
+        measure: measure?,
+        bead: bead?,
+        span,
+        profile_span,
+    })
+}
+
+fn source<'a>(v: &Spanned, scope: &Scope<'_, 'a>, diags: &mut Diagnostics) -> Option<Source<'a>> {
+    match &v.value {
+        Value::Symbol(n) => {
+            if let Some((e, _)) = scope.profiles.get(n) {
+                Some(Source::Expr(e))
+            } else if let Some((s, _)) = scope.sections.get(n) {
+                Some(Source::Fixed(Shape::Section(*s)))
+            } else if scope.declared.contains(n) {
+                None
+            } else {
+                let names: Vec<&str> = scope
+                    .profiles
+                    .keys()
+                    .chain(scope.sections.keys())
+                    .map(String::as_str)
+                    .collect();
+                diags.push(unknown_name(n, v.span, "profile or section", &names));
+                None
+            }
+        }
+        _ => profile::shape(v, "`profile`", diags).map(Source::Fixed),
+    }
+}
+
+/// The scan speed of planar layers: `process { speed }`, else the speed a
+/// measured bead model was measured at.
+fn scan_speed(process: &Process, bead: &Bead, at: Span, diags: &mut Diagnostics) -> Option<Speed> {
+    match (process.speed, bead.model) {
+        (Some((v, _)), _) => Some(v),
+        (None, HeightModel::Measured { speed, .. }) => Some(speed),
+        (None, _) => {
+            diags.push(
+                Diagnostic::error("lmd::missing-field", "planar layers need a scan speed")
+                    .label(at, "the speed of these layers' tracks is not given")
+                    .help("add `speed = 6 mm/s` to the process block"),
+            );
+            None
+        }
+    }
+}
+
+/// Joins an extrusion with its planar slicing: derives what is `auto` and
+/// evaluates the profile on every layer.
+pub fn assemble(
+    env: &mut Env<'_>,
+    w: Written<'_>,
+    spec: PlanarSpec,
+    process: &Process,
+    diags: &mut Diagnostics,
+) -> Option<(Extrusion, PlanarSlicing)> {
+    let bead = &w.bead;
+    let width = bead.width;
+    let v = scan_speed(process, bead, spec.span, diags)?;
+    let h = bead.model.height_at(v, width);
+    let overlapped = spec.infill.is_some() || spec.contours > 1;
+    let (offset, offset_derived) = match spec.offset {
+        Some((d, _)) => (d, false),
+        None => (flat_top_offset(width, h), true),
+    };
+    let offset_at = spec.offset.map(|o| o.1).unwrap_or(spec.span);
+    if overlapped && offset.0 > width.0 * (1.0 + 1e-9) {
+        diags.push(
+            Diagnostic::error(
+                "lmd::fill-gap",
+                format!(
+                    "tracks {} apart leave gaps: the bead is {} wide",
+                    offset, width
+                ),
+            )
+            .label(offset_at, "track offset")
+            .label(bead.span, "bead model")
+            .help(format!(
+                "use an offset of at most the bead width; {} keeps the top flat (d = A/h)",
+                flat_top_offset(width, h)
+            )),
+        );
+        return None;
+    }
+    if overlapped && offset.0 < width.0 * MIN_OFFSET_RATIO {
+        diags.push(
+            Diagnostic::error(
+                "lmd::overlap",
+                format!(
+                    "tracks {} apart overlap by {:.0} % of the {} bead: the layer piles up",
+                    offset,
+                    100.0 * (1.0 - offset.0 / width.0),
+                    width
+                ),
+            )
+            .label(offset_at, "track offset")
+            .help(format!(
+                "overlaps of about 33 % keep tracks level; d = A/h = {} gives a flat top",
+                flat_top_offset(width, h)
+            )),
+        );
+        return None;
+    }
+    let (lift, lift_derived) = match spec.lift {
+        Some((l, _)) => (l, false),
+        None => (planar_lift(width, h, overlapped.then_some(offset)), true),
+    };
+    let layers = match (spec.layers, w.height) {
+        (Some((n, _)), None) => n,
+        (None, Some((height, _))) => {
+            let n = (height.0 / lift.0).round();
+            if n > MAX_LAYERS as f64 {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::too-many-points",
+                        format!(
+                            "{} in layers of {} is more than {MAX_LAYERS} layers",
+                            height, lift
+                        ),
+                    )
+                    .label(w.height.map(|h| h.1).unwrap_or(w.span), "height"),
+                );
+                return None;
+            }
+            (n as usize).max(1)
+        }
+        (Some((_, ls)), Some((_, hs))) => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::duplicate",
+                    "give the layer count or the height, not both",
+                )
+                .label(ls, "layers")
+                .label(hs, "height")
+                .help("the other follows from the layer height"),
+            );
+            return None;
+        }
+        (None, None) => {
+            diags.push(
+                Diagnostic::error("lmd::missing-field", "how tall is the extrusion?")
+                    .label(w.span, "no `height`")
+                    .help("add `height = 24 mm` here, or `layers = 35` to the slicing block"),
+            );
+            return None;
+        }
+    };
+    let shapes = match w.source {
+        Source::Fixed(s) => vec![s; layers],
+        Source::Expr(e) => per_layer(env, e, layers, w.profile_span, diags)?,
+    };
+    Some((
+        Extrusion {
+            name: w.name,
+            layers: shapes,
+            measure: w.measure,
+            lift,
+            lift_derived,
+            span: w.span,
+            profile_span: w.profile_span,
+        },
+        PlanarSlicing {
+            contours: spec.contours,
+            offset,
+            offset_derived,
+            infill: spec.infill.map(|(mut r, extend)| {
+                r.extend = extend.unwrap_or(offset);
+                r
+            }),
+            chord_error: spec.chord_error,
+            speed: v,
+            span: spec.span,
+            offset_span: spec.offset.map(|o| o.1),
+            lift_span: spec.lift.map(|l| l.1),
+        },
+    ))
+}
+
+/// The profile on every layer: evaluated once if it does not use `layer`.
+fn per_layer(
+    env: &mut Env<'_>,
+    e: &Expr,
+    layers: usize,
+    at: Span,
+    diags: &mut Diagnostics,
+) -> Option<Vec<Shape>> {
+    if !env.depends_on_layer(e) {
+        let v = env.eval(e, diags)?;
+        let s = profile::shape(&v, "a profile", diags)?;
+        return Some(vec![s; layers]);
+    }
+    let mut out = Vec::with_capacity(layers);
+    for k in 0..layers {
+        let mut scratch = Diagnostics::new();
+        let s = env.at_layer(k, |env| {
+            let v = env.eval(e, &mut scratch)?;
+            profile::shape(&v, "a profile", &mut scratch)
+        });
+        match s {
+            Some(s) if !scratch.has_errors() => out.push(s),
+            _ => {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::profile-layer",
+                        format!(
+                            "the profile is not a valid shape on layer {} (layer = {k})",
+                            k + 1
+                        ),
+                    )
+                    .label(at, "profile")
+                    .help("see the error below; the profile's numbers change with `layer`"),
+                );
+                diags.extend(scratch);
+                return None;
+            }
+        }
+    }
+    Some(out)
+}

@@ -1,0 +1,174 @@
+//! `profile NAME = outline(…)` (or any section shape): the 2-D shape an
+//! extrusion's layers follow. An outline is a start point, then points (straight
+//! lines to them) and `arc(to = …, radius = …, turn = left|right)` pieces; it
+//! closes with a line back to the start. Its numbers may use `layer`, so the
+//! profile can change from layer to layer (seed 001's growing arc region).
+
+use super::fields::{self, Fields};
+use super::model::{Outline, Segment, Shape, Turn};
+use super::section;
+use super::value::{Call, Spanned, Value};
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::units::{Dim, Length};
+
+/// The shapes a profile can be, besides the section shapes.
+pub const OUTLINE: &str = "outline";
+
+/// Most pieces an outline may have.
+pub const MAX_SEGMENTS: usize = 10_000;
+
+/// Reads a profile value: `outline(…)` or a section shape.
+pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> {
+    match &v.value {
+        Value::Call(c) if c.func == OUTLINE => outline(c, diags).map(Shape::Outline),
+        Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => {
+            section::read(c, diags).map(Shape::Section)
+        }
+        other => {
+            diags.push(
+                Diagnostic::error("lmd::type", format!("{what} must be a 2-D shape"))
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help(format!(
+                        "write `outline([x, y], [x, y], arc(to = [x, y], radius = r), …)` or a section shape: {}",
+                        section::SHAPES.join(", ")
+                    )),
+            );
+            None
+        }
+    }
+}
+
+fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
+    let mut start = None;
+    let mut segments = Vec::new();
+    let mut ok = true;
+    let mut last: Option<[Length; 2]> = None;
+    if c.args.len() > MAX_SEGMENTS {
+        diags.push(
+            Diagnostic::error(
+                "lmd::too-many-points",
+                format!("an outline has at most {MAX_SEGMENTS} pieces"),
+            )
+            .label(c.func_span, "outline"),
+        );
+        return None;
+    }
+    for a in &c.args {
+        if let Some((_, s)) = &a.name {
+            diags.push(
+                Diagnostic::error("lmd::argument", "the pieces of an outline have no names")
+                    .label(*s, "drop the name")
+                    .help("write `outline([0 mm, 0 mm], [40 mm, 0 mm], …)`"),
+            );
+            ok = false;
+            continue;
+        }
+        let v = &a.value;
+        let seg = match &v.value {
+            Value::List(_) => point(v, diags).map(|to| Segment::Line { to }),
+            Value::Call(arc) if arc.func == "arc" && start.is_some() => arc_piece(arc, diags),
+            other => {
+                let first = start.is_none();
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::type",
+                        if first {
+                            "an outline starts with a point `[x, y]`".to_string()
+                        } else {
+                            "a piece of an outline is a point `[x, y]` or `arc(…)`".to_string()
+                        },
+                    )
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help("e.g. `outline([0 mm, 0 mm], [40 mm, 0 mm], arc(to = [40 mm, 20 mm], radius = 10 mm), [0 mm, 20 mm])`"),
+                );
+                None
+            }
+        };
+        let Some(seg) = seg else {
+            ok = false;
+            continue;
+        };
+        let to = match seg {
+            Segment::Line { to } | Segment::Arc { to, .. } => to,
+        };
+        if start.is_none() {
+            start = Some(to);
+        } else {
+            if last == Some(to) {
+                diags.push(
+                    Diagnostic::error("lmd::degenerate", "this piece of the outline has no length")
+                        .label(v.span, "same point as the one before")
+                        .help("drop the repeated point"),
+                );
+                ok = false;
+            }
+            if let (Segment::Arc { radius, .. }, Some(from)) = (seg, last) {
+                let chord = ((to[0].0 - from[0].0).powi(2) + (to[1].0 - from[1].0).powi(2)).sqrt();
+                if radius.0 * 2.0 < chord * (1.0 - 1e-9) {
+                    diags.push(
+                        Diagnostic::error(
+                            "lmd::degenerate",
+                            format!(
+                                "an arc of radius {} cannot join points {} apart",
+                                radius,
+                                Length(chord)
+                            ),
+                        )
+                        .label(v.span, "radius smaller than half the chord")
+                        .help(format!("use a radius of at least {}", Length(chord / 2.0))),
+                    );
+                    ok = false;
+                }
+            }
+            segments.push(seg);
+        }
+        last = Some(to);
+    }
+    let start = start?;
+    if ok && segments.len() < 2 && !segments.iter().any(|s| matches!(s, Segment::Arc { .. })) {
+        diags.push(
+            Diagnostic::error("lmd::degenerate", "an outline needs at least three corners")
+                .label(c.func_span, "encloses no area")
+                .help("give at least three points, or two points and an arc"),
+        );
+        return None;
+    }
+    ok.then_some(Outline { start, segments })
+}
+
+fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
+    match &v.value {
+        Value::List(items) if items.len() == 2 => {
+            let x = fields::quantity(&items[0], Dim::LENGTH, "x", diags);
+            let y = fields::quantity(&items[1], Dim::LENGTH, "y", diags);
+            Some([Length(x?), Length(y?)])
+        }
+        other => {
+            diags.push(
+                Diagnostic::error("lmd::type", "a point is `[x, y]`, two lengths")
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help("e.g. `[40 mm, 0 mm]`"),
+            );
+            None
+        }
+    }
+}
+
+fn arc_piece(c: &Call, diags: &mut Diagnostics) -> Option<Segment> {
+    let f = Fields::call(c, &[], &["to", "radius", "turn"], diags);
+    let to = f
+        .value("to", Some("[40 mm, 20 mm]"), diags)
+        .and_then(|v| point(v, diags));
+    let radius = f.positive("radius", Dim::LENGTH, Some("10 mm"), diags);
+    let turn = match f.symbol("turn", &["left", "right"], None, diags) {
+        Some((t, _)) if t == "right" => Some(Turn::Right),
+        Some(_) => Some(Turn::Left),
+        None if f.has("turn") => None,
+        None => Some(Turn::Left),
+    };
+    Some(Segment::Arc {
+        to: to?,
+        radius: Length(radius?.0),
+        turn: turn?,
+    })
+}
