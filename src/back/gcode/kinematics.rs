@@ -141,7 +141,7 @@ pub fn reposition(
         } else if r.c > c_range[1] {
             r.c -= 360.0 * ((r.c - c_range[1]) / 360.0).ceil();
         }
-        if inside(r) && best.map_or(true, |b| travel(prev, r) < travel(prev, b)) {
+        if inside(r) && best.is_none_or(|b| travel(prev, r) < travel(prev, b)) {
             best = Some(r);
         }
     }
