@@ -12,5 +12,6 @@ pub mod pipeline;
 pub mod sema;
 pub mod slice;
 pub mod span;
+pub mod style;
 pub mod syntax;
 pub mod units;
