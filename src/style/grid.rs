@@ -2,12 +2,18 @@
 //! one?" looks at a few cells instead of every segment: the band and inheritance
 //! queries become near-linear in points instead of quadratic.
 //!
-//! Memory is linear in the number of segments for any input: the cell count is at
-//! most about `3·(2n + 16)`, and the cell size is at least an eighth of the mean
-//! segment extent (`|dx| + |dy|`), so one segment lands in at most ~41 cells
-//! on average (each of its rows spans ≤ 4·|dx|/c + 3 cells). Degenerate extents
-//! (all points equal, or coordinates so large that the extent overflows) fall back
-//! to one cell holding everything: still correct, just a linear scan.
+//! Memory is linear in the number `n` of segments for any input. The cell count
+//! is at most about `3·(2n + 16)`. A segment lands in at most
+//! `4·(|dx| + |dy|)/c + 9` cells (`|dy|/c + 3` rows; within a row, its part in a
+//! slab `3c` high, widened by the slack, crossing ≤ `x-extent/c + 3` cells, and
+//! each x is in at most 4 slabs), and the cell size `c` is at least an eighth of
+//! the mean `|dx| + |dy|`, so there are at most ~41 entries per segment on
+//! average. Degenerate extents (all points equal, or coordinates so large that
+//! the extent overflows) fall back to one cell holding everything: still
+//! correct, just a linear scan.
+//!
+//! The cell size is also at least the query reach (the band's half-width), so a
+//! query segment looks at `O(1 + length/c)` cells.
 
 use super::capsule::{finite, P};
 use super::StyleId;

