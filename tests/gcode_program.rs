@@ -429,7 +429,7 @@ fn numbers_are_plain_decimals() {
                 b'X' | b'Y' | b'Z' | b'A' | b'C' => {
                     assert_eq!(v.split('.').nth(1).map(str::len), Some(3), "{w}")
                 }
-                b'F' => assert!(v.split('.').nth(1).map_or(true, |d| d.len() == 1), "{w}"),
+                b'F' => assert!(v.split('.').nth(1).is_none_or(|d| d.len() == 1), "{w}"),
                 _ => {}
             }
         }
