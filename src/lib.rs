@@ -5,6 +5,7 @@ pub mod back;
 pub mod bead;
 pub mod check;
 pub mod diag;
+pub mod fill;
 pub mod geometry;
 pub mod ir;
 pub mod lower;

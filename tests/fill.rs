@@ -1,0 +1,607 @@
+//! Planar layer fill (seed 001): contour passes and raster tracks over
+//! outlines of lines and arcs, checked against closed-form geometry.
+
+use lmdc::fill::{fill, FillError, FillSpec, Pattern, RasterSpec, Track, TrackKind};
+use lmdc::geometry::profile::{Profile, Vertex};
+use proptest::prelude::*;
+use std::f64::consts::PI;
+
+/// A `w` × `h` rectangle from the origin with corners rounded to radius `r`.
+fn rounded(w: f64, h: f64, r: f64) -> Profile {
+    let q = (PI / 8.0).tan(); // a quarter circle
+    Profile::new(vec![
+        Vertex::line(r, 0.0),
+        Vertex::arc(w - r, 0.0, q),
+        Vertex::line(w, r),
+        Vertex::arc(w, h - r, q),
+        Vertex::line(w - r, h),
+        Vertex::arc(r, h, q),
+        Vertex::line(0.0, h - r),
+        Vertex::arc(0.0, r, q),
+    ])
+}
+
+/// Only a raster, at `angle` degrees, lines `d` apart, ends extended by at
+/// most `extend`.
+fn raster(angle: f64, d: f64, extend: f64, pattern: Pattern) -> FillSpec {
+    FillSpec {
+        inset: 0.0,
+        contours: 0,
+        offset: d,
+        raster: Some(RasterSpec {
+            angle_deg: angle,
+            offset: d,
+            pattern,
+            extend,
+        }),
+    }
+}
+
+fn infill(tracks: &[Track]) -> Vec<[[f64; 2]; 2]> {
+    tracks
+        .iter()
+        .filter(|t| t.kind == TrackKind::Infill)
+        .map(|t| {
+            assert_eq!(t.points.len(), 2);
+            [t.points[0], t.points[1]]
+        })
+        .collect()
+}
+
+/// Infill tracks of a 0° raster as `(y, x_min, x_max)`, bottom up.
+fn rows(tracks: &[Track]) -> Vec<(f64, f64, f64)> {
+    infill(tracks)
+        .into_iter()
+        .map(|[a, b]| {
+            assert_eq!(a[1], b[1], "a 0° track is horizontal");
+            (a[1], a[0].min(b[0]), a[0].max(b[0]))
+        })
+        .collect()
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol
+}
+
+#[test]
+fn raster_over_a_circle_starts_at_seed_001_x_n() {
+    let (r, d) = (10.0, 1.6);
+    let tracks = fill(
+        &Profile::circle(r),
+        &raster(0.0, d, 0.0, Pattern::OneWay),
+        0.01,
+    )
+    .unwrap();
+    let rows = rows(&tracks);
+    // Lines at −R + n·d for n = 0..=12; line 0 only touches the circle and,
+    // without extension, is dropped.
+    assert_eq!(rows.len(), 12);
+    for (k, &(y, x0, x1)) in rows.iter().enumerate() {
+        let n = (k + 1) as f64;
+        assert!(close(y, -r + n * d, 1e-12), "line {n} at {y}");
+        let x_n = (r * r - (r - n * d).powi(2)).sqrt();
+        assert!(
+            close(x0, -x_n, 1e-9) && close(x1, x_n, 1e-9),
+            "line {n}: {x0} {x1} vs {x_n}"
+        );
+    }
+}
+
+#[test]
+fn raster_over_a_rounded_corner_starts_at_r_minus_the_half_chord() {
+    let (w, h, r, d) = (40.0, 20.0, 6.0, 1.5);
+    let tracks = fill(
+        &rounded(w, h, r),
+        &raster(0.0, d, 0.0, Pattern::OneWay),
+        0.01,
+    )
+    .unwrap();
+    for &(y, x0, x1) in &rows(&tracks) {
+        let n = (y / d).round();
+        assert!(close(y, n * d, 1e-12));
+        // Below the corner arcs' centres the arcs clip; above, the straight sides.
+        let q = (r - y).max(y - (h - r)).max(0.0);
+        let expect = r - (r * r - q * q).sqrt();
+        assert!(
+            close(x0, expect, 1e-9),
+            "y {y}: starts at {x0}, expected {expect}"
+        );
+        assert!(close(x1, w - expect, 1e-9), "y {y}: ends at {x1}");
+    }
+}
+
+#[test]
+fn extension_fills_the_corner_staircase_up_to_the_limit() {
+    let (w, h, r, d) = (40.0, 20.0, 6.0, 1.5);
+    let p = rounded(w, h, r);
+    let bare = rows(&fill(&p, &raster(0.0, d, 0.0, Pattern::OneWay), 0.01).unwrap());
+    let ext = rows(&fill(&p, &raster(0.0, d, d, Pattern::OneWay), 0.01).unwrap());
+    // Line 0 touches the bottom edge along its whole straight part, so no line is
+    // dropped without extension and the rows pair up.
+    assert_eq!(bare.len(), ext.len());
+    let x = |n: usize| {
+        let q = (r - n as f64 * d).max(n as f64 * d - (h - r)).max(0.0);
+        r - (r * r - q * q).sqrt()
+    };
+    let lines = bare.len();
+    for (n, (b, e)) in bare.iter().zip(&ext).enumerate() {
+        assert_eq!(b.0, e.0);
+        let (grow_start, grow_end) = (b.1 - e.1, e.2 - b.2);
+        // The neighbour reaching furthest decides, within the limit d.
+        let mut reach: f64 = 0.0;
+        for m in [n.wrapping_sub(1), n + 1] {
+            if m < lines {
+                reach = reach.max(x(n) - x(m));
+            }
+        }
+        let expect = if reach > 1e-9 { reach.min(d) } else { 0.0 };
+        assert!(
+            close(grow_start, expect, 1e-9),
+            "line {n}: {grow_start} vs {expect}"
+        );
+        assert!(
+            close(grow_end, expect, 1e-9),
+            "line {n}: {grow_end} vs {expect}"
+        );
+        assert!(grow_start <= d + 1e-12);
+        // Along the straight sides nothing is extended.
+        if e.0 > r + d && e.0 < h - r - d {
+            assert_eq!((grow_start, grow_end), (0.0, 0.0));
+        }
+    }
+    // The corners were extended somewhere, and by the full d at the bottom.
+    assert!(close(bare[0].1 - ext[0].1, d, 1e-9));
+}
+
+#[test]
+fn extension_grows_the_circle_touch_points_into_tracks() {
+    let (r, d) = (10.0, 1.6);
+    let tracks = fill(
+        &Profile::circle(r),
+        &raster(0.0, d, d, Pattern::OneWay),
+        0.01,
+    )
+    .unwrap();
+    let rows = rows(&tracks);
+    // Line 0 touches the circle at its bottom; line 1 reaches X_1 = 5.44 further,
+    // so line 0 grows by d each way.
+    assert_eq!(rows.len(), 13);
+    assert!(close(rows[0].0, -r, 1e-12));
+    assert!(close(rows[0].1, -d, 1e-12) && close(rows[0].2, d, 1e-12));
+}
+
+#[test]
+fn a_rectangle_gets_floor_h_over_d_plus_one_full_lines() {
+    for (w, h, d) in [
+        (30.0, 10.0, 1.6),
+        (30.0, 9.6, 1.6),
+        (12.5, 4.8, 1.6),
+        (7.0, 3.0, 0.1),
+    ] {
+        for extend in [0.0, d] {
+            let tracks = fill(
+                &Profile::rectangle(w, h),
+                &raster(0.0, d, extend, Pattern::Serpentine),
+                0.01,
+            )
+            .unwrap();
+            let rows = rows(&tracks);
+            let lines = (h / d + 1e-9).floor() as usize + 1;
+            assert_eq!(rows.len(), lines, "{w}×{h} at {d}");
+            for (n, &(y, x0, x1)) in rows.iter().enumerate() {
+                assert!(close(y, n as f64 * d, 1e-9), "line {n} at {y}");
+                assert_eq!((x0, x1), (0.0, w), "line {n} of {w}×{h} at {d}");
+            }
+        }
+    }
+}
+
+#[test]
+fn lines_along_slanted_edges_are_the_edges() {
+    // A 20 × 6 rectangle turned 30°, rastered along its long sides: the first
+    // and the last line lie exactly on them.
+    let (w, h, d, angle) = (20.0, 6.0, 1.5, 30.0f64);
+    let (s, c) = angle.to_radians().sin_cos();
+    let turn = |x: f64, y: f64| Vertex::line(x * c - y * s, x * s + y * c);
+    let p = Profile::new(vec![turn(0.0, 0.0), turn(w, 0.0), turn(w, h), turn(0.0, h)]);
+    let tracks = fill(&p, &raster(angle, d, d, Pattern::Serpentine), 0.01).unwrap();
+    let lines = infill(&tracks);
+    assert_eq!(lines.len(), 5);
+    for [a, b] in &lines {
+        assert!(close((b[0] - a[0]).hypot(b[1] - a[1]), w, 1e-9));
+    }
+    for [a, b] in [lines[0], lines[4]] {
+        for t in [0.0, 0.5, 1.0] {
+            let q = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+            assert!(p.distance_to_boundary(q) < 1e-9, "{q:?} is off the edge");
+        }
+    }
+}
+
+#[test]
+fn serpentine_alternates_and_one_way_does_not() {
+    let p = rounded(30.0, 12.0, 4.0);
+    for angle in [0.0f64, 45.0, 90.0, 200.0] {
+        let (s, c) = angle.to_radians().sin_cos();
+        let along = |[a, b]: [[f64; 2]; 2]| (b[0] - a[0]) * c + (b[1] - a[1]) * s;
+        let serp = infill(&fill(&p, &raster(angle, 1.0, 1.0, Pattern::Serpentine), 0.01).unwrap());
+        assert!(serp.len() > 5);
+        for (k, t) in serp.iter().enumerate() {
+            let dir = along(*t);
+            assert!(
+                if k % 2 == 0 { dir > 0.0 } else { dir < 0.0 },
+                "{angle}° track {k}"
+            );
+        }
+        let one = infill(&fill(&p, &raster(angle, 1.0, 1.0, Pattern::OneWay), 0.01).unwrap());
+        assert_eq!(one.len(), serp.len());
+        assert!(one.iter().all(|t| along(*t) > 0.0));
+        // Lines come in increasing s, across the direction (its left normal).
+        let across = |[a, _]: [[f64; 2]; 2]| -a[0] * s + a[1] * c;
+        assert!(one.windows(2).all(|w| across(w[1]) > across(w[0]) + 0.999));
+    }
+}
+
+#[test]
+fn a_u_shape_gives_two_intervals_on_lines_through_both_arms() {
+    // 30 × 20 with a 10 mm wide notch down to y = 5, open at the top.
+    let u = Profile::new(
+        [
+            (0.0, 0.0),
+            (30.0, 0.0),
+            (30.0, 20.0),
+            (20.0, 20.0),
+            (20.0, 5.0),
+            (10.0, 5.0),
+            (10.0, 20.0),
+            (0.0, 20.0),
+        ]
+        .iter()
+        .map(|&(x, y)| Vertex::line(x, y))
+        .collect(),
+    );
+    let d = 1.25;
+    let rows = rows(&fill(&u, &raster(0.0, d, d, Pattern::OneWay), 0.01).unwrap());
+    let mut lines = 0;
+    for n in 0..=16 {
+        let y = n as f64 * d;
+        let on: Vec<_> = rows
+            .iter()
+            .filter(|r| r.0 == y)
+            .map(|r| (r.1, r.2))
+            .collect();
+        if y <= 5.0 {
+            // Up to and along the notch's floor: one interval across.
+            assert_eq!(on, vec![(0.0, 30.0)], "y = {y}");
+        } else {
+            // The notch's straight walls extend nothing.
+            assert_eq!(on, vec![(0.0, 10.0), (20.0, 30.0)], "y = {y}");
+        }
+        lines += 1;
+    }
+    assert_eq!(lines, 17);
+    assert_eq!(rows.len(), 5 + 2 * 12);
+}
+
+#[test]
+fn contours_lie_at_their_offsets_and_come_first() {
+    let p = rounded(40.0, 24.0, 6.0);
+    let spec = FillSpec {
+        inset: 0.8,
+        contours: 3,
+        offset: 1.6,
+        raster: Some(RasterSpec {
+            angle_deg: 0.0,
+            offset: 1.6,
+            pattern: Pattern::Serpentine,
+            extend: 1.6,
+        }),
+    };
+    let tracks = fill(&p, &spec, 0.01).unwrap();
+    let kinds: Vec<TrackKind> = tracks.iter().map(|t| t.kind).collect();
+    assert_eq!(
+        kinds[..3],
+        [0, 1, 2].map(|index| TrackKind::Contour { index })
+    );
+    assert!(kinds[3..].iter().all(|k| *k == TrackKind::Infill));
+    for t in &tracks[..3] {
+        let TrackKind::Contour { index } = t.kind else {
+            unreachable!()
+        };
+        let depth = 0.8 + index as f64 * 1.6;
+        assert_eq!(t.points.first(), t.points.last(), "a contour is closed");
+        let start = t.points[0];
+        assert!(t
+            .points
+            .iter()
+            .all(|q| (q[1], q[0]) >= (start[1], start[0])));
+        for q in &t.points {
+            assert!(close(p.distance_to_boundary(*q), depth, 1e-9), "{q:?}");
+        }
+    }
+    // The raster fills what the contours leave: from 0.8 + 3·1.6 = 5.6 in.
+    let rows = rows(&tracks);
+    assert!(close(rows[0].0, 5.6, 1e-9));
+    assert!(close(rows.last().unwrap().0, 24.0 - 5.6, 1e-9));
+}
+
+#[test]
+fn a_waist_splits_a_contour_pass_into_loops() {
+    // Two 10 × 10 squares joined by a 2 mm neck: the second pass no longer fits
+    // through it.
+    let p = Profile::new(
+        [
+            (0.0, 0.0),
+            (10.0, 0.0),
+            (10.0, 4.0),
+            (20.0, 4.0),
+            (20.0, 0.0),
+            (30.0, 0.0),
+            (30.0, 10.0),
+            (20.0, 10.0),
+            (20.0, 6.0),
+            (10.0, 6.0),
+            (10.0, 10.0),
+            (0.0, 10.0),
+        ]
+        .iter()
+        .map(|&(x, y)| Vertex::line(x, y))
+        .collect(),
+    );
+    let spec = FillSpec {
+        inset: 0.5,
+        contours: 2,
+        offset: 1.0,
+        raster: None,
+    };
+    let tracks = fill(&p, &spec, 0.01).unwrap();
+    let index: Vec<usize> = tracks
+        .iter()
+        .map(|t| match t.kind {
+            TrackKind::Contour { index } => index,
+            TrackKind::Infill => panic!("no raster asked for"),
+        })
+        .collect();
+    assert_eq!(index, vec![0, 1, 1]);
+    // Loops of one pass in order of their start points: left square first.
+    assert!(tracks[1].points[0][0] < tracks[2].points[0][0]);
+}
+
+#[test]
+fn a_bow_tie_is_rejected_at_its_crossing() {
+    let p = Profile::new(vec![
+        Vertex::line(0.0, 0.0),
+        Vertex::line(2.0, 2.0),
+        Vertex::line(2.0, 0.0),
+        Vertex::line(0.0, 2.0),
+    ]);
+    match fill(&p, &raster(0.0, 0.5, 0.5, Pattern::Serpentine), 0.01) {
+        Err(FillError::SelfIntersecting { at }) => {
+            assert!(close(at[0], 1.0, 1e-6) && close(at[1], 1.0, 1e-6), "{at:?}")
+        }
+        other => panic!("expected a self-intersection, got {other:?}"),
+    }
+}
+
+#[test]
+fn bad_numbers_are_errors_not_panics() {
+    let p = rounded(20.0, 10.0, 3.0);
+    let ok = raster(0.0, 1.0, 1.0, Pattern::Serpentine);
+    let with = |f: &dyn Fn(&mut FillSpec)| {
+        let mut s = ok;
+        f(&mut s);
+        s
+    };
+    let r = |f: &dyn Fn(&mut RasterSpec)| {
+        with(&|s: &mut FillSpec| {
+            let mut rs = s.raster.unwrap();
+            f(&mut rs);
+            s.raster = Some(rs);
+        })
+    };
+    let cases: Vec<(Profile, FillSpec, f64, &str)> = vec![
+        (p.clone(), r(&|r| r.angle_deg = f64::NAN), 0.01, "NonFinite"),
+        (
+            p.clone(),
+            r(&|r| r.offset = f64::INFINITY),
+            0.01,
+            "NonFinite",
+        ),
+        (p.clone(), ok, f64::NAN, "NonFinite"),
+        (
+            p.clone(),
+            with(&|s| s.inset = f64::NEG_INFINITY),
+            0.01,
+            "NonFinite",
+        ),
+        (p.clone(), r(&|r| r.offset = 0.0), 0.01, "OutOfRange"),
+        (p.clone(), r(&|r| r.offset = -1.6), 0.01, "OutOfRange"),
+        (p.clone(), r(&|r| r.offset = 1e300), 0.01, "OutOfRange"),
+        (p.clone(), r(&|r| r.extend = -1.0), 0.01, "OutOfRange"),
+        (p.clone(), with(&|s| s.inset = -0.5), 0.01, "OutOfRange"),
+        (p.clone(), ok, 0.0, "OutOfRange"),
+        (p.clone(), ok, -1.0, "OutOfRange"),
+        (
+            p.clone(),
+            with(&|s| {
+                s.contours = 2;
+                s.offset = 0.0
+            }),
+            0.01,
+            "OutOfRange",
+        ),
+        (p.clone(), r(&|r| r.offset = 1e-7), 0.01, "TooManyLines"),
+        (
+            p.clone(),
+            with(&|s| {
+                s.contours = usize::MAX;
+                s.offset = 1.0
+            }),
+            0.01,
+            "TooManyContours",
+        ),
+        (Profile::circle(1e9), ok, 0.01, "OutOfRange"),
+        (Profile::circle(f64::NAN), ok, 0.01, "NonFinite"),
+        (
+            Profile::new(vec![Vertex::arc(0.0, 0.0, 1e300), Vertex::line(1.0, 0.0)]),
+            ok,
+            0.01,
+            "OutOfRange",
+        ),
+        (Profile::new(vec![]), ok, 0.01, "Empty"),
+        (p.clone(), with(&|s| s.inset = 5.5), 0.01, "Empty"),
+        (p.clone(), with(&|s| s.raster = None), 0.01, "Empty"),
+    ];
+    for (i, (profile, spec, chord, want)) in cases.iter().enumerate() {
+        let got = fill(profile, spec, *chord);
+        let name = match &got {
+            Ok(_) => "Ok",
+            Err(FillError::NonFinite) => "NonFinite",
+            Err(FillError::OutOfRange(_)) => "OutOfRange",
+            Err(FillError::TooManyLines(_)) => "TooManyLines",
+            Err(FillError::TooManyContours(_)) => "TooManyContours",
+            Err(FillError::TooManyPoints(_)) => "TooManyPoints",
+            Err(FillError::Empty) => "Empty",
+            Err(FillError::SelfIntersecting { .. }) => "SelfIntersecting",
+        };
+        assert_eq!(name, *want, "case {i}: {got:?}");
+        if let Err(e) = got {
+            // Every message is short and shows no NaN, inf or 300-digit value.
+            let m = e.to_string();
+            assert!(
+                m.len() < 200 && !m.contains("NaN mm") && !m.contains("inf mm"),
+                "{m}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_comb_with_fine_lines_is_too_many_points_not_a_hang() {
+    // 2000 teeth, each 100 mm tall; 50 000 lines would cross 4000 edges each.
+    let mut v = vec![Vertex::line(0.0, -1.0), Vertex::line(3999.0, -1.0)];
+    for k in (0..2000).rev() {
+        let x = 2.0 * k as f64;
+        v.extend([
+            Vertex::line(x + 1.0, 0.0),
+            Vertex::line(x + 1.0, 100.0),
+            Vertex::line(x, 100.0),
+            Vertex::line(x, 0.0),
+        ]);
+    }
+    let comb = Profile::new(v);
+    let spec = raster(0.0, 0.002, 0.0, Pattern::Serpentine);
+    assert!(matches!(
+        fill(&comb, &spec, 0.01),
+        Err(FillError::TooManyPoints(_))
+    ));
+    // Across the teeth, 8000 lines meet a few edges each: fine.
+    let spec = raster(90.0, 0.5, 0.0, Pattern::Serpentine);
+    assert!(fill(&comb, &spec, 0.01).is_ok());
+}
+
+#[test]
+fn eighty_thousand_lines_are_quick() {
+    let start = std::time::Instant::now();
+    let tracks = fill(
+        &Profile::circle(400.0),
+        &raster(17.0, 0.01, 0.01, Pattern::Serpentine),
+        0.01,
+    )
+    .unwrap();
+    assert_eq!(tracks.len(), 80_001);
+    assert!(start.elapsed().as_secs_f64() < 5.0, "{:?}", start.elapsed());
+}
+
+#[test]
+fn output_is_deterministic() {
+    let p = rounded(33.0, 21.0, 7.5);
+    let spec = FillSpec {
+        inset: 0.3,
+        contours: 2,
+        offset: 1.1,
+        raster: Some(RasterSpec {
+            angle_deg: 37.0,
+            offset: 0.9,
+            pattern: Pattern::Serpentine,
+            extend: 0.9,
+        }),
+    };
+    let a = fill(&p, &spec, 0.02).unwrap();
+    let b = fill(&p, &spec, 0.02).unwrap();
+    let pts = |t: &[Track]| {
+        t.iter()
+            .map(|t| (t.kind, t.points.clone()))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(pts(&a), pts(&b));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Every track lies within the outline grown by the extension (raster) or
+    /// the chord error (contours); contour i lies at inset + i·offset; raster
+    /// lines sit whole offsets apart.
+    #[test]
+    fn tracks_stay_inside_the_outline(
+        w in 4.0f64..60.0,
+        h in 4.0f64..60.0,
+        rf in 0.0f64..0.5,
+        angle in -360.0f64..360.0,
+        d in 0.4f64..3.0,
+        ef in 0.0f64..1.2,
+        inset in 0.0f64..2.0,
+        contours in 0usize..3,
+    ) {
+        let r = rf * w.min(h);
+        let p = rounded(w, h, r);
+        let extend = ef * d;
+        let chord = 0.01;
+        let spec = FillSpec {
+            inset,
+            contours,
+            offset: d,
+            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::Serpentine, extend }),
+        };
+        let tracks = match fill(&p, &spec, chord) {
+            Ok(t) => t,
+            Err(FillError::Empty) => return Ok(()),
+            Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
+        };
+        let slack = extend.max(d) + chord + 1e-9;
+        let (s, c) = angle.to_radians().sin_cos();
+        let mut across = Vec::new();
+        for t in &tracks {
+            for pair in t.points.windows(2) {
+                for k in 0..=4 {
+                    let f = k as f64 / 4.0;
+                    let q = [pair[0][0] + f * (pair[1][0] - pair[0][0]), pair[0][1] + f * (pair[1][1] - pair[0][1])];
+                    prop_assert!(p.contains(q) || p.distance_to_boundary(q) <= slack, "{q:?} of {t:?}");
+                }
+            }
+            match t.kind {
+                TrackKind::Contour { index } => {
+                    let depth = inset + index as f64 * d;
+                    for q in &t.points {
+                        prop_assert!((p.distance_to_boundary(*q) - depth).abs() < 1e-7, "contour {index} at {q:?}");
+                    }
+                }
+                TrackKind::Infill => {
+                    let [a, b] = [t.points[0], t.points[1]];
+                    // Extension is at most `extend` beyond the raster region.
+                    let region_depth = inset + contours as f64 * d;
+                    for q in [a, b] {
+                        prop_assert!(p.distance_to_boundary(q) >= region_depth - extend - 1e-7 || !p.contains(q));
+                    }
+                    across.push(-a[0] * s + a[1] * c);
+                }
+            }
+        }
+        let first = across.iter().copied().fold(f64::INFINITY, f64::min);
+        for a in across {
+            let n = (a - first) / d;
+            prop_assert!((n - n.round()).abs() < 1e-6, "line at {n} offsets");
+        }
+    }
+}
