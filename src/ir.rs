@@ -29,6 +29,11 @@ pub struct Program {
     pub limits: Limits,
     /// The machines to write programs for.
     pub machines: Vec<Machine>,
+    /// The style table (seed 002): the values each style id stands for. Id 0,
+    /// the process block's values, is not listed; points carry their values
+    /// either way.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub styles: Vec<Style>,
     /// Layers in build order.
     pub layers: Vec<Layer>,
     /// Source spans of the declarations the checks refer to; not serialised.
@@ -147,6 +152,26 @@ pub struct Point {
     pub defocus: f32,
     /// Whether the laser is on while moving to the next point.
     pub laser_on: bool,
+    /// The process style of this point (0: the process block's values).
+    #[serde(default)]
+    pub style: u16,
+}
+
+/// One row of the style table.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Style {
+    /// The id points carry.
+    pub id: u16,
+    /// Its name in the source.
+    pub name: String,
+    /// Laser power, W, if the style sets it.
+    pub power: Option<f64>,
+    /// Scan speed, mm/s, if the style sets it.
+    pub speed: Option<f64>,
+    /// Powder feed, g/min, if the style sets it.
+    pub powder: Option<f64>,
+    /// Display colour `#rrggbb`.
+    pub colour: String,
 }
 
 /// A machine to write a program for.

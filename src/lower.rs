@@ -2,7 +2,7 @@
 //! limits, machines and the source spans the IR checks report at.
 
 use crate::diag::Diagnostics;
-use crate::ir::{Limits, Origins, Program, Units, FORMAT, VERSION};
+use crate::ir::{Limits, Origins, Program, Style, Units, FORMAT, VERSION};
 use crate::sema::model::{Model, Plan};
 use crate::slice;
 
@@ -25,6 +25,19 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             ],
         },
         machines: model.machines.iter().map(|(m, _)| m.clone()).collect(),
+        styles: model
+            .styles
+            .table
+            .iter()
+            .map(|s| Style {
+                id: s.id,
+                name: s.name.clone(),
+                power: s.power.map(|p| p.watts()),
+                speed: s.speed.map(|v| v.0),
+                powder: s.powder.map(|m| m.g_min()),
+                colour: s.colour.clone(),
+            })
+            .collect(),
         layers,
         origins: Origins {
             bead_height: Some(bead.height_span),

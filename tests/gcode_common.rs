@@ -130,6 +130,7 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
             powder: 8.0,
             defocus: -3.0,
             laser_on: on,
+            style: 0,
         };
         let p = 1500.0 + 100.0 * i as f32;
         let contour = vec![
@@ -186,6 +187,7 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
             power: [0.0, 4000.0],
         },
         machines,
+        styles: Vec::new(),
         layers: out,
         origins: Origins::default(),
     }

@@ -136,6 +136,7 @@ fn cone(kin: Kinematics) -> Program {
         powder: 10.0,
         defocus: -2.0,
         laser_on: true,
+        style: 0,
     };
     let turns: Vec<Point> = (0..=720)
         .map(|i| {

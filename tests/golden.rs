@@ -1,13 +1,15 @@
 //! Golden programs: every file lmdc writes for tests/golden/small_duct.lmd (a
-//! KUKA robot split into modules, LinuxCNC, Fagor 8070 and M20 CNCs), as insta
-//! snapshots. Review every diff line by line: these are what machines run.
+//! KUKA robot split into modules, LinuxCNC, Fagor 8070 and M20 CNCs) and for the
+//! two planar examples (sprocket tooth, styled chord), as insta snapshots.
+//! Review every diff line by line: these are what machines run.
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::pipeline::{compile, emit, select_machines};
 
-#[test]
-fn small_duct_programs() {
-    let src = std::fs::read_to_string("tests/golden/small_duct.lmd").unwrap();
+/// Snapshots the list of files written for `path` (as `<prefix>files`) and each
+/// file (as `<prefix><name>`).
+fn programs(path: &str, prefix: &str) {
+    let src = std::fs::read_to_string(path).unwrap();
     let c = compile(&src, &mut ());
     let p = c.program.expect("compiles");
     let which = select_machines(&p, None).unwrap();
@@ -22,9 +24,24 @@ fn small_duct_programs() {
     .expect("emits");
     let mut names: Vec<&str> = sink.files.iter().map(|(n, _)| n.as_str()).collect();
     names.sort();
-    insta::assert_snapshot!("files", names.join("\n"));
+    insta::assert_snapshot!(format!("{prefix}files"), names.join("\n"));
     for (name, bytes) in &sink.files {
         let text = String::from_utf8(bytes.clone()).expect("UTF-8");
-        insta::assert_snapshot!(name.replace('.', "_"), text);
+        insta::assert_snapshot!(format!("{prefix}{}", name.replace('.', "_")), text);
     }
+}
+
+#[test]
+fn small_duct_programs() {
+    programs("tests/golden/small_duct.lmd", "");
+}
+
+#[test]
+fn sprocket_tooth_programs() {
+    programs("examples/sprocket_tooth.lmd", "sprocket__");
+}
+
+#[test]
+fn styled_chord_programs() {
+    programs("examples/styled_chord.lmd", "chord__");
 }

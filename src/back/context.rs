@@ -47,3 +47,31 @@ pub fn layer_context(ctx: &mut tera::Context, li: usize, n_layers: usize, layer:
     ctx.insert("paths", &layer.paths.len());
     ctx.insert("points", &points);
 }
+
+/// `styles`: one line per row of the style table, e.g. `style 1 edge: power
+/// 1300 W, speed 5 mm/s, powder process, colour #d62728` (`process`: the style
+/// leaves that value to the process block). Names are identifiers and colours
+/// hex digits, so the lines are safe in any comment syntax.
+pub fn styles(ctx: &mut tera::Context, p: &Verified) {
+    let value = |v: Option<f64>, unit: &str| match v {
+        Some(v) => format!("{} {unit}", super::fixed::trimmed(v, 3)),
+        None => "process".to_string(),
+    };
+    let lines: Vec<String> = p
+        .ir()
+        .styles
+        .iter()
+        .map(|s| {
+            format!(
+                "style {} {}: power {}, speed {}, powder {}, colour {}",
+                s.id,
+                s.name,
+                value(s.power, "W"),
+                value(s.speed, "mm/s"),
+                value(s.powder, "g/min"),
+                s.colour
+            )
+        })
+        .collect();
+    ctx.insert("styles", &lines);
+}

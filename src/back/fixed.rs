@@ -78,6 +78,13 @@ pub fn rounded(v: f64, decimals: usize) -> f64 {
 }
 
 /// Formats into a new `String` (for templates and tests).
+pub fn trimmed(v: f64, decimals: usize) -> String {
+    let mut b = Vec::new();
+    push_trimmed(&mut b, v, decimals);
+    String::from_utf8(b).unwrap_or_default()
+}
+
+/// `v` with exactly `decimals` decimals, as a string.
 pub fn fixed(v: f64, decimals: usize) -> String {
     let mut b = Vec::new();
     push_fixed(&mut b, v, decimals);

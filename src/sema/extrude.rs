@@ -262,9 +262,9 @@ pub fn assemble(
             return None;
         }
     };
-    let shapes = match w.source {
-        Source::Fixed(s) => vec![s; layers],
-        Source::Expr(e) => per_layer(env, e, layers, w.profile_span, diags)?,
+    let (shapes, shape_span) = match w.source {
+        Source::Fixed(s) => (vec![s; layers], w.profile_span),
+        Source::Expr(e) => (per_layer(env, e, layers, w.profile_span, diags)?, e.span),
     };
     Some((
         Extrusion {
@@ -275,6 +275,7 @@ pub fn assemble(
             lift_derived,
             span: w.span,
             profile_span: w.profile_span,
+            shape_span,
         },
         PlanarSlicing {
             contours: spec.contours,

@@ -47,6 +47,25 @@ impl<'a> Fields<'a> {
         at: Span,
         diags: &mut Diagnostics,
     ) -> Self {
+        Self::block_with_repeats(env, stmts, allowed, blocks, &[], what, at, diags)
+    }
+
+    /// Like [`Fields::block`], and the blocks in `repeated` may be given any
+    /// number of times (`when { … }` rules of a style); read them with
+    /// [`Fields::nested_all`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn block_with_repeats(
+        env: &mut Env<'a>,
+        stmts: &'a [Stmt],
+        allowed: &[&str],
+        blocks: &[&str],
+        repeated: &[&str],
+        what: String,
+        at: Span,
+        diags: &mut Diagnostics,
+    ) -> Self {
+        let blocks: Vec<&str> = blocks.iter().chain(repeated).copied().collect();
+        let blocks = blocks.as_slice();
         let mut entries: Vec<Entry<'a>> = Vec::new();
         for s in stmts {
             let key = s.kind.node.as_str();
@@ -69,7 +88,10 @@ impl<'a> Fields<'a> {
                 diags.push(d);
                 continue;
             }
-            if let Some(prev) = entries.iter().find(|e| e.key == key) {
+            if let Some(prev) = entries
+                .iter()
+                .find(|e| e.key == key && !repeated.contains(&key))
+            {
                 diags.push(
                     Diagnostic::error(
                         "lmd::duplicate",
@@ -224,6 +246,15 @@ impl<'a> Fields<'a> {
             .iter()
             .find(|e| e.key == key)
             .and_then(|e| e.block)
+    }
+
+    /// The statements of every `key { … }` block, in source order.
+    pub fn nested_all(&self, key: &str) -> Vec<(&'a [Stmt], Span)> {
+        self.entries
+            .iter()
+            .filter(|e| e.key == key)
+            .filter_map(|e| e.block)
+            .collect()
     }
 
     fn missing(&self, key: &str, example: &str, diags: &mut Diagnostics) {

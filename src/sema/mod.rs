@@ -13,6 +13,7 @@ mod process;
 mod profile;
 mod section;
 pub mod slicing;
+mod style;
 mod suggest;
 pub mod value;
 
@@ -25,7 +26,18 @@ use value::{Env, Value};
 
 /// Top-level statement kinds.
 const KINDS: &[&str] = &[
-    "part", "let", "section", "profile", "bead", "loft", "extrude", "slicing", "process", "machine",
+    "part",
+    "let",
+    "section",
+    "profile",
+    "bead",
+    "loft",
+    "extrude",
+    "slicing",
+    "process",
+    "style",
+    "inheritance",
+    "machine",
 ];
 
 /// Checks a parsed file. Returns the model if there were no errors, and every
@@ -312,6 +324,11 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         );
     }
 
+    let styles = style::read(&mut env, &get("style"), diags);
+    let inheritance_stmt = single_optional(&get("inheritance"), "inheritance", diags);
+    let inheritance = inheritance_stmt.and_then(|s| style::inheritance(&mut env, s, diags));
+    let inheritance_ok = inheritance_stmt.is_none() || inheritance.is_some();
+
     let process = process?;
     let (plan, bead) = match (solid?, slicing?) {
         (Solid::Loft((loft, bead)), slicing::Spec::Normal(slicing)) => {
@@ -345,12 +362,35 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
             return None;
         }
     };
+    if let (Plan::Duct { .. }, Some(first)) = (&plan, get("style").first()) {
+        diags.push(
+            Diagnostic::error(
+                "lmd::unsupported",
+                "styles pick tracks of planar layers; a loft's wall is one track a layer",
+            )
+            .label(first.span, "style")
+            .help("schedule the wall's power in `process` (e.g. `power = ramp(…)`)"),
+        );
+        return None;
+    }
+    let styles = style::assemble(
+        styles,
+        inheritance,
+        inheritance_stmt.map(|s| s.span),
+        &bead,
+        &process,
+        diags,
+    )?;
+    if !inheritance_ok {
+        return None;
+    }
     Some(Model {
         part: part?,
         plan,
         bead,
         process,
         machines,
+        styles,
     })
 }
 
@@ -366,30 +406,35 @@ fn single<'s>(
     example: &str,
     diags: &mut Diagnostics,
 ) -> Option<&'s Stmt> {
-    match stmts {
-        [] => {
-            diags.push(
-                Diagnostic::error(
-                    "lmd::missing-statement",
-                    format!("the file has no `{kind}` statement"),
-                )
-                .label(Span::new(0, 0), format!("`{kind}` is missing"))
-                .help(format!("add `{example}`")),
-            );
-            None
-        }
-        [s, rest @ ..] => {
-            for extra in rest {
-                diags.push(
-                    Diagnostic::error("lmd::duplicate", format!("`{kind}` is given twice"))
-                        .label(extra.kind.span, "second time")
-                        .label(s.kind.span, "first time")
-                        .help("keep one of them"),
-                );
-            }
-            Some(s)
-        }
+    if stmts.is_empty() {
+        diags.push(
+            Diagnostic::error(
+                "lmd::missing-statement",
+                format!("the file has no `{kind}` statement"),
+            )
+            .label(Span::new(0, 0), format!("`{kind}` is missing"))
+            .help(format!("add `{example}`")),
+        );
     }
+    single_optional(stmts, kind, diags)
+}
+
+/// At most one statement of `kind`; extra ones are reported.
+fn single_optional<'s>(
+    stmts: &[&'s Stmt],
+    kind: &str,
+    diags: &mut Diagnostics,
+) -> Option<&'s Stmt> {
+    let (first, rest) = stmts.split_first()?;
+    for extra in rest {
+        diags.push(
+            Diagnostic::error("lmd::duplicate", format!("`{kind}` is given twice"))
+                .label(extra.kind.span, "second time")
+                .label(first.kind.span, "first time")
+                .help("keep one of them"),
+        );
+    }
+    Some(first)
 }
 
 fn shape_error(s: &Stmt, shape: &str, example: &str) -> Diagnostic {

@@ -18,6 +18,83 @@ pub struct Model {
     pub process: Process,
     /// Machines to write programs for, with their declaration spans.
     pub machines: Vec<(Machine, Span)>,
+    /// Process styles and how they pass from layer to layer (seed 002).
+    pub styles: Styles,
+}
+
+/// The style table, in declaration order, and its inheritance.
+#[derive(Clone, Debug, Default)]
+pub struct Styles {
+    /// Declared styles; id 0 (the process block's values) is not among them.
+    pub table: Vec<Style>,
+    /// How a layer's styles pass to the next layer's similar tracks, if at all.
+    pub inheritance: Option<Inheritance>,
+}
+
+/// `style NAME { id, power, speed, powder, colour, when { … } }`: process values
+/// that replace the process block's on the tracks its rules pick.
+#[derive(Clone, Debug)]
+pub struct Style {
+    /// Id written into every point (1..=65535; 0 is the process block).
+    pub id: u16,
+    /// Its name.
+    pub name: String,
+    /// Laser power, if the style sets it.
+    pub power: Option<Power>,
+    /// Scan speed, if the style sets it.
+    pub speed: Option<Speed>,
+    /// Powder feed, if the style sets it.
+    pub powder: Option<MassFlow>,
+    /// Display colour `#rrggbb`.
+    pub colour: String,
+    /// Each `when { … }` block: the style applies where all of one block's
+    /// conditions hold.
+    pub rules: Vec<Vec<StyleCondition>>,
+    /// The style block.
+    pub span: Span,
+}
+
+/// Which tracks a `when { paths = … }` condition picks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PathSelect {
+    /// The outermost contour pass.
+    OuterContour,
+    /// Contour passes inside the outermost one.
+    InnerContour,
+    /// Any contour pass.
+    Contour,
+    /// Raster infill tracks.
+    Infill,
+}
+
+/// One condition of a `when` block.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum StyleCondition {
+    /// `paths = …`
+    Paths(PathSelect),
+    /// `shorter_than = L`: the track is shorter than L.
+    ShorterThan(Length),
+    /// `longer_than = L`: the track is at least L long.
+    LongerThan(Length),
+    /// `near_boundary = L`: all of the track lies within L of the layer's
+    /// boundary.
+    NearBoundary(Length),
+    /// `near_corner = L`: the track passes within L of a corner that turns by at
+    /// least `corner_angle`.
+    NearCorner(Length, Angle),
+    /// `layers = a .. b`: layers a to b, counted from 1 as the programs do.
+    Layers(usize, usize),
+}
+
+/// `inheritance { band, hit }` (seed 002): a track inherits the style of the
+/// previous layer's tracks of that style when at least `hit` of its length lies
+/// within `band` of them.
+#[derive(Clone, Copy, Debug)]
+pub struct Inheritance {
+    /// Half-width of the band around a styled track (the paper's R/2).
+    pub band: Length,
+    /// Share of a track's length that must lie inside the band, 0–1.
+    pub hit: f64,
 }
 
 /// A parametric section shape, sizes in mm, centred on its frame.
@@ -249,6 +326,8 @@ pub struct Process {
     pub power_range: [Power; 2],
     /// `power = …`
     pub power_span: Span,
+    /// `power_range = …`, if declared.
+    pub power_range_span: Option<Span>,
 }
 
 impl Section {
@@ -370,6 +449,9 @@ pub struct Extrusion {
     pub span: Span,
     /// The profile's declaration.
     pub profile_span: Span,
+    /// Where the shape itself is written: the profile's `outline(…)` (or the
+    /// section), for errors about the shape.
+    pub shape_span: Span,
 }
 
 /// Order of raster tracks.

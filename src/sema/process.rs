@@ -55,6 +55,7 @@ pub fn read<'a>(
         PowerSchedule::Constant(p) => (p.0, p.0),
         PowerSchedule::Ramp { from, to, .. } => (from.0.min(to.0), from.0.max(to.0)),
     };
+    let power_range_span = range.map(|r| r.1);
     let power_range = match range {
         Some(([a, b], rs)) => {
             if lo < a || hi > b {
@@ -90,5 +91,6 @@ pub fn read<'a>(
         power,
         power_range,
         power_span,
+        power_range_span,
     })
 }

@@ -4,6 +4,7 @@
 pub mod feasibility;
 pub mod normal;
 pub mod planar;
+pub mod styling;
 
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::geometry::LoftGeometry;

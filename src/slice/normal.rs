@@ -80,6 +80,7 @@ pub fn layer(model: &Model, geo: &LoftGeometry, plan: &Plan, i: usize) -> (Layer
             powder,
             defocus,
             laser_on: j < k,
+            style: 0,
         });
     }
     let o = f.spine.origin;

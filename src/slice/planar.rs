@@ -1,19 +1,216 @@
-//! Planar slicing of an extrusion: flat layers `lift` apart, each filled with
-//! contour passes and raster tracks (seed 001).
+//! Planar slicing of an extrusion: flat layers `lift` apart (layer `k` is laid on
+//! the plane z = k·lift), each filled with contour passes and raster tracks by
+//! [`crate::fill`] (seed 001), and each track given a process style by the
+//! style rules or by inheritance from the layer below (seed 002). Every track
+//! becomes a path whose points carry their style's process values; the laser is
+//! on from a track's first point to its last.
 
+use super::styling::Styler;
+use super::MAX_TOTAL_POINTS;
 use crate::diag::{Diagnostic, Diagnostics};
-use crate::ir::Layer;
-use crate::sema::model::{Extrusion, Model, PlanarSlicing};
+use crate::fill::{
+    self, FillError, FillSpec, Pattern as FillPattern, RasterSpec, Track, TrackKind,
+};
+use crate::geometry::outline;
+use crate::ir::{Frame, Layer, Path, PathKind, Point};
+use crate::sema::model::{Extrusion, Measure, Model, Pattern, PlanarSlicing};
+use crate::units::{short, Length};
 
 /// Slices an extrusion into filled planar layers.
 pub fn slice(
-    _model: &Model,
-    _extrusion: &Extrusion,
+    model: &Model,
+    extrusion: &Extrusion,
     slicing: &PlanarSlicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
-    Err(
-        Diagnostic::error("lmd::unsupported", "planar slicing is not built yet")
-            .label(slicing.span, "planar")
-            .into(),
-    )
+    let mut warnings = Diagnostics::new();
+    let w = model.bead.width.0;
+    let inset = match extrusion.measure {
+        Measure::Outer => w / 2.0,
+        Measure::Centre => 0.0,
+    };
+    let n = extrusion.layers.len();
+    let lift = extrusion.lift.0;
+    let mut out = Vec::with_capacity(n);
+    let mut total = 0usize;
+    let (mut short_tracks, mut first_short) = (0usize, None);
+    let mut styler = Styler::new(&model.styles, slicing.chord_error.0);
+    for (k, shape) in extrusion.layers.iter().enumerate() {
+        let profile = outline::profile(shape, slicing.chord_error.0);
+        let spec = FillSpec {
+            inset,
+            contours: slicing.contours,
+            offset: slicing.offset.0,
+            raster: slicing.infill.map(|r| RasterSpec {
+                angle_deg: (r.angle.0 + r.rotate.0 * k as f64).to_degrees(),
+                offset: slicing.offset.0,
+                pattern: match r.pattern {
+                    Pattern::Serpentine => FillPattern::Serpentine,
+                    Pattern::OneWay => FillPattern::OneWay,
+                },
+                extend: r.extend.0,
+            }),
+        };
+        let tracks = fill::fill(&profile, &spec, slicing.chord_error.0)
+            .map_err(|e| fill_error(e, k, extrusion, slicing))?;
+        if tracks.is_empty() {
+            return Err(fill_error(FillError::Empty, k, extrusion, slicing));
+        }
+        for t in &tracks {
+            if length(&t.points) < w {
+                short_tracks += 1;
+                first_short.get_or_insert(k);
+            }
+        }
+        total += tracks.iter().map(|t| t.points.len()).sum::<usize>();
+        if total > MAX_TOTAL_POINTS {
+            return Err(Diagnostic::error(
+                "lmd::too-many-points",
+                format!("the fill needs more than {MAX_TOTAL_POINTS} points"),
+            )
+            .label(slicing.span, "slicing")
+            .help("use fewer layers or a larger chord error")
+            .into());
+        }
+        let styles = styler.layer(k, &profile, &tracks);
+        out.push(layer(model, slicing, k, n, lift, &tracks, &styles));
+    }
+    if let Some(first) = first_short {
+        warnings.push(
+            Diagnostic::warning(
+                "lmd::short-track",
+                format!(
+                    "{short_tracks} track{} shorter than the bead width {} (first on layer {})",
+                    if short_tracks == 1 { " is" } else { "s are" },
+                    Length(w),
+                    first + 1
+                ),
+            )
+            .label(slicing.span, "fill")
+            .help("short tracks overheat and pile up: a slower or cooler style, or a profile without slivers"),
+        );
+    }
+    Ok((out, warnings))
+}
+
+fn length(p: &[[f64; 2]]) -> f64 {
+    p.windows(2)
+        .map(|s| (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1]))
+        .sum()
+}
+
+fn fill_error(e: FillError, k: usize, ex: &Extrusion, slicing: &PlanarSlicing) -> Diagnostics {
+    let d = match e {
+        FillError::SelfIntersecting { at } => Diagnostic::error(
+            "lmd::self-intersecting",
+            format!(
+                "the profile crosses itself at ({}, {}) mm on layer {}",
+                short(at[0]),
+                short(at[1]),
+                k + 1
+            ),
+        )
+        .label(ex.shape_span, "this outline's edges cross")
+        .label_opt(
+            (ex.profile_span != ex.shape_span).then_some(ex.profile_span),
+            "extruded here",
+        )
+        .help("reorder the outline's points so its edges do not cross"),
+        FillError::Empty => Diagnostic::error(
+            "lmd::fill-empty",
+            format!("no track fits in the profile on layer {}", k + 1),
+        )
+        .label(ex.profile_span, "profile")
+        .label(slicing.span, "fill")
+        .help("the profile is narrower than the bead and its contour passes; make it larger or use fewer contours"),
+        other => Diagnostic::error(
+            "lmd::fill",
+            format!("layer {} cannot be filled: {other}", k + 1),
+        )
+        .label(ex.profile_span, "profile")
+        .label(slicing.span, "fill"),
+    };
+    d.into()
+}
+
+fn layer(
+    model: &Model,
+    slicing: &PlanarSlicing,
+    k: usize,
+    n: usize,
+    lift: f64,
+    tracks: &[Track],
+    styles: &[u16],
+) -> Layer {
+    let z = k as f64 * lift;
+    let p = &model.process;
+    let base = Values {
+        power: p.power.at(k).watts() as f32,
+        powder: p.powder.g_min() as f32,
+        speed: slicing.speed.0 as f32,
+    };
+    let defocus = p.defocus.0 as f32;
+    let paths = tracks
+        .iter()
+        .zip(styles)
+        .filter(|(t, _)| t.points.len() >= 2)
+        .map(|(t, &style)| {
+            let v = match model.styles.table.iter().find(|s| s.id == style) {
+                Some(s) => Values {
+                    power: s.power.map_or(base.power, |p| p.watts() as f32),
+                    powder: s.powder.map_or(base.powder, |m| m.g_min() as f32),
+                    speed: s.speed.map_or(base.speed, |v| v.0 as f32),
+                },
+                None => base,
+            };
+            let m = t.points.len();
+            let points = (0..m)
+                .map(|i| {
+                    let (a, b) = if i + 1 < m { (i, i + 1) } else { (i - 1, i) };
+                    let (dx, dy) = (
+                        t.points[b][0] - t.points[a][0],
+                        t.points[b][1] - t.points[a][1],
+                    );
+                    let len = dx.hypot(dy).max(1e-12);
+                    Point {
+                        pos: [t.points[i][0], t.points[i][1], z],
+                        normal: [0.0, 0.0, 1.0],
+                        tangent: [(dx / len) as f32, (dy / len) as f32, 0.0],
+                        layer_height: lift as f32,
+                        speed: v.speed,
+                        power: v.power,
+                        powder: v.powder,
+                        defocus,
+                        laser_on: i + 1 < m,
+                        style,
+                    }
+                })
+                .collect();
+            Path {
+                kind: match t.kind {
+                    TrackKind::Contour { .. } => PathKind::Contour,
+                    TrackKind::Infill => PathKind::Infill,
+                },
+                points,
+            }
+        })
+        .collect();
+    Layer {
+        index: k,
+        station: k as f64 / n as f64,
+        frame: Frame {
+            origin: [0.0, 0.0, z],
+            x: [1.0, 0.0, 0.0],
+            y: [0.0, 1.0, 0.0],
+            z: [0.0, 0.0, 1.0],
+        },
+        paths,
+    }
+}
+
+/// The process values a track is deposited with.
+#[derive(Clone, Copy)]
+struct Values {
+    power: f32,
+    powder: f32,
+    speed: f32,
 }

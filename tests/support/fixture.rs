@@ -97,6 +97,7 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
                 powder: 45.9,
                 defocus: -8.57,
                 laser_on: j < k,
+                style: 0,
             });
         }
         let mut paths = vec![Path {
@@ -136,6 +137,7 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
             power: [0.0, 4000.0],
         },
         machines,
+        styles: Vec::new(),
         layers: out,
         origins: Origins::default(),
     }

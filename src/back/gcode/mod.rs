@@ -19,7 +19,8 @@ pub mod kinematics;
 mod limits;
 mod writer;
 
-use super::context::{counts, layer_context};
+use super::context::{counts, layer_context, styles};
+use super::fixed::trimmed;
 use super::{program_stem, EmitError, Sink, Templates};
 use crate::check::Verified;
 use crate::ir::{AxisLimits, Cnc, Kinematics, Path, Point};
@@ -339,16 +340,11 @@ fn base_context(p: &Verified, cnc: &Cnc, kin: Kinematics, file: &str) -> tera::C
     ctx
 }
 
-fn trimmed(v: f64, decimals: usize) -> String {
-    let mut b = Vec::new();
-    super::fixed::push_trimmed(&mut b, v, decimals);
-    String::from_utf8(b).unwrap_or_default()
-}
-
 fn header_context(ctx: &mut tera::Context, p: &Verified, cnc: &Cnc, five: bool) {
     let prog = p.ir();
     let style = cnc.dialect.comment;
     counts(ctx, p);
+    styles(ctx, p);
     let u = &prog.units;
     let mut units = std::collections::BTreeMap::new();
     for (k, v) in [

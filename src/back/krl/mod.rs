@@ -20,8 +20,8 @@
 pub mod modules;
 pub mod orient;
 
-use super::context::{counts, layer_context};
-use super::fixed::{fixed, push_trimmed};
+use super::context::{counts, layer_context, styles};
+use super::fixed::{fixed, trimmed};
 use super::{program_stem, EmitError, Sink, Templates};
 use crate::check::Verified;
 use crate::diag::{Diagnostic, Diagnostics};
@@ -366,12 +366,6 @@ pub fn comment_safe(text: &str) -> String {
         .collect()
 }
 
-fn trimmed(v: f64, decimals: usize) -> String {
-    let mut b = Vec::new();
-    push_trimmed(&mut b, v, decimals);
-    String::from_utf8(b).unwrap_or_default()
-}
-
 /// A frame as a KRL FRAME aggregate, or `None` when the controller's table entry
 /// is used as it is.
 fn frame_value(f: &FrameRef) -> Option<String> {
@@ -401,6 +395,7 @@ fn beam_text(b: ToolAxis) -> &'static str {
 
 fn main_context(ctx: &mut tera::Context, p: &Verified, robot: &Robot, s: modules::Stats) {
     counts(ctx, p);
+    styles(ctx, p);
     ctx.insert("tool_index", &robot.tool.index);
     ctx.insert("tool_value", &frame_value(&robot.tool));
     ctx.insert("base_index", &robot.base.index);

@@ -1,0 +1,126 @@
+//! The model's 2-D shapes as [`Profile`]s: outlines of lines and arcs map to
+//! vertices with bulges; sections (centred on the origin) to their exact
+//! outlines, an ellipse flattened within the chord error.
+
+use super::profile::{Profile, Vertex};
+use crate::sema::model::{Outline, Section, Segment, Shape, Turn};
+use std::f64::consts::PI;
+
+/// The profile of `shape`; `chord_error` bounds the flattening of an ellipse.
+pub fn profile(shape: &Shape, chord_error: f64) -> Profile {
+    Profile::new(match shape {
+        Shape::Outline(o) => outline(o),
+        Shape::Section(s) => section(s, chord_error),
+    })
+}
+
+/// Bulge (tan of a quarter of the swept angle, + counter-clockwise) of the
+/// shorter arc of radius `r` over a chord `c`.
+pub fn bulge(c: f64, r: f64, turn: Turn) -> f64 {
+    let half = (c / (2.0 * r)).clamp(-1.0, 1.0).asin(); // θ/2
+    let b = (half / 2.0).tan();
+    match turn {
+        Turn::Left => b,
+        Turn::Right => -b,
+    }
+}
+
+fn outline(o: &Outline) -> Vec<Vertex> {
+    let xy = |p: [crate::units::Length; 2]| [p[0].0, p[1].0];
+    let mut out = vec![Vertex {
+        x: o.start[0].0,
+        y: o.start[1].0,
+        bulge: 0.0,
+    }];
+    for seg in &o.segments {
+        let (to, b) = match *seg {
+            Segment::Line { to } => (xy(to), 0.0),
+            Segment::Arc { to, radius, turn } => {
+                let from = out.last().map(|v| [v.x, v.y]).unwrap_or_default();
+                let to = xy(to);
+                let c = (to[0] - from[0]).hypot(to[1] - from[1]);
+                (to, bulge(c, radius.0, turn))
+            }
+        };
+        if let Some(last) = out.last_mut() {
+            last.bulge = b;
+        }
+        out.push(Vertex {
+            x: to[0],
+            y: to[1],
+            bulge: 0.0,
+        });
+    }
+    // A last piece that returns to the start closes the outline itself.
+    if out.len() > 2 {
+        let (f, l) = (out[0], out[out.len() - 1]);
+        if (f.x - l.x).abs() < 1e-9 && (f.y - l.y).abs() < 1e-9 {
+            out.pop();
+        }
+    }
+    out
+}
+
+fn v(x: f64, y: f64, bulge: f64) -> Vertex {
+    Vertex { x, y, bulge }
+}
+
+fn section(s: &Section, chord_error: f64) -> Vec<Vertex> {
+    // tan(90°/4): a quarter circle.
+    let quarter = (PI / 8.0).tan();
+    match *s {
+        Section::Circle { r } => vec![v(r.0, 0.0, 1.0), v(-r.0, 0.0, 1.0)],
+        Section::Rectangle { a, b } => vec![
+            v(-a.0, -b.0, 0.0),
+            v(a.0, -b.0, 0.0),
+            v(a.0, b.0, 0.0),
+            v(-a.0, b.0, 0.0),
+        ],
+        Section::RoundedRectangle { a, b, r } => {
+            let (a, b, r) = (a.0, b.0, r.0.min(a.0).min(b.0));
+            vec![
+                v(-a + r, -b, 0.0),
+                v(a - r, -b, quarter),
+                v(a, -b + r, 0.0),
+                v(a, b - r, quarter),
+                v(a - r, b, 0.0),
+                v(-a + r, b, quarter),
+                v(-a, b - r, 0.0),
+                v(-a, -b + r, quarter),
+            ]
+        }
+        Section::Polygon { n, r } => (0..n)
+            .map(|k| {
+                let t = 2.0 * PI * k as f64 / n as f64;
+                v(r.0 * t.cos(), r.0 * t.sin(), 0.0)
+            })
+            .collect(),
+        Section::Ellipse { a, b } => {
+            // Chord error of a circle of the larger radius bounds the ellipse's.
+            let big = a.0.max(b.0);
+            let e = chord_error.clamp(1e-6, big);
+            let step = 2.0 * (1.0 - e / big).acos();
+            let n = ((2.0 * PI / step).ceil() as usize).clamp(8, 100_000);
+            (0..n)
+                .map(|k| {
+                    let t = 2.0 * PI * k as f64 / n as f64;
+                    v(a.0 * t.cos(), b.0 * t.sin(), 0.0)
+                })
+                .collect()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quarter_and_half_circle_bulges() {
+        // A quarter circle of radius 1: chord √2, bulge tan(22.5°).
+        let b = bulge(2f64.sqrt(), 1.0, Turn::Left);
+        assert!((b - (PI / 8.0).tan()).abs() < 1e-12);
+        // A half circle: bulge 1; turning right: negative.
+        assert!((bulge(2.0, 1.0, Turn::Right) + 1.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,444 @@
+//! `style NAME { … when { … } }` and `inheritance { band, hit }` (seed 002): the
+//! style table, the rules that pick a style's tracks, and checks of every
+//! style's values against the bead model and the laser.
+
+use super::fields::{self, Fields};
+use super::model::{Bead, Inheritance, PathSelect, Process, Style, StyleCondition, Styles};
+use super::value::{Env, Value};
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{Body, Stmt};
+use crate::units::{short, Angle, Dim, Length, MassFlow, Power, Speed};
+use std::collections::BTreeMap;
+
+/// Colours of styles that do not give one (the "tab10" palette).
+const PALETTE: [&str; 10] = [
+    "#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+    "#bcbd22", "#17becf",
+];
+
+/// Corners that turn by at least this much are sharp unless `corner_angle` says.
+const DEFAULT_CORNER: f64 = 45.0;
+
+const PATHS: &[&str] = &["outer_contour", "inner_contour", "contour", "infill"];
+
+/// A style as read, before the checks that need the bead and the process.
+pub struct Written {
+    style: Style,
+    power_span: Option<Span>,
+    speed_span: Option<Span>,
+    /// Whether every field read without error; incomplete styles are still
+    /// checked against the bead and the laser, so all errors show at once.
+    complete: bool,
+}
+
+/// Reads every `style` statement, giving ids in declaration order to those
+/// without one.
+pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) -> Vec<Written> {
+    let mut out: Vec<Written> = Vec::new();
+    let mut names: BTreeMap<String, Span> = BTreeMap::new();
+    let mut ids: BTreeMap<u16, Span> = BTreeMap::new();
+    let mut next_id: u16 = 1;
+    for (i, s) in stmts.iter().enumerate() {
+        let (Some(n), Body::Block(body, _)) = (&s.name, &s.body) else {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::syntax",
+                    "a `style` statement is written `style NAME { … }`",
+                )
+                .label(s.span, "not in that shape")
+                .help("e.g. `style edge { power = 1300 W  when { paths = outer_contour } }`"),
+            );
+            continue;
+        };
+        if let Some(prev) = names.insert(n.node.clone(), n.span) {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::duplicate",
+                    format!("style `{}` is declared twice", n.node),
+                )
+                .label(n.span, "second declaration")
+                .label(prev, "first declaration"),
+            );
+        }
+        let what = format!("style `{}`", n.node);
+        let f = Fields::block_with_repeats(
+            env,
+            body,
+            &["id", "power", "speed", "powder", "colour"],
+            &[],
+            &["when"],
+            what.clone(),
+            s.span,
+            diags,
+        );
+        let id = match f.count("id", 1, u16::MAX as usize, None, diags) {
+            Some((id, sp)) => {
+                let id = id as u16;
+                if let Some(prev) = ids.get(&id) {
+                    diags.push(
+                        Diagnostic::error("lmd::duplicate", format!("style id {id} is used twice"))
+                            .label(sp, "second use")
+                            .label(*prev, "first use")
+                            .help("give every style its own id"),
+                    );
+                }
+                ids.insert(id, sp);
+                Some(id)
+            }
+            None if f.has("id") => None,
+            None => {
+                // The lowest id no style has claimed so far.
+                while ids.contains_key(&next_id) {
+                    next_id = next_id.saturating_add(1);
+                }
+                ids.insert(next_id, n.span);
+                Some(next_id)
+            }
+        };
+        let power = optional(f.positive("power", Dim::POWER, None, diags), &f, "power");
+        let speed = optional(f.positive("speed", Dim::SPEED, None, diags), &f, "speed");
+        let powder = optional(
+            f.positive("powder", Dim::MASS_FLOW, None, diags),
+            &f,
+            "powder",
+        );
+        let colour = match f.text("colour", None, diags) {
+            Some((c, sp)) => {
+                if is_colour(&c) {
+                    Some(c.to_ascii_lowercase())
+                } else {
+                    diags.push(
+                        Diagnostic::error(
+                            "lmd::bad-choice",
+                            format!("`{c}` is not a colour `#rrggbb`"),
+                        )
+                        .label(sp, "not a colour")
+                        .help("write six hex digits, e.g. `colour = \"#d62728\"`"),
+                    );
+                    None
+                }
+            }
+            None if f.has("colour") => None,
+            None => Some(PALETTE[i % PALETTE.len()].to_string()),
+        };
+        let blocks = f.nested_all("when");
+        if blocks.is_empty() {
+            diags.push(
+                Diagnostic::error("lmd::missing-field", format!("{what} picks no tracks"))
+                    .label(s.span, "no `when { … }` block")
+                    .help("add a rule, e.g. `when { paths = outer_contour }`; several `when` blocks pick the tracks any of them picks"),
+            );
+        }
+        let rules: Vec<Option<Vec<StyleCondition>>> = blocks
+            .iter()
+            .map(|(stmts, sp)| rule(env, stmts, *sp, &what, diags))
+            .collect();
+        let complete = id.is_some()
+            && power.is_some()
+            && speed.is_some()
+            && powder.is_some()
+            && colour.is_some()
+            && !blocks.is_empty()
+            && rules.iter().all(Option::is_some);
+        let (power, speed, powder) = (power.flatten(), speed.flatten(), powder.flatten());
+        out.push(Written {
+            style: Style {
+                id: id.unwrap_or(0),
+                name: n.node.clone(),
+                power: power.map(|(p, _)| Power(p)),
+                speed: speed.map(|(v, _)| Speed(v)),
+                powder: powder.map(|(m, _)| MassFlow(m)),
+                colour: colour.unwrap_or_default(),
+                rules: rules.into_iter().flatten().collect(),
+                span: s.span,
+            },
+            power_span: power.map(|p| p.1),
+            speed_span: speed.map(|v| v.1),
+            complete,
+        });
+    }
+    out
+}
+
+/// `Some(None)` when the field is absent, `None` when it was wrong (reported).
+fn optional(v: Option<(f64, Span)>, f: &Fields, key: &str) -> Option<Option<(f64, Span)>> {
+    match v {
+        Some(v) => Some(Some(v)),
+        None if f.has(key) => None,
+        None => Some(None),
+    }
+}
+
+fn is_colour(c: &str) -> bool {
+    c.len() == 7 && c.starts_with('#') && c[1..].chars().all(|h| h.is_ascii_hexdigit())
+}
+
+fn rule<'a>(
+    env: &mut Env<'a>,
+    stmts: &'a [Stmt],
+    span: Span,
+    what: &str,
+    diags: &mut Diagnostics,
+) -> Option<Vec<StyleCondition>> {
+    let f = Fields::block(
+        env,
+        stmts,
+        &[
+            "paths",
+            "shorter_than",
+            "longer_than",
+            "near_boundary",
+            "near_corner",
+            "corner_angle",
+            "layers",
+        ],
+        &[],
+        format!("a `when` block of {what}"),
+        span,
+        diags,
+    );
+    let mut ok = true;
+    let mut out = Vec::new();
+    match f.symbol("paths", PATHS, None, diags) {
+        Some((p, _)) => out.push(StyleCondition::Paths(match p.as_str() {
+            "outer_contour" => PathSelect::OuterContour,
+            "inner_contour" => PathSelect::InnerContour,
+            "contour" => PathSelect::Contour,
+            _ => PathSelect::Infill,
+        })),
+        None => ok &= !f.has("paths"),
+    }
+    let mut length = |key: &str, make: fn(Length) -> StyleCondition, out: &mut Vec<_>| match f
+        .positive(key, Dim::LENGTH, None, diags)
+    {
+        Some((l, _)) => out.push(make(Length(l))),
+        None => ok &= !f.has(key),
+    };
+    length("shorter_than", StyleCondition::ShorterThan, &mut out);
+    length("longer_than", StyleCondition::LongerThan, &mut out);
+    length("near_boundary", StyleCondition::NearBoundary, &mut out);
+    let corner = f.positive("near_corner", Dim::LENGTH, None, diags);
+    ok &= corner.is_some() || !f.has("near_corner");
+    let angle = match f.quantity("corner_angle", Dim::ANGLE, None, diags) {
+        Some((a, sp)) if !(a > 0.0 && a <= std::f64::consts::PI) => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::out-of-range",
+                    "`corner_angle` must be more than 0 deg and at most 180 deg",
+                )
+                .label(sp, format!("this is {} deg", short(a.to_degrees())))
+                .help("a corner's angle is how far the boundary turns there"),
+            );
+            ok = false;
+            None
+        }
+        Some((a, sp)) => {
+            if corner.is_none() && !f.has("near_corner") {
+                diags.push(
+                    Diagnostic::warning(
+                        "lmd::unused",
+                        "`corner_angle` does nothing without `near_corner`",
+                    )
+                    .label(sp, "unused")
+                    .help("add `near_corner = 3 mm` or remove `corner_angle`"),
+                );
+            }
+            Some(Angle(a))
+        }
+        None => {
+            ok &= !f.has("corner_angle");
+            None
+        }
+    };
+    if let Some((d, _)) = corner {
+        out.push(StyleCondition::NearCorner(
+            Length(d),
+            angle.unwrap_or(Angle::from_deg(DEFAULT_CORNER)),
+        ));
+    }
+    if let Some(v) = f.value("layers", None, diags) {
+        match &v.value {
+            Value::Range(a, b) if a.dim == Dim::NONE && b.dim == Dim::NONE => {
+                let whole = |x: f64| x.fract() == 0.0 && (1.0..=1e6).contains(&x);
+                if whole(a.value) && whole(b.value) && a.value <= b.value {
+                    out.push(StyleCondition::Layers(a.value as usize, b.value as usize));
+                } else {
+                    diags.push(
+                        Diagnostic::error(
+                            "lmd::out-of-range",
+                            "`layers` must be a range of layer numbers `first .. last`, counted from 1",
+                        )
+                        .label(v.span, format!("this is {} .. {}", short(a.value), short(b.value)))
+                        .help("e.g. `layers = 1 .. 3` for the first three layers"),
+                    );
+                    ok = false;
+                }
+            }
+            other => {
+                diags.push(
+                    Diagnostic::error("lmd::type", "`layers` must be a range of layer numbers")
+                        .label(v.span, format!("this is {}", other.describe()))
+                        .help("e.g. `layers = 1 .. 3` for the first three layers"),
+                );
+                ok = false;
+            }
+        }
+    } else {
+        ok &= !f.has("layers");
+    }
+    if ok && out.is_empty() {
+        diags.push(
+            Diagnostic::error("lmd::missing-field", "an empty `when` block picks every track")
+                .label(span, "no condition")
+                .help("set values for every track in `process`; here say which tracks, e.g. `paths = infill`"),
+        );
+        return None;
+    }
+    ok.then_some(out)
+}
+
+/// Reads `inheritance { band, hit }`.
+pub fn inheritance<'a>(
+    env: &mut Env<'a>,
+    stmt: &'a Stmt,
+    diags: &mut Diagnostics,
+) -> Option<Inheritance> {
+    let (None, Body::Block(stmts, _)) = (&stmt.name, &stmt.body) else {
+        diags.push(
+            Diagnostic::error(
+                "lmd::syntax",
+                "an `inheritance` statement is written `inheritance { band = …, hit = … }`",
+            )
+            .label(stmt.span, "not in that shape")
+            .help("e.g. `inheritance { band = 0.8 mm  hit = 99 % }`"),
+        );
+        return None;
+    };
+    let f = Fields::block(
+        env,
+        stmts,
+        &["band", "hit"],
+        &[],
+        "inheritance".into(),
+        stmt.span,
+        diags,
+    );
+    let band = f.positive("band", Dim::LENGTH, Some("0.8 mm"), diags);
+    let hit = match f.value("hit", Some("99 %"), diags) {
+        Some(v) => match fields::quantity(v, Dim::NONE, "hit", diags) {
+            Some(h) if h > 0.0 && h <= 1.0 => Some(h),
+            Some(h) => {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::out-of-range",
+                        "`hit` is the share of a track inside the band: more than 0 % and at most 100 %",
+                    )
+                    .label(v.span, format!("this is {} %", short(h * 100.0)))
+                    .help("the paper uses 99 %"),
+                );
+                None
+            }
+            None => None,
+        },
+        None => None,
+    };
+    Some(Inheritance {
+        band: Length(band?.0),
+        hit: hit?,
+    })
+}
+
+/// Checks each style's values against the bead model (speed range, and the bead
+/// height that speed gives) and the laser's power range, and makes the table.
+pub fn assemble(
+    written: Vec<Written>,
+    inheritance: Option<Inheritance>,
+    inheritance_span: Option<Span>,
+    bead: &Bead,
+    process: &Process,
+    diags: &mut Diagnostics,
+) -> Option<Styles> {
+    let mut ok = written.iter().all(|w| w.complete);
+    for w in &written {
+        let s = &w.style;
+        if let (Some(v), Some(sp)) = (s.speed, w.speed_span) {
+            let [lo, hi] = bead.speed;
+            if v.0 < lo.0 * (1.0 - 1e-9) || v.0 > hi.0 * (1.0 + 1e-9) {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::out-of-range",
+                        format!(
+                            "style `{}` scans at {}, outside the {} .. {} bead `{}` is valid for",
+                            s.name, v, lo, hi, bead.name
+                        ),
+                    )
+                    .label(sp, "style speed")
+                    .label(bead.speed_span, "bead model's speeds")
+                    .help(
+                        "choose a speed the bead model covers, or measure the bead at this speed",
+                    ),
+                );
+                ok = false;
+            } else {
+                let h = bead.model.height_at(v, bead.width);
+                let [h_lo, h_hi] = bead.height;
+                if h.0 < h_lo.0 * (1.0 - 1e-6) || h.0 > h_hi.0 * (1.0 + 1e-6) {
+                    diags.push(
+                        Diagnostic::error(
+                            "lmd::out-of-range",
+                            format!(
+                                "style `{}` scans at {}, where bead `{}` is {} high: outside its allowed {} .. {}",
+                                s.name, v, bead.name, h, h_lo, h_hi
+                            ),
+                        )
+                        .label(sp, "style speed")
+                        .label(bead.height_span, "allowed heights")
+                        .help("a speed whose bead height lies in the allowed range keeps the layer level"),
+                    );
+                    ok = false;
+                }
+            }
+        }
+        if let (Some(p), Some(sp)) = (s.power, w.power_span) {
+            let [lo, hi] = process.power_range;
+            if p.0 < lo.0 * (1.0 - 1e-9) || p.0 > hi.0 * (1.0 + 1e-9) {
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::out-of-range",
+                        format!(
+                            "style `{}` sets {}, outside the laser's range {} .. {}",
+                            s.name, p, lo, hi
+                        ),
+                    )
+                    .label(sp, "style power")
+                    .label(
+                        process.power_range_span.unwrap_or(process.power_span),
+                        match process.power_range_span {
+                            Some(_) => "the laser's range",
+                            None => "the range is this power alone",
+                        },
+                    )
+                    .help(match process.power_range_span {
+                        Some(_) => "widen `power_range` if the laser allows it, or change the style's power",
+                        None => "declare the laser's range in `process`, e.g. `power_range = 1000 W .. 3000 W`",
+                    }),
+                );
+                ok = false;
+            }
+        }
+    }
+    if written.is_empty() {
+        if let Some(sp) = inheritance_span {
+            diags.push(
+                Diagnostic::warning("lmd::unused", "inheritance without styles does nothing")
+                    .label(sp, "no style to inherit")
+                    .help("declare `style NAME { … }` or remove `inheritance`"),
+            );
+        }
+    }
+    ok.then(|| Styles {
+        table: written.into_iter().map(|w| w.style).collect(),
+        inheritance,
+    })
+}

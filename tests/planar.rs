@@ -1,0 +1,189 @@
+//! The planar examples end to end, against the papers' numbers: the sprocket
+//! tooth of seed 001 (layer lift A/d, 15 tracks a layer, raster starts on the
+//! growing arc and their extension) and the styled chord of seed 002 (every point
+//! carries its style's values; styles set on the first layer are inherited as
+//! the section drifts).
+
+use lmdc::bead::segment_area;
+use lmdc::ir::{PathKind, Point, Program};
+use lmdc::pipeline::compile;
+
+fn build(path: &str) -> Program {
+    let src = std::fs::read_to_string(path).unwrap();
+    let c = compile(&src, &mut ());
+    match c.program {
+        Some(p) => p.into_ir(),
+        None => panic!("{path} does not compile: {:?}", c.diagnostics),
+    }
+}
+
+fn length(points: &[Point]) -> f64 {
+    points
+        .windows(2)
+        .map(|s| (s[1].pos[0] - s[0].pos[0]).hypot(s[1].pos[1] - s[0].pos[1]))
+        .sum()
+}
+
+// Seed 001: w = 2.2 mm, h = 0.7 mm, d = 1.6 mm.
+const W: f64 = 2.2;
+const H: f64 = 0.7;
+const D: f64 = 1.6;
+const TRACKS: usize = 15;
+const L: f64 = 40.0;
+
+#[test]
+fn sprocket_layers_rise_by_a_over_d() {
+    let p = build("examples/sprocket_tooth.lmd");
+    let a = segment_area(W, H);
+    // DOMAIN.md: A ≈ 1.1056 mm², A/d ≈ 0.691 mm (A/w ≈ 0.5025 mm undershoots).
+    assert!((a - 1.1056).abs() < 5e-4, "A = {a}");
+    let lift = a / D;
+    assert!((lift - 0.691).abs() < 5e-4);
+    assert_eq!(p.layers.len(), 35);
+    for (k, layer) in p.layers.iter().enumerate() {
+        for path in &layer.paths {
+            for pt in &path.points {
+                assert!((pt.pos[2] - k as f64 * lift).abs() < 1e-9);
+                assert!((pt.layer_height as f64 - lift).abs() < 1e-5);
+                assert_eq!(pt.speed, 6.0);
+                assert_eq!(pt.power, 1500.0);
+                assert_eq!(pt.powder, 8.0);
+                assert_eq!(pt.style, 0);
+            }
+        }
+    }
+}
+
+#[test]
+fn sprocket_has_fifteen_tracks_a_layer_along_x() {
+    let p = build("examples/sprocket_tooth.lmd");
+    for layer in &p.layers {
+        assert_eq!(layer.paths.len(), TRACKS, "layer {}", layer.index);
+        let mut ys: Vec<f64> = layer
+            .paths
+            .iter()
+            .map(|path| {
+                assert_eq!(path.kind, PathKind::Infill);
+                let y = path.points[0].pos[1];
+                for pt in &path.points {
+                    assert!((pt.pos[1] - y).abs() < 1e-9, "a track along x");
+                }
+                // The laser is on from the first point to the last.
+                let (last, rest) = path.points.split_last().unwrap();
+                assert!(rest.iter().all(|pt| pt.laser_on) && !last.laser_on);
+                y
+            })
+            .collect();
+        ys.sort_by(f64::total_cmp);
+        for (n, y) in ys.iter().enumerate() {
+            assert!((y - n as f64 * D).abs() < 1e-9, "track {n} at y = {y}");
+        }
+    }
+}
+
+/// Where track `n` (at y = n·d) meets the corner arc of radius `r` centred on
+/// (r, r), before extension: r − sqrt(r² − (r − n·d)²) (seed 001 eq. 2), or the
+/// straight edge x = 0 above the arc.
+fn clipped_start(r: f64, n: usize) -> f64 {
+    let y = n as f64 * D;
+    if y >= r {
+        0.0
+    } else {
+        r - (r * r - (r - y).powi(2)).sqrt()
+    }
+}
+
+#[test]
+fn sprocket_raster_starts_follow_the_growing_arc_extended_by_at_most_d() {
+    let p = build("examples/sprocket_tooth.lmd");
+    for (k, layer) in p.layers.iter().enumerate() {
+        let c = (k + 2).min(10) as f64;
+        let r = c * D + W / 2.0;
+        let mut tracks: Vec<(f64, f64, f64)> = layer
+            .paths
+            .iter()
+            .map(|path| {
+                let xs = path.points.iter().map(|pt| pt.pos[0]);
+                let lo = xs.clone().fold(f64::INFINITY, f64::min);
+                let hi = xs.fold(f64::NEG_INFINITY, f64::max);
+                (path.points[0].pos[1], lo, hi)
+            })
+            .collect();
+        tracks.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (n, &(_, lo, hi)) in tracks.iter().enumerate() {
+            // The far end is the straight edge x = L: nothing to extend.
+            assert!((hi - L).abs() < 1e-9, "layer {k} track {n} ends at {hi}");
+            // The near end: the clipped start, moved out by at most d and never
+            // past where the next track (further from the arc) starts.
+            let x_n = clipped_start(r, n);
+            let x_next = if n + 1 < TRACKS {
+                clipped_start(r, n + 1)
+            } else {
+                x_n
+            };
+            let expected = x_next.max(x_n - D);
+            assert!(
+                (lo - expected).abs() < 1e-6,
+                "layer {k} (R = {r}) track {n}: starts at {lo}, expected {expected} (clipped at {x_n})"
+            );
+            assert!(lo >= -1e-9, "inside the profile grown by at most d");
+        }
+    }
+}
+
+#[test]
+fn chord_points_carry_their_styles_values() {
+    let p = build("examples/styled_chord.lmd");
+    let table: Vec<(u16, &str)> = p.styles.iter().map(|s| (s.id, s.name.as_str())).collect();
+    assert_eq!(table, [(1, "edge"), (2, "short")]);
+    for layer in &p.layers {
+        for path in &layer.paths {
+            let style = path.points[0].style;
+            for pt in &path.points {
+                assert_eq!(pt.style, style, "one style a track");
+                let (power, speed) = match style {
+                    0 => (2000.0, 10.0),
+                    1 => (2300.0, 8.0),
+                    2 => (1700.0, 12.0),
+                    s => panic!("unknown style {s}"),
+                };
+                assert_eq!((pt.power, pt.speed, pt.powder), (power, speed, 12.0));
+            }
+            // The outer contour is `edge` on every layer, and only it.
+            assert_eq!(path.kind == PathKind::Contour, style == 1);
+        }
+    }
+}
+
+#[test]
+fn chord_short_tracks_are_styled_on_layer_one_and_inherited_above() {
+    let p = build("examples/styled_chord.lmd");
+    let short = |layer: &lmdc::ir::Layer| -> Vec<(f64, u16)> {
+        layer
+            .paths
+            .iter()
+            .filter(|path| path.kind == PathKind::Infill)
+            .map(|path| (length(&path.points), path.points[0].style))
+            .collect()
+    };
+    let first = short(&p.layers[0]);
+    let styled = first.iter().filter(|t| t.1 == 2).count();
+    assert!(styled >= 3, "the web's tracks are short: {first:?}");
+    for (len, style) in &first {
+        assert_eq!(
+            *style == 2,
+            *len < 12.0,
+            "layer 1: rule `shorter_than = 12 mm`"
+        );
+    }
+    // The section drifts 0.15 mm a layer, well inside the 1 mm band: the same
+    // tracks, shifted, inherit the style on every layer above, and no other.
+    for layer in &p.layers[1..] {
+        let tracks = short(layer);
+        assert_eq!(tracks.len(), first.len(), "layer {}", layer.index);
+        for ((len, style), (len0, style0)) in tracks.iter().zip(&first) {
+            assert!((len - len0).abs() < 1e-6);
+            assert_eq!(style, style0, "layer {}", layer.index);
+        }
+    }
+}
