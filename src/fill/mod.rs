@@ -16,9 +16,11 @@
 //!   `inset + contours·offset` (just `inset` without contours).
 //! - **Raster lines** run in direction `angle_deg` (from +x, counter-
 //!   clockwise). With `s` the coordinate across them, lines sit at
-//!   `s_min + n·offset` for `n = 0, 1, …` while `≤ s_max` (a relative
-//!   1e-9 of slack, so that a region exactly `k` offsets wide gets its last
-//!   line); `s_min`, `s_max` are the region's extremes. Line 0 thus touches
+//!   `s_min + n·offset` for `n = 0, 1, …` while `≤ s_max` (with 1e-9 of an
+//!   offset of slack, so that a region exactly `k` offsets wide gets its
+//!   last line, placed exactly on `s_max`); `s` is measured along the
+//!   direction's left normal (+y for 0°), and `s_min`, `s_max` are the
+//!   region's extremes (arcs included). Line 0 thus touches
 //!   the region's extreme point, and over a circular edge of radius `R` line
 //!   `n` meets the circle `sqrt(R² − (R − n·d)²)` from the circle's centre
 //!   line — seed 001's `X_n`.
