@@ -174,6 +174,24 @@ pub fn fill(profile: &Profile, spec: &FillSpec, chord_error: f64) -> Result<Vec<
     Ok(tracks)
 }
 
+/// Takes `n` points from the layer's budget, or fails once it is spent.
+fn spend(points_left: &mut u64, n: usize) -> Result<(), FillError> {
+    let n = n as u64;
+    if n > *points_left {
+        return Err(too_many_points(*points_left, n));
+    }
+    *points_left -= n;
+    Ok(())
+}
+
+/// The error for needing `n` more points with `left` of the budget left.
+fn too_many_points(left: u64, n: u64) -> FillError {
+    FillError::TooManyPoints(Count {
+        wanted: (MAX_POINTS - left).saturating_add(n),
+        max: MAX_POINTS,
+    })
+}
+
 fn validate(profile: &Profile, spec: &FillSpec, chord_error: f64) -> Result<(), FillError> {
     let mut numbers = vec![spec.inset, spec.offset, chord_error];
     if let Some(r) = &spec.raster {
