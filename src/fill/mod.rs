@@ -33,8 +33,9 @@
 //!   outward along its line by `min(extend, reach)`, where `reach` is how much
 //!   further an interval of a neighbouring line (`n − 1` or `n + 1`, the
 //!   larger reach counts) goes past that end. Only a neighbour interval that
-//!   overlaps this interval counts, and only at the end where this interval
-//!   is the last one on its line overlapping it: under a notch the wide
+//!   overlaps this interval counts, at this interval's +end only if no later
+//!   interval of this line overlaps it too, at the −end only if no earlier
+//!   one does: under a notch the wide
 //!   interval below reaches past the inner ends of the two intervals above,
 //!   but that reach belongs to the notch's floor, not to those ends. So a
 //!   curved or slanted edge's staircase is filled, a straight edge across the
