@@ -605,3 +605,48 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Star-shaped outlines with bulging (often concave) pieces: every fill
+    /// either succeeds within the grown outline or says why not, and contour
+    /// points sit at their depth.
+    #[test]
+    fn star_outlines_fill_or_fail_cleanly(
+        pts in prop::collection::vec((0.0f64..1.0, 1.0f64..30.0, -1.5f64..1.5), 3..14),
+        angle in -360.0f64..360.0,
+        d in 0.2f64..3.0,
+        ef in 0.0f64..1.2,
+        inset in 0.0f64..3.0,
+        contours in 0usize..4,
+    ) {
+        let n = pts.len();
+        let p = Profile::new(pts.iter().enumerate().map(|(i, &(a, r, b))| {
+            let phi = (i as f64 + 0.9 * a) / n as f64 * 2.0 * PI;
+            Vertex::arc(r * phi.cos(), r * phi.sin(), b)
+        }).collect());
+        let extend = ef * d;
+        let spec = FillSpec {
+            inset,
+            contours,
+            offset: d,
+            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::OneWay, extend }),
+        };
+        let tracks = match fill(&p, &spec, 0.01) {
+            Ok(t) => t,
+            Err(FillError::Empty | FillError::SelfIntersecting { .. }) => return Ok(()),
+            Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
+        };
+        let slack = extend.max(d) + 0.01 + 1e-7;
+        for t in &tracks {
+            for q in &t.points {
+                prop_assert!(p.contains(*q) || p.distance_to_boundary(*q) <= slack, "{q:?}");
+                if let TrackKind::Contour { index } = t.kind {
+                    let depth = inset + index as f64 * d;
+                    prop_assert!((p.distance_to_boundary(*q) - depth).abs() < 1e-6, "contour {index} at {q:?}");
+                }
+            }
+        }
+    }
+}

@@ -1,6 +1,6 @@
 //! Contour passes: the outline offset inward, pass by pass.
 
-use super::{Count, FillError, FillSpec, Track, TrackKind, MAX_POINTS};
+use super::{spend, FillError, FillSpec, Track, TrackKind};
 use crate::geometry::profile::Profile;
 use std::cmp::Ordering;
 
@@ -53,17 +53,4 @@ fn closed_loop(l: &Profile, chord_error: f64) -> Vec<[f64; 2]> {
         points.push(first);
     }
     points
-}
-
-/// Takes `n` points from the budget, or fails once it is spent.
-pub(super) fn spend(points_left: &mut u64, n: usize) -> Result<(), FillError> {
-    let n = n as u64;
-    if n > *points_left {
-        return Err(FillError::TooManyPoints(Count {
-            wanted: MAX_POINTS - *points_left + n,
-            max: MAX_POINTS,
-        }));
-    }
-    *points_left -= n;
-    Ok(())
 }

@@ -43,9 +43,9 @@ pub enum FillError {
     TooManyContours(Count),
     /// The layer would have too many points.
     #[error(
-        "the layer would need more than {} points (at least {}): use a larger offset or chord error",
-        .0.max,
-        .0.wanted
+        "the layer would need about {} points, more than the {} allowed: use a larger offset or chord error",
+        .0.wanted,
+        .0.max
     )]
     TooManyPoints(Count),
 }
@@ -77,8 +77,8 @@ impl fmt::Display for Invalid {
 /// How many of something were needed, and the most allowed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Count {
-    /// Needed (a lower bound for points, which are counted until the limit
-    /// is passed).
+    /// Needed (for points an estimate: they are counted only until the
+    /// limit is passed).
     pub wanted: u64,
     /// Allowed.
     pub max: u64,

@@ -16,9 +16,11 @@
 //!   `inset + contours·offset` (just `inset` without contours).
 //! - **Raster lines** run in direction `angle_deg` (from +x, counter-
 //!   clockwise). With `s` the coordinate across them, lines sit at
-//!   `s_min + n·offset` for `n = 0, 1, …` while `≤ s_max` (a relative
-//!   1e-9 of slack, so that a region exactly `k` offsets wide gets its last
-//!   line); `s_min`, `s_max` are the region's extremes. Line 0 thus touches
+//!   `s_min + n·offset` for `n = 0, 1, …` while `≤ s_max` (with 1e-9 of an
+//!   offset of slack, so that a region exactly `k` offsets wide gets its
+//!   last line, placed exactly on `s_max`); `s` is measured along the
+//!   direction's left normal (+y for 0°), and `s_min`, `s_max` are the
+//!   region's extremes (arcs included). Line 0 thus touches
 //!   the region's extreme point, and over a circular edge of radius `R` line
 //!   `n` meets the circle `sqrt(R² − (R − n·d)²)` from the circle's centre
 //!   line — seed 001's `X_n`.
@@ -31,8 +33,9 @@
 //!   outward along its line by `min(extend, reach)`, where `reach` is how much
 //!   further an interval of a neighbouring line (`n − 1` or `n + 1`, the
 //!   larger reach counts) goes past that end. Only a neighbour interval that
-//!   overlaps this interval counts, and only at the end where this interval
-//!   is the last one on its line overlapping it: under a notch the wide
+//!   overlaps this interval counts, at this interval's +end only if no later
+//!   interval of this line overlaps it too, at the −end only if no earlier
+//!   one does: under a notch the wide
 //!   interval below reaches past the inner ends of the two intervals above,
 //!   but that reach belongs to the notch's floor, not to those ends. So a
 //!   curved or slanted edge's staircase is filled, a straight edge across the
@@ -170,6 +173,24 @@ pub fn fill(profile: &Profile, spec: &FillSpec, chord_error: f64) -> Result<Vec<
         return Err(FillError::Empty);
     }
     Ok(tracks)
+}
+
+/// Takes `n` points from the layer's budget, or fails once it is spent.
+fn spend(points_left: &mut u64, n: usize) -> Result<(), FillError> {
+    let n = n as u64;
+    if n > *points_left {
+        return Err(too_many_points(*points_left, n));
+    }
+    *points_left -= n;
+    Ok(())
+}
+
+/// The error for needing `n` more points with `left` of the budget left.
+fn too_many_points(left: u64, n: u64) -> FillError {
+    FillError::TooManyPoints(Count {
+        wanted: (MAX_POINTS - left).saturating_add(n),
+        max: MAX_POINTS,
+    })
 }
 
 fn validate(profile: &Profile, spec: &FillSpec, chord_error: f64) -> Result<(), FillError> {

@@ -15,9 +15,10 @@
 //! arc's top touching it — is added to that. No nudging: a line exactly on
 //! an edge gives the edge.
 
-use super::contour::spend;
 use super::extend::extend;
-use super::{Count, FillError, Pattern, RasterSpec, Track, TrackKind, MAX_LINES};
+use super::{
+    spend, too_many_points, Count, FillError, Pattern, RasterSpec, Track, TrackKind, MAX_LINES,
+};
 use crate::geometry::profile::{Profile, Segment, TOLERANCE};
 use std::f64::consts::{FRAC_PI_2, TAU};
 
@@ -202,11 +203,9 @@ pub(super) fn tracks(
         .iter()
         .map(|&(a, b)| (b + 1).saturating_sub(a) as u64)
         .sum();
+    // Every visit may yield a track end: check the budget before the work.
     if visits > *points_left {
-        return Err(FillError::TooManyPoints(Count {
-            wanted: super::MAX_POINTS - *points_left + visits,
-            max: super::MAX_POINTS,
-        }));
+        return Err(too_many_points(*points_left, visits));
     }
 
     let mut order: Vec<usize> = (0..pieces.len()).collect();
