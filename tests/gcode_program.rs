@@ -174,6 +174,48 @@ fn modal_words_and_laser_on_planar_part() {
     );
 }
 
+/// The planar examples: every track fires the laser once; F and S are written
+/// only when they change — in the styled chord, at each end of a styled track.
+#[test]
+fn modal_words_in_the_planar_examples() {
+    for (file, styled) in [
+        ("examples/sprocket_tooth.lmd", false),
+        ("examples/styled_chord.lmd", true),
+    ] {
+        let src = std::fs::read_to_string(file).unwrap();
+        let p = lmdc::pipeline::compile(&src, &mut ())
+            .program
+            .unwrap_or_else(|| panic!("{file} compiles"));
+        for (index, m) in p.ir().machines.iter().enumerate() {
+            let Machine::Cnc(cnc) = m else { continue };
+            let (_, text) = emit(&p, index);
+            // The postamble switches the laser off once more, for safety.
+            let body = &text[..text.find("end of ").expect("an end comment")];
+            let (starts, deposits) = check_modal(body, &cnc.dialect);
+            let tracks: usize = p.ir().layers.iter().map(|l| l.paths.len()).sum();
+            assert_eq!(starts, tracks, "{file}: one laser start a track");
+            assert_eq!(deposits, ir_deposits(p.ir()), "{file}");
+            // Style changes between consecutive tracks are the only F changes
+            // after the first F.
+            let speeds: Vec<f32> = p
+                .ir()
+                .layers
+                .iter()
+                .flat_map(|l| &l.paths)
+                .map(|path| path.points[0].speed)
+                .collect();
+            let changes = speeds.windows(2).filter(|w| w[0] != w[1]).count();
+            let f_words = body
+                .lines()
+                .filter(|l| l.starts_with('G'))
+                .filter(|l| l.split_whitespace().any(|w| w.starts_with('F')))
+                .count();
+            assert_eq!(f_words, changes + 1, "{file}");
+            assert_eq!(changes > 0, styled, "{file}");
+        }
+    }
+}
+
 #[test]
 fn transitions_retract_along_the_normal() {
     let p = verified(bent_tube(3, 8, 30.0, vec![Machine::Cnc(cnc5())]));
