@@ -650,3 +650,43 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// On convex profiles a raster whose lines are at most a bead apart, ends
+    /// extended by up to the offset, leaves no spot a bead width from every
+    /// track — with or without contour passes round it.
+    #[test]
+    fn convex_fills_leave_no_gap(
+        w in 4.0f64..60.0,
+        h in 4.0f64..60.0,
+        rf in 0.0f64..0.5,
+        angle in -360.0f64..360.0,
+        d in 0.4f64..3.0,
+        overlap in 0.0f64..0.7,
+        inset in 0.0f64..2.0,
+        contours in 0usize..3,
+    ) {
+        let bead = d / (1.0 - overlap);
+        let p = rounded(w, h, rf * w.min(h));
+        let spec = FillSpec {
+            inset,
+            contours,
+            offset: d,
+            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::Serpentine, extend: d }),
+        };
+        let tracks = match fill(&p, &spec, 0.01) {
+            Ok(t) => t,
+            Err(FillError::Empty) => return Ok(()),
+            Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
+        };
+        prop_assert_eq!(lmdc::fill::gap(&p, inset, &tracks, bead), None);
+        // Without the raster only the contours are left: a profile wider than
+        // the passes then has an unfilled middle, and the check sees it.
+        let walls: Vec<_> = tracks.iter().filter(|t| t.kind != TrackKind::Infill).cloned().collect();
+        if contours > 0 && w.min(h) - 2.0 * inset > 2.0 * (contours as f64 * d + 2.0 * bead) {
+            prop_assert!(lmdc::fill::gap(&p, inset, &walls, bead).is_some());
+        }
+    }
+}

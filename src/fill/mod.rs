@@ -69,10 +69,12 @@
 //! output: the clip walks each line only past the pieces that span it.
 
 mod contour;
+mod coverage;
 mod error;
 mod extend;
 mod raster;
 
+pub use coverage::{gap, Gap, MAX_SAMPLES};
 pub use error::{Count, FillError, Invalid};
 
 use crate::geometry::profile::Profile;

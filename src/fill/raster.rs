@@ -249,6 +249,55 @@ pub(super) fn tracks(
     Ok(out)
 }
 
+/// Points of `region` on a square grid of pitch `h` (rows along x), at most
+/// `max` of them — the pitch grows until they fit. Used to look for gaps.
+pub(super) fn samples(region: &[Profile], h: f64, max: usize) -> Vec<[f64; 2]> {
+    let frame = Frame::new(0.0);
+    let pieces = pieces(region, &frame);
+    let Some(lo) = pieces.iter().map(|p| p.lo[1]).reduce(f64::min) else {
+        return Vec::new();
+    };
+    let hi = pieces.iter().map(|p| p.hi[1]).fold(lo, f64::max);
+    let (t_lo, t_hi) = pieces
+        .iter()
+        .flat_map(|p| [p.lo[0], p.hi[0]])
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), t| {
+            (a.min(t), b.max(t))
+        });
+    // Arcs bulge past their ends; one pitch of margin either way covers
+    // the bounding box estimate for the budget only.
+    let cells = ((hi - lo) / h + 1.0) * ((t_hi - t_lo) / h + 1.0);
+    let h = if cells.is_finite() && cells > max as f64 {
+        h * (cells / max as f64).sqrt()
+    } else {
+        h
+    };
+    if !(h.is_finite() && h > 0.0) {
+        return Vec::new();
+    }
+    let mut out = Vec::new();
+    let mut scratch = Scratch::default();
+    let rows = ((hi - lo) / h).floor() as usize + 1;
+    for r in 0..rows.min(max) {
+        // Rows sit half a pitch in, so a row never runs along an edge.
+        let s = lo + (r as f64 + 0.5) * h;
+        if s > hi {
+            break;
+        }
+        for [a, b] in scratch.clip(pieces.iter(), s) {
+            let n = ((b - a) / h).floor() as usize + 1;
+            for k in 0..n {
+                if out.len() >= max {
+                    return out;
+                }
+                let t = (a + (k as f64 + 0.5) * h).min(b);
+                out.push(frame.world([t, s]));
+            }
+        }
+    }
+    out
+}
+
 /// Buffers reused from line to line.
 #[derive(Default)]
 struct Scratch {

@@ -34,6 +34,7 @@ pub fn slice(
     let mut total = 0usize;
     let (mut short_tracks, mut first_short) = (0usize, None);
     let mut styler = Styler::new(&model.styles, slicing.chord_error.0);
+    let (mut gaps, mut first_gap) = (0usize, None);
     for (k, shape) in extrusion.layers.iter().enumerate() {
         let profile = outline::profile(shape, slicing.chord_error.0);
         let spec = FillSpec {
@@ -55,6 +56,13 @@ pub fn slice(
         if tracks.is_empty() {
             return Err(fill_error(FillError::Empty, k, extrusion, slicing));
         }
+        // Only a raster promises a full layer; contours alone make walls.
+        if slicing.infill.is_some() {
+            if let Some(g) = fill::gap(&profile, inset, &tracks, w) {
+                gaps += 1;
+                first_gap.get_or_insert((k, g));
+            }
+        }
         for t in &tracks {
             if length(&t.points) < w {
                 short_tracks += 1;
@@ -73,6 +81,24 @@ pub fn slice(
         }
         let styles = styler.layer(k, &profile, &tracks);
         out.push(layer(model, slicing, k, n, lift, &tracks, &styles));
+    }
+    if let Some((k, g)) = first_gap {
+        return Err(Diagnostic::error(
+            "lmd::fill-gap",
+            format!(
+                "the tracks leave a spot unfilled on {gaps} layer{}: on layer {}, ({}, {}) mm is {} from the nearest track, more than the bead width {}",
+                if gaps == 1 { "" } else { "s" },
+                k + 1,
+                short(g.at[0]),
+                short(g.at[1]),
+                Length(g.distance),
+                Length(w)
+            ),
+        )
+        .label(extrusion.shape_span, "this shape")
+        .label(slicing.span, "fill")
+        .help("raster lines miss parts of a profile narrower than the offset, and line ends reach at most `extend` past their neighbours: a smaller offset, a larger `extend`, a contour pass or another raster angle fills them")
+        .into());
     }
     if let Some(first) = first_short {
         warnings.push(

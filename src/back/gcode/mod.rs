@@ -2,7 +2,7 @@
 //!
 //! The program's shape (header, per-layer comment block, footer) comes from the
 //! tera templates `gcode/header.tera`, `gcode/layer.tera` and `gcode/footer.tera`;
-//! the motion lines between them are written by [`writer`] without tera, since
+//! the motion lines between them are written by `writer` without tera, since
 //! there are millions of them. Conventions, the template context and what each
 //! dialect profile needs on the machine: `docs/gcode.md`.
 //!
