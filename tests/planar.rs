@@ -187,3 +187,76 @@ fn chord_short_tracks_are_styled_on_layer_one_and_inherited_above() {
         }
     }
 }
+
+/// A profile may follow the height: `z` is the layer's plane above the first
+/// (layer · layer_height). A cone whose radius shrinks by half the height
+/// gets, on layer k, a contour of radius 10 mm − z/2 about the axis.
+#[test]
+fn profiles_can_follow_the_height() {
+    let src = r#"
+part cone
+let r = 10 mm - z / 2
+profile disc = circle(diameter = 2 * r)
+bead track { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
+extrude cone { profile = disc  bead = track }
+slicing planar { layers = 6  layer_height = 0.55 mm  offset = 1.6 mm  contours = 1 }
+process { power = 1500 W  powder = 8 g/min }
+machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+"#;
+    let c = compile(src, &mut ());
+    let p = match c.program {
+        Some(p) => p.into_ir(),
+        None => panic!("{:?}", c.diagnostics),
+    };
+    assert_eq!(p.layers.len(), 6);
+    for (k, layer) in p.layers.iter().enumerate() {
+        let z = 0.55 * k as f64;
+        let r = 10.0 - z / 2.0;
+        assert_eq!(layer.paths.len(), 1);
+        for pt in &layer.paths[0].points {
+            assert!((pt.pos[2] - z).abs() < 1e-9);
+            let rho = pt.pos[0].hypot(pt.pos[1]);
+            // Points on the circle; chords within the default 0.05 mm.
+            assert!((rho - r).abs() < 1e-9, "layer {k}: ρ = {rho}, want {r}");
+        }
+    }
+}
+
+/// `near_boundary` picks tracks that lie, all of them, that close to the
+/// profile; `near_corner` tracks that pass that close to a sharp corner; the
+/// first style in the file wins.
+#[test]
+fn styles_by_distance_to_the_boundary_and_to_corners() {
+    let src = r#"
+part plate
+profile plate = outline([0 mm, 0 mm], [20 mm, 0 mm], [20 mm, 10 mm], [0 mm, 10 mm])
+bead track { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
+extrude block { profile = plate  bead = track }
+slicing planar { layers = 2  offset = 1.6 mm  infill = raster(angle = 0 deg) }
+process { power = 1500 W  power_range = 1000 W .. 2000 W  powder = 8 g/min }
+style rim { power = 1600 W  when { near_boundary = 1 mm } }
+style corner { power = 1400 W  when { near_corner = 3 mm } }
+machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+"#;
+    let c = compile(src, &mut ());
+    let p = match c.program {
+        Some(p) => p.into_ir(),
+        None => panic!("{:?}", c.diagnostics),
+    };
+    for layer in &p.layers {
+        let mut by_y: Vec<(f64, u16, f32)> = layer
+            .paths
+            .iter()
+            .map(|t| (t.points[0].pos[1], t.points[0].style, t.points[0].power))
+            .collect();
+        by_y.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // Lines at y = 0, 1.6, …, 9.6: within 1 mm of an edge all along are
+        // y = 0 and 9.6; within 3 mm of a corner also y = 1.6 and 8.
+        let want = [1, 2, 0, 0, 0, 2, 1];
+        let got: Vec<u16> = by_y.iter().map(|t| t.1).collect();
+        assert_eq!(got, want, "{by_y:?}");
+        for (_, style, power) in by_y {
+            assert_eq!(power, [1500.0, 1600.0, 1400.0][style as usize]);
+        }
+    }
+}

@@ -210,13 +210,29 @@ pub fn verify(program: Program) -> Result<Verified, Diagnostics> {
         "this is a bug in lmdc's geometry; please report it with the .lmd file",
     );
     let geom = [o.bead_height, o.spine, o.slicing];
-    report(low_h, h_min, "mm", &geom, "use more layers' worth of height per layer (fewer layers), a larger bend radius, or a bead model that reaches lower heights");
+    // Planar layers have no spine: their height is the declared or derived lift.
+    let planar_help = "a flat layer rises by what its tracks lay (A/w for one track, A/d for tracks d apart): `layer_height = auto` derives it, or declare one within the bead's heights";
+    report(
+        low_h,
+        h_min,
+        "mm",
+        &geom,
+        if o.spine.is_none() {
+            planar_help
+        } else {
+            "use more layers' worth of height per layer (fewer layers), a larger bend radius, or a bead model that reaches lower heights"
+        },
+    );
     report(
         high_h,
         h_max,
         "mm",
         &geom,
-        "use more layers, a larger bend radius, or a bead model that reaches higher beads",
+        if o.spine.is_none() {
+            planar_help
+        } else {
+            "use more layers, a larger bend radius, or a bead model that reaches higher beads"
+        },
     );
     report(
         slow,

@@ -264,7 +264,10 @@ pub fn assemble(
     };
     let (shapes, shape_span) = match w.source {
         Source::Fixed(s) => (vec![s; layers], w.profile_span),
-        Source::Expr(e) => (per_layer(env, e, layers, w.profile_span, diags)?, e.span),
+        Source::Expr(e) => (
+            per_layer(env, e, layers, lift.0, w.profile_span, diags)?,
+            e.span,
+        ),
     };
     Some((
         Extrusion {
@@ -299,6 +302,7 @@ fn per_layer(
     env: &mut Env<'_>,
     e: &Expr,
     layers: usize,
+    lift: f64,
     at: Span,
     diags: &mut Diagnostics,
 ) -> Option<Vec<Shape>> {
@@ -310,7 +314,7 @@ fn per_layer(
     let mut out = Vec::with_capacity(layers);
     for k in 0..layers {
         let mut scratch = Diagnostics::new();
-        let s = env.at_layer(k, |env| {
+        let s = env.at_layer(k, k as f64 * lift, |env| {
             let v = env.eval(e, &mut scratch)?;
             profile::shape(&v, "a profile", &mut scratch)
         });

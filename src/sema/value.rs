@@ -92,12 +92,18 @@ enum LetState<'a> {
 /// use: `let R = min(layer + 2, 10) * d`.
 pub const LAYER: &str = "layer";
 
+/// The name of the built-in height of the layer's plane above the first
+/// layer's (`layer · layer_height`, a length) that profile expressions may use.
+pub const Z: &str = "z";
+
 /// The constants of a file, evaluated on demand (so order does not matter) with
 /// cycle detection.
 pub struct Env<'a> {
     lets: HashMap<String, (Span, LetState<'a>, &'a Expr)>,
     /// The value of [`LAYER`] (0 outside a per-layer evaluation).
     layer: usize,
+    /// The value of [`Z`], mm (0 outside a per-layer evaluation).
+    z: f64,
     /// Counts reads of [`LAYER`], directly or through a constant that uses it, so
     /// a constant knows whether it must be recomputed for another layer.
     layer_reads: u64,
@@ -112,6 +118,7 @@ impl<'a> Env<'a> {
         Env {
             lets: HashMap::new(),
             layer: 0,
+            z: 0.0,
             layer_reads: 0,
             known: Vec::new(),
         }
@@ -146,11 +153,18 @@ impl<'a> Env<'a> {
 
     fn lookup(&mut self, name: &str, at: Span, diags: &mut Diagnostics) -> Option<Option<Value>> {
         let Some((decl, state, _)) = self.lets.get_mut(name) else {
-            if name == LAYER {
+            if name == LAYER || name == Z {
                 self.layer_reads += 1;
-                return Some(Some(Value::Quantity(Quantity {
-                    value: self.layer as f64,
-                    dim: Dim::NONE,
+                return Some(Some(Value::Quantity(if name == Z {
+                    Quantity {
+                        value: self.z,
+                        dim: Dim::LENGTH,
+                    }
+                } else {
+                    Quantity {
+                        value: self.layer as f64,
+                        dim: Dim::NONE,
+                    }
                 })));
             }
             return None;
@@ -188,13 +202,15 @@ impl<'a> Env<'a> {
         }
     }
 
-    /// Evaluates `f` with [`LAYER`] = `layer`: constants that depend on the layer
-    /// are recomputed, the others keep their values.
-    pub fn at_layer<R>(&mut self, layer: usize, f: impl FnOnce(&mut Self) -> R) -> R {
+    /// Evaluates `f` with [`LAYER`] = `layer` and [`Z`] = `z` (mm): constants
+    /// that depend on the layer are recomputed, the others keep their values.
+    pub fn at_layer<R>(&mut self, layer: usize, z: f64, f: impl FnOnce(&mut Self) -> R) -> R {
         let old = std::mem::replace(&mut self.layer, layer);
+        let old_z = std::mem::replace(&mut self.z, z);
         self.forget_layer_values();
         let r = f(self);
         self.layer = old;
+        self.z = old_z;
         self.forget_layer_values();
         r
     }
