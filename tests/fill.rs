@@ -681,12 +681,12 @@ proptest! {
             Err(FillError::Empty) => return Ok(()),
             Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
         };
-        prop_assert_eq!(lmdc::fill::gap(&p, inset, &tracks, bead), None);
+        prop_assert_eq!(lmdc::fill::gap(&p, inset, &tracks, bead, lmdc::fill::MAX_SAMPLES), None);
         // Without the raster only the contours are left: a profile wider than
         // the passes then has an unfilled middle, and the check sees it.
         let walls: Vec<_> = tracks.iter().filter(|t| t.kind != TrackKind::Infill).cloned().collect();
         if contours > 0 && w.min(h) - 2.0 * inset > 2.0 * (contours as f64 * d + 2.0 * bead) {
-            prop_assert!(lmdc::fill::gap(&p, inset, &walls, bead).is_some());
+            prop_assert!(lmdc::fill::gap(&p, inset, &walls, bead, lmdc::fill::MAX_SAMPLES).is_some());
         }
     }
 }

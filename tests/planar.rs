@@ -9,11 +9,14 @@ use lmdc::ir::{PathKind, Point, Program};
 use lmdc::pipeline::compile;
 
 fn build(path: &str) -> Program {
-    let src = std::fs::read_to_string(path).unwrap();
-    let c = compile(&src, &mut ());
+    build_source(&std::fs::read_to_string(path).unwrap())
+}
+
+fn build_source(src: &str) -> Program {
+    let c = compile(src, &mut ());
     match c.program {
         Some(p) => p.into_ir(),
-        None => panic!("{path} does not compile: {:?}", c.diagnostics),
+        None => panic!("does not compile: {:?}", c.diagnostics),
     }
 }
 
@@ -203,11 +206,7 @@ slicing planar { layers = 6  layer_height = 0.55 mm  offset = 1.6 mm  contours =
 process { power = 1500 W  powder = 8 g/min }
 machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
 "#;
-    let c = compile(src, &mut ());
-    let p = match c.program {
-        Some(p) => p.into_ir(),
-        None => panic!("{:?}", c.diagnostics),
-    };
+    let p = build_source(src);
     assert_eq!(p.layers.len(), 6);
     for (k, layer) in p.layers.iter().enumerate() {
         let z = 0.55 * k as f64;
@@ -238,11 +237,7 @@ style rim { power = 1600 W  when { near_boundary = 1 mm } }
 style corner { power = 1400 W  when { near_corner = 3 mm } }
 machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
 "#;
-    let c = compile(src, &mut ());
-    let p = match c.program {
-        Some(p) => p.into_ir(),
-        None => panic!("{:?}", c.diagnostics),
-    };
+    let p = build_source(src);
     for layer in &p.layers {
         let mut by_y: Vec<(f64, u16, f32)> = layer
             .paths

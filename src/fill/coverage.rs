@@ -3,7 +3,8 @@
 //! from every track, so the spot left there is at least a bead wide.
 //!
 //! The region is sampled on a square grid (pitch `reach / 2`, coarser on
-//! huge layers: at most [`MAX_SAMPLES`] points a layer) and each sample asks
+//! huge layers: at most `max_samples`, and never more than [`MAX_SAMPLES`],
+//! points a layer) and each sample asks
 //! a uniform grid of the tracks' segments for a segment within `reach`; the
 //! cost is linear in samples plus track points.
 
@@ -27,12 +28,18 @@ pub struct Gap {
 /// if any lies farther than `reach` (of many such points, the farthest of a
 /// spread of 256; ties go to the first in rows of increasing y, then
 /// x).
-pub fn gap(profile: &Profile, inset: f64, tracks: &[Track], reach: f64) -> Option<Gap> {
+pub fn gap(
+    profile: &Profile,
+    inset: f64,
+    tracks: &[Track],
+    reach: f64,
+    max_samples: usize,
+) -> Option<Gap> {
     if !(reach.is_finite() && reach > 0.0) {
         return None;
     }
     let region = profile.offset_inward(inset);
-    let samples = raster::samples(&region, reach / 2.0, MAX_SAMPLES);
+    let samples = raster::samples(&region, reach / 2.0, max_samples.min(MAX_SAMPLES));
     let segments: Vec<[[f64; 2]; 2]> = tracks
         .iter()
         .flat_map(|t| match t.points.as_slice() {
@@ -151,7 +158,7 @@ mod tests {
         let tracks: Vec<Track> = (0..=5)
             .map(|n| line([0.0, 2.0 * n as f64], [20.0, 2.0 * n as f64]))
             .collect();
-        assert_eq!(gap(&p, 0.0, &tracks, 2.2), None);
+        assert_eq!(gap(&p, 0.0, &tracks, 2.2, MAX_SAMPLES), None);
     }
 
     #[test]
@@ -163,7 +170,7 @@ mod tests {
             .iter()
             .map(|&y| line([0.0, y], [20.0, y]))
             .collect();
-        let g = gap(&p, 0.0, &tracks, 2.2).expect("a gap");
+        let g = gap(&p, 0.0, &tracks, 2.2, MAX_SAMPLES).expect("a gap");
         assert!(g.at[1] > 4.2 && g.at[1] < 5.8, "{g:?}");
         assert!(g.distance > 2.2 && g.distance <= 3.0, "{g:?}");
     }
@@ -179,10 +186,10 @@ mod tests {
                 line([-10.0, -10.0 + c], [110.0, 110.0 + c])
             })
             .collect();
-        assert_eq!(gap(&p, 0.0, &tracks, 1.0), None);
+        assert_eq!(gap(&p, 0.0, &tracks, 1.0, MAX_SAMPLES), None);
         // Without every other line the spacing is 2.83 mm: gaps 1.41 mm from both.
         let half: Vec<Track> = tracks.into_iter().step_by(2).collect();
-        let g = gap(&p, 0.0, &half, 1.0).expect("a gap");
+        let g = gap(&p, 0.0, &half, 1.0, MAX_SAMPLES).expect("a gap");
         assert!(
             g.distance > 1.0 && g.distance <= 2f64.sqrt() + 1e-9,
             "{g:?}"

@@ -2,11 +2,12 @@
 
 use super::fields::Fields;
 use super::model::{Bead, HeightModel};
-use super::value::{Env, Value};
+use super::value::{unknown_name, Env, Spanned, Value};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{short, Density, Dim, Length, MassFlow, Speed};
+use std::collections::BTreeMap;
 
 /// Reads a bead block.
 pub fn read<'a>(
@@ -184,4 +185,45 @@ pub fn read<'a>(
         height_span,
         speed_span,
     })
+}
+
+/// The bead model a field names (`wall = my_bead`, `bead = my_bead`); `what`
+/// says what it builds ("the wall"). Unknown names get a "did you mean";
+/// names declared with errors are not reported again.
+pub fn named(
+    v: Option<&Spanned>,
+    key: &str,
+    what: &str,
+    beads: &BTreeMap<String, Bead>,
+    declared: &[String],
+    diags: &mut Diagnostics,
+) -> Option<Bead> {
+    match v {
+        Some(Spanned {
+            value: Value::Symbol(b),
+            span,
+        }) => match beads.get(b) {
+            Some(bead) => Some(bead.clone()),
+            None if declared.contains(b) => None,
+            None => {
+                let names: Vec<&str> = beads.keys().map(String::as_str).collect();
+                diags.push(unknown_name(b, *span, "bead model", &names));
+                None
+            }
+        },
+        Some(v) => {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::type",
+                    format!("`{key}` names the bead model {what} is built with"),
+                )
+                .label(v.span, format!("this is {}", v.value.describe()))
+                .help(format!(
+                    "declare `bead my_bead {{ … }}` and write `{key} = my_bead`"
+                )),
+            );
+            None
+        }
+        None => None,
+    }
 }

@@ -84,32 +84,14 @@ pub fn read<'a>(
         None if f.has("size") => None,
         None => Some(Measure::Centre),
     };
-    let bead = match f.value("bead", Some("my_bead"), diags) {
-        Some(Spanned {
-            value: Value::Symbol(b),
-            span,
-        }) => match scope.beads.get(b) {
-            Some(bead) => Some(bead.clone()),
-            None if scope.declared.contains(b) => None,
-            None => {
-                let names: Vec<&str> = scope.beads.keys().map(String::as_str).collect();
-                diags.push(unknown_name(b, *span, "bead model", &names));
-                None
-            }
-        },
-        Some(v) => {
-            diags.push(
-                Diagnostic::error(
-                    "lmd::type",
-                    "`bead` names the bead model the layers are built with",
-                )
-                .label(v.span, format!("this is {}", v.value.describe()))
-                .help("declare `bead my_bead { … }` and write `bead = my_bead`"),
-            );
-            None
-        }
-        None => None,
-    };
+    let bead = super::bead::named(
+        f.value("bead", Some("my_bead"), diags),
+        "bead",
+        "the layers",
+        scope.beads,
+        scope.declared,
+        diags,
+    );
     Some(Written {
         name: name.to_string(),
         source: source?,

@@ -64,32 +64,14 @@ pub fn read<'a>(
         None => Some(Measure::Centre),
     };
     let morph = f.symbol("morph", &["superellipse", "radial"], None, diags);
-    let bead = match f.value("wall", Some("my_bead"), diags) {
-        Some(Spanned {
-            value: Value::Symbol(b),
-            span,
-        }) => match scope.beads.get(b) {
-            Some(bead) => Some(bead.clone()),
-            None if scope.declared.contains(b) => None,
-            None => {
-                let names: Vec<&str> = scope.beads.keys().map(String::as_str).collect();
-                diags.push(unknown_name(b, *span, "bead model", &names));
-                None
-            }
-        },
-        Some(v) => {
-            diags.push(
-                Diagnostic::error(
-                    "lmd::type",
-                    "`wall` names the bead model the wall is built with",
-                )
-                .label(v.span, format!("this is {}", v.value.describe()))
-                .help("declare `bead my_bead { … }` and write `wall = my_bead`"),
-            );
-            None
-        }
-        None => None,
-    };
+    let bead = super::bead::named(
+        f.value("wall", Some("my_bead"), diags),
+        "wall",
+        "the wall",
+        scope.beads,
+        scope.declared,
+        diags,
+    );
     let (from, to, (spine, spine_span), twist, measure, bead) =
         (from?, to?, spine?, twist?, measure?, bead?);
     let family = |s: &Section| {

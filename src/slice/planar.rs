@@ -16,6 +16,9 @@ use crate::ir::{Frame, Layer, Path, PathKind, Point};
 use crate::sema::model::{Extrusion, Measure, Model, Pattern, PlanarSlicing};
 use crate::units::{short, Length};
 
+/// Points the gap check samples over a whole part.
+const GAP_SAMPLES: usize = 20_000_000;
+
 /// Slices an extrusion into filled planar layers.
 pub fn slice(
     model: &Model,
@@ -35,6 +38,9 @@ pub fn slice(
     let (mut short_tracks, mut first_short) = (0usize, None);
     let mut styler = Styler::new(&model.styles, slicing.chord_error.0);
     let (mut gaps, mut first_gap) = (0usize, None);
+    // The gap check samples each layer; a budget over the whole part keeps it
+    // linear however many layers there are.
+    let gap_samples = (GAP_SAMPLES / n.max(1)).clamp(500, fill::MAX_SAMPLES);
     for (k, shape) in extrusion.layers.iter().enumerate() {
         let profile = outline::profile(shape, slicing.chord_error.0);
         let spec = FillSpec {
@@ -58,7 +64,7 @@ pub fn slice(
         }
         // Only a raster promises a full layer; contours alone make walls.
         if slicing.infill.is_some() {
-            if let Some(g) = fill::gap(&profile, inset, &tracks, w) {
+            if let Some(g) = fill::gap(&profile, inset, &tracks, w, gap_samples) {
                 gaps += 1;
                 first_gap.get_or_insert((k, g));
             }
