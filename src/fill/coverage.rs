@@ -10,7 +10,6 @@
 
 use super::{raster, Track};
 use crate::geometry::profile::Profile;
-use std::collections::HashMap;
 
 /// Most points sampled on a layer.
 pub const MAX_SAMPLES: usize = 40_000;
@@ -48,7 +47,7 @@ pub fn gap(
         })
         .filter(|s| s.iter().flatten().all(|v| v.is_finite()))
         .collect();
-    let grid = Grid::new(&segments, reach);
+    let grid = Grid::new(&segments, &samples, reach);
     let uncovered: Vec<[f64; 2]> = samples
         .into_iter()
         .filter(|&p| !grid.any_within(&segments, p, reach))
@@ -77,6 +76,119 @@ const MEASURED: usize = 256;
 
 /// Distance from `p` to the segment `s`.
 fn distance(p: [f64; 2], s: &[[f64; 2]; 2]) -> f64 {
+    distance2(p, s).sqrt()
+}
+
+/// Segments by the cells of side `cell` they pass through, in a dense grid
+/// over the samples' bounding box (segments outside it are clamped to its
+/// edge cells, which only costs time).
+struct Grid {
+    cell: f64,
+    origin: [f64; 2],
+    nx: usize,
+    ny: usize,
+    /// Segment indices of cell `iy * nx + ix`, as ranges into `items`.
+    starts: Vec<u32>,
+    items: Vec<u32>,
+}
+
+/// Most cells the grid may have; coarser cells beyond.
+const MAX_CELLS: f64 = 4_000_000.0;
+
+impl Grid {
+    fn new(segments: &[[[f64; 2]; 2]], samples: &[[f64; 2]], reach: f64) -> Grid {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in samples {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        if !(lo[0].is_finite() && hi[0].is_finite() && lo[1].is_finite() && hi[1].is_finite()) {
+            lo = [0.0; 2];
+            hi = [0.0; 2];
+        }
+        // Cells at least `reach` wide, so a query two cells round suffices.
+        let area = (hi[0] - lo[0] + 4.0 * reach) * (hi[1] - lo[1] + 4.0 * reach);
+        let cell = reach.max((area / MAX_CELLS).sqrt());
+        let origin = [lo[0] - 2.0 * cell, lo[1] - 2.0 * cell];
+        let nx = (((hi[0] - origin[0]) / cell).floor() as usize + 3).max(1);
+        let ny = (((hi[1] - origin[1]) / cell).floor() as usize + 3).max(1);
+        let mut grid = Grid {
+            cell,
+            origin,
+            nx,
+            ny,
+            starts: Vec::new(),
+            items: Vec::new(),
+        };
+        // Two passes, counting then filling, keep it to two flat vectors.
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        for (i, s) in segments.iter().enumerate() {
+            // Points every half cell: each point of the segment is within a
+            // quarter cell of one, so a query two cells round finds it.
+            let len = (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1]);
+            let steps = ((len / (cell / 2.0)).ceil() as usize).clamp(1, 1 << 20);
+            let mut last = u32::MAX;
+            for k in 0..=steps {
+                let f = k as f64 / steps as f64;
+                let p = [
+                    s[0][0] + f * (s[1][0] - s[0][0]),
+                    s[0][1] + f * (s[1][1] - s[0][1]),
+                ];
+                let c = grid.index(grid.key(p));
+                if c != last {
+                    pairs.push((c, i as u32));
+                    last = c;
+                }
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        grid.starts = vec![0; nx * ny + 1];
+        for &(c, _) in &pairs {
+            grid.starts[c as usize + 1] += 1;
+        }
+        for k in 1..grid.starts.len() {
+            grid.starts[k] += grid.starts[k - 1];
+        }
+        grid.items = pairs.into_iter().map(|(_, i)| i).collect();
+        grid
+    }
+
+    fn key(&self, p: [f64; 2]) -> (usize, usize) {
+        // `as` saturates (and sends NaN to 0): far-off points land on the
+        // edge cells.
+        let ix = ((p[0] - self.origin[0]) / self.cell).floor() as usize;
+        let iy = ((p[1] - self.origin[1]) / self.cell).floor() as usize;
+        (ix.min(self.nx - 1), iy.min(self.ny - 1))
+    }
+
+    fn index(&self, (ix, iy): (usize, usize)) -> u32 {
+        (iy * self.nx + ix) as u32
+    }
+
+    fn any_within(&self, segments: &[[[f64; 2]; 2]], p: [f64; 2], reach: f64) -> bool {
+        let (cx, cy) = self.key(p);
+        let r2 = reach * reach;
+        // The own cell first: most samples find their track there.
+        let near = |ix: usize, iy: usize| {
+            let c = self.index((ix, iy)) as usize;
+            self.items[self.starts[c] as usize..self.starts[c + 1] as usize]
+                .iter()
+                .any(|&i| distance2(p, &segments[i as usize]) <= r2)
+        };
+        if near(cx, cy) {
+            return true;
+        }
+        let (x0, x1) = (cx.saturating_sub(2), (cx + 2).min(self.nx - 1));
+        let (y0, y1) = (cy.saturating_sub(2), (cy + 2).min(self.ny - 1));
+        (y0..=y1).any(|iy| (x0..=x1).any(|ix| (ix, iy) != (cx, cy) && near(ix, iy)))
+    }
+}
+
+/// Squared distance from `p` to the segment `s`.
+fn distance2(p: [f64; 2], s: &[[f64; 2]; 2]) -> f64 {
     let [a, b] = *s;
     let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
     let len2 = ux * ux + uy * uy;
@@ -85,59 +197,8 @@ fn distance(p: [f64; 2], s: &[[f64; 2]; 2]) -> f64 {
     } else {
         0.0
     };
-    (a[0] + t * ux - p[0]).hypot(a[1] + t * uy - p[1])
-}
-
-/// Segments by the cells of side `cell` they pass through.
-struct Grid {
-    cell: f64,
-    cells: HashMap<(i64, i64), Vec<u32>>,
-}
-
-impl Grid {
-    fn new(segments: &[[[f64; 2]; 2]], cell: f64) -> Grid {
-        let mut cells: HashMap<(i64, i64), Vec<u32>> = HashMap::new();
-        for (i, s) in segments.iter().enumerate() {
-            // Points every half cell: each point of the segment is within a
-            // quarter cell of one, so a query two cells round finds it.
-            let len = (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1]);
-            let steps = ((len / (cell / 2.0)).ceil() as usize).clamp(1, 1 << 20);
-            let mut last = None;
-            for k in 0..=steps {
-                let f = k as f64 / steps as f64;
-                let p = [
-                    s[0][0] + f * (s[1][0] - s[0][0]),
-                    s[0][1] + f * (s[1][1] - s[0][1]),
-                ];
-                let key = key(p, cell);
-                if last != Some(key) {
-                    let v = cells.entry(key).or_default();
-                    if v.last() != Some(&(i as u32)) {
-                        v.push(i as u32);
-                    }
-                    last = Some(key);
-                }
-            }
-        }
-        Grid { cell, cells }
-    }
-
-    fn any_within(&self, segments: &[[[f64; 2]; 2]], p: [f64; 2], reach: f64) -> bool {
-        let (cx, cy) = key(p, self.cell);
-        (-2..=2).any(|dx| {
-            (-2..=2).any(|dy| {
-                self.cells.get(&(cx + dx, cy + dy)).is_some_and(|v| {
-                    v.iter()
-                        .any(|&i| distance(p, &segments[i as usize]) <= reach)
-                })
-            })
-        })
-    }
-}
-
-fn key(p: [f64; 2], cell: f64) -> (i64, i64) {
-    // `as` saturates: far-off points share the edge cells, which is only slower.
-    ((p[0] / cell).floor() as i64, (p[1] / cell).floor() as i64)
+    let (dx, dy) = (a[0] + t * ux - p[0], a[1] + t * uy - p[1]);
+    dx * dx + dy * dy
 }
 
 #[cfg(test)]
