@@ -10,8 +10,22 @@ fn corpus() -> Vec<String> {
     let duct = std::fs::read_to_string("examples/twisted_duct.lmd")
         .unwrap()
         .replace("points = 360", "points = 24");
-    let mut v = vec![duct];
-    for f in ["bend_too_tight", "unit_mismatch", "syntax", "unknown_name"] {
+    // The planar examples with few layers (fast), styles and inheritance.
+    let tooth = std::fs::read_to_string("examples/sprocket_tooth.lmd")
+        .unwrap()
+        .replace("layers = 35", "layers = 3");
+    let chord = std::fs::read_to_string("examples/styled_chord.lmd")
+        .unwrap()
+        .replace("layers = 30", "layers = 3");
+    let mut v = vec![duct, tooth, chord];
+    for f in [
+        "bend_too_tight",
+        "unit_mismatch",
+        "syntax",
+        "unknown_name",
+        "style_errors",
+        "unfilled_tab",
+    ] {
         v.push(std::fs::read_to_string(format!("examples/errors/{f}.lmd")).unwrap());
     }
     v
@@ -88,7 +102,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
 
     #[test]
-    fn mutated_sources_never_panic(which in 0usize..5, edits in prop::collection::vec(edit(), 1..6)) {
+    fn mutated_sources_never_panic(which in 0usize..9, edits in prop::collection::vec(edit(), 1..6)) {
         let src = apply(&corpus()[which], &edits);
         run(&src);
     }
@@ -118,5 +132,49 @@ fn pathological_inputs() {
         "/* unterminated comment",
     ] {
         run(src);
+    }
+}
+
+/// Planar parts at the limits: many layers of a small plate, a huge plate
+/// with a tiny offset, a profile that collapses on some layers, degenerate
+/// arcs — each builds or fails with a diagnostic, promptly.
+#[test]
+fn pathological_planar_inputs() {
+    let part = |profile: &str, slicing: &str| {
+        format!(
+            "part p\nlet w = 2.2 mm\nprofile q = {profile}\n\
+             bead b {{ width = w  model = measured(height = 0.7 mm, speed = 6 mm/s) }}\n\
+             extrude e {{ profile = q  bead = b }}\nslicing planar {{ {slicing} }}\n\
+             process {{ power = 1500 W  powder = 8 g/min }}\n\
+             machine m {{ kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}\n"
+        )
+    };
+    let square = "outline([0 mm, 0 mm], [10 mm, 0 mm], [10 mm, 10 mm], [0 mm, 10 mm])";
+    for src in [
+        part(square, "layers = 20000  offset = 1.6 mm  infill = raster()"),
+        part(
+            "outline([0 mm, 0 mm], [90000 mm, 0 mm], [90000 mm, 90000 mm], [0 mm, 90000 mm])",
+            "layers = 2  offset = 0.7 mm  infill = raster(angle = 30 deg)",
+        ),
+        part(
+            "outline([0 mm, 0 mm], [10 mm - layer * 1 mm, 0 mm], [10 mm - layer * 1 mm, 10 mm], [0 mm, 10 mm])",
+            "layers = 12  offset = 1.6 mm  contours = 3  infill = raster()",
+        ),
+        part(
+            "outline([0 mm, 0 mm], arc(to = [0 mm, 0 mm], radius = 5 mm), [1 mm, 1 mm])",
+            "layers = 2  offset = 1.6 mm  infill = raster()",
+        ),
+        part(
+            "outline([0 mm, 0 mm], [1e-9 mm, 0 mm], [1e-9 mm, 1e-9 mm])",
+            "layers = 2  offset = 1.6 mm  infill = raster()",
+        ),
+        part(square, "layers = 2  offset = 1.6 mm  contours = 10000  infill = raster()"),
+        part(square, "layers = 2  offset = 1.6 mm  chord_error = 1e-300 mm  contours = 2"),
+        part(
+            "circle(diameter = 20 mm)",
+            "layers = 2  offset = 0.01 mm  infill = raster(rotate = 1e300 deg)",
+        ),
+    ] {
+        run(&src);
     }
 }
