@@ -191,14 +191,14 @@ fn chord_short_tracks_are_styled_on_layer_one_and_inherited_above() {
     }
 }
 
-/// A profile may follow the height: `z` is the layer's plane above the first
+/// A profile may follow the height: `layer_z` is the layer's plane above the first
 /// (layer · layer_height). A cone whose radius shrinks by half the height
 /// gets, on layer k, a contour of radius 10 mm − z/2 about the axis.
 #[test]
 fn profiles_can_follow_the_height() {
     let src = r#"
 part cone
-let r = 10 mm - z / 2
+let r = 10 mm - layer_z / 2
 profile disc = circle(diameter = 2 * r)
 bead track { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
 extrude cone { profile = disc  bead = track }

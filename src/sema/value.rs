@@ -94,7 +94,7 @@ pub const LAYER: &str = "layer";
 
 /// The name of the built-in height of the layer's plane above the first
 /// layer's (`layer · layer_height`, a length) that profile expressions may use.
-pub const Z: &str = "z";
+pub const Z: &str = "layer_z";
 
 /// The constants of a file, evaluated on demand (so order does not matter) with
 /// cycle detection.
