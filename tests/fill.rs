@@ -8,17 +8,7 @@ use std::f64::consts::PI;
 
 /// A `w` × `h` rectangle from the origin with corners rounded to radius `r`.
 fn rounded(w: f64, h: f64, r: f64) -> Profile {
-    let q = (PI / 8.0).tan(); // a quarter circle
-    Profile::new(vec![
-        Vertex::line(r, 0.0),
-        Vertex::arc(w - r, 0.0, q),
-        Vertex::line(w, r),
-        Vertex::arc(w, h - r, q),
-        Vertex::line(w - r, h),
-        Vertex::arc(r, h, q),
-        Vertex::line(0.0, h - r),
-        Vertex::arc(0.0, r, q),
-    ])
+    Profile::rounded_rectangle(w, h, r)
 }
 
 /// Only a raster, at `angle` degrees, lines `d` apart, ends extended by at

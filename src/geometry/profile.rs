@@ -117,6 +117,23 @@ impl Profile {
         ])
     }
 
+    /// A `w` × `h` rectangle with its lower left corner on the origin and
+    /// corners rounded by quarter circles of radius `r` (at most half the
+    /// shorter side).
+    pub fn rounded_rectangle(w: f64, h: f64, r: f64) -> Profile {
+        let q = (std::f64::consts::PI / 8.0).tan(); // a quarter circle
+        Profile::new(vec![
+            Vertex::line(r, 0.0),
+            Vertex::arc(w - r, 0.0, q),
+            Vertex::line(w, r),
+            Vertex::arc(w, h - r, q),
+            Vertex::line(w - r, h),
+            Vertex::arc(r, h, q),
+            Vertex::line(0.0, h - r),
+            Vertex::arc(0.0, r, q),
+        ])
+    }
+
     /// The vertices, counter-clockwise; each one's bulge bends the piece to
     /// the next.
     pub fn vertices(&self) -> &[Vertex] {
