@@ -55,6 +55,23 @@ fn check_reports_success_and_failure() {
     assert!(stderr(&o).contains("lmd::bend-too-tight"));
 }
 
+/// `check` runs the machines' own checks too (here the CNC's axis limits),
+/// so a file `check` passes is one `build` writes.
+#[test]
+fn check_runs_the_machine_checks() {
+    let src = std::fs::read_to_string("examples/sprocket_tooth.lmd")
+        .unwrap()
+        .replace("x = -50 mm .. 150 mm", "x = -50 mm .. 30 mm");
+    let dir = out_dir("check-limits");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("tooth.lmd");
+    std::fs::write(&file, src).unwrap();
+    let o = lmdc(&["check", file.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("lmd::axis-limit"), "{}", stderr(&o));
+    assert_eq!(listing(&dir), ["tooth.lmd"], "check writes nothing");
+}
+
 #[test]
 fn build_writes_every_machine_deterministically() {
     let a = out_dir("a");

@@ -255,3 +255,73 @@ machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
         }
     }
 }
+
+fn diagnose(src: &str) -> lmdc::diag::Diagnostics {
+    compile(src, &mut ()).diagnostics
+}
+
+fn with_code<'d>(d: &'d lmdc::diag::Diagnostics, code: &str) -> Vec<&'d str> {
+    d.iter()
+        .filter(|x| x.code == code)
+        .map(|x| x.message.as_str())
+        .collect()
+}
+
+/// A declared layer height the tracks do not lay drifts the standoff: seed
+/// 001's fixed A/w lift with tracks overlapped at d, which lay A/d.
+#[test]
+fn a_declared_lift_off_what_the_tracks_lay_is_reported() {
+    let tooth = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
+    let src = tooth.replace("layer_height = auto", "layer_height = 0.51 mm");
+    let d = diagnose(&src);
+    let m = with_code(&d, "lmd::lift-mismatch");
+    assert_eq!(m.len(), 1, "{d:?}");
+    assert!(
+        m[0].contains("0.51 mm") && m[0].contains("0.691 mm"),
+        "{}",
+        m[0]
+    );
+    assert!(!d.has_errors());
+    // Within 2 %: quiet.
+    let src = tooth.replace("layer_height = auto", "layer_height = 0.69 mm");
+    assert!(with_code(&diagnose(&src), "lmd::lift-mismatch").is_empty());
+}
+
+/// A height is built in whole layers, rounded up, and the rounding is said.
+#[test]
+fn heights_round_up_to_whole_layers() {
+    let tooth = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
+    let src = tooth
+        .replace("  layers = 35\n", "")
+        .replace("  bead = track\n}", "  bead = track\n  height = 10 mm\n}");
+    let c = compile(&src, &mut ());
+    let m = with_code(&c.diagnostics, "lmd::height-rounded");
+    assert_eq!(m.len(), 1, "{:?}", c.diagnostics);
+    // 10 / 0.691 = 14.47 → 15 layers, 10.365 mm.
+    assert!(m[0].starts_with("15 layers"), "{}", m[0]);
+    assert_eq!(c.program.expect("builds").ir().layers.len(), 15);
+}
+
+/// Only a profile follows the layer: a power written with `layer` would
+/// silently be the first layer's everywhere, so it is an error.
+#[test]
+fn layer_outside_a_profile_is_an_error() {
+    let tooth = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
+    let src = tooth.replace("power = 1500 W", "power = 1500 W - layer * 10 W");
+    let d = diagnose(&src);
+    assert_eq!(
+        with_code(&d, "lmd::layer-outside-profile").len(),
+        1,
+        "{d:?}"
+    );
+    let src = tooth.replace(
+        "part sprocket_tooth",
+        "part sprocket_tooth\nsection s = circle(diameter = 10 mm + layer_z)",
+    );
+    let d = diagnose(&src);
+    assert_eq!(
+        with_code(&d, "lmd::layer-outside-profile").len(),
+        1,
+        "{d:?}"
+    );
+}

@@ -24,6 +24,17 @@ pub trait Sink {
     fn create(&mut self, name: &str) -> io::Result<Box<dyn Write + '_>>;
 }
 
+/// A sink that discards everything: emitting into it runs every back-end
+/// check (axis limits, analog range, …) without writing (`lmdc check`).
+#[derive(Default, Debug)]
+pub struct NullSink;
+
+impl Sink for NullSink {
+    fn create(&mut self, _name: &str) -> io::Result<Box<dyn Write + '_>> {
+        Ok(Box::new(io::sink()))
+    }
+}
+
 /// A sink that keeps files in memory, in creation order.
 #[derive(Default, Debug)]
 pub struct MemorySink {
@@ -130,8 +141,9 @@ pub fn identifier(text: &str, max: usize) -> String {
 }
 
 /// The stem of a program's file name: `identifier(part_machine)`, at most `max`
-/// characters. The part's name is shortened first, so two machines of one part
-/// keep distinct names.
+/// characters. The part's name is shortened first; a machine name too long to
+/// keep whole keeps its start and gets a hash of the whole name, so two
+/// machines of one part keep distinct names.
 pub fn program_stem(part: &str, machine: &str, max: usize) -> String {
     let mut full = identifier(&format!("{part}_{machine}"), usize::MAX);
     if full.len() <= max {
@@ -139,11 +151,31 @@ pub fn program_stem(part: &str, machine: &str, max: usize) -> String {
     }
     // identifier() maps char for char, so the tail is "_" + the machine's name.
     let tail = machine.chars().count() + 1;
-    if tail + 1 >= max {
+    if tail + 1 < max {
+        return format!("{}{}", &full[..max - tail], &full[full.len() - tail..]);
+    }
+    // `p_` + the machine's start + `_` + 4 hex digits of its whole name.
+    const HASHED: usize = 1 + 1 + 1 + 4;
+    if max <= HASHED {
         full.truncate(max);
         return full;
     }
-    format!("{}{}", &full[..max - tail], &full[full.len() - tail..])
+    let head: String = full[full.len() - tail + 1..]
+        .chars()
+        .take(max - HASHED)
+        .collect();
+    format!(
+        "{}_{head}_{:04x}",
+        &full[..1],
+        fnv1a(machine.as_bytes()) & 0xffff
+    )
+}
+
+/// 32-bit FNV-1a: a stable hash, the same on every machine and release.
+fn fnv1a(bytes: &[u8]) -> u32 {
+    bytes.iter().fold(0x811c_9dc5, |h: u32, &b| {
+        (h ^ u32::from(b)).wrapping_mul(0x0100_0193)
+    })
 }
 
 #[cfg(test)]
@@ -160,5 +192,18 @@ mod tests {
         let s = program_stem("x", "a machine with a very long name", 24);
         assert_eq!(s.len(), 24);
         assert!(program_stem("part", "kr60", 19).len() <= 19);
+    }
+
+    #[test]
+    fn long_machine_names_stay_distinct() {
+        let a = program_stem("bracket", "cnc_with_a_rather_long_name_1", 24);
+        let b = program_stem("bracket", "cnc_with_a_rather_long_name_2", 24);
+        assert_ne!(a, b);
+        for s in [&a, &b] {
+            assert_eq!(s.len(), 24, "{s}");
+            assert!(s.starts_with("b_cnc_with_a_rath"), "{s}");
+        }
+        let k = program_stem("very_long_part_name", "a_seventeen_chars", 19);
+        assert!(k.len() <= 19 && k.contains("a_seventeen"), "{k}");
     }
 }

@@ -75,7 +75,7 @@ enum Command {
         #[arg(long)]
         timings: bool,
     },
-    /// Check FILE (syntax, units, geometry, process limits) without writing anything.
+    /// Check FILE (syntax, units, geometry, process limits, every machine's limits) without writing anything.
     Check {
         /// The .lmd file.
         file: PathBuf,
@@ -98,6 +98,25 @@ pub fn run(cli: Cli) -> u8 {
             print_diags(&compiled.diagnostics, &file, &source, color);
             match compiled.program {
                 Some(p) => {
+                    // The back ends' own checks (axis limits, tilt, analog
+                    // range) run by emitting every program into nothing.
+                    let emitted = Templates::builtin()
+                        .map_err(EmitError::Template)
+                        .and_then(|t| {
+                            let all = pipeline::select_machines(&p, None).unwrap_or_default();
+                            pipeline::emit(&p, &all, &t, &mut lmdc::back::NullSink, &mut ())
+                        });
+                    match emitted {
+                        Ok(()) => {}
+                        Err(EmitError::Program(d)) => {
+                            print_diags(&d, &file, &source, color);
+                            return EXIT_PROGRAM;
+                        }
+                        Err(e) => {
+                            eprintln!("error: {e}");
+                            return EXIT_USAGE;
+                        }
+                    }
                     eprintln!(
                         "ok: {} layers, {} points, {} machine{}",
                         p.ir().layers.len(),

@@ -144,6 +144,13 @@ fn scan_speed(process: &Process, bead: &Bead, at: Span, diags: &mut Diagnostics)
     }
 }
 
+/// A declared layer height this far (relative) from what the tracks lay is
+/// reported.
+const LIFT_TOLERANCE: f64 = 0.02;
+
+/// A height this far (relative) from a whole number of layers is reported.
+const HEIGHT_TOLERANCE: f64 = 0.01;
+
 /// Joins an extrusion with its planar slicing: derives what is `auto` and
 /// evaluates the profile on every layer.
 pub fn assemble(
@@ -200,14 +207,40 @@ pub fn assemble(
         );
         return None;
     }
+    let laid = planar_lift(width, h, overlapped.then_some(offset));
     let (lift, lift_derived) = match spec.lift {
-        Some((l, _)) => (l, false),
-        None => (planar_lift(width, h, overlapped.then_some(offset)), true),
+        Some((l, at)) => {
+            // The nozzle rises by the declared height, the part by what its
+            // tracks lay: a difference adds up layer after layer (seed 001's
+            // fixed lift undershot and needed an extra lift every 3 layers).
+            let drift = laid.0 - l.0;
+            if drift.abs() > LIFT_TOLERANCE * laid.0 {
+                diags.push(
+                    Diagnostic::warning(
+                        "lmd::lift-mismatch",
+                        format!(
+                            "layers {} high, but these tracks lay {} a layer ({}): the standoff changes by {} a layer",
+                            l,
+                            laid,
+                            if overlapped { "A/d, tracks overlapped" } else { "A/w, one track wide" },
+                            Length(drift.abs()),
+                        ),
+                    )
+                    .label(at, "declared layer height")
+                    .help(format!(
+                        "`layer_height = auto` uses {laid}; keep a declared height only if the process is controlled to it"
+                    )),
+                );
+            }
+            (l, false)
+        }
+        None => (laid, true),
     };
     let layers = match (spec.layers, w.height) {
         (Some((n, _)), None) => n,
         (None, Some((height, _))) => {
-            let n = (height.0 / lift.0).round();
+            // Whole layers, at least as tall as asked (machining takes off the rest).
+            let n = (height.0 / lift.0 * (1.0 - 1e-9)).ceil();
             if n > MAX_LAYERS as f64 {
                 diags.push(
                     Diagnostic::error(
@@ -221,7 +254,25 @@ pub fn assemble(
                 );
                 return None;
             }
-            (n as usize).max(1)
+            let n = (n as usize).max(1);
+            let built = n as f64 * lift.0;
+            if (built - height.0).abs() > HEIGHT_TOLERANCE * height.0 {
+                diags.push(
+                    Diagnostic::warning(
+                        "lmd::height-rounded",
+                        format!(
+                            "{n} layers of {} build {}: the {} asked for and {} more",
+                            lift,
+                            Length(built),
+                            height,
+                            Length(built - height.0)
+                        ),
+                    )
+                    .label(w.height.map(|h| h.1).unwrap_or(w.span), "height")
+                    .help("layers come whole: give `layers` in the slicing block instead, or a height that is a multiple of the layer height"),
+                );
+            }
+            n
         }
         (Some((_, ls)), Some((_, hs))) => {
             diags.push(

@@ -116,12 +116,32 @@ impl<'a> Fields<'a> {
             }
             let is_block = blocks.contains(&key);
             let entry = match (&s.body, is_block) {
-                (Body::Assign(e), false) => Entry {
-                    key: key.into(),
-                    key_span: s.kind.span,
-                    value: env.eval(e, diags),
-                    block: None,
-                },
+                (Body::Assign(e), false) => {
+                    let before = env.layer_reads();
+                    let value = env.eval(e, diags);
+                    // Only a profile is evaluated per layer; anywhere else the
+                    // layer builtins would silently read 0.
+                    if env.layer_reads() > before && key != "profile" {
+                        diags.push(
+                            Diagnostic::error(
+                                "lmd::layer-outside-profile",
+                                format!("`{key}` uses `layer` or `layer_z`, which only a profile follows"),
+                            )
+                            .label(e.span, "depends on the layer")
+                            .help(if key == "power" {
+                                "schedule power over layers with `ramp(from = …, to = …, layers = …)`".to_string()
+                            } else {
+                                format!("give {what} a value that does not change with the layer")
+                            }),
+                        );
+                    }
+                    Entry {
+                        key: key.into(),
+                        key_span: s.kind.span,
+                        value,
+                        block: None,
+                    }
+                }
                 (Body::Block(inner, span), true) => Entry {
                     key: key.into(),
                     key_span: s.kind.span,

@@ -111,9 +111,27 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
             ));
             continue;
         };
+        let before = env.layer_reads();
         let Some(v) = env.eval(e, diags) else {
             continue;
         };
+        if env.layer_reads() > before {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::layer-outside-profile",
+                    format!(
+                        "section `{}` uses `layer` or `layer_z`, which only a profile follows",
+                        n.node
+                    ),
+                )
+                .label(e.span, "depends on the layer")
+                .help(format!(
+                    "declare it as `profile {} = …` to let it change from layer to layer",
+                    n.node
+                )),
+            );
+            continue;
+        }
         let sec = match &v.value {
             Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
             other => {

@@ -103,6 +103,18 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
             &f,
             "powder",
         );
+        if let Some(Some((_, sp))) = powder {
+            // Seed 002's table reserves the field too: feeders are not switched
+            // track by track.
+            diags.push(
+                Diagnostic::warning(
+                    "lmd::unused",
+                    format!("{what}'s powder feed is recorded, not programmed"),
+                )
+                .label(sp, "in the IR and the programs' style table only")
+                .help("no back end sets the powder feeder per track; set it at the cell, or leave `powder` out"),
+            );
+        }
         let colour = match f.text("colour", None, diags) {
             Some((c, sp)) => {
                 if is_colour(&c) {

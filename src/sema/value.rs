@@ -223,6 +223,13 @@ impl<'a> Env<'a> {
         }
     }
 
+    /// How often the layer builtins have been read so far (directly or
+    /// through a constant that uses them): a rise across an evaluation means
+    /// its value depends on the layer.
+    pub fn layer_reads(&self) -> u64 {
+        self.layer_reads
+    }
+
     /// Whether evaluating `e` reads the layer number.
     pub fn depends_on_layer(&mut self, e: &Expr) -> bool {
         let before = self.layer_reads;
