@@ -588,10 +588,23 @@ proptest! {
                 }
             }
         }
+        // Lines sit whole offsets from the first, but for a closing line on
+        // the far extreme, between half an offset and one past the last.
         let first = across.iter().copied().fold(f64::INFINITY, f64::min);
-        for a in across {
+        let last = across.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let whole: Vec<f64> = across
+            .iter()
+            .map(|a| (a - first) / d)
+            .filter(|n| (n - n.round()).abs() < 1e-6)
+            .collect();
+        let top = whole.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        for a in &across {
             let n = (a - first) / d;
-            prop_assert!((n - n.round()).abs() < 1e-6, "line at {n} offsets");
+            if (n - n.round()).abs() >= 1e-6 {
+                prop_assert!((a - last).abs() < 1e-9, "line at {n} offsets is not the last");
+                let gap = n - top;
+                prop_assert!(gap > lmdc::fill::CLOSING - 1e-9 && gap < 1.0, "closing line {gap} offsets past the last");
+            }
         }
     }
 }

@@ -325,3 +325,33 @@ fn layer_outside_a_profile_is_an_error() {
         "{d:?}"
     );
 }
+
+/// A spot no bead reaches but narrower than a bead is a warning, a wider one
+/// an error: a thin tab between two raster lines, 2 mm and then 15 mm long.
+#[test]
+fn unreached_spots_warn_and_wide_ones_fail() {
+    let plate = |tab: f64| {
+        format!(
+            "part p
+profile q = outline([0 mm, 0 mm], [30 mm, 0 mm], [30 mm, 9.9 mm], [{x} mm, 9.9 mm],
+                    [{x} mm, 10.5 mm], [30 mm, 10.5 mm], [30 mm, 20 mm], [0 mm, 20 mm])
+bead b {{ width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }}
+extrude e {{ profile = q  bead = b }}
+slicing planar {{ layers = 2  offset = 1.6 mm  infill = raster(angle = 0 deg) }}
+process {{ power = 1500 W  powder = 8 g/min }}
+machine m {{ kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}
+",
+            x = 30.0 + tab
+        )
+    };
+    // The tab's tip (32, 10.2) is hypot(2, 0.6) = 2.09 mm from the line end
+    // (30, 9.6): more than ¾ of 2.2 mm, less than 2.2 mm.
+    let c = compile(&plate(2.0), &mut ());
+    let thin = with_code(&c.diagnostics, "lmd::thin-gap");
+    assert_eq!(thin.len(), 1, "{:?}", c.diagnostics);
+    assert!(thin[0].contains("on 2 layers"), "{}", thin[0]);
+    assert!(c.program.is_some());
+    let c = compile(&plate(15.0), &mut ());
+    assert_eq!(with_code(&c.diagnostics, "lmd::fill-gap").len(), 1);
+    assert!(c.program.is_none());
+}

@@ -23,7 +23,9 @@
 //!   region's extremes (arcs included). Line 0 thus touches
 //!   the region's extreme point, and over a circular edge of radius `R` line
 //!   `n` meets the circle `sqrt(R² − (R − n·d)²)` from the circle's centre
-//!   line — seed 001's `X_n`.
+//!   line — seed 001's `X_n`. When more than half an offset
+//!   ([`CLOSING`]) is left between the last such line and `s_max`, a closing
+//!   line sits on `s_max`, so the far edge is not short by up to an offset.
 //! - **Clipping** is exact, against the region's lines and true arcs (not a
 //!   flattened polygon), and the region is closed: a line lying along a
 //!   straight edge yields that edge, a line touching an arc yields the touch
@@ -76,6 +78,7 @@ mod raster;
 
 pub use coverage::{gap, Gap, MAX_SAMPLES};
 pub use error::{Count, FillError, Invalid};
+pub use raster::CLOSING;
 
 use crate::geometry::profile::Profile;
 

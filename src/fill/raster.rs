@@ -27,6 +27,10 @@ use std::f64::consts::{FRAC_PI_2, TAU};
 /// despite rounding.
 const LINE_SLACK: f64 = 1e-9;
 
+/// More than this many offsets left over past the last line gets a closing
+/// line on the far extreme.
+pub const CLOSING: f64 = 0.5;
+
 /// An arc's top or bottom this close (rad) to its end is its end: no split.
 const ANGLE_EPS: f64 = 1e-12;
 
@@ -187,6 +191,11 @@ pub(super) fn tracks(
         }));
     }
     let count = count as usize;
+    // When more than half an offset is left beyond the last whole-offset
+    // line, one more line on the far extreme keeps that edge from coming
+    // up short by up to an offset (the last two lines are then closer).
+    let closing = s_max - (s_min + (count - 1) as f64 * d) > CLOSING * d;
+    let count = count + usize::from(closing);
     // Each line's `s`; the last may sit a hair past `s_max`, so clamp it
     // back onto the extreme it is meant to touch.
     let line_s = |n: usize| (s_min + n as f64 * d).min(s_max);

@@ -16,6 +16,9 @@ use crate::ir::{Frame, Layer, Path, PathKind, Point};
 use crate::sema::model::{Extrusion, Measure, Model, Pattern, PlanarSlicing};
 use crate::units::{short, Length};
 
+/// A spot this many bead widths from every track centre line is reported.
+const THIN_GAP: f64 = 0.75;
+
 /// Points the gap check samples over a whole part.
 const GAP_SAMPLES: usize = 20_000_000;
 
@@ -38,6 +41,7 @@ pub fn slice(
     let (mut short_tracks, mut first_short) = (0usize, None);
     let mut styler = Styler::new(&model.styles, slicing.chord_error.0);
     let (mut gaps, mut first_gap) = (0usize, None);
+    let (mut thin_gaps, mut thin) = (0usize, None);
     // The gap check samples each layer; a budget over the whole part keeps it
     // linear however many layers there are.
     let gap_samples = (GAP_SAMPLES / n.max(1)).clamp(500, fill::MAX_SAMPLES);
@@ -64,9 +68,20 @@ pub fn slice(
         }
         // Only a raster promises a full layer; contours alone make walls.
         if slicing.infill.is_some() {
-            if let Some(g) = fill::gap(&profile, inset, &tracks, w, gap_samples) {
-                gaps += 1;
-                first_gap.get_or_insert((k, g));
+            // Anything over w/2 from every centre line is reached by no bead,
+            // but corners of contour and raster leave such slivers anyway and
+            // the melt pool flows into them: a quarter bead width unreached is
+            // worth a warning; a spot wider than a bead is an error.
+            if let Some(g) = fill::gap(&profile, inset, &tracks, THIN_GAP * w, gap_samples) {
+                if g.distance > w {
+                    gaps += 1;
+                    first_gap.get_or_insert((k, g));
+                } else {
+                    thin_gaps += 1;
+                    if thin.is_none_or(|(_, t): (usize, fill::Gap)| g.distance > t.distance) {
+                        thin = Some((k, g));
+                    }
+                }
             }
         }
         for t in &tracks {
@@ -105,6 +120,25 @@ pub fn slice(
         .label(slicing.span, "fill")
         .help("raster lines miss parts of a profile narrower than the offset, and line ends reach at most `extend` past their neighbours: a smaller offset, a larger `extend`, a contour pass or another raster angle fills them")
         .into());
+    }
+    if let Some((k, g)) = thin {
+        warnings.push(
+            Diagnostic::warning(
+                "lmd::thin-gap",
+                format!(
+                    "no bead reaches some spots on {thin_gaps} layer{}: the farthest, on layer {}, is ({}, {}) mm, {} from the nearest track centre line (a bead reaches {})",
+                    if thin_gaps == 1 { "" } else { "s" },
+                    k + 1,
+                    short(g.at[0]),
+                    short(g.at[1]),
+                    Length(g.distance),
+                    Length(w / 2.0)
+                ),
+            )
+            .label(extrusion.shape_span, "this shape")
+            .label(slicing.span, "fill")
+            .help("often the strip the raster leaves at its far edge when the profile is not a whole number of offsets wide; a contour pass, a width of whole offsets, or a smaller offset closes it"),
+        );
     }
     if let Some(first) = first_short {
         warnings.push(
