@@ -355,3 +355,43 @@ machine m {{ kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}
     assert_eq!(with_code(&c.diagnostics, "lmd::fill-gap").len(), 1);
     assert!(c.program.is_none());
 }
+
+/// Process values the bead model cannot lay are errors at the line that sets
+/// them, not counts of points.
+#[test]
+fn scan_speed_and_layer_height_are_checked_at_their_lines() {
+    let tooth = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
+    let d = diagnose(&tooth.replace("speed = 6 mm/s\n  power", "speed = 8 mm/s\n  power"));
+    let m = with_code(&d, "lmd::out-of-range");
+    assert!(
+        m.iter()
+            .any(|m| m.contains("8 mm/s") && m.contains("measured at")),
+        "{d:?}"
+    );
+    let d = diagnose(&tooth.replace("layer_height = auto", "layer_height = 0.9 mm"));
+    let m = with_code(&d, "lmd::layer-height");
+    assert_eq!(m.len(), 1, "{d:?}");
+    assert!(
+        m[0].contains("0.9 mm") && m[0].contains("0.7 mm"),
+        "{}",
+        m[0]
+    );
+}
+
+/// Styles that can never apply, and contours that do not fit, are reported.
+#[test]
+fn idle_styles_and_missing_contours_warn() {
+    let chord = std::fs::read_to_string("examples/styled_chord.lmd").unwrap();
+    let src = chord
+        .replace("layers = 1 .. 1 ", "layers = 40 .. 50")
+        .replace("contours = 1", "contours = 9");
+    let c = compile(&src, &mut ());
+    let unused = with_code(&c.diagnostics, "lmd::unused");
+    assert!(
+        unused.iter().any(|m| m.contains("layer 40")),
+        "{:?}",
+        c.diagnostics
+    );
+    let few = with_code(&c.diagnostics, "lmd::few-contours");
+    assert_eq!(few.len(), 1, "{:?}", c.diagnostics);
+}

@@ -131,7 +131,31 @@ fn source<'a>(v: &Spanned, scope: &Scope<'_, 'a>, diags: &mut Diagnostics) -> Op
 /// measured bead model was measured at.
 fn scan_speed(process: &Process, bead: &Bead, at: Span, diags: &mut Diagnostics) -> Option<Speed> {
     match (process.speed, bead.model) {
-        (Some((v, _)), _) => Some(v),
+        (Some((v, sp)), _) => {
+            let [lo, hi] = bead.speed;
+            if v.0 < lo.0 * (1.0 - 1e-9) || v.0 > hi.0 * (1.0 + 1e-9) {
+                let measured = matches!(bead.model, HeightModel::Measured { .. });
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::out-of-range",
+                        if measured {
+                            format!("the scan speed {v} is not the {lo} bead `{}` was measured at", bead.name)
+                        } else {
+                            format!("the scan speed {v} is outside the {lo} .. {hi} bead `{}` is valid for", bead.name)
+                        },
+                    )
+                    .label(sp, "scan speed")
+                    .label(bead.speed_span, "the bead model's speeds")
+                    .help(if measured {
+                        "a measured bead holds at its own speed: scan at that speed, or measure the bead at this one".to_string()
+                    } else {
+                        format!("scan at {lo} .. {hi}, or fit the bead model over the speed you need")
+                    }),
+                );
+                return None;
+            }
+            Some(v)
+        }
         (None, HeightModel::Measured { speed, .. }) => Some(speed),
         (None, _) => {
             diags.push(
@@ -209,6 +233,25 @@ pub fn assemble(
     }
     let laid = planar_lift(width, h, overlapped.then_some(offset));
     let (lift, lift_derived) = match spec.lift {
+        Some((l, at))
+            if l.0 < bead.height[0].0 * (1.0 - 1e-9) || l.0 > bead.height[1].0 * (1.0 + 1e-9) =>
+        {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::layer-height",
+                    format!(
+                        "layers {} high are outside the {} .. {} bead `{}` can lay",
+                        l, bead.height[0], bead.height[1], bead.name
+                    ),
+                )
+                .label(at, "declared layer height")
+                .label(bead.height_span, "the bead's heights")
+                .help(format!(
+                    "`layer_height = auto` gives {laid}, what these tracks lay"
+                )),
+            );
+            return None;
+        }
         Some((l, at)) => {
             // The nozzle rises by the declared height, the part by what its
             // tracks lay: a difference adds up layer after layer (seed 001's

@@ -391,7 +391,12 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         );
         return None;
     }
+    let layers = match &plan {
+        Plan::Block { extrusion, .. } => Some(extrusion.layers.len()),
+        Plan::Duct { .. } => None,
+    };
     let styles = style::assemble(
+        layers,
         styles,
         inheritance,
         inheritance_stmt.map(|s| s.span),

@@ -115,6 +115,13 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
                 .help("no back end sets the powder feeder per track; set it at the cell, or leave `powder` out"),
             );
         }
+        if !f.has("power") && !f.has("speed") && !f.has("powder") {
+            diags.push(
+                Diagnostic::warning("lmd::unused", format!("{what} sets no process value"))
+                    .label(n.span, "its tracks get the process block's values")
+                    .help("give it `power`, `speed` or both"),
+            );
+        }
         let colour = match f.text("colour", None, diags) {
             Some((c, sp)) => {
                 if is_colour(&c) {
@@ -299,13 +306,40 @@ fn rule<'a>(
     } else {
         ok &= !f.has("layers");
     }
-    if ok && out.is_empty() {
+    // Only a block written empty picks every track; one whose conditions
+    // all failed has said why already.
+    if ok && out.is_empty() && stmts.is_empty() {
         diags.push(
             Diagnostic::error("lmd::missing-field", "an empty `when` block picks every track")
                 .label(span, "no condition")
                 .help("set values for every track in `process`; here say which tracks, e.g. `paths = infill`"),
         );
         return None;
+    }
+    if out.is_empty() {
+        return None;
+    }
+    let length = |pick: fn(&StyleCondition) -> Option<f64>| out.iter().find_map(pick);
+    if let (Some(below), Some(above)) = (
+        length(|c| match c {
+            StyleCondition::ShorterThan(l) => Some(l.0),
+            _ => None,
+        }),
+        length(|c| match c {
+            StyleCondition::LongerThan(l) => Some(l.0),
+            _ => None,
+        }),
+    ) {
+        if below <= above {
+            diags.push(
+                Diagnostic::warning(
+                    "lmd::unused",
+                    format!("no track is shorter than {} and at least {} long", Length(below), Length(above)),
+                )
+                .label(span, "this `when` block picks nothing")
+                .help("for tracks shorter than one length or longer than another, write two `when` blocks"),
+            );
+        }
     }
     ok.then_some(out)
 }
@@ -364,6 +398,7 @@ pub fn inheritance<'a>(
 /// Checks each style's values against the bead model (speed range, and the bead
 /// height that speed gives) and the laser's power range, and makes the table.
 pub fn assemble(
+    layers: Option<usize>,
     written: Vec<Written>,
     inheritance: Option<Inheritance>,
     inheritance_span: Option<Span>,
@@ -374,6 +409,25 @@ pub fn assemble(
     let mut ok = written.iter().all(|w| w.complete);
     for w in &written {
         let s = &w.style;
+        if let Some(n) = layers {
+            let first = s.rules.iter().flatten().find_map(|c| match *c {
+                StyleCondition::Layers(a, _) if a > n => Some(a),
+                _ => None,
+            });
+            if let Some(a) = first {
+                diags.push(
+                    Diagnostic::warning(
+                        "lmd::unused",
+                        format!(
+                            "style `{}` asks for layer {a}, but the part has {n}",
+                            s.name
+                        ),
+                    )
+                    .label(s.span, "a `when` block that picks nothing")
+                    .help("layers count from 1 to the last, as in the programs' layer comments"),
+                );
+            }
+        }
         if let (Some(v), Some(sp)) = (s.speed, w.speed_span) {
             let [lo, hi] = bead.speed;
             if v.0 < lo.0 * (1.0 - 1e-9) || v.0 > hi.0 * (1.0 + 1e-9) {

@@ -42,6 +42,7 @@ pub fn slice(
     let mut styler = Styler::new(&model.styles, slicing.chord_error.0);
     let (mut gaps, mut first_gap) = (0usize, None);
     let (mut thin_gaps, mut thin) = (0usize, None);
+    let mut few_passes = None;
     // The gap check samples each layer; a budget over the whole part keeps it
     // linear however many layers there are.
     let gap_samples = (GAP_SAMPLES / n.max(1)).clamp(500, fill::MAX_SAMPLES);
@@ -83,6 +84,17 @@ pub fn slice(
                     }
                 }
             }
+        }
+        let passes = tracks
+            .iter()
+            .filter_map(|t| match t.kind {
+                TrackKind::Contour { index } => Some(index + 1),
+                TrackKind::Infill => None,
+            })
+            .max()
+            .unwrap_or(0);
+        if passes < slicing.contours && few_passes.is_none() {
+            few_passes = Some((k, passes));
         }
         for t in &tracks {
             if length(&t.points) < w {
@@ -138,6 +150,20 @@ pub fn slice(
             .label(extrusion.shape_span, "this shape")
             .label(slicing.span, "fill")
             .help("often the strip the raster leaves at its far edge when the profile is not a whole number of offsets wide; a contour pass, a width of whole offsets, or a smaller offset closes it"),
+        );
+    }
+    if let Some((k, passes)) = few_passes {
+        warnings.push(
+            Diagnostic::warning(
+                "lmd::few-contours",
+                format!(
+                    "only {passes} of the {} contour passes fit inside the profile on layer {}",
+                    slicing.contours,
+                    k + 1
+                ),
+            )
+            .label(slicing.span, "contours")
+            .help("the profile is narrower there than the passes need; fewer contours, or a raster inside them"),
         );
     }
     if let Some(first) = first_short {
