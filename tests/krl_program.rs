@@ -349,7 +349,7 @@ proptest! {
         }
     }
 
-    /// Between two normals θ apart the tool turns by little more than θ: it never
+    /// Between two normals θ apart the tool turns by exactly θ (parallel transport): it never
     /// spins about the beam (which would whip the wrist round).
     #[test]
     fn orientation_moves_with_the_normal(
@@ -367,7 +367,7 @@ proptest! {
             let theta = angle(n, m);
             let next = o.abc(m);
             let turn = rotation_between([prev.a, prev.b, prev.c], [next.a, next.b, next.c]);
-            prop_assert!(turn <= theta * 1.01 + 1e-4, "turned {turn}° for a {theta}° change");
+            prop_assert!((turn - theta).abs() < 1e-6, "turned {turn}° for a {theta}° change");
             prev = next;
             n = m;
         }

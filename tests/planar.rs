@@ -395,3 +395,23 @@ fn idle_styles_and_missing_contours_warn() {
     let few = with_code(&c.diagnostics, "lmd::few-contours");
     assert_eq!(few.len(), 1, "{:?}", c.diagnostics);
 }
+
+/// A contour pass that closes on itself as a sliver (its sides 0.4 mm apart
+/// with a 2.2 mm bead) piles up: reported as an overlap.
+#[test]
+fn sliver_contours_warn() {
+    let src = r#"
+part p
+profile q = outline([0 mm, 0 mm], [20 mm, 0 mm], [20 mm, 0.4 mm], [0 mm, 0.4 mm])
+bead b { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
+extrude e { profile = q  bead = b }
+slicing planar { layers = 2  contours = 1 }
+process { power = 1500 W  powder = 8 g/min }
+machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+"#;
+    let c = compile(src, &mut ());
+    let m = with_code(&c.diagnostics, "lmd::overlap");
+    assert_eq!(m.len(), 1, "{:?}", c.diagnostics);
+    // 2·area/perimeter = 2·8/40.8 = 0.392 mm.
+    assert!(m[0].contains("0.3922 mm"), "{}", m[0]);
+}

@@ -10,16 +10,12 @@ use super::model::{Bead, Extrusion, HeightModel, Measure, PlanarSlicing, Process
 use super::profile;
 use super::slicing::{PlanarSpec, MAX_LAYERS};
 use super::value::{unknown_name, Env, Spanned, Value};
-use crate::bead::{flat_top_offset, planar_lift};
+use crate::bead::{flat_top_offset, planar_lift, MIN_OFFSET_RATIO};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Expr, Stmt};
 use crate::units::{Dim, Length, Speed};
 use std::collections::BTreeMap;
-
-/// Tracks closer than this fraction of the bead width overlap so much that the
-/// layer piles up instead of levelling (seed 001: level at about 33 % overlap).
-pub const MIN_OFFSET_RATIO: f64 = 0.3;
 
 /// What an extrusion may refer to.
 pub struct Scope<'s, 'a> {

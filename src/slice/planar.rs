@@ -7,6 +7,7 @@
 
 use super::styling::Styler;
 use super::MAX_TOTAL_POINTS;
+use crate::bead::MIN_OFFSET_RATIO;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::fill::{
     self, FillError, FillSpec, Pattern as FillPattern, RasterSpec, Track, TrackKind,
@@ -43,6 +44,7 @@ pub fn slice(
     let (mut gaps, mut first_gap) = (0usize, None);
     let (mut thin_gaps, mut thin) = (0usize, None);
     let mut few_passes = None;
+    let mut sliver = None;
     // The gap check samples each layer; a budget over the whole part keeps it
     // linear however many layers there are.
     let gap_samples = (GAP_SAMPLES / n.max(1)).clamp(500, fill::MAX_SAMPLES);
@@ -97,6 +99,16 @@ pub fn slice(
             few_passes = Some((k, passes));
         }
         for t in &tracks {
+            // A contour loop whose sides run closer than the tracks may (a
+            // sliver: mean width 2·area/perimeter) piles up like any overlap.
+            if let TrackKind::Contour { .. } = t.kind {
+                let thickness = 2.0 * loop_area(&t.points) / length(&t.points).max(1e-12);
+                if thickness < MIN_OFFSET_RATIO * w
+                    && sliver.is_none_or(|(_, s): (usize, f64)| thickness < s)
+                {
+                    sliver = Some((k, thickness));
+                }
+            }
             if length(&t.points) < w {
                 short_tracks += 1;
                 first_short.get_or_insert(k);
@@ -152,6 +164,23 @@ pub fn slice(
             .help("often the strip the raster leaves at its far edge when the profile is not a whole number of offsets wide; a contour pass, a width of whole offsets, or a smaller offset closes it"),
         );
     }
+    if let Some((k, t)) = sliver {
+        warnings.push(
+            Diagnostic::warning(
+                "lmd::overlap",
+                format!(
+                    "a contour pass on layer {} is a sliver whose sides run {} apart, {:.0} % of the {} bead: it piles up",
+                    k + 1,
+                    Length(t),
+                    100.0 * t / w,
+                    Length(w)
+                ),
+            )
+            .label(extrusion.shape_span, "this shape")
+            .label(slicing.span, "contours")
+            .help("the profile narrows to less than the passes need there; fewer contours, or a raster for the middle"),
+        );
+    }
     if let Some((k, passes)) = few_passes {
         warnings.push(
             Diagnostic::warning(
@@ -182,6 +211,15 @@ pub fn slice(
         );
     }
     Ok((out, warnings))
+}
+
+/// Area enclosed by a closed polyline (shoelace), unsigned.
+fn loop_area(p: &[[f64; 2]]) -> f64 {
+    let twice: f64 = p
+        .windows(2)
+        .map(|s| s[0][0] * s[1][1] - s[1][0] * s[0][1])
+        .sum();
+    (twice / 2.0).abs()
 }
 
 fn length(p: &[[f64; 2]]) -> f64 {

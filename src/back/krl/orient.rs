@@ -5,8 +5,8 @@
 //! wrist moves as little as possible: the tool's *reference axis* (the axis after
 //! the beam axis, cyclically: beam Z → X, beam X → Y, beam Y → Z) starts along the
 //! base's X projected onto the layer plane and is then carried from normal to
-//! normal by parallel transport (projected onto each new plane, never spun about
-//! the beam). A nozzle pointing straight down with beam +Z is then the familiar
+//! normal by parallel transport (turned by the smallest rotation between the two
+//! normals, never spun about the beam). A nozzle pointing straight down with beam +Z is then the familiar
 //! `A 0, B 0, C 180`.
 //!
 //! `A B C` are KUKA's ZYX Euler angles, R = Rz(A)·Ry(B)·Rx(C), the columns of R
@@ -35,6 +35,8 @@ pub struct Orienter {
     sign: f64,
     /// The reference axis' direction in the base, unit, ⊥ the last normal.
     reference: Vector3<f64>,
+    /// The last normal, once there is one.
+    normal: Option<Vector3<f64>>,
 }
 
 impl Orienter {
@@ -52,6 +54,7 @@ impl Orienter {
             axis,
             sign,
             reference: Vector3::x(),
+            normal: None,
         }
     }
 
@@ -59,8 +62,16 @@ impl Orienter {
     /// moving the reference axis along.
     pub fn rotation(&mut self, normal: [f32; 3]) -> Matrix3<f64> {
         let n = Vector3::new(normal[0] as f64, normal[1] as f64, normal[2] as f64).normalize();
-        let r = transport(self.reference, n);
+        // Parallel transport: the smallest rotation that takes the last
+        // normal to this one carries the reference axis along, so the tool
+        // turns by exactly the angle between the normals.
+        let carried = match self.normal {
+            Some(p) => carry(self.reference, p, n),
+            None => self.reference,
+        };
+        let r = transport(carried, n);
         self.reference = r;
+        self.normal = Some(n);
         let beam = -n * self.sign;
         let third = beam.cross(&r);
         let mut m = Matrix3::zeros();
@@ -76,9 +87,24 @@ impl Orienter {
     }
 }
 
-/// `r` projected onto the plane ⊥ `n`, normalised. When `r` is (nearly) along `n`
-/// — only after a jump of the normal by 90° — the base's X or Y, whichever lies
-/// more in the plane, is projected instead.
+/// `r` turned by the smallest rotation taking the unit `from` to the unit `to`:
+/// R = I + [v]× + [v]×²/(1 + c) with v = from × to, c = from · to (no
+/// trigonometry: this runs for every point). Unchanged when the two are
+/// opposite, where no rotation is smallest.
+fn carry(r: Vector3<f64>, from: Vector3<f64>, to: Vector3<f64>) -> Vector3<f64> {
+    let v = from.cross(&to);
+    let c = from.dot(&to);
+    if 1.0 + c < 1e-9 {
+        return r;
+    }
+    let vr = v.cross(&r);
+    r + vr + v.cross(&vr) / (1.0 + c)
+}
+
+/// `r` projected onto the plane ⊥ `n`, normalised (after transport it lies
+/// there already, up to rounding). When `r` is (nearly) along `n` — only for
+/// the first normal, or after the normal flips — the base's X or Y, whichever
+/// lies more in the plane, is projected instead.
 fn transport(r: Vector3<f64>, n: Vector3<f64>) -> Vector3<f64> {
     let p = r - n * r.dot(&n);
     if p.norm() > 1e-6 {
