@@ -4,7 +4,7 @@
 
 use crate::back::{self, EmitError, Sink, Templates};
 use crate::check::{self, Verified};
-use crate::diag::Diagnostics;
+use crate::diag::{Diagnostic, Diagnostics};
 use crate::{lower, sema, syntax};
 
 /// Told when each stage finishes (for `lmdc build --timings`).
@@ -102,10 +102,22 @@ pub fn emit(
     obs: &mut dyn Observer,
 ) -> Result<(), EmitError> {
     let mut problems = Diagnostics::new();
+    let mut named = Named {
+        inner: sink,
+        names: Vec::new(),
+        machine: 0,
+        clash: None,
+    };
     for &i in which {
-        match back::emit(program, i, templates, sink) {
+        named.machine = i;
+        match back::emit(program, i, templates, &mut named) {
             Ok(()) => {}
             Err(EmitError::Program(d)) => problems.extend(d),
+            Err(EmitError::Io(_)) if named.clash.is_some() => {
+                if let Some((name, first)) = named.clash.take() {
+                    problems.push(clash(program, &name, first, i));
+                }
+            }
             Err(e) => return Err(e),
         }
         obs.stage(match program.ir().machines[i] {
@@ -118,4 +130,53 @@ pub fn emit(
     } else {
         Err(EmitError::Program(problems))
     }
+}
+
+/// Runs every back end into nothing: their own checks (axis limits, tilt,
+/// analog range, file names that clash) without writing a file. What passes
+/// here, [`emit`] writes.
+pub fn check_machines(program: &Verified) -> Result<(), EmitError> {
+    let templates = Templates::builtin().map_err(EmitError::Template)?;
+    let all: Vec<usize> = (0..program.ir().machines.len()).collect();
+    emit(program, &all, &templates, &mut back::NullSink, &mut ())
+}
+
+/// A sink that remembers which machine wrote each file name and refuses a
+/// second file of the same name.
+struct Named<'s> {
+    inner: &'s mut dyn Sink,
+    names: Vec<(String, usize)>,
+    machine: usize,
+    /// The clashing name and the machine that wrote it first.
+    clash: Option<(String, usize)>,
+}
+
+impl Sink for Named<'_> {
+    fn create(&mut self, name: &str) -> std::io::Result<Box<dyn std::io::Write + '_>> {
+        if let Some((_, first)) = self.names.iter().find(|(n, _)| n == name) {
+            self.clash = Some((name.to_string(), *first));
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::AlreadyExists,
+                format!("{name} is written twice"),
+            ));
+        }
+        self.names.push((name.to_string(), self.machine));
+        self.inner.create(name)
+    }
+}
+
+fn clash(program: &Verified, name: &str, first: usize, second: usize) -> Diagnostic {
+    let ms = &program.ir().machines;
+    let o = &program.ir().origins.machines;
+    Diagnostic::error(
+        "lmd::name-clash",
+        format!(
+            "machines `{}` and `{}` would both write {name}",
+            ms[first].name(),
+            ms[second].name()
+        ),
+    )
+    .label_opt(o.get(second).copied(), "second machine")
+    .label_opt(o.get(first).copied(), "first machine")
+    .help("file names keep letters, digits and `_` of the part's and the machine's names: give the machines names that differ there")
 }

@@ -70,6 +70,30 @@ fn check_runs_the_machine_checks() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("lmd::axis-limit"), "{}", stderr(&o));
     assert_eq!(listing(&dir), ["tooth.lmd"], "check writes nothing");
+
+    // Two machines whose names differ only in what a file name drops.
+    let src = std::fs::read_to_string("examples/sprocket_tooth.lmd")
+        .unwrap()
+        .replace("machine mill3 {", "machine \"mill 3\" {")
+        .replace("machine kr30 {", "machine mill_3 {\n  kind = cnc\n  axes = 3\n  dialect = linuxcnc\n  max_speed = 50 mm/s\n}\nmachine kr30 {");
+    std::fs::write(&file, src).unwrap();
+    for cmd in ["check", "build"] {
+        let o = lmdc(
+            &[
+                cmd,
+                file.to_str().unwrap(),
+                "--out",
+                dir.join("out").to_str().unwrap(),
+            ][..if cmd == "check" { 2 } else { 4 }],
+        );
+        assert_eq!(o.status.code(), Some(1), "{cmd}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("lmd::name-clash"),
+            "{cmd}: {}",
+            stderr(&o)
+        );
+    }
+    assert_eq!(listing(&dir), ["tooth.lmd"], "nothing written");
 }
 
 #[test]

@@ -415,3 +415,76 @@ machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
     // 2·area/perimeter = 2·8/40.8 = 0.392 mm.
     assert!(m[0].contains("0.3922 mm"), "{}", m[0]);
 }
+
+/// A profile written inline in the extrusion follows `layer` like a named one.
+#[test]
+fn inline_profiles_follow_the_layer() {
+    let src = r#"
+part p
+bead b { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
+extrude e {
+  profile = outline([0 mm, 0 mm], [20 mm + layer * 5 mm, 0 mm], [20 mm + layer * 5 mm, 16 mm], [0 mm, 16 mm])
+  bead = b
+}
+slicing planar { layers = 3  offset = 1.6 mm  infill = raster(angle = 0 deg) }
+process { power = 1500 W  powder = 8 g/min }
+machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+"#;
+    let p = build_source(src);
+    for (k, layer) in p.layers.iter().enumerate() {
+        let right = layer
+            .paths
+            .iter()
+            .flat_map(|t| &t.points)
+            .map(|pt| pt.pos[0])
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            (right - (20.0 + 5.0 * k as f64)).abs() < 1e-9,
+            "layer {k}: {right}"
+        );
+    }
+}
+
+/// Style ids: explicit ones are kept wherever they are declared; the others
+/// get the lowest free ids in file order. Names are words.
+#[test]
+fn style_ids_and_names() {
+    let chord = std::fs::read_to_string("examples/styled_chord.lmd").unwrap();
+    let src = chord
+        .replace("  id = 1\n", "")
+        .replace("  id = 2\n", "  id = 1\n");
+    let p = build_source(&src);
+    let ids: Vec<(u16, &str)> = p.styles.iter().map(|s| (s.id, s.name.as_str())).collect();
+    assert_eq!(ids, [(2, "edge"), (1, "short")]);
+    let src = chord.replace("style edge {", "style \"edge) G0 Z-50 (\" {");
+    let d = diagnose(&src);
+    assert!(
+        d.iter()
+            .any(|x| x.code == "lmd::type" && x.message.contains("is not a style name")),
+        "{d:?}"
+    );
+}
+
+/// A sub-micron outline leaves nothing to deposit: said so, not blamed on lmdc.
+#[test]
+fn sub_micron_profiles_are_empty_fills() {
+    let src = r#"
+part p
+profile q = outline([0 mm, 0 mm], [0.000000001 mm, 0 mm], [0.000000001 mm, 0.000000001 mm])
+bead b { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
+extrude e { profile = q  bead = b }
+slicing planar { layers = 2  offset = 1.6 mm  contours = 1 }
+process { power = 1500 W  powder = 8 g/min }
+machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+"#;
+    let d = diagnose(src);
+    let codes: Vec<&str> = d.iter().map(|x| x.code).collect();
+    assert!(
+        codes.contains(&"lmd::fill-empty") || codes.contains(&"lmd::degenerate"),
+        "{d:?}"
+    );
+    assert!(
+        !codes.contains(&"lmd::non-finite") && !codes.contains(&"lmd::out-of-range"),
+        "{d:?}"
+    );
+}

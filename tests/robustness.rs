@@ -171,6 +171,10 @@ fn pathological_planar_inputs() {
         part(square, "layers = 2  offset = 1.6 mm  contours = 10000  infill = raster()"),
         part(square, "layers = 2  offset = 1.6 mm  chord_error = 1e-300 mm  contours = 2"),
         part(
+            "ellipse(width = 0.000001 mm, height = 0.000001 mm)",
+            "layers = 2  offset = 1.6 mm  infill = raster()",
+        ),
+        part(
             "circle(diameter = 20 mm)",
             "layers = 2  offset = 0.01 mm  infill = raster(rotate = 1e300 deg)",
         ),

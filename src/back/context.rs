@@ -50,9 +50,10 @@ pub fn layer_context(ctx: &mut tera::Context, li: usize, n_layers: usize, layer:
 
 /// `styles`: one line per row of the style table, e.g. `style 1 edge: power
 /// 1300 W, speed 5 mm/s, powder process, colour #d62728` (`process`: the style
-/// leaves that value to the process block). Names are identifiers and colours
-/// hex digits, so the lines are safe in any comment syntax.
-pub fn styles(ctx: &mut tera::Context, p: &Verified) {
+/// leaves that value to the process block), each passed through the back
+/// end's comment sanitiser `safe` (the checker allows only word names, but
+/// the IR may come from elsewhere).
+pub fn styles(ctx: &mut tera::Context, p: &Verified, safe: &dyn Fn(&str) -> String) {
     let value = |v: Option<f64>, unit: &str| match v {
         Some(v) => format!("{} {unit}", super::fixed::trimmed(v, 3)),
         None => "process".to_string(),
@@ -62,7 +63,7 @@ pub fn styles(ctx: &mut tera::Context, p: &Verified) {
         .styles
         .iter()
         .map(|s| {
-            format!(
+            safe(&format!(
                 "style {} {}: power {}, speed {}, powder {}, colour {}",
                 s.id,
                 s.name,
@@ -70,7 +71,7 @@ pub fn styles(ctx: &mut tera::Context, p: &Verified) {
                 value(s.speed, "mm/s"),
                 value(s.powder, "g/min"),
                 s.colour
-            )
+            ))
         })
         .collect();
     ctx.insert("styles", &lines);

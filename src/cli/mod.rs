@@ -98,15 +98,8 @@ pub fn run(cli: Cli) -> u8 {
             print_diags(&compiled.diagnostics, &file, &source, color);
             match compiled.program {
                 Some(p) => {
-                    // The back ends' own checks (axis limits, tilt, analog
-                    // range) run by emitting every program into nothing.
-                    let emitted = Templates::builtin()
-                        .map_err(EmitError::Template)
-                        .and_then(|t| {
-                            let all = pipeline::select_machines(&p, None).unwrap_or_default();
-                            pipeline::emit(&p, &all, &t, &mut lmdc::back::NullSink, &mut ())
-                        });
-                    match emitted {
+                    // The back ends' own checks: axis limits, tilt, analog range, names.
+                    match pipeline::check_machines(&p) {
                         Ok(()) => {}
                         Err(EmitError::Program(d)) => {
                             print_diags(&d, &file, &source, color);

@@ -92,6 +92,9 @@ struct Grid {
     items: Vec<u32>,
 }
 
+/// Most (cell, segment) pairs the grid may hold; coarser cells beyond.
+const MAX_PAIRS: f64 = 8_000_000.0;
+
 /// Most cells the grid may have; coarser cells beyond.
 const MAX_CELLS: f64 = 4_000_000.0;
 
@@ -108,9 +111,17 @@ impl Grid {
             lo = [0.0; 2];
             hi = [0.0; 2];
         }
-        // Cells at least `reach` wide, so a query two cells round suffices.
+        // Cells at least `reach` wide, so a query two cells round suffices;
+        // wider when the cells or the (cell, segment) pairs would be too many
+        // (a plate tens of metres wide), which only makes queries slower.
         let area = (hi[0] - lo[0] + 4.0 * reach) * (hi[1] - lo[1] + 4.0 * reach);
-        let cell = reach.max((area / MAX_CELLS).sqrt());
+        let length: f64 = segments
+            .iter()
+            .map(|s| (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1]))
+            .sum();
+        let cell = reach
+            .max((area / MAX_CELLS).sqrt())
+            .max(2.0 * length / MAX_PAIRS);
         let origin = [lo[0] - 2.0 * cell, lo[1] - 2.0 * cell];
         let nx = (((hi[0] - origin[0]) / cell).floor() as usize + 3).max(1);
         let ny = (((hi[1] - origin[1]) / cell).floor() as usize + 3).max(1);

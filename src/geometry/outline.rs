@@ -98,7 +98,8 @@ fn section(s: &Section, chord_error: f64) -> Vec<Vertex> {
         Section::Ellipse { a, b } => {
             // Chord error of a circle of the larger radius bounds the ellipse's.
             let big = a.0.max(b.0);
-            let e = chord_error.clamp(1e-6, big);
+            // `max` first: a sub-micron ellipse must not make clamp's bounds cross.
+            let e = chord_error.max(1e-6).min(big.max(1e-6));
             let step = 2.0 * (1.0 - e / big).acos();
             let n = ((2.0 * PI / step).ceil() as usize).clamp(8, 100_000);
             (0..n)

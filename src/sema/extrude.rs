@@ -13,8 +13,8 @@ use super::value::{unknown_name, Env, Spanned, Value};
 use crate::bead::{flat_top_offset, planar_lift, MIN_OFFSET_RATIO};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
-use crate::syntax::ast::{Expr, Stmt};
-use crate::units::{Dim, Length, Speed};
+use crate::syntax::ast::{Body, Expr, Stmt};
+use crate::units::{short, Dim, Length, Speed};
 use std::collections::BTreeMap;
 
 /// What an extrusion may refer to.
@@ -68,7 +68,20 @@ pub fn read<'a>(
     );
     let profile = f.value("profile", Some("my_profile"), diags);
     let profile_span = profile.map(|p| p.span).unwrap_or(span);
-    let source = profile.and_then(|v| source(v, scope, diags));
+    let mut source = profile.and_then(|v| source(v, scope, diags));
+    // A profile written inline that follows the layer is evaluated per layer,
+    // like a named one.
+    if let Some(Source::Fixed(_)) = source {
+        let inline = stmts
+            .iter()
+            .find_map(|s| match (&s.body, s.kind.node.as_str()) {
+                (Body::Assign(e), "profile") => Some(e),
+                _ => None,
+            });
+        if let Some(e) = inline.filter(|e| env.depends_on_layer(e)) {
+            source = Some(Source::Expr(e));
+        }
+    }
     let height = match f.positive("height", Dim::LENGTH, None, diags) {
         Some((h, sp)) => Some(Some((Length(h), sp))),
         None if f.has("height") => None,
@@ -273,7 +286,39 @@ pub fn assemble(
             }
             (l, false)
         }
-        None => (laid, true),
+        None => {
+            let [lo, hi] = bead.height;
+            if laid.0 < lo.0 * (1.0 - 1e-9) || laid.0 > hi.0 * (1.0 + 1e-9) {
+                let a = laid.0 * if overlapped { offset.0 } else { width.0 };
+                diags.push(
+                    Diagnostic::error(
+                        "lmd::layer-height",
+                        format!(
+                            "these tracks lay {} a layer ({}), outside the {} .. {} bead `{}` allows",
+                            laid,
+                            if overlapped { "A/d" } else { "A/w, one track wide" },
+                            lo,
+                            hi,
+                            bead.name
+                        ),
+                    )
+                    .label(if overlapped { offset_at } else { spec.span }, if overlapped { "track offset" } else { "one track a layer" })
+                    .label(bead.height_span, "the bead's heights")
+                    .help(if overlapped {
+                        format!(
+                            "tracks {} .. {} apart lay an allowed height (A/d with A = {} mm²)",
+                            Length(a / hi.0),
+                            Length(a / lo.0),
+                            short(a)
+                        )
+                    } else {
+                        "widen the bead's height range, or overlap tracks (contours > 1 or a raster) so the layer rises by A/d".to_string()
+                    }),
+                );
+                return None;
+            }
+            (laid, true)
+        }
     };
     let layers = match (spec.layers, w.height) {
         (Some((n, _)), None) => n,
@@ -335,7 +380,10 @@ pub fn assemble(
         }
     };
     let (shapes, shape_span) = match w.source {
-        Source::Fixed(s) => (vec![s; layers], w.profile_span),
+        Source::Fixed(s) => {
+            within_budget(pieces(&s).saturating_mul(layers), w.profile_span, diags)?;
+            (vec![s; layers], w.profile_span)
+        }
         Source::Expr(e) => (
             per_layer(env, e, layers, lift.0, w.profile_span, diags)?,
             e.span,
@@ -381,9 +429,11 @@ fn per_layer(
     if !env.depends_on_layer(e) {
         let v = env.eval(e, diags)?;
         let s = profile::shape(&v, "a profile", diags)?;
+        within_budget(pieces(&s).saturating_mul(layers), at, diags)?;
         return Some(vec![s; layers]);
     }
-    let mut out = Vec::with_capacity(layers);
+    let mut out = Vec::with_capacity(layers.min(1 << 16));
+    let mut total = 0usize;
     for k in 0..layers {
         let mut scratch = Diagnostics::new();
         let s = env.at_layer(k, k as f64 * lift, |env| {
@@ -391,7 +441,11 @@ fn per_layer(
             profile::shape(&v, "a profile", &mut scratch)
         });
         match s {
-            Some(s) if !scratch.has_errors() => out.push(s),
+            Some(s) if !scratch.has_errors() => {
+                total = total.saturating_add(pieces(&s));
+                within_budget(total, at, diags)?;
+                out.push(s);
+            }
             _ => {
                 diags.push(
                     Diagnostic::error(
@@ -410,4 +464,31 @@ fn per_layer(
         }
     }
     Some(out)
+}
+
+/// Most outline pieces over all layers: every piece of every layer is offset,
+/// clipped and checked, so the work (and the profiles kept) grows with it.
+const MAX_PROFILE_WORK: usize = 20_000_000;
+
+/// Pieces of a shape's outline (an ellipse's flattening is bounded apart).
+fn pieces(s: &Shape) -> usize {
+    match s {
+        Shape::Outline(o) => o.segments.len() + 1,
+        Shape::Section(_) => 8,
+    }
+}
+
+fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> {
+    if total <= MAX_PROFILE_WORK {
+        return Some(());
+    }
+    diags.push(
+        Diagnostic::error(
+            "lmd::too-many-points",
+            format!("the profile's pieces over all layers come to more than {MAX_PROFILE_WORK}"),
+        )
+        .label(at, "profile")
+        .help("fewer layers, or an outline of fewer pieces (an arc is one piece)"),
+    );
+    None
 }

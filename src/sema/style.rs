@@ -17,6 +17,9 @@ const PALETTE: [&str; 10] = [
     "#bcbd22", "#17becf",
 ];
 
+/// Most styles a table holds: ids are 1 ..= 65535.
+const MAX_STYLES: usize = u16::MAX as usize;
+
 /// Corners that turn by at least this much are sharp unless `corner_angle` says.
 const DEFAULT_CORNER: f64 = 45.0;
 
@@ -38,7 +41,21 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
     let mut out: Vec<Written> = Vec::new();
     let mut names: BTreeMap<String, Span> = BTreeMap::new();
     let mut ids: BTreeMap<u16, Span> = BTreeMap::new();
-    let mut next_id: u16 = 1;
+    let mut auto: Vec<usize> = Vec::new();
+    if stmts.len() > MAX_STYLES {
+        diags.push(
+            Diagnostic::error(
+                "lmd::out-of-range",
+                format!(
+                    "{} styles are more than the {MAX_STYLES} a table may hold",
+                    stmts.len()
+                ),
+            )
+            .label(stmts[MAX_STYLES].span, "one too many")
+            .help("style ids are 1 ..= 65535 (0 is the process block)"),
+        );
+        return Vec::new();
+    }
     for (i, s) in stmts.iter().enumerate() {
         let (Some(n), Body::Block(body, _)) = (&s.name, &s.body) else {
             diags.push(
@@ -51,6 +68,24 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
             );
             continue;
         };
+        // The name goes into comments of every program: a word, nothing a
+        // control could read as code.
+        let word = n
+            .node
+            .starts_with(|c: char| c.is_ascii_alphabetic() || c == '_')
+            && n.node
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_');
+        if !word {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::type",
+                    format!("`{}` is not a style name", n.node),
+                )
+                .label(n.span, "not a name")
+                .help("a style's name is a word of letters, digits and `_`, e.g. `style outer_edge { … }`"),
+            );
+        }
         if let Some(prev) = names.insert(n.node.clone(), n.span) {
             diags.push(
                 Diagnostic::error(
@@ -72,6 +107,8 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
             s.span,
             diags,
         );
+        // `Some(None)`: no id written; one is given once every explicit id
+        // is known, so it never takes an id a later style asks for.
         let id = match f.count("id", 1, u16::MAX as usize, None, diags) {
             Some((id, sp)) => {
                 let id = id as u16;
@@ -84,17 +121,10 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
                     );
                 }
                 ids.insert(id, sp);
-                Some(id)
+                Some(Some(id))
             }
             None if f.has("id") => None,
-            None => {
-                // The lowest id no style has claimed so far.
-                while ids.contains_key(&next_id) {
-                    next_id = next_id.saturating_add(1);
-                }
-                ids.insert(next_id, n.span);
-                Some(next_id)
-            }
+            None => Some(None),
         };
         let power = optional(f.positive("power", Dim::POWER, None, diags), &f, "power");
         let speed = optional(f.positive("speed", Dim::SPEED, None, diags), &f, "speed");
@@ -153,7 +183,8 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
             .iter()
             .map(|(stmts, sp)| rule(env, stmts, *sp, &what, diags))
             .collect();
-        let complete = id.is_some()
+        let complete = word
+            && id.is_some()
             && power.is_some()
             && speed.is_some()
             && powder.is_some()
@@ -161,9 +192,12 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
             && !blocks.is_empty()
             && rules.iter().all(Option::is_some);
         let (power, speed, powder) = (power.flatten(), speed.flatten(), powder.flatten());
+        if id == Some(None) {
+            auto.push(out.len());
+        }
         out.push(Written {
             style: Style {
-                id: id.unwrap_or(0),
+                id: id.flatten().unwrap_or(0),
                 name: n.node.clone(),
                 power: power.map(|(p, _)| Power(p)),
                 speed: speed.map(|(v, _)| Speed(v)),
@@ -176,6 +210,12 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
             speed_span: speed.map(|v| v.1),
             complete,
         });
+    }
+    // The lowest ids no style claims, in declaration order (at most
+    // MAX_STYLES styles, so there are enough).
+    let mut free = (1..=u16::MAX).filter(|k| !ids.contains_key(k));
+    for i in auto {
+        out[i].style.id = free.next().unwrap_or(0);
     }
     out
 }

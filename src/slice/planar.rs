@@ -13,8 +13,9 @@ use crate::fill::{
     self, FillError, FillSpec, Pattern as FillPattern, RasterSpec, Track, TrackKind,
 };
 use crate::geometry::outline;
+use crate::geometry::profile::Profile;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
-use crate::sema::model::{Extrusion, Measure, Model, Pattern, PlanarSlicing};
+use crate::sema::model::{Extrusion, Measure, Model, Pattern, PlanarSlicing, Shape};
 use crate::units::{short, Length};
 
 /// A spot this many bead widths from every track centre line is reported.
@@ -40,7 +41,10 @@ pub fn slice(
     let mut out = Vec::with_capacity(n);
     let mut total = 0usize;
     let (mut short_tracks, mut first_short) = (0usize, None);
-    let mut styler = Styler::new(&model.styles, slicing.chord_error.0);
+    // Style rules measure distances to the boundary in bead widths: a
+    // hundredth of one is plenty, and keeps a fine chord error from turning
+    // every arc into a thousand chords there.
+    let mut styler = Styler::new(&model.styles, slicing.chord_error.0.max(w / 100.0));
     let (mut gaps, mut first_gap) = (0usize, None);
     let (mut thin_gaps, mut thin) = (0usize, None);
     let mut few_passes = None;
@@ -48,42 +52,41 @@ pub fn slice(
     // The gap check samples each layer; a budget over the whole part keeps it
     // linear however many layers there are.
     let gap_samples = (GAP_SAMPLES / n.max(1)).clamp(500, fill::MAX_SAMPLES);
+    // The last layer's shape, raster angle, profile, tracks and gap: a layer
+    // like it (a fixed profile, no rotation) reuses them instead of filling
+    // and checking the same shape again.
+    let mut last: Option<Filled> = None;
     for (k, shape) in extrusion.layers.iter().enumerate() {
-        let profile = outline::profile(shape, slicing.chord_error.0);
-        let spec = FillSpec {
-            inset,
-            contours: slicing.contours,
-            offset: slicing.offset.0,
-            raster: slicing.infill.map(|r| RasterSpec {
-                angle_deg: (r.angle.0 + r.rotate.0 * k as f64).to_degrees(),
-                offset: slicing.offset.0,
-                pattern: match r.pattern {
-                    Pattern::Serpentine => FillPattern::Serpentine,
-                    Pattern::OneWay => FillPattern::OneWay,
-                },
-                extend: r.extend.0,
-            }),
+        let angle = slicing
+            .infill
+            .map_or(0.0, |r| (r.angle.0 + r.rotate.0 * k as f64).to_degrees());
+        let reuse = matches!(&last, Some(f)
+            if f.shape == shape && f.angle.rem_euclid(360.0) == angle.rem_euclid(360.0));
+        let (profile, tracks, gap) = match last.take() {
+            Some(f) if reuse => (f.profile, f.tracks, f.gap),
+            _ => {
+                let profile = outline::profile(shape, slicing.chord_error.0);
+                let (tracks, gap) = fill_layer(
+                    &profile,
+                    k,
+                    angle,
+                    inset,
+                    w,
+                    gap_samples,
+                    extrusion,
+                    slicing,
+                )?;
+                (profile, tracks, gap)
+            }
         };
-        let tracks = fill::fill(&profile, &spec, slicing.chord_error.0)
-            .map_err(|e| fill_error(e, k, extrusion, slicing))?;
-        if tracks.is_empty() {
-            return Err(fill_error(FillError::Empty, k, extrusion, slicing));
-        }
-        // Only a raster promises a full layer; contours alone make walls.
-        if slicing.infill.is_some() {
-            // Anything over w/2 from every centre line is reached by no bead,
-            // but corners of contour and raster leave such slivers anyway and
-            // the melt pool flows into them: a quarter bead width unreached is
-            // worth a warning; a spot wider than a bead is an error.
-            if let Some(g) = fill::gap(&profile, inset, &tracks, THIN_GAP * w, gap_samples) {
-                if g.distance > w {
-                    gaps += 1;
-                    first_gap.get_or_insert((k, g));
-                } else {
-                    thin_gaps += 1;
-                    if thin.is_none_or(|(_, t): (usize, fill::Gap)| g.distance > t.distance) {
-                        thin = Some((k, g));
-                    }
+        if let Some(g) = gap {
+            if g.distance > w {
+                gaps += 1;
+                first_gap.get_or_insert((k, g));
+            } else {
+                thin_gaps += 1;
+                if thin.is_none_or(|(_, t): (usize, fill::Gap)| g.distance > t.distance) {
+                    thin = Some((k, g));
                 }
             }
         }
@@ -126,6 +129,13 @@ pub fn slice(
         }
         let styles = styler.layer(k, &profile, &tracks);
         out.push(layer(model, slicing, k, n, lift, &tracks, &styles));
+        last = Some(Filled {
+            shape,
+            angle,
+            profile,
+            tracks,
+            gap,
+        });
     }
     if let Some((k, g)) = first_gap {
         return Err(Diagnostic::error(
@@ -213,6 +223,23 @@ pub fn slice(
     Ok((out, warnings))
 }
 
+/// The track without points that repeat the one before (within a nanometre),
+/// or `None` if too little is left to move along: a raster track needs two
+/// distinct points, a closed contour three. Sub-micron profiles flatten to such
+/// points, and a direction of travel needs a distance.
+fn distinct(mut t: Track) -> Option<Track> {
+    t.points
+        .dedup_by(|b, a| (b[0] - a[0]).hypot(b[1] - a[1]) <= DISTINCT);
+    let need = match t.kind {
+        TrackKind::Contour { .. } => 4,
+        TrackKind::Infill => 2,
+    };
+    (t.points.len() >= need).then_some(t)
+}
+
+/// Points closer than this (mm) are one point.
+const DISTINCT: f64 = 1e-6;
+
 /// Area enclosed by a closed polyline (shoelace), unsigned.
 fn loop_area(p: &[[f64; 2]]) -> f64 {
     let twice: f64 = p
@@ -226,6 +253,61 @@ fn length(p: &[[f64; 2]]) -> f64 {
     p.windows(2)
         .map(|s| (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1]))
         .sum()
+}
+
+/// A filled layer, kept for the next if it is the same.
+struct Filled<'m> {
+    shape: &'m Shape,
+    /// Raster angle, deg.
+    angle: f64,
+    profile: Profile,
+    tracks: Vec<Track>,
+    gap: Option<fill::Gap>,
+}
+
+/// Fills one layer's `profile` with the raster at `angle` (deg) and finds the
+/// farthest spot no bead reaches, if a raster promises a full layer.
+#[allow(clippy::too_many_arguments)]
+fn fill_layer(
+    profile: &Profile,
+    k: usize,
+    angle: f64,
+    inset: f64,
+    w: f64,
+    gap_samples: usize,
+    extrusion: &Extrusion,
+    slicing: &PlanarSlicing,
+) -> Result<(Vec<Track>, Option<fill::Gap>), Diagnostics> {
+    let spec = FillSpec {
+        inset,
+        contours: slicing.contours,
+        offset: slicing.offset.0,
+        raster: slicing.infill.map(|r| RasterSpec {
+            angle_deg: angle,
+            offset: slicing.offset.0,
+            pattern: match r.pattern {
+                Pattern::Serpentine => FillPattern::Serpentine,
+                Pattern::OneWay => FillPattern::OneWay,
+            },
+            extend: r.extend.0,
+        }),
+    };
+    let tracks: Vec<Track> = fill::fill(profile, &spec, slicing.chord_error.0)
+        .map_err(|e| fill_error(e, k, extrusion, slicing))?
+        .into_iter()
+        .filter_map(distinct)
+        .collect();
+    if tracks.is_empty() {
+        return Err(fill_error(FillError::Empty, k, extrusion, slicing));
+    }
+    // Anything over w/2 from every centre line is reached by no bead, but
+    // corners of contour and raster leave such slivers anyway and the melt
+    // pool flows into them: a quarter bead width unreached is worth a warning,
+    // a spot wider than a bead an error. Contours alone make walls: unchecked.
+    let gap = slicing
+        .infill
+        .and_then(|_| fill::gap(profile, inset, &tracks, THIN_GAP * w, gap_samples));
+    Ok((tracks, gap))
 }
 
 fn fill_error(e: FillError, k: usize, ex: &Extrusion, slicing: &PlanarSlicing) -> Diagnostics {

@@ -7,7 +7,7 @@
 use crate::fill::{Track, TrackKind};
 use crate::geometry::profile::Profile;
 use crate::sema::model::{PathSelect, StyleCondition, Styles};
-use crate::style::{self, Condition, Layout, PathClass, Rule, TrackFacts};
+use crate::style::{self, BoundaryBand, Condition, Layout, PathClass, Rule, TrackFacts};
 
 /// Assigns styles layer after layer, remembering the last layer's styled
 /// tracks for inheritance.
@@ -74,6 +74,17 @@ impl Styler {
             return vec![0; tracks.len()];
         }
         let boundary = vec![profile.polyline(self.chord_error)];
+        // Each `near_boundary` distance's band, built once for the layer.
+        let mut bands: Vec<(f64, Option<BoundaryBand>)> = Vec::new();
+        for (rule, _) in &self.rules {
+            for c in &rule.when {
+                if let Condition::BoundaryWithin(d) = *c {
+                    if !bands.iter().any(|b| b.0 == d) {
+                        bands.push((d, BoundaryBand::new(&boundary, d)));
+                    }
+                }
+            }
+        }
         let mut corners: Vec<(f64, Vec<[f64; 2]>)> = Vec::new();
         for a in self.rules.iter().filter_map(|r| r.1) {
             if !corners.iter().any(|c| c.0 == a) {
@@ -110,7 +121,14 @@ impl Styler {
                     };
                     rule.when
                         .iter()
-                        .all(|c| c.holds(&t.points, &facts, &layout))
+                        .all(|c| match *c {
+                            Condition::BoundaryWithin(d) => bands
+                                .iter()
+                                .find(|b| b.0 == d)
+                                .and_then(|b| b.1.as_ref())
+                                .is_some_and(|b| b.holds(&t.points)),
+                            _ => c.holds(&t.points, &facts, &layout),
+                        })
                         .then_some(rule.style)
                 });
                 by_rule

@@ -31,7 +31,7 @@ mod rules;
 
 pub use band::fraction_within;
 pub use inherit::{inherit, Inheritance};
-pub use rules::{apply_rules, Condition, Rule};
+pub use rules::{apply_rules, BoundaryBand, Condition, Rule};
 
 /// A style's id in the style table; 0 is the default style (the process block's
 /// values), which tracks have unless a rule or inheritance says otherwise.

@@ -77,24 +77,46 @@ impl Condition {
             ),
             Condition::LengthBelow(l) => facts.length < l,
             Condition::LengthAtLeast(l) => facts.length >= l,
-            Condition::BoundaryWithin(d) => threshold(d).is_some_and(|d| {
-                let loops = layout.boundary.iter().map(|l| (l.as_slice(), 0));
-                let bands = Bands::new(loops, true, d);
-                let cov = bands.coverage(track);
-                if cov.total > 0.0 {
-                    cov.fraction(0) >= 1.0 - WHOLE_TOLERANCE
-                } else {
-                    // No length: the track is its point (if it has a finite one).
-                    let point = track.iter().find(|p| p[0].is_finite() && p[1].is_finite());
-                    point.is_some_and(|&p| bands.contains(p))
-                }
-            }),
+            Condition::BoundaryWithin(d) => {
+                BoundaryBand::new(layout.boundary, d).is_some_and(|b| b.holds(track))
+            }
             Condition::CornerWithin(d) => threshold(d).is_some_and(|d| {
                 // A corner is within d of the track iff it lies in the track's band.
                 let bands = Bands::new([(track, 0)], false, d);
                 layout.corners.iter().any(|&c| bands.contains(c))
             }),
             Condition::Layers { first, last } => (first..=last).contains(&facts.layer),
+        }
+    }
+}
+
+/// The band of one half-width along a layer's boundary, built once and asked
+/// about many tracks: [`Condition::BoundaryWithin`] without rebuilding the
+/// boundary's index for every track.
+pub struct BoundaryBand {
+    bands: Bands,
+}
+
+impl BoundaryBand {
+    /// The band within `d` (mm) of the closed loops `boundary`; `None` for a
+    /// NaN or negative `d` (no point is that close).
+    pub fn new(boundary: &[Vec<[f64; 2]>], d: f64) -> Option<Self> {
+        let d = threshold(d)?;
+        let loops = boundary.iter().map(|l| (l.as_slice(), 0));
+        Some(BoundaryBand {
+            bands: Bands::new(loops, true, d),
+        })
+    }
+
+    /// Whether the whole `track` lies in the band (a track of no length: its
+    /// point, if it has a finite one).
+    pub fn holds(&self, track: &[[f64; 2]]) -> bool {
+        let cov = self.bands.coverage(track);
+        if cov.total > 0.0 {
+            cov.fraction(0) >= 1.0 - WHOLE_TOLERANCE
+        } else {
+            let point = track.iter().find(|p| p[0].is_finite() && p[1].is_finite());
+            point.is_some_and(|&p| self.bands.contains(p))
         }
     }
 }

@@ -344,7 +344,7 @@ fn header_context(ctx: &mut tera::Context, p: &Verified, cnc: &Cnc, five: bool) 
     let prog = p.ir();
     let style = cnc.dialect.comment;
     counts(ctx, p);
-    styles(ctx, p);
+    styles(ctx, p, &|t| comment_safe(t, style));
     let u = &prog.units;
     let mut units = std::collections::BTreeMap::new();
     for (k, v) in [

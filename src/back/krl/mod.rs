@@ -395,7 +395,7 @@ fn beam_text(b: ToolAxis) -> &'static str {
 
 fn main_context(ctx: &mut tera::Context, p: &Verified, robot: &Robot, s: modules::Stats) {
     counts(ctx, p);
-    styles(ctx, p);
+    styles(ctx, p, &comment_safe);
     ctx.insert("tool_index", &robot.tool.index);
     ctx.insert("tool_value", &frame_value(&robot.tool));
     ctx.insert("base_index", &robot.base.index);
