@@ -16,6 +16,7 @@ use crate::geometry::outline;
 use crate::geometry::profile::Profile;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
 use crate::sema::model::{Extrusion, Measure, Model, Pattern, PlanarSlicing, Shape};
+use crate::style;
 use crate::units::{short, Length};
 
 /// A spot this many bead widths from every track centre line is reported.
@@ -105,14 +106,14 @@ pub fn slice(
             // A contour loop whose sides run closer than the tracks may (a
             // sliver: mean width 2·area/perimeter) piles up like any overlap.
             if let TrackKind::Contour { .. } = t.kind {
-                let thickness = 2.0 * loop_area(&t.points) / length(&t.points).max(1e-12);
+                let thickness = 2.0 * loop_area(&t.points) / style::length(&t.points).max(1e-12);
                 if thickness < MIN_OFFSET_RATIO * w
                     && sliver.is_none_or(|(_, s): (usize, f64)| thickness < s)
                 {
                     sliver = Some((k, thickness));
                 }
             }
-            if length(&t.points) < w {
+            if style::length(&t.points) < w {
                 short_tracks += 1;
                 first_short.get_or_insert(k);
             }
@@ -247,12 +248,6 @@ fn loop_area(p: &[[f64; 2]]) -> f64 {
         .map(|s| s[0][0] * s[1][1] - s[1][0] * s[0][1])
         .sum();
     (twice / 2.0).abs()
-}
-
-fn length(p: &[[f64; 2]]) -> f64 {
-    p.windows(2)
-        .map(|s| (s[1][0] - s[0][0]).hypot(s[1][1] - s[0][1]))
-        .sum()
 }
 
 /// A filled layer, kept for the next if it is the same.
