@@ -488,3 +488,14 @@ machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
         "{d:?}"
     );
 }
+
+/// With `size = outer` the outline is the part's face: a tab narrower than a
+/// bead vanishes from the tracks' region, and is exactly what goes unbuilt.
+#[test]
+fn unbuilt_parts_of_an_outer_profile_are_found() {
+    let src = std::fs::read_to_string("examples/errors/unfilled_tab.lmd")
+        .unwrap()
+        .replace("  bead = track\n}", "  size = outer\n  bead = track\n}");
+    let d = diagnose(&src);
+    assert_eq!(with_code(&d, "lmd::fill-gap").len(), 1, "{d:?}");
+}

@@ -295,13 +295,16 @@ fn fill_layer(
     if tracks.is_empty() {
         return Err(fill_error(FillError::Empty, k, extrusion, slicing));
     }
-    // Anything over w/2 from every centre line is reached by no bead, but
-    // corners of contour and raster leave such slivers anyway and the melt
-    // pool flows into them: a quarter bead width unreached is worth a warning,
-    // a spot wider than a bead an error. Contours alone make walls: unchecked.
+    // The whole profile is sampled, the outer face included when it is one:
+    // a part narrower than a bead vanishes from the inset region, and is
+    // exactly what goes unbuilt. Anything over w/2 from every centre line is
+    // reached by no bead, but corners of contour and raster leave such slivers
+    // anyway and the melt pool flows into them: a quarter bead width unreached
+    // is worth a warning, a spot wider than a bead an error. Contours alone
+    // make walls: unchecked.
     let gap = slicing
         .infill
-        .and_then(|_| fill::gap(profile, inset, &tracks, THIN_GAP * w, gap_samples));
+        .and_then(|_| fill::gap(profile, 0.0, &tracks, THIN_GAP * w, gap_samples));
     Ok((tracks, gap))
 }
 
