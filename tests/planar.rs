@@ -499,3 +499,38 @@ fn unbuilt_parts_of_an_outer_profile_are_found() {
     let d = diagnose(&src);
     assert_eq!(with_code(&d, "lmd::fill-gap").len(), 1, "{d:?}");
 }
+
+/// Second-review findings: a style that never applies, inheritance across a
+/// turning raster, a bead model fitted at another powder feed.
+#[test]
+fn plans_that_will_not_do_what_they_say_warn() {
+    let chord = std::fs::read_to_string("examples/styled_chord.lmd").unwrap();
+    // `edge` takes every outer contour first, so a later contour style never applies.
+    let src = chord.replace(
+        "inheritance {",
+        "style late { power = 2100 W  when { paths = outer_contour } }\ninheritance {",
+    );
+    let d = diagnose(&src);
+    assert!(
+        with_code(&d, "lmd::unused")
+            .iter()
+            .any(|m| m.contains("`late` picks no track")),
+        "{d:?}"
+    );
+    let src = chord.replace(
+        "pattern = serpentine)",
+        "pattern = serpentine, rotate = 90 deg)",
+    );
+    let d = diagnose(&src);
+    assert!(
+        with_code(&d, "lmd::unused")
+            .iter()
+            .any(|m| m.contains("do not inherit")),
+        "{d:?}"
+    );
+    let duct = std::fs::read_to_string("examples/twisted_duct.lmd").unwrap();
+    let src = duct.replace("powder = feed", "powder = 20 g/min");
+    assert_ne!(src, duct, "the duct's process powder is `feed`");
+    let d = diagnose(&src);
+    assert_eq!(with_code(&d, "lmd::powder-mismatch").len(), 1, "{d:?}");
+}

@@ -312,7 +312,7 @@ pub fn assemble(
                             short(a)
                         )
                     } else {
-                        "widen the bead's height range, or overlap tracks (contours > 1 or a raster) so the layer rises by A/d".to_string()
+                        wall_help(bead, width, lo, hi)
                     }),
                 );
                 return None;
@@ -491,4 +491,29 @@ fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> 
         .help("fewer layers, or an outline of fewer pieces (an arc is one piece)"),
     );
     None
+}
+
+/// What makes a one-track layer rise by an allowed height: the scan speeds at
+/// which `A/w` lies in `lo .. hi` (within the bead's speed range), or overlap.
+fn wall_help(bead: &Bead, w: Length, lo: Length, hi: Length) -> String {
+    let overlap = "or overlap tracks (contours > 1 or a raster) so the layer rises by A/d";
+    if let HeightModel::Measured { .. } = bead.model {
+        return format!("a measured bead has the one height it was measured with; {overlap}");
+    }
+    // The bead height whose segment area spread over w is the rise r.
+    let speed = |r: Length| {
+        let h = crate::bead::segment_height(w.0, r.0 * w.0);
+        bead.model.speed_for(Length(h), w).0
+    };
+    let (a, b) = (speed(lo), speed(hi));
+    let (a, b) = (a.min(b).max(bead.speed[0].0), a.max(b).min(bead.speed[1].0));
+    if a.is_finite() && b.is_finite() && a <= b {
+        format!(
+            "one track a layer rises by A/w: scan at {} .. {} for that, {overlap}",
+            Speed(a),
+            Speed(b)
+        )
+    } else {
+        format!("no speed in the bead's range lays an allowed A/w; {overlap}")
+    }
 }

@@ -328,6 +328,8 @@ pub struct Process {
     pub power_span: Span,
     /// `power_range = …`, if declared.
     pub power_range_span: Option<Span>,
+    /// `powder = …`
+    pub powder_span: Span,
 }
 
 impl Section {

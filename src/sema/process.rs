@@ -87,6 +87,7 @@ pub fn read<'a>(
     Some(Process {
         speed,
         powder: MassFlow(powder?.0),
+        powder_span: powder?.1,
         defocus: defocus?,
         power,
         power_range,

@@ -49,6 +49,7 @@ pub fn slice(
     let (mut gaps, mut first_gap) = (0usize, None);
     let (mut thin_gaps, mut thin) = (0usize, None);
     let mut few_passes = None;
+    let mut used = std::collections::BTreeSet::new();
     let mut sliver = None;
     // The gap check samples each layer; a budget over the whole part keeps it
     // linear however many layers there are.
@@ -129,6 +130,7 @@ pub fn slice(
             .into());
         }
         let styles = styler.layer(k, &profile, &tracks);
+        used.extend(styles.iter().copied());
         out.push(layer(model, slicing, k, n, lift, &tracks, &styles));
         last = Some(Filled {
             shape,
@@ -190,6 +192,21 @@ pub fn slice(
             .label(extrusion.shape_span, "this shape")
             .label(slicing.span, "contours")
             .help("the profile narrows to less than the passes need there; fewer contours, or a raster for the middle"),
+        );
+    }
+    for st in model
+        .styles
+        .table
+        .iter()
+        .filter(|st| !used.contains(&st.id))
+    {
+        warnings.push(
+            Diagnostic::warning(
+                "lmd::unused",
+                format!("style `{}` picks no track on any layer", st.name),
+            )
+            .label(st.span, "never applied")
+            .help("an earlier style may take its tracks first (the first style in the file wins), or no track meets its `when`"),
         );
     }
     if let Some((k, passes)) = few_passes {
@@ -313,10 +330,16 @@ fn fill_error(e: FillError, k: usize, ex: &Extrusion, slicing: &PlanarSlicing) -
         FillError::SelfIntersecting { at } => Diagnostic::error(
             "lmd::self-intersecting",
             format!(
-                "the profile crosses itself at ({}, {}) mm on layer {}",
+                "the profile crosses itself at ({}, {}) mm on layer {}{}",
                 short(at[0]),
                 short(at[1]),
-                k + 1
+                k + 1,
+                // The builtin's value, for a profile that follows it.
+                if ex.layers.windows(2).any(|w| w[0] != w[1]) {
+                    format!(" (layer = {k})")
+                } else {
+                    String::new()
+                }
             ),
         )
         .label(ex.shape_span, "this outline's edges cross")
@@ -324,7 +347,7 @@ fn fill_error(e: FillError, k: usize, ex: &Extrusion, slicing: &PlanarSlicing) -
             (ex.profile_span != ex.shape_span).then_some(ex.profile_span),
             "extruded here",
         )
-        .help("reorder the outline's points so its edges do not cross"),
+        .help("reorder the outline's points so its edges do not cross; if its numbers use `layer`, check them at that layer"),
         FillError::Empty => Diagnostic::error(
             "lmd::fill-empty",
             format!("no track fits in the profile on layer {}", k + 1),
