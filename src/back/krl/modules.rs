@@ -72,6 +72,11 @@ pub struct Modules<'a> {
     /// A layer comment block waiting for the layer's first motion, and its number.
     pre: Vec<u8>,
     pre_layer: Option<usize>,
+    /// The last layer whose comment block was placed (1-based; 0: none yet).
+    current: usize,
+    /// The layer already under way when this module starts (0: it starts
+    /// with a layer's comment block, or before any).
+    continues: usize,
     names: Vec<String>,
     error: Option<EmitError>,
     /// What has been written.
@@ -110,6 +115,8 @@ impl<'a> Modules<'a> {
             layers: None,
             pre: Vec::new(),
             pre_layer: None,
+            current: 0,
+            continues: 0,
             names: Vec::new(),
             error: None,
             stats: Stats::default(),
@@ -139,6 +146,7 @@ impl<'a> Modules<'a> {
                 Some((first, _)) => (first, number),
                 None => (number, number),
             });
+            self.current = number;
         }
     }
 
@@ -258,6 +266,12 @@ impl<'a> Modules<'a> {
         self.lines = 0;
         self.vel = None;
         self.layers = None;
+        // Mid-layer unless the next motion opens a layer with its block.
+        self.continues = if self.pre_layer.is_some() {
+            0
+        } else {
+            self.current
+        };
     }
 
     fn write(&mut self, name: &str) -> Result<(), EmitError> {
@@ -268,6 +282,7 @@ impl<'a> Modules<'a> {
         let (first, last) = self.layers.unwrap_or((0, 0));
         ctx.insert("first_layer", &first);
         ctx.insert("last_layer", &last);
+        ctx.insert("continues", &self.continues);
         ctx.insert("body", BODY);
         let src = self
             .t
