@@ -51,13 +51,8 @@ fn outline(o: &Outline) -> Vec<Vertex> {
             bulge: 0.0,
         });
     }
-    // A last piece that returns to the start closes the outline itself.
-    if out.len() > 2 {
-        let (f, l) = (out[0], out[out.len() - 1]);
-        if (f.x - l.x).abs() < 1e-9 && (f.y - l.y).abs() < 1e-9 {
-            out.pop();
-        }
-    }
+    // A last piece that returns to the start repeats the first vertex;
+    // `Profile::new` drops it.
     out
 }
 

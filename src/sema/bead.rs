@@ -1,7 +1,7 @@
 //! `bead NAME { width, height, speed, model }`: a bead model.
 
 use super::fields::Fields;
-use super::model::{Bead, HeightModel};
+use super::model::{Bead, HeightModel, Process};
 use super::value::{unknown_name, Env, Spanned, Value};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
@@ -225,5 +225,26 @@ pub fn named(
             None
         }
         None => None,
+    }
+}
+
+/// Warns when a mass-balance model was fitted at another powder feed than the
+/// process feeds: its heights would not be the ones laid.
+pub fn check_feed(bead: &Bead, process: &Process, diags: &mut Diagnostics) {
+    if let HeightModel::MassBalance { feed, .. } = bead.model {
+        if (feed.0 - process.powder.0).abs() > 0.01 * feed.0 {
+            diags.push(
+                Diagnostic::warning(
+                    "lmd::powder-mismatch",
+                    format!(
+                        "bead `{}` is modelled at {} of powder, the process feeds {}: the beads will not be the heights planned",
+                        bead.name, feed, process.powder
+                    ),
+                )
+                .label(process.powder_span, "process feed")
+                .label(bead.span, "bead model")
+                .help("use one feed in both, or refit the bead model at the process feed"),
+            );
+        }
     }
 }

@@ -142,7 +142,7 @@ fn scan_speed(process: &Process, bead: &Bead, at: Span, diags: &mut Diagnostics)
     match (process.speed, bead.model) {
         (Some((v, sp)), _) => {
             let [lo, hi] = bead.speed;
-            if v.0 < lo.0 * (1.0 - 1e-9) || v.0 > hi.0 * (1.0 + 1e-9) {
+            if !bead.covers_speed(v) {
                 let measured = matches!(bead.model, HeightModel::Measured { .. });
                 diags.push(
                     Diagnostic::error(
@@ -197,7 +197,7 @@ pub fn assemble(
     let width = bead.width;
     let v = scan_speed(process, bead, spec.span, diags)?;
     let h = bead.model.height_at(v, width);
-    let overlapped = spec.infill.is_some() || spec.contours > 1;
+    let overlapped = spec.overlapped();
     let (offset, offset_derived) = match spec.offset {
         Some((d, _)) => (d, false),
         None => (flat_top_offset(width, h), true),
@@ -242,83 +242,11 @@ pub fn assemble(
     }
     let laid = planar_lift(width, h, overlapped.then_some(offset));
     let (lift, lift_derived) = match spec.lift {
-        Some((l, at))
-            if l.0 < bead.height[0].0 * (1.0 - 1e-9) || l.0 > bead.height[1].0 * (1.0 + 1e-9) =>
-        {
-            diags.push(
-                Diagnostic::error(
-                    "lmd::layer-height",
-                    format!(
-                        "layers {} high are outside the {} .. {} bead `{}` can lay",
-                        l, bead.height[0], bead.height[1], bead.name
-                    ),
-                )
-                .label(at, "declared layer height")
-                .label(bead.height_span, "the bead's heights")
-                .help(format!(
-                    "`layer_height = auto` gives {laid}, what these tracks lay"
-                )),
-            );
-            return None;
-        }
-        Some((l, at)) => {
-            // The nozzle rises by the declared height, the part by what its
-            // tracks lay: a difference adds up layer after layer (seed 001's
-            // fixed lift undershot and needed an extra lift every 3 layers).
-            let drift = laid.0 - l.0;
-            if drift.abs() > LIFT_TOLERANCE * laid.0 {
-                diags.push(
-                    Diagnostic::warning(
-                        "lmd::lift-mismatch",
-                        format!(
-                            "layers {} high, but these tracks lay {} a layer ({}): the standoff changes by {} a layer",
-                            l,
-                            laid,
-                            if overlapped { "A/d, tracks overlapped" } else { "A/w, one track wide" },
-                            Length(drift.abs()),
-                        ),
-                    )
-                    .label(at, "declared layer height")
-                    .help(format!(
-                        "`layer_height = auto` uses {laid}; keep a declared height only if the process is controlled to it"
-                    )),
-                );
-            }
-            (l, false)
-        }
-        None => {
-            let [lo, hi] = bead.height;
-            if laid.0 < lo.0 * (1.0 - 1e-9) || laid.0 > hi.0 * (1.0 + 1e-9) {
-                let a = laid.0 * if overlapped { offset.0 } else { width.0 };
-                diags.push(
-                    Diagnostic::error(
-                        "lmd::layer-height",
-                        format!(
-                            "these tracks lay {} a layer ({}), outside the {} .. {} bead `{}` allows",
-                            laid,
-                            if overlapped { "A/d" } else { "A/w, one track wide" },
-                            lo,
-                            hi,
-                            bead.name
-                        ),
-                    )
-                    .label(if overlapped { offset_at } else { spec.span }, if overlapped { "track offset" } else { "one track a layer" })
-                    .label(bead.height_span, "the bead's heights")
-                    .help(if overlapped {
-                        format!(
-                            "tracks {} .. {} apart lay an allowed height (A/d with A = {} mm²)",
-                            Length(a / hi.0),
-                            Length(a / lo.0),
-                            short(a)
-                        )
-                    } else {
-                        wall_help(bead, width, lo, hi)
-                    }),
-                );
-                return None;
-            }
-            (laid, true)
-        }
+        Some((l, at)) => (declared_lift(l, at, laid, overlapped, bead, diags)?, false),
+        None => (
+            derived_lift(laid, overlapped, offset, offset_at, &spec, bead, diags)?,
+            true,
+        ),
     };
     let layers = match (spec.layers, w.height) {
         (Some((n, _)), None) => n,
@@ -489,6 +417,114 @@ fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> 
         )
         .label(at, "profile")
         .help("fewer layers, or an outline of fewer pieces (an arc is one piece)"),
+    );
+    None
+}
+
+/// A declared layer height: within the bead's heights (else an error), and
+/// reported when it is not what the tracks lay (`laid`).
+fn declared_lift(
+    l: Length,
+    at: Span,
+    laid: Length,
+    overlapped: bool,
+    bead: &Bead,
+    diags: &mut Diagnostics,
+) -> Option<Length> {
+    if !bead.covers_height(l) {
+        diags.push(
+            Diagnostic::error(
+                "lmd::layer-height",
+                format!(
+                    "layers {} high are outside the {} .. {} bead `{}` can lay",
+                    l, bead.height[0], bead.height[1], bead.name
+                ),
+            )
+            .label(at, "declared layer height")
+            .label(bead.height_span, "the bead's heights")
+            .help(format!(
+                "`layer_height = auto` gives {laid}, what these tracks lay"
+            )),
+        );
+        return None;
+    }
+    // The nozzle rises by the declared height, the part by what its tracks
+    // lay: a difference adds up layer after layer (seed 001's fixed lift
+    // undershot and needed an extra lift every 3 layers).
+    let drift = laid.0 - l.0;
+    if drift.abs() > LIFT_TOLERANCE * laid.0 {
+        diags.push(
+            Diagnostic::warning(
+                "lmd::lift-mismatch",
+                format!(
+                    "layers {} high, but these tracks lay {} a layer ({}): the standoff changes by {} a layer",
+                    l,
+                    laid,
+                    if overlapped { "A/d, tracks overlapped" } else { "A/w, one track wide" },
+                    Length(drift.abs()),
+                ),
+            )
+            .label(at, "declared layer height")
+            .help(format!(
+                "`layer_height = auto` uses {laid}; keep a declared height only if the process is controlled to it"
+            )),
+        );
+    }
+    Some(l)
+}
+
+/// `layer_height = auto`: what the tracks lay, if the bead allows it; if not,
+/// the error names the offsets (or speeds) that would.
+fn derived_lift(
+    laid: Length,
+    overlapped: bool,
+    offset: Length,
+    offset_at: Span,
+    spec: &PlanarSpec,
+    bead: &Bead,
+    diags: &mut Diagnostics,
+) -> Option<Length> {
+    if bead.covers_height(laid) {
+        return Some(laid);
+    }
+    let [lo, hi] = bead.height;
+    let width = bead.width;
+    let a = laid.0 * if overlapped { offset.0 } else { width.0 };
+    diags.push(
+        Diagnostic::error(
+            "lmd::layer-height",
+            format!(
+                "these tracks lay {} a layer ({}), outside the {} .. {} bead `{}` allows",
+                laid,
+                if overlapped {
+                    "A/d"
+                } else {
+                    "A/w, one track wide"
+                },
+                lo,
+                hi,
+                bead.name
+            ),
+        )
+        .label(
+            if overlapped { offset_at } else { spec.span },
+            if overlapped {
+                "track offset"
+            } else {
+                "one track a layer"
+            },
+        )
+        .label(bead.height_span, "the bead's heights")
+        .help(if overlapped {
+            format!(
+                "tracks {} .. {} apart lay an allowed height (A/d with A = {} mm²)",
+                Length(a / hi.0),
+                Length(a / lo.0),
+                short(a)
+            )
+        } else {
+            wall_help(bead, width, lo, hi)
+        }),
     );
     None
 }

@@ -268,6 +268,17 @@ impl<'a> Fields<'a> {
             .and_then(|e| e.block)
     }
 
+    /// An optional field as read: `Some(None)` when the block does not write
+    /// `key`, `None` when it is written but wrong (reported already), else
+    /// `Some(Some(value))`.
+    pub fn optional<T>(&self, key: &str, read: Option<T>) -> Option<Option<T>> {
+        match read {
+            Some(v) => Some(Some(v)),
+            None if self.has(key) => None,
+            None => Some(None),
+        }
+    }
+
     /// The statements of every `key { … }` block, in source order.
     pub fn nested_all(&self, key: &str) -> Vec<(&'a [Stmt], Span)> {
         self.entries

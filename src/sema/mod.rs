@@ -380,23 +380,8 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
             return None;
         }
     };
-    if let (Plan::Duct { .. }, Some(first)) = (&plan, get("style").first()) {
-        diags.push(
-            Diagnostic::error(
-                "lmd::unsupported",
-                "styles pick tracks of planar layers; a loft's wall is one track a layer",
-            )
-            .label(first.span, "style")
-            .help("schedule the wall's power in `process` (e.g. `power = ramp(…)`)"),
-        );
-        return None;
-    }
-    let layers = match &plan {
-        Plan::Block { extrusion, .. } => Some(extrusion.layers.len()),
-        Plan::Duct { .. } => None,
-    };
     let styles = style::assemble(
-        layers,
+        &plan,
         styles,
         inheritance,
         inheritance_stmt.map(|s| s.span),
@@ -407,42 +392,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     if !inheritance_ok {
         return None;
     }
-    if let (Some(at), Plan::Block { slicing, .. }) = (inheritance_stmt, &plan) {
-        // The band runs along a styled track; a track turned across it
-        // covers at most a band's width of its length.
-        let turn = slicing
-            .infill
-            .map_or(0.0, |r| r.rotate.deg().rem_euclid(180.0));
-        if turn > 1e-9 && 180.0 - turn > 1e-9 && !styles.table.is_empty() {
-            diags.push(
-                Diagnostic::warning(
-                    "lmd::unused",
-                    format!(
-                        "raster tracks turn {} deg a layer, so they cross the layer below's styled tracks and do not inherit their styles",
-                        crate::units::short(turn)
-                    ),
-                )
-                .label(at.span, "inheritance")
-                .help("inheritance follows tracks laid the same way as the layer below: rotate by 0 or 180 deg, or pick the tracks by rules on every layer"),
-            );
-        }
-    }
-    if let model::HeightModel::MassBalance { feed, .. } = bead.model {
-        if (feed.0 - process.powder.0).abs() > 0.01 * feed.0 {
-            diags.push(
-                Diagnostic::warning(
-                    "lmd::powder-mismatch",
-                    format!(
-                        "bead `{}` is modelled at {} of powder, the process feeds {}: the beads will not be the heights planned",
-                        bead.name, feed, process.powder
-                    ),
-                )
-                .label(process.powder_span, "process feed")
-                .label(bead.span, "bead model")
-                .help("use one feed in both, or refit the bead model at the process feed"),
-            );
-        }
-    }
+    bead::check_feed(&bead, &process, diags);
     Some(Model {
         part: part?,
         plan,

@@ -252,6 +252,30 @@ pub struct Bead {
     pub speed_span: Span,
 }
 
+/// Whether `x` lies in `lo ..= hi`, with rounding slack.
+fn within(x: f64, lo: f64, hi: f64) -> bool {
+    x >= lo * (1.0 - 1e-9) && x <= hi * (1.0 + 1e-9)
+}
+
+impl Bead {
+    /// Whether the model holds at scan speed `v`.
+    pub fn covers_speed(&self, v: Speed) -> bool {
+        within(v.0, self.speed[0].0, self.speed[1].0)
+    }
+
+    /// Whether `h` is an allowed layer height.
+    pub fn covers_height(&self, h: Length) -> bool {
+        within(h.0, self.height[0].0, self.height[1].0)
+    }
+}
+
+impl Process {
+    /// Whether the laser can give `p`.
+    pub fn covers_power(&self, p: Power) -> bool {
+        within(p.0, self.power_range[0].0, self.power_range[1].0)
+    }
+}
+
 /// How many points a layer gets.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Resolution {
@@ -500,12 +524,4 @@ pub struct PlanarSlicing {
     pub offset_span: Option<Span>,
     /// The layer height's declaration, if written.
     pub lift_span: Option<Span>,
-}
-
-impl PlanarSlicing {
-    /// Whether a layer is more than one track wide, so that it rises by `A/d`
-    /// rather than `A/w`.
-    pub fn overlapped(&self) -> bool {
-        self.infill.is_some() || self.contours > 1
-    }
 }

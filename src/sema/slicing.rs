@@ -41,6 +41,14 @@ pub struct PlanarSpec {
     pub span: Span,
 }
 
+impl PlanarSpec {
+    /// Whether a layer is more than one track wide, so that it rises by `A/d`
+    /// rather than `A/w`.
+    pub fn overlapped(&self) -> bool {
+        self.infill.is_some() || self.contours > 1
+    }
+}
+
 /// Most layers and points per layer a plan may have: 10⁸ points in all keeps
 /// memory bounded (the IR holds 72 bytes a point).
 pub const MAX_LAYERS: usize = 100_000;

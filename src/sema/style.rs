@@ -3,7 +3,7 @@
 //! style's values against the bead model and the laser.
 
 use super::fields::{self, Fields};
-use super::model::{Bead, Inheritance, PathSelect, Process, Style, StyleCondition, Styles};
+use super::model::{Bead, Inheritance, PathSelect, Plan, Process, Style, StyleCondition, Styles};
 use super::value::{Env, Value};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
@@ -126,13 +126,9 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
             None if f.has("id") => None,
             None => Some(None),
         };
-        let power = optional(f.positive("power", Dim::POWER, None, diags), &f, "power");
-        let speed = optional(f.positive("speed", Dim::SPEED, None, diags), &f, "speed");
-        let powder = optional(
-            f.positive("powder", Dim::MASS_FLOW, None, diags),
-            &f,
-            "powder",
-        );
+        let power = f.optional("power", f.positive("power", Dim::POWER, None, diags));
+        let speed = f.optional("speed", f.positive("speed", Dim::SPEED, None, diags));
+        let powder = f.optional("powder", f.positive("powder", Dim::MASS_FLOW, None, diags));
         if let Some(Some((_, sp))) = powder {
             // Seed 002's table reserves the field too: feeders are not switched
             // track by track.
@@ -218,15 +214,6 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         out[i].style.id = free.next().unwrap_or(0);
     }
     out
-}
-
-/// `Some(None)` when the field is absent, `None` when it was wrong (reported).
-fn optional(v: Option<(f64, Span)>, f: &Fields, key: &str) -> Option<Option<(f64, Span)>> {
-    match v {
-        Some(v) => Some(Some(v)),
-        None if f.has(key) => None,
-        None => Some(None),
-    }
 }
 
 fn is_colour(c: &str) -> bool {
@@ -436,9 +423,12 @@ pub fn inheritance<'a>(
 }
 
 /// Checks each style's values against the bead model (speed range, and the bead
-/// height that speed gives) and the laser's power range, and makes the table.
+/// height that speed gives) and the laser's power range, and what the plan
+/// makes of the table (a loft has no tracks to style; layers past the last; a
+/// raster that turns away from the tracks it would inherit from), and makes
+/// the table.
 pub fn assemble(
-    layers: Option<usize>,
+    plan: &Plan,
     written: Vec<Written>,
     inheritance: Option<Inheritance>,
     inheritance_span: Option<Span>,
@@ -446,105 +436,148 @@ pub fn assemble(
     process: &Process,
     diags: &mut Diagnostics,
 ) -> Option<Styles> {
+    let slicing = match plan {
+        Plan::Block { slicing, .. } => Some(slicing),
+        Plan::Duct { .. } => None,
+    };
+    if let (None, Some(first)) = (slicing, written.first()) {
+        diags.push(
+            Diagnostic::error(
+                "lmd::unsupported",
+                "styles pick tracks of planar layers; a loft's wall is one track a layer",
+            )
+            .label(first.style.span, "style")
+            .help("schedule the wall's power in `process` (e.g. `power = ramp(…)`)"),
+        );
+        return None;
+    }
+    let layers = match plan {
+        Plan::Block { extrusion, .. } => extrusion.layers.len(),
+        Plan::Duct { .. } => 0,
+    };
     let mut ok = written.iter().all(|w| w.complete);
     for w in &written {
-        let s = &w.style;
-        if let Some(n) = layers {
-            let first = s.rules.iter().flatten().find_map(|c| match *c {
-                StyleCondition::Layers(a, _) if a > n => Some(a),
-                _ => None,
-            });
-            if let Some(a) = first {
+        never_applies(&w.style, layers, diags);
+        ok &= values_fit(w, bead, process, diags);
+    }
+    match inheritance_span {
+        Some(sp) if written.is_empty() => diags.push(
+            Diagnostic::warning("lmd::unused", "inheritance without styles does nothing")
+                .label(sp, "no style to inherit")
+                .help("declare `style NAME { … }` or remove `inheritance`"),
+        ),
+        Some(sp) => {
+            // The band runs along a styled track; a track turned across it
+            // covers at most a band's width of its length.
+            let turn = slicing
+                .and_then(|s| s.infill)
+                .map_or(0.0, |r| r.rotate.deg().rem_euclid(180.0));
+            if turn > 1e-9 && 180.0 - turn > 1e-9 {
                 diags.push(
                     Diagnostic::warning(
                         "lmd::unused",
                         format!(
-                            "style `{}` asks for layer {a}, but the part has {n}",
-                            s.name
+                            "raster tracks turn {} deg a layer, so they cross the layer below's styled tracks and do not inherit their styles",
+                            short(turn)
                         ),
                     )
-                    .label(s.span, "a `when` block that picks nothing")
-                    .help("layers count from 1 to the last, as in the programs' layer comments"),
+                    .label(sp, "inheritance")
+                    .help("inheritance follows tracks laid the same way as the layer below: rotate by 0 or 180 deg, or pick the tracks by rules on every layer"),
                 );
             }
         }
-        if let (Some(v), Some(sp)) = (s.speed, w.speed_span) {
-            let [lo, hi] = bead.speed;
-            if v.0 < lo.0 * (1.0 - 1e-9) || v.0 > hi.0 * (1.0 + 1e-9) {
-                diags.push(
-                    Diagnostic::error(
-                        "lmd::out-of-range",
-                        format!(
-                            "style `{}` scans at {}, outside the {} .. {} bead `{}` is valid for",
-                            s.name, v, lo, hi, bead.name
-                        ),
-                    )
-                    .label(sp, "style speed")
-                    .label(bead.speed_span, "bead model's speeds")
-                    .help(
-                        "choose a speed the bead model covers, or measure the bead at this speed",
-                    ),
-                );
-                ok = false;
-            } else {
-                let h = bead.model.height_at(v, bead.width);
-                let [h_lo, h_hi] = bead.height;
-                if h.0 < h_lo.0 * (1.0 - 1e-6) || h.0 > h_hi.0 * (1.0 + 1e-6) {
-                    diags.push(
-                        Diagnostic::error(
-                            "lmd::out-of-range",
-                            format!(
-                                "style `{}` scans at {}, where bead `{}` is {} high: outside its allowed {} .. {}",
-                                s.name, v, bead.name, h, h_lo, h_hi
-                            ),
-                        )
-                        .label(sp, "style speed")
-                        .label(bead.height_span, "allowed heights")
-                        .help("a speed whose bead height lies in the allowed range keeps the layer level"),
-                    );
-                    ok = false;
-                }
-            }
-        }
-        if let (Some(p), Some(sp)) = (s.power, w.power_span) {
-            let [lo, hi] = process.power_range;
-            if p.0 < lo.0 * (1.0 - 1e-9) || p.0 > hi.0 * (1.0 + 1e-9) {
-                diags.push(
-                    Diagnostic::error(
-                        "lmd::out-of-range",
-                        format!(
-                            "style `{}` sets {}, outside the laser's range {} .. {}",
-                            s.name, p, lo, hi
-                        ),
-                    )
-                    .label(sp, "style power")
-                    .label(
-                        process.power_range_span.unwrap_or(process.power_span),
-                        match process.power_range_span {
-                            Some(_) => "the laser's range",
-                            None => "the range is this power alone",
-                        },
-                    )
-                    .help(match process.power_range_span {
-                        Some(_) => "widen `power_range` if the laser allows it, or change the style's power",
-                        None => "declare the laser's range in `process`, e.g. `power_range = 1000 W .. 3000 W`",
-                    }),
-                );
-                ok = false;
-            }
-        }
-    }
-    if written.is_empty() {
-        if let Some(sp) = inheritance_span {
-            diags.push(
-                Diagnostic::warning("lmd::unused", "inheritance without styles does nothing")
-                    .label(sp, "no style to inherit")
-                    .help("declare `style NAME { … }` or remove `inheritance`"),
-            );
-        }
+        None => {}
     }
     ok.then(|| Styles {
         table: written.into_iter().map(|w| w.style).collect(),
         inheritance,
     })
+}
+
+/// Warns about a `layers` range that starts past the part's last layer.
+fn never_applies(s: &Style, layers: usize, diags: &mut Diagnostics) {
+    let first = s.rules.iter().flatten().find_map(|c| match *c {
+        StyleCondition::Layers(a, _) if a > layers => Some(a),
+        _ => None,
+    });
+    if let Some(a) = first {
+        diags.push(
+            Diagnostic::warning(
+                "lmd::unused",
+                format!(
+                    "style `{}` asks for layer {a}, but the part has {layers}",
+                    s.name
+                ),
+            )
+            .label(s.span, "a `when` block that picks nothing")
+            .help("layers count from 1 to the last, as in the programs' layer comments"),
+        );
+    }
+}
+
+/// Whether a style's speed (and the bead height it gives) and power are ones
+/// the bead model and the laser allow; reports those that are not.
+fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnostics) -> bool {
+    let s = &w.style;
+    let mut ok = true;
+    if let (Some(v), Some(sp)) = (s.speed, w.speed_span) {
+        let h = bead.model.height_at(v, bead.width);
+        if !bead.covers_speed(v) {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::out-of-range",
+                    format!(
+                        "style `{}` scans at {}, outside the {} .. {} bead `{}` is valid for",
+                        s.name, v, bead.speed[0], bead.speed[1], bead.name
+                    ),
+                )
+                .label(sp, "style speed")
+                .label(bead.speed_span, "bead model's speeds")
+                .help("choose a speed the bead model covers, or measure the bead at this speed"),
+            );
+            ok = false;
+        } else if !bead.covers_height(h) {
+            diags.push(
+                Diagnostic::error(
+                    "lmd::out-of-range",
+                    format!(
+                        "style `{}` scans at {}, where bead `{}` is {} high: outside its allowed {} .. {}",
+                        s.name, v, bead.name, h, bead.height[0], bead.height[1]
+                    ),
+                )
+                .label(sp, "style speed")
+                .label(bead.height_span, "allowed heights")
+                .help("a speed whose bead height lies in the allowed range keeps the layer level"),
+            );
+            ok = false;
+        }
+    }
+    if let (Some(p), Some(sp)) = (s.power, w.power_span) {
+        if !process.covers_power(p) {
+            let [lo, hi] = process.power_range;
+            diags.push(
+                Diagnostic::error(
+                    "lmd::out-of-range",
+                    format!(
+                        "style `{}` sets {}, outside the laser's range {} .. {}",
+                        s.name, p, lo, hi
+                    ),
+                )
+                .label(sp, "style power")
+                .label(
+                    process.power_range_span.unwrap_or(process.power_span),
+                    match process.power_range_span {
+                        Some(_) => "the laser's range",
+                        None => "the range is this power alone",
+                    },
+                )
+                .help(match process.power_range_span {
+                    Some(_) => "widen `power_range` if the laser allows it, or change the style's power",
+                    None => "declare the laser's range in `process`, e.g. `power_range = 1000 W .. 3000 W`",
+                }),
+            );
+            ok = false;
+        }
+    }
+    ok
 }

@@ -18,6 +18,7 @@ use crate::ir::{Frame, Layer, Path, PathKind, Point};
 use crate::sema::model::{Extrusion, Measure, Model, Pattern, PlanarSlicing, Shape};
 use crate::style;
 use crate::units::{short, Length};
+use std::collections::{BTreeMap, BTreeSet};
 
 /// A spot this many bead widths from every track centre line is reported.
 const THIN_GAP: f64 = 0.75;
@@ -31,7 +32,6 @@ pub fn slice(
     extrusion: &Extrusion,
     slicing: &PlanarSlicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
-    let mut warnings = Diagnostics::new();
     let w = model.bead.width.0;
     let inset = match extrusion.measure {
         Measure::Outer => w / 2.0,
@@ -41,16 +41,12 @@ pub fn slice(
     let lift = extrusion.lift.0;
     let mut out = Vec::with_capacity(n);
     let mut total = 0usize;
-    let (mut short_tracks, mut first_short) = (0usize, None);
+    let mut found = Findings::default();
     // Style rules measure distances to the boundary in bead widths: a
     // hundredth of one is plenty, and keeps a fine chord error from turning
     // every arc into a thousand chords there.
     let mut styler = Styler::new(&model.styles, slicing.chord_error.0.max(w / 100.0));
-    let (mut gaps, mut first_gap) = (0usize, None);
-    let (mut thin_gaps, mut thin) = (0usize, None);
-    let mut few_passes = None;
-    let mut used = std::collections::BTreeSet::new();
-    let mut sliver = None;
+    let values = Values::table(model, slicing);
     // The gap check samples each layer; a budget over the whole part keeps it
     // linear however many layers there are.
     let gap_samples = (GAP_SAMPLES / n.max(1)).clamp(500, fill::MAX_SAMPLES);
@@ -64,8 +60,8 @@ pub fn slice(
             .map_or(0.0, |r| (r.angle.0 + r.rotate.0 * k as f64).to_degrees());
         let reuse = matches!(&last, Some(f)
             if f.shape == shape && f.angle.rem_euclid(360.0) == angle.rem_euclid(360.0));
-        let (profile, tracks, gap) = match last.take() {
-            Some(f) if reuse => (f.profile, f.tracks, f.gap),
+        let filled = match last.take() {
+            Some(f) if reuse => f,
             _ => {
                 let profile = outline::profile(shape, slicing.chord_error.0);
                 let (tracks, gap) = fill_layer(
@@ -78,48 +74,17 @@ pub fn slice(
                     extrusion,
                     slicing,
                 )?;
-                (profile, tracks, gap)
+                Filled {
+                    shape,
+                    angle,
+                    profile,
+                    tracks,
+                    gap,
+                }
             }
         };
-        if let Some(g) = gap {
-            if g.distance > w {
-                gaps += 1;
-                first_gap.get_or_insert((k, g));
-            } else {
-                thin_gaps += 1;
-                if thin.is_none_or(|(_, t): (usize, fill::Gap)| g.distance > t.distance) {
-                    thin = Some((k, g));
-                }
-            }
-        }
-        let passes = tracks
-            .iter()
-            .filter_map(|t| match t.kind {
-                TrackKind::Contour { index } => Some(index + 1),
-                TrackKind::Infill => None,
-            })
-            .max()
-            .unwrap_or(0);
-        if passes < slicing.contours && few_passes.is_none() {
-            few_passes = Some((k, passes));
-        }
-        for t in &tracks {
-            // A contour loop whose sides run closer than the tracks may (a
-            // sliver: mean width 2·area/perimeter) piles up like any overlap.
-            if let TrackKind::Contour { .. } = t.kind {
-                let thickness = 2.0 * loop_area(&t.points) / style::length(&t.points).max(1e-12);
-                if thickness < MIN_OFFSET_RATIO * w
-                    && sliver.is_none_or(|(_, s): (usize, f64)| thickness < s)
-                {
-                    sliver = Some((k, thickness));
-                }
-            }
-            if style::length(&t.points) < w {
-                short_tracks += 1;
-                first_short.get_or_insert(k);
-            }
-        }
-        total += tracks.iter().map(|t| t.points.len()).sum::<usize>();
+        found.layer(k, &filled, slicing.contours, w);
+        total += filled.tracks.iter().map(|t| t.points.len()).sum::<usize>();
         if total > MAX_TOTAL_POINTS {
             return Err(Diagnostic::error(
                 "lmd::too-many-points",
@@ -129,116 +94,194 @@ pub fn slice(
             .help("use fewer layers or a larger chord error")
             .into());
         }
-        let styles = styler.layer(k, &profile, &tracks);
-        used.extend(styles.iter().copied());
-        out.push(layer(model, slicing, k, n, lift, &tracks, &styles));
-        last = Some(Filled {
-            shape,
-            angle,
-            profile,
-            tracks,
-            gap,
-        });
+        let styles = styler.layer(k, &filled.profile, &filled.tracks);
+        found.used.extend(styles.iter().copied());
+        out.push(layer(&values, k, n, lift, &filled.tracks, &styles));
+        last = Some(filled);
     }
-    if let Some((k, g)) = first_gap {
-        return Err(Diagnostic::error(
-            "lmd::fill-gap",
-            format!(
-                "the tracks leave a spot unfilled on {gaps} layer{}: on layer {}, ({}, {}) mm is {} from the nearest track, more than the bead width {}",
-                if gaps == 1 { "" } else { "s" },
-                k + 1,
-                short(g.at[0]),
-                short(g.at[1]),
-                Length(g.distance),
-                Length(w)
-            ),
-        )
-        .label(extrusion.shape_span, "this shape")
-        .label(slicing.span, "fill")
-        .help("raster lines miss parts of a profile narrower than the offset, and line ends reach at most `extend` past their neighbours: a smaller offset, a larger `extend`, a contour pass or another raster angle fills them")
-        .into());
+    let warnings = found.report(model, extrusion, slicing)?;
+    Ok((out, warnings))
+}
+
+/// What the layers showed that the user should hear of, gathered layer by
+/// layer and reported once for the whole part.
+#[derive(Default)]
+struct Findings {
+    /// Layers with a spot more than a bead width from every track, and the
+    /// first such spot.
+    gaps: usize,
+    first_gap: Option<(usize, fill::Gap)>,
+    /// Layers with a spot no bead reaches, and the farthest such spot.
+    thin_gaps: usize,
+    thin: Option<(usize, fill::Gap)>,
+    /// The first layer with fewer contour passes than asked, and how many fit.
+    few_passes: Option<(usize, usize)>,
+    /// The thinnest contour sliver (layer, mean width).
+    sliver: Option<(usize, f64)>,
+    /// Tracks shorter than a bead, and the first layer with one.
+    short_tracks: usize,
+    first_short: Option<usize>,
+    /// Style ids given to some track.
+    used: BTreeSet<u16>,
+}
+
+impl Findings {
+    fn layer(&mut self, k: usize, f: &Filled, contours: usize, w: f64) {
+        if let Some(g) = f.gap {
+            if g.distance > w {
+                self.gaps += 1;
+                self.first_gap.get_or_insert((k, g));
+            } else {
+                self.thin_gaps += 1;
+                if self.thin.is_none_or(|(_, t)| g.distance > t.distance) {
+                    self.thin = Some((k, g));
+                }
+            }
+        }
+        let passes = f
+            .tracks
+            .iter()
+            .filter_map(|t| match t.kind {
+                TrackKind::Contour { index } => Some(index + 1),
+                TrackKind::Infill => None,
+            })
+            .max()
+            .unwrap_or(0);
+        if passes < contours && self.few_passes.is_none() {
+            self.few_passes = Some((k, passes));
+        }
+        for t in &f.tracks {
+            let length = style::length(&t.points);
+            // A contour loop whose sides run closer than the tracks may (a
+            // sliver: mean width 2·area/perimeter) piles up like any overlap.
+            if let TrackKind::Contour { .. } = t.kind {
+                let thickness = 2.0 * loop_area(&t.points) / length.max(1e-12);
+                if thickness < MIN_OFFSET_RATIO * w
+                    && self.sliver.is_none_or(|(_, s)| thickness < s)
+                {
+                    self.sliver = Some((k, thickness));
+                }
+            }
+            if length < w {
+                self.short_tracks += 1;
+                self.first_short.get_or_insert(k);
+            }
+        }
     }
-    if let Some((k, g)) = thin {
-        warnings.push(
-            Diagnostic::warning(
-                "lmd::thin-gap",
+
+    /// The warnings, or the error when a spot wider than a bead is unfilled.
+    fn report(
+        self,
+        model: &Model,
+        extrusion: &Extrusion,
+        slicing: &PlanarSlicing,
+    ) -> Result<Diagnostics, Diagnostics> {
+        let w = model.bead.width.0;
+        let plural = |n: usize| if n == 1 { "" } else { "s" };
+        if let Some((k, g)) = self.first_gap {
+            return Err(Diagnostic::error(
+                "lmd::fill-gap",
                 format!(
-                    "no bead reaches some spots on {thin_gaps} layer{}: the farthest, on layer {}, is ({}, {}) mm, {} from the nearest track centre line (a bead reaches {})",
-                    if thin_gaps == 1 { "" } else { "s" },
+                    "the tracks leave a spot unfilled on {} layer{}: on layer {}, ({}, {}) mm is {} from the nearest track, more than the bead width {}",
+                    self.gaps,
+                    plural(self.gaps),
                     k + 1,
                     short(g.at[0]),
                     short(g.at[1]),
                     Length(g.distance),
-                    Length(w / 2.0)
-                ),
-            )
-            .label(extrusion.shape_span, "this shape")
-            .label(slicing.span, "fill")
-            .help("often the strip the raster leaves at its far edge when the profile is not a whole number of offsets wide; a contour pass, a width of whole offsets, or a smaller offset closes it"),
-        );
-    }
-    if let Some((k, t)) = sliver {
-        warnings.push(
-            Diagnostic::warning(
-                "lmd::overlap",
-                format!(
-                    "a contour pass on layer {} is a sliver whose sides run {} apart, {:.0} % of the {} bead: it piles up",
-                    k + 1,
-                    Length(t),
-                    100.0 * t / w,
                     Length(w)
                 ),
             )
             .label(extrusion.shape_span, "this shape")
-            .label(slicing.span, "contours")
-            .help("the profile narrows to less than the passes need there; fewer contours, or a raster for the middle"),
-        );
-    }
-    for st in model
-        .styles
-        .table
-        .iter()
-        .filter(|st| !used.contains(&st.id))
-    {
-        warnings.push(
-            Diagnostic::warning(
-                "lmd::unused",
-                format!("style `{}` picks no track on any layer", st.name),
-            )
-            .label(st.span, "never applied")
-            .help("an earlier style may take its tracks first (the first style in the file wins), or no track meets its `when`"),
-        );
-    }
-    if let Some((k, passes)) = few_passes {
-        warnings.push(
-            Diagnostic::warning(
-                "lmd::few-contours",
-                format!(
-                    "only {passes} of the {} contour passes fit inside the profile on layer {}",
-                    slicing.contours,
-                    k + 1
-                ),
-            )
-            .label(slicing.span, "contours")
-            .help("the profile is narrower there than the passes need; fewer contours, or a raster inside them"),
-        );
-    }
-    if let Some(first) = first_short {
-        warnings.push(
-            Diagnostic::warning(
-                "lmd::short-track",
-                format!(
-                    "{short_tracks} track{} shorter than the bead width {} (first on layer {})",
-                    if short_tracks == 1 { " is" } else { "s are" },
-                    Length(w),
-                    first + 1
-                ),
-            )
             .label(slicing.span, "fill")
-            .help("short tracks overheat and pile up: a slower or cooler style, or a profile without slivers"),
-        );
+            .help("raster lines miss parts of a profile narrower than the offset, and line ends reach at most `extend` past their neighbours: a smaller offset, a larger `extend`, a contour pass or another raster angle fills them")
+            .into());
+        }
+        let mut warnings = Diagnostics::new();
+        if let Some((k, g)) = self.thin {
+            warnings.push(
+                Diagnostic::warning(
+                    "lmd::thin-gap",
+                    format!(
+                        "no bead reaches some spots on {} layer{}: the farthest, on layer {}, is ({}, {}) mm, {} from the nearest track centre line (a bead reaches {})",
+                        self.thin_gaps,
+                        plural(self.thin_gaps),
+                        k + 1,
+                        short(g.at[0]),
+                        short(g.at[1]),
+                        Length(g.distance),
+                        Length(w / 2.0)
+                    ),
+                )
+                .label(extrusion.shape_span, "this shape")
+                .label(slicing.span, "fill")
+                .help("often the strip the raster leaves at its far edge when the profile is not a whole number of offsets wide; a contour pass, a width of whole offsets, or a smaller offset closes it"),
+            );
+        }
+        if let Some((k, t)) = self.sliver {
+            warnings.push(
+                Diagnostic::warning(
+                    "lmd::overlap",
+                    format!(
+                        "a contour pass on layer {} is a sliver whose sides run {} apart, {:.0} % of the {} bead: it piles up",
+                        k + 1,
+                        Length(t),
+                        100.0 * t / w,
+                        Length(w)
+                    ),
+                )
+                .label(extrusion.shape_span, "this shape")
+                .label(slicing.span, "contours")
+                .help("the profile narrows to less than the passes need there; fewer contours, or a raster for the middle"),
+            );
+        }
+        for st in model
+            .styles
+            .table
+            .iter()
+            .filter(|st| !self.used.contains(&st.id))
+        {
+            warnings.push(
+                Diagnostic::warning(
+                    "lmd::unused",
+                    format!("style `{}` picks no track on any layer", st.name),
+                )
+                .label(st.span, "never applied")
+                .help("an earlier style may take its tracks first (the first style in the file wins), or no track meets its `when`"),
+            );
+        }
+        if let Some((k, passes)) = self.few_passes {
+            warnings.push(
+                Diagnostic::warning(
+                    "lmd::few-contours",
+                    format!(
+                        "only {passes} of the {} contour passes fit inside the profile on layer {}",
+                        slicing.contours,
+                        k + 1
+                    ),
+                )
+                .label(slicing.span, "contours")
+                .help("the profile is narrower there than the passes need; fewer contours, or a raster inside them"),
+            );
+        }
+        if let Some(first) = self.first_short {
+            warnings.push(
+                Diagnostic::warning(
+                    "lmd::short-track",
+                    format!(
+                        "{} track{} shorter than the bead width {} (first on layer {})",
+                        self.short_tracks,
+                        if self.short_tracks == 1 { " is" } else { "s are" },
+                        Length(w),
+                        first + 1
+                    ),
+                )
+                .label(slicing.span, "fill")
+                .help("short tracks overheat and pile up: a slower or cooler style, or a profile without slivers"),
+            );
+        }
+        Ok(warnings)
     }
-    Ok((out, warnings))
 }
 
 /// The track without points that repeat the one before (within a nanometre),
@@ -366,8 +409,7 @@ fn fill_error(e: FillError, k: usize, ex: &Extrusion, slicing: &PlanarSlicing) -
 }
 
 fn layer(
-    model: &Model,
-    slicing: &PlanarSlicing,
+    values: &Values,
     k: usize,
     n: usize,
     lift: f64,
@@ -375,26 +417,13 @@ fn layer(
     styles: &[u16],
 ) -> Layer {
     let z = k as f64 * lift;
-    let p = &model.process;
-    let base = Values {
-        power: p.power.at(k).watts() as f32,
-        powder: p.powder.g_min() as f32,
-        speed: slicing.speed.0 as f32,
-    };
-    let defocus = p.defocus.0 as f32;
     let paths = tracks
         .iter()
         .zip(styles)
-        .filter(|(t, _)| t.points.len() >= 2)
         .map(|(t, &style)| {
-            let v = match model.styles.table.iter().find(|s| s.id == style) {
-                Some(s) => Values {
-                    power: s.power.map_or(base.power, |p| p.watts() as f32),
-                    powder: s.powder.map_or(base.powder, |m| m.g_min() as f32),
-                    speed: s.speed.map_or(base.speed, |v| v.0 as f32),
-                },
-                None => base,
-            };
+            let v = values.of(style, k);
+            // `distinct` left at least two points, so every point has a
+            // neighbour at a distance to take a direction from.
             let m = t.points.len();
             let points = (0..m)
                 .map(|i| {
@@ -412,7 +441,7 @@ fn layer(
                         speed: v.speed,
                         power: v.power,
                         powder: v.powder,
-                        defocus,
+                        defocus: values.defocus,
                         laser_on: i + 1 < m,
                         style,
                     }
@@ -442,8 +471,47 @@ fn layer(
 
 /// The process values a track is deposited with.
 #[derive(Clone, Copy)]
-struct Values {
+struct Deposit {
     power: f32,
     powder: f32,
     speed: f32,
+}
+
+/// The process block's values and each style's, looked up by style id once
+/// per track rather than searched for.
+struct Values<'m> {
+    model: &'m Model,
+    speed: f32,
+    powder: f32,
+    defocus: f32,
+    styles: BTreeMap<u16, &'m crate::sema::model::Style>,
+}
+
+impl<'m> Values<'m> {
+    fn table(model: &'m Model, slicing: &PlanarSlicing) -> Self {
+        Values {
+            model,
+            speed: slicing.speed.0 as f32,
+            powder: model.process.powder.g_min() as f32,
+            defocus: model.process.defocus.0 as f32,
+            styles: model.styles.table.iter().map(|s| (s.id, s)).collect(),
+        }
+    }
+
+    /// The values of `style` on layer `k` (the process power may be a ramp).
+    fn of(&self, style: u16, k: usize) -> Deposit {
+        let power = self.model.process.power.at(k).watts() as f32;
+        match self.styles.get(&style) {
+            Some(s) => Deposit {
+                power: s.power.map_or(power, |p| p.watts() as f32),
+                powder: s.powder.map_or(self.powder, |m| m.g_min() as f32),
+                speed: s.speed.map_or(self.speed, |v| v.0 as f32),
+            },
+            None => Deposit {
+                power,
+                powder: self.powder,
+                speed: self.speed,
+            },
+        }
+    }
 }

@@ -15,6 +15,10 @@ pub struct Styler {
     /// Every `when` block as a rule, in file order, with the corner angle (deg)
     /// its `near_corner` uses, if any.
     rules: Vec<(Rule, Option<f64>)>,
+    /// The distinct `near_boundary` distances and `near_corner` angles (deg)
+    /// the rules use: their bands and corners are found once a layer.
+    distances: Vec<f64>,
+    angles: Vec<f64>,
     /// Band half-width and hit factor, if styles are inherited.
     inheritance: Option<(f64, f64)>,
     chord_error: f64,
@@ -60,8 +64,26 @@ impl Styler {
                 rules.push((Rule { when, style: s.id }, angle));
             }
         }
+        let mut distances: Vec<f64> = Vec::new();
+        let mut angles: Vec<f64> = Vec::new();
+        for (rule, angle) in &rules {
+            for c in &rule.when {
+                if let Condition::BoundaryWithin(d) = *c {
+                    if !distances.contains(&d) {
+                        distances.push(d);
+                    }
+                }
+            }
+            if let Some(a) = *angle {
+                if !angles.contains(&a) {
+                    angles.push(a);
+                }
+            }
+        }
         Styler {
             rules,
+            distances,
+            angles,
             inheritance: styles.inheritance.map(|i| (i.band.0, i.hit)),
             chord_error,
             prev: Vec::new(),
@@ -73,24 +95,24 @@ impl Styler {
         if self.rules.is_empty() {
             return vec![0; tracks.len()];
         }
-        let boundary = vec![profile.polyline(self.chord_error)];
-        // Each `near_boundary` distance's band, built once for the layer.
-        let mut bands: Vec<(f64, Option<BoundaryBand>)> = Vec::new();
-        for (rule, _) in &self.rules {
-            for c in &rule.when {
-                if let Condition::BoundaryWithin(d) = *c {
-                    if !bands.iter().any(|b| b.0 == d) {
-                        bands.push((d, BoundaryBand::new(&boundary, d)));
-                    }
-                }
-            }
-        }
-        let mut corners: Vec<(f64, Vec<[f64; 2]>)> = Vec::new();
-        for a in self.rules.iter().filter_map(|r| r.1) {
-            if !corners.iter().any(|c| c.0 == a) {
-                corners.push((a, profile.corners(a)));
-            }
-        }
+        // A `BoundaryWithin` band is built here once for the layer rather than
+        // by `Condition::holds` for every track (which rebuilds it per call),
+        // so the layout passed to `holds` needs no boundary.
+        let boundary = if self.distances.is_empty() {
+            Vec::new()
+        } else {
+            vec![profile.polyline(self.chord_error)]
+        };
+        let bands: Vec<(f64, Option<BoundaryBand>)> = self
+            .distances
+            .iter()
+            .map(|&d| (d, BoundaryBand::new(&boundary, d)))
+            .collect();
+        let corners: Vec<(f64, Vec<[f64; 2]>)> = self
+            .angles
+            .iter()
+            .map(|&a| (a, profile.corners(a)))
+            .collect();
         let prev: Vec<(&[[f64; 2]], u16)> =
             self.prev.iter().map(|(p, s)| (p.as_slice(), *s)).collect();
         // The layer below is indexed once, not once per track.
@@ -114,7 +136,7 @@ impl Styler {
                 };
                 let by_rule = self.rules.iter().find_map(|(rule, angle)| {
                     let layout = Layout {
-                        boundary: &boundary,
+                        boundary: &[],
                         corners: angle
                             .and_then(|a| corners.iter().find(|c| c.0 == a))
                             .map_or(&[][..], |c| c.1.as_slice()),
