@@ -421,6 +421,15 @@ fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> 
     None
 }
 
+/// How a layer's rise follows from its bead, in words.
+fn lift_rule(overlapped: bool) -> &'static str {
+    if overlapped {
+        "A/d: the bead's cross-section A spread over the track offset d"
+    } else {
+        "A/w: one track a layer, its cross-section A spread over its width w"
+    }
+}
+
 /// A declared layer height: within the bead's heights (else an error), and
 /// reported when it is not what the tracks lay (`laid`).
 fn declared_lift(
@@ -460,7 +469,7 @@ fn declared_lift(
                     "layers {} high, but these tracks lay {} a layer ({}): the standoff changes by {} a layer",
                     l,
                     laid,
-                    if overlapped { "A/d, tracks overlapped" } else { "A/w, one track wide" },
+                    lift_rule(overlapped),
                     Length(drift.abs()),
                 ),
             )
@@ -496,11 +505,7 @@ fn derived_lift(
             format!(
                 "these tracks lay {} a layer ({}), outside the {} .. {} bead `{}` allows",
                 laid,
-                if overlapped {
-                    "A/d"
-                } else {
-                    "A/w, one track wide"
-                },
+                lift_rule(overlapped),
                 lo,
                 hi,
                 bead.name
