@@ -4,7 +4,7 @@
 
 use crate::back::{self, EmitError, Sink, Templates};
 use crate::check::{self, Verified};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::{lower, sema, syntax};
 
 /// Told when each stage finishes (for `lmdc build --timings`).
@@ -169,7 +169,7 @@ fn clash(program: &Verified, name: &str, first: usize, second: usize) -> Diagnos
     let ms = &program.ir().machines;
     let o = &program.ir().origins.machines;
     Diagnostic::error(
-        "lmd::name-clash",
+        Code::NameClash,
         format!(
             "machines `{}` and `{}` would both write {name}",
             ms[first].name(),

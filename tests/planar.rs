@@ -478,7 +478,7 @@ process { power = 1500 W  powder = 8 g/min }
 machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
 "#;
     let d = diagnose(src);
-    let codes: Vec<&str> = d.iter().map(|x| x.code).collect();
+    let codes: Vec<&str> = d.iter().map(|x| x.code.as_str()).collect();
     assert!(
         codes.contains(&"lmd::fill-empty") || codes.contains(&"lmd::degenerate"),
         "{d:?}"

@@ -2,7 +2,7 @@
 //! a [`Verified`] proof that the back ends require, so unchecked IR cannot reach
 //! them (the idea of naga's validator).
 
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::{Machine, Program};
 use crate::units::short;
 
@@ -153,7 +153,7 @@ pub fn verify(program: Program) -> Result<Verified, Diagnostics> {
     if nonfinite.count > 0 {
         let (l, p, k) = nonfinite.at;
         diags.push(Diagnostic::error(
-            "lmd::non-finite",
+            Code::NonFinite,
             format!(
                 "{} point{} carry a value that is not a finite number (first at layer {}, path {}, point {})",
                 nonfinite.count,
@@ -175,7 +175,7 @@ pub fn verify(program: Program) -> Result<Verified, Diagnostics> {
         }
         let (l, p, k) = off.at;
         let mut d = Diagnostic::error(
-            "lmd::out-of-range",
+            Code::OutOfRange,
             format!(
                 "{} point{} with a {}: the worst is {} {unit} (limit {} {unit}) at layer {}, path {}, point {}",
                 off.count,

@@ -3,7 +3,7 @@
 use super::fields::Fields;
 use super::model::{Bead, HeightModel, Process};
 use super::value::{unknown_name, Env, Spanned, Value};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{short, Density, Dim, Length, MassFlow, Speed};
@@ -49,7 +49,7 @@ pub fn read<'a>(
             let (slope, b) = (slope?, b?);
             if slope.0 >= 0.0 {
                 diags.push(
-                    Diagnostic::error("lmd::out-of-range", "the slope of a bead's height over speed must be negative")
+                    Diagnostic::error(Code::OutOfRange, "the slope of a bead's height over speed must be negative")
                         .label(slope.1, format!("this is {} mm per mm/s", short(slope.0)))
                         .help("a faster scan lays a lower bead: fit H = slope·v + intercept with slope < 0"),
                 );
@@ -69,7 +69,7 @@ pub fn read<'a>(
             if eff.0 > 1.0 {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::out-of-range",
+                        Code::OutOfRange,
                         "catch efficiency must lie between 0 and 1",
                     )
                     .label(eff.1, format!("this is {}", short(eff.0)))
@@ -95,7 +95,7 @@ pub fn read<'a>(
         Some(other) => {
             diags.push(
                 Diagnostic::error(
-                    "lmd::bad-choice",
+                    Code::BadChoice,
                     "a bead model is `linear(…)`, `mass_balance(…)` or `measured(…)`",
                 )
                 .label(
@@ -122,7 +122,7 @@ pub fn read<'a>(
     let w = Length(width.0);
     if speed[0] <= 0.0 {
         diags.push(
-            Diagnostic::error("lmd::out-of-range", "scan speeds must be greater than zero")
+            Diagnostic::error(Code::OutOfRange, "scan speeds must be greater than zero")
                 .label(speed_span, "the lower end must be > 0"),
         );
         return None;
@@ -133,7 +133,7 @@ pub fn read<'a>(
     if h_lo <= 0.0 || !h_lo.is_finite() || !h_hi.is_finite() {
         diags.push(
             Diagnostic::error(
-                "lmd::infeasible-bead",
+                Code::InfeasibleBead,
                 format!(
                     "the bead model gives a height of {} at {}",
                     Length(h_lo),
@@ -160,7 +160,7 @@ pub fn read<'a>(
             if lo <= 0.0 || elo > ehi {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::infeasible-bead",
+                        Code::InfeasibleBead,
                         format!(
                             "the allowed heights {} .. {} do not overlap what the model lays at {} .. {} ({} .. {})",
                             Length(lo), Length(hi), Speed(speed[0]), Speed(speed[1]), Length(h_lo), Length(h_hi)
@@ -214,7 +214,7 @@ pub fn named(
         Some(v) => {
             diags.push(
                 Diagnostic::error(
-                    "lmd::type",
+                    Code::Type,
                     format!("`{key}` names the bead model {what} is built with"),
                 )
                 .label(v.span, format!("this is {}", v.value.describe()))
@@ -235,7 +235,7 @@ pub fn check_feed(bead: &Bead, process: &Process, diags: &mut Diagnostics) {
         if (feed.0 - process.powder.0).abs() > 0.01 * feed.0 {
             diags.push(
                 Diagnostic::warning(
-                    "lmd::powder-mismatch",
+                    Code::PowderMismatch,
                     format!(
                         "bead `{}` is modelled at {} of powder, the process feeds {}: the beads will not be the heights planned",
                         bead.name, feed, process.powder

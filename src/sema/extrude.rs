@@ -11,7 +11,7 @@ use super::profile;
 use super::slicing::{PlanarSpec, MAX_LAYERS};
 use super::value::{unknown_name, Env, Spanned, Value};
 use crate::bead::{flat_top_offset, planar_lift, MIN_OFFSET_RATIO};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, Stmt};
 use crate::units::{short, Dim, Length, Speed};
@@ -146,7 +146,7 @@ fn scan_speed(process: &Process, bead: &Bead, at: Span, diags: &mut Diagnostics)
                 let measured = matches!(bead.model, HeightModel::Measured { .. });
                 diags.push(
                     Diagnostic::error(
-                        "lmd::out-of-range",
+                        Code::OutOfRange,
                         if measured {
                             format!("the scan speed {v} is not the {lo} bead `{}` was measured at", bead.name)
                         } else {
@@ -168,7 +168,7 @@ fn scan_speed(process: &Process, bead: &Bead, at: Span, diags: &mut Diagnostics)
         (None, HeightModel::Measured { speed, .. }) => Some(speed),
         (None, _) => {
             diags.push(
-                Diagnostic::error("lmd::missing-field", "planar layers need a scan speed")
+                Diagnostic::error(Code::MissingField, "planar layers need a scan speed")
                     .label(at, "the speed of these layers' tracks is not given")
                     .help("add `speed = 6 mm/s` to the process block"),
             );
@@ -206,7 +206,7 @@ pub fn assemble(
     if overlapped && offset.0 > width.0 * (1.0 + 1e-9) {
         diags.push(
             Diagnostic::error(
-                "lmd::fill-gap",
+                Code::FillGap,
                 format!(
                     "tracks {} apart leave gaps: the bead is {} wide",
                     offset, width
@@ -224,7 +224,7 @@ pub fn assemble(
     if overlapped && offset.0 < width.0 * MIN_OFFSET_RATIO {
         diags.push(
             Diagnostic::error(
-                "lmd::overlap",
+                Code::Overlap,
                 format!(
                     "tracks {} apart overlap by {:.0} % of the {} bead: the layer piles up",
                     offset,
@@ -256,7 +256,7 @@ pub fn assemble(
             if n > MAX_LAYERS as f64 {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::too-many-points",
+                        Code::TooManyPoints,
                         format!(
                             "{} in layers of {} is more than {MAX_LAYERS} layers",
                             height, lift
@@ -271,7 +271,7 @@ pub fn assemble(
             if (built - height.0).abs() > HEIGHT_TOLERANCE * height.0 {
                 diags.push(
                     Diagnostic::warning(
-                        "lmd::height-rounded",
+                        Code::HeightRounded,
                         format!(
                             "{n} layers of {} build {}: the {} asked for and {} more",
                             lift,
@@ -289,7 +289,7 @@ pub fn assemble(
         (Some((_, ls)), Some((_, hs))) => {
             diags.push(
                 Diagnostic::error(
-                    "lmd::duplicate",
+                    Code::Duplicate,
                     "give the layer count or the height, not both",
                 )
                 .label(ls, "layers")
@@ -300,7 +300,7 @@ pub fn assemble(
         }
         (None, None) => {
             diags.push(
-                Diagnostic::error("lmd::missing-field", "how tall is the extrusion?")
+                Diagnostic::error(Code::MissingField, "how tall is the extrusion?")
                     .label(w.span, "no `height`")
                     .help("add `height = 24 mm` here, or `layers = 35` to the slicing block"),
             );
@@ -377,7 +377,7 @@ fn per_layer(
             _ => {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::profile-layer",
+                        Code::ProfileLayer,
                         format!(
                             "the profile is not a valid shape on layer {} (layer = {k})",
                             k + 1
@@ -412,7 +412,7 @@ fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> 
     }
     diags.push(
         Diagnostic::error(
-            "lmd::too-many-points",
+            Code::TooManyPoints,
             format!("the profile's pieces over all layers come to more than {MAX_PROFILE_WORK}"),
         )
         .label(at, "profile")
@@ -443,7 +443,7 @@ fn declared_lift(
     if !bead.covers_height(l) {
         diags.push(
             Diagnostic::error(
-                "lmd::layer-height",
+                Code::LayerHeight,
                 format!(
                     "layers {} high are outside the {} .. {} bead `{}` can lay",
                     l, bead.height[0], bead.height[1], bead.name
@@ -464,7 +464,7 @@ fn declared_lift(
     if drift.abs() > LIFT_TOLERANCE * laid.0 {
         diags.push(
             Diagnostic::warning(
-                "lmd::lift-mismatch",
+                Code::LiftMismatch,
                 format!(
                     "layers {} high, but these tracks lay {} a layer ({}): the standoff changes by {} a layer",
                     l,
@@ -501,7 +501,7 @@ fn derived_lift(
     let a = laid.0 * if overlapped { offset.0 } else { width.0 };
     diags.push(
         Diagnostic::error(
-            "lmd::layer-height",
+            Code::LayerHeight,
             format!(
                 "these tracks lay {} a layer ({}), outside the {} .. {} bead `{}` allows",
                 laid,

@@ -5,7 +5,7 @@
 
 use super::suggest::did_you_mean;
 use super::value::{Call, Env, Spanned, Value};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{short, Dim, Quantity};
@@ -71,7 +71,7 @@ impl<'a> Fields<'a> {
             let key = s.kind.node.as_str();
             if !allowed.contains(&key) && !blocks.contains(&key) {
                 let mut d =
-                    Diagnostic::error("lmd::unknown-field", format!("{what} has no field `{key}`"))
+                    Diagnostic::error(Code::UnknownField, format!("{what} has no field `{key}`"))
                         .label(s.kind.span, "unknown field");
                 d = match did_you_mean(key, allowed.iter().chain(blocks).copied()) {
                     Some(m) => d.help(format!("did you mean `{m}`?")),
@@ -93,20 +93,17 @@ impl<'a> Fields<'a> {
                 .find(|e| e.key == key && !repeated.contains(&key))
             {
                 diags.push(
-                    Diagnostic::error(
-                        "lmd::duplicate",
-                        format!("`{key}` is given twice in {what}"),
-                    )
-                    .label(s.kind.span, "second time")
-                    .label(prev.key_span, "first time")
-                    .help("keep one of them"),
+                    Diagnostic::error(Code::Duplicate, format!("`{key}` is given twice in {what}"))
+                        .label(s.kind.span, "second time")
+                        .label(prev.key_span, "first time")
+                        .help("keep one of them"),
                 );
                 continue;
             }
             if let Some(n) = &s.name {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::syntax",
+                        Code::Syntax,
                         format!("unexpected `{}` after `{key}`", n.node),
                     )
                     .label(n.span, "not expected here")
@@ -124,7 +121,7 @@ impl<'a> Fields<'a> {
                     if env.layer_reads() > before && key != "profile" {
                         diags.push(
                             Diagnostic::error(
-                                "lmd::layer-outside-profile",
+                                Code::LayerOutsideProfile,
                                 format!("`{key}` uses `layer` or `layer_z`, which only a profile follows"),
                             )
                             .label(e.span, "depends on the layer")
@@ -150,7 +147,7 @@ impl<'a> Fields<'a> {
                 },
                 (_, true) => {
                     diags.push(
-                        Diagnostic::error("lmd::syntax", format!("`{key}` takes a block"))
+                        Diagnostic::error(Code::Syntax, format!("`{key}` takes a block"))
                             .label(s.span, "expected `{ … }`")
                             .help(format!("write `{key} {{ … }}`")),
                     );
@@ -158,7 +155,7 @@ impl<'a> Fields<'a> {
                 }
                 (_, false) => {
                     diags.push(
-                        Diagnostic::error("lmd::syntax", format!("`{key}` needs a value"))
+                        Diagnostic::error(Code::Syntax, format!("`{key}` needs a value"))
                             .label(s.span, "expected `= value`")
                             .help(format!("write `{key} = value`")),
                     );
@@ -188,7 +185,7 @@ impl<'a> Fields<'a> {
                     if next_pos >= positional.len() {
                         diags.push(
                             Diagnostic::error(
-                                "lmd::argument",
+                                Code::Argument,
                                 format!("too many unnamed arguments for {what}"),
                             )
                             .label(a.value.span, "name this argument")
@@ -202,7 +199,7 @@ impl<'a> Fields<'a> {
             };
             if !allowed.contains(&key.as_str()) {
                 let mut d =
-                    Diagnostic::error("lmd::argument", format!("{what} has no argument `{key}`"))
+                    Diagnostic::error(Code::Argument, format!("{what} has no argument `{key}`"))
                         .label(key_span, "unknown argument");
                 d = match did_you_mean(&key, allowed.iter().copied()) {
                     Some(m) => d.help(format!("did you mean `{m}`?")),
@@ -213,12 +210,9 @@ impl<'a> Fields<'a> {
             }
             if let Some(prev) = entries.iter().find(|e| e.key == key) {
                 diags.push(
-                    Diagnostic::error(
-                        "lmd::duplicate",
-                        format!("`{key}` is given twice to {what}"),
-                    )
-                    .label(key_span, "second time")
-                    .label(prev.key_span, "first time"),
+                    Diagnostic::error(Code::Duplicate, format!("`{key}` is given twice to {what}"))
+                        .label(key_span, "second time")
+                        .label(prev.key_span, "first time"),
                 );
                 continue;
             }
@@ -290,7 +284,7 @@ impl<'a> Fields<'a> {
 
     fn missing(&self, key: &str, example: &str, diags: &mut Diagnostics) {
         diags.push(
-            Diagnostic::error("lmd::missing-field", format!("{} needs `{key}`", self.what))
+            Diagnostic::error(Code::MissingField, format!("{} needs `{key}`", self.what))
                 .label(self.at, format!("`{key}` is missing"))
                 .help(format!("add `{key} = {example}`")),
         );
@@ -342,7 +336,7 @@ impl<'a> Fields<'a> {
         } else {
             diags.push(
                 Diagnostic::error(
-                    "lmd::out-of-range",
+                    Code::OutOfRange,
                     format!("`{key}` must be greater than zero"),
                 )
                 .label(span, format!("this is {}", short(q)))
@@ -370,7 +364,7 @@ impl<'a> Fields<'a> {
             other => {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::type",
+                        Code::Type,
                         format!("`{key}` must be a range of {}", dim.describe()),
                     )
                     .label(v.span, format!("this is {}", other.describe()))
@@ -418,7 +412,7 @@ impl<'a> Fields<'a> {
             Value::Str(s) => Some((s.clone(), v.span)),
             other => {
                 diags.push(
-                    Diagnostic::error("lmd::type", format!("`{key}` must be a text in quotes"))
+                    Diagnostic::error(Code::Type, format!("`{key}` must be a text in quotes"))
                         .label(v.span, format!("this is {}", other.describe()))
                         .help(format!("write `{key} = \"…\"`")),
                 );
@@ -443,7 +437,7 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
                 Some((b, text)) if value.abs() > b => {
                     diags.push(
                         Diagnostic::error(
-                            "lmd::out-of-range",
+                            Code::OutOfRange,
                             format!("`{key}` is beyond what lmdc plans ({text})"),
                         )
                         .label(v.span, format!("this is {}", short(*value)))
@@ -460,7 +454,7 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
         }
         other => {
             let mut d =
-                Diagnostic::error("lmd::type", format!("`{key}` must be {}", dim.describe()))
+                Diagnostic::error(Code::Type, format!("`{key}` must be {}", dim.describe()))
                     .label(v.span, format!("this is {}", other.describe()));
             if let Value::Symbol(s) = other {
                 d = d.help(format!("`{s}` is not a constant; declare it with `let {s} = …` or write a number with a unit"));
@@ -479,7 +473,7 @@ fn wrong_unit(span: Span, key: &str, want: Dim, got: Dim, diags: &mut Diagnostic
     };
     diags.push(
         Diagnostic::error(
-            "lmd::unit-mismatch",
+            Code::UnitMismatch,
             format!(
                 "`{key}` must be {}, not {}",
                 want.describe(),
@@ -506,7 +500,7 @@ pub fn count(
             } else {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::out-of-range",
+                        Code::OutOfRange,
                         format!("`{key}` must be between {lo} and {hi}"),
                     )
                     .label(v.span, format!("this is {}", short(*value))),
@@ -516,7 +510,7 @@ pub fn count(
         }
         other => {
             diags.push(
-                Diagnostic::error("lmd::type", format!("`{key}` must be a whole number"))
+                Diagnostic::error(Code::Type, format!("`{key}` must be a whole number"))
                     .label(v.span, format!("this is {}", other.describe())),
             );
             None
@@ -532,7 +526,7 @@ pub fn symbol(v: &Spanned, key: &str, choices: &[&str], diags: &mut Diagnostics)
         }
     }
     let mut d = Diagnostic::error(
-        "lmd::bad-choice",
+        Code::BadChoice,
         format!("`{key}` must be one of: {}", choices.join(", ")),
     )
     .label(v.span, format!("this is {}", v.value.describe()));

@@ -5,7 +5,7 @@ use super::fields::Fields;
 use super::model::{Bead, Loft, Measure, Morph, Section, Spine};
 use super::section;
 use super::value::{unknown_name, Env, Spanned, Value};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Angle, Dim, Length};
@@ -86,7 +86,7 @@ pub fn read<'a>(
             if !(family(&from) && family(&to)) {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::bad-choice",
+                        Code::BadChoice,
                         "a superellipse morph needs circle, ellipse, square or rectangle ends",
                     )
                     .label(ms, "superellipse")
@@ -110,7 +110,7 @@ pub fn read<'a>(
                     ok = false;
                     diags.push(
                         Diagnostic::error(
-                            "lmd::out-of-range",
+                            Code::OutOfRange,
                             format!("this section is too small for a {} wide bead measured at its outer face", bead.width),
                         )
                         .label(at, "section")
@@ -155,7 +155,7 @@ fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Opt
         Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
         other => {
             diags.push(
-                Diagnostic::error("lmd::type", "expected a section")
+                Diagnostic::error(Code::Type, "expected a section")
                     .label(v.span, format!("this is {}", other.describe()))
                     .help(format!(
                         "name a declared section or write one of: {}",
@@ -183,7 +183,7 @@ fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
             if a > std::f64::consts::PI * 1.5 {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::out-of-range",
+                        Code::OutOfRange,
                         "a bend angle above 270° makes the part collide with itself",
                     )
                     .label(aspan, format!("this is {}", Angle(a)))
@@ -199,7 +199,7 @@ fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
         other => {
             diags.push(
                 Diagnostic::error(
-                    "lmd::type",
+                    Code::Type,
                     "a spine is `line(length = …)` or `arc(radius = …, angle = …)`",
                 )
                 .label(v.span, format!("this is {}", other.describe()))

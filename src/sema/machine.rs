@@ -5,7 +5,7 @@
 use super::dialect;
 use super::fields::{self, Fields};
 use super::value::{Env, Value};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::{AxisLimits, Cnc, FeedUnit, FrameRef, Kinematics, Machine, Pose, Robot, ToolAxis};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
@@ -63,12 +63,9 @@ pub fn read<'a>(
         }
         _ => {
             diags.push(
-                Diagnostic::error(
-                    "lmd::missing-field",
-                    format!("machine `{name}` needs `kind`"),
-                )
-                .label(span, "is it a robot or a CNC?")
-                .help("add `kind = robot` (KUKA, KRL) or `kind = cnc` (G-code)"),
+                Diagnostic::error(Code::MissingField, format!("machine `{name}` needs `kind`"))
+                    .label(span, "is it a robot or a CNC?")
+                    .help("add `kind = robot` (KUKA, KRL) or `kind = cnc` (G-code)"),
             );
             return None;
         }
@@ -205,7 +202,7 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
             }
             diags.push(
                 Diagnostic::error(
-                    "lmd::out-of-range",
+                    Code::OutOfRange,
                     format!(
                         "`max_speed` {} mm/s is beyond what a KUKA controller takes for $VEL.CP",
                         v
@@ -245,7 +242,7 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
             }
             other => {
                 diags.push(
-                    Diagnostic::error("lmd::type", "`home` is the list of the six axis angles")
+                    Diagnostic::error(Code::Type, "`home` is the list of the six axis angles")
                         .label(v.span, format!("this is {}", other.describe()))
                         .help("e.g. `home = [0 deg, -90 deg, 90 deg, 0 deg, 0 deg, 0 deg]`"),
                 );
@@ -279,7 +276,7 @@ fn cnc(
         Some((4, s)) => {
             diags.push(
                 Diagnostic::error(
-                    "lmd::out-of-range",
+                    Code::OutOfRange,
                     "a CNC has 3 axes (X Y Z) or 5 (X Y Z and a tilting head)",
                 )
                 .label(s, "4 axes")
@@ -302,7 +299,7 @@ fn cnc(
         (Some(a), Some(k)) if (a == 3) != (k == Kinematics::Xyz) => {
             diags.push(
                 Diagnostic::error(
-                    "lmd::bad-choice",
+                    Code::BadChoice,
                     format!(
                         "kinematics `{}` does not fit a {a}-axis machine",
                         kin_name(k)
@@ -369,7 +366,7 @@ fn cnc(
                     Some(l) => d.postamble = l,
                     None => diags.push(
                         Diagnostic::error(
-                            "lmd::type",
+                            Code::Type,
                             format!("`{key}` is a list of lines in quotes"),
                         )
                         .label(v.span, "expected texts")
@@ -412,7 +409,7 @@ fn cnc(
         if let Some(s) = l.span(other) {
             diags.push(
                 Diagnostic::error(
-                    "lmd::unknown-field",
+                    Code::UnknownField,
                     format!("this machine's head has no {} axis", other.to_uppercase()),
                 )
                 .label(s, "not an axis of this machine")

@@ -17,7 +17,7 @@ mod style;
 mod suggest;
 pub mod value;
 
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, File, Stmt};
 use model::{Model, Plan, Section};
@@ -55,7 +55,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         let k = s.kind.node.as_str();
         if !KINDS.contains(&k) {
             let mut d = Diagnostic::error(
-                "lmd::unknown-statement",
+                Code::UnknownStatement,
                 format!("`{k}` does not start a statement"),
             )
             .label(s.kind.span, "unknown");
@@ -77,7 +77,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
                 if let Some(prev) = env.declare(&n.node, n.span, e) {
                     diags.push(
                         Diagnostic::error(
-                            "lmd::duplicate",
+                            Code::Duplicate,
                             format!("`{}` is declared twice", n.node),
                         )
                         .label(n.span, "second declaration")
@@ -118,7 +118,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         if env.layer_reads() > before {
             diags.push(
                 Diagnostic::error(
-                    "lmd::layer-outside-profile",
+                    Code::LayerOutsideProfile,
                     format!(
                         "section `{}` uses `layer` or `layer_z`, which only a profile follows",
                         n.node
@@ -136,7 +136,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
             Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
             other => {
                 diags.push(
-                    Diagnostic::error("lmd::type", format!("section `{}` must be a shape", n.node))
+                    Diagnostic::error(Code::Type, format!("section `{}` must be a shape", n.node))
                         .label(v.span, format!("this is {}", other.describe()))
                         .help(format!("shapes: {}", section::SHAPES.join(", "))),
                 );
@@ -146,7 +146,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         if let Some(prev) = sections.get(&n.node) {
             diags.push(
                 Diagnostic::error(
-                    "lmd::duplicate",
+                    Code::Duplicate,
                     format!("section `{}` is declared twice", n.node),
                 )
                 .label(n.span, "second declaration")
@@ -178,7 +178,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
             .or(sections.get(&n.node).map(|p| p.1));
         if let Some(prev) = prev {
             diags.push(
-                Diagnostic::error("lmd::duplicate", format!("`{}` is declared twice", n.node))
+                Diagnostic::error(Code::Duplicate, format!("`{}` is declared twice", n.node))
                     .label(n.span, "second declaration")
                     .label(prev, "first declaration"),
             );
@@ -226,7 +226,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         [] => {
             diags.push(
                 Diagnostic::error(
-                    "lmd::missing-solid",
+                    Code::MissingSolid,
                     "the file does not describe a solid to build",
                 )
                 .label(Span::new(0, 0), "no `loft` or `extrude` here")
@@ -237,7 +237,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         [s, rest @ ..] => {
             for extra in rest {
                 diags.push(
-                    Diagnostic::error("lmd::duplicate", "lmdc builds one solid per file")
+                    Diagnostic::error(Code::Duplicate, "lmdc builds one solid per file")
                         .label(extra.kind.span, "second solid")
                         .label(s.kind.span, "first solid")
                         .help("put each part in its own file"),
@@ -320,7 +320,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         if let Some(prev) = seen.insert(n.node.clone(), n.span) {
             diags.push(
                 Diagnostic::error(
-                    "lmd::duplicate",
+                    Code::Duplicate,
                     format!("machine `{}` is declared twice", n.node),
                 )
                 .label(n.span, "second declaration")
@@ -334,7 +334,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     if get("machine").is_empty() {
         diags.push(
             Diagnostic::error(
-                "lmd::missing-machine",
+                Code::MissingMachine,
                 "the file declares no machine to write a program for",
             )
             .label(Span::new(0, 0), "no `machine` here")
@@ -368,7 +368,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
                 .unwrap_or(Span::new(0, 0));
             diags.push(
                 Diagnostic::error(
-                    "lmd::bad-choice",
+                    Code::BadChoice,
                     format!("{strategy} slicing does not build {solid_kind}"),
                 )
                 .label(at, "slicing")
@@ -418,7 +418,7 @@ fn single<'s>(
     if stmts.is_empty() {
         diags.push(
             Diagnostic::error(
-                "lmd::missing-statement",
+                Code::MissingStatement,
                 format!("the file has no `{kind}` statement"),
             )
             .label(Span::new(0, 0), format!("`{kind}` is missing"))
@@ -437,7 +437,7 @@ fn single_optional<'s>(
     let (first, rest) = stmts.split_first()?;
     for extra in rest {
         diags.push(
-            Diagnostic::error("lmd::duplicate", format!("`{kind}` is given twice"))
+            Diagnostic::error(Code::Duplicate, format!("`{kind}` is given twice"))
                 .label(extra.kind.span, "second time")
                 .label(first.kind.span, "first time")
                 .help("keep one of them"),
@@ -448,7 +448,7 @@ fn single_optional<'s>(
 
 fn shape_error(s: &Stmt, shape: &str, example: &str) -> Diagnostic {
     Diagnostic::error(
-        "lmd::syntax",
+        Code::Syntax,
         format!("a `{}` statement is written `{shape}`", s.kind.node),
     )
     .label(s.span, "not in that shape")

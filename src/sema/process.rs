@@ -3,7 +3,7 @@
 use super::fields::Fields;
 use super::model::{PowerSchedule, Process};
 use super::value::{Env, Value};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Dim, Length, MassFlow, Power, Speed};
@@ -61,7 +61,7 @@ pub fn read<'a>(
             if lo < a || hi > b {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::out-of-range",
+                        Code::OutOfRange,
                         format!(
                             "the power schedule reaches {} .. {}, outside the laser's range {} .. {}",
                             Power(lo), Power(hi), Power(a), Power(b)

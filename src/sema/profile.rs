@@ -8,7 +8,7 @@ use super::fields::{self, Fields};
 use super::model::{Outline, Segment, Shape, Turn};
 use super::section;
 use super::value::{Call, Spanned, Value};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::units::{Dim, Length};
 
 /// The shapes a profile can be, besides the section shapes.
@@ -26,7 +26,7 @@ pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> 
         }
         other => {
             diags.push(
-                Diagnostic::error("lmd::type", format!("{what} must be a 2-D shape"))
+                Diagnostic::error(Code::Type, format!("{what} must be a 2-D shape"))
                     .label(v.span, format!("this is {}", other.describe()))
                     .help(format!(
                         "write `outline([x, y], [x, y], arc(to = [x, y], radius = r), …)` or a section shape: {}",
@@ -46,7 +46,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
     if c.args.len() > MAX_SEGMENTS {
         diags.push(
             Diagnostic::error(
-                "lmd::too-many-points",
+                Code::TooManyPoints,
                 format!("an outline has at most {MAX_SEGMENTS} pieces"),
             )
             .label(c.func_span, "outline"),
@@ -56,7 +56,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
     for a in &c.args {
         if let Some((_, s)) = &a.name {
             diags.push(
-                Diagnostic::error("lmd::argument", "the pieces of an outline have no names")
+                Diagnostic::error(Code::Argument, "the pieces of an outline have no names")
                     .label(*s, "drop the name")
                     .help("write `outline([0 mm, 0 mm], [40 mm, 0 mm], …)`"),
             );
@@ -71,7 +71,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
                 let first = start.is_none();
                 diags.push(
                     Diagnostic::error(
-                        "lmd::type",
+                        Code::Type,
                         if first {
                             "an outline starts with a point `[x, y]`".to_string()
                         } else {
@@ -96,7 +96,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
         } else {
             if last == Some(to) {
                 diags.push(
-                    Diagnostic::error("lmd::degenerate", "this piece of the outline has no length")
+                    Diagnostic::error(Code::Degenerate, "this piece of the outline has no length")
                         .label(v.span, "same point as the one before")
                         .help("drop the repeated point"),
                 );
@@ -107,7 +107,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
                 if radius.0 * 2.0 < chord * (1.0 - 1e-9) {
                     diags.push(
                         Diagnostic::error(
-                            "lmd::degenerate",
+                            Code::Degenerate,
                             format!(
                                 "an arc of radius {} cannot join points {} apart",
                                 radius,
@@ -127,7 +127,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
     let start = start?;
     if ok && segments.len() < 2 && !segments.iter().any(|s| matches!(s, Segment::Arc { .. })) {
         diags.push(
-            Diagnostic::error("lmd::degenerate", "an outline needs at least three corners")
+            Diagnostic::error(Code::Degenerate, "an outline needs at least three corners")
                 .label(c.func_span, "encloses no area")
                 .help("give at least three points, or two points and an arc"),
         );
@@ -145,7 +145,7 @@ fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
         }
         other => {
             diags.push(
-                Diagnostic::error("lmd::type", "a point is `[x, y]`, two lengths")
+                Diagnostic::error(Code::Type, "a point is `[x, y]`, two lengths")
                     .label(v.span, format!("this is {}", other.describe()))
                     .help("e.g. `[40 mm, 0 mm]`"),
             );

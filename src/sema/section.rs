@@ -3,7 +3,7 @@
 use super::fields::Fields;
 use super::model::Section;
 use super::value::Call;
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::units::{Dim, Length};
 
 /// The section constructors the language knows.
@@ -69,7 +69,7 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
             if r < 0.0 || r > a.min(b) {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::out-of-range",
+                        Code::OutOfRange,
                         "the corner radius must lie between 0 and half the shorter side",
                     )
                     .label(rs, format!("this is {}", Length(r)))

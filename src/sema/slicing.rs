@@ -4,7 +4,7 @@
 use super::fields::{self, Fields};
 use super::model::{Pattern, Raster, Resolution, Slicing};
 use super::value::{Call, Env, Spanned as SpannedValue, Value};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::{Span, Spanned};
 use crate::syntax::ast::Stmt;
 use crate::units::{Angle, Dim, Length};
@@ -69,7 +69,7 @@ pub fn read<'a>(
         Some(s) => {
             diags.push(
                 Diagnostic::error(
-                    "lmd::bad-choice",
+                    Code::BadChoice,
                     format!("lmdc does not know the slicing strategy `{}`", s.node),
                 )
                 .label(s.span, "unknown strategy")
@@ -79,7 +79,7 @@ pub fn read<'a>(
         }
         None => {
             diags.push(
-                Diagnostic::error("lmd::syntax", "name the slicing strategy")
+                Diagnostic::error(Code::Syntax, "name the slicing strategy")
                     .label(span, "which strategy?")
                     .help("write `slicing normal { … }`"),
             );
@@ -107,7 +107,7 @@ pub fn read<'a>(
         (true, true) => {
             diags.push(
                 Diagnostic::error(
-                    "lmd::duplicate",
+                    Code::Duplicate,
                     "give either `points` or `chord_error`, not both",
                 )
                 .label_opt(f.span("points"), "points")
@@ -196,7 +196,7 @@ fn planar<'a>(
         }) if c.func == "raster" => raster(c, diags).map(Some),
         Some(v) => {
             diags.push(
-                Diagnostic::error("lmd::bad-choice", "an infill is `raster(…)` or `none`")
+                Diagnostic::error(Code::BadChoice, "an infill is `raster(…)` or `none`")
                     .label(v.span, format!("this is {}", v.value.describe()))
                     .help("e.g. `infill = raster(angle = 0 deg, pattern = serpentine)`"),
             );
@@ -209,7 +209,7 @@ fn planar<'a>(
             if n == 0 && infill.is_none() {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::out-of-range",
+                        Code::OutOfRange,
                         "a layer with no contour and no infill deposits nothing",
                     )
                     .label(sp, "no contour")
@@ -264,7 +264,7 @@ fn raster(c: &Call, diags: &mut Diagnostics) -> Option<(Raster, Option<Length>)>
         Some(v) => fields::quantity(v, Dim::LENGTH, "extend", diags).and_then(|e| {
             if e < 0.0 {
                 diags.push(
-                    Diagnostic::error("lmd::out-of-range", "`extend` cannot be negative")
+                    Diagnostic::error(Code::OutOfRange, "`extend` cannot be negative")
                         .label(v.span, "negative")
                         .help("0 mm keeps tracks where they meet the boundary"),
                 );

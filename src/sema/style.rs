@@ -5,7 +5,7 @@
 use super::fields::{self, Fields};
 use super::model::{Bead, Inheritance, PathSelect, Plan, Process, Style, StyleCondition, Styles};
 use super::value::{Env, Value};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{short, Angle, Dim, Length, MassFlow, Power, Speed};
@@ -45,7 +45,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
     if stmts.len() > MAX_STYLES {
         diags.push(
             Diagnostic::error(
-                "lmd::out-of-range",
+                Code::OutOfRange,
                 format!(
                     "{} styles are more than the {MAX_STYLES} a table may hold",
                     stmts.len()
@@ -60,7 +60,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         let (Some(n), Body::Block(body, _)) = (&s.name, &s.body) else {
             diags.push(
                 Diagnostic::error(
-                    "lmd::syntax",
+                    Code::Syntax,
                     "a `style` statement is written `style NAME { … }`",
                 )
                 .label(s.span, "not in that shape")
@@ -79,7 +79,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         if !word {
             diags.push(
                 Diagnostic::error(
-                    "lmd::type",
+                    Code::Type,
                     format!("`{}` is not a style name", n.node),
                 )
                 .label(n.span, "not a name")
@@ -89,7 +89,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         if let Some(prev) = names.insert(n.node.clone(), n.span) {
             diags.push(
                 Diagnostic::error(
-                    "lmd::duplicate",
+                    Code::Duplicate,
                     format!("style `{}` is declared twice", n.node),
                 )
                 .label(n.span, "second declaration")
@@ -114,7 +114,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
                 let id = id as u16;
                 if let Some(prev) = ids.get(&id) {
                     diags.push(
-                        Diagnostic::error("lmd::duplicate", format!("style id {id} is used twice"))
+                        Diagnostic::error(Code::Duplicate, format!("style id {id} is used twice"))
                             .label(sp, "second use")
                             .label(*prev, "first use")
                             .help("give every style its own id"),
@@ -134,7 +134,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
             // track by track.
             diags.push(
                 Diagnostic::warning(
-                    "lmd::unused",
+                    Code::Unused,
                     format!("{what}'s powder feed is recorded, not programmed"),
                 )
                 .label(sp, "in the IR and the programs' style table only")
@@ -143,7 +143,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         }
         if !f.has("power") && !f.has("speed") && !f.has("powder") {
             diags.push(
-                Diagnostic::warning("lmd::unused", format!("{what} sets no process value"))
+                Diagnostic::warning(Code::Unused, format!("{what} sets no process value"))
                     .label(n.span, "its tracks get the process block's values")
                     .help("give it `power`, `speed` or both"),
             );
@@ -155,7 +155,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
                 } else {
                     diags.push(
                         Diagnostic::error(
-                            "lmd::bad-choice",
+                            Code::BadChoice,
                             format!("`{c}` is not a colour `#rrggbb`"),
                         )
                         .label(sp, "not a colour")
@@ -170,7 +170,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         let blocks = f.nested_all("when");
         if blocks.is_empty() {
             diags.push(
-                Diagnostic::error("lmd::missing-field", format!("{what} picks no tracks"))
+                Diagnostic::error(Code::MissingField, format!("{what} picks no tracks"))
                     .label(s.span, "no `when { … }` block")
                     .help("add a rule, e.g. `when { paths = outer_contour }`; several `when` blocks pick the tracks any of them picks"),
             );
@@ -270,7 +270,7 @@ fn rule<'a>(
         Some((a, sp)) if !(a > 0.0 && a <= std::f64::consts::PI) => {
             diags.push(
                 Diagnostic::error(
-                    "lmd::out-of-range",
+                    Code::OutOfRange,
                     "`corner_angle` must be more than 0 deg and at most 180 deg",
                 )
                 .label(sp, format!("this is {} deg", short(a.to_degrees())))
@@ -283,7 +283,7 @@ fn rule<'a>(
             if corner.is_none() && !f.has("near_corner") {
                 diags.push(
                     Diagnostic::warning(
-                        "lmd::unused",
+                        Code::Unused,
                         "`corner_angle` does nothing without `near_corner`",
                     )
                     .label(sp, "unused")
@@ -312,7 +312,7 @@ fn rule<'a>(
                 } else {
                     diags.push(
                         Diagnostic::error(
-                            "lmd::out-of-range",
+                            Code::OutOfRange,
                             "`layers` must be a range of layer numbers `first .. last`, counted from 1",
                         )
                         .label(v.span, format!("this is {} .. {}", short(a.value), short(b.value)))
@@ -323,7 +323,7 @@ fn rule<'a>(
             }
             other => {
                 diags.push(
-                    Diagnostic::error("lmd::type", "`layers` must be a range of layer numbers")
+                    Diagnostic::error(Code::Type, "`layers` must be a range of layer numbers")
                         .label(v.span, format!("this is {}", other.describe()))
                         .help("e.g. `layers = 1 .. 3` for the first three layers"),
                 );
@@ -337,7 +337,7 @@ fn rule<'a>(
     // all failed has said why already.
     if ok && out.is_empty() && stmts.is_empty() {
         diags.push(
-            Diagnostic::error("lmd::missing-field", "an empty `when` block picks every track")
+            Diagnostic::error(Code::MissingField, "an empty `when` block picks every track")
                 .label(span, "no condition")
                 .help("set values for every track in `process`; here say which tracks, e.g. `paths = infill`"),
         );
@@ -360,7 +360,7 @@ fn rule<'a>(
         if below <= above {
             diags.push(
                 Diagnostic::warning(
-                    "lmd::unused",
+                    Code::Unused,
                     format!("no track is shorter than {} and at least {} long", Length(below), Length(above)),
                 )
                 .label(span, "this `when` block picks nothing")
@@ -380,7 +380,7 @@ pub fn inheritance<'a>(
     let (None, Body::Block(stmts, _)) = (&stmt.name, &stmt.body) else {
         diags.push(
             Diagnostic::error(
-                "lmd::syntax",
+                Code::Syntax,
                 "an `inheritance` statement is written `inheritance { band = …, hit = … }`",
             )
             .label(stmt.span, "not in that shape")
@@ -404,7 +404,7 @@ pub fn inheritance<'a>(
             Some(h) => {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::out-of-range",
+                        Code::OutOfRange,
                         "`hit` is the share of a track inside the band: more than 0 % and at most 100 %",
                     )
                     .label(v.span, format!("this is {} %", short(h * 100.0)))
@@ -443,7 +443,7 @@ pub fn assemble(
     if let (None, Some(first)) = (slicing, written.first()) {
         diags.push(
             Diagnostic::error(
-                "lmd::unsupported",
+                Code::Unsupported,
                 "styles pick tracks of planar layers; a loft's wall is one track a layer",
             )
             .label(first.style.span, "style")
@@ -462,7 +462,7 @@ pub fn assemble(
     }
     match inheritance_span {
         Some(sp) if written.is_empty() => diags.push(
-            Diagnostic::warning("lmd::unused", "inheritance without styles does nothing")
+            Diagnostic::warning(Code::Unused, "inheritance without styles does nothing")
                 .label(sp, "no style to inherit")
                 .help("declare `style NAME { … }` or remove `inheritance`"),
         ),
@@ -475,7 +475,7 @@ pub fn assemble(
             if turn > 1e-9 && 180.0 - turn > 1e-9 {
                 diags.push(
                     Diagnostic::warning(
-                        "lmd::unused",
+                        Code::Unused,
                         format!(
                             "raster tracks turn {} deg a layer, so they cross the layer below's styled tracks and do not inherit their styles",
                             short(turn)
@@ -503,7 +503,7 @@ fn never_applies(s: &Style, layers: usize, diags: &mut Diagnostics) {
     if let Some(a) = first {
         diags.push(
             Diagnostic::warning(
-                "lmd::unused",
+                Code::Unused,
                 format!(
                     "style `{}` asks for layer {a}, but the part has {layers}",
                     s.name
@@ -525,7 +525,7 @@ fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnosti
         if !bead.covers_speed(v) {
             diags.push(
                 Diagnostic::error(
-                    "lmd::out-of-range",
+                    Code::OutOfRange,
                     format!(
                         "style `{}` scans at {}, outside the {} .. {} bead `{}` is valid for",
                         s.name, v, bead.speed[0], bead.speed[1], bead.name
@@ -539,7 +539,7 @@ fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnosti
         } else if !bead.covers_height(h) {
             diags.push(
                 Diagnostic::error(
-                    "lmd::out-of-range",
+                    Code::OutOfRange,
                     format!(
                         "style `{}` scans at {}, where bead `{}` is {} high: outside its allowed {} .. {}",
                         s.name, v, bead.name, h, bead.height[0], bead.height[1]
@@ -557,7 +557,7 @@ fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnosti
             let [lo, hi] = process.power_range;
             diags.push(
                 Diagnostic::error(
-                    "lmd::out-of-range",
+                    Code::OutOfRange,
                     format!(
                         "style `{}` sets {}, outside the laser's range {} .. {}",
                         s.name, p, lo, hi

@@ -3,7 +3,7 @@
 //! and does not cascade.
 
 use super::suggest::did_you_mean;
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Arg, BinOp, Expr, ExprKind, UnOp};
 use crate::units::{parse_unit, short, Dim, Quantity};
@@ -181,7 +181,7 @@ impl<'a> Env<'a> {
             LetState::Busy => {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::cycle",
+                        Code::Cycle,
                         format!("the constant `{name}` is defined in terms of itself"),
                     )
                     .label(at, "used here while it is being computed")
@@ -249,7 +249,7 @@ impl<'a> Env<'a> {
                         Err(bad) => {
                             diags.push(
                                 Diagnostic::error(
-                                    "lmd::unknown-unit",
+                                    Code::UnknownUnit,
                                     format!("`{}` is not a unit lmdc knows", bad.0),
                                 )
                                 .label(u.span, "unknown unit")
@@ -323,7 +323,7 @@ impl<'a> Env<'a> {
                     (UnOp::Neg, other) => {
                         diags.push(
                             Diagnostic::error(
-                                "lmd::type",
+                                Code::Type,
                                 format!("cannot negate {}", other.describe()),
                             )
                             .label(expr.span, "this is not a number"),
@@ -342,7 +342,7 @@ impl<'a> Env<'a> {
         if let Value::Quantity(q) = &value {
             if !q.value.is_finite() {
                 diags.push(
-                    Diagnostic::error("lmd::overflow", "this number is too large to compute with")
+                    Diagnostic::error(Code::Overflow, "this number is too large to compute with")
                         .label(e.span, "not a finite number")
                         .help("check the value and its unit"),
                 );
@@ -372,7 +372,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
                 &l
             };
             let mut d = Diagnostic::error(
-                "lmd::type",
+                Code::Type,
                 format!("`{}` needs numbers on both sides", op.symbol()),
             )
             .label(bad.span, format!("this is {}", bad.value.describe()));
@@ -396,7 +396,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
                 };
                 diags.push(
                     Diagnostic::error(
-                        "lmd::unit-mismatch",
+                        Code::UnitMismatch,
                         format!(
                             "{what} must have the same unit: {} and {}",
                             lq.dim.describe(),
@@ -416,7 +416,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
                     if lq.value > rq.value {
                         diags.push(
                             Diagnostic::error(
-                                "lmd::empty-range",
+                                Code::EmptyRange,
                                 "the range's lower end is above its upper end",
                             )
                             .label(l.span.join(r.span), "write the smaller value first")
@@ -432,7 +432,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
         BinOp::Div => {
             if rq.value == 0.0 {
                 diags.push(
-                    Diagnostic::error("lmd::division-by-zero", "division by zero")
+                    Diagnostic::error(Code::DivisionByZero, "division by zero")
                         .label(r.span, "this is zero"),
                 );
                 return None;
@@ -444,7 +444,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
             if rq.dim != Dim::NONE || n.fract() != 0.0 || n.abs() > 16.0 {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::bad-exponent",
+                        Code::BadExponent,
                         format!(
                             "exponent {} is not a whole number between -16 and 16",
                             short(n)
@@ -468,12 +468,9 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
             (None, Value::Quantity(q)) => *q,
             (_, other) => {
                 diags.push(
-                    Diagnostic::error(
-                        "lmd::type",
-                        format!("`{func}` takes numbers, without names"),
-                    )
-                    .label(a.value.span, format!("this is {}", other.describe()))
-                    .help(format!("e.g. `{func}(layer + 2, 10)`")),
+                    Diagnostic::error(Code::Type, format!("`{func}` takes numbers, without names"))
+                        .label(a.value.span, format!("this is {}", other.describe()))
+                        .help(format!("e.g. `{func}(layer + 2, 10)`")),
                 );
                 return None;
             }
@@ -482,7 +479,7 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
             if b.dim != q.dim {
                 diags.push(
                     Diagnostic::error(
-                        "lmd::unit-mismatch",
+                        Code::UnitMismatch,
                         format!(
                             "`{func}` compares values of one kind: {} and {}",
                             b.dim.describe(),
@@ -505,7 +502,7 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
         Some(q) => Some(Value::Quantity(q)),
         None => {
             diags.push(
-                Diagnostic::error("lmd::type", format!("`{func}` needs at least one value"))
+                Diagnostic::error(Code::Type, format!("`{func}` needs at least one value"))
                     .label(span, "nothing to compare"),
             );
             None
@@ -516,7 +513,7 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
 /// An "unknown name" error with a did-you-mean hint over `candidates`.
 pub fn unknown_name(name: &str, span: Span, what: &str, candidates: &[&str]) -> Diagnostic {
     let mut d = Diagnostic::error(
-        "lmd::unknown-name",
+        Code::UnknownName,
         format!("there is no {what} called `{name}`"),
     )
     .label(span, "not declared");

@@ -1,7 +1,7 @@
 //! Choosing the layer count of normal slicing, and explaining in the user's
 //! terms why a part cannot be built with its bead model.
 
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::geometry::LoftGeometry;
 use crate::sema::model::{Bead, Loft, Slicing, Spine};
 use crate::units::{short, Length, Speed};
@@ -58,7 +58,7 @@ pub fn choose_layers(
             let rho_max = (radius.0 + r.outward) * (1.0 + MARGIN);
             if rho_min <= 0.0 {
                 return Err(Diagnostic::error(
-                    "lmd::bend-too-tight",
+                    Code::BendTooTight,
                     format!(
                         "the section reaches {} toward the bend centre, past the bend radius {}",
                         Length(r.inward),
@@ -97,7 +97,7 @@ pub fn choose_layers(
         None => {
             if n_lo > n_hi {
                 return Err(Diagnostic::error(
-                    "lmd::no-layer-count",
+                    Code::NoLayerCount,
                     format!(
                         "no whole number of layers gives {what} within {} .. {}",
                         bead.height[0], bead.height[1]
@@ -122,7 +122,7 @@ pub fn choose_layers(
                     "no layer count works for this bend and bead model".to_string()
                 };
                 return Err(Diagnostic::error(
-                    "lmd::layer-height",
+                    Code::LayerHeight,
                     format!(
                         "with {n} layers the {what} run {} .. {}, outside the bead's {} .. {}",
                         Length(lo),
@@ -197,7 +197,7 @@ fn too_tight(
         short((scale * 1000.0).floor() / 10.0)
     ));
     Diagnostic::error(
-        "lmd::bend-too-tight",
+        Code::BendTooTight,
         if q_need > q_have {
             format!(
                 "outer/inner layer height ratio {:.2} needs h_max/h_min ≥ {:.2}; this bead model gives {:.2}",

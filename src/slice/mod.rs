@@ -6,7 +6,7 @@ pub mod normal;
 pub mod planar;
 pub mod styling;
 
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::geometry::LoftGeometry;
 use crate::ir::Layer;
 use crate::sema::model::{Loft, Model, Plan, Resolution, Slicing, Spine};
@@ -47,7 +47,7 @@ fn duct(
             let k = ((k / 8.0).ceil() * 8.0).min(1e12) as usize;
             if k > MAX_POINTS {
                 return Err(Diagnostic::error(
-                    "lmd::too-many-points",
+                    Code::TooManyPoints,
                     format!(
                         "a chord error of {} needs {k} points a layer, more than {MAX_POINTS}",
                         e
@@ -62,7 +62,7 @@ fn duct(
     };
     if layers.saturating_mul(k + 1) > MAX_TOTAL_POINTS {
         return Err(Diagnostic::error(
-            "lmd::too-many-points",
+            Code::TooManyPoints,
             format!(
                 "{layers} layers × {} points is more than {MAX_TOTAL_POINTS} points",
                 k + 1
@@ -93,7 +93,7 @@ fn duct(
         let seam = slicing.seam;
         warnings.push(
             Diagnostic::warning(
-                "lmd::seam-at-bend-extreme",
+                Code::SeamAtBendExtreme,
                 format!(
                     "the seam (laser on/off) sits at the innermost or outermost point of the bend on {} layer{} (first: layer {})",
                     seam_hits.len(),

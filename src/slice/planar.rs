@@ -8,7 +8,7 @@
 use super::styling::Styler;
 use super::MAX_TOTAL_POINTS;
 use crate::bead::MIN_OFFSET_RATIO;
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::fill::{
     self, FillError, FillSpec, Pattern as FillPattern, RasterSpec, Track, TrackKind,
 };
@@ -87,7 +87,7 @@ pub fn slice(
         total += filled.tracks.iter().map(|t| t.points.len()).sum::<usize>();
         if total > MAX_TOTAL_POINTS {
             return Err(Diagnostic::error(
-                "lmd::too-many-points",
+                Code::TooManyPoints,
                 format!("the fill needs more than {MAX_TOTAL_POINTS} points"),
             )
             .label(slicing.span, "slicing")
@@ -180,7 +180,7 @@ impl Findings {
         let plural = |n: usize| if n == 1 { "" } else { "s" };
         if let Some((k, g)) = self.first_gap {
             return Err(Diagnostic::error(
-                "lmd::fill-gap",
+                Code::FillGap,
                 format!(
                     "the tracks leave a spot unfilled on {} layer{}: on layer {}, ({}, {}) mm is {} from the nearest track, more than the bead width {}",
                     self.gaps,
@@ -201,7 +201,7 @@ impl Findings {
         if let Some((k, g)) = self.thin {
             warnings.push(
                 Diagnostic::warning(
-                    "lmd::thin-gap",
+                    Code::ThinGap,
                     format!(
                         "no bead reaches some spots on {} layer{}: the farthest, on layer {}, is ({}, {}) mm, {} from the nearest track centre line (a bead reaches {})",
                         self.thin_gaps,
@@ -221,7 +221,7 @@ impl Findings {
         if let Some((k, t)) = self.sliver {
             warnings.push(
                 Diagnostic::warning(
-                    "lmd::overlap",
+                    Code::Overlap,
                     format!(
                         "a contour pass on layer {} is a sliver whose sides run {} apart, {:.0} % of the {} bead: it piles up",
                         k + 1,
@@ -243,7 +243,7 @@ impl Findings {
         {
             warnings.push(
                 Diagnostic::warning(
-                    "lmd::unused",
+                    Code::Unused,
                     format!("style `{}` picks no track on any layer", st.name),
                 )
                 .label(st.span, "never applied")
@@ -253,7 +253,7 @@ impl Findings {
         if let Some((k, passes)) = self.few_passes {
             warnings.push(
                 Diagnostic::warning(
-                    "lmd::few-contours",
+                    Code::FewContours,
                     format!(
                         "only {passes} of the {} contour passes fit inside the profile on layer {}",
                         slicing.contours,
@@ -267,7 +267,7 @@ impl Findings {
         if let Some(first) = self.first_short {
             warnings.push(
                 Diagnostic::warning(
-                    "lmd::short-track",
+                    Code::ShortTrack,
                     format!(
                         "{} track{} shorter than the bead width {} (first on layer {})",
                         self.short_tracks,
@@ -371,7 +371,7 @@ fn fill_layer(
 fn fill_error(e: FillError, k: usize, ex: &Extrusion, slicing: &PlanarSlicing) -> Diagnostics {
     let d = match e {
         FillError::SelfIntersecting { at } => Diagnostic::error(
-            "lmd::self-intersecting",
+            Code::SelfIntersecting,
             format!(
                 "the profile crosses itself at ({}, {}) mm on layer {}{}",
                 short(at[0]),
@@ -392,14 +392,14 @@ fn fill_error(e: FillError, k: usize, ex: &Extrusion, slicing: &PlanarSlicing) -
         )
         .help("reorder the outline's points so its edges do not cross; if its numbers use `layer`, check them at that layer"),
         FillError::Empty => Diagnostic::error(
-            "lmd::fill-empty",
+            Code::FillEmpty,
             format!("no track fits in the profile on layer {}", k + 1),
         )
         .label(ex.profile_span, "profile")
         .label(slicing.span, "fill")
         .help("the profile is narrower than the bead and its contour passes; make it larger or use fewer contours"),
         other => Diagnostic::error(
-            "lmd::fill",
+            Code::Fill,
             format!("layer {} cannot be filled: {other}", k + 1),
         )
         .label(ex.profile_span, "profile")

@@ -1,7 +1,7 @@
 //! pest pairs → [`ast::File`]. The grammar is in `grammar/lmd.pest`.
 
 use super::ast::*;
-use crate::diag::Diagnostic;
+use crate::diag::{Code, Diagnostic};
 use crate::span::{Span, Spanned};
 use pest::iterators::Pair;
 use pest::pratt_parser::{Assoc, Op, PrattParser};
@@ -23,7 +23,7 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
     let mut pairs = LmdParser::parse(Rule::file, source).map_err(syntax_error)?;
     let file = pairs
         .next()
-        .ok_or_else(|| Diagnostic::error("lmd::syntax", "empty parse"))?;
+        .ok_or_else(|| Diagnostic::error(Code::Syntax, "empty parse"))?;
     let stmts = file
         .into_inner()
         .filter(|p| p.as_rule() == Rule::stmt)
@@ -66,7 +66,7 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
                 open.push((c as char, i));
                 if open.len() > MAX_NESTING {
                     return Err(Diagnostic::error(
-                        "lmd::too-deep",
+                        Code::TooDeep,
                         format!("brackets are nested more than {MAX_NESTING} deep"),
                     )
                     .label(Span::new(i, i + 1), "this one is too deep")
@@ -83,7 +83,7 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
                     Some((o, _)) if o == want => {}
                     Some((o, at)) => {
                         return Err(Diagnostic::error(
-                            "lmd::syntax",
+                            Code::Syntax,
                             format!("`{o}` is closed by `{}`", c as char),
                         )
                         .label(Span::new(at, at + 1), format!("this `{o}` …"))
@@ -95,7 +95,7 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
                     }
                     None => {
                         return Err(Diagnostic::error(
-                            "lmd::syntax",
+                            Code::Syntax,
                             format!("`{}` closes nothing", c as char),
                         )
                         .label(Span::new(i, i + 1), "no matching opening bracket")
@@ -109,7 +109,7 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
     }
     if let Some((o, at)) = open.pop() {
         return Err(
-            Diagnostic::error("lmd::syntax", format!("this `{o}` is never closed"))
+            Diagnostic::error(Code::Syntax, format!("this `{o}` is never closed"))
                 .label(Span::new(at, at + 1), "opened here")
                 .help(format!("add `{}` where it should end", closer(o))),
         );
@@ -174,7 +174,7 @@ fn syntax_error(e: pest::error::Error<Rule>) -> Diagnostic {
             format!("expected {} or {}", rest.join(", "), last)
         }
     };
-    Diagnostic::error("lmd::syntax", format!("syntax error: {what}"))
+    Diagnostic::error(Code::Syntax, format!("syntax error: {what}"))
         .label(span, what)
         .help("every statement is `name = value` or `kind name { … }`; numbers carry their unit right after them, e.g. `6 mm` or `7 mm/s`")
 }
@@ -218,7 +218,7 @@ fn stmt(p: Pair<Rule>) -> Result<Stmt, Diagnostic> {
             _ => {}
         }
     }
-    let kind = kind.ok_or_else(|| Diagnostic::error("lmd::syntax", "statement without a name"))?;
+    let kind = kind.ok_or_else(|| Diagnostic::error(Code::Syntax, "statement without a name"))?;
     Ok(Stmt {
         kind,
         name,
@@ -292,7 +292,7 @@ fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
                         value = c.as_str().parse::<f64>().unwrap_or(f64::INFINITY);
                         if !value.is_finite() {
                             return Err(Diagnostic::error(
-                                "lmd::number",
+                                Code::Number,
                                 "this number is too large",
                             )
                             .label(span_of(&c), "not a finite number"));
@@ -312,7 +312,7 @@ fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
             let func = inner
                 .next()
                 .map(ident)
-                .ok_or_else(|| Diagnostic::error("lmd::syntax", "call without a name"))?;
+                .ok_or_else(|| Diagnostic::error(Code::Syntax, "call without a name"))?;
             let mut args = Vec::new();
             for a in inner {
                 let mut parts = a.into_inner();
@@ -333,7 +333,7 @@ fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
             ExprKind::Call { func, args }
         }
         Rule::expr => return expr(p),
-        _ => return Err(Diagnostic::error("lmd::syntax", "unexpected expression").label(span, "")),
+        _ => return Err(Diagnostic::error(Code::Syntax, "unexpected expression").label(span, "")),
     };
     Ok(Expr { kind, span })
 }
@@ -394,6 +394,6 @@ mod tests {
     #[test]
     fn deep_nesting_is_refused_not_a_crash() {
         let src = format!("x = {}1{}", "(".repeat(10_000), ")".repeat(10_000));
-        assert_eq!(parse(&src).unwrap_err().code, "lmd::too-deep");
+        assert_eq!(parse(&src).unwrap_err().code, Code::TooDeep);
     }
 }

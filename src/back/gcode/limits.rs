@@ -4,7 +4,7 @@
 //! rule and axis, with the worst case, so one run shows everything to fix.
 
 use super::kinematics::{tilt_of, Rotary};
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::AxisLimits;
 use crate::span::Span;
 use crate::units::short;
@@ -180,7 +180,7 @@ impl Checker {
         if let Some(w) = self.tilted {
             diags.push(
                 Diagnostic::error(
-                    "lmd::needs-tilt",
+                    Code::NeedsTilt,
                     format!(
                         "the part's layers tilt the nozzle up to {}° from vertical ({} point{}, the worst at {}), \
                          but machine `{name}` moves X Y Z only and keeps the nozzle vertical",
@@ -240,7 +240,7 @@ impl Checker {
             }
             diags.push(
                 Diagnostic::error(
-                    "lmd::axis-limit",
+                    Code::AxisLimit,
                     format!(
                         "axis {} of machine `{name}` would have to reach {}{sep}{unit}, beyond its \
                          limit of {}{sep}{unit}, at {} ({} position{} outside [{}, {}]{sep}{unit})",

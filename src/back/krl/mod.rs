@@ -24,7 +24,7 @@ use super::context::{counts, layer_context, styles};
 use super::fixed::{fixed, trimmed};
 use super::{program_stem, EmitError, Sink, Templates};
 use crate::check::Verified;
-use crate::diag::{Diagnostic, Diagnostics};
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::{FrameRef, Path, Point, Robot, ToolAxis};
 use modules::{Modules, Switch, ANOUT_DECIMALS};
 use orient::{Abc, Orienter};
@@ -179,7 +179,7 @@ fn analog_range(p: &Verified, index: usize, robot: &Robot) -> Result<(), EmitErr
     let mut d = Diagnostics::new();
     d.push(
         Diagnostic::error(
-            "lmd::analog-range",
+            Code::AnalogRange,
             format!(
                 "laser power {} W needs $ANOUT[{}] = {} on robot `{}`, beyond the analog output's 1.0",
                 fixed(power as f64, 0),

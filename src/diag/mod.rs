@@ -1,8 +1,11 @@
 //! Diagnostics: one plain struct for every error and warning, a sink that collects
 //! them, and rendering through miette. Hints are written where a diagnostic is
-//! raised; `docs/diagnostics.md` lists every code.
+//! raised; [`Code`] lists every code (and generates `docs/diagnostics.md`).
+
+mod code;
 
 use crate::span::Span;
+pub use code::{Code, Group};
 use std::fmt;
 
 /// How bad a diagnostic is.
@@ -27,7 +30,7 @@ pub struct Label {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Diagnostic {
     /// Stable code, e.g. `lmd::unit-mismatch` (see docs/diagnostics.md).
-    pub code: &'static str,
+    pub code: Code,
     /// Error or warning.
     pub severity: Severity,
     /// One sentence saying what is wrong.
@@ -40,7 +43,7 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     /// A new error.
-    pub fn error(code: &'static str, message: impl Into<String>) -> Self {
+    pub fn error(code: Code, message: impl Into<String>) -> Self {
         Diagnostic {
             code,
             severity: Severity::Error,
@@ -51,7 +54,7 @@ impl Diagnostic {
     }
 
     /// A new warning.
-    pub fn warning(code: &'static str, message: impl Into<String>) -> Self {
+    pub fn warning(code: Code, message: impl Into<String>) -> Self {
         Diagnostic {
             severity: Severity::Warning,
             ..Diagnostic::error(code, message)
@@ -164,7 +167,7 @@ impl std::error::Error for Rendered<'_> {}
 
 impl miette::Diagnostic for Rendered<'_> {
     fn code<'b>(&'b self) -> Option<Box<dyn fmt::Display + 'b>> {
-        Some(Box::new(self.diag.code))
+        Some(Box::new(self.diag.code.as_str()))
     }
     fn severity(&self) -> Option<miette::Severity> {
         Some(match self.diag.severity {
