@@ -6,7 +6,7 @@
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use lmdc::back::{Sink, Templates};
 use lmdc::ir::Machine;
-use lmdc::pipeline::{compile, emit};
+use lmdc::pipeline::compile;
 use std::io::{self, Write};
 
 /// Discards output, counting bytes (so the writer cannot be optimised away).
@@ -44,15 +44,15 @@ fn dense(c: &mut Criterion) {
     g.bench_function("front end (parse..verify)", |b| {
         b.iter(|| compile(&src, &mut ()).program.unwrap())
     });
-    for (i, m) in program.ir().machines.iter().enumerate() {
-        let name = match m {
+    for m in program.machines() {
+        let name = match m.machine() {
             Machine::Robot(_) => "emit KRL",
             Machine::Cnc(_) => "emit G-code",
         };
         g.bench_function(name, |b| {
             b.iter(|| {
                 let mut sink = Null::default();
-                emit(&program, &[i], &templates, &mut sink, &mut ()).unwrap();
+                lmdc::back::emit(m, &templates, &mut sink).unwrap();
                 sink.bytes
             })
         });

@@ -401,7 +401,35 @@ pub struct Origins {
     /// The slicing block.
     pub slicing: Option<Span>,
     /// Each machine's declaration, by index in [`Program::machines`].
-    pub machines: Vec<Span>,
+    pub machines: Vec<MachineOrigin>,
+}
+
+/// Where a machine and the fields the checks refer to were declared.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MachineOrigin {
+    /// The whole `machine` block.
+    pub block: Span,
+    /// The fields given, by name (`max_speed`, `full_scale`, `limits.x`, …).
+    pub fields: Vec<(String, Span)>,
+}
+
+impl MachineOrigin {
+    /// A machine declared at `block`, its fields' spans unknown.
+    pub fn new(block: Span) -> Self {
+        MachineOrigin {
+            block,
+            fields: Vec::new(),
+        }
+    }
+
+    /// Where field `name` was given, else the block: what a diagnostic about
+    /// the limit that field declares points at.
+    pub fn at(&self, name: &str) -> Span {
+        self.fields
+            .iter()
+            .find(|(n, _)| n == name)
+            .map_or(self.block, |(_, s)| *s)
+    }
 }
 
 impl Point {

@@ -51,7 +51,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
                 Plan::Duct { slicing, .. } => slicing.span,
                 Plan::Block { slicing, .. } => slicing.span,
             }),
-            machines: model.machines.iter().map(|(_, s)| *s).collect(),
+            machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
         },
     };
     Ok((program, warnings))

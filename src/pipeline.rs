@@ -1,10 +1,16 @@
 //! The whole pipeline, one direction: source → syntax → semantic model → IR
-//! (geometry and slicing) → checks → back ends. No file I/O here: the CLI
-//! reads the source and supplies the [`Sink`] the programs are written to.
+//! (geometry and slicing) → checks (the IR and each machine's motion plan) →
+//! back ends. No file I/O here: the CLI reads the source and supplies the
+//! [`Sink`] the programs are written to.
+//!
+//! Every stage runs as far as its input allows, so one run reports every error
+//! it can: a model with errors in some blocks is still sliced and checked when
+//! what slicing needs is there, and every machine is checked whatever another
+//! one did. Diagnostics come out in source order.
 
 use crate::back::{self, EmitError, Sink, Templates};
-use crate::check::{self, Verified};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::check::{self, Select, Verified};
+use crate::diag::Diagnostics;
 use crate::{lower, sema, syntax};
 
 /// Told when each stage finishes (for `lmdc build --timings`).
@@ -18,26 +24,59 @@ impl Observer for () {
 }
 
 /// The result of compiling a source: the verified IR when there were no errors,
-/// and every diagnostic (warnings too).
+/// and every diagnostic (warnings too), in source order.
 pub struct Compiled {
     /// The checked IR, if the program has no errors.
     pub program: Option<Verified>,
-    /// Errors and warnings, in the order found.
+    /// Errors and warnings.
     pub diagnostics: Diagnostics,
 }
 
-/// Compiles `source` to verified IR.
+/// `--machine NAME` names no machine of the file.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("there is no machine called `{name}`; this file declares: {declared}")]
+pub struct NoSuchMachine {
+    /// The name asked for.
+    pub name: String,
+    /// The machines the file declares, comma-separated.
+    pub declared: String,
+}
+
+/// Compiles `source` to verified IR for every machine it declares.
 pub fn compile(source: &str, obs: &mut dyn Observer) -> Compiled {
+    match compile_for(source, None, obs) {
+        Ok(c) => c,
+        Err(_) => unreachable!("no machine was named"),
+    }
+}
+
+/// Compiles `source` for the machine called `machine` alone (its checks, its
+/// program), or for every machine when `None`.
+pub fn compile_for(
+    source: &str,
+    machine: Option<&str>,
+    obs: &mut dyn Observer,
+) -> Result<Compiled, NoSuchMachine> {
     let mut diagnostics = Diagnostics::new();
-    let fail = |diagnostics| Compiled {
-        program: None,
+    let program = run(source, machine, obs, &mut diagnostics)?;
+    diagnostics.sort_by_source();
+    Ok(Compiled {
+        program,
         diagnostics,
-    };
+    })
+}
+
+fn run(
+    source: &str,
+    machine: Option<&str>,
+    obs: &mut dyn Observer,
+    diagnostics: &mut Diagnostics,
+) -> Result<Option<Verified>, NoSuchMachine> {
     let ast = match syntax::parse(source) {
         Ok(a) => a,
         Err(d) => {
             diagnostics.push(d);
-            return fail(diagnostics);
+            return Ok(None);
         }
     };
     obs.stage("parse");
@@ -46,7 +85,24 @@ pub fn compile(source: &str, obs: &mut dyn Observer) -> Compiled {
     diagnostics.extend(d);
     obs.stage("check");
     let Some(model) = model else {
-        return fail(diagnostics);
+        return Ok(None);
+    };
+    let select = match machine {
+        None => Select::All,
+        Some(name) => match model.machines.iter().position(|(m, _)| m.name() == name) {
+            Some(i) => Select::One(i),
+            None => {
+                return Err(NoSuchMachine {
+                    name: name.to_string(),
+                    declared: model
+                        .machines
+                        .iter()
+                        .map(|(m, _)| m.name())
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                })
+            }
+        },
     };
     let program = match lower::lower(&model) {
         Ok((p, w)) => {
@@ -55,128 +111,42 @@ pub fn compile(source: &str, obs: &mut dyn Observer) -> Compiled {
         }
         Err(e) => {
             diagnostics.extend(e);
-            return fail(diagnostics);
+            return Ok(None);
         }
     };
+    drop(model);
     obs.stage("slice");
-    let verified = match check::verify(program) {
-        Ok(v) => v,
+    let verified = check::verify(program, select);
+    obs.stage("verify");
+    match verified {
+        Ok(v) if !diagnostics.has_errors() => {
+            diagnostics.extend(v.warnings().clone());
+            Ok(Some(v))
+        }
+        Ok(v) => {
+            diagnostics.extend(v.warnings().clone());
+            Ok(None)
+        }
         Err(e) => {
             diagnostics.extend(e);
-            return fail(diagnostics);
+            Ok(None)
         }
-    };
-    diagnostics.extend(verified.warnings().clone());
-    obs.stage("verify");
-    Compiled {
-        program: Some(verified),
-        diagnostics,
     }
 }
 
-/// The indices of the machines to emit: all, or the one called `name`.
-pub fn select_machines(program: &Verified, name: Option<&str>) -> Result<Vec<usize>, String> {
-    let machines = &program.ir().machines;
-    match name {
-        None => Ok((0..machines.len()).collect()),
-        Some(n) => match machines.iter().position(|m| m.name() == n) {
-            Some(i) => Ok(vec![i]),
-            None => Err(format!(
-                "there is no machine called `{n}`; this file declares: {}",
-                machines
-                    .iter()
-                    .map(|m| m.name())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )),
-        },
-    }
-}
-
-/// Emits the programs of the machines `which` into `sink`.
+/// Writes the programs of every verified machine into `sink`.
 pub fn emit(
     program: &Verified,
-    which: &[usize],
     templates: &Templates,
     sink: &mut dyn Sink,
     obs: &mut dyn Observer,
 ) -> Result<(), EmitError> {
-    let mut problems = Diagnostics::new();
-    let mut named = Named {
-        inner: sink,
-        names: Vec::new(),
-        machine: 0,
-        clash: None,
-    };
-    for &i in which {
-        named.machine = i;
-        match back::emit(program, i, templates, &mut named) {
-            Ok(()) => {}
-            Err(EmitError::Program(d)) => problems.extend(d),
-            Err(EmitError::Io(_)) if named.clash.is_some() => {
-                if let Some((name, first)) = named.clash.take() {
-                    problems.push(clash(program, &name, first, i));
-                }
-            }
-            Err(e) => return Err(e),
-        }
-        obs.stage(match program.ir().machines[i] {
+    for m in program.machines() {
+        back::emit(m, templates, sink)?;
+        obs.stage(match m.machine() {
             crate::ir::Machine::Robot(_) => "emit KRL",
             crate::ir::Machine::Cnc(_) => "emit G-code",
         });
     }
-    if problems.is_empty() {
-        Ok(())
-    } else {
-        Err(EmitError::Program(problems))
-    }
-}
-
-/// Runs every back end into nothing: their own checks (axis limits, tilt,
-/// analog range, file names that clash) without writing a file. What passes
-/// here, [`emit`] writes.
-pub fn check_machines(program: &Verified) -> Result<(), EmitError> {
-    let templates = Templates::builtin().map_err(EmitError::Template)?;
-    let all: Vec<usize> = (0..program.ir().machines.len()).collect();
-    emit(program, &all, &templates, &mut back::NullSink, &mut ())
-}
-
-/// A sink that remembers which machine wrote each file name and refuses a
-/// second file of the same name.
-struct Named<'s> {
-    inner: &'s mut dyn Sink,
-    names: Vec<(String, usize)>,
-    machine: usize,
-    /// The clashing name and the machine that wrote it first.
-    clash: Option<(String, usize)>,
-}
-
-impl Sink for Named<'_> {
-    fn create(&mut self, name: &str) -> std::io::Result<Box<dyn std::io::Write + '_>> {
-        if let Some((_, first)) = self.names.iter().find(|(n, _)| n == name) {
-            self.clash = Some((name.to_string(), *first));
-            return Err(std::io::Error::new(
-                std::io::ErrorKind::AlreadyExists,
-                format!("{name} is written twice"),
-            ));
-        }
-        self.names.push((name.to_string(), self.machine));
-        self.inner.create(name)
-    }
-}
-
-fn clash(program: &Verified, name: &str, first: usize, second: usize) -> Diagnostic {
-    let ms = &program.ir().machines;
-    let o = &program.ir().origins.machines;
-    Diagnostic::error(
-        Code::NameClash,
-        format!(
-            "machines `{}` and `{}` would both write {name}",
-            ms[first].name(),
-            ms[second].name()
-        ),
-    )
-    .label_opt(o.get(second).copied(), "second machine")
-    .label_opt(o.get(first).copied(), "first machine")
-    .help("file names keep letters, digits and `_` of the part's and the machine's names: give the machines names that differ there")
+    Ok(())
 }

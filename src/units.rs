@@ -405,6 +405,17 @@ impl Time {
     }
 }
 
+/// Relative slack of every range rule, in the checker (declared values) and the
+/// verifier (planned points) alike: the IR stores process values as `f32`
+/// (about 6·10⁻⁸ relative), so a value computed at the edge of its range may
+/// land a rounding outside it.
+pub const RANGE_SLACK: f64 = 1e-6;
+
+/// Whether `x` lies in `lo ..= hi`, allowing [`RANGE_SLACK`] of each end.
+pub fn in_range(x: f64, [lo, hi]: [f64; 2]) -> bool {
+    x >= lo - RANGE_SLACK * lo.abs() && x <= hi + RANGE_SLACK * hi.abs()
+}
+
 /// Formats a number for messages: at most 4 significant decimals, no trailing zeros.
 pub fn short(v: f64) -> String {
     if !v.is_finite() {

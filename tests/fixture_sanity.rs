@@ -15,5 +15,5 @@ fn fixture_passes_the_checks() {
         ],
     );
     assert_eq!(p.point_count(), 4 * 13 + 3);
-    lmdc::check::verify(p).expect("fixture is valid IR");
+    lmdc::check::verify(p, lmdc::check::Select::All).expect("fixture is valid IR");
 }

@@ -10,34 +10,32 @@ use lmdc::check::Verified;
 use lmdc::diag::Diagnostics;
 use lmdc::ir::*;
 
-/// Verifies `p` (it must pass the IR checks).
+/// Verifies `p` (it must pass every check).
 pub fn verified(p: Program) -> Verified {
-    lmdc::check::verify(p).expect("test IR passes the checks")
+    lmdc::check::verify(p, lmdc::check::Select::All).expect("test IR passes the checks")
+}
+
+/// Verifies `p`, expecting it to be refused; returns the errors.
+pub fn refused(p: Program) -> Diagnostics {
+    match lmdc::check::verify(p, lmdc::check::Select::All) {
+        Err(d) => d,
+        Ok(_) => panic!("want the checks to refuse the plan"),
+    }
 }
 
 /// Emits machine `index` of `p` and returns (file name, text).
 pub fn emit(p: &Verified, index: usize) -> (String, String) {
     let mut sink = MemorySink::default();
-    let Machine::Cnc(cnc) = &p.ir().machines[index] else {
-        panic!("machine {index} is not a CNC")
-    };
-    lmdc::back::gcode::emit(p, index, cnc, &Templates::builtin().unwrap(), &mut sink)
+    let m = p.machine(index).expect("a verified machine");
+    assert!(
+        matches!(m.machine(), Machine::Cnc(_)),
+        "machine {index} is not a CNC"
+    );
+    lmdc::back::emit(m, &Templates::builtin().unwrap(), &mut sink)
         .unwrap_or_else(|e| panic!("emit failed: {e:?}"));
     assert_eq!(sink.files.len(), 1, "one file per CNC");
     let (name, bytes) = sink.files.pop().unwrap();
     (name, String::from_utf8(bytes).expect("G-code is UTF-8"))
-}
-
-/// Emits machine `index` of `p`, expecting the program to be refused.
-pub fn emit_err(p: &Verified, index: usize) -> Diagnostics {
-    let mut sink = MemorySink::default();
-    let Machine::Cnc(cnc) = &p.ir().machines[index] else {
-        panic!("machine {index} is not a CNC")
-    };
-    match lmdc::back::gcode::emit(p, index, cnc, &Templates::builtin().unwrap(), &mut sink) {
-        Err(lmdc::back::EmitError::Program(d)) => d,
-        other => panic!("want EmitError::Program, got {other:?}"),
-    }
 }
 
 /// The fixture's 5-axis LinuxCNC machine with another kinematics.

@@ -5,8 +5,8 @@
 mod common;
 use common::fixture::*;
 use common::*;
-use lmdc::back::gcode::kinematics::{direction, follow, reposition, Rotary};
 use lmdc::ir::*;
+use lmdc::plan::kinematics::{direction, follow, reposition, Rotary};
 use proptest::prelude::*;
 
 const HEADS: [Kinematics; 2] = [Kinematics::HeadAc, Kinematics::HeadBc];

@@ -50,9 +50,7 @@ impl Sink for Files {
 fn time(label: &str, ir: Program) {
     let points = ir.point_count();
     let v = verified(ir);
-    let Machine::Cnc(cnc) = v.ir().machines[0].clone() else {
-        unreachable!()
-    };
+    assert!(matches!(v.ir().machines[0], Machine::Cnc(_)));
     let t = Templates::builtin().unwrap();
     // The floor: one pass reading every point, as the back end must.
     let start = Instant::now();
@@ -74,11 +72,8 @@ fn time(label: &str, ir: Program) {
     for _ in 0..5 {
         let mut sink = Discard::default();
         let start = Instant::now();
-        if let Err(e) = lmdc::back::gcode::emit(&v, 0, &cnc, &t, &mut sink) {
-            match e {
-                lmdc::back::EmitError::Program(d) => panic!("{:#?}", d.into_vec()),
-                e => panic!("{e}"),
-            }
+        if let Err(e) = lmdc::back::emit(v.machine(0).unwrap(), &t, &mut sink) {
+            panic!("{e}");
         }
         best = best.min(start.elapsed().as_secs_f64());
         bytes = sink.bytes;
@@ -91,7 +86,7 @@ fn time(label: &str, ir: Program) {
     let dir = tempfile::tempdir().unwrap();
     let mut sink = Files(dir.path().to_path_buf());
     let start = Instant::now();
-    lmdc::back::gcode::emit(&v, 0, &cnc, &t, &mut sink).unwrap();
+    lmdc::back::emit(v.machine(0).unwrap(), &t, &mut sink).unwrap();
     println!("{label} to a file: {:.3} s", start.elapsed().as_secs_f64());
 }
 

@@ -277,6 +277,10 @@ fn a_new_layer_starts_with_a_transition_even_where_the_last_ended() {
     assert_eq!(end.pos, ir.layers[1].paths[0].points[0].pos);
     assert!(end.laser_on);
     let (_, text) = emit(&verified(ir), 0);
+    // The laser goes off where the layer's last deposit ends, before the next
+    // layer's block (docs/ir.md: on exactly during deposit moves).
+    let first = text.split("(layer 2 of 2").next().unwrap();
+    assert!(first.trim_end().ends_with("M5"), "{text}");
     let second = text.split("(layer 2 of 2").nth(1).unwrap();
     let before_deposit: Vec<&str> = second
         .lines()
@@ -286,7 +290,6 @@ fn a_new_layer_starts_with_a_transition_even_where_the_last_ended() {
     assert_eq!(
         before_deposit,
         [
-            "M5",
             "G0 X0.000 Y0.000 Z7.000",
             "G0 X0.000 Y0.000 Z7.000",
             "G1 X0.000 Y0.000 Z-3.000 F360 S1600"
@@ -394,14 +397,13 @@ fn m20_profile() {
 #[test]
 fn needs_tilt_on_a_three_axis_machine() {
     let mut ir = bent_tube(4, 12, 30.0, vec![Machine::Cnc(cnc3())]);
-    ir.origins.machines = vec![lmdc::span::Span::new(100, 140)];
-    let d = emit_err(&verified(ir), 0).into_vec();
+    ir.origins.machines = vec![MachineOrigin::new(lmdc::span::Span::new(100, 140))];
+    let d = refused(ir).into_vec();
     assert_eq!(d.len(), 1, "{d:#?}");
     assert_eq!(d[0].code, "lmd::needs-tilt");
-    // Layers fan by 7.5°: the last one tilts 22.5°. Tilted: 3 layers × 13 points,
-    // and the travel points of layers 2 and 3.
+    // Layers fan by 7.5°: the last one tilts 22.5°. Tilted: 3 layers × 13 points.
     assert!(d[0].message.contains("22.5°"), "{}", d[0].message);
-    assert!(d[0].message.contains("41 points"), "{}", d[0].message);
+    assert!(d[0].message.contains("39 points"), "{}", d[0].message);
     assert!(d[0].message.contains("layer 4"), "{}", d[0].message);
     assert!(d[0].message.contains("mill3"), "{}", d[0].message);
     assert!(d[0].help.as_deref().unwrap().contains("5-axis"));
@@ -415,8 +417,8 @@ fn axis_limits_are_all_reported() {
     cnc.limits.tilt = [-10.0, 10.0];
     cnc.limits.x = [-15.0, 500.0];
     let mut ir = bent_tube(4, 12, 30.0, vec![Machine::Cnc(cnc)]);
-    ir.origins.machines = vec![lmdc::span::Span::new(7, 9)];
-    let d = emit_err(&verified(ir), 0).into_vec();
+    ir.origins.machines = vec![MachineOrigin::new(lmdc::span::Span::new(7, 9))];
+    let d = refused(ir).into_vec();
     assert_eq!(d.len(), 2, "one per axis: {d:#?}");
     assert!(d.iter().all(|d| d.code == "lmd::axis-limit"));
     assert!(d
@@ -438,8 +440,7 @@ fn axis_limits_are_all_reported() {
 fn clearance_moves_are_checked_too() {
     let mut cnc = cnc3();
     cnc.limits.z = [-100.0, 5.0];
-    let p = verified(planar(1, vec![Machine::Cnc(cnc)]));
-    let d = emit_err(&p, 0).into_vec();
+    let d = refused(planar(1, vec![Machine::Cnc(cnc)])).into_vec();
     assert_eq!(d.len(), 1, "{d:#?}");
     assert!(d[0].message.contains("axis Z"), "{}", d[0].message);
     assert!(d[0].message.contains("7 mm"), "{}", d[0].message);
@@ -490,7 +491,7 @@ fn templates_can_be_replaced() {
     let t = Templates::load(Some(dir.path())).unwrap();
     let p = verified(planar(2, vec![Machine::Cnc(cnc3())]));
     let mut sink = MemorySink::default();
-    lmdc::back::gcode::emit(&p, 0, &cnc3(), &t, &mut sink).unwrap();
+    lmdc::back::emit(p.machine(0).unwrap(), &t, &mut sink).unwrap();
     let text = sink.text("planar_block_mill3.ngc").unwrap();
     assert!(text.contains("(LAYER 1/2 z-height 0.500)\nM0\n"), "{text}");
     assert!(text.contains("(LAYER 2/2 z-height 0.500)\nM0\n"), "{text}");

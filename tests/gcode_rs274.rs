@@ -103,7 +103,7 @@ fn check_against_ir(ir: Program) -> usize {
     let Machine::Cnc(cnc) = ir.machines[0].clone() else {
         panic!("machine 0 must be a CNC")
     };
-    let kin = lmdc::back::gcode::effective_kinematics(&cnc);
+    let kin = lmdc::plan::effective_kinematics(&cnc);
     let v = verified(ir);
     let (_, text) = emit(&v, 0);
     let all = rs274::interpret_source(&text)

@@ -4,7 +4,7 @@
 //! Review every diff line by line: these are what machines run.
 
 use lmdc::back::{MemorySink, Templates};
-use lmdc::pipeline::{compile, emit, select_machines};
+use lmdc::pipeline::{compile, emit};
 
 /// Snapshots the list of files written for `path` (as `<prefix>files`) and each
 /// file (as `<prefix><name>`).
@@ -12,16 +12,8 @@ fn programs(path: &str, prefix: &str) {
     let src = std::fs::read_to_string(path).unwrap();
     let c = compile(&src, &mut ());
     let p = c.program.expect("compiles");
-    let which = select_machines(&p, None).unwrap();
     let mut sink = MemorySink::default();
-    emit(
-        &p,
-        &which,
-        &Templates::builtin().unwrap(),
-        &mut sink,
-        &mut (),
-    )
-    .expect("emits");
+    emit(&p, &Templates::builtin().unwrap(), &mut sink, &mut ()).expect("emits");
     let mut names: Vec<&str> = sink.files.iter().map(|(n, _)| n.as_str()).collect();
     names.sort();
     insta::assert_snapshot!(format!("{prefix}files"), names.join("\n"));

@@ -10,7 +10,7 @@ mod krl_parser;
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::Machine;
-use lmdc::pipeline::{compile, emit, select_machines};
+use lmdc::pipeline::compile;
 use std::path::PathBuf;
 
 fn have_parser(test: &str) -> bool {
@@ -170,13 +170,13 @@ fn every_emitted_krl_file_parses() {
             eprintln!("{} does not compile; skipped", f.display());
             continue;
         };
-        for i in select_machines(&p, None).unwrap() {
-            let Machine::Robot(robot) = &p.ir().machines[i] else {
+        for m in p.machines() {
+            let Machine::Robot(robot) = m.machine() else {
                 continue;
             };
             robots += 1;
             let mut sink = MemorySink::default();
-            if let Err(e) = emit(&p, &[i], &templates, &mut sink, &mut ()) {
+            if let Err(e) = lmdc::back::emit(m, &templates, &mut sink) {
                 panic!(
                     "{}: emitting robot {} failed: {e}\n{e:?}",
                     f.display(),

@@ -2,7 +2,7 @@
 //! pipeline (parse, check, slice, verify, and the back ends when it compiles).
 
 use lmdc::back::{MemorySink, Templates};
-use lmdc::pipeline::{compile, emit, select_machines};
+use lmdc::pipeline::{compile, emit};
 use proptest::prelude::*;
 
 /// Sources to mutate: the example with few points (fast), and the error files.
@@ -86,15 +86,8 @@ fn run(src: &str) {
     let _ = lmdc::diag::render(&c.diagnostics, "fuzz.lmd", src, false);
     assert_eq!(c.program.is_none(), c.diagnostics.has_errors());
     if let Some(p) = c.program {
-        let which = select_machines(&p, None).unwrap();
         let mut sink = MemorySink::default();
-        let _ = emit(
-            &p,
-            &which,
-            &Templates::builtin().unwrap(),
-            &mut sink,
-            &mut (),
-        );
+        let _ = emit(&p, &Templates::builtin().unwrap(), &mut sink, &mut ());
     }
 }
 

@@ -2,12 +2,10 @@
 //! same thing in KRL and G-code.
 
 use super::fixed::fixed;
-use crate::check::Verified;
-use crate::ir::Layer;
+use crate::ir::{Layer, Program};
 
 /// `layers`, `paths`, `points`: the program's totals.
-pub fn counts(ctx: &mut tera::Context, p: &Verified) {
-    let prog = p.ir();
+pub fn counts(ctx: &mut tera::Context, prog: &Program) {
     ctx.insert("layers", &prog.layers.len());
     ctx.insert(
         "paths",
@@ -53,13 +51,12 @@ pub fn layer_context(ctx: &mut tera::Context, li: usize, n_layers: usize, layer:
 /// leaves that value to the process block), each passed through the back
 /// end's comment sanitiser `safe` (the checker allows only word names, but
 /// the IR may come from elsewhere).
-pub fn styles(ctx: &mut tera::Context, p: &Verified, safe: &dyn Fn(&str) -> String) {
+pub fn styles(ctx: &mut tera::Context, p: &Program, safe: &dyn Fn(&str) -> String) {
     let value = |v: Option<f64>, unit: &str| match v {
         Some(v) => format!("{} {unit}", super::fixed::trimmed(v, 3)),
         None => "process".to_string(),
     };
     let lines: Vec<String> = p
-        .ir()
         .styles
         .iter()
         .map(|s| {

@@ -73,8 +73,7 @@ pub fn push_u64(out: &mut Vec<u8>, mut n: u64) {
 
 /// `v` rounded to `decimals` digits: the value a reader of the output will see.
 pub fn rounded(v: f64, decimals: usize) -> f64 {
-    let s = POW10[decimals.min(9)] as f64;
-    (v * s).round() / s
+    crate::target::written(v, decimals)
 }
 
 /// Formats into a new `String` (for templates and tests).

@@ -79,6 +79,9 @@ enum Command {
     Check {
         /// The .lmd file.
         file: PathBuf,
+        /// Only check for this machine (its name in the file).
+        #[arg(long, value_name = "NAME")]
+        machine: Option<String>,
     },
 }
 
@@ -90,32 +93,27 @@ pub fn run(cli: Cli) -> u8 {
         Color::Auto => std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
     };
     match cli.command {
-        Command::Check { file } => {
+        Command::Check { file, machine } => {
             let Some(source) = read_source(&file) else {
                 return EXIT_USAGE;
             };
-            let compiled = pipeline::compile(&source, &mut ());
+            let compiled = match pipeline::compile_for(&source, machine.as_deref(), &mut ()) {
+                Ok(c) => c,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return EXIT_USAGE;
+                }
+            };
             print_diags(&compiled.diagnostics, &file, &source, color);
             match compiled.program {
                 Some(p) => {
-                    // The back ends' own checks: axis limits, tilt, analog range, names.
-                    match pipeline::check_machines(&p) {
-                        Ok(()) => {}
-                        Err(EmitError::Program(d)) => {
-                            print_diags(&d, &file, &source, color);
-                            return EXIT_PROGRAM;
-                        }
-                        Err(e) => {
-                            eprintln!("error: {e}");
-                            return EXIT_USAGE;
-                        }
-                    }
+                    let n = p.machines().count();
                     eprintln!(
                         "ok: {} layers, {} points, {} machine{}",
                         p.ir().layers.len(),
                         p.ir().point_count(),
-                        p.ir().machines.len(),
-                        if p.ir().machines.len() == 1 { "" } else { "s" }
+                        n,
+                        if n == 1 { "" } else { "s" }
                     );
                     0
                 }
@@ -165,17 +163,16 @@ fn build(
         Some(t) => t,
         None => &mut (),
     };
-    let compiled = pipeline::compile(&source, obs);
-    print_diags(&compiled.diagnostics, file, &source, color);
-    let Some(program) = compiled.program else {
-        return EXIT_PROGRAM;
-    };
-    let which = match pipeline::select_machines(&program, machine) {
-        Ok(w) => w,
+    let compiled = match pipeline::compile_for(&source, machine, obs) {
+        Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");
             return EXIT_USAGE;
         }
+    };
+    print_diags(&compiled.diagnostics, file, &source, color);
+    let Some(program) = compiled.program else {
+        return EXIT_PROGRAM;
     };
     let mut sink = match sink::AtomicDir::new(out) {
         Ok(s) => s,
@@ -191,12 +188,8 @@ fn build(
         Some(t) => t,
         None => &mut (),
     };
-    match pipeline::emit(&program, &which, &templates, &mut sink, obs) {
+    match pipeline::emit(&program, &templates, &mut sink, obs) {
         Ok(()) => {}
-        Err(EmitError::Program(d)) => {
-            print_diags(&d, file, &source, color);
-            return EXIT_PROGRAM;
-        }
         Err(EmitError::Template(e)) => {
             eprintln!("error: {e}");
             return EXIT_USAGE;

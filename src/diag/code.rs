@@ -159,7 +159,17 @@ codes! {
         "the plan would exceed 20 M points (or 100 000 a layer)";
     NonFinite = "non-finite", Feasibility,
         "a computed value is not finite: a bug in lmdc, please report it";
+    BadDirection = "bad-direction", Feasibility,
+        "a computed direction is not a unit vector: a bug in lmdc, please report it";
+    PointHeight = "point-height", Feasibility,
+        "planned points whose layer height leaves the bead model's `h_min..h_max` (counted, the worst named)";
+    PointSpeed = "point-speed", Feasibility,
+        "planned laser-on points whose scan speed leaves the bead model's speed range";
+    PointPower = "point-power", Feasibility,
+        "planned laser-on points whose power leaves the laser's `power_range`";
 
+    MachineSpeed = "machine-speed", Machines,
+        "the plan moves faster than a machine's `max_speed` (named, with the worst move)";
     NeedsTilt = "needs-tilt", Machines,
         "the part's layers tilt but the CNC has 3 axes";
     AxisLimit = "axis-limit", Machines,

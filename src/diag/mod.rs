@@ -138,6 +138,13 @@ impl Diagnostics {
         self.items.is_empty()
     }
 
+    /// Orders the diagnostics by where they point in the source (their first
+    /// label; those without a label last), keeping the order found among equals.
+    pub fn sort_by_source(&mut self) {
+        self.items
+            .sort_by_key(|d| d.labels.first().map_or(usize::MAX, |l| l.span.start));
+    }
+
     /// Consumes the sink.
     pub fn into_vec(self) -> Vec<Diagnostic> {
         self.items

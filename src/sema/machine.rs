@@ -2,18 +2,16 @@
 //! A machine is plain data, so the checked declaration is already the IR's
 //! [`Machine`].
 
-use super::dialect;
 use super::fields::{self, Fields};
 use super::value::{Env, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::{AxisLimits, Cnc, FeedUnit, FrameRef, Kinematics, Machine, Pose, Robot, ToolAxis};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
+use crate::target::gcode as dialect;
 use crate::units::{Dim, Power};
 
-/// Highest `$VEL.CP` a KUKA controller accepts (its `$VEL_MA.CP` is at most
-/// 3 m/s), mm/s.
-pub const ROBOT_VEL_CP_MAX: f64 = 3000.0;
+use crate::target::kuka::VEL_CP_MAX as ROBOT_VEL_CP_MAX;
 
 const ROBOT_FIELDS: &[&str] = &[
     "kind",
@@ -47,14 +45,28 @@ const CNC_FIELDS: &[&str] = &[
     "clearance",
 ];
 
-/// Reads a machine block.
+/// Where each field the checks refer to is written, by name (`limits.x`, the
+/// tilt axis' limit as `limits.tilt`).
+fn spans(f: &Fields<'_>, keys: &[&str], prefix: &str, out: &mut Vec<(String, Span)>) {
+    for k in keys {
+        if let Some(s) = f.span(k) {
+            let name = match *k {
+                "a" | "b" => "tilt",
+                k => k,
+            };
+            out.push((format!("{prefix}{name}"), s));
+        }
+    }
+}
+
+/// Reads a machine block: the machine, and where its fields are written.
 pub fn read<'a>(
     env: &mut Env<'a>,
     name: &str,
     stmts: &'a [Stmt],
     span: Span,
     diags: &mut Diagnostics,
-) -> Option<Machine> {
+) -> Option<(Machine, Vec<(String, Span)>)> {
     let kind = stmts.iter().find(|s| s.kind.node == "kind");
     let kind = match kind.map(|s| &s.body) {
         Some(Body::Assign(e)) => {
@@ -80,7 +92,9 @@ pub fn read<'a>(
             span,
             diags,
         );
-        robot(name, &f, diags).map(Machine::Robot)
+        let mut at = Vec::new();
+        spans(&f, ROBOT_FIELDS, "", &mut at);
+        robot(name, &f, diags).map(|r| (Machine::Robot(r), at))
     } else {
         let f = Fields::block(
             env,
@@ -106,7 +120,12 @@ pub fn read<'a>(
             }
             None => None,
         };
-        cnc(name, &f, limits.as_ref(), diags).map(Machine::Cnc)
+        let mut at = Vec::new();
+        spans(&f, CNC_FIELDS, "", &mut at);
+        if let Some(l) = &limits {
+            spans(l, &["x", "y", "z", "a", "b", "c"], "limits.", &mut at);
+        }
+        cnc(name, &f, limits.as_ref(), diags).map(|c| (Machine::Cnc(c), at))
     }
 }
 

@@ -3,7 +3,6 @@
 //! finds (pest stops at the first syntax error; this stage never stops early).
 
 mod bead;
-pub mod dialect;
 mod extrude;
 mod fields;
 mod loft;
@@ -18,6 +17,7 @@ mod suggest;
 pub mod value;
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::MachineOrigin;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, File, Stmt};
 use model::{Model, Plan, Section};
@@ -40,12 +40,15 @@ const KINDS: &[&str] = &[
     "machine",
 ];
 
-/// Checks a parsed file. Returns the model if there were no errors, and every
-/// diagnostic (errors and warnings) found.
+/// Checks a parsed file. Returns every diagnostic (errors and warnings) found,
+/// and the model when every part of it could be read — even if some other
+/// statement had errors (an unused constant, a machine that is dropped), so the
+/// later stages can report their own problems in the same run. A model that
+/// comes with errors is never built into a program.
 pub fn check(file: &File) -> (Option<Model>, Diagnostics) {
     let mut diags = Diagnostics::new();
     let model = check_into(file, &mut diags);
-    (model.filter(|_| !diags.has_errors()), diags)
+    (model, diags)
 }
 
 fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
@@ -327,8 +330,14 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
                 .label(prev, "first declaration"),
             );
         }
-        if let Some(m) = machine::read(&mut env, &n.node, stmts, s.span, diags) {
-            machines.push((m, s.span));
+        if let Some((m, fields)) = machine::read(&mut env, &n.node, stmts, s.span, diags) {
+            machines.push((
+                m,
+                MachineOrigin {
+                    block: s.span,
+                    fields,
+                },
+            ));
         }
     }
     if get("machine").is_empty() {

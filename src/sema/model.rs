@@ -1,7 +1,7 @@
 //! The checked semantic model: names resolved, units converted to typed values,
 //! ranges checked. Geometry and slicing read only this.
 
-use crate::ir::Machine;
+use crate::ir::{Machine, MachineOrigin};
 use crate::span::Span;
 use crate::units::{Angle, Density, Length, MassFlow, Power, Speed};
 
@@ -16,8 +16,8 @@ pub struct Model {
     pub bead: Bead,
     /// Process values.
     pub process: Process,
-    /// Machines to write programs for, with their declaration spans.
-    pub machines: Vec<(Machine, Span)>,
+    /// Machines to write programs for, with where they and their fields are declared.
+    pub machines: Vec<(Machine, MachineOrigin)>,
     /// Process styles and how they pass from layer to layer (seed 002).
     pub styles: Styles,
 }

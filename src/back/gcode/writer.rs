@@ -6,18 +6,15 @@
 //! allocation and no `memcpy` call per line (see [`super::fmt`]).
 
 use super::dialect::Words;
-use super::kinematics::Rotary;
 use crate::back::fmt::{key, put_fixed, put_trimmed, MAX_NUMBER};
+use crate::plan::kinematics::Rotary;
 use std::io::{self, Write};
 
 /// Bytes handed to the output at a time.
 const CHUNK: usize = 1 << 20;
 /// Room kept free past [`CHUNK`]: more than any motion line needs.
 const ROOM: usize = 1024;
-/// Decimals of X Y Z and of the angles.
-const POS_DECIMALS: usize = 3;
-/// Most decimals of F (trailing zeros dropped).
-const F_DECIMALS: usize = 1;
+use crate::target::gcode::{F_DECIMALS, POS_DECIMALS};
 /// Scratch size of one number (≥ MAX_NUMBER; copied whole, a fixed length).
 const NUM: usize = 32;
 /// Room for the rotary words ` A<n> C<n>`.
@@ -109,8 +106,8 @@ impl<'w> Writer<'w> {
         }
     }
 
-    /// Stops writing; later calls do nothing. Used once the program is known to be
-    /// refused, so no time goes into text nobody will read.
+    /// Stops writing; later calls do nothing. Used once the program is known to
+    /// fail (a template error), so no time goes into text nobody will read.
     pub fn silence(&mut self) {
         self.quiet = true;
     }

@@ -7,31 +7,31 @@
 //! `krl/layer.tera`; the motion lines are written by [`modules`] without tera.
 //! Conventions and the template context: `docs/krl.md`.
 //!
-//! Motion: every point is a `LIN` to the laser focus ([`Point::focus`]) with the
-//! tool's beam axis along −normal ([`orient`]), `C_DIS` approximated except where
-//! the laser switches. `$VEL.CP` (m/s) is set when the speed changes; the laser
-//! output `$OUT` and the power `$ANOUT` switch through `TRIGGER WHEN DISTANCE=0`,
-//! at the start of the motion from the point where the IR changes them, so they
-//! happen on the path rather than when the advance run reads the line. Paths that
-//! do not join the previous one are reached like in G-code: laser off, retract by
-//! `clearance` along the nozzle, travel at `max_speed` to `clearance` above the next
-//! start, approach.
+//! Motion: every move of the motion plan ([`crate::plan`]) is a `LIN` to the
+//! laser focus with the tool's beam axis along −normal ([`orient`]), `C_DIS`
+//! approximated except where the laser switches; rapid moves go at the robot's
+//! `max_speed`. `$VEL.CP` (m/s) is set when the speed changes; the laser output
+//! `$OUT` and the power `$ANOUT` switch through `TRIGGER WHEN DISTANCE=0` on the
+//! motion that starts where the plan switches them, so they happen on the path
+//! rather than when the advance run reads the line.
 
 pub mod modules;
 pub mod orient;
 
 use super::context::{counts, layer_context, styles};
 use super::fixed::{fixed, trimmed};
-use super::{program_stem, EmitError, Sink, Templates};
-use crate::check::Verified;
-use crate::diag::{Code, Diagnostic, Diagnostics};
-use crate::ir::{FrameRef, Path, Point, Robot, ToolAxis};
-use modules::{Modules, Switch, ANOUT_DECIMALS};
+use super::{EmitError, Sink, Templates};
+use crate::check::VerifiedMachine;
+use crate::ir::{FrameRef, Layer, Robot, ToolAxis};
+use crate::plan::{Move, Speed, Visit};
+use crate::target::kuka;
+use crate::target::names::KrlNames;
+use modules::{Modules, Switch};
 use orient::{Abc, Orienter};
 use std::io::Write;
 
 /// Longest KRL name (module, DEF and DEFDAT names).
-pub const MAX_NAME: usize = 24;
+pub const MAX_NAME: usize = kuka::MAX_NAME;
 
 /// Rounding distance of `C_DIS`, mm: small against a bead width, large enough
 /// that the controller keeps the path speed over millimetre-spaced points.
@@ -40,112 +40,77 @@ pub const APPROX_MM: f64 = 0.2;
 /// Speed of the move from home to the first point, % of the axes' maximum.
 pub const HOME_PERCENT: u32 = 20;
 
-/// KRL keywords a name made of the part and machine could collide with.
-const RESERVED: &[&str] = &[
-    "C_DIS", "C_ORI", "C_PTP", "C_VEL", "C_SPL", "WAIT_SEC", "SPTP_REL", "SLIN_REL",
-];
-
-/// The stem of the robot's file and program names: at most [`MAX_NAME`] minus the
-/// module suffix `_m` and `digits` digits, so every module name is a valid KRL
-/// name too.
-pub fn stem(part: &str, robot: &Robot, digits: usize) -> String {
-    let s = program_stem(part, &robot.name, MAX_NAME - 2 - digits);
-    if RESERVED.contains(&s.to_ascii_uppercase().as_str()) {
-        format!("p{s}")
-    } else {
-        s
-    }
+/// The names of `robot`'s files for the verified plan `m`.
+pub fn names(m: VerifiedMachine<'_>, robot: &Robot) -> KrlNames {
+    let prog = m.ir();
+    let paths = prog.layers.iter().map(|l| l.paths.len()).sum();
+    KrlNames::new(&prog.part, robot, prog.point_count(), paths)
 }
 
-/// Digits of the module numbers: enough for an upper bound of the module count
-/// (every point one LIN, at most three more per path and one at the end), at
-/// least 3.
-fn module_digits(p: &Verified, robot: &Robot) -> usize {
-    let prog = p.ir();
-    let paths: usize = prog.layers.iter().map(|l| l.paths.len()).sum();
-    let lines = prog.point_count() + 3 * paths + 1;
-    let modules = lines.div_ceil(robot.max_points_per_module.max(1));
-    modules.to_string().len().max(3)
-}
-
-/// Writes the KRL programs for `robot`, machine number `index` of the IR.
-///
-/// Fails with [`EmitError::Program`] and `lmd::analog-range` when a laser power
-/// would need `$ANOUT` beyond 1.0 (the robot's `full_scale`); nothing is written
-/// then.
+/// Writes the KRL programs of the verified robot `m` (`robot` is its machine).
 pub fn emit(
-    p: &Verified,
-    index: usize,
+    m: VerifiedMachine<'_>,
     robot: &Robot,
     t: &Templates,
     sink: &mut dyn Sink,
 ) -> Result<(), EmitError> {
-    let prog = p.ir();
-    analog_range(p, index, robot)?;
-    let digits = module_digits(p, robot);
-    let stem = stem(&prog.part, robot, digits);
-    let base = base_context(p, robot, &stem);
+    let prog = m.ir();
+    let names = names(m, robot);
+    let base = base_context(prog, robot, &names.stem);
 
     // Rendered first, so a broken template leaves no file.
     let mut main_ctx = base.clone();
-    let probe = Modules::name(&stem, digits, 0);
-    main_ctx.insert("modules", &[probe]);
-    main_context(&mut main_ctx, p, robot, modules::Stats::default());
+    main_ctx.insert("modules", &[names.module(0)]);
+    main_context(&mut main_ctx, m, robot, modules::Stats::default());
     t.render("krl/main.src.tera", &main_ctx)
         .map_err(EmitError::Template)?;
 
-    let mut m = Motion {
+    let mut w = Writer {
         out: Modules::new(
             sink,
             t,
             base.clone(),
-            stem.clone(),
-            digits,
+            names.clone(),
             robot.max_points_per_module,
             robot.laser_out,
             robot.power_out,
         ),
         orient: Orienter::new(robot.beam),
         robot,
-        cursor: None,
-        laser: false,
+        templates: t,
+        base: &base,
+        layers: prog.layers.len(),
+        normal: None,
+        abc: Abc {
+            a: 0.0,
+            b: 0.0,
+            c: 0.0,
+        },
+        switch: None,
         anout: None,
         power_bits: 0,
+        error: None,
     };
-    let n_layers = prog.layers.len();
-    for (li, layer) in prog.layers.iter().enumerate() {
-        let mut ctx = base.clone();
-        layer_context(&mut ctx, li, n_layers, layer);
-        let text = t
-            .render("krl/layer.tera", &ctx)
-            .map_err(EmitError::Template)?;
-        m.out.layer(li + 1, &text);
-        let mut first = true;
-        for path in &layer.paths {
-            if path.points.is_empty() {
-                continue;
-            }
-            m.path(path, first);
-            first = false;
-        }
+    m.plan().walk(&mut w);
+    if let Some(e) = w.error {
+        return Err(e);
     }
-    m.end();
-    let (names, stats) = m.out.finish()?;
+    let (modules, stats) = w.out.finish()?;
 
-    let mut ctx = base;
-    ctx.insert("modules", &names);
-    main_context(&mut ctx, p, robot, stats);
+    let mut ctx = base.clone();
+    ctx.insert("modules", &modules);
+    main_context(&mut ctx, m, robot, stats);
     let src = t
         .render("krl/main.src.tera", &ctx)
         .map_err(EmitError::Template)?;
     let dat = t
         .render("krl/main.dat.tera", &ctx)
         .map_err(EmitError::Template)?;
-    let mut out = sink.create(&format!("{stem}.src"))?;
+    let mut out = sink.create(&format!("{}.src", names.stem))?;
     out.write_all(src.as_bytes())?;
     out.flush()?;
     drop(out);
-    let mut out = sink.create(&format!("{stem}.dat"))?;
+    let mut out = sink.create(&format!("{}.dat", names.stem))?;
     out.write_all(dat.as_bytes())?;
     out.flush()?;
     Ok(())
@@ -153,112 +118,33 @@ pub fn emit(
 
 /// `$ANOUT` value for `power` W: the fraction of full scale, as written.
 pub fn anout(power: f32, robot: &Robot) -> f64 {
-    super::fixed::rounded(power as f64 / robot.full_scale_power, ANOUT_DECIMALS)
+    crate::target::written(power as f64 / robot.full_scale_power, kuka::ANOUT_DECIMALS)
 }
 
-/// `lmd::analog-range`: the highest laser-on power must fit the analog output.
-fn analog_range(p: &Verified, index: usize, robot: &Robot) -> Result<(), EmitError> {
-    let prog = p.ir();
-    let mut worst: Option<(f32, usize, usize)> = None;
-    for (li, layer) in prog.layers.iter().enumerate() {
-        for path in &layer.paths {
-            for (k, pt) in path.points.iter().enumerate() {
-                if pt.laser_on && !worst.is_some_and(|w| pt.power <= w.0) {
-                    worst = Some((pt.power, li, k));
-                }
-            }
-        }
-    }
-    let Some((power, li, k)) = worst else {
-        return Ok(());
-    };
-    let x = anout(power, robot);
-    if x <= 1.0 {
-        return Ok(());
-    }
-    let mut d = Diagnostics::new();
-    d.push(
-        Diagnostic::error(
-            Code::AnalogRange,
-            format!(
-                "laser power {} W needs $ANOUT[{}] = {} on robot `{}`, beyond the analog output's 1.0",
-                fixed(power as f64, 0),
-                robot.power_out,
-                fixed(x, 3),
-                robot.name
-            ),
-        )
-        .label_opt(
-            prog.origins.machines.get(index).copied(),
-            format!(
-                "full_scale = {} W is the power at $ANOUT = 1.0",
-                fixed(robot.full_scale_power, 0)
-            ),
-        )
-        .label_opt(
-            prog.origins.power,
-            format!("first reached in layer {}, point {}", li + 1, k + 1),
-        )
-        .help(format!(
-            "set `full_scale` to the power the laser source gives at full analog input \
-             (at least {} W), or lower the power",
-            fixed(power as f64, 0)
-        )),
-    );
-    Err(EmitError::Program(d))
-}
-
-/// Where the nozzle is between paths.
-#[derive(Clone, Copy, Debug)]
-struct Cursor {
-    focus: [f64; 3],
-    normal: [f32; 3],
-    abc: Abc,
-}
-
-impl Cursor {
-    fn joins(&self, p: &Point) -> bool {
-        super::joins(self.focus, self.normal, p)
-    }
-}
-
-/// The motion of one robot program.
-struct Motion<'a> {
-    out: Modules<'a>,
+/// Writes a robot's motion plan: a `LIN` per move.
+struct Writer<'a, 's> {
+    out: Modules<'s>,
     orient: Orienter,
     robot: &'a Robot,
-    cursor: Option<Cursor>,
-    /// The laser state the last motion left.
-    laser: bool,
+    templates: &'a Templates,
+    base: &'a tera::Context,
+    layers: usize,
+    /// The normal the orientation was last solved for, and its `A B C`.
+    normal: Option<[f32; 3]>,
+    abc: Abc,
+    /// A laser switch waiting for the next motion's start.
+    switch: Option<Switch>,
     /// The last `$ANOUT` value set, in 1/10⁴ of full scale.
     anout: Option<i64>,
     /// The power (f32 bits) it was set for.
     power_bits: u32,
+    error: Option<EmitError>,
 }
 
-fn up(normal: [f32; 3]) -> [f64; 3] {
-    let n = [normal[0] as f64, normal[1] as f64, normal[2] as f64];
-    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    [n[0] / len, n[1] / len, n[2] / len]
-}
-
-fn along(p: [f64; 3], dir: [f64; 3], d: f64) -> [f64; 3] {
-    [p[0] + d * dir[0], p[1] + d * dir[1], p[2] + d * dir[2]]
-}
-
-impl Motion<'_> {
-    /// The switch a motion needs to leave the laser `on`.
-    fn switch(&mut self, on: bool) -> Option<Switch> {
-        if on == self.laser {
-            return None;
-        }
-        self.laser = on;
-        Some(if on { Switch::On } else { Switch::Off })
-    }
-
+impl Writer<'_, '_> {
     /// The `$ANOUT` value to set before depositing at `power`, if it changed.
     fn power(&mut self, power: f32) -> Option<f64> {
-        // Most points repeat the power of the point before.
+        // Most moves repeat the power of the move before.
         if self.anout.is_some() && power.to_bits() == self.power_bits {
             return None;
         }
@@ -271,82 +157,52 @@ impl Motion<'_> {
         self.anout = Some(key);
         Some(x)
     }
+}
 
-    /// A laser-off move at `max_speed`.
-    fn travel(&mut self, pos: [f64; 3], abc: Abc) {
-        let s = self.switch(false);
-        self.out.lin(pos, abc, self.robot.max_speed, None, s, false);
-    }
-
-    /// One path: a transition to its start unless it joins, then a LIN per point.
-    fn path(&mut self, path: &Path, first_in_layer: bool) {
-        let pts = &path.points[..];
-        let Some(first) = pts.first() else { return };
-        let mut cur = match self.cursor {
-            Some(c) if !first_in_layer && c.joins(first) => c,
-            _ => self.transition(first, pts.len() > 1 && first.laser_on),
-        };
-        for seg in pts.windows(2) {
-            let (from, to) = (&seg[0], &seg[1]);
-            if to.normal != cur.normal {
-                // Most parts keep one normal over many points: solve only on a change.
-                cur.normal = to.normal;
-                cur.abc = self.orient.abc(to.normal);
-            }
-            let f = to.focus();
-            if from.laser_on {
-                let x = self.power(from.power);
-                let s = self.switch(true);
-                self.out.lin(f, cur.abc, from.speed as f64, x, s, true);
-            } else {
-                self.travel(f, cur.abc);
+impl Visit for Writer<'_, '_> {
+    fn layer(&mut self, index: usize, layer: &Layer) {
+        let mut ctx = self.base.clone();
+        layer_context(&mut ctx, index, self.layers, layer);
+        match self.templates.render("krl/layer.tera", &ctx) {
+            Ok(text) => self.out.layer(index + 1, &text),
+            Err(e) => {
+                self.error.get_or_insert(EmitError::Template(e));
             }
         }
-        // A last point with the laser off needs nothing here: whatever motion comes
-        // next asks for the laser state it needs and switches it at its start.
-        cur.focus = pts[pts.len() - 1].focus();
-        self.cursor = Some(cur);
     }
 
-    /// Laser off, retract, travel above `first`, approach (at its speed when
-    /// `feed_in`, else at `max_speed`). Returns the cursor at `first`.
-    fn transition(&mut self, first: &Point, feed_in: bool) -> Cursor {
-        let clearance = self.robot.clearance;
-        if let Some(c) = self.cursor {
-            self.travel(along(c.focus, up(c.normal), clearance), c.abc);
-        }
-        let abc = self.orient.abc(first.normal);
-        let f0 = first.focus();
-        self.travel(along(f0, up(first.normal), clearance), abc);
-        let speed = if feed_in {
-            first.speed as f64
-        } else {
-            self.robot.max_speed
-        };
-        let s = self.switch(false);
-        self.out.lin(f0, abc, speed, None, s, false);
-        let c = Cursor {
-            focus: f0,
-            normal: first.normal,
-            abc,
-        };
-        self.cursor = Some(c);
-        c
+    fn laser_on(&mut self, _next: &Move) {
+        self.switch = Some(Switch::On);
     }
 
-    /// After the last path: laser off and retract.
-    fn end(&mut self) {
-        if let Some(c) = self.cursor {
-            self.travel(along(c.focus, up(c.normal), self.robot.clearance), c.abc);
+    fn laser_off(&mut self) {
+        // Attached to the next motion's start: the end point of the last deposit.
+        self.switch = Some(Switch::Off);
+    }
+
+    #[inline]
+    fn motion(&mut self, m: &Move) {
+        if self.normal != Some(m.normal) {
+            // Most parts keep one normal over many moves: solve only on a change.
+            self.normal = Some(m.normal);
+            self.abc = self.orient.abc(m.normal);
         }
+        let speed = match m.speed {
+            Speed::Rapid => self.robot.max_speed,
+            Speed::Feed(v) => v as f64,
+        };
+        let deposit = m.deposits();
+        let x = if deposit { self.power(m.power) } else { None };
+        let s = self.switch.take();
+        self.out.lin(m.to, self.abc, speed, x, s, deposit);
     }
 }
 
 /// Variables every template sees.
-fn base_context(p: &Verified, robot: &Robot, stem: &str) -> tera::Context {
+fn base_context(p: &crate::ir::Program, robot: &Robot, stem: &str) -> tera::Context {
     let mut ctx = tera::Context::new();
     ctx.insert("program", stem);
-    ctx.insert("part", &comment_safe(&p.ir().part));
+    ctx.insert("part", &comment_safe(&p.part));
     ctx.insert("machine", &comment_safe(&robot.name));
     ctx.insert("generator", concat!("lmdc ", env!("CARGO_PKG_VERSION")));
     ctx
@@ -393,9 +249,9 @@ fn beam_text(b: ToolAxis) -> &'static str {
     }
 }
 
-fn main_context(ctx: &mut tera::Context, p: &Verified, robot: &Robot, s: modules::Stats) {
-    counts(ctx, p);
-    styles(ctx, p, &comment_safe);
+fn main_context(ctx: &mut tera::Context, m: VerifiedMachine<'_>, robot: &Robot, s: modules::Stats) {
+    counts(ctx, m.ir());
+    styles(ctx, m.ir(), &comment_safe);
     ctx.insert("tool_index", &robot.tool.index);
     ctx.insert("tool_value", &frame_value(&robot.tool));
     ctx.insert("base_index", &robot.base.index);

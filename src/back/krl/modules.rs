@@ -11,14 +11,10 @@ use super::orient::Abc;
 use crate::back::fixed::{push_fixed, push_u64};
 use crate::back::fmt::{key, put_fixed, put_trimmed, MAX_NUMBER};
 use crate::back::{EmitError, Sink, Templates};
+use crate::target::names::KrlNames;
 use std::io::Write;
 
-/// Decimals of X Y Z (mm) and A B C (deg).
-pub const POS_DECIMALS: usize = 3;
-/// Decimals of `$VEL.CP` (m/s): 0.001 mm/s.
-pub const VEL_DECIMALS: usize = 6;
-/// Decimals of `$ANOUT` (fraction of full scale).
-pub const ANOUT_DECIMALS: usize = 4;
+pub use crate::target::kuka::{ANOUT_DECIMALS, POS_DECIMALS, VEL_DECIMALS};
 /// Room for `,A …,B …,C …}`.
 const ABC_BYTES: usize = 1 + 3 * (3 + MAX_NUMBER);
 /// Room for one LIN line: its words, X Y Z and the orientation.
@@ -52,8 +48,7 @@ pub struct Modules<'a> {
     sink: &'a mut dyn Sink,
     t: &'a Templates,
     base: tera::Context,
-    stem: String,
-    digits: usize,
+    names: KrlNames,
     max_lines: usize,
     laser_out: u16,
     power_out: u16,
@@ -77,21 +72,20 @@ pub struct Modules<'a> {
     /// The layer already under way when this module starts (0: it starts
     /// with a layer's comment block, or before any).
     continues: usize,
-    names: Vec<String>,
+    /// The modules written so far.
+    modules: Vec<String>,
     error: Option<EmitError>,
     /// What has been written.
     pub stats: Stats,
 }
 
 impl<'a> Modules<'a> {
-    /// A writer naming modules `<stem>_m<NNN>` with `digits` digits.
-    #[allow(clippy::too_many_arguments)]
+    /// A writer naming modules by `names`.
     pub fn new(
         sink: &'a mut dyn Sink,
         t: &'a Templates,
         base: tera::Context,
-        stem: String,
-        digits: usize,
+        names: KrlNames,
         max_lines: usize,
         laser_out: u16,
         power_out: u16,
@@ -100,8 +94,7 @@ impl<'a> Modules<'a> {
             sink,
             t,
             base,
-            stem,
-            digits,
+            names,
             max_lines: max_lines.max(1),
             laser_out,
             power_out,
@@ -117,15 +110,10 @@ impl<'a> Modules<'a> {
             pre_layer: None,
             current: 0,
             continues: 0,
-            names: Vec::new(),
+            modules: Vec::new(),
             error: None,
             stats: Stats::default(),
         }
-    }
-
-    /// The name of module number `i` (0-based).
-    pub fn name(stem: &str, digits: usize, i: usize) -> String {
-        format!("{stem}_m{:0digits$}", i + 1)
     }
 
     /// A layer's comment block: it goes before the layer's first motion, in the
@@ -240,7 +228,7 @@ impl<'a> Modules<'a> {
         }
         match self.error {
             Some(e) => Err(e),
-            None => Ok((self.names, self.stats)),
+            None => Ok((self.modules, self.stats)),
         }
     }
 
@@ -255,13 +243,13 @@ impl<'a> Modules<'a> {
     /// Writes the current module and starts the next.
     fn roll(&mut self) {
         self.end_pending(true);
-        let name = Self::name(&self.stem, self.digits, self.names.len());
+        let name = self.names.module(self.modules.len());
         if self.error.is_none() {
             if let Err(e) = self.write(&name) {
                 self.error = Some(e);
             }
         }
-        self.names.push(name);
+        self.modules.push(name);
         self.body.clear();
         self.lines = 0;
         self.vel = None;
@@ -277,7 +265,7 @@ impl<'a> Modules<'a> {
     fn write(&mut self, name: &str) -> Result<(), EmitError> {
         let mut ctx = self.base.clone();
         ctx.insert("name", name);
-        ctx.insert("module", &(self.names.len() + 1));
+        ctx.insert("module", &(self.modules.len() + 1));
         ctx.insert("lines", &self.lines);
         let (first, last) = self.layers.unwrap_or((0, 0));
         ctx.insert("first_layer", &first);

@@ -1,7 +1,13 @@
-//! Built-in G-code dialect profiles. They are data the one G-code back end
-//! renders; a machine block can override any of their lines.
+//! G-code controls as lmdc writes for them: the built-in dialect profiles (data
+//! the one G-code back end renders; a machine block can override any of their
+//! lines) and the resolution numbers are written at.
 
 use crate::ir::{CommentStyle, Dialect, FeedUnit};
+
+/// Decimals of X Y Z (mm) and of the rotary angles (deg).
+pub const POS_DECIMALS: usize = 3;
+/// Most decimals of F (trailing zeros dropped).
+pub const F_DECIMALS: usize = 1;
 
 /// Profile names.
 pub const PROFILES: &[&str] = &["linuxcnc", "fagor8070", "sinumerik840d", "m20"];

@@ -1,0 +1,384 @@
+//! Rules a machine's motion plan must keep: its speed limit, its axes' travel,
+//! a vertical nozzle on a 3-axis CNC, the robot's analog power output. Each rule
+//! follows the plan ([`Visit`]) and reports every kind of violation once, with
+//! the worst case, at the field of the machine that declares the limit.
+//!
+//! Limits are compared with the value as the program writes it, exactly (no
+//! slack): what the control reads must lie within what was declared.
+
+use super::worst::{plural, Worst};
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::{AxisLimits, Cnc, Kinematics, Layer, Machine, MachineOrigin, Program, Robot};
+use crate::plan::kinematics::tilt_of;
+use crate::plan::{effective_kinematics, Move, Plan, Speed, Visit, Where};
+use crate::span::Span;
+use crate::target::{gcode, kuka, written as rounded};
+use crate::units::short;
+
+/// A normal tilted more than this (deg) cannot be followed by a vertical nozzle.
+pub const NEEDS_TILT_DEG: f64 = 0.01;
+
+/// Feed moves faster than the machine's `max_speed`.
+struct SpeedLimit {
+    max: f64,
+    /// The speed as written, mm/s, from the planned one.
+    written: fn(f64, &Machine) -> f64,
+    found: Option<Worst>,
+}
+
+impl SpeedLimit {
+    #[inline]
+    fn motion(&mut self, m: &Move, machine: &Machine) {
+        if let Speed::Feed(v) = m.speed {
+            let w = (self.written)(v as f64, machine);
+            if w > self.max {
+                Worst::hit(&mut self.found, w, self.max, m.source());
+            }
+        }
+    }
+
+    fn report(
+        self,
+        name: &str,
+        o: &MachineOrigin,
+        bead_speed: Option<Span>,
+        out: &mut Diagnostics,
+    ) {
+        let Some(w) = self.found else { return };
+        out.push(
+            Diagnostic::error(
+                Code::MachineSpeed,
+                format!(
+                    "machine `{name}` would have to move at {} mm/s, beyond its max_speed of {} mm/s, at {} ({} move{} too fast)",
+                    short(w.value),
+                    short(w.limit),
+                    w.at,
+                    w.count,
+                    plural(w.count)
+                ),
+            )
+            .label(o.at("max_speed"), "limit declared here")
+            .label_opt(bead_speed, "the scan speeds come from here")
+            .help("lower the scan speeds, or raise the machine's max_speed if it really can go faster"),
+        );
+    }
+}
+
+fn cnc_speed(v: f64, m: &Machine) -> f64 {
+    match m {
+        Machine::Cnc(c) => {
+            let per = c.dialect.feed.per_mm_s();
+            rounded(v * per, gcode::F_DECIMALS) / per
+        }
+        Machine::Robot(_) => v,
+    }
+}
+
+fn robot_speed(v: f64, _: &Machine) -> f64 {
+    rounded(v / 1000.0, kuka::VEL_DECIMALS) * 1000.0
+}
+
+/// Positions and rotary angles beyond a CNC's travel.
+struct Travel {
+    lim: AxisLimits,
+    /// Whether the rotary axes exist (and are checked).
+    five: bool,
+    /// X Y Z tilt C.
+    axes: [Option<Worst>; 5],
+}
+
+impl Travel {
+    #[inline]
+    fn motion(&mut self, m: &Move) {
+        let l = &self.lim;
+        let w = |v: f64| rounded(v, gcode::POS_DECIMALS);
+        let inside = |v: f64, r: [f64; 2]| v >= r[0] && v <= r[1];
+        let ok = inside(w(m.to[0]), l.x)
+            && inside(w(m.to[1]), l.y)
+            && inside(w(m.to[2]), l.z)
+            && (!self.five || (inside(w(m.axes.tilt), l.tilt) && inside(w(m.axes.c), l.rotary)));
+        if !ok {
+            self.miss(m);
+        }
+    }
+
+    #[cold]
+    fn miss(&mut self, m: &Move) {
+        let l = self.lim;
+        let vals = [
+            (m.to[0], l.x),
+            (m.to[1], l.y),
+            (m.to[2], l.z),
+            (m.axes.tilt, l.tilt),
+            (m.axes.c, l.rotary),
+        ];
+        let n = if self.five { 5 } else { 3 };
+        for (i, &(v, r)) in vals.iter().enumerate().take(n) {
+            let v = rounded(v, gcode::POS_DECIMALS);
+            if v < r[0] {
+                Worst::hit(&mut self.axes[i], v, r[0], m.at);
+            } else if v > r[1] {
+                Worst::hit(&mut self.axes[i], v, r[1], m.at);
+            }
+        }
+    }
+
+    fn report(self, cnc: &Cnc, o: &MachineOrigin, out: &mut Diagnostics) {
+        let name = &cnc.name;
+        let tilt_name = if effective_kinematics(cnc) == Kinematics::HeadBc {
+            "B"
+        } else {
+            "A"
+        };
+        let names = ["X", "Y", "Z", tilt_name, "C"];
+        let fields = [
+            "limits.x",
+            "limits.y",
+            "limits.z",
+            "limits.tilt",
+            "limits.c",
+        ];
+        let lim = self.lim;
+        let ranges = [lim.x, lim.y, lim.z, lim.tilt, lim.rotary];
+        for (i, w) in self.axes.iter().enumerate() {
+            let Some(w) = w else { continue };
+            let (unit, sep) = if i < 3 { ("mm", " ") } else { ("°", "") };
+            let mut help = match i {
+                0..=2 => format!(
+                    "the part does not fit this machine's travel: place the part inside \
+                     X [{}, {}], Y [{}, {}], Z [{}, {}] mm (program coordinates), or correct \
+                     the machine's limits",
+                    short(lim.x[0]),
+                    short(lim.x[1]),
+                    short(lim.y[0]),
+                    short(lim.y[1]),
+                    short(lim.z[0]),
+                    short(lim.z[1]),
+                ),
+                3 => format!(
+                    "the layers tilt the nozzle further than the {tilt_name} axis of `{name}` \
+                     can go: use a machine whose head tilts further, or build the part in an \
+                     orientation whose layers tilt less"
+                ),
+                _ => "the C axis turns past its stop while following the normals around the \
+                      part: widen the C limits if the axis turns endlessly, or orient the part \
+                      so the paths wind less"
+                    .to_string(),
+            };
+            if i < 3 && !matches!(w.at, Where::Point { .. }) {
+                help.push_str(&format!(
+                    "; the clearance moves go {} mm beyond the path along the nozzle, a \
+                     smaller clearance may do",
+                    short(cnc.clearance)
+                ));
+            }
+            out.push(
+                Diagnostic::error(
+                    Code::AxisLimit,
+                    format!(
+                        "axis {} of machine `{name}` would have to reach {}{sep}{unit}, beyond its \
+                         limit of {}{sep}{unit}, at {} ({} position{} outside [{}, {}]{sep}{unit})",
+                        names[i],
+                        short(w.value),
+                        short(w.limit),
+                        w.at,
+                        w.count,
+                        plural(w.count),
+                        short(ranges[i][0]),
+                        short(ranges[i][1]),
+                    ),
+                )
+                .label(o.at(fields[i]), "axis limit declared here")
+                .help(help),
+            );
+        }
+    }
+}
+
+/// Normals a vertical nozzle cannot follow (3-axis CNCs).
+struct Tilt {
+    tan2: f64,
+    found: Option<Worst>,
+}
+
+impl Tilt {
+    #[inline]
+    fn motion(&mut self, m: &Move) {
+        // Only the IR's points: the clearance moves repeat their normals.
+        if !matches!(m.at, Where::Point { .. }) {
+            return;
+        }
+        let n = m.normal;
+        let (x, y, z) = (n[0] as f64, n[1] as f64, n[2] as f64);
+        if z <= 0.0 || x * x + y * y > self.tan2 * z * z {
+            Worst::hit(&mut self.found, tilt_of([x, y, z]), NEEDS_TILT_DEG, m.at);
+        }
+    }
+
+    fn report(self, name: &str, o: &MachineOrigin, out: &mut Diagnostics) {
+        let Some(w) = self.found else { return };
+        out.push(
+            Diagnostic::error(
+                Code::NeedsTilt,
+                format!(
+                    "the part's layers tilt the nozzle up to {}° from vertical ({} point{}, the worst at {}), \
+                     but machine `{name}` moves X Y Z only and keeps the nozzle vertical",
+                    short(w.value),
+                    w.count,
+                    plural(w.count),
+                    w.at
+                ),
+            )
+            .label(o.at("axes"), "this machine has no tilting axes")
+            .help(
+                "compile for a 5-axis machine (axes 5, kinematics head_ac or head_bc), \
+                 or slice the part in planar (horizontal) layers",
+            ),
+        );
+    }
+}
+
+/// Laser powers beyond the robot's analog output (`$ANOUT` above 1.0).
+struct Analog {
+    full_scale: f64,
+    found: Option<Worst>,
+}
+
+impl Analog {
+    #[inline]
+    fn motion(&mut self, m: &Move) {
+        if m.deposits() {
+            let x = rounded(m.power as f64 / self.full_scale, kuka::ANOUT_DECIMALS);
+            if x > 1.0 {
+                Worst::hit(&mut self.found, m.power as f64, self.full_scale, m.source());
+            }
+        }
+    }
+
+    fn report(self, r: &Robot, o: &MachineOrigin, power: Option<Span>, out: &mut Diagnostics) {
+        let Some(w) = self.found else { return };
+        let x = rounded(w.value / r.full_scale_power, kuka::ANOUT_DECIMALS);
+        out.push(
+            Diagnostic::error(
+                Code::AnalogRange,
+                format!(
+                    "laser power {} W needs $ANOUT[{}] = {} on robot `{}`, beyond the analog output's 1.0 ({} move{}, the worst at {})",
+                    short(w.value),
+                    r.power_out,
+                    short(x),
+                    r.name,
+                    w.count,
+                    plural(w.count),
+                    w.at
+                ),
+            )
+            .label(
+                o.at("full_scale"),
+                format!(
+                    "full_scale = {} W is the power at $ANOUT = 1.0",
+                    short(r.full_scale_power)
+                ),
+            )
+            .label_opt(power, "the power comes from here")
+            .help(format!(
+                "set `full_scale` to the power the laser source gives at full analog input \
+                 (at least {} W), or lower the power",
+                short(w.value)
+            )),
+        );
+    }
+}
+
+/// Every rule that applies to one machine, following its plan in one pass.
+pub(super) struct MachineRules<'m> {
+    machine: &'m Machine,
+    speed: SpeedLimit,
+    travel: Option<Travel>,
+    tilt: Option<Tilt>,
+    analog: Option<Analog>,
+    /// Moves in the plan (a KRL program has one LIN per move).
+    pub moves: u64,
+}
+
+impl<'m> MachineRules<'m> {
+    pub fn new(machine: &'m Machine) -> Self {
+        match machine {
+            Machine::Robot(r) => MachineRules {
+                machine,
+                speed: SpeedLimit {
+                    max: r.max_speed,
+                    written: robot_speed,
+                    found: None,
+                },
+                travel: None,
+                tilt: None,
+                analog: Some(Analog {
+                    full_scale: r.full_scale_power,
+                    found: None,
+                }),
+                moves: 0,
+            },
+            Machine::Cnc(c) => {
+                let kin = effective_kinematics(c);
+                MachineRules {
+                    machine,
+                    speed: SpeedLimit {
+                        max: c.max_speed,
+                        written: cnc_speed,
+                        found: None,
+                    },
+                    travel: Some(Travel {
+                        lim: c.limits,
+                        five: kin != Kinematics::Xyz,
+                        axes: [None; 5],
+                    }),
+                    tilt: (kin == Kinematics::Xyz).then(|| Tilt {
+                        tan2: NEEDS_TILT_DEG.to_radians().tan().powi(2),
+                        found: None,
+                    }),
+                    analog: None,
+                    moves: 0,
+                }
+            }
+        }
+    }
+
+    /// Follows the whole plan.
+    pub fn run(&mut self, program: &Program) {
+        Plan::new(program, self.machine).walk(self);
+    }
+
+    pub fn report(self, program: &Program, origin: &MachineOrigin, out: &mut Diagnostics) {
+        let o = &program.origins;
+        let name = self.machine.name();
+        if let (Some(t), Machine::Cnc(_)) = (self.tilt, self.machine) {
+            t.report(name, origin, out);
+        }
+        if let (Some(t), Machine::Cnc(c)) = (self.travel, self.machine) {
+            t.report(c, origin, out);
+        }
+        self.speed.report(name, origin, o.bead_speed, out);
+        if let (Some(a), Machine::Robot(r)) = (self.analog, self.machine) {
+            a.report(r, origin, o.power, out);
+        }
+    }
+}
+
+impl Visit for MachineRules<'_> {
+    fn layer(&mut self, _: usize, _: &Layer) {}
+
+    #[inline]
+    fn motion(&mut self, m: &Move) {
+        self.moves += 1;
+        self.speed.motion(m, self.machine);
+        if let Some(t) = &mut self.travel {
+            t.motion(m);
+        }
+        if let Some(t) = &mut self.tilt {
+            t.motion(m);
+        }
+        if let Some(a) = &mut self.analog {
+            a.motion(m);
+        }
+    }
+}

@@ -1,0 +1,57 @@
+//! File names: no two machines may write the same file (the names keep only the
+//! letters, digits and `_` of the part's and machine's names, in lower case).
+
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::{Machine, Program};
+use crate::target::names::{gcode_file, KrlNames};
+use std::collections::BTreeMap;
+
+/// The files machine `m` writes, given how many moves its plan has.
+pub(crate) fn files(p: &Program, m: &Machine, moves: u64) -> Vec<String> {
+    match m {
+        Machine::Robot(r) => {
+            let paths = p.layers.iter().map(|l| l.paths.len()).sum();
+            let names = KrlNames::new(&p.part, r, p.point_count(), paths);
+            let modules = (moves as usize).div_ceil(r.max_points_per_module.max(1));
+            names.files(modules)
+        }
+        Machine::Cnc(c) => vec![gcode_file(&p.part, c)],
+    }
+}
+
+/// Reports every file two machines would both write, once per pair of machines.
+pub(super) fn clashes(p: &Program, written: &[(usize, Vec<String>)], out: &mut Diagnostics) {
+    let mut owner: BTreeMap<String, usize> = BTreeMap::new();
+    let mut pairs: BTreeMap<(usize, usize), String> = BTreeMap::new();
+    for (m, files) in written {
+        for f in files {
+            // Case-insensitive file systems (Windows, macOS) see one file.
+            match owner.get(&f.to_ascii_lowercase()) {
+                Some(&first) if first != *m => {
+                    pairs.entry((first, *m)).or_insert_with(|| f.clone());
+                }
+                Some(_) => {}
+                None => {
+                    owner.insert(f.to_ascii_lowercase(), *m);
+                }
+            }
+        }
+    }
+    let ms = &p.machines;
+    let o = &p.origins.machines;
+    for ((first, second), name) in pairs {
+        out.push(
+            Diagnostic::error(
+                Code::NameClash,
+                format!(
+                    "machines `{}` and `{}` would both write {name}",
+                    ms[first].name(),
+                    ms[second].name()
+                ),
+            )
+            .label_opt(o.get(second).map(|o| o.block), "second machine")
+            .label_opt(o.get(first).map(|o| o.block), "first machine")
+            .help("file names keep letters, digits and `_` of the part's and the machine's names: give the machines names that differ there"),
+        );
+    }
+}

@@ -1,0 +1,423 @@
+//! The motion plan: the moves one machine makes to build the IR, and when its
+//! laser switches. One stage, one set of rules, for every back end: the
+//! verifier checks the plan against the machine's limits, and the back ends only
+//! write it (KRL, G-code, and any later one).
+//!
+//! The plan is not stored: [`Plan::walk`] generates it from the IR on demand, in
+//! one pass, so a 3.6 M-point part costs no second copy of its points. The same
+//! IR and machine always give the same moves, so what the verifier saw is what
+//! the writer writes.
+//!
+//! # The moves
+//! Every position is the tool tip: the laser focus ([`Point::focus`]). A path
+//! that does not join the one before (and every layer's first path) is reached
+//! through a transition:
+//! 1. [`MoveKind::Retract`]: `clearance` back up the nozzle from where the last
+//!    path ended (not before the first path);
+//! 2. [`MoveKind::Travel`]: to `clearance` above the path's first point;
+//! 3. [`MoveKind::Approach`]: down to the first point, at the path's first speed
+//!    when the path deposits from its first point, else at the machine's rapid.
+//!
+//! Then one move per point: [`MoveKind::Deposit`] from a point whose laser is on
+//! (at its speed and power), [`MoveKind::Travel`] at rapid from one whose laser
+//! is off. After the last path, a last retract. A path joins the one before when
+//! it starts where that one ended, with the same nozzle direction ([`joins`]):
+//! the motion goes straight on.
+//!
+//! "Up the nozzle" is the point's normal on a robot and a tilting head; on a
+//! 3-axis CNC, whose nozzle always points down, it is +Z.
+//!
+//! # The laser
+//! One rule for every back end: **the laser is on exactly during deposit moves.**
+//! It switches on ([`Visit::laser_on`]) at the start point of a run of deposit
+//! moves, after the move that reached it, and off ([`Visit::laser_off`]) at the
+//! end point of the run, before the next move or layer begins. A deposit move's
+//! power applies from its start. Paths that join keep the laser on when both
+//! sides deposit: the last point's own flag (off: nothing follows it in its
+//! path) switches nothing, since no move starts there.
+
+pub mod kinematics;
+
+use crate::ir::{AxisLimits, Kinematics, Layer, Machine, Point, Program};
+use kinematics::Rotary;
+
+/// A path joins the previous one when it starts within this distance (mm) of
+/// where the previous one ended ...
+pub const JOIN_MM: f64 = 1e-3;
+
+/// ... with a normal whose components differ by at most this (about 0.0006°).
+pub const JOIN_NORMAL: f32 = 1e-5;
+
+/// What a move is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MoveKind {
+    /// Laser on, laying a bead.
+    Deposit,
+    /// Laser off, down to a path's first point.
+    Approach,
+    /// Laser off, back up the nozzle by the clearance.
+    Retract,
+    /// Laser off, between clearance positions or over a gap inside a path.
+    Travel,
+}
+
+/// How fast a move goes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Speed {
+    /// As fast as the machine moves with the laser off (G0; KRL: `max_speed`).
+    Rapid,
+    /// This path speed, mm/s.
+    Feed(f32),
+}
+
+/// Where a move's target comes from, for diagnostics (0-based indices).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Where {
+    /// The IR point itself.
+    Point {
+        /// Layer index.
+        layer: usize,
+        /// Path index in the layer.
+        path: usize,
+        /// Point index in the path.
+        point: usize,
+    },
+    /// The retract and travel before a path.
+    Clearance {
+        /// Layer index.
+        layer: usize,
+        /// Path index in the layer.
+        path: usize,
+    },
+    /// The retract after the last path.
+    End,
+}
+
+impl std::fmt::Display for Where {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Where::Point { layer, path, point } => write!(
+                f,
+                "layer {}, path {}, point {}",
+                layer + 1,
+                path + 1,
+                point + 1
+            ),
+            Where::Clearance { layer, path } => write!(
+                f,
+                "the clearance move before layer {}, path {}",
+                layer + 1,
+                path + 1
+            ),
+            Where::End => f.write_str("the retract after the last path"),
+        }
+    }
+}
+
+/// One move of the machine.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Move {
+    /// What it is for.
+    pub kind: MoveKind,
+    /// The tool tip's target, mm.
+    pub to: [f64; 3],
+    /// The nozzle direction at the target (the IR normal: up the nozzle).
+    pub normal: [f32; 3],
+    /// The rotary axes at the target on a tilting head; zero elsewhere.
+    pub axes: Rotary,
+    /// How fast.
+    pub speed: Speed,
+    /// Laser power during the move, W (the path's power on an approach, so a
+    /// writer can preset it; only deposits fire the laser).
+    pub power: f32,
+    /// Where the target comes from.
+    pub at: Where,
+}
+
+impl Move {
+    /// Whether the laser is on during this move.
+    pub fn deposits(&self) -> bool {
+        self.kind == MoveKind::Deposit
+    }
+
+    /// The IR point whose speed and power the move carries: the point it
+    /// starts from inside a path (the IR gives a point's values "from this
+    /// point to the next"), else where its target comes from.
+    pub fn source(&self) -> Where {
+        match (self.kind, self.at) {
+            (MoveKind::Deposit | MoveKind::Travel, Where::Point { layer, path, point })
+                if point > 0 =>
+            {
+                Where::Point {
+                    layer,
+                    path,
+                    point: point - 1,
+                }
+            }
+            (_, at) => at,
+        }
+    }
+}
+
+/// What follows the plan: a verifier rule or a back end's writer.
+pub trait Visit {
+    /// Layer `number` (0-based) begins; its moves follow.
+    fn layer(&mut self, _index: usize, _layer: &Layer) {}
+    /// The laser switches on here, before `next` (a deposit) starts.
+    fn laser_on(&mut self, _next: &Move) {}
+    /// The laser switches off here, after the last deposit move.
+    fn laser_off(&mut self) {}
+    /// A move.
+    fn motion(&mut self, m: &Move);
+}
+
+/// How a machine moves, as far as the plan is concerned.
+#[derive(Clone, Copy, Debug)]
+enum Head {
+    /// Nozzle along the normal, oriented by the back end (robots).
+    Free,
+    /// A CNC that keeps the nozzle vertical.
+    Vertical,
+    /// A CNC with a tilting head: the plan solves its rotary axes.
+    Tilting(Kinematics, AxisLimits),
+}
+
+/// The motion plan of one machine for one IR.
+#[derive(Clone, Copy, Debug)]
+pub struct Plan<'a> {
+    program: &'a Program,
+    head: Head,
+    clearance: f64,
+}
+
+/// The kinematics a CNC program is written for: a machine declared with fewer
+/// than five axes has no rotary axes, whatever its kinematics says.
+pub fn effective_kinematics(cnc: &crate::ir::Cnc) -> Kinematics {
+    if cnc.axes >= 5 {
+        cnc.kinematics
+    } else {
+        Kinematics::Xyz
+    }
+}
+
+impl<'a> Plan<'a> {
+    /// The plan of `machine` for `program`.
+    pub fn new(program: &'a Program, machine: &Machine) -> Self {
+        let (head, clearance) = match machine {
+            Machine::Robot(r) => (Head::Free, r.clearance),
+            Machine::Cnc(c) => match effective_kinematics(c) {
+                Kinematics::Xyz => (Head::Vertical, c.clearance),
+                k => (Head::Tilting(k, c.limits), c.clearance),
+            },
+        };
+        Plan {
+            program,
+            head,
+            clearance,
+        }
+    }
+
+    /// The IR the plan is made from.
+    pub fn program(&self) -> &'a Program {
+        self.program
+    }
+
+    /// Generates every step of the plan, in order, into `v`.
+    pub fn walk(&self, v: &mut impl Visit) {
+        let mut w = Walker {
+            plan: self,
+            v,
+            cursor: None,
+            laser: false,
+        };
+        for (li, layer) in self.program.layers.iter().enumerate() {
+            w.switch_off();
+            w.v.layer(li, layer);
+            let mut first = true;
+            for (pi, path) in layer.paths.iter().enumerate() {
+                if path.points.is_empty() {
+                    continue;
+                }
+                w.path(li, pi, &path.points, first);
+                first = false;
+            }
+        }
+        w.end();
+    }
+}
+
+/// Whether a path starting at `next` joins one that ended with its tool tip at
+/// `focus` and normal `normal`: same place, same nozzle direction.
+pub fn joins(focus: [f64; 3], normal: [f32; 3], next: &Point) -> bool {
+    let f = next.focus();
+    let d2 = (0..3).map(|i| (f[i] - focus[i]).powi(2)).sum::<f64>();
+    d2 <= JOIN_MM * JOIN_MM && (0..3).all(|i| (next.normal[i] - normal[i]).abs() <= JOIN_NORMAL)
+}
+
+/// Where the nozzle is between paths.
+#[derive(Clone, Copy, Debug)]
+struct Cursor {
+    focus: [f64; 3],
+    normal: [f32; 3],
+    axes: Rotary,
+}
+
+struct Walker<'p, 'a, V> {
+    plan: &'p Plan<'a>,
+    v: &'p mut V,
+    cursor: Option<Cursor>,
+    laser: bool,
+}
+
+fn f64s(n: [f32; 3]) -> [f64; 3] {
+    [n[0] as f64, n[1] as f64, n[2] as f64]
+}
+
+fn along(p: [f64; 3], dir: [f64; 3], d: f64) -> [f64; 3] {
+    [p[0] + d * dir[0], p[1] + d * dir[1], p[2] + d * dir[2]]
+}
+
+impl<V: Visit> Walker<'_, '_, V> {
+    fn switch_off(&mut self) {
+        if self.laser {
+            self.laser = false;
+            self.v.laser_off();
+        }
+    }
+
+    /// Sends `m`, switching the laser first when the move needs it changed.
+    #[inline]
+    fn send(&mut self, m: Move) {
+        let on = m.deposits();
+        if on != self.laser {
+            self.laser = on;
+            if on {
+                self.v.laser_on(&m);
+            } else {
+                self.v.laser_off();
+            }
+        }
+        self.v.motion(&m);
+    }
+
+    /// Unit vector up the nozzle at a point with `normal`.
+    fn up(&self, normal: [f32; 3]) -> [f64; 3] {
+        if let Head::Vertical = self.plan.head {
+            return [0.0, 0.0, 1.0];
+        }
+        let n = f64s(normal);
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        [n[0] / len, n[1] / len, n[2] / len]
+    }
+
+    fn path(&mut self, li: usize, pi: usize, pts: &[Point], first_in_layer: bool) {
+        let first = &pts[0];
+        let mut cur = match self.cursor {
+            Some(c) if !first_in_layer && joins(c.focus, c.normal, first) => c,
+            _ => self.transition(li, pi, first, pts.len() > 1 && first.laser_on),
+        };
+        for (k, seg) in pts.windows(2).enumerate() {
+            let (from, to) = (&seg[0], &seg[1]);
+            if to.normal != cur.normal {
+                // Most parts keep one normal over many points: solve only on a change.
+                cur.normal = to.normal;
+                if let Head::Tilting(kin, _) = self.plan.head {
+                    cur.axes = kinematics::follow(kin, f64s(to.normal), cur.axes);
+                }
+            }
+            let (kind, speed) = if from.laser_on {
+                (MoveKind::Deposit, Speed::Feed(from.speed))
+            } else {
+                (MoveKind::Travel, Speed::Rapid)
+            };
+            self.send(Move {
+                kind,
+                to: to.focus(),
+                normal: to.normal,
+                axes: cur.axes,
+                speed,
+                power: from.power,
+                at: Where::Point {
+                    layer: li,
+                    path: pi,
+                    point: k + 1,
+                },
+            });
+        }
+        cur.focus = pts[pts.len() - 1].focus();
+        self.cursor = Some(cur);
+    }
+
+    /// Retract, travel above `first`, approach. Returns the cursor at `first`.
+    fn transition(&mut self, li: usize, pi: usize, first: &Point, feed_in: bool) -> Cursor {
+        let clearance = Where::Clearance {
+            layer: li,
+            path: pi,
+        };
+        let prev = self.cursor.map(|c| c.axes).unwrap_or_default();
+        if let Some(c) = self.cursor {
+            self.retract(c, clearance);
+        }
+        let axes = match self.plan.head {
+            Head::Tilting(kin, lim) => {
+                kinematics::reposition(kin, f64s(first.normal), prev, lim.tilt, lim.rotary)
+            }
+            _ => Rotary::default(),
+        };
+        let f0 = first.focus();
+        self.send(Move {
+            kind: MoveKind::Travel,
+            to: along(f0, self.up(first.normal), self.plan.clearance),
+            normal: first.normal,
+            axes,
+            speed: Speed::Rapid,
+            power: first.power,
+            at: clearance,
+        });
+        self.send(Move {
+            kind: MoveKind::Approach,
+            to: f0,
+            normal: first.normal,
+            axes,
+            speed: if feed_in {
+                Speed::Feed(first.speed)
+            } else {
+                Speed::Rapid
+            },
+            power: first.power,
+            at: Where::Point {
+                layer: li,
+                path: pi,
+                point: 0,
+            },
+        });
+        let c = Cursor {
+            focus: f0,
+            normal: first.normal,
+            axes,
+        };
+        self.cursor = Some(c);
+        c
+    }
+
+    fn retract(&mut self, c: Cursor, at: Where) {
+        let to = along(c.focus, self.up(c.normal), self.plan.clearance);
+        self.send(Move {
+            kind: MoveKind::Retract,
+            to,
+            normal: c.normal,
+            axes: c.axes,
+            speed: Speed::Rapid,
+            power: 0.0,
+            at,
+        });
+    }
+
+    /// After the last path: laser off and retract.
+    fn end(&mut self) {
+        self.switch_off();
+        if let Some(c) = self.cursor {
+            self.retract(c, Where::End);
+        }
+    }
+}

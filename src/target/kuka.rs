@@ -1,0 +1,20 @@
+//! KUKA KR C4/C5 controllers (KSS 8.x) as lmdc writes for them.
+
+/// Longest KRL name (module, DEF and DEFDAT names).
+pub const MAX_NAME: usize = 24;
+
+/// Highest `$VEL.CP` a KUKA controller accepts (its `$VEL_MA.CP` is at most
+/// 3 m/s), mm/s.
+pub const VEL_CP_MAX: f64 = 3000.0;
+
+/// Decimals of X Y Z (mm) and A B C (deg) in a `LIN`.
+pub const POS_DECIMALS: usize = 3;
+/// Decimals of `$VEL.CP` (m/s): 0.001 mm/s.
+pub const VEL_DECIMALS: usize = 6;
+/// Decimals of `$ANOUT` (fraction of full scale).
+pub const ANOUT_DECIMALS: usize = 4;
+
+/// KRL keywords a name made of the part and machine could collide with.
+pub const RESERVED: &[&str] = &[
+    "C_DIS", "C_ORI", "C_PTP", "C_VEL", "C_SPL", "WAIT_SEC", "SPTP_REL", "SLIN_REL",
+];

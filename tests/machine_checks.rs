@@ -1,0 +1,111 @@
+//! The machine checks of one run, all at once (issue: errors came in rounds):
+//! every machine is checked whatever another one found, each error names its
+//! machine and points at the field that declares the limit, and `--machine`
+//! checks that machine alone. Rendered reports are snapshots.
+
+use lmdc::diag::render;
+use lmdc::pipeline::{compile, compile_for};
+
+/// The twisted duct example with `edits` applied (each `(from, to)` must match).
+fn duct(edits: &[(&str, &str)]) -> String {
+    let mut src = std::fs::read_to_string("examples/twisted_duct.lmd").unwrap();
+    for (from, to) in edits {
+        assert!(src.contains(from), "{from}");
+        src = src.replacen(from, to, 1);
+    }
+    src
+}
+
+/// Three machines, three kinds of mistake: a CNC whose X and A travel the part
+/// exceeds, a second CNC too slow for the scan speeds, a robot whose analog
+/// full scale is below the planned power.
+fn three_mistakes() -> String {
+    duct(&[
+        ("full_scale = 4000 W", "full_scale = 3000 W"),
+        ("x = -500 mm .. 500 mm", "x = -20 mm .. 500 mm"),
+        ("a = -110 deg .. 110 deg", "a = -30 deg .. 30 deg"),
+    ]) + "
+machine slow {
+  kind = cnc
+  axes = 5
+  dialect = linuxcnc
+  max_speed = 5 mm/s
+}
+"
+}
+
+#[test]
+fn every_machine_error_in_one_run() {
+    let src = three_mistakes();
+    let c = compile(&src, &mut ());
+    assert!(c.program.is_none());
+    let codes: Vec<&str> = c.diagnostics.iter().map(|d| d.code.as_str()).collect();
+    assert_eq!(
+        codes,
+        [
+            "lmd::analog-range",
+            "lmd::axis-limit",
+            "lmd::axis-limit",
+            "lmd::machine-speed"
+        ],
+        "{codes:?}"
+    );
+    let text = render(&c.diagnostics, "duct.lmd", &src, false);
+    // Each names its own machine and limit.
+    assert!(text.contains("robot `kr60`"), "{text}");
+    assert!(text.contains("axis X of machine `dmu5`"), "{text}");
+    assert!(text.contains("axis A of machine `dmu5`"), "{text}");
+    assert!(text.contains("beyond its max_speed of 5 mm/s"), "{text}");
+    assert!(
+        text.contains("machine `slow` would have to move at 9.668 mm/s"),
+        "{text}"
+    );
+    insta::assert_snapshot!(text);
+}
+
+#[test]
+fn one_machine_is_checked_alone() {
+    let src = three_mistakes();
+    // kr60's own error only.
+    let c = compile_for(&src, Some("kr60"), &mut ()).unwrap();
+    let codes: Vec<&str> = c.diagnostics.iter().map(|d| d.code.as_str()).collect();
+    assert_eq!(codes, ["lmd::analog-range"]);
+    // A fine machine builds, whatever the others' problems.
+    let src = src.replace("full_scale = 3000 W", "full_scale = 4000 W");
+    let c = compile_for(&src, Some("kr60"), &mut ()).unwrap();
+    assert!(c.diagnostics.is_empty(), "{:?}", c.diagnostics);
+    let p = c.program.expect("kr60 alone is fine");
+    let names: Vec<&str> = p.machines().map(|m| m.machine().name()).collect();
+    assert_eq!(names, ["kr60"]);
+    // An unknown name is a usage error that lists the machines.
+    let e = compile_for(&src, Some("kr61"), &mut ()).err().unwrap();
+    assert_eq!(e.declared, "kr60, dmu5, slow");
+}
+
+#[test]
+fn warnings_come_with_errors() {
+    // The seam at the bend's extreme is a warning; the slow machine an error.
+    let src = duct(&[("seam = 90 deg", "seam = 0 deg")])
+        + "machine slow { kind = cnc\n axes = 5\n max_speed = 5 mm/s }\n";
+    let c = compile(&src, &mut ());
+    let codes: Vec<&str> = c.diagnostics.iter().map(|d| d.code.as_str()).collect();
+    assert!(codes.contains(&"lmd::seam-at-bend-extreme"), "{codes:?}");
+    assert!(codes.contains(&"lmd::machine-speed"), "{codes:?}");
+}
+
+#[test]
+fn two_machines_that_would_write_one_file() {
+    let src = duct(&[]) + "machine DMU5 { kind = cnc\n axes = 5\n max_speed = 100 mm/s }\n";
+    let c = compile(&src, &mut ());
+    let clash: Vec<_> = c
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "lmd::name-clash")
+        .collect();
+    assert_eq!(clash.len(), 1, "{:?}", c.diagnostics);
+    assert!(
+        clash[0].message.contains("twisted_duct_dmu5.ngc"),
+        "{}",
+        clash[0].message
+    );
+}
