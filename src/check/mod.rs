@@ -4,10 +4,10 @@
 //! takes a [`VerifiedMachine`] and cannot fail on a limit.
 //!
 //! One small type per rule, each reporting every violation once (how many, and
-//! the worst): the process rules over the IR's points ([`process`]: layer
+//! the worst): the process rules over the IR's points (`process`: layer
 //! height, bead speed, laser power, finite values), the machine rules over each
-//! selected machine's motion plan ([`machine`]: speed, axis travel, tilt, analog
-//! output) and the file names the machines would write ([`names`]). The machine
+//! selected machine's motion plan (`machine`: speed, axis travel, tilt, analog
+//! output) and the file names the machines would write (`names`). The machine
 //! rules run whatever the process rules found, so one run reports everything.
 
 mod machine;
