@@ -109,3 +109,74 @@ fn two_machines_that_would_write_one_file() {
         clash[0].message
     );
 }
+
+/// The sprocket tooth example with `edits` applied.
+fn tooth(edits: &[(&str, &str)]) -> String {
+    let mut src = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
+    for (from, to) in edits {
+        assert!(src.contains(from), "{from}");
+        src = src.replacen(from, to, 1);
+    }
+    src
+}
+
+fn errors(src: &str) -> Vec<lmdc::diag::Diagnostic> {
+    let c = compile(src, &mut ());
+    assert!(c.program.is_none(), "want errors");
+    c.diagnostics.into_vec().into_iter().filter(|d| d.is_error()).collect()
+}
+
+#[test]
+fn an_s_word_too_large_to_write_is_an_error_not_s0() {
+    // 1500 W × 1e16 = 1.5e19: used to be written as S0.
+    let d = errors(&tooth(&[(
+        "dialect = linuxcnc",
+        "dialect = linuxcnc\n  s_per_watt = 1e16",
+    )]));
+    assert_eq!(d.len(), 1, "{d:#?}");
+    assert_eq!(d[0].code, "lmd::resolution");
+    assert!(d[0].message.contains("1500 W"), "{}", d[0].message);
+    assert!(d[0].help.as_deref().unwrap().contains("lower `s_per_watt`"), "{:?}", d[0].help);
+}
+
+#[test]
+fn s_decimals_too_few_for_the_power_is_named() {
+    // S = W × 0.00025 with no decimals wrote S1 (4000 W) for the whole ramp down
+    // to 2100 W (S 0.525).
+    let src = duct(&[("dialect = linuxcnc", "dialect = linuxcnc\n  s_per_watt = 0.00025")]);
+    let d = errors(&src);
+    assert_eq!(d.len(), 1, "{d:#?}");
+    assert_eq!(d[0].code, "lmd::resolution");
+    assert!(d[0].message.contains("dmu5"), "{}", d[0].message);
+    assert!(d[0].help.as_deref().unwrap().contains("`s_decimals = 3`"), "{:?}", d[0].help);
+    // And with them, it builds and writes S0.525 for 2100 W.
+    let src = src.replace("s_per_watt = 0.00025", "s_per_watt = 0.00025\n  s_decimals = 3");
+    let c = compile(&src, &mut ());
+    let p = c.program.unwrap_or_else(|| panic!("{:?}", c.diagnostics));
+    let mut sink = lmdc::back::MemorySink::default();
+    lmdc::back::emit(p.machine(1).unwrap(), &lmdc::back::Templates::builtin().unwrap(), &mut sink).unwrap();
+    let text = sink.text("twisted_duct_dmu5.ngc").unwrap();
+    assert!(text.contains("S0.525"), "2100 W");
+    assert!(text.contains("S1.000"), "4000 W");
+}
+
+#[test]
+fn a_speed_that_rounds_to_zero_is_an_error_on_every_machine() {
+    let d = errors(&tooth(&[
+        ("speed = 6 mm/s)", "speed = 0.0004 mm/s)"),
+        ("speed = 6 mm/s\n", "speed = 0.0004 mm/s\n"),
+    ]));
+    let res: Vec<_> = d.iter().filter(|d| d.code == "lmd::resolution").collect();
+    assert_eq!(res.len(), 2, "{d:#?}");
+    assert!(res.iter().any(|d| d.message.contains("$VEL.CP = 0")), "{res:#?}");
+    assert!(res.iter().any(|d| d.message.contains("F0")), "{res:#?}");
+}
+
+#[test]
+fn a_full_scale_too_coarse_for_the_power_is_named() {
+    let d = errors(&tooth(&[("full_scale = 2000 W", "full_scale = 1e9 W")]));
+    assert_eq!(d.len(), 1, "{d:#?}");
+    assert_eq!(d[0].code, "lmd::resolution");
+    assert!(d[0].message.contains("$ANOUT[1] = 0"), "{}", d[0].message);
+    assert!(d[0].help.as_deref().unwrap().contains("full_scale"), "{:?}", d[0].help);
+}

@@ -6,6 +6,7 @@
 //! Limits are compared with the value as the program writes it, exactly (no
 //! slack): what the control reads must lie within what was declared.
 
+use super::resolution::Resolution;
 use super::worst::{plural, Worst};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::{AxisLimits, Cnc, Kinematics, Layer, Machine, MachineOrigin, Program, Robot};
@@ -68,7 +69,7 @@ fn cnc_speed(v: f64, m: &Machine) -> f64 {
     match m {
         Machine::Cnc(c) => {
             let per = c.dialect.feed.per_mm_s();
-            rounded(v * per, gcode::F_DECIMALS) / per
+            rounded(v * per, gcode::f_decimals(c.dialect.feed)) / per
         }
         Machine::Robot(_) => v,
     }
@@ -296,6 +297,7 @@ pub(super) struct MachineRules<'m> {
     travel: Option<Travel>,
     tilt: Option<Tilt>,
     analog: Option<Analog>,
+    resolution: Resolution,
     /// Moves in the plan (a KRL program has one LIN per move).
     pub moves: u64,
 }
@@ -316,6 +318,7 @@ impl<'m> MachineRules<'m> {
                     full_scale: r.full_scale_power,
                     found: None,
                 }),
+                resolution: Resolution::new(),
                 moves: 0,
             },
             Machine::Cnc(c) => {
@@ -337,6 +340,7 @@ impl<'m> MachineRules<'m> {
                         found: None,
                     }),
                     analog: None,
+                    resolution: Resolution::new(),
                     moves: 0,
                 }
             }
@@ -361,6 +365,7 @@ impl<'m> MachineRules<'m> {
         if let (Some(a), Machine::Robot(r)) = (self.analog, self.machine) {
             a.report(r, origin, o.power, out);
         }
+        self.resolution.report(self.machine, origin, o.bead_speed, out);
     }
 }
 
@@ -380,5 +385,6 @@ impl Visit for MachineRules<'_> {
         if let Some(a) = &mut self.analog {
             a.motion(m);
         }
+        self.resolution.motion(m, self.machine);
     }
 }

@@ -13,6 +13,7 @@
 mod machine;
 mod names;
 mod process;
+mod resolution;
 mod worst;
 
 pub use machine::NEEDS_TILT_DEG;

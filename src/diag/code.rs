@@ -170,6 +170,8 @@ codes! {
 
     MachineSpeed = "machine-speed", Machines,
         "the plan moves faster than a machine's `max_speed` (named, with the worst move)";
+    Resolution = "resolution", Machines,
+        "a power, speed or position a machine's program cannot write within 0.5 % (or at all) at the resolution its settings give (`s_decimals`, `s_per_watt`, `feed_units`, `full_scale`); names the setting to change";
     NeedsTilt = "needs-tilt", Machines,
         "the part's layers tilt but the CNC has 3 axes";
     AxisLimit = "axis-limit", Machines,

@@ -330,7 +330,8 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
                 .label(prev, "first declaration"),
             );
         }
-        if let Some((m, fields)) = machine::read(&mut env, &n.node, stmts, s.span, diags) {
+        if let Some((m, mut fields)) = machine::read(&mut env, &n.node, stmts, s.span, diags) {
+            fields.push(("name".into(), n.span));
             machines.push((
                 m,
                 MachineOrigin {

@@ -6,8 +6,14 @@ use crate::ir::{CommentStyle, Dialect, FeedUnit};
 
 /// Decimals of X Y Z (mm) and of the rotary angles (deg).
 pub const POS_DECIMALS: usize = 3;
-/// Most decimals of F (trailing zeros dropped).
-pub const F_DECIMALS: usize = 1;
+/// Most decimals of F (trailing zeros dropped): 0.1 mm/min, or 0.01 where F is
+/// in mm/s (0.1 mm/s would be 1–2 % of a typical scan speed).
+pub fn f_decimals(feed: FeedUnit) -> usize {
+    match feed {
+        FeedUnit::MmPerMin => 1,
+        FeedUnit::MmPerS => 2,
+    }
+}
 
 /// Profile names.
 pub const PROFILES: &[&str] = &["linuxcnc", "fagor8070", "sinumerik840d", "m20"];

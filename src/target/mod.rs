@@ -15,3 +15,23 @@ pub fn written(v: f64, decimals: usize) -> f64 {
     let s = 10f64.powi(decimals.min(9) as i32);
     (v * s).round() / s
 }
+
+/// How far a written power or speed may be from the planned one, relative: a
+/// program says a value only when its printed resolution gets within this.
+pub const WRITE_TOLERANCE: f64 = 0.005;
+
+/// The largest magnitude any number is written with (in its own unit: mm, deg,
+/// mm/min, S units, …). Far beyond any machine; the formatters are exact below it.
+pub const MAX_WRITTEN: f64 = 1e9;
+
+/// How `planned` comes out written with `decimals` decimals: `None` when it
+/// cannot be written (too large, or rounds to 0 from a positive value, or moves
+/// by more than [`WRITE_TOLERANCE`]); else the written value.
+pub fn quantised(planned: f64, decimals: usize) -> Option<f64> {
+    if !planned.is_finite() || planned.abs() >= MAX_WRITTEN {
+        return None;
+    }
+    let w = written(planned, decimals);
+    let ok = planned == 0.0 || (w != 0.0 && (w - planned).abs() <= WRITE_TOLERANCE * planned.abs());
+    ok.then_some(w)
+}

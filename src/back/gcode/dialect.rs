@@ -19,6 +19,8 @@ pub(crate) struct Words {
     pub s_decimals: usize,
     /// F per mm/s of speed (60 for mm/min).
     pub f_per_mm_s: f64,
+    /// Most decimals of F.
+    pub f_decimals: usize,
 }
 
 impl Words {
@@ -37,6 +39,7 @@ impl Words {
             s_per_watt: d.s_per_watt,
             s_decimals: d.s_decimals.min(9),
             f_per_mm_s: d.feed.per_mm_s(),
+            f_decimals: crate::target::gcode::f_decimals(d.feed),
         }
     }
 }

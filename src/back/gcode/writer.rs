@@ -14,7 +14,7 @@ use std::io::{self, Write};
 const CHUNK: usize = 1 << 20;
 /// Room kept free past [`CHUNK`]: more than any motion line needs.
 const ROOM: usize = 1024;
-use crate::target::gcode::{F_DECIMALS, POS_DECIMALS};
+use crate::target::gcode::POS_DECIMALS;
 /// Scratch size of one number (≥ MAX_NUMBER; copied whole, a fixed length).
 const NUM: usize = 32;
 /// Room for the rotary words ` A<n> C<n>`.
@@ -48,6 +48,7 @@ pub(crate) struct Writer<'w> {
     s_per_watt: f64,
     s_decimals: usize,
     f_per_mm_s: f64,
+    f_decimals: usize,
     /// `b'A'`/`b'B'` on a tilting head; `None` writes X Y Z only.
     tilt_letter: Option<u8>,
     /// Printed F and S as [`key`]s; `None` before the first.
@@ -90,6 +91,7 @@ impl<'w> Writer<'w> {
             s_per_watt: words.s_per_watt,
             s_decimals: words.s_decimals,
             f_per_mm_s: words.f_per_mm_s,
+            f_decimals: words.f_decimals,
             tilt_letter,
             f: None,
             s: None,
@@ -194,10 +196,10 @@ impl<'w> Writer<'w> {
         if speed.to_bits() != self.f_raw {
             self.f_raw = speed.to_bits();
             let f = speed as f64 * self.f_per_mm_s;
-            let f_key = key(f, F_DECIMALS);
+            let f_key = key(f, self.f_decimals);
             if self.f != Some(f_key) {
                 b[at..at + 2].copy_from_slice(b" F");
-                at = put_trimmed(b, at + 2, f, F_DECIMALS);
+                at = put_trimmed(b, at + 2, f, self.f_decimals);
                 self.f = Some(f_key);
             }
         }
