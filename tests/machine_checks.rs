@@ -123,7 +123,11 @@ fn tooth(edits: &[(&str, &str)]) -> String {
 fn errors(src: &str) -> Vec<lmdc::diag::Diagnostic> {
     let c = compile(src, &mut ());
     assert!(c.program.is_none(), "want errors");
-    c.diagnostics.into_vec().into_iter().filter(|d| d.is_error()).collect()
+    c.diagnostics
+        .into_vec()
+        .into_iter()
+        .filter(|d| d.is_error())
+        .collect()
 }
 
 #[test]
@@ -136,25 +140,44 @@ fn an_s_word_too_large_to_write_is_an_error_not_s0() {
     assert_eq!(d.len(), 1, "{d:#?}");
     assert_eq!(d[0].code, "lmd::resolution");
     assert!(d[0].message.contains("1500 W"), "{}", d[0].message);
-    assert!(d[0].help.as_deref().unwrap().contains("lower `s_per_watt`"), "{:?}", d[0].help);
+    assert!(
+        d[0].help.as_deref().unwrap().contains("lower `s_per_watt`"),
+        "{:?}",
+        d[0].help
+    );
 }
 
 #[test]
 fn s_decimals_too_few_for_the_power_is_named() {
     // S = W × 0.00025 with no decimals wrote S1 (4000 W) for the whole ramp down
     // to 2100 W (S 0.525).
-    let src = duct(&[("dialect = linuxcnc", "dialect = linuxcnc\n  s_per_watt = 0.00025")]);
+    let src = duct(&[(
+        "dialect = linuxcnc",
+        "dialect = linuxcnc\n  s_per_watt = 0.00025",
+    )]);
     let d = errors(&src);
     assert_eq!(d.len(), 1, "{d:#?}");
     assert_eq!(d[0].code, "lmd::resolution");
     assert!(d[0].message.contains("dmu5"), "{}", d[0].message);
-    assert!(d[0].help.as_deref().unwrap().contains("`s_decimals = 3`"), "{:?}", d[0].help);
+    assert!(
+        d[0].help.as_deref().unwrap().contains("`s_decimals = 3`"),
+        "{:?}",
+        d[0].help
+    );
     // And with them, it builds and writes S0.525 for 2100 W.
-    let src = src.replace("s_per_watt = 0.00025", "s_per_watt = 0.00025\n  s_decimals = 3");
+    let src = src.replace(
+        "s_per_watt = 0.00025",
+        "s_per_watt = 0.00025\n  s_decimals = 3",
+    );
     let c = compile(&src, &mut ());
     let p = c.program.unwrap_or_else(|| panic!("{:?}", c.diagnostics));
     let mut sink = lmdc::back::MemorySink::default();
-    lmdc::back::emit(p.machine(1).unwrap(), &lmdc::back::Templates::builtin().unwrap(), &mut sink).unwrap();
+    lmdc::back::emit(
+        p.machine(1).unwrap(),
+        &lmdc::back::Templates::builtin().unwrap(),
+        &mut sink,
+    )
+    .unwrap();
     let text = sink.text("twisted_duct_dmu5.ngc").unwrap();
     assert!(text.contains("S0.525"), "2100 W");
     assert!(text.contains("S1.000"), "4000 W");
@@ -168,7 +191,10 @@ fn a_speed_that_rounds_to_zero_is_an_error_on_every_machine() {
     ]));
     let res: Vec<_> = d.iter().filter(|d| d.code == "lmd::resolution").collect();
     assert_eq!(res.len(), 2, "{d:#?}");
-    assert!(res.iter().any(|d| d.message.contains("$VEL.CP = 0")), "{res:#?}");
+    assert!(
+        res.iter().any(|d| d.message.contains("$VEL.CP = 0")),
+        "{res:#?}"
+    );
     assert!(res.iter().any(|d| d.message.contains("F0")), "{res:#?}");
 }
 
@@ -178,5 +204,9 @@ fn a_full_scale_too_coarse_for_the_power_is_named() {
     assert_eq!(d.len(), 1, "{d:#?}");
     assert_eq!(d[0].code, "lmd::resolution");
     assert!(d[0].message.contains("$ANOUT[1] = 0"), "{}", d[0].message);
-    assert!(d[0].help.as_deref().unwrap().contains("full_scale"), "{:?}", d[0].help);
+    assert!(
+        d[0].help.as_deref().unwrap().contains("full_scale"),
+        "{:?}",
+        d[0].help
+    );
 }

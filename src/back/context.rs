@@ -4,6 +4,21 @@
 use super::fixed::fixed;
 use crate::ir::{Layer, Program};
 
+/// Longest name written into a comment: the comment lines of the built-in
+/// templates then stay far inside every control's line length (LinuxCNC: 255).
+pub const MAX_SHOWN: usize = 64;
+
+/// `name` as comments show it: at most [`MAX_SHOWN`] characters, the start kept
+/// and `...` marking the cut. File and program names keep the whole name's
+/// hash, so shortened names never make two programs alike.
+pub fn shown(name: &str) -> String {
+    if name.chars().count() <= MAX_SHOWN {
+        return name.to_string();
+    }
+    let head: String = name.chars().take(MAX_SHOWN - 3).collect();
+    format!("{head}...")
+}
+
 /// `layers`, `paths`, `points`: the program's totals.
 pub fn counts(ctx: &mut tera::Context, prog: &Program) {
     ctx.insert("layers", &prog.layers.len());
@@ -63,7 +78,7 @@ pub fn styles(ctx: &mut tera::Context, p: &Program, safe: &dyn Fn(&str) -> Strin
             safe(&format!(
                 "style {} {}: power {}, speed {}, powder {}, colour {}",
                 s.id,
-                s.name,
+                shown(&s.name),
                 value(s.power, "W"),
                 value(s.speed, "mm/s"),
                 value(s.powder, "g/min"),

@@ -365,7 +365,8 @@ impl<'m> MachineRules<'m> {
         if let (Some(a), Machine::Robot(r)) = (self.analog, self.machine) {
             a.report(r, origin, o.power, out);
         }
-        self.resolution.report(self.machine, origin, o.bead_speed, out);
+        self.resolution
+            .report(self.machine, origin, o.bead_speed, out);
     }
 }
 

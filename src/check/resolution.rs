@@ -189,7 +189,10 @@ fn cnc_power(c: &Cnc, w: Worst, least: f64, o: &MachineOrigin, tol: &str) -> Dia
         )
     } else {
         // The fewest decimals that write the smallest power within the tolerance.
-        let need = (0.5 / (WRITE_TOLERANCE * least * spw)).log10().ceil().max(0.0) as usize;
+        let need = (0.5 / (WRITE_TOLERANCE * least * spw))
+            .log10()
+            .ceil()
+            .max(0.0) as usize;
         if need <= 4 {
             format!(
                 "S = power × s_per_watt is written with s_decimals = {} decimals: set `s_decimals = {need}` \

@@ -172,6 +172,8 @@ codes! {
         "the plan moves faster than a machine's `max_speed` (named, with the worst move)";
     Resolution = "resolution", Machines,
         "a power, speed or position a machine's program cannot write within 0.5 % (or at all) at the resolution its settings give (`s_decimals`, `s_per_watt`, `feed_units`, `full_scale`); names the setting to change";
+    ProgramText = "program-text", Machines,
+        "a text written into a program as it is (`laser_on`, `laser_off`, `tcp_on`, `tcp_off`, `preamble`, `postamble`) that is not one line of printable ASCII, a laser switch that is empty, or a postamble without a program end (`M2`, `M30`)";
     NeedsTilt = "needs-tilt", Machines,
         "the part's layers tilt but the CNC has 3 axes";
     AxisLimit = "axis-limit", Machines,

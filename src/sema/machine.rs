@@ -3,6 +3,7 @@
 //! [`Machine`].
 
 use super::fields::{self, Fields};
+use super::program_text;
 use super::value::{Env, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::{AxisLimits, Cnc, FeedUnit, FrameRef, Kinematics, Machine, Pose, Robot, ToolAxis};
@@ -12,6 +13,11 @@ use crate::target::gcode as dialect;
 use crate::units::{Dim, Power};
 
 use crate::target::kuka::VEL_CP_MAX as ROBOT_VEL_CP_MAX;
+
+/// Largest angle a robot axis or frame is declared with, deg.
+const MAX_ANGLE_DEG: f64 = 360.0;
+/// Largest frame offset, mm: beyond any cell.
+const MAX_FRAME_MM: f64 = 100_000.0;
 
 const ROBOT_FIELDS: &[&str] = &[
     "kind",
@@ -151,11 +157,34 @@ fn frame_ref(f: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<Frame
             );
             let index = a.count("index", 1, 32, Some("1"), diags);
             let mut g = |k: &str, d: Dim| {
-                a.quantity(k, d, None, diags).map(|q| q.0).or(if a.has(k) {
-                    None
+                let limit = if d == Dim::ANGLE {
+                    MAX_ANGLE_DEG.to_radians()
                 } else {
-                    Some(0.0)
-                })
+                    MAX_FRAME_MM
+                };
+                match a.quantity(k, d, None, diags) {
+                    Some((v, span)) if v.abs() > limit => {
+                        diags.push(
+                            Diagnostic::error(
+                                Code::OutOfRange,
+                                format!("`{k}` of the frame is {}", if d == Dim::ANGLE {
+                                    format!("{}°", crate::units::short(v.to_degrees()))
+                                } else {
+                                    format!("{} mm", crate::units::short(v))
+                                }),
+                            )
+                            .label(span, "beyond any cell")
+                            .help(format!(
+                                "frame offsets lie within ±{} m and angles within ±{MAX_ANGLE_DEG}°",
+                                MAX_FRAME_MM / 1000.0
+                            )),
+                        );
+                        None
+                    }
+                    Some((v, _)) => Some(v),
+                    None if a.has(k) => None,
+                    None => Some(0.0),
+                }
             };
             let (x, y, z) = (
                 g("x", Dim::LENGTH),
@@ -253,7 +282,24 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
                 let mut ok = true;
                 for (i, it) in items.iter().enumerate() {
                     match fields::quantity(it, Dim::ANGLE, "home", diags) {
-                        Some(a) => out[i] = a.to_degrees(),
+                        Some(a) if a.to_degrees().abs() <= MAX_ANGLE_DEG => out[i] = a.to_degrees(),
+                        Some(a) => {
+                            diags.push(
+                                Diagnostic::error(
+                                    Code::OutOfRange,
+                                    format!(
+                                        "home axis A{} at {}° is beyond any robot axis",
+                                        i + 1,
+                                        crate::units::short(a.to_degrees())
+                                    ),
+                                )
+                                .label(it.span, "axis angle")
+                                .help(format!(
+                                    "axis angles lie within ±{MAX_ANGLE_DEG}°: give the angles of the home position the robot really has"
+                                )),
+                            );
+                            ok = false;
+                        }
                         None => ok = false,
                     }
                 }
@@ -338,19 +384,26 @@ fn cnc(
         None if f.has("dialect") => None,
         None => dialect::profile("linuxcnc"),
     };
+    let mut text_ok = true;
     if let Some(d) = d.as_mut() {
-        let text = |k: &str, diags: &mut Diagnostics| f.text(k, None, diags).map(|t| t.0);
-        if let Some(t) = text("laser_on", diags) {
-            d.laser_on = t;
-        }
-        if let Some(t) = text("laser_off", diags) {
-            d.laser_off = t;
-        }
-        if let Some(t) = text("tcp_on", diags) {
-            d.tcp_on = t;
-        }
-        if let Some(t) = text("tcp_off", diags) {
-            d.tcp_off = t;
+        for (key, slot) in [
+            ("laser_on", &mut d.laser_on),
+            ("laser_off", &mut d.laser_off),
+            ("tcp_on", &mut d.tcp_on),
+            ("tcp_off", &mut d.tcp_off),
+        ] {
+            if let Some((t, span)) = f.text(key, None, diags) {
+                let ok = if key.starts_with("laser") {
+                    program_text::switch(&t, key, span, diags)
+                } else {
+                    program_text::line(&t, key, span, diags)
+                };
+                if ok {
+                    *slot = t;
+                } else {
+                    text_ok = false;
+                }
+            }
         }
         // S words are plain numbers on the control: `s_per_watt` is how many S
         // units one watt is (1 when S is programmed in W).
@@ -369,20 +422,42 @@ fn cnc(
         }
         for key in ["preamble", "postamble"] {
             if let Some(v) = f.value(key, None, diags) {
-                let lines = match &v.value {
-                    Value::List(items) => items
-                        .iter()
-                        .map(|i| match &i.value {
-                            Value::Str(s) => Some(s.clone()),
-                            _ => None,
-                        })
-                        .collect::<Option<Vec<_>>>(),
-                    Value::Str(s) => Some(vec![s.clone()]),
-                    _ => None,
+                let items: Vec<&_> = match &v.value {
+                    Value::List(items) => items.iter().collect(),
+                    _ => vec![v],
                 };
+                let lines = items
+                    .iter()
+                    .map(|i| match &i.value {
+                        Value::Str(s) => Some((s.clone(), i.span)),
+                        _ => None,
+                    })
+                    .collect::<Option<Vec<_>>>();
+                let lines = lines.map(|l| {
+                    let ok = l
+                        .iter()
+                        .filter(|(t, span)| !program_text::line(t, key, *span, diags))
+                        .count()
+                        == 0;
+                    text_ok &= ok;
+                    l.into_iter().map(|(t, _)| t).collect::<Vec<_>>()
+                });
                 match lines {
                     Some(l) if key == "preamble" => d.preamble = l,
-                    Some(l) => d.postamble = l,
+                    Some(l) => {
+                        if !program_text::ends_program(&l) {
+                            diags.push(
+                                Diagnostic::error(
+                                    Code::ProgramText,
+                                    "the postamble does not end the program",
+                                )
+                                .label(v.span, "no `M2` or `M30` here")
+                                .help("end it with the control's program end, e.g. `postamble = [\"M5\", \"M30\"]`: without one the control runs on past the last line (LinuxCNC refuses the file)"),
+                            );
+                            text_ok = false;
+                        }
+                        d.postamble = l;
+                    }
                     None => diags.push(
                         Diagnostic::error(
                             Code::Type,
@@ -446,7 +521,7 @@ fn cnc(
             }
         }
     }
-    if !ok {
+    if !ok || !text_ok {
         return None;
     }
     Some(Cnc {

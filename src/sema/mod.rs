@@ -10,6 +10,7 @@ mod machine;
 pub mod model;
 mod process;
 mod profile;
+mod program_text;
 mod section;
 pub mod slicing;
 mod style;

@@ -14,7 +14,7 @@
 mod dialect;
 mod writer;
 
-use super::context::{counts, layer_context, styles};
+use super::context::{counts, layer_context, shown, styles};
 use super::fixed::trimmed;
 use super::{EmitError, Sink, Templates};
 use crate::check::VerifiedMachine;
@@ -126,8 +126,8 @@ fn base_context(p: &Program, cnc: &Cnc, kin: Kinematics, file: &str) -> tera::Co
     let mut ctx = tera::Context::new();
     ctx.insert("comment_open", open);
     ctx.insert("comment_close", close);
-    ctx.insert("part", &comment_safe(&p.part, style));
-    ctx.insert("machine", &comment_safe(&cnc.name, style));
+    ctx.insert("part", &comment_safe(&shown(&p.part), style));
+    ctx.insert("machine", &comment_safe(&shown(&cnc.name), style));
     ctx.insert("profile", &comment_safe(&cnc.dialect.profile, style));
     ctx.insert("file", file);
     ctx.insert("program", file.split('.').next().unwrap_or(file));

@@ -18,7 +18,7 @@
 pub mod modules;
 pub mod orient;
 
-use super::context::{counts, layer_context, styles};
+use super::context::{counts, layer_context, shown, styles};
 use super::fixed::{fixed, trimmed};
 use super::{EmitError, Sink, Templates};
 use crate::check::VerifiedMachine;
@@ -202,8 +202,8 @@ impl Visit for Writer<'_, '_> {
 fn base_context(p: &crate::ir::Program, robot: &Robot, stem: &str) -> tera::Context {
     let mut ctx = tera::Context::new();
     ctx.insert("program", stem);
-    ctx.insert("part", &comment_safe(&p.part));
-    ctx.insert("machine", &comment_safe(&robot.name));
+    ctx.insert("part", &comment_safe(&shown(&p.part)));
+    ctx.insert("machine", &comment_safe(&shown(&robot.name)));
     ctx.insert("generator", concat!("lmdc ", env!("CARGO_PKG_VERSION")));
     ctx
 }
