@@ -77,6 +77,10 @@ pub struct Limits {
     pub speed: [f64; 2],
     /// Laser power range, W.
     pub power: [f64; 2],
+    /// The bead's width, mm (0 when unknown: layers are then not checked for
+    /// lying on each other).
+    #[serde(default)]
+    pub bead_width: f64,
 }
 
 /// One layer: deposited on the plane at `station` of the spine.

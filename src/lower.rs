@@ -23,6 +23,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
                 model.process.power_range[0].watts(),
                 model.process.power_range[1].watts(),
             ],
+            bead_width: bead.width.0,
         },
         machines: model.machines.iter().map(|(m, _)| m.clone()).collect(),
         styles: model

@@ -183,6 +183,7 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
             layer_height: [0.1, 1.0],
             speed: [1.0, 50.0],
             power: [0.0, 4000.0],
+            bead_width: 0.0,
         },
         machines,
         styles: Vec::new(),

@@ -14,6 +14,7 @@ mod machine;
 mod names;
 mod process;
 mod resolution;
+mod stacking;
 mod worst;
 
 pub use machine::NEEDS_TILT_DEG;
@@ -123,6 +124,9 @@ pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics>
     points.run(&program);
     let broken = points.finite.failed();
     points.report(&program, &mut diags);
+    if !broken {
+        stacking::check(&program, &mut diags);
+    }
 
     let machines: Vec<usize> = match select {
         Select::All => (0..program.machines.len()).collect(),

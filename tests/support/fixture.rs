@@ -135,6 +135,7 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
             layer_height: [0.0, 100.0],
             speed: [1.0, 50.0],
             power: [0.0, 4000.0],
+            bead_width: 0.0,
         },
         machines,
         styles: Vec::new(),

@@ -1,0 +1,241 @@
+//! Layers must lie on each other: every deposit of a layer needs the layer below
+//! within half a bead width across the nozzle, or the bead lands beside the part
+//! (a twist of 10⁶° moved points 10.9 mm off a 6 mm bead). Measured across the
+//! nozzle (perpendicular to the point's normal), so the layer's own height does
+//! not count; the first layer lies on the substrate and is not checked.
+//!
+//! Linear in the points: the segments of the layer below go into a uniform 3-D
+//! grid of cells a search radius wide, and deposits are sampled every quarter
+//! bead along their path.
+
+use super::worst::{plural, Worst};
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::{Layer, Program};
+use crate::plan::Where;
+use crate::units::short;
+
+/// Most cells of one layer's grid; beyond it the cells grow.
+const MAX_CELLS: usize = 1 << 20;
+
+/// Deposits of each layer farther than half a bead from the layer below.
+pub(super) fn check(p: &Program, out: &mut Diagnostics) {
+    let w = p.limits.bead_width;
+    if !(w.is_finite() && w > 0.0) {
+        return;
+    }
+    let half = w / 2.0;
+    // Within this 3-D distance a segment can be at most `half` across the
+    // nozzle with the layer's height along it.
+    let reach = (half * half + p.limits.layer_height[1].powi(2)).sqrt() * 1.01;
+    let mut found: Option<Worst> = None;
+    for (li, pair) in p.layers.windows(2).enumerate() {
+        let below = Segments::of(&pair[0]);
+        if below.segs.is_empty() {
+            continue;
+        }
+        let grid = Grid::new(&below.segs, reach);
+        for (pi, path) in pair[1].paths.iter().enumerate() {
+            let mut since = f64::INFINITY;
+            let mut last: Option<[f64; 3]> = None;
+            for (k, pt) in path.points.iter().enumerate() {
+                if let Some(l) = last {
+                    since += dist(l, pt.pos);
+                }
+                last = Some(pt.pos);
+                // The deposit from this point, or into it.
+                let deposits = pt.laser_on || (k > 0 && path.points[k - 1].laser_on);
+                if !deposits || since < w / 4.0 {
+                    continue;
+                }
+                since = 0.0;
+                let n = pt.normal.map(|v| v as f64);
+                let across = grid.nearest_across(&below.segs, pt.pos, n, reach);
+                if across.is_none_or(|d| d > half) {
+                    let at = Where::Point {
+                        layer: li + 1,
+                        path: pi,
+                        point: k,
+                    };
+                    Worst::hit(&mut found, across.unwrap_or(reach), half, at);
+                }
+            }
+        }
+    }
+    let Some(f) = found else { return };
+    let o = &p.origins;
+    out.push(
+        Diagnostic::error(
+            Code::Stacking,
+            format!(
+                "a deposit lands {} mm across the nozzle from the layer below, more than half the bead width ({} mm), at {} ({} place{} so far off, sampled every quarter bead along the paths)",
+                if f.value >= reach { format!("more than {}", short(reach)) } else { short(f.value) },
+                short(half),
+                f.at,
+                f.count,
+                plural(f.count)
+            ),
+        )
+        .label_opt(o.slicing, "the layers come from here")
+        .label_opt(o.spine, "the part's shape")
+        .help("each layer must lie on the one below: check the twist, the bend and the section sizes for jumps between layers, or use more layers"),
+    );
+}
+
+/// A layer's deposited segments (between points, where the laser is on).
+struct Segments {
+    segs: Vec<[[f64; 3]; 2]>,
+}
+
+impl Segments {
+    fn of(layer: &Layer) -> Self {
+        let segs = layer
+            .paths
+            .iter()
+            .flat_map(|p| p.points.windows(2))
+            .filter(|w| w[0].laser_on)
+            .map(|w| [w[0].pos, w[1].pos])
+            .filter(|s| s.iter().flatten().all(|v| v.is_finite()))
+            .collect();
+        Segments { segs }
+    }
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The point of segment `s` nearest to `p`.
+fn closest(s: &[[f64; 3]; 2], p: [f64; 3]) -> [f64; 3] {
+    let d = sub(s[1], s[0]);
+    let len2 = dot(d, d);
+    let t = if len2 > 0.0 {
+        (dot(sub(p, s[0]), d) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    [s[0][0] + t * d[0], s[0][1] + t * d[1], s[0][2] + t * d[2]]
+}
+
+/// Segments by cell: a dense grid over their bounding box (counting sort).
+struct Grid {
+    origin: [f64; 3],
+    cell: f64,
+    dims: [usize; 3],
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl Grid {
+    fn new(segs: &[[[f64; 3]; 2]], reach: f64) -> Self {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for s in segs {
+            for p in s {
+                for i in 0..3 {
+                    lo[i] = lo[i].min(p[i]);
+                    hi[i] = hi[i].max(p[i]);
+                }
+            }
+        }
+        let mut cell = reach.max(1e-9);
+        let dims = loop {
+            let d =
+                [0, 1, 2].map(|i| (((hi[i] - lo[i]) / cell).floor() as usize).saturating_add(1));
+            if d.iter()
+                .try_fold(1usize, |a, &b| a.checked_mul(b))
+                .is_some_and(|n| n <= MAX_CELLS)
+            {
+                break d;
+            }
+            cell *= 2.0;
+        };
+        let mut g = Grid {
+            origin: lo,
+            cell,
+            dims,
+            start: vec![0; dims[0] * dims[1] * dims[2] + 1],
+            items: Vec::new(),
+        };
+        // Counting sort: count per cell, prefix sums, then place.
+        let mut count = vec![0u32; g.start.len()];
+        for s in segs {
+            g.for_cells(s, |c| count[c + 1] += 1);
+        }
+        for i in 1..count.len() {
+            count[i] += count[i - 1];
+        }
+        g.start.clone_from(&count);
+        let mut items = vec![0u32; count[count.len() - 1] as usize];
+        for (k, s) in segs.iter().enumerate() {
+            g.for_cells(s, |c| {
+                items[count[c] as usize] = k as u32;
+                count[c] += 1;
+            });
+        }
+        g.items = items;
+        g
+    }
+
+    fn index(&self, p: [f64; 3]) -> [usize; 3] {
+        [0, 1, 2].map(|i| {
+            let v = ((p[i] - self.origin[i]) / self.cell).floor();
+            (v.max(0.0) as usize).min(self.dims[i] - 1)
+        })
+    }
+
+    /// Calls `f` with each cell a segment's bounding box covers.
+    fn for_cells(&self, s: &[[f64; 3]; 2], mut f: impl FnMut(usize)) {
+        let a = self.index(s[0]);
+        let b = self.index(s[1]);
+        for x in a[0].min(b[0])..=a[0].max(b[0]) {
+            for y in a[1].min(b[1])..=a[1].max(b[1]) {
+                for z in a[2].min(b[2])..=a[2].max(b[2]) {
+                    f((x * self.dims[1] + y) * self.dims[2] + z);
+                }
+            }
+        }
+    }
+
+    /// The smallest distance across normal `n` from `p` to a segment within
+    /// `reach` of it, if any.
+    fn nearest_across(
+        &self,
+        segs: &[[[f64; 3]; 2]],
+        p: [f64; 3],
+        n: [f64; 3],
+        reach: f64,
+    ) -> Option<f64> {
+        let c = self.index(p);
+        let mut best: Option<f64> = None;
+        let span = (reach / self.cell).ceil() as usize;
+        for x in c[0].saturating_sub(span)..=(c[0] + span).min(self.dims[0] - 1) {
+            for y in c[1].saturating_sub(span)..=(c[1] + span).min(self.dims[1] - 1) {
+                for z in c[2].saturating_sub(span)..=(c[2] + span).min(self.dims[2] - 1) {
+                    let cell = (x * self.dims[1] + y) * self.dims[2] + z;
+                    let (a, b) = (self.start[cell] as usize, self.start[cell + 1] as usize);
+                    for &k in &self.items[a..b] {
+                        let q = closest(&segs[k as usize], p);
+                        let d = sub(p, q);
+                        if dot(d, d) > reach * reach {
+                            continue;
+                        }
+                        let along = dot(d, n);
+                        let across = (dot(d, d) - along * along).max(0.0).sqrt();
+                        if best.is_none_or(|b| across < b) {
+                            best = Some(across);
+                        }
+                    }
+                }
+            }
+        }
+        best
+    }
+}
