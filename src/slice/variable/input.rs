@@ -110,6 +110,15 @@ impl HeightRange {
         Ok(HeightRange { low, high })
     }
 
+    /// A range written in the source, such as the paper's bead map: the
+    /// caller vouches for `0 < low ≤ high`.
+    pub(super) const fn known(low: f64, high: f64) -> Self {
+        HeightRange {
+            low: Length(low),
+            high: Length(high),
+        }
+    }
+
     /// The lowest and highest of `heights` (e.g. the top at every deposited
     /// point). An empty list, a NaN or a height ≤ 0 is [`Invalid`]: every
     /// deposited point needs some metal.

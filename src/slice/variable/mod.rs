@@ -20,6 +20,7 @@
 
 pub mod input;
 pub mod layers;
+pub mod speed;
 
 pub use input::{HeightRange, Invalid, Positive};
 
