@@ -20,6 +20,8 @@
 
 pub mod input;
 pub mod layers;
+pub mod profile;
+pub mod segments;
 pub mod speed;
 
 pub use input::{HeightRange, Invalid, Positive};
