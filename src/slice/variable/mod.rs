@@ -20,6 +20,7 @@
 
 pub mod input;
 pub mod layers;
+pub mod overlap;
 pub mod profile;
 pub mod segments;
 pub mod speed;
