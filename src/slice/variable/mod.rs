@@ -25,6 +25,9 @@ pub mod profile;
 pub mod segments;
 pub mod speed;
 
+#[cfg(test)]
+mod props;
+
 pub use input::{HeightRange, Invalid, Positive};
 
 /// Relative slack on comparisons of heights and on rounding quotients to whole
