@@ -5,6 +5,7 @@ pub mod feasibility;
 pub mod normal;
 pub mod planar;
 pub mod styling;
+pub mod variable;
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::geometry::LoftGeometry;
