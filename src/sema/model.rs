@@ -1,9 +1,10 @@
 //! The checked semantic model: names resolved, units converted to typed values,
 //! ranges checked. Geometry and slicing read only this.
 
+pub use crate::bead::HeightModel;
 use crate::ir::Machine;
 use crate::span::Span;
-use crate::units::{Angle, Density, Length, MassFlow, Power, Speed};
+use crate::units::{Angle, Length, MassFlow, Power, Speed};
 
 /// A whole checked `.lmd` file.
 #[derive(Clone, Debug)]
@@ -197,36 +198,6 @@ pub struct Loft {
     pub spine_span: Span,
     /// `from` and `to` values.
     pub section_spans: [Span; 2],
-}
-
-/// How bead height follows scan speed.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum HeightModel {
-    /// `H = slope · v + intercept` (seed 003's fitted map).
-    Linear {
-        /// mm per mm/s (a time).
-        slope: f64,
-        /// mm.
-        intercept: Length,
-    },
-    /// Deposited area from the powder caught: `A = η·ṁ/(ρ·v)`; the bead is a
-    /// circular segment of chord `width` and that area.
-    MassBalance {
-        /// Powder feed.
-        feed: MassFlow,
-        /// Catch efficiency η (0–1).
-        efficiency: f64,
-        /// Density of the deposited metal.
-        density: Density,
-    },
-    /// A bead measured at one process point: this height at this speed (seed
-    /// 001's 0.7 mm at 6 mm/s).
-    Measured {
-        /// Bead height.
-        height: Length,
-        /// The scan speed it was measured at.
-        speed: Speed,
-    },
 }
 
 /// A bead model.
