@@ -69,3 +69,101 @@ fn unknown_names_get_suggestions() {
         assert!(text.contains(want), "missing {want:?} in\n{text}");
     }
 }
+
+/// The diagnostics of an example, as (code, severity is error, message, help).
+fn found(path: &str) -> Vec<(String, bool, String, String)> {
+    let src = std::fs::read_to_string(path).unwrap();
+    compile(&src, &mut ())
+        .diagnostics
+        .iter()
+        .map(|d| {
+            (
+                d.code.as_str().to_string(),
+                d.is_error(),
+                d.message.clone(),
+                d.help.clone().unwrap_or_default(),
+            )
+        })
+        .collect()
+}
+
+/// Asserts that one run of `path` reports each `(code, fragment of the
+/// message)`, and as many errors as `want` lists errors.
+fn reports_all(path: &str, want: &[(&str, &str)]) {
+    let got = found(path);
+    for (code, fragment) in want {
+        assert!(
+            got.iter()
+                .any(|(c, _, m, _)| c == code && m.contains(fragment)),
+            "{path}: no {code} saying {fragment:?} in {got:#?}"
+        );
+    }
+}
+
+// Cases of issue 8 a user met in several runs; each now reports every
+// mistake in one (the snapshots show the whole report).
+
+#[test]
+fn a_style_choice_does_not_hide_a_ramp_or_style_ranges() {
+    reports_all(
+        "examples/errors/style_ramp_ranges.lmd",
+        &[
+            ("lmd::bad-choice", "`paths` must be one of"),
+            (
+                "lmd::out-of-range",
+                "the power schedule reaches 2000 W .. 3000 W",
+            ),
+            ("lmd::out-of-range", "style `fast` scans at 20 mm/s"),
+            ("lmd::out-of-range", "style `hot` sets 2800 W"),
+        ],
+    );
+}
+
+#[test]
+fn an_unknown_machine_kind_does_not_hide_a_misspelt_field() {
+    reports_all(
+        "examples/errors/machine_kind_and_field.lmd",
+        &[
+            ("lmd::bad-choice", "`kind` must be one of: robot, cnc"),
+            ("lmd::unknown-field", "machine `m` has no field `max_sped`"),
+        ],
+    );
+    let got = found("examples/errors/machine_kind_and_field.lmd");
+    assert!(
+        got.iter()
+            .any(|(_, _, _, h)| h == "did you mean `max_speed`?"),
+        "{got:#?}"
+    );
+}
+
+#[test]
+fn a_wrong_unit_in_process_does_not_hide_the_next() {
+    reports_all(
+        "examples/errors/process_units.lmd",
+        &[
+            (
+                "lmd::unit-mismatch",
+                "`power` must be a power (W), not a speed",
+            ),
+            (
+                "lmd::unit-mismatch",
+                "`speed` must be a speed (mm/s), not a power",
+            ),
+        ],
+    );
+}
+
+#[test]
+fn warnings_are_shown_with_errors() {
+    reports_all(
+        "examples/errors/warnings_with_errors.lmd",
+        &[
+            ("lmd::unit-mismatch", "`seam` must be an angle"),
+            ("lmd::powder-mismatch", "modelled at 45.9 g/min of powder"),
+        ],
+    );
+    let got = found("examples/errors/warnings_with_errors.lmd");
+    assert!(got
+        .iter()
+        .any(|(c, e, _, _)| c == "lmd::powder-mismatch" && !e));
+}

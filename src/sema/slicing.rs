@@ -3,6 +3,7 @@
 
 use super::fields::{self, Fields};
 use super::model::{Pattern, Raster, Resolution, Slicing};
+use super::suggest::did_you_mean;
 use super::value::{Call, Env, Spanned as SpannedValue, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::{Span, Spanned};
@@ -55,6 +56,28 @@ pub const MAX_LAYERS: usize = 100_000;
 /// See [`MAX_LAYERS`].
 pub const MAX_POINTS: usize = 100_000;
 
+/// Fields of `slicing normal { … }`.
+const NORMAL_FIELDS: &[&str] = &["layers", "points", "chord_error", "seam"];
+
+/// Fields of `slicing planar { … }`.
+const PLANAR_FIELDS: &[&str] = &[
+    "layer_height",
+    "layers",
+    "contours",
+    "offset",
+    "infill",
+    "chord_error",
+];
+
+/// The fields of a block whose strategy is wrong or missing: checked against
+/// what either strategy takes, so a misspelt field is reported in the same
+/// run as the strategy.
+fn any_strategy<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagnostics) {
+    let mut all: Vec<&str> = NORMAL_FIELDS.to_vec();
+    all.extend(PLANAR_FIELDS.iter().filter(|k| !NORMAL_FIELDS.contains(k)));
+    Fields::block(env, stmts, &all, &[], "slicing".into(), span, diags);
+}
+
 /// Reads a slicing block.
 pub fn read<'a>(
     env: &mut Env<'a>,
@@ -67,14 +90,17 @@ pub fn read<'a>(
         Some(s) if s.node == "planar" => return planar(env, stmts, span, diags).map(Spec::Planar),
         Some(s) if STRATEGIES.contains(&s.node.as_str()) => {}
         Some(s) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::BadChoice,
-                    format!("lmdc does not know the slicing strategy `{}`", s.node),
-                )
-                .label(s.span, "unknown strategy")
-                .help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine) or `slicing planar { … }` (flat filled layers of an extrusion)"),
-            );
+            let mut d = Diagnostic::error(
+                Code::BadChoice,
+                format!("lmdc does not know the slicing strategy `{}`", s.node),
+            )
+            .label(s.span, "unknown strategy");
+            d = match did_you_mean(&s.node, STRATEGIES.iter().copied()) {
+                Some(m) => d.help(format!("did you mean `slicing {m} {{ … }}`?")),
+                None => d.help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine) or `slicing planar { … }` (flat filled layers of an extrusion)"),
+            };
+            diags.push(d);
+            any_strategy(env, stmts, span, diags);
             return None;
         }
         None => {
@@ -83,20 +109,21 @@ pub fn read<'a>(
                     .label(span, "which strategy?")
                     .help("write `slicing normal { … }`"),
             );
+            any_strategy(env, stmts, span, diags);
             return None;
         }
     }
     let f = Fields::block(
         env,
         stmts,
-        &["layers", "points", "chord_error", "seam"],
+        NORMAL_FIELDS,
         &[],
         "slicing".into(),
         span,
         diags,
     );
     let layers = match f.value("layers", None, diags) {
-        None if f.has("layers") => return None,
+        None if f.has("layers") => None,
         None => Some(None),
         Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
         Some(_) => f
@@ -165,14 +192,7 @@ fn planar<'a>(
     let f = Fields::block(
         env,
         stmts,
-        &[
-            "layer_height",
-            "layers",
-            "contours",
-            "offset",
-            "infill",
-            "chord_error",
-        ],
+        PLANAR_FIELDS,
         &[],
         "planar slicing".into(),
         span,
@@ -203,25 +223,26 @@ fn planar<'a>(
             None
         }
     };
-    let infill = infill?;
     let contours = match f.count("contours", 0, MAX_CONTOURS, None, diags) {
-        Some((n, sp)) => {
-            if n == 0 && infill.is_none() {
-                diags.push(
-                    Diagnostic::error(
-                        Code::OutOfRange,
-                        "a layer with no contour and no infill deposits nothing",
-                    )
-                    .label(sp, "no contour")
-                    .help("add `infill = raster(…)` or at least one contour"),
-                );
-                return None;
-            }
-            Some(n)
-        }
+        Some((n, sp)) => Some((n, Some(sp))),
         None if f.has("contours") => None,
         // A raster alone fills seed 001's layers; a profile alone is a wall.
-        None => Some(if infill.is_some() { 0 } else { 1 }),
+        None => infill.map(|i| (if i.is_some() { 0 } else { 1 }, None)),
+    };
+    // Nothing to deposit: known once both are.
+    let contours = match (contours, &infill) {
+        (Some((0, Some(sp))), Some(None)) => {
+            diags.push(
+                Diagnostic::error(
+                    Code::OutOfRange,
+                    "a layer with no contour and no infill deposits nothing",
+                )
+                .label(sp, "no contour")
+                .help("add `infill = raster(…)` or at least one contour"),
+            );
+            None
+        }
+        (c, _) => c.map(|c| c.0),
     };
     let chord_error = match f.positive("chord_error", Dim::LENGTH, None, diags) {
         Some((e, _)) => Some(Length(e)),
@@ -233,7 +254,7 @@ fn planar<'a>(
         layers: layers?,
         contours: contours?,
         offset: offset?,
-        infill,
+        infill: infill?,
         chord_error: chord_error?,
         span,
     })

@@ -3,7 +3,9 @@
 //! style's values against the bead model and the laser.
 
 use super::fields::{self, Fields};
-use super::model::{Bead, Inheritance, PathSelect, Plan, Process, Style, StyleCondition, Styles};
+use super::model::{Bead, Inheritance, PathSelect, Style, StyleCondition, Styles};
+use super::process::Laser;
+use super::slicing::PlanarSpec;
 use super::value::{Env, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
@@ -422,25 +424,32 @@ pub fn inheritance<'a>(
     })
 }
 
-/// Checks each style's values against the bead model (speed range, and the bead
-/// height that speed gives) and the laser's power range, and what the plan
-/// makes of the table (a loft has no tracks to style; layers past the last; a
-/// raster that turns away from the tracks it would inherit from), and makes
-/// the table.
+/// What the style checks need from the rest of the file, each part when it
+/// is known: a style is checked against what is there, so a mistake
+/// elsewhere does not hide one in the style table.
+pub struct Context<'c> {
+    /// Whether the solid is a loft, whose wall is one track a layer.
+    pub loft: bool,
+    /// `slicing planar { … }`, if read.
+    pub planar: Option<&'c PlanarSpec>,
+    /// The bead model the part is built with.
+    pub bead: Option<&'c Bead>,
+    /// The laser's power range.
+    pub laser: Option<&'c Laser>,
+}
+
+/// Checks each style's values against the bead model (speed range, and the
+/// bead height that speed gives) and the laser's power range, and what the
+/// plan makes of the table (a loft has no tracks to style; a raster that
+/// turns away from the tracks it would inherit from), and makes the table.
 pub fn assemble(
-    plan: &Plan,
     written: Vec<Written>,
     inheritance: Option<Inheritance>,
     inheritance_span: Option<Span>,
-    bead: &Bead,
-    process: &Process,
+    cx: &Context<'_>,
     diags: &mut Diagnostics,
 ) -> Option<Styles> {
-    let slicing = match plan {
-        Plan::Block { slicing, .. } => Some(slicing),
-        Plan::Duct { .. } => None,
-    };
-    if let (None, Some(first)) = (slicing, written.first()) {
+    if let (true, Some(first)) = (cx.loft, written.first()) {
         diags.push(
             Diagnostic::error(
                 Code::Unsupported,
@@ -451,14 +460,9 @@ pub fn assemble(
         );
         return None;
     }
-    let layers = match plan {
-        Plan::Block { extrusion, .. } => extrusion.layers.len(),
-        Plan::Duct { .. } => 0,
-    };
     let mut ok = written.iter().all(|w| w.complete);
     for w in &written {
-        never_applies(&w.style, layers, diags);
-        ok &= values_fit(w, bead, process, diags);
+        ok &= values_fit(w, cx.bead, cx.laser, diags);
     }
     match inheritance_span {
         Some(sp) if written.is_empty() => diags.push(
@@ -469,9 +473,10 @@ pub fn assemble(
         Some(sp) => {
             // The band runs along a styled track; a track turned across it
             // covers at most a band's width of its length.
-            let turn = slicing
+            let turn = cx
+                .planar
                 .and_then(|s| s.infill)
-                .map_or(0.0, |r| r.rotate.deg().rem_euclid(180.0));
+                .map_or(0.0, |(r, _)| r.rotate.deg().rem_euclid(180.0));
             if turn > 1e-9 && 180.0 - turn > 1e-9 {
                 diags.push(
                     Diagnostic::warning(
@@ -494,33 +499,17 @@ pub fn assemble(
     })
 }
 
-/// Warns about a `layers` range that starts past the part's last layer.
-fn never_applies(s: &Style, layers: usize, diags: &mut Diagnostics) {
-    let first = s.rules.iter().flatten().find_map(|c| match *c {
-        StyleCondition::Layers(a, _) if a > layers => Some(a),
-        _ => None,
-    });
-    if let Some(a) = first {
-        diags.push(
-            Diagnostic::warning(
-                Code::Unused,
-                format!(
-                    "style `{}` asks for layer {a}, but the part has {layers}",
-                    s.name
-                ),
-            )
-            .label(s.span, "a `when` block that picks nothing")
-            .help("layers count from 1 to the last, as in the programs' layer comments"),
-        );
-    }
-}
-
 /// Whether a style's speed (and the bead height it gives) and power are ones
 /// the bead model and the laser allow; reports those that are not.
-fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnostics) -> bool {
+fn values_fit(
+    w: &Written,
+    bead: Option<&Bead>,
+    laser: Option<&Laser>,
+    diags: &mut Diagnostics,
+) -> bool {
     let s = &w.style;
     let mut ok = true;
-    if let (Some(v), Some(sp)) = (s.speed, w.speed_span) {
+    if let (Some(v), Some(sp), Some(bead)) = (s.speed, w.speed_span, bead) {
         let h = bead.model.height_at(v, bead.width);
         if !bead.covers_speed(v) {
             diags.push(
@@ -552,9 +541,9 @@ fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnosti
             ok = false;
         }
     }
-    if let (Some(p), Some(sp)) = (s.power, w.power_span) {
-        if !process.covers_power(p) {
-            let [lo, hi] = process.power_range;
+    if let (Some(p), Some(sp), Some(laser)) = (s.power, w.power_span, laser) {
+        if !laser.covers(p) {
+            let [lo, hi] = laser.range;
             diags.push(
                 Diagnostic::error(
                     Code::OutOfRange,
@@ -565,13 +554,13 @@ fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnosti
                 )
                 .label(sp, "style power")
                 .label(
-                    process.power_range_span.unwrap_or(process.power_span),
-                    match process.power_range_span {
+                    laser.range_span.unwrap_or(laser.power_span),
+                    match laser.range_span {
                         Some(_) => "the laser's range",
                         None => "the range is this power alone",
                     },
                 )
-                .help(match process.power_range_span {
+                .help(match laser.range_span {
                     Some(_) => "widen `power_range` if the laser allows it, or change the style's power",
                     None => "declare the laser's range in `process`, e.g. `power_range = 1000 W .. 3000 W`",
                 }),

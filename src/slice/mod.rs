@@ -2,6 +2,7 @@
 //! layers). Reads the model and the geometry built from it.
 
 pub mod feasibility;
+pub mod layers;
 pub mod normal;
 pub mod planar;
 pub mod styling;
