@@ -218,8 +218,58 @@ fn extent(w: &Written<'_>, spec: &PlanarSpec, diags: &mut Diagnostics) -> Option
     }
 }
 
+/// Whether tracks `d` apart (declared at `at`) neither leave gaps nor pile
+/// up with `bead`; `flat` is the flat-top offset, if known, for the help.
+fn declared_offset(
+    d: Length,
+    at: Span,
+    bead: &Bead,
+    flat: Option<Length>,
+    diags: &mut Diagnostics,
+) -> bool {
+    let width = bead.width;
+    if d.0 > width.0 * (1.0 + 1e-9) {
+        diags.push(
+            Diagnostic::error(
+                Code::FillGap,
+                format!("tracks {d} apart leave gaps: the bead is {width} wide"),
+            )
+            .label(at, "track offset")
+            .label(bead.span, "bead model")
+            .help(match flat {
+                Some(f) => format!(
+                    "use an offset of at most the bead width; {f} keeps the top flat (d = A/h)"
+                ),
+                None => "use an offset of at most the bead width".to_string(),
+            }),
+        );
+        return false;
+    }
+    if d.0 < width.0 * MIN_OFFSET_RATIO {
+        diags.push(
+            Diagnostic::error(
+                Code::Overlap,
+                format!(
+                    "tracks {d} apart overlap by {:.0} % of the {width} bead: the layer piles up",
+                    100.0 * (1.0 - d.0 / width.0),
+                ),
+            )
+            .label(at, "track offset")
+            .help(match flat {
+                Some(f) => format!(
+                    "overlaps of about 33 % keep tracks level; d = A/h = {f} gives a flat top"
+                ),
+                None => "overlaps of about 33 % keep tracks level".to_string(),
+            }),
+        );
+        return false;
+    }
+    true
+}
+
 /// Joins an extrusion with its planar slicing and its bead: checks the scan
-/// speed (`speed` as the process block gives it) and the track offset against
+/// speed (`speed` as the process block gives it: `Some(None)` when not
+/// written, `None` when wrong) and the track offset against
 /// the bead, and keeps the profile as a shape or, when it follows the layer,
 /// as an expression over the file's `constants`.
 pub fn assemble(
@@ -227,58 +277,30 @@ pub fn assemble(
     w: Written<'_>,
     bead: &Bead,
     spec: PlanarSpec,
-    speed: Option<(Speed, Span)>,
+    speed: Option<Option<(Speed, Span)>>,
     constants: &[(String, Span, Expr)],
     diags: &mut Diagnostics,
 ) -> Option<(Extrusion, PlanarSlicing)> {
     // The height is declared once whatever the speed.
     let extent = extent(&w, &spec, diags);
     let width = bead.width;
-    let v = scan_speed(speed, bead, spec.span, diags)?;
-    let h = bead.model.height_at(v, width);
-    let overlapped = spec.overlapped();
+    // `None` when the process speed is wrong (reported there) or the bead
+    // model does not hold at it.
+    let v = speed.and_then(|s| scan_speed(s, bead, spec.span, diags));
+    let flat = v.map(|v| flat_top_offset(width, bead.model.height_at(v, width)));
+    // A declared offset is checked against the bead's width, whatever the
+    // speed; the flat-top offset d = A/h never leaves a gap or piles up.
+    let offset_ok = match spec.offset {
+        Some((d, at)) if spec.overlapped() => declared_offset(d, at, bead, flat, diags),
+        _ => true,
+    };
+    let (Some(v), Some(flat), true) = (v, flat, offset_ok) else {
+        return None;
+    };
     let (offset, offset_derived) = match spec.offset {
         Some((d, _)) => (d, false),
-        None => (flat_top_offset(width, h), true),
+        None => (flat, true),
     };
-    let offset_at = spec.offset.map(|o| o.1).unwrap_or(spec.span);
-    if overlapped && offset.0 > width.0 * (1.0 + 1e-9) {
-        diags.push(
-            Diagnostic::error(
-                Code::FillGap,
-                format!(
-                    "tracks {} apart leave gaps: the bead is {} wide",
-                    offset, width
-                ),
-            )
-            .label(offset_at, "track offset")
-            .label(bead.span, "bead model")
-            .help(format!(
-                "use an offset of at most the bead width; {} keeps the top flat (d = A/h)",
-                flat_top_offset(width, h)
-            )),
-        );
-        return None;
-    }
-    if overlapped && offset.0 < width.0 * MIN_OFFSET_RATIO {
-        diags.push(
-            Diagnostic::error(
-                Code::Overlap,
-                format!(
-                    "tracks {} apart overlap by {:.0} % of the {} bead: the layer piles up",
-                    offset,
-                    100.0 * (1.0 - offset.0 / width.0),
-                    width
-                ),
-            )
-            .label(offset_at, "track offset")
-            .help(format!(
-                "overlaps of about 33 % keep tracks level; d = A/h = {} gives a flat top",
-                flat_top_offset(width, h)
-            )),
-        );
-        return None;
-    }
     let (profile, shape_span) = match w.source {
         Source::Fixed(s) => (LayerProfile::Fixed(s), w.profile_span),
         Source::Expr(e) if env.depends_on_layer(e) => (

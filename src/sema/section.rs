@@ -65,8 +65,23 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
             let a = f.positive("width", l, Some("60 mm"), diags);
             let b = f.positive("height", l, Some("40 mm"), diags);
             let r = f.quantity("radius", l, Some("5 mm"), diags);
+            // A negative radius is wrong whatever the sides.
+            let r = r.filter(|&(r, rs)| {
+                if r >= 0.0 {
+                    return true;
+                }
+                diags.push(
+                    Diagnostic::error(
+                        Code::OutOfRange,
+                        "the corner radius must lie between 0 and half the shorter side",
+                    )
+                    .label(rs, format!("this is {}", Length(r)))
+                    .help("a corner radius is 0 (sharp) or more"),
+                );
+                false
+            });
             let (a, b, (r, rs)) = (a?.0 / 2.0, b?.0 / 2.0, r?);
-            if r < 0.0 || r > a.min(b) {
+            if r > a.min(b) {
                 diags.push(
                     Diagnostic::error(
                         Code::OutOfRange,

@@ -145,11 +145,11 @@ pub fn plan(
     if mismatch(solid.kind, slicing.strategy, slicing.stmt, diags) {
         return (None, bead);
     }
-    let plan = match (solid.solid, slicing.spec, &bead, speed) {
-        (Some(Solid::Loft(loft)), Some(Spec::Normal(slicing)), _, _) => {
+    let plan = match (solid.solid, slicing.spec, &bead) {
+        (Some(Solid::Loft(loft)), Some(Spec::Normal(slicing)), _) => {
             Some(Plan::Duct { loft, slicing })
         }
-        (Some(Solid::Extrude(w)), Some(Spec::Planar(spec)), Some(b), Some(speed)) => {
+        (Some(Solid::Extrude(w)), Some(Spec::Planar(spec)), Some(b)) => {
             extrude::assemble(env, w, b, spec, speed, &decl.constants, diags)
                 .map(|(extrusion, slicing)| Plan::Block { extrusion, slicing })
         }
