@@ -105,13 +105,13 @@ const MISTAKES: &[Mistake] = &[
     Mistake {
         find: "let w = 40 mm\n",
         replace: "let w = 40 mm\nlet w = 50 mm\n",
-        code: "lmd::duplicate",
+        code: "lmd::duplicate-name",
         says: "`w` is declared twice",
     },
     Mistake {
         find: "speed = 8 mm/s",
         replace: "speed = 20 mm/s",
-        code: "lmd::out-of-range",
+        code: "lmd::style-speed",
         says: "style `edge` scans at 20 mm/s",
     },
     Mistake {
@@ -135,25 +135,25 @@ const MISTAKES: &[Mistake] = &[
     Mistake {
         find: "hit = 99 %",
         replace: "hit = 150 %",
-        code: "lmd::out-of-range",
+        code: "lmd::hit-range",
         says: "`hit` is the share of a track",
     },
     Mistake {
         find: "contours = 1\n",
         replace: "contours = 1 mm\n",
-        code: "lmd::type",
+        code: "lmd::expected-whole-number",
         says: "`contours` must be a whole number",
     },
     Mistake {
         find: "power = 2000 W",
         replace: "power = 3000 W",
-        code: "lmd::out-of-range",
+        code: "lmd::power-schedule",
         says: "the power schedule reaches 3000 W",
     },
     Mistake {
         find: "power = 1700 W",
         replace: "power = 1000 W",
-        code: "lmd::out-of-range",
+        code: "lmd::style-power",
         says: "style `short` sets 1000 W",
     },
     Mistake {
@@ -165,13 +165,13 @@ const MISTAKES: &[Mistake] = &[
     Mistake {
         find: "diameter = 30 mm",
         replace: "diameter = -30 mm",
-        code: "lmd::out-of-range",
+        code: "lmd::not-positive",
         says: "`diameter` must be greater than zero",
     },
     Mistake {
         find: "machine kr30",
         replace: "machine mill",
-        code: "lmd::duplicate",
+        code: "lmd::duplicate-name",
         says: "machine `mill` is declared twice",
     },
     Mistake {

@@ -110,11 +110,11 @@ fn a_style_choice_does_not_hide_a_ramp_or_style_ranges() {
         &[
             ("lmd::bad-choice", "`paths` must be one of"),
             (
-                "lmd::out-of-range",
+                "lmd::power-schedule",
                 "the power schedule reaches 2000 W .. 3000 W",
             ),
-            ("lmd::out-of-range", "style `fast` scans at 20 mm/s"),
-            ("lmd::out-of-range", "style `hot` sets 2800 W"),
+            ("lmd::style-speed", "style `fast` scans at 20 mm/s"),
+            ("lmd::style-power", "style `hot` sets 2800 W"),
         ],
     );
 }

@@ -362,7 +362,7 @@ machine m {{ kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}
 fn scan_speed_and_layer_height_are_checked_at_their_lines() {
     let tooth = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
     let d = diagnose(&tooth.replace("speed = 6 mm/s\n  power", "speed = 8 mm/s\n  power"));
-    let m = with_code(&d, "lmd::out-of-range");
+    let m = with_code(&d, "lmd::scan-speed");
     assert!(
         m.iter()
             .any(|m| m.contains("8 mm/s") && m.contains("measured at")),
@@ -460,7 +460,7 @@ fn style_ids_and_names() {
     let d = diagnose(&src);
     assert!(
         d.iter()
-            .any(|x| x.code == "lmd::type" && x.message.contains("is not a style name")),
+            .any(|x| x.code == "lmd::style-name" && x.message.contains("is not a style name")),
         "{d:?}"
     );
 }

@@ -47,7 +47,7 @@ pub fn read<'a>(
             return true;
         }
         diags.push(
-            Diagnostic::error(Code::OutOfRange, "scan speeds must be greater than zero")
+            Diagnostic::error(Code::NotPositive, "scan speeds must be greater than zero")
                 .label(speed_span, "the lower end must be > 0"),
         );
         false
@@ -62,7 +62,7 @@ pub fn read<'a>(
                     return true;
                 }
                 diags.push(
-                    Diagnostic::error(Code::OutOfRange, "the slope of a bead's height over speed must be negative")
+                    Diagnostic::error(Code::BeadSlope, "the slope of a bead's height over speed must be negative")
                         .label(at, format!("this is {} mm per mm/s", short(slope)))
                         .help("a faster scan lays a lower bead: fit H = slope·v + intercept with slope < 0"),
                 );
@@ -87,7 +87,7 @@ pub fn read<'a>(
                 }
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::EfficiencyRange,
                         "catch efficiency must lie between 0 and 1",
                     )
                     .label(at, format!("this is {}", short(eff)))
@@ -231,7 +231,7 @@ pub fn named(
         Some(v) => {
             diags.push(
                 Diagnostic::error(
-                    Code::Type,
+                    Code::ExpectedName,
                     format!("`{key}` names the bead model {what} is built with"),
                 )
                 .label(v.span, format!("this is {}", v.value.describe()))

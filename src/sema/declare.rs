@@ -51,9 +51,12 @@ pub fn read<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnostics)
 }
 
 fn duplicate(name: &str, what: &str, at: Span, prev: Span) -> Diagnostic {
-    Diagnostic::error(Code::Duplicate, format!("{what}`{name}` is declared twice"))
-        .label(at, "second declaration")
-        .label(prev, "first declaration")
+    Diagnostic::error(
+        Code::DuplicateName,
+        format!("{what}`{name}` is declared twice"),
+    )
+    .label(at, "second declaration")
+    .label(prev, "first declaration")
 }
 
 fn constants<'a>(
@@ -134,9 +137,12 @@ fn section_value(
         Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
         other => {
             diags.push(
-                Diagnostic::error(Code::Type, format!("section `{name}` must be a shape"))
-                    .label(v.span, format!("this is {}", other.describe()))
-                    .help(format!("shapes: {}", section::SHAPES.join(", "))),
+                Diagnostic::error(
+                    Code::ExpectedShape,
+                    format!("section `{name}` must be a shape"),
+                )
+                .label(v.span, format!("this is {}", other.describe()))
+                .help(format!("shapes: {}", section::SHAPES.join(", "))),
             );
             None
         }

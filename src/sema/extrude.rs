@@ -158,7 +158,7 @@ fn scan_speed(
                 let measured = matches!(bead.model, HeightModel::Measured { .. });
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::ScanSpeed,
                         if measured {
                             format!("the scan speed {v} is not the {lo} bead `{}` was measured at", bead.name)
                         } else {
@@ -198,7 +198,7 @@ fn extent(w: &Written<'_>, spec: &PlanarSpec, diags: &mut Diagnostics) -> Option
         (Some((_, ls)), Some((_, hs))) => {
             diags.push(
                 Diagnostic::error(
-                    Code::Duplicate,
+                    Code::ConflictingFields,
                     "give the layer count or the height, not both",
                 )
                 .label(ls, "layers")

@@ -93,10 +93,13 @@ impl<'a> Fields<'a> {
                 .find(|e| e.key == key && !repeated.contains(&key))
             {
                 diags.push(
-                    Diagnostic::error(Code::Duplicate, format!("`{key}` is given twice in {what}"))
-                        .label(s.kind.span, "second time")
-                        .label(prev.key_span, "first time")
-                        .help("keep one of them"),
+                    Diagnostic::error(
+                        Code::DuplicateField,
+                        format!("`{key}` is given twice in {what}"),
+                    )
+                    .label(s.kind.span, "second time")
+                    .label(prev.key_span, "first time")
+                    .help("keep one of them"),
                 );
                 continue;
             }
@@ -210,9 +213,12 @@ impl<'a> Fields<'a> {
             }
             if let Some(prev) = entries.iter().find(|e| e.key == key) {
                 diags.push(
-                    Diagnostic::error(Code::Duplicate, format!("`{key}` is given twice to {what}"))
-                        .label(key_span, "second time")
-                        .label(prev.key_span, "first time"),
+                    Diagnostic::error(
+                        Code::DuplicateField,
+                        format!("`{key}` is given twice to {what}"),
+                    )
+                    .label(key_span, "second time")
+                    .label(prev.key_span, "first time"),
                 );
                 continue;
             }
@@ -336,7 +342,7 @@ impl<'a> Fields<'a> {
         } else {
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::NotPositive,
                     format!("`{key}` must be greater than zero"),
                 )
                 .label(span, format!("this is {}", short(q)))
@@ -364,7 +370,7 @@ impl<'a> Fields<'a> {
             other => {
                 diags.push(
                     Diagnostic::error(
-                        Code::Type,
+                        Code::ExpectedRange,
                         format!("`{key}` must be a range of {}", dim.describe()),
                     )
                     .label(v.span, format!("this is {}", other.describe()))
@@ -412,9 +418,12 @@ impl<'a> Fields<'a> {
             Value::Str(s) => Some((s.clone(), v.span)),
             other => {
                 diags.push(
-                    Diagnostic::error(Code::Type, format!("`{key}` must be a text in quotes"))
-                        .label(v.span, format!("this is {}", other.describe()))
-                        .help(format!("write `{key} = \"…\"`")),
+                    Diagnostic::error(
+                        Code::ExpectedText,
+                        format!("`{key}` must be a text in quotes"),
+                    )
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help(format!("write `{key} = \"…\"`")),
                 );
                 None
             }
@@ -437,7 +446,7 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
                 Some((b, text)) if value.abs() > b => {
                     diags.push(
                         Diagnostic::error(
-                            Code::OutOfRange,
+                            Code::TooLarge,
                             format!("`{key}` is beyond what lmdc plans ({text})"),
                         )
                         .label(v.span, format!("this is {}", short(*value)))
@@ -453,9 +462,11 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
             None
         }
         other => {
-            let mut d =
-                Diagnostic::error(Code::Type, format!("`{key}` must be {}", dim.describe()))
-                    .label(v.span, format!("this is {}", other.describe()));
+            let mut d = Diagnostic::error(
+                Code::ExpectedNumber,
+                format!("`{key}` must be {}", dim.describe()),
+            )
+            .label(v.span, format!("this is {}", other.describe()));
             if let Value::Symbol(s) = other {
                 d = d.help(format!("`{s}` is not a constant; declare it with `let {s} = …` or write a number with a unit"));
             }
@@ -500,7 +511,7 @@ pub fn count(
             } else {
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::CountRange,
                         format!("`{key}` must be between {lo} and {hi}"),
                     )
                     .label(v.span, format!("this is {}", short(*value))),
@@ -510,8 +521,11 @@ pub fn count(
         }
         other => {
             diags.push(
-                Diagnostic::error(Code::Type, format!("`{key}` must be a whole number"))
-                    .label(v.span, format!("this is {}", other.describe())),
+                Diagnostic::error(
+                    Code::ExpectedWholeNumber,
+                    format!("`{key}` must be a whole number"),
+                )
+                .label(v.span, format!("this is {}", other.describe())),
             );
             None
         }

@@ -128,7 +128,7 @@ pub fn read<'a>(
                     ok = false;
                     diags.push(
                         Diagnostic::error(
-                            Code::OutOfRange,
+                            Code::SectionTooSmall,
                             format!("this section is too small for a {} wide bead measured at its outer face", b.width),
                         )
                         .label(at, "section")
@@ -173,7 +173,7 @@ fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Opt
         Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
         other => {
             diags.push(
-                Diagnostic::error(Code::Type, "expected a section")
+                Diagnostic::error(Code::ExpectedShape, "expected a section")
                     .label(v.span, format!("this is {}", other.describe()))
                     .help(format!(
                         "name a declared section or write one of: {}",
@@ -201,7 +201,7 @@ fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
             if a > std::f64::consts::PI * 1.5 {
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::BendAngle,
                         "a bend angle above 270° makes the part collide with itself",
                     )
                     .label(aspan, format!("this is {}", Angle(a)))
@@ -217,7 +217,7 @@ fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
         other => {
             diags.push(
                 Diagnostic::error(
-                    Code::Type,
+                    Code::ExpectedShape,
                     "a spine is `line(length = …)` or `arc(radius = …, angle = …)`",
                 )
                 .label(v.span, format!("this is {}", other.describe()))

@@ -31,7 +31,7 @@ pub fn read<'a>(
         match seen.get(n.node.as_str()) {
             Some(&prev) => diags.push(
                 Diagnostic::error(
-                    Code::Duplicate,
+                    Code::DuplicateName,
                     format!("machine `{}` is declared twice", n.node),
                 )
                 .label(n.span, "second declaration")

@@ -119,7 +119,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Di
         if lo < a.0 || hi > b.0 {
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::PowerSchedule,
                     format!(
                         "the power schedule reaches {} .. {}, outside the laser's range {} .. {}",
                         Power(lo),

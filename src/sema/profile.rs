@@ -27,7 +27,7 @@ pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> 
         }
         other => {
             diags.push(
-                Diagnostic::error(Code::Type, format!("{what} must be a 2-D shape"))
+                Diagnostic::error(Code::ExpectedShape, format!("{what} must be a 2-D shape"))
                     .label(v.span, format!("this is {}", other.describe()))
                     .help(format!(
                         "write `outline([x, y], [x, y], arc(to = [x, y], radius = r), …)` or a section shape: {}",
@@ -72,7 +72,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
                 let first = start.is_none();
                 diags.push(
                     Diagnostic::error(
-                        Code::Type,
+                        Code::ExpectedPoint,
                         if first {
                             "an outline starts with a point `[x, y]`".to_string()
                         } else {
@@ -146,7 +146,7 @@ fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
         }
         other => {
             diags.push(
-                Diagnostic::error(Code::Type, "a point is `[x, y]`, two lengths")
+                Diagnostic::error(Code::ExpectedPoint, "a point is `[x, y]`, two lengths")
                     .label(v.span, format!("this is {}", other.describe()))
                     .help("e.g. `[40 mm, 0 mm]`"),
             );

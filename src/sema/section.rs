@@ -72,7 +72,7 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
                 }
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::CornerRadius,
                         "the corner radius must lie between 0 and half the shorter side",
                     )
                     .label(rs, format!("this is {}", Length(r)))
@@ -84,7 +84,7 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
             if r > a.min(b) {
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::CornerRadius,
                         "the corner radius must lie between 0 and half the shorter side",
                     )
                     .label(rs, format!("this is {}", Length(r)))

@@ -134,7 +134,7 @@ pub fn read<'a>(
         (true, true) => {
             diags.push(
                 Diagnostic::error(
-                    Code::Duplicate,
+                    Code::ConflictingFields,
                     "give either `points` or `chord_error`, not both",
                 )
                 .label_opt(f.span("points"), "points")
@@ -234,7 +234,7 @@ fn planar<'a>(
         (Some((0, Some(sp))), Some(None)) => {
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::NothingDeposited,
                     "a layer with no contour and no infill deposits nothing",
                 )
                 .label(sp, "no contour")
@@ -285,7 +285,7 @@ fn raster(c: &Call, diags: &mut Diagnostics) -> Option<(Raster, Option<Length>)>
         Some(v) => fields::quantity(v, Dim::LENGTH, "extend", diags).and_then(|e| {
             if e < 0.0 {
                 diags.push(
-                    Diagnostic::error(Code::OutOfRange, "`extend` cannot be negative")
+                    Diagnostic::error(Code::NotPositive, "`extend` cannot be negative")
                         .label(v.span, "negative")
                         .help("0 mm keeps tracks where they meet the boundary"),
                 );

@@ -67,7 +67,7 @@ pub fn read<'a>(
     };
     for extra in rest {
         diags.push(
-            Diagnostic::error(Code::Duplicate, "lmdc builds one solid per file")
+            Diagnostic::error(Code::SecondSolid, "lmdc builds one solid per file")
                 .label(extra.kind.span, "second solid")
                 .label(s.kind.span, "first solid")
                 .help("put each part in its own file"),

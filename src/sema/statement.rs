@@ -90,7 +90,7 @@ pub fn single_optional<'s>(
     let (first, rest) = stmts.split_first()?;
     for extra in rest {
         diags.push(
-            Diagnostic::error(Code::Duplicate, format!("`{kind}` is given twice"))
+            Diagnostic::error(Code::DuplicateStatement, format!("`{kind}` is given twice"))
                 .label(extra.kind.span, "second time")
                 .label(first.kind.span, "first time")
                 .help("keep one of them"),

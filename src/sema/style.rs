@@ -47,7 +47,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
     if stmts.len() > MAX_STYLES {
         diags.push(
             Diagnostic::error(
-                Code::OutOfRange,
+                Code::TooManyStyles,
                 format!(
                     "{} styles are more than the {MAX_STYLES} a table may hold",
                     stmts.len()
@@ -81,7 +81,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         if !word {
             diags.push(
                 Diagnostic::error(
-                    Code::Type,
+                    Code::StyleName,
                     format!("`{}` is not a style name", n.node),
                 )
                 .label(n.span, "not a name")
@@ -91,7 +91,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         if let Some(prev) = names.insert(n.node.clone(), n.span) {
             diags.push(
                 Diagnostic::error(
-                    Code::Duplicate,
+                    Code::DuplicateName,
                     format!("style `{}` is declared twice", n.node),
                 )
                 .label(n.span, "second declaration")
@@ -116,10 +116,13 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
                 let id = id as u16;
                 if let Some(prev) = ids.get(&id) {
                     diags.push(
-                        Diagnostic::error(Code::Duplicate, format!("style id {id} is used twice"))
-                            .label(sp, "second use")
-                            .label(*prev, "first use")
-                            .help("give every style its own id"),
+                        Diagnostic::error(
+                            Code::DuplicateId,
+                            format!("style id {id} is used twice"),
+                        )
+                        .label(sp, "second use")
+                        .label(*prev, "first use")
+                        .help("give every style its own id"),
                     );
                 }
                 ids.insert(id, sp);
@@ -272,7 +275,7 @@ fn rule<'a>(
         Some((a, sp)) if !(a > 0.0 && a <= std::f64::consts::PI) => {
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::CornerAngle,
                     "`corner_angle` must be more than 0 deg and at most 180 deg",
                 )
                 .label(sp, format!("this is {} deg", short(a.to_degrees())))
@@ -314,7 +317,7 @@ fn rule<'a>(
                 } else {
                     diags.push(
                         Diagnostic::error(
-                            Code::OutOfRange,
+                            Code::LayersRange,
                             "`layers` must be a range of layer numbers `first .. last`, counted from 1",
                         )
                         .label(v.span, format!("this is {} .. {}", short(a.value), short(b.value)))
@@ -325,9 +328,12 @@ fn rule<'a>(
             }
             other => {
                 diags.push(
-                    Diagnostic::error(Code::Type, "`layers` must be a range of layer numbers")
-                        .label(v.span, format!("this is {}", other.describe()))
-                        .help("e.g. `layers = 1 .. 3` for the first three layers"),
+                    Diagnostic::error(
+                        Code::ExpectedRange,
+                        "`layers` must be a range of layer numbers",
+                    )
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help("e.g. `layers = 1 .. 3` for the first three layers"),
                 );
                 ok = false;
             }
@@ -406,7 +412,7 @@ pub fn inheritance<'a>(
             Some(h) => {
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::HitRange,
                         "`hit` is the share of a track inside the band: more than 0 % and at most 100 %",
                     )
                     .label(v.span, format!("this is {} %", short(h * 100.0)))
@@ -514,7 +520,7 @@ fn values_fit(
         if !bead.covers_speed(v) {
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::StyleSpeed,
                     format!(
                         "style `{}` scans at {}, outside the {} .. {} bead `{}` is valid for",
                         s.name, v, bead.speed[0], bead.speed[1], bead.name
@@ -528,7 +534,7 @@ fn values_fit(
         } else if !bead.covers_height(h) {
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::StyleSpeed,
                     format!(
                         "style `{}` scans at {}, where bead `{}` is {} high: outside its allowed {} .. {}",
                         s.name, v, bead.name, h, bead.height[0], bead.height[1]
@@ -546,7 +552,7 @@ fn values_fit(
             let [lo, hi] = laser.range;
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::StylePower,
                     format!(
                         "style `{}` sets {}, outside the laser's range {} .. {}",
                         s.name, p, lo, hi
