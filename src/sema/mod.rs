@@ -141,7 +141,7 @@ fn process_block<'a>(
     let Some(s) = single(
         st.get("process"),
         "process",
-        "process { powder = 45.9 g/min, power = 2100 W }",
+        "process { powder = 45.9 g/min  power = 2100 W }",
         diags,
     ) else {
         return process::Read::default();

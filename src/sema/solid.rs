@@ -57,7 +57,7 @@ pub fn read<'a>(
                 "the file does not describe a solid to build",
             )
             .label(Span::new(0, 0), "no `loft` or `extrude` here")
-            .help("add `loft NAME { from = …, to = …, spine = …, wall = BEAD }` or `extrude NAME { profile = …, bead = BEAD }`"),
+            .help("add `loft NAME { from = …  to = …  spine = …  wall = BEAD }` or `extrude NAME { profile = …  bead = BEAD }`"),
         );
         return Read {
             kind: None,
@@ -105,7 +105,7 @@ pub fn read<'a>(
             diags.push(shape_error(
                 s,
                 "extrude NAME { … }",
-                "extrude tooth { profile = tooth, bead = track }",
+                "extrude tooth { profile = tooth  bead = track }",
             ));
             (Kind::Extrude, None, None)
         }

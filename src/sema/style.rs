@@ -389,7 +389,7 @@ pub fn inheritance<'a>(
         diags.push(
             Diagnostic::error(
                 Code::Syntax,
-                "an `inheritance` statement is written `inheritance { band = …, hit = … }`",
+                "an `inheritance` statement is written `inheritance { band = …  hit = … }`",
             )
             .label(stmt.span, "not in that shape")
             .help("e.g. `inheritance { band = 0.8 mm  hit = 99 % }`"),
