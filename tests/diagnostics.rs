@@ -167,3 +167,61 @@ fn warnings_are_shown_with_errors() {
         .iter()
         .any(|(c, e, _, _)| c == "lmd::powder-mismatch" && !e));
 }
+
+/// Labels show values in the units a user writes them in (issue 9).
+#[test]
+fn labels_show_values_in_their_units() {
+    let src = std::fs::read_to_string("examples/errors/values_in_their_units.lmd").unwrap();
+    let c = compile(&src, &mut ());
+    let labels: Vec<&str> = c
+        .diagnostics
+        .iter()
+        .flat_map(|d| &d.labels)
+        .map(|l| l.text.as_str())
+        .collect();
+    for want in [
+        "this is -2100 W",
+        "this is -45.9 g/min",
+        "this is 200000 mm/s",
+    ] {
+        assert!(labels.contains(&want), "no {want:?} in {labels:?}");
+    }
+}
+
+/// The seam advice is computed: applying it silences the warning, and it
+/// never advises the seam the file already has (issue 9).
+#[test]
+fn the_seam_advice_is_one_that_works() {
+    let duct = std::fs::read_to_string("examples/twisted_duct.lmd").unwrap();
+    for (twist, seam) in [(45, 0), (90, 90)] {
+        let src = duct
+            .replace("twist = 45 deg", &format!("twist = {twist} deg"))
+            .replace("seam = 90 deg", &format!("seam = {seam} deg"));
+        let c = compile(&src, &mut ());
+        let warning = c
+            .diagnostics
+            .iter()
+            .find(|d| d.code == "lmd::seam-at-bend-extreme")
+            .unwrap_or_else(|| panic!("twist {twist}, seam {seam}: no warning"));
+        let help = warning.help.as_deref().unwrap_or("");
+        let advised = help
+            .split("`seam = ")
+            .nth(1)
+            .and_then(|rest| rest.split(" deg`").next())
+            .unwrap_or_else(|| panic!("no seam advised: {help}"));
+        assert_ne!(advised, seam.to_string(), "{help}");
+        let fixed = src.replace(
+            &format!("seam = {seam} deg"),
+            &format!("seam = {advised} deg"),
+        );
+        let c = compile(&fixed, &mut ());
+        assert!(c.program.is_some(), "{:?}", c.diagnostics);
+        assert!(
+            !c.diagnostics
+                .iter()
+                .any(|d| d.code == "lmd::seam-at-bend-extreme"),
+            "twist {twist}: seam {advised} still warns: {:?}",
+            c.diagnostics
+        );
+    }
+}

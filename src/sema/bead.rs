@@ -90,7 +90,10 @@ pub fn read<'a>(
                         Code::EfficiencyRange,
                         "catch efficiency must lie between 0 and 1",
                     )
-                    .label(at, format!("this is {}", short(eff)))
+                    .label(
+                        at,
+                        format!("this is {} ({} %)", short(eff), short(eff * 100.0)),
+                    )
                     .help("write it as a fraction (0.3) or a percentage (30 %)"),
                 );
                 false

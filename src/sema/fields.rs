@@ -8,7 +8,7 @@ use super::value::{Call, Env, Spanned, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
-use crate::units::{short, Dim, Quantity};
+use crate::units::{short, Angle, Density, Dim, Length, MassFlow, Power, Quantity, Speed, Time};
 
 /// One field: its key and its evaluated value (`None` if evaluation failed and was
 /// reported already), or the statements of a nested block.
@@ -345,7 +345,7 @@ impl<'a> Fields<'a> {
                     Code::NotPositive,
                     format!("`{key}` must be greater than zero"),
                 )
-                .label(span, format!("this is {}", short(q)))
+                .label(span, format!("this is {}", shown(q, dim)))
                 .help(format!("give {} a positive value", self.what)),
             );
             None
@@ -431,6 +431,22 @@ impl<'a> Fields<'a> {
     }
 }
 
+/// A value of dimension `dim` for a message, in the unit that kind of value
+/// is written in (W, g/min, deg, …), not in lmdc's internal units.
+pub fn shown(value: f64, dim: Dim) -> String {
+    match dim {
+        Dim::NONE => short(value),
+        Dim::LENGTH => Length(value).to_string(),
+        Dim::ANGLE => Angle(value).to_string(),
+        Dim::SPEED => Speed(value).to_string(),
+        Dim::POWER => Power(value).to_string(),
+        Dim::MASS_FLOW => MassFlow(value).to_string(),
+        Dim::DENSITY => Density(value).to_string(),
+        Dim::TIME => Time(value).to_string(),
+        other => format!("{} {}", short(value), other.unit_string()),
+    }
+}
+
 /// `v` as a quantity of dimension `dim`.
 pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Option<f64> {
     match &v.value {
@@ -449,7 +465,7 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
                             Code::TooLarge,
                             format!("`{key}` is beyond what lmdc plans ({text})"),
                         )
-                        .label(v.span, format!("this is {}", short(*value)))
+                        .label(v.span, format!("this is {}", shown(*value, dim)))
                         .help("check the value and its unit"),
                     );
                     None
