@@ -28,9 +28,9 @@ pub mod value;
 pub use profile::LayerShapes;
 
 use crate::diag::Diagnostics;
-use crate::syntax::ast::{Body, File};
+use crate::syntax::ast::File;
 use model::Model;
-use statement::{shape_error, single, single_optional, Statements};
+use statement::Statements;
 use value::Env;
 
 /// Checks a parsed file. Returns the model if there were no errors, and every
@@ -48,13 +48,11 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     let decl = declare::read(&mut env, &st, diags);
     let part = statement::part(&st, diags);
     let solid = solid::read(&mut env, &st, &decl, diags);
-    let slicing = slicing_block(&mut env, &st, diags);
-    let process = process_block(&mut env, &st, diags);
+    let slicing = slicing::statement(&mut env, &st, diags);
+    let process = process::statement(&mut env, &st, diags);
     let machines = machines::read(&mut env, &st, diags);
     let styles = style::read(&mut env, st.get("style"), diags);
-    let inheritance_stmt = single_optional(st.get("inheritance"), "inheritance", diags);
-    let inheritance = inheritance_stmt.and_then(|s| style::inheritance(&mut env, s, diags));
-    let inheritance_ok = inheritance_stmt.is_none() || inheritance.is_some();
+    let inheritance = style::inheritance_statement(&mut env, &st, diags);
 
     let solid_kind = solid.kind;
     let planar = match &slicing.spec {
@@ -64,8 +62,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     let (plan, bead) = solid::plan(&mut env, solid, slicing, process.speed, &decl, diags);
     let styles = style::assemble(
         styles,
-        inheritance,
-        inheritance_stmt.map(|s| s.span),
+        &inheritance,
         &style::Context {
             loft: solid_kind == Some(solid::Kind::Loft),
             planar: planar.as_ref(),
@@ -77,9 +74,6 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     if let (Some(b), Some((powder, at))) = (&bead, process.powder) {
         bead::check_feed(b, powder, at, diags);
     }
-    if !inheritance_ok {
-        return None;
-    }
     Some(Model {
         part: part?,
         plan: plan?,
@@ -88,73 +82,4 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         machines,
         styles: styles?,
     })
-}
-
-/// `slicing STRATEGY { … }`.
-fn slicing_block<'a>(
-    env: &mut Env<'a>,
-    st: &Statements<'a>,
-    diags: &mut Diagnostics,
-) -> solid::Slicing<'a> {
-    let stmt = single(
-        st.get("slicing"),
-        "slicing",
-        "slicing normal { layers = auto }",
-        diags,
-    );
-    let Some(s) = stmt else {
-        return solid::Slicing {
-            stmt,
-            strategy: None,
-            spec: None,
-        };
-    };
-    let strategy = s
-        .name
-        .as_ref()
-        .map(|n| n.node.as_str())
-        .filter(|n| slicing::STRATEGIES.contains(n));
-    let spec = match &s.body {
-        Body::Block(stmts, _) => slicing::read(env, s.name.as_ref(), stmts, s.span, diags),
-        _ => {
-            diags.push(shape_error(
-                s,
-                "slicing STRATEGY { … }",
-                "slicing normal { layers = auto }",
-            ));
-            None
-        }
-    };
-    solid::Slicing {
-        stmt,
-        strategy,
-        spec,
-    }
-}
-
-/// `process { … }`.
-fn process_block<'a>(
-    env: &mut Env<'a>,
-    st: &Statements<'a>,
-    diags: &mut Diagnostics,
-) -> process::Read {
-    let Some(s) = single(
-        st.get("process"),
-        "process",
-        "process { powder = 45.9 g/min  power = 2100 W }",
-        diags,
-    ) else {
-        return process::Read::default();
-    };
-    match (&s.name, &s.body) {
-        (None, Body::Block(stmts, _)) => process::read(env, stmts, s.span, diags),
-        _ => {
-            diags.push(shape_error(
-                s,
-                "process { … }",
-                "process { power = 2100 W }",
-            ));
-            process::Read::default()
-        }
-    }
 }

@@ -224,8 +224,9 @@ pub struct Bead {
     pub speed_span: Span,
 }
 
-/// Whether `x` lies in `lo ..= hi`, with rounding slack.
-fn within(x: f64, lo: f64, hi: f64) -> bool {
+/// Whether `x` lies in `lo ..= hi`, with the rounding slack every range
+/// rule of the checker allows.
+pub fn within(x: f64, lo: f64, hi: f64) -> bool {
     x >= lo * (1.0 - 1e-9) && x <= hi * (1.0 + 1e-9)
 }
 

@@ -1,11 +1,12 @@
 //! `process { powder, defocus, power, power_range, speed }`.
 
 use super::fields::Fields;
-use super::model::{PowerSchedule, Process};
+use super::model::{within, PowerSchedule, Process};
+use super::statement::{shape_error, single, Statements};
 use super::value::{Env, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
-use crate::syntax::ast::Stmt;
+use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Dim, Length, MassFlow, Power, Speed};
 
 /// The process block as read: the whole of it when every field is right, and
@@ -38,13 +39,35 @@ pub struct Laser {
 impl Laser {
     /// Whether the laser can give `p`.
     pub fn covers(&self, p: Power) -> bool {
-        let [lo, hi] = self.range;
-        p.0 >= lo.0 * (1.0 - 1e-9) && p.0 <= hi.0 * (1.0 + 1e-9)
+        within(p.0, self.range[0].0, self.range[1].0)
+    }
+}
+
+/// The file's `process { … }` statement.
+pub fn statement<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnostics) -> Read {
+    let Some(s) = single(
+        st.get("process"),
+        "process",
+        "process { powder = 45.9 g/min  power = 2100 W }",
+        diags,
+    ) else {
+        return Read::default();
+    };
+    match (&s.name, &s.body) {
+        (None, Body::Block(stmts, _)) => read(env, stmts, s.span, diags),
+        _ => {
+            diags.push(shape_error(
+                s,
+                "process { … }",
+                "process { power = 2100 W }",
+            ));
+            Read::default()
+        }
     }
 }
 
 /// Reads the process block.
-pub fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagnostics) -> Read {
+fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagnostics) -> Read {
     let f = Fields::block(
         env,
         stmts,

@@ -3,11 +3,12 @@
 
 use super::fields::{self, Fields};
 use super::model::{Pattern, Raster, Resolution, Slicing};
+use super::statement::{shape_error, single, Statements};
 use super::suggest::did_you_mean;
 use super::value::{Call, Env, Spanned as SpannedValue, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::{Span, Spanned};
-use crate::syntax::ast::Stmt;
+use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Angle, Dim, Length};
 
 /// Strategies the language knows.
@@ -50,6 +51,59 @@ impl PlanarSpec {
     }
 }
 
+/// The slicing statement as read: the strategy named (when it is one lmdc
+/// knows) and the block when every field is right.
+pub struct Read<'s> {
+    /// The `slicing` statement, if there is one.
+    pub stmt: Option<&'s Stmt>,
+    /// `normal` or `planar`, if written so.
+    pub strategy: Option<&'s str>,
+    /// The block, when every field is right.
+    pub spec: Option<Spec>,
+}
+
+/// The file's `slicing STRATEGY { … }` statement.
+pub(super) fn statement<'a>(
+    env: &mut Env<'a>,
+    st: &Statements<'a>,
+    diags: &mut Diagnostics,
+) -> Read<'a> {
+    let stmt = single(
+        st.get("slicing"),
+        "slicing",
+        "slicing normal { layers = auto }",
+        diags,
+    );
+    let Some(s) = stmt else {
+        return Read {
+            stmt,
+            strategy: None,
+            spec: None,
+        };
+    };
+    let strategy = s
+        .name
+        .as_ref()
+        .map(|n| n.node.as_str())
+        .filter(|n| STRATEGIES.contains(n));
+    let spec = match &s.body {
+        Body::Block(stmts, _) => read(env, s.name.as_ref(), stmts, s.span, diags),
+        _ => {
+            diags.push(shape_error(
+                s,
+                "slicing STRATEGY { … }",
+                "slicing normal { layers = auto }",
+            ));
+            None
+        }
+    };
+    Read {
+        stmt,
+        strategy,
+        spec,
+    }
+}
+
 /// Most layers and points per layer a plan may have: 10⁸ points in all keeps
 /// memory bounded (the IR holds 72 bytes a point).
 pub const MAX_LAYERS: usize = 100_000;
@@ -79,7 +133,7 @@ fn any_strategy<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mu
 }
 
 /// Reads a slicing block.
-pub fn read<'a>(
+fn read<'a>(
     env: &mut Env<'a>,
     strategy: Option<&Spanned<String>>,
     stmts: &'a [Stmt],

@@ -5,7 +5,7 @@ use super::declare::Declared;
 use super::extrude;
 use super::loft;
 use super::model::{Bead, Loft, Plan};
-use super::slicing::Spec;
+use super::slicing::{self, Spec};
 use super::statement::{shape_error, Statements};
 use super::value::Env;
 use crate::diag::{Code, Diagnostic, Diagnostics};
@@ -117,17 +117,6 @@ pub fn read<'a>(
     }
 }
 
-/// The slicing as read: the strategy named (when it is one lmdc knows) and
-/// the block when it is right.
-pub struct Slicing<'s> {
-    /// The `slicing` statement, if there is one.
-    pub stmt: Option<&'s Stmt>,
-    /// `normal` or `planar`, if written so.
-    pub strategy: Option<&'s str>,
-    /// The block, when every field is right.
-    pub spec: Option<Spec>,
-}
-
 /// Pairs the solid with its slicing: a loft is sliced normal to its spine,
 /// an extrusion in flat layers (reported whenever both kinds are known, even
 /// if a block has other mistakes). `speed` is the process block's scan speed
@@ -136,7 +125,7 @@ pub struct Slicing<'s> {
 pub fn plan(
     env: &mut Env<'_>,
     solid: Read<'_>,
-    slicing: Slicing<'_>,
+    slicing: slicing::Read<'_>,
     speed: Option<Option<(Speed, Span)>>,
     decl: &Declared<'_>,
     diags: &mut Diagnostics,

@@ -6,6 +6,7 @@ use super::fields::{self, Fields};
 use super::model::{Bead, Inheritance, PathSelect, Style, StyleCondition, Styles};
 use super::process::Laser;
 use super::slicing::PlanarSpec;
+use super::statement::{single_optional, Statements};
 use super::value::{Env, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
@@ -379,8 +380,29 @@ fn rule<'a>(
     ok.then_some(out)
 }
 
+/// The `inheritance` statement as read.
+pub struct InheritanceRead {
+    /// Band and hit, when the statement is right.
+    pub value: Option<Inheritance>,
+    /// The statement, if the file has one.
+    pub span: Option<Span>,
+}
+
+/// The file's `inheritance { band, hit }` statement, if any (at most one).
+pub fn inheritance_statement<'a>(
+    env: &mut Env<'a>,
+    st: &Statements<'a>,
+    diags: &mut Diagnostics,
+) -> InheritanceRead {
+    let stmt = single_optional(st.get("inheritance"), "inheritance", diags);
+    InheritanceRead {
+        value: stmt.and_then(|s| inheritance(env, s, diags)),
+        span: stmt.map(|s| s.span),
+    }
+}
+
 /// Reads `inheritance { band, hit }`.
-pub fn inheritance<'a>(
+fn inheritance<'a>(
     env: &mut Env<'a>,
     stmt: &'a Stmt,
     diags: &mut Diagnostics,
@@ -450,8 +472,7 @@ pub struct Context<'c> {
 /// turns away from the tracks it would inherit from), and makes the table.
 pub fn assemble(
     written: Vec<Written>,
-    inheritance: Option<Inheritance>,
-    inheritance_span: Option<Span>,
+    inheritance: &InheritanceRead,
     cx: &Context<'_>,
     diags: &mut Diagnostics,
 ) -> Option<Styles> {
@@ -470,7 +491,7 @@ pub fn assemble(
     for w in &written {
         ok &= values_fit(w, cx.bead, cx.laser, diags);
     }
-    match inheritance_span {
+    match inheritance.span {
         Some(sp) if written.is_empty() => diags.push(
             Diagnostic::warning(Code::Unused, "inheritance without styles does nothing")
                 .label(sp, "no style to inherit")
@@ -499,9 +520,11 @@ pub fn assemble(
         }
         None => {}
     }
+    // A failed `inheritance` statement was reported where it was read.
+    ok &= inheritance.span.is_none() || inheritance.value.is_some();
     ok.then(|| Styles {
         table: written.into_iter().map(|w| w.style).collect(),
-        inheritance,
+        inheritance: inheritance.value,
     })
 }
 
