@@ -6,12 +6,13 @@ use lmdc::pipeline::compile;
 use proptest::prelude::*;
 
 /// A small valid file: a planar plate with two styles, inheritance and two
-/// machines.
+/// machines (and two sections it does not use, a place for their mistakes).
 const VALID: &str = r#"part plate
 
 let w = 40 mm
 
 section disc = circle(diameter = 30 mm)
+section ring = polygon(sides = 6, circumradius = 10 mm)
 profile plate = outline([0 mm, 0 mm], [w, 0 mm], [w, 20 mm], [0 mm, 20 mm])
 
 bead track {
@@ -179,6 +180,12 @@ const MISTAKES: &[Mistake] = &[
         replace: "shorter_than = 12 deg",
         code: "lmd::unit-mismatch",
         says: "`shorter_than` must be a length",
+    },
+    Mistake {
+        find: "circumradius = 10 mm)",
+        replace: "circumradius = 10 mm, side = 5 mm)",
+        code: "lmd::conflicting-fields",
+        says: "give either `circumradius` or `side`, not both",
     },
 ];
 

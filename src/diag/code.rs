@@ -109,7 +109,7 @@ codes! {
     SecondSolid = "second-solid", Values,
         "a second `loft` or `extrude`: lmdc builds one solid per file";
     ConflictingFields = "conflicting-fields", Values,
-        "two fields that say one thing twice: `layers` (slicing) and `height` (extrude), `points` and `chord_error`";
+        "two fields that say one thing twice: `layers` (slicing) and `height` (extrude), `points` and `chord_error`, a circle's `diameter` and `radius`, a polygon's `circumradius` and `side`";
     MissingStatement = "missing-statement", Values,
         "a statement the file needs is not there (`part`, `slicing`, `process`); the help shows an example";
     MissingField = "missing-field", Values,

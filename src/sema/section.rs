@@ -22,6 +22,9 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
     match call.func.as_str() {
         "circle" => {
             let f = Fields::call(call, &["diameter"], &["diameter", "radius"], diags);
+            if !one_of(&f, "diameter", "radius", diags) {
+                return None;
+            }
             let r = if f.has("radius") {
                 f.positive("radius", l, None, diags)?.0
             } else {
@@ -106,6 +109,9 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
                 diags,
             );
             let n = f.count("sides", 3, 1000, Some("6"), diags);
+            if !one_of(&f, "circumradius", "side", diags) {
+                return None;
+            }
             let r = if f.has("side") {
                 let s = f.positive("side", l, None, diags);
                 let n = n?.0;
@@ -121,4 +127,22 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
         }
         _ => None,
     }
+}
+
+/// Whether at most one of two arguments that give the same size is written;
+/// reports both when both are.
+fn one_of(f: &Fields<'_>, a: &str, b: &str, diags: &mut Diagnostics) -> bool {
+    if !(f.has(a) && f.has(b)) {
+        return true;
+    }
+    diags.push(
+        Diagnostic::error(
+            Code::ConflictingFields,
+            format!("give either `{a}` or `{b}`, not both"),
+        )
+        .label_opt(f.span(b), b)
+        .label_opt(f.span(a), a)
+        .help("they give the same size; keep the one you measured"),
+    );
+    false
 }
