@@ -168,6 +168,17 @@ fn warnings_are_shown_with_errors() {
         .any(|(c, e, _, _)| c == "lmd::powder-mismatch" && !e));
 }
 
+#[test]
+fn the_slicer_keeps_its_warnings_with_its_errors() {
+    reports_all(
+        "examples/errors/gap_and_idle_style.lmd",
+        &[
+            ("lmd::fill-gap", "the tracks leave a spot unfilled"),
+            ("lmd::unused", "style `idle` picks no track on any layer"),
+        ],
+    );
+}
+
 /// Labels show values in the units a user writes them in (issue 9).
 #[test]
 fn labels_show_values_in_their_units() {
