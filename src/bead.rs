@@ -1,9 +1,40 @@
-//! Bead physics: how a bead's height follows the scan speed, and the inverse the
-//! slicer needs (the speed that lays a given height). Pure functions of the
-//! semantic model's [`HeightModel`].
+//! Bead physics: the height model (how a bead's height follows the scan
+//! speed, and the inverse the slicer needs: the speed that lays a given
+//! height), the bead's cross-section, and how planar layers rise. The checker
+//! builds a [`HeightModel`] from a `bead` block; the slicer and the checks use
+//! these functions. Nothing here knows about the language.
 
-use crate::sema::model::HeightModel;
-use crate::units::{Length, Speed};
+use crate::units::{Density, Length, MassFlow, Speed};
+
+/// How bead height follows scan speed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum HeightModel {
+    /// `H = slope · v + intercept` (seed 003's fitted map).
+    Linear {
+        /// mm per mm/s (a time).
+        slope: f64,
+        /// mm.
+        intercept: Length,
+    },
+    /// Deposited area from the powder caught: `A = η·ṁ/(ρ·v)`; the bead is a
+    /// circular segment of chord `width` and that area.
+    MassBalance {
+        /// Powder feed.
+        feed: MassFlow,
+        /// Catch efficiency η (0–1).
+        efficiency: f64,
+        /// Density of the deposited metal.
+        density: Density,
+    },
+    /// A bead measured at one process point: this height at this speed (seed
+    /// 001's 0.7 mm at 6 mm/s).
+    Measured {
+        /// Bead height.
+        height: Length,
+        /// The scan speed it was measured at.
+        speed: Speed,
+    },
+}
 
 /// Area of a circular segment of chord `w` and height `h` (mm, mm²): the
 /// cross-section of a bead (seed 001 eq. 6). Valid for `0 ≤ h < w`; heights

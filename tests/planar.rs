@@ -362,7 +362,7 @@ machine m {{ kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}
 fn scan_speed_and_layer_height_are_checked_at_their_lines() {
     let tooth = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
     let d = diagnose(&tooth.replace("speed = 6 mm/s\n  power", "speed = 8 mm/s\n  power"));
-    let m = with_code(&d, "lmd::out-of-range");
+    let m = with_code(&d, "lmd::scan-speed");
     assert!(
         m.iter()
             .any(|m| m.contains("8 mm/s") && m.contains("measured at")),
@@ -423,7 +423,7 @@ fn inline_profiles_follow_the_layer() {
 part p
 bead b { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
 extrude e {
-  profile = outline([0 mm, 0 mm], [20 mm + layer * 5 mm, 0 mm], [20 mm + layer * 5 mm, 16 mm], [0 mm, 16 mm])
+  profile = outline([0 mm, 0 mm], [20 mm + layer * 1 mm, 0 mm], [20 mm + layer * 1 mm, 16 mm], [0 mm, 16 mm])
   bead = b
 }
 slicing planar { layers = 3  offset = 1.6 mm  infill = raster(angle = 0 deg) }
@@ -439,7 +439,7 @@ machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
             .map(|pt| pt.pos[0])
             .fold(f64::NEG_INFINITY, f64::max);
         assert!(
-            (right - (20.0 + 5.0 * k as f64)).abs() < 1e-9,
+            (right - (20.0 + 1.0 * k as f64)).abs() < 1e-9,
             "layer {k}: {right}"
         );
     }
@@ -460,7 +460,7 @@ fn style_ids_and_names() {
     let d = diagnose(&src);
     assert!(
         d.iter()
-            .any(|x| x.code == "lmd::type" && x.message.contains("is not a style name")),
+            .any(|x| x.code == "lmd::style-name" && x.message.contains("is not a style name")),
         "{d:?}"
     );
 }

@@ -99,9 +99,17 @@ codes! {
     UnknownUnit = "unknown-unit", Values,
         "a unit lmdc does not know";
     Argument = "argument", Values,
-        "an argument a shape or model does not take, or too many unnamed ones";
-    Duplicate = "duplicate", Values,
-        "something given twice: a field, a constant, a section, a machine, a second solid; two styles with one name or one id";
+        "an argument a shape or model does not take, too many unnamed ones, or none where one is needed (`max()`)";
+    DuplicateName = "duplicate-name", Values,
+        "a name declared twice: a constant, a section or profile, a bead model, a machine, a style";
+    DuplicateField = "duplicate-field", Values,
+        "a field given twice in one block, or an argument given twice to one call";
+    DuplicateStatement = "duplicate-statement", Values,
+        "a statement a file has once given twice: `part`, `slicing`, `process`, `inheritance`";
+    SecondSolid = "second-solid", Values,
+        "a second `loft` or `extrude`: lmdc builds one solid per file";
+    ConflictingFields = "conflicting-fields", Values,
+        "two fields that say one thing twice: `layers` (slicing) and `height` (extrude), `points` and `chord_error`, a circle's `diameter` and `radius`, a polygon's `circumradius` and `side`";
     MissingStatement = "missing-statement", Values,
         "a statement the file needs is not there (`part`, `slicing`, `process`); the help shows an example";
     MissingField = "missing-field", Values,
@@ -114,8 +122,22 @@ codes! {
         "constants defined in terms of each other";
     UnitMismatch = "unit-mismatch", Values,
         "operands or a field with the wrong kind of unit: a length plus an angle, a power in mm/s";
+    ExpectedNumber = "expected-number", Values,
+        "a name, text, list or shape where a number with a unit belongs, in a field or as an operand (`+ - * / ^`, a minus sign, `min`/`max`)";
+    ExpectedWholeNumber = "expected-whole-number", Values,
+        "a count that is not a whole number (`layers`, `contours`, `sides`, `id`, `laser`, …)";
+    ExpectedRange = "expected-range", Values,
+        "a single value where a range `low .. high` belongs (a bead's `speed` and `height`, `power_range`, a style's `layers`)";
+    ExpectedText = "expected-text", Values,
+        "a value where a text in quotes belongs (`colour`, `laser_on`, …)";
+    ExpectedShape = "expected-shape", Values,
+        "a value that is not a shape where one belongs: a section, a profile, a loft's `from`/`to`, a `spine`";
+    ExpectedPoint = "expected-point", Values,
+        "an outline piece that is not a point `[x, y]` or `arc(…)`, or a point that is not two lengths";
+    ExpectedName = "expected-name", Values,
+        "a value where the name of a declared bead model belongs (`wall = my_bead`, `bead = my_bead`)";
     Type = "type", Values,
-        "a value of the wrong kind: a name where a number belongs, a list where a shape belongs";
+        "a value of the wrong kind in a machine block: a `home` that is not six angles, a `preamble` or `postamble` that is not texts";
     BadChoice = "bad-choice", Values,
         "a word that is not one of the field's choices (`kind = robott`); a `colour` that is not `#rrggbb`, a `paths` that is not `outer_contour`, `inner_contour`, `contour` or `infill`";
     EmptyRange = "empty-range", Values,
@@ -130,13 +152,52 @@ codes! {
         "a power whose exponent is not a plain number, or that has no real answer";
     Overflow = "overflow", Values,
         "arithmetic whose result is too large to represent";
+    NotPositive = "not-positive", Values,
+        "a value that must be greater than zero is not (a size, a speed, a power, a powder feed, a bead's lowest scan speed), or an `extend` below zero";
+    TooLarge = "too-large", Values,
+        "a length or speed beyond what lmdc plans (100 m, 100 m/s): usually a wrong unit";
+    CountRange = "count-range", Values,
+        "a whole number outside its field's range (`sides` 3–1000, `points` 8–100 000, a style's `id` 1–65 535, …); the message gives the range";
+    BeadSlope = "bead-slope", Values,
+        "a linear bead model whose height does not fall as the scan speed rises (slope ≥ 0)";
+    EfficiencyRange = "efficiency-range", Values,
+        "a mass-balance bead model's catch efficiency above 1 (100 %)";
+    CornerRadius = "corner-radius", Values,
+        "a rounded rectangle's corner radius below zero or above half its shorter side";
+    BendAngle = "bend-angle", Values,
+        "a spine arc that bends more than 270°: the part would collide with itself";
+    PowerSchedule = "power-schedule", Values,
+        "the process power, or a power ramp, reaches outside `power_range`";
+    NothingDeposited = "nothing-deposited", Values,
+        "planar slicing with `contours = 0` and no infill: the layers lay no track";
     OutOfRange = "out-of-range", Values,
-        "a value outside what the field allows (a negative diameter, an efficiency above 100 %, a power schedule outside `power_range`); a style's speed outside the bead model's speeds, or one where the bead height leaves the allowed heights; a style's power outside `power_range`; `hit` not within 0–100 %; `layers` not a range of layer numbers from 1; from the IR checks: points whose height, speed or power leave the bead model's or the machine's range";
+        "a value outside what its field allows where no code above says more: a robot's `max_speed` beyond what a KUKA controller takes, `axes = 4`; from the IR checks: points whose height, speed or power leave the bead model's or the machine's range";
     LayerOutsideProfile = "layer-outside-profile", Values,
         "a field or a `section` uses `layer` or `layer_z`: only a profile is evaluated per layer (a power schedule is `ramp(…)`)";
     Unsupported = "unsupported", Values,
         "a combination lmdc does not build: styles on a loft's wall";
 
+    StyleName = "style-name", Styles,
+        "a style's name that is not a word of letters, digits and `_` (it goes into the programs' comments)";
+    DuplicateId = "duplicate-id", Styles,
+        "two styles with one `id`";
+    TooManyStyles = "too-many-styles", Styles,
+        "more styles than ids 1–65 535";
+    StyleSpeed = "style-speed", Styles,
+        "a style's speed outside the bead model's speeds, or one at which the bead's height leaves its allowed heights";
+    StylePower = "style-power", Styles,
+        "a style's power outside the laser's `power_range` (the process power when no range is declared)";
+    CornerAngle = "corner-angle", Styles,
+        "a `when` block's `corner_angle` that is not more than 0° and at most 180°";
+    LayersRange = "layers-range", Styles,
+        "a `when` block's `layers` that is not a range of layer numbers counted from 1 (`1 .. 3`)";
+    HitRange = "hit-range", Styles,
+        "inheritance's `hit` that is not more than 0 % and at most 100 %";
+
+    ScanSpeed = "scan-speed", Feasibility,
+        "the process `speed` of planar layers outside the bead model's speeds, or not the speed a measured bead was measured at";
+    SectionTooSmall = "section-too-small", Feasibility,
+        "a loft's end measured at its outer face (`size = outer`) with nothing left inside half a bead width";
     InfeasibleBead = "infeasible-bead", Feasibility,
         "the bead model gives no positive height over its speed range, or its heights miss the declared `height` range";
     BendTooTight = "bend-too-tight", Feasibility,

@@ -1,7 +1,7 @@
 //! `bead NAME { width, height, speed, model }`: a bead model.
 
 use super::fields::Fields;
-use super::model::{Bead, HeightModel, Process};
+use super::model::{Bead, HeightModel};
 use super::value::{unknown_name, Env, Spanned, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
@@ -41,56 +41,83 @@ pub fn read<'a>(
         diags,
     );
     let model_span = model.map(|m| m.span);
+    // A range that starts at zero or below is wrong whatever the model.
+    let speed = speed.filter(|&(range, speed_span)| {
+        if range[0] > 0.0 {
+            return true;
+        }
+        diags.push(
+            Diagnostic::error(Code::NotPositive, "scan speeds must be greater than zero")
+                .label(speed_span, "the lower end must be > 0"),
+        );
+        false
+    });
     let model = match model.map(|m| &m.value) {
         Some(Value::Call(c)) if c.func == "linear" => {
             let a = Fields::call(c, &[], &["slope", "intercept"], diags);
             let slope = a.quantity("slope", Dim::TIME, Some("-0.135 mm / (1 mm/s)"), diags);
             let b = a.quantity("intercept", Dim::LENGTH, Some("1.82 mm"), diags);
-            let (slope, b) = (slope?, b?);
-            if slope.0 >= 0.0 {
+            let slope = slope.filter(|&(slope, at)| {
+                if slope < 0.0 {
+                    return true;
+                }
                 diags.push(
-                    Diagnostic::error(Code::OutOfRange, "the slope of a bead's height over speed must be negative")
-                        .label(slope.1, format!("this is {} mm per mm/s", short(slope.0)))
+                    Diagnostic::error(Code::BeadSlope, "the slope of a bead's height over speed must be negative")
+                        .label(at, format!("this is {} mm per mm/s", short(slope)))
                         .help("a faster scan lays a lower bead: fit H = slope·v + intercept with slope < 0"),
                 );
-                return None;
+                false
+            });
+            match (slope, b) {
+                (Some(slope), Some(b)) => Some(HeightModel::Linear {
+                    slope: slope.0,
+                    intercept: Length(b.0),
+                }),
+                _ => None,
             }
-            Some(HeightModel::Linear {
-                slope: slope.0,
-                intercept: Length(b.0),
-            })
         }
         Some(Value::Call(c)) if c.func == "mass_balance" => {
             let a = Fields::call(c, &[], &["feed", "efficiency", "density"], diags);
             let feed = a.positive("feed", Dim::MASS_FLOW, Some("45.9 g/min"), diags);
             let eff = a.positive("efficiency", Dim::NONE, Some("0.3"), diags);
             let rho = a.positive("density", Dim::DENSITY, Some("7.9 g/cm^3"), diags);
-            let (feed, eff, rho) = (feed?, eff?, rho?);
-            if eff.0 > 1.0 {
+            let eff = eff.filter(|&(eff, at)| {
+                if eff <= 1.0 {
+                    return true;
+                }
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::EfficiencyRange,
                         "catch efficiency must lie between 0 and 1",
                     )
-                    .label(eff.1, format!("this is {}", short(eff.0)))
+                    .label(
+                        at,
+                        format!("this is {} ({} %)", short(eff), short(eff * 100.0)),
+                    )
                     .help("write it as a fraction (0.3) or a percentage (30 %)"),
                 );
-                return None;
+                false
+            });
+            match (feed, eff, rho) {
+                (Some(feed), Some(eff), Some(rho)) => Some(HeightModel::MassBalance {
+                    feed: MassFlow(feed.0),
+                    efficiency: eff.0,
+                    density: Density(rho.0),
+                }),
+                _ => None,
             }
-            Some(HeightModel::MassBalance {
-                feed: MassFlow(feed.0),
-                efficiency: eff.0,
-                density: Density(rho.0),
-            })
         }
         Some(Value::Call(c)) if c.func == "measured" => {
             let a = Fields::call(c, &[], &["height", "speed"], diags);
             let h = a.positive("height", Dim::LENGTH, Some("0.7 mm"), diags);
             let v = a.positive("speed", Dim::SPEED, Some("6 mm/s"), diags);
-            Some(HeightModel::Measured {
-                height: Length(h?.0),
-                speed: Speed(v?.0),
-            })
+            match (h, v) {
+                (Some(h), Some(v)) => Some(HeightModel::Measured {
+                    height: Length(h.0),
+                    speed: Speed(v.0),
+                }),
+                _ => None,
+            }
         }
         Some(other) => {
             diags.push(
@@ -120,13 +147,6 @@ pub fn read<'a>(
     };
     let (width, (speed, speed_span)) = (width?, speed?);
     let w = Length(width.0);
-    if speed[0] <= 0.0 {
-        diags.push(
-            Diagnostic::error(Code::OutOfRange, "scan speeds must be greater than zero")
-                .label(speed_span, "the lower end must be > 0"),
-        );
-        return None;
-    }
     // The model's heights at the ends of its speed range.
     let h_hi = model.height_at(Speed(speed[0]), w).0;
     let h_lo = model.height_at(Speed(speed[1]), w).0;
@@ -214,7 +234,7 @@ pub fn named(
         Some(v) => {
             diags.push(
                 Diagnostic::error(
-                    Code::Type,
+                    Code::ExpectedName,
                     format!("`{key}` names the bead model {what} is built with"),
                 )
                 .label(v.span, format!("this is {}", v.value.describe()))
@@ -229,19 +249,20 @@ pub fn named(
 }
 
 /// Warns when a mass-balance model was fitted at another powder feed than the
-/// process feeds: its heights would not be the ones laid.
-pub fn check_feed(bead: &Bead, process: &Process, diags: &mut Diagnostics) {
+/// process feeds (`powder`, written at `at`): its heights would not be the
+/// ones laid.
+pub fn check_feed(bead: &Bead, powder: MassFlow, at: Span, diags: &mut Diagnostics) {
     if let HeightModel::MassBalance { feed, .. } = bead.model {
-        if (feed.0 - process.powder.0).abs() > 0.01 * feed.0 {
+        if (feed.0 - powder.0).abs() > 0.01 * feed.0 {
             diags.push(
                 Diagnostic::warning(
                     Code::PowderMismatch,
                     format!(
                         "bead `{}` is modelled at {} of powder, the process feeds {}: the beads will not be the heights planned",
-                        bead.name, feed, process.powder
+                        bead.name, feed, powder
                     ),
                 )
-                .label(process.powder_span, "process feed")
+                .label(at, "process feed")
                 .label(bead.span, "bead model")
                 .help("use one feed in both, or refit the bead model at the process feed"),
             );

@@ -1,20 +1,25 @@
 //! `extrude NAME { profile, height, size, bead }`: a profile built up in flat
-//! layers, and its assembly with `slicing planar { … }` into a [`Plan::Block`]:
-//! the lift and track offset derived from the bead model where they are `auto`,
-//! the layer count, and the profile evaluated on every layer.
+//! layers, and its pairing with `slicing planar { … }` into a [`Plan::Block`]:
+//! the scan speed checked against the bead model, the track offset derived
+//! where it is `auto` and checked against the bead's width, the height given
+//! once (a layer count or a height), and the profile kept as a shape or, when
+//! it follows `layer`, as the expression the slicer evaluates on each layer
+//! ([`crate::slice::layers`] decides the layers).
 //!
 //! [`Plan::Block`]: super::model::Plan::Block
 
 use super::fields::Fields;
-use super::model::{Bead, Extrusion, HeightModel, Measure, PlanarSlicing, Process, Shape};
+use super::model::{
+    Bead, Extent, Extrusion, HeightModel, LayerProfile, Measure, PlanarSlicing, ProfileExpr, Shape,
+};
 use super::profile;
-use super::slicing::{PlanarSpec, MAX_LAYERS};
+use super::slicing::PlanarSpec;
 use super::value::{unknown_name, Env, Spanned, Value};
-use crate::bead::{flat_top_offset, planar_lift, MIN_OFFSET_RATIO};
+use crate::bead::{flat_top_offset, MIN_OFFSET_RATIO};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, Stmt};
-use crate::units::{short, Dim, Length, Speed};
+use crate::units::{Dim, Length, Speed};
 use std::collections::BTreeMap;
 
 /// What an extrusion may refer to.
@@ -42,13 +47,12 @@ pub struct Written<'a> {
     source: Source<'a>,
     height: Option<(Length, Span)>,
     measure: Measure,
-    /// The bead model it is built with.
-    pub bead: Bead,
     span: Span,
     profile_span: Span,
 }
 
-/// Reads an extrude block.
+/// Reads an extrude block; returns it and its bead model, each when it is
+/// right (the bead is known even when the block is not).
 pub fn read<'a>(
     env: &mut Env<'a>,
     name: &str,
@@ -56,7 +60,7 @@ pub fn read<'a>(
     span: Span,
     scope: &Scope<'_, 'a>,
     diags: &mut Diagnostics,
-) -> Option<Written<'a>> {
+) -> (Option<Written<'a>>, Option<Bead>) {
     let f = Fields::block(
         env,
         stmts,
@@ -101,15 +105,18 @@ pub fn read<'a>(
         scope.declared,
         diags,
     );
-    Some(Written {
-        name: name.to_string(),
-        source: source?,
-        height: height?,
-        measure: measure?,
-        bead: bead?,
-        span,
-        profile_span,
-    })
+    let written = match (source, height, measure) {
+        (Some(source), Some(height), Some(measure)) => Some(Written {
+            name: name.to_string(),
+            source,
+            height,
+            measure,
+            span,
+            profile_span,
+        }),
+        _ => None,
+    };
+    (written, bead)
 }
 
 fn source<'a>(v: &Spanned, scope: &Scope<'_, 'a>, diags: &mut Diagnostics) -> Option<Source<'a>> {
@@ -138,15 +145,20 @@ fn source<'a>(v: &Spanned, scope: &Scope<'_, 'a>, diags: &mut Diagnostics) -> Op
 
 /// The scan speed of planar layers: `process { speed }`, else the speed a
 /// measured bead model was measured at.
-fn scan_speed(process: &Process, bead: &Bead, at: Span, diags: &mut Diagnostics) -> Option<Speed> {
-    match (process.speed, bead.model) {
+fn scan_speed(
+    speed: Option<(Speed, Span)>,
+    bead: &Bead,
+    at: Span,
+    diags: &mut Diagnostics,
+) -> Option<Speed> {
+    match (speed, bead.model) {
         (Some((v, sp)), _) => {
             let [lo, hi] = bead.speed;
             if !bead.covers_speed(v) {
                 let measured = matches!(bead.model, HeightModel::Measured { .. });
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::ScanSpeed,
                         if measured {
                             format!("the scan speed {v} is not the {lo} bead `{}` was measured at", bead.name)
                         } else {
@@ -177,126 +189,23 @@ fn scan_speed(process: &Process, bead: &Bead, at: Span, diags: &mut Diagnostics)
     }
 }
 
-/// A declared layer height this far (relative) from what the tracks lay is
-/// reported.
-const LIFT_TOLERANCE: f64 = 0.02;
-
-/// A height this far (relative) from a whole number of layers is reported.
-const HEIGHT_TOLERANCE: f64 = 0.01;
-
-/// Joins an extrusion with its planar slicing: derives what is `auto` and
-/// evaluates the profile on every layer.
-pub fn assemble(
-    env: &mut Env<'_>,
-    w: Written<'_>,
-    spec: PlanarSpec,
-    process: &Process,
-    diags: &mut Diagnostics,
-) -> Option<(Extrusion, PlanarSlicing)> {
-    let bead = &w.bead;
-    let width = bead.width;
-    let v = scan_speed(process, bead, spec.span, diags)?;
-    let h = bead.model.height_at(v, width);
-    let overlapped = spec.overlapped();
-    let (offset, offset_derived) = match spec.offset {
-        Some((d, _)) => (d, false),
-        None => (flat_top_offset(width, h), true),
-    };
-    let offset_at = spec.offset.map(|o| o.1).unwrap_or(spec.span);
-    if overlapped && offset.0 > width.0 * (1.0 + 1e-9) {
-        diags.push(
-            Diagnostic::error(
-                Code::FillGap,
-                format!(
-                    "tracks {} apart leave gaps: the bead is {} wide",
-                    offset, width
-                ),
-            )
-            .label(offset_at, "track offset")
-            .label(bead.span, "bead model")
-            .help(format!(
-                "use an offset of at most the bead width; {} keeps the top flat (d = A/h)",
-                flat_top_offset(width, h)
-            )),
-        );
-        return None;
-    }
-    if overlapped && offset.0 < width.0 * MIN_OFFSET_RATIO {
-        diags.push(
-            Diagnostic::error(
-                Code::Overlap,
-                format!(
-                    "tracks {} apart overlap by {:.0} % of the {} bead: the layer piles up",
-                    offset,
-                    100.0 * (1.0 - offset.0 / width.0),
-                    width
-                ),
-            )
-            .label(offset_at, "track offset")
-            .help(format!(
-                "overlaps of about 33 % keep tracks level; d = A/h = {} gives a flat top",
-                flat_top_offset(width, h)
-            )),
-        );
-        return None;
-    }
-    let laid = planar_lift(width, h, overlapped.then_some(offset));
-    let (lift, lift_derived) = match spec.lift {
-        Some((l, at)) => (declared_lift(l, at, laid, overlapped, bead, diags)?, false),
-        None => (
-            derived_lift(laid, overlapped, offset, offset_at, &spec, bead, diags)?,
-            true,
-        ),
-    };
-    let layers = match (spec.layers, w.height) {
-        (Some((n, _)), None) => n,
-        (None, Some((height, _))) => {
-            // Whole layers, at least as tall as asked (machining takes off the rest).
-            let n = (height.0 / lift.0 * (1.0 - 1e-9)).ceil();
-            if n > MAX_LAYERS as f64 {
-                diags.push(
-                    Diagnostic::error(
-                        Code::TooManyPoints,
-                        format!(
-                            "{} in layers of {} is more than {MAX_LAYERS} layers",
-                            height, lift
-                        ),
-                    )
-                    .label(w.height.map(|h| h.1).unwrap_or(w.span), "height"),
-                );
-                return None;
-            }
-            let n = (n as usize).max(1);
-            let built = n as f64 * lift.0;
-            if (built - height.0).abs() > HEIGHT_TOLERANCE * height.0 {
-                diags.push(
-                    Diagnostic::warning(
-                        Code::HeightRounded,
-                        format!(
-                            "{n} layers of {} build {}: the {} asked for and {} more",
-                            lift,
-                            Length(built),
-                            height,
-                            Length(built - height.0)
-                        ),
-                    )
-                    .label(w.height.map(|h| h.1).unwrap_or(w.span), "height")
-                    .help("layers come whole: give `layers` in the slicing block instead, or a height that is a multiple of the layer height"),
-                );
-            }
-            n
-        }
+/// How tall the extrusion is: `layers` in the slicing block or `height` in
+/// the extrude block, exactly one of them.
+fn extent(w: &Written<'_>, spec: &PlanarSpec, diags: &mut Diagnostics) -> Option<Extent> {
+    match (spec.layers, w.height) {
+        (Some((n, ls)), None) => Some(Extent::Layers(n, ls)),
+        (None, Some((h, hs))) => Some(Extent::Height(h, hs)),
         (Some((_, ls)), Some((_, hs))) => {
             diags.push(
                 Diagnostic::error(
-                    Code::Duplicate,
+                    Code::ConflictingFields,
                     "give the layer count or the height, not both",
                 )
                 .label(ls, "layers")
                 .label(hs, "height")
                 .help("the other follows from the layer height"),
             );
-            return None;
+            None
         }
         (None, None) => {
             diags.push(
@@ -304,26 +213,119 @@ pub fn assemble(
                     .label(w.span, "no `height`")
                     .help("add `height = 24 mm` here, or `layers = 35` to the slicing block"),
             );
-            return None;
+            None
         }
+    }
+}
+
+/// Whether tracks `d` apart (declared at `at`) neither leave gaps nor pile
+/// up with `bead`; `flat` is the flat-top offset, if known, for the help.
+fn declared_offset(
+    d: Length,
+    at: Span,
+    bead: &Bead,
+    flat: Option<Length>,
+    diags: &mut Diagnostics,
+) -> bool {
+    let width = bead.width;
+    if d.0 > width.0 * (1.0 + 1e-9) {
+        diags.push(
+            Diagnostic::error(
+                Code::FillGap,
+                format!("tracks {d} apart leave gaps: the bead is {width} wide"),
+            )
+            .label(at, "track offset")
+            .label(bead.span, "bead model")
+            .help(match flat {
+                Some(f) => format!(
+                    "use an offset of at most the bead width; {f} keeps the top flat (d = A/h)"
+                ),
+                None => "use an offset of at most the bead width".to_string(),
+            }),
+        );
+        return false;
+    }
+    if d.0 < width.0 * MIN_OFFSET_RATIO {
+        diags.push(
+            Diagnostic::error(
+                Code::Overlap,
+                format!(
+                    "tracks {d} apart overlap by {:.0} % of the {width} bead: the layer piles up",
+                    100.0 * (1.0 - d.0 / width.0),
+                ),
+            )
+            .label(at, "track offset")
+            .help(match flat {
+                Some(f) => format!(
+                    "overlaps of about 33 % keep tracks level; d = A/h = {f} gives a flat top"
+                ),
+                None => "overlaps of about 33 % keep tracks level".to_string(),
+            }),
+        );
+        return false;
+    }
+    true
+}
+
+/// Joins an extrusion with its planar slicing and its bead: checks the scan
+/// speed (`speed` as the process block gives it: `Some(None)` when not
+/// written, `None` when wrong) and the track offset against
+/// the bead, and keeps the profile as a shape or, when it follows the layer,
+/// as an expression over the file's `constants`.
+pub fn assemble(
+    env: &mut Env<'_>,
+    w: Written<'_>,
+    bead: &Bead,
+    spec: PlanarSpec,
+    speed: Option<Option<(Speed, Span)>>,
+    constants: &[(String, Span, Expr)],
+    diags: &mut Diagnostics,
+) -> Option<(Extrusion, PlanarSlicing)> {
+    // The height is declared once whatever the speed.
+    let extent = extent(&w, &spec, diags);
+    let width = bead.width;
+    // `None` when the process speed is wrong (reported there) or the bead
+    // model does not hold at it.
+    let v = speed.and_then(|s| scan_speed(s, bead, spec.span, diags));
+    let flat = v.map(|v| flat_top_offset(width, bead.model.height_at(v, width)));
+    // A declared offset is checked against the bead's width, whatever the
+    // speed; the flat-top offset d = A/h never leaves a gap or piles up.
+    let offset_ok = match spec.offset {
+        Some((d, at)) if spec.overlapped() => declared_offset(d, at, bead, flat, diags),
+        _ => true,
     };
-    let (shapes, shape_span) = match w.source {
-        Source::Fixed(s) => {
-            within_budget(pieces(&s).saturating_mul(layers), w.profile_span, diags)?;
-            (vec![s; layers], w.profile_span)
-        }
-        Source::Expr(e) => (
-            per_layer(env, e, layers, lift.0, w.profile_span, diags)?,
+    let (Some(v), Some(flat), true) = (v, flat, offset_ok) else {
+        return None;
+    };
+    let (offset, offset_derived) = match spec.offset {
+        Some((d, _)) => (d, false),
+        None => (flat, true),
+    };
+    let (profile, shape_span) = match w.source {
+        Source::Fixed(s) => (LayerProfile::Fixed(s), w.profile_span),
+        Source::Expr(e) if env.depends_on_layer(e) => (
+            LayerProfile::PerLayer(ProfileExpr {
+                expr: e.clone(),
+                constants: constants.to_vec(),
+            }),
             e.span,
         ),
+        // A named profile that does not follow the layer was checked where
+        // it is declared; it is one shape.
+        Source::Expr(e) => {
+            let v = env.eval(e, diags)?;
+            (
+                LayerProfile::Fixed(profile::shape(&v, "a profile", diags)?),
+                e.span,
+            )
+        }
     };
     Some((
         Extrusion {
             name: w.name,
-            layers: shapes,
+            profile,
+            extent: extent?,
             measure: w.measure,
-            lift,
-            lift_derived,
             span: w.span,
             profile_span: w.profile_span,
             shape_span,
@@ -338,223 +340,9 @@ pub fn assemble(
             }),
             chord_error: spec.chord_error,
             speed: v,
+            lift: spec.lift,
             span: spec.span,
             offset_span: spec.offset.map(|o| o.1),
-            lift_span: spec.lift.map(|l| l.1),
         },
     ))
-}
-
-/// The profile on every layer: evaluated once if it does not use `layer`.
-fn per_layer(
-    env: &mut Env<'_>,
-    e: &Expr,
-    layers: usize,
-    lift: f64,
-    at: Span,
-    diags: &mut Diagnostics,
-) -> Option<Vec<Shape>> {
-    if !env.depends_on_layer(e) {
-        let v = env.eval(e, diags)?;
-        let s = profile::shape(&v, "a profile", diags)?;
-        within_budget(pieces(&s).saturating_mul(layers), at, diags)?;
-        return Some(vec![s; layers]);
-    }
-    let mut out = Vec::with_capacity(layers.min(1 << 16));
-    let mut total = 0usize;
-    for k in 0..layers {
-        let mut scratch = Diagnostics::new();
-        let s = env.at_layer(k, k as f64 * lift, |env| {
-            let v = env.eval(e, &mut scratch)?;
-            profile::shape(&v, "a profile", &mut scratch)
-        });
-        match s {
-            Some(s) if !scratch.has_errors() => {
-                total = total.saturating_add(pieces(&s));
-                within_budget(total, at, diags)?;
-                out.push(s);
-            }
-            _ => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::ProfileLayer,
-                        format!(
-                            "the profile is not a valid shape on layer {} (layer = {k})",
-                            k + 1
-                        ),
-                    )
-                    .label(at, "profile")
-                    .help("see the error below; the profile's numbers change with `layer`"),
-                );
-                diags.extend(scratch);
-                return None;
-            }
-        }
-    }
-    Some(out)
-}
-
-/// Most outline pieces over all layers: every piece of every layer is offset,
-/// clipped and checked, so the work (and the profiles kept) grows with it.
-const MAX_PROFILE_WORK: usize = 20_000_000;
-
-/// Pieces of a shape's outline (an ellipse's flattening is bounded apart).
-fn pieces(s: &Shape) -> usize {
-    match s {
-        Shape::Outline(o) => o.segments.len() + 1,
-        Shape::Section(_) => 8,
-    }
-}
-
-fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> {
-    if total <= MAX_PROFILE_WORK {
-        return Some(());
-    }
-    diags.push(
-        Diagnostic::error(
-            Code::TooManyPoints,
-            format!("the profile's pieces over all layers come to more than {MAX_PROFILE_WORK}"),
-        )
-        .label(at, "profile")
-        .help("fewer layers, or an outline of fewer pieces (an arc is one piece)"),
-    );
-    None
-}
-
-/// How a layer's rise follows from its bead, in words.
-fn lift_rule(overlapped: bool) -> &'static str {
-    if overlapped {
-        "A/d: the bead's cross-section A spread over the track offset d"
-    } else {
-        "A/w: one track a layer, its cross-section A spread over its width w"
-    }
-}
-
-/// A declared layer height: within the bead's heights (else an error), and
-/// reported when it is not what the tracks lay (`laid`).
-fn declared_lift(
-    l: Length,
-    at: Span,
-    laid: Length,
-    overlapped: bool,
-    bead: &Bead,
-    diags: &mut Diagnostics,
-) -> Option<Length> {
-    if !bead.covers_height(l) {
-        diags.push(
-            Diagnostic::error(
-                Code::LayerHeight,
-                format!(
-                    "layers {} high are outside the {} .. {} bead `{}` can lay",
-                    l, bead.height[0], bead.height[1], bead.name
-                ),
-            )
-            .label(at, "declared layer height")
-            .label(bead.height_span, "the bead's heights")
-            .help(format!(
-                "`layer_height = auto` gives {laid}, what these tracks lay"
-            )),
-        );
-        return None;
-    }
-    // The nozzle rises by the declared height, the part by what its tracks
-    // lay: a difference adds up layer after layer (seed 001's fixed lift
-    // undershot and needed an extra lift every 3 layers).
-    let drift = laid.0 - l.0;
-    if drift.abs() > LIFT_TOLERANCE * laid.0 {
-        diags.push(
-            Diagnostic::warning(
-                Code::LiftMismatch,
-                format!(
-                    "layers {} high, but these tracks lay {} a layer ({}): the standoff changes by {} a layer",
-                    l,
-                    laid,
-                    lift_rule(overlapped),
-                    Length(drift.abs()),
-                ),
-            )
-            .label(at, "declared layer height")
-            .help(format!(
-                "`layer_height = auto` uses {laid}; keep a declared height only if the process is controlled to it"
-            )),
-        );
-    }
-    Some(l)
-}
-
-/// `layer_height = auto`: what the tracks lay, if the bead allows it; if not,
-/// the error names the offsets (or speeds) that would.
-fn derived_lift(
-    laid: Length,
-    overlapped: bool,
-    offset: Length,
-    offset_at: Span,
-    spec: &PlanarSpec,
-    bead: &Bead,
-    diags: &mut Diagnostics,
-) -> Option<Length> {
-    if bead.covers_height(laid) {
-        return Some(laid);
-    }
-    let [lo, hi] = bead.height;
-    let width = bead.width;
-    let a = laid.0 * if overlapped { offset.0 } else { width.0 };
-    diags.push(
-        Diagnostic::error(
-            Code::LayerHeight,
-            format!(
-                "these tracks lay {} a layer ({}), outside the {} .. {} bead `{}` allows",
-                laid,
-                lift_rule(overlapped),
-                lo,
-                hi,
-                bead.name
-            ),
-        )
-        .label(
-            if overlapped { offset_at } else { spec.span },
-            if overlapped {
-                "track offset"
-            } else {
-                "one track a layer"
-            },
-        )
-        .label(bead.height_span, "the bead's heights")
-        .help(if overlapped {
-            format!(
-                "tracks {} .. {} apart lay an allowed height (A/d with A = {} mm²)",
-                Length(a / hi.0),
-                Length(a / lo.0),
-                short(a)
-            )
-        } else {
-            wall_help(bead, width, lo, hi)
-        }),
-    );
-    None
-}
-
-/// What makes a one-track layer rise by an allowed height: the scan speeds at
-/// which `A/w` lies in `lo .. hi` (within the bead's speed range), or overlap.
-fn wall_help(bead: &Bead, w: Length, lo: Length, hi: Length) -> String {
-    let overlap = "or overlap tracks (contours > 1 or a raster) so the layer rises by A/d";
-    if let HeightModel::Measured { .. } = bead.model {
-        return format!("a measured bead has the one height it was measured with; {overlap}");
-    }
-    // The bead height whose segment area spread over w is the rise r.
-    let speed = |r: Length| {
-        let h = crate::bead::segment_height(w.0, r.0 * w.0);
-        bead.model.speed_for(Length(h), w).0
-    };
-    let (a, b) = (speed(lo), speed(hi));
-    let (a, b) = (a.min(b).max(bead.speed[0].0), a.max(b).min(bead.speed[1].0));
-    if a.is_finite() && b.is_finite() && a <= b {
-        format!(
-            "one track a layer rises by A/w: scan at {} .. {} for that, {overlap}",
-            Speed(a),
-            Speed(b)
-        )
-    } else {
-        format!("no speed in the bead's range lays an allowed A/w; {overlap}")
-    }
 }

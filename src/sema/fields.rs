@@ -8,7 +8,7 @@ use super::value::{Call, Env, Spanned, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
-use crate::units::{short, Dim, Quantity};
+use crate::units::{short, Angle, Density, Dim, Length, MassFlow, Power, Quantity, Speed, Time};
 
 /// One field: its key and its evaluated value (`None` if evaluation failed and was
 /// reported already), or the statements of a nested block.
@@ -93,10 +93,13 @@ impl<'a> Fields<'a> {
                 .find(|e| e.key == key && !repeated.contains(&key))
             {
                 diags.push(
-                    Diagnostic::error(Code::Duplicate, format!("`{key}` is given twice in {what}"))
-                        .label(s.kind.span, "second time")
-                        .label(prev.key_span, "first time")
-                        .help("keep one of them"),
+                    Diagnostic::error(
+                        Code::DuplicateField,
+                        format!("`{key}` is given twice in {what}"),
+                    )
+                    .label(s.kind.span, "second time")
+                    .label(prev.key_span, "first time")
+                    .help("keep one of them"),
                 );
                 continue;
             }
@@ -210,9 +213,12 @@ impl<'a> Fields<'a> {
             }
             if let Some(prev) = entries.iter().find(|e| e.key == key) {
                 diags.push(
-                    Diagnostic::error(Code::Duplicate, format!("`{key}` is given twice to {what}"))
-                        .label(key_span, "second time")
-                        .label(prev.key_span, "first time"),
+                    Diagnostic::error(
+                        Code::DuplicateField,
+                        format!("`{key}` is given twice to {what}"),
+                    )
+                    .label(key_span, "second time")
+                    .label(prev.key_span, "first time"),
                 );
                 continue;
             }
@@ -336,10 +342,10 @@ impl<'a> Fields<'a> {
         } else {
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::NotPositive,
                     format!("`{key}` must be greater than zero"),
                 )
-                .label(span, format!("this is {}", short(q)))
+                .label(span, format!("this is {}", shown(q, dim)))
                 .help(format!("give {} a positive value", self.what)),
             );
             None
@@ -364,7 +370,7 @@ impl<'a> Fields<'a> {
             other => {
                 diags.push(
                     Diagnostic::error(
-                        Code::Type,
+                        Code::ExpectedRange,
                         format!("`{key}` must be a range of {}", dim.describe()),
                     )
                     .label(v.span, format!("this is {}", other.describe()))
@@ -412,13 +418,32 @@ impl<'a> Fields<'a> {
             Value::Str(s) => Some((s.clone(), v.span)),
             other => {
                 diags.push(
-                    Diagnostic::error(Code::Type, format!("`{key}` must be a text in quotes"))
-                        .label(v.span, format!("this is {}", other.describe()))
-                        .help(format!("write `{key} = \"…\"`")),
+                    Diagnostic::error(
+                        Code::ExpectedText,
+                        format!("`{key}` must be a text in quotes"),
+                    )
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help(format!("write `{key} = \"…\"`")),
                 );
                 None
             }
         }
+    }
+}
+
+/// A value of dimension `dim` for a message, in the unit that kind of value
+/// is written in (W, g/min, deg, …), not in lmdc's internal units.
+pub fn shown(value: f64, dim: Dim) -> String {
+    match dim {
+        Dim::NONE => short(value),
+        Dim::LENGTH => Length(value).to_string(),
+        Dim::ANGLE => Angle(value).to_string(),
+        Dim::SPEED => Speed(value).to_string(),
+        Dim::POWER => Power(value).to_string(),
+        Dim::MASS_FLOW => MassFlow(value).to_string(),
+        Dim::DENSITY => Density(value).to_string(),
+        Dim::TIME => Time(value).to_string(),
+        other => format!("{} {}", short(value), other.unit_string()),
     }
 }
 
@@ -437,10 +462,10 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
                 Some((b, text)) if value.abs() > b => {
                     diags.push(
                         Diagnostic::error(
-                            Code::OutOfRange,
+                            Code::TooLarge,
                             format!("`{key}` is beyond what lmdc plans ({text})"),
                         )
-                        .label(v.span, format!("this is {}", short(*value)))
+                        .label(v.span, format!("this is {}", shown(*value, dim)))
                         .help("check the value and its unit"),
                     );
                     None
@@ -453,9 +478,11 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
             None
         }
         other => {
-            let mut d =
-                Diagnostic::error(Code::Type, format!("`{key}` must be {}", dim.describe()))
-                    .label(v.span, format!("this is {}", other.describe()));
+            let mut d = Diagnostic::error(
+                Code::ExpectedNumber,
+                format!("`{key}` must be {}", dim.describe()),
+            )
+            .label(v.span, format!("this is {}", other.describe()));
             if let Value::Symbol(s) = other {
                 d = d.help(format!("`{s}` is not a constant; declare it with `let {s} = …` or write a number with a unit"));
             }
@@ -500,7 +527,7 @@ pub fn count(
             } else {
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::CountRange,
                         format!("`{key}` must be between {lo} and {hi}"),
                     )
                     .label(v.span, format!("this is {}", short(*value))),
@@ -510,8 +537,11 @@ pub fn count(
         }
         other => {
             diags.push(
-                Diagnostic::error(Code::Type, format!("`{key}` must be a whole number"))
-                    .label(v.span, format!("this is {}", other.describe())),
+                Diagnostic::error(
+                    Code::ExpectedWholeNumber,
+                    format!("`{key}` must be a whole number"),
+                )
+                .label(v.span, format!("this is {}", other.describe())),
             );
             None
         }

@@ -22,7 +22,9 @@ pub struct Scope<'s> {
     pub declared: &'s [String],
 }
 
-/// Reads a loft block; returns the loft and the name of its wall's bead model.
+/// Reads a loft block; returns the loft and its wall's bead model, each when
+/// it is right (the bead is known even when the loft is not, so what depends
+/// only on the bead is still checked).
 pub fn read<'a>(
     env: &mut Env<'a>,
     name: &str,
@@ -30,7 +32,7 @@ pub fn read<'a>(
     span: Span,
     scope: &Scope<'_>,
     diags: &mut Diagnostics,
-) -> Option<(Loft, Bead)> {
+) -> (Option<Loft>, Option<Bead>) {
     let f = Fields::block(
         env,
         stmts,
@@ -72,18 +74,19 @@ pub fn read<'a>(
         scope.declared,
         diags,
     );
-    let (from, to, (spine, spine_span), twist, measure, bead) =
-        (from?, to?, spine?, twist?, measure?, bead?);
     let family = |s: &Section| {
         matches!(
             s,
             Section::Circle { .. } | Section::Ellipse { .. } | Section::Rectangle { .. }
         )
     };
-    let morph = match morph {
-        Some((m, _)) if m == "radial" => Morph::Radial,
-        Some((_, ms)) => {
-            if !(family(&from) && family(&to)) {
+    // The morph needs only the two ends.
+    let morph = match (from, to, morph) {
+        (_, _, Some((m, _))) if m == "radial" => Some(Morph::Radial),
+        (Some(from), Some(to), Some((_, ms))) => {
+            if family(&from) && family(&to) {
+                Some(Morph::Superellipse)
+            } else {
                 diags.push(
                     Diagnostic::error(
                         Code::BadChoice,
@@ -92,26 +95,41 @@ pub fn read<'a>(
                     .label(ms, "superellipse")
                     .help("use `morph = radial` for polygons and rounded rectangles"),
                 );
-                return None;
+                None
             }
-            Morph::Superellipse
         }
-        None if family(&from) && family(&to) => Morph::Superellipse,
-        None => Morph::Radial,
+        (Some(from), Some(to), None) if !f.has("morph") => Some(if family(&from) && family(&to) {
+            Morph::Superellipse
+        } else {
+            Morph::Radial
+        }),
+        _ => None,
+    };
+    let (
+        Some(from),
+        Some(to),
+        Some((spine, spine_span)),
+        Some(twist),
+        Some(measure),
+        Some(b),
+        Some(morph),
+    ) = (from, to, spine, twist, measure, bead.as_ref(), morph)
+    else {
+        return (None, bead);
     };
     let spans = [f.span("from").unwrap_or(span), f.span("to").unwrap_or(span)];
     let (from, to) = match measure {
         Measure::Centre => (from, to),
         Measure::Outer => {
             let mut ok = true;
-            let mut shrink = |s: Section, at: Span| match s.inset(Length(bead.width.0 / 2.0)) {
+            let mut shrink = |s: Section, at: Span| match s.inset(Length(b.width.0 / 2.0)) {
                 Some(s) => s,
                 None => {
                     ok = false;
                     diags.push(
                         Diagnostic::error(
-                            Code::OutOfRange,
-                            format!("this section is too small for a {} wide bead measured at its outer face", bead.width),
+                            Code::SectionTooSmall,
+                            format!("this section is too small for a {} wide bead measured at its outer face", b.width),
                         )
                         .label(at, "section")
                         .help("make the section larger or use `size = centre`"),
@@ -121,7 +139,7 @@ pub fn read<'a>(
             };
             let r = (shrink(from, spans[0]), shrink(to, spans[1]));
             if !ok {
-                return None;
+                return (None, bead);
             }
             r
         }
@@ -138,7 +156,7 @@ pub fn read<'a>(
         spine_span,
         section_spans: spans,
     };
-    Some((loft, bead))
+    (Some(loft), bead)
 }
 
 fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Option<Section> {
@@ -155,7 +173,7 @@ fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Opt
         Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
         other => {
             diags.push(
-                Diagnostic::error(Code::Type, "expected a section")
+                Diagnostic::error(Code::ExpectedShape, "expected a section")
                     .label(v.span, format!("this is {}", other.describe()))
                     .help(format!(
                         "name a declared section or write one of: {}",
@@ -179,11 +197,11 @@ fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
             let f = Fields::call(c, &[], &["radius", "angle"], diags);
             let r = f.positive("radius", Dim::LENGTH, Some("250 mm"), diags);
             let a = f.positive("angle", Dim::ANGLE, Some("45 deg"), diags);
-            let (r, (a, aspan)) = (r?, a?);
+            let (a, aspan) = a?;
             if a > std::f64::consts::PI * 1.5 {
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::BendAngle,
                         "a bend angle above 270° makes the part collide with itself",
                     )
                     .label(aspan, format!("this is {}", Angle(a)))
@@ -192,14 +210,14 @@ fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
                 return None;
             }
             Spine::Arc {
-                radius: Length(r.0),
+                radius: Length(r?.0),
                 angle: Angle(a),
             }
         }
         other => {
             diags.push(
                 Diagnostic::error(
-                    Code::Type,
+                    Code::ExpectedShape,
                     "a spine is `line(length = …)` or `arc(radius = …, angle = …)`",
                 )
                 .label(v.span, format!("this is {}", other.describe()))

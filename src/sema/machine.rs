@@ -51,6 +51,9 @@ const CNC_FIELDS: &[&str] = &[
     "clearance",
 ];
 
+/// Axes a CNC's `limits { … }` block may bound.
+const LIMIT_AXES: &[&str] = &["x", "y", "z", "a", "b", "c"];
+
 /// Where each field the checks refer to is written, by name (`limits.x`, the
 /// tilt axis' limit as `limits.tilt`).
 fn spans(f: &Fields<'_>, keys: &[&str], prefix: &str, out: &mut Vec<(String, Span)>) {
@@ -73,20 +76,41 @@ pub fn read<'a>(
     span: Span,
     diags: &mut Diagnostics,
 ) -> Option<(Machine, Vec<(String, Span)>)> {
-    let kind = stmts.iter().find(|s| s.kind.node == "kind");
-    let kind = match kind.map(|s| &s.body) {
-        Some(Body::Assign(e)) => {
-            let v = env.eval(e, &mut Diagnostics::new())?;
-            fields::symbol(&v, "kind", &["robot", "cnc"], diags)?
-        }
-        _ => {
+    let kind_stmt = stmts.iter().find(|s| s.kind.node == "kind");
+    let kind = match kind_stmt.map(|s| &s.body) {
+        // Evaluated quietly: reading the block below reports its errors.
+        Some(Body::Assign(e)) => env
+            .eval(e, &mut Diagnostics::new())
+            .and_then(|v| fields::symbol(&v, "kind", &["robot", "cnc"], diags)),
+        Some(_) => None,
+        None => {
             diags.push(
                 Diagnostic::error(Code::MissingField, format!("machine `{name}` needs `kind`"))
                     .label(span, "is it a robot or a CNC?")
                     .help("add `kind = robot` (KUKA, KRL) or `kind = cnc` (G-code)"),
             );
-            return None;
+            None
         }
+    };
+    let Some(kind) = kind else {
+        // Which fields a machine has depends on its kind; without one, each
+        // field is checked against what either kind takes, so a misspelt
+        // field shows in the same run as the kind.
+        let mut all = ROBOT_FIELDS.to_vec();
+        all.extend(CNC_FIELDS.iter().filter(|k| !ROBOT_FIELDS.contains(k)));
+        let f = Fields::block(
+            env,
+            stmts,
+            &all,
+            &["limits"],
+            format!("machine `{name}`"),
+            span,
+            diags,
+        );
+        if let Some((inner, ls)) = f.nested("limits") {
+            Fields::block(env, inner, LIMIT_AXES, &[], "limits".into(), ls, diags);
+        }
+        return None;
     };
     if kind == "robot" {
         let f = Fields::block(
@@ -113,15 +137,7 @@ pub fn read<'a>(
         );
         let limits = match f.nested("limits") {
             Some((inner, ls)) => {
-                let l = Fields::block(
-                    env,
-                    inner,
-                    &["x", "y", "z", "a", "b", "c"],
-                    &[],
-                    "limits".into(),
-                    ls,
-                    diags,
-                );
+                let l = Fields::block(env, inner, LIMIT_AXES, &[], "limits".into(), ls, diags);
                 Some(l)
             }
             None => None,
@@ -129,7 +145,7 @@ pub fn read<'a>(
         let mut at = Vec::new();
         spans(&f, CNC_FIELDS, "", &mut at);
         if let Some(l) = &limits {
-            spans(l, &["x", "y", "z", "a", "b", "c"], "limits.", &mut at);
+            spans(l, LIMIT_AXES, "limits.", &mut at);
         }
         cnc(name, &f, limits.as_ref(), diags).map(|c| (Machine::Cnc(c), at))
     }

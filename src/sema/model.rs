@@ -1,9 +1,11 @@
 //! The checked semantic model: names resolved, units converted to typed values,
 //! ranges checked. Geometry and slicing read only this.
 
+pub use crate::bead::HeightModel;
 use crate::ir::{Machine, MachineOrigin};
 use crate::span::Span;
-use crate::units::{Angle, Density, Length, MassFlow, Power, Speed};
+use crate::syntax::ast::Expr;
+use crate::units::{Angle, Length, MassFlow, Power, Speed};
 
 /// A whole checked `.lmd` file.
 #[derive(Clone, Debug)]
@@ -199,36 +201,6 @@ pub struct Loft {
     pub section_spans: [Span; 2],
 }
 
-/// How bead height follows scan speed.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum HeightModel {
-    /// `H = slope · v + intercept` (seed 003's fitted map).
-    Linear {
-        /// mm per mm/s (a time).
-        slope: f64,
-        /// mm.
-        intercept: Length,
-    },
-    /// Deposited area from the powder caught: `A = η·ṁ/(ρ·v)`; the bead is a
-    /// circular segment of chord `width` and that area.
-    MassBalance {
-        /// Powder feed.
-        feed: MassFlow,
-        /// Catch efficiency η (0–1).
-        efficiency: f64,
-        /// Density of the deposited metal.
-        density: Density,
-    },
-    /// A bead measured at one process point: this height at this speed (seed
-    /// 001's 0.7 mm at 6 mm/s).
-    Measured {
-        /// Bead height.
-        height: Length,
-        /// The scan speed it was measured at.
-        speed: Speed,
-    },
-}
-
 /// A bead model.
 #[derive(Clone, Debug)]
 pub struct Bead {
@@ -252,8 +224,9 @@ pub struct Bead {
     pub speed_span: Span,
 }
 
-/// Whether `x` lies in `lo ..= hi`, with rounding slack.
-fn within(x: f64, lo: f64, hi: f64) -> bool {
+/// Whether `x` lies in `lo ..= hi`, with the rounding slack every range
+/// rule of the checker allows.
+pub fn within(x: f64, lo: f64, hi: f64) -> bool {
     x >= lo * (1.0 - 1e-9) && x <= hi * (1.0 + 1e-9)
 }
 
@@ -457,20 +430,19 @@ pub enum Shape {
     Outline(Outline),
 }
 
-/// `extrude NAME { profile, height, size, bead }`.
+/// `extrude NAME { profile, height, size, bead }`: what the checker knows of
+/// an extrusion. How many layers it has and how far each rises is the
+/// slicer's decision ([`crate::slice::layers`]).
 #[derive(Clone, Debug)]
 pub struct Extrusion {
     /// Its name.
     pub name: String,
-    /// The shape of every layer, in build order (one entry per layer; equal
-    /// entries when the profile does not depend on the layer).
-    pub layers: Vec<Shape>,
+    /// The profile: one shape, or one that follows the layer.
+    pub profile: LayerProfile,
+    /// How tall it is: a layer count or a height.
+    pub extent: Extent,
     /// Whether the profile's size is the outer face or the bead centre line.
     pub measure: Measure,
-    /// Lift of every layer, mm.
-    pub lift: Length,
-    /// Whether the lift was derived from the bead model (`layer_height = auto`).
-    pub lift_derived: bool,
     /// The extrude block.
     pub span: Span,
     /// The profile's declaration.
@@ -478,6 +450,37 @@ pub struct Extrusion {
     /// Where the shape itself is written: the profile's `outline(…)` (or the
     /// section), for errors about the shape.
     pub shape_span: Span,
+}
+
+/// An extrusion's profile.
+#[derive(Clone, Debug)]
+pub enum LayerProfile {
+    /// The same shape on every layer.
+    Fixed(Shape),
+    /// A profile whose numbers use `layer` or `layer_z`: the slicer evaluates
+    /// it on each layer ([`ProfileExpr::evaluator`]).
+    PerLayer(ProfileExpr),
+}
+
+/// A profile that follows the layer, kept as the user wrote it: the
+/// expression and the file's constants it may use. It was checked on layer 0;
+/// another layer may still make it invalid (a negative size, crossing edges),
+/// which the slicer reports with that layer.
+#[derive(Clone, Debug)]
+pub struct ProfileExpr {
+    /// The profile's expression.
+    pub expr: Expr,
+    /// Every `let` of the file: name, where it is declared, its expression.
+    pub constants: Vec<(String, Span, Expr)>,
+}
+
+/// How tall an extrusion is, as the file says it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Extent {
+    /// `layers = n` in the slicing block.
+    Layers(usize, Span),
+    /// `height = h` in the extrude block: as many whole layers as reach it.
+    Height(Length, Span),
 }
 
 /// Order of raster tracks.
@@ -518,10 +521,18 @@ pub struct PlanarSlicing {
     pub chord_error: Length,
     /// Scan speed of every track.
     pub speed: Speed,
+    /// `layer_height`, if declared (`None`: auto, what the tracks lay).
+    pub lift: Option<(Length, Span)>,
     /// The slicing block.
     pub span: Span,
     /// The offset's declaration, if written.
     pub offset_span: Option<Span>,
-    /// The layer height's declaration, if written.
-    pub lift_span: Option<Span>,
+}
+
+impl PlanarSlicing {
+    /// Whether a layer is more than one track wide, so that it rises by `A/d`
+    /// rather than `A/w`.
+    pub fn overlapped(&self) -> bool {
+        self.infill.is_some() || self.contours > 1
+    }
 }

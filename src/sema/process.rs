@@ -1,20 +1,73 @@
-//! `process { powder, defocus, power, power_range }`.
+//! `process { powder, defocus, power, power_range, speed }`.
 
 use super::fields::Fields;
-use super::model::{PowerSchedule, Process};
+use super::model::{within, PowerSchedule, Process};
+use super::statement::{shape_error, single, Statements};
 use super::value::{Env, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
-use crate::syntax::ast::Stmt;
+use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Dim, Length, MassFlow, Power, Speed};
 
+/// The process block as read: the whole of it when every field is right, and
+/// the parts other checks use on their own, so that a wrong field does not
+/// hide a mistake elsewhere that only needs another one.
+#[derive(Default)]
+pub struct Read {
+    /// Every value, when each one is right.
+    pub process: Option<Process>,
+    /// The laser's range, if known.
+    pub laser: Option<Laser>,
+    /// The scan speed: `Some(None)` when not written, `None` when wrong.
+    pub speed: Option<Option<(Speed, Span)>>,
+    /// The powder feed and where it is written, if right.
+    pub powder: Option<(MassFlow, Span)>,
+}
+
+/// The powers the laser may give: `power_range`, or the scheduled powers
+/// when no range is declared.
+#[derive(Clone, Copy, Debug)]
+pub struct Laser {
+    /// Lowest and highest power.
+    pub range: [Power; 2],
+    /// `power_range = …`, if declared.
+    pub range_span: Option<Span>,
+    /// `power = …` (the block when it is missing).
+    pub power_span: Span,
+}
+
+impl Laser {
+    /// Whether the laser can give `p`.
+    pub fn covers(&self, p: Power) -> bool {
+        within(p.0, self.range[0].0, self.range[1].0)
+    }
+}
+
+/// The file's `process { … }` statement.
+pub fn statement<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnostics) -> Read {
+    let Some(s) = single(
+        st.get("process"),
+        "process",
+        "process { powder = 45.9 g/min  power = 2100 W }",
+        diags,
+    ) else {
+        return Read::default();
+    };
+    match (&s.name, &s.body) {
+        (None, Body::Block(stmts, _)) => read(env, stmts, s.span, diags),
+        _ => {
+            diags.push(shape_error(
+                s,
+                "process { … }",
+                "process { power = 2100 W }",
+            ));
+            Read::default()
+        }
+    }
+}
+
 /// Reads the process block.
-pub fn read<'a>(
-    env: &mut Env<'a>,
-    stmts: &'a [Stmt],
-    span: Span,
-    diags: &mut Diagnostics,
-) -> Option<Process> {
+fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagnostics) -> Read {
     let f = Fields::block(
         env,
         stmts,
@@ -24,7 +77,10 @@ pub fn read<'a>(
         span,
         diags,
     );
-    let powder = f.positive("powder", Dim::MASS_FLOW, Some("45.9 g/min"), diags);
+    // Every field is read before any is combined with another.
+    let powder = f
+        .positive("powder", Dim::MASS_FLOW, Some("45.9 g/min"), diags)
+        .map(|(m, sp)| (MassFlow(m), sp));
     let defocus = match f.quantity("defocus", Dim::LENGTH, None, diags) {
         Some((d, _)) => Some(Length(d)),
         None if f.has("defocus") => None,
@@ -38,11 +94,14 @@ pub fn read<'a>(
             let from = a.positive("from", Dim::POWER, Some("4000 W"), diags);
             let to = a.positive("to", Dim::POWER, Some("2100 W"), diags);
             let n = a.count("layers", 1, 1_000_000, Some("20"), diags);
-            Some(PowerSchedule::Ramp {
-                from: Power(from?.0),
-                to: Power(to?.0),
-                layers: n?.0,
-            })
+            match (from, to, n) {
+                (Some(from), Some(to), Some(n)) => Some(PowerSchedule::Ramp {
+                    from: Power(from.0),
+                    to: Power(to.0),
+                    layers: n.0,
+                }),
+                _ => None,
+            }
         }
         Some(_) => f
             .positive("power", Dim::POWER, None, diags)
@@ -50,48 +109,76 @@ pub fn read<'a>(
         None => None,
     };
     let range = f.range("power_range", Dim::POWER, None, diags);
-    let power = power?;
-    let (lo, hi) = match power {
+    let speed = match f.positive("speed", Dim::SPEED, None, diags) {
+        Some((v, sp)) => Some(Some((Speed(v), sp))),
+        None if f.has("speed") => None,
+        None => Some(None),
+    };
+
+    // The scheduled powers, and the laser's range: declared, else theirs.
+    let scheduled = power.map(|p| match p {
         PowerSchedule::Constant(p) => (p.0, p.0),
         PowerSchedule::Ramp { from, to, .. } => (from.0.min(to.0), from.0.max(to.0)),
+    });
+    let laser = match (range, scheduled) {
+        (Some(([a, b], rs)), _) => Some(Laser {
+            range: [Power(a), Power(b)],
+            range_span: Some(rs),
+            power_span,
+        }),
+        (None, _) if f.has("power_range") => None,
+        (None, Some((lo, hi))) => Some(Laser {
+            range: [Power(lo), Power(hi)],
+            range_span: None,
+            power_span,
+        }),
+        (None, None) => None,
     };
-    let power_range_span = range.map(|r| r.1);
-    let power_range = match range {
-        Some(([a, b], rs)) => {
-            if lo < a || hi > b {
-                diags.push(
-                    Diagnostic::error(
-                        Code::OutOfRange,
-                        format!(
-                            "the power schedule reaches {} .. {}, outside the laser's range {} .. {}",
-                            Power(lo), Power(hi), Power(a), Power(b)
-                        ),
-                    )
-                    .label(power_span, "power")
-                    .label(rs, "allowed range")
-                    .help("keep the scheduled powers inside `power_range`"),
-                );
-                return None;
-            }
-            [Power(a), Power(b)]
+    let mut in_range = true;
+    if let (Some(l), Some((lo, hi)), Some(rs)) =
+        (laser, scheduled, laser.and_then(|l| l.range_span))
+    {
+        let [a, b] = l.range;
+        if lo < a.0 || hi > b.0 {
+            diags.push(
+                Diagnostic::error(
+                    Code::PowerSchedule,
+                    format!(
+                        "the power schedule reaches {} .. {}, outside the laser's range {} .. {}",
+                        Power(lo),
+                        Power(hi),
+                        a,
+                        b
+                    ),
+                )
+                .label(power_span, "power")
+                .label(rs, "allowed range")
+                .help("keep the scheduled powers inside `power_range`"),
+            );
+            in_range = false;
         }
-        None if f.has("power_range") => return None,
-        None => [Power(lo), Power(hi)],
-    };
-    let speed = f
-        .positive("speed", Dim::SPEED, None, diags)
-        .map(|(v, sp)| (Speed(v), sp));
-    if f.has("speed") && speed.is_none() {
-        return None;
     }
-    Some(Process {
+    let process = match (powder, defocus, power, laser, speed) {
+        (Some((powder, powder_span)), Some(defocus), Some(power), Some(l), Some(speed))
+            if in_range =>
+        {
+            Some(Process {
+                speed,
+                powder,
+                powder_span,
+                defocus,
+                power,
+                power_range: l.range,
+                power_span,
+                power_range_span: l.range_span,
+            })
+        }
+        _ => None,
+    };
+    Read {
+        process,
+        laser,
         speed,
-        powder: MassFlow(powder?.0),
-        powder_span: powder?.1,
-        defocus: defocus?,
-        power,
-        power_range,
-        power_span,
-        power_range_span,
-    })
+        powder,
+    }
 }

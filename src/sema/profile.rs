@@ -5,10 +5,11 @@
 //! profile can change from layer to layer (seed 001's growing arc region).
 
 use super::fields::{self, Fields};
-use super::model::{Outline, Segment, Shape, Turn};
+use super::model::{Outline, ProfileExpr, Segment, Shape, Turn};
 use super::section;
-use super::value::{Call, Spanned, Value};
+use super::value::{Call, Env, Spanned, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::syntax::ast::Expr;
 use crate::units::{Dim, Length};
 
 /// The shapes a profile can be, besides the section shapes.
@@ -26,7 +27,7 @@ pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> 
         }
         other => {
             diags.push(
-                Diagnostic::error(Code::Type, format!("{what} must be a 2-D shape"))
+                Diagnostic::error(Code::ExpectedShape, format!("{what} must be a 2-D shape"))
                     .label(v.span, format!("this is {}", other.describe()))
                     .help(format!(
                         "write `outline([x, y], [x, y], arc(to = [x, y], radius = r), …)` or a section shape: {}",
@@ -71,7 +72,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
                 let first = start.is_none();
                 diags.push(
                     Diagnostic::error(
-                        Code::Type,
+                        Code::ExpectedPoint,
                         if first {
                             "an outline starts with a point `[x, y]`".to_string()
                         } else {
@@ -145,7 +146,7 @@ fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
         }
         other => {
             diags.push(
-                Diagnostic::error(Code::Type, "a point is `[x, y]`, two lengths")
+                Diagnostic::error(Code::ExpectedPoint, "a point is `[x, y]`, two lengths")
                     .label(v.span, format!("this is {}", other.describe()))
                     .help("e.g. `[40 mm, 0 mm]`"),
             );
@@ -171,4 +172,39 @@ fn arc_piece(c: &Call, diags: &mut Diagnostics) -> Option<Segment> {
         radius: Length(radius?.0),
         turn: turn?,
     })
+}
+
+/// Evaluates a [`ProfileExpr`] layer after layer: the constants are declared
+/// once, and those that use the layer are recomputed on each.
+pub struct LayerShapes<'m> {
+    env: Env<'m>,
+    expr: &'m Expr,
+}
+
+impl ProfileExpr {
+    /// An evaluator of the profile on any layer.
+    pub fn evaluator(&self) -> LayerShapes<'_> {
+        let mut env = Env::new();
+        for (name, span, e) in &self.constants {
+            // A name declared twice was reported by the checker; the first
+            // declaration is the one it used.
+            let _ = env.declare(name, *span, e);
+        }
+        LayerShapes {
+            env,
+            expr: &self.expr,
+        }
+    }
+}
+
+impl LayerShapes<'_> {
+    /// The profile on layer `layer` (0-based) whose plane is `z` mm above the
+    /// first's; `None` after reporting why it is not a shape there.
+    pub fn at(&mut self, layer: usize, z: f64, diags: &mut Diagnostics) -> Option<Shape> {
+        let expr = self.expr;
+        self.env.at_layer(layer, z, |env| {
+            let v = env.eval(expr, diags)?;
+            shape(&v, "a profile", diags)
+        })
+    }
 }

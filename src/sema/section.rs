@@ -22,6 +22,9 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
     match call.func.as_str() {
         "circle" => {
             let f = Fields::call(call, &["diameter"], &["diameter", "radius"], diags);
+            if !one_of(&f, "diameter", "radius", diags) {
+                return None;
+            }
             let r = if f.has("radius") {
                 f.positive("radius", l, None, diags)?.0
             } else {
@@ -65,11 +68,26 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
             let a = f.positive("width", l, Some("60 mm"), diags);
             let b = f.positive("height", l, Some("40 mm"), diags);
             let r = f.quantity("radius", l, Some("5 mm"), diags);
-            let (a, b, (r, rs)) = (a?.0 / 2.0, b?.0 / 2.0, r?);
-            if r < 0.0 || r > a.min(b) {
+            // A negative radius is wrong whatever the sides.
+            let r = r.filter(|&(r, rs)| {
+                if r >= 0.0 {
+                    return true;
+                }
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::CornerRadius,
+                        "the corner radius must lie between 0 and half the shorter side",
+                    )
+                    .label(rs, format!("this is {}", Length(r)))
+                    .help("a corner radius is 0 (sharp) or more"),
+                );
+                false
+            });
+            let (a, b, (r, rs)) = (a?.0 / 2.0, b?.0 / 2.0, r?);
+            if r > a.min(b) {
+                diags.push(
+                    Diagnostic::error(
+                        Code::CornerRadius,
                         "the corner radius must lie between 0 and half the shorter side",
                     )
                     .label(rs, format!("this is {}", Length(r)))
@@ -91,6 +109,9 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
                 diags,
             );
             let n = f.count("sides", 3, 1000, Some("6"), diags);
+            if !one_of(&f, "circumradius", "side", diags) {
+                return None;
+            }
             let r = if f.has("side") {
                 let s = f.positive("side", l, None, diags);
                 let n = n?.0;
@@ -106,4 +127,22 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
         }
         _ => None,
     }
+}
+
+/// Whether at most one of two arguments that give the same size is written;
+/// reports both when both are.
+fn one_of(f: &Fields<'_>, a: &str, b: &str, diags: &mut Diagnostics) -> bool {
+    if !(f.has(a) && f.has(b)) {
+        return true;
+    }
+    diags.push(
+        Diagnostic::error(
+            Code::ConflictingFields,
+            format!("give either `{a}` or `{b}`, not both"),
+        )
+        .label_opt(f.span(b), b)
+        .label_opt(f.span(a), a)
+        .help("they give the same size; keep the one you measured"),
+    );
+    false
 }

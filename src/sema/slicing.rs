@@ -3,10 +3,12 @@
 
 use super::fields::{self, Fields};
 use super::model::{Pattern, Raster, Resolution, Slicing};
+use super::statement::{shape_error, single, Statements};
+use super::suggest::did_you_mean;
 use super::value::{Call, Env, Spanned as SpannedValue, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::{Span, Spanned};
-use crate::syntax::ast::Stmt;
+use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Angle, Dim, Length};
 
 /// Strategies the language knows.
@@ -49,14 +51,89 @@ impl PlanarSpec {
     }
 }
 
+/// The slicing statement as read: the strategy named (when it is one lmdc
+/// knows) and the block when every field is right.
+pub struct Read<'s> {
+    /// The `slicing` statement, if there is one.
+    pub stmt: Option<&'s Stmt>,
+    /// `normal` or `planar`, if written so.
+    pub strategy: Option<&'s str>,
+    /// The block, when every field is right.
+    pub spec: Option<Spec>,
+}
+
+/// The file's `slicing STRATEGY { … }` statement.
+pub(super) fn statement<'a>(
+    env: &mut Env<'a>,
+    st: &Statements<'a>,
+    diags: &mut Diagnostics,
+) -> Read<'a> {
+    let stmt = single(
+        st.get("slicing"),
+        "slicing",
+        "slicing normal { layers = auto }",
+        diags,
+    );
+    let Some(s) = stmt else {
+        return Read {
+            stmt,
+            strategy: None,
+            spec: None,
+        };
+    };
+    let strategy = s
+        .name
+        .as_ref()
+        .map(|n| n.node.as_str())
+        .filter(|n| STRATEGIES.contains(n));
+    let spec = match &s.body {
+        Body::Block(stmts, _) => read(env, s.name.as_ref(), stmts, s.span, diags),
+        _ => {
+            diags.push(shape_error(
+                s,
+                "slicing STRATEGY { … }",
+                "slicing normal { layers = auto }",
+            ));
+            None
+        }
+    };
+    Read {
+        stmt,
+        strategy,
+        spec,
+    }
+}
+
 /// Most layers and points per layer a plan may have: 10⁸ points in all keeps
 /// memory bounded (the IR holds 72 bytes a point).
 pub const MAX_LAYERS: usize = 100_000;
 /// See [`MAX_LAYERS`].
 pub const MAX_POINTS: usize = 100_000;
 
+/// Fields of `slicing normal { … }`.
+const NORMAL_FIELDS: &[&str] = &["layers", "points", "chord_error", "seam"];
+
+/// Fields of `slicing planar { … }`.
+const PLANAR_FIELDS: &[&str] = &[
+    "layer_height",
+    "layers",
+    "contours",
+    "offset",
+    "infill",
+    "chord_error",
+];
+
+/// The fields of a block whose strategy is wrong or missing: checked against
+/// what either strategy takes, so a misspelt field is reported in the same
+/// run as the strategy.
+fn any_strategy<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagnostics) {
+    let mut all: Vec<&str> = NORMAL_FIELDS.to_vec();
+    all.extend(PLANAR_FIELDS.iter().filter(|k| !NORMAL_FIELDS.contains(k)));
+    Fields::block(env, stmts, &all, &[], "slicing".into(), span, diags);
+}
+
 /// Reads a slicing block.
-pub fn read<'a>(
+fn read<'a>(
     env: &mut Env<'a>,
     strategy: Option<&Spanned<String>>,
     stmts: &'a [Stmt],
@@ -67,14 +144,17 @@ pub fn read<'a>(
         Some(s) if s.node == "planar" => return planar(env, stmts, span, diags).map(Spec::Planar),
         Some(s) if STRATEGIES.contains(&s.node.as_str()) => {}
         Some(s) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::BadChoice,
-                    format!("lmdc does not know the slicing strategy `{}`", s.node),
-                )
-                .label(s.span, "unknown strategy")
-                .help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine) or `slicing planar { … }` (flat filled layers of an extrusion)"),
-            );
+            let mut d = Diagnostic::error(
+                Code::BadChoice,
+                format!("lmdc does not know the slicing strategy `{}`", s.node),
+            )
+            .label(s.span, "unknown strategy");
+            d = match did_you_mean(&s.node, STRATEGIES.iter().copied()) {
+                Some(m) => d.help(format!("did you mean `slicing {m} {{ … }}`?")),
+                None => d.help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine) or `slicing planar { … }` (flat filled layers of an extrusion)"),
+            };
+            diags.push(d);
+            any_strategy(env, stmts, span, diags);
             return None;
         }
         None => {
@@ -83,20 +163,21 @@ pub fn read<'a>(
                     .label(span, "which strategy?")
                     .help("write `slicing normal { … }`"),
             );
+            any_strategy(env, stmts, span, diags);
             return None;
         }
     }
     let f = Fields::block(
         env,
         stmts,
-        &["layers", "points", "chord_error", "seam"],
+        NORMAL_FIELDS,
         &[],
         "slicing".into(),
         span,
         diags,
     );
     let layers = match f.value("layers", None, diags) {
-        None if f.has("layers") => return None,
+        None if f.has("layers") => None,
         None => Some(None),
         Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
         Some(_) => f
@@ -107,7 +188,7 @@ pub fn read<'a>(
         (true, true) => {
             diags.push(
                 Diagnostic::error(
-                    Code::Duplicate,
+                    Code::ConflictingFields,
                     "give either `points` or `chord_error`, not both",
                 )
                 .label_opt(f.span("points"), "points")
@@ -165,14 +246,7 @@ fn planar<'a>(
     let f = Fields::block(
         env,
         stmts,
-        &[
-            "layer_height",
-            "layers",
-            "contours",
-            "offset",
-            "infill",
-            "chord_error",
-        ],
+        PLANAR_FIELDS,
         &[],
         "planar slicing".into(),
         span,
@@ -203,25 +277,26 @@ fn planar<'a>(
             None
         }
     };
-    let infill = infill?;
     let contours = match f.count("contours", 0, MAX_CONTOURS, None, diags) {
-        Some((n, sp)) => {
-            if n == 0 && infill.is_none() {
-                diags.push(
-                    Diagnostic::error(
-                        Code::OutOfRange,
-                        "a layer with no contour and no infill deposits nothing",
-                    )
-                    .label(sp, "no contour")
-                    .help("add `infill = raster(…)` or at least one contour"),
-                );
-                return None;
-            }
-            Some(n)
-        }
+        Some((n, sp)) => Some((n, Some(sp))),
         None if f.has("contours") => None,
         // A raster alone fills seed 001's layers; a profile alone is a wall.
-        None => Some(if infill.is_some() { 0 } else { 1 }),
+        None => infill.map(|i| (if i.is_some() { 0 } else { 1 }, None)),
+    };
+    // Nothing to deposit: known once both are.
+    let contours = match (contours, &infill) {
+        (Some((0, Some(sp))), Some(None)) => {
+            diags.push(
+                Diagnostic::error(
+                    Code::NothingDeposited,
+                    "a layer with no contour and no infill deposits nothing",
+                )
+                .label(sp, "no contour")
+                .help("add `infill = raster(…)` or at least one contour"),
+            );
+            None
+        }
+        (c, _) => c.map(|c| c.0),
     };
     let chord_error = match f.positive("chord_error", Dim::LENGTH, None, diags) {
         Some((e, _)) => Some(Length(e)),
@@ -233,7 +308,7 @@ fn planar<'a>(
         layers: layers?,
         contours: contours?,
         offset: offset?,
-        infill,
+        infill: infill?,
         chord_error: chord_error?,
         span,
     })
@@ -264,7 +339,7 @@ fn raster(c: &Call, diags: &mut Diagnostics) -> Option<(Raster, Option<Length>)>
         Some(v) => fields::quantity(v, Dim::LENGTH, "extend", diags).and_then(|e| {
             if e < 0.0 {
                 diags.push(
-                    Diagnostic::error(Code::OutOfRange, "`extend` cannot be negative")
+                    Diagnostic::error(Code::NotPositive, "`extend` cannot be negative")
                         .label(v.span, "negative")
                         .help("0 mm keeps tracks where they meet the boundary"),
                 );

@@ -3,7 +3,10 @@
 //! style's values against the bead model and the laser.
 
 use super::fields::{self, Fields};
-use super::model::{Bead, Inheritance, PathSelect, Plan, Process, Style, StyleCondition, Styles};
+use super::model::{Bead, Inheritance, PathSelect, Style, StyleCondition, Styles};
+use super::process::Laser;
+use super::slicing::PlanarSpec;
+use super::statement::{single_optional, Statements};
 use super::value::{Env, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
@@ -45,7 +48,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
     if stmts.len() > MAX_STYLES {
         diags.push(
             Diagnostic::error(
-                Code::OutOfRange,
+                Code::TooManyStyles,
                 format!(
                     "{} styles are more than the {MAX_STYLES} a table may hold",
                     stmts.len()
@@ -79,7 +82,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         if !word {
             diags.push(
                 Diagnostic::error(
-                    Code::Type,
+                    Code::StyleName,
                     format!("`{}` is not a style name", n.node),
                 )
                 .label(n.span, "not a name")
@@ -89,7 +92,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         if let Some(prev) = names.insert(n.node.clone(), n.span) {
             diags.push(
                 Diagnostic::error(
-                    Code::Duplicate,
+                    Code::DuplicateName,
                     format!("style `{}` is declared twice", n.node),
                 )
                 .label(n.span, "second declaration")
@@ -114,10 +117,13 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
                 let id = id as u16;
                 if let Some(prev) = ids.get(&id) {
                     diags.push(
-                        Diagnostic::error(Code::Duplicate, format!("style id {id} is used twice"))
-                            .label(sp, "second use")
-                            .label(*prev, "first use")
-                            .help("give every style its own id"),
+                        Diagnostic::error(
+                            Code::DuplicateId,
+                            format!("style id {id} is used twice"),
+                        )
+                        .label(sp, "second use")
+                        .label(*prev, "first use")
+                        .help("give every style its own id"),
                     );
                 }
                 ids.insert(id, sp);
@@ -270,7 +276,7 @@ fn rule<'a>(
         Some((a, sp)) if !(a > 0.0 && a <= std::f64::consts::PI) => {
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::CornerAngle,
                     "`corner_angle` must be more than 0 deg and at most 180 deg",
                 )
                 .label(sp, format!("this is {} deg", short(a.to_degrees())))
@@ -312,7 +318,7 @@ fn rule<'a>(
                 } else {
                     diags.push(
                         Diagnostic::error(
-                            Code::OutOfRange,
+                            Code::LayersRange,
                             "`layers` must be a range of layer numbers `first .. last`, counted from 1",
                         )
                         .label(v.span, format!("this is {} .. {}", short(a.value), short(b.value)))
@@ -323,9 +329,12 @@ fn rule<'a>(
             }
             other => {
                 diags.push(
-                    Diagnostic::error(Code::Type, "`layers` must be a range of layer numbers")
-                        .label(v.span, format!("this is {}", other.describe()))
-                        .help("e.g. `layers = 1 .. 3` for the first three layers"),
+                    Diagnostic::error(
+                        Code::ExpectedRange,
+                        "`layers` must be a range of layer numbers",
+                    )
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help("e.g. `layers = 1 .. 3` for the first three layers"),
                 );
                 ok = false;
             }
@@ -371,8 +380,29 @@ fn rule<'a>(
     ok.then_some(out)
 }
 
+/// The `inheritance` statement as read.
+pub struct InheritanceRead {
+    /// Band and hit, when the statement is right.
+    pub value: Option<Inheritance>,
+    /// The statement, if the file has one.
+    pub span: Option<Span>,
+}
+
+/// The file's `inheritance { band, hit }` statement, if any (at most one).
+pub fn inheritance_statement<'a>(
+    env: &mut Env<'a>,
+    st: &Statements<'a>,
+    diags: &mut Diagnostics,
+) -> InheritanceRead {
+    let stmt = single_optional(st.get("inheritance"), "inheritance", diags);
+    InheritanceRead {
+        value: stmt.and_then(|s| inheritance(env, s, diags)),
+        span: stmt.map(|s| s.span),
+    }
+}
+
 /// Reads `inheritance { band, hit }`.
-pub fn inheritance<'a>(
+fn inheritance<'a>(
     env: &mut Env<'a>,
     stmt: &'a Stmt,
     diags: &mut Diagnostics,
@@ -381,7 +411,7 @@ pub fn inheritance<'a>(
         diags.push(
             Diagnostic::error(
                 Code::Syntax,
-                "an `inheritance` statement is written `inheritance { band = …, hit = … }`",
+                "an `inheritance` statement is written `inheritance { band = …  hit = … }`",
             )
             .label(stmt.span, "not in that shape")
             .help("e.g. `inheritance { band = 0.8 mm  hit = 99 % }`"),
@@ -404,7 +434,7 @@ pub fn inheritance<'a>(
             Some(h) => {
                 diags.push(
                     Diagnostic::error(
-                        Code::OutOfRange,
+                        Code::HitRange,
                         "`hit` is the share of a track inside the band: more than 0 % and at most 100 %",
                     )
                     .label(v.span, format!("this is {} %", short(h * 100.0)))
@@ -422,25 +452,31 @@ pub fn inheritance<'a>(
     })
 }
 
-/// Checks each style's values against the bead model (speed range, and the bead
-/// height that speed gives) and the laser's power range, and what the plan
-/// makes of the table (a loft has no tracks to style; layers past the last; a
-/// raster that turns away from the tracks it would inherit from), and makes
-/// the table.
+/// What the style checks need from the rest of the file, each part when it
+/// is known: a style is checked against what is there, so a mistake
+/// elsewhere does not hide one in the style table.
+pub struct Context<'c> {
+    /// Whether the solid is a loft, whose wall is one track a layer.
+    pub loft: bool,
+    /// `slicing planar { … }`, if read.
+    pub planar: Option<&'c PlanarSpec>,
+    /// The bead model the part is built with.
+    pub bead: Option<&'c Bead>,
+    /// The laser's power range.
+    pub laser: Option<&'c Laser>,
+}
+
+/// Checks each style's values against the bead model (speed range, and the
+/// bead height that speed gives) and the laser's power range, and what the
+/// plan makes of the table (a loft has no tracks to style; a raster that
+/// turns away from the tracks it would inherit from), and makes the table.
 pub fn assemble(
-    plan: &Plan,
     written: Vec<Written>,
-    inheritance: Option<Inheritance>,
-    inheritance_span: Option<Span>,
-    bead: &Bead,
-    process: &Process,
+    inheritance: &InheritanceRead,
+    cx: &Context<'_>,
     diags: &mut Diagnostics,
 ) -> Option<Styles> {
-    let slicing = match plan {
-        Plan::Block { slicing, .. } => Some(slicing),
-        Plan::Duct { .. } => None,
-    };
-    if let (None, Some(first)) = (slicing, written.first()) {
+    if let (true, Some(first)) = (cx.loft, written.first()) {
         diags.push(
             Diagnostic::error(
                 Code::Unsupported,
@@ -451,16 +487,11 @@ pub fn assemble(
         );
         return None;
     }
-    let layers = match plan {
-        Plan::Block { extrusion, .. } => extrusion.layers.len(),
-        Plan::Duct { .. } => 0,
-    };
     let mut ok = written.iter().all(|w| w.complete);
     for w in &written {
-        never_applies(&w.style, layers, diags);
-        ok &= values_fit(w, bead, process, diags);
+        ok &= values_fit(w, cx.bead, cx.laser, diags);
     }
-    match inheritance_span {
+    match inheritance.span {
         Some(sp) if written.is_empty() => diags.push(
             Diagnostic::warning(Code::Unused, "inheritance without styles does nothing")
                 .label(sp, "no style to inherit")
@@ -469,9 +500,10 @@ pub fn assemble(
         Some(sp) => {
             // The band runs along a styled track; a track turned across it
             // covers at most a band's width of its length.
-            let turn = slicing
+            let turn = cx
+                .planar
                 .and_then(|s| s.infill)
-                .map_or(0.0, |r| r.rotate.deg().rem_euclid(180.0));
+                .map_or(0.0, |(r, _)| r.rotate.deg().rem_euclid(180.0));
             if turn > 1e-9 && 180.0 - turn > 1e-9 {
                 diags.push(
                     Diagnostic::warning(
@@ -488,44 +520,30 @@ pub fn assemble(
         }
         None => {}
     }
+    // A failed `inheritance` statement was reported where it was read.
+    ok &= inheritance.span.is_none() || inheritance.value.is_some();
     ok.then(|| Styles {
         table: written.into_iter().map(|w| w.style).collect(),
-        inheritance,
+        inheritance: inheritance.value,
     })
-}
-
-/// Warns about a `layers` range that starts past the part's last layer.
-fn never_applies(s: &Style, layers: usize, diags: &mut Diagnostics) {
-    let first = s.rules.iter().flatten().find_map(|c| match *c {
-        StyleCondition::Layers(a, _) if a > layers => Some(a),
-        _ => None,
-    });
-    if let Some(a) = first {
-        diags.push(
-            Diagnostic::warning(
-                Code::Unused,
-                format!(
-                    "style `{}` asks for layer {a}, but the part has {layers}",
-                    s.name
-                ),
-            )
-            .label(s.span, "a `when` block that picks nothing")
-            .help("layers count from 1 to the last, as in the programs' layer comments"),
-        );
-    }
 }
 
 /// Whether a style's speed (and the bead height it gives) and power are ones
 /// the bead model and the laser allow; reports those that are not.
-fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnostics) -> bool {
+fn values_fit(
+    w: &Written,
+    bead: Option<&Bead>,
+    laser: Option<&Laser>,
+    diags: &mut Diagnostics,
+) -> bool {
     let s = &w.style;
     let mut ok = true;
-    if let (Some(v), Some(sp)) = (s.speed, w.speed_span) {
+    if let (Some(v), Some(sp), Some(bead)) = (s.speed, w.speed_span, bead) {
         let h = bead.model.height_at(v, bead.width);
         if !bead.covers_speed(v) {
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::StyleSpeed,
                     format!(
                         "style `{}` scans at {}, outside the {} .. {} bead `{}` is valid for",
                         s.name, v, bead.speed[0], bead.speed[1], bead.name
@@ -539,7 +557,7 @@ fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnosti
         } else if !bead.covers_height(h) {
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::StyleSpeed,
                     format!(
                         "style `{}` scans at {}, where bead `{}` is {} high: outside its allowed {} .. {}",
                         s.name, v, bead.name, h, bead.height[0], bead.height[1]
@@ -552,12 +570,12 @@ fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnosti
             ok = false;
         }
     }
-    if let (Some(p), Some(sp)) = (s.power, w.power_span) {
-        if !process.covers_power(p) {
-            let [lo, hi] = process.power_range;
+    if let (Some(p), Some(sp), Some(laser)) = (s.power, w.power_span, laser) {
+        if !laser.covers(p) {
+            let [lo, hi] = laser.range;
             diags.push(
                 Diagnostic::error(
-                    Code::OutOfRange,
+                    Code::StylePower,
                     format!(
                         "style `{}` sets {}, outside the laser's range {} .. {}",
                         s.name, p, lo, hi
@@ -565,13 +583,13 @@ fn values_fit(w: &Written, bead: &Bead, process: &Process, diags: &mut Diagnosti
                 )
                 .label(sp, "style power")
                 .label(
-                    process.power_range_span.unwrap_or(process.power_span),
-                    match process.power_range_span {
+                    laser.range_span.unwrap_or(laser.power_span),
+                    match laser.range_span {
                         Some(_) => "the laser's range",
                         None => "the range is this power alone",
                     },
                 )
-                .help(match process.power_range_span {
+                .help(match laser.range_span {
                     Some(_) => "widen `power_range` if the laser allows it, or change the style's power",
                     None => "declare the laser's range in `process`, e.g. `power_range = 1000 W .. 3000 W`",
                 }),

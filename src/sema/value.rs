@@ -323,7 +323,7 @@ impl<'a> Env<'a> {
                     (UnOp::Neg, other) => {
                         diags.push(
                             Diagnostic::error(
-                                Code::Type,
+                                Code::ExpectedNumber,
                                 format!("cannot negate {}", other.describe()),
                             )
                             .label(expr.span, "this is not a number"),
@@ -372,7 +372,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
                 &l
             };
             let mut d = Diagnostic::error(
-                Code::Type,
+                Code::ExpectedNumber,
                 format!("`{}` needs numbers on both sides", op.symbol()),
             )
             .label(bad.span, format!("this is {}", bad.value.describe()));
@@ -468,9 +468,12 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
             (None, Value::Quantity(q)) => *q,
             (_, other) => {
                 diags.push(
-                    Diagnostic::error(Code::Type, format!("`{func}` takes numbers, without names"))
-                        .label(a.value.span, format!("this is {}", other.describe()))
-                        .help(format!("e.g. `{func}(layer + 2, 10)`")),
+                    Diagnostic::error(
+                        Code::ExpectedNumber,
+                        format!("`{func}` takes numbers, without names"),
+                    )
+                    .label(a.value.span, format!("this is {}", other.describe()))
+                    .help(format!("e.g. `{func}(layer + 2, 10)`")),
                 );
                 return None;
             }
@@ -502,7 +505,7 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
         Some(q) => Some(Value::Quantity(q)),
         None => {
             diags.push(
-                Diagnostic::error(Code::Type, format!("`{func}` needs at least one value"))
+                Diagnostic::error(Code::Argument, format!("`{func}` needs at least one value"))
                     .label(span, "nothing to compare"),
             );
             None

@@ -2,6 +2,7 @@
 //! layers). Reads the model and the geometry built from it.
 
 pub mod feasibility;
+pub mod layers;
 pub mod normal;
 pub mod planar;
 pub mod styling;
@@ -81,10 +82,11 @@ fn duct(
     };
     let mut out = Vec::with_capacity(layers);
     let mut seam_hits = Vec::new();
+    let mut scan = normal::SeamScan::new(k);
     for i in 0..layers {
-        let (layer, seam) = normal::layer(model, &geo, &plan, i);
+        let (layer, seam) = normal::layer(model, &geo, &plan, i, &mut scan);
         if let Some(x) = seam {
-            if !(0.02..=0.98).contains(&x) {
+            if !(normal::SEAM_EXTREME..=1.0 - normal::SEAM_EXTREME).contains(&x) {
                 seam_hits.push(i);
             }
         }
@@ -104,11 +106,32 @@ fn duct(
             )
             .label(slicing.seam_span.unwrap_or(slicing.span), format!("seam at {}", Angle(seam.0)))
             .label(loft.spine_span, "bend")
-            .help(format!(
-                "start and stop where the layer height is average, e.g. `seam = {} deg` (the side of the bend)",
-                short(90.0)
-            )),
+            .help(seam_advice(&scan, seam.0, k, seam_hits.len())),
         );
     }
     Ok((out, warnings))
+}
+
+/// Where to put a seam that sits at the bend's extremes on `hits` layers:
+/// the sample angle (the seam + j·2π/k) that does so on the fewest.
+fn seam_advice(scan: &normal::SeamScan, seam: f64, k: usize, hits: usize) -> String {
+    match scan.best() {
+        Some((j, 0)) => format!(
+            "start and stop where the layer height is average: `seam = {} deg` keeps the seam off the bend's innermost and outermost points on every layer",
+            advised_angle(seam, j, k)
+        ),
+        Some((j, n)) if n < hits => format!(
+            "no seam keeps off the bend's innermost and outermost points on every layer; `seam = {} deg` sits there on the fewest ({n})",
+            advised_angle(seam, j, k)
+        ),
+        _ => "no other seam angle sits at the bend's innermost or outermost points on fewer layers: the section turns through them all (a twist); accept the seam or change the twist".to_string(),
+    }
+}
+
+/// Sample `j`'s angle, in degrees within 0 ..< 360.
+fn advised_angle(seam: f64, j: usize, k: usize) -> String {
+    let deg = (seam + j as f64 * std::f64::consts::TAU / k as f64)
+        .to_degrees()
+        .rem_euclid(360.0);
+    short(if deg >= 360.0 - 1e-9 { 0.0 } else { deg })
 }

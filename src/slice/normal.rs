@@ -20,10 +20,63 @@ pub struct Plan {
     pub k: usize,
 }
 
+/// A seam this close (relative to the layer's span across the bend) to the
+/// innermost or outermost point sits where the layer height is extreme.
+pub const SEAM_EXTREME: f64 = 0.02;
+
+/// Where each of a layer's sample angles (the seam + j·Δθ) falls across the
+/// bend, over every layer: on how many layers it is at the innermost or
+/// outermost point, and how far from the middle it strays at worst. The
+/// angle that fares best is the seam to advise.
+pub struct SeamScan {
+    extreme: Vec<usize>,
+    worst: Vec<f64>,
+}
+
+impl SeamScan {
+    /// A scan of `k` sample angles.
+    pub fn new(k: usize) -> Self {
+        SeamScan {
+            extreme: vec![0; k],
+            worst: vec![0.0; k],
+        }
+    }
+
+    /// Sample `j` sits at `x` across the bend on one layer (0 = innermost,
+    /// 1 = outermost).
+    fn add(&mut self, j: usize, x: f64) {
+        if let (Some(e), Some(w)) = (self.extreme.get_mut(j), self.worst.get_mut(j)) {
+            if !(SEAM_EXTREME..=1.0 - SEAM_EXTREME).contains(&x) {
+                *e += 1;
+            }
+            *w = w.max((x - 0.5).abs());
+        }
+    }
+
+    /// The sample whose seam would sit at an extreme on the fewest layers
+    /// (then the one that strays least from the middle), and that count.
+    pub fn best(&self) -> Option<(usize, usize)> {
+        (0..self.extreme.len())
+            .min_by(|&a, &b| {
+                self.extreme[a]
+                    .cmp(&self.extreme[b])
+                    .then(self.worst[a].total_cmp(&self.worst[b]))
+            })
+            .map(|j| (j, self.extreme[j]))
+    }
+}
+
 /// Generates layer `i`. Returns the layer and how its seam sits: the seam's
 /// offset toward the bend centre relative to the layer's extremes (0 = innermost
-/// … 1 = outermost), for arc spines.
-pub fn layer(model: &Model, geo: &LoftGeometry, plan: &Plan, i: usize) -> (Layer, Option<f64>) {
+/// … 1 = outermost), for arc spines; `scan` learns where every other sample
+/// angle sits.
+pub fn layer(
+    model: &Model,
+    geo: &LoftGeometry,
+    plan: &Plan,
+    i: usize,
+    scan: &mut SeamScan,
+) -> (Layer, Option<f64>) {
     let s = i as f64 / plan.layers as f64;
     let f = geo.frame(s);
     let n = f.z();
@@ -53,10 +106,13 @@ pub fn layer(model: &Model, geo: &LoftGeometry, plan: &Plan, i: usize) -> (Layer
         pos.push(p);
         heights.push(h);
     }
-    let seam_at = (hi > lo).then(|| {
-        let rho0 = heights[0] / plan.step;
-        (rho0 - lo) / (hi - lo)
-    });
+    let across = |h: f64| (h / plan.step - lo) / (hi - lo);
+    if hi > lo {
+        for (j, &h) in heights.iter().enumerate() {
+            scan.add(j, across(h));
+        }
+    }
+    let seam_at = (hi > lo).then(|| across(heights[0]));
 
     let mut points = Vec::with_capacity(k + 1);
     for j in 0..=k {

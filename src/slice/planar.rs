@@ -5,7 +5,8 @@
 //! becomes a path whose points carry their style's process values; the laser is
 //! on from a track's first point to its last.
 
-use super::styling::Styler;
+use super::layers::{self, Layers};
+use super::styling::{self, Styler};
 use super::MAX_TOTAL_POINTS;
 use crate::bead::MIN_OFFSET_RATIO;
 use crate::diag::{Code, Diagnostic, Diagnostics};
@@ -26,19 +27,41 @@ const THIN_GAP: f64 = 0.75;
 /// Points the gap check samples over a whole part.
 const GAP_SAMPLES: usize = 20_000_000;
 
-/// Slices an extrusion into filled planar layers.
+/// Slices an extrusion into filled planar layers. Returns the layers and any
+/// warnings, or every diagnostic found (the errors and the warnings with them).
 pub fn slice(
     model: &Model,
     extrusion: &Extrusion,
     slicing: &PlanarSlicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    let mut diags = Diagnostics::new();
+    let Some(plan) = layers::plan(&model.bead, extrusion, slicing, &mut diags) else {
+        return Err(diags);
+    };
+    styling::never_applies(&model.styles, plan.shapes.len(), &mut diags);
+    match fill_layers(model, extrusion, slicing, &plan, &mut diags) {
+        Some(out) if !diags.has_errors() => Ok((out, diags)),
+        _ => Err(diags),
+    }
+}
+
+/// Fills, styles and lays every layer of `plan`; `None` after an error that
+/// leaves no layers to go on with.
+fn fill_layers(
+    model: &Model,
+    extrusion: &Extrusion,
+    slicing: &PlanarSlicing,
+    plan: &Layers,
+    diags: &mut Diagnostics,
+) -> Option<Vec<Layer>> {
     let w = model.bead.width.0;
     let inset = match extrusion.measure {
         Measure::Outer => w / 2.0,
         Measure::Centre => 0.0,
     };
-    let n = extrusion.layers.len();
-    let lift = extrusion.lift.0;
+    let n = plan.shapes.len();
+    let lift = plan.lift.0;
+    let varies = plan.varies();
     let mut out = Vec::with_capacity(n);
     let mut total = 0usize;
     let mut found = Findings::default();
@@ -54,7 +77,7 @@ pub fn slice(
     // like it (a fixed profile, no rotation) reuses them instead of filling
     // and checking the same shape again.
     let mut last: Option<Filled> = None;
-    for (k, shape) in extrusion.layers.iter().enumerate() {
+    for (k, shape) in plan.shapes.iter().enumerate() {
         let angle = slicing
             .infill
             .map_or(0.0, |r| (r.angle.0 + r.rotate.0 * k as f64).to_degrees());
@@ -64,16 +87,19 @@ pub fn slice(
             Some(f) if reuse => f,
             _ => {
                 let profile = outline::profile(shape, slicing.chord_error.0);
-                let (tracks, gap) = fill_layer(
-                    &profile,
+                let at = Where {
                     k,
-                    angle,
-                    inset,
-                    w,
-                    gap_samples,
+                    varies,
                     extrusion,
                     slicing,
-                )?;
+                };
+                let (tracks, gap) = match fill_layer(&profile, angle, inset, w, gap_samples, &at) {
+                    Ok(f) => f,
+                    Err(e) => {
+                        diags.push(e);
+                        return None;
+                    }
+                };
                 Filled {
                     shape,
                     angle,
@@ -86,21 +112,33 @@ pub fn slice(
         found.layer(k, &filled, slicing.contours, w);
         total += filled.tracks.iter().map(|t| t.points.len()).sum::<usize>();
         if total > MAX_TOTAL_POINTS {
-            return Err(Diagnostic::error(
-                Code::TooManyPoints,
-                format!("the fill needs more than {MAX_TOTAL_POINTS} points"),
-            )
-            .label(slicing.span, "slicing")
-            .help("use fewer layers or a larger chord error")
-            .into());
+            diags.push(
+                Diagnostic::error(
+                    Code::TooManyPoints,
+                    format!("the fill needs more than {MAX_TOTAL_POINTS} points"),
+                )
+                .label(slicing.span, "slicing")
+                .help("use fewer layers or a larger chord error"),
+            );
+            return None;
         }
         let styles = styler.layer(k, &filled.profile, &filled.tracks);
         found.used.extend(styles.iter().copied());
         out.push(layer(&values, k, n, lift, &filled.tracks, &styles));
         last = Some(filled);
     }
-    let warnings = found.report(model, extrusion, slicing)?;
-    Ok((out, warnings))
+    found.report(model, extrusion, slicing, diags);
+    Some(out)
+}
+
+/// Which layer is being filled, for the errors of its fill.
+struct Where<'a> {
+    k: usize,
+    /// Whether the profile changes from layer to layer (the error then says
+    /// the builtin's value).
+    varies: bool,
+    extrusion: &'a Extrusion,
+    slicing: &'a PlanarSlicing,
 }
 
 /// What the layers showed that the user should hear of, gathered layer by
@@ -169,17 +207,19 @@ impl Findings {
         }
     }
 
-    /// The warnings, or the error when a spot wider than a bead is unfilled.
+    /// Reports what was found: the warnings, and an error when a spot wider
+    /// than a bead is unfilled.
     fn report(
         self,
         model: &Model,
         extrusion: &Extrusion,
         slicing: &PlanarSlicing,
-    ) -> Result<Diagnostics, Diagnostics> {
+        diags: &mut Diagnostics,
+    ) {
         let w = model.bead.width.0;
         let plural = |n: usize| if n == 1 { "" } else { "s" };
         if let Some((k, g)) = self.first_gap {
-            return Err(Diagnostic::error(
+            diags.push(Diagnostic::error(
                 Code::FillGap,
                 format!(
                     "the tracks leave a spot unfilled on {} layer{}: on layer {}, ({}, {}) mm is {} from the nearest track, more than the bead width {}",
@@ -194,12 +234,10 @@ impl Findings {
             )
             .label(extrusion.shape_span, "this shape")
             .label(slicing.span, "fill")
-            .help("raster lines miss parts of a profile narrower than the offset, and line ends reach at most `extend` past their neighbours: a smaller offset, a larger `extend`, a contour pass or another raster angle fills them")
-            .into());
+            .help("raster lines miss parts of a profile narrower than the offset, and line ends reach at most `extend` past their neighbours: a smaller offset, a larger `extend`, a contour pass or another raster angle fills them"));
         }
-        let mut warnings = Diagnostics::new();
         if let Some((k, g)) = self.thin {
-            warnings.push(
+            diags.push(
                 Diagnostic::warning(
                     Code::ThinGap,
                     format!(
@@ -219,7 +257,7 @@ impl Findings {
             );
         }
         if let Some((k, t)) = self.sliver {
-            warnings.push(
+            diags.push(
                 Diagnostic::warning(
                     Code::Overlap,
                     format!(
@@ -241,7 +279,7 @@ impl Findings {
             .iter()
             .filter(|st| !self.used.contains(&st.id))
         {
-            warnings.push(
+            diags.push(
                 Diagnostic::warning(
                     Code::Unused,
                     format!("style `{}` picks no track on any layer", st.name),
@@ -251,7 +289,7 @@ impl Findings {
             );
         }
         if let Some((k, passes)) = self.few_passes {
-            warnings.push(
+            diags.push(
                 Diagnostic::warning(
                     Code::FewContours,
                     format!(
@@ -265,7 +303,7 @@ impl Findings {
             );
         }
         if let Some(first) = self.first_short {
-            warnings.push(
+            diags.push(
                 Diagnostic::warning(
                     Code::ShortTrack,
                     format!(
@@ -280,7 +318,6 @@ impl Findings {
                 .help("short tracks overheat and pile up: a slower or cooler style, or a profile without slivers"),
             );
         }
-        Ok(warnings)
     }
 }
 
@@ -322,17 +359,15 @@ struct Filled<'m> {
 
 /// Fills one layer's `profile` with the raster at `angle` (deg) and finds the
 /// farthest spot no bead reaches, if a raster promises a full layer.
-#[allow(clippy::too_many_arguments)]
 fn fill_layer(
     profile: &Profile,
-    k: usize,
     angle: f64,
     inset: f64,
     w: f64,
     gap_samples: usize,
-    extrusion: &Extrusion,
-    slicing: &PlanarSlicing,
-) -> Result<(Vec<Track>, Option<fill::Gap>), Diagnostics> {
+    at: &Where<'_>,
+) -> Result<(Vec<Track>, Option<fill::Gap>), Diagnostic> {
+    let slicing = at.slicing;
     let spec = FillSpec {
         inset,
         contours: slicing.contours,
@@ -348,12 +383,12 @@ fn fill_layer(
         }),
     };
     let tracks: Vec<Track> = fill::fill(profile, &spec, slicing.chord_error.0)
-        .map_err(|e| fill_error(e, k, extrusion, slicing))?
+        .map_err(|e| fill_error(e, at))?
         .into_iter()
         .filter_map(distinct)
         .collect();
     if tracks.is_empty() {
-        return Err(fill_error(FillError::Empty, k, extrusion, slicing));
+        return Err(fill_error(FillError::Empty, at));
     }
     // The whole profile is sampled, the outer face included when it is one:
     // a part narrower than a bead vanishes from the inset region, and is
@@ -368,8 +403,9 @@ fn fill_layer(
     Ok((tracks, gap))
 }
 
-fn fill_error(e: FillError, k: usize, ex: &Extrusion, slicing: &PlanarSlicing) -> Diagnostics {
-    let d = match e {
+fn fill_error(e: FillError, layer: &Where<'_>) -> Diagnostic {
+    let (k, ex, slicing) = (layer.k, layer.extrusion, layer.slicing);
+    match e {
         FillError::SelfIntersecting { at } => Diagnostic::error(
             Code::SelfIntersecting,
             format!(
@@ -378,7 +414,7 @@ fn fill_error(e: FillError, k: usize, ex: &Extrusion, slicing: &PlanarSlicing) -
                 short(at[1]),
                 k + 1,
                 // The builtin's value, for a profile that follows it.
-                if ex.layers.windows(2).any(|w| w[0] != w[1]) {
+                if layer.varies {
                     format!(" (layer = {k})")
                 } else {
                     String::new()
@@ -404,8 +440,7 @@ fn fill_error(e: FillError, k: usize, ex: &Extrusion, slicing: &PlanarSlicing) -
         )
         .label(ex.profile_span, "profile")
         .label(slicing.span, "fill"),
-    };
-    d.into()
+    }
 }
 
 fn layer(

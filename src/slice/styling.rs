@@ -4,6 +4,7 @@
 //! length inside the band round that layer's tracks of one style), else 0, the
 //! process block's values.
 
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::fill::{Track, TrackKind};
 use crate::geometry::profile::Profile;
 use crate::sema::model::{PathSelect, StyleCondition, Styles};
@@ -167,5 +168,29 @@ impl Styler {
                 .collect();
         }
         ids
+    }
+}
+
+/// Warns about each style whose `layers` range starts past the part's last
+/// layer (`layers` of them).
+pub fn never_applies(styles: &Styles, layers: usize, diags: &mut Diagnostics) {
+    for s in &styles.table {
+        let first = s.rules.iter().flatten().find_map(|c| match *c {
+            StyleCondition::Layers(a, _) if a > layers => Some(a),
+            _ => None,
+        });
+        if let Some(a) = first {
+            diags.push(
+                Diagnostic::warning(
+                    Code::Unused,
+                    format!(
+                        "style `{}` asks for layer {a}, but the part has {layers}",
+                        s.name
+                    ),
+                )
+                .label(s.span, "a `when` block that picks nothing")
+                .help("layers count from 1 to the last, as in the programs' layer comments"),
+            );
+        }
     }
 }

@@ -1,0 +1,66 @@
+//! Every `machine NAME { … }` statement: names given once, each block read by
+//! [`machine::read`](super::machine::read) on its own, so one machine's
+//! mistakes do not hide another's.
+
+use super::machine;
+use super::statement::{shape_error, Statements};
+use super::value::Env;
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::{Machine, MachineOrigin};
+use crate::span::Span;
+use crate::syntax::ast::Body;
+use std::collections::BTreeMap;
+
+/// The machines that are right, with where they and their fields are written.
+pub fn read<'a>(
+    env: &mut Env<'a>,
+    st: &Statements<'a>,
+    diags: &mut Diagnostics,
+) -> Vec<(Machine, MachineOrigin)> {
+    let mut machines = Vec::new();
+    let mut seen: BTreeMap<&str, Span> = BTreeMap::new();
+    for s in st.get("machine") {
+        let (Some(n), Body::Block(stmts, _)) = (&s.name, &s.body) else {
+            diags.push(shape_error(
+                s,
+                "machine NAME { … }",
+                "machine kr60 { kind = robot … }",
+            ));
+            continue;
+        };
+        match seen.get(n.node.as_str()) {
+            Some(&prev) => diags.push(
+                Diagnostic::error(
+                    Code::DuplicateName,
+                    format!("machine `{}` is declared twice", n.node),
+                )
+                .label(n.span, "second declaration")
+                .label(prev, "first declaration"),
+            ),
+            None => {
+                seen.insert(&n.node, n.span);
+            }
+        }
+        if let Some((m, mut fields)) = machine::read(env, &n.node, stmts, s.span, diags) {
+            fields.push(("name".into(), n.span));
+            machines.push((
+                m,
+                MachineOrigin {
+                    block: s.span,
+                    fields,
+                },
+            ));
+        }
+    }
+    if st.get("machine").is_empty() {
+        diags.push(
+            Diagnostic::error(
+                Code::MissingMachine,
+                "the file declares no machine to write a program for",
+            )
+            .label(Span::new(0, 0), "no `machine` here")
+            .help("add `machine NAME { kind = robot … }` or `machine NAME { kind = cnc … }`"),
+        );
+    }
+    machines
+}

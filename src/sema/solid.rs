@@ -1,0 +1,182 @@
+//! The solid a file builds (`loft` or `extrude`), and its pairing with the
+//! slicing strategy into a [`Plan`].
+
+use super::declare::Declared;
+use super::extrude;
+use super::loft;
+use super::model::{Bead, Loft, Plan};
+use super::slicing::{self, Spec};
+use super::statement::{shape_error, Statements};
+use super::value::Env;
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{Body, Stmt};
+use crate::units::Speed;
+
+/// What kind of solid the file builds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// `loft NAME { … }`, sliced normal to its spine.
+    Loft,
+    /// `extrude NAME { … }`, sliced in flat layers.
+    Extrude,
+}
+
+/// The solid as read: its kind when the file has one, the solid when its
+/// block is right, and its bead model when that is right (checks that need
+/// only the bead go on without the rest).
+pub struct Read<'a> {
+    /// The first solid statement's kind.
+    pub kind: Option<Kind>,
+    solid: Option<Solid<'a>>,
+    /// The bead model the solid is built with.
+    pub bead: Option<Bead>,
+}
+
+/// A solid block as read.
+enum Solid<'a> {
+    Loft(Loft),
+    Extrude(extrude::Written<'a>),
+}
+
+/// Reads the file's one solid; a missing one and each one after the first
+/// are reported.
+pub fn read<'a>(
+    env: &mut Env<'a>,
+    st: &Statements<'a>,
+    decl: &Declared<'a>,
+    diags: &mut Diagnostics,
+) -> Read<'a> {
+    let mut solids: Vec<&Stmt> = st.get("loft").to_vec();
+    solids.extend(st.get("extrude"));
+    solids.sort_by_key(|s| s.span.start);
+    let Some((s, rest)) = solids.split_first() else {
+        diags.push(
+            Diagnostic::error(
+                Code::MissingSolid,
+                "the file does not describe a solid to build",
+            )
+            .label(Span::new(0, 0), "no `loft` or `extrude` here")
+            .help("add `loft NAME { from = …  to = …  spine = …  wall = BEAD }` or `extrude NAME { profile = …  bead = BEAD }`"),
+        );
+        return Read {
+            kind: None,
+            solid: None,
+            bead: None,
+        };
+    };
+    for extra in rest {
+        diags.push(
+            Diagnostic::error(Code::SecondSolid, "lmdc builds one solid per file")
+                .label(extra.kind.span, "second solid")
+                .label(s.kind.span, "first solid")
+                .help("put each part in its own file"),
+        );
+    }
+    let (kind, solid, bead) = match (s.kind.node.as_str(), &s.name, &s.body) {
+        ("loft", Some(n), Body::Block(stmts, _)) => {
+            let scope = loft::Scope {
+                sections: &decl.sections,
+                beads: &decl.beads,
+                declared: &decl.names,
+            };
+            let (l, b) = loft::read(env, &n.node, stmts, s.span, &scope, diags);
+            (Kind::Loft, l.map(Solid::Loft), b)
+        }
+        ("extrude", Some(n), Body::Block(stmts, _)) => {
+            let scope = extrude::Scope {
+                sections: &decl.sections,
+                profiles: &decl.profiles,
+                beads: &decl.beads,
+                declared: &decl.names,
+            };
+            let (w, b) = extrude::read(env, &n.node, stmts, s.span, &scope, diags);
+            (Kind::Extrude, w.map(Solid::Extrude), b)
+        }
+        ("loft", _, _) => {
+            diags.push(shape_error(
+                s,
+                "loft NAME { … }",
+                "loft duct { from = inlet … }",
+            ));
+            (Kind::Loft, None, None)
+        }
+        _ => {
+            diags.push(shape_error(
+                s,
+                "extrude NAME { … }",
+                "extrude tooth { profile = tooth  bead = track }",
+            ));
+            (Kind::Extrude, None, None)
+        }
+    };
+    Read {
+        kind: Some(kind),
+        solid,
+        bead,
+    }
+}
+
+/// Pairs the solid with its slicing: a loft is sliced normal to its spine,
+/// an extrusion in flat layers (reported whenever both kinds are known, even
+/// if a block has other mistakes). `speed` is the process block's scan speed
+/// (`Some(None)` when not written, `None` when wrong). Returns the plan, if
+/// every part of it is right, and the bead model.
+pub fn plan(
+    env: &mut Env<'_>,
+    solid: Read<'_>,
+    slicing: slicing::Read<'_>,
+    speed: Option<Option<(Speed, Span)>>,
+    decl: &Declared<'_>,
+    diags: &mut Diagnostics,
+) -> (Option<Plan>, Option<Bead>) {
+    let bead = solid.bead;
+    if mismatch(solid.kind, slicing.strategy, slicing.stmt, diags) {
+        return (None, bead);
+    }
+    let plan = match (solid.solid, slicing.spec, &bead) {
+        (Some(Solid::Loft(loft)), Some(Spec::Normal(slicing)), _) => {
+            Some(Plan::Duct { loft, slicing })
+        }
+        (Some(Solid::Extrude(w)), Some(Spec::Planar(spec)), Some(b)) => {
+            extrude::assemble(env, w, b, spec, speed, &decl.constants, diags)
+                .map(|(extrusion, slicing)| Plan::Block { extrusion, slicing })
+        }
+        // A part that failed, reported where it was read.
+        _ => None,
+    };
+    (plan, bead)
+}
+
+/// Reports a solid and a strategy that do not go together, when both are
+/// known; whether it did.
+fn mismatch(
+    kind: Option<Kind>,
+    strategy: Option<&str>,
+    stmt: Option<&Stmt>,
+    diags: &mut Diagnostics,
+) -> bool {
+    let (strategy, solid_kind, help) = match (kind, strategy) {
+        (Some(Kind::Loft), Some("planar")) => (
+            "planar",
+            "a loft",
+            "slice a loft with `slicing normal { … }`",
+        ),
+        (Some(Kind::Extrude), Some("normal")) => (
+            "normal",
+            "an extrusion",
+            "slice an extrusion with `slicing planar { … }`",
+        ),
+        _ => return false,
+    };
+    let at = stmt.map(|s| s.span).unwrap_or(Span::new(0, 0));
+    diags.push(
+        Diagnostic::error(
+            Code::BadChoice,
+            format!("{strategy} slicing does not build {solid_kind}"),
+        )
+        .label(at, "slicing")
+        .help(help),
+    );
+    true
+}

@@ -1,0 +1,122 @@
+//! The statements of a file, grouped by kind, and what holds for a statement
+//! whatever its kind: its shape (`kind NAME { … }`, `kind NAME = value`) and
+//! how often it may appear.
+
+use super::suggest;
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{Body, File, Stmt};
+use std::collections::BTreeMap;
+
+/// Top-level statement kinds.
+pub const KINDS: &[&str] = &[
+    "part",
+    "let",
+    "section",
+    "profile",
+    "bead",
+    "loft",
+    "extrude",
+    "slicing",
+    "process",
+    "style",
+    "inheritance",
+    "machine",
+];
+
+/// A file's statements by kind, each kind in source order.
+pub struct Statements<'f> {
+    by_kind: BTreeMap<&'f str, Vec<&'f Stmt>>,
+}
+
+impl<'f> Statements<'f> {
+    /// Groups the statements of `file`, reporting those that start with a
+    /// word that is no statement.
+    pub fn group(file: &'f File, diags: &mut Diagnostics) -> Self {
+        let mut by_kind: BTreeMap<&str, Vec<&Stmt>> = BTreeMap::new();
+        for s in &file.stmts {
+            let k = s.kind.node.as_str();
+            if !KINDS.contains(&k) {
+                let mut d = Diagnostic::error(
+                    Code::UnknownStatement,
+                    format!("`{k}` does not start a statement"),
+                )
+                .label(s.kind.span, "unknown");
+                d = match suggest::did_you_mean(k, KINDS.iter().copied()) {
+                    Some(m) => d.help(format!("did you mean `{m}`?")),
+                    None => d.help(format!("a file is made of: {}", KINDS.join(", "))),
+                };
+                diags.push(d);
+                continue;
+            }
+            by_kind.entry(k).or_default().push(s);
+        }
+        Statements { by_kind }
+    }
+
+    /// The statements of one kind, in source order.
+    pub fn get(&self, kind: &str) -> &[&'f Stmt] {
+        self.by_kind.get(kind).map_or(&[], Vec::as_slice)
+    }
+}
+
+/// The one statement of `kind` a file needs: a missing one is reported (the
+/// help shows `example`), and so is each one after the first.
+pub fn single<'s>(
+    stmts: &[&'s Stmt],
+    kind: &str,
+    example: &str,
+    diags: &mut Diagnostics,
+) -> Option<&'s Stmt> {
+    if stmts.is_empty() {
+        diags.push(
+            Diagnostic::error(
+                Code::MissingStatement,
+                format!("the file has no `{kind}` statement"),
+            )
+            .label(Span::new(0, 0), format!("`{kind}` is missing"))
+            .help(format!("add `{example}`")),
+        );
+    }
+    single_optional(stmts, kind, diags)
+}
+
+/// At most one statement of `kind`; extra ones are reported.
+pub fn single_optional<'s>(
+    stmts: &[&'s Stmt],
+    kind: &str,
+    diags: &mut Diagnostics,
+) -> Option<&'s Stmt> {
+    let (first, rest) = stmts.split_first()?;
+    for extra in rest {
+        diags.push(
+            Diagnostic::error(Code::DuplicateStatement, format!("`{kind}` is given twice"))
+                .label(extra.kind.span, "second time")
+                .label(first.kind.span, "first time")
+                .help("keep one of them"),
+        );
+    }
+    Some(first)
+}
+
+/// A statement not written in the shape its kind takes.
+pub fn shape_error(s: &Stmt, shape: &str, example: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::Syntax,
+        format!("a `{}` statement is written `{shape}`", s.kind.node),
+    )
+    .label(s.span, "not in that shape")
+    .help(format!("e.g. `{example}`"))
+}
+
+/// `part NAME`: the part's name.
+pub fn part(stmts: &Statements<'_>, diags: &mut Diagnostics) -> Option<String> {
+    let s = single(stmts.get("part"), "part", "part my_part", diags)?;
+    match (&s.name, &s.body) {
+        (Some(n), Body::None) => Some(n.node.clone()),
+        _ => {
+            diags.push(shape_error(s, "part NAME", "part twisted_duct"));
+            None
+        }
+    }
+}

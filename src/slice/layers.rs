@@ -1,0 +1,309 @@
+//! The layers of a planar plan: how far each one rises (the declared
+//! `layer_height`, or what the tracks lay: `A/d` overlapped, `A/w` one track),
+//! how many there are (declared, or the extrusion's height in whole layers),
+//! and the profile on each (evaluated layer by layer when it follows `layer`).
+//! The checker has checked every declaration; what is decided here depends on
+//! all of them together.
+
+use crate::bead::{planar_lift, segment_height};
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::sema::model::{
+    Bead, Extent, Extrusion, HeightModel, LayerProfile, PlanarSlicing, Shape,
+};
+use crate::sema::slicing::MAX_LAYERS;
+use crate::span::Span;
+use crate::units::{short, Length, Speed};
+
+/// A declared layer height this far (relative) from what the tracks lay is
+/// reported.
+const LIFT_TOLERANCE: f64 = 0.02;
+
+/// A height this far (relative) from a whole number of layers is reported.
+const HEIGHT_TOLERANCE: f64 = 0.01;
+
+/// Most outline pieces over all layers: every piece of every layer is offset,
+/// clipped and checked, so the work (and the profiles kept) grows with it.
+const MAX_PROFILE_WORK: usize = 20_000_000;
+
+/// The layers an extrusion is built in.
+pub struct Layers {
+    /// The profile of every layer, in build order.
+    pub shapes: Vec<Shape>,
+    /// How far every layer rises.
+    pub lift: Length,
+    /// Whether the lift was derived from the bead model (`layer_height = auto`).
+    pub lift_derived: bool,
+}
+
+impl Layers {
+    /// Whether the profile differs from layer to layer.
+    pub fn varies(&self) -> bool {
+        self.shapes.windows(2).any(|w| w[0] != w[1])
+    }
+}
+
+/// Decides the layers of `extrusion` sliced by `slicing` with `bead`; `None`
+/// after reporting why there are none. Warnings (a declared lift the tracks
+/// do not lay, a height rounded up) go to `diags` too.
+pub fn plan(
+    bead: &Bead,
+    extrusion: &Extrusion,
+    slicing: &PlanarSlicing,
+    diags: &mut Diagnostics,
+) -> Option<Layers> {
+    let width = bead.width;
+    let h = bead.model.height_at(slicing.speed, width);
+    let overlapped = slicing.overlapped();
+    let laid = planar_lift(width, h, overlapped.then_some(slicing.offset));
+    let (lift, lift_derived) = match slicing.lift {
+        Some((l, at)) => (declared_lift(l, at, laid, overlapped, bead, diags)?, false),
+        None => (derived_lift(laid, overlapped, slicing, bead, diags)?, true),
+    };
+    let n = match extrusion.extent {
+        Extent::Layers(n, _) => n,
+        Extent::Height(height, at) => whole_layers(height, at, lift, diags)?,
+    };
+    let shapes = match &extrusion.profile {
+        LayerProfile::Fixed(s) => {
+            within_budget(pieces(s).saturating_mul(n), extrusion.profile_span, diags)?;
+            vec![s.clone(); n]
+        }
+        LayerProfile::PerLayer(p) => {
+            let mut shapes = p.evaluator();
+            let mut out = Vec::with_capacity(n.min(1 << 16));
+            let mut total = 0usize;
+            for k in 0..n {
+                let mut scratch = Diagnostics::new();
+                match shapes.at(k, k as f64 * lift.0, &mut scratch) {
+                    Some(s) if !scratch.has_errors() => {
+                        total = total.saturating_add(pieces(&s));
+                        within_budget(total, extrusion.profile_span, diags)?;
+                        out.push(s);
+                    }
+                    _ => {
+                        diags.push(
+                            Diagnostic::error(
+                                Code::ProfileLayer,
+                                format!(
+                                    "the profile is not a valid shape on layer {} (layer = {k})",
+                                    k + 1
+                                ),
+                            )
+                            .label(extrusion.profile_span, "profile")
+                            .help("see the error below; the profile's numbers change with `layer`"),
+                        );
+                        diags.extend(scratch);
+                        return None;
+                    }
+                }
+            }
+            out
+        }
+    };
+    Some(Layers {
+        shapes,
+        lift,
+        lift_derived,
+    })
+}
+
+/// The layers that build `height`: whole ones, at least as tall as asked
+/// (machining takes off the rest).
+fn whole_layers(height: Length, at: Span, lift: Length, diags: &mut Diagnostics) -> Option<usize> {
+    let n = (height.0 / lift.0 * (1.0 - 1e-9)).ceil();
+    if n > MAX_LAYERS as f64 {
+        diags.push(
+            Diagnostic::error(
+                Code::TooManyPoints,
+                format!("{height} in layers of {lift} is more than {MAX_LAYERS} layers"),
+            )
+            .label(at, "height"),
+        );
+        return None;
+    }
+    let n = (n as usize).max(1);
+    let built = n as f64 * lift.0;
+    if (built - height.0).abs() > HEIGHT_TOLERANCE * height.0 {
+        diags.push(
+            Diagnostic::warning(
+                Code::HeightRounded,
+                format!(
+                    "{n} layers of {lift} build {}: the {height} asked for and {} more",
+                    Length(built),
+                    Length(built - height.0)
+                ),
+            )
+            .label(at, "height")
+            .help("layers come whole: give `layers` in the slicing block instead, or a height that is a multiple of the layer height"),
+        );
+    }
+    Some(n)
+}
+
+/// Pieces of a shape's outline (an ellipse's flattening is bounded apart).
+fn pieces(s: &Shape) -> usize {
+    match s {
+        Shape::Outline(o) => o.segments.len() + 1,
+        Shape::Section(_) => 8,
+    }
+}
+
+fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> {
+    if total <= MAX_PROFILE_WORK {
+        return Some(());
+    }
+    diags.push(
+        Diagnostic::error(
+            Code::TooManyPoints,
+            format!("the profile's pieces over all layers come to more than {MAX_PROFILE_WORK}"),
+        )
+        .label(at, "profile")
+        .help("fewer layers, or an outline of fewer pieces (an arc is one piece)"),
+    );
+    None
+}
+
+/// How a layer's rise follows from its bead, in words.
+fn lift_rule(overlapped: bool) -> &'static str {
+    if overlapped {
+        "A/d: the bead's cross-section A spread over the track offset d"
+    } else {
+        "A/w: one track a layer, its cross-section A spread over its width w"
+    }
+}
+
+/// A declared layer height: within the bead's heights (else an error), and
+/// reported when it is not what the tracks lay (`laid`).
+fn declared_lift(
+    l: Length,
+    at: Span,
+    laid: Length,
+    overlapped: bool,
+    bead: &Bead,
+    diags: &mut Diagnostics,
+) -> Option<Length> {
+    if !bead.covers_height(l) {
+        diags.push(
+            Diagnostic::error(
+                Code::LayerHeight,
+                format!(
+                    "layers {} high are outside the {} .. {} bead `{}` can lay",
+                    l, bead.height[0], bead.height[1], bead.name
+                ),
+            )
+            .label(at, "declared layer height")
+            .label(bead.height_span, "the bead's heights")
+            .help(format!(
+                "`layer_height = auto` gives {laid}, what these tracks lay"
+            )),
+        );
+        return None;
+    }
+    // The nozzle rises by the declared height, the part by what its tracks
+    // lay: a difference adds up layer after layer (seed 001's fixed lift
+    // undershot and needed an extra lift every 3 layers).
+    let drift = laid.0 - l.0;
+    if drift.abs() > LIFT_TOLERANCE * laid.0 {
+        diags.push(
+            Diagnostic::warning(
+                Code::LiftMismatch,
+                format!(
+                    "layers {} high, but these tracks lay {} a layer ({}): the standoff changes by {} a layer",
+                    l,
+                    laid,
+                    lift_rule(overlapped),
+                    Length(drift.abs()),
+                ),
+            )
+            .label(at, "declared layer height")
+            .help(format!(
+                "`layer_height = auto` uses {laid}; keep a declared height only if the process is controlled to it"
+            )),
+        );
+    }
+    Some(l)
+}
+
+/// `layer_height = auto`: what the tracks lay, if the bead allows it; if not,
+/// the error names the offsets (or speeds) that would.
+fn derived_lift(
+    laid: Length,
+    overlapped: bool,
+    slicing: &PlanarSlicing,
+    bead: &Bead,
+    diags: &mut Diagnostics,
+) -> Option<Length> {
+    if bead.covers_height(laid) {
+        return Some(laid);
+    }
+    let [lo, hi] = bead.height;
+    let width = bead.width;
+    let a = laid.0
+        * if overlapped {
+            slicing.offset.0
+        } else {
+            width.0
+        };
+    diags.push(
+        Diagnostic::error(
+            Code::LayerHeight,
+            format!(
+                "these tracks lay {} a layer ({}), outside the {} .. {} bead `{}` allows",
+                laid,
+                lift_rule(overlapped),
+                lo,
+                hi,
+                bead.name
+            ),
+        )
+        .label(
+            if overlapped {
+                slicing.offset_span.unwrap_or(slicing.span)
+            } else {
+                slicing.span
+            },
+            if overlapped {
+                "track offset"
+            } else {
+                "one track a layer"
+            },
+        )
+        .label(bead.height_span, "the bead's heights")
+        .help(if overlapped {
+            format!(
+                "tracks {} .. {} apart lay an allowed height (A/d with A = {} mm²)",
+                Length(a / hi.0),
+                Length(a / lo.0),
+                short(a)
+            )
+        } else {
+            wall_help(bead, width, lo, hi)
+        }),
+    );
+    None
+}
+
+/// What makes a one-track layer rise by an allowed height: the scan speeds at
+/// which `A/w` lies in `lo .. hi` (within the bead's speed range), or overlap.
+fn wall_help(bead: &Bead, w: Length, lo: Length, hi: Length) -> String {
+    let overlap = "or overlap tracks (contours > 1 or a raster) so the layer rises by A/d";
+    if let HeightModel::Measured { .. } = bead.model {
+        return format!("a measured bead has the one height it was measured with; {overlap}");
+    }
+    // The bead height whose segment area spread over w is the rise r.
+    let speed = |r: Length| {
+        let h = segment_height(w.0, r.0 * w.0);
+        bead.model.speed_for(Length(h), w).0
+    };
+    let (a, b) = (speed(lo), speed(hi));
+    let (a, b) = (a.min(b).max(bead.speed[0].0), a.max(b).min(bead.speed[1].0));
+    if a.is_finite() && b.is_finite() && a <= b {
+        format!(
+            "one track a layer rises by A/w: scan at {} .. {} for that, {overlap}",
+            Speed(a),
+            Speed(b)
+        )
+    } else {
+        format!("no speed in the bead's range lays an allowed A/w; {overlap}")
+    }
+}
