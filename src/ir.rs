@@ -34,6 +34,9 @@ pub struct Program {
     /// either way.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub styles: Vec<Style>,
+    /// Cooling between layers.
+    #[serde(default, skip_serializing_if = "Heat::is_none")]
+    pub heat: Heat,
     /// Layers in build order.
     pub layers: Vec<Layer>,
     /// Source spans of the declarations the checks refer to; not serialised.
@@ -81,6 +84,24 @@ pub struct Limits {
     /// lying on each other).
     #[serde(default)]
     pub bead_width: f64,
+}
+
+/// How long a layer must take, so it can cool before the next is laid on it.
+/// The motion plan dwells at a safe position after a layer that would be
+/// quicker (docs/ir.md).
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct Heat {
+    /// Least time from one layer's start to the next's, s (0: none).
+    pub min_layer_time: f64,
+    /// Dwell after every layer but the last, s (0: none).
+    pub dwell: f64,
+}
+
+impl Heat {
+    /// Whether nothing is asked.
+    pub fn is_none(&self) -> bool {
+        self.min_layer_time <= 0.0 && self.dwell <= 0.0
+    }
 }
 
 /// One layer: deposited on the plane at `station` of the spine.
@@ -300,6 +321,9 @@ pub struct Dialect {
     pub preamble: Vec<String>,
     /// Lines at the end of the program.
     pub postamble: Vec<String>,
+    /// A dwell: the line with `{s}` where the seconds go.
+    #[serde(default = "default_dwell")]
+    pub dwell: String,
     /// Line that switches tool-tip control on for 5-axis moves (empty if none).
     pub tcp_on: String,
     /// Line that switches it off.
@@ -313,6 +337,10 @@ pub struct Dialect {
     /// Unit of the F word.
     #[serde(default)]
     pub feed: FeedUnit,
+}
+
+fn default_dwell() -> String {
+    "G4 P{s}".into()
 }
 
 /// What the control's F word measures.

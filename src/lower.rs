@@ -39,6 +39,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
                 colour: s.colour.clone(),
             })
             .collect(),
+        heat: model.process.heat,
         layers,
         origins: Origins {
             bead_height: Some(bead.height_span),

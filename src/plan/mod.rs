@@ -27,6 +27,12 @@
 //! "Up the nozzle" is the point's normal on a robot and a tilting head; on a
 //! 3-axis CNC, whose nozzle always points down, it is +Z.
 //!
+//! # Cooling
+//! Before each layer but the first the plan dwells, retracted, for the
+//! program's interlayer `dwell`, or longer if the layer before took less than
+//! its `min_layer_time` (counting its feed moves at their speeds; rapid moves
+//! count as instant, so the real time is at least the minimum).
+//!
 //! # The laser
 //! One rule for every back end: **the laser is on exactly during deposit moves.**
 //! It switches on ([`Visit::laser_on`]) at the start point of a run of deposit
@@ -169,6 +175,8 @@ pub trait Visit {
     fn laser_off(&mut self) {}
     /// A move.
     fn motion(&mut self, m: &Move);
+    /// Wait here for `seconds` (laser off, nozzle retracted): a layer cools.
+    fn dwell(&mut self, _seconds: f64) {}
 }
 
 /// How a machine moves, as far as the plan is concerned.
@@ -228,10 +236,17 @@ impl<'a> Plan<'a> {
             plan: self,
             v,
             cursor: None,
+            retracted: false,
             laser: false,
+            at: None,
+            layer_time: 0.0,
         };
         for (li, layer) in self.program.layers.iter().enumerate() {
             w.switch_off();
+            if li > 0 {
+                w.cool(li);
+            }
+            w.layer_time = 0.0;
             w.v.layer(li, layer);
             let mut first = true;
             for (pi, path) in layer.paths.iter().enumerate() {
@@ -266,7 +281,13 @@ struct Walker<'p, 'a, V> {
     plan: &'p Plan<'a>,
     v: &'p mut V,
     cursor: Option<Cursor>,
+    /// Whether the nozzle already backed off from the cursor's point.
+    retracted: bool,
     laser: bool,
+    /// The last move's target.
+    at: Option<[f64; 3]>,
+    /// Time of the current layer's feed moves, s.
+    layer_time: f64,
 }
 
 fn f64s(n: [f32; 3]) -> [f64; 3] {
@@ -288,6 +309,14 @@ impl<V: Visit> Walker<'_, '_, V> {
     /// Sends `m`, switching the laser first when the move needs it changed.
     #[inline]
     fn send(&mut self, m: Move) {
+        if let (Speed::Feed(v), Some(from)) = (m.speed, self.at) {
+            let d = (0..3)
+                .map(|i| (m.to[i] - from[i]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            self.layer_time += d / v as f64;
+        }
+        self.at = Some(m.to);
         let on = m.deposits();
         if on != self.laser {
             self.laser = on;
@@ -316,6 +345,7 @@ impl<V: Visit> Walker<'_, '_, V> {
             Some(c) if !first_in_layer && joins(c.focus, c.normal, first) => c,
             _ => self.transition(li, pi, first, pts.len() > 1 && first.laser_on),
         };
+        self.retracted = false;
         for (k, seg) in pts.windows(2).enumerate() {
             let (from, to) = (&seg[0], &seg[1]);
             if to.normal != cur.normal {
@@ -355,7 +385,7 @@ impl<V: Visit> Walker<'_, '_, V> {
             path: pi,
         };
         let prev = self.cursor.map(|c| c.axes).unwrap_or_default();
-        if let Some(c) = self.cursor {
+        if let Some(c) = self.cursor.filter(|_| !self.retracted) {
             self.retract(c, clearance);
         }
         let axes = match self.plan.head {
@@ -400,6 +430,29 @@ impl<V: Visit> Walker<'_, '_, V> {
         c
     }
 
+    /// Before layer `next`: dwell, retracted, for the declared interlayer
+    /// dwell or what the last layer fell short of the minimum layer time.
+    /// Rapid moves count as instant, so the real layer time is at least the
+    /// minimum whatever the machine's rapid speed.
+    fn cool(&mut self, next: usize) {
+        let heat = self.plan.program.heat;
+        let wait = heat.dwell.max(heat.min_layer_time - self.layer_time);
+        if wait <= 0.0 {
+            return;
+        }
+        if let Some(c) = self.cursor.filter(|_| !self.retracted) {
+            self.retract(
+                c,
+                Where::Clearance {
+                    layer: next,
+                    path: 0,
+                },
+            );
+            self.retracted = true;
+        }
+        self.v.dwell(wait);
+    }
+
     fn retract(&mut self, c: Cursor, at: Where) {
         let to = along(c.focus, self.up(c.normal), self.plan.clearance);
         self.send(Move {
@@ -416,7 +469,7 @@ impl<V: Visit> Walker<'_, '_, V> {
     /// After the last path: laser off and retract.
     fn end(&mut self) {
         self.switch_off();
-        if let Some(c) = self.cursor {
+        if let Some(c) = self.cursor.filter(|_| !self.retracted) {
             self.retract(c, Where::End);
         }
     }

@@ -46,6 +46,7 @@ const CNC_FIELDS: &[&str] = &[
     "postamble",
     "tcp_on",
     "tcp_off",
+    "dwell",
     "feed_units",
     "max_speed",
     "clearance",
@@ -407,12 +408,13 @@ fn cnc(
             ("laser_off", &mut d.laser_off),
             ("tcp_on", &mut d.tcp_on),
             ("tcp_off", &mut d.tcp_off),
+            ("dwell", &mut d.dwell),
         ] {
             if let Some((t, span)) = f.text(key, None, diags) {
-                let ok = if key.starts_with("laser") {
-                    program_text::switch(&t, key, span, diags)
-                } else {
-                    program_text::line(&t, key, span, diags)
+                let ok = match key {
+                    "laser_on" | "laser_off" => program_text::switch(&t, key, span, diags),
+                    "dwell" => program_text::dwell(&t, span, diags),
+                    _ => program_text::line(&t, key, span, diags),
                 };
                 if ok {
                     *slot = t;

@@ -327,6 +327,8 @@ pub struct Process {
     pub power_range_span: Option<Span>,
     /// `powder = …`
     pub powder_span: Span,
+    /// Cooling between layers (`min_layer_time`, `dwell`).
+    pub heat: crate::ir::Heat,
 }
 
 impl Section {

@@ -1,13 +1,17 @@
-//! `process { powder, defocus, power, power_range, speed }`.
+//! `process { powder, defocus, power, power_range, speed, min_layer_time, dwell }`.
 
 use super::fields::Fields;
 use super::model::{within, PowerSchedule, Process};
 use super::statement::{shape_error, single, Statements};
 use super::value::{Env, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::Heat;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Dim, Length, MassFlow, Power, Speed};
+
+/// Longest interlayer time lmdc plans, s (an hour).
+const MAX_DWELL_S: f64 = 3600.0;
 
 /// The process block as read: the whole of it when every field is right, and
 /// the parts other checks use on their own, so that a wrong field does not
@@ -71,7 +75,15 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
     let f = Fields::block(
         env,
         stmts,
-        &["powder", "defocus", "power", "power_range", "speed"],
+        &[
+            "powder",
+            "defocus",
+            "power",
+            "power_range",
+            "speed",
+            "min_layer_time",
+            "dwell",
+        ],
         &[],
         "process".into(),
         span,
@@ -109,6 +121,31 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
         None => None,
     };
     let range = f.range("power_range", Dim::POWER, None, diags);
+    let mut heat_ok = true;
+    let mut time =
+        |key: &str, diags: &mut Diagnostics| match f.quantity(key, Dim::TIME, None, diags) {
+            Some((t, _)) if (0.0..=MAX_DWELL_S).contains(&t) => t,
+            Some((t, at)) => {
+                diags.push(
+                    Diagnostic::error(
+                        Code::NotPositive,
+                        format!("`{key}` is {} s", crate::units::short(t)),
+                    )
+                    .label(at, format!("a time from 0 to {MAX_DWELL_S} s"))
+                    .help("the time a layer must take to cool, e.g. `min_layer_time = 30 s`"),
+                );
+                heat_ok = false;
+                0.0
+            }
+            None => {
+                heat_ok &= !f.has(key);
+                0.0
+            }
+        };
+    let heat = Heat {
+        min_layer_time: time("min_layer_time", diags),
+        dwell: time("dwell", diags),
+    };
     let speed = match f.positive("speed", Dim::SPEED, None, diags) {
         Some((v, sp)) => Some(Some((Speed(v), sp))),
         None if f.has("speed") => None,
@@ -160,9 +197,10 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
     }
     let process = match (powder, defocus, power, laser, speed) {
         (Some((powder, powder_span)), Some(defocus), Some(power), Some(l), Some(speed))
-            if in_range =>
+            if in_range && heat_ok =>
         {
             Some(Process {
+                heat,
                 speed,
                 powder,
                 powder_span,

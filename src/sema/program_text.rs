@@ -77,6 +77,25 @@ pub fn switch(text: &str, key: &str, span: Span, diags: &mut Diagnostics) -> boo
     true
 }
 
+/// A dwell line must say where the seconds go, once: `{s}`.
+pub fn dwell(text: &str, span: Span, diags: &mut Diagnostics) -> bool {
+    if !line(text, "dwell", span, diags) {
+        return false;
+    }
+    if text.matches("{s}").count() != 1 {
+        diags.push(
+            Diagnostic::error(
+                Code::ProgramText,
+                "`dwell` must hold `{s}` once, where the seconds go",
+            )
+            .label(span, "dwell line")
+            .help("e.g. `dwell = \"G4 P{s}\"` (LinuxCNC: P in seconds)"),
+        );
+        return false;
+    }
+    true
+}
+
 /// Whether `lines` (the postamble) end the program: an `M2`, `M02` or `M30`.
 pub fn ends_program(lines: &[String]) -> bool {
     lines.iter().any(|l| {

@@ -48,6 +48,7 @@ pub fn cnc5() -> Cnc {
             s_decimals: 0,
             preamble: vec!["G21 G90 G94 G17".into()],
             postamble: vec!["M2".into()],
+            dwell: "G4 P{s}".into(),
             tcp_on: String::new(),
             tcp_off: String::new(),
             comment: CommentStyle::Parens,
@@ -139,6 +140,7 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
         },
         machines,
         styles: Vec::new(),
+        heat: Heat::default(),
         layers: out,
         origins: Origins::default(),
     }

@@ -45,6 +45,8 @@ pub struct Trace {
     pub lines_per_module: BTreeMap<String, usize>,
     /// Final `$OUT[laser]`.
     pub laser_at_end: bool,
+    /// `WAIT SEC` in the motion modules: (LINs run before it, seconds).
+    pub waits: Vec<(usize, f64)>,
 }
 
 /// The KRL files of one robot program: name → text.
@@ -314,6 +316,20 @@ impl State<'_> {
         }
         if !triggers.is_empty() {
             return Err("a TRIGGER must be followed by its motion".into());
+        }
+        if let (false, Some(t)) = (main, l.strip_prefix("WAIT SEC ")) {
+            let t = number(t)?;
+            if t.is_nan() || t <= 0.0 {
+                return Err(format!("WAIT SEC {t}"));
+            }
+            if self.laser {
+                return Err("WAIT SEC with the laser on".into());
+            }
+            if self.trace.lins.last().is_some_and(|l| l.approximated) {
+                return Err("WAIT SEC after an approximated LIN".into());
+            }
+            self.trace.waits.push((self.trace.lins.len(), t));
+            return Ok(false);
         }
         if !main {
             return Err("statement not allowed in a motion module".into());

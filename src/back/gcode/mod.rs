@@ -24,6 +24,9 @@ use crate::target::names::gcode_file;
 use dialect::{comment_safe, delimiters, Words};
 use writer::{Stats, Writer};
 
+/// Decimals of a dwell's seconds.
+const DWELL_DECIMALS: usize = 2;
+
 /// Writes the G-code program of the verified CNC `m` (`cnc` is its machine).
 /// The file may be incomplete when writing fails; sinks discard the files of a
 /// failed run.
@@ -54,6 +57,7 @@ pub fn emit(
     let out = sink.create(&file)?;
     let mut g = Motion {
         w: Writer::new(out, Words::new(&cnc.dialect), tilt_letter),
+        dwell: &cnc.dialect.dwell,
         templates: t,
         base: &base,
         layers: prog.layers.len(),
@@ -78,6 +82,8 @@ pub fn emit(
 /// Writes a CNC's motion plan: G0 for rapid moves, G1 for the others.
 struct Motion<'a, 'w> {
     w: Writer<'w>,
+    /// The dialect's dwell line, `{s}` where the seconds go.
+    dwell: &'a str,
     templates: &'a Templates,
     base: &'a tera::Context,
     layers: usize,
@@ -103,6 +109,15 @@ impl Visit for Motion<'_, '_> {
 
     fn laser_off(&mut self) {
         self.w.laser_off();
+    }
+
+    fn dwell(&mut self, seconds: f64) {
+        let (head, tail) = self.dwell.split_once("{s}").unwrap_or((self.dwell, ""));
+        let mut line = head.as_bytes().to_vec();
+        super::fixed::push_trimmed(&mut line, seconds, DWELL_DECIMALS);
+        line.extend_from_slice(tail.as_bytes());
+        line.push(b'\n');
+        self.w.raw(&line);
     }
 
     #[inline]

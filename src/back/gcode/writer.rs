@@ -329,6 +329,7 @@ mod tests {
             s_decimals: 1,
             preamble: vec![],
             postamble: vec![],
+            dwell: "G4 P{s}".into(),
             tcp_on: String::new(),
             tcp_off: String::new(),
             comment: CommentStyle::Parens,

@@ -180,6 +180,10 @@ impl Visit for Writer<'_, '_> {
         self.switch = Some(Switch::Off);
     }
 
+    fn dwell(&mut self, seconds: f64) {
+        self.out.wait(seconds);
+    }
+
     #[inline]
     fn motion(&mut self, m: &Move) {
         if self.normal != Some(m.normal) {

@@ -219,6 +219,15 @@ impl<'a> Modules<'a> {
         }
     }
 
+    /// `WAIT SEC seconds`: the robot stands still (the advance run stops there,
+    /// which between layers costs nothing). The LIN before it ends exactly.
+    pub fn wait(&mut self, seconds: f64) {
+        self.end_pending(false);
+        self.body.extend_from_slice(b"WAIT SEC ");
+        push_fixed(&mut self.body, seconds, 2);
+        self.body.push(b'\n');
+    }
+
     /// Closes the last module; returns the module names in call order.
     pub fn finish(mut self) -> Result<(Vec<String>, Stats), EmitError> {
         self.end_pending(false);
