@@ -393,13 +393,29 @@ pub struct Cnc {
     pub kinematics: Kinematics,
     /// Control dialect.
     pub dialect: Dialect,
-    /// Travel limits of X Y Z (mm) and the rotary axes (deg): `[min, max]`.
+    /// Travel limits of X Y Z (mm) and the rotary axes (deg): `[min, max]`,
+    /// in machine coordinates.
     pub limits: AxisLimits,
+    /// Where the part sits on the machine.
+    #[serde(default)]
+    pub placement: Placement,
     /// Highest feed, mm/s.
     pub max_speed: f64,
     /// Distance the nozzle backs off along the normal between paths that do not
     /// join, mm.
     pub clearance: f64,
+}
+
+/// Where a part sits on a CNC: the program is written in part coordinates
+/// under a work offset whose value is the part's origin in machine
+/// coordinates; the axis limits apply to program position + origin.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct Placement {
+    /// 1–6: `G54`–`G59` is selected at the start; 0: none is written (the
+    /// control's active one is used).
+    pub work_offset: u8,
+    /// The part's origin in machine coordinates, mm (the work offset's value).
+    pub origin: [f64; 3],
 }
 
 /// Axis travel limits.

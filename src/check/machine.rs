@@ -79,24 +79,34 @@ fn robot_speed(v: f64, _: &Machine) -> f64 {
     rounded(v / 1000.0, kuka::VEL_DECIMALS) * 1000.0
 }
 
-/// Positions and rotary angles beyond a CNC's travel.
+/// Positions and rotary angles beyond a CNC's travel. Positions are the
+/// program's plus the placement's origin: what the machine's axes reach.
 struct Travel {
     lim: AxisLimits,
+    origin: [f64; 3],
     /// Whether the rotary axes exist (and are checked).
     five: bool,
     /// X Y Z tilt C.
     axes: [Option<Worst>; 5],
+    /// The program positions' extent, for the placement that would fit.
+    lo: [f64; 3],
+    hi: [f64; 3],
 }
 
 impl Travel {
     #[inline]
     fn motion(&mut self, m: &Move) {
         let l = &self.lim;
+        let o = self.origin;
         let w = |v: f64| rounded(v, gcode::POS_DECIMALS);
         let inside = |v: f64, r: [f64; 2]| v >= r[0] && v <= r[1];
-        let ok = inside(w(m.to[0]), l.x)
-            && inside(w(m.to[1]), l.y)
-            && inside(w(m.to[2]), l.z)
+        for i in 0..3 {
+            self.lo[i] = self.lo[i].min(m.to[i]);
+            self.hi[i] = self.hi[i].max(m.to[i]);
+        }
+        let ok = inside(w(m.to[0]) + o[0], l.x)
+            && inside(w(m.to[1]) + o[1], l.y)
+            && inside(w(m.to[2]) + o[2], l.z)
             && (!self.five || (inside(w(m.axes.tilt), l.tilt) && inside(w(m.axes.c), l.rotary)));
         if !ok {
             self.miss(m);
@@ -106,10 +116,11 @@ impl Travel {
     #[cold]
     fn miss(&mut self, m: &Move) {
         let l = self.lim;
+        let o = self.origin;
         let vals = [
-            (m.to[0], l.x),
-            (m.to[1], l.y),
-            (m.to[2], l.z),
+            (m.to[0] + o[0], l.x),
+            (m.to[1] + o[1], l.y),
+            (m.to[2] + o[2], l.z),
             (m.axes.tilt, l.tilt),
             (m.axes.c, l.rotary),
         ];
@@ -121,6 +132,45 @@ impl Travel {
             } else if v > r[1] {
                 Worst::hit(&mut self.axes[i], v, r[1], m.at);
             }
+        }
+    }
+
+    /// What placement of the part would keep axis `i` (0–2) inside its travel.
+    fn placement_help(&self, i: usize, cnc: &Cnc) -> String {
+        let axis = ["X", "Y", "Z"][i];
+        let key = ["x", "y", "z"][i];
+        let r = [self.lim.x, self.lim.y, self.lim.z][i];
+        let (lo, hi) = (self.lo[i], self.hi[i]);
+        let o = cnc.placement.origin[i];
+        let (from, to) = (r[0] - lo, r[1] - hi);
+        let span = format!(
+            "the program spans {axis} {} .. {} mm (with the clearance moves), the machine {} .. {} mm",
+            short(lo),
+            short(hi),
+            short(r[0]),
+            short(r[1])
+        );
+        if from <= to {
+            let best = if (from..=to).contains(&0.0) {
+                0.0
+            } else {
+                (from + to) / 2.0
+            };
+            format!(
+                "{span}: place the part with its origin at {axis} {} .. {} mm in machine coordinates \
+                 (now {}), e.g. {key} = {} mm in `origin = [x, y, z]` with `work_offset` set to it, or correct the machine's limits",
+                short(from),
+                short(to),
+                short(o),
+                short(best)
+            )
+        } else {
+            format!(
+                "{span}: the part is {} mm across {axis}, more than the {} mm the axis travels; \
+                 build it on a larger machine or in another orientation",
+                short(hi - lo),
+                short(r[1] - r[0])
+            )
         }
     }
 
@@ -145,17 +195,7 @@ impl Travel {
             let Some(w) = w else { continue };
             let (unit, sep) = if i < 3 { ("mm", " ") } else { ("°", "") };
             let mut help = match i {
-                0..=2 => format!(
-                    "the part does not fit this machine's travel: place the part inside \
-                     X [{}, {}], Y [{}, {}], Z [{}, {}] mm (program coordinates), or correct \
-                     the machine's limits",
-                    short(lim.x[0]),
-                    short(lim.x[1]),
-                    short(lim.y[0]),
-                    short(lim.y[1]),
-                    short(lim.z[0]),
-                    short(lim.z[1]),
-                ),
+                0..=2 => self.placement_help(i, cnc),
                 3 => format!(
                     "the layers tilt the nozzle further than the {tilt_name} axis of `{name}` \
                      can go: use a machine whose head tilts further, or build the part in an \
@@ -332,8 +372,11 @@ impl<'m> MachineRules<'m> {
                     },
                     travel: Some(Travel {
                         lim: c.limits,
+                        origin: c.placement.origin,
                         five: kin != Kinematics::Xyz,
                         axes: [None; 5],
+                        lo: [f64::INFINITY; 3],
+                        hi: [f64::NEG_INFINITY; 3],
                     }),
                     tilt: (kin == Kinematics::Xyz).then(|| Tilt {
                         tan2: NEEDS_TILT_DEG.to_radians().tan().powi(2),

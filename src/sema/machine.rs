@@ -6,7 +6,9 @@ use super::fields::{self, Fields};
 use super::program_text;
 use super::value::{Env, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
-use crate::ir::{AxisLimits, Cnc, FeedUnit, FrameRef, Kinematics, Machine, Pose, Robot, ToolAxis};
+use crate::ir::{
+    AxisLimits, Cnc, FeedUnit, FrameRef, Kinematics, Machine, Placement, Pose, Robot, ToolAxis,
+};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::target::gcode as dialect;
@@ -47,6 +49,8 @@ const CNC_FIELDS: &[&str] = &[
     "tcp_on",
     "tcp_off",
     "dwell",
+    "work_offset",
+    "origin",
     "feed_units",
     "max_speed",
     "clearance",
@@ -539,6 +543,7 @@ fn cnc(
             }
         }
     }
+    let placement = placement(f, diags);
     if !ok || !text_ok {
         return None;
     }
@@ -548,8 +553,50 @@ fn cnc(
         kinematics: kin?,
         dialect: d?,
         limits: lim,
+        placement: placement?,
         max_speed: vmax?.0,
         clearance: clearance?,
+    })
+}
+
+/// `work_offset = 1` (G54 … 6: G59) and `origin = [x, y, z]`: where the part
+/// sits on the machine.
+fn placement(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Placement> {
+    let offset = f
+        .count("work_offset", 1, 6, None, diags)
+        .map(|(n, _)| n as u8);
+    let offset = or_default(f, "work_offset", offset, 0);
+    let origin = match f.value("origin", None, diags) {
+        None if f.has("origin") => None,
+        None => Some([0.0; 3]),
+        Some(v) => match &v.value {
+            Value::List(items) if items.len() == 3 => {
+                let c: Vec<_> = ["x", "y", "z"]
+                    .iter()
+                    .zip(items)
+                    .map(|(k, it)| fields::quantity(it, Dim::LENGTH, k, diags))
+                    .collect();
+                match c[..] {
+                    [Some(x), Some(y), Some(z)] => Some([x, y, z]),
+                    _ => None,
+                }
+            }
+            other => {
+                diags.push(
+                    Diagnostic::error(
+                        Code::ExpectedPoint,
+                        "`origin` is where the part's origin is in machine coordinates: `[x, y, z]`",
+                    )
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help("e.g. `origin = [250 mm, 150 mm, 40 mm]`"),
+                );
+                None
+            }
+        },
+    };
+    Some(Placement {
+        work_offset: offset?,
+        origin: origin?,
     })
 }
 

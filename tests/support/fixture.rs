@@ -63,6 +63,7 @@ pub fn cnc5() -> Cnc {
             tilt: [-120.0, 120.0],
             rotary: [-3600.0, 3600.0],
         },
+        placement: Placement::default(),
         max_speed: 200.0,
         clearance: 10.0,
     }

@@ -175,6 +175,13 @@ fn header_context(ctx: &mut tera::Context, prog: &Program, cnc: &Cnc, five: bool
     ctx.insert("s_decimals", &cnc.dialect.s_decimals);
     ctx.insert("clearance", &trimmed(cnc.clearance, 3));
     ctx.insert("preamble", &cnc.dialect.preamble);
+    let p = cnc.placement;
+    let work_offset = match p.work_offset {
+        1..=6 => format!("G{}", 53 + p.work_offset),
+        _ => String::new(),
+    };
+    ctx.insert("work_offset", &work_offset);
+    ctx.insert("origin", &p.origin.map(|v| super::fixed::fixed(v, 3)));
     ctx.insert("tcp_on", if five { cnc.dialect.tcp_on.trim() } else { "" });
 }
 
