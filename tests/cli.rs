@@ -276,3 +276,130 @@ fn timings_report_every_stage() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// `--templates` that is not a template directory is a usage error: the
+/// built-in templates in place of a site's own preamble must not pass
+/// unnoticed.
+#[test]
+fn template_directory_that_is_no_template_directory() {
+    let d = out_dir("tpl-missing-out");
+    let empty = out_dir("tpl-empty");
+    std::fs::create_dir_all(empty.join("krl")).unwrap();
+    let misspelt = out_dir("tpl-misspelt");
+    std::fs::create_dir_all(misspelt.join("krl")).unwrap();
+    std::fs::write(misspelt.join("krl/main.tera"), "x").unwrap();
+    let flat = out_dir("tpl-flat");
+    std::fs::create_dir_all(&flat).unwrap();
+    std::fs::write(flat.join("main.src.tera"), "x").unwrap();
+    for (dir, want) in [
+        (PathBuf::from("/no/such/dir"), "/no/such/dir"),
+        (empty.clone(), "holds none of lmdc's templates"),
+        (misspelt.clone(), "no template called krl/main.tera"),
+        (flat.clone(), "no template called main.src.tera"),
+    ] {
+        let o = lmdc(&[
+            "build",
+            "examples/twisted_duct.lmd",
+            "-o",
+            d.to_str().unwrap(),
+            "--templates",
+            dir.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(stderr(&o).contains(want), "{}", stderr(&o));
+        assert!(!d.exists());
+    }
+    for t in [empty, misspelt, flat] {
+        let _ = std::fs::remove_dir_all(t);
+    }
+}
+
+/// The input is read with a hard cap, whatever the file says its size is.
+#[cfg(unix)]
+#[test]
+fn endless_input_is_cut_at_the_cap() {
+    let start = std::time::Instant::now();
+    let o = lmdc(&["check", "/dev/zero"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("larger than 16 MB"), "{}", stderr(&o));
+    assert!(start.elapsed() < std::time::Duration::from_secs(30));
+    // A pipe that never ends.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .args(["check", "/dev/stdin"])
+        .stdin(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut input = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || {
+        use std::io::Write;
+        let block = vec![b' '; 1 << 16];
+        // Stops when lmdc closes the pipe.
+        while input.write_all(&block).is_ok() {}
+    });
+    let o = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("larger than 16 MB"), "{}", stderr(&o));
+}
+
+/// A byte order mark, CRLF and CR-only line ends all compile to the same
+/// programs.
+#[test]
+fn bom_and_every_line_end_compile() {
+    let lf = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
+    let dir = out_dir("line-ends");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut outputs = Vec::new();
+    for (tag, src) in [
+        ("lf", lf.clone()),
+        ("bom", format!("\u{feff}{lf}")),
+        ("crlf", lf.replace('\n', "\r\n")),
+        ("cr", format!("\u{feff}{}", lf.replace('\n', "\r"))),
+    ] {
+        let file = dir.join(format!("{tag}.lmd"));
+        std::fs::write(&file, src).unwrap();
+        let out = dir.join(tag);
+        let o = lmdc(&["build", file.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(0), "{tag}: {}", stderr(&o));
+        let files: Vec<(String, Vec<u8>)> = listing(&out)
+            .into_iter()
+            .filter(|f| !f.starts_with('.'))
+            .map(|f| {
+                let bytes = std::fs::read(out.join(&f)).unwrap();
+                (f, bytes)
+            })
+            .collect();
+        outputs.push((tag, files));
+    }
+    for (tag, files) in &outputs[1..] {
+        assert!(
+            *files == outputs[0].1,
+            "{tag} builds other programs than LF"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Escape sequences in the source never reach the terminal, from the snippet
+/// or from a message that quotes a name.
+#[test]
+fn diagnostics_print_no_control_characters() {
+    let dir = out_dir("escapes");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("bad.lmd");
+    std::fs::write(
+        &file,
+        "part \"\x1b]0;pwned\x07\"\nlet a = \"\x1b[2J\" + 1 mm\n\x1b[31m = 2\n",
+    )
+    .unwrap();
+    let o = lmdc(&["check", file.to_str().unwrap(), "--color", "never"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let text = stderr(&o);
+    assert!(
+        !text.chars().any(|c| c.is_control() && c != '\n'),
+        "{text:?}"
+    );
+    assert!(text.contains("␛[2J"), "{text}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

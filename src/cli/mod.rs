@@ -16,8 +16,8 @@ pub const EXIT_PROGRAM: u8 = 1;
 /// Exit code: bad usage or an I/O problem.
 pub const EXIT_USAGE: u8 = 2;
 
-/// Largest source file lmdc reads.
-const MAX_SOURCE: u64 = 16 << 20;
+/// Largest source file lmdc reads (16 MiB).
+pub const MAX_SOURCE: u64 = 16 << 20;
 
 /// lmdc compiles a .lmd description of a laser metal deposition part into the
 /// programs that build it: KRL for KUKA robots, G-code for CNCs.
@@ -241,28 +241,37 @@ fn build(
     0
 }
 
+/// Reads the source, at most [`MAX_SOURCE`] bytes whatever the file claims to
+/// be: metadata says nothing about `/dev/zero`, a pipe or a file still
+/// growing, so the read itself stops one byte past the cap.
 fn read_source(file: &Path) -> Option<String> {
+    use std::io::Read;
     let fail = |why: String| {
         eprintln!("error: cannot read {}: {why}", file.display());
         None
     };
-    match std::fs::metadata(file) {
+    let f = match std::fs::File::open(file) {
+        Ok(f) => f,
+        Err(e) => return fail(e.to_string()),
+    };
+    match f.metadata() {
         Ok(m) if m.is_dir() => return fail("it is a directory".into()),
-        Ok(m) if m.len() > MAX_SOURCE => {
-            return fail(format!("it is larger than {} MB", MAX_SOURCE >> 20))
-        }
         Ok(_) => {}
         Err(e) => return fail(e.to_string()),
     }
-    match std::fs::read(file) {
-        Ok(bytes) => match String::from_utf8(bytes) {
-            Ok(s) => Some(s),
-            Err(e) => fail(format!(
-                "it is not UTF-8 text (invalid byte at offset {})",
-                e.utf8_error().valid_up_to()
-            )),
-        },
-        Err(e) => fail(e.to_string()),
+    let mut bytes = Vec::new();
+    if let Err(e) = f.take(MAX_SOURCE + 1).read_to_end(&mut bytes) {
+        return fail(e.to_string());
+    }
+    if bytes.len() as u64 > MAX_SOURCE {
+        return fail(format!("it is larger than {} MB", MAX_SOURCE >> 20));
+    }
+    match String::from_utf8(bytes) {
+        Ok(s) => Some(s),
+        Err(e) => fail(format!(
+            "it is not UTF-8 text (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        )),
     }
 }
 
