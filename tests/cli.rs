@@ -114,7 +114,9 @@ fn build_writes_every_machine_deterministically() {
     assert!(files.iter().any(|f| f.ends_with(".dat")), "{files:?}");
     assert!(files.iter().any(|f| f.ends_with(".ngc")), "{files:?}");
     assert!(
-        !files.iter().any(|f| f.starts_with('.')),
+        !files
+            .iter()
+            .any(|f| f.starts_with('.') && f != ".lmdc-manifest"),
         "temporary files left: {files:?}"
     );
     assert_eq!(files, listing(&b));
@@ -402,4 +404,98 @@ fn diagnostics_print_no_control_characters() {
     );
     assert!(text.contains("␛[2J"), "{text}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The non-hidden files of `dir` and their bytes.
+fn contents(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    listing(dir)
+        .into_iter()
+        .filter(|f| !f.starts_with('.'))
+        .map(|f| {
+            let bytes = std::fs::read(dir.join(&f)).unwrap();
+            (f, bytes)
+        })
+        .collect()
+}
+
+/// The twisted duct, quick to build, its robot's program cut into modules of
+/// `lines` motions.
+fn duct_in_modules(dir: &Path, lines: u32) -> PathBuf {
+    let src = std::fs::read_to_string("examples/twisted_duct.lmd")
+        .unwrap()
+        .replace("points = 360", "points = 24")
+        .replace(
+            "max_speed = 250 mm/s",
+            &format!("max_speed = 250 mm/s\n  module_lines = {lines}"),
+        );
+    assert!(src.contains("module_lines"));
+    std::fs::create_dir_all(dir).unwrap();
+    let file = dir.join(format!("duct{lines}.lmd"));
+    std::fs::write(&file, src).unwrap();
+    file
+}
+
+/// A rebuild replaces a machine's whole set of files: with fewer KRL modules
+/// the old extra modules go; another machine's files, files the user put
+/// there and files of another part stay; temporary files a killed build of
+/// an older lmdc left are removed.
+#[test]
+fn a_rebuild_replaces_the_whole_set() {
+    let work = out_dir("sets");
+    let many = duct_in_modules(&work, 10);
+    let few = duct_in_modules(&work, 40);
+    let out = work.join("out");
+    let fresh = work.join("fresh");
+    let build = |file: &Path, dir: &Path, extra: &[&str]| {
+        let mut args = vec!["build", file.to_str().unwrap(), "-o", dir.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let o = lmdc(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    };
+    build(&many, &out, &[]);
+    let before = listing(&out);
+    assert!(
+        before.iter().any(|f| f.ends_with("_m500.src")),
+        "{} files",
+        before.len()
+    );
+    std::fs::write(out.join("notes.txt"), "the operator's").unwrap();
+    std::fs::write(out.join("twisted_duct_kr60_m9999.src"), "not lmdc's").unwrap();
+    std::fs::write(out.join(".lmdc-a1b2c3.tmp"), vec![0u8; 4096]).unwrap();
+    let other = work.join("other.lmd");
+    std::fs::write(
+        &other,
+        std::fs::read_to_string(&few)
+            .unwrap()
+            .replace("part twisted_duct", "part other_duct"),
+    )
+    .unwrap();
+    build(&other, &out, &["--machine", "dmu5"]);
+
+    // Only the robot, with a quarter of the modules.
+    build(&few, &out, &["--machine", "kr60"]);
+    build(&few, &fresh, &[]);
+    let mut want = contents(&fresh);
+    want.push((
+        "notes.txt".into(),
+        std::fs::read(out.join("notes.txt")).unwrap(),
+    ));
+    want.push((
+        "other_duct_dmu5.ngc".into(),
+        std::fs::read(out.join("other_duct_dmu5.ngc")).unwrap(),
+    ));
+    want.push(("twisted_duct_kr60_m9999.src".into(), b"not lmdc's".to_vec()));
+    want.sort();
+    // The CNC program of the first build is still the first build's: the
+    // same bytes as the fresh one's, since only module_lines changed.
+    assert_eq!(contents(&out), want);
+    assert_eq!(
+        listing(&out)
+            .iter()
+            .filter(|f| f.starts_with('.'))
+            .collect::<Vec<_>>(),
+        [".lmdc-manifest"],
+        "temporary files left"
+    );
+    let _ = std::fs::remove_dir_all(&work);
 }

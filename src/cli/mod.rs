@@ -157,6 +157,12 @@ fn build(
             return EXIT_USAGE;
         }
     };
+    // A build killed in this directory is finished or undone first, whether
+    // or not this one succeeds (src/cli/sink.rs).
+    if let Err(e) = sink::recover(out) {
+        eprintln!("error: output directory {}: {e}", out.display());
+        return EXIT_USAGE;
+    }
     let Some(source) = read_source(file) else {
         return EXIT_USAGE;
     };
@@ -187,11 +193,37 @@ fn build(
             return EXIT_USAGE;
         }
     };
-    let obs: &mut dyn Observer = match clock.as_mut() {
+    let inner: &mut dyn Observer = match clock.as_mut() {
         Some(t) => t,
         None => &mut (),
     };
-    match pipeline::emit(&program, &which, &templates, &mut sink, obs) {
+    // pipeline::emit reports a stage after each machine: the files created
+    // by then are that machine's set.
+    let mut marks = Marks {
+        inner,
+        count: sink.counter(),
+        at: Vec::new(),
+    };
+    let emitted = pipeline::emit(&program, &which, &templates, &mut sink, &mut marks);
+    let part = program.ir().part.clone();
+    let key = |machine: Option<String>| sink::SetKey {
+        part: part.clone(),
+        machine,
+    };
+    if marks.at.len() == which.len() {
+        for (&i, &end) in which.iter().zip(&marks.at) {
+            let name = program.ir().machines[i].name().to_string();
+            sink.end_set(key(Some(name)), end);
+        }
+    } else {
+        let names: Vec<&str> = which
+            .iter()
+            .map(|&i| program.ir().machines[i].name())
+            .collect();
+        let end = sink.counter().get();
+        sink.end_set(key(Some(names.join(","))), end);
+    }
+    match emitted {
         Ok(()) => {}
         Err(EmitError::Program(d)) => {
             print_diags(&d, file, &source, color);
@@ -219,6 +251,8 @@ fn build(
             eprintln!("error: writing {name}: {e}");
             return EXIT_USAGE;
         }
+        let end = sink.counter().get();
+        sink.end_set(key(None), end);
         if let Some(t) = clock.as_mut() {
             t.stage("emit IR");
         }
@@ -272,6 +306,20 @@ fn read_source(file: &Path) -> Option<String> {
             "it is not UTF-8 text (invalid byte at offset {})",
             e.utf8_error().valid_up_to()
         )),
+    }
+}
+
+/// Passes stages on and notes how many files had been created at each.
+struct Marks<'o> {
+    inner: &'o mut dyn Observer,
+    count: std::rc::Rc<std::cell::Cell<usize>>,
+    at: Vec<usize>,
+}
+
+impl Observer for Marks<'_> {
+    fn stage(&mut self, name: &'static str) {
+        self.at.push(self.count.get());
+        self.inner.stage(name);
     }
 }
 
