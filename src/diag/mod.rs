@@ -256,7 +256,9 @@ fn shown(c: char) -> Option<char> {
     }
 }
 
-/// `text` with every character [`shown`] replaces replaced.
+/// `text` as it is safe to print: control characters (C0 but tab and line
+/// feed, DEL, C1) become their Unicode control pictures (`␛` for ESC) or
+/// U+FFFD, and bidirectional overrides U+FFFD.
 pub fn sanitize(text: &str) -> std::borrow::Cow<'_, str> {
     if !text.chars().any(|c| shown(c).is_some()) {
         return text.into();
