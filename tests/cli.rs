@@ -403,6 +403,10 @@ fn diagnostics_print_no_control_characters() {
         "{text:?}"
     );
     assert!(text.contains("␛[2J"), "{text}");
+    // Nor from a file name.
+    let o = lmdc(&["check", "no\x1b[31msuch\x07.lmd"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("no␛[31msuch␇.lmd"), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

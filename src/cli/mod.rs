@@ -160,7 +160,7 @@ fn build(
     // A build killed in this directory is finished or undone first, whether
     // or not this one succeeds (src/cli/sink.rs).
     if let Err(e) = sink::recover(out) {
-        eprintln!("error: output directory {}: {e}", out.display());
+        eprintln!("error: output directory {}: {e}", shown(out));
         return EXIT_USAGE;
     }
     let Some(source) = read_source(file) else {
@@ -188,7 +188,7 @@ fn build(
         Err(e) => {
             eprintln!(
                 "error: cannot create the output directory {}: {e}",
-                out.display()
+                shown(out)
             );
             return EXIT_USAGE;
         }
@@ -234,7 +234,7 @@ fn build(
             return EXIT_USAGE;
         }
         Err(EmitError::Io(e)) => {
-            eprintln!("error: writing into {}: {e}", out.display());
+            eprintln!("error: writing into {}: {e}", shown(out));
             return EXIT_USAGE;
         }
     }
@@ -260,7 +260,7 @@ fn build(
     let paths = match sink.commit() {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("error: writing into {}: {e}", out.display());
+            eprintln!("error: writing into {}: {e}", shown(out));
             return EXIT_USAGE;
         }
     };
@@ -270,7 +270,7 @@ fn build(
         eprint!("{}", t.report());
     }
     for p in paths {
-        eprintln!("wrote {}", p.display());
+        eprintln!("wrote {}", shown(&p));
     }
     0
 }
@@ -281,7 +281,7 @@ fn build(
 fn read_source(file: &Path) -> Option<String> {
     use std::io::Read;
     let fail = |why: String| {
-        eprintln!("error: cannot read {}: {why}", file.display());
+        eprintln!("error: cannot read {}: {why}", shown(file));
         None
     };
     let f = match std::fs::File::open(file) {
@@ -307,6 +307,12 @@ fn read_source(file: &Path) -> Option<String> {
             e.utf8_error().valid_up_to()
         )),
     }
+}
+
+/// A path as it is safe to print: no control character from its name reaches
+/// the terminal.
+fn shown(path: &Path) -> String {
+    lmdc::diag::sanitize(&path.display().to_string()).into_owned()
 }
 
 /// Passes stages on and notes how many files had been created at each.
