@@ -114,7 +114,9 @@ fn build_writes_every_machine_deterministically() {
     assert!(files.iter().any(|f| f.ends_with(".dat")), "{files:?}");
     assert!(files.iter().any(|f| f.ends_with(".ngc")), "{files:?}");
     assert!(
-        !files.iter().any(|f| f.starts_with('.')),
+        !files
+            .iter()
+            .any(|f| f.starts_with('.') && f != ".lmdc-manifest"),
         "temporary files left: {files:?}"
     );
     assert_eq!(files, listing(&b));
@@ -275,4 +277,229 @@ fn timings_report_every_stage() {
         "{text}"
     );
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// `--templates` that is not a template directory is a usage error: the
+/// built-in templates in place of a site's own preamble must not pass
+/// unnoticed.
+#[test]
+fn template_directory_that_is_no_template_directory() {
+    let d = out_dir("tpl-missing-out");
+    let empty = out_dir("tpl-empty");
+    std::fs::create_dir_all(empty.join("krl")).unwrap();
+    let misspelt = out_dir("tpl-misspelt");
+    std::fs::create_dir_all(misspelt.join("krl")).unwrap();
+    std::fs::write(misspelt.join("krl/main.tera"), "x").unwrap();
+    let flat = out_dir("tpl-flat");
+    std::fs::create_dir_all(&flat).unwrap();
+    std::fs::write(flat.join("main.src.tera"), "x").unwrap();
+    for (dir, want) in [
+        (PathBuf::from("/no/such/dir"), "/no/such/dir"),
+        (empty.clone(), "holds none of lmdc's templates"),
+        (misspelt.clone(), "no template called krl/main.tera"),
+        (flat.clone(), "no template called main.src.tera"),
+    ] {
+        let o = lmdc(&[
+            "build",
+            "examples/twisted_duct.lmd",
+            "-o",
+            d.to_str().unwrap(),
+            "--templates",
+            dir.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(stderr(&o).contains(want), "{}", stderr(&o));
+        assert!(!d.exists());
+    }
+    for t in [empty, misspelt, flat] {
+        let _ = std::fs::remove_dir_all(t);
+    }
+}
+
+/// The input is read with a hard cap, whatever the file says its size is.
+#[cfg(unix)]
+#[test]
+fn endless_input_is_cut_at_the_cap() {
+    let start = std::time::Instant::now();
+    let o = lmdc(&["check", "/dev/zero"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("larger than 16 MB"), "{}", stderr(&o));
+    assert!(start.elapsed() < std::time::Duration::from_secs(30));
+    // A pipe that never ends.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .args(["check", "/dev/stdin"])
+        .stdin(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut input = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || {
+        use std::io::Write;
+        let block = vec![b' '; 1 << 16];
+        // Stops when lmdc closes the pipe.
+        while input.write_all(&block).is_ok() {}
+    });
+    let o = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("larger than 16 MB"), "{}", stderr(&o));
+}
+
+/// A byte order mark, CRLF and CR-only line ends all compile to the same
+/// programs.
+#[test]
+fn bom_and_every_line_end_compile() {
+    let lf = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
+    let dir = out_dir("line-ends");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut outputs = Vec::new();
+    for (tag, src) in [
+        ("lf", lf.clone()),
+        ("bom", format!("\u{feff}{lf}")),
+        ("crlf", lf.replace('\n', "\r\n")),
+        ("cr", format!("\u{feff}{}", lf.replace('\n', "\r"))),
+    ] {
+        let file = dir.join(format!("{tag}.lmd"));
+        std::fs::write(&file, src).unwrap();
+        let out = dir.join(tag);
+        let o = lmdc(&["build", file.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(0), "{tag}: {}", stderr(&o));
+        let files: Vec<(String, Vec<u8>)> = listing(&out)
+            .into_iter()
+            .filter(|f| !f.starts_with('.'))
+            .map(|f| {
+                let bytes = std::fs::read(out.join(&f)).unwrap();
+                (f, bytes)
+            })
+            .collect();
+        outputs.push((tag, files));
+    }
+    for (tag, files) in &outputs[1..] {
+        assert!(
+            *files == outputs[0].1,
+            "{tag} builds other programs than LF"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Escape sequences in the source never reach the terminal, from the snippet
+/// or from a message that quotes a name.
+#[test]
+fn diagnostics_print_no_control_characters() {
+    let dir = out_dir("escapes");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("bad.lmd");
+    std::fs::write(
+        &file,
+        "part \"\x1b]0;pwned\x07\"\nlet a = \"\x1b[2J\" + 1 mm\n\x1b[31m = 2\n",
+    )
+    .unwrap();
+    let o = lmdc(&["check", file.to_str().unwrap(), "--color", "never"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let text = stderr(&o);
+    assert!(
+        !text.chars().any(|c| c.is_control() && c != '\n'),
+        "{text:?}"
+    );
+    assert!(text.contains("␛[2J"), "{text}");
+    // Nor from a file name.
+    let o = lmdc(&["check", "no\x1b[31msuch\x07.lmd"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("no␛[31msuch␇.lmd"), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The non-hidden files of `dir` and their bytes.
+fn contents(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    listing(dir)
+        .into_iter()
+        .filter(|f| !f.starts_with('.'))
+        .map(|f| {
+            let bytes = std::fs::read(dir.join(&f)).unwrap();
+            (f, bytes)
+        })
+        .collect()
+}
+
+/// The twisted duct, quick to build, its robot's program cut into modules of
+/// `lines` motions.
+fn duct_in_modules(dir: &Path, lines: u32) -> PathBuf {
+    let src = std::fs::read_to_string("examples/twisted_duct.lmd")
+        .unwrap()
+        .replace("points = 360", "points = 24")
+        .replace(
+            "max_speed = 250 mm/s",
+            &format!("max_speed = 250 mm/s\n  module_lines = {lines}"),
+        );
+    assert!(src.contains("module_lines"));
+    std::fs::create_dir_all(dir).unwrap();
+    let file = dir.join(format!("duct{lines}.lmd"));
+    std::fs::write(&file, src).unwrap();
+    file
+}
+
+/// A rebuild replaces a machine's whole set of files: with fewer KRL modules
+/// the old extra modules go; another machine's files, files the user put
+/// there and files of another part stay; temporary files a killed build of
+/// an older lmdc left are removed.
+#[test]
+fn a_rebuild_replaces_the_whole_set() {
+    let work = out_dir("sets");
+    let many = duct_in_modules(&work, 10);
+    let few = duct_in_modules(&work, 40);
+    let out = work.join("out");
+    let fresh = work.join("fresh");
+    let build = |file: &Path, dir: &Path, extra: &[&str]| {
+        let mut args = vec!["build", file.to_str().unwrap(), "-o", dir.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let o = lmdc(&args);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    };
+    build(&many, &out, &[]);
+    let before = listing(&out);
+    assert!(
+        before.iter().any(|f| f.ends_with("_m500.src")),
+        "{} files",
+        before.len()
+    );
+    std::fs::write(out.join("notes.txt"), "the operator's").unwrap();
+    std::fs::write(out.join("twisted_duct_kr60_m9999.src"), "not lmdc's").unwrap();
+    std::fs::write(out.join(".lmdc-a1b2c3.tmp"), vec![0u8; 4096]).unwrap();
+    let other = work.join("other.lmd");
+    std::fs::write(
+        &other,
+        std::fs::read_to_string(&few)
+            .unwrap()
+            .replace("part twisted_duct", "part other_duct"),
+    )
+    .unwrap();
+    build(&other, &out, &["--machine", "dmu5"]);
+
+    // Only the robot, with a quarter of the modules.
+    build(&few, &out, &["--machine", "kr60"]);
+    build(&few, &fresh, &[]);
+    let mut want = contents(&fresh);
+    want.push((
+        "notes.txt".into(),
+        std::fs::read(out.join("notes.txt")).unwrap(),
+    ));
+    want.push((
+        "other_duct_dmu5.ngc".into(),
+        std::fs::read(out.join("other_duct_dmu5.ngc")).unwrap(),
+    ));
+    want.push(("twisted_duct_kr60_m9999.src".into(), b"not lmdc's".to_vec()));
+    want.sort();
+    // The CNC program of the first build is still the first build's: the
+    // same bytes as the fresh one's, since only module_lines changed.
+    assert_eq!(contents(&out), want);
+    assert_eq!(
+        listing(&out)
+            .iter()
+            .filter(|f| f.starts_with('.'))
+            .collect::<Vec<_>>(),
+        [".lmdc-manifest"],
+        "temporary files left"
+    );
+    let _ = std::fs::remove_dir_all(&work);
 }

@@ -8,6 +8,8 @@
 mod krl;
 #[path = "support/krl_parser.rs"]
 mod krl_parser;
+#[path = "support/skip.rs"]
+mod skip;
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::Machine;

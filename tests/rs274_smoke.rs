@@ -4,6 +4,8 @@
 
 #[path = "support/rs274.rs"]
 mod rs274;
+#[path = "support/skip.rs"]
+mod skip;
 
 use rs274::CanonCall::{self, *};
 
@@ -12,13 +14,11 @@ fn have_rs274(test: &str) -> bool {
     if rs274::find_rs274().is_some() {
         return true;
     }
-    if rs274::in_ci() {
-        panic!(
-            "CI is set but rs274 is missing: run `bash .ci/install-rs274.sh` \
-             and export LMDC_RS274=<the path it prints>"
-        );
-    }
-    eprintln!("skipping {test}: rs274 not installed (bash .ci/install-rs274.sh)");
+    skip::skip(
+        test,
+        "LinuxCNC's rs274",
+        "run `bash .ci/install-rs274.sh` and export LMDC_RS274=<the path it prints>",
+    );
     false
 }
 

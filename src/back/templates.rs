@@ -53,7 +53,15 @@ impl Templates {
 
     /// The built-in templates, with any file found under `dir` replacing its
     /// built-in namesake.
+    ///
+    /// A `dir` that is not a directory, that holds none of the templates, or
+    /// that holds a `.tera` file lmdc does not use (a misspelt name, a file
+    /// outside `krl/` and `gcode/`) is an error: the built-in templates in
+    /// place of a site's own preamble must never pass unnoticed.
     pub fn load(dir: Option<&Path>) -> Result<Self, String> {
+        if let Some(d) = dir {
+            check_dir(d)?;
+        }
         let mut tera = tera::Tera::default();
         tera.autoescape_on(vec![]);
         for (name, text) in BUILTIN {
@@ -74,6 +82,73 @@ impl Templates {
             .render(name, ctx)
             .map_err(|e| format!("template {name}: {}", error_chain(&e)))
     }
+}
+
+/// The names a template directory may hold, for messages.
+fn known_names() -> String {
+    BUILTIN
+        .iter()
+        .map(|(n, _)| *n)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Refuses a template directory that is missing, holds no template, or holds a
+/// `.tera` file that would be silently ignored.
+fn check_dir(dir: &Path) -> Result<(), String> {
+    let meta =
+        std::fs::metadata(dir).map_err(|e| format!("template directory {}: {e}", dir.display()))?;
+    if !meta.is_dir() {
+        return Err(format!(
+            "template directory {}: not a directory",
+            dir.display()
+        ));
+    }
+    let mut found = 0;
+    let mut unused = Vec::new();
+    for sub in ["", "krl", "gcode"] {
+        let d = dir.join(sub);
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let name = e.file_name().to_string_lossy().into_owned();
+            if !name.ends_with(".tera") {
+                continue;
+            }
+            let rel = if sub.is_empty() {
+                name
+            } else {
+                format!("{sub}/{name}")
+            };
+            if BUILTIN.iter().any(|(n, _)| *n == rel) {
+                found += 1;
+            } else {
+                unused.push(rel);
+            }
+        }
+    }
+    unused.sort();
+    if let Some(first) = unused.first() {
+        return Err(format!(
+            "template directory {}: lmdc has no template called {first}{}; the templates are {}",
+            dir.display(),
+            if unused.len() > 1 {
+                format!(" (nor {})", unused[1..].join(", "))
+            } else {
+                String::new()
+            },
+            known_names()
+        ));
+    }
+    if found == 0 {
+        return Err(format!(
+            "template directory {} holds none of lmdc's templates ({})",
+            dir.display(),
+            known_names()
+        ));
+    }
+    Ok(())
 }
 
 fn error_chain(e: &dyn std::error::Error) -> String {

@@ -16,8 +16,8 @@ pub const EXIT_PROGRAM: u8 = 1;
 /// Exit code: bad usage or an I/O problem.
 pub const EXIT_USAGE: u8 = 2;
 
-/// Largest source file lmdc reads.
-const MAX_SOURCE: u64 = 16 << 20;
+/// Largest source file lmdc reads (16 MiB).
+pub const MAX_SOURCE: u64 = 16 << 20;
 
 /// lmdc compiles a .lmd description of a laser metal deposition part into the
 /// programs that build it: KRL for KUKA robots, G-code for CNCs.
@@ -155,6 +155,12 @@ fn build(
             return EXIT_USAGE;
         }
     };
+    // A build killed in this directory is finished or undone first, whether
+    // or not this one succeeds (src/cli/sink.rs).
+    if let Err(e) = sink::recover(out) {
+        eprintln!("error: output directory {}: {e}", shown(out));
+        return EXIT_USAGE;
+    }
     let Some(source) = read_source(file) else {
         return EXIT_USAGE;
     };
@@ -179,28 +185,58 @@ fn build(
         Err(e) => {
             eprintln!(
                 "error: cannot create the output directory {}: {e}",
-                out.display()
+                shown(out)
             );
             return EXIT_USAGE;
         }
     };
-    let obs: &mut dyn Observer = match clock.as_mut() {
+    let inner: &mut dyn Observer = match clock.as_mut() {
         Some(t) => t,
         None => &mut (),
     };
-    match pipeline::emit(&program, &templates, &mut sink, obs) {
+    // pipeline::emit reports a stage after each machine: the files created
+    // by then are that machine's set.
+    let mut marks = Marks {
+        inner,
+        count: sink.counter(),
+        at: Vec::new(),
+    };
+    let which: Vec<usize> = program.machines().map(|m| m.index()).collect();
+    let emitted = pipeline::emit(&program, &templates, &mut sink, &mut marks);
+    let part = program.ir().part.clone();
+    let key = |machine: Option<String>| sink::SetKey {
+        part: part.clone(),
+        machine,
+    };
+    if marks.at.len() == which.len() {
+        for (&i, &end) in which.iter().zip(&marks.at) {
+            let name = program.ir().machines[i].name().to_string();
+            sink.end_set(key(Some(name)), end);
+        }
+    } else {
+        let names: Vec<&str> = which
+            .iter()
+            .map(|&i| program.ir().machines[i].name())
+            .collect();
+        let end = sink.counter().get();
+        sink.end_set(key(Some(names.join(","))), end);
+    }
+    match emitted {
         Ok(()) => {}
         Err(EmitError::Template(e)) => {
             eprintln!("error: {e}");
             return EXIT_USAGE;
         }
         Err(EmitError::Io(e)) => {
-            eprintln!("error: writing into {}: {e}", out.display());
+            eprintln!("error: writing into {}: {e}", shown(out));
             return EXIT_USAGE;
         }
     }
     if emit.contains(&Emit::Ir) {
-        let name = format!("{}.ir.json", lmdc::back::identifier(&program.ir().part, 64));
+        let name = format!(
+            "{}.ir.json",
+            lmdc::target::names::windows_safe(&lmdc::back::identifier(&program.ir().part, 64))
+        );
         let written = (|| -> std::io::Result<()> {
             use lmdc::back::Sink;
             let mut w = sink.create(&name)?;
@@ -212,6 +248,8 @@ fn build(
             eprintln!("error: writing {name}: {e}");
             return EXIT_USAGE;
         }
+        let end = sink.counter().get();
+        sink.end_set(key(None), end);
         if let Some(t) = clock.as_mut() {
             t.stage("emit IR");
         }
@@ -219,7 +257,7 @@ fn build(
     let paths = match sink.commit() {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("error: writing into {}: {e}", out.display());
+            eprintln!("error: writing into {}: {e}", shown(out));
             return EXIT_USAGE;
         }
     };
@@ -229,33 +267,62 @@ fn build(
         eprint!("{}", t.report());
     }
     for p in paths {
-        eprintln!("wrote {}", p.display());
+        eprintln!("wrote {}", shown(&p));
     }
     0
 }
 
+/// Reads the source, at most [`MAX_SOURCE`] bytes whatever the file claims to
+/// be: metadata says nothing about `/dev/zero`, a pipe or a file still
+/// growing, so the read itself stops one byte past the cap.
 fn read_source(file: &Path) -> Option<String> {
+    use std::io::Read;
     let fail = |why: String| {
-        eprintln!("error: cannot read {}: {why}", file.display());
+        eprintln!("error: cannot read {}: {why}", shown(file));
         None
     };
-    match std::fs::metadata(file) {
+    let f = match std::fs::File::open(file) {
+        Ok(f) => f,
+        Err(e) => return fail(e.to_string()),
+    };
+    match f.metadata() {
         Ok(m) if m.is_dir() => return fail("it is a directory".into()),
-        Ok(m) if m.len() > MAX_SOURCE => {
-            return fail(format!("it is larger than {} MB", MAX_SOURCE >> 20))
-        }
         Ok(_) => {}
         Err(e) => return fail(e.to_string()),
     }
-    match std::fs::read(file) {
-        Ok(bytes) => match String::from_utf8(bytes) {
-            Ok(s) => Some(s),
-            Err(e) => fail(format!(
-                "it is not UTF-8 text (invalid byte at offset {})",
-                e.utf8_error().valid_up_to()
-            )),
-        },
-        Err(e) => fail(e.to_string()),
+    let mut bytes = Vec::new();
+    if let Err(e) = f.take(MAX_SOURCE + 1).read_to_end(&mut bytes) {
+        return fail(e.to_string());
+    }
+    if bytes.len() as u64 > MAX_SOURCE {
+        return fail(format!("it is larger than {} MB", MAX_SOURCE >> 20));
+    }
+    match String::from_utf8(bytes) {
+        Ok(s) => Some(s),
+        Err(e) => fail(format!(
+            "it is not UTF-8 text (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        )),
+    }
+}
+
+/// A path as it is safe to print: no control character from its name reaches
+/// the terminal.
+fn shown(path: &Path) -> String {
+    lmdc::diag::sanitize(&path.display().to_string()).into_owned()
+}
+
+/// Passes stages on and notes how many files had been created at each.
+struct Marks<'o> {
+    inner: &'o mut dyn Observer,
+    count: std::rc::Rc<std::cell::Cell<usize>>,
+    at: Vec<usize>,
+}
+
+impl Observer for Marks<'_> {
+    fn stage(&mut self, name: &'static str) {
+        self.at.push(self.count.get());
+        self.inner.stage(name);
     }
 }
 

@@ -87,6 +87,8 @@ codes! {
         "the text does not follow the grammar: an unclosed or mismatched bracket, a statement in the wrong shape (`let` without `=`, a field without a value, …)";
     TooDeep = "too-deep", Syntax,
         "brackets nested more than 64 deep";
+    DeepExpression = "deep-expression", Syntax,
+        "an expression nests more than 256 operators and brackets into one another (a very long chain of `+`, `..` or `^`, thousands of signs); compute it in steps with `let`";
     Number = "number", Syntax,
         "a number too large to represent";
 
@@ -120,6 +122,8 @@ codes! {
         "the file declares no machine to write a program for";
     Cycle = "cycle", Values,
         "constants defined in terms of each other";
+    ConstantChain = "constant-chain", Values,
+        "constants recomputed for each layer (they follow `layer`) through a chain of more than 128 constants, each using the next, or more than 512 nested steps of constants and operators together (other constants are computed in the order they use each other, however long the chain)";
     UnitMismatch = "unit-mismatch", Values,
         "operands or a field with the wrong kind of unit: a length plus an angle, a power in mm/s";
     ExpectedNumber = "expected-number", Values,

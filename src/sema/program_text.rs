@@ -1,7 +1,9 @@
 //! Texts that go into a program verbatim (`laser_on`, `preamble`, …): each must
 //! be one line of printable ASCII, so nothing can slip a second command into a
 //! program (a carriage return inside `laser_on = "M3␍G0 Z-500"` is a line end
-//! to a control), and the lines a program needs must be there.
+//! to a control — and to lmdc's parser, which then finds the text unclosed; a
+//! vertical tab or an escape must not reach a program either), and the lines a
+//! program needs must be there.
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;

@@ -7,7 +7,7 @@ use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Arg, BinOp, Expr, ExprKind, UnOp};
 use crate::units::{parse_unit, short, Dim, Quantity};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// An evaluated expression.
 #[derive(Clone, Debug, PartialEq)]
@@ -96,10 +96,31 @@ pub const LAYER: &str = "layer";
 /// layer's (`layer · layer_height`, a length) that profile expressions may use.
 pub const Z: &str = "layer_z";
 
+/// The longest chain of constants evaluated one inside another (`let a2 = a1 +
+/// 1 mm`, `let a1 = a0 + 1 mm`, …). Evaluation recurses through each constant
+/// it has not computed yet, so an unbounded chain would overflow the stack; a
+/// constant already computed costs nothing, so this bounds only chains written
+/// out of order or very long ones.
+pub const MAX_CONSTANT_CHAIN: usize = 128;
+
+/// The deepest evaluation, in nested expression nodes and constants together.
+/// The parser bounds one expression to
+/// [`MAX_EXPR_DEPTH`](crate::syntax::MAX_EXPR_DEPTH); this bounds what chains
+/// of constants stack on top of that, within a 2 MiB thread stack in a debug
+/// build.
+pub const MAX_EVAL_DEPTH: usize = 512;
+
 /// The constants of a file, evaluated on demand (so order does not matter) with
 /// cycle detection.
 pub struct Env<'a> {
     lets: HashMap<String, (Span, LetState<'a>, &'a Expr)>,
+    /// Expression nodes being evaluated, one inside another.
+    depth: usize,
+    /// Constants being evaluated, one inside another.
+    chain: usize,
+    /// Whether the evaluation has been cut short by a depth limit (reported
+    /// once: every level above it fails too).
+    cut: bool,
     /// The value of [`LAYER`] (0 outside a per-layer evaluation).
     layer: usize,
     /// The value of [`Z`], mm (0 outside a per-layer evaluation).
@@ -117,6 +138,9 @@ impl<'a> Env<'a> {
     pub fn new() -> Self {
         Env {
             lets: HashMap::new(),
+            depth: 0,
+            chain: 0,
+            cut: false,
             layer: 0,
             z: 0.0,
             layer_reads: 0,
@@ -142,12 +166,44 @@ impl<'a> Env<'a> {
     }
 
     /// Evaluates every constant (so errors in unused ones are reported too).
+    ///
+    /// Each constant is computed after the constants it uses (a depth-first
+    /// walk with its own stack, in the order evaluation would meet them), so
+    /// no evaluation recurses through a chain of constants, however long: a
+    /// file of thousands of `let`s, each using the one before, is fine. A
+    /// constant that uses one still being walked (a cycle) is left to the lazy
+    /// evaluation, which reports the cycle.
     pub fn eval_all(&mut self, diags: &mut Diagnostics) {
         let mut names: Vec<_> = self.lets.keys().cloned().collect();
         names.sort();
-        for n in names {
-            let span = self.lets[&n].0;
-            self.lookup(&n, span, diags);
+        // Constants on the walk's stack or computed. Names borrow from `names`
+        // or from the expressions, both of which outlive the walk.
+        let mut seen: HashSet<&str> = HashSet::new();
+        for root in &names {
+            if seen.contains(root.as_str()) {
+                continue;
+            }
+            let Some(expr) = self.lets.get(root.as_str()).map(|l| l.2) else {
+                continue;
+            };
+            seen.insert(root);
+            let mut stack: Vec<(&str, Vec<&str>, usize)> = vec![(root, uses(expr), 0)];
+            while let Some((name, deps, next)) = stack.last_mut() {
+                if let Some(&d) = deps.get(*next) {
+                    *next += 1;
+                    if !seen.contains(d) {
+                        if let Some(e) = self.lets.get(d).map(|l| l.2) {
+                            seen.insert(d);
+                            stack.push((d, uses(e), 0));
+                        }
+                    }
+                    continue;
+                }
+                let name = *name;
+                stack.pop();
+                let span = self.lets[name].0;
+                self.lookup(name, span, diags);
+            }
         }
     }
 
@@ -179,20 +235,23 @@ impl<'a> Env<'a> {
                 Some(v)
             }
             LetState::Busy => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::Cycle,
-                        format!("the constant `{name}` is defined in terms of itself"),
-                    )
-                    .label(at, "used here while it is being computed")
-                    .label(decl, "defined here")
-                    .help("break the cycle: give one of the constants a value that does not use the others"),
-                );
+                diags.push(cycle(name, at, decl));
                 Some(None)
             }
             LetState::Pending(expr) => {
+                if self.chain >= MAX_CONSTANT_CHAIN {
+                    // Left pending: computed again (and failing again, silently)
+                    // only if another chain reaches it as deep.
+                    if let Some((_, st, _)) = self.lets.get_mut(name) {
+                        *st = LetState::Pending(expr);
+                    }
+                    self.cut(diags, |d| d.push(chain_too_long(name, at, decl)));
+                    return Some(None);
+                }
                 let before = self.layer_reads;
+                self.chain += 1;
                 let v = self.eval(expr, diags).map(|s| s.value);
+                self.chain -= 1;
                 let dependent = self.layer_reads > before;
                 if let Some((_, st, _)) = self.lets.get_mut(name) {
                     *st = LetState::Done(v.clone(), dependent);
@@ -238,122 +297,237 @@ impl<'a> Env<'a> {
         self.layer_reads > before
     }
 
+    /// Reports `d` (the first time a depth limit cuts an evaluation short; the
+    /// levels above it fail with it and say nothing more).
+    fn cut(&mut self, diags: &mut Diagnostics, report: impl FnOnce(&mut Diagnostics)) {
+        if !self.cut {
+            self.cut = true;
+            report(diags);
+        }
+    }
+
     /// Evaluates an expression.
     pub fn eval(&mut self, e: &Expr, diags: &mut Diagnostics) -> Option<Spanned> {
+        if self.depth >= MAX_EVAL_DEPTH {
+            self.cut(diags, |d| d.push(too_deep(e.span)));
+            return None;
+        }
+        self.depth += 1;
+        let v = self.eval_node(e, diags);
+        self.depth -= 1;
+        if self.depth == 0 {
+            // The next top-level evaluation reports its own limit.
+            self.cut = false;
+        }
+        v
+    }
+
+    /// One node. Each kind has its own function and every diagnostic is
+    /// built in a function of its own: in a debug build a function's frame
+    /// holds the temporaries of all its branches, and this recursion is as
+    /// deep as the expression, so a lean frame here is what lets
+    /// [`MAX_EXPR_DEPTH`](crate::syntax::MAX_EXPR_DEPTH) fit a small stack.
+    fn eval_node(&mut self, e: &Expr, diags: &mut Diagnostics) -> Option<Spanned> {
         let value = match &e.kind {
-            ExprKind::Number { value, unit } => {
-                let (factor, dim) = match unit {
-                    None => (1.0, Dim::NONE),
-                    Some(u) => match parse_unit(&u.node) {
-                        Ok(x) => x,
-                        Err(bad) => {
-                            diags.push(
-                                Diagnostic::error(
-                                    Code::UnknownUnit,
-                                    format!("`{}` is not a unit lmdc knows", bad.0),
-                                )
-                                .label(u.span, "unknown unit")
-                                .help("units: mm cm m um in, deg rad, s ms min h, g mg kg, W kW, J, Hz, %; combine with / * and ^, e.g. g/min or g/cm^3"),
-                            );
-                            return None;
-                        }
-                    },
-                };
-                Value::Quantity(Quantity {
-                    value: value * factor,
-                    dim,
-                })
-            }
+            ExprKind::Number { value, unit } => number(*value, unit.as_ref(), diags)?,
             ExprKind::Ident(name) => match self.lookup(name, e.span, diags) {
                 Some(v) => v?,
                 None => Value::Symbol(name.clone()),
             },
             ExprKind::Str(s) => Value::Str(s.clone()),
-            ExprKind::List(items) => {
-                let mut out = Vec::with_capacity(items.len());
-                let mut ok = true;
-                for it in items {
-                    match self.eval(it, diags) {
-                        Some(v) => out.push(v),
-                        None => ok = false,
-                    }
-                }
-                if !ok {
-                    return None;
-                }
-                Value::List(out)
-            }
-            ExprKind::Call { func, args } => {
-                let mut out = Vec::with_capacity(args.len());
-                let mut ok = true;
-                for Arg { name, value } in args {
-                    match self.eval(value, diags) {
-                        Some(v) => out.push(CallArg {
-                            name: name.as_ref().map(|n| (n.node.clone(), n.span)),
-                            value: v,
-                        }),
-                        None => ok = false,
-                    }
-                }
-                if !ok {
-                    return None;
-                }
-                if matches!(func.node.as_str(), "min" | "max")
-                    && !self.lets.contains_key(&func.node)
-                {
-                    min_max(&func.node, e.span, &out, diags)?
-                } else {
-                    Value::Call(Call {
-                        func: func.node.clone(),
-                        func_span: func.span,
-                        args: out,
-                    })
-                }
-            }
-            ExprKind::Unary { op, expr } => {
-                let v = self.eval(expr, diags)?;
-                match (op, v.value) {
-                    (UnOp::Pos, v) => v,
-                    (UnOp::Neg, Value::Quantity(q)) => Value::Quantity(Quantity {
-                        value: -q.value,
-                        dim: q.dim,
-                    }),
-                    // `-z` names an axis direction: keep the sign in the symbol.
-                    (UnOp::Neg, Value::Symbol(s)) => Value::Symbol(format!("-{s}")),
-                    (UnOp::Neg, other) => {
-                        diags.push(
-                            Diagnostic::error(
-                                Code::ExpectedNumber,
-                                format!("cannot negate {}", other.describe()),
-                            )
-                            .label(expr.span, "this is not a number"),
-                        );
-                        return None;
-                    }
-                }
-            }
-            ExprKind::Binary { op, lhs, rhs } => {
-                let l = self.eval(lhs, diags);
-                let r = self.eval(rhs, diags);
-                let (l, r) = (l?, r?);
-                binary(*op, l, r, diags)?
-            }
+            ExprKind::List(items) => self.list(items, diags)?,
+            ExprKind::Call { func, args } => self.call(e, func, args, diags)?,
+            ExprKind::Unary { op, expr } => self.unary(*op, expr, diags)?,
+            ExprKind::Binary { op, lhs, rhs } => self.binary_node(*op, lhs, rhs, diags)?,
         };
-        if let Value::Quantity(q) = &value {
-            if !q.value.is_finite() {
+        finite(value, e.span, diags)
+    }
+
+    fn list(&mut self, items: &[Expr], diags: &mut Diagnostics) -> Option<Value> {
+        let mut out = Vec::with_capacity(items.len());
+        let mut ok = true;
+        for it in items {
+            match self.eval(it, diags) {
+                Some(v) => out.push(v),
+                None => ok = false,
+            }
+        }
+        ok.then_some(Value::List(out))
+    }
+
+    fn call(
+        &mut self,
+        e: &Expr,
+        func: &crate::syntax::ast::Ident,
+        args: &[Arg],
+        diags: &mut Diagnostics,
+    ) -> Option<Value> {
+        let mut out = Vec::with_capacity(args.len());
+        let mut ok = true;
+        for Arg { name, value } in args {
+            match self.eval(value, diags) {
+                Some(v) => out.push(CallArg {
+                    name: name.as_ref().map(|n| (n.node.clone(), n.span)),
+                    value: v,
+                }),
+                None => ok = false,
+            }
+        }
+        if !ok {
+            return None;
+        }
+        if matches!(func.node.as_str(), "min" | "max") && !self.lets.contains_key(&func.node) {
+            min_max(&func.node, e.span, &out, diags)
+        } else {
+            Some(Value::Call(Call {
+                func: func.node.clone(),
+                func_span: func.span,
+                args: out,
+            }))
+        }
+    }
+
+    fn unary(&mut self, op: UnOp, expr: &Expr, diags: &mut Diagnostics) -> Option<Value> {
+        let v = self.eval(expr, diags)?;
+        match (op, v.value) {
+            (UnOp::Pos, v) => Some(v),
+            (UnOp::Neg, Value::Quantity(q)) => Some(Value::Quantity(Quantity {
+                value: -q.value,
+                dim: q.dim,
+            })),
+            // `-z` names an axis direction: keep the sign in the symbol.
+            (UnOp::Neg, Value::Symbol(s)) => Some(Value::Symbol(format!("-{s}"))),
+            (UnOp::Neg, other) => {
+                not_negatable(&other, expr.span, diags);
+                None
+            }
+        }
+    }
+
+    fn binary_node(
+        &mut self,
+        op: BinOp,
+        lhs: &Expr,
+        rhs: &Expr,
+        diags: &mut Diagnostics,
+    ) -> Option<Value> {
+        let l = self.eval(lhs, diags);
+        let r = self.eval(rhs, diags);
+        let (l, r) = (l?, r?);
+        binary(op, l, r, diags)
+    }
+}
+
+fn cycle(name: &str, at: Span, decl: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Cycle,
+        format!("the constant `{name}` is defined in terms of itself"),
+    )
+    .label(at, "used here while it is being computed")
+    .label(decl, "defined here")
+    .help("break the cycle: give one of the constants a value that does not use the others")
+}
+
+fn chain_too_long(name: &str, at: Span, decl: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConstantChain,
+        format!(
+            "computing this needs a chain of more than {MAX_CONSTANT_CHAIN} constants, each using the next"
+        ),
+    )
+    .label(
+        at,
+        format!("`{name}` is constant number {} of the chain", MAX_CONSTANT_CHAIN + 1),
+    )
+    .label(decl, "declared here")
+    .help("compute the value in fewer steps, e.g. `let a100 = a0 + 100 * 1 mm` instead of a hundred `let`s that each add 1 mm")
+}
+
+fn too_deep(span: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConstantChain,
+        format!(
+            "computing this value nests more than {MAX_EVAL_DEPTH} steps of constants and operators"
+        ),
+    )
+    .label(span, "the limit is reached here")
+    .help("compute the value in fewer steps: fewer constants that each use the next, shorter chains of operators")
+}
+
+/// A number with its unit.
+fn number(
+    value: f64,
+    unit: Option<&crate::span::Spanned<String>>,
+    diags: &mut Diagnostics,
+) -> Option<Value> {
+    let (factor, dim) = match unit {
+        None => (1.0, Dim::NONE),
+        Some(u) => match parse_unit(&u.node) {
+            Ok(x) => x,
+            Err(bad) => {
                 diags.push(
-                    Diagnostic::error(Code::Overflow, "this number is too large to compute with")
-                        .label(e.span, "not a finite number")
-                        .help("check the value and its unit"),
+                    Diagnostic::error(
+                        Code::UnknownUnit,
+                        format!("`{}` is not a unit lmdc knows", bad.0),
+                    )
+                    .label(u.span, "unknown unit")
+                    .help("units: mm cm m um in, deg rad, s ms min h, g mg kg, W kW, J, Hz, %; combine with / * and ^, e.g. g/min or g/cm^3"),
                 );
                 return None;
             }
+        },
+    };
+    Some(Value::Quantity(Quantity {
+        value: value * factor,
+        dim,
+    }))
+}
+
+fn not_negatable(other: &Value, span: Span, diags: &mut Diagnostics) {
+    diags.push(
+        Diagnostic::error(
+            Code::ExpectedNumber,
+            format!("cannot negate {}", other.describe()),
+        )
+        .label(span, "this is not a number"),
+    );
+}
+
+/// `value` at `span`, unless it is a quantity that is not finite.
+fn finite(value: Value, span: Span, diags: &mut Diagnostics) -> Option<Spanned> {
+    if let Value::Quantity(q) = &value {
+        if !q.value.is_finite() {
+            diags.push(
+                Diagnostic::error(Code::Overflow, "this number is too large to compute with")
+                    .label(span, "not a finite number")
+                    .help("check the value and its unit"),
+            );
+            return None;
         }
-        Some(Spanned {
-            value,
-            span: e.span,
-        })
     }
+    Some(Spanned { value, span })
+}
+
+/// The names `e` reads, in the order evaluation meets them (left to right).
+/// Walks with its own stack: expressions are bounded in depth by the parser,
+/// but this costs nothing.
+fn uses(e: &Expr) -> Vec<&str> {
+    let mut out = Vec::new();
+    let mut todo = vec![e];
+    while let Some(e) = todo.pop() {
+        match &e.kind {
+            ExprKind::Ident(n) => out.push(n.as_str()),
+            ExprKind::Number { .. } | ExprKind::Str(_) => {}
+            ExprKind::List(items) => todo.extend(items.iter().rev()),
+            ExprKind::Call { args, .. } => todo.extend(args.iter().rev().map(|a| &a.value)),
+            ExprKind::Unary { expr, .. } => todo.push(expr),
+            ExprKind::Binary { lhs, rhs, .. } => {
+                todo.push(rhs);
+                todo.push(lhs);
+            }
+        }
+    }
+    out
 }
 
 impl Default for Env<'_> {

@@ -14,11 +14,25 @@ struct LmdParser;
 
 /// Deeper nesting than this is refused before parsing, so no input can exhaust the
 /// stack of the recursive-descent parser.
-const MAX_NESTING: usize = 64;
+pub const MAX_NESTING: usize = 64;
+
+/// The deepest expression accepted: operators and brackets nested into one
+/// another along one path (`-(-(1))` is 4 deep: two signs, two brackets;
+/// `1 + 2 + 3` is 2; `f([1, 2])` is 2). pest reads
+/// a chain of operators in a loop, but the Pratt parser, the tree and the
+/// evaluator recurse once per level, so without a bound ten thousand minus
+/// signs overflow the stack. 256 is far beyond any hand-written value and, at
+/// the debug build's frame sizes, well inside a 2 MiB thread stack.
+pub const MAX_EXPR_DEPTH: usize = 256;
 
 /// Parses a whole file. pest stops at the first syntax error, so this returns one
 /// diagnostic; everything after parsing accumulates errors.
+///
+/// A leading UTF-8 byte order mark and every line-end convention (LF, CRLF,
+/// CR alone) are accepted; spans refer to `source` as given.
 pub fn parse(source: &str) -> Result<File, Diagnostic> {
+    let normalized = normalize(source);
+    let source: &str = &normalized;
     check_nesting(source)?;
     let mut pairs = LmdParser::parse(Rule::file, source).map_err(syntax_error)?;
     let file = pairs
@@ -30,6 +44,37 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
         .map(stmt)
         .collect::<Result<_, _>>()?;
     Ok(File { stmts })
+}
+
+/// The source as the grammar reads it, byte for byte as long as `source`, so
+/// every span points at the same text in both: a leading byte order mark
+/// (U+FEFF, 3 bytes, which editors on Windows write) becomes 3 spaces, and a
+/// carriage return not followed by a line feed (classic Mac OS line ends)
+/// becomes a line feed, since the grammar ends comments and strings at `\n`
+/// and would otherwise read a CR-only file as one line.
+fn normalize(source: &str) -> std::borrow::Cow<'_, str> {
+    let bom = source.starts_with('\u{feff}');
+    let lone_cr = source
+        .as_bytes()
+        .windows(2)
+        .any(|w| w[0] == b'\r' && w[1] != b'\n')
+        || source.ends_with('\r');
+    if !bom && !lone_cr {
+        return source.into();
+    }
+    let mut bytes = source.as_bytes().to_vec();
+    if bom {
+        bytes[..3].copy_from_slice(b"   ");
+    }
+    for i in 0..bytes.len() {
+        if bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n') {
+            bytes[i] = b'\n';
+        }
+    }
+    // Only ASCII bytes and a whole 3-byte character were replaced by ASCII.
+    String::from_utf8(bytes)
+        .map(Into::into)
+        .unwrap_or_else(|_| source.into())
 }
 
 /// Checks brackets before pest runs: refuses nesting deeper than [`MAX_NESTING`]
@@ -57,9 +102,23 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
                 continue;
             }
             b'"' => {
+                let open_at = i;
                 i += 1;
                 while i < bytes.len() && bytes[i] != b'"' && bytes[i] != b'\n' {
                     i += 1;
+                }
+                if i == bytes.len() || bytes[i] == b'\n' {
+                    // pest would say "expected …" somewhere after it; the
+                    // quote that opens the string is what needs fixing.
+                    return Err(Diagnostic::error(
+                        Code::Syntax,
+                        "this text is not closed on its line",
+                    )
+                    .label(
+                        Span::new(open_at, i),
+                        "no closing `\"` before the line ends",
+                    )
+                    .help("close the text with `\"` on the same line; a text cannot span lines"));
                 }
             }
             b'(' | b'[' | b'{' => {
@@ -207,6 +266,7 @@ fn stmt(p: Pair<Rule>) -> Result<Stmt, Diagnostic> {
             }
             Rule::assign => {
                 if let Some(e) = c.into_inner().next() {
+                    check_depth(&e)?;
                     body = Body::Assign(expr(e)?);
                 }
             }
@@ -225,6 +285,58 @@ fn stmt(p: Pair<Rule>) -> Result<Stmt, Diagnostic> {
         body,
         span,
     })
+}
+
+/// Refuses an expression whose tree would be deeper than [`MAX_EXPR_DEPTH`],
+/// before the Pratt parser recurses into it. Recurses only per bracket, which
+/// [`check_nesting`] has bounded to [`MAX_NESTING`].
+fn check_depth(e: &Pair<Rule>) -> Result<usize, Diagnostic> {
+    let mut operators = 0;
+    let mut deepest = 0;
+    for c in e.clone().into_inner() {
+        let inner = match c.as_rule() {
+            Rule::neg
+            | Rule::pos
+            | Rule::range
+            | Rule::add
+            | Rule::sub
+            | Rule::mul
+            | Rule::div
+            | Rule::pow => {
+                operators += 1;
+                0
+            }
+            Rule::expr => 1 + check_depth(&c)?,
+            Rule::list => {
+                1 + c
+                    .into_inner()
+                    .map(|x| check_depth(&x))
+                    .try_fold(0, |m, d| d.map(|d| m.max(d)))?
+            }
+            Rule::call => {
+                1 + c
+                    .into_inner()
+                    .filter(|a| a.as_rule() == Rule::arg)
+                    .flat_map(|a| a.into_inner().filter(|x| x.as_rule() == Rule::expr))
+                    .map(|x| check_depth(&x))
+                    .try_fold(0, |m, d| d.map(|d| m.max(d)))?
+            }
+            _ => 0,
+        };
+        deepest = deepest.max(inner);
+    }
+    let depth = operators + deepest;
+    if depth > MAX_EXPR_DEPTH {
+        return Err(Diagnostic::error(
+            Code::DeepExpression,
+            format!(
+                "this expression nests {depth} operators and brackets into one another; lmdc takes at most {MAX_EXPR_DEPTH}"
+            ),
+        )
+        .label(span_of(e), format!("{operators} operators at its outer level"))
+        .help("compute it in steps with `let` constants (`let a = …`, then `let b = a + …`), and write each sign once (`--x` is `x`)"));
+    }
+    Ok(depth)
 }
 
 fn pratt() -> &'static PrattParser<Rule> {
@@ -389,6 +501,49 @@ mod tests {
         assert_eq!(f.stmts.len(), 3);
         assert_eq!(f.stmts[0].name.as_ref().unwrap().node, "duct");
         assert!(matches!(f.stmts[2].body, Body::Block(ref b, _) if b.len() == 1));
+    }
+
+    #[test]
+    fn byte_order_mark_and_every_line_end() {
+        let lf = "part p // a comment\nlet a = 1 mm\nbead b {\n width = a\n}\n";
+        let want = parse(lf).unwrap();
+        for src in [
+            format!("\u{feff}{lf}"),
+            lf.replace('\n', "\r\n"),
+            lf.replace('\n', "\r"),
+            format!("\u{feff}{}", lf.replace('\n', "\r")),
+        ] {
+            let f = parse(&src).unwrap_or_else(|e| panic!("{src:?}: {e:?}"));
+            assert_eq!(f.stmts.len(), want.stmts.len(), "{src:?}");
+            // Spans are the given text's: the same bytes, same length.
+            let s = &f.stmts[1];
+            assert_eq!(&src[s.kind.span.start..s.kind.span.end], "let");
+            assert_eq!(&src[s.name.as_ref().unwrap().span.start..][..1], "a");
+        }
+    }
+
+    #[test]
+    fn an_unclosed_text_is_reported_at_its_quote() {
+        for src in ["part \"p\nlet a = 1", "part \"p", "part \"p\rlet a = 1"] {
+            let d = parse(src).unwrap_err();
+            assert_eq!(d.code, Code::Syntax);
+            assert_eq!(d.labels[0].span.start, 5, "{src:?}");
+        }
+    }
+
+    #[test]
+    fn expression_depth_is_bounded() {
+        let at = |n: usize| format!("x = {}1", "-".repeat(n));
+        assert!(parse(&at(MAX_EXPR_DEPTH)).is_ok());
+        assert_eq!(
+            parse(&at(MAX_EXPR_DEPTH + 1)).unwrap_err().code,
+            Code::DeepExpression
+        );
+        // Brackets count too: 60 brackets, each holding 4 signs, is 300 deep.
+        let mixed = format!("x = {}1{}", "----(".repeat(60), ")".repeat(60));
+        assert_eq!(parse(&mixed).unwrap_err().code, Code::DeepExpression);
+        let long = format!("x = [{}]", vec!["-1 mm"; 10_000].join(", "));
+        assert!(parse(&long).is_ok(), "a long flat list is not deep");
     }
 
     #[test]

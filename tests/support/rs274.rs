@@ -107,14 +107,6 @@ pub fn find_rs274() -> Option<PathBuf> {
     }
 }
 
-/// Whether the test run is under CI (`CI` set, non-empty, not `false`/`0`).
-pub fn in_ci() -> bool {
-    match std::env::var("CI") {
-        Ok(v) => !(v.is_empty() || v == "false" || v == "0"),
-        Err(_) => false,
-    }
-}
-
 /// Run rs274 on `ngc` and return its raw stdout. `Err` holds the
 /// interpreter's error text (stderr without the `executing` line), prefixed
 /// by the exit status, when rs274 exits non-zero.
