@@ -1,0 +1,21 @@
+//! Closed-loop layer-height control on a segmented ring (seed 004, Shen et
+//! al. 2018): the maths as pure functions of numbers, tested against the
+//! formulas and the paper's tables. Nothing here reads the semantic model or
+//! writes IR yet; `docs/design/seed004.md` proposes the language surface, the
+//! IR and the generated controllers.
+//!
+//! | module | question | the paper |
+//! |---|---|---|
+//! | [`gain`] | what unit is a gain in | eq. 6's "s⁻¹", right only per (m/s)/mm |
+//! | [`law`] | the next layer's speed | eq. 6, clamp 1.9–20 mm/s |
+//!
+//! Every function checks its inputs and returns [`Invalid`] instead of
+//! panicking or producing NaN.
+
+pub mod gain;
+pub mod invalid;
+pub mod law;
+
+pub use gain::SpeedPerLength;
+pub use invalid::Invalid;
+pub use law::{Clamp, Controller, LoopState};
