@@ -8,6 +8,8 @@
 //! |---|---|---|
 //! | [`gain`] | what unit is a gain in | eq. 6's "s⁻¹", right only per (m/s)/mm |
 //! | [`law`] | the next layer's speed | eq. 6, clamp 1.9–20 mm/s |
+//! | [`plant`] | what height a speed lays, for simulation | §4: `h ∝ 1/v` |
+//! | [`simulate`] | the loop over N layers offline | Fig. 9, Table 2 |
 //!
 //! Every function checks its inputs and returns [`Invalid`] instead of
 //! panicking or producing NaN.
@@ -15,7 +17,11 @@
 pub mod gain;
 pub mod invalid;
 pub mod law;
+pub mod plant;
+pub mod simulate;
 
 pub use gain::SpeedPerLength;
 pub use invalid::Invalid;
 pub use law::{Clamp, Controller, LoopState};
+pub use plant::{Deposition, Plant};
+pub use simulate::{simulate, Sample, Simulation, Total};
