@@ -10,18 +10,24 @@
 //! | [`law`] | the next layer's speed | eq. 6, clamp 1.9–20 mm/s |
 //! | [`plant`] | what height a speed lays, for simulation | §4: `h ∝ 1/v` |
 //! | [`simulate`] | the loop over N layers offline | Fig. 9, Table 2 |
+//! | [`linear`] | stability and settling of the linearised loop | — |
+//! | [`analysis`] | the compile-time check and its messages | — |
 //!
 //! Every function checks its inputs and returns [`Invalid`] instead of
 //! panicking or producing NaN.
 
+pub mod analysis;
 pub mod gain;
 pub mod invalid;
 pub mod law;
+pub mod linear;
 pub mod plant;
 pub mod simulate;
 
+pub use analysis::{analyse, Analysis, Finding, Severity};
 pub use gain::SpeedPerLength;
 pub use invalid::Invalid;
 pub use law::{Clamp, Controller, LoopState};
+pub use linear::LoopGains;
 pub use plant::{Deposition, Plant};
 pub use simulate::{simulate, Sample, Simulation, Total};
