@@ -12,6 +12,8 @@
 //! | [`simulate`] | the loop over N layers offline | Fig. 9, Table 2 |
 //! | [`linear`] | stability and settling of the linearised loop | — |
 //! | [`analysis`] | the compile-time check and its messages | — |
+//! | [`table`] | per-segment process values, energy density | Table 1, eq. 10 |
+//! | [`ring`] | the layer's points, transitions `v / cos γ` | eq. 1–5, 7–8 |
 //!
 //! Every function checks its inputs and returns [`Invalid`] instead of
 //! panicking or producing NaN.
@@ -22,7 +24,9 @@ pub mod invalid;
 pub mod law;
 pub mod linear;
 pub mod plant;
+pub mod ring;
 pub mod simulate;
+pub mod table;
 
 pub use analysis::{analyse, Analysis, Finding, Severity};
 pub use gain::SpeedPerLength;
@@ -30,4 +34,6 @@ pub use invalid::Invalid;
 pub use law::{Clamp, Controller, LoopState};
 pub use linear::LoopGains;
 pub use plant::{Deposition, Plant};
+pub use ring::{LayerSpec, Ring, RingPoint, Transition};
 pub use simulate::{simulate, Sample, Simulation, Total};
+pub use table::{EnergyDensity, SegmentProcess, SegmentTable};
