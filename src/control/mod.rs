@@ -14,6 +14,7 @@
 //! | [`analysis`] | the compile-time check and its messages | — |
 //! | [`table`] | per-segment process values, energy density | Table 1, eq. 10 |
 //! | [`ring`] | the layer's points, transitions `v / cos γ` | eq. 1–5, 7–8 |
+//! | [`paper`] | the reference numbers | Tables 1–2 |
 //!
 //! Every function checks its inputs and returns [`Invalid`] instead of
 //! panicking or producing NaN.
@@ -23,10 +24,16 @@ pub mod gain;
 pub mod invalid;
 pub mod law;
 pub mod linear;
+pub mod paper;
 pub mod plant;
 pub mod ring;
 pub mod simulate;
 pub mod table;
+
+#[cfg(test)]
+mod props;
+#[cfg(test)]
+mod reference;
 
 pub use analysis::{analyse, Analysis, Finding, Severity};
 pub use gain::SpeedPerLength;
