@@ -9,7 +9,7 @@
 //! | [`gain`] | what unit is a gain in | eq. 6's "s⁻¹", right only per (m/s)/mm |
 //! | [`law`] | the next layer's speed | eq. 6, clamp 1.9–20 mm/s |
 //! | [`plant`] | what height a speed lays, for simulation | §4: `h ∝ 1/v` |
-//! | [`simulate`] | the loop over N layers offline | Fig. 9, Table 2 |
+//! | [`mod@simulate`] | the loop over N layers offline | Fig. 9, Table 2 |
 //! | [`linear`] | stability and settling of the linearised loop | — |
 //! | [`analysis`] | the compile-time check and its messages | — |
 //! | [`table`] | per-segment process values, energy density | Table 1, eq. 10 |
