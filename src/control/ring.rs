@@ -199,10 +199,14 @@ impl Ring {
         top: Speed,
     ) -> Result<(Transition, Speed), Invalid> {
         positive("top speed", top.0)?;
+        // The first of equals: segment 1 → 2 rather than 9 → 10 on Table 1.
         self.transitions(table, layer_rise)?
             .into_iter()
             .map(|t| (t, t.path_speed(top)))
-            .max_by(|a, b| a.1 .0.total_cmp(&b.1 .0))
+            .fold(None, |best: Option<(Transition, Speed)>, c| match best {
+                Some(b) if b.1 .0 >= c.1 .0 => Some(b),
+                _ => Some(c),
+            })
             .ok_or(Invalid::Empty {
                 what: "segment table",
             })
