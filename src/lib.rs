@@ -4,6 +4,7 @@
 pub mod back;
 pub mod bead;
 pub mod check;
+pub mod control;
 pub mod diag;
 pub mod fill;
 pub mod geometry;
