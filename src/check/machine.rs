@@ -31,6 +31,10 @@ impl SpeedLimit {
     #[inline]
     fn motion(&mut self, m: &Move, machine: &Machine) {
         if let Speed::Feed(v) = m.speed {
+            // Well below the limit no rounding can reach it: skip the rounding.
+            if (v as f64) < self.max * (1.0 - 1e-6) {
+                return;
+            }
             let w = (self.written)(v as f64, machine);
             if w > self.max {
                 Worst::hit(&mut self.found, w, self.max, m.source());
@@ -98,16 +102,18 @@ impl Travel {
     fn motion(&mut self, m: &Move) {
         let l = &self.lim;
         let o = self.origin;
-        let w = |v: f64| rounded(v, gcode::POS_DECIMALS);
-        let inside = |v: f64, r: [f64; 2]| v >= r[0] && v <= r[1];
         for i in 0..3 {
             self.lo[i] = self.lo[i].min(m.to[i]);
             self.hi[i] = self.hi[i].max(m.to[i]);
         }
-        let ok = inside(w(m.to[0]) + o[0], l.x)
-            && inside(w(m.to[1]) + o[1], l.y)
-            && inside(w(m.to[2]) + o[2], l.z)
-            && (!self.five || (inside(w(m.axes.tilt), l.tilt) && inside(w(m.axes.c), l.rotary)));
+        // A value a printed digit inside its range is inside however it is
+        // rounded; only values at the edge are rounded as written (in `miss`).
+        const EDGE: f64 = 1e-3;
+        let inside = |v: f64, r: [f64; 2]| v >= r[0] + EDGE && v <= r[1] - EDGE;
+        let ok = inside(m.to[0] + o[0], l.x)
+            && inside(m.to[1] + o[1], l.y)
+            && inside(m.to[2] + o[2], l.z)
+            && (!self.five || (inside(m.axes.tilt, l.tilt) && inside(m.axes.c, l.rotary)));
         if !ok {
             self.miss(m);
         }
@@ -126,7 +132,13 @@ impl Travel {
         ];
         let n = if self.five { 5 } else { 3 };
         for (i, &(v, r)) in vals.iter().enumerate().take(n) {
-            let v = rounded(v, gcode::POS_DECIMALS);
+            // As the program writes it: the position (or angle) rounded, plus
+            // the origin for positions.
+            let v = if i < 3 {
+                rounded(v - o[i], gcode::POS_DECIMALS) + o[i]
+            } else {
+                rounded(v, gcode::POS_DECIMALS)
+            };
             if v < r[0] {
                 Worst::hit(&mut self.axes[i], v, r[0], m.at);
             } else if v > r[1] {
@@ -288,7 +300,8 @@ struct Analog {
 impl Analog {
     #[inline]
     fn motion(&mut self, m: &Move) {
-        if m.deposits() {
+        // Below full scale no rounding reaches 1.0: round only near it.
+        if m.deposits() && m.power as f64 >= self.full_scale * (1.0 - 1e-4) {
             let x = rounded(m.power as f64 / self.full_scale, kuka::ANOUT_DECIMALS);
             if x > 1.0 {
                 Worst::hit(&mut self.found, m.power as f64, self.full_scale, m.source());

@@ -240,6 +240,7 @@ impl<'a> Plan<'a> {
             laser: false,
             at: None,
             layer_time: 0.0,
+            timed: !self.program.heat.is_none(),
         };
         for (li, layer) in self.program.layers.iter().enumerate() {
             w.switch_off();
@@ -288,6 +289,8 @@ struct Walker<'p, 'a, V> {
     at: Option<[f64; 3]>,
     /// Time of the current layer's feed moves, s.
     layer_time: f64,
+    /// Whether layers are timed (only for cooling).
+    timed: bool,
 }
 
 fn f64s(n: [f32; 3]) -> [f64; 3] {
@@ -309,14 +312,16 @@ impl<V: Visit> Walker<'_, '_, V> {
     /// Sends `m`, switching the laser first when the move needs it changed.
     #[inline]
     fn send(&mut self, m: Move) {
-        if let (Speed::Feed(v), Some(from)) = (m.speed, self.at) {
-            let d = (0..3)
-                .map(|i| (m.to[i] - from[i]).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            self.layer_time += d / v as f64;
+        if self.timed {
+            if let (Speed::Feed(v), Some(from)) = (m.speed, self.at) {
+                let d = (0..3)
+                    .map(|i| (m.to[i] - from[i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                self.layer_time += d / v as f64;
+            }
+            self.at = Some(m.to);
         }
-        self.at = Some(m.to);
         let on = m.deposits();
         if on != self.laser {
             self.laser = on;
