@@ -83,7 +83,9 @@ pub struct Limits {
     pub bead_width: f64,
 }
 
-/// One layer: deposited on the plane at `station` of the spine.
+/// One layer: deposited on the plane at `station` of the spine (a planar
+/// layer on the plane `z = station·height`; a variable layer on the planned
+/// top of the layer below, `station` being its fraction `i/N` of the top).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct Layer {
     /// 0-based build order.
@@ -141,11 +143,13 @@ pub struct Point {
     pub pos: [f64; 3],
     /// Unit build direction; the beam points along −normal.
     pub normal: [f32; 3],
-    /// Unit direction of travel.
+    /// Unit direction of travel (it climbs out of the layer plane where a
+    /// variable layer follows the layer below).
     pub tangent: [f32; 3],
     /// Local height of this layer here, mm.
     pub layer_height: f32,
-    /// Scan speed, mm/s.
+    /// Path speed from this point to the next (the nozzle's speed along the
+    /// path), mm/s. The bead model holds for its component across the normal.
     pub speed: f32,
     /// Laser power, W.
     pub power: f32,
@@ -402,6 +406,8 @@ pub struct Origins {
     pub power: Option<Span>,
     /// The spine (bend radius).
     pub spine: Option<Span>,
+    /// A variable-top solid's `top` (seed 003).
+    pub top: Option<Span>,
     /// The slicing block.
     pub slicing: Option<Span>,
     /// Each machine's declaration, by index in [`Program::machines`].
