@@ -11,8 +11,12 @@ use serde::{Deserialize, Serialize};
 
 /// The IR format tag.
 pub const FORMAT: &str = "lmdc-ir";
-/// The IR version this compiler writes.
-pub const VERSION: u32 = 1;
+/// The IR version this compiler writes. Version 2 (variable-thickness
+/// layers, seed 003): `speed` is the path speed, which the bead model is
+/// checked against across the normal; a path may climb along the normal
+/// (`tangent` then leaves the layer plane); a variable layer's `frame` is the
+/// world frame and its `station` is `i/N`. Version 1 files read the same.
+pub const VERSION: u32 = 2;
 
 /// A whole compiled plan.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
