@@ -158,7 +158,9 @@ fn read<'a>(
     match strategy {
         Some(s) if s.node == "planar" => return planar(env, stmts, span, diags).map(Spec::Planar),
         Some(s) if s.node == "variable" => {
-            return super::variable::read(env, stmts, span, diags).map(Spec::Variable)
+            return Some(Spec::Variable(super::variable::read(
+                env, stmts, span, diags,
+            )))
         }
         Some(s) if STRATEGIES.contains(&s.node.as_str()) => {}
         Some(s) => {

@@ -144,6 +144,16 @@ pub fn plan(
     if mismatch(solid.kind, slicing.strategy, slicing.stmt, diags) {
         return (None, bead);
     }
+    let side_ok = match (&slicing.spec, slicing.strategy, slicing.stmt) {
+        (spec, Some("variable"), Some(s)) => {
+            let offset = match spec {
+                Some(Spec::Variable(v)) => v.offset(),
+                _ => None,
+            };
+            variable::side_checks(bead.as_ref(), speed, offset, s.span, diags)
+        }
+        _ => true,
+    };
     let plan = match (solid.solid, slicing.spec, &bead) {
         (Some(Solid::Loft(loft)), Some(Spec::Normal(slicing)), _) => {
             Some(Plan::Duct { loft, slicing })
@@ -152,8 +162,9 @@ pub fn plan(
             extrude::assemble(env, w, b, spec, speed, &decl.constants, diags)
                 .map(|(extrusion, slicing)| Plan::Block { extrusion, slicing })
         }
-        (Some(Solid::Extrude(w)), Some(Spec::Variable(spec)), Some(b)) if w.top.is_some() => {
-            variable::assemble(env, w, b, spec, speed, diags)
+        (Some(Solid::Extrude(w)), Some(Spec::Variable(spec)), Some(_)) if w.top.is_some() => {
+            variable::assemble(env, w, spec, diags)
+                .filter(|_| side_ok)
                 .map(|(extrusion, slicing)| Plan::Variable { extrusion, slicing })
         }
         // A part that failed, reported where it was read.

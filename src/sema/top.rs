@@ -12,7 +12,7 @@ use super::value::{Env, Value, POSITION};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Expr, ExprKind};
-use crate::units::{Dim, Length};
+use crate::units::{short, Dim, Length};
 
 /// The sugar forms a top may be written in.
 pub const SUGAR: [&str; 2] = ["edges", "plane"];
@@ -46,9 +46,34 @@ pub fn read(
             };
         }
     }
-    let before = env.layer_reads();
-    let v = env.at_position(at[0], at[1], |env| env.eval(expr, diags))?;
-    if env.layer_reads() > before {
+    let before = (env.layer_reads(), env.position_reads());
+    let mut inner = Diagnostics::new();
+    let v = env.at_position(at[0], at[1], |env| env.eval(expr, &mut inner));
+    // Arithmetic that fails at this point of the footprint: say where.
+    let at_point = env.position_reads() > before.1
+        && inner.iter().any(|d| {
+            matches!(
+                d.code,
+                Code::DivisionByZero | Code::Overflow | Code::BadExponent
+            )
+        });
+    if at_point {
+        diags.push(
+            Diagnostic::error(
+                Code::TopHeight,
+                format!(
+                    "the top cannot be computed at ({}, {}) mm, a point of the footprint",
+                    short(at[0]),
+                    short(at[1])
+                ),
+            )
+            .label(expr.span, "the top")
+            .help("the top is the finished part's height at every point of the footprint: the error below says what fails there"),
+        );
+    }
+    diags.extend(inner);
+    let v = v?;
+    if env.layer_reads() > before.0 {
         diags.push(uses_layer(expr.span));
         return None;
     }

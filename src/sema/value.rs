@@ -261,6 +261,11 @@ impl<'a> Env<'a> {
         self.layer_reads
     }
 
+    /// How often the position builtins have been read so far.
+    pub fn position_reads(&self) -> u64 {
+        self.position_reads
+    }
+
     /// Whether evaluating `e` reads the layer number.
     pub fn depends_on_layer(&mut self, e: &Expr) -> bool {
         let before = self.layer_reads;

@@ -28,10 +28,20 @@ pub const FIELDS: &[&str] = &["layers", "scan", "offset"];
 /// The nested blocks of `slicing variable { … }`.
 pub const BLOCKS: &[&str] = &["segments"];
 
-/// `slicing variable { … }` as written.
+/// `slicing variable { … }` as read: the whole block when every field is
+/// right, and its declared offset on its own (checked against the bead
+/// whatever else is wrong).
 #[derive(Clone, Debug)]
 pub struct VariableSpec {
-    slicing: VariableSlicing,
+    slicing: Option<VariableSlicing>,
+    offset: Option<(Length, Span)>,
+}
+
+impl VariableSpec {
+    /// The declared track offset, if any.
+    pub fn offset(&self) -> Option<(Length, Span)> {
+        self.offset
+    }
 }
 
 /// Reads a `slicing variable { … }` block.
@@ -40,7 +50,7 @@ pub fn read<'a>(
     stmts: &'a [Stmt],
     span: Span,
     diags: &mut Diagnostics,
-) -> Option<VariableSpec> {
+) -> VariableSpec {
     let f = Fields::block(
         env,
         stmts,
@@ -80,7 +90,7 @@ pub fn read<'a>(
                 inner,
                 &["tolerance", "min_length"],
                 &[],
-                "`segments`".into(),
+                "the `segments` block".into(),
                 at,
                 diags,
             );
@@ -96,70 +106,95 @@ pub fn read<'a>(
         }
         None => Some((None, None)),
     };
-    let ((tolerance, min_length), layers, scan, offset) = (segments?, layers?, scan?, offset?);
-    Some(VariableSpec {
-        slicing: VariableSlicing {
-            layers,
-            scan,
-            offset,
-            tolerance: tolerance.map_or(DEFAULT_TOLERANCE, |t| Length(t.0)),
-            min_length: min_length.map(|m| Length(m.0)),
-            span,
-            tolerance_span: tolerance.map(|t| t.1),
-            min_length_span: min_length.map(|m| m.1),
-        },
-    })
+    let declared = offset.flatten();
+    let slicing = match (segments, layers, scan, offset) {
+        (Some((tolerance, min_length)), Some(layers), Some(scan), Some(offset)) => {
+            Some(VariableSlicing {
+                layers,
+                scan,
+                offset,
+                tolerance: tolerance.map_or(DEFAULT_TOLERANCE, |t| Length(t.0)),
+                min_length: min_length.map(|m| Length(m.0)),
+                span,
+                tolerance_span: tolerance.map(|t| t.1),
+                min_length_span: min_length.map(|m| m.1),
+            })
+        }
+        _ => None,
+    };
+    VariableSpec {
+        slicing,
+        offset: declared,
+    }
 }
 
-/// Joins an extrusion that has a `top` with its variable slicing and its
-/// bead. `speed` is the process block's (`Some(None)` when not written,
-/// `None` when wrong): any written speed is an error, the bead gives them.
-pub fn assemble(
-    env: &mut Env<'_>,
-    w: Written<'_>,
-    bead: &Bead,
-    spec: VariableSpec,
+/// What variable slicing asks of the rest of the file, checked whenever the
+/// strategy is `variable` (whatever else is wrong): no process `speed` (the
+/// bead gives them: `speed` is the process block's, `Some(None)` when not
+/// written), a bead that maps heights to speeds, and a declared track
+/// offset the bead's width allows. Whether all hold.
+pub fn side_checks(
+    bead: Option<&Bead>,
     speed: Option<Option<(Speed, Span)>>,
+    offset: Option<(Length, Span)>,
+    at: Span,
     diags: &mut Diagnostics,
-) -> Option<(TopExtrusion, VariableSlicing)> {
-    let slicing = spec.slicing;
+) -> bool {
     let mut ok = true;
-    if let Some(Some((_, at))) = speed {
+    if let (Some((d, sp)), Some(b)) = (offset, bead) {
+        ok &= declared_offset(d, sp, b, None, diags);
+    }
+    if let Some(Some((_, sp))) = speed {
         diags.push(
             Diagnostic::error(
                 Code::SpeedFromBead,
-                format!(
-                    "variable layers take their speeds from bead `{}`: a process `speed` does not apply",
-                    bead.name
-                ),
+                match bead {
+                    Some(b) => format!(
+                        "variable layers take their speeds from bead `{}`: a process `speed` does not apply",
+                        b.name
+                    ),
+                    None => "variable layers take their speeds from the bead model: a process `speed` does not apply".to_string(),
+                },
             )
-            .label(at, "process speed")
-            .label(slicing.span, "variable slicing")
+            .label(sp, "process speed")
+            .label(at, "variable slicing")
             .help("remove `speed` from the process block: each segment of a track is laid at the speed the bead model gives for its height"),
         );
         ok = false;
     }
-    if let HeightModel::Measured { speed, .. } = bead.model {
-        diags.push(
-            Diagnostic::error(
-                Code::BeadMapNeeded,
-                format!(
-                    "bead `{}` was measured at one speed ({speed}): variable layers change the height through the speed",
-                    bead.name
-                ),
-            )
-            .label(bead.span, "measured bead")
-            .label(slicing.span, "variable slicing")
-            .help("fit the bead's height over a speed range: `model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm)` with `speed = 4 mm/s .. 8.7 mm/s`"),
-        );
-        ok = false;
+    if let Some(b) = bead {
+        if let HeightModel::Measured { speed, .. } = b.model {
+            diags.push(
+                Diagnostic::error(
+                    Code::BeadMapNeeded,
+                    format!(
+                        "bead `{}` was measured at one speed ({speed}): variable layers change the height through the speed",
+                        b.name
+                    ),
+                )
+                .label(b.span, "measured bead")
+                .label(at, "variable slicing")
+                .help("fit the bead's height over a speed range: `model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm)` with `speed = 4 mm/s .. 8.7 mm/s`"),
+            );
+            ok = false;
+        }
     }
-    if let Some((d, at)) = slicing.offset {
-        ok &= declared_offset(d, at, bead, None, diags);
-    }
+    ok
+}
+
+/// Joins an extrusion that has a `top` with its variable slicing and its
+/// bead (whose [`side_checks`] were made), keeping the footprint as one
+/// shape.
+pub fn assemble(
+    env: &mut Env<'_>,
+    w: Written<'_>,
+    spec: VariableSpec,
+    diags: &mut Diagnostics,
+) -> Option<(TopExtrusion, VariableSlicing)> {
+    let slicing = spec.slicing?;
     let (top, top_span) = w.top?;
     let (shape, shape_span) = footprint(env, w.source, w.profile_span, diags)?;
-    ok.then_some((
+    Some((
         TopExtrusion {
             name: w.name,
             shape,
