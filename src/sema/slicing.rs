@@ -1,6 +1,6 @@
 //! `slicing normal { layers, points | chord_error, seam }` and
 //! `slicing planar { layer_height, layers, contours, offset, infill, chord_error }`;
-//! `slicing variable { … }` is read by [`super::variable`].
+//! `slicing variable { … }` is read by `sema::variable`.
 
 use super::fields::{self, Fields};
 use super::model::{Pattern, Raster, Resolution, Slicing};

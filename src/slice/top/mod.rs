@@ -7,12 +7,12 @@
 //! 1. the footprint and the scan axis (`auto`: the axis the top rises more
 //!    along, the paper's rule);
 //! 2. the top sampled where tracks can run → the layer count
-//!    ([`count`]: `⌈H_max/h_max⌉ ≤ N ≤ ⌊H_min/h_min⌋`);
-//! 3. the track lines across ([`layout`]: balanced unequal-height overlap,
+//!    (`count`: `⌈H_max/h_max⌉ ≤ N ≤ ⌊H_min/h_min⌋`);
+//! 3. the track lines across (`layout`: balanced unequal-height overlap,
 //!    closed on the far edge by one uniform stretch);
 //! 4. the tracks along, each in the fewest constant-speed segments within
-//!    the height tolerance ([`tracks`]);
-//! 5. the IR ([`emit`]).
+//!    the height tolerance (`tracks`);
+//! 5. the IR (`emit`).
 //!
 //! Steps 2–4 repeat until the top's range over the tracks' points lies in
 //! the range the count was chosen for (the samples of step 2 need not hit
