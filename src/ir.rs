@@ -11,8 +11,12 @@ use serde::{Deserialize, Serialize};
 
 /// The IR format tag.
 pub const FORMAT: &str = "lmdc-ir";
-/// The IR version this compiler writes.
-pub const VERSION: u32 = 1;
+/// The IR version this compiler writes. Version 2 (variable-thickness
+/// layers, seed 003): `speed` is the path speed, which the bead model is
+/// checked against across the normal; a path may climb along the normal
+/// (`tangent` then leaves the layer plane); a variable layer's `frame` is the
+/// world frame and its `station` is `i/N`. Version 1 files read the same.
+pub const VERSION: u32 = 2;
 
 /// A whole compiled plan.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -104,7 +108,9 @@ impl Heat {
     }
 }
 
-/// One layer: deposited on the plane at `station` of the spine.
+/// One layer: deposited on the plane at `station` of the spine (a planar
+/// layer on the plane `z = station·height`; a variable layer on the planned
+/// top of the layer below, `station` being its fraction `i/N` of the top).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct Layer {
     /// 0-based build order.
@@ -162,11 +168,13 @@ pub struct Point {
     pub pos: [f64; 3],
     /// Unit build direction; the beam points along −normal.
     pub normal: [f32; 3],
-    /// Unit direction of travel.
+    /// Unit direction of travel (it climbs out of the layer plane where a
+    /// variable layer follows the layer below).
     pub tangent: [f32; 3],
     /// Local height of this layer here, mm.
     pub layer_height: f32,
-    /// Scan speed, mm/s.
+    /// Path speed from this point to the next (the nozzle's speed along the
+    /// path), mm/s. The bead model holds for its component across the normal.
     pub speed: f32,
     /// Laser power, W.
     pub power: f32,
@@ -446,6 +454,8 @@ pub struct Origins {
     pub power: Option<Span>,
     /// The spine (bend radius).
     pub spine: Option<Span>,
+    /// A variable-top solid's `top` (seed 003).
+    pub top: Option<Span>,
     /// The slicing block.
     pub slicing: Option<Span>,
     /// Each machine's declaration, by index in [`Program::machines`].

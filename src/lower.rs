@@ -47,11 +47,16 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             power: Some(model.process.power_span),
             spine: match &model.plan {
                 Plan::Duct { loft, .. } => Some(loft.spine_span),
-                Plan::Block { .. } => None,
+                Plan::Block { .. } | Plan::Variable { .. } => None,
+            },
+            top: match &model.plan {
+                Plan::Variable { extrusion, .. } => Some(extrusion.top_span),
+                _ => None,
             },
             slicing: Some(match &model.plan {
                 Plan::Duct { slicing, .. } => slicing.span,
                 Plan::Block { slicing, .. } => slicing.span,
+                Plan::Variable { slicing, .. } => slicing.span,
             }),
             machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
         },

@@ -421,6 +421,10 @@ pub fn short(v: f64) -> String {
     if !v.is_finite() {
         return format!("{v}");
     }
+    // Beyond any part's size: a mistake's number, readable in exponent form.
+    if v.abs() >= 1e9 {
+        return format!("{v:.3e}");
+    }
     let s = if v.abs() >= 100.0 {
         format!("{v:.1}")
     } else if v.abs() >= 1.0 {

@@ -1,6 +1,7 @@
 //! Golden programs: every file lmdc writes for tests/golden/small_duct.lmd (a
 //! KUKA robot split into modules, LinuxCNC, Fagor 8070 and M20 CNCs) and for the
-//! two planar examples (sprocket tooth, styled chord), as insta snapshots.
+//! two planar examples (sprocket tooth, styled chord) and the three of seed
+//! 003 (ramp wall, wedge, ramp cuboid), as insta snapshots.
 //! Review every diff line by line: these are what machines run.
 
 use lmdc::back::{MemorySink, Templates};
@@ -36,4 +37,21 @@ fn sprocket_tooth_programs() {
 #[test]
 fn styled_chord_programs() {
     programs("examples/styled_chord.lmd", "chord__");
+}
+
+// Seed 003: variable-thickness layers on a 3-axis CNC and a KUKA robot.
+
+#[test]
+fn ramp_wall_programs() {
+    programs("examples/ramp_wall.lmd", "ramp_wall__");
+}
+
+#[test]
+fn wedge_programs() {
+    programs("examples/wedge.lmd", "wedge__");
+}
+
+#[test]
+fn ramp_cuboid_programs() {
+    programs("examples/ramp_cuboid.lmd", "ramp_cuboid__");
 }

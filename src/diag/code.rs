@@ -111,7 +111,7 @@ codes! {
     SecondSolid = "second-solid", Values,
         "a second `loft` or `extrude`: lmdc builds one solid per file";
     ConflictingFields = "conflicting-fields", Values,
-        "two fields that say one thing twice: `layers` (slicing) and `height` (extrude), `points` and `chord_error`, a circle's `diameter` and `radius`, a polygon's `circumradius` and `side`";
+        "two fields that say one thing twice: `layers` (slicing) and `height` (extrude), an extrusion's `height` and `top`, `points` and `chord_error`, a circle's `diameter` and `radius`, a polygon's `circumradius` and `side`";
     MissingStatement = "missing-statement", Values,
         "a statement the file needs is not there (`part`, `slicing`, `process`); the help shows an example";
     MissingField = "missing-field", Values,
@@ -177,9 +177,15 @@ codes! {
     OutOfRange = "out-of-range", Values,
         "a value outside what its field allows where no code above says more: a robot's `max_speed` beyond what a KUKA controller takes, `axes = 4`; from the IR checks: points whose height, speed or power leave the bead model's or the machine's range";
     LayerOutsideProfile = "layer-outside-profile", Values,
-        "a field or a `section` uses `layer` or `layer_z`: only a profile is evaluated per layer (a power schedule is `ramp(…)`)";
+        "a field, a `section` or an extrusion's `top` uses `layer` or `layer_z`: only a profile is evaluated per layer (a power schedule is `ramp(…)`)";
+    PositionOutsideTop = "position-outside-top", Values,
+        "`x` or `y` used as a number outside an extrusion's `top`: only the top is a function of the position";
+    SpeedFromBead = "speed-from-bead", Values,
+        "a process `speed` with `slicing variable`: each segment's speed comes from the bead model (the speed that lays its height)";
+    BeadMapNeeded = "bead-map-needed", Values,
+        "`slicing variable` with a `measured` bead: variable layers change the height through the speed, which needs a `linear` or `mass_balance` model over a speed range";
     Unsupported = "unsupported", Values,
-        "a combination lmdc does not build: styles on a loft's wall";
+        "a combination lmdc does not build: styles on a loft's wall or on variable-thickness layers, a `top` over a profile that follows `layer`";
 
     StyleName = "style-name", Styles,
         "a style's name that is not a word of letters, digits and `_` (it goes into the programs' comments)";
@@ -217,9 +223,13 @@ codes! {
     Fill = "fill", Feasibility,
         "the fill of a layer failed for another reason (too many raster lines, non-finite geometry); the message says which";
     NoLayerCount = "no-layer-count", Feasibility,
-        "no whole number of layers keeps every height within `h_min..h_max`";
+        "no whole number of layers keeps every height within `h_min..h_max`; for a variable top, names the top's heights, the bead's, and the top or bead map that would work";
     LayerHeight = "layer-height", Feasibility,
         "the declared `layers` gives heights outside `h_min..h_max`; names the counts that work";
+    TopHeight = "top-height", Feasibility,
+        "an extrusion's `top` is zero, negative or cannot be computed at a point where a track runs (named, with the inner error)";
+    SegmentsTooShort = "segments-too-short", Feasibility,
+        "meeting the `segments` height tolerance along a track needs constant-speed segments shorter than `min_length`; names the tolerance that works";
     TooManyPoints = "too-many-points", Feasibility,
         "the plan would exceed 20 M points (or 100 000 a layer)";
     NonFinite = "non-finite", Feasibility,
@@ -264,6 +274,8 @@ codes! {
         "a mass-balance bead model fitted at another powder feed than the process feeds";
     Unused = "unused", Warnings,
         "something that has no effect: `inheritance` without styles, `corner_angle` without `near_corner`, a style's `powder` (recorded in the IR, not programmed), a style that sets no value, a `when` block no track can meet (`shorter_than` ≤ `longer_than`, layers past the last), a style that picks no track on any layer, inheritance with a raster that turns between layers";
+    OverlapStretch = "overlap-stretch", Warnings,
+        "the balanced spacing of unequal-height tracks had to be stretched (or squeezed) by more than 5 % to land the last track half a bead inside the far edge: the layer comes out about that much thinner (thicker) between tracks";
     SeamAtBendExtreme = "seam-at-bend-extreme", Warnings,
         "the seam (laser on/off) sits at the innermost or outermost point of the bend, where the layer height is extreme";
 }

@@ -78,7 +78,7 @@ mod raster;
 
 pub use coverage::{gap, Gap, MAX_SAMPLES};
 pub use error::{Count, FillError, Invalid};
-pub use raster::CLOSING;
+pub use raster::{intervals_at, CLOSING};
 
 use crate::geometry::profile::Profile;
 

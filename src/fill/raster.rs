@@ -258,6 +258,25 @@ pub(super) fn tracks(
     Ok(out)
 }
 
+/// The closed region's intervals along lines of direction `angle_deg` placed
+/// by the caller: for each `s` of `at` (the coordinate along the direction's
+/// left normal: +y for 0°, −x for 90°), the intervals of the coordinate
+/// along the line (x for 0°, y for 90°), sorted and disjoint. The same exact
+/// clip as the raster's, for slicers that space their lines themselves
+/// (seed 003's unequal-height tracks). Linear in pieces × lines.
+pub fn intervals_at(region: &[Profile], angle_deg: f64, at: &[f64]) -> Vec<Vec<[f64; 2]>> {
+    let pieces = pieces(region, &Frame::new(angle_deg));
+    let mut scratch = Scratch::default();
+    at.iter()
+        .map(|&s| {
+            let near = pieces
+                .iter()
+                .filter(|p| p.lo[1] - TOLERANCE <= s && s <= p.hi[1] + TOLERANCE);
+            scratch.clip(near, s)
+        })
+        .collect()
+}
+
 /// Points of `region` on a square grid of pitch `h` (rows along x), at most
 /// `max` of them — the pitch grows until they fit. Used to look for gaps.
 pub(super) fn samples(region: &[Profile], h: f64, max: usize) -> Vec<[f64; 2]> {

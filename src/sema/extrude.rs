@@ -11,9 +11,11 @@
 use super::fields::Fields;
 use super::model::{
     Bead, Extent, Extrusion, HeightModel, LayerProfile, Measure, PlanarSlicing, ProfileExpr, Shape,
+    Top,
 };
 use super::profile;
 use super::slicing::PlanarSpec;
+use super::top;
 use super::value::{unknown_name, Env, Spanned, Value};
 use crate::bead::{flat_top_offset, MIN_OFFSET_RATIO};
 use crate::diag::{Code, Diagnostic, Diagnostics};
@@ -32,23 +34,29 @@ pub struct Scope<'s, 'a> {
     pub beads: &'s BTreeMap<String, Bead>,
     /// Every name declared, including failed ones (no second report).
     pub declared: &'s [String],
+    /// Every `let` of the file, kept with a `top` written as an expression.
+    pub constants: &'s [(String, Span, Expr)],
 }
 
 /// Where an extrusion's shape comes from.
 #[derive(Clone, Debug)]
-enum Source<'a> {
+pub(super) enum Source<'a> {
+    /// One shape.
     Fixed(Shape),
+    /// A profile's expression (it may follow the layer).
     Expr(&'a Expr),
 }
 
 /// An extrude block as written.
 pub struct Written<'a> {
-    name: String,
-    source: Source<'a>,
+    pub(super) name: String,
+    pub(super) source: Source<'a>,
     height: Option<(Length, Span)>,
-    measure: Measure,
-    span: Span,
-    profile_span: Span,
+    /// `top = …` and where, if written (then there is no `height`).
+    pub(super) top: Option<(Top, Span)>,
+    pub(super) measure: Measure,
+    pub(super) span: Span,
+    pub(super) profile_span: Span,
 }
 
 /// Reads an extrude block; returns it and its bead model, each when it is
@@ -61,11 +69,12 @@ pub fn read<'a>(
     scope: &Scope<'_, 'a>,
     diags: &mut Diagnostics,
 ) -> (Option<Written<'a>>, Option<Bead>) {
-    let f = Fields::block(
+    // `top` is a function of the position: read by `top::read`, not as a value.
+    let f = Fields::block_deferring(
         env,
         stmts,
-        &["profile", "height", "size", "bead"],
-        &[],
+        &["profile", "height", "size", "bead", "top"],
+        &["top"],
         format!("extrude `{name}`"),
         span,
         diags,
@@ -91,6 +100,36 @@ pub fn read<'a>(
         None if f.has("height") => None,
         None => Some(None),
     };
+    let top = match f.expr("top") {
+        None => Some(None),
+        Some(e) => {
+            let shape = match &source {
+                Some(Source::Fixed(s)) => Some(s.clone()),
+                Some(Source::Expr(p)) => {
+                    // Only for a point to try the top at: errors of the
+                    // profile itself are reported where it is assembled.
+                    let mut scratch = Diagnostics::new();
+                    env.eval(p, &mut scratch)
+                        .and_then(|v| profile::shape(&v, "a profile", &mut scratch))
+                }
+                None => None,
+            };
+            let at = super::variable::reference_point(shape.as_ref());
+            top::read(env, e, at, scope.constants, diags).map(|t| Some((t, e.span)))
+        }
+    };
+    if let (Some(hs), Some(ts)) = (f.span("height"), f.span("top")) {
+        diags.push(
+            Diagnostic::error(
+                Code::ConflictingFields,
+                "give the extrusion a `height` or a `top`, not both",
+            )
+            .label(hs, "height: flat layers")
+            .label(ts, "top: the finished part's height at every point")
+            .help("a `top` is built with `slicing variable { … }`, a `height` with `slicing planar { … }`"),
+        );
+    }
+    let height = height.filter(|_| !(f.has("height") && f.has("top")));
     let measure = match f.symbol("size", &["centre", "center", "outer"], None, diags) {
         Some((s, _)) if s == "outer" => Some(Measure::Outer),
         Some(_) => Some(Measure::Centre),
@@ -105,11 +144,12 @@ pub fn read<'a>(
         scope.declared,
         diags,
     );
-    let written = match (source, height, measure) {
-        (Some(source), Some(height), Some(measure)) => Some(Written {
+    let written = match (source, height, top, measure) {
+        (Some(source), Some(height), Some(top), Some(measure)) => Some(Written {
             name: name.to_string(),
             source,
             height,
+            top,
             measure,
             span,
             profile_span,
@@ -220,7 +260,7 @@ fn extent(w: &Written<'_>, spec: &PlanarSpec, diags: &mut Diagnostics) -> Option
 
 /// Whether tracks `d` apart (declared at `at`) neither leave gaps nor pile
 /// up with `bead`; `flat` is the flat-top offset, if known, for the help.
-fn declared_offset(
+pub(super) fn declared_offset(
     d: Length,
     at: Span,
     bead: &Bead,

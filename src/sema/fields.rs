@@ -7,7 +7,7 @@ use super::suggest::did_you_mean;
 use super::value::{Call, Env, Spanned, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
-use crate::syntax::ast::{Body, Stmt};
+use crate::syntax::ast::{Body, Expr, Stmt};
 use crate::units::{short, Angle, Density, Dim, Length, MassFlow, Power, Quantity, Speed, Time};
 
 /// One field: its key and its evaluated value (`None` if evaluation failed and was
@@ -17,6 +17,8 @@ struct Entry<'a> {
     key_span: Span,
     value: Option<Spanned>,
     block: Option<(&'a [Stmt], Span)>,
+    /// The unevaluated expression of a deferred field.
+    expr: Option<&'a Expr>,
 }
 
 /// The fields of one block or call.
@@ -60,6 +62,37 @@ impl<'a> Fields<'a> {
         allowed: &[&str],
         blocks: &[&str],
         repeated: &[&str],
+        what: String,
+        at: Span,
+        diags: &mut Diagnostics,
+    ) -> Self {
+        Self::read(env, stmts, allowed, blocks, repeated, &[], what, at, diags)
+    }
+
+    /// Like [`Fields::block`], but the fields in `deferred` (among
+    /// `allowed`) are not evaluated: their expressions are kept for the
+    /// reader, which evaluates them itself ([`Fields::expr`]) — an
+    /// extrusion's `top`, a function of the position.
+    pub fn block_deferring(
+        env: &mut Env<'a>,
+        stmts: &'a [Stmt],
+        allowed: &[&str],
+        deferred: &[&str],
+        what: String,
+        at: Span,
+        diags: &mut Diagnostics,
+    ) -> Self {
+        Self::read(env, stmts, allowed, &[], &[], deferred, what, at, diags)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn read(
+        env: &mut Env<'a>,
+        stmts: &'a [Stmt],
+        allowed: &[&str],
+        blocks: &[&str],
+        repeated: &[&str],
+        deferred: &[&str],
         what: String,
         at: Span,
         diags: &mut Diagnostics,
@@ -116,6 +149,13 @@ impl<'a> Fields<'a> {
             }
             let is_block = blocks.contains(&key);
             let entry = match (&s.body, is_block) {
+                (Body::Assign(e), false) if deferred.contains(&key) => Entry {
+                    key: key.into(),
+                    key_span: s.kind.span,
+                    value: None,
+                    block: None,
+                    expr: Some(e),
+                },
                 (Body::Assign(e), false) => {
                     let before = env.layer_reads();
                     let value = env.eval(e, diags);
@@ -140,6 +180,7 @@ impl<'a> Fields<'a> {
                         key_span: s.kind.span,
                         value,
                         block: None,
+                        expr: None,
                     }
                 }
                 (Body::Block(inner, span), true) => Entry {
@@ -147,6 +188,7 @@ impl<'a> Fields<'a> {
                     key_span: s.kind.span,
                     value: None,
                     block: Some((inner.as_slice(), *span)),
+                    expr: None,
                 },
                 (_, true) => {
                     diags.push(
@@ -227,6 +269,7 @@ impl<'a> Fields<'a> {
                 key_span,
                 value: Some(a.value.clone()),
                 block: None,
+                expr: None,
             });
         }
         Fields {
@@ -249,10 +292,19 @@ impl<'a> Fields<'a> {
         self.entries
             .iter()
             .find(|e| e.key == key)
-            .map(|e| match &e.value {
-                Some(v) => e.key_span.join(v.span),
-                None => e.key_span,
+            .map(|e| match (&e.value, e.expr) {
+                (Some(v), _) => e.key_span.join(v.span),
+                (None, Some(x)) => e.key_span.join(x.span),
+                (None, None) => e.key_span,
             })
+    }
+
+    /// The unevaluated expression of the deferred field `key`, if written.
+    pub fn expr(&self, key: &str) -> Option<&'a Expr> {
+        self.entries
+            .iter()
+            .find(|e| e.key == key)
+            .and_then(|e| e.expr)
     }
 
     /// Is `key` written?
@@ -478,6 +530,10 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
             None
         }
         other => {
+            if let Some(d) = super::value::position_outside_top(other, v.span) {
+                diags.push(d);
+                return None;
+            }
             let mut d = Diagnostic::error(
                 Code::ExpectedNumber,
                 format!("`{key}` must be {}", dim.describe()),

@@ -23,9 +23,12 @@ mod solid;
 mod statement;
 mod style;
 mod suggest;
+mod top;
 pub mod value;
+mod variable;
 
 pub use profile::LayerShapes;
+pub use top::TopHeights;
 
 use crate::diag::Diagnostics;
 use crate::syntax::ast::File;
@@ -62,12 +65,15 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         Some(slicing::Spec::Planar(p)) => Some(p.clone()),
         _ => None,
     };
+    let variable =
+        solid_kind == Some(solid::Kind::TopExtrude) || slicing.strategy == Some("variable");
     let (plan, bead) = solid::plan(&mut env, solid, slicing, process.speed, &decl, diags);
     let styles = style::assemble(
         styles,
         &inheritance,
         &style::Context {
             loft: solid_kind == Some(solid::Kind::Loft),
+            variable,
             planar: planar.as_ref(),
             bead: bead.as_ref(),
             laser: process.laser.as_ref(),

@@ -7,6 +7,9 @@ use crate::span::Span;
 use crate::syntax::ast::Expr;
 use crate::units::{Angle, Length, MassFlow, Power, Speed};
 
+mod top;
+pub use top::{Axis, Top, TopExpr, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE};
+
 /// A whole checked `.lmd` file.
 #[derive(Clone, Debug)]
 pub struct Model {
@@ -383,6 +386,14 @@ pub enum Plan {
         extrusion: Extrusion,
         /// Planar slicing and the fill.
         slicing: PlanarSlicing,
+    },
+    /// A footprint built up to a variable top in layers of variable
+    /// thickness (seed 003).
+    Variable {
+        /// The footprint and its top.
+        extrusion: TopExtrusion,
+        /// Variable slicing.
+        slicing: VariableSlicing,
     },
 }
 

@@ -1,5 +1,6 @@
 //! `slicing normal { layers, points | chord_error, seam }` and
-//! `slicing planar { layer_height, layers, contours, offset, infill, chord_error }`.
+//! `slicing planar { layer_height, layers, contours, offset, infill, chord_error }`;
+//! `slicing variable { … }` is read by `sema::variable`.
 
 use super::fields::{self, Fields};
 use super::model::{Pattern, Raster, Resolution, Slicing};
@@ -12,7 +13,7 @@ use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Angle, Dim, Length};
 
 /// Strategies the language knows.
-pub const STRATEGIES: &[&str] = &["normal", "planar"];
+pub const STRATEGIES: &[&str] = &["normal", "planar", "variable"];
 
 /// A slicing block as written, before the solid is known.
 #[derive(Clone, Debug)]
@@ -21,6 +22,8 @@ pub enum Spec {
     Normal(Slicing),
     /// `slicing planar { … }`
     Planar(PlanarSpec),
+    /// `slicing variable { … }`
+    Variable(super::variable::VariableSpec),
 }
 
 /// `slicing planar { … }` as written: the lift and offset may be `auto`, to be
@@ -128,8 +131,20 @@ const PLANAR_FIELDS: &[&str] = &[
 /// run as the strategy.
 fn any_strategy<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagnostics) {
     let mut all: Vec<&str> = NORMAL_FIELDS.to_vec();
-    all.extend(PLANAR_FIELDS.iter().filter(|k| !NORMAL_FIELDS.contains(k)));
-    Fields::block(env, stmts, &all, &[], "slicing".into(), span, diags);
+    for k in PLANAR_FIELDS.iter().chain(super::variable::FIELDS) {
+        if !all.contains(k) {
+            all.push(k);
+        }
+    }
+    Fields::block(
+        env,
+        stmts,
+        &all,
+        super::variable::BLOCKS,
+        "slicing".into(),
+        span,
+        diags,
+    );
 }
 
 /// Reads a slicing block.
@@ -142,6 +157,11 @@ fn read<'a>(
 ) -> Option<Spec> {
     match strategy {
         Some(s) if s.node == "planar" => return planar(env, stmts, span, diags).map(Spec::Planar),
+        Some(s) if s.node == "variable" => {
+            return Some(Spec::Variable(super::variable::read(
+                env, stmts, span, diags,
+            )))
+        }
         Some(s) if STRATEGIES.contains(&s.node.as_str()) => {}
         Some(s) => {
             let mut d = Diagnostic::error(
@@ -151,7 +171,7 @@ fn read<'a>(
             .label(s.span, "unknown strategy");
             d = match did_you_mean(&s.node, STRATEGIES.iter().copied()) {
                 Some(m) => d.help(format!("did you mean `slicing {m} {{ … }}`?")),
-                None => d.help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine) or `slicing planar { … }` (flat filled layers of an extrusion)"),
+                None => d.help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine), `slicing planar { … }` (flat filled layers of an extrusion) or `slicing variable { … }` (layers that follow an extrusion's `top`)"),
             };
             diags.push(d);
             any_strategy(env, stmts, span, diags);

@@ -8,6 +8,7 @@ use super::model::{Bead, Loft, Plan};
 use super::slicing::{self, Spec};
 use super::statement::{shape_error, Statements};
 use super::value::Env;
+use super::variable;
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
@@ -20,6 +21,8 @@ pub enum Kind {
     Loft,
     /// `extrude NAME { … }`, sliced in flat layers.
     Extrude,
+    /// `extrude NAME { … top = … }`, sliced in variable layers.
+    TopExtrude,
 }
 
 /// The solid as read: its kind when the file has one, the solid when its
@@ -89,9 +92,16 @@ pub fn read<'a>(
                 profiles: &decl.profiles,
                 beads: &decl.beads,
                 declared: &decl.names,
+                constants: &decl.constants,
             };
             let (w, b) = extrude::read(env, &n.node, stmts, s.span, &scope, diags);
-            (Kind::Extrude, w.map(Solid::Extrude), b)
+            // Whether it has a top decides its slicing, even when the top is wrong.
+            let kind = if stmts.iter().any(|s| s.kind.node == "top") {
+                Kind::TopExtrude
+            } else {
+                Kind::Extrude
+            };
+            (kind, w.map(Solid::Extrude), b)
         }
         ("loft", _, _) => {
             diags.push(shape_error(
@@ -134,13 +144,28 @@ pub fn plan(
     if mismatch(solid.kind, slicing.strategy, slicing.stmt, diags) {
         return (None, bead);
     }
+    let side_ok = match (&slicing.spec, slicing.strategy, slicing.stmt) {
+        (spec, Some("variable"), Some(s)) => {
+            let offset = match spec {
+                Some(Spec::Variable(v)) => v.offset(),
+                _ => None,
+            };
+            variable::side_checks(bead.as_ref(), speed, offset, s.span, diags)
+        }
+        _ => true,
+    };
     let plan = match (solid.solid, slicing.spec, &bead) {
         (Some(Solid::Loft(loft)), Some(Spec::Normal(slicing)), _) => {
             Some(Plan::Duct { loft, slicing })
         }
-        (Some(Solid::Extrude(w)), Some(Spec::Planar(spec)), Some(b)) => {
+        (Some(Solid::Extrude(w)), Some(Spec::Planar(spec)), Some(b)) if w.top.is_none() => {
             extrude::assemble(env, w, b, spec, speed, &decl.constants, diags)
                 .map(|(extrusion, slicing)| Plan::Block { extrusion, slicing })
+        }
+        (Some(Solid::Extrude(w)), Some(Spec::Variable(spec)), Some(_)) if w.top.is_some() => {
+            variable::assemble(env, w, spec, diags)
+                .filter(|_| side_ok)
+                .map(|(extrusion, slicing)| Plan::Variable { extrusion, slicing })
         }
         // A part that failed, reported where it was read.
         _ => None,
@@ -156,27 +181,34 @@ fn mismatch(
     stmt: Option<&Stmt>,
     diags: &mut Diagnostics,
 ) -> bool {
-    let (strategy, solid_kind, help) = match (kind, strategy) {
-        (Some(Kind::Loft), Some("planar")) => (
-            "planar",
-            "a loft",
+    let (message, help) = match (kind, strategy) {
+        (Some(Kind::Loft), Some(s @ ("planar" | "variable"))) => (
+            format!("{s} slicing does not build a loft"),
             "slice a loft with `slicing normal { … }`",
         ),
         (Some(Kind::Extrude), Some("normal")) => (
-            "normal",
-            "an extrusion",
+            "normal slicing does not build an extrusion".to_string(),
             "slice an extrusion with `slicing planar { … }`",
+        ),
+        (Some(Kind::Extrude), Some("variable")) => (
+            "variable slicing builds an extrusion up to its `top`, and this one has none".to_string(),
+            "add `top = …` to the extrusion (e.g. `top = edges(along = x, from = 20 mm, to = 36 mm)`), or slice it with `slicing planar { … }`",
+        ),
+        (Some(Kind::TopExtrude), Some("normal")) => (
+            "normal slicing does not build an extrusion".to_string(),
+            "slice an extrusion with a `top` with `slicing variable { … }`",
+        ),
+        (Some(Kind::TopExtrude), Some("planar")) => (
+            "planar slicing lays flat layers of one height, and this extrusion has a `top`".to_string(),
+            "slice it with `slicing variable { … }`, or give it `height = …` instead of `top`",
         ),
         _ => return false,
     };
     let at = stmt.map(|s| s.span).unwrap_or(Span::new(0, 0));
     diags.push(
-        Diagnostic::error(
-            Code::BadChoice,
-            format!("{strategy} slicing does not build {solid_kind}"),
-        )
-        .label(at, "slicing")
-        .help(help),
+        Diagnostic::error(Code::BadChoice, message)
+            .label(at, "slicing")
+            .help(help),
     );
     true
 }

@@ -458,6 +458,9 @@ fn inheritance<'a>(
 pub struct Context<'c> {
     /// Whether the solid is a loft, whose wall is one track a layer.
     pub loft: bool,
+    /// Whether the layers are variable (seed 003), whose speeds come from
+    /// the bead model.
+    pub variable: bool,
     /// `slicing planar { … }`, if read.
     pub planar: Option<&'c PlanarSpec>,
     /// The bead model the part is built with.
@@ -484,6 +487,17 @@ pub fn assemble(
             )
             .label(first.style.span, "style")
             .help("schedule the wall's power in `process` (e.g. `power = ramp(…)`)"),
+        );
+        return None;
+    }
+    if let (true, Some(first)) = (cx.variable, written.first()) {
+        diags.push(
+            Diagnostic::error(
+                Code::Unsupported,
+                "styles pick tracks of planar layers; variable layers take every speed from the bead model",
+            )
+            .label(first.style.span, "style")
+            .help("remove the style: each segment's speed lays its height, and the power is the process block's (`power = ramp(…)` schedules it over the layers)"),
         );
         return None;
     }

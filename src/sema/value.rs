@@ -110,6 +110,11 @@ pub const MAX_CONSTANT_CHAIN: usize = 128;
 /// build.
 pub const MAX_EVAL_DEPTH: usize = 512;
 
+/// The names of the position builtins a `top` expression may use: the point's
+/// x and y (lengths) in the footprint's frame. Elsewhere they are plain
+/// words (`scan = x`, `beam = -z`).
+pub const POSITION: [&str; 2] = ["x", "y"];
+
 /// The constants of a file, evaluated on demand (so order does not matter) with
 /// cycle detection.
 pub struct Env<'a> {
@@ -128,6 +133,11 @@ pub struct Env<'a> {
     /// Counts reads of [`LAYER`], directly or through a constant that uses it, so
     /// a constant knows whether it must be recomputed for another layer.
     layer_reads: u64,
+    /// The point [`POSITION`] names while a `top` is evaluated (mm); `None`
+    /// elsewhere, where `x` and `y` are words.
+    position: Option<[f64; 2]>,
+    /// Counts reads of [`POSITION`], as `layer_reads` does for the layer.
+    position_reads: u64,
     /// Names of everything declared (constants, sections, beads, …), for
     /// "did you mean" hints.
     pub known: Vec<String>,
@@ -144,6 +154,8 @@ impl<'a> Env<'a> {
             layer: 0,
             z: 0.0,
             layer_reads: 0,
+            position: None,
+            position_reads: 0,
             known: Vec::new(),
         }
     }
@@ -209,6 +221,13 @@ impl<'a> Env<'a> {
 
     fn lookup(&mut self, name: &str, at: Span, diags: &mut Diagnostics) -> Option<Option<Value>> {
         let Some((decl, state, _)) = self.lets.get_mut(name) else {
+            if let (Some(p), Some(i)) = (self.position, POSITION.iter().position(|&n| n == name)) {
+                self.position_reads += 1;
+                return Some(Some(Value::Quantity(Quantity {
+                    value: p[i],
+                    dim: Dim::LENGTH,
+                })));
+            }
             if name == LAYER || name == Z {
                 self.layer_reads += 1;
                 return Some(Some(Value::Quantity(if name == Z {
@@ -248,11 +267,12 @@ impl<'a> Env<'a> {
                     self.cut(diags, |d| d.push(chain_too_long(name, at, decl)));
                     return Some(None);
                 }
-                let before = self.layer_reads;
+                let before = (self.layer_reads, self.position_reads);
                 self.chain += 1;
                 let v = self.eval(expr, diags).map(|s| s.value);
                 self.chain -= 1;
-                let dependent = self.layer_reads > before;
+                // A constant read at one point or layer holds only there.
+                let dependent = (self.layer_reads, self.position_reads) != before;
                 if let Some((_, st, _)) = self.lets.get_mut(name) {
                     *st = LetState::Done(v.clone(), dependent);
                 }
@@ -274,6 +294,17 @@ impl<'a> Env<'a> {
         r
     }
 
+    /// Evaluates `f` with [`POSITION`] = `(x, y)` (mm): `x` and `y` are
+    /// lengths inside it, and constants read at another point are recomputed.
+    pub fn at_position<R>(&mut self, x: f64, y: f64, f: impl FnOnce(&mut Self) -> R) -> R {
+        let old = self.position.replace([x, y]);
+        self.forget_layer_values();
+        let r = f(self);
+        self.position = old;
+        self.forget_layer_values();
+        r
+    }
+
     fn forget_layer_values(&mut self) {
         for (_, state, expr) in self.lets.values_mut() {
             if matches!(state, LetState::Done(_, true)) {
@@ -287,6 +318,11 @@ impl<'a> Env<'a> {
     /// its value depends on the layer.
     pub fn layer_reads(&self) -> u64 {
         self.layer_reads
+    }
+
+    /// How often the position builtins have been read so far.
+    pub fn position_reads(&self) -> u64 {
+        self.position_reads
     }
 
     /// Whether evaluating `e` reads the layer number.
@@ -545,6 +581,10 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
             } else {
                 &l
             };
+            if let Some(d) = position_outside_top(&bad.value, bad.span) {
+                diags.push(d);
+                return None;
+            }
             let mut d = Diagnostic::error(
                 Code::ExpectedNumber,
                 format!("`{}` needs numbers on both sides", op.symbol()),
@@ -685,6 +725,23 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
             None
         }
     }
+}
+
+/// The error for `x` or `y` (or `-x`, `-y`) used as a number outside a
+/// `top`, where they are the position; `None` for any other value.
+pub fn position_outside_top(v: &Value, at: Span) -> Option<Diagnostic> {
+    let Value::Symbol(s) = v else { return None };
+    let name = s.strip_prefix('-').unwrap_or(s);
+    POSITION.contains(&name).then(|| {
+        Diagnostic::error(
+            Code::PositionOutsideTop,
+            format!("`{name}` is a point's position only inside an extrusion's `top`"),
+        )
+        .label(at, "not a number here")
+        .help(format!(
+            "write the expression in the extrusion itself, e.g. `top = 20 mm + 16 % * {name}`; elsewhere give a number with a unit"
+        ))
+    })
 }
 
 /// An "unknown name" error with a did-you-mean hint over `candidates`.

@@ -6,6 +6,7 @@ pub mod layers;
 pub mod normal;
 pub mod planar;
 pub mod styling;
+pub mod top;
 pub mod variable;
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
@@ -25,6 +26,7 @@ pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     match &model.plan {
         Plan::Duct { loft, slicing } => duct(model, loft, slicing),
         Plan::Block { extrusion, slicing } => planar::slice(model, extrusion, slicing),
+        Plan::Variable { extrusion, slicing } => top::slice(model, extrusion, slicing),
     }
 }
 

@@ -16,7 +16,8 @@
 //! [`input`] holds the checked input types: every function takes values that
 //! cannot be NaN, negative or empty, and degenerate numbers become an
 //! [`Invalid`] at the boundary instead of a panic or a NaN deep inside.
-//! `docs/design/seed003.md` proposes the language surface.
+//! [`crate::slice::top`] applies it to a model and writes IR; the language
+//! is `docs/language.md`'s *Variable slicing*.
 
 pub mod input;
 pub mod layers;

@@ -1,0 +1,129 @@
+//! The model of a solid with a variable top (seed 003): a planar footprint
+//! built up to a top surface `H(x, y)` that need not be parallel to the
+//! substrate, and `slicing variable { … }`, which builds it in layers that
+//! each lay the same fraction `H/N` of the local height.
+
+use super::{Measure, Shape};
+use crate::span::Span;
+use crate::syntax::ast::Expr;
+use crate::units::Length;
+use std::num::NonZeroU32;
+
+/// An axis of the footprint's plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Axis {
+    /// Along x.
+    X,
+    /// Along y.
+    Y,
+}
+
+impl Axis {
+    /// The axis as written: `x` or `y`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Axis::X => "x",
+            Axis::Y => "y",
+        }
+    }
+
+    /// The other axis of the plane.
+    pub fn across(self) -> Axis {
+        match self {
+            Axis::X => Axis::Y,
+            Axis::Y => Axis::X,
+        }
+    }
+}
+
+/// The height of the finished part above the substrate at every point of the
+/// footprint, as the file gives it.
+#[derive(Clone, Debug)]
+pub enum Top {
+    /// `plane(at, height, slope_x, slope_y)`: `height` at `at`, rising by
+    /// `slope_x` per unit of x and `slope_y` per unit of y.
+    Plane {
+        /// The point the height is given at.
+        at: [Length; 2],
+        /// The height there.
+        height: Length,
+        /// Rise per unit run along x and y (dimensionless).
+        slope: [f64; 2],
+    },
+    /// `edges(along, from, to)`: `from` on the footprint's extreme edge at
+    /// the low end of the axis, `to` on the one at its high end, linear in
+    /// between (and the same across the axis).
+    Edges {
+        /// The axis the top rises along.
+        along: Axis,
+        /// Height at the footprint's lowest coordinate along the axis.
+        from: Length,
+        /// Height at its highest.
+        to: Length,
+    },
+    /// Any expression of the position builtins `x` and `y`, evaluated at
+    /// every point the slicer samples ([`crate::sema::TopHeights`]).
+    Expr(TopExpr),
+}
+
+/// A top written as an expression of `x` and `y`, kept as the user wrote it
+/// with the file's constants, like a profile that follows the layer.
+#[derive(Clone, Debug)]
+pub struct TopExpr {
+    /// The expression.
+    pub expr: Expr,
+    /// Every `let` of the file: name, where it is declared, its expression.
+    pub constants: Vec<(String, Span, Expr)>,
+}
+
+/// `extrude NAME { profile, size, bead, top }`: a footprint built up to its
+/// top.
+#[derive(Clone, Debug)]
+pub struct TopExtrusion {
+    /// Its name.
+    pub name: String,
+    /// The footprint (one shape: a top cannot sit on a profile that changes
+    /// with the layer).
+    pub shape: Shape,
+    /// Whether the footprint is the outer face or the tracks' centre line.
+    pub measure: Measure,
+    /// The top surface.
+    pub top: Top,
+    /// The extrude block.
+    pub span: Span,
+    /// The profile's declaration.
+    pub profile_span: Span,
+    /// Where the shape itself is written.
+    pub shape_span: Span,
+    /// The `top = …` field.
+    pub top_span: Span,
+}
+
+/// `slicing variable { layers, scan, offset, segments { tolerance, min_length } }`.
+#[derive(Clone, Debug)]
+pub struct VariableSlicing {
+    /// `layers = N` and where; `None`: `auto`, the fewest that work.
+    pub layers: Option<(NonZeroU32, Span)>,
+    /// The tracks' direction; `None`: `auto`, the axis the top rises more
+    /// along (the paper's rule).
+    pub scan: Option<Axis>,
+    /// A fixed centre distance between tracks and where it is declared;
+    /// `None`: `balanced`, each pair spaced so that unequal beads meet level.
+    pub offset: Option<(Length, Span)>,
+    /// `E_H`: the largest mean |height error| of the finished top along a
+    /// track that constant-speed segments may leave.
+    pub tolerance: Length,
+    /// The shortest constant-speed segment; `None`: the bead width.
+    pub min_length: Option<Length>,
+    /// The slicing block.
+    pub span: Span,
+    /// `tolerance = …`, if written.
+    pub tolerance_span: Option<Span>,
+    /// `min_length = …`, if written.
+    pub min_length_span: Option<Span>,
+}
+
+/// The `segments` tolerance when none is written: a tenth of a millimetre of
+/// mean height error along a track, about the flatness the paper reports
+/// (116 µm).
+pub const DEFAULT_TOLERANCE: Length = Length(0.1);

@@ -1,0 +1,204 @@
+//! `top = …` in an extrusion (seed 003): the height of the finished part above
+//! the substrate at every point of the footprint. Two forms of sugar say what
+//! labs build — `edges(along, from, to)` (heights on the footprint's two
+//! extreme edges, linear between) and `plane(at, height, slope_x, slope_y)` —
+//! and any other expression is a function of the position builtins `x` and
+//! `y`, checked here at one point of the footprint and evaluated by the
+//! slicer at every point it samples ([`TopHeights`]).
+
+use super::fields::{self, Fields};
+use super::model::{Axis, Top, TopExpr};
+use super::value::{Env, Value, POSITION};
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{Expr, ExprKind};
+use crate::units::{short, Dim, Length};
+
+/// The sugar forms a top may be written in.
+pub const SUGAR: [&str; 2] = ["edges", "plane"];
+
+/// Reads a `top` expression; `at` is a point of the footprint (mm) where an
+/// expression of `x` and `y` is tried, so that its unit and arithmetic are
+/// checked before slicing; `constants` are the file's, kept with it.
+pub fn read(
+    env: &mut Env<'_>,
+    expr: &Expr,
+    at: [f64; 2],
+    constants: &[(String, Span, Expr)],
+    diags: &mut Diagnostics,
+) -> Option<Top> {
+    if let ExprKind::Call { func, .. } = &expr.kind {
+        if SUGAR.contains(&func.node.as_str()) {
+            // Evaluated as any call: `along = x` stays the word `x`.
+            let before = env.layer_reads();
+            let v = env.eval(expr, diags)?;
+            if env.layer_reads() > before {
+                diags.push(uses_layer(expr.span));
+                return None;
+            }
+            let Value::Call(c) = &v.value else {
+                return None;
+            };
+            return if c.func == "edges" {
+                edges(c, diags)
+            } else {
+                plane(c, diags)
+            };
+        }
+    }
+    let before = (env.layer_reads(), env.position_reads());
+    let mut inner = Diagnostics::new();
+    let v = env.at_position(at[0], at[1], |env| env.eval(expr, &mut inner));
+    // Arithmetic that fails at this point of the footprint: say where.
+    let at_point = env.position_reads() > before.1
+        && inner.iter().any(|d| {
+            matches!(
+                d.code,
+                Code::DivisionByZero | Code::Overflow | Code::BadExponent
+            )
+        });
+    if at_point {
+        diags.push(
+            Diagnostic::error(
+                Code::TopHeight,
+                format!(
+                    "the top cannot be computed at ({}, {}) mm, a point of the footprint",
+                    short(at[0]),
+                    short(at[1])
+                ),
+            )
+            .label(expr.span, "the top")
+            .help("the top is the finished part's height at every point of the footprint: the error below says what fails there"),
+        );
+    }
+    diags.extend(inner);
+    let v = v?;
+    if env.layer_reads() > before.0 {
+        diags.push(uses_layer(expr.span));
+        return None;
+    }
+    fields::quantity(&v, Dim::LENGTH, "top", diags)?;
+    Some(Top::Expr(TopExpr {
+        expr: expr.clone(),
+        constants: constants.to_vec(),
+    }))
+}
+
+fn uses_layer(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::LayerOutsideProfile,
+        "`top` uses `layer` or `layer_z`: the top is one surface for every layer",
+    )
+    .label(at, "depends on the layer")
+    .help("each layer lays the same fraction of the top: write the finished part's height, a function of `x` and `y`")
+}
+
+/// `edges(along = x, from = 20 mm, to = 36 mm)`.
+fn edges(c: &super::value::Call, diags: &mut Diagnostics) -> Option<Top> {
+    let a = Fields::call(c, &[], &["along", "from", "to"], diags);
+    let along = a.symbol("along", &POSITION, Some("x"), diags);
+    let from = a.positive("from", Dim::LENGTH, Some("20 mm"), diags);
+    let to = a.positive("to", Dim::LENGTH, Some("36 mm"), diags);
+    let (along, from, to) = (along?, from?, to?);
+    Some(Top::Edges {
+        along: if along.0 == "x" { Axis::X } else { Axis::Y },
+        from: Length(from.0),
+        to: Length(to.0),
+    })
+}
+
+/// `plane(at = [0 mm, 0 mm], height = 14 mm, slope_x = 8 mm / 60 mm, slope_y = 20 %)`.
+fn plane(c: &super::value::Call, diags: &mut Diagnostics) -> Option<Top> {
+    let a = Fields::call(c, &[], &["at", "height", "slope_x", "slope_y"], diags);
+    let at = match a.value("at", None, diags) {
+        None if a.has("at") => None,
+        None => Some([Length(0.0); 2]),
+        Some(v) => point(v, diags),
+    };
+    let height = a.quantity("height", Dim::LENGTH, Some("14 mm"), diags);
+    let slope_x = slope(&a, "slope_x", diags);
+    let slope_y = slope(&a, "slope_y", diags);
+    Some(Top::Plane {
+        at: at?,
+        height: Length(height?.0),
+        slope: [slope_x?, slope_y?],
+    })
+}
+
+/// A point `[x, y]` of two lengths.
+fn point(v: &super::value::Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
+    match &v.value {
+        Value::List(items) if items.len() == 2 => {
+            let x = fields::quantity(&items[0], Dim::LENGTH, "x", diags);
+            let y = fields::quantity(&items[1], Dim::LENGTH, "y", diags);
+            Some([Length(x?), Length(y?)])
+        }
+        other => {
+            diags.push(
+                Diagnostic::error(Code::ExpectedPoint, "`at` is a point `[x, y]`, two lengths")
+                    .label(v.span, format!("this is {}", other.describe()))
+                    .help("e.g. `at = [0 mm, 0 mm]`"),
+            );
+            None
+        }
+    }
+}
+
+/// A slope: a plain number (`8 mm / 60 mm`, `16 %`) or an angle from the
+/// horizontal below 90° (its tangent); 0 when not written.
+fn slope(a: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<f64> {
+    let Some(v) = a.value(key, None, diags) else {
+        return (!a.has(key)).then_some(0.0);
+    };
+    if let Value::Quantity(q) = &v.value {
+        if q.dim == Dim::ANGLE {
+            if q.value.abs() < 89.0f64.to_radians() {
+                return Some(q.value.tan());
+            }
+            diags.push(
+                Diagnostic::error(
+                    Code::OutOfRange,
+                    format!("`{key}` must be less than 89 deg from the horizontal"),
+                )
+                .label(v.span, format!("this is {}", crate::units::Angle(q.value)))
+                .help("a top that steep is a wall: slice it with `slicing normal` or `planar`"),
+            );
+            return None;
+        }
+    }
+    fields::quantity(v, Dim::NONE, key, diags)
+}
+
+/// A [`TopExpr`] evaluated point after point: the constants are declared
+/// once, and the position builtins read the point asked for.
+pub struct TopHeights<'m> {
+    env: Env<'m>,
+    expr: &'m Expr,
+}
+
+impl TopExpr {
+    /// An evaluator of the top at any point.
+    pub fn evaluator(&self) -> TopHeights<'_> {
+        let mut env = Env::new();
+        for (name, span, e) in &self.constants {
+            // A name declared twice was reported by the checker; the first
+            // declaration is the one it used.
+            let _ = env.declare(name, *span, e);
+        }
+        TopHeights {
+            env,
+            expr: &self.expr,
+        }
+    }
+}
+
+impl TopHeights<'_> {
+    /// The top at `(x, y)` mm, or `None` after reporting why it has none
+    /// there (a division by zero, a number too large). Not checked for
+    /// being positive: the caller says where the point is.
+    pub fn at(&mut self, x: f64, y: f64, diags: &mut Diagnostics) -> Option<Length> {
+        let expr = self.expr;
+        let v = self.env.at_position(x, y, |env| env.eval(expr, diags))?;
+        fields::quantity(&v, Dim::LENGTH, "top", diags).map(Length)
+    }
+}

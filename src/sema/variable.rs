@@ -1,0 +1,248 @@
+//! `slicing variable { layers, scan, offset, segments { tolerance, min_length } }`
+//! (seed 003), and its pairing with an extrusion that has a `top` into a
+//! [`Plan::Variable`]: the speeds come from the bead model, so the process
+//! block gives none and the bead must map heights to speeds; a declared
+//! track offset is checked against the bead's width. How many layers, where
+//! the tracks run and where their speed changes is the slicer's decision
+//! ([`crate::slice::top`]).
+//!
+//! [`Plan::Variable`]: super::model::Plan::Variable
+
+use super::extrude::{declared_offset, Source, Written};
+use super::fields::Fields;
+use super::model::{
+    Axis, Bead, HeightModel, Shape, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE,
+};
+use super::profile;
+use super::slicing::MAX_LAYERS;
+use super::value::{Env, Value};
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::Stmt;
+use crate::units::{Dim, Length, Speed};
+use std::num::NonZeroU32;
+
+/// Fields of `slicing variable { … }` (and its nested `segments` block).
+pub const FIELDS: &[&str] = &["layers", "scan", "offset"];
+
+/// The nested blocks of `slicing variable { … }`.
+pub const BLOCKS: &[&str] = &["segments"];
+
+/// `slicing variable { … }` as read: the whole block when every field is
+/// right, and its declared offset on its own (checked against the bead
+/// whatever else is wrong).
+#[derive(Clone, Debug)]
+pub struct VariableSpec {
+    slicing: Option<VariableSlicing>,
+    offset: Option<(Length, Span)>,
+}
+
+impl VariableSpec {
+    /// The declared track offset, if any.
+    pub fn offset(&self) -> Option<(Length, Span)> {
+        self.offset
+    }
+}
+
+/// Reads a `slicing variable { … }` block.
+pub fn read<'a>(
+    env: &mut Env<'a>,
+    stmts: &'a [Stmt],
+    span: Span,
+    diags: &mut Diagnostics,
+) -> VariableSpec {
+    let f = Fields::block(
+        env,
+        stmts,
+        FIELDS,
+        BLOCKS,
+        "variable slicing".into(),
+        span,
+        diags,
+    );
+    let layers = match f.value("layers", None, diags) {
+        None if f.has("layers") => None,
+        None => Some(None),
+        Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
+        Some(_) => f
+            .count("layers", 1, MAX_LAYERS, None, diags)
+            .map(|(n, sp)| NonZeroU32::new(n as u32).map(|n| (n, sp))),
+    };
+    let scan = match f.symbol("scan", &["auto", "x", "y"], None, diags) {
+        Some((s, _)) if s == "x" => Some(Some(Axis::X)),
+        Some((s, _)) if s == "y" => Some(Some(Axis::Y)),
+        Some(_) => Some(None),
+        None if f.has("scan") => None,
+        None => Some(None),
+    };
+    let offset = match f.value("offset", None, diags) {
+        None if f.has("offset") => None,
+        None => Some(None),
+        Some(v) if v.value == Value::Symbol("balanced".into()) => Some(None),
+        Some(_) => f
+            .positive("offset", Dim::LENGTH, None, diags)
+            .map(|(d, sp)| Some((Length(d), sp))),
+    };
+    let segments = match f.nested("segments") {
+        Some((inner, at)) => {
+            let s = Fields::block(
+                env,
+                inner,
+                &["tolerance", "min_length"],
+                &[],
+                "the `segments` block".into(),
+                at,
+                diags,
+            );
+            let tolerance = s.positive("tolerance", Dim::LENGTH, None, diags);
+            let min_length = s.positive("min_length", Dim::LENGTH, None, diags);
+            match (
+                s.optional("tolerance", tolerance),
+                s.optional("min_length", min_length),
+            ) {
+                (Some(t), Some(m)) => Some((t, m)),
+                _ => None,
+            }
+        }
+        None => Some((None, None)),
+    };
+    let declared = offset.flatten();
+    let slicing = match (segments, layers, scan, offset) {
+        (Some((tolerance, min_length)), Some(layers), Some(scan), Some(offset)) => {
+            Some(VariableSlicing {
+                layers,
+                scan,
+                offset,
+                tolerance: tolerance.map_or(DEFAULT_TOLERANCE, |t| Length(t.0)),
+                min_length: min_length.map(|m| Length(m.0)),
+                span,
+                tolerance_span: tolerance.map(|t| t.1),
+                min_length_span: min_length.map(|m| m.1),
+            })
+        }
+        _ => None,
+    };
+    VariableSpec {
+        slicing,
+        offset: declared,
+    }
+}
+
+/// What variable slicing asks of the rest of the file, checked whenever the
+/// strategy is `variable` (whatever else is wrong): no process `speed` (the
+/// bead gives them: `speed` is the process block's, `Some(None)` when not
+/// written), a bead that maps heights to speeds, and a declared track
+/// offset the bead's width allows. Whether all hold.
+pub fn side_checks(
+    bead: Option<&Bead>,
+    speed: Option<Option<(Speed, Span)>>,
+    offset: Option<(Length, Span)>,
+    at: Span,
+    diags: &mut Diagnostics,
+) -> bool {
+    let mut ok = true;
+    if let (Some((d, sp)), Some(b)) = (offset, bead) {
+        ok &= declared_offset(d, sp, b, None, diags);
+    }
+    if let Some(Some((_, sp))) = speed {
+        diags.push(
+            Diagnostic::error(
+                Code::SpeedFromBead,
+                match bead {
+                    Some(b) => format!(
+                        "variable layers take their speeds from bead `{}`: a process `speed` does not apply",
+                        b.name
+                    ),
+                    None => "variable layers take their speeds from the bead model: a process `speed` does not apply".to_string(),
+                },
+            )
+            .label(sp, "process speed")
+            .label(at, "variable slicing")
+            .help("remove `speed` from the process block: each segment of a track is laid at the speed the bead model gives for its height"),
+        );
+        ok = false;
+    }
+    if let Some(b) = bead {
+        if let HeightModel::Measured { speed, .. } = b.model {
+            diags.push(
+                Diagnostic::error(
+                    Code::BeadMapNeeded,
+                    format!(
+                        "bead `{}` was measured at one speed ({speed}): variable layers change the height through the speed",
+                        b.name
+                    ),
+                )
+                .label(b.span, "measured bead")
+                .label(at, "variable slicing")
+                .help("fit the bead's height over a speed range: `model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm)` with `speed = 4 mm/s .. 8.7 mm/s`"),
+            );
+            ok = false;
+        }
+    }
+    ok
+}
+
+/// Joins an extrusion that has a `top` with its variable slicing and its
+/// bead (whose [`side_checks`] were made), keeping the footprint as one
+/// shape.
+pub fn assemble(
+    env: &mut Env<'_>,
+    w: Written<'_>,
+    spec: VariableSpec,
+    diags: &mut Diagnostics,
+) -> Option<(TopExtrusion, VariableSlicing)> {
+    let slicing = spec.slicing?;
+    let (top, top_span) = w.top?;
+    let (shape, shape_span) = footprint(env, w.source, w.profile_span, diags)?;
+    Some((
+        TopExtrusion {
+            name: w.name,
+            shape,
+            measure: w.measure,
+            top,
+            span: w.span,
+            profile_span: w.profile_span,
+            shape_span,
+            top_span,
+        },
+        slicing,
+    ))
+}
+
+/// The footprint: one shape. A profile that follows `layer` has no place
+/// under a top, whose layers are not planes a profile could be cut at.
+fn footprint(
+    env: &mut Env<'_>,
+    source: Source<'_>,
+    profile_span: Span,
+    diags: &mut Diagnostics,
+) -> Option<(Shape, Span)> {
+    match source {
+        Source::Fixed(s) => Some((s, profile_span)),
+        Source::Expr(e) if env.depends_on_layer(e) => {
+            diags.push(
+                Diagnostic::error(
+                    Code::Unsupported,
+                    "a footprint that changes with `layer` cannot carry a `top`",
+                )
+                .label(e.span, "follows the layer")
+                .label(profile_span, "profile")
+                .help("variable layers are not planes a profile could be cut at: give one footprint, and let the top shape the part"),
+            );
+            None
+        }
+        Source::Expr(e) => {
+            let v = env.eval(e, diags)?;
+            Some((profile::shape(&v, "a profile", diags)?, e.span))
+        }
+    }
+}
+
+/// A point of `top` the footprint certainly has, to try an expression of the
+/// position at: an outline's first point, a section's centre.
+pub fn reference_point(shape: Option<&Shape>) -> [f64; 2] {
+    match shape {
+        Some(Shape::Outline(o)) => [o.start[0].0, o.start[1].0],
+        _ => [0.0, 0.0],
+    }
+}

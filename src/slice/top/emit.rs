@@ -1,0 +1,198 @@
+//! The IR layers of a variable-top solid. Layer `i` (from 0) of `N` is laid
+//! on the planned top of layer `i − 1`: its points sit at `z = i·H/N` and
+//! each lays `H/N` there (`layer_height`), so the layers' heights add up to
+//! the top at every point. Speeds come from the bead map: each segment's
+//! height `H_seg/N` gives the *horizontal* speed, and the nozzle, climbing
+//! along the planned top of the layer below at the slope `s` of the
+//! segment's chord, runs at the path speed `v_h·√(1 + s²)`
+//! ([`crate::slice::variable::speed`]). Tracks alternate direction, one
+//! layer to the next and one track to the next; the laser is on along each.
+
+use super::tracks::Track;
+use crate::ir::{Frame, Layer, Path, PathKind, Point};
+use crate::sema::model::{Axis, Model};
+use crate::slice::variable::speed::{path_speed, HeightMap};
+use crate::units::{Length, Speed};
+use std::num::NonZeroU32;
+
+/// The process values every point shares.
+pub struct Process {
+    powder: f32,
+    defocus: f32,
+    speeds: [f64; 2],
+}
+
+impl Process {
+    /// The model's process block and bead speed range.
+    pub fn of(model: &Model) -> Self {
+        Process {
+            powder: model.process.powder.g_min() as f32,
+            defocus: model.process.defocus.0 as f32,
+            speeds: [model.bead.speed[0].0, model.bead.speed[1].0],
+        }
+    }
+}
+
+/// Layer `i` of `n` over `tracks`.
+pub fn layer(
+    model: &Model,
+    map: &impl HeightMap,
+    process: &Process,
+    tracks: &[Track],
+    scan: Axis,
+    i: u32,
+    n: NonZeroU32,
+) -> Layer {
+    let power = model.process.power.at(i as usize).watts() as f32;
+    let nf = n.get() as f64;
+    let paths = tracks
+        .iter()
+        .enumerate()
+        .map(|(k, tr)| Path {
+            kind: PathKind::Infill,
+            points: track(
+                tr,
+                map,
+                process,
+                scan,
+                i,
+                nf,
+                power,
+                (i as usize + k) % 2 == 1,
+            ),
+        })
+        .collect();
+    Layer {
+        index: i as usize,
+        station: i as f64 / nf,
+        frame: Frame {
+            origin: [0.0; 3],
+            x: [1.0, 0.0, 0.0],
+            y: [0.0, 1.0, 0.0],
+            z: [0.0, 0.0, 1.0],
+        },
+        paths,
+    }
+}
+
+/// The points of one track on layer `i`, backwards when `reverse`.
+#[allow(clippy::too_many_arguments)]
+fn track(
+    tr: &Track,
+    map: &impl HeightMap,
+    process: &Process,
+    scan: Axis,
+    i: u32,
+    n: f64,
+    power: f32,
+    reverse: bool,
+) -> Vec<Point> {
+    let frac = i as f64 / n;
+    let pos: Vec<[f64; 3]> =
+        tr.t.iter()
+            .zip(&tr.h)
+            .map(|(&t, &h)| {
+                let [x, y] = super::footprint::Footprint::point(scan, t, tr.c);
+                [x, y, frac * h]
+            })
+            .collect();
+    let speeds = segment_speeds(tr, &pos, map, process.speeds, n);
+    let m = pos.len();
+    // Move j runs from point j to j + 1 in the track's own direction.
+    let order: Vec<usize> = if reverse {
+        (0..m).rev().collect()
+    } else {
+        (0..m).collect()
+    };
+    order
+        .iter()
+        .enumerate()
+        .map(|(k, &j)| {
+            // The move from this point on, or into it at the last point.
+            let (a, b) = if k + 1 < m {
+                (j, order[k + 1])
+            } else {
+                (order[k - 1], j)
+            };
+            let mv = if reverse { b } else { a };
+            let d = [
+                pos[b][0] - pos[a][0],
+                pos[b][1] - pos[a][1],
+                pos[b][2] - pos[a][2],
+            ];
+            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-12);
+            Point {
+                pos: pos[j],
+                normal: [0.0, 0.0, 1.0],
+                tangent: d.map(|v| (v / len) as f32),
+                layer_height: (tr.h[j] / n) as f32,
+                speed: speeds[tr.seg[mv.min(tr.seg.len() - 1)]] as f32,
+                power,
+                powder: process.powder,
+                defocus: process.defocus,
+                laser_on: k + 1 < m,
+                style: 0,
+            }
+        })
+        .collect()
+}
+
+/// Each segment's path speed on this layer: the map's horizontal speed for
+/// `H_seg/N`, times `√(1 + s²)` with `s` the slope of the segment's chord
+/// on this layer's path; kept where every move of the segment crosses the
+/// ground within the bead's speed range (on a curved top the moves' slopes
+/// differ a little from the chord's).
+fn segment_speeds(
+    tr: &Track,
+    pos: &[[f64; 3]],
+    map: &impl HeightMap,
+    [v_lo, v_hi]: [f64; 2],
+    n: f64,
+) -> Vec<f64> {
+    let q_count = tr.heights.len();
+    // Per segment: first and last point, and the steepest and flattest move.
+    let mut first = vec![usize::MAX; q_count];
+    let mut last = vec![0usize; q_count];
+    let mut steep = vec![1.0f64; q_count];
+    let mut flat = vec![f64::INFINITY; q_count];
+    for (j, &q) in tr.seg.iter().enumerate() {
+        first[q] = first[q].min(j);
+        last[q] = j + 1;
+        let f = climb(pos[j], pos[j + 1]);
+        steep[q] = steep[q].max(f);
+        flat[q] = flat[q].min(f);
+    }
+    (0..q_count)
+        .map(|q| {
+            let h = Length(tr.heights[q] / n);
+            // The layer count keeps every height in the map's range.
+            let v_h = map.horizontal_speed(h).unwrap_or_else(|e| {
+                let r = e.heights;
+                map.speed_within(Length(h.0.clamp(r.low().0, r.high().0)))
+            });
+            if first[q] == usize::MAX {
+                return v_h.0;
+            }
+            let (a, b) = (pos[first[q]], pos[last[q]]);
+            let run = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+            let slope = if run > 0.0 { (b[2] - a[2]) / run } else { 0.0 };
+            let v = path_speed(v_h, slope).map_or(v_h.0, |v: Speed| v.0);
+            let (lo, hi) = (v_lo * steep[q], v_hi * flat[q]);
+            if lo <= hi {
+                v.clamp(lo, hi)
+            } else {
+                v
+            }
+        })
+        .collect()
+}
+
+/// Path length per unit of ground from `a` to `b`: `√(1 + s²)`.
+fn climb(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let run = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+    if run > 0.0 {
+        ((b[2] - a[2]) / run).hypot(1.0)
+    } else {
+        1.0
+    }
+}

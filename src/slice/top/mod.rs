@@ -1,0 +1,188 @@
+//! Slicing a solid with a variable top (seed 003, Xin et al. 2020): `N`
+//! layers that each lay the same fraction `H/N` of the local height, so the
+//! last one ends on the top everywhere. The maths is in
+//! [`crate::slice::variable`]; this module applies it to the model and
+//! writes IR:
+//!
+//! 1. the footprint and the scan axis (`auto`: the axis the top rises more
+//!    along, the paper's rule);
+//! 2. the top sampled where tracks can run → the layer count
+//!    (`count`: `⌈H_max/h_max⌉ ≤ N ≤ ⌊H_min/h_min⌋`);
+//! 3. the track lines across (`layout`: balanced unequal-height overlap,
+//!    closed on the far edge by one uniform stretch);
+//! 4. the tracks along, each in the fewest constant-speed segments within
+//!    the height tolerance (`tracks`);
+//! 5. the IR (`emit`).
+//!
+//! Steps 2–4 repeat until the top's range over the tracks' points lies in
+//! the range the count was chosen for (the samples of step 2 need not hit
+//! the tracks' own points; a round or two at most). Each step is linear in
+//! the points it makes.
+
+mod count;
+mod emit;
+mod footprint;
+mod layout;
+mod surface;
+mod too_short;
+mod tracks;
+
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::Layer;
+use crate::sema::model::{Axis, Model, TopExtrusion, VariableSlicing};
+use crate::slice::variable::segments::SegmentSpec;
+use crate::slice::variable::speed::{BeadMap, HeightMap};
+use crate::slice::variable::Positive;
+use crate::slice::MAX_TOTAL_POINTS;
+use crate::units::Length;
+use count::TopRange;
+use footprint::{sample, Footprint, Sampled};
+use surface::Surface;
+
+/// Rounds of count → layout → tracks before the range must have settled.
+const MAX_ROUNDS: usize = 6;
+
+/// Slices a footprint up to its top in variable layers. Returns the layers
+/// and any warnings, or every diagnostic found.
+pub fn slice(
+    model: &Model,
+    ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    let bead = &model.bead;
+    let w = bead.width.0;
+    let map = BeadMap::new(bead).map_err(|e| internal(e.to_string()))?;
+    let fp = Footprint::new(ex, w)?;
+    let mut top = Surface::new(ex, &fp);
+    // Samples every eighth of a bead: a top that bends within a bead is
+    // seen, a plane costs nothing (its samples are dropped again).
+    let pitch = w / 8.0;
+    let (scan, sampled) = scan_axis(&fp, &mut top, pitch, ex, slicing.scan)?;
+    let mut range = TopRange::of(&sampled).ok_or_else(|| internal("an empty top range".into()))?;
+    let positive = |what, l: Length| Positive::new(what, l).map_err(|e| internal(e.to_string()));
+    let spec = SegmentSpec {
+        tolerance: positive("tolerance", slicing.tolerance)?,
+        min_length: positive("min_length", slicing.min_length.unwrap_or(bead.width))?,
+    };
+    for _ in 0..MAX_ROUNDS {
+        let n = count::layers(&range, bead, map.heights(), ex, slicing)?;
+        let lines = layout::lay(&fp, scan, &sampled, n, bead, slicing, ex)?;
+        let planned =
+            tracks::plan(&fp, scan, &lines, &mut top, spec, pitch).map_err(|p| match p {
+                tracks::Problem::Top(b, more) => b.report(ex, more),
+                tracks::Problem::Invalid(e) => internal(e.to_string()),
+            })?;
+        if !planned.failures.is_empty() {
+            return Err(too_short::report(
+                &planned.failures,
+                planned.tracks.len() + planned.failures.len(),
+                scan,
+                bead,
+                slicing,
+                ex,
+                spec.min_length,
+            )
+            .into());
+        }
+        let Some(actual) = planned.range else {
+            return Err(fp.too_narrow(ex, scan).into());
+        };
+        if !range.holds(&actual) {
+            range = range.union(actual);
+            continue;
+        }
+        let mut warnings = Diagnostics::new();
+        if let Some(d) = layout::stretch_warning(&lines, slicing, ex) {
+            warnings.push(d);
+        }
+        short_tracks(&planned.tracks, w, slicing, &mut warnings);
+        let per_layer: usize = planned.tracks.iter().map(|t| t.t.len()).sum();
+        if per_layer.saturating_mul(n.get() as usize) > MAX_TOTAL_POINTS {
+            return Err(Diagnostic::error(
+                Code::TooManyPoints,
+                format!("{n} layers × {per_layer} points is more than {MAX_TOTAL_POINTS} points"),
+            )
+            .label(slicing.span, "slicing")
+            .help("a larger `tolerance` makes fewer segments; a smaller part fewer tracks")
+            .into());
+        }
+        let process = emit::Process::of(model);
+        let layers = (0..n.get())
+            .map(|i| emit::layer(model, &map, &process, &planned.tracks, scan, i, n))
+            .collect();
+        return Ok((layers, warnings));
+    }
+    Err(internal(
+        "the top's range over the tracks did not settle".into(),
+    ))
+}
+
+/// The scan axis (declared, or the axis the top rises more along; on a tie
+/// the one the footprint is longer along) and the top sampled for it.
+fn scan_axis(
+    fp: &Footprint,
+    top: &mut Surface<'_>,
+    pitch: f64,
+    ex: &TopExtrusion,
+    declared: Option<Axis>,
+) -> Result<(Axis, Sampled), Diagnostics> {
+    let mut sampled = |axis| sample(fp, axis, top, pitch).map_err(|(b, more)| b.report(ex, more));
+    if let Some(axis) = declared {
+        return sampled(axis)?
+            .map(|s| (axis, s))
+            .ok_or_else(|| fp.too_narrow(ex, axis).into());
+    }
+    let (x, y) = (sampled(Axis::X)?, sampled(Axis::Y)?);
+    let longer = |a: Axis| {
+        let [lo, hi] = fp.written_extent(a);
+        hi - lo
+    };
+    match (x, y) {
+        (Some(x), Some(y)) => {
+            let tie = (x.rise - y.rise).abs() <= 1e-9 * x.rise.max(y.rise);
+            let along_x = if tie {
+                longer(Axis::X) >= longer(Axis::Y)
+            } else {
+                x.rise > y.rise
+            };
+            Ok(if along_x { (Axis::X, x) } else { (Axis::Y, y) })
+        }
+        (Some(x), None) => Ok((Axis::X, x)),
+        (None, Some(y)) => Ok((Axis::Y, y)),
+        (None, None) => Err(fp.too_narrow(ex, Axis::X).into()),
+    }
+}
+
+/// Warns of tracks shorter than the bead width: they overheat and pile up.
+fn short_tracks(
+    tracks: &[tracks::Track],
+    w: f64,
+    slicing: &VariableSlicing,
+    out: &mut Diagnostics,
+) {
+    let short = tracks.iter().filter(|t| t.length() < w).count();
+    if short > 0 {
+        out.push(
+            Diagnostic::warning(
+                Code::ShortTrack,
+                format!(
+                    "{short} track{} shorter than the bead width {} (on every layer)",
+                    if short == 1 { " is" } else { "s are" },
+                    Length(w)
+                ),
+            )
+            .label(slicing.span, "tracks")
+            .help("short tracks overheat and pile up: a footprint without narrow ends, or tracks along its longer side (`scan`)"),
+        );
+    }
+}
+
+/// A state the checker's checks should have made impossible.
+fn internal(what: String) -> Diagnostics {
+    Diagnostic::error(
+        Code::NonFinite,
+        format!("variable slicing cannot go on: {what}"),
+    )
+    .help("this is a bug in lmdc for this input; please report it with the .lmd file")
+    .into()
+}
