@@ -1,6 +1,10 @@
-//! Layers must lie on each other: every deposit of a layer needs the layer below
-//! within half a bead width across the nozzle, or the bead lands beside the part
-//! (a twist of 10⁶° moved points 10.9 mm off a 6 mm bead). Measured across the
+//! Layers must lie on each other: every deposit of a layer needs a bead of the
+//! layer below within [`REACH`] of a bead width across the nozzle, or the bead
+//! lands beside the part (a twist of 10⁶° moved points 10.9 mm off a 6 mm
+//! bead). The reach is the fill's own: a raster layer leaves spots up to ¾ of a
+//! bead from every track without a word (`lmd::thin-gap` starts beyond), so
+//! the layer on it lands that far from the centre lines below; a bead ¾ of a
+//! width off still overlaps the one below by a quarter of its width. Measured across the
 //! nozzle (perpendicular to the point's normal), so the layer's own height does
 //! not count; the first layer lies on the substrate and is not checked.
 //!
@@ -17,13 +21,17 @@ use crate::units::short;
 /// Most cells of one layer's grid; beyond it the cells grow.
 const MAX_CELLS: usize = 1 << 20;
 
-/// Deposits of each layer farther than half a bead from the layer below.
+/// How far across the nozzle, in bead widths, a deposit may land from the
+/// nearest bead centre line of the layer below.
+pub const REACH: f64 = 0.75;
+
+/// Deposits of each layer farther than [`REACH`] from the layer below.
 pub(super) fn check(p: &Program, out: &mut Diagnostics) {
     let w = p.limits.bead_width;
     if !(w.is_finite() && w > 0.0) {
         return;
     }
-    let half = w / 2.0;
+    let half = w * REACH;
     // Within this 3-D distance a segment can be at most `half` across the
     // nozzle with the layer's height along it.
     let reach = (half * half + p.limits.layer_height[1].powi(2)).sqrt() * 1.01;
@@ -67,7 +75,7 @@ pub(super) fn check(p: &Program, out: &mut Diagnostics) {
         Diagnostic::error(
             Code::Stacking,
             format!(
-                "a deposit lands {} mm across the nozzle from the layer below, more than half the bead width ({} mm), at {} ({} place{} so far off, sampled every quarter bead along the paths)",
+                "a deposit lands {} mm across the nozzle from the nearest bead of the layer below, more than ¾ of the bead width ({} mm), at {} ({} place{} so far off, sampled every quarter bead along the paths)",
                 if f.value >= reach { format!("more than {}", short(reach)) } else { short(f.value) },
                 short(half),
                 f.at,

@@ -237,7 +237,7 @@ codes! {
     BadDirection = "bad-direction", Feasibility,
         "a computed direction is not a unit vector: a bug in lmdc, please report it";
     Stacking = "stacking", Feasibility,
-        "a deposit lands more than half a bead width (across the nozzle) from the layer below: the layers do not lie on each other (a twist or section that jumps between layers)";
+        "a deposit lands more than ¾ of a bead width (across the nozzle) from every bead of the layer below: the layers do not lie on each other (a twist or section that jumps between layers)";
     PointHeight = "point-height", Feasibility,
         "planned points whose layer height leaves the bead model's `h_min..h_max` (counted, the worst named)";
     PointSpeed = "point-speed", Feasibility,
