@@ -10,7 +10,7 @@
 //!   manifest listing it and no temporary file;
 //! - a build after that succeeds and leaves exactly its own set.
 //!
-//! `LMDC_KILL_ROUNDS` sets the number of kills (default 12: half at a random
+//! `LMDC_KILL_ROUNDS` sets the number of kills (default 6, CI runs 24: half at a random
 //! moment of the build, half just after its commit point, in the middle of
 //! the renames).
 #![cfg(unix)]
@@ -169,7 +169,7 @@ fn a_killed_build_leaves_the_old_set_or_the_new_set() {
     let rounds: u64 = std::env::var("LMDC_KILL_ROUNDS")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(12);
+        .unwrap_or(6);
     let seed = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .unwrap()

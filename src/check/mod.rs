@@ -107,6 +107,21 @@ impl crate::plan::Visit for Count {
     }
 }
 
+/// Machine `i`'s rules over its plan: their diagnostics, and the files it
+/// would write.
+fn machine_rules(p: &Program, i: usize) -> (Diagnostics, Option<(usize, Vec<String>)>) {
+    let mut d = Diagnostics::new();
+    let Some(m) = p.machines.get(i) else {
+        return (d, None);
+    };
+    let mut rules = machine::MachineRules::new(m);
+    rules.run(p);
+    let moves = rules.moves;
+    let origin = p.origins.machines.get(i).cloned().unwrap_or_default();
+    rules.report(p, &origin, &mut d);
+    (d, Some((i, names::files(p, m, moves))))
+}
+
 /// Which machines to check and build.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Select {
@@ -124,9 +139,6 @@ pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics>
     points.run(&program);
     let broken = points.finite.failed();
     points.report(&program, &mut diags);
-    if !broken {
-        stacking::check(&program, &mut diags);
-    }
 
     let machines: Vec<usize> = match select {
         Select::All => (0..program.machines.len()).collect(),
@@ -137,17 +149,30 @@ pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics>
     };
     // A plan through non-finite points would only repeat that error.
     if !broken {
+        // The layer-on-layer rule and each machine's plan read the IR only:
+        // they run side by side, and report in this fixed order.
+        let p = &program;
+        let (stack, plans) = std::thread::scope(|s| {
+            let stack = s.spawn(move || {
+                let mut d = Diagnostics::new();
+                stacking::check(p, &mut d);
+                d
+            });
+            let plans: Vec<_> = machines
+                .iter()
+                .map(|&i| s.spawn(move || machine_rules(p, i)))
+                .collect();
+            (
+                stack.join(),
+                plans.into_iter().map(|h| h.join()).collect::<Vec<_>>(),
+            )
+        });
+        diags.extend(stack.unwrap_or_else(|e| std::panic::resume_unwind(e)));
         let mut files = Vec::new();
-        for &i in &machines {
-            let Some(m) = program.machines.get(i) else {
-                continue;
-            };
-            let mut rules = machine::MachineRules::new(m);
-            rules.run(&program);
-            let moves = rules.moves;
-            let origin = program.origins.machines.get(i).cloned().unwrap_or_default();
-            rules.report(&program, &origin, &mut diags);
-            files.push((i, names::files(&program, m, moves)));
+        for r in plans {
+            let (d, f) = r.unwrap_or_else(|e| std::panic::resume_unwind(e));
+            diags.extend(d);
+            files.extend(f);
         }
         names::clashes(&program, &files, &mut diags);
     }

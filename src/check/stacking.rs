@@ -8,15 +8,20 @@
 //! nozzle (perpendicular to the point's normal), so the layer's own height does
 //! not count; the first layer lies on the substrate and is not checked.
 //!
-//! Linear in the points: the segments of the layer below go into a uniform 3-D
-//! grid of cells a search radius wide, and deposits are sampled every quarter
-//! bead along their path.
+//! Linear in the points: each layer becomes chords an eighth of a bead to a
+//! search radius long; the layer below's go into a uniform 3-D grid of cells a
+//! search radius wide, and the layer's chord starts (at most 1024 a layer,
+//! spread over it) ask it for the nearest.
 
 use super::worst::{plural, Worst};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::{Layer, Program};
 use crate::plan::Where;
 use crate::units::short;
+
+/// Most places of one layer checked (spread over it): a 300 × 200 mm plate
+/// lays 30 m of track a layer.
+const MAX_SAMPLES: usize = 1024;
 
 /// Most cells of one layer's grid; beyond it the cells grow.
 const MAX_CELLS: usize = 1 << 20;
@@ -36,38 +41,27 @@ pub(super) fn check(p: &Program, out: &mut Diagnostics) {
     // nozzle with the layer's height along it.
     let reach = (half * half + p.limits.layer_height[1].powi(2)).sqrt() * 1.01;
     let mut found: Option<Worst> = None;
-    for (li, pair) in p.layers.windows(2).enumerate() {
-        let below = Segments::of(&pair[0], w / 8.0);
-        if below.segs.is_empty() {
-            continue;
-        }
-        let grid = Grid::new(&below.segs, reach);
-        for (pi, path) in pair[1].paths.iter().enumerate() {
-            let mut since = f64::INFINITY;
-            let mut last: Option<[f64; 3]> = None;
-            for (k, pt) in path.points.iter().enumerate() {
-                if let Some(l) = last {
-                    since += dist(l, pt.pos);
-                }
-                last = Some(pt.pos);
-                // The deposit from this point, or into it.
-                let deposits = pt.laser_on || (k > 0 && path.points[k - 1].laser_on);
-                if !deposits || since < w / 4.0 {
-                    continue;
-                }
-                since = 0.0;
-                let n = pt.normal.map(|v| v as f64);
-                let across = grid.nearest_across(&below.segs, pt.pos, n, reach);
+    let mut below = Segments::of(&p.layers[0], w / 8.0, reach);
+    for (li, layer) in p.layers.iter().enumerate().skip(1) {
+        let here = Segments::of(layer, w / 8.0, reach);
+        if !below.segs.is_empty() {
+            let grid = Grid::new(&below.segs, reach);
+            // Every chord start of this layer (1/8 bead to `reach` apart), at
+            // most MAX_SAMPLES of them spread over the layer.
+            let stride = here.starts.len().div_ceil(MAX_SAMPLES).max(1);
+            for s in here.starts.iter().step_by(stride) {
+                let across = grid.nearest_across(&below.segs, s.pos, s.normal, reach);
                 if across.is_none_or(|d| d > half) {
                     let at = Where::Point {
-                        layer: li + 1,
-                        path: pi,
-                        point: k,
+                        layer: li,
+                        path: s.path,
+                        point: s.point,
                     };
                     Worst::hit(&mut found, across.unwrap_or(reach), half, at);
                 }
             }
         }
+        below = here;
     }
     let Some(f) = found else { return };
     let o = &p.origins;
@@ -75,7 +69,7 @@ pub(super) fn check(p: &Program, out: &mut Diagnostics) {
         Diagnostic::error(
             Code::Stacking,
             format!(
-                "a deposit lands {} mm across the nozzle from the nearest bead of the layer below, more than ¾ of the bead width ({} mm), at {} ({} place{} so far off, sampled every quarter bead along the paths)",
+                "a deposit lands {} mm across the nozzle from the nearest bead of the layer below, more than ¾ of the bead width ({} mm), at {} ({} place{} so far off, checked at most every eighth of a bead)",
                 if f.value >= reach { format!("more than {}", short(reach)) } else { short(f.value) },
                 short(half),
                 f.at,
@@ -89,45 +83,90 @@ pub(super) fn check(p: &Program, out: &mut Diagnostics) {
     );
 }
 
+/// Where a chord of a layer starts: a place a deposit of that layer is
+/// checked.
+struct Start {
+    pos: [f64; 3],
+    normal: [f64; 3],
+    path: usize,
+    point: usize,
+}
+
 /// A layer's deposited segments (between points, where the laser is on),
 /// with runs of points closer than `step` merged into chords: across the
-/// nozzle a chord of 1/8 bead over a wall of 30 mm radius strays 0.002 mm,
-/// and the grid then holds a few hundred segments a layer, not thousands.
+/// nozzle a chord of 1/8 bead over a wall of 30 mm radius strays 0.002 mm.
+/// Each chord is at most `longest` (a long raster track split into pieces),
+/// so it covers a few grid cells, not a diagonal band of its bounding box.
 struct Segments {
     segs: Vec<[[f64; 3]; 2]>,
+    starts: Vec<Start>,
 }
 
 impl Segments {
-    fn of(layer: &Layer, step: f64) -> Self {
-        let mut segs = Vec::new();
-        for path in &layer.paths {
-            let mut start: Option<[f64; 3]> = None;
-            for w in path.points.windows(2) {
+    fn of(layer: &Layer, step: f64, longest: f64) -> Self {
+        let mut out = Segments {
+            segs: Vec::new(),
+            starts: Vec::new(),
+        };
+        for (pi, path) in layer.paths.iter().enumerate() {
+            // The chord under way: its start point and where it is in the path.
+            let mut start: Option<([f64; 3], usize)> = None;
+            for (k, w) in path.points.windows(2).enumerate() {
                 let (a, b) = (w[0].pos, w[1].pos);
                 if !w[0].laser_on || !a.iter().chain(&b).all(|v| v.is_finite()) {
-                    if let Some(s) = start.take() {
-                        segs.push([s, a]);
+                    if let Some((s, at)) = start.take() {
+                        out.chord(s, a, path, pi, at, longest);
                     }
                     continue;
                 }
-                let s = *start.get_or_insert(a);
-                if dist(s, b) >= step {
-                    segs.push([s, b]);
-                    start = Some(b);
+                let (s, at) = *start.get_or_insert((a, k));
+                if dist2(s, b) >= step * step {
+                    out.chord(s, b, path, pi, at, longest);
+                    start = Some((b, k + 1));
                 }
             }
-            if let (Some(s), Some(last)) = (start, path.points.last()) {
+            if let (Some((s, at)), Some(last)) = (start, path.points.last()) {
                 if s != last.pos && last.pos.iter().all(|v| v.is_finite()) {
-                    segs.push([s, last.pos]);
+                    out.chord(s, last.pos, path, pi, at, longest);
                 }
             }
         }
-        Segments { segs }
+        out
+    }
+
+    /// The chord from `a` (point `at` of path `pi`) to `b`, in pieces of at
+    /// most `longest`.
+    fn chord(
+        &mut self,
+        a: [f64; 3],
+        b: [f64; 3],
+        path: &crate::ir::Path,
+        pi: usize,
+        at: usize,
+        longest: f64,
+    ) {
+        let n = path.points[at].normal.map(|v| v as f64);
+        // Beyond any plate a piece is not split further.
+        let pieces = (dist2(a, b).sqrt() / longest).ceil().clamp(1.0, 1e6) as usize;
+        let along = |t: f64| [0, 1, 2].map(|i| a[i] + t * (b[i] - a[i]));
+        for k in 0..pieces {
+            let (from, to) = (
+                along(k as f64 / pieces as f64),
+                along((k + 1) as f64 / pieces as f64),
+            );
+            self.segs.push([from, to]);
+            self.starts.push(Start {
+                pos: from,
+                normal: n,
+                path: pi,
+                point: at,
+            });
+        }
     }
 }
 
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
 }
 
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -190,18 +229,29 @@ impl Grid {
             start: vec![0; dims[0] * dims[1] * dims[2] + 1],
             items: Vec::new(),
         };
-        // Counting sort: count per cell, prefix sums, then place.
+        // Counting sort: each segment's cell range once, then count per
+        // cell, prefix sums, and place.
+        let ranges: Vec<([usize; 3], [usize; 3])> = segs
+            .iter()
+            .map(|s| {
+                let (a, b) = (g.index(s[0]), g.index(s[1]));
+                (
+                    [a[0].min(b[0]), a[1].min(b[1]), a[2].min(b[2])],
+                    [a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2])],
+                )
+            })
+            .collect();
         let mut count = vec![0u32; g.start.len()];
-        for s in segs {
-            g.for_cells(s, |c| count[c + 1] += 1);
+        for &(lo, hi) in &ranges {
+            g.for_range(lo, hi, |c| count[c + 1] += 1);
         }
         for i in 1..count.len() {
             count[i] += count[i - 1];
         }
         g.start.clone_from(&count);
         let mut items = vec![0u32; count[count.len() - 1] as usize];
-        for (k, s) in segs.iter().enumerate() {
-            g.for_cells(s, |c| {
+        for (k, &(lo, hi)) in ranges.iter().enumerate() {
+            g.for_range(lo, hi, |c| {
                 items[count[c] as usize] = k as u32;
                 count[c] += 1;
             });
@@ -219,13 +269,12 @@ impl Grid {
         [at(0), at(1), at(2)]
     }
 
-    /// Calls `f` with each cell a segment's bounding box covers.
-    fn for_cells(&self, s: &[[f64; 3]; 2], mut f: impl FnMut(usize)) {
-        let a = self.index(s[0]);
-        let b = self.index(s[1]);
-        for x in a[0].min(b[0])..=a[0].max(b[0]) {
-            for y in a[1].min(b[1])..=a[1].max(b[1]) {
-                for z in a[2].min(b[2])..=a[2].max(b[2]) {
+    /// Calls `f` with each cell of the index box `lo ..= hi`.
+    #[inline]
+    fn for_range(&self, lo: [usize; 3], hi: [usize; 3], mut f: impl FnMut(usize)) {
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
                     f((x * self.dims[1] + y) * self.dims[2] + z);
                 }
             }

@@ -24,12 +24,18 @@ pub const WRITE_TOLERANCE: f64 = 0.005;
 /// mm/min, S units, …). Far beyond any machine; the formatters are exact below it.
 pub const MAX_WRITTEN: f64 = 1e9;
 
-/// How `planned` comes out written with `decimals` decimals: `None` when it
-/// cannot be written (too large, or rounds to 0 from a positive value, or moves
-/// by more than [`WRITE_TOLERANCE`]); else the written value.
+/// Whether `planned` can be written with `decimals` decimals: `None` when it
+/// cannot (too large, or rounds to 0 from a positive value, or moves by more
+/// than [`WRITE_TOLERANCE`]); else the value (as written where it matters).
 pub fn quantised(planned: f64, decimals: usize) -> Option<f64> {
     if !planned.is_finite() || planned.abs() >= MAX_WRITTEN {
         return None;
+    }
+    // Where half a printed unit is within the tolerance, rounding cannot
+    // fail: the common case, decided without rounding.
+    const HALF_UNIT: [f64; 10] = [0.5, 5e-2, 5e-3, 5e-4, 5e-5, 5e-6, 5e-7, 5e-8, 5e-9, 5e-10];
+    if planned.abs() * WRITE_TOLERANCE >= HALF_UNIT[decimals.min(9)] {
+        return Some(planned);
     }
     let w = written(planned, decimals);
     let ok = planned == 0.0 || (w != 0.0 && (w - planned).abs() <= WRITE_TOLERANCE * planned.abs());
