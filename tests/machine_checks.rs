@@ -3,18 +3,12 @@
 //! machine and points at the field that declares the limit, and `--machine`
 //! checks that machine alone. Rendered reports are snapshots.
 
+#[path = "support/example.rs"]
+mod example;
+
+use example::{duct, tooth};
 use lmdc::diag::render;
 use lmdc::pipeline::{compile, compile_for};
-
-/// The twisted duct example with `edits` applied (each `(from, to)` must match).
-fn duct(edits: &[(&str, &str)]) -> String {
-    let mut src = std::fs::read_to_string("examples/twisted_duct.lmd").unwrap();
-    for (from, to) in edits {
-        assert!(src.contains(from), "{from}");
-        src = src.replacen(from, to, 1);
-    }
-    src
-}
 
 /// Three machines, three kinds of mistake: a CNC whose X and A travel the part
 /// exceeds, a second CNC too slow for the scan speeds, a robot whose analog
@@ -108,16 +102,6 @@ fn two_machines_that_would_write_one_file() {
         "{}",
         clash[0].message
     );
-}
-
-/// The sprocket tooth example with `edits` applied.
-fn tooth(edits: &[(&str, &str)]) -> String {
-    let mut src = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
-    for (from, to) in edits {
-        assert!(src.contains(from), "{from}");
-        src = src.replacen(from, to, 1);
-    }
-    src
 }
 
 fn errors(src: &str) -> Vec<lmdc::diag::Diagnostic> {

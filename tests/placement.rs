@@ -2,16 +2,11 @@
 //! plus the declared origin, the help names the origins that fit, and the
 //! program selects the work offset that holds it.
 
-use lmdc::pipeline::compile;
+#[path = "support/example.rs"]
+mod example;
 
-fn tooth(edits: &[(&str, &str)]) -> String {
-    let mut src = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
-    for (from, to) in edits {
-        assert!(src.contains(from), "{from}");
-        src = src.replacen(from, to, 1);
-    }
-    src
-}
+use example::tooth;
+use lmdc::pipeline::compile;
 
 /// The tooth on a mill whose X travels 0 .. 300 mm (program X spans about
 /// -0.3 .. 41.3 mm with the track ends): its origin must be placed.

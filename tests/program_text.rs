@@ -8,17 +8,11 @@ mod rs274;
 #[path = "support/skip.rs"]
 mod skip;
 
-use lmdc::pipeline::compile;
+#[path = "support/example.rs"]
+mod example;
 
-/// The sprocket tooth example with `edits` applied.
-fn tooth(edits: &[(&str, &str)]) -> String {
-    let mut src = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
-    for (from, to) in edits {
-        assert!(src.contains(from), "{from}");
-        src = src.replacen(from, to, 1);
-    }
-    src
-}
+use example::tooth;
+use lmdc::pipeline::compile;
 
 fn codes(src: &str) -> Vec<(String, String)> {
     let c = compile(src, &mut ());

@@ -3,12 +3,13 @@
 //! off a 6 mm bead), measured against real parts that step out too fast, while
 //! every example passes (it is built layer on layer).
 
+#[path = "support/example.rs"]
+mod example;
+
 use lmdc::pipeline::compile;
 
 fn edited(path: &str, from: &str, to: &str) -> String {
-    let src = std::fs::read_to_string(path).unwrap();
-    assert!(src.contains(from), "{from}");
-    src.replacen(from, to, 1)
+    example::edited(path.trim_start_matches("examples/"), &[(from, to)])
 }
 
 fn stacking(src: &str) -> Vec<String> {
