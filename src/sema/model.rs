@@ -227,10 +227,11 @@ pub struct Bead {
     pub speed_span: Span,
 }
 
-/// Whether `x` lies in `lo ..= hi`, with the rounding slack every range
-/// rule of the checker allows.
+/// Whether `x` lies in `lo ..= hi`, with the one rounding slack every range
+/// rule allows, the checker's and the verifier's alike
+/// ([`in_range`](crate::units::in_range)).
 pub fn within(x: f64, lo: f64, hi: f64) -> bool {
-    x >= lo * (1.0 - 1e-9) && x <= hi * (1.0 + 1e-9)
+    crate::units::in_range(x, [lo, hi])
 }
 
 impl Bead {

@@ -32,8 +32,8 @@ mod props;
 pub use input::{HeightRange, Invalid, Positive};
 
 /// Relative slack on comparisons of heights and on rounding quotients to whole
-/// numbers: the same `1e-9` that `Bead::covers_height` allows, so a plan this
-/// module accepts is one the checks accept.
+/// numbers: tighter than the checks' [`RANGE_SLACK`](crate::units::RANGE_SLACK),
+/// so a plan this module accepts is one the checks accept.
 pub const SLACK: f64 = 1e-9;
 
 /// `⌈q⌉`, except that a quotient within [`SLACK`] of a whole number is that
