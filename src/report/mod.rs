@@ -203,14 +203,14 @@ impl Report {
 }
 
 /// The one-line summary the programs' headers carry (template variable
-/// `summary`), from the plan alone, e.g. `plan: 66.6 m deposited, 1.2 m
-/// travel; 2 h 26 min (laser on 2 h 20 min, dwell 0 s); 26.1 MJ; powder
-/// 6.71 kg`.
+/// `summary`), from the plan alone, e.g. `plan: 36.76 m deposited, 4.06 m
+/// travel; 1 h 19 min, laser on 1 h 15 min, dwell 0.0 s; 9.90 MJ; powder
+/// 3.454 kg`. No brackets: G-code comments are in brackets.
 pub fn summary(machine: VerifiedMachine<'_>) -> String {
     let r = Report::of_plan(machine);
     let t = &r.total;
     format!(
-        "plan: {} deposited, {} travel; {} (laser on {}, dwell {}); {}; powder {}",
+        "plan: {} deposited, {} travel; {}, laser on {}, dwell {}; {}; powder {}",
         text::length(t.deposit_mm),
         text::length(t.travel_mm),
         text::duration(t.time_s()),
