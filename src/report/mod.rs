@@ -127,8 +127,18 @@ impl Report {
     /// The report of `machine`'s plan, with the bead model, design solid and
     /// density of `model`; `density` (g/cm³) replaces or supplies the density.
     pub fn new(machine: VerifiedMachine<'_>, model: &Model, density: Option<f64>) -> Report {
-        let beads = Beads::of(model);
-        let mut r = Self::walk(machine, Some(&beads));
+        Self::from_parts(machine, &Beads::of(model), design::volume(model), density)
+    }
+
+    /// The report of `machine`'s plan laid with `beads`, against `design`;
+    /// `density` (g/cm³) replaces or supplies the bead model's.
+    pub fn from_parts(
+        machine: VerifiedMachine<'_>,
+        beads: &Beads,
+        design: Design,
+        density: Option<f64>,
+    ) -> Report {
+        let mut r = Self::walk(machine, Some(beads));
         r.bead = Some(BeadInfo {
             width_mm: beads.width,
             spacing: beads.spacing.describe(beads.width),
@@ -137,7 +147,6 @@ impl Report {
         r.density_g_cm3 = density
             .filter(|d| d.is_finite() && *d > 0.0)
             .or(beads.density().map(|d| d * 1000.0));
-        let design = design::volume(model);
         if let Some(rho) = r.density_g_cm3.map(|d| d / 1000.0) {
             let powder = r.total.powder_g;
             let share = |m: f64| (powder > 0.0).then(|| m / powder);

@@ -51,7 +51,9 @@ pub fn energy(j: f64) -> String {
 
 /// A mass in g or kg.
 pub fn mass(g: f64) -> String {
-    if g.abs() < 1000.0 {
+    if g.abs() < 10.0 {
+        format!("{g:.2} g")
+    } else if g.abs() < 1000.0 {
         format!("{g:.1} g")
     } else {
         format!("{:.3} kg", g / 1000.0)
@@ -59,7 +61,11 @@ pub fn mass(g: f64) -> String {
 }
 
 fn volume(mm3: f64) -> String {
-    format!("{:.1} cm³", mm3 / 1000.0)
+    if mm3.abs() < 1000.0 {
+        format!("{mm3:.1} mm³")
+    } else {
+        format!("{:.1} cm³", mm3 / 1000.0)
+    }
 }
 
 fn percent(x: f64) -> String {
