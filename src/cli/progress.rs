@@ -10,8 +10,17 @@ use std::sync::{Arc, Condvar, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-/// Nothing is drawn before a run has taken this long.
+/// Nothing is drawn before a run has taken this long (the environment
+/// variable `LMDC_PROGRESS_AFTER_MS` changes it, for tests of the terminal
+/// case on inputs that compile quickly).
 const DELAY: Duration = Duration::from_secs(1);
+
+fn delay() -> Duration {
+    std::env::var("LMDC_PROGRESS_AFTER_MS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .map_or(DELAY, Duration::from_millis)
+}
 /// Time between redraws.
 const TICK: Duration = Duration::from_millis(100);
 const SPINNER: [char; 4] = ['|', '/', '-', '\\'];
@@ -124,6 +133,7 @@ impl Observer for Progress {
 
 fn draw(shared: &(Mutex<State>, Condvar)) {
     let start = Instant::now();
+    let after = delay();
     let mut turn = 0usize;
     let mut s = shared.0.lock().unwrap_or_else(|e| e.into_inner());
     loop {
@@ -140,7 +150,7 @@ fn draw(shared: &(Mutex<State>, Condvar)) {
             return;
         }
         let t = start.elapsed();
-        if t < DELAY {
+        if t < after {
             continue;
         }
         turn += 1;
