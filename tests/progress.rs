@@ -22,7 +22,11 @@ fn nothing_is_drawn_when_stderr_is_not_a_terminal() {
         .output()
         .unwrap();
     assert_eq!(o.status.code(), Some(0));
-    assert!(!drawn(&o.stderr), "{:?}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        !drawn(&o.stderr),
+        "{:?}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert!(String::from_utf8_lossy(&o.stderr).starts_with("ok: "));
 }
 
@@ -54,5 +58,8 @@ fn a_terminal_sees_the_stage_unless_quiet() {
     assert!(text.contains("\r\x1b[2Kok: "), "{text:?}");
     let quiet = on_a_terminal(&format!("check --quiet {FILE}")).unwrap();
     assert!(quiet.starts_with("ok: "), "{quiet:?}");
-    assert!(!quiet.contains('…') && !quiet.contains("\x1b[2K"), "{quiet:?}");
+    assert!(
+        !quiet.contains('…') && !quiet.contains("\x1b[2K"),
+        "{quiet:?}"
+    );
 }

@@ -321,7 +321,10 @@
   resize();
   bucketise("speed");
   showRange();
+  const t0 = performance.now();
   draw();
+  // What one frame of the whole plan costs here: orbiting redraws it.
+  canvas.dataset.frameMs = Math.round(performance.now() - t0);
   plot();
   // How much of the view the first frame painted: a blank page says 0.
   const px = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
