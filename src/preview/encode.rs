@@ -27,6 +27,9 @@ pub struct Row {
     pub gap: bool,
 }
 
+/// A column's value of a move.
+type Field = fn(&Row) -> f64;
+
 /// The kept moves, column by column.
 #[derive(Default)]
 pub struct Columns {
@@ -91,7 +94,7 @@ impl Columns {
 
     /// The JSON object the page's viewer reads (safe inside `<script>`).
     pub fn encode(&self, meta: &Meta<'_>) -> String {
-        let range = |f: &dyn Fn(&Row) -> f64, deposits: bool| {
+        let range = |f: Field, deposits: bool| {
             let mut r = [f64::INFINITY, f64::NEG_INFINITY];
             for row in self.rows.iter().filter(|r| r.deposit || !deposits) {
                 let v = f(row);
@@ -105,13 +108,14 @@ impl Columns {
                 r
             }
         };
-        let fields: [(&dyn Fn(&Row) -> f64, bool); 6] = [
-            (&|r| r.pos[0], false),
-            (&|r| r.pos[1], false),
-            (&|r| r.pos[2], false),
-            (&|r| r.speed as f64, true),
-            (&|r| r.height as f64, true),
-            (&|r| r.power as f64, true),
+        // Each column's value, and whether its range is the deposits' only.
+        let fields: [(Field, bool); 6] = [
+            (|r| r.pos[0], false),
+            (|r| r.pos[1], false),
+            (|r| r.pos[2], false),
+            (|r| r.speed as f64, true),
+            (|r| r.height as f64, true),
+            (|r| r.power as f64, true),
         ];
         let ranges = fields.map(|(f, d)| range(f, d));
         let column = |k: usize| {

@@ -110,7 +110,7 @@ impl Visit for Collect<'_> {
     fn layer(&mut self, index: usize, _: &Layer) {
         self.flush();
         let last = index + 1 == self.layers.len();
-        let keep = index % self.d.layers == 0 || last;
+        let keep = index.is_multiple_of(self.d.layers) || last;
         if !keep && self.keep_layer {
             self.gap = true;
         }
@@ -132,7 +132,7 @@ impl Visit for Collect<'_> {
         if m.deposits() {
             let k = self.run;
             self.run += 1;
-            if k % self.d.moves == 0 {
+            if k.is_multiple_of(self.d.moves) {
                 self.pending = None;
                 self.push(m);
             } else {
