@@ -12,6 +12,8 @@ pub mod ir;
 pub mod lower;
 pub mod pipeline;
 pub mod plan;
+pub mod preview;
+pub mod report;
 pub mod sema;
 pub mod slice;
 pub mod span;

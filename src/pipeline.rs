@@ -11,6 +11,7 @@
 use crate::back::{self, EmitError, Sink, Templates};
 use crate::check::{self, Select, Verified};
 use crate::diag::Diagnostics;
+use crate::sema::model::Model;
 use crate::{lower, sema, syntax};
 
 /// Told when each stage finishes (for `lmdc build --timings`).
@@ -57,8 +58,32 @@ pub fn compile_for(
     machine: Option<&str>,
     obs: &mut dyn Observer,
 ) -> Result<Compiled, NoSuchMachine> {
+    compile_keeping(source, machine, obs, None)
+}
+
+/// [`compile_for`], also giving back the checked model when the program
+/// compiled (the plan report reads its bead model and design solid).
+pub fn compile_with_model(
+    source: &str,
+    machine: Option<&str>,
+    obs: &mut dyn Observer,
+) -> Result<(Compiled, Option<Model>), NoSuchMachine> {
+    let mut model = None;
+    let c = compile_keeping(source, machine, obs, Some(&mut model))?;
+    if c.program.is_none() {
+        model = None;
+    }
+    Ok((c, model))
+}
+
+fn compile_keeping(
+    source: &str,
+    machine: Option<&str>,
+    obs: &mut dyn Observer,
+    keep: Option<&mut Option<Model>>,
+) -> Result<Compiled, NoSuchMachine> {
     let mut diagnostics = Diagnostics::new();
-    let program = run(source, machine, obs, &mut diagnostics)?;
+    let program = run(source, machine, obs, &mut diagnostics, keep)?;
     diagnostics.sort_by_source();
     Ok(Compiled {
         program,
@@ -71,6 +96,7 @@ fn run(
     machine: Option<&str>,
     obs: &mut dyn Observer,
     diagnostics: &mut Diagnostics,
+    keep: Option<&mut Option<Model>>,
 ) -> Result<Option<Verified>, NoSuchMachine> {
     let ast = match syntax::parse(source) {
         Ok(a) => a,
@@ -114,7 +140,11 @@ fn run(
             return Ok(None);
         }
     };
-    drop(model);
+    // Only the report keeps the model; a build frees it before verifying.
+    match keep {
+        Some(k) => *k = Some(model),
+        None => drop(model),
+    }
     obs.stage("slice");
     let verified = check::verify(program, select);
     obs.stage("verify");

@@ -1,13 +1,18 @@
 //! The `lmdc` command line: argument parsing, reading the source, printing
 //! diagnostics, writing outputs atomically, exit codes.
 
+pub mod messages;
+pub mod preview;
+pub mod progress;
+pub mod report;
 pub mod sink;
 pub mod timings;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use lmdc::back::{EmitError, Templates};
-use lmdc::diag::{render, Diagnostics};
 use lmdc::pipeline::{self, Observer};
+use messages::MessageFormat;
+use progress::Progress;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 
@@ -28,6 +33,8 @@ Examples:
   lmdc build part.lmd                    write every machine's program into out/
   lmdc build part.lmd -o build --machine kr60 --emit ir
                                          only the robot kr60, plus the plan as JSON
+  lmdc report part.lmd                   time, lengths, energy, powder and metal, per layer
+  lmdc preview part.lmd                  the plan in 3-D: out/<part>.preview.html
 Exit status: 0 success, 1 errors in the .lmd file, 2 usage or file errors.")]
 pub struct Cli {
     #[command(subcommand)]
@@ -35,6 +42,13 @@ pub struct Cli {
     /// Colour the error messages: auto (when printing to a terminal), always, never.
     #[arg(long, global = true, value_enum, default_value_t = Color::Auto)]
     color: Color,
+    /// How diagnostics are printed: human (drawn on stderr) or json (one
+    /// object a line on stdout; docs/diagnostics.md).
+    #[arg(long, global = true, value_enum, value_name = "FORMAT", default_value_t = MessageFormat::Human)]
+    message_format: MessageFormat,
+    /// No progress line on a terminal.
+    #[arg(short, long, global = true)]
+    quiet: bool,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -83,6 +97,35 @@ enum Command {
         #[arg(long, value_name = "NAME")]
         machine: Option<String>,
     },
+    /// Report what each machine's program takes, per layer and in total: lengths, time at
+    /// the programmed speeds, laser time, energy, powder, and the metal the bead model lays
+    /// against the design solid (docs/preview.md).
+    Report {
+        /// The .lmd file.
+        file: PathBuf,
+        /// Only this machine's plan (its name in the file).
+        #[arg(long, value_name = "NAME")]
+        machine: Option<String>,
+        /// One JSON object a machine on stdout instead of text.
+        #[arg(long)]
+        json: bool,
+        /// Density of the deposited metal in g/cm³, for a bead model that declares none
+        /// (mass_balance declares its own).
+        #[arg(long, value_name = "G_PER_CM3")]
+        density: Option<f64>,
+    },
+    /// Write one self-contained HTML page showing a machine's plan in 3-D, with per-layer
+    /// plots of speed and height (docs/preview.md).
+    Preview {
+        /// The .lmd file.
+        file: PathBuf,
+        /// The machine whose plan is shown (default: the first declared).
+        #[arg(long, value_name = "NAME")]
+        machine: Option<String>,
+        /// The page to write (default: out/<part>.preview.html).
+        #[arg(short = 'o', long = "out", value_name = "FILE")]
+        out: Option<PathBuf>,
+    },
 }
 
 /// Runs the command line; returns the exit code.
@@ -92,19 +135,25 @@ pub fn run(cli: Cli) -> u8 {
         Color::Never => false,
         Color::Auto => std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
     };
+    let format = cli.message_format;
+    // Progress only where a person watches: a terminal, not a log.
+    let progress =
+        |file: &Path| Progress::start(!cli.quiet && std::io::stderr().is_terminal(), shown(file));
     match cli.command {
         Command::Check { file, machine } => {
             let Some(source) = read_source(&file) else {
                 return EXIT_USAGE;
             };
-            let compiled = match pipeline::compile_for(&source, machine.as_deref(), &mut ()) {
+            let mut p = progress(&file);
+            let compiled = match pipeline::compile_for(&source, machine.as_deref(), &mut p) {
                 Ok(c) => c,
                 Err(e) => {
                     eprintln!("error: {e}");
                     return EXIT_USAGE;
                 }
             };
-            print_diags(&compiled.diagnostics, &file, &source, color);
+            p.finish();
+            messages::print(&compiled.diagnostics, &file, &source, color, format);
             match compiled.program {
                 Some(p) => {
                     let n = p.machines().count();
@@ -127,15 +176,38 @@ pub fn run(cli: Cli) -> u8 {
             emit,
             templates,
             timings,
-        } => build(
-            &file,
-            &out,
-            machine.as_deref(),
-            &emit,
-            templates.as_deref(),
-            timings,
-            color,
-        ),
+        } => {
+            let p = progress(&file);
+            build(
+                &file,
+                &out,
+                machine.as_deref(),
+                &emit,
+                templates.as_deref(),
+                timings,
+                (color, format),
+                p,
+            )
+        }
+        Command::Report {
+            file,
+            machine,
+            json,
+            density,
+        } => {
+            let p = progress(&file);
+            let args = report::Args {
+                file: &file,
+                machine: machine.as_deref(),
+                json,
+                density,
+            };
+            report::run(args, color, format, p)
+        }
+        Command::Preview { file, machine, out } => {
+            let p = progress(&file);
+            preview::run(&file, machine.as_deref(), out.as_deref(), color, format, p)
+        }
     }
 }
 
@@ -146,7 +218,8 @@ fn build(
     emit: &[Emit],
     templates: Option<&Path>,
     timings: bool,
-    color: bool,
+    (color, format): (bool, MessageFormat),
+    mut progress: Progress,
 ) -> u8 {
     let templates = match Templates::load(templates) {
         Ok(t) => t,
@@ -169,14 +242,15 @@ fn build(
         Some(t) => t,
         None => &mut (),
     };
-    let compiled = match pipeline::compile_for(&source, machine, obs) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_USAGE;
-        }
-    };
-    print_diags(&compiled.diagnostics, file, &source, color);
+    let compiled =
+        match pipeline::compile_for(&source, machine, &mut progress::Both(obs, &mut progress)) {
+            Ok(c) => c,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return EXIT_USAGE;
+            }
+        };
+    progress.print(|| messages::print(&compiled.diagnostics, file, &source, color, format));
     let Some(program) = compiled.program else {
         return EXIT_PROGRAM;
     };
@@ -190,14 +264,15 @@ fn build(
             return EXIT_USAGE;
         }
     };
-    let inner: &mut dyn Observer = match clock.as_mut() {
+    let timed: &mut dyn Observer = match clock.as_mut() {
         Some(t) => t,
         None => &mut (),
     };
+    let mut inner = progress::Both(timed, &mut progress);
     // pipeline::emit reports a stage after each machine: the files created
     // by then are that machine's set.
     let mut marks = Marks {
-        inner,
+        inner: &mut inner,
         count: sink.counter(),
         at: Vec::new(),
     };
@@ -221,6 +296,7 @@ fn build(
         let end = sink.counter().get();
         sink.end_set(key(Some(names.join(","))), end);
     }
+    drop(marks);
     match emitted {
         Ok(()) => {}
         Err(EmitError::Template(e)) => {
@@ -261,6 +337,7 @@ fn build(
             return EXIT_USAGE;
         }
     };
+    progress.finish();
     if let Some(t) = clock.as_mut() {
         t.stage("write");
         t.set_points(program.ir().point_count());
@@ -324,12 +401,4 @@ impl Observer for Marks<'_> {
         self.at.push(self.count.get());
         self.inner.stage(name);
     }
-}
-
-fn print_diags(d: &Diagnostics, file: &Path, source: &str, color: bool) {
-    if d.is_empty() {
-        return;
-    }
-    let name = file.display().to_string();
-    eprint!("{}", render(d, &name, source, color));
 }

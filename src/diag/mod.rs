@@ -3,6 +3,7 @@
 //! raised; [`Code`] lists every code (and generates `docs/diagnostics.md`).
 
 mod code;
+pub mod json;
 
 use crate::span::Span;
 pub use code::{Code, Group};

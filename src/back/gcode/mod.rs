@@ -45,7 +45,11 @@ pub fn emit(
         Kinematics::Xyz => None,
     };
     let file = gcode_file(&prog.part, cnc);
-    let base = base_context(prog, cnc, kin, &file);
+    let mut base = base_context(prog, cnc, kin, &file);
+    base.insert(
+        "summary",
+        &comment_safe(&crate::report::summary(m), cnc.dialect.comment),
+    );
 
     // Rendered before the file is created, so a broken template leaves no file.
     let mut ctx = base.clone();

@@ -56,7 +56,8 @@ pub fn emit(
 ) -> Result<(), EmitError> {
     let prog = m.ir();
     let names = names(m, robot);
-    let base = base_context(prog, robot, &names.stem);
+    let mut base = base_context(prog, robot, &names.stem);
+    base.insert("summary", &comment_safe(&crate::report::summary(m)));
 
     // Rendered first, so a broken template leaves no file.
     let mut main_ctx = base.clone();

@@ -1,0 +1,81 @@
+//! `lmdc preview`: compiles like `check` and writes the plan preview of one
+//! machine as a single HTML file (docs/preview.md).
+
+use super::messages::{self, MessageFormat};
+use super::progress::Progress;
+use super::{read_source, shown, EXIT_PROGRAM, EXIT_USAGE};
+use lmdc::pipeline;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Runs `lmdc preview`; returns the exit code.
+pub fn run(
+    file: &Path,
+    machine: Option<&str>,
+    out: Option<&Path>,
+    color: bool,
+    format: MessageFormat,
+    mut progress: Progress,
+) -> u8 {
+    let Some(source) = read_source(file) else {
+        return EXIT_USAGE;
+    };
+    let compiled = match pipeline::compile_for(&source, machine, &mut progress) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_USAGE;
+        }
+    };
+    progress.print(|| messages::print(&compiled.diagnostics, file, &source, color, format));
+    let Some(program) = compiled.program else {
+        return EXIT_PROGRAM;
+    };
+    // The first machine checked: the one named, else the first declared.
+    let Some(m) = program.machines().next() else {
+        eprintln!("error: the file declares no machine whose plan could be shown");
+        return EXIT_PROGRAM;
+    };
+    let page = lmdc::preview::html(m);
+    progress.finish();
+    let path: PathBuf = match out {
+        Some(p) => p.to_path_buf(),
+        None => Path::new("out").join(format!(
+            "{}.preview.html",
+            lmdc::target::names::windows_safe(&lmdc::back::identifier(&program.ir().part, 64))
+        )),
+    };
+    match write_atomically(&path, page.as_bytes()) {
+        Ok(()) => {
+            eprintln!("wrote {}", shown(&path));
+            0
+        }
+        Err(e) => {
+            eprintln!("error: writing {}: {e}", shown(&path));
+            EXIT_USAGE
+        }
+    }
+}
+
+/// Writes `bytes` to a temporary file beside `path` and renames it into
+/// place: a reader never sees half a page.
+fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    std::fs::create_dir_all(dir)?;
+    let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
+    tmp.write_all(bytes)?;
+    tmp.flush()?;
+    // A page to open and share: readable as any file the user writes
+    // (temporary files start private).
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(0o644))?;
+    }
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}

@@ -1,0 +1,217 @@
+//! The page's data: the kept moves as columns of little-endian integers,
+//! base64 in a JSON object the viewer reads. Positions are 16-bit fractions
+//! of the plan's bounding box (a 300 mm part to 5 µm), speed, height and power
+//! 16-bit fractions of their ranges over the deposits: 14 bytes a move
+//! instead of 40 as floats, and no float formatting to make the bytes
+//! depend on.
+
+use super::Decimation;
+use crate::ir::Style;
+use serde::Serialize;
+
+/// One kept move.
+pub struct Row {
+    /// Tool tip target, mm.
+    pub pos: [f64; 3],
+    /// Speed, mm/s (rapids at the machine's max).
+    pub speed: f32,
+    /// Layer height at the deposit, mm (0 off deposits).
+    pub height: f32,
+    /// Laser power, W (0 off deposits).
+    pub power: f32,
+    /// Style id.
+    pub style: u16,
+    /// Laser on.
+    pub deposit: bool,
+    /// No line leads to this move (layers between were left out).
+    pub gap: bool,
+}
+
+/// A column's value of a move.
+type Field = fn(&Row) -> f64;
+
+/// The kept moves, column by column.
+#[derive(Default)]
+pub struct Columns {
+    rows: Vec<Row>,
+}
+
+/// What the viewer is told besides the moves.
+#[derive(Serialize)]
+pub struct Meta<'a> {
+    /// Part name.
+    pub part: &'a str,
+    /// Machine name.
+    pub machine: &'a str,
+    /// Layers of the plan.
+    pub layers: usize,
+    /// Points of the IR.
+    pub points: usize,
+    /// Moves of the plan.
+    pub moves: usize,
+    /// Moves on the page.
+    pub kept: usize,
+    /// How they were chosen.
+    #[serde(serialize_with = "strides")]
+    pub decimation: Decimation,
+    /// `(layer number, first move)` of each layer on the page.
+    pub starts: &'a [(usize, usize)],
+    /// The style table.
+    pub styles: &'a [Style],
+    /// Who wrote the page.
+    pub generator: &'static str,
+}
+
+fn strides<S: serde::Serializer>(d: &Decimation, s: S) -> Result<S::Ok, S::Error> {
+    [d.layers, d.moves].serialize(s)
+}
+
+#[derive(Serialize)]
+struct Data<'a> {
+    meta: &'a Meta<'a>,
+    /// `[min, max]` of x, y, z, speed, height, power.
+    ranges: [[f64; 2]; 6],
+    x: String,
+    y: String,
+    z: String,
+    speed: String,
+    height: String,
+    power: String,
+    style: String,
+    flags: String,
+}
+
+impl Columns {
+    /// Adds a move.
+    pub fn push(&mut self, r: Row) {
+        self.rows.push(r);
+    }
+
+    /// Moves so far.
+    pub fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    /// The JSON object the page's viewer reads (safe inside `<script>`).
+    pub fn encode(&self, meta: &Meta<'_>) -> String {
+        let range = |f: Field, deposits: bool| {
+            let mut r = [f64::INFINITY, f64::NEG_INFINITY];
+            for row in self.rows.iter().filter(|r| r.deposit || !deposits) {
+                let v = f(row);
+                if v.is_finite() {
+                    r = [r[0].min(v), r[1].max(v)];
+                }
+            }
+            if r[0] > r[1] {
+                [0.0, 0.0]
+            } else {
+                r
+            }
+        };
+        // Each column's value, and whether its range is the deposits' only.
+        let fields: [(Field, bool); 6] = [
+            (|r| r.pos[0], false),
+            (|r| r.pos[1], false),
+            (|r| r.pos[2], false),
+            (|r| r.speed as f64, true),
+            (|r| r.height as f64, true),
+            (|r| r.power as f64, true),
+        ];
+        let ranges = fields.map(|(f, d)| range(f, d));
+        let column = |k: usize| {
+            let [lo, hi] = ranges[k];
+            let f = fields[k].0;
+            let mut bytes = Vec::with_capacity(self.rows.len() * 2);
+            for r in &self.rows {
+                bytes.extend_from_slice(&quantise(f(r), lo, hi).to_le_bytes());
+            }
+            base64(&bytes)
+        };
+        let data = Data {
+            meta,
+            ranges,
+            x: column(0),
+            y: column(1),
+            z: column(2),
+            speed: column(3),
+            height: column(4),
+            power: column(5),
+            style: base64(
+                &self
+                    .rows
+                    .iter()
+                    .map(|r| r.style.min(255) as u8)
+                    .collect::<Vec<_>>(),
+            ),
+            flags: base64(
+                &self
+                    .rows
+                    .iter()
+                    .map(|r| r.deposit as u8 | (r.gap as u8) << 1)
+                    .collect::<Vec<_>>(),
+            ),
+        };
+        // '<' only occurs inside JSON strings, where \u003c means the same:
+        // no name can close the script element.
+        serde_json::to_string(&data)
+            .unwrap_or_else(|_| "{}".into())
+            .replace('<', "\\u003c")
+    }
+}
+
+/// `v` as a 16-bit fraction of `[lo, hi]` (0 outside, or for a flat range).
+fn quantise(v: f64, lo: f64, hi: f64) -> u16 {
+    if !(v.is_finite() && hi > lo) {
+        return 0;
+    }
+    ((v - lo) / (hi - lo) * 65535.0).round().clamp(0.0, 65535.0) as u16
+}
+
+/// Standard base64 with padding.
+pub fn base64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for c in bytes.chunks(3) {
+        let n = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
+        for (i, shift) in [18, 12, 6, 0].into_iter().enumerate() {
+            if i <= c.len() {
+                out.push(A[(n >> shift & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+/// `text` safe inside HTML text.
+pub fn escape_html(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_as_the_rfc_says() {
+        assert_eq!(base64(b""), "");
+        assert_eq!(base64(b"f"), "Zg==");
+        assert_eq!(base64(b"fo"), "Zm8=");
+        assert_eq!(base64(b"foo"), "Zm9v");
+        assert_eq!(base64(b"foobar"), "Zm9vYmFy");
+    }
+
+    #[test]
+    fn quantised_ends_and_flat_ranges() {
+        assert_eq!(quantise(1.0, 1.0, 3.0), 0);
+        assert_eq!(quantise(3.0, 1.0, 3.0), 65535);
+        assert_eq!(quantise(2.0, 2.0, 2.0), 0);
+        assert_eq!(quantise(f64::NAN, 0.0, 1.0), 0);
+    }
+}

@@ -1,0 +1,235 @@
+//! The report as text: a table of the layers, then the totals in words.
+//! Numbers are rounded for people; `--json` keeps them whole.
+
+use super::{Design, Report, Tally};
+use std::fmt::Write;
+
+/// A length in m (mm below a metre).
+pub fn length(mm: f64) -> String {
+    if mm.abs() < 1000.0 {
+        format!("{mm:.1} mm")
+    } else {
+        format!("{:.2} m", mm / 1000.0)
+    }
+}
+
+/// A duration as `2 h 26 min`, `4 min 12 s` or `12.3 s`.
+pub fn duration(s: f64) -> String {
+    if !s.is_finite() || s < 60.0 {
+        return format!("{:.1} s", if s.is_finite() { s } else { 0.0 });
+    }
+    let whole = s.round() as u64;
+    let (h, m, sec) = (whole / 3600, whole / 60 % 60, whole % 60);
+    if h > 0 {
+        format!("{h} h {m} min")
+    } else {
+        format!("{m} min {sec} s")
+    }
+}
+
+/// A duration as `h:mm:ss.s` for the table.
+fn clock(s: f64) -> String {
+    let s = if s.is_finite() { s.max(0.0) } else { 0.0 };
+    let tenths = (s * 10.0).round() as u64;
+    let (h, m, sec, t) = (
+        tenths / 36_000,
+        tenths / 600 % 60,
+        tenths / 10 % 60,
+        tenths % 10,
+    );
+    format!("{h}:{m:02}:{sec:02}.{t}")
+}
+
+/// An energy in kJ or MJ.
+pub fn energy(j: f64) -> String {
+    if j.abs() < 1e6 {
+        format!("{:.1} kJ", j / 1e3)
+    } else {
+        format!("{:.2} MJ", j / 1e6)
+    }
+}
+
+/// A mass in g or kg.
+pub fn mass(g: f64) -> String {
+    if g.abs() < 10.0 {
+        format!("{g:.2} g")
+    } else if g.abs() < 1000.0 {
+        format!("{g:.1} g")
+    } else {
+        format!("{:.3} kg", g / 1000.0)
+    }
+}
+
+fn volume(mm3: f64) -> String {
+    if mm3.abs() < 1000.0 {
+        format!("{mm3:.1} mm³")
+    } else {
+        format!("{:.1} cm³", mm3 / 1000.0)
+    }
+}
+
+fn percent(x: f64) -> String {
+    format!("{:.1} %", x * 100.0)
+}
+
+fn row(out: &mut String, label: &str, t: &Tally, volumes: bool) {
+    let _ = write!(
+        out,
+        "{label:>6} {:>10.3} {:>9.3} {:>11} {:>11} {:>10.1} {:>9.2}",
+        t.deposit_mm / 1000.0,
+        t.travel_mm / 1000.0,
+        clock(t.time_s()),
+        clock(t.laser_on_s),
+        t.energy_j / 1000.0,
+        t.powder_g,
+    );
+    if volumes {
+        let _ = write!(
+            out,
+            " {:>9.2} {:>11.2}",
+            t.bead_volume_mm3 / 1000.0,
+            t.stacked_volume_mm3 / 1000.0
+        );
+    }
+    out.push('\n');
+}
+
+/// The whole report as text.
+pub fn render(r: &Report) -> String {
+    let mut out = String::new();
+    let volumes = r.bead.is_some();
+    let n = r.layers.len();
+    let _ = writeln!(
+        out,
+        "{} on {}: {} layer{} (moves at their programmed speeds, rapids at {} mm/s; accelerations not modelled)\n",
+        r.part,
+        r.machine,
+        n,
+        if n == 1 { "" } else { "s" },
+        crate::back::fixed::trimmed(r.rapid_mm_s, 3)
+    );
+    let _ = write!(
+        out,
+        "{:>6} {:>10} {:>9} {:>11} {:>11} {:>10} {:>9}",
+        "layer", "deposit m", "travel m", "time", "laser on", "energy kJ", "powder g"
+    );
+    if volumes {
+        let _ = write!(out, " {:>9} {:>11}", "bead cm³", "stacked cm³");
+    }
+    out.push('\n');
+    for l in &r.layers {
+        row(&mut out, &l.layer.to_string(), &l.tally, volumes);
+    }
+    row(&mut out, "total", &r.total, volumes);
+    out.push('\n');
+    let t = &r.total;
+    let _ = writeln!(
+        out,
+        "time        {} (motion {}, dwell {})",
+        duration(t.time_s()),
+        duration(t.motion_s),
+        duration(t.dwell_s)
+    );
+    let _ = writeln!(
+        out,
+        "length      {} deposited, {} travel",
+        length(t.deposit_mm),
+        length(t.travel_mm)
+    );
+    let mean = if t.laser_on_s > 0.0 {
+        format!(", mean power {:.0} W", t.energy_j / t.laser_on_s)
+    } else {
+        String::new()
+    };
+    let _ = writeln!(
+        out,
+        "laser on    {}; energy {}{mean}",
+        duration(t.laser_on_s),
+        energy(t.energy_j)
+    );
+    let _ = writeln!(
+        out,
+        "powder fed  {} (while the laser is on)",
+        mass(t.powder_g)
+    );
+    let Some(bead) = &r.bead else {
+        return out;
+    };
+    let density = r
+        .density_g_cm3
+        .map(|d| format!(" at {} g/cm³", crate::back::fixed::trimmed(d, 3)));
+    let mut line = format!(
+        "bead model  lays {} (bead {} mm wide, {})",
+        volume(t.bead_volume_mm3),
+        crate::back::fixed::trimmed(bead.width_mm, 3),
+        bead.spacing
+    );
+    if let (Some(m), Some(d)) = (r.bead_mass_g, &density) {
+        let _ = write!(line, " = {}{d}", mass(m));
+    }
+    if let Some(e) = r.bead_efficiency {
+        let _ = write!(line, ": {} of the powder caught", percent(e));
+    }
+    if let Some(e) = bead.declared_efficiency {
+        let _ = write!(line, " (the model declares {})", percent(e));
+    }
+    let _ = writeln!(out, "{line}");
+    let _ = writeln!(
+        out,
+        "stacked     the layers rise as planned if they hold {} (height × track spacing): {} of the bead model's",
+        volume(t.stacked_volume_mm3),
+        ratio(t.stacked_volume_mm3, t.bead_volume_mm3)
+    );
+    match &r.design {
+        Some(Design::Known { volume_mm3, what }) => {
+            let mut line = format!(
+                "design      {} ({what}): the bead model lays {} of it, the layers stack {}",
+                volume(*volume_mm3),
+                ratio(t.bead_volume_mm3, *volume_mm3),
+                ratio(t.stacked_volume_mm3, *volume_mm3)
+            );
+            if let (Some(m), Some(e)) = (r.design_mass_g, r.design_efficiency) {
+                let _ = write!(
+                    line,
+                    "; {} needs {} of the powder caught",
+                    mass(m),
+                    percent(e)
+                );
+            }
+            let _ = writeln!(out, "{line}");
+        }
+        Some(Design::Unknown { why }) => {
+            let _ = writeln!(out, "design      volume not known: {why}");
+        }
+        None => {}
+    }
+    if r.density_g_cm3.is_none() {
+        let _ = writeln!(
+            out,
+            "mass        the bead model declares no density: give one with --density (g/cm³)"
+        );
+    }
+    out
+}
+
+fn ratio(a: f64, b: f64) -> String {
+    if b > 0.0 {
+        percent(a / b)
+    } else {
+        "—".into()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn durations_read_as_people_say_them() {
+        assert_eq!(duration(12.34), "12.3 s");
+        assert_eq!(duration(252.0), "4 min 12 s");
+        assert_eq!(duration(8772.0), "2 h 26 min");
+        assert_eq!(clock(3725.06), "1:02:05.1");
+        assert_eq!(duration(f64::NAN), "0.0 s");
+    }
+}
