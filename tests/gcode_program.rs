@@ -505,6 +505,7 @@ fn golden_five_axis_program() {
         (bent_tube_mill5: part bent tube on machine mill5, written by lmdc 0.1.0)
         (profile linuxcnc, kinematics head_ac, axes X Y Z A C)
         (2 layers, 3 paths, 11 points)
+        (plan: 226.3 mm deposited, 62.7 mm travel; 42.8 s, laser on 40.1 s, dwell 0.0 s; 119.8 kJ; powder 30.7 g)
         (units: mm, deg, F mm/min, S = 1 per W)
         (X Y Z: tool tip = laser focus; A C: nozzle along the layer normal; clearance 10 mm)
         G21 G90 G94 G17
@@ -541,6 +542,7 @@ fn golden_planar_program() {
         (planar_block_mill3: part planar block on machine mill3, written by lmdc 0.1.0)
         (profile linuxcnc, kinematics xyz, axes X Y Z)
         (1 layer, 3 paths, 11 points)
+        (plan: 110.5 mm deposited, 71.1 mm travel; 19.7 s, laser on 16.1 s, dwell 0.0 s; 24.7 kJ; powder 2.15 g)
         (units: mm, deg, F mm/min, S = 1 per W)
         (X Y Z: tool tip = laser focus; clearance 10 mm)
         G21 G90 G94 G17

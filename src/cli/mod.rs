@@ -178,16 +178,15 @@ pub fn run(cli: Cli) -> u8 {
             timings,
         } => {
             let p = progress(&file);
-            build(
-                &file,
-                &out,
-                machine.as_deref(),
-                &emit,
-                templates.as_deref(),
+            let args = BuildArgs {
+                file: &file,
+                out: &out,
+                machine: machine.as_deref(),
+                emit: &emit,
+                templates: templates.as_deref(),
                 timings,
-                (color, format),
-                p,
-            )
+            };
+            build(args, (color, format), p)
         }
         Command::Report {
             file,
@@ -211,16 +210,29 @@ pub fn run(cli: Cli) -> u8 {
     }
 }
 
-fn build(
-    file: &Path,
-    out: &Path,
-    machine: Option<&str>,
-    emit: &[Emit],
-    templates: Option<&Path>,
+/// What `lmdc build` was asked for.
+struct BuildArgs<'a> {
+    file: &'a Path,
+    out: &'a Path,
+    machine: Option<&'a str>,
+    emit: &'a [Emit],
+    templates: Option<&'a Path>,
     timings: bool,
+}
+
+fn build(
+    args: BuildArgs<'_>,
     (color, format): (bool, MessageFormat),
     mut progress: Progress,
 ) -> u8 {
+    let BuildArgs {
+        file,
+        out,
+        machine,
+        emit,
+        templates,
+        timings,
+    } = args;
     let templates = match Templates::load(templates) {
         Ok(t) => t,
         Err(e) => {

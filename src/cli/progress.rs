@@ -137,9 +137,16 @@ fn draw(shared: &(Mutex<State>, Condvar)) {
     let mut turn = 0usize;
     let mut s = shared.0.lock().unwrap_or_else(|e| e.into_inner());
     loop {
+        // The first line comes as soon as the delay is over (at once with a
+        // delay of 0, so a quick run still shows it), then every tick.
+        let wait = after.saturating_sub(start.elapsed()).max(if turn == 0 {
+            Duration::ZERO
+        } else {
+            TICK
+        });
         s = shared
             .1
-            .wait_timeout(s, TICK)
+            .wait_timeout(s, wait)
             .unwrap_or_else(|e| e.into_inner())
             .0;
         let mut err = std::io::stderr();
