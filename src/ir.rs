@@ -16,7 +16,23 @@ pub const FORMAT: &str = "lmdc-ir";
 /// checked against across the normal; a path may climb along the normal
 /// (`tangent` then leaves the layer plane); a variable layer's `frame` is the
 /// world frame and its `station` is `i/N`. Version 1 files read the same.
-pub const VERSION: u32 = 2;
+pub const VERSION: u32 = 3;
+
+/// The version of a plan that switches no gas or powder: 2, which such a plan
+/// reads the same in. Version 3 adds the machines' `cell` (gas and powder
+/// switching): a reader that ignored it would run the laser without powder or
+/// shielding gas, so lmdc writes 3 only when a machine has one ([`version_for`]).
+pub const VERSION_WITHOUT_CELL: u32 = 2;
+
+/// The lowest version that holds a plan: [`VERSION`] when a machine switches
+/// gas or powder, else [`VERSION_WITHOUT_CELL`].
+pub fn version_for(machines: &[Machine]) -> u32 {
+    if machines.iter().any(|m| !m.cell().is_none()) {
+        VERSION
+    } else {
+        VERSION_WITHOUT_CELL
+    }
+}
 
 /// A whole compiled plan.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -225,6 +241,14 @@ impl Machine {
             Machine::Cnc(c) => &c.name,
         }
     }
+
+    /// The gas and powder it switches.
+    pub fn cell(&self) -> &Cell {
+        match self {
+            Machine::Robot(r) => &r.cell,
+            Machine::Cnc(c) => &c.cell,
+        }
+    }
 }
 
 /// A pose `X Y Z A B C` (mm, deg; KUKA ZYX Euler: R = Rz(A)·Ry(B)·Rx(C)).
@@ -298,6 +322,73 @@ pub struct Robot {
     /// Distance the nozzle backs off along the normal between paths that do not
     /// join, mm.
     pub clearance: f64,
+    /// The cell's shielding gas and powder feeder, if the program switches them.
+    #[serde(default, skip_serializing_if = "Cell::is_none")]
+    pub cell: Cell,
+}
+
+/// The cell's shielding gas and powder feeder as a machine switches them
+/// (`gas { … }` and `powder { … }` in a machine block). The motion plan places
+/// the switching ([`crate::plan::Io`]); the back ends write it.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct Cell {
+    /// The shielding gas valve.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gas: Option<Gas>,
+    /// The powder feeder.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub powder: Option<Feeder>,
+    /// G-code only: the line that switches digital output `{n}` on ...
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub output_on: String,
+    /// ... and off ...
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub output_off: String,
+    /// ... and the line that sets analog output `{n}` to `{v}` (a fraction of
+    /// its full scale).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub analog_output: String,
+}
+
+impl Cell {
+    /// Whether the program switches neither gas nor powder.
+    pub fn is_none(&self) -> bool {
+        self.gas.is_none() && self.powder.is_none()
+    }
+}
+
+/// A shielding gas valve on a digital output.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Gas {
+    /// The output that opens it (`$OUT[n]`; G-code: the output line's `{n}`).
+    pub output: u16,
+    /// How long the gas flows before the laser first starts, s.
+    pub pre_flow: f64,
+    /// How long it flows on after the laser last stops, s.
+    pub post_flow: f64,
+}
+
+/// A powder feeder on a digital output, with its rate on an analog one where
+/// the cell has it.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Feeder {
+    /// The output that starts it.
+    pub output: u16,
+    /// Time from starting it (or changing its rate) until the powder arrives
+    /// at the nozzle, s.
+    pub arrival: f64,
+    /// The analog output that sets the feed rate, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rate: Option<RateOutput>,
+}
+
+/// An analog output that sets the powder feed rate.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct RateOutput {
+    /// `$ANOUT[n]`; G-code: the analog line's `{n}`.
+    pub output: u16,
+    /// The feed rate at 1.0, g/min.
+    pub full_scale: f64,
 }
 
 /// How a CNC's axes move the nozzle relative to the part.
@@ -412,6 +503,9 @@ pub struct Cnc {
     /// Distance the nozzle backs off along the normal between paths that do not
     /// join, mm.
     pub clearance: f64,
+    /// The cell's shielding gas and powder feeder, if the program switches them.
+    #[serde(default, skip_serializing_if = "Cell::is_none")]
+    pub cell: Cell,
 }
 
 /// Where a part sits on a CNC: the program is written in part coordinates

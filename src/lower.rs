@@ -2,7 +2,7 @@
 //! limits, machines and the source spans the IR checks report at.
 
 use crate::diag::Diagnostics;
-use crate::ir::{Limits, Origins, Program, Style, Units, FORMAT, VERSION};
+use crate::ir::{version_for, Limits, Origins, Program, Style, Units, FORMAT};
 use crate::sema::model::{Model, Plan};
 use crate::slice;
 
@@ -11,9 +11,10 @@ use crate::slice;
 pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
     let (layers, warnings) = slice::slice(model)?;
     let bead = &model.bead;
+    let machines: Vec<_> = model.machines.iter().map(|(m, _)| m.clone()).collect();
     let program = Program {
         format: FORMAT.into(),
-        version: VERSION,
+        version: version_for(&machines),
         part: model.part.clone(),
         units: Units::default(),
         limits: Limits {
@@ -25,7 +26,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             ],
             bead_width: bead.width.0,
         },
-        machines: model.machines.iter().map(|(m, _)| m.clone()).collect(),
+        machines,
         styles: model
             .styles
             .table

@@ -164,7 +164,7 @@ fn machine_selection_and_ir() {
     let ir: serde_json::Value =
         serde_json::from_slice(&std::fs::read(d.join("twisted_duct.ir.json")).unwrap()).unwrap();
     assert_eq!(ir["format"], "lmdc-ir");
-    assert_eq!(ir["version"], lmdc::ir::VERSION);
+    assert_eq!(ir["version"], lmdc::ir::VERSION_WITHOUT_CELL);
     assert_eq!(ir["part"], "twisted_duct");
     assert_eq!(ir["units"]["speed"], "mm/s");
     let layer = &ir["layers"][3];

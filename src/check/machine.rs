@@ -6,12 +6,13 @@
 //! Limits are compared with the value as the program writes it, exactly (no
 //! slack): what the control reads must lie within what was declared.
 
+use super::cell::CellRule;
 use super::resolution::Resolution;
 use super::worst::{plural, Worst};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::{AxisLimits, Cnc, Kinematics, Layer, Machine, MachineOrigin, Program, Robot};
 use crate::plan::kinematics::tilt_of;
-use crate::plan::{effective_kinematics, Move, Plan, Speed, Visit, Where};
+use crate::plan::{effective_kinematics, Io, Move, Plan, Speed, Visit, Where};
 use crate::span::Span;
 use crate::target::{gcode, kuka, written as rounded};
 use crate::units::short;
@@ -351,12 +352,15 @@ pub(super) struct MachineRules<'m> {
     tilt: Option<Tilt>,
     analog: Option<Analog>,
     resolution: Resolution,
+    /// Gas and powder timing, when the machine switches them.
+    cell: Option<CellRule<'m>>,
     /// Moves in the plan (a KRL program has one LIN per move).
     pub moves: u64,
 }
 
 impl<'m> MachineRules<'m> {
-    pub fn new(machine: &'m Machine) -> Self {
+    pub fn new(program: &'m Program, machine: &'m Machine) -> Self {
+        let cell = CellRule::new(program, machine.cell());
         match machine {
             Machine::Robot(r) => MachineRules {
                 machine,
@@ -372,6 +376,7 @@ impl<'m> MachineRules<'m> {
                     found: None,
                 }),
                 resolution: Resolution::new(),
+                cell,
                 moves: 0,
             },
             Machine::Cnc(c) => {
@@ -397,6 +402,7 @@ impl<'m> MachineRules<'m> {
                     }),
                     analog: None,
                     resolution: Resolution::new(),
+                    cell,
                     moves: 0,
                 }
             }
@@ -423,11 +429,32 @@ impl<'m> MachineRules<'m> {
         }
         self.resolution
             .report(self.machine, origin, o.bead_speed, out);
+        if let Some(c) = self.cell {
+            c.report(name, origin, out);
+        }
     }
 }
 
 impl Visit for MachineRules<'_> {
     fn layer(&mut self, _: usize, _: &Layer) {}
+
+    fn laser_on(&mut self, next: &Move) {
+        if let Some(c) = &mut self.cell {
+            c.laser_on(next);
+        }
+    }
+
+    fn dwell(&mut self, seconds: f64) {
+        if let Some(c) = &mut self.cell {
+            c.dwell(seconds);
+        }
+    }
+
+    fn io(&mut self, event: Io) {
+        if let Some(c) = &mut self.cell {
+            c.io(event);
+        }
+    }
 
     #[inline]
     fn motion(&mut self, m: &Move) {
@@ -443,5 +470,8 @@ impl Visit for MachineRules<'_> {
             a.motion(m);
         }
         self.resolution.motion(m, self.machine);
+        if let Some(c) = &mut self.cell {
+            c.motion(m);
+        }
     }
 }

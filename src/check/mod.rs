@@ -10,6 +10,7 @@
 //! output) and the file names the machines would write (`names`). The machine
 //! rules run whatever the process rules found, so one run reports everything.
 
+mod cell;
 mod machine;
 mod names;
 mod process;
@@ -114,7 +115,7 @@ fn machine_rules(p: &Program, i: usize) -> (Diagnostics, Option<(usize, Vec<Stri
     let Some(m) = p.machines.get(i) else {
         return (d, None);
     };
-    let mut rules = machine::MachineRules::new(m);
+    let mut rules = machine::MachineRules::new(p, m);
     rules.run(p);
     let moves = rules.moves;
     let origin = p.origins.machines.get(i).cloned().unwrap_or_default();

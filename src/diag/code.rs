@@ -259,6 +259,14 @@ codes! {
         "two machines whose names differ only in characters a file name drops (`m 1`, `m_1`) would write the same file";
     AnalogRange = "analog-range", Machines,
         "the laser power would need `$ANOUT` outside −1…1 for the robot's `full_scale`";
+    OutputClash = "output-clash", Machines,
+        "two things a machine switches (laser, gas valve, powder feeder, power or feed-rate analog output) declared on the same output";
+    IoDialect = "io-dialect", Machines,
+        "gas or powder declared on a CNC whose dialect has no built-in output line (only LinuxCNC's `M64`/`M65`/`M68` are): give `output_on`, `output_off` (and `analog_output`)";
+    PowderArrival = "powder-arrival", Machines,
+        "the laser would start before the gas has flowed its `pre_flow` or the powder has had its `arrival` time since the feeder started or changed rate";
+    PowderRate = "powder-rate", Machines,
+        "a powder feed the feeder's analog rate output cannot write: beyond its `full_scale`, or changing inside a path where the rate cannot follow";
 
     ShortTrack = "short-track", Warnings,
         "planar tracks shorter than the bead width (they overheat and pile up); counts them and names the first layer";

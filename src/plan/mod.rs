@@ -44,7 +44,7 @@
 
 pub mod kinematics;
 
-use crate::ir::{AxisLimits, Kinematics, Layer, Machine, Point, Program};
+use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program};
 use kinematics::Rotary;
 
 /// A path joins the previous one when it starts within this distance (mm) of
@@ -165,6 +165,22 @@ impl Move {
     }
 }
 
+/// A switching event of the cell's gas or powder (`Machine::cell`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Io {
+    /// Open the shielding gas.
+    GasOn,
+    /// Close it.
+    GasOff,
+    /// Start the powder feeder; with a rate output, at this rate (g/min),
+    /// set first.
+    PowderOn(f32),
+    /// Set the feeder's rate output to this rate (g/min) while it runs.
+    PowderRate(f32),
+    /// Stop the feeder.
+    PowderOff,
+}
+
 /// What follows the plan: a verifier rule or a back end's writer.
 pub trait Visit {
     /// Layer `number` (0-based) begins; its moves follow.
@@ -175,8 +191,11 @@ pub trait Visit {
     fn laser_off(&mut self) {}
     /// A move.
     fn motion(&mut self, m: &Move);
-    /// Wait here for `seconds` (laser off, nozzle retracted): a layer cools.
+    /// Wait here for `seconds`, standing still with the laser off: a layer
+    /// cools, or gas and powder settle.
     fn dwell(&mut self, _seconds: f64) {}
+    /// Switch the cell's gas or powder here, with the laser off.
+    fn io(&mut self, _event: Io) {}
 }
 
 /// How a machine moves, as far as the plan is concerned.
@@ -196,6 +215,7 @@ pub struct Plan<'a> {
     program: &'a Program,
     head: Head,
     clearance: f64,
+    cell: &'a Cell,
 }
 
 /// The kinematics a CNC program is written for: a machine declared with fewer
@@ -210,7 +230,7 @@ pub fn effective_kinematics(cnc: &crate::ir::Cnc) -> Kinematics {
 
 impl<'a> Plan<'a> {
     /// The plan of `machine` for `program`.
-    pub fn new(program: &'a Program, machine: &Machine) -> Self {
+    pub fn new(program: &'a Program, machine: &'a Machine) -> Self {
         let (head, clearance) = match machine {
             Machine::Robot(r) => (Head::Free, r.clearance),
             Machine::Cnc(c) => match effective_kinematics(c) {
@@ -222,6 +242,7 @@ impl<'a> Plan<'a> {
             program,
             head,
             clearance,
+            cell: machine.cell(),
         }
     }
 
@@ -241,6 +262,8 @@ impl<'a> Plan<'a> {
             at: None,
             layer_time: 0.0,
             timed: !self.program.heat.is_none(),
+            gas: false,
+            powder: None,
         };
         for (li, layer) in self.program.layers.iter().enumerate() {
             w.switch_off();
@@ -291,6 +314,15 @@ struct Walker<'p, 'a, V> {
     layer_time: f64,
     /// Whether layers are timed (only for cooling).
     timed: bool,
+    /// Whether the gas flows.
+    gas: bool,
+    /// The powder feeder's rate while it runs (g/min).
+    powder: Option<f32>,
+}
+
+/// Powder rates that print the same (they come from the same declaration).
+fn same_rate(a: f32, b: f32) -> bool {
+    (a - b).abs() <= 1e-4 * a.abs().max(b.abs())
 }
 
 fn f64s(n: [f32; 3]) -> [f64; 3] {
@@ -348,7 +380,14 @@ impl<V: Visit> Walker<'_, '_, V> {
         let first = &pts[0];
         let mut cur = match self.cursor {
             Some(c) if !first_in_layer && joins(c.focus, c.normal, first) => c,
-            _ => self.transition(li, pi, first, pts.len() > 1 && first.laser_on),
+            _ => {
+                // The powder of the path's first deposit, for the cell.
+                let powder = pts[..pts.len() - 1]
+                    .iter()
+                    .find(|p| p.laser_on)
+                    .map(|p| p.powder);
+                self.transition(li, pi, first, pts.len() > 1 && first.laser_on, powder)
+            }
         };
         self.retracted = false;
         for (k, seg) in pts.windows(2).enumerate() {
@@ -359,6 +398,10 @@ impl<V: Visit> Walker<'_, '_, V> {
                 if let Head::Tilting(kin, _) = self.plan.head {
                     cur.axes = kinematics::follow(kin, f64s(to.normal), cur.axes);
                 }
+            }
+            if from.laser_on && !self.ready(from.powder) {
+                // A start after a gap inside a path, or a rate change there.
+                self.prepare(from.powder);
             }
             let (kind, speed) = if from.laser_on {
                 (MoveKind::Deposit, Speed::Feed(from.speed))
@@ -383,8 +426,16 @@ impl<V: Visit> Walker<'_, '_, V> {
         self.cursor = Some(cur);
     }
 
-    /// Retract, travel above `first`, approach. Returns the cursor at `first`.
-    fn transition(&mut self, li: usize, pi: usize, first: &Point, feed_in: bool) -> Cursor {
+    /// Retract, travel above `first`, get gas and powder ready for a path
+    /// that deposits at `powder` g/min, approach. Returns the cursor at `first`.
+    fn transition(
+        &mut self,
+        li: usize,
+        pi: usize,
+        first: &Point,
+        feed_in: bool,
+        powder: Option<f32>,
+    ) -> Cursor {
         let clearance = Where::Clearance {
             layer: li,
             path: pi,
@@ -409,6 +460,9 @@ impl<V: Visit> Walker<'_, '_, V> {
             power: first.power,
             at: clearance,
         });
+        if let Some(rate) = powder.filter(|&r| !self.ready(r)) {
+            self.prepare(rate);
+        }
         self.send(Move {
             kind: MoveKind::Approach,
             to: f0,
@@ -455,7 +509,59 @@ impl<V: Visit> Walker<'_, '_, V> {
             );
             self.retracted = true;
         }
-        self.v.dwell(wait);
+        // A feeder that would run longer than its arrival time for nothing
+        // stops; the next path's preparation waits the arrival time again,
+        // so the pause is as long as asked.
+        match (self.plan.cell.powder, self.powder) {
+            (Some(f), Some(_)) if wait > f.arrival => {
+                self.v.io(Io::PowderOff);
+                self.powder = None;
+                self.v.dwell(wait - f.arrival);
+            }
+            _ => self.v.dwell(wait),
+        }
+    }
+
+    /// Whether gas and powder are as a deposit at `powder` g/min needs them:
+    /// flowing, and at that rate where the feeder's rate is programmed.
+    fn ready(&self, powder: f32) -> bool {
+        let cell = self.plan.cell;
+        let gas = cell.gas.is_none() || self.gas;
+        let feed = match (cell.powder, self.powder) {
+            (None, _) => true,
+            (Some(_), None) => false,
+            (Some(f), Some(r)) => f.rate.is_none() || same_rate(r, powder),
+        };
+        gas && feed
+    }
+
+    /// Switches gas and powder on (or the powder to `powder` g/min) and
+    /// waits, standing, until both have arrived at the nozzle.
+    fn prepare(&mut self, powder: f32) {
+        let cell = self.plan.cell;
+        let mut wait = 0.0f64;
+        if let (Some(g), false) = (cell.gas, self.gas) {
+            self.v.io(Io::GasOn);
+            self.gas = true;
+            wait = wait.max(g.pre_flow);
+        }
+        if let Some(f) = cell.powder {
+            match self.powder {
+                None => {
+                    self.v.io(Io::PowderOn(powder));
+                    wait = wait.max(f.arrival);
+                }
+                Some(r) if f.rate.is_some() && !same_rate(r, powder) => {
+                    self.v.io(Io::PowderRate(powder));
+                    wait = wait.max(f.arrival);
+                }
+                Some(_) => {}
+            }
+            self.powder = Some(powder);
+        }
+        if wait > 0.0 {
+            self.v.dwell(wait);
+        }
     }
 
     fn retract(&mut self, c: Cursor, at: Where) {
@@ -476,6 +582,16 @@ impl<V: Visit> Walker<'_, '_, V> {
         self.switch_off();
         if let Some(c) = self.cursor.filter(|_| !self.retracted) {
             self.retract(c, Where::End);
+        }
+        if self.powder.take().is_some() {
+            self.v.io(Io::PowderOff);
+        }
+        if let (Some(g), true) = (self.plan.cell.gas, self.gas) {
+            if g.post_flow > 0.0 {
+                self.v.dwell(g.post_flow);
+            }
+            self.v.io(Io::GasOff);
+            self.gas = false;
         }
     }
 }

@@ -2,6 +2,7 @@
 //! A machine is plain data, so the checked declaration is already the IR's
 //! [`Machine`].
 
+use super::cell;
 use super::fields::{self, Fields};
 use super::program_text;
 use super::value::{Env, Value};
@@ -54,7 +55,15 @@ const CNC_FIELDS: &[&str] = &[
     "feed_units",
     "max_speed",
     "clearance",
+    "output_on",
+    "output_off",
+    "analog_output",
 ];
+
+/// Blocks a robot takes.
+const ROBOT_BLOCKS: &[&str] = &["gas", "powder"];
+/// Blocks a CNC takes.
+const CNC_BLOCKS: &[&str] = &["limits", "gas", "powder"];
 
 /// Axes a CNC's `limits { … }` block may bound.
 const LIMIT_AXES: &[&str] = &["x", "y", "z", "a", "b", "c"];
@@ -107,7 +116,7 @@ pub fn read<'a>(
             env,
             stmts,
             &all,
-            &["limits"],
+            CNC_BLOCKS,
             format!("machine `{name}`"),
             span,
             diags,
@@ -122,20 +131,39 @@ pub fn read<'a>(
             env,
             stmts,
             ROBOT_FIELDS,
-            &[],
+            ROBOT_BLOCKS,
             format!("robot `{name}`"),
             span,
             diags,
         );
         let mut at = Vec::new();
         spans(&f, ROBOT_FIELDS, "", &mut at);
-        robot(name, &f, diags).map(|r| (Machine::Robot(r), at))
+        let r = robot(name, &f, diags);
+        let taken: Vec<_> = r
+            .iter()
+            .flat_map(|r| {
+                [
+                    (r.laser_out as usize, false, "the laser", f.span("laser")),
+                    (
+                        r.power_out as usize,
+                        true,
+                        "the laser power",
+                        f.span("power_output"),
+                    ),
+                ]
+            })
+            .collect();
+        let c = cell::read(env, &f, cell::KUKA, None, &taken, diags);
+        let (mut r, c) = (r?, c?);
+        at.extend(c.spans);
+        r.cell = c.cell;
+        Some((Machine::Robot(r), at))
     } else {
         let f = Fields::block(
             env,
             stmts,
             CNC_FIELDS,
-            &["limits"],
+            CNC_BLOCKS,
             format!("CNC `{name}`"),
             span,
             diags,
@@ -152,7 +180,23 @@ pub fn read<'a>(
         if let Some(l) = &limits {
             spans(l, LIMIT_AXES, "limits.", &mut at);
         }
-        cnc(name, &f, limits.as_ref(), diags).map(|c| (Machine::Cnc(c), at))
+        let c = cnc(name, &f, limits.as_ref(), diags);
+        let profile = c
+            .as_ref()
+            .map_or("linuxcnc", |c| c.dialect.profile.as_str())
+            .to_string();
+        let outputs = if profile == "linuxcnc" {
+            cell::LINUXCNC
+        } else {
+            cell::OTHER_CNC
+        };
+        let lines = cell::cnc_lines(&f, &profile, diags);
+        let cell = cell::read(env, &f, outputs, lines.clone(), &[], diags);
+        let (mut c, cell) = (c?, cell?);
+        lines?;
+        at.extend(cell.spans);
+        c.cell = cell.cell;
+        Some((Machine::Cnc(c), at))
     }
 }
 
@@ -348,6 +392,7 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
         home: home?,
         max_points_per_module: lines?,
         clearance: clearance?,
+        cell: Default::default(),
     })
 }
 
@@ -556,6 +601,7 @@ fn cnc(
         placement: placement?,
         max_speed: vmax?.0,
         clearance: clearance?,
+        cell: Default::default(),
     })
 }
 

@@ -7,6 +7,7 @@
 //! (a wrong power does not hide a style's wrong speed).
 
 mod bead;
+mod cell;
 mod declare;
 mod extrude;
 mod fields;

@@ -15,6 +15,10 @@ pub fn f_decimals(feed: FeedUnit) -> usize {
     }
 }
 
+/// Decimals of an analog output's value (a fraction of full scale), as the
+/// powder feed rate is written: 1/10⁴, like KUKA's `$ANOUT`.
+pub const RATE_DECIMALS: usize = 4;
+
 /// Profile names.
 pub const PROFILES: &[&str] = &["linuxcnc", "fagor8070", "sinumerik840d", "m20"];
 

@@ -31,6 +31,7 @@ pub fn robot() -> Robot {
         home: [0.0, -90.0, 90.0, 0.0, 0.0, 0.0],
         max_points_per_module: 5000,
         clearance: 10.0,
+        cell: Cell::default(),
     }
 }
 
@@ -66,6 +67,7 @@ pub fn cnc5() -> Cnc {
         placement: Placement::default(),
         max_speed: 200.0,
         clearance: 10.0,
+        cell: Cell::default(),
     }
 }
 

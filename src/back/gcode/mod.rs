@@ -18,8 +18,9 @@ use super::context::{counts, layer_context, shown, styles};
 use super::fixed::trimmed;
 use super::{EmitError, Sink, Templates};
 use crate::check::VerifiedMachine;
-use crate::ir::{Cnc, Kinematics, Layer, Program};
-use crate::plan::{effective_kinematics, Move, Speed, Visit};
+use crate::ir::{Cell, Cnc, Kinematics, Layer, Program};
+use crate::plan::{effective_kinematics, Io, Move, Speed, Visit};
+use crate::target::gcode::RATE_DECIMALS;
 use crate::target::names::gcode_file;
 use dialect::{comment_safe, delimiters, Words};
 use writer::{Stats, Writer};
@@ -62,6 +63,8 @@ pub fn emit(
     let mut g = Motion {
         w: Writer::new(out, Words::new(&cnc.dialect), tilt_letter),
         dwell: &cnc.dialect.dwell,
+        cell: &cnc.cell,
+        comment: delimiters(cnc.dialect.comment),
         templates: t,
         base: &base,
         layers: prog.layers.len(),
@@ -88,6 +91,10 @@ struct Motion<'a, 'w> {
     w: Writer<'w>,
     /// The dialect's dwell line, `{s}` where the seconds go.
     dwell: &'a str,
+    /// The gas and powder outputs and the lines that switch them.
+    cell: &'a Cell,
+    /// The dialect's comment delimiters.
+    comment: (&'static str, &'static str),
     templates: &'a Templates,
     base: &'a tera::Context,
     layers: usize,
@@ -122,6 +129,42 @@ impl Visit for Motion<'_, '_> {
         line.extend_from_slice(tail.as_bytes());
         line.push(b'\n');
         self.w.raw(&line);
+    }
+
+    fn io(&mut self, event: Io) {
+        let cell = self.cell;
+        let (open, close) = self.comment;
+        let mut line = |template: &str, n: u16, v: Option<f64>, what: String| {
+            let mut text = template.replace("{n}", &n.to_string());
+            if let Some(v) = v {
+                text = text.replace("{v}", &trimmed(v, RATE_DECIMALS));
+            }
+            self.w
+                .raw(format!("{text} {open}{what}{close}\n").as_bytes());
+        };
+        let rate = |line: &mut dyn FnMut(&str, u16, Option<f64>, String), g_min: f32| {
+            if let Some(r) = cell.powder.and_then(|p| p.rate) {
+                line(
+                    &cell.analog_output,
+                    r.output,
+                    Some(g_min as f64 / r.full_scale),
+                    format!("powder {} g/min", trimmed(g_min as f64, 2)),
+                );
+            }
+        };
+        match (event, cell.gas, cell.powder) {
+            (Io::GasOn, Some(g), _) => line(&cell.output_on, g.output, None, "gas on".into()),
+            (Io::GasOff, Some(g), _) => line(&cell.output_off, g.output, None, "gas off".into()),
+            (Io::PowderOn(r), _, Some(p)) => {
+                rate(&mut line, r);
+                line(&cell.output_on, p.output, None, "powder on".into());
+            }
+            (Io::PowderRate(r), _, Some(_)) => rate(&mut line, r),
+            (Io::PowderOff, _, Some(p)) => {
+                line(&cell.output_off, p.output, None, "powder off".into())
+            }
+            _ => {}
+        }
     }
 
     #[inline]

@@ -23,7 +23,7 @@ use super::fixed::{fixed, trimmed};
 use super::{EmitError, Sink, Templates};
 use crate::check::VerifiedMachine;
 use crate::ir::{FrameRef, Layer, Robot, ToolAxis};
-use crate::plan::{Move, Speed, Visit};
+use crate::plan::{Io, Move, Speed, Visit};
 use crate::target::kuka;
 use crate::target::names::KrlNames;
 use modules::{Modules, Switch};
@@ -183,6 +183,46 @@ impl Visit for Writer<'_, '_> {
 
     fn dwell(&mut self, seconds: f64) {
         self.out.wait(seconds);
+    }
+
+    fn io(&mut self, event: Io) {
+        let cell = &self.robot.cell;
+        let mut lines = Vec::new();
+        if self.switch == Some(Switch::Off) {
+            // The plan retracts before any switching, so this is only a guard:
+            // the laser goes off before gas or powder do.
+            self.switch = None;
+            lines.push(format!("$OUT[{}]=FALSE", self.robot.laser_out));
+        }
+        let rate = |lines: &mut Vec<String>, g_min: f32| {
+            if let Some(r) = cell.powder.and_then(|p| p.rate) {
+                lines.push(format!(
+                    "$ANOUT[{}]={} ; powder {} g/min",
+                    r.output,
+                    fixed(g_min as f64 / r.full_scale, kuka::ANOUT_DECIMALS),
+                    trimmed(g_min as f64, 2)
+                ));
+            }
+        };
+        let out = |n: u16, on: bool, what: &str| {
+            format!(
+                "$OUT[{n}]={} ; {what} {}",
+                if on { "TRUE" } else { "FALSE" },
+                if on { "on" } else { "off" }
+            )
+        };
+        match (event, cell.gas, cell.powder) {
+            (Io::GasOn, Some(g), _) => lines.push(out(g.output, true, "gas")),
+            (Io::GasOff, Some(g), _) => lines.push(out(g.output, false, "gas")),
+            (Io::PowderOn(r), _, Some(p)) => {
+                rate(&mut lines, r);
+                lines.push(out(p.output, true, "powder"));
+            }
+            (Io::PowderRate(r), _, Some(_)) => rate(&mut lines, r),
+            (Io::PowderOff, _, Some(p)) => lines.push(out(p.output, false, "powder")),
+            _ => {}
+        }
+        self.out.io(&lines);
     }
 
     #[inline]

@@ -56,6 +56,8 @@ pub struct Modules<'a> {
     lines: usize,
     /// The last LIN line awaits its approximation word.
     pending: bool,
+    /// The advance run stopped after the last motion (a `WAIT SEC`).
+    at_rest: bool,
     /// `$VEL.CP` written in this module, as a [`key`].
     vel: Option<i64>,
     /// The orientation of the last LIN and its text `,A …,B …,C …}`.
@@ -101,6 +103,7 @@ impl<'a> Modules<'a> {
             body: Vec::with_capacity(1 << 16),
             lines: 0,
             pending: false,
+            at_rest: false,
             vel: None,
             abc_last: None,
             abc_text: [0; ABC_BYTES],
@@ -153,6 +156,7 @@ impl<'a> Modules<'a> {
         deposit: bool,
     ) {
         self.end_pending(switch.is_none());
+        self.at_rest = false;
         if self.lines >= self.max_lines {
             self.roll();
         }
@@ -223,9 +227,26 @@ impl<'a> Modules<'a> {
     /// which between layers costs nothing). The LIN before it ends exactly.
     pub fn wait(&mut self, seconds: f64) {
         self.end_pending(false);
+        self.at_rest = true;
         self.body.extend_from_slice(b"WAIT SEC ");
         push_fixed(&mut self.body, seconds, 2);
         self.body.push(b'\n');
+    }
+
+    /// Output assignments (`$OUT[n]=TRUE`, …) where the robot stands: after an
+    /// advance-run stop, so they switch when the motion before them has ended
+    /// rather than when the advance run reads them, motions earlier.
+    pub fn io(&mut self, lines: &[String]) {
+        self.end_pending(false);
+        if !self.at_rest {
+            self.body
+                .extend_from_slice(b"WAIT SEC 0 ; advance-run stop: the outputs switch here\n");
+            self.at_rest = true;
+        }
+        for l in lines {
+            self.body.extend_from_slice(l.as_bytes());
+            self.body.push(b'\n');
+        }
     }
 
     /// Closes the last module; returns the module names in call order.

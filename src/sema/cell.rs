@@ -1,0 +1,348 @@
+//! `gas { … }` and `powder { … }` in a machine block: the cell's shielding gas
+//! valve and powder feeder, and (on a CNC) the lines that switch outputs.
+//!
+//! ```text
+//! gas { output = 2, pre_flow = 2 s, post_flow = 5 s }
+//! powder { output = 3, arrival = 2.5 s, rate_output = 2, full_scale = 60 g/min }
+//! ```
+//!
+//! The motion plan decides when they switch (`crate::plan`); this module only
+//! checks what is declared: outputs in the range the control numbers them,
+//! no output used twice, times within reason, and output lines a control can
+//! read.
+
+use super::fields::Fields;
+use super::program_text;
+use super::value::Env;
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::{Cell, Feeder, Gas, RateOutput};
+use crate::span::Span;
+use crate::syntax::ast::Stmt;
+use crate::units::{short, Dim};
+
+/// The fields of a `gas { … }` block.
+const GAS_FIELDS: &[&str] = &["output", "pre_flow", "post_flow"];
+/// The fields of a `powder { … }` block.
+const POWDER_FIELDS: &[&str] = &["output", "arrival", "rate_output", "full_scale"];
+/// A CNC's lines that switch outputs (defaults from the dialect).
+pub const CNC_LINES: &[&str] = &["output_on", "output_off", "analog_output"];
+
+/// Longest gas or powder time, s: far beyond any cell's, short of a typo's.
+const MAX_TIME_S: f64 = 600.0;
+
+/// How a machine's control numbers its outputs.
+#[derive(Clone, Copy, Debug)]
+pub struct Outputs {
+    /// Digital outputs `lo..=hi`.
+    pub digital: (usize, usize),
+    /// Analog outputs `lo..=hi`.
+    pub analog: (usize, usize),
+}
+
+/// KUKA: `$OUT[1..4096]`, `$ANOUT[1..32]`.
+pub const KUKA: Outputs = Outputs {
+    digital: (1, 4096),
+    analog: (1, 32),
+};
+
+/// LinuxCNC: `motion.digital-out-NN` and `motion.analog-out-NN`, 00–63.
+pub const LINUXCNC: Outputs = Outputs {
+    digital: (0, 63),
+    analog: (0, 63),
+};
+
+/// Another G-code control, through the lines the machine block gives.
+pub const OTHER_CNC: Outputs = Outputs {
+    digital: (0, 9999),
+    analog: (0, 9999),
+};
+
+/// The built-in output lines of a G-code dialect: on, off, analog (empty
+/// where lmdc knows none).
+pub fn dialect_lines(profile: &str) -> [&'static str; 3] {
+    match profile {
+        // M64/M65/M68 wait for the motion before them to finish (LinuxCNC's
+        // task waits for motion on an immediate output), so each switches
+        // exactly where the plan stands still.
+        "linuxcnc" => ["M64 P{n}", "M65 P{n}", "M68 E{n} Q{v}"],
+        _ => ["", "", ""],
+    }
+}
+
+/// What the block declares, with where.
+pub struct Read {
+    /// The cell.
+    pub cell: Cell,
+    /// Where fields the verifier refers to are written (`powder.arrival`, …).
+    pub spans: Vec<(String, Span)>,
+}
+
+/// Reads `gas { … }` and `powder { … }` of the machine whose fields are `f`.
+/// `lines` are the CNC's output lines (`None` on a robot); `taken` the
+/// outputs the machine already uses (`(number, analog, what)`), which gas and
+/// powder must not share. `None` when something is wrong (reported).
+pub fn read<'a>(
+    env: &mut Env<'a>,
+    f: &Fields<'a>,
+    outputs: Outputs,
+    lines: Option<[String; 3]>,
+    taken: &[(usize, bool, &str, Option<Span>)],
+    diags: &mut Diagnostics,
+) -> Option<Read> {
+    let mut ok = true;
+    let mut spans = Vec::new();
+    let mut used: Vec<(usize, bool, String, Option<Span>)> = taken
+        .iter()
+        .map(|&(n, a, w, s)| (n, a, w.to_string(), s))
+        .collect();
+    let mut claim = |n: usize, analog: bool, what: &str, at: Span, diags: &mut Diagnostics| {
+        if let Some((_, _, other, first)) = used.iter().find(|u| u.0 == n && u.1 == analog) {
+            diags.push(
+                Diagnostic::error(
+                    Code::OutputClash,
+                    format!(
+                        "{what} and {other} are both on {} output {n}",
+                        if analog { "analog" } else { "digital" }
+                    ),
+                )
+                .label(at, what.to_string())
+                .label_opt(*first, other.clone())
+                .help("every output switches one thing: give each its own output number"),
+            );
+            return false;
+        }
+        used.push((n, analog, what.to_string(), Some(at)));
+        true
+    };
+
+    let gas = match f.nested("gas") {
+        None => Some(None),
+        Some((stmts, at)) => {
+            let g = block(env, stmts, GAS_FIELDS, "gas", at, diags);
+            let out = g.count(
+                "output",
+                outputs.digital.0,
+                outputs.digital.1,
+                Some("2"),
+                diags,
+            );
+            let pre = time(&g, "pre_flow", diags);
+            let post = time(&g, "post_flow", diags);
+            if let Some((n, s)) = out {
+                ok &= claim(n, false, "the gas valve", s, diags);
+                spans.push(("gas.output".into(), s));
+            }
+            if let Some(s) = g.span("pre_flow") {
+                spans.push(("gas.pre_flow".into(), s));
+            }
+            Some(Some(Gas {
+                output: out?.0 as u16,
+                pre_flow: pre?,
+                post_flow: post?,
+            }))
+        }
+    };
+    let powder = match f.nested("powder") {
+        None => Some(None),
+        Some((stmts, at)) => {
+            let p = block(env, stmts, POWDER_FIELDS, "powder", at, diags);
+            let out = p.count(
+                "output",
+                outputs.digital.0,
+                outputs.digital.1,
+                Some("3"),
+                diags,
+            );
+            if let Some((n, s)) = out {
+                ok &= claim(n, false, "the powder feeder", s, diags);
+            }
+            let arrival = if p.has("arrival") {
+                time(&p, "arrival", diags)
+            } else {
+                diags.push(
+                    Diagnostic::error(Code::MissingField, "`powder` needs `arrival`")
+                        .label(at, "how long until the powder reaches the nozzle?")
+                        .help(
+                            "add `arrival = 2 s`: the time from starting the feeder until the \
+                             powder comes out of the nozzle (measure it: seconds on most cells); \
+                             lmdc waits that long before the laser starts",
+                        ),
+                );
+                None
+            };
+            if let Some(s) = p.span("arrival") {
+                spans.push(("powder.arrival".into(), s));
+            }
+            let rate = match (p.has("rate_output"), p.has("full_scale")) {
+                (false, false) => Some(None),
+                (true, false) | (false, true) => {
+                    let (has, lacks) = if p.has("rate_output") {
+                        ("rate_output", "full_scale")
+                    } else {
+                        ("full_scale", "rate_output")
+                    };
+                    diags.push(
+                        Diagnostic::error(
+                            Code::MissingField,
+                            format!("`powder` has `{has}` but no `{lacks}`"),
+                        )
+                        .label_opt(p.span(has), "the feed rate's analog output")
+                        .help(
+                            "give both: `rate_output = 2` (the analog output) and \
+                             `full_scale = 60 g/min` (the rate at 1.0), or neither when \
+                             the feeder's rate is set on the feeder",
+                        ),
+                    );
+                    None
+                }
+                (true, true) => {
+                    let n = p.count(
+                        "rate_output",
+                        outputs.analog.0,
+                        outputs.analog.1,
+                        None,
+                        diags,
+                    );
+                    let full = p.positive("full_scale", Dim::MASS_FLOW, None, diags);
+                    if let Some((n, s)) = n {
+                        ok &= claim(n, true, "the powder feed rate", s, diags);
+                    }
+                    if let Some((_, s)) = full {
+                        spans.push(("powder.full_scale".into(), s));
+                    }
+                    Some(Some(RateOutput {
+                        output: n?.0 as u16,
+                        // g/s (canonical) → g/min
+                        full_scale: full?.0 * 60.0,
+                    }))
+                }
+            };
+            Some(Some(Feeder {
+                output: out?.0 as u16,
+                arrival: arrival?,
+                rate: rate?,
+            }))
+        }
+    };
+    let (gas, powder) = (gas?, powder?);
+    let mut cell = Cell {
+        gas,
+        powder,
+        ..Cell::default()
+    };
+    if let Some([on, off, analog]) = lines {
+        if !cell.is_none() {
+            let needs_analog = powder.is_some_and(|p| p.rate.is_some());
+            for (key, text, needed) in [
+                ("output_on", &on, true),
+                ("output_off", &off, true),
+                ("analog_output", &analog, needs_analog),
+            ] {
+                if needed && text.is_empty() {
+                    diags.push(
+                        Diagnostic::error(
+                            Code::IoDialect,
+                            format!("this dialect has no built-in `{key}` line"),
+                        )
+                        .label_opt(
+                            f.span("gas").or(f.span("powder")),
+                            "gas and powder need outputs switched",
+                        )
+                        .label_opt(f.span("dialect"), "dialect")
+                        .help(format!(
+                            "give the control's command in the machine block, with `{{n}}` for \
+                             the output number{}, e.g. `{key} = \"{}\"` (check the control's manual)",
+                            if key == "analog_output" {
+                                " and `{v}` for the value (a fraction of full scale)"
+                            } else {
+                                ""
+                            },
+                            match key {
+                                "output_on" => "M64 P{n}",
+                                "output_off" => "M65 P{n}",
+                                _ => "M68 E{n} Q{v}",
+                            }
+                        )),
+                    );
+                    ok = false;
+                }
+            }
+        }
+        cell.output_on = on;
+        cell.output_off = off;
+        cell.analog_output = analog;
+    }
+    ok.then_some(Read { cell, spans })
+}
+
+/// The CNC's output lines: the dialect's, overridden by the machine block's
+/// (each one printable line holding `{n}` once, the analog one `{v}` too).
+/// `None` when one is wrong (reported).
+pub fn cnc_lines(f: &Fields<'_>, profile: &str, diags: &mut Diagnostics) -> Option<[String; 3]> {
+    let mut out = dialect_lines(profile).map(String::from);
+    let mut ok = true;
+    for (i, key) in CNC_LINES.iter().enumerate() {
+        let Some((t, span)) = f.text(key, None, diags) else {
+            ok &= !f.has(key);
+            continue;
+        };
+        if !program_text::line(&t, key, span, diags) {
+            ok = false;
+            continue;
+        }
+        let holes: &[&str] = if *key == "analog_output" {
+            &["{n}", "{v}"]
+        } else {
+            &["{n}"]
+        };
+        if let Some(h) = holes.iter().find(|h| t.matches(**h).count() != 1) {
+            diags.push(
+                Diagnostic::error(Code::ProgramText, format!("`{key}` must hold `{h}` once"))
+                    .label(span, "output line")
+                    .help(format!(
+                        "`{{n}}` is where the output number goes{}: e.g. `{key} = \"{}\"`",
+                        if *key == "analog_output" {
+                            ", `{v}` the value (a fraction of full scale)"
+                        } else {
+                            ""
+                        },
+                        dialect_lines("linuxcnc")[i]
+                    )),
+            );
+            ok = false;
+            continue;
+        }
+        out[i] = t;
+    }
+    ok.then_some(out)
+}
+
+fn block<'a>(
+    env: &mut Env<'a>,
+    stmts: &'a [Stmt],
+    allowed: &[&str],
+    what: &str,
+    at: Span,
+    diags: &mut Diagnostics,
+) -> Fields<'a> {
+    Fields::block(env, stmts, allowed, &[], format!("`{what}`"), at, diags)
+}
+
+/// A time from 0 to [`MAX_TIME_S`] (0 when not written).
+fn time(f: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<f64> {
+    match f.quantity(key, Dim::TIME, None, diags) {
+        Some((t, _)) if (0.0..=MAX_TIME_S).contains(&t) => Some(t),
+        Some((t, at)) => {
+            diags.push(
+                Diagnostic::error(Code::OutOfRange, format!("`{key}` is {} s", short(t)))
+                    .label(at, format!("a time from 0 to {MAX_TIME_S} s"))
+                    .help(format!(
+                        "give `{key}` in seconds as the cell needs it, e.g. `{key} = 2 s`"
+                    )),
+            );
+            None
+        }
+        None if f.has(key) => None,
+        None => Some(0.0),
+    }
+}
