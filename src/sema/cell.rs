@@ -2,8 +2,17 @@
 //! valve and powder feeder, and (on a CNC) the lines that switch outputs.
 //!
 //! ```text
-//! gas { output = 2, pre_flow = 2 s, post_flow = 5 s }
-//! powder { output = 3, arrival = 2.5 s, rate_output = 2, full_scale = 60 g/min }
+//! gas {
+//!   output = 2
+//!   pre_flow = 2 s
+//!   post_flow = 5 s
+//! }
+//! powder {
+//!   output = 3
+//!   arrival = 2.5 s
+//!   rate_output = 2
+//!   full_scale = 60 g/min
+//! }
 //! ```
 //!
 //! The motion plan decides when they switch (`crate::plan`); this module only

@@ -47,6 +47,22 @@ pub struct Trace {
     pub laser_at_end: bool,
     /// `WAIT SEC` in the motion modules: (LINs run before it, seconds).
     pub waits: Vec<(usize, f64)>,
+    /// Everything the motion modules do, in order: the timeline of motions,
+    /// waits and the cell's outputs.
+    pub events: Vec<Event>,
+}
+
+/// One step of a motion module.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Event {
+    /// `trace.lins[i]` runs.
+    Lin(usize),
+    /// `WAIT SEC t` (0: an advance-run stop).
+    Wait(f64),
+    /// `$OUT[n]=…` other than the laser's, written where the robot stands.
+    Out(u16, bool),
+    /// `$ANOUT[n]=x` other than the power's, written where the robot stands.
+    Anout(u16, f64),
 }
 
 /// The KRL files of one robot program: name → text.
@@ -298,6 +314,7 @@ impl State<'_> {
                     Trig::Power(x) => self.anout = x,
                 }
             }
+            self.trace.events.push(Event::Lin(self.trace.lins.len()));
             *self
                 .trace
                 .lines_per_module
@@ -319,7 +336,7 @@ impl State<'_> {
         }
         if let (false, Some(t)) = (main, l.strip_prefix("WAIT SEC ")) {
             let t = number(t)?;
-            if t.is_nan() || t <= 0.0 {
+            if t.is_nan() || t < 0.0 {
                 return Err(format!("WAIT SEC {t}"));
             }
             if self.laser {
@@ -328,7 +345,53 @@ impl State<'_> {
             if self.trace.lins.last().is_some_and(|l| l.approximated) {
                 return Err("WAIT SEC after an approximated LIN".into());
             }
-            self.trace.waits.push((self.trace.lins.len(), t));
+            if t > 0.0 {
+                self.trace.waits.push((self.trace.lins.len(), t));
+            }
+            self.trace.events.push(Event::Wait(t));
+            return Ok(false);
+        }
+        // The cell's outputs: only where the robot stands (after an
+        // advance-run stop, so the advance run cannot switch them motions
+        // early) and with the laser off.
+        let io = |l: &str, prefix: &str| -> Option<(u16, String)> {
+            let rest = l.strip_prefix(prefix)?;
+            let (n, v) = rest.split_once("]=")?;
+            Some((n.parse().ok()?, v.to_string()))
+        };
+        let cell = io(l, "$OUT[")
+            .map(|(n, v)| (n, v, false))
+            .or_else(|| io(l, "$ANOUT[").map(|(n, v)| (n, v, true)));
+        if let (false, Some((n, v, analog))) = (main, cell) {
+            if (!analog && n == self.laser_no) || (analog && n == self.power_no) {
+                return Err("the laser and its power switch only through TRIGGER".into());
+            }
+            if self.laser {
+                return Err("an output switched with the laser on".into());
+            }
+            let stopped = matches!(
+                self.trace.events.last(),
+                Some(Event::Wait(_) | Event::Out(..) | Event::Anout(..))
+            );
+            if !stopped {
+                return Err("an output switched without an advance-run stop before it".into());
+            }
+            self.trace.events.push(if analog {
+                let x = number(&v)?;
+                if !(0.0..=1.0).contains(&x) {
+                    return Err(format!("$ANOUT[{n}] = {x} outside 0..1"));
+                }
+                Event::Anout(n, x)
+            } else {
+                Event::Out(
+                    n,
+                    match v.as_str() {
+                        "TRUE" => true,
+                        "FALSE" => false,
+                        _ => return Err("TRUE/FALSE".into()),
+                    },
+                )
+            });
             return Ok(false);
         }
         if !main {

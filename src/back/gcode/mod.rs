@@ -133,37 +133,38 @@ impl Visit for Motion<'_, '_> {
 
     fn io(&mut self, event: Io) {
         let cell = self.cell;
+        // (line with `{n}` and `{v}`, output, value, what it switches)
+        let mut lines: Vec<(&str, u16, Option<f64>, String)> = Vec::new();
+        let rate = |g_min: f32| {
+            cell.powder.and_then(|p| p.rate).map(|r| {
+                (
+                    cell.analog_output.as_str(),
+                    r.output,
+                    Some(g_min as f64 / r.full_scale),
+                    format!("powder {} g/min", trimmed(g_min as f64, 2)),
+                )
+            })
+        };
+        let (on, off) = (cell.output_on.as_str(), cell.output_off.as_str());
+        match (event, cell.gas, cell.powder) {
+            (Io::GasOn, Some(g), _) => lines.push((on, g.output, None, "gas on".into())),
+            (Io::GasOff, Some(g), _) => lines.push((off, g.output, None, "gas off".into())),
+            (Io::PowderOn(r), _, Some(p)) => {
+                lines.extend(rate(r));
+                lines.push((on, p.output, None, "powder on".into()));
+            }
+            (Io::PowderRate(r), _, Some(_)) => lines.extend(rate(r)),
+            (Io::PowderOff, _, Some(p)) => lines.push((off, p.output, None, "powder off".into())),
+            _ => {}
+        }
         let (open, close) = self.comment;
-        let mut line = |template: &str, n: u16, v: Option<f64>, what: String| {
+        for (template, n, v, what) in lines {
             let mut text = template.replace("{n}", &n.to_string());
             if let Some(v) = v {
                 text = text.replace("{v}", &trimmed(v, RATE_DECIMALS));
             }
             self.w
                 .raw(format!("{text} {open}{what}{close}\n").as_bytes());
-        };
-        let rate = |line: &mut dyn FnMut(&str, u16, Option<f64>, String), g_min: f32| {
-            if let Some(r) = cell.powder.and_then(|p| p.rate) {
-                line(
-                    &cell.analog_output,
-                    r.output,
-                    Some(g_min as f64 / r.full_scale),
-                    format!("powder {} g/min", trimmed(g_min as f64, 2)),
-                );
-            }
-        };
-        match (event, cell.gas, cell.powder) {
-            (Io::GasOn, Some(g), _) => line(&cell.output_on, g.output, None, "gas on".into()),
-            (Io::GasOff, Some(g), _) => line(&cell.output_off, g.output, None, "gas off".into()),
-            (Io::PowderOn(r), _, Some(p)) => {
-                rate(&mut line, r);
-                line(&cell.output_on, p.output, None, "powder on".into());
-            }
-            (Io::PowderRate(r), _, Some(_)) => rate(&mut line, r),
-            (Io::PowderOff, _, Some(p)) => {
-                line(&cell.output_off, p.output, None, "powder off".into())
-            }
-            _ => {}
         }
     }
 
