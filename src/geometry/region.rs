@@ -84,12 +84,15 @@ impl Region {
 
     /// Exact bounding box of the outer loops; `None` when there are none.
     pub fn bounds(&self) -> Option<[[f64; 2]; 2]> {
-        self.outer.iter().filter_map(Profile::bounds).reduce(|a, b| {
-            [
-                [a[0][0].min(b[0][0]), a[0][1].min(b[0][1])],
-                [a[1][0].max(b[1][0]), a[1][1].max(b[1][1])],
-            ]
-        })
+        self.outer
+            .iter()
+            .filter_map(Profile::bounds)
+            .reduce(|a, b| {
+                [
+                    [a[0][0].min(b[0][0]), a[0][1].min(b[0][1])],
+                    [a[1][0].max(b[1][0]), a[1][1].max(b[1][1])],
+                ]
+            })
     }
 
     /// Whether `p` lies in the closed region: inside or on an outer loop and
@@ -138,11 +141,7 @@ impl Region {
             // One engine for a plain profile, so that a part without holes
             // fills exactly as it always has.
             return Region {
-                outer: self
-                    .outer
-                    .iter()
-                    .flat_map(|o| o.offset_inward(d))
-                    .collect(),
+                outer: self.outer.iter().flat_map(|o| o.offset_inward(d)).collect(),
                 holes: Vec::new(),
             };
         }

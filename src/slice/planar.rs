@@ -380,7 +380,9 @@ fn fill_layer(
                 Pattern::OneWay => FillPattern::OneWay,
             },
             extend: r.extend.0,
+            link: fill::Linking::None,
         }),
+        seam: fill::Seam::Lowest,
     };
     let tracks: Vec<Track> = fill::fill(profile, &spec, slicing.chord_error.0)
         .map_err(|e| fill_error(e, at))?

@@ -50,7 +50,10 @@ fn holes_that_grow_into_each_other_merge() {
     let o = r.offset_inward(2.5);
     assert_eq!(o.holes().len(), 1, "{o:?}");
     // Into the outline: a hole 1 mm from the edge opens into a notch.
-    let r = Region::new(Profile::rectangle(40.0, 20.0), vec![circle_at(3.0, 20.0, 4.0)]);
+    let r = Region::new(
+        Profile::rectangle(40.0, 20.0),
+        vec![circle_at(3.0, 20.0, 4.0)],
+    );
     let o = r.offset_inward(1.0);
     assert_eq!((o.outer().len(), o.holes().len()), (1, 0), "{o:?}");
 }
@@ -103,10 +106,7 @@ fn faults_name_the_hole() {
         outline.clone(),
         vec![circle_at(5.0, 10.0, 10.0), circle_at(1.0, 10.0, 10.0)],
     );
-    assert_eq!(
-        nested.check(),
-        Err(Fault::HoleInHole { hole: 1, other: 0 })
-    );
+    assert_eq!(nested.check(), Err(Fault::HoleInHole { hole: 1, other: 0 }));
     let bow = Profile::new(vec![
         Vertex::line(5.0, 5.0),
         Vertex::line(8.0, 8.0),
