@@ -157,7 +157,8 @@ fn meets(piece: &Piece, a: [f64; 2], d: [f64; 2], ts: &mut Vec<f64>) {
             let qb = 2.0 * (f[0] * d[0] + f[1] * d[1]);
             let qc = (f[0] * f[0] + f[1] * f[1]) - r * r;
             let disc = qb * qb - 4.0 * qa * qc;
-            if !(disc >= 0.0) {
+            // NaN as well as negative: no crossing.
+            if disc.is_nan() || disc < 0.0 {
                 return;
             }
             let root = disc.sqrt();

@@ -52,19 +52,35 @@ pub(super) struct Chains<'a> {
     pub chord_error: f64,
 }
 
+/// A track cut back to where it was clipped keeps at least this length, mm.
+const MIN_TRACK: f64 = 1e-6;
+
 /// One track of a chain: line `n`'s grown interval `g`, run forwards
 /// (increasing `t`) or back, and the points (frame coordinates) between its
-/// end and the next track's start, if linked.
+/// end and the next track's start, if linked. `from` and `to` replace the
+/// interval's ends where a link that deposits takes over from an extension.
 pub(super) struct Step {
     n: usize,
     g: usize,
     forward: bool,
     via: Option<Vec<[f64; 2]>>,
+    from: Option<f64>,
+    to: Option<f64>,
+}
+
+/// A link found by [`next`]: the next track (interval `g` of the next line),
+/// the points between, and where the two tracks end and start when that is
+/// not their grown ends.
+struct Found {
+    g: usize,
+    via: Vec<[f64; 2]>,
+    end: Option<f64>,
+    start: Option<f64>,
 }
 
 /// The chains of the layer, in the order they are built; every grown
 /// interval is in exactly one.
-pub(super) fn chains(c: &Chains<'_>, within: &Pieces) -> Vec<Vec<Step>> {
+pub(super) fn chains(c: &Chains<'_>, within: &Pieces, laser: bool) -> Vec<Vec<Step>> {
     let mut inside = Inside::new(within, c.s, c.chord_error + 1e-6);
     let mut used: Vec<Vec<bool>> = c.grown.iter().map(|l| vec![false; l.len()]).collect();
     let mut out = Vec::new();
@@ -79,20 +95,25 @@ pub(super) fn chains(c: &Chains<'_>, within: &Pieces) -> Vec<Vec<Step>> {
                 g: g0,
                 forward: true,
                 via: None,
+                from: None,
+                to: None,
             }];
             while let Some(inside) = inside.as_mut() {
                 let Some(last) = chain.last_mut() else { break };
-                let Some((g, via)) = next(c, inside, last.n, last.g, last.forward, &used) else {
+                let Some(f) = next(c, inside, last, laser, &used) else {
                     break;
                 };
                 let (n, forward) = (last.n + 1, !last.forward);
-                last.via = Some(via);
-                used[n][g] = true;
+                last.via = Some(f.via);
+                last.to = f.end;
+                used[n][f.g] = true;
                 chain.push(Step {
                     n,
-                    g,
+                    g: f.g,
                     forward,
                     via: None,
+                    from: f.start,
+                    to: None,
                 });
             }
             out.push(chain);
@@ -115,6 +136,7 @@ pub(super) fn tracks(
     for step in chains.iter().flatten() {
         let [a, b] = grown[step.n][step.g].1;
         let (from, to) = if step.forward { (a, b) } else { (b, a) };
+        let (from, to) = (step.from.unwrap_or(from), step.to.unwrap_or(to));
         let link = step.via.as_ref().map(|via| Link {
             via: via.iter().map(|&p| frame.world(p)).collect(),
             laser,
@@ -129,17 +151,25 @@ pub(super) fn tracks(
     Ok(out)
 }
 
-/// The interval of line `n + 1` that interval `g` of line `n` links to (at
-/// its end, the +t one when running `forward`), and the link's points
-/// between the two tracks.
+/// The interval of line `n + 1` that the track `last` links to at its end
+/// (the +t one when running forward), and the link.
+///
+/// Three links are tried, the first that stays inside wins: straight from
+/// the track's end to the next one's start; along the edge between them;
+/// along the edge from where the tracks were clipped. The last is for ends
+/// that an extension moved past the region (a slanted or curved edge): with
+/// the laser off the nozzle goes back along its own track to the edge, and
+/// out along the next track to its start; with the laser on the link, which
+/// deposits along the edge, takes the extensions' place and the tracks end
+/// and start where they were clipped.
 fn next(
     c: &Chains<'_>,
     inside: &mut Inside<'_>,
-    n: usize,
-    g: usize,
-    forward: bool,
+    last: &Step,
+    laser: bool,
     used: &[Vec<bool>],
-) -> Option<(usize, Vec<[f64; 2]>)> {
+) -> Option<Found> {
+    let (n, g, forward) = (last.n, last.g, last.forward);
     let (&s0, &s1) = (c.s.get(n)?, c.s.get(n + 1)?);
     let side = usize::from(forward);
     let (k, grown) = c.grown[n][g];
@@ -158,21 +188,49 @@ fn next(
     }
     let p = [grown[side], s0];
     let q = [c.grown[n + 1][g1].1[side], s1];
-    let mut along = Vec::with_capacity(edge.len() + 4);
+    let found = |via: Vec<[f64; 2]>, end, start| {
+        Some(Found {
+            g: g1,
+            via: dedup(via, p, q),
+            end,
+            start,
+        })
+    };
+    if inside.path(&[p, q], n) {
+        return found(Vec::new(), None, None);
+    }
+    let mut along = Vec::with_capacity(edge.len() + 2);
     along.push(p);
     along.extend_from_slice(&edge);
     along.push(q);
-    let mut full = Vec::with_capacity(edge.len() + 4);
-    full.extend([p, [b, s0]]);
-    full.extend_from_slice(&edge);
-    full.extend([[t1, s1], q]);
-    for path in [vec![p, q], along, full] {
-        if inside.path(&path, n) {
-            let via = path[1..path.len() - 1].to_vec();
-            return Some((g1, dedup(via, p, q)));
-        }
+    if inside.path(&along, n) {
+        return found(edge, None, None);
     }
-    None
+    let (b0, b1) = ([b, s0], [t1, s1]);
+    let mut clipped_path = Vec::with_capacity(edge.len() + 2);
+    clipped_path.push(b0);
+    clipped_path.extend_from_slice(&edge);
+    clipped_path.push(b1);
+    if !inside.path(&clipped_path, n) {
+        return None;
+    }
+    if laser {
+        // The tracks now end at b0 and start at b1: the link's own points
+        // are those strictly between. Neither track may shrink to nothing.
+        let this_start = last.from.unwrap_or(grown[1 - side]);
+        let next_end = c.grown[n + 1][g1].1[1 - side];
+        if (b - this_start).abs() < MIN_TRACK || (t1 - next_end).abs() < MIN_TRACK {
+            return None;
+        }
+        Some(Found {
+            g: g1,
+            via: dedup(edge, b0, b1),
+            end: Some(b),
+            start: Some(t1),
+        })
+    } else {
+        found(clipped_path, None, None)
+    }
 }
 
 /// The points without repeats (of each other or of the ends).

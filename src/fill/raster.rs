@@ -123,6 +123,7 @@ pub(super) fn tracks(
                 chord_error: cx.chord_error,
             },
             &Pieces::new(within.loops(), &frame),
+            laser,
         );
         return link::tracks(&chains, &grown, &line_s, &frame, laser, points_left);
     }
