@@ -18,7 +18,7 @@
 //! where the edge is concave, so that no chord cuts the corner); if neither
 //! stays inside, the tracks are not linked. Inside means within the region
 //! where track centre lines may run (the profile less the inset: half a bead
-//! for `size = outer`), every point and every segment ([`Inside`]).
+//! for `size = outer`), every point and every segment (`inside::Inside`).
 //!
 //! Chains are grown greedily: the first unlinked track (lowest line, then
 //! lowest along it) starts one, running forwards; each link turns it back,

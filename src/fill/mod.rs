@@ -62,7 +62,7 @@
 //!   at their ends along the edge when the link stays where track centre
 //!   lines may run (the region less the inset); the tracks then come in
 //!   chains, each track carrying its [`Link`] to the next. The rule is in
-//!   [`link`](self::link).
+//!   [`link`].
 //!
 //! The output depends only on the inputs. If nothing at all results, `fill`
 //! returns [`FillError::Empty`]: a layer without tracks cannot be built.

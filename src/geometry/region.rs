@@ -112,6 +112,15 @@ impl Region {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// The region turned by `angle` (rad, counter-clockwise) about the
+    /// origin, then moved by `by`: every loop placed alike.
+    pub fn placed(&self, angle: f64, by: [f64; 2]) -> Region {
+        Region {
+            outer: self.outer.iter().map(|p| p.placed(angle, by)).collect(),
+            holes: self.holes.iter().map(|p| p.placed(angle, by)).collect(),
+        }
+    }
+
     /// The region without the holes whose indices are in `drop`.
     pub fn without_holes(&self, drop: &[usize]) -> Region {
         Region {

@@ -57,39 +57,48 @@ pub enum Fault {
 }
 
 impl Region {
-    /// The first fault of a region made by [`Region::new`], in the order:
-    /// the outline, each hole by itself, each hole against the outline, the
-    /// holes against each other. Loops that are not finite or beyond
-    /// [`crate::geometry::profile::MAX_COORDINATE`] are not tested: check
-    /// those first.
+    /// The first fault of a region made by [`Region::new`], in the order of
+    /// [`Region::faults`].
     pub fn check(&self) -> Result<(), Fault> {
+        self.faults().first().map_or(Ok(()), |&f| Err(f))
+    }
+
+    /// Every fault of a region made by [`Region::new`], in the order: the
+    /// outline, each hole by itself, each hole against the outline, the
+    /// pairs of holes (by their lower number, then the other). Loops that are
+    /// not finite or beyond [`crate::geometry::profile::MAX_COORDINATE`] are
+    /// not tested: check those first.
+    pub fn faults(&self) -> Vec<Fault> {
+        let mut out = Vec::new();
         let Some(outline) = self.outer.first() else {
-            return Ok(());
+            return out;
         };
         if !self.loops().all(|(l, _)| l.engine_safe()) {
-            return Ok(());
+            return out;
         }
         if let Some(at) = outline.self_intersection() {
-            return Err(Fault::Outline { at });
+            out.push(Fault::Outline { at });
         }
         for (hole, h) in self.holes.iter().enumerate() {
             if let Some(at) = h.self_intersection() {
-                return Err(Fault::HoleItself { hole, at });
+                out.push(Fault::HoleItself { hole, at });
             }
         }
         let outer = outline.to_pline();
         let index = outer.create_approx_aabb_index();
         for (hole, h) in self.holes.iter().enumerate() {
             if let Some(at) = meet(&outer, Some(&index), h) {
-                return Err(Fault::HoleOutline { hole, at });
+                out.push(Fault::HoleOutline { hole, at });
+                continue;
             }
             // Not crossing: wholly inside or wholly outside.
             let v = h.vertices()[0];
             if !outline.contains([v.x, v.y]) {
-                return Err(Fault::HoleOutside { hole });
+                out.push(Fault::HoleOutside { hole });
             }
         }
-        holes_apart(&self.holes)
+        out.extend(holes_apart(&self.holes));
+        out
     }
 }
 
@@ -116,15 +125,16 @@ fn meet(
         })
 }
 
-/// Every pair of holes whose boxes overlap, tested for crossing and nesting.
-fn holes_apart(holes: &[Profile]) -> Result<(), Fault> {
+/// Every pair of holes whose boxes overlap, tested for crossing and nesting:
+/// the faults, ordered by the pair's numbers whatever the sweep's order.
+fn holes_apart(holes: &[Profile]) -> Vec<Fault> {
     let boxes: Vec<[[f64; 2]; 2]> = holes
         .iter()
         .map(|h| h.bounds().unwrap_or([[0.0; 2]; 2]))
         .collect();
     let mut order: Vec<usize> = (0..holes.len()).collect();
     order.sort_by(|&a, &b| boxes[a][0][0].total_cmp(&boxes[b][0][0]));
-    let mut found: Option<Fault> = None;
+    let mut found: Vec<Fault> = Vec::new();
     for (k, &a) in order.iter().enumerate() {
         for &b in &order[k + 1..] {
             if boxes[b][0][0] > boxes[a][1][0] + TOLERANCE {
@@ -136,27 +146,20 @@ fn holes_apart(holes: &[Profile]) -> Result<(), Fault> {
                 continue;
             }
             let (hole, other) = (a.min(b), a.max(b));
-            let fault = if let Some(at) = meet(&holes[hole].to_pline(), None, &holes[other]) {
-                Some(Fault::Holes { hole, other, at })
+            if let Some(at) = meet(&holes[hole].to_pline(), None, &holes[other]) {
+                found.push(Fault::Holes { hole, other, at });
             } else if inside(&holes[hole], &holes[other]) {
-                Some(Fault::HoleInHole { hole, other })
+                found.push(Fault::HoleInHole { hole, other });
             } else if inside(&holes[other], &holes[hole]) {
-                Some(Fault::HoleInHole {
+                found.push(Fault::HoleInHole {
                     hole: other,
                     other: hole,
-                })
-            } else {
-                None
-            };
-            // The fault of the lowest-numbered pair, whatever the sweep's order.
-            if let Some(f) = fault {
-                if found.is_none_or(|g| key(f) < key(g)) {
-                    found = Some(f);
-                }
+                });
             }
         }
     }
-    found.map_or(Ok(()), Err)
+    found.sort_by_key(|&f| key(f));
+    found
 }
 
 /// Whether `a` lies inside `b`, given that they do not meet.
