@@ -456,3 +456,42 @@ fn a_hole_fault_is_reported_with_its_layer_when_the_profile_follows_it() {
         holes[0]
     );
 }
+
+#[test]
+fn a_thousand_holes_on_one_spot_are_reported_briefly_and_quickly() {
+    let src = plate(
+        80.0,
+        60.0,
+        &[],
+        "  contours = 1\n  infill = raster(angle = 0 deg)",
+    )
+    .replace(
+        "holes = []",
+        "holes = [bolt_circle(circle(diameter = 8 mm), count = 1000, diameter = 1 mm)]",
+    );
+    let t = std::time::Instant::now();
+    let c = compile(&src, &mut ());
+    assert!(c.program.is_none());
+    let holes = c
+        .diagnostics
+        .iter()
+        .filter(|d| d.code.as_str() == "lmd::hole")
+        .count();
+    assert_eq!(holes, lmdc::geometry::region::MAX_FAULTS + 1);
+    assert!(t.elapsed().as_secs_f64() < 10.0, "{:?}", t.elapsed());
+    let too_many = plate(
+        80.0,
+        60.0,
+        &[],
+        "  contours = 1\n  infill = raster(angle = 0 deg)",
+    )
+    .replace(
+        "holes = []",
+        "holes = [bolt_circle(circle(diameter = 1 mm), count = 1001, diameter = 50 mm)]",
+    );
+    let c = compile(&too_many, &mut ());
+    assert!(c
+        .diagnostics
+        .iter()
+        .any(|d| d.message == "`count` must be between 1 and 1000"));
+}

@@ -11,7 +11,7 @@
 
 mod check;
 
-pub use check::Fault;
+pub use check::{Fault, MAX_FAULTS};
 
 use super::profile::{Profile, MIN_LOOP_AREA, TOLERANCE};
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut};

@@ -21,8 +21,10 @@ use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::units::{Angle, Dim, Length};
 
-/// Most holes one region may have (a bolt circle's count included).
-pub const MAX_HOLES: usize = 10_000;
+/// Most holes one region may have (a bolt circle's count included): every
+/// pair of holes whose boxes overlap is tested on every layer, so the bound
+/// keeps that work to well under a second whatever the holes are.
+pub const MAX_HOLES: usize = 1000;
 
 /// Reads `region(outline = …, holes = […])`.
 pub fn region(c: &Call, diags: &mut Diagnostics) -> Option<Shape> {

@@ -5,7 +5,7 @@
 //! they are written; all of a layer's are reported together.
 
 use crate::diag::{Code, Diagnostic};
-use crate::geometry::region::{Fault, Region};
+use crate::geometry::region::{Fault, Region, MAX_FAULTS};
 use crate::sema::model::{RegionShape, Shape};
 use crate::span::Span;
 use crate::units::short;
@@ -28,11 +28,23 @@ pub(super) fn faults(region: &Region, shape: &Shape, layer: &Layer) -> Vec<Diagn
     if written.holes.is_empty() {
         return Vec::new();
     }
-    region
-        .faults()
+    let faults = region.faults();
+    let capped = faults.len() >= MAX_FAULTS;
+    let mut out: Vec<Diagnostic> = faults
         .into_iter()
         .filter_map(|f| diagnostic(f, written, layer))
-        .collect()
+        .collect();
+    if capped {
+        out.push(
+            Diagnostic::error(
+                Code::Hole,
+                format!("these are the first {MAX_FAULTS} faults of the holes; there may be more"),
+            )
+            .label(written.outline_span, "this region's holes")
+            .help("fix these and check again"),
+        );
+    }
+    out
 }
 
 /// The `region(…)` a shape is, placed or not.

@@ -11,6 +11,10 @@ use crate::geometry::profile::{Profile, TOLERANCE};
 use cavalier_contours::polyline::{FindIntersectsOptions, PlineSource};
 use cavalier_contours::static_aabb2d_index::StaticAABB2DIndex;
 
+/// Most faults [`Region::faults`] lists: a thousand holes piled on one
+/// spot would otherwise make half a million errors, and as much work.
+pub const MAX_FAULTS: usize = 50;
+
 /// Why a region is not one. Hole numbers count from 0 in the order given.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Fault {
@@ -63,11 +67,12 @@ impl Region {
         self.faults().first().map_or(Ok(()), |&f| Err(f))
     }
 
-    /// Every fault of a region made by [`Region::new`], in the order: the
-    /// outline, each hole by itself, each hole against the outline, the
-    /// pairs of holes (by their lower number, then the other). Loops that are
-    /// not finite or beyond [`crate::geometry::profile::MAX_COORDINATE`] are
-    /// not tested: check those first.
+    /// Every fault of a region made by [`Region::new`] (at most
+    /// [`MAX_FAULTS`]), in the order: the outline, each hole by itself, each
+    /// hole against the outline, the pairs of holes (by their lower number,
+    /// then the other). Loops that are not finite or beyond
+    /// [`crate::geometry::profile::MAX_COORDINATE`] are not tested: check
+    /// those first.
     pub fn faults(&self) -> Vec<Fault> {
         let mut out = Vec::new();
         let Some(outline) = self.outer.first() else {
@@ -97,7 +102,9 @@ impl Region {
                 out.push(Fault::HoleOutside { hole });
             }
         }
-        out.extend(holes_apart(&self.holes));
+        out.truncate(MAX_FAULTS);
+        let left = MAX_FAULTS - out.len();
+        out.extend(holes_apart(&self.holes, left));
         out
     }
 }
@@ -126,8 +133,9 @@ fn meet(
 }
 
 /// Every pair of holes whose boxes overlap, tested for crossing and nesting:
-/// the faults, ordered by the pair's numbers whatever the sweep's order.
-fn holes_apart(holes: &[Profile]) -> Vec<Fault> {
+/// the faults, at most `most` of them (the first the sweep finds), ordered
+/// by the pair's numbers.
+fn holes_apart(holes: &[Profile], most: usize) -> Vec<Fault> {
     let boxes: Vec<[[f64; 2]; 2]> = holes
         .iter()
         .map(|h| h.bounds().unwrap_or([[0.0; 2]; 2]))
@@ -135,8 +143,11 @@ fn holes_apart(holes: &[Profile]) -> Vec<Fault> {
     let mut order: Vec<usize> = (0..holes.len()).collect();
     order.sort_by(|&a, &b| boxes[a][0][0].total_cmp(&boxes[b][0][0]));
     let mut found: Vec<Fault> = Vec::new();
-    for (k, &a) in order.iter().enumerate() {
+    'sweep: for (k, &a) in order.iter().enumerate() {
         for &b in &order[k + 1..] {
+            if found.len() >= most {
+                break 'sweep;
+            }
             if boxes[b][0][0] > boxes[a][1][0] + TOLERANCE {
                 break;
             }
