@@ -1,7 +1,7 @@
 //! Planar layer fill (seed 001): contour passes and raster tracks over
 //! outlines of lines and arcs, checked against closed-form geometry.
 
-use lmdc::fill::{fill, FillError, FillSpec, Pattern, RasterSpec, Track, TrackKind};
+use lmdc::fill::{fill, FillError, FillSpec, Linking, Pattern, RasterSpec, Seam, Track, TrackKind};
 use lmdc::geometry::profile::{Profile, Vertex};
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -23,7 +23,9 @@ fn raster(angle: f64, d: f64, extend: f64, pattern: Pattern) -> FillSpec {
             offset: d,
             pattern,
             extend,
+            link: Linking::None,
         }),
+        seam: Seam::Lowest,
     }
 }
 
@@ -285,7 +287,9 @@ fn contours_lie_at_their_offsets_and_come_first() {
             offset: 1.6,
             pattern: Pattern::Serpentine,
             extend: 1.6,
+            link: Linking::None,
         }),
+        seam: Seam::Lowest,
     };
     let tracks = fill(&p, &spec, 0.01).unwrap();
     let kinds: Vec<TrackKind> = tracks.iter().map(|t| t.kind).collect();
@@ -343,6 +347,7 @@ fn a_waist_splits_a_contour_pass_into_loops() {
         contours: 2,
         offset: 1.0,
         raster: None,
+        seam: Seam::Lowest,
     };
     let tracks = fill(&p, &spec, 0.01).unwrap();
     let index: Vec<usize> = tracks
@@ -453,6 +458,7 @@ fn bad_numbers_are_errors_not_panics() {
             Err(FillError::TooManyPoints(_)) => "TooManyPoints",
             Err(FillError::Empty) => "Empty",
             Err(FillError::SelfIntersecting { .. }) => "SelfIntersecting",
+            Err(FillError::Region(_)) => "Region",
         };
         assert_eq!(name, *want, "case {i}: {got:?}");
         if let Err(e) = got {
@@ -515,7 +521,9 @@ fn output_is_deterministic() {
             offset: 0.9,
             pattern: Pattern::Serpentine,
             extend: 0.9,
+            link: Linking::None,
         }),
+        seam: Seam::Lowest,
     };
     let a = fill(&p, &spec, 0.02).unwrap();
     let b = fill(&p, &spec, 0.02).unwrap();
@@ -552,7 +560,8 @@ proptest! {
             inset,
             contours,
             offset: d,
-            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::Serpentine, extend }),
+            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::Serpentine, extend, link: Linking::None }),
+            seam: Seam::Lowest,
         };
         let tracks = match fill(&p, &spec, chord) {
             Ok(t) => t,
@@ -634,7 +643,8 @@ proptest! {
             inset,
             contours,
             offset: d,
-            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::OneWay, extend }),
+            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::OneWay, extend, link: Linking::None }),
+            seam: Seam::Lowest,
         };
         let tracks = match fill(&p, &spec, 0.01) {
             Ok(t) => t,
@@ -684,7 +694,8 @@ proptest! {
             inset,
             contours,
             offset: d,
-            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::Serpentine, extend: d }),
+            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::Serpentine, extend: d, link: Linking::None }),
+            seam: Seam::Lowest,
         };
         let tracks = match fill(&p, &spec, 0.01) {
             Ok(t) => t,

@@ -305,3 +305,28 @@ fn examples_run_in_rs274_and_follow_the_ir() {
         "the duct example's deposits were not all checked"
     );
 }
+
+/// The flange with its raster linked laser off: the links are G0 moves at
+/// the layer's height between M5 and M3, and the program still deposits
+/// exactly the IR's moves.
+#[test]
+fn flange_linked_laser_off_runs_in_rs274() {
+    if !have_rs274("flange_linked_laser_off_runs_in_rs274") {
+        return;
+    }
+    let src = std::fs::read_to_string("examples/flange.lmd")
+        .unwrap()
+        .replace("link = laser_on", "link = laser_off");
+    let mut ir = lmdc::pipeline::compile(&src, &mut ())
+        .program
+        .expect("compiles")
+        .into_ir();
+    assert!(ir
+        .layers
+        .iter()
+        .any(|l| l.paths.iter().any(|p| p.kind == PathKind::Travel)));
+    ir.machines.retain(|m| matches!(m, Machine::Cnc(_)));
+    ir.origins.machines.truncate(1);
+    let n = deposits(&ir).len();
+    assert_eq!(check_against_ir(ir), n);
+}

@@ -1,6 +1,7 @@
 //! Golden programs: every file lmdc writes for tests/golden/small_duct.lmd (a
 //! KUKA robot split into modules, LinuxCNC, Fagor 8070 and M20 CNCs) and for the
-//! two planar examples (sprocket tooth, styled chord) and the three of seed
+//! three planar examples (sprocket tooth, styled chord, the flange with its
+//! holes, linked raster, rotating seams and placement) and the three of seed
 //! 003 (ramp wall, wedge, ramp cuboid), as insta snapshots.
 //! Review every diff line by line: these are what machines run.
 
@@ -37,6 +38,11 @@ fn sprocket_tooth_programs() {
 #[test]
 fn styled_chord_programs() {
     programs("examples/styled_chord.lmd", "chord__");
+}
+
+#[test]
+fn flange_programs() {
+    programs("examples/flange.lmd", "flange__");
 }
 
 // Seed 003: variable-thickness layers on a 3-axis CNC and a KUKA robot.

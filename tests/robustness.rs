@@ -17,8 +17,13 @@ fn corpus() -> Vec<String> {
     let chord = std::fs::read_to_string("examples/styled_chord.lmd")
         .unwrap()
         .replace("layers = 30", "layers = 3");
-    let mut v = vec![duct, tooth, chord];
+    // Holes, links and seams.
+    let flange = std::fs::read_to_string("examples/flange.lmd")
+        .unwrap()
+        .replace("layers = 6", "layers = 2");
+    let mut v = vec![duct, tooth, chord, flange];
     for f in [
+        "hole_faults",
         "bend_too_tight",
         "unit_mismatch",
         "syntax",
@@ -95,7 +100,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
 
     #[test]
-    fn mutated_sources_never_panic(which in 0usize..9, edits in prop::collection::vec(edit(), 1..6)) {
+    fn mutated_sources_never_panic(which in 0usize..11, edits in prop::collection::vec(edit(), 1..6)) {
         let src = apply(&corpus()[which], &edits);
         run(&src);
     }
@@ -172,6 +177,27 @@ fn pathological_planar_inputs() {
         part(
             "circle(diameter = 20 mm)",
             "layers = 2  offset = 0.01 mm  infill = raster(rotate = 1e300 deg)",
+        ),
+        // Holes, links and seams at their limits.
+        part(
+            "region(circle(diameter = 20 mm), holes = [place(circle(diameter = 1e300 mm), at = [1e300 mm, 0 mm])])",
+            "layers = 2  offset = 1.6 mm  infill = raster(link = laser_on)",
+        ),
+        part(
+            "region(circle(diameter = 20 mm), holes = [bolt_circle(circle(diameter = 1e-9 mm), count = 1000, diameter = 1e-9 mm, from = 1e300 deg)])",
+            "layers = 2  offset = 1.6 mm  contours = 2  infill = raster(link = laser_off)",
+        ),
+        part(
+            "place(region(square(side = 30 mm), holes = [square(side = 30 mm - layer * 1 mm)]), at = [1e5 mm, 0 mm], turn = 1e300 deg)",
+            "layers = 20  offset = 1.6 mm  infill = raster(link = laser_on)  seam = rotating(step = 1e300 deg, from = -1e300 deg)",
+        ),
+        part(
+            "region(outline([0 mm, 0 mm], [40 mm, 0 mm], [40 mm, 40 mm], [0 mm, 40 mm]), holes = [outline([10 mm, 10 mm], [30 mm, 30 mm], [30 mm, 10 mm], [10 mm, 30 mm])])",
+            "layers = 2  offset = 1.6 mm  contours = 1  infill = raster(link = laser_on)  seam = random(seed = 4294967295)",
+        ),
+        part(
+            "region(circle(diameter = 40 mm), holes = [circle(diameter = 39.999999 mm)])",
+            "layers = 2  offset = 1.6 mm  contours = 3  infill = raster(angle = 45 deg, link = laser_off)  seam = sharpest_corner",
         ),
     ] {
         run(&src);

@@ -218,6 +218,8 @@ codes! {
         "planar tracks closer than 30 % of the bead width: the layer would pile up instead of levelling (as a warning: a contour pass that is a sliver, its sides closer than 30 % of the bead width)";
     SelfIntersecting = "self-intersecting", Feasibility,
         "a profile's edges cross on some layer";
+    Hole = "hole", Feasibility,
+        "a hole of a `region(…)` crosses, touches or lies outside the outline, or crosses, touches or lies inside another hole (on some layer)";
     FillEmpty = "fill-empty", Feasibility,
         "no track fits in a layer's profile (narrower than the bead and its contours)";
     Fill = "fill", Feasibility,

@@ -10,6 +10,7 @@
 
 use super::{raster, Track};
 use crate::geometry::profile::Profile;
+use crate::geometry::region::Region;
 
 /// Most points sampled on a layer.
 pub const MAX_SAMPLES: usize = 40_000;
@@ -26,9 +27,27 @@ pub struct Gap {
 /// The sampled point of `profile` inset by `inset` farthest from every track,
 /// if any lies farther than `reach` (of many such points, the farthest of a
 /// spread of 256; ties go to the first in rows of increasing y, then
-/// x).
+/// x): [`gap_in`] of the profile alone.
 pub fn gap(
     profile: &Profile,
+    inset: f64,
+    tracks: &[Track],
+    reach: f64,
+    max_samples: usize,
+) -> Option<Gap> {
+    gap_in(
+        &Region::from(profile.clone()),
+        inset,
+        tracks,
+        reach,
+        max_samples,
+    )
+}
+
+/// [`gap`] over a region with holes: samples inside a hole are not the
+/// part's. A link that deposits (laser on) covers as its tracks do.
+pub fn gap_in(
+    region: &Region,
     inset: f64,
     tracks: &[Track],
     reach: f64,
@@ -37,14 +56,9 @@ pub fn gap(
     if !(reach.is_finite() && reach > 0.0) {
         return None;
     }
-    let region = profile.offset_inward(inset);
+    let region = region.offset_inward(inset);
     let samples = raster::samples(&region, reach / 2.0, max_samples.min(MAX_SAMPLES));
-    let segments: Vec<[[f64; 2]; 2]> = tracks
-        .iter()
-        .flat_map(|t| match t.points.as_slice() {
-            [p] => vec![[*p, *p]],
-            pts => pts.windows(2).map(|w| [w[0], w[1]]).collect(),
-        })
+    let segments: Vec<[[f64; 2]; 2]> = deposited(tracks)
         .filter(|s| s.iter().flatten().all(|v| v.is_finite()))
         .collect();
     let grid = Grid::new(&segments, &samples, reach);
@@ -69,6 +83,28 @@ pub fn gap(
             Some(w) if w.distance >= g.distance => Some(w),
             _ => Some(g),
         })
+}
+
+/// Every segment laid with the laser on: the tracks', and the links' that
+/// deposit (from a track's end through the link to the next one's start).
+fn deposited(tracks: &[Track]) -> impl Iterator<Item = [[f64; 2]; 2]> + '_ {
+    tracks.iter().enumerate().flat_map(move |(i, t)| {
+        let mut segs: Vec<[[f64; 2]; 2]> = match t.points.as_slice() {
+            [p] => vec![[*p, *p]],
+            pts => pts.windows(2).map(|w| [w[0], w[1]]).collect(),
+        };
+        let next = tracks.get(i + 1).and_then(|n| n.points.first());
+        if let (Some(l), Some(&last), Some(&next)) = (&t.link, t.points.last(), next) {
+            if l.laser {
+                let path: Vec<[f64; 2]> = std::iter::once(last)
+                    .chain(l.via.iter().copied())
+                    .chain(std::iter::once(next))
+                    .collect();
+                segs.extend(path.windows(2).map(|w| [w[0], w[1]]));
+            }
+        }
+        segs
+    })
 }
 
 /// Most uncovered samples whose distance is measured exactly.
@@ -221,6 +257,7 @@ mod tests {
         Track {
             kind: TrackKind::Infill,
             points: vec![a, b],
+            link: None,
         }
     }
 

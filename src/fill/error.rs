@@ -1,6 +1,7 @@
 //! Why a layer cannot be filled, worded for the process engineer who reads
 //! it as "layer 3 cannot be filled: …". All the wording is here.
 
+use crate::geometry::region::Fault;
 use std::fmt;
 
 /// Why [`fill`](super::fill) failed.
@@ -16,6 +17,9 @@ pub enum FillError {
         /// A point where it does.
         at: [f64; 2],
     },
+    /// A hole crosses, touches or lies outside the outline, or another hole.
+    #[error("{}", region(.0))]
+    Region(Fault),
     /// No track results at all.
     #[error(
         "nothing is left to fill: the outline encloses no room for a track once the inset and contour passes are taken off"
@@ -48,6 +52,34 @@ pub enum FillError {
         .0.max
     )]
     TooManyPoints(Count),
+}
+
+/// A region's fault in words; holes count from 1, as the user lists them.
+fn region(f: &Fault) -> String {
+    let at = |p: &[f64; 2]| format!("x = {} mm, y = {} mm", num(p[0]), num(p[1]));
+    match f {
+        Fault::Outline { at: p } => {
+            format!("the outline crosses or touches itself near {}", at(p))
+        }
+        Fault::HoleItself { hole, at: p } => {
+            format!("hole {} crosses or touches itself near {}", hole + 1, at(p))
+        }
+        Fault::HoleOutline { hole, at: p } => format!(
+            "hole {} crosses or touches the outline near {}",
+            hole + 1,
+            at(p)
+        ),
+        Fault::HoleOutside { hole } => format!("hole {} lies outside the outline", hole + 1),
+        Fault::Holes { hole, other, at: p } => format!(
+            "holes {} and {} cross or touch near {}",
+            hole + 1,
+            other + 1,
+            at(p)
+        ),
+        Fault::HoleInHole { hole, other } => {
+            format!("hole {} lies inside hole {}", hole + 1, other + 1)
+        }
+    }
 }
 
 /// A value outside its range.

@@ -5,7 +5,17 @@ use crate::geometry::profile::TOLERANCE;
 
 /// Each line's intervals with their ends extended by at most `limit`;
 /// `lines[n]` are line `n`'s clipped intervals, sorted and disjoint.
+#[cfg(test)]
 pub(super) fn extend(lines: &[Vec<[f64; 2]>], limit: f64) -> Vec<Vec<[f64; 2]>> {
+    extend_kept(lines, limit)
+        .into_iter()
+        .map(|l| l.into_iter().map(|(_, i)| i).collect())
+        .collect()
+}
+
+/// [`extend`], each interval kept with its index among the line's clipped
+/// ones (an interval that stays a point is dropped, so they may differ).
+pub(super) fn extend_kept(lines: &[Vec<[f64; 2]>], limit: f64) -> Vec<Vec<(usize, [f64; 2])>> {
     let grow = |reach: f64| {
         if reach > TOLERANCE {
             reach.min(limit)
@@ -36,8 +46,11 @@ pub(super) fn extend(lines: &[Vec<[f64; 2]>], limit: f64) -> Vec<Vec<[f64; 2]>> 
                     grown[k][0] = grown[k][0].max(mid);
                 }
             }
-            grown.retain(|i| i[1] - i[0] > TOLERANCE);
             grown
+                .into_iter()
+                .enumerate()
+                .filter(|(_, i)| i[1] - i[0] > TOLERANCE)
+                .collect()
         })
         .collect()
 }

@@ -1,18 +1,22 @@
-//! Filling a planar layer (seed 001): contour passes that follow the outline,
-//! then raster tracks across what is left.
+//! Filling a planar layer (seed 001): contour passes that follow the outline
+//! and its holes, then raster tracks across what is left.
 //!
-//! # What [`fill`] makes
+//! # What [`fill_region`] makes
 //!
-//! The [`Profile`] is the outline of the layer, in mm.
+//! The [`Region`] is the layer: an outline and any holes, in mm ([`fill`]
+//! takes a [`Profile`] without holes).
 //!
-//! - **Contours.** Pass `i` (`i = 0 .. contours`, 0 outermost) is the outline
-//!   offset inward by `inset + i·offset`. Each loop of it (an offset may split
-//!   a narrow waist into several loops) is one closed [`Track`]: arcs
-//!   flattened within `chord_error`, counter-clockwise, starting at its point
-//!   with the smallest `(y, x)` and ending with that point again. Loops of
-//!   one pass come in order of those start points. Once a pass vanishes the
-//!   passes inside it are skipped.
-//! - **Raster region.** The outline offset inward by
+//! - **Contours.** Pass `i` (`i = 0 .. contours`, 0 outermost) is the region
+//!   offset inward by `inset + i·offset`: the outline shrinks and every hole
+//!   grows, so each hole gets passes of its own, and where they meet the
+//!   loops merge. Each loop of it (an offset may also split a narrow waist
+//!   into several loops) is one closed [`Track`]: arcs flattened within
+//!   `chord_error`, counter-clockwise round the outline and clockwise round a
+//!   hole (the part on the left), starting at its seam ([`Seam`]; by default
+//!   its point with the smallest `(y, x)`) and ending with that point again.
+//!   Loops of one pass come in order of those start points. Once a pass
+//!   vanishes the passes inside it are skipped.
+//! - **Raster region.** The region offset inward by
 //!   `inset + contours·offset` (just `inset` without contours).
 //! - **Raster lines** run in direction `angle_deg` (from +x, counter-
 //!   clockwise). With `s` the coordinate across them, lines sit at
@@ -44,14 +48,21 @@
 //!   tracks gets nothing, and no end moves more than `extend`. Reaches are
 //!   measured on the clipped intervals, before any extension. Two intervals
 //!   of one line that would grow into each other stop at the middle of the
-//!   gap between them. Intervals shorter than 1e-9 mm after extension (a
-//!   touch point with nothing to grow it) are dropped.
+//!   gap between them. No end is extended into a hole grown by the inset
+//!   (where its bead would lay metal into the hole): it stops there. Intervals
+//!   shorter than 1e-9 mm after extension (a touch point with nothing to grow
+//!   it) are dropped.
 //! - **Order.** Contours first, outermost first; then the raster lines in
 //!   increasing `s`. [`Pattern::OneWay`] runs every interval in the +direction
 //!   of the line; [`Pattern::Serpentine`] alternates direction from one line
 //!   that carries tracks to the next (the first one runs in the +direction),
 //!   and on a line run backwards its intervals come in that backward order.
 //!   Each raster interval is one two-point [`Track`].
+//! - **Links** ([`Linking`], serpentine only): neighbouring tracks are joined
+//!   at their ends along the edge when the link stays where track centre
+//!   lines may run (the region less the inset); the tracks then come in
+//!   chains, each track carrying its [`Link`] to the next. The rule is in
+//!   [`link`].
 //!
 //! The output depends only on the inputs. If nothing at all results, `fill`
 //! returns [`FillError::Empty`]: a layer without tracks cannot be built.
@@ -65,22 +76,29 @@
 //! bounded number of contour passes ([`MAX_CONTOURS`], fewer for outlines of
 //! many pieces) and [`MAX_POINTS`] points a layer, so that no input can hang
 //! the compiler or exhaust its memory. A self-intersecting outline is
-//! rejected with a point where it crosses itself.
+//! rejected with a point where it crosses itself; holes that cross, touch or
+//! nest, or lie outside the outline, with which ([`FillError::Region`]).
 //!
-//! The cost is `O(V log V)` per offset (`V` the outline's pieces) plus the
-//! output: the clip walks each line only past the pieces that span it.
+//! The cost is `O(V log V)` per offset and for the region's check (`V` the
+//! pieces of all loops) plus the output: the clip walks each line only past
+//! the pieces that span it.
 
+mod clamp;
+mod clip;
 mod contour;
 mod coverage;
 mod error;
 mod extend;
+mod inside;
+pub mod link;
 mod raster;
 
-pub use coverage::{gap, Gap, MAX_SAMPLES};
+pub use coverage::{gap, gap_in, Gap, MAX_SAMPLES};
 pub use error::{Count, FillError, Invalid};
 pub use raster::{intervals_at, CLOSING};
 
 use crate::geometry::profile::Profile;
+use crate::geometry::region::{Fault, Region};
 
 /// Largest length accepted anywhere (mm): coordinates, offsets, inset,
 /// extension, chord error. A kilometre is far beyond any deposition cell and
@@ -111,6 +129,33 @@ pub enum Pattern {
     OneWay,
 }
 
+/// Whether neighbouring raster tracks are linked at their ends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Linking {
+    /// Every track its own: the laser stops at each end.
+    None,
+    /// Linked, the laser on through the link: a serpentine turning along
+    /// the edge.
+    LaserOn,
+    /// Linked, the laser off through the link: the nozzle moves on without
+    /// lifting.
+    LaserOff,
+}
+
+/// Where a contour loop starts and ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Seam {
+    /// At its point with the smallest `(y, x)` after flattening.
+    Lowest,
+    /// At its point farthest in this direction (rad from +x,
+    /// counter-clockwise), exact on arcs; of a straight edge across the
+    /// direction, at the edge's first point.
+    Toward(f64),
+    /// At its sharpest corner; a loop without corners (a circle) as
+    /// [`Seam::Lowest`].
+    SharpestCorner,
+}
+
 /// The raster part of a fill.
 #[derive(Clone, Copy, Debug)]
 pub struct RasterSpec {
@@ -123,6 +168,9 @@ pub struct RasterSpec {
     /// Most an interval's end may be extended past the clipped line, mm
     /// (seed 001: `d`; 0 turns extension off).
     pub extend: f64,
+    /// Whether neighbouring tracks are linked (serpentine only: one-way
+    /// tracks are never linked).
+    pub link: Linking,
 }
 
 /// How a layer is filled.
@@ -138,6 +186,8 @@ pub struct FillSpec {
     pub offset: f64,
     /// The raster inside the contours, if any.
     pub raster: Option<RasterSpec>,
+    /// Where contour loops start.
+    pub seam: Seam,
 }
 
 /// What a track is.
@@ -152,6 +202,16 @@ pub enum TrackKind {
     Infill,
 }
 
+/// How the nozzle goes on from a track's end to the next track's start
+/// without stopping.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Link {
+    /// The points strictly between the two (none: straight on), mm.
+    pub via: Vec<[f64; 2]>,
+    /// Whether the laser stays on through the link.
+    pub laser: bool,
+}
+
 /// One deposited track: a polyline the nozzle follows with the laser on.
 #[derive(Clone, Debug)]
 pub struct Track {
@@ -160,19 +220,51 @@ pub struct Track {
     /// The points, in mm, in travel order; a contour repeats its first point
     /// at the end.
     pub points: Vec<[f64; 2]>,
+    /// How it goes on into the next track of the fill, if it is linked.
+    pub link: Option<Link>,
 }
 
-/// The tracks that fill `profile` as `spec` says, arcs flattened within
+/// The tracks that fill `profile` (no holes) as `spec` says, arcs flattened
+/// within `chord_error` mm: [`fill_region`] of the profile alone.
+pub fn fill(profile: &Profile, spec: &FillSpec, chord_error: f64) -> Result<Vec<Track>, FillError> {
+    fill_region(&Region::from(profile.clone()), spec, chord_error)
+}
+
+/// The tracks that fill `region` as `spec` says, arcs flattened within
 /// `chord_error` mm. See the [module documentation](self) for what exactly
 /// is produced and in which order.
-pub fn fill(profile: &Profile, spec: &FillSpec, chord_error: f64) -> Result<Vec<Track>, FillError> {
-    validate(profile, spec, chord_error)?;
+pub fn fill_region(
+    region: &Region,
+    spec: &FillSpec,
+    chord_error: f64,
+) -> Result<Vec<Track>, FillError> {
+    validate(region, spec, chord_error)?;
     let mut points_left = MAX_POINTS;
-    let mut tracks = contour::passes(profile, spec, chord_error, &mut points_left)?;
+    let mut tracks = contour::passes(region, spec, chord_error, &mut points_left)?;
     if let Some(raster) = &spec.raster {
         let depth = spec.inset + spec.contours as f64 * spec.offset;
-        let region = profile.offset_inward(depth);
-        tracks.extend(raster::tracks(&region, raster, &mut points_left)?);
+        let inner = region.offset_inward(depth);
+        // Holes grown by the inset: a bead centred closer lays metal inside.
+        let keep_out: Vec<Profile> = region
+            .holes()
+            .iter()
+            .flat_map(|h| h.offset_inward(-spec.inset))
+            .collect();
+        let centres;
+        let link = match raster.link {
+            Linking::None => None,
+            _ if raster.pattern == Pattern::OneWay => None,
+            l => {
+                centres = region.offset_inward(spec.inset);
+                Some((&centres, l == Linking::LaserOn))
+            }
+        };
+        let cx = raster::Context {
+            keep_out: &keep_out,
+            link,
+            chord_error,
+        };
+        tracks.extend(raster::tracks(&inner, raster, &cx, &mut points_left)?);
     }
     if tracks.is_empty() {
         return Err(FillError::Empty);
@@ -198,12 +290,15 @@ fn too_many_points(left: u64, n: u64) -> FillError {
     })
 }
 
-fn validate(profile: &Profile, spec: &FillSpec, chord_error: f64) -> Result<(), FillError> {
+fn validate(region: &Region, spec: &FillSpec, chord_error: f64) -> Result<(), FillError> {
     let mut numbers = vec![spec.inset, spec.offset, chord_error];
     if let Some(r) = &spec.raster {
         numbers.extend([r.angle_deg, r.offset, r.extend]);
     }
-    if !profile.is_finite() || numbers.iter().any(|v| !v.is_finite()) {
+    if let Seam::Toward(a) = spec.seam {
+        numbers.push(a);
+    }
+    if !region.is_finite() || numbers.iter().any(|v| !v.is_finite()) {
         return Err(FillError::NonFinite);
     }
     let positive = "more than 0 mm and at most 1e6 mm";
@@ -217,7 +312,7 @@ fn validate(profile: &Profile, spec: &FillSpec, chord_error: f64) -> Result<(), 
         length("the raster offset", r.offset, positive, false)?;
         length("the raster extension", r.extend, not_negative, true)?;
     }
-    let pieces = profile.vertices().len();
+    let pieces = region.pieces();
     if pieces > MAX_PIECES {
         return Err(FillError::OutOfRange(Invalid {
             what: "the number of pieces of the outline",
@@ -226,10 +321,16 @@ fn validate(profile: &Profile, spec: &FillSpec, chord_error: f64) -> Result<(), 
             expected: "at most 100000",
         }));
     }
-    let Some([lo, hi]) = profile.bounds() else {
+    let Some([lo, hi]) = region.bounds() else {
         return Err(FillError::Empty);
     };
-    let coords = [lo[0], lo[1], hi[0], hi[1]];
+    // Holes inside the outline lie within its bounds; one outside is found
+    // by the check below, but its numbers must be in range for that.
+    let holes = region.holes().iter().filter_map(Profile::bounds);
+    let coords: Vec<f64> = [lo[0], lo[1], hi[0], hi[1]]
+        .into_iter()
+        .chain(holes.flat_map(|[a, b]| [a[0], a[1], b[0], b[1]]))
+        .collect();
     // An arc whose numbers overflow leaves NaN in the bounds: out of range too.
     if coords.iter().any(|v| v.is_nan() || v.abs() > MAX_LENGTH) {
         let reach = coords.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -244,8 +345,10 @@ fn validate(profile: &Profile, spec: &FillSpec, chord_error: f64) -> Result<(), 
             expected: "at most 1e6 mm from the origin",
         }));
     }
-    if let Some(at) = profile.self_intersection() {
-        return Err(FillError::SelfIntersecting { at });
+    match region.check() {
+        Ok(()) => {}
+        Err(Fault::Outline { at }) => return Err(FillError::SelfIntersecting { at }),
+        Err(fault) => return Err(FillError::Region(fault)),
     }
     let max_contours = (CONTOUR_WORK / pieces.max(1) as u64).min(MAX_CONTOURS);
     if spec.contours as u64 > max_contours {

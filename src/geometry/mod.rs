@@ -3,6 +3,7 @@
 
 pub mod outline;
 pub mod profile;
+pub mod region;
 pub mod section;
 pub mod spine;
 

@@ -1,17 +1,44 @@
-//! The model's 2-D shapes as [`Profile`]s: outlines of lines and arcs map to
-//! vertices with bulges; sections (centred on the origin) to their exact
-//! outlines, an ellipse flattened within the chord error.
+//! The model's 2-D shapes as [`Profile`]s and [`Region`]s: outlines of lines
+//! and arcs map to vertices with bulges; sections (centred on the origin) to
+//! their exact outlines, an ellipse flattened within the chord error; a
+//! placed shape is turned and moved exactly (bulges survive a rigid motion);
+//! a region is its outline and its holes.
 
 use super::profile::{Profile, Vertex};
+use super::region::Region;
 use crate::sema::model::{Outline, Section, Segment, Shape, Turn};
 use std::f64::consts::PI;
 
-/// The profile of `shape`; `chord_error` bounds the flattening of an ellipse.
+/// The outer outline of `shape` (a region's holes are left out: see
+/// [`region`]); `chord_error` bounds the flattening of an ellipse.
 pub fn profile(shape: &Shape, chord_error: f64) -> Profile {
-    Profile::new(match shape {
-        Shape::Outline(o) => outline(o),
-        Shape::Section(s) => section(s, chord_error),
-    })
+    match shape {
+        Shape::Outline(o) => Profile::new(outline(o)),
+        Shape::Section(s) => Profile::new(section(s, chord_error)),
+        Shape::Placed(p) => profile(&p.shape, chord_error).placed(p.turn.0, xy(p.at)),
+        Shape::Region(r) => profile(&r.outline, chord_error),
+    }
+}
+
+/// The region of `shape`: its outline and, for a `region(…)`, its holes in
+/// the order written. The loops are not checked here
+/// ([`Region::faults`] does).
+pub fn region(shape: &Shape, chord_error: f64) -> Region {
+    match shape {
+        Shape::Region(r) => Region::new(
+            profile(&r.outline, chord_error),
+            r.holes
+                .iter()
+                .map(|h| profile(&h.shape, chord_error))
+                .collect(),
+        ),
+        Shape::Placed(p) => region(&p.shape, chord_error).placed(p.turn.0, xy(p.at)),
+        other => Region::from(profile(other, chord_error)),
+    }
+}
+
+fn xy(p: [crate::units::Length; 2]) -> [f64; 2] {
+    [p[0].0, p[1].0]
 }
 
 /// Bulge (tan of a quarter of the swept angle, + counter-clockwise) of the
@@ -26,7 +53,6 @@ pub fn bulge(c: f64, r: f64, turn: Turn) -> f64 {
 }
 
 fn outline(o: &Outline) -> Vec<Vertex> {
-    let xy = |p: [crate::units::Length; 2]| [p[0].0, p[1].0];
     let mut out = vec![Vertex {
         x: o.start[0].0,
         y: o.start[1].0,

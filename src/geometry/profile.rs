@@ -7,6 +7,7 @@
 //! that scale.
 
 mod segment;
+mod start;
 
 pub use segment::{Segment, LINE_BULGE, MAX_ARC_CHORDS};
 
@@ -28,7 +29,7 @@ pub const MAX_COORDINATE: f64 = 1e12;
 
 /// Offset loops smaller than this (mm²) are slivers left where the offset
 /// closes up, not room for a track.
-const MIN_LOOP_AREA: f64 = 1e-9;
+pub(crate) const MIN_LOOP_AREA: f64 = 1e-9;
 
 /// A corner of a profile and the bend of the piece that leaves it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -196,7 +197,7 @@ impl Profile {
     }
 
     /// Whether `cavalier_contours` can be trusted with this profile.
-    fn engine_safe(&self) -> bool {
+    pub(crate) fn engine_safe(&self) -> bool {
         self.vertices.len() >= 2
             && self.is_finite()
             && self
@@ -205,12 +206,23 @@ impl Profile {
                 .all(|v| v.x.abs() <= MAX_COORDINATE && v.y.abs() <= MAX_COORDINATE)
     }
 
-    fn to_pline(&self) -> Polyline<f64> {
+    /// The loop as `cavalier_contours` takes it (counter-clockwise).
+    pub(crate) fn to_pline(&self) -> Polyline<f64> {
         let mut pl = Polyline::new_closed();
         for v in &self.vertices {
             pl.add(v.x, v.y, v.bulge);
         }
         pl
+    }
+
+    /// The profile of a closed loop `cavalier_contours` returned (made
+    /// counter-clockwise like every profile).
+    pub(crate) fn from_pline(pl: &Polyline<f64>) -> Profile {
+        Profile::new(
+            pl.iter_vertexes()
+                .map(|v: PlineVertex<f64>| Vertex::arc(v.x, v.y, v.bulge))
+                .collect(),
+        )
     }
 
     /// A point where two pieces that do not follow each other cross or
@@ -263,13 +275,7 @@ impl Profile {
             .parallel_offset_opt(d, &options)
             .into_iter()
             .filter(|pl| pl.is_closed())
-            .map(|pl| {
-                Profile::new(
-                    pl.iter_vertexes()
-                        .map(|v: PlineVertex<f64>| Vertex::arc(v.x, v.y, v.bulge))
-                        .collect(),
-                )
-            })
+            .map(|pl| Profile::from_pline(&pl))
             .filter(|p| p.area() > MIN_LOOP_AREA)
             .collect()
     }

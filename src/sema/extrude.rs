@@ -379,6 +379,7 @@ pub fn assemble(
                 r
             }),
             chord_error: spec.chord_error,
+            seam: spec.seam,
             speed: v,
             lift: spec.lift,
             span: spec.span,

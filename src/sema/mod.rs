@@ -18,6 +18,8 @@ pub mod model;
 mod process;
 mod profile;
 mod program_text;
+mod region;
+mod seam;
 mod section;
 pub mod slicing;
 mod solid;

@@ -442,6 +442,105 @@ pub enum Shape {
     Section(Section),
     /// An outline of lines and arcs.
     Outline(Outline),
+    /// A shape turned about the origin, then moved: `place(…)`.
+    Placed(Box<Placed>),
+    /// An outline with holes: `region(…)`.
+    Region(Box<RegionShape>),
+}
+
+impl Shape {
+    /// Whether the shape has holes (only a [`Shape::Region`], placed or not).
+    pub fn has_holes(&self) -> bool {
+        match self {
+            Shape::Section(_) | Shape::Outline(_) => false,
+            Shape::Placed(p) => p.shape.has_holes(),
+            Shape::Region(r) => !r.holes.is_empty(),
+        }
+    }
+
+    /// The pieces of all its outlines (an ellipse's flattening counts as 8):
+    /// the work an offset of it does.
+    pub fn pieces(&self) -> usize {
+        match self {
+            Shape::Outline(o) => o.segments.len() + 1,
+            Shape::Section(_) => 8,
+            Shape::Placed(p) => p.shape.pieces(),
+            Shape::Region(r) => {
+                r.outline.pieces() + r.holes.iter().map(|h| h.shape.pieces()).sum::<usize>()
+            }
+        }
+    }
+}
+
+/// `place(shape, at = [x, y], turn = a)`: the shape turned by `turn` about
+/// the origin (counter-clockwise), then moved by `at`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Placed {
+    /// What is placed.
+    pub shape: Shape,
+    /// Rotation about the origin, counter-clockwise.
+    pub turn: Angle,
+    /// Where the shape's origin goes.
+    pub at: [Length; 2],
+}
+
+/// `region(outline = …, holes = […])`: a planar profile with openings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RegionShape {
+    /// The outer outline (without holes of its own).
+    pub outline: Shape,
+    /// Where the outline is written.
+    pub outline_span: Span,
+    /// The holes, in the order written (a bolt circle's in its order).
+    pub holes: Vec<Hole>,
+}
+
+/// One hole of a [`RegionShape`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hole {
+    /// Its outline (without holes of its own).
+    pub shape: Shape,
+    /// Where it is written (a bolt circle's holes share its span).
+    pub span: Span,
+}
+
+/// The ways of a contour loop's seam (where it starts and ends) from layer
+/// to layer: `seam = …` in `slicing planar`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SeamRule {
+    /// At the loop's point with the smallest `(y, x)`, the same on every
+    /// layer.
+    Lowest,
+    /// Farthest in one direction (from +x, counter-clockwise).
+    Toward(Angle),
+    /// Farthest in a direction that turns by `step` every layer from `from`.
+    Rotating {
+        /// The direction on the first layer.
+        from: Angle,
+        /// Added every layer.
+        step: Angle,
+    },
+    /// Farthest in a direction drawn for each layer from a fixed seed: the
+    /// same file always gives the same seams.
+    Random {
+        /// The seed.
+        seed: u64,
+    },
+    /// At the loop's sharpest corner (a corner hides the seam).
+    SharpestCorner,
+}
+
+/// Whether neighbouring raster tracks are joined at their ends along the
+/// edge: `link = …` in `raster(…)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LinkMode {
+    /// Every track its own: laser off, retract, approach.
+    None,
+    /// Linked with the laser on: the nozzle turns along the edge depositing.
+    LaserOn,
+    /// Linked with the laser off: the nozzle moves along the edge at the
+    /// layer's height, without lifting.
+    LaserOff,
 }
 
 /// `extrude NAME { profile, height, size, bead }`: what the checker knows of
@@ -518,6 +617,8 @@ pub struct Raster {
     /// Most a track end is extended where the boundary curves (seed 001's
     /// ΔX ≤ d).
     pub extend: Length,
+    /// Whether neighbouring tracks are linked along the edge.
+    pub link: LinkMode,
 }
 
 /// `slicing planar { … }`.
@@ -533,6 +634,8 @@ pub struct PlanarSlicing {
     pub infill: Option<Raster>,
     /// Largest distance of a flattened arc from the true one.
     pub chord_error: Length,
+    /// Where contour loops start on each layer.
+    pub seam: SeamRule,
     /// Scan speed of every track.
     pub speed: Speed,
     /// `layer_height`, if declared (`None`: auto, what the tracks lay).

@@ -6,6 +6,7 @@
 
 use super::fields::{self, Fields};
 use super::model::{Outline, ProfileExpr, Segment, Shape, Turn};
+use super::region;
 use super::section;
 use super::value::{Call, Env, Spanned, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
@@ -18,19 +19,33 @@ pub const OUTLINE: &str = "outline";
 /// Most pieces an outline may have.
 pub const MAX_SEGMENTS: usize = 10_000;
 
-/// Reads a profile value: `outline(…)` or a section shape.
+/// Reads a profile value: `outline(…)`, a section shape, `place(…)` of
+/// one, or `region(…)` (see [`super::region`]).
 pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> {
     match &v.value {
         Value::Call(c) if c.func == OUTLINE => outline(c, diags).map(Shape::Outline),
         Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => {
             section::read(c, diags).map(Shape::Section)
         }
+        Value::Call(c) if c.func == "region" => region::region(c, diags),
+        Value::Call(c) if c.func == "place" => region::place(c, diags),
+        Value::Call(c) if c.func == "bolt_circle" => {
+            diags.push(
+                Diagnostic::error(
+                    Code::ExpectedShape,
+                    format!("{what} must be one 2-D shape; a bolt circle is several holes"),
+                )
+                .label(v.span, "a bolt circle")
+                .help("list it among a region's holes: `region(outline = …, holes = [bolt_circle(circle(diameter = 12 mm), count = 6, diameter = 85 mm)])`"),
+            );
+            None
+        }
         other => {
             diags.push(
                 Diagnostic::error(Code::ExpectedShape, format!("{what} must be a 2-D shape"))
                     .label(v.span, format!("this is {}", other.describe()))
                     .help(format!(
-                        "write `outline([x, y], [x, y], arc(to = [x, y], radius = r), …)` or a section shape: {}",
+                        "write `outline([x, y], [x, y], arc(to = [x, y], radius = r), …)`, `region(outline = …, holes = […])`, `place(…)` or a section shape: {}",
                         section::SHAPES.join(", ")
                     )),
             );
@@ -137,7 +152,8 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
     ok.then_some(Outline { start, segments })
 }
 
-fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
+/// A point `[x, y]` of two lengths.
+pub(super) fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
     match &v.value {
         Value::List(items) if items.len() == 2 => {
             let x = fields::quantity(&items[0], Dim::LENGTH, "x", diags);

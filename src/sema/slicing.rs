@@ -3,7 +3,8 @@
 //! `slicing variable { … }` is read by `sema::variable`.
 
 use super::fields::{self, Fields};
-use super::model::{Pattern, Raster, Resolution, Slicing};
+use super::model::{LinkMode, Pattern, Raster, Resolution, SeamRule, Slicing};
+use super::seam;
 use super::statement::{shape_error, single, Statements};
 use super::suggest::did_you_mean;
 use super::value::{Call, Env, Spanned as SpannedValue, Value};
@@ -42,6 +43,8 @@ pub struct PlanarSpec {
     pub infill: Option<(Raster, Option<Length>)>,
     /// Chord error of flattened arcs.
     pub chord_error: Length,
+    /// Where contour loops start, layer by layer.
+    pub seam: SeamRule,
     /// The block.
     pub span: Span,
 }
@@ -124,6 +127,7 @@ const PLANAR_FIELDS: &[&str] = &[
     "offset",
     "infill",
     "chord_error",
+    "seam",
 ];
 
 /// The fields of a block whose strategy is wrong or missing: checked against
@@ -323,6 +327,11 @@ fn planar<'a>(
         None if f.has("chord_error") => None,
         None => Some(Length(0.05)),
     };
+    let seam = match f.value("seam", None, diags) {
+        Some(v) => seam::read(v, diags),
+        None if f.has("seam") => None,
+        None => Some(SeamRule::Lowest),
+    };
     Some(PlanarSpec {
         lift: lift?,
         layers: layers?,
@@ -330,12 +339,18 @@ fn planar<'a>(
         offset: offset?,
         infill: infill?,
         chord_error: chord_error?,
+        seam: seam?,
         span,
     })
 }
 
 fn raster(c: &Call, diags: &mut Diagnostics) -> Option<(Raster, Option<Length>)> {
-    let a = Fields::call(c, &[], &["angle", "rotate", "pattern", "extend"], diags);
+    let a = Fields::call(
+        c,
+        &[],
+        &["angle", "rotate", "pattern", "extend", "link"],
+        diags,
+    );
     let angle = match a.quantity("angle", Dim::ANGLE, None, diags) {
         Some((x, _)) => Some(Angle(x)),
         None if a.has("angle") => None,
@@ -369,6 +384,25 @@ fn raster(c: &Call, diags: &mut Diagnostics) -> Option<(Raster, Option<Length>)>
             }
         }),
     };
+    let link = match a.value("link", None, diags) {
+        Some(v) => seam::link(v, diags),
+        None if a.has("link") => None,
+        None => Some(LinkMode::None),
+    };
+    // A link turns the nozzle back into the next track: one-way tracks all
+    // start on the same side, and no edge leads from one's end to the next.
+    if let (Some(Pattern::OneWay), Some(LinkMode::LaserOn | LinkMode::LaserOff)) = (pattern, link) {
+        diags.push(
+            Diagnostic::error(
+                Code::ConflictingFields,
+                "one-way tracks cannot be linked: each starts on the side the last one started",
+            )
+            .label_opt(a.span("link"), "link")
+            .label_opt(a.span("pattern"), "one way")
+            .help("link serpentine tracks (`pattern = serpentine`), or drop `link`"),
+        );
+        return None;
+    }
     let extend = extend?;
     Some((
         Raster {
@@ -376,6 +410,7 @@ fn raster(c: &Call, diags: &mut Diagnostics) -> Option<(Raster, Option<Length>)>
             rotate: rotate?,
             pattern: pattern?,
             extend: extend.unwrap_or(Length(0.0)),
+            link: link?,
         },
         extend,
     ))

@@ -209,9 +209,32 @@ pub fn assemble(
     ))
 }
 
-/// The footprint: one shape. A profile that follows `layer` has no place
-/// under a top, whose layers are not planes a profile could be cut at.
+/// The footprint: one shape without holes. A profile that follows `layer`
+/// has no place under a top, whose layers are not planes a profile could be
+/// cut at.
 fn footprint(
+    env: &mut Env<'_>,
+    source: Source<'_>,
+    profile_span: Span,
+    diags: &mut Diagnostics,
+) -> Option<(Shape, Span)> {
+    let (shape, span) = one_footprint(env, source, profile_span, diags)?;
+    if shape.has_holes() {
+        // The balanced offsets and the segments assume one strip per track.
+        diags.push(
+            Diagnostic::error(
+                Code::Unsupported,
+                "a footprint with holes cannot carry a `top` (yet)",
+            )
+            .label(span, "has holes")
+            .help("variable layers are laid in straight tracks across one outline: build the part with a flat top (`height` and `slicing planar`), or without the holes"),
+        );
+        return None;
+    }
+    Some((shape, span))
+}
+
+fn one_footprint(
     env: &mut Env<'_>,
     source: Source<'_>,
     profile_span: Span,

@@ -65,7 +65,7 @@ pub fn plan(
     };
     let shapes = match &extrusion.profile {
         LayerProfile::Fixed(s) => {
-            within_budget(pieces(s).saturating_mul(n), extrusion.profile_span, diags)?;
+            within_budget(s.pieces().saturating_mul(n), extrusion.profile_span, diags)?;
             vec![s.clone(); n]
         }
         LayerProfile::PerLayer(p) => {
@@ -76,7 +76,7 @@ pub fn plan(
                 let mut scratch = Diagnostics::new();
                 match shapes.at(k, k as f64 * lift.0, &mut scratch) {
                     Some(s) if !scratch.has_errors() => {
-                        total = total.saturating_add(pieces(&s));
+                        total = total.saturating_add(s.pieces());
                         within_budget(total, extrusion.profile_span, diags)?;
                         out.push(s);
                     }
@@ -138,14 +138,6 @@ fn whole_layers(height: Length, at: Span, lift: Length, diags: &mut Diagnostics)
         );
     }
     Some(n)
-}
-
-/// Pieces of a shape's outline (an ellipse's flattening is bounded apart).
-fn pieces(s: &Shape) -> usize {
-    match s {
-        Shape::Outline(o) => o.segments.len() + 1,
-        Shape::Section(_) => 8,
-    }
 }
 
 fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> {

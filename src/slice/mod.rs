@@ -2,6 +2,7 @@
 //! layers). Reads the model and the geometry built from it.
 
 pub mod feasibility;
+mod holes;
 pub mod layers;
 pub mod normal;
 pub mod planar;

@@ -4,19 +4,30 @@
 //! style rules or by inheritance from the layer below (seed 002). Every track
 //! becomes a path whose points carry their style's process values; the laser is
 //! on from a track's first point to its last.
+//!
+//! A profile with holes is checked on each layer first: every hole that
+//! crosses, touches or lies outside the outline or another hole is reported
+//! (`slice::holes`). Linked raster tracks (`link = …`) get a path of their
+//! own between them, from the one's last point to the next one's first:
+//! [`PathKind::Travel`] with the laser off, [`PathKind::Infill`] with it on;
+//! both join the tracks on either side, so the nozzle neither stops nor
+//! lifts. Contour seams follow the slicing's seam rule, layer by layer.
 
+use super::holes;
 use super::layers::{self, Layers};
 use super::styling::{self, Styler};
 use super::MAX_TOTAL_POINTS;
 use crate::bead::MIN_OFFSET_RATIO;
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::fill::{
-    self, FillError, FillSpec, Pattern as FillPattern, RasterSpec, Track, TrackKind,
+    self, FillError, FillSpec, Linking, Pattern as FillPattern, RasterSpec, Seam, Track, TrackKind,
 };
 use crate::geometry::outline;
-use crate::geometry::profile::Profile;
+use crate::geometry::region::Region;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
-use crate::sema::model::{Extrusion, Measure, Model, Pattern, PlanarSlicing, Shape};
+use crate::sema::model::{
+    Extrusion, LinkMode, Measure, Model, Pattern, PlanarSlicing, SeamRule, Shape,
+};
 use crate::style;
 use crate::units::{short, Length};
 use std::collections::{BTreeMap, BTreeSet};
@@ -81,29 +92,41 @@ fn fill_layers(
         let angle = slicing
             .infill
             .map_or(0.0, |r| (r.angle.0 + r.rotate.0 * k as f64).to_degrees());
+        let seam = seam_at(slicing.seam, k);
         let reuse = matches!(&last, Some(f)
-            if f.shape == shape && f.angle.rem_euclid(360.0) == angle.rem_euclid(360.0));
+            if f.shape == shape
+                && f.angle.rem_euclid(360.0) == angle.rem_euclid(360.0)
+                && f.seam == seam);
         let filled = match last.take() {
             Some(f) if reuse => f,
             _ => {
-                let profile = outline::profile(shape, slicing.chord_error.0);
+                let region = outline::region(shape, slicing.chord_error.0);
                 let at = Where {
                     k,
                     varies,
                     extrusion,
                     slicing,
                 };
-                let (tracks, gap) = match fill_layer(&profile, angle, inset, w, gap_samples, &at) {
-                    Ok(f) => f,
-                    Err(e) => {
-                        diags.push(e);
-                        return None;
+                let faults = holes::faults(&region, shape, &holes::Layer { k, varies });
+                if !faults.is_empty() {
+                    for d in faults {
+                        diags.push(d);
                     }
-                };
+                    return None;
+                }
+                let (tracks, gap) =
+                    match fill_layer(&region, angle, seam, inset, w, gap_samples, &at) {
+                        Ok(f) => f,
+                        Err(e) => {
+                            diags.push(e);
+                            return None;
+                        }
+                    };
                 Filled {
                     shape,
                     angle,
-                    profile,
+                    seam,
+                    region,
                     tracks,
                     gap,
                 }
@@ -122,7 +145,7 @@ fn fill_layers(
             );
             return None;
         }
-        let styles = styler.layer(k, &filled.profile, &filled.tracks);
+        let styles = styler.layer(k, &filled.region, &filled.tracks);
         found.used.extend(styles.iter().copied());
         out.push(layer(&values, k, n, lift, &filled.tracks, &styles));
         last = Some(filled);
@@ -188,7 +211,10 @@ impl Findings {
         if passes < contours && self.few_passes.is_none() {
             self.few_passes = Some((k, passes));
         }
-        for t in &f.tracks {
+        // The length of the deposit under way: tracks linked with the laser
+        // on are one deposit, started and stopped once.
+        let mut run = 0.0;
+        for (i, t) in f.tracks.iter().enumerate() {
             let length = style::length(&t.points);
             // A contour loop whose sides run closer than the tracks may (a
             // sliver: mean width 2·area/perimeter) piles up like any overlap.
@@ -200,10 +226,22 @@ impl Findings {
                     self.sliver = Some((k, thickness));
                 }
             }
-            if length < w {
+            run += length;
+            if let (Some(l), Some(next)) = (&t.link, f.tracks.get(i + 1)) {
+                if l.laser {
+                    let mut link = Vec::with_capacity(l.via.len() + 2);
+                    link.extend(t.points.last().copied());
+                    link.extend_from_slice(&l.via);
+                    link.push(next.points[0]);
+                    run += style::length(&link);
+                    continue;
+                }
+            }
+            if run < w {
                 self.short_tracks += 1;
                 self.first_short.get_or_insert(k);
             }
+            run = 0.0;
         }
     }
 
@@ -335,6 +373,28 @@ fn distinct(mut t: Track) -> Option<Track> {
     (t.points.len() >= need).then_some(t)
 }
 
+/// The tracks that keep enough distinct points ([`distinct`]); a track
+/// linked to one that is dropped loses its link, so a link always leads to
+/// the track that follows it.
+fn distinct_tracks(tracks: Vec<Track>) -> Vec<Track> {
+    let mut out: Vec<Track> = Vec::with_capacity(tracks.len());
+    for t in tracks {
+        match distinct(t) {
+            Some(t) => out.push(t),
+            // The track before (if kept) led here.
+            None => {
+                if let Some(prev) = out.last_mut() {
+                    prev.link = None;
+                }
+            }
+        }
+    }
+    if let Some(last) = out.last_mut() {
+        last.link = None;
+    }
+    out
+}
+
 /// Points closer than this (mm) are one point.
 const DISTINCT: f64 = 1e-6;
 
@@ -352,16 +412,28 @@ struct Filled<'m> {
     shape: &'m Shape,
     /// Raster angle, deg.
     angle: f64,
-    profile: Profile,
+    seam: Seam,
+    region: Region,
     tracks: Vec<Track>,
     gap: Option<fill::Gap>,
 }
 
-/// Fills one layer's `profile` with the raster at `angle` (deg) and finds the
-/// farthest spot no bead reaches, if a raster promises a full layer.
+/// Where the contour loops of layer `k` start.
+fn seam_at(rule: SeamRule, k: usize) -> Seam {
+    match rule {
+        SeamRule::Lowest => Seam::Lowest,
+        SeamRule::SharpestCorner => Seam::SharpestCorner,
+        r => r.direction(k).map_or(Seam::Lowest, Seam::Toward),
+    }
+}
+
+/// Fills one layer's `region` with the raster at `angle` (deg), contours
+/// starting at `seam`, and finds the farthest spot no bead reaches, if a
+/// raster promises a full layer.
 fn fill_layer(
-    profile: &Profile,
+    region: &Region,
     angle: f64,
+    seam: Seam,
     inset: f64,
     w: f64,
     gap_samples: usize,
@@ -380,13 +452,17 @@ fn fill_layer(
                 Pattern::OneWay => FillPattern::OneWay,
             },
             extend: r.extend.0,
+            link: match r.link {
+                LinkMode::None => Linking::None,
+                LinkMode::LaserOn => Linking::LaserOn,
+                LinkMode::LaserOff => Linking::LaserOff,
+            },
         }),
+        seam,
     };
-    let tracks: Vec<Track> = fill::fill(profile, &spec, slicing.chord_error.0)
-        .map_err(|e| fill_error(e, at))?
-        .into_iter()
-        .filter_map(distinct)
-        .collect();
+    let tracks = distinct_tracks(
+        fill::fill_region(region, &spec, slicing.chord_error.0).map_err(|e| fill_error(e, at))?,
+    );
     if tracks.is_empty() {
         return Err(fill_error(FillError::Empty, at));
     }
@@ -399,7 +475,7 @@ fn fill_layer(
     // make walls: unchecked.
     let gap = slicing
         .infill
-        .and_then(|_| fill::gap(profile, 0.0, &tracks, THIN_GAP * w, gap_samples));
+        .and_then(|_| fill::gap_in(region, 0.0, &tracks, THIN_GAP * w, gap_samples));
     Ok((tracks, gap))
 }
 
@@ -443,6 +519,8 @@ fn fill_error(e: FillError, layer: &Where<'_>) -> Diagnostic {
     }
 }
 
+/// Layer `k` of `n`: each track a path, and each link a path between its
+/// two tracks.
 fn layer(
     values: &Values,
     k: usize,
@@ -452,45 +530,39 @@ fn layer(
     styles: &[u16],
 ) -> Layer {
     let z = k as f64 * lift;
-    let paths = tracks
-        .iter()
-        .zip(styles)
-        .map(|(t, &style)| {
-            let v = values.of(style, k);
-            // `distinct` left at least two points, so every point has a
-            // neighbour at a distance to take a direction from.
-            let m = t.points.len();
-            let points = (0..m)
-                .map(|i| {
-                    let (a, b) = if i + 1 < m { (i, i + 1) } else { (i - 1, i) };
-                    let (dx, dy) = (
-                        t.points[b][0] - t.points[a][0],
-                        t.points[b][1] - t.points[a][1],
-                    );
-                    let len = dx.hypot(dy).max(1e-12);
-                    Point {
-                        pos: [t.points[i][0], t.points[i][1], z],
-                        normal: [0.0, 0.0, 1.0],
-                        tangent: [(dx / len) as f32, (dy / len) as f32, 0.0],
-                        layer_height: lift as f32,
-                        speed: v.speed,
-                        power: v.power,
-                        powder: v.powder,
-                        defocus: values.defocus,
-                        laser_on: i + 1 < m,
-                        style,
-                    }
-                })
-                .collect();
-            Path {
-                kind: match t.kind {
-                    TrackKind::Contour { .. } => PathKind::Contour,
-                    TrackKind::Infill => PathKind::Infill,
-                },
-                points,
-            }
-        })
-        .collect();
+    let at = |style: u16| Laid {
+        z,
+        lift,
+        deposit: values.of(style, k),
+        defocus: values.defocus,
+        style,
+    };
+    let mut paths = Vec::with_capacity(tracks.len());
+    for (i, (t, &style)) in tracks.iter().zip(styles).enumerate() {
+        let kind = match t.kind {
+            TrackKind::Contour { .. } => PathKind::Contour,
+            TrackKind::Infill => PathKind::Infill,
+        };
+        // `distinct` left at least two points.
+        paths.push(path(kind, &t.points, true, &at(style)));
+        let (Some(link), Some(next)) = (&t.link, tracks.get(i + 1)) else {
+            continue;
+        };
+        let mut points = Vec::with_capacity(link.via.len() + 2);
+        points.extend(t.points.last().copied());
+        points.extend_from_slice(&link.via);
+        points.push(next.points[0]);
+        points.dedup_by(|b, a| (b[0] - a[0]).hypot(b[1] - a[1]) <= DISTINCT);
+        if points.len() >= 2 {
+            // A link that deposits is laid like the track it leaves.
+            let kind = if link.laser {
+                PathKind::Infill
+            } else {
+                PathKind::Travel
+            };
+            paths.push(path(kind, &points, link.laser, &at(style)));
+        }
+    }
     Layer {
         index: k,
         station: k as f64 / n as f64,
@@ -502,6 +574,46 @@ fn layer(
         },
         paths,
     }
+}
+
+/// How a layer's points are laid: its plane and rise, and a track's values.
+struct Laid {
+    z: f64,
+    lift: f64,
+    deposit: Deposit,
+    defocus: f32,
+    style: u16,
+}
+
+/// The IR path through `pts` (at least two, each distinct from the next),
+/// the laser on from each point to the next when `laser`.
+fn path(kind: PathKind, pts: &[[f64; 2]], laser: bool, l: &Laid) -> Path {
+    let m = pts.len();
+    let points = (0..m)
+        .map(|i| {
+            // Every point has a neighbour at a distance to take a direction from.
+            let (a, b) = if i + 1 < m {
+                (i, i + 1)
+            } else {
+                (i.saturating_sub(1), i)
+            };
+            let (dx, dy) = (pts[b][0] - pts[a][0], pts[b][1] - pts[a][1]);
+            let len = dx.hypot(dy).max(1e-12);
+            Point {
+                pos: [pts[i][0], pts[i][1], l.z],
+                normal: [0.0, 0.0, 1.0],
+                tangent: [(dx / len) as f32, (dy / len) as f32, 0.0],
+                layer_height: l.lift as f32,
+                speed: l.deposit.speed,
+                power: l.deposit.power,
+                powder: l.deposit.powder,
+                defocus: l.defocus,
+                laser_on: laser && i + 1 < m,
+                style: l.style,
+            }
+        })
+        .collect();
+    Path { kind, points }
 }
 
 /// The process values a track is deposited with.

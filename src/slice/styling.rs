@@ -6,7 +6,7 @@
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::fill::{Track, TrackKind};
-use crate::geometry::profile::Profile;
+use crate::geometry::region::Region;
 use crate::sema::model::{PathSelect, StyleCondition, Styles};
 use crate::style::{self, BoundaryBand, Condition, Layout, PathClass, Rule, TrackFacts};
 
@@ -91,8 +91,9 @@ impl Styler {
         }
     }
 
-    /// The style of each of layer `k`'s `tracks` (filled in `profile`).
-    pub fn layer(&mut self, k: usize, profile: &Profile, tracks: &[Track]) -> Vec<u16> {
+    /// The style of each of layer `k`'s `tracks` (filled in `region`: its
+    /// holes' edges are boundary and their corners corners too).
+    pub fn layer(&mut self, k: usize, region: &Region, tracks: &[Track]) -> Vec<u16> {
         if self.rules.is_empty() {
             return vec![0; tracks.len()];
         }
@@ -102,7 +103,7 @@ impl Styler {
         let boundary = if self.distances.is_empty() {
             Vec::new()
         } else {
-            vec![profile.polyline(self.chord_error)]
+            region.polylines(self.chord_error)
         };
         let bands: Vec<(f64, Option<BoundaryBand>)> = self
             .distances
@@ -112,7 +113,7 @@ impl Styler {
         let corners: Vec<(f64, Vec<[f64; 2]>)> = self
             .angles
             .iter()
-            .map(|&a| (a, profile.corners(a)))
+            .map(|&a| (a, region.loops().flat_map(|(l, _)| l.corners(a)).collect()))
             .collect();
         let prev: Vec<(&[[f64; 2]], u16)> =
             self.prev.iter().map(|(p, s)| (p.as_slice(), *s)).collect();

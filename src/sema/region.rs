@@ -1,0 +1,169 @@
+//! Planar profiles with holes and placed shapes:
+//!
+//! - `region(outline = SHAPE, holes = [SHAPE, …])`: a profile with openings;
+//! - `place(SHAPE, at = [x, y], turn = a)`: a shape turned about the origin,
+//!   then moved (a section is centred on the origin until placed);
+//! - `bolt_circle(SHAPE, count = n, diameter = D, from = a, at = [x, y])`,
+//!   in a hole list only: `n` copies of the shape on a circle of diameter `D`
+//!   about `at` (default the origin), the first at angle `a`, each turned
+//!   with the pattern — the way a drawing dimensions bolt holes (pitch circle
+//!   diameter).
+//!
+//! Whether the holes lie inside the outline, apart from each other, is a
+//! question of the geometry on each layer: the slicer answers it
+//! ([`crate::slice::planar`]).
+
+use super::fields::Fields;
+use super::model::{Hole, Placed, RegionShape, Shape};
+use super::profile::{point, shape};
+use super::value::{Call, Spanned, Value};
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::units::{Angle, Dim, Length};
+
+/// Most holes one region may have (a bolt circle's count included): every
+/// pair of holes whose boxes overlap is tested on every layer, so the bound
+/// keeps that work to well under a second whatever the holes are.
+pub const MAX_HOLES: usize = 1000;
+
+/// Reads `region(outline = …, holes = […])`.
+pub fn region(c: &Call, diags: &mut Diagnostics) -> Option<Shape> {
+    let f = Fields::call(c, &["outline"], &["outline", "holes"], diags);
+    let outline = f
+        .value("outline", Some("circle(diameter = 120 mm)"), diags)
+        .and_then(|v| plain(v, "the outline of a region", diags).map(|s| (s, v.span)));
+    let holes = match f.value("holes", None, diags) {
+        None if f.has("holes") => None,
+        None => Some(Vec::new()),
+        Some(v) => holes(v, diags),
+    };
+    let (outline, outline_span) = outline?;
+    Some(Shape::Region(Box::new(RegionShape {
+        outline,
+        outline_span,
+        holes: holes?,
+    })))
+}
+
+/// Reads `place(shape, at = [x, y], turn = a)`.
+pub fn place(c: &Call, diags: &mut Diagnostics) -> Option<Shape> {
+    let f = Fields::call(c, &["shape"], &["shape", "at", "turn"], diags);
+    let inner = f
+        .value("shape", Some("circle(diameter = 12 mm)"), diags)
+        .and_then(|v| shape(v, "what `place` places", diags));
+    let at = match f.value("at", None, diags) {
+        Some(v) => point(v, diags),
+        None if f.has("at") => None,
+        None => Some([Length(0.0); 2]),
+    };
+    let turn = turn(&f, "turn", diags);
+    Some(Shape::Placed(Box::new(Placed {
+        shape: inner?,
+        turn: turn?,
+        at: at?,
+    })))
+}
+
+/// An angle field, 0 when not written.
+fn turn(f: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<Angle> {
+    match f.quantity(key, Dim::ANGLE, None, diags) {
+        Some((a, _)) => Some(Angle(a)),
+        None if f.has(key) => None,
+        None => Some(Angle(0.0)),
+    }
+}
+
+/// A shape that must be one outline: no holes of its own.
+fn plain(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> {
+    let s = shape(v, what, diags)?;
+    if s.has_holes() {
+        diags.push(
+            Diagnostic::error(Code::ExpectedShape, format!("{what} cannot have holes of its own"))
+                .label(v.span, "a region")
+                .help("list every hole in the one region's `holes`; a hole inside a hole would be an island, built as a part of its own"),
+        );
+        return None;
+    }
+    Some(s)
+}
+
+/// The list of holes, bolt circles expanded.
+fn holes(v: &Spanned, diags: &mut Diagnostics) -> Option<Vec<Hole>> {
+    let Value::List(items) = &v.value else {
+        diags.push(
+            Diagnostic::error(Code::ExpectedShape, "`holes` is a list of shapes")
+                .label(v.span, format!("this is {}", v.value.describe()))
+                .help("write `holes = [circle(diameter = 50 mm), place(circle(diameter = 12 mm), at = [42.5 mm, 0 mm])]`"),
+        );
+        return None;
+    };
+    let mut out = Vec::new();
+    let mut ok = true;
+    for item in items {
+        let read = match &item.value {
+            Value::Call(c) if c.func == "bolt_circle" => bolt_circle(c, item.span, diags),
+            _ => plain(item, "a hole", diags).map(|shape| {
+                vec![Hole {
+                    shape,
+                    span: item.span,
+                }]
+            }),
+        };
+        match read {
+            Some(h) => out.extend(h),
+            None => ok = false,
+        }
+    }
+    if out.len() > MAX_HOLES {
+        diags.push(
+            Diagnostic::error(
+                Code::TooManyPoints,
+                format!("a region has at most {MAX_HOLES} holes, not {}", out.len()),
+            )
+            .label(v.span, "holes"),
+        );
+        return None;
+    }
+    ok.then_some(out)
+}
+
+/// `count` copies of the hole on the pitch circle: copy `k` is the hole
+/// moved to `[D/2, 0]`, turned about the origin by `from + k·360°/count` and
+/// moved by `at`.
+fn bolt_circle(c: &Call, span: Span, diags: &mut Diagnostics) -> Option<Vec<Hole>> {
+    let f = Fields::call(
+        c,
+        &["shape"],
+        &["shape", "count", "diameter", "from", "at"],
+        diags,
+    );
+    let at = match f.value("at", None, diags) {
+        Some(v) => point(v, diags),
+        None if f.has("at") => None,
+        None => Some([Length(0.0); 2]),
+    };
+    let hole = f
+        .value("shape", Some("circle(diameter = 12 mm)"), diags)
+        .and_then(|v| plain(v, "a bolt circle's hole", diags));
+    let count = f.count("count", 1, MAX_HOLES, Some("6"), diags);
+    let diameter = f.positive("diameter", Dim::LENGTH, Some("85 mm"), diags);
+    let from = turn(&f, "from", diags);
+    let (hole, (count, _), (diameter, _), from, at) = (hole?, count?, diameter?, from?, at?);
+    let moved = Shape::Placed(Box::new(Placed {
+        shape: hole,
+        turn: Angle(0.0),
+        at: [Length(diameter / 2.0), Length(0.0)],
+    }));
+    Some(
+        (0..count)
+            .map(|k| Hole {
+                shape: Shape::Placed(Box::new(Placed {
+                    shape: moved.clone(),
+                    turn: Angle(from.0 + std::f64::consts::TAU * k as f64 / count as f64),
+                    at,
+                })),
+                span,
+            })
+            .collect(),
+    )
+}

@@ -1,0 +1,159 @@
+//! `seam = …` of `slicing planar`: where each contour loop starts and ends,
+//! and how that moves from layer to layer, and `link = …` of `raster(…)`.
+//! A seam on the same spot of every layer stacks its start/stop defects into
+//! a seam line up the part; moving it spreads them out.
+
+use super::fields::{self, Fields};
+use super::model::{LinkMode, SeamRule};
+use super::suggest::did_you_mean;
+use super::value::{Call, Spanned, Value};
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::units::{Angle, Dim};
+
+/// The golden angle (deg): a seam turned by it every layer never comes back
+/// to the same direction, and any run of layers spreads its seams evenly.
+pub const GOLDEN_ANGLE_DEG: f64 = 137.507_764_050_037_85;
+
+/// The words `seam` takes besides an angle and the calls.
+const WORDS: &[&str] = &["lowest", "sharpest_corner", "random"];
+
+/// Reads `seam = …`: `lowest`, `sharpest_corner`, an angle,
+/// `rotating(step, from)` or `random(seed)` (or `random`, seed 0).
+pub fn read(v: &Spanned, diags: &mut Diagnostics) -> Option<SeamRule> {
+    match &v.value {
+        Value::Symbol(s) if s == "lowest" => Some(SeamRule::Lowest),
+        Value::Symbol(s) if s == "sharpest_corner" => Some(SeamRule::SharpestCorner),
+        Value::Symbol(s) if s == "random" => Some(SeamRule::Random { seed: 0 }),
+        Value::Quantity(_) => {
+            fields::quantity(v, Dim::ANGLE, "seam", diags).map(|a| SeamRule::Toward(Angle(a)))
+        }
+        Value::Call(c) if c.func == "rotating" => rotating(c, diags),
+        Value::Call(c) if c.func == "random" => {
+            let f = Fields::call(c, &["seed"], &["seed"], diags);
+            match f.count("seed", 0, u32::MAX as usize, None, diags) {
+                Some((n, _)) => Some(SeamRule::Random { seed: n as u64 }),
+                None if f.has("seed") => None,
+                None => Some(SeamRule::Random { seed: 0 }),
+            }
+        }
+        other => {
+            let mut d = Diagnostic::error(
+                Code::BadChoice,
+                "a seam is `lowest`, `sharpest_corner`, an angle, `rotating(…)` or `random(…)`",
+            )
+            .label(v.span, format!("this is {}", other.describe()));
+            let near = match other {
+                Value::Symbol(w) => did_you_mean(w, WORDS.iter().copied()),
+                Value::Call(c) => did_you_mean(&c.func, ["rotating", "random"]),
+                _ => None,
+            };
+            d = match near {
+                Some(m) => d.help(format!("did you mean `{m}`?")),
+                None => d.help("e.g. `seam = rotating(step = 90 deg)` moves the start of every contour a quarter turn each layer"),
+            };
+            diags.push(d);
+            None
+        }
+    }
+}
+
+fn rotating(c: &Call, diags: &mut Diagnostics) -> Option<SeamRule> {
+    let f = Fields::call(c, &["step"], &["step", "from"], diags);
+    let angle = |key: &str, default: f64, diags: &mut Diagnostics| match f.quantity(
+        key,
+        Dim::ANGLE,
+        None,
+        diags,
+    ) {
+        Some((a, _)) => Some(Angle(a)),
+        None if f.has(key) => None,
+        None => Some(Angle::from_deg(default)),
+    };
+    let step = angle("step", GOLDEN_ANGLE_DEG, diags);
+    let from = angle("from", -90.0, diags);
+    Some(SeamRule::Rotating {
+        from: from?,
+        step: step?,
+    })
+}
+
+/// Reads `link = none | laser_on | laser_off`.
+pub fn link(v: &Spanned, diags: &mut Diagnostics) -> Option<LinkMode> {
+    match fields::symbol(v, "link", &["none", "laser_on", "laser_off"], diags)?.as_str() {
+        "laser_on" => Some(LinkMode::LaserOn),
+        "laser_off" => Some(LinkMode::LaserOff),
+        _ => Some(LinkMode::None),
+    }
+}
+
+impl SeamRule {
+    /// The direction (rad from +x) the seam of layer `k` (from 0) lies
+    /// farthest in, or `None` for a rule that is not a direction.
+    pub fn direction(&self, k: usize) -> Option<f64> {
+        match *self {
+            SeamRule::Lowest | SeamRule::SharpestCorner => None,
+            SeamRule::Toward(a) => Some(a.0),
+            SeamRule::Rotating { from, step } => {
+                // Reduced per layer so that a thousand layers lose no digit.
+                let turn = (step.0 * k as f64).rem_euclid(std::f64::consts::TAU);
+                Some((from.0 + turn).rem_euclid(std::f64::consts::TAU))
+            }
+            SeamRule::Random { seed } => {
+                let x = splitmix64(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ k as u64);
+                // The top 53 bits as a fraction of a turn.
+                Some((x >> 11) as f64 / (1u64 << 53) as f64 * std::f64::consts::TAU)
+            }
+        }
+    }
+}
+
+/// SplitMix64's output function: a fixed, well-mixed hash of one word, so the
+/// seams are the same on every platform and in every version.
+fn splitmix64(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::TAU;
+
+    #[test]
+    fn rotating_seams_turn_by_the_step() {
+        let r = SeamRule::Rotating {
+            from: Angle::from_deg(0.0),
+            step: Angle::from_deg(90.0),
+        };
+        let deg: Vec<f64> = (0..5)
+            .map(|k| r.direction(k).unwrap().to_degrees().round())
+            .collect();
+        assert_eq!(deg, [0.0, 90.0, 180.0, 270.0, 0.0]);
+    }
+
+    #[test]
+    fn random_seams_are_fixed_by_the_seed_and_spread() {
+        let a = SeamRule::Random { seed: 7 };
+        let b = SeamRule::Random { seed: 8 };
+        let da: Vec<f64> = (0..200).map(|k| a.direction(k).unwrap()).collect();
+        let again: Vec<f64> = (0..200).map(|k| a.direction(k).unwrap()).collect();
+        assert_eq!(da, again);
+        assert_ne!(
+            da[..10],
+            (0..10).map(|k| b.direction(k).unwrap()).collect::<Vec<_>>()[..]
+        );
+        assert!(da.iter().all(|d| (0.0..TAU).contains(d)));
+        // Every quarter turn gets some of 200 draws.
+        for q in 0..4 {
+            let lo = q as f64 * TAU / 4.0;
+            assert!(
+                da.iter()
+                    .filter(|&&d| d >= lo && d < lo + TAU / 4.0)
+                    .count()
+                    > 25
+            );
+        }
+    }
+}
