@@ -215,17 +215,23 @@ fn chromium_draws_the_examples() {
         return;
     };
     let update = std::env::var_os("LMDC_UPDATE_SCREENSHOTS").is_some();
-    let examples: &[&str] = if update {
-        &[
-            "twisted_duct",
-            "sprocket_tooth",
-            "styled_chord",
-            "ramp_wall",
-            "wedge",
-            "ramp_cuboid",
-        ]
+    // Updating draws every example (one screenshot each in docs/preview/);
+    // a test run draws two.
+    let all: Vec<String> = {
+        let mut v: Vec<String> = std::fs::read_dir("examples")
+            .unwrap()
+            .filter_map(|e| {
+                let name = e.ok()?.file_name().into_string().ok()?;
+                name.strip_suffix(".lmd").map(str::to_string)
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    let examples: Vec<&str> = if update {
+        all.iter().map(String::as_str).collect()
     } else {
-        &["twisted_duct", "styled_chord"]
+        vec!["twisted_duct", "styled_chord"]
     };
     for example in examples {
         let shot = render(&chromium, example);

@@ -16,7 +16,7 @@
 //!   expression: sampled on a 256 × 256 grid).
 
 use crate::diag::Diagnostics;
-use crate::geometry::outline::profile;
+use crate::geometry::outline::{profile, region};
 use crate::geometry::profile::Profile;
 use crate::geometry::LoftGeometry;
 use crate::sema::model::{Loft, Measure, Model, Plan, Shape, Spine, Top, TopExtrusion};
@@ -119,27 +119,46 @@ fn loft_wall(loft: &Loft, w: f64) -> Result<(f64, String), String> {
     ))
 }
 
-/// The area a layer of `shape` covers: the shape itself (outer face), or its
-/// centre line widened by half a bead.
+/// The area a layer of `shape` covers: the shape itself less its holes
+/// (outer face), or, for a centre line, the outline widened and every hole
+/// shrunk by half a bead (Steiner's formula `A ± P·d + π·d²`: exact for an
+/// outward offset of a convex loop and for a round hole; a polygonal hole's
+/// sharp inner corners add up to (4 − π)·d²).
 fn area(shape: &Shape, measure: Measure, w: f64) -> f64 {
-    let p = profile(shape, CHORD);
-    widened(&p, measure, w)
+    let r = region(shape, CHORD);
+    let hole = |p: &Profile| match measure {
+        Measure::Outer => p.area(),
+        Measure::Centre => steiner(p, -w / 2.0),
+    };
+    r.outer()
+        .iter()
+        .map(|p| widened(p, measure, w))
+        .sum::<f64>()
+        - r.holes().iter().map(hole).sum::<f64>()
 }
 
+/// The area of one outer loop: itself, or its centre line widened by half a
+/// bead.
 fn widened(p: &Profile, measure: Measure, w: f64) -> f64 {
     match measure {
         Measure::Outer => p.area(),
-        Measure::Centre => {
-            let pts = p.polyline(CHORD);
-            let perimeter: f64 = (0..pts.len())
-                .map(|i| {
-                    let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
-                    ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt()
-                })
-                .sum();
-            p.area() + perimeter * w / 2.0 + std::f64::consts::PI * w * w / 4.0
-        }
+        Measure::Centre => steiner(p, w / 2.0),
     }
+}
+
+/// The area of `p` offset outward by `d` (inward when negative).
+fn steiner(p: &Profile, d: f64) -> f64 {
+    (p.area() + perimeter(p) * d + std::f64::consts::PI * d * d).max(0.0)
+}
+
+fn perimeter(p: &Profile) -> f64 {
+    let pts = p.polyline(CHORD);
+    (0..pts.len())
+        .map(|i| {
+            let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+            ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt()
+        })
+        .sum()
 }
 
 /// Area and centroid of a closed polyline.
@@ -217,6 +236,21 @@ mod tests {
         let (a, c) = centroid(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]]).unwrap();
         assert!(
             (a - 4.0).abs() < 1e-12 && (c[0] - 1.0).abs() < 1e-12 && (c[1] - 1.0).abs() < 1e-12
+        );
+    }
+
+    #[test]
+    fn a_centre_line_hole_shrinks_by_half_a_bead() {
+        // A 10 mm square hole's centre line, 2 mm bead: the opening left is
+        // 8 × 8 = 64 mm²; Steiner's formula (exact for round holes, whose
+        // inward offset is a circle) misses a square's sharp inner corners by
+        // (4 − π)·d².
+        let p = Profile::rectangle(10.0, 10.0);
+        let a = steiner(&p, -1.0);
+        assert!((a - 64.0).abs() <= 4.0 - std::f64::consts::PI + 1e-9, "{a}");
+        assert!(
+            (a - (100.0 - 40.0 + std::f64::consts::PI)).abs() < 1e-6,
+            "{a}"
         );
     }
 
