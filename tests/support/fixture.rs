@@ -31,6 +31,7 @@ pub fn robot() -> Robot {
         home: [0.0, -90.0, 90.0, 0.0, 0.0, 0.0],
         max_points_per_module: 5000,
         clearance: 10.0,
+        height_sensor: None,
     }
 }
 
@@ -66,6 +67,7 @@ pub fn cnc5() -> Cnc {
         placement: Placement::default(),
         max_speed: 200.0,
         clearance: 10.0,
+        height_sensor: None,
     }
 }
 
@@ -130,7 +132,7 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
     }
     Program {
         format: FORMAT.into(),
-        version: VERSION,
+        version: VERSION_WITHOUT_RING,
         part: "bent tube".into(),
         units: Units::default(),
         limits: Limits {
@@ -142,6 +144,8 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
         machines,
         styles: Vec::new(),
         heat: Heat::default(),
+        continuous: false,
+        ring: None,
         layers: out,
         origins: Origins::default(),
     }
