@@ -5,6 +5,8 @@
 
 #[path = "support/krl_check.rs"]
 mod krl;
+#[path = "support/krl_run.rs"]
+mod krl_run;
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::{Dialect, Machine, Program};
@@ -19,7 +21,8 @@ fn micrometres(p: [f64; 3]) -> [i64; 3] {
 /// Where the IR says the laser switches, found without the motion plan: on at
 /// the first point of each run of laser-on points, off at the point after its
 /// last one. A run goes on into the next path only when that path, in the same
-/// layer, starts where the last one ended.
+/// layer (or the next one of a continuous program), starts where the last one
+/// ended.
 fn from_ir(p: &Program) -> Vec<Switch> {
     let mut out = Vec::new();
     let mut on = false;
@@ -28,7 +31,8 @@ fn from_ir(p: &Program) -> Vec<Switch> {
         let mut first_in_layer = true;
         for path in layer.paths.iter().filter(|p| !p.points.is_empty()) {
             let start = path.points[0].focus();
-            let joined = !first_in_layer
+            // A continuous program's layer goes on from the last one's end.
+            let joined = (!first_in_layer || p.continuous)
                 && last.is_some_and(|l| (0..3).all(|i| (l[i] - start[i]).abs() < 1e-3));
             if on && !(joined && path.points.len() > 1 && path.points[0].laser_on) {
                 out.push((false, micrometres(last.unwrap())));
@@ -44,10 +48,13 @@ fn from_ir(p: &Program) -> Vec<Switch> {
             last = Some(path.points[path.points.len() - 1].focus());
             first_in_layer = false;
         }
-        if on {
+        if on && !p.continuous {
             out.push((false, micrometres(last.unwrap())));
             on = false;
         }
+    }
+    if on {
+        out.push((false, micrometres(last.unwrap())));
     }
     out
 }
@@ -89,18 +96,27 @@ fn from_gcode(text: &str, d: &Dialect) -> Vec<Switch> {
 /// The switches of a KRL program, run by the test interpreter: where the laser
 /// state of one LIN differs from the one before, it switched at that LIN's start.
 fn from_krl(trace: &krl::Trace) -> Vec<Switch> {
+    from_motions(
+        trace.lins.iter().map(|l| (l.laser, l.pos)),
+        trace.laser_at_end,
+    )
+}
+
+/// The switches of motions run with these laser states, ending with the
+/// laser `at_end`.
+fn from_motions(motions: impl Iterator<Item = (bool, [f64; 3])>, at_end: bool) -> Vec<Switch> {
     let mut out = Vec::new();
     let mut on = false;
     let mut pos = [f64::NAN; 3];
-    for lin in &trace.lins {
-        if lin.laser != on {
-            on = lin.laser;
+    for (laser, at) in motions {
+        if laser != on {
+            on = laser;
             out.push((on, micrometres(pos)));
         }
-        pos = lin.pos;
+        pos = at;
     }
-    if trace.laser_at_end != on {
-        out.push((trace.laser_at_end, micrometres(pos)));
+    if at_end != on {
+        out.push((at_end, micrometres(pos)));
     }
     out
 }
@@ -155,9 +171,29 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
                         .into_iter()
                         .map(|(n, b)| (n, String::from_utf8(b).unwrap()))
                         .collect();
-                    let trace = krl::run(&files, &main_program(&files), r.laser_out, r.power_out)
-                        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-                    from_krl(&trace)
+                    let main = main_program(&files);
+                    match (p.ir().loop_on_machine(), r.height_sensor) {
+                        // A ring's loop, run with the sensor on target.
+                        (Some((_, law)), Some(s)) => {
+                            let run = krl_run::run_steady(
+                                &files,
+                                &main,
+                                r.laser_out,
+                                r.power_out,
+                                law.target / s.full_scale,
+                            )
+                            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                            from_motions(
+                                run.motions.iter().map(|m| (m.laser, m.pos)),
+                                run.laser_at_end,
+                            )
+                        }
+                        _ => {
+                            let trace = krl::run(&files, &main, r.laser_out, r.power_out)
+                                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                            from_krl(&trace)
+                        }
+                    }
                 }
             };
             assert_eq!(

@@ -323,7 +323,7 @@ impl SegmentEnds {
     /// The segment end reached by the move to point `to` of the layer's path.
     #[inline]
     fn at(&self, to: usize) -> Option<SegmentEnd> {
-        if to == 0 || to % self.per != 0 {
+        if to == 0 || !to.is_multiple_of(self.per) {
             return None;
         }
         let segment = to / self.per - 1;

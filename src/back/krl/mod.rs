@@ -17,6 +17,7 @@
 
 pub mod modules;
 pub mod orient;
+pub mod ring;
 
 use super::context::{counts, layer_context, shown, styles};
 use super::fixed::{fixed, trimmed};
@@ -55,6 +56,9 @@ pub fn emit(
     sink: &mut dyn Sink,
 ) -> Result<(), EmitError> {
     let prog = m.ir();
+    if prog.loop_on_machine().is_some() {
+        return ring::emit(m, robot, t, sink);
+    }
     let names = names(m, robot);
     let base = base_context(prog, robot, &names.stem);
 
