@@ -85,6 +85,17 @@ impl LoopPlan {
     }
 }
 
+impl LoopPlan {
+    /// Segment `j`'s working plane on the first layer: its first flat
+    /// move's height less its defocus (0 on the substrate).
+    pub fn first_plane(&self, j: usize, defocus: f64) -> f64 {
+        self.body
+            .iter()
+            .find(|m| m.segment == j && m.part == Part::Flat)
+            .map_or(0.0, |m| m.planned.to[2] - defocus)
+    }
+}
+
 /// The ring and its loop of a program whose loop runs on the machine.
 pub fn on_machine(p: &Program) -> Option<(&Ring, &HeightLoop)> {
     p.loop_on_machine()

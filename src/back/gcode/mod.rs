@@ -12,6 +12,7 @@
 //! switches (and S) are written where the plan switches them.
 
 mod dialect;
+pub mod ring;
 mod writer;
 
 use super::context::{counts, layer_context, shown, styles};
@@ -37,6 +38,9 @@ pub fn emit(
     sink: &mut dyn Sink,
 ) -> Result<(), EmitError> {
     let prog = m.ir();
+    if prog.loop_on_machine().is_some() {
+        return ring::emit(m, cnc, t, sink);
+    }
     let kin = effective_kinematics(cnc);
     let five = kin != Kinematics::Xyz;
     let tilt_letter = match kin {

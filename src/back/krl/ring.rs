@@ -175,11 +175,7 @@ impl Text<'_> {
         );
         for (j, s) in ring.segments.iter().enumerate() {
             // The working plane of the segment's first layer, from the plan.
-            let z0 = plan
-                .body
-                .iter()
-                .find(|m| m.segment == j && m.part == Part::Flat)
-                .map_or(0.0, |m| m.planned.to[2] - s.defocus);
+            let z0 = plan.first_plane(j, s.defocus);
             let k = j + 1;
             self.line(0, &format!("SPD[{k}] = {}", real(trimmed(s.speed, 6))));
             self.line(0, &format!("ESUM[{k}] = 0.0"));
