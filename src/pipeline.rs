@@ -152,7 +152,7 @@ pub fn emit(
 }
 
 /// What `lmdc simulate` shows: a ring's declared loop run offline against its
-/// declared plant, with [`crate::control::simulate`] — the law the programs
+/// declared plant, with [`crate::control::simulate()`] — the law the programs
 /// run ([`crate::control::LAW`]).
 pub struct Simulated {
     /// The run, when the source declares a ring with a `control height` loop
