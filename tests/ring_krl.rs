@@ -172,3 +172,81 @@ fn on_target_the_program_lays_the_table() {
         }
     }
 }
+
+/// Rings of every shape — two segments or many, one layer or a few, any
+/// beam axis — run in the interpreter with the sensor on target lay their IR:
+/// every deposit at its focus, speed and power, the laser off at the end.
+mod shapes {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(16))]
+        #[test]
+        fn every_ring_lays_its_ir_on_target(
+            segments in prop_oneof![2..5usize, Just(10)],
+            layers in 1..4usize,
+            transition in prop_oneof![Just(2.0f64), Just(5.0)],
+            step in prop_oneof![Just(1.0f64), Just(3.0)],
+            beam in prop_oneof![Just("z"), Just("-x"), Just("y")],
+        ) {
+            let src = ring::variant(segments, layers, transition, step, beam, false);
+            let p = ring::compile("variant", &src);
+            let ir = p.ir();
+            let Some(Machine::Robot(robot)) = ir.machines.iter().find(|m| m.name() == "kr60") else {
+                panic!("kr60")
+            };
+            let s = robot.height_sensor.unwrap();
+            let (_, law) = ir.loop_on_machine().unwrap();
+            let files = ring::files(&p, "kr60");
+            let main = files
+                .keys()
+                .find(|k| k.ends_with(".src") && !k.contains("_m0"))
+                .unwrap()
+                .trim_end_matches(".src")
+                .to_string();
+            let run = krl_run::run_steady(&files, &main, robot.laser_out, robot.power_out, law.target / s.full_scale)
+                .unwrap_or_else(|e| panic!("{e}\n{src}"));
+            let want: Vec<_> = ir
+                .layers
+                .iter()
+                .flat_map(|l| &l.paths)
+                .flat_map(|p| p.points.windows(2))
+                .filter(|w| w[0].laser_on)
+                .map(|w| (w[0], w[1]))
+                .collect();
+            let got: Vec<&Motion> = run.motions.iter().filter(|m| m.laser).collect();
+            prop_assert_eq!(got.len(), want.len());
+            for ((from, to), m) in want.iter().zip(&got) {
+                let f = to.focus();
+                for i in 0..3 {
+                    prop_assert!((m.pos[i] - f[i]).abs() < 1e-3, "{:?} vs {:?}", m, f);
+                }
+                prop_assert!((m.speed - from.speed as f64).abs() < 1e-3 * from.speed as f64, "{:?} vs {}", m, from.speed);
+                prop_assert!((m.anout - from.power as f64 / robot.full_scale_power).abs() < 1e-4);
+            }
+            prop_assert!(!run.laser_at_end);
+            prop_assert!(run.stops.iter().all(|w| !w.contains("_M0")), "{:?}", run.stops);
+        }
+    }
+}
+
+/// One segment cannot run the loop on a robot: it starts again where it
+/// ends, before its update lands; the verifier says so.
+#[test]
+fn one_segment_is_refused_on_a_robot() {
+    let src = ring::variant(2, 2, 2.0, 1.0, "z", false)
+        .replace("segments = 2", "segments = 1")
+        .replace("defocus = [-8 mm, -7 mm]", "defocus = [-8 mm]")
+        .replace("power = [900 W, 950 W]", "power = [900 W]")
+        .replace("width = [3 mm, 3.5 mm]", "width = [3 mm]")
+        .replace("speed = [4 mm/s, 5 mm/s]", "speed = [4 mm/s]");
+    let c = lmdc::pipeline::compile(&src, &mut ());
+    let text = lmdc::diag::render(&c.diagnostics, "one.lmd", &src, false);
+    assert!(c.program.is_none(), "{text}");
+    assert!(text.contains("lmd::loop-timing"), "{text}");
+    assert!(
+        text.contains("a ring of one segment cannot run its loop"),
+        "{text}"
+    );
+}

@@ -122,3 +122,69 @@ fn the_o_word_subroutine_sets_the_speeds_lmdc_simulate_computes() {
         }
     }
 }
+
+/// Rings of every shape — one segment or many, one layer or a few, a 3-axis
+/// mill or an A/C head — run in rs274 with the sensor on target lay their IR:
+/// every deposit at its focus and speed, the laser off at the end.
+mod shapes {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(12))]
+        #[test]
+        fn every_ring_lays_its_ir_on_target(
+            segments in prop_oneof![Just(1usize), 2..5usize, Just(10)],
+            layers in 1..4usize,
+            transition in prop_oneof![Just(2.0f64), Just(5.0)],
+            step in prop_oneof![Just(1.0f64), Just(3.0)],
+            five in any::<bool>(),
+        ) {
+            if rs274::find_rs274().is_none() {
+                skip::skip("every_ring_lays_its_ir_on_target", "rs274", "run `bash .ci/install-rs274.sh`");
+                return Ok(());
+            }
+            let src = ring::variant(segments, layers, transition, step, "z", five);
+            let p = ring::compile("variant", &src);
+            let ir = p.ir();
+            let Some(Machine::Cnc(cnc)) = ir.machines.iter().find(|m| m.name() == "mill3") else {
+                panic!("mill3")
+            };
+            let s = cnc.height_sensor.unwrap();
+            let (_, law) = ir.loop_on_machine().unwrap();
+            let files = ring::files(&p, "mill3");
+            let (_, ngc) = files.iter().next().unwrap();
+            let steady = vec![vec![law.target / s.full_scale; segments]; layers];
+            let text = if layers > 1 { m66::scripted(ngc, s.input, &steady) } else { ngc.clone() };
+            let calls = rs274::interpret_source(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+            let (mut feed, mut laser) = (0.0, false);
+            let mut got = Vec::new();
+            for c in rs274::program_body(&calls) {
+                match *c {
+                    CanonCall::FeedRate(f) => feed = f / 60.0,
+                    CanonCall::SpindleOn => laser = true,
+                    CanonCall::SpindleOff => laser = false,
+                    CanonCall::Feed { x, y, z, .. } if laser => got.push(([x, y, z], feed)),
+                    _ => {}
+                }
+            }
+            let want: Vec<_> = ir
+                .layers
+                .iter()
+                .flat_map(|l| &l.paths)
+                .flat_map(|p| p.points.windows(2))
+                .filter(|w| w[0].laser_on)
+                .map(|w| (w[0], w[1]))
+                .collect();
+            prop_assert_eq!(got.len(), want.len());
+            for ((from, to), (pos, f)) in want.iter().zip(&got) {
+                let at = to.focus();
+                for i in 0..3 {
+                    prop_assert!((pos[i] - at[i]).abs() < 1e-3, "{:?} vs {:?}", pos, at);
+                }
+                prop_assert!((f - from.speed as f64).abs() < 1e-3 * from.speed as f64, "{} vs {}", f, from.speed);
+            }
+            prop_assert!(!laser);
+        }
+    }
+}

@@ -9,6 +9,7 @@ use crate::control::{self, analyse, Finding, Severity, SpeedPerLength};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::{Machine, MachineOrigin, Program, Ring, RingOrigins, RingRun};
 use crate::target::gcode::{LOOP_PROFILE, MAX_ANALOG_INPUT};
+use crate::target::kuka::MAX_ADVANCE;
 use crate::units::{short, Angle, Length, Speed};
 use std::num::NonZeroUsize;
 
@@ -139,6 +140,9 @@ pub(super) fn check_machine(
         );
         return;
     };
+    if let Machine::Robot(_) = m {
+        robot_timing(r, law.clamp[1], s, name, origin, &o, out);
+    }
     if let Machine::Cnc(_) = m {
         let last = s.input as usize + r.segments.len() - 1;
         if last > MAX_ANALOG_INPUT {
@@ -159,6 +163,69 @@ pub(super) fn check_machine(
             );
         }
     }
+}
+
+/// On a robot, segment `j`'s update runs as a trigger `delay` after the
+/// segment's last move, in the main run, while the advance run reads up to
+/// [`MAX_ADVANCE`] moves ahead. The first to read what it sets is segment
+/// `j − 1`'s transition on the next layer (it climbs to segment `j`'s new
+/// height), `(n − 2)·per + flat` moves after the update's move: the update
+/// must land before the advance run gets there. One segment never can: it
+/// starts again where it ends.
+fn robot_timing(
+    r: &Ring,
+    top: f64,
+    s: crate::ir::HeightSensor,
+    name: &str,
+    origin: &MachineOrigin,
+    o: &RingOrigins,
+    out: &mut Diagnostics,
+) {
+    let n = r.segments.len();
+    let per = r.flat_moves + r.transition_moves;
+    let arc = r.radius * r.transition.to_radians();
+    let mu = std::f64::consts::TAU / n as f64;
+    // The shortest move, horizontally (its path is no shorter).
+    let flat_len = r.radius * (mu - r.transition.to_radians()) / r.flat_moves.max(1) as f64;
+    let shortest = flat_len.min(arc / r.transition_moves.max(1) as f64);
+    // The fastest the robot may run: a transition at the clamp's top.
+    let fastest = (0..n)
+        .map(|j| {
+            let next = &r.segments[(j + 1) % n];
+            let extra = if j + 1 == n { r.layer_height } else { 0.0 };
+            let rise = next.defocus - r.segments[j].defocus + extra;
+            control::ring::path_speed(Speed(top), Length(rise), Length(arc)).0
+        })
+        .fold(top, f64::max);
+    let during_delay = (s.delay * fastest / shortest).ceil();
+    // Moves between the update's move and the first that reads its values,
+    // less those the advance run may be ahead, less one for the
+    // approximation at the trigger's move.
+    let room = (n as f64 - 2.0) * per as f64 + r.flat_moves as f64 - MAX_ADVANCE as f64 - 1.0;
+    if room >= during_delay {
+        return;
+    }
+    let message = if n == 1 {
+        format!(
+            "a ring of one segment cannot run its loop on robot `{name}`: the segment starts again where it ends, before its measurement can change its speed and height"
+        )
+    } else {
+        format!(
+            "on robot `{name}` a segment's update could land after the robot has read the values it sets: it runs {} ms after the segment's end (up to {} moves of {} mm at {} mm/s), and the next reader comes {} moves later, of which the advance run may read {} ahead",
+            short(s.delay * 1000.0),
+            during_delay,
+            short(shortest),
+            short(fastest),
+            (n - 2) * per + r.flat_moves,
+            MAX_ADVANCE
+        )
+    };
+    out.push(
+        Diagnostic::error(Code::LoopTiming, message)
+            .label(origin.at("height_delay"), "height_delay")
+            .label(o.ring, "ring")
+            .help("more segments, fewer or longer moves (a larger `step`), a shorter `height_delay`, or `run = schedule`; LinuxCNC, which stops to read, has no such limit"),
+    );
 }
 
 /// Every transition at the clamp's top speed within the machine's

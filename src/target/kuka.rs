@@ -21,3 +21,8 @@ pub const RESERVED: &[&str] = &[
 
 /// Highest analog input `$ANIN[n]` of a KR C4/C5 (`$ANIN[1]` … `$ANIN[32]`).
 pub const MAX_ANIN: usize = 32;
+
+/// The most motions KRL's advance run reads ahead of the robot (`$ADVANCE`
+/// is 0 to 5; lmdc's main template sets 3, a user's template may set more):
+/// what a ring's loop timing is checked against.
+pub const MAX_ADVANCE: usize = 5;

@@ -136,3 +136,92 @@ pub fn by_layer(rows: &[Row], segments: usize) -> Vec<Vec<Row>> {
     }
     out
 }
+
+/// A ring of `segments` segments over `layers` layers with a loop strong
+/// enough to settle in a few, a robot whose beam leaves along `beam` (with
+/// two segments or more: one cannot run the loop on a robot) and a LinuxCNC
+/// mill (a 5-axis A/C head when `five`), both running the loop.
+pub fn variant(
+    segments: usize,
+    layers: usize,
+    transition_deg: f64,
+    step_deg: f64,
+    beam: &str,
+    five: bool,
+) -> String {
+    let list = |f: &dyn Fn(usize) -> String| (0..segments).map(f).collect::<Vec<_>>().join(", ");
+    let defocus = list(&|j| format!("{} mm", -8 + (j % 4) as i64));
+    let power = list(&|j| format!("{} W", 900 + 50 * (j % 5)));
+    let width = list(&|j| format!("{} mm", 3.0 + 0.5 * (j % 3) as f64));
+    let speed = list(&|j| format!("{} mm/s", 4 + (j % 7)));
+    let head = if five {
+        "  axes = 5\n  kinematics = head_ac\n"
+    } else {
+        "  axes = 3\n"
+    };
+    let rotary = if five {
+        "    a = -110 deg .. 110 deg\n    c = -360 deg .. 360 deg\n"
+    } else {
+        ""
+    };
+    // One segment: the robot is left out, in a comment.
+    let (robot_start, robot_end) = if segments >= 2 {
+        ("", "")
+    } else {
+        ("/*\n", "*/\n")
+    };
+    format!(
+        "part ring_variant
+ring wall {{
+  radius = 40 mm
+  segments = {segments}
+  transition = {transition_deg} deg
+  table {{
+    defocus = [{defocus}]
+    power = [{power}]
+    width = [{width}]
+    speed = [{speed}]
+  }}
+}}
+slicing continuous {{
+  layers = {layers}
+  layer_height = 0.23 mm
+  step = {step_deg} deg
+}}
+control height {{
+  kp = -25 mm/s/mm
+  ki = -8 mm/s/mm
+  clamp = 1.9 mm/s .. 20 mm/s
+}}
+process {{
+  powder = 6 g/min
+}}
+{robot_start}machine kr60 {{
+  kind = robot
+  tool = frame(1, z = 350 mm)
+  base = 1
+  beam = {beam}
+  laser = 1
+  power_output = 1
+  full_scale = 2000 W
+  max_speed = 60 mm/s
+  height_input = 3
+  height_full_scale = 2 mm
+  height_delay = 150 ms
+}}
+{robot_end}machine mill3 {{
+  kind = cnc
+{head}  dialect = linuxcnc
+  max_speed = 60 mm/s
+  height_input = 3
+  height_full_scale = 2 mm
+  height_delay = 100 ms
+  limits {{
+    x = -60 mm .. 60 mm
+    y = -60 mm .. 60 mm
+    z = -20 mm .. 60 mm
+{rotary}  }}
+}}
+"
+    )
+}

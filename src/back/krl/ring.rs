@@ -249,14 +249,19 @@ impl Text<'_> {
 
     /// One layer's motions, grouped per segment into runs of like moves.
     fn layer(&mut self, moves: &[LayerMove], ring: &Ring, delay: i64, ind: usize, last: bool) {
-        let n = ring.segments.len();
         let mut i = 0;
         while i < moves.len() {
             let m = &moves[i];
             if m.first {
-                self.segment(m.segment, ring, ind, last && m.segment + 1 == n);
+                self.segment(m.segment, ring, ind);
             }
             if matches!(m.part, Part::Transition { step: 1, .. }) {
+                // Where the transition leads, read as late as the advance
+                // run allows: the next segment's height, which its update
+                // (a layer ago, or segment 1's this layer) has set by now
+                // (the verifier's loop-timing rule).
+                let zt = self.target_height(m.segment, ring, last);
+                self.line(ind, &zt);
                 self.line(
                     ind,
                     &format!(
@@ -288,7 +293,7 @@ impl Text<'_> {
     }
 
     /// A segment's heights and speed, set before its first motion.
-    fn segment(&mut self, j: usize, ring: &Ring, ind: usize, level: bool) {
+    fn segment(&mut self, j: usize, ring: &Ring, ind: usize) {
         let s = &ring.segments[j];
         let n = ring.segments.len();
         let mu = 360.0 / n as f64;
@@ -304,13 +309,19 @@ impl Text<'_> {
             ),
         );
         self.line(ind, &format!("ZF = ZB[{0}]+DFC[{0}]", j + 1));
-        let next = (j + 1) % n + 1;
-        if level {
-            self.line(ind, "ZT = ZF");
-        } else {
-            self.line(ind, &format!("ZT = ZB[{next}]+DFC[{next}]"));
-        }
         self.line(ind, &format!("$VEL.CP = SPD[{}]*0.001", j + 1));
+    }
+
+    /// `ZT = …`: where segment `j`'s transition leads — the next segment's
+    /// height, the next layer's first for the last segment, level on the
+    /// build's last layer.
+    fn target_height(&self, j: usize, ring: &Ring, last_layer: bool) -> String {
+        let n = ring.segments.len();
+        if last_layer && j + 1 == n {
+            return "ZT = ZF".into();
+        }
+        let next = (j + 1) % n + 1;
+        format!("ZT = ZB[{next}]+DFC[{next}]")
     }
 
     fn z(part: Part, ring: &Ring, segment: usize) -> String {
