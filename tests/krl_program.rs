@@ -8,7 +8,7 @@
 mod common;
 #[path = "support/krl_check.rs"]
 mod krl;
-#[path = "support/krl_run.rs"]
+#[path = "support/krl_run/mod.rs"]
 mod krl_run;
 
 use common::fixture;

@@ -5,7 +5,7 @@
 
 #[path = "support/krl_check.rs"]
 mod krl;
-#[path = "support/krl_run.rs"]
+#[path = "support/krl_run/mod.rs"]
 mod krl_run;
 #[path = "support/m66.rs"]
 mod m66;

@@ -7,7 +7,7 @@
 //! working planes rise by the same heights; every update lands before its
 //! segment is laid again, without stopping the advance run.
 
-#[path = "support/krl_run.rs"]
+#[path = "support/krl_run/mod.rs"]
 mod krl_run;
 #[path = "support/ring.rs"]
 mod ring;
