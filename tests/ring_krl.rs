@@ -7,10 +7,14 @@
 //! working planes rise by the same heights; every update lands before its
 //! segment is laid again, without stopping the advance run.
 
+#[path = "support/krl_parser.rs"]
+mod krl_parser;
 #[path = "support/krl_run/mod.rs"]
 mod krl_run;
 #[path = "support/ring.rs"]
 mod ring;
+#[path = "support/skip.rs"]
+mod skip;
 
 use krl_run::{Config, Motion, Read, Run};
 use lmdc::ir::{Machine, RingRun};
@@ -249,4 +253,29 @@ fn one_segment_is_refused_on_a_robot() {
         text.contains("a ring of one segment cannot run its loop"),
         "{text}"
     );
+}
+
+/// The KRL of rings of other shapes (two segments, one layer, another beam
+/// axis) parses with the KRL grammar too (the example's is checked with
+/// every example's in krl_parser.rs).
+#[test]
+fn other_rings_krl_parses() {
+    if krl_parser::find_krl_parser().is_none() {
+        skip::skip(
+            "other_rings_krl_parses",
+            "a KRL parser",
+            "run `sh ../shared/tools/krlcheck/install.sh` and export LMDC_KRL_PARSER",
+        );
+        return;
+    }
+    for (n, layers, beam) in [(2, 3, "z"), (3, 1, "-x"), (10, 2, "y")] {
+        let src = ring::variant(n, layers, 2.0, 3.0, beam, false);
+        let p = ring::compile("variant", &src);
+        let files = ring::files(&p, "kr60");
+        let list: Vec<(&str, &str)> = files
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.as_str()))
+            .collect();
+        krl_parser::parse_sources(&list).unwrap_or_else(|e| panic!("{e}"));
+    }
 }
