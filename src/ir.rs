@@ -11,26 +11,31 @@ use serde::{Deserialize, Serialize};
 
 /// The IR format tag.
 pub const FORMAT: &str = "lmdc-ir";
-/// The IR version this compiler writes. Version 2 (variable-thickness
-/// layers, seed 003): `speed` is the path speed, which the bead model is
-/// checked against across the normal; a path may climb along the normal
-/// (`tangent` then leaves the layer plane); a variable layer's `frame` is the
-/// world frame and its `station` is `i/N`. Version 1 files read the same.
+/// The newest IR version this compiler writes. Version 3 adds what a reader
+/// must not ignore: a segmented [`Ring`] built in one continuous run, with a
+/// height loop that runs on the machine or a fixed speed schedule (seed 004;
+/// ignored, the nominal speeds would run open loop), and the machines' `cell`,
+/// the gas and powder they switch (ignored, the laser would run without
+/// shielding gas or powder). lmdc writes version 3 only for a plan with one of
+/// them ([`version_for`]); every other plan is still version 2.
 pub const VERSION: u32 = 3;
 
-/// The version of a plan that switches no gas or powder: 2, which such a plan
-/// reads the same in. Version 3 adds the machines' `cell` (gas and powder
-/// switching): a reader that ignored it would run the laser without powder or
-/// shielding gas, so lmdc writes 3 only when a machine has one ([`version_for`]).
-pub const VERSION_WITHOUT_CELL: u32 = 2;
+/// The version of a plan with neither a ring nor a machine's cell. Version 2
+/// (variable-thickness layers, seed 003): `speed` is the path speed, which the
+/// bead model is checked against across the normal; a path may climb along
+/// the normal (`tangent` then leaves the layer plane); a variable layer's
+/// `frame` is the world frame and its `station` is `i/N`. Version 1 files read
+/// the same.
+pub const VERSION_BASIC: u32 = 2;
 
-/// The lowest version that holds a plan: [`VERSION`] when a machine switches
-/// gas or powder, else [`VERSION_WITHOUT_CELL`].
-pub fn version_for(machines: &[Machine]) -> u32 {
-    if machines.iter().any(|m| !m.cell().is_none()) {
+/// The lowest version that holds a plan: [`VERSION`] with a ring or a machine
+/// that switches gas or powder, else [`VERSION_BASIC`], so a plan an older
+/// reader can run stays readable by it.
+pub fn version_for(ring: bool, machines: &[Machine]) -> u32 {
+    if ring || machines.iter().any(|m| !m.cell().is_none()) {
         VERSION
     } else {
-        VERSION_WITHOUT_CELL
+        VERSION_BASIC
     }
 }
 
@@ -39,7 +44,7 @@ pub fn version_for(machines: &[Machine]) -> u32 {
 pub struct Program {
     /// Always [`FORMAT`].
     pub format: String,
-    /// Always [`VERSION`].
+    /// [`version_for`] the plan: 3 with a ring, else 2.
     pub version: u32,
     /// The part's name (used for file names).
     pub part: String,
@@ -57,11 +62,121 @@ pub struct Program {
     /// Cooling between layers.
     #[serde(default, skip_serializing_if = "Heat::is_none")]
     pub heat: Heat,
+    /// Whether each layer's path goes on into the next layer's without the
+    /// laser going off: the build is one run of deposit moves (seed 004).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub continuous: bool,
+    /// A segmented ring and its height loop (seed 004).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ring: Option<Ring>,
     /// Layers in build order.
     pub layers: Vec<Layer>,
     /// Source spans of the declarations the checks refer to; not serialised.
     #[serde(skip)]
     pub origins: Origins,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+/// A ring split into segments with their own process (seed 004), laid in one
+/// continuous run: every layer's path has the same points in plan view, and
+/// segment `j` owns points `first_point ..= first_point + flat_moves +
+/// transition_moves` of every layer's path (the last being the next
+/// segment's first), its transition from `transition_point` on. Points hold
+/// the nominal plan: the table's speeds (`v / cos γ` over the transitions),
+/// layers `layer_height` apart.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Ring {
+    /// The nozzle's circle about the origin, mm.
+    pub radius: f64,
+    /// The transition at the end of each segment, deg.
+    pub transition: f64,
+    /// The nominal rise per layer, mm (the loop's target).
+    pub layer_height: f64,
+    /// Moves over each segment's constant part, on every layer.
+    pub flat_moves: usize,
+    /// Moves over each segment's transition, on every layer.
+    pub transition_moves: usize,
+    /// The segments from +x counter-clockwise: their table rows.
+    pub segments: Vec<RingSegment>,
+    /// How the speeds are chosen layer by layer.
+    pub run: RingRun,
+}
+
+/// One segment's row of the table, and where its points are.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct RingSegment {
+    /// Focal plane to working plane, mm (negative: below).
+    pub defocus: f64,
+    /// Laser power, W.
+    pub power: f64,
+    /// The bead width the row lays, mm: taken as the spot diameter `D`.
+    pub width: f64,
+    /// The starting horizontal scan speed, mm/s.
+    pub speed: f64,
+    /// `E = P/(D·v)` with `D` the width and `v` the starting speed, J/mm².
+    pub energy_density: f64,
+    /// Its first point's index in every layer's path.
+    pub first_point: usize,
+    /// Its transition's first point's index.
+    pub transition_point: usize,
+}
+
+/// How a ring's speeds change from layer to layer.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(tag = "mode", rename_all = "snake_case")]
+pub enum RingRun {
+    /// The height loop runs on the machine: after each layer a segment's
+    /// measured height sets its next speed and working plane.
+    OnMachine(HeightLoop),
+    /// Open loop: the points carry these speeds, chosen offline (by the
+    /// loop run against the declared plant, or the table's on every layer
+    /// when no loop is declared).
+    Schedule {
+        /// Horizontal speed per layer and segment, mm/s.
+        speeds: Vec<Vec<f64>>,
+        /// The loop the speeds were simulated with, if any.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        control: Option<HeightLoop>,
+    },
+}
+
+impl RingRun {
+    /// The declared loop: run on the machine, or simulated for a schedule.
+    pub fn control(&self) -> Option<&HeightLoop> {
+        match self {
+            RingRun::OnMachine(c) => Some(c),
+            RingRun::Schedule { control, .. } => control.as_ref(),
+        }
+    }
+}
+
+/// A PI loop on each segment's layer height (`control::law`).
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct HeightLoop {
+    /// Proportional gain, (mm/s)/mm.
+    pub kp: f64,
+    /// Integral gain, (mm/s)/mm.
+    pub ki: f64,
+    /// Target height per layer, mm.
+    pub target: f64,
+    /// The speeds the loop may command, mm/s.
+    pub clamp: [f64; 2],
+}
+
+/// A machine's height sensor (seed 004): an analog input that holds a
+/// segment's mean layer height.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct HeightSensor {
+    /// The analog input: `$ANIN[input]` on a robot; on LinuxCNC
+    /// `M66 E<input + j>` for segment `j` (from 0).
+    pub input: u16,
+    /// The height at an input of 1.0, mm.
+    pub full_scale: f64,
+    /// How long after a segment's end its mean is on the input, s.
+    pub delay: f64,
 }
 
 /// Units of the IR's numbers.
@@ -325,6 +440,9 @@ pub struct Robot {
     /// The cell's shielding gas and powder feeder, if the program switches them.
     #[serde(default, skip_serializing_if = "Cell::is_none")]
     pub cell: Cell,
+    /// The height sensor a closed loop reads, if the cell has one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height_sensor: Option<HeightSensor>,
 }
 
 /// The cell's shielding gas and powder feeder as a machine switches them
@@ -506,6 +624,9 @@ pub struct Cnc {
     /// The cell's shielding gas and powder feeder, if the program switches them.
     #[serde(default, skip_serializing_if = "Cell::is_none")]
     pub cell: Cell,
+    /// The height sensor a closed loop reads, if the cell has one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height_sensor: Option<HeightSensor>,
 }
 
 /// Where a part sits on a CNC: the program is written in part coordinates
@@ -552,8 +673,32 @@ pub struct Origins {
     pub top: Option<Span>,
     /// The slicing block.
     pub slicing: Option<Span>,
+    /// A ring's declarations (seed 004).
+    pub ring: Option<RingOrigins>,
     /// Each machine's declaration, by index in [`Program::machines`].
     pub machines: Vec<MachineOrigin>,
+}
+
+/// Where a ring's declarations are, for the loop's and the transitions'
+/// checks.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RingOrigins {
+    /// The `ring` block.
+    pub ring: Span,
+    /// Its `transition`.
+    pub transition: Span,
+    /// The `control` block.
+    pub control: Span,
+    /// `kp = …`.
+    pub kp: Span,
+    /// `ki = …`.
+    pub ki: Span,
+    /// `clamp = …`.
+    pub clamp: Span,
+    /// `run = …` (the block when not written).
+    pub run: Span,
+    /// `layers = …` of the slicing block.
+    pub layers: Span,
 }
 
 /// Where a machine and the fields the checks refer to were declared.
@@ -598,6 +743,16 @@ impl Point {
 }
 
 impl Program {
+    /// The ring and its loop, when the loop runs on the machine: the back
+    /// ends then write it as a program that loops over one layer.
+    pub fn loop_on_machine(&self) -> Option<(&Ring, &HeightLoop)> {
+        let r = self.ring.as_ref()?;
+        match &r.run {
+            RingRun::OnMachine(l) => Some((r, l)),
+            RingRun::Schedule { .. } => None,
+        }
+    }
+
     /// Number of points in all layers.
     pub fn point_count(&self) -> usize {
         self.layers

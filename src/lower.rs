@@ -1,31 +1,55 @@
 //! Lowering: the semantic model → the IR. Slices the solid and attaches the
 //! limits, machines and the source spans the IR checks report at.
 
-use crate::diag::Diagnostics;
-use crate::ir::{version_for, Limits, Origins, Program, Style, Units, FORMAT};
-use crate::sema::model::{Model, Plan};
+use crate::control::SegmentProcess;
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::{self, Limits, Origins, Program, Style, Units, FORMAT};
+use crate::sema::model::{Model, Plan, RingPlan};
 use crate::slice;
+use crate::span::Span;
 
 /// Builds the IR of a checked model; returns it with the slicer's warnings, or
 /// the errors that make the part unbuildable.
 pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
-    let (layers, warnings) = slice::slice(model)?;
-    let bead = &model.bead;
+    let (layers, warnings, ring) = match &model.plan {
+        Plan::Ring(r) => {
+            let (layers, ring) = slice::ring::build(r)?;
+            (layers, Diagnostics::new(), Some(ring))
+        }
+        _ => {
+            let (layers, warnings) = slice::slice(model)?;
+            (layers, warnings, None)
+        }
+    };
+    let (limits, bead_height, bead_speed) =
+        match (&model.plan, &model.bead) {
+            (Plan::Ring(r), _) => ring_limits(model, r),
+            (_, Some(bead)) => (
+                Limits {
+                    layer_height: [bead.height[0].0, bead.height[1].0],
+                    speed: [bead.speed[0].0, bead.speed[1].0],
+                    power: [
+                        model.process.power_range[0].watts(),
+                        model.process.power_range[1].watts(),
+                    ],
+                    bead_width: bead.width.0,
+                },
+                Some(bead.height_span),
+                Some(bead.speed_span),
+            ),
+            (_, None) => return Err(Diagnostic::error(
+                Code::NonFinite,
+                "internal error: a solid without a bead model reached lowering; please report it",
+            )
+            .into()),
+        };
     let machines: Vec<_> = model.machines.iter().map(|(m, _)| m.clone()).collect();
     let program = Program {
         format: FORMAT.into(),
-        version: version_for(&machines),
+        version: ir::version_for(ring.is_some(), &machines),
         part: model.part.clone(),
         units: Units::default(),
-        limits: Limits {
-            layer_height: [bead.height[0].0, bead.height[1].0],
-            speed: [bead.speed[0].0, bead.speed[1].0],
-            power: [
-                model.process.power_range[0].watts(),
-                model.process.power_range[1].watts(),
-            ],
-            bead_width: bead.width.0,
-        },
+        limits,
         machines,
         styles: model
             .styles
@@ -41,14 +65,16 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             })
             .collect(),
         heat: model.process.heat,
+        continuous: ring.is_some(),
+        ring,
         layers,
         origins: Origins {
-            bead_height: Some(bead.height_span),
-            bead_speed: Some(bead.speed_span),
+            bead_height,
+            bead_speed,
             power: Some(model.process.power_span),
             spine: match &model.plan {
                 Plan::Duct { loft, .. } => Some(loft.spine_span),
-                Plan::Block { .. } | Plan::Variable { .. } => None,
+                _ => None,
             },
             top: match &model.plan {
                 Plan::Variable { extrusion, .. } => Some(extrusion.top_span),
@@ -58,9 +84,49 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
                 Plan::Duct { slicing, .. } => slicing.span,
                 Plan::Block { slicing, .. } => slicing.span,
                 Plan::Variable { slicing, .. } => slicing.span,
+                Plan::Ring(r) => r.origins.layers,
             }),
+            ring: match &model.plan {
+                Plan::Ring(r) => Some(r.origins),
+                _ => None,
+            },
             machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
         },
     };
     Ok((program, warnings))
+}
+
+/// A ring's limits: every layer `h_r` high; the speeds the loop may choose
+/// (the clamp; the table's without a loop), the table's powers (or the
+/// declared `power_range`), and its narrowest width as the bead the layers
+/// are checked to lie on.
+fn ring_limits(model: &Model, r: &RingPlan) -> (Limits, Option<Span>, Option<Span>) {
+    let rows = r.table.rows();
+    let fold = |f: fn(&SegmentProcess) -> f64| {
+        rows.iter()
+            .map(f)
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], x| {
+                [lo.min(x), hi.max(x)]
+            })
+    };
+    let table_speeds = fold(|row| row.speed.0);
+    let speed = match &r.control {
+        Some(c) => [c.controller.clamp().low().0, c.controller.clamp().high().0],
+        None => table_speeds,
+    };
+    let h = r.layer_height.0;
+    let limits = Limits {
+        layer_height: [h, h],
+        speed,
+        power: [
+            model.process.power_range[0].watts(),
+            model.process.power_range[1].watts(),
+        ],
+        bead_width: fold(|row| row.width.0)[0],
+    };
+    let speed_span = match &r.control {
+        Some(_) => r.origins.clamp,
+        None => r.origins.ring,
+    };
+    (limits, Some(r.origins.layers), Some(speed_span))
 }

@@ -180,3 +180,94 @@ pub fn emit(
     }
     Ok(())
 }
+
+/// What `lmdc simulate` shows: a ring's declared loop run offline against its
+/// declared plant, with [`crate::control::simulate()`] — the law the programs
+/// run ([`crate::control::LAW`]).
+pub struct Simulated {
+    /// The run, when the source declares a ring with a `control height` loop
+    /// and has no errors.
+    pub run: Option<RingSimulation>,
+    /// Errors and warnings of checking the source (the loop's analysis
+    /// included), in source order.
+    pub diagnostics: Diagnostics,
+    /// Why there is no run although the source has no errors.
+    pub nothing: Option<&'static str>,
+}
+
+/// A ring's loop run against its plant.
+pub struct RingSimulation {
+    /// The part's name.
+    pub part: String,
+    /// The loop as declared.
+    pub controller: crate::control::Controller,
+    /// The plant it ran against.
+    pub plant: crate::control::Plant,
+    /// Each segment's start speed (the table's).
+    pub start: Vec<crate::units::Speed>,
+    /// Every layer and segment.
+    pub simulation: crate::control::Simulation,
+    /// The compile-time analysis of the same loop.
+    pub analysis: crate::control::Analysis,
+}
+
+/// Checks `source` and runs its ring's loop against the declared plant. A
+/// loop the verifier would refuse (unstable, too slow) is still simulated —
+/// seeing it diverge is the point — and its findings come with it.
+pub fn simulate(source: &str) -> Simulated {
+    use crate::sema::model::Plan;
+    let mut diagnostics = Diagnostics::new();
+    let done = |run, mut diagnostics: Diagnostics, nothing| {
+        diagnostics.sort_by_source();
+        Simulated {
+            run,
+            diagnostics,
+            nothing,
+        }
+    };
+    let ast = match syntax::parse(source) {
+        Ok(a) => a,
+        Err(d) => {
+            diagnostics.push(d);
+            return done(None, diagnostics, None);
+        }
+    };
+    let (model, d) = sema::check(&ast);
+    diagnostics.extend(d);
+    let Some(model) = model.filter(|_| !diagnostics.has_errors()) else {
+        return done(None, diagnostics, None);
+    };
+    let Plan::Ring(r) = &model.plan else {
+        return done(None, diagnostics, Some("it declares no `ring`"));
+    };
+    let Some(c) = &r.control else {
+        return done(
+            None,
+            diagnostics,
+            Some("its ring declares no `control height { … }` loop"),
+        );
+    };
+    let start = r.table.speeds();
+    let run = crate::control::analyse(&c.controller, &start, r.layers).and_then(|analysis| {
+        let simulation = crate::control::simulate(&c.controller, &c.plant, &start, r.layers)?;
+        Ok(RingSimulation {
+            part: model.part.clone(),
+            controller: c.controller,
+            plant: c.plant.clone(),
+            start,
+            simulation,
+            analysis,
+        })
+    });
+    match run {
+        Ok(run) => done(Some(run), diagnostics, None),
+        Err(e) => {
+            // The checker lets through only loops that can run: a bug.
+            diagnostics.push(crate::diag::Diagnostic::error(
+                crate::diag::Code::NonFinite,
+                format!("internal error simulating the loop: {e}; please report it"),
+            ));
+            done(None, diagnostics, None)
+        }
+    }
+}

@@ -231,7 +231,7 @@ fn a_machine_without_gas_or_powder_writes_the_same_program_as_before() {
     // The IR of a plan without cell I/O stays version 2, and nothing switches.
     let c = compile(&example::tooth(&[]), &mut ());
     let p = c.program.unwrap();
-    assert_eq!(p.ir().version, lmdc::ir::VERSION_WITHOUT_CELL);
+    assert_eq!(p.ir().version, lmdc::ir::VERSION_BASIC);
     let c = compile(&tooth(""), &mut ());
     assert_eq!(c.program.unwrap().ir().version, lmdc::ir::VERSION);
     let sink = build(&example::tooth(&[]));
@@ -330,4 +330,96 @@ fn machine_is_plain_data_in_the_ir() {
     let json = serde_json::to_value(p.ir()).unwrap();
     assert_eq!(json["machines"][0]["cell"]["gas"]["pre_flow"], PRE_FLOW);
     assert_eq!(json["machines"][1]["cell"]["output_on"], "M64 P{n}");
+}
+
+/// The segmented ring with gas and powder on its robot and its mill.
+fn ring_with_cell() -> String {
+    let io = |g: u16, p: u16, r: u16| {
+        format!(
+            "  gas {{\n    output = {g}\n    pre_flow = {PRE_FLOW} s\n    post_flow = {POST_FLOW} s\n  }}\n  \
+             powder {{\n    output = {p}\n    arrival = {ARRIVAL} s\n    rate_output = {r}\n    full_scale = 20 g/min\n  }}\n"
+        )
+    };
+    example::edited(
+        "segmented_ring.lmd",
+        &[
+            (
+                "  height_delay = 150 ms                 // on the input 150 ms after a segment ends\n}",
+                &format!(
+                    "  height_delay = 150 ms                 // on the input 150 ms after a segment ends\n{}}}",
+                    io(2, 3, 2)
+                ),
+            ),
+            (
+                "    z = -20 mm .. 60 mm\n  }\n}",
+                &format!("    z = -20 mm .. 60 mm\n  }}\n{}}}", io(0, 1, 0)),
+            ),
+        ],
+    )
+}
+
+#[test]
+fn a_ring_whose_loop_runs_on_the_machine_switches_gas_and_powder_too() {
+    // The looping programs are written by their own writers (src/back/ring.rs):
+    // gas and powder come before the first laser start and after the last stop.
+    let sink = build(&ring_with_cell());
+    let krl = sink.text("segmented_ring_kr60_m001.src").unwrap();
+    let at = |text: &str, what: &str| {
+        text.find(what)
+            .unwrap_or_else(|| panic!("no `{what}` in the program"))
+    };
+    let laser_on = at(&krl, "DO $OUT[1]=TRUE");
+    let prepare = at(&krl, "WAIT SEC 0 ; advance-run stop: the outputs switch here\n$OUT[2]=TRUE ; gas on\n$ANOUT[2]=0.3000 ; powder 6 g/min\n$OUT[3]=TRUE ; powder on\nWAIT SEC 2.50\n");
+    assert!(prepare < laser_on);
+    let laser_off = at(&krl, "DO $OUT[1]=FALSE");
+    let finish = at(
+        &krl,
+        "$OUT[3]=FALSE ; powder off\nWAIT SEC 5.00\n$OUT[2]=FALSE ; gas off\n",
+    );
+    assert!(finish > laser_off);
+
+    if rs274::find_rs274().is_none() {
+        skip::skip(
+            "a_ring_whose_loop_runs_on_the_machine_switches_gas_and_powder_too",
+            "rs274",
+            "bash .ci/install-rs274.sh",
+        );
+        return;
+    }
+    let ngc = sink.text("segmented_ring_mill3.ngc").unwrap();
+    let calls = rs274::interpret_source(&ngc).unwrap();
+    use rs274::CanonCall as C;
+    let body = rs274::program_body(&calls);
+    let first_on = body.iter().position(|c| *c == C::SpindleOn).unwrap();
+    let last_off = body.iter().rposition(|c| *c == C::SpindleOff).unwrap();
+    let outs = |range: &[C]| -> Vec<C> {
+        range
+            .iter()
+            .filter(|c| matches!(c, C::DigitalOut { .. } | C::AnalogOut { .. } | C::Dwell(_)))
+            .cloned()
+            .collect()
+    };
+    let dout = |index, on| C::DigitalOut {
+        index,
+        on,
+        synced: false,
+    };
+    let before = outs(&body[..first_on]);
+    assert_eq!(
+        before,
+        [
+            dout(0, true),
+            C::AnalogOut {
+                index: 0,
+                value: 0.3,
+                synced: false
+            },
+            dout(1, true),
+            C::Dwell(ARRIVAL),
+        ]
+    );
+    // After the last stop (M2 also stops the spindle): the powder, the
+    // post-flow, the gas.
+    let after: Vec<C> = outs(&body[..=last_off]).into_iter().rev().take(3).collect();
+    assert_eq!(after, [dout(0, false), C::Dwell(POST_FLOW), dout(1, false)]);
 }

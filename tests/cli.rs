@@ -36,7 +36,7 @@ fn help_is_for_process_engineers() {
     let o = lmdc(&["--help"]);
     assert_eq!(o.status.code(), Some(0));
     let text = String::from_utf8_lossy(&o.stdout);
-    for want in ["build", "check", "Exit status"] {
+    for want in ["build", "check", "simulate", "Exit status"] {
         assert!(text.contains(want), "{text}");
     }
     let o = lmdc(&["build", "--help"]);
@@ -164,7 +164,9 @@ fn machine_selection_and_ir() {
     let ir: serde_json::Value =
         serde_json::from_slice(&std::fs::read(d.join("twisted_duct.ir.json")).unwrap()).unwrap();
     assert_eq!(ir["format"], "lmdc-ir");
-    assert_eq!(ir["version"], lmdc::ir::VERSION_WITHOUT_CELL);
+    // A plan without a ring or gas and powder is written as version 2, which
+    // older readers take.
+    assert_eq!(ir["version"], lmdc::ir::VERSION_BASIC);
     assert_eq!(ir["part"], "twisted_duct");
     assert_eq!(ir["units"]["speed"], "mm/s");
     let layer = &ir["layers"][3];
@@ -502,4 +504,62 @@ fn a_rebuild_replaces_the_whole_set() {
         "temporary files left"
     );
     let _ = std::fs::remove_dir_all(&work);
+}
+
+/// `lmdc simulate`: the loop's numbers on stdout, the CSV where asked, exit 1
+/// for a loop the build refuses (still simulated) and for a file with no loop.
+#[test]
+fn simulate_prints_the_loop_and_writes_its_csv() {
+    let dir = out_dir("simulate");
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("loop.csv");
+    let o = lmdc(&[
+        "simulate",
+        "examples/segmented_ring.lmd",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--every",
+        "65",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    for want in [
+        "130 layers × 10 segments",
+        "kp = -3 (mm/s)/mm, ki = -0.35 (mm/s)/mm",
+        "after 130 layers (target 29.900 mm):",
+        "largest error: segment 5, +0.038 mm",
+    ] {
+        assert!(text.contains(want), "{want:?} in\n{text}");
+    }
+    // Layers 1, 65 and 130, ten segments each.
+    let rows = text
+        .lines()
+        .filter(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            w.len() == 6 && w[0].parse::<usize>().is_ok()
+        })
+        .count();
+    assert_eq!(rows, 30, "{text}");
+    let data = std::fs::read_to_string(&csv).unwrap();
+    assert_eq!(data.lines().count(), 1 + 130 * 10);
+    assert!(stderr(&o).contains("wrote"), "{}", stderr(&o));
+    assert_eq!(
+        listing(&dir),
+        vec!["loop.csv".to_string()],
+        "no temporary file left"
+    );
+
+    let unstable = lmdc(&["simulate", "examples/errors/unstable_loop.lmd"]);
+    assert_eq!(unstable.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&unstable.stdout);
+    assert!(text.contains("error: unstable"), "{text}");
+
+    let none = lmdc(&["simulate", "examples/wedge.lmd"]);
+    assert_eq!(none.status.code(), Some(1));
+    assert!(
+        stderr(&none).contains("nothing to simulate"),
+        "{}",
+        stderr(&none)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -179,7 +179,7 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
     }
     Program {
         format: FORMAT.into(),
-        version: VERSION,
+        version: VERSION_BASIC,
         part: "planar block".into(),
         units: Units::default(),
         limits: Limits {
@@ -191,6 +191,8 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
         machines,
         styles: Vec::new(),
         heat: Heat::default(),
+        continuous: false,
+        ring: None,
         layers: out,
         origins: Origins::default(),
     }

@@ -4,6 +4,8 @@
 
 #[path = "gcode_common.rs"]
 mod common;
+#[path = "support/m66.rs"]
+mod m66;
 #[path = "support/rs274.rs"]
 mod rs274;
 #[path = "support/skip.rs"]
@@ -105,7 +107,14 @@ fn check_against_ir(ir: Program) -> usize {
     };
     let kin = lmdc::plan::effective_kinematics(&cnc);
     let v = verified(ir);
-    let (_, text) = emit(&v, 0);
+    let (_, mut text) = emit(&v, 0);
+    if let (Some((_, law)), Some(s)) = (v.ir().loop_on_machine(), cnc.height_sensor) {
+        // A ring's loop: every M66 reads the target height, so the program
+        // lays the IR's nominal plan.
+        let segments = v.ir().ring.as_ref().map_or(0, |r| r.segments.len());
+        let steady = vec![vec![law.target / s.full_scale; segments]; v.ir().layers.len()];
+        text = m66::scripted(&text, s.input, &steady);
+    }
     let all = rs274::interpret_source(&text)
         .unwrap_or_else(|e| panic!("rs274 refused the program: {e}\n{text}"));
     assert!(all.contains(&CanonCall::ProgramEnd), "no program end");

@@ -1,8 +1,9 @@
 //! Golden programs: every file lmdc writes for tests/golden/small_duct.lmd (a
 //! KUKA robot split into modules, LinuxCNC, Fagor 8070 and M20 CNCs) and for the
 //! three planar examples (sprocket tooth, styled chord, the flange with its
-//! holes, linked raster, rotating seams and placement) and the three of seed
-//! 003 (ramp wall, wedge, ramp cuboid), as insta snapshots.
+//! holes, linked raster, rotating seams, placement, gas and powder), the three
+//! of seed 003 (ramp wall, wedge, ramp cuboid) and the ring of seed 004 with
+//! its height loop, as insta snapshots.
 //! Review every diff line by line: these are what machines run.
 
 use lmdc::back::{MemorySink, Templates};
@@ -60,4 +61,12 @@ fn wedge_programs() {
 #[test]
 fn ramp_cuboid_programs() {
     programs("examples/ramp_cuboid.lmd", "ramp_cuboid__");
+}
+
+// Seed 004: a ring whose height loop runs on the robot (KRL) and the mill
+// (LinuxCNC).
+
+#[test]
+fn segmented_ring_programs() {
+    programs("examples/segmented_ring.lmd", "segmented_ring__");
 }

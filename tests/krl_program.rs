@@ -8,6 +8,8 @@
 mod common;
 #[path = "support/krl_check.rs"]
 mod krl;
+#[path = "support/krl_run/mod.rs"]
+mod krl_run;
 
 use common::fixture;
 use common::{planar, verified};
@@ -50,9 +52,46 @@ fn run(p: &Verified, index: usize) -> (krl::Files, krl::Trace) {
     };
     let files = robot_files(p, index).unwrap_or_else(|e| panic!("emit failed: {e:?}"));
     let main = main_name(&files);
+    if let Some((_, law)) = p.ir().loop_on_machine() {
+        // A ring's loop: KRL beyond the strict checker's subset, run by the
+        // interpreter with a sensor that reads the target every layer.
+        let s = r.height_sensor.expect("a sensor");
+        let run = krl_run::run_steady(
+            &files,
+            &main,
+            r.laser_out,
+            r.power_out,
+            law.target / s.full_scale,
+        )
+        .unwrap_or_else(|e| panic!("KRL run failed: {e}"));
+        return (files, ring_trace(run));
+    }
     let trace = krl::run(&files, &main, r.laser_out, r.power_out)
         .unwrap_or_else(|e| panic!("KRL check failed: {e}"));
     (files, trace)
+}
+
+/// The interpreter's run as the strict checker's trace.
+fn ring_trace(run: krl_run::Run) -> krl::Trace {
+    krl::Trace {
+        lins: run
+            .motions
+            .into_iter()
+            .map(|m| krl::Lin {
+                pos: m.pos,
+                abc: m.abc,
+                speed: m.speed,
+                laser: m.laser,
+                anout: m.anout,
+                approximated: m.approximated,
+                module: m.module,
+            })
+            .collect(),
+        ptps: run.ptps,
+        lines_per_module: run.lin_lines,
+        laser_at_end: run.laser_at_end,
+        ..krl::Trace::default()
+    }
 }
 
 fn beam_axis(b: ToolAxis) -> (usize, f64) {

@@ -5,6 +5,14 @@
 
 #[path = "support/krl_check.rs"]
 mod krl;
+#[path = "support/krl_run/mod.rs"]
+mod krl_run;
+#[path = "support/m66.rs"]
+mod m66;
+#[path = "support/rs274.rs"]
+mod rs274;
+#[path = "support/skip.rs"]
+mod skip;
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::{Dialect, Machine, Program};
@@ -19,7 +27,8 @@ fn micrometres(p: [f64; 3]) -> [i64; 3] {
 /// Where the IR says the laser switches, found without the motion plan: on at
 /// the first point of each run of laser-on points, off at the point after its
 /// last one. A run goes on into the next path only when that path, in the same
-/// layer, starts where the last one ended.
+/// layer (or the next one of a continuous program), starts where the last one
+/// ended.
 fn from_ir(p: &Program) -> Vec<Switch> {
     let mut out = Vec::new();
     let mut on = false;
@@ -28,7 +37,8 @@ fn from_ir(p: &Program) -> Vec<Switch> {
         let mut first_in_layer = true;
         for path in layer.paths.iter().filter(|p| !p.points.is_empty()) {
             let start = path.points[0].focus();
-            let joined = !first_in_layer
+            // A continuous program's layer goes on from the last one's end.
+            let joined = (!first_in_layer || p.continuous)
                 && last.is_some_and(|l| (0..3).all(|i| (l[i] - start[i]).abs() < 1e-3));
             if on && !(joined && path.points.len() > 1 && path.points[0].laser_on) {
                 out.push((false, micrometres(last.unwrap())));
@@ -44,10 +54,13 @@ fn from_ir(p: &Program) -> Vec<Switch> {
             last = Some(path.points[path.points.len() - 1].focus());
             first_in_layer = false;
         }
-        if on {
+        if on && !p.continuous {
             out.push((false, micrometres(last.unwrap())));
             on = false;
         }
+    }
+    if on {
+        out.push((false, micrometres(last.unwrap())));
     }
     out
 }
@@ -86,21 +99,53 @@ fn from_gcode(text: &str, d: &Dialect) -> Vec<Switch> {
     out
 }
 
+/// The switches of a LinuxCNC program as rs274 ran it: M3/M5 at the
+/// position the moves before them reached.
+fn from_canon(calls: &[rs274::CanonCall]) -> Vec<Switch> {
+    use rs274::CanonCall::*;
+    let mut out = Vec::new();
+    let mut pos = [0.0f64; 3];
+    let mut on = false;
+    for c in rs274::program_body(calls) {
+        match *c {
+            Traverse { x, y, z, .. } | Feed { x, y, z, .. } => pos = [x, y, z],
+            SpindleOn | SpindleOff => {
+                let now = matches!(c, SpindleOn);
+                if now != on {
+                    on = now;
+                    out.push((on, micrometres(pos)));
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
 /// The switches of a KRL program, run by the test interpreter: where the laser
 /// state of one LIN differs from the one before, it switched at that LIN's start.
 fn from_krl(trace: &krl::Trace) -> Vec<Switch> {
+    from_motions(
+        trace.lins.iter().map(|l| (l.laser, l.pos)),
+        trace.laser_at_end,
+    )
+}
+
+/// The switches of motions run with these laser states, ending with the
+/// laser `at_end`.
+fn from_motions(motions: impl Iterator<Item = (bool, [f64; 3])>, at_end: bool) -> Vec<Switch> {
     let mut out = Vec::new();
     let mut on = false;
     let mut pos = [f64::NAN; 3];
-    for lin in &trace.lins {
-        if lin.laser != on {
-            on = lin.laser;
+    for (laser, at) in motions {
+        if laser != on {
+            on = laser;
             out.push((on, micrometres(pos)));
         }
-        pos = lin.pos;
+        pos = at;
     }
-    if trace.laser_at_end != on {
-        out.push((trace.laser_at_end, micrometres(pos)));
+    if at_end != on {
+        out.push((at_end, micrometres(pos)));
     }
     out
 }
@@ -144,9 +189,34 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
             lmdc::back::emit(m, &templates, &mut sink).unwrap();
             let got = match m.machine() {
                 Machine::Cnc(c) => {
-                    cncs += 1;
                     let (_, bytes) = &sink.files[0];
-                    from_gcode(std::str::from_utf8(bytes).unwrap(), &c.dialect)
+                    let text = std::str::from_utf8(bytes).unwrap();
+                    match (p.ir().loop_on_machine(), c.height_sensor) {
+                        // A ring's loop computes its heights: rs274 runs it
+                        // with the sensor on target.
+                        (Some((_, law)), Some(s)) => {
+                            if rs274::find_rs274().is_none() {
+                                skip::skip(
+                                    "every_example_switches_the_laser…",
+                                    "rs274",
+                                    "run `bash .ci/install-rs274.sh` or set LMDC_RS274",
+                                );
+                                continue;
+                            }
+                            let segments = p.ir().ring.as_ref().map_or(0, |r| r.segments.len());
+                            let steady = vec![
+                                vec![law.target / s.full_scale; segments];
+                                p.ir().layers.len()
+                            ];
+                            let text = m66::scripted(text, s.input, &steady);
+                            cncs += 1;
+                            from_canon(&rs274::interpret_source(&text).unwrap())
+                        }
+                        _ => {
+                            cncs += 1;
+                            from_gcode(text, &c.dialect)
+                        }
+                    }
                 }
                 Machine::Robot(r) => {
                     robots += 1;
@@ -155,9 +225,29 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
                         .into_iter()
                         .map(|(n, b)| (n, String::from_utf8(b).unwrap()))
                         .collect();
-                    let trace = krl::run(&files, &main_program(&files), r.laser_out, r.power_out)
-                        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-                    from_krl(&trace)
+                    let main = main_program(&files);
+                    match (p.ir().loop_on_machine(), r.height_sensor) {
+                        // A ring's loop, run with the sensor on target.
+                        (Some((_, law)), Some(s)) => {
+                            let run = krl_run::run_steady(
+                                &files,
+                                &main,
+                                r.laser_out,
+                                r.power_out,
+                                law.target / s.full_scale,
+                            )
+                            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                            from_motions(
+                                run.motions.iter().map(|m| (m.laser, m.pos)),
+                                run.laser_at_end,
+                            )
+                        }
+                        _ => {
+                            let trace = krl::run(&files, &main, r.laser_out, r.power_out)
+                                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                            from_krl(&trace)
+                        }
+                    }
                 }
             };
             assert_eq!(
@@ -180,7 +270,7 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
             }
         }
         assert!(
-            robots > 0 && cncs > 0,
+            robots > 0 && (cncs > 0 || !skip::in_ci() && rs274::find_rs274().is_none()),
             "{}: needs a robot and a CNC",
             path.display()
         );

@@ -11,6 +11,7 @@ pub mod fixed;
 pub(crate) mod fmt;
 pub mod gcode;
 pub mod krl;
+pub mod ring;
 pub mod templates;
 
 use crate::check::VerifiedMachine;

@@ -7,7 +7,8 @@
 //! the worst): the process rules over the IR's points (`process`: layer
 //! height, bead speed, laser power, finite values), the machine rules over each
 //! selected machine's motion plan (`machine`: speed, axis travel, tilt, analog
-//! output) and the file names the machines would write (`names`). The machine
+//! output) and the file names the machines would write (`names`); a ring's
+//! height loop and what each machine needs to run it (`ring`). The machine
 //! rules run whatever the process rules found, so one run reports everything.
 
 mod cell;
@@ -15,6 +16,7 @@ mod machine;
 mod names;
 mod process;
 mod resolution;
+pub mod ring;
 mod stacking;
 mod worst;
 
@@ -120,6 +122,7 @@ fn machine_rules(p: &Program, i: usize) -> (Diagnostics, Option<(usize, Vec<Stri
     let moves = rules.moves;
     let origin = p.origins.machines.get(i).cloned().unwrap_or_default();
     rules.report(p, &origin, &mut d);
+    ring::check_machine(p, m, &origin, &mut d);
     (d, Some((i, names::files(p, m, moves))))
 }
 
@@ -140,6 +143,7 @@ pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics>
     points.run(&program);
     let broken = points.finite.failed();
     points.report(&program, &mut diags);
+    ring::check_loop(&program, &mut diags);
 
     let machines: Vec<usize> = match select {
         Select::All => (0..program.machines.len()).collect(),

@@ -12,7 +12,12 @@ pub(crate) fn files(p: &Program, m: &Machine, moves: u64) -> Vec<String> {
         Machine::Robot(r) => {
             let paths = p.layers.iter().map(|l| l.paths.len()).sum();
             let names = KrlNames::new(&p.part, r, p.point_count(), paths);
-            let modules = (moves as usize).div_ceil(r.max_points_per_module.max(1));
+            let modules = if p.loop_on_machine().is_some() {
+                // The loop's one module holds a layer, run once per layer.
+                1
+            } else {
+                (moves as usize).div_ceil(r.max_points_per_module.max(1))
+            };
             names.files(modules)
         }
         Machine::Cnc(c) => vec![gcode_file(&p.part, c)],

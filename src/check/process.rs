@@ -187,22 +187,21 @@ impl Range {
 }
 
 /// The speed the bead model is checked at: the component of the point's
-/// speed across its normal, `speed·|Δp − (Δp·n)n| / |Δp|` for the move `Δp`
-/// to the next point. A bead map is measured on flat tracks, and what sets a
-/// layer's thickness is the metal laid per length across the build
-/// direction: a path that climbs along the normal (seed 003's layers follow
-/// the planned top of the one below) runs `√(1 + s²)` faster than the
-/// ground it covers. For a move in the layer's plane — every planar and
-/// normal-sliced path — this is the speed itself.
+/// speed across its normal, `speed·|Δf − (Δf·n)n| / |Δf|` for the nozzle's
+/// move `Δf` (focus to focus) to the next point. A bead map is measured on
+/// flat tracks, and what sets a layer's thickness is the metal laid per
+/// length across the build direction: a path that climbs along the normal
+/// (seed 003's layers follow the planned top of the one below; seed 004's
+/// nozzle climbs to the next segment's defocus over a transition) runs
+/// `√(1 + s²)` faster than the ground it covers. For a move in the layer's
+/// plane at one defocus — every planar and normal-sliced path — this is the
+/// speed itself.
 #[inline]
 fn across_normal(pt: &Point, next: Option<&Point>) -> f64 {
     let v = pt.speed as f64;
     let Some(q) = next else { return v };
-    let d = [
-        q.pos[0] - pt.pos[0],
-        q.pos[1] - pt.pos[1],
-        q.pos[2] - pt.pos[2],
-    ];
+    let (a, b) = (pt.focus(), q.focus());
+    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let n = pt.normal.map(|c| c as f64);
     let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];

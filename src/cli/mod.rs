@@ -5,6 +5,7 @@ pub mod messages;
 pub mod preview;
 pub mod progress;
 pub mod report;
+mod simulate;
 pub mod sink;
 pub mod timings;
 
@@ -35,6 +36,7 @@ Examples:
                                          only the robot kr60, plus the plan as JSON
   lmdc report part.lmd                   time, lengths, energy, powder and metal, per layer
   lmdc preview part.lmd                  the plan in 3-D: out/<part>.preview.html
+  lmdc simulate ring.lmd --csv loop.csv  run a ring's height loop against its plant
 Exit status: 0 success, 1 errors in the .lmd file, 2 usage or file errors.")]
 pub struct Cli {
     #[command(subcommand)]
@@ -126,6 +128,17 @@ enum Command {
         #[arg(short = 'o', long = "out", value_name = "FILE")]
         out: Option<PathBuf>,
     },
+    /// Run a ring's height loop (`control height`) offline against its declared plant: each segment's speed, height and total, layer by layer, and the final totals against the target.
+    Simulate {
+        /// The .lmd file.
+        file: PathBuf,
+        /// Also write every layer and segment as CSV: layer,segment,speed_mm_s,height_mm,total_mm,target_mm.
+        #[arg(long, value_name = "FILE")]
+        csv: Option<PathBuf>,
+        /// Print every N-th layer (and the first and the last).
+        #[arg(long, value_name = "N", default_value_t = 10)]
+        every: usize,
+    },
 }
 
 /// Runs the command line; returns the exit code.
@@ -168,6 +181,9 @@ pub fn run(cli: Cli) -> u8 {
                 }
                 None => EXIT_PROGRAM,
             }
+        }
+        Command::Simulate { file, csv, every } => {
+            simulate(&file, csv.as_deref(), every, (color, format))
         }
         Command::Build {
             file,
@@ -359,6 +375,42 @@ fn build(
         eprintln!("wrote {}", shown(&p));
     }
     0
+}
+
+fn simulate(
+    file: &Path,
+    csv: Option<&Path>,
+    every: usize,
+    (color, format): (bool, MessageFormat),
+) -> u8 {
+    let Some(source) = read_source(file) else {
+        return EXIT_USAGE;
+    };
+    let s = pipeline::simulate(&source);
+    messages::print(&s.diagnostics, file, &source, color, format);
+    let Some(run) = s.run else {
+        if let Some(why) = s.nothing {
+            eprintln!("error: {} has nothing to simulate: {why}", shown(file));
+        }
+        return EXIT_PROGRAM;
+    };
+    if let Some(path) = csv {
+        let mut text = String::new();
+        // Writing into a String cannot fail.
+        let _ = run.simulation.write_csv(&mut text);
+        if let Err(e) = simulate::write_atomically(path, &text) {
+            eprintln!("error: writing {}: {e}", shown(path));
+            return EXIT_USAGE;
+        }
+        eprintln!("wrote {}", shown(path));
+    }
+    print!("{}", simulate::report(&run, every));
+    // A loop the build would refuse is simulated, but says so.
+    if simulate::refused(&run) {
+        EXIT_PROGRAM
+    } else {
+        0
+    }
 }
 
 /// Reads the source, at most [`MAX_SOURCE`] bytes whatever the file claims to

@@ -1,12 +1,15 @@
-//! The control law, in one place: the simulation calls it, and the code
-//! generators will write the same three lines into KRL and G-code.
+//! The control law, in one place: [`LAW`] lists its steps in the order they
+//! run, [`Controller::update`] runs them for the simulation, and the code
+//! generators write the same steps, in the same order, into KRL and G-code
+//! (each matches on [`Step`], so a step added here cannot be left out there).
 //!
-//! Per segment `j`, from layer `i` to `i + 1` (seed 004 eq. 6):
+//! Per segment `j`, from layer `i` to `i + 1` (seed 004 eq. 6 and eq. 3):
 //!
 //! ```text
 //! e_i     = h_r − h_i                     height error of the layer just built
 //! Σ_i     = Σ_{m≤i} e_m                   = N·h_r − built height: the total error
 //! v_{i+1} = clamp(v_i + kP·e_i + kI·Σ_i, v_min, v_max)
+//! z_{i+1} = z_i + h_i                     the next working plane (eq. 3)
 //! ```
 //!
 //! `Σ` is not clamped (no anti-windup): it *is* the segment's total-height
@@ -59,6 +62,34 @@ impl Clamp {
     }
 }
 
+/// One step of the law. The programs hold the measured height `h` and the
+/// error `e` in locals, and `Σ`, `v` and `z` per segment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Step {
+    /// `e = h_r − h`: the error of the layer just measured.
+    Error,
+    /// `Σ = Σ + e`.
+    Sum,
+    /// `v = v + kP·e + kI·Σ`.
+    Speed,
+    /// `v = v_min` where `v < v_min`.
+    ClampLow,
+    /// `v = v_max` where `v > v_max`.
+    ClampHigh,
+    /// `z = z + h`: the segment's working plane rises by what it laid.
+    Plane,
+}
+
+/// The law's steps, in the order every copy of it runs them.
+pub const LAW: [Step; 6] = [
+    Step::Error,
+    Step::Sum,
+    Step::Speed,
+    Step::ClampLow,
+    Step::ClampHigh,
+    Step::Plane,
+];
+
 /// What the loop remembers for one segment between layers.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LoopState {
@@ -67,6 +98,9 @@ pub struct LoopState {
     /// `Σ e` over the layers built so far: the target total minus the built
     /// total.
     pub error_sum: Length,
+    /// The segment's working plane: the sum of the heights it laid (0 on the
+    /// substrate).
+    pub plane: Length,
 }
 
 /// A declared PI loop on layer height: gains, target height per layer, clamp.
@@ -143,6 +177,7 @@ impl Controller {
         Ok(LoopState {
             speed,
             error_sum: Length(0.0),
+            plane: Length(0.0),
         })
     }
 
@@ -151,12 +186,26 @@ impl Controller {
     /// turned into a NaN speed.
     pub fn update(&self, state: LoopState, measured: Length) -> Result<LoopState, Invalid> {
         let h = finite("measured height", measured.0)?;
-        let e = Length(self.target.0 - h);
-        let error_sum = Length(state.error_sum.0 + e.0);
-        let raw = state.speed.0 + self.kp.of(e).0 + self.ki.of(error_sum).0;
+        let mut e = 0.0;
+        let LoopState {
+            speed: Speed(mut v),
+            error_sum: Length(mut sum),
+            plane: Length(mut z),
+        } = state;
+        for step in LAW {
+            match step {
+                Step::Error => e = self.target.0 - h,
+                Step::Sum => sum += e,
+                Step::Speed => v += self.kp.of(Length(e)).0 + self.ki.of(Length(sum)).0,
+                Step::ClampLow => v = v.max(self.clamp.low.0),
+                Step::ClampHigh => v = v.min(self.clamp.high.0),
+                Step::Plane => z += h,
+            }
+        }
         Ok(LoopState {
-            speed: self.clamp.apply(Speed(raw)),
-            error_sum,
+            speed: Speed(v),
+            error_sum: Length(sum),
+            plane: Length(z),
         })
     }
 }
@@ -187,6 +236,8 @@ mod tests {
         // Back on target: e = 0, the integral alone keeps pushing: +0.0105.
         let s = c.update(s, Length(0.23)).unwrap();
         assert!((s.speed.0 - 13.111).abs() < 1e-12);
+        // The working plane rose by both layers.
+        assert!((s.plane.0 - 0.49).abs() < 1e-12);
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! Closed-loop layer-height control on a segmented ring (seed 004, Shen et
 //! al. 2018): the maths as pure functions of numbers, tested against the
 //! formulas and the paper's tables. Nothing here reads the semantic model or
-//! writes IR yet; `docs/design/seed004.md` proposes the language surface, the
-//! IR and the generated controllers.
+//! writes IR: sema builds these types from the source, the slicer and the
+//! verifier use them, and the code generators write [`LAW`]'s steps
+//! (`docs/design/seed004.md`).
 //!
 //! | module | question | the paper |
 //! |---|---|---|
@@ -38,9 +39,9 @@ mod reference;
 pub use analysis::{analyse, Analysis, Finding, Severity};
 pub use gain::SpeedPerLength;
 pub use invalid::Invalid;
-pub use law::{Clamp, Controller, LoopState};
+pub use law::{Clamp, Controller, LoopState, Step, LAW};
 pub use linear::LoopGains;
 pub use plant::{Deposition, Plant};
-pub use ring::{LayerSpec, Ring, RingPoint, Transition};
+pub use ring::{LayerSpec, Ring, RingPoint, SegmentMoves, Transition};
 pub use simulate::{simulate, Sample, Simulation, Total};
 pub use table::{EnergyDensity, SegmentProcess, SegmentTable};

@@ -60,6 +60,22 @@ impl Transition {
     }
 }
 
+/// The moves of one segment on every layer ([`Ring::moves`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SegmentMoves {
+    /// Moves over the segment's constant part, at its own height.
+    pub flat: usize,
+    /// Moves over its transition to the next segment's height.
+    pub transition: usize,
+}
+
+impl SegmentMoves {
+    /// Both: the segment's moves.
+    pub fn total(self) -> usize {
+        self.flat + self.transition
+    }
+}
+
 /// Where each segment's working plane lies on the layer being laid out.
 #[derive(Clone, Copy, Debug)]
 pub struct LayerSpec<'a> {
@@ -68,8 +84,9 @@ pub struct LayerSpec<'a> {
     /// The working-plane height of each segment (0 on the substrate).
     pub base: &'a [Length],
     /// The working-plane height at which the next layer's first segment
-    /// starts; `None` on the last layer, whose last segment runs flat to the
-    /// end.
+    /// starts; `None` on the last layer, whose last transition runs flat (at
+    /// the same angles as every other layer's, so that every layer has the
+    /// same points in plan view and a program can loop over one).
     pub next_start: Option<Length>,
 }
 
@@ -212,6 +229,27 @@ impl Ring {
             })
     }
 
+    /// How many moves each segment of every layer gets at most `step` apart:
+    /// its constant part's and its transition's. Every segment and every layer
+    /// has the same, so a layer's points are `segments × (flat + transition)`
+    /// moves and segment `j`'s start at point `j·(flat + transition)`.
+    pub fn moves(&self, step: Angle) -> Result<SegmentMoves, Invalid> {
+        let step = positive("angular step", step.0)?;
+        let mu = TAU / self.segments as f64;
+        let per_layer = TAU / step + 2.0 * self.segments as f64;
+        if per_layer > MAX_MOVES {
+            return Err(Invalid::TooLarge {
+                what: "moves per layer",
+                value: per_layer.ceil(),
+                max: MAX_MOVES,
+            });
+        }
+        Ok(SegmentMoves {
+            flat: moves_over(mu - self.transition.0, step),
+            transition: moves_over(self.transition.0, step),
+        })
+    }
+
     /// The first layer: the table's speeds, on the substrate (z = 0), the next
     /// layer starting `layer_height` up.
     pub fn first_layer(
@@ -250,18 +288,10 @@ impl Ring {
         for z in spec.base.iter().chain(spec.next_start.as_ref()) {
             finite("working-plane height", z.0)?;
         }
-        let step = positive("angular step", step.0)?;
-        let moves = TAU / step + 2.0 * self.segments as f64;
-        if moves > MAX_MOVES {
-            return Err(Invalid::TooLarge {
-                what: "moves per layer",
-                value: moves.ceil(),
-                max: MAX_MOVES,
-            });
-        }
+        let per = self.moves(step)?;
         let rows = table.rows();
         let (r, mu, t) = (self.radius.0, TAU / self.segments as f64, self.transition.0);
-        let mut points = Vec::with_capacity(moves as usize + 1);
+        let mut points = Vec::with_capacity(per.total() * self.segments + 1);
         let point =
             |theta: f64, z: f64, defocus: f64, speed: f64, j: usize, transition: bool| RingPoint {
                 pos: [r * theta.cos(), r * theta.sin(), z],
@@ -278,41 +308,36 @@ impl Ring {
         for j in 0..self.segments {
             let (z, d, v) = (spec.base[j].0, rows[j].defocus.0, spec.speeds[j].0);
             // Where the transition leads: the next segment, the next layer,
-            // or — on the last layer — nowhere: the segment runs flat to 360°.
-            let next = match (spec.base.get(j + 1), spec.next_start) {
-                (Some(zn), _) => Some((zn.0, rows[j + 1].defocus.0)),
-                (None, Some(zn)) => Some((zn.0, rows[0].defocus.0)),
-                (None, None) => None,
+            // or — on the last layer — nowhere: its last transition stays at
+            // the segment's own height.
+            let (zn, dn) = match (spec.base.get(j + 1), spec.next_start) {
+                (Some(zn), _) => (zn.0, rows[j + 1].defocus.0),
+                (None, Some(zn)) => (zn.0, rows[0].defocus.0),
+                (None, None) => (z, d),
             };
             let start = j as f64 * mu;
-            let flat = if next.is_some() { mu - t } else { mu };
-            let k = moves_over(flat, step);
+            let flat = mu - t;
+            let k = per.flat;
             for m in 0..k {
                 let theta = start + flat * m as f64 / k as f64;
                 points.push(point(theta, z, d, v, j, false));
             }
-            let last = start + mu;
-            match next {
-                Some((zn, dn)) => {
-                    let rise = Length((zn + dn) - (z + d));
-                    let speed = path_speed(Speed(v), rise, self.transition_arc()).0;
-                    let k = moves_over(t, step);
-                    for m in 0..k {
-                        let f = m as f64 / k as f64;
-                        let theta = start + flat + t * f;
-                        points.push(point(
-                            theta,
-                            z + f * (zn - z),
-                            d + f * (dn - d),
-                            speed,
-                            j,
-                            true,
-                        ));
-                    }
-                    end = Some(point(last, zn, dn, speed, j, true));
-                }
-                None => end = Some(point(last, z, d, v, j, false)),
+            let rise = Length((zn + dn) - (z + d));
+            let speed = path_speed(Speed(v), rise, self.transition_arc()).0;
+            let k = per.transition;
+            for m in 0..k {
+                let f = m as f64 / k as f64;
+                let theta = start + flat + t * f;
+                points.push(point(
+                    theta,
+                    z + f * (zn - z),
+                    d + f * (dn - d),
+                    speed,
+                    j,
+                    true,
+                ));
             }
+            end = Some(point(start + mu, zn, dn, speed, j, true));
         }
         points.extend(end);
         Ok(points)

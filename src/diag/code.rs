@@ -184,6 +184,10 @@ codes! {
         "a process `speed` with `slicing variable`: each segment's speed comes from the bead model (the speed that lays its height)";
     BeadMapNeeded = "bead-map-needed", Values,
         "`slicing variable` with a `measured` bead: variable layers change the height through the speed, which needs a `linear` or `mass_balance` model over a speed range";
+    GainUnit = "gain-unit", Values,
+        "a height-loop gain (`kp`, `ki`) without a unit, written per second (`Hz`, `s^-1`) or in another unit than a speed per length: (mm/s)/mm and (m/s)/mm are both 1/s but 1000 apart (the paper's \"s⁻¹\" is right only as (m/s)/mm), so a gain names both (`-3 mm/s/mm`, `-0.003 m/s/mm`)";
+    TableLength = "table-length", Values,
+        "a ring's `table` list, or a plant's `factors`, with another length than the ring has segments";
     Unsupported = "unsupported", Values,
         "a combination lmdc does not build: styles on a loft's wall or on variable-thickness layers, a `top` over a profile that follows `layer`";
 
@@ -232,6 +236,12 @@ codes! {
         "an extrusion's `top` is zero, negative or cannot be computed at a point where a track runs (named, with the inner error)";
     SegmentsTooShort = "segments-too-short", Feasibility,
         "meeting the `segments` height tolerance along a track needs constant-speed segments shorter than `min_length`; names the tolerance that works";
+    GainSign = "gain-sign", Feasibility,
+        "a height-loop gain that is not negative: a layer's height falls as its speed rises (h ∝ 1/v), so a layer that comes out low must slow its segment down";
+    UnstableLoop = "unstable-loop", Feasibility,
+        "the height loop, linearised at a segment's speed, is unstable (spectral radius ≥ 1): names the worst segment and the gains that are stable at every segment; as a warning, stable at the segments' speeds but not at the clamp's low speed";
+    SlowLoop = "slow-loop", Feasibility,
+        "the height loop settles in more layers than the build has: an error when less than half of an error is corrected by the last layer (naming the (m/s)/mm reading when 1000 times the gains would do), else a warning with the gains that settle in time";
     TooManyPoints = "too-many-points", Feasibility,
         "the plan would exceed 20 M points (or 100 000 a layer)";
     NonFinite = "non-finite", Feasibility,
@@ -259,6 +269,14 @@ codes! {
         "a programmed position or rotary angle is outside the CNC's declared travel";
     NameClash = "name-clash", Machines,
         "two machines whose names differ only in characters a file name drops (`m 1`, `m_1`) would write the same file";
+    TransitionSpeed = "transition-speed", Machines,
+        "a ring's transition, run at the loop's top speed, moves faster than a machine's `max_speed` (`v / cos γ`, γ its climb); names the clamp, transition angle or `max_speed` that would fit";
+    LoopDialect = "loop-dialect", Machines,
+        "a height loop to run on a machine whose programs cannot (a G-code dialect other than LinuxCNC); `run = schedule` writes an open-loop speed schedule instead";
+    LoopTiming = "loop-timing", Machines,
+        "on a robot, a ring segment's update (a trigger `height_delay` after its end) could land after the advance run has read the values it sets: too few segments or moves between them";
+    HeightSensor = "height-sensor", Machines,
+        "a height loop to run on a machine that declares no `height_input`, or a LinuxCNC input past `M66 E63` (one input per segment)";
     AnalogRange = "analog-range", Machines,
         "the laser power would need `$ANOUT` outside −1…1 for the robot's `full_scale`";
     OutputClash = "output-clash", Machines,

@@ -27,6 +27,20 @@
 //! "Up the nozzle" is the point's normal on a robot and a tilting head; on a
 //! 3-axis CNC, whose nozzle always points down, it is +Z.
 //!
+//! # Continuous layers
+//! A continuous program (`Program::continuous`, a seed 004 ring) is one run
+//! of deposit moves: a layer's first path joins the last layer's like any
+//! path that starts where the one before ended, so the laser stays on from
+//! the first deposit of the build to the last, by the same rule as below.
+//! Every other program starts each layer with the moves above.
+//!
+//! # Segment ends
+//! On a ring, [`Visit::segment_end`] comes right before the move that ends a
+//! segment (its transition's last): where a closed loop measures the segment
+//! it has just laid and updates its speed. One event, for every back end: the
+//! KRL writer triggers its update routine on that move, the LinuxCNC writer
+//! reads its sensors after the last segment's.
+//!
 //! # Cooling
 //! Before each layer but the first the plan dwells, retracted, for the
 //! program's interlayer `dwell`, or longer if the layer before took less than
@@ -44,7 +58,7 @@
 
 pub mod kinematics;
 
-use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program};
+use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program, Ring};
 use kinematics::Rotary;
 
 /// A path joins the previous one when it starts within this distance (mm) of
@@ -181,6 +195,18 @@ pub enum Io {
     PowderOff,
 }
 
+/// A ring's segment ends with the next move ([`Visit::segment_end`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SegmentEnd {
+    /// The layer, from 0.
+    pub layer: usize,
+    /// The segment, from 0.
+    pub segment: usize,
+    /// Whether it is the layer's last segment: the move ends the layer, and
+    /// the next layer (if any) starts where it ends.
+    pub last: bool,
+}
+
 /// What follows the plan: a verifier rule or a back end's writer.
 pub trait Visit {
     /// Layer `number` (0-based) begins; its moves follow.
@@ -196,6 +222,8 @@ pub trait Visit {
     fn dwell(&mut self, _seconds: f64) {}
     /// Switch the cell's gas or powder here, with the laser off.
     fn io(&mut self, _event: Io) {}
+    /// A ring's segment ends with the next move.
+    fn segment_end(&mut self, _end: SegmentEnd) {}
 }
 
 /// How a machine moves, as far as the plan is concerned.
@@ -264,24 +292,69 @@ impl<'a> Plan<'a> {
             timed: !self.program.heat.is_none(),
             gas: false,
             powder: None,
+            ends: None,
+            end_next: None,
         };
+        let continuous = self.program.continuous;
         for (li, layer) in self.program.layers.iter().enumerate() {
-            w.switch_off();
+            if !continuous {
+                w.switch_off();
+            }
             if li > 0 {
                 w.cool(li);
             }
             w.layer_time = 0.0;
             w.v.layer(li, layer);
-            let mut first = true;
+            // A ring's segment ends in its layer's (first) path.
+            w.ends = self
+                .program
+                .ring
+                .as_ref()
+                .and_then(|r| SegmentEnds::new(r, li));
+            let mut first = !continuous;
             for (pi, path) in layer.paths.iter().enumerate() {
                 if path.points.is_empty() {
                     continue;
                 }
                 w.path(li, pi, &path.points, first);
                 first = false;
+                w.ends = None;
             }
         }
         w.end();
+    }
+}
+
+/// Where the segments of one layer of a ring end: every `per` points.
+#[derive(Clone, Copy, Debug)]
+struct SegmentEnds {
+    layer: usize,
+    per: usize,
+    segments: usize,
+}
+
+impl SegmentEnds {
+    fn new(r: &Ring, layer: usize) -> Option<Self> {
+        let per = r.flat_moves + r.transition_moves;
+        (per > 0).then_some(SegmentEnds {
+            layer,
+            per,
+            segments: r.segments.len(),
+        })
+    }
+
+    /// The segment end reached by the move to point `to` of the layer's path.
+    #[inline]
+    fn at(&self, to: usize) -> Option<SegmentEnd> {
+        if to == 0 || !to.is_multiple_of(self.per) {
+            return None;
+        }
+        let segment = to / self.per - 1;
+        (segment < self.segments).then_some(SegmentEnd {
+            layer: self.layer,
+            segment,
+            last: segment + 1 == self.segments,
+        })
     }
 }
 
@@ -318,6 +391,10 @@ struct Walker<'p, 'a, V> {
     gas: bool,
     /// The powder feeder's rate while it runs (g/min).
     powder: Option<f32>,
+    /// Where a ring's segments end in the path being walked.
+    ends: Option<SegmentEnds>,
+    /// The segment end the next move reaches.
+    end_next: Option<SegmentEnd>,
 }
 
 /// Powder rates that print the same (they come from the same declaration).
@@ -362,6 +439,9 @@ impl<V: Visit> Walker<'_, '_, V> {
             } else {
                 self.v.laser_off();
             }
+        }
+        if let Some(e) = self.end_next.take() {
+            self.v.segment_end(e);
         }
         self.v.motion(&m);
     }
@@ -408,6 +488,9 @@ impl<V: Visit> Walker<'_, '_, V> {
             } else {
                 (MoveKind::Travel, Speed::Rapid)
             };
+            if let Some(ends) = self.ends {
+                self.end_next = ends.at(k + 1);
+            }
             self.send(Move {
                 kind,
                 to: to.focus(),

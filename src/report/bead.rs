@@ -58,8 +58,10 @@ pub struct Beads {
 }
 
 impl Beads {
-    /// The beads of a checked model.
-    pub fn of(model: &Model) -> Beads {
+    /// The beads of a checked model; `None` for a solid without a bead
+    /// model (a ring: its segment table gives the widths).
+    pub fn of(model: &Model) -> Option<Beads> {
+        let bead = model.bead.as_ref()?;
         let spacing = match &model.plan {
             Plan::Duct { .. } => Spacing::Width,
             Plan::Block { slicing, .. } if slicing.overlapped() => {
@@ -73,11 +75,11 @@ impl Beads {
             // wide is what a track without neighbours lays.
             _ => Spacing::Width,
         };
-        Beads {
-            width: model.bead.width.0,
-            model: model.bead.model,
+        Some(Beads {
+            width: bead.width.0,
+            model: bead.model,
             spacing,
-        }
+        })
     }
 
     /// Cross-section (mm²) the bead model lays at speed `v` (mm/s, across the

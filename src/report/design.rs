@@ -50,14 +50,19 @@ pub enum Design {
 
 /// The design volume of `model`'s solid.
 pub fn volume(model: &Model) -> Design {
-    let w = model.bead.width.0;
+    let Some(bead) = &model.bead else {
+        return Design::Unknown {
+            why: "a ring's wall has no bead model (its segment table gives the widths)".into(),
+        };
+    };
+    let w = bead.width.0;
     let got = match &model.plan {
         Plan::Duct { loft, .. } => loft_wall(loft, w),
         Plan::Block {
             extrusion, slicing, ..
         } => {
             let mut scratch = Diagnostics::new();
-            crate::slice::layers::plan(&model.bead, extrusion, slicing, &mut scratch)
+            crate::slice::layers::plan(bead, extrusion, slicing, &mut scratch)
                 .map(|layers| {
                     let v: f64 = layers
                         .shapes

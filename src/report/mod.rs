@@ -127,7 +127,15 @@ impl Report {
     /// The report of `machine`'s plan, with the bead model, design solid and
     /// density of `model`; `density` (g/cm³) replaces or supplies the density.
     pub fn new(machine: VerifiedMachine<'_>, model: &Model, density: Option<f64>) -> Report {
-        Self::from_parts(machine, &Beads::of(model), design::volume(model), density)
+        match Beads::of(model) {
+            Some(beads) => Self::from_parts(machine, &beads, design::volume(model), density),
+            None => {
+                let mut r = Self::walk(machine, None);
+                r.design = Some(design::volume(model));
+                r.density_g_cm3 = density.filter(|d| d.is_finite() && *d > 0.0);
+                r
+            }
+        }
     }
 
     /// The report of `machine`'s plan laid with `beads`, against `design`;

@@ -8,11 +8,13 @@ use super::program_text;
 use super::value::{Env, Value};
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::{
-    AxisLimits, Cnc, FeedUnit, FrameRef, Kinematics, Machine, Placement, Pose, Robot, ToolAxis,
+    AxisLimits, Cnc, FeedUnit, FrameRef, HeightSensor, Kinematics, Machine, Placement, Pose, Robot,
+    ToolAxis,
 };
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::target::gcode as dialect;
+use crate::target::kuka;
 use crate::units::{Dim, Power};
 
 use crate::target::kuka::VEL_CP_MAX as ROBOT_VEL_CP_MAX;
@@ -34,6 +36,9 @@ const ROBOT_FIELDS: &[&str] = &[
     "home",
     "clearance",
     "module_lines",
+    "height_input",
+    "height_full_scale",
+    "height_delay",
 ];
 
 const CNC_FIELDS: &[&str] = &[
@@ -58,6 +63,9 @@ const CNC_FIELDS: &[&str] = &[
     "output_on",
     "output_off",
     "analog_output",
+    "height_input",
+    "height_full_scale",
+    "height_delay",
 ];
 
 /// Blocks a robot takes.
@@ -380,7 +388,9 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
             }
         },
     };
+    let sensor = height_sensor(f, 1, kuka::MAX_ANIN, diags);
     Some(Robot {
+        height_sensor: sensor?,
         name: name.to_string(),
         tool: tool?,
         base: base?,
@@ -589,10 +599,12 @@ fn cnc(
         }
     }
     let placement = placement(f, diags);
+    let sensor = height_sensor(f, 0, dialect::MAX_ANALOG_INPUT, diags);
     if !ok || !text_ok {
         return None;
     }
     Some(Cnc {
+        height_sensor: sensor?,
         name: name.to_string(),
         axes: axes?,
         kinematics: kin?,
@@ -644,6 +656,68 @@ fn placement(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Placement> {
         work_offset: offset?,
         origin: origin?,
     })
+}
+
+/// Longest delay of a height reading lmdc plans, s.
+const MAX_SENSOR_DELAY_S: f64 = 10.0;
+
+/// `height_input = n`, `height_full_scale = L`, `height_delay = t`: the
+/// analog input a closed height loop reads (seed 004). `Some(None)` when the
+/// machine declares none, `None` when a field is wrong (reported).
+fn height_sensor(
+    f: &Fields<'_>,
+    lowest: usize,
+    highest: usize,
+    diags: &mut Diagnostics,
+) -> Option<Option<HeightSensor>> {
+    let input = f.count("height_input", lowest, highest, None, diags);
+    let scale = f.positive("height_full_scale", Dim::LENGTH, None, diags);
+    let delay = match f.quantity("height_delay", Dim::TIME, None, diags) {
+        Some((t, _)) if (0.0..=MAX_SENSOR_DELAY_S).contains(&t) => Some(t),
+        Some((t, at)) => {
+            diags.push(
+                Diagnostic::error(
+                    Code::OutOfRange,
+                    format!("`height_delay` is {}", crate::units::Time(t)),
+                )
+                .label(at, format!("a time from 0 to {MAX_SENSOR_DELAY_S} s"))
+                .help("how long after a segment's end the sensor holds its mean height, e.g. `height_delay = 150 ms`"),
+            );
+            None
+        }
+        None if f.has("height_delay") => None,
+        None => Some(0.0),
+    };
+    if input.is_none() && !f.has("height_input") {
+        for key in ["height_full_scale", "height_delay"] {
+            if let Some(at) = f.span(key) {
+                diags.push(
+                    Diagnostic::error(
+                        Code::MissingField,
+                        format!("`{key}` describes a height sensor, but the machine declares no `height_input`"),
+                    )
+                    .label(at, "for which input?")
+                    .help("add `height_input = N`, the analog input the sensor's height arrives on"),
+                );
+            }
+        }
+        return (!f.has("height_full_scale") && !f.has("height_delay")).then_some(None);
+    }
+    if input.is_some() && !f.has("height_full_scale") {
+        diags.push(
+            Diagnostic::error(
+                Code::MissingField,
+                "a height sensor needs `height_full_scale`: the height at an input of 1.0",
+            )
+            .label_opt(f.span("height_input"), "the sensor's input")
+            .help("add `height_full_scale = 2 mm` (the height the sensor reports as full scale)"),
+        );
+    }
+    Some(Some(HeightSensor {
+        input: input?.0 as u16,
+        full_scale: scale?.0,
+        delay: delay?,
+    }))
 }
 
 fn kin_name(k: Kinematics) -> &'static str {

@@ -8,6 +8,8 @@
 
 mod bead;
 mod cell;
+mod continuous;
+mod control;
 mod declare;
 mod extrude;
 mod fields;
@@ -19,6 +21,7 @@ mod process;
 mod profile;
 mod program_text;
 mod region;
+mod ring;
 mod seam;
 mod section;
 pub mod slicing;
@@ -33,7 +36,7 @@ mod variable;
 pub use profile::LayerShapes;
 pub use top::TopHeights;
 
-use crate::diag::Diagnostics;
+use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::syntax::ast::File;
 use model::Model;
 use statement::Statements;
@@ -58,7 +61,19 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     let part = statement::part(&st, diags);
     let solid = solid::read(&mut env, &st, &decl, diags);
     let slicing = slicing::statement(&mut env, &st, diags);
-    let process = process::statement(&mut env, &st, diags);
+    let ring = solid.kind == Some(solid::Kind::Ring);
+    let process = process::statement(&mut env, &st, ring.then(|| solid.ring_powers()), diags);
+    let control = control::statement(&mut env, &st, &decl.constants, diags);
+    if let (false, Some((_, at))) = (ring, &control) {
+        diags.push(
+            Diagnostic::error(
+                Code::Unsupported,
+                "a height loop corrects each segment of a ring; this file builds no ring",
+            )
+            .label(*at, "control")
+            .help("remove `control`, or build a `ring NAME { … }` with `slicing continuous { … }`"),
+        );
+    }
     let machines = machines::read(&mut env, &st, diags);
     let styles = style::read(&mut env, st.get("style"), diags);
     let inheritance = style::inheritance_statement(&mut env, &st, diags);
@@ -70,13 +85,29 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     };
     let variable =
         solid_kind == Some(solid::Kind::TopExtrude) || slicing.strategy == Some("variable");
-    let (plan, bead) = solid::plan(&mut env, solid, slicing, process.speed, &decl, diags);
+    let ring_cx = solid::RingContext {
+        control: match control {
+            None => Some(None),
+            Some((spec, _)) => spec.map(Some),
+        },
+        powder: process.powder.map(|p| p.0),
+    };
+    let (plan, bead) = solid::plan(
+        &mut env,
+        solid,
+        slicing,
+        process.speed,
+        &decl,
+        ring_cx,
+        diags,
+    );
     let styles = style::assemble(
         styles,
         &inheritance,
         &style::Context {
             loft: solid_kind == Some(solid::Kind::Loft),
             variable,
+            ring,
             planar: planar.as_ref(),
             bead: bead.as_ref(),
             laser: process.laser.as_ref(),
@@ -89,7 +120,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     Some(Model {
         part: part?,
         plan: plan?,
-        bead: bead?,
+        bead: if ring { None } else { Some(bead?) },
         process: process.process?,
         machines,
         styles: styles?,

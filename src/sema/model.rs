@@ -7,7 +7,9 @@ use crate::span::Span;
 use crate::syntax::ast::Expr;
 use crate::units::{Angle, Length, MassFlow, Power, Speed};
 
+mod ring;
 mod top;
+pub use ring::{HeightControl, LoopRun, RingPlan};
 pub use top::{Axis, Top, TopExpr, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE};
 
 /// A whole checked `.lmd` file.
@@ -17,8 +19,9 @@ pub struct Model {
     pub part: String,
     /// The solid and how it is cut into layers.
     pub plan: Plan,
-    /// The bead model the part is built with.
-    pub bead: Bead,
+    /// The bead model the part is built with (none on a ring, whose table
+    /// gives each segment's process).
+    pub bead: Option<Bead>,
     /// Process values.
     pub process: Process,
     /// Machines to write programs for, with where they and their fields are declared.
@@ -396,6 +399,9 @@ pub enum Plan {
         /// Variable slicing.
         slicing: VariableSlicing,
     },
+    /// A segmented ring laid in one continuous run, with its height loop
+    /// (seed 004).
+    Ring(RingPlan),
 }
 
 /// Which way an arc turns, seen along the outline.

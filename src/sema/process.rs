@@ -1,4 +1,6 @@
-//! `process { powder, defocus, power, power_range, speed, min_layer_time, dwell }`.
+//! `process { powder, defocus, power, power_range, speed, min_layer_time, dwell }`;
+//! a ring's process is only `powder` and `power_range`, the rest being per
+//! segment in its table (seed 004).
 
 use super::fields::Fields;
 use super::model::{within, PowerSchedule, Process};
@@ -47,8 +49,39 @@ impl Laser {
     }
 }
 
-/// The file's `process { … }` statement.
-pub fn statement<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnostics) -> Read {
+/// The fields a ring's process block may not have: its table gives them per
+/// segment, and its layers run on without a stop.
+const NOT_FOR_A_RING: &[(&str, &str)] = &[
+    (
+        "power",
+        "each segment's power is in the ring's table: `table { power = [...] }`",
+    ),
+    (
+        "defocus",
+        "each segment's defocus is in the ring's table: `table { defocus = [...] }`",
+    ),
+    (
+        "speed",
+        "each segment's speed is in the ring's table, and the height loop changes it",
+    ),
+    (
+        "min_layer_time",
+        "a ring is laid in one run with the laser on: there is no stop between layers to cool in",
+    ),
+    (
+        "dwell",
+        "a ring is laid in one run with the laser on: there is no stop between layers to dwell in",
+    ),
+];
+
+/// The file's `process { … }` statement. `ring` is `Some` when the solid is a
+/// ring: its table's powers and where they are written, when right.
+pub fn statement<'a>(
+    env: &mut Env<'a>,
+    st: &Statements<'a>,
+    ring: Option<Option<([Power; 2], Span)>>,
+    diags: &mut Diagnostics,
+) -> Read {
     let Some(s) = single(
         st.get("process"),
         "process",
@@ -58,7 +91,10 @@ pub fn statement<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnos
         return Read::default();
     };
     match (&s.name, &s.body) {
-        (None, Body::Block(stmts, _)) => read(env, stmts, s.span, diags),
+        (None, Body::Block(stmts, _)) => match ring {
+            Some(powers) => read_ring(env, stmts, s.span, powers, diags),
+            None => read(env, stmts, s.span, diags),
+        },
         _ => {
             diags.push(shape_error(
                 s,
@@ -67,6 +103,92 @@ pub fn statement<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnos
             ));
             Read::default()
         }
+    }
+}
+
+/// Reads a ring's process block: powder and the laser's range; the
+/// "schedule" the range is checked against is the table's powers.
+fn read_ring<'a>(
+    env: &mut Env<'a>,
+    stmts: &'a [Stmt],
+    span: Span,
+    powers: Option<([Power; 2], Span)>,
+    diags: &mut Diagnostics,
+) -> Read {
+    let all: Vec<&str> = ["powder", "power_range"]
+        .into_iter()
+        .chain(NOT_FOR_A_RING.iter().map(|(k, _)| *k))
+        .collect();
+    let f = Fields::block(env, stmts, &all, &[], "process".into(), span, diags);
+    let mut ok = true;
+    for (key, why) in NOT_FOR_A_RING {
+        if let Some(at) = f.span(key) {
+            diags.push(
+                Diagnostic::error(
+                    Code::Unsupported,
+                    format!("a ring's process has no `{key}`"),
+                )
+                .label(at, "not for a ring")
+                .help(*why),
+            );
+            ok = false;
+        }
+    }
+    let powder = f
+        .positive("powder", Dim::MASS_FLOW, Some("6 g/min"), diags)
+        .map(|(m, sp)| (MassFlow(m), sp));
+    let range = f.range("power_range", Dim::POWER, None, diags);
+    let laser = match (range, powers) {
+        (Some(([a, b], rs)), Some(([lo, hi], ps))) => {
+            if lo.0 < a || hi.0 > b {
+                diags.push(
+                    Diagnostic::error(
+                        Code::PowerSchedule,
+                        format!(
+                            "the ring's table reaches {lo} .. {hi}, outside the laser's range {} .. {}",
+                            Power(a),
+                            Power(b)
+                        ),
+                    )
+                    .label(ps, "the table's powers")
+                    .label(rs, "allowed range")
+                    .help("keep every segment's power inside `power_range`"),
+                );
+                ok = false;
+            }
+            Some(Laser {
+                range: [Power(a), Power(b)],
+                range_span: Some(rs),
+                power_span: ps,
+            })
+        }
+        (None, Some((r, ps))) if !f.has("power_range") => Some(Laser {
+            range: r,
+            range_span: None,
+            power_span: ps,
+        }),
+        _ => None,
+    };
+    let process = match (powder, laser) {
+        (Some((powder, powder_span)), Some(l)) if ok => Some(Process {
+            heat: Heat::default(),
+            speed: None,
+            powder,
+            powder_span,
+            defocus: Length(0.0),
+            // The points carry each segment's power; this is the laser's top.
+            power: PowerSchedule::Constant(l.range[1]),
+            power_range: l.range,
+            power_span: l.power_span,
+            power_range_span: l.range_span,
+        }),
+        _ => None,
+    };
+    Read {
+        process,
+        laser,
+        speed: Some(None),
+        powder,
     }
 }
 

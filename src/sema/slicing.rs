@@ -14,7 +14,7 @@ use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Angle, Dim, Length};
 
 /// Strategies the language knows.
-pub const STRATEGIES: &[&str] = &["normal", "planar", "variable"];
+pub const STRATEGIES: &[&str] = &["normal", "planar", "variable", "continuous"];
 
 /// A slicing block as written, before the solid is known.
 #[derive(Clone, Debug)]
@@ -25,6 +25,8 @@ pub enum Spec {
     Planar(PlanarSpec),
     /// `slicing variable { … }`
     Variable(super::variable::VariableSpec),
+    /// `slicing continuous { … }`
+    Continuous(super::continuous::ContinuousSpec),
 }
 
 /// `slicing planar { … }` as written: the lift and offset may be `auto`, to be
@@ -135,7 +137,11 @@ const PLANAR_FIELDS: &[&str] = &[
 /// run as the strategy.
 fn any_strategy<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagnostics) {
     let mut all: Vec<&str> = NORMAL_FIELDS.to_vec();
-    for k in PLANAR_FIELDS.iter().chain(super::variable::FIELDS) {
+    for k in PLANAR_FIELDS
+        .iter()
+        .chain(super::variable::FIELDS)
+        .chain(super::continuous::FIELDS)
+    {
         if !all.contains(k) {
             all.push(k);
         }
@@ -166,6 +172,9 @@ fn read<'a>(
                 env, stmts, span, diags,
             )))
         }
+        Some(s) if s.node == "continuous" => {
+            return super::continuous::read(env, stmts, span, diags).map(Spec::Continuous)
+        }
         Some(s) if STRATEGIES.contains(&s.node.as_str()) => {}
         Some(s) => {
             let mut d = Diagnostic::error(
@@ -175,7 +184,7 @@ fn read<'a>(
             .label(s.span, "unknown strategy");
             d = match did_you_mean(&s.node, STRATEGIES.iter().copied()) {
                 Some(m) => d.help(format!("did you mean `slicing {m} {{ … }}`?")),
-                None => d.help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine), `slicing planar { … }` (flat filled layers of an extrusion) or `slicing variable { … }` (layers that follow an extrusion's `top`)"),
+                None => d.help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine), `slicing planar { … }` (flat filled layers of an extrusion), `slicing variable { … }` (layers that follow an extrusion's `top`) or `slicing continuous { … }` (a ring's layers in one run)"),
             };
             diags.push(d);
             any_strategy(env, stmts, span, diags);

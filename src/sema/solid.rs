@@ -1,10 +1,12 @@
-//! The solid a file builds (`loft` or `extrude`), and its pairing with the
-//! slicing strategy into a [`Plan`].
+//! The solid a file builds (`loft`, `extrude` or `ring`), and its pairing
+//! with the slicing strategy into a [`Plan`].
 
+use super::control::ControlSpec;
 use super::declare::Declared;
 use super::extrude;
 use super::loft;
 use super::model::{Bead, Loft, Plan};
+use super::ring;
 use super::slicing::{self, Spec};
 use super::statement::{shape_error, Statements};
 use super::value::Env;
@@ -12,7 +14,7 @@ use super::variable;
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
-use crate::units::Speed;
+use crate::units::{MassFlow, Speed};
 
 /// What kind of solid the file builds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,6 +25,8 @@ pub enum Kind {
     Extrude,
     /// `extrude NAME { … top = … }`, sliced in variable layers.
     TopExtrude,
+    /// `ring NAME { … }`, sliced in one continuous run.
+    Ring,
 }
 
 /// The solid as read: its kind when the file has one, the solid when its
@@ -40,6 +44,28 @@ pub struct Read<'a> {
 enum Solid<'a> {
     Loft(Loft),
     Extrude(extrude::Written<'a>),
+    Ring(ring::Written),
+}
+
+impl Read<'_> {
+    /// The table's powers and where they are written, when the solid is a
+    /// ring whose powers are right.
+    pub fn ring_powers(&self) -> Option<([crate::units::Power; 2], Span)> {
+        match &self.solid {
+            Some(Solid::Ring(w)) => w.powers,
+            _ => None,
+        }
+    }
+}
+
+/// What a ring needs besides its solid and slicing: its loop (`Some(None)`
+/// when none is declared, `None` when the block is wrong) and the process
+/// block's powder feed.
+pub struct RingContext {
+    /// The `control` block.
+    pub control: Option<Option<ControlSpec>>,
+    /// The powder feed, if right.
+    pub powder: Option<MassFlow>,
 }
 
 /// Reads the file's one solid; a missing one and each one after the first
@@ -52,6 +78,7 @@ pub fn read<'a>(
 ) -> Read<'a> {
     let mut solids: Vec<&Stmt> = st.get("loft").to_vec();
     solids.extend(st.get("extrude"));
+    solids.extend(st.get("ring"));
     solids.sort_by_key(|s| s.span.start);
     let Some((s, rest)) = solids.split_first() else {
         diags.push(
@@ -59,8 +86,8 @@ pub fn read<'a>(
                 Code::MissingSolid,
                 "the file does not describe a solid to build",
             )
-            .label(Span::new(0, 0), "no `loft` or `extrude` here")
-            .help("add `loft NAME { from = …  to = …  spine = …  wall = BEAD }` or `extrude NAME { profile = …  bead = BEAD }`"),
+            .label(Span::new(0, 0), "no `loft`, `extrude` or `ring` here")
+            .help("add `loft NAME { from = …  to = …  spine = …  wall = BEAD }`, `extrude NAME { profile = …  bead = BEAD }` or `ring NAME { radius = …  segments = …  table { … } }`"),
         );
         return Read {
             kind: None,
@@ -103,6 +130,18 @@ pub fn read<'a>(
             };
             (kind, w.map(Solid::Extrude), b)
         }
+        ("ring", Some(n), Body::Block(stmts, _)) => {
+            let w = ring::read(env, &n.node, stmts, s.span, diags);
+            (Kind::Ring, Some(Solid::Ring(w)), None)
+        }
+        ("ring", _, _) => {
+            diags.push(shape_error(
+                s,
+                "ring NAME { … }",
+                "ring wall { radius = 40 mm  segments = 10  table { … } }",
+            ));
+            (Kind::Ring, None, None)
+        }
         ("loft", _, _) => {
             diags.push(shape_error(
                 s,
@@ -138,6 +177,7 @@ pub fn plan(
     slicing: slicing::Read<'_>,
     speed: Option<Option<(Speed, Span)>>,
     decl: &Declared<'_>,
+    ring_cx: RingContext,
     diags: &mut Diagnostics,
 ) -> (Option<Plan>, Option<Bead>) {
     let bead = solid.bead;
@@ -166,6 +206,9 @@ pub fn plan(
             variable::assemble(env, w, spec, diags)
                 .filter(|_| side_ok)
                 .map(|(extrusion, slicing)| Plan::Variable { extrusion, slicing })
+        }
+        (Some(Solid::Ring(w)), Some(Spec::Continuous(spec)), _) => {
+            ring::assemble(w, spec, ring_cx.control, ring_cx.powder, diags).map(Plan::Ring)
         }
         // A part that failed, reported where it was read.
         _ => None,
@@ -197,6 +240,14 @@ fn mismatch(
         (Some(Kind::TopExtrude), Some("normal")) => (
             "normal slicing does not build an extrusion".to_string(),
             "slice an extrusion with a `top` with `slicing variable { … }`",
+        ),
+        (Some(Kind::Ring), Some(s @ ("normal" | "planar" | "variable"))) => (
+            format!("{s} slicing does not build a ring"),
+            "slice a ring with `slicing continuous { layers = …  layer_height = … }`",
+        ),
+        (Some(Kind::Loft | Kind::Extrude | Kind::TopExtrude), Some("continuous")) => (
+            "continuous slicing builds a ring".to_string(),
+            "slice a loft with `slicing normal { … }`, an extrusion with `slicing planar { … }` (or `variable` with a `top`)",
         ),
         (Some(Kind::TopExtrude), Some("planar")) => (
             "planar slicing lays flat layers of one height, and this extrusion has a `top`".to_string(),

@@ -461,6 +461,9 @@ pub struct Context<'c> {
     /// Whether the layers are variable (seed 003), whose speeds come from
     /// the bead model.
     pub variable: bool,
+    /// Whether the solid is a ring (seed 004), whose table sets each
+    /// segment's process.
+    pub ring: bool,
     /// `slicing planar { … }`, if read.
     pub planar: Option<&'c PlanarSpec>,
     /// The bead model the part is built with.
@@ -487,6 +490,17 @@ pub fn assemble(
             )
             .label(first.style.span, "style")
             .help("schedule the wall's power in `process` (e.g. `power = ramp(…)`)"),
+        );
+        return None;
+    }
+    if let (true, Some(first)) = (cx.ring, written.first()) {
+        diags.push(
+            Diagnostic::error(
+                Code::Unsupported,
+                "styles pick tracks of planar layers; a ring's table sets each segment's process",
+            )
+            .label(first.style.span, "style")
+            .help("remove the style and give the segments their values in the ring's `table`"),
         );
         return None;
     }

@@ -6,6 +6,7 @@ mod holes;
 pub mod layers;
 pub mod normal;
 pub mod planar;
+pub mod ring;
 pub mod styling;
 pub mod top;
 pub mod variable;
@@ -13,7 +14,7 @@ pub mod variable;
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::geometry::LoftGeometry;
 use crate::ir::Layer;
-use crate::sema::model::{Loft, Model, Plan, Resolution, Slicing, Spine};
+use crate::sema::model::{Bead, Loft, Model, Plan, Resolution, Slicing, Spine};
 use crate::sema::slicing::MAX_POINTS;
 use crate::units::{short, Angle};
 
@@ -24,23 +25,36 @@ pub const MAX_TOTAL_POINTS: usize = 20_000_000;
 
 /// Slices the model's solid. Returns the layers and any warnings, or the errors.
 pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    if let Plan::Ring(r) = &model.plan {
+        return ring::build(r).map(|(layers, _)| (layers, Diagnostics::new()));
+    }
+    // The checker builds every other plan with its bead model.
+    let Some(bead) = &model.bead else {
+        return Err(Diagnostic::error(
+            Code::NonFinite,
+            "internal error: a solid without a bead model reached the slicer; please report it",
+        )
+        .into());
+    };
     match &model.plan {
-        Plan::Duct { loft, slicing } => duct(model, loft, slicing),
-        Plan::Block { extrusion, slicing } => planar::slice(model, extrusion, slicing),
-        Plan::Variable { extrusion, slicing } => top::slice(model, extrusion, slicing),
+        Plan::Duct { loft, slicing } => duct(model, bead, loft, slicing),
+        Plan::Block { extrusion, slicing } => planar::slice(model, bead, extrusion, slicing),
+        Plan::Variable { extrusion, slicing } => top::slice(model, bead, extrusion, slicing),
+        Plan::Ring(r) => ring::build(r).map(|(layers, _)| (layers, Diagnostics::new())),
     }
 }
 
 /// Normal (continuous gradual) slicing of a loft.
 fn duct(
     model: &Model,
+    bead: &Bead,
     loft: &Loft,
     slicing: &Slicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     let mut warnings = Diagnostics::new();
     let geo = LoftGeometry::new(loft);
     let (layers, step) =
-        feasibility::choose_layers(loft, &geo, &model.bead, slicing).map_err(Diagnostics::from)?;
+        feasibility::choose_layers(loft, &geo, bead, slicing).map_err(Diagnostics::from)?;
     let k = match slicing.resolution {
         Resolution::Count(k) => k,
         Resolution::ChordError(e) => {
@@ -87,7 +101,7 @@ fn duct(
     let mut seam_hits = Vec::new();
     let mut scan = normal::SeamScan::new(k);
     for i in 0..layers {
-        let (layer, seam) = normal::layer(model, &geo, &plan, i, &mut scan);
+        let (layer, seam) = normal::layer(model, bead, &geo, &plan, i, &mut scan);
         if let Some(x) = seam {
             if !(normal::SEAM_EXTREME..=1.0 - normal::SEAM_EXTREME).contains(&x) {
                 seam_hits.push(i);

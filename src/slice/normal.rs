@@ -4,7 +4,7 @@
 
 use crate::geometry::LoftGeometry;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
-use crate::sema::model::Model;
+use crate::sema::model::{Bead, Model};
 use crate::units::{Length, Speed};
 use nalgebra::Vector3;
 
@@ -72,6 +72,7 @@ impl SeamScan {
 /// angle sits.
 pub fn layer(
     model: &Model,
+    bead: &Bead,
     geo: &LoftGeometry,
     plan: &Plan,
     i: usize,
@@ -81,7 +82,6 @@ pub fn layer(
     let f = geo.frame(s);
     let n = f.z();
     let normal = [n.x as f32, n.y as f32, n.z as f32];
-    let bead = &model.bead;
     let power = model.process.power.at(i).watts() as f32;
     let powder = model.process.powder.g_min() as f32;
     let defocus = model.process.defocus.0 as f32;

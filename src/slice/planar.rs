@@ -26,7 +26,7 @@ use crate::geometry::outline;
 use crate::geometry::region::Region;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
 use crate::sema::model::{
-    Extrusion, LinkMode, Measure, Model, Pattern, PlanarSlicing, SeamRule, Shape,
+    Bead, Extrusion, LinkMode, Measure, Model, Pattern, PlanarSlicing, SeamRule, Shape,
 };
 use crate::style;
 use crate::units::{short, Length};
@@ -42,15 +42,16 @@ const GAP_SAMPLES: usize = 20_000_000;
 /// warnings, or every diagnostic found (the errors and the warnings with them).
 pub fn slice(
     model: &Model,
+    bead: &Bead,
     extrusion: &Extrusion,
     slicing: &PlanarSlicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     let mut diags = Diagnostics::new();
-    let Some(plan) = layers::plan(&model.bead, extrusion, slicing, &mut diags) else {
+    let Some(plan) = layers::plan(bead, extrusion, slicing, &mut diags) else {
         return Err(diags);
     };
     styling::never_applies(&model.styles, plan.shapes.len(), &mut diags);
-    match fill_layers(model, extrusion, slicing, &plan, &mut diags) {
+    match fill_layers(model, bead, extrusion, slicing, &plan, &mut diags) {
         Some(out) if !diags.has_errors() => Ok((out, diags)),
         _ => Err(diags),
     }
@@ -60,12 +61,13 @@ pub fn slice(
 /// leaves no layers to go on with.
 fn fill_layers(
     model: &Model,
+    bead: &Bead,
     extrusion: &Extrusion,
     slicing: &PlanarSlicing,
     plan: &Layers,
     diags: &mut Diagnostics,
 ) -> Option<Vec<Layer>> {
-    let w = model.bead.width.0;
+    let w = bead.width.0;
     let inset = match extrusion.measure {
         Measure::Outer => w / 2.0,
         Measure::Centre => 0.0,
@@ -150,7 +152,7 @@ fn fill_layers(
         out.push(layer(&values, k, n, lift, &filled.tracks, &styles));
         last = Some(filled);
     }
-    found.report(model, extrusion, slicing, diags);
+    found.report(model, bead, extrusion, slicing, diags);
     Some(out)
 }
 
@@ -250,11 +252,12 @@ impl Findings {
     fn report(
         self,
         model: &Model,
+        bead: &Bead,
         extrusion: &Extrusion,
         slicing: &PlanarSlicing,
         diags: &mut Diagnostics,
     ) {
-        let w = model.bead.width.0;
+        let w = bead.width.0;
         let plural = |n: usize| if n == 1 { "" } else { "s" };
         if let Some((k, g)) = self.first_gap {
             diags.push(Diagnostic::error(

@@ -19,6 +19,16 @@ pub fn f_decimals(feed: FeedUnit) -> usize {
 /// powder feed rate is written: 1/10⁴, like KUKA's `$ANOUT`.
 pub const RATE_DECIMALS: usize = 4;
 
+/// Highest analog input `M66 E<n>` reads on LinuxCNC (`motion.analog-in-63`:
+/// the motion module has at most 64, `num_aio`).
+pub const MAX_ANALOG_INPUT: usize = 63;
+
+/// The profile that runs a height loop on the machine: LinuxCNC's O-word
+/// subroutines, named parameters and `M66` analog reads. The other
+/// dialects' controls have equivalents (Sinumerik's `$A_INA`, Fagor's
+/// `$(PLCR…)`) that lmdc does not write.
+pub const LOOP_PROFILE: &str = "linuxcnc";
+
 /// Profile names.
 pub const PROFILES: &[&str] = &["linuxcnc", "fagor8070", "sinumerik840d", "m20"];
 

@@ -18,3 +18,11 @@ pub const ANOUT_DECIMALS: usize = 4;
 pub const RESERVED: &[&str] = &[
     "C_DIS", "C_ORI", "C_PTP", "C_VEL", "C_SPL", "WAIT_SEC", "SPTP_REL", "SLIN_REL",
 ];
+
+/// Highest analog input `$ANIN[n]` of a KR C4/C5 (`$ANIN[1]` … `$ANIN[32]`).
+pub const MAX_ANIN: usize = 32;
+
+/// The most motions KRL's advance run reads ahead of the robot (`$ADVANCE`
+/// is 0 to 5; lmdc's main template sets 3, a user's template may set more):
+/// what a ring's loop timing is checked against.
+pub const MAX_ADVANCE: usize = 5;

@@ -32,6 +32,7 @@ pub fn robot() -> Robot {
         max_points_per_module: 5000,
         clearance: 10.0,
         cell: Cell::default(),
+        height_sensor: None,
     }
 }
 
@@ -68,6 +69,7 @@ pub fn cnc5() -> Cnc {
         max_speed: 200.0,
         clearance: 10.0,
         cell: Cell::default(),
+        height_sensor: None,
     }
 }
 
@@ -132,7 +134,7 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
     }
     Program {
         format: FORMAT.into(),
-        version: VERSION,
+        version: VERSION_BASIC,
         part: "bent tube".into(),
         units: Units::default(),
         limits: Limits {
@@ -144,6 +146,8 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
         machines,
         styles: Vec::new(),
         heat: Heat::default(),
+        continuous: false,
+        ring: None,
         layers: out,
         origins: Origins::default(),
     }

@@ -12,6 +12,7 @@
 //! switches (and S) are written where the plan switches them.
 
 mod dialect;
+pub mod ring;
 mod writer;
 
 use super::context::{counts, layer_context, shown, styles};
@@ -38,6 +39,9 @@ pub fn emit(
     sink: &mut dyn Sink,
 ) -> Result<(), EmitError> {
     let prog = m.ir();
+    if prog.loop_on_machine().is_some() {
+        return ring::emit(m, cnc, t, sink);
+    }
     let kin = effective_kinematics(cnc);
     let five = kin != Kinematics::Xyz;
     let tilt_letter = match kin {
@@ -123,48 +127,13 @@ impl Visit for Motion<'_, '_> {
     }
 
     fn dwell(&mut self, seconds: f64) {
-        let (head, tail) = self.dwell.split_once("{s}").unwrap_or((self.dwell, ""));
-        let mut line = head.as_bytes().to_vec();
-        super::fixed::push_trimmed(&mut line, seconds, DWELL_DECIMALS);
-        line.extend_from_slice(tail.as_bytes());
-        line.push(b'\n');
-        self.w.raw(&line);
+        self.w
+            .raw(format!("{}\n", dwell_line(self.dwell, seconds)).as_bytes());
     }
 
     fn io(&mut self, event: Io) {
-        let cell = self.cell;
-        // (line with `{n}` and `{v}`, output, value, what it switches)
-        let mut lines: Vec<(&str, u16, Option<f64>, String)> = Vec::new();
-        let rate = |g_min: f32| {
-            cell.powder.and_then(|p| p.rate).map(|r| {
-                (
-                    cell.analog_output.as_str(),
-                    r.output,
-                    Some(g_min as f64 / r.full_scale),
-                    format!("powder {} g/min", trimmed(g_min as f64, 2)),
-                )
-            })
-        };
-        let (on, off) = (cell.output_on.as_str(), cell.output_off.as_str());
-        match (event, cell.gas, cell.powder) {
-            (Io::GasOn, Some(g), _) => lines.push((on, g.output, None, "gas on".into())),
-            (Io::GasOff, Some(g), _) => lines.push((off, g.output, None, "gas off".into())),
-            (Io::PowderOn(r), _, Some(p)) => {
-                lines.extend(rate(r));
-                lines.push((on, p.output, None, "powder on".into()));
-            }
-            (Io::PowderRate(r), _, Some(_)) => lines.extend(rate(r)),
-            (Io::PowderOff, _, Some(p)) => lines.push((off, p.output, None, "powder off".into())),
-            _ => {}
-        }
-        let (open, close) = self.comment;
-        for (template, n, v, what) in lines {
-            let mut text = template.replace("{n}", &n.to_string());
-            if let Some(v) = v {
-                text = text.replace("{v}", &trimmed(v, RATE_DECIMALS));
-            }
-            self.w
-                .raw(format!("{text} {open}{what}{close}\n").as_bytes());
+        for line in io_lines(self.cell, self.comment, event) {
+            self.w.raw(format!("{line}\n").as_bytes());
         }
     }
 
@@ -175,6 +144,53 @@ impl Visit for Motion<'_, '_> {
             Speed::Feed(v) => self.w.feed(m.to, m.axes, v, m.power),
         }
     }
+}
+
+/// The G-code lines of a gas or powder event: the cell's output lines with
+/// `{n}` (and `{v}`) filled in, each with a comment between `comment`'s
+/// delimiters saying what it switches.
+pub fn io_lines(cell: &Cell, comment: (&str, &str), event: Io) -> Vec<String> {
+    // (line with `{n}` and `{v}`, output, value, what it switches)
+    let mut lines: Vec<(&str, u16, Option<f64>, String)> = Vec::new();
+    let rate = |g_min: f32| {
+        cell.powder.and_then(|p| p.rate).map(|r| {
+            (
+                cell.analog_output.as_str(),
+                r.output,
+                Some(g_min as f64 / r.full_scale),
+                format!("powder {} g/min", trimmed(g_min as f64, 2)),
+            )
+        })
+    };
+    let (on, off) = (cell.output_on.as_str(), cell.output_off.as_str());
+    match (event, cell.gas, cell.powder) {
+        (Io::GasOn, Some(g), _) => lines.push((on, g.output, None, "gas on".into())),
+        (Io::GasOff, Some(g), _) => lines.push((off, g.output, None, "gas off".into())),
+        (Io::PowderOn(r), _, Some(p)) => {
+            lines.extend(rate(r));
+            lines.push((on, p.output, None, "powder on".into()));
+        }
+        (Io::PowderRate(r), _, Some(_)) => lines.extend(rate(r)),
+        (Io::PowderOff, _, Some(p)) => lines.push((off, p.output, None, "powder off".into())),
+        _ => {}
+    }
+    let (open, close) = comment;
+    lines
+        .into_iter()
+        .map(|(template, n, v, what)| {
+            let mut text = template.replace("{n}", &n.to_string());
+            if let Some(v) = v {
+                text = text.replace("{v}", &trimmed(v, RATE_DECIMALS));
+            }
+            format!("{text} {open}{what}{close}")
+        })
+        .collect()
+}
+
+/// The dialect's dwell line for `seconds`.
+pub fn dwell_line(dwell: &str, seconds: f64) -> String {
+    let (head, tail) = dwell.split_once("{s}").unwrap_or((dwell, ""));
+    format!("{head}{}{tail}", trimmed(seconds, DWELL_DECIMALS))
 }
 
 /// Variables every template sees.

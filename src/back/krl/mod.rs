@@ -17,6 +17,7 @@
 
 pub mod modules;
 pub mod orient;
+pub mod ring;
 
 use super::context::{counts, layer_context, shown, styles};
 use super::fixed::{fixed, trimmed};
@@ -55,6 +56,9 @@ pub fn emit(
     sink: &mut dyn Sink,
 ) -> Result<(), EmitError> {
     let prog = m.ir();
+    if prog.loop_on_machine().is_some() {
+        return ring::emit(m, robot, t, sink);
+    }
     let names = names(m, robot);
     let mut base = base_context(prog, robot, &names.stem);
     base.insert("summary", &comment_safe(&crate::report::summary(m)));
@@ -186,7 +190,6 @@ impl Visit for Writer<'_, '_> {
     }
 
     fn io(&mut self, event: Io) {
-        let cell = &self.robot.cell;
         let mut lines = Vec::new();
         if self.switch == Some(Switch::Off) {
             // The plan retracts before any switching, so this is only a guard:
@@ -194,34 +197,7 @@ impl Visit for Writer<'_, '_> {
             self.switch = None;
             lines.push(format!("$OUT[{}]=FALSE", self.robot.laser_out));
         }
-        let rate = |lines: &mut Vec<String>, g_min: f32| {
-            if let Some(r) = cell.powder.and_then(|p| p.rate) {
-                lines.push(format!(
-                    "$ANOUT[{}]={} ; powder {} g/min",
-                    r.output,
-                    fixed(g_min as f64 / r.full_scale, kuka::ANOUT_DECIMALS),
-                    trimmed(g_min as f64, 2)
-                ));
-            }
-        };
-        let out = |n: u16, on: bool, what: &str| {
-            format!(
-                "$OUT[{n}]={} ; {what} {}",
-                if on { "TRUE" } else { "FALSE" },
-                if on { "on" } else { "off" }
-            )
-        };
-        match (event, cell.gas, cell.powder) {
-            (Io::GasOn, Some(g), _) => lines.push(out(g.output, true, "gas")),
-            (Io::GasOff, Some(g), _) => lines.push(out(g.output, false, "gas")),
-            (Io::PowderOn(r), _, Some(p)) => {
-                rate(&mut lines, r);
-                lines.push(out(p.output, true, "powder"));
-            }
-            (Io::PowderRate(r), _, Some(_)) => rate(&mut lines, r),
-            (Io::PowderOff, _, Some(p)) => lines.push(out(p.output, false, "powder")),
-            _ => {}
-        }
+        lines.extend(io_lines(self.robot, event));
         self.out.io(&lines);
     }
 
@@ -241,6 +217,42 @@ impl Visit for Writer<'_, '_> {
         let s = self.switch.take();
         self.out.lin(m.to, self.abc, speed, x, s, deposit);
     }
+}
+
+/// The KRL lines of a gas or powder event on `robot` (assignments with a
+/// comment; the caller puts them after an advance-run stop).
+pub fn io_lines(robot: &Robot, event: Io) -> Vec<String> {
+    let cell = &robot.cell;
+    let mut lines = Vec::new();
+    let rate = |lines: &mut Vec<String>, g_min: f32| {
+        if let Some(r) = cell.powder.and_then(|p| p.rate) {
+            lines.push(format!(
+                "$ANOUT[{}]={} ; powder {} g/min",
+                r.output,
+                fixed(g_min as f64 / r.full_scale, kuka::ANOUT_DECIMALS),
+                trimmed(g_min as f64, 2)
+            ));
+        }
+    };
+    let out = |n: u16, on: bool, what: &str| {
+        format!(
+            "$OUT[{n}]={} ; {what} {}",
+            if on { "TRUE" } else { "FALSE" },
+            if on { "on" } else { "off" }
+        )
+    };
+    match (event, cell.gas, cell.powder) {
+        (Io::GasOn, Some(g), _) => lines.push(out(g.output, true, "gas")),
+        (Io::GasOff, Some(g), _) => lines.push(out(g.output, false, "gas")),
+        (Io::PowderOn(r), _, Some(p)) => {
+            rate(&mut lines, r);
+            lines.push(out(p.output, true, "powder"));
+        }
+        (Io::PowderRate(r), _, Some(_)) => rate(&mut lines, r),
+        (Io::PowderOff, _, Some(p)) => lines.push(out(p.output, false, "powder")),
+        _ => {}
+    }
+    lines
 }
 
 /// Variables every template sees.

@@ -330,7 +330,7 @@ impl<'a> Modules<'a> {
 
 /// An angle as written: +180 rather than −180 when it rounds there (the same
 /// orientation; KUKA's range is (−180, 180]).
-fn angle_value(deg: f64) -> f64 {
+pub(super) fn angle_value(deg: f64) -> f64 {
     if deg < -179.9995 {
         deg + 360.0
     } else {

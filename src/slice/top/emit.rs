@@ -10,7 +10,7 @@
 
 use super::tracks::Track;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
-use crate::sema::model::{Axis, Model};
+use crate::sema::model::{Axis, Bead, Model};
 use crate::slice::variable::speed::{path_speed, HeightMap};
 use crate::units::{Length, Speed};
 use std::num::NonZeroU32;
@@ -24,11 +24,11 @@ pub struct Process {
 
 impl Process {
     /// The model's process block and bead speed range.
-    pub fn of(model: &Model) -> Self {
+    pub fn of(model: &Model, bead: &Bead) -> Self {
         Process {
             powder: model.process.powder.g_min() as f32,
             defocus: model.process.defocus.0 as f32,
-            speeds: [model.bead.speed[0].0, model.bead.speed[1].0],
+            speeds: [bead.speed[0].0, bead.speed[1].0],
         }
     }
 }

@@ -29,7 +29,7 @@ mod tracks;
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
 use crate::ir::Layer;
-use crate::sema::model::{Axis, Model, TopExtrusion, VariableSlicing};
+use crate::sema::model::{Axis, Bead, Model, TopExtrusion, VariableSlicing};
 use crate::slice::variable::segments::SegmentSpec;
 use crate::slice::variable::speed::{BeadMap, HeightMap};
 use crate::slice::variable::Positive;
@@ -46,10 +46,10 @@ const MAX_ROUNDS: usize = 6;
 /// and any warnings, or every diagnostic found.
 pub fn slice(
     model: &Model,
+    bead: &Bead,
     ex: &TopExtrusion,
     slicing: &VariableSlicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
-    let bead = &model.bead;
     let w = bead.width.0;
     let map = BeadMap::new(bead).map_err(|e| internal(e.to_string()))?;
     let fp = Footprint::new(ex, w)?;
@@ -106,7 +106,7 @@ pub fn slice(
             .help("a larger `tolerance` makes fewer segments; a smaller part fewer tracks")
             .into());
         }
-        let process = emit::Process::of(model);
+        let process = emit::Process::of(model, bead);
         let layers = (0..n.get())
             .map(|i| emit::layer(model, &map, &process, &planned.tracks, scan, i, n))
             .collect();

@@ -1,0 +1,382 @@
+//! `control height { kp, ki, clamp, target, run, plant }` (seed 004): the PI
+//! loop that corrects each segment's speed layer by layer from its measured
+//! height.
+//!
+//! A gain is a change of speed per mm of height error. Its dimension is
+//! 1/time, which cannot tell (mm/s)/mm from (m/s)/mm — 1000 apart, and the
+//! paper's "s⁻¹" gains reproduce its results only read as the second — so
+//! the checker also reads how the gain is *written*: its units must name a
+//! length (`-3 mm/s/mm`, `-0.003 m/s/mm`); a plain number, `Hz` or `s^-1` is
+//! refused with both readings spelled out.
+
+use super::fields::Fields;
+use super::model::LoopRun;
+use super::statement::{shape_error, single, Statements};
+use super::value::{Env, Value};
+use crate::control::{Clamp, SpeedPerLength};
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{Body, Expr, ExprKind, Stmt};
+use crate::units::{short, Dim, Length, Quantity, Speed};
+
+/// Fields of `control height { … }`.
+pub const FIELDS: &[&str] = &["kp", "ki", "clamp", "target", "run", "plant"];
+
+/// How deep the spelling of a gain is followed through constants.
+const MAX_SPELLING_DEPTH: usize = 32;
+
+/// `control height { … }` as read.
+#[derive(Clone, Debug)]
+pub struct ControlSpec {
+    /// `kP`.
+    pub kp: SpeedPerLength,
+    /// `kI`.
+    pub ki: SpeedPerLength,
+    /// The speeds the loop may command.
+    pub clamp: Clamp,
+    /// `target`, if written (else the layer height).
+    pub target: Option<(Length, Span)>,
+    /// Where the loop runs.
+    pub run: LoopRun,
+    /// The plant `lmdc simulate` and a schedule run against.
+    pub plant: PlantSpec,
+    /// The block.
+    pub span: Span,
+    /// `kp = …`.
+    pub kp_span: Span,
+    /// `ki = …`.
+    pub ki_span: Span,
+    /// `clamp = …`.
+    pub clamp_span: Span,
+    /// `run = …`, else the block.
+    pub run_span: Span,
+}
+
+/// `plant = inverse_speed(drift = δ, factors = [...])`.
+#[derive(Clone, Debug)]
+pub struct PlantSpec {
+    /// The drift per layer, a fraction.
+    pub drift: f64,
+    /// Each segment's deposition relative to the calibration, if given.
+    pub factors: Option<(Vec<f64>, Span)>,
+    /// Where it is written (the block when not).
+    pub span: Span,
+}
+
+/// The file's `control` statement: `None` when there is none, `Some(None)`
+/// when it is wrong (reported), with the statement's span.
+pub fn statement<'a>(
+    env: &mut Env<'a>,
+    st: &Statements<'a>,
+    constants: &[(String, Span, Expr)],
+    diags: &mut Diagnostics,
+) -> Option<(Option<ControlSpec>, Span)> {
+    let stmts = st.get("control");
+    if stmts.is_empty() {
+        return None;
+    }
+    let s = single(stmts, "control", "control height { … }", diags)?;
+    let spec = match (&s.name, &s.body) {
+        (name, Body::Block(inner, _)) if name.as_ref().is_none_or(|n| n.node == "height") => {
+            read(env, inner, s.span, constants, diags)
+        }
+        (Some(n), Body::Block(..)) => {
+            diags.push(
+                Diagnostic::error(
+                    Code::BadChoice,
+                    format!("lmdc controls the layer height, not `{}`", n.node),
+                )
+                .label(n.span, "controlled quantity")
+                .help("write `control height { … }`"),
+            );
+            None
+        }
+        _ => {
+            diags.push(shape_error(
+                s,
+                "control height { … }",
+                "control height { kp = -3 mm/s/mm  ki = -0.35 mm/s/mm  clamp = 1.9 mm/s .. 20 mm/s }",
+            ));
+            None
+        }
+    };
+    Some((spec, s.span))
+}
+
+fn read<'a>(
+    env: &mut Env<'a>,
+    stmts: &'a [Stmt],
+    span: Span,
+    constants: &[(String, Span, Expr)],
+    diags: &mut Diagnostics,
+) -> Option<ControlSpec> {
+    let f = Fields::block_deferring(
+        env,
+        stmts,
+        FIELDS,
+        &["kp", "ki"],
+        "control".into(),
+        span,
+        diags,
+    );
+    let kp = gain(env, &f, "kp", "-3 mm/s/mm", span, constants, diags);
+    let ki = gain(env, &f, "ki", "-0.35 mm/s/mm", span, constants, diags);
+    let clamp = f
+        .range("clamp", Dim::SPEED, Some("1.9 mm/s .. 20 mm/s"), diags)
+        .and_then(|([lo, hi], at)| match Clamp::new(Speed(lo), Speed(hi)) {
+            Ok(c) => Some((c, at)),
+            Err(e) => {
+                diags.push(
+                    Diagnostic::error(Code::OutOfRange, format!("the clamp cannot hold: {e}"))
+                        .label(at, "clamp")
+                        .help("the speeds the loop may command, low .. high, both above zero"),
+                );
+                None
+            }
+        });
+    let target = match f.positive("target", Dim::LENGTH, None, diags) {
+        Some((t, at)) => Some(Some((Length(t), at))),
+        None if f.has("target") => None,
+        None => Some(None),
+    };
+    let run = match f.symbol("run", &["on_machine", "schedule"], None, diags) {
+        Some((r, _)) if r == "schedule" => Some(LoopRun::Schedule),
+        Some(_) => Some(LoopRun::OnMachine),
+        None if f.has("run") => None,
+        None => Some(LoopRun::OnMachine),
+    };
+    let plant = plant(&f, span, diags);
+    let (kp, kp_span) = kp?;
+    let (ki, ki_span) = ki?;
+    let (clamp, clamp_span) = clamp?;
+    Some(ControlSpec {
+        kp,
+        ki,
+        clamp,
+        target: target?,
+        run: run?,
+        plant: plant?,
+        span,
+        kp_span,
+        ki_span,
+        clamp_span,
+        run_span: f.span("run").unwrap_or(span),
+    })
+}
+
+/// A gain: a quantity of 1/time whose units name a length.
+fn gain(
+    env: &mut Env<'_>,
+    f: &Fields<'_>,
+    key: &str,
+    example: &str,
+    block: Span,
+    constants: &[(String, Span, Expr)],
+    diags: &mut Diagnostics,
+) -> Option<(SpeedPerLength, Span)> {
+    let Some(e) = f.expr(key) else {
+        diags.push(
+            Diagnostic::error(Code::MissingField, format!("control needs `{key}`"))
+                .label(block, format!("`{key}` is missing"))
+                .help(format!(
+                    "add `{key} = {example}`: a speed per mm of height error"
+                )),
+        );
+        return None;
+    };
+    let at = f.span(key).unwrap_or(e.span);
+    let v = env.eval(e, diags)?;
+    let q = match v.value {
+        Value::Quantity(q) => q,
+        other => {
+            diags.push(
+                Diagnostic::error(
+                    Code::GainUnit,
+                    format!("`{key}` must be a speed per length (mm/s/mm)"),
+                )
+                .label(v.span, format!("this is {}", other.describe()))
+                .help(format!("write `{key} = {example}`")),
+            );
+            return None;
+        }
+    };
+    let mut units = Vec::new();
+    spelled_units(e, constants, 0, &mut units);
+    let names_length = units.iter().any(|u| names_a_length(u));
+    if q.dim == SpeedPerLength::DIM && names_length {
+        return SpeedPerLength::from_quantity(q).map(|g| (g, at));
+    }
+    diags.push(unit_error(key, q, v.span, &units));
+    None
+}
+
+/// What is wrong with a gain's unit, both readings spelled out.
+fn unit_error(key: &str, q: Quantity, at: Span, units: &[String]) -> Diagnostic {
+    let n = short(q.value);
+    let readings = format!(
+        "write `{key} = {n} mm/s/mm` ({n} (mm/s)/mm), or — if the number is per (m/s)/mm, as KUKA's \
+         $VEL.CP counts speed and as the paper's -0.003 \"s⁻¹\" reproduces its results — `{key} = {n} m/s/mm` \
+         ({} (mm/s)/mm)",
+        short(q.value * 1000.0)
+    );
+    let (message, label) = if q.dim == Dim::NONE {
+        (
+            format!("`{key}` has no unit: a gain is a change of speed per mm of height error"),
+            "a plain number".to_string(),
+        )
+    } else if q.dim == SpeedPerLength::DIM {
+        (
+            format!(
+                "`{key}` is written per second ({}): (mm/s)/mm and (m/s)/mm are both 1/s, 1000 apart",
+                units.join(", ")
+            ),
+            "which speed per which length?".to_string(),
+        )
+    } else {
+        (
+            format!(
+                "`{key}` must be a speed per length (mm/s/mm), not {}",
+                q.dim.describe()
+            ),
+            q.dim.describe(),
+        )
+    };
+    Diagnostic::error(Code::GainUnit, message)
+        .label(at, label)
+        .help(readings)
+}
+
+/// The unit texts written in `e`, following constants by name.
+fn spelled_units(
+    e: &Expr,
+    constants: &[(String, Span, Expr)],
+    depth: usize,
+    out: &mut Vec<String>,
+) {
+    if depth > MAX_SPELLING_DEPTH {
+        return;
+    }
+    match &e.kind {
+        ExprKind::Number { unit: Some(u), .. } => out.push(u.node.clone()),
+        ExprKind::Number { unit: None, .. } | ExprKind::Str(_) => {}
+        ExprKind::Ident(name) => {
+            if let Some((_, _, c)) = constants.iter().find(|(n, _, _)| n == name) {
+                spelled_units(c, constants, depth + 1, out);
+            }
+        }
+        ExprKind::Call { args, .. } => {
+            for a in args {
+                spelled_units(&a.value, constants, depth + 1, out);
+            }
+        }
+        ExprKind::List(items) => {
+            for i in items {
+                spelled_units(i, constants, depth + 1, out);
+            }
+        }
+        ExprKind::Unary { expr, .. } => spelled_units(expr, constants, depth + 1, out),
+        ExprKind::Binary { lhs, rhs, .. } => {
+            spelled_units(lhs, constants, depth + 1, out);
+            spelled_units(rhs, constants, depth + 1, out);
+        }
+    }
+}
+
+/// Whether a unit text names a length (`mm/s/mm`, `m/s/mm`; not `Hz`, `s^-1`).
+fn names_a_length(unit: &str) -> bool {
+    unit.split(['/', '*', '·'])
+        .map(|f| f.split('^').next().unwrap_or(""))
+        .any(|a| matches!(a, "mm" | "cm" | "m" | "um" | "µm" | "in"))
+}
+
+/// `plant = inverse_speed(drift = …, factors = […])`, else no drift.
+fn plant(f: &Fields<'_>, block: Span, diags: &mut Diagnostics) -> Option<PlantSpec> {
+    let Some(v) = f.value("plant", None, diags) else {
+        return (!f.has("plant")).then_some(PlantSpec {
+            drift: 0.0,
+            factors: None,
+            span: block,
+        });
+    };
+    let Value::Call(c) = &v.value else {
+        diags.push(plant_shape(v.span, &v.value.describe()));
+        return None;
+    };
+    if c.func != "inverse_speed" {
+        diags.push(plant_shape(c.func_span, &format!("`{}(…)`", c.func)));
+        return None;
+    }
+    let a = Fields::call(c, &[], &["drift", "factors"], diags);
+    let drift = match a.quantity("drift", Dim::NONE, None, diags) {
+        Some((d, _)) => Some(d),
+        None if a.has("drift") => None,
+        None => Some(0.0),
+    };
+    let factors = match a.value("factors", None, diags) {
+        None if a.has("factors") => None,
+        None => Some(None),
+        Some(fv) => match &fv.value {
+            Value::List(items) => {
+                let xs: Vec<Option<f64>> = items
+                    .iter()
+                    .map(|i| match &i.value {
+                        Value::Quantity(q)
+                            if q.dim == Dim::NONE && q.value > 0.0 && q.value.is_finite() =>
+                        {
+                            Some(q.value)
+                        }
+                        other => {
+                            diags.push(
+                                Diagnostic::error(
+                                    Code::ExpectedNumber,
+                                    "a plant factor is a plain number above zero",
+                                )
+                                .label(i.span, format!("this is {}", other.describe()))
+                                .help("1.1 lays 10 % more than the calibration, 0.9 10 % less"),
+                            );
+                            None
+                        }
+                    })
+                    .collect();
+                xs.into_iter()
+                    .collect::<Option<Vec<f64>>>()
+                    .map(|x| Some((x, fv.span)))
+            }
+            other => {
+                diags.push(
+                    Diagnostic::error(Code::Type, "`factors` is a list, one per segment")
+                        .label(fv.span, format!("this is {}", other.describe()))
+                        .help("e.g. `factors = [1.0, 0.9, …]`"),
+                );
+                None
+            }
+        },
+    };
+    Some(PlantSpec {
+        drift: drift?,
+        factors: factors?,
+        span: v.span,
+    })
+}
+
+fn plant_shape(at: Span, what: &str) -> Diagnostic {
+    Diagnostic::error(Code::BadChoice, "the plant is `inverse_speed(…)`")
+        .label(at, format!("this is {what}"))
+        .help("`plant = inverse_speed(drift = 0.1 %)`: each segment lays h = g·(1 + drift·layer)/v, calibrated so that its table speed lays the target; `factors = […]` scales each segment's g")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_gains_unit_must_name_a_length() {
+        assert!(names_a_length("mm/s/mm"));
+        assert!(names_a_length("m/s/mm"));
+        assert!(names_a_length("mm/s^1/mm"));
+        assert!(!names_a_length("Hz"));
+        assert!(!names_a_length("s^-1"));
+        assert!(!names_a_length("ms^-1"));
+        assert!(!names_a_length("%"));
+    }
+}

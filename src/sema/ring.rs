@@ -1,0 +1,399 @@
+//! `ring NAME { radius, segments, transition, table { defocus, power, width,
+//! speed } }` (seed 004): a ring split into equal segments, each with its own
+//! row of process values, and its pairing with `slicing continuous { … }`
+//! and `control height { … }` into a [`Plan::Ring`].
+//!
+//! [`Plan::Ring`]: super::model::Plan::Ring
+
+use super::continuous::ContinuousSpec;
+use super::control::ControlSpec;
+use super::fields::{self, Fields};
+use super::model::{HeightControl, RingPlan};
+use super::value::{Env, Value};
+use crate::control::{self, Controller, Invalid, Plant, SegmentProcess, SegmentTable};
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::ir::RingOrigins;
+use crate::span::Span;
+use crate::syntax::ast::Stmt;
+use crate::units::{short, Angle, Dim, Length, MassFlow, Power, Speed};
+
+/// Fields of `ring NAME { … }`.
+pub const FIELDS: &[&str] = &["radius", "segments", "transition"];
+
+/// Fields of its `table { … }`: one list each, one entry per segment.
+pub const TABLE_FIELDS: &[&str] = &["defocus", "power", "width", "speed"];
+
+/// Most segments a ring may have.
+pub const MAX_SEGMENTS: usize = 1000;
+
+/// The transition when none is written: the paper's 2°.
+pub const DEFAULT_TRANSITION_DEG: f64 = 2.0;
+
+/// A ring block as read: the parts that are right.
+#[derive(Clone, Debug)]
+pub struct Written {
+    name: String,
+    ring: Option<control::Ring>,
+    table: Option<SegmentTable>,
+    span: Span,
+    transition_span: Span,
+    /// The table's powers and where they are written, for the process block.
+    pub powers: Option<([Power; 2], Span)>,
+    /// Where the speeds are written.
+    speed_span: Option<Span>,
+    /// The number of segments and where it is written, if right.
+    pub segments: Option<(usize, Span)>,
+}
+
+/// Reads `ring NAME { … }`.
+pub fn read<'a>(
+    env: &mut Env<'a>,
+    name: &str,
+    stmts: &'a [Stmt],
+    span: Span,
+    diags: &mut Diagnostics,
+) -> Written {
+    let what = format!("ring `{name}`");
+    let f = Fields::block(env, stmts, FIELDS, &["table"], what.clone(), span, diags);
+    let radius = f.positive("radius", Dim::LENGTH, Some("40 mm"), diags);
+    let segments = f.count("segments", 1, MAX_SEGMENTS, Some("10"), diags);
+    let transition = match f.positive("transition", Dim::ANGLE, None, diags) {
+        Some((t, _)) => Some(Angle(t)),
+        None if f.has("transition") => None,
+        None => Some(Angle::from_deg(DEFAULT_TRANSITION_DEG)),
+    };
+    let transition_span = f.span("transition").unwrap_or(span);
+    let ring = match (radius, segments, transition) {
+        (Some((r, _)), Some((n, _)), Some(t)) => match control::Ring::new(Length(r), n, t) {
+            Ok(ring) => Some(ring),
+            Err(e) => {
+                diags.push(ring_error(&e, transition_span, n));
+                None
+            }
+        },
+        _ => None,
+    };
+    let (table, powers, speed_span) = match f.nested("table") {
+        Some((inner, ts)) => table(env, inner, ts, segments, &what, diags),
+        None => {
+            diags.push(
+                Diagnostic::error(Code::MissingField, format!("{what} needs a `table`"))
+                    .label(span, "`table` is missing")
+                    .help("add `table { defocus = [...]  power = [...]  width = [...]  speed = [...] }`, one entry per segment"),
+            );
+            (None, None, None)
+        }
+    };
+    Written {
+        name: name.to_string(),
+        ring,
+        table,
+        span,
+        transition_span,
+        powers,
+        speed_span,
+        segments,
+    }
+}
+
+fn ring_error(e: &Invalid, at: Span, segments: usize) -> Diagnostic {
+    let d = Diagnostic::error(
+        Code::OutOfRange,
+        format!("the ring cannot be laid out: {e}"),
+    )
+    .label(at, "transition");
+    match e {
+        Invalid::TransitionTooLong { segment_deg, .. } => d.help(format!(
+            "a transition must be shorter than its segment: 360°/{segments} = {}°",
+            short(*segment_deg)
+        )),
+        _ => d,
+    }
+}
+
+/// The rows of `table { … }`, its powers' range and where its speeds are.
+type Table = (
+    Option<SegmentTable>,
+    Option<([Power; 2], Span)>,
+    Option<Span>,
+);
+
+fn table<'a>(
+    env: &mut Env<'a>,
+    stmts: &'a [Stmt],
+    span: Span,
+    segments: Option<(usize, Span)>,
+    ring: &str,
+    diags: &mut Diagnostics,
+) -> Table {
+    let f = Fields::block(
+        env,
+        stmts,
+        TABLE_FIELDS,
+        &[],
+        format!("the table of {ring}"),
+        span,
+        diags,
+    );
+    let defocus = list(&f, "defocus", Dim::LENGTH, false, segments, diags);
+    let power = list(&f, "power", Dim::POWER, true, segments, diags);
+    let width = list(&f, "width", Dim::LENGTH, true, segments, diags);
+    let speed = list(&f, "speed", Dim::SPEED, true, segments, diags);
+    let powers = power.as_ref().map(|(p, at)| {
+        let lo = p.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = p.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        ([Power(lo), Power(hi)], *at)
+    });
+    let speed_span = speed.as_ref().map(|s| s.1);
+    let rows = match (defocus, power, width, speed) {
+        (Some((d, _)), Some((p, _)), Some((w, _)), Some((v, _))) => Some(
+            (0..d.len())
+                .map(|j| SegmentProcess {
+                    defocus: Length(d[j]),
+                    power: Power(p[j]),
+                    width: Length(w[j]),
+                    speed: Speed(v[j]),
+                })
+                .collect::<Vec<_>>(),
+        ),
+        _ => None,
+    };
+    // Every value is checked above; a table that still fails is empty.
+    let table = rows.and_then(|r| SegmentTable::new(r).ok());
+    (table, powers, speed_span)
+}
+
+/// One list of the table: one value of `dim` per segment.
+fn list(
+    f: &Fields<'_>,
+    key: &str,
+    dim: Dim,
+    positive: bool,
+    segments: Option<(usize, Span)>,
+    diags: &mut Diagnostics,
+) -> Option<(Vec<f64>, Span)> {
+    let example = match key {
+        "defocus" => "[-8 mm, -7 mm, …]",
+        "power" => "[1200 W, 1050 W, …]",
+        "width" => "[6.25 mm, 5.55 mm, …]",
+        _ => "[4 mm/s, 5 mm/s, …]",
+    };
+    let v = f.value(key, Some(example), diags)?;
+    let Value::List(items) = &v.value else {
+        diags.push(
+            Diagnostic::error(
+                Code::Type,
+                format!("`{key}` is a list with one value per segment"),
+            )
+            .label(v.span, format!("this is {}", v.value.describe()))
+            .help(format!("write `{key} = {example}`")),
+        );
+        return None;
+    };
+    let mut ok = true;
+    let mut out = Vec::with_capacity(items.len());
+    for it in items {
+        match fields::quantity(it, dim, key, diags) {
+            Some(x) if positive && x <= 0.0 => {
+                diags.push(
+                    Diagnostic::error(
+                        Code::NotPositive,
+                        format!("every `{key}` of the table must be greater than zero"),
+                    )
+                    .label(it.span, format!("this is {}", fields::shown(x, dim))),
+                );
+                ok = false;
+            }
+            Some(x) => out.push(x),
+            None => ok = false,
+        }
+    }
+    if let Some((n, at)) = segments {
+        if items.len() != n {
+            diags.push(table_length(key, items.len(), v.span, n, at));
+            ok = false;
+        }
+    }
+    if items.is_empty() {
+        ok = false;
+    }
+    ok.then_some((out, v.span))
+}
+
+/// A per-segment list of the wrong length.
+pub fn table_length(
+    key: &str,
+    found: usize,
+    at: Span,
+    segments: usize,
+    seg_at: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::TableLength,
+        format!(
+            "`{key}` has {found} entr{} for {segments} segments",
+            if found == 1 { "y" } else { "ies" }
+        ),
+    )
+    .label(
+        at,
+        format!("{found} entr{}", if found == 1 { "y" } else { "ies" }),
+    )
+    .label(seg_at, format!("{segments} segments"))
+    .help("give one value per segment, from the segment that starts on +x, counter-clockwise")
+}
+
+/// Pairs a ring with its slicing and loop. `control` is `Some(None)` when no
+/// `control` block is written, `None` when one is written but wrong.
+pub fn assemble(
+    w: Written,
+    slicing: ContinuousSpec,
+    control: Option<Option<ControlSpec>>,
+    powder: Option<MassFlow>,
+    diags: &mut Diagnostics,
+) -> Option<RingPlan> {
+    let (ring, table) = (w.ring?, w.table.clone()?);
+    let control = match control? {
+        Some(c) => Some(loop_of(&w, &table, &slicing, c, diags)?),
+        None => None,
+    };
+    let origins = RingOrigins {
+        ring: w.span,
+        transition: w.transition_span,
+        layers: slicing.layers_span,
+        ..control.as_ref().map(|c| c.1).unwrap_or_default()
+    };
+    Some(RingPlan {
+        name: w.name,
+        ring,
+        table,
+        layers: slicing.layers,
+        layer_height: slicing.layer_height,
+        step: slicing.step,
+        control: control.map(|c| c.0),
+        powder: powder?,
+        origins,
+    })
+}
+
+/// The checked loop and where its fields are (the rest of the origins filled
+/// by the caller).
+fn loop_of(
+    w: &Written,
+    table: &SegmentTable,
+    slicing: &ContinuousSpec,
+    c: ControlSpec,
+    diags: &mut Diagnostics,
+) -> Option<(HeightControl, RingOrigins)> {
+    let h = slicing.layer_height;
+    let target = match c.target {
+        Some((t, at)) if (t.0 - h.0).abs() > 1e-9 * h.0 => {
+            diags.push(
+                Diagnostic::error(
+                    Code::ConflictingFields,
+                    format!(
+                        "the loop's target {t} is not the layer height {h} the plan lays"
+                    ),
+                )
+                .label(at, "target")
+                .label(slicing.layer_height_span, "layer height")
+                .help("the plan rises `layer_height` a layer and the loop holds each layer to `target`: give them one value (or leave `target` out)"),
+            );
+            return None;
+        }
+        _ => h,
+    };
+    let controller = match Controller::new(c.kp, c.ki, target, c.clamp) {
+        Ok(ctl) => ctl,
+        Err(e) => {
+            diags.push(
+                Diagnostic::error(Code::OutOfRange, format!("the loop cannot run: {e}"))
+                    .label(c.span, "control"),
+            );
+            return None;
+        }
+    };
+    let mut ok = true;
+    for (j, row) in table.rows().iter().enumerate() {
+        if !c.clamp.contains(row.speed) {
+            diags.push(
+                Diagnostic::error(
+                    Code::OutOfRange,
+                    format!(
+                        "segment {} starts at {}, outside the loop's clamp {} .. {}",
+                        j + 1,
+                        row.speed,
+                        c.clamp.low(),
+                        c.clamp.high()
+                    ),
+                )
+                .label_opt(w.speed_span, "the table's speeds")
+                .label(c.clamp_span, "clamp")
+                .help("start every segment at a speed the loop may command, or widen the clamp"),
+            );
+            ok = false;
+        }
+    }
+    let plant = plant(w, table, slicing, &c, target, diags);
+    if !ok {
+        return None;
+    }
+    let origins = RingOrigins {
+        control: c.span,
+        kp: c.kp_span,
+        ki: c.ki_span,
+        clamp: c.clamp_span,
+        run: c.run_span,
+        ..RingOrigins::default()
+    };
+    Some((
+        HeightControl {
+            controller,
+            run: c.run,
+            plant: plant?,
+        },
+        origins,
+    ))
+}
+
+/// `plant = inverse_speed(drift, factors)`: calibrated so that each segment's
+/// table speed lays the target, times its factor, drifting per layer.
+fn plant(
+    w: &Written,
+    table: &SegmentTable,
+    slicing: &ContinuousSpec,
+    c: &ControlSpec,
+    target: Length,
+    diags: &mut Diagnostics,
+) -> Option<Plant> {
+    let p = &c.plant;
+    let layers = slicing.layers.get();
+    let last = 1.0 + p.drift * (layers - 1) as f64;
+    if last <= 0.0 {
+        diags.push(
+            Diagnostic::error(
+                Code::OutOfRange,
+                format!(
+                    "a drift of {} % a layer leaves the plant nothing to lay by layer {layers}",
+                    short(p.drift * 100.0)
+                ),
+            )
+            .label(p.span, "plant")
+            .help(format!(
+                "a drift above {} % a layer",
+                short(-100.0 / (layers - 1).max(1) as f64)
+            )),
+        );
+        return None;
+    }
+    let calibrated = Plant::calibrated(target, &table.speeds(), p.drift).ok()?;
+    match &p.factors {
+        None => Some(calibrated),
+        Some((f, at)) if f.len() != table.len() => {
+            let seg_at = w.segments.map(|s| s.1).unwrap_or(w.span);
+            diags.push(table_length("factors", f.len(), *at, table.len(), seg_at));
+            None
+        }
+        Some((f, _)) => calibrated.scaled(f).ok(),
+    }
+}
