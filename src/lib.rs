@@ -8,6 +8,7 @@ pub mod control;
 pub mod diag;
 pub mod fill;
 pub mod geometry;
+pub mod invalid;
 pub mod ir;
 pub mod lower;
 pub mod pipeline;

@@ -1,7 +1,6 @@
-mod support {
-    pub mod fixture;
-}
-use support::fixture::*;
+#[path = "support/fixture.rs"]
+mod fixture;
+use fixture::*;
 
 #[test]
 fn fixture_passes_the_checks() {

@@ -3,61 +3,9 @@
 //! take these, so the maths after the boundary needs no guards.
 
 use super::SLACK;
+pub(crate) use crate::invalid::finite;
+pub use crate::invalid::Invalid;
 use crate::units::Length;
-
-/// Why a number cannot be planned with at all — a degenerate input, as opposed
-/// to a plan that does not fit the bead (those have errors of their own, with
-/// the numbers a fix needs).
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum Invalid {
-    /// NaN or infinite.
-    #[error("{what} is not a finite number")]
-    NotFinite {
-        /// What the value is ("bead width").
-        what: &'static str,
-    },
-    /// Zero or negative where only a positive value makes sense.
-    #[error("{what} must be greater than zero, not {value}")]
-    NotPositive {
-        /// What the value is.
-        what: &'static str,
-        /// The value, in canonical units (mm).
-        value: f64,
-    },
-    /// A range whose low end lies above its high end.
-    #[error("{what} runs from {low} down to {high}")]
-    Reversed {
-        /// What the range is.
-        what: &'static str,
-        /// Its low end.
-        low: f64,
-        /// Its high end.
-        high: f64,
-    },
-    /// Nothing to work with: no heights, or a track of fewer than two points.
-    #[error("{what} is empty")]
-    Empty {
-        /// What is empty.
-        what: &'static str,
-    },
-    /// Positions along a track that do not strictly increase.
-    #[error("{what}: point {index} does not lie beyond the one before it")]
-    NotIncreasing {
-        /// What the positions are.
-        what: &'static str,
-        /// The first offending point (from 0).
-        index: usize,
-    },
-}
-
-/// `v` if it is finite, else [`Invalid::NotFinite`].
-pub(crate) fn finite(what: &'static str, v: f64) -> Result<f64, Invalid> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(Invalid::NotFinite { what })
-    }
-}
 
 /// A finite length greater than zero: a bead width, a footprint width, a
 /// minimum segment length, a height tolerance.

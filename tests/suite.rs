@@ -1,0 +1,35 @@
+//! Most integration tests, as modules of one binary (Cargo.toml says why).
+//! Run one file's tests with `cargo test --release --test suite <file>::`.
+
+mod all_errors;
+mod atomic_output;
+mod cell_io;
+mod cli;
+mod duct_geometry;
+mod fill;
+mod fixture_sanity;
+mod gcode_kinematics;
+mod gcode_program;
+mod gcode_rs274;
+mod heat;
+mod help_parses;
+mod holes;
+mod holes_ir;
+mod krl_parser;
+mod laser_timing;
+mod message_format;
+mod placement;
+mod planar;
+mod program_text;
+mod progress;
+mod report;
+mod ring;
+mod ring_krl;
+mod ring_rs274;
+mod robustness;
+mod rs274_smoke;
+mod stacking;
+mod style;
+mod variable_errors;
+mod variable_rs274;
+mod variable_top;
