@@ -12,6 +12,7 @@
 //! ends a segment ([`Visit::segment_end`]), and the moves after the last
 //! deposit. Each back end renders that in its own language.
 
+use super::fixed::trimmed;
 use crate::ir::{HeightLoop, Layer, Program, Ring};
 use crate::plan::{Io, Move, Plan, SegmentEnd, Visit, Where};
 
@@ -108,6 +109,21 @@ impl LoopPlan {
             .find(|m| m.segment == j && m.part == Part::Flat)
             .map_or(0.0, |m| m.planned.to[2] - defocus)
     }
+}
+
+/// A comment naming segment `j` (from 0) of `ring`: its angles, defocus and
+/// power, as both looping programs label it.
+pub fn segment_title(ring: &Ring, j: usize) -> String {
+    let s = &ring.segments[j];
+    let mu = 360.0 / ring.segments.len() as f64;
+    format!(
+        "segment {}: {} .. {} deg, defocus {} mm, {} W",
+        j + 1,
+        trimmed(mu * j as f64, 3),
+        trimmed(mu * (j + 1) as f64, 3),
+        trimmed(s.defocus, 3),
+        trimmed(s.power, 1)
+    )
 }
 
 /// The ring and its loop of a program whose loop runs on the machine.

@@ -365,18 +365,7 @@ impl Text<'_> {
     fn segment(&mut self, j: usize, ring: &Ring, ind: usize, level: bool) {
         let s = &ring.segments[j];
         let n = ring.segments.len();
-        let mu = 360.0 / n as f64;
-        self.comment(
-            ind,
-            &format!(
-                "segment {}: {} .. {} deg, defocus {} mm, {} W",
-                j + 1,
-                trimmed(mu * j as f64, 3),
-                trimmed(mu * (j + 1) as f64, 3),
-                trimmed(s.defocus, 3),
-                trimmed(s.power, 1)
-            ),
-        );
+        self.comment(ind, &crate::back::ring::segment_title(ring, j));
         let zf = plus(&format!("#<_lmd_z{}>", j + 1), s.defocus);
         self.line(ind, &format!("#<zf> = {zf}"));
         let zt = if level {

@@ -317,19 +317,9 @@ impl Text<'_> {
 
     /// A segment's heights and speed, set before its first motion.
     fn segment(&mut self, j: usize, ring: &Ring, ind: usize) {
-        let s = &ring.segments[j];
-        let n = ring.segments.len();
-        let mu = 360.0 / n as f64;
         self.line(
             ind,
-            &format!(
-                "; segment {}: {} .. {} deg, defocus {} mm, {} W",
-                j + 1,
-                trimmed(mu * j as f64, 3),
-                trimmed(mu * (j + 1) as f64, 3),
-                trimmed(s.defocus, 3),
-                trimmed(s.power, 1)
-            ),
+            &format!("; {}", crate::back::ring::segment_title(ring, j)),
         );
         self.line(ind, &format!("ZF = ZB[{0}]+DFC[{0}]", j + 1));
         self.line(ind, &format!("$VEL.CP = SPD[{}]*0.001", j + 1));
