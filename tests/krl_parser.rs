@@ -8,7 +8,7 @@
 //! runs.
 
 #[path = "support/krl_parser.rs"]
-mod krl_parser;
+mod parser;
 #[path = "support/skip.rs"]
 mod skip;
 
@@ -18,7 +18,7 @@ use lmdc::pipeline::compile;
 use std::path::PathBuf;
 
 fn have_parser(test: &str) -> bool {
-    if krl_parser::find_krl_parser().is_some() {
+    if parser::find_krl_parser().is_some() {
         return true;
     }
     skip::skip(
@@ -88,7 +88,7 @@ fn lmdc_style_krl_parses() {
     if !have_parser("lmdc_style_krl_parses") {
         return;
     }
-    krl_parser::parse_sources(&[
+    parser::parse_sources(&[
         ("part_kr60.src", MAIN_SRC),
         ("part_kr60.dat", MAIN_DAT),
         ("part_kr60_m001.src", MODULE_SRC),
@@ -136,7 +136,7 @@ fn broken_krl_is_rejected() {
         ("dat_as_src.src", MAIN_DAT.to_string(), 1),
     ];
     for (name, text, line) in &cases {
-        let err = match krl_parser::parse_sources(&[(name, text)]) {
+        let err = match parser::parse_sources(&[(name, text)]) {
             Ok(()) => panic!("the parser accepts broken KRL {name}:\n{text}"),
             Err(e) => e,
         };
@@ -210,11 +210,11 @@ fn every_emitted_krl_file_parses() {
                     robot.name
                 );
             }
-            let dir = krl_parser::TempDir::new(&robot.name);
+            let dir = parser::TempDir::new(&robot.name);
             let paths: Vec<PathBuf> = sink
                 .files
                 .iter()
-                .filter(|(name, _)| krl_parser::is_krl_file(name))
+                .filter(|(name, _)| parser::is_krl_file(name))
                 .map(|(name, bytes)| dir.write(name, bytes))
                 .collect();
             assert!(
@@ -224,7 +224,7 @@ fn every_emitted_krl_file_parses() {
                 robot.name,
                 sink.files.iter().map(|(n, _)| n).collect::<Vec<_>>()
             );
-            if let Err(e) = krl_parser::parse_files(&paths) {
+            if let Err(e) = parser::parse_files(&paths) {
                 panic!(
                     "{}: robot {}: the KRL parser rejects lmdc's output:\n{e}",
                     f.display(),
@@ -272,7 +272,7 @@ fn lin_without_brace_is_rejected(sink: &MemorySink) -> bool {
             })
             .collect();
         let mutant = mutant.join("\n") + "\n";
-        match krl_parser::parse_sources(&[(name, &mutant)]) {
+        match parser::parse_sources(&[(name, &mutant)]) {
             Ok(()) => panic!("the parser accepts {name} with line {} broken", i + 1),
             Err(e) => assert!(
                 e.contains(&format!("{name}:{}:", i + 1)),
@@ -293,7 +293,7 @@ fn golden_krl_snapshots_parse() {
     if !have_parser("golden_krl_snapshots_parse") {
         return;
     }
-    let dir = krl_parser::TempDir::new("golden");
+    let dir = parser::TempDir::new("golden");
     let mut paths = Vec::new();
     let mut entries: Vec<PathBuf> = std::fs::read_dir("tests/snapshots")
         .unwrap()
@@ -327,7 +327,7 @@ fn golden_krl_snapshots_parse() {
         paths.push(dir.write(&format!("{file}.{ext}"), body.as_bytes()));
     }
     assert!(paths.len() >= 8, "only {} golden KRL files", paths.len());
-    if let Err(e) = krl_parser::parse_files(&paths) {
+    if let Err(e) = parser::parse_files(&paths) {
         panic!("the KRL parser rejects a golden program:\n{e}");
     }
 }

@@ -4,7 +4,7 @@
 //! writes it, and the dialects that cannot run the loop.
 
 #[path = "support/ring.rs"]
-mod ring;
+mod support;
 
 use lmdc::ir::{Machine, Point, RingRun};
 
@@ -23,7 +23,7 @@ const TABLE_1: [(f64, f64, f64, f64); 10] = [
 ];
 
 fn example() -> String {
-    std::fs::read_to_string(ring::EXAMPLE).unwrap()
+    std::fs::read_to_string(support::EXAMPLE).unwrap()
 }
 
 /// The first layer's points, with the segment each belongs to.
@@ -40,7 +40,7 @@ fn first_layer(p: &lmdc::ir::Program) -> Vec<(usize, bool, Point)> {
 
 #[test]
 fn the_first_layer_lays_table_1() {
-    let p = ring::compile(ring::EXAMPLE, &example());
+    let p = support::compile(support::EXAMPLE, &example());
     let ir = p.ir();
     let r = ir.ring.as_ref().unwrap();
     assert_eq!(r.segments.len(), 10);
@@ -74,7 +74,7 @@ fn the_first_layer_lays_table_1() {
 
 #[test]
 fn transitions_run_at_v_over_cos_gamma() {
-    let p = ring::compile(ring::EXAMPLE, &example());
+    let p = support::compile(support::EXAMPLE, &example());
     let ir = p.ir();
     let r = ir.ring.as_ref().unwrap();
     let arc = r.radius * r.transition.to_radians();
@@ -123,8 +123,8 @@ fn transitions_run_at_v_over_cos_gamma() {
 fn lmdc_simulate_builds_29_90_mm_on_every_segment() {
     for (tag, drift) in [("drift", "0.1 %"), ("none", "0 %"), ("down", "-0.1 %")] {
         let src = example().replace("drift = 0.1 %", &format!("drift = {drift}"));
-        let rows = ring::simulate_csv(tag, &src);
-        let layers = ring::by_layer(&rows, 10);
+        let rows = support::simulate_csv(tag, &src);
+        let layers = support::by_layer(&rows, 10);
         assert_eq!(layers.len(), 130);
         // The first layer runs Table 1 and lays the target.
         for (j, row) in layers[0].iter().enumerate() {
@@ -143,7 +143,7 @@ fn lmdc_simulate_builds_29_90_mm_on_every_segment() {
         }
         // The CSV holds the library's numbers (the ones the program tests
         // feed the controllers), to its 6 decimals.
-        let full = ring::simulation(&src);
+        let full = support::simulation(&src);
         for (l, layer) in layers.iter().enumerate() {
             for (j, row) in layer.iter().enumerate() {
                 let f = full[l][j];
@@ -182,14 +182,14 @@ fn a_schedule_is_the_simulation_written_by_every_back_end() {
     let src = example()
         .replace("run = on_machine ", "run = schedule   ")
         .replace("dialect = linuxcnc", "dialect = fagor8070");
-    let p = ring::compile("schedule", &src);
+    let p = support::compile("schedule", &src);
     let ir = p.ir();
     let r = ir.ring.as_ref().unwrap();
     let RingRun::Schedule { speeds, control } = &r.run else {
         panic!("a schedule")
     };
     assert!(control.is_some());
-    let sim = ring::simulation(&src);
+    let sim = support::simulation(&src);
     assert_eq!(speeds.len(), 130);
     let per = r.flat_moves + r.transition_moves;
     for (l, layer) in ir.layers.iter().enumerate() {
@@ -206,7 +206,7 @@ fn a_schedule_is_the_simulation_written_by_every_back_end() {
         }
     }
     // The Fagor program: F (mm/min, 1 decimal) of each segment's first move.
-    let files = ring::files(&p, "mill3");
+    let files = support::files(&p, "mill3");
     let (name, nc) = files.iter().next().unwrap();
     assert!(name.ends_with(".nc"), "{name}");
     assert!(!nc.contains("M66"), "an open-loop program reads no sensor");
@@ -240,7 +240,7 @@ fn a_schedule_is_the_simulation_written_by_every_back_end() {
         }
     }
     // The robot's too: a plain program, one module per 2000 lines.
-    let krl = ring::files(&p, "kr60");
+    let krl = support::files(&p, "kr60");
     assert!(krl.keys().any(|k| k.ends_with("_m002.src")));
     assert!(!krl.values().any(|t| t.contains("$ANIN")));
 }
@@ -276,7 +276,7 @@ fn a_loop_needs_linuxcnc_or_a_robot_and_a_sensor() {
 /// running the nominal speeds open loop; machines keep their sensors.
 #[test]
 fn a_ring_plan_is_ir_version_3() {
-    let p = ring::compile(ring::EXAMPLE, &example());
+    let p = support::compile(support::EXAMPLE, &example());
     let ir = p.ir();
     assert_eq!(ir.version, 3);
     assert!(ir.continuous);
