@@ -50,11 +50,7 @@ pub fn emit(
         Kinematics::Xyz => None,
     };
     let file = gcode_file(&prog.part, cnc);
-    let mut base = base_context(prog, cnc, kin, &file);
-    base.insert(
-        "summary",
-        &comment_safe(&crate::report::summary(m), cnc.dialect.comment),
-    );
+    let base = base_context(m, cnc, kin, &file);
 
     // Rendered before the file is created, so a broken template leaves no file.
     let mut ctx = base.clone();
@@ -193,8 +189,10 @@ pub fn dwell_line(dwell: &str, seconds: f64) -> String {
     format!("{head}{}{tail}", trimmed(seconds, DWELL_DECIMALS))
 }
 
-/// Variables every template sees.
-fn base_context(p: &Program, cnc: &Cnc, kin: Kinematics, file: &str) -> tera::Context {
+/// Variables every template of the verified CNC `m` sees, the plan's
+/// one-line summary among them.
+fn base_context(m: VerifiedMachine<'_>, cnc: &Cnc, kin: Kinematics, file: &str) -> tera::Context {
+    let p = m.ir();
     let style = cnc.dialect.comment;
     let (open, close) = delimiters(style);
     let (kin_name, axes, tilt) = match kin {
@@ -203,6 +201,7 @@ fn base_context(p: &Program, cnc: &Cnc, kin: Kinematics, file: &str) -> tera::Co
         Kinematics::HeadBc => ("head_bc", "X Y Z B C", "B"),
     };
     let mut ctx = tera::Context::new();
+    ctx.insert("summary", &comment_safe(&crate::report::summary(m), style));
     ctx.insert("comment_open", open);
     ctx.insert("comment_close", close);
     ctx.insert("part", &comment_safe(&shown(&p.part), style));

@@ -60,11 +60,7 @@ pub fn emit(
     let kin = effective_kinematics(cnc);
     let five = kin != Kinematics::Xyz;
     let file = gcode_file(&prog.part, cnc);
-    let mut base = base_context(prog, cnc, kin, &file);
-    base.insert(
-        "summary",
-        &comment_safe(&crate::report::summary(m), cnc.dialect.comment),
-    );
+    let base = base_context(m, cnc, kin, &file);
     let mut ctx = base.clone();
     header_context(&mut ctx, prog, cnc, five);
     let header = t

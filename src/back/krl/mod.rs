@@ -60,8 +60,7 @@ pub fn emit(
         return ring::emit(m, robot, t, sink);
     }
     let names = names(m, robot);
-    let mut base = base_context(prog, robot, &names.stem);
-    base.insert("summary", &comment_safe(&crate::report::summary(m)));
+    let base = base_context(m, robot, &names.stem);
 
     // Rendered first, so a broken template leaves no file.
     let mut main_ctx = base.clone();
@@ -255,9 +254,12 @@ pub fn io_lines(robot: &Robot, event: Io) -> Vec<String> {
     lines
 }
 
-/// Variables every template sees.
-fn base_context(p: &crate::ir::Program, robot: &Robot, stem: &str) -> tera::Context {
+/// Variables every template of the verified robot `m` sees, the plan's
+/// one-line summary among them.
+fn base_context(m: VerifiedMachine<'_>, robot: &Robot, stem: &str) -> tera::Context {
+    let p = m.ir();
     let mut ctx = tera::Context::new();
+    ctx.insert("summary", &comment_safe(&crate::report::summary(m)));
     ctx.insert("program", stem);
     ctx.insert("part", &comment_safe(&shown(&p.part)));
     ctx.insert("machine", &comment_safe(&shown(&robot.name)));

@@ -49,8 +49,7 @@ pub fn emit(
     };
     let names = super::names(m, robot);
     let module = names.module(0);
-    let mut base = base_context(prog, robot, &names.stem);
-    base.insert("summary", &super::comment_safe(&crate::report::summary(m)));
+    let base = base_context(m, robot, &names.stem);
     let plan = LoopPlan::collect(&m.plan());
     let mut w = Text {
         out: String::new(),
