@@ -2,7 +2,7 @@
 //! limits, machines and the source spans the IR checks report at.
 
 use crate::control::SegmentProcess;
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::ir::{self, Limits, Origins, Program, Style, Units, FORMAT};
 use crate::sema::model::{Model, Plan, RingPlan};
 use crate::slice;
@@ -21,28 +21,23 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             (layers, warnings, None)
         }
     };
-    let (limits, bead_height, bead_speed) =
-        match (&model.plan, &model.bead) {
-            (Plan::Ring(r), _) => ring_limits(model, r),
-            (_, Some(bead)) => (
-                Limits {
-                    layer_height: [bead.height[0].0, bead.height[1].0],
-                    speed: [bead.speed[0].0, bead.speed[1].0],
-                    power: [
-                        model.process.power_range[0].watts(),
-                        model.process.power_range[1].watts(),
-                    ],
-                    bead_width: bead.width.0,
-                },
-                Some(bead.height_span),
-                Some(bead.speed_span),
-            ),
-            (_, None) => return Err(Diagnostic::error(
-                Code::NonFinite,
-                "internal error: a solid without a bead model reached lowering; please report it",
-            )
-            .into()),
-        };
+    let (limits, bead_height, bead_speed) = match (&model.plan, &model.bead) {
+        (Plan::Ring(r), _) => ring_limits(model, r),
+        (_, Some(bead)) => (
+            Limits {
+                layer_height: [bead.height[0].0, bead.height[1].0],
+                speed: [bead.speed[0].0, bead.speed[1].0],
+                power: [
+                    model.process.power_range[0].watts(),
+                    model.process.power_range[1].watts(),
+                ],
+                bead_width: bead.width.0,
+            },
+            Some(bead.height_span),
+            Some(bead.speed_span),
+        ),
+        (_, None) => return Err(message::check::no_bead_in_lowering().into()),
+    };
     let machines: Vec<_> = model.machines.iter().map(|(m, _)| m.clone()).collect();
     let program = Program {
         format: FORMAT.into(),

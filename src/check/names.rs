@@ -1,7 +1,7 @@
 //! File names: no two machines may write the same file (the names keep only the
 //! letters, digits and `_` of the part's and machine's names, in lower case).
 
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::ir::{Machine, Program};
 use crate::target::names::{gcode_file, KrlNames};
 use std::collections::BTreeMap;
@@ -45,18 +45,12 @@ pub(super) fn clashes(p: &Program, written: &[(usize, Vec<String>)], out: &mut D
     let ms = &p.machines;
     let o = &p.origins.machines;
     for ((first, second), name) in pairs {
-        out.push(
-            Diagnostic::error(
-                Code::NameClash,
-                format!(
-                    "machines `{}` and `{}` would both write {name}",
-                    ms[first].name(),
-                    ms[second].name()
-                ),
-            )
-            .label_opt(o.get(second).map(|o| o.block), "second machine")
-            .label_opt(o.get(first).map(|o| o.block), "first machine")
-            .help("file names keep letters, digits and `_` of the part's and the machine's names: give the machines names that differ there"),
-        );
+        out.push(message::check::name_clash(
+            ms[first].name(),
+            ms[second].name(),
+            &name,
+            o.get(first).map(|o| o.block),
+            o.get(second).map(|o| o.block),
+        ));
     }
 }

@@ -4,6 +4,7 @@
 
 mod code;
 pub mod json;
+pub mod message;
 
 use crate::span::Span;
 pub use code::{Code, Group};

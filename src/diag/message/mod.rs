@@ -1,0 +1,12 @@
+//! The wording of every diagnostic lmdc reports, in one module (Gleam's
+//! `error.rs`). The rules decide *whether* something is wrong and compute the
+//! numbers and places a fix needs; a function here turns them into the finished
+//! report — its sentence, the text under each label and the help. A complaint
+//! about a message is answered here alone: no rule holds a sentence, and
+//! [`Diagnostic`](super::Diagnostic)'s builders are private to [`crate::diag`]
+//! so none can.
+//!
+//! One file per area of the language, named for it; each function is named
+//! for the mistake it reports.
+
+pub mod check;
