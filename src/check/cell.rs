@@ -8,11 +8,10 @@
 //! rapid moves count as instant, so the real time is never shorter than the
 //! one checked.
 
-use super::worst::{plural, Worst};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use super::worst::Worst;
+use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, MachineOrigin, Program};
 use crate::plan::{Io, Move, Speed, Visit, Where};
-use crate::units::short;
 
 /// Slack on times, s: the plan waits exactly the declared times, which sums
 /// of move times may miss by rounding.
@@ -74,76 +73,38 @@ impl<'p> CellRule<'p> {
 
     /// Reports what was found, at the fields that declare the times.
     pub fn report(self, name: &str, o: &MachineOrigin, out: &mut Diagnostics) {
+        use message::check::cell;
         if let (Some(w), Some(g)) = (self.gas_short, self.cell.gas) {
-            out.push(
-                Diagnostic::error(
-                    Code::PowderArrival,
-                    format!(
-                        "machine `{name}` would start the laser {} s after opening the gas, short of its pre_flow of {} s, at {} ({} start{})",
-                        short(w.value),
-                        short(g.pre_flow),
-                        w.at,
-                        w.count,
-                        plural(w.count)
-                    ),
-                )
-                .label(o.at("gas.pre_flow"), "pre_flow declared here")
-                .help("the melt pool oxidises without shielding: the gas must flow for pre_flow before the laser starts"),
-            );
+            out.push(cell::gas_too_short(
+                name,
+                &w,
+                g.pre_flow,
+                o.at("gas.pre_flow"),
+            ));
         }
         if let (Some(w), Some(p)) = (self.powder_short, self.cell.powder) {
-            out.push(
-                Diagnostic::error(
-                    Code::PowderArrival,
-                    format!(
-                        "machine `{name}` would start the laser {} s after starting the powder feeder (or changing its rate), before the powder arrives ({} s), at {} ({} start{})",
-                        short(w.value),
-                        short(p.arrival),
-                        w.at,
-                        w.count,
-                        plural(w.count)
-                    ),
-                )
-                .label(o.at("powder.arrival"), "arrival declared here")
-                .help("a laser on the bare substrate without powder remelts it instead of building: the plan must wait the powder's arrival time"),
-            );
+            out.push(cell::powder_too_early(
+                name,
+                &w,
+                p.arrival,
+                o.at("powder.arrival"),
+            ));
         }
         let full = self.cell.powder.and_then(|p| p.rate);
         if let Some(w) = self.rate_differs {
-            out.push(
-                Diagnostic::error(
-                    Code::PowderRate,
-                    format!(
-                        "machine `{name}`'s powder feed changes from {} to {} g/min inside a path, at {} ({} move{}): the feed-rate output cannot follow (powder takes the arrival time to reach the nozzle)",
-                        short(w.limit),
-                        short(w.value),
-                        w.at,
-                        w.count,
-                        plural(w.count)
-                    ),
-                )
-                .label(o.at("powder.full_scale"), "the feed rate is programmed")
-                .help("keep one powder feed along each path (a style's `powder` applies to whole paths), or set the rate on the feeder and drop `rate_output`"),
-            );
+            out.push(cell::rate_changes_in_path(
+                name,
+                &w,
+                o.at("powder.full_scale"),
+            ));
         }
         if let (Some(w), Some(r)) = (self.rate_over, full) {
-            out.push(
-                Diagnostic::error(
-                    Code::PowderRate,
-                    format!(
-                        "machine `{name}` would feed {} g/min, beyond its feed-rate output's full_scale of {} g/min ({} move{})",
-                        short(w.value),
-                        short(r.full_scale),
-                        w.count,
-                        plural(w.count)
-                    ),
-                )
-                .label(o.at("powder.full_scale"), "full scale declared here")
-                .help(format!(
-                    "set `full_scale` to the feeder's rate at full analog output (at least {} g/min), or feed less powder",
-                    short(w.value)
-                )),
-            );
+            out.push(cell::rate_over_full_scale(
+                name,
+                &w,
+                r.full_scale,
+                o.at("powder.full_scale"),
+            ));
         }
     }
 }

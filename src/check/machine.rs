@@ -8,14 +8,14 @@
 
 use super::cell::CellRule;
 use super::resolution::Resolution;
-use super::worst::{plural, Worst};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use super::worst::Worst;
+use crate::diag::message::{self, check::AnalogOverrun, check::AxisOverrun};
+use crate::diag::Diagnostics;
 use crate::ir::{AxisLimits, Cnc, Kinematics, Layer, Machine, MachineOrigin, Program, Robot};
 use crate::plan::kinematics::tilt_of;
 use crate::plan::{effective_kinematics, Io, Move, Plan, Speed, Visit, Where};
 use crate::span::Span;
 use crate::target::{gcode, kuka, written as rounded};
-use crate::units::short;
 
 /// A normal tilted more than this (deg) cannot be followed by a vertical nozzle.
 pub const NEEDS_TILT_DEG: f64 = 0.01;
@@ -51,22 +51,12 @@ impl SpeedLimit {
         out: &mut Diagnostics,
     ) {
         let Some(w) = self.found else { return };
-        out.push(
-            Diagnostic::error(
-                Code::MachineSpeed,
-                format!(
-                    "machine `{name}` would have to move at {} mm/s, beyond its max_speed of {} mm/s, at {} ({} move{} too fast)",
-                    short(w.value),
-                    short(w.limit),
-                    w.at,
-                    w.count,
-                    plural(w.count)
-                ),
-            )
-            .label(o.at("max_speed"), "limit declared here")
-            .label_opt(bead_speed, "the scan speeds come from here")
-            .help("lower the scan speeds, or raise the machine's max_speed if it really can go faster"),
-        );
+        out.push(message::check::machine_speed(
+            name,
+            &w,
+            o.at("max_speed"),
+            bead_speed,
+        ));
     }
 }
 
@@ -148,53 +138,12 @@ impl Travel {
         }
     }
 
-    /// What placement of the part would keep axis `i` (0–2) inside its travel.
-    fn placement_help(&self, i: usize, cnc: &Cnc) -> String {
-        let axis = ["X", "Y", "Z"][i];
-        let key = ["x", "y", "z"][i];
-        let r = [self.lim.x, self.lim.y, self.lim.z][i];
-        let (lo, hi) = (self.lo[i], self.hi[i]);
-        let o = cnc.placement.origin[i];
-        let (from, to) = (r[0] - lo, r[1] - hi);
-        let span = format!(
-            "the program spans {axis} {} .. {} mm (with the clearance moves), the machine {} .. {} mm",
-            short(lo),
-            short(hi),
-            short(r[0]),
-            short(r[1])
-        );
-        if from <= to {
-            let best = if (from..=to).contains(&0.0) {
-                0.0
-            } else {
-                (from + to) / 2.0
-            };
-            format!(
-                "{span}: place the part with its origin at {axis} {} .. {} mm in machine coordinates \
-                 (now {}), e.g. {key} = {} mm in `origin = [x, y, z]` with `work_offset` set to it, or correct the machine's limits",
-                short(from),
-                short(to),
-                short(o),
-                short(best)
-            )
-        } else {
-            format!(
-                "{span}: the part is {} mm across {axis}, more than the {} mm the axis travels; \
-                 build it on a larger machine or in another orientation",
-                short(hi - lo),
-                short(r[1] - r[0])
-            )
-        }
-    }
-
     fn report(self, cnc: &Cnc, o: &MachineOrigin, out: &mut Diagnostics) {
-        let name = &cnc.name;
         let tilt_name = if effective_kinematics(cnc) == Kinematics::HeadBc {
             "B"
         } else {
             "A"
         };
-        let names = ["X", "Y", "Z", tilt_name, "C"];
         let fields = [
             "limits.x",
             "limits.y",
@@ -206,45 +155,22 @@ impl Travel {
         let ranges = [lim.x, lim.y, lim.z, lim.tilt, lim.rotary];
         for (i, w) in self.axes.iter().enumerate() {
             let Some(w) = w else { continue };
-            let (unit, sep) = if i < 3 { ("mm", " ") } else { ("°", "") };
-            let mut help = match i {
-                0..=2 => self.placement_help(i, cnc),
-                3 => format!(
-                    "the layers tilt the nozzle further than the {tilt_name} axis of `{name}` \
-                     can go: use a machine whose head tilts further, or build the part in an \
-                     orientation whose layers tilt less"
-                ),
-                _ => "the C axis turns past its stop while following the normals around the \
-                      part: widen the C limits if the axis turns endlessly, or orient the part \
-                      so the paths wind less"
-                    .to_string(),
-            };
-            if i < 3 && !matches!(w.at, Where::Point { .. }) {
-                help.push_str(&format!(
-                    "; the clearance moves go {} mm beyond the path along the nozzle, a \
-                     smaller clearance may do",
-                    short(cnc.clearance)
-                ));
-            }
-            out.push(
-                Diagnostic::error(
-                    Code::AxisLimit,
-                    format!(
-                        "axis {} of machine `{name}` would have to reach {}{sep}{unit}, beyond its \
-                         limit of {}{sep}{unit}, at {} ({} position{} outside [{}, {}]{sep}{unit})",
-                        names[i],
-                        short(w.value),
-                        short(w.limit),
-                        w.at,
-                        w.count,
-                        plural(w.count),
-                        short(ranges[i][0]),
-                        short(ranges[i][1]),
-                    ),
-                )
-                .label(o.at(fields[i]), "axis limit declared here")
-                .help(help),
-            );
+            let linear = i < 3;
+            out.push(message::check::axis_limit(&AxisOverrun {
+                machine: &cnc.name,
+                axis: i,
+                tilt_name,
+                worst: *w,
+                range: ranges[i],
+                extent: if linear {
+                    [self.lo[i], self.hi[i]]
+                } else {
+                    [0.0; 2]
+                },
+                origin: if linear { cnc.placement.origin[i] } else { 0.0 },
+                clearance: (!matches!(w.at, Where::Point { .. })).then_some(cnc.clearance),
+                declared: o.at(fields[i]),
+            }));
         }
     }
 }
@@ -271,24 +197,7 @@ impl Tilt {
 
     fn report(self, name: &str, o: &MachineOrigin, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(
-            Diagnostic::error(
-                Code::NeedsTilt,
-                format!(
-                    "the part's layers tilt the nozzle up to {}° from vertical ({} point{}, the worst at {}), \
-                     but machine `{name}` moves X Y Z only and keeps the nozzle vertical",
-                    short(w.value),
-                    w.count,
-                    plural(w.count),
-                    w.at
-                ),
-            )
-            .label(o.at("axes"), "this machine has no tilting axes")
-            .help(
-                "compile for a 5-axis machine (axes 5, kinematics head_ac or head_bc), \
-                 or slice the part in planar (horizontal) layers",
-            ),
-        );
+        out.push(message::check::needs_tilt(name, &w, o.at("axes")));
     }
 }
 
@@ -312,35 +221,15 @@ impl Analog {
 
     fn report(self, r: &Robot, o: &MachineOrigin, power: Option<Span>, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        let x = rounded(w.value / r.full_scale_power, kuka::ANOUT_DECIMALS);
-        out.push(
-            Diagnostic::error(
-                Code::AnalogRange,
-                format!(
-                    "laser power {} W needs $ANOUT[{}] = {} on robot `{}`, beyond the analog output's 1.0 ({} move{}, the worst at {})",
-                    short(w.value),
-                    r.power_out,
-                    short(x),
-                    r.name,
-                    w.count,
-                    plural(w.count),
-                    w.at
-                ),
-            )
-            .label(
-                o.at("full_scale"),
-                format!(
-                    "full_scale = {} W is the power at $ANOUT = 1.0",
-                    short(r.full_scale_power)
-                ),
-            )
-            .label_opt(power, "the power comes from here")
-            .help(format!(
-                "set `full_scale` to the power the laser source gives at full analog input \
-                 (at least {} W), or lower the power",
-                short(w.value)
-            )),
-        );
+        out.push(message::check::analog_range(&AnalogOverrun {
+            robot: &r.name,
+            output: r.power_out,
+            full_scale: r.full_scale_power,
+            needed: rounded(w.value / r.full_scale_power, kuka::ANOUT_DECIMALS),
+            worst: w,
+            declared: o.at("full_scale"),
+            power,
+        }));
     }
 }
 

@@ -21,6 +21,7 @@ mod stacking;
 mod worst;
 
 pub use machine::NEEDS_TILT_DEG;
+pub(crate) use worst::{plural, Worst};
 
 use crate::diag::Diagnostics;
 use crate::ir::{Machine, Program};

@@ -2,12 +2,13 @@
 //! numbers, unit directions, and — where the laser is on — the bead model's
 //! layer heights and speeds and the laser's power range.
 
-use super::worst::{plural, Worst};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use super::worst::Worst;
+use crate::diag::message::{self, check::Layering, check::PointQuantity, check::Side};
+use crate::diag::Diagnostics;
 use crate::ir::{Point, Program};
 use crate::plan::Where;
 use crate::span::Span;
-use crate::units::{in_range, short};
+use crate::units::in_range;
 
 /// Points with a value that is not a finite number.
 #[derive(Default)]
@@ -44,20 +45,7 @@ impl Finite {
 
     pub fn report(self, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(
-            Diagnostic::error(
-                Code::NonFinite,
-                format!(
-                    "{} point{} carry a value that is not a finite number (first at {})",
-                    w.count,
-                    plural(w.count),
-                    w.at
-                ),
-            )
-            .help(
-                "this is a bug in lmdc's geometry for this input; please report it with the .lmd file",
-            ),
-        );
+        out.push(message::check::non_finite_points(&w));
     }
 }
 
@@ -81,47 +69,22 @@ impl UnitDirections {
 
     pub fn report(self, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(
-            Diagnostic::error(
-                Code::BadDirection,
-                format!(
-                    "{} direction{} that are not unit vectors: the worst has length {} at {}",
-                    w.count,
-                    plural(w.count),
-                    short(w.value),
-                    w.at
-                ),
-            )
-            .help("this is a bug in lmdc's geometry; please report it with the .lmd file"),
-        );
+        out.push(message::check::bad_directions(&w));
     }
 }
 
 /// A quantity of laser-on points that must stay in a declared range.
 pub(super) struct Range {
-    code: Code,
-    /// What the quantity is, for "a layer height below h_min".
-    below: &'static str,
-    above: &'static str,
-    unit: &'static str,
+    quantity: PointQuantity,
     range: [f64; 2],
     low: Option<Worst>,
     high: Option<Worst>,
 }
 
 impl Range {
-    pub fn new(
-        code: Code,
-        below: &'static str,
-        above: &'static str,
-        unit: &'static str,
-        range: [f64; 2],
-    ) -> Self {
+    pub fn new(quantity: PointQuantity, range: [f64; 2]) -> Self {
         Range {
-            code,
-            below,
-            above,
-            unit,
+            quantity,
             range,
             low: None,
             high: None,
@@ -146,42 +109,16 @@ impl Range {
 
     /// One diagnostic per side that was passed, labelled at `spans` (the first
     /// declares the limit, the others produce the value).
-    pub fn report(
-        self,
-        spans: &[Option<Span>],
-        help_low: &str,
-        help_high: &str,
-        out: &mut Diagnostics,
-    ) {
-        for (w, what, help) in [
-            (self.low, self.below, help_low),
-            (self.high, self.above, help_high),
-        ] {
-            let Some(w) = w else { continue };
-            let unit = self.unit;
-            let mut d = Diagnostic::error(
-                self.code,
-                format!(
-                    "{} point{} with a {what}: the worst is {} {unit} (limit {} {unit}) at {}",
-                    w.count,
-                    plural(w.count),
-                    short(w.value),
-                    short(w.limit),
-                    w.at
-                ),
-            )
-            .help(help.to_string());
-            for (i, s) in spans.iter().enumerate() {
-                d = d.label_opt(
-                    *s,
-                    if i == 0 {
-                        "limit declared here"
-                    } else {
-                        "this produces it"
-                    },
-                );
+    pub fn report(self, spans: &[Option<Span>], out: &mut Diagnostics) {
+        for (w, side) in [(self.low, Side::Below), (self.high, Side::Above)] {
+            if let Some(w) = w {
+                out.push(message::check::point_out_of_range(
+                    self.quantity,
+                    side,
+                    &w,
+                    spans,
+                ));
             }
-            out.push(d);
         }
     }
 }
@@ -213,6 +150,20 @@ fn across_normal(pt: &Point, next: Option<&Point>) -> f64 {
     v * ((len2 - along * along / n2).max(0.0) / len2).sqrt()
 }
 
+/// How the plan's layers get their height, which decides what fixes a layer
+/// height out of range.
+fn layering(p: &Program) -> Layering {
+    let o = &p.origins;
+    if o.top.is_some() {
+        Layering::Variable
+    } else if o.spine.is_none() {
+        // Planar layers have no spine: their height is the declared or derived lift.
+        Layering::Planar
+    } else {
+        Layering::Bent
+    }
+}
+
 /// Every process rule, run over the IR's points in one pass.
 pub(super) struct ProcessRules {
     pub finite: Finite,
@@ -228,27 +179,10 @@ impl ProcessRules {
         ProcessRules {
             finite: Finite::default(),
             units: UnitDirections::default(),
-            height: Range::new(
-                Code::PointHeight,
-                "layer height below h_min",
-                "layer height above h_max",
-                "mm",
-                l.layer_height,
-            ),
-            speed: Range::new(
-                Code::PointSpeed,
-                "speed (across the nozzle) below the bead model's range",
-                "speed (across the nozzle) above the bead model's range",
-                "mm/s",
-                l.speed,
-            ),
-            power: Range::new(
-                Code::PointPower,
-                "power below the laser's range",
-                "power above the laser's range",
-                "W",
-                l.power,
-            ),
+            // The height rule's layering is known once the origins are.
+            height: Range::new(PointQuantity::Height(layering(p)), l.layer_height),
+            speed: Range::new(PointQuantity::Speed, l.speed),
+            power: Range::new(PointQuantity::Power, l.power),
         }
     }
 
@@ -282,34 +216,10 @@ impl ProcessRules {
         let o = &p.origins;
         self.finite.report(out);
         self.units.report(out);
-        let geom = [o.bead_height, o.spine, o.top, o.slicing];
-        // Planar layers have no spine: their height is the declared or derived lift.
-        let planar = "a flat layer rises by what its tracks lay (A/w for one track, A/d for tracks d apart): `layer_height = auto` derives it, or declare one within the bead's heights";
-        // Variable layers lay the top's fraction H/N.
-        let variable = "a variable layer lays H/N where the top is H: `layers = auto` picks the fewest layers that keep it within the bead's heights";
-        let (low, high) = if o.top.is_some() {
-            (variable, variable)
-        } else if o.spine.is_none() {
-            (planar, planar)
-        } else {
-            (
-                "use more layers' worth of height per layer (fewer layers), a larger bend radius, or a bead model that reaches lower heights",
-                "use more layers, a larger bend radius, or a bead model that reaches higher beads",
-            )
-        };
-        self.height.report(&geom, low, high, out);
-        self.speed.report(
-            &[o.bead_speed],
-            "the bead model is not valid this slow: widen its speed range if the process allows",
-            "the bead model is not valid this fast: widen its speed range if the process allows",
-            out,
-        );
-        self.power.report(
-            &[o.power],
-            "raise the power schedule into the laser's range",
-            "lower the power schedule into the laser's range",
-            out,
-        );
+        self.height
+            .report(&[o.bead_height, o.spine, o.top, o.slicing], out);
+        self.speed.report(&[o.bead_speed], out);
+        self.power.report(&[o.power], out);
     }
 }
 

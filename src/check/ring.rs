@@ -5,12 +5,13 @@
 //! its `max_speed` at the loop's top speed, a sensor input, a control that
 //! can run the loop.
 
-use crate::control::{self, analyse, Finding, Severity, SpeedPerLength};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::control::{self, analyse, SpeedPerLength};
+use crate::diag::message::check::ring::{self, FastTransition, LateUpdate};
+use crate::diag::Diagnostics;
 use crate::ir::{Machine, MachineOrigin, Program, Ring, RingOrigins, RingRun};
 use crate::target::gcode::{LOOP_PROFILE, MAX_ANALOG_INPUT};
 use crate::target::kuka::MAX_ADVANCE;
-use crate::units::{short, Angle, Length, Speed};
+use crate::units::{Angle, Length, Speed};
 use std::num::NonZeroUsize;
 
 /// The declared loop as the control module's checked type, or why not.
@@ -36,10 +37,7 @@ pub(super) fn check_loop(p: &Program, out: &mut Diagnostics) {
         None => return,
         Some(Ok(c)) => c,
         Some(Err(e)) => {
-            out.push(
-                Diagnostic::error(Code::OutOfRange, format!("the height loop cannot run: {e}"))
-                    .label(o.control, "control"),
-            );
+            out.push(ring::loop_cannot_run(&e, o.control));
             return;
         }
     };
@@ -50,46 +48,10 @@ pub(super) fn check_loop(p: &Program, out: &mut Diagnostics) {
     match analyse(&c, &speeds, layers) {
         Ok(a) => {
             for f in &a.findings {
-                out.push(finding(f, &o));
+                out.push(ring::loop_finding(f, &o));
             }
         }
-        Err(e) => out.push(
-            Diagnostic::error(Code::OutOfRange, format!("the height loop cannot run: {e}"))
-                .label(o.control, "control"),
-        ),
-    }
-}
-
-/// One finding of the analysis, at the fields it is about.
-fn finding(f: &Finding, o: &RingOrigins) -> Diagnostic {
-    let (code, labels): (Code, Vec<(_, &str)>) = match f {
-        Finding::Sign { gain, .. } => (
-            Code::GainSign,
-            vec![(
-                match gain {
-                    control::analysis::Gain::Proportional => o.kp,
-                    control::analysis::Gain::Integral => o.ki,
-                },
-                "gain",
-            )],
-        ),
-        Finding::Unstable { .. } => (Code::UnstableLoop, vec![(o.kp, "kp"), (o.ki, "ki")]),
-        Finding::UnstableAtClamp { .. } => (Code::UnstableLoop, vec![(o.clamp, "clamp")]),
-        Finding::Slow { .. } => (
-            Code::SlowLoop,
-            vec![(o.kp, "kp"), (o.ki, "ki"), (o.layers, "layers")],
-        ),
-    };
-    let mut d = match f.severity() {
-        Severity::Error => Diagnostic::error(code, f.to_string()),
-        Severity::Warning => Diagnostic::warning(code, f.to_string()),
-    };
-    for (at, text) in labels {
-        d = d.label(at, text);
-    }
-    match f.help() {
-        Some(h) => d.help(h),
-        None => d,
+        Err(e) => out.push(ring::loop_cannot_run(&e, o.control)),
     }
 }
 
@@ -112,32 +74,18 @@ pub(super) fn check_machine(
         Machine::Robot(rb) => rb.height_sensor,
         Machine::Cnc(c) => {
             if c.dialect.profile != LOOP_PROFILE {
-                out.push(
-                    Diagnostic::error(
-                        Code::LoopDialect,
-                        format!(
-                            "the height loop is to run on machine `{name}`, and a closed loop is not supported on the {} dialect",
-                            c.dialect.profile
-                        ),
-                    )
-                    .label(origin.at("dialect"), "dialect")
-                    .label(o.run, "the loop runs on the machine")
-                    .help("`run = schedule` writes an open-loop speed schedule (the loop run against the declared plant) that every dialect runs; a closed loop runs on LinuxCNC and KUKA robots"),
-                );
+                out.push(ring::loop_dialect(
+                    name,
+                    &c.dialect.profile,
+                    origin.at("dialect"),
+                    o.run,
+                ));
             }
             c.height_sensor
         }
     };
     let Some(s) = sensor else {
-        out.push(
-            Diagnostic::error(
-                Code::HeightSensor,
-                format!("machine `{name}` declares no height sensor for the loop to read"),
-            )
-            .label(origin.block, "no `height_input`")
-            .label(o.run, "the loop runs on the machine")
-            .help("declare the analog input the sensor's segment mean arrives on: `height_input = 3` and `height_full_scale = 2 mm` (the height at 1.0); or `run = schedule` for an open-loop schedule"),
-        );
+        out.push(ring::no_height_sensor(name, origin.block, o.run));
         return;
     };
     if let Machine::Robot(_) = m {
@@ -146,21 +94,12 @@ pub(super) fn check_machine(
     if let Machine::Cnc(_) = m {
         let last = s.input as usize + r.segments.len() - 1;
         if last > MAX_ANALOG_INPUT {
-            out.push(
-                Diagnostic::error(
-                    Code::HeightSensor,
-                    format!(
-                        "LinuxCNC reads segment j's height on input `height_input + j`: {} segments from input {} reach M66 E{last}, past E{MAX_ANALOG_INPUT}",
-                        r.segments.len(),
-                        s.input
-                    ),
-                )
-                .label(origin.at("height_input"), "first input")
-                .help(format!(
-                    "a first input of at most {}",
-                    MAX_ANALOG_INPUT + 1 - r.segments.len().min(MAX_ANALOG_INPUT + 1)
-                )),
-            );
+            out.push(ring::too_many_inputs(
+                r.segments.len(),
+                s.input,
+                last,
+                origin.at("height_input"),
+            ));
         }
     }
 }
@@ -205,27 +144,23 @@ fn robot_timing(
     if room >= during_delay {
         return;
     }
-    let message = if n == 1 {
-        format!(
-            "a ring of one segment cannot run its loop on robot `{name}`: the segment starts again where it ends, before its measurement can change its speed and height"
-        )
+    let why = if n == 1 {
+        LateUpdate::OneSegment
     } else {
-        format!(
-            "on robot `{name}` a segment's update could land after the robot has read the values it sets: it runs {} ms after the segment's end (up to {} moves of {} mm at {} mm/s), and the next reader comes {} moves later, of which the advance run may read {} ahead",
-            short(s.delay * 1000.0),
+        LateUpdate::TooLate {
+            delay: s.delay,
             during_delay,
-            short(shortest),
-            short(fastest),
-            (n - 2) * per + r.flat_moves,
-            MAX_ADVANCE
-        )
+            shortest,
+            fastest,
+            between: (n - 2) * per + r.flat_moves,
+        }
     };
-    out.push(
-        Diagnostic::error(Code::LoopTiming, message)
-            .label(origin.at("height_delay"), "height_delay")
-            .label(o.ring, "ring")
-            .help("more segments, fewer or longer moves (a larger `step`), a shorter `height_delay`, or `run = schedule`; LinuxCNC, which stops to read, has no such limit"),
-    );
+    out.push(ring::loop_timing(
+        name,
+        &why,
+        origin.at("height_delay"),
+        o.ring,
+    ));
 }
 
 /// Every transition at the clamp's top speed within the machine's
@@ -261,45 +196,21 @@ fn transitions(
     if v <= max {
         return;
     }
-    let gamma = (rise / arc).atan();
-    let clamp_fits = max * gamma.cos();
-    let mut help = format!("a clamp up to {} mm/s", short(clamp_fits));
-    if top < max {
-        // v·√(1 + (rise/arc)²) ≤ max ⇔ arc ≥ |rise| / √((max/v)² − 1).
+    // v·√(1 + (rise/arc)²) ≤ max ⇔ arc ≥ |rise| / √((max/v)² − 1).
+    let transition_fits = (top < max).then(|| {
         let arc_fits = rise.abs() / ((max / top).powi(2) - 1.0).sqrt();
-        let deg = Angle(arc_fits / r.radius).deg();
-        help.push_str(&format!(", a transition of at least {}°", short_up(deg)));
-    }
-    help.push_str(", or a higher max_speed");
-    let next = if j + 1 == n {
-        "1 of the next layer".to_string()
-    } else {
-        (j + 2).to_string()
-    };
-    out.push(
-        Diagnostic::error(
-            Code::TransitionSpeed,
-            format!(
-                "the transition from segment {} to {next} ({} mm over {} mm, γ = {}°) runs at {} mm/s at the clamp's {} mm/s, over {}'s max_speed {} mm/s",
-                j + 1,
-                short(rise),
-                short(arc),
-                short(gamma.to_degrees().abs()),
-                short(v),
-                short(top),
-                m.name(),
-                short(max)
-            ),
-        )
-        .label(origin.at("max_speed"), "max_speed")
-        .label(o.clamp, "the loop may command up to here")
-        .label(o.transition, "transition")
-        .help(help),
-    );
-}
-
-/// `x` rounded up to what `short` prints, so the advice is enough.
-fn short_up(x: f64) -> String {
-    let p = 10f64.powi(2);
-    short((x * p).ceil() / p)
+        Angle(arc_fits / r.radius).deg()
+    });
+    out.push(ring::transition_speed(&FastTransition {
+        machine: m.name(),
+        max,
+        segment: j,
+        segments: n,
+        rise,
+        arc,
+        speed: v,
+        top,
+        transition_fits,
+        spans: [origin.at("max_speed"), o.clamp, o.transition],
+    }));
 }

@@ -13,11 +13,10 @@
 //! search radius wide, and the layer's chord starts (at most 1024 a layer,
 //! spread over it) ask it for the nearest.
 
-use super::worst::{plural, Worst};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use super::worst::Worst;
+use crate::diag::{message, Diagnostics};
 use crate::ir::{Layer, Program};
 use crate::plan::Where;
-use crate::units::short;
 
 /// Most places of one layer checked (spread over it): a 300 × 200 mm plate
 /// lays 30 m of track a layer.
@@ -65,22 +64,9 @@ pub(super) fn check(p: &Program, out: &mut Diagnostics) {
     }
     let Some(f) = found else { return };
     let o = &p.origins;
-    out.push(
-        Diagnostic::error(
-            Code::Stacking,
-            format!(
-                "a deposit lands {} mm across the nozzle from the nearest bead of the layer below, more than ¾ of the bead width ({} mm), at {} ({} place{} so far off, checked at most every eighth of a bead)",
-                if f.value >= reach { format!("more than {}", short(reach)) } else { short(f.value) },
-                short(half),
-                f.at,
-                f.count,
-                plural(f.count)
-            ),
-        )
-        .label_opt(o.slicing, "the layers come from here")
-        .label_opt(o.spine, "the part's shape")
-        .help("each layer must lie on the one below: check the twist, the bend and the section sizes for jumps between layers, or use more layers"),
-    );
+    out.push(message::check::stacking(
+        &f, reach, half, o.slicing, o.spine,
+    ));
 }
 
 /// Where a chord of a layer starts: a place a deposit of that layer is

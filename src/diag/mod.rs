@@ -4,7 +4,7 @@
 
 mod code;
 pub mod json;
-pub mod message;
+pub(crate) mod message;
 
 use crate::span::Span;
 pub use code::{Code, Group};
