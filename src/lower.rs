@@ -36,7 +36,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             Some(bead.height_span),
             Some(bead.speed_span),
         ),
-        (_, None) => return Err(message::check::no_bead_in_lowering().into()),
+        (_, None) => return Err(message::internal::no_bead_in_lowering().into()),
     };
     let machines: Vec<_> = model.machines.iter().map(|(m, _)| m.clone()).collect();
     let program = Program {

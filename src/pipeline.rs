@@ -263,10 +263,7 @@ pub fn simulate(source: &str) -> Simulated {
         Ok(run) => done(Some(run), diagnostics, None),
         Err(e) => {
             // The checker lets through only loops that can run: a bug.
-            diagnostics.push(crate::diag::Diagnostic::error(
-                crate::diag::Code::NonFinite,
-                format!("internal error simulating the loop: {e}; please report it"),
-            ));
+            diagnostics.push(crate::diag::message::internal::loop_simulation(&e));
             done(None, diagnostics, None)
         }
     }

@@ -1,10 +1,11 @@
 //! Choosing the layer count of normal slicing, and explaining in the user's
 //! terms why a part cannot be built with its bead model.
 
-use crate::diag::{Code, Diagnostic};
+use crate::diag::message::{self, bend::Heights, bend::TooTight};
+use crate::diag::Diagnostic;
 use crate::geometry::LoftGeometry;
 use crate::sema::model::{Bead, Loft, Slicing, Spine};
-use crate::units::{short, Length, Speed};
+use crate::units::Length;
 
 /// How far the outline reaches toward (`inward`) and away from (`outward`) the
 /// bend centre, over all stations, mm.
@@ -57,27 +58,13 @@ pub fn choose_layers(
             let rho_min = (radius.0 - r.inward) * (1.0 - MARGIN);
             let rho_max = (radius.0 + r.outward) * (1.0 + MARGIN);
             if rho_min <= 0.0 {
-                return Err(Diagnostic::error(
-                    Code::BendTooTight,
-                    format!(
-                        "the section reaches {} toward the bend centre, past the bend radius {}",
-                        Length(r.inward),
-                        radius
-                    ),
-                )
-                .label(loft.spine_span, "bend radius")
-                .label(loft.section_spans[0], "section")
-                .help(match suggest_radius(r, angle.0, h_min, h_max) {
-                    Some(need) => format!(
-                        "the bend radius must exceed {}; with this bead model's height range, use a bend radius of at least {}",
-                        Length(r.inward),
-                        Length(need)
-                    ),
-                    None => format!(
-                        "the bend radius must exceed {} (and more for the bead model's height range)",
-                        Length(r.inward)
-                    ),
-                }));
+                return Err(message::bend::section_past_centre(
+                    r.inward,
+                    radius,
+                    suggest_radius(r, angle.0, h_min, h_max),
+                    loft.spine_span,
+                    loft.section_spans[0],
+                ));
             }
             let q_need = rho_max / rho_min;
             let q_have = h_max / h_min;
@@ -96,44 +83,25 @@ pub fn choose_layers(
     match slicing.layers {
         None => {
             if n_lo > n_hi {
-                return Err(Diagnostic::error(
-                    Code::NoLayerCount,
-                    format!(
-                        "no whole number of layers gives {what} within {} .. {}",
-                        bead.height[0], bead.height[1]
-                    ),
-                )
-                .label(loft.spine_span, "spine")
-                .label(bead.height_span, "allowed heights")
-                .help("change the spine's length or widen the bead's height range"));
+                return Err(message::bend::no_layer_count(
+                    what,
+                    heights(bead),
+                    loft.spine_span,
+                ));
             }
             Ok((n_lo as usize, total / n_lo))
         }
         Some(n) => {
             let nf = n as f64;
             if nf < n_lo || nf > n_hi {
-                let (lo, hi) = (rho_min * total / nf, rho_max * total / nf);
-                let fix = if n_lo <= n_hi {
-                    format!(
-                        "use between {} and {} layers, or `layers = auto`",
-                        n_lo, n_hi
-                    )
-                } else {
-                    "no layer count works for this bend and bead model".to_string()
-                };
-                return Err(Diagnostic::error(
-                    Code::LayerHeight,
-                    format!(
-                        "with {n} layers the {what} run {} .. {}, outside the bead's {} .. {}",
-                        Length(lo),
-                        Length(hi),
-                        bead.height[0],
-                        bead.height[1]
-                    ),
-                )
-                .label_opt(slicing.layers_span, "layer count")
-                .label(bead.height_span, "allowed heights")
-                .help(fix));
+                return Err(message::bend::layer_count_outside(
+                    n,
+                    what,
+                    [rho_min * total / nf, rho_max * total / nf],
+                    (n_lo <= n_hi).then_some([n_lo, n_hi]),
+                    heights(bead),
+                    slicing.layers_span,
+                ));
             }
             Ok((n, total / nf))
         }
@@ -182,48 +150,28 @@ fn too_tight(
         .0
         .min(bead.height[1].0);
     let v_fast = bead.model.speed_for(Length(h_top / q_need), bead.width);
-    let mut fixes = Vec::new();
-    if let Some(r_need) = suggest_radius(r, angle, bead.height[0].0, bead.height[1].0) {
-        fixes.push(format!("a bend radius of at least {}", Length(r_need)));
+    let radius_fits = suggest_radius(r, angle, bead.height[0].0, bead.height[1].0);
+    let speed_fits =
+        (v_fast.0.is_finite() && v_fast.0 > 0.0).then(|| (v_fast.0 * 10.0).ceil() / 10.0);
+    message::bend::too_tight(&TooTight {
+        radius,
+        inward: r.inward,
+        outward: r.outward,
+        q_need,
+        q_have,
+        heights: heights(bead),
+        spine: loft.spine_span,
+        speeds: bead.speed_span,
+        radius_fits,
+        speed_fits,
+        scale_percent: (scale * 1000.0).floor() / 10.0,
+    })
+}
+
+/// The bead's heights, for the messages.
+fn heights(bead: &Bead) -> Heights {
+    Heights {
+        range: bead.height,
+        span: bead.height_span,
     }
-    if v_fast.0.is_finite() && v_fast.0 > 0.0 {
-        fixes.push(format!(
-            "a bead model that spans the ratio (e.g. speeds up to {} if it holds that far)",
-            Speed((v_fast.0 * 10.0).ceil() / 10.0)
-        ));
-    }
-    fixes.push(format!(
-        "a section at most {}% of this size",
-        short((scale * 1000.0).floor() / 10.0)
-    ));
-    Diagnostic::error(
-        Code::BendTooTight,
-        if q_need > q_have {
-            format!(
-                "outer/inner layer height ratio {:.2} needs h_max/h_min ≥ {:.2}; this bead model gives {:.2}",
-                q_need, q_need, q_have
-            )
-        } else {
-            format!(
-                "outer/inner layer height ratio {:.2} is within the bead model's {:.2}, but no whole number of layers keeps every height within {} .. {}",
-                q_need, q_have, bead.height[0], bead.height[1]
-            )
-        },
-    )
-    .label(
-        loft.spine_span,
-        format!(
-            "bend radius {}: layers are {:.2}× thicker at the outside ({}) than at the inside ({})",
-            Length(radius),
-            q_need,
-            Length(radius + r.outward),
-            Length(radius - r.inward)
-        ),
-    )
-    .label(
-        bead.height_span,
-        format!("h_max/h_min = {} / {} = {:.2}", bead.height[1], bead.height[0], q_have),
-    )
-    .label(bead.speed_span, "speed range")
-    .help(format!("this would work: {}", fixes.join("; or ")))
 }

@@ -4,11 +4,9 @@
 //! the order written, a bolt circle's in its order) and points at where
 //! they are written; all of a layer's are reported together.
 
-use crate::diag::{Code, Diagnostic};
+use crate::diag::{message, Diagnostic};
 use crate::geometry::region::{Fault, Region, MAX_FAULTS};
 use crate::sema::model::{RegionShape, Shape};
-use crate::span::Span;
-use crate::units::short;
 
 /// Which layer, for the message: `None` when the profile is the same on
 /// every layer (then the fault is on all of them).
@@ -35,14 +33,7 @@ pub(super) fn faults(region: &Region, shape: &Shape, layer: &Layer) -> Vec<Diagn
         .filter_map(|f| diagnostic(f, written, layer))
         .collect();
     if capped {
-        out.push(
-            Diagnostic::error(
-                Code::Hole,
-                format!("these are the first {MAX_FAULTS} faults of the holes; there may be more"),
-            )
-            .label(written.outline_span, "this region's holes")
-            .help("fix these and check again"),
-        );
+        out.push(message::hole::more_faults(written.outline_span));
     }
     out
 }
@@ -57,74 +48,11 @@ fn region_shape(s: &Shape) -> Option<&RegionShape> {
 }
 
 fn diagnostic(f: Fault, r: &RegionShape, layer: &Layer) -> Option<Diagnostic> {
-    let span = |h: usize| r.holes.get(h).map(|h| h.span);
-    let on = if layer.varies {
-        format!(" on layer {} (layer = {})", layer.k + 1, layer.k)
-    } else {
-        String::new()
-    };
-    let at = |p: [f64; 2]| format!("({}, {}) mm", short(p[0]), short(p[1]));
-    let d = match f {
-        Fault::Outline { .. } => return None,
-        Fault::HoleItself { hole, at: p } => Diagnostic::error(
-            Code::Hole,
-            format!("hole {} crosses itself at {}{on}", hole + 1, at(p)),
-        )
-        .label_opt(span(hole), format!("hole {}", hole + 1))
-        .help("reorder the hole's points so its edges do not cross"),
-        Fault::HoleOutline { hole, at: p } => Diagnostic::error(
-            Code::Hole,
-            format!(
-                "hole {} crosses or touches the outline at {}{on}: no metal would be left between them",
-                hole + 1,
-                at(p)
-            ),
-        )
-        .label_opt(span(hole), format!("hole {}", hole + 1))
-        .label(r.outline_span, "the outline")
-        .help("a hole lies inside the outline with metal all round it: move it in or make it smaller; an opening that reaches the edge is a notch, drawn as part of the outline"),
-        Fault::HoleOutside { hole } => Diagnostic::error(
-            Code::Hole,
-            format!("hole {} lies outside the outline{on}", hole + 1),
-        )
-        .label_opt(span(hole), format!("hole {}", hole + 1))
-        .label(r.outline_span, "the outline")
-        .help("a hole is an opening in the part: place it inside the outline, in the outline's coordinates (`place(circle(…), at = [x, y])`), or drop it"),
-        Fault::Holes { hole, other, at: p } => {
-            let d = Diagnostic::error(
-                Code::Hole,
-                format!(
-                    "holes {} and {} cross or touch at {}{on}: no metal would be left between them",
-                    hole + 1,
-                    other + 1,
-                    at(p)
-                ),
-            );
-            pair(d, span(hole), span(other), hole, other)
-                .help("move the holes apart or make them smaller; overlapping openings are one hole, drawn as one outline")
-        }
-        Fault::HoleInHole { hole, other } => {
-            let d = Diagnostic::error(
-                Code::Hole,
-                format!("hole {} lies inside hole {}{on}", hole + 1, other + 1),
-            );
-            pair(d, span(hole), span(other), hole, other).help(format!(
-                "hole {} is open already: drop hole {} (metal inside a hole would be an island, a part of its own)",
-                other + 1,
-                hole + 1
-            ))
-        }
-    };
-    Some(d)
-}
-
-/// Labels two holes: one label when they are written in one place (a bolt
-/// circle), else one each.
-fn pair(d: Diagnostic, a: Option<Span>, b: Option<Span>, ha: usize, hb: usize) -> Diagnostic {
-    if a == b {
-        d.label_opt(a, format!("holes {} and {}", ha + 1, hb + 1))
-    } else {
-        d.label_opt(a, format!("hole {}", ha + 1))
-            .label_opt(b, format!("hole {}", hb + 1))
-    }
+    message::hole::fault(
+        f,
+        |h| r.holes.get(h).map(|h| h.span),
+        r.outline_span,
+        layer.k,
+        layer.varies,
+    )
 }

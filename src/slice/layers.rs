@@ -6,13 +6,14 @@
 //! all of them together.
 
 use crate::bead::{planar_lift, segment_height};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::message::{self, slicing::BeadHeights, slicing::LiftFix};
+use crate::diag::Diagnostics;
 use crate::sema::model::{
     Bead, Extent, Extrusion, HeightModel, LayerProfile, PlanarSlicing, Shape,
 };
 use crate::sema::slicing::MAX_LAYERS;
 use crate::span::Span;
-use crate::units::{short, Length, Speed};
+use crate::units::Length;
 
 /// A declared layer height this far (relative) from what the tracks lay is
 /// reported.
@@ -81,17 +82,10 @@ pub fn plan(
                         out.push(s);
                     }
                     _ => {
-                        diags.push(
-                            Diagnostic::error(
-                                Code::ProfileLayer,
-                                format!(
-                                    "the profile is not a valid shape on layer {} (layer = {k})",
-                                    k + 1
-                                ),
-                            )
-                            .label(extrusion.profile_span, "profile")
-                            .help("see the error below; the profile's numbers change with `layer`"),
-                        );
+                        diags.push(message::slicing::profile_invalid_on_layer(
+                            k,
+                            extrusion.profile_span,
+                        ));
                         diags.extend(scratch);
                         return None;
                     }
@@ -112,30 +106,15 @@ pub fn plan(
 fn whole_layers(height: Length, at: Span, lift: Length, diags: &mut Diagnostics) -> Option<usize> {
     let n = (height.0 / lift.0 * (1.0 - 1e-9)).ceil();
     if n > MAX_LAYERS as f64 {
-        diags.push(
-            Diagnostic::error(
-                Code::TooManyPoints,
-                format!("{height} in layers of {lift} is more than {MAX_LAYERS} layers"),
-            )
-            .label(at, "height"),
-        );
+        diags.push(message::slicing::too_many_layers(
+            height, lift, MAX_LAYERS, at,
+        ));
         return None;
     }
     let n = (n as usize).max(1);
     let built = n as f64 * lift.0;
     if (built - height.0).abs() > HEIGHT_TOLERANCE * height.0 {
-        diags.push(
-            Diagnostic::warning(
-                Code::HeightRounded,
-                format!(
-                    "{n} layers of {lift} build {}: the {height} asked for and {} more",
-                    Length(built),
-                    Length(built - height.0)
-                ),
-            )
-            .label(at, "height")
-            .help("layers come whole: give `layers` in the slicing block instead, or a height that is a multiple of the layer height"),
-        );
+        diags.push(message::slicing::height_rounded(n, lift, built, height, at));
     }
     Some(n)
 }
@@ -144,24 +123,8 @@ fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> 
     if total <= MAX_PROFILE_WORK {
         return Some(());
     }
-    diags.push(
-        Diagnostic::error(
-            Code::TooManyPoints,
-            format!("the profile's pieces over all layers come to more than {MAX_PROFILE_WORK}"),
-        )
-        .label(at, "profile")
-        .help("fewer layers, or an outline of fewer pieces (an arc is one piece)"),
-    );
+    diags.push(message::slicing::too_much_profile(MAX_PROFILE_WORK, at));
     None
-}
-
-/// How a layer's rise follows from its bead, in words.
-fn lift_rule(overlapped: bool) -> &'static str {
-    if overlapped {
-        "A/d: the bead's cross-section A spread over the track offset d"
-    } else {
-        "A/w: one track a layer, its cross-section A spread over its width w"
-    }
 }
 
 /// A declared layer height: within the bead's heights (else an error), and
@@ -175,20 +138,12 @@ fn declared_lift(
     diags: &mut Diagnostics,
 ) -> Option<Length> {
     if !bead.covers_height(l) {
-        diags.push(
-            Diagnostic::error(
-                Code::LayerHeight,
-                format!(
-                    "layers {} high are outside the {} .. {} bead `{}` can lay",
-                    l, bead.height[0], bead.height[1], bead.name
-                ),
-            )
-            .label(at, "declared layer height")
-            .label(bead.height_span, "the bead's heights")
-            .help(format!(
-                "`layer_height = auto` gives {laid}, what these tracks lay"
-            )),
-        );
+        diags.push(message::slicing::declared_height_outside(
+            l,
+            laid,
+            &heights(bead),
+            at,
+        ));
         return None;
     }
     // The nozzle rises by the declared height, the part by what its tracks
@@ -196,22 +151,7 @@ fn declared_lift(
     // undershot and needed an extra lift every 3 layers).
     let drift = laid.0 - l.0;
     if drift.abs() > LIFT_TOLERANCE * laid.0 {
-        diags.push(
-            Diagnostic::warning(
-                Code::LiftMismatch,
-                format!(
-                    "layers {} high, but these tracks lay {} a layer ({}): the standoff changes by {} a layer",
-                    l,
-                    laid,
-                    lift_rule(overlapped),
-                    Length(drift.abs()),
-                ),
-            )
-            .label(at, "declared layer height")
-            .help(format!(
-                "`layer_height = auto` uses {laid}; keep a declared height only if the process is controlled to it"
-            )),
-        );
+        diags.push(message::slicing::lift_mismatch(l, laid, overlapped, at));
     }
     Some(l)
 }
@@ -230,57 +170,44 @@ fn derived_lift(
     }
     let [lo, hi] = bead.height;
     let width = bead.width;
-    let a = laid.0
-        * if overlapped {
-            slicing.offset.0
-        } else {
-            width.0
-        };
-    diags.push(
-        Diagnostic::error(
-            Code::LayerHeight,
-            format!(
-                "these tracks lay {} a layer ({}), outside the {} .. {} bead `{}` allows",
-                laid,
-                lift_rule(overlapped),
-                lo,
-                hi,
-                bead.name
-            ),
-        )
-        .label(
-            if overlapped {
-                slicing.offset_span.unwrap_or(slicing.span)
-            } else {
-                slicing.span
-            },
-            if overlapped {
-                "track offset"
-            } else {
-                "one track a layer"
-            },
-        )
-        .label(bead.height_span, "the bead's heights")
-        .help(if overlapped {
-            format!(
-                "tracks {} .. {} apart lay an allowed height (A/d with A = {} mm²)",
-                Length(a / hi.0),
-                Length(a / lo.0),
-                short(a)
-            )
-        } else {
-            wall_help(bead, width, lo, hi)
-        }),
-    );
+    let fix = if overlapped {
+        let a = laid.0 * slicing.offset.0;
+        LiftFix::Offsets {
+            range: [a / hi.0, a / lo.0],
+            area: a,
+        }
+    } else {
+        wall_fix(bead, width, lo, hi)
+    };
+    let at = if overlapped {
+        slicing.offset_span.unwrap_or(slicing.span)
+    } else {
+        slicing.span
+    };
+    diags.push(message::slicing::derived_height_outside(
+        laid,
+        overlapped,
+        &heights(bead),
+        at,
+        &fix,
+    ));
     None
+}
+
+/// The bead's heights, for the messages.
+fn heights(bead: &Bead) -> BeadHeights<'_> {
+    BeadHeights {
+        name: &bead.name,
+        height: bead.height,
+        span: bead.height_span,
+    }
 }
 
 /// What makes a one-track layer rise by an allowed height: the scan speeds at
 /// which `A/w` lies in `lo .. hi` (within the bead's speed range), or overlap.
-fn wall_help(bead: &Bead, w: Length, lo: Length, hi: Length) -> String {
-    let overlap = "or overlap tracks (contours > 1 or a raster) so the layer rises by A/d";
+fn wall_fix(bead: &Bead, w: Length, lo: Length, hi: Length) -> LiftFix {
     if let HeightModel::Measured { .. } = bead.model {
-        return format!("a measured bead has the one height it was measured with; {overlap}");
+        return LiftFix::Measured;
     }
     // The bead height whose segment area spread over w is the rise r.
     let speed = |r: Length| {
@@ -290,12 +217,8 @@ fn wall_help(bead: &Bead, w: Length, lo: Length, hi: Length) -> String {
     let (a, b) = (speed(lo), speed(hi));
     let (a, b) = (a.min(b).max(bead.speed[0].0), a.max(b).min(bead.speed[1].0));
     if a.is_finite() && b.is_finite() && a <= b {
-        format!(
-            "one track a layer rises by A/w: scan at {} .. {} for that, {overlap}",
-            Speed(a),
-            Speed(b)
-        )
+        LiftFix::Speeds([a, b])
     } else {
-        format!("no speed in the bead's range lays an allowed A/w; {overlap}")
+        LiftFix::NoSpeed
     }
 }

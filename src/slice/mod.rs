@@ -11,12 +11,13 @@ pub mod styling;
 pub mod top;
 pub mod variable;
 
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::message::{self, bend::SeamAdvice};
+use crate::diag::Diagnostics;
 use crate::geometry::LoftGeometry;
 use crate::ir::Layer;
 use crate::sema::model::{Bead, Loft, Model, Plan, Resolution, Slicing, Spine};
 use crate::sema::slicing::MAX_POINTS;
-use crate::units::{short, Angle};
+use crate::units::short;
 
 /// Most points a plan may hold (72 bytes each in the IR, so at most ~1.5 GB):
 /// 20 M is over five times the dense benchmark duct, and bounds memory for any
@@ -30,11 +31,7 @@ pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     }
     // The checker builds every other plan with its bead model.
     let Some(bead) = &model.bead else {
-        return Err(Diagnostic::error(
-            Code::NonFinite,
-            "internal error: a solid without a bead model reached the slicer; please report it",
-        )
-        .into());
+        return Err(message::internal::no_bead_in_slicing().into());
     };
     match &model.plan {
         Plan::Duct { loft, slicing } => duct(model, bead, loft, slicing),
@@ -65,30 +62,20 @@ fn duct(
             let k = (std::f64::consts::TAU / dth).ceil().max(8.0);
             let k = ((k / 8.0).ceil() * 8.0).min(1e12) as usize;
             if k > MAX_POINTS {
-                return Err(Diagnostic::error(
-                    Code::TooManyPoints,
-                    format!(
-                        "a chord error of {} needs {k} points a layer, more than {MAX_POINTS}",
-                        e
-                    ),
-                )
-                .label(slicing.span, "slicing")
-                .help("allow a larger chord error")
-                .into());
+                return Err(
+                    message::bend::too_many_layer_points(e, k, MAX_POINTS, slicing.span).into(),
+                );
             }
             k
         }
     };
     if layers.saturating_mul(k + 1) > MAX_TOTAL_POINTS {
-        return Err(Diagnostic::error(
-            Code::TooManyPoints,
-            format!(
-                "{layers} layers × {} points is more than {MAX_TOTAL_POINTS} points",
-                k + 1
-            ),
+        return Err(message::bend::too_many_duct_points(
+            layers,
+            k + 1,
+            MAX_TOTAL_POINTS,
+            slicing.span,
         )
-        .label(slicing.span, "slicing")
-        .help("use fewer points a layer (or a larger chord error)")
         .into());
     }
     let plan = normal::Plan {
@@ -111,37 +98,25 @@ fn duct(
     }
     if let (Some(first), Spine::Arc { .. }) = (seam_hits.first(), loft.spine) {
         let seam = slicing.seam;
-        warnings.push(
-            Diagnostic::warning(
-                Code::SeamAtBendExtreme,
-                format!(
-                    "the seam (laser on/off) sits at the innermost or outermost point of the bend on {} layer{} (first: layer {})",
-                    seam_hits.len(),
-                    if seam_hits.len() == 1 { "" } else { "s" },
-                    first + 1
-                ),
-            )
-            .label(slicing.seam_span.unwrap_or(slicing.span), format!("seam at {}", Angle(seam.0)))
-            .label(loft.spine_span, "bend")
-            .help(seam_advice(&scan, seam.0, k, seam_hits.len())),
-        );
+        warnings.push(message::bend::seam_at_bend_extreme(
+            seam_hits.len(),
+            *first,
+            seam.0,
+            &seam_advice(&scan, seam.0, k, seam_hits.len()),
+            slicing.seam_span.unwrap_or(slicing.span),
+            loft.spine_span,
+        ));
     }
     Ok((out, warnings))
 }
 
 /// Where to put a seam that sits at the bend's extremes on `hits` layers:
 /// the sample angle (the seam + j·2π/k) that does so on the fewest.
-fn seam_advice(scan: &normal::SeamScan, seam: f64, k: usize, hits: usize) -> String {
+fn seam_advice(scan: &normal::SeamScan, seam: f64, k: usize, hits: usize) -> SeamAdvice {
     match scan.best() {
-        Some((j, 0)) => format!(
-            "start and stop where the layer height is average: `seam = {} deg` keeps the seam off the bend's innermost and outermost points on every layer",
-            advised_angle(seam, j, k)
-        ),
-        Some((j, n)) if n < hits => format!(
-            "no seam keeps off the bend's innermost and outermost points on every layer; `seam = {} deg` sits there on the fewest ({n})",
-            advised_angle(seam, j, k)
-        ),
-        _ => "no other seam angle sits at the bend's innermost or outermost points on fewer layers: the section turns through them all (a twist); accept the seam or change the twist".to_string(),
+        Some((j, 0)) => SeamAdvice::Everywhere(advised_angle(seam, j, k)),
+        Some((j, n)) if n < hits => SeamAdvice::Fewest(advised_angle(seam, j, k), n),
+        _ => SeamAdvice::None,
     }
 }
 

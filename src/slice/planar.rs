@@ -18,7 +18,7 @@ use super::layers::{self, Layers};
 use super::styling::{self, Styler};
 use super::MAX_TOTAL_POINTS;
 use crate::bead::MIN_OFFSET_RATIO;
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostic, Diagnostics};
 use crate::fill::{
     self, FillError, FillSpec, Linking, Pattern as FillPattern, RasterSpec, Seam, Track, TrackKind,
 };
@@ -29,7 +29,7 @@ use crate::sema::model::{
     Bead, Extrusion, LinkMode, Measure, Model, Pattern, PlanarSlicing, SeamRule, Shape,
 };
 use crate::style;
-use crate::units::{short, Length};
+
 use std::collections::{BTreeMap, BTreeSet};
 
 /// A spot this many bead widths from every track centre line is reported.
@@ -137,14 +137,10 @@ fn fill_layers(
         found.layer(k, &filled, slicing.contours, w);
         total += filled.tracks.iter().map(|t| t.points.len()).sum::<usize>();
         if total > MAX_TOTAL_POINTS {
-            diags.push(
-                Diagnostic::error(
-                    Code::TooManyPoints,
-                    format!("the fill needs more than {MAX_TOTAL_POINTS} points"),
-                )
-                .label(slicing.span, "slicing")
-                .help("use fewer layers or a larger chord error"),
-            );
+            diags.push(message::slicing::too_many_fill_points(
+                MAX_TOTAL_POINTS,
+                slicing.span,
+            ));
             return None;
         }
         let styles = styler.layer(k, &filled.region, &filled.tracks);
@@ -257,62 +253,20 @@ impl Findings {
         slicing: &PlanarSlicing,
         diags: &mut Diagnostics,
     ) {
+        use message::slicing as say;
         let w = bead.width.0;
-        let plural = |n: usize| if n == 1 { "" } else { "s" };
+        let at = say::FillAt {
+            shape: extrusion.shape_span,
+            slicing: slicing.span,
+        };
         if let Some((k, g)) = self.first_gap {
-            diags.push(Diagnostic::error(
-                Code::FillGap,
-                format!(
-                    "the tracks leave a spot unfilled on {} layer{}: on layer {}, ({}, {}) mm is {} from the nearest track, more than the bead width {}",
-                    self.gaps,
-                    plural(self.gaps),
-                    k + 1,
-                    short(g.at[0]),
-                    short(g.at[1]),
-                    Length(g.distance),
-                    Length(w)
-                ),
-            )
-            .label(extrusion.shape_span, "this shape")
-            .label(slicing.span, "fill")
-            .help("raster lines miss parts of a profile narrower than the offset, and line ends reach at most `extend` past their neighbours: a smaller offset, a larger `extend`, a contour pass or another raster angle fills them"));
+            diags.push(say::fill_gap(self.gaps, k, &g, w, at));
         }
         if let Some((k, g)) = self.thin {
-            diags.push(
-                Diagnostic::warning(
-                    Code::ThinGap,
-                    format!(
-                        "no bead reaches some spots on {} layer{}: the farthest, on layer {}, is ({}, {}) mm, {} from the nearest track centre line (a bead reaches {})",
-                        self.thin_gaps,
-                        plural(self.thin_gaps),
-                        k + 1,
-                        short(g.at[0]),
-                        short(g.at[1]),
-                        Length(g.distance),
-                        Length(w / 2.0)
-                    ),
-                )
-                .label(extrusion.shape_span, "this shape")
-                .label(slicing.span, "fill")
-                .help("often the strip the raster leaves at its far edge when the profile is not a whole number of offsets wide; a contour pass, a width of whole offsets, or a smaller offset closes it"),
-            );
+            diags.push(say::thin_gap(self.thin_gaps, k, &g, w, at));
         }
         if let Some((k, t)) = self.sliver {
-            diags.push(
-                Diagnostic::warning(
-                    Code::Overlap,
-                    format!(
-                        "a contour pass on layer {} is a sliver whose sides run {} apart, {:.0} % of the {} bead: it piles up",
-                        k + 1,
-                        Length(t),
-                        100.0 * t / w,
-                        Length(w)
-                    ),
-                )
-                .label(extrusion.shape_span, "this shape")
-                .label(slicing.span, "contours")
-                .help("the profile narrows to less than the passes need there; fewer contours, or a raster for the middle"),
-            );
+            diags.push(say::contour_sliver(k, t, w, at));
         }
         for st in model
             .styles
@@ -320,44 +274,13 @@ impl Findings {
             .iter()
             .filter(|st| !self.used.contains(&st.id))
         {
-            diags.push(
-                Diagnostic::warning(
-                    Code::Unused,
-                    format!("style `{}` picks no track on any layer", st.name),
-                )
-                .label(st.span, "never applied")
-                .help("an earlier style may take its tracks first (the first style in the file wins), or no track meets its `when`"),
-            );
+            diags.push(say::unused_style(&st.name, st.span));
         }
         if let Some((k, passes)) = self.few_passes {
-            diags.push(
-                Diagnostic::warning(
-                    Code::FewContours,
-                    format!(
-                        "only {passes} of the {} contour passes fit inside the profile on layer {}",
-                        slicing.contours,
-                        k + 1
-                    ),
-                )
-                .label(slicing.span, "contours")
-                .help("the profile is narrower there than the passes need; fewer contours, or a raster inside them"),
-            );
+            diags.push(say::few_contours(passes, slicing.contours, k, slicing.span));
         }
         if let Some(first) = self.first_short {
-            diags.push(
-                Diagnostic::warning(
-                    Code::ShortTrack,
-                    format!(
-                        "{} track{} shorter than the bead width {} (first on layer {})",
-                        self.short_tracks,
-                        if self.short_tracks == 1 { " is" } else { "s are" },
-                        Length(w),
-                        first + 1
-                    ),
-                )
-                .label(slicing.span, "fill")
-                .help("short tracks overheat and pile up: a slower or cooler style, or a profile without slivers"),
-            );
+            diags.push(say::short_tracks(self.short_tracks, w, first, slicing.span));
         }
     }
 }
@@ -483,43 +406,16 @@ fn fill_layer(
 }
 
 fn fill_error(e: FillError, layer: &Where<'_>) -> Diagnostic {
-    let (k, ex, slicing) = (layer.k, layer.extrusion, layer.slicing);
-    match e {
-        FillError::SelfIntersecting { at } => Diagnostic::error(
-            Code::SelfIntersecting,
-            format!(
-                "the profile crosses itself at ({}, {}) mm on layer {}{}",
-                short(at[0]),
-                short(at[1]),
-                k + 1,
-                // The builtin's value, for a profile that follows it.
-                if layer.varies {
-                    format!(" (layer = {k})")
-                } else {
-                    String::new()
-                }
-            ),
-        )
-        .label(ex.shape_span, "this outline's edges cross")
-        .label_opt(
-            (ex.profile_span != ex.shape_span).then_some(ex.profile_span),
-            "extruded here",
-        )
-        .help("reorder the outline's points so its edges do not cross; if its numbers use `layer`, check them at that layer"),
-        FillError::Empty => Diagnostic::error(
-            Code::FillEmpty,
-            format!("no track fits in the profile on layer {}", k + 1),
-        )
-        .label(ex.profile_span, "profile")
-        .label(slicing.span, "fill")
-        .help("the profile is narrower than the bead and its contour passes; make it larger or use fewer contours"),
-        other => Diagnostic::error(
-            Code::Fill,
-            format!("layer {} cannot be filled: {other}", k + 1),
-        )
-        .label(ex.profile_span, "profile")
-        .label(slicing.span, "fill"),
-    }
+    message::slicing::fill_error(
+        &e,
+        &message::slicing::FillLayer {
+            k: layer.k,
+            varies: layer.varies,
+            shape: layer.extrusion.shape_span,
+            profile: layer.extrusion.profile_span,
+            slicing: layer.slicing.span,
+        },
+    )
 }
 
 /// Layer `k` of `n`: each track a path, and each link a path between its

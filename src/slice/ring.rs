@@ -13,7 +13,7 @@
 
 use super::MAX_TOTAL_POINTS;
 use crate::control::{self, simulate, Invalid, LayerSpec, RingPoint};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::ir::{Frame, HeightLoop, Layer, Path, PathKind, Point, Ring, RingRun, RingSegment};
 use crate::sema::model::{LoopRun, RingPlan};
 use crate::units::{Length, Speed};
@@ -175,23 +175,11 @@ fn layer(i: usize, layers: usize, h: f64, powder: f32, pts: &[RingPoint]) -> Lay
 }
 
 fn too_many(r: &RingPlan, e: Invalid) -> Diagnostics {
-    Diagnostic::error(
-        Code::TooManyPoints,
-        format!("the ring's plan is too large: {e}"),
-    )
-    .label(r.origins.layers, "layers")
-    .label(r.origins.ring, "ring")
-    .help("use a larger `step`, or fewer layers")
-    .into()
+    message::slicing::ring_too_large(&e, r.origins.layers, r.origins.ring).into()
 }
 
 /// A value the checker let through that the ring cannot be laid out with (it
 /// checks every one, so this is a bug).
 fn invalid(r: &RingPlan, e: Invalid) -> Diagnostics {
-    Diagnostic::error(
-        Code::NonFinite,
-        format!("internal error laying out the ring: {e}; please report it"),
-    )
-    .label(r.origins.ring, "ring")
-    .into()
+    message::internal::ring_layout(&e, r.origins.ring).into()
 }

@@ -4,7 +4,7 @@
 //! length inside the band round that layer's tracks of one style), else 0, the
 //! process block's values.
 
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::fill::{Track, TrackKind};
 use crate::geometry::region::Region;
 use crate::sema::model::{PathSelect, StyleCondition, Styles};
@@ -181,17 +181,9 @@ pub fn never_applies(styles: &Styles, layers: usize, diags: &mut Diagnostics) {
             _ => None,
         });
         if let Some(a) = first {
-            diags.push(
-                Diagnostic::warning(
-                    Code::Unused,
-                    format!(
-                        "style `{}` asks for layer {a}, but the part has {layers}",
-                        s.name
-                    ),
-                )
-                .label(s.span, "a `when` block that picks nothing")
-                .help("layers count from 1 to the last, as in the programs' layer comments"),
-            );
+            diags.push(message::slicing::style_layer_past_end(
+                &s.name, a, layers, s.span,
+            ));
         }
     }
 }

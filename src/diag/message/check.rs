@@ -27,14 +27,6 @@ pub fn name_clash(
     .help("file names keep letters, digits and `_` of the part's and the machine's names: give the machines names that differ there")
 }
 
-/// A solid reached lowering without a bead model (sema should have refused it).
-pub fn no_bead_in_lowering() -> Diagnostic {
-    Diagnostic::error(
-        Code::NonFinite,
-        "internal error: a solid without a bead model reached lowering; please report it",
-    )
-}
-
 /// Points carry a value that is not a finite number (a bug in lmdc).
 pub fn non_finite_points(w: &Worst) -> Diagnostic {
     Diagnostic::error(

@@ -9,4 +9,9 @@
 //! One file per area of the language, named for it; each function is named
 //! for the mistake it reports.
 
+pub mod bend;
 pub mod check;
+pub mod hole;
+pub mod internal;
+pub mod slicing;
+pub mod top;

@@ -5,13 +5,14 @@
 //! would work.
 
 use super::footprint::Sampled;
-use crate::diag::{Code, Diagnostic};
+use crate::diag::message::{self, top::CountBead};
+use crate::diag::Diagnostic;
 use crate::sema::model::{Bead, TopExtrusion, VariableSlicing};
 use crate::slice::variable::layers::{
-    choose_layers, LayerCount, LayerError, NoLayerCount, OutOfRange, MAX_LAYERS,
+    choose_layers, LayerCount, LayerError, NoLayerCount, OutOfRange,
 };
 use crate::slice::variable::HeightRange;
-use crate::units::{short, Length, Speed};
+use crate::units::Length;
 use std::num::NonZeroU32;
 
 /// The heights the top needs where tracks run, and where its ends are.
@@ -78,116 +79,30 @@ pub fn layers(
     choose_layers(top.heights, beads, count).map_err(|e| match e {
         LayerError::NoCount(e) => no_count(&e, top, bead, ex),
         LayerError::OutOfRange(e) => out_of_range(&e, bead, slicing),
-        LayerError::TooMany { needed } => Diagnostic::error(
-            Code::TooManyPoints,
-            format!(
-                "the top reaches {}: {} layers of at most {}, more than {MAX_LAYERS}",
-                top.heights.high(),
-                short(needed.ceil()),
-                bead.height[1]
-            ),
-        )
-        .label(ex.top_span, "the top")
-        .help("check the top's unit and numbers"),
+        LayerError::TooMany { needed } => {
+            message::top::too_many_layers(top.heights.high(), needed, bead.height[1], ex.top_span)
+        }
     })
-}
-
-fn at(p: [f64; 2]) -> String {
-    format!("({}, {}) mm", short(p[0]), short(p[1]))
 }
 
 /// No whole number of layers lays every point within the bead's heights.
 fn no_count(e: &NoLayerCount, top: &TopRange, bead: &Bead, ex: &TopExtrusion) -> Diagnostic {
-    let (lo, hi) = (e.top.low(), e.top.high());
-    let (h_lo, h_hi) = (e.bead.low(), e.bead.high());
-    let name = &bead.name;
-    let message = if e.most == 0 {
-        format!(
-            "where the tracks run the top is {lo} .. {hi} high; its lowest point is below the thinnest layer bead `{name}` lays ({h_lo})"
-        )
-    } else if e.ratio_needed() > e.ratio_available() {
-        format!(
-            "where the tracks run the top is {lo} .. {hi} high (ratio {}); bead `{name}` lays {h_lo} .. {h_hi} (ratio {}): no number of layers lays both ends within it",
-            short(e.ratio_needed()),
-            short(e.ratio_available())
-        )
-    } else {
-        format!(
-            "where the tracks run the top is {lo} .. {hi} high (ratio {}); bead `{name}` lays {h_lo} .. {h_hi} (ratio {}), but no whole number of layers fits both ends: the highest point needs at least {} layers, the lowest allows at most {}",
-            short(e.ratio_needed()),
-            short(e.ratio_available()),
-            e.fewest,
-            e.most
-        )
+    let speed = |h: Length, round: fn(f64) -> f64| {
+        let v = bead.model.speed_for(h, bead.width).0;
+        // Rounded away from the bead's range, so the speed named is enough.
+        (v.is_finite() && v > 0.0).then(|| round(v * 10.0) / 10.0)
     };
-    let mut fixes = Vec::new();
-    if let Some(h) = e.top_high_at_most() {
-        fixes.push(format!(
-            "the top at most {h} where it is highest ({} layers)",
-            e.most
-        ));
-    }
-    if let Some(h) = e.top_low_at_least() {
-        fixes.push(format!(
-            "at least {h} where it is lowest ({} layers)",
-            e.fewest
-        ));
-    }
-    let low = e.bead_low_at_most();
-    fixes.push(format!(
-        "a bead that lays down to {low}{}",
-        speed_note(bead, low, "up to", f64::ceil)
-    ));
-    if let Some(high) = e.bead_high_at_least() {
-        fixes.push(format!(
-            "one that lays up to {high}{}",
-            speed_note(bead, high, "down to", f64::floor)
-        ));
-    }
-    Diagnostic::error(Code::NoLayerCount, message)
-        .label(
-            ex.top_span,
-            format!("{hi} at {}, {lo} at {}", at(top.high_at), at(top.low_at)),
-        )
-        .label(bead.height_span, format!("the bead lays {h_lo} .. {h_hi}"))
-        .label(bead.speed_span, "over these speeds")
-        .help(format!("this would work: {}", fixes.join("; or ")))
-}
-
-/// " (speeds up to 8.8 mm/s, if it holds that far)": the speed at which the
-/// bead model would lay `h`, rounded away from its range.
-fn speed_note(bead: &Bead, h: Length, dir: &str, round: fn(f64) -> f64) -> String {
-    let v = bead.model.speed_for(h, bead.width).0;
-    if v.is_finite() && v > 0.0 {
-        format!(
-            " (speeds {dir} {}, if the model holds that far)",
-            Speed(round(v * 10.0) / 10.0)
-        )
-    } else {
-        String::new()
-    }
+    let cb = CountBead {
+        name: &bead.name,
+        heights: bead.height_span,
+        speeds: bead.speed_span,
+        speed_for_low: speed(e.bead_low_at_most(), f64::ceil),
+        speed_for_high: e.bead_high_at_least().and_then(|h| speed(h, f64::floor)),
+    };
+    message::top::no_count(e, top.low_at, top.high_at, &cb, ex.top_span)
 }
 
 /// A declared count outside the counts that work.
 fn out_of_range(e: &OutOfRange, bead: &Bead, slicing: &VariableSlicing) -> Diagnostic {
-    let n = e.layers.get();
-    Diagnostic::error(
-        Code::LayerHeight,
-        format!(
-            "{n} layers lay {} .. {} where the tracks run, outside the {} .. {} bead `{}` lays",
-            e.heights.low(),
-            e.heights.high(),
-            e.bead.low(),
-            e.bead.high(),
-            bead.name
-        ),
-    )
-    .label_opt(slicing.layers.map(|l| l.1), "layer count")
-    .label(bead.height_span, "the bead's heights")
-    .help(format!(
-        "use between {} and {} layers, or `layers = auto` ({})",
-        e.range.fewest(),
-        e.range.most(),
-        e.range.fewest()
-    ))
+    message::top::count_outside(e, &bead.name, slicing.layers.map(|l| l.1), bead.height_span)
 }

@@ -9,11 +9,10 @@
 //! and highest points, each line's mean, and how much it rises along a line.
 
 use super::surface::{Bad, Surface};
-use crate::diag::{Code, Diagnostic};
+use crate::diag::{message, Diagnostic};
 use crate::fill::intervals_at;
 use crate::geometry::{outline, profile::Profile};
 use crate::sema::model::{Axis, Measure, TopExtrusion};
-use crate::units::{short, Length};
 
 /// Arcs of a section footprint (an ellipse) are flattened within this, mm.
 const CHORD_ERROR: f64 = 0.01;
@@ -40,24 +39,12 @@ impl Footprint {
     pub fn new(ex: &TopExtrusion, width: f64) -> Result<Self, Diagnostic> {
         let profile = outline::profile(&ex.shape, CHORD_ERROR);
         if let Some(p) = profile.self_intersection() {
-            return Err(Diagnostic::error(
-                Code::SelfIntersecting,
-                format!(
-                    "the footprint crosses itself at ({}, {}) mm",
-                    short(p[0]),
-                    short(p[1])
-                ),
-            )
-            .label(ex.shape_span, "this outline's edges cross")
-            .help("reorder the outline's points so its edges do not cross"));
+            return Err(message::top::footprint_crosses(p, ex.shape_span));
         }
         let bounds = profile
             .bounds()
             .filter(|b| b.iter().flatten().all(|v| v.is_finite()))
-            .ok_or_else(|| {
-                Diagnostic::error(Code::FillEmpty, "the footprint encloses nothing")
-                    .label(ex.shape_span, "footprint")
-            })?;
+            .ok_or_else(|| message::top::footprint_empty(ex.shape_span))?;
         Ok(Footprint {
             region: vec![profile],
             bounds,
@@ -135,17 +122,7 @@ impl Footprint {
     /// than a bead" errors.
     pub fn too_narrow(&self, ex: &TopExtrusion, scan: Axis) -> Diagnostic {
         let [lo, hi] = self.outer_across(scan);
-        Diagnostic::error(
-            Code::FillEmpty,
-            format!(
-                "the footprint is {} across the tracks (along {}), narrower than the {} bead",
-                Length(hi - lo),
-                scan.across().name(),
-                Length(self.width)
-            ),
-        )
-        .label(ex.shape_span, "footprint")
-        .help("a variable-top part is at least one bead wide: widen the footprint, or use a narrower bead")
+        message::top::footprint_too_narrow(hi - lo, scan.across().name(), self.width, ex.shape_span)
     }
 }
 

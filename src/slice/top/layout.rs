@@ -11,12 +11,12 @@
 //! average slope across.
 
 use super::footprint::{Footprint, Sampled};
-use crate::diag::{Code, Diagnostic};
+use crate::diag::{message, Diagnostic};
 use crate::fill::CLOSING;
 use crate::sema::model::{Axis, Bead, TopExtrusion, VariableSlicing};
 use crate::slice::variable::overlap::{lay_tracks, CrossSection, OverlapError, MAX_TRACKS};
 use crate::slice::variable::Positive;
-use crate::units::{short, Length};
+use crate::units::Length;
 use std::num::NonZeroU32;
 
 /// `|σ − 1|` above this is reported (`lmd::overlap-stretch`).
@@ -107,18 +107,8 @@ fn balanced(
 fn error(e: OverlapError, ex: &TopExtrusion, fp: &Footprint, scan: Axis) -> Diagnostic {
     match e {
         OverlapError::TooNarrow { .. } => fp.too_narrow(ex, scan),
-        OverlapError::TooManyTracks => Diagnostic::error(
-            Code::TooManyPoints,
-            format!("the footprint needs more than {MAX_TRACKS} tracks a layer"),
-        )
-        .label(ex.shape_span, "footprint")
-        .help("check the footprint's size and unit"),
-        OverlapError::NoClosure => Diagnostic::error(
-            Code::Fill,
-            "no uniform stretch of the balanced spacing lands the last track half a bead inside the far edge",
-        )
-        .label(ex.top_span, "the top")
-        .help("the top's thickness ratio across the tracks is far outside what a bead map spans: give `offset = …` a length, or a flatter top across"),
+        OverlapError::TooManyTracks => message::top::too_many_tracks(MAX_TRACKS, ex.shape_span),
+        OverlapError::NoClosure => message::top::no_closure(ex.top_span),
     }
 }
 
@@ -133,22 +123,10 @@ pub fn stretch_warning(
     if (s - 1.0).abs() <= STRETCH_WARNING {
         return None;
     }
-    let (how, effect) = if s > 1.0 {
-        ("stretched", "thinner")
-    } else {
-        ("squeezed", "thicker")
-    };
-    Some(
-        Diagnostic::warning(
-            Code::OverlapStretch,
-            format!(
-                "the {} tracks are {how} by {} % to reach half a bead inside both edges: between them the layer comes out about that much {effect} than planned",
-                layout.centres.len(),
-                short(((s - 1.0) * 100.0).abs())
-            ),
-        )
-        .label(slicing.span, "offset = balanced")
-        .label(ex.shape_span, "footprint")
-        .help("a footprint whose width across the tracks fits the balanced spacing (one track more or less) avoids it; or declare `offset = …`"),
-    )
+    Some(message::top::stretched(
+        layout.centres.len(),
+        s,
+        slicing.span,
+        ex.shape_span,
+    ))
 }

@@ -27,7 +27,7 @@ mod surface;
 mod too_short;
 mod tracks;
 
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::ir::Layer;
 use crate::sema::model::{Axis, Bead, Model, TopExtrusion, VariableSlicing};
 use crate::slice::variable::segments::SegmentSpec;
@@ -98,12 +98,12 @@ pub fn slice(
         short_tracks(&planned.tracks, w, slicing, &mut warnings);
         let per_layer: usize = planned.tracks.iter().map(|t| t.t.len()).sum();
         if per_layer.saturating_mul(n.get() as usize) > MAX_TOTAL_POINTS {
-            return Err(Diagnostic::error(
-                Code::TooManyPoints,
-                format!("{n} layers × {per_layer} points is more than {MAX_TOTAL_POINTS} points"),
+            return Err(message::top::too_many_points(
+                n.get(),
+                per_layer,
+                MAX_TOTAL_POINTS,
+                slicing.span,
             )
-            .label(slicing.span, "slicing")
-            .help("a larger `tolerance` makes fewer segments; a smaller part fewer tracks")
             .into());
         }
         let process = emit::Process::of(model, bead);
@@ -162,27 +162,11 @@ fn short_tracks(
 ) {
     let short = tracks.iter().filter(|t| t.length() < w).count();
     if short > 0 {
-        out.push(
-            Diagnostic::warning(
-                Code::ShortTrack,
-                format!(
-                    "{short} track{} shorter than the bead width {} (on every layer)",
-                    if short == 1 { " is" } else { "s are" },
-                    Length(w)
-                ),
-            )
-            .label(slicing.span, "tracks")
-            .help("short tracks overheat and pile up: a footprint without narrow ends, or tracks along its longer side (`scan`)"),
-        );
+        out.push(message::top::short_tracks(short, w, slicing.span));
     }
 }
 
 /// A state the checker's checks should have made impossible.
 fn internal(what: String) -> Diagnostics {
-    Diagnostic::error(
-        Code::NonFinite,
-        format!("variable slicing cannot go on: {what}"),
-    )
-    .help("this is a bug in lmdc for this input; please report it with the .lmd file")
-    .into()
+    message::top::internal(&what)
 }

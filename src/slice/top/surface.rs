@@ -5,10 +5,10 @@
 //! division by zero there).
 
 use super::footprint::Footprint;
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::message::{self, top::BadTop, top::TopAt};
+use crate::diag::Diagnostics;
 use crate::sema::model::{Axis, Top, TopExtrusion};
 use crate::sema::TopHeights;
-use crate::units::{short, Length};
 
 /// The top, ready to evaluate.
 pub enum Surface<'m> {
@@ -87,32 +87,23 @@ pub struct Bad {
 impl Bad {
     /// The diagnostics of the first bad point, `more` other points counted.
     pub fn report(self, ex: &TopExtrusion, more: usize) -> Diagnostics {
-        let (x, y) = (short(self.at[0]), short(self.at[1]));
-        let others = match more {
-            0 => String::new(),
-            1 => " (and at 1 other point sampled)".to_string(),
-            n => format!(" (and at {n} other points sampled)"),
+        let bad = match self.value {
+            Some(h) if h.is_finite() => BadTop::NotPositive(h),
+            Some(_) => BadTop::NotFinite,
+            None => BadTop::Failed,
         };
-        let message = match self.value {
-            Some(h) if h.is_finite() => format!(
-                "the top is {} at ({x}, {y}) mm, where a track runs{others}: every deposited point needs a height above the substrate",
-                Length(h)
-            ),
-            Some(_) => format!("the top is not a finite number at ({x}, {y}) mm{others}"),
-            None => format!("the top cannot be computed at ({x}, {y}) mm{others}"),
-        };
-        let help = if self.inner.has_errors() {
-            "the top is the finished part's height above the substrate, computed at every point a track runs through: the error below says what failed there"
-        } else {
-            "the top is the finished part's height above the substrate: make it positive over the whole footprint"
+        let at = TopAt {
+            top: ex.top_span,
+            shape: ex.shape_span,
         };
         let mut out = Diagnostics::new();
-        out.push(
-            Diagnostic::error(Code::TopHeight, message)
-                .label(ex.top_span, "the top")
-                .label(ex.shape_span, "the footprint")
-                .help(help),
-        );
+        out.push(message::top::bad_top(
+            self.at,
+            more,
+            bad,
+            self.inner.has_errors(),
+            at,
+        ));
         out.extend(self.inner);
         out
     }

@@ -3,11 +3,12 @@
 //! the tolerance that works on every track.
 
 use super::tracks::Failure;
-use crate::diag::{Code, Diagnostic};
+use crate::diag::message::{self, top::TooShortSegments};
+use crate::diag::Diagnostic;
 use crate::sema::model::{Axis, Bead, TopExtrusion, VariableSlicing};
-use crate::slice::variable::segments::{segment, SegmentError, SegmentSpec, MAX_SEGMENTS};
+use crate::slice::variable::segments::{segment, SegmentError, SegmentSpec};
 use crate::slice::variable::Positive;
-use crate::units::{short, Length};
+use crate::units::Length;
 
 /// `x` rounded up to two significant digits: a tolerance shown rounded
 /// must still be one that works.
@@ -48,31 +49,7 @@ pub fn report(
         .max_by(|a, b| workable(a).total_cmp(&workable(b)))
         .unwrap_or(&failures[0]);
     let fix = ceil_2(workable(worst));
-    let tol = slicing.tolerance;
-    let min_length = slicing.min_length.unwrap_or(bead.width);
-    let place = if tracks > 1 {
-        format!(" at {} = {} mm", scan.across().name(), short(worst.c))
-    } else {
-        String::new()
-    };
     let length = Length(worst.length);
-    let others = match failures.len() {
-        1 => String::new(),
-        n => format!(" ({n} of the {tracks} tracks need segments that short)"),
-    };
-    let message = match worst.error {
-        SegmentError::TooShort(e) => match e.needed {
-            Some((m, len)) => format!(
-                "a height tolerance of {tol} needs {m} segments of {len} on the {length} track{place}, shorter than min_length {min_length}{others}"
-            ),
-            None => format!(
-                "a height tolerance of {tol} needs more than {MAX_SEGMENTS} segments on the {length} track{place}, shorter than min_length {min_length}{others}"
-            ),
-        },
-        SegmentError::TooMany { .. } => format!(
-            "a height tolerance of {tol} needs more than {MAX_SEGMENTS} segments on the {length} track{place}{others}"
-        ),
-    };
     let count = Positive::new("tolerance", Length(fix))
         .ok()
         .and_then(|tolerance| {
@@ -86,28 +63,21 @@ pub fn report(
             .ok()
             .map(|s| s.segments.len())
         });
-    let works = match count {
-        Some(m) => format!(
-            "`tolerance = {} mm` works ({m} segments of {} on that track)",
-            short(fix),
-            Length(worst.length / m as f64)
-        ),
-        None => format!("`tolerance = {} mm` works", short(fix)),
-    };
-    Diagnostic::error(Code::SegmentsTooShort, message)
-        .label(
+    message::top::segments_too_short(&TooShortSegments {
+        tolerance: slicing.tolerance,
+        min_length: slicing.min_length.unwrap_or(bead.width),
+        min_declared: slicing.min_length.is_some(),
+        length,
+        place: (tracks > 1).then(|| (scan.across().name(), worst.c)),
+        failing: failures.len(),
+        tracks,
+        error: worst.error,
+        fix,
+        fix_segments: count,
+        spans: [
             slicing.tolerance_span.unwrap_or(slicing.span),
-            format!("tolerance {tol}"),
-        )
-        .label(
             slicing.min_length_span.unwrap_or(bead.span),
-            match slicing.min_length {
-                Some(_) => format!("min_length {min_length}"),
-                None => format!("min_length: the bead width {min_length}"),
-            },
-        )
-        .label(ex.top_span, "the top the segments follow")
-        .help(format!(
-            "{works}, or a lower `min_length` if the controller can change speed that often"
-        ))
+            ex.top_span,
+        ],
+    })
 }

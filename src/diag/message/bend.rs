@@ -1,0 +1,234 @@
+//! What the slicer says about a loft along a spine: whether a layer count
+//! keeps every layer within the bead's heights around a bend, how many points
+//! its layers need, and where the seam sits.
+
+use crate::diag::{Code, Diagnostic};
+use crate::span::Span;
+use crate::units::{short, Angle, Length, Speed};
+
+/// A bead model's heights, with where they are declared.
+#[derive(Clone, Copy)]
+pub struct Heights {
+    /// h_min and h_max.
+    pub range: [Length; 2],
+    /// Where they are declared.
+    pub span: Span,
+}
+
+/// The section reaches `inward` toward the bend centre, past the radius;
+/// `need` is the radius the bead's heights would need, when one does.
+pub fn section_past_centre(
+    inward: f64,
+    radius: Length,
+    need: Option<f64>,
+    spine: Span,
+    section: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::BendTooTight,
+        format!(
+            "the section reaches {} toward the bend centre, past the bend radius {}",
+            Length(inward),
+            radius
+        ),
+    )
+    .label(spine, "bend radius")
+    .label(section, "section")
+    .help(match need {
+        Some(need) => format!(
+            "the bend radius must exceed {}; with this bead model's height range, use a bend radius of at least {}",
+            Length(inward),
+            Length(need)
+        ),
+        None => format!(
+            "the bend radius must exceed {} (and more for the bead model's height range)",
+            Length(inward)
+        ),
+    })
+}
+
+/// No whole number of layers gives `what` ("layer height(s)") within the heights.
+pub fn no_layer_count(what: &str, heights: Heights, spine: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::NoLayerCount,
+        format!(
+            "no whole number of layers gives {what} within {} .. {}",
+            heights.range[0], heights.range[1]
+        ),
+    )
+    .label(spine, "spine")
+    .label(heights.span, "allowed heights")
+    .help("change the spine's length or widen the bead's height range")
+}
+
+/// `n` declared layers run `lo .. hi` high, outside the bead's heights;
+/// `counts` are the layer counts that would fit (`None`: none does).
+pub fn layer_count_outside(
+    n: usize,
+    what: &str,
+    [lo, hi]: [f64; 2],
+    counts: Option<[f64; 2]>,
+    heights: Heights,
+    layers: Option<Span>,
+) -> Diagnostic {
+    let fix = match counts {
+        Some([a, b]) => format!("use between {} and {} layers, or `layers = auto`", a, b),
+        None => "no layer count works for this bend and bead model".to_string(),
+    };
+    Diagnostic::error(
+        Code::LayerHeight,
+        format!(
+            "with {n} layers the {what} run {} .. {}, outside the bead's {} .. {}",
+            Length(lo),
+            Length(hi),
+            heights.range[0],
+            heights.range[1]
+        ),
+    )
+    .label_opt(layers, "layer count")
+    .label(heights.span, "allowed heights")
+    .help(fix)
+}
+
+/// A bend too tight for the bead's heights: its numbers and what would fix it.
+pub struct TooTight {
+    /// The bend radius, mm.
+    pub radius: f64,
+    /// The section's reach toward and away from the bend centre, mm.
+    pub inward: f64,
+    /// Its reach away from the centre, mm.
+    pub outward: f64,
+    /// The outer/inner height ratio the bend needs.
+    pub q_need: f64,
+    /// The bead's h_max/h_min.
+    pub q_have: f64,
+    /// The bead's heights.
+    pub heights: Heights,
+    /// The spine and the bead's speed range.
+    pub spine: Span,
+    /// Where the bead's speeds are declared.
+    pub speeds: Span,
+    /// A bend radius that works, if one was found, mm.
+    pub radius_fits: Option<f64>,
+    /// A top speed of a bead model spanning the ratio, mm/s, if finite.
+    pub speed_fits: Option<f64>,
+    /// The largest section, in % of this one, that fits.
+    pub scale_percent: f64,
+}
+
+/// A bend whose outer/inner height ratio no layer count fits.
+pub fn too_tight(t: &TooTight) -> Diagnostic {
+    let [h_min, h_max] = t.heights.range;
+    let mut fixes = Vec::new();
+    if let Some(r_need) = t.radius_fits {
+        fixes.push(format!("a bend radius of at least {}", Length(r_need)));
+    }
+    if let Some(v) = t.speed_fits {
+        fixes.push(format!(
+            "a bead model that spans the ratio (e.g. speeds up to {} if it holds that far)",
+            Speed(v)
+        ));
+    }
+    fixes.push(format!(
+        "a section at most {}% of this size",
+        short(t.scale_percent)
+    ));
+    let (q_need, q_have) = (t.q_need, t.q_have);
+    Diagnostic::error(
+        Code::BendTooTight,
+        if q_need > q_have {
+            format!(
+                "outer/inner layer height ratio {:.2} needs h_max/h_min ≥ {:.2}; this bead model gives {:.2}",
+                q_need, q_need, q_have
+            )
+        } else {
+            format!(
+                "outer/inner layer height ratio {:.2} is within the bead model's {:.2}, but no whole number of layers keeps every height within {} .. {}",
+                q_need, q_have, h_min, h_max
+            )
+        },
+    )
+    .label(
+        t.spine,
+        format!(
+            "bend radius {}: layers are {:.2}× thicker at the outside ({}) than at the inside ({})",
+            Length(t.radius),
+            q_need,
+            Length(t.radius + t.outward),
+            Length(t.radius - t.inward)
+        ),
+    )
+    .label(
+        t.heights.span,
+        format!("h_max/h_min = {} / {} = {:.2}", h_max, h_min, q_have),
+    )
+    .label(t.speeds, "speed range")
+    .help(format!("this would work: {}", fixes.join("; or ")))
+}
+
+/// A chord error that needs more than `max` points a layer.
+pub fn too_many_layer_points(
+    chord_error: Length,
+    k: usize,
+    max: usize,
+    slicing: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!("a chord error of {chord_error} needs {k} points a layer, more than {max}"),
+    )
+    .label(slicing, "slicing")
+    .help("allow a larger chord error")
+}
+
+/// `layers` layers of `points` points each pass `max`.
+pub fn too_many_duct_points(layers: usize, points: usize, max: usize, slicing: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!("{layers} layers × {points} points is more than {max} points"),
+    )
+    .label(slicing, "slicing")
+    .help("use fewer points a layer (or a larger chord error)")
+}
+
+/// A better seam, found by sampling the layer at the seam + j·2π/k.
+pub enum SeamAdvice {
+    /// This angle (deg) keeps off the extremes on every layer.
+    Everywhere(String),
+    /// This angle (deg) sits there on the fewest layers (that many).
+    Fewest(String, usize),
+    /// No angle does better: the section turns through them all.
+    None,
+}
+
+/// The seam sits at the bend's innermost or outermost point on `hits` layers.
+pub fn seam_at_bend_extreme(
+    hits: usize,
+    first: usize,
+    seam: f64,
+    advice: &SeamAdvice,
+    seam_span: Span,
+    bend: Span,
+) -> Diagnostic {
+    let help = match advice {
+        SeamAdvice::Everywhere(deg) => format!(
+            "start and stop where the layer height is average: `seam = {deg} deg` keeps the seam off the bend's innermost and outermost points on every layer"
+        ),
+        SeamAdvice::Fewest(deg, n) => format!(
+            "no seam keeps off the bend's innermost and outermost points on every layer; `seam = {deg} deg` sits there on the fewest ({n})"
+        ),
+        SeamAdvice::None => "no other seam angle sits at the bend's innermost or outermost points on fewer layers: the section turns through them all (a twist); accept the seam or change the twist".to_string(),
+    };
+    Diagnostic::warning(
+        Code::SeamAtBendExtreme,
+        format!(
+            "the seam (laser on/off) sits at the innermost or outermost point of the bend on {} layer{} (first: layer {})",
+            hits,
+            if hits == 1 { "" } else { "s" },
+            first + 1
+        ),
+    )
+    .label(seam_span, format!("seam at {}", Angle(seam)))
+    .label(bend, "bend")
+    .help(help)
+}

@@ -1,0 +1,366 @@
+//! What the slicer says about a variable top (seed 003): its layer count, its
+//! footprint, its tracks and the segments that follow it.
+
+use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::slice::variable::layers::{NoLayerCount, OutOfRange, MAX_LAYERS};
+use crate::slice::variable::segments::{SegmentError, MAX_SEGMENTS};
+use crate::span::Span;
+use crate::units::{short, Length, Speed};
+
+fn at(p: [f64; 2]) -> String {
+    format!("({}, {}) mm", short(p[0]), short(p[1]))
+}
+
+/// The spans a top's messages point at.
+#[derive(Clone, Copy)]
+pub struct TopAt {
+    /// The top.
+    pub top: Span,
+    /// The footprint.
+    pub shape: Span,
+}
+
+/// The top needs more than [`MAX_LAYERS`] layers of at most `h_max`.
+pub fn too_many_layers(high: Length, needed: f64, h_max: Length, top: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!(
+            "the top reaches {high}: {} layers of at most {h_max}, more than {MAX_LAYERS}",
+            short(needed.ceil()),
+        ),
+    )
+    .label(top, "the top")
+    .help("check the top's unit and numbers")
+}
+
+/// A bead model as the layer-count messages name it.
+pub struct CountBead<'a> {
+    /// Its name.
+    pub name: &'a str,
+    /// Where its heights are declared.
+    pub heights: Span,
+    /// Where its speeds are declared.
+    pub speeds: Span,
+    /// The speed (rounded up, mm/s) at which it would lay the low height a
+    /// fix needs, if the model gives one.
+    pub speed_for_low: Option<f64>,
+    /// The speed (rounded down) for the high height a fix needs, if any.
+    pub speed_for_high: Option<f64>,
+}
+
+/// No whole number of layers lays every point of the top (lowest at
+/// `low_at`, highest at `high_at`) within the bead's heights.
+pub fn no_count(
+    e: &NoLayerCount,
+    low_at: [f64; 2],
+    high_at: [f64; 2],
+    bead: &CountBead,
+    top: Span,
+) -> Diagnostic {
+    let (lo, hi) = (e.top.low(), e.top.high());
+    let (h_lo, h_hi) = (e.bead.low(), e.bead.high());
+    let name = bead.name;
+    let message = if e.most == 0 {
+        format!(
+            "where the tracks run the top is {lo} .. {hi} high; its lowest point is below the thinnest layer bead `{name}` lays ({h_lo})"
+        )
+    } else if e.ratio_needed() > e.ratio_available() {
+        format!(
+            "where the tracks run the top is {lo} .. {hi} high (ratio {}); bead `{name}` lays {h_lo} .. {h_hi} (ratio {}): no number of layers lays both ends within it",
+            short(e.ratio_needed()),
+            short(e.ratio_available())
+        )
+    } else {
+        format!(
+            "where the tracks run the top is {lo} .. {hi} high (ratio {}); bead `{name}` lays {h_lo} .. {h_hi} (ratio {}), but no whole number of layers fits both ends: the highest point needs at least {} layers, the lowest allows at most {}",
+            short(e.ratio_needed()),
+            short(e.ratio_available()),
+            e.fewest,
+            e.most
+        )
+    };
+    let speed_note = |v: Option<f64>, dir: &str| match v {
+        Some(v) => format!(" (speeds {dir} {}, if the model holds that far)", Speed(v)),
+        None => String::new(),
+    };
+    let mut fixes = Vec::new();
+    if let Some(h) = e.top_high_at_most() {
+        fixes.push(format!(
+            "the top at most {h} where it is highest ({} layers)",
+            e.most
+        ));
+    }
+    if let Some(h) = e.top_low_at_least() {
+        fixes.push(format!(
+            "at least {h} where it is lowest ({} layers)",
+            e.fewest
+        ));
+    }
+    let low = e.bead_low_at_most();
+    fixes.push(format!(
+        "a bead that lays down to {low}{}",
+        speed_note(bead.speed_for_low, "up to")
+    ));
+    if let Some(high) = e.bead_high_at_least() {
+        fixes.push(format!(
+            "one that lays up to {high}{}",
+            speed_note(bead.speed_for_high, "down to")
+        ));
+    }
+    Diagnostic::error(Code::NoLayerCount, message)
+        .label(
+            top,
+            format!("{hi} at {}, {lo} at {}", at(high_at), at(low_at)),
+        )
+        .label(bead.heights, format!("the bead lays {h_lo} .. {h_hi}"))
+        .label(bead.speeds, "over these speeds")
+        .help(format!("this would work: {}", fixes.join("; or ")))
+}
+
+/// A declared layer count outside the counts that work.
+pub fn count_outside(
+    e: &OutOfRange,
+    bead: &str,
+    layers: Option<Span>,
+    heights: Span,
+) -> Diagnostic {
+    let n = e.layers.get();
+    Diagnostic::error(
+        Code::LayerHeight,
+        format!(
+            "{n} layers lay {} .. {} where the tracks run, outside the {} .. {} bead `{}` lays",
+            e.heights.low(),
+            e.heights.high(),
+            e.bead.low(),
+            e.bead.high(),
+            bead
+        ),
+    )
+    .label_opt(layers, "layer count")
+    .label(heights, "the bead's heights")
+    .help(format!(
+        "use between {} and {} layers, or `layers = auto` ({})",
+        e.range.fewest(),
+        e.range.most(),
+        e.range.fewest()
+    ))
+}
+
+/// The footprint's outline crosses itself at `p`.
+pub fn footprint_crosses(p: [f64; 2], shape: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::SelfIntersecting,
+        format!(
+            "the footprint crosses itself at ({}, {}) mm",
+            short(p[0]),
+            short(p[1])
+        ),
+    )
+    .label(shape, "this outline's edges cross")
+    .help("reorder the outline's points so its edges do not cross")
+}
+
+/// The footprint encloses no area.
+pub fn footprint_empty(shape: Span) -> Diagnostic {
+    Diagnostic::error(Code::FillEmpty, "the footprint encloses nothing").label(shape, "footprint")
+}
+
+/// The footprint is narrower across the tracks (along `axis`) than a bead.
+pub fn footprint_too_narrow(across: f64, axis: &str, width: f64, shape: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::FillEmpty,
+        format!(
+            "the footprint is {} across the tracks (along {axis}), narrower than the {} bead",
+            Length(across),
+            Length(width)
+        ),
+    )
+    .label(shape, "footprint")
+    .help("a variable-top part is at least one bead wide: widen the footprint, or use a narrower bead")
+}
+
+/// The footprint needs more than `max` tracks a layer.
+pub fn too_many_tracks(max: usize, shape: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!("the footprint needs more than {max} tracks a layer"),
+    )
+    .label(shape, "footprint")
+    .help("check the footprint's size and unit")
+}
+
+/// The balanced spacing has no stretch that closes on the far edge.
+pub fn no_closure(top: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Fill,
+        "no uniform stretch of the balanced spacing lands the last track half a bead inside the far edge",
+    )
+    .label(top, "the top")
+    .help("the top's thickness ratio across the tracks is far outside what a bead map spans: give `offset = …` a length, or a flatter top across")
+}
+
+/// The `tracks` balanced tracks were stretched by the factor `s` to close.
+pub fn stretched(tracks: usize, s: f64, slicing: Span, shape: Span) -> Diagnostic {
+    let (how, effect) = if s > 1.0 {
+        ("stretched", "thinner")
+    } else {
+        ("squeezed", "thicker")
+    };
+    Diagnostic::warning(
+        Code::OverlapStretch,
+        format!(
+            "the {tracks} tracks are {how} by {} % to reach half a bead inside both edges: between them the layer comes out about that much {effect} than planned",
+            short(((s - 1.0) * 100.0).abs())
+        ),
+    )
+    .label(slicing, "offset = balanced")
+    .label(shape, "footprint")
+    .help("a footprint whose width across the tracks fits the balanced spacing (one track more or less) avoids it; or declare `offset = …`")
+}
+
+/// `n` layers of `per_layer` points pass `max`.
+pub fn too_many_points(n: u32, per_layer: usize, max: usize, slicing: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!("{n} layers × {per_layer} points is more than {max} points"),
+    )
+    .label(slicing, "slicing")
+    .help("a larger `tolerance` makes fewer segments; a smaller part fewer tracks")
+}
+
+/// `count` tracks shorter than the bead width `w`, on every layer.
+pub fn short_tracks(count: usize, w: f64, slicing: Span) -> Diagnostic {
+    Diagnostic::warning(
+        Code::ShortTrack,
+        format!(
+            "{count} track{} shorter than the bead width {} (on every layer)",
+            if count == 1 { " is" } else { "s are" },
+            Length(w)
+        ),
+    )
+    .label(slicing, "tracks")
+    .help("short tracks overheat and pile up: a footprint without narrow ends, or tracks along its longer side (`scan`)")
+}
+
+/// A state the checker's checks should have made impossible.
+pub fn internal(what: &str) -> Diagnostics {
+    Diagnostic::error(
+        Code::NonFinite,
+        format!("variable slicing cannot go on: {what}"),
+    )
+    .help("this is a bug in lmdc for this input; please report it with the .lmd file")
+    .into()
+}
+
+/// What is wrong with the top at a point where a track runs.
+pub enum BadTop {
+    /// A height, not above the substrate.
+    NotPositive(f64),
+    /// Not a finite number.
+    NotFinite,
+    /// Its expression failed there (the errors follow).
+    Failed,
+}
+
+/// The top is not a positive height at `p` (and at `more` other points);
+/// `inner` holds what failed when it could not be computed.
+pub fn bad_top(p: [f64; 2], more: usize, bad: BadTop, inner: bool, at: TopAt) -> Diagnostic {
+    let (x, y) = (short(p[0]), short(p[1]));
+    let others = match more {
+        0 => String::new(),
+        1 => " (and at 1 other point sampled)".to_string(),
+        n => format!(" (and at {n} other points sampled)"),
+    };
+    let message = match bad {
+        BadTop::NotPositive(h) => format!(
+            "the top is {} at ({x}, {y}) mm, where a track runs{others}: every deposited point needs a height above the substrate",
+            Length(h)
+        ),
+        BadTop::NotFinite => format!("the top is not a finite number at ({x}, {y}) mm{others}"),
+        BadTop::Failed => format!("the top cannot be computed at ({x}, {y}) mm{others}"),
+    };
+    let help = if inner {
+        "the top is the finished part's height above the substrate, computed at every point a track runs through: the error below says what failed there"
+    } else {
+        "the top is the finished part's height above the substrate: make it positive over the whole footprint"
+    };
+    Diagnostic::error(Code::TopHeight, message)
+        .label(at.top, "the top")
+        .label(at.shape, "the footprint")
+        .help(help)
+}
+
+/// A track whose height tolerance needs segments shorter than min_length:
+/// the worst track's numbers and the tolerance that works on every track.
+pub struct TooShortSegments {
+    /// The declared tolerance.
+    pub tolerance: Length,
+    /// The minimum segment length (declared, or the bead width).
+    pub min_length: Length,
+    /// Whether `min_length` was declared.
+    pub min_declared: bool,
+    /// The worst track's length.
+    pub length: Length,
+    /// The worst track's place across the scan (axis name, mm), when there are several.
+    pub place: Option<(&'static str, f64)>,
+    /// How many tracks fail, of how many.
+    pub failing: usize,
+    /// How many tracks a layer has.
+    pub tracks: usize,
+    /// The worst track's error.
+    pub error: SegmentError,
+    /// The tolerance that works on every track, mm.
+    pub fix: f64,
+    /// The segments the worst track gets at that tolerance, if it was tried.
+    pub fix_segments: Option<usize>,
+    /// Where the tolerance, the minimum length and the top are.
+    pub spans: [Span; 3],
+}
+
+/// Segments shorter than the controller's minimum (`lmd::segments-too-short`).
+pub fn segments_too_short(t: &TooShortSegments) -> Diagnostic {
+    let (tol, min_length, length) = (t.tolerance, t.min_length, t.length);
+    let place = match t.place {
+        Some((axis, c)) => format!(" at {axis} = {} mm", short(c)),
+        None => String::new(),
+    };
+    let others = match t.failing {
+        1 => String::new(),
+        n => format!(" ({n} of the {} tracks need segments that short)", t.tracks),
+    };
+    let message = match t.error {
+        SegmentError::TooShort(e) => match e.needed {
+            Some((m, len)) => format!(
+                "a height tolerance of {tol} needs {m} segments of {len} on the {length} track{place}, shorter than min_length {min_length}{others}"
+            ),
+            None => format!(
+                "a height tolerance of {tol} needs more than {MAX_SEGMENTS} segments on the {length} track{place}, shorter than min_length {min_length}{others}"
+            ),
+        },
+        SegmentError::TooMany { .. } => format!(
+            "a height tolerance of {tol} needs more than {MAX_SEGMENTS} segments on the {length} track{place}{others}"
+        ),
+    };
+    let works = match t.fix_segments {
+        Some(m) => format!(
+            "`tolerance = {} mm` works ({m} segments of {} on that track)",
+            short(t.fix),
+            Length(length.0 / m as f64)
+        ),
+        None => format!("`tolerance = {} mm` works", short(t.fix)),
+    };
+    Diagnostic::error(Code::SegmentsTooShort, message)
+        .label(t.spans[0], format!("tolerance {tol}"))
+        .label(
+            t.spans[1],
+            if t.min_declared {
+                format!("min_length {min_length}")
+            } else {
+                format!("min_length: the bead width {min_length}")
+            },
+        )
+        .label(t.spans[2], "the top the segments follow")
+        .help(format!(
+            "{works}, or a lower `min_length` if the controller can change speed that often"
+        ))
+}
