@@ -13,8 +13,44 @@
 //! deposit. Each back end renders that in its own language.
 
 use super::fixed::trimmed;
-use crate::ir::{HeightLoop, Layer, Program, Ring};
+use super::EmitError;
+use crate::check::VerifiedMachine;
+use crate::ir::{HeightLoop, HeightSensor, Layer, Program, Ring};
 use crate::plan::{Io, Move, Plan, SegmentEnd, Visit, Where};
+
+/// What a looping writer starts from: the ring, its law, the sensor the
+/// machine reads and the plan collected for the loop.
+pub struct Prepared<'p> {
+    /// The ring.
+    pub ring: &'p Ring,
+    /// The law the program runs.
+    pub law: &'p HeightLoop,
+    /// The machine's height sensor.
+    pub sensor: HeightSensor,
+    /// The machine's motion plan, as the loop needs it.
+    pub plan: LoopPlan,
+}
+
+/// The ring, law and plan of machine `m`, whose `sensor` the verifier
+/// required (`lmd::height-sensor`). `writer` names the back end for the
+/// error a verified machine cannot reach.
+pub fn prepare<'p>(
+    m: VerifiedMachine<'p>,
+    sensor: Option<HeightSensor>,
+    writer: &str,
+) -> Result<Prepared<'p>, EmitError> {
+    let (Some((ring, law)), Some(sensor)) = (m.ir().loop_on_machine(), sensor) else {
+        return Err(EmitError::Template(format!(
+            "internal error: a ring's loop reached the {writer} writer without its ring or sensor"
+        )));
+    };
+    Ok(Prepared {
+        ring,
+        law,
+        sensor,
+        plan: LoopPlan::collect(&m.plan()),
+    })
+}
 
 /// Where a deposit move lies in its segment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -31,7 +31,7 @@
 use super::dialect::{comment_safe, delimiters};
 use super::{base_context, footer_context, header_context, EmitError, Sink, Templates};
 use crate::back::fixed::{fixed, trimmed};
-use crate::back::ring::{CellStep, LayerMove, LoopPlan, Part};
+use crate::back::ring::{prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
 use crate::check::VerifiedMachine;
 use crate::control::{Step, LAW};
 use crate::ir::{Cnc, HeightLoop, HeightSensor, Kinematics, Ring};
@@ -51,12 +51,12 @@ pub fn emit(
     sink: &mut dyn Sink,
 ) -> Result<(), EmitError> {
     let prog = m.ir();
-    let (Some((ring, law)), Some(sensor)) = (prog.loop_on_machine(), cnc.height_sensor) else {
-        return Err(EmitError::Template(
-            "internal error: a ring's loop reached the G-code writer without its ring or sensor"
-                .into(),
-        ));
-    };
+    let Prepared {
+        ring,
+        law,
+        sensor,
+        plan,
+    } = prepare(m, cnc.height_sensor, "G-code")?;
     let kin = effective_kinematics(cnc);
     let five = kin != Kinematics::Xyz;
     let file = gcode_file(&prog.part, cnc);
@@ -67,7 +67,6 @@ pub fn emit(
         .render("gcode/header.tera", &ctx)
         .map_err(EmitError::Template)?;
 
-    let plan = LoopPlan::collect(&m.plan());
     let mut w = Text {
         out: String::new(),
         cnc,

@@ -21,7 +21,7 @@ use super::modules::angle_value;
 use super::orient::Orienter;
 use super::{base_context, main_context, modules, EmitError, Sink, Templates};
 use crate::back::fixed::{fixed, trimmed};
-use crate::back::ring::{CellStep, LayerMove, LoopPlan, Part};
+use crate::back::ring::{prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
 use crate::check::VerifiedMachine;
 use crate::control::{Step, LAW};
 use crate::ir::{HeightLoop, HeightSensor, Ring, Robot};
@@ -40,17 +40,15 @@ pub fn emit(
     t: &Templates,
     sink: &mut dyn Sink,
 ) -> Result<(), EmitError> {
-    let prog = m.ir();
-    let (Some((ring, law)), Some(sensor)) = (prog.loop_on_machine(), robot.height_sensor) else {
-        return Err(EmitError::Template(
-            "internal error: a ring's loop reached the KRL writer without its ring or sensor"
-                .into(),
-        ));
-    };
+    let Prepared {
+        ring,
+        law,
+        sensor,
+        plan,
+    } = prepare(m, robot.height_sensor, "KRL")?;
     let names = super::names(m, robot);
     let module = names.module(0);
     let base = base_context(m, robot, &names.stem);
-    let plan = LoopPlan::collect(&m.plan());
     let mut w = Text {
         out: String::new(),
         robot,
