@@ -11,6 +11,7 @@
 
 pub mod bend;
 pub mod check;
+pub mod fill;
 pub mod hole;
 pub mod internal;
 pub mod slicing;
