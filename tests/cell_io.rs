@@ -7,16 +7,11 @@
 //! at its `$VEL.CP`), dwells and waits; G0 moves count as instant.
 //! Also: what a wrong declaration gets.
 
-#[path = "support/example.rs"]
-mod example;
-#[path = "support/krl_check.rs"]
-mod krl;
-#[path = "support/krl_parser.rs"]
-mod krl_parser;
-#[path = "support/rs274.rs"]
-mod rs274;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::example;
+use crate::support::krl_check as krl;
+use crate::support::krl_parser;
+use crate::support::rs274;
+use crate::support::skip;
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::diag::Code;

@@ -2,8 +2,7 @@
 //! heights ρ·Δδ, start and end sections, unit orthogonal directions, and the
 //! paper's displacement-compensation identity (eq. 9–10).
 
-#[path = "support/duct.rs"]
-mod duct;
+use crate::support::duct;
 
 use duct::Duct;
 use lmdc::ir::Program;

@@ -1,5 +1,4 @@
-#[path = "support/fixture.rs"]
-mod fixture;
+use crate::support::fixture;
 use fixture::*;
 
 #[test]

@@ -1,8 +1,7 @@
 //! Normal → rotary angles: the angles reproduce the normal, the choice among the
 //! equivalent solutions is the nearest one, and C stays continuous along real paths.
 
-#[path = "gcode_common.rs"]
-mod common;
+use crate::support::gcode_common as common;
 use common::fixture::*;
 use common::*;
 use lmdc::ir::*;

@@ -1,8 +1,7 @@
 //! The G-code program as text: modal words, laser switching, transitions, vendor
 //! dialects, refusals, a golden program and determinism.
 
-#[path = "gcode_common.rs"]
-mod common;
+use crate::support::gcode_common as common;
 use common::fixture::*;
 use common::*;
 use lmdc::back::{MemorySink, Templates};

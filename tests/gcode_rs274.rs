@@ -2,14 +2,10 @@
 //! interprets must be the IR's. Skipped when rs274 is not installed, except under
 //! CI (install it with `bash .ci/install-rs274.sh`, export LMDC_RS274).
 
-#[path = "gcode_common.rs"]
-mod common;
-#[path = "support/m66.rs"]
-mod m66;
-#[path = "support/rs274.rs"]
-mod rs274;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::gcode_common as common;
+use crate::support::m66;
+use crate::support::rs274;
+use crate::support::skip;
 
 use common::fixture::*;
 use common::*;

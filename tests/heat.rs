@@ -4,12 +4,8 @@
 //! but the last is followed by at least that wait, at the retracted position
 //! with the laser off.
 
-#[path = "support/krl_check.rs"]
-mod krl;
-#[path = "support/krl_parser.rs"]
-mod krl_parser;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::krl_check as krl;
+use crate::support::krl_parser;
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::Machine;

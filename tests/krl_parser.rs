@@ -7,10 +7,8 @@
 //! terminal that they were skipped. tests/krl_program.rs's own checker always
 //! runs.
 
-#[path = "support/krl_parser.rs"]
-mod parser;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::krl_parser as parser;
+use crate::support::skip;
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::Machine;

@@ -3,16 +3,11 @@
 //! laser on and off at the same places — and those are the IR points where a
 //! run of laser-on points starts and where it ends.
 
-#[path = "support/krl_check.rs"]
-mod krl;
-#[path = "support/krl_run/mod.rs"]
-mod krl_run;
-#[path = "support/m66.rs"]
-mod m66;
-#[path = "support/rs274.rs"]
-mod rs274;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::krl_check as krl;
+use crate::support::krl_run;
+use crate::support::m66;
+use crate::support::rs274;
+use crate::support::skip;
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::{Dialect, Machine, Program};

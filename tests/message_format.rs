@@ -4,8 +4,7 @@
 //! compiler made (round trip), and points at the line and column the drawn
 //! report names.
 
-#[path = "support/schema.rs"]
-mod schema;
+use crate::support::schema;
 
 use lmdc::diag::json::JsonDiagnostic;
 use lmdc::pipeline::compile_for;

@@ -2,8 +2,7 @@
 //! plus the declared origin, the help names the origins that fit, and the
 //! program selects the work offset that holds it.
 
-#[path = "support/example.rs"]
-mod example;
+use crate::support::example;
 
 use example::tooth;
 use lmdc::pipeline::compile;

@@ -3,13 +3,10 @@
 //! always be switched, the program always ends, long names stay within a
 //! control's line length, declared angles are angles.
 
-#[path = "support/rs274.rs"]
-mod rs274;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::rs274;
+use crate::support::skip;
 
-#[path = "support/example.rs"]
-mod example;
+use crate::support::example;
 
 use example::tooth;
 use lmdc::pipeline::compile;

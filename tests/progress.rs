@@ -2,8 +2,7 @@
 //! never into a pipe or a log, never with `--quiet`. `LMDC_PROGRESS_AFTER_MS=0`
 //! draws from the first tick, so a quick example shows it.
 
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::skip;
 
 use std::process::Command;
 

@@ -3,8 +3,7 @@
 //! (29.90 mm on every segment), the open-loop schedule as every back end
 //! writes it, and the dialects that cannot run the loop.
 
-#[path = "support/ring.rs"]
-mod support;
+use crate::support::ring as support;
 
 use lmdc::ir::{Machine, Point, RingRun};
 

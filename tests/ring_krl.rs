@@ -7,14 +7,10 @@
 //! working planes rise by the same heights; every update lands before its
 //! segment is laid again, without stopping the advance run.
 
-#[path = "support/krl_parser.rs"]
-mod krl_parser;
-#[path = "support/krl_run/mod.rs"]
-mod krl_run;
-#[path = "support/ring.rs"]
-mod ring;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::krl_parser;
+use crate::support::krl_run;
+use crate::support::ring;
+use crate::support::skip;
 
 use krl_run::{Config, Motion, Read, Run};
 use lmdc::ir::{Machine, RingRun};

@@ -5,14 +5,10 @@
 //! reports are the simulation's, layer by layer and segment by segment: the
 //! O-word subroutine runs the same law.
 
-#[path = "support/m66.rs"]
-mod m66;
-#[path = "support/ring.rs"]
-mod ring;
-#[path = "support/rs274.rs"]
-mod rs274;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::m66;
+use crate::support::ring;
+use crate::support::rs274;
+use crate::support::skip;
 
 use lmdc::ir::Machine;
 use rs274::CanonCall;

@@ -2,10 +2,8 @@
 //! 5-axis program. Skipped when rs274 is not installed, except under CI,
 //! where a missing rs274 fails (install it with `.ci/install-rs274.sh`).
 
-#[path = "support/rs274.rs"]
-mod rs274;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::rs274;
+use crate::support::skip;
 
 use rs274::CanonCall::{self, *};
 

@@ -3,8 +3,7 @@
 //! off a 6 mm bead), measured against real parts that step out too fast, while
 //! every example passes (it is built layer on layer).
 
-#[path = "support/example.rs"]
-mod example;
+use crate::support::example;
 
 use lmdc::pipeline::compile;
 

@@ -1,10 +1,9 @@
 //! Most integration tests, as modules of one binary (Cargo.toml says why).
 //! Run one file's tests with `cargo test --release --test suite <file>::`.
 
-// Each file still declares the support modules it uses (`#[path = "support/…"]`),
-// as when it was a test program of its own, so a support file is compiled once
-// per file that uses it.
-#![allow(clippy::duplicate_mod)]
+// The support modules are declared once, here; each file uses what it needs
+// from `crate::support`.
+mod support;
 
 mod all_errors;
 mod atomic_output;

@@ -5,10 +5,8 @@
 //! is reached when it has laid its `H/N`. Skipped without rs274, except
 //! under CI.
 
-#[path = "support/rs274.rs"]
-mod rs274;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::rs274;
+use crate::support::skip;
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::Machine;

@@ -1,0 +1,19 @@
+//! The test suite's shared helpers, declared once for every file of
+//! `tests/suite.rs` (the separate test programs include the ones they need
+//! with `#[path]`).
+
+pub mod duct;
+pub mod example;
+#[path = "../gcode_common.rs"]
+pub mod gcode_common;
+// The G-code helpers bring the fixtures along (their own programs include
+// gcode_common alone).
+pub use gcode_common::fixture;
+pub mod krl_check;
+pub mod krl_parser;
+pub mod krl_run;
+pub mod m66;
+pub mod ring;
+pub mod rs274;
+pub mod schema;
+pub mod skip;
