@@ -182,6 +182,7 @@ impl Visit for CellRule<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diag::Code;
     use crate::ir::{Feeder, Gas};
     use crate::plan::MoveKind;
 
