@@ -10,3 +10,6 @@
 //! for the mistake it reports.
 
 pub mod check;
+pub mod field;
+pub mod statement;
+pub mod value;
