@@ -11,5 +11,7 @@
 
 pub mod check;
 pub mod field;
+pub mod shape;
+pub mod solid;
 pub mod statement;
 pub mod value;

@@ -197,3 +197,13 @@ pub fn unknown_name(
         None => d.help(format!("known: {}", candidates.join(", "))),
     }
 }
+
+/// Whether `d` is one of the arithmetic failures evaluation reports (a
+/// division by zero, a number too large, a bad exponent): what fails at one
+/// point of a function of the position.
+pub fn is_arithmetic_failure(d: &Diagnostic) -> bool {
+    matches!(
+        d.code,
+        Code::DivisionByZero | Code::Overflow | Code::BadExponent
+    )
+}
