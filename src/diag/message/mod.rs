@@ -14,4 +14,5 @@ pub mod field;
 pub mod shape;
 pub mod solid;
 pub mod statement;
+pub mod style;
 pub mod value;

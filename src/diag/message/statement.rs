@@ -63,6 +63,8 @@ pub enum Declaration {
     Profile,
     /// A bead model.
     Bead,
+    /// A style.
+    Style,
 }
 
 /// A name is declared twice.
@@ -71,6 +73,7 @@ pub fn duplicate_name(name: &str, what: Declaration, at: Span, prev: Span) -> Di
         Declaration::Constant | Declaration::Profile => "",
         Declaration::Section => "section ",
         Declaration::Bead => "bead ",
+        Declaration::Style => "style ",
     };
     let d = Diagnostic::error(
         Code::DuplicateName,
