@@ -5,10 +5,10 @@
 use super::fields::Fields;
 use super::slicing::MAX_LAYERS;
 use super::value::Env;
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{short, Angle, Dim, Length};
+use crate::units::{Angle, Dim, Length};
 use std::num::NonZeroUsize;
 
 /// Fields of `slicing continuous { … }`.
@@ -56,17 +56,12 @@ pub fn read<'a>(
     let h = f.positive("layer_height", Dim::LENGTH, Some("0.23 mm"), diags);
     let step = match f.positive("step", Dim::ANGLE, None, diags) {
         Some((s, at)) if s.to_degrees() > MAX_STEP_DEG => {
-            diags.push(
-                Diagnostic::error(
-                    Code::OutOfRange,
-                    format!(
-                        "a step of {}° cuts the ring into chords that sag too far inside it",
-                        short(s.to_degrees())
-                    ),
-                )
-                .label(at, format!("at most {MAX_STEP_DEG}°"))
-                .help("points at most 1° apart follow a ring closely: `step = 1 deg`"),
-            );
+            diags.push(message::solid::ring_step_too_large(
+                s.to_degrees(),
+                MAX_STEP_DEG,
+                at,
+            ));
+
             None
         }
         Some((s, _)) => Some(Angle(s)),

@@ -9,7 +9,8 @@ use super::profile;
 use super::section;
 use super::statement::{shape_error, Statements};
 use super::value::{Env, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::message::{self, statement::Declaration};
+use crate::diag::Diagnostics;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr};
 use std::collections::BTreeMap;
@@ -50,15 +51,6 @@ pub fn read<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnostics)
     }
 }
 
-fn duplicate(name: &str, what: &str, at: Span, prev: Span) -> Diagnostic {
-    Diagnostic::error(
-        Code::DuplicateName,
-        format!("{what}`{name}` is declared twice"),
-    )
-    .label(at, "second declaration")
-    .label(prev, "first declaration")
-}
-
 fn constants<'a>(
     env: &mut Env<'a>,
     st: &Statements<'a>,
@@ -69,7 +61,12 @@ fn constants<'a>(
         match (&s.name, &s.body) {
             (Some(n), Body::Assign(e)) => {
                 if let Some(prev) = env.declare(&n.node, n.span, e) {
-                    diags.push(duplicate(&n.node, "", n.span, prev).help("rename one of them"));
+                    diags.push(message::statement::duplicate_name(
+                        &n.node,
+                        Declaration::Constant,
+                        n.span,
+                        prev,
+                    ));
                 } else {
                     out.push((n.node.clone(), n.span, e.clone()));
                 }
@@ -100,7 +97,12 @@ fn sections<'a>(
         let sec = section_value(env, &n.node, e, diags);
         // A second declaration is a mistake of its own, whatever either value.
         if let Some(&prev) = seen.get(n.node.as_str()) {
-            diags.push(duplicate(&n.node, "section ", n.span, prev));
+            diags.push(message::statement::duplicate_name(
+                &n.node,
+                Declaration::Section,
+                n.span,
+                prev,
+            ));
             continue;
         }
         seen.insert(&n.node, n.span);
@@ -121,29 +123,19 @@ fn section_value(
     let before = env.layer_reads();
     let v = env.eval(e, diags)?;
     if env.layer_reads() > before {
-        diags.push(
-            Diagnostic::error(
-                Code::LayerOutsideProfile,
-                format!("section `{name}` uses `layer` or `layer_z`, which only a profile follows"),
-            )
-            .label(e.span, "depends on the layer")
-            .help(format!(
-                "declare it as `profile {name} = …` to let it change from layer to layer"
-            )),
-        );
+        diags.push(message::statement::section_follows_layer(name, e.span));
         return None;
     }
     match &v.value {
         Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
         other => {
-            diags.push(
-                Diagnostic::error(
-                    Code::ExpectedShape,
-                    format!("section `{name}` must be a shape"),
-                )
-                .label(v.span, format!("this is {}", other.describe()))
-                .help(format!("shapes: {}", section::SHAPES.join(", "))),
-            );
+            diags.push(message::statement::section_not_shape(
+                name,
+                &other.describe(),
+                v.span,
+                section::SHAPES,
+            ));
+
             None
         }
     }
@@ -177,7 +169,12 @@ fn profiles<'a>(
             .and_then(|v| profile::shape(&v, &format!("profile `{}`", n.node), diags))
             .is_some();
         if let Some(&prev) = seen.get(n.node.as_str()) {
-            diags.push(duplicate(&n.node, "", n.span, prev));
+            diags.push(message::statement::duplicate_name(
+                &n.node,
+                Declaration::Profile,
+                n.span,
+                prev,
+            ));
             continue;
         }
         seen.insert(&n.node, n.span);
@@ -206,7 +203,12 @@ fn beads<'a>(
         };
         let b = bead::read(env, &n.node, stmts, s.span, diags);
         if let Some(&prev) = seen.get(n.node.as_str()) {
-            diags.push(duplicate(&n.node, "bead ", n.span, prev));
+            diags.push(message::statement::duplicate_name(
+                &n.node,
+                Declaration::Bead,
+                n.span,
+                prev,
+            ));
             continue;
         }
         seen.insert(&n.node, n.span);

@@ -18,7 +18,8 @@ use super::slicing::PlanarSpec;
 use super::top;
 use super::value::{unknown_name, Env, Spanned, Value};
 use crate::bead::{flat_top_offset, MIN_OFFSET_RATIO};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::message::{self, solid::BeadSpeeds};
+use crate::diag::Diagnostics;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, Stmt};
 use crate::units::{Dim, Length, Speed};
@@ -119,15 +120,7 @@ pub fn read<'a>(
         }
     };
     if let (Some(hs), Some(ts)) = (f.span("height"), f.span("top")) {
-        diags.push(
-            Diagnostic::error(
-                Code::ConflictingFields,
-                "give the extrusion a `height` or a `top`, not both",
-            )
-            .label(hs, "height: flat layers")
-            .label(ts, "top: the finished part's height at every point")
-            .help("a `top` is built with `slicing variable { … }`, a `height` with `slicing planar { … }`"),
-        );
+        diags.push(message::solid::height_and_top(hs, ts));
     }
     let height = height.filter(|_| !(f.has("height") && f.has("top")));
     let measure = match f.symbol("size", &["centre", "center", "outer"], None, diags) {
@@ -193,37 +186,25 @@ fn scan_speed(
 ) -> Option<Speed> {
     match (speed, bead.model) {
         (Some((v, sp)), _) => {
-            let [lo, hi] = bead.speed;
             if !bead.covers_speed(v) {
                 let measured = matches!(bead.model, HeightModel::Measured { .. });
-                diags.push(
-                    Diagnostic::error(
-                        Code::ScanSpeed,
-                        if measured {
-                            format!("the scan speed {v} is not the {lo} bead `{}` was measured at", bead.name)
-                        } else {
-                            format!("the scan speed {v} is outside the {lo} .. {hi} bead `{}` is valid for", bead.name)
-                        },
-                    )
-                    .label(sp, "scan speed")
-                    .label(bead.speed_span, "the bead model's speeds")
-                    .help(if measured {
-                        "a measured bead holds at its own speed: scan at that speed, or measure the bead at this one".to_string()
-                    } else {
-                        format!("scan at {lo} .. {hi}, or fit the bead model over the speed you need")
-                    }),
-                );
+                diags.push(message::solid::scan_speed_outside_bead(
+                    v,
+                    sp,
+                    &BeadSpeeds {
+                        name: &bead.name,
+                        speed: bead.speed,
+                        at: bead.speed_span,
+                        measured,
+                    },
+                ));
                 return None;
             }
             Some(v)
         }
         (None, HeightModel::Measured { speed, .. }) => Some(speed),
         (None, _) => {
-            diags.push(
-                Diagnostic::error(Code::MissingField, "planar layers need a scan speed")
-                    .label(at, "the speed of these layers' tracks is not given")
-                    .help("add `speed = 6 mm/s` to the process block"),
-            );
+            diags.push(message::solid::no_scan_speed(at));
             None
         }
     }
@@ -236,23 +217,11 @@ fn extent(w: &Written<'_>, spec: &PlanarSpec, diags: &mut Diagnostics) -> Option
         (Some((n, ls)), None) => Some(Extent::Layers(n, ls)),
         (None, Some((h, hs))) => Some(Extent::Height(h, hs)),
         (Some((_, ls)), Some((_, hs))) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::ConflictingFields,
-                    "give the layer count or the height, not both",
-                )
-                .label(ls, "layers")
-                .label(hs, "height")
-                .help("the other follows from the layer height"),
-            );
+            diags.push(message::solid::layers_and_height(ls, hs));
             None
         }
         (None, None) => {
-            diags.push(
-                Diagnostic::error(Code::MissingField, "how tall is the extrusion?")
-                    .label(w.span, "no `height`")
-                    .help("add `height = 24 mm` here, or `layers = 35` to the slicing block"),
-            );
+            diags.push(message::solid::no_height(w.span));
             None
         }
     }
@@ -269,39 +238,12 @@ pub(super) fn declared_offset(
 ) -> bool {
     let width = bead.width;
     if d.0 > width.0 * (1.0 + 1e-9) {
-        diags.push(
-            Diagnostic::error(
-                Code::FillGap,
-                format!("tracks {d} apart leave gaps: the bead is {width} wide"),
-            )
-            .label(at, "track offset")
-            .label(bead.span, "bead model")
-            .help(match flat {
-                Some(f) => format!(
-                    "use an offset of at most the bead width; {f} keeps the top flat (d = A/h)"
-                ),
-                None => "use an offset of at most the bead width".to_string(),
-            }),
-        );
+        diags.push(message::solid::offset_gaps(d, width, at, bead.span, flat));
         return false;
     }
     if d.0 < width.0 * MIN_OFFSET_RATIO {
-        diags.push(
-            Diagnostic::error(
-                Code::Overlap,
-                format!(
-                    "tracks {d} apart overlap by {:.0} % of the {width} bead: the layer piles up",
-                    100.0 * (1.0 - d.0 / width.0),
-                ),
-            )
-            .label(at, "track offset")
-            .help(match flat {
-                Some(f) => format!(
-                    "overlaps of about 33 % keep tracks level; d = A/h = {f} gives a flat top"
-                ),
-                None => "overlaps of about 33 % keep tracks level".to_string(),
-            }),
-        );
+        diags.push(message::solid::offset_piles_up(d, width, at, flat));
+
         return false;
     }
     true

@@ -5,7 +5,8 @@
 
 use super::suggest::did_you_mean;
 use super::value::{Call, Env, Spanned, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
+
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, Stmt};
 use crate::units::{short, Angle, Density, Dim, Length, MassFlow, Power, Quantity, Speed, Time};
@@ -103,48 +104,30 @@ impl<'a> Fields<'a> {
         for s in stmts {
             let key = s.kind.node.as_str();
             if !allowed.contains(&key) && !blocks.contains(&key) {
-                let mut d =
-                    Diagnostic::error(Code::UnknownField, format!("{what} has no field `{key}`"))
-                        .label(s.kind.span, "unknown field");
-                d = match did_you_mean(key, allowed.iter().chain(blocks).copied()) {
-                    Some(m) => d.help(format!("did you mean `{m}`?")),
-                    None => d.help(format!(
-                        "fields of {what}: {}",
-                        allowed
-                            .iter()
-                            .chain(blocks)
-                            .copied()
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    )),
-                };
-                diags.push(d);
+                let fields: Vec<&str> = allowed.iter().chain(blocks).copied().collect();
+                diags.push(message::field::unknown_field(
+                    &what,
+                    key,
+                    s.kind.span,
+                    did_you_mean(key, fields.iter().copied()),
+                    &fields,
+                ));
                 continue;
             }
             if let Some(prev) = entries
                 .iter()
                 .find(|e| e.key == key && !repeated.contains(&key))
             {
-                diags.push(
-                    Diagnostic::error(
-                        Code::DuplicateField,
-                        format!("`{key}` is given twice in {what}"),
-                    )
-                    .label(s.kind.span, "second time")
-                    .label(prev.key_span, "first time")
-                    .help("keep one of them"),
-                );
+                diags.push(message::field::duplicate_field(
+                    key,
+                    &what,
+                    s.kind.span,
+                    prev.key_span,
+                ));
                 continue;
             }
             if let Some(n) = &s.name {
-                diags.push(
-                    Diagnostic::error(
-                        Code::Syntax,
-                        format!("unexpected `{}` after `{key}`", n.node),
-                    )
-                    .label(n.span, "not expected here")
-                    .help(format!("write `{key} = value`")),
-                );
+                diags.push(message::field::name_after_key(&n.node, key, n.span));
                 continue;
             }
             let is_block = blocks.contains(&key);
@@ -162,18 +145,7 @@ impl<'a> Fields<'a> {
                     // Only a profile is evaluated per layer; anywhere else the
                     // layer builtins would silently read 0.
                     if env.layer_reads() > before && key != "profile" {
-                        diags.push(
-                            Diagnostic::error(
-                                Code::LayerOutsideProfile,
-                                format!("`{key}` uses `layer` or `layer_z`, which only a profile follows"),
-                            )
-                            .label(e.span, "depends on the layer")
-                            .help(if key == "power" {
-                                "schedule power over layers with `ramp(from = …, to = …, layers = …)`".to_string()
-                            } else {
-                                format!("give {what} a value that does not change with the layer")
-                            }),
-                        );
+                        diags.push(message::field::layer_outside_profile(key, &what, e.span));
                     }
                     Entry {
                         key: key.into(),
@@ -191,19 +163,11 @@ impl<'a> Fields<'a> {
                     expr: None,
                 },
                 (_, true) => {
-                    diags.push(
-                        Diagnostic::error(Code::Syntax, format!("`{key}` takes a block"))
-                            .label(s.span, "expected `{ … }`")
-                            .help(format!("write `{key} {{ … }}`")),
-                    );
+                    diags.push(message::field::needs_block(key, s.span));
                     continue;
                 }
                 (_, false) => {
-                    diags.push(
-                        Diagnostic::error(Code::Syntax, format!("`{key}` needs a value"))
-                            .label(s.span, "expected `= value`")
-                            .help(format!("write `{key} = value`")),
-                    );
+                    diags.push(message::field::needs_value(key, s.span));
                     continue;
                 }
             };
@@ -228,14 +192,11 @@ impl<'a> Fields<'a> {
                 Some((n, s)) => (n.clone(), *s),
                 None => {
                     if next_pos >= positional.len() {
-                        diags.push(
-                            Diagnostic::error(
-                                Code::Argument,
-                                format!("too many unnamed arguments for {what}"),
-                            )
-                            .label(a.value.span, "name this argument")
-                            .help(format!("arguments of {what}: {}", allowed.join(", "))),
-                        );
+                        diags.push(message::field::too_many_unnamed(
+                            &what,
+                            a.value.span,
+                            allowed,
+                        ));
                         continue;
                     }
                     next_pos += 1;
@@ -243,25 +204,22 @@ impl<'a> Fields<'a> {
                 }
             };
             if !allowed.contains(&key.as_str()) {
-                let mut d =
-                    Diagnostic::error(Code::Argument, format!("{what} has no argument `{key}`"))
-                        .label(key_span, "unknown argument");
-                d = match did_you_mean(&key, allowed.iter().copied()) {
-                    Some(m) => d.help(format!("did you mean `{m}`?")),
-                    None => d.help(format!("arguments of {what}: {}", allowed.join(", "))),
-                };
-                diags.push(d);
+                diags.push(message::field::unknown_argument(
+                    &what,
+                    &key,
+                    key_span,
+                    did_you_mean(&key, allowed.iter().copied()),
+                    allowed,
+                ));
                 continue;
             }
             if let Some(prev) = entries.iter().find(|e| e.key == key) {
-                diags.push(
-                    Diagnostic::error(
-                        Code::DuplicateField,
-                        format!("`{key}` is given twice to {what}"),
-                    )
-                    .label(key_span, "second time")
-                    .label(prev.key_span, "first time"),
-                );
+                diags.push(message::field::duplicate_argument(
+                    &key,
+                    &what,
+                    key_span,
+                    prev.key_span,
+                ));
                 continue;
             }
             entries.push(Entry {
@@ -341,11 +299,9 @@ impl<'a> Fields<'a> {
     }
 
     fn missing(&self, key: &str, example: &str, diags: &mut Diagnostics) {
-        diags.push(
-            Diagnostic::error(Code::MissingField, format!("{} needs `{key}`", self.what))
-                .label(self.at, format!("`{key}` is missing"))
-                .help(format!("add `{key} = {example}`")),
-        );
+        diags.push(message::field::missing_field(
+            &self.what, key, self.at, example,
+        ));
     }
 
     /// The raw value of `key`; `None` if missing (reported when `example` is
@@ -392,14 +348,12 @@ impl<'a> Fields<'a> {
         if q > 0.0 && q.is_finite() {
             Some((q, span))
         } else {
-            diags.push(
-                Diagnostic::error(
-                    Code::NotPositive,
-                    format!("`{key}` must be greater than zero"),
-                )
-                .label(span, format!("this is {}", shown(q, dim)))
-                .help(format!("give {} a positive value", self.what)),
-            );
+            diags.push(message::field::not_positive(
+                key,
+                &shown(q, dim),
+                &self.what,
+                span,
+            ));
             None
         }
     }
@@ -416,18 +370,11 @@ impl<'a> Fields<'a> {
         match &v.value {
             Value::Range(a, b) if a.dim == dim => Some(([a.value, b.value], v.span)),
             Value::Range(a, _) => {
-                wrong_unit(v.span, key, dim, a.dim, diags);
+                diags.push(message::field::wrong_unit(v.span, key, dim, a.dim));
                 None
             }
             other => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::ExpectedRange,
-                        format!("`{key}` must be a range of {}", dim.describe()),
-                    )
-                    .label(v.span, format!("this is {}", other.describe()))
-                    .help("write a range as `low .. high`, e.g. `7 mm/s .. 10 mm/s`"),
-                );
+                diags.push(message::field::expected_range(key, dim, other, v.span));
                 None
             }
         }
@@ -469,14 +416,7 @@ impl<'a> Fields<'a> {
         match &v.value {
             Value::Str(s) => Some((s.clone(), v.span)),
             other => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::ExpectedText,
-                        format!("`{key}` must be a text in quotes"),
-                    )
-                    .label(v.span, format!("this is {}", other.describe()))
-                    .help(format!("write `{key} = \"…\"`")),
-                );
+                diags.push(message::field::expected_text(key, other, v.span));
                 None
             }
         }
@@ -512,21 +452,19 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
             };
             match bound {
                 Some((b, text)) if value.abs() > b => {
-                    diags.push(
-                        Diagnostic::error(
-                            Code::TooLarge,
-                            format!("`{key}` is beyond what lmdc plans ({text})"),
-                        )
-                        .label(v.span, format!("this is {}", shown(*value, dim)))
-                        .help("check the value and its unit"),
-                    );
+                    diags.push(message::field::too_large(
+                        key,
+                        text,
+                        &shown(*value, dim),
+                        v.span,
+                    ));
                     None
                 }
                 _ => Some(*value),
             }
         }
         Value::Quantity(q) => {
-            wrong_unit(v.span, key, dim, q.dim, diags);
+            diags.push(message::field::wrong_unit(v.span, key, dim, q.dim));
             None
         }
         other => {
@@ -534,38 +472,10 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
                 diags.push(d);
                 return None;
             }
-            let mut d = Diagnostic::error(
-                Code::ExpectedNumber,
-                format!("`{key}` must be {}", dim.describe()),
-            )
-            .label(v.span, format!("this is {}", other.describe()));
-            if let Value::Symbol(s) = other {
-                d = d.help(format!("`{s}` is not a constant; declare it with `let {s} = …` or write a number with a unit"));
-            }
-            diags.push(d);
+            diags.push(message::field::expected_number(key, dim, other, v.span));
             None
         }
     }
-}
-
-fn wrong_unit(span: Span, key: &str, want: Dim, got: Dim, diags: &mut Diagnostics) {
-    let help = if got == Dim::NONE {
-        format!("add a unit: `{key}` is {}", want.describe())
-    } else {
-        format!("`{key}` is {}; check the unit", want.describe())
-    };
-    diags.push(
-        Diagnostic::error(
-            Code::UnitMismatch,
-            format!(
-                "`{key}` must be {}, not {}",
-                want.describe(),
-                got.describe()
-            ),
-        )
-        .label(span, got.describe())
-        .help(help),
-    );
 }
 
 /// `v` as a whole number within `lo..=hi`.
@@ -581,24 +491,12 @@ pub fn count(
             if *value >= lo as f64 && *value <= hi as f64 {
                 Some(*value as usize)
             } else {
-                diags.push(
-                    Diagnostic::error(
-                        Code::CountRange,
-                        format!("`{key}` must be between {lo} and {hi}"),
-                    )
-                    .label(v.span, format!("this is {}", short(*value))),
-                );
+                diags.push(message::field::count_range(key, lo, hi, *value, v.span));
                 None
             }
         }
         other => {
-            diags.push(
-                Diagnostic::error(
-                    Code::ExpectedWholeNumber,
-                    format!("`{key}` must be a whole number"),
-                )
-                .label(v.span, format!("this is {}", other.describe())),
-            );
+            diags.push(message::field::expected_whole_number(key, other, v.span));
             None
         }
     }
@@ -611,16 +509,12 @@ pub fn symbol(v: &Spanned, key: &str, choices: &[&str], diags: &mut Diagnostics)
             return Some(s.clone());
         }
     }
-    let mut d = Diagnostic::error(
-        Code::BadChoice,
-        format!("`{key}` must be one of: {}", choices.join(", ")),
-    )
-    .label(v.span, format!("this is {}", v.value.describe()));
-    if let Value::Symbol(s) = &v.value {
-        if let Some(m) = did_you_mean(s, choices.iter().copied()) {
-            d = d.help(format!("did you mean `{m}`?"));
-        }
-    }
-    diags.push(d);
+    let suggestion = match &v.value {
+        Value::Symbol(s) => did_you_mean(s, choices.iter().copied()),
+        _ => None,
+    };
+    diags.push(message::field::bad_choice(
+        key, choices, &v.value, v.span, suggestion,
+    ));
     None
 }

@@ -5,7 +5,7 @@ use super::fields::Fields;
 use super::model::{Bead, Loft, Measure, Morph, Section, Spine};
 use super::section;
 use super::value::{unknown_name, Env, Spanned, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Angle, Dim, Length};
@@ -87,14 +87,7 @@ pub fn read<'a>(
             if family(&from) && family(&to) {
                 Some(Morph::Superellipse)
             } else {
-                diags.push(
-                    Diagnostic::error(
-                        Code::BadChoice,
-                        "a superellipse morph needs circle, ellipse, square or rectangle ends",
-                    )
-                    .label(ms, "superellipse")
-                    .help("use `morph = radial` for polygons and rounded rectangles"),
-                );
+                diags.push(message::shape::superellipse_ends(ms));
                 None
             }
         }
@@ -126,14 +119,7 @@ pub fn read<'a>(
                 Some(s) => s,
                 None => {
                     ok = false;
-                    diags.push(
-                        Diagnostic::error(
-                            Code::SectionTooSmall,
-                            format!("this section is too small for a {} wide bead measured at its outer face", b.width),
-                        )
-                        .label(at, "section")
-                        .help("make the section larger or use `size = centre`"),
-                    );
+                    diags.push(message::shape::section_too_small(b.width, at));
                     s
                 }
             };
@@ -172,14 +158,11 @@ fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Opt
         },
         Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
         other => {
-            diags.push(
-                Diagnostic::error(Code::ExpectedShape, "expected a section")
-                    .label(v.span, format!("this is {}", other.describe()))
-                    .help(format!(
-                        "name a declared section or write one of: {}",
-                        section::SHAPES.join(", ")
-                    )),
-            );
+            diags.push(message::shape::expected_section(
+                other,
+                v.span,
+                section::SHAPES,
+            ));
             None
         }
     }
@@ -199,14 +182,7 @@ fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
             let a = f.positive("angle", Dim::ANGLE, Some("45 deg"), diags);
             let (a, aspan) = a?;
             if a > std::f64::consts::PI * 1.5 {
-                diags.push(
-                    Diagnostic::error(
-                        Code::BendAngle,
-                        "a bend angle above 270° makes the part collide with itself",
-                    )
-                    .label(aspan, format!("this is {}", Angle(a)))
-                    .help("bend angles up to 270° are supported"),
-                );
+                diags.push(message::shape::bend_too_far(Angle(a), aspan));
                 return None;
             }
             Spine::Arc {
@@ -215,14 +191,8 @@ fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
             }
         }
         other => {
-            diags.push(
-                Diagnostic::error(
-                    Code::ExpectedShape,
-                    "a spine is `line(length = …)` or `arc(radius = …, angle = …)`",
-                )
-                .label(v.span, format!("this is {}", other.describe()))
-                .help("e.g. `spine = arc(radius = 250 mm, angle = 45 deg)`"),
-            );
+            diags.push(message::shape::not_a_spine(other, v.span));
+
             return None;
         }
     };

@@ -36,7 +36,7 @@ mod variable;
 pub use profile::LayerShapes;
 pub use top::TopHeights;
 
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::syntax::ast::File;
 use model::Model;
 use statement::Statements;
@@ -65,14 +65,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     let process = process::statement(&mut env, &st, ring.then(|| solid.ring_powers()), diags);
     let control = control::statement(&mut env, &st, &decl.constants, diags);
     if let (false, Some((_, at))) = (ring, &control) {
-        diags.push(
-            Diagnostic::error(
-                Code::Unsupported,
-                "a height loop corrects each segment of a ring; this file builds no ring",
-            )
-            .label(*at, "control")
-            .help("remove `control`, or build a `ring NAME { … }` with `slicing continuous { … }`"),
-        );
+        diags.push(message::statement::control_without_ring(*at));
     }
     let machines = machines::read(&mut env, &st, diags);
     let styles = style::read(&mut env, st.get("style"), diags);

@@ -9,7 +9,7 @@ use super::model::{Outline, ProfileExpr, Segment, Shape, Turn};
 use super::region;
 use super::section;
 use super::value::{Call, Env, Spanned, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::syntax::ast::Expr;
 use crate::units::{Dim, Length};
 
@@ -30,25 +30,16 @@ pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> 
         Value::Call(c) if c.func == "region" => region::region(c, diags),
         Value::Call(c) if c.func == "place" => region::place(c, diags),
         Value::Call(c) if c.func == "bolt_circle" => {
-            diags.push(
-                Diagnostic::error(
-                    Code::ExpectedShape,
-                    format!("{what} must be one 2-D shape; a bolt circle is several holes"),
-                )
-                .label(v.span, "a bolt circle")
-                .help("list it among a region's holes: `region(outline = …, holes = [bolt_circle(circle(diameter = 12 mm), count = 6, diameter = 85 mm)])`"),
-            );
+            diags.push(message::shape::bolt_circle_not_shape(what, v.span));
             None
         }
         other => {
-            diags.push(
-                Diagnostic::error(Code::ExpectedShape, format!("{what} must be a 2-D shape"))
-                    .label(v.span, format!("this is {}", other.describe()))
-                    .help(format!(
-                        "write `outline([x, y], [x, y], arc(to = [x, y], radius = r), …)`, `region(outline = …, holes = […])`, `place(…)` or a section shape: {}",
-                        section::SHAPES.join(", ")
-                    )),
-            );
+            diags.push(message::shape::not_a_shape(
+                what,
+                other,
+                v.span,
+                section::SHAPES,
+            ));
             None
         }
     }
@@ -60,22 +51,12 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
     let mut ok = true;
     let mut last: Option<[Length; 2]> = None;
     if c.args.len() > MAX_SEGMENTS {
-        diags.push(
-            Diagnostic::error(
-                Code::TooManyPoints,
-                format!("an outline has at most {MAX_SEGMENTS} pieces"),
-            )
-            .label(c.func_span, "outline"),
-        );
+        diags.push(message::shape::too_many_pieces(MAX_SEGMENTS, c.func_span));
         return None;
     }
     for a in &c.args {
         if let Some((_, s)) = &a.name {
-            diags.push(
-                Diagnostic::error(Code::Argument, "the pieces of an outline have no names")
-                    .label(*s, "drop the name")
-                    .help("write `outline([0 mm, 0 mm], [40 mm, 0 mm], …)`"),
-            );
+            diags.push(message::shape::named_piece(*s));
             ok = false;
             continue;
         }
@@ -85,18 +66,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
             Value::Call(arc) if arc.func == "arc" && start.is_some() => arc_piece(arc, diags),
             other => {
                 let first = start.is_none();
-                diags.push(
-                    Diagnostic::error(
-                        Code::ExpectedPoint,
-                        if first {
-                            "an outline starts with a point `[x, y]`".to_string()
-                        } else {
-                            "a piece of an outline is a point `[x, y]` or `arc(…)`".to_string()
-                        },
-                    )
-                    .label(v.span, format!("this is {}", other.describe()))
-                    .help("e.g. `outline([0 mm, 0 mm], [40 mm, 0 mm], arc(to = [40 mm, 20 mm], radius = 10 mm), [0 mm, 20 mm])`"),
-                );
+                diags.push(message::shape::bad_piece(first, other, v.span));
                 None
             }
         };
@@ -111,28 +81,13 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
             start = Some(to);
         } else {
             if last == Some(to) {
-                diags.push(
-                    Diagnostic::error(Code::Degenerate, "this piece of the outline has no length")
-                        .label(v.span, "same point as the one before")
-                        .help("drop the repeated point"),
-                );
+                diags.push(message::shape::zero_length_piece(v.span));
                 ok = false;
             }
             if let (Segment::Arc { radius, .. }, Some(from)) = (seg, last) {
                 let chord = ((to[0].0 - from[0].0).powi(2) + (to[1].0 - from[1].0).powi(2)).sqrt();
                 if radius.0 * 2.0 < chord * (1.0 - 1e-9) {
-                    diags.push(
-                        Diagnostic::error(
-                            Code::Degenerate,
-                            format!(
-                                "an arc of radius {} cannot join points {} apart",
-                                radius,
-                                Length(chord)
-                            ),
-                        )
-                        .label(v.span, "radius smaller than half the chord")
-                        .help(format!("use a radius of at least {}", Length(chord / 2.0))),
-                    );
+                    diags.push(message::shape::arc_too_small(radius, Length(chord), v.span));
                     ok = false;
                 }
             }
@@ -142,11 +97,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
     }
     let start = start?;
     if ok && segments.len() < 2 && !segments.iter().any(|s| matches!(s, Segment::Arc { .. })) {
-        diags.push(
-            Diagnostic::error(Code::Degenerate, "an outline needs at least three corners")
-                .label(c.func_span, "encloses no area")
-                .help("give at least three points, or two points and an arc"),
-        );
+        diags.push(message::shape::too_few_corners(c.func_span));
         return None;
     }
     ok.then_some(Outline { start, segments })
@@ -161,11 +112,8 @@ pub(super) fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]>
             Some([Length(x?), Length(y?)])
         }
         other => {
-            diags.push(
-                Diagnostic::error(Code::ExpectedPoint, "a point is `[x, y]`, two lengths")
-                    .label(v.span, format!("this is {}", other.describe()))
-                    .help("e.g. `[40 mm, 0 mm]`"),
-            );
+            diags.push(message::shape::not_a_point(other, v.span));
+
             None
         }
     }

@@ -5,7 +5,7 @@
 //! vertical tab or an escape must not reach a program either), and the lines a
 //! program needs must be there.
 
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 
 /// Longest line lmdc writes from the source (LinuxCNC reads at most 255).
@@ -18,39 +18,21 @@ pub fn line(text: &str, key: &str, span: Span, diags: &mut Diagnostics) -> bool 
         .char_indices()
         .find(|&(_, c)| !(' '..='~').contains(&c))
     {
-        let what = match c {
-            '\r' => "a carriage return (a line end to the control)".to_string(),
-            '\t' => "a tab".to_string(),
-            c if c.is_control() => format!("the control character U+{:04X}", c as u32),
-            c => format!("`{c}`, which is not ASCII"),
-        };
-        diags.push(
-            Diagnostic::error(
-                Code::ProgramText,
-                format!(
-                    "`{key}` holds {what} at character {}",
-                    text[..i].chars().count() + 1
-                ),
-            )
-            .label(span, "written into the program as it is")
-            .help(format!(
-                "`{key}` must be one line of printable ASCII; give several lines as a list, \
-                 e.g. `preamble = [\"G21 G90\", \"G94\"]`"
-            )),
-        );
+        diags.push(message::statement::program_text_character(
+            key,
+            c,
+            text[..i].chars().count() + 1,
+            span,
+        ));
         return false;
     }
     if text.len() > MAX_LINE {
-        diags.push(
-            Diagnostic::error(
-                Code::ProgramText,
-                format!("`{key}` is {} characters long", text.len()),
-            )
-            .label(span, "one program line")
-            .help(format!(
-                "controls read lines of limited length (LinuxCNC: 255); keep it under {MAX_LINE}"
-            )),
-        );
+        diags.push(message::statement::program_text_too_long(
+            key,
+            text.len(),
+            MAX_LINE,
+            span,
+        ));
         return false;
     }
     true
@@ -62,18 +44,7 @@ pub fn switch(text: &str, key: &str, span: Span, diags: &mut Diagnostics) -> boo
         return false;
     }
     if text.trim().is_empty() {
-        let does = if key == "laser_on" { "on" } else { "off" };
-        diags.push(
-            Diagnostic::error(Code::ProgramText, format!("`{key}` is empty"))
-                .label(
-                    span,
-                    format!("the program would never switch the laser {does}"),
-                )
-                .help(format!(
-                    "give the control's laser-{does} command, e.g. `{key} = \"{}\"`",
-                    if does == "on" { "M3" } else { "M5" }
-                )),
-        );
+        diags.push(message::statement::empty_switch(key, span));
         return false;
     }
     true
@@ -85,14 +56,8 @@ pub fn dwell(text: &str, span: Span, diags: &mut Diagnostics) -> bool {
         return false;
     }
     if text.matches("{s}").count() != 1 {
-        diags.push(
-            Diagnostic::error(
-                Code::ProgramText,
-                "`dwell` must hold `{s}` once, where the seconds go",
-            )
-            .label(span, "dwell line")
-            .help("e.g. `dwell = \"G4 P{s}\"` (LinuxCNC: P in seconds)"),
-        );
+        diags.push(message::statement::dwell_without_seconds(span));
+
         return false;
     }
     true

@@ -17,7 +17,7 @@ use super::fields::Fields;
 use super::model::{Hole, Placed, RegionShape, Shape};
 use super::profile::{point, shape};
 use super::value::{Call, Spanned, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::units::{Angle, Dim, Length};
 
@@ -77,11 +77,7 @@ fn turn(f: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<Angle> {
 fn plain(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> {
     let s = shape(v, what, diags)?;
     if s.has_holes() {
-        diags.push(
-            Diagnostic::error(Code::ExpectedShape, format!("{what} cannot have holes of its own"))
-                .label(v.span, "a region")
-                .help("list every hole in the one region's `holes`; a hole inside a hole would be an island, built as a part of its own"),
-        );
+        diags.push(message::shape::holes_in_hole(what, v.span));
         return None;
     }
     Some(s)
@@ -90,11 +86,7 @@ fn plain(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> {
 /// The list of holes, bolt circles expanded.
 fn holes(v: &Spanned, diags: &mut Diagnostics) -> Option<Vec<Hole>> {
     let Value::List(items) = &v.value else {
-        diags.push(
-            Diagnostic::error(Code::ExpectedShape, "`holes` is a list of shapes")
-                .label(v.span, format!("this is {}", v.value.describe()))
-                .help("write `holes = [circle(diameter = 50 mm), place(circle(diameter = 12 mm), at = [42.5 mm, 0 mm])]`"),
-        );
+        diags.push(message::shape::holes_not_list(&v.value, v.span));
         return None;
     };
     let mut out = Vec::new();
@@ -115,13 +107,8 @@ fn holes(v: &Spanned, diags: &mut Diagnostics) -> Option<Vec<Hole>> {
         }
     }
     if out.len() > MAX_HOLES {
-        diags.push(
-            Diagnostic::error(
-                Code::TooManyPoints,
-                format!("a region has at most {MAX_HOLES} holes, not {}", out.len()),
-            )
-            .label(v.span, "holes"),
-        );
+        diags.push(message::shape::too_many_holes(MAX_HOLES, out.len(), v.span));
+
         return None;
     }
     ok.then_some(out)

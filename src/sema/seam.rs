@@ -7,7 +7,7 @@ use super::fields::{self, Fields};
 use super::model::{LinkMode, SeamRule};
 use super::suggest::did_you_mean;
 use super::value::{Call, Spanned, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::units::{Angle, Dim};
 
 /// The golden angle (deg): a seam turned by it every layer never comes back
@@ -37,21 +37,13 @@ pub fn read(v: &Spanned, diags: &mut Diagnostics) -> Option<SeamRule> {
             }
         }
         other => {
-            let mut d = Diagnostic::error(
-                Code::BadChoice,
-                "a seam is `lowest`, `sharpest_corner`, an angle, `rotating(…)` or `random(…)`",
-            )
-            .label(v.span, format!("this is {}", other.describe()));
             let near = match other {
                 Value::Symbol(w) => did_you_mean(w, WORDS.iter().copied()),
                 Value::Call(c) => did_you_mean(&c.func, ["rotating", "random"]),
                 _ => None,
             };
-            d = match near {
-                Some(m) => d.help(format!("did you mean `{m}`?")),
-                None => d.help("e.g. `seam = rotating(step = 90 deg)` moves the start of every contour a quarter turn each layer"),
-            };
-            diags.push(d);
+            diags.push(message::solid::bad_seam(other, v.span, near));
+
             None
         }
     }

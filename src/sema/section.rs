@@ -3,7 +3,7 @@
 use super::fields::Fields;
 use super::model::Section;
 use super::value::Call;
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::units::{Dim, Length};
 
 /// The section constructors the language knows.
@@ -73,26 +73,16 @@ pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
                 if r >= 0.0 {
                     return true;
                 }
-                diags.push(
-                    Diagnostic::error(
-                        Code::CornerRadius,
-                        "the corner radius must lie between 0 and half the shorter side",
-                    )
-                    .label(rs, format!("this is {}", Length(r)))
-                    .help("a corner radius is 0 (sharp) or more"),
-                );
+                diags.push(message::shape::corner_radius(Length(r), None, rs));
                 false
             });
             let (a, b, (r, rs)) = (a?.0 / 2.0, b?.0 / 2.0, r?);
             if r > a.min(b) {
-                diags.push(
-                    Diagnostic::error(
-                        Code::CornerRadius,
-                        "the corner radius must lie between 0 and half the shorter side",
-                    )
-                    .label(rs, format!("this is {}", Length(r)))
-                    .help(format!("use a radius of at most {}", Length(a.min(b)))),
-                );
+                diags.push(message::shape::corner_radius(
+                    Length(r),
+                    Some(Length(a.min(b))),
+                    rs,
+                ));
                 return None;
             }
             Some(Section::RoundedRectangle {
@@ -135,14 +125,7 @@ fn one_of(f: &Fields<'_>, a: &str, b: &str, diags: &mut Diagnostics) -> bool {
     if !(f.has(a) && f.has(b)) {
         return true;
     }
-    diags.push(
-        Diagnostic::error(
-            Code::ConflictingFields,
-            format!("give either `{a}` or `{b}`, not both"),
-        )
-        .label_opt(f.span(b), b)
-        .label_opt(f.span(a), a)
-        .help("they give the same size; keep the one you measured"),
-    );
+    diags.push(message::shape::either_not_both(a, f.span(a), b, f.span(b)));
+
     false
 }

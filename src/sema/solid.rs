@@ -11,7 +11,8 @@ use super::slicing::{self, Spec};
 use super::statement::{shape_error, Statements};
 use super::value::Env;
 use super::variable;
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::message::{self, solid::SlicingMismatch};
+use crate::diag::Diagnostics;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{MassFlow, Speed};
@@ -81,14 +82,7 @@ pub fn read<'a>(
     solids.extend(st.get("ring"));
     solids.sort_by_key(|s| s.span.start);
     let Some((s, rest)) = solids.split_first() else {
-        diags.push(
-            Diagnostic::error(
-                Code::MissingSolid,
-                "the file does not describe a solid to build",
-            )
-            .label(Span::new(0, 0), "no `loft`, `extrude` or `ring` here")
-            .help("add `loft NAME { from = …  to = …  spine = …  wall = BEAD }`, `extrude NAME { profile = …  bead = BEAD }` or `ring NAME { radius = …  segments = …  table { … } }`"),
-        );
+        diags.push(message::solid::missing_solid());
         return Read {
             kind: None,
             solid: None,
@@ -96,12 +90,7 @@ pub fn read<'a>(
         };
     };
     for extra in rest {
-        diags.push(
-            Diagnostic::error(Code::SecondSolid, "lmdc builds one solid per file")
-                .label(extra.kind.span, "second solid")
-                .label(s.kind.span, "first solid")
-                .help("put each part in its own file"),
-        );
+        diags.push(message::solid::second_solid(extra.kind.span, s.kind.span));
     }
     let (kind, solid, bead) = match (s.kind.node.as_str(), &s.name, &s.body) {
         ("loft", Some(n), Body::Block(stmts, _)) => {
@@ -224,42 +213,21 @@ fn mismatch(
     stmt: Option<&Stmt>,
     diags: &mut Diagnostics,
 ) -> bool {
-    let (message, help) = match (kind, strategy) {
-        (Some(Kind::Loft), Some(s @ ("planar" | "variable"))) => (
-            format!("{s} slicing does not build a loft"),
-            "slice a loft with `slicing normal { … }`",
-        ),
-        (Some(Kind::Extrude), Some("normal")) => (
-            "normal slicing does not build an extrusion".to_string(),
-            "slice an extrusion with `slicing planar { … }`",
-        ),
-        (Some(Kind::Extrude), Some("variable")) => (
-            "variable slicing builds an extrusion up to its `top`, and this one has none".to_string(),
-            "add `top = …` to the extrusion (e.g. `top = edges(along = x, from = 20 mm, to = 36 mm)`), or slice it with `slicing planar { … }`",
-        ),
-        (Some(Kind::TopExtrude), Some("normal")) => (
-            "normal slicing does not build an extrusion".to_string(),
-            "slice an extrusion with a `top` with `slicing variable { … }`",
-        ),
-        (Some(Kind::Ring), Some(s @ ("normal" | "planar" | "variable"))) => (
-            format!("{s} slicing does not build a ring"),
-            "slice a ring with `slicing continuous { layers = …  layer_height = … }`",
-        ),
-        (Some(Kind::Loft | Kind::Extrude | Kind::TopExtrude), Some("continuous")) => (
-            "continuous slicing builds a ring".to_string(),
-            "slice a loft with `slicing normal { … }`, an extrusion with `slicing planar { … }` (or `variable` with a `top`)",
-        ),
-        (Some(Kind::TopExtrude), Some("planar")) => (
-            "planar slicing lays flat layers of one height, and this extrusion has a `top`".to_string(),
-            "slice it with `slicing variable { … }`, or give it `height = …` instead of `top`",
-        ),
+    let m = match (kind, strategy) {
+        (Some(Kind::Loft), Some(s @ ("planar" | "variable"))) => SlicingMismatch::Loft(s),
+        (Some(Kind::Extrude), Some("normal")) => SlicingMismatch::ExtrusionNormal,
+        (Some(Kind::Extrude), Some("variable")) => SlicingMismatch::ExtrusionVariable,
+        (Some(Kind::TopExtrude), Some("normal")) => SlicingMismatch::TopExtrusionNormal,
+        (Some(Kind::Ring), Some(s @ ("normal" | "planar" | "variable"))) => {
+            SlicingMismatch::Ring(s)
+        }
+        (Some(Kind::Loft | Kind::Extrude | Kind::TopExtrude), Some("continuous")) => {
+            SlicingMismatch::Continuous
+        }
+        (Some(Kind::TopExtrude), Some("planar")) => SlicingMismatch::TopExtrusionPlanar,
         _ => return false,
     };
     let at = stmt.map(|s| s.span).unwrap_or(Span::new(0, 0));
-    diags.push(
-        Diagnostic::error(Code::BadChoice, message)
-            .label(at, "slicing")
-            .help(help),
-    );
+    diags.push(message::solid::slicing_mismatch(m, at));
     true
 }

@@ -3,8 +3,7 @@
 //! how often it may appear.
 
 use super::suggest;
-use crate::diag::{Code, Diagnostic, Diagnostics};
-use crate::span::Span;
+use crate::diag::{message, Diagnostic, Diagnostics};
 use crate::syntax::ast::{Body, File, Stmt};
 use std::collections::BTreeMap;
 
@@ -39,16 +38,12 @@ impl<'f> Statements<'f> {
         for s in &file.stmts {
             let k = s.kind.node.as_str();
             if !KINDS.contains(&k) {
-                let mut d = Diagnostic::error(
-                    Code::UnknownStatement,
-                    format!("`{k}` does not start a statement"),
-                )
-                .label(s.kind.span, "unknown");
-                d = match suggest::did_you_mean(k, KINDS.iter().copied()) {
-                    Some(m) => d.help(format!("did you mean `{m}`?")),
-                    None => d.help(format!("a file is made of: {}", KINDS.join(", "))),
-                };
-                diags.push(d);
+                diags.push(message::statement::unknown_statement(
+                    k,
+                    s.kind.span,
+                    suggest::did_you_mean(k, KINDS.iter().copied()),
+                    KINDS,
+                ));
                 continue;
             }
             by_kind.entry(k).or_default().push(s);
@@ -71,14 +66,7 @@ pub fn single<'s>(
     diags: &mut Diagnostics,
 ) -> Option<&'s Stmt> {
     if stmts.is_empty() {
-        diags.push(
-            Diagnostic::error(
-                Code::MissingStatement,
-                format!("the file has no `{kind}` statement"),
-            )
-            .label(Span::new(0, 0), format!("`{kind}` is missing"))
-            .help(format!("add `{example}`")),
-        );
+        diags.push(message::statement::missing_statement(kind, example));
     }
     single_optional(stmts, kind, diags)
 }
@@ -91,24 +79,18 @@ pub fn single_optional<'s>(
 ) -> Option<&'s Stmt> {
     let (first, rest) = stmts.split_first()?;
     for extra in rest {
-        diags.push(
-            Diagnostic::error(Code::DuplicateStatement, format!("`{kind}` is given twice"))
-                .label(extra.kind.span, "second time")
-                .label(first.kind.span, "first time")
-                .help("keep one of them"),
-        );
+        diags.push(message::statement::duplicate_statement(
+            kind,
+            extra.kind.span,
+            first.kind.span,
+        ));
     }
     Some(first)
 }
 
 /// A statement not written in the shape its kind takes.
 pub fn shape_error(s: &Stmt, shape: &str, example: &str) -> Diagnostic {
-    Diagnostic::error(
-        Code::Syntax,
-        format!("a `{}` statement is written `{shape}`", s.kind.node),
-    )
-    .label(s.span, "not in that shape")
-    .help(format!("e.g. `{example}`"))
+    message::statement::statement_shape(&s.kind.node, s.span, shape, example)
 }
 
 /// `part NAME`: the part's name.

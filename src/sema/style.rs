@@ -8,10 +8,12 @@ use super::process::Laser;
 use super::slicing::PlanarSpec;
 use super::statement::{single_optional, Statements};
 use super::value::{Env, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::message::style::{StyleBead, Unstyled};
+use crate::diag::message::{self, statement::Declaration};
+use crate::diag::Diagnostics;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
-use crate::units::{short, Angle, Dim, Length, MassFlow, Power, Speed};
+use crate::units::{Angle, Dim, Length, MassFlow, Power, Speed};
 use std::collections::BTreeMap;
 
 /// Colours of styles that do not give one (the "tab10" palette).
@@ -46,29 +48,21 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
     let mut ids: BTreeMap<u16, Span> = BTreeMap::new();
     let mut auto: Vec<usize> = Vec::new();
     if stmts.len() > MAX_STYLES {
-        diags.push(
-            Diagnostic::error(
-                Code::TooManyStyles,
-                format!(
-                    "{} styles are more than the {MAX_STYLES} a table may hold",
-                    stmts.len()
-                ),
-            )
-            .label(stmts[MAX_STYLES].span, "one too many")
-            .help("style ids are 1 ..= 65535 (0 is the process block)"),
-        );
+        diags.push(message::style::too_many_styles(
+            stmts.len(),
+            MAX_STYLES,
+            stmts[MAX_STYLES].span,
+        ));
         return Vec::new();
     }
     for (i, s) in stmts.iter().enumerate() {
         let (Some(n), Body::Block(body, _)) = (&s.name, &s.body) else {
-            diags.push(
-                Diagnostic::error(
-                    Code::Syntax,
-                    "a `style` statement is written `style NAME { … }`",
-                )
-                .label(s.span, "not in that shape")
-                .help("e.g. `style edge { power = 1300 W  when { paths = outer_contour } }`"),
-            );
+            diags.push(message::statement::statement_shape(
+                "style",
+                s.span,
+                "style NAME { … }",
+                "style edge { power = 1300 W  when { paths = outer_contour } }",
+            ));
             continue;
         };
         // The name goes into comments of every program: a word, nothing a
@@ -80,24 +74,15 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
                 .chars()
                 .all(|c| c.is_ascii_alphanumeric() || c == '_');
         if !word {
-            diags.push(
-                Diagnostic::error(
-                    Code::StyleName,
-                    format!("`{}` is not a style name", n.node),
-                )
-                .label(n.span, "not a name")
-                .help("a style's name is a word of letters, digits and `_`, e.g. `style outer_edge { … }`"),
-            );
+            diags.push(message::style::bad_style_name(&n.node, n.span));
         }
         if let Some(prev) = names.insert(n.node.clone(), n.span) {
-            diags.push(
-                Diagnostic::error(
-                    Code::DuplicateName,
-                    format!("style `{}` is declared twice", n.node),
-                )
-                .label(n.span, "second declaration")
-                .label(prev, "first declaration"),
-            );
+            diags.push(message::statement::duplicate_name(
+                &n.node,
+                Declaration::Style,
+                n.span,
+                prev,
+            ));
         }
         let what = format!("style `{}`", n.node);
         let f = Fields::block_with_repeats(
@@ -116,15 +101,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
             Some((id, sp)) => {
                 let id = id as u16;
                 if let Some(prev) = ids.get(&id) {
-                    diags.push(
-                        Diagnostic::error(
-                            Code::DuplicateId,
-                            format!("style id {id} is used twice"),
-                        )
-                        .label(sp, "second use")
-                        .label(*prev, "first use")
-                        .help("give every style its own id"),
-                    );
+                    diags.push(message::style::duplicate_id(id, sp, *prev));
                 }
                 ids.insert(id, sp);
                 Some(Some(id))
@@ -138,35 +115,17 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         if let Some(Some((_, sp))) = powder {
             // Seed 002's table reserves the field too: feeders are not switched
             // track by track.
-            diags.push(
-                Diagnostic::warning(
-                    Code::Unused,
-                    format!("{what}'s powder feed is recorded, not programmed"),
-                )
-                .label(sp, "in the IR and the programs' style table only")
-                .help("no back end sets the powder feeder per track; set it at the cell, or leave `powder` out"),
-            );
+            diags.push(message::style::powder_not_programmed(&what, sp));
         }
         if !f.has("power") && !f.has("speed") && !f.has("powder") {
-            diags.push(
-                Diagnostic::warning(Code::Unused, format!("{what} sets no process value"))
-                    .label(n.span, "its tracks get the process block's values")
-                    .help("give it `power`, `speed` or both"),
-            );
+            diags.push(message::style::no_process_value(&what, n.span));
         }
         let colour = match f.text("colour", None, diags) {
             Some((c, sp)) => {
                 if is_colour(&c) {
                     Some(c.to_ascii_lowercase())
                 } else {
-                    diags.push(
-                        Diagnostic::error(
-                            Code::BadChoice,
-                            format!("`{c}` is not a colour `#rrggbb`"),
-                        )
-                        .label(sp, "not a colour")
-                        .help("write six hex digits, e.g. `colour = \"#d62728\"`"),
-                    );
+                    diags.push(message::style::bad_colour(&c, sp));
                     None
                 }
             }
@@ -175,11 +134,7 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
         };
         let blocks = f.nested_all("when");
         if blocks.is_empty() {
-            diags.push(
-                Diagnostic::error(Code::MissingField, format!("{what} picks no tracks"))
-                    .label(s.span, "no `when { … }` block")
-                    .help("add a rule, e.g. `when { paths = outer_contour }`; several `when` blocks pick the tracks any of them picks"),
-            );
+            diags.push(message::style::picks_no_tracks(&what, s.span));
         }
         let rules: Vec<Option<Vec<StyleCondition>>> = blocks
             .iter()
@@ -274,27 +229,13 @@ fn rule<'a>(
     ok &= corner.is_some() || !f.has("near_corner");
     let angle = match f.quantity("corner_angle", Dim::ANGLE, None, diags) {
         Some((a, sp)) if !(a > 0.0 && a <= std::f64::consts::PI) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::CornerAngle,
-                    "`corner_angle` must be more than 0 deg and at most 180 deg",
-                )
-                .label(sp, format!("this is {} deg", short(a.to_degrees())))
-                .help("a corner's angle is how far the boundary turns there"),
-            );
+            diags.push(message::style::corner_angle_range(a.to_degrees(), sp));
             ok = false;
             None
         }
         Some((a, sp)) => {
             if corner.is_none() && !f.has("near_corner") {
-                diags.push(
-                    Diagnostic::warning(
-                        Code::Unused,
-                        "`corner_angle` does nothing without `near_corner`",
-                    )
-                    .label(sp, "unused")
-                    .help("add `near_corner = 3 mm` or remove `corner_angle`"),
-                );
+                diags.push(message::style::corner_angle_unused(sp));
             }
             Some(Angle(a))
         }
@@ -316,26 +257,12 @@ fn rule<'a>(
                 if whole(a.value) && whole(b.value) && a.value <= b.value {
                     out.push(StyleCondition::Layers(a.value as usize, b.value as usize));
                 } else {
-                    diags.push(
-                        Diagnostic::error(
-                            Code::LayersRange,
-                            "`layers` must be a range of layer numbers `first .. last`, counted from 1",
-                        )
-                        .label(v.span, format!("this is {} .. {}", short(a.value), short(b.value)))
-                        .help("e.g. `layers = 1 .. 3` for the first three layers"),
-                    );
+                    diags.push(message::style::bad_layers_range(a.value, b.value, v.span));
                     ok = false;
                 }
             }
             other => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::ExpectedRange,
-                        "`layers` must be a range of layer numbers",
-                    )
-                    .label(v.span, format!("this is {}", other.describe()))
-                    .help("e.g. `layers = 1 .. 3` for the first three layers"),
-                );
+                diags.push(message::style::layers_not_range(other, v.span));
                 ok = false;
             }
         }
@@ -345,11 +272,7 @@ fn rule<'a>(
     // Only a block written empty picks every track; one whose conditions
     // all failed has said why already.
     if ok && out.is_empty() && stmts.is_empty() {
-        diags.push(
-            Diagnostic::error(Code::MissingField, "an empty `when` block picks every track")
-                .label(span, "no condition")
-                .help("set values for every track in `process`; here say which tracks, e.g. `paths = infill`"),
-        );
+        diags.push(message::style::empty_rule(span));
         return None;
     }
     if out.is_empty() {
@@ -367,14 +290,11 @@ fn rule<'a>(
         }),
     ) {
         if below <= above {
-            diags.push(
-                Diagnostic::warning(
-                    Code::Unused,
-                    format!("no track is shorter than {} and at least {} long", Length(below), Length(above)),
-                )
-                .label(span, "this `when` block picks nothing")
-                .help("for tracks shorter than one length or longer than another, write two `when` blocks"),
-            );
+            diags.push(message::style::lengths_exclude(
+                Length(below),
+                Length(above),
+                span,
+            ));
         }
     }
     ok.then_some(out)
@@ -408,14 +328,7 @@ fn inheritance<'a>(
     diags: &mut Diagnostics,
 ) -> Option<Inheritance> {
     let (None, Body::Block(stmts, _)) = (&stmt.name, &stmt.body) else {
-        diags.push(
-            Diagnostic::error(
-                Code::Syntax,
-                "an `inheritance` statement is written `inheritance { band = …  hit = … }`",
-            )
-            .label(stmt.span, "not in that shape")
-            .help("e.g. `inheritance { band = 0.8 mm  hit = 99 % }`"),
-        );
+        diags.push(message::style::inheritance_shape(stmt.span));
         return None;
     };
     let f = Fields::block(
@@ -432,14 +345,7 @@ fn inheritance<'a>(
         Some(v) => match fields::quantity(v, Dim::NONE, "hit", diags) {
             Some(h) if h > 0.0 && h <= 1.0 => Some(h),
             Some(h) => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::HitRange,
-                        "`hit` is the share of a track inside the band: more than 0 % and at most 100 %",
-                    )
-                    .label(v.span, format!("this is {} %", short(h * 100.0)))
-                    .help("the paper uses 99 %"),
-                );
+                diags.push(message::style::hit_range(h, v.span));
                 None
             }
             None => None,
@@ -482,49 +388,24 @@ pub fn assemble(
     cx: &Context<'_>,
     diags: &mut Diagnostics,
 ) -> Option<Styles> {
-    if let (true, Some(first)) = (cx.loft, written.first()) {
-        diags.push(
-            Diagnostic::error(
-                Code::Unsupported,
-                "styles pick tracks of planar layers; a loft's wall is one track a layer",
-            )
-            .label(first.style.span, "style")
-            .help("schedule the wall's power in `process` (e.g. `power = ramp(…)`)"),
-        );
-        return None;
-    }
-    if let (true, Some(first)) = (cx.ring, written.first()) {
-        diags.push(
-            Diagnostic::error(
-                Code::Unsupported,
-                "styles pick tracks of planar layers; a ring's table sets each segment's process",
-            )
-            .label(first.style.span, "style")
-            .help("remove the style and give the segments their values in the ring's `table`"),
-        );
-        return None;
-    }
-    if let (true, Some(first)) = (cx.variable, written.first()) {
-        diags.push(
-            Diagnostic::error(
-                Code::Unsupported,
-                "styles pick tracks of planar layers; variable layers take every speed from the bead model",
-            )
-            .label(first.style.span, "style")
-            .help("remove the style: each segment's speed lays its height, and the power is the process block's (`power = ramp(…)` schedules it over the layers)"),
-        );
-        return None;
+    for (unstyled, kind) in [
+        (cx.loft, Unstyled::Loft),
+        (cx.ring, Unstyled::Ring),
+        (cx.variable, Unstyled::Variable),
+    ] {
+        if let (true, Some(first)) = (unstyled, written.first()) {
+            diags.push(message::style::styles_unsupported(kind, first.style.span));
+            return None;
+        }
     }
     let mut ok = written.iter().all(|w| w.complete);
     for w in &written {
         ok &= values_fit(w, cx.bead, cx.laser, diags);
     }
     match inheritance.span {
-        Some(sp) if written.is_empty() => diags.push(
-            Diagnostic::warning(Code::Unused, "inheritance without styles does nothing")
-                .label(sp, "no style to inherit")
-                .help("declare `style NAME { … }` or remove `inheritance`"),
-        ),
+        Some(sp) if written.is_empty() => {
+            diags.push(message::style::inheritance_without_styles(sp))
+        }
         Some(sp) => {
             // The band runs along a styled track; a track turned across it
             // covers at most a band's width of its length.
@@ -533,17 +414,7 @@ pub fn assemble(
                 .and_then(|s| s.infill)
                 .map_or(0.0, |(r, _)| r.rotate.deg().rem_euclid(180.0));
             if turn > 1e-9 && 180.0 - turn > 1e-9 {
-                diags.push(
-                    Diagnostic::warning(
-                        Code::Unused,
-                        format!(
-                            "raster tracks turn {} deg a layer, so they cross the layer below's styled tracks and do not inherit their styles",
-                            short(turn)
-                        ),
-                    )
-                    .label(sp, "inheritance")
-                    .help("inheritance follows tracks laid the same way as the layer below: rotate by 0 or 180 deg, or pick the tracks by rules on every layer"),
-                );
+                diags.push(message::style::raster_turns_away(turn, sp));
             }
         }
         None => {}
@@ -568,60 +439,32 @@ fn values_fit(
     let mut ok = true;
     if let (Some(v), Some(sp), Some(bead)) = (s.speed, w.speed_span, bead) {
         let h = bead.model.height_at(v, bead.width);
+        let b = StyleBead {
+            name: &bead.name,
+            speed: (bead.speed, bead.speed_span),
+            height: (bead.height, bead.height_span),
+        };
         if !bead.covers_speed(v) {
-            diags.push(
-                Diagnostic::error(
-                    Code::StyleSpeed,
-                    format!(
-                        "style `{}` scans at {}, outside the {} .. {} bead `{}` is valid for",
-                        s.name, v, bead.speed[0], bead.speed[1], bead.name
-                    ),
-                )
-                .label(sp, "style speed")
-                .label(bead.speed_span, "bead model's speeds")
-                .help("choose a speed the bead model covers, or measure the bead at this speed"),
-            );
+            diags.push(message::style::style_speed_outside_bead(&s.name, v, sp, &b));
             ok = false;
         } else if !bead.covers_height(h) {
-            diags.push(
-                Diagnostic::error(
-                    Code::StyleSpeed,
-                    format!(
-                        "style `{}` scans at {}, where bead `{}` is {} high: outside its allowed {} .. {}",
-                        s.name, v, bead.name, h, bead.height[0], bead.height[1]
-                    ),
-                )
-                .label(sp, "style speed")
-                .label(bead.height_span, "allowed heights")
-                .help("a speed whose bead height lies in the allowed range keeps the layer level"),
-            );
+            diags.push(message::style::style_height_outside_bead(
+                &s.name, v, h, sp, &b,
+            ));
             ok = false;
         }
     }
     if let (Some(p), Some(sp), Some(laser)) = (s.power, w.power_span, laser) {
         if !laser.covers(p) {
-            let [lo, hi] = laser.range;
-            diags.push(
-                Diagnostic::error(
-                    Code::StylePower,
-                    format!(
-                        "style `{}` sets {}, outside the laser's range {} .. {}",
-                        s.name, p, lo, hi
-                    ),
-                )
-                .label(sp, "style power")
-                .label(
-                    laser.range_span.unwrap_or(laser.power_span),
-                    match laser.range_span {
-                        Some(_) => "the laser's range",
-                        None => "the range is this power alone",
-                    },
-                )
-                .help(match laser.range_span {
-                    Some(_) => "widen `power_range` if the laser allows it, or change the style's power",
-                    None => "declare the laser's range in `process`, e.g. `power_range = 1000 W .. 3000 W`",
-                }),
-            );
+            diags.push(message::style::style_power_outside_laser(
+                &s.name,
+                p,
+                sp,
+                laser.range,
+                laser.range_span,
+                laser.power_span,
+            ));
+
             ok = false;
         }
     }

@@ -9,10 +9,10 @@
 use super::fields::{self, Fields};
 use super::model::{Axis, Top, TopExpr};
 use super::value::{Env, Value, POSITION};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Expr, ExprKind};
-use crate::units::{short, Dim, Length};
+use crate::units::{Dim, Length};
 
 /// The sugar forms a top may be written in.
 pub const SUGAR: [&str; 2] = ["edges", "plane"];
@@ -33,7 +33,7 @@ pub fn read(
             let before = env.layer_reads();
             let v = env.eval(expr, diags)?;
             if env.layer_reads() > before {
-                diags.push(uses_layer(expr.span));
+                diags.push(message::solid::top_follows_layer(expr.span));
                 return None;
             }
             let Value::Call(c) = &v.value else {
@@ -50,31 +50,15 @@ pub fn read(
     let mut inner = Diagnostics::new();
     let v = env.at_position(at[0], at[1], |env| env.eval(expr, &mut inner));
     // Arithmetic that fails at this point of the footprint: say where.
-    let at_point = env.position_reads() > before.1
-        && inner.iter().any(|d| {
-            matches!(
-                d.code,
-                Code::DivisionByZero | Code::Overflow | Code::BadExponent
-            )
-        });
+    let at_point =
+        env.position_reads() > before.1 && inner.iter().any(message::value::is_arithmetic_failure);
     if at_point {
-        diags.push(
-            Diagnostic::error(
-                Code::TopHeight,
-                format!(
-                    "the top cannot be computed at ({}, {}) mm, a point of the footprint",
-                    short(at[0]),
-                    short(at[1])
-                ),
-            )
-            .label(expr.span, "the top")
-            .help("the top is the finished part's height at every point of the footprint: the error below says what fails there"),
-        );
+        diags.push(message::solid::top_fails_at_point(at, expr.span));
     }
     diags.extend(inner);
     let v = v?;
     if env.layer_reads() > before.0 {
-        diags.push(uses_layer(expr.span));
+        diags.push(message::solid::top_follows_layer(expr.span));
         return None;
     }
     fields::quantity(&v, Dim::LENGTH, "top", diags)?;
@@ -82,15 +66,6 @@ pub fn read(
         expr: expr.clone(),
         constants: constants.to_vec(),
     }))
-}
-
-fn uses_layer(at: Span) -> Diagnostic {
-    Diagnostic::error(
-        Code::LayerOutsideProfile,
-        "`top` uses `layer` or `layer_z`: the top is one surface for every layer",
-    )
-    .label(at, "depends on the layer")
-    .help("each layer lays the same fraction of the top: write the finished part's height, a function of `x` and `y`")
 }
 
 /// `edges(along = x, from = 20 mm, to = 36 mm)`.
@@ -134,11 +109,7 @@ fn point(v: &super::value::Spanned, diags: &mut Diagnostics) -> Option<[Length; 
             Some([Length(x?), Length(y?)])
         }
         other => {
-            diags.push(
-                Diagnostic::error(Code::ExpectedPoint, "`at` is a point `[x, y]`, two lengths")
-                    .label(v.span, format!("this is {}", other.describe()))
-                    .help("e.g. `at = [0 mm, 0 mm]`"),
-            );
+            diags.push(message::solid::top_at_not_point(other, v.span));
             None
         }
     }
@@ -155,14 +126,12 @@ fn slope(a: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<f64> {
             if q.value.abs() < 89.0f64.to_radians() {
                 return Some(q.value.tan());
             }
-            diags.push(
-                Diagnostic::error(
-                    Code::OutOfRange,
-                    format!("`{key}` must be less than 89 deg from the horizontal"),
-                )
-                .label(v.span, format!("this is {}", crate::units::Angle(q.value)))
-                .help("a top that steep is a wall: slice it with `slicing normal` or `planar`"),
-            );
+            diags.push(message::solid::slope_too_steep(
+                key,
+                crate::units::Angle(q.value),
+                v.span,
+            ));
+
             return None;
         }
     }

@@ -3,10 +3,10 @@
 //! and does not cascade.
 
 use super::suggest::did_you_mean;
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Arg, BinOp, Expr, ExprKind, UnOp};
-use crate::units::{parse_unit, short, Dim, Quantity};
+use crate::units::{parse_unit, Dim, Quantity};
 use std::collections::{HashMap, HashSet};
 
 /// An evaluated expression.
@@ -254,7 +254,7 @@ impl<'a> Env<'a> {
                 Some(v)
             }
             LetState::Busy => {
-                diags.push(cycle(name, at, decl));
+                diags.push(message::value::cycle(name, at, decl));
                 Some(None)
             }
             LetState::Pending(expr) => {
@@ -264,7 +264,9 @@ impl<'a> Env<'a> {
                     if let Some((_, st, _)) = self.lets.get_mut(name) {
                         *st = LetState::Pending(expr);
                     }
-                    self.cut(diags, |d| d.push(chain_too_long(name, at, decl)));
+                    self.cut(diags, |d| {
+                        d.push(message::value::chain_too_long(name, at, decl))
+                    });
                     return Some(None);
                 }
                 let before = (self.layer_reads, self.position_reads);
@@ -345,7 +347,7 @@ impl<'a> Env<'a> {
     /// Evaluates an expression.
     pub fn eval(&mut self, e: &Expr, diags: &mut Diagnostics) -> Option<Spanned> {
         if self.depth >= MAX_EVAL_DEPTH {
-            self.cut(diags, |d| d.push(too_deep(e.span)));
+            self.cut(diags, |d| d.push(message::value::too_deep(e.span)));
             return None;
         }
         self.depth += 1;
@@ -454,42 +456,6 @@ impl<'a> Env<'a> {
     }
 }
 
-fn cycle(name: &str, at: Span, decl: Span) -> Diagnostic {
-    Diagnostic::error(
-        Code::Cycle,
-        format!("the constant `{name}` is defined in terms of itself"),
-    )
-    .label(at, "used here while it is being computed")
-    .label(decl, "defined here")
-    .help("break the cycle: give one of the constants a value that does not use the others")
-}
-
-fn chain_too_long(name: &str, at: Span, decl: Span) -> Diagnostic {
-    Diagnostic::error(
-        Code::ConstantChain,
-        format!(
-            "computing this needs a chain of more than {MAX_CONSTANT_CHAIN} constants, each using the next"
-        ),
-    )
-    .label(
-        at,
-        format!("`{name}` is constant number {} of the chain", MAX_CONSTANT_CHAIN + 1),
-    )
-    .label(decl, "declared here")
-    .help("compute the value in fewer steps, e.g. `let a100 = a0 + 100 * 1 mm` instead of a hundred `let`s that each add 1 mm")
-}
-
-fn too_deep(span: Span) -> Diagnostic {
-    Diagnostic::error(
-        Code::ConstantChain,
-        format!(
-            "computing this value nests more than {MAX_EVAL_DEPTH} steps of constants and operators"
-        ),
-    )
-    .label(span, "the limit is reached here")
-    .help("compute the value in fewer steps: fewer constants that each use the next, shorter chains of operators")
-}
-
 /// A number with its unit.
 fn number(
     value: f64,
@@ -501,14 +467,7 @@ fn number(
         Some(u) => match parse_unit(&u.node) {
             Ok(x) => x,
             Err(bad) => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::UnknownUnit,
-                        format!("`{}` is not a unit lmdc knows", bad.0),
-                    )
-                    .label(u.span, "unknown unit")
-                    .help("units: mm cm m um in, deg rad, s ms min h, g mg kg, W kW, J, Hz, %; combine with / * and ^, e.g. g/min or g/cm^3"),
-                );
+                diags.push(message::value::unknown_unit(&bad.0, u.span));
                 return None;
             }
         },
@@ -520,24 +479,14 @@ fn number(
 }
 
 fn not_negatable(other: &Value, span: Span, diags: &mut Diagnostics) {
-    diags.push(
-        Diagnostic::error(
-            Code::ExpectedNumber,
-            format!("cannot negate {}", other.describe()),
-        )
-        .label(span, "this is not a number"),
-    );
+    diags.push(message::value::cannot_negate(other, span));
 }
 
 /// `value` at `span`, unless it is a quantity that is not finite.
 fn finite(value: Value, span: Span, diags: &mut Diagnostics) -> Option<Spanned> {
     if let Value::Quantity(q) = &value {
         if !q.value.is_finite() {
-            diags.push(
-                Diagnostic::error(Code::Overflow, "this number is too large to compute with")
-                    .label(span, "not a finite number")
-                    .help("check the value and its unit"),
-            );
+            diags.push(message::value::not_finite(span));
             return None;
         }
     }
@@ -585,17 +534,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
                 diags.push(d);
                 return None;
             }
-            let mut d = Diagnostic::error(
-                Code::ExpectedNumber,
-                format!("`{}` needs numbers on both sides", op.symbol()),
-            )
-            .label(bad.span, format!("this is {}", bad.value.describe()));
-            if let Value::Symbol(s) = &bad.value {
-                d = d.help(format!(
-                    "`{s}` is not a constant; declare it with `let {s} = …`"
-                ));
-            }
-            diags.push(d);
+            diags.push(message::value::operand_not_number(op, &bad.value, bad.span));
             return None;
         }
     };
@@ -603,24 +542,11 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
     match op {
         BinOp::Add | BinOp::Sub | BinOp::Range => {
             if lq.dim != rq.dim {
-                let what = match op {
-                    BinOp::Range => "the ends of a range",
-                    BinOp::Add => "added values",
-                    _ => "subtracted values",
-                };
-                diags.push(
-                    Diagnostic::error(
-                        Code::UnitMismatch,
-                        format!(
-                            "{what} must have the same unit: {} and {}",
-                            lq.dim.describe(),
-                            rq.dim.describe()
-                        ),
-                    )
-                    .label(l.span, lq.dim.describe())
-                    .label(r.span, rq.dim.describe())
-                    .help("give both operands the same kind of unit, e.g. `60 mm + 2 mm` or `45 deg + 5 deg`"),
-                );
+                diags.push(message::value::operand_units_differ(
+                    op,
+                    (lq.dim, l.span),
+                    (rq.dim, r.span),
+                ));
                 return None;
             }
             match op {
@@ -628,14 +554,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
                 BinOp::Sub => q(lq.value - rq.value, lq.dim),
                 _ => {
                     if lq.value > rq.value {
-                        diags.push(
-                            Diagnostic::error(
-                                Code::EmptyRange,
-                                "the range's lower end is above its upper end",
-                            )
-                            .label(l.span.join(r.span), "write the smaller value first")
-                            .help("ranges are written `low .. high`, e.g. `7 mm/s .. 10 mm/s`"),
-                        );
+                        diags.push(message::value::empty_range(l.span.join(r.span)));
                         return None;
                     }
                     Some(Value::Range(lq, rq))
@@ -645,10 +564,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
         BinOp::Mul => q(lq.value * rq.value, lq.dim.times(rq.dim)),
         BinOp::Div => {
             if rq.value == 0.0 {
-                diags.push(
-                    Diagnostic::error(Code::DivisionByZero, "division by zero")
-                        .label(r.span, "this is zero"),
-                );
+                diags.push(message::value::division_by_zero(r.span));
                 return None;
             }
             q(lq.value / rq.value, lq.dim.per(rq.dim))
@@ -656,17 +572,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
         BinOp::Pow => {
             let n = rq.value;
             if rq.dim != Dim::NONE || n.fract() != 0.0 || n.abs() > 16.0 {
-                diags.push(
-                    Diagnostic::error(
-                        Code::BadExponent,
-                        format!(
-                            "exponent {} is not a whole number between -16 and 16",
-                            short(n)
-                        ),
-                    )
-                    .label(r.span, "exponent")
-                    .help("write powers with whole-number exponents such as `^2` or `^-1`"),
-                );
+                diags.push(message::value::bad_exponent(n, r.span));
                 return None;
             }
             q(lq.value.powi(n as i32), lq.dim.powi(n as i32))
@@ -681,31 +587,22 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
         let q = match (&a.name, &a.value.value) {
             (None, Value::Quantity(q)) => *q,
             (_, other) => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::ExpectedNumber,
-                        format!("`{func}` takes numbers, without names"),
-                    )
-                    .label(a.value.span, format!("this is {}", other.describe()))
-                    .help(format!("e.g. `{func}(layer + 2, 10)`")),
-                );
+                diags.push(message::value::min_max_not_number(
+                    func,
+                    other,
+                    a.value.span,
+                ));
                 return None;
             }
         };
         if let Some(b) = best {
             if b.dim != q.dim {
-                diags.push(
-                    Diagnostic::error(
-                        Code::UnitMismatch,
-                        format!(
-                            "`{func}` compares values of one kind: {} and {}",
-                            b.dim.describe(),
-                            q.dim.describe()
-                        ),
-                    )
-                    .label(a.value.span, q.dim.describe())
-                    .help("give every argument the same kind of unit"),
-                );
+                diags.push(message::value::min_max_units_differ(
+                    func,
+                    b.dim,
+                    q.dim,
+                    a.value.span,
+                ));
                 return None;
             }
         }
@@ -718,10 +615,7 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
     match best {
         Some(q) => Some(Value::Quantity(q)),
         None => {
-            diags.push(
-                Diagnostic::error(Code::Argument, format!("`{func}` needs at least one value"))
-                    .label(span, "nothing to compare"),
-            );
+            diags.push(message::value::min_max_empty(func, span));
             None
         }
     }
@@ -732,29 +626,13 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
 pub fn position_outside_top(v: &Value, at: Span) -> Option<Diagnostic> {
     let Value::Symbol(s) = v else { return None };
     let name = s.strip_prefix('-').unwrap_or(s);
-    POSITION.contains(&name).then(|| {
-        Diagnostic::error(
-            Code::PositionOutsideTop,
-            format!("`{name}` is a point's position only inside an extrusion's `top`"),
-        )
-        .label(at, "not a number here")
-        .help(format!(
-            "write the expression in the extrusion itself, e.g. `top = 20 mm + 16 % * {name}`; elsewhere give a number with a unit"
-        ))
-    })
+    POSITION
+        .contains(&name)
+        .then(|| message::value::position_outside_top(name, at))
 }
 
 /// An "unknown name" error with a did-you-mean hint over `candidates`.
 pub fn unknown_name(name: &str, span: Span, what: &str, candidates: &[&str]) -> Diagnostic {
-    let mut d = Diagnostic::error(
-        Code::UnknownName,
-        format!("there is no {what} called `{name}`"),
-    )
-    .label(span, "not declared");
-    d = match did_you_mean(name, candidates.iter().copied()) {
-        Some(s) => d.help(format!("did you mean `{s}`?")),
-        None if candidates.is_empty() => d.help(format!("declare the {what} first")),
-        None => d.help(format!("known: {}", candidates.join(", "))),
-    };
-    d
+    let suggestion = did_you_mean(name, candidates.iter().copied());
+    message::value::unknown_name(name, span, what, suggestion, candidates)
 }

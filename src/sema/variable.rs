@@ -16,7 +16,7 @@ use super::model::{
 use super::profile;
 use super::slicing::MAX_LAYERS;
 use super::value::{Env, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Dim, Length, Speed};
@@ -145,37 +145,18 @@ pub fn side_checks(
         ok &= declared_offset(d, sp, b, None, diags);
     }
     if let Some(Some((_, sp))) = speed {
-        diags.push(
-            Diagnostic::error(
-                Code::SpeedFromBead,
-                match bead {
-                    Some(b) => format!(
-                        "variable layers take their speeds from bead `{}`: a process `speed` does not apply",
-                        b.name
-                    ),
-                    None => "variable layers take their speeds from the bead model: a process `speed` does not apply".to_string(),
-                },
-            )
-            .label(sp, "process speed")
-            .label(at, "variable slicing")
-            .help("remove `speed` from the process block: each segment of a track is laid at the speed the bead model gives for its height"),
-        );
+        diags.push(message::solid::speed_with_variable(
+            bead.map(|b| b.name.as_str()),
+            sp,
+            at,
+        ));
         ok = false;
     }
     if let Some(b) = bead {
         if let HeightModel::Measured { speed, .. } = b.model {
-            diags.push(
-                Diagnostic::error(
-                    Code::BeadMapNeeded,
-                    format!(
-                        "bead `{}` was measured at one speed ({speed}): variable layers change the height through the speed",
-                        b.name
-                    ),
-                )
-                .label(b.span, "measured bead")
-                .label(at, "variable slicing")
-                .help("fit the bead's height over a speed range: `model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm)` with `speed = 4 mm/s .. 8.7 mm/s`"),
-            );
+            diags.push(message::solid::measured_bead_with_variable(
+                &b.name, speed, b.span, at,
+            ));
             ok = false;
         }
     }
@@ -221,14 +202,7 @@ fn footprint(
     let (shape, span) = one_footprint(env, source, profile_span, diags)?;
     if shape.has_holes() {
         // The balanced offsets and the segments assume one strip per track.
-        diags.push(
-            Diagnostic::error(
-                Code::Unsupported,
-                "a footprint with holes cannot carry a `top` (yet)",
-            )
-            .label(span, "has holes")
-            .help("variable layers are laid in straight tracks across one outline: build the part with a flat top (`height` and `slicing planar`), or without the holes"),
-        );
+        diags.push(message::solid::top_footprint_holes(span));
         return None;
     }
     Some((shape, span))
@@ -243,15 +217,11 @@ fn one_footprint(
     match source {
         Source::Fixed(s) => Some((s, profile_span)),
         Source::Expr(e) if env.depends_on_layer(e) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::Unsupported,
-                    "a footprint that changes with `layer` cannot carry a `top`",
-                )
-                .label(e.span, "follows the layer")
-                .label(profile_span, "profile")
-                .help("variable layers are not planes a profile could be cut at: give one footprint, and let the top shape the part"),
-            );
+            diags.push(message::solid::top_footprint_follows_layer(
+                e.span,
+                profile_span,
+            ));
+
             None
         }
         Source::Expr(e) => {

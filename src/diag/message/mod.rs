@@ -11,8 +11,14 @@
 
 pub mod bend;
 pub mod check;
+pub mod field;
 pub mod fill;
 pub mod hole;
 pub mod internal;
+pub mod shape;
 pub mod slicing;
+pub mod solid;
+pub mod statement;
+pub mod style;
 pub mod top;
+pub mod value;

@@ -1,0 +1,209 @@
+//! What the checker says about values: numbers and their units, operators,
+//! constants and the names a value refers to.
+
+use crate::diag::{Code, Diagnostic};
+use crate::sema::value::{Value, MAX_CONSTANT_CHAIN, MAX_EVAL_DEPTH};
+use crate::span::Span;
+use crate::syntax::ast::BinOp;
+use crate::units::{short, Dim};
+
+/// A constant is used while it is being computed (`let a = b`, `let b = a`).
+pub fn cycle(name: &str, at: Span, decl: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Cycle,
+        format!("the constant `{name}` is defined in terms of itself"),
+    )
+    .label(at, "used here while it is being computed")
+    .label(decl, "defined here")
+    .help("break the cycle: give one of the constants a value that does not use the others")
+}
+
+/// A chain of constants, each using the next, is longer than lmdc evaluates.
+pub fn chain_too_long(name: &str, at: Span, decl: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConstantChain,
+        format!(
+            "computing this needs a chain of more than {MAX_CONSTANT_CHAIN} constants, each using the next"
+        ),
+    )
+    .label(
+        at,
+        format!("`{name}` is constant number {} of the chain", MAX_CONSTANT_CHAIN + 1),
+    )
+    .label(decl, "declared here")
+    .help("compute the value in fewer steps, e.g. `let a100 = a0 + 100 * 1 mm` instead of a hundred `let`s that each add 1 mm")
+}
+
+/// An evaluation nests deeper than lmdc evaluates.
+pub fn too_deep(span: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConstantChain,
+        format!(
+            "computing this value nests more than {MAX_EVAL_DEPTH} steps of constants and operators"
+        ),
+    )
+    .label(span, "the limit is reached here")
+    .help("compute the value in fewer steps: fewer constants that each use the next, shorter chains of operators")
+}
+
+/// A number is written with a unit lmdc does not know.
+pub fn unknown_unit(unit: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::UnknownUnit,
+        format!("`{unit}` is not a unit lmdc knows"),
+    )
+    .label(at, "unknown unit")
+    .help("units: mm cm m um in, deg rad, s ms min h, g mg kg, W kW, J, Hz, %; combine with / * and ^, e.g. g/min or g/cm^3")
+}
+
+/// A minus sign stands before something that is not a number.
+pub fn cannot_negate(other: &Value, span: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ExpectedNumber,
+        format!("cannot negate {}", other.describe()),
+    )
+    .label(span, "this is not a number")
+}
+
+/// A computed number is infinite or not a number.
+pub fn not_finite(span: Span) -> Diagnostic {
+    Diagnostic::error(Code::Overflow, "this number is too large to compute with")
+        .label(span, "not a finite number")
+        .help("check the value and its unit")
+}
+
+/// An operator has something other than a number on one side (`bad`).
+pub fn operand_not_number(op: BinOp, bad: &Value, at: Span) -> Diagnostic {
+    let d = Diagnostic::error(
+        Code::ExpectedNumber,
+        format!("`{}` needs numbers on both sides", op.symbol()),
+    )
+    .label(at, format!("this is {}", bad.describe()));
+    match bad {
+        Value::Symbol(s) => d.help(format!(
+            "`{s}` is not a constant; declare it with `let {s} = …`"
+        )),
+        _ => d,
+    }
+}
+
+/// The operands of `+`, `-` or `..` have different dimensions.
+pub fn operand_units_differ(op: BinOp, l: (Dim, Span), r: (Dim, Span)) -> Diagnostic {
+    let what = match op {
+        BinOp::Range => "the ends of a range",
+        BinOp::Add => "added values",
+        _ => "subtracted values",
+    };
+    Diagnostic::error(
+        Code::UnitMismatch,
+        format!(
+            "{what} must have the same unit: {} and {}",
+            l.0.describe(),
+            r.0.describe()
+        ),
+    )
+    .label(l.1, l.0.describe())
+    .label(r.1, r.0.describe())
+    .help("give both operands the same kind of unit, e.g. `60 mm + 2 mm` or `45 deg + 5 deg`")
+}
+
+/// A range's lower end is above its upper end.
+pub fn empty_range(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::EmptyRange,
+        "the range's lower end is above its upper end",
+    )
+    .label(at, "write the smaller value first")
+    .help("ranges are written `low .. high`, e.g. `7 mm/s .. 10 mm/s`")
+}
+
+/// A value is divided by zero.
+pub fn division_by_zero(at: Span) -> Diagnostic {
+    Diagnostic::error(Code::DivisionByZero, "division by zero").label(at, "this is zero")
+}
+
+/// An exponent is not a plain whole number within ±16.
+pub fn bad_exponent(n: f64, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::BadExponent,
+        format!(
+            "exponent {} is not a whole number between -16 and 16",
+            short(n)
+        ),
+    )
+    .label(at, "exponent")
+    .help("write powers with whole-number exponents such as `^2` or `^-1`")
+}
+
+/// `min` or `max` is given a named argument or one that is not a number.
+pub fn min_max_not_number(func: &str, got: &Value, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ExpectedNumber,
+        format!("`{func}` takes numbers, without names"),
+    )
+    .label(at, format!("this is {}", got.describe()))
+    .help(format!("e.g. `{func}(layer + 2, 10)`"))
+}
+
+/// `min` or `max` is given values of different dimensions.
+pub fn min_max_units_differ(func: &str, first: Dim, this: Dim, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::UnitMismatch,
+        format!(
+            "`{func}` compares values of one kind: {} and {}",
+            first.describe(),
+            this.describe()
+        ),
+    )
+    .label(at, this.describe())
+    .help("give every argument the same kind of unit")
+}
+
+/// `min` or `max` is given no value.
+pub fn min_max_empty(func: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(Code::Argument, format!("`{func}` needs at least one value"))
+        .label(at, "nothing to compare")
+}
+
+/// `x` or `y` is used as a number outside an extrusion's `top`.
+pub fn position_outside_top(name: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::PositionOutsideTop,
+        format!("`{name}` is a point's position only inside an extrusion's `top`"),
+    )
+    .label(at, "not a number here")
+    .help(format!(
+        "write the expression in the extrusion itself, e.g. `top = 20 mm + 16 % * {name}`; elsewhere give a number with a unit"
+    ))
+}
+
+/// A name refers to no declared `what` (`suggestion` is a close one, if any;
+/// `candidates` are all of them).
+pub fn unknown_name(
+    name: &str,
+    span: Span,
+    what: &str,
+    suggestion: Option<&str>,
+    candidates: &[&str],
+) -> Diagnostic {
+    let d = Diagnostic::error(
+        Code::UnknownName,
+        format!("there is no {what} called `{name}`"),
+    )
+    .label(span, "not declared");
+    match suggestion {
+        Some(s) => d.help(format!("did you mean `{s}`?")),
+        None if candidates.is_empty() => d.help(format!("declare the {what} first")),
+        None => d.help(format!("known: {}", candidates.join(", "))),
+    }
+}
+
+/// Whether `d` is one of the arithmetic failures evaluation reports (a
+/// division by zero, a number too large, a bad exponent): what fails at one
+/// point of a function of the position.
+pub fn is_arithmetic_failure(d: &Diagnostic) -> bool {
+    matches!(
+        d.code,
+        Code::DivisionByZero | Code::Overflow | Code::BadExponent
+    )
+}
