@@ -10,3 +10,4 @@
 //! for the mistake it reports.
 
 pub mod check;
+pub mod syntax;
