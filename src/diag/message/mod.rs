@@ -10,4 +10,5 @@
 //! for the mistake it reports.
 
 pub mod check;
+pub mod machine;
 pub mod syntax;
