@@ -11,4 +11,5 @@
 
 pub mod check;
 pub mod machine;
+pub mod ring;
 pub mod syntax;
