@@ -81,7 +81,7 @@ pub fn statement<'a>(
             read(env, inner, s.span, constants, diags)
         }
         (Some(n), Body::Block(..)) => {
-            diags.push(message::ring::control_not_height(&n.node, n.span));
+            diags.push(message::control::control_not_height(&n.node, n.span));
             None
         }
         _ => {
@@ -119,7 +119,7 @@ fn read<'a>(
         .and_then(|([lo, hi], at)| match Clamp::new(Speed(lo), Speed(hi)) {
             Ok(c) => Some((c, at)),
             Err(e) => {
-                diags.push(message::ring::clamp_cannot_hold(&e, at));
+                diags.push(message::control::clamp_cannot_hold(&e, at));
                 None
             }
         });
@@ -164,7 +164,7 @@ fn gain(
     diags: &mut Diagnostics,
 ) -> Option<(SpeedPerLength, Span)> {
     let Some(e) = f.expr(key) else {
-        diags.push(message::ring::missing_gain(key, block, example));
+        diags.push(message::control::missing_gain(key, block, example));
         return None;
     };
     let at = f.span(key).unwrap_or(e.span);
@@ -172,7 +172,7 @@ fn gain(
     let q = match v.value {
         Value::Quantity(q) => q,
         other => {
-            diags.push(message::ring::gain_not_a_quantity(
+            diags.push(message::control::gain_not_a_quantity(
                 key,
                 v.span,
                 &other.describe(),
@@ -187,7 +187,7 @@ fn gain(
     if q.dim == SpeedPerLength::DIM && names_length {
         return SpeedPerLength::from_quantity(q).map(|g| (g, at));
     }
-    diags.push(message::ring::gain_unit(key, q, v.span, &units));
+    diags.push(message::control::gain_unit(key, q, v.span, &units));
     None
 }
 
@@ -244,11 +244,11 @@ fn plant(f: &Fields<'_>, block: Span, diags: &mut Diagnostics) -> Option<PlantSp
         });
     };
     let Value::Call(c) = &v.value else {
-        diags.push(message::ring::plant_shape(v.span, &v.value.describe()));
+        diags.push(message::control::plant_shape(v.span, &v.value.describe()));
         return None;
     };
     if c.func != "inverse_speed" {
-        diags.push(message::ring::plant_shape(
+        diags.push(message::control::plant_shape(
             c.func_span,
             &format!("`{}(…)`", c.func),
         ));
@@ -274,7 +274,7 @@ fn plant(f: &Fields<'_>, block: Span, diags: &mut Diagnostics) -> Option<PlantSp
                             Some(q.value)
                         }
                         other => {
-                            diags.push(message::ring::plant_factor(i.span, &other.describe()));
+                            diags.push(message::control::plant_factor(i.span, &other.describe()));
                             None
                         }
                     })
@@ -284,7 +284,7 @@ fn plant(f: &Fields<'_>, block: Span, diags: &mut Diagnostics) -> Option<PlantSp
                     .map(|x| Some((x, fv.span)))
             }
             other => {
-                diags.push(message::ring::factors_not_a_list(
+                diags.push(message::control::factors_not_a_list(
                     fv.span,
                     &other.describe(),
                 ));

@@ -10,6 +10,7 @@
 //! for the mistake it reports.
 
 pub mod check;
+pub mod control;
 pub mod machine;
 pub mod ring;
 pub mod syntax;

@@ -1,10 +1,10 @@
-//! What lmdc says about a `ring` (its segments and table) and the
-//! `control height` loop that corrects it layer by layer.
+//! What lmdc says about a `ring` (its segments and table), its pairing with
+//! the loop, and why a number cannot be planned at all ([`Invalid`]).
 
-use crate::control::{Invalid, SpeedPerLength};
+use crate::control::Invalid;
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
-use crate::units::{short, Dim, Length, Quantity, Speed};
+use crate::units::{short, Length, Speed};
 use std::fmt;
 
 /// The ring's radius, segments and transition (at `at`) cannot be laid out
@@ -124,104 +124,6 @@ pub fn drift_exhausts_plant(drift: f64, layers: usize, at: Span) -> Diagnostic {
         "a drift above {} % a layer",
         short(-100.0 / (layers - 1).max(1) as f64)
     ))
-}
-
-/// `control` names a quantity other than the height.
-pub fn control_not_height(name: &str, at: Span) -> Diagnostic {
-    Diagnostic::error(
-        Code::BadChoice,
-        format!("lmdc controls the layer height, not `{name}`"),
-    )
-    .label(at, "controlled quantity")
-    .help("write `control height { … }`")
-}
-
-/// The clamp's range (at `at`) cannot be a clamp; `e` says why.
-pub fn clamp_cannot_hold(e: &Invalid, at: Span) -> Diagnostic {
-    Diagnostic::error(Code::OutOfRange, format!("the clamp cannot hold: {e}"))
-        .label(at, "clamp")
-        .help("the speeds the loop may command, low .. high, both above zero")
-}
-
-/// The control block (`block`) lacks the gain `key`.
-pub fn missing_gain(key: &str, block: Span, example: &str) -> Diagnostic {
-    Diagnostic::error(Code::MissingField, format!("control needs `{key}`"))
-        .label(block, format!("`{key}` is missing"))
-        .help(format!(
-            "add `{key} = {example}`: a speed per mm of height error"
-        ))
-}
-
-/// The gain `key` is not a quantity at all (`got` describes what it is).
-pub fn gain_not_a_quantity(key: &str, at: Span, got: &str, example: &str) -> Diagnostic {
-    Diagnostic::error(
-        Code::GainUnit,
-        format!("`{key}` must be a speed per length (mm/s/mm)"),
-    )
-    .label(at, format!("this is {got}"))
-    .help(format!("write `{key} = {example}`"))
-}
-
-/// What is wrong with a gain's unit, both readings spelled out: no unit, a
-/// unit per second that names no length (`units` as written), or another
-/// dimension.
-pub fn gain_unit(key: &str, q: Quantity, at: Span, units: &[String]) -> Diagnostic {
-    let n = short(q.value);
-    let readings = format!(
-        "write `{key} = {n} mm/s/mm` ({n} (mm/s)/mm), or — if the number is per (m/s)/mm, as KUKA's \
-         $VEL.CP counts speed and as the paper's -0.003 \"s⁻¹\" reproduces its results — `{key} = {n} m/s/mm` \
-         ({} (mm/s)/mm)",
-        short(q.value * 1000.0)
-    );
-    let (message, label) = if q.dim == Dim::NONE {
-        (
-            format!("`{key}` has no unit: a gain is a change of speed per mm of height error"),
-            "a plain number".to_string(),
-        )
-    } else if q.dim == SpeedPerLength::DIM {
-        (
-            format!(
-                "`{key}` is written per second ({}): (mm/s)/mm and (m/s)/mm are both 1/s, 1000 apart",
-                units.join(", ")
-            ),
-            "which speed per which length?".to_string(),
-        )
-    } else {
-        (
-            format!(
-                "`{key}` must be a speed per length (mm/s/mm), not {}",
-                q.dim.describe()
-            ),
-            q.dim.describe(),
-        )
-    };
-    Diagnostic::error(Code::GainUnit, message)
-        .label(at, label)
-        .help(readings)
-}
-
-/// A plant factor is not a plain number above zero (`got` describes it).
-pub fn plant_factor(at: Span, got: &str) -> Diagnostic {
-    Diagnostic::error(
-        Code::ExpectedNumber,
-        "a plant factor is a plain number above zero",
-    )
-    .label(at, format!("this is {got}"))
-    .help("1.1 lays 10 % more than the calibration, 0.9 10 % less")
-}
-
-/// The plant's `factors` is not a list (`got` describes it).
-pub fn factors_not_a_list(at: Span, got: &str) -> Diagnostic {
-    Diagnostic::error(Code::Type, "`factors` is a list, one per segment")
-        .label(at, format!("this is {got}"))
-        .help("e.g. `factors = [1.0, 0.9, …]`")
-}
-
-/// `plant` is not `inverse_speed(…)` (`what` describes what it is).
-pub fn plant_shape(at: Span, what: &str) -> Diagnostic {
-    Diagnostic::error(Code::BadChoice, "the plant is `inverse_speed(…)`")
-        .label(at, format!("this is {what}"))
-        .help("`plant = inverse_speed(drift = 0.1 %)`: each segment lays h = g·(1 + drift·layer)/v, calibrated so that its table speed lays the target; `factors = […]` scales each segment's g")
 }
 
 impl fmt::Display for Invalid {
