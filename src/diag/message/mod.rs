@@ -9,6 +9,7 @@
 //! One file per area of the language, named for it; each function is named
 //! for the mistake it reports.
 
+pub mod bead;
 pub mod check;
 pub mod control;
 pub mod machine;
