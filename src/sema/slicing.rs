@@ -178,11 +178,7 @@ fn read<'a>(
         Some(s) if STRATEGIES.contains(&s.node.as_str()) => {}
         Some(s) => {
             let suggestion = did_you_mean(&s.node, STRATEGIES.iter().copied());
-            diags.push(message::bead::unknown_strategy(
-                &s.node,
-                s.span,
-                suggestion.as_deref(),
-            ));
+            diags.push(message::bead::unknown_strategy(&s.node, s.span, suggestion));
             any_strategy(env, stmts, span, diags);
             return None;
         }
