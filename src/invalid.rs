@@ -8,16 +8,16 @@
 /// A degenerate input. Every public function of the maths modules checks its
 /// inputs at the boundary and returns one of these instead of panicking or
 /// computing a NaN deep inside.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+///
+/// Its wording (`Display`) is in [`crate::diag::message::ring`].
+#[derive(Clone, Debug, PartialEq)]
 pub enum Invalid {
     /// NaN or infinite.
-    #[error("{what} is not a finite number")]
     NotFinite {
         /// What the value is ("target height").
         what: &'static str,
     },
     /// Zero or negative where only a positive value makes sense.
-    #[error("{what} must be greater than zero, not {value}")]
     NotPositive {
         /// What the value is.
         what: &'static str,
@@ -25,7 +25,6 @@ pub enum Invalid {
         value: f64,
     },
     /// A range whose low end lies above (or at) its high end.
-    #[error("{what} runs from {low} down to {high}")]
     Reversed {
         /// What the range is.
         what: &'static str,
@@ -35,13 +34,11 @@ pub enum Invalid {
         high: f64,
     },
     /// Nothing to work with: no segments, no speeds.
-    #[error("{what} is empty")]
     Empty {
         /// What is empty.
         what: &'static str,
     },
     /// A segment asked for that does not exist.
-    #[error("there is no segment {segment} (from 0) of {segments}")]
     NoSegment {
         /// The segment asked for, from 0.
         segment: usize,
@@ -50,7 +47,6 @@ pub enum Invalid {
     },
     /// A transition as long as its segment or longer: nothing of the segment
     /// would be left at its own height.
-    #[error("a transition of {transition_deg}° leaves nothing of a {segment_deg}° segment")]
     TransitionTooLong {
         /// The transition, degrees.
         transition_deg: f64,
@@ -58,7 +54,6 @@ pub enum Invalid {
         segment_deg: f64,
     },
     /// A list with one entry per segment that has another length.
-    #[error("{what} has {found} entries for {expected} segments")]
     Count {
         /// What the list is ("segment table").
         what: &'static str,
@@ -68,7 +63,6 @@ pub enum Invalid {
         expected: usize,
     },
     /// A speed the loop starts from that the clamp would never allow.
-    #[error("{what} {value} mm/s lies outside the clamp {low} mm/s .. {high} mm/s")]
     OutsideClamp {
         /// What the speed is ("start speed of segment 3").
         what: &'static str,
@@ -80,7 +74,6 @@ pub enum Invalid {
         high: f64,
     },
     /// Positions along a track that do not strictly increase.
-    #[error("{what}: point {index} does not lie beyond the one before it")]
     NotIncreasing {
         /// What the positions are.
         what: &'static str,
@@ -89,7 +82,6 @@ pub enum Invalid {
     },
     /// A value so large that the work it asks for is unbounded (a million
     /// points per degree).
-    #[error("{what} is {value}, more than the {max} lmdc allows")]
     TooLarge {
         /// What the value is.
         what: &'static str,

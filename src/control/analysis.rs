@@ -1,7 +1,8 @@
 //! The compile-time check of a declared loop: signs, stability at every
 //! segment's speed, settling time against the number of layers. Each problem
 //! is a [`Finding`] carrying its numbers; [`Finding`]'s `Display` and
-//! [`Finding::help`] hold all the wording, in one place.
+//! [`Finding::help`] hold all the wording, in one place:
+//! [`crate::diag::message::control`].
 //!
 //! The operating point of segment `j` is its start speed `v_j` (Table 1's), at
 //! which the segment is meant to lay `h_r`: the table was matched so that it
@@ -13,9 +14,8 @@
 use super::gain::SpeedPerLength;
 use super::invalid::Invalid;
 use super::law::Controller;
-use super::linear::{LoopGains, SETTLED};
-use crate::units::{short, Speed};
-use std::fmt;
+use super::linear::LoopGains;
+use crate::units::Speed;
 use std::num::NonZeroUsize;
 
 /// A loop that corrects less than this share of an error over the whole
@@ -133,141 +133,6 @@ impl Finding {
             Finding::Sign { .. } | Finding::Unstable { .. } => Severity::Error,
             Finding::Slow { residual, .. } if *residual > NEVER_SETTLES => Severity::Error,
             Finding::Slow { .. } | Finding::UnstableAtClamp { .. } => Severity::Warning,
-        }
-    }
-
-    /// What would fix it, with numbers.
-    pub fn help(&self) -> Option<String> {
-        match self {
-            Finding::Sign { .. } => Some(
-                "both gains must be negative: the bead height falls as the speed rises \
-                 (h ∝ 1/v), so a layer below the target must slow its segment down"
-                    .into(),
-            ),
-            Finding::Unstable { kp, ki, limit, .. } => Some(format!(
-                "gains below ×{} of these are stable at every segment: kp above {}, ki above {}",
-                short(*limit),
-                kp.scaled(*limit),
-                ki.scaled(*limit)
-            )),
-            Finding::UnstableAtClamp { limit, .. } => limit.map(|c| {
-                format!(
-                    "gains below ×{} of these are stable there, or raise the clamp's low speed",
-                    short(c)
-                )
-            }),
-            Finding::Slow {
-                kp,
-                ki,
-                scale,
-                per_metre,
-                layers,
-                ..
-            } => {
-                if *per_metre {
-                    Some(format!(
-                        "if the gains were meant per (m/s)/mm, as KUKA's $VEL.CP counts speed, \
-                         write kp = {} m/s/mm and ki = {} m/s/mm ({} and {})",
-                        short(kp.0),
-                        short(ki.0),
-                        kp.scaled(1000.0),
-                        ki.scaled(1000.0)
-                    ))
-                } else {
-                    scale.map(|c| {
-                        format!(
-                            "×{} of these gains (kp = {}, ki = {}) settle within {} layers at every segment",
-                            short(c),
-                            kp.scaled(c),
-                            ki.scaled(c),
-                            layers
-                        )
-                    })
-                }
-            }
-        }
-    }
-}
-
-fn at(l: &SegmentLoop) -> String {
-    match l.segment {
-        Some(j) => format!("segment {} ({})", j + 1, l.speed),
-        None => format!("the clamp's low speed ({})", l.speed),
-    }
-}
-
-impl fmt::Display for Finding {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Finding::Sign { gain, value } => {
-                let (name, why) = match gain {
-                    Gain::Proportional => (
-                        "kp",
-                        if value.0 == 0.0 {
-                            "the integral alone swings the speed back and forth without ever settling"
-                        } else {
-                            "a layer that comes out too low would speed its segment up and come out lower still"
-                        },
-                    ),
-                    Gain::Integral => (
-                        "ki",
-                        if value.0 == 0.0 {
-                            "nothing corrects the total height: errors of past layers stay in the part"
-                        } else {
-                            "a segment whose total falls behind would be sped up and fall further behind"
-                        },
-                    ),
-                };
-                let sign = if value.0 == 0.0 { "zero" } else { "positive" };
-                write!(f, "{name} = {value} is {sign}: {why}")
-            }
-            Finding::Unstable {
-                worst, count, of, ..
-            } => write!(
-                f,
-                "unstable: loop gain kP·h_r/v = {}, kI·h_r/v = {} at {}: spectral radius {} \
-                 ({count} of {of} segments unstable)",
-                short(worst.gains.proportional),
-                short(worst.gains.integral),
-                at(worst),
-                short(worst.radius)
-            ),
-            Finding::UnstableAtClamp { at: l, .. } => write!(
-                f,
-                "the loop is stable at every segment's speed but not if a segment slows to the \
-                 clamp's {}: spectral radius {} there",
-                l.speed,
-                short(l.radius)
-            ),
-            Finding::Slow {
-                worst,
-                settling,
-                layers,
-                residual,
-                ..
-            } => {
-                let n = format!("{:.0}", settling.ceil());
-                let left = short(residual * 100.0);
-                if *residual > NEVER_SETTLES {
-                    write!(
-                        f,
-                        "the loop is so slow it never settles: {} needs ~{n} layers to bring an \
-                         error down to {} % (spectral radius {:.6}) but the build has {layers}; \
-                         {left} % of an error is still there after the last layer",
-                        at(worst),
-                        short(SETTLED * 100.0),
-                        worst.radius
-                    )
-                } else {
-                    write!(
-                        f,
-                        "{} settles in ~{n} layers (to {} %), but the build has {layers}: \
-                         {left} % of a starting error remains after the last layer",
-                        at(worst),
-                        short(SETTLED * 100.0)
-                    )
-                }
-            }
         }
     }
 }

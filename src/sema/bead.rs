@@ -3,10 +3,10 @@
 use super::fields::Fields;
 use super::model::{Bead, HeightModel};
 use super::value::{unknown_name, Env, Spanned, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{short, Density, Dim, Length, MassFlow, Speed};
+use crate::units::{Density, Dim, Length, MassFlow, Speed};
 use std::collections::BTreeMap;
 
 /// Reads a bead block.
@@ -46,10 +46,7 @@ pub fn read<'a>(
         if range[0] > 0.0 {
             return true;
         }
-        diags.push(
-            Diagnostic::error(Code::NotPositive, "scan speeds must be greater than zero")
-                .label(speed_span, "the lower end must be > 0"),
-        );
+        diags.push(message::bead::speed_not_positive(speed_span));
         false
     });
     let model = match model.map(|m| &m.value) {
@@ -61,11 +58,7 @@ pub fn read<'a>(
                 if slope < 0.0 {
                     return true;
                 }
-                diags.push(
-                    Diagnostic::error(Code::BeadSlope, "the slope of a bead's height over speed must be negative")
-                        .label(at, format!("this is {} mm per mm/s", short(slope)))
-                        .help("a faster scan lays a lower bead: fit H = slope·v + intercept with slope < 0"),
-                );
+                diags.push(message::bead::slope_not_negative(slope, at));
                 false
             });
             match (slope, b) {
@@ -85,17 +78,7 @@ pub fn read<'a>(
                 if eff <= 1.0 {
                     return true;
                 }
-                diags.push(
-                    Diagnostic::error(
-                        Code::EfficiencyRange,
-                        "catch efficiency must lie between 0 and 1",
-                    )
-                    .label(
-                        at,
-                        format!("this is {} ({} %)", short(eff), short(eff * 100.0)),
-                    )
-                    .help("write it as a fraction (0.3) or a percentage (30 %)"),
-                );
+                diags.push(message::bead::efficiency_range(eff, at));
                 false
             });
             match (feed, eff, rho) {
@@ -120,17 +103,10 @@ pub fn read<'a>(
             }
         }
         Some(other) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::BadChoice,
-                    "a bead model is `linear(…)`, `mass_balance(…)` or `measured(…)`",
-                )
-                .label(
-                    model_span.unwrap_or(span),
-                    format!("this is {}", other.describe()),
-                )
-                .help("e.g. `model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm)`"),
-            );
+            diags.push(message::bead::unknown_model(
+                model_span.unwrap_or(span),
+                &other.describe(),
+            ));
             None
         }
         None => None,
@@ -151,19 +127,12 @@ pub fn read<'a>(
     let h_hi = model.height_at(Speed(speed[0]), w).0;
     let h_lo = model.height_at(Speed(speed[1]), w).0;
     if h_lo <= 0.0 || !h_lo.is_finite() || !h_hi.is_finite() {
-        diags.push(
-            Diagnostic::error(
-                Code::InfeasibleBead,
-                format!(
-                    "the bead model gives a height of {} at {}",
-                    Length(h_lo),
-                    Speed(speed[1])
-                ),
-            )
-            .label(speed_span, "speed range")
-            .label_opt(model_span, "model")
-            .help("narrow the speed range to where the model gives positive heights"),
-        );
+        diags.push(message::bead::model_height_not_positive(
+            Length(h_lo),
+            Speed(speed[1]),
+            speed_span,
+            model_span,
+        ));
         return None;
     }
     let (height, height_span) = match (height, model) {
@@ -178,18 +147,13 @@ pub fn read<'a>(
         (Some(([lo, hi], hs)), _) => {
             let (elo, ehi) = (lo.max(h_lo), hi.min(h_hi));
             if lo <= 0.0 || elo > ehi {
-                diags.push(
-                    Diagnostic::error(
-                        Code::InfeasibleBead,
-                        format!(
-                            "the allowed heights {} .. {} do not overlap what the model lays at {} .. {} ({} .. {})",
-                            Length(lo), Length(hi), Speed(speed[0]), Speed(speed[1]), Length(h_lo), Length(h_hi)
-                        ),
-                    )
-                    .label(hs, "allowed heights")
-                    .label(speed_span, "speed range")
-                    .help("widen the speed range or the height range so that they overlap"),
-                );
+                diags.push(message::bead::heights_do_not_overlap(
+                    [Length(lo), Length(hi)],
+                    [Speed(speed[0]), Speed(speed[1])],
+                    [Length(h_lo), Length(h_hi)],
+                    hs,
+                    speed_span,
+                ));
                 return None;
             }
             ([elo, ehi], hs)
@@ -232,16 +196,12 @@ pub fn named(
             }
         },
         Some(v) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::ExpectedName,
-                    format!("`{key}` names the bead model {what} is built with"),
-                )
-                .label(v.span, format!("this is {}", v.value.describe()))
-                .help(format!(
-                    "declare `bead my_bead {{ … }}` and write `{key} = my_bead`"
-                )),
-            );
+            diags.push(message::bead::bead_not_a_name(
+                key,
+                what,
+                v.span,
+                &v.value.describe(),
+            ));
             None
         }
         None => None,
@@ -254,18 +214,9 @@ pub fn named(
 pub fn check_feed(bead: &Bead, powder: MassFlow, at: Span, diags: &mut Diagnostics) {
     if let HeightModel::MassBalance { feed, .. } = bead.model {
         if (feed.0 - powder.0).abs() > 0.01 * feed.0 {
-            diags.push(
-                Diagnostic::warning(
-                    Code::PowderMismatch,
-                    format!(
-                        "bead `{}` is modelled at {} of powder, the process feeds {}: the beads will not be the heights planned",
-                        bead.name, feed, powder
-                    ),
-                )
-                .label(at, "process feed")
-                .label(bead.span, "bead model")
-                .help("use one feed in both, or refit the bead model at the process feed"),
-            );
+            diags.push(message::bead::powder_mismatch(
+                &bead.name, feed, powder, at, bead.span,
+            ));
         }
     }
 }

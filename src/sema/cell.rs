@@ -23,11 +23,11 @@
 use super::fields::Fields;
 use super::program_text;
 use super::value::Env;
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, Feeder, Gas, RateOutput};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{short, Dim};
+use crate::units::Dim;
 
 /// The fields of a `gas { … }` block.
 const GAS_FIELDS: &[&str] = &["output", "pre_flow", "post_flow"];
@@ -106,18 +106,9 @@ pub fn read<'a>(
         .collect();
     let mut claim = |n: usize, analog: bool, what: &str, at: Span, diags: &mut Diagnostics| {
         if let Some((_, _, other, first)) = used.iter().find(|u| u.0 == n && u.1 == analog) {
-            diags.push(
-                Diagnostic::error(
-                    Code::OutputClash,
-                    format!(
-                        "{what} and {other} are both on {} output {n}",
-                        if analog { "analog" } else { "digital" }
-                    ),
-                )
-                .label(at, what.to_string())
-                .label_opt(*first, other.clone())
-                .help("every output switches one thing: give each its own output number"),
-            );
+            diags.push(message::machine::output_clash(
+                what, other, analog, n, at, *first,
+            ));
             return false;
         }
         used.push((n, analog, what.to_string(), Some(at)));
@@ -168,15 +159,7 @@ pub fn read<'a>(
             let arrival = if p.has("arrival") {
                 time(&p, "arrival", diags)
             } else {
-                diags.push(
-                    Diagnostic::error(Code::MissingField, "`powder` needs `arrival`")
-                        .label(at, "how long until the powder reaches the nozzle?")
-                        .help(
-                            "add `arrival = 2 s`: the time from starting the feeder until the \
-                             powder comes out of the nozzle (measure it: seconds on most cells); \
-                             lmdc waits that long before the laser starts",
-                        ),
-                );
+                diags.push(message::machine::powder_without_arrival(at));
                 None
             };
             if let Some(s) = p.span("arrival") {
@@ -190,18 +173,7 @@ pub fn read<'a>(
                     } else {
                         ("full_scale", "rate_output")
                     };
-                    diags.push(
-                        Diagnostic::error(
-                            Code::MissingField,
-                            format!("`powder` has `{has}` but no `{lacks}`"),
-                        )
-                        .label_opt(p.span(has), "the feed rate's analog output")
-                        .help(
-                            "give both: `rate_output = 2` (the analog output) and \
-                             `full_scale = 60 g/min` (the rate at 1.0), or neither when \
-                             the feeder's rate is set on the feeder",
-                        ),
-                    );
+                    diags.push(message::machine::powder_rate_half(has, lacks, p.span(has)));
                     None
                 }
                 (true, true) => {
@@ -248,31 +220,11 @@ pub fn read<'a>(
                 ("analog_output", &analog, needs_analog),
             ] {
                 if needed && text.is_empty() {
-                    diags.push(
-                        Diagnostic::error(
-                            Code::IoDialect,
-                            format!("this dialect has no built-in `{key}` line"),
-                        )
-                        .label_opt(
-                            f.span("gas").or(f.span("powder")),
-                            "gas and powder need outputs switched",
-                        )
-                        .label_opt(f.span("dialect"), "dialect")
-                        .help(format!(
-                            "give the control's command in the machine block, with `{{n}}` for \
-                             the output number{}, e.g. `{key} = \"{}\"` (check the control's manual)",
-                            if key == "analog_output" {
-                                " and `{v}` for the value (a fraction of full scale)"
-                            } else {
-                                ""
-                            },
-                            match key {
-                                "output_on" => "M64 P{n}",
-                                "output_off" => "M65 P{n}",
-                                _ => "M68 E{n} Q{v}",
-                            }
-                        )),
-                    );
+                    diags.push(message::machine::no_output_line(
+                        key,
+                        f.span("gas").or(f.span("powder")),
+                        f.span("dialect"),
+                    ));
                     ok = false;
                 }
             }
@@ -305,19 +257,12 @@ pub fn cnc_lines(f: &Fields<'_>, profile: &str, diags: &mut Diagnostics) -> Opti
             &["{n}"]
         };
         if let Some(h) = holes.iter().find(|h| t.matches(**h).count() != 1) {
-            diags.push(
-                Diagnostic::error(Code::ProgramText, format!("`{key}` must hold `{h}` once"))
-                    .label(span, "output line")
-                    .help(format!(
-                        "`{{n}}` is where the output number goes{}: e.g. `{key} = \"{}\"`",
-                        if *key == "analog_output" {
-                            ", `{v}` the value (a fraction of full scale)"
-                        } else {
-                            ""
-                        },
-                        dialect_lines("linuxcnc")[i]
-                    )),
-            );
+            diags.push(message::machine::output_line_hole(
+                key,
+                h,
+                span,
+                dialect_lines("linuxcnc")[i],
+            ));
             ok = false;
             continue;
         }
@@ -342,13 +287,9 @@ fn time(f: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<f64> {
     match f.quantity(key, Dim::TIME, None, diags) {
         Some((t, _)) if (0.0..=MAX_TIME_S).contains(&t) => Some(t),
         Some((t, at)) => {
-            diags.push(
-                Diagnostic::error(Code::OutOfRange, format!("`{key}` is {} s", short(t)))
-                    .label(at, format!("a time from 0 to {MAX_TIME_S} s"))
-                    .help(format!(
-                        "give `{key}` in seconds as the cell needs it, e.g. `{key} = 2 s`"
-                    )),
-            );
+            diags.push(message::machine::cell_time_out_of_range(
+                key, t, MAX_TIME_S, at,
+            ));
             None
         }
         None if f.has(key) => None,

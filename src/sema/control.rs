@@ -14,10 +14,10 @@ use super::model::LoopRun;
 use super::statement::{shape_error, single, Statements};
 use super::value::{Env, Value};
 use crate::control::{Clamp, SpeedPerLength};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, ExprKind, Stmt};
-use crate::units::{short, Dim, Length, Quantity, Speed};
+use crate::units::{Dim, Length, Speed};
 
 /// Fields of `control height { … }`.
 pub const FIELDS: &[&str] = &["kp", "ki", "clamp", "target", "run", "plant"];
@@ -81,14 +81,7 @@ pub fn statement<'a>(
             read(env, inner, s.span, constants, diags)
         }
         (Some(n), Body::Block(..)) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::BadChoice,
-                    format!("lmdc controls the layer height, not `{}`", n.node),
-                )
-                .label(n.span, "controlled quantity")
-                .help("write `control height { … }`"),
-            );
+            diags.push(message::control::control_not_height(&n.node, n.span));
             None
         }
         _ => {
@@ -126,11 +119,7 @@ fn read<'a>(
         .and_then(|([lo, hi], at)| match Clamp::new(Speed(lo), Speed(hi)) {
             Ok(c) => Some((c, at)),
             Err(e) => {
-                diags.push(
-                    Diagnostic::error(Code::OutOfRange, format!("the clamp cannot hold: {e}"))
-                        .label(at, "clamp")
-                        .help("the speeds the loop may command, low .. high, both above zero"),
-                );
+                diags.push(message::control::clamp_cannot_hold(&e, at));
                 None
             }
         });
@@ -175,13 +164,7 @@ fn gain(
     diags: &mut Diagnostics,
 ) -> Option<(SpeedPerLength, Span)> {
     let Some(e) = f.expr(key) else {
-        diags.push(
-            Diagnostic::error(Code::MissingField, format!("control needs `{key}`"))
-                .label(block, format!("`{key}` is missing"))
-                .help(format!(
-                    "add `{key} = {example}`: a speed per mm of height error"
-                )),
-        );
+        diags.push(message::control::missing_gain(key, block, example));
         return None;
     };
     let at = f.span(key).unwrap_or(e.span);
@@ -189,14 +172,12 @@ fn gain(
     let q = match v.value {
         Value::Quantity(q) => q,
         other => {
-            diags.push(
-                Diagnostic::error(
-                    Code::GainUnit,
-                    format!("`{key}` must be a speed per length (mm/s/mm)"),
-                )
-                .label(v.span, format!("this is {}", other.describe()))
-                .help(format!("write `{key} = {example}`")),
-            );
+            diags.push(message::control::gain_not_a_quantity(
+                key,
+                v.span,
+                &other.describe(),
+                example,
+            ));
             return None;
         }
     };
@@ -206,44 +187,8 @@ fn gain(
     if q.dim == SpeedPerLength::DIM && names_length {
         return SpeedPerLength::from_quantity(q).map(|g| (g, at));
     }
-    diags.push(unit_error(key, q, v.span, &units));
+    diags.push(message::control::gain_unit(key, q, v.span, &units));
     None
-}
-
-/// What is wrong with a gain's unit, both readings spelled out.
-fn unit_error(key: &str, q: Quantity, at: Span, units: &[String]) -> Diagnostic {
-    let n = short(q.value);
-    let readings = format!(
-        "write `{key} = {n} mm/s/mm` ({n} (mm/s)/mm), or — if the number is per (m/s)/mm, as KUKA's \
-         $VEL.CP counts speed and as the paper's -0.003 \"s⁻¹\" reproduces its results — `{key} = {n} m/s/mm` \
-         ({} (mm/s)/mm)",
-        short(q.value * 1000.0)
-    );
-    let (message, label) = if q.dim == Dim::NONE {
-        (
-            format!("`{key}` has no unit: a gain is a change of speed per mm of height error"),
-            "a plain number".to_string(),
-        )
-    } else if q.dim == SpeedPerLength::DIM {
-        (
-            format!(
-                "`{key}` is written per second ({}): (mm/s)/mm and (m/s)/mm are both 1/s, 1000 apart",
-                units.join(", ")
-            ),
-            "which speed per which length?".to_string(),
-        )
-    } else {
-        (
-            format!(
-                "`{key}` must be a speed per length (mm/s/mm), not {}",
-                q.dim.describe()
-            ),
-            q.dim.describe(),
-        )
-    };
-    Diagnostic::error(Code::GainUnit, message)
-        .label(at, label)
-        .help(readings)
 }
 
 /// The unit texts written in `e`, following constants by name.
@@ -299,11 +244,14 @@ fn plant(f: &Fields<'_>, block: Span, diags: &mut Diagnostics) -> Option<PlantSp
         });
     };
     let Value::Call(c) = &v.value else {
-        diags.push(plant_shape(v.span, &v.value.describe()));
+        diags.push(message::control::plant_shape(v.span, &v.value.describe()));
         return None;
     };
     if c.func != "inverse_speed" {
-        diags.push(plant_shape(c.func_span, &format!("`{}(…)`", c.func)));
+        diags.push(message::control::plant_shape(
+            c.func_span,
+            &format!("`{}(…)`", c.func),
+        ));
         return None;
     }
     let a = Fields::call(c, &[], &["drift", "factors"], diags);
@@ -326,14 +274,7 @@ fn plant(f: &Fields<'_>, block: Span, diags: &mut Diagnostics) -> Option<PlantSp
                             Some(q.value)
                         }
                         other => {
-                            diags.push(
-                                Diagnostic::error(
-                                    Code::ExpectedNumber,
-                                    "a plant factor is a plain number above zero",
-                                )
-                                .label(i.span, format!("this is {}", other.describe()))
-                                .help("1.1 lays 10 % more than the calibration, 0.9 10 % less"),
-                            );
+                            diags.push(message::control::plant_factor(i.span, &other.describe()));
                             None
                         }
                     })
@@ -343,11 +284,10 @@ fn plant(f: &Fields<'_>, block: Span, diags: &mut Diagnostics) -> Option<PlantSp
                     .map(|x| Some((x, fv.span)))
             }
             other => {
-                diags.push(
-                    Diagnostic::error(Code::Type, "`factors` is a list, one per segment")
-                        .label(fv.span, format!("this is {}", other.describe()))
-                        .help("e.g. `factors = [1.0, 0.9, …]`"),
-                );
+                diags.push(message::control::factors_not_a_list(
+                    fv.span,
+                    &other.describe(),
+                ));
                 None
             }
         },
@@ -357,12 +297,6 @@ fn plant(f: &Fields<'_>, block: Span, diags: &mut Diagnostics) -> Option<PlantSp
         factors: factors?,
         span: v.span,
     })
-}
-
-fn plant_shape(at: Span, what: &str) -> Diagnostic {
-    Diagnostic::error(Code::BadChoice, "the plant is `inverse_speed(…)`")
-        .label(at, format!("this is {what}"))
-        .help("`plant = inverse_speed(drift = 0.1 %)`: each segment lays h = g·(1 + drift·layer)/v, calibrated so that its table speed lays the target; `factors = […]` scales each segment's g")
 }
 
 #[cfg(test)]

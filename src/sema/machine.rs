@@ -6,7 +6,7 @@ use super::cell;
 use super::fields::{self, Fields};
 use super::program_text;
 use super::value::{Env, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::ir::{
     AxisLimits, Cnc, FeedUnit, FrameRef, HeightSensor, Kinematics, Machine, Placement, Pose, Robot,
     ToolAxis,
@@ -106,11 +106,7 @@ pub fn read<'a>(
             .and_then(|v| fields::symbol(&v, "kind", &["robot", "cnc"], diags)),
         Some(_) => None,
         None => {
-            diags.push(
-                Diagnostic::error(Code::MissingField, format!("machine `{name}` needs `kind`"))
-                    .label(span, "is it a robot or a CNC?")
-                    .help("add `kind = robot` (KUKA, KRL) or `kind = cnc` (G-code)"),
-            );
+            diags.push(message::machine::missing_kind(name, span));
             None
         }
     };
@@ -237,21 +233,16 @@ fn frame_ref(f: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<Frame
                 };
                 match a.quantity(k, d, None, diags) {
                     Some((v, span)) if v.abs() > limit => {
-                        diags.push(
-                            Diagnostic::error(
-                                Code::OutOfRange,
-                                format!("`{k}` of the frame is {}", if d == Dim::ANGLE {
-                                    format!("{}°", crate::units::short(v.to_degrees()))
-                                } else {
-                                    format!("{} mm", crate::units::short(v))
-                                }),
-                            )
-                            .label(span, "beyond any cell")
-                            .help(format!(
-                                "frame offsets lie within ±{} m and angles within ±{MAX_ANGLE_DEG}°",
-                                MAX_FRAME_MM / 1000.0
-                            )),
-                        );
+                        let angle = d == Dim::ANGLE;
+                        let shown = if angle { v.to_degrees() } else { v };
+                        diags.push(message::machine::frame_out_of_range(
+                            k,
+                            shown,
+                            angle,
+                            span,
+                            MAX_FRAME_MM,
+                            MAX_ANGLE_DEG,
+                        ));
                         None
                     }
                     Some((v, _)) => Some(v),
@@ -321,21 +312,11 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
             if v <= ROBOT_VEL_CP_MAX {
                 return Some((v, span));
             }
-            diags.push(
-                Diagnostic::error(
-                    Code::OutOfRange,
-                    format!(
-                        "`max_speed` {} mm/s is beyond what a KUKA controller takes for $VEL.CP",
-                        v
-                    ),
-                )
-                .label(span, "lmdc moves at this speed between paths")
-                .help(format!(
-                    "$VEL.CP is capped by the controller's $VEL_MA.CP, at most {} mm/s (3 m/s); \
-                     declare the robot's real path speed limit",
-                    ROBOT_VEL_CP_MAX
-                )),
-            );
+            diags.push(message::machine::robot_speed_too_high(
+                v,
+                span,
+                ROBOT_VEL_CP_MAX,
+            ));
             None
         });
     let clearance = f
@@ -357,20 +338,12 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
                     match fields::quantity(it, Dim::ANGLE, "home", diags) {
                         Some(a) if a.to_degrees().abs() <= MAX_ANGLE_DEG => out[i] = a.to_degrees(),
                         Some(a) => {
-                            diags.push(
-                                Diagnostic::error(
-                                    Code::OutOfRange,
-                                    format!(
-                                        "home axis A{} at {}° is beyond any robot axis",
-                                        i + 1,
-                                        crate::units::short(a.to_degrees())
-                                    ),
-                                )
-                                .label(it.span, "axis angle")
-                                .help(format!(
-                                    "axis angles lie within ±{MAX_ANGLE_DEG}°: give the angles of the home position the robot really has"
-                                )),
-                            );
+                            diags.push(message::machine::home_axis_out_of_range(
+                                i + 1,
+                                a.to_degrees(),
+                                it.span,
+                                MAX_ANGLE_DEG,
+                            ));
                             ok = false;
                         }
                         None => ok = false,
@@ -379,11 +352,10 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
                 ok.then_some(out)
             }
             other => {
-                diags.push(
-                    Diagnostic::error(Code::Type, "`home` is the list of the six axis angles")
-                        .label(v.span, format!("this is {}", other.describe()))
-                        .help("e.g. `home = [0 deg, -90 deg, 90 deg, 0 deg, 0 deg, 0 deg]`"),
-                );
+                diags.push(message::machine::home_not_six_angles(
+                    v.span,
+                    &other.describe(),
+                ));
                 None
             }
         },
@@ -415,14 +387,7 @@ fn cnc(
     let axes = f.count("axes", 3, 5, Some("5"), diags);
     let axes = match axes {
         Some((4, s)) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::OutOfRange,
-                    "a CNC has 3 axes (X Y Z) or 5 (X Y Z and a tilting head)",
-                )
-                .label(s, "4 axes")
-                .help("write `axes = 3` or `axes = 5`"),
-            );
+            diags.push(message::machine::four_axes(s));
             None
         }
         a => a.map(|a| a.0 as u8),
@@ -438,18 +403,12 @@ fn cnc(
         (Some(3), None) if !f.has("kinematics") => Some(Kinematics::Xyz),
         (Some(5), None) if !f.has("kinematics") => Some(Kinematics::HeadAc),
         (Some(a), Some(k)) if (a == 3) != (k == Kinematics::Xyz) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::BadChoice,
-                    format!(
-                        "kinematics `{}` does not fit a {a}-axis machine",
-                        kin_name(k)
-                    ),
-                )
-                .label_opt(kin_span, "kinematics")
-                .label_opt(f.span("axes"), "axes")
-                .help("3 axes take `kinematics = xyz`; 5 axes take `head_ac` or `head_bc`"),
-            );
+            diags.push(message::machine::kinematics_mismatch(
+                kin_name(k),
+                a,
+                kin_span,
+                f.span("axes"),
+            ));
             None
         }
         (_, k) => k,
@@ -523,26 +482,12 @@ fn cnc(
                     Some(l) if key == "preamble" => d.preamble = l,
                     Some(l) => {
                         if !program_text::ends_program(&l) {
-                            diags.push(
-                                Diagnostic::error(
-                                    Code::ProgramText,
-                                    "the postamble does not end the program",
-                                )
-                                .label(v.span, "no `M2` or `M30` here")
-                                .help("end it with the control's program end, e.g. `postamble = [\"M5\", \"M30\"]`: without one the control runs on past the last line (LinuxCNC refuses the file)"),
-                            );
+                            diags.push(message::machine::postamble_without_end(v.span));
                             text_ok = false;
                         }
                         d.postamble = l;
                     }
-                    None => diags.push(
-                        Diagnostic::error(
-                            Code::Type,
-                            format!("`{key}` is a list of lines in quotes"),
-                        )
-                        .label(v.span, "expected texts")
-                        .help(format!("e.g. `{key} = [\"G21 G90\", \"G94\"]`")),
-                    ),
+                    None => diags.push(message::machine::lines_not_texts(key, v.span)),
                 }
             }
         }
@@ -578,17 +523,7 @@ fn cnc(
         };
         let other = if tilt_key == "a" { "b" } else { "a" };
         if let Some(s) = l.span(other) {
-            diags.push(
-                Diagnostic::error(
-                    Code::UnknownField,
-                    format!("this machine's head has no {} axis", other.to_uppercase()),
-                )
-                .label(s, "not an axis of this machine")
-                .help(format!(
-                    "the tilt axis of this kinematics is {}",
-                    tilt_key.to_uppercase()
-                )),
-            );
+            diags.push(message::machine::no_such_head_axis(other, tilt_key, s));
             ok = false;
         }
         for (key, slot) in [(tilt_key, &mut lim.tilt), ("c", &mut lim.rotary)] {
@@ -640,14 +575,10 @@ fn placement(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Placement> {
                 }
             }
             other => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::ExpectedPoint,
-                        "`origin` is where the part's origin is in machine coordinates: `[x, y, z]`",
-                    )
-                    .label(v.span, format!("this is {}", other.describe()))
-                    .help("e.g. `origin = [250 mm, 150 mm, 40 mm]`"),
-                );
+                diags.push(message::machine::origin_not_a_point(
+                    v.span,
+                    &other.describe(),
+                ));
                 None
             }
         },
@@ -675,14 +606,11 @@ fn height_sensor(
     let delay = match f.quantity("height_delay", Dim::TIME, None, diags) {
         Some((t, _)) if (0.0..=MAX_SENSOR_DELAY_S).contains(&t) => Some(t),
         Some((t, at)) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::OutOfRange,
-                    format!("`height_delay` is {}", crate::units::Time(t)),
-                )
-                .label(at, format!("a time from 0 to {MAX_SENSOR_DELAY_S} s"))
-                .help("how long after a segment's end the sensor holds its mean height, e.g. `height_delay = 150 ms`"),
-            );
+            diags.push(message::machine::height_delay_out_of_range(
+                t,
+                MAX_SENSOR_DELAY_S,
+                at,
+            ));
             None
         }
         None if f.has("height_delay") => None,
@@ -691,27 +619,15 @@ fn height_sensor(
     if input.is_none() && !f.has("height_input") {
         for key in ["height_full_scale", "height_delay"] {
             if let Some(at) = f.span(key) {
-                diags.push(
-                    Diagnostic::error(
-                        Code::MissingField,
-                        format!("`{key}` describes a height sensor, but the machine declares no `height_input`"),
-                    )
-                    .label(at, "for which input?")
-                    .help("add `height_input = N`, the analog input the sensor's height arrives on"),
-                );
+                diags.push(message::machine::sensor_without_input(key, at));
             }
         }
         return (!f.has("height_full_scale") && !f.has("height_delay")).then_some(None);
     }
     if input.is_some() && !f.has("height_full_scale") {
-        diags.push(
-            Diagnostic::error(
-                Code::MissingField,
-                "a height sensor needs `height_full_scale`: the height at an input of 1.0",
-            )
-            .label_opt(f.span("height_input"), "the sensor's input")
-            .help("add `height_full_scale = 2 mm` (the height the sensor reports as full scale)"),
-        );
+        diags.push(message::machine::sensor_without_full_scale(
+            f.span("height_input"),
+        ));
     }
     Some(Some(HeightSensor {
         input: input?.0 as u16,

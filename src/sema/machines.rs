@@ -5,7 +5,7 @@
 use super::machine;
 use super::statement::{shape_error, Statements};
 use super::value::Env;
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::ir::{Machine, MachineOrigin};
 use crate::span::Span;
 use crate::syntax::ast::Body;
@@ -29,14 +29,7 @@ pub fn read<'a>(
             continue;
         };
         match seen.get(n.node.as_str()) {
-            Some(&prev) => diags.push(
-                Diagnostic::error(
-                    Code::DuplicateName,
-                    format!("machine `{}` is declared twice", n.node),
-                )
-                .label(n.span, "second declaration")
-                .label(prev, "first declaration"),
-            ),
+            Some(&prev) => diags.push(message::machine::duplicate_machine(&n.node, n.span, prev)),
             None => {
                 seen.insert(&n.node, n.span);
             }
@@ -53,14 +46,7 @@ pub fn read<'a>(
         }
     }
     if st.get("machine").is_empty() {
-        diags.push(
-            Diagnostic::error(
-                Code::MissingMachine,
-                "the file declares no machine to write a program for",
-            )
-            .label(Span::new(0, 0), "no `machine` here")
-            .help("add `machine NAME { kind = robot … }` or `machine NAME { kind = cnc … }`"),
-        );
+        diags.push(message::machine::no_machine());
     }
     machines
 }

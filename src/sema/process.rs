@@ -6,7 +6,7 @@ use super::fields::Fields;
 use super::model::{within, PowerSchedule, Process};
 use super::statement::{shape_error, single, Statements};
 use super::value::{Env, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::ir::Heat;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
@@ -50,29 +50,9 @@ impl Laser {
 }
 
 /// The fields a ring's process block may not have: its table gives them per
-/// segment, and its layers run on without a stop.
-const NOT_FOR_A_RING: &[(&str, &str)] = &[
-    (
-        "power",
-        "each segment's power is in the ring's table: `table { power = [...] }`",
-    ),
-    (
-        "defocus",
-        "each segment's defocus is in the ring's table: `table { defocus = [...] }`",
-    ),
-    (
-        "speed",
-        "each segment's speed is in the ring's table, and the height loop changes it",
-    ),
-    (
-        "min_layer_time",
-        "a ring is laid in one run with the laser on: there is no stop between layers to cool in",
-    ),
-    (
-        "dwell",
-        "a ring is laid in one run with the laser on: there is no stop between layers to dwell in",
-    ),
-];
+/// segment, and its layers run on without a stop (why, for each, is in
+/// [`message::bead::not_for_a_ring`]).
+const NOT_FOR_A_RING: &[&str] = &["power", "defocus", "speed", "min_layer_time", "dwell"];
 
 /// The file's `process { … }` statement. `ring` is `Some` when the solid is a
 /// ring: its table's powers and where they are written, when right.
@@ -117,20 +97,13 @@ fn read_ring<'a>(
 ) -> Read {
     let all: Vec<&str> = ["powder", "power_range"]
         .into_iter()
-        .chain(NOT_FOR_A_RING.iter().map(|(k, _)| *k))
+        .chain(NOT_FOR_A_RING.iter().copied())
         .collect();
     let f = Fields::block(env, stmts, &all, &[], "process".into(), span, diags);
     let mut ok = true;
-    for (key, why) in NOT_FOR_A_RING {
+    for key in NOT_FOR_A_RING {
         if let Some(at) = f.span(key) {
-            diags.push(
-                Diagnostic::error(
-                    Code::Unsupported,
-                    format!("a ring's process has no `{key}`"),
-                )
-                .label(at, "not for a ring")
-                .help(*why),
-            );
+            diags.push(message::bead::not_for_a_ring(key, at));
             ok = false;
         }
     }
@@ -141,19 +114,14 @@ fn read_ring<'a>(
     let laser = match (range, powers) {
         (Some(([a, b], rs)), Some(([lo, hi], ps))) => {
             if lo.0 < a || hi.0 > b {
-                diags.push(
-                    Diagnostic::error(
-                        Code::PowerSchedule,
-                        format!(
-                            "the ring's table reaches {lo} .. {hi}, outside the laser's range {} .. {}",
-                            Power(a),
-                            Power(b)
-                        ),
-                    )
-                    .label(ps, "the table's powers")
-                    .label(rs, "allowed range")
-                    .help("keep every segment's power inside `power_range`"),
-                );
+                diags.push(message::bead::ring_powers_out_of_range(
+                    lo,
+                    hi,
+                    Power(a),
+                    Power(b),
+                    ps,
+                    rs,
+                ));
                 ok = false;
             }
             Some(Laser {
@@ -248,14 +216,12 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
         |key: &str, diags: &mut Diagnostics| match f.quantity(key, Dim::TIME, None, diags) {
             Some((t, _)) if (0.0..=MAX_DWELL_S).contains(&t) => t,
             Some((t, at)) => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::NotPositive,
-                        format!("`{key}` is {} s", crate::units::short(t)),
-                    )
-                    .label(at, format!("a time from 0 to {MAX_DWELL_S} s"))
-                    .help("the time a layer must take to cool, e.g. `min_layer_time = 30 s`"),
-                );
+                diags.push(message::bead::process_time_out_of_range(
+                    key,
+                    t,
+                    MAX_DWELL_S,
+                    at,
+                ));
                 heat_ok = false;
                 0.0
             }
@@ -299,21 +265,14 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
     {
         let [a, b] = l.range;
         if lo < a.0 || hi > b.0 {
-            diags.push(
-                Diagnostic::error(
-                    Code::PowerSchedule,
-                    format!(
-                        "the power schedule reaches {} .. {}, outside the laser's range {} .. {}",
-                        Power(lo),
-                        Power(hi),
-                        a,
-                        b
-                    ),
-                )
-                .label(power_span, "power")
-                .label(rs, "allowed range")
-                .help("keep the scheduled powers inside `power_range`"),
-            );
+            diags.push(message::bead::schedule_out_of_range(
+                Power(lo),
+                Power(hi),
+                a,
+                b,
+                power_span,
+                rs,
+            ));
             in_range = false;
         }
     }

@@ -10,12 +10,12 @@ use super::control::ControlSpec;
 use super::fields::{self, Fields};
 use super::model::{HeightControl, RingPlan};
 use super::value::{Env, Value};
-use crate::control::{self, Controller, Invalid, Plant, SegmentProcess, SegmentTable};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::control::{self, Controller, Plant, SegmentProcess, SegmentTable};
+use crate::diag::{message, Diagnostics};
 use crate::ir::RingOrigins;
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{short, Angle, Dim, Length, MassFlow, Power, Speed};
+use crate::units::{Angle, Dim, Length, MassFlow, Power, Speed};
 
 /// Fields of `ring NAME { … }`.
 pub const FIELDS: &[&str] = &["radius", "segments", "transition"];
@@ -67,7 +67,7 @@ pub fn read<'a>(
         (Some((r, _)), Some((n, _)), Some(t)) => match control::Ring::new(Length(r), n, t) {
             Ok(ring) => Some(ring),
             Err(e) => {
-                diags.push(ring_error(&e, transition_span, n));
+                diags.push(message::ring::ring_layout(&e, transition_span, n));
                 None
             }
         },
@@ -76,11 +76,7 @@ pub fn read<'a>(
     let (table, powers, speed_span) = match f.nested("table") {
         Some((inner, ts)) => table(env, inner, ts, segments, &what, diags),
         None => {
-            diags.push(
-                Diagnostic::error(Code::MissingField, format!("{what} needs a `table`"))
-                    .label(span, "`table` is missing")
-                    .help("add `table { defocus = [...]  power = [...]  width = [...]  speed = [...] }`, one entry per segment"),
-            );
+            diags.push(message::ring::ring_needs_table(&what, span));
             (None, None, None)
         }
     };
@@ -93,21 +89,6 @@ pub fn read<'a>(
         powers,
         speed_span,
         segments,
-    }
-}
-
-fn ring_error(e: &Invalid, at: Span, segments: usize) -> Diagnostic {
-    let d = Diagnostic::error(
-        Code::OutOfRange,
-        format!("the ring cannot be laid out: {e}"),
-    )
-    .label(at, "transition");
-    match e {
-        Invalid::TransitionTooLong { segment_deg, .. } => d.help(format!(
-            "a transition must be shorter than its segment: 360°/{segments} = {}°",
-            short(*segment_deg)
-        )),
-        _ => d,
     }
 }
 
@@ -180,14 +161,12 @@ fn list(
     };
     let v = f.value(key, Some(example), diags)?;
     let Value::List(items) = &v.value else {
-        diags.push(
-            Diagnostic::error(
-                Code::Type,
-                format!("`{key}` is a list with one value per segment"),
-            )
-            .label(v.span, format!("this is {}", v.value.describe()))
-            .help(format!("write `{key} = {example}`")),
-        );
+        diags.push(message::ring::table_not_a_list(
+            key,
+            v.span,
+            &v.value.describe(),
+            example,
+        ));
         return None;
     };
     let mut ok = true;
@@ -195,13 +174,11 @@ fn list(
     for it in items {
         match fields::quantity(it, dim, key, diags) {
             Some(x) if positive && x <= 0.0 => {
-                diags.push(
-                    Diagnostic::error(
-                        Code::NotPositive,
-                        format!("every `{key}` of the table must be greater than zero"),
-                    )
-                    .label(it.span, format!("this is {}", fields::shown(x, dim))),
-                );
+                diags.push(message::ring::table_not_positive(
+                    key,
+                    it.span,
+                    &fields::shown(x, dim),
+                ));
                 ok = false;
             }
             Some(x) => out.push(x),
@@ -210,7 +187,7 @@ fn list(
     }
     if let Some((n, at)) = segments {
         if items.len() != n {
-            diags.push(table_length(key, items.len(), v.span, n, at));
+            diags.push(message::ring::table_length(key, items.len(), v.span, n, at));
             ok = false;
         }
     }
@@ -218,29 +195,6 @@ fn list(
         ok = false;
     }
     ok.then_some((out, v.span))
-}
-
-/// A per-segment list of the wrong length.
-pub fn table_length(
-    key: &str,
-    found: usize,
-    at: Span,
-    segments: usize,
-    seg_at: Span,
-) -> Diagnostic {
-    Diagnostic::error(
-        Code::TableLength,
-        format!(
-            "`{key}` has {found} entr{} for {segments} segments",
-            if found == 1 { "y" } else { "ies" }
-        ),
-    )
-    .label(
-        at,
-        format!("{found} entr{}", if found == 1 { "y" } else { "ies" }),
-    )
-    .label(seg_at, format!("{segments} segments"))
-    .help("give one value per segment, from the segment that starts on +x, counter-clockwise")
 }
 
 /// Pairs a ring with its slicing and loop. `control` is `Some(None)` when no
@@ -288,17 +242,12 @@ fn loop_of(
     let h = slicing.layer_height;
     let target = match c.target {
         Some((t, at)) if (t.0 - h.0).abs() > 1e-9 * h.0 => {
-            diags.push(
-                Diagnostic::error(
-                    Code::ConflictingFields,
-                    format!(
-                        "the loop's target {t} is not the layer height {h} the plan lays"
-                    ),
-                )
-                .label(at, "target")
-                .label(slicing.layer_height_span, "layer height")
-                .help("the plan rises `layer_height` a layer and the loop holds each layer to `target`: give them one value (or leave `target` out)"),
-            );
+            diags.push(message::ring::target_not_layer_height(
+                t,
+                h,
+                at,
+                slicing.layer_height_span,
+            ));
             return None;
         }
         _ => h,
@@ -306,31 +255,21 @@ fn loop_of(
     let controller = match Controller::new(c.kp, c.ki, target, c.clamp) {
         Ok(ctl) => ctl,
         Err(e) => {
-            diags.push(
-                Diagnostic::error(Code::OutOfRange, format!("the loop cannot run: {e}"))
-                    .label(c.span, "control"),
-            );
+            diags.push(message::ring::loop_cannot_run(&e, c.span));
             return None;
         }
     };
     let mut ok = true;
     for (j, row) in table.rows().iter().enumerate() {
         if !c.clamp.contains(row.speed) {
-            diags.push(
-                Diagnostic::error(
-                    Code::OutOfRange,
-                    format!(
-                        "segment {} starts at {}, outside the loop's clamp {} .. {}",
-                        j + 1,
-                        row.speed,
-                        c.clamp.low(),
-                        c.clamp.high()
-                    ),
-                )
-                .label_opt(w.speed_span, "the table's speeds")
-                .label(c.clamp_span, "clamp")
-                .help("start every segment at a speed the loop may command, or widen the clamp"),
-            );
+            diags.push(message::ring::start_outside_clamp(
+                j + 1,
+                row.speed,
+                c.clamp.low(),
+                c.clamp.high(),
+                w.speed_span,
+                c.clamp_span,
+            ));
             ok = false;
         }
     }
@@ -370,20 +309,7 @@ fn plant(
     let layers = slicing.layers.get();
     let last = 1.0 + p.drift * (layers - 1) as f64;
     if last <= 0.0 {
-        diags.push(
-            Diagnostic::error(
-                Code::OutOfRange,
-                format!(
-                    "a drift of {} % a layer leaves the plant nothing to lay by layer {layers}",
-                    short(p.drift * 100.0)
-                ),
-            )
-            .label(p.span, "plant")
-            .help(format!(
-                "a drift above {} % a layer",
-                short(-100.0 / (layers - 1).max(1) as f64)
-            )),
-        );
+        diags.push(message::ring::drift_exhausts_plant(p.drift, layers, p.span));
         return None;
     }
     let calibrated = Plant::calibrated(target, &table.speeds(), p.drift).ok()?;
@@ -391,7 +317,13 @@ fn plant(
         None => Some(calibrated),
         Some((f, at)) if f.len() != table.len() => {
             let seg_at = w.segments.map(|s| s.1).unwrap_or(w.span);
-            diags.push(table_length("factors", f.len(), *at, table.len(), seg_at));
+            diags.push(message::ring::table_length(
+                "factors",
+                f.len(),
+                *at,
+                table.len(),
+                seg_at,
+            ));
             None
         }
         Some((f, _)) => calibrated.scaled(f).ok(),

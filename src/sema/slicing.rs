@@ -8,7 +8,7 @@ use super::seam;
 use super::statement::{shape_error, single, Statements};
 use super::suggest::did_you_mean;
 use super::value::{Call, Env, Spanned as SpannedValue, Value};
-use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostics};
 use crate::span::{Span, Spanned};
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Angle, Dim, Length};
@@ -177,25 +177,13 @@ fn read<'a>(
         }
         Some(s) if STRATEGIES.contains(&s.node.as_str()) => {}
         Some(s) => {
-            let mut d = Diagnostic::error(
-                Code::BadChoice,
-                format!("lmdc does not know the slicing strategy `{}`", s.node),
-            )
-            .label(s.span, "unknown strategy");
-            d = match did_you_mean(&s.node, STRATEGIES.iter().copied()) {
-                Some(m) => d.help(format!("did you mean `slicing {m} {{ … }}`?")),
-                None => d.help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine), `slicing planar { … }` (flat filled layers of an extrusion), `slicing variable { … }` (layers that follow an extrusion's `top`) or `slicing continuous { … }` (a ring's layers in one run)"),
-            };
-            diags.push(d);
+            let suggestion = did_you_mean(&s.node, STRATEGIES.iter().copied());
+            diags.push(message::bead::unknown_strategy(&s.node, s.span, suggestion));
             any_strategy(env, stmts, span, diags);
             return None;
         }
         None => {
-            diags.push(
-                Diagnostic::error(Code::Syntax, "name the slicing strategy")
-                    .label(span, "which strategy?")
-                    .help("write `slicing normal { … }`"),
-            );
+            diags.push(message::bead::unnamed_strategy(span));
             any_strategy(env, stmts, span, diags);
             return None;
         }
@@ -219,14 +207,10 @@ fn read<'a>(
     };
     let resolution = match (f.has("points"), f.has("chord_error")) {
         (true, true) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::ConflictingFields,
-                    "give either `points` or `chord_error`, not both",
-                )
-                .label_opt(f.span("points"), "points")
-                .label_opt(f.span("chord_error"), "chord error"),
-            );
+            diags.push(message::bead::points_and_chord_error(
+                f.span("points"),
+                f.span("chord_error"),
+            ));
             None
         }
         (false, true) => f
@@ -302,11 +286,7 @@ fn planar<'a>(
             ..
         }) if c.func == "raster" => raster(c, diags).map(Some),
         Some(v) => {
-            diags.push(
-                Diagnostic::error(Code::BadChoice, "an infill is `raster(…)` or `none`")
-                    .label(v.span, format!("this is {}", v.value.describe()))
-                    .help("e.g. `infill = raster(angle = 0 deg, pattern = serpentine)`"),
-            );
+            diags.push(message::bead::bad_infill(v.span, &v.value.describe()));
             None
         }
     };
@@ -319,14 +299,7 @@ fn planar<'a>(
     // Nothing to deposit: known once both are.
     let contours = match (contours, &infill) {
         (Some((0, Some(sp))), Some(None)) => {
-            diags.push(
-                Diagnostic::error(
-                    Code::NothingDeposited,
-                    "a layer with no contour and no infill deposits nothing",
-                )
-                .label(sp, "no contour")
-                .help("add `infill = raster(…)` or at least one contour"),
-            );
+            diags.push(message::bead::nothing_deposited(sp));
             None
         }
         (c, _) => c.map(|c| c.0),
@@ -382,11 +355,7 @@ fn raster(c: &Call, diags: &mut Diagnostics) -> Option<(Raster, Option<Length>)>
         Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
         Some(v) => fields::quantity(v, Dim::LENGTH, "extend", diags).and_then(|e| {
             if e < 0.0 {
-                diags.push(
-                    Diagnostic::error(Code::NotPositive, "`extend` cannot be negative")
-                        .label(v.span, "negative")
-                        .help("0 mm keeps tracks where they meet the boundary"),
-                );
+                diags.push(message::bead::negative_extend(v.span));
                 None
             } else {
                 Some(Some(Length(e)))
@@ -401,15 +370,10 @@ fn raster(c: &Call, diags: &mut Diagnostics) -> Option<(Raster, Option<Length>)>
     // A link turns the nozzle back into the next track: one-way tracks all
     // start on the same side, and no edge leads from one's end to the next.
     if let (Some(Pattern::OneWay), Some(LinkMode::LaserOn | LinkMode::LaserOff)) = (pattern, link) {
-        diags.push(
-            Diagnostic::error(
-                Code::ConflictingFields,
-                "one-way tracks cannot be linked: each starts on the side the last one started",
-            )
-            .label_opt(a.span("link"), "link")
-            .label_opt(a.span("pattern"), "one way")
-            .help("link serpentine tracks (`pattern = serpentine`), or drop `link`"),
-        );
+        diags.push(message::bead::one_way_linked(
+            a.span("link"),
+            a.span("pattern"),
+        ));
         return None;
     }
     let extend = extend?;

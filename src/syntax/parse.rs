@@ -1,7 +1,7 @@
 //! pest pairs → [`ast::File`]. The grammar is in `grammar/lmd.pest`.
 
 use super::ast::*;
-use crate::diag::{Code, Diagnostic};
+use crate::diag::{message, Diagnostic};
 use crate::span::{Span, Spanned};
 use pest::iterators::Pair;
 use pest::pratt_parser::{Assoc, Op, PrattParser};
@@ -35,9 +35,7 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
     let source: &str = &normalized;
     check_nesting(source)?;
     let mut pairs = LmdParser::parse(Rule::file, source).map_err(syntax_error)?;
-    let file = pairs
-        .next()
-        .ok_or_else(|| Diagnostic::error(Code::Syntax, "empty parse"))?;
+    let file = pairs.next().ok_or_else(message::syntax::empty_parse)?;
     let stmts = file
         .into_inner()
         .filter(|p| p.as_rule() == Rule::stmt)
@@ -110,26 +108,16 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
                 if i == bytes.len() || bytes[i] == b'\n' {
                     // pest would say "expected …" somewhere after it; the
                     // quote that opens the string is what needs fixing.
-                    return Err(Diagnostic::error(
-                        Code::Syntax,
-                        "this text is not closed on its line",
-                    )
-                    .label(
-                        Span::new(open_at, i),
-                        "no closing `\"` before the line ends",
-                    )
-                    .help("close the text with `\"` on the same line; a text cannot span lines"));
+                    return Err(message::syntax::unclosed_text(Span::new(open_at, i)));
                 }
             }
             b'(' | b'[' | b'{' => {
                 open.push((c as char, i));
                 if open.len() > MAX_NESTING {
-                    return Err(Diagnostic::error(
-                        Code::TooDeep,
-                        format!("brackets are nested more than {MAX_NESTING} deep"),
-                    )
-                    .label(Span::new(i, i + 1), "this one is too deep")
-                    .help("split the expression with `let` constants"));
+                    return Err(message::syntax::brackets_too_deep(
+                        MAX_NESTING,
+                        Span::new(i, i + 1),
+                    ));
                 }
             }
             b')' | b']' | b'}' => {
@@ -141,24 +129,19 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
                 match open.pop() {
                     Some((o, _)) if o == want => {}
                     Some((o, at)) => {
-                        return Err(Diagnostic::error(
-                            Code::Syntax,
-                            format!("`{o}` is closed by `{}`", c as char),
-                        )
-                        .label(Span::new(at, at + 1), format!("this `{o}` …"))
-                        .label(
+                        return Err(message::syntax::mismatched_bracket(
+                            o,
+                            Span::new(at, at + 1),
+                            c as char,
                             Span::new(i, i + 1),
-                            format!("… is closed here by `{}`", c as char),
-                        )
-                        .help(format!("close `{o}` with `{}` first", closer(o))));
+                            closer(o),
+                        ));
                     }
                     None => {
-                        return Err(Diagnostic::error(
-                            Code::Syntax,
-                            format!("`{}` closes nothing", c as char),
-                        )
-                        .label(Span::new(i, i + 1), "no matching opening bracket")
-                        .help("remove it, or add the opening bracket it belongs to"));
+                        return Err(message::syntax::closes_nothing(
+                            c as char,
+                            Span::new(i, i + 1),
+                        ));
                     }
                 }
             }
@@ -167,11 +150,11 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
         i += 1;
     }
     if let Some((o, at)) = open.pop() {
-        return Err(
-            Diagnostic::error(Code::Syntax, format!("this `{o}` is never closed"))
-                .label(Span::new(at, at + 1), "opened here")
-                .help(format!("add `{}` where it should end", closer(o))),
-        );
+        return Err(message::syntax::never_closed(
+            o,
+            Span::new(at, at + 1),
+            closer(o),
+        ));
     }
     Ok(())
 }
@@ -225,17 +208,7 @@ fn syntax_error(e: pest::error::Error<Rule>) -> Diagnostic {
         }
         ErrorVariant::CustomError { .. } => Vec::new(),
     };
-    let what = match expected.len() {
-        0 => "unexpected text".to_string(),
-        1 => format!("expected {}", expected[0]),
-        _ => {
-            let (last, rest) = expected.split_last().unwrap_or((&"", &[]));
-            format!("expected {} or {}", rest.join(", "), last)
-        }
-    };
-    Diagnostic::error(Code::Syntax, format!("syntax error: {what}"))
-        .label(span, what)
-        .help("every statement is `name = value` or `kind name { … }`; numbers carry their unit right after them, e.g. `6 mm` or `7 mm/s`")
+    message::syntax::syntax_error(span, &expected)
 }
 
 fn span_of(p: &Pair<Rule>) -> Span {
@@ -278,7 +251,7 @@ fn stmt(p: Pair<Rule>) -> Result<Stmt, Diagnostic> {
             _ => {}
         }
     }
-    let kind = kind.ok_or_else(|| Diagnostic::error(Code::Syntax, "statement without a name"))?;
+    let kind = kind.ok_or_else(message::syntax::statement_without_name)?;
     Ok(Stmt {
         kind,
         name,
@@ -327,14 +300,12 @@ fn check_depth(e: &Pair<Rule>) -> Result<usize, Diagnostic> {
     }
     let depth = operators + deepest;
     if depth > MAX_EXPR_DEPTH {
-        return Err(Diagnostic::error(
-            Code::DeepExpression,
-            format!(
-                "this expression nests {depth} operators and brackets into one another; lmdc takes at most {MAX_EXPR_DEPTH}"
-            ),
-        )
-        .label(span_of(e), format!("{operators} operators at its outer level"))
-        .help("compute it in steps with `let` constants (`let a = …`, then `let b = a + …`), and write each sign once (`--x` is `x`)"));
+        return Err(message::syntax::expression_too_deep(
+            depth,
+            MAX_EXPR_DEPTH,
+            operators,
+            span_of(e),
+        ));
     }
     Ok(depth)
 }
@@ -403,11 +374,7 @@ fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
                     Rule::number => {
                         value = c.as_str().parse::<f64>().unwrap_or(f64::INFINITY);
                         if !value.is_finite() {
-                            return Err(Diagnostic::error(
-                                Code::Number,
-                                "this number is too large",
-                            )
-                            .label(span_of(&c), "not a finite number"));
+                            return Err(message::syntax::number_too_large(span_of(&c)));
                         }
                     }
                     Rule::unit => unit = Some(Spanned::new(c.as_str().to_string(), span_of(&c))),
@@ -424,7 +391,7 @@ fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
             let func = inner
                 .next()
                 .map(ident)
-                .ok_or_else(|| Diagnostic::error(Code::Syntax, "call without a name"))?;
+                .ok_or_else(message::syntax::call_without_name)?;
             let mut args = Vec::new();
             for a in inner {
                 let mut parts = a.into_inner();
@@ -445,7 +412,7 @@ fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
             ExprKind::Call { func, args }
         }
         Rule::expr => return expr(p),
-        _ => return Err(Diagnostic::error(Code::Syntax, "unexpected expression").label(span, "")),
+        _ => return Err(message::syntax::unexpected_expression(span)),
     };
     Ok(Expr { kind, span })
 }
@@ -453,6 +420,7 @@ fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::diag::Code;
 
     fn one_expr(src: &str) -> Expr {
         let f = parse(&format!("x = {src}")).unwrap();

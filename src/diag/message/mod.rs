@@ -9,16 +9,21 @@
 //! One file per area of the language, named for it; each function is named
 //! for the mistake it reports.
 
+pub mod bead;
 pub mod bend;
 pub mod check;
+pub mod control;
 pub mod field;
 pub mod fill;
 pub mod hole;
 pub mod internal;
+pub mod machine;
+pub mod ring;
 pub mod shape;
 pub mod slicing;
 pub mod solid;
 pub mod statement;
 pub mod style;
+pub mod syntax;
 pub mod top;
 pub mod value;

@@ -1,0 +1,246 @@
+//! What lmdc says about a `bead` model, the `slicing` block and the
+//! `process` block: the numbers that decide how each layer is laid.
+
+use crate::diag::{Code, Diagnostic};
+use crate::span::Span;
+use crate::units::{short, Length, MassFlow, Power, Speed};
+
+/// A bead's speed range starts at zero or below.
+pub fn speed_not_positive(at: Span) -> Diagnostic {
+    Diagnostic::error(Code::NotPositive, "scan speeds must be greater than zero")
+        .label(at, "the lower end must be > 0")
+}
+
+/// A linear bead model's `slope` (mm per mm/s) is not negative.
+pub fn slope_not_negative(slope: f64, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::BeadSlope,
+        "the slope of a bead's height over speed must be negative",
+    )
+    .label(at, format!("this is {} mm per mm/s", short(slope)))
+    .help("a faster scan lays a lower bead: fit H = slope·v + intercept with slope < 0")
+}
+
+/// A mass-balance model's catch efficiency `eff` is above 1.
+pub fn efficiency_range(eff: f64, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::EfficiencyRange,
+        "catch efficiency must lie between 0 and 1",
+    )
+    .label(
+        at,
+        format!("this is {} ({} %)", short(eff), short(eff * 100.0)),
+    )
+    .help("write it as a fraction (0.3) or a percentage (30 %)")
+}
+
+/// A bead's `model` is not one of the models lmdc knows (`got` describes it).
+pub fn unknown_model(at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::BadChoice,
+        "a bead model is `linear(…)`, `mass_balance(…)` or `measured(…)`",
+    )
+    .label(at, format!("this is {got}"))
+    .help("e.g. `model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm)`")
+}
+
+/// The bead model gives a height `h` at or below zero (or not finite) at the
+/// fast end `v` of its speed range.
+pub fn model_height_not_positive(
+    h: Length,
+    v: Speed,
+    speed_at: Span,
+    model_at: Option<Span>,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::InfeasibleBead,
+        format!("the bead model gives a height of {h} at {v}"),
+    )
+    .label(speed_at, "speed range")
+    .label_opt(model_at, "model")
+    .help("narrow the speed range to where the model gives positive heights")
+}
+
+/// The allowed heights `allowed` do not overlap `laid`, what the model lays
+/// over the speed range `speeds`.
+pub fn heights_do_not_overlap(
+    allowed: [Length; 2],
+    speeds: [Speed; 2],
+    laid: [Length; 2],
+    heights_at: Span,
+    speed_at: Span,
+) -> Diagnostic {
+    let ([lo, hi], [v0, v1], [h_lo, h_hi]) = (allowed, speeds, laid);
+    Diagnostic::error(
+        Code::InfeasibleBead,
+        format!(
+            "the allowed heights {lo} .. {hi} do not overlap what the model lays at {v0} .. {v1} ({h_lo} .. {h_hi})"
+        ),
+    )
+    .label(heights_at, "allowed heights")
+    .label(speed_at, "speed range")
+    .help("widen the speed range or the height range so that they overlap")
+}
+
+/// The field `key`, which names the bead model `what` is built with, is not
+/// a name (`got` describes it).
+pub fn bead_not_a_name(key: &str, what: &str, at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::ExpectedName,
+        format!("`{key}` names the bead model {what} is built with"),
+    )
+    .label(at, format!("this is {got}"))
+    .help(format!(
+        "declare `bead my_bead {{ … }}` and write `{key} = my_bead`"
+    ))
+}
+
+/// Warning: bead `bead` is modelled at `feed` of powder, while the process
+/// feeds `powder`.
+pub fn powder_mismatch(
+    bead: &str,
+    feed: MassFlow,
+    powder: MassFlow,
+    process_at: Span,
+    bead_at: Span,
+) -> Diagnostic {
+    Diagnostic::warning(
+        Code::PowderMismatch,
+        format!(
+            "bead `{}` is modelled at {} of powder, the process feeds {}: the beads will not be the heights planned",
+            bead, feed, powder
+        ),
+    )
+    .label(process_at, "process feed")
+    .label(bead_at, "bead model")
+    .help("use one feed in both, or refit the bead model at the process feed")
+}
+
+/// The slicing strategy `name` is not one lmdc knows; `suggestion` is a
+/// close known one, if any.
+pub fn unknown_strategy(name: &str, at: Span, suggestion: Option<&str>) -> Diagnostic {
+    let d = Diagnostic::error(
+        Code::BadChoice,
+        format!("lmdc does not know the slicing strategy `{name}`"),
+    )
+    .label(at, "unknown strategy");
+    match suggestion {
+        Some(m) => d.help(format!("did you mean `slicing {m} {{ … }}`?")),
+        None => d.help("use `slicing normal { … }` (continuous gradual slicing normal to a loft's spine), `slicing planar { … }` (flat filled layers of an extrusion), `slicing variable { … }` (layers that follow an extrusion's `top`) or `slicing continuous { … }` (a ring's layers in one run)"),
+    }
+}
+
+/// A `slicing` block (at `at`) without a strategy name.
+pub fn unnamed_strategy(at: Span) -> Diagnostic {
+    Diagnostic::error(Code::Syntax, "name the slicing strategy")
+        .label(at, "which strategy?")
+        .help("write `slicing normal { … }`")
+}
+
+/// Both `points` and `chord_error` are given.
+pub fn points_and_chord_error(points: Option<Span>, chord: Option<Span>) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConflictingFields,
+        "give either `points` or `chord_error`, not both",
+    )
+    .label_opt(points, "points")
+    .label_opt(chord, "chord error")
+}
+
+/// `infill` is neither `raster(…)` nor `none` (`got` describes it).
+pub fn bad_infill(at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(Code::BadChoice, "an infill is `raster(…)` or `none`")
+        .label(at, format!("this is {got}"))
+        .help("e.g. `infill = raster(angle = 0 deg, pattern = serpentine)`")
+}
+
+/// `contours = 0` (at `at`) and no infill: nothing would be deposited.
+pub fn nothing_deposited(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::NothingDeposited,
+        "a layer with no contour and no infill deposits nothing",
+    )
+    .label(at, "no contour")
+    .help("add `infill = raster(…)` or at least one contour")
+}
+
+/// A raster's `extend` is negative.
+pub fn negative_extend(at: Span) -> Diagnostic {
+    Diagnostic::error(Code::NotPositive, "`extend` cannot be negative")
+        .label(at, "negative")
+        .help("0 mm keeps tracks where they meet the boundary")
+}
+
+/// One-way raster tracks are asked to be linked.
+pub fn one_way_linked(link: Option<Span>, pattern: Option<Span>) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConflictingFields,
+        "one-way tracks cannot be linked: each starts on the side the last one started",
+    )
+    .label_opt(link, "link")
+    .label_opt(pattern, "one way")
+    .help("link serpentine tracks (`pattern = serpentine`), or drop `link`")
+}
+
+/// A ring's process block gives `key`, which a ring takes per segment or
+/// not at all.
+pub fn not_for_a_ring(key: &str, at: Span) -> Diagnostic {
+    let why = match key {
+        "power" => "each segment's power is in the ring's table: `table { power = [...] }`",
+        "defocus" => "each segment's defocus is in the ring's table: `table { defocus = [...] }`",
+        "speed" => "each segment's speed is in the ring's table, and the height loop changes it",
+        "min_layer_time" => {
+            "a ring is laid in one run with the laser on: there is no stop between layers to cool in"
+        }
+        _ => "a ring is laid in one run with the laser on: there is no stop between layers to dwell in",
+    };
+    Diagnostic::error(
+        Code::Unsupported,
+        format!("a ring's process has no `{key}`"),
+    )
+    .label(at, "not for a ring")
+    .help(why)
+}
+
+/// The ring's table powers `lo .. hi` leave the laser's range `a .. b`.
+pub fn ring_powers_out_of_range(
+    lo: Power,
+    hi: Power,
+    a: Power,
+    b: Power,
+    powers_at: Span,
+    range_at: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::PowerSchedule,
+        format!("the ring's table reaches {lo} .. {hi}, outside the laser's range {a} .. {b}"),
+    )
+    .label(powers_at, "the table's powers")
+    .label(range_at, "allowed range")
+    .help("keep every segment's power inside `power_range`")
+}
+
+/// The process time `key` is `t` s, outside 0 to `max` s.
+pub fn process_time_out_of_range(key: &str, t: f64, max: f64, at: Span) -> Diagnostic {
+    Diagnostic::error(Code::NotPositive, format!("`{key}` is {} s", short(t)))
+        .label(at, format!("a time from 0 to {max} s"))
+        .help("the time a layer must take to cool, e.g. `min_layer_time = 30 s`")
+}
+
+/// The power schedule reaches `lo .. hi`, outside the laser's range `a .. b`.
+pub fn schedule_out_of_range(
+    lo: Power,
+    hi: Power,
+    a: Power,
+    b: Power,
+    power_at: Span,
+    range_at: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::PowerSchedule,
+        format!("the power schedule reaches {lo} .. {hi}, outside the laser's range {a} .. {b}"),
+    )
+    .label(power_at, "power")
+    .label(range_at, "allowed range")
+    .help("keep the scheduled powers inside `power_range`")
+}

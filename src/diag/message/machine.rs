@@ -1,0 +1,296 @@
+//! What lmdc says about a `machine` block: its kind, frames, axes, dialect,
+//! program texts, height sensor, and the gas and powder of its cell.
+
+use crate::diag::{Code, Diagnostic};
+use crate::span::Span;
+use crate::units::short;
+
+/// A machine block (`span`) without `kind`.
+pub fn missing_kind(name: &str, span: Span) -> Diagnostic {
+    Diagnostic::error(Code::MissingField, format!("machine `{name}` needs `kind`"))
+        .label(span, "is it a robot or a CNC?")
+        .help("add `kind = robot` (KUKA, KRL) or `kind = cnc` (G-code)")
+}
+
+/// The frame's `key` is `shown` (deg when `angle`, else mm), beyond the
+/// bounds of any cell (±`max_mm`, ±`max_deg`).
+pub fn frame_out_of_range(
+    key: &str,
+    shown: f64,
+    angle: bool,
+    at: Span,
+    max_mm: f64,
+    max_deg: f64,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::OutOfRange,
+        format!(
+            "`{key}` of the frame is {}",
+            if angle {
+                format!("{}°", short(shown))
+            } else {
+                format!("{} mm", short(shown))
+            }
+        ),
+    )
+    .label(at, "beyond any cell")
+    .help(format!(
+        "frame offsets lie within ±{} m and angles within ±{max_deg}°",
+        max_mm / 1000.0
+    ))
+}
+
+/// A robot's `max_speed` (mm/s) is beyond `cap`, the KUKA $VEL.CP limit.
+pub fn robot_speed_too_high(speed: f64, at: Span, cap: f64) -> Diagnostic {
+    Diagnostic::error(
+        Code::OutOfRange,
+        format!(
+            "`max_speed` {} mm/s is beyond what a KUKA controller takes for $VEL.CP",
+            speed
+        ),
+    )
+    .label(at, "lmdc moves at this speed between paths")
+    .help(format!(
+        "$VEL.CP is capped by the controller's $VEL_MA.CP, at most {} mm/s (3 m/s); \
+         declare the robot's real path speed limit",
+        cap
+    ))
+}
+
+/// Axis `axis` (1-based) of `home` is at `deg`, beyond ±`max_deg`.
+pub fn home_axis_out_of_range(axis: usize, deg: f64, at: Span, max_deg: f64) -> Diagnostic {
+    Diagnostic::error(
+        Code::OutOfRange,
+        format!(
+            "home axis A{} at {}° is beyond any robot axis",
+            axis,
+            short(deg)
+        ),
+    )
+    .label(at, "axis angle")
+    .help(format!(
+        "axis angles lie within ±{max_deg}°: give the angles of the home position the robot really has"
+    ))
+}
+
+/// `home` is not a list of six angles (`got` describes what it is).
+pub fn home_not_six_angles(at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(Code::Type, "`home` is the list of the six axis angles")
+        .label(at, format!("this is {got}"))
+        .help("e.g. `home = [0 deg, -90 deg, 90 deg, 0 deg, 0 deg, 0 deg]`")
+}
+
+/// A CNC declared with `axes = 4`.
+pub fn four_axes(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::OutOfRange,
+        "a CNC has 3 axes (X Y Z) or 5 (X Y Z and a tilting head)",
+    )
+    .label(at, "4 axes")
+    .help("write `axes = 3` or `axes = 5`")
+}
+
+/// The kinematics `kin` does not fit a machine of `axes` axes.
+pub fn kinematics_mismatch(
+    kin: &str,
+    axes: u8,
+    kin_at: Option<Span>,
+    axes_at: Option<Span>,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::BadChoice,
+        format!("kinematics `{kin}` does not fit a {axes}-axis machine"),
+    )
+    .label_opt(kin_at, "kinematics")
+    .label_opt(axes_at, "axes")
+    .help("3 axes take `kinematics = xyz`; 5 axes take `head_ac` or `head_bc`")
+}
+
+/// A CNC's `postamble` has no program end (`M2`/`M30`).
+pub fn postamble_without_end(at: Span) -> Diagnostic {
+    Diagnostic::error(Code::ProgramText, "the postamble does not end the program")
+        .label(at, "no `M2` or `M30` here")
+        .help("end it with the control's program end, e.g. `postamble = [\"M5\", \"M30\"]`: without one the control runs on past the last line (LinuxCNC refuses the file)")
+}
+
+/// `preamble` or `postamble` (`key`) is not a list of texts.
+pub fn lines_not_texts(key: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(Code::Type, format!("`{key}` is a list of lines in quotes"))
+        .label(at, "expected texts")
+        .help(format!("e.g. `{key} = [\"G21 G90\", \"G94\"]`"))
+}
+
+/// `limits` bounds the tilt axis `other` that this head does not have
+/// (its tilt axis is `tilt`).
+pub fn no_such_head_axis(other: &str, tilt: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::UnknownField,
+        format!("this machine's head has no {} axis", other.to_uppercase()),
+    )
+    .label(at, "not an axis of this machine")
+    .help(format!(
+        "the tilt axis of this kinematics is {}",
+        tilt.to_uppercase()
+    ))
+}
+
+/// `origin` is not a point `[x, y, z]` (`got` describes what it is).
+pub fn origin_not_a_point(at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::ExpectedPoint,
+        "`origin` is where the part's origin is in machine coordinates: `[x, y, z]`",
+    )
+    .label(at, format!("this is {got}"))
+    .help("e.g. `origin = [250 mm, 150 mm, 40 mm]`")
+}
+
+/// `height_delay` is `t` s, outside 0 to `max` s.
+pub fn height_delay_out_of_range(t: f64, max: f64, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::OutOfRange,
+        format!("`height_delay` is {}", crate::units::Time(t)),
+    )
+    .label(at, format!("a time from 0 to {max} s"))
+    .help("how long after a segment's end the sensor holds its mean height, e.g. `height_delay = 150 ms`")
+}
+
+/// A height sensor field `key` is given without `height_input`.
+pub fn sensor_without_input(key: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::MissingField,
+        format!("`{key}` describes a height sensor, but the machine declares no `height_input`"),
+    )
+    .label(at, "for which input?")
+    .help("add `height_input = N`, the analog input the sensor's height arrives on")
+}
+
+/// A height sensor's input is declared without `height_full_scale`.
+pub fn sensor_without_full_scale(input: Option<Span>) -> Diagnostic {
+    Diagnostic::error(
+        Code::MissingField,
+        "a height sensor needs `height_full_scale`: the height at an input of 1.0",
+    )
+    .label_opt(input, "the sensor's input")
+    .help("add `height_full_scale = 2 mm` (the height the sensor reports as full scale)")
+}
+
+/// A machine's name is declared a second time.
+pub fn duplicate_machine(name: &str, second: Span, first: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::DuplicateName,
+        format!("machine `{name}` is declared twice"),
+    )
+    .label(second, "second declaration")
+    .label(first, "first declaration")
+}
+
+/// The file declares no machine at all.
+pub fn no_machine() -> Diagnostic {
+    Diagnostic::error(
+        Code::MissingMachine,
+        "the file declares no machine to write a program for",
+    )
+    .label(Span::new(0, 0), "no `machine` here")
+    .help("add `machine NAME { kind = robot … }` or `machine NAME { kind = cnc … }`")
+}
+
+/// `what` and `other` (an earlier claim, at `first`) are both on the same
+/// (analog or digital) output `n`.
+pub fn output_clash(
+    what: &str,
+    other: &str,
+    analog: bool,
+    n: usize,
+    at: Span,
+    first: Option<Span>,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::OutputClash,
+        format!(
+            "{what} and {other} are both on {} output {n}",
+            if analog { "analog" } else { "digital" }
+        ),
+    )
+    .label(at, what.to_string())
+    .label_opt(first, other.to_string())
+    .help("every output switches one thing: give each its own output number")
+}
+
+/// A `powder` block (`at`) without `arrival`.
+pub fn powder_without_arrival(at: Span) -> Diagnostic {
+    Diagnostic::error(Code::MissingField, "`powder` needs `arrival`")
+        .label(at, "how long until the powder reaches the nozzle?")
+        .help(
+            "add `arrival = 2 s`: the time from starting the feeder until the \
+             powder comes out of the nozzle (measure it: seconds on most cells); \
+             lmdc waits that long before the laser starts",
+        )
+}
+
+/// `powder` has one of `rate_output` and `full_scale` (`has`) but not the
+/// other (`lacks`).
+pub fn powder_rate_half(has: &str, lacks: &str, at: Option<Span>) -> Diagnostic {
+    Diagnostic::error(
+        Code::MissingField,
+        format!("`powder` has `{has}` but no `{lacks}`"),
+    )
+    .label_opt(at, "the feed rate's analog output")
+    .help(
+        "give both: `rate_output = 2` (the analog output) and \
+         `full_scale = 60 g/min` (the rate at 1.0), or neither when \
+         the feeder's rate is set on the feeder",
+    )
+}
+
+/// Gas or powder needs the output line `key`, which the CNC's dialect does
+/// not have built in.
+pub fn no_output_line(key: &str, cell: Option<Span>, dialect: Option<Span>) -> Diagnostic {
+    Diagnostic::error(
+        Code::IoDialect,
+        format!("this dialect has no built-in `{key}` line"),
+    )
+    .label_opt(cell, "gas and powder need outputs switched")
+    .label_opt(dialect, "dialect")
+    .help(format!(
+        "give the control's command in the machine block, with `{{n}}` for \
+         the output number{}, e.g. `{key} = \"{}\"` (check the control's manual)",
+        if key == "analog_output" {
+            " and `{v}` for the value (a fraction of full scale)"
+        } else {
+            ""
+        },
+        match key {
+            "output_on" => "M64 P{n}",
+            "output_off" => "M65 P{n}",
+            _ => "M68 E{n} Q{v}",
+        }
+    ))
+}
+
+/// The output line `key` does not hold the hole `hole` exactly once;
+/// `example` is LinuxCNC's line for it.
+pub fn output_line_hole(key: &str, hole: &str, at: Span, example: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::ProgramText,
+        format!("`{key}` must hold `{hole}` once"),
+    )
+    .label(at, "output line")
+    .help(format!(
+        "`{{n}}` is where the output number goes{}: e.g. `{key} = \"{}\"`",
+        if key == "analog_output" {
+            ", `{v}` the value (a fraction of full scale)"
+        } else {
+            ""
+        },
+        example
+    ))
+}
+
+/// A gas or powder time `key` is `t` s, outside 0 to `max` s.
+pub fn cell_time_out_of_range(key: &str, t: f64, max: f64, at: Span) -> Diagnostic {
+    Diagnostic::error(Code::OutOfRange, format!("`{key}` is {} s", short(t)))
+        .label(at, format!("a time from 0 to {max} s"))
+        .help(format!(
+            "give `{key}` in seconds as the cell needs it, e.g. `{key} = 2 s`"
+        ))
+}
