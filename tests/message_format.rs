@@ -107,10 +107,20 @@ fn build_and_report_speak_json_too_and_success_is_silent() {
 #[test]
 fn the_schema_documents_every_field_the_encoder_writes() {
     // A diagnostic with every optional part, through the encoder.
-    let d = lmdc::diag::Diagnostic::warning(lmdc::diag::Code::Unused, "unused `x`")
-        .label(lmdc::span::Span::new(0, 4), "here")
-        .label(lmdc::span::Span::new(5, 6), "")
-        .help("remove it");
+    // (Written as data: only lmdc's message module words diagnostics.)
+    use lmdc::diag::{Code, Diagnostic, Label, Severity};
+    use lmdc::span::Span;
+    let label = |start, end, text: &str| Label {
+        span: Span::new(start, end),
+        text: text.into(),
+    };
+    let d = Diagnostic {
+        code: Code::Unused,
+        severity: Severity::Warning,
+        message: "unused `x`".into(),
+        labels: vec![label(0, 4, "here"), label(5, 6, "")],
+        help: Some("remove it".into()),
+    };
     let line = lmdc::diag::json::Encoder::new("f.lmd", "part x\n").line(&d);
     let v: Value = serde_json::from_str(&line).unwrap();
     assert!(schema::validate(&schema(), &v).is_empty(), "{line}");

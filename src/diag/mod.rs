@@ -1,6 +1,7 @@
 //! Diagnostics: one plain struct for every error and warning, a sink that collects
-//! them, and rendering through miette. Hints are written where a diagnostic is
-//! raised; [`Code`] lists every code (and generates `docs/diagnostics.md`).
+//! them, and rendering through miette. [`Code`] lists every code (and generates
+//! `docs/diagnostics.md`); [`message`] holds the wording of every diagnostic —
+//! the builders below are private to this module, so only it can write one.
 
 mod code;
 pub mod json;
@@ -45,7 +46,7 @@ pub struct Diagnostic {
 
 impl Diagnostic {
     /// A new error.
-    pub fn error(code: Code, message: impl Into<String>) -> Self {
+    pub(in crate::diag) fn error(code: Code, message: impl Into<String>) -> Self {
         Diagnostic {
             code,
             severity: Severity::Error,
@@ -56,7 +57,7 @@ impl Diagnostic {
     }
 
     /// A new warning.
-    pub fn warning(code: Code, message: impl Into<String>) -> Self {
+    pub(in crate::diag) fn warning(code: Code, message: impl Into<String>) -> Self {
         Diagnostic {
             severity: Severity::Warning,
             ..Diagnostic::error(code, message)
@@ -64,7 +65,7 @@ impl Diagnostic {
     }
 
     /// Adds a label.
-    pub fn label(mut self, span: Span, text: impl Into<String>) -> Self {
+    pub(in crate::diag) fn label(mut self, span: Span, text: impl Into<String>) -> Self {
         self.labels.push(Label {
             span,
             text: text.into(),
@@ -73,7 +74,7 @@ impl Diagnostic {
     }
 
     /// Adds a label if the span is known.
-    pub fn label_opt(self, span: Option<Span>, text: impl Into<String>) -> Self {
+    pub(in crate::diag) fn label_opt(self, span: Option<Span>, text: impl Into<String>) -> Self {
         match span {
             Some(s) => self.label(s, text),
             None => self,
@@ -81,7 +82,7 @@ impl Diagnostic {
     }
 
     /// Sets the help text.
-    pub fn help(mut self, help: impl Into<String>) -> Self {
+    pub(in crate::diag) fn help(mut self, help: impl Into<String>) -> Self {
         self.help = Some(help.into());
         self
     }
