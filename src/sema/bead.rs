@@ -1,8 +1,9 @@
 //! `bead NAME { width, height, speed, model }`: a bead model.
 
+use super::eval::{unknown_name, Env};
 use super::fields::Fields;
 use super::model::{Bead, HeightModel};
-use super::value::{unknown_name, Env, Spanned, Value};
+use super::value::{Spanned, Value};
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;

@@ -20,9 +20,9 @@
 //! no output used twice, times within reason, and output lines a control can
 //! read.
 
+use super::eval::Env;
 use super::fields::Fields;
 use super::program_text;
-use super::value::Env;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, Feeder, Gas, RateOutput};
 use crate::span::Span;

@@ -2,9 +2,9 @@
 //! layers laid in one run, each rising `layer_height` inside the last
 //! transition of the layer below, the points at most `step` apart.
 
+use super::eval::Env;
 use super::fields::Fields;
 use super::slicing::MAX_LAYERS;
-use super::value::Env;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;

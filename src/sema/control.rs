@@ -9,10 +9,11 @@
 //! length (`-3 mm/s/mm`, `-0.003 m/s/mm`); a plain number, `Hz` or `s^-1` is
 //! refused with both readings spelled out.
 
+use super::eval::Env;
 use super::fields::Fields;
 use super::model::LoopRun;
 use super::statement::{shape_error, single, Statements};
-use super::value::{Env, Value};
+use super::value::Value;
 use crate::control::{Clamp, SpeedPerLength};
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;

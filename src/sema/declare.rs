@@ -4,11 +4,12 @@
 //! reported a second time as unknown.
 
 use super::bead;
+use super::eval::Env;
 use super::model::{Bead, Section};
 use super::profile;
 use super::section;
 use super::statement::{shape_error, Statements};
-use super::value::{Env, Value};
+use super::value::Value;
 use crate::diag::message::{self, statement::Declaration};
 use crate::diag::Diagnostics;
 use crate::span::Span;

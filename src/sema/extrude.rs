@@ -8,6 +8,7 @@
 //!
 //! [`Plan::Block`]: super::model::Plan::Block
 
+use super::eval::{unknown_name, Env};
 use super::fields::Fields;
 use super::model::{
     Bead, Extent, Extrusion, HeightModel, LayerProfile, Measure, PlanarSlicing, ProfileExpr, Shape,
@@ -16,7 +17,7 @@ use super::model::{
 use super::profile;
 use super::slicing::PlanarSpec;
 use super::top;
-use super::value::{unknown_name, Env, Spanned, Value};
+use super::value::{Spanned, Value};
 use crate::bead::{flat_top_offset, MIN_OFFSET_RATIO};
 use crate::diag::message::{self, solid::BeadSpeeds};
 use crate::diag::Diagnostics;

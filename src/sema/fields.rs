@@ -3,8 +3,9 @@
 //! problem — unknown field, duplicate, missing, wrong unit, out of range — is
 //! reported, and reading goes on.
 
+use super::eval::Env;
 use super::suggest::did_you_mean;
-use super::value::{Call, Env, Spanned, Value};
+use super::value::{Call, Spanned, Value};
 use crate::diag::{message, Diagnostics};
 
 use crate::span::Span;
@@ -468,7 +469,7 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
             None
         }
         other => {
-            if let Some(d) = super::value::position_outside_top(other, v.span) {
+            if let Some(d) = super::eval::position_outside_top(other, v.span) {
                 diags.push(d);
                 return None;
             }

@@ -1,10 +1,11 @@
 //! `loft NAME { from, to, spine, twist, morph, size, wall }`: a solid swept from
 //! one section to another along a spine, built as a single-bead wall.
 
+use super::eval::{unknown_name, Env};
 use super::fields::Fields;
 use super::model::{Bead, Loft, Measure, Morph, Section, Spine};
 use super::section;
-use super::value::{unknown_name, Env, Spanned, Value};
+use super::value::{Spanned, Value};
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;

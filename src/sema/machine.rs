@@ -3,9 +3,10 @@
 //! [`Machine`].
 
 use super::cell;
+use super::eval::Env;
 use super::fields::{self, Fields};
 use super::program_text;
-use super::value::{Env, Value};
+use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{
     AxisLimits, Cnc, FeedUnit, FrameRef, HeightSensor, Kinematics, Machine, Placement, Pose, Robot,

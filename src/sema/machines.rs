@@ -2,9 +2,9 @@
 //! [`machine::read`](super::machine::read) on its own, so one machine's
 //! mistakes do not hide another's.
 
+use super::eval::Env;
 use super::machine;
 use super::statement::{shape_error, Statements};
-use super::value::Env;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Machine, MachineOrigin};
 use crate::span::Span;

@@ -11,6 +11,7 @@ mod cell;
 mod continuous;
 mod control;
 mod declare;
+pub mod eval;
 mod extrude;
 mod fields;
 mod loft;
@@ -38,9 +39,9 @@ pub use top::TopHeights;
 
 use crate::diag::{message, Diagnostics};
 use crate::syntax::ast::File;
+use eval::Env;
 use model::Model;
 use statement::Statements;
-use value::Env;
 
 /// Checks a parsed file. Returns every diagnostic (errors and warnings) found,
 /// and the model when every part of it could be read — even if some other

@@ -2,10 +2,11 @@
 //! a ring's process is only `powder` and `power_range`, the rest being per
 //! segment in its table (seed 004).
 
+use super::eval::Env;
 use super::fields::Fields;
 use super::model::{within, PowerSchedule, Process};
 use super::statement::{shape_error, single, Statements};
-use super::value::{Env, Value};
+use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::ir::Heat;
 use crate::span::Span;

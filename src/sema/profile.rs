@@ -4,11 +4,12 @@
 //! closes with a line back to the start. Its numbers may use `layer`, so the
 //! profile can change from layer to layer (seed 001's growing arc region).
 
+use super::eval::Env;
 use super::fields::{self, Fields};
 use super::model::{Outline, ProfileExpr, Segment, Shape, Turn};
 use super::region;
 use super::section;
-use super::value::{Call, Env, Spanned, Value};
+use super::value::{Call, Spanned, Value};
 use crate::diag::{message, Diagnostics};
 use crate::syntax::ast::Expr;
 use crate::units::{Dim, Length};

@@ -7,9 +7,10 @@
 
 use super::continuous::ContinuousSpec;
 use super::control::ControlSpec;
+use super::eval::Env;
 use super::fields::{self, Fields};
 use super::model::{HeightControl, RingPlan};
-use super::value::{Env, Value};
+use super::value::Value;
 use crate::control::{self, Controller, Plant, SegmentProcess, SegmentTable};
 use crate::diag::{message, Diagnostics};
 use crate::ir::RingOrigins;

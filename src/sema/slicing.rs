@@ -2,12 +2,13 @@
 //! `slicing planar { layer_height, layers, contours, offset, infill, chord_error }`;
 //! `slicing variable { … }` is read by `sema::variable`.
 
+use super::eval::Env;
 use super::fields::{self, Fields};
 use super::model::{LinkMode, Pattern, Raster, Resolution, SeamRule, Slicing};
 use super::seam;
 use super::statement::{shape_error, single, Statements};
 use super::suggest::did_you_mean;
-use super::value::{Call, Env, Spanned as SpannedValue, Value};
+use super::value::{Call, Spanned as SpannedValue, Value};
 use crate::diag::{message, Diagnostics};
 use crate::span::{Span, Spanned};
 use crate::syntax::ast::{Body, Stmt};

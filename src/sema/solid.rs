@@ -3,13 +3,13 @@
 
 use super::control::ControlSpec;
 use super::declare::Declared;
+use super::eval::Env;
 use super::extrude;
 use super::loft;
 use super::model::{Bead, Loft, Plan};
 use super::ring;
 use super::slicing::{self, Spec};
 use super::statement::{shape_error, Statements};
-use super::value::Env;
 use super::variable;
 use crate::diag::message::{self, solid::SlicingMismatch};
 use crate::diag::Diagnostics;

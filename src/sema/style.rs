@@ -2,12 +2,13 @@
 //! style table, the rules that pick a style's tracks, and checks of every
 //! style's values against the bead model and the laser.
 
+use super::eval::Env;
 use super::fields::{self, Fields};
 use super::model::{Bead, Inheritance, PathSelect, Style, StyleCondition, Styles};
 use super::process::Laser;
 use super::slicing::PlanarSpec;
 use super::statement::{single_optional, Statements};
-use super::value::{Env, Value};
+use super::value::Value;
 use crate::diag::message::style::{StyleBead, Unstyled};
 use crate::diag::message::{self, statement::Declaration};
 use crate::diag::Diagnostics;

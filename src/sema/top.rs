@@ -6,9 +6,10 @@
 //! `y`, checked here at one point of the footprint and evaluated by the
 //! slicer at every point it samples ([`TopHeights`]).
 
+use super::eval::{Env, POSITION};
 use super::fields::{self, Fields};
 use super::model::{Axis, Top, TopExpr};
-use super::value::{Env, Value, POSITION};
+use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Expr, ExprKind};

@@ -8,6 +8,7 @@
 //!
 //! [`Plan::Variable`]: super::model::Plan::Variable
 
+use super::eval::Env;
 use super::extrude::{declared_offset, Source, Written};
 use super::fields::Fields;
 use super::model::{
@@ -15,7 +16,7 @@ use super::model::{
 };
 use super::profile;
 use super::slicing::MAX_LAYERS;
-use super::value::{Env, Value};
+use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;

@@ -2,7 +2,7 @@
 //! constants and the names a value refers to.
 
 use crate::diag::{Code, Diagnostic};
-use crate::sema::value::{Value, MAX_CONSTANT_CHAIN, MAX_EVAL_DEPTH};
+use crate::sema::value::Value;
 use crate::span::Span;
 use crate::syntax::ast::BinOp;
 use crate::units::{short, Dim};
@@ -19,27 +19,27 @@ pub fn cycle(name: &str, at: Span, decl: Span) -> Diagnostic {
 }
 
 /// A chain of constants, each using the next, is longer than lmdc evaluates.
-pub fn chain_too_long(name: &str, at: Span, decl: Span) -> Diagnostic {
+pub fn chain_too_long(name: &str, max: usize, at: Span, decl: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ConstantChain,
         format!(
-            "computing this needs a chain of more than {MAX_CONSTANT_CHAIN} constants, each using the next"
+            "computing this needs a chain of more than {max} constants, each using the next"
         ),
     )
     .label(
         at,
-        format!("`{name}` is constant number {} of the chain", MAX_CONSTANT_CHAIN + 1),
+        format!("`{name}` is constant number {} of the chain", max + 1),
     )
     .label(decl, "declared here")
     .help("compute the value in fewer steps, e.g. `let a100 = a0 + 100 * 1 mm` instead of a hundred `let`s that each add 1 mm")
 }
 
 /// An evaluation nests deeper than lmdc evaluates.
-pub fn too_deep(span: Span) -> Diagnostic {
+pub fn too_deep(max: usize, span: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ConstantChain,
         format!(
-            "computing this value nests more than {MAX_EVAL_DEPTH} steps of constants and operators"
+            "computing this value nests more than {max} steps of constants and operators"
         ),
     )
     .label(span, "the limit is reached here")
@@ -206,4 +206,30 @@ pub fn is_arithmetic_failure(d: &Diagnostic) -> bool {
         d.code,
         Code::DivisionByZero | Code::Overflow | Code::BadExponent
     )
+}
+// The words for each kind of value live here with the messages that use them.
+impl Value {
+    /// What kind of value this is, for messages.
+    pub fn describe(&self) -> String {
+        match self {
+            Value::Quantity(q) => q.dim.describe(),
+            Value::Range(q, _) => format!("a range of {}", plural(&q.dim.describe())),
+            Value::Symbol(s) => format!("the name `{s}`"),
+            Value::Str(_) => "a text".into(),
+            Value::Call(c) => format!("`{}(…)`", c.func),
+            Value::List(_) => "a list".into(),
+        }
+    }
+}
+
+/// The plural of a kind of value ("a length (mm)" → "lengths (mm)").
+fn plural(d: &str) -> String {
+    let d = d
+        .trim_start_matches("a ")
+        .trim_start_matches("an ")
+        .to_string();
+    match d.find(" (") {
+        Some(i) => format!("{}s{}", &d[..i], &d[i..]),
+        None => format!("{d}s"),
+    }
 }
