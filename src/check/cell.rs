@@ -8,7 +8,7 @@
 //! rapid moves count as instant, so the real time is never shorter than the
 //! one checked.
 
-use super::worst::Worst;
+use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, MachineOrigin, Program};
 use crate::plan::{Io, Move, Speed, Visit, Where};

@@ -8,9 +8,9 @@
 
 use super::cell::CellRule;
 use super::resolution::Resolution;
-use super::worst::Worst;
-use crate::diag::message::{self, check::AnalogOverrun, check::AxisOverrun};
+use crate::diag::message::{self, check::machine::AnalogOverrun, check::machine::AxisOverrun};
 use crate::diag::Diagnostics;
+use crate::diag::Worst;
 use crate::ir::{AxisLimits, Cnc, Kinematics, Layer, Machine, MachineOrigin, Program, Robot};
 use crate::plan::kinematics::tilt_of;
 use crate::plan::{effective_kinematics, Io, Move, Plan, Speed, Visit, Where};
@@ -51,7 +51,7 @@ impl SpeedLimit {
         out: &mut Diagnostics,
     ) {
         let Some(w) = self.found else { return };
-        out.push(message::check::machine_speed(
+        out.push(message::check::machine::machine_speed(
             name,
             &w,
             o.at("max_speed"),
@@ -156,7 +156,7 @@ impl Travel {
         for (i, w) in self.axes.iter().enumerate() {
             let Some(w) = w else { continue };
             let linear = i < 3;
-            out.push(message::check::axis_limit(&AxisOverrun {
+            out.push(message::check::machine::axis_limit(&AxisOverrun {
                 machine: &cnc.name,
                 axis: i,
                 tilt_name,
@@ -197,7 +197,7 @@ impl Tilt {
 
     fn report(self, name: &str, o: &MachineOrigin, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(message::check::needs_tilt(name, &w, o.at("axes")));
+        out.push(message::check::machine::needs_tilt(name, &w, o.at("axes")));
     }
 }
 
@@ -221,7 +221,7 @@ impl Analog {
 
     fn report(self, r: &Robot, o: &MachineOrigin, power: Option<Span>, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(message::check::analog_range(&AnalogOverrun {
+        out.push(message::check::machine::analog_range(&AnalogOverrun {
             robot: &r.name,
             output: r.power_out,
             full_scale: r.full_scale_power,

@@ -18,10 +18,8 @@ mod process;
 mod resolution;
 pub mod ring;
 mod stacking;
-mod worst;
 
 pub use machine::NEEDS_TILT_DEG;
-pub(crate) use worst::{plural, Worst};
 
 use crate::diag::Diagnostics;
 use crate::ir::{Machine, Program};

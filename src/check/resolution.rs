@@ -4,7 +4,7 @@
 //! (the formatters would otherwise have to write *something*). Each rule names
 //! the setting that would fix it.
 
-use super::worst::Worst;
+use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Machine, MachineOrigin};
 use crate::plan::{Move, Speed};
@@ -86,7 +86,7 @@ impl Resolution {
     ) {
         let has = |f: &str| o.fields.iter().any(|(n, _)| n == f);
         if let Some(w) = self.position {
-            out.push(message::check::position_too_large(
+            out.push(message::check::machine::position_too_large(
                 machine.name(),
                 &w,
                 o.at("name"),
@@ -98,7 +98,7 @@ impl Resolution {
                 Machine::Cnc(_) if has("feed_units") => "feed_units",
                 _ => "name",
             };
-            out.push(message::check::speed_unwritable(
+            out.push(message::check::machine::speed_unwritable(
                 machine,
                 &w,
                 self.least_speed,
@@ -114,10 +114,15 @@ impl Resolution {
                     } else {
                         "s_per_watt"
                     };
-                    message::check::cnc_power_unwritable(c, &w, self.least_power, o.at(field))
+                    message::check::machine::cnc_power_unwritable(
+                        c,
+                        &w,
+                        self.least_power,
+                        o.at(field),
+                    )
                 }
                 Machine::Robot(r) => {
-                    message::check::robot_power_unwritable(r, &w, o.at("full_scale"))
+                    message::check::machine::robot_power_unwritable(r, &w, o.at("full_scale"))
                 }
             };
             out.push(d);

@@ -13,7 +13,7 @@
 //! search radius wide, and the layer's chord starts (at most 1024 a layer,
 //! spread over it) ask it for the nearest.
 
-use super::worst::Worst;
+use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Layer, Program};
 use crate::plan::Where;

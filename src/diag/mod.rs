@@ -6,10 +6,12 @@
 mod code;
 pub mod json;
 pub(crate) mod message;
+mod worst;
 
 use crate::span::Span;
 pub use code::{Code, Group};
 use std::fmt;
+pub(crate) use worst::{plural, Worst};
 
 /// How bad a diagnostic is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

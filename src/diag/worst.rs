@@ -1,6 +1,8 @@
-//! The worst offender of a rule: every rule reports each kind of violation once,
-//! with how often it happens and the case farthest beyond the limit, so one run
-//! shows everything to fix without a million lines of output.
+//! The worst offender of a rule: every rule of the verifier reports each kind
+//! of violation once, with how often it happens and the case farthest beyond
+//! the limit, so one run shows everything to fix without a million lines of
+//! output. It lives with the diagnostics because it is what their messages
+//! summarise.
 
 use crate::plan::Where;
 

@@ -1,6 +1,6 @@
 //! What the verifier says about a cell's gas and powder timing.
 
-use crate::check::{plural, Worst};
+use crate::diag::{plural, Worst};
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
 use crate::units::short;
