@@ -4,6 +4,7 @@
 
 use crate::support::gcode_common as common;
 use crate::support::m66;
+use crate::support::ring;
 use crate::support::rs274;
 use crate::support::skip;
 
@@ -104,11 +105,12 @@ fn check_against_ir(ir: Program) -> usize {
     let kin = lmdc::plan::effective_kinematics(&cnc);
     let v = verified(ir);
     let (_, mut text) = emit(&v, 0);
-    if let (Some((_, law)), Some(s)) = (v.ir().loop_on_machine(), cnc.height_sensor) {
+    if let (Some(_), Some(s)) = (v.ir().loop_on_machine(), cnc.height_sensor) {
         // A ring's loop: every M66 reads the target height, so the program
         // lays the IR's nominal plan.
         let segments = v.ir().ring.as_ref().map_or(0, |r| r.segments.len());
-        let steady = vec![vec![law.target / s.full_scale; segments]; v.ir().layers.len()];
+        let on_target = ring::on_target_reading(&v, &cnc.name);
+        let steady = vec![vec![on_target; segments]; v.ir().layers.len()];
         text = m66::scripted(&text, s.input, &steady);
     }
     let all = rs274::interpret_source(&text)

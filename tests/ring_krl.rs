@@ -196,8 +196,6 @@ mod shapes {
             let Some(Machine::Robot(robot)) = ir.machines.iter().find(|m| m.name() == "kr60") else {
                 panic!("kr60")
             };
-            let s = robot.height_sensor.unwrap();
-            let (_, law) = ir.loop_on_machine().unwrap();
             let files = ring::files(&p, "kr60");
             let main = files
                 .keys()
@@ -205,7 +203,7 @@ mod shapes {
                 .unwrap()
                 .trim_end_matches(".src")
                 .to_string();
-            let run = krl_run::run_steady(&files, &main, robot.laser_out, robot.power_out, law.target / s.full_scale)
+            let run = krl_run::run_steady(&files, &main, robot.laser_out, robot.power_out, ring::on_target_reading(&p, "kr60"))
                 .unwrap_or_else(|e| panic!("{e}\n{src}"));
             let want: Vec<_> = ir
                 .layers

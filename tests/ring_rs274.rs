@@ -146,12 +146,11 @@ mod shapes {
             let Some(Machine::Cnc(cnc)) = ir.machines.iter().find(|m| m.name() == "mill3") else {
                 panic!("mill3")
             };
-            let s = cnc.height_sensor.unwrap();
-            let (_, law) = ir.loop_on_machine().unwrap();
+            let input = cnc.height_sensor.unwrap().input;
             let files = ring::files(&p, "mill3");
             let (_, ngc) = files.iter().next().unwrap();
-            let steady = vec![vec![law.target / s.full_scale; segments]; layers];
-            let text = if layers > 1 { m66::scripted(ngc, s.input, &steady) } else { ngc.clone() };
+            let steady = vec![vec![ring::on_target_reading(&p, "mill3"); segments]; layers];
+            let text = if layers > 1 { m66::scripted(ngc, input, &steady) } else { ngc.clone() };
             let calls = rs274::interpret_source(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
             let (mut feed, mut laser) = (0.0, false);
             let mut got = Vec::new();

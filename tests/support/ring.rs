@@ -4,6 +4,7 @@
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::check::Verified;
+use lmdc::ir::Machine;
 use std::collections::BTreeMap;
 use std::process::Command;
 
@@ -50,6 +51,25 @@ pub fn files(p: &Verified, machine: &str) -> BTreeMap<String, String> {
         .into_iter()
         .map(|(n, b)| (n, String::from_utf8(b).expect("UTF-8")))
         .collect()
+}
+
+/// The sensor reading (a fraction of its full scale) that reports the loop's
+/// target height to machine `machine`: what a ring built exactly on target
+/// reads, so the program lays the IR's nominal plan.
+pub fn on_target_reading(p: &Verified, machine: &str) -> f64 {
+    let ir = p.ir();
+    let m = ir
+        .machines
+        .iter()
+        .find(|m| m.name() == machine)
+        .unwrap_or_else(|| panic!("no machine {machine}"));
+    let sensor = match m {
+        Machine::Robot(r) => r.height_sensor,
+        Machine::Cnc(c) => c.height_sensor,
+    }
+    .unwrap_or_else(|| panic!("machine {machine} has no height sensor"));
+    let (_, law) = ir.loop_on_machine().expect("the loop runs on the machine");
+    law.target / sensor.full_scale
 }
 
 /// `lmdc simulate FILE --csv …`, parsed; `source` is written to a temporary
