@@ -4,7 +4,7 @@
 
 use super::eval::Env;
 use super::fields::Fields;
-use super::slicing::MAX_LAYERS;
+use super::model::MAX_LAYERS;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;

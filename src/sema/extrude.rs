@@ -14,8 +14,8 @@ use super::model::{
     Bead, Extent, Extrusion, HeightModel, LayerProfile, Measure, PlanarSlicing, ProfileExpr, Shape,
     Top,
 };
+use super::planar::PlanarSpec;
 use super::profile;
-use super::slicing::PlanarSpec;
 use super::top;
 use super::value::{Spanned, Value};
 use crate::bead::{flat_top_offset, MIN_OFFSET_RATIO};
@@ -116,7 +116,7 @@ pub fn read<'a>(
                 }
                 None => None,
             };
-            let at = super::variable::reference_point(shape.as_ref());
+            let at = super::top::reference_point(shape.as_ref());
             top::read(env, e, at, scope.constants, diags).map(|t| Some((t, e.span)))
         }
     };

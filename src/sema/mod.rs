@@ -18,6 +18,7 @@ mod loft;
 mod machine;
 mod machines;
 pub mod model;
+mod planar;
 mod process;
 mod profile;
 mod program_text;

@@ -5,8 +5,8 @@
 use super::eval::Env;
 use super::fields::{self, Fields};
 use super::model::{Bead, Inheritance, PathSelect, Style, StyleCondition, Styles};
+use super::planar::PlanarSpec;
 use super::process::Laser;
-use super::slicing::PlanarSpec;
 use super::statement::{single_optional, Statements};
 use super::value::Value;
 use crate::diag::message::style::{StyleBead, Unstyled};

@@ -8,7 +8,7 @@
 
 use super::eval::{Env, POSITION};
 use super::fields::{self, Fields};
-use super::model::{Axis, Top, TopExpr};
+use super::model::{Axis, Shape, Top, TopExpr};
 use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
@@ -170,5 +170,14 @@ impl TopHeights<'_> {
         let expr = self.expr;
         let v = self.env.at_position(x, y, |env| env.eval(expr, diags))?;
         fields::quantity(&v, Dim::LENGTH, "top", diags).map(Length)
+    }
+}
+
+/// A point of `top` the footprint certainly has, to try an expression of the
+/// position at: an outline's first point, a section's centre.
+pub fn reference_point(shape: Option<&Shape>) -> [f64; 2] {
+    match shape {
+        Some(Shape::Outline(o)) => [o.start[0].0, o.start[1].0],
+        _ => [0.0, 0.0],
     }
 }

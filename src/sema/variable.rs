@@ -11,11 +11,11 @@
 use super::eval::Env;
 use super::extrude::{declared_offset, Source, Written};
 use super::fields::Fields;
+use super::model::MAX_LAYERS;
 use super::model::{
     Axis, Bead, HeightModel, Shape, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE,
 };
 use super::profile;
-use super::slicing::MAX_LAYERS;
 use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
@@ -229,14 +229,5 @@ fn one_footprint(
             let v = env.eval(e, diags)?;
             Some((profile::shape(&v, "a profile", diags)?, e.span))
         }
-    }
-}
-
-/// A point of `top` the footprint certainly has, to try an expression of the
-/// position at: an outline's first point, a section's centre.
-pub fn reference_point(shape: Option<&Shape>) -> [f64; 2] {
-    match shape {
-        Some(Shape::Outline(o)) => [o.start[0].0, o.start[1].0],
-        _ => [0.0, 0.0],
     }
 }

@@ -8,10 +8,10 @@
 use crate::bead::{planar_lift, segment_height};
 use crate::diag::message::{self, slicing::BeadHeights, slicing::LiftFix};
 use crate::diag::Diagnostics;
+use crate::sema::model::MAX_LAYERS;
 use crate::sema::model::{
     Bead, Extent, Extrusion, HeightModel, LayerProfile, PlanarSlicing, Shape,
 };
-use crate::sema::slicing::MAX_LAYERS;
 use crate::span::Span;
 use crate::units::Length;
 

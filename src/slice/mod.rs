@@ -15,8 +15,8 @@ use crate::diag::message::{self, bend::SeamAdvice};
 use crate::diag::Diagnostics;
 use crate::geometry::LoftGeometry;
 use crate::ir::Layer;
+use crate::sema::model::MAX_POINTS;
 use crate::sema::model::{Bead, Loft, Model, Plan, Resolution, Slicing, Spine};
-use crate::sema::slicing::MAX_POINTS;
 use crate::units::short;
 
 /// Most points a plan may hold (72 bytes each in the IR, so at most ~1.5 GB):
