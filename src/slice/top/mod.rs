@@ -53,7 +53,7 @@ pub fn slice(
     let w = bead.width.0;
     let map = BeadMap::new(bead).map_err(|e| internal(e.to_string()))?;
     let fp = Footprint::new(ex, w)?;
-    let mut top = Surface::new(ex, &fp);
+    let mut top = Surface::new(ex, |axis| fp.written_extent(axis));
     // Samples every eighth of a bead: a top that bends within a bead is
     // seen, a plane costs nothing (its samples are dropped again).
     let pitch = w / 8.0;

@@ -4,7 +4,6 @@
 //! reported with the point, and with the inner error when there is one (a
 //! division by zero there).
 
-use super::footprint::Footprint;
 use crate::diag::message::{self, top::BadTop, top::TopAt};
 use crate::diag::Diagnostics;
 use crate::sema::model::{Axis, Top, TopExtrusion};
@@ -24,16 +23,16 @@ pub enum Surface<'m> {
 }
 
 impl<'m> Surface<'m> {
-    /// The top of `ex` over `footprint` (whose extreme edges `edges(…)`
-    /// refers to).
-    pub fn new(ex: &'m TopExtrusion, footprint: &Footprint) -> Self {
+    /// The top of `ex` over a footprint whose written extent along an axis
+    /// is `extent(axis)` (the extreme edges `edges(…)` refers to).
+    pub fn new(ex: &'m TopExtrusion, extent: impl Fn(Axis) -> [f64; 2]) -> Self {
         match &ex.top {
             Top::Plane { at, height, slope } => Surface::Plane {
                 h0: height.0 - slope[0] * at[0].0 - slope[1] * at[1].0,
                 slope: *slope,
             },
             Top::Edges { along, from, to } => {
-                let [lo, hi] = footprint.written_extent(*along);
+                let [lo, hi] = extent(*along);
                 let k = if hi > lo {
                     (to.0 - from.0) / (hi - lo)
                 } else {
