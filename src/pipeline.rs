@@ -10,7 +10,7 @@
 
 use crate::back::{self, EmitError, Sink, Templates};
 use crate::check::{self, Select, Verified};
-use crate::diag::Diagnostics;
+use crate::diag::{Code, Diagnostics};
 use crate::sema::model::Model;
 use crate::{lower, sema, syntax};
 
@@ -146,8 +146,11 @@ fn run(
         None => drop(model),
     }
     obs.stage("slice");
-    let verified = check::verify(program, select);
+    let mut verified = check::verify(program, select);
     obs.stage("verify");
+    if let Err(found) = &mut verified {
+        found.retain(|d| !reported_already(d.code, diagnostics));
+    }
     match verified {
         Ok(v) if !diagnostics.has_errors() => {
             diagnostics.extend(v.warnings().clone());
@@ -162,6 +165,20 @@ fn run(
             Ok(None)
         }
     }
+}
+
+/// Verifier findings that repeat an error the checker reported at the
+/// declaration itself, as `(checker's code, verifier's code)`: a power
+/// schedule outside the laser's range puts every point's power outside it
+/// too. The checker keeps such a value so that the machine checks still run,
+/// and the fault is reported once, where it was declared.
+const REPORTED_BY_CHECKER: &[(Code, Code)] = &[(Code::PowerSchedule, Code::PointPower)];
+
+/// Whether a verifier finding of `code` repeats an error in `earlier`.
+fn reported_already(code: Code, earlier: &Diagnostics) -> bool {
+    REPORTED_BY_CHECKER
+        .iter()
+        .any(|&(first, then)| then == code && earlier.iter().any(|d| d.code == first))
 }
 
 /// Writes the programs of every verified machine into `sink`.

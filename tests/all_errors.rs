@@ -231,3 +231,35 @@ proptest! {
         prop_assert_eq!(errors.len(), which.len(), "{:#?}", errors);
     }
 }
+
+/// The codes of the errors `src` gives, in source order.
+fn error_codes(src: &str) -> Vec<&'static str> {
+    let c = compile(src, &mut ());
+    assert!(c.program.is_none());
+    c.diagnostics
+        .iter()
+        .filter(|d| d.is_error())
+        .map(|d| d.code.as_str())
+        .collect()
+}
+
+#[test]
+fn a_power_outside_the_laser_does_not_hide_the_machine_checks() {
+    // The schedule's fault is reported once, at the declarations (not again
+    // for every point), and the slow machine in the same run.
+    let src = VALID
+        .replacen("power = 2000 W", "power = 3000 W", 1)
+        .replacen("max_speed = 100 mm/s", "max_speed = 5 mm/s", 1);
+    assert_eq!(
+        error_codes(&src),
+        ["lmd::power-schedule", "lmd::machine-speed"]
+    );
+}
+
+#[test]
+fn a_spot_left_unfilled_does_not_hide_the_machine_checks() {
+    let src = std::fs::read_to_string("examples/errors/unfilled_tab.lmd")
+        .unwrap()
+        .replacen("max_speed = 50 mm/s", "max_speed = 2 mm/s", 1);
+    assert_eq!(error_codes(&src), ["lmd::fill-gap", "lmd::machine-speed"]);
+}

@@ -143,6 +143,11 @@ impl Diagnostics {
         self.items.is_empty()
     }
 
+    /// Keeps only the diagnostics `keep` says yes to.
+    pub fn retain(&mut self, keep: impl FnMut(&Diagnostic) -> bool) {
+        self.items.retain(keep);
+    }
+
     /// Orders the diagnostics by where they point in the source (their first
     /// label; those without a label last), keeping the order found among equals.
     pub fn sort_by_source(&mut self) {

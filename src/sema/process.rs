@@ -260,7 +260,10 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
         }),
         (None, None) => None,
     };
-    let mut in_range = true;
+    // A schedule outside the laser's range is reported here, at the
+    // declarations; the process is kept, so that the machine checks still run
+    // in this run (the verifier's own point-power rule then says nothing more:
+    // see `pipeline`).
     if let (Some(l), Some((lo, hi)), Some(rs)) =
         (laser, scheduled, laser.and_then(|l| l.range_span))
     {
@@ -274,12 +277,11 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
                 power_span,
                 rs,
             ));
-            in_range = false;
         }
     }
     let process = match (powder, defocus, power, laser, speed) {
         (Some((powder, powder_span)), Some(defocus), Some(power), Some(l), Some(speed))
-            if in_range && heat_ok =>
+            if heat_ok =>
         {
             Some(Process {
                 heat,

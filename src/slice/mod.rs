@@ -24,7 +24,9 @@ use crate::units::short;
 /// input.
 pub const MAX_TOTAL_POINTS: usize = 20_000_000;
 
-/// Slices the model's solid. Returns the layers and any warnings, or the errors.
+/// Slices the model's solid. Returns the layers and their diagnostics
+/// (warnings, and errors that leave every layer made, such as a spot left
+/// unfilled), or the errors when there are no layers to go on with.
 pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     if let Plan::Ring(r) = &model.plan {
         return ring::build(r).map(|(layers, _)| (layers, Diagnostics::new()));

@@ -51,14 +51,17 @@ pub fn slice(
         return Err(diags);
     };
     styling::never_applies(&model.styles, plan.shapes.len(), &mut diags);
+    // Every layer filled: its diagnostics go on with it, errors (a spot left
+    // unfilled) included, so the machine checks still run in this run.
     match fill_layers(model, bead, extrusion, slicing, &plan, &mut diags) {
-        Some(out) if !diags.has_errors() => Ok((out, diags)),
-        _ => Err(diags),
+        Some(out) => Ok((out, diags)),
+        None => Err(diags),
     }
 }
 
 /// Fills, styles and lays every layer of `plan`; `None` after an error that
-/// leaves no layers to go on with.
+/// leaves no layers to go on with. (A spot left unfilled is an error that
+/// leaves every layer: the layers come back with it.)
 fn fill_layers(
     model: &Model,
     bead: &Bead,
