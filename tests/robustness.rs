@@ -687,3 +687,36 @@ mod generated {
         }
     }
 }
+
+/// A plate of 20 m × 20 m lays 250 km of track a layer in few points: the
+/// stacking check once cut it into pieces a few millimetres long and held
+/// them all (24 GB before the kernel killed it). Checked under a 1 GiB
+/// address-space limit, which the run must stay within.
+#[test]
+fn a_huge_plate_is_checked_in_bounded_memory() {
+    let src = small_part("")
+        .replace(
+            "outline([0 mm, 0 mm], [10 mm, 0 mm], [10 mm, 10 mm], [0 mm, 10 mm])",
+            "rectangle(width = 20 m, height = 20 m)",
+        )
+        .replace("layers = 2", "layers = 3");
+    let dir = std::env::temp_dir().join(format!("lmdc-plate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("plate.lmd");
+    std::fs::write(&file, &src).unwrap();
+    let out = Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 1048576 && exec \"$0\" check \"$1\"")
+        .arg(env!("CARGO_BIN_EXE_lmdc"))
+        .arg(&file)
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    // The plate is larger than the machine: the axis limits say so, and
+    // nothing else fails.
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("lmd::axis-limit"), "{stderr}");
+    assert!(!stderr.contains("memory allocation"), "{stderr}");
+}

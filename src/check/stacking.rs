@@ -8,22 +8,30 @@
 //! nozzle (perpendicular to the point's normal), so the layer's own height does
 //! not count; the first layer lies on the substrate and is not checked.
 //!
-//! Linear in the points: each layer becomes chords an eighth of a bead to a
-//! search radius long; the layer below's go into a uniform 3-D grid of cells a
-//! search radius wide, and the layer's chord starts (at most 1024 a layer,
-//! spread over it) ask it for the nearest.
+//! Each layer's deposits become chords an eighth of a bead to a search radius
+//! long, and at most [`MAX_SAMPLES`] chord starts, spread over the layer, are
+//! checked. They go into a small grid; the layer below's chords are walked
+//! through it once, each sample keeping its nearest. Memory stays bounded by
+//! the samples, whatever the track length (a 5 m plate lays 15 km of track a
+//! layer), and time is linear in the points and in the track length over the
+//! grid's cell, which grows with the part.
 
 use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Layer, Program};
+use crate::ir::{Layer, Path, Program};
 use crate::plan::Where;
 
 /// Most places of one layer checked (spread over it): a 300 × 200 mm plate
 /// lays 30 m of track a layer.
 const MAX_SAMPLES: usize = 1024;
 
-/// Most cells of one layer's grid; beyond it the cells grow.
-const MAX_CELLS: usize = 1 << 20;
+/// Most cells of the samples' grid; beyond it the cells grow. About four
+/// cells a sample: a chord piece looks at a few samples, and a large part is
+/// walked in few pieces.
+const MAX_CELLS: usize = 4 * MAX_SAMPLES;
+
+/// Most pieces one chord is counted in when samples are spread over it.
+const MAX_PIECES: f64 = 1e6;
 
 /// How far across the nozzle, in bead widths, a deposit may land from the
 /// nearest bead centre line of the layer below.
@@ -39,28 +47,33 @@ pub(super) fn check(p: &Program, out: &mut Diagnostics) {
     // Within this 3-D distance a segment can be at most `half` across the
     // nozzle with the layer's height along it.
     let reach = (half * half + p.limits.layer_height[1].powi(2)).sqrt() * 1.01;
+    let step = w / 8.0;
     let mut found: Option<Worst> = None;
-    let mut below = Segments::of(&p.layers[0], w / 8.0, reach);
-    for (li, layer) in p.layers.iter().enumerate().skip(1) {
-        let here = Segments::of(layer, w / 8.0, reach);
-        if !below.segs.is_empty() {
-            let grid = Grid::new(&below.segs, reach);
-            // Every chord start of this layer (1/8 bead to `reach` apart), at
-            // most MAX_SAMPLES of them spread over the layer.
-            let stride = here.starts.len().div_ceil(MAX_SAMPLES).max(1);
-            for s in here.starts.iter().step_by(stride) {
-                let across = grid.nearest_across(&below.segs, s.pos, s.normal, reach);
-                if across.is_none_or(|d| d > half) {
-                    let at = Where::Point {
-                        layer: li,
-                        path: s.path,
-                        point: s.point,
-                    };
-                    Worst::hit(&mut found, across.unwrap_or(reach), half, at);
-                }
+    for (li, pair) in p.layers.windows(2).enumerate() {
+        let (below, here) = (&pair[0], &pair[1]);
+        let samples = samples(here, step, reach);
+        if samples.is_empty() {
+            continue;
+        }
+        let mut grid = Grid::new(&samples, reach);
+        let mut deposits = false;
+        chords(below, step, |a, b, _, _| {
+            deposits = true;
+            grid.walk(a, b, reach, &samples);
+        });
+        if !deposits {
+            continue;
+        }
+        for (s, best) in samples.iter().zip(&grid.best) {
+            if best.is_none_or(|d| d > half) {
+                let at = Where::Point {
+                    layer: li + 1,
+                    path: s.path,
+                    point: s.point,
+                };
+                Worst::hit(&mut found, best.unwrap_or(reach), half, at);
             }
         }
-        below = here;
     }
     let Some(f) = found else { return };
     let o = &p.origins;
@@ -69,8 +82,7 @@ pub(super) fn check(p: &Program, out: &mut Diagnostics) {
     ));
 }
 
-/// Where a chord of a layer starts: a place a deposit of that layer is
-/// checked.
+/// A place a deposit of a layer is checked: where a chord piece starts.
 struct Start {
     pos: [f64; 3],
     normal: [f64; 3],
@@ -78,77 +90,75 @@ struct Start {
     point: usize,
 }
 
-/// A layer's deposited segments (between points, where the laser is on),
-/// with runs of points closer than `step` merged into chords: across the
-/// nozzle a chord of 1/8 bead over a wall of 30 mm radius strays 0.002 mm.
-/// Each chord is at most `longest` (a long raster track split into pieces),
-/// so it covers a few grid cells, not a diagonal band of its bounding box.
-struct Segments {
-    segs: Vec<[[f64; 3]; 2]>,
-    starts: Vec<Start>,
-}
-
-impl Segments {
-    fn of(layer: &Layer, step: f64, longest: f64) -> Self {
-        let mut out = Segments {
-            segs: Vec::new(),
-            starts: Vec::new(),
-        };
-        for (pi, path) in layer.paths.iter().enumerate() {
-            // The chord under way: its start point and where it is in the path.
-            let mut start: Option<([f64; 3], usize)> = None;
-            for (k, w) in path.points.windows(2).enumerate() {
-                let (a, b) = (w[0].pos, w[1].pos);
-                if !w[0].laser_on || !a.iter().chain(&b).all(|v| v.is_finite()) {
-                    if let Some((s, at)) = start.take() {
-                        out.chord(s, a, path, pi, at, longest);
-                    }
-                    continue;
+/// Calls `f(a, b, path, point)` with each chord of `layer`'s deposits (between
+/// points where the laser is on), runs of points closer than `step` merged:
+/// across the nozzle a chord of 1/8 bead over a wall of 30 mm radius strays
+/// 0.002 mm. `point` is where the chord starts in path `path`.
+fn chords(layer: &Layer, step: f64, mut f: impl FnMut([f64; 3], [f64; 3], usize, usize)) {
+    for (pi, path) in layer.paths.iter().enumerate() {
+        // The chord under way: its start point and where it is in the path.
+        let mut start: Option<([f64; 3], usize)> = None;
+        for (k, w) in path.points.windows(2).enumerate() {
+            let (a, b) = (w[0].pos, w[1].pos);
+            if !w[0].laser_on || !a.iter().chain(&b).all(|v| v.is_finite()) {
+                if let Some((s, at)) = start.take() {
+                    f(s, a, pi, at);
                 }
-                let (s, at) = *start.get_or_insert((a, k));
-                if dist2(s, b) >= step * step {
-                    out.chord(s, b, path, pi, at, longest);
-                    start = Some((b, k + 1));
-                }
+                continue;
             }
-            if let (Some((s, at)), Some(last)) = (start, path.points.last()) {
-                if s != last.pos && last.pos.iter().all(|v| v.is_finite()) {
-                    out.chord(s, last.pos, path, pi, at, longest);
-                }
+            let (s, at) = *start.get_or_insert((a, k));
+            if dist2(s, b) >= step * step {
+                f(s, b, pi, at);
+                start = Some((b, k + 1));
             }
         }
-        out
+        if let (Some((s, at)), Some(last)) = (start, path.points.last()) {
+            if s != last.pos && last.pos.iter().all(|v| v.is_finite()) {
+                f(s, last.pos, pi, at);
+            }
+        }
     }
+}
 
-    /// The chord from `a` (point `at` of path `pi`) to `b`, in pieces of at
-    /// most `longest`.
-    fn chord(
-        &mut self,
-        a: [f64; 3],
-        b: [f64; 3],
-        path: &crate::ir::Path,
-        pi: usize,
-        at: usize,
-        longest: f64,
-    ) {
-        let n = path.points[at].normal.map(|v| v as f64);
-        // Beyond any plate a piece is not split further.
-        let pieces = (dist2(a, b).sqrt() / longest).ceil().clamp(1.0, 1e6) as usize;
-        let along = |t: f64| [0, 1, 2].map(|i| a[i] + t * (b[i] - a[i]));
-        for k in 0..pieces {
-            let (from, to) = (
-                along(k as f64 / pieces as f64),
-                along((k + 1) as f64 / pieces as f64),
-            );
-            self.segs.push([from, to]);
-            self.starts.push(Start {
-                pos: from,
-                normal: n,
+/// How many pieces of at most `longest` the chord `a`–`b` is cut into.
+fn pieces(a: [f64; 3], b: [f64; 3], longest: f64) -> usize {
+    (dist2(a, b).sqrt() / longest).ceil().clamp(1.0, MAX_PIECES) as usize
+}
+
+/// The places of `layer` checked: the starts of its chords cut into pieces of
+/// at most `longest`, every k-th so that at most [`MAX_SAMPLES`] remain. Two
+/// passes over the chords (count, then pick), so the pieces are never stored.
+fn samples(layer: &Layer, step: f64, longest: f64) -> Vec<Start> {
+    let mut total = 0usize;
+    chords(layer, step, |a, b, _, _| {
+        total = total.saturating_add(pieces(a, b, longest))
+    });
+    let stride = total.div_ceil(MAX_SAMPLES).max(1);
+    let mut out = Vec::with_capacity(total.div_ceil(stride));
+    // Index of the chord's first piece among all the layer's pieces.
+    let mut first = 0usize;
+    chords(layer, step, |a, b, pi, at| {
+        let n = pieces(a, b, longest);
+        let normal = normal_at(&layer.paths[pi], at);
+        // The first piece of this chord whose index is a multiple of `stride`.
+        let mut k = (stride - first % stride) % stride;
+        while k < n {
+            let t = k as f64 / n as f64;
+            out.push(Start {
+                pos: [0, 1, 2].map(|i| a[i] + t * (b[i] - a[i])),
+                normal,
                 path: pi,
                 point: at,
             });
+            k += stride;
         }
-    }
+        first += n;
+    });
+    out
+}
+
+fn normal_at(path: &Path, at: usize) -> [f64; 3] {
+    path.points[at].normal.map(|v| v as f64)
 }
 
 fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -163,39 +173,40 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// The point of segment `s` nearest to `p`.
-fn closest(s: &[[f64; 3]; 2], p: [f64; 3]) -> [f64; 3] {
-    let d = sub(s[1], s[0]);
+/// The point of segment `a`–`b` nearest to `p`.
+fn closest(a: [f64; 3], b: [f64; 3], p: [f64; 3]) -> [f64; 3] {
+    let d = sub(b, a);
     let len2 = dot(d, d);
     let t = if len2 > 0.0 {
-        (dot(sub(p, s[0]), d) / len2).clamp(0.0, 1.0)
+        (dot(sub(p, a), d) / len2).clamp(0.0, 1.0)
     } else {
         0.0
     };
-    [s[0][0] + t * d[0], s[0][1] + t * d[1], s[0][2] + t * d[2]]
+    [a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]]
 }
 
-/// Segments by cell: a dense grid over their bounding box (counting sort).
+/// The samples by cell (a dense grid over their bounding box, counting
+/// sort), and each sample's nearest distance across the nozzle so far.
 struct Grid {
     origin: [f64; 3],
     cell: f64,
     dims: [usize; 3],
     start: Vec<u32>,
     items: Vec<u32>,
+    best: Vec<Option<f64>>,
 }
 
 impl Grid {
-    fn new(segs: &[[[f64; 3]; 2]], reach: f64) -> Self {
+    fn new(samples: &[Start], reach: f64) -> Self {
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
-        for s in segs {
-            for p in s {
-                for i in 0..3 {
-                    lo[i] = lo[i].min(p[i]);
-                    hi[i] = hi[i].max(p[i]);
-                }
+        for s in samples {
+            for i in 0..3 {
+                lo[i] = lo[i].min(s.pos[i]);
+                hi[i] = hi[i].max(s.pos[i]);
             }
         }
+        // At least the search radius, so a piece's neighbourhood is a few cells.
         let mut cell = reach.max(1e-9);
         let dims = loop {
             let d =
@@ -213,92 +224,76 @@ impl Grid {
             cell,
             dims,
             start: vec![0; dims[0] * dims[1] * dims[2] + 1],
-            items: Vec::new(),
+            items: vec![0; samples.len()],
+            best: vec![None; samples.len()],
         };
-        // Counting sort: each segment's cell range once, then count per
-        // cell, prefix sums, and place.
-        let ranges: Vec<([usize; 3], [usize; 3])> = segs
-            .iter()
-            .map(|s| {
-                let (a, b) = (g.index(s[0]), g.index(s[1]));
-                (
-                    [a[0].min(b[0]), a[1].min(b[1]), a[2].min(b[2])],
-                    [a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2])],
-                )
-            })
-            .collect();
-        let mut count = vec![0u32; g.start.len()];
-        for &(lo, hi) in &ranges {
-            g.for_range(lo, hi, |c| count[c + 1] += 1);
+        let cells: Vec<usize> = samples.iter().map(|s| g.cell_of(s.pos)).collect();
+        for &c in &cells {
+            g.start[c + 1] += 1;
         }
-        for i in 1..count.len() {
-            count[i] += count[i - 1];
+        for i in 1..g.start.len() {
+            g.start[i] += g.start[i - 1];
         }
-        g.start.clone_from(&count);
-        let mut items = vec![0u32; count[count.len() - 1] as usize];
-        for (k, &(lo, hi)) in ranges.iter().enumerate() {
-            g.for_range(lo, hi, |c| {
-                items[count[c] as usize] = k as u32;
-                count[c] += 1;
-            });
+        let mut next = g.start.clone();
+        for (k, &c) in cells.iter().enumerate() {
+            g.items[next[c] as usize] = k as u32;
+            next[c] += 1;
         }
-        g.items = items;
         g
     }
 
+    /// The cell index along axis `i` of coordinate `v`, unclamped.
     #[inline]
-    fn index(&self, p: [f64; 3]) -> [usize; 3] {
-        let at = |i: usize| {
-            let v = ((p[i] - self.origin[i]) / self.cell).floor();
-            (v.max(0.0) as usize).min(self.dims[i] - 1)
-        };
-        [at(0), at(1), at(2)]
+    fn axis(&self, i: usize, v: f64) -> f64 {
+        ((v - self.origin[i]) / self.cell).floor()
     }
 
-    /// Calls `f` with each cell of the index box `lo ..= hi`.
     #[inline]
-    fn for_range(&self, lo: [usize; 3], hi: [usize; 3], mut f: impl FnMut(usize)) {
-        for x in lo[0]..=hi[0] {
-            for y in lo[1]..=hi[1] {
-                for z in lo[2]..=hi[2] {
-                    f((x * self.dims[1] + y) * self.dims[2] + z);
+    fn cell_of(&self, p: [f64; 3]) -> usize {
+        let at = |i: usize| (self.axis(i, p[i]).max(0.0) as usize).min(self.dims[i] - 1);
+        (at(0) * self.dims[1] + at(1)) * self.dims[2] + at(2)
+    }
+
+    /// Offers the segment `a`–`b` of the layer below to every sample within
+    /// `reach` of it, in pieces at most a cell long (so each looks at a few
+    /// cells, however long and slanted the segment).
+    fn walk(&mut self, a: [f64; 3], b: [f64; 3], reach: f64, samples: &[Start]) {
+        let n = pieces(a, b, self.cell);
+        let along = |t: f64| [0, 1, 2].map(|i| a[i] + t * (b[i] - a[i]));
+        'pieces: for k in 0..n {
+            let (p, q) = (along(k as f64 / n as f64), along((k + 1) as f64 / n as f64));
+            let mut range = [(0usize, 0usize); 3];
+            for (i, r) in range.iter_mut().enumerate() {
+                let lo = self.axis(i, p[i].min(q[i]) - reach);
+                let hi = self.axis(i, p[i].max(q[i]) + reach);
+                if hi < 0.0 || lo > (self.dims[i] - 1) as f64 {
+                    // The piece's neighbourhood misses the samples' box.
+                    continue 'pieces;
                 }
+                *r = (lo.max(0.0) as usize, (hi as usize).min(self.dims[i] - 1));
             }
-        }
-    }
-
-    /// The smallest distance across normal `n` from `p` to a segment within
-    /// `reach` of it, if any.
-    fn nearest_across(
-        &self,
-        segs: &[[[f64; 3]; 2]],
-        p: [f64; 3],
-        n: [f64; 3],
-        reach: f64,
-    ) -> Option<f64> {
-        let c = self.index(p);
-        let mut best: Option<f64> = None;
-        let span = (reach / self.cell).ceil() as usize;
-        for x in c[0].saturating_sub(span)..=(c[0] + span).min(self.dims[0] - 1) {
-            for y in c[1].saturating_sub(span)..=(c[1] + span).min(self.dims[1] - 1) {
-                for z in c[2].saturating_sub(span)..=(c[2] + span).min(self.dims[2] - 1) {
-                    let cell = (x * self.dims[1] + y) * self.dims[2] + z;
-                    let (a, b) = (self.start[cell] as usize, self.start[cell + 1] as usize);
-                    for &k in &self.items[a..b] {
-                        let q = closest(&segs[k as usize], p);
-                        let d = sub(p, q);
-                        if dot(d, d) > reach * reach {
-                            continue;
-                        }
-                        let along = dot(d, n);
-                        let across = (dot(d, d) - along * along).max(0.0).sqrt();
-                        if best.is_none_or(|b| across < b) {
-                            best = Some(across);
+            for x in range[0].0..=range[0].1 {
+                for y in range[1].0..=range[1].1 {
+                    for z in range[2].0..=range[2].1 {
+                        let c = (x * self.dims[1] + y) * self.dims[2] + z;
+                        let (from, to) = (self.start[c] as usize, self.start[c + 1] as usize);
+                        for &k in &self.items[from..to] {
+                            let s = &samples[k as usize];
+                            let d = sub(s.pos, closest(p, q, s.pos));
+                            let d2 = dot(d, d);
+                            if d2 > reach * reach {
+                                continue;
+                            }
+                            let along = dot(d, s.normal);
+                            let across = (d2 - along * along).max(0.0).sqrt();
+                            let best = &mut self.best[k as usize];
+                            if best.is_none_or(|b| across < b) {
+                                *best = Some(across);
+                            }
                         }
                     }
                 }
             }
         }
-        best
     }
 }
