@@ -94,7 +94,9 @@ pub fn profile(name: &str) -> Option<Dialect> {
             laser_off: "M21".into(),
             s_per_watt: 1.0,
             s_decimals: 0,
-            preamble: lines(&["G21 G90 G94"]),
+            // No feed mode: the control reads F in mm/s, and G94 (feed per minute on
+            // ISO controls) would say otherwise.
+            preamble: lines(&["G21 G90"]),
             postamble: lines(&["M21", "M30"]),
             dwell: "G04 P{s}".into(),
             tcp_on: String::new(),
