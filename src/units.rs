@@ -261,6 +261,53 @@ impl Quantity {
 #[derive(Debug, Clone, PartialEq)]
 pub struct UnknownUnit(pub String);
 
+/// Words people write for units lmdc knows by another name: the unit meant.
+const UNIT_ALIASES: &[(&str, &str)] = &[
+    ("sec", "s"),
+    ("secs", "s"),
+    ("second", "s"),
+    ("seconds", "s"),
+    ("mins", "min"),
+    ("minute", "min"),
+    ("minutes", "min"),
+    ("hr", "h"),
+    ("hrs", "h"),
+    ("hour", "h"),
+    ("hours", "h"),
+    ("watt", "W"),
+    ("watts", "W"),
+    ("kilowatt", "kW"),
+    ("kilowatts", "kW"),
+    ("degree", "deg"),
+    ("degrees", "deg"),
+    ("degs", "deg"),
+    ("gram", "g"),
+    ("grams", "g"),
+    ("gr", "g"),
+    ("micron", "um"),
+    ("microns", "um"),
+    ("mms", "mm/s"),
+    ("mmps", "mm/s"),
+    ("mmpm", "mm/min"),
+];
+
+/// The unit someone writing `atom` most likely meant: a known unit that
+/// differs only in case (`KW` → `kW`), or the usual name for a word such as
+/// `sec` or `watts`.
+pub fn unit_meant(atom: &str) -> Option<&'static str> {
+    let lower = atom.to_lowercase();
+    UNIT_ALIASES
+        .iter()
+        .find(|(a, _)| *a == lower)
+        .map(|&(_, u)| u)
+        .or_else(|| {
+            UNITS
+                .iter()
+                .find(|u| u.name.to_lowercase() == lower)
+                .map(|u| u.name)
+        })
+}
+
 /// Parses a unit expression such as `mm/s`, `g/cm^3`, `kW` into (factor, dimension).
 /// Units are multiplied and divided left to right: `g/cm^3` is g·cm⁻³.
 pub fn parse_unit(text: &str) -> Result<(f64, Dim), UnknownUnit> {

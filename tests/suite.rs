@@ -34,6 +34,7 @@ mod robustness;
 mod rs274_smoke;
 mod stacking;
 mod style;
+mod typos;
 mod variable_errors;
 mod variable_rs274;
 mod variable_top;

@@ -403,7 +403,11 @@ fn number(
         Some(u) => match parse_unit(&u.node) {
             Ok(x) => x,
             Err(bad) => {
-                diags.push(message::value::unknown_unit(&bad.0, u.span));
+                let meant = crate::units::unit_meant(&bad.0).map(|m| {
+                    // The whole unit as written, with the unknown part replaced.
+                    u.node.replacen(bad.0.as_str(), m, 1)
+                });
+                diags.push(message::value::unknown_unit(&bad.0, meant.as_deref(), u.span));
                 return None;
             }
         },

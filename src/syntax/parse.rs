@@ -95,7 +95,9 @@ fn check_nesting(source: &str) -> Result<(), Diagnostic> {
             b'/' if bytes.get(i + 1) == Some(&b'*') => {
                 i = match source[i + 2..].find("*/") {
                     Some(end) => i + 2 + end + 2,
-                    None => bytes.len(),
+                    // Everything after it is comment: the brackets before it
+                    // look unclosed, but the comment is what needs fixing.
+                    None => return Err(message::syntax::unclosed_comment(Span::new(i, i + 2))),
                 };
                 continue;
             }
@@ -176,7 +178,7 @@ fn rule_name(r: &Rule) -> &'static str {
         Rule::block => "`{`",
         Rule::expr => "a value",
         Rule::quantity | Rule::number => "a number",
-        Rule::unit | Rule::unit_atom | Rule::unit_factor => "a unit (mm, deg, mm/s, W, g/min, …)",
+        Rule::unit | Rule::unit_atom | Rule::unit_factor | Rule::unknown_unit => "a unit (mm, deg, mm/s, W, g/min, …)",
         Rule::string | Rule::string_inner => "a string",
         Rule::ident => "a name",
         Rule::call => "a function call",
@@ -377,7 +379,7 @@ fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
                             return Err(message::syntax::number_too_large(span_of(&c)));
                         }
                     }
-                    Rule::unit => unit = Some(Spanned::new(c.as_str().to_string(), span_of(&c))),
+                    Rule::unit | Rule::unknown_unit => unit = Some(Spanned::new(c.as_str().to_string(), span_of(&c))),
                     _ => {}
                 }
             }

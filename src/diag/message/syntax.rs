@@ -16,6 +16,13 @@ pub fn unclosed_text(at: Span) -> Diagnostic {
         .help("close the text with `\"` on the same line; a text cannot span lines")
 }
 
+/// A comment opened with `/*` at `at` is never closed with `*/`.
+pub fn unclosed_comment(at: Span) -> Diagnostic {
+    Diagnostic::error(Code::Syntax, "this comment is never closed")
+        .label(at, "opened here; no `*/` follows")
+        .help("end the comment with `*/`, or use `//` for a comment to the end of the line")
+}
+
 /// Brackets nest deeper than `max` (the bracket at `at` is one too many).
 pub fn brackets_too_deep(max: usize, at: Span) -> Diagnostic {
     Diagnostic::error(

@@ -47,13 +47,19 @@ pub fn too_deep(max: usize, span: Span) -> Diagnostic {
 }
 
 /// A number is written with a unit lmdc does not know.
-pub fn unknown_unit(unit: &str, at: Span) -> Diagnostic {
+/// `meant` is the unit as written with the unknown part replaced by the one
+/// most likely meant (`1.5 KW` → `kW`), if there is one.
+pub fn unknown_unit(unit: &str, meant: Option<&str>, at: Span) -> Diagnostic {
+    const UNITS: &str = "units: mm cm m um in, deg rad, s ms min h, g mg kg, W kW, J, Hz, %; combine with / * and ^, e.g. g/min or g/cm^3";
     Diagnostic::error(
         Code::UnknownUnit,
         format!("`{unit}` is not a unit lmdc knows"),
     )
     .label(at, "unknown unit")
-    .help("units: mm cm m um in, deg rad, s ms min h, g mg kg, W kW, J, Hz, %; combine with / * and ^, e.g. g/min or g/cm^3")
+    .help(match meant {
+        Some(m) => format!("did you mean `{m}`? ({UNITS})"),
+        None => UNITS.to_string(),
+    })
 }
 
 /// A minus sign stands before something that is not a number.
@@ -80,9 +86,13 @@ pub fn operand_not_number(op: BinOp, bad: &Value, at: Span) -> Diagnostic {
     )
     .label(at, format!("this is {}", bad.describe()));
     match bad {
-        Value::Symbol(s) => d.help(format!(
-            "`{s}` is not a constant; declare it with `let {s} = …`"
-        )),
+        Value::Symbol(s) => d.help(match crate::units::unit_meant(s) {
+            // `6 mm/sec`: a unit lmdc knows by another name.
+            Some(u) => format!(
+                "`{s}` is not a unit lmdc knows: write `{u}`; a constant would be declared with `let {s} = …`"
+            ),
+            None => format!("`{s}` is not a constant; declare it with `let {s} = …`"),
+        }),
         _ => d,
     }
 }
