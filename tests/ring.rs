@@ -290,3 +290,39 @@ fn a_ring_plan_is_ir_version_3() {
         assert_eq!(s.map(|s| (s.input, s.full_scale)), Some((3, 2.0)));
     }
 }
+
+#[test]
+fn a_ring_its_beads_do_not_fit_is_refused_and_short_segments_are_named() {
+    let diags = |radius: &str| {
+        let src = example().replacen("radius = 40 mm", &format!("radius = {radius}"), 1);
+        lmdc::pipeline::compile(&src, &mut ())
+            .diagnostics
+            .iter()
+            .map(|d| (d.code.as_str(), d.message.clone()))
+            .collect::<Vec<_>>()
+    };
+    // Table 1's widest bead is 6.25 mm: at a 3 mm radius its inner face
+    // would cross the centre.
+    let d = diags("3 mm");
+    assert!(
+        d.contains(&(
+            "lmd::ring-too-small",
+            "a ring of radius 3 mm cannot carry a bead 6.25 mm wide: its inner face would cross the centre".into()
+        )),
+        "{d:#?}"
+    );
+    // At 8 mm the ten segments are 2π·8/10 = 5.027 mm long: four of Table 1's
+    // beads (6.25 and 5.55 mm, twice each) are wider.
+    let d = diags("8 mm");
+    assert!(
+        d.contains(&(
+            "lmd::short-track",
+            "4 segments of the ring, 5.027 mm long, are shorter than their beads are wide (up to 6.25 mm)".into()
+        )),
+        "{d:#?}"
+    );
+    // The example's 40 mm (25.1 mm segments) has neither.
+    assert!(!diags("40 mm")
+        .iter()
+        .any(|(c, _)| *c == "lmd::ring-too-small" || *c == "lmd::short-track"));
+}

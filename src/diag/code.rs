@@ -214,6 +214,8 @@ codes! {
         "a loft's end measured at its outer face (`size = outer`) with nothing left inside half a bead width";
     InfeasibleBead = "infeasible-bead", Feasibility,
         "the bead model gives no positive height over its speed range, or its heights miss the declared `height` range";
+    RingTooSmall = "ring-too-small", Feasibility,
+        "a ring whose `radius` is at most half its widest bead: the wall's inner face would cross the centre";
     BendTooTight = "bend-too-tight", Feasibility,
         "normal slicing of this bend needs layers whose outer/inner height ratio exceeds what the bead model can lay; names the radius, speed range and section size that would work";
     FillGap = "fill-gap", Feasibility,

@@ -74,12 +74,16 @@ pub fn read<'a>(
         },
         _ => None,
     };
-    let (table, powers, speed_span) = match f.nested("table") {
+    let (table, powers, speed_span, width_span) = match f.nested("table") {
         Some((inner, ts)) => table(env, inner, ts, segments, &what, diags),
         None => {
             diags.push(message::ring::ring_needs_table(&what, span));
-            (None, None, None)
+            (None, None, None, None)
         }
+    };
+    let ring = match (ring, &table, radius, width_span) {
+        (Some(r), Some(t), Some((_, at)), Some(ws)) => fits(r, t, at, ws, span, diags),
+        (r, ..) => r,
     };
     Written {
         name: name.to_string(),
@@ -93,12 +97,53 @@ pub fn read<'a>(
     }
 }
 
-/// The rows of `table { … }`, its powers' range and where its speeds are.
+/// The rows of `table { … }`, its powers' range and where its speeds and
+/// widths are.
 type Table = (
     Option<SegmentTable>,
     Option<([Power; 2], Span)>,
     Option<Span>,
+    Option<Span>,
 );
+
+/// The ring, if its beads fit it: none reaches the centre (an error, and the
+/// ring is dropped); segments shorter than their beads are a warning.
+fn fits(
+    r: control::Ring,
+    t: &SegmentTable,
+    radius_at: Span,
+    widths_at: Span,
+    ring_at: Span,
+    diags: &mut Diagnostics,
+) -> Option<control::Ring> {
+    let widest = t.rows().iter().map(|s| s.width.0).fold(0.0, f64::max);
+    if r.radius().0 <= widest / 2.0 {
+        diags.push(message::ring::ring_too_small(
+            r.radius(),
+            Length(widest),
+            radius_at,
+            widths_at,
+        ));
+        return None;
+    }
+    // A segment's length along the ring's centre line, transition included.
+    let length = r.radius().0 * r.segment_angle().0;
+    let short: Vec<f64> = t
+        .rows()
+        .iter()
+        .map(|s| s.width.0)
+        .filter(|&w| length < w)
+        .collect();
+    if let Some(&w) = short.iter().max_by(|a, b| a.total_cmp(b)) {
+        diags.push(message::ring::short_segments(
+            short.len(),
+            Length(length),
+            Length(w),
+            ring_at,
+        ));
+    }
+    Some(r)
+}
 
 fn table<'a>(
     env: &mut Env<'a>,
@@ -127,6 +172,7 @@ fn table<'a>(
         ([Power(lo), Power(hi)], *at)
     });
     let speed_span = speed.as_ref().map(|s| s.1);
+    let width_span = width.as_ref().map(|w| w.1);
     let rows = match (defocus, power, width, speed) {
         (Some((d, _)), Some((p, _)), Some((w, _)), Some((v, _))) => Some(
             (0..d.len())
@@ -142,7 +188,7 @@ fn table<'a>(
     };
     // Every value is checked above; a table that still fails is empty.
     let table = rows.and_then(|r| SegmentTable::new(r).ok());
-    (table, powers, speed_span)
+    (table, powers, speed_span, width_span)
 }
 
 /// One list of the table: one value of `dim` per segment.

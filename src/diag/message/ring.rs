@@ -175,3 +175,42 @@ impl fmt::Display for Invalid {
 }
 
 impl std::error::Error for Invalid {}
+
+/// A ring of `radius` whose widest bead (`width`) reaches its centre.
+pub fn ring_too_small(radius: Length, width: Length, at: Span, widths: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::RingTooSmall,
+        format!(
+            "a ring of radius {radius} cannot carry a bead {width} wide: its inner face would cross the centre"
+        ),
+    )
+    .label(at, "radius")
+    .label(widths, "the widest bead")
+    .help(format!(
+        "a radius of more than {}, or narrower beads",
+        Length(width.0 / 2.0)
+    ))
+}
+
+/// Ring segments, `length` long each, shorter than their beads are wide
+/// (`count` of them, beads up to `width`).
+pub fn short_segments(count: usize, length: Length, width: Length, at: Span) -> Diagnostic {
+    let (segments, are, beads) = if count == 1 {
+        ("1 segment", "is", "its bead")
+    } else {
+        ("segments", "are", "their beads")
+    };
+    let lead = if count == 1 {
+        segments.to_string()
+    } else {
+        format!("{count} {segments}")
+    };
+    Diagnostic::warning(
+        Code::ShortTrack,
+        format!(
+            "{lead} of the ring, {length} long, {are} shorter than {beads} are wide (up to {width})"
+        ),
+    )
+    .label(at, "ring")
+    .help("short segments overheat and pile up, and their transitions climb steeply: a larger radius or fewer segments")
+}
