@@ -134,12 +134,14 @@ pub fn too_tight(t: &TooTight) -> Diagnostic {
         short(t.scale_percent)
     ));
     let (q_need, q_have) = (t.q_need, t.q_have);
+    let d = apart(q_need, q_have);
     Diagnostic::error(
         Code::BendTooTight,
         if q_need > q_have {
             format!(
-                "outer/inner layer height ratio {:.2} needs h_max/h_min ≥ {:.2}; this bead model gives {:.2}",
-                q_need, q_need, q_have
+                "outer/inner layer height ratio {need} needs h_max/h_min ≥ {need}; this bead model gives {have}",
+                need = format!("{q_need:.d$}"),
+                have = format!("{q_have:.d$}"),
             )
         } else {
             format!(
@@ -151,19 +153,26 @@ pub fn too_tight(t: &TooTight) -> Diagnostic {
     .label(
         t.spine,
         format!(
-            "bend radius {}: layers are {:.2}× thicker at the outside ({}) than at the inside ({})",
+            "bend radius {}: layers are {q_need:.d$}× thicker at the outside ({} from the bend axis) than at the inside ({})",
             Length(t.radius),
-            q_need,
             Length(t.radius + t.outward),
             Length(t.radius - t.inward)
         ),
     )
     .label(
         t.heights.span,
-        format!("h_max/h_min = {} / {} = {:.2}", h_max, h_min, q_have),
+        format!("h_max/h_min = {} / {} = {q_have:.d$}", h_max, h_min),
     )
     .label(t.speeds, "speed range")
     .help(format!("this would work: {}", fixes.join("; or ")))
+}
+
+/// Decimals (2 to 6) that print `need` above `have` when it is: at two a
+/// ratio of 1.4135 and one of 1.4080 both read 1.41.
+fn apart(need: f64, have: f64) -> usize {
+    (2..=6)
+        .find(|&d| need <= have || format!("{need:.d$}") != format!("{have:.d$}"))
+        .unwrap_or(6)
 }
 
 /// A chord error that needs more than `max` points a layer.
@@ -231,4 +240,19 @@ pub fn seam_at_bend_extreme(
     .label(seam_span, format!("seam at {}", Angle(seam)))
     .label(bend, "bend")
     .help(help)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::apart;
+
+    #[test]
+    fn ratios_print_apart_when_one_passes_the_other() {
+        assert_eq!(apart(2.2366, 1.408), 2);
+        // Both read 1.41 at two decimals: three tell them apart.
+        assert_eq!(apart(1.4135, 1.4080), 3);
+        assert_eq!(apart(1.40801, 1.40800), 5);
+        // A need within the bead's ratio needs nothing more.
+        assert_eq!(apart(1.2, 1.408), 2);
+    }
 }
