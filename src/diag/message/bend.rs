@@ -139,9 +139,7 @@ pub fn too_tight(t: &TooTight) -> Diagnostic {
         Code::BendTooTight,
         if q_need > q_have {
             format!(
-                "outer/inner layer height ratio {need} needs h_max/h_min ≥ {need}; this bead model gives {have}",
-                need = format!("{q_need:.d$}"),
-                have = format!("{q_have:.d$}"),
+                "outer/inner layer height ratio {q_need:.d$} needs h_max/h_min ≥ {q_need:.d$}; this bead model gives {q_have:.d$}"
             )
         } else {
             format!(
