@@ -96,3 +96,15 @@ fn an_unclosed_comment_is_reported_at_its_start() {
     assert_eq!(d[0].message, "this comment is never closed");
     assert_eq!(d[0].labels[0].span.start, src.find("/*").unwrap());
 }
+
+#[test]
+fn a_rotary_limit_on_a_three_axis_machine_is_refused() {
+    // It was accepted and ignored, while a head_bc machine refused `a`.
+    let e = errors(&plate((
+        "max_speed = 50 mm/s }",
+        "max_speed = 50 mm/s  limits { c = -10 deg .. 10 deg } }",
+    )));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert_eq!(e[0].0, "lmd::unknown-field");
+    assert_eq!(e[0].1, "this machine moves X Y Z only: it has no C axis");
+}

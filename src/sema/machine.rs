@@ -523,7 +523,15 @@ fn cnc(
             "a"
         };
         let other = if tilt_key == "a" { "b" } else { "a" };
-        if let Some(s) = l.span(other) {
+        if kin == Some(Kinematics::Xyz) {
+            // A vertical nozzle: no rotary axis to bound.
+            for key in ["a", "b", "c"] {
+                if let Some(s) = l.span(key) {
+                    diags.push(message::machine::no_rotary_axes(key, s));
+                    ok = false;
+                }
+            }
+        } else if let Some(s) = l.span(other) {
             diags.push(message::machine::no_such_head_axis(other, tilt_key, s));
             ok = false;
         }

@@ -134,6 +134,19 @@ pub fn no_such_head_axis(other: &str, tilt: &str, at: Span) -> Diagnostic {
     ))
 }
 
+/// A limit for rotary axis `axis` on a machine that moves X Y Z only.
+pub fn no_rotary_axes(axis: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::UnknownField,
+        format!(
+            "this machine moves X Y Z only: it has no {} axis",
+            axis.to_uppercase()
+        ),
+    )
+    .label(at, "not an axis of this machine")
+    .help("drop the limit, or declare the head: `axes = 5` with `kinematics = head_ac` or `head_bc`")
+}
+
 /// `origin` is not a point `[x, y, z]` (`got` describes what it is).
 pub fn origin_not_a_point(at: Span, got: &str) -> Diagnostic {
     Diagnostic::error(
