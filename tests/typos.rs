@@ -65,7 +65,11 @@ fn an_unknown_unit_at_the_end_of_a_line_is_an_unknown_unit() {
     for (typo, meant) in [("1500 watts", "W"), ("1500 Watt", "W")] {
         let e = errors(&plate(("power = 1500 W", &format!("power = {typo}"))));
         assert_eq!(e.len(), 1, "{typo}: {e:#?}");
-        assert!(e[0].2.starts_with(&format!("did you mean `{meant}`?")), "{typo}: {}", e[0].2);
+        assert!(
+            e[0].2.starts_with(&format!("did you mean `{meant}`?")),
+            "{typo}: {}",
+            e[0].2
+        );
     }
     // Inside a call, before its closing bracket, too.
     let e = errors(&plate(("width = 30 mm", "width = 30 MM")));
@@ -81,7 +85,8 @@ fn a_word_for_a_unit_in_a_compound_unit_gets_the_unit() {
     )));
     assert_eq!(e.len(), 1, "{e:#?}");
     assert!(
-        e[0].2.starts_with("`sec` is not a unit lmdc knows: write `s`"),
+        e[0].2
+            .starts_with("`sec` is not a unit lmdc knows: write `s`"),
         "{}",
         e[0].2
     );
@@ -107,4 +112,21 @@ fn a_rotary_limit_on_a_three_axis_machine_is_refused() {
     assert_eq!(e.len(), 1, "{e:#?}");
     assert_eq!(e[0].0, "lmd::unknown-field");
     assert_eq!(e[0].1, "this machine moves X Y Z only: it has no C axis");
+}
+
+#[test]
+fn a_time_out_of_range_says_which_end_it_passes() {
+    let at = "defocus = -2 mm\n";
+    let e = errors(&plate((at, "defocus = -2 mm\n  min_layer_time = 100 h\n")));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert_eq!(e[0].0, "lmd::out-of-range");
+    assert_eq!(
+        e[0].1,
+        "`min_layer_time` is 360000 s, more than the 3600 s lmdc allows"
+    );
+    let e = errors(&plate((at, "defocus = -2 mm\n  dwell = -5 s\n")));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert_eq!(e[0].0, "lmd::not-positive");
+    assert_eq!(e[0].1, "`dwell` is -5 s: a time cannot be negative");
+    assert!(e[0].2.contains("`dwell = 5 s`"), "{}", e[0].2);
 }

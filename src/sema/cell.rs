@@ -287,9 +287,7 @@ fn time(f: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<f64> {
     match f.quantity(key, Dim::TIME, None, diags) {
         Some((t, _)) if (0.0..=MAX_TIME_S).contains(&t) => Some(t),
         Some((t, at)) => {
-            diags.push(message::machine::cell_time_out_of_range(
-                key, t, MAX_TIME_S, at,
-            ));
+            diags.push(message::field::time_out_of_range(key, t, MAX_TIME_S, at));
             None
         }
         None if f.has(key) => None,

@@ -407,7 +407,11 @@ fn number(
                     // The whole unit as written, with the unknown part replaced.
                     u.node.replacen(bad.0.as_str(), m, 1)
                 });
-                diags.push(message::value::unknown_unit(&bad.0, meant.as_deref(), u.span));
+                diags.push(message::value::unknown_unit(
+                    &bad.0,
+                    meant.as_deref(),
+                    u.span,
+                ));
                 return None;
             }
         },

@@ -615,7 +615,8 @@ fn height_sensor(
     let delay = match f.quantity("height_delay", Dim::TIME, None, diags) {
         Some((t, _)) if (0.0..=MAX_SENSOR_DELAY_S).contains(&t) => Some(t),
         Some((t, at)) => {
-            diags.push(message::machine::height_delay_out_of_range(
+            diags.push(message::field::time_out_of_range(
+                "height_delay",
                 t,
                 MAX_SENSOR_DELAY_S,
                 at,

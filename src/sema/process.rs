@@ -217,12 +217,7 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
         |key: &str, diags: &mut Diagnostics| match f.quantity(key, Dim::TIME, None, diags) {
             Some((t, _)) if (0.0..=MAX_DWELL_S).contains(&t) => t,
             Some((t, at)) => {
-                diags.push(message::bead::process_time_out_of_range(
-                    key,
-                    t,
-                    MAX_DWELL_S,
-                    at,
-                ));
+                diags.push(message::field::time_out_of_range(key, t, MAX_DWELL_S, at));
                 heat_ok = false;
                 0.0
             }

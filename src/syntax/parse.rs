@@ -178,7 +178,9 @@ fn rule_name(r: &Rule) -> &'static str {
         Rule::block => "`{`",
         Rule::expr => "a value",
         Rule::quantity | Rule::number => "a number",
-        Rule::unit | Rule::unit_atom | Rule::unit_factor | Rule::unknown_unit => "a unit (mm, deg, mm/s, W, g/min, …)",
+        Rule::unit | Rule::unit_atom | Rule::unit_factor | Rule::unknown_unit => {
+            "a unit (mm, deg, mm/s, W, g/min, …)"
+        }
         Rule::string | Rule::string_inner => "a string",
         Rule::ident => "a name",
         Rule::call => "a function call",
@@ -379,7 +381,9 @@ fn primary(p: Pair<Rule>) -> Result<Expr, Diagnostic> {
                             return Err(message::syntax::number_too_large(span_of(&c)));
                         }
                     }
-                    Rule::unit | Rule::unknown_unit => unit = Some(Spanned::new(c.as_str().to_string(), span_of(&c))),
+                    Rule::unit | Rule::unknown_unit => {
+                        unit = Some(Spanned::new(c.as_str().to_string(), span_of(&c)))
+                    }
                     _ => {}
                 }
             }

@@ -220,13 +220,6 @@ pub fn ring_powers_out_of_range(
     .help("keep every segment's power inside `power_range`")
 }
 
-/// The process time `key` is `t` s, outside 0 to `max` s.
-pub fn process_time_out_of_range(key: &str, t: f64, max: f64, at: Span) -> Diagnostic {
-    Diagnostic::error(Code::NotPositive, format!("`{key}` is {} s", short(t)))
-        .label(at, format!("a time from 0 to {max} s"))
-        .help("the time a layer must take to cool, e.g. `min_layer_time = 30 s`")
-}
-
 /// The power schedule reaches `lo .. hi`, outside the laser's range `a .. b`.
 pub fn schedule_out_of_range(
     lo: Power,

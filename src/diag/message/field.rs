@@ -224,3 +224,32 @@ pub fn bad_choice(
         None => d,
     }
 }
+
+/// The time `key` is `t` s, outside 0 to `max` s: negative, or longer than
+/// lmdc allows. The help says what the field is, with an example.
+pub fn time_out_of_range(key: &str, t: f64, max: f64, at: Span) -> Diagnostic {
+    let (code, message) = if t < 0.0 {
+        (
+            Code::NotPositive,
+            format!("`{key}` is {} s: a time cannot be negative", short(t)),
+        )
+    } else {
+        (
+            Code::OutOfRange,
+            format!(
+                "`{key}` is {} s, more than the {} s lmdc allows",
+                short(t),
+                short(max)
+            ),
+        )
+    };
+    let help = match key {
+        "min_layer_time" => "the time a layer must take to cool, e.g. `min_layer_time = 30 s`".to_string(),
+        "dwell" => "the wait between layers, e.g. `dwell = 5 s`".to_string(),
+        "height_delay" => "how long after a segment's end the sensor holds its mean height, e.g. `height_delay = 150 ms`".to_string(),
+        _ => format!("give `{key}` in seconds as the cell needs it, e.g. `{key} = 2 s`"),
+    };
+    Diagnostic::error(code, message)
+        .label(at, format!("a time from 0 to {} s", short(max)))
+        .help(help)
+}

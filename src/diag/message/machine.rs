@@ -144,7 +144,9 @@ pub fn no_rotary_axes(axis: &str, at: Span) -> Diagnostic {
         ),
     )
     .label(at, "not an axis of this machine")
-    .help("drop the limit, or declare the head: `axes = 5` with `kinematics = head_ac` or `head_bc`")
+    .help(
+        "drop the limit, or declare the head: `axes = 5` with `kinematics = head_ac` or `head_bc`",
+    )
 }
 
 /// `origin` is not a point `[x, y, z]` (`got` describes what it is).
@@ -155,16 +157,6 @@ pub fn origin_not_a_point(at: Span, got: &str) -> Diagnostic {
     )
     .label(at, format!("this is {got}"))
     .help("e.g. `origin = [250 mm, 150 mm, 40 mm]`")
-}
-
-/// `height_delay` is `t` s, outside 0 to `max` s.
-pub fn height_delay_out_of_range(t: f64, max: f64, at: Span) -> Diagnostic {
-    Diagnostic::error(
-        Code::OutOfRange,
-        format!("`height_delay` is {}", crate::units::Time(t)),
-    )
-    .label(at, format!("a time from 0 to {max} s"))
-    .help("how long after a segment's end the sensor holds its mean height, e.g. `height_delay = 150 ms`")
 }
 
 /// A height sensor field `key` is given without `height_input`.
@@ -297,13 +289,4 @@ pub fn output_line_hole(key: &str, hole: &str, at: Span, example: &str) -> Diagn
         },
         example
     ))
-}
-
-/// A gas or powder time `key` is `t` s, outside 0 to `max` s.
-pub fn cell_time_out_of_range(key: &str, t: f64, max: f64, at: Span) -> Diagnostic {
-    Diagnostic::error(Code::OutOfRange, format!("`{key}` is {} s", short(t)))
-        .label(at, format!("a time from 0 to {max} s"))
-        .help(format!(
-            "give `{key}` in seconds as the cell needs it, e.g. `{key} = 2 s`"
-        ))
 }
