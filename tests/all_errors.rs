@@ -149,7 +149,7 @@ const MISTAKES: &[Mistake] = &[
         find: "power = 2000 W",
         replace: "power = 3000 W",
         code: "lmd::power-schedule",
-        says: "the power schedule reaches 3000 W",
+        says: "the power 3000 W lies outside the laser's range",
     },
     Mistake {
         find: "power = 1700 W",

@@ -130,3 +130,15 @@ fn a_time_out_of_range_says_which_end_it_passes() {
     assert_eq!(e[0].1, "`dwell` is -5 s: a time cannot be negative");
     assert!(e[0].2.contains("`dwell = 5 s`"), "{}", e[0].2);
 }
+
+#[test]
+fn a_name_with_a_letter_outside_ascii_says_so() {
+    let src = plate(("part plate", "part plättchen"));
+    let c = compile(&src, &mut ());
+    let d: Vec<_> = c.diagnostics.iter().collect();
+    assert_eq!(d.len(), 1, "{d:#?}");
+    assert_eq!(
+        d[0].help.as_deref(),
+        Some("names are written with the letters a–z and A–Z, digits and `_`: `ä` is not one of them")
+    );
+}

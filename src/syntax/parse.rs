@@ -34,7 +34,7 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
     let normalized = normalize(source);
     let source: &str = &normalized;
     check_nesting(source)?;
-    let mut pairs = LmdParser::parse(Rule::file, source).map_err(syntax_error)?;
+    let mut pairs = LmdParser::parse(Rule::file, source).map_err(|e| syntax_error(source, e))?;
     let file = pairs.next().ok_or_else(message::syntax::empty_parse)?;
     let stmts = file
         .into_inner()
@@ -197,7 +197,7 @@ fn rule_name(r: &Rule) -> &'static str {
     }
 }
 
-fn syntax_error(e: pest::error::Error<Rule>) -> Diagnostic {
+fn syntax_error(source: &str, e: pest::error::Error<Rule>) -> Diagnostic {
     use pest::error::{ErrorVariant, InputLocation};
     let span = match e.location {
         InputLocation::Pos(p) => Span::new(p, p),
@@ -212,7 +212,12 @@ fn syntax_error(e: pest::error::Error<Rule>) -> Diagnostic {
         }
         ErrorVariant::CustomError { .. } => Vec::new(),
     };
-    message::syntax::syntax_error(span, &expected)
+    // A letter outside ASCII where pest stopped: a name written with it.
+    let letter = source
+        .get(span.start..)
+        .and_then(|rest| rest.chars().next())
+        .filter(|c| !c.is_ascii() && c.is_alphabetic());
+    message::syntax::syntax_error(span, &expected, letter)
 }
 
 fn span_of(p: &Pair<Rule>) -> Span {

@@ -231,7 +231,12 @@ pub fn schedule_out_of_range(
 ) -> Diagnostic {
     Diagnostic::error(
         Code::PowerSchedule,
-        format!("the power schedule reaches {lo} .. {hi}, outside the laser's range {a} .. {b}"),
+        if lo == hi {
+            // A constant power: no schedule to speak of.
+            format!("the power {lo} lies outside the laser's range {a} .. {b}")
+        } else {
+            format!("the power schedule reaches {lo} .. {hi}, outside the laser's range {a} .. {b}")
+        },
     )
     .label(power_at, "power")
     .label(range_at, "allowed range")

@@ -63,8 +63,9 @@ pub fn never_closed(open: char, at: Span, closer: char) -> Diagnostic {
 }
 
 /// pest stopped at `at`, expecting one of `expected` (names of grammar rules,
-/// sorted; none when it gave no list).
-pub fn syntax_error(at: Span, expected: &[&str]) -> Diagnostic {
+/// sorted; none when it gave no list); `letter` is the non-ASCII letter it
+/// stopped at, if it did.
+pub fn syntax_error(at: Span, expected: &[&str], letter: Option<char>) -> Diagnostic {
     let what = match expected.len() {
         0 => "unexpected text".to_string(),
         1 => format!("expected {}", expected[0]),
@@ -73,9 +74,15 @@ pub fn syntax_error(at: Span, expected: &[&str]) -> Diagnostic {
             format!("expected {} or {}", rest.join(", "), last)
         }
     };
+    let help = match letter {
+        Some(c) => format!(
+            "names are written with the letters a–z and A–Z, digits and `_`: `{c}` is not one of them"
+        ),
+        None => "every statement is `name = value` or `kind name { … }`; numbers carry their unit right after them, e.g. `6 mm` or `7 mm/s`".to_string(),
+    };
     Diagnostic::error(Code::Syntax, format!("syntax error: {what}"))
         .label(at, what)
-        .help("every statement is `name = value` or `kind name { … }`; numbers carry their unit right after them, e.g. `6 mm` or `7 mm/s`")
+        .help(help)
 }
 
 /// A statement came out of the grammar without its keyword (should not happen).
