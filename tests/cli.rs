@@ -554,8 +554,9 @@ fn simulate_prints_the_loop_and_writes_its_csv() {
     let text = String::from_utf8_lossy(&unstable.stdout);
     assert!(text.contains("error: unstable"), "{text}");
 
+    // A valid file without a ring: a usage error, not an error in the file.
     let none = lmdc(&["simulate", "examples/wedge.lmd"]);
-    assert_eq!(none.status.code(), Some(1));
+    assert_eq!(none.status.code(), Some(2));
     assert!(
         stderr(&none).contains("nothing to simulate"),
         "{}",

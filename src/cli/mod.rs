@@ -390,7 +390,9 @@ fn simulate(
     messages::print(&s.diagnostics, file, &source, color, format);
     let Some(run) = s.run else {
         if let Some(why) = s.nothing {
+            // A valid file that is no ring: the command does not apply to it.
             eprintln!("error: {} has nothing to simulate: {why}", shown(file));
+            return EXIT_USAGE;
         }
         return EXIT_PROGRAM;
     };
