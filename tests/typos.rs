@@ -142,3 +142,18 @@ fn a_name_with_a_letter_outside_ascii_says_so() {
         Some("names are written with the letters a–z and A–Z, digits and `_`: `ä` is not one of them")
     );
 }
+
+#[test]
+fn an_outline_on_one_line_encloses_no_area() {
+    // It was reported as "the profile crosses itself at (60, 0) mm".
+    let e = errors(&plate((
+        "rectangle(width = 30 mm, height = 20 mm)",
+        "outline([0 mm, 0 mm], [30 mm, 0 mm], [60 mm, 0 mm])",
+    )));
+    assert_eq!(e.len(), 1, "{e:#?}");
+    assert_eq!(e[0].0, "lmd::degenerate");
+    assert_eq!(
+        e[0].1,
+        "this outline encloses no area: its corners lie on one line"
+    );
+}

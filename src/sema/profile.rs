@@ -97,11 +97,38 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
         last = Some(to);
     }
     let start = start?;
-    if ok && segments.len() < 2 && !segments.iter().any(|s| matches!(s, Segment::Arc { .. })) {
+    let arcs = segments.iter().any(|s| matches!(s, Segment::Arc { .. }));
+    if ok && segments.len() < 2 && !arcs {
         diags.push(message::shape::too_few_corners(c.func_span));
         return None;
     }
+    // Straight pieces whose corners all lie on one line enclose nothing (the
+    // fill would call it a crossing, at a corner).
+    if ok && !arcs && on_one_line(start, &segments) {
+        diags.push(message::shape::no_area(c.func_span));
+        return None;
+    }
     ok.then_some(Outline { start, segments })
+}
+
+/// Whether every corner of a straight outline lies on the line through its
+/// first two distinct corners (within a nanometre per millimetre of extent).
+fn on_one_line(start: [Length; 2], segments: &[Segment]) -> bool {
+    let corners: Vec<[f64; 2]> = std::iter::once(start)
+        .chain(segments.iter().map(|s| match s {
+            Segment::Line { to } | Segment::Arc { to, .. } => *to,
+        }))
+        .map(|p| [p[0].0, p[1].0])
+        .collect();
+    let a = corners[0];
+    let Some(b) = corners.iter().find(|p| **p != a) else {
+        return true;
+    };
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len = d[0].hypot(d[1]);
+    corners
+        .iter()
+        .all(|p| ((p[0] - a[0]) * d[1] - (p[1] - a[1]) * d[0]).abs() <= 1e-6 * len * len)
 }
 
 /// A point `[x, y]` of two lengths.

@@ -102,6 +102,13 @@ pub fn arc_too_small(radius: Length, chord: Length, at: Span) -> Diagnostic {
     ))
 }
 
+/// An outline of straight pieces whose corners all lie on one line.
+pub fn no_area(at: Span) -> Diagnostic {
+    Diagnostic::error(Code::Degenerate, "this outline encloses no area: its corners lie on one line")
+        .label(at, "outline")
+        .help("an outline goes round the area it bounds: give it corners off that line, e.g. `outline([0 mm, 0 mm], [60 mm, 0 mm], [60 mm, 20 mm], [0 mm, 20 mm])`")
+}
+
 /// An outline has fewer than three corners and no arc.
 pub fn too_few_corners(at: Span) -> Diagnostic {
     Diagnostic::error(Code::Degenerate, "an outline needs at least three corners")
