@@ -52,6 +52,28 @@ pub fn prepare<'p>(
     })
 }
 
+/// The loop's constants as both looping programs declare them: a name (KRL
+/// writes it in capitals), the value and what it is, for the comment.
+pub fn constants(
+    ring: &Ring,
+    law: &HeightLoop,
+    sensor: &HeightSensor,
+) -> [(&'static str, f64, &'static str); 7] {
+    [
+        ("kp", law.kp, "(mm/s)/mm, proportional gain"),
+        ("ki", law.ki, "(mm/s)/mm, integral gain"),
+        ("hr", law.target, "mm, target height per layer"),
+        ("vmin", law.clamp[0], "mm/s, lowest speed"),
+        ("vmax", law.clamp[1], "mm/s, highest speed"),
+        ("hscale", sensor.full_scale, "mm at an input of 1.0"),
+        (
+            "arc",
+            ring.radius * ring.transition.to_radians(),
+            "mm, a transition's horizontal length",
+        ),
+    ]
+}
+
 /// Where a deposit move lies in its segment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Part {

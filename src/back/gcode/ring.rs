@@ -31,7 +31,7 @@
 use super::dialect::{comment_safe, delimiters};
 use super::{base_context, footer_context, header_context, EmitError, Sink, Templates};
 use crate::back::fixed::{fixed, trimmed};
-use crate::back::ring::{prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
+use crate::back::ring::{constants, prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
 use crate::check::VerifiedMachine;
 use crate::control::{Step, LAW};
 use crate::ir::{Cnc, HeightLoop, HeightSensor, Kinematics, Ring};
@@ -160,19 +160,7 @@ impl Text<'_> {
             "the height loop (control::law): after each layer every segment's measured height sets its speed and working plane",
         );
         let c = |v: f64| trimmed(v, CONST_DECIMALS);
-        for (name, v, what) in [
-            ("kp", law.kp, "(mm/s)/mm, proportional gain"),
-            ("ki", law.ki, "(mm/s)/mm, integral gain"),
-            ("hr", law.target, "mm, target height per layer"),
-            ("vmin", law.clamp[0], "mm/s, lowest speed"),
-            ("vmax", law.clamp[1], "mm/s, highest speed"),
-            ("hscale", sensor.full_scale, "mm at an input of 1.0"),
-            (
-                "arc",
-                ring.radius * ring.transition.to_radians(),
-                "mm, a transition's horizontal length",
-            ),
-        ] {
+        for (name, v, what) in constants(ring, law, &sensor) {
             let style = self.cnc.dialect.comment;
             let (open, close) = delimiters(style);
             let what = comment_safe(what, style);

@@ -21,7 +21,7 @@ use super::modules::angle_value;
 use super::orient::Orienter;
 use super::{base_context, main_context, modules, EmitError, Sink, Templates};
 use crate::back::fixed::{fixed, trimmed};
-use crate::back::ring::{prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
+use crate::back::ring::{constants, prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
 use crate::check::VerifiedMachine;
 use crate::control::{Step, LAW};
 use crate::ir::{HeightLoop, HeightSensor, Ring, Robot};
@@ -462,19 +462,8 @@ fn data(
     let _ = writeln!(s, "DECL POS P={{X 0.0,Y 0.0,Z 0.0,A 0.0,B 0.0,C 0.0}}");
     let _ = writeln!(s, "DECL REAL ZF=0.0");
     let _ = writeln!(s, "DECL REAL ZT=0.0");
-    for (name, v, what) in [
-        ("KP", law.kp, "(mm/s)/mm, proportional gain"),
-        ("KI", law.ki, "(mm/s)/mm, integral gain"),
-        ("HR", law.target, "mm, target height per layer"),
-        ("VMIN", law.clamp[0], "mm/s, lowest speed"),
-        ("VMAX", law.clamp[1], "mm/s, highest speed"),
-        ("HSCALE", sensor.full_scale, "mm at an input of 1.0"),
-        (
-            "ARC",
-            ring.radius * ring.transition.to_radians(),
-            "mm, a transition's horizontal length",
-        ),
-    ] {
+    for (name, v, what) in constants(ring, law, &sensor) {
+        let name = name.to_uppercase();
         let _ = writeln!(s, "DECL REAL {name}={} ; {what}", real(r6(v)));
     }
     // Set by the program before it moves (see `Text::init`).
