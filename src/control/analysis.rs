@@ -2,7 +2,7 @@
 //! segment's speed, settling time against the number of layers. Each problem
 //! is a [`Finding`] carrying its numbers; [`Finding`]'s `Display` and
 //! [`Finding::help`] hold all the wording, in one place:
-//! [`crate::diag::message::control`].
+//! `crate::diag::message::control`.
 //!
 //! The operating point of segment `j` is its start speed `v_j` (Table 1's), at
 //! which the segment is meant to lay `h_r`: the table was matched so that it

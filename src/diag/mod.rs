@@ -1,6 +1,6 @@
 //! Diagnostics: one plain struct for every error and warning, a sink that collects
 //! them, and rendering through miette. [`Code`] lists every code (and generates
-//! `docs/diagnostics.md`); [`message`] holds the wording of every diagnostic —
+//! `docs/diagnostics.md`); `message` holds the wording of every diagnostic —
 //! the builders below are private to this module, so only it can write one.
 
 mod code;

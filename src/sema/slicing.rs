@@ -1,6 +1,6 @@
 //! The `slicing STRATEGY { … }` statement: `slicing normal { layers, points |
 //! chord_error, seam }` is read here; `planar`, `variable` and `continuous`
-//! by [`super::planar`], [`super::variable`] and [`super::continuous`].
+//! by `super::planar`, `super::variable` and `super::continuous`.
 
 use super::eval::Env;
 use super::fields::Fields;

@@ -1,7 +1,7 @@
 //! What an expression evaluates to: a quantity, a range, a name, a text, a
 //! call or a list, each with the span it was written at. The evaluator is
 //! [`super::eval`]; the words a message uses for each kind of value are in
-//! [`crate::diag::message::value`].
+//! `crate::diag::message::value`.
 
 use crate::span::Span;
 use crate::units::Quantity;
