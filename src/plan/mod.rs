@@ -14,7 +14,10 @@
 //! through a transition:
 //! 1. [`MoveKind::Retract`]: `clearance` back up the nozzle from where the last
 //!    path ended (not before the first path);
-//! 2. [`MoveKind::Travel`]: to `clearance` above the path's first point;
+//! 2. [`MoveKind::Travel`]: to `clearance` above the path's first point —
+//!    with a vertical nozzle at both ends, over the top: up to `clearance`
+//!    above the highest point deposited so far, across, and down, whenever
+//!    either end lies lower (a straight line could cut a ridge laid before);
 //! 3. [`MoveKind::Approach`]: down to the first point, at the path's first speed
 //!    when the path deposits from its first point, else at the machine's rapid.
 //!
@@ -294,6 +297,8 @@ impl<'a> Plan<'a> {
             powder: None,
             ends: None,
             end_next: None,
+            last: None,
+            top: f64::NEG_INFINITY,
         };
         let continuous = self.program.continuous;
         for (li, layer) in self.program.layers.iter().enumerate() {
@@ -395,6 +400,11 @@ struct Walker<'p, 'a, V> {
     ends: Option<SegmentEnds>,
     /// The segment end the next move reaches.
     end_next: Option<SegmentEnd>,
+    /// Where the last move ended.
+    last: Option<[f64; 3]>,
+    /// The highest point deposited so far (Z, mm): travels with a vertical
+    /// nozzle pass at least `clearance` above it.
+    top: f64,
 }
 
 /// Powder rates that print the same (they come from the same declaration).
@@ -432,6 +442,11 @@ impl<V: Visit> Walker<'_, '_, V> {
             self.at = Some(m.to);
         }
         let on = m.deposits();
+        if on {
+            let from = self.last.map_or(m.to[2], |p| p[2]);
+            self.top = self.top.max(m.to[2]).max(from);
+        }
+        self.last = Some(m.to);
         if on != self.laser {
             self.laser = on;
             if on {
@@ -534,9 +549,48 @@ impl<V: Visit> Walker<'_, '_, V> {
             _ => Rotary::default(),
         };
         let f0 = first.focus();
+        let above = along(f0, self.up(first.normal), self.plan.clearance);
+        // With the nozzle vertical at both ends, the travel passes at least
+        // `clearance` above everything built so far: a straight line between
+        // the two clearance points could cut through a ridge of an earlier
+        // layer (a top that is higher in the middle than at the tracks' ends).
+        let vertical = |n: [f64; 3]| n[2] >= 1.0 - 1e-9;
+        let safe = self.top + self.plan.clearance;
+        let lift = match (self.last, self.cursor) {
+            (Some(from), Some(c))
+                if vertical(self.up(c.normal))
+                    && vertical(self.up(first.normal))
+                    && from[2].min(above[2]) < safe - 1e-6 =>
+            {
+                Some((from, c.normal))
+            }
+            _ => None,
+        };
+        if let Some((from, normal)) = lift {
+            if from[2] < safe {
+                self.send(Move {
+                    kind: MoveKind::Travel,
+                    to: [from[0], from[1], safe],
+                    normal,
+                    axes: prev,
+                    speed: Speed::Rapid,
+                    power: first.power,
+                    at: clearance,
+                });
+            }
+            self.send(Move {
+                kind: MoveKind::Travel,
+                to: [above[0], above[1], safe.max(above[2])],
+                normal: first.normal,
+                axes,
+                speed: Speed::Rapid,
+                power: first.power,
+                at: clearance,
+            });
+        }
         self.send(Move {
             kind: MoveKind::Travel,
-            to: along(f0, self.up(first.normal), self.plan.clearance),
+            to: above,
             normal: first.normal,
             axes,
             speed: Speed::Rapid,
