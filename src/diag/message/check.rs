@@ -171,5 +171,35 @@ pub fn stacking(
     )
     .label_opt(slicing, "the layers come from here")
     .label_opt(spine, "the part's shape")
-    .help("each layer must lie on the one below: check the twist, the bend and the section sizes for jumps between layers, or use more layers")
+    .help(if spine.is_some() {
+        // A loft: its shape moves the layers.
+        "each layer must lie on the one below: check the twist, the bend and the section sizes for jumps between layers, or use more layers"
+    } else {
+        // Flat or variable layers: the profile or the fill moves them.
+        "each layer must lie on the one below: check a profile that changes with `layer` for jumps, and spots the fill leaves unfilled (they move as the raster turns): more contour passes or a smaller offset close them"
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::Where;
+
+    #[test]
+    fn the_stacking_help_names_what_moves_the_layers() {
+        let w = Worst {
+            count: 1,
+            value: 3.0,
+            limit: 2.0,
+            at: Where::End,
+        };
+        let at = Some(Span::new(0, 1));
+        let help = |spine| stacking(&w, 5.0, 2.0, at, spine).help.unwrap();
+        // A loft: its twist, bend and sections.
+        assert!(help(at).contains("the twist, the bend"));
+        // Flat layers have none of those: their profile and fill.
+        let flat = help(None);
+        assert!(!flat.contains("twist"), "{flat}");
+        assert!(flat.contains("spots the fill leaves unfilled"), "{flat}");
+    }
 }
