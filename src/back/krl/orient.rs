@@ -10,8 +10,9 @@
 //! `A 0, B 0, C 180`.
 //!
 //! `A B C` are KUKA's ZYX Euler angles, R = Rz(A)·Ry(B)·Rx(C), the columns of R
-//! being the tool axes in base coordinates. At B = ±90° (gimbal lock) C is 0 and A
-//! carries the whole rotation about the beam.
+//! being the tool axes in base coordinates. At B = ±90° (gimbal lock) A and C
+//! turn about one axis and only their difference (or sum) matters; the split
+//! is nalgebra's (beam `x` pointing down: `A 0, B 90, C 90`).
 
 use crate::ir::ToolAxis;
 use nalgebra::{Matrix3, Rotation3, Vector3};
