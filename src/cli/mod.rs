@@ -226,6 +226,27 @@ pub fn run(cli: Cli) -> u8 {
     }
 }
 
+/// Compiles `source` (read from `file`) for `machine`, observed by `obs` and
+/// `progress`, and prints its diagnostics above the progress line: the checked program,
+/// or the exit code — usage for a machine the file does not declare, program
+/// errors otherwise. What `build` and `preview` share.
+fn compile_and_print(
+    source: &str,
+    file: &Path,
+    machine: Option<&str>,
+    obs: &mut dyn Observer,
+    progress: &mut Progress,
+    (color, format): (bool, MessageFormat),
+) -> Result<lmdc::check::Verified, u8> {
+    let compiled = pipeline::compile_for(source, machine, &mut progress::Both(obs, progress))
+        .map_err(|e| {
+            eprintln!("error: {e}");
+            EXIT_USAGE
+        })?;
+    progress.print(|| messages::print(&compiled.diagnostics, file, source, color, format));
+    compiled.program.ok_or(EXIT_PROGRAM)
+}
+
 /// What `lmdc build` was asked for.
 struct BuildArgs<'a> {
     file: &'a Path,
@@ -270,18 +291,11 @@ fn build(
         Some(t) => t,
         None => &mut (),
     };
-    let compiled =
-        match pipeline::compile_for(&source, machine, &mut progress::Both(obs, &mut progress)) {
-            Ok(c) => c,
-            Err(e) => {
-                eprintln!("error: {e}");
-                return EXIT_USAGE;
-            }
+    let program =
+        match compile_and_print(&source, file, machine, obs, &mut progress, (color, format)) {
+            Ok(p) => p,
+            Err(code) => return code,
         };
-    progress.print(|| messages::print(&compiled.diagnostics, file, &source, color, format));
-    let Some(program) = compiled.program else {
-        return EXIT_PROGRAM;
-    };
     let mut sink = match sink::AtomicDir::new(out) {
         Ok(s) => s,
         Err(e) => {

@@ -1,10 +1,9 @@
 //! `lmdc preview`: compiles like `check` and writes the plan preview of one
 //! machine as a single HTML file (docs/preview.md).
 
-use super::messages::{self, MessageFormat};
+use super::messages::MessageFormat;
 use super::progress::Progress;
 use super::{read_source, shown, EXIT_PROGRAM, EXIT_USAGE};
-use lmdc::pipeline;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -20,16 +19,17 @@ pub fn run(
     let Some(source) = read_source(file) else {
         return EXIT_USAGE;
     };
-    let compiled = match pipeline::compile_for(&source, machine, &mut progress) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_USAGE;
-        }
-    };
-    progress.print(|| messages::print(&compiled.diagnostics, file, &source, color, format));
-    let Some(program) = compiled.program else {
-        return EXIT_PROGRAM;
+    let mut quiet = ();
+    let program = match super::compile_and_print(
+        &source,
+        file,
+        machine,
+        &mut quiet,
+        &mut progress,
+        (color, format),
+    ) {
+        Ok(p) => p,
+        Err(code) => return code,
     };
     // The first machine checked: the one named, else the first declared.
     let Some(m) = program.machines().next() else {
