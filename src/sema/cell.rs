@@ -114,22 +114,33 @@ pub fn read<'a>(
         used.push((n, analog, what.to_string(), Some(at)));
         true
     };
+    // A block's output `key` (digital, or analog), read and claimed for
+    // `what`: the number and where it is written, and whether it is free.
+    let mut output = |b: &Fields<'_>,
+                      key: &str,
+                      analog: bool,
+                      example: Option<&str>,
+                      what: &str,
+                      diags: &mut Diagnostics| {
+        let (lo, hi) = if analog {
+            outputs.analog
+        } else {
+            outputs.digital
+        };
+        let out = b.count(key, lo, hi, example, diags);
+        let free = out.is_none_or(|(n, s)| claim(n, analog, what, s, diags));
+        (out, free)
+    };
 
     let gas = match f.nested("gas") {
         None => Some(None),
         Some((stmts, at)) => {
             let g = block(env, stmts, GAS_FIELDS, "gas", at, diags);
-            let out = g.count(
-                "output",
-                outputs.digital.0,
-                outputs.digital.1,
-                Some("2"),
-                diags,
-            );
+            let (out, claimed) = output(&g, "output", false, Some("2"), "the gas valve", diags);
+            ok &= claimed;
             let pre = time(&g, "pre_flow", diags);
             let post = time(&g, "post_flow", diags);
-            if let Some((n, s)) = out {
-                ok &= claim(n, false, "the gas valve", s, diags);
+            if let Some((_, s)) = out {
                 spans.push(("gas.output".into(), s));
             }
             if let Some(s) = g.span("pre_flow") {
@@ -146,16 +157,8 @@ pub fn read<'a>(
         None => Some(None),
         Some((stmts, at)) => {
             let p = block(env, stmts, POWDER_FIELDS, "powder", at, diags);
-            let out = p.count(
-                "output",
-                outputs.digital.0,
-                outputs.digital.1,
-                Some("3"),
-                diags,
-            );
-            if let Some((n, s)) = out {
-                ok &= claim(n, false, "the powder feeder", s, diags);
-            }
+            let (out, claimed) = output(&p, "output", false, Some("3"), "the powder feeder", diags);
+            ok &= claimed;
             let arrival = if p.has("arrival") {
                 time(&p, "arrival", diags)
             } else {
@@ -177,17 +180,10 @@ pub fn read<'a>(
                     None
                 }
                 (true, true) => {
-                    let n = p.count(
-                        "rate_output",
-                        outputs.analog.0,
-                        outputs.analog.1,
-                        None,
-                        diags,
-                    );
+                    let (n, claimed) =
+                        output(&p, "rate_output", true, None, "the powder feed rate", diags);
+                    ok &= claimed;
                     let full = p.positive("full_scale", Dim::MASS_FLOW, None, diags);
-                    if let Some((n, s)) = n {
-                        ok &= claim(n, true, "the powder feed rate", s, diags);
-                    }
                     if let Some((_, s)) = full {
                         spans.push(("powder.full_scale".into(), s));
                     }
