@@ -290,7 +290,6 @@ impl<'a> Plan<'a> {
             cursor: None,
             retracted: false,
             laser: false,
-            at: None,
             layer_time: 0.0,
             timed: !self.program.heat.is_none(),
             gas: false,
@@ -386,8 +385,6 @@ struct Walker<'p, 'a, V> {
     /// Whether the nozzle already backed off from the cursor's point.
     retracted: bool,
     laser: bool,
-    /// The last move's target.
-    at: Option<[f64; 3]>,
     /// Time of the current layer's feed moves, s.
     layer_time: f64,
     /// Whether layers are timed (only for cooling).
@@ -432,14 +429,13 @@ impl<V: Visit> Walker<'_, '_, V> {
     #[inline]
     fn send(&mut self, m: Move) {
         if self.timed {
-            if let (Speed::Feed(v), Some(from)) = (m.speed, self.at) {
+            if let (Speed::Feed(v), Some(from)) = (m.speed, self.last) {
                 let d = (0..3)
                     .map(|i| (m.to[i] - from[i]).powi(2))
                     .sum::<f64>()
                     .sqrt();
                 self.layer_time += d / v as f64;
             }
-            self.at = Some(m.to);
         }
         let on = m.deposits();
         if on {
