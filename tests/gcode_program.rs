@@ -386,7 +386,7 @@ fn m20_profile() {
     let speed = p.ir().layers[0].paths[0].points[0].speed;
     let want = format!(" F{}", {
         let mut b = Vec::new();
-        lmdc::back::fixed::push_trimmed(&mut b, speed as f64, 1);
+        lmdc::numbers::push_trimmed(&mut b, speed as f64, 1);
         String::from_utf8(b).unwrap()
     });
     assert!(text.contains(&want), "want {want} in\n{text}");

@@ -1,8 +1,9 @@
 //! Template variables shared by the back ends, so a layer's comment says the
 //! same thing in KRL and G-code.
 
-use super::fixed::fixed;
+use crate::check::Summary;
 use crate::ir::{Layer, Program};
+use crate::numbers::{duration, energy, fixed, length, mass};
 
 /// Longest name written into a comment: the comment lines of the built-in
 /// templates then stay far inside every control's line length (LinuxCNC: 255).
@@ -17,6 +18,24 @@ pub fn shown(name: &str) -> String {
     }
     let head: String = name.chars().take(MAX_SHOWN - 3).collect();
     format!("{head}...")
+}
+
+/// The one-line summary the programs' headers carry (template variable
+/// `summary`), from the verifier's summary of the plan, e.g. `plan: 36.76 m
+/// deposited, 4.06 m travel; 1 h 19 min, laser on 1 h 15 min, dwell 0.0 s;
+/// 9.90 MJ; powder 3.454 kg`. No brackets: G-code comments are in brackets.
+pub fn summary(s: &Summary) -> String {
+    let t = &s.total;
+    format!(
+        "plan: {} deposited, {} travel; {}, laser on {}, dwell {}; {}; powder {}",
+        length(t.deposit_mm),
+        length(t.travel_mm),
+        duration(t.time_s()),
+        duration(t.laser_on_s),
+        duration(t.dwell_s),
+        energy(t.energy_j),
+        mass(t.powder_g),
+    )
 }
 
 /// `layers`, `paths`, `points`: the program's totals.
@@ -68,7 +87,7 @@ pub fn layer_context(ctx: &mut tera::Context, li: usize, n_layers: usize, layer:
 /// the IR may come from elsewhere).
 pub fn styles(ctx: &mut tera::Context, p: &Program, safe: &dyn Fn(&str) -> String) {
     let value = |v: Option<f64>, unit: &str| match v {
-        Some(v) => format!("{} {unit}", super::fixed::trimmed(v, 3)),
+        Some(v) => format!("{} {unit}", crate::numbers::trimmed(v, 3)),
         None => "process".to_string(),
     };
     let lines: Vec<String> = p

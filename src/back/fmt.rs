@@ -1,23 +1,12 @@
 //! The motion writer's number formatting: the same text as
-//! [`push_fixed`](crate::back::fixed::push_fixed) and
-//! [`push_trimmed`](crate::back::fixed::push_trimmed) (tests hold them equal), but
+//! [`push_fixed`](crate::numbers::push_fixed) and
+//! [`push_trimmed`](crate::numbers::push_trimmed) (tests hold them equal), but
 //! written in place into a preallocated slice. Over millions of lines the `Vec`
 //! appends of the general versions cost more than the digits: every
 //! `extend_from_slice` of a runtime length is a `memcpy` call, and `f64::round` is a
 //! libm call on baseline x86-64.
 
-pub(crate) const POW10: [u64; 10] = [
-    1,
-    10,
-    100,
-    1_000,
-    10_000,
-    100_000,
-    1_000_000,
-    10_000_000,
-    100_000_000,
-    1_000_000_000,
-];
+pub(crate) use crate::numbers::POW10;
 
 /// "00" "01" … "99".
 const PAIRS: &[u8; 200] = b"0001020304050607080910111213141516171819\
@@ -150,7 +139,7 @@ pub(crate) fn key(v: f64, decimals: usize) -> i64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::back::fixed::{push_fixed, push_trimmed};
+    use crate::numbers::{push_fixed, push_trimmed};
     use proptest::prelude::*;
 
     fn ours(v: f64, d: usize, trim: bool) -> String {

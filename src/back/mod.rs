@@ -7,7 +7,6 @@
 //! them, and cannot fail on a limit.
 
 pub mod context;
-pub mod fixed;
 pub(crate) mod fmt;
 pub mod gcode;
 pub mod krl;

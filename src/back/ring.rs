@@ -12,10 +12,10 @@
 //! ends a segment ([`Visit::segment_end`]), and the moves after the last
 //! deposit. Each back end renders that in its own language.
 
-use super::fixed::trimmed;
 use super::EmitError;
 use crate::check::VerifiedMachine;
 use crate::ir::{HeightLoop, HeightSensor, Layer, Program, Ring};
+use crate::numbers::trimmed;
 use crate::plan::{Io, Move, Plan, SegmentEnd, Visit, Where};
 
 /// What a looping writer starts from: the ring, its law, the sensor the

@@ -8,16 +8,18 @@
 //! rapid moves count as instant, so the real time is never shorter than the
 //! one checked.
 
+use super::rule::{MachineCx, PlanRule};
 use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, MachineOrigin, Program};
-use crate::plan::{Io, Move, Speed, Visit, Where};
+use crate::plan::{Io, Move, Speed, Visit};
 
 /// Slack on times, s: the plan waits exactly the declared times, which sums
 /// of move times may miss by rounding.
 const TIME_SLACK_S: f64 = 1e-6;
 
-/// The rule's state along one plan.
+/// `lmd::powder-arrival` and `lmd::powder-rate`: the gas and powder timing
+/// and the feed-rate output along one plan, on machines that switch them.
 pub(super) struct CellRule<'p> {
     program: &'p Program,
     cell: Cell,
@@ -39,7 +41,7 @@ pub(super) struct CellRule<'p> {
 
 impl<'p> CellRule<'p> {
     /// The rule for a machine with `cell`, or `None` when it switches nothing.
-    pub fn new(program: &'p Program, cell: &Cell) -> Option<Self> {
+    fn with(program: &'p Program, cell: &Cell) -> Option<Self> {
         (!cell.is_none()).then(|| CellRule {
             program,
             cell: cell.clone(),
@@ -55,24 +57,8 @@ impl<'p> CellRule<'p> {
         })
     }
 
-    fn powder_at(&self, at: Where) -> Option<f32> {
-        match at {
-            Where::Point { layer, path, point } => Some(
-                self.program
-                    .layers
-                    .get(layer)?
-                    .paths
-                    .get(path)?
-                    .points
-                    .get(point)?
-                    .powder,
-            ),
-            _ => None,
-        }
-    }
-
     /// Reports what was found, at the fields that declare the times.
-    pub fn report(self, name: &str, o: &MachineOrigin, out: &mut Diagnostics) {
+    fn report_at(self, name: &str, o: &MachineOrigin, out: &mut Diagnostics) {
         use message::check::cell;
         if let (Some(w), Some(g)) = (self.gas_short, self.cell.gas) {
             out.push(cell::gas_too_short(
@@ -109,6 +95,16 @@ impl<'p> CellRule<'p> {
     }
 }
 
+impl<'p> PlanRule<'p> for CellRule<'p> {
+    fn new(cx: &MachineCx<'p>) -> Option<Self> {
+        Self::with(cx.program, cx.machine.cell())
+    }
+
+    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+        self.report_at(cx.machine.name(), cx.origin, out);
+    }
+}
+
 impl Visit for CellRule<'_> {
     fn laser_on(&mut self, next: &Move) {
         let at = next.source();
@@ -141,7 +137,7 @@ impl Visit for CellRule<'_> {
         let Some(full) = self.cell.powder.and_then(|p| p.rate) else {
             return;
         };
-        let Some(feed) = self.powder_at(m.source()) else {
+        let Some(feed) = m.source().point(self.program).map(|p| p.powder) else {
             return;
         };
         if let Some(r) = self.rate {
@@ -184,7 +180,7 @@ mod tests {
     use super::*;
     use crate::diag::Code;
     use crate::ir::{Feeder, Gas};
-    use crate::plan::MoveKind;
+    use crate::plan::{MoveKind, Where};
 
     fn program() -> Program {
         serde_json::from_str(
@@ -230,7 +226,7 @@ mod tests {
     #[test]
     fn a_start_before_the_powder_arrives_is_found_with_the_time_waited() {
         let p = program();
-        let mut r = CellRule::new(&p, &cell()).unwrap();
+        let mut r = CellRule::with(&p, &cell()).unwrap();
         r.io(Io::GasOn);
         r.io(Io::PowderOn(10.0));
         r.dwell(2.5);
@@ -239,7 +235,7 @@ mod tests {
         let w = r.powder_short.unwrap();
         assert_eq!((w.count, w.value, w.limit), (1, 2.5, 3.0));
         let mut d = Diagnostics::new();
-        r.report("m", &MachineOrigin::default(), &mut d);
+        r.report_at("m", &MachineOrigin::default(), &mut d);
         let codes: Vec<Code> = d.iter().map(|d| d.code).collect();
         assert_eq!(codes, [Code::PowderArrival]);
     }
@@ -247,7 +243,7 @@ mod tests {
     #[test]
     fn feed_moves_count_toward_the_wait_and_a_stop_restarts_it() {
         let p = program();
-        let mut r = CellRule::new(&p, &cell()).unwrap();
+        let mut r = CellRule::with(&p, &cell()).unwrap();
         r.io(Io::GasOn);
         r.io(Io::PowderOn(10.0));
         let mut m = deposit();

@@ -6,57 +6,65 @@
 //! Limits are compared with the value as the program writes it, exactly (no
 //! slack): what the control reads must lie within what was declared.
 
-use super::cell::CellRule;
-use super::resolution::Resolution;
+use super::rule::{MachineCx, PlanRule};
 use crate::diag::message::{self, check::machine::AnalogOverrun, check::machine::AxisOverrun};
 use crate::diag::Diagnostics;
 use crate::diag::Worst;
-use crate::ir::{AxisLimits, Cnc, Kinematics, Layer, Machine, MachineOrigin, Program, Robot};
+use crate::ir::{AxisLimits, Kinematics, Machine};
 use crate::plan::kinematics::tilt_of;
-use crate::plan::{effective_kinematics, Io, Move, Plan, Speed, Visit, Where};
-use crate::span::Span;
+use crate::plan::{effective_kinematics, Move, Speed, Visit, Where};
 use crate::target::{gcode, kuka, written as rounded};
 
 /// A normal tilted more than this (deg) cannot be followed by a vertical nozzle.
 pub const NEEDS_TILT_DEG: f64 = 0.01;
 
-/// Feed moves faster than the machine's `max_speed`.
-struct SpeedLimit {
+/// `lmd::machine-speed`: feed moves faster than the machine's `max_speed`.
+pub(super) struct SpeedLimit<'p> {
+    machine: &'p Machine,
     max: f64,
     /// The speed as written, mm/s, from the planned one.
     written: fn(f64, &Machine) -> f64,
     found: Option<Worst>,
 }
 
-impl SpeedLimit {
+impl<'p> PlanRule<'p> for SpeedLimit<'p> {
+    fn new(cx: &MachineCx<'p>) -> Option<Self> {
+        let (max, written): (f64, fn(f64, &Machine) -> f64) = match cx.machine {
+            Machine::Robot(r) => (r.max_speed, robot_speed),
+            Machine::Cnc(c) => (c.max_speed, cnc_speed),
+        };
+        Some(SpeedLimit {
+            machine: cx.machine,
+            max,
+            written,
+            found: None,
+        })
+    }
+
+    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+        let Some(w) = self.found else { return };
+        out.push(message::check::machine::machine_speed(
+            cx.machine.name(),
+            &w,
+            cx.origin.at("max_speed"),
+            cx.program.origins.bead_speed,
+        ));
+    }
+}
+
+impl Visit for SpeedLimit<'_> {
     #[inline]
-    fn motion(&mut self, m: &Move, machine: &Machine) {
+    fn motion(&mut self, m: &Move) {
         if let Speed::Feed(v) = m.speed {
             // Well below the limit no rounding can reach it: skip the rounding.
             if (v as f64) < self.max * (1.0 - 1e-6) {
                 return;
             }
-            let w = (self.written)(v as f64, machine);
+            let w = (self.written)(v as f64, self.machine);
             if w > self.max {
                 Worst::hit(&mut self.found, w, self.max, m.source());
             }
         }
-    }
-
-    fn report(
-        self,
-        name: &str,
-        o: &MachineOrigin,
-        bead_speed: Option<Span>,
-        out: &mut Diagnostics,
-    ) {
-        let Some(w) = self.found else { return };
-        out.push(message::check::machine::machine_speed(
-            name,
-            &w,
-            o.at("max_speed"),
-            bead_speed,
-        ));
     }
 }
 
@@ -74,9 +82,10 @@ fn robot_speed(v: f64, _: &Machine) -> f64 {
     rounded(v / 1000.0, kuka::VEL_DECIMALS) * 1000.0
 }
 
-/// Positions and rotary angles beyond a CNC's travel. Positions are the
-/// program's plus the placement's origin: what the machine's axes reach.
-struct Travel {
+/// `lmd::axis-limit`: positions and rotary angles beyond a CNC's travel.
+/// Positions are the program's plus the placement's origin: what the
+/// machine's axes reach.
+pub(super) struct Travel {
     lim: AxisLimits,
     origin: [f64; 3],
     /// Whether the rotary axes exist (and are checked).
@@ -88,7 +97,7 @@ struct Travel {
     hi: [f64; 3],
 }
 
-impl Travel {
+impl Visit for Travel {
     #[inline]
     fn motion(&mut self, m: &Move) {
         let l = &self.lim;
@@ -109,7 +118,9 @@ impl Travel {
             self.miss(m);
         }
     }
+}
 
+impl Travel {
     #[cold]
     fn miss(&mut self, m: &Move) {
         let l = self.lim;
@@ -137,8 +148,27 @@ impl Travel {
             }
         }
     }
+}
 
-    fn report(self, cnc: &Cnc, o: &MachineOrigin, out: &mut Diagnostics) {
+impl<'p> PlanRule<'p> for Travel {
+    fn new(cx: &MachineCx<'p>) -> Option<Self> {
+        let Machine::Cnc(c) = cx.machine else {
+            return None;
+        };
+        Some(Travel {
+            lim: c.limits,
+            origin: c.placement.origin,
+            five: effective_kinematics(c) != Kinematics::Xyz,
+            axes: [None; 5],
+            lo: [f64::INFINITY; 3],
+            hi: [f64::NEG_INFINITY; 3],
+        })
+    }
+
+    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+        let Machine::Cnc(cnc) = cx.machine else {
+            return;
+        };
         let tilt_name = if effective_kinematics(cnc) == Kinematics::HeadBc {
             "B"
         } else {
@@ -169,19 +199,19 @@ impl Travel {
                 },
                 origin: if linear { cnc.placement.origin[i] } else { 0.0 },
                 clearance: (!matches!(w.at, Where::Point { .. })).then_some(cnc.clearance),
-                declared: o.at(fields[i]),
+                declared: cx.origin.at(fields[i]),
             }));
         }
     }
 }
 
-/// Normals a vertical nozzle cannot follow (3-axis CNCs).
-struct Tilt {
+/// `lmd::needs-tilt`: normals a vertical nozzle cannot follow (3-axis CNCs).
+pub(super) struct Tilt {
     tan2: f64,
     found: Option<Worst>,
 }
 
-impl Tilt {
+impl Visit for Tilt {
     #[inline]
     fn motion(&mut self, m: &Move) {
         // Only the IR's points: the clearance moves repeat their normals.
@@ -194,20 +224,37 @@ impl Tilt {
             Worst::hit(&mut self.found, tilt_of([x, y, z]), NEEDS_TILT_DEG, m.at);
         }
     }
+}
 
-    fn report(self, name: &str, o: &MachineOrigin, out: &mut Diagnostics) {
+impl<'p> PlanRule<'p> for Tilt {
+    fn new(cx: &MachineCx<'p>) -> Option<Self> {
+        let Machine::Cnc(c) = cx.machine else {
+            return None;
+        };
+        (effective_kinematics(c) == Kinematics::Xyz).then(|| Tilt {
+            tan2: NEEDS_TILT_DEG.to_radians().tan().powi(2),
+            found: None,
+        })
+    }
+
+    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(message::check::machine::needs_tilt(name, &w, o.at("axes")));
+        out.push(message::check::machine::needs_tilt(
+            cx.machine.name(),
+            &w,
+            cx.origin.at("axes"),
+        ));
     }
 }
 
-/// Laser powers beyond the robot's analog output (`$ANOUT` above 1.0).
-struct Analog {
+/// `lmd::analog-range`: laser powers beyond the robot's analog output
+/// (`$ANOUT` above 1.0).
+pub(super) struct Analog {
     full_scale: f64,
     found: Option<Worst>,
 }
 
-impl Analog {
+impl Visit for Analog {
     #[inline]
     fn motion(&mut self, m: &Move) {
         // Below full scale no rounding reaches 1.0: round only near it.
@@ -218,149 +265,31 @@ impl Analog {
             }
         }
     }
+}
 
-    fn report(self, r: &Robot, o: &MachineOrigin, power: Option<Span>, out: &mut Diagnostics) {
-        let Some(w) = self.found else { return };
+impl<'p> PlanRule<'p> for Analog {
+    fn new(cx: &MachineCx<'p>) -> Option<Self> {
+        let Machine::Robot(r) = cx.machine else {
+            return None;
+        };
+        Some(Analog {
+            full_scale: r.full_scale_power,
+            found: None,
+        })
+    }
+
+    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+        let (Some(w), Machine::Robot(r)) = (self.found, cx.machine) else {
+            return;
+        };
         out.push(message::check::machine::analog_range(&AnalogOverrun {
             robot: &r.name,
             output: r.power_out,
             full_scale: r.full_scale_power,
             needed: rounded(w.value / r.full_scale_power, kuka::ANOUT_DECIMALS),
             worst: w,
-            declared: o.at("full_scale"),
-            power,
+            declared: cx.origin.at("full_scale"),
+            power: cx.program.origins.power,
         }));
-    }
-}
-
-/// Every rule that applies to one machine, following its plan in one pass.
-pub(super) struct MachineRules<'m> {
-    machine: &'m Machine,
-    speed: SpeedLimit,
-    travel: Option<Travel>,
-    tilt: Option<Tilt>,
-    analog: Option<Analog>,
-    resolution: Resolution,
-    /// Gas and powder timing, when the machine switches them.
-    cell: Option<CellRule<'m>>,
-    /// Moves in the plan (a KRL program has one LIN per move).
-    pub moves: u64,
-}
-
-impl<'m> MachineRules<'m> {
-    pub fn new(program: &'m Program, machine: &'m Machine) -> Self {
-        let cell = CellRule::new(program, machine.cell());
-        match machine {
-            Machine::Robot(r) => MachineRules {
-                machine,
-                speed: SpeedLimit {
-                    max: r.max_speed,
-                    written: robot_speed,
-                    found: None,
-                },
-                travel: None,
-                tilt: None,
-                analog: Some(Analog {
-                    full_scale: r.full_scale_power,
-                    found: None,
-                }),
-                resolution: Resolution::new(),
-                cell,
-                moves: 0,
-            },
-            Machine::Cnc(c) => {
-                let kin = effective_kinematics(c);
-                MachineRules {
-                    machine,
-                    speed: SpeedLimit {
-                        max: c.max_speed,
-                        written: cnc_speed,
-                        found: None,
-                    },
-                    travel: Some(Travel {
-                        lim: c.limits,
-                        origin: c.placement.origin,
-                        five: kin != Kinematics::Xyz,
-                        axes: [None; 5],
-                        lo: [f64::INFINITY; 3],
-                        hi: [f64::NEG_INFINITY; 3],
-                    }),
-                    tilt: (kin == Kinematics::Xyz).then(|| Tilt {
-                        tan2: NEEDS_TILT_DEG.to_radians().tan().powi(2),
-                        found: None,
-                    }),
-                    analog: None,
-                    resolution: Resolution::new(),
-                    cell,
-                    moves: 0,
-                }
-            }
-        }
-    }
-
-    /// Follows the whole plan.
-    pub fn run(&mut self, program: &Program) {
-        Plan::new(program, self.machine).walk(self);
-    }
-
-    pub fn report(self, program: &Program, origin: &MachineOrigin, out: &mut Diagnostics) {
-        let o = &program.origins;
-        let name = self.machine.name();
-        if let (Some(t), Machine::Cnc(_)) = (self.tilt, self.machine) {
-            t.report(name, origin, out);
-        }
-        if let (Some(t), Machine::Cnc(c)) = (self.travel, self.machine) {
-            t.report(c, origin, out);
-        }
-        self.speed.report(name, origin, o.bead_speed, out);
-        if let (Some(a), Machine::Robot(r)) = (self.analog, self.machine) {
-            a.report(r, origin, o.power, out);
-        }
-        self.resolution
-            .report(self.machine, origin, o.bead_speed, out);
-        if let Some(c) = self.cell {
-            c.report(name, origin, out);
-        }
-    }
-}
-
-impl Visit for MachineRules<'_> {
-    fn layer(&mut self, _: usize, _: &Layer) {}
-
-    fn laser_on(&mut self, next: &Move) {
-        if let Some(c) = &mut self.cell {
-            c.laser_on(next);
-        }
-    }
-
-    fn dwell(&mut self, seconds: f64) {
-        if let Some(c) = &mut self.cell {
-            c.dwell(seconds);
-        }
-    }
-
-    fn io(&mut self, event: Io) {
-        if let Some(c) = &mut self.cell {
-            c.io(event);
-        }
-    }
-
-    #[inline]
-    fn motion(&mut self, m: &Move) {
-        self.moves += 1;
-        self.speed.motion(m, self.machine);
-        if let Some(t) = &mut self.travel {
-            t.motion(m);
-        }
-        if let Some(t) = &mut self.tilt {
-            t.motion(m);
-        }
-        if let Some(a) = &mut self.analog {
-            a.motion(m);
-        }
-        self.resolution.motion(m, self.machine);
-        if let Some(c) = &mut self.cell {
-            c.motion(m);
-        }
     }
 }

@@ -3,13 +3,20 @@
 //! unchecked IR cannot reach them (the idea of naga's validator); a back end
 //! takes a [`VerifiedMachine`] and cannot fail on a limit.
 //!
-//! One small type per rule, each reporting every violation once (how many, and
-//! the worst): the process rules over the IR's points (`process`: layer
-//! height, bead speed, laser power, finite values), the machine rules over each
-//! selected machine's motion plan (`machine`: speed, axis travel, tilt, analog
-//! output) and the file names the machines would write (`names`); a ring's
-//! height loop and what each machine needs to run it (`ring`). The machine
-//! rules run whatever the process rules found, so one run reports everything.
+//! Every rule has one of two shapes (`rule`): a rule over one machine's motion
+//! plan follows it as a visitor, a rule over the whole program looks at the IR
+//! (and, after the plans, at what they would write). All are listed in one
+//! place, `rules`, and each reports every kind of violation once (how many,
+//! and the worst): the process rules over the IR's points (`process`), a
+//! ring's loop and what a machine needs to run it (`ring`), the layers on each
+//! other (`stacking`), each machine's limits (`machine`, `resolution`, `cell`)
+//! and the files the machines would write (`names`). The machine rules run
+//! whatever the process rules found, so one run reports everything.
+//!
+//! The proof remembers (naga's `ModuleInfo`): the one pass over each plan also
+//! sums it up ([`Summary`]: moves, each layer's lengths and times, the files),
+//! which the writers' headers and the report read instead of walking the plan
+//! again.
 
 mod cell;
 mod machine;
@@ -17,20 +24,27 @@ mod names;
 mod process;
 mod resolution;
 pub mod ring;
+mod rule;
+mod rules;
 mod stacking;
+pub mod summary;
 
 pub use machine::NEEDS_TILT_DEG;
+pub use summary::{Costs, Summary};
 
-use crate::diag::Diagnostics;
-use crate::ir::{Machine, Program};
+use crate::diag::{Code, Diagnostics};
+use crate::ir::{Machine, MachineOrigin, Program};
 use crate::plan::Plan;
+use rule::{MachineCx, ProgramCx};
 
 /// IR that passed every check, for the machines it was checked for, with the
-/// warnings found on the way.
+/// warnings found on the way and what the pass over each plan summed up.
 #[derive(Debug)]
 pub struct Verified {
     program: Program,
-    machines: Vec<usize>,
+    /// The machines checked, by index, in declaration order, with their
+    /// plans' summaries.
+    machines: Vec<(usize, Summary)>,
     warnings: Diagnostics,
 }
 
@@ -47,10 +61,13 @@ impl Verified {
 
     /// The machines whose plans were checked, in declaration order.
     pub fn machines(&self) -> impl Iterator<Item = VerifiedMachine<'_>> {
-        self.machines.iter().map(move |&index| VerifiedMachine {
-            program: &self.program,
-            index,
-        })
+        self.machines
+            .iter()
+            .map(move |(index, summary)| VerifiedMachine {
+                program: &self.program,
+                index: *index,
+                summary,
+            })
     }
 
     /// Machine number `index` of the IR, if its plan was checked.
@@ -64,11 +81,13 @@ impl Verified {
     }
 }
 
-/// A machine whose motion plan passed every check: what a back end writes.
+/// A machine whose motion plan passed every check: what a back end writes,
+/// with what the check's pass over the plan summed up.
 #[derive(Clone, Copy, Debug)]
 pub struct VerifiedMachine<'a> {
     program: &'a Program,
     index: usize,
+    summary: &'a Summary,
 }
 
 impl<'a> VerifiedMachine<'a> {
@@ -92,37 +111,37 @@ impl<'a> VerifiedMachine<'a> {
         Plan::new(self.program, self.machine())
     }
 
-    /// The files its program is written to.
-    pub fn files(&self) -> Vec<String> {
-        let mut count = Count(0);
-        self.plan().walk(&mut count);
-        names::files(self.program, self.machine(), count.0)
+    /// What the verifier's pass over the plan summed up: moves, each layer's
+    /// lengths and times, the files.
+    pub fn summary(&self) -> &'a Summary {
+        self.summary
     }
 }
 
-/// Counts moves.
-struct Count(u64);
-
-impl crate::plan::Visit for Count {
-    fn motion(&mut self, _: &crate::plan::Move) {
-        self.0 += 1;
-    }
-}
-
-/// Machine `i`'s rules over its plan: their diagnostics, and the files it
-/// would write.
-fn machine_rules(p: &Program, i: usize) -> (Diagnostics, Option<(usize, Vec<String>)>) {
+/// Machine `i`'s plan, followed once by every rule over it and the summary:
+/// the rules' diagnostics, and the summary.
+fn machine_rules(p: &Program, i: usize) -> (Diagnostics, Option<(usize, Summary)>) {
     let mut d = Diagnostics::new();
     let Some(m) = p.machines.get(i) else {
         return (d, None);
     };
-    let mut rules = machine::MachineRules::new(p, m);
-    rules.run(p);
-    let moves = rules.moves;
-    let origin = p.origins.machines.get(i).cloned().unwrap_or_default();
-    rules.report(p, &origin, &mut d);
-    ring::check_machine(p, m, &origin, &mut d);
-    (d, Some((i, names::files(p, m, moves))))
+    let origin = p
+        .origins
+        .machines
+        .get(i)
+        .cloned()
+        .unwrap_or_else(|| MachineOrigin::new(Default::default()));
+    let cx = MachineCx {
+        program: p,
+        machine: m,
+        origin: &origin,
+    };
+    let mut walk = (rules::PlanRules::new(&cx), summary::Summarize::new(p, m));
+    Plan::new(p, m).walk(&mut walk);
+    let (rules, summary) = walk;
+    rules.report(&cx, &mut d);
+    let summary = summary.finish(|moves| names::files(p, m, moves));
+    (d, Some((i, summary)))
 }
 
 /// Which machines to check and build.
@@ -134,16 +153,24 @@ pub enum Select {
     One(usize),
 }
 
+/// Runs the program rules of `list` over `cx`.
+fn run(list: &[rules::Check], cx: &ProgramCx<'_>) -> Diagnostics {
+    let mut d = Diagnostics::new();
+    for check in list {
+        check(cx, &mut d);
+    }
+    d
+}
+
 /// Checks `program` and the plans of the `select`ed machines; returns the proof,
 /// or every error and warning found.
 pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics> {
-    let mut diags = Diagnostics::new();
-    let mut points = process::ProcessRules::new(&program);
-    points.run(&program);
-    let broken = points.finite.failed();
-    points.report(&program, &mut diags);
-    ring::check_loop(&program, &mut diags);
-
+    let p = &program;
+    let alone = ProgramCx {
+        program: p,
+        plans: &[],
+    };
+    let mut diags = run(rules::BEFORE_PLANS, &alone);
     let machines: Vec<usize> = match select {
         Select::All => (0..program.machines.len()).collect(),
         Select::One(i) => (i < program.machines.len())
@@ -151,34 +178,33 @@ pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics>
             .into_iter()
             .collect(),
     };
+    let mut plans = Vec::new();
     // A plan through non-finite points would only repeat that error.
-    if !broken {
-        // The layer-on-layer rule and each machine's plan read the IR only:
-        // they run side by side, and report in this fixed order.
-        let p = &program;
-        let (stack, plans) = std::thread::scope(|s| {
-            let stack = s.spawn(move || {
-                let mut d = Diagnostics::new();
-                stacking::check(p, &mut d);
-                d
-            });
-            let plans: Vec<_> = machines
+    if !diags.iter().any(|d| d.code == Code::NonFinite) {
+        // The rules beside the plans and each machine's plan read the IR
+        // only: they run side by side, and report in this fixed order.
+        let (beside, walked) = std::thread::scope(|s| {
+            let beside = s.spawn(move || run(rules::BESIDE_PLANS, &alone));
+            let walked: Vec<_> = machines
                 .iter()
                 .map(|&i| s.spawn(move || machine_rules(p, i)))
                 .collect();
             (
-                stack.join(),
-                plans.into_iter().map(|h| h.join()).collect::<Vec<_>>(),
+                beside.join(),
+                walked.into_iter().map(|h| h.join()).collect::<Vec<_>>(),
             )
         });
-        diags.extend(stack.unwrap_or_else(|e| std::panic::resume_unwind(e)));
-        let mut files = Vec::new();
-        for r in plans {
-            let (d, f) = r.unwrap_or_else(|e| std::panic::resume_unwind(e));
+        diags.extend(beside.unwrap_or_else(|e| std::panic::resume_unwind(e)));
+        for r in walked {
+            let (d, summary) = r.unwrap_or_else(|e| std::panic::resume_unwind(e));
             diags.extend(d);
-            files.extend(f);
+            plans.extend(summary);
         }
-        names::clashes(&program, &files, &mut diags);
+        let after = ProgramCx {
+            program: p,
+            plans: &plans,
+        };
+        diags.extend(run(rules::AFTER_PLANS, &after));
     }
 
     if diags.has_errors() {
@@ -186,7 +212,7 @@ pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics>
     } else {
         Ok(Verified {
             program,
-            machines,
+            machines: plans,
             warnings: diags,
         })
     }

@@ -1,13 +1,14 @@
 //! File names: no two machines may write the same file (the names keep only the
 //! letters, digits and `_` of the part's and machine's names, in lower case).
 
+use super::rule::{ProgramCx, ProgramRule};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Machine, Program};
 use crate::target::names::{gcode_file, KrlNames};
 use std::collections::BTreeMap;
 
 /// The files machine `m` writes, given how many moves its plan has.
-pub(crate) fn files(p: &Program, m: &Machine, moves: u64) -> Vec<String> {
+pub(super) fn files(p: &Program, m: &Machine, moves: u64) -> Vec<String> {
     match m {
         Machine::Robot(r) => {
             let paths = p.layers.iter().map(|l| l.paths.len()).sum();
@@ -24,12 +25,22 @@ pub(crate) fn files(p: &Program, m: &Machine, moves: u64) -> Vec<String> {
     }
 }
 
-/// Reports every file two machines would both write, once per pair of machines.
-pub(super) fn clashes(p: &Program, written: &[(usize, Vec<String>)], out: &mut Diagnostics) {
+/// `lmd::name-clash`: every file two machines would both write, once per
+/// pair of machines. It runs after the plans, whose summaries list the files.
+pub(super) struct FileNames;
+
+impl ProgramRule for FileNames {
+    fn check(cx: &ProgramCx<'_>, out: &mut Diagnostics) {
+        clashes(cx, out);
+    }
+}
+
+fn clashes(cx: &ProgramCx<'_>, out: &mut Diagnostics) {
+    let p = cx.program;
     let mut owner: BTreeMap<String, usize> = BTreeMap::new();
     let mut pairs: BTreeMap<(usize, usize), String> = BTreeMap::new();
-    for (m, files) in written {
-        for f in files {
+    for (m, summary) in cx.plans {
+        for f in &summary.files {
             // Case-insensitive file systems (Windows, macOS) see one file.
             match owner.get(&f.to_ascii_lowercase()) {
                 Some(&first) if first != *m => {

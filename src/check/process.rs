@@ -2,6 +2,7 @@
 //! numbers, unit directions, and — where the laser is on — the bead model's
 //! layer heights and speeds and the laser's power range.
 
+use super::rule::{ProgramCx, ProgramRule};
 use crate::diag::message::{self, check::Layering, check::PointQuantity, check::Side};
 use crate::diag::Diagnostics;
 use crate::diag::Worst;
@@ -36,11 +37,6 @@ impl Finite {
             Worst::hit(&mut self.found, 0.0, 0.0, at);
         }
         ok
-    }
-
-    /// Whether any point failed.
-    pub fn failed(&self) -> bool {
-        self.found.is_some()
     }
 
     pub fn report(self, out: &mut Diagnostics) {
@@ -164,17 +160,27 @@ fn layering(p: &Program) -> Layering {
     }
 }
 
-/// Every process rule, run over the IR's points in one pass.
+/// `lmd::non-finite`, `lmd::bad-direction`, `lmd::point-height`,
+/// `lmd::point-speed`, `lmd::point-power`: every rule over the IR's points,
+/// run in one pass.
 pub(super) struct ProcessRules {
-    pub finite: Finite,
+    finite: Finite,
     units: UnitDirections,
     height: Range,
     speed: Range,
     power: Range,
 }
 
+impl ProgramRule for ProcessRules {
+    fn check(cx: &ProgramCx<'_>, out: &mut Diagnostics) {
+        let mut rules = ProcessRules::new(cx.program);
+        rules.run(cx.program);
+        rules.report(cx.program, out);
+    }
+}
+
 impl ProcessRules {
-    pub fn new(p: &Program) -> Self {
+    fn new(p: &Program) -> Self {
         let l = &p.limits;
         ProcessRules {
             finite: Finite::default(),
@@ -187,7 +193,7 @@ impl ProcessRules {
     }
 
     /// Checks every point of `p`.
-    pub fn run(&mut self, p: &Program) {
+    fn run(&mut self, p: &Program) {
         for (li, layer) in p.layers.iter().enumerate() {
             for (pi, path) in layer.paths.iter().enumerate() {
                 let next = path.points.iter().skip(1).map(Some).chain([None]);
@@ -212,7 +218,7 @@ impl ProcessRules {
         }
     }
 
-    pub fn report(self, p: &Program, out: &mut Diagnostics) {
+    fn report(self, p: &Program, out: &mut Diagnostics) {
         let o = &p.origins;
         self.finite.report(out);
         self.units.report(out);

@@ -4,14 +4,17 @@
 //! (the formatters would otherwise have to write *something*). Each rule names
 //! the setting that would fix it.
 
+use super::rule::{MachineCx, PlanRule};
 use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Machine, MachineOrigin};
-use crate::plan::{Move, Speed};
+use crate::ir::Machine;
+use crate::plan::{Move, Speed, Visit};
 use crate::target::{gcode, kuka, quantised, written, MAX_WRITTEN};
 
-/// Powers and speeds one machine cannot write, and positions too large to.
-pub(super) struct Resolution {
+/// `lmd::resolution`: powers and speeds one machine cannot write, and
+/// positions too large to.
+pub(super) struct Resolution<'p> {
+    machine: &'p Machine,
     /// Planned value and how it would be written (0 if it could not be).
     speed: Option<Worst>,
     power: Option<Worst>,
@@ -25,9 +28,10 @@ pub(super) struct Resolution {
     power_ok: u32,
 }
 
-impl Resolution {
-    pub fn new() -> Self {
-        Resolution {
+impl<'p> PlanRule<'p> for Resolution<'p> {
+    fn new(cx: &MachineCx<'p>) -> Option<Self> {
+        Some(Resolution {
+            machine: cx.machine,
             speed: None,
             power: None,
             least_power: f64::INFINITY,
@@ -36,54 +40,12 @@ impl Resolution {
             // NaN bits: no planned value (all finite) matches them.
             speed_ok: u32::MAX,
             power_ok: u32::MAX,
-        }
+        })
     }
 
-    #[inline]
-    pub fn motion(&mut self, m: &Move, machine: &Machine) {
-        if !m.to.iter().all(|v| v.abs() < MAX_WRITTEN)
-            || m.axes.tilt.abs() >= MAX_WRITTEN
-            || m.axes.c.abs() >= MAX_WRITTEN
-        {
-            let worst = m.to.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-            Worst::hit(&mut self.position, worst, MAX_WRITTEN, m.at);
-        }
-        let v = match (m.speed, machine) {
-            (Speed::Feed(v), _) if v.to_bits() == self.speed_ok => None,
-            (Speed::Feed(v), _) => Some((v as f64, v.to_bits())),
-            (Speed::Rapid, Machine::Robot(r)) => Some((r.max_speed, u32::MAX)),
-            (Speed::Rapid, Machine::Cnc(_)) => None, // G0 has no F
-        };
-        if let Some((v, bits)) = v {
-            let (scale, decimals) = speed_word(machine);
-            if quantised(v * scale, decimals).is_some() {
-                self.speed_ok = bits;
-            } else {
-                self.least_speed = self.least_speed.min(v);
-                let w = written(v * scale, decimals) / scale;
-                Worst::hit(&mut self.speed, v, w, m.source());
-            }
-        }
-        if m.deposits() && m.power > 0.0 && m.power.to_bits() != self.power_ok {
-            let p = m.power as f64;
-            let (scale, decimals) = power_word(machine);
-            if quantised(p * scale, decimals).is_some() {
-                self.power_ok = m.power.to_bits();
-            } else {
-                self.least_power = self.least_power.min(p);
-                let w = written(p * scale, decimals) / scale;
-                Worst::hit(&mut self.power, p, w, m.source());
-            }
-        }
-    }
-
-    pub fn report(
-        self,
-        machine: &Machine,
-        o: &MachineOrigin,
-        speeds: Option<crate::span::Span>,
-        out: &mut Diagnostics,
-    ) {
+    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+        let (machine, o) = (cx.machine, cx.origin);
+        let speeds = cx.program.origins.bead_speed;
         let has = |f: &str| o.fields.iter().any(|(n, _)| n == f);
         if let Some(w) = self.position {
             out.push(message::check::machine::position_too_large(
@@ -126,6 +88,47 @@ impl Resolution {
                 }
             };
             out.push(d);
+        }
+    }
+}
+
+impl Visit for Resolution<'_> {
+    #[inline]
+    fn motion(&mut self, m: &Move) {
+        let machine = self.machine;
+        if !m.to.iter().all(|v| v.abs() < MAX_WRITTEN)
+            || m.axes.tilt.abs() >= MAX_WRITTEN
+            || m.axes.c.abs() >= MAX_WRITTEN
+        {
+            let worst = m.to.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            Worst::hit(&mut self.position, worst, MAX_WRITTEN, m.at);
+        }
+        let v = match (m.speed, machine) {
+            (Speed::Feed(v), _) if v.to_bits() == self.speed_ok => None,
+            (Speed::Feed(v), _) => Some((v as f64, v.to_bits())),
+            (Speed::Rapid, Machine::Robot(r)) => Some((r.max_speed, u32::MAX)),
+            (Speed::Rapid, Machine::Cnc(_)) => None, // G0 has no F
+        };
+        if let Some((v, bits)) = v {
+            let (scale, decimals) = speed_word(machine);
+            if quantised(v * scale, decimals).is_some() {
+                self.speed_ok = bits;
+            } else {
+                self.least_speed = self.least_speed.min(v);
+                let w = written(v * scale, decimals) / scale;
+                Worst::hit(&mut self.speed, v, w, m.source());
+            }
+        }
+        if m.deposits() && m.power > 0.0 && m.power.to_bits() != self.power_ok {
+            let p = m.power as f64;
+            let (scale, decimals) = power_word(machine);
+            if quantised(p * scale, decimals).is_some() {
+                self.power_ok = m.power.to_bits();
+            } else {
+                self.least_power = self.least_power.min(p);
+                let w = written(p * scale, decimals) / scale;
+                Worst::hit(&mut self.power, p, w, m.source());
+            }
         }
     }
 }

@@ -5,10 +5,12 @@
 //! its `max_speed` at the loop's top speed, a sensor input, a control that
 //! can run the loop.
 
+use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
 use crate::control::{self, analyse, SpeedPerLength};
 use crate::diag::message::check::ring::{self, FastTransition, LateUpdate};
 use crate::diag::Diagnostics;
 use crate::ir::{Machine, MachineOrigin, Program, Ring, RingOrigins, RingRun};
+use crate::plan::{Move, Visit};
 use crate::target::gcode::{LOOP_PROFILE, MAX_ANALOG_INPUT};
 use crate::target::kuka::MAX_ADVANCE;
 use crate::units::{Angle, Length, Speed};
@@ -29,8 +31,17 @@ pub fn controller(r: &Ring) -> Option<Result<control::Controller, control::Inval
     )
 }
 
-/// The loop's analysis: every finding as a diagnostic.
-pub(super) fn check_loop(p: &Program, out: &mut Diagnostics) {
+/// `lmd::gain-sign`, `lmd::unstable-loop`, `lmd::slow-loop`: the loop's
+/// analysis, every finding as a diagnostic.
+pub(super) struct LoopAnalysis;
+
+impl ProgramRule for LoopAnalysis {
+    fn check(cx: &ProgramCx<'_>, out: &mut Diagnostics) {
+        check_loop(cx.program, out);
+    }
+}
+
+fn check_loop(p: &Program, out: &mut Diagnostics) {
     let Some(r) = &p.ring else { return };
     let o = p.origins.ring.unwrap_or_default();
     let c = match controller(r) {
@@ -55,13 +66,26 @@ pub(super) fn check_loop(p: &Program, out: &mut Diagnostics) {
     }
 }
 
-/// What machine `m` must offer to run the ring's loop.
-pub(super) fn check_machine(
-    p: &Program,
-    m: &Machine,
-    origin: &MachineOrigin,
-    out: &mut Diagnostics,
-) {
+/// `lmd::transition-speed`, `lmd::loop-dialect`, `lmd::height-sensor`,
+/// `lmd::loop-timing`: what a machine must offer to run the ring's loop. It
+/// reads the declarations, not the moves.
+pub(super) struct LoopOnMachine;
+
+impl Visit for LoopOnMachine {
+    fn motion(&mut self, _: &Move) {}
+}
+
+impl<'p> PlanRule<'p> for LoopOnMachine {
+    fn new(cx: &MachineCx<'p>) -> Option<Self> {
+        cx.program.ring.as_ref().map(|_| LoopOnMachine)
+    }
+
+    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+        check_machine(cx.program, cx.machine, cx.origin, out);
+    }
+}
+
+fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Diagnostics) {
     let Some(r) = &p.ring else { return };
     let RingRun::OnMachine(law) = &r.run else {
         // A schedule is plain speeds: the machine rules check them.

@@ -16,6 +16,7 @@
 //! layer), and time is linear in the points and in the track length over the
 //! grid's cell, which grows with the part.
 
+use super::rule::{ProgramCx, ProgramRule};
 use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Layer, Path, Program};
@@ -37,8 +38,17 @@ const MAX_PIECES: f64 = 1e6;
 /// nearest bead centre line of the layer below.
 pub const REACH: f64 = 0.75;
 
-/// Deposits of each layer farther than [`REACH`] from the layer below.
-pub(super) fn check(p: &Program, out: &mut Diagnostics) {
+/// `lmd::stacking`: deposits of each layer farther than [`REACH`] from the
+/// layer below.
+pub(super) struct Stacking;
+
+impl ProgramRule for Stacking {
+    fn check(cx: &ProgramCx<'_>, out: &mut Diagnostics) {
+        check(cx.program, out);
+    }
+}
+
+fn check(p: &Program, out: &mut Diagnostics) {
     let w = p.limits.bead_width;
     if !(w.is_finite() && w > 0.0) {
         return;

@@ -116,6 +116,22 @@ pub enum Where {
     End,
 }
 
+impl Where {
+    /// The IR point this is, if it is one.
+    pub fn point<'p>(&self, program: &'p Program) -> Option<&'p Point> {
+        match *self {
+            Where::Point { layer, path, point } => program
+                .layers
+                .get(layer)?
+                .paths
+                .get(path)?
+                .points
+                .get(point),
+            _ => None,
+        }
+    }
+}
+
 impl std::fmt::Display for Where {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match *self {
@@ -227,6 +243,40 @@ pub trait Visit {
     fn io(&mut self, _event: Io) {}
     /// A ring's segment ends with the next move.
     fn segment_end(&mut self, _end: SegmentEnd) {}
+}
+
+/// Two visitors following one plan side by side (the verifier's rules and
+/// its summary), each told everything in turn.
+impl<A: Visit, B: Visit> Visit for (A, B) {
+    fn layer(&mut self, index: usize, layer: &Layer) {
+        self.0.layer(index, layer);
+        self.1.layer(index, layer);
+    }
+    fn laser_on(&mut self, next: &Move) {
+        self.0.laser_on(next);
+        self.1.laser_on(next);
+    }
+    fn laser_off(&mut self) {
+        self.0.laser_off();
+        self.1.laser_off();
+    }
+    #[inline]
+    fn motion(&mut self, m: &Move) {
+        self.0.motion(m);
+        self.1.motion(m);
+    }
+    fn dwell(&mut self, seconds: f64) {
+        self.0.dwell(seconds);
+        self.1.dwell(seconds);
+    }
+    fn io(&mut self, event: Io) {
+        self.0.io(event);
+        self.1.io(event);
+    }
+    fn segment_end(&mut self, end: SegmentEnd) {
+        self.0.segment_end(end);
+        self.1.segment_end(end);
+    }
 }
 
 /// How a machine moves, as far as the plan is concerned.

@@ -42,7 +42,7 @@ impl Spacing {
 }
 
 fn trim(x: f64) -> String {
-    crate::back::fixed::trimmed(x, 3)
+    crate::numbers::trimmed(x, 3)
 }
 
 /// The bead model and track spacing of a part: what turns a move into a

@@ -1,45 +1,33 @@
 //! The plan report (`lmdc report`): per layer and in total, how long a
 //! machine's program takes, how far it deposits and travels, how much
 //! energy and powder it uses and how much metal the bead model says it lays,
-//! against the design solid. It follows the machine's motion plan
-//! ([`crate::plan::Plan::walk`]), so its times are the program's, move by
-//! move. `docs/preview.md` writes out every formula.
+//! against the design solid. Its lengths and times are the verifier's
+//! summary of the machine's motion plan ([`crate::check::Summary`]), so
+//! they are the program's, move by move. `docs/preview.md` writes out every
+//! formula.
 //!
-//! From the IR and a machine alone ([`Report::of_plan`]) come lengths, times,
+//! From the verified plan alone ([`Report::of_plan`]) come lengths, times,
 //! energy and powder; the bead model, the density and the design solid are
 //! in the checked model, which [`Report::new`] reads too.
 
 pub mod bead;
 pub mod design;
 pub mod text;
-mod walk;
+mod volume;
 
-use crate::check::VerifiedMachine;
+use crate::check::{Costs, VerifiedMachine};
 use crate::sema::model::Model;
 use bead::Beads;
 pub use design::Design;
 use serde::Serialize;
-use walk::Walk;
 
-/// What one layer (or the whole plan) costs. Lengths are the tool tip's
-/// path; volumes are over the ground (across the normal).
+/// What one layer (or the whole plan) costs, and the metal it lays. Lengths
+/// are the tool tip's path; volumes are over the ground (across the normal).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Tally {
-    /// Length of the deposit moves (laser on), mm.
-    pub deposit_mm: f64,
-    /// Length of every other move (approach, retract, travel), mm.
-    pub travel_mm: f64,
-    /// Time of every move at its programmed speed, rapids at the machine's
-    /// `max_speed`, s.
-    pub motion_s: f64,
-    /// Cooling waits the plan makes after this layer, s.
-    pub dwell_s: f64,
-    /// Time the laser is on, s.
-    pub laser_on_s: f64,
-    /// Laser energy, `Σ P·t` over the deposit moves, J.
-    pub energy_j: f64,
-    /// Powder fed while the laser is on, `Σ ṁ·t`, g.
-    pub powder_g: f64,
+    /// Lengths, times, energy and powder.
+    #[serde(flatten)]
+    pub costs: Costs,
     /// Volume the bead model lays, mm³ (0 when the model is not known).
     pub bead_volume_mm3: f64,
     /// Volume the layers stack up, height × track spacing × length, mm³.
@@ -49,19 +37,21 @@ pub struct Tally {
 impl Tally {
     /// Motion and dwell together, s.
     pub fn time_s(&self) -> f64 {
-        self.motion_s + self.dwell_s
+        self.costs.time_s()
     }
 
     fn add(&mut self, o: &Tally) {
-        self.deposit_mm += o.deposit_mm;
-        self.travel_mm += o.travel_mm;
-        self.motion_s += o.motion_s;
-        self.dwell_s += o.dwell_s;
-        self.laser_on_s += o.laser_on_s;
-        self.energy_j += o.energy_j;
-        self.powder_g += o.powder_g;
+        self.costs.add(&o.costs);
         self.bead_volume_mm3 += o.bead_volume_mm3;
         self.stacked_volume_mm3 += o.stacked_volume_mm3;
+    }
+}
+
+impl std::ops::Deref for Tally {
+    type Target = Costs;
+
+    fn deref(&self) -> &Costs {
+        &self.costs
     }
 }
 
@@ -178,19 +168,34 @@ impl Report {
 
     fn walk(machine: VerifiedMachine<'_>, beads: Option<&Beads>) -> Report {
         let program = machine.ir();
-        let mut w = Walk::new(program, machine.machine(), beads);
-        machine.plan().walk(&mut w);
+        let summary = machine.summary();
+        let volumes = beads.map(|b| volume::per_layer(program, b));
+        let rows: Vec<Tally> = summary
+            .layers
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                let (bead, stacked) = volumes
+                    .as_ref()
+                    .and_then(|v| v.get(i).copied())
+                    .unwrap_or((0.0, 0.0));
+                Tally {
+                    costs: *c,
+                    bead_volume_mm3: bead,
+                    stacked_volume_mm3: stacked,
+                }
+            })
+            .collect();
         let mut total = Tally::default();
-        for r in &w.rows {
+        for r in &rows {
             total.add(r);
         }
         Report {
             kind: "report",
             part: program.part.clone(),
             machine: machine.machine().name().to_string(),
-            rapid_mm_s: walk::rapid_speed(machine.machine()),
-            layers: w
-                .rows
+            rapid_mm_s: summary.rapid_mm_s,
+            layers: rows
                 .iter()
                 .enumerate()
                 .map(|(i, t)| Row {
@@ -217,23 +222,4 @@ impl Report {
             _ => None,
         }
     }
-}
-
-/// The one-line summary the programs' headers carry (template variable
-/// `summary`), from the plan alone, e.g. `plan: 36.76 m deposited, 4.06 m
-/// travel; 1 h 19 min, laser on 1 h 15 min, dwell 0.0 s; 9.90 MJ; powder
-/// 3.454 kg`. No brackets: G-code comments are in brackets.
-pub fn summary(machine: VerifiedMachine<'_>) -> String {
-    let r = Report::of_plan(machine);
-    let t = &r.total;
-    format!(
-        "plan: {} deposited, {} travel; {}, laser on {}, dwell {}; {}; powder {}",
-        text::length(t.deposit_mm),
-        text::length(t.travel_mm),
-        text::duration(t.time_s()),
-        text::duration(t.laser_on_s),
-        text::duration(t.dwell_s),
-        text::energy(t.energy_j),
-        text::mass(t.powder_g),
-    )
 }

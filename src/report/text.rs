@@ -2,30 +2,8 @@
 //! Numbers are rounded for people; `--json` keeps them whole.
 
 use super::{Design, Report, Tally};
+use crate::numbers::{duration, energy, length, mass, trimmed};
 use std::fmt::Write;
-
-/// A length in m (mm below a metre).
-pub fn length(mm: f64) -> String {
-    if mm.abs() < 1000.0 {
-        format!("{mm:.1} mm")
-    } else {
-        format!("{:.2} m", mm / 1000.0)
-    }
-}
-
-/// A duration as `2 h 26 min`, `4 min 12 s` or `12.3 s`.
-pub fn duration(s: f64) -> String {
-    if !s.is_finite() || s < 60.0 {
-        return format!("{:.1} s", if s.is_finite() { s } else { 0.0 });
-    }
-    let whole = s.round() as u64;
-    let (h, m, sec) = (whole / 3600, whole / 60 % 60, whole % 60);
-    if h > 0 {
-        format!("{h} h {m} min")
-    } else {
-        format!("{m} min {sec} s")
-    }
-}
 
 /// A duration as `h:mm:ss.s` for the table.
 fn clock(s: f64) -> String {
@@ -38,26 +16,6 @@ fn clock(s: f64) -> String {
         tenths % 10,
     );
     format!("{h}:{m:02}:{sec:02}.{t}")
-}
-
-/// An energy in kJ or MJ.
-pub fn energy(j: f64) -> String {
-    if j.abs() < 1e6 {
-        format!("{:.1} kJ", j / 1e3)
-    } else {
-        format!("{:.2} MJ", j / 1e6)
-    }
-}
-
-/// A mass in g or kg.
-pub fn mass(g: f64) -> String {
-    if g.abs() < 10.0 {
-        format!("{g:.2} g")
-    } else if g.abs() < 1000.0 {
-        format!("{g:.1} g")
-    } else {
-        format!("{:.3} kg", g / 1000.0)
-    }
 }
 
 fn volume(mm3: f64) -> String {
@@ -106,7 +64,7 @@ pub fn render(r: &Report) -> String {
         r.machine,
         n,
         if n == 1 { "" } else { "s" },
-        crate::back::fixed::trimmed(r.rapid_mm_s, 3)
+        trimmed(r.rapid_mm_s, 3)
     );
     let _ = write!(
         out,
@@ -157,11 +115,11 @@ pub fn render(r: &Report) -> String {
     };
     let density = r
         .density_g_cm3
-        .map(|d| format!(" at {} g/cm³", crate::back::fixed::trimmed(d, 3)));
+        .map(|d| format!(" at {} g/cm³", trimmed(d, 3)));
     let mut line = format!(
         "bead model  lays {} (bead {} mm wide, {})",
         volume(t.bead_volume_mm3),
-        crate::back::fixed::trimmed(bead.width_mm, 3),
+        trimmed(bead.width_mm, 3),
         bead.spacing
     );
     if let (Some(m), Some(d)) = (r.bead_mass_g, &density) {

@@ -16,10 +16,10 @@ pub mod ring;
 mod writer;
 
 use super::context::{counts, layer_context, shown, styles};
-use super::fixed::trimmed;
 use super::{EmitError, Sink, Templates};
 use crate::check::VerifiedMachine;
 use crate::ir::{Cell, Cnc, Kinematics, Layer, Program};
+use crate::numbers::trimmed;
 use crate::plan::{effective_kinematics, Io, Move, Speed, Visit};
 use crate::target::gcode::RATE_DECIMALS;
 use crate::target::names::gcode_file;
@@ -201,7 +201,10 @@ fn base_context(m: VerifiedMachine<'_>, cnc: &Cnc, kin: Kinematics, file: &str) 
         Kinematics::HeadBc => ("head_bc", "X Y Z B C", "B"),
     };
     let mut ctx = tera::Context::new();
-    ctx.insert("summary", &comment_safe(&crate::report::summary(m), style));
+    ctx.insert(
+        "summary",
+        &comment_safe(&super::context::summary(m.summary()), style),
+    );
     ctx.insert("comment_open", open);
     ctx.insert("comment_close", close);
     ctx.insert("part", &comment_safe(&shown(&p.part), style));
@@ -244,7 +247,7 @@ fn header_context(ctx: &mut tera::Context, prog: &Program, cnc: &Cnc, five: bool
         _ => String::new(),
     };
     ctx.insert("work_offset", &work_offset);
-    ctx.insert("origin", &p.origin.map(|v| super::fixed::fixed(v, 3)));
+    ctx.insert("origin", &p.origin.map(|v| crate::numbers::fixed(v, 3)));
     ctx.insert("tcp_on", if five { cnc.dialect.tcp_on.trim() } else { "" });
 }
 

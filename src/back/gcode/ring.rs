@@ -30,11 +30,11 @@
 
 use super::dialect::{comment_safe, delimiters};
 use super::{base_context, footer_context, header_context, EmitError, Sink, Templates};
-use crate::back::fixed::{fixed, trimmed};
 use crate::back::ring::{constants, prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
 use crate::check::VerifiedMachine;
 use crate::control::{Step, LAW};
 use crate::ir::{Cnc, HeightLoop, HeightSensor, Kinematics, Ring};
+use crate::numbers::{fixed, trimmed};
 use crate::plan::{effective_kinematics, Move, Speed};
 use crate::target::gcode::POS_DECIMALS;
 use crate::target::names::gcode_file;

@@ -20,10 +20,10 @@ pub mod orient;
 pub mod ring;
 
 use super::context::{counts, layer_context, shown, styles};
-use super::fixed::{fixed, trimmed};
 use super::{EmitError, Sink, Templates};
 use crate::check::VerifiedMachine;
 use crate::ir::{FrameRef, Layer, Robot, ToolAxis};
+use crate::numbers::{fixed, trimmed};
 use crate::plan::{Io, Move, Speed, Visit};
 use crate::target::kuka;
 use crate::target::names::KrlNames;
@@ -259,7 +259,10 @@ pub fn io_lines(robot: &Robot, event: Io) -> Vec<String> {
 fn base_context(m: VerifiedMachine<'_>, robot: &Robot, stem: &str) -> tera::Context {
     let p = m.ir();
     let mut ctx = tera::Context::new();
-    ctx.insert("summary", &comment_safe(&crate::report::summary(m)));
+    ctx.insert(
+        "summary",
+        &comment_safe(&super::context::summary(m.summary())),
+    );
     ctx.insert("program", stem);
     ctx.insert("part", &comment_safe(&shown(&p.part)));
     ctx.insert("machine", &comment_safe(&shown(&robot.name)));

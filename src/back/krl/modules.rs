@@ -8,9 +8,9 @@
 //! no tera per line.
 
 use super::orient::Abc;
-use crate::back::fixed::{push_fixed, push_u64};
 use crate::back::fmt::{key, put_fixed, put_trimmed, MAX_NUMBER};
 use crate::back::{EmitError, Sink, Templates};
+use crate::numbers::{push_fixed, push_u64};
 use crate::target::names::KrlNames;
 use std::io::Write;
 

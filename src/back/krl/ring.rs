@@ -20,11 +20,11 @@
 use super::modules::angle_value;
 use super::orient::Orienter;
 use super::{base_context, main_context, modules, EmitError, Sink, Templates};
-use crate::back::fixed::{fixed, trimmed};
 use crate::back::ring::{constants, prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
 use crate::check::VerifiedMachine;
 use crate::control::{Step, LAW};
 use crate::ir::{HeightLoop, HeightSensor, Ring, Robot};
+use crate::numbers::{fixed, trimmed};
 use crate::plan::{Move, Speed};
 use crate::target::kuka::{ANOUT_DECIMALS, POS_DECIMALS, VEL_DECIMALS};
 use std::fmt::Write as _;

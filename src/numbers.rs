@@ -1,9 +1,26 @@
-//! Fixed-precision number formatting for the hot loops of the back ends.
-//! `format!("{:.3}")` goes through the generic float machinery and is ~8× slower
-//! over millions of coordinates; scaling to an integer and printing that with
-//! `itoa`-style digit loops is exact for the magnitudes a machine can reach.
+//! How lmdc writes numbers: with fixed decimals for the programs, and as
+//! rounded quantities for people (the report, the programs' summary line).
+//! A leaf: the back ends and the report both write numbers.
+//!
+//! `format!("{:.3}")` goes through the generic float machinery and is ~8×
+//! slower over millions of coordinates; scaling to an integer and printing
+//! that with `itoa`-style digit loops is exact for the magnitudes a machine
+//! can reach (the back ends' motion writer has an in-place version of these,
+//! `back::fmt`).
 
-use super::fmt::POW10;
+/// Powers of ten up to 10⁹, the scale of each number of decimals.
+pub(crate) const POW10: [u64; 10] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+];
 
 /// Appends `v` with exactly `decimals` digits after the point (0–9). Values are
 /// rounded half away from zero; `-0.000` is written as `0.000`. Non-finite values
@@ -71,11 +88,6 @@ pub fn push_u64(out: &mut Vec<u8>, mut n: u64) {
     out.extend_from_slice(&buf[i..]);
 }
 
-/// `v` rounded to `decimals` digits: the value a reader of the output will see.
-pub fn rounded(v: f64, decimals: usize) -> f64 {
-    crate::target::written(v, decimals)
-}
-
 /// Formats into a new `String` (for templates and tests).
 pub fn trimmed(v: f64, decimals: usize) -> String {
     let mut b = Vec::new();
@@ -88,6 +100,51 @@ pub fn fixed(v: f64, decimals: usize) -> String {
     let mut b = Vec::new();
     push_fixed(&mut b, v, decimals);
     String::from_utf8(b).unwrap_or_default()
+}
+
+// Quantities for people.
+
+/// A length in m (mm below a metre).
+pub fn length(mm: f64) -> String {
+    if mm.abs() < 1000.0 {
+        format!("{mm:.1} mm")
+    } else {
+        format!("{:.2} m", mm / 1000.0)
+    }
+}
+
+/// A duration as `2 h 26 min`, `4 min 12 s` or `12.3 s`.
+pub fn duration(s: f64) -> String {
+    if !s.is_finite() || s < 60.0 {
+        return format!("{:.1} s", if s.is_finite() { s } else { 0.0 });
+    }
+    let whole = s.round() as u64;
+    let (h, m, sec) = (whole / 3600, whole / 60 % 60, whole % 60);
+    if h > 0 {
+        format!("{h} h {m} min")
+    } else {
+        format!("{m} min {sec} s")
+    }
+}
+
+/// An energy in kJ or MJ.
+pub fn energy(j: f64) -> String {
+    if j.abs() < 1e6 {
+        format!("{:.1} kJ", j / 1e3)
+    } else {
+        format!("{:.2} MJ", j / 1e6)
+    }
+}
+
+/// A mass in g or kg.
+pub fn mass(g: f64) -> String {
+    if g.abs() < 10.0 {
+        format!("{g:.2} g")
+    } else if g.abs() < 1000.0 {
+        format!("{g:.1} g")
+    } else {
+        format!("{:.3} kg", g / 1000.0)
+    }
 }
 
 #[cfg(test)]

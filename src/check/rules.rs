@@ -1,0 +1,113 @@
+//! Every rule of the verifier, in one place, in the order they report. A
+//! new rule is a type implementing [`PlanRule`] or [`ProgramRule`] and one
+//! line here.
+
+use super::cell::CellRule;
+use super::machine::{Analog, SpeedLimit, Tilt, Travel};
+use super::names::FileNames;
+use super::process::ProcessRules;
+use super::resolution::Resolution;
+use super::ring::{LoopAnalysis, LoopOnMachine};
+use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
+use super::stacking::Stacking;
+use crate::diag::Diagnostics;
+use crate::ir::Layer;
+use crate::plan::{Io, Move, SegmentEnd, Visit};
+
+/// A rule over the whole program, as the lists hold it.
+pub(super) type Check = fn(&ProgramCx<'_>, &mut Diagnostics);
+
+/// Rules over the IR alone, run first: the points' values, the ring's loop.
+/// The plans are walked only if every point is finite (a plan through a
+/// non-finite point would only repeat that error).
+pub(super) const BEFORE_PLANS: &[Check] = &[ProcessRules::check, LoopAnalysis::check];
+
+/// Rules over the IR that run beside the machines' plans, on a thread of
+/// their own.
+pub(super) const BESIDE_PLANS: &[Check] = &[Stacking::check];
+
+/// Rules over what the plans' summaries say the machines would write.
+pub(super) const AFTER_PLANS: &[Check] = &[FileNames::check];
+
+/// Declares [`PlanRules`]: every rule over one machine's plan, each present
+/// where it applies, following the plan together in one pass (static
+/// dispatch: the pass visits millions of moves).
+macro_rules! plan_rules {
+    ($($field:ident: $rule:ty),* $(,)?) => {
+        /// Every rule over one machine's plan, in the order they report.
+        pub(super) struct PlanRules<'p> {
+            $($field: Option<$rule>,)*
+        }
+
+        impl<'p> PlanRules<'p> {
+            /// The rules that apply to `cx`'s machine.
+            pub fn new(cx: &MachineCx<'p>) -> Self {
+                PlanRules {
+                    $($field: <$rule as PlanRule<'p>>::new(cx),)*
+                }
+            }
+
+            /// What each found.
+            pub fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+                $(if let Some(r) = self.$field {
+                    r.report(cx, out);
+                })*
+            }
+        }
+
+        impl Visit for PlanRules<'_> {
+            fn layer(&mut self, index: usize, layer: &Layer) {
+                $(if let Some(r) = &mut self.$field {
+                    r.layer(index, layer);
+                })*
+            }
+
+            fn laser_on(&mut self, next: &Move) {
+                $(if let Some(r) = &mut self.$field {
+                    r.laser_on(next);
+                })*
+            }
+
+            fn laser_off(&mut self) {
+                $(if let Some(r) = &mut self.$field {
+                    r.laser_off();
+                })*
+            }
+
+            #[inline]
+            fn motion(&mut self, m: &Move) {
+                $(if let Some(r) = &mut self.$field {
+                    r.motion(m);
+                })*
+            }
+
+            fn dwell(&mut self, seconds: f64) {
+                $(if let Some(r) = &mut self.$field {
+                    r.dwell(seconds);
+                })*
+            }
+
+            fn io(&mut self, event: Io) {
+                $(if let Some(r) = &mut self.$field {
+                    r.io(event);
+                })*
+            }
+
+            fn segment_end(&mut self, end: SegmentEnd) {
+                $(if let Some(r) = &mut self.$field {
+                    r.segment_end(end);
+                })*
+            }
+        }
+    };
+}
+
+plan_rules! {
+    tilt: Tilt,
+    travel: Travel,
+    speed: SpeedLimit<'p>,
+    analog: Analog,
+    resolution: Resolution<'p>,
+    cell: CellRule<'p>,
+    ring: LoopOnMachine,
+}
