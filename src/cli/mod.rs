@@ -311,63 +311,13 @@ fn build(
         None => &mut (),
     };
     let mut inner = progress::Both(timed, &mut progress);
-    // pipeline::emit reports a stage after each machine: the files created
-    // by then are that machine's set.
-    let mut marks = Marks {
-        inner: &mut inner,
-        count: sink.counter(),
-        at: Vec::new(),
-    };
-    let which: Vec<usize> = program.machines().map(|m| m.index()).collect();
-    let emitted = pipeline::emit(&program, &templates, &mut sink, &mut marks);
-    let part = program.ir().part.clone();
-    let key = |machine: Option<String>| sink::SetKey {
-        part: part.clone(),
-        machine,
-    };
-    if marks.at.len() == which.len() {
-        for (&i, &end) in which.iter().zip(&marks.at) {
-            let name = program.ir().machines[i].name().to_string();
-            sink.end_set(key(Some(name)), end);
-        }
-    } else {
-        let names: Vec<&str> = which
-            .iter()
-            .map(|&i| program.ir().machines[i].name())
-            .collect();
-        let end = sink.counter().get();
-        sink.end_set(key(Some(names.join(","))), end);
-    }
-    drop(marks);
-    match emitted {
-        Ok(()) => {}
-        Err(EmitError::Template(e)) => {
-            eprintln!("error: {e}");
-            return EXIT_USAGE;
-        }
-        Err(EmitError::Io(e)) => {
-            eprintln!("error: writing into {}: {e}", shown(out));
-            return EXIT_USAGE;
-        }
+    if let Err(code) = write_programs(&program, &templates, &mut sink, &mut inner, out) {
+        return code;
     }
     if emit.contains(&Emit::Ir) {
-        let name = format!(
-            "{}.ir.json",
-            lmdc::target::names::windows_safe(&lmdc::back::identifier(&program.ir().part, 64))
-        );
-        let written = (|| -> std::io::Result<()> {
-            use lmdc::back::Sink;
-            let mut w = sink.create(&name)?;
-            serde_json::to_writer(&mut w, program.ir()).map_err(std::io::Error::other)?;
-            w.write_all(b"\n")?;
-            w.flush()
-        })();
-        if let Err(e) = written {
-            eprintln!("error: writing {name}: {e}");
-            return EXIT_USAGE;
+        if let Err(code) = write_ir(&program, &mut sink) {
+            return code;
         }
-        let end = sink.counter().get();
-        sink.end_set(key(None), end);
         if let Some(t) = clock.as_mut() {
             t.stage("emit IR");
         }
@@ -389,6 +339,80 @@ fn build(
         eprintln!("wrote {}", shown(&p));
     }
     0
+}
+
+/// The set of files a build writes for `machine` (`None`: the IR).
+fn set_key(program: &lmdc::check::Verified, machine: Option<String>) -> sink::SetKey {
+    sink::SetKey {
+        part: program.ir().part.clone(),
+        machine,
+    }
+}
+
+/// Writes every verified machine's programs into `sink`, each machine's
+/// files one set (replaced together); a usage exit code when a template or
+/// the disk fails.
+fn write_programs(
+    program: &lmdc::check::Verified,
+    templates: &Templates,
+    sink: &mut sink::AtomicDir,
+    inner: &mut dyn Observer,
+    out: &Path,
+) -> Result<(), u8> {
+    // pipeline::emit reports a stage after each machine: the files created
+    // by then are that machine's set.
+    let mut marks = Marks {
+        inner,
+        count: sink.counter(),
+        at: Vec::new(),
+    };
+    let which: Vec<usize> = program.machines().map(|m| m.index()).collect();
+    let emitted = pipeline::emit(program, templates, sink, &mut marks);
+    let ends = std::mem::take(&mut marks.at);
+    drop(marks);
+    let name = |i: usize| program.ir().machines[i].name().to_string();
+    if ends.len() == which.len() {
+        for (&i, &end) in which.iter().zip(&ends) {
+            sink.end_set(set_key(program, Some(name(i))), end);
+        }
+    } else {
+        let names: Vec<String> = which.iter().map(|&i| name(i)).collect();
+        let end = sink.counter().get();
+        sink.end_set(set_key(program, Some(names.join(","))), end);
+    }
+    match emitted {
+        Ok(()) => Ok(()),
+        Err(EmitError::Template(e)) => {
+            eprintln!("error: {e}");
+            Err(EXIT_USAGE)
+        }
+        Err(EmitError::Io(e)) => {
+            eprintln!("error: writing into {}: {e}", shown(out));
+            Err(EXIT_USAGE)
+        }
+    }
+}
+
+/// Writes the IR as `<part>.ir.json` into `sink`, a set of its own.
+fn write_ir(program: &lmdc::check::Verified, sink: &mut sink::AtomicDir) -> Result<(), u8> {
+    let name = format!(
+        "{}.ir.json",
+        lmdc::target::names::windows_safe(&lmdc::back::identifier(&program.ir().part, 64))
+    );
+    let written = (|| -> std::io::Result<()> {
+        use lmdc::back::Sink;
+        let mut w = sink.create(&name)?;
+        serde_json::to_writer(&mut w, program.ir()).map_err(std::io::Error::other)?;
+        w.write_all(b"\n")?;
+        w.flush()
+    })();
+    if let Err(e) = written {
+        eprintln!("error: writing {name}: {e}");
+        return Err(EXIT_USAGE);
+    }
+    let end = sink.counter().get();
+    sink.end_set(set_key(program, None), end);
+    Ok(())
 }
 
 fn simulate(

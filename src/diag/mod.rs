@@ -291,6 +291,77 @@ struct ViewLine {
     number: usize,
 }
 
+/// The labels of `diag` as source byte ranges, clamped so a stale span can
+/// never make the renderer fail; a label spanning many lines keeps its
+/// first.
+fn label_spans(lines: &Lines<'_>, diag: &Diagnostic) -> Vec<(usize, usize)> {
+    diag.labels
+        .iter()
+        .map(|l| {
+            let start = lines.floor(l.span.start);
+            let end = lines.ceil(l.span.end.max(start));
+            let first = lines.line_of(start);
+            if lines.line_of(end.saturating_sub(1).max(start)) - first >= MAX_LABEL_LINES {
+                (start, lines.content_end(first).max(start))
+            } else {
+                (start, end)
+            }
+        })
+        .collect()
+}
+
+/// The source lines a view shows: each label's lines and one either side,
+/// runs less than [`MAX_GAP`] apart merged.
+fn shown_lines(lines: &Lines<'_>, spans: &[(usize, usize)]) -> impl Iterator<Item = usize> {
+    let last_line = lines.starts.len() - 1;
+    let mut ranges: Vec<(usize, usize)> = spans
+        .iter()
+        .map(|&(a, b)| {
+            let l0 = lines.line_of(a);
+            let l1 = lines.line_of(b.saturating_sub(1).max(a));
+            (l0.saturating_sub(1), (l1 + 1).min(last_line))
+        })
+        .collect();
+    ranges.sort_unstable();
+    let mut shown: Vec<(usize, usize)> = Vec::new();
+    for (lo, hi) in ranges {
+        match shown.last_mut() {
+            Some(last) if lo <= last.1 + MAX_GAP => last.1 = last.1.max(hi),
+            _ => shown.push((lo, hi)),
+        }
+    }
+    shown.into_iter().flat_map(|(lo, hi)| lo..=hi)
+}
+
+/// The pieces of the line `a..b` a view shows: all of it when short, else
+/// [`KEEP`] bytes round each label end in `here` (or its start).
+fn line_segments(lines: &Lines<'_>, (a, b): (usize, usize), here: &[usize]) -> Vec<(usize, usize)> {
+    if b - a <= MAX_LINE {
+        return vec![(a, b)];
+    }
+    let wanted = if here.is_empty() {
+        vec![(a, lines.floor(a + MAX_LINE / 2))]
+    } else {
+        here.iter()
+            .map(|&p| {
+                let p = p.min(b);
+                (
+                    lines.floor(p.saturating_sub(KEEP).max(a)),
+                    lines.ceil((p + KEEP).min(b)),
+                )
+            })
+            .collect()
+    };
+    let mut segs: Vec<(usize, usize)> = Vec::new();
+    for (s, e) in wanted {
+        match segs.last_mut() {
+            Some(last) if s <= last.1 + 8 => last.1 = last.1.max(e),
+            _ => segs.push((s, e)),
+        }
+    }
+    segs
+}
+
 /// The few source lines one report draws, cut and cleaned: the lines of its
 /// labels and one either side, long lines cut round the labels, control
 /// characters replaced. Labels are moved to the view's offsets, and line and
@@ -308,41 +379,7 @@ struct View {
 impl View {
     /// A view of `diag`'s labels and the labels as `(start, end)` in it.
     fn new(lines: &Lines<'_>, name: &str, diag: &Diagnostic) -> (View, Vec<(usize, usize)>) {
-        let src = lines.src;
-        // Clamp so a stale span can never make the renderer fail; a label
-        // spanning many lines keeps its first.
-        let spans: Vec<(usize, usize)> = diag
-            .labels
-            .iter()
-            .map(|l| {
-                let start = lines.floor(l.span.start);
-                let end = lines.ceil(l.span.end.max(start));
-                let first = lines.line_of(start);
-                if lines.line_of(end.saturating_sub(1).max(start)) - first >= MAX_LABEL_LINES {
-                    (start, lines.content_end(first).max(start))
-                } else {
-                    (start, end)
-                }
-            })
-            .collect();
-        let last_line = lines.starts.len() - 1;
-        let mut ranges: Vec<(usize, usize)> = spans
-            .iter()
-            .map(|&(a, b)| {
-                let l0 = lines.line_of(a);
-                let l1 = lines.line_of(b.saturating_sub(1).max(a));
-                (l0.saturating_sub(1), (l1 + 1).min(last_line))
-            })
-            .collect();
-        ranges.sort_unstable();
-        let mut shown_lines: Vec<(usize, usize)> = Vec::new();
-        for (lo, hi) in ranges {
-            match shown_lines.last_mut() {
-                Some(last) if lo <= last.1 + MAX_GAP => last.1 = last.1.max(hi),
-                _ => shown_lines.push((lo, hi)),
-            }
-        }
-        let shown_lines = shown_lines.into_iter().flat_map(|(lo, hi)| lo..=hi);
+        let spans = label_spans(lines, diag);
         let mut points: Vec<usize> = spans.iter().flat_map(|&(a, b)| [a, b]).collect();
         points.sort_unstable();
         points.dedup();
@@ -353,72 +390,8 @@ impl View {
             columns: Vec::new(),
         };
         let mut map: Vec<(usize, usize)> = Vec::new(); // (source, view)
-        for k in shown_lines {
-            let a = lines.starts[k];
-            let b = lines.content_end(k);
-            let next = lines.starts.get(k + 1).copied().unwrap_or(src.len() + 1);
-            view.lines.push(ViewLine {
-                start: view.text.len(),
-                number: k,
-            });
-            let here: Vec<usize> = points
-                .iter()
-                .copied()
-                .filter(|&p| p >= a && p < next)
-                .collect();
-            let segments: Vec<(usize, usize)> = if b - a <= MAX_LINE {
-                vec![(a, b)]
-            } else {
-                let mut segs: Vec<(usize, usize)> = Vec::new();
-                let wanted = if here.is_empty() {
-                    vec![(a, lines.floor(a + MAX_LINE / 2))]
-                } else {
-                    here.iter()
-                        .map(|&p| {
-                            let p = p.min(b);
-                            (
-                                lines.floor(p.saturating_sub(KEEP).max(a)),
-                                lines.ceil((p + KEEP).min(b)),
-                            )
-                        })
-                        .collect()
-                };
-                for (s, e) in wanted {
-                    match segs.last_mut() {
-                        Some(last) if s <= last.1 + 8 => last.1 = last.1.max(e),
-                        _ => segs.push((s, e)),
-                    }
-                }
-                segs
-            };
-            let mut at = a;
-            for (s, e) in segments {
-                if s > at {
-                    view.text.push('…');
-                }
-                for (i, c) in src[s..e].char_indices() {
-                    if here.binary_search(&(s + i)).is_ok() {
-                        map.push((s + i, view.text.len()));
-                    }
-                    view.text.push(shown(c).unwrap_or(c));
-                }
-                if here.binary_search(&e).is_ok() {
-                    map.push((e, view.text.len()));
-                }
-                at = e;
-            }
-            if at < b {
-                view.text.push('…');
-            }
-            // Label ends inside the line break stand at the end of the line.
-            for &p in &here {
-                if p > b {
-                    map.push((p, view.text.len()));
-                }
-            }
-            if k + 1 < lines.starts.len() {
-                view.text.push('\n');
-            }
+        for k in shown_lines(lines, &spans) {
+            view.push_line(lines, k, &points, &mut map);
         }
         map.sort_unstable();
         map.dedup_by_key(|m| m.0);
@@ -437,6 +410,58 @@ impl View {
             .map(|&(a, b)| (to_view(a), to_view(b).max(to_view(a))))
             .collect();
         (view, spans)
+    }
+
+    /// Appends source line `k`, cut round the label ends among `points`
+    /// when long; records where each label end lands in `map`.
+    fn push_line(
+        &mut self,
+        lines: &Lines<'_>,
+        k: usize,
+        points: &[usize],
+        map: &mut Vec<(usize, usize)>,
+    ) {
+        let src = lines.src;
+        let a = lines.starts[k];
+        let b = lines.content_end(k);
+        let next = lines.starts.get(k + 1).copied().unwrap_or(src.len() + 1);
+        self.lines.push(ViewLine {
+            start: self.text.len(),
+            number: k,
+        });
+        let here: Vec<usize> = points
+            .iter()
+            .copied()
+            .filter(|&p| p >= a && p < next)
+            .collect();
+        let mut at = a;
+        for (s, e) in line_segments(lines, (a, b), &here) {
+            if s > at {
+                self.text.push('…');
+            }
+            for (i, c) in src[s..e].char_indices() {
+                if here.binary_search(&(s + i)).is_ok() {
+                    map.push((s + i, self.text.len()));
+                }
+                self.text.push(shown(c).unwrap_or(c));
+            }
+            if here.binary_search(&e).is_ok() {
+                map.push((e, self.text.len()));
+            }
+            at = e;
+        }
+        if at < b {
+            self.text.push('…');
+        }
+        // Label ends inside the line break stand at the end of the line.
+        for &p in &here {
+            if p > b {
+                map.push((p, self.text.len()));
+            }
+        }
+        if k + 1 < lines.starts.len() {
+            self.text.push('\n');
+        }
     }
 
     /// Whether view line `i + 1` is the source line after view line `i`.

@@ -40,71 +40,11 @@ pub(super) fn tracks(
 ) -> Result<Vec<Track>, FillError> {
     let frame = Frame::new(spec.angle_deg);
     let pieces = Pieces::new(region.loops(), &frame);
-    let Some((s_min, s_max)) = pieces.extent() else {
+    let Some(extent) = pieces.extent() else {
         return Ok(Vec::new());
     };
-    let d = spec.offset;
-    let count = ((s_max - s_min) / d + LINE_SLACK).floor() + 1.0;
-    if count > MAX_LINES as f64 {
-        return Err(FillError::TooManyLines(Count {
-            // `as` saturates: a count beyond u64 reads as u64::MAX.
-            wanted: count as u64,
-            max: MAX_LINES,
-        }));
-    }
-    let count = count as usize;
-    // When more than half an offset is left beyond the last whole-offset
-    // line, one more line on the far extreme keeps that edge from coming
-    // up short by up to an offset (the last two lines are then closer).
-    let closing = s_max - (s_min + (count - 1) as f64 * d) > CLOSING * d;
-    let count = count + usize::from(closing);
-    // Each line's `s`; the last may sit a hair past `s_max`, so clamp it
-    // back onto the extreme it is meant to touch.
-    let line_s: Vec<f64> = (0..count)
-        .map(|n| (s_min + n as f64 * d).min(s_max))
-        .collect();
-
-    // The lines each piece may touch, one either side to spare rounding.
-    let last = count - 1;
-    let range = |p: &super::clip::Piece| {
-        let first = ((p.lo[1] - TOLERANCE - s_min) / d).ceil() - 1.0;
-        let end = ((p.hi[1] + TOLERANCE - s_min) / d).floor() + 1.0;
-        (first.max(0.0) as usize, (end.max(0.0) as usize).min(last))
-    };
-    let ranges: Vec<(usize, usize)> = pieces.items.iter().map(range).collect();
-    let visits: u64 = ranges
-        .iter()
-        .map(|&(a, b)| (b + 1).saturating_sub(a) as u64)
-        .sum();
-    // Every visit may yield a track end: check the budget before the work.
-    if visits > *points_left {
-        return Err(too_many_points(*points_left, visits));
-    }
-
-    let mut order: Vec<usize> = (0..pieces.items.len()).collect();
-    order.sort_by_key(|&i| ranges[i].0);
-    let mut next = 0;
-    let mut active: Vec<usize> = Vec::new();
-    let mut lines: Vec<Vec<[f64; 2]>> = Vec::with_capacity(count);
-    // Where each interval's ends meet the boundary, for the links.
-    let mut ends: Vec<Vec<[Option<u32>; 2]>> = Vec::new();
-    let mut scratch = Scratch::default();
-    for (n, &s) in line_s.iter().enumerate() {
-        while next < order.len() && ranges[order[next]].0 <= n {
-            active.push(order[next]);
-            next += 1;
-        }
-        active.retain(|&i| ranges[i].1 >= n);
-        let line = scratch.clip(&pieces.items, active.iter().copied(), s);
-        if cx.link.is_some() {
-            ends.push(
-                line.iter()
-                    .map(|&[a, b]| [scratch.crossing_at(a), scratch.crossing_at(b)])
-                    .collect(),
-            );
-        }
-        lines.push(line);
-    }
+    let line_s = line_positions(extent, spec.offset)?;
+    let (lines, ends) = clip_lines(&pieces, &line_s, extent.0, spec.offset, cx, points_left)?;
 
     let mut grown = extend_kept(&lines, spec.extend);
     if !cx.keep_out.is_empty() && spec.extend > 0.0 {
@@ -151,6 +91,86 @@ pub(super) fn tracks(
         }
     }
     Ok(out)
+}
+
+/// Each raster line's `s` over the extent `(s_min, s_max)`, `d` apart.
+fn line_positions((s_min, s_max): (f64, f64), d: f64) -> Result<Vec<f64>, FillError> {
+    let count = ((s_max - s_min) / d + LINE_SLACK).floor() + 1.0;
+    if count > MAX_LINES as f64 {
+        return Err(FillError::TooManyLines(Count {
+            // `as` saturates: a count beyond u64 reads as u64::MAX.
+            wanted: count as u64,
+            max: MAX_LINES,
+        }));
+    }
+    let count = count as usize;
+    // When more than half an offset is left beyond the last whole-offset
+    // line, one more line on the far extreme keeps that edge from coming
+    // up short by up to an offset (the last two lines are then closer).
+    let closing = s_max - (s_min + (count - 1) as f64 * d) > CLOSING * d;
+    let count = count + usize::from(closing);
+    // The last may sit a hair past `s_max`, so clamp it back onto the
+    // extreme it is meant to touch.
+    Ok((0..count)
+        .map(|n| (s_min + n as f64 * d).min(s_max))
+        .collect())
+}
+
+/// A raster line's intervals, and where each interval's ends meet the
+/// boundary (for the links).
+type Clipped = (Vec<Vec<[f64; 2]>>, Vec<Vec<[Option<u32>; 2]>>);
+
+/// The region's intervals on each line at `line_s` (`d` apart from
+/// `s_min`), sweeping the pieces that may touch each line.
+fn clip_lines(
+    pieces: &Pieces,
+    line_s: &[f64],
+    s_min: f64,
+    d: f64,
+    cx: &Context<'_>,
+    points_left: &u64,
+) -> Result<Clipped, FillError> {
+    // The lines each piece may touch, one either side to spare rounding.
+    let last = line_s.len() - 1;
+    let range = |p: &super::clip::Piece| {
+        let first = ((p.lo[1] - TOLERANCE - s_min) / d).ceil() - 1.0;
+        let end = ((p.hi[1] + TOLERANCE - s_min) / d).floor() + 1.0;
+        (first.max(0.0) as usize, (end.max(0.0) as usize).min(last))
+    };
+    let ranges: Vec<(usize, usize)> = pieces.items.iter().map(range).collect();
+    let visits: u64 = ranges
+        .iter()
+        .map(|&(a, b)| (b + 1).saturating_sub(a) as u64)
+        .sum();
+    // Every visit may yield a track end: check the budget before the work.
+    if visits > *points_left {
+        return Err(too_many_points(*points_left, visits));
+    }
+
+    let mut order: Vec<usize> = (0..pieces.items.len()).collect();
+    order.sort_by_key(|&i| ranges[i].0);
+    let mut next = 0;
+    let mut active: Vec<usize> = Vec::new();
+    let mut lines: Vec<Vec<[f64; 2]>> = Vec::with_capacity(line_s.len());
+    let mut ends: Vec<Vec<[Option<u32>; 2]>> = Vec::new();
+    let mut scratch = Scratch::default();
+    for (n, &s) in line_s.iter().enumerate() {
+        while next < order.len() && ranges[order[next]].0 <= n {
+            active.push(order[next]);
+            next += 1;
+        }
+        active.retain(|&i| ranges[i].1 >= n);
+        let line = scratch.clip(&pieces.items, active.iter().copied(), s);
+        if cx.link.is_some() {
+            ends.push(
+                line.iter()
+                    .map(|&[a, b]| [scratch.crossing_at(a), scratch.crossing_at(b)])
+                    .collect(),
+            );
+        }
+        lines.push(line);
+    }
+    Ok((lines, ends))
 }
 
 /// The closed region's intervals along lines of direction `angle_deg` placed

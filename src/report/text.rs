@@ -80,6 +80,13 @@ pub fn render(r: &Report) -> String {
     }
     row(&mut out, "total", &r.total, volumes);
     out.push('\n');
+    totals(&mut out, r);
+    metal(&mut out, r);
+    out
+}
+
+/// The totals in words: time, length, laser, powder.
+fn totals(out: &mut String, r: &Report) {
     let t = &r.total;
     let _ = writeln!(
         out,
@@ -110,8 +117,13 @@ pub fn render(r: &Report) -> String {
         "powder fed  {} (while the laser is on)",
         mass(t.powder_g)
     );
+}
+
+/// The metal: what the bead model lays, what the layers stack, the design.
+fn metal(out: &mut String, r: &Report) {
+    let t = &r.total;
     let Some(bead) = &r.bead else {
-        return out;
+        return;
     };
     let density = r
         .density_g_cm3
@@ -167,7 +179,6 @@ pub fn render(r: &Report) -> String {
             "mass        the bead model declares no density: give one with --density (g/cm³)"
         );
     }
-    out
 }
 
 fn ratio(a: f64, b: f64) -> String {
