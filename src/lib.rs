@@ -5,6 +5,7 @@ pub mod back;
 pub mod bead;
 pub mod check;
 pub mod control;
+pub mod deposit;
 pub mod diag;
 pub mod fill;
 pub mod geometry;
