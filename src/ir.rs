@@ -6,7 +6,10 @@
 //! vectors. Process values and directions are stored as `f32` to keep a point at 72
 //! bytes (the dense duct has 3.6 M of them); positions stay `f64`.
 
+use crate::bead::HeightModel;
+use crate::deposit::{Basis, Deposit};
 use crate::span::Span;
+use crate::units::{Density, Length, MassFlow, Speed};
 use serde::{Deserialize, Serialize};
 
 /// The IR format tag.
@@ -69,6 +72,10 @@ pub struct Program {
     /// A segmented ring and its height loop (seed 004).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ring: Option<Ring>,
+    /// The bead model the points' speeds were chosen with and their `rise`
+    /// predicted by (none on a ring, whose segments have their own widths).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bead: Option<Bead>,
     /// Layers in build order.
     pub layers: Vec<Layer>,
     /// Source spans of the declarations the checks refer to; not serialised.
@@ -177,6 +184,108 @@ pub struct HeightSensor {
     pub full_scale: f64,
     /// How long after a segment's end its mean is on the input, s.
     pub delay: f64,
+}
+
+/// A bead model, in the IR's units: what the slicer chose the speeds by
+/// and the verifier predicts each layer's rise with ([`crate::deposit`]).
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Bead {
+    /// The bead's width, mm.
+    pub width: f64,
+    /// How its height follows the speed.
+    pub model: BeadModel,
+    /// What its heights were measured as.
+    pub basis: Basis,
+    /// The speeds it holds for, mm/s.
+    pub speed: [f64; 2],
+}
+
+/// How a bead's height follows the scan speed `v` (mm/s).
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum BeadModel {
+    /// `h = slope·v + intercept`.
+    Linear {
+        /// mm per mm/s.
+        slope: f64,
+        /// mm.
+        intercept: f64,
+    },
+    /// `A = efficiency·feed/(density·v)`.
+    MassBalance {
+        /// g/min (a point's own `powder` replaces it).
+        feed: f64,
+        /// 0–1.
+        efficiency: f64,
+        /// g/cm³.
+        density: f64,
+    },
+    /// One height at one speed.
+    Measured {
+        /// mm.
+        height: f64,
+        /// mm/s.
+        speed: f64,
+    },
+}
+
+impl Bead {
+    /// The bead as the deposit model reads it.
+    pub fn deposit(&self) -> Deposit {
+        let model = match self.model {
+            BeadModel::Linear { slope, intercept } => HeightModel::Linear {
+                slope,
+                intercept: Length(intercept),
+            },
+            BeadModel::MassBalance {
+                feed,
+                efficiency,
+                density,
+            } => HeightModel::MassBalance {
+                feed: MassFlow(feed / 60.0),
+                efficiency,
+                density: Density(density / 1000.0),
+            },
+            BeadModel::Measured { height, speed } => HeightModel::Measured {
+                height: Length(height),
+                speed: Speed(speed),
+            },
+        };
+        Deposit {
+            model,
+            width: Length(self.width),
+            basis: self.basis,
+        }
+    }
+
+    /// The IR's form of a deposit model valid over `speeds`.
+    pub fn of(d: &Deposit, speeds: [Speed; 2]) -> Bead {
+        let model = match d.model {
+            HeightModel::Linear { slope, intercept } => BeadModel::Linear {
+                slope,
+                intercept: intercept.0,
+            },
+            HeightModel::MassBalance {
+                feed,
+                efficiency,
+                density,
+            } => BeadModel::MassBalance {
+                feed: feed.g_min(),
+                efficiency,
+                density: density.0 * 1000.0,
+            },
+            HeightModel::Measured { height, speed } => BeadModel::Measured {
+                height: height.0,
+                speed: speed.0,
+            },
+        };
+        Bead {
+            width: d.width.0,
+            model,
+            basis: d.basis,
+            speed: [speeds[0].0, speeds[1].0],
+        }
+    }
 }
 
 /// Units of the IR's numbers.
@@ -319,6 +428,18 @@ pub struct Point {
     /// The process style of this point (0: the process block's values).
     #[serde(default)]
     pub style: u16,
+    /// The width of the strip of its layer this point's deposit fills, mm:
+    /// the bead's width on a wall one bead wide, the offset of overlapped
+    /// tracks, the mean spacing to the neighbouring tracks in a balanced
+    /// variable layer (0: not known, as on a ring). The deposit model's rise
+    /// here is `A/pitch` (docs/ir.md, *The deposit*).
+    #[serde(default)]
+    pub pitch: f32,
+    /// How much the layer rises here by the plan's bead model, at this
+    /// point's speed across the normal and its powder feed, mm (0 where the
+    /// laser is off or no bead model is known): what `layer_height` plans.
+    #[serde(default)]
+    pub rise: f32,
 }
 
 /// One row of the style table.
@@ -730,6 +851,34 @@ impl MachineOrigin {
 }
 
 impl Point {
+    /// The speed the bead model holds for on the move to `next`: the
+    /// component of this point's speed across its normal,
+    /// `speed·|Δf − (Δf·n)n| / |Δf|` for the nozzle's move `Δf` (focus to
+    /// focus). A bead map is measured on flat tracks, and what sets a
+    /// layer's thickness is the metal laid per length across the build
+    /// direction: a path that climbs along the normal (a variable layer
+    /// following the planned top of the one below; a ring's nozzle climbing
+    /// to the next segment's defocus) runs `√(1 + s²)` faster than the
+    /// ground it covers. For a move in the layer's plane at one defocus —
+    /// every planar and normal-sliced path — this is the speed itself; so it
+    /// is for a path's last point, which has no move.
+    #[inline]
+    pub fn speed_across(&self, next: Option<&Point>) -> f64 {
+        let v = self.speed as f64;
+        let Some(q) = next else { return v };
+        let (a, b) = (self.focus(), q.focus());
+        let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let n = self.normal.map(|c| c as f64);
+        let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+        // Along the normal's length squared: the rule for unit normals checks it.
+        let n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        if !(len2 > 0.0 && n2 > 0.0) {
+            return v;
+        }
+        v * ((len2 - along * along / n2).max(0.0) / len2).sqrt()
+    }
+
     /// Where the tool centre point goes: the laser focus, `defocus` along the
     /// normal from the deposit point. Both back ends program this point.
     pub fn focus(&self) -> [f64; 3] {
@@ -760,5 +909,47 @@ impl Program {
             .flat_map(|l| &l.paths)
             .map(|p| p.points.len())
             .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(pos: [f64; 3], speed: f32) -> Point {
+        Point {
+            pos,
+            normal: [0.0, 0.0, 1.0],
+            tangent: [1.0, 0.0, 0.0],
+            layer_height: 1.0,
+            speed,
+            power: 1000.0,
+            powder: 12.0,
+            defocus: 0.0,
+            laser_on: true,
+            style: 0,
+            pitch: 0.0,
+            rise: 0.0,
+        }
+    }
+
+    #[test]
+    fn a_climbing_move_is_checked_at_the_speed_over_the_ground() {
+        // A 3-4-5 climb: 5 mm of path per 4 mm of ground. At 10 mm/s along
+        // the path the nozzle crosses the ground at 8 mm/s.
+        let a = point([0.0, 0.0, 0.0], 10.0);
+        let b = point([4.0, 0.0, 3.0], 10.0);
+        assert!((a.speed_across(Some(&b)) - 8.0).abs() < 1e-6);
+        // In the layer's plane (every planar and normal-sliced move) it is
+        // the speed itself; so is a last point, which has no move.
+        let c = point([4.0, 3.0, 0.0], 10.0);
+        assert_eq!(a.speed_across(Some(&c)), 10.0);
+        assert_eq!(a.speed_across(None), 10.0);
+        // A tilted normal: the move in the plane normal to it is unchanged.
+        let mut t = point([0.0, 0.0, 0.0], 6.0);
+        let s = std::f32::consts::FRAC_1_SQRT_2;
+        t.normal = [s, 0.0, s];
+        let u = point([-1.0, 2.0, 1.0], 6.0);
+        assert!((t.speed_across(Some(&u)) - 6.0).abs() < 1e-5);
     }
 }

@@ -3,10 +3,11 @@
 
 use crate::control::SegmentProcess;
 use crate::diag::{message, Diagnostics};
-use crate::ir::{self, Limits, Origins, Program, Style, Units, FORMAT};
+use crate::ir::{self, Layer, Limits, Origins, Program, Style, Units, FORMAT};
 use crate::sema::model::{Model, Plan, RingPlan};
 use crate::slice;
 use crate::span::Span;
+use crate::units::Length;
 
 /// Builds the IR of a checked model; returns it with the slicer's warnings, or
 /// the errors that make the part unbuildable.
@@ -25,7 +26,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         (Plan::Ring(r), _) => ring_limits(model, r),
         (_, Some(bead)) => (
             Limits {
-                layer_height: [bead.height[0].0, bead.height[1].0],
+                layer_height: layer_heights(&model.plan, bead, &layers),
                 speed: [bead.speed[0].0, bead.speed[1].0],
                 power: [
                     model.process.power_range[0].watts(),
@@ -61,6 +62,10 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             .collect(),
         heat: model.process.heat,
         continuous: ring.is_some(),
+        bead: match (&model.plan, &model.bead) {
+            (Plan::Ring(_), _) | (_, None) => None,
+            (_, Some(b)) => Some(ir::Bead::of(&b.deposit(), b.speed)),
+        },
         ring,
         layers,
         origins: Origins {
@@ -88,7 +93,65 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
         },
     };
+    let mut program = program;
+    predict_rises(&mut program);
     Ok((program, warnings))
+}
+
+/// The layer heights the plan's bead stacks: its rises over its speeds
+/// where each deposit fills the strip the plan gives it (a wall: its width;
+/// overlapped tracks: their offset), narrowed to the declared `height`.
+/// A variable layer's tracks all fill one pitch (a wall, a declared offset)
+/// or each its own (the balanced layout, whose spacing makes every track
+/// rise by its bead's own height): then the heights are the beads'.
+fn layer_heights(plan: &Plan, bead: &crate::sema::model::Bead, layers: &[Layer]) -> [f64; 2] {
+    let pitch = match plan {
+        Plan::Block { slicing, .. } if slicing.overlapped() => slicing.offset,
+        Plan::Variable { .. } => match one_pitch(layers) {
+            Some(p) => Length(p),
+            None => return bead.height.map(|h| h.0),
+        },
+        _ => bead.width,
+    };
+    bead.heights(pitch).map(|h| h.0)
+}
+
+/// The pitch every laser-on point of `layers` shares, if they share one.
+fn one_pitch(layers: &[Layer]) -> Option<f64> {
+    let mut pitches = layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .flat_map(|p| &p.points)
+        .filter(|q| q.laser_on)
+        .map(|q| q.pitch as f64);
+    let first = pitches.next()?;
+    pitches
+        .all(|p| (p - first).abs() <= 1e-6 * first)
+        .then_some(first)
+}
+
+/// Each laser-on point's `rise` by the plan's bead model: `A/pitch` at its
+/// speed across the normal and its own powder feed.
+fn predict_rises(p: &mut Program) {
+    let Some(bead) = p.bead else { return };
+    let deposit = bead.deposit();
+    for path in p.layers.iter_mut().flat_map(|l| &mut l.paths) {
+        let n = path.points.len();
+        for k in 0..n {
+            let pt = &path.points[k];
+            if !pt.laser_on || pt.pitch <= 0.0 {
+                continue;
+            }
+            let v = pt.speed_across(path.points.get(k + 1));
+            let powder = crate::units::MassFlow(pt.powder as f64 / 60.0);
+            let rise = deposit.rise(
+                crate::units::Speed(v),
+                crate::units::Length(pt.pitch as f64),
+                Some(powder),
+            );
+            path.points[k].rise = rise.0 as f32;
+        }
+    }
 }
 
 /// A ring's limits: every layer `h_r` high; the speeds the loop may choose

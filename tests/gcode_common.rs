@@ -132,6 +132,8 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
             defocus: -3.0,
             laser_on: on,
             style: 0,
+            pitch: 0.0,
+            rise: 0.0,
         };
         let p = 1500.0 + 100.0 * i as f32;
         let contour = vec![
@@ -193,6 +195,7 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
         heat: Heat::default(),
         continuous: false,
         ring: None,
+        bead: None,
         layers: out,
         origins: Origins::default(),
     }

@@ -136,6 +136,8 @@ fn cone(kin: Kinematics) -> Program {
         defocus: -2.0,
         laser_on: true,
         style: 0,
+        pitch: 0.0,
+        rise: 0.0,
     };
     let turns: Vec<Point> = (0..=720)
         .map(|i| {

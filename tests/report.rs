@@ -112,6 +112,8 @@ fn one_straight_track_with_a_mass_balance_bead() {
         defocus: 0.0,
         laser_on: on,
         style: 0,
+        pitch: 0.0,
+        rise: 0.0,
     };
     ir.layers.truncate(1);
     ir.layers[0].paths = vec![Path {

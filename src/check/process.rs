@@ -119,33 +119,6 @@ impl Range {
     }
 }
 
-/// The speed the bead model is checked at: the component of the point's
-/// speed across its normal, `speed·|Δf − (Δf·n)n| / |Δf|` for the nozzle's
-/// move `Δf` (focus to focus) to the next point. A bead map is measured on
-/// flat tracks, and what sets a layer's thickness is the metal laid per
-/// length across the build direction: a path that climbs along the normal
-/// (seed 003's layers follow the planned top of the one below; seed 004's
-/// nozzle climbs to the next segment's defocus over a transition) runs
-/// `√(1 + s²)` faster than the ground it covers. For a move in the layer's
-/// plane at one defocus — every planar and normal-sliced path — this is the
-/// speed itself.
-#[inline]
-fn across_normal(pt: &Point, next: Option<&Point>) -> f64 {
-    let v = pt.speed as f64;
-    let Some(q) = next else { return v };
-    let (a, b) = (pt.focus(), q.focus());
-    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let n = pt.normal.map(|c| c as f64);
-    let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-    // Along the normal's length squared: the rule for unit normals checks it.
-    let n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    if !(len2 > 0.0 && n2 > 0.0) {
-        return v;
-    }
-    v * ((len2 - along * along / n2).max(0.0) / len2).sqrt()
-}
-
 /// How the plan's layers get their height, which decides what fixes a layer
 /// height out of range.
 fn layering(p: &Program) -> Layering {
@@ -211,7 +184,7 @@ impl ProcessRules {
                         continue;
                     }
                     self.height.value(pt.layer_height as f64, at);
-                    self.speed.value(across_normal(pt, next), at);
+                    self.speed.value(pt.speed_across(next), at);
                     self.power.value(pt.power as f64, at);
                 }
             }
@@ -226,45 +199,5 @@ impl ProcessRules {
             .report(&[o.bead_height, o.spine, o.top, o.slicing], out);
         self.speed.report(&[o.bead_speed], out);
         self.power.report(&[o.power], out);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn point(pos: [f64; 3], speed: f32) -> Point {
-        Point {
-            pos,
-            normal: [0.0, 0.0, 1.0],
-            tangent: [1.0, 0.0, 0.0],
-            layer_height: 1.0,
-            speed,
-            power: 1000.0,
-            powder: 12.0,
-            defocus: 0.0,
-            laser_on: true,
-            style: 0,
-        }
-    }
-
-    #[test]
-    fn a_climbing_move_is_checked_at_the_speed_over_the_ground() {
-        // A 3-4-5 climb: 5 mm of path per 4 mm of ground. At 10 mm/s along
-        // the path the nozzle crosses the ground at 8 mm/s.
-        let a = point([0.0, 0.0, 0.0], 10.0);
-        let b = point([4.0, 0.0, 3.0], 10.0);
-        assert!((across_normal(&a, Some(&b)) - 8.0).abs() < 1e-6);
-        // In the layer's plane (every planar and normal-sliced move) it is
-        // the speed itself; so is a last point, which has no move.
-        let c = point([4.0, 3.0, 0.0], 10.0);
-        assert_eq!(across_normal(&a, Some(&c)), 10.0);
-        assert_eq!(across_normal(&a, None), 10.0);
-        // A tilted normal: the move in the plane normal to it is unchanged.
-        let mut t = point([0.0, 0.0, 0.0], 6.0);
-        let s = std::f32::consts::FRAC_1_SQRT_2;
-        t.normal = [s, 0.0, s];
-        let u = point([-1.0, 2.0, 1.0], 6.0);
-        assert!((across_normal(&t, Some(&u)) - 6.0).abs() < 1e-5);
     }
 }

@@ -36,6 +36,7 @@ pub fn read<'a>(
     let required = (!measured).then_some("7 mm/s .. 10 mm/s");
     let speed = f.range("speed", Dim::SPEED, required, diags);
     let height = f.range("height", Dim::LENGTH, None, diags);
+    let declared_height = height.map(|([lo, hi], _)| [Length(lo), Length(hi)]);
     let model = f.value(
         "model",
         Some("mass_balance(feed = 45.9 g/min, efficiency = 0.3, density = 7.9 g/cm^3)"),
@@ -164,6 +165,8 @@ pub fn read<'a>(
         name: name.to_string(),
         width: w,
         model,
+        basis: crate::deposit::Basis::Track,
+        declared_height,
         speed: [Speed(speed[0]), Speed(speed[1])],
         height: [Length(height[0]), Length(height[1])],
         span,

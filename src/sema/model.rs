@@ -216,11 +216,15 @@ pub struct Bead {
     pub width: Length,
     /// Height model.
     pub model: HeightModel,
+    /// What the model's heights were measured as.
+    pub basis: crate::deposit::Basis,
     /// Speeds the model is valid for.
     pub speed: [Speed; 2],
     /// Allowed layer heights: the declared range, narrowed to what the model
     /// reaches over its speed range.
     pub height: [Length; 2],
+    /// The `height = …` range as declared, if it is.
+    pub declared_height: Option<[Length; 2]>,
     /// Spans: whole bead, its height range (or the model when not declared), its
     /// speed range.
     pub span: Span,
@@ -238,6 +242,15 @@ pub fn within(x: f64, lo: f64, hi: f64) -> bool {
 }
 
 impl Bead {
+    /// The bead as the deposit model reads it.
+    pub fn deposit(&self) -> crate::deposit::Deposit {
+        crate::deposit::Deposit {
+            model: self.model,
+            width: self.width,
+            basis: self.basis,
+        }
+    }
+
     /// Whether the model holds at scan speed `v`.
     pub fn covers_speed(&self, v: Speed) -> bool {
         within(v.0, self.speed[0].0, self.speed[1].0)
@@ -246,6 +259,29 @@ impl Bead {
     /// Whether `h` is an allowed layer height.
     pub fn covers_height(&self, h: Length) -> bool {
         within(h.0, self.height[0].0, self.height[1].0)
+    }
+
+    /// The layer heights this bead stacks where each deposit fills a strip
+    /// `pitch` wide ([`crate::deposit`]): its rises `A/pitch` over its
+    /// speeds, narrowed to the declared `height`. A bead measured at one
+    /// speed rises `A/pitch` whatever the pitch it is given: its allowed
+    /// heights are the declared ones or `A/w .. h`, a lone track's to that
+    /// of tracks at the flat-top offset.
+    pub fn heights(&self, pitch: Length) -> [Length; 2] {
+        if let HeightModel::Measured { .. } = self.model {
+            return self.height;
+        }
+        let [lo, hi] = self.deposit().rises(self.speed, pitch);
+        match self.declared_height {
+            Some([a, b]) => [Length(lo.0.max(a.0)), Length(hi.0.min(b.0))],
+            None => [lo, hi],
+        }
+    }
+
+    /// Whether `h` is a layer height this bead stacks at `pitch`.
+    pub fn stacks(&self, h: Length, pitch: Length) -> bool {
+        let [lo, hi] = self.heights(pitch);
+        within(h.0, lo.0, hi.0)
     }
 }
 

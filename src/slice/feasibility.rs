@@ -50,7 +50,8 @@ pub fn choose_layers(
     bead: &Bead,
     slicing: &Slicing,
 ) -> Result<(usize, f64), Diagnostic> {
-    let [h_min, h_max] = [bead.height[0].0, bead.height[1].0];
+    // A wall one bead wide: the heights it stacks are its rises A/w.
+    let [h_min, h_max] = bead.heights(bead.width).map(|h| h.0);
     let (total, rho_min, rho_max) = match loft.spine {
         Spine::Line { length } => (length.0, 1.0, 1.0),
         Spine::Arc { radius, angle } => {
@@ -144,13 +145,13 @@ fn too_tight(
     q_have: f64,
 ) -> Diagnostic {
     let scale = radius * (q_have - 1.0) / (r.outward + q_have * r.inward);
-    let h_top = bead
-        .model
-        .height_at(bead.speed[0], bead.width)
-        .0
-        .min(bead.height[1].0);
-    let v_fast = bead.model.speed_for(Length(h_top / q_need), bead.width);
-    let radius_fits = suggest_radius(r, angle, bead.height[0].0, bead.height[1].0);
+    let [h_min, h_max] = bead.heights(bead.width);
+    // The wall's rise at the slowest speed, and the speed that lays it over
+    // the ratio the bend needs.
+    let deposit = bead.deposit();
+    let h_top = deposit.rise(bead.speed[0], bead.width, None).0.min(h_max.0);
+    let v_fast = deposit.speed_for(Length(h_top / q_need), bead.width);
+    let radius_fits = suggest_radius(r, angle, h_min.0, h_max.0);
     let speed_fits =
         (v_fast.0.is_finite() && v_fast.0 > 0.0).then(|| (v_fast.0 * 10.0).ceil() / 10.0);
     message::bend::too_tight(&TooTight {
@@ -168,10 +169,10 @@ fn too_tight(
     })
 }
 
-/// The bead's heights, for the messages.
+/// The heights the bead stacks as a wall, for the messages.
 fn heights(bead: &Bead) -> Heights {
     Heights {
-        range: bead.height,
+        range: bead.heights(bead.width),
         span: bead.height_span,
     }
 }

@@ -5,7 +5,6 @@
 //! The checker has checked every declaration; what is decided here depends on
 //! all of them together.
 
-use crate::bead::{planar_lift, segment_height};
 use crate::diag::message::{self, slicing::BeadHeights, slicing::LiftFix};
 use crate::diag::Diagnostics;
 use crate::sema::model::MAX_LAYERS;
@@ -32,6 +31,9 @@ pub struct Layers {
     pub shapes: Vec<Shape>,
     /// How far every layer rises.
     pub lift: Length,
+    /// The strip each track fills (the offset of overlapped tracks, else
+    /// the bead's width): the layer rises `A/pitch` ([`crate::deposit`]).
+    pub pitch: Length,
     /// Whether the lift was derived from the bead model (`layer_height = auto`).
     pub lift_derived: bool,
 }
@@ -53,12 +55,20 @@ pub fn plan(
     diags: &mut Diagnostics,
 ) -> Option<Layers> {
     let width = bead.width;
-    let h = bead.model.height_at(slicing.speed, width);
     let overlapped = slicing.overlapped();
-    let laid = planar_lift(width, h, overlapped.then_some(slicing.offset));
+    // Overlapped tracks fill their offset each, a lone track its width: the
+    // layer rises A/pitch at the process speed ([`crate::deposit`]).
+    let pitch = if overlapped { slicing.offset } else { width };
+    let laid = bead.deposit().rise(slicing.speed, pitch, None);
     let (lift, lift_derived) = match slicing.lift {
-        Some((l, at)) => (declared_lift(l, at, laid, overlapped, bead, diags)?, false),
-        None => (derived_lift(laid, overlapped, slicing, bead, diags)?, true),
+        Some((l, at)) => (
+            declared_lift(l, at, laid, (overlapped, pitch), bead, diags)?,
+            false,
+        ),
+        None => (
+            derived_lift(laid, (overlapped, pitch), slicing, bead, diags)?,
+            true,
+        ),
     };
     let n = match extrusion.extent {
         Extent::Layers(n, _) => n,
@@ -97,6 +107,7 @@ pub fn plan(
     Some(Layers {
         shapes,
         lift,
+        pitch,
         lift_derived,
     })
 }
@@ -133,15 +144,15 @@ fn declared_lift(
     l: Length,
     at: Span,
     laid: Length,
-    overlapped: bool,
+    (overlapped, pitch): (bool, Length),
     bead: &Bead,
     diags: &mut Diagnostics,
 ) -> Option<Length> {
-    if !bead.covers_height(l) {
+    if !bead.stacks(l, pitch) {
         diags.push(message::slicing::declared_height_outside(
             l,
             laid,
-            &heights(bead),
+            &heights(bead, pitch),
             at,
         ));
         return None;
@@ -160,15 +171,15 @@ fn declared_lift(
 /// the error names the offsets (or speeds) that would.
 fn derived_lift(
     laid: Length,
-    overlapped: bool,
+    (overlapped, pitch): (bool, Length),
     slicing: &PlanarSlicing,
     bead: &Bead,
     diags: &mut Diagnostics,
 ) -> Option<Length> {
-    if bead.covers_height(laid) {
+    if bead.stacks(laid, pitch) {
         return Some(laid);
     }
-    let [lo, hi] = bead.height;
+    let [lo, hi] = bead.heights(pitch);
     let width = bead.width;
     let fix = if overlapped {
         let a = laid.0 * slicing.offset.0;
@@ -187,18 +198,18 @@ fn derived_lift(
     diags.push(message::slicing::derived_height_outside(
         laid,
         overlapped,
-        &heights(bead),
+        &heights(bead, pitch),
         at,
         &fix,
     ));
     None
 }
 
-/// The bead's heights, for the messages.
-fn heights(bead: &Bead) -> BeadHeights<'_> {
+/// The heights the bead stacks at `pitch`, for the messages.
+fn heights(bead: &Bead, pitch: Length) -> BeadHeights<'_> {
     BeadHeights {
         name: &bead.name,
-        height: bead.height,
+        height: bead.heights(pitch),
         span: bead.height_span,
     }
 }
@@ -209,11 +220,9 @@ fn wall_fix(bead: &Bead, w: Length, lo: Length, hi: Length) -> LiftFix {
     if let HeightModel::Measured { .. } = bead.model {
         return LiftFix::Measured;
     }
-    // The bead height whose segment area spread over w is the rise r.
-    let speed = |r: Length| {
-        let h = segment_height(w.0, r.0 * w.0);
-        bead.model.speed_for(Length(h), w).0
-    };
+    // The speed at which a lone track rises r.
+    let deposit = bead.deposit();
+    let speed = |r: Length| deposit.speed_for(r, w).0;
     let (a, b) = (speed(lo), speed(hi));
     let (a, b) = (a.min(b).max(bead.speed[0].0), a.max(b).min(bead.speed[1].0));
     if a.is_finite() && b.is_finite() && a <= b {

@@ -1,6 +1,7 @@
 //! Continuous gradual ("normal") slicing of a loft: layer `i` is deposited on
 //! the section plane at station `i/n`; a point at distance ρ from the bend axis
-//! gets the local height ρ·Δδ (seed 000), and the speed that lays it.
+//! gets the local height ρ·Δδ (seed 000), and the speed at which the wall,
+//! one bead wide, rises by it: `A(v)/w` ([`crate::deposit`]).
 
 use crate::geometry::LoftGeometry;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
@@ -87,6 +88,7 @@ pub fn layer(
     let defocus = model.process.defocus.0 as f32;
     let k = plan.k;
     let seam = plan.seam;
+    let deposit = bead.deposit();
     let dth = std::f64::consts::TAU / k as f64;
 
     let mut pos = Vec::with_capacity(k);
@@ -124,7 +126,8 @@ pub fn layer(
         t -= n * t.dot(&n);
         let t = t.try_normalize(1e-12).unwrap_or(f.y);
         let h = heights[jj];
-        let v = bead.model.speed_for(Length(h), bead.width);
+        // A wall one bead wide: each point's deposit fills the bead's width.
+        let v = deposit.speed_for(Length(h), bead.width);
         let p = pos[jj];
         points.push(Point {
             pos: [p.x, p.y, p.z],
@@ -137,6 +140,8 @@ pub fn layer(
             defocus,
             laser_on: j < k,
             style: 0,
+            pitch: bead.width.0 as f32,
+            rise: 0.0,
         });
     }
     let o = f.spine.origin;

@@ -77,6 +77,7 @@ fn fill_layers(
     };
     let n = plan.shapes.len();
     let lift = plan.lift.0;
+    let pitch = plan.pitch.0;
     let varies = plan.varies();
     let mut out = Vec::with_capacity(n);
     let mut total = 0usize;
@@ -148,7 +149,7 @@ fn fill_layers(
         }
         let styles = styler.layer(k, &filled.region, &filled.tracks);
         found.used.extend(styles.iter().copied());
-        out.push(layer(&values, k, n, lift, &filled.tracks, &styles));
+        out.push(layer(&values, k, n, [lift, pitch], &filled.tracks, &styles));
         last = Some(filled);
     }
     found.report(model, bead, extrusion, slicing, diags);
@@ -427,7 +428,7 @@ fn layer(
     values: &Values,
     k: usize,
     n: usize,
-    lift: f64,
+    [lift, pitch]: [f64; 2],
     tracks: &[Track],
     styles: &[u16],
 ) -> Layer {
@@ -435,6 +436,7 @@ fn layer(
     let at = |style: u16| Laid {
         z,
         lift,
+        pitch,
         deposit: values.of(style, k),
         defocus: values.defocus,
         style,
@@ -482,6 +484,7 @@ fn layer(
 struct Laid {
     z: f64,
     lift: f64,
+    pitch: f64,
     deposit: Deposit,
     defocus: f32,
     style: u16,
@@ -512,6 +515,8 @@ fn path(kind: PathKind, pts: &[[f64; 2]], laser: bool, l: &Laid) -> Path {
                 defocus: l.defocus,
                 laser_on: laser && i + 1 < m,
                 style: l.style,
+                pitch: l.pitch as f32,
+                rise: 0.0,
             }
         })
         .collect();

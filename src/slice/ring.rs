@@ -154,6 +154,8 @@ fn layer(i: usize, layers: usize, h: f64, powder: f32, pts: &[RingPoint]) -> Lay
                 defocus: p.defocus.0 as f32,
                 laser_on: k < last,
                 style: 0,
+                pitch: 0.0,
+                rise: 0.0,
             }
         })
         .collect();

@@ -104,6 +104,8 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
                 defocus: -8.57,
                 laser_on: j < k,
                 style: 0,
+                pitch: 0.0,
+                rise: 0.0,
             });
         }
         let mut paths = vec![Path {
@@ -148,6 +150,7 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
         heat: Heat::default(),
         continuous: false,
         ring: None,
+        bead: None,
         layers: out,
         origins: Origins::default(),
     }

@@ -36,7 +36,7 @@ impl Process {
 /// Layer `i` of `n` over `tracks`.
 pub fn layer(
     model: &Model,
-    map: &impl HeightMap,
+    maps: &[impl HeightMap],
     process: &Process,
     tracks: &[Track],
     scan: Axis,
@@ -52,7 +52,7 @@ pub fn layer(
             kind: PathKind::Infill,
             points: track(
                 tr,
-                map,
+                &maps[k],
                 process,
                 scan,
                 i,
@@ -132,6 +132,8 @@ fn track(
                 defocus: process.defocus,
                 laser_on: k + 1 < m,
                 style: 0,
+                pitch: tr.pitch as f32,
+                rise: 0.0,
             }
         })
         .collect()

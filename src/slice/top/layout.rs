@@ -27,6 +27,11 @@ pub const STRETCH_WARNING: f64 = 0.05;
 pub struct Layout {
     /// Each line's coordinate across the scan axis, in order, mm.
     pub centres: Vec<f64>,
+    /// The strip each line's track fills, mm: the mean of its spacings to
+    /// the lines either side (the one it has at an edge), the bead's width
+    /// for a lone line. The layer rises `A/pitch` along it
+    /// ([`crate::deposit`]).
+    pub pitches: Vec<f64>,
     /// The closure's stretch of the balanced spacing (`None`: a declared
     /// offset).
     pub stretch: Option<f64>,
@@ -47,16 +52,55 @@ pub fn lay(
     };
     let w = bead.width.0;
     let layout = match slicing.offset {
-        Some((d, _)) => Layout {
-            centres: fixed(c_lo, c_hi, d.0),
-            stretch: None,
-        },
+        Some((d, _)) => {
+            let centres = fixed(c_lo, c_hi, d.0);
+            Layout {
+                pitches: pitches(&centres, w),
+                centres,
+                stretch: None,
+            }
+        }
         None => balanced(fp, scan, sampled, n, w).map_err(|e| error(e, ex, fp, scan))?,
     };
     if layout.centres.len() > MAX_TRACKS {
         return Err(error(OverlapError::TooManyTracks, ex, fp, scan));
     }
     Ok(layout)
+}
+
+/// The strip each of the lines at `centres` fills: the mean of its spacings
+/// to its neighbours, the one it has at an edge, `w` for a lone line.
+fn pitches(centres: &[f64], w: f64) -> Vec<f64> {
+    let n = centres.len();
+    if n < 2 {
+        return vec![w; n];
+    }
+    (0..n)
+        .map(|k| {
+            let before = (k > 0).then(|| centres[k] - centres[k - 1]);
+            let after = (k + 1 < n).then(|| centres[k + 1] - centres[k]);
+            match (before, after) {
+                (Some(a), Some(b)) => 0.5 * (a + b),
+                (Some(a), None) | (None, Some(a)) => a,
+                (None, None) => w,
+            }
+        })
+        .collect()
+}
+
+/// The pitch the layer count is chosen for, known before the tracks are
+/// laid: the bead's width when one line fills the footprint (or a declared
+/// offset leaves room for one only), the declared offset, or `None` for the
+/// balanced layout, whose spacing makes each track rise by its bead's own
+/// height (`h·C = A`).
+pub fn count_pitch(fp: &Footprint, scan: Axis, w: f64, slicing: &VariableSlicing) -> Option<f64> {
+    let [c_lo, c_hi] = fp.centres(scan)?;
+    match slicing.offset {
+        _ if c_hi - c_lo <= 0.0 => Some(w),
+        Some((d, _)) if c_hi - c_lo <= CLOSING * d.0 => Some(w),
+        Some((d, _)) => Some(d.0),
+        None => None,
+    }
 }
 
 /// Lines `d` apart from the first, and one on the last when more than
@@ -97,8 +141,9 @@ fn balanced(
     let bead = Positive::new("bead width", Length(w)).map_err(|_| OverlapError::NoClosure)?;
     let t = lay_tracks(&section, bead)?;
     // Centres from the first face (a single one mid-way).
-    let centres = t.centres.iter().map(|c| o_lo + c.0).collect();
+    let centres: Vec<f64> = t.centres.iter().map(|c| o_lo + c.0).collect();
     Ok(Layout {
+        pitches: pitches(&centres, w),
         centres,
         stretch: Some(t.stretch),
     })

@@ -51,13 +51,16 @@ pub fn slice(
     slicing: &VariableSlicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     let w = bead.width.0;
-    let map = BeadMap::new(bead).map_err(|e| internal(e.to_string()))?;
     let fp = Footprint::new(ex, w)?;
     let mut top = Surface::new(ex, |axis| fp.written_extent(axis));
     // Samples every eighth of a bead: a top that bends within a bead is
     // seen, a plane costs nothing (its samples are dropped again).
     let pitch = w / 8.0;
     let (scan, sampled) = scan_axis(&fp, &mut top, pitch, ex, slicing.scan)?;
+    // The heights the count is chosen for: what the bead stacks at the
+    // pitch the tracks will have, or its own heights for a balanced layout.
+    let count_pitch = layout::count_pitch(&fp, scan, w, slicing).map(Length);
+    let map = BeadMap::new(bead, count_pitch).map_err(|e| internal(e.to_string()))?;
     let mut range = TopRange::of(&sampled).ok_or_else(|| internal("an empty top range".into()))?;
     let positive = |what, l: Length| Positive::new(what, l).map_err(|e| internal(e.to_string()));
     let spec = SegmentSpec {
@@ -107,8 +110,16 @@ pub fn slice(
             .into());
         }
         let process = emit::Process::of(model, bead);
+        // Each track's speeds raise the layer by its height over the strip
+        // it fills.
+        let maps = planned
+            .tracks
+            .iter()
+            .map(|t| BeadMap::new(bead, Some(Length(t.pitch))))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| internal(e.to_string()))?;
         let layers = (0..n.get())
-            .map(|i| emit::layer(model, &map, &process, &planned.tracks, scan, i, n))
+            .map(|i| emit::layer(model, &maps, &process, &planned.tracks, scan, i, n))
             .collect();
         return Ok((layers, warnings));
     }

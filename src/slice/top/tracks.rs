@@ -25,6 +25,8 @@ const MAX_SAMPLES: f64 = 1e6;
 pub struct Track {
     /// Its line's coordinate across the scan axis, mm.
     pub c: f64,
+    /// The strip of the layer it fills, mm ([`super::layout::Layout::pitches`]).
+    pub pitch: f64,
     /// Point positions along the scan axis, increasing, mm.
     pub t: Vec<f64>,
     /// The top at each point, mm.
@@ -106,7 +108,7 @@ pub fn plan(
     // A huge footprint is sampled more coarsely: a bounded number of points.
     let total: f64 = lines.iter().flatten().map(|[a, b]| b - a).sum();
     let pitch = pitch.max(total / MAX_SAMPLES);
-    for (&c, intervals) in layout.centres.iter().zip(lines) {
+    for ((&c, &track_pitch), intervals) in layout.centres.iter().zip(&layout.pitches).zip(lines) {
         for [a, b] in intervals {
             let samples: Vec<(f64, f64)> = spaced(a, b, pitch)
                 .into_iter()
@@ -142,6 +144,7 @@ pub fn plan(
                     let heights = s.segments.iter().map(|g| g.height.0).collect();
                     out.tracks.push(Track {
                         c,
+                        pitch: track_pitch,
                         t,
                         h,
                         seg,

@@ -132,24 +132,32 @@ impl HeightMap for LinearMap {
     }
 }
 
-/// A checked bead model of the file (`bead NAME { … }`) as a height map:
-/// its allowed heights and its model's inverse.
+/// A checked bead model of the file (`bead NAME { … }`) as a height map for
+/// tracks that each fill a strip `pitch` wide ([`crate::deposit`]): the
+/// layer heights it stacks there and the speed that lays each. Without a
+/// pitch (seed 003's balanced layout, whose spacing makes every track rise
+/// by its bead's own height, `h·C = A`) the heights are the beads' own.
 #[derive(Clone, Copy, Debug)]
 pub struct BeadMap<'a> {
     bead: &'a Bead,
+    pitch: Option<Length>,
     heights: HeightRange,
 }
 
 impl<'a> BeadMap<'a> {
-    /// Wraps a bead whose allowed heights form a valid range.
-    pub fn new(bead: &'a Bead) -> Result<Self, Invalid> {
-        let heights = HeightRange::new(
-            "allowed heights of the bead",
-            bead.height[0],
-            bead.height[1],
-        )?;
+    /// Wraps a bead whose heights at `pitch` form a valid range.
+    pub fn new(bead: &'a Bead, pitch: Option<Length>) -> Result<Self, Invalid> {
         Positive::new("bead width", bead.width)?;
-        Ok(BeadMap { bead, heights })
+        let [lo, hi] = match pitch {
+            Some(p) => bead.heights(Positive::new("track pitch", p)?.get()),
+            None => bead.height,
+        };
+        let heights = HeightRange::new("allowed heights of the bead", lo, hi)?;
+        Ok(BeadMap {
+            bead,
+            pitch,
+            heights,
+        })
     }
 }
 
@@ -159,7 +167,13 @@ impl HeightMap for BeadMap<'_> {
     }
 
     fn speed_within(&self, h: Length) -> Speed {
-        self.bead.model.speed_for(h, self.bead.width)
+        let d = self.bead.deposit();
+        let w = self.bead.width;
+        match self.pitch {
+            Some(p) => d.speed_for(h, p),
+            // A bead `h` high lays its segment: the speed for that area.
+            None => d.speed_for(Length(crate::bead::segment_area(w.0, h.0) / w.0), w),
+        }
     }
 }
 
