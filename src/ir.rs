@@ -328,6 +328,26 @@ pub struct Limits {
     /// lying on each other).
     #[serde(default)]
     pub bead_width: f64,
+    /// How far a point's predicted rise may be from its layer height, as a
+    /// fraction of it (`rise_tolerance`; docs/ir.md, *The deposit*).
+    #[serde(default = "default_rise_tolerance")]
+    pub rise_tolerance: f64,
+    /// How far the layers' mean error may add up, mm (`max_drift`).
+    #[serde(default = "default_max_drift")]
+    pub max_drift: f64,
+}
+
+/// The default `rise_tolerance`: 3 % of a layer.
+pub const RISE_TOLERANCE: f64 = 0.03;
+/// The default `max_drift`, mm.
+pub const MAX_DRIFT: f64 = 0.5;
+
+fn default_rise_tolerance() -> f64 {
+    RISE_TOLERANCE
+}
+
+fn default_max_drift() -> f64 {
+    MAX_DRIFT
 }
 
 /// How long a layer must take, so it can cool before the next is laid on it.

@@ -33,6 +33,8 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
                     model.process.power_range[1].watts(),
                 ],
                 bead_width: bead.width.0,
+                rise_tolerance: ir::RISE_TOLERANCE,
+                max_drift: ir::MAX_DRIFT,
             },
             Some(bead.height_span),
             Some(bead.speed_span),
@@ -181,6 +183,8 @@ fn ring_limits(model: &Model, r: &RingPlan) -> (Limits, Option<Span>, Option<Spa
             model.process.power_range[1].watts(),
         ],
         bead_width: fold(|row| row.width.0)[0],
+        rise_tolerance: ir::RISE_TOLERANCE,
+        max_drift: ir::MAX_DRIFT,
     };
     let speed_span = match &r.control {
         Some(_) => r.origins.clamp,

@@ -189,6 +189,8 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
             speed: [1.0, 50.0],
             power: [0.0, 4000.0],
             bead_width: 0.0,
+            rise_tolerance: lmdc::ir::RISE_TOLERANCE,
+            max_drift: lmdc::ir::MAX_DRIFT,
         },
         machines,
         styles: Vec::new(),

@@ -19,6 +19,7 @@
 //! again.
 
 mod cell;
+mod deposit;
 mod machine;
 mod names;
 mod process;

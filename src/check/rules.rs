@@ -3,6 +3,7 @@
 //! line here.
 
 use super::cell::CellRule;
+use super::deposit::DepositRule;
 use super::machine::{Analog, SpeedLimit, Tilt, Travel};
 use super::names::FileNames;
 use super::process::ProcessRules;
@@ -20,7 +21,8 @@ pub(super) type Check = fn(&ProgramCx<'_>, &mut Diagnostics);
 /// Rules over the IR alone, run first: the points' values, the ring's loop.
 /// The plans are walked only if every point is finite (a plan through a
 /// non-finite point would only repeat that error).
-pub(super) const BEFORE_PLANS: &[Check] = &[ProcessRules::check, LoopAnalysis::check];
+pub(super) const BEFORE_PLANS: &[Check] =
+    &[ProcessRules::check, DepositRule::check, LoopAnalysis::check];
 
 /// Rules over the IR that run beside the machines' plans, on a thread of
 /// their own.

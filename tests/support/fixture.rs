@@ -144,6 +144,8 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
             speed: [1.0, 50.0],
             power: [0.0, 4000.0],
             bead_width: 0.0,
+            rise_tolerance: lmdc::ir::RISE_TOLERANCE,
+            max_drift: lmdc::ir::MAX_DRIFT,
         },
         machines,
         styles: Vec::new(),

@@ -4,6 +4,7 @@
 //! [`cell`], about a ring's loop in [`ring`].
 
 pub mod cell;
+pub mod deposit;
 pub mod machine;
 pub mod ring;
 

@@ -1,0 +1,144 @@
+//! What the verifier says when the plan's bead model does not lay the
+//! layers the plan stacks (`lmd::deposit`).
+
+use crate::diag::{plural, Code, Diagnostic, Worst};
+use crate::numbers::trimmed;
+use crate::span::Span;
+
+/// The point farthest off, as the model sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorstPoint {
+    /// Its planned layer height, mm.
+    pub planned: f64,
+    /// What the model lays there, mm.
+    pub rise: f64,
+    /// Its speed across the normal, mm/s.
+    pub speed: f64,
+    /// The strip it fills, mm.
+    pub pitch: f64,
+    /// The speed that would lay the planned height there, mm/s.
+    pub needs: f64,
+    /// Its style (0: the process block's).
+    pub style: u16,
+}
+
+/// How the layers' mean errors add up.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Drift {
+    /// The first layer (0-based) after which the sum passes the bound, and
+    /// the sum there, mm.
+    pub passed: Option<(usize, f64)>,
+    /// The sum after the last layer, mm.
+    pub last: f64,
+    /// The largest sum, by size, mm.
+    pub largest: f64,
+    /// The layers in the plan.
+    pub layers: usize,
+    /// `max_drift`, mm.
+    pub limit: f64,
+}
+
+impl Drift {
+    /// Adds layer `layer`'s running sum `sum`.
+    pub fn add(&mut self, layer: usize, sum: f64, limit: f64) {
+        self.last = sum;
+        if sum.abs() > self.largest.abs() {
+            self.largest = sum;
+        }
+        if self.passed.is_none() && sum.abs() > limit {
+            self.passed = Some((layer, sum));
+        }
+    }
+}
+
+/// What the rule found.
+#[derive(Clone, Copy, Debug)]
+pub struct DepositMiss {
+    /// Points off by more than the tolerance: how many, the worst ratio
+    /// of predicted to planned, where.
+    pub worst: Option<Worst>,
+    /// The worst point's numbers.
+    pub point: Option<WorstPoint>,
+    /// Laser-on points checked.
+    pub checked: u64,
+    /// What the model lays over what the plan stacks, over the whole plan.
+    pub share: f64,
+    /// `rise_tolerance`.
+    pub tolerance: f64,
+    /// The layers' errors added up.
+    pub drift: Drift,
+}
+
+fn mm(x: f64) -> String {
+    format!("{} mm", trimmed(x, 3))
+}
+
+fn percent(x: f64) -> String {
+    format!("{} %", trimmed(x * 100.0, 1))
+}
+
+/// The plan's bead model does not lay the layers it plans.
+pub fn deposit_miss(m: &DepositMiss, bead: Option<Span>, slicing: Option<Span>) -> Diagnostic {
+    let mut msg = format!(
+        "the bead model lays {} of the layers this plan stacks",
+        percent(m.share)
+    );
+    if let Some(w) = &m.worst {
+        msg.push_str(&format!(
+            ": {} of {} laser-on point{} rise more than {} off their layer height",
+            w.count,
+            m.checked,
+            plural(m.checked),
+            percent(m.tolerance)
+        ));
+    }
+    if let (Some(w), Some(p)) = (&m.worst, &m.point) {
+        msg.push_str(&format!(
+            "; the worst, at {}, rises {} where {} is planned ({} of it), at {} mm/s over a strip {} wide",
+            w.at,
+            mm(p.rise),
+            mm(p.planned),
+            percent(w.value),
+            trimmed(p.speed, 2),
+            mm(p.pitch)
+        ));
+    }
+    let dr = &m.drift;
+    let drift = match dr.passed {
+        Some((layer, sum)) => format!(
+            "added up, the layers {} {} after layer {} (`max_drift` is {}) and {} after the last of the {} layers",
+            if sum < 0.0 { "fall short by" } else { "overshoot by" },
+            mm(sum.abs()),
+            layer + 1,
+            mm(dr.limit),
+            mm(dr.last.abs()),
+            dr.layers
+        ),
+        None => format!(
+            "added up over the {} layers the error stays within {} (`max_drift` {})",
+            dr.layers,
+            mm(dr.largest.abs()),
+            mm(dr.limit)
+        ),
+    };
+    let d = Diagnostic::error(Code::Deposit, msg)
+        .label_opt(bead, "the bead model")
+        .label_opt(slicing, "the layers");
+    let mut help = format!("{drift}. ");
+    if let Some(p) = &m.point {
+        help.push_str(&format!(
+            "at the worst point {} mm/s lays the planned {}",
+            trimmed(p.needs, 2),
+            mm(p.planned)
+        ));
+        if p.style != 0 {
+            help.push_str(&format!(
+                " (its style {} sets the speed: a style changes the bead the model lays)",
+                p.style
+            ));
+        }
+        help.push_str("; ");
+    }
+    help.push_str("let the slicer pick the speeds and layer heights (`layer_height = auto`, `layers = auto`), or give the bead model as it was measured (`measured_as`)");
+    d.help(help)
+}
