@@ -103,33 +103,37 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
 /// The layer heights the plan's bead stacks: its rises over its speeds
 /// where each deposit fills the strip the plan gives it (a wall: its width;
 /// overlapped tracks: their offset), narrowed to the declared `height`.
-/// A variable layer's tracks all fill one pitch (a wall, a declared offset)
-/// or each its own (the balanced layout, whose spacing makes every track
-/// rise by its bead's own height): then the heights are the beads'.
+/// A variable layer's tracks fill the strips the layout gives them: the
+/// heights are what the bead stacks from the widest of them to the
+/// narrowest.
 fn layer_heights(plan: &Plan, bead: &crate::sema::model::Bead, layers: &[Layer]) -> [f64; 2] {
     let pitch = match plan {
         Plan::Block { slicing, .. } if slicing.overlapped() => slicing.offset,
-        Plan::Variable { .. } => match one_pitch(layers) {
-            Some(p) => Length(p),
-            None => return bead.height.map(|h| h.0),
-        },
+        Plan::Variable { .. } => {
+            let Some([narrow, wide]) = pitches(layers) else {
+                return bead.height.map(|h| h.0);
+            };
+            let lo = bead.heights(Length(wide))[0];
+            let hi = bead.heights(Length(narrow))[1];
+            return [lo.0, hi.0];
+        }
         _ => bead.width,
     };
     bead.heights(pitch).map(|h| h.0)
 }
 
-/// The pitch every laser-on point of `layers` shares, if they share one.
-fn one_pitch(layers: &[Layer]) -> Option<f64> {
-    let mut pitches = layers
+/// The narrowest and the widest pitch of `layers`' laser-on points.
+fn pitches(layers: &[Layer]) -> Option<[f64; 2]> {
+    layers
         .iter()
         .flat_map(|l| &l.paths)
         .flat_map(|p| &p.points)
-        .filter(|q| q.laser_on)
-        .map(|q| q.pitch as f64);
-    let first = pitches.next()?;
-    pitches
-        .all(|p| (p - first).abs() <= 1e-6 * first)
-        .then_some(first)
+        .filter(|q| q.laser_on && q.pitch > 0.0)
+        .map(|q| q.pitch as f64)
+        .fold(None, |r, p| match r {
+            None => Some([p, p]),
+            Some([lo, hi]) => Some([lo.min(p), hi.max(p)]),
+        })
 }
 
 /// Each laser-on point's `rise` by the plan's bead model: `A/pitch` at its

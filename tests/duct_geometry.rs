@@ -191,7 +191,9 @@ fn displacement_compensation_identity() {
 
 #[test]
 fn speeds_lay_the_local_height() {
-    // Mass balance: η·ṁ/(ρ·v) is the bead's circular-segment area for height h.
+    // Mass conservation: a wall one bead wide rises by the metal caught per
+    // mm over its width, η·ṁ/(ρ·v·w), at every point — not by the height of
+    // a single bead (which would stack only about 2/3 of it).
     let d = Duct::seed();
     let p = ir(&d.source());
     let feed = 45.9 / 60.0; // g/s
@@ -203,14 +205,18 @@ fn speeds_lay_the_local_height() {
         .flat_map(|p| &p.points)
         .step_by(97)
     {
-        let area = 0.35 * feed / (density * pt.speed as f64);
-        let h = lmdc::bead::segment_height(6.0, area);
+        let rise = 0.35 * feed / (density * pt.speed as f64 * 6.0);
         assert!(
-            (h - pt.layer_height as f64).abs() < 1e-4,
-            "{h} vs {}",
+            (rise / pt.layer_height as f64 - 1.0).abs() < 1e-5,
+            "{rise} vs {}",
             pt.layer_height
         );
         assert!(pt.speed >= 7.0 * 0.99999 && pt.speed <= 10.0 * 1.00001);
+        // The IR says so itself: the strip it fills and what it lays there.
+        assert_eq!(pt.pitch, 6.0);
+        if pt.laser_on {
+            assert!((pt.rise / pt.layer_height - 1.0).abs() < 1e-5);
+        }
     }
 }
 

@@ -60,55 +60,79 @@ fn ground(pt: &Point, next: Option<&Point>) -> f64 {
         .sqrt()
 }
 
+/// A run of moves at one speed over one strip: a constant-speed segment of
+/// a variable layer's track lays one rise over the heights its points plan,
+/// so the run is compared as a whole, by its means over its length.
+#[derive(Default)]
+struct Run {
+    len: f64,
+    rise: f64,
+    planned: f64,
+    /// Where it starts, and its first point's numbers.
+    at: Option<(Where, WorstPoint)>,
+}
+
 /// Everything the rule finds in `p`, or `None` when the plan lays what it
 /// plans (or has no bead model to predict with).
 pub(crate) fn check(p: &Program) -> Option<DepositMiss> {
     let bead = p.bead?;
     let d = bead.deposit();
-    let tol = p.limits.rise_tolerance;
-    let mut worst: Option<Worst> = None;
-    let mut worst_point: Option<WorstPoint> = None;
-    let (mut checked, mut laid, mut planned) = (0u64, 0.0, 0.0);
+    let mut found = Found {
+        tol: p.limits.rise_tolerance,
+        ..Found::default()
+    };
     let mut drift = Drift::default();
     let mut accumulated = 0.0;
     for (li, layer) in p.layers.iter().enumerate() {
         let (mut len_sum, mut err_sum) = (0.0, 0.0);
         for (pi, path) in layer.paths.iter().enumerate() {
+            let mut run = Run::default();
+            let mut key = None;
             for (k, pt) in path.points.iter().enumerate() {
-                if !pt.laser_on || pt.pitch <= 0.0 || pt.layer_height <= 0.0 {
+                let next = path.points.get(k + 1);
+                let here = (pt.laser_on && pt.pitch > 0.0 && pt.layer_height > 0.0)
+                    .then_some((pt.speed, pt.pitch, pt.powder));
+                if here != key {
+                    found.close(std::mem::take(&mut run));
+                    key = here;
+                }
+                if here.is_none() {
                     continue;
                 }
-                let next = path.points.get(k + 1);
                 let rise = predicted(&d, pt, next);
-                let h = pt.layer_height as f64;
+                // The layer's height along the move: the mean of its ends'.
+                let h = match next {
+                    Some(q) if q.layer_height > 0.0 => {
+                        0.5 * (pt.layer_height as f64 + q.layer_height as f64)
+                    }
+                    _ => pt.layer_height as f64,
+                };
                 let len = ground(pt, next);
-                checked += 1;
+                found.checked += 1;
                 len_sum += len;
                 err_sum += len * (rise - h);
-                laid += len * rise;
-                planned += len * h;
-                let ratio = rise / h;
-                if (ratio - 1.0).abs() > tol {
-                    let at = Where::Point {
+                found.laid += len * rise;
+                found.planned += len * h;
+                run.len += len;
+                run.rise += len * rise;
+                run.planned += len * h;
+                run.at.get_or_insert((
+                    Where::Point {
                         layer: li,
                         path: pi,
                         point: k,
-                    };
-                    let before = worst.map(|w| w.at);
-                    let limit = if ratio > 1.0 { 1.0 + tol } else { 1.0 - tol };
-                    Worst::hit(&mut worst, ratio, limit, at);
-                    if worst.map(|w| w.at) != before {
-                        worst_point = Some(WorstPoint {
-                            planned: h,
-                            rise,
-                            speed: pt.speed_across(next),
-                            pitch: pt.pitch as f64,
-                            needs: d.speed_for(Length(h), Length(pt.pitch as f64)).0,
-                            style: pt.style,
-                        });
-                    }
-                }
+                    },
+                    WorstPoint {
+                        planned: h,
+                        rise,
+                        speed: pt.speed_across(next),
+                        pitch: pt.pitch as f64,
+                        needs: d.speed_for(Length(h), Length(pt.pitch as f64)).0,
+                        style: pt.style,
+                    },
+                ));
             }
+            found.close(run);
         }
         if len_sum > 0.0 {
             accumulated += err_sum / len_sum;
@@ -117,15 +141,61 @@ pub(crate) fn check(p: &Program) -> Option<DepositMiss> {
     }
     drift.layers = p.layers.len();
     drift.limit = p.limits.max_drift;
-    if worst.is_none() && drift.passed.is_none() {
+    if found.worst.is_none() && drift.passed.is_none() {
         return None;
     }
     Some(DepositMiss {
-        worst,
-        point: worst_point,
-        checked,
-        share: if planned > 0.0 { laid / planned } else { 1.0 },
-        tolerance: tol,
+        worst: found.worst,
+        point: found.point,
+        checked: found.checked,
+        share: if found.planned > 0.0 {
+            found.laid / found.planned
+        } else {
+            1.0
+        },
+        tolerance: found.tol,
         drift,
     })
+}
+
+/// The runs off by more than the tolerance, and the plan's totals.
+#[derive(Default)]
+struct Found {
+    tol: f64,
+    worst: Option<Worst>,
+    point: Option<WorstPoint>,
+    checked: u64,
+    laid: f64,
+    planned: f64,
+}
+
+impl Found {
+    /// Compares a finished run's mean rise with its mean planned height.
+    fn close(&mut self, run: Run) {
+        let Some((at, mut point)) = run.at else {
+            return;
+        };
+        // A run of one point (a last point, no length) is that point.
+        let (rise, planned) = if run.len > 0.0 {
+            (run.rise / run.len, run.planned / run.len)
+        } else {
+            (point.rise, point.planned)
+        };
+        let ratio = rise / planned;
+        if (ratio - 1.0).abs() <= self.tol {
+            return;
+        }
+        let before = self.worst.map(|w| w.at);
+        let limit = if ratio > 1.0 {
+            1.0 + self.tol
+        } else {
+            1.0 - self.tol
+        };
+        Worst::hit(&mut self.worst, ratio, limit, at);
+        if self.worst.map(|w| w.at) != before {
+            point.rise = rise;
+            point.planned = planned;
+            self.point = Some(point);
+        }
+    }
 }

@@ -364,3 +364,77 @@ pub fn segments_too_short(t: &TooShortSegments) -> Diagnostic {
             "{works}, or a lower `min_length` if the controller can change speed that often"
         ))
 }
+
+/// A track of a variable layer that no speed of the bead lets fill its
+/// strip.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UnfillableTrack {
+    /// Its line across the scan axis, mm.
+    pub across: f64,
+    /// The strip it fills, mm.
+    pub pitch: f64,
+    /// The layer height it must lay there, mm.
+    pub height: f64,
+    /// The speed that would lay it, mm/s.
+    pub speed: f64,
+    /// What it raises over the bead's speeds (fastest, slowest), mm.
+    pub rises: [f64; 2],
+}
+
+/// What [`unfillable`] says.
+#[derive(Clone, Copy, Debug)]
+pub struct Unfillable<'a> {
+    /// The worst track.
+    pub track: UnfillableTrack,
+    /// The layer count it was found at (the last one tried).
+    pub layers: u32,
+    /// The bead's name.
+    pub bead: &'a str,
+    /// Its speeds, mm/s.
+    pub speeds: [f64; 2],
+    /// Its width, mm.
+    pub width: f64,
+    /// Whether the count was declared.
+    pub declared: bool,
+    /// The slicing block, the footprint, the bead's speeds.
+    pub spans: [Span; 3],
+}
+
+/// No layer count lets every track of a variable layer lay its height at
+/// the spacing the layout gives it.
+pub fn unfillable(u: &Unfillable<'_>) -> Diagnostic {
+    let t = &u.track;
+    let [lo, hi] = u.speeds;
+    let (dir, near) = if t.speed < lo {
+        ("slower than", lo)
+    } else {
+        ("faster than", hi)
+    };
+    let counts = if u.declared {
+        format!("with the declared {} layers", u.layers)
+    } else {
+        format!("no layer count fits these tracks: with {} layers", u.layers)
+    };
+    Diagnostic::error(
+        Code::NoLayerCount,
+        format!(
+            "{counts}, the track {} mm across fills a strip {} mm wide and must raise its layer {} mm: that needs {} mm/s, {dir} bead `{}` holds ({} mm/s); over its speeds it raises that strip {} .. {} mm",
+            short(t.across),
+            short(t.pitch),
+            short(t.height),
+            short(t.speed),
+            u.bead,
+            short(near),
+            short(t.rises[0]),
+            short(t.rises[1]),
+        ),
+    )
+    .label(u.spans[0], "the layers and the tracks' spacing")
+    .label(u.spans[1], "footprint")
+    .label(u.spans[2], "the bead's speeds")
+    .help(format!(
+        "the tracks' spacing is set to close on the footprint's far edge: a footprint whose width across the tracks fits the balanced spacing, an `offset` between {} and {} mm, or a bead measured over a wider speed range would lay it",
+        short(0.3 * u.width),
+        short(u.width)
+    ))
+}

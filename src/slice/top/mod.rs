@@ -20,6 +20,7 @@
 //! the points it makes.
 
 mod count;
+mod deposit;
 mod emit;
 mod footprint;
 mod layout;
@@ -37,10 +38,15 @@ use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
 use count::TopRange;
 use footprint::{sample, Footprint, Sampled};
+use std::num::NonZeroU32;
 use surface::Surface;
 
 /// Rounds of count → layout → tracks before the range must have settled.
 const MAX_ROUNDS: usize = 6;
+
+/// Layer counts tried besides the fewest when the tracks' spacing needs
+/// speeds outside the bead's range.
+const MAX_COUNT_TRIES: usize = 32;
 
 /// Slices a footprint up to its top in variable layers. Returns the layers
 /// and any warnings, or every diagnostic found.
@@ -67,8 +73,15 @@ pub fn slice(
         tolerance: positive("tolerance", slicing.tolerance)?,
         min_length: positive("min_length", slicing.min_length.unwrap_or(bead.width))?,
     };
-    for _ in 0..MAX_ROUNDS {
-        let n = count::layers(&range, bead, map.heights(), ex, slicing)?;
+    // More layers than the fewest, when the tracks' spacing needs speeds
+    // outside the bead's range at the fewest (count → layout → tracks again).
+    let mut instead: Option<NonZeroU32> = None;
+    let mut tried: Vec<u32> = Vec::new();
+    let mut missed = None;
+    while tried.len() < MAX_ROUNDS + MAX_COUNT_TRIES {
+        let fewest = count::layers(&range, bead, map.heights(), ex, slicing)?;
+        let n = instead.unwrap_or(fewest);
+        tried.push(n.get());
         let lines = layout::lay(&fp, scan, &sampled, n, bead, slicing, ex)?;
         let planned =
             tracks::plan(&fp, scan, &lines, &mut top, spec, pitch).map_err(|p| match p {
@@ -93,6 +106,24 @@ pub fn slice(
         if !range.holds(&actual) {
             range = range.union(actual);
             continue;
+        }
+        if let Some(miss) = deposit::unfillable(&planned.tracks, n, bead) {
+            // A balanced layout's pitches change with the count: go to the
+            // nearest count its tracks can lay, once each.
+            let next = match (slicing.layers, count_pitch) {
+                (None, None) => {
+                    deposit::nearest(&planned.tracks, n, bead).filter(|c| !tried.contains(&c.get()))
+                }
+                _ => None,
+            };
+            missed = Some((miss, n));
+            match next {
+                Some(c) => {
+                    instead = Some(c);
+                    continue;
+                }
+                None => break,
+            }
         }
         let mut warnings = Diagnostics::new();
         if let Some(d) = layout::stretch_warning(&lines, slicing, ex) {
@@ -122,6 +153,9 @@ pub fn slice(
             .map(|i| emit::layer(model, &maps, &process, &planned.tracks, scan, i, n))
             .collect();
         return Ok((layers, warnings));
+    }
+    if let Some((miss, n)) = missed {
+        return Err(deposit::report(&miss, n, bead, slicing, ex).into());
     }
     Err(internal(
         "the top's range over the tracks did not settle".into(),
