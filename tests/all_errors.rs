@@ -42,7 +42,7 @@ process {
 
 style edge {
   power = 2300 W
-  speed = 8 mm/s
+  speed = 10.2 mm/s
   when { paths = outer_contour }
 }
 
@@ -110,7 +110,7 @@ const MISTAKES: &[Mistake] = &[
         says: "`w` is declared twice",
     },
     Mistake {
-        find: "speed = 8 mm/s",
+        find: "speed = 10.2 mm/s",
         replace: "speed = 20 mm/s",
         code: "lmd::style-speed",
         says: "style `edge` scans at 20 mm/s",

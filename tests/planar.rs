@@ -146,8 +146,8 @@ fn chord_points_carry_their_styles_values() {
                 assert_eq!(pt.style, style, "one style a track");
                 let (power, speed) = match style {
                     0 => (2000.0, 10.0),
-                    1 => (2300.0, 8.0),
-                    2 => (1700.0, 12.0),
+                    1 => (2300.0, 10.0),
+                    2 => (1700.0, 10.0),
                     s => panic!("unknown style {s}"),
                 };
                 assert_eq!((pt.power, pt.speed, pt.powder), (power, speed, 12.0));
@@ -202,14 +202,14 @@ let r = 10 mm - layer_z / 2
 profile disc = circle(diameter = 2 * r)
 bead track { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
 extrude cone { profile = disc  bead = track }
-slicing planar { layers = 6  layer_height = 0.55 mm  offset = 1.6 mm  contours = 1 }
+slicing planar { layers = 6  layer_height = 0.51 mm  offset = 1.6 mm  contours = 1 }
 process { power = 1500 W  powder = 8 g/min }
 machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
 "#;
     let p = build_source(src);
     assert_eq!(p.layers.len(), 6);
     for (k, layer) in p.layers.iter().enumerate() {
-        let z = 0.55 * k as f64;
+        let z = 0.51 * k as f64;
         let r = 10.0 - z / 2.0;
         assert_eq!(layer.paths.len(), 1);
         for pt in &layer.paths[0].points {
@@ -268,20 +268,37 @@ fn with_code<'d>(d: &'d lmdc::diag::Diagnostics, code: &str) -> Vec<&'d str> {
 }
 
 /// A declared layer height the tracks do not lay drifts the standoff: seed
-/// 001's fixed A/w lift with tracks overlapped at d, which lay A/d.
+/// 001's fixed A/w lift with tracks overlapped at d, which lay A/d = 0.691
+/// mm, is refused (the paper added an extra lift every 3 layers); a small
+/// difference is a warning.
 #[test]
 fn a_declared_lift_off_what_the_tracks_lay_is_reported() {
     let tooth = std::fs::read_to_string("examples/sprocket_tooth.lmd").unwrap();
     let src = tooth.replace("layer_height = auto", "layer_height = 0.51 mm");
     let d = diagnose(&src);
+    let m = with_code(&d, "lmd::deposit");
+    assert_eq!(m.len(), 1, "{d:?}");
+    // 0.691 / 0.51: the model lays 135.5 % of the plan, and the help says
+    // what one layer lays.
+    assert!(m[0].contains("135.5 %"), "{}", m[0]);
+    let help = d
+        .iter()
+        .find(|x| x.code == "lmd::deposit")
+        .unwrap()
+        .help
+        .clone();
+    assert!(help.unwrap().contains("0.691 mm a layer"));
+    assert!(with_code(&d, "lmd::lift-mismatch").is_empty());
+    // 2.5 % off: the layers drift, a warning.
+    let src = tooth.replace("layer_height = auto", "layer_height = 0.674 mm");
+    let d = diagnose(&src);
     let m = with_code(&d, "lmd::lift-mismatch");
     assert_eq!(m.len(), 1, "{d:?}");
     assert!(
-        m[0].contains("0.51 mm") && m[0].contains("0.691 mm"),
+        m[0].contains("0.674 mm") && m[0].contains("0.691 mm"),
         "{}",
         m[0]
     );
-    assert!(!d.has_errors());
     // Within 2 %: quiet.
     let src = tooth.replace("layer_height = auto", "layer_height = 0.69 mm");
     assert!(with_code(&diagnose(&src), "lmd::lift-mismatch").is_empty());

@@ -15,6 +15,7 @@
 //! share and where the drift passes its bound.
 
 use super::rule::{ProgramCx, ProgramRule};
+use crate::bead::HeightModel;
 use crate::diag::message::check::deposit::{DepositMiss, Drift, WorstPoint};
 use crate::diag::{message, Diagnostics, Worst};
 use crate::ir::{Point, Program};
@@ -127,7 +128,8 @@ pub(crate) fn check(p: &Program) -> Option<DepositMiss> {
                         rise,
                         speed: pt.speed_across(next),
                         pitch: pt.pitch as f64,
-                        needs: d.speed_for(Length(h), Length(pt.pitch as f64)).0,
+                        needs: (!matches!(d.model, HeightModel::Measured { .. }))
+                            .then(|| d.speed_for(Length(h), Length(pt.pitch as f64)).0),
                         style: pt.style,
                     },
                 ));

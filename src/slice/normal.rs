@@ -1,7 +1,8 @@
 //! Continuous gradual ("normal") slicing of a loft: layer `i` is deposited on
 //! the section plane at station `i/n`; a point at distance ρ from the bend axis
-//! gets the local height ρ·Δδ (seed 000), and the speed at which the wall,
-//! one bead wide, rises by it: `A(v)/w` ([`crate::deposit`]).
+//! gets the local height ρ·Δδ (seed 000), and the move from it to the next
+//! point the speed at which the wall, one bead wide, rises by the mean of
+//! their heights: `A(v)/w` ([`crate::deposit`]).
 
 use crate::geometry::LoftGeometry;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
@@ -127,7 +128,10 @@ pub fn layer(
         let t = t.try_normalize(1e-12).unwrap_or(f.y);
         let h = heights[jj];
         // A wall one bead wide: each point's deposit fills the bead's width.
-        let v = deposit.speed_for(Length(h), bead.width);
+        // The move to the next point lays the mean of its ends' heights (the
+        // layer's height varies linearly along it): its speed lays that.
+        let along = 0.5 * (h + heights[(jj + 1) % k]);
+        let v = deposit.speed_for(Length(along), bead.width);
         let p = pos[jj];
         points.push(Point {
             pos: [p.x, p.y, p.z],

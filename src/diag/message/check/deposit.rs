@@ -16,8 +16,9 @@ pub struct WorstPoint {
     pub speed: f64,
     /// The strip it fills, mm.
     pub pitch: f64,
-    /// The speed that would lay the planned height there, mm/s.
-    pub needs: f64,
+    /// The speed that would lay the planned height there, mm/s (`None`: a
+    /// bead measured at one speed, which lays one height).
+    pub needs: Option<f64>,
     /// Its style (0: the process block's).
     pub style: u16,
 }
@@ -126,11 +127,17 @@ pub fn deposit_miss(m: &DepositMiss, bead: Option<Span>, slicing: Option<Span>) 
         .label_opt(slicing, "the layers");
     let mut help = format!("{drift}. ");
     if let Some(p) = &m.point {
-        help.push_str(&format!(
-            "at the worst point {} mm/s lays the planned {}",
-            trimmed(p.needs, 2),
-            mm(p.planned)
-        ));
+        match p.needs {
+            Some(v) => help.push_str(&format!(
+                "at the worst point {} mm/s lays the planned {}",
+                trimmed(v, 2),
+                mm(p.planned)
+            )),
+            None => help.push_str(&format!(
+                "the bead is measured at one speed, where it raises this strip {} a layer: plan that height",
+                mm(p.rise)
+            )),
+        }
         if p.style != 0 {
             help.push_str(&format!(
                 " (its style {} sets the speed: a style changes the bead the model lays)",
