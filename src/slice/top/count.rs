@@ -11,6 +11,7 @@ use crate::sema::model::{Bead, TopExtrusion, VariableSlicing};
 use crate::slice::variable::layers::{
     choose_layers, LayerCount, LayerError, NoLayerCount, OutOfRange,
 };
+use crate::slice::variable::speed::HeightMap;
 use crate::slice::variable::HeightRange;
 use crate::units::Length;
 use std::num::NonZeroU32;
@@ -68,27 +69,35 @@ impl TopRange {
 pub fn layers(
     top: &TopRange,
     bead: &Bead,
-    beads: HeightRange,
+    map: &impl HeightMap,
     ex: &TopExtrusion,
     slicing: &VariableSlicing,
 ) -> Result<NonZeroU32, Diagnostic> {
+    let beads = map.heights();
     let count = match slicing.layers {
         Some((n, _)) => LayerCount::Exactly(n),
         None => LayerCount::Auto,
     };
     choose_layers(top.heights, beads, count).map_err(|e| match e {
-        LayerError::NoCount(e) => no_count(&e, top, bead, ex),
+        LayerError::NoCount(e) => no_count(&e, top, bead, map, ex),
         LayerError::OutOfRange(e) => out_of_range(&e, bead, slicing),
         LayerError::TooMany { needed } => {
-            message::top::too_many_layers(top.heights.high(), needed, bead.height[1], ex.top_span)
+            message::top::too_many_layers(top.heights.high(), needed, beads.high(), ex.top_span)
         }
     })
 }
 
 /// No whole number of layers lays every point within the bead's heights.
-fn no_count(e: &NoLayerCount, top: &TopRange, bead: &Bead, ex: &TopExtrusion) -> Diagnostic {
+fn no_count(
+    e: &NoLayerCount,
+    top: &TopRange,
+    bead: &Bead,
+    map: &impl HeightMap,
+    ex: &TopExtrusion,
+) -> Diagnostic {
+    // The speed that lays `h` as these tracks stack it.
     let speed = |h: Length, round: fn(f64) -> f64| {
-        let v = bead.model.speed_for(h, bead.width).0;
+        let v = map.speed_within(h).0;
         // Rounded away from the bead's range, so the speed named is enough.
         (v.is_finite() && v > 0.0).then(|| round(v * 10.0) / 10.0)
     };

@@ -32,7 +32,7 @@ use crate::diag::{message, Diagnostics};
 use crate::ir::Layer;
 use crate::sema::model::{Axis, Bead, Model, TopExtrusion, VariableSlicing};
 use crate::slice::variable::segments::SegmentSpec;
-use crate::slice::variable::speed::{BeadMap, HeightMap};
+use crate::slice::variable::speed::BeadMap;
 use crate::slice::variable::Positive;
 use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
@@ -79,7 +79,7 @@ pub fn slice(
     let mut tried: Vec<u32> = Vec::new();
     let mut missed = None;
     while tried.len() < MAX_ROUNDS + MAX_COUNT_TRIES {
-        let fewest = count::layers(&range, bead, map.heights(), ex, slicing)?;
+        let fewest = count::layers(&range, bead, &map, ex, slicing)?;
         let n = instead.unwrap_or(fewest);
         tried.push(n.get());
         let lines = layout::lay(&fp, scan, &sampled, n, bead, slicing, ex)?;
