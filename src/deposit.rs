@@ -51,10 +51,10 @@ impl Basis {
     /// The words the report and the messages use.
     pub fn describe(self) -> String {
         match self {
-            Basis::Track => "single tracks".into(),
-            Basis::Wall => "the rise of a wall one bead wide".into(),
+            Basis::Track => "measured as single tracks".into(),
+            Basis::Wall => "measured as the rise of a wall one bead wide".into(),
             Basis::Layer { offset } => format!(
-                "the rise of filled layers of tracks {} mm apart",
+                "measured as the rise of filled layers of tracks {} mm apart",
                 crate::numbers::trimmed(offset, 3)
             ),
         }

@@ -2,13 +2,12 @@
 //! rectangle laid as one contour on two layers; and the command's text and
 //! JSON agreeing with each other and with the program headers.
 
-use lmdc::bead::{segment_area, HeightModel};
+use lmdc::bead::segment_area;
 use lmdc::check::{verify, Select};
-use lmdc::ir::{Path, PathKind, Point};
+use lmdc::deposit::Basis;
+use lmdc::ir::{Bead, BeadModel, Path, PathKind, Point};
 use lmdc::pipeline::compile_with_model;
-use lmdc::report::bead::{Beads, Spacing};
 use lmdc::report::{Design, Report};
-use lmdc::units::{Density, MassFlow};
 use std::process::Command;
 
 /// A 20 × 10 mm rectangle (the tracks' centre line), one contour a layer, two
@@ -100,7 +99,19 @@ fn a_rectangle_contour_on_two_layers() {
 fn one_straight_track_with_a_mass_balance_bead() {
     let (c, _) = compile_with_model(BOX, None, &mut ()).unwrap();
     let mut ir = c.program.unwrap().into_ir();
-    // 10 mm along x at 5 mm/s, 1000 W, 6 g/min.
+    // 10 mm along x at 5 mm/s, 1000 W, 6 g/min, one track 2 mm wide: by
+    // the mass balance it lays A = η·ṁ/(ρ·v) = 0.4 · 0.1 g/s / (0.008 g/mm³
+    // · 5 mm/s) = 1 mm², and rises A/w = 0.5 mm, the height planned.
+    ir.bead = Some(Bead {
+        width: 2.0,
+        model: BeadModel::MassBalance {
+            feed: 6.0,
+            efficiency: 0.4,
+            density: 8.0,
+        },
+        basis: Basis::Track,
+        speed: [1.0, 10.0],
+    });
     let at = |x: f64, on: bool| Point {
         pos: [x, 0.0, 0.0],
         normal: [0.0, 0.0, 1.0],
@@ -112,8 +123,8 @@ fn one_straight_track_with_a_mass_balance_bead() {
         defocus: 0.0,
         laser_on: on,
         style: 0,
-        pitch: 0.0,
-        rise: 0.0,
+        pitch: 2.0,
+        rise: if on { 0.5 } else { 0.0 },
     };
     ir.layers.truncate(1);
     ir.layers[0].paths = vec![Path {
@@ -121,23 +132,13 @@ fn one_straight_track_with_a_mass_balance_bead() {
         points: vec![at(0.0, true), at(10.0, false)],
     }];
     let v = verify(ir, Select::All).expect("verifies");
-    let beads = Beads {
-        width: 2.0,
-        model: HeightModel::MassBalance {
-            feed: MassFlow(0.1),
-            efficiency: 0.4,
-            density: Density(8e-3),
-        },
-        spacing: Spacing::Width,
-    };
     let design = Design::Unknown { why: "test".into() };
-    let r = Report::from_parts(v.machines().next().unwrap(), &beads, design, None);
+    let r = Report::from_parts(v.machines().next().unwrap(), design, None);
     let t = &r.total;
     close(t.deposit_mm, 10.0, "length");
     close(t.laser_on_s, 2.0, "laser");
     close(t.powder_g, 0.2, "powder");
     close(t.energy_j, 2000.0, "energy");
-    // A = η·ṁ/(ρ·v) = 0.4 · 0.1 g/s / (0.008 g/mm³ · 5 mm/s) = 1 mm².
     close(t.bead_volume_mm3, 10.0, "volume");
     close(r.bead_mass_g.unwrap(), 0.08, "mass");
     // The mass balance's own efficiency comes back.

@@ -10,14 +10,13 @@
 //! energy and powder; the bead model, the density and the design solid are
 //! in the checked model, which [`Report::new`] reads too.
 
-pub mod bead;
 pub mod design;
 pub mod text;
 mod volume;
 
 use crate::check::{Costs, VerifiedMachine};
+use crate::ir::{BeadModel, Program};
 use crate::sema::model::Model;
-use bead::Beads;
 pub use design::Design;
 use serde::Serialize;
 
@@ -65,15 +64,37 @@ pub struct Row {
     pub tally: Tally,
 }
 
-/// The bead model the volumes come from.
+/// The bead model the volumes come from (the plan's, as the IR carries it).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BeadInfo {
     /// Bead width, mm.
     pub width_mm: f64,
-    /// How the tracks are spaced, in words.
+    /// What its heights were measured as, in words.
+    pub measured_as: String,
+    /// The strips the deposits fill (their pitch), in words.
     pub spacing: String,
     /// The catch efficiency the model declares (mass balance), 0–1.
     pub declared_efficiency: Option<f64>,
+}
+
+/// What the bead model lays against what the plan stacks, over the layers.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct DepositCheck {
+    /// What the bead lays over what the plan stacks, the whole plan.
+    pub bead_over_stacked: f64,
+    /// The layer (1-based) whose share is farthest from 1, and its share.
+    pub worst_layer: usize,
+    /// Its share.
+    pub worst_share: f64,
+    /// The layers' mean errors (rise − planned height) added up after the
+    /// last layer, mm.
+    pub drift_mm: f64,
+    /// The largest sum by size on the way, mm.
+    pub worst_drift_mm: f64,
+    /// The tolerance of each run of a layer (`rise_tolerance`), 0–1.
+    pub rise_tolerance: f64,
+    /// The bound on the sum (`max_drift`), mm.
+    pub max_drift_mm: f64,
 }
 
 /// The whole report of one machine's plan.
@@ -97,6 +118,8 @@ pub struct Report {
     pub time_s: f64,
     /// The bead model, when known.
     pub bead: Option<BeadInfo>,
+    /// What it lays against what the plan stacks, when known.
+    pub deposit: Option<DepositCheck>,
     /// Density of the deposit, g/cm³, when known (a mass-balance bead model
     /// declares it; `--density` gives it).
     pub density_g_cm3: Option<f64>,
@@ -111,41 +134,38 @@ pub struct Report {
     pub design_mass_g: Option<f64>,
     /// Share of the powder fed the design solid needs caught.
     pub design_efficiency: Option<f64>,
+    /// Share of the design the plan stacks: the strips its deposits fill,
+    /// times its layer heights (below 1: design volume no track fills).
+    pub design_filled: Option<f64>,
 }
 
 impl Report {
-    /// The report of `machine`'s plan, with the bead model, design solid and
-    /// density of `model`; `density` (g/cm³) replaces or supplies the density.
+    /// The report of `machine`'s plan, against the design solid of `model`;
+    /// `density` (g/cm³) replaces or supplies the density.
     pub fn new(machine: VerifiedMachine<'_>, model: &Model, density: Option<f64>) -> Report {
-        match Beads::of(model) {
-            Some(beads) => Self::from_parts(machine, &beads, design::volume(model), density),
-            None => {
-                let mut r = Self::walk(machine, None);
-                r.design = Some(design::volume(model));
-                r.density_g_cm3 = density.filter(|d| d.is_finite() && *d > 0.0);
-                r
-            }
-        }
+        Self::from_parts(machine, design::volume(model), density)
     }
 
-    /// The report of `machine`'s plan laid with `beads`, against `design`;
-    /// `density` (g/cm³) replaces or supplies the bead model's.
-    pub fn from_parts(
-        machine: VerifiedMachine<'_>,
-        beads: &Beads,
-        design: Design,
-        density: Option<f64>,
-    ) -> Report {
-        let mut r = Self::walk(machine, Some(beads));
-        r.bead = Some(BeadInfo {
-            width_mm: beads.width,
-            spacing: beads.spacing.describe(beads.width),
-            declared_efficiency: beads.efficiency(),
+    /// The report of `machine`'s plan against `design`; `density` (g/cm³)
+    /// replaces or supplies the bead model's.
+    pub fn from_parts(machine: VerifiedMachine<'_>, design: Design, density: Option<f64>) -> Report {
+        let program = machine.ir();
+        let mut r = Self::walk(machine);
+        r.bead = program.bead.map(|b| BeadInfo {
+            width_mm: b.width,
+            measured_as: b.basis.describe(),
+            spacing: spacing(program, b.width),
+            declared_efficiency: match b.model {
+                BeadModel::MassBalance { efficiency, .. } => Some(efficiency),
+                _ => None,
+            },
         });
-        r.density_g_cm3 = density
-            .filter(|d| d.is_finite() && *d > 0.0)
-            .or(beads.density().map(|d| d * 1000.0));
-        if let Some(rho) = r.density_g_cm3.map(|d| d / 1000.0) {
+        let declared = program.bead.and_then(|b| match b.model {
+            BeadModel::MassBalance { density, .. } => Some(density),
+            _ => None,
+        });
+        r.density_g_cm3 = density.filter(|d| d.is_finite() && *d > 0.0).or(declared);
+        if let Some(rho) = r.density_g_cm3.map(|d| d / 1000.0).filter(|_| r.bead.is_some()) {
             let powder = r.total.powder_g;
             let share = |m: f64| (powder > 0.0).then(|| m / powder);
             let bead = rho * r.total.bead_volume_mm3;
@@ -156,33 +176,33 @@ impl Report {
                 r.design_efficiency = share(rho * volume_mm3);
             }
         }
+        if let (Design::Known { volume_mm3, .. }, Some(_)) = (&design, &r.bead) {
+            r.design_filled = (*volume_mm3 > 0.0).then(|| r.total.stacked_volume_mm3 / volume_mm3);
+        }
         r.design = Some(design);
         r
     }
 
-    /// What the plan alone tells: lengths, times, energy, powder (no
-    /// volumes). What the programs' headers summarise.
+    /// What the plan alone tells: lengths, times, energy, powder, and the
+    /// metal its bead model lays. What the programs' headers summarise.
     pub fn of_plan(machine: VerifiedMachine<'_>) -> Report {
-        Self::walk(machine, None)
+        Self::walk(machine)
     }
 
-    fn walk(machine: VerifiedMachine<'_>, beads: Option<&Beads>) -> Report {
+    fn walk(machine: VerifiedMachine<'_>) -> Report {
         let program = machine.ir();
         let summary = machine.summary();
-        let volumes = beads.map(|b| volume::per_layer(program, b));
+        let laid = program.bead.map(|_| volume::per_layer(program));
         let rows: Vec<Tally> = summary
             .layers
             .iter()
             .enumerate()
             .map(|(i, c)| {
-                let (bead, stacked) = volumes
-                    .as_ref()
-                    .and_then(|v| v.get(i).copied())
-                    .unwrap_or((0.0, 0.0));
+                let l = laid.as_ref().and_then(|v| v.get(i).copied()).unwrap_or_default();
                 Tally {
                     costs: *c,
-                    bead_volume_mm3: bead,
-                    stacked_volume_mm3: stacked,
+                    bead_volume_mm3: l.bead,
+                    stacked_volume_mm3: l.stacked,
                 }
             })
             .collect();
@@ -206,12 +226,14 @@ impl Report {
             total,
             time_s: total.time_s(),
             bead: None,
+            deposit: laid.map(|l| check(program, &l, &total)),
             density_g_cm3: None,
             bead_mass_g: None,
             bead_efficiency: None,
             design: None,
             design_mass_g: None,
             design_efficiency: None,
+            design_filled: None,
         }
     }
 
@@ -221,5 +243,55 @@ impl Report {
             Some(Design::Known { volume_mm3, .. }) => Some(*volume_mm3),
             _ => None,
         }
+    }
+}
+
+/// The layers' shares and their errors added up.
+fn check(program: &Program, laid: &[volume::Laid], total: &Tally) -> DepositCheck {
+    let share = |bead: f64, stacked: f64| if stacked > 0.0 { bead / stacked } else { 1.0 };
+    let (mut worst_layer, mut worst_share) = (1, 1.0f64);
+    let (mut drift, mut worst_drift) = (0.0f64, 0.0f64);
+    for (i, l) in laid.iter().enumerate() {
+        let s = share(l.bead, l.stacked);
+        if (s - 1.0).abs() > (worst_share - 1.0).abs() {
+            (worst_layer, worst_share) = (i + 1, s);
+        }
+        drift += l.mean_error;
+        if drift.abs() > worst_drift.abs() {
+            worst_drift = drift;
+        }
+    }
+    DepositCheck {
+        bead_over_stacked: share(total.bead_volume_mm3, total.stacked_volume_mm3),
+        worst_layer,
+        worst_share,
+        drift_mm: drift,
+        worst_drift_mm: worst_drift,
+        rise_tolerance: program.limits.rise_tolerance,
+        max_drift_mm: program.limits.max_drift,
+    }
+}
+
+/// The strips the deposits fill, in words: one bead wide, tracks one
+/// distance apart, or a range of them.
+fn spacing(program: &Program, width: f64) -> String {
+    let (lo, hi) = program
+        .layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .flat_map(|p| &p.points)
+        .filter(|q| q.laser_on && q.pitch > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), q| {
+            (lo.min(q.pitch as f64), hi.max(q.pitch as f64))
+        });
+    let t = |x: f64| crate::numbers::trimmed(x, 3);
+    if lo > hi {
+        "no deposit".into()
+    } else if hi - lo <= 1e-6 * hi && (hi - width).abs() <= 1e-6 * width {
+        format!("one bead wide ({} mm)", t(width))
+    } else if hi - lo <= 1e-6 * hi {
+        format!("tracks {} mm apart", t(hi))
+    } else {
+        format!("tracks {} .. {} mm apart", t(lo), t(hi))
     }
 }

@@ -129,9 +129,10 @@ fn metal(out: &mut String, r: &Report) {
         .density_g_cm3
         .map(|d| format!(" at {} g/cm³", trimmed(d, 3)));
     let mut line = format!(
-        "bead model  lays {} (bead {} mm wide, {})",
+        "bead model  lays {} (bead {} mm wide, {}; deposits {})",
         volume(t.bead_volume_mm3),
         trimmed(bead.width_mm, 3),
+        bead.measured_as,
         bead.spacing
     );
     if let (Some(m), Some(d)) = (r.bead_mass_g, &density) {
@@ -144,20 +145,62 @@ fn metal(out: &mut String, r: &Report) {
         let _ = write!(line, " (the model declares {})", percent(e));
     }
     let _ = writeln!(out, "{line}");
+    if let Some(d) = &r.deposit {
+        deposit(out, t, d);
+    }
+    design(out, r);
+    if r.density_g_cm3.is_none() {
+        let _ = writeln!(
+            out,
+            "mass        the bead model declares no density: give one with --density (g/cm³)"
+        );
+    }
+}
+
+/// What the bead lays against what the layers stack: one statement, with
+/// the worst layer and the errors added up, against the tolerances.
+fn deposit(out: &mut String, t: &super::Tally, d: &super::DepositCheck) {
+    let within = (d.worst_share - 1.0).abs() <= d.rise_tolerance
+        && d.worst_drift_mm.abs() <= d.max_drift_mm;
     let _ = writeln!(
         out,
-        "stacked     the layers rise as planned if they hold {} (height × track spacing): {} of the bead model's",
+        "stacked     the layers stack {} (each deposit's layer height × the strip it fills): the bead model lays {} of it; layer {} the farthest off at {}, the layers' errors adding up to {} mm at most ({})",
         volume(t.stacked_volume_mm3),
-        ratio(t.stacked_volume_mm3, t.bead_volume_mm3)
+        ratio(t.bead_volume_mm3, t.stacked_volume_mm3),
+        d.worst_layer,
+        percent(d.worst_share),
+        crate::numbers::fixed(d.worst_drift_mm, 3),
+        if within {
+            format!(
+                "within the {} and {} mm the plan allows",
+                percent(d.rise_tolerance),
+                trimmed(d.max_drift_mm, 3)
+            )
+        } else {
+            "beyond what the plan allows: see lmd::deposit".into()
+        }
     );
+}
+
+/// The design solid against what the plan stacks and the bead lays.
+fn design(out: &mut String, r: &Report) {
+    let t = &r.total;
     match &r.design {
         Some(Design::Known { volume_mm3, what }) => {
             let mut line = format!(
-                "design      {} ({what}): the bead model lays {} of it, the layers stack {}",
+                "design      {} ({what}): the layers stack {} of it, the bead model lays {}",
                 volume(*volume_mm3),
-                ratio(t.bead_volume_mm3, *volume_mm3),
-                ratio(t.stacked_volume_mm3, *volume_mm3)
+                ratio(t.stacked_volume_mm3, *volume_mm3),
+                ratio(t.bead_volume_mm3, *volume_mm3)
             );
+            if let Some(f) = r.design_filled.filter(|f| *f < 0.995) {
+                let _ = write!(
+                    line,
+                    "; {} ({}) lies outside every deposit's strip: where the outermost beads round off at the part's edges and ends",
+                    percent(1.0 - f),
+                    volume((1.0 - f) * volume_mm3)
+                );
+            }
             if let (Some(m), Some(e)) = (r.design_mass_g, r.design_efficiency) {
                 let _ = write!(
                     line,
@@ -172,12 +215,6 @@ fn metal(out: &mut String, r: &Report) {
             let _ = writeln!(out, "design      volume not known: {why}");
         }
         None => {}
-    }
-    if r.density_g_cm3.is_none() {
-        let _ = writeln!(
-            out,
-            "mass        the bead model declares no density: give one with --density (g/cm³)"
-        );
     }
 }
 

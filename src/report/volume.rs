@@ -1,40 +1,65 @@
-//! The metal each layer's deposit moves lay, two ways ([`Beads`]): a
-//! deposit move runs from an IR point whose laser is on to the next point of
-//! its path, so the volumes are a sum over the IR's points, in the plan's
-//! order, without following the plan again (its lengths and times come from
-//! the verifier's summary).
+//! The metal each layer's deposit moves lay, from the plan's own deposit
+//! model ([`crate::deposit`]), as the IR carries it: a deposit move runs
+//! from an IR point whose laser is on to the next point of its path, over
+//! the ground `len` (across the normal), filling a strip `pitch` wide.
+//!
+//! - **bead**: what the bead model lays, `A·len = rise·pitch·len` (the
+//!   point's predicted `rise` at its speed and powder);
+//! - **stacked**: what the plan stacks there, the layer's height along the
+//!   move (the mean of its ends') times `pitch·len`.
+//!
+//! Where the two differ the layers do not rise as planned: the verifier
+//! refuses a plan whose runs differ by more than `rise_tolerance` or whose
+//! layers' mean errors add up past `max_drift` (`lmd::deposit`). Sums over
+//! the IR's points in the plan's order, without following the plan again
+//! (its lengths and times come from the verifier's summary).
 
-use super::bead::Beads;
 use crate::ir::{Layer, Point, Program};
 
-/// Bead and stacked volume of each layer, mm³.
-pub fn per_layer(program: &Program, beads: &Beads) -> Vec<(f64, f64)> {
-    program.layers.iter().map(|l| layer(l, beads)).collect()
+/// What one layer lays and stacks.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Laid {
+    /// What the bead model lays, mm³.
+    pub bead: f64,
+    /// What the plan stacks, mm³.
+    pub stacked: f64,
+    /// The layer's mean error (rise − planned height) over its deposited
+    /// ground, mm.
+    pub mean_error: f64,
 }
 
-fn layer(layer: &Layer, beads: &Beads) -> (f64, f64) {
-    // The layer lays one track: one path deposits.
-    let depositing = layer
-        .paths
-        .iter()
-        .filter(|p| p.points.iter().any(|q| q.laser_on))
-        .count();
-    let single = depositing <= 1;
-    let mut sum = (0.0, 0.0);
+/// Each layer's volumes.
+pub fn per_layer(program: &Program) -> Vec<Laid> {
+    program.layers.iter().map(layer).collect()
+}
+
+fn layer(layer: &Layer) -> Laid {
+    let mut out = Laid::default();
+    let (mut ground, mut error) = (0.0, 0.0);
     for path in &layer.paths {
         for w in path.points.windows(2) {
-            if w[0].laser_on {
-                let (b, s) = volumes(&w[0], &w[1], beads, single);
-                sum.0 += b;
-                sum.1 += s;
+            let (from, to) = (&w[0], &w[1]);
+            if !from.laser_on || from.pitch <= 0.0 {
+                continue;
             }
+            let len = across(from, to);
+            let h = 0.5 * (from.layer_height as f64 + to.layer_height as f64);
+            let (rise, pitch) = (from.rise as f64, from.pitch as f64);
+            out.bead += rise * pitch * len;
+            out.stacked += h * pitch * len;
+            ground += len;
+            error += (rise - h) * len;
         }
     }
-    sum
+    if ground > 0.0 {
+        out.mean_error = error / ground;
+    }
+    out
 }
 
-/// The volumes (bead, stacked) the move from `from` to `to` lays, mm³.
-fn volumes(from: &Point, to: &Point, beads: &Beads, single: bool) -> (f64, f64) {
+/// The length of the move from `from` to `to` over the ground (across the
+/// normal): what a layer holds per unit of (docs/ir.md).
+fn across(from: &Point, to: &Point) -> f64 {
     let d = [
         to.pos[0] - from.pos[0],
         to.pos[1] - from.pos[1],
@@ -42,14 +67,7 @@ fn volumes(from: &Point, to: &Point, beads: &Beads, single: bool) -> (f64, f64) 
     ];
     let n = from.normal.map(f64::from);
     let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    // Length over the ground: what a layer holds per unit of (docs/ir.md).
-    let across = (len * len - along * along).max(0.0).sqrt();
-    if len <= 0.0 {
-        return (0.0, 0.0);
-    }
-    let v = from.speed as f64 * across / len;
-    let a = beads.area(v, from.powder as f64);
-    let s = beads.stacked(from.layer_height as f64, a, single);
-    (a * across, s * across)
+    (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - along * along)
+        .max(0.0)
+        .sqrt()
 }
