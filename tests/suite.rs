@@ -10,6 +10,7 @@ mod atomic_output;
 mod cases;
 mod cell_io;
 mod cli;
+mod codes;
 mod diagnostics;
 mod duct_geometry;
 mod fill;
