@@ -337,3 +337,32 @@ fn flange_linked_laser_off_runs_in_rs274() {
     let n = deposits(&ir).len();
     assert_eq!(check_against_ir(ir), n);
 }
+
+/// The expected LinuxCNC programs of tests/cases/ as reviewed run in rs274
+/// to their end (M2): an expected file accepted with a line rs274 refuses
+/// would otherwise stand as the reference.
+#[test]
+fn expected_linuxcnc_programs_run_in_rs274() {
+    if !have_rs274("expected_linuxcnc_programs_run_in_rs274") {
+        return;
+    }
+    let mut ran = 0;
+    for case in crate::cases::folders(std::path::Path::new(crate::cases::ROOT)) {
+        let mut files: Vec<_> = std::fs::read_dir(&case)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "ngc"))
+            .collect();
+        files.sort();
+        for f in files {
+            let calls = rs274::interpret(&f).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
+            assert!(
+                calls.contains(&CanonCall::ProgramEnd),
+                "{}: rs274 did not reach the program's end",
+                f.display()
+            );
+            ran += 1;
+        }
+    }
+    assert!(ran >= 7, "only {ran} expected .ngc files");
+}

@@ -161,7 +161,7 @@ fn sources() -> Vec<(PathBuf, String)> {
         );
     }
     files.sort();
-    files.push(PathBuf::from("tests/golden/small_duct.lmd"));
+    files.push(PathBuf::from("tests/cases/duct/small_duct/input.lmd"));
     files
         .into_iter()
         .map(|f| {
@@ -283,49 +283,26 @@ fn lin_without_brace_is_rejected(sink: &MemorySink) -> bool {
     false
 }
 
-/// The golden KRL programs as reviewed (tests/snapshots/golden__*), not only as
-/// lmdc writes them today, parse: a snapshot accepted with a syntax error in
-/// it would otherwise stand as the reference.
+/// The expected KRL programs of tests/cases/ as reviewed, not only as lmdc
+/// writes them today, parse: an expected file accepted with a syntax error
+/// in it would otherwise stand as the reference.
 #[test]
-fn golden_krl_snapshots_parse() {
-    if !have_parser("golden_krl_snapshots_parse") {
+fn expected_krl_programs_parse() {
+    if !have_parser("expected_krl_programs_parse") {
         return;
     }
-    let dir = parser::TempDir::new("golden");
     let mut paths = Vec::new();
-    let mut entries: Vec<PathBuf> = std::fs::read_dir("tests/snapshots")
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .collect();
-    entries.sort();
-    for p in entries {
-        let name = p.file_name().unwrap().to_string_lossy().into_owned();
-        // golden__<prefix>_<stem>_src.snap holds <stem>.src
-        let Some(stem) = name
-            .strip_prefix("golden__")
-            .and_then(|n| n.strip_suffix(".snap"))
-        else {
-            continue;
-        };
-        let Some((base, ext)) = stem.rsplit_once('_') else {
-            continue;
-        };
-        if !matches!(ext, "src" | "dat") {
-            continue;
-        }
-        let text = std::fs::read_to_string(&p).unwrap();
-        // insta's header: `---`, metadata lines, `---`, then the file.
-        let body = text
-            .splitn(3, "---\n")
-            .nth(2)
-            .unwrap_or_else(|| panic!("{name}: not an insta snapshot"));
-        // The KRL file name is the routine's name, which the snapshot's name
-        // keeps after the example's prefix (`sprocket__`, `chord__`).
-        let file = base.rsplit("__").next().unwrap_or(base);
-        paths.push(dir.write(&format!("{file}.{ext}"), body.as_bytes()));
+    for case in crate::cases::folders(std::path::Path::new(crate::cases::ROOT)) {
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&case)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| parser::is_krl_file(&p.file_name().unwrap().to_string_lossy()))
+            .collect();
+        files.sort();
+        paths.extend(files);
     }
-    assert!(paths.len() >= 8, "only {} golden KRL files", paths.len());
+    assert!(paths.len() >= 8, "only {} expected KRL files", paths.len());
     if let Err(e) = parser::parse_files(&paths) {
-        panic!("the KRL parser rejects a golden program:\n{e}");
+        panic!("the KRL parser rejects an expected program:\n{e}");
     }
 }

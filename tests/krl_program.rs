@@ -4,15 +4,9 @@
 //! −normal; splitting into modules changes nothing the robot does; numbers and
 //! names are what KRL accepts.
 
-#[path = "gcode_common.rs"]
-mod common;
-#[path = "support/krl_check.rs"]
-mod krl;
-#[path = "support/krl_run/mod.rs"]
-mod krl_run;
-
-use common::fixture;
-use common::{planar, verified};
+use crate::support::gcode_common::{fixture, planar, verified};
+use crate::support::krl_check as krl;
+use crate::support::krl_run;
 use lmdc::back::krl::orient::Orienter;
 use lmdc::back::{EmitError, MemorySink, Templates};
 use lmdc::check::Verified;
@@ -275,7 +269,7 @@ fn same_ir_same_bytes() {
 
 #[test]
 fn examples_pass_the_checker_and_follow_their_ir() {
-    let mut sources = vec!["tests/golden/small_duct.lmd".to_string()];
+    let mut sources = vec!["tests/cases/duct/small_duct/input.lmd".to_string()];
     for e in std::fs::read_dir("examples").unwrap() {
         let path = e.unwrap().path();
         if path.extension().is_some_and(|x| x == "lmd") {
@@ -410,19 +404,4 @@ proptest! {
             n = m;
         }
     }
-}
-
-/// What a user sees when the analog output cannot reach the power: the power
-/// declaration and the robot, the numbers, and the full scale to declare.
-#[test]
-fn analog_range_diagnostic() {
-    let src = std::fs::read_to_string("examples/twisted_duct.lmd")
-        .unwrap()
-        .replace("full_scale = 4000 W", "full_scale = 3000 W");
-    let c = lmdc::pipeline::compile(&src, &mut ());
-    assert!(c.program.is_none(), "want lmd::analog-range");
-    let d = c.diagnostics;
-    let text = lmdc::diag::render(&d, "examples/twisted_duct.lmd", &src, false);
-    assert!(text.contains("at least 4000"), "{text}");
-    insta::assert_snapshot!(text);
 }

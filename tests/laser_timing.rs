@@ -164,7 +164,7 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "lmd"))
         .collect();
-    sources.push("tests/golden/small_duct.lmd".into());
+    sources.push("tests/cases/duct/small_duct/input.lmd".into());
     sources.sort();
     let mut compared = 0;
     for path in sources {

@@ -1,13 +1,10 @@
 //! The machine checks of one run, all at once (issue: errors came in rounds):
-//! every machine is checked whatever another one found, each error names its
-//! machine and points at the field that declares the limit, and `--machine`
-//! checks that machine alone. Rendered reports are snapshots.
+//! every machine is checked whatever another one found, and `--machine`
+//! checks that machine alone. The report of three machines' mistakes in one
+//! run, each naming its machine and pointing at the field that declares the
+//! limit, is tests/cases/errors/machines/every_machine_error.
 
-#[path = "support/example.rs"]
-mod example;
-
-use example::{duct, tooth};
-use lmdc::diag::render;
+use crate::support::example::{duct, tooth};
 use lmdc::pipeline::{compile, compile_for};
 
 /// Three machines, three kinds of mistake: a CNC whose X and A travel the part
@@ -26,35 +23,6 @@ machine slow {
   max_speed = 5 mm/s
 }
 "
-}
-
-#[test]
-fn every_machine_error_in_one_run() {
-    let src = three_mistakes();
-    let c = compile(&src, &mut ());
-    assert!(c.program.is_none());
-    let codes: Vec<&str> = c.diagnostics.iter().map(|d| d.code.as_str()).collect();
-    assert_eq!(
-        codes,
-        [
-            "lmd::analog-range",
-            "lmd::axis-limit",
-            "lmd::axis-limit",
-            "lmd::machine-speed"
-        ],
-        "{codes:?}"
-    );
-    let text = render(&c.diagnostics, "duct.lmd", &src, false);
-    // Each names its own machine and limit.
-    assert!(text.contains("robot `kr60`"), "{text}");
-    assert!(text.contains("axis X of machine `dmu5`"), "{text}");
-    assert!(text.contains("axis A of machine `dmu5`"), "{text}");
-    assert!(text.contains("beyond its max_speed of 5 mm/s"), "{text}");
-    assert!(
-        text.contains("machine `slow` would have to move at 9.668 mm/s"),
-        "{text}"
-    );
-    insta::assert_snapshot!(text);
 }
 
 #[test]

@@ -4,6 +4,7 @@
 
 pub mod duct;
 pub mod example;
+pub mod expected;
 #[path = "../gcode_common.rs"]
 pub mod gcode_common;
 // The G-code helpers bring the fixtures along (their own programs include
