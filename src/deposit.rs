@@ -74,6 +74,18 @@ pub struct Deposit {
 }
 
 impl Deposit {
+    /// The model fed `powder`: a mass balance lays in proportion to the
+    /// feed, so a plan fed otherwise than the model was fitted at picks its
+    /// speeds for the feed it runs (the checker warns that the fit may not
+    /// hold there, `lmd::powder-mismatch`). Other models do not know the
+    /// feed.
+    pub fn fed(mut self, powder: MassFlow) -> Deposit {
+        if let HeightModel::MassBalance { ref mut feed, .. } = self.model {
+            *feed = powder;
+        }
+        self
+    }
+
     /// The cross-section laid per mm at speed `v` (across the build
     /// direction), mm²; `powder` is the move's own feed where a
     /// mass-balance model should use it instead of the one it declares.

@@ -66,7 +66,15 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         continuous: ring.is_some(),
         bead: match (&model.plan, &model.bead) {
             (Plan::Ring(_), _) | (_, None) => None,
-            (_, Some(b)) => Some(ir::Bead::of(&b.deposit(), b.speed)),
+            // The model as declared: each point carries its own feed.
+            (_, Some(b)) => Some(ir::Bead::of(
+                &crate::deposit::Deposit {
+                    model: b.model,
+                    width: b.width,
+                    basis: b.basis,
+                },
+                b.speed,
+            )),
         },
         ring,
         layers,

@@ -167,6 +167,7 @@ pub fn read<'a>(
         model,
         basis: crate::deposit::Basis::Track,
         declared_height,
+        feed: None,
         speed: [Speed(speed[0]), Speed(speed[1])],
         height: [Length(height[0]), Length(height[1])],
         span,

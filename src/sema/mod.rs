@@ -112,6 +112,11 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     if let (Some(b), Some((powder, at))) = (&bead, process.powder) {
         bead::check_feed(b, powder, at, diags);
     }
+    // The slicers lay the feed the process runs.
+    let bead = bead.map(|mut b| {
+        b.feed = process.powder.map(|(p, _)| p);
+        b
+    });
     Some(Model {
         part: part?,
         plan: plan?,

@@ -225,6 +225,9 @@ pub struct Bead {
     pub height: [Length; 2],
     /// The `height = …` range as declared, if it is.
     pub declared_height: Option<[Length; 2]>,
+    /// The process's powder feed, which a mass-balance model lays by
+    /// ([`crate::deposit::Deposit::fed`]); `None` until the process is read.
+    pub feed: Option<crate::units::MassFlow>,
     /// Spans: whole bead, its height range (or the model when not declared), its
     /// speed range.
     pub span: Span,
@@ -244,10 +247,14 @@ pub fn within(x: f64, lo: f64, hi: f64) -> bool {
 impl Bead {
     /// The bead as the deposit model reads it.
     pub fn deposit(&self) -> crate::deposit::Deposit {
-        crate::deposit::Deposit {
+        let d = crate::deposit::Deposit {
             model: self.model,
             width: self.width,
             basis: self.basis,
+        };
+        match self.feed {
+            Some(f) => d.fed(f),
+            None => d,
         }
     }
 
