@@ -159,16 +159,22 @@ fn table<'a>(
     let speed_span = speed.as_ref().map(|s| s.1);
     let width_span = width.as_ref().map(|w| w.1);
     let rows = match (defocus, power, width, speed) {
-        (Some((d, _)), Some((p, _)), Some((w, _)), Some((v, _))) => Some(
-            (0..d.len())
-                .map(|j| SegmentProcess {
-                    defocus: Length(d[j]),
-                    power: Power(p[j]),
-                    width: Length(w[j]),
-                    speed: Speed(v[j]),
-                })
-                .collect::<Vec<_>>(),
-        ),
+        // Without a right `segments` (reported) the lists were not checked
+        // against it, and may differ from each other.
+        (Some((d, _)), Some((p, _)), Some((w, _)), Some((v, _)))
+            if [p.len(), w.len(), v.len()].iter().all(|&n| n == d.len()) =>
+        {
+            Some(
+                (0..d.len())
+                    .map(|j| SegmentProcess {
+                        defocus: Length(d[j]),
+                        power: Power(p[j]),
+                        width: Length(w[j]),
+                        speed: Speed(v[j]),
+                    })
+                    .collect::<Vec<_>>(),
+            )
+        }
         _ => None,
     };
     // Every value is checked above; a table that still fails is empty.
@@ -360,5 +366,21 @@ fn plant(
             None
         }
         Some((f, _)) => calibrated.scaled(f).ok(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::diag::Code;
+
+    #[test]
+    fn lists_of_unequal_length_without_segments_are_no_table() {
+        let src = "part p\nring wall {\n  radius = 40 mm\n  table {\n    \
+                   defocus = [-8 mm, -7 mm]\n    power = [1200 W, 1050 W]\n    \
+                   width = [6 mm, 5 mm]\n    speed = [4 mm/s]\n  }\n}\n";
+        let file = crate::syntax::parse(src).expect("parses");
+        let (_, diags) = crate::sema::check(&file);
+        // `segments` is reported missing; the table is not built.
+        assert!(diags.iter().any(|d| d.code == Code::MissingField));
     }
 }
