@@ -6,6 +6,7 @@
 //! vectors. Process values and directions are stored as `f32` to keep a point at 72
 //! bytes (the dense duct has 3.6 M of them); positions stay `f64`.
 
+use crate::sema::schema::Field;
 use crate::span::Span;
 use serde::{Deserialize, Serialize};
 
@@ -706,8 +707,10 @@ pub struct RingOrigins {
 pub struct MachineOrigin {
     /// The whole `machine` block.
     pub block: Span,
-    /// The fields given, by name (`max_speed`, `full_scale`, `limits.x`, …).
-    pub fields: Vec<(String, Span)>,
+    /// The fields given, each by its entry in the machine's tables
+    /// ([`crate::sema::schema::machine`]: `MAX_SPEED`, `limits::X`,
+    /// `gas::PRE_FLOW`, …; `NAME` for the machine's name).
+    pub fields: Vec<(&'static Field, Span)>,
 }
 
 impl MachineOrigin {
@@ -719,13 +722,18 @@ impl MachineOrigin {
         }
     }
 
-    /// Where field `name` was given, else the block: what a diagnostic about
-    /// the limit that field declares points at.
-    pub fn at(&self, name: &str) -> Span {
+    /// Where `field` was given, if it was.
+    pub fn written(&self, field: &Field) -> Option<Span> {
         self.fields
             .iter()
-            .find(|(n, _)| n == name)
-            .map_or(self.block, |(_, s)| *s)
+            .find(|(f, _)| *f == field)
+            .map(|(_, s)| *s)
+    }
+
+    /// Where `field` was given, else the block: what a diagnostic about
+    /// the limit that field declares points at.
+    pub fn at(&self, field: &Field) -> Span {
+        self.written(field).unwrap_or(self.block)
     }
 }
 

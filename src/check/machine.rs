@@ -14,6 +14,7 @@ use crate::diag::Worst;
 use crate::ir::{AxisLimits, Cnc, Kinematics, Layer, Machine, MachineOrigin, Program, Robot};
 use crate::plan::kinematics::tilt_of;
 use crate::plan::{effective_kinematics, Io, Move, Plan, Speed, Visit, Where};
+use crate::sema::schema::machine::{self, limits};
 use crate::span::Span;
 use crate::target::{gcode, kuka, written as rounded};
 
@@ -54,7 +55,7 @@ impl SpeedLimit {
         out.push(message::check::machine::machine_speed(
             name,
             &w,
-            o.at("max_speed"),
+            o.at(&machine::MAX_SPEED),
             bead_speed,
         ));
     }
@@ -144,13 +145,12 @@ impl Travel {
         } else {
             "A"
         };
-        let fields = [
-            "limits.x",
-            "limits.y",
-            "limits.z",
-            "limits.tilt",
-            "limits.c",
-        ];
+        let tilt = if tilt_name == "B" {
+            &limits::B
+        } else {
+            &limits::A
+        };
+        let fields = [&limits::X, &limits::Y, &limits::Z, tilt, &limits::C];
         let lim = self.lim;
         let ranges = [lim.x, lim.y, lim.z, lim.tilt, lim.rotary];
         for (i, w) in self.axes.iter().enumerate() {
@@ -197,7 +197,11 @@ impl Tilt {
 
     fn report(self, name: &str, o: &MachineOrigin, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(message::check::machine::needs_tilt(name, &w, o.at("axes")));
+        out.push(message::check::machine::needs_tilt(
+            name,
+            &w,
+            o.at(&machine::AXES),
+        ));
     }
 }
 
@@ -227,7 +231,7 @@ impl Analog {
             full_scale: r.full_scale_power,
             needed: rounded(w.value / r.full_scale_power, kuka::ANOUT_DECIMALS),
             worst: w,
-            declared: o.at("full_scale"),
+            declared: o.at(&machine::FULL_SCALE),
             power,
         }));
     }

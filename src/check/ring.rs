@@ -9,6 +9,7 @@ use crate::control::{self, analyse, SpeedPerLength};
 use crate::diag::message::check::ring::{self, FastTransition, LateUpdate};
 use crate::diag::Diagnostics;
 use crate::ir::{Machine, MachineOrigin, Program, Ring, RingOrigins, RingRun};
+use crate::sema::schema::machine;
 use crate::target::gcode::{LOOP_PROFILE, MAX_ANALOG_INPUT};
 use crate::target::kuka::MAX_ADVANCE;
 use crate::units::{Angle, Length, Speed};
@@ -77,7 +78,7 @@ pub(super) fn check_machine(
                 out.push(ring::loop_dialect(
                     name,
                     &c.dialect.profile,
-                    origin.at("dialect"),
+                    origin.at(&machine::DIALECT),
                     o.run,
                 ));
             }
@@ -98,7 +99,7 @@ pub(super) fn check_machine(
                 r.segments.len(),
                 s.input,
                 last,
-                origin.at("height_input"),
+                origin.at(&machine::HEIGHT_INPUT),
             ));
         }
     }
@@ -158,7 +159,7 @@ fn robot_timing(
     out.push(ring::loop_timing(
         name,
         &why,
-        origin.at("height_delay"),
+        origin.at(&machine::HEIGHT_DELAY),
         o.ring,
     ));
 }
@@ -211,6 +212,6 @@ fn transitions(
         speed: v,
         top,
         transition_fits,
-        spans: [origin.at("max_speed"), o.clamp, o.transition],
+        spans: [origin.at(&machine::MAX_SPEED), o.clamp, o.transition],
     }));
 }

@@ -79,8 +79,9 @@ pub fn dialect_lines(profile: &str) -> [&'static str; 3] {
 pub struct Read {
     /// The cell.
     pub cell: Cell,
-    /// Where fields the verifier refers to are written (`powder.arrival`, …).
-    pub spans: Vec<(String, Span)>,
+    /// Where the fields of `gas` and `powder` are written (the verifier
+    /// points at `powder::ARRIVAL`, …).
+    pub spans: Vec<(&'static Field, Span)>,
 }
 
 /// Reads `gas { … }` and `powder { … }` of the machine whose fields are `f`.
@@ -133,12 +134,7 @@ pub fn read<'a>(
             ok &= claimed;
             let pre = g.quantity_or_default(&gas::PRE_FLOW, diags);
             let post = g.quantity_or_default(&gas::POST_FLOW, diags);
-            if let Some((_, s)) = out {
-                spans.push(("gas.output".into(), s));
-            }
-            if let Some(s) = g.span(&gas::PRE_FLOW) {
-                spans.push(("gas.pre_flow".into(), s));
-            }
+            spans.extend(g.written());
             Some(Some(Gas {
                 output: out?.0 as u16,
                 pre_flow: pre?,
@@ -158,9 +154,8 @@ pub fn read<'a>(
                 diags.push(message::machine::powder_without_arrival(at));
                 None
             };
-            if let Some(s) = p.span(&powder::ARRIVAL) {
-                spans.push(("powder.arrival".into(), s));
-            }
+            // The feed rate's checks point at its value, not its key.
+            spans.extend(p.written().filter(|(f, _)| *f != &powder::FULL_SCALE));
             let rate = match (p.has(&powder::RATE_OUTPUT), p.has(&powder::FULL_SCALE)) {
                 (false, false) => Some(None),
                 (true, false) | (false, true) => {
@@ -186,9 +181,7 @@ pub fn read<'a>(
                     );
                     ok &= claimed;
                     let full = p.quantity(&powder::FULL_SCALE, diags);
-                    if let Some((_, s)) = full {
-                        spans.push(("powder.full_scale".into(), s));
-                    }
+                    spans.extend(full.map(|(_, s)| (&powder::FULL_SCALE, s)));
                     Some(Some(RateOutput {
                         output: n?.0 as u16,
                         // g/s (canonical) → g/min

@@ -16,12 +16,24 @@ use crate::units::{short, Angle, Density, Dim, Length, MassFlow, Power, Quantity
 /// One field: its key and its evaluated value (`None` if evaluation failed and was
 /// reported already), or the statements of a nested block.
 struct Entry<'a> {
-    key: &'static str,
+    field: &'static Field,
     key_span: Span,
     value: Option<Spanned>,
     block: Option<(&'a [Stmt], Span)>,
     /// The unevaluated expression of a deferred field.
     expr: Option<&'a Expr>,
+}
+
+impl Entry<'_> {
+    /// Where the field is written: its key and value (a nested block: its
+    /// key).
+    fn span(&self) -> Span {
+        match (&self.value, self.expr) {
+            (Some(v), _) => self.key_span.join(v.span),
+            (None, Some(x)) => self.key_span.join(x.span),
+            (None, None) => self.key_span,
+        }
+    }
 }
 
 /// The fields of one block or call, as its table ([`Block`]) allows them.
@@ -73,7 +85,7 @@ impl<'a> Fields<'a> {
                 continue;
             };
             let repeated = matches!(field.kind, super::schema::Kind::Blocks(_));
-            if let Some(prev) = entries.iter().find(|e| e.key == key && !repeated) {
+            if let Some(prev) = entries.iter().find(|e| e.field == field && !repeated) {
                 diags.push(message::field::duplicate_field(
                     key,
                     &what,
@@ -87,7 +99,7 @@ impl<'a> Fields<'a> {
                 continue;
             }
             let mut entry = Entry {
-                key: field.key,
+                field,
                 key_span: s.kind.span,
                 value: None,
                 block: None,
@@ -158,7 +170,7 @@ impl<'a> Fields<'a> {
                 ));
                 continue;
             };
-            if let Some(prev) = entries.iter().find(|e| e.key == key) {
+            if let Some(prev) = entries.iter().find(|e| e.field == field) {
                 diags.push(message::field::duplicate_argument(
                     key,
                     &what,
@@ -168,7 +180,7 @@ impl<'a> Fields<'a> {
                 continue;
             }
             entries.push(Entry {
-                key: field.key,
+                field,
                 key_span,
                 value: Some(a.value.clone()),
                 block: None,
@@ -192,7 +204,7 @@ impl<'a> Fields<'a> {
             f.key,
             self.block.name
         );
-        self.entries.iter().find(|e| e.key == f.key)
+        self.entries.iter().find(|e| e.field == f)
     }
 
     fn lookup(&self, f: &Field) -> Lookup<'_> {
@@ -205,11 +217,12 @@ impl<'a> Fields<'a> {
 
     /// Where field `f` is written, if it is.
     pub fn span(&self, f: &Field) -> Option<Span> {
-        self.entry(f).map(|e| match (&e.value, e.expr) {
-            (Some(v), _) => e.key_span.join(v.span),
-            (None, Some(x)) => e.key_span.join(x.span),
-            (None, None) => e.key_span,
-        })
+        self.entry(f).map(Entry::span)
+    }
+
+    /// Every field written, with where, in source order.
+    pub fn written(&self) -> impl Iterator<Item = (&'static Field, Span)> + '_ {
+        self.entries.iter().map(|e| (e.field, e.span()))
     }
 
     /// The unevaluated expression of the deferred field `f`, if written.
@@ -232,7 +245,7 @@ impl<'a> Fields<'a> {
         debug_assert!(self.block.owns(f));
         self.entries
             .iter()
-            .filter(|e| e.key == f.key)
+            .filter(|e| e.field == f)
             .filter_map(|e| e.block)
             .collect()
     }

@@ -12,7 +12,7 @@ use super::super::schema::machine::{
 };
 use super::super::schema::Field;
 use super::super::value::Value;
-use super::{height_sensor, limits_block, spans};
+use super::{height_sensor, limits_block, Written};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{AxisLimits, Cnc, Dialect, FeedUnit, Kinematics, Machine, Placement};
 use crate::span::Span;
@@ -26,14 +26,11 @@ pub(super) fn read<'a>(
     stmts: &'a [Stmt],
     span: Span,
     diags: &mut Diagnostics,
-) -> Option<(Machine, Vec<(String, Span)>)> {
+) -> Option<(Machine, Written)> {
     let f = Fields::block(env, stmts, &CNC, format!("CNC `{name}`"), span, diags);
     let limits = limits_block(env, &f, diags);
-    let mut at = Vec::new();
-    spans(&f, &CNC, "", &mut at);
-    if let Some(l) = &limits {
-        spans(l, &super::LIMITS, "limits.", &mut at);
-    }
+    let mut at: Written = f.written().collect();
+    at.extend(limits.iter().flat_map(Fields::written));
     let c = cnc(name, &f, limits.as_ref(), diags);
     let profile = c
         .as_ref()

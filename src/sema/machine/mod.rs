@@ -9,29 +9,17 @@ mod robot;
 use super::eval::Env;
 use super::fields::{self, Fields};
 use super::schema::machine::{
-    self as schema, limits, HEIGHT_DELAY, HEIGHT_FULL_SCALE, HEIGHT_INPUT, LIMITS, LIMITS_BLOCK,
-    MACHINE,
+    self as schema, HEIGHT_DELAY, HEIGHT_FULL_SCALE, HEIGHT_INPUT, LIMITS, LIMITS_BLOCK, MACHINE,
 };
-use super::schema::Block;
+use super::schema::Field;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{HeightSensor, Machine};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 
-/// Where each field the checks refer to is written, by name (`limits.x`, the
-/// tilt axis' limit as `limits.tilt`).
-fn spans(f: &Fields<'_>, block: &Block, prefix: &str, out: &mut Vec<(String, Span)>) {
-    for field in block.fields.iter().filter(|g| !g.kind.is_block()) {
-        if let Some(s) = f.span(field) {
-            let name = if std::ptr::eq(*field, &limits::A) || std::ptr::eq(*field, &limits::B) {
-                "tilt"
-            } else {
-                field.key
-            };
-            out.push((format!("{prefix}{name}"), s));
-        }
-    }
-}
+/// The fields of a machine, each with where it is written: what the checks
+/// point at ([`crate::ir::MachineOrigin`]).
+pub type Written = Vec<(&'static Field, Span)>;
 
 /// Reads a machine block: the machine, and where its fields are written.
 pub fn read<'a>(
@@ -40,7 +28,7 @@ pub fn read<'a>(
     stmts: &'a [Stmt],
     span: Span,
     diags: &mut Diagnostics,
-) -> Option<(Machine, Vec<(String, Span)>)> {
+) -> Option<(Machine, Written)> {
     match kind(env, name, stmts, span, diags) {
         Some("robot") => robot::read(env, name, stmts, span, diags),
         Some(_) => cnc::read(env, name, stmts, span, diags),

@@ -9,7 +9,7 @@ use super::super::schema::machine::{
 };
 use super::super::schema::Field;
 use super::super::value::Value;
-use super::{height_sensor, spans};
+use super::{height_sensor, Written};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{FrameRef, Machine, Pose, Robot, ToolAxis};
 use crate::span::Span;
@@ -24,10 +24,9 @@ pub(super) fn read<'a>(
     stmts: &'a [Stmt],
     span: Span,
     diags: &mut Diagnostics,
-) -> Option<(Machine, Vec<(String, Span)>)> {
+) -> Option<(Machine, Written)> {
     let f = Fields::block(env, stmts, &ROBOT, format!("robot `{name}`"), span, diags);
-    let mut at = Vec::new();
-    spans(&f, &ROBOT, "", &mut at);
+    let mut at: Written = f.written().collect();
     let r = robot(name, &f, diags);
     let taken: Vec<_> = r
         .iter()

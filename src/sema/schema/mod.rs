@@ -241,14 +241,14 @@ impl Block {
 
     /// Whether `f` is one of the block's entries (taken or refused).
     pub fn owns(&self, f: &Field) -> bool {
-        self.accepted().any(|g| std::ptr::eq(g, f))
+        self.accepted().any(|g| g == f)
     }
 
     /// The example a missing `f` is suggested with in this block.
     pub fn example(&self, f: &Field) -> Option<&'static str> {
         self.examples
             .iter()
-            .find(|(g, _)| std::ptr::eq(*g, f))
+            .find(|(g, _)| *g == f)
             .map(|(_, e)| *e)
             .or(match f.need {
                 Need::Required(e) | Need::RequiredUnless(e, _) => Some(e),
@@ -256,6 +256,16 @@ impl Block {
             })
     }
 }
+
+/// A field is its entry: two are equal when they are the same static, so
+/// a lookup by field cannot find another block's field of the same key.
+impl PartialEq for Field {
+    fn eq(&self, other: &Field) -> bool {
+        std::ptr::eq(self, other)
+    }
+}
+
+impl Eq for Field {}
 
 impl Field {
     /// A field written `key`, taking `kind`.
