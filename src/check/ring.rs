@@ -71,21 +71,17 @@ pub(super) fn check_machine(
     let o = p.origins.ring.unwrap_or_default();
     transitions(r, law.clamp[1], m, origin, &o, out);
     let name = m.name();
-    let sensor = match m {
-        Machine::Robot(rb) => rb.height_sensor,
-        Machine::Cnc(c) => {
-            if c.dialect.profile != LOOP_PROFILE {
-                out.push(ring::loop_dialect(
-                    name,
-                    &c.dialect.profile,
-                    origin.at(&machine::DIALECT),
-                    o.run,
-                ));
-            }
-            c.height_sensor
+    if let Machine::Cnc(c) = m {
+        if c.dialect.profile != LOOP_PROFILE {
+            out.push(ring::loop_dialect(
+                name,
+                &c.dialect.profile,
+                origin.at(&machine::DIALECT),
+                o.run,
+            ));
         }
-    };
-    let Some(s) = sensor else {
+    }
+    let Some(s) = m.common().height_sensor else {
         out.push(ring::no_height_sensor(name, origin.block, o.run));
         return;
     };
@@ -174,10 +170,7 @@ fn transitions(
     o: &RingOrigins,
     out: &mut Diagnostics,
 ) {
-    let max = match m {
-        Machine::Robot(rb) => rb.max_speed,
-        Machine::Cnc(c) => c.max_speed,
-    };
+    let max = m.common().max_speed;
     let arc = r.radius * r.transition.to_radians();
     // The transitions of the plan: the defocus steps, and the layer change.
     let n = r.segments.len();

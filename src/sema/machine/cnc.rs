@@ -12,7 +12,7 @@ use super::super::schema::machine::{
 };
 use super::super::schema::Field;
 use super::super::value::Value;
-use super::{height_sensor, limits_block, Written};
+use super::{common, height_sensor, limits_block, Written};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{AxisLimits, Cnc, Dialect, FeedUnit, Kinematics, Machine, Placement};
 use crate::span::Span;
@@ -46,7 +46,7 @@ pub(super) fn read<'a>(
     let (mut c, cell) = (c?, cell?);
     lines?;
     at.extend(cell.spans);
-    c.cell = cell.cell;
+    c.common.cell = cell.cell;
     Some((Machine::Cnc(c), at))
 }
 
@@ -76,16 +76,12 @@ fn cnc(
         return None;
     }
     Some(Cnc {
-        height_sensor: sensor?,
-        name: name.to_string(),
+        common: common(name, vmax.map(|v| v.0), clearance, sensor)?,
         axes: axes?,
         kinematics: kin?,
         dialect: d?,
         limits: lim?,
         placement: placement?,
-        max_speed: vmax?.0,
-        clearance: clearance?,
-        cell: Default::default(),
     })
 }
 

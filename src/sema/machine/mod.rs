@@ -13,7 +13,7 @@ use super::schema::machine::{
 };
 use super::schema::Field;
 use crate::diag::{message, Diagnostics};
-use crate::ir::{HeightSensor, Machine};
+use crate::ir::{Cell, HeightSensor, Machine, MachineCommon};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 
@@ -83,6 +83,23 @@ fn limits_block<'a>(
         at,
         diags,
     ))
+}
+
+/// The part of a machine either kind has, from what its reader read (each
+/// reads them in its own order); its cell is added with the gas and powder.
+fn common(
+    name: &str,
+    max_speed: Option<f64>,
+    clearance: Option<f64>,
+    height_sensor: Option<Option<HeightSensor>>,
+) -> Option<MachineCommon> {
+    Some(MachineCommon {
+        name: name.to_string(),
+        max_speed: max_speed?,
+        clearance: clearance?,
+        cell: Cell::default(),
+        height_sensor: height_sensor?,
+    })
 }
 
 /// `height_input = n`, `height_full_scale = L`, `height_delay = t`: the

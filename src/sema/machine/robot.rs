@@ -9,7 +9,7 @@ use super::super::schema::machine::{
 };
 use super::super::schema::Field;
 use super::super::value::Value;
-use super::{height_sensor, Written};
+use super::{common, height_sensor, Written};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{FrameRef, Machine, Pose, Robot, ToolAxis};
 use crate::span::Span;
@@ -45,7 +45,7 @@ pub(super) fn read<'a>(
     let c = cell::read(env, &f, cell::KUKA, None, &taken, diags);
     let (mut r, c) = (r?, c?);
     at.extend(c.spans);
-    r.cell = c.cell;
+    r.common.cell = c.cell;
     Some((Machine::Robot(r), at))
 }
 
@@ -79,19 +79,15 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
     let home = home(f, diags);
     let sensor = height_sensor(f, 1, kuka::MAX_ANIN, diags);
     Some(Robot {
-        height_sensor: sensor?,
-        name: name.to_string(),
+        common: common(name, vmax.map(|v| v.0), clearance, sensor)?,
         tool: tool?,
         base: base?,
         beam: beam?,
         laser_out: laser?.0 as u16,
         power_out: anout?.0 as u16,
         full_scale_power: Power(full?.0).watts(),
-        max_speed: vmax?.0,
         home: home?,
         max_points_per_module: lines?,
-        clearance: clearance?,
-        cell: Default::default(),
     })
 }
 
