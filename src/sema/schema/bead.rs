@@ -44,6 +44,7 @@ pub static MODEL: Field = Field::new(
 pub static BEAD: Block = Block::new(
     "bead",
     "bead NAME { … }",
+    "a bead model: how high a track of it is at each scan speed",
     &[&WIDTH, &HEIGHT, &SPEED, &MODEL],
 );
 
@@ -106,6 +107,7 @@ pub mod model {
 pub static LINEAR: Block = Block::new(
     "linear",
     "linear(slope, intercept)",
+    "seed 003's fitted map `H = slope·v + intercept`",
     &[&model::SLOPE, &model::INTERCEPT],
 );
 
@@ -113,6 +115,7 @@ pub static LINEAR: Block = Block::new(
 pub static MASS_BALANCE: Block = Block::new(
     "mass_balance",
     "mass_balance(feed, efficiency, density)",
+    "the metal the melt pool catches per length, as a circular segment of the bead's width",
     &[&model::FEED, &model::EFFICIENCY, &model::DENSITY],
 );
 
@@ -120,5 +123,6 @@ pub static MASS_BALANCE: Block = Block::new(
 pub static MEASURED: Block = Block::new(
     "measured",
     "measured(height, speed)",
+    "one track measured at one process point",
     &[&model::HEIGHT, &model::SPEED],
 );

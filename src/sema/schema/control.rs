@@ -61,6 +61,7 @@ pub static PLANT: Field = Field::new(
 pub static CONTROL: Block = Block::new(
     "control",
     "control height { … }",
+    "a PI loop on each segment's layer height, layer to layer (seed 004)",
     &[&KP, &KI, &CLAMP, &TARGET, &RUN, &PLANT],
 );
 
@@ -88,5 +89,6 @@ pub mod plant {
 pub static INVERSE_SPEED: Block = Block::new(
     "inverse_speed",
     "inverse_speed(drift, factors)",
+    "a plant whose segment lays `h = g·(1 + drift·i)/v`, calibrated to the table",
     &[&plant::DRIFT, &plant::FACTORS],
 );

@@ -47,7 +47,7 @@ pub static MAX_SPEED: Field = Field::new(
     "max_speed",
     Quantity(Dim::SPEED, Positive),
     Required("250 mm/s"),
-    "the highest path speed; rapid moves run at it (a robot's at most $VEL.CP's 3000 mm/s)",
+    "the highest path speed, which rapid moves run at (a robot's within what KUKA's $VEL.CP takes)",
 );
 
 /// The back-off between paths, either kind.
@@ -175,6 +175,7 @@ pub static MODULE_LINES: Field = Field::new(
 pub static ROBOT: Block = Block::new(
     "robot",
     "machine NAME { kind = robot … }",
+    "a KUKA robot, programmed in KRL",
     &[
         &KIND,
         &TOOL,
@@ -199,6 +200,7 @@ pub static ROBOT: Block = Block::new(
 pub static FRAME: Block = Block::new(
     "frame",
     "frame(index, x, y, z, a, b, c)",
+    "a robot's tool or base, with the value the program sets",
     &[
         &frame::INDEX,
         &frame::X,
@@ -431,6 +433,7 @@ pub static LIMITS_BLOCK: Field = Field::new(
 pub static CNC: Block = Block::new(
     "cnc",
     "machine NAME { kind = cnc … }",
+    "a CNC, programmed in G-code",
     &[
         &KIND,
         &AXES,
@@ -468,6 +471,7 @@ pub static CNC: Block = Block::new(
 pub static MACHINE: Block = Block::new(
     "machine",
     "machine NAME { kind = robot | cnc … }",
+    "a machine whose kind is missing or wrong",
     &[
         &KIND,
         &TOOL,
@@ -562,6 +566,7 @@ pub mod limits {
 pub static LIMITS: Block = Block::new(
     "limits",
     "limits { … }",
+    "a CNC's travel limits, in machine coordinates",
     &[
         &limits::X,
         &limits::Y,
@@ -609,6 +614,7 @@ pub mod gas {
 pub static GAS: Block = Block::new(
     "gas",
     "gas { … }",
+    "the shielding gas valve, on a digital output",
     &[&gas::OUTPUT, &gas::PRE_FLOW, &gas::POST_FLOW],
 );
 
@@ -655,6 +661,7 @@ pub mod powder {
 pub static POWDER: Block = Block::new(
     "powder",
     "powder { … }",
+    "the powder feeder, on a digital output, its rate on an analog one where the cell has it",
     &[
         &powder::OUTPUT,
         &powder::ARRIVAL,

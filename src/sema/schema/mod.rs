@@ -176,6 +176,8 @@ pub struct Block {
     pub name: &'static str,
     /// How it is written: `bead NAME { … }`, `circle(…)`.
     pub syntax: &'static str,
+    /// What it is, in a line.
+    pub help: &'static str,
     /// The fields it takes, in the order messages list them: values first,
     /// nested blocks last.
     pub fields: &'static [&'static Field],
@@ -196,11 +198,13 @@ impl Block {
     pub const fn new(
         name: &'static str,
         syntax: &'static str,
+        help: &'static str,
         fields: &'static [&'static Field],
     ) -> Block {
         Block {
             name,
             syntax,
+            help,
             fields,
             refused: &[],
             positional: 0,
@@ -227,6 +231,11 @@ impl Block {
     /// The same block, with its own missing-field examples.
     pub const fn with_examples(self, examples: &'static [(&'static Field, &'static str)]) -> Block {
         Block { examples, ..self }
+    }
+
+    /// Whether it is a call with named arguments (`circle(…)`), not a block.
+    pub fn is_call(&self) -> bool {
+        self.syntax.ends_with(')')
     }
 
     /// Every field the block accepts: those it takes, then those it refuses.
@@ -356,46 +365,70 @@ impl Kind {
         }
     }
 
-    /// The value in words: `a length (mm), > 0`, `` `robot` or `cnc` ``.
+    /// The value in words: `a length (mm) > 0`, `` `robot` or `cnc` ``.
     pub fn describe(&self) -> String {
         match self {
-            Kind::Quantity(d, b) => {
-                let bound = b.describe(*d);
-                if bound.is_empty() {
-                    d.describe()
-                } else {
-                    format!("{}, {bound}", d.describe())
-                }
+            Kind::Word(_) | Kind::Call(_) | Kind::Either(_) => {
+                or_list(&choices(std::slice::from_ref(self)))
             }
+            Kind::Quantity(d, b) => bounded(dim_text(*d), *b, *d),
             Kind::Range(d) => format!("a range `low .. high` of {}", plural(*d)),
-            Kind::Count(lo, hi) => format!("a whole number, {lo} to {hi}"),
+            Kind::Count(lo, hi) => format!("a whole number from {lo} to {hi}"),
             Kind::Io(io) => io.describe(),
-            Kind::Word(w) => words(w),
             Kind::Text => "a text in quotes".into(),
-            Kind::Lines => "a text, or a list of texts: program lines".into(),
+            Kind::Lines => "a text or a list of texts, each a program line".into(),
             Kind::Name(what) => format!("the name of a {what}"),
-            Kind::Shape => "a shape: a section, `outline(…)`, `region(…)` or `place(…)`".into(),
-            Kind::Point => "a point `[x, y]` (mm)".into(),
-            Kind::Call(calls) => {
-                let names: Vec<String> = calls.iter().map(|c| format!("`{}`", c.syntax)).collect();
-                or_list(&names)
-            }
+            Kind::Shape => "a shape (a section, `outline(…)`, `region(…)`, `place(…)`)".into(),
+            Kind::Point => "a point `[x, y]` of lengths (mm)".into(),
             Kind::List(k, len) => {
-                let n = match len {
-                    Len::Exactly(n) => format!("a list of {n}"),
-                    Len::PerSegment => "a list, one per segment,".into(),
-                    Len::Any => "a list".into(),
+                let what = match k {
+                    Kind::Quantity(d, b) => bounded(plural(*d), *b, *d),
+                    other => other.describe(),
                 };
-                format!("{n}: {}", k.describe())
-            }
-            Kind::Either(kinds) => {
-                let each: Vec<String> = kinds.iter().map(Kind::describe).collect();
-                or_list(&each)
+                match len {
+                    Len::Exactly(n) => format!("a list of {n} {what}"),
+                    Len::PerSegment => format!("a list of {what}, one per segment"),
+                    Len::Any => format!("a list of {what}"),
+                }
             }
             Kind::Layered(k) => format!("{}; may follow `layer`", k.describe()),
             Kind::Deferred(k) => k.describe(),
-            Kind::Block(b) | Kind::Blocks(b) => format!("a block `{}`", b.syntax),
+            Kind::Block(b) => format!("a block `{}`", b.syntax),
+            Kind::Blocks(b) => format!("blocks `{}`, any number", b.syntax),
         }
+    }
+}
+
+/// The choices of a kind, each word and call on its own: `` `auto` ``, `a
+/// whole number …`.
+fn choices(kinds: &[Kind]) -> Vec<String> {
+    kinds
+        .iter()
+        .flat_map(|k| match k {
+            Kind::Word(w) => w.iter().map(|w| format!("`{w}`")).collect(),
+            Kind::Call(calls) => calls.iter().map(|c| format!("`{}`", c.syntax)).collect(),
+            Kind::Either(inner) => choices(inner),
+            other => vec![other.describe()],
+        })
+        .collect()
+}
+
+/// `what` with its bounds: `a length (mm) > 0`.
+fn bounded(what: String, b: Bound, dim: Dim) -> String {
+    let bound = b.describe(dim);
+    if bound.is_empty() {
+        what
+    } else {
+        format!("{what} {bound}")
+    }
+}
+
+/// A dimension in words, with its unit: `a length (mm)`.
+fn dim_text(d: Dim) -> String {
+    if d == crate::control::SpeedPerLength::DIM {
+        "a speed per length of height error (mm/s/mm)".into()
+    } else {
+        d.describe()
     }
 }
 
@@ -409,9 +442,9 @@ impl Bound {
             Bound::Positive => "> 0".into(),
             Bound::NonNegative => "≥ 0".into(),
             Bound::Negative => "< 0".into(),
-            Bound::PositiveUpTo(hi) | Bound::Within(hi) => format!("> 0, ≤ {}", s(hi)),
-            Bound::ZeroUpTo(hi) => format!("0 to {}", s(hi)),
-            Bound::Magnitude(hi) => format!("−{} to {}", s(hi), s(hi)),
+            Bound::PositiveUpTo(hi) | Bound::Within(hi) => format!("> 0 and ≤ {}", s(hi)),
+            Bound::ZeroUpTo(hi) => format!("from 0 to {}", s(hi)),
+            Bound::Magnitude(hi) => format!("from −{} to {}", s(hi), s(hi)),
         }
     }
 }
@@ -421,39 +454,32 @@ impl Io {
     pub fn describe(self) -> String {
         use super::cell::{KUKA, LINUXCNC, OTHER_CNC};
         use crate::target::{gcode, kuka};
-        let (what, [k, l, o]) = match self {
-            Io::DigitalOut => (
-                "a digital output",
-                [KUKA.digital, LINUXCNC.digital, OTHER_CNC.digital],
+        let range = |(lo, hi): (usize, usize)| format!("{lo}–{hi}");
+        match self {
+            Io::DigitalOut => format!(
+                "a digital output: a robot's {}, LinuxCNC's {}, another CNC's {}",
+                range(KUKA.digital),
+                range(LINUXCNC.digital),
+                range(OTHER_CNC.digital)
             ),
-            Io::AnalogOut => (
-                "an analog output",
-                [KUKA.analog, LINUXCNC.analog, OTHER_CNC.analog],
+            Io::AnalogOut => format!(
+                "an analog output: a robot's {}, LinuxCNC's {}, another CNC's {}",
+                range(KUKA.analog),
+                range(LINUXCNC.analog),
+                range(OTHER_CNC.analog)
             ),
-            Io::AnalogIn => (
-                "an analog input",
-                [
-                    (1, kuka::MAX_ANIN),
-                    (0, gcode::MAX_ANALOG_INPUT),
-                    (0, gcode::MAX_ANALOG_INPUT),
-                ],
+            Io::AnalogIn => format!(
+                "an analog input: a robot's {}, a CNC's {}",
+                range((1, kuka::MAX_ANIN)),
+                range((0, gcode::MAX_ANALOG_INPUT))
             ),
-        };
-        let other = if o == l {
-            String::new()
-        } else {
-            format!(", other CNCs {}–{}", o.0, o.1)
-        };
-        format!(
-            "{what}: a robot's {}–{}, LinuxCNC's {}–{}{other}",
-            k.0, k.1, l.0, l.1
-        )
+        }
     }
 }
 
-/// A dimension's values, for a range: `lengths (mm)`.
+/// A dimension's values, for a range or a list: `lengths (mm)`.
 fn plural(d: Dim) -> String {
-    let one = d.describe();
+    let one = dim_text(d);
     let one = one
         .strip_prefix("a ")
         .or_else(|| one.strip_prefix("an "))
@@ -464,18 +490,19 @@ fn plural(d: Dim) -> String {
     }
 }
 
-/// `` `a`, `b` or `c` ``.
-fn words(w: &[&str]) -> String {
-    let quoted: Vec<String> = w.iter().map(|w| format!("`{w}`")).collect();
-    or_list(&quoted)
-}
-
-/// `a, b or c`.
+/// `a, b or c` (`a, or b` when a choice has an "or" of its own).
 fn or_list(items: &[String]) -> String {
     match items {
         [] => String::new(),
         [one] => one.clone(),
-        [rest @ .., last] => format!("{} or {last}", rest.join(", ")),
+        [rest @ .., last] => {
+            let or = if items.iter().any(|i| i.contains(" or ")) {
+                ", or"
+            } else {
+                " or"
+            };
+            format!("{}{or} {last}", rest.join(", "))
+        }
     }
 }
 

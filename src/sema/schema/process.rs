@@ -40,7 +40,7 @@ pub static POWER: Field = Field::new(
 pub static POWER_RANGE: Field = Field::new(
     "power_range",
     Range(Dim::POWER),
-    Default(Described("the powers scheduled")),
+    Default(Described("the powers scheduled (a ring: its table's)")),
     "the laser's range, which every power is checked against",
 );
 
@@ -72,6 +72,7 @@ pub static DWELL: Field = Field::new(
 pub static PROCESS: Block = Block::new(
     "process",
     "process { … }",
+    "the process values",
     &[
         &POWDER,
         &DEFOCUS,
@@ -87,7 +88,8 @@ pub static PROCESS: Block = Block::new(
 /// of each segment, and its layers run on without a stop (why each is
 /// refused: [`crate::diag::message::bead::not_for_a_ring`]).
 pub static RING_PROCESS: Block =
-    Block::new("ring_process", "process { … }", &[&POWDER, &POWER_RANGE])
+    Block::new("ring_process", "process { … }",
+ "a ring's process block: its table gives the power, defocus and speed of each segment, and its layers run on without a stop", &[&POWDER, &POWER_RANGE])
         .refusing(&[&POWER, &DEFOCUS, &SPEED, &MIN_LAYER_TIME, &DWELL])
         .with_examples(&[(&POWDER, "6 g/min")]);
 
@@ -122,5 +124,6 @@ pub mod ramp {
 pub static RAMP: Block = Block::new(
     "ramp",
     "ramp(from, to, layers)",
+    "a power going linearly from one value to another over the first layers",
     &[&ramp::FROM, &ramp::TO, &ramp::LAYERS],
 );

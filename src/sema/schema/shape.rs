@@ -79,6 +79,7 @@ pub mod section {
 pub static CIRCLE: Block = Block::new(
     "circle",
     "circle(diameter)",
+    "a circle, by its diameter or radius",
     &[&section::DIAMETER, &section::RADIUS],
 )
 .positional(1);
@@ -87,17 +88,20 @@ pub static CIRCLE: Block = Block::new(
 pub static ELLIPSE: Block = Block::new(
     "ellipse",
     "ellipse(width, height)",
+    "an ellipse, its width along x",
     &[&section::WIDTH, &section::HEIGHT],
 )
 .positional(2);
 
 /// `square(side)`.
-pub static SQUARE: Block = Block::new("square", "square(side)", &[&section::SIDE]).positional(1);
+pub static SQUARE: Block =
+    Block::new("square", "square(side)", "a square", &[&section::SIDE]).positional(1);
 
 /// `rectangle(width, height)`.
 pub static RECTANGLE: Block = Block::new(
     "rectangle",
     "rectangle(width, height)",
+    "a rectangle, its width along x",
     &[&section::WIDTH, &section::HEIGHT],
 )
 .positional(2);
@@ -106,6 +110,7 @@ pub static RECTANGLE: Block = Block::new(
 pub static ROUNDED_RECTANGLE: Block = Block::new(
     "rounded_rectangle",
     "rounded_rectangle(width, height, radius)",
+    "a rectangle with rounded corners",
     &[&section::WIDTH, &section::HEIGHT, &section::CORNER_RADIUS],
 )
 .positional(3);
@@ -114,6 +119,7 @@ pub static ROUNDED_RECTANGLE: Block = Block::new(
 pub static POLYGON: Block = Block::new(
     "polygon",
     "polygon(sides, circumradius)",
+    "a regular polygon, a vertex on +x, by its circumradius or side",
     &[
         &section::SIDES,
         &section::CIRCUMRADIUS,
@@ -216,6 +222,7 @@ pub mod piece {
 pub static ARC: Block = Block::new(
     "outline_arc",
     "arc(to, radius, turn)",
+    "a piece of an `outline(…)`: the shorter arc to a point",
     &[&piece::TO, &piece::RADIUS, &piece::TURN],
 );
 
@@ -223,6 +230,7 @@ pub static ARC: Block = Block::new(
 pub static REGION: Block = Block::new(
     "region",
     "region(outline, holes)",
+    "a profile with openings",
     &[&piece::OUTLINE, &piece::HOLES],
 )
 .positional(1);
@@ -231,6 +239,7 @@ pub static REGION: Block = Block::new(
 pub static PLACE: Block = Block::new(
     "place",
     "place(shape, at, turn)",
+    "a shape turned about the origin, then moved",
     &[&piece::PLACED, &piece::AT, &piece::PLACE_TURN],
 )
 .positional(1);
@@ -239,6 +248,7 @@ pub static PLACE: Block = Block::new(
 pub static BOLT_CIRCLE: Block = Block::new(
     "bolt_circle",
     "bolt_circle(shape, count, diameter, from, at)",
+    "in a hole list: copies of a hole on a pitch circle",
     &[
         &piece::HOLE,
         &piece::COUNT,

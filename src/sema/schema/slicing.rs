@@ -69,6 +69,7 @@ pub mod normal {
 pub static NORMAL: Block = Block::new(
     "normal",
     "slicing normal { … }",
+    "layers normal to a loft's spine (seed 000)",
     &[
         &normal::LAYERS,
         &normal::POINTS,
@@ -140,6 +141,7 @@ pub mod planar {
 pub static PLANAR: Block = Block::new(
     "planar",
     "slicing planar { … }",
+    "flat layers of contours and a raster infill",
     &[
         &planar::LAYER_HEIGHT,
         &planar::LAYERS,
@@ -217,6 +219,7 @@ pub mod raster {
 pub static RASTER: Block = Block::new(
     "raster",
     "raster(angle, rotate, pattern, extend, link)",
+    "parallel infill tracks",
     &[
         &raster::ANGLE,
         &raster::ROTATE,
@@ -230,12 +233,19 @@ pub static RASTER: Block = Block::new(
 pub static ROTATING: Block = Block::new(
     "rotating",
     "rotating(step, from)",
+    "a seam that turns layer by layer",
     &[&raster::STEP, &raster::FROM],
 )
 .positional(1);
 
 /// `random(seed)`: a seam in a direction drawn for each layer.
-pub static RANDOM: Block = Block::new("random", "random(seed)", &[&raster::SEED]).positional(1);
+pub static RANDOM: Block = Block::new(
+    "random",
+    "random(seed)",
+    "a seam in a direction drawn for each layer from a seed",
+    &[&raster::SEED],
+)
+.positional(1);
 
 /// The fields of `slicing variable { … }` and its `segments { … }`.
 pub mod variable {
@@ -289,6 +299,7 @@ pub mod variable {
 pub static VARIABLE: Block = Block::new(
     "variable",
     "slicing variable { … }",
+    "layers that follow a sloped top, each a fraction of the local height (seed 003)",
     &[
         &variable::LAYERS,
         &variable::SCAN,
@@ -301,6 +312,7 @@ pub static VARIABLE: Block = Block::new(
 pub static SEGMENTS: Block = Block::new(
     "segments",
     "segments { … }",
+    "how a variable layer's tracks are cut into stretches of constant speed",
     &[&variable::TOLERANCE, &variable::MIN_LENGTH],
 );
 
@@ -338,6 +350,7 @@ pub mod continuous {
 pub static CONTINUOUS: Block = Block::new(
     "continuous",
     "slicing continuous { … }",
+    "a ring's layers laid in one run (seed 004)",
     &[
         &continuous::LAYERS,
         &continuous::LAYER_HEIGHT,
@@ -350,6 +363,7 @@ pub static CONTINUOUS: Block = Block::new(
 pub static ANY: Block = Block::new(
     "slicing",
     "slicing STRATEGY { … }",
+    "a slicing block whose strategy is missing or unknown",
     &[
         &normal::LAYERS,
         &normal::POINTS,

@@ -93,6 +93,7 @@ pub mod loft {
 pub static LOFT: Block = Block::new(
     "loft",
     "loft NAME { … }",
+    "a solid swept from one section to another along a spine, built as a one-bead wall",
     &[
         &loft::FROM,
         &loft::TO,
@@ -132,12 +133,19 @@ pub mod spine {
 }
 
 /// `line(length)`: a straight spine.
-pub static LINE: Block = Block::new("line", "line(length)", &[&spine::LENGTH]).positional(1);
+pub static LINE: Block = Block::new(
+    "line",
+    "line(length)",
+    "a straight spine",
+    &[&spine::LENGTH],
+)
+.positional(1);
 
 /// `arc(radius, angle)`: a spine bending toward +X.
 pub static ARC: Block = Block::new(
     "spine_arc",
     "arc(radius, angle)",
+    "a spine bending toward +X",
     &[&spine::RADIUS, &spine::ANGLE],
 );
 
@@ -189,6 +197,7 @@ pub mod extrude {
 pub static EXTRUDE: Block = Block::new(
     "extrude",
     "extrude NAME { … }",
+    "a profile built up in layers",
     &[
         &extrude::PROFILE,
         &extrude::HEIGHT,
@@ -260,6 +269,7 @@ pub mod top {
 pub static EDGES: Block = Block::new(
     "edges",
     "edges(along, from, to)",
+    "a top with heights on the footprint's two extreme edges, straight between",
     &[&top::ALONG, &top::FROM, &top::TO],
 );
 
@@ -267,6 +277,7 @@ pub static EDGES: Block = Block::new(
 pub static PLANE: Block = Block::new(
     "plane",
     "plane(at, height, slope_x, slope_y)",
+    "a sloped plane as a top",
     &[&top::AT, &top::HEIGHT, &top::SLOPE_X, &top::SLOPE_Y],
 );
 
@@ -310,6 +321,7 @@ pub mod ring {
 pub static RING: Block = Block::new(
     "ring",
     "ring NAME { … }",
+    "a ring split into equal segments, each with its own process (seed 004)",
     &[
         &ring::RADIUS,
         &ring::SEGMENTS,
@@ -356,5 +368,6 @@ pub mod table {
 pub static TABLE: Block = Block::new(
     "table",
     "table { … }",
+    "a ring's process values, one entry per segment",
     &[&table::DEFOCUS, &table::POWER, &table::WIDTH, &table::SPEED],
 );

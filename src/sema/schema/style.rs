@@ -68,6 +68,7 @@ pub mod style {
 pub static STYLE: Block = Block::new(
     "style",
     "style NAME { … }",
+    "process values for the tracks its rules pick (seed 002)",
     &[
         &style::ID,
         &style::POWER,
@@ -139,6 +140,7 @@ pub mod when {
 pub static WHEN: Block = Block::new(
     "when",
     "when { … }",
+    "a style's rule: all its conditions must hold",
     &[
         &when::PATHS,
         &when::SHORTER_THAN,
@@ -167,4 +169,9 @@ pub static HIT: Field = Field::new(
 );
 
 /// `inheritance { … }`: how a track no rule picks takes the style below it.
-pub static INHERITANCE: Block = Block::new("inheritance", "inheritance { … }", &[&BAND, &HIT]);
+pub static INHERITANCE: Block = Block::new(
+    "inheritance",
+    "inheritance { … }",
+    "how a track no rule picks takes the style of the layer below",
+    &[&BAND, &HIT],
+);
