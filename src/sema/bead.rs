@@ -78,11 +78,7 @@ fn height_model(
     match &model?.value {
         Value::Call(c) if c.func == "linear" => {
             let a = Fields::call(c, &LINEAR, diags);
-            let slope = a.bounded(
-                &args::SLOPE,
-                |slope, at| message::bead::slope_not_negative(slope, at),
-                diags,
-            );
+            let slope = a.bounded(&args::SLOPE, message::bead::slope_not_negative, diags);
             let b = a.quantity(&args::INTERCEPT, diags);
             Some(HeightModel::Linear {
                 slope: slope?.0,
@@ -92,11 +88,7 @@ fn height_model(
         Value::Call(c) if c.func == "mass_balance" => {
             let a = Fields::call(c, &MASS_BALANCE, diags);
             let feed = a.quantity(&args::FEED, diags);
-            let eff = a.bounded(
-                &args::EFFICIENCY,
-                |eff, at| message::bead::efficiency_range(eff, at),
-                diags,
-            );
+            let eff = a.bounded(&args::EFFICIENCY, message::bead::efficiency_range, diags);
             let rho = a.quantity(&args::DENSITY, diags);
             Some(HeightModel::MassBalance {
                 feed: MassFlow(feed?.0),

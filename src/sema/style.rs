@@ -7,7 +7,7 @@ use super::fields::Fields;
 use super::model::{Bead, Inheritance, PathSelect, Style, StyleCondition, Styles};
 use super::planar::PlanarSpec;
 use super::process::Laser;
-use super::schema::style::{self as schema, style, when, INHERITANCE, STYLE, WHEN};
+use super::schema::style::{self as schema, values, when, INHERITANCE, STYLE, WHEN};
 use super::schema::{DefaultValue, Need};
 use super::statement::{single_optional, Statements};
 use super::value::Value;
@@ -114,8 +114,8 @@ fn style<'a>(
     // `Some(None)`: no id written; one is given once every explicit id
     // is known, so it never takes an id a later style asks for.
     let id = f.optional(
-        &style::ID,
-        f.count(&style::ID, diags).map(|(id, sp)| {
+        &values::ID,
+        f.count(&values::ID, diags).map(|(id, sp)| {
             let id = id as u16;
             if let Some(prev) = ids.get(&id) {
                 diags.push(message::style::duplicate_id(id, sp, *prev));
@@ -124,22 +124,22 @@ fn style<'a>(
             id
         }),
     );
-    let power = f.optional(&style::POWER, f.quantity(&style::POWER, diags));
-    let speed = f.optional(&style::SPEED, f.quantity(&style::SPEED, diags));
-    let powder = f.optional(&style::POWDER, f.quantity(&style::POWDER, diags));
+    let power = f.optional(&values::POWER, f.quantity(&values::POWER, diags));
+    let speed = f.optional(&values::SPEED, f.quantity(&values::SPEED, diags));
+    let powder = f.optional(&values::POWDER, f.quantity(&values::POWDER, diags));
     if let Some(Some((_, sp))) = powder {
         // Seed 002's table reserves the field too: feeders are not switched
         // track by track.
         diags.push(message::style::powder_not_programmed(&what, sp));
     }
-    if [&style::POWER, &style::SPEED, &style::POWDER]
+    if [&values::POWER, &values::SPEED, &values::POWDER]
         .iter()
         .all(|v| !f.has(v))
     {
         diags.push(message::style::no_process_value(&what, name.span));
     }
     let colour = colour(&f, i, diags);
-    let blocks = f.nested_all(&style::WHEN);
+    let blocks = f.nested_all(&values::WHEN);
     if blocks.is_empty() {
         diags.push(message::style::picks_no_tracks(&what, s.span));
     }
@@ -175,7 +175,7 @@ fn style<'a>(
 
 /// `colour = "#rrggbb"`, else the palette's `i`th; `None` when wrong.
 fn colour(f: &Fields<'_>, i: usize, diags: &mut Diagnostics) -> Option<String> {
-    match f.text(&style::COLOUR, diags) {
+    match f.text(&values::COLOUR, diags) {
         Some((c, sp)) => {
             if is_colour(&c) {
                 Some(c.to_ascii_lowercase())
@@ -184,7 +184,7 @@ fn colour(f: &Fields<'_>, i: usize, diags: &mut Diagnostics) -> Option<String> {
                 None
             }
         }
-        None if f.has(&style::COLOUR) => None,
+        None if f.has(&values::COLOUR) => None,
         None => Some(PALETTE[i % PALETTE.len()].to_string()),
     }
 }
@@ -375,11 +375,7 @@ fn inheritance<'a>(
         diags,
     );
     let band = f.quantity(&schema::BAND, diags);
-    let hit = f.bounded(
-        &schema::HIT,
-        |h, at| message::style::hit_range(h, at),
-        diags,
-    );
+    let hit = f.bounded(&schema::HIT, message::style::hit_range, diags);
     Some(Inheritance {
         band: Length(band?.0),
         hit: hit?.0,

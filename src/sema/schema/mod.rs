@@ -5,7 +5,7 @@
 //! and a line of help.
 //!
 //! One table per block, read by everything that needs to know what a block
-//! may contain: the readers ([`super::fields::Fields`] takes a block's table,
+//! may contain: the readers (`sema::fields::Fields` takes a block's table,
 //! allows its keys and nothing else, and reads each field through its entry),
 //! the source spans of a machine's fields ([`crate::ir::MachineOrigin`] is
 //! keyed by the entries), the field tables of `docs/language.md` (generated
@@ -116,9 +116,8 @@ pub enum Io {
 
 /// The bounds of a quantity, in canonical units. [`Bound::Any`],
 /// [`Bound::Positive`] and a time's [`Bound::ZeroUpTo`] are checked by
-/// [`Fields::quantity`](super::fields::Fields::quantity); the others have a
-/// message of their own, which the reader words
-/// ([`Fields::bounded`](super::fields::Fields::bounded)).
+/// the reading of a field itself (`Fields::quantity`); the others have a
+/// message of their own, which the reader words (`Fields::bounded`).
 #[derive(Clone, Copy, Debug)]
 pub enum Bound {
     /// Any value.

@@ -86,7 +86,7 @@ pub static PROCESS: Block = Block::new(
 
 /// A ring's `process { … }`: its table gives the power, defocus and speed
 /// of each segment, and its layers run on without a stop (why each is
-/// refused: [`crate::diag::message::bead::not_for_a_ring`]).
+/// refused: `diag::message::bead::not_for_a_ring`).
 pub static RING_PROCESS: Block =
     Block::new("ring_process", "process { … }",
  "a ring's process block: its table gives the power, defocus and speed of each segment, and its layers run on without a stop", &[&POWDER, &POWER_RANGE])

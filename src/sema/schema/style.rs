@@ -14,8 +14,8 @@ pub const DEFAULT_CORNER_DEG: f64 = 45.0;
 /// The paths a rule may pick.
 pub const PATHS: &[&str] = &["outer_contour", "inner_contour", "contour", "infill"];
 
-/// The fields of `style NAME { … }`.
-pub mod style {
+/// The fields of `style NAME { … }`: its values and its rules.
+pub mod values {
     use super::*;
 
     /// `id = …`.
@@ -70,12 +70,12 @@ pub static STYLE: Block = Block::new(
     "style NAME { … }",
     "process values for the tracks its rules pick (seed 002)",
     &[
-        &style::ID,
-        &style::POWER,
-        &style::SPEED,
-        &style::POWDER,
-        &style::COLOUR,
-        &style::WHEN,
+        &values::ID,
+        &values::POWER,
+        &values::SPEED,
+        &values::POWDER,
+        &values::COLOUR,
+        &values::WHEN,
     ],
 );
 
