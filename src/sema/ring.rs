@@ -357,7 +357,7 @@ fn plant(
         Some((f, at)) if f.len() != table.len() => {
             let seg_at = w.segments.map(|s| s.1).unwrap_or(w.span);
             diags.push(message::ring::table_length(
-                "factors",
+                crate::sema::schema::control::plant::FACTORS.key,
                 f.len(),
                 *at,
                 table.len(),

@@ -5,14 +5,11 @@
 
 use super::fields::{self, Fields};
 use super::model::{LinkMode, SeamRule};
-use super::schema::slicing::{raster, RANDOM, ROTATING};
+use super::schema::slicing::{planar, raster, RANDOM, ROTATING};
 use super::suggest::did_you_mean;
 use super::value::{Call, Spanned, Value};
 use crate::diag::{message, Diagnostics};
 use crate::units::{Angle, Dim};
-
-/// The words `seam` takes besides an angle and the calls.
-const WORDS: &[&str] = &["lowest", "sharpest_corner", "random"];
 
 /// Reads `seam = …`: `lowest`, `sharpest_corner`, an angle,
 /// `rotating(step, from)` or `random(seed)` (or `random`, seed 0).
@@ -32,7 +29,11 @@ pub fn read(v: &Spanned, diags: &mut Diagnostics) -> Option<SeamRule> {
         }
         other => {
             let near = match other {
-                Value::Symbol(w) => did_you_mean(w, WORDS.iter().copied()),
+                // The words `seam` takes besides an angle and the calls.
+                Value::Symbol(w) => {
+                    let words = planar::SEAM.kind.words().unwrap_or_default();
+                    did_you_mean(w, words.iter().copied())
+                }
                 Value::Call(c) => did_you_mean(&c.func, ["rotating", "random"]),
                 _ => None,
             };
