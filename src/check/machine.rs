@@ -6,6 +6,7 @@
 //! Limits are compared with the value as the program writes it, exactly (no
 //! slack): what the control reads must lie within what was declared.
 
+use crate::sema::schema::machine::{self, limits};
 use super::rule::{MachineCx, PlanRule};
 use crate::diag::message::{self, check::machine::AnalogOverrun, check::machine::AxisOverrun};
 use crate::diag::Diagnostics;
@@ -46,7 +47,7 @@ impl<'p> PlanRule<'p> for SpeedLimit<'p> {
         out.push(message::check::machine::machine_speed(
             cx.machine.name(),
             &w,
-            cx.origin.at("max_speed"),
+            cx.origin.at(&machine::MAX_SPEED),
             cx.program.origins.bead_speed,
         ));
     }
@@ -174,13 +175,12 @@ impl<'p> PlanRule<'p> for Travel {
         } else {
             "A"
         };
-        let fields = [
-            "limits.x",
-            "limits.y",
-            "limits.z",
-            "limits.tilt",
-            "limits.c",
-        ];
+        let tilt = if tilt_name == "B" {
+            &limits::B
+        } else {
+            &limits::A
+        };
+        let fields = [&limits::X, &limits::Y, &limits::Z, tilt, &limits::C];
         let lim = self.lim;
         let ranges = [lim.x, lim.y, lim.z, lim.tilt, lim.rotary];
         for (i, w) in self.axes.iter().enumerate() {
@@ -242,7 +242,7 @@ impl<'p> PlanRule<'p> for Tilt {
         out.push(message::check::machine::needs_tilt(
             cx.machine.name(),
             &w,
-            cx.origin.at("axes"),
+            cx.origin.at(&machine::AXES),
         ));
     }
 }
@@ -288,7 +288,7 @@ impl<'p> PlanRule<'p> for Analog {
             full_scale: r.full_scale_power,
             needed: rounded(w.value / r.full_scale_power, kuka::ANOUT_DECIMALS),
             worst: w,
-            declared: cx.origin.at("full_scale"),
+            declared: cx.origin.at(&machine::FULL_SCALE),
             power: cx.program.origins.power,
         }));
     }
