@@ -215,7 +215,10 @@ mod tests {
         let track = linear(Basis::Track).rise(v, Length(2.4), None).0;
         assert!((track - segment_area(2.4, h) / 2.4).abs() < 1e-12);
         let share = track / h;
-        assert!(share > 2.0 / 3.0 && share < std::f64::consts::FRAC_PI_4, "{share}");
+        assert!(
+            share > 2.0 / 3.0 && share < std::f64::consts::FRAC_PI_4,
+            "{share}"
+        );
     }
 
     #[test]

@@ -8,12 +8,12 @@
 //! rapid moves count as instant, so the real time is never shorter than the
 //! one checked.
 
-use crate::sema::schema::machine::{gas, powder};
 use super::rule::{MachineCx, PlanRule};
 use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, MachineOrigin, Program};
 use crate::plan::{Io, Move, Speed, Visit};
+use crate::sema::schema::machine::{gas, powder};
 
 /// Slack on times, s: the plan waits exactly the declared times, which sums
 /// of move times may miss by rounding.

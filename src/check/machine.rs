@@ -6,7 +6,6 @@
 //! Limits are compared with the value as the program writes it, exactly (no
 //! slack): what the control reads must lie within what was declared.
 
-use crate::sema::schema::machine::{self, limits};
 use super::rule::{MachineCx, PlanRule};
 use crate::diag::message::{self, check::machine::AnalogOverrun, check::machine::AxisOverrun};
 use crate::diag::Diagnostics;
@@ -14,6 +13,7 @@ use crate::diag::Worst;
 use crate::ir::{AxisLimits, Kinematics, Machine};
 use crate::plan::kinematics::tilt_of;
 use crate::plan::{effective_kinematics, Move, Speed, Visit, Where};
+use crate::sema::schema::machine::{self, limits};
 use crate::target::{gcode, kuka, written as rounded};
 
 /// A normal tilted more than this (deg) cannot be followed by a vertical nozzle.

@@ -4,12 +4,12 @@
 //! (the formatters would otherwise have to write *something*). Each rule names
 //! the setting that would fix it.
 
-use crate::sema::schema::{machine, Field};
 use super::rule::{MachineCx, PlanRule};
 use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
 use crate::ir::Machine;
 use crate::plan::{Move, Speed, Visit};
+use crate::sema::schema::{machine, Field};
 use crate::target::{gcode, kuka, quantised, written, MAX_WRITTEN};
 
 /// `lmd::resolution`: powers and speeds one machine cannot write, and
@@ -84,9 +84,11 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
                         o.at(field),
                     )
                 }
-                Machine::Robot(r) => {
-                    message::check::machine::robot_power_unwritable(r, &w, o.at(&machine::FULL_SCALE))
-                }
+                Machine::Robot(r) => message::check::machine::robot_power_unwritable(
+                    r,
+                    &w,
+                    o.at(&machine::FULL_SCALE),
+                ),
             };
             out.push(d);
         }

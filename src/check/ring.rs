@@ -5,13 +5,13 @@
 //! its `max_speed` at the loop's top speed, a sensor input, a control that
 //! can run the loop.
 
-use crate::sema::schema::machine;
 use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
 use crate::control::{self, analyse, SpeedPerLength};
 use crate::diag::message::check::ring::{self, FastTransition, LateUpdate};
 use crate::diag::Diagnostics;
 use crate::ir::{Machine, MachineOrigin, Program, Ring, RingOrigins, RingRun};
 use crate::plan::{Move, Visit};
+use crate::sema::schema::machine;
 use crate::target::gcode::{LOOP_PROFILE, MAX_ANALOG_INPUT};
 use crate::target::kuka::MAX_ADVANCE;
 use crate::units::{Angle, Length, Speed};
