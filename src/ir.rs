@@ -8,6 +8,7 @@
 
 use crate::bead::HeightModel;
 use crate::deposit::{Basis, Deposit};
+use crate::sema::schema::Field;
 use crate::span::Span;
 use crate::units::{Density, Length, MassFlow, Speed};
 use serde::{Deserialize, Serialize};
@@ -490,21 +491,44 @@ pub enum Machine {
 }
 
 impl Machine {
+    /// What the machine has whatever its kind: name, speed, clearance, cell
+    /// and height sensor.
+    pub fn common(&self) -> &MachineCommon {
+        match self {
+            Machine::Robot(r) => &r.common,
+            Machine::Cnc(c) => &c.common,
+        }
+    }
+
     /// The machine's name from the source.
     pub fn name(&self) -> &str {
-        match self {
-            Machine::Robot(r) => &r.name,
-            Machine::Cnc(c) => &c.name,
-        }
+        &self.common().name
     }
 
     /// The gas and powder it switches.
     pub fn cell(&self) -> &Cell {
-        match self {
-            Machine::Robot(r) => &r.cell,
-            Machine::Cnc(c) => &c.cell,
-        }
+        &self.common().cell
     }
+}
+
+/// What every machine has, whatever its kind: the fields a robot's and a
+/// CNC's blocks share (one entry each in [`crate::sema::schema::machine`]).
+/// A [`Robot`] and a [`Cnc`] dereference to theirs, so `robot.max_speed`
+/// reads it; the IR's JSON keeps each field where it always was among the
+/// kind's own.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MachineCommon {
+    /// Name from the source; the program is named after the part and this.
+    pub name: String,
+    /// Highest path speed (a CNC's feed), mm/s.
+    pub max_speed: f64,
+    /// Distance the nozzle backs off along the normal between paths that do not
+    /// join, mm.
+    pub clearance: f64,
+    /// The cell's shielding gas and powder feeder, if the program switches them.
+    pub cell: Cell,
+    /// The height sensor a closed loop reads, if the cell has one.
+    pub height_sensor: Option<HeightSensor>,
 }
 
 /// A pose `X Y Z A B C` (mm, deg; KUKA ZYX Euler: R = Rz(A)·Ry(B)·Rx(C)).
@@ -554,9 +578,10 @@ pub enum ToolAxis {
 
 /// A KUKA robot cell.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(from = "wire::Robot", into = "wire::Robot")]
 pub struct Robot {
-    /// Name from the source; the program is named after the part and this.
-    pub name: String,
+    /// Name, speed, clearance, cell and height sensor.
+    pub common: MachineCommon,
     /// Tool (TCP at the laser focus).
     pub tool: FrameRef,
     /// Base the part is programmed in.
@@ -569,21 +594,10 @@ pub struct Robot {
     pub power_out: u16,
     /// Power at `$ANOUT = 1.0`, W.
     pub full_scale_power: f64,
-    /// Highest path speed, mm/s.
-    pub max_speed: f64,
     /// Axis angles of the home position, deg.
     pub home: [f64; 6],
     /// Most motion lines in one sub-program module.
     pub max_points_per_module: usize,
-    /// Distance the nozzle backs off along the normal between paths that do not
-    /// join, mm.
-    pub clearance: f64,
-    /// The cell's shielding gas and powder feeder, if the program switches them.
-    #[serde(default, skip_serializing_if = "Cell::is_none")]
-    pub cell: Cell,
-    /// The height sensor a closed loop reads, if the cell has one.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub height_sensor: Option<HeightSensor>,
 }
 
 /// The cell's shielding gas and powder feeder as a machine switches them
@@ -742,9 +756,10 @@ pub enum CommentStyle {
 
 /// A CNC cell.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[serde(from = "wire::Cnc", into = "wire::Cnc")]
 pub struct Cnc {
-    /// Name from the source.
-    pub name: String,
+    /// Name, feed, clearance, cell and height sensor.
+    pub common: MachineCommon,
     /// 3 or 5.
     pub axes: u8,
     /// Axis arrangement.
@@ -755,19 +770,164 @@ pub struct Cnc {
     /// in machine coordinates.
     pub limits: AxisLimits,
     /// Where the part sits on the machine.
-    #[serde(default)]
     pub placement: Placement,
-    /// Highest feed, mm/s.
-    pub max_speed: f64,
-    /// Distance the nozzle backs off along the normal between paths that do not
-    /// join, mm.
-    pub clearance: f64,
-    /// The cell's shielding gas and powder feeder, if the program switches them.
-    #[serde(default, skip_serializing_if = "Cell::is_none")]
-    pub cell: Cell,
-    /// The height sensor a closed loop reads, if the cell has one.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub height_sensor: Option<HeightSensor>,
+}
+
+impl std::ops::Deref for Robot {
+    type Target = MachineCommon;
+
+    fn deref(&self) -> &MachineCommon {
+        &self.common
+    }
+}
+
+impl std::ops::DerefMut for Robot {
+    fn deref_mut(&mut self) -> &mut MachineCommon {
+        &mut self.common
+    }
+}
+
+impl std::ops::Deref for Cnc {
+    type Target = MachineCommon;
+
+    fn deref(&self) -> &MachineCommon {
+        &self.common
+    }
+}
+
+impl std::ops::DerefMut for Cnc {
+    fn deref_mut(&mut self) -> &mut MachineCommon {
+        &mut self.common
+    }
+}
+
+/// The machines as the IR's JSON writes them (docs/ir.md): each kind's
+/// fields flat, the common ones where they always were, so the common part
+/// changes no file.
+mod wire {
+    use super::{
+        AxisLimits, Cell, Dialect, FrameRef, HeightSensor, Kinematics, MachineCommon, Placement,
+        ToolAxis,
+    };
+    use serde::{Deserialize, Serialize};
+
+    /// A robot's fields in the file's order.
+    #[derive(Serialize, Deserialize)]
+    pub(super) struct Robot {
+        name: String,
+        tool: FrameRef,
+        base: FrameRef,
+        beam: ToolAxis,
+        laser_out: u16,
+        power_out: u16,
+        full_scale_power: f64,
+        max_speed: f64,
+        home: [f64; 6],
+        max_points_per_module: usize,
+        clearance: f64,
+        #[serde(default, skip_serializing_if = "Cell::is_none")]
+        cell: Cell,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        height_sensor: Option<HeightSensor>,
+    }
+
+    /// A CNC's fields in the file's order.
+    #[derive(Serialize, Deserialize)]
+    pub(super) struct Cnc {
+        name: String,
+        axes: u8,
+        kinematics: Kinematics,
+        dialect: Dialect,
+        limits: AxisLimits,
+        #[serde(default)]
+        placement: Placement,
+        max_speed: f64,
+        clearance: f64,
+        #[serde(default, skip_serializing_if = "Cell::is_none")]
+        cell: Cell,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        height_sensor: Option<HeightSensor>,
+    }
+
+    impl From<Robot> for super::Robot {
+        fn from(r: Robot) -> Self {
+            super::Robot {
+                common: MachineCommon {
+                    name: r.name,
+                    max_speed: r.max_speed,
+                    clearance: r.clearance,
+                    cell: r.cell,
+                    height_sensor: r.height_sensor,
+                },
+                tool: r.tool,
+                base: r.base,
+                beam: r.beam,
+                laser_out: r.laser_out,
+                power_out: r.power_out,
+                full_scale_power: r.full_scale_power,
+                home: r.home,
+                max_points_per_module: r.max_points_per_module,
+            }
+        }
+    }
+
+    impl From<super::Robot> for Robot {
+        fn from(r: super::Robot) -> Self {
+            let c = r.common;
+            Robot {
+                name: c.name,
+                tool: r.tool,
+                base: r.base,
+                beam: r.beam,
+                laser_out: r.laser_out,
+                power_out: r.power_out,
+                full_scale_power: r.full_scale_power,
+                max_speed: c.max_speed,
+                home: r.home,
+                max_points_per_module: r.max_points_per_module,
+                clearance: c.clearance,
+                cell: c.cell,
+                height_sensor: c.height_sensor,
+            }
+        }
+    }
+
+    impl From<Cnc> for super::Cnc {
+        fn from(c: Cnc) -> Self {
+            super::Cnc {
+                common: MachineCommon {
+                    name: c.name,
+                    max_speed: c.max_speed,
+                    clearance: c.clearance,
+                    cell: c.cell,
+                    height_sensor: c.height_sensor,
+                },
+                axes: c.axes,
+                kinematics: c.kinematics,
+                dialect: c.dialect,
+                limits: c.limits,
+                placement: c.placement,
+            }
+        }
+    }
+
+    impl From<super::Cnc> for Cnc {
+        fn from(c: super::Cnc) -> Self {
+            let m = c.common;
+            Cnc {
+                name: m.name,
+                axes: c.axes,
+                kinematics: c.kinematics,
+                dialect: c.dialect,
+                limits: c.limits,
+                placement: c.placement,
+                max_speed: m.max_speed,
+                clearance: m.clearance,
+                cell: m.cell,
+                height_sensor: m.height_sensor,
+            }
+        }
+    }
 }
 
 /// Where a part sits on a CNC: the program is written in part coordinates
@@ -847,8 +1007,10 @@ pub struct RingOrigins {
 pub struct MachineOrigin {
     /// The whole `machine` block.
     pub block: Span,
-    /// The fields given, by name (`max_speed`, `full_scale`, `limits.x`, …).
-    pub fields: Vec<(String, Span)>,
+    /// The fields given, each by its entry in the machine's tables
+    /// ([`crate::sema::schema::machine`]: `MAX_SPEED`, `limits::X`,
+    /// `gas::PRE_FLOW`, …; `NAME` for the machine's name).
+    pub fields: Vec<(&'static Field, Span)>,
 }
 
 impl MachineOrigin {
@@ -860,13 +1022,18 @@ impl MachineOrigin {
         }
     }
 
-    /// Where field `name` was given, else the block: what a diagnostic about
-    /// the limit that field declares points at.
-    pub fn at(&self, name: &str) -> Span {
+    /// Where `field` was given, if it was.
+    pub fn written(&self, field: &Field) -> Option<Span> {
         self.fields
             .iter()
-            .find(|(n, _)| n == name)
-            .map_or(self.block, |(_, s)| *s)
+            .find(|(f, _)| *f == field)
+            .map(|(_, s)| *s)
+    }
+
+    /// Where `field` was given, else the block: what a diagnostic about
+    /// the limit that field declares points at.
+    pub fn at(&self, field: &Field) -> Span {
+        self.written(field).unwrap_or(self.block)
     }
 }
 

@@ -13,6 +13,7 @@ use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, MachineOrigin, Program};
 use crate::plan::{Io, Move, Speed, Visit};
+use crate::sema::schema::machine::{gas, powder};
 
 /// Slack on times, s: the plan waits exactly the declared times, which sums
 /// of move times may miss by rounding.
@@ -65,7 +66,7 @@ impl<'p> CellRule<'p> {
                 name,
                 &w,
                 g.pre_flow,
-                o.at("gas.pre_flow"),
+                o.at(&gas::PRE_FLOW),
             ));
         }
         if let (Some(w), Some(p)) = (self.powder_short, self.cell.powder) {
@@ -73,7 +74,7 @@ impl<'p> CellRule<'p> {
                 name,
                 &w,
                 p.arrival,
-                o.at("powder.arrival"),
+                o.at(&powder::ARRIVAL),
             ));
         }
         let full = self.cell.powder.and_then(|p| p.rate);
@@ -81,7 +82,7 @@ impl<'p> CellRule<'p> {
             out.push(cell::rate_changes_in_path(
                 name,
                 &w,
-                o.at("powder.full_scale"),
+                o.at(&powder::FULL_SCALE),
             ));
         }
         if let (Some(w), Some(r)) = (self.rate_over, full) {
@@ -89,7 +90,7 @@ impl<'p> CellRule<'p> {
                 name,
                 &w,
                 r.full_scale,
-                o.at("powder.full_scale"),
+                o.at(&powder::FULL_SCALE),
             ));
         }
     }

@@ -13,6 +13,7 @@ use crate::diag::Worst;
 use crate::ir::{AxisLimits, Kinematics, Machine};
 use crate::plan::kinematics::tilt_of;
 use crate::plan::{effective_kinematics, Move, Speed, Visit, Where};
+use crate::sema::schema::machine::{self, limits};
 use crate::target::{gcode, kuka, written as rounded};
 
 /// A normal tilted more than this (deg) cannot be followed by a vertical nozzle.
@@ -46,7 +47,7 @@ impl<'p> PlanRule<'p> for SpeedLimit<'p> {
         out.push(message::check::machine::machine_speed(
             cx.machine.name(),
             &w,
-            cx.origin.at("max_speed"),
+            cx.origin.at(&machine::MAX_SPEED),
             cx.program.origins.bead_speed,
         ));
     }
@@ -174,13 +175,12 @@ impl<'p> PlanRule<'p> for Travel {
         } else {
             "A"
         };
-        let fields = [
-            "limits.x",
-            "limits.y",
-            "limits.z",
-            "limits.tilt",
-            "limits.c",
-        ];
+        let tilt = if tilt_name == "B" {
+            &limits::B
+        } else {
+            &limits::A
+        };
+        let fields = [&limits::X, &limits::Y, &limits::Z, tilt, &limits::C];
         let lim = self.lim;
         let ranges = [lim.x, lim.y, lim.z, lim.tilt, lim.rotary];
         for (i, w) in self.axes.iter().enumerate() {
@@ -242,7 +242,7 @@ impl<'p> PlanRule<'p> for Tilt {
         out.push(message::check::machine::needs_tilt(
             cx.machine.name(),
             &w,
-            cx.origin.at("axes"),
+            cx.origin.at(&machine::AXES),
         ));
     }
 }
@@ -288,7 +288,7 @@ impl<'p> PlanRule<'p> for Analog {
             full_scale: r.full_scale_power,
             needed: rounded(w.value / r.full_scale_power, kuka::ANOUT_DECIMALS),
             worst: w,
-            declared: cx.origin.at("full_scale"),
+            declared: cx.origin.at(&machine::FULL_SCALE),
             power: cx.program.origins.power,
         }));
     }

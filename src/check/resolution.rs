@@ -9,6 +9,7 @@ use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
 use crate::ir::Machine;
 use crate::plan::{Move, Speed, Visit};
+use crate::sema::schema::{machine, Field};
 use crate::target::{gcode, kuka, quantised, written, MAX_WRITTEN};
 
 /// `lmd::resolution`: powers and speeds one machine cannot write, and
@@ -46,19 +47,19 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
     fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
         let (machine, o) = (cx.machine, cx.origin);
         let speeds = cx.program.origins.bead_speed;
-        let has = |f: &str| o.fields.iter().any(|(n, _)| n == f);
+        let has = |f: &Field| o.written(f).is_some();
         if let Some(w) = self.position {
             out.push(message::check::machine::position_too_large(
                 machine.name(),
                 &w,
-                o.at("name"),
+                o.at(&machine::NAME),
             ));
         }
         if let Some(w) = self.speed {
             // The setting that decides how F is written, if declared.
             let field = match machine {
-                Machine::Cnc(_) if has("feed_units") => "feed_units",
-                _ => "name",
+                Machine::Cnc(_) if has(&machine::FEED_UNITS) => &machine::FEED_UNITS,
+                _ => &machine::NAME,
             };
             out.push(message::check::machine::speed_unwritable(
                 machine,
@@ -71,10 +72,10 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
         if let Some(w) = self.power {
             let d = match machine {
                 Machine::Cnc(c) => {
-                    let field = if has("s_decimals") {
-                        "s_decimals"
+                    let field = if has(&machine::S_DECIMALS) {
+                        &machine::S_DECIMALS
                     } else {
-                        "s_per_watt"
+                        &machine::S_PER_WATT
                     };
                     message::check::machine::cnc_power_unwritable(
                         c,
@@ -83,9 +84,11 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
                         o.at(field),
                     )
                 }
-                Machine::Robot(r) => {
-                    message::check::machine::robot_power_unwritable(r, &w, o.at("full_scale"))
-                }
+                Machine::Robot(r) => message::check::machine::robot_power_unwritable(
+                    r,
+                    &w,
+                    o.at(&machine::FULL_SCALE),
+                ),
             };
             out.push(d);
         }

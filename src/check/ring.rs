@@ -11,6 +11,7 @@ use crate::diag::message::check::ring::{self, FastTransition, LateUpdate};
 use crate::diag::Diagnostics;
 use crate::ir::{Machine, MachineOrigin, Program, Ring, RingOrigins, RingRun};
 use crate::plan::{Move, Visit};
+use crate::sema::schema::machine;
 use crate::target::gcode::{LOOP_PROFILE, MAX_ANALOG_INPUT};
 use crate::target::kuka::MAX_ADVANCE;
 use crate::units::{Angle, Length, Speed};
@@ -94,21 +95,17 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
     let o = p.origins.ring.unwrap_or_default();
     transitions(r, law.clamp[1], m, origin, &o, out);
     let name = m.name();
-    let sensor = match m {
-        Machine::Robot(rb) => rb.height_sensor,
-        Machine::Cnc(c) => {
-            if c.dialect.profile != LOOP_PROFILE {
-                out.push(ring::loop_dialect(
-                    name,
-                    &c.dialect.profile,
-                    origin.at("dialect"),
-                    o.run,
-                ));
-            }
-            c.height_sensor
+    if let Machine::Cnc(c) = m {
+        if c.dialect.profile != LOOP_PROFILE {
+            out.push(ring::loop_dialect(
+                name,
+                &c.dialect.profile,
+                origin.at(&machine::DIALECT),
+                o.run,
+            ));
         }
-    };
-    let Some(s) = sensor else {
+    }
+    let Some(s) = m.common().height_sensor else {
         out.push(ring::no_height_sensor(name, origin.block, o.run));
         return;
     };
@@ -122,7 +119,7 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
                 r.segments.len(),
                 s.input,
                 last,
-                origin.at("height_input"),
+                origin.at(&machine::HEIGHT_INPUT),
             ));
         }
     }
@@ -182,7 +179,7 @@ fn robot_timing(
     out.push(ring::loop_timing(
         name,
         &why,
-        origin.at("height_delay"),
+        origin.at(&machine::HEIGHT_DELAY),
         o.ring,
     ));
 }
@@ -197,10 +194,7 @@ fn transitions(
     o: &RingOrigins,
     out: &mut Diagnostics,
 ) {
-    let max = match m {
-        Machine::Robot(rb) => rb.max_speed,
-        Machine::Cnc(c) => c.max_speed,
-    };
+    let max = m.common().max_speed;
     let arc = r.radius * r.transition.to_radians();
     // The transitions of the plan: the defocus steps, and the layer change.
     let n = r.segments.len();
@@ -235,6 +229,6 @@ fn transitions(
         speed: v,
         top,
         transition_fits,
-        spans: [origin.at("max_speed"), o.clamp, o.transition],
+        spans: [origin.at(&machine::MAX_SPEED), o.clamp, o.transition],
     }));
 }

@@ -66,10 +66,7 @@ pub struct Summary {
 
 /// The speed a machine's rapid moves are timed at: its `max_speed`.
 pub fn rapid_speed(m: &Machine) -> f64 {
-    match m {
-        Machine::Robot(r) => r.max_speed,
-        Machine::Cnc(c) => c.max_speed,
-    }
+    m.common().max_speed
 }
 
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {

@@ -312,17 +312,17 @@ pub fn effective_kinematics(cnc: &crate::ir::Cnc) -> Kinematics {
 impl<'a> Plan<'a> {
     /// The plan of `machine` for `program`.
     pub fn new(program: &'a Program, machine: &'a Machine) -> Self {
-        let (head, clearance) = match machine {
-            Machine::Robot(r) => (Head::Free, r.clearance),
+        let head = match machine {
+            Machine::Robot(_) => Head::Free,
             Machine::Cnc(c) => match effective_kinematics(c) {
-                Kinematics::Xyz => (Head::Vertical, c.clearance),
-                k => (Head::Tilting(k, c.limits), c.clearance),
+                Kinematics::Xyz => Head::Vertical,
+                k => Head::Tilting(k, c.limits),
             },
         };
         Plan {
             program,
             head,
-            clearance,
+            clearance: machine.common().clearance,
             cell: machine.cell(),
         }
     }

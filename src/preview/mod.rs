@@ -15,7 +15,7 @@
 mod encode;
 
 use crate::check::VerifiedMachine;
-use crate::ir::{Layer, Machine};
+use crate::ir::Layer;
 use crate::plan::{Move, Speed, Visit};
 use encode::Columns;
 
@@ -158,10 +158,7 @@ pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
     let mut count = Count(0);
     plan.walk(&mut count);
     let d = decimation(count.0, budget);
-    let rapid = match machine.machine() {
-        Machine::Robot(r) => r.max_speed,
-        Machine::Cnc(c) => c.max_speed,
-    } as f32;
+    let rapid = machine.machine().common().max_speed as f32;
     let mut c = Collect {
         d,
         rapid,

@@ -3,11 +3,12 @@
 use super::eval::{unknown_name, Env};
 use super::fields::Fields;
 use super::model::{Bead, HeightModel};
+use super::schema::bead::{self as schema, model as args, BEAD, LINEAR, MASS_BALANCE, MEASURED};
 use super::value::{Spanned, Value};
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{Density, Dim, Length, MassFlow, Speed};
+use crate::units::{Density, Length, MassFlow, Speed};
 use std::collections::BTreeMap;
 
 /// Reads a bead block.
@@ -18,30 +19,20 @@ pub fn read<'a>(
     span: Span,
     diags: &mut Diagnostics,
 ) -> Option<Bead> {
-    let f = Fields::block(
-        env,
-        stmts,
-        &["width", "height", "speed", "model"],
-        &[],
-        format!("bead `{name}`"),
-        span,
-        diags,
-    );
-    let width = f.positive("width", Dim::LENGTH, Some("6 mm"), diags);
+    let f = Fields::block(env, stmts, &BEAD, format!("bead `{name}`"), span, diags);
+    let width = f.quantity(&schema::WIDTH, diags);
     // A measured bead brings its speed; every other model needs the range.
     let measured = matches!(
-        f.value("model", None, &mut Diagnostics::new()).map(|m| &m.value),
+        f.value(&schema::MODEL, &mut Diagnostics::new()).map(|m| &m.value),
         Some(Value::Call(c)) if c.func == "measured"
     );
-    let required = (!measured).then_some("7 mm/s .. 10 mm/s");
-    let speed = f.range("speed", Dim::SPEED, required, diags);
-    let height = f.range("height", Dim::LENGTH, None, diags);
+    let speed = f.range(&schema::SPEED, diags);
+    if !measured {
+        f.require(&schema::SPEED, diags);
+    }
+    let height = f.range(&schema::HEIGHT, diags);
     let declared_height = height.map(|([lo, hi], _)| [Length(lo), Length(hi)]);
-    let model = f.value(
-        "model",
-        Some("mass_balance(feed = 45.9 g/min, efficiency = 0.3, density = 7.9 g/cm^3)"),
-        diags,
-    );
+    let model = f.value(&schema::MODEL, diags);
     let model_span = model.map(|m| m.span);
     // A range that starts at zero or below is wrong whatever the model.
     let speed = speed.filter(|&(range, speed_span)| {
@@ -51,80 +42,91 @@ pub fn read<'a>(
         diags.push(message::bead::speed_not_positive(speed_span));
         false
     });
-    let model = match model.map(|m| &m.value) {
-        Some(Value::Call(c)) if c.func == "linear" => {
-            let a = Fields::call(c, &[], &["slope", "intercept"], diags);
-            let slope = a.quantity("slope", Dim::TIME, Some("-0.135 mm / (1 mm/s)"), diags);
-            let b = a.quantity("intercept", Dim::LENGTH, Some("1.82 mm"), diags);
-            let slope = slope.filter(|&(slope, at)| {
-                if slope < 0.0 {
-                    return true;
-                }
-                diags.push(message::bead::slope_not_negative(slope, at));
-                false
-            });
-            match (slope, b) {
-                (Some(slope), Some(b)) => Some(HeightModel::Linear {
-                    slope: slope.0,
-                    intercept: Length(b.0),
-                }),
-                _ => None,
-            }
-        }
-        Some(Value::Call(c)) if c.func == "mass_balance" => {
-            let a = Fields::call(c, &[], &["feed", "efficiency", "density"], diags);
-            let feed = a.positive("feed", Dim::MASS_FLOW, Some("45.9 g/min"), diags);
-            let eff = a.positive("efficiency", Dim::NONE, Some("0.3"), diags);
-            let rho = a.positive("density", Dim::DENSITY, Some("7.9 g/cm^3"), diags);
-            let eff = eff.filter(|&(eff, at)| {
-                if eff <= 1.0 {
-                    return true;
-                }
-                diags.push(message::bead::efficiency_range(eff, at));
-                false
-            });
-            match (feed, eff, rho) {
-                (Some(feed), Some(eff), Some(rho)) => Some(HeightModel::MassBalance {
-                    feed: MassFlow(feed.0),
-                    efficiency: eff.0,
-                    density: Density(rho.0),
-                }),
-                _ => None,
-            }
-        }
-        Some(Value::Call(c)) if c.func == "measured" => {
-            let a = Fields::call(c, &[], &["height", "speed"], diags);
-            let h = a.positive("height", Dim::LENGTH, Some("0.7 mm"), diags);
-            let v = a.positive("speed", Dim::SPEED, Some("6 mm/s"), diags);
-            match (h, v) {
-                (Some(h), Some(v)) => Some(HeightModel::Measured {
-                    height: Length(h.0),
-                    speed: Speed(v.0),
-                }),
-                _ => None,
-            }
-        }
-        Some(other) => {
-            diags.push(message::bead::unknown_model(
-                model_span.unwrap_or(span),
-                &other.describe(),
-            ));
-            None
-        }
-        None => None,
-    };
-    let model = model?;
+    let model = height_model(model, span, diags)?;
+    let model_span = model_span.unwrap_or(span);
     // A measured bead is valid at the speed it was measured at, unless the file
     // says over which range it holds.
     let speed = match (speed, model) {
         (Some(s), _) => Some(s),
-        (None, HeightModel::Measured { speed: v, .. }) if !f.has("speed") => {
-            Some(([v.0, v.0], model_span.unwrap_or(span)))
+        (None, HeightModel::Measured { speed: v, .. }) if !f.has(&schema::SPEED) => {
+            Some(([v.0, v.0], model_span))
         }
         (None, _) => None,
     };
     let (width, (speed, speed_span)) = (width?, speed?);
     let w = Length(width.0);
+    let (height, height_span) = heights(model, w, speed, height, (speed_span, model_span), diags)?;
+    Some(Bead {
+        name: name.to_string(),
+        width: w,
+        model,
+        basis: crate::deposit::Basis::Track,
+        declared_height,
+        feed: None,
+        speed: [Speed(speed[0]), Speed(speed[1])],
+        height,
+        span,
+        height_span,
+        speed_span,
+    })
+}
+
+/// The model `model = …` gives (`block` is where to point when the value
+/// is no model at all and has no span of its own).
+fn height_model(
+    model: Option<&Spanned>,
+    block: Span,
+    diags: &mut Diagnostics,
+) -> Option<HeightModel> {
+    let at = model.map_or(block, |m| m.span);
+    match &model?.value {
+        Value::Call(c) if c.func == "linear" => {
+            let a = Fields::call(c, &LINEAR, diags);
+            let slope = a.bounded(&args::SLOPE, message::bead::slope_not_negative, diags);
+            let b = a.quantity(&args::INTERCEPT, diags);
+            Some(HeightModel::Linear {
+                slope: slope?.0,
+                intercept: Length(b?.0),
+            })
+        }
+        Value::Call(c) if c.func == "mass_balance" => {
+            let a = Fields::call(c, &MASS_BALANCE, diags);
+            let feed = a.quantity(&args::FEED, diags);
+            let eff = a.bounded(&args::EFFICIENCY, message::bead::efficiency_range, diags);
+            let rho = a.quantity(&args::DENSITY, diags);
+            Some(HeightModel::MassBalance {
+                feed: MassFlow(feed?.0),
+                efficiency: eff?.0,
+                density: Density(rho?.0),
+            })
+        }
+        Value::Call(c) if c.func == "measured" => {
+            let a = Fields::call(c, &MEASURED, diags);
+            let h = a.quantity(&args::HEIGHT, diags);
+            let v = a.quantity(&args::SPEED, diags);
+            Some(HeightModel::Measured {
+                height: Length(h?.0),
+                speed: Speed(v?.0),
+            })
+        }
+        other => {
+            diags.push(message::bead::unknown_model(at, &other.describe()));
+            None
+        }
+    }
+}
+
+/// The heights a bead of width `w` lays over its `speed` range (declared at
+/// `spans.0`), narrowed to `height` if written: the layer heights allowed,
+/// and where they are declared (`spans.1`, the model, when not written).
+fn heights(
+    model: HeightModel,
+    w: Length,
+    speed: [f64; 2],
+    height: Option<([f64; 2], Span)>,
+    (speed_span, model_span): (Span, Span),
+    diags: &mut Diagnostics,
+) -> Option<([Length; 2], Span)> {
     // The model's heights at the ends of its speed range.
     let h_hi = model.height_at(Speed(speed[0]), w).0;
     let h_lo = model.height_at(Speed(speed[1]), w).0;
@@ -133,19 +135,18 @@ pub fn read<'a>(
             Length(h_lo),
             Speed(speed[1]),
             speed_span,
-            model_span,
+            Some(model_span),
         ));
         return None;
     }
     let (height, height_span) = match (height, model) {
         // Planar layers of a measured bead rise by A/w (one track) up to h (tracks
         // at the flat-top offset A/h): the heights it can build.
-        (None, HeightModel::Measured { height: h, .. }) => (
-            [crate::bead::planar_lift(w, h, None).0, h.0],
-            model_span.unwrap_or(span),
-        ),
+        (None, HeightModel::Measured { height: h, .. }) => {
+            ([crate::bead::planar_lift(w, h, None).0, h.0], model_span)
+        }
         (Some(([lo, hi], hs)), HeightModel::Measured { .. }) => ([lo, hi], hs),
-        (None, _) => ([h_lo, h_hi], model_span.unwrap_or(span)),
+        (None, _) => ([h_lo, h_hi], model_span),
         (Some(([lo, hi], hs)), _) => {
             let (elo, ehi) = (lo.max(h_lo), hi.min(h_hi));
             if lo <= 0.0 || elo > ehi {
@@ -161,19 +162,7 @@ pub fn read<'a>(
             ([elo, ehi], hs)
         }
     };
-    Some(Bead {
-        name: name.to_string(),
-        width: w,
-        model,
-        basis: crate::deposit::Basis::Track,
-        declared_height,
-        feed: None,
-        speed: [Speed(speed[0]), Speed(speed[1])],
-        height: [Length(height[0]), Length(height[1])],
-        span,
-        height_span,
-        speed_span,
-    })
+    Some(([Length(height[0]), Length(height[1])], height_span))
 }
 
 /// The bead model a field names (`wall = my_bead`, `bead = my_bead`); `what`

@@ -23,21 +23,18 @@
 use super::eval::Env;
 use super::fields::Fields;
 use super::program_text;
+use super::schema::machine::{self, gas, powder};
+use super::schema::Field;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, Feeder, Gas, RateOutput};
 use crate::span::Span;
-use crate::syntax::ast::Stmt;
-use crate::units::Dim;
 
-/// The fields of a `gas { … }` block.
-const GAS_FIELDS: &[&str] = &["output", "pre_flow", "post_flow"];
-/// The fields of a `powder { … }` block.
-const POWDER_FIELDS: &[&str] = &["output", "arrival", "rate_output", "full_scale"];
 /// A CNC's lines that switch outputs (defaults from the dialect).
-pub const CNC_LINES: &[&str] = &["output_on", "output_off", "analog_output"];
-
-/// Longest gas or powder time, s: far beyond any cell's, short of a typo's.
-const MAX_TIME_S: f64 = 600.0;
+pub static CNC_LINES: [&Field; 3] = [
+    &machine::OUTPUT_ON,
+    &machine::OUTPUT_OFF,
+    &machine::ANALOG_OUTPUT,
+];
 
 /// How a machine's control numbers its outputs.
 #[derive(Clone, Copy, Debug)]
@@ -82,8 +79,9 @@ pub fn dialect_lines(profile: &str) -> [&'static str; 3] {
 pub struct Read {
     /// The cell.
     pub cell: Cell,
-    /// Where fields the verifier refers to are written (`powder.arrival`, …).
-    pub spans: Vec<(String, Span)>,
+    /// Where the fields of `gas` and `powder` are written (the verifier
+    /// points at `powder::ARRIVAL`, …).
+    pub spans: Vec<(&'static Field, Span)>,
 }
 
 /// Reads `gas { … }` and `powder { … }` of the machine whose fields are `f`.
@@ -114,38 +112,29 @@ pub fn read<'a>(
         used.push((n, analog, what.to_string(), Some(at)));
         true
     };
-    // A block's output `key` (digital, or analog), read and claimed for
+    // A block's output `field` (digital, or analog), read and claimed for
     // `what`: the number and where it is written, and whether it is free.
-    let mut output = |b: &Fields<'_>,
-                      key: &str,
-                      analog: bool,
-                      example: Option<&str>,
-                      what: &str,
-                      diags: &mut Diagnostics| {
-        let (lo, hi) = if analog {
-            outputs.analog
-        } else {
-            outputs.digital
+    let mut output =
+        |b: &Fields<'_>, field: &Field, analog: bool, what: &str, diags: &mut Diagnostics| {
+            let (lo, hi) = if analog {
+                outputs.analog
+            } else {
+                outputs.digital
+            };
+            let out = b.count_in(field, lo, hi, diags);
+            let free = out.is_none_or(|(n, s)| claim(n, analog, what, s, diags));
+            (out, free)
         };
-        let out = b.count(key, lo, hi, example, diags);
-        let free = out.is_none_or(|(n, s)| claim(n, analog, what, s, diags));
-        (out, free)
-    };
 
-    let gas = match f.nested("gas") {
+    let gas = match f.nested(&machine::GAS_BLOCK) {
         None => Some(None),
         Some((stmts, at)) => {
-            let g = block(env, stmts, GAS_FIELDS, "gas", at, diags);
-            let (out, claimed) = output(&g, "output", false, Some("2"), "the gas valve", diags);
+            let g = Fields::block(env, stmts, &machine::GAS, "`gas`".into(), at, diags);
+            let (out, claimed) = output(&g, &gas::OUTPUT, false, "the gas valve", diags);
             ok &= claimed;
-            let pre = time(&g, "pre_flow", diags);
-            let post = time(&g, "post_flow", diags);
-            if let Some((_, s)) = out {
-                spans.push(("gas.output".into(), s));
-            }
-            if let Some(s) = g.span("pre_flow") {
-                spans.push(("gas.pre_flow".into(), s));
-            }
+            let pre = g.quantity_or_default(&gas::PRE_FLOW, diags);
+            let post = g.quantity_or_default(&gas::POST_FLOW, diags);
+            spans.extend(g.written());
             Some(Some(Gas {
                 output: out?.0 as u16,
                 pre_flow: pre?,
@@ -153,40 +142,46 @@ pub fn read<'a>(
             }))
         }
     };
-    let powder = match f.nested("powder") {
+    let powder = match f.nested(&machine::POWDER_BLOCK) {
         None => Some(None),
         Some((stmts, at)) => {
-            let p = block(env, stmts, POWDER_FIELDS, "powder", at, diags);
-            let (out, claimed) = output(&p, "output", false, Some("3"), "the powder feeder", diags);
+            let p = Fields::block(env, stmts, &machine::POWDER, "`powder`".into(), at, diags);
+            let (out, claimed) = output(&p, &powder::OUTPUT, false, "the powder feeder", diags);
             ok &= claimed;
-            let arrival = if p.has("arrival") {
-                time(&p, "arrival", diags)
+            let arrival = if p.has(&powder::ARRIVAL) {
+                p.quantity(&powder::ARRIVAL, diags).map(|t| t.0)
             } else {
                 diags.push(message::machine::powder_without_arrival(at));
                 None
             };
-            if let Some(s) = p.span("arrival") {
-                spans.push(("powder.arrival".into(), s));
-            }
-            let rate = match (p.has("rate_output"), p.has("full_scale")) {
+            // The feed rate's checks point at its value, not its key.
+            spans.extend(p.written().filter(|(f, _)| *f != &powder::FULL_SCALE));
+            let rate = match (p.has(&powder::RATE_OUTPUT), p.has(&powder::FULL_SCALE)) {
                 (false, false) => Some(None),
                 (true, false) | (false, true) => {
-                    let (has, lacks) = if p.has("rate_output") {
-                        ("rate_output", "full_scale")
+                    let (has, lacks) = if p.has(&powder::RATE_OUTPUT) {
+                        (&powder::RATE_OUTPUT, &powder::FULL_SCALE)
                     } else {
-                        ("full_scale", "rate_output")
+                        (&powder::FULL_SCALE, &powder::RATE_OUTPUT)
                     };
-                    diags.push(message::machine::powder_rate_half(has, lacks, p.span(has)));
+                    diags.push(message::machine::powder_rate_half(
+                        has.key,
+                        lacks.key,
+                        p.span(has),
+                    ));
                     None
                 }
                 (true, true) => {
-                    let (n, claimed) =
-                        output(&p, "rate_output", true, None, "the powder feed rate", diags);
+                    let (n, claimed) = output(
+                        &p,
+                        &powder::RATE_OUTPUT,
+                        true,
+                        "the powder feed rate",
+                        diags,
+                    );
                     ok &= claimed;
-                    let full = p.positive("full_scale", Dim::MASS_FLOW, None, diags);
-                    if let Some((_, s)) = full {
-                        spans.push(("powder.full_scale".into(), s));
-                    }
+                    let full = p.quantity(&powder::FULL_SCALE, diags);
+                    spans.extend(full.map(|(_, s)| (&powder::FULL_SCALE, s)));
                     Some(Some(RateOutput {
                         output: n?.0 as u16,
                         // g/s (canonical) → g/min
@@ -210,16 +205,17 @@ pub fn read<'a>(
     if let Some([on, off, analog]) = lines {
         if !cell.is_none() {
             let needs_analog = powder.is_some_and(|p| p.rate.is_some());
-            for (key, text, needed) in [
-                ("output_on", &on, true),
-                ("output_off", &off, true),
-                ("analog_output", &analog, needs_analog),
+            for (field, text, needed) in [
+                (CNC_LINES[0], &on, true),
+                (CNC_LINES[1], &off, true),
+                (CNC_LINES[2], &analog, needs_analog),
             ] {
                 if needed && text.is_empty() {
                     diags.push(message::machine::no_output_line(
-                        key,
-                        f.span("gas").or(f.span("powder")),
-                        f.span("dialect"),
+                        field.key,
+                        f.span(&machine::GAS_BLOCK)
+                            .or(f.span(&machine::POWDER_BLOCK)),
+                        f.span(&machine::DIALECT),
                     ));
                     ok = false;
                 }
@@ -238,16 +234,17 @@ pub fn read<'a>(
 pub fn cnc_lines(f: &Fields<'_>, profile: &str, diags: &mut Diagnostics) -> Option<[String; 3]> {
     let mut out = dialect_lines(profile).map(String::from);
     let mut ok = true;
-    for (i, key) in CNC_LINES.iter().enumerate() {
-        let Some((t, span)) = f.text(key, None, diags) else {
-            ok &= !f.has(key);
+    for (i, field) in CNC_LINES.iter().enumerate() {
+        let key = field.key;
+        let Some((t, span)) = f.text(field, diags) else {
+            ok &= !f.has(field);
             continue;
         };
         if !program_text::line(&t, key, span, diags) {
             ok = false;
             continue;
         }
-        let holes: &[&str] = if *key == "analog_output" {
+        let holes: &[&str] = if std::ptr::eq(*field, &machine::ANALOG_OUTPUT) {
             &["{n}", "{v}"]
         } else {
             &["{n}"]
@@ -265,28 +262,4 @@ pub fn cnc_lines(f: &Fields<'_>, profile: &str, diags: &mut Diagnostics) -> Opti
         out[i] = t;
     }
     ok.then_some(out)
-}
-
-fn block<'a>(
-    env: &mut Env<'a>,
-    stmts: &'a [Stmt],
-    allowed: &[&str],
-    what: &str,
-    at: Span,
-    diags: &mut Diagnostics,
-) -> Fields<'a> {
-    Fields::block(env, stmts, allowed, &[], format!("`{what}`"), at, diags)
-}
-
-/// A time from 0 to [`MAX_TIME_S`] (0 when not written).
-fn time(f: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<f64> {
-    match f.quantity(key, Dim::TIME, None, diags) {
-        Some((t, _)) if (0.0..=MAX_TIME_S).contains(&t) => Some(t),
-        Some((t, at)) => {
-            diags.push(message::field::time_out_of_range(key, t, MAX_TIME_S, at));
-            None
-        }
-        None if f.has(key) => None,
-        None => Some(0.0),
-    }
 }

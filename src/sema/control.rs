@@ -12,6 +12,8 @@
 use super::eval::Env;
 use super::fields::Fields;
 use super::model::LoopRun;
+use super::schema::control::{self as schema, plant, CONTROL, INVERSE_SPEED};
+use super::schema::Field;
 use super::statement::{shape_error, single, Statements};
 use super::value::Value;
 use crate::control::{Clamp, SpeedPerLength};
@@ -19,9 +21,6 @@ use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, ExprKind, Stmt};
 use crate::units::{Dim, Length, Speed};
-
-/// Fields of `control height { … }`.
-pub const FIELDS: &[&str] = &["kp", "ki", "clamp", "target", "run", "plant"];
 
 /// How deep the spelling of a gain is followed through constants.
 const MAX_SPELLING_DEPTH: usize = 32;
@@ -104,37 +103,27 @@ fn read<'a>(
     constants: &[(String, Span, Expr)],
     diags: &mut Diagnostics,
 ) -> Option<ControlSpec> {
-    let f = Fields::block_deferring(
-        env,
-        stmts,
-        FIELDS,
-        &["kp", "ki"],
-        "control".into(),
-        span,
-        diags,
-    );
-    let kp = gain(env, &f, "kp", "-3 mm/s/mm", span, constants, diags);
-    let ki = gain(env, &f, "ki", "-0.35 mm/s/mm", span, constants, diags);
-    let clamp = f
-        .range("clamp", Dim::SPEED, Some("1.9 mm/s .. 20 mm/s"), diags)
-        .and_then(|([lo, hi], at)| match Clamp::new(Speed(lo), Speed(hi)) {
+    let f = Fields::block(env, stmts, &CONTROL, "control".into(), span, diags);
+    let kp = gain(env, &f, &schema::KP, span, constants, diags);
+    let ki = gain(env, &f, &schema::KI, span, constants, diags);
+    let clamp = f.range(&schema::CLAMP, diags).and_then(|([lo, hi], at)| {
+        match Clamp::new(Speed(lo), Speed(hi)) {
             Ok(c) => Some((c, at)),
             Err(e) => {
                 diags.push(message::control::clamp_cannot_hold(&e, at));
                 None
             }
-        });
-    let target = match f.positive("target", Dim::LENGTH, None, diags) {
-        Some((t, at)) => Some(Some((Length(t), at))),
-        None if f.has("target") => None,
-        None => Some(None),
-    };
-    let run = match f.symbol("run", &["on_machine", "schedule"], None, diags) {
-        Some((r, _)) if r == "schedule" => Some(LoopRun::Schedule),
-        Some(_) => Some(LoopRun::OnMachine),
-        None if f.has("run") => None,
-        None => Some(LoopRun::OnMachine),
-    };
+        }
+    });
+    let target = f.optional(
+        &schema::TARGET,
+        f.quantity(&schema::TARGET, diags)
+            .map(|(t, at)| (Length(t), at)),
+    );
+    let run = f.word_or_default(&schema::RUN, diags).map(|r| match r {
+        "schedule" => LoopRun::Schedule,
+        _ => LoopRun::OnMachine,
+    });
     let plant = plant(&f, span, diags);
     let (kp, kp_span) = kp?;
     let (ki, ki_span) = ki?;
@@ -150,7 +139,7 @@ fn read<'a>(
         kp_span,
         ki_span,
         clamp_span,
-        run_span: f.span("run").unwrap_or(span),
+        run_span: f.span(&schema::RUN).unwrap_or(span),
     })
 }
 
@@ -158,17 +147,17 @@ fn read<'a>(
 fn gain(
     env: &mut Env<'_>,
     f: &Fields<'_>,
-    key: &str,
-    example: &str,
+    field: &Field,
     block: Span,
     constants: &[(String, Span, Expr)],
     diags: &mut Diagnostics,
 ) -> Option<(SpeedPerLength, Span)> {
-    let Some(e) = f.expr(key) else {
+    let (key, example) = (field.key, f.example(field));
+    let Some(e) = f.expr(field) else {
         diags.push(message::control::missing_gain(key, block, example));
         return None;
     };
-    let at = f.span(key).unwrap_or(e.span);
+    let at = f.span(field).unwrap_or(e.span);
     let v = env.eval(e, diags)?;
     let q = match v.value {
         Value::Quantity(q) => q,
@@ -237,8 +226,8 @@ fn names_a_length(unit: &str) -> bool {
 
 /// `plant = inverse_speed(drift = …, factors = […])`, else no drift.
 fn plant(f: &Fields<'_>, block: Span, diags: &mut Diagnostics) -> Option<PlantSpec> {
-    let Some(v) = f.value("plant", None, diags) else {
-        return (!f.has("plant")).then_some(PlantSpec {
+    let Some(v) = f.value(&schema::PLANT, diags) else {
+        return (!f.has(&schema::PLANT)).then_some(PlantSpec {
             drift: 0.0,
             factors: None,
             span: block,
@@ -255,14 +244,10 @@ fn plant(f: &Fields<'_>, block: Span, diags: &mut Diagnostics) -> Option<PlantSp
         ));
         return None;
     }
-    let a = Fields::call(c, &[], &["drift", "factors"], diags);
-    let drift = match a.quantity("drift", Dim::NONE, None, diags) {
-        Some((d, _)) => Some(d),
-        None if a.has("drift") => None,
-        None => Some(0.0),
-    };
-    let factors = match a.value("factors", None, diags) {
-        None if a.has("factors") => None,
+    let a = Fields::call(c, &INVERSE_SPEED, diags);
+    let drift = a.quantity_or_default(&plant::DRIFT, diags);
+    let factors = match a.value(&plant::FACTORS, diags) {
+        None if a.has(&plant::FACTORS) => None,
         None => Some(None),
         Some(fv) => match &fv.value {
             Value::List(items) => {

@@ -16,6 +16,7 @@ use super::model::{
 };
 use super::planar::PlanarSpec;
 use super::profile;
+use super::schema::solid::{extrude, EXTRUDE};
 use super::top;
 use super::value::{Spanned, Value};
 use crate::bead::{flat_top_offset, MIN_OFFSET_RATIO};
@@ -23,7 +24,7 @@ use crate::diag::message::{self, solid::BeadSpeeds};
 use crate::diag::Diagnostics;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, Stmt};
-use crate::units::{Dim, Length, Speed};
+use crate::units::{Length, Speed};
 use std::collections::BTreeMap;
 
 /// What an extrusion may refer to.
@@ -72,16 +73,15 @@ pub fn read<'a>(
     diags: &mut Diagnostics,
 ) -> (Option<Written<'a>>, Option<Bead>) {
     // `top` is a function of the position: read by `top::read`, not as a value.
-    let f = Fields::block_deferring(
+    let f = Fields::block(
         env,
         stmts,
-        &["profile", "height", "size", "bead", "top"],
-        &["top"],
+        &EXTRUDE,
         format!("extrude `{name}`"),
         span,
         diags,
     );
-    let profile = f.value("profile", Some("my_profile"), diags);
+    let profile = f.value(&extrude::PROFILE, diags);
     let profile_span = profile.map(|p| p.span).unwrap_or(span);
     let mut source = profile.and_then(|v| source(v, scope, diags));
     // A profile written inline that follows the layer is evaluated per layer,
@@ -90,49 +90,30 @@ pub fn read<'a>(
         let inline = stmts
             .iter()
             .find_map(|s| match (&s.body, s.kind.node.as_str()) {
-                (Body::Assign(e), "profile") => Some(e),
+                (Body::Assign(e), key) if key == extrude::PROFILE.key => Some(e),
                 _ => None,
             });
         if let Some(e) = inline.filter(|e| env.depends_on_layer(e)) {
             source = Some(Source::Expr(e));
         }
     }
-    let height = match f.positive("height", Dim::LENGTH, None, diags) {
-        Some((h, sp)) => Some(Some((Length(h), sp))),
-        None if f.has("height") => None,
+    let height = f.optional(
+        &extrude::HEIGHT,
+        f.quantity(&extrude::HEIGHT, diags)
+            .map(|(h, sp)| (Length(h), sp)),
+    );
+    let top = match f.expr(&extrude::TOP) {
         None => Some(None),
+        Some(e) => read_top(env, e, source.as_ref(), scope, diags).map(|t| Some((t, e.span))),
     };
-    let top = match f.expr("top") {
-        None => Some(None),
-        Some(e) => {
-            let shape = match &source {
-                Some(Source::Fixed(s)) => Some(s.clone()),
-                Some(Source::Expr(p)) => {
-                    // Only for a point to try the top at: errors of the
-                    // profile itself are reported where it is assembled.
-                    let mut scratch = Diagnostics::new();
-                    env.eval(p, &mut scratch)
-                        .and_then(|v| profile::shape(&v, "a profile", &mut scratch))
-                }
-                None => None,
-            };
-            let at = super::top::reference_point(shape.as_ref());
-            top::read(env, e, at, scope.constants, diags).map(|t| Some((t, e.span)))
-        }
-    };
-    if let (Some(hs), Some(ts)) = (f.span("height"), f.span("top")) {
+    if let (Some(hs), Some(ts)) = (f.span(&extrude::HEIGHT), f.span(&extrude::TOP)) {
         diags.push(message::solid::height_and_top(hs, ts));
     }
-    let height = height.filter(|_| !(f.has("height") && f.has("top")));
-    let measure = match f.symbol("size", &["centre", "center", "outer"], None, diags) {
-        Some((s, _)) if s == "outer" => Some(Measure::Outer),
-        Some(_) => Some(Measure::Centre),
-        None if f.has("size") => None,
-        None => Some(Measure::Centre),
-    };
+    let height = height.filter(|_| !(f.has(&extrude::HEIGHT) && f.has(&extrude::TOP)));
+    let measure = super::loft::measure(&f, &extrude::SIZE, diags);
     let bead = super::bead::named(
-        f.value("bead", Some("my_bead"), diags),
-        "bead",
+        f.value(&extrude::BEAD, diags),
+        extrude::BEAD.key,
         "the layers",
         scope.beads,
         scope.declared,
@@ -151,6 +132,29 @@ pub fn read<'a>(
         _ => None,
     };
     (written, bead)
+}
+
+/// Reads `top = e` over the footprint `source` (tried at a point of it).
+fn read_top(
+    env: &mut Env<'_>,
+    e: &Expr,
+    source: Option<&Source<'_>>,
+    scope: &Scope<'_, '_>,
+    diags: &mut Diagnostics,
+) -> Option<Top> {
+    let shape = match source {
+        Some(Source::Fixed(s)) => Some(s.clone()),
+        Some(Source::Expr(p)) => {
+            // Only for a point to try the top at: errors of the
+            // profile itself are reported where it is assembled.
+            let mut scratch = Diagnostics::new();
+            env.eval(p, &mut scratch)
+                .and_then(|v| profile::shape(&v, "a profile", &mut scratch))
+        }
+        None => None,
+    };
+    let at = super::top::reference_point(shape.as_ref());
+    top::read(env, e, at, scope.constants, diags)
 }
 
 fn source<'a>(v: &Spanned, scope: &Scope<'_, 'a>, diags: &mut Diagnostics) -> Option<Source<'a>> {

@@ -4,12 +4,14 @@
 use super::eval::{unknown_name, Env};
 use super::fields::Fields;
 use super::model::{Bead, Loft, Measure, Morph, Section, Spine};
+use super::schema::solid::{loft, spine, ARC, LINE, LOFT};
+use super::schema::Field;
 use super::section;
 use super::value::{Spanned, Value};
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{Angle, Dim, Length};
+use crate::units::{Angle, Length};
 use std::collections::BTreeMap;
 
 /// Declared sections and beads, by name.
@@ -34,71 +36,28 @@ pub fn read<'a>(
     scope: &Scope<'_>,
     diags: &mut Diagnostics,
 ) -> (Option<Loft>, Option<Bead>) {
-    let f = Fields::block(
-        env,
-        stmts,
-        &["from", "to", "spine", "twist", "morph", "size", "wall"],
-        &[],
-        format!("loft `{name}`"),
-        span,
-        diags,
-    );
+    let f = Fields::block(env, stmts, &LOFT, format!("loft `{name}`"), span, diags);
     let from = f
-        .value("from", Some("circle(diameter = 60 mm)"), diags)
+        .value(&loft::FROM, diags)
         .and_then(|v| section_value(v, scope, diags));
     let to = f
-        .value("to", Some("square(side = 60 mm)"), diags)
+        .value(&loft::TO, diags)
         .and_then(|v| section_value(v, scope, diags));
     let spine = f
-        .value("spine", Some("arc(radius = 250 mm, angle = 45 deg)"), diags)
+        .value(&loft::SPINE, diags)
         .and_then(|v| spine_value(v, diags));
-    let twist = f
-        .quantity("twist", Dim::ANGLE, None, diags)
-        .map(|t| Angle(t.0))
-        .or(if f.has("twist") {
-            None
-        } else {
-            Some(Angle(0.0))
-        });
-    let measure = match f.symbol("size", &["centre", "center", "outer"], None, diags) {
-        Some((s, _)) if s == "outer" => Some(Measure::Outer),
-        Some(_) => Some(Measure::Centre),
-        None if f.has("size") => None,
-        None => Some(Measure::Centre),
-    };
-    let morph = f.symbol("morph", &["superellipse", "radial"], None, diags);
+    let twist = f.quantity_or_default(&loft::TWIST, diags).map(Angle);
+    let measure = measure(&f, &loft::SIZE, diags);
+    let morph = f.word(&loft::MORPH, diags);
     let bead = super::bead::named(
-        f.value("wall", Some("my_bead"), diags),
-        "wall",
+        f.value(&loft::WALL, diags),
+        loft::WALL.key,
         "the wall",
         scope.beads,
         scope.declared,
         diags,
     );
-    let family = |s: &Section| {
-        matches!(
-            s,
-            Section::Circle { .. } | Section::Ellipse { .. } | Section::Rectangle { .. }
-        )
-    };
-    // The morph needs only the two ends.
-    let morph = match (from, to, morph) {
-        (_, _, Some((m, _))) if m == "radial" => Some(Morph::Radial),
-        (Some(from), Some(to), Some((_, ms))) => {
-            if family(&from) && family(&to) {
-                Some(Morph::Superellipse)
-            } else {
-                diags.push(message::shape::superellipse_ends(ms));
-                None
-            }
-        }
-        (Some(from), Some(to), None) if !f.has("morph") => Some(if family(&from) && family(&to) {
-            Morph::Superellipse
-        } else {
-            Morph::Radial
-        }),
-        _ => None,
-    };
+    let morph = morph_between(&f, from, to, morph, diags);
     let (
         Some(from),
         Some(to),
@@ -111,25 +70,12 @@ pub fn read<'a>(
     else {
         return (None, bead);
     };
-    let spans = [f.span("from").unwrap_or(span), f.span("to").unwrap_or(span)];
-    let (from, to) = match measure {
-        Measure::Centre => (from, to),
-        Measure::Outer => {
-            let mut ok = true;
-            let mut shrink = |s: Section, at: Span| match s.inset(Length(b.width.0 / 2.0)) {
-                Some(s) => s,
-                None => {
-                    ok = false;
-                    diags.push(message::shape::section_too_small(b.width, at));
-                    s
-                }
-            };
-            let r = (shrink(from, spans[0]), shrink(to, spans[1]));
-            if !ok {
-                return (None, bead);
-            }
-            r
-        }
+    let spans = [
+        f.span(&loft::FROM).unwrap_or(span),
+        f.span(&loft::TO).unwrap_or(span),
+    ];
+    let Some((from, to)) = measured_sections(from, to, measure, b, spans, diags) else {
+        return (None, bead);
     };
     let loft = Loft {
         name: name.to_string(),
@@ -144,6 +90,79 @@ pub fn read<'a>(
         section_spans: spans,
     };
     (Some(loft), bead)
+}
+
+/// `size = centre | center | outer` (`f` the block's `size` field).
+pub(super) fn measure(fields: &Fields<'_>, f: &Field, diags: &mut Diagnostics) -> Option<Measure> {
+    match fields.word_or_default(f, diags)? {
+        "outer" => Some(Measure::Outer),
+        _ => Some(Measure::Centre),
+    }
+}
+
+/// The morph between two sections: as written (`morph`), else the
+/// superellipse where both ends are of its family, else radial. It needs
+/// only the two ends.
+fn morph_between(
+    f: &Fields<'_>,
+    from: Option<Section>,
+    to: Option<Section>,
+    morph: Option<(&str, Span)>,
+    diags: &mut Diagnostics,
+) -> Option<Morph> {
+    let family = |s: &Section| {
+        matches!(
+            s,
+            Section::Circle { .. } | Section::Ellipse { .. } | Section::Rectangle { .. }
+        )
+    };
+    match (from, to, morph) {
+        (_, _, Some(("radial", _))) => Some(Morph::Radial),
+        (Some(from), Some(to), Some((_, ms))) => {
+            if family(&from) && family(&to) {
+                Some(Morph::Superellipse)
+            } else {
+                diags.push(message::shape::superellipse_ends(ms));
+                None
+            }
+        }
+        (Some(from), Some(to), None) if !f.has(&loft::MORPH) => {
+            Some(if family(&from) && family(&to) {
+                Morph::Superellipse
+            } else {
+                Morph::Radial
+            })
+        }
+        _ => None,
+    }
+}
+
+/// The sections as the wall's centre line: `size = outer` sections shrunk
+/// by half the bead's width (each declared at `spans`).
+fn measured_sections(
+    from: Section,
+    to: Section,
+    measure: Measure,
+    b: &Bead,
+    spans: [Span; 2],
+    diags: &mut Diagnostics,
+) -> Option<(Section, Section)> {
+    match measure {
+        Measure::Centre => Some((from, to)),
+        Measure::Outer => {
+            let mut ok = true;
+            let mut shrink = |s: Section, at: Span| match s.inset(Length(b.width.0 / 2.0)) {
+                Some(s) => s,
+                None => {
+                    ok = false;
+                    diags.push(message::shape::section_too_small(b.width, at));
+                    s
+                }
+            };
+            let r = (shrink(from, spans[0]), shrink(to, spans[1]));
+            ok.then_some(r)
+        }
+    }
 }
 
 fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Option<Section> {
@@ -172,20 +191,19 @@ fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Opt
 fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
     let spine = match &v.value {
         Value::Call(c) if c.func == "line" => {
-            let f = Fields::call(c, &["length"], &["length"], diags);
+            let f = Fields::call(c, &LINE, diags);
             Spine::Line {
-                length: Length(f.positive("length", Dim::LENGTH, Some("100 mm"), diags)?.0),
+                length: Length(f.quantity(&spine::LENGTH, diags)?.0),
             }
         }
         Value::Call(c) if c.func == "arc" => {
-            let f = Fields::call(c, &[], &["radius", "angle"], diags);
-            let r = f.positive("radius", Dim::LENGTH, Some("250 mm"), diags);
-            let a = f.positive("angle", Dim::ANGLE, Some("45 deg"), diags);
-            let (a, aspan) = a?;
-            if a > std::f64::consts::PI * 1.5 {
-                diags.push(message::shape::bend_too_far(Angle(a), aspan));
-                return None;
-            }
+            let f = Fields::call(c, &ARC, diags);
+            let r = f.quantity(&spine::RADIUS, diags);
+            let (a, _) = f.bounded(
+                &spine::ANGLE,
+                |a, at| message::shape::bend_too_far(Angle(a), at),
+                diags,
+            )?;
             Spine::Arc {
                 radius: Length(r?.0),
                 angle: Angle(a),

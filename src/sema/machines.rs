@@ -4,6 +4,7 @@
 
 use super::eval::Env;
 use super::machine;
+use super::schema::machine::NAME;
 use super::statement::{shape_error, Statements};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Machine, MachineOrigin};
@@ -35,7 +36,7 @@ pub fn read<'a>(
             }
         }
         if let Some((m, mut fields)) = machine::read(env, &n.node, stmts, s.span, diags) {
-            fields.push(("name".into(), n.span));
+            fields.push((&NAME, n.span));
             machines.push((
                 m,
                 MachineOrigin {

@@ -24,6 +24,7 @@ mod profile;
 mod program_text;
 mod region;
 mod ring;
+pub mod schema;
 mod seam;
 mod section;
 pub mod slicing;

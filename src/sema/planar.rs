@@ -3,14 +3,16 @@
 //! infill) and how far each layer rises (declared, or `auto` from the bead).
 
 use super::eval::Env;
-use super::fields::{self, Fields};
-use super::model::{LinkMode, Pattern, Raster, SeamRule, MAX_LAYERS};
+use super::fields::Fields;
+use super::model::{LinkMode, Pattern, Raster, SeamRule};
+use super::schema::slicing::{planar, raster, PLANAR, RASTER};
+use super::schema::Field;
 use super::seam;
 use super::value::{Call, Spanned as SpannedValue, Value};
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{Angle, Dim, Length};
+use crate::units::{Angle, Length};
 
 /// `slicing planar { … }` as written: the lift and offset may be `auto`, to be
 /// derived from the bead model.
@@ -42,31 +44,18 @@ impl PlanarSpec {
     }
 }
 
-/// Fields of `slicing planar { … }`.
-pub const FIELDS: &[&str] = &[
-    "layer_height",
-    "layers",
-    "contours",
-    "offset",
-    "infill",
-    "chord_error",
-    "seam",
-];
-
-/// Most contour passes a layer may have.
-pub const MAX_CONTOURS: usize = 1000;
-
+/// `key = auto` or a length: `Some(None)` for auto (or when not written).
 fn auto_or_length(
     f: &Fields<'_>,
-    key: &str,
+    field: &Field,
     diags: &mut Diagnostics,
 ) -> Option<Option<(Length, Span)>> {
-    match f.value(key, None, diags) {
-        None if f.has(key) => None,
+    match f.value(field, diags) {
+        None if f.has(field) => None,
         None => Some(None),
         Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
         Some(_) => f
-            .positive(key, Dim::LENGTH, None, diags)
+            .quantity(field, diags)
             .map(|(l, sp)| Some((Length(l), sp))),
     }
 }
@@ -78,25 +67,17 @@ pub fn read<'a>(
     span: Span,
     diags: &mut Diagnostics,
 ) -> Option<PlanarSpec> {
-    let f = Fields::block(
-        env,
-        stmts,
-        FIELDS,
-        &[],
-        "planar slicing".into(),
-        span,
-        diags,
-    );
-    let lift = auto_or_length(&f, "layer_height", diags);
-    let offset = auto_or_length(&f, "offset", diags);
-    let layers = match f.value("layers", None, diags) {
-        None if f.has("layers") => None,
+    let f = Fields::block(env, stmts, &PLANAR, "planar slicing".into(), span, diags);
+    let lift = auto_or_length(&f, &planar::LAYER_HEIGHT, diags);
+    let offset = auto_or_length(&f, &planar::OFFSET, diags);
+    let layers = match f.value(&planar::LAYERS, diags) {
+        None if f.has(&planar::LAYERS) => None,
         None => Some(None),
         Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
-        Some(_) => f.count("layers", 1, MAX_LAYERS, None, diags).map(Some),
+        Some(_) => f.count(&planar::LAYERS, diags).map(Some),
     };
-    let infill = match f.value("infill", None, diags) {
-        None if f.has("infill") => None,
+    let infill = match f.value(&planar::INFILL, diags) {
+        None if f.has(&planar::INFILL) => None,
         None => Some(None),
         Some(v) if v.value == Value::Symbol("none".into()) => Some(None),
         Some(SpannedValue {
@@ -108,9 +89,9 @@ pub fn read<'a>(
             None
         }
     };
-    let contours = match f.count("contours", 0, MAX_CONTOURS, None, diags) {
+    let contours = match f.count(&planar::CONTOURS, diags) {
         Some((n, sp)) => Some((n, Some(sp))),
-        None if f.has("contours") => None,
+        None if f.has(&planar::CONTOURS) => None,
         // A raster alone fills seed 001's layers; a profile alone is a wall.
         None => infill.map(|i| (if i.is_some() { 0 } else { 1 }, None)),
     };
@@ -122,14 +103,12 @@ pub fn read<'a>(
         }
         (c, _) => c.map(|c| c.0),
     };
-    let chord_error = match f.positive("chord_error", Dim::LENGTH, None, diags) {
-        Some((e, _)) => Some(Length(e)),
-        None if f.has("chord_error") => None,
-        None => Some(Length(0.05)),
-    };
-    let seam = match f.value("seam", None, diags) {
+    let chord_error = f
+        .quantity_or_default(&planar::CHORD_ERROR, diags)
+        .map(Length);
+    let seam = match f.value(&planar::SEAM, diags) {
         Some(v) => seam::read(v, diags),
-        None if f.has("seam") => None,
+        None if f.has(&planar::SEAM) => None,
         None => Some(SeamRule::Lowest),
     };
     Some(PlanarSpec {
@@ -145,52 +124,36 @@ pub fn read<'a>(
 }
 
 fn raster(c: &Call, diags: &mut Diagnostics) -> Option<(Raster, Option<Length>)> {
-    let a = Fields::call(
-        c,
-        &[],
-        &["angle", "rotate", "pattern", "extend", "link"],
-        diags,
-    );
-    let angle = match a.quantity("angle", Dim::ANGLE, None, diags) {
-        Some((x, _)) => Some(Angle(x)),
-        None if a.has("angle") => None,
-        None => Some(Angle(0.0)),
-    };
-    let rotate = match a.quantity("rotate", Dim::ANGLE, None, diags) {
-        Some((x, _)) => Some(Angle(x)),
-        None if a.has("rotate") => None,
-        None => Some(Angle(0.0)),
-    };
-    let pattern = match a.symbol("pattern", &["serpentine", "one_way"], None, diags) {
-        Some((p, _)) if p == "one_way" => Some(Pattern::OneWay),
-        Some(_) => Some(Pattern::Serpentine),
-        None if a.has("pattern") => None,
-        None => Some(Pattern::Serpentine),
-    };
-    let extend = match a.value("extend", None, diags) {
-        None if a.has("extend") => None,
+    let a = Fields::call(c, &RASTER, diags);
+    let angle = a.quantity_or_default(&raster::ANGLE, diags).map(Angle);
+    let rotate = a.quantity_or_default(&raster::ROTATE, diags).map(Angle);
+    let pattern = a.word_or_default(&raster::PATTERN, diags).map(|p| match p {
+        "one_way" => Pattern::OneWay,
+        _ => Pattern::Serpentine,
+    });
+    let extend = match a.value(&raster::EXTEND, diags) {
+        None if a.has(&raster::EXTEND) => None,
         None => Some(None),
         Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
-        Some(v) => fields::quantity(v, Dim::LENGTH, "extend", diags).and_then(|e| {
-            if e < 0.0 {
-                diags.push(message::bead::negative_extend(v.span));
-                None
-            } else {
-                Some(Some(Length(e)))
-            }
-        }),
+        Some(_) => a
+            .bounded(
+                &raster::EXTEND,
+                |_, at| message::bead::negative_extend(at),
+                diags,
+            )
+            .map(|(e, _)| Some(Length(e))),
     };
-    let link = match a.value("link", None, diags) {
+    let link = match a.value(&raster::LINK, diags) {
         Some(v) => seam::link(v, diags),
-        None if a.has("link") => None,
+        None if a.has(&raster::LINK) => None,
         None => Some(LinkMode::None),
     };
     // A link turns the nozzle back into the next track: one-way tracks all
     // start on the same side, and no edge leads from one's end to the next.
     if let (Some(Pattern::OneWay), Some(LinkMode::LaserOn | LinkMode::LaserOff)) = (pattern, link) {
         diags.push(message::bead::one_way_linked(
-            a.span("link"),
-            a.span("pattern"),
+            a.span(&raster::LINK),
+            a.span(&raster::PATTERN),
         ));
         return None;
     }

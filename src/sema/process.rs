@@ -5,16 +5,14 @@
 use super::eval::Env;
 use super::fields::Fields;
 use super::model::{within, PowerSchedule, Process};
+use super::schema::process::{self as schema, ramp, PROCESS, RAMP, RING_PROCESS};
 use super::statement::{shape_error, single, Statements};
-use super::value::Value;
+use super::value::{Spanned, Value};
 use crate::diag::{message, Diagnostics};
 use crate::ir::Heat;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
-use crate::units::{Dim, Length, MassFlow, Power, Speed};
-
-/// Longest interlayer time lmdc plans, s (an hour).
-const MAX_DWELL_S: f64 = 3600.0;
+use crate::units::{Length, MassFlow, Power, Speed};
 
 /// The process block as read: the whole of it when every field is right, and
 /// the parts other checks use on their own, so that a wrong field does not
@@ -49,11 +47,6 @@ impl Laser {
         within(p.0, self.range[0].0, self.range[1].0)
     }
 }
-
-/// The fields a ring's process block may not have: its table gives them per
-/// segment, and its layers run on without a stop (why, for each, is in
-/// [`message::bead::not_for_a_ring`]).
-const NOT_FOR_A_RING: &[&str] = &["power", "defocus", "speed", "min_layer_time", "dwell"];
 
 /// The file's `process { … }` statement. `ring` is `Some` when the solid is a
 /// ring: its table's powers and where they are written, when right.
@@ -96,22 +89,18 @@ fn read_ring<'a>(
     powers: Option<([Power; 2], Span)>,
     diags: &mut Diagnostics,
 ) -> Read {
-    let all: Vec<&str> = ["powder", "power_range"]
-        .into_iter()
-        .chain(NOT_FOR_A_RING.iter().copied())
-        .collect();
-    let f = Fields::block(env, stmts, &all, &[], "process".into(), span, diags);
+    let f = Fields::block(env, stmts, &RING_PROCESS, "process".into(), span, diags);
     let mut ok = true;
-    for key in NOT_FOR_A_RING {
-        if let Some(at) = f.span(key) {
-            diags.push(message::bead::not_for_a_ring(key, at));
+    for field in RING_PROCESS.refused {
+        if let Some(at) = f.span(field) {
+            diags.push(message::bead::not_for_a_ring(field.key, at));
             ok = false;
         }
     }
     let powder = f
-        .positive("powder", Dim::MASS_FLOW, Some("6 g/min"), diags)
+        .quantity(&schema::POWDER, diags)
         .map(|(m, sp)| (MassFlow(m), sp));
-    let range = f.range("power_range", Dim::POWER, None, diags);
+    let range = f.range(&schema::POWER_RANGE, diags);
     let laser = match (range, powers) {
         (Some(([a, b], rs)), Some(([lo, hi], ps))) => {
             if lo.0 < a || hi.0 > b {
@@ -131,7 +120,7 @@ fn read_ring<'a>(
                 power_span: ps,
             })
         }
-        (None, Some((r, ps))) if !f.has("power_range") => Some(Laser {
+        (None, Some((r, ps))) if !f.has(&schema::POWER_RANGE) => Some(Laser {
             range: r,
             range_span: None,
             power_span: ps,
@@ -163,79 +152,92 @@ fn read_ring<'a>(
 
 /// Reads the process block.
 fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagnostics) -> Read {
-    let f = Fields::block(
-        env,
-        stmts,
-        &[
-            "powder",
-            "defocus",
-            "power",
-            "power_range",
-            "speed",
-            "min_layer_time",
-            "dwell",
-        ],
-        &[],
-        "process".into(),
-        span,
-        diags,
-    );
+    let f = Fields::block(env, stmts, &PROCESS, "process".into(), span, diags);
     // Every field is read before any is combined with another.
     let powder = f
-        .positive("powder", Dim::MASS_FLOW, Some("45.9 g/min"), diags)
+        .quantity(&schema::POWDER, diags)
         .map(|(m, sp)| (MassFlow(m), sp));
-    let defocus = match f.quantity("defocus", Dim::LENGTH, None, diags) {
-        Some((d, _)) => Some(Length(d)),
-        None if f.has("defocus") => None,
-        None => Some(Length(0.0)),
-    };
-    let power_v = f.value("power", Some("2100 W"), diags);
+    let defocus = f.quantity_or_default(&schema::DEFOCUS, diags).map(Length);
+    let power_v = f.value(&schema::POWER, diags);
     let power_span = power_v.map(|p| p.span).unwrap_or(span);
-    let power = match power_v.map(|v| &v.value) {
-        Some(Value::Call(c)) if c.func == "ramp" => {
-            let a = Fields::call(c, &[], &["from", "to", "layers"], diags);
-            let from = a.positive("from", Dim::POWER, Some("4000 W"), diags);
-            let to = a.positive("to", Dim::POWER, Some("2100 W"), diags);
-            let n = a.count("layers", 1, 1_000_000, Some("20"), diags);
-            match (from, to, n) {
-                (Some(from), Some(to), Some(n)) => Some(PowerSchedule::Ramp {
-                    from: Power(from.0),
-                    to: Power(to.0),
-                    layers: n.0,
-                }),
-                _ => None,
-            }
-        }
-        Some(_) => f
-            .positive("power", Dim::POWER, None, diags)
-            .map(|(p, _)| PowerSchedule::Constant(Power(p))),
-        None => None,
+    let power = power_v.and_then(|v| power_schedule(&f, v, diags));
+    let range = f.range(&schema::POWER_RANGE, diags);
+    let heat = heat(&f, diags);
+    let speed = f.optional(
+        &schema::SPEED,
+        f.quantity(&schema::SPEED, diags)
+            .map(|(v, sp)| (Speed(v), sp)),
+    );
+    let laser = laser(&f, power, range, power_span, diags);
+    let process = match (powder, defocus, power, laser, speed, heat) {
+        (
+            Some((powder, powder_span)),
+            Some(defocus),
+            Some(power),
+            Some(l),
+            Some(speed),
+            Some(heat),
+        ) => Some(Process {
+            heat,
+            speed,
+            powder,
+            powder_span,
+            defocus,
+            power,
+            power_range: l.range,
+            power_span,
+            power_range_span: l.range_span,
+        }),
+        _ => None,
     };
-    let range = f.range("power_range", Dim::POWER, None, diags);
-    let mut heat_ok = true;
-    let mut time =
-        |key: &str, diags: &mut Diagnostics| match f.quantity(key, Dim::TIME, None, diags) {
-            Some((t, _)) if (0.0..=MAX_DWELL_S).contains(&t) => t,
-            Some((t, at)) => {
-                diags.push(message::field::time_out_of_range(key, t, MAX_DWELL_S, at));
-                heat_ok = false;
-                0.0
-            }
-            None => {
-                heat_ok &= !f.has(key);
-                0.0
-            }
-        };
-    let heat = Heat {
-        min_layer_time: time("min_layer_time", diags),
-        dwell: time("dwell", diags),
-    };
-    let speed = match f.positive("speed", Dim::SPEED, None, diags) {
-        Some((v, sp)) => Some(Some((Speed(v), sp))),
-        None if f.has("speed") => None,
-        None => Some(None),
-    };
+    Read {
+        process,
+        laser,
+        speed,
+        powder,
+    }
+}
 
+/// `power = …` written as `v`: a constant power or a `ramp(…)`.
+fn power_schedule(f: &Fields<'_>, v: &Spanned, diags: &mut Diagnostics) -> Option<PowerSchedule> {
+    match &v.value {
+        Value::Call(c) if c.func == "ramp" => {
+            let a = Fields::call(c, &RAMP, diags);
+            let from = a.quantity(&ramp::FROM, diags);
+            let to = a.quantity(&ramp::TO, diags);
+            let n = a.count(&ramp::LAYERS, diags);
+            Some(PowerSchedule::Ramp {
+                from: Power(from?.0),
+                to: Power(to?.0),
+                layers: n?.0,
+            })
+        }
+        _ => f
+            .quantity(&schema::POWER, diags)
+            .map(|(p, _)| PowerSchedule::Constant(Power(p))),
+    }
+}
+
+/// `min_layer_time` and `dwell`; `None` when one is wrong (reported).
+fn heat(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Heat> {
+    // Both are read, so that both are reported.
+    let min_layer_time = f.quantity_or_default(&schema::MIN_LAYER_TIME, diags);
+    let dwell = f.quantity_or_default(&schema::DWELL, diags);
+    Some(Heat {
+        min_layer_time: min_layer_time?,
+        dwell: dwell?,
+    })
+}
+
+/// The laser's range (`range`, declared at `power_range`, else the
+/// scheduled powers'), and a schedule outside a declared range reported.
+fn laser(
+    f: &Fields<'_>,
+    power: Option<PowerSchedule>,
+    range: Option<([f64; 2], Span)>,
+    power_span: Span,
+    diags: &mut Diagnostics,
+) -> Option<Laser> {
     // The scheduled powers, and the laser's range: declared, else theirs.
     let scheduled = power.map(|p| match p {
         PowerSchedule::Constant(p) => (p.0, p.0),
@@ -247,7 +249,7 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
             range_span: Some(rs),
             power_span,
         }),
-        (None, _) if f.has("power_range") => None,
+        (None, _) if f.has(&schema::POWER_RANGE) => None,
         (None, Some((lo, hi))) => Some(Laser {
             range: [Power(lo), Power(hi)],
             range_span: None,
@@ -274,28 +276,5 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
             ));
         }
     }
-    let process = match (powder, defocus, power, laser, speed) {
-        (Some((powder, powder_span)), Some(defocus), Some(power), Some(l), Some(speed))
-            if heat_ok =>
-        {
-            Some(Process {
-                heat,
-                speed,
-                powder,
-                powder_span,
-                defocus,
-                power,
-                power_range: l.range,
-                power_span,
-                power_range_span: l.range_span,
-            })
-        }
-        _ => None,
-    };
-    Read {
-        process,
-        laser,
-        speed,
-        powder,
-    }
+    laser
 }

@@ -8,6 +8,7 @@ use super::eval::Env;
 use super::fields::{self, Fields};
 use super::model::{Outline, ProfileExpr, Segment, Shape, Turn};
 use super::region;
+use super::schema::shape::{piece, ARC};
 use super::section;
 use super::value::{Call, Spanned, Value};
 use crate::diag::{message, Diagnostics};
@@ -148,17 +149,13 @@ pub(super) fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]>
 }
 
 fn arc_piece(c: &Call, diags: &mut Diagnostics) -> Option<Segment> {
-    let f = Fields::call(c, &[], &["to", "radius", "turn"], diags);
-    let to = f
-        .value("to", Some("[40 mm, 20 mm]"), diags)
-        .and_then(|v| point(v, diags));
-    let radius = f.positive("radius", Dim::LENGTH, Some("10 mm"), diags);
-    let turn = match f.symbol("turn", &["left", "right"], None, diags) {
-        Some((t, _)) if t == "right" => Some(Turn::Right),
-        Some(_) => Some(Turn::Left),
-        None if f.has("turn") => None,
-        None => Some(Turn::Left),
-    };
+    let f = Fields::call(c, &ARC, diags);
+    let to = f.value(&piece::TO, diags).and_then(|v| point(v, diags));
+    let radius = f.quantity(&piece::RADIUS, diags);
+    let turn = f.word_or_default(&piece::TURN, diags).map(|t| match t {
+        "right" => Turn::Right,
+        _ => Turn::Left,
+    });
     Some(Segment::Arc {
         to: to?,
         radius: Length(radius?.0),

@@ -16,24 +16,22 @@
 use super::fields::Fields;
 use super::model::{Hole, Placed, RegionShape, Shape};
 use super::profile::{point, shape};
+use super::schema::shape::{piece, BOLT_CIRCLE, PLACE, REGION};
 use super::value::{Call, Spanned, Value};
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
-use crate::units::{Angle, Dim, Length};
+use crate::units::{Angle, Length};
 
-/// Most holes one region may have (a bolt circle's count included): every
-/// pair of holes whose boxes overlap is tested on every layer, so the bound
-/// keeps that work to well under a second whatever the holes are.
-pub const MAX_HOLES: usize = 1000;
+pub use super::schema::shape::MAX_HOLES;
 
 /// Reads `region(outline = …, holes = […])`.
 pub fn region(c: &Call, diags: &mut Diagnostics) -> Option<Shape> {
-    let f = Fields::call(c, &["outline"], &["outline", "holes"], diags);
+    let f = Fields::call(c, &REGION, diags);
     let outline = f
-        .value("outline", Some("circle(diameter = 120 mm)"), diags)
+        .value(&piece::OUTLINE, diags)
         .and_then(|v| plain(v, "the outline of a region", diags).map(|s| (s, v.span)));
-    let holes = match f.value("holes", None, diags) {
-        None if f.has("holes") => None,
+    let holes = match f.value(&piece::HOLES, diags) {
+        None if f.has(&piece::HOLES) => None,
         None => Some(Vec::new()),
         Some(v) => holes(v, diags),
     };
@@ -47,16 +45,12 @@ pub fn region(c: &Call, diags: &mut Diagnostics) -> Option<Shape> {
 
 /// Reads `place(shape, at = [x, y], turn = a)`.
 pub fn place(c: &Call, diags: &mut Diagnostics) -> Option<Shape> {
-    let f = Fields::call(c, &["shape"], &["shape", "at", "turn"], diags);
+    let f = Fields::call(c, &PLACE, diags);
     let inner = f
-        .value("shape", Some("circle(diameter = 12 mm)"), diags)
+        .value(&piece::PLACED, diags)
         .and_then(|v| shape(v, "what `place` places", diags));
-    let at = match f.value("at", None, diags) {
-        Some(v) => point(v, diags),
-        None if f.has("at") => None,
-        None => Some([Length(0.0); 2]),
-    };
-    let turn = turn(&f, "turn", diags);
+    let at = at(&f, diags);
+    let turn = f.quantity_or_default(&piece::PLACE_TURN, diags).map(Angle);
     Some(Shape::Placed(Box::new(Placed {
         shape: inner?,
         turn: turn?,
@@ -64,12 +58,12 @@ pub fn place(c: &Call, diags: &mut Diagnostics) -> Option<Shape> {
     })))
 }
 
-/// An angle field, 0 when not written.
-fn turn(f: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<Angle> {
-    match f.quantity(key, Dim::ANGLE, None, diags) {
-        Some((a, _)) => Some(Angle(a)),
-        None if f.has(key) => None,
-        None => Some(Angle(0.0)),
+/// `at = [x, y]`, the origin when not written.
+fn at(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<[Length; 2]> {
+    match f.value(&piece::AT, diags) {
+        Some(v) => point(v, diags),
+        None if f.has(&piece::AT) => None,
+        None => Some([Length(0.0); 2]),
     }
 }
 
@@ -118,23 +112,14 @@ fn holes(v: &Spanned, diags: &mut Diagnostics) -> Option<Vec<Hole>> {
 /// moved to `[D/2, 0]`, turned about the origin by `from + k·360°/count` and
 /// moved by `at`.
 fn bolt_circle(c: &Call, span: Span, diags: &mut Diagnostics) -> Option<Vec<Hole>> {
-    let f = Fields::call(
-        c,
-        &["shape"],
-        &["shape", "count", "diameter", "from", "at"],
-        diags,
-    );
-    let at = match f.value("at", None, diags) {
-        Some(v) => point(v, diags),
-        None if f.has("at") => None,
-        None => Some([Length(0.0); 2]),
-    };
+    let f = Fields::call(c, &BOLT_CIRCLE, diags);
+    let at = at(&f, diags);
     let hole = f
-        .value("shape", Some("circle(diameter = 12 mm)"), diags)
+        .value(&piece::HOLE, diags)
         .and_then(|v| plain(v, "a bolt circle's hole", diags));
-    let count = f.count("count", 1, MAX_HOLES, Some("6"), diags);
-    let diameter = f.positive("diameter", Dim::LENGTH, Some("85 mm"), diags);
-    let from = turn(&f, "from", diags);
+    let count = f.count(&piece::COUNT, diags);
+    let diameter = f.quantity(&piece::PITCH, diags);
+    let from = f.quantity_or_default(&piece::FROM, diags).map(Angle);
     let (hole, (count, _), (diameter, _), from, at) = (hole?, count?, diameter?, from?, at?);
     let moved = Shape::Placed(Box::new(Placed {
         shape: hole,

@@ -10,25 +10,15 @@ use super::control::ControlSpec;
 use super::eval::Env;
 use super::fields::{self, Fields};
 use super::model::{HeightControl, RingPlan};
+use super::schema::solid::{ring, table, RING, TABLE};
+use super::schema::{Bound, Field, Kind};
 use super::value::Value;
 use crate::control::{self, Controller, Plant, SegmentProcess, SegmentTable};
 use crate::diag::{message, Diagnostics};
 use crate::ir::RingOrigins;
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{Angle, Dim, Length, MassFlow, Power, Speed};
-
-/// Fields of `ring NAME { … }`.
-pub const FIELDS: &[&str] = &["radius", "segments", "transition"];
-
-/// Fields of its `table { … }`: one list each, one entry per segment.
-pub const TABLE_FIELDS: &[&str] = &["defocus", "power", "width", "speed"];
-
-/// Most segments a ring may have.
-pub const MAX_SEGMENTS: usize = 1000;
-
-/// The transition when none is written: the paper's 2°.
-pub const DEFAULT_TRANSITION_DEG: f64 = 2.0;
+use crate::units::{Angle, Length, MassFlow, Power, Speed};
 
 /// A ring block as read: the parts that are right.
 #[derive(Clone, Debug)]
@@ -55,15 +45,11 @@ pub fn read<'a>(
     diags: &mut Diagnostics,
 ) -> Written {
     let what = format!("ring `{name}`");
-    let f = Fields::block(env, stmts, FIELDS, &["table"], what.clone(), span, diags);
-    let radius = f.positive("radius", Dim::LENGTH, Some("40 mm"), diags);
-    let segments = f.count("segments", 1, MAX_SEGMENTS, Some("10"), diags);
-    let transition = match f.positive("transition", Dim::ANGLE, None, diags) {
-        Some((t, _)) => Some(Angle(t)),
-        None if f.has("transition") => None,
-        None => Some(Angle::from_deg(DEFAULT_TRANSITION_DEG)),
-    };
-    let transition_span = f.span("transition").unwrap_or(span);
+    let f = Fields::block(env, stmts, &RING, what.clone(), span, diags);
+    let radius = f.quantity(&ring::RADIUS, diags);
+    let segments = f.count(&ring::SEGMENTS, diags);
+    let transition = f.quantity_or_default(&ring::TRANSITION, diags).map(Angle);
+    let transition_span = f.span(&ring::TRANSITION).unwrap_or(span);
     let ring = match (radius, segments, transition) {
         (Some((r, _)), Some((n, _)), Some(t)) => match control::Ring::new(Length(r), n, t) {
             Ok(ring) => Some(ring),
@@ -74,7 +60,7 @@ pub fn read<'a>(
         },
         _ => None,
     };
-    let (table, powers, speed_span, width_span) = match f.nested("table") {
+    let (table, powers, speed_span, width_span) = match f.nested(&ring::TABLE) {
         Some((inner, ts)) => table(env, inner, ts, segments, &what, diags),
         None => {
             diags.push(message::ring::ring_needs_table(&what, span));
@@ -156,16 +142,15 @@ fn table<'a>(
     let f = Fields::block(
         env,
         stmts,
-        TABLE_FIELDS,
-        &[],
+        &TABLE,
         format!("the table of {ring}"),
         span,
         diags,
     );
-    let defocus = list(&f, "defocus", Dim::LENGTH, false, segments, diags);
-    let power = list(&f, "power", Dim::POWER, true, segments, diags);
-    let width = list(&f, "width", Dim::LENGTH, true, segments, diags);
-    let speed = list(&f, "speed", Dim::SPEED, true, segments, diags);
+    let defocus = list(&f, &table::DEFOCUS, segments, diags);
+    let power = list(&f, &table::POWER, segments, diags);
+    let width = list(&f, &table::WIDTH, segments, diags);
+    let speed = list(&f, &table::SPEED, segments, diags);
     let powers = power.as_ref().map(|(p, at)| {
         let lo = p.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = p.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -174,16 +159,22 @@ fn table<'a>(
     let speed_span = speed.as_ref().map(|s| s.1);
     let width_span = width.as_ref().map(|w| w.1);
     let rows = match (defocus, power, width, speed) {
-        (Some((d, _)), Some((p, _)), Some((w, _)), Some((v, _))) => Some(
-            (0..d.len())
-                .map(|j| SegmentProcess {
-                    defocus: Length(d[j]),
-                    power: Power(p[j]),
-                    width: Length(w[j]),
-                    speed: Speed(v[j]),
-                })
-                .collect::<Vec<_>>(),
-        ),
+        // Without a right `segments` (reported) the lists were not checked
+        // against it, and may differ from each other.
+        (Some((d, _)), Some((p, _)), Some((w, _)), Some((v, _)))
+            if [p.len(), w.len(), v.len()].iter().all(|&n| n == d.len()) =>
+        {
+            Some(
+                (0..d.len())
+                    .map(|j| SegmentProcess {
+                        defocus: Length(d[j]),
+                        power: Power(p[j]),
+                        width: Length(w[j]),
+                        speed: Speed(v[j]),
+                    })
+                    .collect::<Vec<_>>(),
+            )
+        }
         _ => None,
     };
     // Every value is checked above; a table that still fails is empty.
@@ -191,22 +182,23 @@ fn table<'a>(
     (table, powers, speed_span, width_span)
 }
 
-/// One list of the table: one value of `dim` per segment.
+/// One list of the table (`field`): one value per segment, of the
+/// dimension and bounds its entry gives.
 fn list(
     f: &Fields<'_>,
-    key: &str,
-    dim: Dim,
-    positive: bool,
+    field: &Field,
     segments: Option<(usize, Span)>,
     diags: &mut Diagnostics,
 ) -> Option<(Vec<f64>, Span)> {
-    let example = match key {
-        "defocus" => "[-8 mm, -7 mm, …]",
-        "power" => "[1200 W, 1050 W, …]",
-        "width" => "[6.25 mm, 5.55 mm, …]",
-        _ => "[4 mm/s, 5 mm/s, …]",
+    let Some((dim, bound)) = (match field.kind {
+        Kind::List(item, _) => item.quantity(),
+        _ => None,
+    }) else {
+        unreachable!("`{}` is a list of quantities", field.key)
     };
-    let v = f.value(key, Some(example), diags)?;
+    let positive = matches!(bound, Bound::Positive);
+    let (key, example) = (field.key, f.example(field));
+    let v = f.value(field, diags)?;
     let Value::List(items) = &v.value else {
         diags.push(message::ring::table_not_a_list(
             key,
@@ -365,7 +357,7 @@ fn plant(
         Some((f, at)) if f.len() != table.len() => {
             let seg_at = w.segments.map(|s| s.1).unwrap_or(w.span);
             diags.push(message::ring::table_length(
-                "factors",
+                crate::sema::schema::control::plant::FACTORS.key,
                 f.len(),
                 *at,
                 table.len(),
@@ -374,5 +366,21 @@ fn plant(
             None
         }
         Some((f, _)) => calibrated.scaled(f).ok(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::diag::Code;
+
+    #[test]
+    fn lists_of_unequal_length_without_segments_are_no_table() {
+        let src = "part p\nring wall {\n  radius = 40 mm\n  table {\n    \
+                   defocus = [-8 mm, -7 mm]\n    power = [1200 W, 1050 W]\n    \
+                   width = [6 mm, 5 mm]\n    speed = [4 mm/s]\n  }\n}\n";
+        let file = crate::syntax::parse(src).expect("parses");
+        let (_, diags) = crate::sema::check(&file);
+        // `segments` is reported missing; the table is not built.
+        assert!(diags.iter().any(|d| d.code == Code::MissingField));
     }
 }

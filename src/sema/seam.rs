@@ -5,17 +5,11 @@
 
 use super::fields::{self, Fields};
 use super::model::{LinkMode, SeamRule};
+use super::schema::slicing::{planar, raster, RANDOM, ROTATING};
 use super::suggest::did_you_mean;
 use super::value::{Call, Spanned, Value};
 use crate::diag::{message, Diagnostics};
 use crate::units::{Angle, Dim};
-
-/// The golden angle (deg): a seam turned by it every layer never comes back
-/// to the same direction, and any run of layers spreads its seams evenly.
-pub const GOLDEN_ANGLE_DEG: f64 = 137.507_764_050_037_85;
-
-/// The words `seam` takes besides an angle and the calls.
-const WORDS: &[&str] = &["lowest", "sharpest_corner", "random"];
 
 /// Reads `seam = …`: `lowest`, `sharpest_corner`, an angle,
 /// `rotating(step, from)` or `random(seed)` (or `random`, seed 0).
@@ -29,16 +23,17 @@ pub fn read(v: &Spanned, diags: &mut Diagnostics) -> Option<SeamRule> {
         }
         Value::Call(c) if c.func == "rotating" => rotating(c, diags),
         Value::Call(c) if c.func == "random" => {
-            let f = Fields::call(c, &["seed"], &["seed"], diags);
-            match f.count("seed", 0, u32::MAX as usize, None, diags) {
-                Some((n, _)) => Some(SeamRule::Random { seed: n as u64 }),
-                None if f.has("seed") => None,
-                None => Some(SeamRule::Random { seed: 0 }),
-            }
+            let f = Fields::call(c, &RANDOM, diags);
+            f.count_or_default(&raster::SEED, diags)
+                .map(|n| SeamRule::Random { seed: n as u64 })
         }
         other => {
             let near = match other {
-                Value::Symbol(w) => did_you_mean(w, WORDS.iter().copied()),
+                // The words `seam` takes besides an angle and the calls.
+                Value::Symbol(w) => {
+                    let words = planar::SEAM.kind.words().unwrap_or_default();
+                    did_you_mean(w, words.iter().copied())
+                }
                 Value::Call(c) => did_you_mean(&c.func, ["rotating", "random"]),
                 _ => None,
             };
@@ -50,19 +45,9 @@ pub fn read(v: &Spanned, diags: &mut Diagnostics) -> Option<SeamRule> {
 }
 
 fn rotating(c: &Call, diags: &mut Diagnostics) -> Option<SeamRule> {
-    let f = Fields::call(c, &["step"], &["step", "from"], diags);
-    let angle = |key: &str, default: f64, diags: &mut Diagnostics| match f.quantity(
-        key,
-        Dim::ANGLE,
-        None,
-        diags,
-    ) {
-        Some((a, _)) => Some(Angle(a)),
-        None if f.has(key) => None,
-        None => Some(Angle::from_deg(default)),
-    };
-    let step = angle("step", GOLDEN_ANGLE_DEG, diags);
-    let from = angle("from", -90.0, diags);
+    let f = Fields::call(c, &ROTATING, diags);
+    let step = f.quantity_or_default(&raster::STEP, diags).map(Angle);
+    let from = f.quantity_or_default(&raster::FROM, diags).map(Angle);
     Some(SeamRule::Rotating {
         from: from?,
         step: step?,
@@ -71,7 +56,10 @@ fn rotating(c: &Call, diags: &mut Diagnostics) -> Option<SeamRule> {
 
 /// Reads `link = none | laser_on | laser_off`.
 pub fn link(v: &Spanned, diags: &mut Diagnostics) -> Option<LinkMode> {
-    match fields::symbol(v, "link", &["none", "laser_on", "laser_off"], diags)?.as_str() {
+    let Some(words) = raster::LINK.kind.words() else {
+        unreachable!("`link` takes words")
+    };
+    match fields::word(v, raster::LINK.key, words, diags)? {
         "laser_on" => Some(LinkMode::LaserOn),
         "laser_off" => Some(LinkMode::LaserOff),
         _ => Some(LinkMode::None),

@@ -2,9 +2,14 @@
 
 use super::fields::Fields;
 use super::model::Section;
+use super::schema::shape::{
+    section, CIRCLE, ELLIPSE, POLYGON, RECTANGLE, ROUNDED_RECTANGLE, SQUARE,
+};
+use super::schema::Field;
 use super::value::Call;
 use crate::diag::{message, Diagnostics};
-use crate::units::{Dim, Length};
+use crate::span::Span;
+use crate::units::Length;
 
 /// The section constructors the language knows.
 pub const SHAPES: &[&str] = &[
@@ -18,114 +23,113 @@ pub const SHAPES: &[&str] = &[
 
 /// Reads a section constructor call.
 pub fn read(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
-    let l = Dim::LENGTH;
     match call.func.as_str() {
         "circle" => {
-            let f = Fields::call(call, &["diameter"], &["diameter", "radius"], diags);
-            if !one_of(&f, "diameter", "radius", diags) {
+            let f = Fields::call(call, &CIRCLE, diags);
+            if !one_of(&f, &section::DIAMETER, &section::RADIUS, diags) {
                 return None;
             }
-            let r = if f.has("radius") {
-                f.positive("radius", l, None, diags)?.0
+            let r = if f.has(&section::RADIUS) {
+                f.quantity(&section::RADIUS, diags)?.0
             } else {
-                f.positive("diameter", l, Some("60 mm"), diags)?.0 / 2.0
+                required(&f, &section::DIAMETER, diags)?.0 / 2.0
             };
             Some(Section::Circle { r: Length(r) })
         }
         "ellipse" => {
-            let f = Fields::call(call, &["width", "height"], &["width", "height"], diags);
-            let a = f.positive("width", l, Some("60 mm"), diags);
-            let b = f.positive("height", l, Some("40 mm"), diags);
-            Some(Section::Ellipse {
-                a: Length(a?.0 / 2.0),
-                b: Length(b?.0 / 2.0),
-            })
+            let f = Fields::call(call, &ELLIPSE, diags);
+            let (a, b) = sides(&f, diags);
+            Some(Section::Ellipse { a: a?, b: b? })
         }
         "square" => {
-            let f = Fields::call(call, &["side"], &["side"], diags);
-            let s = f.positive("side", l, Some("60 mm"), diags)?.0 / 2.0;
+            let f = Fields::call(call, &SQUARE, diags);
+            let s = f.quantity(&section::SIDE, diags)?.0 / 2.0;
             Some(Section::Rectangle {
                 a: Length(s),
                 b: Length(s),
             })
         }
         "rectangle" => {
-            let f = Fields::call(call, &["width", "height"], &["width", "height"], diags);
-            let a = f.positive("width", l, Some("60 mm"), diags);
-            let b = f.positive("height", l, Some("40 mm"), diags);
-            Some(Section::Rectangle {
-                a: Length(a?.0 / 2.0),
-                b: Length(b?.0 / 2.0),
-            })
+            let f = Fields::call(call, &RECTANGLE, diags);
+            let (a, b) = sides(&f, diags);
+            Some(Section::Rectangle { a: a?, b: b? })
         }
-        "rounded_rectangle" => {
-            let f = Fields::call(
-                call,
-                &["width", "height", "radius"],
-                &["width", "height", "radius"],
-                diags,
-            );
-            let a = f.positive("width", l, Some("60 mm"), diags);
-            let b = f.positive("height", l, Some("40 mm"), diags);
-            let r = f.quantity("radius", l, Some("5 mm"), diags);
-            // A negative radius is wrong whatever the sides.
-            let r = r.filter(|&(r, rs)| {
-                if r >= 0.0 {
-                    return true;
-                }
-                diags.push(message::shape::corner_radius(Length(r), None, rs));
-                false
-            });
-            let (a, b, (r, rs)) = (a?.0 / 2.0, b?.0 / 2.0, r?);
-            if r > a.min(b) {
-                diags.push(message::shape::corner_radius(
-                    Length(r),
-                    Some(Length(a.min(b))),
-                    rs,
-                ));
-                return None;
-            }
-            Some(Section::RoundedRectangle {
-                a: Length(a),
-                b: Length(b),
-                r: Length(r),
-            })
-        }
-        "polygon" => {
-            let f = Fields::call(
-                call,
-                &["sides", "circumradius"],
-                &["sides", "circumradius", "side"],
-                diags,
-            );
-            let n = f.count("sides", 3, 1000, Some("6"), diags);
-            if !one_of(&f, "circumradius", "side", diags) {
-                return None;
-            }
-            let r = if f.has("side") {
-                let s = f.positive("side", l, None, diags);
-                let n = n?.0;
-                Some(s?.0 / (2.0 * (std::f64::consts::PI / n as f64).sin()))
-            } else {
-                f.positive("circumradius", l, Some("30 mm"), diags)
-                    .map(|x| x.0)
-            };
-            Some(Section::Polygon {
-                n: n?.0 as u32,
-                r: Length(r?),
-            })
-        }
+        "rounded_rectangle" => rounded_rectangle(call, diags),
+        "polygon" => polygon(call, diags),
         _ => None,
     }
 }
 
+/// Half the `width` and `height` of an ellipse or a rectangle.
+fn sides(f: &Fields<'_>, diags: &mut Diagnostics) -> (Option<Length>, Option<Length>) {
+    let a = f.quantity(&section::WIDTH, diags);
+    let b = f.quantity(&section::HEIGHT, diags);
+    (a.map(|a| Length(a.0 / 2.0)), b.map(|b| Length(b.0 / 2.0)))
+}
+
+/// A field required when the other way of giving the size is not written.
+fn required(f: &Fields<'_>, field: &Field, diags: &mut Diagnostics) -> Option<(f64, Span)> {
+    let q = f.quantity(field, diags);
+    f.require(field, diags);
+    q
+}
+
+fn rounded_rectangle(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
+    let f = Fields::call(call, &ROUNDED_RECTANGLE, diags);
+    let (a, b) = sides(&f, diags);
+    // A negative radius is wrong whatever the sides.
+    let r = f.bounded(
+        &section::CORNER_RADIUS,
+        |r, rs| message::shape::corner_radius(Length(r), None, rs),
+        diags,
+    );
+    let (a, b, (r, rs)) = (a?.0, b?.0, r?);
+    if r > a.min(b) {
+        diags.push(message::shape::corner_radius(
+            Length(r),
+            Some(Length(a.min(b))),
+            rs,
+        ));
+        return None;
+    }
+    Some(Section::RoundedRectangle {
+        a: Length(a),
+        b: Length(b),
+        r: Length(r),
+    })
+}
+
+fn polygon(call: &Call, diags: &mut Diagnostics) -> Option<Section> {
+    let f = Fields::call(call, &POLYGON, diags);
+    let n = f.count(&section::SIDES, diags);
+    if !one_of(&f, &section::CIRCUMRADIUS, &section::POLYGON_SIDE, diags) {
+        return None;
+    }
+    let r = if f.has(&section::POLYGON_SIDE) {
+        let s = f.quantity(&section::POLYGON_SIDE, diags);
+        let n = n?.0;
+        Some(s?.0 / (2.0 * (std::f64::consts::PI / n as f64).sin()))
+    } else {
+        required(&f, &section::CIRCUMRADIUS, diags).map(|x| x.0)
+    };
+    Some(Section::Polygon {
+        n: n?.0 as u32,
+        r: Length(r?),
+    })
+}
+
 /// Whether at most one of two arguments that give the same size is written;
 /// reports both when both are.
-fn one_of(f: &Fields<'_>, a: &str, b: &str, diags: &mut Diagnostics) -> bool {
+fn one_of(f: &Fields<'_>, a: &Field, b: &Field, diags: &mut Diagnostics) -> bool {
     if !(f.has(a) && f.has(b)) {
         return true;
     }
-    diags.push(message::shape::either_not_both(a, f.span(a), b, f.span(b)));
+    diags.push(message::shape::either_not_both(
+        a.key,
+        f.span(a),
+        b.key,
+        f.span(b),
+    ));
 
     false
 }

@@ -4,15 +4,16 @@
 
 use super::eval::Env;
 use super::fields::Fields;
-use super::model::{Resolution, Slicing, MAX_LAYERS, MAX_POINTS};
+use super::model::{Resolution, Slicing};
 use super::planar;
+use super::schema::slicing::{self as schema, normal};
 use super::statement::{shape_error, single, Statements};
 use super::suggest::did_you_mean;
 use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::span::{Span, Spanned};
 use crate::syntax::ast::{Body, Stmt};
-use crate::units::{Angle, Dim, Length};
+use crate::units::{Angle, Length};
 
 /// Strategies the language knows.
 pub const STRATEGIES: &[&str] = &["normal", "planar", "variable", "continuous"];
@@ -83,32 +84,11 @@ pub(super) fn statement<'a>(
     }
 }
 
-/// Fields of `slicing normal { … }`.
-const NORMAL_FIELDS: &[&str] = &["layers", "points", "chord_error", "seam"];
-
 /// The fields of a block whose strategy is wrong or missing: checked against
-/// what either strategy takes, so a misspelt field is reported in the same
+/// what any strategy takes, so a misspelt field is reported in the same
 /// run as the strategy.
 fn any_strategy<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagnostics) {
-    let mut all: Vec<&str> = NORMAL_FIELDS.to_vec();
-    for k in planar::FIELDS
-        .iter()
-        .chain(super::variable::FIELDS)
-        .chain(super::continuous::FIELDS)
-    {
-        if !all.contains(k) {
-            all.push(k);
-        }
-    }
-    Fields::block(
-        env,
-        stmts,
-        &all,
-        super::variable::BLOCKS,
-        "slicing".into(),
-        span,
-        diags,
-    );
+    Fields::block(env, stmts, &schema::ANY, "slicing".into(), span, diags);
 }
 
 /// Reads a slicing block.
@@ -144,50 +124,45 @@ fn read<'a>(
             return None;
         }
     }
-    let f = Fields::block(
-        env,
-        stmts,
-        NORMAL_FIELDS,
-        &[],
-        "slicing".into(),
-        span,
-        diags,
-    );
-    let layers = match f.value("layers", None, diags) {
-        None if f.has("layers") => None,
+    normal(env, stmts, span, diags).map(Spec::Normal)
+}
+
+/// Reads `slicing normal { … }`.
+fn normal<'a>(
+    env: &mut Env<'a>,
+    stmts: &'a [Stmt],
+    span: Span,
+    diags: &mut Diagnostics,
+) -> Option<Slicing> {
+    let f = Fields::block(env, stmts, &schema::NORMAL, "slicing".into(), span, diags);
+    let layers = match f.value(&normal::LAYERS, diags) {
+        None if f.has(&normal::LAYERS) => None,
         None => Some(None),
         Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
-        Some(_) => f
-            .count("layers", 1, MAX_LAYERS, None, diags)
-            .map(|(n, _)| Some(n)),
+        Some(_) => f.count(&normal::LAYERS, diags).map(|(n, _)| Some(n)),
     };
-    let resolution = match (f.has("points"), f.has("chord_error")) {
+    let resolution = match (f.has(&normal::POINTS), f.has(&normal::CHORD_ERROR)) {
         (true, true) => {
             diags.push(message::bead::points_and_chord_error(
-                f.span("points"),
-                f.span("chord_error"),
+                f.span(&normal::POINTS),
+                f.span(&normal::CHORD_ERROR),
             ));
             None
         }
         (false, true) => f
-            .positive("chord_error", Dim::LENGTH, None, diags)
+            .quantity(&normal::CHORD_ERROR, diags)
             .map(|(e, _)| Resolution::ChordError(Length(e))),
-        (true, false) => f
-            .count("points", 8, MAX_POINTS, None, diags)
-            .map(|(n, _)| Resolution::Count(n)),
-        (false, false) => Some(Resolution::Count(360)),
+        (_, false) => f
+            .count_or_default(&normal::POINTS, diags)
+            .map(Resolution::Count),
     };
-    let seam = match f.quantity("seam", Dim::ANGLE, None, diags) {
-        Some((a, _)) => Some(Angle(a)),
-        None if f.has("seam") => None,
-        None => Some(Angle::from_deg(90.0)),
-    };
-    Some(Spec::Normal(Slicing {
+    let seam = f.quantity_or_default(&normal::SEAM, diags).map(Angle);
+    Some(Slicing {
         layers: layers?,
         resolution: resolution?,
         seam: seam?,
         span,
-        layers_span: f.span("layers"),
-        seam_span: f.span("seam"),
-    }))
+        layers_span: f.span(&normal::LAYERS),
+        seam_span: f.span(&normal::SEAM),
+    })
 }

@@ -3,16 +3,18 @@
 //! style's values against the bead model and the laser.
 
 use super::eval::Env;
-use super::fields::{self, Fields};
+use super::fields::Fields;
 use super::model::{Bead, Inheritance, PathSelect, Style, StyleCondition, Styles};
 use super::planar::PlanarSpec;
 use super::process::Laser;
+use super::schema::style::{self as schema, values, when, INHERITANCE, STYLE, WHEN};
+use super::schema::{DefaultValue, Need};
 use super::statement::{single_optional, Statements};
 use super::value::Value;
 use crate::diag::message::style::{StyleBead, Unstyled};
 use crate::diag::message::{self, statement::Declaration};
 use crate::diag::Diagnostics;
-use crate::span::Span;
+use crate::span::{Span, Spanned};
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Angle, Dim, Length, MassFlow, Power, Speed};
 use std::collections::BTreeMap;
@@ -25,11 +27,6 @@ const PALETTE: [&str; 10] = [
 
 /// Most styles a table holds: ids are 1 ..= 65535.
 const MAX_STYLES: usize = u16::MAX as usize;
-
-/// Corners that turn by at least this much are sharp unless `corner_angle` says.
-const DEFAULT_CORNER: f64 = 45.0;
-
-const PATHS: &[&str] = &["outer_contour", "inner_contour", "contour", "infill"];
 
 /// A style as read, before the checks that need the bead and the process.
 pub struct Written {
@@ -85,89 +82,12 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
                 prev,
             ));
         }
-        let what = format!("style `{}`", n.node);
-        let f = Fields::block_with_repeats(
-            env,
-            body,
-            &["id", "power", "speed", "powder", "colour"],
-            &[],
-            &["when"],
-            what.clone(),
-            s.span,
-            diags,
-        );
-        // `Some(None)`: no id written; one is given once every explicit id
-        // is known, so it never takes an id a later style asks for.
-        let id = match f.count("id", 1, u16::MAX as usize, None, diags) {
-            Some((id, sp)) => {
-                let id = id as u16;
-                if let Some(prev) = ids.get(&id) {
-                    diags.push(message::style::duplicate_id(id, sp, *prev));
-                }
-                ids.insert(id, sp);
-                Some(Some(id))
-            }
-            None if f.has("id") => None,
-            None => Some(None),
-        };
-        let power = f.optional("power", f.positive("power", Dim::POWER, None, diags));
-        let speed = f.optional("speed", f.positive("speed", Dim::SPEED, None, diags));
-        let powder = f.optional("powder", f.positive("powder", Dim::MASS_FLOW, None, diags));
-        if let Some(Some((_, sp))) = powder {
-            // Seed 002's table reserves the field too: feeders are not switched
-            // track by track.
-            diags.push(message::style::powder_not_programmed(&what, sp));
-        }
-        if !f.has("power") && !f.has("speed") && !f.has("powder") {
-            diags.push(message::style::no_process_value(&what, n.span));
-        }
-        let colour = match f.text("colour", None, diags) {
-            Some((c, sp)) => {
-                if is_colour(&c) {
-                    Some(c.to_ascii_lowercase())
-                } else {
-                    diags.push(message::style::bad_colour(&c, sp));
-                    None
-                }
-            }
-            None if f.has("colour") => None,
-            None => Some(PALETTE[i % PALETTE.len()].to_string()),
-        };
-        let blocks = f.nested_all("when");
-        if blocks.is_empty() {
-            diags.push(message::style::picks_no_tracks(&what, s.span));
-        }
-        let rules: Vec<Option<Vec<StyleCondition>>> = blocks
-            .iter()
-            .map(|(stmts, sp)| rule(env, stmts, *sp, &what, diags))
-            .collect();
-        let complete = word
-            && id.is_some()
-            && power.is_some()
-            && speed.is_some()
-            && powder.is_some()
-            && colour.is_some()
-            && !blocks.is_empty()
-            && rules.iter().all(Option::is_some);
-        let (power, speed, powder) = (power.flatten(), speed.flatten(), powder.flatten());
-        if id == Some(None) {
+        let (mut w, id_written) = style(env, s, n, body, i, &mut ids, diags);
+        w.complete &= word;
+        if !id_written {
             auto.push(out.len());
         }
-        out.push(Written {
-            style: Style {
-                id: id.flatten().unwrap_or(0),
-                name: n.node.clone(),
-                power: power.map(|(p, _)| Power(p)),
-                speed: speed.map(|(v, _)| Speed(v)),
-                powder: powder.map(|(m, _)| MassFlow(m)),
-                colour: colour.unwrap_or_default(),
-                rules: rules.into_iter().flatten().collect(),
-                span: s.span,
-            },
-            power_span: power.map(|p| p.1),
-            speed_span: speed.map(|v| v.1),
-            complete,
-        });
+        out.push(w);
     }
     // The lowest ids no style claims, in declaration order (at most
     // MAX_STYLES styles, so there are enough).
@@ -178,10 +98,103 @@ pub fn read<'a>(env: &mut Env<'a>, stmts: &[&'a Stmt], diags: &mut Diagnostics) 
     out
 }
 
+/// Reads the fields of style `name` (the `i`th), its id recorded in `ids`;
+/// and whether an id is written (or wrong: then none is given).
+fn style<'a>(
+    env: &mut Env<'a>,
+    s: &Stmt,
+    name: &Spanned<String>,
+    body: &'a [Stmt],
+    i: usize,
+    ids: &mut BTreeMap<u16, Span>,
+    diags: &mut Diagnostics,
+) -> (Written, bool) {
+    let what = format!("style `{}`", name.node);
+    let f = Fields::block(env, body, &STYLE, what.clone(), s.span, diags);
+    // `Some(None)`: no id written; one is given once every explicit id
+    // is known, so it never takes an id a later style asks for.
+    let id = f.optional(
+        &values::ID,
+        f.count(&values::ID, diags).map(|(id, sp)| {
+            let id = id as u16;
+            if let Some(prev) = ids.get(&id) {
+                diags.push(message::style::duplicate_id(id, sp, *prev));
+            }
+            ids.insert(id, sp);
+            id
+        }),
+    );
+    let power = f.optional(&values::POWER, f.quantity(&values::POWER, diags));
+    let speed = f.optional(&values::SPEED, f.quantity(&values::SPEED, diags));
+    let powder = f.optional(&values::POWDER, f.quantity(&values::POWDER, diags));
+    if let Some(Some((_, sp))) = powder {
+        // Seed 002's table reserves the field too: feeders are not switched
+        // track by track.
+        diags.push(message::style::powder_not_programmed(&what, sp));
+    }
+    if [&values::POWER, &values::SPEED, &values::POWDER]
+        .iter()
+        .all(|v| !f.has(v))
+    {
+        diags.push(message::style::no_process_value(&what, name.span));
+    }
+    let colour = colour(&f, i, diags);
+    let blocks = f.nested_all(&values::WHEN);
+    if blocks.is_empty() {
+        diags.push(message::style::picks_no_tracks(&what, s.span));
+    }
+    let rules: Vec<Option<Vec<StyleCondition>>> = blocks
+        .iter()
+        .map(|(stmts, sp)| rule(env, stmts, *sp, &what, diags))
+        .collect();
+    let complete = id.is_some()
+        && power.is_some()
+        && speed.is_some()
+        && powder.is_some()
+        && colour.is_some()
+        && !blocks.is_empty()
+        && rules.iter().all(Option::is_some);
+    let (power, speed, powder) = (power.flatten(), speed.flatten(), powder.flatten());
+    let written = Written {
+        style: Style {
+            id: id.flatten().unwrap_or(0),
+            name: name.node.clone(),
+            power: power.map(|(p, _)| Power(p)),
+            speed: speed.map(|(v, _)| Speed(v)),
+            powder: powder.map(|(m, _)| MassFlow(m)),
+            colour: colour.unwrap_or_default(),
+            rules: rules.into_iter().flatten().collect(),
+            span: s.span,
+        },
+        power_span: power.map(|p| p.1),
+        speed_span: speed.map(|v| v.1),
+        complete,
+    };
+    (written, id != Some(None))
+}
+
+/// `colour = "#rrggbb"`, else the palette's `i`th; `None` when wrong.
+fn colour(f: &Fields<'_>, i: usize, diags: &mut Diagnostics) -> Option<String> {
+    match f.text(&values::COLOUR, diags) {
+        Some((c, sp)) => {
+            if is_colour(&c) {
+                Some(c.to_ascii_lowercase())
+            } else {
+                diags.push(message::style::bad_colour(&c, sp));
+                None
+            }
+        }
+        None if f.has(&values::COLOUR) => None,
+        None => Some(PALETTE[i % PALETTE.len()].to_string()),
+    }
+}
+
 fn is_colour(c: &str) -> bool {
     c.len() == 7 && c.starts_with('#') && c[1..].chars().all(|h| h.is_ascii_hexdigit())
 }
 
+/// A `when { … }` block of `what`: its conditions, `None` when one is
+/// wrong or the block picks nothing.
 fn rule<'a>(
     env: &mut Env<'a>,
     stmts: &'a [Stmt],
@@ -192,84 +205,28 @@ fn rule<'a>(
     let f = Fields::block(
         env,
         stmts,
-        &[
-            "paths",
-            "shorter_than",
-            "longer_than",
-            "near_boundary",
-            "near_corner",
-            "corner_angle",
-            "layers",
-        ],
-        &[],
+        &WHEN,
         format!("a `when` block of {what}"),
         span,
         diags,
     );
-    let mut ok = true;
     let mut out = Vec::new();
-    match f.symbol("paths", PATHS, None, diags) {
-        Some((p, _)) => out.push(StyleCondition::Paths(match p.as_str() {
-            "outer_contour" => PathSelect::OuterContour,
-            "inner_contour" => PathSelect::InnerContour,
-            "contour" => PathSelect::Contour,
-            _ => PathSelect::Infill,
-        })),
-        None => ok &= !f.has("paths"),
+    let mut ok = paths(&f, &mut out, diags);
+    for (field, make) in [
+        (
+            &when::SHORTER_THAN,
+            StyleCondition::ShorterThan as fn(Length) -> _,
+        ),
+        (&when::LONGER_THAN, StyleCondition::LongerThan),
+        (&when::NEAR_BOUNDARY, StyleCondition::NearBoundary),
+    ] {
+        match f.quantity(field, diags) {
+            Some((l, _)) => out.push(make(Length(l))),
+            None => ok &= !f.has(field),
+        }
     }
-    let mut length = |key: &str, make: fn(Length) -> StyleCondition, out: &mut Vec<_>| match f
-        .positive(key, Dim::LENGTH, None, diags)
-    {
-        Some((l, _)) => out.push(make(Length(l))),
-        None => ok &= !f.has(key),
-    };
-    length("shorter_than", StyleCondition::ShorterThan, &mut out);
-    length("longer_than", StyleCondition::LongerThan, &mut out);
-    length("near_boundary", StyleCondition::NearBoundary, &mut out);
-    let corner = f.positive("near_corner", Dim::LENGTH, None, diags);
-    ok &= corner.is_some() || !f.has("near_corner");
-    let angle = match f.quantity("corner_angle", Dim::ANGLE, None, diags) {
-        Some((a, sp)) if !(a > 0.0 && a <= std::f64::consts::PI) => {
-            diags.push(message::style::corner_angle_range(a.to_degrees(), sp));
-            ok = false;
-            None
-        }
-        Some((a, sp)) => {
-            if corner.is_none() && !f.has("near_corner") {
-                diags.push(message::style::corner_angle_unused(sp));
-            }
-            Some(Angle(a))
-        }
-        None => {
-            ok &= !f.has("corner_angle");
-            None
-        }
-    };
-    if let Some((d, _)) = corner {
-        out.push(StyleCondition::NearCorner(
-            Length(d),
-            angle.unwrap_or(Angle::from_deg(DEFAULT_CORNER)),
-        ));
-    }
-    if let Some(v) = f.value("layers", None, diags) {
-        match &v.value {
-            Value::Range(a, b) if a.dim == Dim::NONE && b.dim == Dim::NONE => {
-                let whole = |x: f64| x.fract() == 0.0 && (1.0..=1e6).contains(&x);
-                if whole(a.value) && whole(b.value) && a.value <= b.value {
-                    out.push(StyleCondition::Layers(a.value as usize, b.value as usize));
-                } else {
-                    diags.push(message::style::bad_layers_range(a.value, b.value, v.span));
-                    ok = false;
-                }
-            }
-            other => {
-                diags.push(message::style::layers_not_range(other, v.span));
-                ok = false;
-            }
-        }
-    } else {
-        ok &= !f.has("layers");
-    }
+    ok &= corner(&f, &mut out, diags);
+    ok &= layers(&f, &mut out, diags);
     // Only a block written empty picks every track; one whose conditions
     // all failed has said why already.
     if ok && out.is_empty() && stmts.is_empty() {
@@ -299,6 +256,83 @@ fn rule<'a>(
         }
     }
     ok.then_some(out)
+}
+
+/// `paths = …`: whether it is right or not written.
+fn paths(f: &Fields<'_>, out: &mut Vec<StyleCondition>, diags: &mut Diagnostics) -> bool {
+    match f.word(&when::PATHS, diags) {
+        Some((p, _)) => {
+            out.push(StyleCondition::Paths(match p {
+                "outer_contour" => PathSelect::OuterContour,
+                "inner_contour" => PathSelect::InnerContour,
+                "contour" => PathSelect::Contour,
+                _ => PathSelect::Infill,
+            }));
+            true
+        }
+        None => !f.has(&when::PATHS),
+    }
+}
+
+/// `near_corner = …` and `corner_angle = …`: whether both are right or not
+/// written.
+fn corner(f: &Fields<'_>, out: &mut Vec<StyleCondition>, diags: &mut Diagnostics) -> bool {
+    let corner = f.quantity(&when::NEAR_CORNER, diags);
+    let mut ok = corner.is_some() || !f.has(&when::NEAR_CORNER);
+    let angle = match f.bounded(
+        &when::CORNER_ANGLE,
+        |a, at| message::style::corner_angle_range(a.to_degrees(), at),
+        diags,
+    ) {
+        Some((a, sp)) => {
+            if corner.is_none() && !f.has(&when::NEAR_CORNER) {
+                diags.push(message::style::corner_angle_unused(sp));
+            }
+            Some(Angle(a))
+        }
+        None => {
+            ok &= !f.has(&when::CORNER_ANGLE);
+            None
+        }
+    };
+    if let Some((d, _)) = corner {
+        out.push(StyleCondition::NearCorner(
+            Length(d),
+            angle.unwrap_or(Angle(default_corner())),
+        ));
+    }
+    ok
+}
+
+/// The sharp corner's angle when `corner_angle` is not written.
+fn default_corner() -> f64 {
+    match when::CORNER_ANGLE.need {
+        Need::Default(DefaultValue::Quantity(a)) => a,
+        _ => unreachable!("`corner_angle` has a default"),
+    }
+}
+
+/// `layers = a .. b`: whether it is right or not written.
+fn layers(f: &Fields<'_>, out: &mut Vec<StyleCondition>, diags: &mut Diagnostics) -> bool {
+    let Some(v) = f.value(&when::LAYERS, diags) else {
+        return !f.has(&when::LAYERS);
+    };
+    match &v.value {
+        Value::Range(a, b) if a.dim == Dim::NONE && b.dim == Dim::NONE => {
+            let whole = |x: f64| x.fract() == 0.0 && (1.0..=1e6).contains(&x);
+            if whole(a.value) && whole(b.value) && a.value <= b.value {
+                out.push(StyleCondition::Layers(a.value as usize, b.value as usize));
+                true
+            } else {
+                diags.push(message::style::bad_layers_range(a.value, b.value, v.span));
+                false
+            }
+        }
+        other => {
+            diags.push(message::style::layers_not_range(other, v.span));
+            false
+        }
+    }
 }
 
 /// The `inheritance` statement as read.
@@ -335,27 +369,16 @@ fn inheritance<'a>(
     let f = Fields::block(
         env,
         stmts,
-        &["band", "hit"],
-        &[],
+        &INHERITANCE,
         "inheritance".into(),
         stmt.span,
         diags,
     );
-    let band = f.positive("band", Dim::LENGTH, Some("0.8 mm"), diags);
-    let hit = match f.value("hit", Some("99 %"), diags) {
-        Some(v) => match fields::quantity(v, Dim::NONE, "hit", diags) {
-            Some(h) if h > 0.0 && h <= 1.0 => Some(h),
-            Some(h) => {
-                diags.push(message::style::hit_range(h, v.span));
-                None
-            }
-            None => None,
-        },
-        None => None,
-    };
+    let band = f.quantity(&schema::BAND, diags);
+    let hit = f.bounded(&schema::HIT, message::style::hit_range, diags);
     Some(Inheritance {
         band: Length(band?.0),
-        hit: hit?,
+        hit: hit?.0,
     })
 }
 

@@ -6,9 +6,11 @@
 //! `y`, checked here at one point of the footprint and evaluated by the
 //! slicer at every point it samples ([`TopHeights`]).
 
-use super::eval::{Env, POSITION};
+use super::eval::Env;
 use super::fields::{self, Fields};
 use super::model::{Axis, Shape, Top, TopExpr};
+use super::schema::solid::{top, EDGES, MAX_SLOPE_DEG, PLANE};
+use super::schema::Field;
 use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
@@ -71,10 +73,10 @@ pub fn read(
 
 /// `edges(along = x, from = 20 mm, to = 36 mm)`.
 fn edges(c: &super::value::Call, diags: &mut Diagnostics) -> Option<Top> {
-    let a = Fields::call(c, &[], &["along", "from", "to"], diags);
-    let along = a.symbol("along", &POSITION, Some("x"), diags);
-    let from = a.positive("from", Dim::LENGTH, Some("20 mm"), diags);
-    let to = a.positive("to", Dim::LENGTH, Some("36 mm"), diags);
+    let a = Fields::call(c, &EDGES, diags);
+    let along = a.word(&top::ALONG, diags);
+    let from = a.quantity(&top::FROM, diags);
+    let to = a.quantity(&top::TO, diags);
     let (along, from, to) = (along?, from?, to?);
     Some(Top::Edges {
         along: if along.0 == "x" { Axis::X } else { Axis::Y },
@@ -85,15 +87,15 @@ fn edges(c: &super::value::Call, diags: &mut Diagnostics) -> Option<Top> {
 
 /// `plane(at = [0 mm, 0 mm], height = 14 mm, slope_x = 8 mm / 60 mm, slope_y = 20 %)`.
 fn plane(c: &super::value::Call, diags: &mut Diagnostics) -> Option<Top> {
-    let a = Fields::call(c, &[], &["at", "height", "slope_x", "slope_y"], diags);
-    let at = match a.value("at", None, diags) {
-        None if a.has("at") => None,
+    let a = Fields::call(c, &PLANE, diags);
+    let at = match a.value(&top::AT, diags) {
+        None if a.has(&top::AT) => None,
         None => Some([Length(0.0); 2]),
         Some(v) => point(v, diags),
     };
-    let height = a.quantity("height", Dim::LENGTH, Some("14 mm"), diags);
-    let slope_x = slope(&a, "slope_x", diags);
-    let slope_y = slope(&a, "slope_y", diags);
+    let height = a.quantity(&top::HEIGHT, diags);
+    let slope_x = slope(&a, &top::SLOPE_X, diags);
+    let slope_y = slope(&a, &top::SLOPE_Y, diags);
     Some(Top::Plane {
         at: at?,
         height: Length(height?.0),
@@ -118,13 +120,14 @@ fn point(v: &super::value::Spanned, diags: &mut Diagnostics) -> Option<[Length; 
 
 /// A slope: a plain number (`8 mm / 60 mm`, `16 %`) or an angle from the
 /// horizontal below 90° (its tangent); 0 when not written.
-fn slope(a: &Fields<'_>, key: &str, diags: &mut Diagnostics) -> Option<f64> {
-    let Some(v) = a.value(key, None, diags) else {
-        return (!a.has(key)).then_some(0.0);
+fn slope(a: &Fields<'_>, field: &Field, diags: &mut Diagnostics) -> Option<f64> {
+    let key = field.key;
+    let Some(v) = a.value(field, diags) else {
+        return (!a.has(field)).then_some(0.0);
     };
     if let Value::Quantity(q) = &v.value {
         if q.dim == Dim::ANGLE {
-            if q.value.abs() < 89.0f64.to_radians() {
+            if q.value.abs() < MAX_SLOPE_DEG.to_radians() {
                 return Some(q.value.tan());
             }
             diags.push(message::solid::slope_too_steep(

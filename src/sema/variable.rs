@@ -11,23 +11,17 @@
 use super::eval::Env;
 use super::extrude::{declared_offset, Source, Written};
 use super::fields::Fields;
-use super::model::MAX_LAYERS;
 use super::model::{
     Axis, Bead, HeightModel, Shape, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE,
 };
 use super::profile;
+use super::schema::slicing::{variable, SEGMENTS, VARIABLE};
 use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{Dim, Length, Speed};
+use crate::units::{Length, Speed};
 use std::num::NonZeroU32;
-
-/// Fields of `slicing variable { … }` (and its nested `segments` block).
-pub const FIELDS: &[&str] = &["layers", "scan", "offset"];
-
-/// The nested blocks of `slicing variable { … }`.
-pub const BLOCKS: &[&str] = &["segments"];
 
 /// `slicing variable { … }` as read: the whole block when every field is
 /// right, and its declared offset on its own (checked against the bead
@@ -55,51 +49,47 @@ pub fn read<'a>(
     let f = Fields::block(
         env,
         stmts,
-        FIELDS,
-        BLOCKS,
+        &VARIABLE,
         "variable slicing".into(),
         span,
         diags,
     );
-    let layers = match f.value("layers", None, diags) {
-        None if f.has("layers") => None,
+    let layers = match f.value(&variable::LAYERS, diags) {
+        None if f.has(&variable::LAYERS) => None,
         None => Some(None),
         Some(v) if v.value == Value::Symbol("auto".into()) => Some(None),
         Some(_) => f
-            .count("layers", 1, MAX_LAYERS, None, diags)
+            .count(&variable::LAYERS, diags)
             .map(|(n, sp)| NonZeroU32::new(n as u32).map(|n| (n, sp))),
     };
-    let scan = match f.symbol("scan", &["auto", "x", "y"], None, diags) {
-        Some((s, _)) if s == "x" => Some(Some(Axis::X)),
-        Some((s, _)) if s == "y" => Some(Some(Axis::Y)),
-        Some(_) => Some(None),
-        None if f.has("scan") => None,
-        None => Some(None),
-    };
-    let offset = match f.value("offset", None, diags) {
-        None if f.has("offset") => None,
+    let scan = f.word_or_default(&variable::SCAN, diags).map(|s| match s {
+        "x" => Some(Axis::X),
+        "y" => Some(Axis::Y),
+        _ => None,
+    });
+    let offset = match f.value(&variable::OFFSET, diags) {
+        None if f.has(&variable::OFFSET) => None,
         None => Some(None),
         Some(v) if v.value == Value::Symbol("balanced".into()) => Some(None),
         Some(_) => f
-            .positive("offset", Dim::LENGTH, None, diags)
+            .quantity(&variable::OFFSET, diags)
             .map(|(d, sp)| Some((Length(d), sp))),
     };
-    let segments = match f.nested("segments") {
+    let segments = match f.nested(&variable::SEGMENTS) {
         Some((inner, at)) => {
             let s = Fields::block(
                 env,
                 inner,
-                &["tolerance", "min_length"],
-                &[],
+                &SEGMENTS,
                 "the `segments` block".into(),
                 at,
                 diags,
             );
-            let tolerance = s.positive("tolerance", Dim::LENGTH, None, diags);
-            let min_length = s.positive("min_length", Dim::LENGTH, None, diags);
+            let tolerance = s.quantity(&variable::TOLERANCE, diags);
+            let min_length = s.quantity(&variable::MIN_LENGTH, diags);
             match (
-                s.optional("tolerance", tolerance),
-                s.optional("min_length", min_length),
+                s.optional(&variable::TOLERANCE, tolerance),
+                s.optional(&variable::MIN_LENGTH, min_length),
             ) {
                 (Some(t), Some(m)) => Some((t, m)),
                 _ => None,

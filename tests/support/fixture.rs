@@ -7,7 +7,13 @@ use lmdc::ir::*;
 /// A robot as a cell would declare it.
 pub fn robot() -> Robot {
     Robot {
-        name: "kr60".into(),
+        common: MachineCommon {
+            name: "kr60".into(),
+            max_speed: 250.0,
+            clearance: 10.0,
+            cell: Cell::default(),
+            height_sensor: None,
+        },
         tool: FrameRef {
             index: 1,
             value: Some(Pose {
@@ -27,19 +33,21 @@ pub fn robot() -> Robot {
         laser_out: 5,
         power_out: 1,
         full_scale_power: 4000.0,
-        max_speed: 250.0,
         home: [0.0, -90.0, 90.0, 0.0, 0.0, 0.0],
         max_points_per_module: 5000,
-        clearance: 10.0,
-        cell: Cell::default(),
-        height_sensor: None,
     }
 }
 
 /// A LinuxCNC 5-axis A/C head.
 pub fn cnc5() -> Cnc {
     Cnc {
-        name: "mill5".into(),
+        common: MachineCommon {
+            name: "mill5".into(),
+            max_speed: 200.0,
+            clearance: 10.0,
+            cell: Cell::default(),
+            height_sensor: None,
+        },
         axes: 5,
         kinematics: Kinematics::HeadAc,
         dialect: Dialect {
@@ -66,10 +74,6 @@ pub fn cnc5() -> Cnc {
             rotary: [-3600.0, 3600.0],
         },
         placement: Placement::default(),
-        max_speed: 200.0,
-        clearance: 10.0,
-        cell: Cell::default(),
-        height_sensor: None,
     }
 }
 

@@ -1,0 +1,128 @@
+//! `bead NAME { width, height, speed, model }`: a bead model, and the three
+//! models it may be (`linear(…)`, `mass_balance(…)`, `measured(…)`).
+
+use super::Bound::{Any, Negative, Positive, PositiveUpTo};
+use super::DefaultValue::Described;
+use super::Kind::{Call, Quantity, Range};
+use super::Need::{Default, Required, RequiredUnless};
+use super::{Block, Field};
+use crate::units::Dim;
+
+/// `width = 6 mm`.
+pub static WIDTH: Field = Field::new(
+    "width",
+    Quantity(Dim::LENGTH, Positive),
+    Required("6 mm"),
+    "the bead's width",
+);
+
+/// `height = lo .. hi`.
+pub static HEIGHT: Field = Field::new(
+    "height",
+    Range(Dim::LENGTH),
+    Default(Described("the model's heights over `speed`")),
+    "the layer heights allowed, narrowing the model's",
+);
+
+/// `speed = lo .. hi`.
+pub static SPEED: Field = Field::new(
+    "speed",
+    Range(Dim::SPEED),
+    RequiredUnless("7 mm/s .. 10 mm/s", "the model is `measured(…)`"),
+    "the scan speeds the model is valid for",
+);
+
+/// `model = …`.
+pub static MODEL: Field = Field::new(
+    "model",
+    Call(&[&LINEAR, &MASS_BALANCE, &MEASURED]),
+    Required("mass_balance(feed = 45.9 g/min, efficiency = 0.3, density = 7.9 g/cm^3)"),
+    "how the bead's height follows the scan speed",
+);
+
+/// `bead NAME { … }`.
+pub static BEAD: Block = Block::new(
+    "bead",
+    "bead NAME { … }",
+    "a bead model: how high a track of it is at each scan speed",
+    &[&WIDTH, &HEIGHT, &SPEED, &MODEL],
+);
+
+/// The arguments of the models.
+pub mod model {
+    use super::*;
+
+    /// `linear(slope = …)`.
+    pub static SLOPE: Field = Field::new(
+        "slope",
+        Quantity(Dim::TIME, Negative),
+        Required("-0.135 mm / (1 mm/s)"),
+        "the height's change per speed, a length per speed (a time)",
+    );
+    /// `linear(intercept = …)`.
+    pub static INTERCEPT: Field = Field::new(
+        "intercept",
+        Quantity(Dim::LENGTH, Any),
+        Required("1.82 mm"),
+        "the height at zero speed",
+    );
+    /// `mass_balance(feed = …)`.
+    pub static FEED: Field = Field::new(
+        "feed",
+        Quantity(Dim::MASS_FLOW, Positive),
+        Required("45.9 g/min"),
+        "the powder feed the model was fitted at",
+    );
+    /// `mass_balance(efficiency = …)`.
+    pub static EFFICIENCY: Field = Field::new(
+        "efficiency",
+        Quantity(Dim::NONE, PositiveUpTo(1.0)),
+        Required("0.3"),
+        "the share of the powder the melt pool catches",
+    );
+    /// `mass_balance(density = …)`.
+    pub static DENSITY: Field = Field::new(
+        "density",
+        Quantity(Dim::DENSITY, Positive),
+        Required("7.9 g/cm^3"),
+        "the metal's density",
+    );
+    /// `measured(height = …)`.
+    pub static HEIGHT: Field = Field::new(
+        "height",
+        Quantity(Dim::LENGTH, Positive),
+        Required("0.7 mm"),
+        "the single track's measured height",
+    );
+    /// `measured(speed = …)`.
+    pub static SPEED: Field = Field::new(
+        "speed",
+        Quantity(Dim::SPEED, Positive),
+        Required("6 mm/s"),
+        "the speed it was laid at",
+    );
+}
+
+/// `linear(slope, intercept)`: seed 003's fitted map `H = slope·v + intercept`.
+pub static LINEAR: Block = Block::new(
+    "linear",
+    "linear(slope, intercept)",
+    "seed 003's fitted map `H = slope·v + intercept`",
+    &[&model::SLOPE, &model::INTERCEPT],
+);
+
+/// `mass_balance(feed, efficiency, density)`: the metal caught per length.
+pub static MASS_BALANCE: Block = Block::new(
+    "mass_balance",
+    "mass_balance(feed, efficiency, density)",
+    "the metal the melt pool catches per length, as a circular segment of the bead's width",
+    &[&model::FEED, &model::EFFICIENCY, &model::DENSITY],
+);
+
+/// `measured(height, speed)`: one track measured at one process point.
+pub static MEASURED: Block = Block::new(
+    "measured",
+    "measured(height, speed)",
+    "one track measured at one process point",
+    &[&model::HEIGHT, &model::SPEED],
+);

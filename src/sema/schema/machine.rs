@@ -1,0 +1,671 @@
+//! `machine NAME { kind = robot | cnc, … }`: a KUKA robot's and a CNC's
+//! fields, the CNC's `limits { … }`, and the `gas { … }` and `powder { … }`
+//! blocks and height sensor either kind takes. The fields both kinds share
+//! are one entry each, listed in both tables: the common part of a machine
+//! ([`crate::ir::MachineCommon`]).
+
+use super::Bound::{Any, Magnitude, Positive, ZeroUpTo};
+use super::DefaultValue::{
+    Count as DefaultCount, Described, Quantity as DefaultQuantity, Word as DefaultWord,
+};
+use super::Kind::{
+    self, Block as Nested, Call, Count, Either, Io, Lines, List, Quantity, Text, Word,
+};
+use super::Need::{Default, Optional, Required};
+use super::{Block, Field, Io as Signal, Len};
+use crate::target::gcode::PROFILES;
+use crate::units::Dim;
+
+/// Largest angle a robot axis or frame is declared with, deg.
+pub const MAX_ANGLE_DEG: f64 = 360.0;
+/// Largest frame offset, mm: beyond any cell.
+pub const MAX_FRAME_MM: f64 = 100_000.0;
+/// Longest delay of a height reading lmdc plans, s.
+pub const MAX_SENSOR_DELAY_S: f64 = 10.0;
+/// Longest gas or powder time, s: far beyond any cell's, short of a typo's.
+pub const MAX_CELL_TIME_S: f64 = 600.0;
+
+/// The machine's name, `machine NAME { … }`: not a field, but what a check
+/// points at when no field declares what it is about.
+pub static NAME: Field = Field::new(
+    "name",
+    Kind::Name("machine"),
+    Required("kr60"),
+    "the machine's name: `--machine NAME` selects it, its programs are named after it",
+);
+
+/// `kind = robot | cnc`.
+pub static KIND: Field = Field::new(
+    "kind",
+    Word(&["robot", "cnc"]),
+    Required("robot"),
+    "which controller the programs are for: a KUKA robot (KRL) or a CNC (G-code)",
+);
+
+/// The highest speed, either kind.
+pub static MAX_SPEED: Field = Field::new(
+    "max_speed",
+    Quantity(Dim::SPEED, Positive),
+    Required("250 mm/s"),
+    "the highest path speed, which rapid moves run at (a robot's within what KUKA's $VEL.CP takes)",
+);
+
+/// The back-off between paths, either kind.
+pub static CLEARANCE: Field = Field::new(
+    "clearance",
+    Quantity(Dim::LENGTH, Positive),
+    Default(DefaultQuantity(10.0)),
+    "how far the nozzle backs off along the normal between paths that do not join",
+);
+
+/// The height sensor's input, either kind.
+pub static HEIGHT_INPUT: Field = Field::new(
+    "height_input",
+    Io(Signal::AnalogIn),
+    Optional,
+    "the analog input a segment's mean layer height arrives on (a ring's height loop)",
+);
+
+/// The height at an input of 1.0.
+pub static HEIGHT_FULL_SCALE: Field = Field::new(
+    "height_full_scale",
+    Quantity(Dim::LENGTH, Positive),
+    Optional,
+    "the height at an input of 1.0; needed with `height_input`",
+);
+
+/// When a segment's mean is on the input.
+pub static HEIGHT_DELAY: Field = Field::new(
+    "height_delay",
+    Quantity(Dim::TIME, ZeroUpTo(MAX_SENSOR_DELAY_S)),
+    Default(DefaultQuantity(0.0)),
+    "how long after a segment's end its mean is on the input",
+);
+
+/// `gas { … }`, either kind.
+pub static GAS_BLOCK: Field = Field::new(
+    "gas",
+    Nested(&GAS),
+    Optional,
+    "the shielding gas valve the program opens and closes",
+);
+
+/// `powder { … }`, either kind.
+pub static POWDER_BLOCK: Field = Field::new(
+    "powder",
+    Nested(&POWDER),
+    Optional,
+    "the powder feeder the program starts and stops",
+);
+
+/// A robot's frame: an index, or `frame(…)` with a value.
+const FRAME_REF: Kind = Either(&[Count(1, 32), Call(&[&FRAME])]);
+
+/// `tool = …`.
+pub static TOOL: Field = Field::new(
+    "tool",
+    FRAME_REF,
+    Default(DefaultCount(1)),
+    "the tool (TCP at the laser focus): `TOOL_DATA[n]`, or `frame(n, …)` to set it",
+);
+
+/// `base = …`.
+pub static BASE: Field = Field::new(
+    "base",
+    FRAME_REF,
+    Default(DefaultCount(1)),
+    "the base the part is programmed in: `BASE_DATA[n]`, or `frame(n, …)` to set it",
+);
+
+/// `beam = z`.
+pub static BEAM: Field = Field::new(
+    "beam",
+    Word(&["x", "-x", "y", "-y", "z", "-z"]),
+    Default(DefaultWord("z")),
+    "the tool axis the beam leaves along",
+);
+
+/// `laser = 1`.
+pub static LASER: Field = Field::new(
+    "laser",
+    Count(1, 4096),
+    Required("1"),
+    "the digital output `$OUT[n]` that switches the laser",
+);
+
+/// `power_output = 1`.
+pub static POWER_OUTPUT: Field = Field::new(
+    "power_output",
+    Count(1, 32),
+    Required("1"),
+    "the analog output `$ANOUT[n]` that sets the power",
+);
+
+/// `full_scale = 4000 W`.
+pub static FULL_SCALE: Field = Field::new(
+    "full_scale",
+    Quantity(Dim::POWER, Positive),
+    Required("4000 W"),
+    "the power at `$ANOUT = 1.0`",
+);
+
+/// `home = […]`.
+pub static HOME: Field = Field::new(
+    "home",
+    List(
+        &Quantity(
+            Dim::ANGLE,
+            Magnitude(crate::sema::schema::deg(MAX_ANGLE_DEG)),
+        ),
+        Len::Exactly(6),
+    ),
+    Default(Described("`[0 deg, -90 deg, 90 deg, 0 deg, 0 deg, 0 deg]`")),
+    "the axis angles of the home position, moved to (PTP) at the start and the end",
+);
+
+/// `module_lines = 2000`.
+pub static MODULE_LINES: Field = Field::new(
+    "module_lines",
+    Count(10, 100_000),
+    Default(DefaultCount(2000)),
+    "the most motion lines in one sub-program module",
+);
+
+/// A KUKA robot (KRL).
+pub static ROBOT: Block = Block::new(
+    "robot",
+    "machine NAME { kind = robot … }",
+    "a KUKA robot, programmed in KRL",
+    &[
+        &KIND,
+        &TOOL,
+        &BASE,
+        &BEAM,
+        &LASER,
+        &POWER_OUTPUT,
+        &FULL_SCALE,
+        &MAX_SPEED,
+        &HOME,
+        &CLEARANCE,
+        &MODULE_LINES,
+        &HEIGHT_INPUT,
+        &HEIGHT_FULL_SCALE,
+        &HEIGHT_DELAY,
+        &GAS_BLOCK,
+        &POWDER_BLOCK,
+    ],
+);
+
+/// `frame(index, x, y, z, a, b, c)`: a robot's tool or base with its value.
+pub static FRAME: Block = Block::new(
+    "frame",
+    "frame(index, x, y, z, a, b, c)",
+    "a robot's tool or base, with the value the program sets",
+    &[
+        &frame::INDEX,
+        &frame::X,
+        &frame::Y,
+        &frame::Z,
+        &frame::A,
+        &frame::B,
+        &frame::C,
+    ],
+)
+.positional(1);
+
+/// The arguments of `frame(…)`.
+pub mod frame {
+    use super::super::Bound::Magnitude;
+    use super::super::DefaultValue::Quantity as DefaultQuantity;
+    use super::super::Field;
+    use super::super::Kind::{Count, Quantity};
+    use super::super::Need::{Default, Required};
+    use super::{MAX_ANGLE_DEG, MAX_FRAME_MM};
+    use crate::units::Dim;
+
+    const OFFSET: super::Kind = Quantity(Dim::LENGTH, Magnitude(MAX_FRAME_MM));
+    const TURN: super::Kind = Quantity(
+        Dim::ANGLE,
+        Magnitude(crate::sema::schema::deg(MAX_ANGLE_DEG)),
+    );
+
+    /// `index`.
+    pub static INDEX: Field = Field::new(
+        "index",
+        Count(1, 32),
+        Required("1"),
+        "the frame's number: `TOOL_DATA[n]`, `BASE_DATA[n]`",
+    );
+    /// `x`.
+    pub static X: Field = Field::new(
+        "x",
+        OFFSET,
+        Default(DefaultQuantity(0.0)),
+        "the offset along X",
+    );
+    /// `y`.
+    pub static Y: Field = Field::new(
+        "y",
+        OFFSET,
+        Default(DefaultQuantity(0.0)),
+        "the offset along Y",
+    );
+    /// `z`.
+    pub static Z: Field = Field::new(
+        "z",
+        OFFSET,
+        Default(DefaultQuantity(0.0)),
+        "the offset along Z",
+    );
+    /// `a`.
+    pub static A: Field = Field::new(
+        "a",
+        TURN,
+        Default(DefaultQuantity(0.0)),
+        "KUKA A: the turn about Z",
+    );
+    /// `b`.
+    pub static B: Field = Field::new(
+        "b",
+        TURN,
+        Default(DefaultQuantity(0.0)),
+        "KUKA B: then about the new Y",
+    );
+    /// `c`.
+    pub static C: Field = Field::new(
+        "c",
+        TURN,
+        Default(DefaultQuantity(0.0)),
+        "KUKA C: then about the new X",
+    );
+}
+
+/// The dialect's value of a line or number.
+const DIALECTS: super::Need = Default(Described("the dialect's"));
+
+/// `axes = 3 | 5`.
+pub static AXES: Field = Field::new(
+    "axes",
+    Count(3, 5),
+    Required("5"),
+    "3 (X Y Z) or 5 (a tilting head); 4 is refused",
+);
+
+/// `kinematics = …`.
+pub static KINEMATICS: Field = Field::new(
+    "kinematics",
+    Word(&["xyz", "head_ac", "head_bc"]),
+    Default(Described("`xyz` for 3 axes, `head_ac` for 5")),
+    "how the axes move the nozzle: X Y Z only, or a head tilting about A or B, then C",
+);
+
+/// `dialect = linuxcnc`.
+pub static DIALECT: Field = Field::new(
+    "dialect",
+    Word(PROFILES),
+    Default(DefaultWord("linuxcnc")),
+    "the control's G-code dialect",
+);
+
+/// `laser_on = "M3"`.
+pub static LASER_ON: Field = Field::new(
+    "laser_on",
+    Text,
+    DIALECTS,
+    "the line that switches the laser on",
+);
+/// `laser_off = "M5"`.
+pub static LASER_OFF: Field = Field::new(
+    "laser_off",
+    Text,
+    DIALECTS,
+    "the line that switches the laser off",
+);
+
+/// `s_per_watt = 1`.
+pub static S_PER_WATT: Field = Field::new(
+    "s_per_watt",
+    Quantity(Dim::NONE, Positive),
+    DIALECTS,
+    "how many S units one watt is (1 when S is programmed in W)",
+);
+
+/// `s_decimals = 0`.
+pub static S_DECIMALS: Field = Field::new(
+    "s_decimals",
+    Count(0, 4),
+    DIALECTS,
+    "the decimals of the S word",
+);
+
+/// `preamble = […]`.
+pub static PREAMBLE: Field = Field::new(
+    "preamble",
+    Lines,
+    DIALECTS,
+    "the lines at the start of the program, after the header comment",
+);
+
+/// `postamble = […]`.
+pub static POSTAMBLE: Field = Field::new(
+    "postamble",
+    Lines,
+    DIALECTS,
+    "the lines at the end of the program; they must end it (`M2` or `M30`)",
+);
+
+/// `tcp_on = "TRAORI"`.
+pub static TCP_ON: Field = Field::new(
+    "tcp_on",
+    Text,
+    DIALECTS,
+    "the line that switches tool-tip control on for 5-axis moves",
+);
+
+/// `tcp_off = "TRAFOOF"`.
+pub static TCP_OFF: Field = Field::new("tcp_off", Text, DIALECTS, "the line that switches it off");
+
+/// `dwell = "G4 P{s}"`.
+pub static DWELL: Field = Field::new(
+    "dwell",
+    Text,
+    DIALECTS,
+    "a dwell: the line, with `{s}` where the seconds go",
+);
+
+/// `work_offset = 1`.
+pub static WORK_OFFSET: Field = Field::new(
+    "work_offset",
+    Count(1, 6),
+    Optional,
+    "the work offset the program selects, 1 (G54) to 6 (G59); none: the control's active one",
+);
+
+/// `origin = [x, y, z]`.
+pub static ORIGIN: Field = Field::new(
+    "origin",
+    List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3)),
+    Default(Described("`[0 mm, 0 mm, 0 mm]`")),
+    "where the part's origin is in machine coordinates (the work offset's value)",
+);
+
+/// `feed_units = mm_per_min`.
+pub static FEED_UNITS: Field = Field::new(
+    "feed_units",
+    Word(&["mm_per_min", "mm_per_s"]),
+    DIALECTS,
+    "what the F word measures",
+);
+
+/// `output_on = "…"`.
+pub static OUTPUT_ON: Field = Field::new(
+    "output_on",
+    Text,
+    Default(Described("LinuxCNC's `M64 P{n}`, else none")),
+    "the line that switches digital output `{n}` on (gas, powder)",
+);
+
+/// `output_off = "…"`.
+pub static OUTPUT_OFF: Field = Field::new(
+    "output_off",
+    Text,
+    Default(Described("LinuxCNC's `M65 P{n}`, else none")),
+    "the line that switches digital output `{n}` off",
+);
+
+/// `analog_output = "…"`.
+pub static ANALOG_OUTPUT: Field = Field::new(
+    "analog_output",
+    Text,
+    Default(Described("LinuxCNC's `M68 E{n} Q{v}`, else none")),
+    "the line that sets analog output `{n}` to `{v}`, a fraction of its full scale (the powder rate)",
+);
+
+/// `limits { … }`.
+pub static LIMITS_BLOCK: Field = Field::new(
+    "limits",
+    Nested(&LIMITS),
+    Default(Described("±1000 mm, the tilt ±110°, C ±360°")),
+    "the axes' travel in machine coordinates",
+);
+
+/// A CNC (G-code).
+pub static CNC: Block = Block::new(
+    "cnc",
+    "machine NAME { kind = cnc … }",
+    "a CNC, programmed in G-code",
+    &[
+        &KIND,
+        &AXES,
+        &KINEMATICS,
+        &DIALECT,
+        &LASER_ON,
+        &LASER_OFF,
+        &S_PER_WATT,
+        &S_DECIMALS,
+        &PREAMBLE,
+        &POSTAMBLE,
+        &TCP_ON,
+        &TCP_OFF,
+        &DWELL,
+        &WORK_OFFSET,
+        &ORIGIN,
+        &FEED_UNITS,
+        &MAX_SPEED,
+        &CLEARANCE,
+        &OUTPUT_ON,
+        &OUTPUT_OFF,
+        &ANALOG_OUTPUT,
+        &HEIGHT_INPUT,
+        &HEIGHT_FULL_SCALE,
+        &HEIGHT_DELAY,
+        &LIMITS_BLOCK,
+        &GAS_BLOCK,
+        &POWDER_BLOCK,
+    ],
+)
+.with_examples(&[(&MAX_SPEED, "100 mm/s")]);
+
+/// A machine whose `kind` is missing or wrong: what either kind takes, so a
+/// misspelt field shows in the same run as the kind.
+pub static MACHINE: Block = Block::new(
+    "machine",
+    "machine NAME { kind = robot | cnc … }",
+    "a machine whose kind is missing or wrong",
+    &[
+        &KIND,
+        &TOOL,
+        &BASE,
+        &BEAM,
+        &LASER,
+        &POWER_OUTPUT,
+        &FULL_SCALE,
+        &MAX_SPEED,
+        &HOME,
+        &CLEARANCE,
+        &MODULE_LINES,
+        &HEIGHT_INPUT,
+        &HEIGHT_FULL_SCALE,
+        &HEIGHT_DELAY,
+        &AXES,
+        &KINEMATICS,
+        &DIALECT,
+        &LASER_ON,
+        &LASER_OFF,
+        &S_PER_WATT,
+        &S_DECIMALS,
+        &PREAMBLE,
+        &POSTAMBLE,
+        &TCP_ON,
+        &TCP_OFF,
+        &DWELL,
+        &WORK_OFFSET,
+        &ORIGIN,
+        &FEED_UNITS,
+        &OUTPUT_ON,
+        &OUTPUT_OFF,
+        &ANALOG_OUTPUT,
+        &LIMITS_BLOCK,
+        &GAS_BLOCK,
+        &POWDER_BLOCK,
+    ],
+);
+
+/// The fields of `limits { … }`.
+pub mod limits {
+    use super::super::Kind::Range;
+    use super::super::Need::Default;
+    use super::super::{DefaultValue::Described, Field};
+    use crate::units::Dim;
+
+    /// `x = lo .. hi`.
+    pub static X: Field = Field::new(
+        "x",
+        Range(Dim::LENGTH),
+        Default(Described("`-1000 mm .. 1000 mm`")),
+        "the X axis' travel",
+    );
+    /// `y = lo .. hi`.
+    pub static Y: Field = Field::new(
+        "y",
+        Range(Dim::LENGTH),
+        Default(Described("`-1000 mm .. 1000 mm`")),
+        "the Y axis' travel",
+    );
+    /// `z = lo .. hi`.
+    pub static Z: Field = Field::new(
+        "z",
+        Range(Dim::LENGTH),
+        Default(Described("`-1000 mm .. 1000 mm`")),
+        "the Z axis' travel",
+    );
+    /// `a = lo .. hi`.
+    pub static A: Field = Field::new(
+        "a",
+        Range(Dim::ANGLE),
+        Default(Described("`-110 deg .. 110 deg`")),
+        "the tilt axis of `head_ac`",
+    );
+    /// `b = lo .. hi`.
+    pub static B: Field = Field::new(
+        "b",
+        Range(Dim::ANGLE),
+        Default(Described("`-110 deg .. 110 deg`")),
+        "the tilt axis of `head_bc`",
+    );
+    /// `c = lo .. hi`.
+    pub static C: Field = Field::new(
+        "c",
+        Range(Dim::ANGLE),
+        Default(Described("`-360 deg .. 360 deg`")),
+        "the rotary axis C",
+    );
+}
+
+/// A CNC's `limits { … }`.
+pub static LIMITS: Block = Block::new(
+    "limits",
+    "limits { … }",
+    "a CNC's travel limits, in machine coordinates",
+    &[
+        &limits::X,
+        &limits::Y,
+        &limits::Z,
+        &limits::A,
+        &limits::B,
+        &limits::C,
+    ],
+);
+
+/// The fields of `gas { … }`.
+pub mod gas {
+    use super::super::Bound::ZeroUpTo;
+    use super::super::DefaultValue::Quantity as DefaultQuantity;
+    use super::super::Kind::{Io, Quantity};
+    use super::super::Need::{Default, Required};
+    use super::super::{Field, Io as Signal};
+    use super::MAX_CELL_TIME_S;
+    use crate::units::Dim;
+
+    /// `output = 2`.
+    pub static OUTPUT: Field = Field::new(
+        "output",
+        Io(Signal::DigitalOut),
+        Required("2"),
+        "the digital output that opens the valve",
+    );
+    /// `pre_flow = 2 s`.
+    pub static PRE_FLOW: Field = Field::new(
+        "pre_flow",
+        Quantity(Dim::TIME, ZeroUpTo(MAX_CELL_TIME_S)),
+        Default(DefaultQuantity(0.0)),
+        "how long the gas flows before the laser first starts",
+    );
+    /// `post_flow = 5 s`.
+    pub static POST_FLOW: Field = Field::new(
+        "post_flow",
+        Quantity(Dim::TIME, ZeroUpTo(MAX_CELL_TIME_S)),
+        Default(DefaultQuantity(0.0)),
+        "how long it flows on after the laser last stops",
+    );
+}
+
+/// `gas { … }`.
+pub static GAS: Block = Block::new(
+    "gas",
+    "gas { … }",
+    "the shielding gas valve, on a digital output",
+    &[&gas::OUTPUT, &gas::PRE_FLOW, &gas::POST_FLOW],
+);
+
+/// The fields of `powder { … }`.
+pub mod powder {
+    use super::super::Bound::{Positive, ZeroUpTo};
+    use super::super::Kind::{Io, Quantity};
+    use super::super::Need::{Optional, Required};
+    use super::super::{Field, Io as Signal};
+    use super::MAX_CELL_TIME_S;
+    use crate::units::Dim;
+
+    /// `output = 3`.
+    pub static OUTPUT: Field = Field::new(
+        "output",
+        Io(Signal::DigitalOut),
+        Required("3"),
+        "the digital output that starts the feeder",
+    );
+    /// `arrival = 2.5 s`.
+    pub static ARRIVAL: Field = Field::new(
+        "arrival",
+        Quantity(Dim::TIME, ZeroUpTo(MAX_CELL_TIME_S)),
+        Required("2.5 s"),
+        "the time from starting the feeder (or changing its rate) until powder leaves the nozzle",
+    );
+    /// `rate_output = 2`.
+    pub static RATE_OUTPUT: Field = Field::new(
+        "rate_output",
+        Io(Signal::AnalogOut),
+        Optional,
+        "the analog output that sets the feed rate (with `full_scale`)",
+    );
+    /// `full_scale = 60 g/min`.
+    pub static FULL_SCALE: Field = Field::new(
+        "full_scale",
+        Quantity(Dim::MASS_FLOW, Positive),
+        Optional,
+        "the feed rate at 1.0 on the rate output (with `rate_output`)",
+    );
+}
+
+/// `powder { … }`.
+pub static POWDER: Block = Block::new(
+    "powder",
+    "powder { … }",
+    "the powder feeder, on a digital output, its rate on an analog one where the cell has it",
+    &[
+        &powder::OUTPUT,
+        &powder::ARRIVAL,
+        &powder::RATE_OUTPUT,
+        &powder::FULL_SCALE,
+    ],
+);
