@@ -148,7 +148,11 @@ impl Report {
 
     /// The report of `machine`'s plan against `design`; `density` (g/cm³)
     /// replaces or supplies the bead model's.
-    pub fn from_parts(machine: VerifiedMachine<'_>, design: Design, density: Option<f64>) -> Report {
+    pub fn from_parts(
+        machine: VerifiedMachine<'_>,
+        design: Design,
+        density: Option<f64>,
+    ) -> Report {
         let program = machine.ir();
         let mut r = Self::walk(machine);
         r.bead = program.bead.map(|b| BeadInfo {
@@ -165,7 +169,11 @@ impl Report {
             _ => None,
         });
         r.density_g_cm3 = density.filter(|d| d.is_finite() && *d > 0.0).or(declared);
-        if let Some(rho) = r.density_g_cm3.map(|d| d / 1000.0).filter(|_| r.bead.is_some()) {
+        if let Some(rho) = r
+            .density_g_cm3
+            .map(|d| d / 1000.0)
+            .filter(|_| r.bead.is_some())
+        {
             let powder = r.total.powder_g;
             let share = |m: f64| (powder > 0.0).then(|| m / powder);
             let bead = rho * r.total.bead_volume_mm3;
@@ -198,7 +206,10 @@ impl Report {
             .iter()
             .enumerate()
             .map(|(i, c)| {
-                let l = laid.as_ref().and_then(|v| v.get(i).copied()).unwrap_or_default();
+                let l = laid
+                    .as_ref()
+                    .and_then(|v| v.get(i).copied())
+                    .unwrap_or_default();
                 Tally {
                     costs: *c,
                     bead_volume_mm3: l.bead,

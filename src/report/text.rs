@@ -160,8 +160,8 @@ fn metal(out: &mut String, r: &Report) {
 /// What the bead lays against what the layers stack: one statement, with
 /// the worst layer and the errors added up, against the tolerances.
 fn deposit(out: &mut String, t: &super::Tally, d: &super::DepositCheck) {
-    let within = (d.worst_share - 1.0).abs() <= d.rise_tolerance
-        && d.worst_drift_mm.abs() <= d.max_drift_mm;
+    let within =
+        (d.worst_share - 1.0).abs() <= d.rise_tolerance && d.worst_drift_mm.abs() <= d.max_drift_mm;
     let _ = writeln!(
         out,
         "stacked     the layers stack {} (each deposit's layer height × the strip it fills): the bead model lays {} of it; layer {} the farthest off at {}, the layers' errors adding up to {} mm at most ({})",
