@@ -86,10 +86,8 @@ pub fn slice(
             let Ok(lines) = layout::lay(&fp, scan, &sampled, c, bead, slicing, ex) else {
                 return false;
             };
-            match tracks::plan(&fp, scan, &lines, &mut top, spec, pitch) {
-                Ok(p) => deposit::unfillable(&p.tracks, c, bead).is_none(),
-                Err(_) => false,
-            }
+            tracks::plan(&fp, scan, &lines, &mut top, spec, pitch)
+                .is_ok_and(|p| deposit::unfillable(&p.tracks, c, bead).is_none())
         };
         let probe = count::Probe {
             fp: &fp,
@@ -106,18 +104,7 @@ pub fn slice(
                 tracks::Problem::Top(b, more) => b.report(ex, more),
                 tracks::Problem::Invalid(e) => internal(e.to_string()),
             })?;
-        if !planned.failures.is_empty() {
-            return Err(too_short::report(
-                &planned.failures,
-                planned.tracks.len() + planned.failures.len(),
-                scan,
-                bead,
-                slicing,
-                ex,
-                spec.min_length,
-            )
-            .into());
-        }
+        failures(&planned, scan, bead, slicing, ex, spec)?;
         let Some(actual) = planned.range else {
             return Err(fp.too_narrow(ex, scan).into());
         };
@@ -143,34 +130,13 @@ pub fn slice(
                 None => break,
             }
         }
-        let mut warnings = Diagnostics::new();
-        if let Some(d) = layout::stretch_warning(&lines, slicing, ex) {
-            warnings.push(d);
-        }
-        short_tracks(&planned.tracks, w, slicing, &mut warnings);
-        let per_layer: usize = planned.tracks.iter().map(|t| t.t.len()).sum();
-        if per_layer.saturating_mul(n.get() as usize) > MAX_TOTAL_POINTS {
-            return Err(message::top::too_many_points(
-                n.get(),
-                per_layer,
-                MAX_TOTAL_POINTS,
-                slicing.span,
-            )
-            .into());
-        }
-        let process = emit::Process::of(model, bead);
-        // Each track's speeds raise the layer by its height over the strip
-        // it fills.
-        let maps = planned
-            .tracks
-            .iter()
-            .map(|t| BeadMap::new(bead, Some(Length(t.pitch))))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| internal(e.to_string()))?;
-        let layers = (0..n.get())
-            .map(|i| emit::layer(model, &maps, &process, &planned.tracks, scan, i, n))
-            .collect();
-        return Ok((layers, warnings));
+        let tracks = Planned {
+            lines: &lines,
+            tracks: &planned.tracks,
+            scan,
+            n,
+        };
+        return finish(model, bead, ex, slicing, &tracks);
     }
     if let Some((miss, n)) = missed {
         return Err(deposit::report(&miss, n, bead, slicing, ex).into());
@@ -178,6 +144,78 @@ pub fn slice(
     Err(internal(
         "the top's range over the tracks did not settle".into(),
     ))
+}
+
+/// The tracks whose height tolerance needs segments too short, as the error.
+fn failures(
+    planned: &tracks::Tracks,
+    scan: Axis,
+    bead: &Bead,
+    slicing: &VariableSlicing,
+    ex: &TopExtrusion,
+    spec: SegmentSpec,
+) -> Result<(), Diagnostics> {
+    if planned.failures.is_empty() {
+        return Ok(());
+    }
+    Err(too_short::report(
+        &planned.failures,
+        planned.tracks.len() + planned.failures.len(),
+        scan,
+        bead,
+        slicing,
+        ex,
+        spec.min_length,
+    )
+    .into())
+}
+
+/// A count's tracks, laid and planned.
+struct Planned<'a> {
+    lines: &'a layout::Layout,
+    tracks: &'a [tracks::Track],
+    scan: Axis,
+    n: NonZeroU32,
+}
+
+/// The layers of tracks that can all be laid, with the warnings they earn
+/// (step 5).
+fn finish(
+    model: &Model,
+    bead: &Bead,
+    ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+    p: &Planned<'_>,
+) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    let n = p.n;
+    let mut warnings = Diagnostics::new();
+    if let Some(d) = layout::stretch_warning(p.lines, slicing, ex) {
+        warnings.push(d);
+    }
+    short_tracks(p.tracks, bead.width.0, slicing, &mut warnings);
+    let per_layer: usize = p.tracks.iter().map(|t| t.t.len()).sum();
+    if per_layer.saturating_mul(n.get() as usize) > MAX_TOTAL_POINTS {
+        return Err(message::top::too_many_points(
+            n.get(),
+            per_layer,
+            MAX_TOTAL_POINTS,
+            slicing.span,
+        )
+        .into());
+    }
+    let process = emit::Process::of(model, bead);
+    // Each track's speeds raise the layer by its height over the strip it
+    // fills.
+    let maps = p
+        .tracks
+        .iter()
+        .map(|t| BeadMap::new(bead, Some(Length(t.pitch))))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| internal(e.to_string()))?;
+    let layers = (0..n.get())
+        .map(|i| emit::layer(model, &maps, &process, p.tracks, p.scan, i, n))
+        .collect();
+    Ok((layers, warnings))
 }
 
 /// What the layer count is chosen from (steps 1–2): the scan axis, the top
