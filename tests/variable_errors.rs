@@ -353,6 +353,35 @@ fn each_fix_of_no_layer_count_works() {
 }
 
 #[test]
+fn a_fix_that_needs_another_declared_count_says_which() {
+    // With `layers = 24` declared no `to` or `from` fits 24 layers: the
+    // help names the count to declare with each, and both build.
+    let src = edit(
+        &source("examples/errors/no_layer_count.lmd"),
+        "layers = auto",
+        "layers = 24",
+    );
+    let help = help(&src, "lmd::no-layer-count");
+    let top = "top = edges(along = x, from = 10 mm, to = 25 mm)";
+    for (name, from, to) in [("to", "10 mm", "{} mm"), ("from", "{} mm", "25 mm")] {
+        let fix = values(&help, &format!("`{name} = "), "`); or")[0];
+        let value = fix.split(" mm`").next().unwrap();
+        let n = fix.split("`layers = ").nth(1).expect(fix);
+        let edges = format!(
+            "top = edges(along = x, from = {}, to = {})",
+            from.replace("{}", value),
+            to.replace("{}", value)
+        );
+        let fixed = edit(
+            &edit(&src, top, &edges),
+            "layers = 24",
+            &format!("layers = {n}"),
+        );
+        assert_eq!(layers_of(&fixed).to_string(), n, "{edges}");
+    }
+}
+
+#[test]
 fn each_fix_of_a_plane_top_works() {
     // The same wall with its top written as a plane: the height and the
     // slope that fit, each builds with the count named.

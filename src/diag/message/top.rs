@@ -105,14 +105,22 @@ pub enum TopFix {
 }
 
 impl TopFix {
-    fn words(&self) -> String {
+    /// The fix in words; `declared` is the file's layer count, if declared.
+    fn words(&self, declared: Option<u32>) -> String {
+        let count = |n: u32| match declared {
+            Some(d) if d != n => format!("with `layers = {n}`"),
+            _ => format!("{n} layers"),
+        };
         match *self {
             TopFix::Edge { to, value, layers } => {
                 let (set, kept) = if to { ("to", "from") } else { ("from", "to") };
-                format!("`{set} = {value} mm` (keeping `{kept}`: {layers} layers)")
+                format!("`{set} = {value} mm` (keeping `{kept}`: {})", count(layers))
             }
             TopFix::Height { value, layers } => {
-                format!("`height = {value} mm` (keeping the slopes: {layers} layers)")
+                format!(
+                    "`height = {value} mm` (keeping the slopes: {})",
+                    count(layers)
+                )
             }
             TopFix::Slope {
                 axis,
@@ -120,7 +128,10 @@ impl TopFix {
                 layers,
             } => {
                 let set = if axis == 0 { "slope_x" } else { "slope_y" };
-                format!("`{set} = {percent} %` (keeping the rest: {layers} layers)")
+                format!(
+                    "`{set} = {percent} %` (keeping the rest: {})",
+                    count(layers)
+                )
             }
             TopFix::High { at_most, layers } => format!(
                 "a top at most {at_most} mm high where the tracks run highest ({layers} layers)"
@@ -154,13 +165,15 @@ pub struct CountBead<'a> {
 
 /// No whole number of layers lays every point of the top (lowest at
 /// `low_at`, highest at `high_at`, both where the tracks run) within the
-/// bead's heights; `fixes` are the changes of the top that would work.
+/// bead's heights; `fixes` are the changes of the top that would work,
+/// `declared` the file's layer count if it declares one.
 pub fn no_count(
     e: &NoLayerCount,
     low_at: [f64; 2],
     high_at: [f64; 2],
     fixes: &[TopFix],
     bead: &CountBead,
+    declared: Option<u32>,
     top: Span,
 ) -> Diagnostic {
     let (lo, hi) = (e.top.low(), e.top.high());
@@ -189,16 +202,21 @@ pub fn no_count(
         Some(v) => format!(" (speeds {dir} {}, if the model holds that far)", Speed(v)),
         None => String::new(),
     };
-    let mut fixes: Vec<String> = fixes.iter().map(TopFix::words).collect();
+    let mut fixes: Vec<String> = fixes.iter().map(|f| f.words(declared)).collect();
+    // The bead's fixes are for `layers = auto`'s count.
+    let auto = match declared {
+        Some(_) => " (with `layers = auto`)",
+        None => "",
+    };
     if let Some(low) = bead.low {
         fixes.push(format!(
-            "a bead that lays down to {low} mm{}",
+            "a bead that lays down to {low} mm{}{auto}",
             speed_note(bead.speed_for_low, "up to")
         ));
     }
     if let Some(high) = bead.high {
         fixes.push(format!(
-            "one that lays up to {high} mm{}",
+            "one that lays up to {high} mm{}{auto}",
             speed_note(bead.speed_for_high, "down to")
         ));
     }

@@ -160,7 +160,16 @@ fn no_count(
         speed_for_low: speed(low, true),
         speed_for_high: speed(high, false),
     };
-    message::top::no_count(e, top.low_at, top.high_at, &fixes, &cb, ex.top_span)
+    let declared = slicing.layers.map(|l| l.0.get());
+    message::top::no_count(
+        e,
+        top.low_at,
+        top.high_at,
+        &fixes,
+        &cb,
+        declared,
+        ex.top_span,
+    )
 }
 
 /// The layer count `layer_range` gives for `top` over `beads` within a
@@ -170,11 +179,12 @@ fn fits(top: HeightRange, beads: HeightRange, slicing: &VariableSlicing) -> Opti
 }
 
 /// The count a range of counts gives: the declared one if it holds it, else
-/// the fewest (what `layers = auto` takes).
+/// the fewest (what `layers = auto` takes; the help then names the count to
+/// declare).
 fn counted(range: LayerRange, slicing: &VariableSlicing) -> Option<u32> {
     match slicing.layers {
-        Some((n, _)) => range.contains(n).then_some(n.get()),
-        None => Some(range.fewest().get()),
+        Some((n, _)) if range.contains(n) => Some(n.get()),
+        _ => Some(range.fewest().get()),
     }
 }
 
@@ -343,17 +353,26 @@ fn sugar_fix(
         })
         .collect();
     let (lo, hi) = (beads.low().0, beads.high().0);
-    let declared = slicing.layers.map(|l| l.0.get());
-    let mut best: Option<(f64, f64, [f64; 2])> = None;
-    for n in declared.map_or(1..=MAX_LAYERS, |n| n..=n) {
-        let Some([l, r]) = interval(&corners, n as f64 * lo, n as f64 * hi, param.least()) else {
-            continue;
-        };
-        let p = p0.clamp(l, r);
-        if best.is_none_or(|b| (p - p0).abs() < b.0) {
-            best = Some(((p - p0).abs(), p, [l, r]));
+    // The value nearest the file's over the counts `ns`.
+    let nearest = |ns: std::ops::RangeInclusive<u32>| {
+        let mut best: Option<(f64, f64, [f64; 2])> = None;
+        for n in ns {
+            let (lo, hi) = (n as f64 * lo, n as f64 * hi);
+            let Some([l, r]) = interval(&corners, lo, hi, param.least()) else {
+                continue;
+            };
+            let p = p0.clamp(l, r);
+            if best.is_none_or(|b| (p - p0).abs() < b.0) {
+                best = Some(((p - p0).abs(), p, [l, r]));
+            }
         }
-    }
+        best
+    };
+    // The declared count if a value fits it, else any count.
+    let declared = slicing.layers.map(|l| l.0.get());
+    let best = declared
+        .and_then(|n| nearest(n..=n))
+        .or_else(|| nearest(1..=MAX_LAYERS));
     let (_, p, [l, r]) = best?;
     let scale = param.scale();
     candidates(p * scale, [l * scale, r * scale], 1).find_map(|d| {
