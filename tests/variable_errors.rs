@@ -113,31 +113,77 @@ fn variable_layers_need_a_bead_map_and_no_styles() {
     );
 }
 
+/// The help of the first error with `code`.
+fn help(src: &str, code: &str) -> String {
+    let c = compile(src, &mut ());
+    let d = c.diagnostics.iter().find(|d| d.code == code);
+    let d = d.unwrap_or_else(|| panic!("no {code} in {:#?}", c.diagnostics));
+    d.help.clone().unwrap_or_default()
+}
+
+/// Every number that follows `before` in `text` up to `after`.
+fn values<'t>(text: &'t str, before: &str, after: &str) -> Vec<&'t str> {
+    // The help is wrapped only when drawn: the text itself is one line.
+    text.split(before)
+        .skip(1)
+        .filter_map(|r| r.split(after).next())
+        .collect()
+}
+
+/// The layer count `src` compiles to, or its diagnostics.
+fn layers_of(src: &str) -> usize {
+    let c = compile(src, &mut ());
+    match &c.program {
+        Some(p) => p.ir().layers.len(),
+        None => panic!("does not compile: {:#?}", c.diagnostics),
+    }
+}
+
 #[test]
 fn a_declared_layer_count_outside_the_range_names_the_range() {
-    let e = errors(&edit(&source(WALL), "layers = auto", "layers = 40"));
+    let src = edit(&source(WALL), "layers = auto", "layers = 30");
+    let e = errors(&src);
     assert!(
         has(
             &e,
             "lmd::layer-height",
-            "40 layers lay 0.5048 mm .. 0.8952 mm"
+            "30 layers lay 0.6731 mm .. 1.194 mm"
         ),
         "{e:#?}"
     );
-    let c = compile(
-        &edit(&source(WALL), "layers = auto", "layers = 40"),
-        &mut (),
-    );
-    let help = c
-        .diagnostics
-        .iter()
-        .next()
-        .and_then(|d| d.help.clone())
-        .unwrap_or_default();
-    // ⌈35.808/1.28⌉ = 28 … ⌊20.192/0.6455⌋ = 31.
-    assert!(help.contains("between 28 and 31 layers"), "{help}");
+    // ⌈35.808/1.024⌉ = 35 … ⌊20.192/0.4543⌋ = 44: each named count builds.
+    let help = help(&src, "lmd::layer-height");
+    assert!(help.contains("between 35 and 44 layers"), "{help}");
+    assert!(help.contains("`layers = auto` (35)"), "{help}");
+    for n in [35, 44] {
+        let fixed = edit(&src, "layers = 30", &format!("layers = {n}"));
+        assert_eq!(layers_of(&fixed), n);
+    }
+    assert_eq!(layers_of(&edit(&src, "layers = 30", "layers = auto")), 35);
 }
 
+#[test]
+fn a_declared_count_is_refused_in_favour_of_counts_whose_tracks_build() {
+    // A wedge 15.6 mm across: its heights allow 10 to 12 layers, but at 10
+    // the balanced tracks, stretched to close on the far edge, need speeds
+    // outside the bead's. The help names only 11 and 12, and each builds.
+    let wedge = source("examples/wedge.lmd");
+    let src = edit(&wedge, "height = 15 mm", "height = 15.6 mm");
+    let src = edit(&src, "layers = auto", "layers = 9");
+    let help = help(&src, "lmd::layer-height");
+    assert!(help.contains("use 11 or 12 layers"), "{help}");
+    for n in [11, 12] {
+        assert_eq!(
+            layers_of(&edit(&src, "layers = 9", &format!("layers = {n}"))),
+            n
+        );
+    }
+    let e = errors(&edit(&src, "layers = 9", "layers = 10"));
+    assert!(
+        has(&e, "lmd::no-layer-count", "declared 10 layers"),
+        "{e:#?}"
+    );
+}
 #[test]
 fn bad_tops_are_diagnostics() {
     let wall = source(WALL);
@@ -239,24 +285,151 @@ fn the_advised_tolerance_works() {
     assert!(compile(&fixed, &mut ()).program.is_some());
 }
 
+/// Each `` `NAME = VALUE UNIT` `` the help names for the no-layer-count
+/// example with `top` written in, with the count it says.
+fn named(src: &str, name: &str, unit: &str) -> Vec<(String, usize)> {
+    let help = help(src, "lmd::no-layer-count");
+    let fixes = values(&help, &format!("`{name} = "), "; or");
+    assert!(!fixes.is_empty(), "no `{name} = …` in {help}");
+    fixes
+        .into_iter()
+        .map(|f| {
+            let value = f.split(&format!(" {unit}`")).next().unwrap().to_string();
+            let layers = f.split(": ").nth(1).and_then(|l| l.split(' ').next());
+            (value, layers.and_then(|l| l.parse().ok()).expect(f))
+        })
+        .collect()
+}
+
 #[test]
 fn each_fix_of_no_layer_count_works() {
-    // The heights named are where the tracks run, 1.2 mm inside the wall's
-    // ends (10.12 .. 19.88 mm for a top from 10 to 20 mm): a top whose
-    // tracks reach at most 19.2 mm, or at least 10.328 mm, builds.
+    // A wall one bead wide rising 10 → 25 mm along x: its tracks run from
+    // x = -48.8 to 48.8 mm and need a ratio of 2.44, the bead stacks 2.25.
     let src = source("examples/errors/no_layer_count.lmd");
+    let top = "top = edges(along = x, from = 10 mm, to = 25 mm)";
     let e = errors(&src);
     assert!(
-        has(&e, "lmd::no-layer-count", "10.12 mm .. 19.88 mm"),
+        has(&e, "lmd::no-layer-count", "10.18 mm .. 24.82 mm"),
         "{e:#?}"
     );
-    let top = "top = edges(along = x, from = 10 mm, to = 20 mm)";
-    for fixed in [
-        "top = 10.12 mm + 9.08 mm * (x + 48.8 mm) / 97.6 mm",
-        "top = 10.328 mm + 9.552 mm * (x + 48.8 mm) / 97.6 mm",
+    // `to` keeping `from`, and `from` keeping `to`: in the file's terms.
+    let [(to, n_to)] = &named(&src, "to", "mm")[..] else {
+        panic!("one `to`")
+    };
+    let [(from, n_from)] = &named(&src, "from", "mm")[..] else {
+        panic!("one `from`")
+    };
+    for (fixed, n) in [
+        (
+            format!("top = edges(along = x, from = 10 mm, to = {to} mm)"),
+            n_to,
+        ),
+        (
+            format!("top = edges(along = x, from = {from} mm, to = 25 mm)"),
+            n_from,
+        ),
     ] {
-        let c = compile(&edit(&src, top, fixed), &mut ());
-        assert!(c.program.is_some(), "{fixed}: {:#?}", c.diagnostics);
+        assert_eq!(layers_of(&edit(&src, top, &fixed)), *n, "{fixed}");
+    }
+    // The values are the nearest that fit at a tenth of a millimetre.
+    let nudged: f64 = to.parse::<f64>().unwrap() + 0.1;
+    let e = errors(&edit(
+        &src,
+        top,
+        &format!("top = edges(along = x, from = 10 mm, to = {nudged:.1} mm)"),
+    ));
+    assert!(has(&e, "lmd::no-layer-count", ""), "{e:#?}");
+    // The bead reaching further: its speeds extended as the help says.
+    let help = help(&src, "lmd::no-layer-count");
+    let speeds = "speed = 4 mm/s .. 8.7 mm/s";
+    for (fragment, range) in [
+        ("speeds up to ", "4 mm/s .. {} mm/s"),
+        ("speeds down to ", "{} mm/s .. 8.7 mm/s"),
+    ] {
+        let v = values(&help, fragment, " mm/s")[0];
+        let fixed = edit(&src, speeds, &format!("speed = {}", range.replace("{}", v)));
+        assert!(compile(&fixed, &mut ()).program.is_some(), "{fixed}");
+    }
+}
+
+#[test]
+fn a_fix_that_needs_another_declared_count_says_which() {
+    // With `layers = 24` declared no `to` or `from` fits 24 layers: the
+    // help names the count to declare with each, and both build.
+    let src = edit(
+        &source("examples/errors/no_layer_count.lmd"),
+        "layers = auto",
+        "layers = 24",
+    );
+    let help = help(&src, "lmd::no-layer-count");
+    let top = "top = edges(along = x, from = 10 mm, to = 25 mm)";
+    for (name, from, to) in [("to", "10 mm", "{} mm"), ("from", "{} mm", "25 mm")] {
+        let fix = values(&help, &format!("`{name} = "), "`); or")[0];
+        let value = fix.split(" mm`").next().unwrap();
+        let n = fix.split("`layers = ").nth(1).expect(fix);
+        let edges = format!(
+            "top = edges(along = x, from = {}, to = {})",
+            from.replace("{}", value),
+            to.replace("{}", value)
+        );
+        let fixed = edit(
+            &edit(&src, top, &edges),
+            "layers = 24",
+            &format!("layers = {n}"),
+        );
+        assert_eq!(layers_of(&fixed).to_string(), n, "{edges}");
+    }
+}
+
+#[test]
+fn each_fix_of_a_plane_top_works() {
+    // The same wall with its top written as a plane: the height and the
+    // slope that fit, each builds with the count named.
+    let src = edit(
+        &source("examples/errors/no_layer_count.lmd"),
+        "top = edges(along = x, from = 10 mm, to = 25 mm)",
+        "top = plane(at = [-50 mm, 0 mm], height = 10 mm, slope_x = 15 %)",
+    );
+    let [(height, n_height)] = &named(&src, "height", "mm")[..] else {
+        panic!("one `height`")
+    };
+    let [(slope, n_slope)] = &named(&src, "slope_x", "%")[..] else {
+        panic!("one `slope_x`")
+    };
+    for (from, to, n) in [
+        ("height = 10 mm", format!("height = {height} mm"), n_height),
+        ("slope_x = 15 %", format!("slope_x = {slope} %"), n_slope),
+    ] {
+        assert_eq!(layers_of(&edit(&src, from, &to)), *n, "{to}");
+    }
+}
+
+#[test]
+fn an_expression_top_is_named_where_its_tracks_run() {
+    // An expression cannot be edited by the help: it names the heights
+    // where the tracks run (1.2 mm inside the ends), which a top through
+    // them builds with.
+    let src = edit(
+        &source("examples/errors/no_layer_count.lmd"),
+        "top = edges(along = x, from = 10 mm, to = 25 mm)",
+        "top = 10 mm + 15 % * (x + 50 mm)",
+    );
+    let help = help(&src, "lmd::no-layer-count");
+    let high = values(
+        &help,
+        "a top at most ",
+        " mm high where the tracks run highest",
+    )[0];
+    let low = values(&help, "at least ", " mm where they run lowest")[0];
+    // The top's heights at the tracks' ends, x = ±48.8 mm.
+    let (lo, hi) = (10.18, 24.82);
+    for (a, b) in [
+        (lo.to_string(), high.to_string()),
+        (low.to_string(), hi.to_string()),
+    ] {
+        let top = format!("top = {a} mm + ({b} mm - {a} mm) * (x + 48.8 mm) / 97.6 mm");
+        let fixed = edit(&src, "top = 10 mm + 15 % * (x + 50 mm)", &top);
+        assert!(compile(&fixed, &mut ()).program.is_some(), "{top}");
     }
 }
 

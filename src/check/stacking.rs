@@ -17,9 +17,10 @@
 //! grid's cell, which grows with the part.
 
 use super::rule::{ProgramCx, ProgramRule};
+use crate::diag::message::check::StackingFix;
 use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Layer, Path, Program};
+use crate::ir::{Layer, Path, PathKind, Program};
 use crate::plan::Where;
 
 /// Most places of one layer checked (spread over it): a 300 × 200 mm plate
@@ -48,51 +49,139 @@ impl ProgramRule for Stacking {
     }
 }
 
+/// How far, in bead widths, the distance of a deposit beyond the reach is
+/// searched for (a cone's step, a twist's jump) before it is "more than".
+const FAR: f64 = 64.0;
+
 fn check(p: &Program, out: &mut Diagnostics) {
     let w = p.limits.bead_width;
     if !(w.is_finite() && w > 0.0) {
         return;
     }
     let half = w * REACH;
+    let h_max = p.limits.layer_height[1];
     // Within this 3-D distance a segment can be at most `half` across the
     // nozzle with the layer's height along it.
-    let reach = (half * half + p.limits.layer_height[1].powi(2)).sqrt() * 1.01;
+    let reach = (half * half + h_max.powi(2)).sqrt() * 1.01;
+    let far = (FAR * w).max(reach);
     let step = w / 8.0;
     let mut found: Option<Worst> = None;
+    // The layer height and the path's kind at the worst place.
+    let mut there = (0.0, PathKind::Wall);
     for (li, pair) in p.layers.windows(2).enumerate() {
         let (below, here) = (&pair[0], &pair[1]);
         let samples = samples(here, step, reach);
         if samples.is_empty() {
             continue;
         }
-        let mut grid = Grid::new(&samples, reach);
-        let mut deposits = false;
-        chords(below, step, |a, b, _, _| {
-            deposits = true;
-            grid.walk(a, b, reach, &samples);
-        });
-        if !deposits {
+        let Some(best) = nearest(below, &samples, step, [reach, far], h_max) else {
             continue;
-        }
-        for (s, best) in samples.iter().zip(&grid.best) {
+        };
+        for (s, best) in samples.iter().zip(&best) {
             if best.is_none_or(|d| d > half) {
                 let at = Where::Point {
                     layer: li + 1,
                     path: s.path,
                     point: s.point,
                 };
-                Worst::hit(&mut found, best.unwrap_or(reach), half, at);
+                Worst::hit(&mut found, best.unwrap_or(far), half, at);
+                if found.is_some_and(|f| f.at == at) {
+                    let path = &here.paths[s.path];
+                    there = (path.points[s.point].layer_height as f64, path.kind);
+                }
             }
         }
     }
     let Some(f) = found else { return };
     let o = &p.origins;
-    out.push(message::check::stacking(
-        &f, reach, half, o.slicing, o.spine,
-    ));
+    let fix = fix(p, &f, there, half, far);
+    out.push(message::check::stacking(&f, &fix, o.slicing, o.spine));
+}
+
+/// What would land the worst deposit on the layer below. Every step
+/// between layers is about the layer height times the wall's lean: a loft's
+/// layers all thin as its count grows (its stations are `i/N`), so `N·d/½w`
+/// layers step at most `½w`, when the bead lays layers that thin; a lean
+/// of at most `atan(½w/h)` steps that little at the layers it has.
+fn fix(p: &Program, f: &Worst, (h, kind): (f64, PathKind), half: f64, far: f64) -> StackingFix {
+    let d = (f.value < far).then_some(f.value);
+    let n = p.layers.len();
+    let h_min = p.limits.layer_height[0];
+    // The thinnest layer laid, which more layers thin in proportion.
+    let thinnest = p
+        .layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .flat_map(|path| &path.points)
+        .filter(|pt| pt.laser_on)
+        .map(|pt| pt.layer_height as f64)
+        .fold(f64::INFINITY, f64::min);
+    let most = (n as f64 * thinnest / h_min * (1.0 - 1e-4)).floor();
+    let layers = match (d, p.origins.spine) {
+        (Some(d), Some(_)) if h > 0.0 && h_min > 0.0 => {
+            let need = (n as f64 * d / half * (1.0 + 1e-9)).ceil();
+            (need <= most).then_some(need as usize)
+        }
+        _ => None,
+    };
+    StackingFix {
+        height: h,
+        step: d,
+        half,
+        layers,
+        raster: kind == PathKind::Infill,
+    }
+}
+
+/// Each sample's nearest distance across the nozzle to `below`'s deposits:
+/// within `reach` in one walk, then, for those not settled there, searched
+/// twice as far each time up to `far` (`None`: not within it). `None` when
+/// `below` lays nothing. A segment `r` away in 3-D lies at least
+/// `√(r² − h²)` across (`h` the thickest layer), so a distance up to that is
+/// the nearest.
+fn nearest(
+    below: &Layer,
+    samples: &[Start],
+    step: f64,
+    [reach, far]: [f64; 2],
+    h: f64,
+) -> Option<Vec<Option<f64>>> {
+    let settled = |r: f64, d: Option<f64>| d.is_some_and(|d| d * d + h * h <= r * r);
+    let mut grid = Grid::new(samples, reach);
+    let mut deposits = false;
+    chords(below, step, |a, b, _, _| {
+        deposits = true;
+        grid.walk(a, b, reach, samples);
+    });
+    if !deposits {
+        return None;
+    }
+    let mut best = grid.best;
+    let mut left: Vec<usize> = (0..samples.len())
+        .filter(|&k| !settled(reach, best[k]))
+        .collect();
+    let mut r = reach;
+    while !left.is_empty() && r < far {
+        r = (2.0 * r).min(far);
+        let these: Vec<Start> = left.iter().map(|&k| samples[k]).collect();
+        let mut grid = Grid::new(&these, r);
+        chords(below, step, |a, b, _, _| grid.walk(a, b, r, &these));
+        let mut next = Vec::new();
+        for (j, &k) in left.iter().enumerate() {
+            if grid.best[j].is_some() {
+                best[k] = grid.best[j];
+            }
+            if !settled(r, grid.best[j]) {
+                next.push(k);
+            }
+        }
+        left = next;
+    }
+    Some(best)
 }
 
 /// A place a deposit of a layer is checked: where a chord piece starts.
+#[derive(Clone, Copy)]
 struct Start {
     pos: [f64; 3],
     normal: [f64; 3],

@@ -4,8 +4,8 @@
 use crate::diag::message::{self, bend::Heights, bend::TooTight};
 use crate::diag::Diagnostic;
 use crate::geometry::LoftGeometry;
-use crate::sema::model::{Bead, Loft, Slicing, Spine};
-use crate::units::Length;
+use crate::sema::model::{Bead, Loft, Measure, Section, Slicing, Spine};
+use crate::units::{Length, Speed};
 
 /// How far the outline reaches toward (`inward`) and away from (`outward`) the
 /// bend centre, over all stations, mm.
@@ -62,7 +62,7 @@ pub fn choose_layers(
                 return Err(message::bend::section_past_centre(
                     r.inward,
                     radius,
-                    suggest_radius(r, angle.0, h_min, h_max),
+                    suggest_radius(r, angle.0, [h_min, h_max], slicing.layers),
                     loft.spine_span,
                     loft.section_spans[0],
                 ));
@@ -71,7 +71,15 @@ pub fn choose_layers(
             let q_have = h_max / h_min;
             let (n_lo, n_hi) = layer_range(rho_min, rho_max, angle.0, h_min, h_max);
             if q_need > q_have || (slicing.layers.is_none() && n_lo > n_hi) {
-                return Err(too_tight(loft, bead, radius.0, r, angle.0, q_need, q_have));
+                return Err(too_tight(
+                    loft,
+                    bead,
+                    slicing.layers,
+                    r,
+                    angle.0,
+                    q_need,
+                    q_have,
+                ));
             }
             (angle.0, rho_min, rho_max)
         }
@@ -117,43 +125,182 @@ fn layer_range(rho_min: f64, rho_max: f64, total: f64, h_min: f64, h_max: f64) -
     (lo, hi)
 }
 
-/// The smallest whole-mm bend radius for which some layer count fits the
-/// bead's height range, by the same test [`choose_layers`] applies. The height
-/// ratio alone gives `R ≥ (out + q·in)/(q − 1)`; a whole number of layers may
-/// need a little more.
-fn suggest_radius(r: Reach, angle: f64, h_min: f64, h_max: f64) -> Option<f64> {
-    let q = h_max / h_min;
+/// Whether the layer counts of a bend of `radius` (the section reaching
+/// `r`) over `angle` keep every height within `h` — the test
+/// [`choose_layers`] applies, with its margin — and, when one does (the
+/// declared one, if `declared`), how long the interval of counts is: once it
+/// is a layer long it holds a whole count whatever its ends, and it grows
+/// with the radius, the bead's span and a smaller section.
+fn counts(r: Reach, radius: f64, angle: f64, h: [f64; 2], declared: Option<usize>) -> Option<f64> {
+    let [h_min, h_max] = h;
+    let rho_min = (radius - r.inward) * (1.0 - MARGIN);
+    let rho_max = (radius + r.outward) * (1.0 + MARGIN);
+    if !(rho_min > 0.0 && h_min > 0.0 && h_max.is_finite()) {
+        return None;
+    }
+    let (lo, hi) = layer_range(rho_min, rho_max, angle, h_min, h_max);
+    match declared {
+        // A declared count fits a band of radii: no further claim.
+        Some(n) => (lo <= n as f64 && n as f64 <= hi).then_some(0.0),
+        None => (lo <= hi).then(|| (rho_min / h_min - rho_max / h_max) * angle),
+    }
+}
+
+/// The first of `candidates` from which on every one passes `test` (which
+/// gives the counts' interval length, [`counts`]): found when that length
+/// reaches a layer, or at the first pass when `once`.
+fn first_lasting(
+    candidates: impl Iterator<Item = f64>,
+    once: bool,
+    mut test: impl FnMut(f64) -> Option<f64>,
+) -> Option<f64> {
+    let mut first = None;
+    for c in candidates {
+        match test(c) {
+            Some(span) => {
+                let f = *first.get_or_insert(c);
+                if once || span >= 1.0 {
+                    return Some(f);
+                }
+            }
+            None => first = None,
+        }
+    }
+    None
+}
+
+/// The smallest whole-mm bend radius from which on a layer count fits the
+/// bead's heights (the declared count, if `declared`: then that radius
+/// alone), by the same test [`choose_layers`] applies. The height ratio
+/// alone gives `R ≥ (out + q·in)/(q − 1)`; a whole number of layers may need
+/// a little more.
+fn suggest_radius(r: Reach, angle: f64, h: [f64; 2], declared: Option<usize>) -> Option<f64> {
+    let q = h[1] / h[0];
     if q <= 1.0 {
         return None;
     }
     let start = ((r.outward + q * r.inward) / (q - 1.0)).ceil().max(1.0);
-    (0..100_000).map(|i| start + i as f64).find(|&radius| {
-        let rho_min = (radius - r.inward) * (1.0 - MARGIN);
-        let rho_max = (radius + r.outward) * (1.0 + MARGIN);
-        let (lo, hi) = layer_range(rho_min, rho_max, angle, h_min, h_max);
-        rho_min > 0.0 && lo <= hi
+    let radii = (0..100_000).map(|i| start + i as f64);
+    first_lasting(radii, declared.is_some(), |radius| {
+        counts(r, radius, angle, h, declared)
     })
+}
+
+/// The top speed (mm/s, a tenth) from which on a bead model with the
+/// bead's speeds reaching it lays this bend, by the same test: the wall's
+/// heights `A(v)/w` over the wider range, narrowed to a declared `height`.
+fn suggest_speed(
+    bead: &Bead,
+    r: Reach,
+    radius: f64,
+    angle: f64,
+    q_need: f64,
+    declared: Option<usize>,
+) -> Option<f64> {
+    // Where the ratio alone would be met: the wall's rise at the slowest
+    // speed over the ratio the bend needs.
+    let deposit = bead.deposit();
+    let h_max = bead.heights(bead.width)[1].0;
+    let h_top = deposit.rise(bead.speed[0], bead.width, None).0.min(h_max);
+    let v = deposit.speed_for(Length(h_top / q_need), bead.width).0;
+    if !(v.is_finite() && v > 0.0) {
+        return None;
+    }
+    let start = (v * 10.0).ceil().max((bead.speed[1].0 * 10.0).floor());
+    let tops = (0..2000).map(|k| (start + k as f64) / 10.0);
+    first_lasting(tops, declared.is_some(), |v| {
+        let mut wider = bead.clone();
+        wider.speed[1] = Speed(v);
+        let h = wider.heights(wider.width).map(|h| h.0);
+        counts(r, radius, angle, h, declared)
+    })
+}
+
+/// The largest section, in tenths of a percent of the declared sizes, from
+/// which down every smaller one lays this bend by the same test: the
+/// sections scaled as written (outer faces, for `size = outer`) and their
+/// reach sampled again.
+fn suggest_scale(
+    loft: &Loft,
+    bead: &Bead,
+    radius: f64,
+    angle: f64,
+    declared: Option<usize>,
+) -> Option<f64> {
+    let h = bead.heights(bead.width).map(|h| h.0);
+    let reach_at = |s: f64| Some(reach(&LoftGeometry::new(&scaled(loft, s, bead.width.0)?)));
+    let ratio_fits = |s: f64| {
+        reach_at(s).is_some_and(|r| {
+            let q = (radius + r.outward) / (radius - r.inward);
+            radius > r.inward && q <= h[1] / h[0]
+        })
+    };
+    // The ratio shrinks with the section: halve toward the largest that
+    // meets it, then step down by tenths of a percent for a whole count.
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..14 {
+        let mid = 0.5 * (lo + hi);
+        if ratio_fits(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let start = (hi * 1000.0).floor();
+    let scales = (0..1000).map(|k| (start - k as f64) / 10.0);
+    first_lasting(scales.take_while(|&p| p > 0.0), declared.is_some(), |p| {
+        counts(reach_at(p / 100.0)?, radius, angle, h, declared)
+    })
+}
+
+/// `loft` with its sections scaled by `s` as declared: for `size = outer`
+/// the outer faces scale, and the path runs half a bead inside them again.
+fn scaled(loft: &Loft, s: f64, w: f64) -> Option<Loft> {
+    let d = match loft.measure {
+        Measure::Outer => w / 2.0,
+        Measure::Centre => 0.0,
+    };
+    let grow = |x: Length, by: f64| Length((x.0 + by) * s);
+    let declared = |sec: Section| match sec {
+        Section::Circle { r } => Section::Circle { r: grow(r, d) },
+        Section::Ellipse { a, b } => Section::Ellipse {
+            a: grow(a, d),
+            b: grow(b, d),
+        },
+        Section::Rectangle { a, b } => Section::Rectangle {
+            a: grow(a, d),
+            b: grow(b, d),
+        },
+        Section::RoundedRectangle { a, b, r } => Section::RoundedRectangle {
+            a: grow(a, d),
+            b: grow(b, d),
+            r: grow(r, d),
+        },
+        Section::Polygon { n, r } => Section::Polygon {
+            n,
+            r: grow(r, d / (std::f64::consts::PI / n as f64).cos()),
+        },
+    };
+    let mut out = loft.clone();
+    out.from = declared(loft.from).inset(Length(d))?;
+    out.to = declared(loft.to).inset(Length(d))?;
+    Some(out)
 }
 
 fn too_tight(
     loft: &Loft,
     bead: &Bead,
-    radius: f64,
+    declared: Option<usize>,
     r: Reach,
     angle: f64,
     q_need: f64,
     q_have: f64,
 ) -> Diagnostic {
-    let scale = radius * (q_have - 1.0) / (r.outward + q_have * r.inward);
-    let [h_min, h_max] = bead.heights(bead.width);
-    // The wall's rise at the slowest speed, and the speed that lays it over
-    // the ratio the bend needs.
-    let deposit = bead.deposit();
-    let h_top = deposit.rise(bead.speed[0], bead.width, None).0.min(h_max.0);
-    let v_fast = deposit.speed_for(Length(h_top / q_need), bead.width);
-    let radius_fits = suggest_radius(r, angle, h_min.0, h_max.0);
-    let speed_fits =
-        (v_fast.0.is_finite() && v_fast.0 > 0.0).then(|| (v_fast.0 * 10.0).ceil() / 10.0);
+    let radius = match loft.spine {
+        Spine::Arc { radius, .. } => radius.0,
+        Spine::Line { .. } => f64::INFINITY,
+    };
+    let h = bead.heights(bead.width).map(|h| h.0);
     message::bend::too_tight(&TooTight {
         radius,
         inward: r.inward,
@@ -163,9 +310,10 @@ fn too_tight(
         heights: heights(bead),
         spine: loft.spine_span,
         speeds: bead.speed_span,
-        radius_fits,
-        speed_fits,
-        scale_percent: (scale * 1000.0).floor() / 10.0,
+        radius_fits: suggest_radius(r, angle, h, declared),
+        speed_fits: suggest_speed(bead, r, radius, angle, q_need, declared),
+        scale_percent: suggest_scale(loft, bead, radius, angle, declared),
+        at_least: declared.is_none(),
     })
 }
 

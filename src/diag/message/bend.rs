@@ -72,7 +72,8 @@ pub fn layer_count_outside(
     layers: Option<Span>,
 ) -> Diagnostic {
     let fix = match counts {
-        Some([a, b]) => format!("use between {} and {} layers, or `layers = auto`", a, b),
+        Some([a, b]) if a == b => format!("use {a} layers, or `layers = auto`"),
+        Some([a, b]) => format!("use between {a} and {b} layers, or `layers = auto`"),
         None => "no layer count works for this bend and bead model".to_string(),
     };
     Diagnostic::error(
@@ -110,29 +111,46 @@ pub struct TooTight {
     pub speeds: Span,
     /// A bend radius that works, if one was found, mm.
     pub radius_fits: Option<f64>,
-    /// A top speed of a bead model spanning the ratio, mm/s, if finite.
+    /// A top speed of a bead model spanning the ratio, mm/s, if one was
+    /// found.
     pub speed_fits: Option<f64>,
-    /// The largest section, in % of this one, that fits.
-    pub scale_percent: f64,
+    /// The largest section, in % of the declared sizes, that fits, if one
+    /// was found.
+    pub scale_percent: Option<f64>,
+    /// Whether every larger radius, faster top speed and smaller section
+    /// works too (`layers = auto`); a declared count fits a band of them.
+    pub at_least: bool,
 }
 
 /// A bend whose outer/inner height ratio no layer count fits.
 pub fn too_tight(t: &TooTight) -> Diagnostic {
     let [h_min, h_max] = t.heights.range;
+    let (least, most, up_to) = if t.at_least {
+        ("at least ", "at most ", "up to ")
+    } else {
+        ("", "", "up to ")
+    };
     let mut fixes = Vec::new();
     if let Some(r_need) = t.radius_fits {
-        fixes.push(format!("a bend radius of at least {}", Length(r_need)));
+        fixes.push(format!("a bend radius of {least}{}", Length(r_need)));
     }
     if let Some(v) = t.speed_fits {
         fixes.push(format!(
-            "a bead model that spans the ratio (e.g. speeds up to {} if it holds that far)",
+            "a bead model that spans the ratio (e.g. speeds {up_to}{} if it holds that far)",
             Speed(v)
         ));
     }
-    fixes.push(format!(
-        "a section at most {}% of this size",
-        short(t.scale_percent)
-    ));
+    if let Some(p) = t.scale_percent {
+        fixes.push(format!(
+            "a section {most}{}% of the declared size",
+            short(p)
+        ));
+    }
+    let help = if fixes.is_empty() {
+        "no bend radius, speed range or section size alone fits this bead model".to_string()
+    } else {
+        format!("this would work: {}", fixes.join("; or "))
+    };
     let (q_need, q_have) = (t.q_need, t.q_have);
     let d = apart(q_need, q_have);
     Diagnostic::error(
@@ -162,7 +180,7 @@ pub fn too_tight(t: &TooTight) -> Diagnostic {
         format!("h_max/h_min = {} / {} = {q_have:.d$}", h_max, h_min),
     )
     .label(t.speeds, "speed range")
-    .help(format!("this would work: {}", fixes.join("; or ")))
+    .help(help)
 }
 
 /// Decimals (2 to 6) that print `need` above `have` when it is: at two a

@@ -149,22 +149,80 @@ pub fn point_out_of_range(
     d
 }
 
+/// What would land the worst deposit of a stacking error on the layer
+/// below.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StackingFix {
+    /// The layer height there, mm.
+    pub height: f64,
+    /// How far across the nozzle it lands from the layer below, mm, if
+    /// found (else farther than the search went).
+    pub step: Option<f64>,
+    /// The farthest it may land, mm (¾ of the bead width).
+    pub half: f64,
+    /// A layer count whose thinner layers step little enough and that the
+    /// bead lays (a loft's), if there is one.
+    pub layers: Option<usize>,
+    /// Whether the worst deposit is a raster track's.
+    pub raster: bool,
+}
+
 /// Deposits that land beside the layer below rather than on it; `w.value` is
-/// how far across the nozzle the nearest bead lies (`reach` when none was
-/// found that near), `half` the limit.
+/// how far across the nozzle the nearest bead lies (`far` when none was
+/// found within the search, `fix.step` `None`), `w.limit` the limit.
 pub fn stacking(
     w: &Worst,
-    reach: f64,
-    half: f64,
+    fix: &StackingFix,
     slicing: Option<Span>,
     spine: Option<Span>,
 ) -> Diagnostic {
+    let h = fix.height;
+    let deg = |d: f64| (d / h).atan().to_degrees();
+    // The lean that passes, printed rounded down so it does pass.
+    let lean_max = (deg(fix.half) * 10.0).floor() / 10.0;
+    let here = match fix.step {
+        Some(d) if h > 0.0 => format!(
+            "here the layer steps {} mm out on a {} mm layer, a lean of {}° from the build direction; ",
+            short(d),
+            short(h),
+            short((deg(d) * 10.0).round() / 10.0)
+        ),
+        _ => String::new(),
+    };
+    let lands = if h > 0.0 {
+        format!(
+            "a wall leaning at most {}° at these layers (a step of at most {} mm, contours' chords and raster ends included) lands on the layer below",
+            short(lean_max),
+            short(fix.half)
+        )
+    } else {
+        "each layer must lie on the one below".to_string()
+    };
+    let help = if spine.is_some() {
+        // A loft: its shape moves the layers, and its count thins them.
+        let count = match fix.layers {
+            Some(n) => format!("`layers = {n}` (thinner layers, each stepping less) or "),
+            None => String::new(),
+        };
+        format!("{here}{count}{lands}: check the twist, the bend and the section sizes for jumps between layers")
+    } else {
+        // Flat or variable layers: the profile or the fill moves them.
+        let raster = if fix.raster {
+            "; a raster track's end steps out faster than the outline where it curves: a contour pass (`contours = 1`) lays the edge"
+        } else {
+            ""
+        };
+        format!("{here}{lands}: check a profile that changes with `layer` or `layer_z` for jumps, and spots the fill leaves unfilled (they move as the raster turns){raster}")
+    };
     Diagnostic::error(
         Code::Stacking,
         format!(
             "a deposit lands {} mm across the nozzle from the nearest bead of the layer below, more than ¾ of the bead width ({} mm), at {} ({} place{} so far off, checked at most every eighth of a bead)",
-            if w.value >= reach { format!("more than {}", short(reach)) } else { short(w.value) },
-            short(half),
+            match fix.step {
+                Some(d) => short(d),
+                None => format!("more than {}", short(w.value)),
+            },
+            short(w.limit),
             w.at,
             w.count,
             plural(w.count)
@@ -172,13 +230,7 @@ pub fn stacking(
     )
     .label_opt(slicing, "the layers come from here")
     .label_opt(spine, "the part's shape")
-    .help(if spine.is_some() {
-        // A loft: its shape moves the layers.
-        "each layer must lie on the one below: check the twist, the bend and the section sizes for jumps between layers, or use more layers"
-    } else {
-        // Flat or variable layers: the profile or the fill moves them.
-        "each layer must lie on the one below: check a profile that changes with `layer` for jumps, and spots the fill leaves unfilled (they move as the raster turns): more contour passes or a smaller offset close them"
-    })
+    .help(help)
 }
 
 #[cfg(test)]
@@ -195,12 +247,25 @@ mod tests {
             at: Where::End,
         };
         let at = Some(Span::new(0, 1));
-        let help = |spine| stacking(&w, 5.0, 2.0, at, spine).help.unwrap();
-        // A loft: its twist, bend and sections.
-        assert!(help(at).contains("the twist, the bend"));
+        let fix = StackingFix {
+            height: 1.0,
+            step: Some(3.0),
+            half: 2.0,
+            layers: Some(7),
+            raster: true,
+        };
+        let help = |spine| stacking(&w, &fix, at, spine).help.unwrap();
+        // A loft: its twist, bend and sections, and a count.
+        let loft = help(at);
+        assert!(loft.contains("the twist, the bend"), "{loft}");
+        assert!(loft.contains("`layers = 7`"), "{loft}");
+        // atan(3) = 71.57°; atan(2) = 63.43°, printed down.
+        assert!(loft.contains("a lean of 71.6°"), "{loft}");
+        assert!(loft.contains("at most 63.4°"), "{loft}");
         // Flat layers have none of those: their profile and fill.
         let flat = help(None);
         assert!(!flat.contains("twist"), "{flat}");
         assert!(flat.contains("spots the fill leaves unfilled"), "{flat}");
+        assert!(flat.contains("`contours = 1`"), "{flat}");
     }
 }

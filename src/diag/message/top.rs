@@ -33,7 +33,118 @@ pub fn too_many_layers(high: Length, needed: f64, h_max: Length, top: Span) -> D
     .help("check the top's unit and numbers")
 }
 
-/// A bead model as the layer-count messages name it.
+/// A number as a fix prints it: `decimals` decimals, trailing zeros dropped.
+/// `value` is the number read back from that text, the one the fix was
+/// checked with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Decimal {
+    /// The value printed.
+    pub value: f64,
+    /// Its decimals.
+    pub decimals: usize,
+}
+
+impl std::fmt::Display for Decimal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let d = self.decimals;
+        let s = format!("{:.d$}", self.value);
+        let s = if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            &s
+        };
+        f.write_str(if s == "-0" { "0" } else { s })
+    }
+}
+
+/// A change of the top that lets a layer count lay it, with the count
+/// (`layers = auto`'s, or the declared one).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TopFix {
+    /// `edges(…)` with this `to` (`to`) or `from`, mm, the other kept.
+    Edge {
+        /// Whether the value is `to`.
+        to: bool,
+        /// The value, mm.
+        value: Decimal,
+        /// The layer count.
+        layers: u32,
+    },
+    /// `plane(…)` with this `height`, mm, the slopes kept.
+    Height {
+        /// The value, mm.
+        value: Decimal,
+        /// The layer count.
+        layers: u32,
+    },
+    /// `plane(…)` with this slope along x (`axis` 0) or y, in %, the height
+    /// and the other slope kept.
+    Slope {
+        /// 0: `slope_x`, 1: `slope_y`.
+        axis: usize,
+        /// The slope, %.
+        percent: Decimal,
+        /// The layer count.
+        layers: u32,
+    },
+    /// A top written as an expression, at most this high where the tracks
+    /// run (its lowest kept), mm.
+    High {
+        /// The height, mm.
+        at_most: Decimal,
+        /// The layer count.
+        layers: u32,
+    },
+    /// At least this high where the tracks run lowest (its highest kept), mm.
+    Low {
+        /// The height, mm.
+        at_least: Decimal,
+        /// The layer count.
+        layers: u32,
+    },
+}
+
+impl TopFix {
+    /// The fix in words; `declared` is the file's layer count, if declared.
+    fn words(&self, declared: Option<u32>) -> String {
+        let count = |n: u32| match declared {
+            Some(d) if d != n => format!("with `layers = {n}`"),
+            _ => format!("{n} layers"),
+        };
+        match *self {
+            TopFix::Edge { to, value, layers } => {
+                let (set, kept) = if to { ("to", "from") } else { ("from", "to") };
+                format!("`{set} = {value} mm` (keeping `{kept}`: {})", count(layers))
+            }
+            TopFix::Height { value, layers } => {
+                format!(
+                    "`height = {value} mm` (keeping the slopes: {})",
+                    count(layers)
+                )
+            }
+            TopFix::Slope {
+                axis,
+                percent,
+                layers,
+            } => {
+                let set = if axis == 0 { "slope_x" } else { "slope_y" };
+                format!(
+                    "`{set} = {percent} %` (keeping the rest: {})",
+                    count(layers)
+                )
+            }
+            TopFix::High { at_most, layers } => format!(
+                "a top at most {at_most} mm high where the tracks run highest ({layers} layers)"
+            ),
+            TopFix::Low { at_least, layers } => {
+                format!("at least {at_least} mm where they run lowest ({layers} layers)")
+            }
+        }
+    }
+}
+
+/// A bead model as the layer-count messages name it, with the heights a
+/// bead would need to reach (each checked to fit).
 pub struct CountBead<'a> {
     /// Its name.
     pub name: &'a str,
@@ -41,20 +152,28 @@ pub struct CountBead<'a> {
     pub heights: Span,
     /// Where its speeds are declared.
     pub speeds: Span,
-    /// The speed (rounded up, mm/s) at which it would lay the low height a
-    /// fix needs, if the model gives one.
+    /// A lowest height that fits, mm, if one does.
+    pub low: Option<Decimal>,
+    /// A highest height that fits, mm, if one does.
+    pub high: Option<Decimal>,
+    /// The speed (mm/s) at which the model lays `low` as the tracks stack
+    /// it, if it gives one that fits.
     pub speed_for_low: Option<f64>,
-    /// The speed (rounded down) for the high height a fix needs, if any.
+    /// The speed for `high`, likewise.
     pub speed_for_high: Option<f64>,
 }
 
 /// No whole number of layers lays every point of the top (lowest at
-/// `low_at`, highest at `high_at`) within the bead's heights.
+/// `low_at`, highest at `high_at`, both where the tracks run) within the
+/// bead's heights; `fixes` are the changes of the top that would work,
+/// `declared` the file's layer count if it declares one.
 pub fn no_count(
     e: &NoLayerCount,
     low_at: [f64; 2],
     high_at: [f64; 2],
+    fixes: &[TopFix],
     bead: &CountBead,
+    declared: Option<u32>,
     top: Span,
 ) -> Diagnostic {
     let (lo, hi) = (e.top.low(), e.top.high());
@@ -83,48 +202,84 @@ pub fn no_count(
         Some(v) => format!(" (speeds {dir} {}, if the model holds that far)", Speed(v)),
         None => String::new(),
     };
-    let mut fixes = Vec::new();
-    if let Some(h) = e.top_high_at_most() {
+    let mut fixes: Vec<String> = fixes.iter().map(|f| f.words(declared)).collect();
+    // The bead's fixes are for `layers = auto`'s count.
+    let auto = match declared {
+        Some(_) => " (with `layers = auto`)",
+        None => "",
+    };
+    if let Some(low) = bead.low {
         fixes.push(format!(
-            "the top at most {h} where it is highest ({} layers)",
-            e.most
+            "a bead that lays down to {low} mm{}{auto}",
+            speed_note(bead.speed_for_low, "up to")
         ));
     }
-    if let Some(h) = e.top_low_at_least() {
+    if let Some(high) = bead.high {
         fixes.push(format!(
-            "at least {h} where it is lowest ({} layers)",
-            e.fewest
-        ));
-    }
-    let low = e.bead_low_at_most();
-    fixes.push(format!(
-        "a bead that lays down to {low}{}",
-        speed_note(bead.speed_for_low, "up to")
-    ));
-    if let Some(high) = e.bead_high_at_least() {
-        fixes.push(format!(
-            "one that lays up to {high}{}",
+            "one that lays up to {high} mm{}{auto}",
             speed_note(bead.speed_for_high, "down to")
         ));
     }
-    Diagnostic::error(Code::NoLayerCount, message)
+    let d = Diagnostic::error(Code::NoLayerCount, message)
         .label(
             top,
-            format!("{hi} at {}, {lo} at {}", at(high_at), at(low_at)),
+            format!(
+                "where the tracks run: {hi} at {}, {lo} at {}",
+                at(high_at),
+                at(low_at)
+            ),
         )
         .label(bead.heights, format!("the bead lays {h_lo} .. {h_hi}"))
-        .label(bead.speeds, "over these speeds")
-        .help(format!("this would work: {}", fixes.join("; or ")))
+        .label(bead.speeds, "over these speeds");
+    if fixes.is_empty() {
+        return d.help("no change of the top or the bead's reach that keeps the rest lets a count fit: a flatter top, or a bead map spanning more");
+    }
+    d.help(format!("this would work: {}", fixes.join("; or ")))
+}
+
+/// A declared layer count outside the counts that lay the top's heights.
+pub struct CountOutside<'a> {
+    /// The count, the heights it lays and the counts that lay them.
+    pub e: &'a OutOfRange,
+    /// The bead's name.
+    pub bead: &'a str,
+    /// The counts among them whose tracks can lay their layers, as runs
+    /// `[first, last]` (those nearest the declared count, when many).
+    pub runs: &'a [[u32; 2]],
+    /// The count `layers = auto` takes, when it is one of them.
+    pub auto: Option<u32>,
+    /// The layer count's declaration.
+    pub layers: Option<Span>,
+    /// The bead's heights.
+    pub heights: Span,
 }
 
 /// A declared layer count outside the counts that work.
-pub fn count_outside(
-    e: &OutOfRange,
-    bead: &str,
-    layers: Option<Span>,
-    heights: Span,
-) -> Diagnostic {
+pub fn count_outside(c: &CountOutside) -> Diagnostic {
+    let e = c.e;
     let n = e.layers.get();
+    let counts: Vec<String> = c
+        .runs
+        .iter()
+        .map(|&[a, b]| match b - a {
+            0 => format!("{a}"),
+            1 => format!("{a} or {b}"),
+            _ => format!("between {a} and {b}"),
+        })
+        .collect();
+    let auto = match c.auto {
+        Some(a) => format!(", or `layers = auto` ({a})"),
+        None => String::new(),
+    };
+    let help = if counts.is_empty() {
+        format!(
+            "{} to {} layers lay these heights, but at none of them can every track lay its layer at its spacing: `layers = auto` says why",
+            e.range.fewest(),
+            e.range.most()
+        )
+    } else {
+        format!("use {} layers{auto}", counts.join(", or "))
+    };
     Diagnostic::error(
         Code::LayerHeight,
         format!(
@@ -133,17 +288,12 @@ pub fn count_outside(
             e.heights.high(),
             e.bead.low(),
             e.bead.high(),
-            bead
+            c.bead
         ),
     )
-    .label_opt(layers, "layer count")
-    .label(heights, "the bead's heights")
-    .help(format!(
-        "use between {} and {} layers, or `layers = auto` ({})",
-        e.range.fewest(),
-        e.range.most(),
-        e.range.fewest()
-    ))
+    .label_opt(c.layers, "layer count")
+    .label(c.heights, "the bead's heights")
+    .help(help)
 }
 
 /// The footprint's outline crosses itself at `p`.

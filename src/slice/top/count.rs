@@ -2,18 +2,28 @@
 //! [`crate::slice::variable::layers`]), and, when no count works, the error
 //! that says why with the numbers a fix needs — in the voice of the bend's
 //! (`lmd::bend-too-tight`): what the top needs, what the bead lays, and what
-//! would work.
+//! would work, in the file's own terms (the `to` or `from` of `edges(…)`,
+//! the `height` or a slope of `plane(…)`). Every value the help prints is
+//! read back from its printed form and run through the count's own steps
+//! before it is named; a declared count's help names only counts whose
+//! tracks the slicer can lay.
 
-use super::footprint::Sampled;
-use crate::diag::message::{self, top::CountBead};
+use super::count_input;
+use super::footprint::{spaced, Footprint, Sampled};
+use super::surface::Surface;
+use crate::diag::message::{
+    self,
+    top::{CountBead, CountOutside, Decimal, TopFix},
+};
 use crate::diag::Diagnostic;
-use crate::sema::model::{Bead, TopExtrusion, VariableSlicing};
+use crate::sema::model::{Axis, Bead, Top, TopExtrusion, VariableSlicing};
 use crate::slice::variable::layers::{
-    choose_layers, LayerCount, LayerError, NoLayerCount, OutOfRange,
+    choose_layers, layer_range, LayerCount, LayerError, LayerRange, NoLayerCount, OutOfRange,
+    MAX_LAYERS,
 };
 use crate::slice::variable::speed::HeightMap;
 use crate::slice::variable::HeightRange;
-use crate::units::Length;
+use crate::units::{Length, Speed};
 use std::num::NonZeroU32;
 
 /// The heights the top needs where tracks run, and where its ends are.
@@ -64,6 +74,19 @@ impl TopRange {
     }
 }
 
+/// What the count's errors check the fixes they name against.
+pub struct Probe<'a> {
+    /// The footprint.
+    pub fp: &'a Footprint,
+    /// The scan axis the top was sampled for.
+    pub scan: Axis,
+    /// The sampling pitch, mm.
+    pub pitch: f64,
+    /// Whether the tracks of a layer count can lay their layers (the
+    /// layout, the tracks and their speeds, as the slicer lays them).
+    pub builds: &'a mut dyn FnMut(NonZeroU32) -> bool,
+}
+
 /// The layer count: the fewest that lay every point of `top` within the
 /// bead's heights, or the declared one if it does; else the error.
 pub fn layers(
@@ -72,6 +95,7 @@ pub fn layers(
     map: &impl HeightMap,
     ex: &TopExtrusion,
     slicing: &VariableSlicing,
+    probe: Probe<'_>,
 ) -> Result<NonZeroU32, Diagnostic> {
     let beads = map.heights();
     let count = match slicing.layers {
@@ -79,39 +103,429 @@ pub fn layers(
         None => LayerCount::Auto,
     };
     choose_layers(top.heights, beads, count).map_err(|e| match e {
-        LayerError::NoCount(e) => no_count(&e, top, bead, map, ex),
-        LayerError::OutOfRange(e) => out_of_range(&e, bead, slicing),
+        LayerError::NoCount(e) => no_count(&e, top, bead, map, ex, slicing, &probe),
+        LayerError::OutOfRange(e) => out_of_range(&e, bead, slicing, probe.builds),
         LayerError::TooMany { needed } => {
             message::top::too_many_layers(top.heights.high(), needed, beads.high(), ex.top_span)
         }
     })
 }
 
-/// No whole number of layers lays every point within the bead's heights.
+/// No whole number of layers lays every point within the bead's heights:
+/// the error with the fixes that work, each checked by the count's own test.
 fn no_count(
     e: &NoLayerCount,
     top: &TopRange,
     bead: &Bead,
     map: &impl HeightMap,
     ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+    probe: &Probe<'_>,
 ) -> Diagnostic {
-    // The speed that lays `h` as these tracks stack it.
-    let speed = |h: Length, round: fn(f64) -> f64| {
-        let v = map.speed_within(h).0;
-        // Rounded away from the bead's range, so the speed named is enough.
-        (v.is_finite() && v > 0.0).then(|| round(v * 10.0) / 10.0)
+    let beads = map.heights();
+    let fixes: Vec<TopFix> = match &ex.top {
+        Top::Edges { .. } => [Param::To, Param::From]
+            .into_iter()
+            .filter_map(|p| sugar_fix(p, ex, bead, slicing, probe, beads))
+            .collect(),
+        Top::Plane { slope, .. } => {
+            let slopes = (0..2).filter(|&i| slope[i] != 0.0).map(Param::Slope);
+            std::iter::once(Param::Height)
+                .chain(slopes)
+                .filter_map(|p| sugar_fix(p, ex, bead, slicing, probe, beads))
+                .collect()
+        }
+        Top::Expr(_) => expr_fixes(e, slicing),
+    };
+    let fit = |b: HeightRange| fits(e.top, b, slicing).is_some();
+    // Millimetres to a tenth of a micrometre below 1 mm, as lengths print.
+    let least = |h: f64| if h < 1.0 { 4 } else { 3 };
+    // A bead reaching lower, or higher, printed within what fits.
+    let low = e.bead_low_at_most().0;
+    let low = candidates(low, [0.0, low], least(low))
+        .find(|h| HeightRange::new("bead", Length(h.value), beads.high()).is_ok_and(fit));
+    let high = e.bead_high_at_least().and_then(|h| {
+        candidates(h.0, [h.0, f64::INFINITY], least(h.0))
+            .find(|d| HeightRange::new("bead", beads.low(), Length(d.value)).is_ok_and(fit))
+    });
+    let speed = |h: Option<Decimal>, faster| {
+        h.and_then(|h| bead_speed(Length(h.value), faster, ex, bead, slicing, probe, map))
     };
     let cb = CountBead {
         name: &bead.name,
         heights: bead.height_span,
         speeds: bead.speed_span,
-        speed_for_low: speed(e.bead_low_at_most(), f64::ceil),
-        speed_for_high: e.bead_high_at_least().and_then(|h| speed(h, f64::floor)),
+        low,
+        high,
+        speed_for_low: speed(low, true),
+        speed_for_high: speed(high, false),
     };
-    message::top::no_count(e, top.low_at, top.high_at, &cb, ex.top_span)
+    let declared = slicing.layers.map(|l| l.0.get());
+    message::top::no_count(
+        e,
+        top.low_at,
+        top.high_at,
+        &fixes,
+        &cb,
+        declared,
+        ex.top_span,
+    )
 }
 
-/// A declared count outside the counts that work.
-fn out_of_range(e: &OutOfRange, bead: &Bead, slicing: &VariableSlicing) -> Diagnostic {
-    message::top::count_outside(e, &bead.name, slicing.layers.map(|l| l.1), bead.height_span)
+/// The layer count `layer_range` gives for `top` over `beads` within a
+/// declared count, if any: the fewest, or the declared one.
+fn fits(top: HeightRange, beads: HeightRange, slicing: &VariableSlicing) -> Option<u32> {
+    counted(layer_range(top, beads).ok()?, slicing)
+}
+
+/// The count a range of counts gives: the declared one if it holds it, else
+/// the fewest (what `layers = auto` takes; the help then names the count to
+/// declare).
+fn counted(range: LayerRange, slicing: &VariableSlicing) -> Option<u32> {
+    match slicing.layers {
+        Some((n, _)) if range.contains(n) => Some(n.get()),
+        _ => Some(range.fewest().get()),
+    }
+}
+
+/// The speed (mm/s, a tenth) that lets the bead lay `h` as the tracks stack
+/// it: faster than its range (`faster`) for a lower height, else slower;
+/// checked by running the count with the bead's speeds extended to it.
+fn bead_speed(
+    h: Length,
+    faster: bool,
+    ex: &TopExtrusion,
+    bead: &Bead,
+    slicing: &VariableSlicing,
+    probe: &Probe<'_>,
+    map: &impl HeightMap,
+) -> Option<f64> {
+    let v = map.speed_within(h).0;
+    if !(v.is_finite() && v > 0.0) {
+        return None;
+    }
+    // Rounded away from the bead's range, then a tenth further each try.
+    let first = if faster {
+        (v * 10.0).ceil()
+    } else {
+        (v * 10.0).floor()
+    };
+    (0..20).find_map(|k| {
+        let tenths = if faster {
+            first + k as f64
+        } else {
+            first - k as f64
+        };
+        let v = tenths / 10.0;
+        let mut b = bead.clone();
+        b.speed[if faster { 1 } else { 0 }] = Speed(v);
+        (v > 0.0
+            && b.speed[0].0 <= b.speed[1].0
+            && counts(ex, &ex.top, &b, slicing, probe).is_some())
+        .then_some(v)
+    })
+}
+
+/// Runs the count's steps (scan axis, sampling, the heights the bead stacks)
+/// on `top` and `bead`: the count it gives, if one fits.
+fn counts(
+    ex: &TopExtrusion,
+    top: &Top,
+    bead: &Bead,
+    slicing: &VariableSlicing,
+    probe: &Probe<'_>,
+) -> Option<u32> {
+    let mut tried = ex.clone();
+    tried.top = top.clone();
+    let mut surface = Surface::new(&tried, |axis| probe.fp.written_extent(axis));
+    let input = count_input(probe.fp, &mut surface, probe.pitch, &tried, bead, slicing).ok()?;
+    counted(input.counts()?, slicing)
+}
+
+/// A number of a top written as `edges(…)` or `plane(…)` that a fix
+/// changes, the others kept.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Param {
+    /// `edges(…)`'s `from`.
+    From,
+    /// `edges(…)`'s `to`.
+    To,
+    /// `plane(…)`'s `height`.
+    Height,
+    /// `plane(…)`'s `slope_x` (0) or `slope_y` (1).
+    Slope(usize),
+}
+
+impl Param {
+    /// Its value in `top`, if `top` has it.
+    fn get(self, top: &Top) -> Option<f64> {
+        match (top, self) {
+            (Top::Edges { from, .. }, Param::From) => Some(from.0),
+            (Top::Edges { to, .. }, Param::To) => Some(to.0),
+            (Top::Plane { height, .. }, Param::Height) => Some(height.0),
+            (Top::Plane { slope, .. }, Param::Slope(i)) => Some(slope[i]),
+            _ => None,
+        }
+    }
+
+    /// `top` with it set to `v`.
+    fn set(self, top: &Top, v: f64) -> Option<Top> {
+        let mut t = top.clone();
+        match (&mut t, self) {
+            (Top::Edges { from, .. }, Param::From) => *from = Length(v),
+            (Top::Edges { to, .. }, Param::To) => *to = Length(v),
+            (Top::Plane { height, .. }, Param::Height) => *height = Length(v),
+            (Top::Plane { slope, .. }, Param::Slope(i)) => slope[i] = v,
+            _ => return None,
+        }
+        Some(t)
+    }
+
+    /// Printed in mm, a slope in % (×100).
+    fn scale(self) -> f64 {
+        match self {
+            Param::Slope(_) => 100.0,
+            _ => 1.0,
+        }
+    }
+
+    /// The least value it may take: `edges(…)`'s heights are positive.
+    fn least(self) -> f64 {
+        match self {
+            Param::From | Param::To => f64::MIN_POSITIVE,
+            _ => f64::NEG_INFINITY,
+        }
+    }
+
+    /// The fix it makes with the value printed.
+    fn fix(self, value: Decimal, layers: u32) -> TopFix {
+        match self {
+            Param::From => TopFix::Edge {
+                to: false,
+                value,
+                layers,
+            },
+            Param::To => TopFix::Edge {
+                to: true,
+                value,
+                layers,
+            },
+            Param::Height => TopFix::Height { value, layers },
+            Param::Slope(axis) => TopFix::Slope {
+                axis,
+                percent: value,
+                layers,
+            },
+        }
+    }
+}
+
+/// The value of `param` nearest the file's that lets a count lay the top,
+/// printed and checked. The top is a plane, so at each point where a track
+/// can run its height is `a + p·b` for the parameter `p`, and a count `N`
+/// needs `N·h_min ≤ a + p·b ≤ N·h_max` there: linear in `p`, and binding at
+/// the corners of the hull of those points. Each `N` gives an interval of
+/// `p`; the nearest point of them all is rounded into its interval, and the
+/// count's own steps are run on the top it gives.
+fn sugar_fix(
+    param: Param,
+    ex: &TopExtrusion,
+    bead: &Bead,
+    slicing: &VariableSlicing,
+    probe: &Probe<'_>,
+    beads: HeightRange,
+) -> Option<TopFix> {
+    let p0 = param.get(&ex.top)?;
+    let plane = |v: f64| {
+        let mut tried = ex.clone();
+        tried.top = param.set(&ex.top, v)?;
+        match Surface::new(&tried, |axis| probe.fp.written_extent(axis)) {
+            Surface::Plane { h0, slope } => Some((h0, slope)),
+            Surface::Expr(_) => None,
+        }
+    };
+    let ((h0, s0), (h1, s1)) = (plane(0.0)?, plane(1.0)?);
+    let corners: Vec<(f64, f64)> = hull(track_ends(probe))
+        .into_iter()
+        .map(|[x, y]| {
+            let a = h0 + s0[0] * x + s0[1] * y;
+            (a, h1 + s1[0] * x + s1[1] * y - a)
+        })
+        .collect();
+    let (lo, hi) = (beads.low().0, beads.high().0);
+    // The value nearest the file's over the counts `ns`.
+    let nearest = |ns: std::ops::RangeInclusive<u32>| {
+        let mut best: Option<(f64, f64, [f64; 2])> = None;
+        for n in ns {
+            let (lo, hi) = (n as f64 * lo, n as f64 * hi);
+            let Some([l, r]) = interval(&corners, lo, hi, param.least()) else {
+                continue;
+            };
+            let p = p0.clamp(l, r);
+            if best.is_none_or(|b| (p - p0).abs() < b.0) {
+                best = Some(((p - p0).abs(), p, [l, r]));
+            }
+        }
+        best
+    };
+    // The declared count if a value fits it, else any count.
+    let declared = slicing.layers.map(|l| l.0.get());
+    let best = declared
+        .and_then(|n| nearest(n..=n))
+        .or_else(|| nearest(1..=MAX_LAYERS));
+    let (_, p, [l, r]) = best?;
+    let scale = param.scale();
+    candidates(p * scale, [l * scale, r * scale], 1).find_map(|d| {
+        let top = param.set(&ex.top, d.value / scale)?;
+        counts(ex, &top, bead, slicing, probe).map(|n| param.fix(d, n))
+    })
+}
+
+/// The fixes of a top written as an expression: its heights where the
+/// tracks run, the highest lowered or the lowest raised, checked by the
+/// count's own test.
+fn expr_fixes(e: &NoLayerCount, slicing: &VariableSlicing) -> Vec<TopFix> {
+    let (lo, hi) = (e.top.low().0, e.top.high().0);
+    let mut out = Vec::new();
+    if let Some(h) = e.top_high_at_most() {
+        let ok = candidates(h.0, [lo, h.0], 3).find_map(|d| {
+            let top = HeightRange::new("top", Length(lo), Length(d.value)).ok()?;
+            fits(top, e.bead, slicing).map(|n| (d, n))
+        });
+        if let Some((at_most, layers)) = ok {
+            out.push(TopFix::High { at_most, layers });
+        }
+    }
+    if let Some(h) = e.top_low_at_least() {
+        let ok = candidates(h.0, [h.0, hi], 3).find_map(|d| {
+            let top = HeightRange::new("top", Length(d.value), Length(hi)).ok()?;
+            fits(top, e.bead, slicing).map(|n| (d, n))
+        });
+        if let Some((at_least, layers)) = ok {
+            out.push(TopFix::Low { at_least, layers });
+        }
+    }
+    out
+}
+
+/// `v` rounded to `least`, then to each of three more decimals, each time
+/// to the nearest value within `[l, r]` at that many (none when the
+/// interval holds none).
+fn candidates(v: f64, [l, r]: [f64; 2], least: usize) -> impl Iterator<Item = Decimal> {
+    (least..least + 4).filter_map(move |decimals| {
+        let step = 10f64.powi(-(decimals as i32));
+        let mut q = (v / step).round() * step;
+        if q < l {
+            q = (l / step).ceil() * step;
+        }
+        if q > r {
+            q = (r / step).floor() * step;
+        }
+        // The value read back from its printed form is the one checked.
+        let q: f64 = format!("{q:.decimals$}").parse().ok()?;
+        (l <= q && q <= r && q.is_finite()).then_some(Decimal { value: q, decimals })
+    })
+}
+
+/// The values of `p` for which `lo ≤ a + p·b ≤ hi` at every corner `(a,
+/// b)`, and `p ≥ least`.
+fn interval(corners: &[(f64, f64)], lo: f64, hi: f64, least: f64) -> Option<[f64; 2]> {
+    let (mut l, mut r) = (least, f64::INFINITY);
+    for &(a, b) in corners {
+        if b.abs() <= 1e-12 * a.abs().max(1.0) {
+            if a < lo || a > hi {
+                return None;
+            }
+            continue;
+        }
+        let (p, q) = ((lo - a) / b, (hi - a) / b);
+        let (p, q) = if b > 0.0 { (p, q) } else { (q, p) };
+        (l, r) = (l.max(p), r.min(q));
+    }
+    (l <= r).then_some([l, r])
+}
+
+/// The ends of every stretch a track can run along, on the lines the top
+/// is sampled on (a plane's heights there are extreme at them).
+fn track_ends(probe: &Probe<'_>) -> Vec<[f64; 2]> {
+    let Some([lo, hi]) = probe.fp.centres(probe.scan) else {
+        return Vec::new();
+    };
+    let at = spaced(lo, hi, probe.pitch);
+    let mut out = Vec::new();
+    for (c, intervals) in at.iter().zip(probe.fp.intervals(probe.scan, &at)) {
+        for [a, b] in intervals {
+            out.push(Footprint::point(probe.scan, a, *c));
+            out.push(Footprint::point(probe.scan, b, *c));
+        }
+    }
+    out
+}
+
+/// The corners of the convex hull of `points` (Andrew's monotone chain);
+/// fewer than three points come back as they are.
+fn hull(mut points: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
+    points.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    points.dedup();
+    if points.len() < 3 {
+        return points;
+    }
+    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    };
+    let mut out: Vec<[f64; 2]> = Vec::with_capacity(2 * points.len());
+    for pass in [
+        &points[..],
+        &points.iter().rev().copied().collect::<Vec<_>>()[..],
+    ] {
+        let base = out.len();
+        for &p in pass {
+            while out.len() >= base + 2 && cross(out[out.len() - 2], out[out.len() - 1], p) <= 0.0 {
+                out.pop();
+            }
+            out.push(p);
+        }
+        // Each chain's last point starts the other.
+        out.pop();
+    }
+    out
+}
+
+/// Most layer counts a declared count's help tries (those nearest it).
+const MAX_TRIED: usize = 64;
+
+/// A declared count outside the counts that work: the help names those of
+/// them whose tracks can lay their layers.
+fn out_of_range(
+    e: &OutOfRange,
+    bead: &Bead,
+    slicing: &VariableSlicing,
+    builds: &mut dyn FnMut(NonZeroU32) -> bool,
+) -> Diagnostic {
+    let (fewest, most) = (e.range.fewest().get(), e.range.most().get());
+    let n = e.layers.get();
+    let mut tried: Vec<u32> = (fewest..=most).collect();
+    tried.sort_by_key(|c| c.abs_diff(n));
+    tried.truncate(MAX_TRIED);
+    tried.sort_unstable();
+    let mut runs: Vec<[u32; 2]> = Vec::new();
+    for c in tried {
+        if !NonZeroU32::new(c).is_some_and(&mut *builds) {
+            continue;
+        }
+        match runs.last_mut() {
+            Some(run) if run[1] + 1 == c => run[1] = c,
+            _ => runs.push([c, c]),
+        }
+    }
+    // `layers = auto` starts at the fewest and keeps it when it builds.
+    let auto = runs.first().is_some_and(|r| r[0] == fewest);
+    message::top::count_outside(&CountOutside {
+        e,
+        bead: &bead.name,
+        runs: &runs,
+        auto: auto.then_some(fewest),
+        layers: slicing.layers.map(|l| l.1),
+        heights: bead.height_span,
+    })
 }

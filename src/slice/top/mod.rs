@@ -62,12 +62,14 @@ pub fn slice(
     // Samples every eighth of a bead: a top that bends within a bead is
     // seen, a plane costs nothing (its samples are dropped again).
     let pitch = w / 8.0;
-    let (scan, sampled) = scan_axis(&fp, &mut top, pitch, ex, slicing.scan)?;
-    // The heights the count is chosen for: what the bead stacks at the
-    // pitch the tracks will have, or its own heights for a balanced layout.
-    let count_pitch = layout::count_pitch(&fp, scan, w, slicing).map(Length);
-    let map = BeadMap::new(bead, count_pitch).map_err(|e| internal(e.to_string()))?;
-    let mut range = TopRange::of(&sampled).ok_or_else(|| internal("an empty top range".into()))?;
+    let CountInput {
+        scan,
+        sampled,
+        count_pitch,
+        map,
+        range,
+    } = count_input(&fp, &mut top, pitch, ex, bead, slicing)?;
+    let mut range = range;
     let positive = |what, l: Length| Positive::new(what, l).map_err(|e| internal(e.to_string()));
     let spec = SegmentSpec {
         tolerance: positive("tolerance", slicing.tolerance)?,
@@ -79,7 +81,21 @@ pub fn slice(
     let mut tried: Vec<u32> = Vec::new();
     let mut missed = None;
     while tried.len() < MAX_ROUNDS + MAX_COUNT_TRIES {
-        let fewest = count::layers(&range, bead, &map, ex, slicing)?;
+        // A count's help names only counts whose tracks can be laid.
+        let mut builds = |c: NonZeroU32| {
+            let Ok(lines) = layout::lay(&fp, scan, &sampled, c, bead, slicing, ex) else {
+                return false;
+            };
+            tracks::plan(&fp, scan, &lines, &mut top, spec, pitch)
+                .is_ok_and(|p| deposit::unfillable(&p.tracks, c, bead).is_none())
+        };
+        let probe = count::Probe {
+            fp: &fp,
+            scan,
+            pitch,
+            builds: &mut builds,
+        };
+        let fewest = count::layers(&range, bead, &map, ex, slicing, probe)?;
         let n = instead.unwrap_or(fewest);
         tried.push(n.get());
         let lines = layout::lay(&fp, scan, &sampled, n, bead, slicing, ex)?;
@@ -88,18 +104,7 @@ pub fn slice(
                 tracks::Problem::Top(b, more) => b.report(ex, more),
                 tracks::Problem::Invalid(e) => internal(e.to_string()),
             })?;
-        if !planned.failures.is_empty() {
-            return Err(too_short::report(
-                &planned.failures,
-                planned.tracks.len() + planned.failures.len(),
-                scan,
-                bead,
-                slicing,
-                ex,
-                spec.min_length,
-            )
-            .into());
-        }
+        failures(&planned, scan, bead, slicing, ex, spec)?;
         let Some(actual) = planned.range else {
             return Err(fp.too_narrow(ex, scan).into());
         };
@@ -125,34 +130,13 @@ pub fn slice(
                 None => break,
             }
         }
-        let mut warnings = Diagnostics::new();
-        if let Some(d) = layout::stretch_warning(&lines, slicing, ex) {
-            warnings.push(d);
-        }
-        short_tracks(&planned.tracks, w, slicing, &mut warnings);
-        let per_layer: usize = planned.tracks.iter().map(|t| t.t.len()).sum();
-        if per_layer.saturating_mul(n.get() as usize) > MAX_TOTAL_POINTS {
-            return Err(message::top::too_many_points(
-                n.get(),
-                per_layer,
-                MAX_TOTAL_POINTS,
-                slicing.span,
-            )
-            .into());
-        }
-        let process = emit::Process::of(model, bead);
-        // Each track's speeds raise the layer by its height over the strip
-        // it fills.
-        let maps = planned
-            .tracks
-            .iter()
-            .map(|t| BeadMap::new(bead, Some(Length(t.pitch))))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| internal(e.to_string()))?;
-        let layers = (0..n.get())
-            .map(|i| emit::layer(model, &maps, &process, &planned.tracks, scan, i, n))
-            .collect();
-        return Ok((layers, warnings));
+        let tracks = Planned {
+            lines: &lines,
+            tracks: &planned.tracks,
+            scan,
+            n,
+        };
+        return finish(model, bead, ex, slicing, &tracks);
     }
     if let Some((miss, n)) = missed {
         return Err(deposit::report(&miss, n, bead, slicing, ex).into());
@@ -160,6 +144,123 @@ pub fn slice(
     Err(internal(
         "the top's range over the tracks did not settle".into(),
     ))
+}
+
+/// The tracks whose height tolerance needs segments too short, as the error.
+fn failures(
+    planned: &tracks::Tracks,
+    scan: Axis,
+    bead: &Bead,
+    slicing: &VariableSlicing,
+    ex: &TopExtrusion,
+    spec: SegmentSpec,
+) -> Result<(), Diagnostics> {
+    if planned.failures.is_empty() {
+        return Ok(());
+    }
+    Err(too_short::report(
+        &planned.failures,
+        planned.tracks.len() + planned.failures.len(),
+        scan,
+        bead,
+        slicing,
+        ex,
+        spec.min_length,
+    )
+    .into())
+}
+
+/// A count's tracks, laid and planned.
+struct Planned<'a> {
+    lines: &'a layout::Layout,
+    tracks: &'a [tracks::Track],
+    scan: Axis,
+    n: NonZeroU32,
+}
+
+/// The layers of tracks that can all be laid, with the warnings they earn
+/// (step 5).
+fn finish(
+    model: &Model,
+    bead: &Bead,
+    ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+    p: &Planned<'_>,
+) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    let n = p.n;
+    let mut warnings = Diagnostics::new();
+    if let Some(d) = layout::stretch_warning(p.lines, slicing, ex) {
+        warnings.push(d);
+    }
+    short_tracks(p.tracks, bead.width.0, slicing, &mut warnings);
+    let per_layer: usize = p.tracks.iter().map(|t| t.t.len()).sum();
+    if per_layer.saturating_mul(n.get() as usize) > MAX_TOTAL_POINTS {
+        return Err(message::top::too_many_points(
+            n.get(),
+            per_layer,
+            MAX_TOTAL_POINTS,
+            slicing.span,
+        )
+        .into());
+    }
+    let process = emit::Process::of(model, bead);
+    // Each track's speeds raise the layer by its height over the strip it
+    // fills.
+    let maps = p
+        .tracks
+        .iter()
+        .map(|t| BeadMap::new(bead, Some(Length(t.pitch))))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| internal(e.to_string()))?;
+    let layers = (0..n.get())
+        .map(|i| emit::layer(model, &maps, &process, p.tracks, p.scan, i, n))
+        .collect();
+    Ok((layers, warnings))
+}
+
+/// What the layer count is chosen from (steps 1–2): the scan axis, the top
+/// sampled for it, the pitch the count is chosen for, the heights the bead
+/// stacks there and the top's range. The count's help runs it again on the
+/// tops and beads it proposes.
+pub(super) struct CountInput<'b> {
+    scan: Axis,
+    sampled: Sampled,
+    count_pitch: Option<Length>,
+    map: BeadMap<'b>,
+    range: TopRange,
+}
+
+/// Steps 1–2 for `top` (the surface of `ex`'s top, or one the help tries)
+/// over `fp`, sampled every `pitch`.
+pub(super) fn count_input<'b>(
+    fp: &Footprint,
+    top: &mut Surface<'_>,
+    pitch: f64,
+    ex: &TopExtrusion,
+    bead: &'b Bead,
+    slicing: &VariableSlicing,
+) -> Result<CountInput<'b>, Diagnostics> {
+    let (scan, sampled) = scan_axis(fp, top, pitch, ex, slicing.scan)?;
+    // The heights the count is chosen for: what the bead stacks at the
+    // pitch the tracks will have, or its own heights for a balanced layout.
+    let count_pitch = layout::count_pitch(fp, scan, bead.width.0, slicing).map(Length);
+    let map = BeadMap::new(bead, count_pitch).map_err(|e| internal(e.to_string()))?;
+    let range = TopRange::of(&sampled).ok_or_else(|| internal("an empty top range".into()))?;
+    Ok(CountInput {
+        scan,
+        sampled,
+        count_pitch,
+        map,
+        range,
+    })
+}
+
+impl CountInput<'_> {
+    /// The layer counts that lay this top within these heights, if any.
+    pub(super) fn counts(&self) -> Option<crate::slice::variable::layers::LayerRange> {
+        use crate::slice::variable::speed::HeightMap;
+        crate::slice::variable::layers::layer_range(self.range.heights, self.map.heights()).ok()
+    }
 }
 
 /// The scan axis (declared, or the axis the top rises more along; on a tie
