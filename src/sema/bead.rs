@@ -3,8 +3,12 @@
 use super::eval::{unknown_name, Env};
 use super::fields::Fields;
 use super::model::{Bead, HeightModel};
-use super::schema::bead::{self as schema, model as args, BEAD, LINEAR, MASS_BALANCE, MEASURED};
+use super::schema::bead::{
+    self as schema, model as args, BEAD, LAYER, LINEAR, MASS_BALANCE, MEASURED,
+};
+use super::suggest::did_you_mean;
 use super::value::{Spanned, Value};
+use crate::deposit::Basis;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
@@ -42,7 +46,9 @@ pub fn read<'a>(
         diags.push(message::bead::speed_not_positive(speed_span));
         false
     });
-    let model = height_model(model, span, diags)?;
+    let model = height_model(model, span, diags);
+    let basis = basis(&f, model, model_span, diags);
+    let (model, basis) = (model?, basis?);
     let model_span = model_span.unwrap_or(span);
     // A measured bead is valid at the speed it was measured at, unless the file
     // says over which range it holds.
@@ -55,12 +61,17 @@ pub fn read<'a>(
     };
     let (width, (speed, speed_span)) = (width?, speed?);
     let w = Length(width.0);
-    let (height, height_span) = heights(model, w, speed, height, (speed_span, model_span), diags)?;
+    let deposit = crate::deposit::Deposit {
+        model,
+        width: w,
+        basis,
+    };
+    let (height, height_span) = heights(deposit, speed, height, (speed_span, model_span), diags)?;
     Some(Bead {
         name: name.to_string(),
         width: w,
         model,
-        basis: crate::deposit::Basis::Track,
+        basis,
         declared_height,
         feed: None,
         speed: [Speed(speed[0]), Speed(speed[1])],
@@ -69,6 +80,47 @@ pub fn read<'a>(
         height_span,
         speed_span,
     })
+}
+
+/// What the model's heights were measured as (`measured_as = …`; a single
+/// track when not written).
+fn basis(
+    f: &Fields<'_>,
+    model: Option<HeightModel>,
+    model_span: Option<Span>,
+    diags: &mut Diagnostics,
+) -> Option<Basis> {
+    let Some(v) = f.value(&schema::MEASURED_AS, diags) else {
+        return (!f.has(&schema::MEASURED_AS)).then_some(Basis::Track);
+    };
+    let basis = match &v.value {
+        Value::Symbol(s) if s == "track" => Basis::Track,
+        Value::Symbol(s) if s == "wall" => Basis::Wall,
+        Value::Call(c) if c.func == "layer" => {
+            let a = Fields::call(c, &LAYER, diags);
+            Basis::Layer {
+                offset: a.quantity(&args::OFFSET, diags)?.0,
+            }
+        }
+        other => {
+            let near = match other {
+                Value::Symbol(w) => did_you_mean(w, ["track", "wall", "layer"]),
+                Value::Call(c) => did_you_mean(&c.func, ["layer"]),
+                _ => None,
+            };
+            diags.push(message::bead::bad_measured_as(
+                v.span,
+                &other.describe(),
+                near,
+            ));
+            return None;
+        }
+    };
+    if let (Some(HeightModel::MassBalance { .. }), Some(m)) = (model, model_span) {
+        diags.push(message::bead::measured_as_with_mass_balance(v.span, m));
+        return None;
+    }
+    Some(basis)
 }
 
 /// The model `model = …` gives (`block` is where to point when the value
@@ -120,13 +172,13 @@ fn height_model(
 /// `spans.0`), narrowed to `height` if written: the layer heights allowed,
 /// and where they are declared (`spans.1`, the model, when not written).
 fn heights(
-    model: HeightModel,
-    w: Length,
+    deposit: crate::deposit::Deposit,
     speed: [f64; 2],
     height: Option<([f64; 2], Span)>,
     (speed_span, model_span): (Span, Span),
     diags: &mut Diagnostics,
 ) -> Option<([Length; 2], Span)> {
+    let (model, w) = (deposit.model, deposit.width);
     // The model's heights at the ends of its speed range.
     let h_hi = model.height_at(Speed(speed[0]), w).0;
     let h_lo = model.height_at(Speed(speed[1]), w).0;
@@ -140,11 +192,13 @@ fn heights(
         return None;
     }
     let (height, height_span) = match (height, model) {
-        // Planar layers of a measured bead rise by A/w (one track) up to h (tracks
-        // at the flat-top offset A/h): the heights it can build.
-        (None, HeightModel::Measured { height: h, .. }) => {
-            ([crate::bead::planar_lift(w, h, None).0, h.0], model_span)
-        }
+        // Planar layers of a measured bead rise by A/w (one track) up to its
+        // bead's height (tracks at the flat-top offset A/h): the heights it
+        // can build.
+        (None, HeightModel::Measured { speed: v, .. }) => (
+            [deposit.rise(v, w, None).0, deposit.bead_height(v).0],
+            model_span,
+        ),
         (Some(([lo, hi], hs)), HeightModel::Measured { .. }) => ([lo, hi], hs),
         (None, _) => ([h_lo, h_hi], model_span),
         (Some(([lo, hi], hs)), _) => {

@@ -331,6 +331,7 @@ pub fn assemble(
             lift: spec.lift,
             span: spec.span,
             offset_span: spec.offset.map(|o| o.1),
+            tolerance: spec.tolerance,
         },
     ))
 }

@@ -75,6 +75,11 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     let inheritance = style::inheritance_statement(&mut env, &st, diags);
 
     let solid_kind = solid.kind;
+    let tolerance = slicing
+        .spec
+        .as_ref()
+        .map(|s| s.tolerance())
+        .unwrap_or_default();
     let planar = match &slicing.spec {
         Some(slicing::Spec::Planar(p)) => Some(p.clone()),
         _ => None,
@@ -125,5 +130,6 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         process: process.process?,
         machines,
         styles: styles?,
+        tolerance,
     })
 }

@@ -28,6 +28,27 @@ pub struct Model {
     pub machines: Vec<(Machine, MachineOrigin)>,
     /// Process styles and how they pass from layer to layer (seed 002).
     pub styles: Styles,
+    /// How closely the bead model must lay the planned layers.
+    pub tolerance: Tolerance,
+}
+
+/// How closely the plan's bead model must lay the layers it plans
+/// (`rise_tolerance`, `max_drift` of the slicing block; `lmd::deposit`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerance {
+    /// A run's rise may be this share off its planned height.
+    pub rise: f64,
+    /// The layers' mean errors may add up to this.
+    pub drift: Length,
+}
+
+impl Default for Tolerance {
+    fn default() -> Self {
+        Tolerance {
+            rise: crate::ir::RISE_TOLERANCE,
+            drift: Length(crate::ir::MAX_DRIFT),
+        }
+    }
 }
 
 /// The style table, in declaration order, and its inheritance.
@@ -323,6 +344,8 @@ pub struct Slicing {
     pub layers_span: Option<Span>,
     /// `seam = …`, if written.
     pub seam_span: Option<Span>,
+    /// `rise_tolerance` and `max_drift`.
+    pub tolerance: Tolerance,
 }
 
 /// Laser power over the layers.
@@ -693,6 +716,8 @@ pub struct PlanarSlicing {
     pub span: Span,
     /// The offset's declaration, if written.
     pub offset_span: Option<Span>,
+    /// `rise_tolerance` and `max_drift`.
+    pub tolerance: Tolerance,
 }
 
 impl PlanarSlicing {

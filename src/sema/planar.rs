@@ -10,6 +10,7 @@ use super::schema::Field;
 use super::seam;
 use super::value::{Call, Spanned as SpannedValue, Value};
 use crate::diag::{message, Diagnostics};
+use crate::sema::model::Tolerance;
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Angle, Length};
@@ -32,6 +33,8 @@ pub struct PlanarSpec {
     pub chord_error: Length,
     /// Where contour loops start, layer by layer.
     pub seam: SeamRule,
+    /// `rise_tolerance` and `max_drift`.
+    pub tolerance: Tolerance,
     /// The block.
     pub span: Span,
 }
@@ -119,6 +122,7 @@ pub fn read<'a>(
         infill: infill?,
         chord_error: chord_error?,
         seam: seam?,
+        tolerance: super::slicing::tolerance(&f, diags)?,
         span,
     })
 }

@@ -11,6 +11,7 @@ use super::statement::{shape_error, single, Statements};
 use super::suggest::did_you_mean;
 use super::value::Value;
 use crate::diag::{message, Diagnostics};
+use crate::sema::model::Tolerance;
 use crate::span::{Span, Spanned};
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Angle, Length};
@@ -91,6 +92,29 @@ fn any_strategy<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mu
     Fields::block(env, stmts, &schema::ANY, "slicing".into(), span, diags);
 }
 
+/// `rise_tolerance` and `max_drift` of a strategy with a bead model.
+pub(super) fn tolerance(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Tolerance> {
+    let rise = f.quantity_or_default(&schema::RISE_TOLERANCE, diags);
+    let drift = f.quantity_or_default(&schema::MAX_DRIFT, diags);
+    Some(Tolerance {
+        rise: rise?,
+        drift: Length(drift?),
+    })
+}
+
+impl Spec {
+    /// How closely the bead model must lay the layers (the defaults for a
+    /// ring, which has none).
+    pub fn tolerance(&self) -> Tolerance {
+        match self {
+            Spec::Normal(s) => s.tolerance,
+            Spec::Planar(p) => p.tolerance,
+            Spec::Variable(v) => v.tolerance,
+            Spec::Continuous(_) => Tolerance::default(),
+        }
+    }
+}
+
 /// Reads a slicing block.
 fn read<'a>(
     env: &mut Env<'a>,
@@ -157,10 +181,12 @@ fn normal<'a>(
             .map(Resolution::Count),
     };
     let seam = f.quantity_or_default(&normal::SEAM, diags).map(Angle);
+    let tolerance = tolerance(&f, diags);
     Some(Slicing {
         layers: layers?,
         resolution: resolution?,
         seam: seam?,
+        tolerance: tolerance?,
         span,
         layers_span: f.span(&normal::LAYERS),
         seam_span: f.span(&normal::SEAM),

@@ -18,6 +18,7 @@ use super::profile;
 use super::schema::slicing::{variable, SEGMENTS, VARIABLE};
 use super::value::Value;
 use crate::diag::{message, Diagnostics};
+use crate::sema::model::Tolerance;
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Length, Speed};
@@ -30,6 +31,8 @@ use std::num::NonZeroU32;
 pub struct VariableSpec {
     slicing: Option<VariableSlicing>,
     offset: Option<(Length, Span)>,
+    /// `rise_tolerance` and `max_drift` (the defaults where wrong: reported).
+    pub tolerance: Tolerance,
 }
 
 impl VariableSpec {
@@ -116,6 +119,7 @@ pub fn read<'a>(
     VariableSpec {
         slicing,
         offset: declared,
+        tolerance: super::slicing::tolerance(&f, diags).unwrap_or_default(),
     }
 }
 

@@ -62,7 +62,7 @@ pub fn plan(
     let laid = bead.deposit().rise(slicing.speed, pitch, None);
     let (lift, lift_derived) = match slicing.lift {
         Some((l, at)) => (
-            declared_lift(l, at, laid, (overlapped, pitch), bead, diags)?,
+            declared_lift((l, at), laid, (overlapped, pitch), slicing, bead, diags)?,
             false,
         ),
         None => (
@@ -141,10 +141,10 @@ fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> 
 /// A declared layer height: within the bead's heights (else an error), and
 /// reported when it is not what the tracks lay (`laid`).
 fn declared_lift(
-    l: Length,
-    at: Span,
+    (l, at): (Length, Span),
     laid: Length,
     (overlapped, pitch): (bool, Length),
+    slicing: &PlanarSlicing,
     bead: &Bead,
     diags: &mut Diagnostics,
 ) -> Option<Length> {
@@ -163,7 +163,7 @@ fn declared_lift(
     // Beyond the deposit's tolerance the verifier refuses the plan
     // (`lmd::deposit`, with the fix): below it the drift is a warning.
     let drift = laid.0 - l.0;
-    if drift.abs() > LIFT_TOLERANCE * laid.0 && drift.abs() <= crate::ir::RISE_TOLERANCE * l.0 {
+    if drift.abs() > LIFT_TOLERANCE * laid.0 && drift.abs() <= slicing.tolerance.rise * l.0 {
         diags.push(message::slicing::lift_mismatch(l, laid, overlapped, at));
     }
     Some(l)

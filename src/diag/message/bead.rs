@@ -242,3 +242,28 @@ pub fn schedule_out_of_range(
     .label(range_at, "allowed range")
     .help("keep the scheduled powers inside `power_range`")
 }
+
+/// `measured_as` is none of `track`, `wall`, `layer(offset)` (`got`
+/// describes it; `near` a word it may have meant).
+pub fn bad_measured_as(at: Span, got: &str, near: Option<&str>) -> Diagnostic {
+    let d = Diagnostic::error(
+        Code::BadChoice,
+        "`measured_as` is `track`, `wall` or `layer(offset = …)`",
+    )
+    .label(at, format!("this is {got}"));
+    match near {
+        Some(w) => d.help(format!("did you mean `{w}`?")),
+        None => d.help("what the model's heights are: one track on a plate (`track`, the seeds' maps), the rise per layer of a wall one bead wide (`wall`), or of filled layers of tracks `offset` apart (`layer(offset = 1.6 mm)`)"),
+    }
+}
+
+/// `measured_as` is given with a mass-balance model, which needs none.
+pub fn measured_as_with_mass_balance(at: Span, model: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConflictingFields,
+        "a mass balance needs no `measured_as`: it gives the metal caught per length, `A = η·ṁ/(ρ·v)`, whatever was measured",
+    )
+    .label(at, "measured_as")
+    .label(model, "mass balance")
+    .help("drop `measured_as`")
+}

@@ -2,8 +2,8 @@
 //! models it may be (`linear(…)`, `mass_balance(…)`, `measured(…)`).
 
 use super::Bound::{Any, Negative, Positive, PositiveUpTo};
-use super::DefaultValue::Described;
-use super::Kind::{Call, Quantity, Range};
+use super::DefaultValue::{Described, Word as DefaultWord};
+use super::Kind::{Call, Either, Quantity, Range, Word};
 use super::Need::{Default, Required, RequiredUnless};
 use super::{Block, Field};
 use crate::units::Dim;
@@ -40,12 +40,28 @@ pub static MODEL: Field = Field::new(
     "how the bead's height follows the scan speed",
 );
 
+/// `measured_as = …`.
+pub static MEASURED_AS: Field = Field::new(
+    "measured_as",
+    Either(&[Word(&["track", "wall"]), Call(&[&LAYER])]),
+    Default(DefaultWord("track")),
+    "what the model's heights are: a single track's (`track`), the rise per layer of a wall one bead wide (`wall`) or of filled layers (`layer(offset)`)",
+);
+
 /// `bead NAME { … }`.
 pub static BEAD: Block = Block::new(
     "bead",
     "bead NAME { … }",
     "a bead model: how high a track of it is at each scan speed",
-    &[&WIDTH, &HEIGHT, &SPEED, &MODEL],
+    &[&WIDTH, &HEIGHT, &SPEED, &MODEL, &MEASURED_AS],
+);
+
+/// `layer(offset)` of `measured_as`.
+pub static LAYER: Block = Block::new(
+    "layer",
+    "layer(offset)",
+    "the rise per layer of filled layers of tracks `offset` apart",
+    &[&model::OFFSET],
 );
 
 /// The arguments of the models.
@@ -93,6 +109,13 @@ pub mod model {
         Quantity(Dim::LENGTH, Positive),
         Required("0.7 mm"),
         "the single track's measured height",
+    );
+    /// `layer(offset = …)` of `measured_as`.
+    pub static OFFSET: Field = Field::new(
+        "offset",
+        Quantity(Dim::LENGTH, Positive),
+        Required("1.6 mm"),
+        "the tracks' offset in the layers measured",
     );
     /// `measured(speed = …)`.
     pub static SPEED: Field = Field::new(

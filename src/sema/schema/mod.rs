@@ -511,6 +511,7 @@ pub static BLOCKS: &[&Block] = &[
     &bead::LINEAR,
     &bead::MASS_BALANCE,
     &bead::MEASURED,
+    &bead::LAYER,
     &solid::LOFT,
     &solid::LINE,
     &solid::ARC,

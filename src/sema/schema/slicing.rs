@@ -31,6 +31,22 @@ pub const GOLDEN_ANGLE_DEG: f64 = 137.507_764_050_037_85;
 /// A layer count, or `auto`.
 const LAYERS: Kind = Either(&[Word(&["auto"]), Count(1, MAX_LAYERS)]);
 
+/// `rise_tolerance = …`, of every strategy with a bead model.
+pub static RISE_TOLERANCE: Field = Field::new(
+    "rise_tolerance",
+    Quantity(Dim::NONE, PositiveUpTo(1.0)),
+    Default(DefaultQuantity(crate::ir::RISE_TOLERANCE)),
+    "how far a run's rise by the bead model may be from the layer height it plans, a share of it (`lmd::deposit`)",
+);
+
+/// `max_drift = …`, of every strategy with a bead model.
+pub static MAX_DRIFT: Field = Field::new(
+    "max_drift",
+    Quantity(Dim::LENGTH, Positive),
+    Default(DefaultQuantity(crate::ir::MAX_DRIFT)),
+    "how far the layers' mean errors may add up over the build (`lmd::deposit`)",
+);
+
 /// The fields of `slicing normal { … }`.
 pub mod normal {
     use super::*;
@@ -75,6 +91,8 @@ pub static NORMAL: Block = Block::new(
         &normal::POINTS,
         &normal::CHORD_ERROR,
         &normal::SEAM,
+        &RISE_TOLERANCE,
+        &MAX_DRIFT,
     ],
 );
 
@@ -150,6 +168,8 @@ pub static PLANAR: Block = Block::new(
         &planar::INFILL,
         &planar::CHORD_ERROR,
         &planar::SEAM,
+        &RISE_TOLERANCE,
+        &MAX_DRIFT,
     ],
 );
 
@@ -304,6 +324,8 @@ pub static VARIABLE: Block = Block::new(
         &variable::LAYERS,
         &variable::SCAN,
         &variable::OFFSET,
+        &RISE_TOLERANCE,
+        &MAX_DRIFT,
         &variable::SEGMENTS,
     ],
 );
@@ -369,6 +391,8 @@ pub static ANY: Block = Block::new(
         &normal::POINTS,
         &normal::CHORD_ERROR,
         &normal::SEAM,
+        &RISE_TOLERANCE,
+        &MAX_DRIFT,
         &planar::LAYER_HEIGHT,
         &planar::CONTOURS,
         &planar::OFFSET,
