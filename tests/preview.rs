@@ -62,11 +62,18 @@ fn past_the_budget_every_kth_layer_and_move_is_kept() {
     let (p, layers) = page("twisted_duct", 10_000);
     let d = data(&p);
     let moves = d["meta"]["moves"].as_u64().unwrap() as usize;
-    // k = 3 is the smallest stride with moves / k² within 10 000.
-    assert_eq!(d["meta"]["decimation"], serde_json::json!([3, 3]));
-    assert!(moves.div_ceil(9) <= 10_000 && moves.div_ceil(4) > 10_000);
+    // The same stride k across layers and along paths, the smallest with
+    // moves / k² within 10 000 (the duct's plan changes with its slicing:
+    // the test holds for any).
+    let k = d["meta"]["decimation"][0].as_u64().unwrap() as usize;
+    assert_eq!(d["meta"]["decimation"], serde_json::json!([k, k]));
+    assert!(k > 1, "{moves} moves fit 10 000 undecimated");
+    assert!(moves.div_ceil(k * k) <= 10_000 && moves.div_ceil((k - 1) * (k - 1)) > 10_000);
+    // Every k-th layer from the first, and the last.
     let starts = d["meta"]["starts"].as_array().unwrap();
-    assert_eq!(starts.len(), layers.div_ceil(3));
+    let every_kth = (layers - 1) / k + 1;
+    let last_extra = usize::from((layers - 1) % k != 0);
+    assert_eq!(starts.len(), every_kth + last_extra);
     assert_eq!(starts.last().unwrap()[0], layers, "the last layer is kept");
     let kept = d["meta"]["kept"].as_u64().unwrap() as usize;
     assert!(kept <= 10_000 + 10 * starts.len(), "{kept}");
