@@ -1,11 +1,13 @@
 //! The page's data: the kept moves as columns of little-endian integers,
 //! base64 in a JSON object the viewer reads. Positions are 16-bit fractions
-//! of the plan's bounding box (a 300 mm part to 5 µm), speed, height and power
-//! 16-bit fractions of their ranges over the deposits: 14 bytes a move
-//! instead of 40 as floats, and no float formatting to make the bytes
-//! depend on.
+//! of the plan's bounding box (a 300 mm part to 5 µm), speed, height, power
+//! and height error 16-bit fractions of their ranges over the deposits (the
+//! error's over the deposits it is predicted for), style a byte, and a byte
+//! of flags — laser on, a gap before, error predicted, and the path kind in
+//! three bits: 16 bytes a move instead of 48 as floats, and no float
+//! formatting to make the bytes depend on.
 
-use super::Decimation;
+use super::{Decimation, Kind};
 use crate::ir::Style;
 use serde::Serialize;
 
@@ -21,14 +23,26 @@ pub struct Row {
     pub power: f32,
     /// Style id.
     pub style: u16,
+    /// Height error, per cent (`None`: none predicted, or the laser off).
+    pub error: Option<f64>,
+    /// What the move is part of.
+    pub kind: Kind,
     /// Laser on.
     pub deposit: bool,
     /// No line leads to this move (layers between were left out).
     pub gap: bool,
 }
 
-/// A column's value of a move.
-type Field = fn(&Row) -> f64;
+/// A column's value of a move, if it has one (its range is over those that
+/// have; the others store 0).
+type Field = fn(&Row) -> Option<f64>;
+
+/// The flag bits of a move.
+const DEPOSIT: u8 = 1;
+const GAP: u8 = 2;
+const PREDICTED: u8 = 4;
+/// The kind's number is stored from this bit up (three bits).
+const KIND_SHIFT: u8 = 3;
 
 /// The kept moves, column by column.
 #[derive(Default)]
@@ -58,6 +72,16 @@ pub struct Meta<'a> {
     pub starts: &'a [(usize, usize)],
     /// The style table.
     pub styles: &'a [Style],
+    /// The names of the path kinds, by the number the flags store.
+    pub kinds: [&'static str; 5],
+    /// How far a deposit's height error may go (`rise_tolerance`), per cent.
+    pub tolerance: f64,
+    /// How far the layers' mean errors may add up (`max_drift`), mm.
+    pub max_drift: f64,
+    /// Every layer's `[mean %, lowest %, highest %, drift mm]` height error
+    /// (the drift the layers' mean rise minus height added up to it), from
+    /// every move of the plan, or `None` where none is predicted.
+    pub layer_error: &'a [Option<[f64; 4]>],
     /// Who wrote the page.
     pub generator: &'static str,
 }
@@ -69,14 +93,15 @@ fn strides<S: serde::Serializer>(d: &Decimation, s: S) -> Result<S::Ok, S::Error
 #[derive(Serialize)]
 struct Data<'a> {
     meta: &'a Meta<'a>,
-    /// `[min, max]` of x, y, z, speed, height, power.
-    ranges: [[f64; 2]; 6],
+    /// `[min, max]` of x, y, z, speed, height, power, error.
+    ranges: [[f64; 2]; 7],
     x: String,
     y: String,
     z: String,
     speed: String,
     height: String,
     power: String,
+    error: String,
     style: String,
     flags: String,
 }
@@ -94,10 +119,9 @@ impl Columns {
 
     /// The JSON object the page's viewer reads (safe inside `<script>`).
     pub fn encode(&self, meta: &Meta<'_>) -> String {
-        let range = |f: Field, deposits: bool| {
+        let range = |f: Field| {
             let mut r = [f64::INFINITY, f64::NEG_INFINITY];
-            for row in self.rows.iter().filter(|r| r.deposit || !deposits) {
-                let v = f(row);
+            for v in self.rows.iter().filter_map(f) {
                 if v.is_finite() {
                     r = [r[0].min(v), r[1].max(v)];
                 }
@@ -108,22 +132,22 @@ impl Columns {
                 r
             }
         };
-        // Each column's value, and whether its range is the deposits' only.
-        let fields: [(Field, bool); 6] = [
-            (|r| r.pos[0], false),
-            (|r| r.pos[1], false),
-            (|r| r.pos[2], false),
-            (|r| r.speed as f64, true),
-            (|r| r.height as f64, true),
-            (|r| r.power as f64, true),
+        let fields: [Field; 7] = [
+            |r| Some(r.pos[0]),
+            |r| Some(r.pos[1]),
+            |r| Some(r.pos[2]),
+            |r| r.deposit.then_some(r.speed as f64),
+            |r| r.deposit.then_some(r.height as f64),
+            |r| r.deposit.then_some(r.power as f64),
+            |r| r.error.filter(|_| r.deposit),
         ];
-        let ranges = fields.map(|(f, d)| range(f, d));
+        let ranges = fields.map(range);
         let column = |k: usize| {
             let [lo, hi] = ranges[k];
-            let f = fields[k].0;
             let mut bytes = Vec::with_capacity(self.rows.len() * 2);
             for r in &self.rows {
-                bytes.extend_from_slice(&quantise(f(r), lo, hi).to_le_bytes());
+                let q = fields[k](r).map_or(0, |v| quantise(v, lo, hi));
+                bytes.extend_from_slice(&q.to_le_bytes());
             }
             base64(&bytes)
         };
@@ -136,6 +160,7 @@ impl Columns {
             speed: column(3),
             height: column(4),
             power: column(5),
+            error: column(6),
             style: base64(
                 &self
                     .rows
@@ -147,7 +172,19 @@ impl Columns {
                 &self
                     .rows
                     .iter()
-                    .map(|r| r.deposit as u8 | (r.gap as u8) << 1)
+                    .map(|r| {
+                        let mut f = (r.kind as u8) << KIND_SHIFT;
+                        if r.deposit {
+                            f |= DEPOSIT;
+                        }
+                        if r.gap {
+                            f |= GAP;
+                        }
+                        if r.deposit && r.error.is_some() {
+                            f |= PREDICTED;
+                        }
+                        f
+                    })
                     .collect::<Vec<_>>(),
             ),
         };

@@ -1,9 +1,12 @@
 //! The plan preview (`lmdc preview`): one self-contained HTML page that
-//! draws a machine's motion plan in 3-D — deposits coloured by a quantity,
-//! travel faint — with a layer range, orbit and zoom, and per-layer plots of
-//! speed and height along the path. Everything is inline (no network: the
-//! viewer is a small canvas 2-D renderer of our own, `viewer.js`), and the
-//! same plan gives the same bytes.
+//! draws a machine's motion plan in 3-D — deposits coloured by a quantity
+//! (among them the height error the bead model predicts and what kind of
+//! path a move is part of), travel faint, over the substrate with axes and
+//! a scale bar — with a layer range, orbit and zoom, a plot of speed, height
+//! and height error along a layer's path and one of the height error layer
+//! by layer. Everything is inline (no network: the viewer is a small canvas
+//! 2-D renderer of our own, `viewer.js`), and the same plan gives the same
+//! bytes.
 //!
 //! The page carries the moves of the plan ([`crate::plan::Plan::walk`]), so
 //! it shows what the program does: tool-tip positions (the laser focus),
@@ -13,11 +16,14 @@
 //! a browser draws interactively, against 3.6 M points of the dense duct.
 
 mod encode;
+mod error;
+mod kind;
 
 use crate::check::VerifiedMachine;
-use crate::ir::Layer;
-use crate::plan::{Move, Speed, Visit};
+use crate::ir::{Layer, Point};
+use crate::plan::{Move, Speed, Visit, Where};
 use encode::Columns;
+use kind::Kind;
 
 /// Most moves a page carries (about 14 bytes each, base64 on top).
 pub const BUDGET: usize = 300_000;
@@ -71,29 +77,47 @@ struct Collect<'a> {
     gap: bool,
     /// `(layer number, first move)` of each kept layer.
     starts: Vec<(usize, usize)>,
+    /// The class of each path of the layer being walked.
+    kinds: Vec<Kind>,
+    /// Every layer's height error, from every move (decimated or not).
+    errors: error::Layers,
+    /// Where the last move ended.
+    last: Option<[f64; 3]>,
 }
 
-impl Collect<'_> {
-    fn push(&mut self, m: &Move) {
-        let src = match m.source() {
-            crate::plan::Where::Point { layer, path, point } => self
-                .layers
+impl<'a> Collect<'a> {
+    /// The IR point whose values `m` carries, and its path's index.
+    fn source(&self, m: &Move) -> Option<(&'a Point, usize)> {
+        let layers: &'a [Layer] = self.layers;
+        match m.source() {
+            Where::Point { layer, path, point } => layers
                 .get(layer)
                 .and_then(|l| l.paths.get(path))
-                .and_then(|p| p.points.get(point)),
+                .and_then(|p| p.points.get(point))
+                .map(|p| (p, path)),
             _ => None,
-        };
+        }
+    }
+
+    fn push(&mut self, m: &Move) {
+        let src = self.source(m);
         let speed = match m.speed {
             Speed::Feed(v) => v,
             Speed::Rapid => self.rapid,
         };
         let deposit = m.deposits();
+        let on = src.filter(|_| deposit);
         self.cols.push(encode::Row {
             pos: m.to,
             speed,
-            height: src.filter(|_| deposit).map_or(0.0, |p| p.layer_height),
+            height: on.map_or(0.0, |(p, _)| p.layer_height),
             power: if deposit { m.power } else { 0.0 },
-            style: src.map_or(0, |p| p.style),
+            style: src.map_or(0, |(p, _)| p.style),
+            error: on.and_then(|(p, _)| error::of(p)),
+            // Every deposit starts from a point of a path.
+            kind: on
+                .and_then(|(_, path)| self.kinds.get(path).copied())
+                .unwrap_or(Kind::Travel),
             deposit,
             gap: std::mem::take(&mut self.gap),
         });
@@ -107,8 +131,10 @@ impl Collect<'_> {
 }
 
 impl Visit for Collect<'_> {
-    fn layer(&mut self, index: usize, _: &Layer) {
+    fn layer(&mut self, index: usize, layer: &Layer) {
         self.flush();
+        self.kinds = kind::classify(layer);
+        self.errors.begin();
         let last = index + 1 == self.layers.len();
         let keep = index.is_multiple_of(self.d.layers) || last;
         if !keep && self.keep_layer {
@@ -126,6 +152,12 @@ impl Visit for Collect<'_> {
     }
 
     fn motion(&mut self, m: &Move) {
+        let from = self.last.replace(m.to);
+        if m.deposits() {
+            if let (Some((p, _)), Some(from)) = (self.source(m), from) {
+                self.errors.deposit(p, error::ground(from, m.to, p.normal));
+            }
+        }
         if !self.keep_layer {
             return;
         }
@@ -169,9 +201,13 @@ pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
         pending: None,
         gap: false,
         starts: Vec::new(),
+        kinds: Vec::new(),
+        errors: error::Layers::default(),
+        last: None,
     };
     plan.walk(&mut c);
     c.flush();
+    let layer_error = c.errors.finish();
     let meta = encode::Meta {
         part: &program.part,
         machine: machine.machine().name(),
@@ -182,6 +218,10 @@ pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
         decimation: d,
         starts: &c.starts,
         styles: &program.styles,
+        kinds: Kind::NAMES,
+        tolerance: program.limits.rise_tolerance * 100.0,
+        max_drift: program.limits.max_drift,
+        layer_error: &layer_error,
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };
     let data = c.cols.encode(&meta);

@@ -1,7 +1,8 @@
 // lmdc's plan viewer: a canvas 2-D renderer of the plan's moves, projected
 // orthographically. Deposits are drawn in colour buckets (one stroke per
 // colour, so a frame is a few dozen strokes however many moves), travel
-// moves faint and grey. Reads the JSON in <script id="data">, written by
+// moves faint and grey, over the substrate (a grid at z = 0) with the part's
+// axes and a scale bar. Reads the JSON in <script id="data">, written by
 // src/preview/encode.rs; needs nothing from the network.
 "use strict";
 (function () {
@@ -27,9 +28,17 @@
   }
   const N = M.kept;
   const X = column("x", 0), Y = column("y", 1), Z = column("z", 2);
-  const VALUES = { speed: column("speed", 3), height: column("height", 4), power: column("power", 5) };
+  const VALUES = {
+    speed: column("speed", 3), height: column("height", 4), power: column("power", 5),
+    error: column("error", 6),
+  };
   const STYLE = bytes(D.style), FLAGS = bytes(D.flags);
-  const DEPOSIT = 1, GAP = 2;
+  // The flag bits (encode.rs): laser on, no line leads here, error predicted;
+  // the path kind (an index into M.kinds) from bit 3 up.
+  const DEPOSIT = 1, GAP = 2, PREDICTED = 4, KIND_SHIFT = 3;
+  const KIND = new Uint8Array(N);
+  for (let i = 0; i < N; i++) KIND[i] = FLAGS[i] >> KIND_SHIFT;
+  const TRAVEL_KIND = M.kinds.indexOf("travel");
   const STARTS = M.starts; // [layer number, first move] of each layer on the page
   const LAYER = new Uint32Array(N); // index into STARTS of each move
   for (let k = 0; k < STARTS.length; k++) {
@@ -40,18 +49,41 @@
   for (let i = 0; i < N; i++) LAYER_NUMBER[i] = STARTS.length ? STARTS[LAYER[i]][0] : 0;
   VALUES.layer = LAYER_NUMBER;
   const UNITS = { speed: "mm/s", height: "mm", power: "W", layer: "" };
+  const TITLES = {
+    speed: "speed", height: "layer height", power: "laser power", style: "style", layer: "layer",
+    error: "height error: predicted rise / layer height − 1", kind: "path kind",
+  };
 
   // --- colours ------------------------------------------------------------
   const RAMP = [[68, 1, 84], [72, 40, 120], [62, 74, 137], [49, 104, 142], [38, 130, 142],
                 [31, 158, 137], [53, 183, 121], [109, 205, 89], [180, 222, 44], [253, 231, 37]];
-  function ramp(t) {
-    const x = Math.min(Math.max(t, 0), 1) * (RAMP.length - 1);
-    const i = Math.min(Math.floor(x), RAMP.length - 2), f = x - i;
-    const c = RAMP[i].map((v, k) => Math.round(v + (RAMP[i + 1][k] - v) * f));
-    return `rgb(${c[0]},${c[1]},${c[2]})`;
+  const rgb = (c) => `rgb(${c[0]},${c[1]},${c[2]})`;
+  // Piecewise linear through `stops` ([t, [r, g, b]], t rising).
+  function through(stops, t) {
+    let k = 0;
+    while (k + 2 < stops.length && t > stops[k + 1][0]) k++;
+    const [t0, a] = stops[k], [t1, b] = stops[k + 1];
+    const f = Math.min(Math.max((t - t0) / (t1 - t0), 0), 1);
+    return rgb(a.map((v, j) => Math.round(v + (b[j] - v) * f)));
   }
+  function ramp(t) {
+    return through(RAMP.map((c, k) => [k / (RAMP.length - 1), c]), Math.min(Math.max(t, 0), 1));
+  }
+  // The height error's diverging scale over t in [-1, 1]: blue lays too
+  // little, red too much. Its centre is a dark neutral grey, not the white
+  // of the usual diverging maps, which would vanish on the white view; and
+  // it stays nearly neutral to |t| = 0.25 (±1 % on the least range of ±5 %
+  // reads as on plan), then turns blue or red, more saturated the further.
+  const DIVERGE = [[-1, [25, 95, 235]], [-0.55, [60, 110, 195]], [-0.25, [76, 84, 108]],
+                   [0, [72, 72, 72]], [0.25, [108, 78, 72]], [0.55, [200, 65, 50]], [1, [235, 35, 25]]];
+  const diverge = (t) => through(DIVERGE, Math.min(Math.max(t, -1), 1));
+  const UNPREDICTED = "rgb(190,190,190)";
   const BUCKETS = 32;
+  const ERROR_BUCKETS = 33; // odd: the middle one is 0
   const PALETTE = ["#4c78a8", "#f58518", "#54a24b", "#e45756", "#72b7b2", "#b279a2", "#ff9da6", "#9d755d"];
+  // Path kinds by name (M.kinds says which number is which).
+  const KIND_COLOURS = { wall: "#4e79a7", contour: "#f28e2b", infill: "#59a14f", link: "#e15759", travel: "#9467bd" };
+  const TRAVEL_GREY = "rgba(110,110,110,0.3)", TRAVEL_KIND_COLOUR = "rgba(148,103,189,0.6)";
   function styleColour(id) {
     const s = M.styles.find((s) => s.id === id);
     return s ? s.colour : PALETTE[id % PALETTE.length];
@@ -60,18 +92,66 @@
     const s = M.styles.find((s) => s.id === id);
     return s ? s.name : id === 0 ? "process" : `style ${id}`;
   }
+  // A round length (1, 2 or 5 times a power of ten) at or above x, or below.
+  function niceUp(x) {
+    const p = Math.pow(10, Math.floor(Math.log10(x)));
+    for (const m of [1, 2, 5, 10]) if (m * p >= x * (1 - 1e-9)) return m * p;
+    return 10 * p;
+  }
+  function niceDown(x) {
+    const p = Math.pow(10, Math.floor(Math.log10(x)));
+    for (const m of [5, 2, 1]) if (m * p <= x * (1 + 1e-9)) return m * p;
+    return p;
+  }
 
   // Deposits sorted into colour buckets by the chosen quantity (a counting
   // sort), travel moves on a list of their own.
-  let buckets = [], colours = [], travel = new Uint32Array(0), legend = null;
+  let buckets = [], colours = [], order = [], travel = new Uint32Array(0), legend = null;
+  let mode = "speed";
+  // The least range the height error's scale spans, per cent.
+  const ERROR_SPAN = 5;
+  let errorSpan = ERROR_SPAN;
   function bucketise(q) {
+    mode = q;
     const bucket = new Int32Array(N).fill(-1);
+    order = null;
     if (q === "style") {
       const ids = [...new Set(Array.from(STYLE))].sort((a, b) => a - b);
       const at = new Map(ids.map((id, k) => [id, k]));
       for (let i = 0; i < N; i++) if (FLAGS[i] & DEPOSIT) bucket[i] = at.get(STYLE[i]);
       colours = ids.map(styleColour);
       legend = { styles: ids };
+    } else if (q === "kind") {
+      const count = M.kinds.map(() => 0);
+      for (let i = 0; i < N; i++) count[KIND[i]]++;
+      const shown = M.kinds.map((_, k) => k).filter((k) => k !== TRAVEL_KIND && count[k] > 0);
+      const at = new Map(shown.map((k, b) => [k, b]));
+      for (let i = 0; i < N; i++) if (FLAGS[i] & DEPOSIT && at.has(KIND[i])) bucket[i] = at.get(KIND[i]);
+      colours = shown.map((k) => KIND_COLOURS[M.kinds[k]] || "#000");
+      legend = { kinds: shown.map((k) => [M.kinds[k], count[k]]), travel: count[TRAVEL_KIND] || 0 };
+    } else if (q === "error") {
+      const v = VALUES.error;
+      let lo = Infinity, hi = -Infinity, unpredicted = 0;
+      for (let i = 0; i < N; i++) {
+        if (!(FLAGS[i] & DEPOSIT)) continue;
+        if (FLAGS[i] & PREDICTED) { lo = Math.min(lo, v[i]); hi = Math.max(hi, v[i]); } else unpredicted++;
+      }
+      // Symmetric about 0, at least ±5 %, a round number.
+      const worst = hi >= lo ? Math.max(Math.abs(lo), Math.abs(hi)) : 0;
+      errorSpan = Math.max(ERROR_SPAN, niceUp(worst || 1));
+      const mid = (ERROR_BUCKETS - 1) / 2;
+      for (let i = 0; i < N; i++) {
+        if (!(FLAGS[i] & DEPOSIT)) continue;
+        bucket[i] = FLAGS[i] & PREDICTED
+          ? Math.min(Math.max(Math.round(mid + (v[i] / errorSpan) * mid), 0), ERROR_BUCKETS - 1)
+          : ERROR_BUCKETS;
+      }
+      colours = Array.from({ length: ERROR_BUCKETS }, (_, b) => diverge((b - mid) / mid));
+      colours.push(UNPREDICTED);
+      // The unpredicted first, then outwards from 0: the worst on top.
+      order = [ERROR_BUCKETS, ...Array.from({ length: ERROR_BUCKETS }, (_, b) => b)
+        .sort((a, b) => Math.abs(a - mid) - Math.abs(b - mid) || a - b)];
+      legend = { span: errorSpan, lo, hi, unpredicted, predicted: hi >= lo };
     } else {
       const v = VALUES[q];
       let lo = Infinity, hi = -Infinity;
@@ -83,56 +163,79 @@
       colours = Array.from({ length: BUCKETS }, (_, b) => ramp(b / (BUCKETS - 1)));
       legend = { lo, hi, unit: UNITS[q] };
     }
+    if (!order) order = colours.map((_, b) => b);
     const count = new Uint32Array(colours.length + 1);
     let travelCount = 0;
     for (let i = 0; i < N; i++) bucket[i] >= 0 ? count[bucket[i] + 1]++ : travelCount++;
     for (let b = 1; b <= colours.length; b++) count[b] += count[b - 1];
-    const order = new Uint32Array(count[colours.length]);
+    const sorted = new Uint32Array(count[colours.length]);
     const fill = count.slice();
     travel = new Uint32Array(travelCount);
     let t = 0;
-    for (let i = 0; i < N; i++) bucket[i] >= 0 ? (order[fill[bucket[i]]++] = i) : (travel[t++] = i);
-    buckets = colours.map((_, b) => order.subarray(count[b], count[b + 1]));
+    for (let i = 0; i < N; i++) bucket[i] >= 0 ? (sorted[fill[bucket[i]]++] = i) : (travel[t++] = i);
+    buckets = colours.map((_, b) => sorted.subarray(count[b], count[b + 1]));
     drawLegend(q);
   }
 
   function fmt(x) {
     return Math.abs(x) >= 100 ? x.toFixed(0) : Math.abs(x) >= 10 ? x.toFixed(1) : x.toFixed(2);
   }
+  // With its sign (a typographic minus), none where it rounds to 0.
+  function signed(x, d) {
+    const r = +x.toFixed(d);
+    return (r > 0 ? "+" : r < 0 ? "−" : "") + Math.abs(r).toFixed(d);
+  }
+  function el(tag, text, cls) {
+    const e = document.createElement(tag);
+    if (text !== undefined) e.textContent = text;
+    if (cls) e.className = cls;
+    return e;
+  }
+  function swatchRow(colour, text) {
+    const row = el("div");
+    const sw = el("span", undefined, "swatch");
+    sw.style.background = colour;
+    row.appendChild(sw);
+    row.appendChild(document.createTextNode(text));
+    return row;
+  }
+  function scaleRow(labels) {
+    const row = el("div", undefined, "row");
+    for (const s of labels) row.appendChild(el("span", s));
+    return row;
+  }
   function drawLegend(q) {
-    const el = $("legend");
-    el.textContent = "";
-    const title = document.createElement("div");
-    title.textContent = { speed: "speed", height: "layer height", power: "laser power", style: "style", layer: "layer" }[q];
-    el.appendChild(title);
+    const box = $("legend");
+    box.textContent = "";
+    box.dataset.mode = q;
+    box.appendChild(el("div", TITLES[q], "title"));
+    let travelText = "thin grey: travel (laser off)";
     if (legend.styles) {
-      for (const id of legend.styles) {
-        const row = document.createElement("div");
-        const sw = document.createElement("span");
-        sw.className = "swatch";
-        sw.style.background = styleColour(id);
-        row.appendChild(sw);
-        row.appendChild(document.createTextNode(styleName(id)));
-        el.appendChild(row);
-      }
+      for (const id of legend.styles) box.appendChild(swatchRow(styleColour(id), styleName(id)));
+    } else if (legend.kinds) {
+      for (const [name, n] of legend.kinds) box.appendChild(swatchRow(KIND_COLOURS[name], `${name} (${n} moves)`));
+      box.appendChild(swatchRow(TRAVEL_KIND_COLOUR, `travel, laser off (${legend.travel} moves)`));
+      travelText = null;
+    } else if (legend.span) {
+      const bar = el("div", undefined, "bar");
+      const stops = Array.from({ length: 21 }, (_, k) => diverge(k / 10 - 1));
+      bar.style.background = `linear-gradient(to right, ${stops.join(",")})`;
+      box.appendChild(bar);
+      box.appendChild(scaleRow([`−${legend.span} %`, "0", `+${legend.span} %`]));
+      box.appendChild(el("div", "blue: lays too little · red: too much · dark grey: within about ±1 %", "note"));
+      if (legend.predicted)
+        box.appendChild(el("div", `these moves: ${signed(legend.lo, 2)} % .. ${signed(legend.hi, 2)} %; ` +
+          `lmd::deposit allows ±${fmt(M.tolerance)} %`, "note"));
+      if (legend.unpredicted)
+        box.appendChild(swatchRow(UNPREDICTED,
+          `no prediction (${legend.unpredicted} moves): no bead model predicts the rise here, e.g. a ring`));
     } else {
-      const bar = document.createElement("div");
-      bar.className = "bar";
+      const bar = el("div", undefined, "bar");
       bar.style.background = `linear-gradient(to right, ${RAMP.map((_, k) => ramp(k / (RAMP.length - 1))).join(",")})`;
-      el.appendChild(bar);
-      const row = document.createElement("div");
-      row.className = "row";
-      for (const v of [legend.lo, legend.hi]) {
-        const s = document.createElement("span");
-        s.textContent = `${fmt(v)} ${legend.unit}`;
-        row.appendChild(s);
-      }
-      el.appendChild(row);
+      box.appendChild(bar);
+      box.appendChild(scaleRow([legend.lo, legend.hi].map((v) => `${fmt(v)} ${legend.unit}`)));
     }
-    const t = document.createElement("div");
-    t.style.color = "#777";
-    t.textContent = "grey: travel (laser off)";
-    el.appendChild(t);
+    if (travelText) box.appendChild(el("div", travelText, "note"));
   }
 
   // --- the view -----------------------------------------------------------
@@ -146,31 +249,66 @@
   let range = [0, Math.max(STARTS.length - 1, 0)];
   let showTravel = true;
 
+  // The substrate: the deposits' footprint on z = 0 and a margin, out to
+  // whole steps of its grid (a round length, about an eighth of it).
+  const substrate = (function () {
+    let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
+    for (let i = 0; i < N; i++) {
+      if (!(FLAGS[i] & DEPOSIT)) continue;
+      x0 = Math.min(x0, X[i]); x1 = Math.max(x1, X[i]);
+      y0 = Math.min(y0, Y[i]); y1 = Math.max(y1, Y[i]);
+    }
+    if (!(x1 >= x0)) [[x0, x1], [y0, y1]] = [bounds[0], bounds[1]];
+    const side = Math.max(x1 - x0, y1 - y0, 1);
+    const margin = Math.max(0.1 * side, 2);
+    const step = niceUp(side / 8);
+    const out = (v, dir) => (dir < 0 ? Math.floor(v / step) : Math.ceil(v / step)) * step;
+    return { x: [out(x0 - margin, -1), out(x1 + margin, 1)], y: [out(y0 - margin, -1), out(y1 + margin, 1)], step };
+  })();
+  // Axes from the part's origin: a round length about a fifth of the part.
+  const AXIS = niceDown(0.2 * size);
+
   function resize() {
     const dpr = window.devicePixelRatio || 1;
-    for (const c of [canvas, $("plot")]) {
+    for (const c of [canvas, $("plot"), $("errplot")]) {
       c.width = Math.max(1, Math.round(c.clientWidth * dpr));
       c.height = Math.max(1, Math.round(c.clientHeight * dpr));
     }
   }
 
   // Orthographic: turn about z (yaw), then tilt toward the viewer (pitch).
-  function project() {
+  function camera() {
     const W = canvas.width, H = canvas.height;
-    const scale = (view.zoom * Math.min(W, H)) / size;
-    const cy = Math.cos(view.yaw), sy = Math.sin(view.yaw);
-    const cp = Math.cos(view.pitch), sp = Math.sin(view.pitch);
-    const ox = W / 2 + view.panX * W, oy = H / 2 + view.panY * H;
+    return {
+      scale: (view.zoom * Math.min(W, H)) / size,
+      cy: Math.cos(view.yaw), sy: Math.sin(view.yaw), cp: Math.cos(view.pitch), sp: Math.sin(view.pitch),
+      ox: W / 2 + view.panX * W, oy: H / 2 + view.panY * H,
+    };
+  }
+  function at(c, x, y, z) {
+    const dx = x - centre[0], dy = y - centre[1], dz = z - centre[2];
+    const x1 = c.cy * dx - c.sy * dy, y1 = c.sy * dx + c.cy * dy;
+    return [c.ox + c.scale * x1, c.oy - c.scale * (c.cp * dz + c.sp * y1)];
+  }
+  function project(c) {
+    // Locals: the loop runs over every move on the page each frame.
+    const { scale, cy, sy, cp, sp, ox, oy } = c;
+    const [x0, y0, z0] = centre;
     for (let i = 0; i < N; i++) {
-      const dx = X[i] - centre[0], dy = Y[i] - centre[1], dz = Z[i] - centre[2];
+      const dx = X[i] - x0, dy = Y[i] - y0, dz = Z[i] - z0;
       const x1 = cy * dx - sy * dy, y1 = sy * dx + cy * dy;
       PX[i] = ox + scale * x1;
       PY[i] = oy - scale * (cp * dz + sp * y1);
     }
   }
 
+  // Strokes the moves of `list`, a path of at most CHUNK lines at a time:
+  // one colour may hold every move (a plan at its height, one path kind),
+  // and one path of 300 000 lines strokes slower than twenty of 16 000.
+  const CHUNK = 16384;
   function strokeList(list) {
     const [a, b] = range;
+    let n = 0;
     ctx.beginPath();
     for (let k = 0; k < list.length; k++) {
       const i = list[k];
@@ -179,26 +317,112 @@
       if (l < a || l > b) continue;
       ctx.moveTo(PX[i - 1], PY[i - 1]);
       ctx.lineTo(PX[i], PY[i]);
+      if (++n === CHUNK) { ctx.stroke(); ctx.beginPath(); n = 0; }
     }
     ctx.stroke();
   }
 
-  function draw() {
+  function drawSubstrate(c, dpr) {
+    const { x: [x0, x1], y: [y0, y1], step } = substrate;
+    ctx.beginPath();
+    [[x0, y0], [x1, y0], [x1, y1], [x0, y1]].forEach(([x, y], k) => {
+      const [u, v] = at(c, x, y, 0);
+      k ? ctx.lineTo(u, v) : ctx.moveTo(u, v);
+    });
+    ctx.closePath();
+    ctx.fillStyle = "rgba(95,110,135,0.10)";
+    ctx.fill();
+    ctx.lineWidth = dpr;
+    ctx.strokeStyle = "rgba(95,110,135,0.45)";
+    ctx.stroke();
+    ctx.beginPath();
+    const line = (a, b) => {
+      const [u0, v0] = at(c, ...a), [u1, v1] = at(c, ...b);
+      ctx.moveTo(u0, v0);
+      ctx.lineTo(u1, v1);
+    };
+    for (let x = x0 + step; x < x1 - step / 2; x += step) line([x, y0, 0], [x, y1, 0]);
+    for (let y = y0 + step; y < y1 - step / 2; y += step) line([x0, y, 0], [x1, y, 0]);
+    ctx.strokeStyle = "rgba(95,110,135,0.18)";
+    ctx.stroke();
+  }
+
+  function drawAxes(c, dpr) {
+    const [u0, v0] = at(c, 0, 0, 0);
+    ctx.font = `bold ${12 * dpr}px sans-serif`;
+    ctx.textAlign = "center";
+    ctx.textBaseline = "middle";
+    for (const [name, d, colour] of [["X", [1, 0, 0], "#c0392b"], ["Y", [0, 1, 0], "#27864a"], ["Z", [0, 0, 1], "#2b5fad"]]) {
+      const [u1, v1] = at(c, d[0] * AXIS, d[1] * AXIS, d[2] * AXIS);
+      const len = Math.hypot(u1 - u0, v1 - v0);
+      ctx.strokeStyle = ctx.fillStyle = colour;
+      ctx.lineWidth = 2 * dpr;
+      ctx.beginPath();
+      ctx.moveTo(u0, v0);
+      ctx.lineTo(u1, v1);
+      ctx.stroke();
+      // An axis pointing at the viewer has no direction on screen to draw
+      // a head along: its label sits on the origin.
+      const ex = len > 1 ? (u1 - u0) / len : 0, ey = len > 1 ? (v1 - v0) / len : 0;
+      if (len > 8 * dpr) {
+        const h = 8 * dpr, w = 4 * dpr;
+        ctx.beginPath();
+        ctx.moveTo(u1 + ex * h * 0.5, v1 + ey * h * 0.5);
+        ctx.lineTo(u1 - ex * h * 0.5 - ey * w, v1 - ey * h * 0.5 + ex * w);
+        ctx.lineTo(u1 - ex * h * 0.5 + ey * w, v1 - ey * h * 0.5 - ex * w);
+        ctx.closePath();
+        ctx.fill();
+      }
+      ctx.fillText(name, u1 + ex * 14 * dpr, v1 + ey * 14 * dpr);
+    }
+  }
+
+  // A bar of a round length whose pixels are that many millimetres at the
+  // view's scale (orthographic: true for every length parallel to the
+  // screen), redrawn with every frame so it follows the zoom.
+  function drawScaleBar(c, dpr) {
+    const perMm = c.scale / dpr; // CSS pixels a millimetre
+    const mm = niceDown(120 / perMm);
+    const px = mm * perMm * dpr;
+    const x = 16 * dpr, y = canvas.height - 16 * dpr, tick = 5 * dpr;
+    ctx.fillStyle = "rgba(255,255,255,0.85)";
+    ctx.fillRect(x - 6 * dpr, y - 30 * dpr, px + 12 * dpr, 38 * dpr);
+    ctx.strokeStyle = ctx.fillStyle = "#222";
+    ctx.lineWidth = 2 * dpr;
+    ctx.beginPath();
+    ctx.moveTo(x, y - tick); ctx.lineTo(x, y); ctx.lineTo(x + px, y); ctx.lineTo(x + px, y - tick);
+    ctx.stroke();
+    ctx.font = `${12 * dpr}px sans-serif`;
+    ctx.textAlign = "center";
+    ctx.textBaseline = "alphabetic";
+    ctx.fillText(`${mm} mm`, x + px / 2, y - 8 * dpr);
+    canvas.dataset.scaleMm = mm;
+    canvas.dataset.scalePx = (px / dpr).toFixed(1);
+    canvas.dataset.pxPerMm = perMm.toFixed(4);
+  }
+
+  // One frame; `movesOnly` leaves out the substrate, axes and scale bar.
+  function draw(movesOnly) {
     const dpr = window.devicePixelRatio || 1;
     ctx.fillStyle = "#ffffff";
     ctx.fillRect(0, 0, canvas.width, canvas.height);
-    project();
+    const c = camera();
+    if (!movesOnly) drawSubstrate(c, dpr);
+    project(c);
     ctx.lineCap = "round";
     if (showTravel) {
       ctx.lineWidth = dpr;
-      ctx.strokeStyle = "rgba(110,110,110,0.3)";
+      ctx.strokeStyle = mode === "kind" ? TRAVEL_KIND_COLOUR : TRAVEL_GREY;
       strokeList(travel);
     }
     ctx.lineWidth = 1.6 * dpr;
-    for (let b = 0; b < buckets.length; b++) {
+    for (const b of order) {
       ctx.strokeStyle = colours[b];
       strokeList(buckets[b]);
     }
+    if (movesOnly) return;
+    drawAxes(c, dpr);
+    drawScaleBar(c, dpr);
   }
 
   let queued = false;
@@ -208,48 +432,150 @@
     requestAnimationFrame(() => { queued = false; draw(); });
   }
 
-  // --- per-layer plots: speed and height along the deposit path ----------
-  function plot() {
-    const c = $("plot"), g = c.getContext("2d");
-    const W = c.width, H = c.height, dpr = window.devicePixelRatio || 1;
+  // --- plots --------------------------------------------------------------
+  // A framed panel of lines over x in [x0, x1]: `series` are [ys, colour,
+  // width] with NaN for a gap; `marks` [y, colour, dashed] horizontal lines;
+  // `band` [lows, highs, colour] filled between.
+  function panel(g, box, xs, x0, x1, spec) {
+    const dpr = window.devicePixelRatio || 1;
+    const { left, right, top, height } = box;
+    let [lo, hi] = spec.range || [Infinity, -Infinity];
+    if (!spec.range) {
+      for (const [ys] of spec.series) for (const y of ys) if (y === y) { lo = Math.min(lo, y); hi = Math.max(hi, y); }
+      if (!(hi > lo)) { lo = (lo === lo && lo !== Infinity ? lo : 0) - 0.5; hi = lo + 1; }
+    }
+    const X_ = (x) => left + ((right - left) * (x - x0)) / (x1 - x0 || 1);
+    const Y_ = (y) => top + height - (height * (Math.min(Math.max(y, lo), hi) - lo)) / (hi - lo);
+    g.strokeStyle = "#bbb"; g.lineWidth = dpr;
+    g.strokeRect(left, top, right - left, height);
+    if (spec.shade) {
+      g.fillStyle = "rgba(255,200,80,0.18)";
+      g.fillRect(X_(spec.shade[0]), top, Math.max(X_(spec.shade[1]) - X_(spec.shade[0]), dpr), height);
+    }
+    g.fillStyle = "#333"; g.font = `${11 * dpr}px sans-serif`;
+    g.textAlign = "left"; g.textBaseline = "alphabetic";
+    g.fillText(spec.fmt(hi), 6 * dpr, top + 10 * dpr);
+    g.fillText(spec.fmt(lo), 6 * dpr, top + height);
+    g.fillText(spec.label, left + 6 * dpr, top + 13 * dpr);
+    for (const [y, colour, dashed] of spec.marks || []) {
+      if (y < lo || y > hi) continue;
+      g.strokeStyle = colour; g.lineWidth = dpr;
+      g.setLineDash(dashed ? [4 * dpr, 4 * dpr] : []);
+      g.beginPath(); g.moveTo(left, Y_(y)); g.lineTo(right, Y_(y)); g.stroke();
+    }
+    g.setLineDash([]);
+    if (spec.band) {
+      const [ls, hs, colour] = spec.band;
+      g.fillStyle = colour;
+      let open = false;
+      const close = (j) => {
+        for (let k = j; k >= 0 && hs[k] === hs[k]; k--) g.lineTo(X_(xs[k]), Y_(hs[k]));
+        g.closePath(); g.fill(); open = false;
+      };
+      for (let j = 0; j < xs.length; j++) {
+        if (ls[j] !== ls[j]) { if (open) close(j - 1); continue; }
+        if (!open) { g.beginPath(); g.moveTo(X_(xs[j]), Y_(ls[j])); open = true; } else g.lineTo(X_(xs[j]), Y_(ls[j]));
+      }
+      if (open) close(xs.length - 1);
+    }
+    for (const [ys, colour, width] of spec.series) {
+      g.strokeStyle = colour; g.lineWidth = (width || 1.5) * dpr;
+      g.beginPath();
+      let pen = false;
+      for (let j = 0; j < ys.length; j++) {
+        if (ys[j] !== ys[j]) { pen = false; continue; }
+        pen ? g.lineTo(X_(xs[j]), Y_(ys[j])) : g.moveTo(X_(xs[j]), Y_(ys[j]));
+        pen = true;
+      }
+      g.stroke();
+    }
+    return [lo, hi];
+  }
+  function clear(c) {
+    const g = c.getContext("2d");
     g.fillStyle = "#fff";
-    g.fillRect(0, 0, W, H);
+    g.fillRect(0, 0, c.width, c.height);
+    return g;
+  }
+  // A symmetric range about 0 for per cents: at least ±5, a round number.
+  const symmetric = (ys) => {
+    let m = 0;
+    for (const y of ys) if (y === y) m = Math.max(m, Math.abs(y));
+    const s = Math.max(ERROR_SPAN, niceUp(m || 1));
+    return [-s, s];
+  };
+  const pct = (x) => `${signed(x, Math.abs(x) >= 10 ? 0 : 1)} %`;
+
+  // Speed, layer height and height error along the top layer's deposit path.
+  function plot() {
+    const c = $("plot"), g = clear(c);
+    const W = c.width, H = c.height, dpr = window.devicePixelRatio || 1;
     const k = range[1];
     if (!STARTS.length) return;
     const first = STARTS[k][1], end = k + 1 < STARTS.length ? STARTS[k + 1][1] : N;
-    const s = [], v = [], h = [];
+    const s = [], v = [], h = [], e = [];
     let along = 0;
     for (let i = Math.max(first, 1); i < end; i++) {
       if (!(FLAGS[i] & DEPOSIT) || FLAGS[i] & GAP) continue;
       along += Math.hypot(X[i] - X[i - 1], Y[i] - Y[i - 1], Z[i] - Z[i - 1]);
       s.push(along); v.push(VALUES.speed[i]); h.push(VALUES.height[i]);
+      e.push(FLAGS[i] & PREDICTED ? VALUES.error[i] : NaN);
     }
     $("plot-title").textContent =
-      `layer ${STARTS[k][0]}: speed and layer height along the deposit path (${fmt(along)} mm)`;
-    const panel = (ys, top, height, label, colour) => {
-      const left = 70 * dpr, right = W - 16 * dpr;
-      let lo = Infinity, hi = -Infinity;
-      for (const y of ys) { lo = Math.min(lo, y); hi = Math.max(hi, y); }
-      if (!(hi > lo)) { lo -= 0.5; hi += 0.5; }
-      g.strokeStyle = "#bbb"; g.lineWidth = dpr;
-      g.strokeRect(left, top, right - left, height);
-      g.fillStyle = "#333"; g.font = `${11 * dpr}px sans-serif`;
-      g.fillText(fmt(hi), 6 * dpr, top + 10 * dpr);
-      g.fillText(fmt(lo), 6 * dpr, top + height);
-      g.fillText(label, left + 6 * dpr, top + 13 * dpr);
-      if (!ys.length) return;
-      g.strokeStyle = colour; g.lineWidth = 1.5 * dpr;
-      g.beginPath();
-      for (let j = 0; j < ys.length; j++) {
-        const x = left + ((right - left) * s[j]) / (along || 1);
-        const y = top + height - (height * (ys[j] - lo)) / (hi - lo);
-        j ? g.lineTo(x, y) : g.moveTo(x, y);
-      }
-      g.stroke();
-    };
-    const gap = 10 * dpr, ph = (H - 3 * gap) / 2;
-    panel(v, gap, ph, "speed, mm/s", "#1f77b4");
-    panel(h, 2 * gap + ph, ph, "layer height, mm", "#d62728");
+      `layer ${STARTS[k][0]}: speed, layer height and height error along the deposit path (${fmt(along)} mm)`;
+    const gap = 8 * dpr, ph = (H - 4 * gap) / 3;
+    const box = (n) => ({ left: 70 * dpr, right: W - 16 * dpr, top: gap + n * (ph + gap), height: ph });
+    panel(g, box(0), s, 0, along, { series: [[v, "#1f77b4"]], label: "speed, mm/s", fmt });
+    panel(g, box(1), s, 0, along, { series: [[h, "#555"]], label: "layer height, mm", fmt });
+    const known = e.some((y) => y === y);
+    panel(g, box(2), s, 0, along, {
+      series: [[e, "#b03a2e"]], range: symmetric(e), fmt: pct,
+      marks: [[0, "#888"], [M.tolerance, "#e08a00", true], [-M.tolerance, "#e08a00", true]],
+      label: known ? `height error, % (dashed: lmd::deposit's ±${fmt(M.tolerance)} %)` : "height error: no prediction on this layer",
+    });
+  }
+
+  // The height error layer by layer, from every move of the plan (the page
+  // may leave layers out; these numbers do not): each layer's mean over its
+  // deposited length with its lowest and highest move, and the layers' mean
+  // rise − height added up (how far the top drifts from the plan).
+  const LE = M.layer_error;
+  function plotLayers() {
+    const c = $("errplot"), g = clear(c);
+    const W = c.width, H = c.height, dpr = window.devicePixelRatio || 1;
+    const xs = LE.map((_, k) => k + 1);
+    const pick = (j) => LE.map((r) => (r ? r[j] : NaN));
+    const mean = pick(0), lo = pick(1), hi = pick(2), drift = pick(3);
+    const known = LE.some((r) => r);
+    $("errplot-title").textContent = known
+      ? `height error by layer: mean (black), highest (red) and lowest (blue) move of each`
+      : "height error by layer: no rise predicted on this plan (no bead model predicts it, e.g. a ring)";
+    if (!known) return;
+    // The layers the view shows, when that is not all of them.
+    const all = range[0] === 0 && range[1] === STARTS.length - 1;
+    const shade = STARTS.length && !all ? [STARTS[range[0]][0] - 0.5, STARTS[range[1]][0] + 0.5] : null;
+    const gap = 8 * dpr, ph = (H - 3 * gap) / 2;
+    const box = (n) => ({ left: 70 * dpr, right: W - 16 * dpr, top: gap + n * (ph + gap), height: ph });
+    const x0 = 0.5, x1 = LE.length + 0.5;
+    panel(g, box(0), xs, x0, x1, {
+      series: [[hi, "#c0392b", 1], [lo, "#2166ac", 1], [mean, "#111", 1.5]], band: [lo, hi, "rgba(120,120,120,0.22)"],
+      range: symmetric(lo.concat(hi)), fmt: pct, shade,
+      marks: [[0, "#888"], [M.tolerance, "#e08a00", true], [-M.tolerance, "#e08a00", true]],
+      label: `per layer, % (dashed: lmd::deposit's ±${fmt(M.tolerance)} %)`,
+    });
+    let m = 0, last = 0;
+    for (const y of drift) if (y === y) { m = Math.max(m, Math.abs(y)); last = y; }
+    const span = Math.max(2 * M.max_drift, niceUp(m || 0.01));
+    panel(g, box(1), xs, x0, x1, {
+      series: [[drift, "#111"]], range: [-span, span], fmt: (x) => `${signed(x, 2)} mm`, shade,
+      marks: [[0, "#888"], [M.max_drift, "#e08a00", true], [-M.max_drift, "#e08a00", true]],
+      label: `mean rise − height added up over the layers: the top ends ${signed(last, 2)} mm off ` +
+        `(dashed: max_drift ±${fmt(M.max_drift)} mm)`,
+    });
+    g.fillStyle = "#333"; g.font = `${11 * dpr}px sans-serif`;
+    g.textBaseline = "alphabetic";
+    g.textAlign = "left"; g.fillText("layer 1", 70 * dpr, H - 1 * dpr);
+    g.textAlign = "right"; g.fillText(`layer ${LE.length}`, W - 16 * dpr, H - 1 * dpr);
   }
 
   // --- controls -----------------------------------------------------------
@@ -263,12 +589,12 @@
   from.addEventListener("input", () => {
     range[0] = +from.value;
     if (range[0] > range[1]) { range[1] = range[0]; to.value = from.value; plot(); }
-    showRange(); redraw();
+    showRange(); plotLayers(); redraw();
   });
   to.addEventListener("input", () => {
     range[1] = +to.value;
     if (range[1] < range[0]) { range[0] = range[1]; from.value = to.value; }
-    showRange(); plot(); redraw();
+    showRange(); plot(); plotLayers(); redraw();
   });
   $("quantity").addEventListener("change", (e) => { bucketise(e.target.value); redraw(); });
   $("travel").addEventListener("change", (e) => { showTravel = e.target.checked; redraw(); });
@@ -300,7 +626,7 @@
     view.zoom *= Math.exp(-e.deltaY * 0.001);
     redraw();
   }, { passive: false });
-  window.addEventListener("resize", () => { resize(); plot(); redraw(); });
+  window.addEventListener("resize", () => { resize(); plot(); plotLayers(); redraw(); });
 
   // --- the page's own account of what it shows (tests read it) ------------
   $("heading").textContent = `${M.part} on ${M.machine}`;
@@ -318,17 +644,33 @@
       `${everyMove}th deposit move of each path (and its last) are shown, ${N} of ${M.moves} moves; ` +
       `the programs have every one.`;
 
+  // The address may ask for a view: #colour=error&view=top&zoom=2 (a link to
+  // what one saw; the tests render each colouring this way).
+  const ask = new URLSearchParams(location.hash.slice(1));
+  const select = $("quantity");
+  if ([...select.options].some((o) => o.value === ask.get("colour"))) select.value = ask.get("colour");
+  if (ask.get("view") === "top") Object.assign(view, { yaw: 0, pitch: Math.PI / 2 });
+  if (+ask.get("zoom") > 0) view.zoom *= +ask.get("zoom");
+
   resize();
-  bucketise("speed");
+  // Where the view is on the page, CSS pixels (a test measures its screenshot).
+  canvas.dataset.viewTop = Math.round(canvas.getBoundingClientRect().top + window.scrollY);
+  bucketise(select.value);
   showRange();
   const t0 = performance.now();
   draw();
   // What one frame of the whole plan costs here: orbiting redraws it.
   canvas.dataset.frameMs = Math.round(performance.now() - t0);
-  plot();
-  // How much of the view the first frame painted: a blank page says 0.
+  // How much of the view the plan's moves paint: a blank page says 0 (the
+  // substrate, axes and scale bar would paint a page without moves). A frame
+  // of the moves alone, counted, then the whole frame again.
+  draw(true);
   const px = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
   let painted = 0;
   for (let i = 0; i < px.length; i += 4) if (px[i] < 245 || px[i + 1] < 245 || px[i + 2] < 245) painted++;
   canvas.dataset.painted = painted;
+  draw();
+  plot();
+  plotLayers();
+  document.documentElement.dataset.ready = select.value;
 })();
