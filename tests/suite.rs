@@ -11,6 +11,7 @@ mod cases;
 mod cell_io;
 mod cli;
 mod codes;
+mod deposit;
 mod diagnostics;
 mod duct_geometry;
 mod fill;
