@@ -3,7 +3,7 @@
 //! `<part>.ir.json` (`--emit ir`), documented in `docs/ir.md`.
 //!
 //! Units: mm, deg (only in machine poses), mm/s, W, g/min. Directions are unit
-//! vectors. Process values and directions are stored as `f32` to keep a point at 72
+//! vectors. Process values and directions are stored as `f32` to keep a point at 80
 //! bytes (the dense duct has 3.6 M of them); positions stay `f64`.
 
 use crate::bead::HeightModel;
@@ -15,29 +15,39 @@ use serde::{Deserialize, Serialize};
 
 /// The IR format tag.
 pub const FORMAT: &str = "lmdc-ir";
-/// The newest IR version this compiler writes. Version 3 adds what a reader
-/// must not ignore: a segmented [`Ring`] built in one continuous run, with a
-/// height loop that runs on the machine or a fixed speed schedule (seed 004;
-/// ignored, the nominal speeds would run open loop), and the machines' `cell`,
-/// the gas and powder they switch (ignored, the laser would run without
-/// shielding gas or powder). lmdc writes version 3 only for a plan with one of
-/// them ([`version_for`]); every other plan is still version 2.
-pub const VERSION: u32 = 3;
+/// The newest IR version this compiler writes. Version 4 adds the plan's
+/// bead model (`bead`) and each point's `pitch` and predicted `rise`, and
+/// changes what a layer height is: the rise `A/pitch` the bead model lays
+/// where a deposit fills a strip `pitch` wide ([`crate::deposit`]), where
+/// older versions planned each point's height as a single bead's. A reader
+/// that chose or checked speeds by the old rule would be off by a third on
+/// a wall, so every plan with a bead model is version 4 ([`version_for`]).
+pub const VERSION: u32 = 4;
 
-/// The version of a plan with neither a ring nor a machine's cell. Version 2
-/// (variable-thickness layers, seed 003): `speed` is the path speed, which the
-/// bead model is checked against across the normal; a path may climb along
-/// the normal (`tangent` then leaves the layer plane); a variable layer's
-/// `frame` is the world frame and its `station` is `i/N`. Version 1 files read
-/// the same.
+/// Version 3: a segmented [`Ring`] built in one continuous run, with a
+/// height loop that runs on the machine or a fixed speed schedule (seed 004;
+/// ignored, the nominal speeds would run open loop), and the machines'
+/// `cell`, the gas and powder they switch (ignored, the laser would run
+/// without shielding gas or powder). A ring has no bead model (its segments
+/// have their own widths): it is still version 3.
+pub const VERSION_RING: u32 = 3;
+
+/// The version of a plan with neither a bead model, a ring nor a machine's
+/// cell (an IR built by hand). Version 2 (variable-thickness layers, seed
+/// 003): `speed` is the path speed, which the bead model is checked against
+/// across the normal; a path may climb along the normal (`tangent` then
+/// leaves the layer plane); a variable layer's `frame` is the world frame
+/// and its `station` is `i/N`. Version 1 files read the same.
 pub const VERSION_BASIC: u32 = 2;
 
-/// The lowest version that holds a plan: [`VERSION`] with a ring or a machine
-/// that switches gas or powder, else [`VERSION_BASIC`], so a plan an older
-/// reader can run stays readable by it.
-pub fn version_for(ring: bool, machines: &[Machine]) -> u32 {
-    if ring || machines.iter().any(|m| !m.cell().is_none()) {
+/// The lowest version that holds a plan: [`VERSION`] with a bead model,
+/// [`VERSION_RING`] with a ring or a machine that switches gas or powder,
+/// else [`VERSION_BASIC`].
+pub fn version_for(bead: bool, ring: bool, machines: &[Machine]) -> u32 {
+    if bead {
         VERSION
+    } else if ring || machines.iter().any(|m| !m.cell().is_none()) {
+        VERSION_RING
     } else {
         VERSION_BASIC
     }
@@ -48,7 +58,7 @@ pub fn version_for(ring: bool, machines: &[Machine]) -> u32 {
 pub struct Program {
     /// Always [`FORMAT`].
     pub format: String,
-    /// [`version_for`] the plan: 3 with a ring, else 2.
+    /// [`version_for`] the plan: 4 with a bead model, 3 for a ring.
     pub version: u32,
     /// The part's name (used for file names).
     pub part: String,
@@ -1138,5 +1148,15 @@ mod tests {
         t.normal = [s, 0.0, s];
         let u = point([-1.0, 2.0, 1.0], 6.0);
         assert!((t.speed_across(Some(&u)) - 6.0).abs() < 1e-5);
+    }
+}
+
+#[cfg(test)]
+mod size {
+    /// The memory budget of a plan (`slice::MAX_TOTAL_POINTS`, the README's
+    /// benchmark) counts 80 bytes a point.
+    #[test]
+    fn a_point_is_80_bytes() {
+        assert_eq!(std::mem::size_of::<super::Point>(), 80);
     }
 }

@@ -44,7 +44,11 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
     let machines: Vec<_> = model.machines.iter().map(|(m, _)| m.clone()).collect();
     let program = Program {
         format: FORMAT.into(),
-        version: ir::version_for(ring.is_some(), &machines),
+        version: ir::version_for(
+            !matches!(model.plan, Plan::Ring(_)) && model.bead.is_some(),
+            ring.is_some(),
+            &machines,
+        ),
         part: model.part.clone(),
         units: Units::default(),
         limits,

@@ -223,10 +223,11 @@ fn the_gcode_program_has_gas_and_powder_ready_at_every_laser_start() {
 
 #[test]
 fn a_machine_without_gas_or_powder_writes_the_same_program_as_before() {
-    // The IR of a plan without cell I/O stays version 2, and nothing switches.
+    // The IR of a plan with a bead model is version 4 with or without cell
+    // I/O, and without it nothing switches.
     let c = compile(&example::tooth(&[]), &mut ());
     let p = c.program.unwrap();
-    assert_eq!(p.ir().version, lmdc::ir::VERSION_BASIC);
+    assert_eq!(p.ir().version, lmdc::ir::VERSION);
     let c = compile(&tooth(""), &mut ());
     assert_eq!(c.program.unwrap().ir().version, lmdc::ir::VERSION);
     let sink = build(&example::tooth(&[]));

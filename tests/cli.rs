@@ -164,9 +164,16 @@ fn machine_selection_and_ir() {
     let ir: serde_json::Value =
         serde_json::from_slice(&std::fs::read(d.join("twisted_duct.ir.json")).unwrap()).unwrap();
     assert_eq!(ir["format"], "lmdc-ir");
-    // A plan without a ring or gas and powder is written as version 2, which
-    // older readers take.
-    assert_eq!(ir["version"], lmdc::ir::VERSION_BASIC);
+    // A plan with a bead model is written as version 4: its layer heights
+    // are what the model stacks (A/pitch), each point says its pitch and rise.
+    assert_eq!(ir["version"], lmdc::ir::VERSION);
+    assert_eq!(ir["bead"]["basis"]["kind"], "track");
+    assert!(
+        ir["layers"][3]["paths"][0]["points"][0]["rise"]
+            .as_f64()
+            .unwrap()
+            > 0.0
+    );
     assert_eq!(ir["part"], "twisted_duct");
     assert_eq!(ir["units"]["speed"], "mm/s");
     let layer = &ir["layers"][3];

@@ -729,7 +729,7 @@ impl PlanarSlicing {
 }
 
 /// Most layers and points per layer a plan may have: 10⁸ points in all keeps
-/// memory bounded (the IR holds 72 bytes a point).
+/// memory bounded (the IR holds 80 bytes a point).
 pub const MAX_LAYERS: usize = 100_000;
 /// See [`MAX_LAYERS`].
 pub const MAX_POINTS: usize = 100_000;

@@ -19,7 +19,7 @@ use crate::sema::model::MAX_POINTS;
 use crate::sema::model::{Bead, Loft, Model, Plan, Resolution, Slicing, Spine};
 use crate::units::short;
 
-/// Most points a plan may hold (72 bytes each in the IR, so at most ~1.5 GB):
+/// Most points a plan may hold (80 bytes each in the IR, so at most ~1.6 GB):
 /// 20 M is over five times the dense benchmark duct, and bounds memory for any
 /// input.
 pub const MAX_TOTAL_POINTS: usize = 20_000_000;
