@@ -458,3 +458,31 @@ proptest! {
         let _ = compile(&edited, &mut ());
     }
 }
+
+/// A stretched balanced layout names the footprint width that needs no
+/// stretch: built with it, the warning is gone.
+#[test]
+fn the_footprint_a_stretch_warning_names_fits() {
+    let wall = |width: &str| {
+        format!(
+            "part wall
+bead b316 {{ width = 2.4 mm  speed = 4 mm/s .. 8.7 mm/s  model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm) }}
+extrude wall {{ profile = rectangle(width = 30 mm, height = {width})  size = outer  bead = b316  top = 8 mm + 50 % * (y + 6 mm) }}
+slicing variable {{ layers = auto  scan = x  segments {{ tolerance = 0.1 mm }} }}
+process {{ power = 1000 W  powder = 12 g/min  defocus = 0 mm }}
+machine mill {{ kind = cnc  axes = 3  max_speed = 50 mm/s }}
+"
+        )
+    };
+    let h = help(&wall("12 mm"), "lmd::overlap-stretch");
+    let fits = values(&h, "a footprint about ", " mm wide")[0];
+    let c = compile(&wall(&format!("{fits} mm")), &mut ());
+    assert!(c.program.is_some(), "{fits} mm: {:#?}", c.diagnostics);
+    assert!(
+        !c.diagnostics
+            .iter()
+            .any(|d| d.code == "lmd::overlap-stretch"),
+        "{fits} mm: {:#?}",
+        c.diagnostics
+    );
+}

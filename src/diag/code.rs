@@ -307,7 +307,7 @@ codes! {
     Unused = "unused", Warnings,
         "something that has no effect: `inheritance` without styles, `corner_angle` without `near_corner`, a style's `powder` (recorded in the IR, not programmed), a style that sets no value, a `when` block no track can meet (`shorter_than` ≤ `longer_than`, layers past the last), a style that picks no track on any layer, inheritance with a raster that turns between layers";
     OverlapStretch = "overlap-stretch", Warnings,
-        "the balanced spacing of unequal-height tracks had to be stretched (or squeezed) by more than 5 % to land the last track half a bead inside the far edge: the layer comes out about that much thinner (thicker) between tracks";
+        "the balanced spacing of unequal-height tracks had to be stretched (or squeezed) by more than 5 % to land the last track half a bead inside the far edge: the tracks are scanned about that much slower (faster) to fill their strips, and the help names the footprint width that needs no stretch";
     SeamAtBendExtreme = "seam-at-bend-extreme", Warnings,
         "the seam (laser on/off) sits at the innermost or outermost point of the bend, where the layer height is extreme";
 }

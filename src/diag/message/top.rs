@@ -349,23 +349,28 @@ pub fn no_closure(top: Span) -> Diagnostic {
     .help("the top's thickness ratio across the tracks is far outside what a bead map spans: give `offset = …` a length, or a flatter top across")
 }
 
-/// The `tracks` balanced tracks were stretched by the factor `s` to close.
-pub fn stretched(tracks: usize, s: f64, slicing: Span, shape: Span) -> Diagnostic {
-    let (how, effect) = if s > 1.0 {
-        ("stretched", "thinner")
+/// The `tracks` balanced tracks were stretched by the factor `s` to close;
+/// `fits` is the footprint width across the tracks (mm) that needs no
+/// stretch with as many tracks.
+pub fn stretched(tracks: usize, s: f64, fits: f64, slicing: Span, shape: Span) -> Diagnostic {
+    let (how, speed, strips) = if s > 1.0 {
+        ("stretched", "slower", "wider")
     } else {
-        ("squeezed", "thicker")
+        ("squeezed", "faster", "narrower")
     };
     Diagnostic::warning(
         Code::OverlapStretch,
         format!(
-            "the {tracks} tracks are {how} by {} % to reach half a bead inside both edges: between them the layer comes out about that much {effect} than planned",
+            "the {tracks} tracks are {how} by {} % to reach half a bead inside both edges: they are scanned about that much {speed} to fill their {strips} strips, and the beads meet less evenly than the balance lays them",
             short(((s - 1.0) * 100.0).abs())
         ),
     )
     .label(slicing, "offset = balanced")
     .label(shape, "footprint")
-    .help("a footprint whose width across the tracks fits the balanced spacing (one track more or less) avoids it; or declare `offset = …`")
+    .help(format!(
+        "a footprint about {} mm wide across the tracks fits the balanced spacing of {tracks} tracks; or declare `offset = …`",
+        short((fits * 100.0).round() / 100.0)
+    ))
 }
 
 /// `n` layers of `per_layer` points pass `max`.

@@ -161,6 +161,7 @@ fn error(e: OverlapError, ex: &TopExtrusion, fp: &Footprint, scan: Axis) -> Diag
 /// by more than [`STRETCH_WARNING`].
 pub fn stretch_warning(
     layout: &Layout,
+    w: f64,
     slicing: &VariableSlicing,
     ex: &TopExtrusion,
 ) -> Option<Diagnostic> {
@@ -168,9 +169,14 @@ pub fn stretch_warning(
     if (s - 1.0).abs() <= STRETCH_WARNING {
         return None;
     }
+    // The balance unstretched spans its centres' distance over σ; the
+    // footprint's faces lie half a bead outside the first and last centre.
+    let (first, last) = (layout.centres[0], layout.centres[layout.centres.len() - 1]);
+    let fits = (last - first) / s + w;
     Some(message::top::stretched(
         layout.centres.len(),
         s,
+        fits,
         slicing.span,
         ex.shape_span,
     ))

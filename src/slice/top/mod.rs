@@ -189,7 +189,7 @@ fn finish(
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     let n = p.n;
     let mut warnings = Diagnostics::new();
-    if let Some(d) = layout::stretch_warning(p.lines, slicing, ex) {
+    if let Some(d) = layout::stretch_warning(p.lines, bead.width.0, slicing, ex) {
         warnings.push(d);
     }
     short_tracks(p.tracks, bead.width.0, slicing, &mut warnings);
