@@ -101,7 +101,7 @@ enum Command {
     },
     /// Report what each machine's program takes, per layer and in total: lengths, time at
     /// the programmed speeds, laser time, energy, powder, and the metal the bead model lays
-    /// against the design solid (docs/preview.md).
+    /// against what the layers stack and the design solid (docs/preview.md).
     Report {
         /// The .lmd file.
         file: PathBuf,
@@ -116,8 +116,9 @@ enum Command {
         #[arg(long, value_name = "G_PER_CM3")]
         density: Option<f64>,
     },
-    /// Write one self-contained HTML page showing a machine's plan in 3-D, with per-layer
-    /// plots of speed and height (docs/preview.md).
+    /// Write one self-contained HTML page showing a machine's plan in 3-D — coloured by
+    /// speed, height, predicted height error, power, style, path kind or layer — with
+    /// per-layer plots of speed, height and height error (docs/preview.md).
     Preview {
         /// The .lmd file.
         file: PathBuf,
