@@ -9,7 +9,7 @@
 /// inputs at the boundary and returns one of these instead of panicking or
 /// computing a NaN deep inside.
 ///
-/// Its wording (`Display`) is in `crate::diag::message::ring`.
+/// Its wording (`Display`) is in `crate::diag::message::segmented_ring`.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Invalid {
     /// NaN or infinite.

@@ -4,7 +4,7 @@
 use crate::control::SegmentProcess;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{self, Layer, Limits, Origins, Program, Style, Units, FORMAT};
-use crate::sema::model::{Model, Plan, RingPlan};
+use crate::sema::model::{Build, Model, RingBuild};
 use crate::slice;
 use crate::span::Span;
 use crate::units::Length;
@@ -12,9 +12,9 @@ use crate::units::Length;
 /// Builds the IR of a checked model; returns it with the slicer's warnings, or
 /// the errors that make the part unbuildable.
 pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
-    let (layers, warnings, ring) = match &model.plan {
-        Plan::Ring(r) => {
-            let (layers, ring) = slice::ring::build(r)?;
+    let (layers, warnings, ring) = match &model.build {
+        Build::Ring(r) => {
+            let (layers, ring) = slice::segmented_ring::build(r)?;
             (layers, Diagnostics::new(), Some(ring))
         }
         _ => {
@@ -22,11 +22,11 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             (layers, warnings, None)
         }
     };
-    let (limits, bead_height, bead_speed) = match (&model.plan, &model.bead) {
-        (Plan::Ring(r), _) => ring_limits(model, r),
+    let (limits, bead_height, bead_speed) = match (&model.build, &model.bead) {
+        (Build::Ring(r), _) => ring_limits(model, r),
         (_, Some(bead)) => (
             Limits {
-                layer_height: layer_heights(&model.plan, bead, &layers),
+                layer_height: layer_heights(&model.build, bead, &layers),
                 speed: [bead.speed[0].0, bead.speed[1].0],
                 power: [
                     model.process.power_range[0].watts(),
@@ -45,7 +45,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
     let program = Program {
         format: FORMAT.into(),
         version: ir::version_for(
-            !matches!(model.plan, Plan::Ring(_)) && model.bead.is_some(),
+            !matches!(model.build, Build::Ring(_)) && model.bead.is_some(),
             ring.is_some(),
             &machines,
         ),
@@ -68,8 +68,8 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             .collect(),
         heat: model.process.heat,
         continuous: ring.is_some(),
-        bead: match (&model.plan, &model.bead) {
-            (Plan::Ring(_), _) | (_, None) => None,
+        bead: match (&model.build, &model.bead) {
+            (Build::Ring(_), _) | (_, None) => None,
             // The model as declared: each point carries its own feed.
             (_, Some(b)) => Some(ir::Bead::of(
                 &crate::deposit::Deposit {
@@ -86,22 +86,22 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             bead_height,
             bead_speed,
             power: Some(model.process.power_span),
-            spine: match &model.plan {
-                Plan::Duct { loft, .. } => Some(loft.spine_span),
+            spine: match &model.build {
+                Build::Duct { loft, .. } => Some(loft.spine_span),
                 _ => None,
             },
-            top: match &model.plan {
-                Plan::Variable { extrusion, .. } => Some(extrusion.top_span),
+            top: match &model.build {
+                Build::Variable { extrusion, .. } => Some(extrusion.top_span),
                 _ => None,
             },
-            slicing: Some(match &model.plan {
-                Plan::Duct { slicing, .. } => slicing.span,
-                Plan::Block { slicing, .. } => slicing.span,
-                Plan::Variable { slicing, .. } => slicing.span,
-                Plan::Ring(r) => r.origins.layers,
+            slicing: Some(match &model.build {
+                Build::Duct { slicing, .. } => slicing.span,
+                Build::Block { slicing, .. } => slicing.span,
+                Build::Variable { slicing, .. } => slicing.span,
+                Build::Ring(r) => r.origins.layers,
             }),
-            ring: match &model.plan {
-                Plan::Ring(r) => Some(r.origins),
+            ring: match &model.build {
+                Build::Ring(r) => Some(r.origins),
                 _ => None,
             },
             machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
@@ -118,10 +118,10 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
 /// A variable layer's tracks fill the strips the layout gives them: the
 /// heights are what the bead stacks from the widest of them to the
 /// narrowest.
-fn layer_heights(plan: &Plan, bead: &crate::sema::model::Bead, layers: &[Layer]) -> [f64; 2] {
-    let pitch = match plan {
-        Plan::Block { slicing, .. } if slicing.overlapped() => slicing.offset,
-        Plan::Variable { .. } => {
+fn layer_heights(build: &Build, bead: &crate::sema::model::Bead, layers: &[Layer]) -> [f64; 2] {
+    let pitch = match build {
+        Build::Block { slicing, .. } if slicing.overlapped() => slicing.offset,
+        Build::Variable { .. } => {
             let Some([narrow, wide]) = pitches(layers) else {
                 return bead.height.map(|h| h.0);
             };
@@ -176,7 +176,7 @@ fn predict_rises(p: &mut Program) {
 /// (the clamp; the table's without a loop), the table's powers (or the
 /// declared `power_range`), and its narrowest width as the bead the layers
 /// are checked to lie on.
-fn ring_limits(model: &Model, r: &RingPlan) -> (Limits, Option<Span>, Option<Span>) {
+fn ring_limits(model: &Model, r: &RingBuild) -> (Limits, Option<Span>, Option<Span>) {
     let rows = r.table.rows();
     let fold = |f: fn(&SegmentProcess) -> f64| {
         rows.iter()

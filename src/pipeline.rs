@@ -232,7 +232,7 @@ pub struct RingSimulation {
 /// loop the verifier would refuse (unstable, too slow) is still simulated —
 /// seeing it diverge is the point — and its findings come with it.
 pub fn simulate(source: &str) -> Simulated {
-    use crate::sema::model::Plan;
+    use crate::sema::model::Build;
     let mut diagnostics = Diagnostics::new();
     let done = |run, mut diagnostics: Diagnostics, nothing| {
         diagnostics.sort_by_source();
@@ -254,7 +254,7 @@ pub fn simulate(source: &str) -> Simulated {
     let Some(model) = model.filter(|_| !diagnostics.has_errors()) else {
         return done(None, diagnostics, None);
     };
-    let Plan::Ring(r) = &model.plan else {
+    let Build::Ring(r) = &model.build else {
         return done(None, diagnostics, Some("it declares no `ring`"));
     };
     let Some(c) = &r.control else {

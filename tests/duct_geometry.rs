@@ -135,7 +135,7 @@ fn first_layer_is_the_circle_and_the_end_section_the_square() {
     let src = d.source();
     let ast = lmdc::syntax::parse(&src).unwrap();
     let model = lmdc::sema::check(&ast).0.unwrap();
-    let lmdc::sema::model::Plan::Duct { loft, .. } = &model.plan else {
+    let lmdc::sema::model::Build::Duct { loft, .. } = &model.build else {
         panic!("the duct is a loft")
     };
     let geo = lmdc::geometry::LoftGeometry::new(loft);

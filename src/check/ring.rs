@@ -154,7 +154,7 @@ fn robot_timing(
             let next = &r.segments[(j + 1) % n];
             let extra = if j + 1 == n { r.layer_height } else { 0.0 };
             let rise = next.defocus - r.segments[j].defocus + extra;
-            control::ring::path_speed(Speed(top), Length(rise), Length(arc)).0
+            control::geometry::path_speed(Speed(top), Length(rise), Length(arc)).0
         })
         .fold(top, f64::max);
     let during_delay = (s.delay * fastest / shortest).ceil();
@@ -203,7 +203,7 @@ fn transitions(
             let next = &r.segments[(j + 1) % n];
             let extra = if j + 1 == n { r.layer_height } else { 0.0 };
             let rise = next.defocus - r.segments[j].defocus + extra;
-            let v = control::ring::path_speed(Speed(top), Length(rise), Length(arc)).0;
+            let v = control::geometry::path_speed(Speed(top), Length(rise), Length(arc)).0;
             (j, rise, v)
         })
         .fold(None, |best: Option<(usize, f64, f64)>, c| match best {

@@ -14,7 +14,7 @@
 //! | [`linear`] | stability and settling of the linearised loop | — |
 //! | [`analysis`] | the compile-time check and its messages | — |
 //! | [`table`] | per-segment process values, energy density | Table 1, eq. 10 |
-//! | [`ring`] | the layer's points, transitions `v / cos γ` | eq. 1–5, 7–8 |
+//! | [`geometry`] | the layer's points, transitions `v / cos γ` | eq. 1–5, 7–8 |
 //! | [`paper`] | the reference numbers | Tables 1–2 |
 //!
 //! Every function checks its inputs and returns [`Invalid`] instead of
@@ -22,12 +22,12 @@
 
 pub mod analysis;
 pub mod gain;
+pub mod geometry;
 pub mod invalid;
 pub mod law;
 pub mod linear;
 pub mod paper;
 pub mod plant;
-pub mod ring;
 pub mod simulate;
 pub mod table;
 
@@ -38,10 +38,10 @@ mod reference;
 
 pub use analysis::{analyse, Analysis, Finding, Severity};
 pub use gain::SpeedPerLength;
+pub use geometry::{LayerSpec, Ring, RingPoint, SegmentMoves, Transition};
 pub use invalid::Invalid;
 pub use law::{Clamp, Controller, LoopState, Step, LAW};
 pub use linear::LoopGains;
 pub use plant::{Deposition, Plant};
-pub use ring::{LayerSpec, Ring, RingPoint, SegmentMoves, Transition};
 pub use simulate::{simulate, Sample, Simulation, Total};
 pub use table::{EnergyDensity, SegmentProcess, SegmentTable};

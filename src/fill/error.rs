@@ -18,7 +18,7 @@ pub enum FillError {
     /// A coordinate or setting is NaN or infinite.
     NonFinite,
     /// A setting or the outline's size is outside what makes sense.
-    OutOfRange(Invalid),
+    OutOfRange(BadValue),
     /// The raster would need too many lines.
     TooManyLines(Count),
     /// Too many contour passes.
@@ -29,7 +29,7 @@ pub enum FillError {
 
 /// A value outside its range.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Invalid {
+pub struct BadValue {
     /// What it is, e.g. "the raster offset".
     pub what: &'static str,
     /// Its value (infinite when it overflowed).

@@ -94,7 +94,7 @@ pub mod link;
 mod raster;
 
 pub use coverage::{gap, gap_in, Gap, MAX_SAMPLES};
-pub use error::{Count, FillError, Invalid};
+pub use error::{BadValue, Count, FillError};
 pub use raster::{intervals_at, CLOSING};
 
 use crate::geometry::profile::Profile;
@@ -314,7 +314,7 @@ fn validate(region: &Region, spec: &FillSpec, chord_error: f64) -> Result<(), Fi
     }
     let pieces = region.pieces();
     if pieces > MAX_PIECES {
-        return Err(FillError::OutOfRange(Invalid {
+        return Err(FillError::OutOfRange(BadValue {
             what: "the number of pieces of the outline",
             value: pieces as f64,
             unit: "",
@@ -334,7 +334,7 @@ fn validate(region: &Region, spec: &FillSpec, chord_error: f64) -> Result<(), Fi
     // An arc whose numbers overflow leaves NaN in the bounds: out of range too.
     if coords.iter().any(|v| v.is_nan() || v.abs() > MAX_LENGTH) {
         let reach = coords.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        return Err(FillError::OutOfRange(Invalid {
+        return Err(FillError::OutOfRange(BadValue {
             what: "the farthest point of the outline",
             value: if coords.iter().any(|v| v.is_nan()) {
                 f64::INFINITY
@@ -371,7 +371,7 @@ fn length(
     if low_ok && value <= MAX_LENGTH {
         Ok(())
     } else {
-        Err(FillError::OutOfRange(Invalid {
+        Err(FillError::OutOfRange(BadValue {
             what,
             value,
             unit: " mm",

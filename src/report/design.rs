@@ -19,7 +19,7 @@ use crate::diag::Diagnostics;
 use crate::geometry::outline::{profile, region};
 use crate::geometry::profile::Profile;
 use crate::geometry::LoftGeometry;
-use crate::sema::model::{Loft, Measure, Model, Plan, Shape, Spine, Top, TopExtrusion};
+use crate::sema::model::{Build, Loft, Measure, Model, Shape, Spine, Top, TopExtrusion};
 use serde::Serialize;
 
 /// Stations along a loft's spine and angles round its section summed over.
@@ -56,9 +56,9 @@ pub fn volume(model: &Model) -> Design {
         };
     };
     let w = bead.width.0;
-    let got = match &model.plan {
-        Plan::Duct { loft, .. } => loft_wall(loft, w),
-        Plan::Block {
+    let got = match &model.build {
+        Build::Duct { loft, .. } => loft_wall(loft, w),
+        Build::Block {
             extrusion, slicing, ..
         } => {
             let mut scratch = Diagnostics::new();
@@ -73,7 +73,7 @@ pub fn volume(model: &Model) -> Design {
                 })
                 .ok_or_else(|| "the layers could not be planned".to_string())
         }
-        Plan::Variable { extrusion, .. } => top_volume(extrusion, w),
+        Build::Variable { extrusion, .. } => top_volume(extrusion, w),
         #[allow(unreachable_patterns)]
         _ => Err("lmdc does not measure this kind of solid yet".into()),
     };

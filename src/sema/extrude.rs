@@ -1,12 +1,12 @@
 //! `extrude NAME { profile, height, size, bead }`: a profile built up in flat
-//! layers, and its pairing with `slicing planar { … }` into a [`Plan::Block`]:
+//! layers, and its pairing with `slicing planar { … }` into a [`Build::Block`]:
 //! the scan speed checked against the bead model, the track offset derived
 //! where it is `auto` and checked against the bead's width, the height given
 //! once (a layer count or a height), and the profile kept as a shape or, when
 //! it follows `layer`, as the expression the slicer evaluates on each layer
 //! ([`crate::slice::layers`] decides the layers).
 //!
-//! [`Plan::Block`]: super::model::Plan::Block
+//! [`Build::Block`]: super::model::Build::Block
 
 use super::eval::{unknown_name, Env};
 use super::fields::Fields;

@@ -23,10 +23,10 @@ mod process;
 mod profile;
 mod program_text;
 mod region;
-mod ring;
 pub mod schema;
 mod seam;
 mod section;
+mod segmented_ring;
 pub mod slicing;
 mod solid;
 mod statement;
@@ -93,7 +93,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
         },
         powder: process.powder.map(|p| p.0),
     };
-    let (plan, bead) = solid::plan(
+    let (build, bead) = solid::build(
         &mut env,
         solid,
         slicing,
@@ -125,7 +125,7 @@ fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
     });
     Some(Model {
         part: part?,
-        plan: plan?,
+        build: build?,
         bead: if ring { None } else { Some(bead?) },
         process: process.process?,
         machines,

@@ -7,9 +7,9 @@ use crate::span::Span;
 use crate::syntax::ast::Expr;
 use crate::units::{Angle, Length, MassFlow, Power, Speed};
 
-mod ring;
+mod segmented_ring;
 mod top;
-pub use ring::{HeightControl, LoopRun, RingPlan};
+pub use segmented_ring::{HeightControl, LoopRun, RingBuild};
 pub use top::{Axis, Top, TopExpr, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE};
 
 /// A whole checked `.lmd` file.
@@ -18,7 +18,7 @@ pub struct Model {
     /// The part's name.
     pub part: String,
     /// The solid and how it is cut into layers.
-    pub plan: Plan,
+    pub build: Build,
     /// The bead model the part is built with (none on a ring, whose table
     /// gives each segment's process).
     pub bead: Option<Bead>,
@@ -442,7 +442,7 @@ impl Section {
 /// A solid with the slicing strategy that builds it: each strategy takes the
 /// solids it can slice, so a mismatch cannot reach the slicer.
 #[derive(Clone, Debug)]
-pub enum Plan {
+pub enum Build {
     /// A thin-walled loft, sliced normal to its spine (seed 000).
     Duct {
         /// The loft.
@@ -467,7 +467,7 @@ pub enum Plan {
     },
     /// A segmented ring laid in one continuous run, with its height loop
     /// (seed 004).
-    Ring(RingPlan),
+    Ring(RingBuild),
 }
 
 /// Which way an arc turns, seen along the outline.

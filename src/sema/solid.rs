@@ -6,8 +6,8 @@ use super::declare::Declared;
 use super::eval::Env;
 use super::extrude;
 use super::loft;
-use super::model::{Bead, Loft, Plan};
-use super::ring;
+use super::model::{Bead, Build, Loft};
+use super::segmented_ring;
 use super::slicing::{self, Spec};
 use super::statement::{shape_error, Statements};
 use super::variable;
@@ -45,7 +45,7 @@ pub struct Read<'a> {
 enum Solid<'a> {
     Loft(Loft),
     Extrude(extrude::Written<'a>),
-    Ring(ring::Written),
+    Ring(segmented_ring::Written),
 }
 
 impl Read<'_> {
@@ -120,7 +120,7 @@ pub fn read<'a>(
             (kind, w.map(Solid::Extrude), b)
         }
         ("ring", Some(n), Body::Block(stmts, _)) => {
-            let w = ring::read(env, &n.node, stmts, s.span, diags);
+            let w = segmented_ring::read(env, &n.node, stmts, s.span, diags);
             (Kind::Ring, Some(Solid::Ring(w)), None)
         }
         ("ring", _, _) => {
@@ -160,7 +160,7 @@ pub fn read<'a>(
 /// if a block has other mistakes). `speed` is the process block's scan speed
 /// (`Some(None)` when not written, `None` when wrong). Returns the plan, if
 /// every part of it is right, and the bead model.
-pub fn plan(
+pub fn build(
     env: &mut Env<'_>,
     solid: Read<'_>,
     slicing: slicing::Read<'_>,
@@ -168,7 +168,7 @@ pub fn plan(
     decl: &Declared<'_>,
     ring_cx: RingContext,
     diags: &mut Diagnostics,
-) -> (Option<Plan>, Option<Bead>) {
+) -> (Option<Build>, Option<Bead>) {
     let bead = solid.bead;
     if mismatch(solid.kind, slicing.strategy, slicing.stmt, diags) {
         return (None, bead);
@@ -185,19 +185,20 @@ pub fn plan(
     };
     let plan = match (solid.solid, slicing.spec, &bead) {
         (Some(Solid::Loft(loft)), Some(Spec::Normal(slicing)), _) => {
-            Some(Plan::Duct { loft, slicing })
+            Some(Build::Duct { loft, slicing })
         }
         (Some(Solid::Extrude(w)), Some(Spec::Planar(spec)), Some(b)) if w.top.is_none() => {
             extrude::assemble(env, w, b, spec, speed, &decl.constants, diags)
-                .map(|(extrusion, slicing)| Plan::Block { extrusion, slicing })
+                .map(|(extrusion, slicing)| Build::Block { extrusion, slicing })
         }
         (Some(Solid::Extrude(w)), Some(Spec::Variable(spec)), Some(_)) if w.top.is_some() => {
             variable::assemble(env, w, spec, diags)
                 .filter(|_| side_ok)
-                .map(|(extrusion, slicing)| Plan::Variable { extrusion, slicing })
+                .map(|(extrusion, slicing)| Build::Variable { extrusion, slicing })
         }
         (Some(Solid::Ring(w)), Some(Spec::Continuous(spec)), _) => {
-            ring::assemble(w, spec, ring_cx.control, ring_cx.powder, diags).map(Plan::Ring)
+            segmented_ring::assemble(w, spec, ring_cx.control, ring_cx.powder, diags)
+                .map(Build::Ring)
         }
         // A part that failed, reported where it was read.
         _ => None,

@@ -1,12 +1,12 @@
 //! `slicing variable { layers, scan, offset, segments { tolerance, min_length } }`
 //! (seed 003), and its pairing with an extrusion that has a `top` into a
-//! [`Plan::Variable`]: the speeds come from the bead model, so the process
+//! [`Build::Variable`]: the speeds come from the bead model, so the process
 //! block gives none and the bead must map heights to speeds; a declared
 //! track offset is checked against the bead's width. How many layers, where
 //! the tracks run and where their speed changes is the slicer's decision
 //! ([`crate::slice::top`]).
 //!
-//! [`Plan::Variable`]: super::model::Plan::Variable
+//! [`Build::Variable`]: super::model::Build::Variable
 
 use super::eval::Env;
 use super::extrude::{declared_offset, Source, Written};

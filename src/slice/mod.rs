@@ -6,7 +6,7 @@ mod holes;
 pub mod layers;
 pub mod normal;
 pub mod planar;
-pub mod ring;
+pub mod segmented_ring;
 pub mod styling;
 pub mod top;
 pub mod variable;
@@ -16,7 +16,7 @@ use crate::diag::Diagnostics;
 use crate::geometry::LoftGeometry;
 use crate::ir::Layer;
 use crate::sema::model::MAX_POINTS;
-use crate::sema::model::{Bead, Loft, Model, Plan, Resolution, Slicing, Spine};
+use crate::sema::model::{Bead, Build, Loft, Model, Resolution, Slicing, Spine};
 use crate::units::short;
 
 /// Most points a plan may hold (80 bytes each in the IR, so at most ~1.6 GB):
@@ -28,18 +28,18 @@ pub const MAX_TOTAL_POINTS: usize = 20_000_000;
 /// (warnings, and errors that leave every layer made, such as a spot left
 /// unfilled), or the errors when there are no layers to go on with.
 pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
-    if let Plan::Ring(r) = &model.plan {
-        return ring::build(r).map(|(layers, _)| (layers, Diagnostics::new()));
+    if let Build::Ring(r) = &model.build {
+        return segmented_ring::build(r).map(|(layers, _)| (layers, Diagnostics::new()));
     }
     // The checker builds every other plan with its bead model.
     let Some(bead) = &model.bead else {
         return Err(message::internal::no_bead_in_slicing().into());
     };
-    match &model.plan {
-        Plan::Duct { loft, slicing } => duct(model, bead, loft, slicing),
-        Plan::Block { extrusion, slicing } => planar::slice(model, bead, extrusion, slicing),
-        Plan::Variable { extrusion, slicing } => top::slice(model, bead, extrusion, slicing),
-        Plan::Ring(r) => ring::build(r).map(|(layers, _)| (layers, Diagnostics::new())),
+    match &model.build {
+        Build::Duct { loft, slicing } => duct(model, bead, loft, slicing),
+        Build::Block { extrusion, slicing } => planar::slice(model, bead, extrusion, slicing),
+        Build::Variable { extrusion, slicing } => top::slice(model, bead, extrusion, slicing),
+        Build::Ring(r) => segmented_ring::build(r).map(|(layers, _)| (layers, Diagnostics::new())),
     }
 }
 
@@ -80,7 +80,7 @@ fn duct(
         )
         .into());
     }
-    let plan = normal::Plan {
+    let plan = normal::Setup {
         seam: slicing.seam.0,
         layers,
         step,

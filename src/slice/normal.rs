@@ -11,7 +11,7 @@ use crate::units::{Length, Speed};
 use nalgebra::Vector3;
 
 /// Everything per-point generation needs, fixed per plan.
-pub struct Plan {
+pub struct Setup {
     /// Seam position (rad from the section's x axis).
     pub seam: f64,
     /// Number of layers.
@@ -76,7 +76,7 @@ pub fn layer(
     model: &Model,
     bead: &Bead,
     geo: &LoftGeometry,
-    plan: &Plan,
+    plan: &Setup,
     i: usize,
     scan: &mut SeamScan,
 ) -> (Layer, Option<f64>) {

@@ -1,7 +1,7 @@
 //! Why a layer cannot be filled, in words: the fill's errors as a process
 //! engineer reads them after "layer 3 cannot be filled: ".
 
-use crate::fill::{FillError, Invalid};
+use crate::fill::{BadValue, FillError};
 use crate::geometry::region::Fault;
 use std::fmt;
 
@@ -71,7 +71,7 @@ fn region(f: &Fault) -> String {
     }
 }
 
-impl fmt::Display for Invalid {
+impl fmt::Display for BadValue {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.value.is_finite() {
             write!(f, "{} is {}{}", self.what, num(self.value), self.unit)?;
@@ -111,7 +111,7 @@ mod tests {
             e.to_string(),
             "the outline crosses or touches itself near x = 1 mm, y = 2.5 mm"
         );
-        let e = FillError::OutOfRange(Invalid {
+        let e = FillError::OutOfRange(BadValue {
             what: "the raster offset",
             value: 0.0,
             unit: " mm",
@@ -121,7 +121,7 @@ mod tests {
             e.to_string(),
             "the raster offset is 0 mm; it must be more than 0 mm"
         );
-        let e = FillError::OutOfRange(Invalid {
+        let e = FillError::OutOfRange(BadValue {
             what: "the inset",
             value: -1e300,
             unit: " mm",

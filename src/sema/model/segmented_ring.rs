@@ -10,7 +10,7 @@ use std::num::NonZeroUsize;
 /// `ring NAME { … }` with `slicing continuous { … }` and, if declared,
 /// `control height { … }`.
 #[derive(Clone, Debug)]
-pub struct RingPlan {
+pub struct RingBuild {
     /// The ring's name.
     pub name: String,
     /// Radius, segments, transition.

@@ -15,11 +15,11 @@ use super::MAX_TOTAL_POINTS;
 use crate::control::{self, simulate, Invalid, LayerSpec, RingPoint};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Frame, HeightLoop, Layer, Path, PathKind, Point, Ring, RingRun, RingSegment};
-use crate::sema::model::{LoopRun, RingPlan};
+use crate::sema::model::{LoopRun, RingBuild};
 use crate::units::{Length, Speed};
 
 /// The layers of `r` and the IR's description of its segments and loop.
-pub fn build(r: &RingPlan) -> Result<(Vec<Layer>, Ring), Diagnostics> {
+pub fn build(r: &RingBuild) -> Result<(Vec<Layer>, Ring), Diagnostics> {
     let n = r.ring.segments();
     let per = r.ring.moves(r.step).map_err(|e| too_many(r, e))?;
     let layers = r.layers.get();
@@ -80,7 +80,7 @@ pub fn build(r: &RingPlan) -> Result<(Vec<Layer>, Ring), Diagnostics> {
 }
 
 /// Each layer's speeds, and how the IR says they were chosen.
-fn schedule(r: &RingPlan) -> Result<(Vec<Vec<Speed>>, RingRun), Invalid> {
+fn schedule(r: &RingBuild) -> Result<(Vec<Vec<Speed>>, RingRun), Invalid> {
     let table = r.table.speeds();
     let layers = r.layers.get();
     let Some(c) = &r.control else {
@@ -176,12 +176,12 @@ fn layer(i: usize, layers: usize, h: f64, powder: f32, pts: &[RingPoint]) -> Lay
     }
 }
 
-fn too_many(r: &RingPlan, e: Invalid) -> Diagnostics {
+fn too_many(r: &RingBuild, e: Invalid) -> Diagnostics {
     message::slicing::ring_too_large(&e, r.origins.layers, r.origins.ring).into()
 }
 
 /// A value the checker let through that the ring cannot be laid out with (it
 /// checks every one, so this is a bug).
-fn invalid(r: &RingPlan, e: Invalid) -> Diagnostics {
+fn invalid(r: &RingBuild, e: Invalid) -> Diagnostics {
     message::internal::ring_layout(&e, r.origins.ring).into()
 }

@@ -1,15 +1,15 @@
 //! `ring NAME { radius, segments, transition, table { defocus, power, width,
 //! speed } }` (seed 004): a ring split into equal segments, each with its own
 //! row of process values, and its pairing with `slicing continuous { … }`
-//! and `control height { … }` into a [`Plan::Ring`].
+//! and `control height { … }` into a [`Build::Ring`].
 //!
-//! [`Plan::Ring`]: super::model::Plan::Ring
+//! [`Build::Ring`]: super::model::Build::Ring
 
 use super::continuous::ContinuousSpec;
 use super::control::ControlSpec;
 use super::eval::Env;
 use super::fields::{self, Fields};
-use super::model::{HeightControl, RingPlan};
+use super::model::{HeightControl, RingBuild};
 use super::schema::solid::{ring, table, RING, TABLE};
 use super::schema::{Bound, Field, Kind};
 use super::value::Value;
@@ -54,7 +54,7 @@ pub fn read<'a>(
         (Some((r, _)), Some((n, _)), Some(t)) => match control::Ring::new(Length(r), n, t) {
             Ok(ring) => Some(ring),
             Err(e) => {
-                diags.push(message::ring::ring_layout(&e, transition_span, n));
+                diags.push(message::segmented_ring::ring_layout(&e, transition_span, n));
                 None
             }
         },
@@ -63,7 +63,7 @@ pub fn read<'a>(
     let (table, powers, speed_span, width_span) = match f.nested(&ring::TABLE) {
         Some((inner, ts)) => table(env, inner, ts, segments, &what, diags),
         None => {
-            diags.push(message::ring::ring_needs_table(&what, span));
+            diags.push(message::segmented_ring::ring_needs_table(&what, span));
             (None, None, None, None)
         }
     };
@@ -104,7 +104,7 @@ fn fits(
 ) -> Option<control::Ring> {
     let widest = t.rows().iter().map(|s| s.width.0).fold(0.0, f64::max);
     if r.radius().0 <= widest / 2.0 {
-        diags.push(message::ring::ring_too_small(
+        diags.push(message::segmented_ring::ring_too_small(
             r.radius(),
             Length(widest),
             radius_at,
@@ -121,7 +121,7 @@ fn fits(
         .filter(|&w| length < w)
         .collect();
     if let Some(&w) = short.iter().max_by(|a, b| a.total_cmp(b)) {
-        diags.push(message::ring::short_segments(
+        diags.push(message::segmented_ring::short_segments(
             short.len(),
             Length(length),
             Length(w),
@@ -200,7 +200,7 @@ fn list(
     let (key, example) = (field.key, f.example(field));
     let v = f.value(field, diags)?;
     let Value::List(items) = &v.value else {
-        diags.push(message::ring::table_not_a_list(
+        diags.push(message::segmented_ring::table_not_a_list(
             key,
             v.span,
             &v.value.describe(),
@@ -213,7 +213,7 @@ fn list(
     for it in items {
         match fields::quantity(it, dim, key, diags) {
             Some(x) if positive && x <= 0.0 => {
-                diags.push(message::ring::table_not_positive(
+                diags.push(message::segmented_ring::table_not_positive(
                     key,
                     it.span,
                     &fields::shown(x, dim),
@@ -226,7 +226,13 @@ fn list(
     }
     if let Some((n, at)) = segments {
         if items.len() != n {
-            diags.push(message::ring::table_length(key, items.len(), v.span, n, at));
+            diags.push(message::segmented_ring::table_length(
+                key,
+                items.len(),
+                v.span,
+                n,
+                at,
+            ));
             ok = false;
         }
     }
@@ -244,7 +250,7 @@ pub fn assemble(
     control: Option<Option<ControlSpec>>,
     powder: Option<MassFlow>,
     diags: &mut Diagnostics,
-) -> Option<RingPlan> {
+) -> Option<RingBuild> {
     let (ring, table) = (w.ring?, w.table.clone()?);
     let control = match control? {
         Some(c) => Some(loop_of(&w, &table, &slicing, c, diags)?),
@@ -256,7 +262,7 @@ pub fn assemble(
         layers: slicing.layers_span,
         ..control.as_ref().map(|c| c.1).unwrap_or_default()
     };
-    Some(RingPlan {
+    Some(RingBuild {
         name: w.name,
         ring,
         table,
@@ -281,7 +287,7 @@ fn loop_of(
     let h = slicing.layer_height;
     let target = match c.target {
         Some((t, at)) if (t.0 - h.0).abs() > 1e-9 * h.0 => {
-            diags.push(message::ring::target_not_layer_height(
+            diags.push(message::segmented_ring::target_not_layer_height(
                 t,
                 h,
                 at,
@@ -294,14 +300,14 @@ fn loop_of(
     let controller = match Controller::new(c.kp, c.ki, target, c.clamp) {
         Ok(ctl) => ctl,
         Err(e) => {
-            diags.push(message::ring::loop_cannot_run(&e, c.span));
+            diags.push(message::segmented_ring::loop_cannot_run(&e, c.span));
             return None;
         }
     };
     let mut ok = true;
     for (j, row) in table.rows().iter().enumerate() {
         if !c.clamp.contains(row.speed) {
-            diags.push(message::ring::start_outside_clamp(
+            diags.push(message::segmented_ring::start_outside_clamp(
                 j + 1,
                 row.speed,
                 c.clamp.low(),
@@ -348,7 +354,9 @@ fn plant(
     let layers = slicing.layers.get();
     let last = 1.0 + p.drift * (layers - 1) as f64;
     if last <= 0.0 {
-        diags.push(message::ring::drift_exhausts_plant(p.drift, layers, p.span));
+        diags.push(message::segmented_ring::drift_exhausts_plant(
+            p.drift, layers, p.span,
+        ));
         return None;
     }
     let calibrated = Plant::calibrated(target, &table.speeds(), p.drift).ok()?;
@@ -356,7 +364,7 @@ fn plant(
         None => Some(calibrated),
         Some((f, at)) if f.len() != table.len() => {
             let seg_at = w.segments.map(|s| s.1).unwrap_or(w.span);
-            diags.push(message::ring::table_length(
+            diags.push(message::segmented_ring::table_length(
                 crate::sema::schema::control::plant::FACTORS.key,
                 f.len(),
                 *at,
