@@ -42,11 +42,18 @@ fn row(out: &mut String, label: &str, t: &Tally, volumes: bool) {
         t.powder_g,
     );
     if volumes {
+        // The layer's one statement: what the bead lays of what it stacks.
+        let share = if t.stacked_volume_mm3 > 0.0 {
+            format!("{:.1} %", t.bead_volume_mm3 / t.stacked_volume_mm3 * 100.0)
+        } else {
+            "—".into()
+        };
         let _ = write!(
             out,
-            " {:>9.2} {:>11.2}",
+            " {:>9.2} {:>11.2} {:>9}",
             t.bead_volume_mm3 / 1000.0,
-            t.stacked_volume_mm3 / 1000.0
+            t.stacked_volume_mm3 / 1000.0,
+            share
         );
     }
     out.push('\n');
@@ -72,7 +79,7 @@ pub fn render(r: &Report) -> String {
         "layer", "deposit m", "travel m", "time", "laser on", "energy kJ", "powder g"
     );
     if volumes {
-        let _ = write!(out, " {:>9} {:>11}", "bead cm³", "stacked cm³");
+        let _ = write!(out, " {:>9} {:>11} {:>9}", "bead cm³", "stacked cm³", "bead/stk");
     }
     out.push('\n');
     for l in &r.layers {
