@@ -38,7 +38,7 @@ pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> 
         other => {
             diags.push(message::shape::not_a_shape(
                 what,
-                other,
+                other.got(),
                 v.span,
                 section::SHAPES,
             ));
@@ -68,7 +68,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
             Value::Call(arc) if arc.func == "arc" && start.is_some() => arc_piece(arc, diags),
             other => {
                 let first = start.is_none();
-                diags.push(message::shape::bad_piece(first, other, v.span));
+                diags.push(message::shape::bad_piece(first, other.got(), v.span));
                 None
             }
         };
@@ -141,7 +141,7 @@ pub(super) fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]>
             Some([Length(x?), Length(y?)])
         }
         other => {
-            diags.push(message::shape::not_a_point(other, v.span));
+            diags.push(message::shape::not_a_point(other.got(), v.span));
 
             None
         }

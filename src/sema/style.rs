@@ -329,7 +329,7 @@ fn layers(f: &Fields<'_>, out: &mut Vec<StyleCondition>, diags: &mut Diagnostics
             }
         }
         other => {
-            diags.push(message::style::layers_not_range(other, v.span));
+            diags.push(message::style::layers_not_range(other.got(), v.span));
             false
         }
     }

@@ -112,7 +112,7 @@ fn point(v: &super::value::Spanned, diags: &mut Diagnostics) -> Option<[Length; 
             Some([Length(x?), Length(y?)])
         }
         other => {
-            diags.push(message::solid::top_at_not_point(other, v.span));
+            diags.push(message::solid::top_at_not_point(other.got(), v.span));
             None
         }
     }
