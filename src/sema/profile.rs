@@ -2,7 +2,8 @@
 //! extrusion's layers follow. An outline is a start point, then points (straight
 //! lines to them) and `arc(to = …, radius = …, turn = left|right)` pieces; it
 //! closes with a line back to the start. Its numbers may use `layer`, so the
-//! profile can change from layer to layer (seed 001's growing arc region).
+//! profile can change from layer to layer (a sprocket tooth's corner arc
+//! that grows a track offset a layer).
 
 use super::eval::Env;
 use super::fields::{self, Fields};

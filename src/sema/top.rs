@@ -1,4 +1,4 @@
-//! `top = …` in an extrusion (seed 003): the height of the finished part above
+//! `top = …` in an extrusion: the height of the finished part above
 //! the substrate at every point of the footprint. Two forms of sugar say what
 //! labs build — `edges(along, from, to)` (heights on the footprint's two
 //! extreme edges, linear between) and `plane(at, height, slope_x, slope_y)` —
