@@ -9,7 +9,8 @@ use crate::units::{Density, Length, MassFlow, Speed};
 /// How bead height follows scan speed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum HeightModel {
-    /// `H = slope · v + intercept` (seed 003's fitted map).
+    /// `H = slope · v + intercept`: the linear bead map, fitted to measured
+    /// beads.
     Linear {
         /// mm per mm/s (a time).
         slope: f64,

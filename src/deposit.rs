@@ -149,7 +149,7 @@ impl Deposit {
 
     /// The height of the bead itself at `v` (a single track's, whatever the
     /// model was measured as: from its area where it was not measured on one
-    /// track). What seed 003's balanced layout spaces its tracks by.
+    /// track). What variable layers' balanced layout spaces its tracks by.
     pub fn bead_height(&self, v: Speed) -> Length {
         match (self.model, self.basis) {
             (HeightModel::MassBalance { .. }, _) | (_, Basis::Wall | Basis::Layer { .. }) => {

@@ -8,8 +8,7 @@
 //! rapid moves count as instant, so the real time is never shorter than the
 //! one checked.
 
-use super::rule::{MachineCx, PlanRule};
-use crate::diag::Worst;
+use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, MachineOrigin, Program};
 use crate::plan::{Io, Move, Speed, Visit};

@@ -14,10 +14,10 @@
 //! One diagnostic, with the worst point, how many miss, the whole plan's
 //! share and where the drift passes its bound.
 
-use super::rule::{ProgramCx, ProgramRule};
+use super::rule::{ProgramCx, ProgramRule, Worst};
 use crate::bead::HeightModel;
 use crate::diag::message::check::deposit::{DepositMiss, Drift, WorstPoint};
-use crate::diag::{message, Diagnostics, Worst};
+use crate::diag::{message, Diagnostics};
 use crate::ir::{Point, Program};
 use crate::plan::Where;
 use crate::units::{Length, MassFlow, Speed};
@@ -75,7 +75,7 @@ struct Run {
 
 /// Everything the rule finds in `p`, or `None` when the plan lays what it
 /// plans (or has no bead model to predict with).
-pub(crate) fn check(p: &Program) -> Option<DepositMiss> {
+pub(crate) fn check(p: &Program) -> Option<DepositMiss<Where>> {
     let bead = p.bead?;
     let d = bead.deposit();
     let mut found = Found {

@@ -6,10 +6,9 @@
 //! Limits are compared with the value as the program writes it, exactly (no
 //! slack): what the control reads must lie within what was declared.
 
-use super::rule::{MachineCx, PlanRule};
+use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::message::{self, check::machine::AnalogOverrun, check::machine::AxisOverrun};
 use crate::diag::Diagnostics;
-use crate::diag::Worst;
 use crate::ir::{AxisLimits, Kinematics, Machine};
 use crate::plan::kinematics::tilt_of;
 use crate::plan::{effective_kinematics, Move, Speed, Visit, Where};

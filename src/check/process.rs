@@ -2,10 +2,9 @@
 //! numbers, unit directions, and — where the laser is on — the bead model's
 //! layer heights and speeds and the laser's power range.
 
-use super::rule::{ProgramCx, ProgramRule};
+use super::rule::{ProgramCx, ProgramRule, Worst};
 use crate::diag::message::{self, check::Layering, check::PointQuantity, check::Side};
 use crate::diag::Diagnostics;
-use crate::diag::Worst;
 use crate::ir::{Point, Program};
 use crate::plan::Where;
 use crate::span::Span;

@@ -4,8 +4,8 @@
 //! (the formatters would otherwise have to write *something*). Each rule names
 //! the setting that would fix it.
 
-use super::rule::{MachineCx, PlanRule};
-use crate::diag::Worst;
+use super::rule::{MachineCx, PlanRule, Worst};
+use crate::diag::message::check::machine::SpeedWord;
 use crate::diag::{message, Diagnostics};
 use crate::ir::Machine;
 use crate::plan::{Move, Speed, Visit};
@@ -61,8 +61,17 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
                 Machine::Cnc(_) if has(&machine::FEED_UNITS) => &machine::FEED_UNITS,
                 _ => &machine::NAME,
             };
+            let word = match machine {
+                Machine::Cnc(c) => SpeedWord::F {
+                    unit: c.dialect.feed.text(),
+                    per_mm_s: c.dialect.feed.per_mm_s(),
+                    decimals: gcode::f_decimals(c.dialect.feed),
+                },
+                Machine::Robot(_) => SpeedWord::VelCp,
+            };
             out.push(message::check::machine::speed_unwritable(
-                machine,
+                machine.name(),
+                word,
                 &w,
                 self.least_speed,
                 o.at(field),
@@ -78,14 +87,18 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
                         &machine::S_PER_WATT
                     };
                     message::check::machine::cnc_power_unwritable(
-                        c,
+                        &c.name,
+                        c.dialect.s_per_watt,
+                        c.dialect.s_decimals,
                         &w,
                         self.least_power,
                         o.at(field),
                     )
                 }
                 Machine::Robot(r) => message::check::machine::robot_power_unwritable(
-                    r,
+                    &r.name,
+                    r.power_out,
+                    r.full_scale_power,
                     &w,
                     o.at(&machine::FULL_SCALE),
                 ),

@@ -7,7 +7,7 @@
 
 use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
 use crate::control::{self, analyse, SpeedPerLength};
-use crate::diag::message::check::ring::{self, FastTransition, LateUpdate};
+use crate::diag::message::check::ring::{self, FastTransition, LateUpdate, LoopFields};
 use crate::diag::Diagnostics;
 use crate::ir::{Machine, MachineOrigin, Program, Ring, RingOrigins, RingRun};
 use crate::plan::{Move, Visit};
@@ -59,8 +59,14 @@ fn check_loop(p: &Program, out: &mut Diagnostics) {
     };
     match analyse(&c, &speeds, layers) {
         Ok(a) => {
+            let fields = LoopFields {
+                kp: o.kp,
+                ki: o.ki,
+                clamp: o.clamp,
+                layers: o.layers,
+            };
             for f in &a.findings {
-                out.push(ring::loop_finding(f, &o));
+                out.push(ring::loop_finding(f, &fields));
             }
         }
         Err(e) => out.push(ring::loop_cannot_run(&e, o.control)),

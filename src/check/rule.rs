@@ -8,14 +8,16 @@
 //!   machines would write.
 //!
 //! Every rule reports each kind of violation once — how many, and the worst
-//! ([`crate::diag::Worst`]) — so one run shows everything to fix. The rules
-//! are listed in one place, [`super::rules`]; adding one is a type and a line
-//! there.
+//! ([`Worst`]) — so one run shows everything to fix. The rules are listed in
+//! one place, [`super::rules`]; adding one is a type and a line there.
 
 use super::summary::Summary;
 use crate::diag::Diagnostics;
 use crate::ir::{Machine, MachineOrigin, Program};
-use crate::plan::Visit;
+use crate::plan::{Visit, Where};
+
+/// A rule's worst violation, at a move of the plan.
+pub(crate) type Worst = crate::diag::Worst<Where>;
 
 /// What a rule over one machine's plan sees besides the moves.
 #[derive(Clone, Copy)]

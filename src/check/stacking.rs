@@ -16,9 +16,8 @@
 //! layer), and time is linear in the points and in the track length over the
 //! grid's cell, which grows with the part.
 
-use super::rule::{ProgramCx, ProgramRule};
+use super::rule::{ProgramCx, ProgramRule, Worst};
 use crate::diag::message::check::StackingFix;
-use crate::diag::Worst;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Layer, Path, PathKind, Program};
 use crate::plan::Where;

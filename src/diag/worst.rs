@@ -2,13 +2,13 @@
 //! of violation once, with how often it happens and the case farthest beyond
 //! the limit, so one run shows everything to fix without a million lines of
 //! output. It lives with the diagnostics because it is what their messages
-//! summarise.
+//! summarise. Where it happens is the rule's own kind of place (the
+//! verifier's: a move of the plan); a message only prints it.
 
-use crate::plan::Where;
-
-/// The violation farthest beyond its limit, and how many there are.
+/// The violation farthest beyond its limit, and how many there are; `At`
+/// says where it happens.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Worst {
+pub(crate) struct Worst<At> {
     /// How many violations.
     pub count: u64,
     /// The worst value.
@@ -16,13 +16,13 @@ pub(crate) struct Worst {
     /// The limit it passes.
     pub limit: f64,
     /// Where it happens.
-    pub at: Where,
+    pub at: At,
 }
 
-impl Worst {
+impl<At> Worst<At> {
     /// Records `value` beyond `limit` at `at` into `slot`, keeping the worst.
     #[cold]
-    pub fn hit(slot: &mut Option<Worst>, value: f64, limit: f64, at: Where) {
+    pub fn hit(slot: &mut Option<Self>, value: f64, limit: f64, at: At) {
         match slot {
             Some(w) => {
                 w.count += 1;

@@ -1,5 +1,5 @@
 //! Extending raster intervals into the staircase a curved edge leaves
-//! (seed 001: `ΔX ≤ d`). The rule is in the module docs of [`fill`](super).
+//! (`ΔX ≤ d`). The rule is in the module docs of [`fill`](super).
 
 use crate::geometry::profile::TOLERANCE;
 

@@ -1,4 +1,4 @@
-//! Filling a planar layer (seed 001): contour passes that follow the outline
+//! Filling a planar layer: contour passes that follow the outline
 //! and its holes, then raster tracks across what is left.
 //!
 //! # What [`fill_region`] makes
@@ -166,7 +166,7 @@ pub struct RasterSpec {
     /// Back and forth, or one way.
     pub pattern: Pattern,
     /// Most an interval's end may be extended past the clipped line, mm
-    /// (seed 001: `d`; 0 turns extension off).
+    /// (the track offset `d`, as `ΔX ≤ d` has it; 0 turns extension off).
     pub extend: f64,
     /// Whether neighbouring tracks are linked (serpentine only: one-way
     /// tracks are never linked).

@@ -178,7 +178,8 @@ fn clip_lines(
 /// left normal: +y for 0°, −x for 90°), the intervals of the coordinate
 /// along the line (x for 0°, y for 90°), sorted and disjoint. The same exact
 /// clip as the raster's, for slicers that space their lines themselves
-/// (seed 003's unequal-height tracks). Linear in pieces × lines.
+/// (variable layers' balanced tracks of unequal height). Linear in pieces ×
+/// lines.
 pub fn intervals_at(region: &[Profile], angle_deg: f64, at: &[f64]) -> Vec<Vec<[f64; 2]>> {
     let pieces = Pieces::new(region.iter().map(|p| (p, false)), &Frame::new(angle_deg));
     let mut scratch = Scratch::default();

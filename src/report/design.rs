@@ -2,16 +2,16 @@
 //! the report compares the deposited volume with. Computed from the model
 //! (not from the plan, which would compare the plan with itself).
 //!
-//! - a loft wall (seed 000): the wall's centre line times the bead width,
+//! - a loft wall: the wall's centre line times the bead width,
 //!   swept along the spine: `V = w·∫∮ ρ/R dl ds`, `ρ/R` the stretch of a
 //!   point at distance ρ from the bend axis (1 on a straight spine). The band
 //!   between two parallel curves `w` apart holds the mid-curve's length
 //!   times `w`, sharp corners included;
-//! - an extrusion built in flat layers (seed 001): each layer's profile area
+//! - an extrusion built in flat layers: each layer's profile area
 //!   times its lift. A profile given as the tracks' centre line (`size =
 //!   centre`) is widened by half a bead all round (Steiner's formula
 //!   `A + P·w/2 + π·w²/4`, exact for a convex outline);
-//! - a footprint up to a top (seed 003): `∫ top dA` over the footprint (a
+//! - a footprint up to a top: `∫ top dA` over the footprint (a
 //!   plane or edges top: the area times the top at the centroid; an
 //!   expression: sampled on a 256 × 256 grid).
 

@@ -1,4 +1,4 @@
-//! `slicing continuous { layers, layer_height, step }` (seed 004): a ring's
+//! `slicing continuous { layers, layer_height, step }`: a segmented ring's
 //! layers laid in one run, each rising `layer_height` inside the last
 //! transition of the layer below, the points at most `step` apart.
 

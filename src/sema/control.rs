@@ -1,6 +1,6 @@
-//! `control height { kp, ki, clamp, target, run, plant }` (seed 004): the PI
-//! loop that corrects each segment's speed layer by layer from its measured
-//! height.
+//! `control height { kp, ki, clamp, target, run, plant }`: the PI loop that
+//! corrects the speed of each segment of a segmented ring, layer by layer,
+//! from its measured height.
 //!
 //! A gain is a change of speed per mm of height error. Its dimension is
 //! 1/time, which cannot tell (mm/s)/mm from (m/s)/mm — 1000 apart, and the

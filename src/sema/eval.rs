@@ -423,7 +423,7 @@ fn number(
 }
 
 fn not_negatable(other: &Value, span: Span, diags: &mut Diagnostics) {
-    diags.push(message::value::cannot_negate(other, span));
+    diags.push(message::value::cannot_negate(other.got(), span));
 }
 
 /// `value` at `span`, unless it is a quantity that is not finite.
@@ -478,7 +478,11 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
                 diags.push(d);
                 return None;
             }
-            diags.push(message::value::operand_not_number(op, &bad.value, bad.span));
+            diags.push(message::value::operand_not_number(
+                op.symbol(),
+                bad.value.got(),
+                bad.span,
+            ));
             return None;
         }
     };
@@ -487,7 +491,7 @@ fn binary(op: BinOp, l: Spanned, r: Spanned, diags: &mut Diagnostics) -> Option<
         BinOp::Add | BinOp::Sub | BinOp::Range => {
             if lq.dim != rq.dim {
                 diags.push(message::value::operand_units_differ(
-                    op,
+                    op.symbol(),
                     (lq.dim, l.span),
                     (rq.dim, r.span),
                 ));
@@ -533,7 +537,7 @@ fn min_max(func: &str, span: Span, args: &[CallArg], diags: &mut Diagnostics) ->
             (_, other) => {
                 diags.push(message::value::min_max_not_number(
                     func,
-                    other,
+                    other.got(),
                     a.value.span,
                 ));
                 return None;

@@ -424,7 +424,12 @@ impl<'a> Fields<'a> {
                 None
             }
             other => {
-                diags.push(message::field::expected_range(f.key, dim, other, v.span));
+                diags.push(message::field::expected_range(
+                    f.key,
+                    dim,
+                    other.got(),
+                    v.span,
+                ));
                 None
             }
         }
@@ -486,7 +491,7 @@ impl<'a> Fields<'a> {
         match &v.value {
             Value::Str(s) => Some((s.clone(), v.span)),
             other => {
-                diags.push(message::field::expected_text(f.key, other, v.span));
+                diags.push(message::field::expected_text(f.key, other.got(), v.span));
                 None
             }
         }
@@ -558,7 +563,12 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
                 diags.push(d);
                 return None;
             }
-            diags.push(message::field::expected_number(key, dim, other, v.span));
+            diags.push(message::field::expected_number(
+                key,
+                dim,
+                other.got(),
+                v.span,
+            ));
             None
         }
     }
@@ -582,7 +592,11 @@ pub fn count(
             }
         }
         other => {
-            diags.push(message::field::expected_whole_number(key, other, v.span));
+            diags.push(message::field::expected_whole_number(
+                key,
+                other.got(),
+                v.span,
+            ));
             None
         }
     }
@@ -605,7 +619,11 @@ pub fn word(
         _ => None,
     };
     diags.push(message::field::bad_choice(
-        key, choices, &v.value, v.span, suggestion,
+        key,
+        choices,
+        v.value.got(),
+        v.span,
+        suggestion,
     ));
     None
 }

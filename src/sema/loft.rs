@@ -179,7 +179,7 @@ fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Opt
         Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => section::read(c, diags),
         other => {
             diags.push(message::shape::expected_section(
-                other,
+                other.got(),
                 v.span,
                 section::SHAPES,
             ));
@@ -210,7 +210,7 @@ fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
             }
         }
         other => {
-            diags.push(message::shape::not_a_spine(other, v.span));
+            diags.push(message::shape::not_a_spine(other.got(), v.span));
 
             return None;
         }

@@ -26,7 +26,7 @@ pub struct Model {
     pub process: Process,
     /// Machines to write programs for, with where they and their fields are declared.
     pub machines: Vec<(Machine, MachineOrigin)>,
-    /// Process styles and how they pass from layer to layer (seed 002).
+    /// Process styles and how they pass from layer to layer.
     pub styles: Styles,
     /// How closely the bead model must lay the planned layers.
     pub tolerance: Tolerance,
@@ -115,7 +115,7 @@ pub enum StyleCondition {
     Layers(usize, usize),
 }
 
-/// `inheritance { band, hit }` (seed 002): a track inherits the style of the
+/// `inheritance { band, hit }`: a track inherits the style of the
 /// previous layer's tracks of that style when at least `hit` of its length lies
 /// within `band` of them.
 #[derive(Clone, Copy, Debug)]
@@ -443,14 +443,14 @@ impl Section {
 /// solids it can slice, so a mismatch cannot reach the slicer.
 #[derive(Clone, Debug)]
 pub enum Build {
-    /// A thin-walled loft, sliced normal to its spine (seed 000).
+    /// A thin-walled loft, sliced normal to its spine.
     Duct {
         /// The loft.
         loft: Loft,
         /// Normal slicing.
         slicing: Slicing,
     },
-    /// A profile extruded and built in flat, filled layers (seed 001).
+    /// A profile extruded and built in flat, filled layers.
     Block {
         /// The extrusion, its profile evaluated for every layer.
         extrusion: Extrusion,
@@ -458,15 +458,14 @@ pub enum Build {
         slicing: PlanarSlicing,
     },
     /// A footprint built up to a variable top in layers of variable
-    /// thickness (seed 003).
+    /// thickness.
     Variable {
         /// The footprint and its top.
         extrusion: TopExtrusion,
         /// Variable slicing.
         slicing: VariableSlicing,
     },
-    /// A segmented ring laid in one continuous run, with its height loop
-    /// (seed 004).
+    /// A segmented ring laid in one continuous run, with its height loop.
     Ring(RingBuild),
 }
 
@@ -686,8 +685,8 @@ pub struct Raster {
     pub rotate: Angle,
     /// Serpentine or one-way.
     pub pattern: Pattern,
-    /// Most a track end is extended where the boundary curves (seed 001's
-    /// ΔX ≤ d).
+    /// Most a track end is extended where the boundary curves (`ΔX ≤ d`,
+    /// [`crate::fill`]).
     pub extend: Length,
     /// Whether neighbouring tracks are linked along the edge.
     pub link: LinkMode,

@@ -95,7 +95,8 @@ pub fn read<'a>(
     let contours = match f.count(&planar::CONTOURS, diags) {
         Some((n, sp)) => Some((n, Some(sp))),
         None if f.has(&planar::CONTOURS) => None,
-        // A raster alone fills seed 001's layers; a profile alone is a wall.
+        // With an infill the raster alone fills the layer (a raster-filled
+        // solid); without one the profile alone is a wall.
         None => infill.map(|i| (if i.is_some() { 0 } else { 1 }, None)),
     };
     // Nothing to deposit: known once both are.

@@ -1,6 +1,6 @@
 //! `process { powder, defocus, power, power_range, speed, min_layer_time, dwell }`;
 //! a ring's process is only `powder` and `power_range`, the rest being per
-//! segment in its table (seed 004).
+//! segment in its table.
 
 use super::eval::Env;
 use super::fields::Fields;

@@ -2,7 +2,8 @@
 //! extrusion's layers follow. An outline is a start point, then points (straight
 //! lines to them) and `arc(to = …, radius = …, turn = left|right)` pieces; it
 //! closes with a line back to the start. Its numbers may use `layer`, so the
-//! profile can change from layer to layer (seed 001's growing arc region).
+//! profile can change from layer to layer (a sprocket tooth's corner arc
+//! that grows a track offset a layer).
 
 use super::eval::Env;
 use super::fields::{self, Fields};
@@ -38,7 +39,7 @@ pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> 
         other => {
             diags.push(message::shape::not_a_shape(
                 what,
-                other,
+                other.got(),
                 v.span,
                 section::SHAPES,
             ));
@@ -68,7 +69,7 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
             Value::Call(arc) if arc.func == "arc" && start.is_some() => arc_piece(arc, diags),
             other => {
                 let first = start.is_none();
-                diags.push(message::shape::bad_piece(first, other, v.span));
+                diags.push(message::shape::bad_piece(first, other.got(), v.span));
                 None
             }
         };
@@ -141,7 +142,7 @@ pub(super) fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]>
             Some([Length(x?), Length(y?)])
         }
         other => {
-            diags.push(message::shape::not_a_point(other, v.span));
+            diags.push(message::shape::not_a_point(other.got(), v.span));
 
             None
         }

@@ -80,7 +80,7 @@ fn plain(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> {
 /// The list of holes, bolt circles expanded.
 fn holes(v: &Spanned, diags: &mut Diagnostics) -> Option<Vec<Hole>> {
     let Value::List(items) = &v.value else {
-        diags.push(message::shape::holes_not_list(&v.value, v.span));
+        diags.push(message::shape::holes_not_list(v.value.got(), v.span));
         return None;
     };
     let mut out = Vec::new();

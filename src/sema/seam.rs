@@ -37,7 +37,7 @@ pub fn read(v: &Spanned, diags: &mut Diagnostics) -> Option<SeamRule> {
                 Value::Call(c) => did_you_mean(&c.func, ["rotating", "random"]),
                 _ => None,
             };
-            diags.push(message::solid::bad_seam(other, v.span, near));
+            diags.push(message::solid::bad_seam(other.got(), v.span, near));
 
             None
         }

@@ -1,5 +1,5 @@
 //! `ring NAME { radius, segments, transition, table { defocus, power, width,
-//! speed } }` (seed 004): a ring split into equal segments, each with its own
+//! speed } }`: a segmented ring, split into equal segments, each with its own
 //! row of process values, and its pairing with `slicing continuous { … }`
 //! and `control height { … }` into a [`Build::Ring`].
 //!

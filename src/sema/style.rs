@@ -1,4 +1,4 @@
-//! `style NAME { … when { … } }` and `inheritance { band, hit }` (seed 002): the
+//! `style NAME { … when { … } }` and `inheritance { band, hit }`: the
 //! style table, the rules that pick a style's tracks, and checks of every
 //! style's values against the bead model and the laser.
 
@@ -329,7 +329,7 @@ fn layers(f: &Fields<'_>, out: &mut Vec<StyleCondition>, diags: &mut Diagnostics
             }
         }
         other => {
-            diags.push(message::style::layers_not_range(other, v.span));
+            diags.push(message::style::layers_not_range(other.got(), v.span));
             false
         }
     }
@@ -388,10 +388,10 @@ fn inheritance<'a>(
 pub struct Context<'c> {
     /// Whether the solid is a loft, whose wall is one track a layer.
     pub loft: bool,
-    /// Whether the layers are variable (seed 003), whose speeds come from
+    /// Whether the layers are variable, whose speeds come from
     /// the bead model.
     pub variable: bool,
-    /// Whether the solid is a ring (seed 004), whose table sets each
+    /// Whether the solid is a segmented ring, whose table sets each
     /// segment's process.
     pub ring: bool,
     /// `slicing planar { … }`, if read.

@@ -1,4 +1,4 @@
-//! `top = …` in an extrusion (seed 003): the height of the finished part above
+//! `top = …` in an extrusion: the height of the finished part above
 //! the substrate at every point of the footprint. Two forms of sugar say what
 //! labs build — `edges(along, from, to)` (heights on the footprint's two
 //! extreme edges, linear between) and `plane(at, height, slope_x, slope_y)` —
@@ -112,7 +112,7 @@ fn point(v: &super::value::Spanned, diags: &mut Diagnostics) -> Option<[Length; 
             Some([Length(x?), Length(y?)])
         }
         other => {
-            diags.push(message::solid::top_at_not_point(other, v.span));
+            diags.push(message::solid::top_at_not_point(other.got(), v.span));
             None
         }
     }

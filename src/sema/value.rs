@@ -1,8 +1,9 @@
 //! What an expression evaluates to: a quantity, a range, a name, a text, a
 //! call or a list, each with the span it was written at. The evaluator is
 //! [`super::eval`]; the words a message uses for each kind of value are in
-//! `crate::diag::message::value`.
+//! `crate::diag::message::value`, which reads a value as a `Got`.
 
+use crate::diag::message::value::Got;
 use crate::span::Span;
 use crate::units::Quantity;
 
@@ -22,6 +23,26 @@ pub enum Value {
     Call(Call),
     /// `[a, b]`
     List(Vec<Spanned>),
+}
+
+impl Value {
+    /// What this value is, for a message that refuses it.
+    pub fn got(&self) -> Got<'_> {
+        match self {
+            Value::Quantity(q) => Got::Quantity(q.dim),
+            Value::Range(q, _) => Got::Range(q.dim),
+            Value::Symbol(s) => Got::Name(s),
+            Value::Str(_) => Got::Text,
+            Value::Call(c) => Got::Call(&c.func),
+            Value::List(_) => Got::List,
+        }
+    }
+
+    /// What this value is, in words ("a length (mm)"), for a message that
+    /// takes the words alone.
+    pub fn describe(&self) -> String {
+        self.got().describe()
+    }
 }
 
 /// A value and the source it came from.

@@ -1,5 +1,5 @@
 //! `slicing variable { layers, scan, offset, segments { tolerance, min_length } }`
-//! (seed 003), and its pairing with an extrusion that has a `top` into a
+//! (variable layers), and its pairing with an extrusion that has a `top` into a
 //! [`Build::Variable`]: the speeds come from the bead model, so the process
 //! block gives none and the bead must map heights to speeds; a declared
 //! track offset is checked against the bead's width. How many layers, where

@@ -1,9 +1,9 @@
 //! Planar slicing of an extrusion: flat layers `lift` apart (layer `k` is laid on
 //! the plane z = k·lift), each filled with contour passes and raster tracks by
-//! [`crate::fill`] (seed 001), and each track given a process style by the
-//! style rules or by inheritance from the layer below (seed 002). Every track
-//! becomes a path whose points carry their style's process values; the laser is
-//! on from a track's first point to its last.
+//! [`crate::fill`], and each track given a process style by the style rules
+//! or by inheritance from the layer below. Every track becomes a path whose
+//! points carry their style's process values; the laser is on from a track's
+//! first point to its last.
 //!
 //! A profile with holes is checked on each layer first: every hole that
 //! crosses, touches or lies outside the outline or another hole is reported

@@ -1,4 +1,4 @@
-//! Slicing a segmented ring (seed 004): layer after layer of the points
+//! Slicing a segmented ring: layer after layer of the points
 //! [`control::Ring::layer`](crate::control::Ring::layer) lays out, each
 //! layer's path going on into the next one's (the laser stays on from the
 //! first point to the last), and the IR's [`Ring`] that tells a back end

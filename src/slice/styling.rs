@@ -1,4 +1,4 @@
-//! Gives every track of a planar layer its process style (seed 002) with
+//! Gives every track of a planar layer its process style with
 //! [`crate::style`]: the first style one of whose `when` blocks holds for the
 //! track, else the style it inherits from the layer below (at least `hit` of its
 //! length inside the band round that layer's tracks of one style), else 0, the

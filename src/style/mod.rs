@@ -1,4 +1,4 @@
-//! Process styles for the tracks of planar layers (seed 002).
+//! Process styles for the tracks of planar layers.
 //!
 //! A style is a row of the style table (power, speed, powder feed, …); every
 //! track carries a style id, 0 being the default (the process block's values).

@@ -12,6 +12,7 @@ use crate::diag::{plural, Worst};
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
 use crate::units::short;
+use std::fmt::Display;
 
 /// Two machines would write a file of the same name (`file`).
 pub fn name_clash(
@@ -31,7 +32,7 @@ pub fn name_clash(
 }
 
 /// Points carry a value that is not a finite number (a bug in lmdc).
-pub fn non_finite_points(w: &Worst) -> Diagnostic {
+pub fn non_finite_points(w: &Worst<impl Display>) -> Diagnostic {
     Diagnostic::error(
         Code::NonFinite,
         format!(
@@ -45,7 +46,7 @@ pub fn non_finite_points(w: &Worst) -> Diagnostic {
 }
 
 /// Normals or tangents that are not unit vectors (a bug in lmdc).
-pub fn bad_directions(w: &Worst) -> Diagnostic {
+pub fn bad_directions(w: &Worst<impl Display>) -> Diagnostic {
     Diagnostic::error(
         Code::BadDirection,
         format!(
@@ -96,7 +97,7 @@ pub enum Side {
 pub fn point_out_of_range(
     q: PointQuantity,
     side: Side,
-    w: &Worst,
+    w: &Worst<impl Display>,
     spans: &[Option<Span>],
 ) -> Diagnostic {
     use PointQuantity::*;
@@ -171,7 +172,7 @@ pub struct StackingFix {
 /// how far across the nozzle the nearest bead lies (`far` when none was
 /// found within the search, `fix.step` `None`), `w.limit` the limit.
 pub fn stacking(
-    w: &Worst,
+    w: &Worst<impl Display>,
     fix: &StackingFix,
     slicing: Option<Span>,
     spine: Option<Span>,
@@ -236,7 +237,6 @@ pub fn stacking(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plan::Where;
 
     #[test]
     fn the_stacking_help_names_what_moves_the_layers() {
@@ -244,7 +244,7 @@ mod tests {
             count: 1,
             value: 3.0,
             limit: 2.0,
-            at: Where::End,
+            at: "the retract after the last path",
         };
         let at = Some(Span::new(0, 1));
         let fix = StackingFix {

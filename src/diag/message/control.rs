@@ -4,8 +4,9 @@
 
 use crate::control::analysis::{Gain, SegmentLoop, NEVER_SETTLES};
 use crate::control::linear::SETTLED;
-use crate::control::{Finding, Invalid, SpeedPerLength};
+use crate::control::Finding;
 use crate::diag::{Code, Diagnostic};
+use crate::invalid::Invalid;
 use crate::span::Span;
 use crate::units::{short, Dim, Quantity};
 use std::fmt;
@@ -62,7 +63,7 @@ pub fn gain_unit(key: &str, q: Quantity, at: Span, units: &[String]) -> Diagnost
             format!("`{key}` has no unit: a gain is a change of speed per mm of height error"),
             "a plain number".to_string(),
         )
-    } else if q.dim == SpeedPerLength::DIM {
+    } else if q.dim == Dim::SPEED.per(Dim::LENGTH) {
         (
             format!(
                 "`{key}` is written per second ({}): (mm/s)/mm and (m/s)/mm are both 1/s, 1000 apart",

@@ -1,8 +1,8 @@
 //! What the checker says when reading the fields of a block or the arguments
 //! of a call: unknown, duplicate, missing, of the wrong kind or out of range.
 
+use crate::diag::message::value::Got;
 use crate::diag::{Code, Diagnostic};
-use crate::sema::value::Value;
 use crate::span::Span;
 use crate::units::{short, Dim};
 
@@ -123,7 +123,7 @@ pub fn not_positive(key: &str, shown: &str, what: &str, at: Span) -> Diagnostic 
 }
 
 /// A field that takes a range is given something else.
-pub fn expected_range(key: &str, dim: Dim, got: &Value, at: Span) -> Diagnostic {
+pub fn expected_range(key: &str, dim: Dim, got: Got<'_>, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ExpectedRange,
         format!("`{key}` must be a range of {}", dim.describe()),
@@ -133,7 +133,7 @@ pub fn expected_range(key: &str, dim: Dim, got: &Value, at: Span) -> Diagnostic 
 }
 
 /// A field that takes a text is given something else.
-pub fn expected_text(key: &str, got: &Value, at: Span) -> Diagnostic {
+pub fn expected_text(key: &str, got: Got<'_>, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ExpectedText,
         format!("`{key}` must be a text in quotes"),
@@ -154,14 +154,14 @@ pub fn too_large(key: &str, bound: &str, shown: &str, at: Span) -> Diagnostic {
 }
 
 /// A field that takes a quantity of `dim` is given something that is not a number.
-pub fn expected_number(key: &str, dim: Dim, got: &Value, at: Span) -> Diagnostic {
+pub fn expected_number(key: &str, dim: Dim, got: Got<'_>, at: Span) -> Diagnostic {
     let d = Diagnostic::error(
         Code::ExpectedNumber,
         format!("`{key}` must be {}", dim.describe()),
     )
     .label(at, format!("this is {}", got.describe()));
     match got {
-        Value::Symbol(s) => d.help(format!(
+        Got::Name(s) => d.help(format!(
             "`{s}` is not a constant; declare it with `let {s} = …` or write a number with a unit"
         )),
         _ => d,
@@ -197,7 +197,7 @@ pub fn count_range(key: &str, lo: usize, hi: usize, value: f64, at: Span) -> Dia
 }
 
 /// A field that takes a whole number is given something else.
-pub fn expected_whole_number(key: &str, got: &Value, at: Span) -> Diagnostic {
+pub fn expected_whole_number(key: &str, got: Got<'_>, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ExpectedWholeNumber,
         format!("`{key}` must be a whole number"),
@@ -210,7 +210,7 @@ pub fn expected_whole_number(key: &str, got: &Value, at: Span) -> Diagnostic {
 pub fn bad_choice(
     key: &str,
     choices: &[&str],
-    got: &Value,
+    got: Got<'_>,
     at: Span,
     suggestion: Option<&str>,
 ) -> Diagnostic {

@@ -1,8 +1,8 @@
 //! What lmdc says about a `ring` (its segments and table), its pairing with
 //! the loop, and why a number cannot be planned at all ([`Invalid`]).
 
-use crate::control::Invalid;
 use crate::diag::{Code, Diagnostic};
+use crate::invalid::Invalid;
 use crate::span::Span;
 use crate::units::{short, Length, Speed};
 use std::fmt;

@@ -1,8 +1,8 @@
 //! What the checker says about shapes: sections, profiles and their
 //! outlines, regions with holes, and a loft's ends and spine.
 
+use crate::diag::message::value::Got;
 use crate::diag::{Code, Diagnostic};
-use crate::sema::value::Value;
 use crate::span::Span;
 use crate::units::{Angle, Length};
 
@@ -42,7 +42,7 @@ pub fn bolt_circle_not_shape(what: &str, at: Span) -> Diagnostic {
 }
 
 /// Something that is no 2-D shape is given where one (`what`) is expected.
-pub fn not_a_shape(what: &str, got: &Value, at: Span, sections: &[&str]) -> Diagnostic {
+pub fn not_a_shape(what: &str, got: Got<'_>, at: Span, sections: &[&str]) -> Diagnostic {
     Diagnostic::error(Code::ExpectedShape, format!("{what} must be a 2-D shape"))
         .label(at, format!("this is {}", got.describe()))
         .help(format!(
@@ -69,7 +69,7 @@ pub fn named_piece(at: Span) -> Diagnostic {
 
 /// A piece of an outline is neither a point nor an arc (`first`: it is the
 /// first piece, which must be a point).
-pub fn bad_piece(first: bool, got: &Value, at: Span) -> Diagnostic {
+pub fn bad_piece(first: bool, got: Got<'_>, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ExpectedPoint,
         if first {
@@ -117,7 +117,7 @@ pub fn too_few_corners(at: Span) -> Diagnostic {
 }
 
 /// A point is not a list of two values.
-pub fn not_a_point(got: &Value, at: Span) -> Diagnostic {
+pub fn not_a_point(got: Got<'_>, at: Span) -> Diagnostic {
     Diagnostic::error(Code::ExpectedPoint, "a point is `[x, y]`, two lengths")
         .label(at, format!("this is {}", got.describe()))
         .help("e.g. `[40 mm, 0 mm]`")
@@ -131,7 +131,7 @@ pub fn holes_in_hole(what: &str, at: Span) -> Diagnostic {
 }
 
 /// A region's `holes` is not a list.
-pub fn holes_not_list(got: &Value, at: Span) -> Diagnostic {
+pub fn holes_not_list(got: Got<'_>, at: Span) -> Diagnostic {
     Diagnostic::error(Code::ExpectedShape, "`holes` is a list of shapes")
         .label(at, format!("this is {}", got.describe()))
         .help("write `holes = [circle(diameter = 50 mm), place(circle(diameter = 12 mm), at = [42.5 mm, 0 mm])]`")
@@ -167,7 +167,7 @@ pub fn section_too_small(width: Length, at: Span) -> Diagnostic {
 }
 
 /// A loft's end is neither a section's name nor a section shape.
-pub fn expected_section(got: &Value, at: Span, sections: &[&str]) -> Diagnostic {
+pub fn expected_section(got: Got<'_>, at: Span, sections: &[&str]) -> Diagnostic {
     Diagnostic::error(Code::ExpectedShape, "expected a section")
         .label(at, format!("this is {}", got.describe()))
         .help(format!(
@@ -187,7 +187,7 @@ pub fn bend_too_far(angle: Angle, at: Span) -> Diagnostic {
 }
 
 /// A loft's spine is neither a line nor an arc.
-pub fn not_a_spine(got: &Value, at: Span) -> Diagnostic {
+pub fn not_a_spine(got: Got<'_>, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ExpectedShape,
         "a spine is `line(length = …)` or `arc(radius = …, angle = …)`",

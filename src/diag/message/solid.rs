@@ -2,8 +2,8 @@
 //! its pairing with a slicing strategy, an extrusion's height, top, scan
 //! speed and track offset, variable and continuous layers, and seams.
 
+use crate::diag::message::value::Got;
 use crate::diag::{Code, Diagnostic};
-use crate::sema::value::Value;
 use crate::span::Span;
 use crate::units::{short, Angle, Length, Speed};
 
@@ -218,7 +218,7 @@ pub fn top_follows_layer(at: Span) -> Diagnostic {
 }
 
 /// A top plane's `at` is not a point.
-pub fn top_at_not_point(got: &Value, at: Span) -> Diagnostic {
+pub fn top_at_not_point(got: Got<'_>, at: Span) -> Diagnostic {
     Diagnostic::error(Code::ExpectedPoint, "`at` is a point `[x, y]`, two lengths")
         .label(at, format!("this is {}", got.describe()))
         .help("e.g. `at = [0 mm, 0 mm]`")
@@ -299,7 +299,7 @@ pub fn ring_step_too_large(deg: f64, max: f64, at: Span) -> Diagnostic {
 }
 
 /// A seam is none of the forms it takes (`suggestion` is a close word, if any).
-pub fn bad_seam(got: &Value, at: Span, suggestion: Option<&str>) -> Diagnostic {
+pub fn bad_seam(got: Got<'_>, at: Span, suggestion: Option<&str>) -> Diagnostic {
     let d = Diagnostic::error(
         Code::BadChoice,
         "a seam is `lowest`, `sharpest_corner`, an angle, `rotating(…)` or `random(…)`",

@@ -2,8 +2,8 @@
 //! the rules that pick a style's tracks, `inheritance { band, hit }`, and each
 //! style's values against the bead model and the laser.
 
+use crate::diag::message::value::Got;
 use crate::diag::{Code, Diagnostic};
-use crate::sema::value::Value;
 use crate::span::Span;
 use crate::units::{short, Length, Power, Speed};
 
@@ -98,7 +98,7 @@ pub fn bad_layers_range(lo: f64, hi: f64, at: Span) -> Diagnostic {
 }
 
 /// A rule's `layers` is not a range of plain numbers.
-pub fn layers_not_range(got: &Value, at: Span) -> Diagnostic {
+pub fn layers_not_range(got: Got<'_>, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ExpectedRange,
         "`layers` must be a range of layer numbers",

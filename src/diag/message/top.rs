@@ -1,4 +1,4 @@
-//! What the slicer says about a variable top (seed 003): its layer count, its
+//! What the slicer says about a variable top: its layer count, its
 //! footprint, its tracks and the segments that follow it.
 
 use crate::diag::{Code, Diagnostic, Diagnostics};

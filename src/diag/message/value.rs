@@ -2,10 +2,54 @@
 //! constants and the names a value refers to.
 
 use crate::diag::{Code, Diagnostic};
-use crate::sema::value::Value;
 use crate::span::Span;
-use crate::syntax::ast::BinOp;
 use crate::units::{short, Dim};
+
+/// What a value is, as a message says it ("this is a length (mm)"): its
+/// kind, and the word itself when it is a bare name, for "did you mean" and
+/// "declare it with `let`". The checker makes one from each value it refuses
+/// (`sema::value::Value::got`), so a message needs no type of the checker's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Got<'a> {
+    /// A number of this dimension.
+    Quantity(Dim),
+    /// A range of numbers of this dimension.
+    Range(Dim),
+    /// A bare name that is not a constant.
+    Name(&'a str),
+    /// A text in quotes.
+    Text,
+    /// A call of the named function.
+    Call(&'a str),
+    /// A list.
+    List,
+}
+
+impl Got<'_> {
+    /// The value in words: "a length (mm)", "the name `auto`", "a list".
+    pub fn describe(&self) -> String {
+        match self {
+            Got::Quantity(dim) => dim.describe(),
+            Got::Range(dim) => format!("a range of {}", plural(&dim.describe())),
+            Got::Name(s) => format!("the name `{s}`"),
+            Got::Text => "a text".into(),
+            Got::Call(func) => format!("`{func}(…)`"),
+            Got::List => "a list".into(),
+        }
+    }
+}
+
+/// The plural of a kind of value ("a length (mm)" → "lengths (mm)").
+fn plural(d: &str) -> String {
+    let d = d
+        .trim_start_matches("a ")
+        .trim_start_matches("an ")
+        .to_string();
+    match d.find(" (") {
+        Some(i) => format!("{}s{}", &d[..i], &d[i..]),
+        None => format!("{d}s"),
+    }
+}
 
 /// A constant is used while it is being computed (`let a = b`, `let b = a`).
 pub fn cycle(name: &str, at: Span, decl: Span) -> Diagnostic {
@@ -63,7 +107,7 @@ pub fn unknown_unit(unit: &str, meant: Option<&str>, at: Span) -> Diagnostic {
 }
 
 /// A minus sign stands before something that is not a number.
-pub fn cannot_negate(other: &Value, span: Span) -> Diagnostic {
+pub fn cannot_negate(other: Got<'_>, span: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ExpectedNumber,
         format!("cannot negate {}", other.describe()),
@@ -78,15 +122,16 @@ pub fn not_finite(span: Span) -> Diagnostic {
         .help("check the value and its unit")
 }
 
-/// An operator has something other than a number on one side (`bad`).
-pub fn operand_not_number(op: BinOp, bad: &Value, at: Span) -> Diagnostic {
+/// An operator (`op`, as written) has something other than a number on one
+/// side (`bad`).
+pub fn operand_not_number(op: &str, bad: Got<'_>, at: Span) -> Diagnostic {
     let d = Diagnostic::error(
         Code::ExpectedNumber,
-        format!("`{}` needs numbers on both sides", op.symbol()),
+        format!("`{op}` needs numbers on both sides"),
     )
     .label(at, format!("this is {}", bad.describe()));
     match bad {
-        Value::Symbol(s) => d.help(match crate::units::unit_meant(s) {
+        Got::Name(s) => d.help(match crate::units::unit_meant(s) {
             // `6 mm/sec`: a unit lmdc knows by another name.
             Some(u) => format!(
                 "`{s}` is not a unit lmdc knows: write `{u}`; a constant would be declared with `let {s} = …`"
@@ -97,11 +142,12 @@ pub fn operand_not_number(op: BinOp, bad: &Value, at: Span) -> Diagnostic {
     }
 }
 
-/// The operands of `+`, `-` or `..` have different dimensions.
-pub fn operand_units_differ(op: BinOp, l: (Dim, Span), r: (Dim, Span)) -> Diagnostic {
+/// The operands of `+`, `-` or `..` (`op`, as written) have different
+/// dimensions.
+pub fn operand_units_differ(op: &str, l: (Dim, Span), r: (Dim, Span)) -> Diagnostic {
     let what = match op {
-        BinOp::Range => "the ends of a range",
-        BinOp::Add => "added values",
+        ".." => "the ends of a range",
+        "+" => "added values",
         _ => "subtracted values",
     };
     Diagnostic::error(
@@ -146,7 +192,7 @@ pub fn bad_exponent(n: f64, at: Span) -> Diagnostic {
 }
 
 /// `min` or `max` is given a named argument or one that is not a number.
-pub fn min_max_not_number(func: &str, got: &Value, at: Span) -> Diagnostic {
+pub fn min_max_not_number(func: &str, got: Got<'_>, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ExpectedNumber,
         format!("`{func}` takes numbers, without names"),
@@ -216,30 +262,4 @@ pub fn is_arithmetic_failure(d: &Diagnostic) -> bool {
         d.code,
         Code::DivisionByZero | Code::Overflow | Code::BadExponent
     )
-}
-// The words for each kind of value live here with the messages that use them.
-impl Value {
-    /// What kind of value this is, for messages.
-    pub fn describe(&self) -> String {
-        match self {
-            Value::Quantity(q) => q.dim.describe(),
-            Value::Range(q, _) => format!("a range of {}", plural(&q.dim.describe())),
-            Value::Symbol(s) => format!("the name `{s}`"),
-            Value::Str(_) => "a text".into(),
-            Value::Call(c) => format!("`{}(…)`", c.func),
-            Value::List(_) => "a list".into(),
-        }
-    }
-}
-
-/// The plural of a kind of value ("a length (mm)" → "lengths (mm)").
-fn plural(d: &str) -> String {
-    let d = d
-        .trim_start_matches("a ")
-        .trim_start_matches("an ")
-        .to_string();
-    match d.find(" (") {
-        Some(i) => format!("{}s{}", &d[..i], &d[i..]),
-        None => format!("{d}s"),
-    }
 }

@@ -1,4 +1,4 @@
-//! A segmented ring and its height loop as checked (seed 004): the numbers
+//! A segmented ring and its height loop as checked: the numbers
 //! are already the control module's checked types, so the slicer and the
 //! verifier cannot be handed a degenerate ring or loop.
 

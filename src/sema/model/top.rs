@@ -1,4 +1,4 @@
-//! The model of a solid with a variable top (seed 003): a planar footprint
+//! The model of a solid with a variable top: a planar footprint
 //! built up to a top surface `H(x, y)` that need not be parallel to the
 //! substrate, and `slicing variable { … }`, which builds it in layers that
 //! each lay the same fraction `H/N` of the local height.

@@ -126,11 +126,11 @@ pub mod model {
     );
 }
 
-/// `linear(slope, intercept)`: seed 003's fitted map `H = slope·v + intercept`.
+/// `linear(slope, intercept)`: the linear bead map `H = slope·v + intercept`.
 pub static LINEAR: Block = Block::new(
     "linear",
     "linear(slope, intercept)",
-    "seed 003's fitted map `H = slope·v + intercept`",
+    "a bead map fitted as a line, `H = slope·v + intercept`",
     &[&model::SLOPE, &model::INTERCEPT],
 );
 

@@ -1,5 +1,5 @@
-//! `control height { … }` (seed 004): the PI loop on each segment's layer
-//! height, and the plant it is simulated against.
+//! `control height { … }`: the PI loop on the layer height of each segment
+//! of a segmented ring, and the plant it is simulated against.
 
 use super::Bound::{Any, Positive};
 use super::DefaultValue::{Described, Quantity as DefaultQuantity, Word as DefaultWord};
@@ -61,7 +61,7 @@ pub static PLANT: Field = Field::new(
 pub static CONTROL: Block = Block::new(
     "control",
     "control height { … }",
-    "a PI loop on each segment's layer height, layer to layer (seed 004)",
+    "a PI loop on each segment's layer height, layer to layer",
     &[&KP, &KI, &CLAMP, &TARGET, &RUN, &PLANT],
 );
 

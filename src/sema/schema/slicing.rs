@@ -81,11 +81,11 @@ pub mod normal {
     );
 }
 
-/// `slicing normal { … }`: layers normal to a loft's spine (seed 000).
+/// `slicing normal { … }`: layers normal to a loft's spine.
 pub static NORMAL: Block = Block::new(
     "normal",
     "slicing normal { … }",
-    "layers normal to a loft's spine (seed 000)",
+    "layers normal to a loft's spine",
     &[
         &normal::LAYERS,
         &normal::POINTS,
@@ -315,11 +315,11 @@ pub mod variable {
     );
 }
 
-/// `slicing variable { … }`: layers that follow a sloped top (seed 003).
+/// `slicing variable { … }`: layers that follow a sloped top.
 pub static VARIABLE: Block = Block::new(
     "variable",
     "slicing variable { … }",
-    "layers that follow a sloped top, each a fraction of the local height (seed 003)",
+    "layers that follow a sloped top, each a fraction of the local height",
     &[
         &variable::LAYERS,
         &variable::SCAN,
@@ -368,11 +368,11 @@ pub mod continuous {
     );
 }
 
-/// `slicing continuous { … }`: a ring's layers in one run (seed 004).
+/// `slicing continuous { … }`: a segmented ring's layers in one run.
 pub static CONTINUOUS: Block = Block::new(
     "continuous",
     "slicing continuous { … }",
-    "a ring's layers laid in one run (seed 004)",
+    "a ring's layers laid in one run",
     &[
         &continuous::LAYERS,
         &continuous::LAYER_HEIGHT,

@@ -1,6 +1,6 @@
 //! The solids: `loft NAME { … }` and its spines, `extrude NAME { … }` and
-//! the sugar of its `top`, and `ring NAME { … }` with its `table { … }`
-//! (seed 004).
+//! the sugar of its `top`, and `ring NAME { … }` (a segmented ring) with its
+//! `table { … }`.
 
 use super::shape::SECTIONS;
 use super::Bound::{Any, Positive, PositiveUpTo};
@@ -189,7 +189,7 @@ pub mod extrude {
             Call(&[&EDGES, &PLANE]),
         ])),
         Optional,
-        "the finished part's height at every point, an expression of `x` and `y` (seed 003)",
+        "the finished part's height at every point, an expression of `x` and `y`",
     );
 }
 
@@ -317,11 +317,11 @@ pub mod ring {
     );
 }
 
-/// `ring NAME { … }`: a ring of segments (seed 004).
+/// `ring NAME { … }`: a segmented ring.
 pub static RING: Block = Block::new(
     "ring",
     "ring NAME { … }",
-    "a ring split into equal segments, each with its own process (seed 004)",
+    "a ring split into equal segments, each with its own process",
     &[
         &ring::RADIUS,
         &ring::SEGMENTS,

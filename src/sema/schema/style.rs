@@ -1,4 +1,4 @@
-//! `style NAME { … when { … } }` and `inheritance { … }` (seed 002).
+//! `style NAME { … when { … } }` and `inheritance { … }`: process styles.
 
 use super::Bound::{Positive, Within};
 use super::DefaultValue::{Described, Quantity as DefaultQuantity};
@@ -68,7 +68,7 @@ pub mod values {
 pub static STYLE: Block = Block::new(
     "style",
     "style NAME { … }",
-    "process values for the tracks its rules pick (seed 002)",
+    "process values for the tracks its rules pick",
     &[
         &values::ID,
         &values::POWER,

@@ -1,4 +1,4 @@
-//! Slicing a solid with a variable top (seed 003, Xin et al. 2020): `N`
+//! Slicing a solid with a variable top: `N`
 //! layers that each lay the same fraction `H/N` of the local height, so the
 //! last one ends on the top everywhere. The maths is in
 //! [`crate::slice::variable`]; this module applies it to the model and

@@ -10,12 +10,13 @@
 //! So the map is read at the horizontal speed, and the nozzle, which moves
 //! along a path rising at slope `s = dz/dx`, runs at the path speed
 //! `v_path = v_h · √(1 + s²)` — it covers `√(1+s²)` of path per unit of
-//! horizontal length. This is seed 004's rule for its transition arcs (keep the
-//! horizontal speed, path speed `v/cos γ`), so the two seeds agree. The
-//! alternative, programming the map's speed as the path speed, crosses the
-//! ground `√(1+s²)` times slower and lays that much too much metal on every
-//! slope: up to 1.3 % on the 16 % ramp proposed as `examples/ramp_wall.lmd`,
-//! and the excess adds up layer on layer, as a lift mismatch does.
+//! horizontal length. This is the segmented ring's rule for its transition
+//! arcs (keep the horizontal speed, path speed `v/cos γ`), so variable layers
+//! and the ring agree. The alternative, programming the map's speed as the
+//! path speed, crosses the ground `√(1+s²)` times slower and lays that much
+//! too much metal on every slope: up to 1.3 % on the 16 % ramp proposed as
+//! `examples/ramp_wall.lmd`, and the excess adds up layer on layer, as a lift
+//! mismatch does.
 //!
 //! The slope is that of the *path*, i.e. of the surface the layer is laid on:
 //! layer `i` (from 0) follows the planned top of layer `i − 1`, `i·H/N`, whose
@@ -135,7 +136,7 @@ impl HeightMap for LinearMap {
 /// A checked bead model of the file (`bead NAME { … }`) as a height map for
 /// tracks that each fill a strip `pitch` wide ([`crate::deposit`]): the
 /// layer heights it stacks there and the speed that lays each. Without a
-/// pitch (seed 003's balanced layout, whose spacing makes every track rise
+/// pitch (the balanced layout, whose spacing makes every track rise
 /// by its bead's own height, `h·C = A`) the heights are the beads' own.
 #[derive(Clone, Copy, Debug)]
 pub struct BeadMap<'a> {

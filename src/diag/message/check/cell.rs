@@ -4,9 +4,15 @@ use crate::diag::{plural, Worst};
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
 use crate::units::short;
+use std::fmt::Display;
 
 /// The laser would start before the gas flowed its `pre_flow`.
-pub fn gas_too_short(name: &str, w: &Worst, pre_flow: f64, declared: Span) -> Diagnostic {
+pub fn gas_too_short(
+    name: &str,
+    w: &Worst<impl Display>,
+    pre_flow: f64,
+    declared: Span,
+) -> Diagnostic {
     Diagnostic::error(
         Code::PowderArrival,
         format!(
@@ -23,7 +29,12 @@ pub fn gas_too_short(name: &str, w: &Worst, pre_flow: f64, declared: Span) -> Di
 }
 
 /// The laser would start before the powder arrived at the nozzle.
-pub fn powder_too_early(name: &str, w: &Worst, arrival: f64, declared: Span) -> Diagnostic {
+pub fn powder_too_early(
+    name: &str,
+    w: &Worst<impl Display>,
+    arrival: f64,
+    declared: Span,
+) -> Diagnostic {
     Diagnostic::error(
         Code::PowderArrival,
         format!(
@@ -41,7 +52,7 @@ pub fn powder_too_early(name: &str, w: &Worst, arrival: f64, declared: Span) -> 
 
 /// The powder feed changes inside a path while a rate output sets it; `w`
 /// holds the new feed and (as its limit) the one set.
-pub fn rate_changes_in_path(name: &str, w: &Worst, programmed: Span) -> Diagnostic {
+pub fn rate_changes_in_path(name: &str, w: &Worst<impl Display>, programmed: Span) -> Diagnostic {
     Diagnostic::error(
         Code::PowderRate,
         format!(
@@ -58,7 +69,12 @@ pub fn rate_changes_in_path(name: &str, w: &Worst, programmed: Span) -> Diagnost
 }
 
 /// A powder feed beyond the feed-rate output's full scale.
-pub fn rate_over_full_scale(name: &str, w: &Worst, full_scale: f64, declared: Span) -> Diagnostic {
+pub fn rate_over_full_scale(
+    name: &str,
+    w: &Worst<impl Display>,
+    full_scale: f64,
+    declared: Span,
+) -> Diagnostic {
     Diagnostic::error(
         Code::PowderRate,
         format!(

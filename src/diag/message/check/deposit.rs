@@ -4,6 +4,7 @@
 use crate::diag::{plural, Code, Diagnostic, Worst};
 use crate::numbers::trimmed;
 use crate::span::Span;
+use std::fmt::Display;
 
 /// The point farthest off, as the model sees it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,12 +53,12 @@ impl Drift {
     }
 }
 
-/// What the rule found.
+/// What the rule found (the worst point at an `At`).
 #[derive(Clone, Copy, Debug)]
-pub struct DepositMiss {
+pub struct DepositMiss<At> {
     /// Points off by more than the tolerance: how many, the worst ratio
     /// of predicted to planned, where.
-    pub worst: Option<Worst>,
+    pub worst: Option<Worst<At>>,
     /// The worst point's numbers.
     pub point: Option<WorstPoint>,
     /// Laser-on points checked.
@@ -79,7 +80,11 @@ fn percent(x: f64) -> String {
 }
 
 /// The plan's bead model does not lay the layers it plans.
-pub fn deposit_miss(m: &DepositMiss, bead: Option<Span>, slicing: Option<Span>) -> Diagnostic {
+pub fn deposit_miss(
+    m: &DepositMiss<impl Display>,
+    bead: Option<Span>,
+    slicing: Option<Span>,
+) -> Diagnostic {
     let mut msg = format!(
         "the bead model lays {} of the layers this plan stacks",
         percent(m.share)

@@ -4,15 +4,15 @@
 
 use crate::diag::{plural, Worst};
 use crate::diag::{Code, Diagnostic};
-use crate::ir::{Cnc, Machine, Robot};
 use crate::span::Span;
-use crate::target::{gcode, kuka, MAX_WRITTEN, WRITE_TOLERANCE};
+use crate::target::{kuka, MAX_WRITTEN, WRITE_TOLERANCE};
 use crate::units::short;
+use std::fmt::Display;
 
 /// Feed moves faster than machine `name`'s `max_speed`.
 pub fn machine_speed(
     name: &str,
-    w: &Worst,
+    w: &Worst<impl Display>,
     declared: Span,
     bead_speed: Option<Span>,
 ) -> Diagnostic {
@@ -32,8 +32,8 @@ pub fn machine_speed(
     .help("lower the scan speeds, or raise the machine's max_speed if it really can go faster")
 }
 
-/// An axis of a CNC that the plan drives beyond its travel.
-pub struct AxisOverrun<'a> {
+/// An axis of a CNC that the plan drives beyond its travel (at an `At`).
+pub struct AxisOverrun<'a, At> {
     /// The machine's name.
     pub machine: &'a str,
     /// 0–2 for X Y Z, 3 for the tilt axis, 4 for C.
@@ -41,7 +41,7 @@ pub struct AxisOverrun<'a> {
     /// The tilt axis's letter, `A` or `B`.
     pub tilt_name: &'static str,
     /// The worst position and how many pass the limit.
-    pub worst: Worst,
+    pub worst: Worst<At>,
     /// The axis's declared range.
     pub range: [f64; 2],
     /// For X Y Z: the program's extent along the axis (with clearance moves).
@@ -55,7 +55,7 @@ pub struct AxisOverrun<'a> {
 }
 
 /// An axis driven beyond its travel, with the placement (or machine) that fits.
-pub fn axis_limit(a: &AxisOverrun) -> Diagnostic {
+pub fn axis_limit(a: &AxisOverrun<'_, impl Display>) -> Diagnostic {
     let i = a.axis;
     let (name, tilt_name, w) = (a.machine, a.tilt_name, &a.worst);
     let axis = ["X", "Y", "Z", tilt_name, "C"][i];
@@ -98,7 +98,7 @@ pub fn axis_limit(a: &AxisOverrun) -> Diagnostic {
 }
 
 /// What placement of the part would keep a linear axis inside its travel.
-fn placement_help(a: &AxisOverrun) -> String {
+fn placement_help<At>(a: &AxisOverrun<'_, At>) -> String {
     let axis = ["X", "Y", "Z"][a.axis];
     let key = ["x", "y", "z"][a.axis];
     let (r, [lo, hi], o) = (a.range, a.extent, a.origin);
@@ -135,7 +135,7 @@ fn placement_help(a: &AxisOverrun) -> String {
 }
 
 /// Normals that a 3-axis machine's vertical nozzle cannot follow.
-pub fn needs_tilt(name: &str, w: &Worst, axes: Span) -> Diagnostic {
+pub fn needs_tilt(name: &str, w: &Worst<impl Display>, axes: Span) -> Diagnostic {
     Diagnostic::error(
         Code::NeedsTilt,
         format!(
@@ -154,8 +154,9 @@ pub fn needs_tilt(name: &str, w: &Worst, axes: Span) -> Diagnostic {
     )
 }
 
-/// A robot's analog output that would have to pass 1.0 for the power asked.
-pub struct AnalogOverrun<'a> {
+/// A robot's analog output that would have to pass 1.0 for the power asked
+/// (at an `At`).
+pub struct AnalogOverrun<'a, At> {
     /// The robot's name.
     pub robot: &'a str,
     /// Its power output's number.
@@ -165,7 +166,7 @@ pub struct AnalogOverrun<'a> {
     /// The output the worst power needs, as written.
     pub needed: f64,
     /// The worst power and how many moves ask for too much.
-    pub worst: Worst,
+    pub worst: Worst<At>,
     /// The `full_scale` field.
     pub declared: Span,
     /// What sets the power.
@@ -173,7 +174,7 @@ pub struct AnalogOverrun<'a> {
 }
 
 /// Laser power beyond the robot's analog output.
-pub fn analog_range(a: &AnalogOverrun) -> Diagnostic {
+pub fn analog_range(a: &AnalogOverrun<'_, impl Display>) -> Diagnostic {
     let w = &a.worst;
     Diagnostic::error(
         Code::AnalogRange,
@@ -204,7 +205,7 @@ pub fn analog_range(a: &AnalogOverrun) -> Diagnostic {
 }
 
 /// A position too large for machine `name` to write.
-pub fn position_too_large(name: &str, w: &Worst, machine: Span) -> Diagnostic {
+pub fn position_too_large(name: &str, w: &Worst<impl Display>, machine: Span) -> Diagnostic {
     Diagnostic::error(
         Code::Resolution,
         format!(
@@ -219,22 +220,40 @@ pub fn position_too_large(name: &str, w: &Worst, machine: Span) -> Diagnostic {
     .help("check the part's dimensions and units")
 }
 
-/// A speed the machine's speed word cannot write within the tolerance; `w`
-/// holds the planned speed and (as its limit) how it would come out;
+/// How a machine writes its speeds.
+#[derive(Clone, Copy, Debug)]
+pub enum SpeedWord {
+    /// A CNC's F word.
+    F {
+        /// Its unit as written (`mm/min`).
+        unit: &'static str,
+        /// F per mm/s.
+        per_mm_s: f64,
+        /// Its decimals.
+        decimals: usize,
+    },
+    /// A robot's `$VEL.CP`, in m/s with [`kuka::VEL_DECIMALS`] decimals.
+    VelCp,
+}
+
+/// A speed machine `name`'s speed word cannot write within the tolerance;
+/// `w` holds the planned speed and (as its limit) how it would come out;
 /// `setting` is the field that decides how the speed is written.
 pub fn speed_unwritable(
-    machine: &Machine,
-    w: &Worst,
+    name: &str,
+    word: SpeedWord,
+    w: &Worst<impl Display>,
     least_speed: f64,
     setting: Span,
     speeds: Option<Span>,
 ) -> Diagnostic {
     let tol = short(WRITE_TOLERANCE * 100.0);
-    let (text, help, what) = match machine {
-        Machine::Cnc(c) => {
-            let unit = c.dialect.feed.text();
-            let per = c.dialect.feed.per_mm_s();
-            let decimals = gcode::f_decimals(c.dialect.feed);
+    let (text, help, what) = match word {
+        SpeedWord::F {
+            unit,
+            per_mm_s: per,
+            decimals,
+        } => {
             (
                 format!("F{}", short(w.limit * per)),
                 format!(
@@ -246,7 +265,7 @@ pub fn speed_unwritable(
                 format!("writes F in {unit} with {decimals} decimals"),
             )
         }
-        Machine::Robot(_) => (
+        SpeedWord::VelCp => (
             format!("$VEL.CP = {}", short(w.limit / 1000.0)),
             format!(
                 "$VEL.CP is written in m/s with {} decimals: speeds below {} mm/s do not come out within {tol} % (or at all); raise the speed",
@@ -259,8 +278,7 @@ pub fn speed_unwritable(
     Diagnostic::error(
         Code::Resolution,
         format!(
-            "machine `{}` cannot write the speed {} mm/s: it would come out as {text}, at {} ({} move{}, the slowest {} mm/s)",
-            machine.name(),
+            "machine `{name}` cannot write the speed {} mm/s: it would come out as {text}, at {} ({} move{}, the slowest {} mm/s)",
             short(w.value),
             w.at,
             w.count,
@@ -273,12 +291,21 @@ pub fn speed_unwritable(
     .help(help)
 }
 
-/// A laser power a CNC's S word cannot write within the tolerance; `w` holds
-/// the planned power and (as its limit) what S would give; `setting` is the
-/// field that sets the S word's scale and decimals.
-pub fn cnc_power_unwritable(c: &Cnc, w: &Worst, least: f64, setting: Span) -> Diagnostic {
+/// A laser power the S word of CNC `name` (S = power × `s_per_watt`, with
+/// `s_decimals` decimals) cannot write within the tolerance; `w` holds the
+/// planned power and (as its limit) what S would give, `least` the smallest
+/// power planned; `setting` is the field that sets the S word's scale and
+/// decimals.
+pub fn cnc_power_unwritable(
+    name: &str,
+    s_per_watt: f64,
+    s_decimals: usize,
+    w: &Worst<impl Display>,
+    least: f64,
+    setting: Span,
+) -> Diagnostic {
     let tol = short(WRITE_TOLERANCE * 100.0);
-    let spw = c.dialect.s_per_watt;
+    let spw = s_per_watt;
     let s = w.value * spw;
     let help = if s >= MAX_WRITTEN {
         format!(
@@ -295,7 +322,7 @@ pub fn cnc_power_unwritable(c: &Cnc, w: &Worst, least: f64, setting: Span) -> Di
             format!(
                 "S = power × s_per_watt is written with s_decimals = {} decimals: set `s_decimals = {need}` \
                  (or a larger `s_per_watt` if the control reads S that way)",
-                c.dialect.s_decimals
+                s_decimals
             )
         } else {
             format!(
@@ -309,8 +336,7 @@ pub fn cnc_power_unwritable(c: &Cnc, w: &Worst, least: f64, setting: Span) -> Di
     Diagnostic::error(
         Code::Resolution,
         format!(
-            "machine `{}` cannot write the laser power {} W: S would be {} (i.e. {} W), at {} ({} move{})",
-            c.name,
+            "machine `{name}` cannot write the laser power {} W: S would be {} (i.e. {} W), at {} ({} move{})",
             short(w.value),
             short(w.limit * spw),
             short(w.limit),
@@ -323,18 +349,23 @@ pub fn cnc_power_unwritable(c: &Cnc, w: &Worst, least: f64, setting: Span) -> Di
     .help(help)
 }
 
-/// A laser power a robot's analog output cannot write within the tolerance;
-/// `w` holds the planned power and (as its limit) what would be given.
-pub fn robot_power_unwritable(r: &Robot, w: &Worst, full_scale: Span) -> Diagnostic {
+/// A laser power the analog output `$ANOUT[output]` of robot `name` (full
+/// scale `full_scale_power` W) cannot write within the tolerance; `w` holds
+/// the planned power and (as its limit) what would be given.
+pub fn robot_power_unwritable(
+    name: &str,
+    output: u16,
+    full_scale_power: f64,
+    w: &Worst<impl Display>,
+    full_scale: Span,
+) -> Diagnostic {
     let tol = short(WRITE_TOLERANCE * 100.0);
     Diagnostic::error(
         Code::Resolution,
         format!(
-            "robot `{}` cannot write the laser power {} W: $ANOUT[{}] = {} would give {} W, at {} ({} move{})",
-            r.name,
+            "robot `{name}` cannot write the laser power {} W: $ANOUT[{output}] = {} would give {} W, at {} ({} move{})",
             short(w.value),
-            r.power_out,
-            short(w.limit / r.full_scale_power),
+            short(w.limit / full_scale_power),
             short(w.limit),
             w.at,
             w.count,
@@ -346,7 +377,7 @@ pub fn robot_power_unwritable(r: &Robot, w: &Worst, full_scale: Span) -> Diagnos
         "$ANOUT is written with {} decimals of full_scale = {} W: powers below {} W do not come out within {tol} %; \
          declare the full scale the laser really has",
         kuka::ANOUT_DECIMALS,
-        short(r.full_scale_power),
-        short(r.full_scale_power * 5e-5 / WRITE_TOLERANCE)
+        short(full_scale_power),
+        short(full_scale_power * 5e-5 / WRITE_TOLERANCE)
     ))
 }

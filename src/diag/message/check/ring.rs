@@ -3,7 +3,6 @@
 
 use crate::control::{self, Finding, Severity};
 use crate::diag::{Code, Diagnostic};
-use crate::ir::RingOrigins;
 use crate::span::Span;
 use crate::target::gcode::MAX_ANALOG_INPUT;
 use crate::target::kuka::MAX_ADVANCE;
@@ -19,8 +18,21 @@ pub fn loop_cannot_run(why: &dyn Display, control: Span) -> Diagnostic {
     .label(control, "control")
 }
 
+/// Where the fields a finding of the loop's analysis is about are written.
+#[derive(Clone, Copy, Debug)]
+pub struct LoopFields {
+    /// `kp = …`.
+    pub kp: Span,
+    /// `ki = …`.
+    pub ki: Span,
+    /// `clamp = …`.
+    pub clamp: Span,
+    /// `layers = …` of the slicing block.
+    pub layers: Span,
+}
+
 /// One finding of the loop's analysis, at the fields it is about.
-pub fn loop_finding(f: &Finding, o: &RingOrigins) -> Diagnostic {
+pub fn loop_finding(f: &Finding, o: &LoopFields) -> Diagnostic {
     let (code, labels): (Code, Vec<(_, &str)>) = match f {
         Finding::Sign { gain, .. } => (
             Code::GainSign,
