@@ -64,8 +64,9 @@
 //! of deposits on a lead-in and ends it with a lead-out, so the nozzle is at
 //! speed wherever the laser switches ([`profile`] says why): the
 //! [`MoveKind::LeadIn`] runs, laser off, at the run's first speed `v` onto
-//! its first point along its first move's direction, `v²/2a` long, and the
-//! laser switches on where it ends; the [`MoveKind::LeadOut`] goes on from
+//! its first point along its first move's direction, `v²/2a` long plus the
+//! machine's corner blending (the control may round the corner onto it over
+//! that much), and the laser switches on where it ends; the [`MoveKind::LeadOut`] goes on from
 //! the run's last point along its last move at its speed, `v²/2a` long,
 //! after the laser switched off there. The approach comes down onto the
 //! lead-in's start; a gap inside a path travels to it; where a run's start
@@ -320,8 +321,9 @@ pub struct Plan<'a> {
     head: Head,
     clearance: f64,
     cell: &'a Cell,
-    /// The acceleration leads are sized by, when the machine has them.
-    lead: Option<f64>,
+    /// The acceleration leads are sized by, and the corner blending a
+    /// lead-in adds, when the machine has leads.
+    lead: Option<(f64, f64)>,
 }
 
 /// The kinematics a CNC program is written for: a machine declared with fewer
@@ -346,7 +348,9 @@ impl<'a> Plan<'a> {
         };
         let common = machine.common();
         let lead = match (common.ramp, common.acceleration) {
-            (Ramp::Lead, Some(a)) if a > 0.0 && program.loop_on_machine().is_none() => Some(a),
+            (Ramp::Lead, Some(a)) if a > 0.0 && program.loop_on_machine().is_none() => {
+                Some((a, crate::target::blending(machine).0))
+            }
             _ => None,
         };
         Plan {
@@ -407,7 +411,12 @@ impl<'a> Plan<'a> {
                 if path.points.is_empty() {
                     continue;
                 }
-                w.path(li, pi, &path.points, first);
+                // The path after it in the layer, where a gap may end.
+                let after = layer.paths[pi + 1..]
+                    .iter()
+                    .map(|p| p.points.as_slice())
+                    .find(|p| !p.is_empty());
+                w.path(li, pi, (&path.points, after), first);
                 first = false;
                 w.ends = None;
             }
@@ -572,7 +581,15 @@ impl<V: Visit> Walker<'_, '_, V> {
         [n[0] / len, n[1] / len, n[2] / len]
     }
 
-    fn path(&mut self, li: usize, pi: usize, pts: &[Point], first_in_layer: bool) {
+    /// The path `pts` (layer `li`, path `pi`), `after` the next one in its
+    /// layer.
+    fn path(
+        &mut self,
+        li: usize,
+        pi: usize,
+        (pts, after): (&[Point], Option<&[Point]>),
+        first_in_layer: bool,
+    ) {
         let first = &pts[0];
         let mut cur = match self.cursor {
             Some(c) if !first_in_layer && joins(c.focus, c.normal, first) => c,
@@ -612,9 +629,16 @@ impl<V: Visit> Walker<'_, '_, V> {
                 (MoveKind::Deposit, Speed::Feed(from.speed), to.focus())
             } else {
                 self.end_run();
-                // A gap ends where the next run's lead-in starts.
-                let next = pts.get(k + 2).filter(|_| to.laser_on);
-                let start = next.and_then(|n| self.lead_start(to, n));
+                // A gap ends where the next run's lead-in starts: in this
+                // path, or in the next where it joins this one's end.
+                let start = match pts.get(k + 2) {
+                    Some(n) if to.laser_on => self.lead_start(to, n),
+                    Some(_) => None,
+                    None => after
+                        .filter(|a| a.len() > 1 && a[0].laser_on)
+                        .filter(|a| joins(to.focus(), to.normal, &a[0]))
+                        .and_then(|a| self.lead_start(&a[0], &a[1])),
+                };
                 (MoveKind::Travel, Speed::Rapid, start.unwrap_or(to.focus()))
             };
             if let Some(ends) = self.ends {
@@ -665,44 +689,7 @@ impl<V: Visit> Walker<'_, '_, V> {
         let f0 = first.focus();
         let entry = second.and_then(|n| self.lead_start(first, n)).unwrap_or(f0);
         let above = along(entry, self.up(first.normal), self.plan.clearance);
-        // With the nozzle vertical at both ends, the travel passes at least
-        // `clearance` above everything built so far: a straight line between
-        // the two clearance points could cut through a ridge of an earlier
-        // layer (a top that is higher in the middle than at the tracks' ends).
-        let vertical = |n: [f64; 3]| n[2] >= 1.0 - 1e-9;
-        let safe = self.top + self.plan.clearance;
-        let lift = match (self.last, self.cursor) {
-            (Some(from), Some(c))
-                if vertical(self.up(c.normal))
-                    && vertical(self.up(first.normal))
-                    && from[2].min(above[2]) < safe - 1e-6 =>
-            {
-                Some((from, c.normal))
-            }
-            _ => None,
-        };
-        if let Some((from, normal)) = lift {
-            if from[2] < safe {
-                self.send(Move {
-                    kind: MoveKind::Travel,
-                    to: [from[0], from[1], safe],
-                    normal,
-                    axes: prev,
-                    speed: Speed::Rapid,
-                    power: first.power,
-                    at: clearance,
-                });
-            }
-            self.send(Move {
-                kind: MoveKind::Travel,
-                to: [above[0], above[1], safe.max(above[2])],
-                normal: first.normal,
-                axes,
-                speed: Speed::Rapid,
-                power: first.power,
-                at: clearance,
-            });
-        }
+        self.over_the_top(first, above, (prev, axes), clearance);
         self.send(Move {
             kind: MoveKind::Travel,
             to: above,
@@ -739,6 +726,56 @@ impl<V: Visit> Walker<'_, '_, V> {
         };
         self.cursor = Some(c);
         c
+    }
+
+    /// With the nozzle vertical at both ends, the travel to `above` (the
+    /// clearance point over the next path's `first` point) passes at least
+    /// `clearance` above everything built so far: a straight line between
+    /// the two clearance points could cut through a ridge of an earlier
+    /// layer (a top that is higher in the middle than at the tracks' ends).
+    /// Rises there and crosses, with the head at `axes` (before, after).
+    fn over_the_top(
+        &mut self,
+        first: &Point,
+        above: [f64; 3],
+        (prev, axes): (Rotary, Rotary),
+        clearance: Where,
+    ) {
+        let vertical = |n: [f64; 3]| n[2] >= 1.0 - 1e-9;
+        let safe = self.top + self.plan.clearance;
+        let lift = match (self.last, self.cursor) {
+            (Some(from), Some(c))
+                if vertical(self.up(c.normal))
+                    && vertical(self.up(first.normal))
+                    && from[2].min(above[2]) < safe - 1e-6 =>
+            {
+                Some((from, c.normal))
+            }
+            _ => None,
+        };
+        let Some((from, normal)) = lift else {
+            return;
+        };
+        if from[2] < safe {
+            self.send(Move {
+                kind: MoveKind::Travel,
+                to: [from[0], from[1], safe],
+                normal,
+                axes: prev,
+                speed: Speed::Rapid,
+                power: first.power,
+                at: clearance,
+            });
+        }
+        self.send(Move {
+            kind: MoveKind::Travel,
+            to: [above[0], above[1], safe.max(above[2])],
+            normal: first.normal,
+            axes,
+            speed: Speed::Rapid,
+            power: first.power,
+            at: clearance,
+        });
     }
 
     /// Before layer `next`: dwell, retracted, for the declared interlayer
@@ -818,11 +855,13 @@ impl<V: Visit> Walker<'_, '_, V> {
     }
 
     /// Where the lead-in of a run from `p` on to `next` starts, with leads:
-    /// `v²/2a` back along the run's first move.
+    /// `v²/2a` and the blending back along the run's first move.
     fn lead_start(&self, p: &Point, next: &Point) -> Option<[f64; 3]> {
-        let a = self.plan.lead?;
+        let (a, blend) = self.plan.lead?;
         let (f, dir) = (p.focus(), unit(p.focus(), next.focus())?);
-        Some(along(f, dir, -lead_length(p.speed, a)))
+        // The control may round the corner onto the lead-in (the approach,
+        // a back-up) over up to `blend` of it: the ramp comes after that.
+        Some(along(f, dir, -(lead_length(p.speed, a) + blend)))
     }
 
     /// Before the run that deposits from `from` (layer, path and point
@@ -870,7 +909,7 @@ impl<V: Visit> Walker<'_, '_, V> {
             return;
         }
         let lead = self.plan.lead.zip(self.run_end.take());
-        let Some((a, (from, m))) = lead else {
+        let Some(((a, _), (from, m))) = lead else {
             self.switch_off();
             return;
         };

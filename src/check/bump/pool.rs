@@ -381,3 +381,117 @@ fn slower(a: Slowest, b: Slowest) -> Slowest {
         a
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::profile::Profiler;
+
+    const W: f64 = 2.2;
+    const TOL: f64 = 0.03;
+
+    /// The places the pool finds along `moves` (direction and length,
+    /// speed, deposits), the machine standing before and after.
+    fn places(d: Dynamics, moves: &[([f64; 3], f64, bool)]) -> Places {
+        let mut profile = Profiler::new(d);
+        let mut pool = Pool::new(d, W, TOL);
+        for (i, &(delta, v, deposit)) in moves.iter().enumerate() {
+            let laid = Laid {
+                deposit,
+                rise: 0.5,
+                at: Where::Point {
+                    layer: 0,
+                    path: 0,
+                    point: i,
+                },
+            };
+            profile.push(delta, v, laid, &mut |s| pool.step(&s));
+        }
+        profile.stop(&mut |s| pool.step(&s));
+        pool.end_run();
+        pool.places
+    }
+
+    const SLOW: Dynamics = Dynamics {
+        accel: 100.0,
+        blending: 0.0,
+    };
+
+    #[test]
+    fn a_ramp_from_rest_lays_its_own_length_again_over_the_window() {
+        // 6 mm/s at 100 mm/s²: the ramp is v²/2a = 0.18 mm and lays 0.18 mm
+        // of bead more; over a 2.2 mm window, 0.18/2.2 = 8.18 % of the plan.
+        let p = places(SLOW, &[([20.0, 0.0, 0.0], 6.0, true)]);
+        assert_eq!((p.count, p.starts, p.ends, p.inside), (2, 1, 1, 0));
+        let start = p.worst_end.unwrap();
+        let want = 0.18 / W;
+        assert!((start.share - want).abs() < 1e-9, "{}", start.share);
+        assert!((start.mm - 0.5 * want).abs() < 1e-9);
+        assert!((start.planned - 0.5).abs() < 1e-9);
+        // Slower than 6/1.03 mm/s for (6/1.03)²/2a on each ramp.
+        let slow = (6.0f64 / 1.03).powi(2) / 200.0;
+        assert!((start.length - slow).abs() < 1e-9, "{}", start.length);
+        assert!((start.slow - 6.0 / 1.03).abs() < 1e-12);
+        // At 3.6 mm/s the ramp is 0.0648 mm: 2.9 %, within the tolerance.
+        let p = places(SLOW, &[([20.0, 0.0, 0.0], 3.6, true)]);
+        assert_eq!(p.count, 0);
+    }
+
+    #[test]
+    fn a_run_shorter_than_the_window_is_one_place() {
+        // 1 mm from rest to rest at 6 mm/s: two ramps of 0.18 mm lay 0.36 mm
+        // more over the run's own millimetre.
+        let p = places(SLOW, &[([1.0, 0.0, 0.0], 6.0, true)]);
+        assert_eq!((p.count, p.whole), (1, 1));
+        assert!((p.worst.unwrap().share - 0.36).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_run_entered_at_speed_lays_no_bump_at_its_start() {
+        // A laser-off lead-in of v²/2a before the run: only the end is slow.
+        let p = places(
+            SLOW,
+            &[
+                ([0.18, 0.0, 0.0], 6.0, false),
+                ([20.0, 0.0, 0.0], 6.0, true),
+            ],
+        );
+        assert_eq!((p.count, p.starts, p.ends), (1, 0, 1));
+        // And a lead-out after it: nothing.
+        let p = places(
+            SLOW,
+            &[
+                ([0.18, 0.0, 0.0], 6.0, false),
+                ([20.0, 0.0, 0.0], 6.0, true),
+                ([0.18, 0.0, 0.0], 6.0, false),
+            ],
+        );
+        assert_eq!(p.count, 0);
+    }
+
+    #[test]
+    fn an_unblended_corner_stops_the_nozzle_and_a_blend_keeps_it_going() {
+        let legs = [
+            ([0.18, 0.0, 0.0], 6.0, false),
+            ([10.0, 0.0, 0.0], 6.0, true),
+            ([0.0, 10.0, 0.0], 6.0, true),
+            ([0.0, 0.18, 0.0], 6.0, false),
+        ];
+        // A full stop: 0.18 mm down and 0.18 mm up, 0.36/2.2 = 16.4 %.
+        let p = places(SLOW, &legs);
+        assert_eq!((p.count, p.inside), (1, 1));
+        let b = p.worst_inside.unwrap();
+        assert!((b.share - 0.36 / W).abs() < 1e-9, "{}", b.share);
+        let c = b.corner.unwrap();
+        assert!((c.turn_deg - 90.0).abs() < 1e-6);
+        assert_eq!((c.reached, c.speed, c.room), (0.0, 6.0, 5.0));
+        // The blending that holds 6/1.03 mm/s there: r = v²/a, d = r·tan 45°.
+        assert!((c.needs - (6.0f64 / 1.03).powi(2) / 100.0).abs() < 1e-12);
+        // Half a millimetre of blending: √(100·0.5) = 7.07 mm/s > 6, no dip.
+        let blended = Dynamics {
+            blending: 0.5,
+            ..SLOW
+        };
+        assert_eq!(places(blended, &legs).count, 0);
+    }
+}
