@@ -11,7 +11,7 @@
 //! lead-in or the start of a lead-out, and at dwells and outputs), predicts
 //! the excess each deposit lays over what the plan lays (`∫ (v_p/v − 1)`
 //! times the planned rise) and averages it over the melt pool, a bead width
-//! ([`pool`]). A place whose mean passes `rise_tolerance` is a bump. One
+//! (`pool`). A place whose mean passes `rise_tolerance` is a bump. One
 //! diagnostic per machine: how many, where they lie, the worst, by how much
 //! and over what length, with the fixes.
 //!

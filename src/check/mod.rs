@@ -19,7 +19,7 @@
 //! which the writers' headers and the report read instead of walking the plan
 //! again.
 
-pub mod bump;
+mod bump;
 mod cell;
 mod deposit;
 mod machine;
