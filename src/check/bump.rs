@@ -99,6 +99,7 @@ impl<'p> PlanRule<'p> for DepositBump<'p> {
             inside: p.inside,
             worst,
             worst_end: p.worst_end,
+            worst_short: p.worst_short,
             worst_inside: p.worst_inside,
             model: self.model,
         };

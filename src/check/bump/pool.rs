@@ -104,8 +104,10 @@ pub(super) struct Places {
     pub inside: u64,
     /// The worst of all, at a start or end, inside.
     pub worst: Option<Bump>,
-    /// The worst at a run's start or end (or a whole short run).
+    /// The worst at a run's start or end.
     pub worst_end: Option<Bump>,
+    /// The worst on a run shorter than the window.
+    pub worst_short: Option<Bump>,
     /// The worst inside a run.
     pub worst_inside: Option<Bump>,
 }
@@ -361,7 +363,7 @@ impl Pool {
         let (n, slot) = match lies {
             Lies::Start => (&mut p.starts, &mut p.worst_end),
             Lies::End => (&mut p.ends, &mut p.worst_end),
-            Lies::Whole => (&mut p.whole, &mut p.worst_end),
+            Lies::Whole => (&mut p.whole, &mut p.worst_short),
             Lies::Inside => (&mut p.inside, &mut p.worst_inside),
         };
         *n += 1;

@@ -98,8 +98,10 @@ pub struct Bumps {
     pub inside: u64,
     /// The worst of all.
     pub worst: Bump,
-    /// The worst at a start or an end, and the worst inside a run.
+    /// The worst at a run's start or end.
     pub worst_end: Option<Bump>,
+    /// The worst on a run shorter than a bead width.
+    pub worst_short: Option<Bump>,
     /// The worst inside a run.
     pub worst_inside: Option<Bump>,
     /// The model.
@@ -168,6 +170,9 @@ pub fn deposit_bump(
     if let Some(e) = &b.worst_end {
         help.push(ends_help(m, e));
     }
+    if let Some(e) = &b.worst_short {
+        help.push(short_help(m, e, b.worst_end.is_none()));
+    }
     if let Some(c) = b
         .worst_inside
         .as_ref()
@@ -203,11 +208,37 @@ fn ends_help(m: &Model, e: &Bump) -> String {
             "the leads keep the nozzle at speed where the laser switches, yet a bump remains",
         );
     }
-    s.push_str(&format!(
-        "; or scan at most {} (a ramp then lays no more than the tolerance over a bead width), or give the machine an acceleration of at least {} mm/s²",
-        speed(most),
-        trimmed(least, 0)
-    ));
+    if most < e.speed {
+        s.push_str(&format!(
+            "; or scan at most {} (a ramp then lays no more than the tolerance over a bead width), or give the machine an acceleration of at least {} mm/s²",
+            speed(most),
+            trimmed(least, 0)
+        ));
+    } else if let Some(c) = &e.corner {
+        // The ramp alone stays within the tolerance: a corner next to it adds.
+        s.push_str(&format!(
+            "; the ramp alone lays {} %, the corner next to it the rest: {}",
+            trimmed(ramp / m.window * 100.0, 1),
+            corner_help(m, e, c)
+        ));
+    }
+    s
+}
+
+/// The fixes for runs shorter than a bead width; `lead` when the help says
+/// nothing of leads otherwise.
+fn short_help(m: &Model, e: &Bump, lead: bool) -> String {
+    let mut s = format!(
+        "a run shorter than a bead width (at {}) speeds up and slows down over most of its length and lays {} % more than planned",
+        e.at,
+        trimmed(e.share * 100.0, 1)
+    );
+    if lead && !m.lead {
+        s.push_str(": `ramp = lead` runs it at speed from end to end");
+    } else if lead && !m.fly {
+        s.push_str(": leads only help where the laser lines switch on the fly (on LinuxCNC `laser_on = \"M62 P0\"`, `laser_off = \"M63 P0\"`)");
+    }
+    s.push_str("; or leave such slivers out of the profile (`lmd::short-track` names them)");
     s
 }
 
