@@ -176,3 +176,52 @@ impl Visit for DepositBump<'_> {
             .push(delta, speed, laid, &mut |s| pool.step(&s));
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::diag::Code;
+    use crate::pipeline::compile;
+
+    /// tests/cases/planar/leads with `machines` for its machines.
+    fn plate(machines: &str) -> String {
+        let case = include_str!("../../tests/cases/planar/leads/input.lmd");
+        let at = case
+            .find("// LinuxCNC switches")
+            .expect("the case's machines");
+        format!("{}{machines}", &case[..at])
+    }
+
+    fn bumps(src: &str) -> Vec<String> {
+        let c = compile(src, &mut ());
+        c.diagnostics
+            .iter()
+            .filter(|d| d.code == Code::DepositBump)
+            .map(|d| d.message.clone())
+            .collect()
+    }
+
+    const KR: &str = "machine kr { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s";
+
+    #[test]
+    fn the_starts_and_stops_pass_with_leads_and_not_without() {
+        // 6 mm/s at 100 mm/s²: each ramp lays 0.18/2.2 = 8.2 % over a bead width.
+        let without = bumps(&plate(&format!("{KR}  acceleration = 100 mm/s^2 }}")));
+        assert_eq!(without.len(), 1, "{without:?}");
+        assert!(without[0].contains("(8.2 %)"), "{}", without[0]);
+        let with = format!("{KR}  acceleration = 100 mm/s^2  blending = 0.5 mm  ramp = lead }}");
+        assert!(bumps(&plate(&with)).is_empty());
+        // At 300 mm/s² a ramp lays 2.7 %: within the tolerance.
+        assert!(bumps(&plate(&format!("{KR}  acceleration = 300 mm/s^2 }}"))).is_empty());
+        // Without an acceleration nothing is modelled.
+        assert!(bumps(&plate(&format!("{KR} }}"))).is_empty());
+    }
+
+    #[test]
+    fn a_cnc_whose_laser_lines_stop_it_gains_nothing_from_leads() {
+        let cnc = "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  acceleration = 100 mm/s^2  blending = 0.5 mm  ramp = lead";
+        let stops = bumps(&plate(&format!("{cnc} }}")));
+        assert_eq!(stops.len(), 1, "M3/M5 wait for the motion: {stops:?}");
+        let fly = format!(r#"{cnc}  laser_on = "M62 P0"  laser_off = "M63 P0" }}"#);
+        assert!(bumps(&plate(&fly)).is_empty());
+    }
+}
