@@ -75,7 +75,7 @@ pub static BLENDING: Field = Field::new(
     "blending",
     Quantity(Dim::LENGTH, ZeroUpTo(MAX_BLENDING_MM)),
     Default(Described(
-        "a robot's 0.2 mm, LinuxCNC's 0.02 mm (its `G64 P0.02`), 0 mm on the other dialects",
+        "a robot's 0.2 mm; a CNC's `G64 P…` or `ADIS=…` of its preamble (LinuxCNC's built-in `G64 P0.02`), else 0 mm",
     )),
     "how far before a corner the control may leave the path to round it, written into the program (KUKA `$APO.CDIS`, LinuxCNC `G64 P`, Sinumerik `G641 ADIS`); 0 mm: an exact stop at every corner",
 );
