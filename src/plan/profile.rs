@@ -442,6 +442,71 @@ mod tests {
         assert!((s[1].excess(0.0, 1.0) - side).abs() < 1e-12);
     }
 
+    /// The plan made with every move known: the junctions' limits, a
+    /// forward pass and a backward pass from rest after the last.
+    fn whole(d: Dynamics, moves: &[([f64; 3], f64)]) -> Vec<f64> {
+        let len = |m: &[f64; 3]| (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+        let mut reach: Vec<f64> = Vec::new();
+        for (i, (m, v)) in moves.iter().enumerate() {
+            let limit = match i.checked_sub(1).map(|j| &moves[j]) {
+                None => 0.0,
+                Some((p, u)) => {
+                    let cos = (0..3).map(|k| p[k] * m[k]).sum::<f64>() / (len(p) * len(m));
+                    let turn = cos.clamp(-1.0, 1.0).acos();
+                    d.corner_speed(turn, len(p), len(m)).min(*u).min(*v)
+                }
+            };
+            let before = i.checked_sub(1).map_or(limit, |j| {
+                (reach[j] * reach[j] + 2.0 * d.accel * len(&moves[j].0)).sqrt()
+            });
+            reach.push(limit.min(before));
+        }
+        let mut exit = 0.0f64;
+        for i in (0..moves.len()).rev() {
+            reach[i] = reach[i].min((exit * exit + 2.0 * d.accel * len(&moves[i].0)).sqrt());
+            exit = reach[i];
+        }
+        reach
+    }
+
+    #[test]
+    fn streaming_plans_what_the_whole_plan_would() {
+        // Random walks of short and long moves, turns and speeds.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..40 {
+            let moves: Vec<_> = (0..300)
+                .map(|_| {
+                    let angle = if next() < 0.7 { 0.0 } else { next() * 6.0 };
+                    let l = if next() < 0.8 {
+                        0.01 + 0.2 * next()
+                    } else {
+                        5.0 * next()
+                    };
+                    ([l * angle.cos(), l * angle.sin(), 0.0], 2.0 + 20.0 * next())
+                })
+                .collect();
+            let streamed = steps(D, &moves);
+            let want = whole(D, &moves);
+            assert_eq!(streamed.len(), moves.len());
+            for (i, s) in streamed.iter().enumerate() {
+                assert!(
+                    (s.entry - want[i]).abs() < 1e-9,
+                    "move {i}: {} vs {}",
+                    s.entry,
+                    want[i]
+                );
+                let exit = want.get(i + 1).copied().unwrap_or(0.0);
+                assert!((s.exit - exit.min(s.speed)).abs() < 1e-9, "move {i}'s exit");
+            }
+        }
+    }
+
     #[test]
     fn a_run_of_short_moves_ramps_across_them_and_streams() {
         // 1000 moves of 0.01 mm straight on at 10 mm/s: the ramp of 0.5 mm
