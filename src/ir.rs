@@ -539,6 +539,40 @@ pub struct MachineCommon {
     pub cell: Cell,
     /// The height sensor a closed loop reads, if the cell has one.
     pub height_sensor: Option<HeightSensor>,
+    /// The path acceleration (and deceleration) the control plans with,
+    /// mm/s² (`None`: not declared, and the programmed speeds are taken as
+    /// reached; docs/ir.md, *The speed the machine reaches*).
+    pub acceleration: Option<f64>,
+    /// How far before (and after) a corner the control may leave the path
+    /// to round it, mm (`None`: what the program sets by default,
+    /// [`crate::target::blending`]).
+    pub blending: Option<f64>,
+    /// How the program starts and stops a bead.
+    pub ramp: Ramp,
+}
+
+/// How a machine's program starts and stops a bead, where the nozzle speeds
+/// up from rest and slows down to it while the powder keeps flowing
+/// (`ramp = …`).
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Ramp {
+    /// The laser switches where the nozzle stands: each run of deposits
+    /// starts from rest and ends at rest.
+    #[default]
+    None,
+    /// A laser-off lead-in along the path's first direction, `v²/2a` long,
+    /// brings the nozzle up to speed where the laser switches on (without
+    /// stopping); a lead-out after the last deposit lets it slow down with
+    /// the laser off ([`crate::plan`]).
+    Lead,
+}
+
+impl Ramp {
+    /// Whether it is the default (left out of the IR's JSON).
+    pub fn is_none(&self) -> bool {
+        *self == Ramp::None
+    }
 }
 
 /// A pose `X Y Z A B C` (mm, deg; KUKA ZYX Euler: R = Rz(A)·Ry(B)·Rx(C)).
@@ -817,7 +851,7 @@ impl std::ops::DerefMut for Cnc {
 mod wire {
     use super::{
         AxisLimits, Cell, Dialect, FrameRef, HeightSensor, Kinematics, MachineCommon, Placement,
-        ToolAxis,
+        Ramp, ToolAxis,
     };
     use serde::{Deserialize, Serialize};
 
@@ -839,6 +873,12 @@ mod wire {
         cell: Cell,
         #[serde(default, skip_serializing_if = "Option::is_none")]
         height_sensor: Option<HeightSensor>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        acceleration: Option<f64>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        blending: Option<f64>,
+        #[serde(default, skip_serializing_if = "Ramp::is_none")]
+        ramp: Ramp,
     }
 
     /// A CNC's fields in the file's order.
@@ -857,6 +897,12 @@ mod wire {
         cell: Cell,
         #[serde(default, skip_serializing_if = "Option::is_none")]
         height_sensor: Option<HeightSensor>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        acceleration: Option<f64>,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        blending: Option<f64>,
+        #[serde(default, skip_serializing_if = "Ramp::is_none")]
+        ramp: Ramp,
     }
 
     impl From<Robot> for super::Robot {
@@ -868,6 +914,9 @@ mod wire {
                     clearance: r.clearance,
                     cell: r.cell,
                     height_sensor: r.height_sensor,
+                    acceleration: r.acceleration,
+                    blending: r.blending,
+                    ramp: r.ramp,
                 },
                 tool: r.tool,
                 base: r.base,
@@ -898,6 +947,9 @@ mod wire {
                 clearance: c.clearance,
                 cell: c.cell,
                 height_sensor: c.height_sensor,
+                acceleration: c.acceleration,
+                blending: c.blending,
+                ramp: c.ramp,
             }
         }
     }
@@ -911,6 +963,9 @@ mod wire {
                     clearance: c.clearance,
                     cell: c.cell,
                     height_sensor: c.height_sensor,
+                    acceleration: c.acceleration,
+                    blending: c.blending,
+                    ramp: c.ramp,
                 },
                 axes: c.axes,
                 kinematics: c.kinematics,
@@ -935,6 +990,9 @@ mod wire {
                 clearance: m.clearance,
                 cell: m.cell,
                 height_sensor: m.height_sensor,
+                acceleration: m.acceleration,
+                blending: m.blending,
+                ramp: m.ramp,
             }
         }
     }

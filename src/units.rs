@@ -40,6 +40,8 @@ impl Dim {
     pub const POWER: Dim = Dim::new(2, 1, -3, 0);
     /// g/mm³
     pub const DENSITY: Dim = Dim::new(-3, 1, 0, 0);
+    /// mm/s²: a machine's path acceleration.
+    pub const ACCELERATION: Dim = Dim::new(1, 0, -2, 0);
 
     /// Builds a dimension from exponents.
     pub const fn new(l: i8, m: i8, t: i8, a: i8) -> Dim {
@@ -76,6 +78,7 @@ impl Dim {
             (Dim::TIME, "a time (s)"),
             (Dim::MASS, "a mass (g)"),
             (Dim::SPEED, "a speed (mm/s)"),
+            (Dim::ACCELERATION, "an acceleration (mm/s^2)"),
             (Dim::MASS_FLOW, "a powder feed rate (g/min)"),
             (Dim::POWER, "a power (W)"),
             (Dim::DENSITY, "a density (g/cm^3)"),
@@ -509,11 +512,16 @@ mod tests {
         assert_eq!(Power(f).watts(), 1000.0);
         assert_eq!(d, Dim::POWER);
         assert!(parse_unit("furlong").is_err());
+        // A machine's acceleration, in mm/s² or m/s².
+        assert_eq!(parse_unit("mm/s^2").unwrap(), (1.0, Dim::ACCELERATION));
+        let (f, d) = parse_unit("m/s^2").unwrap();
+        assert_eq!((f, d), (1000.0, Dim::ACCELERATION));
     }
 
     #[test]
     fn describes_dimensions() {
         assert_eq!(Dim::SPEED.describe(), "a speed (mm/s)");
         assert_eq!(Dim::new(1, 0, -2, 0).unit_string(), "mm/s^2");
+        assert_eq!(Dim::ACCELERATION.describe(), "an acceleration (mm/s^2)");
     }
 }

@@ -309,6 +309,7 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
         "extrude block { profile = circle(diameter = 10 mm, radius = 5 mm)  size = outer  bead = track }";
     missing_statement: MissingStatement, PLATE.without(&["process"]), "";
     missing_field: MissingField, PLATE, "process { speed = 6 mm/s  power = 1500 W  defocus = -3 mm }";
+    missing_field_lead: MissingField, PLATE, "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  ramp = lead }";
     missing_solid: MissingSolid, PLATE.without(&["solid"]), "";
     missing_machine: MissingMachine, PLATE.without(&["machine mill", "machine kr"]), "";
     cycle: Cycle, PLATE, "let a = b\nlet b = a";
@@ -494,6 +495,15 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
         "machine kr { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  gas { output = 1 } }";
     io_dialect: IoDialect, PLATE,
         "machine mill { kind = cnc  axes = 3  dialect = fagor8070  max_speed = 50 mm/s  gas { output = 2 } }";
+    // 6 mm/s from rest at 100 mm/s²: v²/2a = 0.18 mm of ramp lays 0.18 mm of
+    // bead more, 8.2 % of a 2.2 mm bead width at each start and end.
+    deposit_bump: DepositBump, PLATE,
+        "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  acceleration = 100 mm/s^2 }";
+    // Leads take care of the starts and ends; the contour's unblended
+    // corners are full stops.
+    deposit_bump_at_corners: DepositBump, PLATE,
+        r#"slicing planar { layers = 2  offset = 1.6 mm  contours = 1  infill = raster(angle = 0 deg) }
+machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  acceleration = 100 mm/s^2  blending = 0 mm  ramp = lead  laser_on = "M62 P0"  laser_off = "M63 P0" }"#;
     powder_rate: PowderRate, PLATE,
         "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  powder { output = 3  arrival = 2 s  rate_output = 2  full_scale = 5 g/min } }";
 

@@ -257,6 +257,90 @@ fn three_axis_planar_part_follows_the_ir() {
     assert!(n > 0);
 }
 
+/// With `ramp = lead` and the laser on a motion-synchronised output
+/// (`M62`/`M63`), rs274 switches it between a laser-off G1 collinear with a
+/// run's first deposit, `v²/2a` and the blending long at its feed, and that
+/// deposit; and off
+/// between the run's last deposit and a laser-off G1 going on along it
+/// `v²/2a` at its feed. Every deposit of the IR is a G1 with the output set.
+#[test]
+fn leads_switch_a_synchronised_output_at_speed() {
+    if !have_rs274("leads_switch_a_synchronised_output_at_speed") {
+        return;
+    }
+    let mut cnc = cnc3();
+    cnc.acceleration = Some(1000.0);
+    // Written as G64 P0.5; without it the contour's corners would stop.
+    cnc.blending = Some(0.5);
+    cnc.ramp = Ramp::Lead;
+    cnc.dialect.laser_on = "M62 P0".into();
+    cnc.dialect.laser_off = "M63 P0".into();
+    let ir = planar(3, vec![Machine::Cnc(cnc)]);
+    let want = deposits(&ir).len();
+    let v = verified(ir);
+    let (_, text) = emit(&v, 0);
+    let all = rs274::interpret_source(&text)
+        .unwrap_or_else(|e| panic!("rs274 refused the program: {e}\n{text}"));
+    // Each feed move: (from, to, F mm/min, laser on); each switch: (on, move index).
+    let (mut at, mut feed, mut laser) = ([0.0f64; 3], 0.0, false);
+    let (mut moves, mut switches) = (Vec::new(), Vec::new());
+    for c in rs274::program_body(&all) {
+        match *c {
+            CanonCall::FeedRate(f) => feed = f,
+            CanonCall::Traverse { x, y, z, .. } => {
+                assert!(!laser, "G0 with the laser on");
+                at = [x, y, z];
+            }
+            CanonCall::Feed { x, y, z, .. } => {
+                moves.push((at, [x, y, z], feed, laser));
+                at = [x, y, z];
+            }
+            CanonCall::DigitalOut {
+                index: 0,
+                on,
+                synced: true,
+            } => {
+                assert_ne!(on, laser, "a switch to the state the laser has");
+                laser = on;
+                switches.push((on, moves.len()));
+            }
+            // (M2 stops the spindle too: only a start would be wrong.)
+            CanonCall::SpindleOn => panic!("the laser switches on the output, not the spindle"),
+            _ => {}
+        }
+    }
+    assert!(!laser, "laser on at the end");
+    assert_eq!(moves.iter().filter(|m| m.3).count(), want);
+    let dir = |m: &([f64; 3], [f64; 3], f64, bool)| {
+        let d = [0, 1, 2].map(|k| m.1[k] - m.0[k]);
+        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        (d.map(|c| c / n), n)
+    };
+    let ramp = |f: f64| (f / 60.0).powi(2) / 2000.0;
+    for &(on, k) in &switches {
+        // The lead (before an on, after an off) and the deposit it meets.
+        let (lead, deposit) = if on {
+            (&moves[k - 1], &moves[k])
+        } else {
+            (&moves[k], &moves[k - 1])
+        };
+        assert!(!lead.3 && deposit.3, "{lead:?} {deposit:?}");
+        let ((a, len), (b, _)) = (dir(lead), dir(deposit));
+        assert!(
+            (0..3).all(|i| (a[i] - b[i]).abs() < 1e-3),
+            "{lead:?} {deposit:?}"
+        );
+        assert!(
+            (lead.2 - deposit.2).abs() < 0.05,
+            "the lead runs at the run's feed"
+        );
+        // A lead-in also holds the blending the control may round onto it.
+        let want = ramp(deposit.2) + if on { 0.5 } else { 0.0 };
+        assert!((len - want).abs() < 2e-3, "lead {len} mm, want {want}");
+    }
+    assert_eq!(switches.len(), 2 * 3 * 3, "on and off, 3 runs a layer");
+}
+
 #[test]
 fn padded_g_words_run_in_rs274() {
     // rs274 reads LinuxCNC's dialect only (the vendor profiles are checked as text

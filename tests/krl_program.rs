@@ -78,6 +78,7 @@ fn ring_trace(run: krl_run::Run) -> krl::Trace {
                 laser: m.laser,
                 anout: m.anout,
                 approximated: m.approximated,
+                switch_at_end: false,
                 module: m.module,
             })
             .collect(),
@@ -151,11 +152,12 @@ fn assert_follows(p: &Verified, index: usize, trace: &krl::Trace) {
         assert!(lin.speed <= r.max_speed + 1e-9, "{lin:?} beyond max_speed");
         assert!(lin.pos.iter().chain(&lin.abc).all(|v| v.is_finite()));
     }
-    // Only where the laser switches is a LIN exact; it is on for no travel.
+    // Only where the laser switches is a LIN exact, unless it switches on
+    // the fly at the LIN's end (a lead); it is on for no travel.
     for w in trace.lins.windows(2) {
         if w[0].laser != w[1].laser {
             assert!(
-                !w[0].approximated,
+                !w[0].approximated || w[0].switch_at_end,
                 "switch after an approximated LIN: {w:?}"
             );
         }
@@ -178,6 +180,54 @@ fn planar_program_follows_the_ir() {
     let transitions = 3 * 2;
     let lins = deposits(p.ir()).len() + 3 /* laser-off raster gaps */;
     assert_eq!(trace.lins.len(), lins + 3 * transitions - 1 + 1);
+}
+
+/// With `ramp = lead` every run of deposits starts at the end of a laser-off
+/// LIN at its first speed, collinear with its first deposit and `v²/2a` plus
+/// `$APO.CDIS` long, and ends where a laser-off LIN goes on along its last
+/// deposit `v²/2a` at its speed; the laser switches at those LINs' ends by a
+/// path trigger, the robot going on (the LIN stays approximated).
+#[test]
+fn leads_switch_the_laser_on_the_fly_at_speed() {
+    let mut robot = fixture::robot();
+    robot.acceleration = Some(1000.0);
+    robot.ramp = Ramp::Lead;
+    let p = planar_robot(robot);
+    let (files, trace) = run(&p, 0);
+    assert_follows(&p, 0, &trace);
+    let text: String = files.values().map(String::as_str).collect();
+    assert!(!text.contains("TRIGGER WHEN DISTANCE=0 DELAY=0 DO $OUT"));
+    let lins = &trace.lins;
+    let mut runs = 0;
+    for (i, w) in lins.windows(2).enumerate() {
+        let dir = |a: &krl::Lin, b: &krl::Lin| {
+            let d = [0, 1, 2].map(|k| b.pos[k] - a.pos[k]);
+            let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            (d.map(|c| c / n), n)
+        };
+        if !w[0].laser && w[1].laser {
+            runs += 1;
+            assert!(w[0].approximated && w[0].switch_at_end, "{w:?}");
+            // The lead-in: from the LIN before it, along the first deposit.
+            let (lead, len) = dir(&lins[i - 1], &w[0]);
+            let (first, _) = dir(&w[0], &w[1]);
+            assert!((0..3).all(|k| (lead[k] - first[k]).abs() < 1e-3), "{w:?}");
+            assert!((w[0].speed - w[1].speed).abs() < 1e-6);
+            let want = w[1].speed * w[1].speed / 2000.0 + 0.2;
+            assert!((len - want).abs() < 2e-3, "lead-in {len} mm, want {want}");
+        }
+        if w[0].laser && !w[1].laser {
+            assert!(w[0].approximated && w[0].switch_at_end, "{w:?}");
+            let (last, _) = dir(&lins[i - 1], &w[0]);
+            let (lead, len) = dir(&w[0], &w[1]);
+            assert!((0..3).all(|k| (lead[k] - last[k]).abs() < 1e-3), "{w:?}");
+            let want = w[0].speed * w[0].speed / 2000.0;
+            assert!((len - want).abs() < 2e-3, "lead-out {len} mm, want {want}");
+        }
+    }
+    // Per layer: the contour (the raster joins it), the raster after its
+    // gap, the island.
+    assert_eq!(runs, 3 * 3);
 }
 
 #[test]

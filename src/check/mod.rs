@@ -9,8 +9,9 @@
 //! place, `rules`, and each reports every kind of violation once (how many,
 //! and the worst): the process rules over the IR's points (`process`), a
 //! ring's loop and what a machine needs to run it (`ring`), the layers on each
-//! other (`stacking`), each machine's limits (`machine`, `resolution`, `cell`)
-//! and the files the machines would write (`names`). The machine rules run
+//! other (`stacking`), each machine's limits (`machine`, `resolution`, `cell`),
+//! the metal laid at the speed each machine really reaches (`bump`) and the
+//! files the machines would write (`names`). The machine rules run
 //! whatever the process rules found, so one run reports everything.
 //!
 //! The proof remembers (naga's `ModuleInfo`): the one pass over each plan also
@@ -18,6 +19,7 @@
 //! which the writers' headers and the report read instead of walking the plan
 //! again.
 
+mod bump;
 mod cell;
 mod deposit;
 mod machine;

@@ -2,6 +2,7 @@
 //! new rule is a type implementing [`PlanRule`] or [`ProgramRule`] and one
 //! line here.
 
+use super::bump::DepositBump;
 use super::cell::CellRule;
 use super::deposit::DepositRule;
 use super::machine::{Analog, SpeedLimit, Tilt, Travel};
@@ -112,4 +113,5 @@ plan_rules! {
     resolution: Resolution<'p>,
     cell: CellRule<'p>,
     ring: LoopOnMachine,
+    bump: DepositBump<'p>,
 }

@@ -289,6 +289,8 @@ codes! {
         "gas or powder declared on a CNC whose dialect has no built-in output line (only LinuxCNC's `M64`/`M65`/`M68` are): give `output_on`, `output_off` (and `analog_output`)";
     PowderArrival = "powder-arrival", Machines,
         "the laser would start before the gas has flowed its `pre_flow` or the powder has had its `arrival` time since the feeder started or changed rate";
+    DepositBump = "deposit-bump", Machines,
+        "where a machine with a declared `acceleration` slows down — a run of deposits starting from rest or stopping, a corner its blending cannot round at speed — the powder keeps flowing and the bead grows as 1/v: over a bead width it rises above its layer by more than `rise_tolerance`; says how many places, the worst, by how much and over what length, and the lead, speed, acceleration or blending that would keep it";
     PowderRate = "powder-rate", Machines,
         "a powder feed the feeder's analog rate output cannot write: beyond its `full_scale`, or changing inside a path where the rate cannot follow";
 

@@ -58,10 +58,27 @@
 //! power applies from its start. Paths that join keep the laser on when both
 //! sides deposit: the last point's own flag (off: nothing follows it in its
 //! path) switches nothing, since no move starts there.
+//!
+//! # Leads
+//! A machine with `ramp = lead` (and an `acceleration` `a`) starts every run
+//! of deposits on a lead-in and ends it with a lead-out, so the nozzle is at
+//! speed wherever the laser switches ([`profile`] says why): the
+//! [`MoveKind::LeadIn`] runs, laser off, at the run's first speed `v` onto
+//! its first point along its first move's direction, `v²/2a` long plus the
+//! machine's corner blending (the control may round the corner onto it over
+//! that much), and the laser switches on where it ends; the [`MoveKind::LeadOut`] goes on from
+//! the run's last point along its last move at its speed, `v²/2a` long,
+//! after the laser switched off there. The approach comes down onto the
+//! lead-in's start; a gap inside a path travels to it; where a run's start
+//! is reached along a path that joins (a linked raster's laser-off link) the
+//! nozzle first backs up to it. The retract, travel or cooling after a run
+//! start where its lead-out ends. A ring whose loop runs on the machine gets
+//! no leads (its programs write their own moves).
 
 pub mod kinematics;
+pub mod profile;
 
-use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program, Ring};
+use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program, Ramp, Ring};
 use kinematics::Rotary;
 
 /// A path joins the previous one when it starts within this distance (mm) of
@@ -82,6 +99,13 @@ pub enum MoveKind {
     Retract,
     /// Laser off, between clearance positions or over a gap inside a path.
     Travel,
+    /// Laser off, along the path onto a run's first point at the run's
+    /// first speed, `v²/2a` long: the nozzle is up to speed where the laser
+    /// switches on (`ramp = lead`).
+    LeadIn,
+    /// Laser off, on along a run's last direction from its end at its last
+    /// speed, `v²/2a` long: the nozzle brakes after the laser is off.
+    LeadOut,
 }
 
 /// How fast a move goes.
@@ -297,6 +321,9 @@ pub struct Plan<'a> {
     head: Head,
     clearance: f64,
     cell: &'a Cell,
+    /// The acceleration leads are sized by, and the corner blending a
+    /// lead-in adds, when the machine has leads.
+    lead: Option<(f64, f64)>,
 }
 
 /// The kinematics a CNC program is written for: a machine declared with fewer
@@ -319,12 +346,25 @@ impl<'a> Plan<'a> {
                 k => Head::Tilting(k, c.limits),
             },
         };
+        let common = machine.common();
+        let lead = match (common.ramp, common.acceleration) {
+            (Ramp::Lead, Some(a)) if a > 0.0 && program.loop_on_machine().is_none() => {
+                Some((a, crate::target::blending(machine).0))
+            }
+            _ => None,
+        };
         Plan {
             program,
             head,
-            clearance: machine.common().clearance,
+            clearance: common.clearance,
             cell: machine.cell(),
+            lead,
         }
+    }
+
+    /// Whether runs of deposits start on a lead-in and end with a lead-out.
+    pub fn leads(&self) -> bool {
+        self.lead.is_some()
     }
 
     /// The IR the plan is made from.
@@ -347,12 +387,13 @@ impl<'a> Plan<'a> {
             ends: None,
             end_next: None,
             last: None,
+            run_end: None,
             top: f64::NEG_INFINITY,
         };
         let continuous = self.program.continuous;
         for (li, layer) in self.program.layers.iter().enumerate() {
             if !continuous {
-                w.switch_off();
+                w.end_run();
             }
             if li > 0 {
                 w.cool(li);
@@ -370,7 +411,12 @@ impl<'a> Plan<'a> {
                 if path.points.is_empty() {
                     continue;
                 }
-                w.path(li, pi, &path.points, first);
+                // The path after it in the layer, where a gap may end.
+                let after = layer.paths[pi + 1..]
+                    .iter()
+                    .map(|p| p.points.as_slice())
+                    .find(|p| !p.is_empty());
+                w.path(li, pi, (&path.points, after), first);
                 first = false;
                 w.ends = None;
             }
@@ -449,6 +495,8 @@ struct Walker<'p, 'a, V> {
     end_next: Option<SegmentEnd>,
     /// Where the last move ended.
     last: Option<[f64; 3]>,
+    /// With leads: where the last deposit started, and the move itself.
+    run_end: Option<([f64; 3], Move)>,
     /// The highest point deposited so far (Z, mm): travels with a vertical
     /// nozzle pass at least `clearance` above it.
     top: f64,
@@ -465,6 +513,19 @@ fn f64s(n: [f32; 3]) -> [f64; 3] {
 
 fn along(p: [f64; 3], dir: [f64; 3], d: f64) -> [f64; 3] {
     [p[0] + d * dir[0], p[1] + d * dir[1], p[2] + d * dir[2]]
+}
+
+/// The unit vector from `a` to `b`, if they are apart.
+fn unit(a: [f64; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    (len > JOIN_MM).then(|| d.map(|c| c / len))
+}
+
+/// How long a lead at `v` mm/s is with acceleration `a`: `v²/2a`, mm.
+fn lead_length(v: f32, a: f64) -> f64 {
+    let v = v as f64;
+    v * v / (2.0 * a)
 }
 
 impl<V: Visit> Walker<'_, '_, V> {
@@ -491,6 +552,9 @@ impl<V: Visit> Walker<'_, '_, V> {
         if on {
             let from = self.last.map_or(m.to[2], |p| p[2]);
             self.top = self.top.max(m.to[2]).max(from);
+            if self.plan.lead.is_some() {
+                self.run_end = self.last.map(|p| (p, m));
+            }
         }
         self.last = Some(m.to);
         if on != self.laser {
@@ -517,7 +581,15 @@ impl<V: Visit> Walker<'_, '_, V> {
         [n[0] / len, n[1] / len, n[2] / len]
     }
 
-    fn path(&mut self, li: usize, pi: usize, pts: &[Point], first_in_layer: bool) {
+    /// The path `pts` (layer `li`, path `pi`), `after` the next one in its
+    /// layer.
+    fn path(
+        &mut self,
+        li: usize,
+        pi: usize,
+        (pts, after): (&[Point], Option<&[Point]>),
+        first_in_layer: bool,
+    ) {
         let first = &pts[0];
         let mut cur = match self.cursor {
             Some(c) if !first_in_layer && joins(c.focus, c.normal, first) => c,
@@ -527,7 +599,8 @@ impl<V: Visit> Walker<'_, '_, V> {
                     .iter()
                     .find(|p| p.laser_on)
                     .map(|p| p.powder);
-                self.transition(li, pi, first, pts.len() > 1 && first.laser_on, powder)
+                let feed_in = pts.get(1).filter(|_| first.laser_on);
+                self.transition(li, pi, first, feed_in, powder)
             }
         };
         self.retracted = false;
@@ -544,26 +617,41 @@ impl<V: Visit> Walker<'_, '_, V> {
                 // A start after a gap inside a path, or a rate change there.
                 self.prepare(from.powder);
             }
-            let (kind, speed) = if from.laser_on {
-                (MoveKind::Deposit, Speed::Feed(from.speed))
+            let at = Where::Point {
+                layer: li,
+                path: pi,
+                point: k + 1,
+            };
+            let (kind, speed, target) = if from.laser_on {
+                if !self.laser {
+                    self.lead_in((li, pi, k), from, to, cur);
+                }
+                (MoveKind::Deposit, Speed::Feed(from.speed), to.focus())
             } else {
-                (MoveKind::Travel, Speed::Rapid)
+                self.end_run();
+                // A gap ends where the next run's lead-in starts: in this
+                // path, or in the next where it joins this one's end.
+                let start = match pts.get(k + 2) {
+                    Some(n) if to.laser_on => self.lead_start(to, n),
+                    Some(_) => None,
+                    None => after
+                        .filter(|a| a.len() > 1 && a[0].laser_on)
+                        .filter(|a| joins(to.focus(), to.normal, &a[0]))
+                        .and_then(|a| self.lead_start(&a[0], &a[1])),
+                };
+                (MoveKind::Travel, Speed::Rapid, start.unwrap_or(to.focus()))
             };
             if let Some(ends) = self.ends {
                 self.end_next = ends.at(k + 1);
             }
             self.send(Move {
                 kind,
-                to: to.focus(),
+                to: target,
                 normal: to.normal,
                 axes: cur.axes,
                 speed,
                 power: from.power,
-                at: Where::Point {
-                    layer: li,
-                    path: pi,
-                    point: k + 1,
-                },
+                at,
             });
         }
         cur.focus = pts[pts.len() - 1].focus();
@@ -571,15 +659,19 @@ impl<V: Visit> Walker<'_, '_, V> {
     }
 
     /// Retract, travel above `first`, get gas and powder ready for a path
-    /// that deposits at `powder` g/min, approach. Returns the cursor at `first`.
+    /// that deposits at `powder` g/min, approach. A path that deposits from
+    /// `first` on to `second` is approached at its speed, onto its lead-in's
+    /// start where it has one. Returns the cursor at `first`.
     fn transition(
         &mut self,
         li: usize,
         pi: usize,
         first: &Point,
-        feed_in: bool,
+        second: Option<&Point>,
         powder: Option<f32>,
     ) -> Cursor {
+        self.end_run();
+        let feed_in = second.is_some();
         let clearance = Where::Clearance {
             layer: li,
             path: pi,
@@ -595,45 +687,9 @@ impl<V: Visit> Walker<'_, '_, V> {
             _ => Rotary::default(),
         };
         let f0 = first.focus();
-        let above = along(f0, self.up(first.normal), self.plan.clearance);
-        // With the nozzle vertical at both ends, the travel passes at least
-        // `clearance` above everything built so far: a straight line between
-        // the two clearance points could cut through a ridge of an earlier
-        // layer (a top that is higher in the middle than at the tracks' ends).
-        let vertical = |n: [f64; 3]| n[2] >= 1.0 - 1e-9;
-        let safe = self.top + self.plan.clearance;
-        let lift = match (self.last, self.cursor) {
-            (Some(from), Some(c))
-                if vertical(self.up(c.normal))
-                    && vertical(self.up(first.normal))
-                    && from[2].min(above[2]) < safe - 1e-6 =>
-            {
-                Some((from, c.normal))
-            }
-            _ => None,
-        };
-        if let Some((from, normal)) = lift {
-            if from[2] < safe {
-                self.send(Move {
-                    kind: MoveKind::Travel,
-                    to: [from[0], from[1], safe],
-                    normal,
-                    axes: prev,
-                    speed: Speed::Rapid,
-                    power: first.power,
-                    at: clearance,
-                });
-            }
-            self.send(Move {
-                kind: MoveKind::Travel,
-                to: [above[0], above[1], safe.max(above[2])],
-                normal: first.normal,
-                axes,
-                speed: Speed::Rapid,
-                power: first.power,
-                at: clearance,
-            });
-        }
+        let entry = second.and_then(|n| self.lead_start(first, n)).unwrap_or(f0);
+        let above = along(entry, self.up(first.normal), self.plan.clearance);
+        self.over_the_top(first, above, (prev, axes), clearance);
         self.send(Move {
             kind: MoveKind::Travel,
             to: above,
@@ -648,7 +704,7 @@ impl<V: Visit> Walker<'_, '_, V> {
         }
         self.send(Move {
             kind: MoveKind::Approach,
-            to: f0,
+            to: entry,
             normal: first.normal,
             axes,
             speed: if feed_in {
@@ -672,6 +728,56 @@ impl<V: Visit> Walker<'_, '_, V> {
         c
     }
 
+    /// With the nozzle vertical at both ends, the travel to `above` (the
+    /// clearance point over the next path's `first` point) passes at least
+    /// `clearance` above everything built so far: a straight line between
+    /// the two clearance points could cut through a ridge of an earlier
+    /// layer (a top that is higher in the middle than at the tracks' ends).
+    /// Rises there and crosses, with the head at `axes` (before, after).
+    fn over_the_top(
+        &mut self,
+        first: &Point,
+        above: [f64; 3],
+        (prev, axes): (Rotary, Rotary),
+        clearance: Where,
+    ) {
+        let vertical = |n: [f64; 3]| n[2] >= 1.0 - 1e-9;
+        let safe = self.top + self.plan.clearance;
+        let lift = match (self.last, self.cursor) {
+            (Some(from), Some(c))
+                if vertical(self.up(c.normal))
+                    && vertical(self.up(first.normal))
+                    && from[2].min(above[2]) < safe - 1e-6 =>
+            {
+                Some((from, c.normal))
+            }
+            _ => None,
+        };
+        let Some((from, normal)) = lift else {
+            return;
+        };
+        if from[2] < safe {
+            self.send(Move {
+                kind: MoveKind::Travel,
+                to: [from[0], from[1], safe],
+                normal,
+                axes: prev,
+                speed: Speed::Rapid,
+                power: first.power,
+                at: clearance,
+            });
+        }
+        self.send(Move {
+            kind: MoveKind::Travel,
+            to: [above[0], above[1], safe.max(above[2])],
+            normal: first.normal,
+            axes,
+            speed: Speed::Rapid,
+            power: first.power,
+            at: clearance,
+        });
+    }
+
     /// Before layer `next`: dwell, retracted, for the declared interlayer
     /// dwell or what the last layer fell short of the minimum layer time.
     /// Rapid moves count as instant, so the real layer time is at least the
@@ -682,6 +788,7 @@ impl<V: Visit> Walker<'_, '_, V> {
         if wait <= 0.0 {
             return;
         }
+        self.end_run();
         if let Some(c) = self.cursor.filter(|_| !self.retracted) {
             self.retract(
                 c,
@@ -747,6 +854,80 @@ impl<V: Visit> Walker<'_, '_, V> {
         }
     }
 
+    /// Where the lead-in of a run from `p` on to `next` starts, with leads:
+    /// `v²/2a` and the blending back along the run's first move.
+    fn lead_start(&self, p: &Point, next: &Point) -> Option<[f64; 3]> {
+        let (a, blend) = self.plan.lead?;
+        let (f, dir) = (p.focus(), unit(p.focus(), next.focus())?);
+        // The control may round the corner onto the lead-in (the approach,
+        // a back-up) over up to `blend` of it: the ramp comes after that.
+        Some(along(f, dir, -(lead_length(p.speed, a) + blend)))
+    }
+
+    /// Before the run that deposits from `from` (layer, path and point
+    /// `(layer, path, point)`) on to `to`, with leads: the lead-in onto
+    /// `from`, backing up to its start first where the nozzle is not there
+    /// (a run reached along a path that joins).
+    fn lead_in(
+        &mut self,
+        (layer, path, point): (usize, usize, usize),
+        from: &Point,
+        to: &Point,
+        cur: Cursor,
+    ) {
+        let Some(start) = self.lead_start(from, to) else {
+            return;
+        };
+        let at = Where::Point { layer, path, point };
+        let lead = |kind, to, speed| Move {
+            kind,
+            to,
+            normal: from.normal,
+            axes: cur.axes,
+            speed,
+            power: from.power,
+            at,
+        };
+        let away = self.last.map_or(f64::INFINITY, |l| {
+            (0..3).map(|i| (l[i] - start[i]).powi(2)).sum::<f64>()
+        });
+        if away > JOIN_MM * JOIN_MM {
+            self.send(lead(MoveKind::Travel, start, Speed::Rapid));
+        }
+        self.send(lead(
+            MoveKind::LeadIn,
+            from.focus(),
+            Speed::Feed(from.speed),
+        ));
+    }
+
+    /// Ends the run of deposits under way, if any: with leads by its
+    /// lead-out (the laser switches off where it starts), else by switching
+    /// the laser off where the nozzle stands.
+    fn end_run(&mut self) {
+        if !self.laser {
+            return;
+        }
+        let lead = self.plan.lead.zip(self.run_end.take());
+        let Some(((a, _), (from, m))) = lead else {
+            self.switch_off();
+            return;
+        };
+        let (Speed::Feed(v), Some(dir)) = (m.speed, unit(from, m.to)) else {
+            self.switch_off();
+            return;
+        };
+        let to = along(m.to, dir, lead_length(v, a));
+        self.send(Move {
+            kind: MoveKind::LeadOut,
+            to,
+            ..m
+        });
+        if let Some(c) = self.cursor.as_mut() {
+            c.focus = to;
+        }
+    }
+
     fn retract(&mut self, c: Cursor, at: Where) {
         let to = along(c.focus, self.up(c.normal), self.plan.clearance);
         self.send(Move {
@@ -762,7 +943,7 @@ impl<V: Visit> Walker<'_, '_, V> {
 
     /// After the last path: laser off and retract.
     fn end(&mut self) {
-        self.switch_off();
+        self.end_run();
         if let Some(c) = self.cursor.filter(|_| !self.retracted) {
             self.retract(c, Where::End);
         }

@@ -97,6 +97,36 @@ pub struct DepositCheck {
     pub max_drift_mm: f64,
 }
 
+/// How the speeds the machine reaches were modelled: the deposit rule's
+/// assumptions ([`crate::plan::profile`]). The report's times are the
+/// programmed speeds' in any case.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Reached {
+    /// The machine's declared path acceleration, mm/s² (`None`: the
+    /// programmed speeds are taken as reached, and nothing was checked).
+    pub acceleration_mm_s2: Option<f64>,
+    /// The corner blending the profile assumes, mm.
+    pub blending_mm: f64,
+    /// Where that blending comes from.
+    pub blending_from: &'static str,
+    /// Whether runs of deposits start on lead-ins and end with lead-outs.
+    pub leads: bool,
+}
+
+impl Reached {
+    /// What the plan of `machine` assumes.
+    fn of(machine: VerifiedMachine<'_>) -> Reached {
+        let m = machine.machine();
+        let (blending_mm, blending_from) = crate::target::blending(m);
+        Reached {
+            acceleration_mm_s2: m.common().acceleration,
+            blending_mm,
+            blending_from,
+            leads: machine.plan().leads(),
+        }
+    }
+}
+
 /// The whole report of one machine's plan.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Report {
@@ -110,6 +140,8 @@ pub struct Report {
     pub machine: String,
     /// Rapid moves are timed at this speed (the machine's `max_speed`), mm/s.
     pub rapid_mm_s: f64,
+    /// How the speeds the machine reaches were modelled.
+    pub reached: Reached,
     /// Per layer, in build order.
     pub layers: Vec<Row>,
     /// The whole plan.
@@ -226,6 +258,7 @@ impl Report {
             part: program.part.clone(),
             machine: machine.machine().name().to_string(),
             rapid_mm_s: summary.rapid_mm_s,
+            reached: Reached::of(machine),
             layers: rows
                 .iter()
                 .enumerate()

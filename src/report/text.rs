@@ -59,6 +59,25 @@ fn row(out: &mut String, label: &str, t: &Tally, volumes: bool) {
     out.push('\n');
 }
 
+/// What the deposit was checked at: the speeds reached, or the programmed
+/// ones taken as reached.
+fn reached(r: &super::Reached) -> String {
+    let Some(a) = r.acceleration_mm_s2 else {
+        return "no `acceleration` declared: the programmed speeds are taken as reached".into();
+    };
+    format!(
+        "the deposit checked at the speeds reached with {} mm/s² and a blending of {} mm ({}){}",
+        trimmed(a, 1),
+        trimmed(r.blending_mm, 3),
+        r.blending_from,
+        if r.leads {
+            ", runs started and stopped on leads"
+        } else {
+            ", runs starting and stopping at rest"
+        }
+    )
+}
+
 /// The whole report as text.
 pub fn render(r: &Report) -> String {
     let mut out = String::new();
@@ -66,12 +85,13 @@ pub fn render(r: &Report) -> String {
     let n = r.layers.len();
     let _ = writeln!(
         out,
-        "{} on {}: {} layer{} (moves at their programmed speeds, rapids at {} mm/s; accelerations not modelled)\n",
+        "{} on {}: {} layer{} (moves timed at their programmed speeds, rapids at {} mm/s; {})\n",
         r.part,
         r.machine,
         n,
         if n == 1 { "" } else { "s" },
-        trimmed(r.rapid_mm_s, 3)
+        trimmed(r.rapid_mm_s, 3),
+        reached(&r.reached)
     );
     let _ = write!(
         out,

@@ -250,6 +250,12 @@ impl<'a> Fields<'a> {
             .collect()
     }
 
+    /// Where the block is: what a check points at when the field it is
+    /// about is not written.
+    pub fn block_span(&self) -> Span {
+        self.at
+    }
+
     /// An optional field as read: `Some(None)` when the block does not write
     /// `f`, `None` when it is written but wrong (reported already), else
     /// `Some(Some(value))`.

@@ -109,3 +109,74 @@ pub fn profile(name: &str) -> Option<Dialect> {
         _ => return None,
     })
 }
+
+/// The line that sets a declared corner blending of `{mm}` on a profile's
+/// control, if lmdc knows one: LinuxCNC's `G64 P` (a path tolerance: a
+/// blend that starts `d` before a corner of turn θ leaves the path by
+/// `d·tan(θ/4) ≤ d`, so the control rounds at least as much as declared)
+/// and Sinumerik's `G641 ADIS=` (the rounding distance itself).
+pub fn blending_line(profile: &str) -> Option<&'static str> {
+    match profile {
+        "linuxcnc" => Some("G64 P{mm}"),
+        "sinumerik840d" => Some("G641 ADIS={mm}"),
+        _ => None,
+    }
+}
+
+/// Whether a dialect's laser lines switch while the machine moves on, so a
+/// lead-in brings the nozzle through the switch at speed: LinuxCNC's
+/// `M62 P…`/`M63 P…` switch a motion-synchronised output at the start of
+/// the next move. Spindle words (`M3`/`M5`) and the other controls' lines
+/// are taken to wait for the motion to stop, as LinuxCNC's `M3`/`M5` do.
+pub fn laser_on_the_fly(d: &Dialect) -> bool {
+    let word = |line: &str, m: &str| line.split_whitespace().next() == Some(m);
+    d.profile == "linuxcnc" && word(&d.laser_on, "M62") && word(&d.laser_off, "M63")
+}
+
+/// The blending a program's preamble sets up, mm: LinuxCNC's `G64 P…` or
+/// Sinumerik's `ADIS=…`, the last one written; `None` when it sets none.
+pub fn preamble_blending(preamble: &[String]) -> Option<f64> {
+    let mut found = None;
+    for line in preamble {
+        let mut words = line.split_whitespace().peekable();
+        while let Some(w) = words.next() {
+            let value = match w {
+                "G64" => words.peek().and_then(|p| p.strip_prefix('P')),
+                _ => w.strip_prefix("ADIS="),
+            };
+            if let Some(v) = value.and_then(|v| v.parse::<f64>().ok()) {
+                found = Some(v.max(0.0));
+            }
+        }
+    }
+    found
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_built_in_preambles_say_which_blending_they_set() {
+        let preamble = |p: &str| profile(p).unwrap().preamble;
+        assert_eq!(preamble_blending(&preamble("linuxcnc")), Some(0.02));
+        assert_eq!(preamble_blending(&preamble("sinumerik840d")), None);
+        let lines = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        assert_eq!(
+            preamble_blending(&lines(&["G64 P0.1", "G642 ADIS=0.3"])),
+            Some(0.3)
+        );
+        assert_eq!(preamble_blending(&lines(&["G64"])), None);
+    }
+
+    #[test]
+    fn only_motion_synchronised_outputs_switch_on_the_fly() {
+        let mut d = profile("linuxcnc").unwrap();
+        assert!(!laser_on_the_fly(&d), "M3/M5 wait for the motion");
+        d.laser_on = "M62 P0".into();
+        d.laser_off = "M63 P0".into();
+        assert!(laser_on_the_fly(&d));
+        d.profile = "sinumerik840d".into();
+        assert!(!laser_on_the_fly(&d));
+    }
+}

@@ -14,6 +14,11 @@ pub const VEL_DECIMALS: usize = 6;
 /// Decimals of `$ANOUT` (fraction of full scale).
 pub const ANOUT_DECIMALS: usize = 4;
 
+/// `$APO.CDIS` lmdc writes when a robot declares no `blending`, mm: small
+/// against a bead width, large enough that the controller keeps the path
+/// speed over millimetre-spaced points.
+pub const APO_CDIS_MM: f64 = 0.2;
+
 /// KRL keywords a name made of the part and machine could collide with.
 pub const RESERVED: &[&str] = &[
     "C_DIS", "C_ORI", "C_PTP", "C_VEL", "C_SPL", "WAIT_SEC", "SPTP_REL", "SLIN_REL",

@@ -9,6 +9,24 @@ pub mod gcode;
 pub mod kuka;
 pub mod names;
 
+use crate::ir::Machine;
+
+/// The corner blending a machine's program runs with, mm, and where that
+/// number comes from (for the report and the messages).
+pub fn blending(m: &Machine) -> (f64, &'static str) {
+    if let Some(d) = m.common().blending {
+        return (d, "declared");
+    }
+    match m {
+        Machine::Robot(_) => (kuka::APO_CDIS_MM, "the `$APO.CDIS` lmdc writes"),
+        Machine::Cnc(c) => match gcode::preamble_blending(&c.dialect.preamble) {
+            Some(d) => (d, "set by the preamble"),
+            // An unknown mode is taken as the worst: an exact stop.
+            None => (0.0, "none known: an exact stop at every corner"),
+        },
+    }
+}
+
 /// `v` rounded to `decimals` digits (half away from zero): the value a control
 /// reads where a program writes `v` with that many decimals.
 pub fn written(v: f64, decimals: usize) -> f64 {

@@ -28,6 +28,8 @@ pub struct Lin {
     pub anout: f64,
     /// Ends with `C_DIS`.
     pub approximated: bool,
+    /// The laser switches at its end point, by a `TRIGGER WHEN PATH=0`.
+    pub switch_at_end: bool,
     /// Module it is in.
     pub module: String,
 }
@@ -191,6 +193,10 @@ fn strip_comment(l: &str) -> &str {
 enum Trig {
     Laser(bool),
     Power(f64),
+    /// `TRIGGER WHEN PATH=0`: at the end point of its motion, the robot
+    /// going on (a lead's switch on the fly).
+    LaserAtEnd(bool),
+    PowerAtEnd(f64),
 }
 
 impl State<'_> {
@@ -270,7 +276,9 @@ impl State<'_> {
             self.vel = Some(v);
             return Ok(false);
         }
-        if let Some(t) = l.strip_prefix("TRIGGER WHEN DISTANCE=0 DELAY=0 DO ") {
+        let start = l.strip_prefix("TRIGGER WHEN DISTANCE=0 DELAY=0 DO ");
+        let end = l.strip_prefix("TRIGGER WHEN PATH=0 DELAY=0 DO ");
+        if let Some(t) = start.or(end) {
             let (lhs, rhs) = t.split_once('=').ok_or("TRIGGER without assignment")?;
             if lhs == out {
                 let on = match rhs {
@@ -278,13 +286,21 @@ impl State<'_> {
                     "FALSE" => false,
                     _ => return Err(format!("{out} needs TRUE/FALSE")),
                 };
-                triggers.push(Trig::Laser(on));
+                triggers.push(if end.is_some() {
+                    Trig::LaserAtEnd(on)
+                } else {
+                    Trig::Laser(on)
+                });
             } else if lhs == anout {
                 let x = number(rhs)?;
                 if !(0.0..=1.0).contains(&x) {
                     return Err(format!("{anout} = {x} outside 0..1"));
                 }
-                triggers.push(Trig::Power(x));
+                triggers.push(if end.is_some() {
+                    Trig::PowerAtEnd(x)
+                } else {
+                    Trig::Power(x)
+                });
             } else {
                 return Err(format!("TRIGGER sets `{lhs}`, neither {out} nor {anout}"));
             }
@@ -303,6 +319,7 @@ impl State<'_> {
                 }
             }
             let vel = self.vel.ok_or("LIN before any $VEL.CP in this module")?;
+            let mut at_end = Vec::new();
             for t in triggers.drain(..) {
                 match t {
                     Trig::Laser(on) => {
@@ -312,6 +329,7 @@ impl State<'_> {
                         self.laser = on;
                     }
                     Trig::Power(x) => self.anout = x,
+                    t => at_end.push(t),
                 }
             }
             self.trace.events.push(Event::Lin(self.trace.lins.len()));
@@ -327,8 +345,21 @@ impl State<'_> {
                 laser: self.laser,
                 anout: self.anout,
                 approximated: approx,
+                switch_at_end: at_end.iter().any(|t| matches!(t, Trig::LaserAtEnd(_))),
                 module: module.to_string(),
             });
+            for t in at_end {
+                match t {
+                    Trig::LaserAtEnd(on) => {
+                        if on == self.laser {
+                            return Err("TRIGGER switches the laser to the state it has".into());
+                        }
+                        self.laser = on;
+                    }
+                    Trig::PowerAtEnd(x) => self.anout = x,
+                    _ => {}
+                }
+            }
             return Ok(false);
         }
         if !triggers.is_empty() {

@@ -21,7 +21,7 @@ use crate::check::VerifiedMachine;
 use crate::ir::{Cell, Cnc, Kinematics, Layer, Program};
 use crate::numbers::trimmed;
 use crate::plan::{effective_kinematics, Io, Move, Speed, Visit};
-use crate::target::gcode::RATE_DECIMALS;
+use crate::target::gcode::{blending_line, RATE_DECIMALS};
 use crate::target::names::gcode_file;
 use dialect::{comment_safe, delimiters, Words};
 use writer::{Stats, Writer};
@@ -241,6 +241,12 @@ fn header_context(ctx: &mut tera::Context, prog: &Program, cnc: &Cnc, five: bool
     ctx.insert("s_decimals", &cnc.dialect.s_decimals);
     ctx.insert("clearance", &trimmed(cnc.clearance, 3));
     ctx.insert("preamble", &cnc.dialect.preamble);
+    // A declared blending, in the line the control takes it with.
+    let blending = match (cnc.blending, blending_line(&cnc.dialect.profile)) {
+        (Some(d), Some(line)) => line.replace("{mm}", &trimmed(d, 3)),
+        _ => String::new(),
+    };
+    ctx.insert("blending", &blending);
     let p = cnc.placement;
     let work_offset = match p.work_offset {
         1..=6 => format!("G{}", 53 + p.work_offset),

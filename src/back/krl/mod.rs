@@ -24,7 +24,7 @@ use super::{EmitError, Sink, Templates};
 use crate::check::VerifiedMachine;
 use crate::ir::{FrameRef, Layer, Robot, ToolAxis};
 use crate::numbers::{fixed, trimmed};
-use crate::plan::{Io, Move, Speed, Visit};
+use crate::plan::{Io, Move, MoveKind, Speed, Visit};
 use crate::target::kuka;
 use crate::target::names::KrlNames;
 use modules::{Modules, Switch};
@@ -34,9 +34,8 @@ use std::io::Write;
 /// Longest KRL name (module, DEF and DEFDAT names).
 pub const MAX_NAME: usize = kuka::MAX_NAME;
 
-/// Rounding distance of `C_DIS`, mm: small against a bead width, large enough
-/// that the controller keeps the path speed over millimetre-spaced points.
-pub const APPROX_MM: f64 = 0.2;
+/// Rounding distance of `C_DIS` when the robot declares no `blending`, mm.
+pub const APPROX_MM: f64 = kuka::APO_CDIS_MM;
 
 /// Speed of the move from home to the first point, % of the axes' maximum.
 pub const HOME_PERCENT: u32 = 20;
@@ -93,6 +92,7 @@ pub fn emit(
         switch: None,
         anout: None,
         power_bits: 0,
+        last: None,
         error: None,
     };
     m.plan().walk(&mut w);
@@ -142,6 +142,8 @@ struct Writer<'a, 's> {
     anout: Option<i64>,
     /// The power (f32 bits) it was set for.
     power_bits: u32,
+    /// What the last motion was for.
+    last: Option<MoveKind>,
     error: Option<EmitError>,
 }
 
@@ -175,12 +177,19 @@ impl Visit for Writer<'_, '_> {
         }
     }
 
-    fn laser_on(&mut self, _next: &Move) {
+    fn laser_on(&mut self, next: &Move) {
+        if self.last == Some(MoveKind::LeadIn) {
+            // On the fly, where the lead-in ends, at the run's power.
+            let x = self.power(next.power);
+            self.out.switch_at_end(x, Switch::On);
+            return;
+        }
         self.switch = Some(Switch::On);
     }
 
     fn laser_off(&mut self) {
-        // Attached to the next motion's start: the end point of the last deposit.
+        // Attached to the next motion's start: the end point of the last
+        // deposit (on the fly when that motion is a lead-out).
         self.switch = Some(Switch::Off);
     }
 
@@ -213,7 +222,13 @@ impl Visit for Writer<'_, '_> {
         };
         let deposit = m.deposits();
         let x = if deposit { self.power(m.power) } else { None };
+        if m.kind == MoveKind::LeadOut && self.switch == Some(Switch::Off) {
+            // Off where the last deposit ends, the robot going on.
+            self.switch = None;
+            self.out.switch_at_end(None, Switch::Off);
+        }
         let s = self.switch.take();
+        self.last = Some(m.kind);
         self.out.lin(m.to, self.abc, speed, x, s, deposit);
     }
 }
@@ -324,7 +339,10 @@ fn main_context(ctx: &mut tera::Context, m: VerifiedMachine<'_>, robot: &Robot, 
     ctx.insert("full_scale", &trimmed(robot.full_scale_power, 3));
     ctx.insert("max_speed", &trimmed(robot.max_speed / 1000.0, 6));
     ctx.insert("clearance", &trimmed(robot.clearance, 3));
-    ctx.insert("approximation", &trimmed(APPROX_MM, 3));
+    ctx.insert(
+        "approximation",
+        &trimmed(robot.blending.unwrap_or(APPROX_MM), 3),
+    );
     ctx.insert("home_percent", &HOME_PERCENT);
     let home: Vec<String> = robot
         .home

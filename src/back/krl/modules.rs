@@ -56,6 +56,8 @@ pub struct Modules<'a> {
     lines: usize,
     /// The last LIN line awaits its approximation word.
     pending: bool,
+    /// Where that LIN line starts in `body`.
+    lin_at: usize,
     /// The advance run stopped after the last motion (a `WAIT SEC`).
     at_rest: bool,
     /// `$VEL.CP` written in this module, as a [`key`].
@@ -103,6 +105,7 @@ impl<'a> Modules<'a> {
             body: Vec::with_capacity(1 << 16),
             lines: 0,
             pending: false,
+            lin_at: 0,
             at_rest: false,
             vel: None,
             abc_last: None,
@@ -205,6 +208,7 @@ impl<'a> Modules<'a> {
             self.abc_len = at + 1;
         }
         // One line, formatted in place on the stack and appended with one copy.
+        self.lin_at = self.body.len();
         let mut line = [0u8; LINE];
         line[..7].copy_from_slice(b"LIN {X ");
         let mut at = put_fixed(&mut line, 7, pos[0], POS_DECIMALS);
@@ -221,6 +225,37 @@ impl<'a> Modules<'a> {
         if deposit {
             self.stats.deposits += 1;
         }
+    }
+
+    /// Switches the laser (after setting the power `anout`, when given) at
+    /// the end point of the LIN written last, while the robot moves on: a
+    /// `TRIGGER WHEN PATH=0` before that LIN, which stays approximated. A
+    /// path trigger refers to the motion's end point, or where it is
+    /// approximated to the point of the approximation contour closest to
+    /// it: on a lead, which goes on straight, the end point itself.
+    pub fn switch_at_end(&mut self, anout: Option<f64>, switch: Switch) {
+        if !self.pending {
+            return;
+        }
+        let mut t = Vec::with_capacity(128);
+        if let Some(x) = anout {
+            t.extend_from_slice(b"TRIGGER WHEN PATH=0 DELAY=0 DO $ANOUT[");
+            push_u64(&mut t, self.power_out as u64);
+            t.extend_from_slice(b"]=");
+            push_fixed(&mut t, x, ANOUT_DECIMALS);
+            t.push(b'\n');
+        }
+        t.extend_from_slice(b"TRIGGER WHEN PATH=0 DELAY=0 DO $OUT[");
+        push_u64(&mut t, self.laser_out as u64);
+        t.extend_from_slice(match switch {
+            Switch::On => b"]=TRUE\n",
+            Switch::Off => b"]=FALSE\n",
+        });
+        if switch == Switch::On {
+            self.stats.laser_ons += 1;
+        }
+        let at = self.lin_at.min(self.body.len());
+        self.body.splice(at..at, t);
     }
 
     /// `WAIT SEC seconds`: the robot stands still (the advance run stops there,

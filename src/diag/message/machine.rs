@@ -290,3 +290,28 @@ pub fn output_line_hole(key: &str, hole: &str, at: Span, example: &str) -> Diagn
         example
     ))
 }
+
+/// `blending` is `mm`, below zero or beyond `max` mm.
+pub fn blending_out_of_range(mm: f64, at: Span, max: f64) -> Diagnostic {
+    let (code, what) = if mm < 0.0 {
+        (Code::NotPositive, "a rounding distance cannot be negative")
+    } else {
+        (Code::OutOfRange, "far beyond a control's corner rounding")
+    };
+    Diagnostic::error(code, format!("`blending` is {} mm: {what}", short(mm)))
+        .label(at, "the corner blending")
+        .help(format!(
+            "how far before a corner the control may leave the path to round it, from 0 mm (an exact stop) to {} mm, e.g. `blending = 0.5 mm`",
+            short(max)
+        ))
+}
+
+/// `ramp = lead` without an `acceleration` to size the lead by.
+pub fn lead_without_acceleration(ramp: Option<Span>, block: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::MissingField,
+        "`ramp = lead` needs the machine's `acceleration`: a lead-in is as long as the nozzle takes to reach its speed, v²/2a",
+    )
+    .label(ramp.unwrap_or(block), "a lead-in and a lead-out")
+    .help("add the path acceleration the control plans with, e.g. `acceleration = 1000 mm/s^2`")
+}

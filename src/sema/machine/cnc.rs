@@ -12,7 +12,7 @@ use super::super::schema::machine::{
 };
 use super::super::schema::Field;
 use super::super::value::Value;
-use super::{common, height_sensor, limits_block, Written};
+use super::{common, height_sensor, limits_block, motion, Written};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{AxisLimits, Cnc, Dialect, FeedUnit, Kinematics, Machine, Placement};
 use crate::span::Span;
@@ -71,12 +71,13 @@ fn cnc(
         None => Some(DEFAULT_LIMITS),
     };
     let placement = placement(f, diags);
+    let moves = motion(f, diags);
     let sensor = height_sensor(f, 0, dialect::MAX_ANALOG_INPUT, diags);
     if !text_ok {
         return None;
     }
     Some(Cnc {
-        common: common(name, vmax.map(|v| v.0), clearance, sensor)?,
+        common: common(name, vmax.map(|v| v.0), clearance, sensor, moves)?,
         axes: axes?,
         kinematics: kin?,
         dialect: d?,

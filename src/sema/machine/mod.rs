@@ -9,11 +9,12 @@ mod robot;
 use super::eval::Env;
 use super::fields::{self, Fields};
 use super::schema::machine::{
-    self as schema, HEIGHT_DELAY, HEIGHT_FULL_SCALE, HEIGHT_INPUT, LIMITS, LIMITS_BLOCK, MACHINE,
+    self as schema, ACCELERATION, BLENDING, HEIGHT_DELAY, HEIGHT_FULL_SCALE, HEIGHT_INPUT, LIMITS,
+    LIMITS_BLOCK, MACHINE, MAX_BLENDING_MM, RAMP,
 };
 use super::schema::Field;
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Cell, HeightSensor, Machine, MachineCommon};
+use crate::ir::{Cell, HeightSensor, Machine, MachineCommon, Ramp};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 
@@ -92,13 +93,57 @@ fn common(
     max_speed: Option<f64>,
     clearance: Option<f64>,
     height_sensor: Option<Option<HeightSensor>>,
+    motion: Option<Motion>,
 ) -> Option<MachineCommon> {
+    let motion = motion?;
     Some(MachineCommon {
         name: name.to_string(),
         max_speed: max_speed?,
         clearance: clearance?,
         cell: Cell::default(),
         height_sensor: height_sensor?,
+        acceleration: motion.acceleration,
+        blending: motion.blending,
+        ramp: motion.ramp,
+    })
+}
+
+/// How a machine moves along a path and starts and stops a bead: its
+/// `acceleration`, `blending` and `ramp`.
+struct Motion {
+    acceleration: Option<f64>,
+    blending: Option<f64>,
+    ramp: Ramp,
+}
+
+/// Reads `acceleration`, `blending` and `ramp` (a lead is sized by the
+/// acceleration: `ramp = lead` needs one).
+fn motion(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Motion> {
+    let acceleration = f.quantity(&ACCELERATION, diags).map(|q| q.0);
+    let blending = f
+        .bounded(
+            &BLENDING,
+            |mm, at| message::machine::blending_out_of_range(mm, at, MAX_BLENDING_MM),
+            diags,
+        )
+        .map(|q| q.0);
+    let ramp = match f.word_or_default(&RAMP, diags)? {
+        "lead" => Ramp::Lead,
+        _ => Ramp::None,
+    };
+    let acceleration = f.optional(&ACCELERATION, acceleration)?;
+    let blending = f.optional(&BLENDING, blending)?;
+    if ramp == Ramp::Lead && acceleration.is_none() && !f.has(&ACCELERATION) {
+        diags.push(message::machine::lead_without_acceleration(
+            f.span(&RAMP),
+            f.block_span(),
+        ));
+        return None;
+    }
+    Some(Motion {
+        acceleration,
+        blending,
+        ramp,
     })
 }
 

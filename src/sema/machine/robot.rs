@@ -9,7 +9,7 @@ use super::super::schema::machine::{
 };
 use super::super::schema::Field;
 use super::super::value::Value;
-use super::{common, height_sensor, Written};
+use super::{common, height_sensor, motion, Written};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{FrameRef, Machine, Pose, Robot, ToolAxis};
 use crate::span::Span;
@@ -77,9 +77,10 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
     let clearance = f.quantity_or_default(&CLEARANCE, diags);
     let lines = f.count_or_default(&MODULE_LINES, diags);
     let home = home(f, diags);
+    let moves = motion(f, diags);
     let sensor = height_sensor(f, 1, kuka::MAX_ANIN, diags);
     Some(Robot {
-        common: common(name, vmax.map(|v| v.0), clearance, sensor)?,
+        common: common(name, vmax.map(|v| v.0), clearance, sensor, moves)?,
         tool: tool?,
         base: base?,
         beam: beam?,

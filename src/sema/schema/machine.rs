@@ -58,6 +58,36 @@ pub static CLEARANCE: Field = Field::new(
     "how far the nozzle backs off along the normal between paths that do not join",
 );
 
+/// Largest corner blending lmdc plans, mm: far beyond any control's
+/// rounding at a bead's scale, short of a typo's.
+pub const MAX_BLENDING_MM: f64 = 50.0;
+
+/// The path acceleration, either kind.
+pub static ACCELERATION: Field = Field::new(
+    "acceleration",
+    Quantity(Dim::ACCELERATION, Positive),
+    Optional,
+    "the path acceleration (and deceleration) the control plans with: the verifier then predicts where the nozzle runs slower than programmed and the bead grows (`lmd::deposit-bump`); none: the programmed speeds are taken as reached",
+);
+
+/// The corner blending, either kind.
+pub static BLENDING: Field = Field::new(
+    "blending",
+    Quantity(Dim::LENGTH, ZeroUpTo(MAX_BLENDING_MM)),
+    Default(Described(
+        "a robot's 0.2 mm; a CNC's `G64 P…` or `ADIS=…` of its preamble (LinuxCNC's built-in `G64 P0.02`), else 0 mm",
+    )),
+    "how far before a corner the control may leave the path to round it, written into the program (KUKA `$APO.CDIS`, LinuxCNC `G64 P`, Sinumerik `G641 ADIS`); 0 mm: an exact stop at every corner",
+);
+
+/// How a bead starts and stops, either kind.
+pub static RAMP: Field = Field::new(
+    "ramp",
+    Word(&["none", "lead"]),
+    Default(DefaultWord("none")),
+    "`lead`: a laser-off lead-in brings the nozzle up to speed where the laser starts, and a lead-out lets it slow down after the laser stops (needs `acceleration`); `none`: the laser switches where the nozzle stands",
+);
+
 /// The height sensor's input, either kind.
 pub static HEIGHT_INPUT: Field = Field::new(
     "height_input",
@@ -187,6 +217,9 @@ pub static ROBOT: Block = Block::new(
         &MAX_SPEED,
         &HOME,
         &CLEARANCE,
+        &ACCELERATION,
+        &BLENDING,
+        &RAMP,
         &MODULE_LINES,
         &HEIGHT_INPUT,
         &HEIGHT_FULL_SCALE,
@@ -453,6 +486,9 @@ pub static CNC: Block = Block::new(
         &FEED_UNITS,
         &MAX_SPEED,
         &CLEARANCE,
+        &ACCELERATION,
+        &BLENDING,
+        &RAMP,
         &OUTPUT_ON,
         &OUTPUT_OFF,
         &ANALOG_OUTPUT,
@@ -483,6 +519,9 @@ pub static MACHINE: Block = Block::new(
         &MAX_SPEED,
         &HOME,
         &CLEARANCE,
+        &ACCELERATION,
+        &BLENDING,
+        &RAMP,
         &MODULE_LINES,
         &HEIGHT_INPUT,
         &HEIGHT_FULL_SCALE,
