@@ -99,7 +99,11 @@ pub fn render(r: &Report) -> String {
         "layer", "deposit m", "travel m", "time", "laser on", "energy kJ", "powder g"
     );
     if volumes {
-        let _ = write!(out, " {:>9} {:>11} {:>9}", "bead cm³", "stacked cm³", "bead/stk");
+        let _ = write!(
+            out,
+            " {:>9} {:>11} {:>9}",
+            "bead cm³", "stacked cm³", "bead/stk"
+        );
     }
     out.push('\n');
     for l in &r.layers {
