@@ -25,7 +25,7 @@ pub const FORMAT: &str = "lmdc-ir";
 pub const VERSION: u32 = 4;
 
 /// Version 3: a segmented [`Ring`] built in one continuous run, with a
-/// height loop that runs on the machine or a fixed speed schedule (seed 004;
+/// height loop that runs on the machine or a fixed speed schedule (a segmented ring's;
 /// ignored, the nominal speeds would run open loop), and the machines'
 /// `cell`, the gas and powder they switch (ignored, the laser would run
 /// without shielding gas or powder). A ring has no bead model (its segments
@@ -68,7 +68,7 @@ pub struct Program {
     pub limits: Limits,
     /// The machines to write programs for.
     pub machines: Vec<Machine>,
-    /// The style table (seed 002): the values each style id stands for. Id 0,
+    /// The style table: the values each style id stands for. Id 0,
     /// the process block's values, is not listed; points carry their values
     /// either way.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -77,10 +77,10 @@ pub struct Program {
     #[serde(default, skip_serializing_if = "Heat::is_none")]
     pub heat: Heat,
     /// Whether each layer's path goes on into the next layer's without the
-    /// laser going off: the build is one run of deposit moves (seed 004).
+    /// laser going off: the build is one run of deposit moves (a segmented ring).
     #[serde(default, skip_serializing_if = "is_false")]
     pub continuous: bool,
-    /// A segmented ring and its height loop (seed 004).
+    /// A segmented ring and its height loop.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ring: Option<Ring>,
     /// The bead model the points' speeds were chosen with and their `rise`
@@ -98,7 +98,7 @@ fn is_false(b: &bool) -> bool {
     !*b
 }
 
-/// A ring split into segments with their own process (seed 004), laid in one
+/// A ring split into segments with their own process, laid in one
 /// continuous run: every layer's path has the same points in plan view, and
 /// segment `j` owns points `first_point ..= first_point + flat_moves +
 /// transition_moves` of every layer's path (the last being the next
@@ -184,7 +184,7 @@ pub struct HeightLoop {
     pub clamp: [f64; 2],
 }
 
-/// A machine's height sensor (seed 004): an analog input that holds a
+/// A machine's height sensor (what a segmented ring's loop reads): an analog input that holds a
 /// segment's mean layer height.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
 pub struct HeightSensor {
@@ -766,7 +766,7 @@ pub enum FeedUnit {
     /// mm/min (G94 on most controls).
     #[default]
     MmPerMin,
-    /// mm/s (the control of seed 002: `F10` is 10 mm/s).
+    /// mm/s (the `m20` control: `F10` is 10 mm/s).
     MmPerS,
 }
 
@@ -1038,11 +1038,11 @@ pub struct Origins {
     pub power: Option<Span>,
     /// The spine (bend radius).
     pub spine: Option<Span>,
-    /// A variable-top solid's `top` (seed 003).
+    /// A variable-top solid's `top`.
     pub top: Option<Span>,
     /// The slicing block.
     pub slicing: Option<Span>,
-    /// A ring's declarations (seed 004).
+    /// A segmented ring's declarations.
     pub ring: Option<RingOrigins>,
     /// Each machine's declaration, by index in [`Program::machines`].
     pub machines: Vec<MachineOrigin>,

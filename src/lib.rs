@@ -3,7 +3,6 @@
 
 pub mod back;
 pub mod bead;
-pub mod check;
 pub mod control;
 pub mod deposit;
 pub mod diag;
@@ -24,3 +23,4 @@ pub mod style;
 pub mod syntax;
 pub mod target;
 pub mod units;
+pub mod verify;

@@ -9,9 +9,9 @@
 //! one did. Diagnostics come out in source order.
 
 use crate::back::{self, EmitError, Sink, Templates};
-use crate::check::{self, Select, Verified};
 use crate::diag::{Code, Diagnostics};
 use crate::sema::model::Model;
+use crate::verify::{self, Select, Verified};
 use crate::{lower, sema, syntax};
 
 /// Told when each stage finishes (for `lmdc build --timings`).
@@ -146,7 +146,7 @@ fn run(
         None => drop(model),
     }
     obs.stage("slice");
-    let mut verified = check::verify(program, select);
+    let mut verified = verify::verify(program, select);
     obs.stage("verify");
     if let Err(found) = &mut verified {
         found.retain(|d| !reported_already(d.code, diagnostics));

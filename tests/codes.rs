@@ -10,11 +10,11 @@
 
 use crate::cases;
 use crate::support::expected::{self, blessing};
-use lmdc::check::{verify, Select};
 use lmdc::diag::json::JsonDiagnostic;
 use lmdc::diag::{render, Code};
 use lmdc::ir::Program;
 use lmdc::pipeline::compile;
+use lmdc::verify::{verify, Select};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fs;
 use std::path::Path;

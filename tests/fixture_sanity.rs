@@ -13,5 +13,5 @@ fn fixture_passes_the_checks() {
         ],
     );
     assert_eq!(p.point_count(), 4 * 13 + 3);
-    lmdc::check::verify(p, lmdc::check::Select::All).expect("fixture is valid IR");
+    lmdc::verify::verify(p, lmdc::verify::Select::All).expect("fixture is valid IR");
 }

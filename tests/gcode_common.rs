@@ -6,18 +6,18 @@
 pub mod fixture;
 
 use lmdc::back::{MemorySink, Templates};
-use lmdc::check::Verified;
 use lmdc::diag::Diagnostics;
 use lmdc::ir::*;
+use lmdc::verify::Verified;
 
 /// Verifies `p` (it must pass every check).
 pub fn verified(p: Program) -> Verified {
-    lmdc::check::verify(p, lmdc::check::Select::All).expect("test IR passes the checks")
+    lmdc::verify::verify(p, lmdc::verify::Select::All).expect("test IR passes the checks")
 }
 
 /// Verifies `p`, expecting it to be refused; returns the errors.
 pub fn refused(p: Program) -> Diagnostics {
-    match lmdc::check::verify(p, lmdc::check::Select::All) {
+    match lmdc::verify::verify(p, lmdc::verify::Select::All) {
         Err(d) => d,
         Ok(_) => panic!("want the checks to refuse the plan"),
     }

@@ -11,7 +11,7 @@ use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::Machine;
 use lmdc::pipeline::compile;
 
-fn tooth(process: &str) -> lmdc::check::Verified {
+fn tooth(process: &str) -> lmdc::verify::Verified {
     let src = std::fs::read_to_string("examples/sprocket_tooth.lmd")
         .unwrap()
         .replace(
@@ -70,7 +70,7 @@ fn gcode_layers(text: &str) -> Vec<(f64, f64)> {
     out
 }
 
-fn emit_all(p: &lmdc::check::Verified) -> Vec<(Machine, Vec<(String, String)>)> {
+fn emit_all(p: &lmdc::verify::Verified) -> Vec<(Machine, Vec<(String, String)>)> {
     p.machines()
         .map(|m| {
             let mut sink = MemorySink::default();

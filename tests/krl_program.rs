@@ -9,8 +9,8 @@ use crate::support::krl_check as krl;
 use crate::support::krl_run;
 use lmdc::back::krl::orient::Orienter;
 use lmdc::back::{EmitError, MemorySink, Templates};
-use lmdc::check::Verified;
 use lmdc::ir::*;
+use lmdc::verify::Verified;
 use proptest::prelude::*;
 
 fn robot_files(p: &Verified, index: usize) -> Result<krl::Files, EmitError> {
@@ -290,7 +290,10 @@ fn long_names_stay_valid_krl_names() {
 fn power_beyond_full_scale_is_refused_with_nothing_written() {
     let mut r = fixture::robot();
     r.full_scale_power = 1000.0;
-    let e = lmdc::check::verify(planar(3, vec![Machine::Robot(r)]), lmdc::check::Select::All);
+    let e = lmdc::verify::verify(
+        planar(3, vec![Machine::Robot(r)]),
+        lmdc::verify::Select::All,
+    );
     let Err(d) = e else {
         panic!("want lmd::analog-range")
     };

@@ -13,11 +13,11 @@ mod png;
 #[path = "support/skip.rs"]
 mod skip;
 
-use lmdc::check::Verified;
 use lmdc::ir::{PathKind, Program};
 use lmdc::pipeline::compile;
 use lmdc::plan::{Move, Visit, Where};
 use lmdc::preview;
+use lmdc::verify::Verified;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};

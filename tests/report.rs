@@ -3,11 +3,11 @@
 //! JSON agreeing with each other and with the program headers.
 
 use lmdc::bead::segment_area;
-use lmdc::check::{verify, Select};
 use lmdc::deposit::Basis;
 use lmdc::ir::{Bead, BeadModel, Path, PathKind, Point};
 use lmdc::pipeline::compile_with_model;
 use lmdc::report::{Design, Report};
+use lmdc::verify::{verify, Select};
 use std::process::Command;
 
 /// A 20 × 10 mm rectangle (the tracks' centre line), one contour a layer, two

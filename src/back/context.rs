@@ -1,9 +1,9 @@
 //! Template variables shared by the back ends, so a layer's comment says the
 //! same thing in KRL and G-code.
 
-use crate::check::Summary;
 use crate::ir::{Layer, Program};
 use crate::numbers::{duration, energy, fixed, length, mass};
+use crate::verify::Summary;
 
 /// Longest name written into a comment: the comment lines of the built-in
 /// templates then stay far inside every control's line length (LinuxCNC: 255).

@@ -9,13 +9,13 @@
 pub mod context;
 pub(crate) mod fmt;
 pub mod gcode;
+pub mod height_loop;
 pub mod krl;
-pub mod ring;
 pub mod templates;
 
-use crate::check::VerifiedMachine;
 use crate::ir::Machine;
 pub use crate::target::names::identifier;
+use crate::verify::VerifiedMachine;
 use std::io::{self, Write};
 pub use templates::Templates;
 

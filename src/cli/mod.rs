@@ -238,7 +238,7 @@ fn compile_and_print(
     obs: &mut dyn Observer,
     progress: &mut Progress,
     (color, format): (bool, MessageFormat),
-) -> Result<lmdc::check::Verified, u8> {
+) -> Result<lmdc::verify::Verified, u8> {
     let compiled = pipeline::compile_for(source, machine, &mut progress::Both(obs, progress))
         .map_err(|e| {
             eprintln!("error: {e}");
@@ -343,7 +343,7 @@ fn build(
 }
 
 /// The set of files a build writes for `machine` (`None`: the IR).
-fn set_key(program: &lmdc::check::Verified, machine: Option<String>) -> sink::SetKey {
+fn set_key(program: &lmdc::verify::Verified, machine: Option<String>) -> sink::SetKey {
     sink::SetKey {
         part: program.ir().part.clone(),
         machine,
@@ -354,7 +354,7 @@ fn set_key(program: &lmdc::check::Verified, machine: Option<String>) -> sink::Se
 /// files one set (replaced together); a usage exit code when a template or
 /// the disk fails.
 fn write_programs(
-    program: &lmdc::check::Verified,
+    program: &lmdc::verify::Verified,
     templates: &Templates,
     sink: &mut sink::AtomicDir,
     inner: &mut dyn Observer,
@@ -395,7 +395,7 @@ fn write_programs(
 }
 
 /// Writes the IR as `<part>.ir.json` into `sink`, a set of its own.
-fn write_ir(program: &lmdc::check::Verified, sink: &mut sink::AtomicDir) -> Result<(), u8> {
+fn write_ir(program: &lmdc::verify::Verified, sink: &mut sink::AtomicDir) -> Result<(), u8> {
     let name = format!(
         "{}.ir.json",
         lmdc::target::names::windows_safe(&lmdc::back::identifier(&program.ir().part, 64))

@@ -31,7 +31,7 @@
 //! 3-axis CNC, whose nozzle always points down, it is +Z.
 //!
 //! # Continuous layers
-//! A continuous program (`Program::continuous`, a seed 004 ring) is one run
+//! A continuous program (`Program::continuous`, a segmented ring) is one run
 //! of deposit moves: a layer's first path joins the last layer's like any
 //! path that starts where the one before ended, so the laser stays on from
 //! the first deposit of the build to the last, by the same rule as below.

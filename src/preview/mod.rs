@@ -19,9 +19,9 @@ mod encode;
 mod error;
 mod kind;
 
-use crate::check::VerifiedMachine;
 use crate::ir::{Layer, Point};
 use crate::plan::{Move, Speed, Visit, Where};
+use crate::verify::VerifiedMachine;
 use encode::Columns;
 use kind::Kind;
 

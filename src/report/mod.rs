@@ -2,7 +2,7 @@
 //! machine's program takes, how far it deposits and travels, how much
 //! energy and powder it uses and how much metal the bead model says it lays,
 //! against the design solid. Its lengths and times are the verifier's
-//! summary of the machine's motion plan ([`crate::check::Summary`]), so
+//! summary of the machine's motion plan ([`crate::verify::Summary`]), so
 //! they are the program's, move by move. `docs/preview.md` writes out every
 //! formula.
 //!
@@ -14,9 +14,9 @@ pub mod design;
 pub mod text;
 mod volume;
 
-use crate::check::{Costs, VerifiedMachine};
 use crate::ir::{BeadModel, Program};
 use crate::sema::model::Model;
+use crate::verify::{Costs, VerifiedMachine};
 pub use design::Design;
 use serde::Serialize;
 

@@ -3,8 +3,8 @@
 #![allow(dead_code)]
 
 use lmdc::back::{MemorySink, Templates};
-use lmdc::check::Verified;
 use lmdc::ir::Machine;
+use lmdc::verify::Verified;
 use std::collections::BTreeMap;
 use std::process::Command;
 

@@ -12,17 +12,17 @@
 //! switches (and S) are written where the plan switches them.
 
 mod dialect;
-pub mod ring;
+pub mod height_loop;
 mod writer;
 
 use super::context::{counts, layer_context, shown, styles};
 use super::{EmitError, Sink, Templates};
-use crate::check::VerifiedMachine;
 use crate::ir::{Cell, Cnc, Kinematics, Layer, Program};
 use crate::numbers::trimmed;
 use crate::plan::{effective_kinematics, Io, Move, Speed, Visit};
 use crate::target::gcode::{blending_line, RATE_DECIMALS};
 use crate::target::names::gcode_file;
+use crate::verify::VerifiedMachine;
 use dialect::{comment_safe, delimiters, Words};
 use writer::{Stats, Writer};
 
@@ -40,7 +40,7 @@ pub fn emit(
 ) -> Result<(), EmitError> {
     let prog = m.ir();
     if prog.loop_on_machine().is_some() {
-        return ring::emit(m, cnc, t, sink);
+        return height_loop::emit(m, cnc, t, sink);
     }
     let kin = effective_kinematics(cnc);
     let five = kin != Kinematics::Xyz;

@@ -15,18 +15,18 @@
 //! motion that starts where the plan switches them, so they happen on the path
 //! rather than when the advance run reads the line.
 
+pub mod height_loop;
 pub mod modules;
 pub mod orient;
-pub mod ring;
 
 use super::context::{counts, layer_context, shown, styles};
 use super::{EmitError, Sink, Templates};
-use crate::check::VerifiedMachine;
 use crate::ir::{FrameRef, Layer, Robot, ToolAxis};
 use crate::numbers::{fixed, trimmed};
 use crate::plan::{Io, Move, MoveKind, Speed, Visit};
 use crate::target::kuka;
 use crate::target::names::KrlNames;
+use crate::verify::VerifiedMachine;
 use modules::{Modules, Switch};
 use orient::{Abc, Orienter};
 use std::io::Write;
@@ -56,7 +56,7 @@ pub fn emit(
 ) -> Result<(), EmitError> {
     let prog = m.ir();
     if prog.loop_on_machine().is_some() {
-        return ring::emit(m, robot, t, sink);
+        return height_loop::emit(m, robot, t, sink);
     }
     let names = names(m, robot);
     let base = base_context(m, robot, &names.stem);

@@ -11,7 +11,6 @@
 
 pub mod bead;
 pub mod bend;
-pub mod check;
 pub mod control;
 pub mod field;
 pub mod fill;
@@ -27,3 +26,4 @@ pub mod style;
 pub mod syntax;
 pub mod top;
 pub mod value;
+pub mod verify;

@@ -148,7 +148,7 @@ fn motion(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Motion> {
 }
 
 /// `height_input = n`, `height_full_scale = L`, `height_delay = t`: the
-/// analog input a closed height loop reads (seed 004), `n` within
+/// analog input a closed height loop reads, `n` within
 /// `lowest..=highest`. `Some(None)` when the machine declares none, `None`
 /// when a field is wrong (reported).
 fn height_sensor(

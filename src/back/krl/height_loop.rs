@@ -1,4 +1,4 @@
-//! A ring's height loop in KRL (seed 004): the main program (the usual
+//! A segmented ring's height loop in KRL: the main program (the usual
 //! `krl/main.src.tera`) calls one module that holds the whole build:
 //!
 //! - its `.dat` declares, per segment `j`, the speed `SPD[j]` (mm/s), the
@@ -20,13 +20,13 @@
 use super::modules::angle_value;
 use super::orient::Orienter;
 use super::{base_context, main_context, modules, EmitError, Sink, Templates};
-use crate::back::ring::{constants, prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
-use crate::check::VerifiedMachine;
+use crate::back::height_loop::{constants, prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
 use crate::control::{Step, LAW};
 use crate::ir::{HeightLoop, HeightSensor, Ring, Robot};
 use crate::numbers::{fixed, trimmed};
 use crate::plan::{Move, Speed};
 use crate::target::kuka::{ANOUT_DECIMALS, POS_DECIMALS, VEL_DECIMALS};
+use crate::verify::VerifiedMachine;
 use std::fmt::Write as _;
 use std::io::Write;
 
@@ -316,7 +316,7 @@ impl Text<'_> {
     fn segment(&mut self, j: usize, ring: &Ring, ind: usize) {
         self.line(
             ind,
-            &format!("; {}", crate::back::ring::segment_title(ring, j)),
+            &format!("; {}", crate::back::height_loop::segment_title(ring, j)),
         );
         self.line(ind, &format!("ZF = ZB[{0}]+DFC[{0}]", j + 1));
         self.line(ind, &format!("$VEL.CP = SPD[{}]*0.001", j + 1));

@@ -56,7 +56,7 @@ fn clashes(cx: &ProgramCx<'_>, out: &mut Diagnostics) {
     let ms = &p.machines;
     let o = &p.origins.machines;
     for ((first, second), name) in pairs {
-        out.push(message::check::name_clash(
+        out.push(message::verify::name_clash(
             ms[first].name(),
             ms[second].name(),
             &name,

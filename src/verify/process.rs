@@ -3,7 +3,7 @@
 //! layer heights and speeds and the laser's power range.
 
 use super::rule::{ProgramCx, ProgramRule, Worst};
-use crate::diag::message::{self, check::Layering, check::PointQuantity, check::Side};
+use crate::diag::message::{self, verify::Layering, verify::PointQuantity, verify::Side};
 use crate::diag::Diagnostics;
 use crate::ir::{Point, Program};
 use crate::plan::Where;
@@ -40,7 +40,7 @@ impl Finite {
 
     pub fn report(self, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(message::check::non_finite_points(&w));
+        out.push(message::verify::non_finite_points(&w));
     }
 }
 
@@ -64,7 +64,7 @@ impl UnitDirections {
 
     pub fn report(self, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(message::check::bad_directions(&w));
+        out.push(message::verify::bad_directions(&w));
     }
 }
 
@@ -107,7 +107,7 @@ impl Range {
     pub fn report(self, spans: &[Option<Span>], out: &mut Diagnostics) {
         for (w, side) in [(self.low, Side::Below), (self.high, Side::Above)] {
             if let Some(w) = w {
-                out.push(message::check::point_out_of_range(
+                out.push(message::verify::point_out_of_range(
                     self.quantity,
                     side,
                     &w,

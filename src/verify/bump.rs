@@ -21,7 +21,7 @@
 mod pool;
 
 use super::rule::{MachineCx, PlanRule};
-use crate::diag::message::check::bump::{Bumps, Model};
+use crate::diag::message::verify::bump::{Bumps, Model};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Machine, Program, Ramp};
 use crate::plan::profile::{Dynamics, Profiler};
@@ -104,7 +104,7 @@ impl<'p> PlanRule<'p> for DepositBump<'p> {
             model: self.model,
         };
         let o = cx.origin;
-        out.push(message::check::bump::deposit_bump(
+        out.push(message::verify::bump::deposit_bump(
             cx.machine.name(),
             &bumps,
             Some(o.at(&ACCELERATION)),

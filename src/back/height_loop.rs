@@ -1,4 +1,4 @@
-//! A ring whose height loop runs on the machine (seed 004), as the back ends
+//! A segmented ring whose height loop runs on the machine, as the back ends
 //! write it: one layer in a loop. Every layer has the same points in plan
 //! view ([`crate::ir::Ring`]); only each segment's speed and working plane
 //! change, and those the program computes as it measures. So the program is
@@ -13,10 +13,10 @@
 //! deposit. Each back end renders that in its own language.
 
 use super::EmitError;
-use crate::check::VerifiedMachine;
 use crate::ir::{HeightLoop, HeightSensor, Layer, Program, Ring};
 use crate::numbers::trimmed;
 use crate::plan::{Io, Move, Plan, SegmentEnd, Visit, Where};
+use crate::verify::VerifiedMachine;
 
 /// What a looping writer starts from: the ring, its law, the sensor the
 /// machine reads and the plan collected for the loop.

@@ -16,7 +16,7 @@
 
 use super::rule::{ProgramCx, ProgramRule, Worst};
 use crate::bead::HeightModel;
-use crate::diag::message::check::deposit::{DepositMiss, Drift, WorstPoint};
+use crate::diag::message::verify::deposit::{DepositMiss, Drift, WorstPoint};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Point, Program};
 use crate::plan::Where;
@@ -29,7 +29,7 @@ impl ProgramRule for DepositRule {
     fn check(cx: &ProgramCx<'_>, out: &mut Diagnostics) {
         if let Some(miss) = check(cx.program) {
             let o = &cx.program.origins;
-            out.push(message::check::deposit::deposit_miss(
+            out.push(message::verify::deposit::deposit_miss(
                 &miss,
                 o.bead_speed,
                 o.slicing,

@@ -1,4 +1,4 @@
-//! A ring's rules (seed 004): its height loop, analysed before anything is
+//! A segmented ring's rules: its height loop, analysed before anything is
 //! built (signs, stability at every segment's speed, settling against the
 //! layers: [`control::analyse`], whose findings carry the numbers and the
 //! wording), and what each machine must offer to run it — transitions within
@@ -7,7 +7,9 @@
 
 use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
 use crate::control::{self, analyse, SpeedPerLength};
-use crate::diag::message::check::ring::{self, FastTransition, LateUpdate, LoopFields};
+use crate::diag::message::verify::height_loop::{
+    self as says, FastTransition, LateUpdate, LoopFields,
+};
 use crate::diag::Diagnostics;
 use crate::ir::{Machine, MachineOrigin, Program, Ring, RingOrigins, RingRun};
 use crate::plan::{Move, Visit};
@@ -49,7 +51,7 @@ fn check_loop(p: &Program, out: &mut Diagnostics) {
         None => return,
         Some(Ok(c)) => c,
         Some(Err(e)) => {
-            out.push(ring::loop_cannot_run(&e, o.control));
+            out.push(says::loop_cannot_run(&e, o.control));
             return;
         }
     };
@@ -66,10 +68,10 @@ fn check_loop(p: &Program, out: &mut Diagnostics) {
                 layers: o.layers,
             };
             for f in &a.findings {
-                out.push(ring::loop_finding(f, &fields));
+                out.push(says::loop_finding(f, &fields));
             }
         }
-        Err(e) => out.push(ring::loop_cannot_run(&e, o.control)),
+        Err(e) => out.push(says::loop_cannot_run(&e, o.control)),
     }
 }
 
@@ -103,7 +105,7 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
     let name = m.name();
     if let Machine::Cnc(c) = m {
         if c.dialect.profile != LOOP_PROFILE {
-            out.push(ring::loop_dialect(
+            out.push(says::loop_dialect(
                 name,
                 &c.dialect.profile,
                 origin.at(&machine::DIALECT),
@@ -112,7 +114,7 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
         }
     }
     let Some(s) = m.common().height_sensor else {
-        out.push(ring::no_height_sensor(name, origin.block, o.run));
+        out.push(says::no_height_sensor(name, origin.block, o.run));
         return;
     };
     if let Machine::Robot(_) = m {
@@ -121,7 +123,7 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
     if let Machine::Cnc(_) = m {
         let last = s.input as usize + r.segments.len() - 1;
         if last > MAX_ANALOG_INPUT {
-            out.push(ring::too_many_inputs(
+            out.push(says::too_many_inputs(
                 r.segments.len(),
                 s.input,
                 last,
@@ -182,7 +184,7 @@ fn robot_timing(
             between: (n - 2) * per + r.flat_moves,
         }
     };
-    out.push(ring::loop_timing(
+    out.push(says::loop_timing(
         name,
         &why,
         origin.at(&machine::HEIGHT_DELAY),
@@ -225,7 +227,7 @@ fn transitions(
         let arc_fits = rise.abs() / ((max / top).powi(2) - 1.0).sqrt();
         Angle(arc_fits / r.radius).deg()
     });
-    out.push(ring::transition_speed(&FastTransition {
+    out.push(says::transition_speed(&FastTransition {
         machine: m.name(),
         max,
         segment: j,

@@ -6,8 +6,8 @@
 pub mod bump;
 pub mod cell;
 pub mod deposit;
+pub mod height_loop;
 pub mod machine;
-pub mod ring;
 
 use crate::diag::{plural, Worst};
 use crate::diag::{Code, Diagnostic};

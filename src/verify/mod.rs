@@ -22,11 +22,11 @@
 mod bump;
 mod cell;
 mod deposit;
+pub mod height_loop;
 mod machine;
 mod names;
 mod process;
 mod resolution;
-pub mod ring;
 mod rule;
 mod rules;
 mod stacking;

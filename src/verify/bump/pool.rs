@@ -18,7 +18,7 @@
 //! cells at a time, so the pass costs the moves plus the slow stretches'
 //! length over a sixteenth of a bead width.
 
-use crate::diag::message::check::bump::{Bump, CornerPass, Lies};
+use crate::diag::message::verify::bump::{Bump, CornerPass, Lies};
 use crate::plan::profile::{Dynamics, Step};
 use crate::plan::Where;
 

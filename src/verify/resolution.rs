@@ -5,7 +5,7 @@
 //! the setting that would fix it.
 
 use super::rule::{MachineCx, PlanRule, Worst};
-use crate::diag::message::check::machine::SpeedWord;
+use crate::diag::message::verify::machine::SpeedWord;
 use crate::diag::{message, Diagnostics};
 use crate::ir::Machine;
 use crate::plan::{Move, Speed, Visit};
@@ -49,7 +49,7 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
         let speeds = cx.program.origins.bead_speed;
         let has = |f: &Field| o.written(f).is_some();
         if let Some(w) = self.position {
-            out.push(message::check::machine::position_too_large(
+            out.push(message::verify::machine::position_too_large(
                 machine.name(),
                 &w,
                 o.at(&machine::NAME),
@@ -69,7 +69,7 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
                 },
                 Machine::Robot(_) => SpeedWord::VelCp,
             };
-            out.push(message::check::machine::speed_unwritable(
+            out.push(message::verify::machine::speed_unwritable(
                 machine.name(),
                 word,
                 &w,
@@ -86,7 +86,7 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
                     } else {
                         &machine::S_PER_WATT
                     };
-                    message::check::machine::cnc_power_unwritable(
+                    message::verify::machine::cnc_power_unwritable(
                         &c.name,
                         c.dialect.s_per_watt,
                         c.dialect.s_decimals,
@@ -95,7 +95,7 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
                         o.at(field),
                     )
                 }
-                Machine::Robot(r) => message::check::machine::robot_power_unwritable(
+                Machine::Robot(r) => message::verify::machine::robot_power_unwritable(
                     &r.name,
                     r.power_out,
                     r.full_scale_power,

@@ -59,7 +59,7 @@ impl<'p> CellRule<'p> {
 
     /// Reports what was found, at the fields that declare the times.
     fn report_at(self, name: &str, o: &MachineOrigin, out: &mut Diagnostics) {
-        use message::check::cell;
+        use message::verify::cell;
         if let (Some(w), Some(g)) = (self.gas_short, self.cell.gas) {
             out.push(cell::gas_too_short(
                 name,

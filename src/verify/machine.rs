@@ -7,7 +7,7 @@
 //! slack): what the control reads must lie within what was declared.
 
 use super::rule::{MachineCx, PlanRule, Worst};
-use crate::diag::message::{self, check::machine::AnalogOverrun, check::machine::AxisOverrun};
+use crate::diag::message::{self, verify::machine::AnalogOverrun, verify::machine::AxisOverrun};
 use crate::diag::Diagnostics;
 use crate::ir::{AxisLimits, Kinematics, Machine};
 use crate::plan::kinematics::tilt_of;
@@ -43,7 +43,7 @@ impl<'p> PlanRule<'p> for SpeedLimit<'p> {
 
     fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(message::check::machine::machine_speed(
+        out.push(message::verify::machine::machine_speed(
             cx.machine.name(),
             &w,
             cx.origin.at(&machine::MAX_SPEED),
@@ -185,7 +185,7 @@ impl<'p> PlanRule<'p> for Travel {
         for (i, w) in self.axes.iter().enumerate() {
             let Some(w) = w else { continue };
             let linear = i < 3;
-            out.push(message::check::machine::axis_limit(&AxisOverrun {
+            out.push(message::verify::machine::axis_limit(&AxisOverrun {
                 machine: &cnc.name,
                 axis: i,
                 tilt_name,
@@ -238,7 +238,7 @@ impl<'p> PlanRule<'p> for Tilt {
 
     fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
         let Some(w) = self.found else { return };
-        out.push(message::check::machine::needs_tilt(
+        out.push(message::verify::machine::needs_tilt(
             cx.machine.name(),
             &w,
             cx.origin.at(&machine::AXES),
@@ -281,7 +281,7 @@ impl<'p> PlanRule<'p> for Analog {
         let (Some(w), Machine::Robot(r)) = (self.found, cx.machine) else {
             return;
         };
-        out.push(message::check::machine::analog_range(&AnalogOverrun {
+        out.push(message::verify::machine::analog_range(&AnalogOverrun {
             robot: &r.name,
             output: r.power_out,
             full_scale: r.full_scale_power,

@@ -5,11 +5,11 @@
 use super::bump::DepositBump;
 use super::cell::CellRule;
 use super::deposit::DepositRule;
+use super::height_loop::{LoopAnalysis, LoopOnMachine};
 use super::machine::{Analog, SpeedLimit, Tilt, Travel};
 use super::names::FileNames;
 use super::process::ProcessRules;
 use super::resolution::Resolution;
-use super::ring::{LoopAnalysis, LoopOnMachine};
 use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
 use super::stacking::Stacking;
 use crate::diag::Diagnostics;

@@ -1,4 +1,4 @@
-//! A ring's height loop in LinuxCNC G-code (seed 004). The header and footer
+//! A segmented ring's height loop in LinuxCNC G-code. The header and footer
 //! templates frame a program that loops over one layer:
 //!
 //! - named global parameters per segment `j`: the speed `#<_lmd_v{j}>`
@@ -30,14 +30,14 @@
 
 use super::dialect::{comment_safe, delimiters};
 use super::{base_context, footer_context, header_context, EmitError, Sink, Templates};
-use crate::back::ring::{constants, prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
-use crate::check::VerifiedMachine;
+use crate::back::height_loop::{constants, prepare, CellStep, LayerMove, LoopPlan, Part, Prepared};
 use crate::control::{Step, LAW};
 use crate::ir::{Cnc, HeightLoop, HeightSensor, Kinematics, Ring};
 use crate::numbers::{fixed, trimmed};
 use crate::plan::{effective_kinematics, Move, Speed};
 use crate::target::gcode::POS_DECIMALS;
 use crate::target::names::gcode_file;
+use crate::verify::VerifiedMachine;
 use std::io::Write;
 
 /// Decimals of the loop's constants.
@@ -348,7 +348,7 @@ impl Text<'_> {
     fn segment(&mut self, j: usize, ring: &Ring, ind: usize, level: bool) {
         let s = &ring.segments[j];
         let n = ring.segments.len();
-        self.comment(ind, &crate::back::ring::segment_title(ring, j));
+        self.comment(ind, &crate::back::height_loop::segment_title(ring, j));
         let zf = plus(&format!("#<_lmd_z{}>", j + 1), s.defocus);
         self.line(ind, &format!("#<zf> = {zf}"));
         let zt = if level {

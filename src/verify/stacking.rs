@@ -17,7 +17,7 @@
 //! grid's cell, which grows with the part.
 
 use super::rule::{ProgramCx, ProgramRule, Worst};
-use crate::diag::message::check::StackingFix;
+use crate::diag::message::verify::StackingFix;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Layer, Path, PathKind, Program};
 use crate::plan::Where;
@@ -94,7 +94,7 @@ fn check(p: &Program, out: &mut Diagnostics) {
     let Some(f) = found else { return };
     let o = &p.origins;
     let fix = fix(p, &f, there, half, far);
-    out.push(message::check::stacking(&f, &fix, o.slicing, o.spine));
+    out.push(message::verify::stacking(&f, &fix, o.slicing, o.spine));
 }
 
 /// What would land the worst deposit on the layer below. Every step
