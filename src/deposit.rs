@@ -30,6 +30,16 @@ use crate::bead::{segment_area, segment_height, HeightModel};
 use crate::units::{Length, MassFlow, Speed};
 use serde::{Deserialize, Serialize};
 
+/// How far a run's predicted rise may be from its planned layer height by
+/// default, a share of it (`rise_tolerance`): about the scatter of a bead
+/// calibration, and what writing a speed to 0.1 mm/s rounds at 7–10 mm/s.
+pub const RISE_TOLERANCE: f64 = 0.03;
+
+/// How far the layers' mean errors may add up by default, mm (`max_drift`):
+/// a standoff off by more than about half a millimetre changes how much
+/// powder the melt pool catches.
+pub const MAX_DRIFT: f64 = 0.5;
+
 /// What a bead model's heights were measured as.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]

@@ -348,10 +348,8 @@ pub struct Limits {
     pub max_drift: f64,
 }
 
-/// The default `rise_tolerance`: 3 % of a layer.
-pub const RISE_TOLERANCE: f64 = 0.03;
-/// The default `max_drift`, mm.
-pub const MAX_DRIFT: f64 = 0.5;
+// The defaults of the deposit tolerances, re-exported for readers of the IR.
+pub use crate::deposit::{MAX_DRIFT, RISE_TOLERANCE};
 
 fn default_rise_tolerance() -> f64 {
     RISE_TOLERANCE

@@ -45,8 +45,8 @@ pub struct Tolerance {
 impl Default for Tolerance {
     fn default() -> Self {
         Tolerance {
-            rise: crate::ir::RISE_TOLERANCE,
-            drift: Length(crate::ir::MAX_DRIFT),
+            rise: crate::deposit::RISE_TOLERANCE,
+            drift: Length(crate::deposit::MAX_DRIFT),
         }
     }
 }

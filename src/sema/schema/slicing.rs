@@ -35,7 +35,7 @@ const LAYERS: Kind = Either(&[Word(&["auto"]), Count(1, MAX_LAYERS)]);
 pub static RISE_TOLERANCE: Field = Field::new(
     "rise_tolerance",
     Quantity(Dim::NONE, PositiveUpTo(1.0)),
-    Default(DefaultQuantity(crate::ir::RISE_TOLERANCE)),
+    Default(DefaultQuantity(crate::deposit::RISE_TOLERANCE)),
     "how far a run's rise by the bead model may be from the layer height it plans, a share of it (`lmd::deposit`)",
 );
 
@@ -43,7 +43,7 @@ pub static RISE_TOLERANCE: Field = Field::new(
 pub static MAX_DRIFT: Field = Field::new(
     "max_drift",
     Quantity(Dim::LENGTH, Positive),
-    Default(DefaultQuantity(crate::ir::MAX_DRIFT)),
+    Default(DefaultQuantity(crate::deposit::MAX_DRIFT)),
     "how far the layers' mean errors may add up over the build (`lmd::deposit`)",
 );
 
