@@ -1132,6 +1132,34 @@ impl Point {
         v * ((len2 - along * along / n2).max(0.0) / len2).sqrt()
     }
 
+    /// How much the layer rises on the move to `next` by the deposit model
+    /// `d` ([`crate::deposit`]): `A/pitch` at this point's speed across the
+    /// normal and its own powder feed, mm. What lowering writes as `rise`
+    /// and the verifier predicts.
+    pub fn predicted_rise(&self, d: &Deposit, next: Option<&Point>) -> f64 {
+        let v = Speed(self.speed_across(next));
+        let powder = MassFlow(self.powder as f64 / 60.0);
+        d.rise(v, Length(self.pitch as f64), Some(powder)).0
+    }
+
+    /// The ground the move to `next` covers, mm: its length across this
+    /// point's normal (the deposit points' distance with its component
+    /// along the nozzle removed). What a layer holds per unit of, whatever
+    /// the slope its path climbs; 0 for a path's last point.
+    pub fn ground_to(&self, next: Option<&Point>) -> f64 {
+        let Some(q) = next else { return 0.0 };
+        let d = [
+            q.pos[0] - self.pos[0],
+            q.pos[1] - self.pos[1],
+            q.pos[2] - self.pos[2],
+        ];
+        let n = self.normal.map(f64::from);
+        let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - along * along)
+            .max(0.0)
+            .sqrt()
+    }
+
     /// Where the tool centre point goes: the laser focus, `defocus` along the
     /// normal from the deposit point. Both back ends program this point.
     pub fn focus(&self) -> [f64; 3] {

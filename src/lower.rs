@@ -160,14 +160,8 @@ fn predict_rises(p: &mut Program) {
             if !pt.laser_on || pt.pitch <= 0.0 {
                 continue;
             }
-            let v = pt.speed_across(path.points.get(k + 1));
-            let powder = crate::units::MassFlow(pt.powder as f64 / 60.0);
-            let rise = deposit.rise(
-                crate::units::Speed(v),
-                crate::units::Length(pt.pitch as f64),
-                Some(powder),
-            );
-            path.points[k].rise = rise.0 as f32;
+            let rise = pt.predicted_rise(&deposit, path.points.get(k + 1));
+            path.points[k].rise = rise as f32;
         }
     }
 }

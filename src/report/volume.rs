@@ -14,7 +14,7 @@
 //! the IR's points in the plan's order, without following the plan again
 //! (its lengths and times come from the verifier's summary).
 
-use crate::ir::{Layer, Point, Program};
+use crate::ir::{Layer, Program};
 
 /// What one layer lays and stacks.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -42,7 +42,7 @@ fn layer(layer: &Layer) -> Laid {
             if !from.laser_on || from.pitch <= 0.0 {
                 continue;
             }
-            let len = across(from, to);
+            let len = from.ground_to(Some(to));
             let h = 0.5 * (from.layer_height as f64 + to.layer_height as f64);
             let (rise, pitch) = (from.rise as f64, from.pitch as f64);
             out.bead += rise * pitch * len;
@@ -55,19 +55,4 @@ fn layer(layer: &Layer) -> Laid {
         out.mean_error = error / ground;
     }
     out
-}
-
-/// The length of the move from `from` to `to` over the ground (across the
-/// normal): what a layer holds per unit of (docs/ir.md).
-fn across(from: &Point, to: &Point) -> f64 {
-    let d = [
-        to.pos[0] - from.pos[0],
-        to.pos[1] - from.pos[1],
-        to.pos[2] - from.pos[2],
-    ];
-    let n = from.normal.map(f64::from);
-    let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-    (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - along * along)
-        .max(0.0)
-        .sqrt()
 }

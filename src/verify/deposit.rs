@@ -18,9 +18,9 @@ use super::rule::{ProgramCx, ProgramRule, Worst};
 use crate::bead::HeightModel;
 use crate::diag::message::verify::deposit::{DepositMiss, Drift, WorstPoint};
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Point, Program};
+use crate::ir::Program;
 use crate::plan::Where;
-use crate::units::{Length, MassFlow, Speed};
+use crate::units::Length;
 
 /// The rule.
 pub(super) struct DepositRule;
@@ -36,29 +36,6 @@ impl ProgramRule for DepositRule {
             ));
         }
     }
-}
-
-/// What a point lays by the model, mm.
-fn predicted(d: &crate::deposit::Deposit, pt: &Point, next: Option<&Point>) -> f64 {
-    let v = Speed(pt.speed_across(next));
-    let powder = MassFlow(pt.powder as f64 / 60.0);
-    d.rise(v, Length(pt.pitch as f64), Some(powder)).0
-}
-
-/// The ground a move covers (across the normal), mm: what a layer's mean
-/// is weighted by.
-fn ground(pt: &Point, next: Option<&Point>) -> f64 {
-    let Some(q) = next else { return 0.0 };
-    let d = [
-        q.pos[0] - pt.pos[0],
-        q.pos[1] - pt.pos[1],
-        q.pos[2] - pt.pos[2],
-    ];
-    let n = pt.normal.map(f64::from);
-    let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-    (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - along * along)
-        .max(0.0)
-        .sqrt()
 }
 
 /// A run of moves at one speed over one strip: a constant-speed segment of
@@ -100,7 +77,7 @@ pub(crate) fn check(p: &Program) -> Option<DepositMiss<Where>> {
                 if here.is_none() {
                     continue;
                 }
-                let rise = predicted(&d, pt, next);
+                let rise = pt.predicted_rise(&d, next);
                 // The layer's height along the move: the mean of its ends'.
                 let h = match next {
                     Some(q) if q.layer_height > 0.0 => {
@@ -108,7 +85,7 @@ pub(crate) fn check(p: &Program) -> Option<DepositMiss<Where>> {
                     }
                     _ => pt.layer_height as f64,
                 };
-                let len = ground(pt, next);
+                let len = pt.ground_to(next);
                 found.checked += 1;
                 len_sum += len;
                 err_sum += len * (rise - h);
