@@ -100,6 +100,42 @@ impl Blend {
         }
     }
 
+    /// The angles (rad, in 0 ..< 2π) where the outline at station `t` has
+    /// a corner or, for a superellipse morph short of an ellipse, its
+    /// sharpest bend: the points a layer must hold so a chord never cuts a
+    /// corner. A radial morph keeps the kinks of both end sections at every
+    /// station; a superellipse morph between rectangles has its corners on
+    /// the diagonal of the station's own half-sides.
+    pub fn corners(&self, t: f64) -> Vec<f64> {
+        let diagonal = |a: f64, b: f64| {
+            let c = b.atan2(a);
+            vec![c, PI - c, PI + c, 2.0 * PI - c]
+        };
+        match (self.kind, family(&self.from), family(&self.to)) {
+            (Morph::Superellipse, Some((a0, b0, q0)), Some((a1, b1, q1))) => {
+                let lerp = |x: f64, y: f64| x + (y - x) * t;
+                if lerp(q0, q1) < 1.0 - 1e-12 {
+                    diagonal(lerp(a0, a1), lerp(b0, b1))
+                } else {
+                    Vec::new()
+                }
+            }
+            _ => {
+                let mut out = Vec::new();
+                for s in [&self.from, &self.to] {
+                    match *s {
+                        Section::Rectangle { a, b } => out.extend(diagonal(a.0, b.0)),
+                        Section::Polygon { n, .. } => {
+                            out.extend((0..n).map(|j| 2.0 * PI * j as f64 / n as f64))
+                        }
+                        _ => {}
+                    }
+                }
+                out
+            }
+        }
+    }
+
     /// The largest radius of either end section (a bound for every station,
     /// since both morphs interpolate between the ends).
     pub fn max_radius(&self) -> f64 {

@@ -6,6 +6,7 @@ mod holes;
 pub mod layers;
 pub mod normal;
 pub mod planar;
+mod section_points;
 pub mod segmented_ring;
 pub mod styling;
 pub mod top;
@@ -18,6 +19,7 @@ use crate::ir::Layer;
 use crate::sema::model::MAX_POINTS;
 use crate::sema::model::{Bead, Build, Loft, Model, Resolution, Slicing, Spine};
 use crate::units::short;
+use section_points::Spacing;
 
 /// Most points a plan may hold (80 bytes each in the IR, so at most ~1.6 GB):
 /// 20 M is over five times the dense benchmark duct, and bounds memory for any
@@ -54,43 +56,49 @@ fn duct(
     let geo = LoftGeometry::new(loft);
     let (layers, step) =
         feasibility::choose_layers(loft, &geo, bead, slicing).map_err(Diagnostics::from)?;
-    let k = match slicing.resolution {
-        Resolution::Count(k) => k,
-        Resolution::ChordError(e) => {
-            // Chord error of polar sampling on the largest radius; a multiple of
-            // 8 puts a point on every corner of a square section.
-            let r = geo.blend.max_radius();
-            let dth = 2.0 * (1.0 - (e.0 / r).min(1.0)).acos();
-            let k = (std::f64::consts::TAU / dth).ceil().max(8.0);
-            let k = ((k / 8.0).ceil() * 8.0).min(1e12) as usize;
-            if k > MAX_POINTS {
-                return Err(
-                    message::bend::too_many_layer_points(e, k, MAX_POINTS, slicing.span).into(),
-                );
-            }
-            k
-        }
+    let spacing = match slicing.resolution {
+        Resolution::Count(k) => Spacing::Count(k),
+        Resolution::ChordError(e) => Spacing::Chord {
+            error: e.0,
+            rise: slicing.tolerance.rise,
+        },
     };
-    if layers.saturating_mul(k + 1) > MAX_TOTAL_POINTS {
-        return Err(message::bend::too_many_duct_points(
-            layers,
-            k + 1,
-            MAX_TOTAL_POINTS,
-            slicing.span,
-        )
-        .into());
-    }
     let plan = normal::Setup {
         seam: slicing.seam.0,
         layers,
         step,
-        k,
+        spacing,
+        max_points: MAX_POINTS,
     };
+    if let Spacing::Count(k) = spacing {
+        if layers.saturating_mul(k + 1) > MAX_TOTAL_POINTS {
+            return Err(message::bend::too_many_duct_points(
+                layers,
+                k + 1,
+                MAX_TOTAL_POINTS,
+                slicing.span,
+            )
+            .into());
+        }
+    }
     let mut out = Vec::with_capacity(layers);
     let mut seam_hits = Vec::new();
-    let mut scan = normal::SeamScan::new(k);
+    let mut scan = normal::SeamScan::new(plan.scan_grid());
+    let mut total = 0usize;
     for i in 0..layers {
-        let (layer, seam) = normal::layer(model, bead, &geo, &plan, i, &mut scan);
+        let (layer, seam) = normal::layer(model, bead, &geo, &plan, i, &mut scan)
+            .map_err(|k| too_many_points(slicing, i, k))?;
+        total += layer.paths.iter().map(|p| p.points.len()).sum::<usize>();
+        if total > MAX_TOTAL_POINTS {
+            let k = layer.paths.iter().map(|p| p.points.len()).sum::<usize>();
+            return Err(message::bend::too_many_duct_points(
+                layers,
+                k,
+                MAX_TOTAL_POINTS,
+                slicing.span,
+            )
+            .into());
+        }
         if let Some(x) = seam {
             if !(normal::SEAM_EXTREME..=1.0 - normal::SEAM_EXTREME).contains(&x) {
                 seam_hits.push(i);
@@ -104,12 +112,24 @@ fn duct(
             seam_hits.len(),
             *first,
             seam.0,
-            &seam_advice(&scan, seam.0, k, seam_hits.len()),
+            &seam_advice(&scan, seam.0, plan.scan_grid(), seam_hits.len()),
             slicing.seam_span.unwrap_or(slicing.span),
             loft.spine_span,
         ));
     }
     Ok((out, warnings))
+}
+
+/// Layer `i` needs `k` points (or more), more than a layer may hold.
+fn too_many_points(slicing: &Slicing, i: usize, k: usize) -> Diagnostics {
+    match slicing.resolution {
+        Resolution::ChordError(e) => {
+            message::bend::too_many_layer_points(e, MAX_POINTS, i, slicing.span).into()
+        }
+        Resolution::Count(_) => {
+            message::bend::too_many_section_points(k, MAX_POINTS, slicing.span).into()
+        }
+    }
 }
 
 /// Where to put a seam that sits at the bend's extremes on `hits` layers:

@@ -4,7 +4,8 @@
 //! point the speed at which the wall, one bead wide, rises by the mean of
 //! their heights: `A(v)/w` ([`crate::deposit`]).
 
-use crate::geometry::LoftGeometry;
+use super::section_points::{self, Sample, Spacing};
+use crate::geometry::{LoftGeometry, SectionFrame};
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
 use crate::sema::model::{Bead, Model};
 use crate::units::{Length, Speed};
@@ -18,8 +19,21 @@ pub struct Setup {
     pub layers: usize,
     /// Δδ (rad) for an arc spine; the layer height (mm) for a line.
     pub step: f64,
-    /// Points per layer (the path has one more: it closes on its start).
-    pub k: usize,
+    /// How the points are spaced round each layer.
+    pub spacing: Spacing,
+    /// The most points a layer may have.
+    pub max_points: usize,
+}
+
+impl Setup {
+    /// The equal angles the seam advice scans: the grid of `points = k`, or
+    /// whole degrees.
+    pub fn scan_grid(&self) -> usize {
+        match self.spacing {
+            Spacing::Count(k) => k,
+            Spacing::Chord { .. } => 360,
+        }
+    }
 }
 
 /// A seam this close (relative to the layer's span across the bend) to the
@@ -70,8 +84,9 @@ impl SeamScan {
 
 /// Generates layer `i`. Returns the layer and how its seam sits: the seam's
 /// offset toward the bend centre relative to the layer's extremes (0 = innermost
-/// … 1 = outermost), for arc spines; `scan` learns where every other sample
-/// angle sits.
+/// … 1 = outermost), for arc spines; `scan` learns where every angle of the
+/// seam advice's grid sits. `Err(n)`: the layer needs `n` points, more than
+/// the setup allows.
 pub fn layer(
     model: &Model,
     bead: &Bead,
@@ -79,7 +94,7 @@ pub fn layer(
     plan: &Setup,
     i: usize,
     scan: &mut SeamScan,
-) -> (Layer, Option<f64>) {
+) -> Result<(Layer, Option<f64>), usize> {
     let s = i as f64 / plan.layers as f64;
     let f = geo.frame(s);
     let n = f.z();
@@ -87,17 +102,16 @@ pub fn layer(
     let power = model.process.power.at(i).watts() as f32;
     let powder = model.process.powder.g_min() as f32;
     let defocus = model.process.defocus.0 as f32;
-    let k = plan.k;
     let seam = plan.seam;
     let deposit = bead.deposit();
-    let dth = std::f64::consts::TAU / k as f64;
+    let samples = section_points::angles(geo, &f, s, seam, plan.spacing, plan.max_points)?;
+    let k = samples.len();
 
     let mut pos = Vec::with_capacity(k);
     let mut heights = Vec::with_capacity(k);
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for j in 0..k {
-        let th = seam + j as f64 * dth;
-        let (p, uv) = geo.point(&f, s, th);
+    for &Sample { theta, .. } in &samples {
+        let (p, uv) = geo.point(&f, s, theta);
         let h = match geo.bend_distance(&f, uv) {
             Some(rho) => {
                 lo = lo.min(rho);
@@ -111,9 +125,7 @@ pub fn layer(
     }
     let across = |h: f64| (h / plan.step - lo) / (hi - lo);
     if hi > lo {
-        for (j, &h) in heights.iter().enumerate() {
-            scan.add(j, across(h));
-        }
+        scan_seams(geo, &f, s, plan, &samples, &heights, &across, scan);
     }
     let seam_at = (hi > lo).then(|| across(heights[0]));
 
@@ -163,7 +175,39 @@ pub fn layer(
             points,
         }],
     };
-    (layer, seam_at)
+    Ok((layer, seam_at))
+}
+
+/// Tells `scan` where each angle of the advice's grid sits across the bend
+/// on this layer: from the layer's own points where they are the grid's
+/// (`points = k`), else from the outline at each whole degree.
+#[allow(clippy::too_many_arguments)]
+fn scan_seams(
+    geo: &LoftGeometry,
+    f: &SectionFrame,
+    s: f64,
+    plan: &Setup,
+    samples: &[Sample],
+    heights: &[f64],
+    across: &impl Fn(f64) -> f64,
+    scan: &mut SeamScan,
+) {
+    if let Spacing::Count(_) = plan.spacing {
+        for (p, &h) in samples.iter().zip(heights) {
+            if let Some(j) = p.grid {
+                scan.add(j, across(h));
+            }
+        }
+        return;
+    }
+    let grid = plan.scan_grid();
+    for j in 0..grid {
+        let th = plan.seam + j as f64 * std::f64::consts::TAU / grid as f64;
+        let (_, uv) = geo.point(f, s, th);
+        if let Some(rho) = geo.bend_distance(f, uv) {
+            scan.add(j, across(rho * plan.step));
+        }
+    }
 }
 
 /// A speed the IR can hold: non-finite results (which the checks would refuse

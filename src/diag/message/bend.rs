@@ -194,16 +194,30 @@ fn apart(need: f64, have: f64) -> usize {
 /// A chord error that needs more than `max` points a layer.
 pub fn too_many_layer_points(
     chord_error: Length,
-    k: usize,
     max: usize,
+    layer: usize,
     slicing: Span,
 ) -> Diagnostic {
     Diagnostic::error(
         Code::TooManyPoints,
-        format!("a chord error of {chord_error} needs {k} points a layer, more than {max}"),
+        format!(
+            "a chord error of {chord_error} needs more than {max} points on layer {layer} \
+             (its section's outline)"
+        ),
     )
     .label(slicing, "slicing")
     .help("allow a larger chord error")
+}
+
+/// `points = k` and the section's corners between them make `k` points a
+/// layer, more than `max`.
+pub fn too_many_section_points(k: usize, max: usize, slicing: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!("the points a layer asks for and the section's corners make {k}, more than {max}"),
+    )
+    .label(slicing, "slicing")
+    .help("ask for fewer points a layer")
 }
 
 /// `layers` layers of `points` points each pass `max`.

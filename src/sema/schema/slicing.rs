@@ -63,14 +63,14 @@ pub mod normal {
         "points",
         Count(8, MAX_POINTS),
         Default(DefaultCount(360)),
-        "points per layer, at equal angles from the seam; or `chord_error`",
+        "points per layer, at equal angles from the seam, plus the corners; or `chord_error`",
     );
     /// `chord_error = …`.
     pub static CHORD_ERROR: Field = Field::new(
         "chord_error",
         Quantity(Dim::LENGTH, Positive),
         Optional,
-        "instead of `points`: the points from the largest section radius, a multiple of 8",
+        "instead of `points`: no chord further than this from the section, every corner a point",
     );
     /// `seam = …`.
     pub static SEAM: Field = Field::new(

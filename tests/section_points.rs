@@ -1,0 +1,224 @@
+//! Where a normal layer's points go round the section: every corner of a
+//! rectangle loft is a point of every layer and no chord strays more than
+//! `chord_error` from the outline (measured here from the IR alone: the
+//! points in their layer frame, the rectangle they span, the corner a chord
+//! skips), over random rectangles; polygons keep their vertices; a bent
+//! spine keeps each move's end heights within the rise tolerance.
+
+use lmdc::ir::{Layer, Program};
+use lmdc::pipeline::compile;
+use proptest::prelude::*;
+
+fn ir(src: &str) -> Program {
+    let c = compile(src, &mut ());
+    match c.program {
+        Some(p) => p.into_ir(),
+        None => panic!(
+            "does not compile:\n{}",
+            lmdc::diag::render(&c.diagnostics, "loft.lmd", src, false)
+        ),
+    }
+}
+
+/// A loft between two sections on a spine, sliced with `resolution`.
+fn loft(from: &str, to: &str, spine: &str, resolution: &str, morph: &str) -> String {
+    format!(
+        "part p
+bead b {{
+  width = 4 mm
+  speed = 4 mm/s .. 12 mm/s
+  model = mass_balance(feed = 20 g/min, efficiency = 50 %, density = 7.9 g/cm^3)
+}}
+loft l {{
+  from = {from}
+  to = {to}
+  spine = {spine}
+  morph = {morph}
+  wall = b
+}}
+slicing normal {{
+  {resolution}
+}}
+process {{
+  powder = 20 g/min
+  power = 1500 W
+}}
+machine m {{
+  kind = cnc
+  axes = 5
+  kinematics = head_ac
+  max_speed = 100 mm/s
+}}
+"
+    )
+}
+
+/// A layer's points in its frame's plane coordinates (the closing point
+/// dropped).
+fn uv(l: &Layer) -> Vec<[f64; 2]> {
+    let f = &l.frame;
+    let pts = &l.paths[0].points;
+    pts[..pts.len() - 1]
+        .iter()
+        .map(|p| {
+            let d = [
+                p.pos[0] - f.origin[0],
+                p.pos[1] - f.origin[1],
+                p.pos[2] - f.origin[2],
+            ];
+            let dot = |a: [f64; 3]| d[0] * a[0] + d[1] * a[1] + d[2] * a[2];
+            [dot(f.x), dot(f.y)]
+        })
+        .collect()
+}
+
+/// How far the outline of the rectangle `|u| ≤ a, |v| ≤ b` strays from the
+/// chord `p → q` between two of its boundary points: 0 on one side, else the
+/// distance of the corner(s) the chord cuts.
+fn rectangle_chord_error(a: f64, b: f64, p: [f64; 2], q: [f64; 2]) -> f64 {
+    let corners = [[a, b], [-a, b], [-a, -b], [a, -b]];
+    let d = [q[0] - p[0], q[1] - p[1]];
+    let len = d[0].hypot(d[1]);
+    // The corners between the two points: those in the chord's angular sweep.
+    let ang = |x: [f64; 2]| x[1].atan2(x[0]);
+    let (ap, aq) = (ang(p), ang(q));
+    let sweep = (aq - ap).rem_euclid(std::f64::consts::TAU);
+    corners
+        .iter()
+        .filter(|c| {
+            let s = (ang(**c) - ap).rem_euclid(std::f64::consts::TAU);
+            s > 1e-9 && s < sweep - 1e-9
+        })
+        .map(|c| ((c[0] - p[0]) * d[1] - (c[1] - p[1]) * d[0]).abs() / len)
+        .fold(0.0, f64::max)
+}
+
+/// Checks every layer of a rectangle-to-rectangle loft: the points lie on a
+/// rectangle, its four corners are points, no chord cuts more than `e`.
+fn check_rectangles(p: &Program, e: f64) {
+    for l in &p.layers {
+        let pts = uv(l);
+        let a = pts.iter().map(|x| x[0].abs()).fold(0.0, f64::max);
+        let b = pts.iter().map(|x| x[1].abs()).fold(0.0, f64::max);
+        for x in &pts {
+            let on = (x[0].abs() / a).max(x[1].abs() / b);
+            assert!(
+                (on - 1.0).abs() < 1e-6,
+                "layer {}: {x:?} off the rectangle",
+                l.index
+            );
+        }
+        for c in [[a, b], [-a, b], [-a, -b], [a, -b]] {
+            let near = pts
+                .iter()
+                .map(|x| (x[0] - c[0]).hypot(x[1] - c[1]))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                near < 1e-6,
+                "layer {}: corner {c:?} is {near} mm from a point",
+                l.index
+            );
+        }
+        for i in 0..pts.len() {
+            let (p0, p1) = (pts[i], pts[(i + 1) % pts.len()]);
+            let cut = rectangle_chord_error(a, b, p0, p1);
+            assert!(cut <= e + 1e-9, "layer {}: a chord cuts {cut} mm", l.index);
+        }
+    }
+}
+
+#[test]
+fn a_rectangle_loft_keeps_its_corners_at_a_chord_error() {
+    // The issue's case: 1.27 mm cut off each corner before.
+    let src = loft(
+        "rectangle(width = 60 mm, height = 30 mm)",
+        "rectangle(width = 40 mm, height = 36 mm)",
+        "line(length = 20 mm)",
+        "chord_error = 0.05 mm",
+        "superellipse",
+    );
+    let p = ir(&src);
+    check_rectangles(&p, 0.05);
+    // A straight side needs no points between its corners: the eight equal
+    // angles the refinement starts from and the four corners, closed.
+    assert!(p.layers.iter().all(|l| l.paths[0].points.len() <= 13));
+}
+
+#[test]
+fn points_keep_the_corners_too() {
+    // 60 × 30: the corners at ±26.6°, off the grid of 36 equal angles.
+    let src = loft(
+        "rectangle(width = 60 mm, height = 30 mm)",
+        "rectangle(width = 60 mm, height = 30 mm)",
+        "line(length = 10 mm)",
+        "points = 36",
+        "radial",
+    );
+    let p = ir(&src);
+    for l in &p.layers {
+        let pts = uv(l);
+        assert_eq!(pts.len(), 36 + 4, "the grid and the four corners");
+        for c in [[30.0, 15.0], [-30.0, 15.0], [-30.0, -15.0], [30.0, -15.0]] {
+            assert!(pts.iter().any(|x| (x[0] - c[0]).hypot(x[1] - c[1]) < 1e-6));
+        }
+    }
+}
+
+#[test]
+fn a_polygon_keeps_its_vertices() {
+    let src = loft(
+        "polygon(sides = 6, circumradius = 25 mm)",
+        "circle(diameter = 40 mm)",
+        "line(length = 10 mm)",
+        "chord_error = 0.05 mm",
+        "radial",
+    );
+    let p = ir(&src);
+    let first = uv(&p.layers[0]);
+    for j in 0..6 {
+        let th = j as f64 * std::f64::consts::TAU / 6.0;
+        let v = [25.0 * th.cos(), 25.0 * th.sin()];
+        assert!(first
+            .iter()
+            .any(|x| (x[0] - v[0]).hypot(x[1] - v[1]) < 1e-6));
+    }
+}
+
+#[test]
+fn a_bent_spine_keeps_each_moves_heights_within_the_tolerance() {
+    let src = loft(
+        "rectangle(width = 60 mm, height = 30 mm)",
+        "rectangle(width = 60 mm, height = 30 mm)",
+        "arc(radius = 80 mm, angle = 20 deg)",
+        "chord_error = 0.05 mm",
+        "radial",
+    );
+    let p = ir(&src);
+    check_rectangles(&p, 0.05);
+    for l in &p.layers {
+        let pts = &l.paths[0].points;
+        for w in pts.windows(2) {
+            let (a, b) = (w[0].layer_height as f64, w[1].layer_height as f64);
+            assert!((a - b).abs() <= 0.03 * 0.5 * (a + b) + 1e-6);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+    #[test]
+    fn chord_error_holds_on_random_rectangles(
+        w0 in 20.0..80.0f64, h0 in 20.0..80.0f64,
+        w1 in 20.0..80.0f64, h1 in 20.0..80.0f64,
+        e in 0.02..0.5f64,
+    ) {
+        let src = loft(
+            &format!("rectangle(width = {w0} mm, height = {h0} mm)"),
+            &format!("rectangle(width = {w1} mm, height = {h1} mm)"),
+            "line(length = 60 mm)",
+            &format!("chord_error = {e} mm"),
+            "superellipse",
+        );
+        check_rectangles(&ir(&src), e);
+    }
+}
