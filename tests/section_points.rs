@@ -222,3 +222,71 @@ proptest! {
         check_rectangles(&ir(&src), e);
     }
 }
+
+/// The angle of a layer's first point in its section frame, rad in 0..2π.
+fn seam_of(l: &Layer) -> f64 {
+    let p = uv(l)[0];
+    p[1].atan2(p[0]).rem_euclid(std::f64::consts::TAU)
+}
+
+#[test]
+fn a_rotating_seam_moves_by_its_step_each_layer() {
+    let src = loft(
+        "circle(diameter = 40 mm)",
+        "circle(diameter = 40 mm)",
+        "line(length = 10 mm)",
+        "points = 72\n  seam = rotating(step = 100 deg, from = 30 deg)",
+        "radial",
+    );
+    let p = ir(&src);
+    assert!(p.layers.len() > 3);
+    for l in &p.layers {
+        let want = (30.0 + 100.0 * l.index as f64).to_radians();
+        let want = want.rem_euclid(std::f64::consts::TAU);
+        let d = (seam_of(l) - want).abs();
+        let d = d.min(std::f64::consts::TAU - d);
+        assert!(
+            d < 1e-6,
+            "layer {}: seam at {} not {}",
+            l.index,
+            seam_of(l),
+            want
+        );
+    }
+}
+
+#[test]
+fn a_random_seam_is_drawn_again_for_each_layer_and_the_same_every_build() {
+    let src = loft(
+        "circle(diameter = 40 mm)",
+        "circle(diameter = 40 mm)",
+        "line(length = 10 mm)",
+        "points = 72\n  seam = random(seed = 7)",
+        "radial",
+    );
+    let (a, b) = (ir(&src), ir(&src));
+    let seams: Vec<f64> = a.layers.iter().map(seam_of).collect();
+    assert_eq!(seams, b.layers.iter().map(seam_of).collect::<Vec<_>>());
+    // No two layers in a row start within 10° of each other's seam, for this seed.
+    let distinct = seams
+        .windows(2)
+        .filter(|w| (w[0] - w[1]).abs() > 10f64.to_radians())
+        .count();
+    assert!(distinct * 4 >= 3 * (seams.len() - 1), "{seams:?}");
+}
+
+#[test]
+fn a_planar_seam_word_on_a_wall_says_what_a_walls_seam_is() {
+    let src = loft(
+        "circle(diameter = 40 mm)",
+        "circle(diameter = 40 mm)",
+        "line(length = 10 mm)",
+        "points = 72\n  seam = sharpest_corner",
+        "radial",
+    );
+    let c = compile(&src, &mut ());
+    assert!(c.program.is_none());
+    let text = lmdc::diag::render(&c.diagnostics, "loft.lmd", &src, false);
+    assert!(text.contains("a wall's seam is an angle"), "{text}");
+    assert!(text.contains("rotating(step = 90 deg)"), "{text}");
+}

@@ -336,8 +336,9 @@ pub struct Slicing {
     pub layers: Option<usize>,
     /// Points per layer.
     pub resolution: Resolution,
-    /// Angle of the start/stop point in the section frame, from its x axis.
-    pub seam: Angle,
+    /// Where each layer starts and stops: an angle in the section frame
+    /// (from its x axis), turning or drawn layer by layer.
+    pub seam: SeamRule,
     /// Spans.
     pub span: Span,
     /// `layers = …`, if written.

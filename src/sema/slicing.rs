@@ -4,9 +4,10 @@
 
 use super::eval::Env;
 use super::fields::Fields;
-use super::model::{Resolution, Slicing};
+use super::model::{Resolution, SeamRule, Slicing};
 use super::planar;
 use super::schema::slicing::{self as schema, normal};
+use super::seam;
 use super::statement::{shape_error, single, Statements};
 use super::suggest::did_you_mean;
 use super::value::Value;
@@ -180,7 +181,19 @@ fn normal<'a>(
             .count_or_default(&normal::POINTS, diags)
             .map(Resolution::Count),
     };
-    let seam = f.quantity_or_default(&normal::SEAM, diags).map(Angle);
+    let seam = match f.value(&normal::SEAM, diags) {
+        Some(v) => seam::read(v, diags).and_then(|rule| match rule {
+            SeamRule::Lowest | SeamRule::SharpestCorner => {
+                diags.push(message::bend::planar_seam_on_a_wall(v.span));
+                None
+            }
+            rule => Some(rule),
+        }),
+        None if f.has(&normal::SEAM) => None,
+        None => f
+            .quantity_or_default(&normal::SEAM, diags)
+            .map(|a| SeamRule::Toward(Angle(a))),
+    };
     let tolerance = tolerance(&f, diags);
     Some(Slicing {
         layers: layers?,

@@ -17,7 +17,7 @@ use crate::diag::Diagnostics;
 use crate::geometry::LoftGeometry;
 use crate::ir::Layer;
 use crate::sema::model::MAX_POINTS;
-use crate::sema::model::{Bead, Build, Loft, Model, Resolution, Slicing, Spine};
+use crate::sema::model::{Bead, Build, Loft, Model, Resolution, SeamRule, Slicing, Spine};
 use crate::units::short;
 use section_points::Spacing;
 
@@ -64,7 +64,7 @@ fn duct(
         },
     };
     let plan = normal::Setup {
-        seam: slicing.seam.0,
+        seam: slicing.seam,
         layers,
         step,
         spacing,
@@ -106,8 +106,9 @@ fn duct(
         }
         out.push(layer);
     }
-    if let (Some(first), Spine::Arc { .. }) = (seam_hits.first(), loft.spine) {
-        let seam = slicing.seam;
+    if let (Some(first), Spine::Arc { .. }, SeamRule::Toward(seam)) =
+        (seam_hits.first(), loft.spine, slicing.seam)
+    {
         warnings.push(message::bend::seam_at_bend_extreme(
             seam_hits.len(),
             *first,

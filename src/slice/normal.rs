@@ -7,14 +7,15 @@
 use super::section_points::{self, Sample, Spacing};
 use crate::geometry::{LoftGeometry, SectionFrame};
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
-use crate::sema::model::{Bead, Model};
+use crate::sema::model::{Bead, Model, SeamRule};
 use crate::units::{Length, Speed};
 use nalgebra::Vector3;
 
 /// Everything per-point generation needs, fixed per plan.
 pub struct Setup {
-    /// Seam position (rad from the section's x axis).
-    pub seam: f64,
+    /// Where each layer starts (rad from the section's x axis, layer by
+    /// layer).
+    pub seam: SeamRule,
     /// Number of layers.
     pub layers: usize,
     /// Δδ (rad) for an arc spine; the layer height (mm) for a line.
@@ -26,6 +27,18 @@ pub struct Setup {
 }
 
 impl Setup {
+    /// Layer `i`'s seam, rad from the section's x axis.
+    pub fn seam_at(&self, i: usize) -> f64 {
+        self.seam
+            .direction(i)
+            .unwrap_or(std::f64::consts::FRAC_PI_2)
+    }
+
+    /// The seam is one angle on every layer (what the seam advice is for).
+    pub fn fixed_seam(&self) -> bool {
+        matches!(self.seam, SeamRule::Toward(_))
+    }
+
     /// The equal angles the seam advice scans: the grid of `points = k`, or
     /// whole degrees.
     pub fn scan_grid(&self) -> usize {
@@ -102,7 +115,7 @@ pub fn layer(
     let power = model.process.power.at(i).watts() as f32;
     let powder = model.process.powder.g_min() as f32;
     let defocus = model.process.defocus.0 as f32;
-    let seam = plan.seam;
+    let seam = plan.seam_at(i);
     let deposit = bead.deposit();
     let samples = section_points::angles(geo, &f, s, seam, plan.spacing, plan.max_points)?;
     let k = samples.len();
@@ -124,7 +137,7 @@ pub fn layer(
         heights.push(h);
     }
     let across = |h: f64| (h / plan.step - lo) / (hi - lo);
-    if hi > lo {
+    if hi > lo && plan.fixed_seam() {
         scan_seams(geo, &f, s, plan, &samples, &heights, &across, scan);
     }
     let seam_at = (hi > lo).then(|| across(heights[0]));
@@ -202,7 +215,7 @@ fn scan_seams(
     }
     let grid = plan.scan_grid();
     for j in 0..grid {
-        let th = plan.seam + j as f64 * std::f64::consts::TAU / grid as f64;
+        let th = plan.seam_at(0) + j as f64 * std::f64::consts::TAU / grid as f64;
         let (_, uv) = geo.point(f, s, th);
         if let Some(rho) = geo.bend_distance(f, uv) {
             scan.add(j, across(rho * plan.step));

@@ -230,6 +230,20 @@ pub fn too_many_duct_points(layers: usize, points: usize, max: usize, slicing: S
     .help("use fewer points a layer (or a larger chord error)")
 }
 
+/// `seam = lowest` or `sharpest_corner` on a normal-sliced wall.
+pub fn planar_seam_on_a_wall(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::BadChoice,
+        "a wall's seam is an angle, `rotating(…)` or `random(…)`",
+    )
+    .label(at, "this picks among a planar layer's contour points")
+    .help(
+        "`lowest` and `sharpest_corner` choose where a flat contour starts; a wall sliced \
+         normal to its spine starts at an angle in its section frame, e.g. \
+         `seam = rotating(step = 90 deg)` turns it a quarter turn each layer",
+    )
+}
+
 /// A better seam, found by sampling the layer at the seam + j·2π/k.
 pub enum SeamAdvice {
     /// This angle (deg) keeps off the extremes on every layer.

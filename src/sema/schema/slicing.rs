@@ -75,9 +75,13 @@ pub mod normal {
     /// `seam = …`.
     pub static SEAM: Field = Field::new(
         "seam",
-        Quantity(Dim::ANGLE, Any),
+        Either(&[
+            Word(&["random"]),
+            Quantity(Dim::ANGLE, Any),
+            Call(&[&ROTATING, &RANDOM]),
+        ]),
         Default(DefaultQuantity(crate::sema::schema::deg(90.0))),
-        "where each layer starts and stops, an angle in the section frame",
+        "where each layer starts and stops, an angle in the section frame, layer by layer",
     );
 }
 
