@@ -11,6 +11,7 @@ pub mod geometry;
 pub mod invalid;
 pub mod ir;
 pub mod lower;
+pub mod lsp;
 pub mod numbers;
 pub mod pipeline;
 pub mod plan;

@@ -140,6 +140,9 @@ enum Command {
         #[arg(long, value_name = "N", default_value_t = 10)]
         every: usize,
     },
+    /// Run the language server on stdin/stdout for an editor: diagnostics as you type,
+    /// hover, go to definition, references and completion (docs/editors.md).
+    Lsp,
 }
 
 /// Runs the command line; returns the exit code.
@@ -220,6 +223,13 @@ pub fn run(cli: Cli) -> u8 {
             };
             report::run(args, color, format, p)
         }
+        Command::Lsp => match lmdc::lsp::run_stdio() {
+            Ok(()) => 0,
+            Err(e) => {
+                eprintln!("error: the language server stopped: {e}");
+                EXIT_USAGE
+            }
+        },
         Command::Preview { file, machine, out } => {
             let p = progress(&file);
             preview::run(&file, machine.as_deref(), out.as_deref(), color, format, p)

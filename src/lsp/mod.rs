@@ -1,0 +1,286 @@
+//! `lmdc lsp`: a language server on stdio. Diagnostics as you type (the
+//! compiler's own: codes, labels, help), hover (a field's meaning, what it
+//! takes and its default from the block tables; a name's declaration; what
+//! `auto` chose), go to definition and references of names, and completion
+//! of fields, statements, words, names and units.
+//!
+//! The transport is `lsp-server` (rust-analyzer's); the few LSP types it
+//! answers with are built as JSON here. Every request is answered from the
+//! latest text of the document (full sync).
+
+mod features;
+mod names;
+mod scan;
+mod text;
+
+pub use features::{completion, definition, hover, references, Completion, Hover, UNITS};
+pub use text::{Encoding, LineIndex};
+
+use crate::diag::{Diagnostic, Severity};
+use crate::pipeline;
+use lsp_server::{Connection, Message, Notification, Request, Response};
+use serde_json::{json, Value};
+use std::collections::HashMap;
+use std::error::Error;
+
+/// What can end the server.
+pub type ServerError = Box<dyn Error + Send + Sync>;
+
+/// Runs the server on stdin/stdout until the client says `exit`.
+pub fn run_stdio() -> Result<(), ServerError> {
+    let (connection, io) = Connection::stdio();
+    serve(&connection)?;
+    drop(connection);
+    io.join()?;
+    Ok(())
+}
+
+/// An open document.
+struct Doc {
+    text: String,
+    index: LineIndex,
+}
+
+/// Serves one client on `connection`: the handshake, then requests and
+/// notifications until `shutdown`.
+pub fn serve(connection: &Connection) -> Result<(), ServerError> {
+    let (id, params) = connection.initialize_start()?;
+    let encoding = negotiate(&params);
+    let name = match encoding {
+        Encoding::Utf8 => "utf-8",
+        Encoding::Utf16 => "utf-16",
+    };
+    connection.initialize_finish(
+        id,
+        json!({
+            "capabilities": {
+                "positionEncoding": name,
+                "textDocumentSync": 1,
+                "hoverProvider": true,
+                "definitionProvider": true,
+                "referencesProvider": true,
+                "completionProvider": { "triggerCharacters": [" ", "="] },
+            },
+            "serverInfo": { "name": "lmdc", "version": env!("CARGO_PKG_VERSION") },
+        }),
+    )?;
+    let mut docs: HashMap<String, Doc> = HashMap::new();
+    for msg in &connection.receiver {
+        match msg {
+            Message::Request(req) => {
+                if connection.handle_shutdown(&req)? {
+                    return Ok(());
+                }
+                let resp = answer(&docs, req);
+                connection.sender.send(Message::Response(resp))?;
+            }
+            Message::Notification(n) => {
+                if let Some(uri) = update(&mut docs, n, encoding) {
+                    let params = publish(&uri, &docs[&uri]);
+                    let note = Notification::new("textDocument/publishDiagnostics".into(), params);
+                    connection.sender.send(Message::Notification(note))?;
+                }
+            }
+            Message::Response(_) => {}
+        }
+    }
+    Ok(())
+}
+
+/// UTF-8 positions if the client offers them, else the protocol's UTF-16.
+fn negotiate(params: &Value) -> Encoding {
+    let offered = params
+        .pointer("/capabilities/general/positionEncodings")
+        .and_then(Value::as_array);
+    match offered {
+        Some(e) if e.iter().any(|x| x == "utf-8") => Encoding::Utf8,
+        _ => Encoding::Utf16,
+    }
+}
+
+/// Applies `didOpen`, `didChange` and `didClose`; the document to publish
+/// diagnostics for, if any.
+fn update(docs: &mut HashMap<String, Doc>, n: Notification, encoding: Encoding) -> Option<String> {
+    let uri = n.params.pointer("/textDocument/uri")?.as_str()?.to_string();
+    let text = match n.method.as_str() {
+        "textDocument/didOpen" => n.params.pointer("/textDocument/text")?.as_str()?,
+        // Full sync: the last change holds the whole text.
+        "textDocument/didChange" => n
+            .params
+            .pointer("/contentChanges")?
+            .as_array()?
+            .last()?
+            .get("text")?
+            .as_str()?,
+        "textDocument/didClose" => {
+            docs.remove(&uri);
+            return None;
+        }
+        _ => return None,
+    };
+    let index = LineIndex::new(text, encoding);
+    docs.insert(
+        uri.clone(),
+        Doc {
+            text: text.to_string(),
+            index,
+        },
+    );
+    Some(uri)
+}
+
+/// The `publishDiagnostics` parameters for a document: the compiler's
+/// diagnostics, each at its first label, the other labels as related
+/// information.
+fn publish(uri: &str, doc: &Doc) -> Value {
+    let c = pipeline::compile(&doc.text, &mut ());
+    let items: Vec<Value> = c
+        .diagnostics
+        .iter()
+        .map(|d| diagnostic(uri, doc, d))
+        .collect();
+    json!({ "uri": uri, "diagnostics": items })
+}
+
+fn diagnostic(uri: &str, doc: &Doc, d: &Diagnostic) -> Value {
+    let range = |s: crate::span::Span| range(doc, s.start, s.end);
+    let first = d.labels.first();
+    let mut message = d.message.clone();
+    if let Some(l) = first.filter(|l| !l.text.is_empty()) {
+        message.push_str(&format!("\n{}", l.text));
+    }
+    if let Some(h) = &d.help {
+        message.push_str(&format!("\nhelp: {h}"));
+    }
+    let related: Vec<Value> = d
+        .labels
+        .iter()
+        .skip(1)
+        .map(|l| json!({ "location": { "uri": uri, "range": range(l.span) }, "message": l.text }))
+        .collect();
+    json!({
+        "range": first.map_or_else(|| range(crate::span::Span::new(0, 0)), |l| range(l.span)),
+        "severity": match d.severity { Severity::Error => 1, Severity::Warning => 2 },
+        "code": d.code.as_str(),
+        "source": "lmdc",
+        "message": message,
+        "relatedInformation": related,
+    })
+}
+
+fn range(doc: &Doc, start: usize, end: usize) -> Value {
+    let (l0, c0) = doc.index.position(&doc.text, start);
+    let (l1, c1) = doc.index.position(&doc.text, end);
+    json!({ "start": { "line": l0, "character": c0 }, "end": { "line": l1, "character": c1 } })
+}
+
+/// Answers one request.
+fn answer(docs: &HashMap<String, Doc>, req: Request) -> Response {
+    let doc = req
+        .params
+        .pointer("/textDocument/uri")
+        .and_then(Value::as_str)
+        .and_then(|u| docs.get(u).map(|d| (u.to_string(), d)));
+    let Some((uri, doc)) = doc else {
+        return Response::new_ok(req.id, Value::Null);
+    };
+    let offset = || {
+        let line = req.params.pointer("/position/line")?.as_u64()? as u32;
+        let ch = req.params.pointer("/position/character")?.as_u64()? as u32;
+        Some(doc.index.offset(&doc.text, line, ch))
+    };
+    let Some(at) = offset() else {
+        return Response::new_ok(req.id, Value::Null);
+    };
+    let result = match req.method.as_str() {
+        "textDocument/hover" => {
+            let chosen = |key: &str| chosen(&doc.text, key);
+            hover(&doc.text, at, &chosen).map_or(Value::Null, |h| {
+                json!({
+                    "contents": { "kind": "markdown", "value": h.markdown },
+                    "range": range(doc, h.span.start, h.span.end),
+                })
+            })
+        }
+        "textDocument/definition" => definition(&doc.text, at).map_or(
+            Value::Null,
+            |s| json!({ "uri": uri, "range": range(doc, s.start, s.end) }),
+        ),
+        "textDocument/references" => {
+            let with = req
+                .params
+                .pointer("/context/includeDeclaration")
+                .and_then(Value::as_bool)
+                .unwrap_or(true);
+            let spans = references(&doc.text, at, with);
+            Value::Array(
+                spans
+                    .iter()
+                    .map(|s| json!({ "uri": uri, "range": range(doc, s.start, s.end) }))
+                    .collect(),
+            )
+        }
+        "textDocument/completion" => Value::Array(
+            completion(&doc.text, at)
+                .into_iter()
+                .map(|c| {
+                    json!({
+                        "label": c.label,
+                        "kind": c.kind,
+                        "detail": c.detail,
+                        "documentation": { "kind": "markdown", "value": c.documentation },
+                        "insertText": c.insert,
+                    })
+                })
+                .collect(),
+        ),
+        _ => {
+            return Response::new_err(
+                req.id,
+                lsp_server::ErrorCode::MethodNotFound as i32,
+                format!("lmdc does not answer {}", req.method),
+            )
+        }
+    };
+    Response::new_ok(req.id, result)
+}
+
+/// What the compiled plan chose for `key = auto`: the layer count and the
+/// heights it lays, or the track spacing.
+fn chosen(text: &str, key: &str) -> Option<String> {
+    let c = pipeline::compile(text, &mut ());
+    let p = c.program?;
+    let ir = p.ir();
+    let on = || {
+        ir.layers
+            .iter()
+            .flat_map(|l| &l.paths)
+            .flat_map(|p| &p.points)
+            .filter(|p| p.laser_on)
+    };
+    let span = |f: &dyn Fn(&crate::ir::Point) -> f32| {
+        let (lo, hi) = on().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(f(p)), hi.max(f(p)))
+        });
+        (lo.is_finite() && hi.is_finite()).then(|| {
+            if (hi - lo).abs() < 5e-4 {
+                format!("{} mm", crate::units::short(lo as f64))
+            } else {
+                format!(
+                    "{} … {} mm",
+                    crate::units::short(lo as f64),
+                    crate::units::short(hi as f64)
+                )
+            }
+        })
+    };
+    match key {
+        "layers" | "layer_height" => Some(format!(
+            "{} layers, {} thick",
+            ir.layers.len(),
+            span(&|p| p.layer_height)?
+        )),
+        "offset" => Some(format!("tracks {} apart", span(&|p| p.pitch)?)),
+        _ => None,
+    }
+}

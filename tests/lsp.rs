@@ -1,0 +1,293 @@
+//! `lmdc lsp` driven over JSON-RPC on stdio as an editor drives it: the
+//! handshake, diagnostics on open and on change (the compiler's codes at the
+//! places its reports point to), hover from the block tables and from the
+//! compiled plan, definition, references, completion in a file that does not
+//! parse yet, and a clean shutdown.
+
+use serde_json::{json, Value};
+use std::io::{BufRead, BufReader, Read, Write};
+use std::process::{Child, ChildStdin, ChildStdout, Command, Stdio};
+
+struct Client {
+    child: Child,
+    stdin: ChildStdin,
+    stdout: BufReader<ChildStdout>,
+    next: i64,
+}
+
+impl Client {
+    fn start() -> Client {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_lmdc"))
+            .arg("lsp")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .spawn()
+            .expect("lmdc lsp starts");
+        let stdin = child.stdin.take().unwrap();
+        let stdout = BufReader::new(child.stdout.take().unwrap());
+        Client {
+            child,
+            stdin,
+            stdout,
+            next: 1,
+        }
+    }
+
+    fn send(&mut self, msg: Value) {
+        let body = msg.to_string();
+        write!(self.stdin, "Content-Length: {}\r\n\r\n{body}", body.len()).unwrap();
+        self.stdin.flush().unwrap();
+    }
+
+    fn read(&mut self) -> Value {
+        let mut len = 0usize;
+        loop {
+            let mut line = String::new();
+            assert!(
+                self.stdout.read_line(&mut line).unwrap() > 0,
+                "the server hung up"
+            );
+            let line = line.trim_end();
+            if line.is_empty() {
+                break;
+            }
+            if let Some(n) = line.strip_prefix("Content-Length: ") {
+                len = n.parse().unwrap();
+            }
+        }
+        let mut body = vec![0; len];
+        self.stdout.read_exact(&mut body).unwrap();
+        serde_json::from_slice(&body).unwrap()
+    }
+
+    fn request(&mut self, method: &str, params: Value) -> Value {
+        let id = self.next;
+        self.next += 1;
+        self.send(json!({ "jsonrpc": "2.0", "id": id, "method": method, "params": params }));
+        loop {
+            let m = self.read();
+            if m.get("id") == Some(&json!(id)) {
+                assert!(m.get("error").is_none(), "{method}: {m}");
+                return m["result"].clone();
+            }
+        }
+    }
+
+    fn notify(&mut self, method: &str, params: Value) {
+        self.send(json!({ "jsonrpc": "2.0", "method": method, "params": params }));
+    }
+
+    /// The diagnostics published next for `uri`.
+    fn diagnostics(&mut self, uri: &str) -> Vec<Value> {
+        loop {
+            let m = self.read();
+            if m["method"] == "textDocument/publishDiagnostics" && m["params"]["uri"] == uri {
+                return m["params"]["diagnostics"].as_array().unwrap().clone();
+            }
+        }
+    }
+
+    fn open(&mut self, uri: &str, text: &str) -> Vec<Value> {
+        self.notify(
+            "textDocument/didOpen",
+            json!({ "textDocument": { "uri": uri, "languageId": "lmd", "version": 1, "text": text } }),
+        );
+        self.diagnostics(uri)
+    }
+
+    fn at(&mut self, method: &str, uri: &str, (line, character): (usize, usize)) -> Value {
+        self.request(
+            method,
+            json!({
+                "textDocument": { "uri": uri },
+                "position": { "line": line, "character": character },
+                "context": { "includeDeclaration": true },
+            }),
+        )
+    }
+}
+
+fn started() -> Client {
+    let mut c = Client::start();
+    let init = c.request("initialize", json!({ "capabilities": {} }));
+    assert_eq!(init["capabilities"]["hoverProvider"], true);
+    assert_eq!(init["capabilities"]["positionEncoding"], "utf-16");
+    c.notify("initialized", json!({}));
+    c
+}
+
+fn stop(mut c: Client) {
+    c.request("shutdown", Value::Null);
+    c.notify("exit", Value::Null);
+    let status = c.child.wait().unwrap();
+    assert!(status.success(), "lmdc lsp exited with {status}");
+}
+
+/// The line and UTF-16 column of the `n`-th (from 0) occurrence of `needle`,
+/// plus `skip` characters.
+fn pos(text: &str, needle: &str, n: usize, skip: usize) -> (usize, usize) {
+    let at = text.match_indices(needle).nth(n).expect("in the text").0 + skip;
+    let line = text[..at].matches('\n').count();
+    let start = text[..at].rfind('\n').map_or(0, |i| i + 1);
+    (line, text[start..at].encode_utf16().count())
+}
+
+fn duct() -> String {
+    std::fs::read_to_string("examples/twisted_duct.lmd").unwrap()
+}
+
+#[test]
+fn diagnostics_come_on_open_and_change_with_the_compilers_codes_and_places() {
+    let mut c = started();
+    let text = duct();
+    let uri = "file:///duct.lmd";
+    let d = c.open(uri, &text);
+    assert!(d.iter().all(|d| d["severity"] != 1), "{d:?}");
+    // A power in the wrong unit: the unit-mismatch error, at the value.
+    let broken = text.replacen("width = 6 mm", "width = 6 W", 1);
+    c.notify(
+        "textDocument/didChange",
+        json!({ "textDocument": { "uri": uri, "version": 2 }, "contentChanges": [{ "text": broken }] }),
+    );
+    let d = c.diagnostics(uri);
+    let e = d
+        .iter()
+        .find(|d| d["code"] == "lmd::unit-mismatch")
+        .unwrap_or_else(|| panic!("{d:?}"));
+    assert_eq!(e["severity"], 1);
+    let (line, ch) = pos(&broken, "6 W", 0, 0);
+    assert_eq!(e["range"]["start"]["line"], line);
+    assert_eq!(e["range"]["start"]["character"], ch);
+    // What `lmdc check` says, word for word.
+    let compiled = lmdc::pipeline::compile(&broken, &mut ());
+    let want = compiled
+        .diagnostics
+        .iter()
+        .find(|d| d.code.as_str() == "lmd::unit-mismatch")
+        .unwrap();
+    assert!(e["message"].as_str().unwrap().starts_with(&want.message));
+    stop(c);
+}
+
+#[test]
+fn hover_explains_fields_names_and_what_auto_chose() {
+    let mut c = started();
+    let text = duct();
+    let uri = "file:///duct.lmd";
+    c.open(uri, &text);
+    let h = c.at("textDocument/hover", uri, pos(&text, "width = 6 mm", 0, 1));
+    let md = h["contents"]["value"].as_str().unwrap();
+    let field = lmdc::sema::schema::block("bead")
+        .unwrap()
+        .field("width")
+        .unwrap();
+    assert!(md.contains(field.help), "{md}");
+    assert!(md.contains(&field.value_text()), "{md}");
+    // A name: its declaration.
+    let h = c.at(
+        "textDocument/hover",
+        uri,
+        pos(&text, "wall = wall_bead", 0, 8),
+    );
+    let md = h["contents"]["value"].as_str().unwrap();
+    assert!(
+        md.contains("bead `wall_bead`") && md.contains("width = 6 mm"),
+        "{md}"
+    );
+    // `layers = auto`: what the plan chose, from the compiled IR.
+    let ir = lmdc::pipeline::compile(&text, &mut ())
+        .program
+        .unwrap()
+        .into_ir();
+    let h = c.at(
+        "textDocument/hover",
+        uri,
+        pos(&text, "layers = auto", 0, 10),
+    );
+    let md = h["contents"]["value"].as_str().unwrap();
+    assert!(md.contains(&format!("{} layers", ir.layers.len())), "{md}");
+    stop(c);
+}
+
+#[test]
+fn definition_and_references_follow_names() {
+    let mut c = started();
+    let text = duct();
+    let uri = "file:///duct.lmd";
+    c.open(uri, &text);
+    let d = c.at(
+        "textDocument/definition",
+        uri,
+        pos(&text, "wall = wall_bead", 0, 8),
+    );
+    let (line, ch) = pos(&text, "bead wall_bead", 0, 5);
+    assert_eq!(d["range"]["start"]["line"], line);
+    assert_eq!(d["range"]["start"]["character"], ch);
+    let r = c.at("textDocument/references", uri, pos(&text, "feed", 0, 0));
+    // `let feed = …` and each `= feed` in the file.
+    let uses = text.matches("= feed").count();
+    assert!(uses >= 1);
+    assert_eq!(r.as_array().unwrap().len(), uses + 1, "{r}");
+    stop(c);
+}
+
+#[test]
+fn completion_works_in_a_file_that_does_not_parse_yet() {
+    let mut c = started();
+    let uri = "file:///new.lmd";
+    let text = "part p\n\nbead b {\n  wi\n  height = 6 \n}\n\n";
+    let d = c.open(uri, text);
+    assert!(
+        d.iter().any(|d| d["severity"] == 1),
+        "an unfinished file has errors"
+    );
+    let labels = |v: &Value| -> Vec<String> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["label"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let fields = labels(&c.at("textDocument/completion", uri, pos(text, "wi", 0, 2)));
+    for f in ["width", "speed", "model"] {
+        assert!(fields.contains(&f.to_string()), "{fields:?}");
+    }
+    let units = labels(&c.at("textDocument/completion", uri, pos(text, "6 ", 0, 2)));
+    assert!(units.contains(&"mm".to_string()), "{units:?}");
+    let top = labels(&c.at("textDocument/completion", uri, (7, 0)));
+    for k in ["bead", "machine", "loft", "let"] {
+        assert!(top.contains(&k.to_string()), "{top:?}");
+    }
+    stop(c);
+}
+
+#[test]
+fn every_unit_completion_offers_is_one_lmdc_reads() {
+    for u in lmdc::lsp::UNITS {
+        assert!(
+            lmdc::units::parse_unit(u).is_ok(),
+            "`{u}` is not a unit lmdc reads"
+        );
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+    /// Whatever is typed, wherever the cursor: an answer, never a panic.
+    #[test]
+    fn no_text_and_no_offset_panics(
+        text in "(bead b \\{|machine m \\{ kind = cnc |limits \\{|model = mass_balance\\(|width = 6 |µm|𝜌|\"q\\{|/\\*|//x\n|\\}|\\)|\\[|=|auto|layers|\n| ){0,30}",
+        frac in 0.0..=1.0f64,
+    ) {
+        let offset = (text.len() as f64 * frac) as usize;
+        let none = |_: &str| None;
+        let _ = lmdc::lsp::hover(&text, offset, &none);
+        let _ = lmdc::lsp::completion(&text, offset);
+        let _ = lmdc::lsp::definition(&text, offset);
+        let _ = lmdc::lsp::references(&text, offset, true);
+        let ix = lmdc::lsp::LineIndex::new(&text, lmdc::lsp::Encoding::Utf16);
+        let (l, c) = ix.position(&text, offset);
+        let back = ix.offset(&text, l, c);
+        proptest::prop_assert!(back <= offset && text.is_char_boundary(back));
+    }
+}
