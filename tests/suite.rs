@@ -14,6 +14,7 @@ mod codes;
 mod deposit;
 mod diagnostics;
 mod duct_geometry;
+mod editor_grammar;
 mod fill;
 mod fixture_sanity;
 mod gcode_kinematics;

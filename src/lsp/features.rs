@@ -277,7 +277,16 @@ fn statements() -> Vec<Completion> {
         .iter()
         .map(|w| keyword(w, ""))
         .collect();
-    for b in schema::BLOCKS.iter().filter(|b| !b.is_call()) {
+    // A nested block (`limits { … }`) is written inside its parent only.
+    let nested = |b: &Block| {
+        schema::BLOCKS.iter().any(|p| {
+            p.fields.iter().any(|f| match f.kind {
+                Kind::Block(x) | Kind::Blocks(x) => x.name == b.name,
+                _ => false,
+            })
+        })
+    };
+    for b in schema::BLOCKS.iter().filter(|b| !b.is_call() && !nested(b)) {
         let Some(word) = b.syntax.split_whitespace().next() else {
             continue;
         };
