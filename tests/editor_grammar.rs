@@ -94,7 +94,7 @@ fn tokenise(rules: &[Rule], text: &str) -> Vec<Vec<Option<String>>> {
     for line in text.lines() {
         let mut scopes = vec![None; line.len()];
         let mut pos = 0;
-        let mut mark = |scopes: &mut Vec<Option<String>>, a: usize, b: usize, s: &str| {
+        let mark = |scopes: &mut Vec<Option<String>>, a: usize, b: usize, s: &str| {
             for x in &mut scopes[a..b] {
                 *x = Some(s.to_string());
             }
