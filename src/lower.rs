@@ -71,14 +71,18 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         bead: match (&model.build, &model.bead) {
             (Build::Ring(_), _) | (_, None) => None,
             // The model as declared: each point carries its own feed.
-            (_, Some(b)) => Some(ir::Bead::of(
-                &crate::deposit::Deposit {
-                    model: b.model,
-                    width: b.width,
-                    basis: b.basis,
-                },
-                b.speed,
-            )),
+            (_, Some(b)) => Some(ir::Bead {
+                measured: b.measured.map(|[lo, hi]| [lo.0, hi.0]),
+                ..ir::Bead::of(
+                    &crate::deposit::Deposit {
+                        model: b.model.clone(),
+                        width: b.width,
+                        basis: b.basis,
+                        widths: b.widths.clone(),
+                    },
+                    b.speed,
+                )
+            }),
         },
         ring,
         layers,
@@ -108,6 +112,13 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         },
     };
     let mut program = program;
+    if program
+        .bead
+        .as_ref()
+        .is_some_and(ir::Bead::needs_calibrated_version)
+    {
+        program.version = ir::VERSION_CALIBRATED;
+    }
     predict_rises(&mut program);
     Ok((program, warnings))
 }
@@ -151,7 +162,7 @@ fn pitches(layers: &[Layer]) -> Option<[f64; 2]> {
 /// Each laser-on point's `rise` by the plan's bead model: `A/pitch` at its
 /// speed across the normal and its own powder feed.
 fn predict_rises(p: &mut Program) {
-    let Some(bead) = p.bead else { return };
+    let Some(bead) = &p.bead else { return };
     let deposit = bead.deposit();
     for path in p.layers.iter_mut().flat_map(|l| &mut l.paths) {
         let n = path.points.len();

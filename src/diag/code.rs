@@ -164,6 +164,8 @@ codes! {
         "a whole number outside its field's range (`sides` 3–1000, `points` 8–100 000, a style's `id` 1–65 535, …); the message gives the range";
     BeadSlope = "bead-slope", Values,
         "a linear bead model whose height does not fall as the scan speed rises (slope ≥ 0)";
+    BeadTable = "bead-table", Values,
+        "a bead `table(…)` (or measured data) that is no table: fewer than two speeds, lists of unequal length, speeds that do not increase, or heights that do not fall as the speed rises (names the entries that break it)";
     EfficiencyRange = "efficiency-range", Values,
         "a mass-balance bead model's catch efficiency above 1 (100 %)";
     CornerRadius = "corner-radius", Values,
@@ -212,6 +214,8 @@ codes! {
         "the process `speed` of planar layers outside the bead model's speeds, or not the speed a measured bead was measured at";
     SectionTooSmall = "section-too-small", Feasibility,
         "a loft's end measured at its outer face (`size = outer`) with nothing left inside half a bead width";
+    Extrapolation = "extrapolation", Feasibility,
+        "a bead's `speed` range reaching beyond the speeds its model was measured at (a `table(…)`'s): an error naming the measured range, or with `extrapolate = allow` a warning saying how far outside";
     InfeasibleBead = "infeasible-bead", Feasibility,
         "the bead model gives no positive height over its speed range, or its heights miss the declared `height` range";
     RingTooSmall = "ring-too-small", Feasibility,

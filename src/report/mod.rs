@@ -187,7 +187,7 @@ impl Report {
     ) -> Report {
         let program = machine.ir();
         let mut r = Self::walk(machine);
-        r.bead = program.bead.map(|b| BeadInfo {
+        r.bead = program.bead.as_ref().map(|b| BeadInfo {
             width_mm: b.width,
             measured_as: b.basis.describe(),
             spacing: spacing(program, b.width),
@@ -196,7 +196,7 @@ impl Report {
                 _ => None,
             },
         });
-        let declared = program.bead.and_then(|b| match b.model {
+        let declared = program.bead.as_ref().and_then(|b| match b.model {
             BeadModel::MassBalance { density, .. } => Some(density),
             _ => None,
         });
@@ -232,7 +232,7 @@ impl Report {
     fn walk(machine: VerifiedMachine<'_>) -> Report {
         let program = machine.ir();
         let summary = machine.summary();
-        let laid = program.bead.map(|_| volume::per_layer(program));
+        let laid = program.bead.as_ref().map(|_| volume::per_layer(program));
         let rows: Vec<Tally> = summary
             .layers
             .iter()

@@ -511,6 +511,8 @@ pub static BLOCKS: &[&Block] = &[
     &bead::LINEAR,
     &bead::MASS_BALANCE,
     &bead::MEASURED,
+    &bead::POWER,
+    &bead::TABLE,
     &bead::LAYER,
     &solid::LOFT,
     &solid::LINE,
