@@ -4,6 +4,8 @@
 //! builds a [`HeightModel`] from a `bead` block; the slicer and the checks use
 //! these functions. Nothing here knows about the language.
 
+pub mod fit;
+pub mod sheet;
 mod table;
 
 pub use table::{Table, TableFault, Widths};

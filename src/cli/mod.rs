@@ -1,6 +1,7 @@
 //! The `lmdc` command line: argument parsing, reading the source, printing
 //! diagnostics, writing outputs atomically, exit codes.
 
+mod fit;
 pub mod messages;
 pub mod preview;
 pub mod progress;
@@ -129,6 +130,33 @@ enum Command {
         #[arg(short = 'o', long = "out", value_name = "FILE")]
         out: Option<PathBuf>,
     },
+    /// Fit bead models to a measurement sheet (the CSV `lmdc calibrate` writes, filled in):
+    /// least squares of a line, a power law (in log space), a mass balance's efficiency
+    /// (from area or mass) and a table; prints each fit's R² and residuals, the measured
+    /// range, the model the data favour and the `bead { … }` block to paste
+    /// (docs/calibration.md).
+    Fit {
+        /// The measurement sheet: one coupon a row, units in the header (`speed (mm/s)`).
+        data: PathBuf,
+        /// Fit only this model.
+        #[arg(long, value_enum, value_name = "MODEL")]
+        model: Option<FitModel>,
+        /// What the heights are: a single track's, a wall's rise per layer, filled layers' rise.
+        #[arg(long, value_enum, default_value = "track")]
+        kind: FitKind,
+        /// The tracks' offset in the layers measured, mm (with `--kind layer`).
+        #[arg(long, value_name = "MM")]
+        offset: Option<f64>,
+        /// The metal's density in g/cm³ (a mass balance).
+        #[arg(long, value_name = "G_PER_CM3")]
+        density: Option<f64>,
+        /// The powder feed in g/min, for coupons whose row has no `feed`.
+        #[arg(long, value_name = "G_PER_MIN")]
+        feed: Option<f64>,
+        /// One JSON object on stdout instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Run a ring's height loop (`control height`) offline against its declared plant: each segment's speed, height and total, layer by layer, and the final totals against the target.
     Simulate {
         /// The .lmd file.
@@ -140,6 +168,52 @@ enum Command {
         #[arg(long, value_name = "N", default_value_t = 10)]
         every: usize,
     },
+}
+
+/// `lmdc fit --model`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum FitModel {
+    /// `H = slope·v + intercept`.
+    Linear,
+    /// `H = height·(v/speed)^exponent`, fitted in log space.
+    Power,
+    /// The catch efficiency from each coupon's area or mass.
+    MassBalance,
+    /// The mean height at each speed, joined by lines.
+    Table,
+}
+
+impl FitModel {
+    fn kind(self) -> lmdc::bead::fit::Kind {
+        use lmdc::bead::fit::Kind;
+        match self {
+            FitModel::Linear => Kind::Linear,
+            FitModel::Power => Kind::Power,
+            FitModel::MassBalance => Kind::MassBalance,
+            FitModel::Table => Kind::Table,
+        }
+    }
+}
+
+/// `lmdc fit --kind`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum FitKind {
+    /// A single track's height.
+    Track,
+    /// The rise per layer of a wall one bead wide.
+    Wall,
+    /// The rise per layer of filled layers (`--offset`).
+    Layer,
+}
+
+impl FitKind {
+    fn name(self) -> &'static str {
+        match self {
+            FitKind::Track => "track",
+            FitKind::Wall => "wall",
+            FitKind::Layer => "layer",
+        }
+    }
 }
 
 /// Runs the command line; returns the exit code.
@@ -220,6 +294,26 @@ pub fn run(cli: Cli) -> u8 {
             };
             report::run(args, color, format, p)
         }
+        Command::Fit {
+            data,
+            model,
+            kind,
+            offset,
+            density,
+            feed,
+            json,
+        } => fit::run(
+            fit::Args {
+                file: &data,
+                model: model.map(FitModel::kind),
+                kind: kind.name(),
+                offset,
+                density,
+                feed,
+                json,
+            },
+            color,
+        ),
         Command::Preview { file, machine, out } => {
             let p = progress(&file);
             preview::run(&file, machine.as_deref(), out.as_deref(), color, format, p)

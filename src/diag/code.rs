@@ -164,6 +164,12 @@ codes! {
         "a whole number outside its field's range (`sides` 3–1000, `points` 8–100 000, a style's `id` 1–65 535, …); the message gives the range";
     BeadSlope = "bead-slope", Values,
         "a linear bead model whose height does not fall as the scan speed rises (slope ≥ 0)";
+    Sheet = "sheet", Values,
+        "a measurement sheet (`lmdc fit`, `model = fit(…, data = …)`) lmdc cannot read: a cell that is not a number greater than zero (with its line and column), a row with more cells than the header, a measured row without a speed, a header without a `speed` column";
+    SheetUnits = "sheet-units", Values,
+        "a measurement sheet's header names a column lmdc reads (`speed`, `height`, `width`, `area`, `mass`, `feed`, `length`, `power`) without its unit in brackets, in a unit lmdc does not convert, or twice";
+    TooFewPoints = "too-few-points", Values,
+        "a measurement sheet with too few coupons for the model asked (a line or a power law needs two speeds, a mass balance one coupon with area or mass and feed), or without the column it fits";
     BeadTable = "bead-table", Values,
         "a bead `table(…)` (or measured data) that is no table: fewer than two speeds, lists of unequal length, speeds that do not increase, or heights that do not fall as the speed rises (names the entries that break it)";
     EfficiencyRange = "efficiency-range", Values,
