@@ -243,7 +243,7 @@ pub struct BeadFit {
     pub data: String,
     /// The model fitted: `linear`, `power`, `mass_balance` or `table`.
     pub model: String,
-    /// The coupons used: their rows, and at how many speeds.
+    /// How many coupons were fitted.
     pub points: usize,
     /// How many distinct speeds.
     pub speeds: usize,

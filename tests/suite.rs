@@ -15,6 +15,7 @@ mod deposit;
 mod diagnostics;
 mod duct_geometry;
 mod fill;
+mod fit;
 mod fixture_sanity;
 mod gcode_kinematics;
 mod gcode_program;

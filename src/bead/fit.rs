@@ -115,7 +115,41 @@ pub struct Fit {
     pub mean_width: Option<f64>,
 }
 
+/// What a program says of a model it fitted when compiled: where the
+/// numbers come from and how well they match (the IR's `bead.fit`, the
+/// report's).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Summary {
+    /// The data file as the program names it.
+    pub data: String,
+    /// The model fitted.
+    pub kind: Kind,
+    /// How many coupons.
+    pub points: usize,
+    /// At how many distinct speeds.
+    pub speeds: usize,
+    /// R².
+    pub r2: f64,
+    /// RMS residual, in `unit`.
+    pub rms: f64,
+    /// `mm`, `mm²` or `g`.
+    pub unit: &'static str,
+}
+
 impl Fit {
+    /// The summary of this fit to the data file `data`.
+    pub fn summary(&self, data: &str) -> Summary {
+        Summary {
+            data: data.to_string(),
+            kind: self.kind,
+            points: self.residuals.len(),
+            speeds: self.speeds,
+            r2: self.r2,
+            rms: self.rms,
+            unit: self.unit,
+        }
+    }
+
     /// R² adjusted for the numbers fitted: `None` when the model has as
     /// many numbers as coupons (a table of one coupon a speed explains
     /// everything and says nothing).

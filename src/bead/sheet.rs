@@ -146,10 +146,18 @@ pub fn read(text: &str) -> Result<Sheet, Diagnostics> {
         diags.push(message::empty_sheet(Span::new(0, text.len())));
         return Err(diags);
     };
-    let heads = header_columns(&header, &mut diags);
-    let (id, kinds) = heads;
-    if !kinds.iter().any(|k| matches!(k, Some((Column::Speed, _)))) {
+    let (id, kinds) = header_columns(&header, &mut diags);
+    let named = |c: Column| {
+        header
+            .iter()
+            .any(|h| Column::of(split_unit(&h.0).0) == Some(c))
+    };
+    if !named(Column::Speed) {
         diags.push(message::no_speed_column(cells_span(&header)));
+    }
+    // A header lmdc cannot read makes every row's complaint the same one.
+    if diags.has_errors() {
+        return Err(diags);
     }
     let mut sheet = Sheet {
         coupons: Vec::new(),

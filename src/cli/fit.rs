@@ -275,14 +275,14 @@ fn report(
         "line", "speed"
     );
     for f in fits {
-        let _ = write!(s, "{:>16}", format!("{} ({})", f.kind.name(), f.unit));
+        let _ = write!(s, "{:>20}", format!("{} ({})", f.kind.name(), f.unit));
     }
     s.push('\n');
     for c in &sheet.coupons {
         let _ = write!(s, "{:>6}{:>10}", c.line, sig(c.speed()));
         for f in fits {
             let r = f.residuals.iter().find(|r| r.0 == c.line);
-            let _ = write!(s, "{:>16}", r.map_or("—".to_string(), |r| sig(r.1)));
+            let _ = write!(s, "{:>20}", r.map_or("—".to_string(), |r| sig(r.1)));
         }
         s.push('\n');
     }

@@ -178,6 +178,7 @@ enum FitModel {
     /// `H = height·(v/speed)^exponent`, fitted in log space.
     Power,
     /// The catch efficiency from each coupon's area or mass.
+    #[value(name = "mass_balance")]
     MassBalance,
     /// The mean height at each speed, joined by lines.
     Table,
@@ -216,6 +217,34 @@ impl FitKind {
     }
 }
 
+/// Runs `lmdc fit` (`command` is a [`Command::Fit`]).
+fn fit_command(command: Command, color: bool) -> u8 {
+    let Command::Fit {
+        data,
+        model,
+        kind,
+        offset,
+        density,
+        feed,
+        json,
+    } = command
+    else {
+        unreachable!("only `lmdc fit` comes here")
+    };
+    fit::run(
+        fit::Args {
+            file: &data,
+            model: model.map(FitModel::kind),
+            kind: kind.name(),
+            offset,
+            density,
+            feed,
+            json,
+        },
+        color,
+    )
+}
+
 /// Runs the command line; returns the exit code.
 pub fn run(cli: Cli) -> u8 {
     let color = match cli.color {
@@ -233,8 +262,13 @@ pub fn run(cli: Cli) -> u8 {
                 return EXIT_USAGE;
             };
             let mut p = progress(&file);
-            let compiled = match pipeline::compile_for(&source, machine.as_deref(), &mut p) {
-                Ok(c) => c,
+            let compiled = match pipeline::compile_reading(
+                &source,
+                machine.as_deref(),
+                &mut p,
+                data_reader(&file),
+            ) {
+                Ok((c, _)) => c,
                 Err(e) => {
                     eprintln!("error: {e}");
                     return EXIT_USAGE;
@@ -294,26 +328,7 @@ pub fn run(cli: Cli) -> u8 {
             };
             report::run(args, color, format, p)
         }
-        Command::Fit {
-            data,
-            model,
-            kind,
-            offset,
-            density,
-            feed,
-            json,
-        } => fit::run(
-            fit::Args {
-                file: &data,
-                model: model.map(FitModel::kind),
-                kind: kind.name(),
-                offset,
-                density,
-                feed,
-                json,
-            },
-            color,
-        ),
+        command @ Command::Fit { .. } => fit_command(command, color),
         Command::Preview { file, machine, out } => {
             let p = progress(&file);
             preview::run(&file, machine.as_deref(), out.as_deref(), color, format, p)
@@ -333,11 +348,16 @@ fn compile_and_print(
     progress: &mut Progress,
     (color, format): (bool, MessageFormat),
 ) -> Result<lmdc::verify::Verified, u8> {
-    let compiled = pipeline::compile_for(source, machine, &mut progress::Both(obs, progress))
-        .map_err(|e| {
-            eprintln!("error: {e}");
-            EXIT_USAGE
-        })?;
+    let (compiled, _) = pipeline::compile_reading(
+        source,
+        machine,
+        &mut progress::Both(obs, progress),
+        data_reader(file),
+    )
+    .map_err(|e| {
+        eprintln!("error: {e}");
+        EXIT_USAGE
+    })?;
     progress.print(|| messages::print(&compiled.diagnostics, file, source, color, format));
     compiled.program.ok_or(EXIT_PROGRAM)
 }
@@ -584,6 +604,15 @@ fn read_source(file: &Path) -> Option<String> {
 
 /// A path as it is safe to print: no control character from its name reaches
 /// the terminal.
+/// Reads the data files a program names (`fit(…, data = "…")`), relative
+/// to the folder of the .lmd file `file`.
+pub fn data_reader(file: &Path) -> lmdc::sema::DataReader {
+    let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
+    std::rc::Rc::new(move |path: &str| {
+        std::fs::read_to_string(dir.join(path)).map_err(|e| e.to_string())
+    })
+}
+
 fn shown(path: &Path) -> String {
     lmdc::diag::sanitize(&path.display().to_string()).into_owned()
 }

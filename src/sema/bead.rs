@@ -4,12 +4,13 @@ use super::eval::{unknown_name, Env};
 use super::fields::{self, Fields};
 use super::model::{Bead, HeightModel};
 use super::schema::bead::{
-    self as schema, model as args, BEAD, LAYER, LINEAR, MASS_BALANCE, MEASURED, POWER, TABLE,
+    self as schema, model as args, BEAD, FIT, LAYER, LINEAR, MASS_BALANCE, MEASURED, POWER, TABLE,
 };
 use super::schema::Field;
 use super::suggest::did_you_mean;
 use super::value::{Spanned, Value};
-use crate::bead::{Table, TableFault, Widths};
+use crate::bead::fit::{self, Given, Kind, Summary};
+use crate::bead::{sheet, Table, TableFault, Widths};
 use crate::deposit::Basis;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
@@ -31,7 +32,7 @@ pub fn read<'a>(
     // model needs the range.
     let measured = matches!(
         f.value(&schema::MODEL, &mut Diagnostics::new()).map(|m| &m.value),
-        Some(Value::Call(c)) if c.func == "measured" || c.func == "table"
+        Some(Value::Call(c)) if ["measured", "table", "fit"].contains(&c.func.as_str())
     );
     let speed = f.range(&schema::SPEED, diags);
     if !measured {
@@ -49,20 +50,16 @@ pub fn read<'a>(
         diags.push(message::bead::speed_not_positive(speed_span));
         false
     });
-    let read = height_model(model, span, diags);
-    let (model, widths) = match read {
-        Some((m, w)) => (Some(m), w),
-        None => (None, None),
+    let read = height_model(model, span, env.data.as_ref(), diags);
+    let (model, widths, measured_speeds, fit) = match read {
+        Some(r) => (Some(r.model), r.widths, r.measured, r.fit),
+        None => (None, None, None, None),
     };
     let basis = basis(&f, model.as_ref(), model_span, diags);
     let (model, basis) = (model?, basis?);
     let model_span = model_span.unwrap_or(span);
     // A measured bead is valid at the speed it was measured at, unless the file
     // says over which range it holds.
-    let measured_speeds = match &model {
-        HeightModel::Table(t) => Some(t.range()),
-        _ => None,
-    };
     let speed = match (speed, &model) {
         (Some(s), _) => Some(s),
         (None, HeightModel::Measured { speed: v, .. }) if !f.has(&schema::SPEED) => {
@@ -91,6 +88,7 @@ pub fn read<'a>(
         basis,
         widths,
         measured: measured_speeds.map(|[lo, hi]| [Speed(lo), Speed(hi)]),
+        fit,
         declared_height,
         feed: None,
         speed: [Speed(speed[0]), Speed(speed[1])],
@@ -231,19 +229,79 @@ fn list(a: &Fields<'_>, field: &Field, diags: &mut Diagnostics) -> Option<Vec<f6
     read.into_iter().collect()
 }
 
+/// What `model = …` says: the height model, and where it was measured,
+/// the widths and speeds measured and the fit that gave it.
+struct Read {
+    model: HeightModel,
+    widths: Option<Widths>,
+    measured: Option<[f64; 2]>,
+    fit: Option<Summary>,
+}
+
+/// `fit(model, data, density, feed)`: the model fitted to the data file,
+/// read with `data`.
+fn fitted(
+    c: &super::value::Call,
+    data: Option<&super::DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<Read> {
+    let a = Fields::call(c, &FIT, diags);
+    let kind = a.word(&args::FIT_MODEL, diags);
+    let path = a.text(&args::DATA, diags);
+    let density = a.quantity(&args::FIT_DENSITY, diags);
+    let feed = a.quantity(&args::FIT_FEED, diags);
+    let ((kind, _), (path, at)) = (kind?, path?);
+    let kind = Kind::of(kind)?;
+    let Some(read) = data else {
+        diags.push(message::calib::no_data_reader(at));
+        return None;
+    };
+    let text = read(&path)
+        .map_err(|why| diags.push(message::calib::unreadable_data(&path, &why, at)))
+        .ok()?;
+    let in_data = |ds: Vec<crate::diag::Diagnostic>, diags: &mut Diagnostics| {
+        for d in ds {
+            diags.push(message::calib::in_data(&d, &path, &text, at));
+        }
+    };
+    let sheet = sheet::read(&text)
+        .map_err(|ds| in_data(ds.into_vec(), diags))
+        .ok()?;
+    let given = Given {
+        density: density.map(|d| Density(d.0)),
+        feed: feed.map(|f| MassFlow(f.0)),
+    };
+    let f = fit::fit(&sheet, kind, given)
+        .map_err(|e| in_data(fit::diagnose(&e, kind, &sheet), diags))
+        .ok()?;
+    Some(Read {
+        widths: f.widths.clone(),
+        measured: Some(f.range),
+        fit: Some(f.summary(&path)),
+        model: f.model,
+    })
+}
+
 /// The model `model = …` gives, and the widths it measured where it did
 /// (`block` is where to point when the value is no model at all and has
-/// no span of its own).
+/// no span of its own; `data` reads a `fit(…)`'s data file).
 fn height_model(
     model: Option<&Spanned>,
     block: Span,
+    data: Option<&super::DataReader>,
     diags: &mut Diagnostics,
-) -> Option<(HeightModel, Option<Widths>)> {
+) -> Option<Read> {
     let at = model.map_or(block, |m| m.span);
     let m = match &model?.value {
+        Value::Call(c) if c.func == "fit" => return fitted(c, data, diags),
         Value::Call(c) if c.func == "table" => {
             let (t, w) = table(c, at, diags)?;
-            return Some((HeightModel::Table(t), w));
+            return Some(Read {
+                measured: Some(t.range()),
+                model: HeightModel::Table(t),
+                widths: w,
+                fit: None,
+            });
         }
         Value::Call(c) if c.func == "power" => {
             let a = Fields::call(c, &POWER, diags);
@@ -258,7 +316,12 @@ fn height_model(
         }
         other => one_point_model(other, at, diags)?,
     };
-    Some((m, None))
+    Some(Read {
+        model: m,
+        widths: None,
+        measured: None,
+        fit: None,
+    })
 }
 
 /// The models of typed-in numbers: `linear`, `mass_balance`, `measured`.

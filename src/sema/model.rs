@@ -247,8 +247,11 @@ pub struct Bead {
     /// The widths measured at each speed (a `table(…)` with `width`), which
     /// the deposit model takes over the one `width`.
     pub widths: Option<crate::bead::Widths>,
-    /// The speeds the model was measured over (a table's), when known.
+    /// The speeds the model was measured over (a table's, a fit's data),
+    /// when known.
     pub measured: Option<[Speed; 2]>,
+    /// The fit that gave the model (`fit(…, data = "…")`).
+    pub fit: Option<crate::bead::fit::Summary>,
     /// The `height = …` range as declared, if it is.
     pub declared_height: Option<[Length; 2]>,
     /// The process's powder feed, which a mass-balance model lays by

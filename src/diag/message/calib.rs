@@ -8,6 +8,46 @@ use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
 use crate::units::{Length, Speed};
 
+/// `d`, a diagnostic about the data file `path` (whose text is `text`),
+/// as one about the program, pointing at `at` (where it names the file):
+/// the file's line and column lead its message.
+pub fn in_data(d: &Diagnostic, path: &str, text: &str, at: Span) -> Diagnostic {
+    let place = match d.labels.first() {
+        Some(l) => {
+            let before = &text[..l.span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let col = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+            format!("{path}:{line}:{col}")
+        }
+        None => path.to_string(),
+    };
+    let mut out =
+        Diagnostic::error(d.code, format!("{place}: {}", d.message)).label(at, "the data fitted");
+    out.help = d.help.clone();
+    out
+}
+
+/// The data file `path` (named at `at`) cannot be read (`why`).
+pub fn unreadable_data(path: &str, why: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Sheet,
+        format!("cannot read the data file `{path}`: {why}"),
+    )
+    .label(at, "this file")
+    .help("the path is relative to the folder of the .lmd file")
+}
+
+/// A program names a data file where no file can be read (compiled from a
+/// text, not a file).
+pub fn no_data_reader(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Sheet,
+        "this program is compiled from a text, not a file: there is no folder to read its data from",
+    )
+    .label(at, "data file")
+    .help("compile the .lmd file (`lmdc build FILE.lmd`), or paste the block `lmdc fit` prints")
+}
+
 /// Why `kind` cannot be fitted to the sheet whose header is at `header`.
 pub fn fault(f: &Fault, kind: Kind, header: Span) -> Vec<Diagnostic> {
     let model = kind.name();

@@ -4,7 +4,7 @@
 
 use super::Bound::{Any, Negative, Positive, PositiveUpTo};
 use super::DefaultValue::{Described, Word as DefaultWord};
-use super::Kind::{Call, Either, List, Quantity, Range, Word};
+use super::Kind::{Call, Either, List, Quantity, Range, Text, Word};
 use super::Need::{Default, Required, RequiredUnless};
 use super::{Block, Field, Len};
 use crate::units::Dim;
@@ -31,7 +31,7 @@ pub static SPEED: Field = Field::new(
     Range(Dim::SPEED),
     RequiredUnless(
         "7 mm/s .. 10 mm/s",
-        "the model is `measured(…)` or `table(…)`, whose speeds are the ones measured",
+        "the model is `measured(…)`, `table(…)` or `fit(…)`, whose speeds are the ones measured",
     ),
     "the scan speeds the model is valid for (within the speeds measured, unless `extrapolate = allow`)",
 );
@@ -39,7 +39,7 @@ pub static SPEED: Field = Field::new(
 /// `model = …`.
 pub static MODEL: Field = Field::new(
     "model",
-    Call(&[&LINEAR, &MASS_BALANCE, &MEASURED, &POWER, &TABLE]),
+    Call(&[&LINEAR, &MASS_BALANCE, &MEASURED, &POWER, &TABLE, &FIT]),
     Required("mass_balance(feed = 45.9 g/min, efficiency = 0.3, density = 7.9 g/cm^3)"),
     "how the bead's height follows the scan speed",
 );
@@ -57,7 +57,7 @@ pub static EXTRAPOLATE: Field = Field::new(
     "extrapolate",
     Word(&["refuse", "allow"]),
     Default(DefaultWord("refuse")),
-    "whether `speed` may reach beyond the speeds a `table(…)` measured (`allow`: a warning says how far; the end pieces are extended)",
+    "whether `speed` may reach beyond the speeds a `table(…)` or `fit(…)` measured (`allow`: a warning says how far; the model is extended)",
 );
 
 /// `bead NAME { … }`.
@@ -171,6 +171,34 @@ pub mod model {
         Default(Described("the bead's `width` at every speed")),
         "the widths measured at those speeds: the bead's cross-section at a speed has that speed's width",
     );
+    /// `fit(model = …)`.
+    pub static FIT_MODEL: Field = Field::new(
+        "model",
+        Word(&["linear", "power", "mass_balance", "table"]),
+        Required("linear"),
+        "the model fitted to the data",
+    );
+    /// `fit(data = …)`.
+    pub static DATA: Field = Field::new(
+        "data",
+        Text,
+        Required("\"coupons.csv\""),
+        "the measurement sheet, a path relative to the .lmd file (docs/calibration.md)",
+    );
+    /// `fit(density = …)`.
+    pub static FIT_DENSITY: Field = Field::new(
+        "density",
+        Quantity(Dim::DENSITY, Positive),
+        super::super::Need::Optional,
+        "the metal's density (a `mass_balance` fit)",
+    );
+    /// `fit(feed = …)`.
+    pub static FIT_FEED: Field = Field::new(
+        "feed",
+        Quantity(Dim::MASS_FLOW, Positive),
+        super::super::Need::Optional,
+        "the powder feed of coupons whose row has none (a `mass_balance` fit)",
+    );
     /// `measured(speed = …)`.
     pub static SPEED: Field = Field::new(
         "speed",
@@ -211,6 +239,21 @@ pub static TABLE: Block = Block::new(
     "heights (and widths) measured at several speeds, joined by straight lines; the heights must fall as the speed rises",
     &[&model::SPEEDS, &model::HEIGHTS, &model::WIDTHS],
 );
+
+/// `fit(model, data, density, feed)`: a model fitted at compile time to
+/// a measurement sheet.
+pub static FIT: Block = Block::new(
+    "fit",
+    "fit(model, data, density, feed)",
+    "a model fitted when the file is compiled to the coupons of a measurement sheet (`lmdc fit` prints the same fit)",
+    &[
+        &model::FIT_MODEL,
+        &model::DATA,
+        &model::FIT_DENSITY,
+        &model::FIT_FEED,
+    ],
+)
+.positional(2);
 
 /// `measured(height, speed)`: one track measured at one process point.
 pub static MEASURED: Block = Block::new(

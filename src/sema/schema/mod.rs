@@ -513,6 +513,7 @@ pub static BLOCKS: &[&Block] = &[
     &bead::MEASURED,
     &bead::POWER,
     &bead::TABLE,
+    &bead::FIT,
     &bead::LAYER,
     &solid::LOFT,
     &solid::LINE,
