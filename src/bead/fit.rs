@@ -76,6 +76,12 @@ pub enum Fault {
     /// The sheet lacks what the model is fitted to (a column's name, or
     /// `density` / `feed` not given).
     Missing(&'static str),
+    /// The heights fitted rise with the speed (a line's slope or a power
+    /// law's exponent, this, is not negative): no speed is the one for a
+    /// height, and no bead does that.
+    Rising(f64),
+    /// The catch efficiency fitted, this, is not between 0 and 1.
+    Efficiency(f64),
     /// The mean heights at each speed are no table.
     Table {
         /// The speeds measured, mm/s.
@@ -262,6 +268,9 @@ fn line_fit(sheet: &Sheet, coupons: &[&Coupon], log: bool) -> Result<Fit, Fault>
             intercept: Length(intercept),
         }
     };
+    if slope >= 0.0 {
+        return Err(Fault::Rising(slope));
+    }
     let kind = if log { Kind::Power } else { Kind::Linear };
     Ok(finish(sheet, kind, model, coupons, speeds.len()))
 }
@@ -357,6 +366,9 @@ fn mass_balance(sheet: &Sheet, given: Given) -> Result<Fit, Fault> {
         .sum();
     let sxx: f64 = coupons.iter().map(|c| x(c) * x(c)).sum();
     let eta = sxy / sxx;
+    if !(eta > 0.0 && eta <= 1.0) {
+        return Err(Fault::Efficiency(eta));
+    }
     let model = HeightModel::MassBalance {
         // The feed the block states: the one given, or the coupons' mean
         // (g/min → g/s).

@@ -6,7 +6,7 @@ use crate::bead::fit::{Fault, Kind};
 use crate::bead::TableFault;
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
-use crate::units::{Length, Speed};
+use crate::units::{short, Length, Speed};
 
 /// `d`, a diagnostic about the data file `path` (whose text is `text`),
 /// as one about the program, pointing at `at` (where it names the file):
@@ -59,6 +59,8 @@ pub fn fault(f: &Fault, kind: Kind, header: Span) -> Vec<Diagnostic> {
         } => vec![too_few_points(model, *points, *speeds, need, header)],
         Fault::Missing(what @ ("density" | "feed")) => vec![not_given(model, what, header)],
         Fault::Missing(col) => vec![missing_column(model, col, header)],
+        Fault::Rising(b) => vec![rising(kind, *b, header)],
+        Fault::Efficiency(eta) => vec![efficiency(*eta, header)],
         Fault::Table {
             speeds,
             means,
@@ -98,6 +100,30 @@ fn not_falling(
         None => d.label(header, "header"),
     };
     d.help("a faster scan lays a lower bead: a height that rises with the speed is a measuring slip or noise larger than the step between the speeds; remeasure those coupons, or fit a line or a power law, which average it out")
+}
+
+/// The fitted `kind`'s slope (or exponent) `b` is not negative.
+fn rising(kind: Kind, b: f64, header: Span) -> Diagnostic {
+    let what = match kind {
+        Kind::Power => format!("exponent {}", short(b)),
+        _ => format!("slope {} mm per mm/s", short(b)),
+    };
+    Diagnostic::error(
+        Code::BeadSlope,
+        format!("the coupons' heights do not fall as the speed rises: the fitted {} model has {what}", kind.name()),
+    )
+    .label(header, "these coupons")
+    .help("a faster scan lays a lower bead: check the speed and height columns are not swapped, that the heights are all in one unit, and that the coupons were laid at one power and feed")
+}
+
+/// The fitted catch efficiency `eta` is not in (0, 1].
+fn efficiency(eta: f64, header: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::EfficiencyRange,
+        format!("the fitted catch efficiency is {}, not between 0 and 1", short(eta)),
+    )
+    .label(header, "these coupons")
+    .help("the melt pool cannot catch more powder than is fed: check the `feed` (g/min), the density (g/cm³) and the area (mm²) or mass and length of the coupons")
 }
 
 /// `what` (`density`, `feed`), which model `model` needs, was not given.
