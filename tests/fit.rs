@@ -237,3 +237,38 @@ fn the_command_prints_what_each_case_expects() {
         fail("lmdc fit's output changed", &problems);
     }
 }
+
+#[test]
+fn a_bead_fitted_when_compiled_is_seed_003_within_the_noise() {
+    // tests/cases/calib/seed_003_fit: seed 003's line with 0.01 mm of
+    // noise, widths from 2.6 to 2.2 mm. The IR's bead is the line within
+    // the noise at every speed measured, over 4 .. 8.7 mm/s, with the mean
+    // width measured at each speed.
+    let dir = Path::new("tests/cases/calib/seed_003_fit");
+    let src = std::fs::read_to_string(dir.join("input.lmd")).unwrap();
+    let root = dir.to_path_buf();
+    let data: lmdc::sema::DataReader = std::rc::Rc::new(move |p: &str| {
+        std::fs::read_to_string(root.join(p)).map_err(|e| e.to_string())
+    });
+    let (c, _) = lmdc::pipeline::compile_reading(&src, None, &mut (), data).unwrap();
+    let p = c.program.expect("compiles").into_ir();
+    let b = p.bead.as_ref().unwrap();
+    let lmdc::ir::BeadModel::Linear { slope, intercept } = b.model else {
+        panic!("{:?}", b.model)
+    };
+    for v in [4.0, 5.0, 6.0, 7.0, 8.0, 8.7] {
+        let off = slope * v + intercept - (-0.135 * v + 1.82);
+        assert!(off.abs() < 0.01, "{v}: {off}");
+    }
+    assert_eq!(b.measured, Some([4.0, 8.7]));
+    assert_eq!(b.speed, [4.0, 8.7]);
+    let fit = b.fit.as_ref().unwrap();
+    assert_eq!(
+        (fit.points, fit.speeds, fit.model.as_str()),
+        (12, 6, "linear")
+    );
+    // The sheet's widths at 4 mm/s: 2.63 and 2.62.
+    let w = b.widths.as_ref().unwrap();
+    assert_eq!(w.len(), 6);
+    assert!((w[0][0] - 4.0).abs() < 1e-12 && (w[0][1] - 2.625).abs() < 1e-12);
+}

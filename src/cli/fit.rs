@@ -2,11 +2,12 @@
 //! each fit's R², residuals and measured range, the model the data favour
 //! and the `bead { … }` block to paste (docs/calibration.md).
 
-use super::{read_source, shown, EXIT_PROGRAM, EXIT_USAGE};
+use super::messages::{self, MessageFormat};
+use super::{read_source, EXIT_PROGRAM, EXIT_USAGE};
 use lmdc::bead::fit::{self, Fit, Given, Kind};
 use lmdc::bead::sheet::{self, Sheet};
 use lmdc::bead::HeightModel;
-use lmdc::diag::{render, Diagnostics};
+use lmdc::diag::Diagnostics;
 use lmdc::units::{Density, MassFlow};
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -31,7 +32,7 @@ pub struct Args<'a> {
 }
 
 /// Runs `lmdc fit`; returns the exit code.
-pub fn run(a: Args<'_>, color: bool) -> u8 {
+pub fn run(a: Args<'_>, (color, format): (bool, MessageFormat)) -> u8 {
     let Some(text) = read_source(a.file) else {
         return EXIT_USAGE;
     };
@@ -60,8 +61,8 @@ pub fn run(a: Args<'_>, color: bool) -> u8 {
             return EXIT_USAGE;
         }
     };
-    let name = shown(a.file);
-    let print = |d: &Diagnostics| eprint!("{}", render(d, &name, &text, color));
+    let name = super::shown(a.file);
+    let print = |d: &Diagnostics| messages::print(d, a.file, &text, color, format);
     let sheet = match sheet::read(&text) {
         Ok(s) => s,
         Err(d) => {

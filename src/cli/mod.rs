@@ -218,7 +218,7 @@ impl FitKind {
 }
 
 /// Runs `lmdc fit` (`command` is a [`Command::Fit`]).
-fn fit_command(command: Command, color: bool) -> u8 {
+fn fit_command(command: Command, output: (bool, MessageFormat)) -> u8 {
     let Command::Fit {
         data,
         model,
@@ -241,7 +241,7 @@ fn fit_command(command: Command, color: bool) -> u8 {
             feed,
             json,
         },
-        color,
+        output,
     )
 }
 
@@ -328,7 +328,7 @@ pub fn run(cli: Cli) -> u8 {
             };
             report::run(args, color, format, p)
         }
-        command @ Command::Fit { .. } => fit_command(command, color),
+        command @ Command::Fit { .. } => fit_command(command, (color, format)),
         Command::Preview { file, machine, out } => {
             let p = progress(&file);
             preview::run(&file, machine.as_deref(), out.as_deref(), color, format, p)
