@@ -4,10 +4,16 @@
 //! builds a [`HeightModel`] from a `bead` block; the slicer and the checks use
 //! these functions. Nothing here knows about the language.
 
+pub mod fit;
+pub mod sheet;
+mod table;
+
+pub use table::{Table, TableFault, Widths};
+
 use crate::units::{Density, Length, MassFlow, Speed};
 
 /// How bead height follows scan speed.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum HeightModel {
     /// `H = slope · v + intercept`: the linear bead map, fitted to measured
     /// beads.
@@ -35,6 +41,20 @@ pub enum HeightModel {
         /// The scan speed it was measured at.
         speed: Speed,
     },
+    /// A power law through a reference point, `H = height·(v/speed)^exponent`:
+    /// fitted in log space to coupons whose height falls off ever more slowly
+    /// with speed.
+    Power {
+        /// The height at `speed`.
+        height: Length,
+        /// The reference speed.
+        speed: Speed,
+        /// How the height scales with the speed (< 0).
+        exponent: f64,
+    },
+    /// Heights measured at several speeds, joined by straight lines
+    /// (piecewise linear, falling with the speed).
+    Table(Table),
 }
 
 /// Area of a circular segment of chord `w` and height `h` (mm, mm²): the
@@ -78,6 +98,12 @@ impl HeightModel {
     /// Bead height at scan speed `v` for a bead of width `w`.
     pub fn height_at(&self, v: Speed, w: Length) -> Length {
         match *self {
+            HeightModel::Power {
+                height,
+                speed,
+                exponent,
+            } => Length(height.0 * (v.0 / speed.0).powf(exponent)),
+            HeightModel::Table(ref t) => Length(t.height_at(v.0)),
             HeightModel::Linear { slope, intercept } => Length(slope * v.0 + intercept.0),
             HeightModel::MassBalance {
                 feed,
@@ -94,6 +120,12 @@ impl HeightModel {
     /// The scan speed that lays a bead of height `h` and width `w`.
     pub fn speed_for(&self, h: Length, w: Length) -> Speed {
         match *self {
+            HeightModel::Power {
+                height,
+                speed,
+                exponent,
+            } => Speed(speed.0 * (h.0 / height.0).powf(1.0 / exponent)),
+            HeightModel::Table(ref t) => Speed(t.speed_for(h.0)),
             HeightModel::Linear { slope, intercept } => Speed((h.0 - intercept.0) / slope),
             HeightModel::MassBalance {
                 feed,
@@ -101,6 +133,17 @@ impl HeightModel {
                 density,
             } => Speed(efficiency * feed.0 / (density.0 * segment_area(w.0, h.0))),
             HeightModel::Measured { speed, .. } => speed,
+        }
+    }
+
+    /// The model's name as the language writes it: `linear`, `table`, ….
+    pub fn kind(&self) -> &'static str {
+        match self {
+            HeightModel::Linear { .. } => "linear",
+            HeightModel::MassBalance { .. } => "mass_balance",
+            HeightModel::Measured { .. } => "measured",
+            HeightModel::Power { .. } => "power",
+            HeightModel::Table(_) => "table",
         }
     }
 }
@@ -153,6 +196,20 @@ mod tests {
         assert!((m.height_at(Speed(4.0), w).0 - 1.28).abs() < 1e-9);
         assert!((m.height_at(Speed(8.7), w).0 - 0.6455).abs() < 1e-9);
         assert!((m.speed_for(Length(1.28), w).0 - 4.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_power_law_passes_its_reference_point_and_inverts() {
+        let m = HeightModel::Power {
+            height: Length(1.0),
+            speed: Speed(6.0),
+            exponent: -0.5,
+        };
+        let w = Length(2.4);
+        assert!((m.height_at(Speed(6.0), w).0 - 1.0).abs() < 1e-12);
+        // Four times the speed, half the height.
+        assert!((m.height_at(Speed(24.0), w).0 - 0.5).abs() < 1e-12);
+        assert!((m.speed_for(Length(0.5), w).0 - 24.0).abs() < 1e-9);
     }
 
     #[test]

@@ -26,7 +26,7 @@
 //! not modelled: a track at the edge of a layer is taken to fill its pitch
 //! like one inside.
 
-use crate::bead::{segment_area, segment_height, HeightModel};
+use crate::bead::{segment_area, segment_height, HeightModel, Widths};
 use crate::units::{Length, MassFlow, Speed};
 use serde::{Deserialize, Serialize};
 
@@ -73,14 +73,19 @@ impl Basis {
 
 /// A bead model as the deposit sees it: the height map, the bead's width and
 /// what the heights were measured as.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Deposit {
     /// How the measured height follows the speed.
     pub model: HeightModel,
-    /// The bead's width.
+    /// The bead's width: the strip a wall one bead wide fills, and the
+    /// chord of its cross-section where no widths were measured.
     pub width: Length,
     /// What the heights are.
     pub basis: Basis,
+    /// The widths measured at each speed, where the calibration has them:
+    /// the bead's cross-section at a speed is then that speed's width's
+    /// (the strips the plan fills stay `width` wide).
+    pub widths: Option<Widths>,
 }
 
 impl Deposit {
@@ -100,21 +105,30 @@ impl Deposit {
     /// direction), mm²; `powder` is the move's own feed where a
     /// mass-balance model should use it instead of the one it declares.
     pub fn area(&self, v: Speed, powder: Option<MassFlow>) -> f64 {
-        let w = self.width.0;
+        let w = self.width_at(v).0;
         match self.model {
             HeightModel::MassBalance {
                 feed,
                 efficiency,
                 density,
             } => efficiency * powder.unwrap_or(feed).0 / (density.0 * v.0),
-            m => {
-                let h = m.height_at(v, self.width).0;
+            ref m => {
+                let h = m.height_at(v, Length(w)).0;
                 match self.basis {
                     Basis::Track => segment_area(w, h),
                     Basis::Wall => h * w,
                     Basis::Layer { offset } => h * offset,
                 }
             }
+        }
+    }
+
+    /// The bead's width at `v`: the width measured there, or the one
+    /// declared.
+    pub fn width_at(&self, v: Speed) -> Length {
+        match &self.widths {
+            Some(w) => Length(w.at(v.0)),
+            None => self.width,
         }
     }
 
@@ -136,7 +150,9 @@ impl Deposit {
                 efficiency,
                 density,
             } => Speed(efficiency * feed.0 / (density.0 * a)),
-            m => {
+            HeightModel::Measured { speed, .. } => speed,
+            _ if self.widths.is_some() => self.speed_laying(a),
+            ref m => {
                 let h = match self.basis {
                     Basis::Track => segment_height(w.0, a),
                     Basis::Wall => a / w.0,
@@ -145,6 +161,39 @@ impl Deposit {
                 m.speed_for(Length(h), w)
             }
         }
+    }
+
+    /// The speed at which the bead lays the cross-section `a` where its
+    /// width follows the speed: the area falls with the speed (a faster
+    /// scan lays less metal), so bisection on the speed finds it.
+    fn speed_laying(&self, a: f64) -> Speed {
+        let area = |v: f64| self.area(Speed(v), None);
+        // A bracket around the answer: widen until the area crosses `a`.
+        let (mut lo, mut hi) = (1.0, 2.0);
+        for _ in 0..200 {
+            if area(lo) >= a {
+                break;
+            }
+            lo /= 2.0;
+        }
+        for _ in 0..200 {
+            if area(hi) <= a {
+                break;
+            }
+            hi *= 2.0;
+        }
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if area(mid) > a {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo < 1e-12 * hi {
+                break;
+            }
+        }
+        Speed(0.5 * (lo + hi))
     }
 
     /// The rises a strip `pitch` wide gets over the speeds `speeds` (slowest,
@@ -161,11 +210,11 @@ impl Deposit {
     /// model was measured as: from its area where it was not measured on one
     /// track). What variable layers' balanced layout spaces its tracks by.
     pub fn bead_height(&self, v: Speed) -> Length {
-        match (self.model, self.basis) {
+        match (&self.model, self.basis) {
             (HeightModel::MassBalance { .. }, _) | (_, Basis::Wall | Basis::Layer { .. }) => {
-                Length(segment_height(self.width.0, self.area(v, None)))
+                Length(segment_height(self.width_at(v).0, self.area(v, None)))
             }
-            (m, Basis::Track) => m.height_at(v, self.width),
+            (m, Basis::Track) => m.height_at(v, self.width_at(v)),
         }
     }
 }
@@ -183,6 +232,7 @@ mod tests {
             },
             width: Length(2.4),
             basis,
+            widths: None,
         }
     }
 
@@ -196,6 +246,7 @@ mod tests {
             },
             width: Length(2.2),
             basis: Basis::Track,
+            widths: None,
         };
         let a = d.area(Speed(6.0), None);
         assert!((a - segment_area(2.2, 0.7)).abs() < 1e-12);
@@ -254,6 +305,7 @@ mod tests {
             },
             width: Length(6.0),
             basis: Basis::Track,
+            widths: None,
         };
         let feed_mm3_s = 45.9 / 60.0 / 7.9e-3; // g/s over g/mm³
         let a = 0.35 * feed_mm3_s / 8.0;

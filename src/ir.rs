@@ -6,7 +6,7 @@
 //! vectors. Process values and directions are stored as `f32` to keep a point at 80
 //! bytes (the dense duct has 3.6 M of them); positions stay `f64`.
 
-use crate::bead::HeightModel;
+use crate::bead::{HeightModel, Table, Widths};
 use crate::deposit::{Basis, Deposit};
 use crate::sema::schema::Field;
 use crate::span::Span;
@@ -15,7 +15,8 @@ use serde::{Deserialize, Serialize};
 
 /// The IR format tag.
 pub const FORMAT: &str = "lmdc-ir";
-/// The newest IR version this compiler writes. Version 4 adds the plan's
+/// The IR version of a plan with a bead model ([`VERSION_CALIBRATED`] for
+/// a calibrated one, the newest this compiler writes). Version 4 adds the plan's
 /// bead model (`bead`) and each point's `pitch` and predicted `rise`, and
 /// changes what a layer height is: the rise `A/pitch` the bead model lays
 /// where a deposit fills a strip `pitch` wide ([`crate::deposit`]), where
@@ -23,6 +24,13 @@ pub const FORMAT: &str = "lmdc-ir";
 /// that chose or checked speeds by the old rule would be off by a third on
 /// a wall, so every plan with a bead model is version 4 ([`version_for`]).
 pub const VERSION: u32 = 4;
+
+/// Version 5: a bead model a version 4 reader would misread — a `power` or
+/// `table` model, or widths measured at each speed (`bead.widths`), which
+/// change the metal a move lays. Written only for such a plan
+/// ([`Bead::needs_calibrated_version`]); every other plan with a bead
+/// model is still version 4.
+pub const VERSION_CALIBRATED: u32 = 5;
 
 /// Version 3: a segmented [`Ring`] built in one continuous run, with a
 /// height loop that runs on the machine or a fixed speed schedule (a segmented ring's;
@@ -199,7 +207,7 @@ pub struct HeightSensor {
 
 /// A bead model, in the IR's units: what the slicer chose the speeds by
 /// and the verifier predicts each layer's rise with ([`crate::deposit`]).
-#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct Bead {
     /// The bead's width, mm.
     pub width: f64,
@@ -209,10 +217,47 @@ pub struct Bead {
     pub basis: Basis,
     /// The speeds it holds for, mm/s.
     pub speed: [f64; 2],
+    /// The widths measured, `[speed (mm/s), width (mm)]` by speed: the
+    /// bead's cross-section at a speed has that speed's width (absent: the
+    /// width is `width` at every speed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub widths: Option<Vec<[f64; 2]>>,
+    /// The speeds the model was measured over (a table's, a fit's data),
+    /// mm/s: a plan that leaves them extrapolates, which the file must
+    /// allow (`lmd::extrapolation`). Absent: the model was typed in, and
+    /// `speed` is all that is known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measured: Option<[f64; 2]>,
+    /// How the model was fitted to its data, when the file names them
+    /// (`model = fit(…, data = "…")`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fit: Option<BeadFit>,
+}
+
+/// A bead model fitted at compile time to measured coupons
+/// (`model = fit(linear, data = "coupons.csv")`): where the numbers of
+/// [`Bead::model`] come from, and how well they match.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct BeadFit {
+    /// The data file as the source names it.
+    pub data: String,
+    /// The model fitted: `linear`, `power`, `mass_balance` or `table`.
+    pub model: String,
+    /// How many coupons were fitted.
+    pub points: usize,
+    /// How many distinct speeds.
+    pub speeds: usize,
+    /// The share of the measurements' variance the model explains.
+    pub r2: f64,
+    /// The root mean square of the residuals, in the unit measured (mm for
+    /// heights; mm² for areas, g for masses).
+    pub rms: f64,
+    /// That unit.
+    pub unit: String,
 }
 
 /// How a bead's height follows the scan speed `v` (mm/s).
-#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum BeadModel {
     /// `h = slope·v + intercept`.
@@ -238,17 +283,33 @@ pub enum BeadModel {
         /// mm/s.
         speed: f64,
     },
+    /// `h = height·(v/speed)^exponent`.
+    Power {
+        /// mm, at `speed`.
+        height: f64,
+        /// mm/s.
+        speed: f64,
+        /// < 0.
+        exponent: f64,
+    },
+    /// Heights at speeds, joined by straight lines.
+    Table {
+        /// mm/s, increasing.
+        speed: Vec<f64>,
+        /// mm, falling.
+        height: Vec<f64>,
+    },
 }
 
 impl Bead {
     /// The bead as the deposit model reads it.
     pub fn deposit(&self) -> Deposit {
-        let model = match self.model {
-            BeadModel::Linear { slope, intercept } => HeightModel::Linear {
+        let model = match &self.model {
+            &BeadModel::Linear { slope, intercept } => HeightModel::Linear {
                 slope,
                 intercept: Length(intercept),
             },
-            BeadModel::MassBalance {
+            &BeadModel::MassBalance {
                 feed,
                 efficiency,
                 density,
@@ -257,26 +318,50 @@ impl Bead {
                 efficiency,
                 density: Density(density / 1000.0),
             },
-            BeadModel::Measured { height, speed } => HeightModel::Measured {
+            &BeadModel::Measured { height, speed } => HeightModel::Measured {
                 height: Length(height),
                 speed: Speed(speed),
             },
+            &BeadModel::Power {
+                height,
+                speed,
+                exponent,
+            } => HeightModel::Power {
+                height: Length(height),
+                speed: Speed(speed),
+                exponent,
+            },
+            // A table the IR holds was a table when it was written; one
+            // edited into no table reads as its first point measured (and
+            // the verifier finds what that lays).
+            BeadModel::Table { speed, height } => match Table::new(speed, height) {
+                Ok(t) => HeightModel::Table(t),
+                Err(_) => HeightModel::Measured {
+                    height: Length(height.first().copied().unwrap_or(f64::NAN)),
+                    speed: Speed(speed.first().copied().unwrap_or(f64::NAN)),
+                },
+            },
         };
+        let widths = self.widths.as_ref().and_then(|w| {
+            let (v, w): (Vec<f64>, Vec<f64>) = w.iter().map(|p| (p[0], p[1])).unzip();
+            Widths::new(&v, &w).ok()
+        });
         Deposit {
             model,
             width: Length(self.width),
             basis: self.basis,
+            widths,
         }
     }
 
     /// The IR's form of a deposit model valid over `speeds`.
     pub fn of(d: &Deposit, speeds: [Speed; 2]) -> Bead {
-        let model = match d.model {
-            HeightModel::Linear { slope, intercept } => BeadModel::Linear {
+        let model = match &d.model {
+            &HeightModel::Linear { slope, intercept } => BeadModel::Linear {
                 slope,
                 intercept: intercept.0,
             },
-            HeightModel::MassBalance {
+            &HeightModel::MassBalance {
                 feed,
                 efficiency,
                 density,
@@ -285,9 +370,22 @@ impl Bead {
                 efficiency,
                 density: density.0 * 1000.0,
             },
-            HeightModel::Measured { height, speed } => BeadModel::Measured {
+            &HeightModel::Measured { height, speed } => BeadModel::Measured {
                 height: height.0,
                 speed: speed.0,
+            },
+            &HeightModel::Power {
+                height,
+                speed,
+                exponent,
+            } => BeadModel::Power {
+                height: height.0,
+                speed: speed.0,
+                exponent,
+            },
+            HeightModel::Table(t) => BeadModel::Table {
+                speed: t.speeds().to_vec(),
+                height: t.heights().to_vec(),
             },
         };
         Bead {
@@ -295,7 +393,26 @@ impl Bead {
             model,
             basis: d.basis,
             speed: [speeds[0].0, speeds[1].0],
+            widths: d.widths.as_ref().map(|w| {
+                w.speeds()
+                    .iter()
+                    .zip(w.widths())
+                    .map(|(&v, &w)| [v, w])
+                    .collect()
+            }),
+            measured: None,
+            fit: None,
         }
+    }
+
+    /// Whether a reader of version 4 would misread it: a model kind or
+    /// measured widths it does not know ([`VERSION_CALIBRATED`]).
+    pub fn needs_calibrated_version(&self) -> bool {
+        self.widths.is_some()
+            || matches!(
+                self.model,
+                BeadModel::Power { .. } | BeadModel::Table { .. }
+            )
     }
 }
 

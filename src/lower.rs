@@ -42,13 +42,18 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         (_, None) => return Err(message::internal::no_bead_in_lowering().into()),
     };
     let machines: Vec<_> = model.machines.iter().map(|(m, _)| m.clone()).collect();
+    let bead = match (&model.build, &model.bead) {
+        (Build::Ring(_), _) | (_, None) => None,
+        // The model as declared: each point carries its own feed.
+        (_, Some(b)) => Some(ir_bead(b)),
+    };
+    let version = match &bead {
+        Some(b) if b.needs_calibrated_version() => ir::VERSION_CALIBRATED,
+        _ => ir::version_for(bead.is_some(), ring.is_some(), &machines),
+    };
     let program = Program {
         format: FORMAT.into(),
-        version: ir::version_for(
-            !matches!(model.build, Build::Ring(_)) && model.bead.is_some(),
-            ring.is_some(),
-            &machines,
-        ),
+        version,
         part: model.part.clone(),
         units: Units::default(),
         limits,
@@ -68,18 +73,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             .collect(),
         heat: model.process.heat,
         continuous: ring.is_some(),
-        bead: match (&model.build, &model.bead) {
-            (Build::Ring(_), _) | (_, None) => None,
-            // The model as declared: each point carries its own feed.
-            (_, Some(b)) => Some(ir::Bead::of(
-                &crate::deposit::Deposit {
-                    model: b.model,
-                    width: b.width,
-                    basis: b.basis,
-                },
-                b.speed,
-            )),
-        },
+        bead,
         ring,
         layers,
         origins: Origins {
@@ -110,6 +104,32 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
     let mut program = program;
     predict_rises(&mut program);
     Ok((program, warnings))
+}
+
+/// The IR's statement of the bead model: as declared (each point carries
+/// its own feed), with where it was measured and how it was fitted.
+fn ir_bead(b: &crate::sema::model::Bead) -> ir::Bead {
+    ir::Bead {
+        measured: b.measured.map(|[lo, hi]| [lo.0, hi.0]),
+        fit: b.fit.as_ref().map(|f| ir::BeadFit {
+            data: f.data.clone(),
+            model: f.kind.name().to_string(),
+            points: f.points,
+            speeds: f.speeds,
+            r2: f.r2,
+            rms: f.rms,
+            unit: f.unit.to_string(),
+        }),
+        ..ir::Bead::of(
+            &crate::deposit::Deposit {
+                model: b.model.clone(),
+                width: b.width,
+                basis: b.basis,
+                widths: b.widths.clone(),
+            },
+            b.speed,
+        )
+    }
 }
 
 /// The layer heights the plan's bead stacks: its rises over its speeds
@@ -151,7 +171,7 @@ fn pitches(layers: &[Layer]) -> Option<[f64; 2]> {
 /// Each laser-on point's `rise` by the plan's bead model: `A/pitch` at its
 /// speed across the normal and its own powder feed.
 fn predict_rises(p: &mut Program) {
-    let Some(bead) = p.bead else { return };
+    let Some(bead) = &p.bead else { return };
     let deposit = bead.deposit();
     for path in p.layers.iter_mut().flat_map(|l| &mut l.paths) {
         let n = path.points.len();

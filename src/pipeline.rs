@@ -76,6 +76,37 @@ pub fn compile_with_model(
     Ok((c, model))
 }
 
+/// [`compile_with_model`], reading the data files the program names
+/// (`fit(…, data = "…")`) with `data`: the CLI's reader opens them beside
+/// the .lmd file.
+pub fn compile_reading(
+    source: &str,
+    machine: Option<&str>,
+    obs: &mut dyn Observer,
+    data: sema::DataReader,
+) -> Result<(Compiled, Option<Model>), NoSuchMachine> {
+    let mut model = None;
+    let mut diagnostics = Diagnostics::new();
+    let program = run(
+        source,
+        machine,
+        obs,
+        &mut diagnostics,
+        (Some(&mut model), Some(data)),
+    )?;
+    diagnostics.sort_by_source();
+    if program.is_none() {
+        model = None;
+    }
+    Ok((
+        Compiled {
+            program,
+            diagnostics,
+        },
+        model,
+    ))
+}
+
 fn compile_keeping(
     source: &str,
     machine: Option<&str>,
@@ -83,7 +114,7 @@ fn compile_keeping(
     keep: Option<&mut Option<Model>>,
 ) -> Result<Compiled, NoSuchMachine> {
     let mut diagnostics = Diagnostics::new();
-    let program = run(source, machine, obs, &mut diagnostics, keep)?;
+    let program = run(source, machine, obs, &mut diagnostics, (keep, None))?;
     diagnostics.sort_by_source();
     Ok(Compiled {
         program,
@@ -96,7 +127,7 @@ fn run(
     machine: Option<&str>,
     obs: &mut dyn Observer,
     diagnostics: &mut Diagnostics,
-    keep: Option<&mut Option<Model>>,
+    (keep, data): (Option<&mut Option<Model>>, Option<sema::DataReader>),
 ) -> Result<Option<Verified>, NoSuchMachine> {
     let ast = match syntax::parse(source) {
         Ok(a) => a,
@@ -106,7 +137,7 @@ fn run(
         }
     };
     obs.stage("parse");
-    let (model, d) = sema::check(&ast);
+    let (model, d) = sema::check_reading(&ast, data);
     drop(ast);
     diagnostics.extend(d);
     obs.stage("check");

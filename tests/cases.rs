@@ -9,7 +9,7 @@ use crate::support::expected::{self, blessing};
 use lmdc::back::{MemorySink, Templates};
 use lmdc::diag::json::Encoder;
 use lmdc::diag::render;
-use lmdc::pipeline::{compile, emit};
+use lmdc::pipeline::{compile_reading, emit};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::fs;
@@ -115,7 +115,12 @@ pub fn produce(case: &Path) -> BTreeMap<String, Vec<u8>> {
     let name = input_name(case);
     let src = fs::read_to_string(case.join(INPUT))
         .unwrap_or_else(|e| panic!("{}: {e}", case.join(INPUT).display()));
-    let c = compile(&src, &mut ());
+    // Its data files (`fit(…, data = "…")`) beside it, as the CLI reads them.
+    let dir = case.to_path_buf();
+    let data: lmdc::sema::DataReader = std::rc::Rc::new(move |path: &str| {
+        fs::read_to_string(dir.join(path)).map_err(|e| e.to_string())
+    });
+    let (c, _) = compile_reading(&src, None, &mut (), data).unwrap();
     let mut out = BTreeMap::new();
     if !c.diagnostics.is_empty() {
         // What `lmdc check FILE --color never` draws on stderr, and what
@@ -170,7 +175,8 @@ fn every_case_produces_its_files() {
     for case in all.iter().filter(|c| c.to_string_lossy().contains(&only)) {
         ran += 1;
         let produced = produce(case);
-        let p = expected::check_dir(case, &produced, |f| f == INPUT);
+        // The input and its data files (measurement sheets) are the case's.
+        let p = expected::check_dir(case, &produced, |f| f == INPUT || f.ends_with(".csv"));
         if !p.is_empty() {
             failed += 1;
             problems.push(format!("── {} ──\n{}", case.display(), p.join("\n")));

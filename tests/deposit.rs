@@ -41,10 +41,25 @@ fn ground(a: &Point, b: &Point) -> f64 {
 /// The cross-section the plan's bead lays at `v` (mm/s over the ground)
 /// with `powder` (g/min), from the IR's own statement of the model.
 fn area(p: &Program, v: f64, powder: f64) -> f64 {
-    let b = p.bead.expect("a bead model");
+    let b = p.bead.as_ref().expect("a bead model");
+    // The width at `v`: measured widths joined by lines, held at the ends.
+    let w = match &b.widths {
+        None => b.width,
+        Some(ws) => {
+            let k = ws.iter().position(|p| p[0] >= v).unwrap_or(ws.len() - 1);
+            match k {
+                0 => ws[0][1],
+                _ if ws[k][0] < v => ws[k][1],
+                _ => {
+                    let ([v0, w0], [v1, w1]) = (ws[k - 1], ws[k]);
+                    w0 + (w1 - w0) * (v - v0) / (v1 - v0)
+                }
+            }
+        }
+    };
     let measured = |h: f64| match b.basis {
-        lmdc::deposit::Basis::Track => segment_area(b.width, h),
-        lmdc::deposit::Basis::Wall => h * b.width,
+        lmdc::deposit::Basis::Track => segment_area(w, h),
+        lmdc::deposit::Basis::Wall => h * w,
         lmdc::deposit::Basis::Layer { offset } => h * offset,
     };
     match b.model {
@@ -56,6 +71,21 @@ fn area(p: &Program, v: f64, powder: f64) -> f64 {
             density,
             ..
         } => efficiency * (powder / 60.0) / (density / 1000.0 * v),
+        BeadModel::Power {
+            height,
+            speed,
+            exponent,
+        } => measured(height * (v / speed).powf(exponent)),
+        BeadModel::Table {
+            ref speed,
+            ref height,
+        } => {
+            // The piece around `v`, the end pieces extended.
+            let n = speed.len();
+            let k = (1..n).find(|&k| speed[k] > v).unwrap_or(n - 1);
+            let (v0, v1, h0, h1) = (speed[k - 1], speed[k], height[k - 1], height[k]);
+            measured(h0 + (h1 - h0) * (v - v0) / (v1 - v0))
+        }
     }
 }
 
@@ -169,6 +199,47 @@ fn what_the_heights_were_measured_as_decides_the_layer_height() {
         for pt in p.layers[0].paths[0].points.iter().filter(|q| q.laser_on) {
             assert!((pt.rise as f64 - want).abs() < 1e-6, "{measured_as}");
         }
+    }
+}
+
+#[test]
+fn a_table_with_measured_widths_lays_the_width_at_its_speed() {
+    // Seed 003's line at three speeds, the bead narrowing from 2.6 to 2.2 mm:
+    // at 6 mm/s a single track is 1.01 mm high and 2.4 mm wide (the middle
+    // width), and one contour a layer rises by its segment over the wall's
+    // 2.4 mm.
+    let src = plate("track", "layers = 3  contours = 1")
+        .replace("  speed = 4 mm/s .. 8.7 mm/s\n", "")
+        .replace(
+            "model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm)",
+            "model = table(speed = [4 mm/s, 6 mm/s, 8.7 mm/s], height = [1.28 mm, 1.01 mm, 0.6455 mm], width = [2.6 mm, 2.4 mm, 2.2 mm])",
+        );
+    let p = ir(&src);
+    assert_eq!(p.version, lmdc::ir::VERSION_CALIBRATED);
+    let b = p.bead.as_ref().unwrap();
+    assert_eq!(b.measured, Some([4.0, 8.7]));
+    assert_eq!(b.speed, [4.0, 8.7]);
+    let want = segment_area(2.4, 1.82 - 0.135 * 6.0) / 2.4;
+    let lift = p.layers[1].paths[0].points[0].pos[2];
+    assert!((lift - want).abs() < 1e-9, "{lift} vs {want}");
+    for (laid, planned) in layers(&p) {
+        assert!((laid / planned - 1.0).abs() < 0.005, "{laid} vs {planned}");
+    }
+}
+
+#[test]
+fn a_power_law_lays_its_height() {
+    // H = 1.01 mm·(v/6 mm/s)^-0.7: at the process's 6 mm/s, 1.01 mm, laid
+    // as a wall's rise.
+    let src = plate("wall", "layers = 3  contours = 1").replace(
+        "model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm)",
+        "model = power(height = 1.01 mm, speed = 6 mm/s, exponent = -0.7)",
+    );
+    let p = ir(&src);
+    let lift = p.layers[1].paths[0].points[0].pos[2];
+    assert!((lift - 1.01).abs() < 1e-9, "{lift}");
+    for (laid, planned) in layers(&p) {
+        assert!((laid / planned - 1.0).abs() < 0.005, "{laid} vs {planned}");
     }
 }
 

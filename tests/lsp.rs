@@ -291,3 +291,17 @@ proptest::proptest! {
         proptest::prop_assert!(back <= offset && text.is_char_boundary(back));
     }
 }
+
+#[test]
+fn a_bead_fitted_to_a_sheet_reads_the_sheet_beside_the_file() {
+    let mut c = started();
+    let path = std::fs::canonicalize("tests/cases/calib/seed_003_fit/input.lmd").unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let uri = format!("file://{}", path.display()).replace(' ', "%20");
+    let d = c.open(&uri, &text);
+    assert!(d.iter().all(|d| d["severity"] != 1), "{d:?}");
+    // Unsaved, the same text has no sheet to read: the compiler says so.
+    let d = c.open("untitled:Untitled-1", &text);
+    assert!(d.iter().any(|d| d["severity"] == 1), "{d:?}");
+    stop(c);
+}

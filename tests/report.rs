@@ -111,6 +111,9 @@ fn one_straight_track_with_a_mass_balance_bead() {
         },
         basis: Basis::Track,
         speed: [1.0, 10.0],
+        widths: None,
+        measured: None,
+        fit: None,
     });
     let at = |x: f64, on: bool| Point {
         pos: [x, 0.0, 0.0],

@@ -16,6 +16,7 @@ mod diagnostics;
 mod duct_geometry;
 mod editor_grammar;
 mod fill;
+mod fit;
 mod fixture_sanity;
 mod gcode_kinematics;
 mod gcode_program;

@@ -1,6 +1,7 @@
 //! The `lmdc` command line: argument parsing, reading the source, printing
 //! diagnostics, writing outputs atomically, exit codes.
 
+mod fit;
 pub mod messages;
 pub mod preview;
 pub mod progress;
@@ -129,6 +130,33 @@ enum Command {
         #[arg(short = 'o', long = "out", value_name = "FILE")]
         out: Option<PathBuf>,
     },
+    /// Fit bead models to a measurement sheet (the CSV `lmdc calibrate` writes, filled in):
+    /// least squares of a line, a power law (in log space), a mass balance's efficiency
+    /// (from area or mass) and a table; prints each fit's R² and residuals, the measured
+    /// range, the model the data favour and the `bead { … }` block to paste
+    /// (docs/calibration.md).
+    Fit {
+        /// The measurement sheet: one coupon a row, units in the header (`speed (mm/s)`).
+        data: PathBuf,
+        /// Fit only this model.
+        #[arg(long, value_enum, value_name = "MODEL")]
+        model: Option<FitModel>,
+        /// What the heights are: a single track's, a wall's rise per layer, filled layers' rise.
+        #[arg(long, value_enum, default_value = "track")]
+        kind: FitKind,
+        /// The tracks' offset in the layers measured, mm (with `--kind layer`).
+        #[arg(long, value_name = "MM")]
+        offset: Option<f64>,
+        /// The metal's density in g/cm³ (a mass balance).
+        #[arg(long, value_name = "G_PER_CM3")]
+        density: Option<f64>,
+        /// The powder feed in g/min, for coupons whose row has no `feed`.
+        #[arg(long, value_name = "G_PER_MIN")]
+        feed: Option<f64>,
+        /// One JSON object on stdout instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Run a ring's height loop (`control height`) offline against its declared plant: each segment's speed, height and total, layer by layer, and the final totals against the target.
     Simulate {
         /// The .lmd file.
@@ -143,6 +171,81 @@ enum Command {
     /// Run the language server on stdin/stdout for an editor: diagnostics as you type,
     /// hover, go to definition, references and completion (docs/editors.md).
     Lsp,
+}
+
+/// `lmdc fit --model`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum FitModel {
+    /// `H = slope·v + intercept`.
+    Linear,
+    /// `H = height·(v/speed)^exponent`, fitted in log space.
+    Power,
+    /// The catch efficiency from each coupon's area or mass.
+    #[value(name = "mass_balance")]
+    MassBalance,
+    /// The mean height at each speed, joined by lines.
+    Table,
+}
+
+impl FitModel {
+    fn kind(self) -> lmdc::bead::fit::Kind {
+        use lmdc::bead::fit::Kind;
+        match self {
+            FitModel::Linear => Kind::Linear,
+            FitModel::Power => Kind::Power,
+            FitModel::MassBalance => Kind::MassBalance,
+            FitModel::Table => Kind::Table,
+        }
+    }
+}
+
+/// `lmdc fit --kind`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum FitKind {
+    /// A single track's height.
+    Track,
+    /// The rise per layer of a wall one bead wide.
+    Wall,
+    /// The rise per layer of filled layers (`--offset`).
+    Layer,
+}
+
+impl FitKind {
+    fn name(self) -> &'static str {
+        match self {
+            FitKind::Track => "track",
+            FitKind::Wall => "wall",
+            FitKind::Layer => "layer",
+        }
+    }
+}
+
+/// Runs `lmdc fit` (`command` is a [`Command::Fit`]).
+fn fit_command(command: Command, output: (bool, MessageFormat)) -> u8 {
+    let Command::Fit {
+        data,
+        model,
+        kind,
+        offset,
+        density,
+        feed,
+        json,
+    } = command
+    else {
+        unreachable!("only `lmdc fit` comes here")
+    };
+    fit::run(
+        fit::Args {
+            file: &data,
+            model: model.map(FitModel::kind),
+            kind: kind.name(),
+            offset,
+            density,
+            feed,
+            json,
+        },
+        output,
+    )
 }
 
 /// Runs the command line; returns the exit code.
@@ -162,8 +265,13 @@ pub fn run(cli: Cli) -> u8 {
                 return EXIT_USAGE;
             };
             let mut p = progress(&file);
-            let compiled = match pipeline::compile_for(&source, machine.as_deref(), &mut p) {
-                Ok(c) => c,
+            let compiled = match pipeline::compile_reading(
+                &source,
+                machine.as_deref(),
+                &mut p,
+                data_reader(&file),
+            ) {
+                Ok((c, _)) => c,
                 Err(e) => {
                     eprintln!("error: {e}");
                     return EXIT_USAGE;
@@ -230,6 +338,7 @@ pub fn run(cli: Cli) -> u8 {
                 EXIT_USAGE
             }
         },
+        command @ Command::Fit { .. } => fit_command(command, (color, format)),
         Command::Preview { file, machine, out } => {
             let p = progress(&file);
             preview::run(&file, machine.as_deref(), out.as_deref(), color, format, p)
@@ -249,11 +358,16 @@ fn compile_and_print(
     progress: &mut Progress,
     (color, format): (bool, MessageFormat),
 ) -> Result<lmdc::verify::Verified, u8> {
-    let compiled = pipeline::compile_for(source, machine, &mut progress::Both(obs, progress))
-        .map_err(|e| {
-            eprintln!("error: {e}");
-            EXIT_USAGE
-        })?;
+    let (compiled, _) = pipeline::compile_reading(
+        source,
+        machine,
+        &mut progress::Both(obs, progress),
+        data_reader(file),
+    )
+    .map_err(|e| {
+        eprintln!("error: {e}");
+        EXIT_USAGE
+    })?;
     progress.print(|| messages::print(&compiled.diagnostics, file, source, color, format));
     compiled.program.ok_or(EXIT_PROGRAM)
 }
@@ -496,6 +610,15 @@ fn read_source(file: &Path) -> Option<String> {
             e.utf8_error().valid_up_to()
         )),
     }
+}
+
+/// Reads the data files a program names (`fit(…, data = "…")`), relative
+/// to the folder of the .lmd file `file`.
+pub fn data_reader(file: &Path) -> lmdc::sema::DataReader {
+    let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
+    std::rc::Rc::new(move |path: &str| {
+        std::fs::read_to_string(dir.join(path)).map_err(|e| e.to_string())
+    })
 }
 
 /// A path as it is safe to print: no control character from its name reaches

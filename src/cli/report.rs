@@ -32,13 +32,15 @@ pub fn run(a: Args<'_>, color: bool, format: MessageFormat, mut progress: Progre
             return EXIT_USAGE;
         }
     }
-    let (compiled, model) = match pipeline::compile_with_model(&source, a.machine, &mut progress) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_USAGE;
-        }
-    };
+    let reader = super::data_reader(a.file);
+    let (compiled, model) =
+        match pipeline::compile_reading(&source, a.machine, &mut progress, reader) {
+            Ok(c) => c,
+            Err(e) => {
+                eprintln!("error: {e}");
+                return EXIT_USAGE;
+            }
+        };
     progress.finish();
     messages::print(&compiled.diagnostics, a.file, &source, color, format);
     let (Some(program), Some(model)) = (compiled.program, model) else {

@@ -163,9 +163,17 @@ codes! {
     CountRange = "count-range", Values,
         "a whole number outside its field's range (`sides` 3–1000, `points` 8–100 000, a style's `id` 1–65 535, …); the message gives the range";
     BeadSlope = "bead-slope", Values,
-        "a linear bead model whose height does not fall as the scan speed rises (slope ≥ 0)";
+        "a linear bead model whose height does not fall as the scan speed rises (slope ≥ 0), a `power(…)` whose exponent is not negative, or coupons whose fitted line or power law rises with the speed";
+    Sheet = "sheet", Values,
+        "a measurement sheet (`lmdc fit`, `model = fit(…, data = …)`) lmdc cannot read: a cell that is not a number greater than zero (with its line and column), a row with more cells than the header, a measured row without a speed, a header without a `speed` column";
+    SheetUnits = "sheet-units", Values,
+        "a measurement sheet's header names a column lmdc reads (`speed`, `height`, `width`, `area`, `mass`, `feed`, `length`, `power`) without its unit in brackets, in a unit lmdc does not convert, or twice";
+    TooFewPoints = "too-few-points", Values,
+        "a measurement sheet with too few coupons for the model asked (a line or a power law needs two speeds, a mass balance one coupon with area or mass and feed), or without the column it fits";
+    BeadTable = "bead-table", Values,
+        "a bead `table(…)` (or measured data) that is no table: fewer than two speeds, lists of unequal length, speeds that do not increase, or heights that do not fall as the speed rises (names the entries that break it)";
     EfficiencyRange = "efficiency-range", Values,
-        "a mass-balance bead model's catch efficiency above 1 (100 %)";
+        "a mass-balance bead model's catch efficiency above 1 (100 %), or one fitted from coupons outside 0–1";
     CornerRadius = "corner-radius", Values,
         "a rounded rectangle's corner radius below zero or above half its shorter side";
     BendAngle = "bend-angle", Values,
@@ -212,6 +220,8 @@ codes! {
         "the process `speed` of planar layers outside the bead model's speeds, or not the speed a measured bead was measured at";
     SectionTooSmall = "section-too-small", Feasibility,
         "a loft's end measured at its outer face (`size = outer`) with nothing left inside half a bead width";
+    Extrapolation = "extrapolation", Feasibility,
+        "a bead's `speed` range reaching beyond the speeds its model was measured at (a `table(…)`'s): an error naming the measured range, or with `extrapolate = allow` a warning saying how far outside";
     InfeasibleBead = "infeasible-bead", Feasibility,
         "the bead model gives no positive height over its speed range, or its heights miss the declared `height` range";
     RingTooSmall = "ring-too-small", Feasibility,

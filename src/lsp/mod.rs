@@ -133,7 +133,7 @@ fn update(docs: &mut HashMap<String, Doc>, n: Notification, encoding: Encoding) 
 /// diagnostics, each at its first label, the other labels as related
 /// information.
 fn publish(uri: &str, doc: &Doc) -> Value {
-    let c = pipeline::compile(&doc.text, &mut ());
+    let c = compile(uri, &doc.text);
     let items: Vec<Value> = c
         .diagnostics
         .iter()
@@ -194,7 +194,7 @@ fn answer(docs: &HashMap<String, Doc>, req: Request) -> Response {
     };
     let result = match req.method.as_str() {
         "textDocument/hover" => {
-            let chosen = |key: &str| chosen(&doc.text, key);
+            let chosen = |key: &str| chosen(&uri, &doc.text, key);
             hover(&doc.text, at, &chosen).map_or(Value::Null, |h| {
                 json!({
                     "contents": { "kind": "markdown", "value": h.markdown },
@@ -245,10 +245,46 @@ fn answer(docs: &HashMap<String, Doc>, req: Request) -> Response {
     Response::new_ok(req.id, result)
 }
 
+/// Compiles a document as `lmdc check` would: the data files it names
+/// (`fit(…, data = "…")`) read beside it when it is a file on disk.
+fn compile(uri: &str, text: &str) -> pipeline::Compiled {
+    let dir = file_path(uri).and_then(|p| p.parent().map(std::path::Path::to_path_buf));
+    let reader: crate::sema::DataReader = std::rc::Rc::new(move |name: &str| match &dir {
+        Some(d) => std::fs::read_to_string(d.join(name)).map_err(|e| e.to_string()),
+        None => Err("the document is not a file on disk".into()),
+    });
+    match pipeline::compile_reading(text, None, &mut (), reader) {
+        Ok((c, _)) => c,
+        Err(_) => unreachable!("no machine was named"),
+    }
+}
+
+/// The path of a `file://` URI (its `%XX` escapes decoded).
+fn file_path(uri: &str) -> Option<std::path::PathBuf> {
+    let rest = uri.strip_prefix("file://")?;
+    let b = rest.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let hex = |k: usize| b.get(k).and_then(|c| (*c as char).to_digit(16));
+        match (b[i], hex(i + 1), hex(i + 2)) {
+            (b'%', Some(h), Some(l)) => {
+                out.push((h * 16 + l) as u8);
+                i += 3;
+            }
+            (c, _, _) => {
+                out.push(c);
+                i += 1;
+            }
+        }
+    }
+    Some(std::path::PathBuf::from(String::from_utf8(out).ok()?))
+}
+
 /// What the compiled plan chose for `key = auto`: the layer count and the
 /// heights it lays, or the track spacing.
-fn chosen(text: &str, key: &str) -> Option<String> {
-    let c = pipeline::compile(text, &mut ());
+fn chosen(uri: &str, text: &str, key: &str) -> Option<String> {
+    let c = compile(uri, text);
     let p = c.program?;
     let ir = p.ir();
     let on = || {

@@ -75,6 +75,14 @@ pub struct BeadInfo {
     pub spacing: String,
     /// The catch efficiency the model declares (mass balance), 0–1.
     pub declared_efficiency: Option<f64>,
+    /// The model with its numbers, as the IR states it.
+    pub model: crate::ir::BeadModel,
+    /// The speeds it was measured over (a table's, a fit's data), mm/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub measured: Option<[f64; 2]>,
+    /// How it was fitted, when the program fitted it to data.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fit: Option<crate::ir::BeadFit>,
 }
 
 /// What the bead model lays against what the plan stacks, over the layers.
@@ -187,7 +195,7 @@ impl Report {
     ) -> Report {
         let program = machine.ir();
         let mut r = Self::walk(machine);
-        r.bead = program.bead.map(|b| BeadInfo {
+        r.bead = program.bead.as_ref().map(|b| BeadInfo {
             width_mm: b.width,
             measured_as: b.basis.describe(),
             spacing: spacing(program, b.width),
@@ -195,8 +203,11 @@ impl Report {
                 BeadModel::MassBalance { efficiency, .. } => Some(efficiency),
                 _ => None,
             },
+            model: b.model.clone(),
+            measured: b.measured,
+            fit: b.fit.clone(),
         });
-        let declared = program.bead.and_then(|b| match b.model {
+        let declared = program.bead.as_ref().and_then(|b| match b.model {
             BeadModel::MassBalance { density, .. } => Some(density),
             _ => None,
         });
@@ -232,7 +243,7 @@ impl Report {
     fn walk(machine: VerifiedMachine<'_>) -> Report {
         let program = machine.ir();
         let summary = machine.summary();
-        let laid = program.bead.map(|_| volume::per_layer(program));
+        let laid = program.bead.as_ref().map(|_| volume::per_layer(program));
         let rows: Vec<Tally> = summary
             .layers
             .iter()

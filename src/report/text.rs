@@ -176,6 +176,9 @@ fn metal(out: &mut String, r: &Report) {
         let _ = write!(line, " (the model declares {})", percent(e));
     }
     let _ = writeln!(out, "{line}");
+    if let Some(f) = &bead.fit {
+        fitted(out, bead, f);
+    }
     if let Some(d) = &r.deposit {
         deposit(out, t, d);
     }
@@ -186,6 +189,49 @@ fn metal(out: &mut String, r: &Report) {
             "mass        the bead model declares no density: give one with --density (g/cm³)"
         );
     }
+}
+
+/// The model the program fitted to its data: its numbers and how well.
+fn fitted(out: &mut String, bead: &super::BeadInfo, f: &crate::ir::BeadFit) {
+    use crate::ir::BeadModel;
+    let numbers = match &bead.model {
+        BeadModel::Linear { slope, intercept } => format!(
+            "H = {} mm/(mm/s)·v + {} mm",
+            trimmed(*slope, 6),
+            trimmed(*intercept, 6)
+        ),
+        BeadModel::Power {
+            height,
+            speed,
+            exponent,
+        } => format!(
+            "H = {} mm·(v / {} mm/s)^{}",
+            trimmed(*height, 6),
+            trimmed(*speed, 3),
+            trimmed(*exponent, 6)
+        ),
+        BeadModel::MassBalance { efficiency, .. } => {
+            format!("efficiency {}", trimmed(*efficiency, 6))
+        }
+        BeadModel::Table { speed, .. } => format!("a table of {} speeds", speed.len()),
+        BeadModel::Measured { height, speed } => {
+            format!("{} mm at {} mm/s", trimmed(*height, 6), trimmed(*speed, 3))
+        }
+    };
+    let range = bead.measured.map_or(String::new(), |[a, b]| {
+        format!(", measured {} .. {} mm/s", trimmed(a, 3), trimmed(b, 3))
+    });
+    let _ = writeln!(
+        out,
+        "fitted      {} to {} coupons at {} speeds of {}{range}: {numbers}; R² {}, RMS {} {}",
+        f.model,
+        f.points,
+        f.speeds,
+        f.data,
+        trimmed(f.r2, 6),
+        trimmed(f.rms, 6),
+        f.unit
+    );
 }
 
 /// What the bead lays against what the layers stack: one statement, with

@@ -1,13 +1,16 @@
 //! `bead NAME { width, height, speed, model }`: a bead model.
 
 use super::eval::{unknown_name, Env};
-use super::fields::Fields;
+use super::fields::{self, Fields};
 use super::model::{Bead, HeightModel};
 use super::schema::bead::{
-    self as schema, model as args, BEAD, LAYER, LINEAR, MASS_BALANCE, MEASURED,
+    self as schema, model as args, BEAD, FIT, LAYER, LINEAR, MASS_BALANCE, MEASURED, POWER, TABLE,
 };
+use super::schema::Field;
 use super::suggest::did_you_mean;
 use super::value::{Spanned, Value};
+use crate::bead::fit::{self, Given, Kind, Summary};
+use crate::bead::{sheet, Table, TableFault, Widths};
 use crate::deposit::Basis;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
@@ -25,10 +28,11 @@ pub fn read<'a>(
 ) -> Option<Bead> {
     let f = Fields::block(env, stmts, &BEAD, format!("bead `{name}`"), span, diags);
     let width = f.quantity(&schema::WIDTH, diags);
-    // A measured bead brings its speed; every other model needs the range.
+    // A measured bead brings its speed, a table its speeds; every other
+    // model needs the range.
     let measured = matches!(
         f.value(&schema::MODEL, &mut Diagnostics::new()).map(|m| &m.value),
-        Some(Value::Call(c)) if c.func == "measured"
+        Some(Value::Call(c)) if ["measured", "table", "fit"].contains(&c.func.as_str())
     );
     let speed = f.range(&schema::SPEED, diags);
     if !measured {
@@ -46,32 +50,45 @@ pub fn read<'a>(
         diags.push(message::bead::speed_not_positive(speed_span));
         false
     });
-    let model = height_model(model, span, diags);
-    let basis = basis(&f, model, model_span, diags);
+    let read = height_model(model, span, env.data.as_ref(), diags);
+    let (model, widths, measured_speeds, fit) = match read {
+        Some(r) => (Some(r.model), r.widths, r.measured, r.fit),
+        None => (None, None, None, None),
+    };
+    let basis = basis(&f, model.as_ref(), model_span, diags);
     let (model, basis) = (model?, basis?);
     let model_span = model_span.unwrap_or(span);
     // A measured bead is valid at the speed it was measured at, unless the file
     // says over which range it holds.
-    let speed = match (speed, model) {
+    let speed = match (speed, &model) {
         (Some(s), _) => Some(s),
         (None, HeightModel::Measured { speed: v, .. }) if !f.has(&schema::SPEED) => {
             Some(([v.0, v.0], model_span))
         }
+        (None, _) if !f.has(&schema::SPEED) => measured_speeds.map(|r| (r, model_span)),
         (None, _) => None,
     };
     let (width, (speed, speed_span)) = (width?, speed?);
+    if let Some(m) = measured_speeds {
+        let allow = f.word_or_default(&schema::EXTRAPOLATE, diags) == Some("allow");
+        extrapolation(speed, m, allow, (speed_span, model_span), diags)?;
+    }
     let w = Length(width.0);
     let deposit = crate::deposit::Deposit {
-        model,
+        model: model.clone(),
         width: w,
         basis,
+        widths: widths.clone(),
     };
-    let (height, height_span) = heights(deposit, speed, height, (speed_span, model_span), diags)?;
+    let (height, height_span) = heights(&deposit, speed, height, (speed_span, model_span), diags)?;
     Some(Bead {
         name: name.to_string(),
         width: w,
         model,
         basis,
+        widths,
+        measured: measured_speeds.map(|[lo, hi]| [Speed(lo), Speed(hi)]),
+        fit,
         declared_height,
         feed: None,
         speed: [Speed(speed[0]), Speed(speed[1])],
@@ -86,7 +103,7 @@ pub fn read<'a>(
 /// track when not written).
 fn basis(
     f: &Fields<'_>,
-    model: Option<HeightModel>,
+    model: Option<&HeightModel>,
     model_span: Option<Span>,
     diags: &mut Diagnostics,
 ) -> Option<Basis> {
@@ -123,15 +140,193 @@ fn basis(
     Some(basis)
 }
 
-/// The model `model = …` gives (`block` is where to point when the value
-/// is no model at all and has no span of its own).
+/// Whether the bead's `speed` range (`speed`, at `spans.0`) stays within
+/// `measured`, the speeds its model was measured at (at `spans.1`): an
+/// error when it leaves them, a warning when the file allows it (`allow`);
+/// `None` on the error.
+fn extrapolation(
+    speed: [f64; 2],
+    measured: [f64; 2],
+    allow: bool,
+    (speed_span, model_span): (Span, Span),
+    diags: &mut Diagnostics,
+) -> Option<()> {
+    let below = measured[0] - speed[0];
+    let above = speed[1] - measured[1];
+    let slack = 1e-9 * measured[1];
+    if below <= slack && above <= slack {
+        return Some(());
+    }
+    diags.push(message::bead::extrapolation(
+        speed.map(Speed),
+        measured.map(Speed),
+        [below.max(0.0), above.max(0.0)],
+        allow,
+        speed_span,
+        model_span,
+    ));
+    allow.then_some(())
+}
+
+/// `table(speed, height, width)`: the heights (and widths) measured at
+/// each speed, or every fault of them.
+fn table(
+    c: &super::value::Call,
+    at: Span,
+    diags: &mut Diagnostics,
+) -> Option<(Table, Option<Widths>)> {
+    let a = Fields::call(c, &TABLE, diags);
+    let speeds = list(&a, &args::SPEEDS, diags);
+    let heights = list(&a, &args::HEIGHTS, diags);
+    let widths = a.has(&args::WIDTHS).then(|| list(&a, &args::WIDTHS, diags));
+    let (speeds, heights) = (speeds?, heights?);
+    let faults = |fs: Vec<TableFault>, what: &str, values: &[f64], diags: &mut Diagnostics| {
+        for f in fs {
+            diags.push(message::bead::table_fault(&f, what, (&speeds, values), at));
+        }
+    };
+    let table = Table::new(&speeds, &heights).map_err(|fs| faults(fs, "height", &heights, diags));
+    let widths = match widths {
+        None => Ok(None),
+        Some(None) => Err(()),
+        Some(Some(w)) => match Widths::new(&speeds, &w) {
+            // One width for each speed: a table's shape is the heights'.
+            Ok(w) if w.speeds().len() == speeds.len() => Ok(Some(w)),
+            Ok(_) => Err(()),
+            Err(fs) => {
+                let fs = fs
+                    .into_iter()
+                    .filter(|f| {
+                        matches!(f, TableFault::Lengths { .. } | TableFault::NotPositive(_))
+                    })
+                    .collect();
+                faults(fs, "width", &w, diags);
+                Err(())
+            }
+        },
+    };
+    Some((table.ok()?, widths.ok()?))
+}
+
+/// One list of quantities of a `table(…)`: every entry of the field's
+/// dimension, each one reported where it is not.
+fn list(a: &Fields<'_>, field: &Field, diags: &mut Diagnostics) -> Option<Vec<f64>> {
+    let dim = field.kind.dim().expect("a table's lists are of quantities");
+    let v = a.value(field, diags)?;
+    let Value::List(items) = &v.value else {
+        diags.push(message::bead::table_not_a_list(
+            field.key,
+            v.span,
+            &v.value.describe(),
+            a.example(field),
+        ));
+        return None;
+    };
+    let read: Vec<Option<f64>> = items
+        .iter()
+        .map(|it| fields::quantity(it, dim, field.key, diags))
+        .collect();
+    read.into_iter().collect()
+}
+
+/// What `model = …` says: the height model, and where it was measured,
+/// the widths and speeds measured and the fit that gave it.
+struct Read {
+    model: HeightModel,
+    widths: Option<Widths>,
+    measured: Option<[f64; 2]>,
+    fit: Option<Summary>,
+}
+
+/// `fit(model, data, density, feed)`: the model fitted to the data file,
+/// read with `data`.
+fn fitted(
+    c: &super::value::Call,
+    data: Option<&super::DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<Read> {
+    let a = Fields::call(c, &FIT, diags);
+    let kind = a.word(&args::FIT_MODEL, diags);
+    let path = a.text(&args::DATA, diags);
+    let density = a.quantity(&args::FIT_DENSITY, diags);
+    let feed = a.quantity(&args::FIT_FEED, diags);
+    let ((kind, _), (path, at)) = (kind?, path?);
+    let kind = Kind::of(kind)?;
+    let Some(read) = data else {
+        diags.push(message::calib::no_data_reader(at));
+        return None;
+    };
+    let text = read(&path)
+        .map_err(|why| diags.push(message::calib::unreadable_data(&path, &why, at)))
+        .ok()?;
+    let in_data = |ds: Vec<crate::diag::Diagnostic>, diags: &mut Diagnostics| {
+        for d in ds {
+            diags.push(message::calib::in_data(&d, &path, &text, at));
+        }
+    };
+    let sheet = sheet::read(&text)
+        .map_err(|ds| in_data(ds.into_vec(), diags))
+        .ok()?;
+    let given = Given {
+        density: density.map(|d| Density(d.0)),
+        feed: feed.map(|f| MassFlow(f.0)),
+    };
+    let f = fit::fit(&sheet, kind, given)
+        .map_err(|e| in_data(fit::diagnose(&e, kind, &sheet), diags))
+        .ok()?;
+    Some(Read {
+        widths: f.widths.clone(),
+        measured: Some(f.range),
+        fit: Some(f.summary(&path)),
+        model: f.model,
+    })
+}
+
+/// The model `model = …` gives, and the widths it measured where it did
+/// (`block` is where to point when the value is no model at all and has
+/// no span of its own; `data` reads a `fit(…)`'s data file).
 fn height_model(
     model: Option<&Spanned>,
     block: Span,
+    data: Option<&super::DataReader>,
     diags: &mut Diagnostics,
-) -> Option<HeightModel> {
+) -> Option<Read> {
     let at = model.map_or(block, |m| m.span);
-    match &model?.value {
+    let m = match &model?.value {
+        Value::Call(c) if c.func == "fit" => return fitted(c, data, diags),
+        Value::Call(c) if c.func == "table" => {
+            let (t, w) = table(c, at, diags)?;
+            return Some(Read {
+                measured: Some(t.range()),
+                model: HeightModel::Table(t),
+                widths: w,
+                fit: None,
+            });
+        }
+        Value::Call(c) if c.func == "power" => {
+            let a = Fields::call(c, &POWER, diags);
+            let h = a.quantity(&args::REF_HEIGHT, diags);
+            let v = a.quantity(&args::REF_SPEED, diags);
+            let e = a.bounded(&args::EXPONENT, message::bead::exponent_not_negative, diags);
+            HeightModel::Power {
+                height: Length(h?.0),
+                speed: Speed(v?.0),
+                exponent: e?.0,
+            }
+        }
+        other => one_point_model(other, at, diags)?,
+    };
+    Some(Read {
+        model: m,
+        widths: None,
+        measured: None,
+        fit: None,
+    })
+}
+
+/// The models of typed-in numbers: `linear`, `mass_balance`, `measured`.
+fn one_point_model(value: &Value, at: Span, diags: &mut Diagnostics) -> Option<HeightModel> {
+    match value {
         Value::Call(c) if c.func == "linear" => {
             let a = Fields::call(c, &LINEAR, diags);
             let slope = a.bounded(&args::SLOPE, message::bead::slope_not_negative, diags);
@@ -172,13 +367,13 @@ fn height_model(
 /// `spans.0`), narrowed to `height` if written: the layer heights allowed,
 /// and where they are declared (`spans.1`, the model, when not written).
 fn heights(
-    deposit: crate::deposit::Deposit,
+    deposit: &crate::deposit::Deposit,
     speed: [f64; 2],
     height: Option<([f64; 2], Span)>,
     (speed_span, model_span): (Span, Span),
     diags: &mut Diagnostics,
 ) -> Option<([Length; 2], Span)> {
-    let (model, w) = (deposit.model, deposit.width);
+    let (model, w) = (&deposit.model, deposit.width);
     // The model's heights at the ends of its speed range.
     let h_hi = model.height_at(Speed(speed[0]), w).0;
     let h_lo = model.height_at(Speed(speed[1]), w).0;
@@ -196,7 +391,7 @@ fn heights(
         // bead's height (tracks at the flat-top offset A/h): the heights it
         // can build.
         (None, HeightModel::Measured { speed: v, .. }) => (
-            [deposit.rise(v, w, None).0, deposit.bead_height(v).0],
+            [deposit.rise(*v, w, None).0, deposit.bead_height(*v).0],
             model_span,
         ),
         (Some(([lo, hi], hs)), HeightModel::Measured { .. }) => ([lo, hi], hs),
@@ -260,10 +455,10 @@ pub fn named(
 /// process feeds (`powder`, written at `at`): its heights would not be the
 /// ones laid.
 pub fn check_feed(bead: &Bead, powder: MassFlow, at: Span, diags: &mut Diagnostics) {
-    if let HeightModel::MassBalance { feed, .. } = bead.model {
+    if let HeightModel::MassBalance { feed, .. } = &bead.model {
         if (feed.0 - powder.0).abs() > 0.01 * feed.0 {
             diags.push(message::bead::powder_mismatch(
-                &bead.name, feed, powder, at, bead.span,
+                &bead.name, *feed, powder, at, bead.span,
             ));
         }
     }

@@ -70,6 +70,8 @@ pub struct Env<'a> {
     /// Names of everything declared (constants, sections, beads, …), for
     /// "did you mean" hints.
     pub known: Vec<String>,
+    /// How the program's data files are read (`fit(…, data = "…")`).
+    pub data: Option<super::DataReader>,
 }
 
 impl<'a> Env<'a> {
@@ -86,6 +88,7 @@ impl<'a> Env<'a> {
             position: None,
             position_reads: 0,
             known: Vec::new(),
+            data: None,
         }
     }
 

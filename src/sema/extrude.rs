@@ -189,7 +189,7 @@ fn scan_speed(
     at: Span,
     diags: &mut Diagnostics,
 ) -> Option<Speed> {
-    match (speed, bead.model) {
+    match (speed, &bead.model) {
         (Some((v, sp)), _) => {
             if !bead.covers_speed(v) {
                 let measured = matches!(bead.model, HeightModel::Measured { .. });
@@ -207,7 +207,7 @@ fn scan_speed(
             }
             Some(v)
         }
-        (None, HeightModel::Measured { speed, .. }) => Some(speed),
+        (None, HeightModel::Measured { speed, .. }) => Some(*speed),
         (None, _) => {
             diags.push(message::solid::no_scan_speed(at));
             None

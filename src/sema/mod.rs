@@ -51,14 +51,28 @@ use statement::Statements;
 /// later stages can report their own problems in the same run. A model that
 /// comes with errors is never built into a program.
 pub fn check(file: &File) -> (Option<Model>, Diagnostics) {
+    check_reading(file, None)
+}
+
+/// Reads the data files a program names (`fit(…, data = "coupons.csv")`):
+/// the text of the file at a path as the program writes it (relative to
+/// the program's file), or why it cannot. The caller decides where files
+/// are; sema opens none itself.
+pub type DataReader = std::rc::Rc<dyn Fn(&str) -> Result<String, String>>;
+
+/// [`check`], reading the data files the program names with `data` (none:
+/// a program that names one is refused, there being no file to read it
+/// beside).
+pub fn check_reading(file: &File, data: Option<DataReader>) -> (Option<Model>, Diagnostics) {
     let mut diags = Diagnostics::new();
-    let model = check_into(file, &mut diags);
+    let model = check_into(file, data, &mut diags);
     (model, diags)
 }
 
-fn check_into(file: &File, diags: &mut Diagnostics) -> Option<Model> {
+fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) -> Option<Model> {
     let st = Statements::group(file, diags);
     let mut env = Env::new();
+    env.data = data;
     // Constants first: everything else may use them, in any order.
     let decl = declare::read(&mut env, &st, diags);
     let part = statement::part(&st, diags);

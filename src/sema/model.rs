@@ -244,6 +244,14 @@ pub struct Bead {
     /// Allowed layer heights: the declared range, narrowed to what the model
     /// reaches over its speed range.
     pub height: [Length; 2],
+    /// The widths measured at each speed (a `table(…)` with `width`), which
+    /// the deposit model takes over the one `width`.
+    pub widths: Option<crate::bead::Widths>,
+    /// The speeds the model was measured over (a table's, a fit's data),
+    /// when known.
+    pub measured: Option<[Speed; 2]>,
+    /// The fit that gave the model (`fit(…, data = "…")`).
+    pub fit: Option<crate::bead::fit::Summary>,
     /// The `height = …` range as declared, if it is.
     pub declared_height: Option<[Length; 2]>,
     /// The process's powder feed, which a mass-balance model lays by
@@ -269,9 +277,10 @@ impl Bead {
     /// The bead as the deposit model reads it.
     pub fn deposit(&self) -> crate::deposit::Deposit {
         let d = crate::deposit::Deposit {
-            model: self.model,
+            model: self.model.clone(),
             width: self.width,
             basis: self.basis,
+            widths: self.widths.clone(),
         };
         match self.feed {
             Some(f) => d.fed(f),

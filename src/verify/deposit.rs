@@ -53,7 +53,7 @@ struct Run {
 /// Everything the rule finds in `p`, or `None` when the plan lays what it
 /// plans (or has no bead model to predict with).
 pub(crate) fn check(p: &Program) -> Option<DepositMiss<Where>> {
-    let bead = p.bead?;
+    let bead = p.bead.as_ref()?;
     let d = bead.deposit();
     let mut found = Found {
         tol: p.limits.rise_tolerance,

@@ -1,6 +1,7 @@
 //! What lmdc says about a `bead` model, the `slicing` block and the
 //! `process` block: the numbers that decide how each layer is laid.
 
+use crate::bead::TableFault;
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
 use crate::units::{short, Length, MassFlow, Power, Speed};
@@ -21,6 +22,26 @@ pub fn slope_not_negative(slope: f64, at: Span) -> Diagnostic {
     .help("a faster scan lays a lower bead: fit H = slope·v + intercept with slope < 0")
 }
 
+/// A power-law bead model's `exponent` is not negative.
+pub fn exponent_not_negative(exponent: f64, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::BeadSlope,
+        "the exponent of a bead's power law must be negative",
+    )
+    .label(at, format!("this is {}", short(exponent)))
+    .help("a faster scan lays a lower bead: H = height·(v/speed)^exponent with exponent < 0")
+}
+
+/// A `table(…)`'s `key` is not a list (`got` describes it).
+pub fn table_not_a_list(key: &str, at: Span, got: &str, example: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::Type,
+        format!("a bead table's `{key}` is a list, one value for each speed measured"),
+    )
+    .label(at, format!("this is {got}"))
+    .help(format!("write `{key} = {example}`"))
+}
+
 /// A mass-balance model's catch efficiency `eff` is above 1.
 pub fn efficiency_range(eff: f64, at: Span) -> Diagnostic {
     Diagnostic::error(
@@ -38,7 +59,7 @@ pub fn efficiency_range(eff: f64, at: Span) -> Diagnostic {
 pub fn unknown_model(at: Span, got: &str) -> Diagnostic {
     Diagnostic::error(
         Code::BadChoice,
-        "a bead model is `linear(…)`, `mass_balance(…)` or `measured(…)`",
+        "a bead model is `linear(…)`, `mass_balance(…)`, `measured(…)`, `power(…)` or `table(…)`",
     )
     .label(at, format!("this is {got}"))
     .help("e.g. `model = linear(slope = -0.135 mm / (1 mm/s), intercept = 1.82 mm)`")
@@ -59,6 +80,93 @@ pub fn model_height_not_positive(
     .label(speed_at, "speed range")
     .label_opt(model_at, "model")
     .help("narrow the speed range to where the model gives positive heights")
+}
+
+/// A `table(…)` (at `at`) is no table: `fault` says why, its entries
+/// counted from 0; `what` names the list checked against the speeds
+/// ("heights", "widths"), `speeds` and `values` its lists (mm/s, mm).
+pub fn table_fault(
+    fault: &TableFault,
+    what: &str,
+    (speeds, values): (&[f64], &[f64]),
+    at: Span,
+) -> Diagnostic {
+    // "height 2 (1.3 mm at 6 mm/s)": the entry as the user counts them.
+    let entry = |i: usize| match (speeds.get(i), values.get(i)) {
+        (Some(&v), Some(&h)) => format!("{} {} ({} at {})", what, i + 1, Length(h), Speed(v)),
+        _ => format!("{} {}", what, i + 1),
+    };
+    let (title, help) = match *fault {
+        TableFault::TooFew(n) => (
+            format!("a bead table needs two speeds or more; this one has {n}"),
+            "measure the bead at two speeds at least (or use `measured(height, speed)` for one)".to_string(),
+        ),
+        TableFault::Lengths { speeds, other } => (
+            format!("the table has {speeds} speeds and {other} {what}s: one for each speed"),
+            format!("give one {what} for each speed"),
+        ),
+        TableFault::NotPositive(i) => (
+            format!("{} of the table is not greater than zero", entry(i)),
+            "speeds, heights and widths are all greater than zero".to_string(),
+        ),
+        TableFault::SpeedOrder(i) => (
+            format!(
+                "the table's speeds must increase: speed {} ({}) is not above speed {} ({})",
+                i + 1,
+                Speed(speeds[i]),
+                i,
+                Speed(speeds[i - 1])
+            ),
+            "list the speeds from slowest to fastest, each once (average repeated coupons first)".to_string(),
+        ),
+        TableFault::NotFalling(i) => (
+            format!(
+                "the table's {what}s must fall as the speed rises: {} is not below {}",
+                entry(i),
+                entry(i - 1)
+            ),
+            "a faster scan lays a lower bead; a height that rises with the speed is a measuring slip or noise larger than the step: remeasure, or drop the speed".to_string(),
+        ),
+    };
+    Diagnostic::error(Code::BeadTable, title)
+        .label(at, "this table")
+        .help(help)
+}
+
+/// The bead's `speed` range (at `at`) leaves `measured`, the speeds its
+/// model was measured at, by `outside` (below, above; mm/s); a warning
+/// when the file allows it (`allowed`), the model at `model_at`.
+pub fn extrapolation(
+    speeds: [Speed; 2],
+    measured: [Speed; 2],
+    outside: [f64; 2],
+    allowed: bool,
+    at: Span,
+    model_at: Span,
+) -> Diagnostic {
+    let [v0, v1] = speeds;
+    let [m0, m1] = measured;
+    let far = match outside {
+        [b, a] if b > 0.0 && a > 0.0 => format!("{} below and {} above", Speed(b), Speed(a)),
+        [b, _] if b > 0.0 => format!("{} below", Speed(b)),
+        [_, a] => format!("{} above", Speed(a)),
+    };
+    let title = format!(
+        "the bead's speeds {v0} .. {v1} reach {far} the speeds it was measured at, {m0} .. {m1}"
+    );
+    if allowed {
+        Diagnostic::warning(Code::Extrapolation, title)
+            .label(at, "extrapolated")
+            .label(model_at, "measured here")
+            .help("`extrapolate = allow`: the heights outside are the end pieces extended, a guess; measure coupons there to know them")
+    } else {
+        Diagnostic::error(Code::Extrapolation, title)
+            .label(at, "speed range")
+            .label(model_at, "measured here")
+            .help(format!(
+                "narrow `speed` to {m0} .. {m1} (or leave it out), measure coupons at the speeds you need, or write `extrapolate = allow` to use the model outside what was measured"
+            ))
+    }
 }
 
 /// The allowed heights `allowed` do not overlap `laid`, what the model lays

@@ -11,6 +11,7 @@
 
 pub mod bead;
 pub mod bend;
+pub mod calib;
 pub mod control;
 pub mod field;
 pub mod fill;

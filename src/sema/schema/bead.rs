@@ -1,11 +1,12 @@
 //! `bead NAME { width, height, speed, model }`: a bead model, and the three
-//! models it may be (`linear(…)`, `mass_balance(…)`, `measured(…)`).
+//! models it may be (`linear(…)`, `mass_balance(…)`, `measured(…)`,
+//! `power(…)`, `table(…)`).
 
 use super::Bound::{Any, Negative, Positive, PositiveUpTo};
 use super::DefaultValue::{Described, Word as DefaultWord};
-use super::Kind::{Call, Either, Quantity, Range, Word};
+use super::Kind::{Call, Either, List, Quantity, Range, Text, Word};
 use super::Need::{Default, Required, RequiredUnless};
-use super::{Block, Field};
+use super::{Block, Field, Len};
 use crate::units::Dim;
 
 /// `width = 6 mm`.
@@ -28,14 +29,17 @@ pub static HEIGHT: Field = Field::new(
 pub static SPEED: Field = Field::new(
     "speed",
     Range(Dim::SPEED),
-    RequiredUnless("7 mm/s .. 10 mm/s", "the model is `measured(…)`"),
-    "the scan speeds the model is valid for",
+    RequiredUnless(
+        "7 mm/s .. 10 mm/s",
+        "the model is `measured(…)`, `table(…)` or `fit(…)`, whose speeds are the ones measured",
+    ),
+    "the scan speeds the model is valid for (within the speeds measured, unless `extrapolate = allow`)",
 );
 
 /// `model = …`.
 pub static MODEL: Field = Field::new(
     "model",
-    Call(&[&LINEAR, &MASS_BALANCE, &MEASURED]),
+    Call(&[&LINEAR, &MASS_BALANCE, &MEASURED, &POWER, &TABLE, &FIT]),
     Required("mass_balance(feed = 45.9 g/min, efficiency = 0.3, density = 7.9 g/cm^3)"),
     "how the bead's height follows the scan speed",
 );
@@ -48,12 +52,20 @@ pub static MEASURED_AS: Field = Field::new(
     "what the model's heights are: a single track's (`track`), the rise per layer of a wall one bead wide (`wall`) or of filled layers (`layer(offset)`)",
 );
 
+/// `extrapolate = …`.
+pub static EXTRAPOLATE: Field = Field::new(
+    "extrapolate",
+    Word(&["refuse", "allow"]),
+    Default(DefaultWord("refuse")),
+    "whether `speed` may reach beyond the speeds a `table(…)` or `fit(…)` measured (`allow`: a warning says how far; the model is extended)",
+);
+
 /// `bead NAME { … }`.
 pub static BEAD: Block = Block::new(
     "bead",
     "bead NAME { … }",
     "a bead model: how high a track of it is at each scan speed",
-    &[&WIDTH, &HEIGHT, &SPEED, &MODEL, &MEASURED_AS],
+    &[&WIDTH, &HEIGHT, &SPEED, &MODEL, &MEASURED_AS, &EXTRAPOLATE],
 );
 
 /// `layer(offset)` of `measured_as`.
@@ -117,6 +129,76 @@ pub mod model {
         Required("1.6 mm"),
         "the tracks' offset in the layers measured",
     );
+    /// `power(height = …)`.
+    pub static REF_HEIGHT: Field = Field::new(
+        "height",
+        Quantity(Dim::LENGTH, Positive),
+        Required("1.0 mm"),
+        "the height at the reference speed",
+    );
+    /// `power(speed = …)`.
+    pub static REF_SPEED: Field = Field::new(
+        "speed",
+        Quantity(Dim::SPEED, Positive),
+        Required("6 mm/s"),
+        "the reference speed",
+    );
+    /// `power(exponent = …)`.
+    pub static EXPONENT: Field = Field::new(
+        "exponent",
+        Quantity(Dim::NONE, Negative),
+        Required("-0.5"),
+        "how the height scales with the speed: `H = height·(v/speed)^exponent`, < 0",
+    );
+    /// `table(speed = […])`.
+    pub static SPEEDS: Field = Field::new(
+        "speed",
+        List(&Quantity(Dim::SPEED, Positive), Len::Any),
+        Required("[4 mm/s, 6 mm/s, 8.7 mm/s]"),
+        "the speeds measured, increasing",
+    );
+    /// `table(height = […])`.
+    pub static HEIGHTS: Field = Field::new(
+        "height",
+        List(&Quantity(Dim::LENGTH, Positive), Len::Any),
+        Required("[1.28 mm, 1.01 mm, 0.65 mm]"),
+        "the heights measured at those speeds, falling",
+    );
+    /// `table(width = […])`.
+    pub static WIDTHS: Field = Field::new(
+        "width",
+        List(&Quantity(Dim::LENGTH, Positive), Len::Any),
+        Default(Described("the bead's `width` at every speed")),
+        "the widths measured at those speeds: the bead's cross-section at a speed has that speed's width",
+    );
+    /// `fit(model = …)`.
+    pub static FIT_MODEL: Field = Field::new(
+        "model",
+        Word(&["linear", "power", "mass_balance", "table"]),
+        Required("linear"),
+        "the model fitted to the data",
+    );
+    /// `fit(data = …)`.
+    pub static DATA: Field = Field::new(
+        "data",
+        Text,
+        Required("\"coupons.csv\""),
+        "the measurement sheet, a path relative to the .lmd file (docs/calibration.md)",
+    );
+    /// `fit(density = …)`.
+    pub static FIT_DENSITY: Field = Field::new(
+        "density",
+        Quantity(Dim::DENSITY, Positive),
+        super::super::Need::Optional,
+        "the metal's density (a `mass_balance` fit)",
+    );
+    /// `fit(feed = …)`.
+    pub static FIT_FEED: Field = Field::new(
+        "feed",
+        Quantity(Dim::MASS_FLOW, Positive),
+        super::super::Need::Optional,
+        "the powder feed of coupons whose row has none (a `mass_balance` fit)",
+    );
     /// `measured(speed = …)`.
     pub static SPEED: Field = Field::new(
         "speed",
@@ -141,6 +223,37 @@ pub static MASS_BALANCE: Block = Block::new(
     "the metal the melt pool catches per length, as a circular segment of the bead's width",
     &[&model::FEED, &model::EFFICIENCY, &model::DENSITY],
 );
+
+/// `power(height, speed, exponent)`: a power law through a reference point.
+pub static POWER: Block = Block::new(
+    "power",
+    "power(height, speed, exponent)",
+    "a power law through a reference point, `H = height·(v/speed)^exponent` (what `lmdc fit` fits in log space)",
+    &[&model::REF_HEIGHT, &model::REF_SPEED, &model::EXPONENT],
+);
+
+/// `table(speed, height, width)`: heights measured at several speeds.
+pub static TABLE: Block = Block::new(
+    "bead_table",
+    "table(speed, height, width)",
+    "heights (and widths) measured at several speeds, joined by straight lines; the heights must fall as the speed rises",
+    &[&model::SPEEDS, &model::HEIGHTS, &model::WIDTHS],
+);
+
+/// `fit(model, data, density, feed)`: a model fitted at compile time to
+/// a measurement sheet.
+pub static FIT: Block = Block::new(
+    "fit",
+    "fit(model, data, density, feed)",
+    "a model fitted when the file is compiled to the coupons of a measurement sheet (`lmdc fit` prints the same fit)",
+    &[
+        &model::FIT_MODEL,
+        &model::DATA,
+        &model::FIT_DENSITY,
+        &model::FIT_FEED,
+    ],
+)
+.positional(2);
 
 /// `measured(height, speed)`: one track measured at one process point.
 pub static MEASURED: Block = Block::new(

@@ -1,0 +1,376 @@
+//! A measurement sheet: the coupons of a calibration build, one a row of a
+//! CSV file, with the units of each column in its header (`speed (mm/s)`,
+//! `height (mm)`). What `lmdc fit` and `model = fit(…, data = "…")` read.
+//!
+//! The reader is small on purpose: a sheet is what a spreadsheet saves,
+//! comma-separated, a field in double quotes where it holds a comma. Lines
+//! that are blank or start with `#` are skipped. Columns lmdc does not know
+//! (notes, operator) are kept out of the way; a column it knows must say its
+//! unit, one it can convert. A row whose measurements are all empty is a
+//! coupon not measured yet and is skipped; a cell that is not a number is
+//! an error pointing at it.
+
+use crate::diag::{message::calib as message, Diagnostics};
+use crate::span::Span;
+
+/// A quantity a sheet may hold, and the units its header may give it in
+/// (each with its factor to lmdc's unit, the first).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Column {
+    /// Scan speed, mm/s.
+    Speed,
+    /// Bead height, mm.
+    Height,
+    /// Bead width, mm.
+    Width,
+    /// Cross-section, mm².
+    Area,
+    /// The metal a coupon holds, g.
+    Mass,
+    /// The powder feed, g/min.
+    Feed,
+    /// The length laid, mm (with `mass`: the metal per length).
+    Length,
+    /// Laser power, W.
+    Power,
+}
+
+impl Column {
+    /// Every column lmdc reads.
+    pub const ALL: [Column; 8] = [
+        Column::Speed,
+        Column::Height,
+        Column::Width,
+        Column::Area,
+        Column::Mass,
+        Column::Feed,
+        Column::Length,
+        Column::Power,
+    ];
+
+    /// Its name in a header.
+    pub fn name(self) -> &'static str {
+        match self {
+            Column::Speed => "speed",
+            Column::Height => "height",
+            Column::Width => "width",
+            Column::Area => "area",
+            Column::Mass => "mass",
+            Column::Feed => "feed",
+            Column::Length => "length",
+            Column::Power => "power",
+        }
+    }
+
+    /// The units it may be written in, with their factor to the first.
+    pub fn units(self) -> &'static [(&'static str, f64)] {
+        match self {
+            Column::Speed => &[
+                ("mm/s", 1.0),
+                ("mm/min", 1.0 / 60.0),
+                ("m/min", 1000.0 / 60.0),
+            ],
+            Column::Height | Column::Width | Column::Length => {
+                &[("mm", 1.0), ("um", 1e-3), ("µm", 1e-3)]
+            }
+            Column::Area => &[("mm^2", 1.0), ("mm²", 1.0), ("mm2", 1.0)],
+            Column::Mass => &[("g", 1.0), ("mg", 1e-3)],
+            Column::Feed => &[("g/min", 1.0), ("g/s", 60.0)],
+            Column::Power => &[("W", 1.0), ("kW", 1000.0)],
+        }
+    }
+
+    fn of(name: &str) -> Option<Column> {
+        let name = name.trim().to_ascii_lowercase();
+        let name = if name == "powder" { "feed" } else { &name };
+        Column::ALL.into_iter().find(|c| c.name() == name)
+    }
+}
+
+/// One measured coupon: its line in the file (from 1) and what was
+/// measured on it, in lmdc's units (mm, mm/s, mm², g, g/min, W).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Coupon {
+    /// The line of the file it is on.
+    pub line: usize,
+    /// Its `id`, if the sheet has one.
+    pub id: Option<String>,
+    /// Where its row is in the file (bytes).
+    pub span: Span,
+    /// The values of the columns the sheet has, by [`Column`].
+    values: [Option<f64>; 8],
+}
+
+impl Coupon {
+    /// The value of `c`, if the sheet has the column and the cell is filled.
+    pub fn get(&self, c: Column) -> Option<f64> {
+        self.values[c as usize]
+    }
+
+    /// Its scan speed, mm/s (every coupon measured has one).
+    pub fn speed(&self) -> f64 {
+        self.values[Column::Speed as usize].unwrap_or(f64::NAN)
+    }
+}
+
+/// The coupons measured in a sheet, and which columns it has.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sheet {
+    /// The coupons with a measurement, in the file's order.
+    pub coupons: Vec<Coupon>,
+    /// The columns the header names.
+    pub columns: Vec<Column>,
+    /// Rows whose measurements are all empty: coupons not measured yet.
+    pub unmeasured: usize,
+    /// Where its header is in the file (bytes).
+    pub header: Span,
+}
+
+impl Sheet {
+    /// Whether the header names `c`.
+    pub fn has(&self, c: Column) -> bool {
+        self.columns.contains(&c)
+    }
+}
+
+/// The columns that are measurements, not parameters: a row with none of
+/// them filled is a coupon still to measure.
+const MEASURED: [Column; 4] = [Column::Height, Column::Width, Column::Area, Column::Mass];
+
+/// Reads `text`, a measurement sheet; every mistake in it is a diagnostic
+/// whose spans are bytes of `text`.
+pub fn read(text: &str) -> Result<Sheet, Diagnostics> {
+    let mut diags = Diagnostics::new();
+    let mut lines = rows(text);
+    let Some((_, header)) = lines.next() else {
+        diags.push(message::empty_sheet(Span::new(0, text.len())));
+        return Err(diags);
+    };
+    let (id, kinds) = header_columns(&header, &mut diags);
+    let named = |c: Column| {
+        header
+            .iter()
+            .any(|h| Column::of(split_unit(&h.0).0) == Some(c))
+    };
+    if !named(Column::Speed) {
+        diags.push(message::no_speed_column(cells_span(&header)));
+    }
+    // A header lmdc cannot read makes every row's complaint the same one.
+    if diags.has_errors() {
+        return Err(diags);
+    }
+    let mut sheet = Sheet {
+        coupons: Vec::new(),
+        columns: kinds.iter().flatten().map(|(c, _)| *c).collect(),
+        unmeasured: 0,
+        header: cells_span(&header),
+    };
+    for (line, cells) in lines {
+        if let Some(extra) = cells.get(header.len()) {
+            diags.push(message::extra_cell(line, extra.1, header.len()));
+            continue;
+        }
+        let mut values = [None; 8];
+        for (k, (cell, at)) in cells.iter().enumerate() {
+            let Some((col, factor)) = kinds[k] else {
+                continue;
+            };
+            values[col as usize] = number(cell, *at, col, &mut diags).map(|x| x * factor);
+        }
+        let filled = |c: Column| values[c as usize].is_some();
+        if !MEASURED.iter().any(|&c| filled(c)) {
+            sheet.unmeasured += 1;
+            continue;
+        }
+        if !filled(Column::Speed) {
+            let at = cells.first().map_or(Span::new(0, 0), |c| c.1);
+            diags.push(message::no_speed(line, at));
+            continue;
+        }
+        sheet.coupons.push(Coupon {
+            line,
+            id: id
+                .and_then(|k| cells.get(k))
+                .map(|c| c.0.trim().to_string()),
+            span: cells_span(&cells),
+            values,
+        });
+    }
+    if diags.has_errors() {
+        Err(diags)
+    } else {
+        Ok(sheet)
+    }
+}
+
+/// The header's cells as columns (with their unit's factor) and where the
+/// `id` column is; every unknown unit or missing one reported.
+#[allow(clippy::type_complexity)]
+fn header_columns(
+    header: &[(String, Span)],
+    diags: &mut Diagnostics,
+) -> (Option<usize>, Vec<Option<(Column, f64)>>) {
+    let mut id = None;
+    let mut seen: Vec<(Column, Span)> = Vec::new();
+    let kinds = header
+        .iter()
+        .enumerate()
+        .map(|(k, (cell, at))| {
+            let (name, unit) = split_unit(cell);
+            if name.eq_ignore_ascii_case("id") {
+                id = Some(k);
+                return None;
+            }
+            let col = Column::of(name)?;
+            if let Some((_, first)) = seen.iter().find(|(c, _)| *c == col) {
+                diags.push(message::duplicate_column(col.name(), *at, *first));
+                return None;
+            }
+            seen.push((col, *at));
+            let Some(unit) = unit else {
+                diags.push(message::missing_unit(col.name(), col.units()[0].0, *at));
+                return None;
+            };
+            match col.units().iter().find(|(u, _)| *u == unit) {
+                Some(&(_, factor)) => Some((col, factor)),
+                None => {
+                    let units: Vec<&str> = col.units().iter().map(|u| u.0).collect();
+                    diags.push(message::wrong_unit(col.name(), unit, &units, *at));
+                    None
+                }
+            }
+        })
+        .collect();
+    (id, kinds)
+}
+
+/// `height (mm)` or `height [mm]` → (`height`, `mm`); a cell with no
+/// brackets has no unit.
+fn split_unit(cell: &str) -> (&str, Option<&str>) {
+    let cell = cell.trim();
+    for (open, close) in [('(', ')'), ('[', ']')] {
+        if let (Some(a), true) = (cell.find(open), cell.ends_with(close)) {
+            let unit = cell[a + 1..cell.len() - 1].trim();
+            return (cell[..a].trim(), Some(unit));
+        }
+    }
+    (cell, None)
+}
+
+/// A cell as a number of `col`: empty is `None`; anything else must be a
+/// finite number greater than zero (every quantity of a coupon is).
+fn number(cell: &str, at: Span, col: Column, diags: &mut Diagnostics) -> Option<f64> {
+    let t = cell.trim();
+    if t.is_empty() {
+        return None;
+    }
+    match t.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Some(x),
+        Ok(x) if x.is_finite() => {
+            diags.push(message::not_positive_cell(col.name(), t, at));
+            None
+        }
+        _ => {
+            diags.push(message::not_a_number(col.name(), t, at));
+            None
+        }
+    }
+}
+
+/// The span covering a row's cells.
+fn cells_span(cells: &[(String, Span)]) -> Span {
+    match (cells.first(), cells.last()) {
+        (Some(a), Some(b)) => a.1.join(b.1),
+        _ => Span::new(0, 0),
+    }
+}
+
+/// The rows of `text` that are not blank or comments: their line (from 1)
+/// and their cells, each with its span (a quoted cell's, quotes included).
+fn rows(text: &str) -> impl Iterator<Item = (usize, Vec<(String, Span)>)> + '_ {
+    let mut start = 0;
+    text.split_inclusive('\n')
+        .enumerate()
+        .filter_map(move |(i, raw)| {
+            let at = start;
+            start += raw.len();
+            let line = raw.trim_end_matches(['\n', '\r']);
+            let t = line.trim();
+            (!t.is_empty() && !t.starts_with('#')).then(|| (i + 1, cells(line, at)))
+        })
+}
+
+/// The cells of one line starting at byte `at`: comma-separated, a field
+/// in double quotes may hold commas (`""` is a quote).
+fn cells(line: &str, at: usize) -> Vec<(String, Span)> {
+    let mut out = Vec::new();
+    let mut cell = String::new();
+    let (mut begin, mut quoted) = (0, false);
+    let mut chars = line.char_indices().peekable();
+    while let Some((i, ch)) = chars.next() {
+        match ch {
+            '"' if quoted && chars.peek().map(|c| c.1) == Some('"') => {
+                cell.push('"');
+                chars.next();
+            }
+            '"' => quoted = !quoted,
+            ',' if !quoted => {
+                out.push((std::mem::take(&mut cell), span(line, at, begin, i)));
+                begin = i + 1;
+            }
+            c => cell.push(c),
+        }
+    }
+    out.push((cell, span(line, at, begin, line.len())));
+    out
+}
+
+/// The span of a cell's bytes `a..b` of `line` (at byte `at` of the
+/// file), its surrounding blanks left out (an empty cell: where it is).
+fn span(line: &str, at: usize, a: usize, b: usize) -> Span {
+    let s = &line[a..b];
+    let lead = s.len() - s.trim_start().len();
+    let trail = s.len() - s.trim_end().len();
+    if lead == s.len() {
+        return Span::new(at + a, at + a);
+    }
+    Span::new(at + a + lead, at + b - trail)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn units_convert_and_unmeasured_rows_are_skipped() {
+        let s = read(
+            "id,speed (mm/min),height [um],width (mm),note\n\
+             # the first plate\n\
+             c1,240,1280,2.6,\"good, flat\"\n\
+             c2,360,,,\n\
+             \n\
+             c3,522,645.5,2.2,\n",
+        )
+        .unwrap();
+        assert_eq!(s.coupons.len(), 2);
+        assert_eq!(s.unmeasured, 1);
+        let c = &s.coupons[0];
+        assert_eq!(c.line, 3);
+        assert_eq!(c.id.as_deref(), Some("c1"));
+        assert!((c.speed() - 4.0).abs() < 1e-12);
+        assert!((c.get(Column::Height).unwrap() - 1.28).abs() < 1e-12);
+        assert_eq!(c.get(Column::Area), None);
+        assert_eq!(s.coupons[1].line, 6);
+    }
+
+    #[test]
+    fn a_bad_cell_is_pointed_at() {
+        let text = "speed (mm/s),height (mm)\n4,1.2\n6,1,0x\n";
+        let d = read(text).unwrap_err();
+        assert_eq!(d.error_count(), 1);
+        let text = "speed (mm/s),height (mm)\n4,1.2\n6, abc \n";
+        let d = read(text).unwrap_err();
+        let sp = d.iter().next().unwrap().labels[0].span;
+        assert_eq!(&text[sp.start..sp.end], "abc");
+    }
+}

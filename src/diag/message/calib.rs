@@ -1,0 +1,272 @@
+//! What lmdc says about a measurement sheet (`lmdc fit`, `model = fit(…,
+//! data = "…")`): its spans are bytes of the sheet, which the report draws
+//! with its file name, line and column.
+
+use crate::bead::fit::{Fault, Kind};
+use crate::bead::TableFault;
+use crate::diag::{Code, Diagnostic};
+use crate::span::Span;
+use crate::units::{short, Length, Speed};
+
+/// `d`, a diagnostic about the data file `path` (whose text is `text`),
+/// as one about the program, pointing at `at` (where it names the file):
+/// the file's line and column lead its message.
+pub fn in_data(d: &Diagnostic, path: &str, text: &str, at: Span) -> Diagnostic {
+    let place = match d.labels.first() {
+        Some(l) => {
+            let before = &text[..l.span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let col = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+            format!("{path}:{line}:{col}")
+        }
+        None => path.to_string(),
+    };
+    let mut out =
+        Diagnostic::error(d.code, format!("{place}: {}", d.message)).label(at, "the data fitted");
+    out.help = d.help.clone();
+    out
+}
+
+/// The data file `path` (named at `at`) cannot be read (`why`).
+pub fn unreadable_data(path: &str, why: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Sheet,
+        format!("cannot read the data file `{path}`: {why}"),
+    )
+    .label(at, "this file")
+    .help("the path is relative to the folder of the .lmd file")
+}
+
+/// A program names a data file where no file can be read (compiled from a
+/// text, not a file).
+pub fn no_data_reader(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Sheet,
+        "this program is compiled from a text, not a file: there is no folder to read its data from",
+    )
+    .label(at, "data file")
+    .help("compile the .lmd file (`lmdc build FILE.lmd`), or paste the block `lmdc fit` prints")
+}
+
+/// Why `kind` cannot be fitted to the sheet whose header is at `header`.
+pub fn fault(f: &Fault, kind: Kind, header: Span) -> Vec<Diagnostic> {
+    let model = kind.name();
+    match f {
+        Fault::TooFew {
+            points,
+            speeds,
+            need,
+        } => vec![too_few_points(model, *points, *speeds, need, header)],
+        Fault::Missing(what @ ("density" | "feed")) => vec![not_given(model, what, header)],
+        Fault::Missing(col) => vec![missing_column(model, col, header)],
+        Fault::Rising(b) => vec![rising(kind, *b, header)],
+        Fault::Efficiency(eta) => vec![efficiency(*eta, header)],
+        Fault::Table {
+            speeds,
+            means,
+            faults,
+        } => faults
+            .iter()
+            .map(|(f, rows)| not_falling(f, (speeds, means), rows, header))
+            .collect(),
+    }
+}
+
+/// The mean heights at each speed (`speeds`, `means`) are no table
+/// (`fault`): the coupons at the speeds it names are `rows`.
+fn not_falling(
+    fault: &TableFault,
+    (speeds, means): (&[f64], &[f64]),
+    rows: &[(usize, Span)],
+    header: Span,
+) -> Diagnostic {
+    let lines: Vec<String> = rows.iter().map(|r| r.0.to_string()).collect();
+    let title = match *fault {
+        TableFault::NotFalling(i) => format!(
+            "the heights must fall as the speed rises: at {} they average {}, not below {} at {} (lines {})",
+            Speed(speeds[i]),
+            Length(means[i]),
+            Length(means[i - 1]),
+            Speed(speeds[i - 1]),
+            lines.join(", ")
+        ),
+        _ => "the mean heights at each speed are no table".to_string(),
+    };
+    let d = Diagnostic::error(Code::BeadTable, title);
+    let d = match rows.first() {
+        Some(_) => rows
+            .iter()
+            .fold(d, |d, (line, at)| d.label(*at, format!("line {line}"))),
+        None => d.label(header, "header"),
+    };
+    d.help("a faster scan lays a lower bead: a height that rises with the speed is a measuring slip or noise larger than the step between the speeds; remeasure those coupons, or fit a line or a power law, which average it out")
+}
+
+/// The fitted `kind`'s slope (or exponent) `b` is not negative.
+fn rising(kind: Kind, b: f64, header: Span) -> Diagnostic {
+    let what = match kind {
+        Kind::Power => format!("exponent {}", short(b)),
+        _ => format!("slope {} mm per mm/s", short(b)),
+    };
+    Diagnostic::error(
+        Code::BeadSlope,
+        format!("the coupons' heights do not fall as the speed rises: the fitted {} model has {what}", kind.name()),
+    )
+    .label(header, "these coupons")
+    .help("a faster scan lays a lower bead: check the speed and height columns are not swapped, that the heights are all in one unit, and that the coupons were laid at one power and feed")
+}
+
+/// The fitted catch efficiency `eta` is not in (0, 1].
+fn efficiency(eta: f64, header: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::EfficiencyRange,
+        format!("the fitted catch efficiency is {}, not between 0 and 1", short(eta)),
+    )
+    .label(header, "these coupons")
+    .help("the melt pool cannot catch more powder than is fed: check the `feed` (g/min), the density (g/cm³) and the area (mm²) or mass and length of the coupons")
+}
+
+/// `what` (`density`, `feed`), which model `model` needs, was not given.
+fn not_given(model: &str, what: &str, header: Span) -> Diagnostic {
+    let (flag, arg) = match what {
+        "density" => ("--density 7.9", "density = 7.9 g/cm^3"),
+        _ => ("--feed 12", "feed = 12 g/min"),
+    };
+    Diagnostic::error(
+        Code::TooFewPoints,
+        format!("a {model} model needs the {what}, which the sheet does not give"),
+    )
+    .label(header, "header")
+    .help(format!(
+        "give it: `lmdc fit … {flag}`, or `fit({model}, data = \"…\", {arg})`{}",
+        if what == "feed" {
+            ", or a `feed (g/min)` column"
+        } else {
+            ""
+        }
+    ))
+}
+
+/// The sheet holds no row at all.
+pub fn empty_sheet(at: Span) -> Diagnostic {
+    Diagnostic::error(Code::Sheet, "the measurement sheet is empty")
+        .label(at, "no header, no coupons")
+        .help("the first line names the columns with their units: `id,speed (mm/s),width (mm),height (mm)`; one coupon a line follows")
+}
+
+/// The header (at `at`) has no `speed` column.
+pub fn no_speed_column(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Sheet,
+        "the measurement sheet has no `speed` column: every model is a function of the scan speed",
+    )
+    .label(at, "header")
+    .help("add a column `speed (mm/s)` with each coupon's scan speed")
+}
+
+/// Line `line` has more cells than the header's `n`; the first extra at `at`.
+pub fn extra_cell(line: usize, at: Span, n: usize) -> Diagnostic {
+    Diagnostic::error(
+        Code::Sheet,
+        format!("line {line} has more cells than the header's {n}"),
+    )
+    .label(at, "no column for this")
+    .help("name the column in the header, or put a comma inside a cell in double quotes: \"flat, good\"")
+}
+
+/// A measured row (line `line`) has no speed.
+pub fn no_speed(line: usize, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Sheet,
+        format!("the coupon on line {line} is measured but has no speed"),
+    )
+    .label(at, "this row")
+    .help("fill in the scan speed the coupon was laid at")
+}
+
+/// A cell of column `col` (`text`, at `at`) is not a number.
+pub fn not_a_number(col: &str, text: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Sheet,
+        format!("a `{col}` cell must be a number, not `{text}`"),
+    )
+    .label(at, "not a number")
+    .help("write the number alone, with a point as the decimal mark (1.25), its unit in the header; leave the cell empty where nothing was measured")
+}
+
+/// A cell of column `col` (`text`, at `at`) is zero or below.
+pub fn not_positive_cell(col: &str, text: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Sheet,
+        format!("a `{col}` must be greater than zero, not {text}"),
+    )
+    .label(at, "≤ 0")
+    .help("leave the cell empty where nothing was measured (a coupon that laid no bead is not a bead of height 0: drop its speed from the model)")
+}
+
+/// Column `col` (at `at`) is named twice, first at `first`.
+pub fn duplicate_column(col: &str, at: Span, first: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::SheetUnits,
+        format!("the sheet has two `{col}` columns"),
+    )
+    .label(at, "again")
+    .label(first, "first")
+    .help("keep one, or rename the other (lmdc skips columns it does not know)")
+}
+
+/// Column `col` (at `at`) has no unit; `unit` is the one lmdc uses.
+pub fn missing_unit(col: &str, unit: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::SheetUnits,
+        format!("the `{col}` column does not say its unit"),
+    )
+    .label(at, "which unit?")
+    .help(format!(
+        "write the unit in brackets in the header: `{col} ({unit})`"
+    ))
+}
+
+/// Column `col` (at `at`) is in `unit`, which lmdc does not convert.
+pub fn wrong_unit(col: &str, unit: &str, units: &[&str], at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::SheetUnits,
+        format!("lmdc does not read a `{col}` in `{unit}`"),
+    )
+    .label(at, "this unit")
+    .help(format!(
+        "convert the column to one of: {}",
+        units
+            .iter()
+            .map(|u| format!("`{col} ({u})`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ))
+}
+
+/// The sheet (its header at `at`) has `n` coupons measured at `speeds`
+/// distinct speeds, fewer than model `model` needs (`need`, in words).
+pub fn too_few_points(model: &str, n: usize, speeds: usize, need: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooFewPoints,
+        format!(
+            "a {model} model needs {need}; the sheet has {n} coupon{} measured at {speeds} speed{}",
+            if n == 1 { "" } else { "s" },
+            if speeds == 1 { "" } else { "s" }
+        ),
+    )
+    .label(at, "these columns")
+    .help("measure more coupons (three speeds or more across the range you will build at), or choose a model the data can fix")
+}
+
+/// The sheet (header at `at`) lacks the column `col` model `model` fits.
+pub fn missing_column(model: &str, col: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooFewPoints,
+        format!("a {model} model is fitted to `{col}`, which the sheet does not have"),
+    )
+    .label(at, "header")
+    .help(format!(
+        "add a `{col}` column with the measurements, or choose another model"
+    ))
+}
