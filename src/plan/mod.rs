@@ -75,7 +75,9 @@
 //! start where its lead-out ends. A ring whose loop runs on the machine gets
 //! no leads (its programs write their own moves).
 
+pub mod arm;
 pub mod kinematics;
+pub mod orient;
 pub mod profile;
 
 use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program, Ramp, Ring};

@@ -17,7 +17,9 @@
 
 pub mod height_loop;
 pub mod modules;
-pub mod orient;
+/// The tool orientation, decided by the plan ([`crate::plan::orient`]): the
+/// verifier solves the arm for the same `A B C` this back end writes.
+pub use crate::plan::orient;
 
 use super::context::{counts, layer_context, shown, styles};
 use super::{EmitError, Sink, Templates};
