@@ -843,6 +843,10 @@ pub struct Cnc {
     pub limits: AxisLimits,
     /// Where the part sits on the machine.
     pub placement: Placement,
+    /// The height (Z, part coordinates, mm) the first move lifts to before
+    /// the other axes move and the program ends at (`None`: the part's
+    /// highest point plus the clearance, [`crate::plan`]).
+    pub safe_height: Option<f64>,
 }
 
 impl std::ops::Deref for Robot {
@@ -921,6 +925,8 @@ mod wire {
         limits: AxisLimits,
         #[serde(default)]
         placement: Placement,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        safe_height: Option<f64>,
         max_speed: f64,
         clearance: f64,
         #[serde(default, skip_serializing_if = "Cell::is_none")]
@@ -1004,6 +1010,7 @@ mod wire {
                 dialect: c.dialect,
                 limits: c.limits,
                 placement: c.placement,
+                safe_height: c.safe_height,
             }
         }
     }
@@ -1018,6 +1025,7 @@ mod wire {
                 dialect: c.dialect,
                 limits: c.limits,
                 placement: c.placement,
+                safe_height: c.safe_height,
                 max_speed: m.max_speed,
                 clearance: m.clearance,
                 cell: m.cell,

@@ -101,7 +101,10 @@ impl Solver {
         let f = self.flange(to, rot);
         let t = f.translation.vector;
         let q = f.rotation.into_inner().coords;
-        let pose = OpwPose::from_parts(DVec3::new(t.x, t.y, t.z), DQuat::from_xyzw(q.x, q.y, q.z, q.w));
+        let pose = OpwPose::from_parts(
+            DVec3::new(t.x, t.y, t.z),
+            DQuat::from_xyzw(q.x, q.y, q.z, q.w),
+        );
         let prev = prev.map(f64::to_radians);
         self.kin
             .inverse_continuing(&pose, &prev)
@@ -221,7 +224,11 @@ mod tests {
                 ((w.x - a1).powi(2) + (w.z - c1).powi(2)).sqrt()
             };
             let phi = s.stretch();
-            assert!(dist(phi) > dist(phi + 1.0) && dist(phi) > dist(phi - 1.0), "{}", m.key);
+            assert!(
+                dist(phi) > dist(phi + 1.0) && dist(phi) > dist(phi - 1.0),
+                "{}",
+                m.key
+            );
             let (_, span) = (0.0, s.reach([0.0; 3], &Matrix3::identity()).1);
             assert!((dist(phi) - span[1]).abs() < 1e-6, "{}", m.key);
         }

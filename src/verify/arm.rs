@@ -126,7 +126,12 @@ impl Visit for ArmRule {
             self.hi[i] = self.hi[i].max(m.to[i]);
         }
         let lin = self.last.is_some();
-        let Some(j) = self.solver.solve(m.to, &self.rot, &self.prev).first().copied() else {
+        let Some(j) = self
+            .solver
+            .solve(m.to, &self.rot, &self.prev)
+            .first()
+            .copied()
+        else {
             let (d, span) = self.solver.reach(m.to, &self.rot);
             self.span = span;
             let edge = if d > span[1] { span[1] } else { span[0] };
@@ -179,7 +184,10 @@ impl ArmRule {
         let (Speed::Feed(v), Some(last)) = (m.speed, self.last) else {
             return;
         };
-        let d = (0..3).map(|i| (m.to[i] - last[i]).powi(2)).sum::<f64>().sqrt();
+        let d = (0..3)
+            .map(|i| (m.to[i] - last[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
         if d <= 0.0 || v <= 0.0 {
             return;
         }
@@ -205,8 +213,15 @@ impl ArmRule {
     /// turned as declared: written as `frame(…)`.
     fn base_that_reaches(&self, r: &crate::ir::Robot) -> String {
         let [a1, a2, _, c1, c2, c3, c4] = self.solver.arm().opw;
-        let tool = r.tool.value.map_or(0.0, |t| (t.x * t.x + t.y * t.y + t.z * t.z).sqrt());
-        let target = nalgebra::Vector3::new(a1 + 0.6 * (c2 + (c3 * c3 + a2 * a2).sqrt()), 0.0, c1 - tool - c4);
+        let tool = r
+            .tool
+            .value
+            .map_or(0.0, |t| (t.x * t.x + t.y * t.y + t.z * t.z).sqrt());
+        let target = nalgebra::Vector3::new(
+            a1 + 0.6 * (c2 + (c3 * c3 + a2 * a2).sqrt()),
+            0.0,
+            c1 - tool - c4,
+        );
         let centre = nalgebra::Vector3::new(
             (self.lo[0] + self.hi[0]) / 2.0,
             (self.lo[1] + self.hi[1]) / 2.0,

@@ -81,6 +81,7 @@ pub fn cnc5() -> Cnc {
             rotary: [-3600.0, 3600.0],
         },
         placement: Placement::default(),
+        safe_height: None,
     }
 }
 

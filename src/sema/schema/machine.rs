@@ -258,19 +258,54 @@ pub mod opw {
     const LINK: super::Kind = Quantity(Dim::LENGTH, Magnitude(MAX_FRAME_MM));
 
     /// `a1`.
-    pub static A1: Field = Field::new("a1", LINK, Required("260 mm"), "A1 axis to A2 axis, along the arm");
+    pub static A1: Field = Field::new(
+        "a1",
+        LINK,
+        Required("260 mm"),
+        "A1 axis to A2 axis, along the arm",
+    );
     /// `a2`.
-    pub static A2: Field = Field::new("a2", LINK, Default(DefaultQuantity(0.0)), "the forearm's offset from the A3 axis");
+    pub static A2: Field = Field::new(
+        "a2",
+        LINK,
+        Default(DefaultQuantity(0.0)),
+        "the forearm's offset from the A3 axis",
+    );
     /// `b`.
-    pub static B: Field = Field::new("b", LINK, Default(DefaultQuantity(0.0)), "the sideways offset");
+    pub static B: Field = Field::new(
+        "b",
+        LINK,
+        Default(DefaultQuantity(0.0)),
+        "the sideways offset",
+    );
     /// `c1`.
-    pub static C1: Field = Field::new("c1", LINK, Required("675 mm"), "the base's floor to the A2 axis");
+    pub static C1: Field = Field::new(
+        "c1",
+        LINK,
+        Required("675 mm"),
+        "the base's floor to the A2 axis",
+    );
     /// `c2`.
-    pub static C2: Field = Field::new("c2", LINK, Required("680 mm"), "A2 axis to A3 axis (the upper arm)");
+    pub static C2: Field = Field::new(
+        "c2",
+        LINK,
+        Required("680 mm"),
+        "A2 axis to A3 axis (the upper arm)",
+    );
     /// `c3`.
-    pub static C3: Field = Field::new("c3", LINK, Required("670 mm"), "A3 axis to the wrist centre (the forearm)");
+    pub static C3: Field = Field::new(
+        "c3",
+        LINK,
+        Required("670 mm"),
+        "A3 axis to the wrist centre (the forearm)",
+    );
     /// `c4`.
-    pub static C4: Field = Field::new("c4", LINK, Required("158 mm"), "the wrist centre to the flange");
+    pub static C4: Field = Field::new(
+        "c4",
+        LINK,
+        Required("158 mm"),
+        "the wrist centre to the flange",
+    );
     /// `limits`.
     pub static LIMITS: Field = Field::new(
         "limits",
@@ -551,6 +586,14 @@ pub static ANALOG_OUTPUT: Field = Field::new(
     "the line that sets analog output `{n}` to `{v}`, a fraction of its full scale (the powder rate)",
 );
 
+/// `safe_height = 150 mm`.
+pub static SAFE_HEIGHT: Field = Field::new(
+    "safe_height",
+    Quantity(Dim::LENGTH, Any),
+    Default(Described("the part's highest point plus the clearance")),
+    "the height (Z, part coordinates) the program's first move lifts the nozzle to before X, Y and the rotary axes move, and its last move ends at",
+);
+
 /// `limits { … }`.
 pub static LIMITS_BLOCK: Field = Field::new(
     "limits",
@@ -583,6 +626,7 @@ pub static CNC: Block = Block::new(
         &FEED_UNITS,
         &MAX_SPEED,
         &CLEARANCE,
+        &SAFE_HEIGHT,
         &ACCELERATION,
         &BLENDING,
         &RAMP,
@@ -641,6 +685,7 @@ pub static MACHINE: Block = Block::new(
         &WORK_OFFSET,
         &ORIGIN,
         &FEED_UNITS,
+        &SAFE_HEIGHT,
         &OUTPUT_ON,
         &OUTPUT_OFF,
         &ANALOG_OUTPUT,

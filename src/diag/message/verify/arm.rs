@@ -78,7 +78,13 @@ pub fn joint_limit(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, margin: 
 }
 
 /// `home` outside the arm's limits: axis `axis` (0-based) at `value` deg.
-pub fn home_limit(a: &ArmAt<'_>, home: Span, axis: usize, value: f64, range: [f64; 2]) -> Diagnostic {
+pub fn home_limit(
+    a: &ArmAt<'_>,
+    home: Span,
+    axis: usize,
+    value: f64,
+    range: [f64; 2],
+) -> Diagnostic {
     Diagnostic::error(
         Code::JointLimit,
         format!(
@@ -127,7 +133,9 @@ pub fn singular_lin(
     )
     .label(a.tool, "the tool's angle on the flange")
     .label_opt(at, "the distance asked for")
-    .help(format!("{fix}; or lower `singularity` if the cell runs there safely"))
+    .help(format!(
+        "{fix}; or lower `singularity` if the cell runs there safely"
+    ))
 }
 
 /// A LIN whose solution changes KUKA's Status from `from` to `to`.
