@@ -112,7 +112,7 @@ fn urdf_flange(key: &str, q: &[f64; 6]) -> Isometry3<f64> {
     for (jt, a) in joints.iter().zip(q) {
         let axis = nalgebra::Unit::new_normalize(Vector3::from(jt.axis));
         let origin = Translation3::from(Vector3::from(jt.xyz) * 1000.0);
-        t = t * Isometry3::from_parts(
+        t *= Isometry3::from_parts(
             origin,
             UnitQuaternion::from_axis_angle(&axis, a.to_radians()),
         );
@@ -238,7 +238,7 @@ fn files(p: &lmdc::verify::Verified, index: usize) -> BTreeMap<String, String> {
 
 /// `key <number>` in a KRL aggregate.
 fn field(agg: &str, key: &str) -> f64 {
-    agg.split(|c| c == '{' || c == ',' || c == '}')
+    agg.split(['{', ',', '}'])
         .find_map(|p| p.trim().strip_prefix(key)?.strip_prefix(' '))
         .and_then(|v| v.trim().parse().ok())
         .unwrap_or_else(|| panic!("no {key} in {agg}"))
