@@ -98,6 +98,17 @@ impl Solver {
     /// first (a wrist singularity resolved towards it, A4 and A6 kept in
     /// the turn nearest it); empty where the arm cannot reach.
     pub fn solve(&self, to: [f64; 3], rot: &Matrix3<f64>, prev: &Joints) -> Vec<Joints> {
+        self.solve_at(to, rot, prev).0
+    }
+
+    /// [`Self::solve`], and the wrist centre of the pose in the robot's
+    /// frame (what [`Self::status_at`] reads).
+    pub fn solve_at(
+        &self,
+        to: [f64; 3],
+        rot: &Matrix3<f64>,
+        prev: &Joints,
+    ) -> (Vec<Joints>, Vector3<f64>) {
         let f = self.flange(to, rot);
         let t = f.translation.vector;
         let q = f.rotation.into_inner().coords;
@@ -106,7 +117,8 @@ impl Solver {
             DQuat::from_xyzw(q.x, q.y, q.z, q.w),
         );
         let prev = prev.map(f64::to_radians);
-        self.kin
+        let sols = self
+            .kin
             .inverse_continuing(&pose, &prev)
             .into_iter()
             .map(|j| {
@@ -119,7 +131,75 @@ impl Solver {
                 }
                 j
             })
-            .collect()
+            .collect();
+        (sols, self.wrist(&f))
+    }
+
+    /// Every solution of each pose `(to, rot)`, in no order, with its wrist
+    /// centre: the part of [`Self::solve_at`] that does not depend on the
+    /// move before, so it can be solved for many moves at once, on `threads`
+    /// threads. [`Self::nearest`] then picks what `solve_at` would.
+    pub fn solve_many(
+        &self,
+        poses: &[([f64; 3], Matrix3<f64>)],
+        threads: usize,
+    ) -> Vec<(Vec<Joints>, Vector3<f64>)> {
+        let one = |(to, rot): &([f64; 3], Matrix3<f64>)| {
+            let f = self.flange(*to, rot);
+            let (t, q) = (f.translation.vector, f.rotation.into_inner().coords);
+            let pose = OpwPose::from_parts(
+                DVec3::new(t.x, t.y, t.z),
+                DQuat::from_xyzw(q.x, q.y, q.z, q.w),
+            );
+            let sols = self
+                .kin
+                .inverse(&pose)
+                .into_iter()
+                .map(|j| j.map(f64::to_degrees))
+                .collect();
+            (sols, self.wrist(&f))
+        };
+        let per = poses.len().div_ceil(threads.max(1)).max(1);
+        if threads <= 1 || poses.len() < 64 {
+            return poses.iter().map(one).collect();
+        }
+        std::thread::scope(|s| {
+            let parts: Vec<_> = poses
+                .chunks(per)
+                .map(|c| s.spawn(move || c.iter().map(one).collect::<Vec<_>>()))
+                .collect();
+            parts
+                .into_iter()
+                .flat_map(|h| h.join().unwrap_or_default())
+                .collect()
+        })
+    }
+
+    /// Of `sols` (from [`Self::solve_many`]), the one nearest `prev` (the
+    /// sum of the axes' differences, as the solver sorts), every axis in the
+    /// turn nearest `prev`'s, A1, A2, A3 and A5 in [−180°, 180°). `None`
+    /// where there is none, or where the pose is at the wrist singularity
+    /// (A5 within 10⁻⁶° of 0): A4 and A6 are then split by the move before,
+    /// which only [`Self::solve_at`] does.
+    pub fn nearest(sols: &[Joints], prev: &Joints) -> Option<Joints> {
+        let mut best: Option<(f64, Joints)> = None;
+        for s in sols {
+            if s[4].abs() < 1e-6 {
+                return None;
+            }
+            let mut j = *s;
+            for i in 0..6 {
+                j[i] = prev[i] + ((j[i] - prev[i] + 180.0).rem_euclid(360.0) - 180.0);
+            }
+            for i in [0, 1, 2, 4] {
+                j[i] -= 360.0 * ((j[i] + 180.0) / 360.0).floor();
+            }
+            let d: f64 = j.iter().zip(prev).map(|(a, b)| (a - b).abs()).sum();
+            if best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, j));
+            }
+        }
+        best.map(|b| b.1)
     }
 
     /// The flange in the robot's frame at axis angles `j`.
@@ -158,7 +238,12 @@ impl Solver {
     /// KUKA's Status of a solution: bit 0 the wrist centre behind A1
     /// (overhead), bit 1 A3 at or past its stretch angle, bit 2 A5 ≤ 0.
     pub fn status(&self, j: &Joints) -> u8 {
-        let w = self.wrist(&self.forward_flange(j));
+        self.status_at(j, &self.wrist(&self.forward_flange(j)))
+    }
+
+    /// [`Self::status`] of a solution whose wrist centre is `w` (from
+    /// [`Self::solve_at`]: no forward kinematics).
+    pub fn status_at(&self, j: &Joints, w: &Vector3<f64>) -> u8 {
         // A1 turns about −Z: the arm's forward direction at A1 = θ.
         let t = j[0].to_radians();
         let ahead = w.x * t.cos() - w.y * t.sin();
@@ -231,6 +316,40 @@ mod tests {
             );
             let (_, span) = (0.0, s.reach([0.0; 3], &Matrix3::identity()).1);
             assert!((dist(phi) - span[1]).abs() < 1e-6, "{}", m.key);
+        }
+    }
+
+    /// Solving many poses at once and picking the nearest is what solving
+    /// each from the one before does, along a path away from the wrist
+    /// singularity, A4 and A6 winding past ±180°.
+    #[test]
+    fn many_then_nearest_is_continuing() {
+        for m in CATALOGUE {
+            let s = solver(m.key);
+            let mut prev = [5.0, -80.0, 100.0, 170.0, 40.0, 170.0];
+            let poses: Vec<_> = (0..200)
+                .map(|k| {
+                    let t = k as f64 / 20.0;
+                    s.forward(&[
+                        5.0 + t,
+                        -80.0 + t,
+                        100.0 - t,
+                        170.0 + 3.0 * t,
+                        40.0,
+                        170.0 + 4.0 * t,
+                    ])
+                })
+                .collect();
+            let many = s.solve_many(&poses, 2);
+            for ((to, rot), (sols, _)) in poses.iter().zip(&many) {
+                let a = Solver::nearest(sols, &prev).unwrap();
+                let b = s.solve(*to, rot, &prev)[0];
+                for i in 0..6 {
+                    assert!((a[i] - b[i]).abs() < 1e-6, "{}: {a:?} vs {b:?}", m.key);
+                }
+                prev = a;
+            }
+            assert!(prev[3] > 180.0 && prev[5] > 180.0, "{prev:?}");
         }
     }
 }

@@ -17,7 +17,7 @@ use crate::plan::arm::{Joints, Solver};
 use crate::plan::orient::Orienter;
 use crate::plan::{Move, Speed, Visit};
 use crate::sema::schema::machine::{ARM, BASE, HOME, SINGULARITY, TOOL};
-use nalgebra::Matrix3;
+use nalgebra::{Matrix3, Vector3};
 
 /// The arm rules of one robot.
 pub(super) struct ArmRule {
@@ -25,8 +25,12 @@ pub(super) struct ArmRule {
     orient: Orienter,
     normal: Option<[f32; 3]>,
     rot: Matrix3<f64>,
-    /// The last solution, and where the last move ended.
+    /// Moves not yet solved, and their poses.
+    moves: Vec<Move>,
+    poses: Vec<([f64; 3], Matrix3<f64>)>,
+    /// The last solution, its Status, and where the last move ended.
     prev: Joints,
+    status: u8,
     last: Option<[f64; 3]>,
     /// The extent of the plan's poses in the base, for a base that reaches.
     lo: [f64; 3],
@@ -52,7 +56,10 @@ impl<'p> PlanRule<'p> for ArmRule {
             orient: Orienter::new(r.beam),
             normal: None,
             rot: Matrix3::identity(),
+            moves: Vec::with_capacity(CHUNK),
+            poses: Vec::with_capacity(CHUNK),
             prev: r.home,
+            status: 0,
             last: None,
             lo: [f64::INFINITY; 3],
             hi: [f64::NEG_INFINITY; 3],
@@ -66,10 +73,11 @@ impl<'p> PlanRule<'p> for ArmRule {
         })
     }
 
-    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+    fn report(mut self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
         let Machine::Robot(r) = cx.machine else {
             return;
         };
+        self.flush();
         let arm = self.solver.arm();
         let name = arm
             .model
@@ -114,6 +122,10 @@ impl<'p> PlanRule<'p> for ArmRule {
     }
 }
 
+/// Moves solved together: their poses do not depend on each other, only
+/// the choice among each one's solutions does (`Solver::nearest`).
+const CHUNK: usize = 4096;
+
 impl Visit for ArmRule {
     fn motion(&mut self, m: &Move) {
         if self.normal != Some(m.normal) {
@@ -121,18 +133,45 @@ impl Visit for ArmRule {
             self.normal = Some(m.normal);
             self.rot = self.orient.rotation(m.normal);
         }
+        self.moves.push(*m);
+        self.poses.push((m.to, self.rot));
+        if self.moves.len() >= CHUNK {
+            self.flush();
+        }
+    }
+}
+
+impl ArmRule {
+    /// Solves the buffered moves (on two threads) and follows them in order.
+    fn flush(&mut self) {
+        let solved = self.solver.solve_many(&self.poses, 2);
+        let moves = std::mem::take(&mut self.moves);
+        let poses = std::mem::take(&mut self.poses);
+        for ((m, (_, rot)), (sols, wrist)) in moves.iter().zip(&poses).zip(solved) {
+            // The first move (the PTP from home) as the KRL writer solves it,
+            // and a pose at the wrist singularity, by the move before.
+            let j = match (self.last, Solver::nearest(&sols, &self.prev)) {
+                (Some(_), Some(j)) => Some(j),
+                _ if sols.is_empty() => None,
+                _ => self.solver.solve(m.to, rot, &self.prev).first().copied(),
+            };
+            self.step(m, rot, j, &wrist);
+        }
+        self.moves = moves;
+        self.moves.clear();
+        self.poses = poses;
+        self.poses.clear();
+    }
+
+    /// One move reaching axis angles `j` (none: out of reach).
+    fn step(&mut self, m: &Move, rot: &Matrix3<f64>, j: Option<Joints>, wrist: &Vector3<f64>) {
         for i in 0..3 {
             self.lo[i] = self.lo[i].min(m.to[i]);
             self.hi[i] = self.hi[i].max(m.to[i]);
         }
         let lin = self.last.is_some();
-        let Some(j) = self
-            .solver
-            .solve(m.to, &self.rot, &self.prev)
-            .first()
-            .copied()
-        else {
-            let (d, span) = self.solver.reach(m.to, &self.rot);
+        let Some(j) = j else {
+            let (d, span) = self.solver.reach(m.to, rot);
             self.span = span;
             let edge = if d > span[1] { span[1] } else { span[0] };
             Worst::hit(&mut self.reach, d, edge, m.at);
@@ -140,10 +179,12 @@ impl Visit for ArmRule {
             return;
         };
         self.limits(&j, m);
+        let status = self.solver.status_at(&j, wrist);
         if lin {
-            self.lin(&j, m);
+            self.lin(&j, status, m);
         }
         self.prev = j;
+        self.status = status;
         self.last = Some(m.to);
     }
 }
@@ -165,7 +206,7 @@ impl ArmRule {
 
     /// What a LIN to `j` must keep: away from singularities, one
     /// configuration, the axes within their speeds.
-    fn lin(&mut self, j: &Joints, m: &Move) {
+    fn lin(&mut self, j: &Joints, to: u8, m: &Move) {
         let thr = self.solver.arm().singularity;
         if j[4].abs() < thr {
             Worst::hit(&mut self.wrist, j[4].abs(), thr, m.at);
@@ -174,7 +215,7 @@ impl ArmRule {
         if elbow < thr {
             Worst::hit(&mut self.elbow, elbow, thr, m.at);
         }
-        let (from, to) = (self.solver.status(&self.prev), self.solver.status(j));
+        let from = self.status;
         if from != to {
             let mut slot = self.flip.map(|f| f.0);
             Worst::hit(&mut slot, 1.0, 0.0, m.at);
