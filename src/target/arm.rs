@@ -7,7 +7,7 @@
 //! `config/opw_parameters_*.yaml`, the limits and speeds from the `<limit>`
 //! of each joint in its `urdf/*_macro.xacro`, where the joints are KUKA's
 //! axes A1–A6 in the controller's own angles and `tool0` is KUKA's `$FLANGE`
-//! (docs/robots.md cites each file; `tests/suite/arm.rs` rebuilds each arm
+//! (docs/robots.md cites each file; `tests/arm.rs` rebuilds each arm
 //! from the URDF's joint origins and checks the two agree). lmdc's own
 //! units: mm, deg, deg/s.
 
