@@ -757,6 +757,36 @@ pub struct Robot {
     pub home: [f64; 6],
     /// Most motion lines in one sub-program module.
     pub max_points_per_module: usize,
+    /// The arm, when the robot declares it: its reach, axis limits,
+    /// singularities and axis speeds are then checked on every move.
+    pub arm: Option<Arm>,
+}
+
+/// A robot's arm (`arm = …`): its kinematics in the OPW convention (an
+/// ortho-parallel base and a spherical wrist; docs/robots.md), so a reader
+/// can solve the program's poses to axis angles as lmdc does, its limits
+/// and the margins lmdc checked them with. Lengths mm, angles deg.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct Arm {
+    /// The catalogue's key (`kr16_2`); none for an arm declared by its
+    /// parameters.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model: Option<String>,
+    /// OPW `a1, a2, b, c1, c2, c3, c4`, mm.
+    pub opw: [f64; 7],
+    /// The solver's angle at each axis's zero, deg.
+    pub offsets: [f64; 6],
+    /// Each axis's direction against the solver's, ±1.
+    pub signs: [i8; 6],
+    /// A1–A6's limits, deg.
+    pub limits: [[f64; 2]; 6],
+    /// A1–A6's top speeds, deg/s.
+    pub speeds: [f64; 6],
+    /// How far inside its limits every axis must stay, deg.
+    pub margin: f64,
+    /// How far from a singular configuration (A5 = 0, the arm stretched) a
+    /// LIN must stay, deg.
+    pub singularity: f64,
 }
 
 /// The cell's shielding gas and powder feeder as a machine switches them
@@ -930,6 +960,10 @@ pub struct Cnc {
     pub limits: AxisLimits,
     /// Where the part sits on the machine.
     pub placement: Placement,
+    /// The height (Z, part coordinates, mm) the first move lifts to before
+    /// the other axes move and the program ends at (`None`: the part's
+    /// highest point plus the clearance, [`crate::plan`]).
+    pub safe_height: Option<f64>,
 }
 
 impl std::ops::Deref for Robot {
@@ -983,6 +1017,8 @@ mod wire {
         max_speed: f64,
         home: [f64; 6],
         max_points_per_module: usize,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        arm: Option<super::Arm>,
         clearance: f64,
         #[serde(default, skip_serializing_if = "Cell::is_none")]
         cell: Cell,
@@ -1006,6 +1042,8 @@ mod wire {
         limits: AxisLimits,
         #[serde(default)]
         placement: Placement,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        safe_height: Option<f64>,
         max_speed: f64,
         clearance: f64,
         #[serde(default, skip_serializing_if = "Cell::is_none")]
@@ -1041,6 +1079,7 @@ mod wire {
                 full_scale_power: r.full_scale_power,
                 home: r.home,
                 max_points_per_module: r.max_points_per_module,
+                arm: r.arm,
             }
         }
     }
@@ -1059,6 +1098,7 @@ mod wire {
                 max_speed: c.max_speed,
                 home: r.home,
                 max_points_per_module: r.max_points_per_module,
+                arm: r.arm,
                 clearance: c.clearance,
                 cell: c.cell,
                 height_sensor: c.height_sensor,
@@ -1087,6 +1127,7 @@ mod wire {
                 dialect: c.dialect,
                 limits: c.limits,
                 placement: c.placement,
+                safe_height: c.safe_height,
             }
         }
     }
@@ -1101,6 +1142,7 @@ mod wire {
                 dialect: c.dialect,
                 limits: c.limits,
                 placement: c.placement,
+                safe_height: c.safe_height,
                 max_speed: m.max_speed,
                 clearance: m.clearance,
                 cell: m.cell,

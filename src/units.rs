@@ -42,6 +42,8 @@ impl Dim {
     pub const DENSITY: Dim = Dim::new(-3, 1, 0, 0);
     /// mm/s²: a machine's path acceleration.
     pub const ACCELERATION: Dim = Dim::new(1, 0, -2, 0);
+    /// rad/s: a robot axis's speed.
+    pub const ANGULAR_SPEED: Dim = Dim::new(0, 0, -1, 1);
 
     /// Builds a dimension from exponents.
     pub const fn new(l: i8, m: i8, t: i8, a: i8) -> Dim {
@@ -79,6 +81,7 @@ impl Dim {
             (Dim::MASS, "a mass (g)"),
             (Dim::SPEED, "a speed (mm/s)"),
             (Dim::ACCELERATION, "an acceleration (mm/s^2)"),
+            (Dim::ANGULAR_SPEED, "an angular speed (deg/s)"),
             (Dim::MASS_FLOW, "a powder feed rate (g/min)"),
             (Dim::POWER, "a power (W)"),
             (Dim::DENSITY, "a density (g/cm^3)"),

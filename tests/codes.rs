@@ -520,6 +520,24 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
         "machine kr { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  gas { output = 1 } }";
     io_dialect: IoDialect, PLATE,
         "machine mill { kind = cnc  axes = 3  dialect = fagor8070  max_speed = 50 mm/s  gas { output = 2 } }";
+    // The duct 9 m in front of a KR 60 HA, whose wrist reaches 1.7 m from A2.
+    reach: Reach, DUCT,
+        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 9000 mm) }";
+    // A5 of a KR 60 HA turns ±119°.
+    joint_limit: JointLimit, DUCT,
+        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm)  home = [0 deg, -90 deg, 90 deg, 0 deg, 150 deg, 0 deg] }";
+    // The part held up in front of the wrist, the nozzle pointing away from
+    // the robot along the forearm: A5 = 0 at the duct's origin.
+    singular_lin: SingularLin, DUCT,
+        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1650 mm, z = 1810 mm, b = -90 deg) }";
+    // The duct round A1's axis, 3 mm off: the wrist centre passes over A1
+    // (overhead), and A1 would spin round to follow it.
+    configuration_flip: ConfigurationFlip, DUCT,
+        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 3 mm, z = 1000 mm) }";
+    joint_speed: JointSpeed, DUCT,
+        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = -3 mm, z = 1000 mm) }";
+    arm_unchecked: ArmUnchecked, DUCT,
+        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha }";
     // 6 mm/s from rest at 100 mm/s²: v²/2a = 0.18 mm of ramp lays 0.18 mm of
     // bead more, 8.2 % of a 2.2 mm bead width at each start and end.
     deposit_bump: DepositBump, PLATE,

@@ -257,10 +257,18 @@ fn transitions_retract_along_the_normal() {
         ]
     };
     assert!(moves[1].starts_with("G0 "), "the motion starts with a G0");
+    // ... of Z alone, to the safe height, then across at that height.
+    let only_z = moves[1].split_whitespace().skip(1).collect::<Vec<_>>();
+    assert!(
+        only_z.len() == 1 && only_z[0].starts_with('Z'),
+        "{}",
+        moves[1]
+    );
+    assert_eq!(word(moves[2], 'Z'), word(moves[1], 'Z'), "{}", moves[2]);
     let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|k| (a[k] - b[k]).abs() < 1e-3);
     // Layer 1 is a closed ring: its end is above its start too, so look after the
     // approach.
-    let k = 2 + moves[2..]
+    let k = 4 + moves[4..]
         .windows(3)
         .position(|w| {
             w.iter()
@@ -521,11 +529,13 @@ fn golden_five_axis_program() {
         (bent_tube_mill5: part bent tube on machine mill5, written by lmdc 0.1.0)
         (profile linuxcnc, kinematics head_ac, axes X Y Z A C)
         (2 layers, 3 paths, 11 points)
-        (plan: 226.3 mm deposited, 62.7 mm travel; 42.8 s, laser on 40.1 s, dwell 0.0 s; 119.8 kJ; powder 30.7 g)
+        (plan: 226.3 mm deposited, 99.4 mm travel; 43.0 s, laser on 40.1 s, dwell 0.0 s; 119.8 kJ; powder 30.7 g)
         (units: mm, deg, F mm/min, S = 1 per W)
         (X Y Z: tool tip = laser focus; A C: nozzle along the layer normal; clearance 10 mm)
         G21 G90 G94 G17
         (layer 1 of 2: station 0.0000, height 22.689..29.671 mm, 2 paths, 6 points)
+        G0 Z31.080
+        G0 X20.000 Y0.000 Z31.080 A0.000 C0.000
         G0 X20.000 Y0.000 Z1.430 A0.000 C0.000
         G1 X20.000 Y0.000 Z-8.570 A0.000 C0.000 F480 S3000
         M3
@@ -545,7 +555,8 @@ fn golden_five_axis_program() {
         G1 X20.487 Y0.000 Z14.134 A10.000 C90.000 F360
         M5
         G0 X22.223 Y0.000 Z23.983 A10.000 C90.000
-        (end of bent_tube_mill5: 8 deposit moves, 2 laser starts, 14 motion lines)
+        G0 Z31.080
+        (end of bent_tube_mill5: 8 deposit moves, 2 laser starts, 17 motion lines)
         M2
     ");
 }
@@ -563,6 +574,7 @@ fn golden_planar_program() {
         (X Y Z: tool tip = laser focus; clearance 10 mm)
         G21 G90 G94 G17
         (layer 1 of 1: station 0.0000, height 0.500..0.500 mm, 3 paths, 11 points)
+        G0 Z7.000
         G0 X0.000 Y0.000 Z7.000
         G1 X0.000 Y0.000 Z-3.000 F360 S1500
         M3
@@ -584,7 +596,7 @@ fn golden_planar_program() {
         G1 X45.000 Y0.000 Z-3.000
         M5
         G0 X45.000 Y0.000 Z7.000
-        (end of planar_block_mill3: 7 deposit moves, 3 laser starts, 14 motion lines)
+        (end of planar_block_mill3: 7 deposit moves, 3 laser starts, 15 motion lines)
         M2
     ");
 }

@@ -6,6 +6,7 @@
 mod support;
 
 mod all_errors;
+mod arm;
 mod atomic_output;
 mod cases;
 mod cell_io;

@@ -303,7 +303,19 @@ codes! {
         "where a machine with a declared `acceleration` slows down — a run of deposits starting from rest or stopping, a corner its blending cannot round at speed — the powder keeps flowing and the bead grows as 1/v: over a bead width it rises above its layer by more than `rise_tolerance`; says how many places, the worst, by how much and over what length, and the lead, speed, acceleration or blending that would keep it";
     PowderRate = "powder-rate", Machines,
         "a powder feed the feeder's analog rate output cannot write: beyond its `full_scale`, or changing inside a path where the rate cannot follow";
+    Reach = "reach", Machines,
+        "a robot's move its declared `arm` cannot reach from where `base` puts the part (or only on the far side of a singularity): says where, how far the wrist centre would have to be from A1 against what the arm reaches, and where a base would bring the part within reach";
+    JointLimit = "joint-limit", Machines,
+        "a robot's axis (A1–A6) beyond its limit less the `joint_margin` on a move of the plan, or its `home` outside its limits; names the axis, the worst move, by how much, and what would turn it less (the base, the tool's angle)";
+    SingularLin = "singular-lin", Machines,
+        "a robot's LIN passes within `singularity` of a singular configuration: A5 near 0 (the wrist: A4 and A6 spin), or A3 near its stretch angle (the arm straight); names where and the tool or base tilt that keeps A5 bent";
+    ConfigurationFlip = "configuration-flip", Machines,
+        "a robot's LIN whose axis solution changes configuration (KUKA's Status: overhead, elbow, wrist flip): the controller stops there; names the move and the bit";
+    JointSpeed = "joint-speed", Machines,
+        "an axis of a robot's arm would have to turn faster than its top speed to follow a feed move at its path speed (near a singularity a small move turns the wrist far); names the axis, the worst move and the path speed that would keep it within";
 
+    ArmUnchecked = "arm-unchecked", Warnings,
+        "a robot declares an `arm` but its `base` or `tool` is only an index into the controller's table (`base = 1`): lmdc cannot solve the poses, so reach, axis limits and singularities are not checked; says how to declare the value";
     ShortTrack = "short-track", Warnings,
         "planar tracks shorter than the bead width (they overheat and pile up); counts them and names the first layer";
     LiftMismatch = "lift-mismatch", Warnings,

@@ -23,7 +23,11 @@
 //!
 //! Then one move per point: [`MoveKind::Deposit`] from a point whose laser is on
 //! (at its speed and power), [`MoveKind::Travel`] at rapid from one whose laser
-//! is off. After the last path, a last retract. A path joins the one before when
+//! is off. After the last path, a last retract. On a CNC the program's first
+//! move is a [`MoveKind::Lift`] of Z alone to its safe height ([`safe_height`]),
+//! then a travel across at that height, before the travel down to above the
+//! first path; its last is a lift to the same height (a robot starts and
+//! ends at home, by PTP). A path joins the one before when
 //! it starts where that one ended, with the same nozzle direction ([`joins`]):
 //! the motion goes straight on.
 //!
@@ -75,7 +79,9 @@
 //! start where its lead-out ends. A ring whose loop runs on the machine gets
 //! no leads (its programs write their own moves).
 
+pub mod arm;
 pub mod kinematics;
+pub mod orient;
 pub mod profile;
 
 use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program, Ramp, Ring};
@@ -106,6 +112,11 @@ pub enum MoveKind {
     /// Laser off, on along a run's last direction from its end at its last
     /// speed, `v²/2a` long: the nozzle brakes after the laser is off.
     LeadOut,
+    /// Laser off, a CNC's Z alone up to its safe height, every other axis
+    /// where it stands: the program's first move (from wherever the machine
+    /// is) and its last. Its `to` is the safe height over the next (or
+    /// last) position; a writer moves only Z.
+    Lift,
 }
 
 /// How fast a move goes.
@@ -324,6 +335,29 @@ pub struct Plan<'a> {
     /// The acceleration leads are sized by, and the corner blending a
     /// lead-in adds, when the machine has leads.
     lead: Option<(f64, f64)>,
+    /// A CNC's safe height: declared, else the highest focus plus the
+    /// clearance (none on a robot, which starts and ends at home).
+    safe: Option<f64>,
+}
+
+/// The height a CNC lifts to first and ends at: `declared`, else
+/// `clearance` above the highest focus of the program (what no retract,
+/// travel or approach rises above).
+pub fn safe_height(program: &Program, declared: Option<f64>, clearance: f64) -> f64 {
+    declared.unwrap_or_else(|| {
+        let top = program
+            .layers
+            .iter()
+            .flat_map(|l| &l.paths)
+            .flat_map(|p| &p.points)
+            .map(|p| p.focus()[2])
+            .fold(f64::NEG_INFINITY, f64::max);
+        if top.is_finite() {
+            top + clearance
+        } else {
+            clearance
+        }
+    })
 }
 
 /// The kinematics a CNC program is written for: a machine declared with fewer
@@ -353,12 +387,17 @@ impl<'a> Plan<'a> {
             }
             _ => None,
         };
+        let safe = match machine {
+            Machine::Cnc(c) => Some(safe_height(program, c.safe_height, common.clearance)),
+            Machine::Robot(_) => None,
+        };
         Plan {
             program,
             head,
             clearance: common.clearance,
             cell: machine.cell(),
             lead,
+            safe,
         }
     }
 
@@ -689,6 +728,24 @@ impl<V: Visit> Walker<'_, '_, V> {
         let f0 = first.focus();
         let entry = second.and_then(|n| self.lead_start(first, n)).unwrap_or(f0);
         let above = along(entry, self.up(first.normal), self.plan.clearance);
+        if let (Some(safe), None) = (self.plan.safe, self.last) {
+            // The first move: Z alone up to the safe height, then X, Y and
+            // the rotary axes across at that height.
+            let high = [above[0], above[1], safe.max(above[2])];
+            let lift = |kind, axes| Move {
+                kind,
+                to: high,
+                normal: first.normal,
+                axes,
+                speed: Speed::Rapid,
+                power: first.power,
+                at: clearance,
+            };
+            self.send(lift(MoveKind::Lift, prev));
+            if high[2] > above[2] {
+                self.send(lift(MoveKind::Travel, axes));
+            }
+        }
         self.over_the_top(first, above, (prev, axes), clearance);
         self.send(Move {
             kind: MoveKind::Travel,
@@ -941,11 +998,25 @@ impl<V: Visit> Walker<'_, '_, V> {
         });
     }
 
-    /// After the last path: laser off and retract.
+    /// After the last path: laser off, retract, and on a CNC Z up to the
+    /// safe height.
     fn end(&mut self) {
         self.end_run();
         if let Some(c) = self.cursor.filter(|_| !self.retracted) {
             self.retract(c, Where::End);
+        }
+        if let (Some(safe), Some(last), Some(c)) = (self.plan.safe, self.last, self.cursor) {
+            if last[2] < safe {
+                self.send(Move {
+                    kind: MoveKind::Lift,
+                    to: [last[0], last[1], safe],
+                    normal: c.normal,
+                    axes: c.axes,
+                    speed: Speed::Rapid,
+                    power: 0.0,
+                    at: Where::End,
+                });
+            }
         }
         if self.powder.take().is_some() {
             self.v.io(Io::PowderOff);

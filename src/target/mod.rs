@@ -5,6 +5,7 @@
 //! it) and the back ends (to write it) alike — like [`units`](crate::units) and
 //! the bead physics, it belongs to no single stage.
 
+pub mod arm;
 pub mod gcode;
 pub mod kuka;
 pub mod names;

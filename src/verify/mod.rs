@@ -19,6 +19,7 @@
 //! which the writers' headers and the report read instead of walking the plan
 //! again.
 
+mod arm;
 mod bump;
 mod cell;
 mod deposit;

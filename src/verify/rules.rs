@@ -2,6 +2,7 @@
 //! new rule is a type implementing [`PlanRule`] or [`ProgramRule`] and one
 //! line here.
 
+use super::arm::ArmRule;
 use super::bump::DepositBump;
 use super::cell::CellRule;
 use super::deposit::DepositRule;
@@ -114,4 +115,5 @@ plan_rules! {
     cell: CellRule<'p>,
     ring: LoopOnMachine,
     bump: DepositBump<'p>,
+    arm: ArmRule,
 }

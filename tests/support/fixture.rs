@@ -38,6 +38,7 @@ pub fn robot() -> Robot {
         full_scale_power: 4000.0,
         home: [0.0, -90.0, 90.0, 0.0, 0.0, 0.0],
         max_points_per_module: 5000,
+        arm: None,
     }
 }
 
@@ -80,6 +81,7 @@ pub fn cnc5() -> Cnc {
             rotary: [-3600.0, 3600.0],
         },
         placement: Placement::default(),
+        safe_height: None,
     }
 }
 

@@ -32,6 +32,11 @@ pub struct Lin {
     pub switch_at_end: bool,
     /// Module it is in.
     pub module: String,
+    /// A `PTP` to a Cartesian pose (the move from home): joint-interpolated,
+    /// at the PTP speed the main program set, not `$VEL.CP`.
+    pub ptp: bool,
+    /// Its Status and Turn, where it has them.
+    pub config: Option<(u8, u8)>,
 }
 
 /// What running the main program did.
@@ -306,6 +311,35 @@ impl State<'_> {
             }
             return Ok(false);
         }
+        if let Some(rest) = l.strip_prefix("PTP {X ") {
+            // A Cartesian PTP (from home), with or without Status and Turn.
+            let agg = format!("{{X {rest}");
+            let (v, config) = match aggregate(&agg, &["X", "Y", "Z", "A", "B", "C", "S", "T"]) {
+                Ok(v) => {
+                    let c = Some((v[6] as u8, v[7] as u8));
+                    (v, c)
+                }
+                Err(_) => (aggregate(&agg, &["X", "Y", "Z", "A", "B", "C"])?, None),
+            };
+            if self.laser || !triggers.is_empty() {
+                return Err("PTP with the laser on or a trigger".into());
+            }
+            self.trace.ptps += 1;
+            self.trace.events.push(Event::Lin(self.trace.lins.len()));
+            self.trace.lins.push(Lin {
+                pos: [v[0], v[1], v[2]],
+                abc: [v[3], v[4], v[5]],
+                speed: self.vel.map_or(0.0, |v| v * 1000.0),
+                laser: self.laser,
+                anout: self.anout,
+                approximated: false,
+                switch_at_end: false,
+                module: module.to_string(),
+                ptp: true,
+                config,
+            });
+            return Ok(false);
+        }
         if let Some(rest) = l.strip_prefix("LIN ") {
             let (agg, approx) = match rest.strip_suffix(" C_DIS") {
                 Some(a) => (a, true),
@@ -347,6 +381,8 @@ impl State<'_> {
                 approximated: approx,
                 switch_at_end: at_end.iter().any(|t| matches!(t, Trig::LaserAtEnd(_))),
                 module: module.to_string(),
+                ptp: false,
+                config: None,
             });
             for t in at_end {
                 match t {

@@ -19,7 +19,7 @@ use super::context::{counts, layer_context, shown, styles};
 use super::{EmitError, Sink, Templates};
 use crate::ir::{Cell, Cnc, Kinematics, Layer, Program};
 use crate::numbers::trimmed;
-use crate::plan::{effective_kinematics, Io, Move, Speed, Visit};
+use crate::plan::{effective_kinematics, Io, Move, MoveKind, Speed, Visit};
 use crate::target::gcode::{blending_line, RATE_DECIMALS};
 use crate::target::names::gcode_file;
 use crate::verify::VerifiedMachine;
@@ -135,6 +135,10 @@ impl Visit for Motion<'_, '_> {
 
     #[inline]
     fn motion(&mut self, m: &Move) {
+        if m.kind == MoveKind::Lift {
+            self.w.lift(m.to[2]);
+            return;
+        }
         match m.speed {
             Speed::Rapid => self.w.rapid(m.to, m.axes),
             Speed::Feed(v) => self.w.feed(m.to, m.axes, v, m.power),

@@ -182,6 +182,24 @@ impl<'w> Writer<'w> {
         self.stats.rapids += 1;
     }
 
+    /// A rapid move of Z alone to `z`: the other axes stay where they are
+    /// (the safe lift, [`crate::plan::MoveKind::Lift`]).
+    pub fn lift(&mut self, z: f64) {
+        if self.quiet {
+            return;
+        }
+        self.room();
+        let (g, g_len) = self.rapid;
+        let at = self.len;
+        self.buf[at..at + 4].copy_from_slice(&g);
+        let at = at + g_len;
+        self.buf[at] = b'Z';
+        let at = put_fixed(&mut self.buf, at + 1, z, POS_DECIMALS);
+        self.buf[at] = b'\n';
+        self.len = at + 1;
+        self.stats.rapids += 1;
+    }
+
     /// A `G1` to `p`/`r` at `speed` (mm/s) and `power` (W), each word written only
     /// if its printed value changes.
     #[inline]

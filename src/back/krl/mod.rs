@@ -17,7 +17,9 @@
 
 pub mod height_loop;
 pub mod modules;
-pub mod orient;
+/// The tool orientation, decided by the plan ([`crate::plan::orient`]): the
+/// verifier solves the arm for the same `A B C` this back end writes.
+pub use crate::plan::orient;
 
 use super::context::{counts, layer_context, shown, styles};
 use super::{EmitError, Sink, Templates};
@@ -84,6 +86,7 @@ pub fn emit(
         base: &base,
         layers: prog.layers.len(),
         normal: None,
+        rot: nalgebra::Matrix3::identity(),
         abc: Abc {
             a: 0.0,
             b: 0.0,
@@ -135,6 +138,7 @@ struct Writer<'a, 's> {
     layers: usize,
     /// The normal the orientation was last solved for, and its `A B C`.
     normal: Option<[f32; 3]>,
+    rot: nalgebra::Matrix3<f64>,
     abc: Abc,
     /// A laser switch waiting for the next motion's start.
     switch: Option<Switch>,
@@ -214,7 +218,19 @@ impl Visit for Writer<'_, '_> {
         if self.normal != Some(m.normal) {
             // Most parts keep one normal over many moves: solve only on a change.
             self.normal = Some(m.normal);
-            self.abc = self.orient.abc(m.normal);
+            self.rot = self.orient.rotation(m.normal);
+            self.abc = orient::abc(&self.rot);
+        }
+        if self.last.is_none() {
+            // From home, a PTP to the first pose (above the first point):
+            // a LIN from home would start at A5 = 0, the wrist singularity.
+            let config = crate::plan::arm::Solver::new(self.robot).and_then(|s| {
+                let j = *s.solve(m.to, &self.rot, &self.robot.home).first()?;
+                Some((s.status(&j), crate::plan::arm::Solver::turn(&j), j))
+            });
+            self.last = Some(m.kind);
+            self.out.ptp(m.to, self.abc, config);
+            return;
         }
         let speed = match m.speed {
             Speed::Rapid => self.robot.max_speed,

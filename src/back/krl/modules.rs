@@ -227,6 +227,48 @@ impl<'a> Modules<'a> {
         }
     }
 
+    /// The move from home to the first pose: a `PTP`, with KUKA's Status
+    /// and Turn and the axis angles they stand for (as a comment) where
+    /// the arm is known (`config`), so the controller takes the
+    /// configuration the verifier checked; not approximated.
+    pub fn ptp(&mut self, pos: [f64; 3], abc: Abc, config: Option<(u8, u8, [f64; 6])>) {
+        self.end_pending(false);
+        self.at_rest = false;
+        if self.lines >= self.max_lines {
+            self.roll();
+        }
+        self.place_pre();
+        let b = &mut self.body;
+        b.extend_from_slice(b"PTP {X ");
+        push_fixed(b, pos[0], POS_DECIMALS);
+        b.extend_from_slice(b",Y ");
+        push_fixed(b, pos[1], POS_DECIMALS);
+        b.extend_from_slice(b",Z ");
+        push_fixed(b, pos[2], POS_DECIMALS);
+        b.extend_from_slice(b",A ");
+        push_fixed(b, angle_value(abc.a), POS_DECIMALS);
+        b.extend_from_slice(b",B ");
+        push_fixed(b, abc.b, POS_DECIMALS);
+        b.extend_from_slice(b",C ");
+        push_fixed(b, angle_value(abc.c), POS_DECIMALS);
+        match config {
+            Some((s, t, j)) => {
+                b.extend_from_slice(b",S ");
+                push_u64(b, s as u64);
+                b.extend_from_slice(b",T ");
+                push_u64(b, t as u64);
+                b.extend_from_slice(b"} ; from home, axes");
+                for (i, a) in j.iter().enumerate() {
+                    b.extend_from_slice(format!(" A{} ", i + 1).as_bytes());
+                    push_fixed(b, *a, POS_DECIMALS);
+                }
+                b.push(b'\n');
+            }
+            None => b.extend_from_slice(b"} ; from home\n"),
+        }
+        self.lines += 1;
+    }
+
     /// Switches the laser (after setting the power `anout`, when given) at
     /// the end point of the LIN written last, while the robot moves on: a
     /// `TRIGGER WHEN PATH=0` before that LIN, which stays approximated. A

@@ -315,3 +315,45 @@ pub fn lead_without_acceleration(ramp: Option<Span>, block: Span) -> Diagnostic 
     .label(ramp.unwrap_or(block), "a lead-in and a lead-out")
     .help("add the path acceleration the control plans with, e.g. `acceleration = 1000 mm/s^2`")
 }
+
+/// A robot declares an `arm` but its `what` (`base` or `tool`) is only an
+/// index into the controller's table: the poses cannot be solved.
+pub fn arm_unchecked(what: &str, at: Span, arm: Span) -> Diagnostic {
+    let example = if what == "base" {
+        "`base = frame(1, x = 1200 mm, y = 0 mm, z = 400 mm)`: where the part's origin sits from the robot's foot ($ROBROOT)"
+    } else {
+        "`tool = frame(1, z = 350 mm)`: the laser focus from the flange"
+    };
+    Diagnostic::warning(
+        Code::ArmUnchecked,
+        format!(
+            "the arm cannot be checked: `{what}` is only an index into the controller's table, so lmdc does not know where the poses are"
+        ),
+    )
+    .label(at, format!("the {what}'s value is on the controller"))
+    .label(arm, "the arm declared here")
+    .help(format!(
+        "reach, axis limits, singularities and axis speeds are not checked; declare the value the program sets: {example}"
+    ))
+}
+
+/// An item of `opw(…)`'s `key` list that is not what it takes.
+pub fn arm_list_item(key: &str, at: Span, got: &str, wanted: &str) -> Diagnostic {
+    Diagnostic::error(Code::Type, format!("each item of `{key}` is {wanted}"))
+        .label(at, format!("this is {got}"))
+        .help(format!("one item per axis, A1 to A6: {wanted}"))
+}
+
+/// `opw(…)`'s `key` is not a list of six.
+pub fn arm_list_not_six(key: &str, at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::Type,
+        format!("`{key}` is a list of six, one per axis A1 to A6"),
+    )
+    .label(at, format!("this is {got}"))
+    .help(if key == "limits" {
+        "e.g. `limits = [-185 deg .. 185 deg, -155 deg .. 35 deg, -130 deg .. 154 deg, -350 deg .. 350 deg, -130 deg .. 130 deg, -350 deg .. 350 deg]`"
+    } else {
+        "e.g. `speeds = [156 deg/s, 156 deg/s, 156 deg/s, 330 deg/s, 330 deg/s, 615 deg/s]`"
+    })
+}

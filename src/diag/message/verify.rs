@@ -3,6 +3,7 @@
 //! machine's limits is in [`machine`], about the cell's gas and powder in
 //! [`cell`], about a ring's loop in [`ring`].
 
+pub mod arm;
 pub mod bump;
 pub mod cell;
 pub mod deposit;

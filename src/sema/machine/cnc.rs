@@ -8,7 +8,8 @@ use super::super::fields::{self, Fields};
 use super::super::program_text;
 use super::super::schema::machine::{
     limits, AXES, CLEARANCE, CNC, DIALECT, DWELL, FEED_UNITS, KINEMATICS, LASER_OFF, LASER_ON,
-    MAX_SPEED, ORIGIN, POSTAMBLE, PREAMBLE, S_DECIMALS, S_PER_WATT, TCP_OFF, TCP_ON, WORK_OFFSET,
+    MAX_SPEED, ORIGIN, POSTAMBLE, PREAMBLE, SAFE_HEIGHT, S_DECIMALS, S_PER_WATT, TCP_OFF, TCP_ON,
+    WORK_OFFSET,
 };
 use super::super::schema::Field;
 use super::super::value::Value;
@@ -71,6 +72,7 @@ fn cnc(
         None => Some(DEFAULT_LIMITS),
     };
     let placement = placement(f, diags);
+    let safe = f.optional(&SAFE_HEIGHT, f.quantity(&SAFE_HEIGHT, diags).map(|q| q.0));
     let moves = motion(f, diags);
     let sensor = height_sensor(f, 0, dialect::MAX_ANALOG_INPUT, diags);
     if !text_ok {
@@ -83,6 +85,7 @@ fn cnc(
         dialect: d?,
         limits: lim?,
         placement: placement?,
+        safe_height: safe?,
     })
 }
 

@@ -4,14 +4,15 @@ use super::super::cell;
 use super::super::eval::Env;
 use super::super::fields::{self, Fields};
 use super::super::schema::machine::{
-    frame, BASE, BEAM, CLEARANCE, FRAME, FULL_SCALE, HOME, LASER, MAX_ANGLE_DEG, MAX_FRAME_MM,
-    MAX_SPEED, MODULE_LINES, POWER_OUTPUT, ROBOT, TOOL,
+    frame, opw, ARM, BASE, BEAM, CLEARANCE, FRAME, FULL_SCALE, HOME, JOINT_MARGIN, LASER,
+    MAX_ANGLE_DEG, MAX_FRAME_MM, MAX_SPEED, MODULE_LINES, OPW, POWER_OUTPUT, ROBOT, SINGULARITY,
+    TOOL,
 };
 use super::super::schema::Field;
 use super::super::value::Value;
 use super::{common, height_sensor, motion, Written};
 use crate::diag::{message, Diagnostics};
-use crate::ir::{FrameRef, Machine, Pose, Robot, ToolAxis};
+use crate::ir::{Arm, FrameRef, Machine, Pose, Robot, ToolAxis};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::target::kuka;
@@ -77,6 +78,7 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
     let clearance = f.quantity_or_default(&CLEARANCE, diags);
     let lines = f.count_or_default(&MODULE_LINES, diags);
     let home = home(f, diags);
+    let arm = arm(f, diags);
     let moves = motion(f, diags);
     let sensor = height_sensor(f, 1, kuka::MAX_ANIN, diags);
     Some(Robot {
@@ -89,7 +91,146 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
         full_scale_power: Power(full?.0).watts(),
         home: home?,
         max_points_per_module: lines?,
+        arm: arm?,
     })
+}
+
+/// `arm = …` with `joint_margin` and `singularity`: `Some(None)` when no arm
+/// is declared. An arm whose `base` or `tool` is only an index on the
+/// controller cannot be checked: a warning says how to declare them.
+fn arm(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Option<Arm>> {
+    let margin = f.quantity_or_default(&JOINT_MARGIN, diags);
+    let singularity = f.quantity_or_default(&SINGULARITY, diags);
+    let v = match f.value(&ARM, diags) {
+        None if f.has(&ARM) => return None,
+        None => return Some(None),
+        Some(v) => v,
+    };
+    let (margin, singularity) = (margin?.to_degrees(), singularity?.to_degrees());
+    let mut arm = match &v.value {
+        Value::Call(c) if c.func == "opw" => opw_arm(&Fields::call(c, &OPW, diags), diags)?,
+        _ => {
+            let word = fields::word(v, ARM.key, crate::target::arm::KEYS, diags)?;
+            let m = crate::target::arm::model(word)?;
+            let o = m.opw;
+            Arm {
+                model: Some(m.key.to_string()),
+                opw: [o.a1, o.a2, o.b, o.c1, o.c2, o.c3, o.c4],
+                offsets: o.offsets,
+                signs: o.signs,
+                limits: m.limits,
+                speeds: m.speeds,
+                margin: 0.0,
+                singularity: 0.0,
+            }
+        }
+    };
+    arm.margin = margin;
+    arm.singularity = singularity;
+    for (field, what) in [(&BASE, "base"), (&TOOL, "tool")] {
+        let declared = f
+            .value(field, &mut Diagnostics::default())
+            .is_some_and(|v| matches!(&v.value, Value::Call(c) if c.func == "frame"));
+        if !declared {
+            diags.push(message::machine::arm_unchecked(
+                what,
+                f.span(field).unwrap_or(v.span),
+                v.span,
+            ));
+        }
+    }
+    Some(Some(arm))
+}
+
+/// `opw(…)`: an arm by its parameters, in KUKA's axis angles.
+fn opw_arm(a: &Fields<'_>, diags: &mut Diagnostics) -> Option<Arm> {
+    let len = |field: &Field, diags: &mut Diagnostics| match field.need {
+        super::super::schema::Need::Required(_) => a.quantity(field, diags).map(|q| q.0),
+        _ => a.quantity_or_default(field, diags),
+    };
+    let ps = [
+        len(&opw::A1, diags),
+        len(&opw::A2, diags),
+        len(&opw::B, diags),
+        len(&opw::C1, diags),
+        len(&opw::C2, diags),
+        len(&opw::C3, diags),
+        len(&opw::C4, diags),
+    ];
+    let limits = six(a, &opw::LIMITS, diags, |it, diags| match &it.value {
+        Value::Range(lo, hi) if lo.dim == crate::units::Dim::ANGLE && lo.value < hi.value => {
+            Some([lo.value.to_degrees(), hi.value.to_degrees()])
+        }
+        _ => {
+            diags.push(message::machine::arm_list_item(
+                opw::LIMITS.key,
+                it.span,
+                &it.value.describe(),
+                "a range of angles, low first: `-185 deg .. 185 deg`",
+            ));
+            None
+        }
+    });
+    let speeds = six(a, &opw::SPEEDS, diags, |it, diags| {
+        match fields::quantity(it, crate::units::Dim::ANGULAR_SPEED, opw::SPEEDS.key, diags) {
+            Some(x) if x > 0.0 => Some(x.to_degrees()),
+            Some(_) => {
+                diags.push(message::machine::arm_list_item(
+                    opw::SPEEDS.key,
+                    it.span,
+                    &it.value.describe(),
+                    "a speed above zero: `156 deg/s`",
+                ));
+                None
+            }
+            None => None,
+        }
+    });
+    let mut opw = [0.0; 7];
+    for (o, p) in opw.iter_mut().zip(ps) {
+        *o = p?;
+    }
+    let k = crate::target::arm::KUKA;
+    Some(Arm {
+        model: None,
+        opw,
+        offsets: k.offsets,
+        signs: k.signs,
+        limits: limits?,
+        speeds: speeds?,
+        margin: 0.0,
+        singularity: 0.0,
+    })
+}
+
+/// A list of six items of `field`, each read by `item`.
+fn six<T: Copy + Default>(
+    a: &Fields<'_>,
+    field: &Field,
+    diags: &mut Diagnostics,
+    item: impl Fn(&super::super::value::Spanned, &mut Diagnostics) -> Option<T>,
+) -> Option<[T; 6]> {
+    let v = a.value(field, diags)?;
+    let items = match &v.value {
+        Value::List(items) if items.len() == 6 => items,
+        other => {
+            diags.push(message::machine::arm_list_not_six(
+                field.key,
+                v.span,
+                &other.describe(),
+            ));
+            return None;
+        }
+    };
+    let mut out = [T::default(); 6];
+    let mut ok = true;
+    for (o, it) in out.iter_mut().zip(items) {
+        match item(it, diags) {
+            Some(x) => *o = x,
+            None => ok = false,
+        }
+    }
+    ok.then_some(out)
 }
 
 /// `tool = …` or `base = …` (`field`): an index into the controller's

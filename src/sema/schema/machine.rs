@@ -193,6 +193,135 @@ pub static HOME: Field = Field::new(
     "the axis angles of the home position, moved to (PTP) at the start and the end",
 );
 
+/// `arm = kr16_2 | opw(…)`.
+pub static ARM: Field = Field::new(
+    "arm",
+    Either(&[Word(crate::target::arm::KEYS), Call(&[&OPW])]),
+    Optional,
+    "the arm: a KUKA model lmdc knows (docs/robots.md) or `opw(…)` with its own parameters; every move is then solved to axis angles and checked for reach, axis limits, singular LINs, configuration changes and axis speeds (needs `base` and `tool` as `frame(…)`)",
+);
+
+/// Largest margin or singularity distance, deg.
+pub const MAX_ARM_ANGLE_DEG: f64 = 90.0;
+
+/// `joint_margin = 2 deg`.
+pub static JOINT_MARGIN: Field = Field::new(
+    "joint_margin",
+    Quantity(
+        Dim::ANGLE,
+        ZeroUpTo(crate::sema::schema::deg(MAX_ARM_ANGLE_DEG)),
+    ),
+    Default(DefaultQuantity(crate::sema::schema::deg(2.0))),
+    "how far inside its limits every axis of the `arm` must stay",
+);
+
+/// `singularity = 5 deg`.
+pub static SINGULARITY: Field = Field::new(
+    "singularity",
+    Quantity(
+        Dim::ANGLE,
+        ZeroUpTo(crate::sema::schema::deg(MAX_ARM_ANGLE_DEG)),
+    ),
+    Default(DefaultQuantity(crate::sema::schema::deg(5.0))),
+    "how far a LIN must stay from the wrist singularity (A5 = 0) and the stretched arm (A3 at its stretch angle)",
+);
+
+/// `opw(a1, a2, b, c1, c2, c3, c4, limits, speeds)`: an arm by its parameters.
+pub static OPW: Block = Block::new(
+    "opw",
+    "opw(a1 = …, a2 = …, b = …, c1 = …, c2 = …, c3 = …, c4 = …, limits = […], speeds = […])",
+    "an arm with an ortho-parallel base and a spherical wrist, by its OPW parameters, in KUKA's axis angles",
+    &[
+        &opw::A1,
+        &opw::A2,
+        &opw::B,
+        &opw::C1,
+        &opw::C2,
+        &opw::C3,
+        &opw::C4,
+        &opw::LIMITS,
+        &opw::SPEEDS,
+    ],
+);
+
+/// The arguments of `opw(…)`.
+pub mod opw {
+    use super::super::Bound::{Magnitude, Positive};
+    use super::super::DefaultValue::Quantity as DefaultQuantity;
+    use super::super::Field;
+    use super::super::Kind::{List, Quantity, Range};
+    use super::super::Len;
+    use super::super::Need::{Default, Required};
+    use super::MAX_FRAME_MM;
+    use crate::units::Dim;
+
+    const LINK: super::Kind = Quantity(Dim::LENGTH, Magnitude(MAX_FRAME_MM));
+
+    /// `a1`.
+    pub static A1: Field = Field::new(
+        "a1",
+        LINK,
+        Required("260 mm"),
+        "A1 axis to A2 axis, along the arm",
+    );
+    /// `a2`.
+    pub static A2: Field = Field::new(
+        "a2",
+        LINK,
+        Default(DefaultQuantity(0.0)),
+        "the forearm's offset from the A3 axis",
+    );
+    /// `b`.
+    pub static B: Field = Field::new(
+        "b",
+        LINK,
+        Default(DefaultQuantity(0.0)),
+        "the sideways offset",
+    );
+    /// `c1`.
+    pub static C1: Field = Field::new(
+        "c1",
+        LINK,
+        Required("675 mm"),
+        "the base's floor to the A2 axis",
+    );
+    /// `c2`.
+    pub static C2: Field = Field::new(
+        "c2",
+        LINK,
+        Required("680 mm"),
+        "A2 axis to A3 axis (the upper arm)",
+    );
+    /// `c3`.
+    pub static C3: Field = Field::new(
+        "c3",
+        LINK,
+        Required("670 mm"),
+        "A3 axis to the wrist centre (the forearm)",
+    );
+    /// `c4`.
+    pub static C4: Field = Field::new(
+        "c4",
+        LINK,
+        Required("158 mm"),
+        "the wrist centre to the flange",
+    );
+    /// `limits`.
+    pub static LIMITS: Field = Field::new(
+        "limits",
+        List(&Range(Dim::ANGLE), Len::Exactly(6)),
+        Required("[-185 deg .. 185 deg, -155 deg .. 35 deg, -130 deg .. 154 deg, -350 deg .. 350 deg, -130 deg .. 130 deg, -350 deg .. 350 deg]"),
+        "A1–A6's software limits",
+    );
+    /// `speeds`.
+    pub static SPEEDS: Field = Field::new(
+        "speeds",
+        List(&Quantity(Dim::ANGULAR_SPEED, Positive), Len::Exactly(6)),
+        Required("[156 deg/s, 156 deg/s, 156 deg/s, 330 deg/s, 330 deg/s, 615 deg/s]"),
+        "A1–A6's top speeds",
+    );
+}
+
 /// `module_lines = 2000`.
 pub static MODULE_LINES: Field = Field::new(
     "module_lines",
@@ -216,6 +345,9 @@ pub static ROBOT: Block = Block::new(
         &FULL_SCALE,
         &MAX_SPEED,
         &HOME,
+        &ARM,
+        &JOINT_MARGIN,
+        &SINGULARITY,
         &CLEARANCE,
         &ACCELERATION,
         &BLENDING,
@@ -454,6 +586,14 @@ pub static ANALOG_OUTPUT: Field = Field::new(
     "the line that sets analog output `{n}` to `{v}`, a fraction of its full scale (the powder rate)",
 );
 
+/// `safe_height = 150 mm`.
+pub static SAFE_HEIGHT: Field = Field::new(
+    "safe_height",
+    Quantity(Dim::LENGTH, Any),
+    Default(Described("the part's highest point plus the clearance")),
+    "the height (Z, part coordinates) the program's first move lifts the nozzle to before X, Y and the rotary axes move, and its last move ends at",
+);
+
 /// `limits { … }`.
 pub static LIMITS_BLOCK: Field = Field::new(
     "limits",
@@ -486,6 +626,7 @@ pub static CNC: Block = Block::new(
         &FEED_UNITS,
         &MAX_SPEED,
         &CLEARANCE,
+        &SAFE_HEIGHT,
         &ACCELERATION,
         &BLENDING,
         &RAMP,
@@ -518,6 +659,9 @@ pub static MACHINE: Block = Block::new(
         &FULL_SCALE,
         &MAX_SPEED,
         &HOME,
+        &ARM,
+        &JOINT_MARGIN,
+        &SINGULARITY,
         &CLEARANCE,
         &ACCELERATION,
         &BLENDING,
@@ -541,6 +685,7 @@ pub static MACHINE: Block = Block::new(
         &WORK_OFFSET,
         &ORIGIN,
         &FEED_UNITS,
+        &SAFE_HEIGHT,
         &OUTPUT_ON,
         &OUTPUT_OFF,
         &ANALOG_OUTPUT,

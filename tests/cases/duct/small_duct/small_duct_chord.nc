@@ -1,11 +1,13 @@
 ; small_duct_chord: part small_duct on machine chord, written by lmdc 0.1.0
 ; profile m20, kinematics head_ac, axes X Y Z A C
 ; 5 layers, 5 paths, 45 points
-; plan: 101.0 mm deposited, 103.1 mm travel; 17.5 s, laser on 11.2 s, dwell 0.0 s; 29.5 kJ; powder 8.60 g
+; plan: 101.0 mm deposited, 105.9 mm travel; 17.5 s, laser on 11.2 s, dwell 0.0 s; 29.5 kJ; powder 8.60 g
 ; units: mm, deg, F mm/s, S = 1 per W
 ; X Y Z: tool tip = laser focus; A C: nozzle along the layer normal; clearance 10 mm
 G21 G90
 ; layer 1 of 5: station 0.0000, height 0.597..0.660 mm, 1 path, 9 points
+G00 Z4.114
+G00 X0.000 Y3.000 Z4.114 A0.000 C0.000
 G00 X0.000 Y3.000 Z1.430 A0.000 C0.000
 G01 X0.000 Y3.000 Z-8.570 A0.000 C0.000 F8.83 S4000
 M20
@@ -75,6 +77,7 @@ G01 X0.312 Y3.910 Z-6.076 A2.400 C90.000 F9.22
 G01 X-2.068 Y2.427 Z-5.976 A2.400 C90.000 F8.91
 M21
 G00 X-1.649 Y2.427 Z4.015 A2.400 C90.000
-; end of small_duct_chord: 40 deposit moves, 5 laser starts, 55 motion lines
+G00 Z4.114
+; end of small_duct_chord: 40 deposit moves, 5 laser starts, 58 motion lines
 M21
 M30

@@ -1,12 +1,14 @@
 ; small_duct_fagor: part small_duct on machine fagor, written by lmdc 0.1.0
 ; profile fagor8070, kinematics head_bc, axes X Y Z B C
 ; 5 layers, 5 paths, 45 points
-; plan: 101.0 mm deposited, 103.1 mm travel; 17.5 s, laser on 11.2 s, dwell 0.0 s; 29.5 kJ; powder 8.60 g
+; plan: 101.0 mm deposited, 105.9 mm travel; 17.5 s, laser on 11.2 s, dwell 0.0 s; 29.5 kJ; powder 8.60 g
 ; units: mm, deg, F mm/min, S = 1 per W
 ; X Y Z: tool tip = laser focus; B C: nozzle along the layer normal; clearance 10 mm
 G71 G90 G94 G17
 #RTCP ON
 ; layer 1 of 5: station 0.0000, height 0.597..0.660 mm, 1 path, 9 points
+G0 Z4.114
+G0 X0.000 Y3.000 Z4.114 B0.000 C0.000
 G0 X0.000 Y3.000 Z1.430 B0.000 C0.000
 G1 X0.000 Y3.000 Z-8.570 B0.000 C0.000 F530 S4000
 M3
@@ -76,7 +78,8 @@ G1 X0.312 Y3.910 Z-6.076 B2.400 C0.000 F553.5
 G1 X-2.068 Y2.427 Z-5.976 B2.400 C0.000 F534.3
 M5
 G0 X-1.649 Y2.427 Z4.015 B2.400 C0.000
+G0 Z4.114
 #RTCP OFF
-; end of small_duct_fagor: 40 deposit moves, 5 laser starts, 55 motion lines
+; end of small_duct_fagor: 40 deposit moves, 5 laser starts, 58 motion lines
 M5
 M30

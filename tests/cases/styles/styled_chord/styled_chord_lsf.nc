@@ -1,13 +1,15 @@
 ; styled_chord_lsf: part styled_chord on machine lsf, written by lmdc 0.1.0
 ; profile m20, kinematics xyz, axes X Y Z
 ; 30 layers, 870 paths, 2550 points
-; plan: 20.60 m deposited, 12.51 m travel; 42 min 57 s, laser on 34 min 20 s, dwell 0.0 s; 4.23 MJ; powder 412.0 g
+; plan: 20.60 m deposited, 12.53 m travel; 42 min 57 s, laser on 34 min 20 s, dwell 0.0 s; 4.23 MJ; powder 412.0 g
 ; units: mm, deg, F mm/s, S = 1 per W
 ; X Y Z: tool tip = laser focus; clearance 5 mm
 ; style 1 edge: power 2300 W, speed process, powder process, colour #d62728
 ; style 2 short: power 1700 W, speed process, powder process, colour #1f77b4
 G21 G90
 ; layer 1 of 30: station 0.0000, height 0.700..0.700 mm, 29 paths, 85 points
+G00 Z25.300
+G00 X1.500 Y1.500 Z25.300
 G00 X1.500 Y1.500 Z5.000
 G01 X1.500 Y1.500 Z0.000 F10 S2300
 M20
@@ -6067,6 +6069,6 @@ M20
 G01 X8.482 Y3.585 Z20.300
 M21
 G00 X8.482 Y3.585 Z25.300
-; end of styled_chord_lsf: 1680 deposit moves, 870 laser starts, 4290 motion lines
+; end of styled_chord_lsf: 1680 deposit moves, 870 laser starts, 4292 motion lines
 M21
 M30

@@ -1,0 +1,189 @@
+//! What the verifier says about a robot's arm (`lmd::reach`,
+//! `lmd::joint-limit`, `lmd::singular-lin`, `lmd::configuration-flip`,
+//! `lmd::joint-speed`): where in the file, by how much, and what would fix
+//! it — the base, the tool's angle on the flange, the speed.
+
+use crate::diag::{plural, Worst};
+use crate::diag::{Code, Diagnostic};
+use crate::span::Span;
+use crate::units::short;
+use std::fmt::Display;
+
+/// The robot and the spans a message about its arm points at.
+pub struct ArmAt<'a> {
+    /// The machine's name.
+    pub machine: &'a str,
+    /// The arm's name (`KR 16-2`, or `the opw(…) arm`).
+    pub arm: &'a str,
+    /// `arm = …`.
+    pub declared: Span,
+    /// `base = …`.
+    pub base: Span,
+    /// `tool = …`.
+    pub tool: Span,
+}
+
+/// Poses the arm cannot reach: the worst's wrist centre `value` mm from A2,
+/// against the arm's `span` of reach; `base` a base that would bring the
+/// part's centre within reach, as written.
+pub fn reach(a: &ArmAt<'_>, w: &Worst<impl Display>, span: [f64; 2], base: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::Reach,
+        format!(
+            "robot `{}` cannot reach {} pose{} of the plan: at {} its wrist centre would have to be {} mm from the A2 axis, and the {} reaches {} to {} mm",
+            a.machine,
+            w.count,
+            plural(w.count),
+            w.at,
+            short(w.value),
+            a.arm,
+            short(span[0]),
+            short(span[1])
+        ),
+    )
+    .label(a.base, "the part is placed here")
+    .label(a.declared, "the arm declared here")
+    .help(format!(
+        "move the base so the part sits in front of the robot: e.g. `base = {base}` puts the part's centre at 60 % of the forearm's reach in front of A1, a tool length below A2 (then check again)"
+    ))
+}
+
+/// Axis `axis` (0-based) beyond its limit less the margin: `w.value` against
+/// `w.limit`, the margin `margin` deg.
+pub fn joint_limit(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, margin: f64) -> Diagnostic {
+    let by = (w.value - w.limit).abs();
+    let fix = match axis {
+        0 => "turn the base (`base = frame(…, a = …)`) or move it so the part lies in front of A1's middle",
+        1 | 2 => "move the base so the part lies at a comfortable distance and height from the robot",
+        _ => "tilt the nozzle on the flange (`tool = frame(…, b = …)`) or the base so the wrist turns less, or let lmdc's nozzle orientation start from another angle by turning the base about Z",
+    };
+    Diagnostic::error(
+        Code::JointLimit,
+        format!(
+            "axis A{} of robot `{}` would turn to {}°, {}° past {}° (its limit less the {}° margin), at {} ({} move{})",
+            axis + 1,
+            a.machine,
+            short(w.value),
+            short(by),
+            short(w.limit),
+            short(margin),
+            w.at,
+            w.count,
+            plural(w.count)
+        ),
+    )
+    .label(a.declared, format!("the {}'s limits", a.arm))
+    .label(a.base, "the part is placed here")
+    .help(format!("{fix}; or lower `joint_margin` if the cell really runs that close"))
+}
+
+/// `home` outside the arm's limits: axis `axis` (0-based) at `value` deg.
+pub fn home_limit(
+    a: &ArmAt<'_>,
+    home: Span,
+    axis: usize,
+    value: f64,
+    range: [f64; 2],
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::JointLimit,
+        format!(
+            "robot `{}`'s home puts A{} at {}°, outside the {}'s {}° to {}°",
+            a.machine,
+            axis + 1,
+            short(value),
+            a.arm,
+            short(range[0]),
+            short(range[1])
+        ),
+    )
+    .label(home, "home declared here")
+    .label(a.declared, "the arm declared here")
+    .help("declare the home the robot has on its controller (`$H_POS`), within its limits: e.g. `home = [0 deg, -90 deg, 90 deg, 0 deg, 30 deg, 0 deg]`")
+}
+
+/// A LIN within `w.limit` deg of a singularity: the wrist (`wrist`: A5 at
+/// `w.value`) or the stretched arm (A3 `w.value` from its stretch angle).
+pub fn singular_lin(
+    a: &ArmAt<'_>,
+    wrist: bool,
+    w: &Worst<impl Display>,
+    at: Option<Span>,
+) -> Diagnostic {
+    let (what, fix) = if wrist {
+        (
+            format!("A5 at {}°, within {}° of the wrist singularity (A5 = 0, where A4 and A6 spin)", short(w.value), short(w.limit)),
+            "tilt the nozzle on the flange (`tool = frame(…, b = 20 deg)`) or tilt the base so A5 stays bent",
+        )
+    } else {
+        (
+            format!("A3 {}° from the stretched arm, within {}° (the arm straight, the wrist at the edge of its reach)", short(w.value), short(w.limit)),
+            "move the base closer to the part so the arm stays bent",
+        )
+    };
+    Diagnostic::error(
+        Code::SingularLin,
+        format!(
+            "a LIN of robot `{}` passes {what}, at {} ({} move{})",
+            a.machine,
+            w.at,
+            w.count,
+            plural(w.count)
+        ),
+    )
+    .label(a.tool, "the tool's angle on the flange")
+    .label_opt(at, "the distance asked for")
+    .help(format!(
+        "{fix}; or lower `singularity` if the cell runs there safely"
+    ))
+}
+
+/// A LIN whose solution changes KUKA's Status from `from` to `to`.
+pub fn configuration_flip(a: &ArmAt<'_>, w: &Worst<impl Display>, from: u8, to: u8) -> Diagnostic {
+    let change = from ^ to;
+    let what = if change & 4 != 0 {
+        "the wrist flips (A5 changes sign)"
+    } else if change & 2 != 0 {
+        "the elbow passes the stretched arm"
+    } else {
+        "the wrist centre passes over A1"
+    };
+    Diagnostic::error(
+        Code::ConfigurationFlip,
+        format!(
+            "a LIN of robot `{}` changes configuration (Status {from:03b} to {to:03b}: {what}) at {}; the controller stops there ({} move{})",
+            a.machine,
+            w.at,
+            w.count,
+            plural(w.count)
+        ),
+    )
+    .label(a.tool, "the tool's angle on the flange")
+    .label(a.base, "the part is placed here")
+    .help("a LIN keeps one configuration: tilt the nozzle on the flange (`tool = frame(…, b = …)`) or move the base so the path stays on one side")
+}
+
+/// Axis `axis` (0-based) would turn at `w.value` deg/s against its top
+/// speed `w.limit` to follow a path at `speed` mm/s.
+pub fn joint_speed(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, speed: f64) -> Diagnostic {
+    let fits = speed * w.limit / w.value;
+    Diagnostic::error(
+        Code::JointSpeed,
+        format!(
+            "axis A{} of robot `{}` would have to turn at {}°/s, beyond its {}°/s, to follow the path at {} mm/s at {} ({} move{})",
+            axis + 1,
+            a.machine,
+            short(w.value),
+            short(w.limit),
+            short(speed),
+            w.at,
+            w.count,
+            plural(w.count)
+        ),
+    )
+    .label(a.declared, format!("the {}'s axis speeds", a.arm))
+    .help(format!(
+        "lower the path speed there to {} mm/s or less, or keep the path away from the wrist singularity (tilt the nozzle on the flange) where a short move turns the wrist far",
+        short(fits)
+    ))
+}

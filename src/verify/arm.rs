@@ -1,0 +1,286 @@
+//! A robot's arm along its plan (`lmd::reach`, `lmd::joint-limit`,
+//! `lmd::singular-lin`, `lmd::configuration-flip`, `lmd::joint-speed`):
+//! every move's pose — the focus where the plan puts it, the tool turned as
+//! the KRL writer turns it ([`crate::plan::orient`]) — solved to axis
+//! angles continuing from the move before (from `home` for the first), so
+//! the program keeps one configuration. The first move is the PTP from
+//! home; every later one is a LIN, where a singular pose or a change of
+//! configuration stops the controller. Poses are checked where each move
+//! ends: a LIN that crosses A5 = 0 between its ends changes the sign of A5,
+//! and with it the configuration.
+
+use super::rule::{MachineCx, PlanRule, Worst};
+use crate::diag::message::verify::arm::{self as msg, ArmAt};
+use crate::diag::Diagnostics;
+use crate::ir::Machine;
+use crate::plan::arm::{Joints, Solver};
+use crate::plan::orient::Orienter;
+use crate::plan::{Move, Speed, Visit};
+use crate::sema::schema::machine::{ARM, BASE, HOME, SINGULARITY, TOOL};
+use nalgebra::{Matrix3, Vector3};
+
+/// The arm rules of one robot.
+pub(super) struct ArmRule {
+    solver: Solver,
+    orient: Orienter,
+    normal: Option<[f32; 3]>,
+    rot: Matrix3<f64>,
+    /// Moves not yet solved, and their poses.
+    moves: Vec<Move>,
+    poses: Vec<([f64; 3], Matrix3<f64>)>,
+    /// The last solution, its Status, and where the last move ended.
+    prev: Joints,
+    status: u8,
+    last: Option<[f64; 3]>,
+    /// The extent of the plan's poses in the base, for a base that reaches.
+    lo: [f64; 3],
+    hi: [f64; 3],
+    reach: Option<Worst>,
+    /// The arm's reach, mm.
+    span: [f64; 2],
+    limits: [Option<Worst>; 6],
+    wrist: Option<Worst>,
+    elbow: Option<Worst>,
+    flip: Option<(Worst, u8, u8)>,
+    speed: [Option<(Worst, f64)>; 6],
+}
+
+impl<'p> PlanRule<'p> for ArmRule {
+    fn new(cx: &MachineCx<'p>) -> Option<Self> {
+        let Machine::Robot(r) = cx.machine else {
+            return None;
+        };
+        let solver = Solver::new(r)?;
+        Some(ArmRule {
+            solver,
+            orient: Orienter::new(r.beam),
+            normal: None,
+            rot: Matrix3::identity(),
+            moves: Vec::with_capacity(CHUNK),
+            poses: Vec::with_capacity(CHUNK),
+            prev: r.home,
+            status: 0,
+            last: None,
+            lo: [f64::INFINITY; 3],
+            hi: [f64::NEG_INFINITY; 3],
+            reach: None,
+            span: [0.0; 2],
+            limits: [None; 6],
+            wrist: None,
+            elbow: None,
+            flip: None,
+            speed: [None; 6],
+        })
+    }
+
+    fn report(mut self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+        let Machine::Robot(r) = cx.machine else {
+            return;
+        };
+        self.flush();
+        let arm = self.solver.arm();
+        let name = arm
+            .model
+            .as_deref()
+            .and_then(crate::target::arm::model)
+            .map_or("opw(…) arm", |m| m.name);
+        let at = ArmAt {
+            machine: &r.name,
+            arm: name,
+            declared: cx.origin.at(&ARM),
+            base: cx.origin.at(&BASE),
+            tool: cx.origin.at(&TOOL),
+        };
+        for (i, (h, lim)) in r.home.iter().zip(arm.limits).enumerate() {
+            if *h < lim[0] || *h > lim[1] {
+                out.push(msg::home_limit(&at, cx.origin.at(&HOME), i, *h, lim));
+            }
+        }
+        if let Some(w) = self.reach {
+            out.push(msg::reach(&at, &w, self.span, &self.base_that_reaches(r)));
+        }
+        for (i, w) in self.limits.iter().enumerate() {
+            if let Some(w) = w {
+                out.push(msg::joint_limit(&at, i, w, arm.margin));
+            }
+        }
+        let sing = cx.origin.written(&SINGULARITY);
+        if let Some(w) = self.wrist {
+            out.push(msg::singular_lin(&at, true, &w, sing));
+        }
+        if let Some(w) = self.elbow {
+            out.push(msg::singular_lin(&at, false, &w, sing));
+        }
+        if let Some((w, from, to)) = self.flip {
+            out.push(msg::configuration_flip(&at, &w, from, to));
+        }
+        for (i, s) in self.speed.iter().enumerate() {
+            if let Some((w, v)) = s {
+                out.push(msg::joint_speed(&at, i, w, *v));
+            }
+        }
+    }
+}
+
+/// Moves solved together: their poses do not depend on each other, only
+/// the choice among each one's solutions does (`Solver::nearest`).
+const CHUNK: usize = 4096;
+
+impl Visit for ArmRule {
+    fn motion(&mut self, m: &Move) {
+        if self.normal != Some(m.normal) {
+            // As the writer does: the tool turns only where the normal changes.
+            self.normal = Some(m.normal);
+            self.rot = self.orient.rotation(m.normal);
+        }
+        self.moves.push(*m);
+        self.poses.push((m.to, self.rot));
+        if self.moves.len() >= CHUNK {
+            self.flush();
+        }
+    }
+}
+
+impl ArmRule {
+    /// Solves the buffered moves (on two threads) and follows them in order.
+    fn flush(&mut self) {
+        let solved = self.solver.solve_many(&self.poses, 2);
+        let moves = std::mem::take(&mut self.moves);
+        let poses = std::mem::take(&mut self.poses);
+        for ((m, (_, rot)), (sols, wrist)) in moves.iter().zip(&poses).zip(solved) {
+            // The first move (the PTP from home) as the KRL writer solves it,
+            // and a pose at the wrist singularity, by the move before.
+            let j = match (self.last, Solver::nearest(&sols, &self.prev)) {
+                (Some(_), Some(j)) => Some(j),
+                _ if sols.is_empty() => None,
+                _ => self.solver.solve(m.to, rot, &self.prev).first().copied(),
+            };
+            self.step(m, rot, j, &wrist);
+        }
+        self.moves = moves;
+        self.moves.clear();
+        self.poses = poses;
+        self.poses.clear();
+    }
+
+    /// One move reaching axis angles `j` (none: out of reach).
+    fn step(&mut self, m: &Move, rot: &Matrix3<f64>, j: Option<Joints>, wrist: &Vector3<f64>) {
+        for i in 0..3 {
+            self.lo[i] = self.lo[i].min(m.to[i]);
+            self.hi[i] = self.hi[i].max(m.to[i]);
+        }
+        let lin = self.last.is_some();
+        let Some(j) = j else {
+            let (d, span) = self.solver.reach(m.to, rot);
+            self.span = span;
+            let edge = if d > span[1] { span[1] } else { span[0] };
+            Worst::hit(&mut self.reach, d, edge, m.at);
+            self.last = Some(m.to);
+            return;
+        };
+        self.limits(&j, m);
+        let status = self.solver.status_at(&j, wrist);
+        if lin {
+            self.lin(&j, status, m);
+        }
+        self.prev = j;
+        self.status = status;
+        self.last = Some(m.to);
+    }
+}
+
+impl ArmRule {
+    /// Each axis within its limits less the margin.
+    fn limits(&mut self, j: &Joints, m: &Move) {
+        let arm = self.solver.arm();
+        for (i, a) in j.iter().enumerate() {
+            let [lo, hi] = arm.limits[i];
+            let (lo, hi) = (lo + arm.margin, hi - arm.margin);
+            if *a < lo {
+                Worst::hit(&mut self.limits[i], *a, lo, m.at);
+            } else if *a > hi {
+                Worst::hit(&mut self.limits[i], *a, hi, m.at);
+            }
+        }
+    }
+
+    /// What a LIN to `j` must keep: away from singularities, one
+    /// configuration, the axes within their speeds.
+    fn lin(&mut self, j: &Joints, to: u8, m: &Move) {
+        let thr = self.solver.arm().singularity;
+        if j[4].abs() < thr {
+            Worst::hit(&mut self.wrist, j[4].abs(), thr, m.at);
+        }
+        let elbow = (j[2] - self.solver.stretch()).abs();
+        if elbow < thr {
+            Worst::hit(&mut self.elbow, elbow, thr, m.at);
+        }
+        let from = self.status;
+        if from != to {
+            let mut slot = self.flip.map(|f| f.0);
+            Worst::hit(&mut slot, 1.0, 0.0, m.at);
+            let keep = self.flip.map_or((from, to), |f| (f.1, f.2));
+            self.flip = slot.map(|w| (w, keep.0, keep.1));
+        }
+        let (Speed::Feed(v), Some(last)) = (m.speed, self.last) else {
+            return;
+        };
+        let d = (0..3)
+            .map(|i| (m.to[i] - last[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        if d <= 0.0 || v <= 0.0 {
+            return;
+        }
+        let t = d / v as f64;
+        let speeds = self.solver.arm().speeds;
+        for i in 0..6 {
+            let rate = (j[i] - self.prev[i]).abs() / t;
+            if rate > speeds[i] {
+                let mut slot = self.speed[i].map(|s| s.0);
+                let worse = slot.is_none_or(|w| rate > w.value);
+                Worst::hit(&mut slot, rate, speeds[i], m.source());
+                let speed = match (worse, self.speed[i]) {
+                    (false, Some((_, s))) => s,
+                    _ => v as f64,
+                };
+                self.speed[i] = slot.map(|w| (w, speed));
+            }
+        }
+    }
+
+    /// A base that puts the centre of the plan's poses at 60 % of the
+    /// forearm's reach in front of A1, a tool length and the wrist below A2,
+    /// turned as declared: written as `frame(…)`.
+    fn base_that_reaches(&self, r: &crate::ir::Robot) -> String {
+        let [a1, a2, _, c1, c2, c3, c4] = self.solver.arm().opw;
+        let tool = r
+            .tool
+            .value
+            .map_or(0.0, |t| (t.x * t.x + t.y * t.y + t.z * t.z).sqrt());
+        let target = nalgebra::Vector3::new(
+            a1 + 0.6 * (c2 + (c3 * c3 + a2 * a2).sqrt()),
+            0.0,
+            c1 - tool - c4,
+        );
+        let centre = nalgebra::Vector3::new(
+            (self.lo[0] + self.hi[0]) / 2.0,
+            (self.lo[1] + self.hi[1]) / 2.0,
+            (self.lo[2] + self.hi[2]) / 2.0,
+        );
+        let b = r.base.value.unwrap_or_default();
+        let rot = crate::plan::arm::frame(&b).rotation;
+        let t = target - rot * centre;
+        let n = crate::numbers::trimmed;
+        format!(
+            "frame({}, x = {} mm, y = {} mm, z = {} mm, a = {} deg, b = {} deg, c = {} deg)",
+            r.base.index,
+            n(t.x, 0),
+            n(t.y, 0),
+            n(t.z, 0),
+            n(b.a, 1),
+            n(b.b, 1),
+            n(b.c, 1)
+        )
+    }
+}

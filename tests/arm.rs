@@ -1,0 +1,365 @@
+//! A robot's arm (docs/robots.md): the catalogue against the cited
+//! ROS-Industrial URDFs, forward ∘ inverse kinematics on random reachable
+//! poses, the KRL's first pose solved back onto the axes lmdc reports, the
+//! G-code's first move the safe lift (rs274), and every error example of
+//! the arm exiting 1 with its numbers.
+
+use crate::support::rs274::{self, CanonCall};
+use lmdc::back::{MemorySink, Templates};
+use lmdc::ir::{Arm, Machine};
+use lmdc::plan::arm::Solver;
+use lmdc::target::arm::{Model, CATALOGUE};
+use nalgebra::{Isometry3, Rotation3, Translation3, UnitQuaternion, Vector3};
+use proptest::prelude::*;
+use std::collections::BTreeMap;
+
+fn arm_of(m: &Model) -> Arm {
+    let o = m.opw;
+    Arm {
+        model: Some(m.key.into()),
+        opw: [o.a1, o.a2, o.b, o.c1, o.c2, o.c3, o.c4],
+        offsets: o.offsets,
+        signs: o.signs,
+        limits: m.limits,
+        speeds: m.speeds,
+        margin: 0.0,
+        singularity: 5.0,
+    }
+}
+
+/// A joint of a URDF: origin `xyz` (m) from its parent, turning about `axis`.
+struct Joint {
+    xyz: [f64; 3],
+    axis: [f64; 3],
+    limit: [f64; 2],
+    speed: f64,
+}
+
+const fn j(xyz: [f64; 3], axis: [f64; 3], limit: [f64; 2], speed: f64) -> Joint {
+    Joint {
+        xyz,
+        axis,
+        limit,
+        speed,
+    }
+}
+
+const Z_DOWN: [f64; 3] = [0.0, 0.0, -1.0];
+const Y: [f64; 3] = [0.0, 1.0, 0.0];
+const X_BACK: [f64; 3] = [-1.0, 0.0, 0.0];
+
+/// Each catalogue arm's URDF, as ros-industrial/kuka_experimental writes it
+/// (`<joint_a1…a6>`: origin, axis, `<limit lower upper velocity>` in deg and
+/// deg/s; then `tool0` at `xyz`, turned `rpy = 0 90° 0` from `link_6`).
+fn urdf(key: &str) -> ([Joint; 6], [f64; 3]) {
+    match key {
+        // kuka_kr6_support/urdf/kr6r900_2_macro.xacro
+        "kr6_r900_2" => (
+            [
+                j([0.0, 0.0, 0.400], Z_DOWN, [-170.0, 170.0], 360.0),
+                j([0.025, 0.0, 0.0], Y, [-190.0, 45.0], 300.0),
+                j([0.455, 0.0, 0.0], Y, [-120.0, 156.0], 360.0),
+                j([0.0, 0.0, 0.025], X_BACK, [-185.0, 185.0], 450.0),
+                j([0.420, 0.0, 0.0], Y, [-120.0, 120.0], 450.0),
+                j([0.090, 0.0, 0.0], X_BACK, [-350.0, 350.0], 540.0),
+            ],
+            [0.0; 3],
+        ),
+        // kuka_kr16_support/urdf/kr16_2_macro.xacro
+        "kr16_2" => (
+            [
+                j([0.0, 0.0, 0.675], Z_DOWN, [-185.0, 185.0], 156.0),
+                j([0.26, 0.0, 0.0], Y, [-155.0, 35.0], 156.0),
+                j([0.68, 0.0, 0.0], Y, [-130.0, 154.0], 156.0),
+                j([0.67, 0.0, -0.035], X_BACK, [-350.0, 350.0], 330.0),
+                j([0.0, 0.0, 0.0], Y, [-130.0, 130.0], 330.0),
+                j([0.0, 0.0, 0.0], X_BACK, [-350.0, 350.0], 615.0),
+            ],
+            [0.158, 0.0, 0.0],
+        ),
+        // kuka_kr60_support/urdf/kr60ha_macro.xacro
+        "kr60ha" => (
+            [
+                j([0.0, 0.0, 0.0], Z_DOWN, [-185.0, 185.0], 128.0),
+                j([0.35, 0.0, 0.815], Y, [-135.0, 35.0], 102.0),
+                j([0.85, 0.0, 0.0], Y, [-120.0, 158.0], 128.0),
+                j([0.465, 0.0, 0.145], X_BACK, [-350.0, 350.0], 260.0),
+                j([0.355, 0.0, 0.0], Y, [-119.0, 119.0], 245.0),
+                j([0.17, 0.0, 0.0], X_BACK, [-350.0, 350.0], 322.0),
+            ],
+            [0.0; 3],
+        ),
+        // kuka_kr150_support/urdf/kr150_r3100-2_macro.xacro
+        "kr150_r3100_2" => (
+            [
+                j([0.0, 0.0, 0.645], Z_DOWN, [-185.0, 185.0], 105.0),
+                j([0.33, 0.0, 0.0], Y, [-140.0, -5.0], 107.0),
+                j([1.350, 0.0, 0.0], Y, [-120.0, 168.0], 114.0),
+                j([1.420, 0.0, 0.115], X_BACK, [-350.0, 350.0], 190.0),
+                j([0.0, 0.0, 0.0], Y, [-125.0, 125.0], 180.0),
+                j([0.215, 0.0, 0.0], X_BACK, [-350.0, 350.0], 260.0),
+            ],
+            [0.0; 3],
+        ),
+        _ => panic!("no URDF for {key}"),
+    }
+}
+
+/// The flange (`tool0`) by the URDF's chain at axis angles `q` (deg), mm.
+fn urdf_flange(key: &str, q: &[f64; 6]) -> Isometry3<f64> {
+    let (joints, tool0) = urdf(key);
+    let mut t = Isometry3::identity();
+    for (jt, a) in joints.iter().zip(q) {
+        let axis = nalgebra::Unit::new_normalize(Vector3::from(jt.axis));
+        let origin = Translation3::from(Vector3::from(jt.xyz) * 1000.0);
+        t *= Isometry3::from_parts(
+            origin,
+            UnitQuaternion::from_axis_angle(&axis, a.to_radians()),
+        );
+    }
+    let tool = Isometry3::from_parts(
+        Translation3::from(Vector3::from(tool0) * 1000.0),
+        UnitQuaternion::from_euler_angles(0.0, 90f64.to_radians(), 0.0),
+    );
+    t * tool
+}
+
+fn angles() -> impl Strategy<Value = [f64; 6]> {
+    prop::array::uniform6(-1.0f64..1.0)
+}
+
+/// A point of the catalogue arm's range: `u` in [-1, 1] spread over each
+/// axis's limits.
+fn within(m: &Model, u: &[f64; 6]) -> [f64; 6] {
+    std::array::from_fn(|i| {
+        let [lo, hi] = m.limits[i];
+        (lo + hi) / 2.0 + u[i] * (hi - lo) / 2.0
+    })
+}
+
+#[test]
+fn catalogue_limits_and_speeds_are_the_urdfs() {
+    for m in CATALOGUE {
+        let (joints, _) = urdf(m.key);
+        for (i, jt) in joints.iter().enumerate() {
+            assert_eq!(m.limits[i], jt.limit, "{} A{}", m.key, i + 1);
+            assert_eq!(m.speeds[i], jt.speed, "{} A{}", m.key, i + 1);
+        }
+    }
+}
+
+/// The two arms rs-opw-kinematics ships from the same ROS-Industrial files.
+#[test]
+fn catalogue_opw_sets_are_the_crates() {
+    use rs_opw_kinematics::parameters::opw_kinematics::Parameters;
+    for (key, p) in [
+        ("kr6_r900_2", Parameters::kuka_kr6_r900_2()),
+        ("kr150_r3100_2", Parameters::kuka_kr150_r3100_2()),
+    ] {
+        let a = arm_of(lmdc::target::arm::model(key).unwrap());
+        let theirs = [p.a1, p.a2, p.b, p.c1, p.c2, p.c3, p.c4].map(|x| x * 1000.0);
+        for (o, t) in a.opw.iter().zip(theirs) {
+            assert!((o - t).abs() < 1e-9, "{key}: {:?} vs {theirs:?}", a.opw);
+        }
+        assert_eq!(a.signs, p.sign_corrections, "{key}");
+        for (o, t) in a.offsets.iter().zip(p.offsets) {
+            assert!((o.to_radians() - t).abs() < 1e-12, "{key}");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Each arm's OPW parameters put the flange where the URDF's chain of
+    /// joint origins and axes does, at any axis angles.
+    #[test]
+    fn catalogue_opw_is_the_urdfs_chain(u in angles()) {
+        for m in CATALOGUE {
+            let q = within(m, &u);
+            let s = Solver::with(arm_of(m), Isometry3::identity(), Isometry3::identity());
+            let ours = s.forward_flange(&q);
+            let theirs = urdf_flange(m.key, &q);
+            let d = (ours.translation.vector - theirs.translation.vector).norm();
+            prop_assert!(d < 1e-6, "{} at {q:?}: {d} mm", m.key);
+            prop_assert!(ours.rotation.angle_to(&theirs.rotation) < 1e-9, "{} at {q:?}", m.key);
+        }
+    }
+
+    /// forward ∘ inverse = identity: a pose the arm reaches (the flange at
+    /// random axis angles, with a base and tool) is solved back to axis
+    /// angles whose pose is the same, the angles themselves when the last
+    /// ones are given and the wrist is not singular.
+    #[test]
+    fn forward_inverse_is_identity(u in angles(), t in prop::array::uniform3(-200.0f64..200.0)) {
+        for m in CATALOGUE {
+            let q = within(m, &u);
+            let base = Isometry3::from_parts(Translation3::new(t[0], t[1], 0.0), UnitQuaternion::from_euler_angles(0.0, 0.0, 0.3));
+            let tool = Isometry3::from_parts(Translation3::new(0.0, t[2] / 4.0, 300.0), UnitQuaternion::from_euler_angles(0.0, 0.2, 0.0));
+            let s = Solver::with(arm_of(m), base, tool);
+            let (to, rot) = s.forward(&q);
+            let sols = s.solve(to, &rot, &q);
+            prop_assert!(!sols.is_empty(), "{} at {q:?}: no solution", m.key);
+            for j in &sols {
+                let (p, r) = s.forward(j);
+                let d = (0..3).map(|i| (p[i] - to[i]).powi(2)).sum::<f64>().sqrt();
+                prop_assert!(d < 1e-6, "{}: {d} mm", m.key);
+                let q = |m| UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m));
+                let dr = q(r).angle_to(&q(rot));
+                prop_assert!(dr < 1e-6, "{}: {dr} rad", m.key);
+            }
+            if q[4].abs() > 1.0 {
+                let first = sols[0];
+                let wrap = |a: f64| (a + 180.0).rem_euclid(360.0) - 180.0;
+                for i in 0..6 {
+                    prop_assert!(wrap(first[i] - q[i]).abs() < 1e-6, "{} A{}: {first:?} vs {q:?}", m.key, i + 1);
+                }
+            }
+        }
+    }
+}
+
+fn build(path: &str) -> lmdc::verify::Verified {
+    let src = std::fs::read_to_string(path).unwrap();
+    lmdc::pipeline::compile(&src, &mut ())
+        .program
+        .unwrap_or_else(|| panic!("{path} compiles"))
+}
+
+fn files(p: &lmdc::verify::Verified, index: usize) -> BTreeMap<String, String> {
+    let mut sink = MemorySink::default();
+    let m = p.machine(index).expect("a verified machine");
+    lmdc::back::emit(m, &Templates::builtin().unwrap(), &mut sink).unwrap();
+    sink.files
+        .into_iter()
+        .map(|(n, b)| (n, String::from_utf8(b).unwrap()))
+        .collect()
+}
+
+/// `key <number>` in a KRL aggregate.
+fn field(agg: &str, key: &str) -> f64 {
+    agg.split(['{', ',', '}'])
+        .find_map(|p| p.trim().strip_prefix(key)?.strip_prefix(' '))
+        .and_then(|v| v.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no {key} in {agg}"))
+}
+
+/// Each example built on a declared arm: the KRL's first motion is a PTP
+/// with Status and Turn, and the axis solution of its pose (through the
+/// IR's arm, base and tool) with that Status and Turn is the one lmdc
+/// writes beside it.
+#[test]
+fn krl_first_pose_solves_back_to_the_reported_axes() {
+    let mut checked = 0;
+    for path in [
+        "examples/sprocket_tooth.lmd",
+        "examples/wedge.lmd",
+        "examples/flange.lmd",
+    ] {
+        let p = build(path);
+        for (i, m) in p.ir().machines.iter().enumerate() {
+            let Machine::Robot(r) = m else { continue };
+            assert!(r.arm.is_some(), "{path}: the example declares its arm");
+            let f = files(&p, i);
+            let module = f
+                .iter()
+                .find(|(n, _)| n.ends_with("_m001.src"))
+                .map(|(_, t)| t)
+                .unwrap();
+            let first = module
+                .lines()
+                .find(|l| l.starts_with("LIN ") || l.starts_with("PTP "))
+                .unwrap();
+            assert!(first.starts_with("PTP {X "), "{path}: {first}");
+            let (agg, comment) = first.split_once(" ; from home, axes ").unwrap();
+            let pos = [field(agg, "X"), field(agg, "Y"), field(agg, "Z")];
+            let abc = [field(agg, "A"), field(agg, "B"), field(agg, "C")];
+            let (st, tu) = (field(agg, "S") as u8, field(agg, "T") as u8);
+            let reported: Vec<f64> = comment
+                .split_whitespace()
+                .skip(1)
+                .step_by(2)
+                .map(|v| v.parse().unwrap())
+                .collect();
+            let s = Solver::new(r).unwrap();
+            let rot = *Rotation3::from_euler_angles(
+                abc[2].to_radians(),
+                abc[1].to_radians(),
+                abc[0].to_radians(),
+            )
+            .matrix();
+            let sols = s.solve(pos, &rot, &r.home);
+            let matching: Vec<_> = sols
+                .iter()
+                .filter(|j| s.status(j) == st && Solver::turn(j) == tu)
+                .collect();
+            assert!(
+                !matching.is_empty(),
+                "{path}: no solution with S {st} T {tu}"
+            );
+            let near = matching
+                .iter()
+                .any(|j| j.iter().zip(&reported).all(|(a, b)| (a - b).abs() < 0.01));
+            assert!(near, "{path}: {matching:?} vs reported {reported:?}");
+            checked += 1;
+        }
+    }
+    assert!(checked >= 3);
+}
+
+/// The G-code's first move is the safe lift: rs274's first traverse moves
+/// Z alone (X and Y stay where the machine stands, 0 in rs274), to above
+/// every point of the part; the program ends at that height.
+#[test]
+fn gcode_starts_and_ends_at_the_safe_height() {
+    if rs274::find_rs274().is_none() {
+        crate::support::skip::skip(
+            "gcode_starts_and_ends_at_the_safe_height",
+            "rs274",
+            "bash .ci/install-rs274.sh",
+        );
+        return;
+    }
+    let p = build("examples/sprocket_tooth.lmd");
+    let top = p
+        .ir()
+        .layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .flat_map(|p| &p.points)
+        .map(|pt| pt.focus()[2])
+        .fold(f64::NEG_INFINITY, f64::max);
+    for (i, m) in p.ir().machines.iter().enumerate() {
+        let Machine::Cnc(c) = m else { continue };
+        let text: String = files(&p, i).into_values().collect();
+        let calls = rs274::interpret_source(&text).unwrap();
+        let body = rs274::program_body(&calls);
+        let moves: Vec<(f64, f64, f64)> = body
+            .iter()
+            .filter_map(|c| match *c {
+                CanonCall::Traverse { x, y, z, .. } | CanonCall::Feed { x, y, z, .. } => {
+                    Some((x, y, z))
+                }
+                _ => None,
+            })
+            .collect();
+        let (x, y, z) = moves[0];
+        assert!(matches!(
+            body.iter()
+                .find(|c| matches!(c, CanonCall::Traverse { .. } | CanonCall::Feed { .. })),
+            Some(CanonCall::Traverse { .. })
+        ));
+        assert_eq!((x, y), (0.0, 0.0), "the first move lifts Z alone");
+        assert!(
+            (z - (top + c.clearance)).abs() < 1e-3,
+            "lifts to {z}, want {}",
+            top + c.clearance
+        );
+        let last = moves.last().unwrap();
+        assert!(
+            (last.2 - z).abs() < 1e-3,
+            "ends at {}, not the safe height {z}",
+            last.2
+        );
+    }
+}
