@@ -530,13 +530,26 @@ slicing variable { layers = auto  scan = x  segments { tolerance = 0.1 mm } }";
 
 /// Codes no input can give, and why. Keep this list short: a code that an
 /// input can give belongs in a test above.
-const NO_INPUT: &[(Code, &str)] = &[(
-    Code::PowderArrival,
-    "the motion plan waits `pre_flow` and `arrival` before every laser start it makes \
+const NO_INPUT: &[(Code, &str)] = &[
+    (Code::Usage, USAGE),
+    (Code::Unreadable, USAGE),
+    (Code::NoSuchMachine, USAGE),
+    (Code::BadSet, USAGE),
+    (Code::Output, USAGE),
+    (Code::DeniedWarnings, USAGE),
+    (
+        Code::PowderArrival,
+        "the motion plan waits `pre_flow` and `arrival` before every laser start it makes \
      (src/plan/mod.rs, `prepare`), from the same cell the rule reads, whatever the IR: \
      the rule guards against a fault in the plan, tested on hand-made moves in \
      src/check/cell.rs's unit tests",
-)];
+    ),
+];
+
+/// Why the command line's codes have no input here.
+const USAGE: &str = "a mistake of the command line or its files, not of the .lmd text: \
+     tests/cli_ci.rs gives each (usage_and_file_errors_are_json_objects_with_a_code, \
+     deny_warnings_fails_a_file_with_warnings_and_writes_nothing)";
 
 /// Every base compiles without a diagnostic, so what a test shows is its
 /// input's.

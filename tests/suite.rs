@@ -10,6 +10,7 @@ mod atomic_output;
 mod cases;
 mod cell_io;
 mod cli;
+mod cli_ci;
 mod codes;
 mod deposit;
 mod diagnostics;

@@ -3,6 +3,7 @@
 
 use crate::ir::{Layer, Program};
 use crate::numbers::{duration, energy, fixed, length, mass};
+use crate::provenance::{Provenance, VERSION};
 use crate::verify::Summary;
 
 /// Longest name written into a comment: the comment lines of the built-in
@@ -36,6 +37,27 @@ pub fn summary(s: &Summary) -> String {
         energy(t.energy_j),
         mass(t.powder_g),
     )
+}
+
+/// `source` (the `.lmd` file as given on the command line, at most
+/// [`MAX_SHOWN`] characters, its end kept: the file's name says more than
+/// the first directories), `sha256` (of the source's bytes), `set` (the
+/// constants `--set` replaced, `NAME = VALUE; …`, empty when none) and
+/// `version` (lmdc's), each passed through the back end's comment
+/// sanitiser `safe`: every program names what it was compiled from.
+pub fn provenance(ctx: &mut tera::Context, p: &Provenance, safe: &dyn Fn(&str) -> String) {
+    let file = p.shown_file();
+    let n = file.chars().count();
+    let file = if n <= MAX_SHOWN {
+        file.to_string()
+    } else {
+        let tail: String = file.chars().skip(n - (MAX_SHOWN - 3)).collect();
+        format!("...{tail}")
+    };
+    ctx.insert("source", &safe(&file));
+    ctx.insert("sha256", &p.sha256);
+    ctx.insert("set", &safe(&p.set.join("; ")));
+    ctx.insert("version", VERSION);
 }
 
 /// `layers`, `paths`, `points`: the program's totals.
