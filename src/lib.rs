@@ -7,6 +7,7 @@ pub mod control;
 pub mod deposit;
 pub mod diag;
 pub mod fill;
+pub mod fmt;
 pub mod geometry;
 pub mod invalid;
 pub mod ir;

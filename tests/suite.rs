@@ -17,6 +17,7 @@ mod diagnostics;
 mod duct_geometry;
 mod fill;
 mod fixture_sanity;
+mod fmt;
 mod gcode_kinematics;
 mod gcode_program;
 mod gcode_rs274;

@@ -74,3 +74,10 @@ pub fn fail(file: &Path, d: Diagnostic) -> u8 {
         _ => super::EXIT_USAGE,
     }
 }
+
+/// Prints `d` in this run's format, without colour (`lmdc fmt`, which has
+/// no place to be told otherwise).
+pub fn print_default(d: &Diagnostics, file: &Path, source: &str) {
+    let format = FORMAT.get().copied().unwrap_or(MessageFormat::Human);
+    print(d, file, source, false, format);
+}

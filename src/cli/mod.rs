@@ -1,6 +1,7 @@
 //! The `lmdc` command line: argument parsing, reading the source, printing
 //! diagnostics, writing outputs atomically, exit codes.
 
+mod fmt;
 pub mod messages;
 pub mod preview;
 pub mod progress;
@@ -171,6 +172,15 @@ enum Command {
         #[arg(short = 'o', long = "out", value_name = "FILE")]
         out: Option<PathBuf>,
     },
+    /// Format .lmd files in the canonical layout (docs/fmt.md), in place; from stdin to
+    /// stdout without FILES. Comments are kept and the meaning never changes.
+    Fmt {
+        /// The .lmd files (none: stdin).
+        files: Vec<PathBuf>,
+        /// Write nothing; exit 1 listing the files that are not formatted (for CI).
+        #[arg(long)]
+        check: bool,
+    },
     /// Run a ring's height loop (`control height`) offline against its declared plant: each segment's speed, height and total, layer by layer, and the final totals against the target.
     Simulate {
         /// The .lmd file.
@@ -233,6 +243,7 @@ pub fn run(cli: Cli) -> u8 {
                 None => EXIT_PROGRAM,
             }
         }
+        Command::Fmt { files, check } => fmt::run(&files, check),
         Command::Simulate { file, csv, every } => simulate(&file, csv.as_deref(), every, &common),
         Command::Build {
             file,
@@ -496,7 +507,7 @@ fn simulate(file: &Path, csv: Option<&Path>, every: usize, common: &Common) -> u
 /// Reads the source, at most [`MAX_SOURCE`] bytes whatever the file claims to
 /// be: metadata says nothing about `/dev/zero`, a pipe or a file still
 /// growing, so the read itself stops one byte past the cap.
-fn read_source(file: &Path) -> Option<String> {
+pub(crate) fn read_source(file: &Path) -> Option<String> {
     use std::io::Read;
     let fail = |why: String| {
         messages::fail(file, usage::unreadable(&shown(file), &why));
