@@ -495,6 +495,9 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
         "machine kr { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  gas { output = 1 } }";
     io_dialect: IoDialect, PLATE,
         "machine mill { kind = cnc  axes = 3  dialect = fagor8070  max_speed = 50 mm/s  gas { output = 2 } }";
+    // Sinumerik's own system variables in the help, not LinuxCNC's M64.
+    io_dialect_sinumerik: IoDialect, PLATE,
+        "machine mill { kind = cnc  axes = 3  dialect = sinumerik840d  max_speed = 50 mm/s  gas { output = 2 } }";
     // 6 mm/s from rest at 100 mm/s²: v²/2a = 0.18 mm of ramp lays 0.18 mm of
     // bead more, 8.2 % of a 2.2 mm bead width at each start and end.
     deposit_bump: DepositBump, PLATE,

@@ -16,6 +16,7 @@ mod deposit;
 mod diagnostics;
 mod duct_geometry;
 mod fill;
+mod first_use;
 mod fixture_sanity;
 mod fmt;
 mod gcode_kinematics;

@@ -71,19 +71,25 @@ pub fn counts(ctx: &mut tera::Context, prog: &Program) {
 }
 
 /// The variables of a layer's comment block: `layer` (0-based index), `number`
-/// (1-based), `layers`, `station`, `h_min`/`h_max` (deposit heights in mm, every
-/// point's if the layer deposits nothing), `paths`, `points`.
+/// (1-based), `layers`, `station`, `h_min`/`h_max` (deposit heights in mm — of every
+/// point the laser is on towards or from, the end of each run included —
+/// every point's if the layer deposits nothing), `paths`, `points`.
 pub fn layer_context(ctx: &mut tera::Context, li: usize, n_layers: usize, layer: &Layer) {
     let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
     let (mut any_on, mut points) = (false, 0usize);
     for path in &layer.paths {
         points += path.points.len();
+        // A point deposits when the laser is on towards it or from it: the
+        // end of a run (laser off from there on) is the run's last deposit.
+        let mut arriving = false;
         for pt in &path.points {
-            if pt.laser_on && !any_on {
+            let deposits = pt.laser_on || arriving;
+            arriving = pt.laser_on;
+            if deposits && !any_on {
                 any_on = true;
                 (lo, hi) = (f32::INFINITY, f32::NEG_INFINITY);
             }
-            if pt.laser_on || !any_on {
+            if deposits || !any_on {
                 lo = lo.min(pt.layer_height);
                 hi = hi.max(pt.layer_height);
             }

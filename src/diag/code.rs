@@ -324,7 +324,7 @@ codes! {
     PowderMismatch = "powder-mismatch", Warnings,
         "a mass-balance bead model fitted at another powder feed than the process feeds";
     Unused = "unused", Warnings,
-        "something that has no effect: `inheritance` without styles, `corner_angle` without `near_corner`, a style's `powder` (recorded in the IR, not programmed), a style that sets no value, a `when` block no track can meet (`shorter_than` ≤ `longer_than`, layers past the last), a style that picks no track on any layer, inheritance with a raster that turns between layers";
+        "something that has no effect: `inheritance` without styles, `corner_angle` without `near_corner`, a style's `powder` on a machine whose feeder has no rate output (recorded in the IR, not programmed there), a style that sets no value, a `when` block no track can meet (`shorter_than` ≤ `longer_than`, layers past the last), a style that picks no track on any layer, inheritance with a raster that turns between layers";
     OverlapStretch = "overlap-stretch", Warnings,
         "the balanced spacing of unequal-height tracks had to be stretched (or squeezed) by more than 5 % to land the last track half a bead inside the far edge: the tracks are scanned about that much slower (faster) to fill their strips, and the help names the footprint width that needs no stretch";
     SeamAtBendExtreme = "seam-at-bend-extreme", Warnings,
