@@ -438,6 +438,10 @@ fn expr(src: &str, e: &Expr) -> String {
             } else {
                 (strength(lhs) < me, strength(rhs) <= me)
             };
+            // `a / (1 mm/s)`: a quantity with a compound unit after `*` or
+            // `/` keeps its brackets, for the reader (the tree is the same).
+            let compound = matches!(&rhs.kind, ExprKind::Number { unit: Some(u), .. } if u.node.contains(['/', '*', '·']));
+            let r = r || (compound && matches!(op, BinOp::Mul | BinOp::Div));
             format!(
                 "{} {} {}",
                 wrapped(src, lhs, l),
@@ -599,6 +603,8 @@ mod tests {
             ("let a = 2 ^ -2", "let a = 2 ^ (-2)"),
             ("let a = (1 .. 2)", "let a = 1 .. 2"),
             ("let a = - - 1", "let a = --1"),
+            ("let a = 2 mm / (1 mm/s)", "let a = 2 mm / (1 mm/s)"),
+            ("let a = 2 mm / 1 mm", "let a = 2 mm / 1 mm"),
         ] {
             assert_eq!(fmt(src), format!("{want}\n"), "{src}");
         }

@@ -340,9 +340,9 @@ fn ring_with_cell() -> String {
         "segmented_ring.lmd",
         &[
             (
-                "  height_delay = 150 ms                 // on the input 150 ms after a segment ends\n}",
+                "  height_delay = 150 ms     // on the input 150 ms after a segment ends\n}",
                 &format!(
-                    "  height_delay = 150 ms                 // on the input 150 ms after a segment ends\n{}}}",
+                    "  height_delay = 150 ms     // on the input 150 ms after a segment ends\n{}}}",
                     io(2, 3, 2)
                 ),
             ),

@@ -260,7 +260,7 @@ fn a_loop_needs_linuxcnc_or_a_robot_and_a_sensor() {
     assert!(text.contains("run = schedule"), "{text}");
 
     let blind = example().replace(
-        "  height_input = 3                      // $ANIN[3]: the vision sensor's segment mean\n  height_full_scale = 2 mm              // $ANIN = 1.0 is 2 mm\n  height_delay = 150 ms                 // on the input 150 ms after a segment ends\n",
+        "  height_input = 3          // $ANIN[3]: the vision sensor's segment mean\n  height_full_scale = 2 mm  // $ANIN = 1.0 is 2 mm\n  height_delay = 150 ms     // on the input 150 ms after a segment ends\n",
         "",
     );
     assert_ne!(blind, example());

@@ -29,6 +29,7 @@ mod holes_ir;
 mod krl_parser;
 mod krl_program;
 mod laser_timing;
+mod library;
 mod machine_checks;
 mod message_format;
 mod placement;

@@ -269,6 +269,13 @@ pub trait Visit {
     fn segment_end(&mut self, _end: SegmentEnd) {}
 }
 
+/// A closure told every move (and nothing else): the shortest walker.
+impl<F: FnMut(&Move)> Visit for F {
+    fn motion(&mut self, m: &Move) {
+        self(m)
+    }
+}
+
 /// Two visitors following one plan side by side (the verifier's rules and
 /// its summary), each told everything in turn.
 impl<A: Visit, B: Visit> Visit for (A, B) {
