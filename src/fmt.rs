@@ -1,7 +1,7 @@
 //! `lmdc fmt`: one canonical layout for `.lmd` files.
 //!
 //! The layout is printed from the syntax tree, so it cannot change what the
-//! file means: [`format`] parses its own output and refuses to return text
+//! file means: [`format()`] parses its own output and refuses to return text
 //! whose tree ([`without_spans`]) differs from the input's. Comments are not
 //! in the tree; they are found in the text and put back where they were —
 //! before the statement that follows them, or after the statement whose

@@ -33,6 +33,7 @@ mod library;
 mod machine_checks;
 mod message_format;
 mod placement;
+mod plan_lines;
 mod planar;
 mod program_text;
 mod progress;

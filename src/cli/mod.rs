@@ -109,6 +109,8 @@ enum Emit {
     Programs,
     /// The plan as JSON: OUT/<part>.ir.json (see docs/ir.md).
     Ir,
+    /// Each machine's motion plan as JSON lines: OUT/<part>_<machine>.plan.jsonl (docs/plan.md).
+    Plan,
 }
 
 #[derive(Subcommand, Debug)]
@@ -365,6 +367,11 @@ fn build(args: BuildArgs<'_>, common: &Common, mut progress: Progress) -> u8 {
     if let Err(code) = write_programs(&program, &templates, &mut sink, &mut inner, out) {
         return code;
     }
+    if emit.contains(&Emit::Plan) {
+        if let Err(code) = write_plans(&program, &mut sink) {
+            return code;
+        }
+    }
     if emit.contains(&Emit::Ir) {
         if let Err(code) = write_ir(&program, &mut sink) {
             return code;
@@ -441,6 +448,34 @@ fn write_programs(
             usage::output(&format!("writing into {}: {e}", shown(out))),
         )),
     }
+}
+
+/// Writes each machine's motion plan as `<part>_<machine>.plan.jsonl` into
+/// `sink`, each a set of its own.
+fn write_plans(program: &lmdc::verify::Verified, sink: &mut sink::AtomicDir) -> Result<(), u8> {
+    use lmdc::back::Sink;
+    for m in program.machines() {
+        let stem = format!("{}_{}", program.ir().part, m.machine().name());
+        let name = format!(
+            "{}.plan.jsonl",
+            lmdc::target::names::windows_safe(&lmdc::back::identifier(&stem, 64))
+        );
+        let written = (|| -> std::io::Result<()> {
+            let mut w = sink.create(&name)?;
+            lmdc::plan::lines::write(&m.plan(), m.machine(), &mut w)?;
+            w.flush()
+        })();
+        if let Err(e) = written {
+            let why = format!("writing {name}: {e}");
+            return Err(messages::fail(Path::new(""), usage::output(&why)));
+        }
+        let end = sink.counter().get();
+        sink.end_set(
+            set_key(program, Some(format!("{}.plan", m.machine().name()))),
+            end,
+        );
+    }
+    Ok(())
 }
 
 /// Writes the IR as `<part>.ir.json` into `sink`, a set of its own.

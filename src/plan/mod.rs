@@ -76,6 +76,7 @@
 //! no leads (its programs write their own moves).
 
 pub mod kinematics;
+pub mod lines;
 pub mod profile;
 
 use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program, Ramp, Ring};
