@@ -19,9 +19,21 @@ fn main() -> ExitCode {
         Ok(c) => c,
         Err(e) => {
             // --help and --version are not errors.
-            let code = if e.use_stderr() { cli::EXIT_USAGE } else { 0 };
+            if !e.use_stderr() {
+                let _ = e.print();
+                return ExitCode::from(0);
+            }
+            if asks_for_json() {
+                cli::messages::set_format(cli::messages::MessageFormat::Json);
+                let text = e.to_string();
+                // clap's first line says it; the rest is usage for people.
+                let first = text.lines().next().unwrap_or_default();
+                let first = first.strip_prefix("error: ").unwrap_or(first);
+                let d = lmdc::diag::usage::usage(first);
+                return ExitCode::from(cli::messages::fail(std::path::Path::new(""), d));
+            }
             let _ = e.print();
-            return ExitCode::from(code);
+            return ExitCode::from(cli::EXIT_USAGE);
         }
     };
     let worker = std::thread::Builder::new()
@@ -40,4 +52,15 @@ fn main() -> ExitCode {
             ExitCode::from(cli::EXIT_USAGE)
         }
     }
+}
+
+/// Whether the command line asks for `--message-format json`, read before
+/// clap has parsed it (it failed to): a CI job that asked for JSON gets its
+/// usage errors as JSON too.
+fn asks_for_json() -> bool {
+    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    args.iter().any(|a| a == "--message-format=json")
+        || args
+            .windows(2)
+            .any(|w| w[0] == "--message-format" && w[1] == "json")
 }

@@ -10,6 +10,8 @@
 
 use crate::back::{self, EmitError, Sink, Templates};
 use crate::diag::{Code, Diagnostics};
+use crate::overrides::{Override, SetError};
+use crate::provenance::Provenance;
 use crate::sema::model::Model;
 use crate::verify::{self, Select, Verified};
 use crate::{lower, sema, syntax};
@@ -43,6 +45,52 @@ pub struct NoSuchMachine {
     pub declared: String,
 }
 
+/// What a compilation is asked for besides the source: the command line's
+/// `FILE`, `--machine` and `--set`.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Options {
+    /// The file the source was read from, as the programs' headers name it
+    /// (`None`: text from no file).
+    pub file: Option<String>,
+    /// Only this machine's checks and program (`None`: every machine).
+    pub machine: Option<String>,
+    /// Top-level constants replaced before the file is checked (`--set`).
+    pub set: Vec<Override>,
+    /// Reads the data files the program names (`fit(…, data = "…")`;
+    /// `None`: a program that names one is refused).
+    pub data: Option<DataFiles>,
+}
+
+/// Reads a data file a program names, by its path as written.
+#[derive(Clone)]
+pub struct DataFiles(pub sema::DataReader);
+
+impl std::fmt::Debug for DataFiles {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("DataFiles(..)")
+    }
+}
+
+impl PartialEq for DataFiles {
+    fn eq(&self, other: &Self) -> bool {
+        std::rc::Rc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl Eq for DataFiles {}
+
+/// What the command line asked for cannot be done with this file: the
+/// source itself may be fine.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum UsageError {
+    /// `--machine` names no machine of the file.
+    #[error(transparent)]
+    Machine(#[from] NoSuchMachine),
+    /// A `--set` the file cannot take.
+    #[error(transparent)]
+    Set(#[from] SetError),
+}
+
 /// Compiles `source` to verified IR for every machine it declares.
 pub fn compile(source: &str, obs: &mut dyn Observer) -> Compiled {
     match compile_for(source, None, obs) {
@@ -58,63 +106,73 @@ pub fn compile_for(
     machine: Option<&str>,
     obs: &mut dyn Observer,
 ) -> Result<Compiled, NoSuchMachine> {
-    compile_keeping(source, machine, obs, None)
+    let options = Options {
+        machine: machine.map(str::to_string),
+        ..Options::default()
+    };
+    compile_with(source, &options, obs).map_err(|e| match e {
+        UsageError::Machine(m) => m,
+        UsageError::Set(_) => unreachable!("nothing was set"),
+    })
 }
 
-/// [`compile_for`], also giving back the checked model when the program
+/// Compiles `source` as `options` say.
+pub fn compile_with(
+    source: &str,
+    options: &Options,
+    obs: &mut dyn Observer,
+) -> Result<Compiled, UsageError> {
+    compile_keeping(source, options, obs, None)
+}
+
+/// [`compile_with`], also giving back the checked model when the program
 /// compiled (the plan report reads its bead model and design solid).
 pub fn compile_with_model(
     source: &str,
-    machine: Option<&str>,
+    options: &Options,
     obs: &mut dyn Observer,
-) -> Result<(Compiled, Option<Model>), NoSuchMachine> {
+) -> Result<(Compiled, Option<Model>), UsageError> {
     let mut model = None;
-    let c = compile_keeping(source, machine, obs, Some(&mut model))?;
+    let c = compile_keeping(source, options, obs, Some(&mut model))?;
     if c.program.is_none() {
         model = None;
     }
     Ok((c, model))
 }
 
-/// [`compile_with_model`], reading the data files the program names
-/// (`fit(…, data = "…")`) with `data`: the CLI's reader opens them beside
-/// the .lmd file.
+/// [`compile_with_model`] for `machine`, reading the data files the
+/// program names (`fit(…, data = "…")`) with `data`: the CLI's reader opens
+/// them beside the .lmd file.
 pub fn compile_reading(
     source: &str,
     machine: Option<&str>,
     obs: &mut dyn Observer,
     data: sema::DataReader,
 ) -> Result<(Compiled, Option<Model>), NoSuchMachine> {
-    let mut model = None;
-    let mut diagnostics = Diagnostics::new();
-    let program = run(
-        source,
-        machine,
-        obs,
-        &mut diagnostics,
-        (Some(&mut model), Some(data)),
-    )?;
-    diagnostics.sort_by_source();
-    if program.is_none() {
-        model = None;
-    }
-    Ok((
-        Compiled {
-            program,
-            diagnostics,
-        },
-        model,
-    ))
+    let options = Options {
+        machine: machine.map(str::to_string),
+        data: Some(DataFiles(data)),
+        ..Options::default()
+    };
+    compile_with_model(source, &options, obs).map_err(|e| match e {
+        UsageError::Machine(m) => m,
+        UsageError::Set(_) => unreachable!("nothing was set"),
+    })
 }
 
 fn compile_keeping(
     source: &str,
-    machine: Option<&str>,
+    options: &Options,
     obs: &mut dyn Observer,
     keep: Option<&mut Option<Model>>,
-) -> Result<Compiled, NoSuchMachine> {
+) -> Result<Compiled, UsageError> {
     let mut diagnostics = Diagnostics::new();
-    let program = run(source, machine, obs, &mut diagnostics, (keep, None))?;
+    let mut program = run(source, options, obs, &mut diagnostics, keep)?;
+    if let Some(p) = &mut program {
+        let mut from = Provenance::new(source, options.file.as_deref());
+        from.set = options.set.iter().map(|s| s.to_string()).collect();
+        p.set_provenance(from);
+    }
     diagnostics.sort_by_source();
     Ok(Compiled {
         program,
@@ -124,20 +182,22 @@ fn compile_keeping(
 
 fn run(
     source: &str,
-    machine: Option<&str>,
+    options: &Options,
     obs: &mut dyn Observer,
     diagnostics: &mut Diagnostics,
-    (keep, data): (Option<&mut Option<Model>>, Option<sema::DataReader>),
-) -> Result<Option<Verified>, NoSuchMachine> {
-    let ast = match syntax::parse(source) {
+    keep: Option<&mut Option<Model>>,
+) -> Result<Option<Verified>, UsageError> {
+    let mut ast = match syntax::parse(source) {
         Ok(a) => a,
         Err(d) => {
             diagnostics.push(d);
             return Ok(None);
         }
     };
+    crate::overrides::apply(&mut ast, &options.set)?;
+    let machine = options.machine.as_deref();
     obs.stage("parse");
-    let (model, d) = sema::check_reading(&ast, data);
+    let (model, d) = sema::check_reading(&ast, options.data.as_ref().map(|d| d.0.clone()));
     drop(ast);
     diagnostics.extend(d);
     obs.stage("check");
@@ -149,7 +209,7 @@ fn run(
         Some(name) => match model.machines.iter().position(|(m, _)| m.name() == name) {
             Some(i) => Select::One(i),
             None => {
-                return Err(NoSuchMachine {
+                return Err(UsageError::Machine(NoSuchMachine {
                     name: name.to_string(),
                     declared: model
                         .machines
@@ -157,7 +217,7 @@ fn run(
                         .map(|(m, _)| m.name())
                         .collect::<Vec<_>>()
                         .join(", "),
-                })
+                }))
             }
         },
     };
@@ -259,27 +319,29 @@ pub struct RingSimulation {
     pub analysis: crate::control::Analysis,
 }
 
-/// Checks `source` and runs its ring's loop against the declared plant. A
-/// loop the verifier would refuse (unstable, too slow) is still simulated —
-/// seeing it diverge is the point — and its findings come with it.
-pub fn simulate(source: &str) -> Simulated {
+/// Checks `source` (its constants replaced as `set` says) and runs its
+/// ring's loop against the declared plant. A loop the verifier would refuse
+/// (unstable, too slow) is still simulated — seeing it diverge is the point —
+/// and its findings come with it.
+pub fn simulate(source: &str, set: &[Override]) -> Result<Simulated, SetError> {
     use crate::sema::model::Build;
     let mut diagnostics = Diagnostics::new();
     let done = |run, mut diagnostics: Diagnostics, nothing| {
         diagnostics.sort_by_source();
-        Simulated {
+        Ok(Simulated {
             run,
             diagnostics,
             nothing,
-        }
+        })
     };
-    let ast = match syntax::parse(source) {
+    let mut ast = match syntax::parse(source) {
         Ok(a) => a,
         Err(d) => {
             diagnostics.push(d);
             return done(None, diagnostics, None);
         }
     };
+    crate::overrides::apply(&mut ast, set)?;
     let (model, d) = sema::check(&ast);
     diagnostics.extend(d);
     let Some(model) = model.filter(|_| !diagnostics.has_errors()) else {

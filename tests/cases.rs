@@ -9,7 +9,7 @@ use crate::support::expected::{self, blessing};
 use lmdc::back::{MemorySink, Templates};
 use lmdc::diag::json::Encoder;
 use lmdc::diag::render;
-use lmdc::pipeline::{compile_reading, emit};
+use lmdc::pipeline::{compile_with, emit, DataFiles, Options};
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::fs;
@@ -120,7 +120,12 @@ pub fn produce(case: &Path) -> BTreeMap<String, Vec<u8>> {
     let data: lmdc::sema::DataReader = std::rc::Rc::new(move |path: &str| {
         fs::read_to_string(dir.join(path)).map_err(|e| e.to_string())
     });
-    let (c, _) = compile_reading(&src, None, &mut (), data).unwrap();
+    let options = Options {
+        file: Some(name.clone()),
+        data: Some(DataFiles(data)),
+        ..Options::default()
+    };
+    let c = compile_with(&src, &options, &mut ()).expect("no machine named, nothing set");
     let mut out = BTreeMap::new();
     if !c.diagnostics.is_empty() {
         // What `lmdc check FILE --color never` draws on stderr, and what
@@ -142,7 +147,9 @@ pub fn produce(case: &Path) -> BTreeMap<String, Vec<u8>> {
     let mut sink = MemorySink::default();
     emit(&p, &Templates::builtin().unwrap(), &mut sink, &mut ())
         .unwrap_or_else(|e| panic!("{name}: emitting failed: {e}"));
+    let hash = lmdc::provenance::sha256_hex(src.as_bytes());
     for (file, bytes) in sink.files {
+        let bytes = without_hash(&name, &file, bytes, &hash);
         assert!(
             !out.contains_key(&file) && file != INPUT && file != IR,
             "{name}: lmdc writes {file} twice, or over a file of the case"
@@ -160,6 +167,29 @@ pub fn produce(case: &Path) -> BTreeMap<String, Vec<u8>> {
         );
     }
     out
+}
+
+/// What the expected programs hold in place of the source's sha256: a case's
+/// programs do not change with a comment of its input (the headers'
+/// provenance line is tested in tests/cli_ci.rs against `sha256sum`).
+pub const HASH: &str = "<sha256 of the source>";
+
+/// `bytes` (the program `file` of input `name`) with the source's `hash`
+/// replaced by [`HASH`]: every line naming a `sha256` names the source's.
+fn without_hash(name: &str, file: &str, bytes: Vec<u8>, hash: &str) -> Vec<u8> {
+    let text = String::from_utf8(bytes).unwrap_or_else(|e| panic!("{name}: {file}: {e}"));
+    let named = text.lines().filter(|l| l.contains("sha256 ")).count();
+    assert_eq!(
+        text.matches(hash).count(),
+        named,
+        "{name}: {file}: a sha256 that is not its source's"
+    );
+    let main = file.ends_with(".src") || !file.ends_with(".dat");
+    assert!(
+        !main || named > 0,
+        "{name}: {file} does not name its source"
+    );
+    text.replace(hash, HASH).into_bytes()
 }
 
 /// Every case's files are what lmdc produces for its input. `LMDC_CASE=text`

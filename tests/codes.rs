@@ -538,6 +538,9 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
         "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = -3 mm, z = 1000 mm) }";
     arm_unchecked: ArmUnchecked, DUCT,
         "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha }";
+    // Sinumerik's own system variables in the help, not LinuxCNC's M64.
+    io_dialect_sinumerik: IoDialect, PLATE,
+        "machine mill { kind = cnc  axes = 3  dialect = sinumerik840d  max_speed = 50 mm/s  gas { output = 2 } }";
     // 6 mm/s from rest at 100 mm/s²: v²/2a = 0.18 mm of ramp lays 0.18 mm of
     // bead more, 8.2 % of a 2.2 mm bead width at each start and end.
     deposit_bump: DepositBump, PLATE,
@@ -573,13 +576,26 @@ slicing variable { layers = auto  scan = x  segments { tolerance = 0.1 mm } }";
 
 /// Codes no input can give, and why. Keep this list short: a code that an
 /// input can give belongs in a test above.
-const NO_INPUT: &[(Code, &str)] = &[(
-    Code::PowderArrival,
-    "the motion plan waits `pre_flow` and `arrival` before every laser start it makes \
+const NO_INPUT: &[(Code, &str)] = &[
+    (Code::Usage, USAGE),
+    (Code::Unreadable, USAGE),
+    (Code::NoSuchMachine, USAGE),
+    (Code::BadSet, USAGE),
+    (Code::Output, USAGE),
+    (Code::DeniedWarnings, USAGE),
+    (
+        Code::PowderArrival,
+        "the motion plan waits `pre_flow` and `arrival` before every laser start it makes \
      (src/plan/mod.rs, `prepare`), from the same cell the rule reads, whatever the IR: \
      the rule guards against a fault in the plan, tested on hand-made moves in \
      src/check/cell.rs's unit tests",
-)];
+    ),
+];
+
+/// Why the command line's codes have no input here.
+const USAGE: &str = "a mistake of the command line or its files, not of the .lmd text: \
+     tests/cli_ci.rs gives each (usage_and_file_errors_are_json_objects_with_a_code, \
+     deny_warnings_fails_a_file_with_warnings_and_writes_nothing)";
 
 /// Every base compiles without a diagnostic, so what a test shows is its
 /// input's.

@@ -305,3 +305,28 @@ fn a_bead_fitted_to_a_sheet_reads_the_sheet_beside_the_file() {
     assert!(d.iter().any(|d| d["severity"] == 1), "{d:?}");
     stop(c);
 }
+
+#[test]
+fn formatting_is_lmdc_fmt_as_one_edit() {
+    let mut c = started();
+    let uri = "file:///f.lmd";
+    let text = "part p\nlet   w =  6 mm   // wide\n";
+    c.open(uri, text);
+    let edits = c.request(
+        "textDocument/formatting",
+        json!({ "textDocument": { "uri": uri }, "options": { "tabSize": 2, "insertSpaces": true } }),
+    );
+    let want = lmdc::fmt::format(text).unwrap();
+    assert_ne!(want, text);
+    assert_eq!(edits.as_array().unwrap().len(), 1, "{edits}");
+    assert_eq!(edits[0]["newText"], want);
+    assert_eq!(
+        edits[0]["range"]["start"],
+        json!({ "line": 0, "character": 0 })
+    );
+    assert_eq!(
+        edits[0]["range"]["end"],
+        json!({ "line": 2, "character": 0 })
+    );
+    stop(c);
+}

@@ -54,7 +54,7 @@ fn close(a: f64, b: f64, what: &str) {
 
 #[test]
 fn a_rectangle_contour_on_two_layers() {
-    let (c, model) = compile_with_model(BOX, None, &mut ()).unwrap();
+    let (c, model) = compile_with_model(BOX, &Default::default(), &mut ()).unwrap();
     let (p, model) = (c.program.expect("compiles"), model.unwrap());
     let m = p.machines().next().unwrap();
     let r = Report::new(m, &model, Some(8.0));
@@ -97,7 +97,7 @@ fn a_rectangle_contour_on_two_layers() {
 
 #[test]
 fn one_straight_track_with_a_mass_balance_bead() {
-    let (c, _) = compile_with_model(BOX, None, &mut ()).unwrap();
+    let (c, _) = compile_with_model(BOX, &Default::default(), &mut ()).unwrap();
     let mut ir = c.program.unwrap().into_ir();
     // 10 mm along x at 5 mm/s, 1000 W, 6 g/min, one track 2 mm wide: by
     // the mass balance it lays A = η·ṁ/(ρ·v) = 0.4 · 0.1 g/s / (0.008 g/mm³

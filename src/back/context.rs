@@ -3,6 +3,7 @@
 
 use crate::ir::{Layer, Program};
 use crate::numbers::{duration, energy, fixed, length, mass};
+use crate::provenance::{Provenance, VERSION};
 use crate::verify::Summary;
 
 /// Longest name written into a comment: the comment lines of the built-in
@@ -38,6 +39,27 @@ pub fn summary(s: &Summary) -> String {
     )
 }
 
+/// `source` (the `.lmd` file as given on the command line, at most
+/// [`MAX_SHOWN`] characters, its end kept: the file's name says more than
+/// the first directories), `sha256` (of the source's bytes), `set` (the
+/// constants `--set` replaced, `NAME = VALUE; …`, empty when none) and
+/// `version` (lmdc's), each passed through the back end's comment
+/// sanitiser `safe`: every program names what it was compiled from.
+pub fn provenance(ctx: &mut tera::Context, p: &Provenance, safe: &dyn Fn(&str) -> String) {
+    let file = p.shown_file();
+    let n = file.chars().count();
+    let file = if n <= MAX_SHOWN {
+        file.to_string()
+    } else {
+        let tail: String = file.chars().skip(n - (MAX_SHOWN - 3)).collect();
+        format!("...{tail}")
+    };
+    ctx.insert("source", &safe(&file));
+    ctx.insert("sha256", &p.sha256);
+    ctx.insert("set", &safe(&p.set.join("; ")));
+    ctx.insert("version", VERSION);
+}
+
 /// `layers`, `paths`, `points`: the program's totals.
 pub fn counts(ctx: &mut tera::Context, prog: &Program) {
     ctx.insert("layers", &prog.layers.len());
@@ -49,19 +71,25 @@ pub fn counts(ctx: &mut tera::Context, prog: &Program) {
 }
 
 /// The variables of a layer's comment block: `layer` (0-based index), `number`
-/// (1-based), `layers`, `station`, `h_min`/`h_max` (deposit heights in mm, every
-/// point's if the layer deposits nothing), `paths`, `points`.
+/// (1-based), `layers`, `station`, `h_min`/`h_max` (deposit heights in mm — of every
+/// point the laser is on towards or from, the end of each run included —
+/// every point's if the layer deposits nothing), `paths`, `points`.
 pub fn layer_context(ctx: &mut tera::Context, li: usize, n_layers: usize, layer: &Layer) {
     let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
     let (mut any_on, mut points) = (false, 0usize);
     for path in &layer.paths {
         points += path.points.len();
+        // A point deposits when the laser is on towards it or from it: the
+        // end of a run (laser off from there on) is the run's last deposit.
+        let mut arriving = false;
         for pt in &path.points {
-            if pt.laser_on && !any_on {
+            let deposits = pt.laser_on || arriving;
+            arriving = pt.laser_on;
+            if deposits && !any_on {
                 any_on = true;
                 (lo, hi) = (f32::INFINITY, f32::NEG_INFINITY);
             }
-            if pt.laser_on || !any_on {
+            if deposits || !any_on {
                 lo = lo.min(pt.layer_height);
                 hi = hi.max(pt.layer_height);
             }

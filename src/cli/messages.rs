@@ -6,7 +6,7 @@
 
 use clap::ValueEnum;
 use lmdc::diag::json::Encoder;
-use lmdc::diag::{render, Diagnostics};
+use lmdc::diag::{render, Diagnostic, Diagnostics};
 use std::io::Write;
 use std::path::Path;
 
@@ -39,4 +39,45 @@ pub fn print(d: &Diagnostics, file: &Path, source: &str, color: bool, format: Me
             let _ = out.flush();
         }
     }
+}
+
+/// The format of this run, set once by [`set_format`] before anything is
+/// printed: the command line's usage errors are printed from everywhere in
+/// the CLI, each in the format the user asked for.
+static FORMAT: std::sync::OnceLock<MessageFormat> = std::sync::OnceLock::new();
+
+/// Sets the format of every usage error of this run.
+pub fn set_format(format: MessageFormat) {
+    let _ = FORMAT.set(format);
+}
+
+/// Prints a usage or file error (a report with no place in the source) in
+/// this run's format; `file` is the file it is about, as given ("" when
+/// none). Returns the exit code it calls for.
+pub fn fail(file: &Path, d: Diagnostic) -> u8 {
+    let name = file.display().to_string();
+    match FORMAT.get().copied().unwrap_or(MessageFormat::Human) {
+        MessageFormat::Human => {
+            eprintln!("error: {}", lmdc::diag::sanitize(&d.message));
+            if let Some(h) = &d.help {
+                eprintln!("  help: {}", lmdc::diag::sanitize(h));
+            }
+        }
+        MessageFormat::Json => {
+            let line = Encoder::new(&name, "").line(&d);
+            let mut out = std::io::stdout().lock();
+            let _ = writeln!(out, "{line}").and_then(|()| out.flush());
+        }
+    }
+    match d.code {
+        lmdc::diag::Code::DeniedWarnings => super::EXIT_PROGRAM,
+        _ => super::EXIT_USAGE,
+    }
+}
+
+/// Prints `d` in this run's format, without colour (`lmdc fmt`, which has
+/// no place to be told otherwise).
+pub fn print_default(d: &Diagnostics, file: &Path, source: &str) {
+    let format = FORMAT.get().copied().unwrap_or(MessageFormat::Human);
+    print(d, file, source, false, format);
 }

@@ -2,6 +2,7 @@
 //! diagnostics, writing outputs atomically, exit codes.
 
 mod fit;
+mod fmt;
 pub mod messages;
 pub mod preview;
 pub mod progress;
@@ -12,6 +13,8 @@ pub mod timings;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use lmdc::back::{EmitError, Templates};
+use lmdc::diag::usage;
+use lmdc::overrides::Override;
 use lmdc::pipeline::{self, Observer};
 use messages::MessageFormat;
 use progress::Progress;
@@ -52,6 +55,47 @@ pub struct Cli {
     /// No progress line on a terminal.
     #[arg(short, long, global = true)]
     quiet: bool,
+    /// Fail when the file has any warning: exit status 1, nothing written
+    /// (for CI; the warnings are reported as usual).
+    #[arg(long, global = true)]
+    deny_warnings: bool,
+    /// Replace the value of the file's top-level `let NAME` by VALUE, in a
+    /// unit of the same kind as the file's (`--set R1=300mm`); repeatable,
+    /// for parameter sweeps. The programs' headers list what was set.
+    #[arg(long = "set", global = true, value_name = "NAME=VALUE")]
+    set: Vec<Override>,
+}
+
+/// What every command shares: how to print, and what to change in the file.
+pub struct Common {
+    /// Colour the drawn reports.
+    pub color: bool,
+    /// `--message-format`.
+    pub format: MessageFormat,
+    /// `--deny-warnings`.
+    pub deny_warnings: bool,
+    /// `--set`.
+    pub set: Vec<Override>,
+}
+
+impl Common {
+    /// The pipeline's options for `file` and `machine`.
+    pub fn options(&self, file: &Path, machine: Option<&str>) -> pipeline::Options {
+        pipeline::Options {
+            file: Some(file.display().to_string()),
+            machine: machine.map(str::to_string),
+            set: self.set.clone(),
+            data: Some(pipeline::DataFiles(data_reader(file))),
+        }
+    }
+
+    /// The exit code `--deny-warnings` calls for after `d` was printed
+    /// (`None`: go on).
+    pub fn denied(&self, file: &Path, d: &lmdc::diag::Diagnostics) -> Option<u8> {
+        use lmdc::diag::Severity;
+        let n = d.iter().filter(|x| x.severity == Severity::Warning).count();
+        (self.deny_warnings && n > 0).then(|| messages::fail(file, usage::denied_warnings(n)))
+    }
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -67,6 +111,8 @@ enum Emit {
     Programs,
     /// The plan as JSON: OUT/<part>.ir.json (see docs/ir.md).
     Ir,
+    /// Each machine's motion plan as JSON lines: OUT/<part>_<machine>.plan.jsonl (docs/plan.md).
+    Plan,
 }
 
 #[derive(Subcommand, Debug)]
@@ -156,6 +202,15 @@ enum Command {
         /// One JSON object on stdout instead of text.
         #[arg(long)]
         json: bool,
+    },
+    /// Format .lmd files in the canonical layout (docs/fmt.md), in place; from stdin to
+    /// stdout without FILES. Comments are kept and the meaning never changes.
+    Fmt {
+        /// The .lmd files (none: stdin).
+        files: Vec<PathBuf>,
+        /// Write nothing; exit 1 listing the files that are not formatted (for CI).
+        #[arg(long)]
+        check: bool,
     },
     /// Run a ring's height loop (`control height`) offline against its declared plant: each segment's speed, height and total, layer by layer, and the final totals against the target.
     Simulate {
@@ -256,6 +311,13 @@ pub fn run(cli: Cli) -> u8 {
         Color::Auto => std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none(),
     };
     let format = cli.message_format;
+    messages::set_format(format);
+    let common = Common {
+        color,
+        format,
+        deny_warnings: cli.deny_warnings,
+        set: cli.set,
+    };
     // Progress only where a person watches: a terminal, not a log.
     let progress =
         |file: &Path| Progress::start(!cli.quiet && std::io::stderr().is_terminal(), shown(file));
@@ -265,20 +327,16 @@ pub fn run(cli: Cli) -> u8 {
                 return EXIT_USAGE;
             };
             let mut p = progress(&file);
-            let compiled = match pipeline::compile_reading(
-                &source,
-                machine.as_deref(),
-                &mut p,
-                data_reader(&file),
-            ) {
-                Ok((c, _)) => c,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return EXIT_USAGE;
-                }
+            let options = common.options(&file, machine.as_deref());
+            let compiled = match pipeline::compile_with(&source, &options, &mut p) {
+                Ok(c) => c,
+                Err(e) => return messages::fail(&file, usage::refused(&e)),
             };
             p.finish();
             messages::print(&compiled.diagnostics, &file, &source, color, format);
+            if let Some(code) = common.denied(&file, &compiled.diagnostics) {
+                return code;
+            }
             match compiled.program {
                 Some(p) => {
                     let n = p.machines().count();
@@ -294,9 +352,8 @@ pub fn run(cli: Cli) -> u8 {
                 None => EXIT_PROGRAM,
             }
         }
-        Command::Simulate { file, csv, every } => {
-            simulate(&file, csv.as_deref(), every, (color, format))
-        }
+        Command::Fmt { files, check } => fmt::run(&files, check),
+        Command::Simulate { file, csv, every } => simulate(&file, csv.as_deref(), every, &common),
         Command::Build {
             file,
             out,
@@ -314,7 +371,7 @@ pub fn run(cli: Cli) -> u8 {
                 templates: templates.as_deref(),
                 timings,
             };
-            build(args, (color, format), p)
+            build(args, &common, p)
         }
         Command::Report {
             file,
@@ -329,7 +386,7 @@ pub fn run(cli: Cli) -> u8 {
                 json,
                 density,
             };
-            report::run(args, color, format, p)
+            report::run(args, &common, p)
         }
         Command::Lsp => match lmdc::lsp::run_stdio() {
             Ok(()) => 0,
@@ -341,7 +398,7 @@ pub fn run(cli: Cli) -> u8 {
         command @ Command::Fit { .. } => fit_command(command, (color, format)),
         Command::Preview { file, machine, out } => {
             let p = progress(&file);
-            preview::run(&file, machine.as_deref(), out.as_deref(), color, format, p)
+            preview::run(&file, machine.as_deref(), out.as_deref(), &common, p)
         }
     }
 }
@@ -349,26 +406,23 @@ pub fn run(cli: Cli) -> u8 {
 /// Compiles `source` (read from `file`) for `machine`, observed by `obs` and
 /// `progress`, and prints its diagnostics above the progress line: the checked program,
 /// or the exit code — usage for a machine the file does not declare, program
-/// errors otherwise. What `build` and `preview` share.
+/// errors otherwise (and `--deny-warnings`). What `build` and `preview` share.
 fn compile_and_print(
     source: &str,
     file: &Path,
     machine: Option<&str>,
     obs: &mut dyn Observer,
     progress: &mut Progress,
-    (color, format): (bool, MessageFormat),
+    common: &Common,
 ) -> Result<lmdc::verify::Verified, u8> {
-    let (compiled, _) = pipeline::compile_reading(
-        source,
-        machine,
-        &mut progress::Both(obs, progress),
-        data_reader(file),
-    )
-    .map_err(|e| {
-        eprintln!("error: {e}");
-        EXIT_USAGE
-    })?;
+    let options = common.options(file, machine);
+    let compiled = pipeline::compile_with(source, &options, &mut progress::Both(obs, progress))
+        .map_err(|e| messages::fail(file, usage::refused(&e)))?;
+    let (color, format) = (common.color, common.format);
     progress.print(|| messages::print(&compiled.diagnostics, file, source, color, format));
+    if let Some(code) = common.denied(file, &compiled.diagnostics) {
+        return Err(code);
+    }
     compiled.program.ok_or(EXIT_PROGRAM)
 }
 
@@ -382,11 +436,7 @@ struct BuildArgs<'a> {
     timings: bool,
 }
 
-fn build(
-    args: BuildArgs<'_>,
-    (color, format): (bool, MessageFormat),
-    mut progress: Progress,
-) -> u8 {
+fn build(args: BuildArgs<'_>, common: &Common, mut progress: Progress) -> u8 {
     let BuildArgs {
         file,
         out,
@@ -397,16 +447,13 @@ fn build(
     } = args;
     let templates = match Templates::load(templates) {
         Ok(t) => t,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_USAGE;
-        }
+        Err(e) => return messages::fail(file, usage::output(&e.to_string())),
     };
     // A build killed in this directory is finished or undone first, whether
     // or not this one succeeds (src/cli/sink.rs).
     if let Err(e) = sink::recover(out) {
-        eprintln!("error: output directory {}: {e}", shown(out));
-        return EXIT_USAGE;
+        let why = format!("output directory {}: {e}", shown(out));
+        return messages::fail(file, usage::output(&why));
     }
     let Some(source) = read_source(file) else {
         return EXIT_USAGE;
@@ -416,19 +463,15 @@ fn build(
         Some(t) => t,
         None => &mut (),
     };
-    let program =
-        match compile_and_print(&source, file, machine, obs, &mut progress, (color, format)) {
-            Ok(p) => p,
-            Err(code) => return code,
-        };
+    let program = match compile_and_print(&source, file, machine, obs, &mut progress, common) {
+        Ok(p) => p,
+        Err(code) => return code,
+    };
     let mut sink = match sink::AtomicDir::new(out) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!(
-                "error: cannot create the output directory {}: {e}",
-                shown(out)
-            );
-            return EXIT_USAGE;
+            let why = format!("cannot create the output directory {}: {e}", shown(out));
+            return messages::fail(file, usage::output(&why));
         }
     };
     let timed: &mut dyn Observer = match clock.as_mut() {
@@ -438,6 +481,11 @@ fn build(
     let mut inner = progress::Both(timed, &mut progress);
     if let Err(code) = write_programs(&program, &templates, &mut sink, &mut inner, out) {
         return code;
+    }
+    if emit.contains(&Emit::Plan) {
+        if let Err(code) = write_plans(&program, &mut sink) {
+            return code;
+        }
     }
     if emit.contains(&Emit::Ir) {
         if let Err(code) = write_ir(&program, &mut sink) {
@@ -450,8 +498,8 @@ fn build(
     let paths = match sink.commit() {
         Ok(p) => p,
         Err(e) => {
-            eprintln!("error: writing into {}: {e}", shown(out));
-            return EXIT_USAGE;
+            let why = format!("writing into {}: {e}", shown(out));
+            return messages::fail(file, usage::output(&why));
         }
     };
     progress.finish();
@@ -508,14 +556,41 @@ fn write_programs(
     match emitted {
         Ok(()) => Ok(()),
         Err(EmitError::Template(e)) => {
-            eprintln!("error: {e}");
-            Err(EXIT_USAGE)
+            Err(messages::fail(Path::new(""), usage::output(&e.to_string())))
         }
-        Err(EmitError::Io(e)) => {
-            eprintln!("error: writing into {}: {e}", shown(out));
-            Err(EXIT_USAGE)
-        }
+        Err(EmitError::Io(e)) => Err(messages::fail(
+            Path::new(""),
+            usage::output(&format!("writing into {}: {e}", shown(out))),
+        )),
     }
+}
+
+/// Writes each machine's motion plan as `<part>_<machine>.plan.jsonl` into
+/// `sink`, each a set of its own.
+fn write_plans(program: &lmdc::verify::Verified, sink: &mut sink::AtomicDir) -> Result<(), u8> {
+    use lmdc::back::Sink;
+    for m in program.machines() {
+        let stem = format!("{}_{}", program.ir().part, m.machine().name());
+        let name = format!(
+            "{}.plan.jsonl",
+            lmdc::target::names::windows_safe(&lmdc::back::identifier(&stem, 64))
+        );
+        let written = (|| -> std::io::Result<()> {
+            let mut w = sink.create(&name)?;
+            lmdc::plan::lines::write(&m.plan(), m.machine(), &mut w)?;
+            w.flush()
+        })();
+        if let Err(e) = written {
+            let why = format!("writing {name}: {e}");
+            return Err(messages::fail(Path::new(""), usage::output(&why)));
+        }
+        let end = sink.counter().get();
+        sink.end_set(
+            set_key(program, Some(format!("{}.plan", m.machine().name()))),
+            end,
+        );
+    }
+    Ok(())
 }
 
 /// Writes the IR as `<part>.ir.json` into `sink`, a set of its own.
@@ -532,30 +607,31 @@ fn write_ir(program: &lmdc::verify::Verified, sink: &mut sink::AtomicDir) -> Res
         w.flush()
     })();
     if let Err(e) = written {
-        eprintln!("error: writing {name}: {e}");
-        return Err(EXIT_USAGE);
+        let why = format!("writing {name}: {e}");
+        return Err(messages::fail(Path::new(""), usage::output(&why)));
     }
     let end = sink.counter().get();
     sink.end_set(set_key(program, None), end);
     Ok(())
 }
 
-fn simulate(
-    file: &Path,
-    csv: Option<&Path>,
-    every: usize,
-    (color, format): (bool, MessageFormat),
-) -> u8 {
+fn simulate(file: &Path, csv: Option<&Path>, every: usize, common: &Common) -> u8 {
     let Some(source) = read_source(file) else {
         return EXIT_USAGE;
     };
-    let s = pipeline::simulate(&source);
-    messages::print(&s.diagnostics, file, &source, color, format);
+    let s = match pipeline::simulate(&source, &common.set) {
+        Ok(s) => s,
+        Err(e) => return messages::fail(file, usage::bad_set(&e)),
+    };
+    messages::print(&s.diagnostics, file, &source, common.color, common.format);
+    if let Some(code) = common.denied(file, &s.diagnostics) {
+        return code;
+    }
     let Some(run) = s.run else {
         if let Some(why) = s.nothing {
             // A valid file that is no ring: the command does not apply to it.
-            eprintln!("error: {} has nothing to simulate: {why}", shown(file));
-            return EXIT_USAGE;
+            let d = usage::nothing_to_do(&shown(file), "simulate", why);
+            return messages::fail(file, d);
         }
         return EXIT_PROGRAM;
     };
@@ -564,8 +640,8 @@ fn simulate(
         // Writing into a String cannot fail.
         let _ = run.simulation.write_csv(&mut text);
         if let Err(e) = simulate::write_atomically(path, &text) {
-            eprintln!("error: writing {}: {e}", shown(path));
-            return EXIT_USAGE;
+            let why = format!("writing {}: {e}", shown(path));
+            return messages::fail(file, usage::output(&why));
         }
         eprintln!("wrote {}", shown(path));
     }
@@ -581,10 +657,10 @@ fn simulate(
 /// Reads the source, at most [`MAX_SOURCE`] bytes whatever the file claims to
 /// be: metadata says nothing about `/dev/zero`, a pipe or a file still
 /// growing, so the read itself stops one byte past the cap.
-fn read_source(file: &Path) -> Option<String> {
+pub(crate) fn read_source(file: &Path) -> Option<String> {
     use std::io::Read;
     let fail = |why: String| {
-        eprintln!("error: cannot read {}: {why}", shown(file));
+        messages::fail(file, usage::unreadable(&shown(file), &why));
         None
     };
     let f = match std::fs::File::open(file) {

@@ -1,9 +1,10 @@
 //! `lmdc preview`: compiles like `check` and writes the plan preview of one
 //! machine as a single HTML file (docs/preview.md).
 
-use super::messages::MessageFormat;
+use super::messages;
 use super::progress::Progress;
-use super::{read_source, shown, EXIT_PROGRAM, EXIT_USAGE};
+use super::{read_source, shown, Common, EXIT_PROGRAM, EXIT_USAGE};
+use lmdc::diag::usage;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -12,25 +13,18 @@ pub fn run(
     file: &Path,
     machine: Option<&str>,
     out: Option<&Path>,
-    color: bool,
-    format: MessageFormat,
+    common: &Common,
     mut progress: Progress,
 ) -> u8 {
     let Some(source) = read_source(file) else {
         return EXIT_USAGE;
     };
     let mut quiet = ();
-    let program = match super::compile_and_print(
-        &source,
-        file,
-        machine,
-        &mut quiet,
-        &mut progress,
-        (color, format),
-    ) {
-        Ok(p) => p,
-        Err(code) => return code,
-    };
+    let program =
+        match super::compile_and_print(&source, file, machine, &mut quiet, &mut progress, common) {
+            Ok(p) => p,
+            Err(code) => return code,
+        };
     // The first machine checked: the one named, else the first declared.
     let Some(m) = program.machines().next() else {
         eprintln!("error: the file declares no machine whose plan could be shown");
@@ -51,8 +45,8 @@ pub fn run(
             0
         }
         Err(e) => {
-            eprintln!("error: writing {}: {e}", shown(&path));
-            EXIT_USAGE
+            let why = format!("writing {}: {e}", shown(&path));
+            messages::fail(file, usage::output(&why))
         }
     }
 }

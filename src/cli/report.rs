@@ -1,9 +1,10 @@
 //! `lmdc report`: compiles like `check` and prints the plan report of each
 //! checked machine (text, or one JSON object a machine with `--json`).
 
-use super::messages::{self, MessageFormat};
+use super::messages;
 use super::progress::Progress;
-use super::{read_source, EXIT_PROGRAM, EXIT_USAGE};
+use super::{read_source, Common, EXIT_PROGRAM, EXIT_USAGE};
+use lmdc::diag::usage;
 use lmdc::pipeline;
 use lmdc::report::{text, Report};
 use std::io::Write;
@@ -22,27 +23,27 @@ pub struct Args<'a> {
 }
 
 /// Runs `lmdc report`; returns the exit code.
-pub fn run(a: Args<'_>, color: bool, format: MessageFormat, mut progress: Progress) -> u8 {
+pub fn run(a: Args<'_>, common: &Common, mut progress: Progress) -> u8 {
     let Some(source) = read_source(a.file) else {
         return EXIT_USAGE;
     };
     if let Some(d) = a.density {
         if !(d.is_finite() && d > 0.0) {
-            eprintln!("error: --density must be a positive number of g/cm³, not {d}");
-            return EXIT_USAGE;
+            let d = usage::bad_value("--density", &d.to_string(), "a positive number of g/cm³");
+            return messages::fail(a.file, d);
         }
     }
-    let reader = super::data_reader(a.file);
-    let (compiled, model) =
-        match pipeline::compile_reading(&source, a.machine, &mut progress, reader) {
-            Ok(c) => c,
-            Err(e) => {
-                eprintln!("error: {e}");
-                return EXIT_USAGE;
-            }
-        };
+    let options = common.options(a.file, a.machine);
+    let (compiled, model) = match pipeline::compile_with_model(&source, &options, &mut progress) {
+        Ok(c) => c,
+        Err(e) => return messages::fail(a.file, usage::refused(&e)),
+    };
     progress.finish();
+    let (color, format) = (common.color, common.format);
     messages::print(&compiled.diagnostics, a.file, &source, color, format);
+    if let Some(code) = common.denied(a.file, &compiled.diagnostics) {
+        return code;
+    }
     let (Some(program), Some(model)) = (compiled.program, model) else {
         return EXIT_PROGRAM;
     };

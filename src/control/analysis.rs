@@ -22,6 +22,16 @@ use std::num::NonZeroUsize;
 /// build (`ρᴺ` above it) never settles: an error, not a warning.
 pub const NEVER_SETTLES: f64 = 0.5;
 
+/// A stable loop that leaves at most this share of an error after the last
+/// layer corrects enough: no warning, even if it takes longer than the build
+/// to settle to [`super::linear::SETTLED`] (2 %). Seed 004's ring, as
+/// published (its gains, 130 layers), leaves 2.9 % at its slowest segment
+/// (13 mm/s, ρ¹³⁰): a whole missing layer (0.23 mm) would end 0.007 mm off,
+/// and its simulation against the declared plant ends within 0.038 mm
+/// (0.13 %) of 29.90 mm, as the paper reports — a warning there would cry
+/// wolf. 5 % is three time constants, the other usual settling band.
+pub const SETTLED_ENOUGH: f64 = 0.05;
+
 /// The loop about one segment's operating speed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SegmentLoop {
@@ -232,7 +242,7 @@ fn stability(
 fn settling(c: &Controller, segments: &[SegmentLoop], layers: usize) -> Option<Finding> {
     let worst = worst(segments.iter().filter(|l| l.settling.is_some()))?;
     let settling = worst.settling?;
-    if settling <= layers as f64 {
+    if settling <= layers as f64 || worst.gains.residual_after(layers) <= SETTLED_ENOUGH {
         return None;
     }
     let settles_all = |factor: f64| {

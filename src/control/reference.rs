@@ -94,20 +94,39 @@ fn the_papers_loop_is_stable_but_its_fast_segments_settle_late() {
         let v = SPEED_MM_S[l.segment.unwrap()];
         assert!((l.radius - (1.0 - 0.69 / v).sqrt()).abs() < 1e-12);
     }
-    // 4 mm/s settles in 41 layers, 13 mm/s in 144 of the build's 130.
-    assert_eq!(a.findings.len(), 1);
-    let f = &a.findings[0];
+    // 4 mm/s settles in 41 layers, 13 mm/s in 144 of the build's 130 — yet
+    // only ρ¹³⁰ = 2.887 % of an error is left then, within the 5 % band
+    // (SETTLED_ENOUGH): no finding on the published loop.
+    let rho13 = (1.0 - 0.69 / 13.0f64).sqrt();
+    let worst = a.segments.iter().find(|l| l.segment == Some(4)).unwrap();
+    assert!((worst.settling.unwrap() - 0.02f64.ln() / rho13.ln()).abs() < 1e-9);
+    assert!(worst.settling.unwrap() > 130.0);
+    let residual = rho13.powi(130);
+    assert!((residual - 0.02887).abs() < 5e-5, "{residual}");
+    assert!((worst.gains.residual_after(130) - residual).abs() < 1e-12);
+    assert!(a.findings.is_empty(), "{:?}", a.findings);
+    // With 110 layers ρ¹¹⁰ = 5.0 %… and 100 layers 6.6 %: the warning, with
+    // the gains that settle in time.
+    let short = analyse(
+        &controller().unwrap(),
+        &speeds(),
+        NonZeroUsize::new(100).unwrap(),
+    )
+    .unwrap();
+    assert!(rho13.powi(100) > super::analysis::SETTLED_ENOUGH);
+    assert_eq!(short.findings.len(), 1);
+    let f = &short.findings[0];
     assert_eq!(f.severity(), Severity::Warning);
-    assert_eq!(
-        f.to_string(),
-        "segment 5 (13 mm/s) settles in ~144 layers (to 2 %), but the build has 130: \
-         2.887 % of a starting error remains after the last layer"
+    assert!(
+        f.to_string().starts_with(
+            "segment 5 (13 mm/s) settles in ~144 layers (to 2 %), but the build has 100"
+        ),
+        "{f}"
     );
-    assert_eq!(
-        f.help().unwrap(),
-        "×1.1 of these gains (kp = -3.301 (mm/s)/mm, ki = -0.3852 (mm/s)/mm) settle within \
-         130 layers at every segment"
-    );
+    assert!(f
+        .help()
+        .unwrap()
+        .contains("settle within 100 layers at every segment"));
     // The slowest loop the clamp allows, 1.9 mm/s, is still stable.
     assert!((a.clamp_low.radius - (1.0 - 0.69 / 1.9f64).sqrt()).abs() < 1e-12);
 }

@@ -8,6 +8,8 @@ use std::fmt;
 /// The section of `docs/diagnostics.md` a code is listed in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Group {
+    /// The command line or the files it names, before the .lmd text is read.
+    Usage,
     /// The text does not parse.
     Syntax,
     /// Names, units and values of the declarations.
@@ -24,7 +26,8 @@ pub enum Group {
 
 impl Group {
     /// Every group, in the order of the documentation.
-    pub const ALL: [Group; 6] = [
+    pub const ALL: [Group; 7] = [
+        Group::Usage,
         Group::Syntax,
         Group::Values,
         Group::Styles,
@@ -36,6 +39,7 @@ impl Group {
     /// The heading of the group's section.
     pub fn title(self) -> &'static str {
         match self {
+            Group::Usage => "Command line and files",
             Group::Syntax => "Syntax",
             Group::Values => "Names, units and values",
             Group::Styles => "Styles",
@@ -83,6 +87,19 @@ macro_rules! codes {
 }
 
 codes! {
+    Usage = "usage", Usage,
+        "the command line is not one lmdc understands: an unknown command or option, a missing argument, an option value it cannot use (`--message-format xml`, `--density -1`), a command that does not apply to the file (`simulate` without a ring loop); exit status 2";
+    Unreadable = "unreadable", Usage,
+        "the .lmd file cannot be read: missing, a directory, not UTF-8 text, larger than 16 MB; exit status 2";
+    NoSuchMachine = "no-such-machine", Usage,
+        "`--machine NAME` names no machine the file declares (the message lists those it does); exit status 2";
+    BadSet = "bad-set", Usage,
+        "a `--set NAME=VALUE` the file cannot take: no top-level `let NAME`, a value of another kind than the file's (an angle for a length), text that is not one value, a name set twice; exit status 2";
+    Output = "output", Usage,
+        "the outputs cannot be written: the output directory, a `--templates` folder or template, the disk; exit status 2";
+    DeniedWarnings = "denied-warnings", Usage,
+        "`--deny-warnings` and the file has warnings: they are reported as usual, this error counts them, nothing is written and the exit status is 1";
+
     Syntax = "syntax", Syntax,
         "the text does not follow the grammar: an unclosed or mismatched bracket, a statement in the wrong shape (`let` without `=`, a field without a value, …)";
     TooDeep = "too-deep", Syntax,
@@ -329,7 +346,7 @@ codes! {
     PowderMismatch = "powder-mismatch", Warnings,
         "a mass-balance bead model fitted at another powder feed than the process feeds";
     Unused = "unused", Warnings,
-        "something that has no effect: `inheritance` without styles, `corner_angle` without `near_corner`, a style's `powder` (recorded in the IR, not programmed), a style that sets no value, a `when` block no track can meet (`shorter_than` ≤ `longer_than`, layers past the last), a style that picks no track on any layer, inheritance with a raster that turns between layers";
+        "something that has no effect: `inheritance` without styles, `corner_angle` without `near_corner`, a style's `powder` on a machine whose feeder has no rate output (recorded in the IR, not programmed there), a style that sets no value, a `when` block no track can meet (`shorter_than` ≤ `longer_than`, layers past the last), a style that picks no track on any layer, inheritance with a raster that turns between layers";
     OverlapStretch = "overlap-stretch", Warnings,
         "the balanced spacing of unequal-height tracks had to be stretched (or squeezed) by more than 5 % to land the last track half a bead inside the far edge: the tracks are scanned about that much slower (faster) to fill their strips, and the help names the footprint width that needs no stretch";
     SeamAtBendExtreme = "seam-at-bend-extreme", Warnings,

@@ -6,6 +6,8 @@
 mod code;
 pub mod json;
 pub(crate) mod message;
+/// The reports of the command line's mistakes (the binary writes them).
+pub use message::usage;
 mod worst;
 
 use crate::span::Span;

@@ -1,8 +1,8 @@
 //! `lmdc lsp`: a language server on stdio. Diagnostics as you type (the
 //! compiler's own: codes, labels, help), hover (a field's meaning, what it
 //! takes and its default from the block tables; a name's declaration; what
-//! `auto` chose), go to definition and references of names, and completion
-//! of fields, statements, words, names and units.
+//! `auto` chose), go to definition and references of names, completion of
+//! fields, statements, words, names and units, and formatting (`lmdc fmt`).
 //!
 //! The transport is `lsp-server` (rust-analyzer's); the few LSP types it
 //! answers with are built as JSON here. Every request is answered from the
@@ -60,6 +60,7 @@ pub fn serve(connection: &Connection) -> Result<(), ServerError> {
                 "definitionProvider": true,
                 "referencesProvider": true,
                 "completionProvider": { "triggerCharacters": [" ", "="] },
+                "documentFormattingProvider": true,
             },
             "serverInfo": { "name": "lmdc", "version": env!("CARGO_PKG_VERSION") },
         }),
@@ -184,6 +185,9 @@ fn answer(docs: &HashMap<String, Doc>, req: Request) -> Response {
     let Some((uri, doc)) = doc else {
         return Response::new_ok(req.id, Value::Null);
     };
+    if req.method == "textDocument/formatting" {
+        return format(req.id, doc);
+    }
     let offset = || {
         let line = req.params.pointer("/position/line")?.as_u64()? as u32;
         let ch = req.params.pointer("/position/character")?.as_u64()? as u32;
@@ -243,6 +247,32 @@ fn answer(docs: &HashMap<String, Doc>, req: Request) -> Response {
         }
     };
     Response::new_ok(req.id, result)
+}
+
+/// `textDocument/formatting`: `lmdc fmt`'s layout as one edit of the whole
+/// text (none when it is formatted already); a file that does not parse is
+/// refused with the reason, as `lmdc fmt` refuses it.
+fn format(id: lsp_server::RequestId, doc: &Doc) -> Response {
+    match crate::fmt::format(&doc.text) {
+        Ok(new) if new == doc.text => Response::new_ok(id, json!([])),
+        Ok(new) => Response::new_ok(
+            id,
+            json!([{ "range": range(doc, 0, doc.text.len()), "newText": new }]),
+        ),
+        Err(e) => {
+            let why = match e {
+                crate::fmt::FmtError::Syntax(d) => {
+                    format!("the file does not parse: {}", d.message)
+                }
+                crate::fmt::FmtError::Changed => "the layout would change the meaning".into(),
+            };
+            Response::new_err(
+                id,
+                lsp_server::ErrorCode::RequestFailed as i32,
+                format!("lmdc fmt: {why}"),
+            )
+        }
+    }
 }
 
 /// Compiles a document as `lmdc check` would: the data files it names

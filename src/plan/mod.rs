@@ -81,6 +81,7 @@
 
 pub mod arm;
 pub mod kinematics;
+pub mod lines;
 pub mod orient;
 pub mod profile;
 
@@ -278,6 +279,13 @@ pub trait Visit {
     fn io(&mut self, _event: Io) {}
     /// A ring's segment ends with the next move.
     fn segment_end(&mut self, _end: SegmentEnd) {}
+}
+
+/// A closure told every move (and nothing else): the shortest walker.
+impl<F: FnMut(&Move)> Visit for F {
+    fn motion(&mut self, m: &Move) {
+        self(m)
+    }
 }
 
 /// Two visitors following one plan side by side (the verifier's rules and

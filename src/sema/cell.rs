@@ -92,7 +92,7 @@ pub fn read<'a>(
     env: &mut Env<'a>,
     f: &Fields<'a>,
     outputs: Outputs,
-    lines: Option<[String; 3]>,
+    lines: Option<([String; 3], &str)>,
     taken: &[(usize, bool, &str, Option<Span>)],
     diags: &mut Diagnostics,
 ) -> Option<Read> {
@@ -202,7 +202,7 @@ pub fn read<'a>(
         powder,
         ..Cell::default()
     };
-    if let Some([on, off, analog]) = lines {
+    if let Some(([on, off, analog], profile)) = lines {
         if !cell.is_none() {
             let needs_analog = powder.is_some_and(|p| p.rate.is_some());
             for (field, text, needed) in [
@@ -213,6 +213,7 @@ pub fn read<'a>(
                 if needed && text.is_empty() {
                     diags.push(message::machine::no_output_line(
                         field.key,
+                        profile,
                         f.span(&machine::GAS_BLOCK)
                             .or(f.span(&machine::POWDER_BLOCK)),
                         f.span(&machine::DIALECT),

@@ -223,10 +223,10 @@ fn transitions(
         return;
     }
     // v·√(1 + (rise/arc)²) ≤ max ⇔ arc ≥ |rise| / √((max/v)² − 1).
-    let transition_fits = (top < max).then(|| {
-        let arc_fits = rise.abs() / ((max / top).powi(2) - 1.0).sqrt();
-        Angle(arc_fits / r.radius).deg()
-    });
+    let arc_fits = (top < max).then(|| rise.abs() / ((max / top).powi(2) - 1.0).sqrt());
+    let transition_fits = arc_fits.map(|a| Angle(a / r.radius).deg());
+    // The same arc at the declared transition angle: a larger ring.
+    let radius_fits = arc_fits.map(|a| a / r.transition.to_radians());
     out.push(says::transition_speed(&FastTransition {
         machine: m.name(),
         max,
@@ -237,6 +237,7 @@ fn transitions(
         speed: v,
         top,
         transition_fits,
+        radius_fits,
         spans: [origin.at(&machine::MAX_SPEED), o.clamp, o.transition],
     }));
 }

@@ -39,6 +39,7 @@ pub use summary::{Costs, Summary};
 use crate::diag::{Code, Diagnostics};
 use crate::ir::{Machine, MachineOrigin, Program};
 use crate::plan::Plan;
+use crate::provenance::Provenance;
 use rule::{MachineCx, ProgramCx};
 
 /// IR that passed every check, for the machines it was checked for, with the
@@ -50,6 +51,8 @@ pub struct Verified {
     /// plans' summaries.
     machines: Vec<(usize, Summary)>,
     warnings: Diagnostics,
+    /// The source the program was compiled from, for the programs' headers.
+    provenance: Provenance,
 }
 
 impl Verified {
@@ -71,12 +74,23 @@ impl Verified {
                 program: &self.program,
                 index: *index,
                 summary,
+                provenance: &self.provenance,
             })
     }
 
     /// Machine number `index` of the IR, if its plan was checked.
     pub fn machine(&self, index: usize) -> Option<VerifiedMachine<'_>> {
         self.machines().find(|m| m.index == index)
+    }
+
+    /// Where the program came from (the pipeline sets it; empty until then).
+    pub fn provenance(&self) -> &Provenance {
+        &self.provenance
+    }
+
+    /// Records where the program came from.
+    pub fn set_provenance(&mut self, p: Provenance) {
+        self.provenance = p;
     }
 
     /// Gives the IR back.
@@ -92,6 +106,7 @@ pub struct VerifiedMachine<'a> {
     program: &'a Program,
     index: usize,
     summary: &'a Summary,
+    provenance: &'a Provenance,
 }
 
 impl<'a> VerifiedMachine<'a> {
@@ -119,6 +134,11 @@ impl<'a> VerifiedMachine<'a> {
     /// lengths and times, the files.
     pub fn summary(&self) -> &'a Summary {
         self.summary
+    }
+
+    /// Where the program came from: the headers name it.
+    pub fn provenance(&self) -> &'a Provenance {
+        self.provenance
     }
 }
 
@@ -218,6 +238,7 @@ pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics>
             program,
             machines: plans,
             warnings: diags,
+            provenance: Provenance::default(),
         })
     }
 }

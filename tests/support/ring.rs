@@ -121,7 +121,7 @@ pub fn simulate_csv(tag: &str, source: &str) -> Vec<Row> {
 /// The loop of `source` run by the library's `pipeline::simulate` (what
 /// `lmdc simulate` prints), at full precision, as `[layer][segment]`.
 pub fn simulation(source: &str) -> Vec<Vec<Row>> {
-    let s = lmdc::pipeline::simulate(source);
+    let s = lmdc::pipeline::simulate(source, &[]).expect("nothing set");
     let run = s.run.expect("a loop to simulate");
     let h = run.controller.target().0;
     let rows: Vec<Row> = run

@@ -217,6 +217,7 @@ fn base_context(m: VerifiedMachine<'_>, cnc: &Cnc, kin: Kinematics, file: &str) 
     ctx.insert("file", file);
     ctx.insert("program", file.split('.').next().unwrap_or(file));
     ctx.insert("generator", concat!("lmdc ", env!("CARGO_PKG_VERSION")));
+    super::context::provenance(&mut ctx, m.provenance(), &|t| comment_safe(t, style));
     ctx.insert("kinematics", kin_name);
     ctx.insert("axes", axes);
     ctx.insert("tilt_axis", tilt);

@@ -298,6 +298,7 @@ fn base_context(m: VerifiedMachine<'_>, robot: &Robot, stem: &str) -> tera::Cont
     ctx.insert("part", &comment_safe(&shown(&p.part)));
     ctx.insert("machine", &comment_safe(&shown(&robot.name)));
     ctx.insert("generator", concat!("lmdc ", env!("CARGO_PKG_VERSION")));
+    super::context::provenance(&mut ctx, m.provenance(), &comment_safe);
     ctx
 }
 

@@ -247,29 +247,50 @@ pub fn powder_rate_half(has: &str, lacks: &str, at: Option<Span>) -> Diagnostic 
     )
 }
 
-/// Gas or powder needs the output line `key`, which the CNC's dialect does
-/// not have built in.
-pub fn no_output_line(key: &str, cell: Option<Span>, dialect: Option<Span>) -> Diagnostic {
+/// Gas or powder needs the output line `key`, which the CNC's dialect
+/// `profile` does not have built in. The example is in that control's
+/// language where lmdc knows it (Sinumerik's `$A_OUT`/`$A_OUTA` system
+/// variables), never another control's M-code.
+pub fn no_output_line(
+    key: &str,
+    profile: &str,
+    cell: Option<Span>,
+    dialect: Option<Span>,
+) -> Diagnostic {
+    let analog = key == "analog_output";
+    let holes = if analog {
+        "`{n}` for the output number and `{v}` for the value (a fraction of full scale)"
+    } else {
+        "`{n}` for the output number"
+    };
+    let example = match (profile, key) {
+        ("sinumerik840d", "output_on") => Some("$A_OUT[{n}]=1"),
+        ("sinumerik840d", "output_off") => Some("$A_OUT[{n}]=0"),
+        ("sinumerik840d", _) => Some("$A_OUTA[{n}]={v}"),
+        _ => None,
+    };
+    let help =
+        match example {
+            Some(e) => format!(
+                "give the control's command in the machine block, with {holes}: on a {profile} \
+             e.g. `{key} = \"{e}\"` (check how the machine's integrator wired the output)"
+            ),
+            None => {
+                format!(
+            "give the control's command in the machine block, with {holes}: `{key} = \"…\"` — \
+             the M-function or system variable the {profile} control's integrator assigned to \
+             the {} (its manual or PLC program names it)",
+            if analog { "analog output" } else { "digital output" }
+        )
+            }
+        };
     Diagnostic::error(
         Code::IoDialect,
-        format!("this dialect has no built-in `{key}` line"),
+        format!("the {profile} dialect has no built-in `{key}` line"),
     )
     .label_opt(cell, "gas and powder need outputs switched")
     .label_opt(dialect, "dialect")
-    .help(format!(
-        "give the control's command in the machine block, with `{{n}}` for \
-         the output number{}, e.g. `{key} = \"{}\"` (check the control's manual)",
-        if key == "analog_output" {
-            " and `{v}` for the value (a fraction of full scale)"
-        } else {
-            ""
-        },
-        match key {
-            "output_on" => "M64 P{n}",
-            "output_off" => "M65 P{n}",
-            _ => "M68 E{n} Q{v}",
-        }
-    ))
+    .help(help)
 }
 
 /// The output line `key` does not hold the hole `hole` exactly once;

@@ -26,5 +26,6 @@ pub mod statement;
 pub mod style;
 pub mod syntax;
 pub mod top;
+pub mod usage;
 pub mod value;
 pub mod verify;

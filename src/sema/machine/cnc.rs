@@ -43,7 +43,14 @@ pub(super) fn read<'a>(
         cell::OTHER_CNC
     };
     let lines = cell::cnc_lines(&f, &profile, diags);
-    let cell = cell::read(env, &f, outputs, lines.clone(), &[], diags);
+    let cell = cell::read(
+        env,
+        &f,
+        outputs,
+        lines.clone().map(|l| (l, profile.as_str())),
+        &[],
+        diags,
+    );
     let (mut c, cell) = (c?, cell?);
     lines?;
     at.extend(cell.spans);

@@ -171,6 +171,9 @@ pub struct FastTransition<'a> {
     pub top: f64,
     /// The transition (deg) that would fit, when a longer one can.
     pub transition_fits: Option<f64>,
+    /// The ring radius (mm) whose transition arc would fit, at the declared
+    /// transition angle.
+    pub radius_fits: Option<f64>,
     /// Where the machine's max_speed, the clamp and the transition are declared.
     pub spans: [Span; 3],
 }
@@ -183,7 +186,16 @@ pub fn transition_speed(t: &FastTransition) -> Diagnostic {
     if let Some(deg) = t.transition_fits {
         help.push_str(&format!(", a transition of at least {}°", short_up(deg)));
     }
-    help.push_str(", or a higher max_speed");
+    if let Some(r) = t.radius_fits {
+        help.push_str(&format!(
+            ", a ring radius of at least {} mm (a longer transition arc)",
+            short_up(r)
+        ));
+    }
+    help.push_str(&format!(
+        ", or a max_speed of at least {} mm/s",
+        short_up(t.speed)
+    ));
     let next = if j + 1 == n {
         "1 of the next layer".to_string()
     } else {

@@ -1,4 +1,5 @@
 ; small_duct_fagor: part small_duct on machine fagor, written by lmdc 0.1.0
+; source tests/cases/duct/small_duct/input.lmd, sha256 <sha256 of the source>
 ; profile fagor8070, kinematics head_bc, axes X Y Z B C
 ; 5 layers, 5 paths, 45 points
 ; plan: 101.0 mm deposited, 105.9 mm travel; 17.5 s, laser on 11.2 s, dwell 0.0 s; 29.5 kJ; powder 8.60 g

@@ -1,4 +1,5 @@
 ; styled_chord_lsf: part styled_chord on machine lsf, written by lmdc 0.1.0
+; source examples/styled_chord.lmd, sha256 <sha256 of the source>
 ; profile m20, kinematics xyz, axes X Y Z
 ; 30 layers, 870 paths, 2550 points
 ; plan: 20.60 m deposited, 12.53 m travel; 42 min 57 s, laser on 34 min 20 s, dwell 0.0 s; 4.23 MJ; powder 412.0 g
