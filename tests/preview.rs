@@ -4,7 +4,9 @@
 //! the page of an example; the screenshot must show the part in colour and
 //! the page's own account (its title and `#summary`) the layer count of the
 //! plan; every colouring renders without a script error, and the scale bar
-//! measures what the screenshot shows at three zooms. Without Chromium the
+//! measures what the screenshot shows at three zooms. A robot arm's joint
+//! plot carries the angles `Solver::solve` gives move by move, is drawn only
+//! for an arm, and counts the layers near a limit. Without Chromium the
 //! browser tests say they skipped; under CI they fail.
 //! `LMDC_UPDATE_SCREENSHOTS=1` renders every example into docs/preview/.
 
@@ -907,4 +909,36 @@ fn chromium_draws_the_joint_plot_only_for_an_arm() {
             assert!(note.contains("more than 10° inside"), "{note}");
         }
     }
+    // The joint-limit error's part with the nozzle tilted 70° instead of
+    // 80° on the flange: it builds, A5 down to about −113°, within 10° of
+    // −117° (−119° less the 2° margin) on every layer.
+    let src = std::fs::read_to_string("examples/errors/arm_joint_limit.lmd")
+        .unwrap()
+        .replace("b = 80 deg", "b = 70 deg");
+    let p = compile(&src, &mut ())
+        .program
+        .expect("tilted 70°, it builds");
+    let html = preview::html(p.machines().next().unwrap());
+    let arm = data(&html)["meta"]["arm"].clone();
+    let mut near = 0;
+    for layer in arm["layers"].as_array().unwrap() {
+        for a in 0..6 {
+            let lim = |e: usize| arm["limits"][a][e].as_f64().unwrap();
+            let v = |e: usize| layer[a][e].as_f64().unwrap();
+            let margin = arm["margin"].as_f64().unwrap();
+            if v(0) < lim(0) + margin + 10.0 || v(1) > lim(1) - margin - 10.0 {
+                near += 1;
+            }
+        }
+    }
+    assert!(near >= 5, "A5 near its limit on every layer: {near}");
+    let file = dir.path().join("near.html");
+    std::fs::write(&file, html).unwrap();
+    let dom = dom(&chromium, &file, "");
+    assert_eq!(number(&dom, "data-near-limit"), near as f64);
+    let note = text_of(&dom, r#"<p id="joints-note""#);
+    assert!(
+        note.contains(&format!("{near} layer-axis pairs come within 10°")),
+        "{note}"
+    );
 }
