@@ -4,7 +4,9 @@
 //! the page of an example; the screenshot must show the part in colour and
 //! the page's own account (its title and `#summary`) the layer count of the
 //! plan; every colouring renders without a script error, and the scale bar
-//! measures what the screenshot shows at three zooms. Without Chromium the
+//! measures what the screenshot shows at three zooms. A robot arm's joint
+//! plot carries the angles `Solver::solve` gives move by move, is drawn only
+//! for an arm, and counts the layers near a limit. Without Chromium the
 //! browser tests say they skipped; under CI they fail.
 //! `LMDC_UPDATE_SCREENSHOTS=1` renders every example into docs/preview/.
 
@@ -769,4 +771,174 @@ fn chromium_draws_the_examples() {
             std::fs::write(format!("docs/preview/{example}_{mode}.png"), shot).unwrap();
         }
     }
+}
+
+/// The page of `example`'s machine `name`.
+fn page_of(example: &str, name: &str) -> String {
+    let p = verified(example);
+    let m = p
+        .machines()
+        .find(|m| m.machine().name() == name)
+        .expect("the machine is checked");
+    preview::html(m)
+}
+
+/// Each layer's lowest and highest axis angles, solved here move by move as
+/// the KRL writer solves a program: the tool turned where the normal
+/// changes, each pose by `Solver::solve` from the solution before (from
+/// home for the first) — not the preview's chunked `Follow`.
+struct Angles {
+    solver: lmdc::plan::arm::Solver,
+    orient: lmdc::plan::orient::Orienter,
+    normal: Option<[f32; 3]>,
+    rot: nalgebra::Matrix3<f64>,
+    prev: [f64; 6],
+    layer: usize,
+    layers: Vec<Option<[[f64; 2]; 6]>>,
+}
+
+impl Visit for Angles {
+    fn layer(&mut self, index: usize, _: &lmdc::ir::Layer) {
+        self.layer = index;
+    }
+    fn motion(&mut self, m: &Move) {
+        if self.normal != Some(m.normal) {
+            self.normal = Some(m.normal);
+            self.rot = self.orient.rotation(m.normal);
+        }
+        let j = *self
+            .solver
+            .solve(m.to, &self.rot, &self.prev)
+            .first()
+            .expect("a plan that built is within reach");
+        self.prev = j;
+        let r = self.layers[self.layer].get_or_insert([[f64::INFINITY, f64::NEG_INFINITY]; 6]);
+        for (r, a) in r.iter_mut().zip(j) {
+            *r = [r[0].min(a), r[1].max(a)];
+        }
+    }
+}
+
+#[test]
+fn the_joint_plot_carries_the_angles_the_solver_gives() {
+    // The duct's normal turns layer by layer (A4 to A6 move); the ramp wall
+    // is flat. Both on a KR 60 HA.
+    for (example, name) in [("twisted_duct", "kr60"), ("ramp_wall", "kr30")] {
+        let p = verified(example);
+        let m = p.machines().find(|m| m.machine().name() == name).unwrap();
+        let lmdc::ir::Machine::Robot(r) = m.machine() else {
+            panic!("{name} is a robot")
+        };
+        let mut want = Angles {
+            solver: lmdc::plan::arm::Solver::new(r).expect("an arm"),
+            orient: lmdc::plan::orient::Orienter::new(r.beam),
+            normal: None,
+            rot: nalgebra::Matrix3::identity(),
+            prev: r.home,
+            layer: 0,
+            layers: vec![None; p.ir().layers.len()],
+        };
+        m.plan().walk(&mut want);
+        let d = data(&preview::html(m));
+        let arm = &d["meta"]["arm"];
+        assert_eq!(arm["name"], "KR 60 HA", "{example}");
+        assert_eq!(arm["limits"][4], serde_json::json!([-119.0, 119.0]));
+        let got = arm["layers"].as_array().unwrap();
+        assert_eq!(got.len(), want.layers.len(), "{example}: a range a layer");
+        let mut turned = [0.0f64; 6];
+        for (k, (g, w)) in got.iter().zip(&want.layers).enumerate() {
+            let w = w.expect("every layer has moves");
+            for a in 0..6 {
+                for e in 0..2 {
+                    let v = g[a][e].as_f64().unwrap();
+                    assert!(
+                        (v - w[a][e]).abs() < 1e-6,
+                        "{example} layer {} A{}: page {v}, solver {}",
+                        k + 1,
+                        a + 1,
+                        w[a][e]
+                    );
+                }
+                turned[a] = turned[a].max(w[a][1] - w[a][0]);
+            }
+        }
+        // The plot is not flat: the arm moves within layers.
+        assert!(turned.iter().any(|t| *t > 1.0), "{example}: {turned:?}");
+        assert_eq!(arm["unreachable"], 0);
+    }
+}
+
+#[test]
+fn a_robot_without_an_arm_has_no_joint_plot() {
+    // The sleeve's kr30 declares no arm; a CNC has none either.
+    for (example, name) in [("sleeve", "kr30"), ("sleeve", "mill5")] {
+        let d = data(&page_of(example, name));
+        assert!(d["meta"]["arm"].is_null(), "{example} {name}");
+    }
+    assert!(data(&page_of("ramp_wall", "kr30"))["meta"]["arm"].is_object());
+}
+
+#[test]
+fn chromium_draws_the_joint_plot_only_for_an_arm() {
+    let Some(chromium) = chromium() else {
+        skip::skip(
+            "chromium_draws_the_joint_plot_only_for_an_arm",
+            "chromium",
+            "apt-get install chromium, or set LMDC_CHROMIUM",
+        );
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    for (example, name, arm) in [("ramp_wall", "kr30", true), ("sleeve", "kr30", false)] {
+        let file = dir.path().join(format!("{example}_{name}.html"));
+        std::fs::write(&file, page_of(example, name)).unwrap();
+        let dom = dom(&chromium, &file, "");
+        assert_eq!(
+            attr(&dom, "data-ready").as_deref(),
+            Some("speed"),
+            "{example}"
+        );
+        assert!(attr(&dom, "data-js-error").is_none(), "{example}");
+        let section = dom.contains(r#"<section id="armplots">"#);
+        assert_eq!(section, arm, "{example} {name}: the joint plot shown");
+        assert_eq!(attr(&dom, "data-joints").is_some(), arm, "{example} {name}");
+        if arm {
+            // The ramp wall's axes stay far inside their limits.
+            assert_eq!(attr(&dom, "data-near-limit").as_deref(), Some("0"));
+            let note = text_of(&dom, r#"<p id="joints-note""#);
+            assert!(note.contains("more than 10° inside"), "{note}");
+        }
+    }
+    // The joint-limit error's part with the nozzle tilted 70° instead of
+    // 80° on the flange: it builds, A5 down to about −113°, within 10° of
+    // −117° (−119° less the 2° margin) on every layer.
+    let src = std::fs::read_to_string("examples/errors/arm_joint_limit.lmd")
+        .unwrap()
+        .replace("b = 80 deg", "b = 70 deg");
+    let p = compile(&src, &mut ())
+        .program
+        .expect("tilted 70°, it builds");
+    let html = preview::html(p.machines().next().unwrap());
+    let arm = data(&html)["meta"]["arm"].clone();
+    let mut near = 0;
+    for layer in arm["layers"].as_array().unwrap() {
+        for a in 0..6 {
+            let lim = |e: usize| arm["limits"][a][e].as_f64().unwrap();
+            let v = |e: usize| layer[a][e].as_f64().unwrap();
+            let margin = arm["margin"].as_f64().unwrap();
+            if v(0) < lim(0) + margin + 10.0 || v(1) > lim(1) - margin - 10.0 {
+                near += 1;
+            }
+        }
+    }
+    assert!(near >= 5, "A5 near its limit on every layer: {near}");
+    let file = dir.path().join("near.html");
+    std::fs::write(&file, html).unwrap();
+    let dom = dom(&chromium, &file, "");
+    assert_eq!(number(&dom, "data-near-limit"), near as f64);
+    let note = text_of(&dom, r#"<p id="joints-note""#);
+    assert!(
+        note.contains(&format!("{near} layer-axis pairs come within 10°")),
+        "{note}"
+    );
 }

@@ -10,6 +10,8 @@
 //! ([`crate::target::arm`]). Angles here are degrees.
 
 use crate::ir::{Arm, Pose, Robot};
+use crate::plan::orient::Orienter;
+use crate::plan::Move;
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use rs_opw_kinematics::glam::{DQuat, DVec3};
 use rs_opw_kinematics::kinematic_traits::{Kinematics, Pose as OpwPose};
@@ -255,6 +257,107 @@ impl Solver {
         j.iter()
             .enumerate()
             .fold(0, |t, (i, a)| t | (u8::from(*a < 0.0) << i))
+    }
+}
+
+/// One move of a plan solved by [`Follow`].
+#[derive(Clone, Copy, Debug)]
+pub struct Solved {
+    /// The move.
+    pub m: Move,
+    /// The tool's axes at its end (columns, in the base).
+    pub rot: Matrix3<f64>,
+    /// The axis angles it ends at; `None` where the arm cannot reach.
+    pub joints: Option<Joints>,
+    /// The wrist centre in the robot's frame (what [`Solver::status_at`]
+    /// reads).
+    pub wrist: Vector3<f64>,
+}
+
+/// A robot's arm following its plan move by move: each pose — the focus
+/// where the plan puts it, the tool turned as the KRL writer turns it
+/// ([`crate::plan::orient`]) — solved to the axis angles nearest the move
+/// before (from `home` for the first). What the verifier's arm rules check
+/// and what the preview plots: one way of solving a plan, in one place.
+///
+/// Moves are buffered and solved [`CHUNK`] at a time on two threads
+/// ([`Solver::solve_many`]), then chosen in order ([`Solver::nearest`]):
+/// [`Follow::push`] says when a chunk is full, [`Follow::take`] solves it.
+pub struct Follow {
+    solver: Solver,
+    orient: Orienter,
+    normal: Option<[f32; 3]>,
+    rot: Matrix3<f64>,
+    moves: Vec<Move>,
+    poses: Vec<([f64; 3], Matrix3<f64>)>,
+    /// The last solution (home before the first).
+    prev: Joints,
+    /// No move solved yet: the next is the PTP from home.
+    first: bool,
+}
+
+/// Moves solved together: their poses do not depend on each other, only
+/// the choice among each one's solutions does (`Solver::nearest`).
+pub const CHUNK: usize = 4096;
+
+impl Follow {
+    /// The follower of `robot`'s arm, when [`Solver::new`] has one.
+    pub fn new(robot: &Robot) -> Option<Follow> {
+        Some(Follow {
+            solver: Solver::new(robot)?,
+            orient: Orienter::new(robot.beam),
+            normal: None,
+            rot: Matrix3::identity(),
+            moves: Vec::with_capacity(CHUNK),
+            poses: Vec::with_capacity(CHUNK),
+            prev: robot.home,
+            first: true,
+        })
+    }
+
+    /// The solver.
+    pub fn solver(&self) -> &Solver {
+        &self.solver
+    }
+
+    /// Buffers a move; `true` when a chunk is full and should be taken.
+    pub fn push(&mut self, m: &Move) -> bool {
+        if self.normal != Some(m.normal) {
+            // As the writer does: the tool turns only where the normal changes.
+            self.normal = Some(m.normal);
+            self.rot = self.orient.rotation(m.normal);
+        }
+        self.moves.push(*m);
+        self.poses.push((m.to, self.rot));
+        self.moves.len() >= CHUNK
+    }
+
+    /// Solves the buffered moves and returns them in order.
+    pub fn take(&mut self) -> Vec<Solved> {
+        let solved = self.solver.solve_many(&self.poses, 2);
+        let mut out = Vec::with_capacity(self.moves.len());
+        for ((m, (_, rot)), (sols, wrist)) in self.moves.iter().zip(&self.poses).zip(solved) {
+            // The first move (the PTP from home) as the KRL writer solves it,
+            // and a pose at the wrist singularity, by the move before.
+            let joints = match (self.first, Solver::nearest(&sols, &self.prev)) {
+                (false, Some(j)) => Some(j),
+                _ if sols.is_empty() => None,
+                _ => self.solver.solve(m.to, rot, &self.prev).first().copied(),
+            };
+            if let Some(j) = joints {
+                self.prev = j;
+            }
+            self.first = false;
+            out.push(Solved {
+                m: *m,
+                rot: *rot,
+                joints,
+                wrist,
+            });
+        }
+        self.moves.clear();
+        self.poses.clear();
+        out
     }
 }
 

@@ -82,6 +82,8 @@ pub struct Meta<'a> {
     /// (the drift the layers' mean rise minus height added up to it), from
     /// every move of the plan, or `None` where none is predicted.
     pub layer_error: &'a [Option<[f64; 4]>],
+    /// A robot arm's axes layer by layer (`None`: no arm to solve).
+    pub arm: Option<&'a super::joints::Arm>,
     /// Who wrote the page.
     pub generator: &'static str,
 }

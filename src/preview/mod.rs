@@ -14,9 +14,13 @@
 //! k-th layer and every k-th deposit move of each run (its ends always), `k`
 //! the smallest that fits, and says so on the page: a page of a few MB that
 //! a browser draws interactively, against 3.6 M points of the dense duct.
+//!
+//! For a robot with an arm the page also plots each axis's range layer by
+//! layer against its limits ([`joints`]), solved as the verifier solves it.
 
 mod encode;
 mod error;
+pub mod joints;
 mod kind;
 
 use crate::ir::{Layer, Point};
@@ -208,6 +212,7 @@ pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
     plan.walk(&mut c);
     c.flush();
     let layer_error = c.errors.finish();
+    let arm = joints::of(machine.machine(), &plan, program.layers.len());
     let meta = encode::Meta {
         part: &program.part,
         machine: machine.machine().name(),
@@ -222,6 +227,7 @@ pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
         tolerance: program.limits.rise_tolerance * 100.0,
         max_drift: program.limits.max_drift,
         layer_error: &layer_error,
+        arm: arm.as_ref(),
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };
     let data = c.cols.encode(&meta);

@@ -270,7 +270,7 @@
 
   function resize() {
     const dpr = window.devicePixelRatio || 1;
-    for (const c of [canvas, $("plot"), $("errplot")]) {
+    for (const c of [canvas, $("plot"), $("errplot")].concat(ARM ? [$("joints")] : [])) {
       c.width = Math.max(1, Math.round(c.clientWidth * dpr));
       c.height = Math.max(1, Math.round(c.clientHeight * dpr));
     }
@@ -578,6 +578,58 @@
     g.textAlign = "right"; g.fillText(`layer ${LE.length}`, W - 16 * dpr, H - 1 * dpr);
   }
 
+  // A robot arm's six axes layer by layer, solved as the verifier solves
+  // them (every move, whatever the view keeps): each layer's lowest to
+  // highest angle as a band, against the axis's limits (red) and the margin
+  // lmd::joint-limit keeps inside them (dashed). A layer whose band comes
+  // within NEAR degrees of the margin is ticked red below its panel; on A5
+  // and A3 the zone lmd::singular-lin keeps LINs out of is shaded.
+  const ARM = M.arm;
+  const NEAR = 10;
+  function plotJoints() {
+    if (!ARM) return;
+    const c = $("joints"), g = clear(c);
+    const W = c.width, H = c.height, dpr = window.devicePixelRatio || 1;
+    const L = ARM.layers, xs = L.map((_, k) => k + 1);
+    const x0 = 0.5, x1 = L.length + 0.5;
+    const gap = 8 * dpr, ph = (H - 7 * gap) / 6;
+    const all = range[0] === 0 && range[1] === STARTS.length - 1;
+    const shade = STARTS.length && !all ? [STARTS[range[0]][0] - 0.5, STARTS[range[1]][0] + 0.5] : null;
+    let near = 0;
+    for (let a = 0; a < 6; a++) {
+      const lo = L.map((r) => (r ? r[a][0] : NaN)), hi = L.map((r) => (r ? r[a][1] : NaN));
+      const [l0, l1] = ARM.limits[a], m0 = l0 + ARM.margin, m1 = l1 - ARM.margin;
+      const box = { left: 70 * dpr, right: W - 16 * dpr, top: gap + a * (ph + gap), height: ph - 4 * dpr };
+      const pad = 0.05 * (l1 - l0);
+      const marks = [[l0, "#c0392b"], [l1, "#c0392b"]];
+      if (ARM.margin > 0) marks.push([m0, "#c0392b", true], [m1, "#c0392b", true]);
+      const zone = a === 4 ? 0 : a === 2 ? ARM.stretch : null;
+      if (zone !== null) marks.push([zone - ARM.singularity, "#888", true], [zone + ARM.singularity, "#888", true]);
+      panel(g, box, xs, x0, x1, {
+        series: [[lo, "#1f4e79", 1], [hi, "#1f4e79", 1]], band: [lo, hi, "rgba(31,78,121,0.28)"],
+        range: [l0 - pad, l1 + pad], fmt: (x) => `${signed(x, 0)}°`, shade, marks,
+        label: `A${a + 1}, deg (limits ${fmt(l0)}° to ${fmt(l1)}°${ARM.margin > 0 ? `, margin ${fmt(ARM.margin)}°` : ""})`,
+      });
+      // Layers near a limit: a red tick under the panel.
+      const X_ = (x) => box.left + ((box.right - box.left) * (x - x0)) / (x1 - x0);
+      g.fillStyle = "#c0392b";
+      for (let k = 0; k < L.length; k++) {
+        if (!L[k] || !(L[k][a][0] < m0 + NEAR || L[k][a][1] > m1 - NEAR)) continue;
+        near++;
+        g.fillRect(X_(k + 1) - dpr, box.top + box.height + dpr, 2 * dpr, 3 * dpr);
+      }
+    }
+    $("joints-title").textContent = `${ARM.name}: axes A1–A6 layer by layer, lowest to highest angle of each ` +
+      `layer's moves (blue), limits (red; dashed: lmd::joint-limit's margin)`;
+    $("joints-note").textContent = (near
+      ? `${near} layer-axis pairs come within ${NEAR}° of the margin (red ticks). `
+      : `Every axis stays more than ${NEAR}° inside its margin. `) +
+      `Grey dashed on A3 and A5: lmd::singular-lin's ±${fmt(ARM.singularity)}° about the stretched elbow and A5 = 0. ` +
+      (ARM.unreachable ? `${ARM.unreachable} moves out of reach.` : "");
+    c.dataset.joints = 6;
+    c.dataset.nearLimit = near;
+  }
+
   // --- controls -----------------------------------------------------------
   function showRange() {
     if (!STARTS.length) return;
@@ -589,12 +641,12 @@
   from.addEventListener("input", () => {
     range[0] = +from.value;
     if (range[0] > range[1]) { range[1] = range[0]; to.value = from.value; plot(); }
-    showRange(); plotLayers(); redraw();
+    showRange(); plotLayers(); plotJoints(); redraw();
   });
   to.addEventListener("input", () => {
     range[1] = +to.value;
     if (range[1] < range[0]) { range[0] = range[1]; from.value = to.value; }
-    showRange(); plot(); plotLayers(); redraw();
+    showRange(); plot(); plotLayers(); plotJoints(); redraw();
   });
   $("quantity").addEventListener("change", (e) => { bucketise(e.target.value); redraw(); });
   $("travel").addEventListener("change", (e) => { showTravel = e.target.checked; redraw(); });
@@ -626,7 +678,7 @@
     view.zoom *= Math.exp(-e.deltaY * 0.001);
     redraw();
   }, { passive: false });
-  window.addEventListener("resize", () => { resize(); plot(); plotLayers(); redraw(); });
+  window.addEventListener("resize", () => { resize(); plot(); plotLayers(); plotJoints(); redraw(); });
 
   // --- the page's own account of what it shows (tests read it) ------------
   $("heading").textContent = `${M.part} on ${M.machine}`;
@@ -652,6 +704,7 @@
   if (ask.get("view") === "top") Object.assign(view, { yaw: 0, pitch: Math.PI / 2 });
   if (+ask.get("zoom") > 0) view.zoom *= +ask.get("zoom");
 
+  if (ARM) $("armplots").hidden = false;
   resize();
   // Where the view is on the page, CSS pixels (a test measures its screenshot).
   canvas.dataset.viewTop = Math.round(canvas.getBoundingClientRect().top + window.scrollY);
@@ -672,5 +725,6 @@
   draw();
   plot();
   plotLayers();
+  plotJoints();
   document.documentElement.dataset.ready = select.value;
 })();

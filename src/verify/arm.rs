@@ -13,21 +13,15 @@ use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::message::verify::arm::{self as msg, ArmAt};
 use crate::diag::Diagnostics;
 use crate::ir::Machine;
-use crate::plan::arm::{Joints, Solver};
-use crate::plan::orient::Orienter;
+use crate::plan::arm::{Follow, Joints};
 use crate::plan::{Move, Speed, Visit};
 use crate::sema::schema::machine::{ARM, BASE, HOME, SINGULARITY, TOOL};
 use nalgebra::{Matrix3, Vector3};
 
 /// The arm rules of one robot.
 pub(super) struct ArmRule {
-    solver: Solver,
-    orient: Orienter,
-    normal: Option<[f32; 3]>,
-    rot: Matrix3<f64>,
-    /// Moves not yet solved, and their poses.
-    moves: Vec<Move>,
-    poses: Vec<([f64; 3], Matrix3<f64>)>,
+    /// The arm following the plan (`plan::arm`, as the preview plots it).
+    follow: Follow,
     /// The last solution, its Status, and where the last move ended.
     prev: Joints,
     status: u8,
@@ -50,14 +44,8 @@ impl<'p> PlanRule<'p> for ArmRule {
         let Machine::Robot(r) = cx.machine else {
             return None;
         };
-        let solver = Solver::new(r)?;
         Some(ArmRule {
-            solver,
-            orient: Orienter::new(r.beam),
-            normal: None,
-            rot: Matrix3::identity(),
-            moves: Vec::with_capacity(CHUNK),
-            poses: Vec::with_capacity(CHUNK),
+            follow: Follow::new(r)?,
             prev: r.home,
             status: 0,
             last: None,
@@ -78,7 +66,7 @@ impl<'p> PlanRule<'p> for ArmRule {
             return;
         };
         self.flush();
-        let arm = self.solver.arm();
+        let arm = self.follow.solver().arm();
         let name = arm
             .model
             .as_deref()
@@ -122,20 +110,9 @@ impl<'p> PlanRule<'p> for ArmRule {
     }
 }
 
-/// Moves solved together: their poses do not depend on each other, only
-/// the choice among each one's solutions does (`Solver::nearest`).
-const CHUNK: usize = 4096;
-
 impl Visit for ArmRule {
     fn motion(&mut self, m: &Move) {
-        if self.normal != Some(m.normal) {
-            // As the writer does: the tool turns only where the normal changes.
-            self.normal = Some(m.normal);
-            self.rot = self.orient.rotation(m.normal);
-        }
-        self.moves.push(*m);
-        self.poses.push((m.to, self.rot));
-        if self.moves.len() >= CHUNK {
+        if self.follow.push(m) {
             self.flush();
         }
     }
@@ -144,23 +121,9 @@ impl Visit for ArmRule {
 impl ArmRule {
     /// Solves the buffered moves (on two threads) and follows them in order.
     fn flush(&mut self) {
-        let solved = self.solver.solve_many(&self.poses, 2);
-        let moves = std::mem::take(&mut self.moves);
-        let poses = std::mem::take(&mut self.poses);
-        for ((m, (_, rot)), (sols, wrist)) in moves.iter().zip(&poses).zip(solved) {
-            // The first move (the PTP from home) as the KRL writer solves it,
-            // and a pose at the wrist singularity, by the move before.
-            let j = match (self.last, Solver::nearest(&sols, &self.prev)) {
-                (Some(_), Some(j)) => Some(j),
-                _ if sols.is_empty() => None,
-                _ => self.solver.solve(m.to, rot, &self.prev).first().copied(),
-            };
-            self.step(m, rot, j, &wrist);
+        for s in self.follow.take() {
+            self.step(&s.m, &s.rot, s.joints, &s.wrist);
         }
-        self.moves = moves;
-        self.moves.clear();
-        self.poses = poses;
-        self.poses.clear();
     }
 
     /// One move reaching axis angles `j` (none: out of reach).
@@ -171,7 +134,7 @@ impl ArmRule {
         }
         let lin = self.last.is_some();
         let Some(j) = j else {
-            let (d, span) = self.solver.reach(m.to, rot);
+            let (d, span) = self.follow.solver().reach(m.to, rot);
             self.span = span;
             let edge = if d > span[1] { span[1] } else { span[0] };
             Worst::hit(&mut self.reach, d, edge, m.at);
@@ -179,7 +142,7 @@ impl ArmRule {
             return;
         };
         self.limits(&j, m);
-        let status = self.solver.status_at(&j, wrist);
+        let status = self.follow.solver().status_at(&j, wrist);
         if lin {
             self.lin(&j, status, m);
         }
@@ -192,7 +155,7 @@ impl ArmRule {
 impl ArmRule {
     /// Each axis within its limits less the margin.
     fn limits(&mut self, j: &Joints, m: &Move) {
-        let arm = self.solver.arm();
+        let arm = self.follow.solver().arm();
         for (i, a) in j.iter().enumerate() {
             let [lo, hi] = arm.limits[i];
             let (lo, hi) = (lo + arm.margin, hi - arm.margin);
@@ -207,11 +170,11 @@ impl ArmRule {
     /// What a LIN to `j` must keep: away from singularities, one
     /// configuration, the axes within their speeds.
     fn lin(&mut self, j: &Joints, to: u8, m: &Move) {
-        let thr = self.solver.arm().singularity;
+        let thr = self.follow.solver().arm().singularity;
         if j[4].abs() < thr {
             Worst::hit(&mut self.wrist, j[4].abs(), thr, m.at);
         }
-        let elbow = (j[2] - self.solver.stretch()).abs();
+        let elbow = (j[2] - self.follow.solver().stretch()).abs();
         if elbow < thr {
             Worst::hit(&mut self.elbow, elbow, thr, m.at);
         }
@@ -233,7 +196,7 @@ impl ArmRule {
             return;
         }
         let t = d / v as f64;
-        let speeds = self.solver.arm().speeds;
+        let speeds = self.follow.solver().arm().speeds;
         for i in 0..6 {
             let rate = (j[i] - self.prev[i]).abs() / t;
             if rate > speeds[i] {
@@ -253,7 +216,7 @@ impl ArmRule {
     /// forearm's reach in front of A1, a tool length and the wrist below A2,
     /// turned as declared: written as `frame(…)`.
     fn base_that_reaches(&self, r: &crate::ir::Robot) -> String {
-        let [a1, a2, _, c1, c2, c3, c4] = self.solver.arm().opw;
+        let [a1, a2, _, c1, c2, c3, c4] = self.follow.solver().arm().opw;
         let tool = r
             .tool
             .value
