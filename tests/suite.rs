@@ -7,6 +7,7 @@ mod support;
 
 mod all_errors;
 mod atomic_output;
+mod calibrate;
 mod cases;
 mod cell_io;
 mod cli;
