@@ -267,3 +267,26 @@ fn a_filled_sheet_fits_back_to_the_model_it_was_measured_from() {
     );
     assert!(String::from_utf8_lossy(&o.stdout).contains("linear("));
 }
+
+#[test]
+fn a_matrix_beyond_what_lmdc_lays_is_refused_before_it_is_made() {
+    // 1000 speeds × 11 powers = 11 000 coupons > 10 000.
+    let powers: Vec<String> = (0..11).map(|i| format!("{} W", 900 + 10 * i)).collect();
+    let src = edited("count = 6", "count = 1000")
+        .replace(
+            "  coupon = track\n",
+            &format!("  coupon = track\n  powers = [{}]\n", powers.join(", ")),
+        )
+        .replace("repeat = 2", "repeat = 1");
+    let c = pipeline::compile(&src, &mut ());
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == Code::CountRange)
+        .expect("lmd::count-range");
+    assert!(
+        d.message.to_string().contains("11000 coupons"),
+        "{}",
+        d.message
+    );
+}

@@ -30,6 +30,9 @@ const PART_ONLY: &[&str] = &[
     "inheritance",
 ];
 
+/// Most coupons a calibration lays (a plate holds far fewer).
+pub const MAX_COUPONS: usize = 10_000;
+
 /// Checks a file with a `calibration` block (its constants already read).
 pub fn check<'a>(
     env: &mut Env<'a>,
@@ -125,7 +128,18 @@ fn statement<'a>(
     };
     let powders = powders?.unwrap_or_else(|| vec![process.powder]);
     let (kind, length, spacing) = (kind?, length?, spacing?);
-    let mut coupons = matrix(&speeds?, &powers, &powders, repeat?);
+    let (speeds, repeat) = (speeds?, repeat?);
+    // Counted before any is made: lists long enough to exhaust memory are
+    // refused, not allocated.
+    let n = [speeds.len(), powers.len(), powders.len(), repeat]
+        .iter()
+        .try_fold(1usize, |a, &b| a.checked_mul(b))
+        .unwrap_or(usize::MAX);
+    if n > MAX_COUPONS {
+        diags.push(message::calib::too_many_coupons(n, MAX_COUPONS, s.span));
+        return None;
+    }
+    let mut coupons = matrix(&speeds, &powers, &powders, repeat);
     let footprint = kind.footprint(width);
     let (plate, plate_span) = plate?;
     let room = Room {

@@ -347,3 +347,18 @@ pub fn plate_not_two(n: usize, at: Span) -> Diagnostic {
     .label(at, "two lengths")
     .help("write `plate = [150 mm, 100 mm]`")
 }
+
+/// A calibration matrix of `n` coupons, more than `max`.
+pub fn too_many_coupons(n: usize, max: usize, at: Span) -> Diagnostic {
+    let n = if n == usize::MAX {
+        "more than can be counted".to_string()
+    } else {
+        n.to_string()
+    };
+    Diagnostic::error(
+        Code::CountRange,
+        format!("this calibration lays {n} coupons; lmdc lays at most {max}"),
+    )
+    .label(at, "speeds × powers × powders × repeat")
+    .help("give fewer speeds, powers, powder feeds or a smaller `repeat`")
+}
