@@ -32,6 +32,13 @@ pub const VERSION: u32 = 4;
 /// model is still version 4.
 pub const VERSION_CALIBRATED: u32 = 5;
 
+/// Version 6: a calibration plan (`lmdc calibrate`): layers laid on the
+/// plate rather than on the layer before them (`Layer::on_plate`, a
+/// coupon's first layer), each coupon's first layer labelled with its
+/// parameters (`Layer::label`). A version 5 reader would take each
+/// coupon for a layer on the one before.
+pub const VERSION_COUPONS: u32 = 6;
+
 /// Version 3: a segmented [`Ring`] built in one continuous run, with a
 /// height loop that runs on the machine or a fixed speed schedule (a segmented ring's;
 /// ignored, the nominal speeds would run open loop), and the machines'
@@ -508,6 +515,15 @@ pub struct Layer {
     pub frame: Frame,
     /// Paths in deposition order.
     pub paths: Vec<Path>,
+    /// A line the programs write as a comment before the layer: a
+    /// calibration coupon's id and parameters (empty: none).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub label: String,
+    /// Whether the layer is laid on the plate rather than on the layer
+    /// before it (a calibration coupon's first layer): `lmd::stacking` does
+    /// not look for the layer before it underneath.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub on_plate: bool,
 }
 
 /// A right-handed orthonormal frame.

@@ -12,6 +12,9 @@ use crate::units::Length;
 /// Builds the IR of a checked model; returns it with the slicer's warnings, or
 /// the errors that make the part unbuildable.
 pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
+    if let Build::Calibration(c) = &model.build {
+        return Ok((calibration(model, c), Diagnostics::new()));
+    }
     let (layers, warnings, ring) = match &model.build {
         Build::Ring(r) => {
             let (layers, ring) = slice::segmented_ring::build(r)?;
@@ -93,6 +96,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
                 Build::Block { slicing, .. } => slicing.span,
                 Build::Variable { slicing, .. } => slicing.span,
                 Build::Ring(r) => r.origins.layers,
+                Build::Calibration(c) => c.span,
             }),
             ring: match &model.build {
                 Build::Ring(r) => Some(r.origins),
@@ -221,4 +225,53 @@ fn ring_limits(model: &Model, r: &RingBuild) -> (Limits, Option<Span>, Option<Sp
         None => r.origins.ring,
     };
     (limits, Some(r.origins.layers), Some(speed_span))
+}
+
+/// A calibration file's plan: its coupons, with no bead model (the
+/// coupons are what measures it). Every laser-on point must lie within the
+/// coupons' speeds, the laser's powers and the layer height declared.
+fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
+    let speeds = c
+        .coupons
+        .iter()
+        .map(|k| k.speed.0)
+        .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], v| {
+            [lo.min(v), hi.max(v)]
+        });
+    let machines: Vec<_> = model.machines.iter().map(|(m, _)| m.clone()).collect();
+    let h = c.layer_height.0;
+    Program {
+        format: FORMAT.into(),
+        version: ir::VERSION_COUPONS,
+        part: model.part.clone(),
+        units: Units::default(),
+        limits: Limits {
+            layer_height: [h, h],
+            speed: speeds,
+            power: [
+                model.process.power_range[0].watts(),
+                model.process.power_range[1].watts(),
+            ],
+            bead_width: c.width.0,
+            rise_tolerance: ir::RISE_TOLERANCE,
+            max_drift: ir::MAX_DRIFT,
+        },
+        machines,
+        styles: Vec::new(),
+        heat: model.process.heat,
+        continuous: false,
+        bead: None,
+        ring: None,
+        layers: slice::calibration::build(c, &model.process),
+        origins: Origins {
+            bead_height: Some(c.span),
+            bead_speed: Some(c.span),
+            power: Some(model.process.power_span),
+            spine: None,
+            top: None,
+            slicing: Some(c.span),
+            ring: None,
+            machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
+        },
+    }
 }

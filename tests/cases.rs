@@ -9,7 +9,9 @@ use crate::support::expected::{self, blessing};
 use lmdc::back::{MemorySink, Templates};
 use lmdc::diag::json::Encoder;
 use lmdc::diag::render;
-use lmdc::pipeline::{compile_with, emit, DataFiles, Options};
+use lmdc::pipeline::{compile_with_model, emit, DataFiles, Options};
+use lmdc::sema::model::Build;
+use lmdc::slice::calibration::sheet;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::fs;
@@ -125,7 +127,8 @@ pub fn produce(case: &Path) -> BTreeMap<String, Vec<u8>> {
         data: Some(DataFiles(data)),
         ..Options::default()
     };
-    let c = compile_with(&src, &options, &mut ()).expect("no machine named, nothing set");
+    let (c, model) =
+        compile_with_model(&src, &options, &mut ()).expect("no machine named, nothing set");
     let mut out = BTreeMap::new();
     if !c.diagnostics.is_empty() {
         // What `lmdc check FILE --color never` draws on stderr, and what
@@ -155,6 +158,15 @@ pub fn produce(case: &Path) -> BTreeMap<String, Vec<u8>> {
             "{name}: lmdc writes {file} twice, or over a file of the case"
         );
         out.insert(file, bytes);
+    }
+    if let Some(Build::Calibration(cal)) = model.as_ref().map(|m| &m.build) {
+        // What `lmdc calibrate` writes beside the programs.
+        let part = &p.ir().part;
+        let file = format!(
+            "{}.coupons.csv",
+            lmdc::target::names::windows_safe(&lmdc::back::identifier(part, 64))
+        );
+        out.insert(file, sheet(part, cal).into_bytes());
     }
     if case.join(IR).exists() {
         // Through the text form, as a reader of `--emit ir` sees it (f32
@@ -205,8 +217,11 @@ fn every_case_produces_its_files() {
     for case in all.iter().filter(|c| c.to_string_lossy().contains(&only)) {
         ran += 1;
         let produced = produce(case);
-        // The input and its data files (measurement sheets) are the case's.
-        let p = expected::check_dir(case, &produced, |f| f == INPUT || f.ends_with(".csv"));
+        // The input and its data files (measurement sheets) are the case's;
+        // a sheet `lmdc calibrate` writes (`*.coupons.csv`) is an output.
+        let p = expected::check_dir(case, &produced, |f| {
+            f == INPUT || (f.ends_with(".csv") && !f.ends_with(".coupons.csv"))
+        });
         if !p.is_empty() {
             failed += 1;
             problems.push(format!("── {} ──\n{}", case.display(), p.join("\n")));

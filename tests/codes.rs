@@ -372,6 +372,9 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
         "bead track { width = 2.2 mm  model = fit(linear, data = \"sheet_units.csv\") }";
     too_few_points: TooFewPoints, PLATE,
         "bead track { width = 2.2 mm  model = fit(power, data = \"too_few_points.csv\") }";
+    // Twelve coupons 30 mm long on a plate 40 × 20 mm.
+    coupons_plate: CouponsPlate, PLATE.without(&["solid", "slicing"]),
+        "calibration { bead = track  speeds = 4 mm/s .. 8 mm/s  count = 6  repeat = 2  length = 30 mm  spacing = 5 mm  layer_height = 0.7 mm  plate = [40 mm, 20 mm] }";
     // Seed 003's line measured at three speeds, the 6 mm/s coupon higher
     // than the 4 mm/s one: a slip the table refuses, naming both.
     bead_table: BeadTable, PLATE,

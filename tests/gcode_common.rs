@@ -177,6 +177,8 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
                     points: island,
                 },
             ],
+            label: String::new(),
+            on_plate: false,
         });
     }
     Program {

@@ -450,3 +450,24 @@ fn expected_linuxcnc_programs_run_in_rs274() {
     }
     assert!(ran >= 7, "only {ran} expected .ngc files");
 }
+
+/// `lmdc calibrate`'s coupons (tracks, walls, pads) run in rs274 along the
+/// IR's paths at each coupon's speed and power.
+#[test]
+fn calibration_coupons_follow_the_ir() {
+    if !have_rs274("calibration_coupons_follow_the_ir") {
+        return;
+    }
+    for coupon in [
+        "track",
+        "wall(layers = 3)",
+        "pad(tracks = 3, offset = 1.6 mm)",
+    ] {
+        let src = include_str!("../examples/calibration.lmd")
+            .replace("coupon = track", &format!("coupon = {coupon}"));
+        let c = lmdc::pipeline::compile(&src, &mut ());
+        let ir = c.program.expect("the coupons compile").ir().clone();
+        let n = check_against_ir(ir);
+        assert!(n >= 12, "{coupon}: {n} deposit moves");
+    }
+}

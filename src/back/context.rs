@@ -106,6 +106,23 @@ pub fn layer_context(ctx: &mut tera::Context, li: usize, n_layers: usize, layer:
     ctx.insert("h_max", &fixed(hi as f64, 3));
     ctx.insert("paths", &layer.paths.len());
     ctx.insert("points", &points);
+    ctx.insert("label", &label(&layer.label));
+}
+
+/// A layer's label as a comment holds it on every back end: letters,
+/// digits, spaces and `. , : / - _` (the IR may come from elsewhere: no
+/// bracket, semicolon or line break ends a comment early).
+fn label(text: &str) -> String {
+    text.chars()
+        .take(200)
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || " .,:/-_".contains(c) {
+                c
+            } else {
+                ' '
+            }
+        })
+        .collect()
 }
 
 /// `styles`: one line per row of the style table, e.g. `style 1 edge: power

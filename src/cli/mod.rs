@@ -1,6 +1,7 @@
 //! The `lmdc` command line: argument parsing, reading the source, printing
 //! diagnostics, writing outputs atomically, exit codes.
 
+mod calibrate;
 mod fit;
 mod fmt;
 pub mod messages;
@@ -41,6 +42,8 @@ Examples:
   lmdc report part.lmd                   time, lengths, energy, powder and metal, per layer
   lmdc preview part.lmd                  the plan in 3-D: out/<part>.preview.html
   lmdc simulate ring.lmd --csv loop.csv  run a ring's height loop against its plant
+  lmdc calibrate coupons.lmd             coupon programs and out/<part>.coupons.csv to fill in
+  lmdc fit out/<part>.coupons.csv        fit bead models to the filled-in sheet
 Exit status: 0 success, 1 errors in the .lmd file, 2 usage or file errors.")]
 pub struct Cli {
     #[command(subcommand)]
@@ -175,6 +178,16 @@ enum Command {
         /// The page to write (default: out/<part>.preview.html).
         #[arg(short = 'o', long = "out", value_name = "FILE")]
         out: Option<PathBuf>,
+    },
+    /// Write the coupon programs of FILE's `calibration { … }` block (one per machine,
+    /// checked like any part) and the measurement sheet OUT/<part>.coupons.csv that
+    /// `lmdc fit` reads once filled in (docs/calibration.md).
+    Calibrate {
+        /// The .lmd file with a `calibration` block.
+        file: PathBuf,
+        /// Directory the programs and the sheet are written to (created if missing).
+        #[arg(short = 'o', long = "out", value_name = "DIR", default_value = "out")]
+        out: PathBuf,
     },
     /// Fit bead models to a measurement sheet (the CSV `lmdc calibrate` writes, filled in):
     /// least squares of a line, a power law (in log space), a mass balance's efficiency
@@ -395,6 +408,10 @@ pub fn run(cli: Cli) -> u8 {
                 EXIT_USAGE
             }
         },
+        Command::Calibrate { file, out } => {
+            let p = progress(&file);
+            calibrate::run(&file, &out, (color, format), p)
+        }
         command @ Command::Fit { .. } => fit_command(command, (color, format)),
         Command::Preview { file, machine, out } => {
             let p = progress(&file);

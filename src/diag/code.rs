@@ -187,6 +187,8 @@ codes! {
         "a measurement sheet's header names a column lmdc reads (`speed`, `height`, `width`, `area`, `mass`, `feed`, `length`, `power`) without its unit in brackets, in a unit lmdc does not convert, or twice";
     TooFewPoints = "too-few-points", Values,
         "a measurement sheet with too few coupons for the model asked (a line or a power law needs two speeds, a mass balance one coupon with area or mass and feed), or without the column it fits";
+    CouponsPlate = "coupons-plate", Values,
+        "a `calibration` block whose coupons do not fit on its `plate`: the message gives the room they need and the plate's size";
     BeadTable = "bead-table", Values,
         "a bead `table(…)` (or measured data) that is no table: fewer than two speeds, lists of unequal length, speeds that do not increase, or heights that do not fall as the speed rises (names the entries that break it)";
     EfficiencyRange = "efficiency-range", Values,

@@ -106,6 +106,8 @@ mod tests {
                 z: [0.0, 0.0, 1.0],
             },
             paths,
+            label: String::new(),
+            on_plate: false,
         }
     }
 

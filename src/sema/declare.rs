@@ -52,7 +52,9 @@ pub fn read<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnostics)
     }
 }
 
-fn constants<'a>(
+/// The `let` statements, declared in `env` (what a calibration file reads
+/// of the declarations).
+pub(super) fn constants<'a>(
     env: &mut Env<'a>,
     st: &Statements<'a>,
     diags: &mut Diagnostics,

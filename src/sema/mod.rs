@@ -7,6 +7,7 @@
 //! (a wrong power does not hide a style's wrong speed).
 
 mod bead;
+mod calibration;
 mod cell;
 mod continuous;
 mod control;
@@ -74,6 +75,12 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
     let mut env = Env::new();
     env.data = data;
     // Constants first: everything else may use them, in any order.
+    if !st.get("calibration").is_empty() {
+        // A calibration file lays coupons, not a part: no solid, no slicing.
+        declare::constants(&mut env, &st, diags);
+        let part = statement::part(&st, diags);
+        return calibration::check(&mut env, &st, part, diags);
+    }
     let decl = declare::read(&mut env, &st, diags);
     let part = statement::part(&st, diags);
     let solid = solid::read(&mut env, &st, &decl, diags);

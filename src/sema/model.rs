@@ -7,8 +7,10 @@ use crate::span::Span;
 use crate::syntax::ast::Expr;
 use crate::units::{Angle, Length, MassFlow, Power, Speed};
 
+mod calibration;
 mod segmented_ring;
 mod top;
+pub use calibration::{Calibration, Coupon, CouponKind};
 pub use segmented_ring::{HeightControl, LoopRun, RingBuild};
 pub use top::{Axis, Top, TopExpr, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE};
 
@@ -477,6 +479,8 @@ pub enum Build {
     },
     /// A segmented ring laid in one continuous run, with its height loop.
     Ring(RingBuild),
+    /// Coupons to measure a bead on (`calibration { … }`).
+    Calibration(Calibration),
 }
 
 /// Which way an arc turns, seen along the outline.

@@ -23,6 +23,7 @@ pub const KINDS: &[&str] = &[
     "style",
     "inheritance",
     "machine",
+    "calibration",
 ];
 
 /// A file's statements by kind, each kind in source order.

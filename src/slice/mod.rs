@@ -1,6 +1,7 @@
 //! Slicing: the semantic model's solid → layers of process points (the IR's
 //! layers). Reads the model and the geometry built from it.
 
+pub mod calibration;
 pub mod feasibility;
 mod holes;
 pub mod layers;
@@ -42,6 +43,7 @@ pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
         Build::Block { extrusion, slicing } => planar::slice(model, bead, extrusion, slicing),
         Build::Variable { extrusion, slicing } => top::slice(model, bead, extrusion, slicing),
         Build::Ring(r) => segmented_ring::build(r).map(|(layers, _)| (layers, Diagnostics::new())),
+        Build::Calibration(c) => Ok((calibration::build(c, &model.process), Diagnostics::new())),
     }
 }
 

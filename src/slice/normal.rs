@@ -187,6 +187,8 @@ pub fn layer(
             kind: PathKind::Wall,
             points,
         }],
+        label: String::new(),
+        on_plate: false,
     };
     Ok((layer, seam_at))
 }

@@ -477,6 +477,8 @@ fn layer(
             z: [0.0, 0.0, 1.0],
         },
         paths,
+        label: String::new(),
+        on_plate: false,
     }
 }
 

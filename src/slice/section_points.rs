@@ -65,15 +65,43 @@ pub fn angles(
             })
             .collect(),
     };
-    seeds.extend(corners.map(|theta| Sample { theta, grid: None }));
-    // Grid points first among equals, so a corner on the grid keeps its index.
-    seeds.sort_by(|a, b| {
-        a.theta
-            .total_cmp(&b.theta)
-            .then(b.grid.is_some().cmp(&a.grid.is_some()))
-    });
+    // A corner is a point exactly: one that falls within `SAME` of a seed
+    // moves that seed onto it (a grid point keeps its index). The seeds are
+    // in order, so each corner finds its neighbours by bisection.
+    let mut extra = Vec::new();
+    for c in corners {
+        let i = seeds.partition_point(|p| p.theta < c);
+        let n = seeds.len();
+        let (lo, hi) = ((i + n - 1) % n.max(1), i % n.max(1));
+        let d = |p: &Sample| {
+            let d = (p.theta - c).abs();
+            d.min(TAU - d)
+        };
+        let near = [lo, hi]
+            .into_iter()
+            .filter(|&j| j < n)
+            .find(|&j| d(&seeds[j]) < SAME);
+        match near {
+            // Past the last seed, a corner just short of a full turn is the
+            // seam's neighbour from below.
+            Some(j) => {
+                seeds[j].theta = if c - seeds[j].theta > 0.5 * TAU {
+                    c - TAU
+                } else {
+                    c
+                }
+            }
+            None => extra.push(Sample {
+                theta: c,
+                grid: None,
+            }),
+        }
+    }
+    seeds.extend(extra);
+    seeds.sort_by(|a, b| a.theta.total_cmp(&b.theta));
     seeds.dedup_by(|later, kept| (later.theta - kept.theta).abs() < SAME);
-    if seeds.last().is_some_and(|l| TAU - l.theta < SAME) {
+    let turn = TAU + seeds.first().map_or(0.0, |f| f.theta);
+    if seeds.len() > 1 && seeds.last().is_some_and(|l| turn - l.theta < SAME) {
         seeds.pop();
     }
     let mut out = match spacing {
@@ -82,7 +110,7 @@ pub fn angles(
             let fits = |a: f64, b: f64| gap_fits(geo, f, s, seam + a, seam + b, error, rise);
             let mut out = Vec::with_capacity(seeds.len() * 4);
             for (i, a) in seeds.iter().enumerate() {
-                let b = seeds.get(i + 1).map_or(TAU, |n| n.theta);
+                let b = seeds.get(i + 1).map_or(turn, |n| n.theta);
                 out.push(*a);
                 refine(&mut out, a.theta, b, 0, &fits, max)?;
             }

@@ -173,6 +173,8 @@ fn layer(i: usize, layers: usize, h: f64, powder: f32, pts: &[RingPoint]) -> Lay
             kind: PathKind::Wall,
             points,
         }],
+        label: String::new(),
+        on_plate: false,
     }
 }
 

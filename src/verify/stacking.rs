@@ -69,6 +69,9 @@ fn check(p: &Program, out: &mut Diagnostics) {
     let mut there = (0.0, PathKind::Wall);
     for (li, pair) in p.layers.windows(2).enumerate() {
         let (below, here) = (&pair[0], &pair[1]);
+        if here.on_plate {
+            continue;
+        }
         let samples = samples(here, step, reach);
         if samples.is_empty() {
             continue;

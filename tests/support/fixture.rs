@@ -144,6 +144,8 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
                 z: t,
             },
             paths,
+            label: String::new(),
+            on_plate: false,
         });
     }
     Program {

@@ -270,3 +270,95 @@ pub fn missing_column(model: &str, col: &str, at: Span) -> Diagnostic {
         "add a `{col}` column with the measurements, or choose another model"
     ))
 }
+
+/// The `n` coupons of a calibration block, each `footprint` mm wide and
+/// `length` long with `spacing` between them and around them, need
+/// `need` mm (x, y) where the plate is `plate`.
+pub fn coupons_off_plate(
+    n: usize,
+    [length, footprint, spacing]: [f64; 3],
+    need: [f64; 2],
+    plate: [f64; 2],
+    at: Span,
+) -> Diagnostic {
+    let mm = |v: f64| Length(v).to_string();
+    Diagnostic::error(
+        Code::CouponsPlate,
+        format!(
+            "{n} coupons of {} × {} with {} between them need {} × {}; the plate is {} × {}",
+            mm(length),
+            mm(footprint),
+            mm(spacing),
+            mm(need[0]),
+            mm(need[1]),
+            mm(plate[0]),
+            mm(plate[1])
+        ),
+    )
+    .label(at, "the plate")
+    .help("lay fewer coupons (fewer speeds, powers, powders or `repeat`), make them shorter or closer (`length`, `spacing`), or declare a larger plate")
+}
+
+/// `speeds` is neither a list of speeds nor a range.
+pub fn speeds_not_a_list(got: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Type,
+        format!("`speeds` must be a list of speeds or a range, not {got}"),
+    )
+    .label(at, "not a list or a range")
+    .help("write `speeds = [4 mm/s, 6 mm/s, 8 mm/s]`, or `speeds = 4 mm/s .. 8 mm/s` with `count = 5`")
+}
+
+/// `what` (`speeds`, `powers`, `powders`) is an empty list.
+pub fn empty_list(what: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(Code::CountRange, format!("`{what}` lists no value"))
+        .label(at, "empty")
+        .help(format!("give `{what}` at least one value, or leave it out"))
+}
+
+/// The process power is a ramp, which gives no one power to lay the
+/// coupons at.
+pub fn ramp_without_powers(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Unsupported,
+        "the process power is a ramp: a coupon is laid at one power",
+    )
+    .label(at, "a ramp")
+    .help("give the calibration block its powers: `powers = [1000 W]`")
+}
+
+/// A calibration file that also declares a part to build (`what`: the
+/// statement).
+pub fn calibration_with_part(what: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Unsupported,
+        format!("a file with a `calibration` block lays coupons, not a part: it takes no `{what}`"),
+    )
+    .label(at, "not in a calibration file")
+    .help("keep the calibration in a file of its own (`part`, `bead`, `process`, `machine` and `calibration`), and the part in another")
+}
+
+/// `plate` does not have two sizes.
+pub fn plate_not_two(n: usize, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Type,
+        format!("`plate` is the plate's size along x and y, two lengths, not {n}"),
+    )
+    .label(at, "two lengths")
+    .help("write `plate = [150 mm, 100 mm]`")
+}
+
+/// A calibration matrix of `n` coupons, more than `max`.
+pub fn too_many_coupons(n: usize, max: usize, at: Span) -> Diagnostic {
+    let n = if n == usize::MAX {
+        "more than can be counted".to_string()
+    } else {
+        n.to_string()
+    };
+    Diagnostic::error(
+        Code::CountRange,
+        format!("this calibration lays {n} coupons; lmdc lays at most {max}"),
+    )
+    .label(at, "speeds × powers × powders × repeat")
+    .help("give fewer speeds, powers, powder feeds or a smaller `repeat`")
+}

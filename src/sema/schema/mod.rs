@@ -18,6 +18,7 @@
 //! whatever the machine's kind.
 
 pub mod bead;
+pub mod calibration;
 pub mod control;
 pub mod machine;
 pub mod process;
@@ -555,6 +556,9 @@ pub static BLOCKS: &[&Block] = &[
     &machine::LIMITS,
     &machine::GAS,
     &machine::POWDER,
+    &calibration::CALIBRATION,
+    &calibration::WALL,
+    &calibration::PAD,
 ];
 
 /// The block or call named `name` in [`BLOCKS`].

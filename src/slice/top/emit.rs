@@ -72,6 +72,8 @@ pub fn layer(
             z: [0.0, 0.0, 1.0],
         },
         paths,
+        label: String::new(),
+        on_plate: false,
     }
 }
 

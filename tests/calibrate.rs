@@ -1,0 +1,293 @@
+//! `lmdc calibrate`: the coupons of a `calibration` block become an
+//! ordinary plan (checked like any part), the sheet's rows are those
+//! coupons, a filled-in sheet fits without editing, and a matrix too large
+//! for its plate is refused with its numbers, writing nothing.
+
+use crate::support::krl_parser::TempDir;
+use lmdc::bead::fit::{self, Given, Kind};
+use lmdc::bead::{sheet, HeightModel};
+use lmdc::diag::Code;
+use lmdc::pipeline;
+use lmdc::sema::model::Build;
+use std::process::Command;
+
+const EXAMPLE: &str = include_str!("../examples/calibration.lmd");
+
+fn lmdc(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .args(args)
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap()
+}
+
+/// The rows of a CSV text without its `#` lines, split at commas (the
+/// sheet lmdc writes quotes nothing).
+fn rows(text: &str) -> Vec<Vec<String>> {
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+/// `EXAMPLE` with its calibration block's `from` replaced by `to`.
+fn edited(from: &str, to: &str) -> String {
+    assert!(EXAMPLE.contains(from), "{from}");
+    EXAMPLE.replace(from, to)
+}
+
+#[test]
+fn the_sheet_lists_every_coupon_where_the_plan_lays_it() {
+    // Two powers, so the matrix is 6 speeds × 2 powers × 2 repeats.
+    let src = edited(
+        "  coupon = track\n",
+        "  coupon = track\n  powers = [900 W, 1100 W]\n",
+    )
+    .replace("plate = [100 mm, 120 mm]", "plate = [200 mm, 120 mm]");
+    let (c, model) =
+        pipeline::compile_with_model(&src, &pipeline::Options::default(), &mut ()).unwrap();
+    let program = c.program.expect("the coupons compile");
+    let Some(Build::Calibration(cal)) = model.map(|m| m.build) else {
+        panic!("no calibration")
+    };
+    let table = rows(&lmdc::slice::calibration::sheet("coupons", &cal));
+    let (header, body) = table.split_first().unwrap();
+    assert_eq!(
+        header.join(","),
+        "id,kind,speed (mm/s),power (W),feed (g/min),x (mm),y (mm),length (mm),width (mm),height (mm),area (mm^2),mass (g)"
+    );
+    assert_eq!(body.len(), 6 * 2 * 2);
+    let ir = program.ir();
+    assert_eq!(ir.layers.len(), body.len(), "a track coupon is one layer");
+    let num = |s: &str| s.parse::<f64>().unwrap();
+    for (k, (row, layer)) in body.iter().zip(&ir.layers).enumerate() {
+        // Powder outer, power, then speed, then the repeats.
+        let speed = 4.0 + (8.7 - 4.0) * ((k / 2) % 6) as f64 / 5.0;
+        let power = [900.0, 1100.0][k / 12];
+        assert_eq!(row[0], format!("c{:02}", k + 1));
+        assert_eq!(row[1], "track");
+        assert!((num(&row[2]) - speed).abs() < 1e-4, "{row:?}");
+        assert_eq!(num(&row[3]), power);
+        assert_eq!(num(&row[4]), 12.0);
+        // Where the plan lays it: the middle of its one track.
+        let pts = &layer.paths[0].points;
+        let (a, b) = (pts[0].pos, pts[1].pos);
+        assert!((num(&row[5]) - (a[0] + b[0]) / 2.0).abs() < 1e-3, "{row:?}");
+        assert!((num(&row[6]) - a[1]).abs() < 1e-3, "{row:?}");
+        assert!(((b[0] - a[0]) - 30.0).abs() < 1e-9 && num(&row[7]) == 30.0);
+        assert!((pts[0].speed as f64 - speed).abs() < 1e-4);
+        assert_eq!(pts[0].power as f64, power);
+        assert!(row[8..].iter().all(String::is_empty), "{row:?}");
+        // Its comment names it.
+        assert!(
+            layer
+                .label
+                .starts_with(&format!("coupon {}: speed ", row[0])),
+            "{}",
+            layer.label
+        );
+        // On the plate, `spacing` from its edges.
+        assert!(a[0] >= 8.0 - 1e-9 && b[0] <= 200.0 - 8.0 + 1e-9);
+        assert!(a[1] - 1.2 >= 8.0 - 1e-9 && a[1] + 1.2 <= 120.0 - 8.0 + 1e-9);
+    }
+    // Coupons do not touch: every two are a spacing apart across or along.
+    for (i, p) in ir.layers.iter().enumerate() {
+        for q in &ir.layers[..i] {
+            let (a, b) = (p.paths[0].points[0].pos, q.paths[0].points[0].pos);
+            assert!(
+                (a[1] - b[1]).abs() >= 2.4 + 8.0 - 1e-9 || (a[0] - b[0]).abs() >= 30.0 + 8.0 - 1e-9
+            );
+        }
+    }
+}
+
+#[test]
+fn walls_and_pads_are_laid_as_declared() {
+    let wall = edited("coupon = track", "coupon = wall(layers = 3)");
+    let c = pipeline::compile(&wall, &mut ());
+    let p = c.program.expect("walls compile");
+    let ir = p.ir();
+    assert_eq!(ir.layers.len(), 12 * 3);
+    // The bead's height is 0.6 .. 1.3 mm: layers 0.95 mm apart.
+    for (i, l) in ir.layers.iter().enumerate() {
+        let z = l.paths[0].points[0].pos[2];
+        assert!((z - (i % 3) as f64 * 0.95).abs() < 1e-9, "layer {i}: z {z}");
+        assert_eq!(l.on_plate, i % 3 == 0);
+    }
+    let pad = edited(
+        "coupon = track",
+        "coupon = pad(tracks = 4, offset = 1.6 mm)",
+    );
+    let c = pipeline::compile(&pad, &mut ());
+    let p = c.program.expect("pads compile");
+    for l in &p.ir().layers {
+        let ys: Vec<f64> = l.paths.iter().map(|q| q.points[0].pos[1]).collect();
+        assert_eq!(ys.len(), 4);
+        for w in ys.windows(2) {
+            assert!((w[1] - w[0] - 1.6).abs() < 1e-9, "{ys:?}");
+        }
+    }
+}
+
+#[test]
+fn a_power_outside_the_laser_is_refused() {
+    // The laser gives 800 .. 1200 W: a 1500 W coupon is checked like any point.
+    let src = edited(
+        "  coupon = track\n",
+        "  coupon = track\n  powers = [1000 W, 1500 W]\n",
+    )
+    .replace("plate = [100 mm, 120 mm]", "plate = [200 mm, 120 mm]");
+    let c = pipeline::compile(&src, &mut ());
+    assert!(c.program.is_none());
+    assert!(c.diagnostics.has_errors());
+}
+
+#[test]
+fn a_matrix_too_large_for_its_plate_is_refused_with_its_numbers() {
+    let src = edited("plate = [100 mm, 120 mm]", "plate = [50 mm, 30 mm]");
+    let c = pipeline::compile(&src, &mut ());
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == Code::CouponsPlate)
+        .expect("lmd::coupons-plate");
+    // 12 coupons of 30 × 2.4 mm, 8 mm apart: (30 − 8)/(2.4 + 8) → 2 a
+    // column, 6 columns: 8 + 6·38 = 236 mm along x, 8 + 2·10.4 = 28.8 mm
+    // across.
+    let text = d.message.to_string();
+    for n in ["12 coupons", "236 mm", "28.8 mm", "50 mm", "30 mm"] {
+        assert!(text.contains(n), "{n} not in: {text}");
+    }
+    // The command writes nothing and says so with exit 1.
+    let dir = TempDir::new("calib-plate");
+    let file = dir.write("plate.lmd", src.as_bytes());
+    let out = dir.path().join("out");
+    let o = lmdc(&[
+        "calibrate",
+        file.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none());
+}
+
+#[test]
+fn a_file_without_a_calibration_block_is_a_usage_error() {
+    let o = lmdc(&[
+        "calibrate",
+        "examples/flange.lmd",
+        "-o",
+        "/nonexistent/never",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no `calibration"));
+}
+
+/// A uniform number in [-1, 1) from a 64-bit LCG (Knuth's MMIX constants).
+fn noise(state: &mut u64) -> f64 {
+    *state = state
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    ((*state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+}
+
+#[test]
+fn a_filled_sheet_fits_back_to_the_model_it_was_measured_from() {
+    let dir = TempDir::new("calib-round-trip");
+    let out = dir.path().join("out");
+    let o = lmdc(&[
+        "calibrate",
+        "examples/calibration.lmd",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let csv = out.join("coupons.coupons.csv");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    for name in ["coupons_mill.ngc", "coupons_kr.src", "coupons_kr.dat"] {
+        assert!(out.join(name).exists(), "{name}");
+    }
+    // Seed 003's line, measured with ±0.01 mm of noise.
+    let (slope, intercept, amp) = (-0.135, 1.82, 0.01);
+    let mut state = 20u64;
+    let header_at = text.lines().position(|l| l.starts_with("id,")).unwrap();
+    let cols: Vec<&str> = text.lines().nth(header_at).unwrap().split(',').collect();
+    let (vi, hi) = (
+        cols.iter().position(|c| c.starts_with("speed")).unwrap(),
+        cols.iter().position(|c| c.starts_with("height")).unwrap(),
+    );
+    let mut filled = String::new();
+    for (i, line) in text.lines().enumerate() {
+        if i <= header_at {
+            filled.push_str(line);
+        } else {
+            let mut cells: Vec<String> = line.split(',').map(str::to_string).collect();
+            let v: f64 = cells[vi].parse().unwrap();
+            cells[hi] = format!("{:.4}", slope * v + intercept + amp * noise(&mut state));
+            filled.push_str(&cells.join(","));
+        }
+        filled.push('\n');
+    }
+    std::fs::write(&csv, &filled).unwrap();
+    let s = sheet::read(&filled).unwrap_or_else(|d| panic!("{d:?}"));
+    let f = fit::fit(&s, Kind::Linear, Given::default()).unwrap();
+    let HeightModel::Linear {
+        slope: a,
+        intercept: b,
+    } = f.model
+    else {
+        panic!("{:?}", f.model)
+    };
+    // Noise of ±0.01 over 4 .. 8.7 mm/s moves the slope by at most
+    // 2·0.01/4.7 and the intercept by that times 8.7 plus 0.01.
+    assert!((a - slope).abs() < 2.0 * amp / 4.7, "slope {a}");
+    assert!(
+        (b.0 - intercept).abs() < 2.0 * amp / 4.7 * 8.7 + amp,
+        "intercept {b:?}"
+    );
+    assert!(f.rms <= amp && f.residuals.len() == 12, "rms {}", f.rms);
+    assert_eq!(f.range, [4.0, 8.7]);
+    // And `lmdc fit` reads the very file.
+    let o = lmdc(&["fit", csv.to_str().unwrap(), "--model", "linear"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(String::from_utf8_lossy(&o.stdout).contains("linear("));
+}
+
+#[test]
+fn a_matrix_beyond_what_lmdc_lays_is_refused_before_it_is_made() {
+    // 1000 speeds × 11 powers = 11 000 coupons > 10 000.
+    let powers: Vec<String> = (0..11).map(|i| format!("{} W", 900 + 10 * i)).collect();
+    let src = edited("count = 6", "count = 1000")
+        .replace(
+            "  coupon = track\n",
+            &format!("  coupon = track\n  powers = [{}]\n", powers.join(", ")),
+        )
+        .replace("repeat = 2", "repeat = 1");
+    let c = pipeline::compile(&src, &mut ());
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == Code::CountRange)
+        .expect("lmd::count-range");
+    assert!(
+        d.message.to_string().contains("11000 coupons"),
+        "{}",
+        d.message
+    );
+}
