@@ -336,34 +336,8 @@ pub fn run(cli: Cli) -> u8 {
         |file: &Path| Progress::start(!cli.quiet && std::io::stderr().is_terminal(), shown(file));
     match cli.command {
         Command::Check { file, machine } => {
-            let Some(source) = read_source(&file) else {
-                return EXIT_USAGE;
-            };
-            let mut p = progress(&file);
-            let options = common.options(&file, machine.as_deref());
-            let compiled = match pipeline::compile_with(&source, &options, &mut p) {
-                Ok(c) => c,
-                Err(e) => return messages::fail(&file, usage::refused(&e)),
-            };
-            p.finish();
-            messages::print(&compiled.diagnostics, &file, &source, color, format);
-            if let Some(code) = common.denied(&file, &compiled.diagnostics) {
-                return code;
-            }
-            match compiled.program {
-                Some(p) => {
-                    let n = p.machines().count();
-                    eprintln!(
-                        "ok: {} layers, {} points, {} machine{}",
-                        p.ir().layers.len(),
-                        p.ir().point_count(),
-                        n,
-                        if n == 1 { "" } else { "s" }
-                    );
-                    0
-                }
-                None => EXIT_PROGRAM,
-            }
+            let p = progress(&file);
+            check(&file, machine.as_deref(), &common, p)
         }
         Command::Fmt { files, check } => fmt::run(&files, check),
         Command::Simulate { file, csv, every } => simulate(&file, csv.as_deref(), every, &common),
@@ -417,6 +391,45 @@ pub fn run(cli: Cli) -> u8 {
             let p = progress(&file);
             preview::run(&file, machine.as_deref(), out.as_deref(), &common, p)
         }
+    }
+}
+
+/// `lmdc check`: compiles and verifies `file` for `machine` (every machine
+/// when `None`), prints its diagnostics and a one-line summary; writes
+/// nothing.
+fn check(file: &Path, machine: Option<&str>, common: &Common, mut p: Progress) -> u8 {
+    let Some(source) = read_source(file) else {
+        return EXIT_USAGE;
+    };
+    let options = common.options(file, machine);
+    let compiled = match pipeline::compile_with(&source, &options, &mut p) {
+        Ok(c) => c,
+        Err(e) => return messages::fail(file, usage::refused(&e)),
+    };
+    p.finish();
+    messages::print(
+        &compiled.diagnostics,
+        file,
+        &source,
+        common.color,
+        common.format,
+    );
+    if let Some(code) = common.denied(file, &compiled.diagnostics) {
+        return code;
+    }
+    match compiled.program {
+        Some(p) => {
+            let n = p.machines().count();
+            eprintln!(
+                "ok: {} layers, {} points, {} machine{}",
+                p.ir().layers.len(),
+                p.ir().point_count(),
+                n,
+                if n == 1 { "" } else { "s" }
+            );
+            0
+        }
+        None => EXIT_PROGRAM,
     }
 }
 

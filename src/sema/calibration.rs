@@ -116,29 +116,12 @@ fn statement<'a>(
         }
     };
     let process = process?;
-    let powers = match powers? {
-        Some(p) => p,
-        None => match process.power {
-            PowerSchedule::Constant(p) => vec![p],
-            PowerSchedule::Ramp { .. } => {
-                diags.push(message::calib::ramp_without_powers(process.power_span));
-                return None;
-            }
-        },
-    };
+    let powers = powers_or_process(powers?, process, diags)?;
     let powders = powders?.unwrap_or_else(|| vec![process.powder]);
     let (kind, length, spacing) = (kind?, length?, spacing?);
     let (speeds, repeat) = (speeds?, repeat?);
-    // Counted before any is made: lists long enough to exhaust memory are
-    // refused, not allocated.
-    let n = [speeds.len(), powers.len(), powders.len(), repeat]
-        .iter()
-        .try_fold(1usize, |a, &b| a.checked_mul(b))
-        .unwrap_or(usize::MAX);
-    if n > MAX_COUPONS {
-        diags.push(message::calib::too_many_coupons(n, MAX_COUPONS, s.span));
-        return None;
-    }
+    let counts = [speeds.len(), powers.len(), powders.len(), repeat];
+    within_count(counts, s.span, diags)?;
     let mut coupons = matrix(&speeds, &powers, &powders, repeat);
     let footprint = kind.footprint(width);
     let (plate, plate_span) = plate?;
@@ -162,6 +145,38 @@ fn statement<'a>(
         coupons,
         span: s.span,
     })
+}
+
+/// The powers written, or the process's one constant power (a ramp gives no
+/// single power to lay coupons at).
+fn powers_or_process(
+    written: Option<Vec<Power>>,
+    process: &Process,
+    diags: &mut Diagnostics,
+) -> Option<Vec<Power>> {
+    match (written, process.power) {
+        (Some(p), _) => Some(p),
+        (None, PowerSchedule::Constant(p)) => Some(vec![p]),
+        (None, PowerSchedule::Ramp { .. }) => {
+            diags.push(message::calib::ramp_without_powers(process.power_span));
+            None
+        }
+    }
+}
+
+/// The coupon count (speeds × powers × powders × repeats), counted before
+/// any is made: lists long enough to exhaust memory are refused, not
+/// allocated.
+fn within_count(counts: [usize; 4], span: Span, diags: &mut Diagnostics) -> Option<()> {
+    let n = counts
+        .iter()
+        .try_fold(1usize, |a, &b| a.checked_mul(b))
+        .unwrap_or(usize::MAX);
+    if n > MAX_COUPONS {
+        diags.push(message::calib::too_many_coupons(n, MAX_COUPONS, span));
+        return None;
+    }
+    Some(())
 }
 
 /// `bead = NAME`: the bead's name, its width and its declared heights, if
