@@ -39,6 +39,17 @@ pub fn run_stdio() -> Result<(), ServerError> {
 struct Doc {
     text: String,
     index: LineIndex,
+    /// What `auto` chose in the last compile that succeeded for this text
+    /// (kept so a hover does not compile the file again).
+    chosen: Option<Chosen>,
+}
+
+/// What a compiled plan chose: its layer count and the ranges its deposits
+/// lay (heights, track spacing), as shown.
+struct Chosen {
+    layers: usize,
+    heights: Option<String>,
+    pitch: Option<String>,
 }
 
 /// Serves one client on `connection`: the handshake, then requests and
@@ -77,7 +88,7 @@ pub fn serve(connection: &Connection) -> Result<(), ServerError> {
             }
             Message::Notification(n) => {
                 if let Some(uri) = update(&mut docs, n, encoding) {
-                    let params = publish(&uri, &docs[&uri]);
+                    let params = docs.get_mut(&uri).map(|d| publish(&uri, d));
                     let note = Notification::new("textDocument/publishDiagnostics".into(), params);
                     connection.sender.send(Message::Notification(note))?;
                 }
@@ -125,6 +136,7 @@ fn update(docs: &mut HashMap<String, Doc>, n: Notification, encoding: Encoding) 
         Doc {
             text: text.to_string(),
             index,
+            chosen: None,
         },
     );
     Some(uri)
@@ -133,8 +145,9 @@ fn update(docs: &mut HashMap<String, Doc>, n: Notification, encoding: Encoding) 
 /// The `publishDiagnostics` parameters for a document: the compiler's
 /// diagnostics, each at its first label, the other labels as related
 /// information.
-fn publish(uri: &str, doc: &Doc) -> Value {
+fn publish(uri: &str, doc: &mut Doc) -> Value {
     let c = compile(uri, &doc.text);
+    doc.chosen = c.program.as_ref().map(|p| chosen_by(p.ir()));
     let items: Vec<Value> = c
         .diagnostics
         .iter()
@@ -198,7 +211,7 @@ fn answer(docs: &HashMap<String, Doc>, req: Request) -> Response {
     };
     let result = match req.method.as_str() {
         "textDocument/hover" => {
-            let chosen = |key: &str| chosen(&uri, &doc.text, key);
+            let chosen = |key: &str| chosen(doc.chosen.as_ref()?, key);
             hover(&doc.text, at, &chosen).map_or(Value::Null, |h| {
                 json!({
                     "contents": { "kind": "markdown", "value": h.markdown },
@@ -313,10 +326,20 @@ fn file_path(uri: &str) -> Option<std::path::PathBuf> {
 
 /// What the compiled plan chose for `key = auto`: the layer count and the
 /// heights it lays, or the track spacing.
-fn chosen(uri: &str, text: &str, key: &str) -> Option<String> {
-    let c = compile(uri, text);
-    let p = c.program?;
-    let ir = p.ir();
+fn chosen(c: &Chosen, key: &str) -> Option<String> {
+    match key {
+        "layers" | "layer_height" => Some(format!(
+            "{} layers, {} thick",
+            c.layers,
+            c.heights.as_deref()?
+        )),
+        "offset" => Some(format!("tracks {} apart", c.pitch.as_deref()?)),
+        _ => None,
+    }
+}
+
+/// What `ir` chose, from its laser-on points.
+fn chosen_by(ir: &crate::ir::Program) -> Chosen {
     let on = || {
         ir.layers
             .iter()
@@ -340,13 +363,9 @@ fn chosen(uri: &str, text: &str, key: &str) -> Option<String> {
             }
         })
     };
-    match key {
-        "layers" | "layer_height" => Some(format!(
-            "{} layers, {} thick",
-            ir.layers.len(),
-            span(&|p| p.layer_height)?
-        )),
-        "offset" => Some(format!("tracks {} apart", span(&|p| p.pitch)?)),
-        _ => None,
+    Chosen {
+        layers: ir.layers.len(),
+        heights: span(&|p| p.layer_height),
+        pitch: span(&|p| p.pitch),
     }
 }
