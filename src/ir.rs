@@ -70,6 +70,7 @@ pub fn version_for(bead: bool, ring: bool, machines: &[Machine]) -> u32 {
 
 /// A whole compiled plan.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Program {
     /// Always [`FORMAT`].
     pub format: String,
@@ -121,6 +122,7 @@ fn is_false(b: &bool) -> bool {
 /// the nominal plan: the table's speeds (`v / cos γ` over the transitions),
 /// layers `layer_height` apart.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Ring {
     /// The nozzle's circle about the origin, mm.
     pub radius: f64,
@@ -140,6 +142,7 @@ pub struct Ring {
 
 /// One segment's row of the table, and where its points are.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct RingSegment {
     /// Focal plane to working plane, mm (negative: below).
     pub defocus: f64,
@@ -159,6 +162,7 @@ pub struct RingSegment {
 
 /// How a ring's speeds change from layer to layer.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(tag = "mode", rename_all = "snake_case")]
 pub enum RingRun {
     /// The height loop runs on the machine: after each layer a segment's
@@ -188,6 +192,7 @@ impl RingRun {
 
 /// A PI loop on each segment's layer height (`control::law`).
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct HeightLoop {
     /// Proportional gain, (mm/s)/mm.
     pub kp: f64,
@@ -202,6 +207,7 @@ pub struct HeightLoop {
 /// A machine's height sensor (what a segmented ring's loop reads): an analog input that holds a
 /// segment's mean layer height.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct HeightSensor {
     /// The analog input: `$ANIN[input]` on a robot; on LinuxCNC
     /// `M66 E<input + j>` for segment `j` (from 0).
@@ -215,6 +221,7 @@ pub struct HeightSensor {
 /// A bead model, in the IR's units: what the slicer chose the speeds by
 /// and the verifier predicts each layer's rise with ([`crate::deposit`]).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Bead {
     /// The bead's width, mm.
     pub width: f64,
@@ -245,6 +252,7 @@ pub struct Bead {
 /// (`model = fit(linear, data = "coupons.csv")`): where the numbers of
 /// [`Bead::model`] come from, and how well they match.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct BeadFit {
     /// The data file as the source names it.
     pub data: String,
@@ -265,6 +273,7 @@ pub struct BeadFit {
 
 /// How a bead's height follows the scan speed `v` (mm/s).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum BeadModel {
     /// `h = slope·v + intercept`.
@@ -425,6 +434,7 @@ impl Bead {
 
 /// Units of the IR's numbers.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Units {
     /// Positions and heights.
     pub length: String,
@@ -452,6 +462,7 @@ impl Default for Units {
 
 /// Limits from the bead model and the process window.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Limits {
     /// Allowed layer height `[h_min, h_max]` in mm.
     pub layer_height: [f64; 2],
@@ -487,6 +498,7 @@ fn default_max_drift() -> f64 {
 /// The motion plan dwells at a safe position after a layer that would be
 /// quicker (docs/ir.md).
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Heat {
     /// Least time from one layer's start to the next's, s (0: none).
     pub min_layer_time: f64,
@@ -505,6 +517,7 @@ impl Heat {
 /// layer on the plane `z = station·height`; a variable layer on the planned
 /// top of the layer below, `station` being its fraction `i/N` of the top).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Layer {
     /// 0-based build order.
     pub index: usize,
@@ -528,6 +541,7 @@ pub struct Layer {
 
 /// A right-handed orthonormal frame.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Frame {
     /// Origin, mm.
     pub origin: [f64; 3],
@@ -541,6 +555,7 @@ pub struct Frame {
 
 /// What a path is for.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum PathKind {
     /// A single-bead wall following the section.
@@ -555,6 +570,7 @@ pub enum PathKind {
 
 /// A polyline of process points.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Path {
     /// What the path is.
     pub kind: PathKind,
@@ -565,6 +581,7 @@ pub struct Path {
 /// One process point: where the bead is laid, how the nozzle stands, and the
 /// process values from this point to the next.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Point {
     /// Deposit point on the working plane, mm.
     pub pos: [f64; 3],
@@ -606,6 +623,7 @@ pub struct Point {
 
 /// One row of the style table.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Style {
     /// The id points carry.
     pub id: u16,
@@ -623,6 +641,7 @@ pub struct Style {
 
 /// A machine to write a program for.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum Machine {
     /// An industrial robot programmed in KRL.
@@ -686,6 +705,7 @@ pub struct MachineCommon {
 /// up from rest and slows down to it while the powder keeps flowing
 /// (`ramp = …`).
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum Ramp {
     /// The laser switches where the nozzle stands: each run of deposits
@@ -708,6 +728,7 @@ impl Ramp {
 
 /// A pose `X Y Z A B C` (mm, deg; KUKA ZYX Euler: R = Rz(A)·Ry(B)·Rx(C)).
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Pose {
     /// mm
     pub x: f64,
@@ -726,6 +747,7 @@ pub struct Pose {
 /// A frame on the controller: an index into its table, and optionally a value the
 /// program sets.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct FrameRef {
     /// `TOOL_DATA[n]` / `BASE_DATA[n]`.
     pub index: u16,
@@ -735,6 +757,7 @@ pub struct FrameRef {
 
 /// An axis of the tool frame, with a sign.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum ToolAxis {
     /// +X
@@ -753,6 +776,7 @@ pub enum ToolAxis {
 
 /// A KUKA robot cell.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(from = "wire::Robot", into = "wire::Robot")]
 pub struct Robot {
     /// Name, speed, clearance, cell and height sensor.
@@ -783,6 +807,7 @@ pub struct Robot {
 /// can solve the program's poses to axis angles as lmdc does, its limits
 /// and the margins lmdc checked them with. Lengths mm, angles deg.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Arm {
     /// The catalogue's key (`kr16_2`); none for an arm declared by its
     /// parameters.
@@ -809,6 +834,7 @@ pub struct Arm {
 /// (`gas { … }` and `powder { … }` in a machine block). The motion plan places
 /// the switching ([`crate::plan::Io`]); the back ends write it.
 #[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Cell {
     /// The shielding gas valve.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -837,6 +863,7 @@ impl Cell {
 
 /// A shielding gas valve on a digital output.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Gas {
     /// The output that opens it (`$OUT[n]`; G-code: the output line's `{n}`).
     pub output: u16,
@@ -849,6 +876,7 @@ pub struct Gas {
 /// A powder feeder on a digital output, with its rate on an analog one where
 /// the cell has it.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Feeder {
     /// The output that starts it.
     pub output: u16,
@@ -862,6 +890,7 @@ pub struct Feeder {
 
 /// An analog output that sets the powder feed rate.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct RateOutput {
     /// `$ANOUT[n]`; G-code: the analog line's `{n}`.
     pub output: u16,
@@ -871,6 +900,7 @@ pub struct RateOutput {
 
 /// How a CNC's axes move the nozzle relative to the part.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum Kinematics {
     /// X Y Z only: the nozzle always points down (−Z).
@@ -883,6 +913,7 @@ pub enum Kinematics {
 
 /// Dialect details of a CNC control, from a built-in profile and overrides.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Dialect {
     /// Profile name (`linuxcnc`, `fagor8070`, `sinumerik840d`, `m20`).
     pub profile: String,
@@ -922,6 +953,7 @@ fn default_dwell() -> String {
 
 /// What the control's F word measures.
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum FeedUnit {
     /// mm/min (G94 on most controls).
@@ -951,6 +983,7 @@ impl FeedUnit {
 
 /// How comments are written.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum CommentStyle {
     /// `(text)`
@@ -961,6 +994,7 @@ pub enum CommentStyle {
 
 /// A CNC cell.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 #[serde(from = "wire::Cnc", into = "wire::Cnc")]
 pub struct Cnc {
     /// Name, feed, clearance, cell and height sensor.
@@ -1022,54 +1056,97 @@ mod wire {
 
     /// A robot's fields in the file's order.
     #[derive(Serialize, Deserialize)]
+    #[cfg_attr(test, derive(schemars::JsonSchema))]
     pub(super) struct Robot {
+        /// Name from the source; the program is named after the part and this.
         name: String,
+        /// Tool (TCP at the laser focus).
         tool: FrameRef,
+        /// Base the part is programmed in.
         base: FrameRef,
+        /// Which tool axis the beam travels along.
         beam: ToolAxis,
+        /// `$OUT[n]` that switches the laser on.
         laser_out: u16,
+        /// `$ANOUT[n]` that sets the power.
         power_out: u16,
+        /// Power at `$ANOUT = 1.0`, W.
         full_scale_power: f64,
+        /// Highest path speed (a CNC's feed), mm/s.
         max_speed: f64,
+        /// Axis angles of the home position, deg.
         home: [f64; 6],
+        /// Most motion lines in one sub-program module.
         max_points_per_module: usize,
+        /// The arm, when the robot declares it: its reach, axis limits,
+        /// singularities and axis speeds are then checked on every move.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         arm: Option<super::Arm>,
+        /// Distance the nozzle backs off along the normal between paths that do not
+        /// join, mm.
         clearance: f64,
+        /// The cell's shielding gas and powder feeder, if the program switches them.
         #[serde(default, skip_serializing_if = "Cell::is_none")]
         cell: Cell,
+        /// The height sensor a closed loop reads, if the cell has one.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         height_sensor: Option<HeightSensor>,
+        /// The path acceleration (and deceleration) the control plans with,
+        /// mm/s² (absent: not declared, and the programmed speeds are taken as reached).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         acceleration: Option<f64>,
+        /// How far before (and after) a corner the control may leave the path
+        /// to round it, mm (absent: what the program sets by default).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         blending: Option<f64>,
+        /// How the program starts and stops a bead.
         #[serde(default, skip_serializing_if = "Ramp::is_none")]
         ramp: Ramp,
     }
 
     /// A CNC's fields in the file's order.
     #[derive(Serialize, Deserialize)]
+    #[cfg_attr(test, derive(schemars::JsonSchema))]
     pub(super) struct Cnc {
+        /// Name from the source; the program is named after the part and this.
         name: String,
+        /// 3 or 5.
         axes: u8,
+        /// Axis arrangement.
         kinematics: Kinematics,
+        /// Control dialect.
         dialect: Dialect,
+        /// Travel limits of X Y Z (mm) and the rotary axes (deg): `[min, max]`,
+        /// in machine coordinates.
         limits: AxisLimits,
+        /// Where the part sits on the machine.
         #[serde(default)]
         placement: Placement,
+        /// The height (Z, part coordinates, mm) the first move lifts to before
+        /// the other axes move and the program ends at (absent: the part's
+        /// highest point plus the clearance).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         safe_height: Option<f64>,
+        /// Highest path speed (a CNC's feed), mm/s.
         max_speed: f64,
+        /// Distance the nozzle backs off along the normal between paths that do not
+        /// join, mm.
         clearance: f64,
+        /// The cell's shielding gas and powder feeder, if the program switches them.
         #[serde(default, skip_serializing_if = "Cell::is_none")]
         cell: Cell,
+        /// The height sensor a closed loop reads, if the cell has one.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         height_sensor: Option<HeightSensor>,
+        /// The path acceleration (and deceleration) the control plans with,
+        /// mm/s² (absent: not declared, and the programmed speeds are taken as reached).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         acceleration: Option<f64>,
+        /// How far before (and after) a corner the control may leave the path
+        /// to round it, mm (absent: what the program sets by default).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         blending: Option<f64>,
+        /// How the program starts and stops a bead.
         #[serde(default, skip_serializing_if = "Ramp::is_none")]
         ramp: Ramp,
     }
@@ -1175,6 +1252,7 @@ mod wire {
 /// under a work offset whose value is the part's origin in machine
 /// coordinates; the axis limits apply to program position + origin.
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct Placement {
     /// 1–6: `G54`–`G59` is selected at the start; 0: none is written (the
     /// control's active one is used).
@@ -1185,6 +1263,7 @@ pub struct Placement {
 
 /// Axis travel limits.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
 pub struct AxisLimits {
     /// mm
     pub x: [f64; 2],

@@ -11,6 +11,8 @@ pub mod fmt;
 pub mod geometry;
 pub mod invalid;
 pub mod ir;
+#[cfg(test)]
+mod json_schema;
 pub mod lower;
 pub mod lsp;
 pub mod numbers;

@@ -94,3 +94,77 @@ proptest! {
         }
     }
 }
+
+/// The flange's design solid, as its drawing gives it (not as lmdc models
+/// it): a disc of diameter `od` with a 30 mm bore and six 9 mm holes on a
+/// 60 mm circle from 30°. How far `p` lies inside it in plan, mm
+/// (negative: outside).
+fn inside_flange(p: [f64; 3], od: f64) -> f64 {
+    let r = p[0].hypot(p[1]);
+    let holes = (0..6).map(|k| {
+        let a = (30.0 + 60.0 * k as f64).to_radians();
+        (p[0] - 30.0 * a.cos()).hypot(p[1] - 30.0 * a.sin()) - 4.5
+    });
+    holes.fold((od / 2.0 - r).min(r - 15.0), f64::min)
+}
+
+/// The least margin by which the deposit points of `ir` (the points of a
+/// path the laser is on between) lie inside the flange's design solid, and
+/// where.
+fn least_margin(ir: &lmdc::ir::Program, od: f64) -> (f64, String) {
+    let mut least = (f64::INFINITY, String::new());
+    for (l, layer) in ir.layers.iter().enumerate() {
+        for (k, path) in layer.paths.iter().enumerate() {
+            for (i, w) in path.points.windows(2).enumerate() {
+                if !w[0].laser_on {
+                    continue;
+                }
+                for (j, p) in [(i, w[0]), (i + 1, w[1])] {
+                    // It stands on the plate (z = 0); the drawing leaves its
+                    // height to the layers.
+                    let m = if p.pos[2] < 0.0 {
+                        p.pos[2]
+                    } else {
+                        inside_flange(p.pos, od)
+                    };
+                    if m < least.0 {
+                        least = (m, format!("layer {l} path {k} point {j} at {:?}", p.pos));
+                    }
+                }
+            }
+        }
+    }
+    least
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(6))]
+    /// The second worked property of docs/testing.md: every deposit point
+    /// lies inside the design solid — with `size = outer`, at least half a
+    /// bead inside every face in plan (the bead's edge on the face), less
+    /// the outlines' chord error.
+    #[test]
+    fn every_deposit_point_lies_inside_the_design_solid(od in 72.0f64..95.0) {
+        let src = std::fs::read_to_string("examples/flange.lmd").unwrap();
+        let options = lmdc::Options {
+            set: vec![format!("OD={od:.3} mm").parse().unwrap()],
+            ..Default::default()
+        };
+        if let Ok(program) = lmdc::compile(&src, &options) {
+            let (margin, at) = least_margin(program.ir(), od);
+            prop_assert!(margin >= 1.5 - 0.02, "{margin:.4} mm inside at {at}");
+        }
+    }
+}
+
+/// The property can fail: a flange drawn 2 mm smaller than the part lmdc
+/// planned puts its outer contour outside.
+#[test]
+fn the_design_property_catches_a_point_outside() {
+    let src = std::fs::read_to_string("examples/flange.lmd").unwrap();
+    let program = lmdc::compile(&src, &lmdc::Options::default()).unwrap();
+    let (margin, _) = least_margin(program.ir(), 80.0);
+    assert!(margin >= 1.48, "{margin}");
+    let (smaller, at) = least_margin(program.ir(), 76.0);
+    assert!(smaller < 0.0, "{smaller} at {at}");
+}

@@ -48,6 +48,7 @@ mod ring_krl;
 mod ring_rs274;
 mod robustness;
 mod rs274_smoke;
+mod schemas;
 mod section_points;
 mod stacking;
 mod style;
