@@ -800,6 +800,48 @@ pub struct Robot {
     /// The arm, when the robot declares it: its reach, axis limits,
     /// singularities and axis speeds are then checked on every move.
     pub arm: Option<Arm>,
+    /// The tool's turn about the beam (`spin`): free for a coaxial nozzle,
+    /// declared or chosen by lmdc ([`crate::plan::spin`]).
+    pub spin: Spin,
+}
+
+/// The tool's turn about the beam axis, deg, added to the turn lmdc carries
+/// from normal to normal ([`crate::plan::orient`]): 0 keeps that turn.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[serde(tag = "from", rename_all = "snake_case")]
+pub enum Spin {
+    /// `spin = auto` (the default): 0°, or the turn lmdc chose where 0°
+    /// breaks an arm rule.
+    Auto {
+        /// deg.
+        deg: f64,
+    },
+    /// Declared in the file (`spin = 30 deg`): used as written.
+    Declared {
+        /// deg.
+        deg: f64,
+    },
+}
+
+impl Default for Spin {
+    fn default() -> Self {
+        Spin::Auto { deg: 0.0 }
+    }
+}
+
+impl Spin {
+    /// The turn, deg.
+    pub fn deg(&self) -> f64 {
+        match self {
+            Spin::Auto { deg } | Spin::Declared { deg } => *deg,
+        }
+    }
+
+    /// `auto` at 0°: what lmdc writes when nothing was declared or chosen.
+    pub fn is_default(&self) -> bool {
+        *self == Spin::default()
+    }
 }
 
 /// A robot's arm (`arm = …`): its kinematics in the OPW convention (an
@@ -1082,6 +1124,10 @@ mod wire {
         /// singularities and axis speeds are then checked on every move.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         arm: Option<super::Arm>,
+        /// The tool's turn about the beam, declared or chosen, deg (absent:
+        /// `auto` at 0°, the turn carried from normal to normal).
+        #[serde(default, skip_serializing_if = "super::Spin::is_default")]
+        spin: super::Spin,
         /// Distance the nozzle backs off along the normal between paths that do not
         /// join, mm.
         clearance: f64,
@@ -1173,6 +1219,7 @@ mod wire {
                 home: r.home,
                 max_points_per_module: r.max_points_per_module,
                 arm: r.arm,
+                spin: r.spin,
             }
         }
     }
@@ -1192,6 +1239,7 @@ mod wire {
                 home: r.home,
                 max_points_per_module: r.max_points_per_module,
                 arm: r.arm,
+                spin: r.spin,
                 clearance: c.clearance,
                 cell: c.cell,
                 height_sensor: c.height_sensor,

@@ -221,7 +221,7 @@ fn run(
             }
         },
     };
-    let program = match lower::lower(&model) {
+    let mut program = match lower::lower(&model) {
         Ok((p, w)) => {
             diagnostics.extend(w);
             p
@@ -237,6 +237,8 @@ fn run(
         None => drop(model),
     }
     obs.stage("slice");
+    // The free turn about the nozzle axis, where the file leaves it to lmdc.
+    crate::plan::spin::choose(&mut program);
     let mut verified = verify::verify(program, select);
     obs.stage("verify");
     if let Err(found) = &mut verified {

@@ -363,3 +363,179 @@ fn gcode_starts_and_ends_at_the_safe_height() {
         );
     }
 }
+
+/// ramp_wall on a KR 60 HA whose A6 turns only ±135° (an `opw(…)` arm),
+/// with `spin` as given (`None`: not written, `auto`).
+fn narrow_wrist(spin: Option<&str>) -> String {
+    let arm =
+        "arm = opw(a1 = 350 mm, a2 = -145 mm, c1 = 815 mm, c2 = 850 mm, c3 = 820 mm, c4 = 170 mm,
+    limits = [-185 deg .. 185 deg, -135 deg .. 35 deg, -120 deg .. 158 deg,
+              -350 deg .. 350 deg, -119 deg .. 119 deg, -135 deg .. 135 deg],
+    speeds = [128 deg/s, 102 deg/s, 128 deg/s, 260 deg/s, 245 deg/s, 322 deg/s])";
+    let spin = spin.map_or(String::new(), |s| format!("\n  spin = {s}"));
+    crate::support::example::edited(
+        "ramp_wall.lmd",
+        &[("arm = kr60ha ", &format!("{arm}{spin} //"))],
+    )
+}
+
+/// Every LIN and PTP pose of a robot's KRL modules: position and `A B C`.
+fn krl_poses(files: &BTreeMap<String, String>) -> Vec<([f64; 3], [f64; 3])> {
+    let mut poses = Vec::new();
+    for (_, text) in files
+        .iter()
+        .filter(|(n, _)| n.contains("_m0") && n.ends_with(".src"))
+    {
+        for l in text
+            .lines()
+            .filter(|l| l.starts_with("LIN {X") || l.starts_with("PTP {X"))
+        {
+            let agg = &l[..l.find('}').unwrap() + 1];
+            poses.push((
+                [field(agg, "X"), field(agg, "Y"), field(agg, "Z")],
+                [field(agg, "A"), field(agg, "B"), field(agg, "C")],
+            ));
+        }
+    }
+    poses
+}
+
+fn rotation(abc: [f64; 3]) -> nalgebra::Matrix3<f64> {
+    *Rotation3::from_euler_angles(
+        abc[2].to_radians(),
+        abc[1].to_radians(),
+        abc[0].to_radians(),
+    )
+    .matrix()
+}
+
+/// The tool turned about the beam (`spin`, docs/robots.md): where 0° takes
+/// A6 past its limit, a pinned 0° is refused with the axis and its angle,
+/// and `auto` turns the tool in steps of 15° until the arm follows the
+/// plan. The written program, solved back through the IR's arm pose by pose
+/// (an independent walk of the KRL text), keeps A6 inside its limits, and
+/// the beam still points along −normal.
+#[test]
+fn spin_auto_turns_the_tool_where_zero_breaks_a_limit() {
+    let pinned = lmdc::pipeline::compile(&narrow_wrist(Some("0 deg")), &mut ());
+    assert!(pinned.program.is_none());
+    let d = pinned
+        .diagnostics
+        .iter()
+        .find(|d| d.code == lmdc::diag::Code::JointLimit)
+        .expect("a joint-limit error at 0°");
+    assert!(
+        d.message.contains("A6") && d.message.contains("-180°"),
+        "{}",
+        d.message
+    );
+
+    for spin in [None, Some("auto")] {
+        let src = narrow_wrist(spin);
+        let p = lmdc::pipeline::compile(&src, &mut ())
+            .program
+            .unwrap_or_else(|| panic!("{spin:?} compiles"));
+        let (i, r) = p
+            .ir()
+            .machines
+            .iter()
+            .enumerate()
+            .find_map(|(i, m)| match m {
+                Machine::Robot(r) => Some((i, r)),
+                _ => None,
+            })
+            .unwrap();
+        let lmdc::ir::Spin::Auto { deg } = r.spin else {
+            panic!("{:?}", r.spin)
+        };
+        assert!(
+            deg != 0.0 && deg % 15.0 == 0.0 && deg.abs() <= 180.0,
+            "{deg}"
+        );
+        let s = Solver::new(r).unwrap();
+        let poses = krl_poses(&files(&p, i));
+        assert!(poses.len() > 1000, "{}", poses.len());
+        let mut prev = r.home;
+        for (pos, abc) in &poses {
+            let rot = rotation(*abc);
+            let j = s.solve(*pos, &rot, &prev)[0];
+            assert!(j[5].abs() <= 133.0 + 1e-6, "A6 {} at {pos:?} {abc:?}", j[5]);
+            // The beam (+Z of the tool) points down onto ramp_wall's flat layers.
+            assert!((rot.column(2).z + 1.0).abs() < 1e-6, "{abc:?}");
+            prev = j;
+        }
+    }
+}
+
+/// A declared `spin` is used as written: every pose of the program is the
+/// unturned one turned by it about the beam, and the IR says it was
+/// declared.
+#[test]
+fn a_declared_spin_turns_every_pose_by_it() {
+    let plain = crate::support::example::edited("ramp_wall.lmd", &[]);
+    let turned = crate::support::example::edited(
+        "ramp_wall.lmd",
+        &[("arm = kr60ha ", "spin = -40 deg\n  arm = kr60ha ")],
+    );
+    let build = |src: &str| lmdc::pipeline::compile(src, &mut ()).program.unwrap();
+    let (a, b) = (build(&plain), build(&turned));
+    let robot = |p: &lmdc::verify::Verified| {
+        p.ir()
+            .machines
+            .iter()
+            .position(|m| matches!(m, Machine::Robot(_)))
+            .unwrap()
+    };
+    let Machine::Robot(r) = &b.ir().machines[robot(&b)] else {
+        unreachable!()
+    };
+    assert_eq!(r.spin, lmdc::ir::Spin::Declared { deg: -40.0 });
+    let (pa, pb) = (
+        krl_poses(&files(&a, robot(&a))),
+        krl_poses(&files(&b, robot(&b))),
+    );
+    assert_eq!(pa.len(), pb.len());
+    for ((xa, ra), (xb, rb)) in pa.iter().zip(&pb) {
+        assert_eq!(xa, xb);
+        // R_b = R_a · Rz(−40°): the tool's own Z is the beam.
+        let want =
+            rotation(*ra) * Rotation3::from_axis_angle(&Vector3::z_axis(), (-40f64).to_radians());
+        let diff = (want - rotation(*rb)).abs().max();
+        assert!(diff < 1e-4, "{ra:?} → {rb:?}: {diff}");
+    }
+}
+
+/// The nozzle 80° off the flange's axis (examples/errors/arm_joint_limit.lmd):
+/// pinned at 0° A5 bends past its limit; with `auto` lmdc turns the tool
+/// about the beam, which swings the wrist, until every axis fits — and the
+/// program it writes, solved back, keeps A5 inside.
+#[test]
+fn an_angled_tool_is_turned_until_the_wrist_fits() {
+    let pinned = std::fs::read_to_string("examples/errors/arm_joint_limit.lmd").unwrap();
+    assert!(lmdc::pipeline::compile(&pinned, &mut ()).program.is_none());
+    let auto = pinned.replacen("  spin = 0 deg\n", "", 1);
+    assert_ne!(auto, pinned);
+    let p = lmdc::pipeline::compile(&auto, &mut ())
+        .program
+        .expect("with spin = auto the duct builds");
+    let Machine::Robot(r) = &p.ir().machines[0] else {
+        panic!("a robot")
+    };
+    assert!(
+        matches!(r.spin, lmdc::ir::Spin::Auto { deg } if deg != 0.0),
+        "{:?}",
+        r.spin
+    );
+    let s = Solver::new(r).unwrap();
+    let [lo, hi] = r.arm.as_ref().unwrap().limits[4];
+    let mut prev = r.home;
+    for (pos, abc) in krl_poses(&files(&p, 0)) {
+        let j = s.solve(pos, &rotation(abc), &prev)[0];
+        assert!(
+            j[4] >= lo + 2.0 - 1e-6 && j[4] <= hi - 2.0 + 1e-6,
+            "A5 {}",
+            j[4]
+        );
+        prev = j;
+    }
+}

@@ -209,6 +209,43 @@ fn hover_explains_fields_names_and_what_auto_chose() {
     stop(c);
 }
 
+/// `spin = auto` on a robot whose arm needs the tool turned: the hover says
+/// the turn the compile chose.
+#[test]
+fn hover_on_spin_auto_gives_the_turn_chosen() {
+    let mut c = started();
+    let text = crate::support::example::edited(
+        "ramp_wall.lmd",
+        &[(
+            "arm = kr60ha ",
+            "arm = opw(a1 = 350 mm, a2 = -145 mm, c1 = 815 mm, c2 = 850 mm, c3 = 820 mm, c4 = 170 mm,
+    limits = [-185 deg .. 185 deg, -135 deg .. 35 deg, -120 deg .. 158 deg,
+              -350 deg .. 350 deg, -119 deg .. 119 deg, -135 deg .. 135 deg],
+    speeds = [128 deg/s, 102 deg/s, 128 deg/s, 260 deg/s, 245 deg/s, 322 deg/s])
+  spin = auto //",
+        )],
+    );
+    let uri = "file:///wall.lmd";
+    c.open(uri, &text);
+    let ir = lmdc::pipeline::compile(&text, &mut ())
+        .program
+        .unwrap()
+        .into_ir();
+    let deg = ir
+        .machines
+        .iter()
+        .find_map(|m| match m {
+            lmdc::ir::Machine::Robot(r) => Some(r.spin.deg()),
+            _ => None,
+        })
+        .unwrap();
+    assert!(deg != 0.0);
+    let h = c.at("textDocument/hover", uri, pos(&text, "spin = auto", 0, 8));
+    let md = h["contents"]["value"].as_str().unwrap();
+    assert!(md.contains(&format!("by {deg}° on `kr30`")), "{md}");
+    stop(c);
+}
+
 #[test]
 fn definition_and_references_follow_names() {
     let mut c = started();

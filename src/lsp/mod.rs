@@ -50,6 +50,8 @@ struct Chosen {
     layers: usize,
     heights: Option<String>,
     pitch: Option<String>,
+    /// Each robot's turn about the beam (`spin`), as `name: N°`.
+    spin: Option<String>,
 }
 
 /// Serves one client on `connection`: the handshake, then requests and
@@ -334,6 +336,10 @@ fn chosen(c: &Chosen, key: &str) -> Option<String> {
             c.heights.as_deref()?
         )),
         "offset" => Some(format!("tracks {} apart", c.pitch.as_deref()?)),
+        "spin" => Some(format!(
+            "the tool turned about the beam by {}",
+            c.spin.as_deref()?
+        )),
         _ => None,
     }
 }
@@ -363,9 +369,22 @@ fn chosen_by(ir: &crate::ir::Program) -> Chosen {
             }
         })
     };
+    let spins: Vec<String> = ir
+        .machines
+        .iter()
+        .filter_map(|m| match m {
+            crate::ir::Machine::Robot(r) => Some(format!(
+                "{}° on `{}`",
+                crate::units::short(r.spin.deg()),
+                r.name
+            )),
+            _ => None,
+        })
+        .collect();
     Chosen {
         layers: ir.layers.len(),
         heights: span(&|p| p.layer_height),
         pitch: span(&|p| p.pitch),
+        spin: (!spins.is_empty()).then(|| spins.join(", ")),
     }
 }

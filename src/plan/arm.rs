@@ -305,7 +305,7 @@ impl Follow {
     pub fn new(robot: &Robot) -> Option<Follow> {
         Some(Follow {
             solver: Solver::new(robot)?,
-            orient: Orienter::new(robot.beam),
+            orient: Orienter::for_robot(robot),
             normal: None,
             rot: Matrix3::identity(),
             moves: Vec::with_capacity(CHUNK),

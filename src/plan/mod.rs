@@ -84,6 +84,7 @@ pub mod kinematics;
 pub mod lines;
 pub mod orient;
 pub mod profile;
+pub mod spin;
 
 use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program, Ramp, Ring};
 use kinematics::Rotary;

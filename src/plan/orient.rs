@@ -38,6 +38,8 @@ pub struct Orienter {
     reference: Vector3<f64>,
     /// The last normal, once there is one.
     normal: Option<Vector3<f64>>,
+    /// The turn about the beam added to the carried one (`spin`): cos, sin.
+    spin: (f64, f64),
 }
 
 impl Orienter {
@@ -56,7 +58,22 @@ impl Orienter {
             sign,
             reference: Vector3::x(),
             normal: None,
+            spin: (1.0, 0.0),
         }
+    }
+
+    /// The orienter of `robot`'s tool, turned by its `spin` about the beam.
+    pub fn for_robot(robot: &crate::ir::Robot) -> Self {
+        Orienter::new(robot.beam).spun(robot.spin.deg())
+    }
+
+    /// This orienter with the tool turned by `deg` about the beam, on top of
+    /// the carried turn (the reference axis itself is carried as before, so
+    /// the turn is the same at every point).
+    pub fn spun(mut self, deg: f64) -> Self {
+        let (s, c) = deg.to_radians().sin_cos();
+        self.spin = (c, s);
+        self
     }
 
     /// The tool rotation for a point with `normal` (need not be exactly unit),
@@ -74,6 +91,9 @@ impl Orienter {
         self.reference = r;
         self.normal = Some(n);
         let beam = -n * self.sign;
+        // Turned about the beam by the spin: r, beam × r → r', beam × r'.
+        let (c, s) = self.spin;
+        let r = r * c + beam.cross(&r) * s;
         let third = beam.cross(&r);
         let mut m = Matrix3::zeros();
         m.set_column(self.axis, &beam);
@@ -150,6 +170,31 @@ mod tests {
         let abc = o.abc([0.0, 0.0, 1.0]);
         assert!(abc.a.abs() < 1e-9 && abc.b.abs() < 1e-9, "{abc:?}");
         assert!((abc.c - 180.0).abs() < 1e-9, "{abc:?}");
+    }
+
+    /// A spin turns the tool about the beam and nothing else: the beam axis
+    /// stays, the reference axis turns by the spin (right-handed about the
+    /// beam), at every point of a path whose normal changes.
+    #[test]
+    fn spin_turns_about_the_beam() {
+        for beam in [ToolAxis::PlusZ, ToolAxis::MinusX, ToolAxis::PlusY] {
+            let mut plain = Orienter::new(beam);
+            let mut spun = Orienter::new(beam).spun(35.0);
+            for k in 0..5 {
+                let t = k as f32 * 0.2;
+                let n = [0.3 * t, -0.1 * t, 1.0];
+                let (a, b) = (plain.rotation(n), spun.rotation(n));
+                let axis = (0..3)
+                    .find(|&i| (a.column(i) - b.column(i)).norm() < 1e-12)
+                    .unwrap();
+                let beam_dir = a.column(axis).into_owned();
+                let (ra, rb) = (a.column((axis + 1) % 3), b.column((axis + 1) % 3));
+                let angle = ra.dot(&rb).clamp(-1.0, 1.0).acos().to_degrees();
+                assert!((angle - 35.0).abs() < 1e-9, "{beam:?}: {angle}");
+                assert!(ra.cross(&rb).dot(&beam_dir) > 0.0, "{beam:?}");
+                assert!((b.determinant() - 1.0).abs() < 1e-9);
+            }
+        }
     }
 
     #[test]

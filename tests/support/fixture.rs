@@ -39,6 +39,7 @@ pub fn robot() -> Robot {
         home: [0.0, -90.0, 90.0, 0.0, 0.0, 0.0],
         max_points_per_module: 5000,
         arm: None,
+        spin: Default::default(),
     }
 }
 

@@ -52,7 +52,7 @@ pub fn emit(
     let mut w = Text {
         out: String::new(),
         robot,
-        orient: Orienter::new(robot.beam),
+        orient: Orienter::for_robot(robot),
         stats: modules::Stats::default(),
     };
     w.init(&plan, ring);

@@ -80,7 +80,7 @@ pub fn emit(
             robot.laser_out,
             robot.power_out,
         ),
-        orient: Orienter::new(robot.beam),
+        orient: Orienter::for_robot(robot),
         robot,
         templates: t,
         base: &base,
@@ -351,6 +351,7 @@ fn main_context(ctx: &mut tera::Context, m: VerifiedMachine<'_>, robot: &Robot, 
     ctx.insert("base_index", &robot.base.index);
     ctx.insert("base_value", &frame_value(&robot.base));
     ctx.insert("beam", beam_text(robot.beam));
+    ctx.insert("spin", &spin_text(robot.spin));
     ctx.insert("laser_out", &robot.laser_out);
     ctx.insert("power_out", &robot.power_out);
     ctx.insert("full_scale", &trimmed(robot.full_scale_power, 3));
@@ -372,4 +373,20 @@ fn main_context(ctx: &mut tera::Context, m: VerifiedMachine<'_>, robot: &Robot, 
     ctx.insert("lin_lines", &s.lin);
     ctx.insert("deposits", &s.deposits);
     ctx.insert("laser_starts", &s.laser_ons);
+}
+
+/// The header's line on the tool's turn about the beam; empty at the
+/// default (`auto`, 0°).
+fn spin_text(spin: crate::ir::Spin) -> String {
+    let n = crate::numbers::trimmed;
+    match spin {
+        s if s.is_default() => String::new(),
+        crate::ir::Spin::Declared { deg } => {
+            format!("tool turned {} deg about the beam (spin, as declared)", n(deg, 3))
+        }
+        crate::ir::Spin::Auto { deg } => format!(
+            "tool turned {} deg about the beam (spin = auto: at 0 deg the arm breaks a rule; docs/robots.md)",
+            n(deg, 3)
+        ),
+    }
 }

@@ -6,13 +6,13 @@ use super::super::fields::{self, Fields};
 use super::super::schema::machine::{
     frame, opw, ARM, BASE, BEAM, CLEARANCE, FRAME, FULL_SCALE, HOME, JOINT_MARGIN, LASER,
     MAX_ANGLE_DEG, MAX_FRAME_MM, MAX_SPEED, MODULE_LINES, OPW, POWER_OUTPUT, ROBOT, SINGULARITY,
-    TOOL,
+    SPIN, TOOL,
 };
 use super::super::schema::Field;
 use super::super::value::Value;
 use super::{common, height_sensor, motion, Written};
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Arm, FrameRef, Machine, Pose, Robot, ToolAxis};
+use crate::ir::{Arm, FrameRef, Machine, Pose, Robot, Spin, ToolAxis};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::target::kuka;
@@ -79,6 +79,7 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
     let lines = f.count_or_default(&MODULE_LINES, diags);
     let home = home(f, diags);
     let arm = arm(f, diags);
+    let spin = spin(f, diags);
     let moves = motion(f, diags);
     let sensor = height_sensor(f, 1, kuka::MAX_ANIN, diags);
     Some(Robot {
@@ -92,7 +93,20 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
         home: home?,
         max_points_per_module: lines?,
         arm: arm?,
+        spin: spin?,
     })
+}
+
+/// `spin = auto | angle`.
+fn spin(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Spin> {
+    match f.value(&SPIN, diags) {
+        None if f.has(&SPIN) => None,
+        None => Some(Spin::default()),
+        Some(v) if v.value == Value::Symbol("auto".into()) => Some(Spin::default()),
+        Some(_) => f.quantity(&SPIN, diags).map(|(a, _)| Spin::Declared {
+            deg: a.to_degrees(),
+        }),
+    }
 }
 
 /// `arm = …` with `joint_margin` and `singularity`: `Some(None)` when no arm

@@ -226,6 +226,17 @@ pub static SINGULARITY: Field = Field::new(
     "how far a LIN must stay from the wrist singularity (A5 = 0) and the stretched arm (A3 at its stretch angle)",
 );
 
+/// `spin = auto | 30 deg`.
+pub static SPIN: Field = Field::new(
+    "spin",
+    Either(&[
+        Word(&["auto"]),
+        Quantity(Dim::ANGLE, Magnitude(crate::sema::schema::deg(180.0))),
+    ]),
+    Default(DefaultWord("auto")),
+    "the tool's turn about the beam, free for a coaxial nozzle; `auto`: 0° unless the `arm`'s rules fail there, then the turn that keeps the axes farthest from their limits and singularities (docs/robots.md)",
+);
+
 /// `opw(a1, a2, b, c1, c2, c3, c4, limits, speeds)`: an arm by its parameters.
 pub static OPW: Block = Block::new(
     "opw",
@@ -348,6 +359,7 @@ pub static ROBOT: Block = Block::new(
         &ARM,
         &JOINT_MARGIN,
         &SINGULARITY,
+        &SPIN,
         &CLEARANCE,
         &ACCELERATION,
         &BLENDING,
@@ -662,6 +674,7 @@ pub static MACHINE: Block = Block::new(
         &ARM,
         &JOINT_MARGIN,
         &SINGULARITY,
+        &SPIN,
         &CLEARANCE,
         &ACCELERATION,
         &BLENDING,

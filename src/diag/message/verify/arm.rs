@@ -55,7 +55,7 @@ pub fn joint_limit(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, margin: 
     let fix = match axis {
         0 => "turn the base (`base = frame(…, a = …)`) or move it so the part lies in front of A1's middle",
         1 | 2 => "move the base so the part lies at a comfortable distance and height from the robot",
-        _ => "tilt the nozzle on the flange (`tool = frame(…, b = …)`) or the base so the wrist turns less, or let lmdc's nozzle orientation start from another angle by turning the base about Z",
+        _ => "tilt the nozzle on the flange (`tool = frame(…, b = …)`) or the base so the wrist turns less, or turn the tool about the beam (`spin = auto` lets lmdc choose the turn; a pinned `spin = … deg` is used as written)",
     };
     Diagnostic::error(
         Code::JointLimit,
