@@ -51,6 +51,7 @@ mod rs274_smoke;
 mod section_points;
 mod stacking;
 mod style;
+mod table;
 mod typos;
 mod variable_errors;
 mod variable_rs274;

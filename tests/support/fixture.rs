@@ -82,6 +82,8 @@ pub fn cnc5() -> Cnc {
         },
         placement: Placement::default(),
         safe_height: None,
+        table: None,
+        rotary_speed: None,
     }
 }
 
