@@ -579,3 +579,65 @@ fn linear_axes_faster_than_max_speed_in_machine_coordinates_are_refused() {
     );
     assert!(worst > 200.0, "{worst}");
 }
+
+/// The preview's angle plot carries each layer's lowest and highest tilt
+/// and C: those of the program's lines under each layer's comment.
+#[test]
+fn the_preview_carries_the_tables_angles_per_layer() {
+    let (v, _, text) = example();
+    let m = v
+        .machines()
+        .find(|m| m.machine().name() == "trt_machine")
+        .unwrap();
+    let page = lmdc::preview::html(m);
+    let start = page
+        .find(r#"<script id="data" type="application/json">"#)
+        .unwrap();
+    let rest = &page[start..];
+    let json = &rest[rest.find('>').unwrap() + 1..rest.find("</script>").unwrap()];
+    let d: serde_json::Value = serde_json::from_str(json).unwrap();
+    let r = &d["meta"]["rotary"];
+    assert_eq!(r["kinematics"], "table_ac");
+    assert_eq!(r["axes"], serde_json::json!(["A", "C"]));
+    let got = r["layers"].as_array().unwrap();
+    let lines = motion(&text, 'A');
+    assert_eq!(got.len(), v.ir().layers.len());
+    let mut tilted = 0;
+    for (k, g) in got.iter().enumerate() {
+        // The moves written after layer k's comment (the first lift with
+        // the first layer).
+        let of = |f: fn(&Line) -> f64| {
+            let vals: Vec<f64> = lines
+                .iter()
+                .filter(|l| l.layer.max(1) == k + 1)
+                .map(f)
+                .collect();
+            let lo = vals.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            [lo, hi]
+        };
+        for (a, want) in [of(|l| l.tilt), of(|l| l.c)].iter().enumerate() {
+            for e in 0..2 {
+                let v = g[a][e].as_f64().unwrap();
+                assert!(
+                    (v - want[e]).abs() <= 5e-4 + 1e-9,
+                    "layer {} axis {a}: page {v}, program {}",
+                    k + 1,
+                    want[e]
+                );
+            }
+        }
+        if g[0][1].as_f64().unwrap() > 20.0 {
+            tilted += 1;
+        }
+    }
+    assert!(tilted > 10, "{tilted} layers tilted past 20°");
+    // A 3-axis machine's page has no angle plot.
+    let flange = std::fs::read_to_string("examples/flange.lmd").unwrap();
+    let f = ring::compile("flange", &flange);
+    let m = f
+        .machines()
+        .find(|m| matches!(m.machine(), Machine::Cnc(_)))
+        .unwrap();
+    assert!(lmdc::preview::html(m).contains(r#""rotary":null"#));
+}
