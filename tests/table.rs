@@ -641,3 +641,32 @@ fn the_preview_carries_the_tables_angles_per_layer() {
         .unwrap();
     assert!(lmdc::preview::html(m).contains(r#""rotary":null"#));
 }
+
+/// Where a table's axes are decides where every point goes: a table that
+/// does not say is refused, not placed at the machine's zero.
+#[test]
+fn a_table_must_say_where_its_axes_are() {
+    let src = std::fs::read_to_string(EXAMPLE).unwrap();
+    let without = src
+        .replacen(
+            "  c_axis = [250 mm, 200 mm, 150 mm]  // the C table's centre, on its face\n",
+            "",
+            1,
+        )
+        .replacen(
+            "  tilt_axis = [0 mm, 200 mm, 50 mm]  // the A trunnion, 100 mm below the face\n",
+            "",
+            1,
+        );
+    assert_ne!(without, src);
+    let c = lmdc::pipeline::compile(&without, &mut ());
+    assert!(c.program.is_none());
+    let text: Vec<String> = c.diagnostics.iter().map(|d| d.message.clone()).collect();
+    for key in ["c_axis", "tilt_axis"] {
+        assert!(
+            text.iter()
+                .any(|m| m.starts_with(&format!("a `table_ac` machine needs `{key}`"))),
+            "{key}: {text:?}"
+        );
+    }
+}

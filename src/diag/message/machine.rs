@@ -405,3 +405,15 @@ pub fn axis_point_not_a_point(key: &str, at: Span, got: &str) -> Diagnostic {
     .label(at, format!("this is {got}"))
     .help(format!("e.g. `{key} = [0 mm, 120 mm, -80 mm]`"))
 }
+
+/// A tilting table (`kin`) without `key`, one of its axes' points.
+pub fn table_axis_missing(key: &str, kin: &str, kinematics: Option<Span>) -> Diagnostic {
+    Diagnostic::error(
+        Code::MissingField,
+        format!("a `{kin}` machine needs `{key}`: where that axis is decides where every point of the part goes"),
+    )
+    .label_opt(kinematics, "a tilting table")
+    .help(format!(
+        "give a point of the axis in machine coordinates with every rotary axis at 0, e.g. `{key} = [250 mm, 200 mm, 100 mm]` (LinuxCNC: `x/y/z-rot-point` is `c_axis`, `x/y/z-offset` is `tilt_axis` − `c_axis`)"
+    ))
+}

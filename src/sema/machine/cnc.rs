@@ -127,21 +127,31 @@ fn table(
     if !is_table {
         return (ok.then_some(None), rotary_speed);
     }
-    let c_axis = point(f, &C_AXIS, diags);
+    // Where the axes are decides where every point goes: no default.
+    let mut missing = false;
+    for field in [&C_AXIS, &TILT_AXIS] {
+        if !f.has(field) {
+            let k = kin.map_or("table_ac", Kinematics::word);
+            diags.push(message::machine::table_axis_missing(
+                field.key,
+                k,
+                f.span(&KINEMATICS),
+            ));
+            missing = true;
+        }
+    }
+    let c_axis = point(f, &C_AXIS, diags).filter(|_| !missing);
     let tilt_axis = point(f, &TILT_AXIS, diags);
     let output = f.word_or_default(&TABLE_OUTPUT, diags).map(|w| match w {
         "machine" => TableOutput::Machine,
         _ => TableOutput::Tcp,
     });
     let table = match (c_axis, tilt_axis, output) {
-        (Some(c), Some(t), Some(output)) => {
-            let c_axis = c.unwrap_or([0.0; 3]);
-            Some(Some(RotaryTable {
-                c_axis,
-                tilt_axis: t.unwrap_or(c_axis),
-                output,
-            }))
-        }
+        (Some(Some(c_axis)), Some(Some(tilt_axis)), Some(output)) => Some(Some(RotaryTable {
+            c_axis,
+            tilt_axis,
+            output,
+        })),
         _ => None,
     };
     (table, rotary_speed)

@@ -468,7 +468,7 @@ pub static KINEMATICS: Field = Field::new(
 pub static C_AXIS: Field = Field::new(
     "c_axis",
     List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3)),
-    Default(Described("`[0 mm, 0 mm, 0 mm]`")),
+    Default(Described("required with `table_ac` and `table_bc`")),
     "a tilting table's C axis: a point of it in machine coordinates, the tilt at 0 (LinuxCNC's `x/y/z-rot-point`)",
 );
 
@@ -476,7 +476,7 @@ pub static C_AXIS: Field = Field::new(
 pub static TILT_AXIS: Field = Field::new(
     "tilt_axis",
     List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3)),
-    Default(Described("`c_axis`")),
+    Default(Described("required with `table_ac` and `table_bc`")),
     "a tilting table's A or B axis: a point of it in machine coordinates (its offset from `c_axis` is LinuxCNC's `x/y/z-offset`)",
 );
 
