@@ -951,6 +951,71 @@ pub enum Kinematics {
     HeadAc,
     /// Tilting head: B about Y, then C about Z. Tool-tip (TCP) programming.
     HeadBc,
+    /// Tilting table: the part turns on C, which an A trunnion (about X)
+    /// tilts; the nozzle stays vertical. Axes as [`Cnc::table`] declares.
+    TableAc,
+    /// Tilting table: the part turns on C, which a B trunnion (about Y)
+    /// tilts; the nozzle stays vertical.
+    TableBc,
+}
+
+impl Kinematics {
+    /// Whether the part turns (a tilting table) rather than the head.
+    pub fn is_table(self) -> bool {
+        matches!(self, Kinematics::TableAc | Kinematics::TableBc)
+    }
+
+    /// The tilt axis's letter: `A` (about X) or `B` (about Y); `None` on
+    /// [`Kinematics::Xyz`].
+    pub fn tilt_letter(self) -> Option<char> {
+        match self {
+            Kinematics::HeadAc | Kinematics::TableAc => Some('A'),
+            Kinematics::HeadBc | Kinematics::TableBc => Some('B'),
+            Kinematics::Xyz => None,
+        }
+    }
+
+    /// The word the language and the programs' headers use for it.
+    pub fn word(self) -> &'static str {
+        match self {
+            Kinematics::Xyz => "xyz",
+            Kinematics::HeadAc => "head_ac",
+            Kinematics::HeadBc => "head_bc",
+            Kinematics::TableAc => "table_ac",
+            Kinematics::TableBc => "table_bc",
+        }
+    }
+}
+
+/// How a tilting table's axes sit on the machine, and what its program
+/// writes (`docs/gcode.md`, "Tilting tables"). Every point is in machine
+/// coordinates with the rotary axes at 0, as LinuxCNC's `xyzac-trt-kins`
+/// and `xyzbc-trt-kins` take them (`x-rot-point` … `z-offset`).
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+pub struct RotaryTable {
+    /// A point of the C axis (which is parallel to Z at tilt 0), mm.
+    pub c_axis: [f64; 3],
+    /// A point of the tilt axis (parallel to X for A, to Y for B), mm.
+    pub tilt_axis: [f64; 3],
+    /// Part coordinates and angles under the control's transform, or
+    /// machine coordinates computed by lmdc.
+    pub output: TableOutput,
+}
+
+/// What a tilting table's program writes.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[serde(rename_all = "snake_case")]
+pub enum TableOutput {
+    /// Part coordinates and the rotary angles, with the control's
+    /// tool-tip/work-piece transform on (LinuxCNC trt kinematics, TRAORI,
+    /// `#RTCP`).
+    #[default]
+    Tcp,
+    /// Machine coordinates: lmdc turns every point by the table's angles
+    /// about its axes; the control interpolates the axes linearly.
+    Machine,
 }
 
 /// Dialect details of a CNC control, from a built-in profile and overrides.
@@ -1056,6 +1121,11 @@ pub struct Cnc {
     /// the other axes move and the program ends at (`None`: the part's
     /// highest point plus the clearance, [`crate::plan`]).
     pub safe_height: Option<f64>,
+    /// A tilting table's axes and output (`None` unless the kinematics is
+    /// a table's).
+    pub table: Option<RotaryTable>,
+    /// The rotary axes' top speed, deg/s (`None`: not checked).
+    pub rotary_speed: Option<f64>,
 }
 
 impl std::ops::Deref for Robot {
@@ -1092,7 +1162,7 @@ impl std::ops::DerefMut for Cnc {
 mod wire {
     use super::{
         AxisLimits, Cell, Dialect, FrameRef, HeightSensor, Kinematics, MachineCommon, Placement,
-        Ramp, ToolAxis,
+        Ramp, RotaryTable, ToolAxis,
     };
     use serde::{Deserialize, Serialize};
 
@@ -1173,6 +1243,13 @@ mod wire {
         /// highest point plus the clearance).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         safe_height: Option<f64>,
+        /// A tilting table's axes and how the program is written (absent:
+        /// the head tilts, or no rotary axes).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        table: Option<RotaryTable>,
+        /// The rotary axes' top speed, deg/s (absent: not checked).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        rotary_speed: Option<f64>,
         /// Highest path speed (a CNC's feed), mm/s.
         max_speed: f64,
         /// Distance the nozzle backs off along the normal between paths that do not
@@ -1269,6 +1346,8 @@ mod wire {
                 limits: c.limits,
                 placement: c.placement,
                 safe_height: c.safe_height,
+                table: c.table,
+                rotary_speed: c.rotary_speed,
             }
         }
     }
@@ -1284,6 +1363,8 @@ mod wire {
                 limits: c.limits,
                 placement: c.placement,
                 safe_height: c.safe_height,
+                table: c.table,
+                rotary_speed: c.rotary_speed,
                 max_speed: m.max_speed,
                 clearance: m.clearance,
                 cell: m.cell,

@@ -593,7 +593,12 @@ const NO_INPUT: &[(Code, &str)] = &[
      the rule guards against a fault in the plan, tested on hand-made moves in \
      src/check/cell.rs's unit tests",
     ),
+    (Code::AxisSpeed, PLANAR_LAYERS),
+    (Code::CUnwind, PLANAR_LAYERS),
 ];
+
+/// Why the rotary axes' rules have no input here.
+const PLANAR_LAYERS: &str = "no part the language describes has normals that turn inside a      path: a normal-sliced loft's layer is planar (one normal), planar, variable and ring      layers are vertical; the rotary axes turn only between paths, at rapid. The rules      guard hand-made IRs and non-planar layers to come: tests/table.rs gives both codes      on an IR whose normals wind round the vertical along each layer";
 
 /// Why the command line's codes have no input here.
 const USAGE: &str = "a mistake of the command line or its files, not of the .lmd text: \

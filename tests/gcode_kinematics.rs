@@ -16,7 +16,7 @@ fn t_of(kin: Kinematics, tilt: f64, c: f64) -> [f64; 3] {
     match kin {
         Kinematics::HeadAc => [t.sin() * c.sin(), -t.sin() * c.cos(), t.cos()],
         Kinematics::HeadBc => [t.sin() * c.cos(), t.sin() * c.sin(), t.cos()],
-        Kinematics::Xyz => unreachable!(),
+        _ => unreachable!("heads only"),
     }
 }
 

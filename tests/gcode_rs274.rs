@@ -30,11 +30,11 @@ fn have_rs274(test: &str) -> bool {
 fn tool_direction(kin: Kinematics, a: f64, b: f64, c: f64) -> [f64; 3] {
     let c = c.to_radians();
     match kin {
-        Kinematics::HeadAc => {
+        Kinematics::HeadAc | Kinematics::TableAc => {
             let a = a.to_radians();
             [a.sin() * c.sin(), -a.sin() * c.cos(), a.cos()]
         }
-        Kinematics::HeadBc => {
+        Kinematics::HeadBc | Kinematics::TableBc => {
             let b = b.to_radians();
             [b.sin() * c.cos(), b.sin() * c.sin(), b.cos()]
         }
@@ -136,8 +136,8 @@ fn check_against_ir(ir: Program) -> usize {
             CanonCall::Traverse { a, b, c, .. } => {
                 assert!(!laser, "G0 with the laser on");
                 let axes = match kin {
-                    Kinematics::HeadAc => b,
-                    Kinematics::HeadBc => a,
+                    Kinematics::HeadAc | Kinematics::TableAc => b,
+                    Kinematics::HeadBc | Kinematics::TableBc => a,
                     Kinematics::Xyz => a.abs() + b.abs() + c.abs(),
                 };
                 assert_eq!(axes, 0.0, "an axis the machine lacks moved");
@@ -174,8 +174,12 @@ fn check_against_ir(ir: Program) -> usize {
                     d.at
                 );
                 match kin {
-                    Kinematics::HeadAc => assert_eq!(b, 0.0, "B moved on an A/C head"),
-                    Kinematics::HeadBc => assert_eq!(a, 0.0, "A moved on a B/C head"),
+                    Kinematics::HeadAc | Kinematics::TableAc => {
+                        assert_eq!(b, 0.0, "B moved on an A/C machine")
+                    }
+                    Kinematics::HeadBc | Kinematics::TableBc => {
+                        assert_eq!(a, 0.0, "A moved on a B/C machine")
+                    }
                     Kinematics::Xyz => assert_eq!([a, b, c], [0.0; 3], "rotary axes moved"),
                 }
                 // rs274 reports the F word as written, in the dialect's unit.
@@ -244,6 +248,24 @@ fn five_axis_bc_head_follows_the_ir() {
         -120.0,
     );
     assert_eq!(check_against_ir(ir), 5 * 16);
+}
+
+/// A tilting table under the control's transform (`table_output = tcp`):
+/// the program is the head's, part coordinates and the angles that stand
+/// the normal up, read as the part's direction.
+#[test]
+fn five_axis_ac_table_in_tcp_follows_the_ir() {
+    if !have_rs274("five_axis_ac_table_in_tcp_follows_the_ir") {
+        return;
+    }
+    let mut cnc = cnc5_with(Kinematics::TableAc);
+    cnc.table = Some(RotaryTable {
+        c_axis: [0.0, 0.0, 0.0],
+        tilt_axis: [0.0, 0.0, -100.0],
+        output: TableOutput::Tcp,
+    });
+    let ir = rotate_about_z(bent_tube(6, 24, 45.0, vec![Machine::Cnc(cnc)]), 30.0);
+    assert_eq!(check_against_ir(ir), 6 * 24);
 }
 
 #[test]
@@ -381,7 +403,10 @@ fn examples_run_in_rs274_and_follow_the_ir() {
             .into_ir();
         for m in &ir.machines {
             let Machine::Cnc(c) = m else { continue };
-            if c.dialect.profile != "linuxcnc" {
+            // A table in machine coordinates writes where the table brings
+            // the part: tests/table.rs runs it through rs274 and its own
+            // forward kinematics.
+            if c.dialect.profile != "linuxcnc" || lmdc::plan::table::machine_output(c).is_some() {
                 continue;
             }
             // The machine under test becomes machine 0 (check_against_ir's).

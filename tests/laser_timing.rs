@@ -183,6 +183,10 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
             let mut sink = MemorySink::default();
             lmdc::back::emit(m, &templates, &mut sink).unwrap();
             let got = match m.machine() {
+                // A table written in machine coordinates puts its switches
+                // where the table brings the part: tests/table.rs turns
+                // them back to the part and checks them there.
+                Machine::Cnc(c) if lmdc::plan::table::machine_output(c).is_some() => continue,
                 Machine::Cnc(c) => {
                     let (_, bytes) = &sink.files[0];
                     let text = std::str::from_utf8(bytes).unwrap();

@@ -942,3 +942,46 @@ fn chromium_draws_the_joint_plot_only_for_an_arm() {
         "{note}"
     );
 }
+
+/// A 5-axis CNC's page draws its tilt and C plot (the elbow's table, the
+/// sleeve's head) without a script error; a robot's has none.
+#[test]
+fn chromium_draws_the_rotary_plot_only_for_five_axes() {
+    let Some(chromium) = chromium() else {
+        skip::skip(
+            "chromium_draws_the_rotary_plot_only_for_five_axes",
+            "chromium",
+            "apt-get install chromium, or set LMDC_CHROMIUM",
+        );
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    for (example, name, rotary) in [
+        ("ring_table", "trt_machine", true),
+        ("sleeve", "mill5", true),
+        ("sleeve", "kr30", false),
+    ] {
+        let file = dir.path().join(format!("{example}_{name}.html"));
+        let html = page_of(example, name);
+        let layers = verified(example).ir().layers.len();
+        std::fs::write(&file, html).unwrap();
+        let dom = dom(&chromium, &file, "");
+        assert_eq!(
+            attr(&dom, "data-ready").as_deref(),
+            Some("speed"),
+            "{example}"
+        );
+        assert!(attr(&dom, "data-js-error").is_none(), "{example}");
+        let section = dom.contains(r#"<section id="rotaryplots">"#);
+        assert_eq!(section, rotary, "{example} {name}: the rotary plot shown");
+        if rotary {
+            assert_eq!(
+                number(&dom, "data-layers"),
+                layers as f64,
+                "{example} {name}"
+            );
+            let title = text_of(&dom, r#"<h2 id="rotary-title""#);
+            assert!(title.contains("and C layer by layer"), "{title}");
+        }
+    }
+}

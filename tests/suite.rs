@@ -52,6 +52,7 @@ mod schemas;
 mod section_points;
 mod stacking;
 mod style;
+mod table;
 mod typos;
 mod variable_errors;
 mod variable_rs274;

@@ -300,6 +300,10 @@ codes! {
         "the part's layers tilt but the CNC has 3 axes";
     AxisLimit = "axis-limit", Machines,
         "a programmed position or rotary angle is outside the CNC's declared travel";
+    AxisSpeed = "axis-speed", Machines,
+        "a feed move whose machine axes would move faster than declared: a tilting table's X Y Z (the part turning under the nozzle) beyond `max_speed`, or a rotary axis beyond `rotary_speed`";
+    CUnwind = "c-unwind", Machines,
+        "a tilting table's C axis would turn through more than its travel within one layer: lmdc unwinds C only between layers";
     NameClash = "name-clash", Machines,
         "two machines whose names differ only in characters a file name drops (`m 1`, `m_1`) would write the same file";
     TransitionSpeed = "transition-speed", Machines,

@@ -9,6 +9,14 @@
 //! * [`Kinematics::HeadBc`]: B tilts about Y, then C turns about Z:
 //!   `t = (sinB·cosC, sinB·sinC, cosB)`.
 //!
+//! * [`Kinematics::TableAc`], [`Kinematics::TableBc`]: the same angles. With
+//!   the ISO directions of a table's axes (a positive angle turns the *tool*
+//!   about the part by the right-hand rule, so the table itself turns the
+//!   other way, as LinuxCNC's trt kinematics with `conventional-directions`
+//!   take them), the nozzle direction in part coordinates is the head's
+//!   formula: the table at `(A, C)` presents the part so that `t` points up
+//!   ([`super::table`]).
+//!
 //! Every direction but the vertical one has two families of solutions,
 //! `(tilt, C + k·360°)` and `(−tilt, C + 180° + k·360°)`; the vertical one has any C.
 //! [`follow`] picks the member closest to where the axes are, so C never jumps
@@ -36,8 +44,8 @@ pub fn direction(kin: Kinematics, r: Rotary) -> [f64; 3] {
     let (st, ct) = r.tilt.to_radians().sin_cos();
     let (sc, cc) = r.c.to_radians().sin_cos();
     match kin {
-        Kinematics::HeadAc => [st * sc, -st * cc, ct],
-        Kinematics::HeadBc => [st * cc, st * sc, ct],
+        Kinematics::HeadAc | Kinematics::TableAc => [st * sc, -st * cc, ct],
+        Kinematics::HeadBc | Kinematics::TableBc => [st * cc, st * sc, ct],
         Kinematics::Xyz => [0.0, 0.0, 1.0],
     }
 }
@@ -59,9 +67,9 @@ pub fn principal(kin: Kinematics, n: [f64; 3]) -> (f64, Option<f64>) {
     }
     let c = match kin {
         // sinA·sinC = nx, −sinA·cosC = ny, with sinA > 0.
-        Kinematics::HeadAc => n[0].atan2(-n[1]),
+        Kinematics::HeadAc | Kinematics::TableAc => n[0].atan2(-n[1]),
         // sinB·cosC = nx, sinB·sinC = ny.
-        Kinematics::HeadBc => n[1].atan2(n[0]),
+        Kinematics::HeadBc | Kinematics::TableBc => n[1].atan2(n[0]),
         Kinematics::Xyz => return (tilt, None),
     };
     (tilt, Some(c.to_degrees()))
@@ -148,6 +156,89 @@ pub fn reposition(
     best.unwrap_or(near)
 }
 
+/// Where the axes stand over a run of directions followed from a start.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sweep {
+    /// The lowest and highest tilt, deg.
+    pub tilt: [f64; 2],
+    /// The lowest and highest C, deg.
+    pub c: [f64; 2],
+}
+
+impl Sweep {
+    fn at(r: Rotary) -> Self {
+        Sweep {
+            tilt: [r.tilt; 2],
+            c: [r.c; 2],
+        }
+    }
+
+    fn add(&mut self, r: Rotary) {
+        self.tilt = [self.tilt[0].min(r.tilt), self.tilt[1].max(r.tilt)];
+        self.c = [self.c[0].min(r.c), self.c[1].max(r.c)];
+    }
+
+    /// How far it leaves `tilt_range` and `c_range`, deg (0: inside).
+    fn excess(&self, tilt_range: [f64; 2], c_range: [f64; 2]) -> f64 {
+        let out = |v: [f64; 2], r: [f64; 2]| (r[0] - v[0]).max(0.0) + (v[1] - r[1]).max(0.0);
+        out(self.tilt, tilt_range) + out(self.c, c_range)
+    }
+}
+
+/// Where [`follow`] takes the axes over `normals` (in order; repeats cost
+/// nothing) from `start`.
+pub fn sweep(kin: Kinematics, normals: impl Iterator<Item = [f64; 3]>, start: Rotary) -> Sweep {
+    let mut s = Sweep::at(start);
+    let mut at = start;
+    let mut last: Option<[f64; 3]> = None;
+    for n in normals {
+        if last != Some(n) {
+            at = follow(kin, n, at);
+            s.add(at);
+            last = Some(n);
+        }
+    }
+    s
+}
+
+/// The axes a run that must not unwind C (a tilting table's layer: the
+/// part turns under the nozzle, and a turn back with the nozzle near the
+/// part would sweep it through the part) starts at, for its first
+/// direction `normals[0]`: of the two solutions, each moved by whole turns
+/// of C, the one closest to `prev` from which [`follow`] keeps every
+/// direction of the run inside `tilt_range` and `c_range`; where none
+/// does, the one that leaves them least (the verifier reports it).
+pub fn run_start<I>(kin: Kinematics, normals: I, prev: Rotary, ranges: [[f64; 2]; 2]) -> Rotary
+where
+    I: Iterator<Item = [f64; 3]> + Clone,
+{
+    let [tilt_range, c_range] = ranges;
+    let Some(first) = normals.clone().next() else {
+        return prev;
+    };
+    let (tilt, c) = principal(kin, first);
+    let families: &[(f64, f64)] = match c {
+        Some(c) => &[(tilt, c), (-tilt, c + 180.0)],
+        None => &[(0.0, prev.c)],
+    };
+    let mut best: Option<(f64, f64, Rotary)> = None;
+    for &(t, c) in families {
+        let c0 = unwrap_near(c, prev.c);
+        for k in -2..=2 {
+            let start = Rotary {
+                tilt: t,
+                c: c0 + 360.0 * k as f64,
+            };
+            let excess = sweep(kin, normals.clone(), start).excess(tilt_range, c_range);
+            let key = (excess, travel(prev, start));
+            if best.is_none_or(|(e, d, _)| key < (e, d)) {
+                best = Some((key.0, key.1, start));
+            }
+        }
+    }
+    best.map_or(prev, |b| b.2)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -183,6 +274,34 @@ mod tests {
         assert_eq!(b, Rotary { tilt: 0.0, c: a.c });
         let c = follow(kin, [-0.1, 0.0, 1.0], b);
         assert!(c.tilt < 0.0 && c.c.abs() < 1e-9, "{c:?}");
+    }
+
+    #[test]
+    fn a_run_starts_where_its_whole_sweep_fits() {
+        // A layer whose normals wind once round, from C 300 on: no start
+        // of the positive tilt keeps the turn inside −250° … 150° (300 and
+        // −60 run past 150, −420 starts below −250), the negative tilt's
+        // start at C −240 (the same direction) does.
+        let kin = Kinematics::TableAc;
+        let normals: Vec<[f64; 3]> = (0..=36)
+            .map(|i| {
+                let c = (i as f64 * 10.0 + 300.0).to_radians();
+                [0.5 * c.sin(), -0.5 * c.cos(), 0.866]
+            })
+            .collect();
+        let prev = Rotary {
+            tilt: 30.0,
+            c: 300.0,
+        };
+        let ranges = [[-120.0, 120.0], [-250.0, 150.0]];
+        let r = run_start(kin, normals.iter().copied(), prev, ranges);
+        let s = sweep(kin, normals.iter().copied(), r);
+        assert!(s.c[0] >= -250.0 && s.c[1] <= 150.0, "{r:?} {s:?}");
+        let tilt = tilt_of(normals[0]);
+        assert!(
+            (r.c + 240.0).abs() < 1e-6 && (r.tilt + tilt).abs() < 1e-9,
+            "{r:?}"
+        );
     }
 
     #[test]

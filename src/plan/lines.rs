@@ -5,17 +5,17 @@
 //! laser and the cell's state during it.
 
 use super::{Io, Move, MoveKind, Plan, SegmentEnd, Speed, Visit, Where};
-use crate::ir::{Kinematics, Layer, Machine};
+use crate::ir::{Layer, Machine};
 use serde_json::{json, Value};
 use std::io::Write;
 
 /// Writes `plan` (of `machine`) as JSON lines into `out`.
 pub fn write(plan: &Plan<'_>, machine: &Machine, out: &mut dyn Write) -> std::io::Result<()> {
     let axes = match machine {
-        Machine::Cnc(c) => match super::effective_kinematics(c) {
-            Kinematics::Xyz => None,
-            Kinematics::HeadAc => Some("A"),
-            Kinematics::HeadBc => Some("B"),
+        Machine::Cnc(c) => match super::effective_kinematics(c).tilt_letter() {
+            None => None,
+            Some('B') => Some("B"),
+            Some(_) => Some("A"),
         },
         Machine::Robot(_) => None,
     };

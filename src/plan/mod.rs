@@ -85,6 +85,7 @@ pub mod lines;
 pub mod orient;
 pub mod profile;
 pub mod spin;
+pub mod table;
 
 use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program, Ramp, Ring};
 use kinematics::Rotary;
@@ -648,7 +649,7 @@ impl<V: Visit> Walker<'_, '_, V> {
                     .find(|p| p.laser_on)
                     .map(|p| p.powder);
                 let feed_in = pts.get(1).filter(|_| first.laser_on);
-                self.transition(li, pi, first, feed_in, powder)
+                self.transition((li, pi, first_in_layer), first, feed_in, powder)
             }
         };
         self.retracted = false;
@@ -712,8 +713,7 @@ impl<V: Visit> Walker<'_, '_, V> {
     /// start where it has one. Returns the cursor at `first`.
     fn transition(
         &mut self,
-        li: usize,
-        pi: usize,
+        (li, pi, layer_start): (usize, usize, bool),
         first: &Point,
         second: Option<&Point>,
         powder: Option<f32>,
@@ -728,12 +728,7 @@ impl<V: Visit> Walker<'_, '_, V> {
         if let Some(c) = self.cursor.filter(|_| !self.retracted) {
             self.retract(c, clearance);
         }
-        let axes = match self.plan.head {
-            Head::Tilting(kin, lim) => {
-                kinematics::reposition(kin, f64s(first.normal), prev, lim.tilt, lim.rotary)
-            }
-            _ => Rotary::default(),
-        };
+        let axes = self.start_axes(li, first, prev, layer_start);
         let f0 = first.focus();
         let entry = second.and_then(|n| self.lead_start(first, n)).unwrap_or(f0);
         let above = along(entry, self.up(first.normal), self.plan.clearance);
@@ -792,6 +787,31 @@ impl<V: Visit> Walker<'_, '_, V> {
         };
         self.cursor = Some(c);
         c
+    }
+
+    /// The rotary axes at a path's `first` point (layer `li`), reached from
+    /// `prev`. A head may unwind C on any transition, the nozzle retracted
+    /// ([`kinematics::reposition`]). A table turns the part itself: it
+    /// unwinds only before a layer's first path, to where the whole layer
+    /// can be followed without unwinding ([`kinematics::run_start`]), and
+    /// follows the normals on every other transition.
+    fn start_axes(&self, li: usize, first: &Point, prev: Rotary, layer_start: bool) -> Rotary {
+        let Head::Tilting(kin, lim) = self.plan.head else {
+            return Rotary::default();
+        };
+        let n = f64s(first.normal);
+        if !kin.is_table() {
+            return kinematics::reposition(kin, n, prev, lim.tilt, lim.rotary);
+        }
+        if !layer_start {
+            return kinematics::follow(kin, n, prev);
+        }
+        let normals = self.plan.program.layers[li]
+            .paths
+            .iter()
+            .flat_map(|p| &p.points)
+            .map(|p| f64s(p.normal));
+        kinematics::run_start(kin, normals, prev, [lim.tilt, lim.rotary])
     }
 
     /// With the nozzle vertical at both ends, the travel to `above` (the

@@ -84,6 +84,8 @@ pub struct Meta<'a> {
     pub layer_error: &'a [Option<[f64; 4]>],
     /// A robot arm's axes layer by layer (`None`: no arm to solve).
     pub arm: Option<&'a super::joints::Arm>,
+    /// A 5-axis CNC's tilt axis and C layer by layer (`None`: none).
+    pub rotary: Option<&'a super::rotary::Rotary>,
     /// Who wrote the page.
     pub generator: &'static str,
 }

@@ -16,12 +16,15 @@
 //! a browser draws interactively, against 3.6 M points of the dense duct.
 //!
 //! For a robot with an arm the page also plots each axis's range layer by
-//! layer against its limits ([`joints`]), solved as the verifier solves it.
+//! layer against its limits ([`joints`]), solved as the verifier solves it;
+//! for a 5-axis CNC, its tilt axis and C ([`rotary`]): on a tilting table,
+//! the angles the table presents each layer at.
 
 mod encode;
 mod error;
 pub mod joints;
 mod kind;
+pub mod rotary;
 
 use crate::ir::{Layer, Point};
 use crate::plan::{Move, Speed, Visit, Where};
@@ -213,6 +216,7 @@ pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
     c.flush();
     let layer_error = c.errors.finish();
     let arm = joints::of(machine.machine(), &plan, program.layers.len());
+    let rotary = rotary::of(machine.machine(), &plan);
     let meta = encode::Meta {
         part: &program.part,
         machine: machine.machine().name(),
@@ -228,6 +232,7 @@ pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
         max_drift: program.limits.max_drift,
         layer_error: &layer_error,
         arm: arm.as_ref(),
+        rotary: rotary.as_ref(),
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };
     let data = c.cols.encode(&meta);

@@ -270,7 +270,7 @@
 
   function resize() {
     const dpr = window.devicePixelRatio || 1;
-    for (const c of [canvas, $("plot"), $("errplot")].concat(ARM ? [$("joints")] : [])) {
+    for (const c of [canvas, $("plot"), $("errplot")].concat(ARM ? [$("joints")] : [], ROT ? [$("rotary")] : [])) {
       c.width = Math.max(1, Math.round(c.clientWidth * dpr));
       c.height = Math.max(1, Math.round(c.clientHeight * dpr));
     }
@@ -630,6 +630,42 @@
     c.dataset.nearLimit = near;
   }
 
+  // A 5-axis CNC's tilt axis and C layer by layer: each layer's lowest to
+  // highest angle as a band against the axis's travel (red). On a tilting
+  // table these are the angles the table turns the part to.
+  const ROT = M.rotary;
+  function plotRotary() {
+    if (!ROT) return;
+    const c = $("rotary"), g = clear(c);
+    const W = c.width, H = c.height, dpr = window.devicePixelRatio || 1;
+    const L = ROT.layers, xs = L.map((_, k) => k + 1);
+    const x0 = 0.5, x1 = L.length + 0.5;
+    const gap = 8 * dpr, ph = (H - 3 * gap) / 2;
+    for (let a = 0; a < 2; a++) {
+      const lo = L.map((r) => (r ? r[a][0] : NaN)), hi = L.map((r) => (r ? r[a][1] : NaN));
+      const [l0, l1] = ROT.limits[a];
+      let [v0, v1] = [Infinity, -Infinity];
+      for (let k = 0; k < L.length; k++) if (L[k]) { v0 = Math.min(v0, lo[k]); v1 = Math.max(v1, hi[k]); }
+      // The travel can be many turns of C: scale to the angles used, the
+      // limits drawn where they fall within.
+      const span = v1 > v0 ? v1 - v0 : 1, r0 = Math.max(l0, v0 - 0.1 * span), r1 = Math.min(l1, v1 + 0.1 * span);
+      const box = { left: 70 * dpr, right: W - 16 * dpr, top: gap + a * (ph + gap), height: ph - 4 * dpr };
+      panel(g, box, xs, x0, x1, {
+        series: [[lo, "#1f4e79", 1], [hi, "#1f4e79", 1]], band: [lo, hi, "rgba(31,78,121,0.28)"],
+        range: [Math.min(r0, v0), Math.max(r1, v1)].map((v, i) => (v === v && Math.abs(v) !== Infinity ? v : i ? 1 : -1)),
+        fmt: (x) => `${signed(x, 0)}°`, marks: [[l0, "#c0392b"], [l1, "#c0392b"]],
+        label: `${ROT.axes[a]}, deg (travel ${fmt(l0)}° to ${fmt(l1)}°)`,
+      });
+    }
+    const table = ROT.kinematics.startsWith("table");
+    $("rotary-title").textContent = `${ROT.kinematics}: ${ROT.axes[0]} and C layer by layer, lowest to highest angle of each ` +
+      `layer's moves (blue), travel (red)`;
+    $("rotary-note").textContent = table
+      ? "The table turns the part so each layer's normal points up the vertical nozzle; C unwinds only between layers."
+      : "The head tilts the nozzle along each layer's normal.";
+    c.dataset.layers = L.length;
+  }
+
   // --- controls -----------------------------------------------------------
   function showRange() {
     if (!STARTS.length) return;
@@ -641,12 +677,12 @@
   from.addEventListener("input", () => {
     range[0] = +from.value;
     if (range[0] > range[1]) { range[1] = range[0]; to.value = from.value; plot(); }
-    showRange(); plotLayers(); plotJoints(); redraw();
+    showRange(); plotLayers(); plotJoints(); plotRotary(); redraw();
   });
   to.addEventListener("input", () => {
     range[1] = +to.value;
     if (range[1] < range[0]) { range[0] = range[1]; from.value = to.value; }
-    showRange(); plot(); plotLayers(); plotJoints(); redraw();
+    showRange(); plot(); plotLayers(); plotJoints(); plotRotary(); redraw();
   });
   $("quantity").addEventListener("change", (e) => { bucketise(e.target.value); redraw(); });
   $("travel").addEventListener("change", (e) => { showTravel = e.target.checked; redraw(); });
@@ -678,7 +714,7 @@
     view.zoom *= Math.exp(-e.deltaY * 0.001);
     redraw();
   }, { passive: false });
-  window.addEventListener("resize", () => { resize(); plot(); plotLayers(); plotJoints(); redraw(); });
+  window.addEventListener("resize", () => { resize(); plot(); plotLayers(); plotJoints(); plotRotary(); redraw(); });
 
   // --- the page's own account of what it shows (tests read it) ------------
   $("heading").textContent = `${M.part} on ${M.machine}`;
@@ -705,6 +741,7 @@
   if (+ask.get("zoom") > 0) view.zoom *= +ask.get("zoom");
 
   if (ARM) $("armplots").hidden = false;
+  if (ROT) $("rotaryplots").hidden = false;
   resize();
   // Where the view is on the page, CSS pixels (a test measures its screenshot).
   canvas.dataset.viewTop = Math.round(canvas.getBoundingClientRect().top + window.scrollY);
@@ -726,5 +763,6 @@
   plot();
   plotLayers();
   plotJoints();
+  plotRotary();
   document.documentElement.dataset.ready = select.value;
 })();

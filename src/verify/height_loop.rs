@@ -104,6 +104,13 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
     transitions(r, law.clamp[1], m, origin, &o, out);
     let name = m.name();
     if let Machine::Cnc(c) = m {
+        if crate::plan::table::machine_output(c).is_some() {
+            out.push(says::loop_on_table_machine(
+                name,
+                origin.at(&machine::TABLE_OUTPUT),
+                o.run,
+            ));
+        }
         if c.dialect.profile != LOOP_PROFILE {
             out.push(says::loop_dialect(
                 name,

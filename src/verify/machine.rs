@@ -9,9 +9,9 @@
 use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::message::{self, verify::machine::AnalogOverrun, verify::machine::AxisOverrun};
 use crate::diag::Diagnostics;
-use crate::ir::{AxisLimits, Kinematics, Machine};
+use crate::ir::{AxisLimits, Kinematics, Machine, RotaryTable};
 use crate::plan::kinematics::tilt_of;
-use crate::plan::{effective_kinematics, Move, Speed, Visit, Where};
+use crate::plan::{effective_kinematics, table, Move, Speed, Visit, Where};
 use crate::sema::schema::machine::{self, limits};
 use crate::target::{gcode, kuka, written as rounded};
 
@@ -88,6 +88,9 @@ fn robot_speed(v: f64, _: &Machine) -> f64 {
 pub(super) struct Travel {
     lim: AxisLimits,
     origin: [f64; 3],
+    /// A tilting table: positions are checked where its inverse
+    /// kinematics puts the machine's axes.
+    table: Option<(Kinematics, RotaryTable)>,
     /// Whether the rotary axes exist (and are checked).
     five: bool,
     /// X Y Z tilt C.
@@ -102,33 +105,39 @@ impl Visit for Travel {
     fn motion(&mut self, m: &Move) {
         let l = &self.lim;
         let o = self.origin;
-        for i in 0..3 {
-            self.lo[i] = self.lo[i].min(m.to[i]);
-            self.hi[i] = self.hi[i].max(m.to[i]);
+        let to = match &self.table {
+            Some((kin, t)) => table::written(*kin, t, o, m.to, m.axes),
+            None => m.to,
+        };
+        for (i, &v) in to.iter().enumerate() {
+            self.lo[i] = self.lo[i].min(v);
+            self.hi[i] = self.hi[i].max(v);
         }
         // A value a printed digit inside its range is inside however it is
         // rounded; only values at the edge are rounded as written (in `miss`).
         const EDGE: f64 = 1e-3;
         let inside = |v: f64, r: [f64; 2]| v >= r[0] + EDGE && v <= r[1] - EDGE;
-        let ok = inside(m.to[0] + o[0], l.x)
-            && inside(m.to[1] + o[1], l.y)
-            && inside(m.to[2] + o[2], l.z)
+        let ok = inside(to[0] + o[0], l.x)
+            && inside(to[1] + o[1], l.y)
+            && inside(to[2] + o[2], l.z)
             && (!self.five || (inside(m.axes.tilt, l.tilt) && inside(m.axes.c, l.rotary)));
         if !ok {
-            self.miss(m);
+            self.miss(m, to);
         }
     }
 }
 
 impl Travel {
+    /// `m` leaves the travel somewhere; `to` is its position under the
+    /// origin (a table's: in machine coordinates).
     #[cold]
-    fn miss(&mut self, m: &Move) {
+    fn miss(&mut self, m: &Move, to: [f64; 3]) {
         let l = self.lim;
         let o = self.origin;
         let vals = [
-            (m.to[0] + o[0], l.x),
-            (m.to[1] + o[1], l.y),
-            (m.to[2] + o[2], l.z),
+            (to[0] + o[0], l.x),
+            (to[1] + o[1], l.y),
+            (to[2] + o[2], l.z),
             (m.axes.tilt, l.tilt),
             (m.axes.c, l.rotary),
         ];
@@ -155,10 +164,12 @@ impl<'p> PlanRule<'p> for Travel {
         let Machine::Cnc(c) = cx.machine else {
             return None;
         };
+        let kin = effective_kinematics(c);
         Some(Travel {
             lim: c.limits,
             origin: c.placement.origin,
-            five: effective_kinematics(c) != Kinematics::Xyz,
+            table: c.table.filter(|_| kin.is_table()).map(|t| (kin, t)),
+            five: kin != Kinematics::Xyz,
             axes: [None; 5],
             lo: [f64::INFINITY; 3],
             hi: [f64::NEG_INFINITY; 3],
@@ -169,7 +180,7 @@ impl<'p> PlanRule<'p> for Travel {
         let Machine::Cnc(cnc) = cx.machine else {
             return;
         };
-        let tilt_name = if effective_kinematics(cnc) == Kinematics::HeadBc {
+        let tilt_name = if effective_kinematics(cnc).tilt_letter() == Some('B') {
             "B"
         } else {
             "A"

@@ -32,6 +32,7 @@ mod rule;
 mod rules;
 mod stacking;
 pub mod summary;
+mod table;
 
 pub use machine::NEEDS_TILT_DEG;
 pub use summary::{Costs, Summary};

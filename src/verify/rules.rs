@@ -13,6 +13,7 @@ use super::process::ProcessRules;
 use super::resolution::Resolution;
 use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
 use super::stacking::Stacking;
+use super::table::{AxisSpeed, CUnwind};
 use crate::diag::Diagnostics;
 use crate::ir::Layer;
 use crate::plan::{Io, Move, SegmentEnd, Visit};
@@ -109,6 +110,8 @@ macro_rules! plan_rules {
 plan_rules! {
     tilt: Tilt,
     travel: Travel,
+    unwind: CUnwind,
+    axis_speed: AxisSpeed,
     speed: SpeedLimit<'p>,
     analog: Analog,
     resolution: Resolution<'p>,

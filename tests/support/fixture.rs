@@ -83,6 +83,8 @@ pub fn cnc5() -> Cnc {
         },
         placement: Placement::default(),
         safe_height: None,
+        table: None,
+        rotary_speed: None,
     }
 }
 

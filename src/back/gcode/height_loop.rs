@@ -70,11 +70,7 @@ pub fn emit(
     let mut w = Text {
         out: String::new(),
         cnc,
-        tilt: match kin {
-            Kinematics::HeadAc => Some('A'),
-            Kinematics::HeadBc => Some('B'),
-            Kinematics::Xyz => None,
-        },
+        tilt: kin.tilt_letter(),
         stats: Default::default(),
     };
     w.constants(&plan, ring, law, sensor);

@@ -17,9 +17,10 @@ mod writer;
 
 use super::context::{counts, layer_context, shown, styles};
 use super::{EmitError, Sink, Templates};
-use crate::ir::{Cell, Cnc, Kinematics, Layer, Program};
+use crate::ir::{Cell, Cnc, Kinematics, Layer, Program, RotaryTable};
 use crate::numbers::trimmed;
-use crate::plan::{effective_kinematics, Io, Move, MoveKind, Speed, Visit};
+use crate::plan::kinematics::Rotary;
+use crate::plan::{effective_kinematics, table, Io, Move, MoveKind, Speed, Visit};
 use crate::target::gcode::{blending_line, RATE_DECIMALS};
 use crate::target::names::gcode_file;
 use crate::verify::VerifiedMachine;
@@ -44,11 +45,7 @@ pub fn emit(
     }
     let kin = effective_kinematics(cnc);
     let five = kin != Kinematics::Xyz;
-    let tilt_letter = match kin {
-        Kinematics::HeadAc => Some(b'A'),
-        Kinematics::HeadBc => Some(b'B'),
-        Kinematics::Xyz => None,
-    };
+    let tilt_letter = kin.tilt_letter().map(|c| c as u8);
     let file = gcode_file(&prog.part, cnc);
     let base = base_context(m, cnc, kin, &file);
 
@@ -68,6 +65,12 @@ pub fn emit(
         templates: t,
         base: &base,
         layers: prog.layers.len(),
+        table: table::machine_output(cnc).map(|t| MachineFrame {
+            kin,
+            table: t,
+            origin: cnc.placement.origin,
+            last: None,
+        }),
         error: None,
     };
     g.w.raw(header.as_bytes());
@@ -98,7 +101,38 @@ struct Motion<'a, 'w> {
     templates: &'a Templates,
     base: &'a tera::Context,
     layers: usize,
+    /// A table written in machine coordinates: lmdc's inverse kinematics.
+    table: Option<MachineFrame>,
     error: Option<EmitError>,
+}
+
+/// A tilting table written in machine coordinates ([`TableOutput::Machine`]).
+struct MachineFrame {
+    kin: Kinematics,
+    table: RotaryTable,
+    origin: [f64; 3],
+    /// The last move's target: part point, machine point (both under the
+    /// origin) and angles.
+    last: Option<([f64; 3], [f64; 3], Rotary)>,
+}
+
+impl MachineFrame {
+    /// The machine point of `m`, and the speed its F says (mm/s, or deg/s
+    /// for rotary axes alone: [`table::machine_feed`]).
+    fn place(&mut self, m: &Move) -> ([f64; 3], f32) {
+        let at = table::written(self.kin, &self.table, self.origin, m.to, m.axes);
+        let speed = match (m.speed, self.last) {
+            (Speed::Feed(v), Some((part, machine, r))) => {
+                let turn = (m.axes.tilt - r.tilt, m.axes.c - r.c);
+                let d = (table::distance(part, m.to), table::distance(machine, at));
+                table::machine_feed(v as f64, d.0, d.1, turn).speed as f32
+            }
+            (Speed::Feed(v), None) => v,
+            (Speed::Rapid, _) => 0.0,
+        };
+        self.last = Some((m.to, at, m.axes));
+        (at, speed)
+    }
 }
 
 impl Visit for Motion<'_, '_> {
@@ -135,13 +169,17 @@ impl Visit for Motion<'_, '_> {
 
     #[inline]
     fn motion(&mut self, m: &Move) {
+        let (to, speed) = match self.table.as_mut() {
+            Some(t) => t.place(m),
+            None => (m.to, if let Speed::Feed(v) = m.speed { v } else { 0.0 }),
+        };
         if m.kind == MoveKind::Lift {
-            self.w.lift(m.to[2]);
+            self.w.lift(to[2]);
             return;
         }
         match m.speed {
-            Speed::Rapid => self.w.rapid(m.to, m.axes),
-            Speed::Feed(v) => self.w.feed(m.to, m.axes, v, m.power),
+            Speed::Rapid => self.w.rapid(to, m.axes),
+            Speed::Feed(_) => self.w.feed(to, m.axes, speed, m.power),
         }
     }
 }
@@ -199,10 +237,11 @@ fn base_context(m: VerifiedMachine<'_>, cnc: &Cnc, kin: Kinematics, file: &str) 
     let p = m.ir();
     let style = cnc.dialect.comment;
     let (open, close) = delimiters(style);
-    let (kin_name, axes, tilt) = match kin {
-        Kinematics::Xyz => ("xyz", "X Y Z", ""),
-        Kinematics::HeadAc => ("head_ac", "X Y Z A C", "A"),
-        Kinematics::HeadBc => ("head_bc", "X Y Z B C", "B"),
+    let kin_name = kin.word();
+    let (axes, tilt) = match kin.tilt_letter() {
+        None => ("X Y Z", ""),
+        Some('B') => ("X Y Z B C", "B"),
+        Some(_) => ("X Y Z A C", "A"),
     };
     let mut ctx = tera::Context::new();
     ctx.insert(
@@ -222,6 +261,13 @@ fn base_context(m: VerifiedMachine<'_>, cnc: &Cnc, kin: Kinematics, file: &str) 
     ctx.insert("axes", axes);
     ctx.insert("tilt_axis", tilt);
     ctx.insert("five_axis", &(kin != Kinematics::Xyz));
+    // What the program's X Y Z are: the tool tip in part coordinates, or a
+    // table's machine coordinates.
+    let frame = match table::machine_output(cnc) {
+        Some(_) => "machine",
+        None => "part",
+    };
+    ctx.insert("coordinates", frame);
     ctx
 }
 
@@ -259,14 +305,31 @@ fn header_context(ctx: &mut tera::Context, prog: &Program, cnc: &Cnc, five: bool
     };
     ctx.insert("work_offset", &work_offset);
     ctx.insert("origin", &p.origin.map(|v| crate::numbers::fixed(v, 3)));
-    ctx.insert("tcp_on", if five { cnc.dialect.tcp_on.trim() } else { "" });
+    ctx.insert(
+        "tcp_on",
+        if tcp(cnc, five) {
+            cnc.dialect.tcp_on.trim()
+        } else {
+            ""
+        },
+    );
+}
+
+/// Whether the program switches the control's tool-tip transform on: a
+/// 5-axis program unless a table's is written in machine coordinates.
+fn tcp(cnc: &Cnc, five: bool) -> bool {
+    five && table::machine_output(cnc).is_none()
 }
 
 fn footer_context(ctx: &mut tera::Context, p: &Program, cnc: &Cnc, five: bool, s: Stats) {
     counts(ctx, p);
     ctx.insert(
         "tcp_off",
-        if five { cnc.dialect.tcp_off.trim() } else { "" },
+        if tcp(cnc, five) {
+            cnc.dialect.tcp_off.trim()
+        } else {
+            ""
+        },
     );
     ctx.insert("postamble", &cnc.dialect.postamble);
     ctx.insert("rapids", &s.rapids);

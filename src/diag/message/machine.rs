@@ -103,7 +103,7 @@ pub fn kinematics_mismatch(
     )
     .label_opt(kin_at, "kinematics")
     .label_opt(axes_at, "axes")
-    .help("3 axes take `kinematics = xyz`; 5 axes take `head_ac` or `head_bc`")
+    .help("3 axes take `kinematics = xyz`; 5 axes take `head_ac`, `head_bc`, `table_ac` or `table_bc`")
 }
 
 /// A CNC's `postamble` has no program end (`M2`/`M30`).
@@ -377,4 +377,43 @@ pub fn arm_list_not_six(key: &str, at: Span, got: &str) -> Diagnostic {
     } else {
         "e.g. `speeds = [156 deg/s, 156 deg/s, 156 deg/s, 330 deg/s, 330 deg/s, 615 deg/s]`"
     })
+}
+
+/// A field of a tilting table (`key`) on a machine whose kinematics (`kin`)
+/// has no table, or of rotary axes on one without them.
+pub fn not_a_table(key: &str, kin: &str, at: Span) -> Diagnostic {
+    let what = if key == "rotary_speed" {
+        "the rotary axes"
+    } else {
+        "a tilting table"
+    };
+    Diagnostic::error(
+        Code::UnknownField,
+        format!("`{key}` describes {what}, and this machine's kinematics is `{kin}`"),
+    )
+    .label(at, "no such axis on this machine")
+    .help("drop it, or declare the table: `axes = 5` with `kinematics = table_ac` or `table_bc`")
+}
+
+/// A table axis's point (`key`) is not a point `[x, y, z]` (`got` says
+/// what it is).
+pub fn axis_point_not_a_point(key: &str, at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::ExpectedPoint,
+        format!("`{key}` is a point of the axis in machine coordinates: `[x, y, z]`"),
+    )
+    .label(at, format!("this is {got}"))
+    .help(format!("e.g. `{key} = [0 mm, 120 mm, -80 mm]`"))
+}
+
+/// A tilting table (`kin`) without `key`, one of its axes' points.
+pub fn table_axis_missing(key: &str, kin: &str, kinematics: Option<Span>) -> Diagnostic {
+    Diagnostic::error(
+        Code::MissingField,
+        format!("a `{kin}` machine needs `{key}`: where that axis is decides where every point of the part goes"),
+    )
+    .label_opt(kinematics, "a tilting table")
+    .help(format!(
+        "give a point of the axis in machine coordinates with every rotary axis at 0, e.g. `{key} = [250 mm, 200 mm, 100 mm]` (LinuxCNC: `x/y/z-rot-point` is `c_axis`, `x/y/z-offset` is `tilt_axis` − `c_axis`)"
+    ))
 }

@@ -9,6 +9,7 @@ pub mod cell;
 pub mod deposit;
 pub mod height_loop;
 pub mod machine;
+pub mod table;
 
 use crate::diag::{plural, Worst};
 use crate::diag::{Code, Diagnostic};

@@ -7,15 +7,17 @@ use super::super::eval::Env;
 use super::super::fields::{self, Fields};
 use super::super::program_text;
 use super::super::schema::machine::{
-    limits, AXES, CLEARANCE, CNC, DIALECT, DWELL, FEED_UNITS, KINEMATICS, LASER_OFF, LASER_ON,
-    MAX_SPEED, ORIGIN, POSTAMBLE, PREAMBLE, SAFE_HEIGHT, S_DECIMALS, S_PER_WATT, TCP_OFF, TCP_ON,
-    WORK_OFFSET,
+    limits, AXES, CLEARANCE, CNC, C_AXIS, DIALECT, DWELL, FEED_UNITS, KINEMATICS, LASER_OFF,
+    LASER_ON, MAX_SPEED, ORIGIN, POSTAMBLE, PREAMBLE, ROTARY_SPEED, SAFE_HEIGHT, S_DECIMALS,
+    S_PER_WATT, TABLE_OUTPUT, TCP_OFF, TCP_ON, TILT_AXIS, WORK_OFFSET,
 };
 use super::super::schema::Field;
 use super::super::value::Value;
 use super::{common, height_sensor, limits_block, motion, Written};
 use crate::diag::{message, Diagnostics};
-use crate::ir::{AxisLimits, Cnc, Dialect, FeedUnit, Kinematics, Machine, Placement};
+use crate::ir::{
+    AxisLimits, Cnc, Dialect, FeedUnit, Kinematics, Machine, Placement, RotaryTable, TableOutput,
+};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::target::gcode as dialect;
@@ -79,6 +81,7 @@ fn cnc(
         None => Some(DEFAULT_LIMITS),
     };
     let placement = placement(f, diags);
+    let (table, rotary_speed) = table(f, kin, diags);
     let safe = f.optional(&SAFE_HEIGHT, f.quantity(&SAFE_HEIGHT, diags).map(|q| q.0));
     let moves = motion(f, diags);
     let sensor = height_sensor(f, 0, dialect::MAX_ANALOG_INPUT, diags);
@@ -93,7 +96,96 @@ fn cnc(
         limits: lim?,
         placement: placement?,
         safe_height: safe?,
+        table: table?,
+        rotary_speed: rotary_speed?,
     })
+}
+
+/// A tilting table's axes and output (`c_axis`, `tilt_axis`,
+/// `table_output`) and the rotary axes' `rotary_speed`, each refused on a
+/// machine that has no such axes.
+#[allow(clippy::type_complexity)]
+fn table(
+    f: &Fields<'_>,
+    kin: Option<Kinematics>,
+    diags: &mut Diagnostics,
+) -> (Option<Option<RotaryTable>>, Option<Option<f64>>) {
+    let is_table = kin.is_some_and(Kinematics::is_table);
+    let mut ok = true;
+    for field in [&C_AXIS, &TILT_AXIS, &TABLE_OUTPUT] {
+        if let (Some(s), Some(k), false) = (f.span(field), kin, is_table) {
+            diags.push(message::machine::not_a_table(field.key, k.word(), s));
+            ok = false;
+        }
+    }
+    let speed = f.quantity(&ROTARY_SPEED, diags).map(|q| q.0.to_degrees());
+    if let (Some(s), Some(Kinematics::Xyz)) = (f.span(&ROTARY_SPEED), kin) {
+        diags.push(message::machine::not_a_table(ROTARY_SPEED.key, "xyz", s));
+        ok = false;
+    }
+    let rotary_speed = f.optional(&ROTARY_SPEED, speed);
+    if !is_table {
+        return (ok.then_some(None), rotary_speed);
+    }
+    // Where the axes are decides where every point goes: no default.
+    let mut missing = false;
+    for field in [&C_AXIS, &TILT_AXIS] {
+        if !f.has(field) {
+            let k = kin.map_or("table_ac", Kinematics::word);
+            diags.push(message::machine::table_axis_missing(
+                field.key,
+                k,
+                f.span(&KINEMATICS),
+            ));
+            missing = true;
+        }
+    }
+    let c_axis = point(f, &C_AXIS, diags).filter(|_| !missing);
+    let tilt_axis = point(f, &TILT_AXIS, diags);
+    let output = f.word_or_default(&TABLE_OUTPUT, diags).map(|w| match w {
+        "machine" => TableOutput::Machine,
+        _ => TableOutput::Tcp,
+    });
+    let table = match (c_axis, tilt_axis, output) {
+        (Some(Some(c_axis)), Some(Some(tilt_axis)), Some(output)) => Some(Some(RotaryTable {
+            c_axis,
+            tilt_axis,
+            output,
+        })),
+        _ => None,
+    };
+    (table, rotary_speed)
+}
+
+/// A point `[x, y, z]` (lengths) in `field`: `Some(None)` when it is not
+/// written, `None` when it is wrong (reported).
+fn point(f: &Fields<'_>, field: &Field, diags: &mut Diagnostics) -> Option<Option<[f64; 3]>> {
+    let v = match f.value(field, diags) {
+        None if f.has(field) => return None,
+        None => return Some(None),
+        Some(v) => v,
+    };
+    match &v.value {
+        Value::List(items) if items.len() == 3 => {
+            let c: Vec<_> = ["x", "y", "z"]
+                .iter()
+                .zip(items)
+                .map(|(k, it)| fields::quantity(it, crate::units::Dim::LENGTH, k, diags))
+                .collect();
+            match c[..] {
+                [Some(x), Some(y), Some(z)] => Some(Some([x, y, z])),
+                _ => None,
+            }
+        }
+        other => {
+            diags.push(message::machine::axis_point_not_a_point(
+                field.key,
+                v.span,
+                &other.describe(),
+            ));
+            None
+        }
+    }
 }
 
 /// `axes = 3 | 5` and `kinematics = …`, which must agree: 3 axes move the
@@ -111,6 +203,8 @@ fn axes(f: &Fields<'_>, diags: &mut Diagnostics) -> (Option<u8>, Option<Kinemati
     let kin = kin.map(|(k, _)| match k {
         "head_ac" => Kinematics::HeadAc,
         "head_bc" => Kinematics::HeadBc,
+        "table_ac" => Kinematics::TableAc,
+        "table_bc" => Kinematics::TableBc,
         _ => Kinematics::Xyz,
     });
     let kin = match (axes, kin) {
@@ -118,7 +212,7 @@ fn axes(f: &Fields<'_>, diags: &mut Diagnostics) -> (Option<u8>, Option<Kinemati
         (Some(5), None) if !f.has(&KINEMATICS) => Some(Kinematics::HeadAc),
         (Some(a), Some(k)) if (a == 3) != (k == Kinematics::Xyz) => {
             diags.push(message::machine::kinematics_mismatch(
-                kin_name(k),
+                k.word(),
                 a,
                 kin_span,
                 f.span(&AXES),
@@ -248,7 +342,7 @@ fn axis_limits(
             None => ok &= !l.has(field),
         }
     }
-    let (tilt, other) = if kin == Some(Kinematics::HeadBc) {
+    let (tilt, other) = if kin.and_then(Kinematics::tilt_letter) == Some('B') {
         (&limits::B, &limits::A)
     } else {
         (&limits::A, &limits::B)
@@ -307,12 +401,4 @@ fn placement(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Placement> {
         work_offset: offset?,
         origin: origin?,
     })
-}
-
-fn kin_name(k: Kinematics) -> &'static str {
-    match k {
-        Kinematics::Xyz => "xyz",
-        Kinematics::HeadAc => "head_ac",
-        Kinematics::HeadBc => "head_bc",
-    }
 }

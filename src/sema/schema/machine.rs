@@ -465,15 +465,47 @@ pub static AXES: Field = Field::new(
     "axes",
     Count(3, 5),
     Required("5"),
-    "3 (X Y Z) or 5 (a tilting head); 4 is refused",
+    "3 (X Y Z) or 5 (a tilting head or table); 4 is refused",
 );
 
 /// `kinematics = …`.
 pub static KINEMATICS: Field = Field::new(
     "kinematics",
-    Word(&["xyz", "head_ac", "head_bc"]),
+    Word(&["xyz", "head_ac", "head_bc", "table_ac", "table_bc"]),
     Default(Described("`xyz` for 3 axes, `head_ac` for 5")),
-    "how the axes move the nozzle: X Y Z only, or a head tilting about A or B, then C",
+    "how the axes move the nozzle: X Y Z only, a head tilting about A or B, then C, or a table turning the part on C, tilted about A or B",
+);
+
+/// `c_axis = [x, y, z]`.
+pub static C_AXIS: Field = Field::new(
+    "c_axis",
+    List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3)),
+    Default(Described("required with `table_ac` and `table_bc`")),
+    "a tilting table's C axis: a point of it in machine coordinates, the tilt at 0 (LinuxCNC's `x/y/z-rot-point`)",
+);
+
+/// `tilt_axis = [x, y, z]`.
+pub static TILT_AXIS: Field = Field::new(
+    "tilt_axis",
+    List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3)),
+    Default(Described("required with `table_ac` and `table_bc`")),
+    "a tilting table's A or B axis: a point of it in machine coordinates (its offset from `c_axis` is LinuxCNC's `x/y/z-offset`)",
+);
+
+/// `table_output = tcp | machine`.
+pub static TABLE_OUTPUT: Field = Field::new(
+    "table_output",
+    Word(&["tcp", "machine"]),
+    Default(DefaultWord("tcp")),
+    "a tilting table's program: part coordinates under the control's transform (`tcp`: trt kinematics, TRAORI, #RTCP), or machine coordinates lmdc computes (`machine`)",
+);
+
+/// `rotary_speed = 90 deg/s`.
+pub static ROTARY_SPEED: Field = Field::new(
+    "rotary_speed",
+    Quantity(Dim::ANGULAR_SPEED, Positive),
+    Optional,
+    "the rotary axes' top speed; the plan's feed moves are checked against it (none: not checked)",
 );
 
 /// `dialect = linuxcnc`.
@@ -639,6 +671,10 @@ pub static CNC: Block = Block::new(
         &MAX_SPEED,
         &CLEARANCE,
         &SAFE_HEIGHT,
+        &C_AXIS,
+        &TILT_AXIS,
+        &TABLE_OUTPUT,
+        &ROTARY_SPEED,
         &ACCELERATION,
         &BLENDING,
         &RAMP,
@@ -699,6 +735,10 @@ pub static MACHINE: Block = Block::new(
         &ORIGIN,
         &FEED_UNITS,
         &SAFE_HEIGHT,
+        &C_AXIS,
+        &TILT_AXIS,
+        &TABLE_OUTPUT,
+        &ROTARY_SPEED,
         &OUTPUT_ON,
         &OUTPUT_OFF,
         &ANALOG_OUTPUT,
@@ -741,14 +781,14 @@ pub mod limits {
         "a",
         Range(Dim::ANGLE),
         Default(Described("`-110 deg .. 110 deg`")),
-        "the tilt axis of `head_ac`",
+        "the tilt axis of `head_ac` and `table_ac`",
     );
     /// `b = lo .. hi`.
     pub static B: Field = Field::new(
         "b",
         Range(Dim::ANGLE),
         Default(Described("`-110 deg .. 110 deg`")),
-        "the tilt axis of `head_bc`",
+        "the tilt axis of `head_bc` and `table_bc`",
     );
     /// `c = lo .. hi`.
     pub static C: Field = Field::new(

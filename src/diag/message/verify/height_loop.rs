@@ -77,6 +77,19 @@ pub fn loop_dialect(name: &str, profile: &dyn Display, dialect: Span, run: Span)
     .help("`run = schedule` writes an open-loop speed schedule (the loop run against the declared plant) that every dialect runs; a closed loop runs on LinuxCNC and KUKA robots")
 }
 
+/// A loop on a tilting table whose program is written in machine coordinates.
+pub fn loop_on_table_machine(name: &str, output: Span, run: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::LoopDialect,
+        format!(
+            "the height loop is to run on machine `{name}`, whose table's program is written in machine coordinates: the loop's program writes part coordinates"
+        ),
+    )
+    .label(output, "machine coordinates")
+    .label(run, "the loop runs on the machine")
+    .help("`table_output = tcp` runs the loop under the control's transform; or `run = schedule` for an open-loop schedule")
+}
+
 /// A loop on a machine that declares no height sensor.
 pub fn no_height_sensor(name: &str, block: Span, run: Span) -> Diagnostic {
     Diagnostic::error(
