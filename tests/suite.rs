@@ -36,6 +36,7 @@ mod laser_timing;
 mod library;
 mod lsp;
 mod machine_checks;
+mod mesh;
 mod message_format;
 mod placement;
 mod plan_lines;

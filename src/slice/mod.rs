@@ -5,6 +5,7 @@ pub mod calibration;
 pub mod feasibility;
 mod holes;
 pub mod layers;
+mod mesh;
 pub mod normal;
 pub mod planar;
 mod section_points;
