@@ -227,32 +227,23 @@ fn scan_speed(
 }
 
 /// How tall the extrusion is: `layers` in the slicing block or `height` in
-/// the extrude block, exactly one of them.
+/// the extrude block, exactly one of them; a mesh is as tall as it is
+/// unless the file builds part of it.
 fn extent(w: &Written<'_>, spec: &PlanarSpec, diags: &mut Diagnostics) -> Option<Extent> {
-    match (spec.layers, w.height, &w.source) {
-        // A mesh is as tall as it is, unless the file builds part of it.
-        (None, None, Source::Mesh(m)) => Some(Extent::Height(m.top, m.span)),
-        (layers, height, _) => declared_extent(w, (layers, height), diags),
-    }
-}
-
-/// `layers` or `height`, as written.
-fn declared_extent(
-    w: &Written<'_>,
-    written: (Option<(usize, Span)>, Option<(Length, Span)>),
-    diags: &mut Diagnostics,
-) -> Option<Extent> {
-    match written {
+    match (spec.layers, w.height) {
         (Some((n, ls)), None) => Some(Extent::Layers(n, ls)),
         (None, Some((h, hs))) => Some(Extent::Height(h, hs)),
         (Some((_, ls)), Some((_, hs))) => {
             diags.push(message::solid::layers_and_height(ls, hs));
             None
         }
-        (None, None) => {
-            diags.push(message::solid::no_height(w.span));
-            None
-        }
+        (None, None) => match &w.source {
+            Source::Mesh(m) => Some(Extent::Height(m.top, m.span)),
+            _ => {
+                diags.push(message::solid::no_height(w.span));
+                None
+            }
+        },
     }
 }
 
