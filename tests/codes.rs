@@ -370,6 +370,8 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
         "bead track { width = 2.2 mm  model = fit(linear, data = \"sheet.csv\") }";
     sheet_units: SheetUnits, PLATE,
         "bead track { width = 2.2 mm  model = fit(linear, data = \"sheet_units.csv\") }";
+    // The duct's square corners lean out a few degrees from the spine.
+    overhang: Overhang, DUCT, "slicing normal { layers = auto  points = 8  max_overhang = 1 deg }";
     // A tetrahedron without its slanted face (tests/codes/open.stl).
     mesh: Mesh, PLATE,
         "extrude block { profile = mesh(\"open.stl\")  size = outer  bead = track }";

@@ -38,6 +38,7 @@ mod lsp;
 mod machine_checks;
 mod mesh;
 mod message_format;
+mod overhang;
 mod placement;
 mod plan_lines;
 mod planar;

@@ -358,6 +358,10 @@ pub struct Slicing {
     pub seam_span: Option<Span>,
     /// `rise_tolerance` and `max_drift`.
     pub tolerance: Tolerance,
+    /// `nozzle = wall`: the build direction follows the wall's lean.
+    pub follow_wall: bool,
+    /// `max_overhang = …`, if written (rad).
+    pub max_overhang: Option<f64>,
 }
 
 /// Laser power over the layers.

@@ -72,6 +72,7 @@ fn duct(
         step,
         spacing,
         max_points: MAX_POINTS,
+        follow: slicing.follow_wall,
     };
     if let Spacing::Count(k) = spacing {
         if layers.saturating_mul(k + 1) > MAX_TOTAL_POINTS {
