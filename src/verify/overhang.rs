@@ -5,11 +5,12 @@
 //! built with a vertical nozzle leans by its half-angle, the same cone with
 //! the nozzle following the wall (`nozzle = wall`) by nothing.
 //!
-//! The limit is the file's `max_overhang`, else a step of a quarter bead
-//! width a layer, `atan(w / 4h)` at the layer's height `h`: the new bead's
-//! centre stays over the middle half of the one below. Only walls one bead
-//! wide (a loft's layers) are checked; a filled layer's edge is its
-//! contour's, which [`super::stacking`] holds to the layer below.
+//! The limit is the file's `max_overhang`. Without one, the limit is what
+//! the bead carries at all, a step of ¾ of its width a layer
+//! (`atan(3w / 4h)` at the layer's height `h`), which [`super::stacking`]
+//! already holds every deposit to and reports with the lean (one report
+//! for one fault), so this rule runs only where `max_overhang` is written.
+//! Only walls one bead wide (a loft's layers) are checked.
 //! The places checked and their nearest distances are
 //! [`super::stacking`]'s.
 
@@ -32,6 +33,9 @@ impl ProgramRule for Overhang {
 
 fn check(p: &Program, out: &mut Diagnostics) {
     let w = p.limits.bead_width;
+    let Some(limit) = p.limits.max_overhang else {
+        return;
+    };
     if !(w.is_finite() && w > 0.0) {
         return;
     }
@@ -58,13 +62,15 @@ fn check(p: &Program, out: &mut Diagnostics) {
             continue;
         };
         for (s, d) in walls.iter().zip(&best) {
-            let Some(d) = *d else { continue };
+            // Farther is off the layer below: lmd::stacking's.
+            let Some(d) = d.filter(|&d| d <= w * REACH) else {
+                continue;
+            };
             let h = here.paths[s.path].points[s.point].layer_height as f64;
             if h.is_nan() || h <= 0.0 {
                 continue;
             }
             let lean = d.atan2(h);
-            let limit = p.limits.max_overhang.unwrap_or((w / 4.0).atan2(h));
             if lean > limit {
                 let at = Where::Point {
                     layer: li + 1,
@@ -82,8 +88,6 @@ fn check(p: &Program, out: &mut Diagnostics) {
     let fix = OverhangFix {
         step: there.0,
         height: there.1,
-        width: w,
-        declared: p.limits.max_overhang.is_some(),
     };
     out.push(message::verify::overhang(&f, &fix, p.origins.slicing));
 }

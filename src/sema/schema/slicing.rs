@@ -94,8 +94,8 @@ pub mod normal {
     pub static MAX_OVERHANG: Field = Field::new(
         "max_overhang",
         Quantity(Dim::ANGLE, Positive),
-        Default(Described("`atan(w / 4h)`: a step of a quarter bead a layer")),
-        "the most a layer may lean out over the one below, from the nozzle's axis (`lmd::overhang`)",
+        Default(Described("what lands: `atan(3w / 4h)`, `lmd::stacking`")),
+        "the most a wall's layer may lean out over the one below, from the nozzle's axis (`lmd::overhang`)",
     );
 }
 
@@ -411,6 +411,8 @@ pub static ANY: Block = Block::new(
         &normal::POINTS,
         &normal::CHORD_ERROR,
         &normal::SEAM,
+        &normal::NOZZLE,
+        &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
         &planar::LAYER_HEIGHT,
