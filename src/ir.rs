@@ -481,6 +481,11 @@ pub struct Limits {
     /// How far the layers' mean error may add up, mm (`max_drift`).
     #[serde(default = "default_max_drift")]
     pub max_drift: f64,
+    /// The most a wall's layer may lean out over the one below, from the
+    /// nozzle's axis, rad (`max_overhang`; absent: only what
+    /// `lmd::stacking` holds, docs/ir.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_overhang: Option<f64>,
 }
 
 // The defaults of the deposit tolerances, re-exported for readers of the IR.

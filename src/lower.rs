@@ -38,6 +38,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
                 bead_width: bead.width.0,
                 rise_tolerance: model.tolerance.rise,
                 max_drift: model.tolerance.drift.0,
+                max_overhang: max_overhang(&model.build),
             },
             Some(bead.height_span),
             Some(bead.speed_span),
@@ -190,6 +191,15 @@ fn predict_rises(p: &mut Program) {
     }
 }
 
+/// The declared `max_overhang` of a loft's normal slicing, the only
+/// slicing that declares one.
+fn max_overhang(build: &Build) -> Option<f64> {
+    match build {
+        Build::Duct { slicing, .. } => slicing.max_overhang,
+        _ => None,
+    }
+}
+
 /// A ring's limits: every layer `h_r` high; the speeds the loop may choose
 /// (the clamp; the table's without a loop), the table's powers (or the
 /// declared `power_range`), and its narrowest width as the bead the layers
@@ -219,6 +229,7 @@ fn ring_limits(model: &Model, r: &RingBuild) -> (Limits, Option<Span>, Option<Sp
         bead_width: fold(|row| row.width.0)[0],
         rise_tolerance: ir::RISE_TOLERANCE,
         max_drift: ir::MAX_DRIFT,
+        max_overhang: None,
     };
     let speed_span = match &r.control {
         Some(_) => r.origins.clamp,
@@ -255,6 +266,7 @@ fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
             bead_width: c.width.0,
             rise_tolerance: ir::RISE_TOLERANCE,
             max_drift: ir::MAX_DRIFT,
+            max_overhang: None,
         },
         machines,
         styles: Vec::new(),

@@ -119,9 +119,8 @@ pub fn produce(case: &Path) -> BTreeMap<String, Vec<u8>> {
         .unwrap_or_else(|e| panic!("{}: {e}", case.join(INPUT).display()));
     // Its data files (`fit(…, data = "…")`) beside it, as the CLI reads them.
     let dir = case.to_path_buf();
-    let data: lmdc::sema::DataReader = std::rc::Rc::new(move |path: &str| {
-        fs::read_to_string(dir.join(path)).map_err(|e| e.to_string())
-    });
+    let data: lmdc::sema::DataReader =
+        std::rc::Rc::new(move |path: &str| fs::read(dir.join(path)).map_err(|e| e.to_string()));
     let options = Options {
         file: Some(name.clone()),
         data: Some(DataFiles(data)),
@@ -217,10 +216,14 @@ fn every_case_produces_its_files() {
     for case in all.iter().filter(|c| c.to_string_lossy().contains(&only)) {
         ran += 1;
         let produced = produce(case);
-        // The input and its data files (measurement sheets) are the case's;
-        // a sheet `lmdc calibrate` writes (`*.coupons.csv`) is an output.
+        // The input and its data files (measurement sheets, meshes, a
+        // folder of them) are the case's; a sheet `lmdc calibrate` writes
+        // (`*.coupons.csv`) is an output.
         let p = expected::check_dir(case, &produced, |f| {
-            f == INPUT || (f.ends_with(".csv") && !f.ends_with(".coupons.csv"))
+            f == INPUT
+                || (f.ends_with(".csv") && !f.ends_with(".coupons.csv"))
+                || f.ends_with(".stl")
+                || case.join(f).is_dir()
         });
         if !p.is_empty() {
             failed += 1;

@@ -196,7 +196,7 @@ fn run(line: &Line) -> (String, Vec<Code>) {
             // Measurement sheets (`fit(…, data = "…")`) are read from
             // tests/codes/, as from beside a file there.
             let data: lmdc::sema::DataReader = std::rc::Rc::new(|path: &str| {
-                fs::read_to_string(Path::new(DIR).join(path)).map_err(|e| e.to_string())
+                fs::read(Path::new(DIR).join(path)).map_err(|e| e.to_string())
             });
             let c = lmdc::pipeline::compile_reading(&src, None, &mut (), data).unwrap();
             (c.0.diagnostics, src)
@@ -370,6 +370,11 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
         "bead track { width = 2.2 mm  model = fit(linear, data = \"sheet.csv\") }";
     sheet_units: SheetUnits, PLATE,
         "bead track { width = 2.2 mm  model = fit(linear, data = \"sheet_units.csv\") }";
+    // The duct's square corners lean out a few degrees from the spine.
+    overhang: Overhang, DUCT, "slicing normal { layers = auto  points = 8  max_overhang = 1 deg }";
+    // A tetrahedron without its slanted face (tests/codes/open.stl).
+    mesh: Mesh, PLATE,
+        "extrude block { profile = mesh(\"open.stl\")  size = outer  bead = track }";
     too_few_points: TooFewPoints, PLATE,
         "bead track { width = 2.2 mm  model = fit(power, data = \"too_few_points.csv\") }";
     // Twelve coupons 30 mm long on a plate 40 × 20 mm.
@@ -621,7 +626,7 @@ fn the_bases_compile_cleanly() {
 }
 
 /// Every file in tests/codes/ is a base, the report of a test here or a
-/// measurement sheet a test reads (`*.csv`).
+/// measurement sheet or mesh a test reads (`*.csv`, `*.stl`).
 #[test]
 fn every_report_has_its_test() {
     let names: BTreeSet<String> = lines()
@@ -631,7 +636,7 @@ fn every_report_has_its_test() {
         .collect();
     for e in fs::read_dir(DIR).unwrap() {
         let name = e.unwrap().file_name().to_string_lossy().into_owned();
-        if names.contains(&name) || name.ends_with(".csv") {
+        if names.contains(&name) || name.ends_with(".csv") || name.ends_with(".stl") {
             continue;
         }
         let path = Path::new(DIR).join(&name);

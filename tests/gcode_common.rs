@@ -193,6 +193,7 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
             bead_width: 0.0,
             rise_tolerance: lmdc::ir::RISE_TOLERANCE,
             max_drift: lmdc::ir::MAX_DRIFT,
+            max_overhang: None,
         },
         machines,
         styles: Vec::new(),

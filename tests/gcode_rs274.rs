@@ -397,7 +397,7 @@ fn examples_run_in_rs274_and_follow_the_ir() {
     files.sort();
     for f in files {
         let src = std::fs::read_to_string(&f).unwrap();
-        let ir = lmdc::pipeline::compile(&src, &mut ())
+        let ir = crate::support::example::compile_file(&f, &src)
             .program
             .unwrap_or_else(|| panic!("{} does not compile", f.display()))
             .into_ir();

@@ -12,7 +12,6 @@ use crate::support::skip;
 
 use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::Machine;
-use lmdc::pipeline::compile;
 use std::path::PathBuf;
 
 fn have_parser(test: &str) -> bool {
@@ -193,7 +192,7 @@ fn every_emitted_krl_file_parses() {
     let mut robots = 0;
     let mut mutant_rejected = false;
     for (f, src) in sources() {
-        let c = compile(&src, &mut ());
+        let c = crate::support::example::compile_file(&f, &src);
         let Some(p) = c.program else {
             panic!(
                 "{} does not compile:\n{}",

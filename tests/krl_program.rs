@@ -348,7 +348,7 @@ fn examples_pass_the_checker_and_follow_their_ir() {
     let mut robots = 0;
     for s in sources {
         let src = std::fs::read_to_string(&s).unwrap();
-        let p = lmdc::pipeline::compile(&src, &mut ())
+        let p = crate::support::example::compile_file(std::path::Path::new(&s), &src)
             .program
             .unwrap_or_else(|| panic!("{s} compiles"));
         for (i, m) in p.ir().machines.iter().enumerate() {

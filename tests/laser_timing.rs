@@ -169,7 +169,7 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
     let mut compared = 0;
     for path in sources {
         let src = std::fs::read_to_string(&path).unwrap();
-        let p = lmdc::pipeline::compile(&src, &mut ())
+        let p = crate::support::example::compile_file(&path, &src)
             .program
             .unwrap_or_else(|| panic!("{} compiles", path.display()));
         let want = from_ir(p.ir());

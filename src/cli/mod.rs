@@ -19,7 +19,7 @@ use lmdc::overrides::Override;
 use lmdc::pipeline::{self, Observer};
 use messages::MessageFormat;
 use progress::Progress;
-use std::io::{IsTerminal, Write};
+use std::io::{IsTerminal, Read, Write};
 use std::path::{Path, PathBuf};
 
 /// Exit code: the program has errors.
@@ -688,7 +688,6 @@ fn simulate(file: &Path, csv: Option<&Path>, every: usize, common: &Common) -> u
 /// be: metadata says nothing about `/dev/zero`, a pipe or a file still
 /// growing, so the read itself stops one byte past the cap.
 pub(crate) fn read_source(file: &Path) -> Option<String> {
-    use std::io::Read;
     let fail = |why: String| {
         messages::fail(file, usage::unreadable(&shown(file), &why));
         None
@@ -718,12 +717,24 @@ pub(crate) fn read_source(file: &Path) -> Option<String> {
     }
 }
 
-/// Reads the data files a program names (`fit(…, data = "…")`), relative
-/// to the folder of the .lmd file `file`.
+/// Most bytes a data file may have: a binary STL of the most triangles
+/// lmdc reads (`geometry::mesh::stl::MAX_TRIANGLES`) is just under it.
+const MAX_DATA: u64 = 1 << 30;
+
+/// Reads the data files a program names (`fit(…, data = "…")`,
+/// `mesh(file = "…")`), relative to the folder of the .lmd file `file`.
 pub fn data_reader(file: &Path) -> lmdc::sema::DataReader {
     let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
     std::rc::Rc::new(move |path: &str| {
-        std::fs::read_to_string(dir.join(path)).map_err(|e| e.to_string())
+        let f = std::fs::File::open(dir.join(path)).map_err(|e| e.to_string())?;
+        let mut bytes = Vec::new();
+        f.take(MAX_DATA + 1)
+            .read_to_end(&mut bytes)
+            .map_err(|e| e.to_string())?;
+        if bytes.len() as u64 > MAX_DATA {
+            return Err(format!("it is larger than {} MB", MAX_DATA >> 20));
+        }
+        Ok(bytes)
     })
 }
 

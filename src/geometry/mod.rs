@@ -1,6 +1,7 @@
 //! Geometry of the solid: sections, their morph, the spine and the twisted
 //! section frames, with nalgebra poses. Reads the semantic model only.
 
+pub mod mesh;
 pub mod outline;
 pub mod profile;
 pub mod region;

@@ -257,6 +257,7 @@ fn fitted(
         return None;
     };
     let text = read(&path)
+        .and_then(|b| String::from_utf8(b).map_err(|e| not_text(&e)))
         .map_err(|why| diags.push(message::calib::unreadable_data(&path, &why, at)))
         .ok()?;
     let in_data = |ds: Vec<crate::diag::Diagnostic>, diags: &mut Diagnostics| {
@@ -280,6 +281,14 @@ fn fitted(
         fit: Some(f.summary(&path)),
         model: f.model,
     })
+}
+
+/// Why a data file is not text.
+fn not_text(e: &std::string::FromUtf8Error) -> String {
+    format!(
+        "it is not UTF-8 text (invalid byte at offset {})",
+        e.utf8_error().valid_up_to()
+    )
 }
 
 /// The model `model = …` gives, and the widths it measured where it did

@@ -48,6 +48,8 @@ pub(super) enum Source<'a> {
     Fixed(Shape),
     /// A profile's expression (it may follow the layer).
     Expr(&'a Expr),
+    /// A mesh, cut on every layer.
+    Mesh(super::model::MeshSolid),
 }
 
 /// An extrude block as written.
@@ -83,7 +85,8 @@ pub fn read<'a>(
     );
     let profile = f.value(&extrude::PROFILE, diags);
     let profile_span = profile.map(|p| p.span).unwrap_or(span);
-    let mut source = profile.and_then(|v| source(v, scope, diags));
+    let data = env.data.clone();
+    let mut source = profile.and_then(|v| source(v, scope, data.as_ref(), diags));
     // A profile written inline that follows the layer is evaluated per layer,
     // like a named one.
     if let Some(Source::Fixed(_)) = source {
@@ -151,14 +154,22 @@ fn read_top(
             env.eval(p, &mut scratch)
                 .and_then(|v| profile::shape(&v, "a profile", &mut scratch))
         }
-        None => None,
+        Some(Source::Mesh(_)) | None => None,
     };
     let at = super::top::reference_point(shape.as_ref());
     top::read(env, e, at, scope.constants, diags)
 }
 
-fn source<'a>(v: &Spanned, scope: &Scope<'_, 'a>, diags: &mut Diagnostics) -> Option<Source<'a>> {
+fn source<'a>(
+    v: &Spanned,
+    scope: &Scope<'_, 'a>,
+    data: Option<&super::DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<Source<'a>> {
     match &v.value {
+        Value::Call(c) if c.func == "mesh" => {
+            super::mesh::read(c, v.span, data, diags).map(Source::Mesh)
+        }
         Value::Symbol(n) => {
             if let Some((e, _)) = scope.profiles.get(n) {
                 Some(Source::Expr(e))
@@ -216,7 +227,8 @@ fn scan_speed(
 }
 
 /// How tall the extrusion is: `layers` in the slicing block or `height` in
-/// the extrude block, exactly one of them.
+/// the extrude block, exactly one of them; a mesh is as tall as it is
+/// unless the file builds part of it.
 fn extent(w: &Written<'_>, spec: &PlanarSpec, diags: &mut Diagnostics) -> Option<Extent> {
     match (spec.layers, w.height) {
         (Some((n, ls)), None) => Some(Extent::Layers(n, ls)),
@@ -225,10 +237,13 @@ fn extent(w: &Written<'_>, spec: &PlanarSpec, diags: &mut Diagnostics) -> Option
             diags.push(message::solid::layers_and_height(ls, hs));
             None
         }
-        (None, None) => {
-            diags.push(message::solid::no_height(w.span));
-            None
-        }
+        (None, None) => match &w.source {
+            Source::Mesh(m) => Some(Extent::Height(m.top, m.span)),
+            _ => {
+                diags.push(message::solid::no_height(w.span));
+                None
+            }
+        },
     }
 }
 
@@ -297,6 +312,10 @@ pub fn assemble(
             }),
             e.span,
         ),
+        Source::Mesh(m) => {
+            let span = m.span;
+            (LayerProfile::Mesh(m), span)
+        }
         // A named profile that does not follow the layer was checked where
         // it is declared; it is one shape.
         Source::Expr(e) => {

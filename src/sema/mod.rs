@@ -18,6 +18,7 @@ mod fields;
 mod loft;
 mod machine;
 mod machines;
+mod mesh;
 pub mod model;
 mod planar;
 mod process;
@@ -55,11 +56,11 @@ pub fn check(file: &File) -> (Option<Model>, Diagnostics) {
     check_reading(file, None)
 }
 
-/// Reads the data files a program names (`fit(…, data = "coupons.csv")`):
-/// the text of the file at a path as the program writes it (relative to
-/// the program's file), or why it cannot. The caller decides where files
-/// are; sema opens none itself.
-pub type DataReader = std::rc::Rc<dyn Fn(&str) -> Result<String, String>>;
+/// Reads the data files a program names (`fit(…, data = "coupons.csv")`,
+/// `mesh(file = "part.stl")`): the bytes of the file at a path as the
+/// program writes it (relative to the program's file), or why it cannot.
+/// The caller decides where files are; sema opens none itself.
+pub type DataReader = std::rc::Rc<dyn Fn(&str) -> Result<Vec<u8>, String>>;
 
 /// [`check`], reading the data files the program names with `data` (none:
 /// a program that names one is refused, there being no file to read it

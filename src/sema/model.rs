@@ -358,6 +358,10 @@ pub struct Slicing {
     pub seam_span: Option<Span>,
     /// `rise_tolerance` and `max_drift`.
     pub tolerance: Tolerance,
+    /// `nozzle = wall`: the build direction follows the wall's lean.
+    pub follow_wall: bool,
+    /// `max_overhang = …`, if written (rad).
+    pub max_overhang: Option<f64>,
 }
 
 /// Laser power over the layers.
@@ -658,6 +662,22 @@ pub enum LayerProfile {
     /// A profile whose numbers use `layer` or `layer_z`: the slicer evaluates
     /// it on each layer ([`ProfileExpr::evaluator`]).
     PerLayer(ProfileExpr),
+    /// A mesh's section on each layer (`mesh(…)`).
+    Mesh(MeshSolid),
+}
+
+/// `mesh(file = "…", …)`: a solid given as a triangle mesh, read, checked
+/// closed and manifold, and placed on the plate.
+#[derive(Clone, Debug)]
+pub struct MeshSolid {
+    /// The file, as the program names it.
+    pub path: String,
+    /// The placed mesh.
+    pub mesh: std::sync::Arc<crate::geometry::mesh::Mesh>,
+    /// Its highest point (mm): the extrusion's height unless one is written.
+    pub top: Length,
+    /// The `mesh(…)` call.
+    pub span: Span,
 }
 
 /// A profile that follows the layer, kept as the user wrote it: the

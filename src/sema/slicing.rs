@@ -195,6 +195,11 @@ fn normal<'a>(
             .map(|a| SeamRule::Toward(Angle(a))),
     };
     let tolerance = tolerance(&f, diags);
+    let nozzle = f.word_or_default(&normal::NOZZLE, diags);
+    let overhang = f.optional(
+        &normal::MAX_OVERHANG,
+        f.quantity(&normal::MAX_OVERHANG, diags).map(|(a, _)| a),
+    );
     Some(Slicing {
         layers: layers?,
         resolution: resolution?,
@@ -203,5 +208,7 @@ fn normal<'a>(
         span,
         layers_span: f.span(&normal::LAYERS),
         seam_span: f.span(&normal::SEAM),
+        follow_wall: nozzle? == "wall",
+        max_overhang: overhang?,
     })
 }

@@ -223,5 +223,9 @@ fn one_footprint(
             let v = env.eval(e, diags)?;
             Some((profile::shape(&v, "a profile", diags)?, e.span))
         }
+        Source::Mesh(m) => {
+            diags.push(message::mesh::mesh_with_top(m.span));
+            None
+        }
     }
 }

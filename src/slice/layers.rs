@@ -103,6 +103,15 @@ pub fn plan(
             }
             out
         }
+        LayerProfile::Mesh(m) => {
+            let shapes = super::mesh::shapes(m, n, lift, diags)?;
+            let total = shapes
+                .iter()
+                .map(Shape::pieces)
+                .fold(0usize, usize::saturating_add);
+            within_budget(total, extrusion.profile_span, diags)?;
+            shapes
+        }
     };
     Some(Layers {
         shapes,

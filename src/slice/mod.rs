@@ -5,6 +5,7 @@ pub mod calibration;
 pub mod feasibility;
 mod holes;
 pub mod layers;
+mod mesh;
 pub mod normal;
 pub mod planar;
 mod section_points;
@@ -71,6 +72,7 @@ fn duct(
         step,
         spacing,
         max_points: MAX_POINTS,
+        follow: slicing.follow_wall,
     };
     if let Spacing::Count(k) = spacing {
         if layers.saturating_mul(k + 1) > MAX_TOTAL_POINTS {

@@ -24,6 +24,9 @@ pub struct Setup {
     pub spacing: Spacing,
     /// The most points a layer may have.
     pub max_points: usize,
+    /// `nozzle = wall`: each point's build direction follows the wall's
+    /// lean (`false`: the spine's tangent).
+    pub follow: bool,
 }
 
 impl Setup {
@@ -95,6 +98,50 @@ impl SeamScan {
     }
 }
 
+/// The build direction at each point of layer `i` when the nozzle follows
+/// the wall: from the point to the same section angle on the next layer
+/// (the last layer: from the one below), less its part along the path, so
+/// it lies in the plane of the wall's normal and the spine. Each point's
+/// height becomes that step's length: what the bead stacks along the
+/// tilted nozzle (a cone's `Δz / cos α`).
+fn follow_wall(
+    geo: &LoftGeometry,
+    plan: &Setup,
+    i: usize,
+    samples: &[Sample],
+    pos: &[nalgebra::Point3<f64>],
+    tangents: &[Vector3<f64>],
+    heights: &mut [f64],
+) -> Vec<[f32; 3]> {
+    let n = plan.layers as f64;
+    let (other, sign) = if i + 1 < plan.layers {
+        ((i + 1) as f64 / n, 1.0)
+    } else {
+        ((i as f64 - 1.0).max(0.0) / n, -1.0)
+    };
+    let f = geo.frame(other);
+    let along = geo.frame(i as f64 / n).z();
+    samples
+        .iter()
+        .zip(pos)
+        .zip(tangents)
+        .zip(heights.iter_mut())
+        .map(|(((sample, p), t), h)| {
+            let (q, _) = geo.point(&f, other, sample.theta);
+            let mut d: Vector3<f64> = (q - p) * sign;
+            d -= t * d.dot(t);
+            let len = d.norm();
+            if len > 1e-12 && d.dot(&along) > 0.0 {
+                *h = len;
+                let u = d / len;
+                [u.x as f32, u.y as f32, u.z as f32]
+            } else {
+                [along.x as f32, along.y as f32, along.z as f32]
+            }
+        })
+        .collect()
+}
+
 /// Generates layer `i`. Returns the layer and how its seam sits: the seam's
 /// offset toward the bend centre relative to the layer's extremes (0 = innermost
 /// … 1 = outermost), for arc spines; `scan` learns where every angle of the
@@ -142,15 +189,23 @@ pub fn layer(
     }
     let seam_at = (hi > lo).then(|| across(heights[0]));
 
+    // Central differences, kept exactly in the layer plane.
+    let tangents: Vec<Vector3<f64>> = (0..k)
+        .map(|jj| {
+            let mut t: Vector3<f64> = pos[(jj + 1) % k] - pos[(jj + k - 1) % k];
+            t -= n * t.dot(&n);
+            t.try_normalize(1e-12).unwrap_or(f.y)
+        })
+        .collect();
+    let normals = match plan.follow {
+        true => follow_wall(geo, plan, i, &samples, &pos, &tangents, &mut heights),
+        false => vec![normal; k],
+    };
     let mut points = Vec::with_capacity(k + 1);
     for j in 0..=k {
         let jj = j % k;
-        let prev = pos[(jj + k - 1) % k];
-        let next = pos[(jj + 1) % k];
-        // Central difference, kept exactly in the layer plane.
-        let mut t: Vector3<f64> = next - prev;
-        t -= n * t.dot(&n);
-        let t = t.try_normalize(1e-12).unwrap_or(f.y);
+        let t = tangents[jj];
+        let normal = normals[jj];
         let h = heights[jj];
         // A wall one bead wide: each point's deposit fills the bead's width.
         // The move to the next point lays the mean of its ends' heights (the

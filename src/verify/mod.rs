@@ -26,6 +26,7 @@ mod deposit;
 pub mod height_loop;
 mod machine;
 mod names;
+mod overhang;
 mod process;
 mod resolution;
 mod rule;

@@ -9,6 +9,7 @@ use super::deposit::DepositRule;
 use super::height_loop::{LoopAnalysis, LoopOnMachine};
 use super::machine::{Analog, SpeedLimit, Tilt, Travel};
 use super::names::FileNames;
+use super::overhang::Overhang;
 use super::process::ProcessRules;
 use super::resolution::Resolution;
 use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
@@ -29,7 +30,7 @@ pub(super) const BEFORE_PLANS: &[Check] =
 
 /// Rules over the IR that run beside the machines' plans, on a thread of
 /// their own.
-pub(super) const BESIDE_PLANS: &[Check] = &[Stacking::check];
+pub(super) const BESIDE_PLANS: &[Check] = &[Stacking::check, Overhang::check];
 
 /// Rules over what the plans' summaries say the machines would write.
 pub(super) const AFTER_PLANS: &[Check] = &[FileNames::check];

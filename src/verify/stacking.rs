@@ -50,7 +50,7 @@ impl ProgramRule for Stacking {
 
 /// How far, in bead widths, the distance of a deposit beyond the reach is
 /// searched for (a cone's step, a twist's jump) before it is "more than".
-const FAR: f64 = 64.0;
+pub(super) const FAR: f64 = 64.0;
 
 fn check(p: &Program, out: &mut Diagnostics) {
     let w = p.limits.bead_width;
@@ -141,7 +141,7 @@ fn fix(p: &Program, f: &Worst, (h, kind): (f64, PathKind), half: f64, far: f64) 
 /// `below` lays nothing. A segment `r` away in 3-D lies at least
 /// `√(r² − h²)` across (`h` the thickest layer), so a distance up to that is
 /// the nearest.
-fn nearest(
+pub(super) fn nearest(
     below: &Layer,
     samples: &[Start],
     step: f64,
@@ -184,11 +184,13 @@ fn nearest(
 
 /// A place a deposit of a layer is checked: where a chord piece starts.
 #[derive(Clone, Copy)]
-struct Start {
+pub(super) struct Start {
     pos: [f64; 3],
     normal: [f64; 3],
-    path: usize,
-    point: usize,
+    /// The path, in its layer.
+    pub path: usize,
+    /// The point the chord starts at, in its path.
+    pub point: usize,
 }
 
 /// Calls `f(a, b, path, point)` with each chord of `layer`'s deposits (between
@@ -229,7 +231,7 @@ fn pieces(a: [f64; 3], b: [f64; 3], longest: f64) -> usize {
 /// The places of `layer` checked: the starts of its chords cut into pieces of
 /// at most `longest`, every k-th so that at most [`MAX_SAMPLES`] remain. Two
 /// passes over the chords (count, then pick), so the pieces are never stored.
-fn samples(layer: &Layer, step: f64, longest: f64) -> Vec<Start> {
+pub(super) fn samples(layer: &Layer, step: f64, longest: f64) -> Vec<Start> {
     let mut total = 0usize;
     chords(layer, step, |a, b, _, _| {
         total = total.saturating_add(pieces(a, b, longest))

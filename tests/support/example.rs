@@ -22,3 +22,17 @@ pub fn duct(edits: &[(&str, &str)]) -> String {
 pub fn tooth(edits: &[(&str, &str)]) -> String {
     edited("sprocket_tooth.lmd", edits)
 }
+
+/// Compiles the .lmd file `path` (its text `src`) as `lmdc build` does:
+/// the data files it names (sheets, meshes) read beside it.
+pub fn compile_file(path: &std::path::Path, src: &str) -> lmdc::pipeline::Compiled {
+    let dir = path
+        .parent()
+        .map(std::path::Path::to_path_buf)
+        .unwrap_or_default();
+    let data: lmdc::sema::DataReader =
+        std::rc::Rc::new(move |p: &str| std::fs::read(dir.join(p)).map_err(|e| e.to_string()));
+    lmdc::pipeline::compile_reading(src, None, &mut (), data)
+        .expect("no machine named")
+        .0
+}

@@ -163,6 +163,7 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
             bead_width: 0.0,
             rise_tolerance: lmdc::ir::RISE_TOLERANCE,
             max_drift: lmdc::ir::MAX_DRIFT,
+            max_overhang: None,
         },
         machines,
         styles: Vec::new(),

@@ -18,6 +18,7 @@ pub mod fill;
 pub mod hole;
 pub mod internal;
 pub mod machine;
+pub mod mesh;
 pub mod segmented_ring;
 pub mod shape;
 pub mod slicing;

@@ -237,6 +237,38 @@ pub fn stacking(
     .help(help)
 }
 
+/// The worst overhang's numbers: the step across the nozzle to the layer
+/// below and the layer's height there.
+pub struct OverhangFix {
+    /// The step across the nozzle, mm.
+    pub step: f64,
+    /// The layer's height there, mm.
+    pub height: f64,
+}
+
+/// A wall's layers lean out over the layer below by more than the declared
+/// `max_overhang`; `w.value` is the worst lean (rad), `w.limit` the limit.
+pub fn overhang(w: &Worst<impl Display>, fix: &OverhangFix, slicing: Option<Span>) -> Diagnostic {
+    let deg = |a: f64| short((a.to_degrees() * 10.0).round() / 10.0);
+    // The layer count at which the same lean steps within the limit does
+    // not exist: the lean stays as the layers thin.
+    Diagnostic::error(
+        Code::Overhang,
+        format!(
+            "the wall leans out {}° from the nozzle's axis over the layer below (a step of {} mm on a {} mm layer), more than the {}° `max_overhang` allows, at {} ({} place{} so far over)",
+            deg(w.value),
+            short(fix.step),
+            short(fix.height),
+            deg(w.limit),
+            w.at,
+            w.count,
+            plural(w.count)
+        ),
+    )
+    .label_opt(slicing, "the layers come from here")
+    .help("tilt the nozzle with the wall (`nozzle = wall` in `slicing normal`, on a 5-axis machine or a robot); turn the part so the wall leans less; or allow more, if the bead carries it (`max_overhang`; more, thinner layers do not change a lean)")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -520,6 +520,7 @@ pub static BLOCKS: &[&Block] = &[
     &solid::LINE,
     &solid::ARC,
     &solid::EXTRUDE,
+    &solid::MESH,
     &solid::EDGES,
     &solid::PLANE,
     &shape::CIRCLE,

@@ -83,6 +83,20 @@ pub mod normal {
         Default(DefaultQuantity(crate::sema::schema::deg(90.0))),
         "where each layer starts and stops, an angle in the section frame, layer by layer",
     );
+    /// `nozzle = …`.
+    pub static NOZZLE: Field = Field::new(
+        "nozzle",
+        Word(&["spine", "wall"]),
+        Default(DefaultWord("spine")),
+        "the build direction: along the spine, or `wall`: tilted with the wall's lean, in the plane of its normal (5-axis or robot)",
+    );
+    /// `max_overhang = …`.
+    pub static MAX_OVERHANG: Field = Field::new(
+        "max_overhang",
+        Quantity(Dim::ANGLE, Positive),
+        Default(Described("what lands: `atan(3w / 4h)`, `lmd::stacking`")),
+        "the most a wall's layer may lean out over the one below, from the nozzle's axis (`lmd::overhang`)",
+    );
 }
 
 /// `slicing normal { … }`: layers normal to a loft's spine.
@@ -95,6 +109,8 @@ pub static NORMAL: Block = Block::new(
         &normal::POINTS,
         &normal::CHORD_ERROR,
         &normal::SEAM,
+        &normal::NOZZLE,
+        &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
     ],
@@ -395,6 +411,8 @@ pub static ANY: Block = Block::new(
         &normal::POINTS,
         &normal::CHORD_ERROR,
         &normal::SEAM,
+        &normal::NOZZLE,
+        &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
         &planar::LAYER_HEIGHT,

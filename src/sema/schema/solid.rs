@@ -7,7 +7,7 @@ use super::Bound::{Any, Positive, PositiveUpTo};
 use super::DefaultValue::{Described, Quantity as DefaultQuantity, Word as DefaultWord};
 use super::Kind::{
     self, Block as Nested, Call, Count, Deferred, Either, Layered, List, Name, Point, Quantity,
-    Shape, Word,
+    Shape, Text, Word,
 };
 use super::Need::{Default, Optional, Required};
 use super::{Block, Field, Len};
@@ -156,9 +156,13 @@ pub mod extrude {
     /// `profile = …`.
     pub static PROFILE: Field = Field::new(
         "profile",
-        Layered(&Either(&[Name("profile or section"), Shape])),
+        Layered(&Either(&[
+            Name("profile or section"),
+            Shape,
+            Call(&[&MESH]),
+        ])),
         Required("my_profile"),
-        "the shape each layer fills",
+        "the shape each layer fills, or a `mesh(…)` whose sections the layers fill",
     );
     /// `height = …`.
     pub static HEIGHT: Field = Field::new(
@@ -206,6 +210,49 @@ pub static EXTRUDE: Block = Block::new(
         &extrude::TOP,
     ],
 );
+
+/// The arguments of `mesh(…)`.
+pub mod mesh {
+    use super::*;
+
+    /// `mesh(file = "…")`.
+    pub static FILE: Field = Field::new(
+        "file",
+        Text,
+        Required("\"part.stl\""),
+        "the STL file (binary or ASCII), a path relative to the .lmd file",
+    );
+    /// `mesh(units = …)`.
+    pub static UNITS: Field = Field::new(
+        "units",
+        Word(&["mm", "cm", "m", "in"]),
+        Default(DefaultWord("mm")),
+        "what one unit of the file's coordinates is (STL files do not say)",
+    );
+    /// `mesh(turn = [rx, ry, rz])`.
+    pub static TURN: Field = Field::new(
+        "turn",
+        List(&Quantity(Dim::ANGLE, Any), Len::Exactly(3)),
+        Default(Described("`[0 deg, 0 deg, 0 deg]`")),
+        "turns about the x, then the y, then the z axis (right-handed), after scaling and before moving",
+    );
+    /// `mesh(at = [x, y, z])`.
+    pub static AT: Field = Field::new(
+        "at",
+        List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3)),
+        Default(Described("`[0 mm, 0 mm, 0 mm]`")),
+        "where the file's origin goes, after turning; the lowest point must come to z = 0 (the plate)",
+    );
+}
+
+/// `mesh(file, units, turn, at)`: a solid given as a triangle mesh.
+pub static MESH: Block = Block::new(
+    "mesh",
+    "mesh(file, units, turn, at)",
+    "a solid given as an STL mesh, sliced in flat layers (its height is the extrusion's unless `height` or `layers` is written)",
+    &[&mesh::FILE, &mesh::UNITS, &mesh::TURN, &mesh::AT],
+)
+.positional(1);
 
 /// The arguments of a top's sugar.
 pub mod top {

@@ -1,0 +1,173 @@
+//! What lmdc says about a solid given as a mesh (`mesh(file = "…")`): a
+//! file it cannot read, a surface that encloses no solid, a placement off
+//! the plate, a layer whose section is no region. Triangles are numbered
+//! from 0 in the order of the file, as mesh tools number them.
+
+use crate::diag::{Code, Diagnostic};
+use crate::geometry::mesh::stl::{StlError, MAX_TRIANGLES};
+use crate::geometry::mesh::{MeshFault, SectionFault};
+use crate::span::Span;
+use crate::units::short;
+
+const REPAIR: &str = "repair the mesh (e.g. MeshLab's or PrusaSlicer's repair, or Blender's 3D-Print toolbox) or export it again from CAD as a closed solid";
+
+fn p3(p: [f64; 3]) -> String {
+    format!("({}, {}, {}) mm", short(p[0]), short(p[1]), short(p[2]))
+}
+
+fn p2(p: [f64; 2]) -> String {
+    format!("({}, {}) mm", short(p[0]), short(p[1]))
+}
+
+fn list(ts: &[usize]) -> String {
+    ts.iter()
+        .map(|t| t.to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The mesh file `path` (named at `at`) cannot be read (`why`).
+pub fn unreadable(path: &str, why: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Mesh,
+        format!("cannot read the mesh file `{path}`: {why}"),
+    )
+    .label(at, "this file")
+    .help("the path is relative to the folder of the .lmd file")
+}
+
+/// A program names a mesh file where no file can be read (compiled from a
+/// text, not a file).
+pub fn no_reader(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Mesh,
+        "this program is compiled from a text, not a file: there is no folder to read the mesh from",
+    )
+    .label(at, "mesh file")
+    .help("compile the .lmd file (`lmdc build FILE.lmd`)")
+}
+
+/// The file `path` is no STL lmdc reads.
+pub fn not_stl(path: &str, e: &StlError, at: Span) -> Diagnostic {
+    let what = match e {
+        StlError::NotStl { len } => format!(
+            "it is neither a binary STL (84 bytes of header and count, then 50 a triangle) nor an ASCII one (starting `solid`): {len} bytes"
+        ),
+        StlError::Truncated { count, expected, got } => format!(
+            "its header counts {count} triangles, which take {expected} bytes; the file has {got}: it is cut short or no STL"
+        ),
+        StlError::Ascii { line, expected } => format!("line {line}: expected {expected}"),
+        StlError::NotFinite { triangle } => {
+            format!("triangle {triangle} has a corner that is not a finite number")
+        }
+        StlError::Empty => "it holds no triangle".to_string(),
+        StlError::TooMany { count } => format!(
+            "it holds {count} triangles; lmdc reads at most {MAX_TRIANGLES}"
+        ),
+    };
+    Diagnostic::error(
+        Code::Mesh,
+        format!("the mesh file `{path}` is no STL lmdc can read: {what}"),
+    )
+    .label(at, "this file")
+    .help("export the part as STL (binary or ASCII); 3MF, OBJ and STEP are not read")
+}
+
+/// The mesh of `path` encloses no solid (`f`).
+pub fn fault(path: &str, f: &MeshFault, at: Span) -> Diagnostic {
+    let msg = match f {
+        MeshFault::Open { edges, triangles, at: [a, b] } => format!(
+            "the mesh `{path}` is open: {edges} edge(s) belong to one triangle only, so it encloses no solid; triangles {} (counted from 0 in the file) border the gap, the first edge from {} to {}",
+            list(triangles),
+            p3(*a),
+            p3(*b)
+        ),
+        MeshFault::NonManifold { edges, triangles, at: [a, b] } => format!(
+            "the mesh `{path}` is not manifold: {edges} edge(s) are shared by more than two triangles; triangles {} (counted from 0 in the file) meet on the edge from {} to {}",
+            list(triangles),
+            p3(*a),
+            p3(*b)
+        ),
+        MeshFault::Flipped { edges, triangles: [t, u], at: [a, b] } => format!(
+            "the mesh `{path}` has triangles facing both ways: triangles {t} and {u} (counted from 0 in the file) share the edge from {} to {} and disagree on which side is outside ({edges} such edge(s))",
+            p3(*a),
+            p3(*b)
+        ),
+        MeshFault::Flat => format!("the mesh `{path}` encloses no volume"),
+    };
+    Diagnostic::error(Code::Mesh, msg)
+        .label(at, "this mesh")
+        .help(REPAIR)
+}
+
+/// The placed mesh's lowest point is at `z` (mm), not on the plate at 0:
+/// `at[2]` would be `fix`.
+pub fn not_on_plate(path: &str, z: f64, fix: f64, at: Span) -> Diagnostic {
+    let place = if z > 0.0 { "above" } else { "below" };
+    Diagnostic::error(
+        Code::Mesh,
+        format!(
+            "the mesh `{path}`, placed, has its lowest point at z = {} mm, {place} the plate: the layers start on the plate at z = 0",
+            short(z)
+        ),
+    )
+    .label(at, "placed here")
+    .help(format!(
+        "set the third number of `at` to {} mm, so the part stands on the plate",
+        short(fix)
+    ))
+}
+
+/// Layer `k`'s section of the mesh, at height `z` (mm), is no region.
+pub fn section(f: &SectionFault, k: usize, z: f64, at: Span) -> Diagnostic {
+    let on = format!("layer {} (cut at z = {} mm)", k + 1, short(z));
+    let (msg, help) = match f {
+        SectionFault::Empty => (
+            format!("the mesh has no section on {on}: nothing to build there"),
+            "build no higher than the mesh: leave out `height` and `layers`, and lmdc builds the mesh's height".to_string(),
+        ),
+        SectionFault::Open { at: p, triangles } => (
+            format!(
+                "the section of {on} does not close: it stops at {} after triangles {} (counted from 0 in the file)",
+                p2(*p),
+                list(triangles)
+            ),
+            REPAIR.to_string(),
+        ),
+        SectionFault::Islands { count, at: p } => (
+            format!(
+                "the section of {on} is {count} separate islands (the second at {}): lmdc fills one outline with its holes on each layer",
+                p2(*p)
+            ),
+            "build the islands as separate parts, or join them in CAD with a web that is built too".to_string(),
+        ),
+    };
+    Diagnostic::error(Code::Mesh, msg)
+        .label(at, "this mesh")
+        .help(help)
+}
+
+/// `mesh(key = …)` is not a list of three numbers (`got`).
+pub fn not_three(key: &str, got: &str, at: Span) -> Diagnostic {
+    let (what, e) = if key == "turn" {
+        ("turns about x, y and z", "[0 deg, 0 deg, 90 deg]")
+    } else {
+        ("where the file's origin goes", "[0 mm, 0 mm, 5 mm]")
+    };
+    Diagnostic::error(
+        Code::ExpectedPoint,
+        format!("`{key}` of a mesh is {what}: a list of three, `[x, y, z]`"),
+    )
+    .label(at, format!("this is {got}"))
+    .help(format!("e.g. `{key} = {e}`"))
+}
+
+/// A mesh with a `top`: its top is its own.
+pub fn mesh_with_top(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Mesh,
+        "a mesh has its own top: it is sliced in flat layers, not built up to a `top`",
+    )
+    .label(at, "this mesh")
+    .help("leave out `top` and slice it with `slicing planar { … }`")
+}

@@ -1,0 +1,107 @@
+//! `mesh(file, units, turn, at)`: a solid given as an STL mesh, read
+//! through the program's data reader, checked a closed surface and placed
+//! with its lowest point on the plate ([`crate::geometry::mesh`]).
+
+use super::fields::{self, Fields};
+use super::model::MeshSolid;
+use super::schema::solid::{mesh, MESH};
+use super::value::{Call, Value};
+use super::DataReader;
+use crate::diag::{message, Diagnostics};
+use crate::geometry::mesh::{stl, Mesh, Placement};
+use crate::span::Span;
+use crate::units::{Dim, Length};
+
+/// The lowest point may be this far (mm) from the plate.
+const ON_PLATE: f64 = 1e-6;
+
+/// Reads `mesh(…)` (the call `c` at `at`), its file through `data`.
+pub fn read(
+    c: &Call,
+    at: Span,
+    data: Option<&DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<MeshSolid> {
+    let f = Fields::call(c, &MESH, diags);
+    let file = f.text(&mesh::FILE, diags);
+    let units = f.word_or_default(&mesh::UNITS, diags);
+    let turn = triple(&f, &mesh::TURN, Dim::ANGLE, diags);
+    let place = triple(&f, &mesh::AT, Dim::LENGTH, diags);
+    let ((path, file_at), units, turn, place) = (file?, units?, turn?, place?);
+    let Some(read) = data else {
+        diags.push(message::mesh::no_reader(file_at));
+        return None;
+    };
+    let bytes = read(&path)
+        .map_err(|why| diags.push(message::mesh::unreadable(&path, &why, file_at)))
+        .ok()?;
+    let tris = stl::read(&bytes)
+        .map_err(|e| diags.push(message::mesh::not_stl(&path, &e, file_at)))
+        .ok()?;
+    drop(bytes);
+    let scale = match units {
+        "cm" => 10.0,
+        "m" => 1000.0,
+        "in" => 25.4,
+        _ => 1.0,
+    };
+    let placement = Placement {
+        scale,
+        turn: turn.0,
+        at: place.0,
+    };
+    let m = Mesh::new(&tris, placement)
+        .map_err(|e| diags.push(message::mesh::fault(&path, &e, at)))
+        .ok()?;
+    let (lo, hi) = m.bounds();
+    if lo[2].abs() > ON_PLATE {
+        let where_ = place.1.unwrap_or(at);
+        diags.push(message::mesh::not_on_plate(
+            &path,
+            lo[2],
+            place.0[2] - lo[2],
+            where_,
+        ));
+        return None;
+    }
+    Some(MeshSolid {
+        path,
+        mesh: std::sync::Arc::new(m),
+        top: Length(hi[2]),
+        span: at,
+    })
+}
+
+/// A list of three quantities of `dim` (zeros when not written), and where
+/// it is written.
+fn triple(
+    f: &Fields<'_>,
+    field: &super::schema::Field,
+    dim: Dim,
+    diags: &mut Diagnostics,
+) -> Option<([f64; 3], Option<Span>)> {
+    let Some(v) = f.value(field, diags) else {
+        return (!f.has(field)).then_some(([0.0; 3], None));
+    };
+    match &v.value {
+        Value::List(items) if items.len() == 3 => {
+            let c: Vec<_> = ["x", "y", "z"]
+                .iter()
+                .zip(items)
+                .map(|(k, it)| fields::quantity(it, dim, k, diags))
+                .collect();
+            match c[..] {
+                [Some(x), Some(y), Some(z)] => Some(([x, y, z], Some(v.span))),
+                _ => None,
+            }
+        }
+        other => {
+            diags.push(message::mesh::not_three(
+                field.key,
+                &other.describe(),
+                v.span,
+            ));
+            None
+        }
+    }
+}

@@ -1,0 +1,237 @@
+//! Solids given as meshes (`mesh(file = "…")`), through the whole
+//! pipeline: the same plan from a binary and an ASCII file, the sections'
+//! areas in the plan's contours, and broken meshes refused with where.
+
+use lmdc::geometry::mesh::stl::{self, Triangle};
+use lmdc::pipeline::{compile_reading, Compiled};
+use std::collections::BTreeMap;
+use std::f64::consts::TAU;
+use std::rc::Rc;
+
+/// Two triangles of the quad `a b c d` (counter-clockwise from outside).
+fn quad(out: &mut Vec<Triangle>, a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) {
+    let f = |p: [f64; 3]| p.map(|x| x as f32);
+    out.push([f(a), f(b), f(c)]);
+    out.push([f(a), f(c), f(d)]);
+}
+
+/// A `2a` square box `h` tall centred on (`cx`, `cy`), a hole of radius
+/// `r` through it as an `n`-gon (`n` a multiple of 8).
+fn box_with_hole(c: [f64; 2], a: f64, r: f64, h: f64, n: usize) -> Vec<Triangle> {
+    let ray = |i: usize| TAU * (i % n) as f64 / n as f64;
+    let outer = |i: usize, z: f64| {
+        let t = ray(i);
+        let s = a / t.cos().abs().max(t.sin().abs());
+        [c[0] + s * t.cos(), c[1] + s * t.sin(), z]
+    };
+    let inner = |i: usize, z: f64| [c[0] + r * ray(i).cos(), c[1] + r * ray(i).sin(), z];
+    let mut out = Vec::new();
+    for i in 0..n {
+        let j = i + 1;
+        quad(
+            &mut out,
+            outer(i, 0.0),
+            outer(j, 0.0),
+            outer(j, h),
+            outer(i, h),
+        );
+        quad(
+            &mut out,
+            inner(j, 0.0),
+            inner(i, 0.0),
+            inner(i, h),
+            inner(j, h),
+        );
+        quad(&mut out, outer(i, h), outer(j, h), inner(j, h), inner(i, h));
+        quad(
+            &mut out,
+            outer(j, 0.0),
+            outer(i, 0.0),
+            inner(i, 0.0),
+            inner(j, 0.0),
+        );
+    }
+    out
+}
+
+/// The plate of tests/codes/plate.lmd with `profile` for its profile.
+fn source(profile: &str) -> String {
+    include_str!("codes/plate.lmd")
+        .replace(
+            "profile = rectangle(width = 20 mm, height = 10 mm)",
+            profile,
+        )
+        .replace("  layers = 2\n", "")
+}
+
+/// Compiles `src` with `files` as the files beside it.
+fn compile(src: &str, files: BTreeMap<&'static str, Vec<u8>>) -> Compiled {
+    let data: lmdc::sema::DataReader = Rc::new(move |p: &str| {
+        files
+            .get(p)
+            .cloned()
+            .ok_or_else(|| format!("no file `{p}`"))
+    });
+    compile_reading(src, None, &mut (), data).unwrap().0
+}
+
+fn messages(c: &Compiled) -> String {
+    c.diagnostics
+        .iter()
+        .map(|d| d.message.clone())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn binary_and_ascii_give_the_same_plan() {
+    let tris = box_with_hole([15.0, 15.0], 15.0, 5.0, 4.2, 32);
+    let src = source("profile = mesh(\"part.stl\")");
+    let plan = |bytes: Vec<u8>| {
+        let c = compile(&src, BTreeMap::from([("part.stl", bytes)]));
+        let m = messages(&c);
+        let p = c.program.unwrap_or_else(|| panic!("{m}"));
+        serde_json::to_string(p.ir()).unwrap()
+    };
+    let b = plan(stl::to_binary(&tris));
+    let a = plan(stl::to_ascii(&tris).into_bytes());
+    assert!(b == a, "the binary and the ASCII file give different plans");
+    // 4.2 mm in whole layers of the lift the tracks lay (the second
+    // layer's height over the first's), rounded up.
+    let ir: lmdc::ir::Program = serde_json::from_str(&b).unwrap();
+    let lift = ir.layers[1].frame.origin[2] - ir.layers[0].frame.origin[2];
+    assert_eq!(ir.layers.len(), (4.2 / lift - 1e-9).ceil() as usize);
+}
+
+#[test]
+fn the_contours_follow_the_sections() {
+    // A box 30 mm square with a 10 mm hole; `size = outer`: the first
+    // contour runs half a bead (1.1 mm) inside the square and outside the
+    // hole, so its points are 13.9 mm from the centre in x or y at most,
+    // and at least 5 + 1.1 mm from it.
+    let tris = box_with_hole([0.0, 0.0], 15.0, 5.0, 1.4, 32);
+    let src = source("profile = mesh(\"part.stl\")")
+        .replace("offset = 1.6 mm", "offset = 1.6 mm\n  contours = 1");
+    let c = compile(&src, BTreeMap::from([("part.stl", stl::to_binary(&tris))]));
+    let m = messages(&c);
+    let p = c.program.unwrap_or_else(|| panic!("{m}"));
+    let ir = p.ir();
+    let lift = ir.layers[1].frame.origin[2] - ir.layers[0].frame.origin[2];
+    assert_eq!(ir.layers.len(), (1.4 / lift - 1e-9).ceil() as usize);
+    // Each contour path's points, on the first layer.
+    let paths: Vec<Vec<[f64; 2]>> = ir.layers[0]
+        .paths
+        .iter()
+        .filter(|p| p.kind == lmdc::ir::PathKind::Contour)
+        .map(|p| p.points.iter().map(|q| [q.pos[0], q.pos[1]]).collect())
+        .collect();
+    let pts: Vec<[f64; 2]> = paths.concat();
+    assert!(!pts.is_empty());
+    let outer = pts
+        .iter()
+        .map(|p| p[0].abs().max(p[1].abs()))
+        .fold(0.0, f64::max);
+    assert!((outer - 13.9).abs() < 1e-6, "{outer}");
+    // The nearest the contour's pieces come to the centre: the hole's
+    // 32-gon, 1.1 mm out, is nearest at its sides' middles.
+    let dist = |a: [f64; 2], b: [f64; 2]| {
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        let t = if len2 > 0.0 {
+            (-(a[0] * d[0] + a[1] * d[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (a[0] + t * d[0]).hypot(a[1] + t * d[1])
+    };
+    let inner = paths
+        .iter()
+        .flat_map(|p| p.windows(2).map(|w| dist(w[0], w[1])))
+        .fold(f64::INFINITY, f64::min);
+    let apothem = 5.0 * (std::f64::consts::PI / 32.0).cos();
+    assert!((inner - (apothem + 1.1)).abs() < 1e-3, "{inner}");
+}
+
+#[test]
+fn a_missing_triangle_is_refused_with_its_neighbours() {
+    let mut tris = box_with_hole([15.0, 15.0], 15.0, 5.0, 4.2, 16);
+    let gone = tris.remove(21);
+    let mut near: Vec<usize> = (0..tris.len())
+        .filter(|&i| tris[i].iter().filter(|c| gone.contains(c)).count() == 2)
+        .collect();
+    near.sort_unstable();
+    let list = near
+        .iter()
+        .map(|t| t.to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let c = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(&tris))]),
+    );
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    assert!(m.contains("is open: 3 edge(s)"), "{m}");
+    assert!(
+        m.contains(&format!("triangles {list} (counted from 0")),
+        "{m}\n{list}"
+    );
+}
+
+#[test]
+fn a_mesh_off_the_plate_and_two_islands_are_refused() {
+    let tris = box_with_hole([15.0, 15.0], 15.0, 5.0, 4.2, 16);
+    let c = compile(
+        &source("profile = mesh(\"part.stl\", at = [0 mm, 0 mm, 2.5 mm])"),
+        BTreeMap::from([("part.stl", stl::to_binary(&tris))]),
+    );
+    let m = messages(&c);
+    assert!(
+        m.contains("lowest point at z = 2.5 mm, above the plate"),
+        "{m}"
+    );
+    assert!(c
+        .diagnostics
+        .iter()
+        .any(|d| d.help.as_deref().is_some_and(|h| h.contains("to 0 mm"))));
+    // Two boxes side by side, the second lower: both islands on layer 1,
+    // cut halfway up it (the lift as the one box's plan has it).
+    let one = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(&tris))]),
+    );
+    let ir = one.program.unwrap().into_ir();
+    let lift = ir.layers[1].frame.origin[2] - ir.layers[0].frame.origin[2];
+    let mut two = tris.clone();
+    two.extend(box_with_hole([50.0, 15.0], 15.0, 5.0, 2.1, 16));
+    let c = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(&two))]),
+    );
+    let m = messages(&c);
+    let z = lmdc::units::short(lift / 2.0);
+    assert!(
+        m.contains(&format!(
+            "layer 1 (cut at z = {z} mm) is 2 separate islands (the second at ("
+        )),
+        "{m}"
+    );
+}
+
+#[test]
+fn a_file_that_is_no_stl_says_why() {
+    let c = compile(
+        &source("profile = mesh(\"part.stl\", units = in)"),
+        BTreeMap::from([(
+            "part.stl",
+            b"solid x\n facet normal 0 0 0\n  outer loop\n   vertex 1 2\n".to_vec(),
+        )]),
+    );
+    let m = messages(&c);
+    assert!(
+        m.contains("line 4: expected `vertex X Y Z`, three numbers"),
+        "{m}"
+    );
+    let c = compile(&source("profile = mesh(\"nothing.stl\")"), BTreeMap::new());
+    assert!(messages(&c).contains("cannot read the mesh file `nothing.stl`: no file"));
+}
