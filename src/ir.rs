@@ -482,7 +482,7 @@ pub struct Limits {
     #[serde(default = "default_max_drift")]
     pub max_drift: f64,
     /// The most a wall's layer may lean out over the one below, from the
-    /// nozzle's axis, rad (`max_overhang`; absent: only what
+    /// nozzle's axis, deg (`max_overhang`; absent: only what
     /// `lmd::stacking` holds, docs/ir.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_overhang: Option<f64>,

@@ -195,7 +195,8 @@ fn predict_rises(p: &mut Program) {
 /// slicing that declares one.
 fn max_overhang(build: &Build) -> Option<f64> {
     match build {
-        Build::Duct { slicing, .. } => slicing.max_overhang,
+        // The IR's angles are degrees (`units.angle`).
+        Build::Duct { slicing, .. } => slicing.max_overhang.map(f64::to_degrees),
         _ => None,
     }
 }

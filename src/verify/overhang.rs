@@ -33,7 +33,8 @@ impl ProgramRule for Overhang {
 
 fn check(p: &Program, out: &mut Diagnostics) {
     let w = p.limits.bead_width;
-    let Some(limit) = p.limits.max_overhang else {
+    // The IR holds degrees; the leans below are radians.
+    let Some(limit) = p.limits.max_overhang.map(f64::to_radians) else {
         return;
     };
     if !(w.is_finite() && w > 0.0) {
