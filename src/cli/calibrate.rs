@@ -4,9 +4,9 @@
 //! that `lmdc fit` reads once filled in — all written atomically, nothing
 //! on an error.
 
-use super::messages::MessageFormat;
 use super::progress::{self, Progress};
-use super::{data_reader, messages, read_source, shown, sink, write_programs};
+use super::{messages, read_source, shown, sink, write_programs, Common};
+use lmdc::diag::usage;
 use super::{EXIT_PROGRAM, EXIT_USAGE};
 use lmdc::back::{Sink, Templates};
 use lmdc::pipeline;
@@ -14,9 +14,11 @@ use lmdc::sema::model::Build;
 use std::io::Write;
 use std::path::Path;
 
-/// Runs `lmdc calibrate`; returns the exit code.
-pub fn run(file: &Path, out: &Path, output: (bool, MessageFormat), mut progress: Progress) -> u8 {
-    let (color, format) = output;
+/// Runs `lmdc calibrate` with the shared options (`--set`,
+/// `--deny-warnings`, the message format) as `check` and `build` take them;
+/// returns the exit code.
+pub fn run(file: &Path, out: &Path, common: &Common, mut progress: Progress) -> u8 {
+    let (color, format) = (common.color, common.format);
     let templates = match Templates::load(None) {
         Ok(t) => t,
         Err(e) => {
@@ -31,13 +33,17 @@ pub fn run(file: &Path, out: &Path, output: (bool, MessageFormat), mut progress:
     let Some(source) = read_source(file) else {
         return EXIT_USAGE;
     };
-    let compiled =
-        pipeline::compile_reading(&source, None, &mut progress, data_reader(file)).map(|(c, m)| {
-            progress.print(|| messages::print(&c.diagnostics, file, &source, color, format));
-            (c.program, m)
-        });
-    let (program, model) = match compiled {
-        Ok((Some(p), Some(m))) => (p, m),
+    let options = common.options(file, None);
+    let (compiled, model) = match pipeline::compile_with_model(&source, &options, &mut progress) {
+        Ok(c) => c,
+        Err(e) => return messages::fail(file, usage::refused(&e)),
+    };
+    progress.print(|| messages::print(&compiled.diagnostics, file, &source, color, format));
+    if let Some(code) = common.denied(file, &compiled.diagnostics) {
+        return code;
+    }
+    let (program, model) = match (compiled.program, model) {
+        (Some(p), Some(m)) => (p, m),
         _ if !has_calibration(&source) => return no_calibration(file),
         _ => return EXIT_PROGRAM,
     };

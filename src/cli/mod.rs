@@ -384,7 +384,7 @@ pub fn run(cli: Cli) -> u8 {
         },
         Command::Calibrate { file, out } => {
             let p = progress(&file);
-            calibrate::run(&file, &out, (color, format), p)
+            calibrate::run(&file, &out, &common, p)
         }
         command @ Command::Fit { .. } => fit_command(command, (color, format)),
         Command::Preview { file, machine, out } => {
