@@ -299,28 +299,62 @@ fn a_matrix_beyond_what_lmdc_lays_is_refused_before_it_is_made() {
 #[test]
 fn calibrate_takes_set_and_deny_warnings() {
     let dir = tempfile::tempdir().unwrap();
-    let src = edited("part coupons\n", "part coupons\n\nlet N = 6\n").replacen("count = 6", "count = N", 1);
+    let src = edited("part coupons\n", "part coupons\n\nlet N = 6\n").replacen(
+        "count = 6",
+        "count = N",
+        1,
+    );
     let file = dir.path().join("coupons.lmd");
     std::fs::write(&file, &src).unwrap();
     let (f, out) = (file.to_str().unwrap(), dir.path().join("out"));
     let o = lmdc(&["calibrate", f, "-o", out.to_str().unwrap(), "--set", "N=3"]);
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let sheet = std::fs::read_to_string(out.join("coupons.coupons.csv")).unwrap();
     // Three speeds, twice each.
     assert_eq!(rows(&sheet).len() - 1, 6, "{sheet}");
 
     let o = lmdc(&["calibrate", f, "-o", out.to_str().unwrap(), "--set", "M=3"]);
-    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
 
     // An arm whose base is only an index cannot be checked: a warning
     // (`lmd::arm-unchecked`).
-    let warned = src.replacen("  full_scale = 2000 W\n", "  full_scale = 2000 W\n  arm = kr60ha\n", 1);
+    let warned = src.replacen(
+        "  full_scale = 2000 W\n",
+        "  full_scale = 2000 W\n  arm = kr60ha\n",
+        1,
+    );
     assert_ne!(warned, src);
     std::fs::write(&file, &warned).unwrap();
     let o = lmdc(&["calibrate", f, "-o", out.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
-    let o = lmdc(&["calibrate", f, "-o", out.to_str().unwrap(), "--deny-warnings"]);
-    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let o = lmdc(&[
+        "calibrate",
+        f,
+        "-o",
+        out.to_str().unwrap(),
+        "--deny-warnings",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
 }
 
 /// A coupon kind lmdc does not know: the error lists every kind, the calls
@@ -339,7 +373,11 @@ fn an_unknown_coupon_lists_every_kind() {
             assert!(d.message.contains(kind), "{word}: {}", d.message);
         }
         match near {
-            Some(n) => assert!(d.help.as_deref().is_some_and(|h| h.contains(n)), "{:?}", d.help),
+            Some(n) => assert!(
+                d.help.as_deref().is_some_and(|h| h.contains(n)),
+                "{:?}",
+                d.help
+            ),
             None => assert!(d.help.is_none(), "{:?}", d.help),
         }
     }

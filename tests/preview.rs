@@ -10,10 +10,7 @@
 //! browser tests say they skipped; under CI they fail.
 //! `LMDC_UPDATE_SCREENSHOTS=1` renders every example into docs/preview/.
 
-#[path = "support/png.rs"]
-mod png;
-#[path = "support/skip.rs"]
-mod skip;
+use crate::support::{png, skip};
 
 use lmdc::ir::{PathKind, Program};
 use lmdc::pipeline::compile;

@@ -6,9 +6,9 @@
 
 use super::progress::{self, Progress};
 use super::{messages, read_source, shown, sink, write_programs, Common};
-use lmdc::diag::usage;
 use super::{EXIT_PROGRAM, EXIT_USAGE};
 use lmdc::back::{Sink, Templates};
+use lmdc::diag::usage;
 use lmdc::pipeline;
 use lmdc::sema::model::Build;
 use std::io::Write;

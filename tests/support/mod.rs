@@ -14,6 +14,7 @@ pub mod krl_check;
 pub mod krl_parser;
 pub mod krl_run;
 pub mod m66;
+pub mod png;
 pub mod ring;
 pub mod rs274;
 pub mod schema;

@@ -1,6 +1,6 @@
 //! Just enough PNG to read back a browser's screenshot: 8-bit RGB or RGBA,
-//! not interlaced (what Chromium writes), inflated with miniz_oxide (already
-//! in the dependency tree).
+//! not interlaced (what Chromium writes), inflated with miniz_oxide (a
+//! dev-dependency).
 #![allow(dead_code)]
 
 /// An image as RGB triples, row by row.
