@@ -348,26 +348,9 @@ fn kind(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<CouponKind> {
                 offset: Length(offset?.0),
             })
         }
-        other => {
-            // The calls are choices too: a word the table's word list
-            // alone would answer with `must be one of: track`.
-            let suggestion = match other {
-                Value::Symbol(s) => {
-                    super::suggest::did_you_mean(s, ["track", "wall", "pad"]).map(|w| match w {
-                        "track" => "track",
-                        "wall" => "wall(layers = …)",
-                        _ => "pad(tracks = …, offset = …)",
-                    })
-                }
-                _ => None,
-            };
-            diags.push(message::field::bad_choice(
-                schema::COUPON.key,
-                &["track", "wall(layers = …)", "pad(tracks = …, offset = …)"],
-                other.got(),
-                v.span,
-                suggestion,
-            ));
+        _ => {
+            // Lists `wall(…)` and `pad(…)` too (`Fields::word`).
+            f.word(&schema::COUPON, diags);
             None
         }
     }

@@ -472,13 +472,51 @@ impl<'a> Fields<'a> {
         self.or_default(f, read, n)
     }
 
-    /// One of the field's words.
+    /// One of the field's words. Where the field takes calls too
+    /// (`coupon = track | wall(…)`), the error lists them with their
+    /// arguments, and a word near a call's name suggests the call.
     pub fn word(&self, f: &Field, diags: &mut Diagnostics) -> Option<(&'static str, Span)> {
         let Some(words) = f.kind.words() else {
             panic!("`{}` takes no words", f.key)
         };
         let v = self.value(f, diags)?;
-        word(v, f.key, words, diags).map(|w| (w, v.span))
+        let calls = f.kind.calls();
+        if calls.is_empty() {
+            return word(v, f.key, words, diags).map(|w| (w, v.span));
+        }
+        if let Value::Symbol(s) = &v.value {
+            if let Some(w) = words.iter().find(|w| **w == s.as_str()) {
+                return Some((w, v.span));
+            }
+        }
+        let shown = |b: &Block| {
+            let args: Vec<String> = b.fields.iter().map(|a| format!("{} = …", a.key)).collect();
+            format!("{}({})", b.name, args.join(", "))
+        };
+        let mut choices: Vec<String> = words.iter().map(|w| w.to_string()).collect();
+        choices.extend(calls.iter().map(|b| shown(b)));
+        let suggestion = match &v.value {
+            Value::Symbol(s) => did_you_mean(
+                s,
+                words.iter().chain(calls.iter().map(|b| &b.name)).copied(),
+            )
+            .map(|m| {
+                calls
+                    .iter()
+                    .find(|b| b.name == m)
+                    .map_or(m.to_string(), |b| shown(b))
+            }),
+            _ => None,
+        };
+        let refs: Vec<&str> = choices.iter().map(String::as_str).collect();
+        diags.push(message::field::bad_choice(
+            f.key,
+            &refs,
+            v.value.got(),
+            v.span,
+            suggestion.as_deref(),
+        ));
+        None
     }
 
     /// One of the field's words, or the table's default when not written;

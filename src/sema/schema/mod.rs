@@ -356,6 +356,20 @@ impl Kind {
         }
     }
 
+    /// The calls a field of this kind takes besides its words
+    /// (`coupon = track | wall(…) | pad(…)`).
+    pub fn calls(&self) -> &'static [&'static Block] {
+        match self {
+            Kind::Call(c) => c,
+            Kind::Either(kinds) => kinds
+                .iter()
+                .map(Kind::calls)
+                .find(|c| !c.is_empty())
+                .unwrap_or(&[]),
+            _ => &[],
+        }
+    }
+
     /// The words a field takes, also as one choice of an [`Kind::Either`].
     pub fn words(&self) -> Option<&'static [&'static str]> {
         match self {
