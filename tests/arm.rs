@@ -14,17 +14,7 @@ use proptest::prelude::*;
 use std::collections::BTreeMap;
 
 fn arm_of(m: &Model) -> Arm {
-    let o = m.opw;
-    Arm {
-        model: Some(m.key.into()),
-        opw: [o.a1, o.a2, o.b, o.c1, o.c2, o.c3, o.c4],
-        offsets: o.offsets,
-        signs: o.signs,
-        limits: m.limits,
-        speeds: m.speeds,
-        margin: 0.0,
-        singularity: 5.0,
-    }
+    m.arm(0.0, 5.0)
 }
 
 /// A joint of a URDF: origin `xyz` (m) from its parent, turning about `axis`.

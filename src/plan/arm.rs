@@ -367,18 +367,7 @@ mod tests {
     use crate::target::arm::CATALOGUE;
 
     fn solver(key: &str) -> Solver {
-        let m = crate::target::arm::model(key).unwrap();
-        let o = m.opw;
-        let arm = Arm {
-            model: Some(key.into()),
-            opw: [o.a1, o.a2, o.b, o.c1, o.c2, o.c3, o.c4],
-            offsets: o.offsets,
-            signs: o.signs,
-            limits: m.limits,
-            speeds: m.speeds,
-            margin: 0.0,
-            singularity: 5.0,
-        };
+        let arm = crate::target::arm::model(key).unwrap().arm(0.0, 5.0);
         Solver::with(arm, Isometry3::identity(), Isometry3::identity())
     }
 

@@ -53,6 +53,24 @@ pub struct Model {
     pub source: &'static str,
 }
 
+impl Model {
+    /// The IR's arm of this model, checked with `margin` and `singularity`
+    /// (deg).
+    pub fn arm(&self, margin: f64, singularity: f64) -> crate::ir::Arm {
+        let o = self.opw;
+        crate::ir::Arm {
+            model: Some(self.key.to_string()),
+            opw: [o.a1, o.a2, o.b, o.c1, o.c2, o.c3, o.c4],
+            offsets: o.offsets,
+            signs: o.signs,
+            limits: self.limits,
+            speeds: self.speeds,
+            margin,
+            singularity,
+        }
+    }
+}
+
 /// ROS-Industrial's KUKA convention, every arm's here and an `opw(…)`
 /// arm's: A2's zero is the upper arm level (OPW's is upright), and A1, A4,
 /// A6 turn the other way from OPW's (the lengths are zero: only the

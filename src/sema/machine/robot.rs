@@ -125,18 +125,7 @@ fn arm(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Option<Arm>> {
         Value::Call(c) if c.func == "opw" => opw_arm(&Fields::call(c, &OPW, diags), diags)?,
         _ => {
             let word = fields::word(v, ARM.key, crate::target::arm::KEYS, diags)?;
-            let m = crate::target::arm::model(word)?;
-            let o = m.opw;
-            Arm {
-                model: Some(m.key.to_string()),
-                opw: [o.a1, o.a2, o.b, o.c1, o.c2, o.c3, o.c4],
-                offsets: o.offsets,
-                signs: o.signs,
-                limits: m.limits,
-                speeds: m.speeds,
-                margin: 0.0,
-                singularity: 0.0,
-            }
+            crate::target::arm::model(word)?.arm(0.0, 0.0)
         }
     };
     arm.margin = margin;
