@@ -11,7 +11,7 @@
 //! each axis's distance inside its margin and each LIN's distance outside
 //! the singularity threshold; ties to the smaller turn), if it does better
 //! than 0°. One turn for the whole program: the tool turns with the normal
-//! as before, smoothly, only offset. The choice is made on at most
+//! as before, smoothly, only offset. The choice is made on about
 //! [`SAMPLES`] moves spread over the plan; the verifier then checks every
 //! move with it, as with a declared `spin`.
 
@@ -21,7 +21,7 @@ use crate::ir::{Machine, Program, Robot, Spin};
 
 /// The turns tried, deg apart.
 pub const STEP: f64 = 15.0;
-/// Most moves the choice looks at.
+/// About how many moves the choice looks at.
 pub const SAMPLES: usize = 4000;
 
 /// Chooses the spin of every robot of `program` whose `spin` is `auto` and
@@ -46,7 +46,7 @@ fn best(program: &Program, machine: &Machine) -> f64 {
     let Machine::Robot(robot) = machine else {
         return 0.0;
     };
-    let moves = sample(&Plan::new(program, machine));
+    let moves = sample(program, &Plan::new(program, machine));
     let zero = clearance(robot, 0.0, &moves);
     if zero >= 0.0 {
         return 0.0;
@@ -65,20 +65,30 @@ fn best(program: &Program, machine: &Machine) -> f64 {
     best.1
 }
 
-/// At most [`SAMPLES`] of the plan's moves, evenly spread, the first and
-/// the last among them: two walks (one counts), no copy of the whole plan.
-fn sample(plan: &Plan<'_>) -> Vec<Move> {
-    let mut count = 0usize;
-    plan.walk(&mut |_: &Move| count += 1);
-    let every = count.div_ceil(SAMPLES).max(1);
-    let mut moves = Vec::with_capacity(count.min(SAMPLES) + 1);
+/// About [`SAMPLES`] of the plan's moves, evenly spread, the first and the
+/// last among them: one walk, spaced by the IR's point count (a move a point,
+/// and a few more a path), no copy of the whole plan.
+fn sample(program: &Program, plan: &Plan<'_>) -> Vec<Move> {
+    let points: usize = program
+        .layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .map(|p| p.points.len())
+        .sum();
+    let every = points.div_ceil(SAMPLES).max(1);
+    let mut moves = Vec::with_capacity(SAMPLES + 1);
+    let mut last = None;
     let mut k = 0usize;
     plan.walk(&mut |m: &Move| {
-        if k.is_multiple_of(every) || k + 1 == count {
+        if k.is_multiple_of(every) {
             moves.push(*m);
+            last = None;
+        } else {
+            last = Some(*m);
         }
         k += 1;
     });
+    moves.extend(last);
     moves
 }
 
