@@ -122,7 +122,21 @@ pub fn compile_with(
     options: &Options,
     obs: &mut dyn Observer,
 ) -> Result<Compiled, UsageError> {
-    compile_keeping(source, options, obs, None)
+    compile_keeping(source, options, obs, None, |_, _| ()).map(|c| c.0)
+}
+
+/// [`compile_with`], running `meanwhile` on the program once every check has
+/// passed but the slow ones (a robot's arm, every move solved), while those
+/// finish ([`verify::verify_with`]). What `meanwhile` made is given back only
+/// when the program compiled without errors: `lmdc build` writes its
+/// programs into a staging folder meanwhile and commits them only then.
+pub fn compile_then<R>(
+    source: &str,
+    options: &Options,
+    obs: &mut dyn Observer,
+    meanwhile: impl FnOnce(&Verified, &mut dyn Observer) -> R,
+) -> Result<(Compiled, Option<R>), UsageError> {
+    compile_keeping(source, options, obs, None, meanwhile)
 }
 
 /// [`compile_with`], also giving back the checked model when the program
@@ -133,7 +147,7 @@ pub fn compile_with_model(
     obs: &mut dyn Observer,
 ) -> Result<(Compiled, Option<Model>), UsageError> {
     let mut model = None;
-    let c = compile_keeping(source, options, obs, Some(&mut model))?;
+    let (c, _) = compile_keeping(source, options, obs, Some(&mut model), |_, _| ())?;
     if c.program.is_none() {
         model = None;
     }
@@ -160,38 +174,51 @@ pub fn compile_reading(
     })
 }
 
-fn compile_keeping(
+fn compile_keeping<R>(
     source: &str,
     options: &Options,
     obs: &mut dyn Observer,
     keep: Option<&mut Option<Model>>,
-) -> Result<Compiled, UsageError> {
+    meanwhile: impl FnOnce(&Verified, &mut dyn Observer) -> R,
+) -> Result<(Compiled, Option<R>), UsageError> {
     let mut diagnostics = Diagnostics::new();
-    let mut program = run(source, options, obs, &mut diagnostics, keep)?;
-    if let Some(p) = &mut program {
-        let mut from = Provenance::new(source, options.file.as_deref());
-        from.set = options.set.iter().map(|s| s.to_string()).collect();
-        p.set_provenance(from);
-    }
+    let mut from = Provenance::new(source, options.file.as_deref());
+    from.set = options.set.iter().map(|s| s.to_string()).collect();
+    let (program, made) = run(
+        source,
+        options,
+        obs,
+        &mut diagnostics,
+        keep,
+        from,
+        meanwhile,
+    )?;
     diagnostics.sort_by_source();
-    Ok(Compiled {
-        program,
-        diagnostics,
-    })
+    Ok((
+        Compiled {
+            program,
+            diagnostics,
+        },
+        made,
+    ))
 }
 
-fn run(
+type Ran<R> = Result<(Option<Verified>, Option<R>), UsageError>;
+
+fn run<R>(
     source: &str,
     options: &Options,
     obs: &mut dyn Observer,
     diagnostics: &mut Diagnostics,
     keep: Option<&mut Option<Model>>,
-) -> Result<Option<Verified>, UsageError> {
+    from: Provenance,
+    meanwhile: impl FnOnce(&Verified, &mut dyn Observer) -> R,
+) -> Ran<R> {
     let mut ast = match syntax::parse(source) {
         Ok(a) => a,
         Err(d) => {
             diagnostics.push(d);
-            return Ok(None);
+            return Ok((None, None));
         }
     };
     crate::overrides::apply(&mut ast, &options.set)?;
@@ -202,7 +229,7 @@ fn run(
     diagnostics.extend(d);
     obs.stage("check");
     let Some(model) = model else {
-        return Ok(None);
+        return Ok((None, None));
     };
     let select = match machine {
         None => Select::All,
@@ -228,7 +255,7 @@ fn run(
         }
         Err(e) => {
             diagnostics.extend(e);
-            return Ok(None);
+            return Ok((None, None));
         }
     };
     // Only the report keeps the model; a build frees it before verifying.
@@ -239,23 +266,36 @@ fn run(
     obs.stage("slice");
     // The free turn about the nozzle axis, where the file leaves it to lmdc.
     crate::plan::spin::choose(&mut program);
-    let mut verified = verify::verify(program, select);
-    obs.stage("verify");
+    // The slow rules (an arm's) go on beside `meanwhile`; the stage `verify`
+    // ends when the others have, `verify arm` when they have too.
+    let clean = !diagnostics.has_errors();
+    // `None` until the other rules passed; then whether the slow ones run on.
+    let mut waiting = None;
+    let (mut verified, made) = verify::verify_with(program, select, from, |v, slow| {
+        obs.stage("verify");
+        waiting = Some(slow);
+        clean.then(|| meanwhile(v, obs))
+    });
+    match waiting {
+        None => obs.stage("verify"),
+        Some(true) => obs.stage("verify arm"),
+        Some(false) => {}
+    }
     if let Err(found) = &mut verified {
         found.retain(|d| !reported_already(d.code, diagnostics));
     }
     match verified {
         Ok(v) if !diagnostics.has_errors() => {
             diagnostics.extend(v.warnings().clone());
-            Ok(Some(v))
+            Ok((Some(v), made.flatten()))
         }
         Ok(v) => {
             diagnostics.extend(v.warnings().clone());
-            Ok(None)
+            Ok((None, None))
         }
         Err(e) => {
             diagnostics.extend(e);
-            Ok(None)
+            Ok((None, None))
         }
     }
 }

@@ -529,3 +529,35 @@ fn an_angled_tool_is_turned_until_the_wrist_fits() {
         prev = j;
     }
 }
+
+/// `compile_then` runs its work beside the arm's checks (told they are
+/// still running) and gives it back only when they pass; where the other
+/// rules already fail it is not run at all.
+#[test]
+fn work_beside_the_arm_is_kept_only_when_the_arm_passes() {
+    let pinned = std::fs::read_to_string("examples/errors/arm_joint_limit.lmd").unwrap();
+    let auto = pinned.replace("spin = 0 deg", "spin = auto");
+    // The same cell slower than its bead: an error of a rule that is not
+    // the arm's (lmd::machine-speed).
+    let slow = auto.replace("max_speed = 250 mm/s", "max_speed = 5 mm/s");
+    assert_ne!(slow, auto);
+    let run = |src: &str| {
+        let mut told = None;
+        let options = lmdc::pipeline::Options::default();
+        let (c, made) = lmdc::pipeline::compile_then(src, &options, &mut (), |v, _| {
+            told = Some(v.machines().count());
+            "staged"
+        })
+        .unwrap();
+        let codes: Vec<String> = c.diagnostics.iter().map(|d| d.code.to_string()).collect();
+        (c.program.is_some(), made, told, codes)
+    };
+    let (ok, made, told, codes) = run(&auto);
+    assert!(ok && made == Some("staged") && told == Some(1), "{codes:?}");
+    let (ok, made, told, codes) = run(&pinned);
+    assert!(!ok && made.is_none() && told == Some(1), "{codes:?}");
+    assert!(codes.iter().any(|c| c == "lmd::joint-limit"), "{codes:?}");
+    let (ok, made, told, codes) = run(&slow);
+    assert!(!ok && made.is_none() && told.is_none(), "{codes:?}");
+    assert_eq!(codes, ["lmd::machine-speed"]);
+}

@@ -282,3 +282,42 @@ fn a_killed_build_leaves_the_old_set_or_the_new_set() {
     );
     let _ = std::fs::remove_dir_all(&work);
 }
+
+/// A build stages its programs while the arm's checks are still solving
+/// every move (`pipeline::compile_then`): when those find an error, the
+/// staged files go and the directory keeps the previous build's set, its
+/// manifest, and nothing else.
+#[test]
+fn an_arm_error_found_while_staging_leaves_the_old_set() {
+    let dir = std::env::temp_dir().join(format!("lmdc-arm-stage-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("out");
+    let pinned = std::fs::read_to_string("examples/errors/arm_joint_limit.lmd").unwrap();
+    // The same cell with the turn about the beam left to lmdc: it builds.
+    let auto = pinned.replace("spin = 0 deg", "spin = auto");
+    assert_ne!(auto, pinned);
+    let (good, bad) = (dir.join("auto.lmd"), dir.join("pinned.lmd"));
+    std::fs::write(&good, auto).unwrap();
+    std::fs::write(&bad, pinned).unwrap();
+
+    let first = build(&good, &out);
+    assert!(
+        first.status.success(),
+        "{}",
+        String::from_utf8_lossy(&first.stderr)
+    );
+    let before = programs(&out);
+    assert!(before.keys().any(|n| n.ends_with(".src")), "{before:?}");
+    let listed = manifest(&out);
+
+    let second = build(&bad, &out);
+    let err = String::from_utf8_lossy(&second.stderr);
+    assert_eq!(second.status.code(), Some(1), "{err}");
+    assert!(err.contains("lmd::joint-limit"), "{err}");
+    assert!(!err.contains("wrote "), "{err}");
+    assert_eq!(programs(&out), before);
+    assert_eq!(manifest(&out), listed);
+    assert_eq!(hidden(&out), [".lmdc-manifest"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}

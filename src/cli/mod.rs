@@ -445,15 +445,32 @@ fn compile_and_print(
     progress: &mut Progress,
     common: &Common,
 ) -> Result<lmdc::verify::Verified, u8> {
+    let c = compile_and_print_then(source, file, machine, obs, progress, common, |_, _| ());
+    c.map(|(v, _)| v)
+}
+
+/// [`compile_and_print`], running `meanwhile` while the slow checks finish
+/// ([`pipeline::compile_then`]): what it made comes back only with a
+/// program that compiled, and its output is printed before the diagnostics.
+fn compile_and_print_then<R>(
+    source: &str,
+    file: &Path,
+    machine: Option<&str>,
+    obs: &mut dyn Observer,
+    progress: &mut Progress,
+    common: &Common,
+    meanwhile: impl FnOnce(&lmdc::verify::Verified, &mut dyn Observer) -> R,
+) -> Result<(lmdc::verify::Verified, Option<R>), u8> {
     let options = common.options(file, machine);
-    let compiled = pipeline::compile_with(source, &options, &mut progress::Both(obs, progress))
+    let both = &mut progress::Both(obs, progress);
+    let (compiled, made) = pipeline::compile_then(source, &options, both, meanwhile)
         .map_err(|e| messages::fail(file, usage::refused(&e)))?;
     let (color, format) = (common.color, common.format);
     progress.print(|| messages::print(&compiled.diagnostics, file, source, color, format));
     if let Some(code) = common.denied(file, &compiled.diagnostics) {
         return Err(code);
     }
-    compiled.program.ok_or(EXIT_PROGRAM)
+    Ok((compiled.program.ok_or(EXIT_PROGRAM)?, made))
 }
 
 /// What `lmdc build` was asked for.
@@ -493,38 +510,31 @@ fn build(args: BuildArgs<'_>, common: &Common, mut progress: Progress) -> u8 {
         Some(t) => t,
         None => &mut (),
     };
-    let program = match compile_and_print(&source, file, machine, obs, &mut progress, common) {
-        Ok(p) => p,
+    // The programs are written into the staging folder while the arm's
+    // checks finish, and committed only if they pass (`compile_then`).
+    let stage = |program: &lmdc::verify::Verified, obs: &mut dyn Observer| {
+        let what = Staged {
+            out,
+            templates: &templates,
+            plans: emit.contains(&Emit::Plan),
+            ir: emit.contains(&Emit::Ir),
+        };
+        what.write(program, obs)
+    };
+    let (program, staged) =
+        match compile_and_print_then(&source, file, machine, obs, &mut progress, common, stage) {
+            Ok((p, Some(staged))) => (p, staged),
+            // Not staged beside the checks (they all ran first): now.
+            Ok((p, None)) => {
+                let staged = stage(&p, &mut ());
+                (p, staged)
+            }
+            Err(code) => return code,
+        };
+    let sink = match staged {
+        Ok(s) => s,
         Err(code) => return code,
     };
-    let mut sink = match sink::AtomicDir::new(out) {
-        Ok(s) => s,
-        Err(e) => {
-            let why = format!("cannot create the output directory {}: {e}", shown(out));
-            return messages::fail(file, usage::output(&why));
-        }
-    };
-    let timed: &mut dyn Observer = match clock.as_mut() {
-        Some(t) => t,
-        None => &mut (),
-    };
-    let mut inner = progress::Both(timed, &mut progress);
-    if let Err(code) = write_programs(&program, &templates, &mut sink, &mut inner, out) {
-        return code;
-    }
-    if emit.contains(&Emit::Plan) {
-        if let Err(code) = write_plans(&program, &mut sink) {
-            return code;
-        }
-    }
-    if emit.contains(&Emit::Ir) {
-        if let Err(code) = write_ir(&program, &mut sink) {
-            return code;
-        }
-        if let Some(t) = clock.as_mut() {
-            t.stage("emit IR");
-        }
-    }
     let paths = match sink.commit() {
         Ok(p) => p,
         Err(e) => {
@@ -542,6 +552,45 @@ fn build(args: BuildArgs<'_>, common: &Common, mut progress: Progress) -> u8 {
         eprintln!("wrote {}", shown(&p));
     }
     0
+}
+
+/// What a build writes into its staging folder: the programs, and the
+/// plans and the IR when asked.
+struct Staged<'a> {
+    out: &'a Path,
+    templates: &'a Templates,
+    plans: bool,
+    ir: bool,
+}
+
+impl Staged<'_> {
+    /// Writes `program`'s files into a staging folder of `out` and flushes
+    /// them to disk: the sink to commit, or a usage exit code (printed).
+    fn write(
+        &self,
+        program: &lmdc::verify::Verified,
+        obs: &mut dyn Observer,
+    ) -> Result<sink::AtomicDir, u8> {
+        let out = self.out;
+        let mut sink = sink::AtomicDir::new(out).map_err(|e| {
+            let why = format!("cannot create the output directory {}: {e}", shown(out));
+            messages::fail(Path::new(""), usage::output(&why))
+        })?;
+        write_programs(program, self.templates, &mut sink, obs, out)?;
+        if self.plans {
+            write_plans(program, &mut sink)?;
+        }
+        if self.ir {
+            write_ir(program, &mut sink)?;
+            obs.stage("emit IR");
+        }
+        sink.flush().map_err(|e| {
+            let why = format!("writing into {}: {e}", shown(out));
+            messages::fail(Path::new(""), usage::output(&why))
+        })?;
+        obs.stage("flush");
+        Ok(sink)
+    }
 }
 
 /// The set of files a build writes for `machine` (`None`: the IR).

@@ -130,6 +130,8 @@ pub struct AtomicDir {
     count: Rc<Cell<usize>>,
     /// `(set, number of files written when it ended)`.
     sets: Vec<(SetKey, usize)>,
+    /// How many of `files` are flushed to disk.
+    flushed: usize,
     /// The journal is written: the staging folder must stay until done.
     journaled: bool,
     _lock: DirLock,
@@ -162,6 +164,7 @@ impl AtomicDir {
             names: HashSet::new(),
             count: Rc::new(Cell::new(0)),
             sets: Vec::new(),
+            flushed: 0,
             journaled: false,
             _lock: lock,
         })
@@ -180,11 +183,11 @@ impl AtomicDir {
         self.sets.push((key, files_so_far.min(self.files.len())));
     }
 
-    /// Flushes every file to disk and replaces, for each set written, the
-    /// files the previous build of that set wrote by the new ones. Returns
-    /// the paths written.
-    pub fn commit(mut self) -> io::Result<Vec<PathBuf>> {
-        for name in &self.files {
+    /// Flushes the files written so far to disk (the staging folder only:
+    /// nothing in the directory changes). A build flushes while the last
+    /// checks run; [`Self::commit`] flushes what is left.
+    pub fn flush(&mut self) -> io::Result<()> {
+        for name in &self.files[self.flushed..] {
             // Reopened to flush: a build of thousands of modules cannot keep
             // them all open.
             OpenOptions::new()
@@ -192,7 +195,15 @@ impl AtomicDir {
                 .open(self.staging.join(name))?
                 .sync_all()?;
         }
-        sync_dir(&self.staging)?;
+        self.flushed = self.files.len();
+        sync_dir(&self.staging)
+    }
+
+    /// Flushes every file to disk and replaces, for each set written, the
+    /// files the previous build of that set wrote by the new ones. Returns
+    /// the paths written.
+    pub fn commit(mut self) -> io::Result<Vec<PathBuf>> {
+        self.flush()?;
 
         // The sets this build writes, with their files.
         let mut new_sets: Vec<FileSet> = Vec::new();

@@ -148,20 +148,10 @@ impl<'a> VerifiedMachine<'a> {
 /// the rules' diagnostics, and the summary.
 fn machine_rules(p: &Program, i: usize) -> (Diagnostics, Option<(usize, Summary)>) {
     let mut d = Diagnostics::new();
-    let Some(m) = p.machines.get(i) else {
+    let Some(cx) = machine_cx(p, i) else {
         return (d, None);
     };
-    let origin = p
-        .origins
-        .machines
-        .get(i)
-        .cloned()
-        .unwrap_or_else(|| MachineOrigin::new(Default::default()));
-    let cx = MachineCx {
-        program: p,
-        machine: m,
-        origin: &origin,
-    };
+    let m = cx.machine;
     let mut walk = (rules::PlanRules::new(&cx), summary::Summarize::new(p, m));
     Plan::new(p, m).walk(&mut walk);
     let (rules, summary) = walk;
@@ -191,12 +181,21 @@ fn run(list: &[rules::Check], cx: &ProgramCx<'_>) -> Diagnostics {
 /// Checks `program` and the plans of the `select`ed machines; returns the proof,
 /// or every error and warning found.
 pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics> {
-    let p = &program;
-    let alone = ProgramCx {
-        program: p,
-        plans: &[],
-    };
-    let mut diags = run(rules::BEFORE_PLANS, &alone);
+    verify_with(program, select, Provenance::default(), |_, _| ()).0
+}
+
+/// [`verify`], running `meanwhile` on the program while the slow rules (a
+/// robot's arm: every move solved) are still following the plans, once every
+/// other rule has passed; it is told whether any slow rule is running. What
+/// `meanwhile` made is given back only if the slow rules pass too: a build writes its programs into a staging folder
+/// meanwhile and commits them only then, so a plan the arm cannot follow
+/// writes nothing, and the writers run on the core the arm leaves them.
+pub fn verify_with<R>(
+    program: Program,
+    select: Select,
+    provenance: Provenance,
+    meanwhile: impl FnOnce(&Verified, bool) -> R,
+) -> (Result<Verified, Diagnostics>, Option<R>) {
     let machines: Vec<usize> = match select {
         Select::All => (0..program.machines.len()).collect(),
         Select::One(i) => (i < program.machines.len())
@@ -204,25 +203,40 @@ pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics>
             .into_iter()
             .collect(),
     };
-    let mut plans = Vec::new();
-    // A plan through non-finite points would only repeat that error.
-    if !diags.iter().any(|d| d.code == Code::NonFinite) {
-        // The rules beside the plans and each machine's plan read the IR
-        // only: they run side by side, and report in this fixed order.
-        let (beside, walked) = std::thread::scope(|s| {
-            let beside = s.spawn(move || run(rules::BESIDE_PLANS, &alone));
-            let walked: Vec<_> = machines
-                .iter()
-                .map(|&i| s.spawn(move || machine_rules(p, i)))
-                .collect();
-            (
-                beside.join(),
-                walked.into_iter().map(|h| h.join()).collect::<Vec<_>>(),
-            )
-        });
-        diags.extend(beside.unwrap_or_else(|e| std::panic::resume_unwind(e)));
-        for r in walked {
-            let (d, summary) = r.unwrap_or_else(|e| std::panic::resume_unwind(e));
+    let mut v = Verified {
+        program,
+        machines: Vec::new(),
+        warnings: Diagnostics::new(),
+        provenance,
+    };
+    let (diags, made) = std::thread::scope(|s| {
+        let p = &v.program;
+        let alone = ProgramCx {
+            program: p,
+            plans: &[],
+        };
+        let mut diags = run(rules::BEFORE_PLANS, &alone);
+        // A plan through non-finite points would only repeat that error.
+        if diags.iter().any(|d| d.code == Code::NonFinite) {
+            return (diags, None);
+        }
+        // Every rule reads the IR only: the slow rules, the rules beside
+        // the plans and each machine's plan run side by side, and report
+        // in this fixed order.
+        let slow: Vec<_> = machines
+            .iter()
+            .filter_map(|&i| slow_rules(p, i))
+            .map(|walk| s.spawn(walk))
+            .collect();
+        let beside = s.spawn(move || run(rules::BESIDE_PLANS, &alone));
+        let walked: Vec<_> = machines
+            .iter()
+            .map(|&i| s.spawn(move || machine_rules(p, i)))
+            .collect();
+        diags.extend(joined(beside));
+        let mut plans = Vec::new();
+        for h in walked {
+            let (d, summary) = joined(h);
             diags.extend(d);
             plans.extend(summary);
         }
@@ -231,16 +245,51 @@ pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics>
             plans: &plans,
         };
         diags.extend(run(rules::AFTER_PLANS, &after));
-    }
-
+        v.machines = plans;
+        let mut made = None;
+        if !diags.has_errors() {
+            v.warnings = diags.clone();
+            made = Some(meanwhile(&v, !slow.is_empty()));
+        }
+        for h in slow {
+            diags.extend(joined(h));
+        }
+        (diags, made)
+    });
     if diags.has_errors() {
-        Err(diags)
+        (Err(diags), None)
     } else {
-        Ok(Verified {
-            program,
-            machines: plans,
-            warnings: diags,
-            provenance: Provenance::default(),
-        })
+        v.warnings = diags;
+        (Ok(v), made)
     }
+}
+
+/// What a rule's thread returned; its panic, passed on.
+fn joined<T>(h: std::thread::ScopedJoinHandle<'_, T>) -> T {
+    h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))
+}
+
+/// Machine `i`'s slow rules, as a walk to run on a thread of its own, where
+/// any applies.
+fn slow_rules(p: &Program, i: usize) -> Option<impl FnOnce() -> Diagnostics + Send + '_> {
+    let cx = machine_cx(p, i)?;
+    let mut walk = rules::SlowRules::new(&cx);
+    walk.any().then_some(move || {
+        let mut d = Diagnostics::new();
+        Plan::new(p, cx.machine).walk(&mut walk);
+        walk.report(&cx, &mut d);
+        d
+    })
+}
+
+/// What machine `i`'s plan rules see of it.
+fn machine_cx(p: &Program, i: usize) -> Option<MachineCx<'_>> {
+    // IR read without its origins (a test's, a user's JSON) points nowhere.
+    static UNKNOWN: std::sync::LazyLock<MachineOrigin> =
+        std::sync::LazyLock::new(|| MachineOrigin::new(Default::default()));
+    Some(MachineCx {
+        program: p,
+        machine: p.machines.get(i)?,
+        origin: p.origins.machines.get(i).unwrap_or(&UNKNOWN),
+    })
 }

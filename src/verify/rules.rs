@@ -35,22 +35,30 @@ pub(super) const BESIDE_PLANS: &[Check] = &[Stacking::check, Overhang::check];
 /// Rules over what the plans' summaries say the machines would write.
 pub(super) const AFTER_PLANS: &[Check] = &[FileNames::check];
 
-/// Declares [`PlanRules`]: every rule over one machine's plan, each present
-/// where it applies, following the plan together in one pass (static
-/// dispatch: the pass visits millions of moves).
+/// Declares a set of rules over one machine's plan, each present where it
+/// applies, following the plan together in one pass (static dispatch: the
+/// pass visits millions of moves).
 macro_rules! plan_rules {
-    ($($field:ident: $rule:ty),* $(,)?) => {
-        /// Every rule over one machine's plan, in the order they report.
-        pub(super) struct PlanRules<'p> {
+    ($(#[$doc:meta])* $set:ident { $($field:ident: $rule:ty),* $(,)? }) => {
+        $(#[$doc])*
+        pub(super) struct $set<'p> {
             $($field: Option<$rule>,)*
+            _p: std::marker::PhantomData<&'p ()>,
         }
 
-        impl<'p> PlanRules<'p> {
+        impl<'p> $set<'p> {
             /// The rules that apply to `cx`'s machine.
             pub fn new(cx: &MachineCx<'p>) -> Self {
-                PlanRules {
+                $set {
                     $($field: <$rule as PlanRule<'p>>::new(cx),)*
+                    _p: std::marker::PhantomData,
                 }
+            }
+
+            /// Whether any rule of the set applies.
+            #[allow(dead_code, reason = "only the slow set is asked")]
+            pub fn any(&self) -> bool {
+                false $(|| self.$field.is_some())*
             }
 
             /// What each found.
@@ -61,7 +69,7 @@ macro_rules! plan_rules {
             }
         }
 
-        impl Visit for PlanRules<'_> {
+        impl Visit for $set<'_> {
             fn layer(&mut self, index: usize, layer: &Layer) {
                 $(if let Some(r) = &mut self.$field {
                     r.layer(index, layer);
@@ -109,15 +117,28 @@ macro_rules! plan_rules {
 }
 
 plan_rules! {
-    tilt: Tilt,
-    travel: Travel,
-    unwind: CUnwind,
-    axis_speed: AxisSpeed,
-    speed: SpeedLimit<'p>,
-    analog: Analog,
-    resolution: Resolution<'p>,
-    cell: CellRule<'p>,
-    ring: LoopOnMachine,
-    bump: DepositBump<'p>,
-    arm: ArmRule,
+    /// Every rule over one machine's plan but the slow ones, in the order
+    /// they report.
+    PlanRules {
+        tilt: Tilt,
+        travel: Travel,
+        unwind: CUnwind,
+        axis_speed: AxisSpeed,
+        speed: SpeedLimit<'p>,
+        analog: Analog,
+        resolution: Resolution<'p>,
+        cell: CellRule<'p>,
+        ring: LoopOnMachine,
+        bump: DepositBump<'p>,
+    }
+}
+
+plan_rules! {
+    /// The rules that solve every move of a plan: a robot's arm (inverse
+    /// kinematics, seconds on a dense plan). They follow the plan on a walk
+    /// of their own, on another thread, beside the other rules — and, in a
+    /// build, beside the writers ([`super::verify_with`]).
+    SlowRules {
+        arm: ArmRule,
+    }
 }
