@@ -33,6 +33,9 @@ pub struct Compiled {
     pub program: Option<Verified>,
     /// Errors and warnings.
     pub diagnostics: Diagnostics,
+    /// Where the only errors are the slow rules' (a robot's arm): the plan
+    /// every other rule passed, for `lmdc preview` to draw with them.
+    pub refused: Option<verify::Refused>,
 }
 
 /// `--machine NAME` names no machine of the file.
@@ -184,7 +187,7 @@ fn compile_keeping<R>(
     let mut diagnostics = Diagnostics::new();
     let mut from = Provenance::new(source, options.file.as_deref());
     from.set = options.set.iter().map(|s| s.to_string()).collect();
-    let (program, made) = run(
+    let ran = run(
         source,
         options,
         obs,
@@ -196,14 +199,30 @@ fn compile_keeping<R>(
     diagnostics.sort_by_source();
     Ok((
         Compiled {
-            program,
+            program: ran.program,
             diagnostics,
+            refused: ran.refused,
         },
-        made,
+        ran.made,
     ))
 }
 
-type Ran<R> = Result<(Option<Verified>, Option<R>), UsageError>;
+/// What [`run`] gives back besides the diagnostics.
+struct Ran<R> {
+    program: Option<Verified>,
+    made: Option<R>,
+    refused: Option<verify::Refused>,
+}
+
+impl<R> Ran<R> {
+    fn none() -> Ran<R> {
+        Ran {
+            program: None,
+            made: None,
+            refused: None,
+        }
+    }
+}
 
 fn run<R>(
     source: &str,
@@ -213,12 +232,12 @@ fn run<R>(
     keep: Option<&mut Option<Model>>,
     from: Provenance,
     meanwhile: impl FnOnce(&Verified, &mut dyn Observer) -> R,
-) -> Ran<R> {
+) -> Result<Ran<R>, UsageError> {
     let mut ast = match syntax::parse(source) {
         Ok(a) => a,
         Err(d) => {
             diagnostics.push(d);
-            return Ok((None, None));
+            return Ok(Ran::none());
         }
     };
     crate::overrides::apply(&mut ast, &options.set)?;
@@ -229,7 +248,7 @@ fn run<R>(
     diagnostics.extend(d);
     obs.stage("check");
     let Some(model) = model else {
-        return Ok((None, None));
+        return Ok(Ran::none());
     };
     let select = match machine {
         None => Select::All,
@@ -255,7 +274,7 @@ fn run<R>(
         }
         Err(e) => {
             diagnostics.extend(e);
-            return Ok((None, None));
+            return Ok(Ran::none());
         }
     };
     // Only the report keeps the model; a build frees it before verifying.
@@ -271,7 +290,7 @@ fn run<R>(
     let clean = !diagnostics.has_errors();
     // `None` until the other rules passed; then whether the slow ones run on.
     let mut waiting = None;
-    let (mut verified, made) = verify::verify_with(program, select, from, |v, slow| {
+    let out = verify::verify_with(program, select, from, |v, slow| {
         obs.stage("verify");
         waiting = Some(slow);
         clean.then(|| meanwhile(v, obs))
@@ -281,21 +300,27 @@ fn run<R>(
         Some(true) => obs.stage("verify arm"),
         Some(false) => {}
     }
-    if let Err(found) = &mut verified {
-        found.retain(|d| !reported_already(d.code, diagnostics));
-    }
-    match verified {
+    let refused = out.refused.filter(|_| clean);
+    match out.verified {
         Ok(v) if !diagnostics.has_errors() => {
             diagnostics.extend(v.warnings().clone());
-            Ok((Some(v), made.flatten()))
+            Ok(Ran {
+                program: Some(v),
+                made: out.made.flatten(),
+                refused: None,
+            })
         }
         Ok(v) => {
             diagnostics.extend(v.warnings().clone());
-            Ok((None, None))
+            Ok(Ran::none())
         }
-        Err(e) => {
+        Err(mut e) => {
+            e.retain(|d| !reported_already(d.code, diagnostics));
             diagnostics.extend(e);
-            Ok((None, None))
+            Ok(Ran {
+                refused,
+                ..Ran::none()
+            })
         }
     }
 }

@@ -982,3 +982,86 @@ fn chromium_draws_the_rotary_plot_only_for_five_axes() {
         }
     }
 }
+
+/// A plan refused by its arm alone (A5 past its margin) is previewed: the
+/// command exits 1 and writes the page, which lists the error with its
+/// place and fix, and whose axis plot ticks as past the margin exactly the
+/// (layer, axis) pairs whose band leaves it. A plan refused for another
+/// reason is not drawn.
+#[test]
+fn a_plan_refused_for_its_arm_is_drawn_with_its_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("refused.html");
+    let o = Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .args(["preview", "examples/errors/arm_joint_limit.lmd", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("lmd::joint-limit") && err.contains("the refused plan"),
+        "{err}"
+    );
+    let html = std::fs::read_to_string(&out).unwrap();
+    let d = data(&html);
+    let refused = d["meta"]["refused"].as_array().expect("the errors");
+    assert_eq!(refused.len(), 1, "{refused:?}");
+    assert_eq!(refused[0]["code"], "lmd::joint-limit");
+    let msg = refused[0]["message"].as_str().unwrap();
+    assert!(msg.contains("axis A5") && msg.contains("at layer"), "{msg}");
+    assert!(refused[0]["help"].as_str().unwrap().contains("spin"));
+    // The pairs past the margin, from the page's own numbers.
+    let arm = &d["meta"]["arm"];
+    let margin = arm["margin"].as_f64().unwrap();
+    let mut past = 0;
+    for layer in arm["layers"].as_array().unwrap() {
+        for a in 0..6 {
+            let lim = |e: usize| arm["limits"][a][e].as_f64().unwrap();
+            let v = |e: usize| layer[a][e].as_f64().unwrap();
+            if v(0) < lim(0) + margin || v(1) > lim(1) - margin {
+                past += 1;
+            }
+        }
+    }
+    assert!(past >= 1, "A5 goes past its margin");
+    // A built plan carries no list; another error leaves nothing to draw.
+    assert!(data(&page_of("ramp_wall", "kr30"))["meta"]["refused"].is_null());
+    let slow = std::fs::read_to_string("examples/errors/arm_joint_limit.lmd")
+        .unwrap()
+        .replace("max_speed = 250 mm/s", "max_speed = 5 mm/s");
+    let bad = dir.path().join("slow.lmd");
+    std::fs::write(&bad, slow).unwrap();
+    let none = dir.path().join("none.html");
+    let o = Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .args(["preview", bad.to_str().unwrap(), "-o"])
+        .arg(&none)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    assert!(!none.exists());
+
+    let Some(chromium) = chromium() else {
+        skip::skip(
+            "a_plan_refused_for_its_arm_is_drawn_with_its_errors",
+            "chromium",
+            "apt-get install chromium, or set LMDC_CHROMIUM",
+        );
+        return;
+    };
+    let dom = dom(&chromium, &out, "");
+    assert_eq!(attr(&dom, "data-ready").as_deref(), Some("speed"));
+    assert!(attr(&dom, "data-js-error").is_none());
+    assert_eq!(number(&dom, "data-errors"), 1.0);
+    assert_eq!(number(&dom, "data-past-limit"), past as f64);
+    let banner = text_of(&dom, r#"<div id="refused""#);
+    assert!(
+        banner.contains("Refused") && banner.contains("axis A5"),
+        "{banner}"
+    );
+    let note = text_of(&dom, r#"<p id="joints-note""#);
+    assert!(
+        note.contains(&format!("{past} layer-axis pairs go past the margin")),
+        "{note}"
+    );
+}

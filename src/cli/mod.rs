@@ -168,7 +168,8 @@ enum Command {
     },
     /// Write one self-contained HTML page showing a machine's plan in 3-D — coloured by
     /// speed, height, predicted height error, power, style, path kind or layer — with
-    /// per-layer plots of speed, height and height error (docs/preview.md).
+    /// per-layer plots of speed, height and height error (docs/preview.md). A plan refused
+    /// by its robot arm's rules alone is drawn too, its errors heading the page (exit 1).
     Preview {
         /// The .lmd file.
         file: PathBuf,
@@ -434,25 +435,13 @@ fn check(file: &Path, machine: Option<&str>, common: &Common, mut p: Progress) -
 }
 
 /// Compiles `source` (read from `file`) for `machine`, observed by `obs` and
-/// `progress`, and prints its diagnostics above the progress line: the checked program,
-/// or the exit code — usage for a machine the file does not declare, program
-/// errors otherwise (and `--deny-warnings`). What `build` and `preview` share.
-fn compile_and_print(
-    source: &str,
-    file: &Path,
-    machine: Option<&str>,
-    obs: &mut dyn Observer,
-    progress: &mut Progress,
-    common: &Common,
-) -> Result<lmdc::verify::Verified, u8> {
-    let c = compile_and_print_then(source, file, machine, obs, progress, common, |_, _| ());
-    c.map(|(v, _)| v)
-}
-
-/// [`compile_and_print`], running `meanwhile` while the slow checks finish
-/// ([`pipeline::compile_then`]): what it made comes back only with a
-/// program that compiled, and its output is printed before the diagnostics.
-fn compile_and_print_then<R>(
+/// `progress`, running `meanwhile` while the slow checks finish
+/// ([`pipeline::compile_then`]), and prints its diagnostics above the
+/// progress line: the checked program and what `meanwhile` made (only with
+/// a program that compiled; its own output comes before the diagnostics), or
+/// the exit code — usage for a machine the file does not declare, program
+/// errors otherwise (and `--deny-warnings`).
+fn compile_and_print<R>(
     source: &str,
     file: &Path,
     machine: Option<&str>,
@@ -522,7 +511,7 @@ fn build(args: BuildArgs<'_>, common: &Common, mut progress: Progress) -> u8 {
         what.write(program, obs)
     };
     let (program, staged) =
-        match compile_and_print_then(&source, file, machine, obs, &mut progress, common, stage) {
+        match compile_and_print(&source, file, machine, obs, &mut progress, common, stage) {
             Ok((p, Some(staged))) => (p, staged),
             // Not staged beside the checks (they all ran first): now.
             Ok((p, None)) => {

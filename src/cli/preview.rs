@@ -19,27 +19,49 @@ pub fn run(
     let Some(source) = read_source(file) else {
         return EXIT_USAGE;
     };
-    let mut quiet = ();
-    let program =
-        match super::compile_and_print(&source, file, machine, &mut quiet, &mut progress, common) {
-            Ok(p) => p,
-            Err(code) => return code,
-        };
-    // The first machine checked: the one named, else the first declared.
-    let Some(m) = program.machines().next() else {
-        eprintln!("error: the file declares no machine whose plan could be shown");
-        return EXIT_PROGRAM;
+    let options = common.options(file, machine);
+    let compiled = match lmdc::pipeline::compile_with(&source, &options, &mut progress) {
+        Ok(c) => c,
+        Err(e) => return messages::fail(file, usage::refused(&e)),
     };
-    let page = lmdc::preview::html(m);
+    let (color, format) = (common.color, common.format);
+    progress.print(|| messages::print(&compiled.diagnostics, file, &source, color, format));
+    if let Some(code) = common.denied(file, &compiled.diagnostics) {
+        return code;
+    }
+    // A plan refused by its arm alone is drawn with those errors (and the
+    // run still fails); any other error leaves nothing to draw.
+    let (page, part, code) = match (&compiled.program, &compiled.refused) {
+        (Some(program), _) => {
+            // The first machine checked: the one named, else the first declared.
+            let Some(m) = program.machines().next() else {
+                eprintln!("error: the file declares no machine whose plan could be shown");
+                return EXIT_PROGRAM;
+            };
+            (lmdc::preview::html(m), &program.ir().part, 0)
+        }
+        (None, Some(refused)) => match lmdc::preview::refused_html(refused) {
+            Some(page) => (page, &refused.ir().part, EXIT_PROGRAM),
+            None => return EXIT_PROGRAM,
+        },
+        (None, None) => return EXIT_PROGRAM,
+    };
     progress.finish();
     let path: PathBuf = match out {
         Some(p) => p.to_path_buf(),
         None => Path::new("out").join(format!(
             "{}.preview.html",
-            lmdc::target::names::windows_safe(&lmdc::back::identifier(&program.ir().part, 64))
+            lmdc::target::names::windows_safe(&lmdc::back::identifier(part, 64))
         )),
     };
     match write_atomically(&path, page.as_bytes()) {
+        Ok(()) if code != 0 => {
+            eprintln!(
+                "wrote {}: the refused plan, its arm's errors marked (no program is written for it)",
+                shown(&path)
+            );
+            code
+        }
         Ok(()) => {
             eprintln!("wrote {}", shown(&path));
             0

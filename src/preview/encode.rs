@@ -86,8 +86,22 @@ pub struct Meta<'a> {
     pub arm: Option<&'a super::joints::Arm>,
     /// A 5-axis CNC's tilt axis and C layer by layer (`None`: none).
     pub rotary: Option<&'a super::rotary::Rotary>,
+    /// The arm's errors where the plan was refused for them (`None`: the
+    /// plan built).
+    pub refused: Option<Vec<Failure>>,
     /// Who wrote the page.
     pub generator: &'static str,
+}
+
+/// One error of a refused plan, as the page lists it.
+#[derive(Serialize)]
+pub struct Failure {
+    /// Its code (`lmd::joint-limit`).
+    pub code: String,
+    /// What is wrong, and where (layer, path, point).
+    pub message: String,
+    /// What would fix it.
+    pub help: Option<String>,
 }
 
 fn strides<S: serde::Serializer>(d: &Decimation, s: S) -> Result<S::Ok, S::Error> {

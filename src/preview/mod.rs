@@ -26,9 +26,10 @@ pub mod joints;
 mod kind;
 pub mod rotary;
 
+use crate::diag::{Diagnostics, Severity};
 use crate::ir::{Layer, Point};
 use crate::plan::{Move, Speed, Visit, Where};
-use crate::verify::VerifiedMachine;
+use crate::verify::{Refused, VerifiedMachine};
 use encode::Columns;
 use kind::Kind;
 
@@ -192,6 +193,22 @@ pub fn html(machine: VerifiedMachine<'_>) -> String {
 
 /// The preview page with at most about `budget` moves.
 pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
+    page(machine, budget, None)
+}
+
+/// The page of a plan refused only by the arm's rules: drawn as the other
+/// rules passed it, headed by the arm's errors (each names its place), the
+/// axes' plot showing where they go past their margins. `None` when the
+/// refused program has no machine's plan to draw.
+pub fn refused_html(refused: &Refused) -> Option<String> {
+    Some(page(
+        refused.machines().next()?,
+        BUDGET,
+        Some(refused.failures()),
+    ))
+}
+
+fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnostics>) -> String {
     let program = machine.ir();
     let plan = machine.plan();
     let mut count = Count(0);
@@ -233,6 +250,16 @@ pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
         layer_error: &layer_error,
         arm: arm.as_ref(),
         rotary: rotary.as_ref(),
+        refused: failures.map(|f| {
+            f.iter()
+                .filter(|d| d.severity == Severity::Error)
+                .map(|d| encode::Failure {
+                    code: d.code.to_string(),
+                    message: d.message.clone(),
+                    help: d.help.clone(),
+                })
+                .collect()
+        }),
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };
     let data = c.cols.encode(&meta);

@@ -595,7 +595,7 @@
     const gap = 8 * dpr, ph = (H - 7 * gap) / 6;
     const all = range[0] === 0 && range[1] === STARTS.length - 1;
     const shade = STARTS.length && !all ? [STARTS[range[0]][0] - 0.5, STARTS[range[1]][0] + 0.5] : null;
-    let near = 0;
+    let near = 0, past = 0;
     for (let a = 0; a < 6; a++) {
       const lo = L.map((r) => (r ? r[a][0] : NaN)), hi = L.map((r) => (r ? r[a][1] : NaN));
       const [l0, l1] = ARM.limits[a], m0 = l0 + ARM.margin, m1 = l1 - ARM.margin;
@@ -613,21 +613,27 @@
       // Layers near a limit: a red tick under the panel.
       const X_ = (x) => box.left + ((box.right - box.left) * (x - x0)) / (x1 - x0);
       g.fillStyle = "#c0392b";
+      // Past the margin (a refused plan: lmd::joint-limit fails there): a
+      // tick three times as tall.
       for (let k = 0; k < L.length; k++) {
         if (!L[k] || !(L[k][a][0] < m0 + NEAR || L[k][a][1] > m1 - NEAR)) continue;
-        near++;
-        g.fillRect(X_(k + 1) - dpr, box.top + box.height + dpr, 2 * dpr, 3 * dpr);
+        const over = L[k][a][0] < m0 || L[k][a][1] > m1;
+        if (over) past++; else near++;
+        g.fillRect(X_(k + 1) - dpr, box.top + box.height + dpr, 2 * dpr, (over ? 9 : 3) * dpr);
       }
     }
     $("joints-title").textContent = `${ARM.name}: axes A1–A6 layer by layer, lowest to highest angle of each ` +
       `layer's moves (blue), limits (red; dashed: lmd::joint-limit's margin)`;
-    $("joints-note").textContent = (near
+    $("joints-note").textContent = (past
+      ? `${past} layer-axis pairs go past the margin (tall red ticks: lmd::joint-limit fails there). ` : "") +
+      (near
       ? `${near} layer-axis pairs come within ${NEAR}° of the margin (red ticks). `
-      : `Every axis stays more than ${NEAR}° inside its margin. `) +
+      : past ? "" : `Every axis stays more than ${NEAR}° inside its margin. `) +
       `Grey dashed on A3 and A5: lmd::singular-lin's ±${fmt(ARM.singularity)}° about the stretched elbow and A5 = 0. ` +
       (ARM.unreachable ? `${ARM.unreachable} moves out of reach.` : "");
     c.dataset.joints = 6;
     c.dataset.nearLimit = near;
+    c.dataset.pastLimit = past;
   }
 
   // A 5-axis CNC's tilt axis and C layer by layer: each layer's lowest to
@@ -740,6 +746,23 @@
   if (ask.get("view") === "top") Object.assign(view, { yaw: 0, pitch: Math.PI / 2 });
   if (+ask.get("zoom") > 0) view.zoom *= +ask.get("zoom");
 
+  // A plan refused for its arm: the errors head the page, each with its
+  // place and its fix; everything below is the plan the other rules passed.
+  if (M.refused) {
+    const box = $("refused");
+    box.appendChild(el("strong", `Refused: this plan does not build. ${M.refused.length} error` +
+      `${M.refused.length === 1 ? "" : "s"} of the arm's rules (the other rules passed; the plan is drawn ` +
+      `as they checked it, and lmdc build writes no program for it):`));
+    const list = document.createElement("ul");
+    for (const f of M.refused) {
+      const item = el("li", `${f.code}: ${f.message}`);
+      if (f.help) item.appendChild(el("div", `help: ${f.help}`, "help"));
+      list.appendChild(item);
+    }
+    box.appendChild(list);
+    box.hidden = false;
+    box.dataset.errors = M.refused.length;
+  }
   if (ARM) $("armplots").hidden = false;
   if (ROT) $("rotaryplots").hidden = false;
   resize();

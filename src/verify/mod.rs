@@ -181,7 +181,47 @@ fn run(list: &[rules::Check], cx: &ProgramCx<'_>) -> Diagnostics {
 /// Checks `program` and the plans of the `select`ed machines; returns the proof,
 /// or every error and warning found.
 pub fn verify(program: Program, select: Select) -> Result<Verified, Diagnostics> {
-    verify_with(program, select, Provenance::default(), |_, _| ()).0
+    verify_with(program, select, Provenance::default(), |_, _| ()).verified
+}
+
+/// What [`verify_with`] found.
+#[derive(Debug)]
+pub struct Outcome<R> {
+    /// The proof, or every error and warning found.
+    pub verified: Result<Verified, Diagnostics>,
+    /// What the caller's work made, when every rule passed.
+    pub made: Option<R>,
+    /// Where only the slow rules (a robot's arm) failed: the plan every
+    /// other rule passed, for a preview to draw with those failures.
+    pub refused: Option<Refused>,
+}
+
+/// A program every rule passed but the slow ones (a robot's arm): what
+/// `lmdc preview` draws with the arm's failures marked. It cannot reach a
+/// back end: only the preview reads it.
+#[derive(Debug)]
+pub struct Refused {
+    /// The program, its plans' summaries and the other rules' warnings.
+    plan: Verified,
+    /// The slow rules' errors (and warnings).
+    failures: Diagnostics,
+}
+
+impl Refused {
+    /// The checked IR.
+    pub fn ir(&self) -> &Program {
+        self.plan.ir()
+    }
+
+    /// What the slow rules found.
+    pub fn failures(&self) -> &Diagnostics {
+        &self.failures
+    }
+
+    /// The machines whose plans the other rules passed (for the preview).
+    pub(crate) fn machines(&self) -> impl Iterator<Item = VerifiedMachine<'_>> {
+        self.plan.machines()
+    }
 }
 
 /// [`verify`], running `meanwhile` on the program while the slow rules (a
@@ -195,7 +235,7 @@ pub fn verify_with<R>(
     select: Select,
     provenance: Provenance,
     meanwhile: impl FnOnce(&Verified, bool) -> R,
-) -> (Result<Verified, Diagnostics>, Option<R>) {
+) -> Outcome<R> {
     let machines: Vec<usize> = match select {
         Select::All => (0..program.machines.len()).collect(),
         Select::One(i) => (i < program.machines.len())
@@ -209,7 +249,7 @@ pub fn verify_with<R>(
         warnings: Diagnostics::new(),
         provenance,
     };
-    let (diags, made) = std::thread::scope(|s| {
+    let (diags, made, failures) = std::thread::scope(|s| {
         let p = &v.program;
         let alone = ProgramCx {
             program: p,
@@ -218,7 +258,7 @@ pub fn verify_with<R>(
         let mut diags = run(rules::BEFORE_PLANS, &alone);
         // A plan through non-finite points would only repeat that error.
         if diags.iter().any(|d| d.code == Code::NonFinite) {
-            return (diags, None);
+            return (diags, None, None);
         }
         // Every rule reads the IR only: the slow rules, the rules beside
         // the plans and each machine's plan run side by side, and report
@@ -251,16 +291,33 @@ pub fn verify_with<R>(
             v.warnings = diags.clone();
             made = Some(meanwhile(&v, !slow.is_empty()));
         }
+        let passed = !diags.has_errors();
+        let mut failures = Diagnostics::new();
         for h in slow {
-            diags.extend(joined(h));
+            failures.extend(joined(h));
         }
-        (diags, made)
+        diags.extend(failures.clone());
+        (diags, made, passed.then_some(failures))
     });
-    if diags.has_errors() {
-        (Err(diags), None)
-    } else {
-        v.warnings = diags;
-        (Ok(v), made)
+    match failures {
+        _ if !diags.has_errors() => {
+            v.warnings = diags;
+            Outcome {
+                verified: Ok(v),
+                made,
+                refused: None,
+            }
+        }
+        Some(failures) => Outcome {
+            verified: Err(diags),
+            made: None,
+            refused: Some(Refused { plan: v, failures }),
+        },
+        None => Outcome {
+            verified: Err(diags),
+            made: None,
+            refused: None,
+        },
     }
 }
 
