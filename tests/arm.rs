@@ -561,3 +561,81 @@ fn work_beside_the_arm_is_kept_only_when_the_arm_passes() {
     assert!(!ok && made.is_none() && told.is_none(), "{codes:?}");
     assert_eq!(codes, ["lmd::machine-speed"]);
 }
+
+/// A LIN is followed between its ends (`plan::arm::Follow`): a 100 mm move
+/// that also tilts the tool by 20° is solved at 5 mm steps, each pose on the
+/// straight line and turned its share of the way, and each solution puts the
+/// tool there (forward kinematics).
+#[test]
+fn a_long_lin_is_followed_between_its_ends() {
+    use lmdc::plan::arm::{Follow, LIN_STEP_MM};
+    use lmdc::plan::{Move, MoveKind, Speed, Where};
+    let p = build("examples/ramp_wall.lmd");
+    let robot = p
+        .ir()
+        .machines
+        .iter()
+        .find_map(|m| match m {
+            Machine::Robot(r) if r.arm.is_some() => Some(r),
+            _ => None,
+        })
+        .expect("the ramp wall's robot declares an arm");
+    let first = p.ir().layers[0].paths[0].points[0].pos;
+    let start: [f64; 3] =
+        std::array::from_fn(|i| first[i] + if i == 2 { 20.0 } else { 0.0 });
+    let end = [start[0] + 60.0, start[1] + 80.0, start[2]];
+    let tilt = 20f64.to_radians();
+    let mv = |to: [f64; 3], normal: [f32; 3], point: usize| Move {
+        kind: MoveKind::Travel,
+        to,
+        normal,
+        axes: Default::default(),
+        speed: Speed::Feed(50.0),
+        power: 0.0,
+        at: Where::Point {
+            layer: 0,
+            path: 0,
+            point,
+        },
+    };
+    let mut follow = Follow::new(robot).unwrap();
+    follow.push(&mv(start, [0.0, 0.0, 1.0], 0));
+    follow.push(&mv(end, [tilt.sin() as f32, 0.0, tilt.cos() as f32], 1));
+    let solved = follow.take();
+    let n = (100.0 / LIN_STEP_MM) as usize;
+    assert_eq!(solved.len(), 1 + n, "the start, then {n} poses to the end");
+    let beam = |j: &[f64; 6]| {
+        let (_, rot) = follow.solver().forward(j);
+        Vector3::new(rot[(0, 2)], rot[(1, 2)], rot[(2, 2)])
+    };
+    let b0 = beam(&solved[0].joints.unwrap());
+    for (k, s) in solved.iter().enumerate().skip(1) {
+        let t = k as f64 / n as f64;
+        assert!((s.way - t).abs() < 1e-12, "pose {k}: {}", s.way);
+        let j = s.joints.expect("reachable");
+        let (pos, _) = follow.solver().forward(&j);
+        for i in 0..3 {
+            let want = start[i] + t * (end[i] - start[i]);
+            assert!((pos[i] - want).abs() < 1e-6, "pose {k} axis {i}: {pos:?}");
+            assert!((s.m.to[i] - want).abs() < 1e-9);
+        }
+        let turned = b0.angle(&beam(&j)).to_degrees();
+        assert!(
+            (turned - 20.0 * t).abs() < 1e-6,
+            "pose {k}: turned {turned}°"
+        );
+    }
+    assert_eq!(
+        solved[n].m.at,
+        solved[n - 1].m.at,
+        "poses on the way name the move"
+    );
+    let along = lmdc::plan::arm::Along {
+        at: solved[5].m.at,
+        way: solved[5].way,
+    };
+    assert_eq!(
+        along.to_string(),
+        "25 % of the way along the LIN to layer 1, path 1, point 2"
+    );
+}

@@ -783,15 +783,33 @@ fn page_of(example: &str, name: &str) -> String {
 /// Each layer's lowest and highest axis angles, solved here move by move as
 /// the KRL writer solves a program: the tool turned where the normal
 /// changes, each pose by `Solver::solve` from the solution before (from
-/// home for the first) — not the preview's chunked `Follow`.
+/// home for the first), and on a LIN every 5 mm and 2° of turn between its
+/// ends, as the controller moves along it — not the preview's chunked
+/// `Follow`.
 struct Angles {
     solver: lmdc::plan::arm::Solver,
     orient: lmdc::plan::orient::Orienter,
     normal: Option<[f32; 3]>,
     rot: nalgebra::Matrix3<f64>,
     prev: [f64; 6],
+    last: Option<([f64; 3], nalgebra::UnitQuaternion<f64>)>,
     layer: usize,
     layers: Vec<Option<[[f64; 2]; 6]>>,
+}
+
+impl Angles {
+    fn pose(&mut self, to: [f64; 3], rot: &nalgebra::Matrix3<f64>) {
+        let j = *self
+            .solver
+            .solve(to, rot, &self.prev)
+            .first()
+            .expect("a plan that built is within reach");
+        self.prev = j;
+        let r = self.layers[self.layer].get_or_insert([[f64::INFINITY, f64::NEG_INFINITY]; 6]);
+        for (r, a) in r.iter_mut().zip(j) {
+            *r = [r[0].min(a), r[1].max(a)];
+        }
+    }
 }
 
 impl Visit for Angles {
@@ -803,16 +821,22 @@ impl Visit for Angles {
             self.normal = Some(m.normal);
             self.rot = self.orient.rotation(m.normal);
         }
-        let j = *self
-            .solver
-            .solve(m.to, &self.rot, &self.prev)
-            .first()
-            .expect("a plan that built is within reach");
-        self.prev = j;
-        let r = self.layers[self.layer].get_or_insert([[f64::INFINITY, f64::NEG_INFINITY]; 6]);
-        for (r, a) in r.iter_mut().zip(j) {
-            *r = [r[0].min(a), r[1].max(a)];
+        let q = nalgebra::UnitQuaternion::from_rotation_matrix(
+            &nalgebra::Rotation3::from_matrix_unchecked(self.rot),
+        );
+        if let Some((from, q0)) = self.last {
+            let d = nalgebra::distance(&from.into(), &m.to.into());
+            let n = ((d / 5.0).max(q0.angle_to(&q).to_degrees() / 2.0) - 1e-9).ceil() as usize;
+            for k in 1..n {
+                let t = k as f64 / n as f64;
+                let to = std::array::from_fn(|i| from[i] + t * (m.to[i] - from[i]));
+                let rot = q0.slerp(&q, t).to_rotation_matrix().into_inner();
+                self.pose(to, &rot);
+            }
         }
+        self.last = Some((m.to, q));
+        let rot = self.rot;
+        self.pose(m.to, &rot);
     }
 }
 
@@ -832,6 +856,7 @@ fn the_joint_plot_carries_the_angles_the_solver_gives() {
             normal: None,
             rot: nalgebra::Matrix3::identity(),
             prev: r.home,
+            last: None,
             layer: 0,
             layers: vec![None; p.ir().layers.len()],
         };

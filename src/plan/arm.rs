@@ -11,7 +11,7 @@
 
 use crate::ir::{Arm, Pose, Robot};
 use crate::plan::orient::Orienter;
-use crate::plan::Move;
+use crate::plan::{Move, Where};
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use rs_opw_kinematics::glam::{DQuat, DVec3};
 use rs_opw_kinematics::kinematic_traits::{Kinematics, Pose as OpwPose};
@@ -260,11 +260,32 @@ impl Solver {
     }
 }
 
-/// One move of a plan solved by [`Follow`].
+/// Where a pose [`Follow`] solves lies: a move's target, or a pose along
+/// the LIN to it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Along {
+    /// The move's target.
+    pub at: Where,
+    /// How far along the LIN the pose is (1: at its end).
+    pub way: f64,
+}
+
+impl std::fmt::Display for Along {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.way < 1.0 {
+            write!(f, "{:.0} % of the way along the LIN to ", self.way * 100.0)?;
+        }
+        write!(f, "{}", self.at)
+    }
+}
+
+/// One move of a plan solved by [`Follow`] (or a pose along it).
 #[derive(Clone, Copy, Debug)]
 pub struct Solved {
-    /// The move.
+    /// The move (`to` the pose's position, for a pose along it).
     pub m: Move,
+    /// How far along the move the pose is (1: its target).
+    pub way: f64,
     /// The tool's axes at its end (columns, in the base).
     pub rot: Matrix3<f64>,
     /// The axis angles it ends at; `None` where the arm cannot reach.
@@ -280,6 +301,15 @@ pub struct Solved {
 /// before (from `home` for the first). What the verifier's arm rules check
 /// and what the preview plots: one way of solving a plan, in one place.
 ///
+/// A LIN is followed between its ends too: the controller moves the focus
+/// along the straight line and turns the tool steadily from one orientation
+/// to the next, and a pose on the way can be out of reach, past a limit or
+/// singular while both ends are not. So a move longer than [`LIN_STEP_MM`],
+/// or turning the tool by more than [`LIN_STEP_DEG`], is followed through
+/// poses that far apart (each a sub-move of the same move: the rules name
+/// the move). The first move is the PTP from home, which the controller
+/// interpolates in the axes, not along a line.
+///
 /// Moves are buffered and solved [`CHUNK`] at a time on two threads
 /// ([`Solver::solve_many`]), then chosen in order ([`Solver::nearest`]):
 /// [`Follow::push`] says when a chunk is full, [`Follow::take`] solves it.
@@ -288,8 +318,12 @@ pub struct Follow {
     orient: Orienter,
     normal: Option<[f32; 3]>,
     rot: Matrix3<f64>,
-    moves: Vec<Move>,
+    moves: Vec<(Move, f64)>,
     poses: Vec<([f64; 3], Matrix3<f64>)>,
+    /// The last pose pushed (`None` before the first move).
+    last: Option<([f64; 3], UnitQuaternion<f64>)>,
+    /// Whether LINs are followed between their ends.
+    between: bool,
     /// The last solution (home before the first).
     prev: Joints,
     /// No move solved yet: the next is the PTP from home.
@@ -299,6 +333,11 @@ pub struct Follow {
 /// Moves solved together: their poses do not depend on each other, only
 /// the choice among each one's solutions does (`Solver::nearest`).
 pub const CHUNK: usize = 4096;
+
+/// The farthest apart two poses followed along a LIN lie, mm.
+pub const LIN_STEP_MM: f64 = 5.0;
+/// The most the tool turns between two poses followed along a LIN, deg.
+pub const LIN_STEP_DEG: f64 = 2.0;
 
 impl Follow {
     /// The follower of `robot`'s arm, when [`Solver::new`] has one.
@@ -310,14 +349,29 @@ impl Follow {
             rot: Matrix3::identity(),
             moves: Vec::with_capacity(CHUNK),
             poses: Vec::with_capacity(CHUNK),
+            last: None,
+            between: true,
             prev: robot.home,
             first: true,
         })
     }
 
+    /// The same follower solving only the moves pushed, none between:
+    /// for moves picked from a plan, not consecutive ones
+    /// ([`crate::plan::spin`]).
+    pub fn ends_only(mut self) -> Follow {
+        self.between = false;
+        self
+    }
+
     /// The solver.
     pub fn solver(&self) -> &Solver {
         &self.solver
+    }
+
+    /// Poses buffered (moves and the poses between them) and not yet taken.
+    pub fn buffered(&self) -> usize {
+        self.moves.len()
     }
 
     /// Buffers a move; `true` when a chunk is full and should be taken.
@@ -327,7 +381,33 @@ impl Follow {
             self.normal = Some(m.normal);
             self.rot = self.orient.rotation(m.normal);
         }
-        self.moves.push(*m);
+        let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(self.rot));
+        if let Some((from, q0)) = self.last.filter(|_| self.between) {
+            let d = (0..3)
+                .map(|i| (m.to[i] - from[i]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let turn = q0.angle_to(&q).to_degrees();
+            // A move of exactly k steps (a 10 mm retract) has k − 1 poses
+            // between its ends, whatever its last bit.
+            let n = ((d / LIN_STEP_MM).max(turn / LIN_STEP_DEG) - 1e-9).ceil();
+            // A move of millimetres has no pose between; a runaway count
+            // (a non-finite or absurd length) is refused by the other rules.
+            let n = if n.is_finite() {
+                n.min(1e5) as usize
+            } else {
+                1
+            };
+            for k in 1..n {
+                let t = k as f64 / n as f64;
+                let to = std::array::from_fn(|i| from[i] + t * (m.to[i] - from[i]));
+                let rot = q0.try_slerp(&q, t, 1e-12).unwrap_or(q);
+                self.moves.push((Move { to, ..*m }, t));
+                self.poses.push((to, *rot.to_rotation_matrix().matrix()));
+            }
+        }
+        self.last = Some((m.to, q));
+        self.moves.push((*m, 1.0));
         self.poses.push((m.to, self.rot));
         self.moves.len() >= CHUNK
     }
@@ -336,7 +416,8 @@ impl Follow {
     pub fn take(&mut self) -> Vec<Solved> {
         let solved = self.solver.solve_many(&self.poses, 2);
         let mut out = Vec::with_capacity(self.moves.len());
-        for ((m, (_, rot)), (sols, wrist)) in self.moves.iter().zip(&self.poses).zip(solved) {
+        for (((m, way), (_, rot)), (sols, wrist)) in self.moves.iter().zip(&self.poses).zip(solved)
+        {
             // The first move (the PTP from home) as the KRL writer solves it,
             // and a pose at the wrist singularity, by the move before.
             let joints = match (self.first, Solver::nearest(&sols, &self.prev)) {
@@ -350,6 +431,7 @@ impl Follow {
             self.first = false;
             out.push(Solved {
                 m: *m,
+                way: *way,
                 rot: *rot,
                 joints,
                 wrist,

@@ -101,7 +101,8 @@ fn sample(program: &Program, plan: &Plan<'_>) -> Vec<Move> {
 pub fn clearance(robot: &Robot, deg: f64, moves: &[Move]) -> f64 {
     let mut turned = robot.clone();
     turned.spin = Spin::Declared { deg };
-    let Some(mut follow) = Follow::new(&turned) else {
+    // The moves are picked across the plan: nothing lies between them.
+    let Some(mut follow) = Follow::new(&turned).map(Follow::ends_only) else {
         return f64::NEG_INFINITY;
     };
     let mut solved: Vec<Solved> = Vec::with_capacity(moves.len());

@@ -35,7 +35,7 @@ pub struct Arm {
 /// Follows the plan and keeps each layer's ranges.
 struct Collect {
     follow: Follow,
-    /// The layer of each buffered move.
+    /// The layer of each buffered pose.
     pending: Vec<usize>,
     layer: usize,
     arm: Arm,
@@ -68,8 +68,12 @@ impl Visit for Collect {
     }
 
     fn motion(&mut self, m: &Move) {
-        self.pending.push(self.layer);
-        if self.follow.push(m) {
+        let before = self.follow.buffered();
+        let full = self.follow.push(m);
+        // The move, and the poses along a LIN to it, count with its layer.
+        let added = self.follow.buffered() - before;
+        self.pending.extend(std::iter::repeat_n(self.layer, added));
+        if full {
             self.flush();
         }
     }

@@ -6,12 +6,17 @@
 //! the program keeps one configuration. The first move is the PTP from
 //! home; every later one is a LIN, where a singular pose or a change of
 //! configuration stops the controller. Poses are checked where each move
-//! ends: a LIN that crosses A5 = 0 between its ends changes the sign of A5,
-//! and with it the configuration.
+//! ends and along each LIN every [`crate::plan::arm::LIN_STEP_MM`] and
+//! [`crate::plan::arm::LIN_STEP_DEG`] of turn ([`Follow`]): a pose between
+//! the ends of a LIN can break a rule its ends keep.
 
-use super::rule::{MachineCx, PlanRule, Worst};
+use super::rule::{MachineCx, PlanRule};
 use crate::diag::message::verify::arm::{self as msg, ArmAt};
 use crate::diag::Diagnostics;
+use crate::plan::arm::Along;
+
+/// The worst pose of a kind, where it lies (a move's target, or on its way).
+type Worst = crate::diag::Worst<Along>;
 use crate::ir::Machine;
 use crate::plan::arm::{Follow, Joints};
 use crate::plan::{Move, Speed, Visit};
@@ -122,12 +127,23 @@ impl ArmRule {
     /// Solves the buffered moves (on two threads) and follows them in order.
     fn flush(&mut self) {
         for s in self.follow.take() {
-            self.step(&s.m, &s.rot, s.joints, &s.wrist);
+            let at = Along {
+                at: s.m.at,
+                way: s.way,
+            };
+            self.step(&s.m, at, &s.rot, s.joints, &s.wrist);
         }
     }
 
     /// One move reaching axis angles `j` (none: out of reach).
-    fn step(&mut self, m: &Move, rot: &Matrix3<f64>, j: Option<Joints>, wrist: &Vector3<f64>) {
+    fn step(
+        &mut self,
+        m: &Move,
+        at: Along,
+        rot: &Matrix3<f64>,
+        j: Option<Joints>,
+        wrist: &Vector3<f64>,
+    ) {
         for i in 0..3 {
             self.lo[i] = self.lo[i].min(m.to[i]);
             self.hi[i] = self.hi[i].max(m.to[i]);
@@ -137,14 +153,14 @@ impl ArmRule {
             let (d, span) = self.follow.solver().reach(m.to, rot);
             self.span = span;
             let edge = if d > span[1] { span[1] } else { span[0] };
-            Worst::hit(&mut self.reach, d, edge, m.at);
+            Worst::hit(&mut self.reach, d, edge, at);
             self.last = Some(m.to);
             return;
         };
-        self.limits(&j, m);
+        self.limits(&j, at);
         let status = self.follow.solver().status_at(&j, wrist);
         if lin {
-            self.lin(&j, status, m);
+            self.lin(&j, status, m, at);
         }
         self.prev = j;
         self.status = status;
@@ -154,34 +170,34 @@ impl ArmRule {
 
 impl ArmRule {
     /// Each axis within its limits less the margin.
-    fn limits(&mut self, j: &Joints, m: &Move) {
+    fn limits(&mut self, j: &Joints, at: Along) {
         let arm = self.follow.solver().arm();
         for (i, a) in j.iter().enumerate() {
             let [lo, hi] = arm.limits[i];
             let (lo, hi) = (lo + arm.margin, hi - arm.margin);
             if *a < lo {
-                Worst::hit(&mut self.limits[i], *a, lo, m.at);
+                Worst::hit(&mut self.limits[i], *a, lo, at);
             } else if *a > hi {
-                Worst::hit(&mut self.limits[i], *a, hi, m.at);
+                Worst::hit(&mut self.limits[i], *a, hi, at);
             }
         }
     }
 
     /// What a LIN to `j` must keep: away from singularities, one
     /// configuration, the axes within their speeds.
-    fn lin(&mut self, j: &Joints, to: u8, m: &Move) {
+    fn lin(&mut self, j: &Joints, to: u8, m: &Move, at: Along) {
         let thr = self.follow.solver().arm().singularity;
         if j[4].abs() < thr {
-            Worst::hit(&mut self.wrist, j[4].abs(), thr, m.at);
+            Worst::hit(&mut self.wrist, j[4].abs(), thr, at);
         }
         let elbow = (j[2] - self.follow.solver().stretch()).abs();
         if elbow < thr {
-            Worst::hit(&mut self.elbow, elbow, thr, m.at);
+            Worst::hit(&mut self.elbow, elbow, thr, at);
         }
         let from = self.status;
         if from != to {
             let mut slot = self.flip.map(|f| f.0);
-            Worst::hit(&mut slot, 1.0, 0.0, m.at);
+            Worst::hit(&mut slot, 1.0, 0.0, at);
             let keep = self.flip.map_or((from, to), |f| (f.1, f.2));
             self.flip = slot.map(|w| (w, keep.0, keep.1));
         }
@@ -202,7 +218,15 @@ impl ArmRule {
             if rate > speeds[i] {
                 let mut slot = self.speed[i].map(|s| s.0);
                 let worse = slot.is_none_or(|w| rate > w.value);
-                Worst::hit(&mut slot, rate, speeds[i], m.source());
+                Worst::hit(
+                    &mut slot,
+                    rate,
+                    speeds[i],
+                    Along {
+                        at: m.source(),
+                        ..at
+                    },
+                );
                 let speed = match (worse, self.speed[i]) {
                     (false, Some((_, s))) => s,
                     _ => v as f64,

@@ -60,7 +60,7 @@ pub fn joint_limit(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, margin: 
     Diagnostic::error(
         Code::JointLimit,
         format!(
-            "axis A{} of robot `{}` would turn to {}°, {}° past {}° (its limit less the {}° margin), at {} ({} move{})",
+            "axis A{} of robot `{}` would turn to {}°, {}° past {}° (its limit less the {}° margin), at {} ({} pose{})",
             axis + 1,
             a.machine,
             short(w.value),
@@ -124,7 +124,7 @@ pub fn singular_lin(
     Diagnostic::error(
         Code::SingularLin,
         format!(
-            "a LIN of robot `{}` passes {what}, at {} ({} move{})",
+            "a LIN of robot `{}` passes {what}, at {} ({} pose{})",
             a.machine,
             w.at,
             w.count,
@@ -151,7 +151,7 @@ pub fn configuration_flip(a: &ArmAt<'_>, w: &Worst<impl Display>, from: u8, to: 
     Diagnostic::error(
         Code::ConfigurationFlip,
         format!(
-            "a LIN of robot `{}` changes configuration (Status {from:03b} to {to:03b}: {what}) at {}; the controller stops there ({} move{})",
+            "a LIN of robot `{}` changes configuration (Status {from:03b} to {to:03b}: {what}) at {}; the controller stops there ({} pose{})",
             a.machine,
             w.at,
             w.count,
@@ -170,7 +170,7 @@ pub fn joint_speed(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, speed: f
     Diagnostic::error(
         Code::JointSpeed,
         format!(
-            "axis A{} of robot `{}` would have to turn at {}°/s, beyond its {}°/s, to follow the path at {} mm/s at {} ({} move{})",
+            "axis A{} of robot `{}` would have to turn at {}°/s, beyond its {}°/s, to follow the path at {} mm/s at {} ({} pose{})",
             axis + 1,
             a.machine,
             short(w.value),
