@@ -237,7 +237,9 @@ fn run(
         None => drop(model),
     }
     obs.stage("slice");
-    // The free turn about the nozzle axis, where the file leaves it to lmdc.
+    // A positioner's angles, layer by layer, then the free turn about the
+    // nozzle axis, where the file leaves it to lmdc (through the positioner).
+    crate::plan::positioner::choose(&mut program);
     crate::plan::spin::choose(&mut program);
     let mut verified = verify::verify(program, select);
     obs.stage("verify");

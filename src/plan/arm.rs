@@ -10,7 +10,9 @@
 //! ([`crate::target::arm`]). Angles here are degrees.
 
 use crate::ir::{Arm, Pose, Robot};
+use crate::plan::kinematics::Rotary;
 use crate::plan::orient::Orienter;
+use crate::plan::positioner::Kin;
 use crate::plan::Move;
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use rs_opw_kinematics::glam::{DQuat, DVec3};
@@ -48,6 +50,13 @@ impl Solver {
     pub fn new(robot: &Robot) -> Option<Solver> {
         let arm = robot.arm.clone()?;
         let base = frame(&robot.base.value?);
+        // On a positioner the base moves: poses come in the robot's frame
+        // ([`Follow`], [`crate::plan::positioner::Kin::part`]).
+        let base = if robot.positioner.is_some() {
+            Isometry3::identity()
+        } else {
+            base
+        };
         let tool = frame(&robot.tool.value?);
         Some(Solver::with(arm, base, tool))
     }
@@ -265,7 +274,10 @@ impl Solver {
 pub struct Solved {
     /// The move.
     pub m: Move,
-    /// The tool's axes at its end (columns, in the base).
+    /// The focus at its end as the solver takes it: in the base, or in the
+    /// robot's frame through a positioner.
+    pub to: [f64; 3],
+    /// The tool's axes at its end (columns, as `to`).
     pub rot: Matrix3<f64>,
     /// The axis angles it ends at; `None` where the arm cannot reach.
     pub joints: Option<Joints>,
@@ -286,6 +298,8 @@ pub struct Solved {
 pub struct Follow {
     solver: Solver,
     orient: Orienter,
+    /// A positioner carrying the base, and its angles and pose last seen.
+    mount: Option<(Kin, Rotary, Isometry3<f64>)>,
     normal: Option<[f32; 3]>,
     rot: Matrix3<f64>,
     moves: Vec<Move>,
@@ -306,6 +320,10 @@ impl Follow {
         Some(Follow {
             solver: Solver::new(robot)?,
             orient: Orienter::for_robot(robot),
+            mount: Kin::of(robot).map(|k| {
+                let at = k.part([0.0, 0.0]);
+                (k, Rotary::default(), at)
+            }),
             normal: None,
             rot: Matrix3::identity(),
             moves: Vec::with_capacity(CHUNK),
@@ -328,21 +346,37 @@ impl Follow {
             self.rot = self.orient.rotation(m.normal);
         }
         self.moves.push(*m);
-        self.poses.push((m.to, self.rot));
+        let pose = self.pose(m);
+        self.poses.push(pose);
         self.moves.len() >= CHUNK
+    }
+
+    /// The pose of `m` as the solver takes it: the tool as turned last, at
+    /// the focus, through the positioner at the move's angles.
+    fn pose(&mut self, m: &Move) -> ([f64; 3], Matrix3<f64>) {
+        let Some((kin, at, part)) = self.mount.as_mut() else {
+            return (m.to, self.rot);
+        };
+        if *at != m.axes {
+            *at = m.axes;
+            *part = kin.part([m.axes.tilt, m.axes.c]);
+        }
+        let p = *part * nalgebra::Point3::from(m.to);
+        let r = part.rotation.to_rotation_matrix().into_inner() * self.rot;
+        ([p.x, p.y, p.z], r)
     }
 
     /// Solves the buffered moves and returns them in order.
     pub fn take(&mut self) -> Vec<Solved> {
         let solved = self.solver.solve_many(&self.poses, 2);
         let mut out = Vec::with_capacity(self.moves.len());
-        for ((m, (_, rot)), (sols, wrist)) in self.moves.iter().zip(&self.poses).zip(solved) {
+        for ((m, (to, rot)), (sols, wrist)) in self.moves.iter().zip(&self.poses).zip(solved) {
             // The first move (the PTP from home) as the KRL writer solves it,
             // and a pose at the wrist singularity, by the move before.
             let joints = match (self.first, Solver::nearest(&sols, &self.prev)) {
                 (false, Some(j)) => Some(j),
                 _ if sols.is_empty() => None,
-                _ => self.solver.solve(m.to, rot, &self.prev).first().copied(),
+                _ => self.solver.solve(*to, rot, &self.prev).first().copied(),
             };
             if let Some(j) = joints {
                 self.prev = j;
@@ -350,6 +384,7 @@ impl Follow {
             self.first = false;
             out.push(Solved {
                 m: *m,
+                to: *to,
                 rot: *rot,
                 joints,
                 wrist,

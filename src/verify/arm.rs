@@ -13,10 +13,9 @@ use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::message::verify::arm::{self as msg, ArmAt};
 use crate::diag::Diagnostics;
 use crate::ir::Machine;
-use crate::plan::arm::{Follow, Joints};
+use crate::plan::arm::{Follow, Joints, Solved};
 use crate::plan::{Move, Speed, Visit};
 use crate::sema::schema::machine::{ARM, BASE, HOME, SINGULARITY, TOOL};
-use nalgebra::{Matrix3, Vector3};
 
 /// The arm rules of one robot.
 pub(super) struct ArmRule {
@@ -122,19 +121,20 @@ impl ArmRule {
     /// Solves the buffered moves (on two threads) and follows them in order.
     fn flush(&mut self) {
         for s in self.follow.take() {
-            self.step(&s.m, &s.rot, s.joints, &s.wrist);
+            self.step(&s, s.joints);
         }
     }
 
     /// One move reaching axis angles `j` (none: out of reach).
-    fn step(&mut self, m: &Move, rot: &Matrix3<f64>, j: Option<Joints>, wrist: &Vector3<f64>) {
+    fn step(&mut self, s: &Solved, j: Option<Joints>) {
+        let (m, wrist) = (&s.m, &s.wrist);
         for i in 0..3 {
             self.lo[i] = self.lo[i].min(m.to[i]);
             self.hi[i] = self.hi[i].max(m.to[i]);
         }
         let lin = self.last.is_some();
         let Some(j) = j else {
-            let (d, span) = self.follow.solver().reach(m.to, rot);
+            let (d, span) = self.follow.solver().reach(s.to, &s.rot);
             self.span = span;
             let edge = if d > span[1] { span[1] } else { span[0] };
             Worst::hit(&mut self.reach, d, edge, m.at);

@@ -10,6 +10,7 @@ use super::height_loop::{LoopAnalysis, LoopOnMachine};
 use super::machine::{Analog, SpeedLimit, Tilt, Travel};
 use super::names::FileNames;
 use super::overhang::Overhang;
+use super::positioner::PositionerRule;
 use super::process::ProcessRules;
 use super::resolution::Resolution;
 use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
@@ -120,4 +121,5 @@ plan_rules! {
     ring: LoopOnMachine,
     bump: DepositBump<'p>,
     arm: ArmRule,
+    positioner: PositionerRule,
 }
