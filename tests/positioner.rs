@@ -293,3 +293,53 @@ fn fixed_and_cone_keep_what_they_say() {
         "{changes} changes over 281 layers"
     );
 }
+
+/// E2 held within ±45° with the duct's bend axis square to the tilt axis
+/// (the base not turned on the flange): every layer that leans needs E2 at
+/// ±90° to bring its bend round to the tilt axis — here computed from the
+/// bend axis, the duct's Y, turned onto the tilt axis, the robot's X — and
+/// neither fits. The error names E2, ±90° and every leaning layer.
+#[test]
+fn e2_beyond_its_limits_is_refused_with_its_angle() {
+    let src = std::fs::read_to_string(EXAMPLE)
+        .unwrap()
+        .replace("base = frame(1, a = 90 deg)", "base = frame(1)")
+        .replace(
+            "rotate_limits = -360 deg .. 360 deg",
+            "rotate_limits = -45 deg .. 45 deg",
+        );
+    let ok = build(&std::fs::read_to_string(EXAMPLE).unwrap());
+    let leaning = ok
+        .ir()
+        .layers
+        .iter()
+        .filter(|l| mean_normal(l).angle(&Vector3::z()) > 1e-9)
+        .count();
+    // The turn about Z taking the bend axis (Y) onto the tilt axis (X).
+    let (bend, tilt) = (Vector3::<f64>::y(), Vector3::<f64>::x());
+    let need = bend
+        .cross(&tilt)
+        .z
+        .atan2(bend.dot(&tilt))
+        .to_degrees()
+        .abs();
+    let c = lmdc::pipeline::compile(&src, &mut ());
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == Code::PositionerLimit)
+        .expect("lmd::positioner-limit");
+    assert!(d.message.contains("E2 (rotate)"), "{}", d.message);
+    let shown = lmdc::units::short(need);
+    assert!(
+        d.message.contains(&format!("at {shown}° for layer"))
+            || d.message.contains(&format!("at -{shown}° for layer")),
+        "{} (want ±{shown}°)",
+        d.message
+    );
+    assert!(
+        d.message.contains(&format!("({leaning} layers outside)")),
+        "{} (want {leaning})",
+        d.message
+    );
+}
