@@ -39,6 +39,12 @@ pub const VERSION_CALIBRATED: u32 = 5;
 /// coupon for a layer on the one before.
 pub const VERSION_COUPONS: u32 = 6;
 
+/// Version 7: a robot with a positioner (`Robot::positioner`): its `base`
+/// is where the part's base sits on the positioner's flange, which turns
+/// by each layer's E1 and E2. A version 6 reader would take the base as
+/// fixed in the cell and put every pose somewhere else.
+pub const VERSION_POSITIONER: u32 = 7;
+
 /// Version 3: a segmented [`Ring`] built in one continuous run, with a
 /// height loop that runs on the machine or a fixed speed schedule (a segmented ring's;
 /// ignored, the nominal speeds would run open loop), and the machines'
@@ -65,6 +71,19 @@ pub fn version_for(bead: bool, ring: bool, machines: &[Machine]) -> u32 {
         VERSION_RING
     } else {
         VERSION_BASIC
+    }
+}
+
+/// `version`, or [`VERSION_POSITIONER`] where a robot of `machines` has a
+/// positioner.
+pub fn with_positioner(version: u32, machines: &[Machine]) -> u32 {
+    let positioned = machines
+        .iter()
+        .any(|m| matches!(m, Machine::Robot(r) if r.positioner.is_some()));
+    if positioned {
+        VERSION_POSITIONER
+    } else {
+        version
     }
 }
 
@@ -808,6 +827,68 @@ pub struct Robot {
     /// The tool's turn about the beam (`spin`): free for a coaxial nozzle,
     /// declared or chosen by lmdc ([`crate::plan::spin`]).
     pub spin: Spin,
+    /// A two-axis positioner that turns the part (KUKA external axes E1,
+    /// E2, mathematically coupled): `base` is then where the part's base
+    /// sits on its flange, and every pose is in that moving base.
+    pub positioner: Option<Box<Positioner>>,
+}
+
+/// A robot's two-axis positioner (`positioner { … }`): a tilt axis (KUKA's
+/// E1) fixed in the robot's frame (`$ROBROOT`, taken as `$WORLD`), carrying
+/// a rotate axis (E2) whose flange carries the part's base. Every axis is
+/// given at E1 = E2 = 0; an angle turns right-handed about its direction.
+/// The flange's frame: its origin on the rotate axis at `rotate.point`, Z
+/// along `rotate.direction`, X along the tilt axis (made square to Z).
+/// Lengths mm, angles deg.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+pub struct Positioner {
+    /// E1: the tilt axis.
+    pub tilt: PositionerAxis,
+    /// E2: the rotate axis, at E1 = 0.
+    pub rotate: PositionerAxis,
+    /// How the angles are chosen.
+    pub keep: Keep,
+    /// Each layer's E1 and E2, deg, in layer order (constant over a
+    /// layer): chosen by [`crate::plan::positioner`] after lowering.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub angles: Vec<[f64; 2]>,
+}
+
+/// One axis of a [`Positioner`].
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+pub struct PositionerAxis {
+    /// Its direction in the robot's frame, unit.
+    pub direction: [f64; 3],
+    /// A point of it in the robot's frame, mm.
+    pub point: [f64; 3],
+    /// Its software limits, deg.
+    pub limits: [f64; 2],
+    /// Its top speed, deg/s.
+    pub speed: f64,
+}
+
+/// How a positioner's angles are chosen for each layer.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[serde(tag = "keep", rename_all = "snake_case")]
+pub enum Keep {
+    /// The layer's mean normal turned straight up (the nozzle vertical).
+    Vertical,
+    /// The angles kept while the layer's mean normal is within `deg` of
+    /// straight up; beyond, turned straight up again.
+    Cone {
+        /// deg.
+        deg: f64,
+    },
+    /// These angles for every layer, deg.
+    Fixed {
+        /// E1, deg.
+        e1: f64,
+        /// E2, deg.
+        e2: f64,
+    },
 }
 
 /// The tool's turn about the beam axis, deg, added to the turn lmdc carries
@@ -1203,6 +1284,10 @@ mod wire {
         /// `auto` at 0°, the turn carried from normal to normal).
         #[serde(default, skip_serializing_if = "super::Spin::is_default")]
         spin: super::Spin,
+        /// A two-axis positioner turning the part (E1, E2), with each
+        /// layer's angles; `base` is then on its flange.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        positioner: Option<Box<super::Positioner>>,
         /// Distance the nozzle backs off along the normal between paths that do not
         /// join, mm.
         clearance: f64,
@@ -1302,6 +1387,7 @@ mod wire {
                 max_points_per_module: r.max_points_per_module,
                 arm: r.arm,
                 spin: r.spin,
+                positioner: r.positioner,
             }
         }
     }
@@ -1322,6 +1408,7 @@ mod wire {
                 max_points_per_module: r.max_points_per_module,
                 arm: r.arm,
                 spin: r.spin,
+                positioner: r.positioner,
                 clearance: c.clearance,
                 cell: c.cell,
                 height_sensor: c.height_sensor,

@@ -55,6 +55,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         Some(b) if b.needs_calibrated_version() => ir::VERSION_CALIBRATED,
         _ => ir::version_for(bead.is_some(), ring.is_some(), &machines),
     };
+    let version = ir::with_positioner(version, &machines);
     let program = Program {
         format: FORMAT.into(),
         version,

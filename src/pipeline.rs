@@ -283,7 +283,9 @@ fn run<R>(
         None => drop(model),
     }
     obs.stage("slice");
-    // The free turn about the nozzle axis, where the file leaves it to lmdc.
+    // A positioner's angles, layer by layer, then the free turn about the
+    // nozzle axis, where the file leaves it to lmdc (through the positioner).
+    crate::plan::positioner::choose(&mut program);
     crate::plan::spin::choose(&mut program);
     // The slow rules (an arm's) go on beside `meanwhile`; the stage `verify`
     // ends when the others have, `verify arm` when they have too.

@@ -581,8 +581,7 @@ fn a_long_lin_is_followed_between_its_ends() {
         })
         .expect("the ramp wall's robot declares an arm");
     let first = p.ir().layers[0].paths[0].points[0].pos;
-    let start: [f64; 3] =
-        std::array::from_fn(|i| first[i] + if i == 2 { 20.0 } else { 0.0 });
+    let start: [f64; 3] = std::array::from_fn(|i| first[i] + if i == 2 { 20.0 } else { 0.0 });
     let end = [start[0] + 60.0, start[1] + 80.0, start[2]];
     let tilt = 20f64.to_radians();
     let mv = |to: [f64; 3], normal: [f32; 3], point: usize| Move {

@@ -544,6 +544,33 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
         "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 3 mm, z = 1000 mm) }";
     joint_speed: JointSpeed, DUCT,
         "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = -3 mm, z = 1000 mm) }";
+    // The rotate axis along the tilt axis: the part could only turn.
+    positioner_axes: PositionerAxes, DUCT,
+        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1)  positioner { tilt_axis = [0, 0, 1]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 2]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
+    // The duct's 3° bend on a tilt held within ±1°: neither solution fits.
+    positioner_limit: PositionerLimit, DUCT,
+        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1, a = 90 deg)  positioner { tilt_axis = [1, 0, 0]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -1 deg .. 1 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 1]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
+    positioner_speed: PositionerSpeed, RING,
+        ir("the robot has a positioner whose E2 turns 10° and back layer by layer: the ring's layers run on into each other", |p| {
+            let n = p.layers.len();
+            if let lmdc::ir::Machine::Robot(r) = &mut p.machines[0] {
+                // 10° within one move of a few mm at a few mm/s: tens of °/s.
+                let axis = |d: [f64; 3], at: [f64; 3]| lmdc::ir::PositionerAxis {
+                    direction: d,
+                    point: at,
+                    limits: [-360.0, 360.0],
+                    speed: 5.0,
+                };
+                r.positioner = Some(Box::new(lmdc::ir::Positioner {
+                    tilt: axis([1.0, 0.0, 0.0], [1500.0, 0.0, 500.0]),
+                    rotate: axis([0.0, 0.0, 1.0], [1500.0, 0.0, 650.0]),
+                    keep: lmdc::ir::Keep::Vertical,
+                    angles: (0..n).map(|i| [0.0, 10.0 * (i % 2) as f64]).collect(),
+                }));
+            }
+        });
+    loop_on_positioner: LoopDialect, RING,
+        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 50 mm/s  height_input = 3  height_full_scale = 2 mm  height_delay = 150 ms  base = frame(1)  positioner { tilt_axis = [1, 0, 0]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 1]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
     arm_unchecked: ArmUnchecked, DUCT,
         "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha }";
     // Sinumerik's own system variables in the help, not LinuxCNC's M64.

@@ -82,6 +82,7 @@ fn ring_trace(run: krl_run::Run) -> krl::Trace {
                 module: m.module,
                 ptp: false,
                 config: None,
+                ext: None,
             })
             .collect(),
         ptps: run.ptps,

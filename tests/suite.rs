@@ -42,6 +42,7 @@ mod overhang;
 mod placement;
 mod plan_lines;
 mod planar;
+mod positioner;
 mod preview;
 mod program_text;
 mod progress;

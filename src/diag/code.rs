@@ -205,6 +205,8 @@ codes! {
         "planar slicing with `contours = 0` and no infill: the layers lay no track";
     OutOfRange = "out-of-range", Values,
         "a value outside what its field allows where no code above says more: a robot's `max_speed` beyond what a KUKA controller takes, `axes = 4`; from the IR checks: points whose height, speed or power leave the bead model's or the machine's range";
+    PositionerAxes = "positioner-axes", Values,
+        "a robot's positioner whose axes cannot turn a part: a direction of no length, the tilt and rotate axes parallel, limits whose low end is not below the high, or no `base = frame(…)` to put the part on its flange";
     LayerOutsideProfile = "layer-outside-profile", Values,
         "a field, a `section` or an extrusion's `top` uses `layer` or `layer_z`: only a profile is evaluated per layer (a power schedule is `ramp(…)`)";
     PositionOutsideTop = "position-outside-top", Values,
@@ -340,6 +342,10 @@ codes! {
         "a robot's LIN whose axis solution changes configuration (KUKA's Status: overhead, elbow, wrist flip): the controller stops there; names the move and the bit";
     JointSpeed = "joint-speed", Machines,
         "an axis of a robot's arm would have to turn faster than its top speed to follow a feed move at its path speed (near a singularity a small move turns the wrist far); names the axis, the worst move and the path speed that would keep it within";
+    PositionerLimit = "positioner-limit", Machines,
+        "a robot's positioner axis (E1 tilt, E2 rotate) would stand outside its declared limits for a layer: the angles `keep` asks for cannot be reached; names the axis, the worst layer and the angle";
+    PositionerSpeed = "positioner-speed", Machines,
+        "a robot's positioner axis (E1, E2) would have to turn faster than its declared speed on a feed move (layers that join without a travel between them); names the axis and the worst move";
 
     ArmUnchecked = "arm-unchecked", Warnings,
         "a robot declares an `arm` but its `base` or `tool` is only an index into the controller's table (`base = 1`): lmdc cannot solve the poses, so reach, axis limits and singularities are not checked; says how to declare the value";

@@ -10,7 +10,9 @@
 //! ([`crate::target::arm`]). Angles here are degrees.
 
 use crate::ir::{Arm, Pose, Robot};
+use crate::plan::kinematics::Rotary;
 use crate::plan::orient::Orienter;
+use crate::plan::positioner::Kin;
 use crate::plan::{Move, Where};
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use rs_opw_kinematics::glam::{DQuat, DVec3};
@@ -48,6 +50,13 @@ impl Solver {
     pub fn new(robot: &Robot) -> Option<Solver> {
         let arm = robot.arm.clone()?;
         let base = frame(&robot.base.value?);
+        // On a positioner the base moves: poses come in the robot's frame
+        // ([`Follow`], [`crate::plan::positioner::Kin::part`]).
+        let base = if robot.positioner.is_some() {
+            Isometry3::identity()
+        } else {
+            base
+        };
         let tool = frame(&robot.tool.value?);
         Some(Solver::with(arm, base, tool))
     }
@@ -286,7 +295,10 @@ pub struct Solved {
     pub m: Move,
     /// How far along the move the pose is (1: its target).
     pub way: f64,
-    /// The tool's axes at its end (columns, in the base).
+    /// The focus at its end as the solver takes it: in the base, or in the
+    /// robot's frame through a positioner.
+    pub to: [f64; 3],
+    /// The tool's axes at its end (columns, as `to`).
     pub rot: Matrix3<f64>,
     /// The axis angles it ends at; `None` where the arm cannot reach.
     pub joints: Option<Joints>,
@@ -316,12 +328,15 @@ pub struct Solved {
 pub struct Follow {
     solver: Solver,
     orient: Orienter,
+    /// A positioner carrying the base, and its angles and pose last seen.
+    mount: Option<(Kin, Rotary, Isometry3<f64>)>,
     normal: Option<[f32; 3]>,
     rot: Matrix3<f64>,
     moves: Vec<(Move, f64)>,
     poses: Vec<([f64; 3], Matrix3<f64>)>,
-    /// The last pose pushed (`None` before the first move).
-    last: Option<([f64; 3], UnitQuaternion<f64>)>,
+    /// The last move's focus, tool and positioner axes (`None` before the
+    /// first move).
+    last: Option<([f64; 3], UnitQuaternion<f64>, Rotary)>,
     /// Whether LINs are followed between their ends.
     between: bool,
     /// The last solution (home before the first).
@@ -345,6 +360,10 @@ impl Follow {
         Some(Follow {
             solver: Solver::new(robot)?,
             orient: Orienter::for_robot(robot),
+            mount: Kin::of(robot).map(|k| {
+                let at = k.part([0.0, 0.0]);
+                (k, Rotary::default(), at)
+            }),
             normal: None,
             rot: Matrix3::identity(),
             moves: Vec::with_capacity(CHUNK),
@@ -382,12 +401,17 @@ impl Follow {
             self.rot = self.orient.rotation(m.normal);
         }
         let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(self.rot));
-        if let Some((from, q0)) = self.last.filter(|_| self.between) {
+        if let Some((from, q0, axes)) = self.last.filter(|_| self.between) {
             let d = (0..3)
                 .map(|i| (m.to[i] - from[i]).powi(2))
                 .sum::<f64>()
                 .sqrt();
-            let turn = q0.angle_to(&q).to_degrees();
+            // The tool's turn, and a positioner's axes' (E1, E2).
+            let turn = q0
+                .angle_to(&q)
+                .to_degrees()
+                .max((m.axes.tilt - axes.tilt).abs())
+                .max((m.axes.c - axes.c).abs());
             // A move of exactly k steps (a 10 mm retract) has k − 1 poses
             // between its ends, whatever its last bit.
             let n = ((d / LIN_STEP_MM).max(turn / LIN_STEP_DEG) - 1e-9).ceil();
@@ -400,30 +424,55 @@ impl Follow {
             };
             for k in 1..n {
                 let t = k as f64 / n as f64;
-                let to = std::array::from_fn(|i| from[i] + t * (m.to[i] - from[i]));
-                let rot = q0.try_slerp(&q, t, 1e-12).unwrap_or(q);
-                self.moves.push((Move { to, ..*m }, t));
-                self.poses.push((to, *rot.to_rotation_matrix().matrix()));
+                let lerp = |a: f64, b: f64| a + t * (b - a);
+                let sub = Move {
+                    to: std::array::from_fn(|i| lerp(from[i], m.to[i])),
+                    axes: Rotary {
+                        tilt: lerp(axes.tilt, m.axes.tilt),
+                        c: lerp(axes.c, m.axes.c),
+                    },
+                    ..*m
+                };
+                let turned = q0.try_slerp(&q, t, 1e-12).unwrap_or(q);
+                let pose = self.pose(&sub, *turned.to_rotation_matrix().matrix());
+                self.moves.push((sub, t));
+                self.poses.push(pose);
             }
         }
-        self.last = Some((m.to, q));
+        self.last = Some((m.to, q, m.axes));
         self.moves.push((*m, 1.0));
-        self.poses.push((m.to, self.rot));
+        let pose = self.pose(m, self.rot);
+        self.poses.push(pose);
         self.moves.len() >= CHUNK
+    }
+
+    /// The pose of `m` as the solver takes it: the tool turned `rot`, at
+    /// the focus, through the positioner at the move's angles.
+    fn pose(&mut self, m: &Move, rot: Matrix3<f64>) -> ([f64; 3], Matrix3<f64>) {
+        let Some((kin, at, part)) = self.mount.as_mut() else {
+            return (m.to, rot);
+        };
+        if *at != m.axes {
+            *at = m.axes;
+            *part = kin.part([m.axes.tilt, m.axes.c]);
+        }
+        let p = *part * nalgebra::Point3::from(m.to);
+        let r = part.rotation.to_rotation_matrix().into_inner() * rot;
+        ([p.x, p.y, p.z], r)
     }
 
     /// Solves the buffered moves and returns them in order.
     pub fn take(&mut self) -> Vec<Solved> {
         let solved = self.solver.solve_many(&self.poses, 2);
         let mut out = Vec::with_capacity(self.moves.len());
-        for (((m, way), (_, rot)), (sols, wrist)) in self.moves.iter().zip(&self.poses).zip(solved)
+        for (((m, way), (to, rot)), (sols, wrist)) in self.moves.iter().zip(&self.poses).zip(solved)
         {
             // The first move (the PTP from home) as the KRL writer solves it,
             // and a pose at the wrist singularity, by the move before.
             let joints = match (self.first, Solver::nearest(&sols, &self.prev)) {
                 (false, Some(j)) => Some(j),
                 _ if sols.is_empty() => None,
-                _ => self.solver.solve(m.to, rot, &self.prev).first().copied(),
+                _ => self.solver.solve(*to, rot, &self.prev).first().copied(),
             };
             if let Some(j) = joints {
                 self.prev = j;
@@ -432,6 +481,7 @@ impl Follow {
             out.push(Solved {
                 m: *m,
                 way: *way,
+                to: *to,
                 rot: *rot,
                 joints,
                 wrist,

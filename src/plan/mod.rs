@@ -83,6 +83,7 @@ pub mod arm;
 pub mod kinematics;
 pub mod lines;
 pub mod orient;
+pub mod positioner;
 pub mod profile;
 pub mod spin;
 pub mod table;
@@ -200,7 +201,8 @@ pub struct Move {
     pub to: [f64; 3],
     /// The nozzle direction at the target (the IR normal: up the nozzle).
     pub normal: [f32; 3],
-    /// The rotary axes at the target on a tilting head; zero elsewhere.
+    /// The rotary axes at the target on a tilting head or table; a robot's
+    /// positioner's E1 (`tilt`) and E2 (`c`); zero elsewhere.
     pub axes: Rotary,
     /// How fast.
     pub speed: Speed,
@@ -348,6 +350,9 @@ pub struct Plan<'a> {
     /// A CNC's safe height: declared, else the highest focus plus the
     /// clearance (none on a robot, which starts and ends at home).
     safe: Option<f64>,
+    /// A robot's positioner's angles, each layer's E1 and E2 (deg): a
+    /// move's `axes` (tilt E1, C E2), the part's base turning with them.
+    held: Option<&'a [[f64; 2]]>,
 }
 
 /// The height a CNC lifts to first and ends at: `declared`, else
@@ -401,6 +406,10 @@ impl<'a> Plan<'a> {
             Machine::Cnc(c) => Some(safe_height(program, c.safe_height, common.clearance)),
             Machine::Robot(_) => None,
         };
+        let held = match machine {
+            Machine::Robot(r) => r.positioner.as_ref().map(|p| p.angles.as_slice()),
+            Machine::Cnc(_) => None,
+        };
         Plan {
             program,
             head,
@@ -408,7 +417,19 @@ impl<'a> Plan<'a> {
             cell: machine.cell(),
             lead,
             safe,
+            held,
         }
+    }
+
+    /// A robot's positioner's angles for layer `li` (its last layer's
+    /// beyond them, zero where it has none), as the moves' `axes`.
+    fn held(&self, li: usize) -> Option<Rotary> {
+        let a = self.held?;
+        let e = a.get(li).or(a.last()).copied().unwrap_or_default();
+        Some(Rotary {
+            tilt: e[0],
+            c: e[1],
+        })
     }
 
     /// Whether runs of deposits start on a lead-in and end with a lead-out.
@@ -652,6 +673,10 @@ impl<V: Visit> Walker<'_, '_, V> {
                 self.transition((li, pi, first_in_layer), first, feed_in, powder)
             }
         };
+        if let Some(r) = self.plan.held(li) {
+            // A path that joins across layers turns the positioner on.
+            cur.axes = r;
+        }
         self.retracted = false;
         for (k, seg) in pts.windows(2).enumerate() {
             let (from, to) = (&seg[0], &seg[1]);
@@ -796,6 +821,9 @@ impl<V: Visit> Walker<'_, '_, V> {
     /// can be followed without unwinding ([`kinematics::run_start`]), and
     /// follows the normals on every other transition.
     fn start_axes(&self, li: usize, first: &Point, prev: Rotary, layer_start: bool) -> Rotary {
+        if let Some(r) = self.plan.held(li) {
+            return r;
+        }
         let Head::Tilting(kin, lim) = self.plan.head else {
             return Rotary::default();
         };

@@ -18,10 +18,9 @@ use crate::plan::arm::Along;
 /// The worst pose of a kind, where it lies (a move's target, or on its way).
 type Worst = crate::diag::Worst<Along>;
 use crate::ir::Machine;
-use crate::plan::arm::{Follow, Joints};
+use crate::plan::arm::{Follow, Joints, Solved};
 use crate::plan::{Move, Speed, Visit};
 use crate::sema::schema::machine::{ARM, BASE, HOME, SINGULARITY, TOOL};
-use nalgebra::{Matrix3, Vector3};
 
 /// The arm rules of one robot.
 pub(super) struct ArmRule {
@@ -131,26 +130,20 @@ impl ArmRule {
                 at: s.m.at,
                 way: s.way,
             };
-            self.step(&s.m, at, &s.rot, s.joints, &s.wrist);
+            self.step(&s, at, s.joints);
         }
     }
 
     /// One move reaching axis angles `j` (none: out of reach).
-    fn step(
-        &mut self,
-        m: &Move,
-        at: Along,
-        rot: &Matrix3<f64>,
-        j: Option<Joints>,
-        wrist: &Vector3<f64>,
-    ) {
+    fn step(&mut self, s: &Solved, at: Along, j: Option<Joints>) {
+        let (m, wrist) = (&s.m, &s.wrist);
         for i in 0..3 {
             self.lo[i] = self.lo[i].min(m.to[i]);
             self.hi[i] = self.hi[i].max(m.to[i]);
         }
         let lin = self.last.is_some();
         let Some(j) = j else {
-            let (d, span) = self.follow.solver().reach(m.to, rot);
+            let (d, span) = self.follow.solver().reach(s.to, &s.rot);
             self.span = span;
             let edge = if d > span[1] { span[1] } else { span[0] };
             Worst::hit(&mut self.reach, d, edge, at);

@@ -120,6 +120,12 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
             ));
         }
     }
+    if let Machine::Robot(rb) = m {
+        if rb.positioner.is_some() {
+            let at = origin.at(&machine::POSITIONER_BLOCK);
+            out.push(says::loop_on_positioner(name, at, o.run));
+        }
+    }
     let Some(s) = m.common().height_sensor else {
         out.push(says::no_height_sensor(name, origin.block, o.run));
         return;

@@ -27,6 +27,7 @@ pub mod height_loop;
 mod machine;
 mod names;
 mod overhang;
+mod positioner;
 mod process;
 mod resolution;
 mod rule;

@@ -10,6 +10,7 @@ use super::height_loop::{LoopAnalysis, LoopOnMachine};
 use super::machine::{Analog, SpeedLimit, Tilt, Travel};
 use super::names::FileNames;
 use super::overhang::Overhang;
+use super::positioner::PositionerRule;
 use super::process::ProcessRules;
 use super::resolution::Resolution;
 use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
@@ -130,6 +131,7 @@ plan_rules! {
         cell: CellRule<'p>,
         ring: LoopOnMachine,
         bump: DepositBump<'p>,
+        positioner: PositionerRule,
     }
 }
 

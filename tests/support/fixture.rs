@@ -40,6 +40,7 @@ pub fn robot() -> Robot {
         max_points_per_module: 5000,
         arm: None,
         spin: Default::default(),
+        positioner: None,
     }
 }
 

@@ -37,6 +37,8 @@ pub struct Lin {
     pub ptp: bool,
     /// Its Status and Turn, where it has them.
     pub config: Option<(u8, u8)>,
+    /// A positioner's E1 and E2, where the motion has them (E6POS).
+    pub ext: Option<[f64; 2]>,
 }
 
 /// What running the main program did.
@@ -165,6 +167,24 @@ pub fn number(s: &str) -> Result<f64, String> {
         return Err(format!("`{s}` is not a plain decimal number"));
     }
     s.parse::<f64>().map_err(|e| format!("`{s}`: {e}"))
+}
+
+/// A pose `{X …,Y …,Z …,A …,B …,C …}` followed by `more` keys, with or
+/// without a positioner's `E1 …,E2 …` after `C`: the values without E1 and
+/// E2, and E1 and E2.
+fn with_ext(s: &str, more: &[&str]) -> Result<(Vec<f64>, Option<[f64; 2]>), String> {
+    let pose = ["X", "Y", "Z", "A", "B", "C"];
+    let mut keys: Vec<&str> = pose.to_vec();
+    keys.extend(["E1", "E2"]);
+    keys.extend(more);
+    if let Ok(mut v) = aggregate(s, &keys) {
+        let e = [v[6], v[7]];
+        v.drain(6..8);
+        return Ok((v, Some(e)));
+    }
+    let mut keys = pose.to_vec();
+    keys.extend(more);
+    aggregate(s, &keys).map(|v| (v, None))
 }
 
 /// `{K1 v1,K2 v2,…}` with exactly the keys `keys`.
@@ -314,13 +334,8 @@ impl State<'_> {
         if let Some(rest) = l.strip_prefix("PTP {X ") {
             // A Cartesian PTP (from home), with or without Status and Turn.
             let agg = format!("{{X {rest}");
-            let (v, config) = match aggregate(&agg, &["X", "Y", "Z", "A", "B", "C", "S", "T"]) {
-                Ok(v) => {
-                    let c = Some((v[6] as u8, v[7] as u8));
-                    (v, c)
-                }
-                Err(_) => (aggregate(&agg, &["X", "Y", "Z", "A", "B", "C"])?, None),
-            };
+            let (v, ext) = with_ext(&agg, &["S", "T"]).or_else(|_| with_ext(&agg, &[]))?;
+            let config = (v.len() == 8).then(|| (v[6] as u8, v[7] as u8));
             if self.laser || !triggers.is_empty() {
                 return Err("PTP with the laser on or a trigger".into());
             }
@@ -337,6 +352,7 @@ impl State<'_> {
                 module: module.to_string(),
                 ptp: true,
                 config,
+                ext,
             });
             return Ok(false);
         }
@@ -345,8 +361,8 @@ impl State<'_> {
                 Some(a) => (a, true),
                 None => (rest, false),
             };
-            let v = aggregate(agg, &["X", "Y", "Z", "A", "B", "C"])?;
-            for (k, a) in v[3..].iter().enumerate() {
+            let (v, ext) = with_ext(agg, &[])?;
+            for (k, a) in v[3..6].iter().enumerate() {
                 let lim = if k == 1 { 90.0 } else { 180.0 };
                 if a.abs() > lim || (k != 1 && *a == -180.0) {
                     return Err(format!("orientation angle {a} outside its range"));
@@ -383,6 +399,7 @@ impl State<'_> {
                 module: module.to_string(),
                 ptp: false,
                 config: None,
+                ext,
             });
             for t in at_end {
                 match t {
@@ -492,6 +509,14 @@ impl State<'_> {
             self.anout = number(rhs)?;
             return Ok(false);
         }
+        // A base coupled to a positioner: the base on its flange.
+        if let Some(rhs) = l
+            .strip_prefix("$BASE = EK(MACHINE_DEF[2].ROOT, MACHINE_DEF[2].MECH_TYPE, ")
+            .and_then(|r| r.strip_suffix(')'))
+        {
+            aggregate(rhs, &["X", "Y", "Z", "A", "B", "C"])?;
+            return Ok(false);
+        }
         if let Some(rhs) = l
             .strip_prefix("$TOOL = ")
             .or_else(|| l.strip_prefix("$BASE = "))
@@ -525,6 +550,7 @@ impl State<'_> {
             "$IPO_MODE = #BASE",
             "$ORI_TYPE = #VAR",
             "WAIT SEC 0",
+            "$ACT_EX_AX = 2",
         ];
         if fixed.contains(&l) {
             return Ok(false);

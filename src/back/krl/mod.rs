@@ -221,15 +221,29 @@ impl Visit for Writer<'_, '_> {
             self.rot = self.orient.rotation(m.normal);
             self.abc = orient::abc(&self.rot);
         }
+        // A positioner's E1 and E2 on every motion (E6POS).
+        let ext = self
+            .robot
+            .positioner
+            .as_ref()
+            .map(|_| [m.axes.tilt, m.axes.c]);
         if self.last.is_none() {
             // From home, a PTP to the first pose (above the first point):
             // a LIN from home would start at A5 = 0, the wrist singularity.
             let config = crate::plan::arm::Solver::new(self.robot).and_then(|s| {
-                let j = *s.solve(m.to, &self.rot, &self.robot.home).first()?;
+                let (to, rot) = match crate::plan::positioner::Kin::of(self.robot) {
+                    Some(k) => {
+                        let part = k.part([m.axes.tilt, m.axes.c]);
+                        let rot = part.rotation.to_rotation_matrix().into_inner() * self.rot;
+                        (k.point([m.axes.tilt, m.axes.c], m.to), rot)
+                    }
+                    None => (m.to, self.rot),
+                };
+                let j = *s.solve(to, &rot, &self.robot.home).first()?;
                 Some((s.status(&j), crate::plan::arm::Solver::turn(&j), j))
             });
             self.last = Some(m.kind);
-            self.out.ptp(m.to, self.abc, config);
+            self.out.ptp(m.to, self.abc, ext, config);
             return;
         }
         let speed = match m.speed {
@@ -245,7 +259,7 @@ impl Visit for Writer<'_, '_> {
         }
         let s = self.switch.take();
         self.last = Some(m.kind);
-        self.out.lin(m.to, self.abc, speed, x, s, deposit);
+        self.out.lin(m.to, self.abc, ext, speed, x, s, deposit);
     }
 }
 
@@ -350,6 +364,10 @@ fn main_context(ctx: &mut tera::Context, m: VerifiedMachine<'_>, robot: &Robot, 
     ctx.insert("tool_value", &frame_value(&robot.tool));
     ctx.insert("base_index", &robot.base.index);
     ctx.insert("base_value", &frame_value(&robot.base));
+    ctx.insert(
+        "positioner",
+        &robot.positioner.as_deref().map(positioner_text),
+    );
     ctx.insert("beam", beam_text(robot.beam));
     ctx.insert("spin", &spin_text(robot.spin));
     ctx.insert("laser_out", &robot.laser_out);
@@ -373,6 +391,31 @@ fn main_context(ctx: &mut tera::Context, m: VerifiedMachine<'_>, robot: &Robot, 
     ctx.insert("lin_lines", &s.lin);
     ctx.insert("deposits", &s.deposits);
     ctx.insert("laser_starts", &s.laser_ons);
+}
+
+/// The header's lines on a positioner: its axes, as the controller's
+/// coupled kinematics must have them (docs/robots.md).
+fn positioner_text(p: &crate::ir::Positioner) -> Vec<String> {
+    let v = |a: [f64; 3], d: usize| {
+        let t: Vec<String> = a.iter().map(|c| trimmed(*c, d)).collect();
+        format!("[{}]", t.join(", "))
+    };
+    let axis = |name: &str, a: &crate::ir::PositionerAxis| {
+        format!(
+            "{name} about {} through {} mm, {} .. {} deg, {} deg/s",
+            v(a.direction, 6),
+            v(a.point, 3),
+            trimmed(a.limits[0], 3),
+            trimmed(a.limits[1], 3),
+            trimmed(a.speed, 3)
+        )
+    };
+    vec![
+        axis("E1 (tilt)", &p.tilt),
+        axis("E2 (rotate, at E1 = 0)", &p.rotate),
+        "the base turns with E1 and E2 ($BASE coupled to MACHINE_DEF[2]); every position is in it"
+            .to_string(),
+    ]
 }
 
 /// The header's line on the tool's turn about the beam; empty at the

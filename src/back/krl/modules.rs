@@ -15,8 +15,8 @@ use crate::target::names::KrlNames;
 use std::io::Write;
 
 pub use crate::target::kuka::{ANOUT_DECIMALS, POS_DECIMALS, VEL_DECIMALS};
-/// Room for `,A …,B …,C …}`.
-const ABC_BYTES: usize = 1 + 3 * (3 + MAX_NUMBER);
+/// Room for `,A …,B …,C …,E1 …,E2 …}`.
+const ABC_BYTES: usize = 1 + 3 * (3 + MAX_NUMBER) + 2 * (4 + MAX_NUMBER);
 /// Room for one LIN line: its words, X Y Z and the orientation.
 const LINE: usize = 8 + 3 * (3 + MAX_NUMBER) + ABC_BYTES;
 /// Marker the module template's `body` variable is rendered as, where the motion
@@ -62,8 +62,9 @@ pub struct Modules<'a> {
     at_rest: bool,
     /// `$VEL.CP` written in this module, as a [`key`].
     vel: Option<i64>,
-    /// The orientation of the last LIN and its text `,A …,B …,C …}`.
-    abc_last: Option<Abc>,
+    /// The orientation and external axes of the last LIN and its text
+    /// `,A …,B …,C …}` (`,A …,B …,C …,E1 …,E2 …}` with a positioner).
+    abc_last: Option<(Abc, Option<[f64; 2]>)>,
     abc_text: [u8; ABC_BYTES],
     abc_len: usize,
     /// Layer numbers (1-based) whose comment blocks are in this module.
@@ -149,10 +150,12 @@ impl<'a> Modules<'a> {
     /// laser at the motion's start when asked. The previous LIN is approximated
     /// (`C_DIS`) unless this motion switches the laser, so switches happen at the
     /// programmed points.
+    #[allow(clippy::too_many_arguments)]
     pub fn lin(
         &mut self,
         pos: [f64; 3],
         abc: Abc,
+        ext: Option<[f64; 2]>,
         speed: f64,
         anout: Option<f64>,
         switch: Option<Switch>,
@@ -195,15 +198,21 @@ impl<'a> Modules<'a> {
             }
         }
         // Most lines repeat the orientation of the line before: keep its text.
-        if self.abc_last != Some(abc) {
-            self.abc_last = Some(abc);
+        if self.abc_last != Some((abc, ext)) {
+            self.abc_last = Some((abc, ext));
             let t = &mut self.abc_text;
             t[..3].copy_from_slice(b",A ");
             let at = put_fixed(t, 3, angle_value(abc.a), POS_DECIMALS);
             t[at..at + 3].copy_from_slice(b",B ");
             let at = put_fixed(t, at + 3, abc.b, POS_DECIMALS);
             t[at..at + 3].copy_from_slice(b",C ");
-            let at = put_fixed(t, at + 3, angle_value(abc.c), POS_DECIMALS);
+            let mut at = put_fixed(t, at + 3, angle_value(abc.c), POS_DECIMALS);
+            if let Some([e1, e2]) = ext {
+                t[at..at + 4].copy_from_slice(b",E1 ");
+                at = put_fixed(t, at + 4, e1, POS_DECIMALS);
+                t[at..at + 4].copy_from_slice(b",E2 ");
+                at = put_fixed(t, at + 4, e2, POS_DECIMALS);
+            }
             t[at] = b'}';
             self.abc_len = at + 1;
         }
@@ -231,7 +240,13 @@ impl<'a> Modules<'a> {
     /// and Turn and the axis angles they stand for (as a comment) where
     /// the arm is known (`config`), so the controller takes the
     /// configuration the verifier checked; not approximated.
-    pub fn ptp(&mut self, pos: [f64; 3], abc: Abc, config: Option<(u8, u8, [f64; 6])>) {
+    pub fn ptp(
+        &mut self,
+        pos: [f64; 3],
+        abc: Abc,
+        ext: Option<[f64; 2]>,
+        config: Option<(u8, u8, [f64; 6])>,
+    ) {
         self.end_pending(false);
         self.at_rest = false;
         if self.lines >= self.max_lines {
@@ -251,6 +266,12 @@ impl<'a> Modules<'a> {
         push_fixed(b, abc.b, POS_DECIMALS);
         b.extend_from_slice(b",C ");
         push_fixed(b, angle_value(abc.c), POS_DECIMALS);
+        if let Some([e1, e2]) = ext {
+            b.extend_from_slice(b",E1 ");
+            push_fixed(b, e1, POS_DECIMALS);
+            b.extend_from_slice(b",E2 ");
+            push_fixed(b, e2, POS_DECIMALS);
+        }
         match config {
             Some((s, t, j)) => {
                 b.extend_from_slice(b",S ");

@@ -19,6 +19,7 @@ pub mod hole;
 pub mod internal;
 pub mod machine;
 pub mod mesh;
+pub mod positioner;
 pub mod segmented_ring;
 pub mod shape;
 pub mod slicing;

@@ -5,8 +5,8 @@ use super::super::eval::Env;
 use super::super::fields::{self, Fields};
 use super::super::schema::machine::{
     frame, opw, ARM, BASE, BEAM, CLEARANCE, FRAME, FULL_SCALE, HOME, JOINT_MARGIN, LASER,
-    MAX_ANGLE_DEG, MAX_FRAME_MM, MAX_SPEED, MODULE_LINES, OPW, POWER_OUTPUT, ROBOT, SINGULARITY,
-    SPIN, TOOL,
+    MAX_ANGLE_DEG, MAX_FRAME_MM, MAX_SPEED, MODULE_LINES, OPW, POSITIONER_BLOCK, POWER_OUTPUT,
+    ROBOT, SINGULARITY, SPIN, TOOL,
 };
 use super::super::schema::Field;
 use super::super::value::Value;
@@ -44,9 +44,16 @@ pub(super) fn read<'a>(
         })
         .collect();
     let c = cell::read(env, &f, cell::KUKA, None, &taken, diags);
-    let (mut r, c) = (r?, c?);
+    let positioner = super::positioner::read(env, &f, &mut at, diags);
+    let (mut r, c, positioner) = (r?, c?, positioner?);
+    if let (Some(_), None) = (&positioner, r.base.value) {
+        let block = f.span(&POSITIONER_BLOCK).unwrap_or(span);
+        diags.push(message::positioner::needs_base(block, f.span(&BASE)));
+        return None;
+    }
     at.extend(c.spans);
     r.common.cell = c.cell;
+    r.positioner = positioner.map(Box::new);
     Some((Machine::Robot(r), at))
 }
 
@@ -94,6 +101,7 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
         max_points_per_module: lines?,
         arm: arm?,
         spin: spin?,
+        positioner: None,
     })
 }
 

@@ -370,6 +370,7 @@ pub static ROBOT: Block = Block::new(
         &HEIGHT_DELAY,
         &GAS_BLOCK,
         &POWDER_BLOCK,
+        &POSITIONER_BLOCK,
     ],
 );
 
@@ -745,6 +746,7 @@ pub static MACHINE: Block = Block::new(
         &LIMITS_BLOCK,
         &GAS_BLOCK,
         &POWDER_BLOCK,
+        &POSITIONER_BLOCK,
     ],
 );
 
@@ -906,3 +908,144 @@ pub static POWDER: Block = Block::new(
         &powder::FULL_SCALE,
     ],
 );
+
+/// `positioner { … }`, a robot's.
+pub static POSITIONER_BLOCK: Field = Field::new(
+    "positioner",
+    Nested(&POSITIONER),
+    Optional,
+    "a two-axis positioner turning the part (KUKA external axes E1 tilt, E2 rotate, mathematically coupled): `base` is then where the part's base sits on its flange (docs/robots.md)",
+);
+
+/// `positioner { … }`: a robot's tilt-and-rotate positioner.
+pub static POSITIONER: Block = Block::new(
+    "positioner",
+    "positioner { tilt_axis = [1, 0, 0] … }",
+    "a robot's two-axis positioner: E1 tilts, E2 rotates the part on its flange; axes given in the robot's frame at E1 = E2 = 0",
+    &[
+        &positioner::TILT_AXIS,
+        &positioner::TILT_POINT,
+        &positioner::TILT_LIMITS,
+        &positioner::TILT_SPEED,
+        &positioner::ROTATE_AXIS,
+        &positioner::ROTATE_POINT,
+        &positioner::ROTATE_LIMITS,
+        &positioner::ROTATE_SPEED,
+        &positioner::KEEP,
+    ],
+);
+
+/// `cone(angle)`: a positioner that turns only when the layer leaves the cone.
+pub static CONE: Block = Block::new(
+    "cone",
+    "cone(15 deg)",
+    "keep each layer's mean normal within this angle of straight up, turning only when it leaves",
+    &[&positioner::CONE_ANGLE],
+)
+.positional(1);
+
+/// `fixed(e1, e2)`: a positioner standing still.
+pub static FIXED: Block = Block::new(
+    "fixed",
+    "fixed(e1 = 30 deg, e2 = 0 deg)",
+    "the positioner at these angles for every layer",
+    &[&positioner::E1, &positioner::E2],
+);
+
+/// The fields of `positioner { … }` and its `keep`'s calls.
+pub mod positioner {
+    use super::super::Bound::{Any, Magnitude, Positive};
+    use super::super::DefaultValue::{Quantity as DefaultQuantity, Word as DefaultWord};
+    use super::super::Kind::{self, Call, Either, List, Quantity, Range, Word};
+    use super::super::Need::{Default, Required};
+    use super::super::{Field, Len};
+    use super::MAX_ANGLE_DEG;
+    use crate::units::Dim;
+
+    const DIRECTION: Kind = List(&Quantity(Dim::NONE, Any), Len::Exactly(3));
+    const POINT: Kind = List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3));
+    const ANGLE: Kind = Quantity(
+        Dim::ANGLE,
+        Magnitude(crate::sema::schema::deg(MAX_ANGLE_DEG)),
+    );
+
+    /// `tilt_axis = [1, 0, 0]`.
+    pub static TILT_AXIS: Field = Field::new(
+        "tilt_axis",
+        DIRECTION,
+        Required("[1, 0, 0]"),
+        "E1's direction in the robot's frame (`$ROBROOT`); a positive E1 turns right-handed about it",
+    );
+    /// `tilt_point = [x, y, z]`.
+    pub static TILT_POINT: Field = Field::new(
+        "tilt_point",
+        POINT,
+        Required("[1500 mm, 0 mm, 600 mm]"),
+        "a point of E1's axis in the robot's frame",
+    );
+    /// `tilt_limits = lo .. hi`.
+    pub static TILT_LIMITS: Field = Field::new(
+        "tilt_limits",
+        Range(Dim::ANGLE),
+        Required("-90 deg .. 90 deg"),
+        "E1's software limits",
+    );
+    /// `tilt_speed = 60 deg/s`.
+    pub static TILT_SPEED: Field = Field::new(
+        "tilt_speed",
+        Quantity(Dim::ANGULAR_SPEED, Positive),
+        Required("60 deg/s"),
+        "E1's top speed",
+    );
+    /// `rotate_axis = [0, 0, 1]`.
+    pub static ROTATE_AXIS: Field = Field::new(
+        "rotate_axis",
+        DIRECTION,
+        Required("[0, 0, 1]"),
+        "E2's direction in the robot's frame at E1 = 0: the flange's Z (not along `tilt_axis`)",
+    );
+    /// `rotate_point = [x, y, z]`.
+    pub static ROTATE_POINT: Field = Field::new(
+        "rotate_point",
+        POINT,
+        Required("[1500 mm, 0 mm, 700 mm]"),
+        "the flange's centre, on E2's axis, in the robot's frame at E1 = 0",
+    );
+    /// `rotate_limits = lo .. hi`.
+    pub static ROTATE_LIMITS: Field = Field::new(
+        "rotate_limits",
+        Range(Dim::ANGLE),
+        Required("-360 deg .. 360 deg"),
+        "E2's software limits",
+    );
+    /// `rotate_speed = 90 deg/s`.
+    pub static ROTATE_SPEED: Field = Field::new(
+        "rotate_speed",
+        Quantity(Dim::ANGULAR_SPEED, Positive),
+        Required("90 deg/s"),
+        "E2's top speed",
+    );
+    /// `keep = vertical | cone(…) | fixed(…)`.
+    pub static KEEP: Field = Field::new(
+        "keep",
+        Either(&[Word(&["vertical"]), Call(&[&super::CONE, &super::FIXED])]),
+        Default(DefaultWord("vertical")),
+        "how each layer's E1 and E2 are chosen: `vertical` turns the layer's mean normal straight up (the nozzle vertical), `cone(15 deg)` turns only when it is further than that from up, `fixed(e1 = …, e2 = …)` stands still",
+    );
+    /// `cone(angle)`.
+    pub static CONE_ANGLE: Field = Field::new(
+        "angle",
+        Quantity(Dim::ANGLE, Magnitude(crate::sema::schema::deg(90.0))),
+        Required("15 deg"),
+        "how far from straight up a layer's mean normal may lean before the positioner turns",
+    );
+    /// `e1`.
+    pub static E1: Field = Field::new("e1", ANGLE, Default(DefaultQuantity(0.0)), "E1, the tilt");
+    /// `e2`.
+    pub static E2: Field = Field::new(
+        "e2",
+        ANGLE,
+        Default(DefaultQuantity(0.0)),
+        "E2, the rotation",
+    );
+}

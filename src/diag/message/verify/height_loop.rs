@@ -90,6 +90,19 @@ pub fn loop_on_table_machine(name: &str, output: Span, run: Span) -> Diagnostic 
     .help("`table_output = tcp` runs the loop under the control's transform; or `run = schedule` for an open-loop schedule")
 }
 
+/// A loop on a robot whose part turns on a positioner.
+pub fn loop_on_positioner(name: &str, positioner: Span, run: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::LoopDialect,
+        format!(
+            "the height loop is to run on robot `{name}`, whose part turns on a positioner: the loop's program writes no E1 and E2"
+        ),
+    )
+    .label(positioner, "the positioner")
+    .label(run, "the loop runs on the machine")
+    .help("`run = schedule` writes an open-loop speed schedule, with E1 and E2 on every motion; or build the ring without the positioner")
+}
+
 /// A loop on a machine that declares no height sensor.
 pub fn no_height_sensor(name: &str, block: Span, run: Span) -> Diagnostic {
     Diagnostic::error(
