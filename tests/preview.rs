@@ -1090,3 +1090,47 @@ fn a_plan_refused_for_its_arm_is_drawn_with_its_errors() {
         "{note}"
     );
 }
+
+/// A robot's positioner is plotted as a 5-axis CNC's rotary axes are: E1
+/// and E2 layer by layer against their limits, each layer's band the one
+/// pair of angles the IR gives that layer (the travel into a layer turns
+/// them, counted with the layer it goes to); a robot without one has none.
+#[test]
+fn the_positioners_angles_are_plotted_layer_by_layer() {
+    let p = verified("duct_positioner");
+    let m = p.machines().find(|m| m.machine().name() == "kr60").unwrap();
+    let lmdc::ir::Machine::Robot(r) = m.machine() else {
+        panic!("kr60 is a robot")
+    };
+    let pos = r.positioner.as_deref().expect("a positioner");
+    let d = data(&preview::html(m));
+    let rot = &d["meta"]["rotary"];
+    assert_eq!(rot["kinematics"], "positioner");
+    assert_eq!(rot["axes"], serde_json::json!(["E1", "E2"]));
+    assert_eq!(rot["limits"][0], serde_json::json!(pos.tilt.limits));
+    let layers = rot["layers"].as_array().unwrap();
+    assert_eq!(layers.len(), pos.angles.len());
+    for (k, (band, e)) in layers.iter().zip(&pos.angles).enumerate() {
+        for a in 0..2 {
+            let [lo, hi] = [0, 1].map(|i| band[a][i].as_f64().unwrap());
+            // The layer's own angle is inside its band, and the band reaches
+            // no further than the previous layer's angle (the travel in).
+            assert!(
+                lo <= e[a] + 1e-9 && e[a] <= hi + 1e-9,
+                "layer {k} E{}: {lo}..{hi} vs {}",
+                a + 1,
+                e[a]
+            );
+            let prev = if k == 0 { 0.0 } else { pos.angles[k - 1][a] };
+            assert!(
+                lo >= e[a].min(prev) - 1e-9 && hi <= e[a].max(prev) + 1e-9,
+                "layer {k} E{}",
+                a + 1
+            );
+        }
+    }
+    // E1 tilts the duct's bend away: 0° at the start, tens of degrees at the end.
+    let top = pos.angles.last().unwrap()[0];
+    assert!(top.abs() > 30.0, "{top}");
+    assert!(data(&page_of("twisted_duct", "kr60"))["meta"]["rotary"].is_null());
+}

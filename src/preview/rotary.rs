@@ -3,6 +3,8 @@
 //! axis's lowest and highest angle — on a tilting table, the angles the
 //! table turns the part to, layer by layer. The angles are the plan's, the
 //! ones the program writes and the verifier checks against the limits.
+//! A robot's two-axis positioner is plotted the same way: E1 (tilt) and E2
+//! (rotate), the angles it turns the part to, layer by layer.
 
 use crate::ir::{Layer, Machine};
 use crate::plan::{effective_kinematics, Move, Visit};
@@ -11,9 +13,10 @@ use serde::Serialize;
 /// What the page says about the rotary axes.
 #[derive(Serialize)]
 pub struct Rotary {
-    /// The kinematics' word (`head_ac`, `table_bc`, …).
+    /// The kinematics' word (`head_ac`, `table_bc`, …; `positioner` for a
+    /// robot's).
     pub kinematics: &'static str,
-    /// The axes' letters: the tilt axis's, then `C`.
+    /// The axes' names: the tilt axis's, then `C` (`E1`, `E2`).
     pub axes: [String; 2],
     /// Each axis's `[lowest, highest]` travel, deg.
     pub limits: [[f64; 2]; 2],
@@ -39,18 +42,29 @@ impl Visit for Rotary {
     }
 }
 
-/// The rotary axes along `plan`, when `machine` is a CNC that has them.
+/// The rotary axes along `plan`, when `machine` is a CNC that has them or a
+/// robot with a positioner.
 pub fn of(machine: &Machine, plan: &crate::plan::Plan<'_>) -> Option<Rotary> {
-    let Machine::Cnc(c) = machine else {
-        return None;
-    };
-    let kin = effective_kinematics(c);
-    let tilt = kin.tilt_letter()?;
-    let mut r = Rotary {
-        kinematics: kin.word(),
-        axes: [tilt.to_string(), "C".into()],
-        limits: [c.limits.tilt, c.limits.rotary],
-        layers: Vec::new(),
+    let mut r = match machine {
+        Machine::Cnc(c) => {
+            let kin = effective_kinematics(c);
+            let tilt = kin.tilt_letter()?;
+            Rotary {
+                kinematics: kin.word(),
+                axes: [tilt.to_string(), "C".into()],
+                limits: [c.limits.tilt, c.limits.rotary],
+                layers: Vec::new(),
+            }
+        }
+        Machine::Robot(robot) => {
+            let p = robot.positioner.as_deref()?;
+            Rotary {
+                kinematics: "positioner",
+                axes: ["E1".into(), "E2".into()],
+                limits: [p.tilt.limits, p.rotate.limits],
+                layers: Vec::new(),
+            }
+        }
     };
     plan.walk(&mut r);
     Some(r)

@@ -663,10 +663,12 @@
         label: `${ROT.axes[a]}, deg (travel ${fmt(l0)}° to ${fmt(l1)}°)`,
       });
     }
-    const table = ROT.kinematics.startsWith("table");
-    $("rotary-title").textContent = `${ROT.kinematics}: ${ROT.axes[0]} and C layer by layer, lowest to highest angle of each ` +
-      `layer's moves (blue), travel (red)`;
-    $("rotary-note").textContent = table
+    const table = ROT.kinematics.startsWith("table"), dkp = ROT.kinematics === "positioner";
+    $("rotary-title").textContent = `${ROT.kinematics}: ${ROT.axes[0]} and ${ROT.axes[1]} layer by layer, lowest to ` +
+      `highest angle of each layer's moves (blue), travel (red)`;
+    $("rotary-note").textContent = dkp
+      ? "The positioner turns the part (E1 tilts, E2 rotates) to the angles lmdc chose for each layer; they change only between layers."
+      : table
       ? "The table turns the part so each layer's normal points up the vertical nozzle; C unwinds only between layers."
       : "The head tilts the nozzle along each layer's normal.";
     c.dataset.layers = L.length;
