@@ -535,6 +535,10 @@ pub enum Shape {
     Placed(Box<Placed>),
     /// An outline with holes: `region(…)`.
     Region(Box<RegionShape>),
+    /// Separate islands on one layer, each an outline or a region: a mesh's
+    /// section (never written in a file). The planar slicer fills each on
+    /// its own and visits them nearest first.
+    Islands(Vec<Shape>),
 }
 
 impl Shape {
@@ -544,6 +548,7 @@ impl Shape {
             Shape::Section(_) | Shape::Outline(_) => false,
             Shape::Placed(p) => p.shape.has_holes(),
             Shape::Region(r) => !r.holes.is_empty(),
+            Shape::Islands(v) => v.iter().any(Shape::has_holes),
         }
     }
 
@@ -557,6 +562,7 @@ impl Shape {
             Shape::Region(r) => {
                 r.outline.pieces() + r.holes.iter().map(|h| h.shape.pieces()).sum::<usize>()
             }
+            Shape::Islands(v) => v.iter().map(Shape::pieces).sum(),
         }
     }
 }

@@ -106,35 +106,34 @@ fn fill_layers(
         let filled = match last.take() {
             Some(f) if reuse => f,
             _ => {
-                let region = outline::region(shape, slicing.chord_error.0);
                 let at = Where {
                     k,
                     varies,
                     extrusion,
                     slicing,
                 };
-                let faults = holes::faults(&region, shape, &holes::Layer { k, varies });
-                if !faults.is_empty() {
-                    for d in faults {
-                        diags.push(d);
-                    }
-                    return None;
-                }
-                let (tracks, gap) =
-                    match fill_layer(&region, angle, seam, inset, w, gap_samples, &at) {
-                        Ok(f) => f,
-                        Err(e) => {
-                            diags.push(e);
-                            return None;
-                        }
-                    };
-                Filled {
-                    shape,
+                let how = How {
                     angle,
                     seam,
-                    region,
-                    tracks,
-                    gap,
+                    inset,
+                    w,
+                    gap_samples,
+                };
+                match fill_shape(shape, &how, &at) {
+                    Ok((region, tracks, gap)) => Filled {
+                        shape,
+                        angle,
+                        seam,
+                        region,
+                        tracks,
+                        gap,
+                    },
+                    Err(errors) => {
+                        for d in errors {
+                            diags.push(d);
+                        }
+                        return None;
+                    }
                 }
             }
         };
@@ -357,18 +356,97 @@ fn seam_at(rule: SeamRule, k: usize) -> Seam {
     }
 }
 
-/// Fills one layer's `region` with the raster at `angle` (deg), contours
-/// starting at `seam`, and finds the farthest spot no bead reaches, if a
-/// raster promises a full layer.
-fn fill_layer(
-    region: &Region,
+/// How a layer is filled: the raster's angle (deg), where contours start,
+/// how far the first pass is inset, the bead's width, and the gap check's
+/// samples.
+#[derive(Clone, Copy)]
+struct How {
     angle: f64,
     seam: Seam,
     inset: f64,
     w: f64,
     gap_samples: usize,
+}
+
+/// A layer's region, its tracks and the farthest spot no bead reaches.
+type FilledShape = (Region, Vec<Track>, Option<fill::Gap>);
+
+/// Fills one layer's `shape`: its region checked for holes that do not
+/// make one, then filled ([`fill_layer`]). Separate islands (a mesh's
+/// section) are each checked and filled on their own, and visited nearest
+/// first ([`nearest_first`]): the plan travels from one to the next with
+/// the laser off, lifted, as between any two tracks that are not linked.
+fn fill_shape(shape: &Shape, how: &How, at: &Where<'_>) -> Result<FilledShape, Vec<Diagnostic>> {
+    let chord = at.slicing.chord_error.0;
+    let layer = holes::Layer {
+        k: at.k,
+        varies: at.varies,
+    };
+    let one = |s: &Shape| {
+        let region = outline::region(s, chord);
+        let faults = holes::faults(&region, s, &layer);
+        if !faults.is_empty() {
+            return Err(faults);
+        }
+        let (tracks, gap) = fill_layer(&region, how, at).map_err(|e| vec![e])?;
+        Ok((region, tracks, gap))
+    };
+    let Shape::Islands(parts) = shape else {
+        return one(shape);
+    };
+    let mut regions = Vec::with_capacity(parts.len());
+    let mut fills = Vec::with_capacity(parts.len());
+    let mut gap: Option<fill::Gap> = None;
+    for part in parts {
+        let (region, tracks, g) = one(part)?;
+        regions.push(region);
+        fills.push(tracks);
+        if let Some(g) = g.filter(|g| gap.is_none_or(|o| g.distance > o.distance)) {
+            gap = Some(g);
+        }
+    }
+    Ok((Region::islands(regions), nearest_first(fills), gap))
+}
+
+/// The islands' tracks one island after the other: the first island
+/// first (the lowest), then always the one whose first track starts
+/// nearest to where the last ended (ties to the lower). Deterministic, and
+/// short for the handful of islands a layer has (quadratic in their
+/// number).
+fn nearest_first(mut islands: Vec<Vec<Track>>) -> Vec<Track> {
+    let mut out: Vec<Track> = Vec::with_capacity(islands.iter().map(Vec::len).sum());
+    while !islands.is_empty() {
+        let end = out.last().and_then(|t| t.points.last().copied());
+        let next = end.map_or(0, |e| {
+            let start = |i: &Vec<Track>| {
+                i.first()
+                    .and_then(|t| t.points.first())
+                    .map_or(f64::INFINITY, |p| (p[0] - e[0]).hypot(p[1] - e[1]))
+            };
+            (0..islands.len())
+                .min_by(|&a, &b| start(&islands[a]).total_cmp(&start(&islands[b])))
+                .unwrap_or(0)
+        });
+        out.extend(islands.remove(next));
+    }
+    out
+}
+
+/// Fills one layer's `region` with the raster at `how.angle` (deg), contours
+/// starting at `how.seam`, and finds the farthest spot no bead reaches, if a
+/// raster promises a full layer.
+fn fill_layer(
+    region: &Region,
+    how: &How,
     at: &Where<'_>,
 ) -> Result<(Vec<Track>, Option<fill::Gap>), Diagnostic> {
+    let How {
+        angle,
+        seam,
+        inset,
+        w,
+        gap_samples,
+    } = *how;
     let slicing = at.slicing;
     let spec = FillSpec {
         inset,
