@@ -76,7 +76,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             })
             .collect(),
         heat: model.process.heat,
-        continuous: ring.is_some(),
+        continuous: ring.is_some() || spiral(model),
         bead,
         ring,
         layers,
@@ -287,4 +287,11 @@ fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
             machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
         },
     }
+}
+
+/// Whether the model's wall climbs from layer to layer with the laser on
+/// (`layer_change = spiral`): its layers, like a ring's, go on into each
+/// other.
+fn spiral(model: &Model) -> bool {
+    matches!(&model.build, Build::Duct { slicing, .. } if slicing.layer_change.is_spiral())
 }

@@ -53,6 +53,7 @@ mod robustness;
 mod rs274_smoke;
 mod schemas;
 mod section_points;
+mod spiral;
 mod stacking;
 mod style;
 mod table;

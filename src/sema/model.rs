@@ -362,6 +362,32 @@ pub struct Slicing {
     pub follow_wall: bool,
     /// `max_overhang = …`, if written (rad).
     pub max_overhang: Option<f64>,
+    /// `layer_change = …`: how each layer goes on to the next.
+    pub layer_change: LayerChange,
+    /// `layer_change = …`, if written.
+    pub layer_change_span: Option<Span>,
+}
+
+/// How a one-bead wall goes from one layer to the next: `layer_change = …`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LayerChange {
+    /// The laser goes off, the nozzle lifts and comes down at the next
+    /// layer's start.
+    Lift,
+    /// The end of each loop climbs to the next layer's start with the laser
+    /// on, and the next layer goes on from there: over its last `length`,
+    /// or over the whole loop (`None`: a helix of constant pitch).
+    Spiral {
+        /// How much of the loop's end climbs (`None`: all of it).
+        length: Option<Length>,
+    },
+}
+
+impl LayerChange {
+    /// Whether layers go on into each other with the laser on.
+    pub fn is_spiral(self) -> bool {
+        matches!(self, LayerChange::Spiral { .. })
+    }
 }
 
 /// Laser power over the layers.

@@ -244,6 +244,20 @@ pub fn planar_seam_on_a_wall(at: Span) -> Diagnostic {
     )
 }
 
+/// `layer_change = spiral` with a seam that moves from layer to layer.
+pub fn spiral_seam_moves(change: Span, seam: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConflictingFields,
+        "a spiral layer change goes on from where the layer ended, so every layer starts at the same angle: its seam cannot move",
+    )
+    .label(change, "each layer climbs into the next here")
+    .label(seam, "this seam moves from layer to layer")
+    .help(
+        "give the seam one angle (`seam = 90 deg`: the climb ends there on every layer), \
+         or keep `layer_change = lift` to move the seam",
+    )
+}
+
 /// A better seam, found by sampling the layer at the seam + j·2π/k.
 pub enum SeamAdvice {
     /// This angle (deg) keeps off the extremes on every layer.

@@ -552,6 +552,7 @@ pub static BLOCKS: &[&Block] = &[
     &slicing::RASTER,
     &slicing::ROTATING,
     &slicing::RANDOM,
+    &slicing::SPIRAL,
     &slicing::VARIABLE,
     &slicing::SEGMENTS,
     &slicing::CONTINUOUS,

@@ -90,6 +90,20 @@ pub mod normal {
         Default(DefaultWord("spine")),
         "the build direction: along the spine, or `wall`: tilted with the wall's lean, in the plane of its normal (5-axis or robot)",
     );
+    /// `layer_change = …`.
+    pub static LAYER_CHANGE: Field = Field::new(
+        "layer_change",
+        Either(&[Word(&["lift", "spiral"]), Call(&[&SPIRAL])]),
+        Default(DefaultWord("lift")),
+        "how a layer goes on to the next: `lift` (laser off, up, laser on at the next start), or `spiral`: the loop's end climbs to the next layer with the laser on, and the next goes on without a stop",
+    );
+    /// `spiral(length = …)`.
+    pub static LENGTH: Field = Field::new(
+        "length",
+        Quantity(Dim::LENGTH, Positive),
+        Default(Described("the whole loop: a helix of constant pitch")),
+        "how much of the end of each layer's loop climbs to the next layer",
+    );
     /// `max_overhang = …`.
     pub static MAX_OVERHANG: Field = Field::new(
         "max_overhang",
@@ -110,6 +124,7 @@ pub static NORMAL: Block = Block::new(
         &normal::CHORD_ERROR,
         &normal::SEAM,
         &normal::NOZZLE,
+        &normal::LAYER_CHANGE,
         &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
@@ -278,6 +293,15 @@ pub static ROTATING: Block = Block::new(
 )
 .positional(1);
 
+/// `spiral(length)`: a layer change that climbs with the laser on.
+pub static SPIRAL: Block = Block::new(
+    "spiral",
+    "spiral(length)",
+    "a layer change that climbs to the next layer over the end of each loop, the laser on",
+    &[&normal::LENGTH],
+)
+.positional(1);
+
 /// `random(seed)`: a seam in a direction drawn for each layer.
 pub static RANDOM: Block = Block::new(
     "random",
@@ -412,6 +436,7 @@ pub static ANY: Block = Block::new(
         &normal::CHORD_ERROR,
         &normal::SEAM,
         &normal::NOZZLE,
+        &normal::LAYER_CHANGE,
         &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
