@@ -649,6 +649,13 @@ pub enum SeamRule {
     },
     /// At the loop's sharpest corner (a corner hides the seam).
     SharpestCorner,
+    /// Layer `k`'s seam `k·shift` along the loop (the way the nozzle goes)
+    /// from the lowest point, wrapping round: the starts climb the part on a
+    /// slant, a fixed distance apart.
+    Staggered {
+        /// How far each layer's seam moves along the loop (mm).
+        shift: Length,
+    },
 }
 
 /// Whether neighbouring raster tracks are joined at their ends along the

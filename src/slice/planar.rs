@@ -352,6 +352,7 @@ fn seam_at(rule: SeamRule, k: usize) -> Seam {
     match rule {
         SeamRule::Lowest => Seam::Lowest,
         SeamRule::SharpestCorner => Seam::SharpestCorner,
+        SeamRule::Staggered { shift } => Seam::Along(shift.0 * k as f64),
         r => r.direction(k).map_or(Seam::Lowest, Seam::Toward),
     }
 }

@@ -238,7 +238,7 @@ pub fn planar_seam_on_a_wall(at: Span) -> Diagnostic {
     )
     .label(at, "this picks among a planar layer's contour points")
     .help(
-        "`lowest` and `sharpest_corner` choose where a flat contour starts; a wall sliced \
+        "`lowest`, `sharpest_corner` and `staggered(…)` choose where a flat contour starts; a wall sliced \
          normal to its spine starts at an angle in its section frame, e.g. \
          `seam = rotating(step = 90 deg)` turns it a quarter turn each layer",
     )

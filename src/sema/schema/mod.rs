@@ -552,6 +552,7 @@ pub static BLOCKS: &[&Block] = &[
     &slicing::RASTER,
     &slicing::ROTATING,
     &slicing::RANDOM,
+    &slicing::STAGGERED,
     &slicing::SPIRAL,
     &slicing::VARIABLE,
     &slicing::SEGMENTS,

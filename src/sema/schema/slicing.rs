@@ -183,7 +183,7 @@ pub mod planar {
         Either(&[
             Word(&["lowest", "sharpest_corner", "random"]),
             Quantity(Dim::ANGLE, Any),
-            Call(&[&ROTATING, &RANDOM]),
+            Call(&[&ROTATING, &RANDOM, &STAGGERED]),
         ]),
         Default(DefaultWord("lowest")),
         "where each contour loop starts and ends, layer by layer",
@@ -261,6 +261,13 @@ pub mod raster {
         Default(DefaultQuantity(crate::sema::schema::deg(-90.0))),
         "the first layer's direction, from +x",
     );
+    /// `staggered(shift = …)`.
+    pub static SHIFT: Field = Field::new(
+        "shift",
+        Quantity(Dim::LENGTH, Positive),
+        Required("10 mm"),
+        "how far each layer's seam moves along the loop from the one below",
+    );
     /// `random(seed = …)`.
     pub static SEED: Field = Field::new(
         "seed",
@@ -299,6 +306,16 @@ pub static SPIRAL: Block = Block::new(
     "spiral(length)",
     "a layer change that climbs to the next layer over the end of each loop, the laser on",
     &[&normal::LENGTH],
+)
+.positional(1);
+
+/// `staggered(shift)`: a seam that moves a fixed distance along the loop
+/// every layer.
+pub static STAGGERED: Block = Block::new(
+    "staggered",
+    "staggered(shift)",
+    "a seam that moves a fixed distance along the loop every layer",
+    &[&raster::SHIFT],
 )
 .positional(1);
 
