@@ -197,6 +197,7 @@ fn max_overhang(build: &Build) -> Option<f64> {
     match build {
         // The IR's angles are degrees (`units.angle`).
         Build::Duct { slicing, .. } => slicing.max_overhang.map(f64::to_degrees),
+        Build::Block { slicing, .. } => slicing.max_overhang.map(f64::to_degrees),
         _ => None,
     }
 }

@@ -294,3 +294,65 @@ fn a_file_that_is_no_stl_says_why() {
     let c = compile(&source("profile = mesh(\"nothing.stl\")"), BTreeMap::new());
     assert!(messages(&c).contains("cannot read the mesh file `nothing.stl`: no file"));
 }
+
+/// A frustum standing on the plate: an `n`-gon of radius `r0` at the bottom,
+/// `r1` at the top, `h` tall (an inverted cone when `r1 > r0`).
+fn frustum(r0: f64, r1: f64, h: f64, n: usize) -> Vec<Triangle> {
+    let at = |r: f64, i: usize, z: f64| {
+        let t = TAU * (i % n) as f64 / n as f64;
+        [r * t.cos(), r * t.sin(), z]
+    };
+    let f = |p: [f64; 3]| p.map(|x| x as f32);
+    let mut out = Vec::new();
+    for i in 0..n {
+        let j = i + 1;
+        quad(
+            &mut out,
+            at(r0, i, 0.0),
+            at(r0, j, 0.0),
+            at(r1, j, h),
+            at(r1, i, h),
+        );
+        out.push([f([0.0, 0.0, h]), f(at(r1, i, h)), f(at(r1, j, h))]);
+        out.push([f([0.0; 3]), f(at(r0, j, 0.0)), f(at(r0, i, 0.0))]);
+    }
+    out
+}
+
+#[test]
+fn an_outline_leaning_out_past_max_overhang_is_refused_with_its_angle() {
+    let src = source("profile = mesh(\"part.stl\")").replace(
+        "offset = 1.6 mm",
+        "offset = 1.6 mm\n  contours = 1\n  max_overhang = 30 deg",
+    );
+    // 10 mm at the bottom, 15 mm at the top, 5 mm tall: the side leans 45°.
+    let tris = frustum(10.0, 15.0, 5.0, 64);
+    let c = compile(&src, BTreeMap::from([("part.stl", stl::to_binary(&tris))]));
+    assert!(c.program.is_none());
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == lmdc::diag::Code::Overhang)
+        .unwrap_or_else(|| panic!("{}", messages(&c)));
+    let m = &d.message;
+    assert!(m.starts_with("the part's outline leans out "), "{m}");
+    let deg: f64 = m["the part's outline leans out ".len()..]
+        .split('°')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((40.0..=45.5).contains(&deg), "{m}");
+    assert!(
+        m.contains("more than the 30° `max_overhang` allows, at layer "),
+        "{m}"
+    );
+    assert!(m.contains(" mm, "), "names where: {m}");
+    // Upright, the same frustum leans in: nothing to refuse.
+    let upright = frustum(15.0, 10.0, 5.0, 64);
+    let c = compile(
+        &src,
+        BTreeMap::from([("part.stl", stl::to_binary(&upright))]),
+    );
+    assert!(c.program.is_some(), "{}", messages(&c));
+}

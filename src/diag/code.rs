@@ -282,7 +282,7 @@ codes! {
     BadDirection = "bad-direction", Feasibility,
         "a computed direction is not a unit vector: a bug in lmdc, please report it";
     Overhang = "overhang", Feasibility,
-        "a wall's layer leans out over the one below, from the nozzle's axis, by more than the slicing's `max_overhang` (without one, what lands is `lmd::stacking`'s ¾ bead a layer); names the angle, the limit and where, and the fixes (the nozzle following the wall, the part turned)";
+        "a wall's layer, or a planar layer's outline or hole, leans out over the one below, from the nozzle's axis, by more than the slicing's `max_overhang` (without one, what lands is `lmd::stacking`'s ¾ bead a layer); names the angle, the limit and where, and the fixes (the nozzle following the wall, the part turned)";
     Stacking = "stacking", Feasibility,
         "a deposit lands more than ¾ of a bead width (across the nozzle) from every bead of the layer below: the layers do not lie on each other (a twist or section that jumps between layers)";
     PointHeight = "point-height", Feasibility,

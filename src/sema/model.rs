@@ -790,6 +790,8 @@ pub struct PlanarSlicing {
     pub offset_span: Option<Span>,
     /// `rise_tolerance` and `max_drift`.
     pub tolerance: Tolerance,
+    /// `max_overhang = …`, if written (rad): the contours' lean is checked.
+    pub max_overhang: Option<f64>,
 }
 
 impl PlanarSlicing {

@@ -18,7 +18,7 @@ use super::layers::{self, Layers};
 use super::styling::{self, Styler};
 use super::MAX_TOTAL_POINTS;
 use crate::bead::MIN_OFFSET_RATIO;
-use crate::diag::{message, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostic, Diagnostics, Worst};
 use crate::fill::{
     self, FillError, FillSpec, Linking, Pattern as FillPattern, RasterSpec, Seam, Track, TrackKind,
 };
@@ -94,6 +94,7 @@ fn fill_layers(
     // like it (a fixed profile, no rotation) reuses them instead of filling
     // and checking the same shape again.
     let mut last: Option<Filled> = None;
+    let mut lean = Lean::new(slicing.max_overhang, lift, slicing.chord_error.0);
     for (k, shape) in plan.shapes.iter().enumerate() {
         let angle = slicing
             .infill
@@ -138,6 +139,7 @@ fn fill_layers(
             }
         };
         found.layer(k, &filled, slicing.contours, w);
+        lean.layer(k, &filled.region);
         total += filled.tracks.iter().map(|t| t.points.len()).sum::<usize>();
         if total > MAX_TOTAL_POINTS {
             diags.push(message::slicing::too_many_fill_points(
@@ -152,7 +154,93 @@ fn fill_layers(
         last = Some(filled);
     }
     found.report(model, bead, extrusion, slicing, diags);
+    lean.report(slicing.span, diags);
     Some(out)
+}
+
+/// Most points of a layer's outline checked for its lean (spread over it).
+const LEAN_SAMPLES: usize = 512;
+
+/// `max_overhang` on planar layers (`lmd::overhang`): how far each layer's
+/// outline and holes step out over the region of the layer below — a point
+/// of the layer outside the layer below's region, by its distance to that
+/// region, over the layer height, is its lean from the vertical nozzle. A
+/// layer that leans in stands on the layer below and is not counted.
+struct Lean {
+    limit: Option<f64>,
+    lift: f64,
+    chord: f64,
+    below: Option<Region>,
+    worst: Option<Worst<Spot>>,
+    /// The step at the worst place, mm.
+    step: f64,
+}
+
+/// A place on a planar layer: the layer (from 0) and a point (mm).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Spot {
+    k: usize,
+    at: [f64; 2],
+}
+
+impl std::fmt::Display for Spot {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "layer {}, ({} mm, {} mm)",
+            self.k + 1,
+            crate::units::short(self.at[0]),
+            crate::units::short(self.at[1])
+        )
+    }
+}
+
+impl Lean {
+    fn new(limit: Option<f64>, lift: f64, chord: f64) -> Self {
+        Lean {
+            limit,
+            lift,
+            chord,
+            below: None,
+            worst: None,
+            step: 0.0,
+        }
+    }
+
+    /// Measures layer `k`'s region against the one below, then keeps it.
+    fn layer(&mut self, k: usize, region: &Region) {
+        let Some(limit) = self.limit else { return };
+        if let Some(below) = &self.below {
+            let pts: Vec<[f64; 2]> = region.polylines(self.chord).concat();
+            let stride = pts.len().div_ceil(LEAN_SAMPLES).max(1);
+            for &p in pts.iter().step_by(stride) {
+                if below.contains(p) {
+                    continue;
+                }
+                let d = below.distance_to_boundary(p);
+                let lean = d.atan2(self.lift);
+                if lean > limit {
+                    let at = Spot { k, at: p };
+                    Worst::hit(&mut self.worst, lean, limit, at);
+                    if self.worst.is_some_and(|w| w.at == at) {
+                        self.step = d;
+                    }
+                }
+            }
+        }
+        self.below = Some(region.clone());
+    }
+
+    fn report(self, slicing: crate::span::Span, diags: &mut Diagnostics) {
+        if let Some(w) = self.worst {
+            let fix = message::verify::OverhangFix {
+                step: self.step,
+                height: self.lift,
+                planar: true,
+            };
+            diags.push(message::verify::overhang(&w, &fix, Some(slicing)));
+        }
+    }
 }
 
 /// Which layer is being filled, for the errors of its fill.

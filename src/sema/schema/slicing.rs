@@ -109,7 +109,7 @@ pub mod normal {
         "max_overhang",
         Quantity(Dim::ANGLE, Positive),
         Default(Described("what lands: `atan(3w / 4h)`, `lmd::stacking`")),
-        "the most a wall's layer may lean out over the one below, from the nozzle's axis (`lmd::overhang`)",
+        "the most a wall's layer (or a planar layer's contour) may lean out over the one below, from the nozzle's axis (`lmd::overhang`)",
     );
 }
 
@@ -203,6 +203,7 @@ pub static PLANAR: Block = Block::new(
         &planar::INFILL,
         &planar::CHORD_ERROR,
         &planar::SEAM,
+        &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
     ],
