@@ -112,7 +112,8 @@ pub struct Program {
     #[serde(default, skip_serializing_if = "Heat::is_none")]
     pub heat: Heat,
     /// Whether each layer's path goes on into the next layer's without the
-    /// laser going off: the build is one run of deposit moves (a segmented ring).
+    /// laser going off: the build is one run of deposit moves (a segmented
+    /// ring, or a wall with `layer_change = spiral`).
     #[serde(default, skip_serializing_if = "is_false")]
     pub continuous: bool,
     /// A segmented ring and its height loop.

@@ -77,7 +77,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             })
             .collect(),
         heat: model.process.heat,
-        continuous: ring.is_some(),
+        continuous: ring.is_some() || spiral(model),
         bead,
         ring,
         layers,
@@ -198,6 +198,7 @@ fn max_overhang(build: &Build) -> Option<f64> {
     match build {
         // The IR's angles are degrees (`units.angle`).
         Build::Duct { slicing, .. } => slicing.max_overhang.map(f64::to_degrees),
+        Build::Block { slicing, .. } => slicing.max_overhang.map(f64::to_degrees),
         _ => None,
     }
 }
@@ -288,4 +289,11 @@ fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
             machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
         },
     }
+}
+
+/// Whether the model's wall climbs from layer to layer with the laser on
+/// (`layer_change = spiral`): its layers, like a ring's, go on into each
+/// other.
+fn spiral(model: &Model) -> bool {
+    matches!(&model.build, Build::Duct { slicing, .. } if slicing.layer_change.is_spiral())
 }

@@ -1,9 +1,13 @@
 //! Solids given as meshes (`mesh(file = "…")`), through the whole
 //! pipeline: the same plan from a binary and an ASCII file, the sections'
-//! areas in the plan's contours, and broken meshes refused with where.
+//! areas in the plan's contours, layers of separate islands, and broken
+//! meshes refused with where.
 
 use lmdc::geometry::mesh::stl::{self, Triangle};
+use lmdc::geometry::outline;
 use lmdc::pipeline::{compile_reading, Compiled};
+use lmdc::sema::model::Build;
+use lmdc::slice::layers;
 use std::collections::BTreeMap;
 use std::f64::consts::TAU;
 use std::rc::Rc;
@@ -179,7 +183,7 @@ fn a_missing_triangle_is_refused_with_its_neighbours() {
 }
 
 #[test]
-fn a_mesh_off_the_plate_and_two_islands_are_refused() {
+fn a_mesh_off_the_plate_is_refused() {
     let tris = box_with_hole([15.0, 15.0], 15.0, 5.0, 4.2, 16);
     let c = compile(
         &source("profile = mesh(\"part.stl\", at = [0 mm, 0 mm, 2.5 mm])"),
@@ -194,28 +198,83 @@ fn a_mesh_off_the_plate_and_two_islands_are_refused() {
         .diagnostics
         .iter()
         .any(|d| d.help.as_deref().is_some_and(|h| h.contains("to 0 mm"))));
-    // Two boxes side by side, the second lower: both islands on layer 1,
-    // cut halfway up it (the lift as the one box's plan has it).
-    let one = compile(
-        &source("profile = mesh(\"part.stl\")"),
-        BTreeMap::from([("part.stl", stl::to_binary(&tris))]),
+}
+
+/// The area of a regular `n`-gon in a circle of radius `r`.
+fn ngon(r: f64, n: usize) -> f64 {
+    n as f64 / 2.0 * r * r * (TAU / n as f64).sin()
+}
+
+#[test]
+fn islands_are_filled_each_and_joined_by_a_laser_off_travel() {
+    // Two boxes with a hole each, side by side on the plate: the 30 mm one
+    // 4.2 mm tall, the 20 mm one 2.1 mm: two islands up to 2.1 mm, one
+    // above.
+    let (a, b) = (
+        ([15.0, 15.0], 15.0, 5.0, 4.2),
+        ([55.0, 15.0], 10.0, 3.0, 2.1),
     );
-    let ir = one.program.unwrap().into_ir();
-    let lift = ir.layers[1].frame.origin[2] - ir.layers[0].frame.origin[2];
-    let mut two = tris.clone();
-    two.extend(box_with_hole([50.0, 15.0], 15.0, 5.0, 2.1, 16));
-    let c = compile(
-        &source("profile = mesh(\"part.stl\")"),
-        BTreeMap::from([("part.stl", stl::to_binary(&two))]),
-    );
+    let mut tris = box_with_hole(a.0, a.1, a.2, a.3, 16);
+    tris.extend(box_with_hole(b.0, b.1, b.2, b.3, 16));
+    let data: lmdc::sema::DataReader = {
+        let bytes = stl::to_binary(&tris);
+        Rc::new(move |_: &str| Ok(bytes.clone()))
+    };
+    let (c, model) =
+        compile_reading(&source("profile = mesh(\"part.stl\")"), None, &mut (), data).unwrap();
     let m = messages(&c);
-    let z = lmdc::units::short(lift / 2.0);
-    assert!(
-        m.contains(&format!(
-            "layer 1 (cut at z = {z} mm) is 2 separate islands (the second at ("
-        )),
-        "{m}"
-    );
+    let ir = c.program.unwrap_or_else(|| panic!("{m}")).into_ir();
+    let lift = ir.layers[1].frame.origin[2] - ir.layers[0].frame.origin[2];
+    assert_eq!(ir.layers.len(), (4.2 / lift - 1e-9).ceil() as usize);
+    // Each layer's region against the two solids, cut halfway up it.
+    let model = model.unwrap();
+    let (bead, Build::Block { extrusion, slicing }) = (model.bead.as_ref().unwrap(), &model.build)
+    else {
+        panic!("a mesh builds a block");
+    };
+    let plan = layers::plan(bead, extrusion, slicing, &mut Default::default()).unwrap();
+    let area = |(_, h, r, _): ([f64; 2], f64, f64, f64)| 4.0 * h * h - ngon(r, 16);
+    for (k, shape) in plan.shapes.iter().enumerate() {
+        let cut = (k as f64 + 0.5) * lift;
+        let region = outline::region(shape, 0.01);
+        let two = cut < b.3;
+        assert_eq!(region.outer().len(), if two { 2 } else { 1 }, "layer {k}");
+        let want = area(a) + if two { area(b) } else { 0.0 };
+        assert!(
+            (region.area() - want).abs() < 1e-3,
+            "layer {k}: {}",
+            region.area()
+        );
+    }
+    // On a layer of two islands, every path lies in one of them, each
+    // island's paths come together, and the path that leaves the first
+    // ends with the laser off (the plan lifts and travels from there, as
+    // between any two tracks that are not linked).
+    let island = |p: &lmdc::ir::Point| usize::from(p.pos[0] > 35.0);
+    for layer in ir
+        .layers
+        .iter()
+        .filter(|l| l.frame.origin[2] + lift / 2.0 < b.3)
+    {
+        let mut order: Vec<usize> = Vec::new();
+        for p in &layer.paths {
+            let i = island(&p.points[0]);
+            assert!(
+                p.points.iter().all(|q| island(q) == i),
+                "a path spans both islands"
+            );
+            if order.last() != Some(&i) {
+                order.push(i);
+            }
+        }
+        assert_eq!(order.len(), 2, "layer {}: {order:?}", layer.index);
+        for w in layer.paths.windows(2) {
+            if island(&w[0].points[0]) != island(&w[1].points[0]) {
+                assert!(!w[0].points.last().unwrap().laser_on);
+                assert_ne!(w[1].kind, lmdc::ir::PathKind::Travel);
+            }
+        }
+    }
 }
 
 #[test]
@@ -234,4 +293,66 @@ fn a_file_that_is_no_stl_says_why() {
     );
     let c = compile(&source("profile = mesh(\"nothing.stl\")"), BTreeMap::new());
     assert!(messages(&c).contains("cannot read the mesh file `nothing.stl`: no file"));
+}
+
+/// A frustum standing on the plate: an `n`-gon of radius `r0` at the bottom,
+/// `r1` at the top, `h` tall (an inverted cone when `r1 > r0`).
+fn frustum(r0: f64, r1: f64, h: f64, n: usize) -> Vec<Triangle> {
+    let at = |r: f64, i: usize, z: f64| {
+        let t = TAU * (i % n) as f64 / n as f64;
+        [r * t.cos(), r * t.sin(), z]
+    };
+    let f = |p: [f64; 3]| p.map(|x| x as f32);
+    let mut out = Vec::new();
+    for i in 0..n {
+        let j = i + 1;
+        quad(
+            &mut out,
+            at(r0, i, 0.0),
+            at(r0, j, 0.0),
+            at(r1, j, h),
+            at(r1, i, h),
+        );
+        out.push([f([0.0, 0.0, h]), f(at(r1, i, h)), f(at(r1, j, h))]);
+        out.push([f([0.0; 3]), f(at(r0, j, 0.0)), f(at(r0, i, 0.0))]);
+    }
+    out
+}
+
+#[test]
+fn an_outline_leaning_out_past_max_overhang_is_refused_with_its_angle() {
+    let src = source("profile = mesh(\"part.stl\")").replace(
+        "offset = 1.6 mm",
+        "offset = 1.6 mm\n  contours = 1\n  max_overhang = 30 deg",
+    );
+    // 10 mm at the bottom, 15 mm at the top, 5 mm tall: the side leans 45°.
+    let tris = frustum(10.0, 15.0, 5.0, 64);
+    let c = compile(&src, BTreeMap::from([("part.stl", stl::to_binary(&tris))]));
+    assert!(c.program.is_none());
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == lmdc::diag::Code::Overhang)
+        .unwrap_or_else(|| panic!("{}", messages(&c)));
+    let m = &d.message;
+    assert!(m.starts_with("the part's outline leans out "), "{m}");
+    let deg: f64 = m["the part's outline leans out ".len()..]
+        .split('°')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((40.0..=45.5).contains(&deg), "{m}");
+    assert!(
+        m.contains("more than the 30° `max_overhang` allows, at layer "),
+        "{m}"
+    );
+    assert!(m.contains(" mm, "), "names where: {m}");
+    // Upright, the same frustum leans in: nothing to refuse.
+    let upright = frustum(15.0, 10.0, 5.0, 64);
+    let c = compile(
+        &src,
+        BTreeMap::from([("part.stl", stl::to_binary(&upright))]),
+    );
+    assert!(c.program.is_some(), "{}", messages(&c));
 }

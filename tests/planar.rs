@@ -551,3 +551,60 @@ fn plans_that_will_not_do_what_they_say_warn() {
     let d = diagnose(&src);
     assert_eq!(with_code(&d, "lmd::powder-mismatch").len(), 1, "{d:?}");
 }
+
+/// The seams of a one-bead planar wall (tests/codes/plate.lmd's 20 × 10 mm
+/// plate, one contour and no infill) under `seam`: each layer's first point.
+fn wall_seams(seam: &str, layers: usize) -> Vec<[f64; 2]> {
+    let src = include_str!("codes/plate.lmd")
+        .replace("  infill = raster(angle = 0 deg)\n", "")
+        .replace(
+            "offset = 1.6 mm",
+            &format!("offset = 1.6 mm\n  seam = {seam}"),
+        )
+        .replace("layers = 2", &format!("layers = {layers}"));
+    let p = build_source(&src);
+    p.layers
+        .iter()
+        .map(|l| {
+            assert_eq!(l.paths.len(), 1, "one bead: one loop a layer");
+            let q = l.paths[0].points[0].pos;
+            [q[0], q[1]]
+        })
+        .collect()
+}
+
+#[test]
+fn a_staggered_seam_moves_by_its_shift_along_a_one_bead_wall() {
+    // The bead (2.2 mm, `size = outer`) runs on the 17.8 × 7.8 mm rectangle
+    // half a bead inside the plate, counter-clockwise from its lowest, then
+    // leftmost, corner; layer k starts 7·k mm along it.
+    let (a, b) = (17.8, 7.8);
+    let at = |d: f64| {
+        let d = d.rem_euclid(2.0 * (a + b));
+        let (x0, y0) = (-a / 2.0, -b / 2.0);
+        if d <= a {
+            [x0 + d, y0]
+        } else if d <= a + b {
+            [x0 + a, y0 + d - a]
+        } else if d <= 2.0 * a + b {
+            [x0 + a - (d - a - b), y0 + b]
+        } else {
+            [x0, y0 + b - (d - 2.0 * a - b)]
+        }
+    };
+    let seams = wall_seams("staggered(shift = 7 mm)", 9);
+    for (k, p) in seams.iter().enumerate() {
+        let want = at(7.0 * k as f64);
+        assert!(
+            (p[0] - want[0]).hypot(p[1] - want[1]) < 1e-9,
+            "layer {k}: {p:?} not {want:?}"
+        );
+    }
+    // The same words as the filled layers' seams: a rotating seam turns by
+    // its step, here a half turn: farthest left, then farthest right.
+    let rot = wall_seams("rotating(step = 180 deg, from = 180 deg)", 4);
+    for (k, p) in rot.iter().enumerate() {
+        let x = if k % 2 == 0 { -a / 2.0 } else { a / 2.0 };
+        assert!((p[0] - x).abs() < 1e-9, "layer {k}: {p:?}");
+    }
+}

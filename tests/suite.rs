@@ -54,6 +54,7 @@ mod robustness;
 mod rs274_smoke;
 mod schemas;
 mod section_points;
+mod spiral;
 mod stacking;
 mod style;
 mod table;

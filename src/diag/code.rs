@@ -184,7 +184,7 @@ codes! {
     Sheet = "sheet", Values,
         "a measurement sheet (`lmdc fit`, `model = fit(…, data = …)`) lmdc cannot read: a cell that is not a number greater than zero (with its line and column), a row with more cells than the header, a measured row without a speed, a header without a `speed` column";
     Mesh = "mesh", Values,
-        "a `mesh(…)` lmdc cannot build: a file that cannot be read or is no STL (with where it goes wrong), a mesh that is open, non-manifold or has triangles facing both ways (with the triangles' numbers in the file and where), a mesh not standing on the plate, or a layer whose section is empty, does not close or is more than one island (with the layer and a point)";
+        "a `mesh(…)` lmdc cannot build: a file that cannot be read or is no STL (with where it goes wrong), a mesh that is open, non-manifold or has triangles facing both ways (with the triangles' numbers in the file and where), a mesh not standing on the plate, or a layer whose section is empty, does not close or has a hole in no outline (with the layer and a point)";
     SheetUnits = "sheet-units", Values,
         "a measurement sheet's header names a column lmdc reads (`speed`, `height`, `width`, `area`, `mass`, `feed`, `length`, `power`) without its unit in brackets, in a unit lmdc does not convert, or twice";
     TooFewPoints = "too-few-points", Values,
@@ -284,7 +284,7 @@ codes! {
     BadDirection = "bad-direction", Feasibility,
         "a computed direction is not a unit vector: a bug in lmdc, please report it";
     Overhang = "overhang", Feasibility,
-        "a wall's layer leans out over the one below, from the nozzle's axis, by more than the slicing's `max_overhang` (without one, what lands is `lmd::stacking`'s ¾ bead a layer); names the angle, the limit and where, and the fixes (the nozzle following the wall, the part turned)";
+        "a wall's layer, or a planar layer's outline or hole, leans out over the one below, from the nozzle's axis, by more than the slicing's `max_overhang` (without one, what lands is `lmd::stacking`'s ¾ bead a layer); names the angle, the limit and where, and the fixes (the nozzle following the wall, the part turned)";
     Stacking = "stacking", Feasibility,
         "a deposit lands more than ¾ of a bead width (across the nozzle) from every bead of the layer below: the layers do not lie on each other (a twist or section that jumps between layers)";
     PointHeight = "point-height", Feasibility,

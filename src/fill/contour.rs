@@ -41,6 +41,40 @@ pub(super) fn passes(
     Ok(tracks)
 }
 
+/// The open loop `points` started `d` (mm) further along it, wrapping
+/// round: the point there is added (unless it is one already) and the loop
+/// runs on from it through the same points.
+fn along(points: Vec<[f64; 2]>, d: f64) -> Vec<[f64; 2]> {
+    let n = points.len();
+    let len = |i: usize| {
+        let (a, b) = (points[i], points[(i + 1) % n]);
+        (b[0] - a[0]).hypot(b[1] - a[1])
+    };
+    let perimeter: f64 = (0..n).map(len).sum();
+    if n < 2 || perimeter.is_nan() || perimeter <= 0.0 {
+        return points;
+    }
+    let mut left = d.rem_euclid(perimeter);
+    for i in 0..n {
+        let l = len(i);
+        if left < l {
+            let (a, b) = (points[i], points[(i + 1) % n]);
+            let t = left / l;
+            let start = if t > 1e-9 {
+                [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+            } else {
+                a
+            };
+            let mut out = Vec::with_capacity(n + 1);
+            out.push(start);
+            out.extend((1..=n).map(|j| points[(i + j) % n]).filter(|&p| p != start));
+            return out;
+        }
+        left -= l;
+    }
+    points
+}
+
 /// Orders points by y, then x.
 fn by_yx(a: [f64; 2], b: [f64; 2]) -> Ordering {
     a[1].total_cmp(&b[1]).then(a[0].total_cmp(&b[0]))
@@ -50,7 +84,7 @@ fn by_yx(a: [f64; 2], b: [f64; 2]) -> Ordering {
 /// by repeating that point.
 fn closed_loop(l: &Profile, hole: bool, seam: Seam, chord_error: f64) -> Vec<[f64; 2]> {
     let start = match seam {
-        Seam::Lowest => None,
+        Seam::Lowest | Seam::Along(_) => None,
         Seam::Toward(angle) => l.support(angle),
         Seam::SharpestCorner => l.sharpest_corner(),
     };
@@ -71,7 +105,10 @@ fn closed_loop(l: &Profile, hole: bool, seam: Seam, chord_error: f64) -> Vec<[f6
                 .min_by(|&i, &j| by_yx(points[i], points[j]))
                 .unwrap_or(0);
             points.rotate_left(first);
-            points
+            match seam {
+                Seam::Along(d) => along(points, d),
+                _ => points,
+            }
         }
     };
     if let Some(&first) = points.first() {

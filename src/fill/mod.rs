@@ -154,6 +154,9 @@ pub enum Seam {
     /// At its sharpest corner; a loop without corners (a circle) as
     /// [`Seam::Lowest`].
     SharpestCorner,
+    /// This far (mm) along the loop, the way it runs, from its point with the
+    /// smallest `(y, x)`, wrapping round.
+    Along(f64),
 }
 
 /// The raster part of a fill.
@@ -295,7 +298,7 @@ fn validate(region: &Region, spec: &FillSpec, chord_error: f64) -> Result<(), Fi
     if let Some(r) = &spec.raster {
         numbers.extend([r.angle_deg, r.offset, r.extend]);
     }
-    if let Seam::Toward(a) = spec.seam {
+    if let Seam::Toward(a) | Seam::Along(a) = spec.seam {
         numbers.push(a);
     }
     if !region.is_finite() || numbers.iter().any(|v| !v.is_finite()) {

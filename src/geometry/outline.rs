@@ -2,7 +2,7 @@
 //! and arcs map to vertices with bulges; sections (centred on the origin) to
 //! their exact outlines, an ellipse flattened within the chord error; a
 //! placed shape is turned and moved exactly (bulges survive a rigid motion);
-//! a region is its outline and its holes.
+//! a region is its outline and its holes; islands are every island's loops.
 
 use super::profile::{Profile, Vertex};
 use super::region::Region;
@@ -17,6 +17,11 @@ pub fn profile(shape: &Shape, chord_error: f64) -> Profile {
         Shape::Section(s) => Profile::new(section(s, chord_error)),
         Shape::Placed(p) => profile(&p.shape, chord_error).placed(p.turn.0, xy(p.at)),
         Shape::Region(r) => profile(&r.outline, chord_error),
+        // The first (lowest) island's: the callers of a single outline
+        // (a variable top's footprint) never get a mesh's islands.
+        Shape::Islands(v) => v
+            .first()
+            .map_or_else(|| Profile::new(Vec::new()), |s| profile(s, chord_error)),
     }
 }
 
@@ -33,6 +38,7 @@ pub fn region(shape: &Shape, chord_error: f64) -> Region {
                 .collect(),
         ),
         Shape::Placed(p) => region(&p.shape, chord_error).placed(p.turn.0, xy(p.at)),
+        Shape::Islands(v) => Region::islands(v.iter().map(|s| region(s, chord_error))),
         other => Region::from(profile(other, chord_error)),
     }
 }

@@ -43,6 +43,21 @@ impl Region {
         }
     }
 
+    /// The separate regions `parts` as one: all their outer loops and all
+    /// their holes (a layer of islands, for what looks at the whole layer:
+    /// its area, the distance to its edges).
+    pub fn islands(parts: impl IntoIterator<Item = Region>) -> Region {
+        let mut out = Region {
+            outer: Vec::new(),
+            holes: Vec::new(),
+        };
+        for p in parts {
+            out.outer.extend(p.outer);
+            out.holes.extend(p.holes);
+        }
+        out
+    }
+
     /// The outer loops, counter-clockwise.
     pub fn outer(&self) -> &[Profile] {
         &self.outer

@@ -351,6 +351,7 @@ pub fn assemble(
             span: spec.span,
             offset_span: spec.offset.map(|o| o.1),
             tolerance: spec.tolerance,
+            max_overhang: spec.max_overhang,
         },
     ))
 }

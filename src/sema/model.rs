@@ -362,6 +362,32 @@ pub struct Slicing {
     pub follow_wall: bool,
     /// `max_overhang = …`, if written (rad).
     pub max_overhang: Option<f64>,
+    /// `layer_change = …`: how each layer goes on to the next.
+    pub layer_change: LayerChange,
+    /// `layer_change = …`, if written.
+    pub layer_change_span: Option<Span>,
+}
+
+/// How a one-bead wall goes from one layer to the next: `layer_change = …`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LayerChange {
+    /// The laser goes off, the nozzle lifts and comes down at the next
+    /// layer's start.
+    Lift,
+    /// The end of each loop climbs to the next layer's start with the laser
+    /// on, and the next layer goes on from there: over its last `length`,
+    /// or over the whole loop (`None`: a helix of constant pitch).
+    Spiral {
+        /// How much of the loop's end climbs (`None`: all of it).
+        length: Option<Length>,
+    },
+}
+
+impl LayerChange {
+    /// Whether layers go on into each other with the laser on.
+    pub fn is_spiral(self) -> bool {
+        matches!(self, LayerChange::Spiral { .. })
+    }
 }
 
 /// Laser power over the layers.
@@ -535,6 +561,10 @@ pub enum Shape {
     Placed(Box<Placed>),
     /// An outline with holes: `region(…)`.
     Region(Box<RegionShape>),
+    /// Separate islands on one layer, each an outline or a region: a mesh's
+    /// section (never written in a file). The planar slicer fills each on
+    /// its own and visits them nearest first.
+    Islands(Vec<Shape>),
 }
 
 impl Shape {
@@ -544,6 +574,7 @@ impl Shape {
             Shape::Section(_) | Shape::Outline(_) => false,
             Shape::Placed(p) => p.shape.has_holes(),
             Shape::Region(r) => !r.holes.is_empty(),
+            Shape::Islands(v) => v.iter().any(Shape::has_holes),
         }
     }
 
@@ -557,6 +588,7 @@ impl Shape {
             Shape::Region(r) => {
                 r.outline.pieces() + r.holes.iter().map(|h| h.shape.pieces()).sum::<usize>()
             }
+            Shape::Islands(v) => v.iter().map(Shape::pieces).sum(),
         }
     }
 }
@@ -617,6 +649,13 @@ pub enum SeamRule {
     },
     /// At the loop's sharpest corner (a corner hides the seam).
     SharpestCorner,
+    /// Layer `k`'s seam `k·shift` along the loop (the way the nozzle goes)
+    /// from the lowest point, wrapping round: the starts climb the part on a
+    /// slant, a fixed distance apart.
+    Staggered {
+        /// How far each layer's seam moves along the loop (mm).
+        shift: Length,
+    },
 }
 
 /// Whether neighbouring raster tracks are joined at their ends along the
@@ -751,6 +790,8 @@ pub struct PlanarSlicing {
     pub offset_span: Option<Span>,
     /// `rise_tolerance` and `max_drift`.
     pub tolerance: Tolerance,
+    /// `max_overhang = …`, if written (rad): the contours' lean is checked.
+    pub max_overhang: Option<f64>,
 }
 
 impl PlanarSlicing {

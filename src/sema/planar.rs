@@ -5,7 +5,7 @@
 use super::eval::Env;
 use super::fields::Fields;
 use super::model::{LinkMode, Pattern, Raster, SeamRule};
-use super::schema::slicing::{planar, raster, PLANAR, RASTER};
+use super::schema::slicing::{normal, planar, raster, PLANAR, RASTER};
 use super::schema::Field;
 use super::seam;
 use super::value::{Call, Spanned as SpannedValue, Value};
@@ -35,6 +35,8 @@ pub struct PlanarSpec {
     pub seam: SeamRule,
     /// `rise_tolerance` and `max_drift`.
     pub tolerance: Tolerance,
+    /// `max_overhang = …`, if written (rad).
+    pub max_overhang: Option<f64>,
     /// The block.
     pub span: Span,
 }
@@ -124,6 +126,10 @@ pub fn read<'a>(
         chord_error: chord_error?,
         seam: seam?,
         tolerance: super::slicing::tolerance(&f, diags)?,
+        max_overhang: f.optional(
+            &normal::MAX_OVERHANG,
+            f.quantity(&normal::MAX_OVERHANG, diags).map(|(a, _)| a),
+        )?,
         span,
     })
 }

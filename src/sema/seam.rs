@@ -1,15 +1,16 @@
-//! `seam = …` of `slicing planar`: where each contour loop starts and ends,
+//! `seam = …` of `slicing planar` (and of `slicing normal`, which takes the
+//! directions only): where each contour loop starts and ends,
 //! and how that moves from layer to layer, and `link = …` of `raster(…)`.
 //! A seam on the same spot of every layer stacks its start/stop defects into
 //! a seam line up the part; moving it spreads them out.
 
 use super::fields::{self, Fields};
 use super::model::{LinkMode, SeamRule};
-use super::schema::slicing::{planar, raster, RANDOM, ROTATING};
+use super::schema::slicing::{planar, raster, RANDOM, ROTATING, STAGGERED};
 use super::suggest::did_you_mean;
 use super::value::{Call, Spanned, Value};
 use crate::diag::{message, Diagnostics};
-use crate::units::{Angle, Dim};
+use crate::units::{Angle, Dim, Length};
 
 /// Reads `seam = …`: `lowest`, `sharpest_corner`, an angle,
 /// `rotating(step, from)` or `random(seed)` (or `random`, seed 0).
@@ -22,6 +23,11 @@ pub fn read(v: &Spanned, diags: &mut Diagnostics) -> Option<SeamRule> {
             fields::quantity(v, Dim::ANGLE, "seam", diags).map(|a| SeamRule::Toward(Angle(a)))
         }
         Value::Call(c) if c.func == "rotating" => rotating(c, diags),
+        Value::Call(c) if c.func == "staggered" => {
+            let f = Fields::call(c, &STAGGERED, diags);
+            f.quantity(&raster::SHIFT, diags)
+                .map(|(d, _)| SeamRule::Staggered { shift: Length(d) })
+        }
         Value::Call(c) if c.func == "random" => {
             let f = Fields::call(c, &RANDOM, diags);
             f.count_or_default(&raster::SEED, diags)
@@ -34,7 +40,7 @@ pub fn read(v: &Spanned, diags: &mut Diagnostics) -> Option<SeamRule> {
                     let words = planar::SEAM.kind.words().unwrap_or_default();
                     did_you_mean(w, words.iter().copied())
                 }
-                Value::Call(c) => did_you_mean(&c.func, ["rotating", "random"]),
+                Value::Call(c) => did_you_mean(&c.func, ["rotating", "random", "staggered"]),
                 _ => None,
             };
             diags.push(message::solid::bad_seam(other.got(), v.span, near));
@@ -71,7 +77,7 @@ impl SeamRule {
     /// farthest in, or `None` for a rule that is not a direction.
     pub fn direction(&self, k: usize) -> Option<f64> {
         match *self {
-            SeamRule::Lowest | SeamRule::SharpestCorner => None,
+            SeamRule::Lowest | SeamRule::SharpestCorner | SeamRule::Staggered { .. } => None,
             SeamRule::Toward(a) => Some(a.0),
             SeamRule::Rotating { from, step } => {
                 // Reduced per layer so that a thousand layers lose no digit.

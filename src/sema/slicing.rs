@@ -4,7 +4,7 @@
 
 use super::eval::Env;
 use super::fields::Fields;
-use super::model::{Resolution, SeamRule, Slicing};
+use super::model::{LayerChange, Resolution, SeamRule, Slicing};
 use super::planar;
 use super::schema::slicing::{self as schema, normal};
 use super::seam;
@@ -183,7 +183,7 @@ fn normal<'a>(
     };
     let seam = match f.value(&normal::SEAM, diags) {
         Some(v) => seam::read(v, diags).and_then(|rule| match rule {
-            SeamRule::Lowest | SeamRule::SharpestCorner => {
+            SeamRule::Lowest | SeamRule::SharpestCorner | SeamRule::Staggered { .. } => {
                 diags.push(message::bend::planar_seam_on_a_wall(v.span));
                 None
             }
@@ -200,6 +200,16 @@ fn normal<'a>(
         &normal::MAX_OVERHANG,
         f.quantity(&normal::MAX_OVERHANG, diags).map(|(a, _)| a),
     );
+    let layer_change = layer_change(&f, diags);
+    if let (Some(LayerChange::Spiral { .. }), Some(rule)) = (layer_change, seam) {
+        if !matches!(rule, SeamRule::Toward(_)) {
+            diags.push(message::bend::spiral_seam_moves(
+                f.span(&normal::LAYER_CHANGE).unwrap_or(span),
+                f.span(&normal::SEAM).unwrap_or(span),
+            ));
+            return None;
+        }
+    }
     Some(Slicing {
         layers: layers?,
         resolution: resolution?,
@@ -210,5 +220,32 @@ fn normal<'a>(
         seam_span: f.span(&normal::SEAM),
         follow_wall: nozzle? == "wall",
         max_overhang: overhang?,
+        layer_change: layer_change?,
+        layer_change_span: f.span(&normal::LAYER_CHANGE),
     })
+}
+
+/// Reads `layer_change = lift | spiral | spiral(length)`.
+fn layer_change(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<LayerChange> {
+    match f.value(&normal::LAYER_CHANGE, diags) {
+        Some(v) => match &v.value {
+            Value::Call(c) if c.func == "spiral" => {
+                let args = Fields::call(c, &schema::SPIRAL, diags);
+                let length = args.optional(
+                    &normal::LENGTH,
+                    args.quantity(&normal::LENGTH, diags)
+                        .map(|(l, _)| Length(l)),
+                );
+                length.map(|length| LayerChange::Spiral { length })
+            }
+            _ => f
+                .word_or_default(&normal::LAYER_CHANGE, diags)
+                .map(|w| match w {
+                    "spiral" => LayerChange::Spiral { length: None },
+                    _ => LayerChange::Lift,
+                }),
+        },
+        None if f.has(&normal::LAYER_CHANGE) => None,
+        None => Some(LayerChange::Lift),
+    }
 }

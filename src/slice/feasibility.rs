@@ -91,6 +91,16 @@ pub fn choose_layers(
     };
     match slicing.layers {
         None => {
+            // A spiral's first climb rises off the plate and lays up to
+            // twice the layer height (`normal::Climb`): the fewest layers
+            // whose thickest point the bead lays twice over, when the
+            // thinnest still stays within the bead's range.
+            let n_lo = match slicing.layer_change.is_spiral() {
+                true => layer_range(rho_min, rho_max, total, h_min, h_max / 2.0)
+                    .0
+                    .min(n_hi.max(n_lo)),
+                false => n_lo,
+            };
             if n_lo > n_hi {
                 return Err(message::bend::no_layer_count(
                     what,

@@ -1,7 +1,8 @@
 //! A mesh's layers: each layer's section, cut halfway up the part of the
 //! layer the mesh reaches (so the top layer, rounded up past the mesh, is
 //! cut within it), as an outline and its holes of straight pieces — the
-//! mesh's own polygons, nothing smoothed.
+//! mesh's own polygons, nothing smoothed. A layer cut into separate
+//! islands is [`Shape::Islands`].
 
 use crate::diag::{message, Diagnostics};
 use crate::geometry::mesh::{self, Loop};
@@ -23,15 +24,24 @@ pub fn shapes(
         let z = (base + ((k + 1) as f64 * lift.0).min(m.top.0)) / 2.0;
         let section = sections
             .loops(z)
-            .and_then(mesh::region)
+            .and_then(mesh::islands)
             .map_err(|f| diags.push(message::mesh::section(&f, k, z, m.span)))
             .ok()?;
-        out.push(shape(section, m));
+        out.push(layer_shape(section, m));
     }
     Some(out)
 }
 
-/// A section as a shape: a region when it has holes.
+/// A layer's islands as its shape: the one island's shape, or
+/// [`Shape::Islands`].
+fn layer_shape(mut islands: Vec<mesh::Section>, m: &MeshSolid) -> Shape {
+    if islands.len() == 1 {
+        return shape(islands.remove(0), m);
+    }
+    Shape::Islands(islands.into_iter().map(|s| shape(s, m)).collect())
+}
+
+/// An island as a shape: a region when it has holes.
 fn shape(s: mesh::Section, m: &MeshSolid) -> Shape {
     let outer = Shape::Outline(outline(&s.outline));
     if s.holes.is_empty() {

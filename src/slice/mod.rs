@@ -19,7 +19,9 @@ use crate::diag::Diagnostics;
 use crate::geometry::LoftGeometry;
 use crate::ir::Layer;
 use crate::sema::model::MAX_POINTS;
-use crate::sema::model::{Bead, Build, Loft, Model, Resolution, SeamRule, Slicing, Spine};
+use crate::sema::model::{
+    Bead, Build, LayerChange, Loft, Model, Resolution, SeamRule, Slicing, Spine,
+};
 use crate::units::short;
 use section_points::Spacing;
 
@@ -73,6 +75,10 @@ fn duct(
         spacing,
         max_points: MAX_POINTS,
         follow: slicing.follow_wall,
+        climb: match slicing.layer_change {
+            LayerChange::Lift => None,
+            LayerChange::Spiral { length } => Some(length.map_or(f64::INFINITY, |l| l.0)),
+        },
     };
     if let Spacing::Count(k) = spacing {
         if layers.saturating_mul(k + 1) > MAX_TOTAL_POINTS {
@@ -110,6 +116,9 @@ fn duct(
         }
         out.push(layer);
     }
+    if slicing.layer_change.is_spiral() {
+        join_layers(&mut out);
+    }
     if let (Some(first), Spine::Arc { .. }, SeamRule::Toward(seam)) =
         (seam_hits.first(), loft.spine, slicing.seam)
     {
@@ -123,6 +132,26 @@ fn duct(
         ));
     }
     Ok((out, warnings))
+}
+
+/// Ends each layer's wall where the next one starts, to the bit: a spiral's
+/// climb ends at the next layer's first point (computed the same way, but
+/// with the nozzle following the wall the direction there is the next
+/// layer's own), so the motion plan goes straight on into it.
+fn join_layers(layers: &mut [Layer]) {
+    for i in 1..layers.len() {
+        let Some(&next) = layers[i].paths.first().and_then(|p| p.points.first()) else {
+            continue;
+        };
+        if let Some(end) = layers[i - 1]
+            .paths
+            .last_mut()
+            .and_then(|p| p.points.last_mut())
+        {
+            end.pos = next.pos;
+            end.normal = next.normal;
+        }
+    }
 }
 
 /// Layer `i` needs `k` points (or more), more than a layer may hold.

@@ -27,6 +27,10 @@ pub struct Setup {
     /// `nozzle = wall`: each point's build direction follows the wall's
     /// lean (`false`: the spine's tangent).
     pub follow: bool,
+    /// `layer_change = spiral`: how much of the end of each layer's loop
+    /// climbs to the next layer (mm; infinite: all of it); `None`: none,
+    /// the nozzle lifts between layers.
+    pub climb: Option<f64>,
 }
 
 impl Setup {
@@ -159,11 +163,7 @@ pub fn layer(
     let f = geo.frame(s);
     let n = f.z();
     let normal = [n.x as f32, n.y as f32, n.z as f32];
-    let power = model.process.power.at(i).watts() as f32;
-    let powder = model.process.powder.g_min() as f32;
-    let defocus = model.process.defocus.0 as f32;
     let seam = plan.seam_at(i);
-    let deposit = bead.deposit();
     let samples = section_points::angles(geo, &f, s, seam, plan.spacing, plan.max_points)?;
     let k = samples.len();
 
@@ -197,37 +197,35 @@ pub fn layer(
             t.try_normalize(1e-12).unwrap_or(f.y)
         })
         .collect();
-    let normals = match plan.follow {
+    let mut normals = match plan.follow {
         true => follow_wall(geo, plan, i, &samples, &pos, &tangents, &mut heights),
         false => vec![normal; k],
     };
-    let mut points = Vec::with_capacity(k + 1);
-    for j in 0..=k {
-        let jj = j % k;
-        let t = tangents[jj];
-        let normal = normals[jj];
-        let h = heights[jj];
-        // A wall one bead wide: each point's deposit fills the bead's width.
-        // The move to the next point lays the mean of its ends' heights (the
-        // layer's height varies linearly along it): its speed lays that.
-        let along = 0.5 * (h + heights[(jj + 1) % k]);
-        let v = deposit.speed_for(Length(along), bead.width);
-        let p = pos[jj];
-        points.push(Point {
-            pos: [p.x, p.y, p.z],
-            normal,
-            tangent: [t.x as f32, t.y as f32, t.z as f32],
-            layer_height: h as f32,
-            speed: clamp_speed(v) as f32,
-            power,
-            powder,
-            defocus,
-            laser_on: j < k,
-            style: 0,
-            pitch: bead.width.0 as f32,
-            rise: 0.0,
-        });
+    // The loop closed: its last point is its first again (the next layer's
+    // first, where it climbs).
+    pos.push(pos[0]);
+    heights.push(heights[0]);
+    normals.push(normals[0]);
+    if let Some(length) = plan.climb {
+        let up = Climb {
+            geo,
+            plan,
+            i,
+            length,
+        };
+        up.apply(&samples, &mut pos, &mut heights, &mut normals);
     }
+    let points = wall_points(
+        model,
+        bead,
+        i,
+        &Closed {
+            pos,
+            heights,
+            normals,
+            tangents,
+        },
+    );
     let o = f.spine.origin;
     let layer = Layer {
         index: i,
@@ -246,6 +244,116 @@ pub fn layer(
         on_plate: false,
     };
     Ok((layer, seam_at))
+}
+
+/// A layer's loop, closed: `k + 1` points (the last the first again, or
+/// where the loop climbs to), each one's layer height and build direction,
+/// and the `k` points' tangents.
+struct Closed {
+    pos: Vec<nalgebra::Point3<f64>>,
+    heights: Vec<f64>,
+    normals: Vec<[f32; 3]>,
+    tangents: Vec<Vector3<f64>>,
+}
+
+/// The IR points of layer `i`'s loop `c`.
+fn wall_points(model: &Model, bead: &Bead, i: usize, c: &Closed) -> Vec<Point> {
+    let power = model.process.power.at(i).watts() as f32;
+    let powder = model.process.powder.g_min() as f32;
+    let defocus = model.process.defocus.0 as f32;
+    let deposit = bead.deposit();
+    let k = c.tangents.len();
+    let mut points = Vec::with_capacity(k + 1);
+    for j in 0..=k {
+        let t = c.tangents[j % k];
+        let h = c.heights[j];
+        // A wall one bead wide: each point's deposit fills the bead's width.
+        // The move to the next point lays the mean of its ends' heights (the
+        // layer's height varies linearly along it): its speed lays that.
+        // (The closing point has no move: it keeps the speed of the move
+        // from the first point, as the next loop round would have it.)
+        let next = if j < k { j + 1 } else { 1 % k };
+        let along = 0.5 * (h + c.heights[next]);
+        let v = deposit.speed_for(Length(along), bead.width);
+        let p = c.pos[j];
+        points.push(Point {
+            pos: [p.x, p.y, p.z],
+            normal: c.normals[j],
+            tangent: [t.x as f32, t.y as f32, t.z as f32],
+            layer_height: h as f32,
+            speed: clamp_speed(v) as f32,
+            power,
+            powder,
+            defocus,
+            laser_on: j < k,
+            style: 0,
+            pitch: bead.width.0 as f32,
+            rise: 0.0,
+        });
+    }
+    points
+}
+
+/// A spiral layer change on layer `i`: the end of its loop climbs to the
+/// next layer.
+struct Climb<'g> {
+    geo: &'g LoftGeometry,
+    plan: &'g Setup,
+    i: usize,
+    /// How much of the loop's end climbs (mm; at most the whole loop).
+    length: f64,
+}
+
+impl Climb<'_> {
+    /// Moves the points of the loop's last `length` (`pos`, `heights` and
+    /// `normals` hold the closed loop: `k + 1` points, the last the first
+    /// again) up toward the next layer: a point a share `t` of the way
+    /// along the climb lies at station `(i + t)/n`, at its own angle in
+    /// the section there, so it stands one layer height over the point of
+    /// the climb below and lays the same height as on a flat layer; the
+    /// last point is the next layer's first. The first layer's climb rises
+    /// off the plate, so under it the bead fills down to the plate: it lays
+    /// `(1 + t)` layer heights, at the speed that lays that. With the
+    /// nozzle along the spine, each point's build direction turns with the
+    /// section it lies in.
+    fn apply(
+        &self,
+        samples: &[Sample],
+        pos: &mut [nalgebra::Point3<f64>],
+        heights: &mut [f64],
+        normals: &mut [[f32; 3]],
+    ) {
+        let k = samples.len();
+        let mut along = Vec::with_capacity(k + 1);
+        let mut total = 0.0;
+        along.push(0.0);
+        for w in pos.windows(2) {
+            total += (w[1] - w[0]).norm();
+            along.push(total);
+        }
+        let length = self.length.min(total);
+        if length <= 0.0 {
+            return;
+        }
+        let n = self.plan.layers as f64;
+        for j in 0..=k {
+            let t = ((along[j] - (total - length)) / length).clamp(0.0, 1.0);
+            if t <= 0.0 {
+                continue;
+            }
+            let s = (self.i as f64 + t) / n;
+            let f = self.geo.frame(s);
+            let theta = samples[j % k].theta;
+            pos[j] = self.geo.point(&f, s, theta).0;
+            if self.i == 0 {
+                heights[j] *= 1.0 + t;
+            }
+            if !self.plan.follow {
+                let z = f.z();
+                normals[j] = [z.x as f32, z.y as f32, z.z as f32];
+            }
+        }
+    }
 }
 
 /// Tells `scan` where each angle of the advice's grid sits across the bend

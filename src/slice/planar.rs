@@ -18,7 +18,7 @@ use super::layers::{self, Layers};
 use super::styling::{self, Styler};
 use super::MAX_TOTAL_POINTS;
 use crate::bead::MIN_OFFSET_RATIO;
-use crate::diag::{message, Diagnostic, Diagnostics};
+use crate::diag::{message, Diagnostic, Diagnostics, Worst};
 use crate::fill::{
     self, FillError, FillSpec, Linking, Pattern as FillPattern, RasterSpec, Seam, Track, TrackKind,
 };
@@ -94,6 +94,7 @@ fn fill_layers(
     // like it (a fixed profile, no rotation) reuses them instead of filling
     // and checking the same shape again.
     let mut last: Option<Filled> = None;
+    let mut lean = Lean::new(slicing.max_overhang, lift, slicing.chord_error.0);
     for (k, shape) in plan.shapes.iter().enumerate() {
         let angle = slicing
             .infill
@@ -106,39 +107,39 @@ fn fill_layers(
         let filled = match last.take() {
             Some(f) if reuse => f,
             _ => {
-                let region = outline::region(shape, slicing.chord_error.0);
                 let at = Where {
                     k,
                     varies,
                     extrusion,
                     slicing,
                 };
-                let faults = holes::faults(&region, shape, &holes::Layer { k, varies });
-                if !faults.is_empty() {
-                    for d in faults {
-                        diags.push(d);
-                    }
-                    return None;
-                }
-                let (tracks, gap) =
-                    match fill_layer(&region, angle, seam, inset, w, gap_samples, &at) {
-                        Ok(f) => f,
-                        Err(e) => {
-                            diags.push(e);
-                            return None;
-                        }
-                    };
-                Filled {
-                    shape,
+                let how = How {
                     angle,
                     seam,
-                    region,
-                    tracks,
-                    gap,
+                    inset,
+                    w,
+                    gap_samples,
+                };
+                match fill_shape(shape, &how, &at) {
+                    Ok((region, tracks, gap)) => Filled {
+                        shape,
+                        angle,
+                        seam,
+                        region,
+                        tracks,
+                        gap,
+                    },
+                    Err(errors) => {
+                        for d in errors {
+                            diags.push(d);
+                        }
+                        return None;
+                    }
                 }
             }
         };
         found.layer(k, &filled, slicing.contours, w);
+        lean.layer(k, &filled.region);
         total += filled.tracks.iter().map(|t| t.points.len()).sum::<usize>();
         if total > MAX_TOTAL_POINTS {
             diags.push(message::slicing::too_many_fill_points(
@@ -153,7 +154,93 @@ fn fill_layers(
         last = Some(filled);
     }
     found.report(model, bead, extrusion, slicing, diags);
+    lean.report(slicing.span, diags);
     Some(out)
+}
+
+/// Most points of a layer's outline checked for its lean (spread over it).
+const LEAN_SAMPLES: usize = 512;
+
+/// `max_overhang` on planar layers (`lmd::overhang`): how far each layer's
+/// outline and holes step out over the region of the layer below — a point
+/// of the layer outside the layer below's region, by its distance to that
+/// region, over the layer height, is its lean from the vertical nozzle. A
+/// layer that leans in stands on the layer below and is not counted.
+struct Lean {
+    limit: Option<f64>,
+    lift: f64,
+    chord: f64,
+    below: Option<Region>,
+    worst: Option<Worst<Spot>>,
+    /// The step at the worst place, mm.
+    step: f64,
+}
+
+/// A place on a planar layer: the layer (from 0) and a point (mm).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Spot {
+    k: usize,
+    at: [f64; 2],
+}
+
+impl std::fmt::Display for Spot {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "layer {}, ({} mm, {} mm)",
+            self.k + 1,
+            crate::units::short(self.at[0]),
+            crate::units::short(self.at[1])
+        )
+    }
+}
+
+impl Lean {
+    fn new(limit: Option<f64>, lift: f64, chord: f64) -> Self {
+        Lean {
+            limit,
+            lift,
+            chord,
+            below: None,
+            worst: None,
+            step: 0.0,
+        }
+    }
+
+    /// Measures layer `k`'s region against the one below, then keeps it.
+    fn layer(&mut self, k: usize, region: &Region) {
+        let Some(limit) = self.limit else { return };
+        if let Some(below) = &self.below {
+            let pts: Vec<[f64; 2]> = region.polylines(self.chord).concat();
+            let stride = pts.len().div_ceil(LEAN_SAMPLES).max(1);
+            for &p in pts.iter().step_by(stride) {
+                if below.contains(p) {
+                    continue;
+                }
+                let d = below.distance_to_boundary(p);
+                let lean = d.atan2(self.lift);
+                if lean > limit {
+                    let at = Spot { k, at: p };
+                    Worst::hit(&mut self.worst, lean, limit, at);
+                    if self.worst.is_some_and(|w| w.at == at) {
+                        self.step = d;
+                    }
+                }
+            }
+        }
+        self.below = Some(region.clone());
+    }
+
+    fn report(self, slicing: crate::span::Span, diags: &mut Diagnostics) {
+        if let Some(w) = self.worst {
+            let fix = message::verify::OverhangFix {
+                step: self.step,
+                height: self.lift,
+                planar: true,
+            };
+            diags.push(message::verify::overhang(&w, &fix, Some(slicing)));
+        }
+    }
 }
 
 /// Which layer is being filled, for the errors of its fill.
@@ -353,22 +440,102 @@ fn seam_at(rule: SeamRule, k: usize) -> Seam {
     match rule {
         SeamRule::Lowest => Seam::Lowest,
         SeamRule::SharpestCorner => Seam::SharpestCorner,
+        SeamRule::Staggered { shift } => Seam::Along(shift.0 * k as f64),
         r => r.direction(k).map_or(Seam::Lowest, Seam::Toward),
     }
 }
 
-/// Fills one layer's `region` with the raster at `angle` (deg), contours
-/// starting at `seam`, and finds the farthest spot no bead reaches, if a
-/// raster promises a full layer.
-fn fill_layer(
-    region: &Region,
+/// How a layer is filled: the raster's angle (deg), where contours start,
+/// how far the first pass is inset, the bead's width, and the gap check's
+/// samples.
+#[derive(Clone, Copy)]
+struct How {
     angle: f64,
     seam: Seam,
     inset: f64,
     w: f64,
     gap_samples: usize,
+}
+
+/// A layer's region, its tracks and the farthest spot no bead reaches.
+type FilledShape = (Region, Vec<Track>, Option<fill::Gap>);
+
+/// Fills one layer's `shape`: its region checked for holes that do not
+/// make one, then filled ([`fill_layer`]). Separate islands (a mesh's
+/// section) are each checked and filled on their own, and visited nearest
+/// first ([`nearest_first`]): the plan travels from one to the next with
+/// the laser off, lifted, as between any two tracks that are not linked.
+fn fill_shape(shape: &Shape, how: &How, at: &Where<'_>) -> Result<FilledShape, Vec<Diagnostic>> {
+    let chord = at.slicing.chord_error.0;
+    let layer = holes::Layer {
+        k: at.k,
+        varies: at.varies,
+    };
+    let one = |s: &Shape| {
+        let region = outline::region(s, chord);
+        let faults = holes::faults(&region, s, &layer);
+        if !faults.is_empty() {
+            return Err(faults);
+        }
+        let (tracks, gap) = fill_layer(&region, how, at).map_err(|e| vec![e])?;
+        Ok((region, tracks, gap))
+    };
+    let Shape::Islands(parts) = shape else {
+        return one(shape);
+    };
+    let mut regions = Vec::with_capacity(parts.len());
+    let mut fills = Vec::with_capacity(parts.len());
+    let mut gap: Option<fill::Gap> = None;
+    for part in parts {
+        let (region, tracks, g) = one(part)?;
+        regions.push(region);
+        fills.push(tracks);
+        if let Some(g) = g.filter(|g| gap.is_none_or(|o| g.distance > o.distance)) {
+            gap = Some(g);
+        }
+    }
+    Ok((Region::islands(regions), nearest_first(fills), gap))
+}
+
+/// The islands' tracks one island after the other: the first island
+/// first (the lowest), then always the one whose first track starts
+/// nearest to where the last ended (ties to the lower). Deterministic, and
+/// short for the handful of islands a layer has (quadratic in their
+/// number).
+fn nearest_first(mut islands: Vec<Vec<Track>>) -> Vec<Track> {
+    let mut out: Vec<Track> = Vec::with_capacity(islands.iter().map(Vec::len).sum());
+    while !islands.is_empty() {
+        let end = out.last().and_then(|t| t.points.last().copied());
+        let next = end.map_or(0, |e| {
+            let start = |i: &Vec<Track>| {
+                i.first()
+                    .and_then(|t| t.points.first())
+                    .map_or(f64::INFINITY, |p| (p[0] - e[0]).hypot(p[1] - e[1]))
+            };
+            (0..islands.len())
+                .min_by(|&a, &b| start(&islands[a]).total_cmp(&start(&islands[b])))
+                .unwrap_or(0)
+        });
+        out.extend(islands.remove(next));
+    }
+    out
+}
+
+/// Fills one layer's `region` with the raster at `how.angle` (deg), contours
+/// starting at `how.seam`, and finds the farthest spot no bead reaches, if a
+/// raster promises a full layer.
+fn fill_layer(
+    region: &Region,
+    how: &How,
     at: &Where<'_>,
 ) -> Result<(Vec<Track>, Option<fill::Gap>), Diagnostic> {
+    let How {
+        angle,
+        seam,
+        inset,
+        w,
+        gap_samples,
+    } = *how;
     let slicing = at.slicing;
     let spec = FillSpec {
         inset,

@@ -10,7 +10,10 @@
 //! (`atan(3w / 4h)` at the layer's height `h`), which [`super::stacking`]
 //! already holds every deposit to and reports with the lean (one report
 //! for one fault), so this rule runs only where `max_overhang` is written.
-//! Only walls one bead wide (a loft's layers) are checked.
+//! Only walls one bead wide (a loft's layers) are checked here: a filled
+//! planar layer leaning in is carried by the layer below, so its lean is
+//! measured against the layer below's region by the planar slicer
+//! (`slice::planar`), which knows it.
 //! The places checked and their nearest distances are
 //! [`super::stacking`]'s.
 
@@ -46,7 +49,7 @@ fn check(p: &Program, out: &mut Diagnostics) {
     let step = w / 8.0;
     let mut found: Option<Worst> = None;
     // The step and the layer height at the worst place.
-    let mut there = (0.0, 0.0);
+    let mut there = (0.0, 0.0, false);
     for (li, pair) in p.layers.windows(2).enumerate() {
         let (below, here) = (&pair[0], &pair[1]);
         if here.on_plate {
@@ -80,7 +83,7 @@ fn check(p: &Program, out: &mut Diagnostics) {
                 };
                 Worst::hit(&mut found, lean, limit, at);
                 if found.is_some_and(|f| f.at == at) {
-                    there = (d, h);
+                    there = (d, h, false);
                 }
             }
         }
@@ -89,6 +92,7 @@ fn check(p: &Program, out: &mut Diagnostics) {
     let fix = OverhangFix {
         step: there.0,
         height: there.1,
+        planar: there.2,
     };
     out.push(message::verify::overhang(&f, &fix, p.origins.slicing));
 }

@@ -238,9 +238,23 @@ pub fn planar_seam_on_a_wall(at: Span) -> Diagnostic {
     )
     .label(at, "this picks among a planar layer's contour points")
     .help(
-        "`lowest` and `sharpest_corner` choose where a flat contour starts; a wall sliced \
+        "`lowest`, `sharpest_corner` and `staggered(…)` choose where a flat contour starts; a wall sliced \
          normal to its spine starts at an angle in its section frame, e.g. \
          `seam = rotating(step = 90 deg)` turns it a quarter turn each layer",
+    )
+}
+
+/// `layer_change = spiral` with a seam that moves from layer to layer.
+pub fn spiral_seam_moves(change: Span, seam: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConflictingFields,
+        "a spiral layer change goes on from where the layer ended, so every layer starts at the same angle: its seam cannot move",
+    )
+    .label(change, "each layer climbs into the next here")
+    .label(seam, "this seam moves from layer to layer")
+    .help(
+        "give the seam one angle (`seam = 90 deg`: the climb ends there on every layer), \
+         or keep `layer_change = lift` to move the seam",
     )
 }
 

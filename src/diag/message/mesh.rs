@@ -134,12 +134,12 @@ pub fn section(f: &SectionFault, k: usize, z: f64, at: Span) -> Diagnostic {
             ),
             REPAIR.to_string(),
         ),
-        SectionFault::Islands { count, at: p } => (
+        SectionFault::StrayHole { at: p } => (
             format!(
-                "the section of {on} is {count} separate islands (the second at {}): lmdc fills one outline with its holes on each layer",
+                "the section of {on} has a hole at {} that lies in no outline: the mesh's faces there run the wrong way round",
                 p2(*p)
             ),
-            "build the islands as separate parts, or join them in CAD with a web that is built too".to_string(),
+            REPAIR.to_string(),
         ),
     };
     Diagnostic::error(Code::Mesh, msg)

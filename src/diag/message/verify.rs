@@ -244,6 +244,9 @@ pub struct OverhangFix {
     pub step: f64,
     /// The layer's height there, mm.
     pub height: f64,
+    /// Whether it is a planar layer's contour (a filled part's outline or
+    /// hole), not a wall sliced normal to its spine.
+    pub planar: bool,
 }
 
 /// A wall's layers lean out over the layer below by more than the declared
@@ -252,10 +255,20 @@ pub fn overhang(w: &Worst<impl Display>, fix: &OverhangFix, slicing: Option<Span
     let deg = |a: f64| short((a.to_degrees() * 10.0).round() / 10.0);
     // The layer count at which the same lean steps within the limit does
     // not exist: the lean stays as the layers thin.
+    let what = if fix.planar {
+        "the part's outline"
+    } else {
+        "the wall"
+    };
+    let help = if fix.planar {
+        "turn the part (`turn` of its mesh) so the outline leans less over the layer below; build it on a machine that tilts and slice it as a wall (`slicing normal`, `nozzle = wall`); or allow more, if the bead carries it (`max_overhang`; more, thinner layers do not change a lean)"
+    } else {
+        "tilt the nozzle with the wall (`nozzle = wall` in `slicing normal`, on a 5-axis machine or a robot); turn the part so the wall leans less; or allow more, if the bead carries it (`max_overhang`; more, thinner layers do not change a lean)"
+    };
     Diagnostic::error(
         Code::Overhang,
         format!(
-            "the wall leans out {}° from the nozzle's axis over the layer below (a step of {} mm on a {} mm layer), more than the {}° `max_overhang` allows, at {} ({} place{} so far over)",
+            "{what} leans out {}° from the nozzle's axis over the layer below (a step of {} mm on a {} mm layer), more than the {}° `max_overhang` allows, at {} ({} place{} so far over)",
             deg(w.value),
             short(fix.step),
             short(fix.height),
@@ -266,7 +279,7 @@ pub fn overhang(w: &Worst<impl Display>, fix: &OverhangFix, slicing: Option<Span
         ),
     )
     .label_opt(slicing, "the layers come from here")
-    .help("tilt the nozzle with the wall (`nozzle = wall` in `slicing normal`, on a 5-axis machine or a robot); turn the part so the wall leans less; or allow more, if the bead carries it (`max_overhang`; more, thinner layers do not change a lean)")
+    .help(help)
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@ pub mod stl;
 #[cfg(test)]
 mod tests;
 
-pub use section::{area, region, Loop, Section, SectionFault, Sections};
+pub use section::{area, islands, Loop, Section, SectionFault, Sections};
 
 use nalgebra::{Rotation3, Vector3};
 use std::collections::HashMap;

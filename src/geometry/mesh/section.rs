@@ -16,7 +16,7 @@ use std::collections::HashMap;
 /// One closed loop of a section, with the solid on its left.
 pub type Loop = Vec<[f64; 2]>;
 
-/// A section of the mesh: its outline and holes.
+/// One island of a section of the mesh: its outline and holes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Section {
     /// The outer loop, counter-clockwise.
@@ -25,7 +25,7 @@ pub struct Section {
     pub holes: Vec<Loop>,
 }
 
-/// Why a section is no region of one outline and its holes.
+/// Why a section is no set of islands, each an outline and its holes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SectionFault {
     /// The plane cuts nothing there.
@@ -38,12 +38,10 @@ pub enum SectionFault {
         /// Triangles of the chain (file numbers).
         triangles: Vec<usize>,
     },
-    /// More than one outer loop: islands side by side, or one inside a
-    /// hole.
-    Islands {
-        /// How many outer loops.
-        count: usize,
-        /// A point of the second.
+    /// A hole (a clockwise loop) inside no outline (a mesh that passed
+    /// [`Mesh::new`] has none; kept as a check).
+    StrayHole {
+        /// A point of the hole.
         at: [f64; 2],
     },
 }
@@ -220,18 +218,62 @@ pub fn area(l: &[[f64; 2]]) -> f64 {
         / 2.0
 }
 
-/// The loops of a section as one outline and its holes.
-pub fn region(loops: Vec<Loop>) -> Result<Section, SectionFault> {
+/// The loops of a section as islands, each an outline and the holes inside
+/// it, ordered by their lowest, then leftmost, point (the order the planar
+/// slicer starts from before it visits them nearest first). A hole belongs
+/// to the smallest outline round it (an island standing in another's hole
+/// keeps its own holes).
+pub fn islands(loops: Vec<Loop>) -> Result<Vec<Section>, SectionFault> {
     let (outer, holes): (Vec<Loop>, Vec<Loop>) = loops.into_iter().partition(|l| area(l) > 0.0);
-    match outer.len() {
-        0 => Err(SectionFault::Empty),
-        1 => Ok(Section {
-            outline: outer.into_iter().next().unwrap_or_default(),
-            holes,
-        }),
-        count => Err(SectionFault::Islands {
-            count,
-            at: outer[1][0],
-        }),
+    if outer.is_empty() {
+        return Err(SectionFault::Empty);
     }
+    let mut out: Vec<Section> = outer
+        .into_iter()
+        .map(|outline| Section {
+            outline,
+            holes: Vec::new(),
+        })
+        .collect();
+    for h in holes {
+        let p = h[0];
+        let round = (0..out.len())
+            .filter(|&i| inside(&out[i].outline, p))
+            .min_by(|&i, &j| area(&out[i].outline).total_cmp(&area(&out[j].outline)));
+        match round {
+            Some(i) => out[i].holes.push(h),
+            None => return Err(SectionFault::StrayHole { at: p }),
+        }
+    }
+    out.sort_by(|a, b| {
+        let (p, q) = (lowest(&a.outline), lowest(&b.outline));
+        p[1].total_cmp(&q[1]).then(p[0].total_cmp(&q[0]))
+    });
+    Ok(out)
+}
+
+/// The loop's lowest point (least y, then least x).
+fn lowest(l: &Loop) -> [f64; 2] {
+    l.iter()
+        .copied()
+        .min_by(|p, q| p[1].total_cmp(&q[1]).then(p[0].total_cmp(&q[0])))
+        .unwrap_or([0.0, 0.0])
+}
+
+/// Whether `p` is inside loop `l` (even-odd rule; a point on it may go
+/// either way, which cannot happen for a hole's corner: loops of a closed
+/// mesh's section do not touch).
+fn inside(l: &Loop, p: [f64; 2]) -> bool {
+    let n = l.len();
+    let mut odd = false;
+    for i in 0..n {
+        let (a, b) = (l[i], l[(i + 1) % n]);
+        if (a[1] > p[1]) != (b[1] > p[1]) {
+            let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
+            if x > p[0] {
+                odd = !odd;
+            }
+        }
+    }
+    odd
 }

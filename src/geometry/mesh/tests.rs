@@ -11,6 +11,13 @@ const FLAT: Placement = Placement {
     at: [0.0; 3],
 };
 
+/// The one island of a section.
+fn region(loops: Vec<Loop>) -> Result<Section, SectionFault> {
+    let mut all = islands(loops)?;
+    assert_eq!(all.len(), 1, "one island");
+    Ok(all.remove(0))
+}
+
 /// Two triangles of the quad `a b c d` (counter-clockwise from outside).
 fn quad(out: &mut Vec<Triangle>, a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) {
     let f = |p: [f64; 3]| p.map(|x| x as f32);
@@ -243,4 +250,29 @@ fn placement_scales_turns_and_moves() {
             .outline,
     );
     assert!((a - b).abs() < 1e-3, "{a} {b}");
+}
+
+#[test]
+fn two_boxes_are_two_islands_each_with_its_hole() {
+    // The second box 40 mm to the right of the first, and lower.
+    let mut tris = box_with_hole(10.0, 3.0, 6.0, 16);
+    let moved: Vec<Triangle> = box_with_hole(10.0, 4.0, 3.0, 16)
+        .into_iter()
+        .map(|t| t.map(|c| [c[0] + 40.0, c[1] + 5.0, c[2]]))
+        .collect();
+    tris.extend(moved);
+    let mesh = Mesh::new(&tris, FLAT).unwrap();
+    let mut s = mesh.sections();
+    let low = islands(s.loops(1.0).unwrap()).unwrap();
+    assert_eq!(low.len(), 2);
+    // Lowest first: the first box reaches y = -10, the second y = -5.
+    assert!(low[0].outline.iter().all(|p| p[0] < 20.0));
+    let hole = |r: f64| -ngon(r, 16);
+    for (sec, r) in low.iter().zip([3.0, 4.0]) {
+        assert_eq!(sec.holes.len(), 1);
+        assert!((area(&sec.outline) - 400.0).abs() < 1e-3);
+        assert!((area(&sec.holes[0]) - hole(r)).abs() < 1e-3, "{r}");
+    }
+    let high = islands(s.loops(4.0).unwrap()).unwrap();
+    assert_eq!(high.len(), 1);
 }

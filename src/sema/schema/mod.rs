@@ -552,6 +552,8 @@ pub static BLOCKS: &[&Block] = &[
     &slicing::RASTER,
     &slicing::ROTATING,
     &slicing::RANDOM,
+    &slicing::STAGGERED,
+    &slicing::SPIRAL,
     &slicing::VARIABLE,
     &slicing::SEGMENTS,
     &slicing::CONTINUOUS,

@@ -90,12 +90,26 @@ pub mod normal {
         Default(DefaultWord("spine")),
         "the build direction: along the spine, or `wall`: tilted with the wall's lean, in the plane of its normal (5-axis or robot)",
     );
+    /// `layer_change = …`.
+    pub static LAYER_CHANGE: Field = Field::new(
+        "layer_change",
+        Either(&[Word(&["lift", "spiral"]), Call(&[&SPIRAL])]),
+        Default(DefaultWord("lift")),
+        "how a layer goes on to the next: `lift` (laser off, up, laser on at the next start), or `spiral`: the loop's end climbs to the next layer with the laser on, and the next goes on without a stop",
+    );
+    /// `spiral(length = …)`.
+    pub static LENGTH: Field = Field::new(
+        "length",
+        Quantity(Dim::LENGTH, Positive),
+        Default(Described("the whole loop: a helix of constant pitch")),
+        "how much of the end of each layer's loop climbs to the next layer",
+    );
     /// `max_overhang = …`.
     pub static MAX_OVERHANG: Field = Field::new(
         "max_overhang",
         Quantity(Dim::ANGLE, Positive),
         Default(Described("what lands: `atan(3w / 4h)`, `lmd::stacking`")),
-        "the most a wall's layer may lean out over the one below, from the nozzle's axis (`lmd::overhang`)",
+        "the most a wall's layer (or a planar layer's contour) may lean out over the one below, from the nozzle's axis (`lmd::overhang`)",
     );
 }
 
@@ -110,6 +124,7 @@ pub static NORMAL: Block = Block::new(
         &normal::CHORD_ERROR,
         &normal::SEAM,
         &normal::NOZZLE,
+        &normal::LAYER_CHANGE,
         &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
@@ -168,7 +183,7 @@ pub mod planar {
         Either(&[
             Word(&["lowest", "sharpest_corner", "random"]),
             Quantity(Dim::ANGLE, Any),
-            Call(&[&ROTATING, &RANDOM]),
+            Call(&[&ROTATING, &RANDOM, &STAGGERED]),
         ]),
         Default(DefaultWord("lowest")),
         "where each contour loop starts and ends, layer by layer",
@@ -188,6 +203,7 @@ pub static PLANAR: Block = Block::new(
         &planar::INFILL,
         &planar::CHORD_ERROR,
         &planar::SEAM,
+        &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
     ],
@@ -246,6 +262,13 @@ pub mod raster {
         Default(DefaultQuantity(crate::sema::schema::deg(-90.0))),
         "the first layer's direction, from +x",
     );
+    /// `staggered(shift = …)`.
+    pub static SHIFT: Field = Field::new(
+        "shift",
+        Quantity(Dim::LENGTH, Positive),
+        Required("10 mm"),
+        "how far each layer's seam moves along the loop from the one below",
+    );
     /// `random(seed = …)`.
     pub static SEED: Field = Field::new(
         "seed",
@@ -275,6 +298,25 @@ pub static ROTATING: Block = Block::new(
     "rotating(step, from)",
     "a seam that turns layer by layer",
     &[&raster::STEP, &raster::FROM],
+)
+.positional(1);
+
+/// `spiral(length)`: a layer change that climbs with the laser on.
+pub static SPIRAL: Block = Block::new(
+    "spiral",
+    "spiral(length)",
+    "a layer change that climbs to the next layer over the end of each loop, the laser on",
+    &[&normal::LENGTH],
+)
+.positional(1);
+
+/// `staggered(shift)`: a seam that moves a fixed distance along the loop
+/// every layer.
+pub static STAGGERED: Block = Block::new(
+    "staggered",
+    "staggered(shift)",
+    "a seam that moves a fixed distance along the loop every layer",
+    &[&raster::SHIFT],
 )
 .positional(1);
 
@@ -412,6 +454,7 @@ pub static ANY: Block = Block::new(
         &normal::CHORD_ERROR,
         &normal::SEAM,
         &normal::NOZZLE,
+        &normal::LAYER_CHANGE,
         &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,

@@ -1,0 +1,109 @@
+//! `layer_change = spiral(…)` on a wall sliced normal to its spine: the end
+//! of every layer's loop climbs to the next layer with the laser on, every
+//! point lays one layer height (the first layer's climb, rising off the
+//! plate, up to two), and the plan switches the laser once.
+
+use lmdc::ir::{Machine, Program};
+use lmdc::plan::{Move, Plan, Visit};
+
+/// examples/spiral_tube.lmd with `change` for its layer change and `layers`.
+fn tube(change: &str, layers: &str) -> Program {
+    let src = std::fs::read_to_string("examples/spiral_tube.lmd")
+        .unwrap()
+        .replace("layer_change = spiral(length = 20 mm)", change)
+        .replace("layers = auto", layers);
+    let c = lmdc::pipeline::compile(&src, &mut ());
+    let m: Vec<String> = c.diagnostics.iter().map(|d| d.message.clone()).collect();
+    c.program
+        .unwrap_or_else(|| panic!("{}", m.join("\n")))
+        .into_ir()
+}
+
+/// How often the laser switches on in `m`'s plan.
+fn laser_starts(p: &Program, m: &Machine) -> usize {
+    struct Count(usize);
+    impl Visit for Count {
+        fn motion(&mut self, _: &Move) {}
+        fn laser_on(&mut self, _: &Move) {
+            self.0 += 1;
+        }
+    }
+    let mut c = Count(0);
+    Plan::new(p, m).walk(&mut c);
+    c.0
+}
+
+#[test]
+fn each_loop_climbs_its_last_length_and_the_laser_stays_on() {
+    let (length, tall) = (20.0, 5.0);
+    let p = tube("layer_change = spiral(length = 20 mm)", "layers = 10");
+    let n = p.layers.len();
+    assert_eq!(n, 10);
+    let h = tall / n as f64;
+    assert!(p.continuous);
+    for (i, layer) in p.layers.iter().enumerate() {
+        let pts = &layer.paths[0].points;
+        let z0 = i as f64 * h;
+        // Arc length along the loop in plan view (the tube is straight up).
+        let mut along = vec![0.0];
+        for w in pts.windows(2) {
+            let d = (w[1].pos[0] - w[0].pos[0]).hypot(w[1].pos[1] - w[0].pos[1]);
+            along.push(along.last().unwrap() + d);
+        }
+        let total = *along.last().unwrap();
+        for (q, s) in pts.iter().zip(&along) {
+            let t = ((s - (total - length)) / length).clamp(0.0, 1.0);
+            assert!((q.pos[2] - (z0 + t * h)).abs() < 1e-9, "layer {i}: {q:?}");
+            // One layer height over the climb below; the first layer's
+            // climb fills down to the plate.
+            let laid = if i == 0 { h * (1.0 + t) } else { h };
+            assert!((f64::from(q.layer_height) - laid).abs() < 1e-5, "layer {i}");
+        }
+        if let Some(next) = p.layers.get(i + 1) {
+            assert_eq!(pts.last().unwrap().pos, next.paths[0].points[0].pos);
+        }
+    }
+    for m in &p.machines {
+        assert_eq!(laser_starts(&p, m), 1, "{}", m.name());
+    }
+    // With `lift`, the same tube starts every layer with the laser off.
+    let lift = tube("layer_change = lift", "layers = 10");
+    assert!(!lift.continuous);
+    for m in &lift.machines {
+        assert_eq!(laser_starts(&lift, m), 10, "{}", m.name());
+    }
+}
+
+#[test]
+fn a_spiral_without_length_is_a_helix_and_auto_layers_leave_room_for_the_first_climb() {
+    let p = tube("layer_change = spiral", "layers = auto");
+    let n = p.layers.len();
+    let h = 5.0 / n as f64;
+    let h_max = p.limits.layer_height[1];
+    // The first climb lays up to two layer heights, within the bead's range.
+    let most = p.layers[0].paths[0]
+        .points
+        .iter()
+        .map(|q| f64::from(q.layer_height))
+        .fold(0.0, f64::max);
+    assert!(
+        (most - 2.0 * h).abs() < 1e-5 && most <= h_max + 1e-9,
+        "{most} {h_max}"
+    );
+    // The whole loop climbs: every point but the first rises.
+    let pts = &p.layers[3].paths[0].points;
+    assert!(pts.windows(2).all(|w| w[1].pos[2] > w[0].pos[2]));
+    assert!((pts.last().unwrap().pos[2] - pts[0].pos[2] - h).abs() < 1e-9);
+}
+
+#[test]
+fn a_spiral_with_a_moving_seam_is_refused() {
+    let src = std::fs::read_to_string("examples/spiral_tube.lmd")
+        .unwrap()
+        .replace("seam = 90 deg", "seam = rotating(step = 90 deg)");
+    let c = lmdc::pipeline::compile(&src, &mut ());
+    assert!(c.program.is_none());
+    let d = c.diagnostics.iter().next().unwrap();
+    assert_eq!(d.code, lmdc::diag::Code::ConflictingFields);
+    assert!(d.message.contains("its seam cannot move"), "{}", d.message);
+}
