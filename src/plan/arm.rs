@@ -19,6 +19,7 @@ use rs_opw_kinematics::glam::{DQuat, DVec3};
 use rs_opw_kinematics::kinematic_traits::{Kinematics, Pose as OpwPose};
 use rs_opw_kinematics::kinematics_impl::OPWKinematics;
 use rs_opw_kinematics::parameters::opw_kinematics::Parameters;
+use std::sync::Arc;
 
 /// Axis angles A1–A6, deg.
 pub type Joints = [f64; 6];
@@ -162,12 +163,10 @@ impl Solver {
                 DVec3::new(t.x, t.y, t.z),
                 DQuat::from_xyzw(q.x, q.y, q.z, q.w),
             );
-            let sols = self
-                .kin
-                .inverse(&pose)
-                .into_iter()
-                .map(|j| j.map(f64::to_degrees))
-                .collect();
+            let mut sols = self.kin.inverse(&pose);
+            for j in &mut sols {
+                *j = j.map(f64::to_degrees);
+            }
             (sols, self.wrist(&f))
         };
         let per = poses.len().div_ceil(threads.max(1)).max(1);
@@ -323,10 +322,16 @@ pub struct Solved {
 /// interpolates in the axes, not along a line.
 ///
 /// Moves are buffered and solved [`CHUNK`] at a time on two threads
-/// ([`Solver::solve_many`]), then chosen in order ([`Solver::nearest`]):
-/// [`Follow::push`] says when a chunk is full, [`Follow::take`] solves it.
+/// ([`Solver::solve_many`]), then chosen in order ([`Solver::nearest`]).
+/// A full chunk is solved in the background while the next one is
+/// buffered: [`Follow::push`] hands it over and gives back the chunk before
+/// it, chosen; [`Follow::take`] waits for everything pushed.
 pub struct Follow {
-    solver: Solver,
+    solver: Arc<Solver>,
+    /// The chunk being solved in the background.
+    solving: Option<Solving>,
+    /// Poses pushed so far.
+    pushed: u64,
     orient: Orienter,
     /// A positioner carrying the base, and its angles and pose last seen.
     mount: Option<(Kin, Rotary, Isometry3<f64>)>,
@@ -345,6 +350,18 @@ pub struct Follow {
     first: bool,
 }
 
+/// A chunk's moves and poses, and the thread solving the poses.
+struct Solving {
+    moves: Vec<(Move, f64)>,
+    poses: Arc<Vec<Pose6>>,
+    thread: std::thread::JoinHandle<Vec<Solutions>>,
+}
+
+/// A pose as the solver takes it: the focus, the tool's axes.
+type Pose6 = ([f64; 3], Matrix3<f64>);
+/// A pose's solutions, and its wrist centre.
+type Solutions = (Vec<Joints>, Vector3<f64>);
+
 /// Moves solved together: their poses do not depend on each other, only
 /// the choice among each one's solutions does (`Solver::nearest`).
 pub const CHUNK: usize = 4096;
@@ -358,7 +375,9 @@ impl Follow {
     /// The follower of `robot`'s arm, when [`Solver::new`] has one.
     pub fn new(robot: &Robot) -> Option<Follow> {
         Some(Follow {
-            solver: Solver::new(robot)?,
+            solver: Arc::new(Solver::new(robot)?),
+            solving: None,
+            pushed: 0,
             orient: Orienter::for_robot(robot),
             mount: Kin::of(robot).map(|k| {
                 let at = k.part([0.0, 0.0]);
@@ -388,13 +407,15 @@ impl Follow {
         &self.solver
     }
 
-    /// Poses buffered (moves and the poses between them) and not yet taken.
-    pub fn buffered(&self) -> usize {
-        self.moves.len()
+    /// Poses pushed so far (moves and the poses along the LINs to them).
+    pub fn pushed(&self) -> u64 {
+        self.pushed
     }
 
-    /// Buffers a move; `true` when a chunk is full and should be taken.
-    pub fn push(&mut self, m: &Move) -> bool {
+    /// Buffers a move (and the poses along a LIN to it). When a chunk is
+    /// full, hands it to a thread to solve and gives back the chunk before
+    /// it, solved and chosen in order.
+    pub fn push(&mut self, m: &Move) -> Option<Vec<Solved>> {
         if self.normal != Some(m.normal) {
             // As the writer does: the tool turns only where the normal changes.
             self.normal = Some(m.normal);
@@ -437,13 +458,55 @@ impl Follow {
                 let pose = self.pose(&sub, *turned.to_rotation_matrix().matrix());
                 self.moves.push((sub, t));
                 self.poses.push(pose);
+                self.pushed += 1;
             }
         }
         self.last = Some((m.to, q, m.axes));
         self.moves.push((*m, 1.0));
         let pose = self.pose(m, self.rot);
         self.poses.push(pose);
-        self.moves.len() >= CHUNK
+        self.pushed += 1;
+        if self.moves.len() < CHUNK {
+            return None;
+        }
+        let moves = std::mem::replace(&mut self.moves, Vec::with_capacity(CHUNK));
+        let poses = Arc::new(std::mem::replace(
+            &mut self.poses,
+            Vec::with_capacity(CHUNK),
+        ));
+        let (solver, theirs) = (Arc::clone(&self.solver), Arc::clone(&poses));
+        let spawned = std::thread::Builder::new()
+            .name("arm".into())
+            .spawn(move || solver.solve_many(&theirs, 2));
+        // This chunk is solving before the one before is chosen: the
+        // choosing runs beside it.
+        let before = match spawned {
+            Ok(thread) => self.solving.replace(Solving {
+                moves,
+                poses,
+                thread,
+            }),
+            // No thread to be had: solved here, now, after the one before.
+            Err(_) => {
+                let mut out = match self.solving.take() {
+                    Some(s) => self.joined(s),
+                    None => Vec::new(),
+                };
+                let solved = self.solver.solve_many(&poses, 2);
+                out.extend(self.choose(moves, &poses, solved));
+                return Some(out);
+            }
+        };
+        before.map(|s| self.joined(s))
+    }
+
+    /// The chunk `s` solved in the background, chosen.
+    fn joined(&mut self, s: Solving) -> Vec<Solved> {
+        let solved = s
+            .thread
+            .join()
+            .unwrap_or_else(|e| std::panic::resume_unwind(e));
+        self.choose(s.moves, &s.poses, solved)
     }
 
     /// The pose of `m` as the solver takes it: the tool turned `rot`, at
@@ -461,34 +524,48 @@ impl Follow {
         ([p.x, p.y, p.z], r)
     }
 
-    /// Solves the buffered moves and returns them in order.
+    /// Every move pushed and not yet given back, solved and chosen in order.
     pub fn take(&mut self) -> Vec<Solved> {
-        let solved = self.solver.solve_many(&self.poses, 2);
-        let mut out = Vec::with_capacity(self.moves.len());
-        for (((m, way), (to, rot)), (sols, wrist)) in self.moves.iter().zip(&self.poses).zip(solved)
-        {
+        let mut out = match self.solving.take() {
+            Some(s) => self.joined(s),
+            None => Vec::new(),
+        };
+        let moves = std::mem::take(&mut self.moves);
+        let poses = std::mem::take(&mut self.poses);
+        let solved = self.solver.solve_many(&poses, 2);
+        out.extend(self.choose(moves, &poses, solved));
+        out
+    }
+
+    /// Chooses, in order, each pose's solution nearest the one before.
+    fn choose(
+        &mut self,
+        moves: Vec<(Move, f64)>,
+        poses: &[Pose6],
+        solved: Vec<Solutions>,
+    ) -> Vec<Solved> {
+        let mut out = Vec::with_capacity(moves.len());
+        for (((m, way), &(to, rot)), (sols, wrist)) in moves.into_iter().zip(poses).zip(solved) {
             // The first move (the PTP from home) as the KRL writer solves it,
             // and a pose at the wrist singularity, by the move before.
             let joints = match (self.first, Solver::nearest(&sols, &self.prev)) {
                 (false, Some(j)) => Some(j),
                 _ if sols.is_empty() => None,
-                _ => self.solver.solve(*to, rot, &self.prev).first().copied(),
+                _ => self.solver.solve(to, &rot, &self.prev).first().copied(),
             };
             if let Some(j) = joints {
                 self.prev = j;
             }
             self.first = false;
             out.push(Solved {
-                m: *m,
-                way: *way,
-                to: *to,
-                rot: *rot,
+                m,
+                way,
+                to,
+                rot,
                 joints,
                 wrist,
             });
         }
-        self.moves.clear();
-        self.poses.clear();
         out
     }
 }

@@ -107,8 +107,8 @@ pub fn clearance(robot: &Robot, deg: f64, moves: &[Move]) -> f64 {
     };
     let mut solved: Vec<Solved> = Vec::with_capacity(moves.len());
     for m in moves {
-        if follow.push(m) {
-            solved.extend(follow.take());
+        if let Some(done) = follow.push(m) {
+            solved.extend(done);
         }
     }
     solved.extend(follow.take());

@@ -42,11 +42,18 @@ struct Collect {
 }
 
 impl Collect {
-    fn flush(&mut self) {
-        let solved = self.follow.take();
-        for (s, layer) in solved.iter().zip(std::mem::take(&mut self.pending)) {
+    /// Counts solved poses with the layers they were pushed in (the oldest
+    /// pending ones: poses come back in order).
+    fn collect(&mut self, solved: Vec<Solved>) {
+        let layers: Vec<usize> = self.pending.drain(..solved.len()).collect();
+        for (s, layer) in solved.iter().zip(layers) {
             self.add(s, layer);
         }
+    }
+
+    fn flush(&mut self) {
+        let solved = self.follow.take();
+        self.collect(solved);
     }
 
     fn add(&mut self, s: &Solved, layer: usize) {
@@ -68,13 +75,13 @@ impl Visit for Collect {
     }
 
     fn motion(&mut self, m: &Move) {
-        let before = self.follow.buffered();
-        let full = self.follow.push(m);
+        let before = self.follow.pushed();
+        let done = self.follow.push(m);
         // The move, and the poses along a LIN to it, count with its layer.
-        let added = self.follow.buffered() - before;
+        let added = (self.follow.pushed() - before) as usize;
         self.pending.extend(std::iter::repeat_n(self.layer, added));
-        if full {
-            self.flush();
+        if let Some(done) = done {
+            self.collect(done);
         }
     }
 }

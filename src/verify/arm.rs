@@ -116,16 +116,22 @@ impl<'p> PlanRule<'p> for ArmRule {
 
 impl Visit for ArmRule {
     fn motion(&mut self, m: &Move) {
-        if self.follow.push(m) {
-            self.flush();
+        if let Some(done) = self.follow.push(m) {
+            self.follow_up(done);
         }
     }
 }
 
 impl ArmRule {
-    /// Solves the buffered moves (on two threads) and follows them in order.
+    /// Solves the moves still buffered and follows them in order.
     fn flush(&mut self) {
-        for s in self.follow.take() {
+        let rest = self.follow.take();
+        self.follow_up(rest);
+    }
+
+    /// Follows solved moves in order.
+    fn follow_up(&mut self, solved: Vec<Solved>) {
+        for s in solved {
             let at = Along {
                 at: s.m.at,
                 way: s.way,
