@@ -287,6 +287,27 @@ fn run<R>(
     // nozzle axis, where the file leaves it to lmdc (through the positioner).
     crate::plan::positioner::choose(&mut program);
     crate::plan::spin::choose(&mut program);
+    Ok(verify_then(
+        program,
+        select,
+        from,
+        obs,
+        diagnostics,
+        meanwhile,
+    ))
+}
+
+/// Verifies the lowered `program`, running `meanwhile` beside the slow rules
+/// when the program has no errors so far, and adds what the verifier found
+/// to `diagnostics`.
+fn verify_then<R>(
+    program: crate::ir::Program,
+    select: Select,
+    from: Provenance,
+    obs: &mut dyn Observer,
+    diagnostics: &mut Diagnostics,
+    meanwhile: impl FnOnce(&Verified, &mut dyn Observer) -> R,
+) -> Ran<R> {
     // The slow rules (an arm's) go on beside `meanwhile`; the stage `verify`
     // ends when the others have, `verify arm` when they have too.
     let clean = !diagnostics.has_errors();
@@ -306,23 +327,23 @@ fn run<R>(
     match out.verified {
         Ok(v) if !diagnostics.has_errors() => {
             diagnostics.extend(v.warnings().clone());
-            Ok(Ran {
+            Ran {
                 program: Some(v),
                 made: out.made.flatten(),
                 refused: None,
-            })
+            }
         }
         Ok(v) => {
             diagnostics.extend(v.warnings().clone());
-            Ok(Ran::none())
+            Ran::none()
         }
         Err(mut e) => {
             e.retain(|d| !reported_already(d.code, diagnostics));
             diagnostics.extend(e);
-            Ok(Ran {
+            Ran {
                 refused,
                 ..Ran::none()
-            })
+            }
         }
     }
 }
