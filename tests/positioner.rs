@@ -343,3 +343,28 @@ fn e2_beyond_its_limits_is_refused_with_its_angle() {
         d.message
     );
 }
+
+/// A positioner set too far from the robot: the arm cannot reach the part,
+/// and the fix names the positioner's place, not a robot base (which, on a
+/// positioner, is the part's place on the flange).
+#[test]
+fn a_positioner_out_of_reach_says_to_bring_it_nearer() {
+    let src = std::fs::read_to_string(EXAMPLE)
+        .unwrap()
+        .replace("tilt_point = [1500 mm,", "tilt_point = [6500 mm,")
+        .replace("rotate_point = [1500 mm,", "rotate_point = [6500 mm,");
+    assert_eq!(src.matches("6500 mm").count(), 2);
+    let c = lmdc::pipeline::compile(&src, &mut ());
+    assert!(c.program.is_none());
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == Code::Reach)
+        .expect("lmd::reach");
+    let help = d.help.as_deref().unwrap();
+    assert!(
+        help.contains("`rotate_point`") && help.contains("positioner"),
+        "{help}"
+    );
+    assert!(!help.contains("frame("), "{help}");
+}

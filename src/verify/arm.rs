@@ -89,7 +89,12 @@ impl<'p> PlanRule<'p> for ArmRule {
             }
         }
         if let Some(w) = self.reach {
-            out.push(msg::reach(&at, &w, self.span, &self.base_that_reaches(r)));
+            let base = self.base_that_reaches(r);
+            let fix = match r.positioner {
+                Some(_) => msg::ReachFix::Positioner,
+                None => msg::ReachFix::Base(&base),
+            };
+            out.push(msg::reach(&at, &w, self.span, fix));
         }
         for (i, w) in self.limits.iter().enumerate() {
             if let Some(w) = w {

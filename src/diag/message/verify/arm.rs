@@ -23,11 +23,24 @@ pub struct ArmAt<'a> {
     pub tool: Span,
 }
 
+/// What would bring a plan the arm cannot reach within its reach.
+pub enum ReachFix<'a> {
+    /// A base that would bring the part's centre within reach, as written.
+    Base(&'a str),
+    /// The part rides a positioner: its place in the cell is the
+    /// positioner's.
+    Positioner,
+}
+
 /// Poses the arm cannot reach: the worst's wrist centre `value` mm from A2,
-/// against the arm's `span` of reach; `base` a base that would bring the
-/// part's centre within reach, as written.
-pub fn reach(a: &ArmAt<'_>, w: &Worst<impl Display>, span: [f64; 2], base: &str) -> Diagnostic {
-    Diagnostic::error(
+/// against the arm's `span` of reach.
+pub fn reach(
+    a: &ArmAt<'_>,
+    w: &Worst<impl Display>,
+    span: [f64; 2],
+    fix: ReachFix<'_>,
+) -> Diagnostic {
+    let d = Diagnostic::error(
         Code::Reach,
         format!(
             "robot `{}` cannot reach {} pose{} of the plan: at {} its wrist centre would have to be {} mm from the A2 axis, and the {} reaches {} to {} mm",
@@ -40,12 +53,19 @@ pub fn reach(a: &ArmAt<'_>, w: &Worst<impl Display>, span: [f64; 2], base: &str)
             short(span[0]),
             short(span[1])
         ),
-    )
-    .label(a.base, "the part is placed here")
-    .label(a.declared, "the arm declared here")
-    .help(format!(
-        "move the base so the part sits in front of the robot: e.g. `base = {base}` puts the part's centre at 60 % of the forearm's reach in front of A1, a tool length below A2 (then check again)"
-    ))
+    );
+    match fix {
+        ReachFix::Base(base) => d
+            .label(a.base, "the part is placed here")
+            .label(a.declared, "the arm declared here")
+            .help(format!(
+                "move the base so the part sits in front of the robot: e.g. `base = {base}` puts the part's centre at 60 % of the forearm's reach in front of A1, a tool length below A2 (then check again)"
+            )),
+        ReachFix::Positioner => d
+            .label(a.base, "the part's place on the positioner's flange")
+            .label(a.declared, "the arm declared here")
+            .help("the part rides the positioner: bring the positioner nearer the robot (`tilt_point` and `rotate_point` are in the robot's frame), or the part nearer the rotate axis on its flange (`base`), then check again"),
+    }
 }
 
 /// Axis `axis` (0-based) beyond its limit less the margin: `w.value` against
