@@ -6,24 +6,11 @@ use crate::support::gcode_common as common;
 use crate::support::m66;
 use crate::support::ring;
 use crate::support::rs274;
-use crate::support::skip;
 
 use common::fixture::*;
 use common::*;
 use lmdc::ir::*;
 use rs274::CanonCall;
-
-fn have_rs274(test: &str) -> bool {
-    if rs274::find_rs274().is_some() {
-        return true;
-    }
-    skip::skip(
-        test,
-        "LinuxCNC's rs274",
-        "run `bash .ci/install-rs274.sh` and export LMDC_RS274=<the path it prints>",
-    );
-    false
-}
 
 /// The nozzle direction of the axes, written out here rather than taken from the
 /// library, so a wrong formula there cannot agree with itself.
@@ -217,7 +204,7 @@ fn check_against_ir(ir: Program) -> usize {
 
 #[test]
 fn five_axis_ac_head_follows_the_ir() {
-    if !have_rs274("five_axis_ac_head_follows_the_ir") {
+    if !rs274::available("five_axis_ac_head_follows_the_ir") {
         return;
     }
     let ir = rotate_about_z(bent_tube(6, 24, 45.0, vec![Machine::Cnc(cnc5())]), 30.0);
@@ -226,7 +213,7 @@ fn five_axis_ac_head_follows_the_ir() {
 
 #[test]
 fn five_axis_ac_head_unrotated_fixture() {
-    if !have_rs274("five_axis_ac_head_unrotated_fixture") {
+    if !rs274::available("five_axis_ac_head_unrotated_fixture") {
         return;
     }
     let ir = bent_tube(4, 12, 30.0, vec![Machine::Cnc(cnc5())]);
@@ -235,7 +222,7 @@ fn five_axis_ac_head_unrotated_fixture() {
 
 #[test]
 fn five_axis_bc_head_follows_the_ir() {
-    if !have_rs274("five_axis_bc_head_follows_the_ir") {
+    if !rs274::available("five_axis_bc_head_follows_the_ir") {
         return;
     }
     let ir = rotate_about_z(
@@ -255,7 +242,7 @@ fn five_axis_bc_head_follows_the_ir() {
 /// the normal up, read as the part's direction.
 #[test]
 fn five_axis_ac_table_in_tcp_follows_the_ir() {
-    if !have_rs274("five_axis_ac_table_in_tcp_follows_the_ir") {
+    if !rs274::available("five_axis_ac_table_in_tcp_follows_the_ir") {
         return;
     }
     let mut cnc = cnc5_with(Kinematics::TableAc);
@@ -270,7 +257,7 @@ fn five_axis_ac_table_in_tcp_follows_the_ir() {
 
 #[test]
 fn three_axis_planar_part_follows_the_ir() {
-    if !have_rs274("three_axis_planar_part_follows_the_ir") {
+    if !rs274::available("three_axis_planar_part_follows_the_ir") {
         return;
     }
     let ir = planar(3, vec![Machine::Cnc(cnc3())]);
@@ -287,7 +274,7 @@ fn three_axis_planar_part_follows_the_ir() {
 /// `v²/2a` at its feed. Every deposit of the IR is a G1 with the output set.
 #[test]
 fn leads_switch_a_synchronised_output_at_speed() {
-    if !have_rs274("leads_switch_a_synchronised_output_at_speed") {
+    if !rs274::available("leads_switch_a_synchronised_output_at_speed") {
         return;
     }
     let mut cnc = cnc3();
@@ -368,7 +355,7 @@ fn padded_g_words_run_in_rs274() {
     // rs274 reads LinuxCNC's dialect only (the vendor profiles are checked as text
     // in gcode_program.rs), but G00/G01 are plain RS274: the m20 dialect with
     // LinuxCNC's laser words must interpret to the same path.
-    if !have_rs274("padded_g_words_run_in_rs274") {
+    if !rs274::available("padded_g_words_run_in_rs274") {
         return;
     }
     let mut cnc = cnc3();
@@ -385,7 +372,7 @@ fn padded_g_words_run_in_rs274() {
 /// for each LinuxCNC machine runs in rs274 and follows the compiled IR.
 #[test]
 fn examples_run_in_rs274_and_follow_the_ir() {
-    if !have_rs274("examples_run_in_rs274_and_follow_the_ir") {
+    if !rs274::available("examples_run_in_rs274_and_follow_the_ir") {
         return;
     }
     let mut checked = 0;
@@ -427,7 +414,7 @@ fn examples_run_in_rs274_and_follow_the_ir() {
 /// exactly the IR's moves.
 #[test]
 fn flange_linked_laser_off_runs_in_rs274() {
-    if !have_rs274("flange_linked_laser_off_runs_in_rs274") {
+    if !rs274::available("flange_linked_laser_off_runs_in_rs274") {
         return;
     }
     let src = std::fs::read_to_string("examples/flange.lmd")
@@ -452,7 +439,7 @@ fn flange_linked_laser_off_runs_in_rs274() {
 /// would otherwise stand as the reference.
 #[test]
 fn expected_linuxcnc_programs_run_in_rs274() {
-    if !have_rs274("expected_linuxcnc_programs_run_in_rs274") {
+    if !rs274::available("expected_linuxcnc_programs_run_in_rs274") {
         return;
     }
     let mut ran = 0;
@@ -480,7 +467,7 @@ fn expected_linuxcnc_programs_run_in_rs274() {
 /// IR's paths at each coupon's speed and power.
 #[test]
 fn calibration_coupons_follow_the_ir() {
-    if !have_rs274("calibration_coupons_follow_the_ir") {
+    if !rs274::available("calibration_coupons_follow_the_ir") {
         return;
     }
     for coupon in [

@@ -389,14 +389,24 @@ fn the_command_writes_the_page_atomically_where_asked() {
     assert_eq!(names.len(), 1, "no temporary file left");
 }
 
-fn chromium() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("LMDC_CHROMIUM") {
-        return Some(p.into());
+/// Chromium, or `None` (the test `test` skipped; under CI a missing one
+/// fails it).
+fn chromium(test: &str) -> Option<PathBuf> {
+    let found = match std::env::var_os("LMDC_CHROMIUM") {
+        Some(p) => Some(p.into()),
+        None => ["/usr/bin/chromium", "/usr/bin/chromium-browser"]
+            .iter()
+            .map(PathBuf::from)
+            .find(|p| p.exists()),
+    };
+    if found.is_none() {
+        skip::skip(
+            test,
+            "chromium",
+            "apt-get install chromium, or set LMDC_CHROMIUM",
+        );
     }
-    ["/usr/bin/chromium", "/usr/bin/chromium-browser"]
-        .iter()
-        .map(PathBuf::from)
-        .find(|p| p.exists())
+    found
 }
 
 /// Runs headless Chromium on `page` (at `#hash` when not empty) with
@@ -565,12 +575,7 @@ fn text_of(dom: &str, open: &str) -> String {
 
 #[test]
 fn chromium_draws_every_colouring_without_a_script_error() {
-    let Some(chromium) = chromium() else {
-        skip::skip(
-            "chromium_draws_every_colouring_without_a_script_error",
-            "chromium",
-            "apt-get install chromium, or set LMDC_CHROMIUM",
-        );
+    let Some(chromium) = chromium("chromium_draws_every_colouring_without_a_script_error") else {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
@@ -639,12 +644,7 @@ fn round_length(mm: f64, tol: f64) -> bool {
 
 #[test]
 fn the_scale_bar_measures_the_view_at_every_zoom() {
-    let Some(chromium) = chromium() else {
-        skip::skip(
-            "the_scale_bar_measures_the_view_at_every_zoom",
-            "chromium",
-            "apt-get install chromium, or set LMDC_CHROMIUM",
-        );
+    let Some(chromium) = chromium("the_scale_bar_measures_the_view_at_every_zoom") else {
         return;
     };
     // Seen from the top, the flange's deposits span this much in x.
@@ -722,12 +722,7 @@ fn the_scale_bar_measures_the_view_at_every_zoom() {
 
 #[test]
 fn chromium_draws_the_examples() {
-    let Some(chromium) = chromium() else {
-        skip::skip(
-            "chromium_draws_the_examples",
-            "chromium",
-            "apt-get install chromium, or set LMDC_CHROMIUM",
-        );
+    let Some(chromium) = chromium("chromium_draws_the_examples") else {
         return;
     };
     let update = std::env::var_os("LMDC_UPDATE_SCREENSHOTS").is_some();
@@ -902,12 +897,7 @@ fn a_robot_without_an_arm_has_no_joint_plot() {
 
 #[test]
 fn chromium_draws_the_joint_plot_only_for_an_arm() {
-    let Some(chromium) = chromium() else {
-        skip::skip(
-            "chromium_draws_the_joint_plot_only_for_an_arm",
-            "chromium",
-            "apt-get install chromium, or set LMDC_CHROMIUM",
-        );
+    let Some(chromium) = chromium("chromium_draws_the_joint_plot_only_for_an_arm") else {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
@@ -969,12 +959,7 @@ fn chromium_draws_the_joint_plot_only_for_an_arm() {
 /// sleeve's head) without a script error; a robot's has none.
 #[test]
 fn chromium_draws_the_rotary_plot_only_for_five_axes() {
-    let Some(chromium) = chromium() else {
-        skip::skip(
-            "chromium_draws_the_rotary_plot_only_for_five_axes",
-            "chromium",
-            "apt-get install chromium, or set LMDC_CHROMIUM",
-        );
+    let Some(chromium) = chromium("chromium_draws_the_rotary_plot_only_for_five_axes") else {
         return;
     };
     let dir = tempfile::tempdir().unwrap();
@@ -1066,12 +1051,7 @@ fn a_plan_refused_for_its_arm_is_drawn_with_its_errors() {
     assert_eq!(o.status.code(), Some(1));
     assert!(!none.exists());
 
-    let Some(chromium) = chromium() else {
-        skip::skip(
-            "a_plan_refused_for_its_arm_is_drawn_with_its_errors",
-            "chromium",
-            "apt-get install chromium, or set LMDC_CHROMIUM",
-        );
+    let Some(chromium) = chromium("a_plan_refused_for_its_arm_is_drawn_with_its_errors") else {
         return;
     };
     let dom = dom(&chromium, &out, "");

@@ -3,22 +3,8 @@
 //! where a missing rs274 fails (install it with `.ci/install-rs274.sh`).
 
 use crate::support::rs274;
-use crate::support::skip;
 
 use rs274::CanonCall::{self, *};
-
-/// `true` if rs274 is there; `false` (test skipped) if not, outside CI.
-fn have_rs274(test: &str) -> bool {
-    if rs274::find_rs274().is_some() {
-        return true;
-    }
-    skip::skip(
-        test,
-        "LinuxCNC's rs274",
-        "run `bash .ci/install-rs274.sh` and export LMDC_RS274=<the path it prints>",
-    );
-    false
-}
 
 const FIVE_AXIS: &str = "\
 %
@@ -59,7 +45,7 @@ fn assert_close(got: f64, want: f64, what: &str) {
 
 #[test]
 fn five_axis_program_canon_calls() {
-    if !have_rs274("five_axis_program_canon_calls") {
+    if !rs274::available("five_axis_program_canon_calls") {
         return;
     }
     let path = write_temp("five_axis.ngc", FIVE_AXIS);
@@ -185,7 +171,7 @@ fn five_axis_program_canon_calls() {
 
 #[test]
 fn interpreter_errors_are_reported() {
-    if !have_rs274("interpreter_errors_are_reported") {
+    if !rs274::available("interpreter_errors_are_reported") {
         return;
     }
     let cases = [
@@ -205,7 +191,7 @@ fn interpreter_errors_are_reported() {
 
 #[test]
 fn inch_programs_report_inches() {
-    if !have_rs274("inch_programs_report_inches") {
+    if !rs274::available("inch_programs_report_inches") {
         return;
     }
     let all = rs274::interpret_source("G20 G90 G94\nG1 X1 F10\nM2\n").unwrap();
@@ -225,7 +211,7 @@ fn inch_programs_report_inches() {
 #[test]
 fn parallel_runs_do_not_interfere() {
     // rs274 mmaps $HOME/.tool.mmap; the wrapper gives each run its own HOME.
-    if !have_rs274("parallel_runs_do_not_interfere") {
+    if !rs274::available("parallel_runs_do_not_interfere") {
         return;
     }
     let handles: Vec<_> = (0..8)

@@ -12,7 +12,7 @@
 
 use crate::support::fixture::{bent_tube, cnc5};
 use crate::support::gcode_common::{emit, refused, verified};
-use crate::support::{ring, rs274, skip};
+use crate::support::{ring, rs274};
 use lmdc::ir::*;
 use nalgebra::{Rotation3, Vector3};
 
@@ -305,24 +305,12 @@ fn machine_feed_keeps_the_irs_speed_along_the_part() {
     assert_eq!(n, want.len());
 }
 
-fn have_rs274(test: &str) -> bool {
-    if rs274::find_rs274().is_some() {
-        return true;
-    }
-    skip::skip(
-        test,
-        "LinuxCNC's rs274",
-        "run `bash .ci/install-rs274.sh` and export LMDC_RS274=<the path it prints>",
-    );
-    false
-}
-
 /// LinuxCNC's interpreter runs the machine-coordinate program (identity
 /// kinematics), and the axes it commands bring the IR's path under the
 /// nozzle.
 #[test]
 fn rs274_runs_the_machine_coordinate_program() {
-    if !have_rs274("rs274_runs_the_machine_coordinate_program") {
+    if !rs274::available("rs274_runs_the_machine_coordinate_program") {
         return;
     }
     let (v, _, text) = example();

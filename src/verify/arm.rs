@@ -13,14 +13,13 @@
 use super::rule::{MachineCx, PlanRule};
 use crate::diag::message::verify::arm::{self as msg, ArmAt};
 use crate::diag::Diagnostics;
-use crate::plan::arm::Along;
+use crate::ir::Machine;
+use crate::plan::arm::{Along, Follow, Joints, Solved};
+use crate::plan::{Move, Speed, Visit};
+use crate::sema::schema::machine::{ARM, BASE, HOME, SINGULARITY, TOOL};
 
 /// The worst pose of a kind, where it lies (a move's target, or on its way).
 type Worst = crate::diag::Worst<Along>;
-use crate::ir::Machine;
-use crate::plan::arm::{Follow, Joints, Solved};
-use crate::plan::{Move, Speed, Visit};
-use crate::sema::schema::machine::{ARM, BASE, HOME, SINGULARITY, TOOL};
 
 /// The arm rules of one robot.
 pub(super) struct ArmRule {
@@ -89,10 +88,13 @@ impl<'p> PlanRule<'p> for ArmRule {
             }
         }
         if let Some(w) = self.reach {
-            let base = self.base_that_reaches(r);
+            let base;
             let fix = match r.positioner {
                 Some(_) => msg::ReachFix::Positioner,
-                None => msg::ReachFix::Base(&base),
+                None => {
+                    base = self.base_that_reaches(r);
+                    msg::ReachFix::Base(&base)
+                }
             };
             out.push(msg::reach(&at, &w, self.span, fix));
         }

@@ -85,6 +85,20 @@ pub enum CanonCall {
     Other(String),
 }
 
+/// `true` if rs274 is there; `false` (the test `test` skipped) if not,
+/// outside CI: under CI a missing rs274 fails the test.
+pub fn available(test: &str) -> bool {
+    if find_rs274().is_some() {
+        return true;
+    }
+    super::skip::skip(
+        test,
+        "LinuxCNC's rs274",
+        "run `bash .ci/install-rs274.sh` and export LMDC_RS274=<the path it prints>",
+    );
+    false
+}
+
 /// The `rs274-run` wrapper: `$LMDC_RS274` if set (not checked for existence,
 /// so a wrong setting fails loudly), else the install script's default
 /// location `${XDG_CACHE_HOME:-$HOME/.cache}/lmdc-rs274/bin/rs274-run` if it

@@ -12,7 +12,7 @@ use super::super::schema::machine::{
     S_PER_WATT, TABLE_OUTPUT, TCP_OFF, TCP_ON, TILT_AXIS, WORK_OFFSET,
 };
 use super::super::schema::Field;
-use super::super::value::Value;
+use super::super::value::{Spanned, Value};
 use super::{common, height_sensor, limits_block, motion, Written};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{
@@ -166,17 +166,7 @@ fn point(f: &Fields<'_>, field: &Field, diags: &mut Diagnostics) -> Option<Optio
         Some(v) => v,
     };
     match &v.value {
-        Value::List(items) if items.len() == 3 => {
-            let c: Vec<_> = ["x", "y", "z"]
-                .iter()
-                .zip(items)
-                .map(|(k, it)| fields::quantity(it, crate::units::Dim::LENGTH, k, diags))
-                .collect();
-            match c[..] {
-                [Some(x), Some(y), Some(z)] => Some(Some([x, y, z])),
-                _ => None,
-            }
-        }
+        Value::List(items) if items.len() == 3 => xyz(items, diags).map(Some),
         other => {
             diags.push(message::machine::axis_point_not_a_point(
                 field.key,
@@ -185,6 +175,20 @@ fn point(f: &Fields<'_>, field: &Field, diags: &mut Diagnostics) -> Option<Optio
             ));
             None
         }
+    }
+}
+
+/// Three lengths `[x, y, z]`, each checked; `None` when one is wrong
+/// (reported).
+fn xyz(items: &[Spanned], diags: &mut Diagnostics) -> Option<[f64; 3]> {
+    let c: Vec<_> = ["x", "y", "z"]
+        .iter()
+        .zip(items)
+        .map(|(k, it)| fields::quantity(it, crate::units::Dim::LENGTH, k, diags))
+        .collect();
+    match c[..] {
+        [Some(x), Some(y), Some(z)] => Some([x, y, z]),
+        _ => None,
     }
 }
 
@@ -377,17 +381,7 @@ fn placement(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Placement> {
         None if f.has(&ORIGIN) => None,
         None => Some([0.0; 3]),
         Some(v) => match &v.value {
-            Value::List(items) if items.len() == 3 => {
-                let c: Vec<_> = ["x", "y", "z"]
-                    .iter()
-                    .zip(items)
-                    .map(|(k, it)| fields::quantity(it, crate::units::Dim::LENGTH, k, diags))
-                    .collect();
-                match c[..] {
-                    [Some(x), Some(y), Some(z)] => Some([x, y, z]),
-                    _ => None,
-                }
-            }
+            Value::List(items) if items.len() == 3 => xyz(items, diags),
             other => {
                 diags.push(message::machine::origin_not_a_point(
                     v.span,
