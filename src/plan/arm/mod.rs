@@ -1,0 +1,362 @@
+//! A robot's arm: the tool poses of the plan solved to axis angles A1–A6
+//! with rs-opw-kinematics (closed-form inverse kinematics of an arm with an
+//! ortho-parallel base and a spherical wrist), and what KUKA's controller
+//! calls the solution's configuration (Status and Turn).
+//!
+//! Frames, as on the controller: a pose `P` (the laser focus, `X Y Z A B C`
+//! in `$BASE`) is reached with the flange at `BASE · P · TOOL⁻¹` in the
+//! robot's own frame (`$ROBROOT`, taken as `$WORLD`); the solver's `tool0` is
+//! KUKA's `$FLANGE` and its joints are KUKA's axis angles
+//! ([`crate::target::arm`]). Angles here are degrees.
+
+use crate::ir::{Arm, Pose, Robot};
+use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
+use rs_opw_kinematics::glam::{DQuat, DVec3};
+use rs_opw_kinematics::kinematic_traits::{Kinematics, Pose as OpwPose};
+use rs_opw_kinematics::kinematics_impl::OPWKinematics;
+use rs_opw_kinematics::parameters::opw_kinematics::Parameters;
+
+/// Axis angles A1–A6, deg.
+pub type Joints = [f64; 6];
+
+/// A robot's arm with its base and tool: solves tool poses to axis angles.
+#[derive(Clone, Debug)]
+pub struct Solver {
+    kin: OPWKinematics,
+    arm: Arm,
+    base: Isometry3<f64>,
+    tool_inv: Isometry3<f64>,
+    /// A3's angle where the arm is stretched (the wrist centre farthest
+    /// from A2), deg: KUKA's φ of Status bit 1.
+    stretch: f64,
+    /// A3 where the two elbow solutions of a pose meet (the arm stretched;
+    /// 180° on, folded), deg, with the arm's offset and sign.
+    elbows_meet: f64,
+}
+
+/// The crate's pose of the flange `f`.
+fn opw_pose(f: &Isometry3<f64>) -> OpwPose {
+    let (t, q) = (f.translation.vector, f.rotation.into_inner().coords);
+    OpwPose::from_parts(
+        DVec3::new(t.x, t.y, t.z),
+        DQuat::from_xyzw(q.x, q.y, q.z, q.w),
+    )
+}
+
+/// KUKA's frame `X Y Z A B C` (`R = Rz(A)·Ry(B)·Rx(C)`) as an isometry.
+pub fn frame(p: &Pose) -> Isometry3<f64> {
+    let r = Rotation3::from_euler_angles(p.c.to_radians(), p.b.to_radians(), p.a.to_radians());
+    Isometry3::from_parts(
+        Translation3::new(p.x, p.y, p.z),
+        UnitQuaternion::from_rotation_matrix(&r),
+    )
+}
+
+impl Solver {
+    /// The solver of `robot`'s arm, when it declares one and the values of
+    /// its base and tool (an index alone says nothing lmdc can solve with).
+    pub fn new(robot: &Robot) -> Option<Solver> {
+        let arm = robot.arm.clone()?;
+        let base = frame(&robot.base.value?);
+        // On a positioner the base moves: poses come in the robot's frame
+        // ([`Follow`], [`crate::plan::positioner::Kin::part`]).
+        let base = if robot.positioner.is_some() {
+            Isometry3::identity()
+        } else {
+            base
+        };
+        let tool = frame(&robot.tool.value?);
+        Some(Solver::with(arm, base, tool))
+    }
+
+    /// The solver of `arm` with a base and tool frame.
+    pub fn with(arm: Arm, base: Isometry3<f64>, tool: Isometry3<f64>) -> Solver {
+        let [a1, a2, b, c1, c2, c3, c4] = arm.opw;
+        let p = Parameters {
+            a1,
+            a2,
+            b,
+            c1,
+            c2,
+            c3,
+            c4,
+            offsets: arm.offsets.map(f64::to_radians),
+            sign_corrections: arm.signs,
+            dof: 6,
+        };
+        Solver {
+            kin: OPWKinematics::new(p),
+            stretch: (-a2).atan2(c3).to_degrees(),
+            // The closed form's θ3 = ±t − atan2(a2, c3) on the model; an
+            // axis angle is (θ + offset)·sign.
+            elbows_meet: ((-a2).atan2(c3).to_degrees() + arm.offsets[2]) * f64::from(arm.signs[2]),
+            arm,
+            base,
+            tool_inv: tool.inverse(),
+        }
+    }
+
+    /// The arm.
+    pub fn arm(&self) -> &Arm {
+        &self.arm
+    }
+
+    /// A3's stretch angle, deg.
+    pub fn stretch(&self) -> f64 {
+        self.stretch
+    }
+
+    /// The flange, in the robot's frame, where the tool's focus is at `to`
+    /// with the tool's axes `rot` (columns, in the base).
+    pub fn flange(&self, to: [f64; 3], rot: &Matrix3<f64>) -> Isometry3<f64> {
+        let tcp = Isometry3::from_parts(
+            Translation3::new(to[0], to[1], to[2]),
+            UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*rot)),
+        );
+        self.base * tcp * self.tool_inv
+    }
+
+    /// Every solution for the tool at `to` with axes `rot`, nearest `prev`
+    /// first (a wrist singularity resolved towards it, A4 and A6 kept in
+    /// the turn nearest it); empty where the arm cannot reach.
+    pub fn solve(&self, to: [f64; 3], rot: &Matrix3<f64>, prev: &Joints) -> Vec<Joints> {
+        self.solve_at(to, rot, prev).0
+    }
+
+    /// [`Self::solve`], and the wrist centre of the pose in the robot's
+    /// frame (what [`Self::status_at`] reads).
+    pub fn solve_at(
+        &self,
+        to: [f64; 3],
+        rot: &Matrix3<f64>,
+        prev: &Joints,
+    ) -> (Vec<Joints>, Vector3<f64>) {
+        let f = self.flange(to, rot);
+        let pose = opw_pose(&f);
+        let prev = prev.map(f64::to_radians);
+        let sols = self
+            .kin
+            .inverse_continuing(&pose, &prev)
+            .into_iter()
+            .map(|j| {
+                let mut j = j.map(f64::to_degrees);
+                // A1, A2, A3 and A5 turn less than a full turn: the angle
+                // in [−180°, 180°) is the only one they can take (the
+                // solver keeps every axis in the turn nearest the last).
+                for i in [0, 1, 2, 4] {
+                    j[i] -= 360.0 * ((j[i] + 180.0) / 360.0).floor();
+                }
+                j
+            })
+            .collect();
+        (sols, self.wrist(&f))
+    }
+
+    /// Every solution for the flange at `f` (in the robot's frame), in no
+    /// order: what [`Self::nearest`] picks from.
+    pub fn solutions(&self, f: &Isometry3<f64>) -> Vec<Joints> {
+        let mut sols = self.kin.inverse(&opw_pose(f));
+        for j in &mut sols {
+            *j = j.map(f64::to_degrees);
+        }
+        sols
+    }
+
+    /// The flange in the robot's frame at axis angles `q` in radians, as
+    /// the solver's forward kinematics puts it; `None` where it cannot.
+    pub fn flange_rad(&self, q: &[f64; 6]) -> Option<Isometry3<f64>> {
+        let p = self.kin.try_forward(q).ok()?;
+        let (t, r) = (p.translation, p.rotation);
+        Some(Isometry3::from_parts(
+            Translation3::new(t.x, t.y, t.z),
+            UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(r.w, r.x, r.y, r.z)),
+        ))
+    }
+
+    /// The least distance from the solution `j`, whose wrist centre is `w`,
+    /// to any other solution of the same pose, deg, in the measure
+    /// [`Self::nearest`] ranks by: every other solution turns A1 to the other
+    /// shoulder (180° less twice the angle the shoulder offset `b` makes at
+    /// the wrist centre's distance from A1), or A3 to the other elbow (twice
+    /// A3's distance from where the two elbows meet, stretched or folded), or
+    /// flips the wrist (A4 and A6 by 180° each). 0 within 1 mm of A1's axis,
+    /// where A1 is free.
+    pub fn separation(&self, j: &Joints, w: &Vector3<f64>) -> f64 {
+        let b = self.arm.opw[2];
+        let r2 = w.x * w.x + w.y * w.y - b * b;
+        if r2 < 1.0 {
+            return 0.0;
+        }
+        let shoulder = 180.0 - 2.0 * b.abs().atan2(r2.sqrt()).to_degrees();
+        let u = ((j[2] - self.elbows_meet + 180.0).rem_euclid(360.0) - 180.0).abs();
+        let elbow = 2.0 * u.min(180.0 - u);
+        shoulder.min(elbow).min(360.0)
+    }
+
+    /// Of `sols` (from [`Self::solutions`]), the one nearest `prev` (the
+    /// sum of the axes' differences, as the solver sorts), every axis in the
+    /// turn nearest `prev`'s, A1, A2, A3 and A5 in [−180°, 180°). `None`
+    /// where there is none, or where the pose is at the wrist singularity
+    /// (A5 within 10⁻⁶° of 0): A4 and A6 are then split by the move before,
+    /// which only [`Self::solve_at`] does.
+    pub fn nearest(sols: &[Joints], prev: &Joints) -> Option<Joints> {
+        let mut best: Option<(f64, Joints)> = None;
+        for s in sols {
+            if s[4].abs() < 1e-6 {
+                return None;
+            }
+            let mut j = *s;
+            for i in 0..6 {
+                j[i] = prev[i] + ((j[i] - prev[i] + 180.0).rem_euclid(360.0) - 180.0);
+            }
+            for i in [0, 1, 2, 4] {
+                j[i] -= 360.0 * ((j[i] + 180.0) / 360.0).floor();
+            }
+            let d: f64 = j.iter().zip(prev).map(|(a, b)| (a - b).abs()).sum();
+            if best.is_none_or(|(bd, _)| d < bd) {
+                best = Some((d, j));
+            }
+        }
+        best.map(|b| b.1)
+    }
+
+    /// The flange in the robot's frame at axis angles `j`.
+    pub fn forward_flange(&self, j: &Joints) -> Isometry3<f64> {
+        let p = self.kin.forward(&j.map(f64::to_radians));
+        let (t, q) = (p.translation, p.rotation);
+        Isometry3::from_parts(
+            Translation3::new(t.x, t.y, t.z),
+            UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z)),
+        )
+    }
+
+    /// The tool's focus in the base, and its axes, at axis angles `j`.
+    pub fn forward(&self, j: &Joints) -> ([f64; 3], Matrix3<f64>) {
+        let tcp = self.base.inverse() * self.forward_flange(j) * self.tool_inv.inverse();
+        let t = tcp.translation.vector;
+        ([t.x, t.y, t.z], *tcp.rotation.to_rotation_matrix().matrix())
+    }
+
+    /// The wrist centre in the robot's frame for a flange `f`.
+    fn wrist(&self, f: &Isometry3<f64>) -> Vector3<f64> {
+        f.translation.vector - f.rotation * Vector3::z() * self.arm.opw[6]
+    }
+
+    /// How far the wrist centre is from the A2 axis where the tool is at
+    /// `to` with `rot`, and the nearest and farthest the arm puts it, mm.
+    pub fn reach(&self, to: [f64; 3], rot: &Matrix3<f64>) -> (f64, [f64; 2]) {
+        let [a1, a2, _, c1, c2, c3, _] = self.arm.opw;
+        let w = self.wrist(&self.flange(to, rot));
+        let h = (w.x * w.x + w.y * w.y).sqrt();
+        let d = ((h - a1).powi(2) + (w.z - c1).powi(2)).sqrt();
+        let fore = (c3 * c3 + a2 * a2).sqrt();
+        (d, [(c2 - fore).abs(), c2 + fore])
+    }
+
+    /// KUKA's Status of a solution: bit 0 the wrist centre behind A1
+    /// (overhead), bit 1 A3 at or past its stretch angle, bit 2 A5 ≤ 0.
+    pub fn status(&self, j: &Joints) -> u8 {
+        self.status_at(j, &self.wrist(&self.forward_flange(j)))
+    }
+
+    /// [`Self::status`] of a solution whose wrist centre is `w` (from
+    /// [`Self::solve_at`]: no forward kinematics).
+    pub fn status_at(&self, j: &Joints, w: &Vector3<f64>) -> u8 {
+        // A1 turns about −Z: the arm's forward direction at A1 = θ.
+        let t = j[0].to_radians();
+        let ahead = w.x * t.cos() - w.y * t.sin();
+        u8::from(ahead < 0.0) | (u8::from(j[2] >= self.stretch) << 1) | (u8::from(j[4] <= 0.0) << 2)
+    }
+
+    /// KUKA's Turn: bit `i` set where axis `i + 1` is negative.
+    pub fn turn(j: &Joints) -> u8 {
+        j.iter()
+            .enumerate()
+            .fold(0, |t, (i, a)| t | (u8::from(*a < 0.0) << i))
+    }
+}
+
+mod chain;
+mod follow;
+
+pub use follow::{Along, Follow, Solved, CHUNK, LIN_STEP_DEG, LIN_STEP_MM};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::target::arm::CATALOGUE;
+
+    fn solver(key: &str) -> Solver {
+        let arm = crate::target::arm::model(key).unwrap().arm(0.0, 5.0);
+        Solver::with(arm, Isometry3::identity(), Isometry3::identity())
+    }
+
+    /// At KUKA's home (A2 −90°, A3 90°, the rest 0) the flange faces
+    /// forward: `$POS_ACT` reads `A 0, B 90, C 0`, at the upper arm's top
+    /// plus the forearm and the wrist ahead.
+    #[test]
+    fn home_faces_forward() {
+        for m in CATALOGUE {
+            let s = solver(m.key);
+            let f = s.forward_flange(&[0.0, -90.0, 90.0, 0.0, 0.0, 0.0]);
+            let [a1, a2, _, c1, c2, c3, c4] = s.arm.opw;
+            let t = f.translation.vector;
+            assert!((t.x - (a1 + c3 + c4)).abs() < 1e-6, "{} x {}", m.key, t.x);
+            assert!(t.y.abs() < 1e-6);
+            assert!((t.z - (c1 + c2 - a2)).abs() < 1e-6, "{} z {}", m.key, t.z);
+            let z = f.rotation * Vector3::z();
+            assert!((z - Vector3::x()).norm() < 1e-9, "{} flange z {z:?}", m.key);
+        }
+    }
+
+    /// φ, the stretch angle, is where the wrist centre is farthest from A2.
+    #[test]
+    fn stretch_is_farthest() {
+        for m in CATALOGUE {
+            let s = solver(m.key);
+            let dist = |a3: f64| {
+                let f = s.forward_flange(&[0.0, -90.0, a3, 0.0, 0.0, 0.0]);
+                let w = s.wrist(&f);
+                let [a1, _, _, c1, ..] = s.arm.opw;
+                ((w.x - a1).powi(2) + (w.z - c1).powi(2)).sqrt()
+            };
+            let phi = s.stretch();
+            assert!(
+                dist(phi) > dist(phi + 1.0) && dist(phi) > dist(phi - 1.0),
+                "{}",
+                m.key
+            );
+            let (_, span) = (0.0, s.reach([0.0; 3], &Matrix3::identity()).1);
+            assert!((dist(phi) - span[1]).abs() < 1e-6, "{}", m.key);
+        }
+    }
+
+    /// Picking the nearest of every solution is what solving each from the
+    /// one before does, along a path away from the wrist singularity, A4
+    /// and A6 winding past ±180°.
+    #[test]
+    fn nearest_is_continuing() {
+        for m in CATALOGUE {
+            let s = solver(m.key);
+            let mut prev = [5.0, -80.0, 100.0, 170.0, 40.0, 170.0];
+            for k in 0..200 {
+                let t = k as f64 / 20.0;
+                let (to, rot) = s.forward(&[
+                    5.0 + t,
+                    -80.0 + t,
+                    100.0 - t,
+                    170.0 + 3.0 * t,
+                    40.0,
+                    170.0 + 4.0 * t,
+                ]);
+                let a = Solver::nearest(&s.solutions(&s.flange(to, &rot)), &prev).unwrap();
+                let b = s.solve(to, &rot, &prev)[0];
+                for i in 0..6 {
+                    assert!((a[i] - b[i]).abs() < 1e-6, "{}: {a:?} vs {b:?}", m.key);
+                }
+                prev = a;
+            }
+            assert!(prev[3] > 180.0 && prev[5] > 180.0, "{prev:?}");
+        }
+    }
+}
