@@ -638,3 +638,108 @@ fn a_long_lin_is_followed_between_its_ends() {
         "25 % of the way along the LIN to layer 1, path 1, point 2"
     );
 }
+
+/// The small duct held 60 mm off A1's axis, 1.1 m up, on a KR 60 HA whose
+/// axes turn as far as the model allows (an `opw(…)` arm), with
+/// `singularity` as given.
+fn overhead_duct(singularity: f64) -> String {
+    let arm =
+        "arm = opw(a1 = 350 mm, a2 = -145 mm, c1 = 815 mm, c2 = 850 mm, c3 = 820 mm, c4 = 170 mm,
+    limits = [-185 deg .. 185 deg, -185 deg .. 185 deg, -185 deg .. 185 deg,
+              -350 deg .. 350 deg, -185 deg .. 185 deg, -350 deg .. 350 deg],
+    speeds = [5000 deg/s, 5000 deg/s, 5000 deg/s, 5000 deg/s, 5000 deg/s, 5000 deg/s])";
+    crate::support::example::edited(
+        "errors/arm_singular_lin.lmd",
+        &[
+            (
+                "arm = kr60ha",
+                &format!("{arm}\n  singularity = {singularity} deg"),
+            ),
+            (
+                "base = frame(1, x = 1650 mm, y = 12 mm, z = 1810 mm, b = -90 deg)",
+                "base = frame(1, x = 60 mm, y = 0 mm, z = 1100 mm)",
+            ),
+        ],
+    )
+}
+
+/// The overhead singularity (the wrist centre on A1's axis, where A1
+/// spins) is a singular LIN of its own: the angle the wrist centre makes
+/// with A1's axis, seen from the shoulder's height, computed here from
+/// each pose the arm follows (its flange, less c4 along the flange's z),
+/// is what `lmd::singular-lin` reports at its least, with the count of
+/// poses below the threshold; below the least angle, the plan passes.
+#[test]
+fn the_overhead_singularity_is_a_singular_lin() {
+    use lmdc::plan::arm::Follow;
+    use lmdc::plan::{Move, Plan, Visit};
+    let loose = lmdc::pipeline::compile(&overhead_duct(1.0), &mut ());
+    let codes: Vec<_> = loose.diagnostics.iter().map(|d| d.code).collect();
+    let p = loose.program.unwrap_or_else(|| panic!("{codes:?}"));
+    let (machine, robot) = p
+        .ir()
+        .machines
+        .iter()
+        .find_map(|m| match m {
+            Machine::Robot(r) => Some((m, r)),
+            _ => None,
+        })
+        .unwrap();
+    struct Angles(Follow, Vec<lmdc::plan::arm::Solved>);
+    impl Visit for Angles {
+        fn motion(&mut self, m: &Move) {
+            if let Some(done) = self.0.push(m) {
+                self.1.extend(done);
+            }
+        }
+    }
+    let mut v = Angles(Follow::new(robot).unwrap(), Vec::new());
+    Plan::new(p.ir(), machine).walk(&mut v);
+    let rest = v.0.take();
+    v.1.extend(rest);
+    let (c1, c4) = (815.0, 170.0);
+    // The first move is the PTP from home: not a LIN.
+    let angles: Vec<f64> =
+        v.1.iter()
+            .skip(1)
+            .map(|s| {
+                let f = v.0.solver().flange(s.to, &s.rot);
+                let w = f.translation.vector - f.rotation * Vector3::z() * c4;
+                w.xy().norm().atan2((w.z - c1).abs()).to_degrees()
+            })
+            .collect();
+    let least = angles.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(least > 1.0 && least < 5.0, "{least}");
+    let below = angles.iter().filter(|a| **a < 5.0).count();
+
+    let strict = lmdc::pipeline::compile(&overhead_duct(5.0), &mut ());
+    assert!(strict.program.is_none());
+    let d = strict
+        .diagnostics
+        .iter()
+        .find(|d| d.code == lmdc::diag::Code::SingularLin && d.message.contains("A1's axis"))
+        .unwrap_or_else(|| panic!("{:?}", strict.diagnostics));
+    let reported: f64 = d
+        .message
+        .split("centre ")
+        .nth(1)
+        .unwrap()
+        .split('°')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        (reported - least).abs() < 1e-3,
+        "{reported} vs {least}: {}",
+        d.message
+    );
+    assert!(
+        d.message.contains(&format!("({below} poses)")),
+        "{below}: {}",
+        d.message
+    );
+
+    let just_below = lmdc::pipeline::compile(&overhead_duct(least - 0.01), &mut ());
+    assert!(just_below.program.is_some(), "{:?}", just_below.diagnostics);
+}

@@ -337,7 +337,7 @@ codes! {
     JointLimit = "joint-limit", Machines,
         "a robot's axis (A1–A6) beyond its limit less the `joint_margin` on a move of the plan, or its `home` outside its limits; names the axis, the worst move, by how much, and what would turn it less (the base, the tool's angle)";
     SingularLin = "singular-lin", Machines,
-        "a robot's LIN passes within `singularity` of a singular configuration: A5 near 0 (the wrist: A4 and A6 spin), or A3 near its stretch angle (the arm straight); names where and the tool or base tilt that keeps A5 bent";
+        "a robot's LIN passes within `singularity` of a singular configuration: A5 near 0 (the wrist: A4 and A6 spin), A3 near its stretch angle (the arm straight), or the wrist centre near A1's axis (overhead: A1 spins), as an angle seen from the shoulder; names where and the tool or base change that keeps clear of it";
     ConfigurationFlip = "configuration-flip", Machines,
         "a robot's LIN whose axis solution changes configuration (KUKA's Status: overhead, elbow, wrist flip): the controller stops there; names the move and the bit";
     JointSpeed = "joint-speed", Machines,

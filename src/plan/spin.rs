@@ -126,9 +126,8 @@ pub fn clearance(robot: &Robot, deg: f64, moves: &[Move]) -> f64 {
             if before != st {
                 return f64::NEG_INFINITY;
             }
-            let wrist = j[4].abs();
-            let elbow = (j[2] - solver.stretch()).abs();
-            least = least.min(wrist.min(elbow) - arm.singularity);
+            let near = solver.singular(&j, &s.wrist).into_iter();
+            least = least.min(near.fold(f64::INFINITY, f64::min) - arm.singularity);
         }
         status = Some(st);
     }

@@ -11,12 +11,13 @@
 //! the ends of a LIN can break a rule its ends keep.
 
 use super::rule::{MachineCx, PlanRule};
-use crate::diag::message::verify::arm::{self as msg, ArmAt};
+use crate::diag::message::verify::arm::{self as msg, ArmAt, Singular};
 use crate::diag::Diagnostics;
 use crate::ir::Machine;
 use crate::plan::arm::{Along, Follow, Joints, Solved};
 use crate::plan::{Move, Speed, Visit};
 use crate::sema::schema::machine::{ARM, BASE, HOME, SINGULARITY, TOOL};
+use nalgebra::Vector3;
 
 /// The worst pose of a kind, where it lies (a move's target, or on its way).
 type Worst = crate::diag::Worst<Along>;
@@ -38,6 +39,7 @@ pub(super) struct ArmRule {
     limits: [Option<Worst>; 6],
     wrist: Option<Worst>,
     elbow: Option<Worst>,
+    overhead: Option<Worst>,
     flip: Option<(Worst, u8, u8)>,
     speed: [Option<(Worst, f64)>; 6],
 }
@@ -59,6 +61,7 @@ impl<'p> PlanRule<'p> for ArmRule {
             limits: [None; 6],
             wrist: None,
             elbow: None,
+            overhead: None,
             flip: None,
             speed: [None; 6],
         })
@@ -104,11 +107,14 @@ impl<'p> PlanRule<'p> for ArmRule {
             }
         }
         let sing = cx.origin.written(&SINGULARITY);
-        if let Some(w) = self.wrist {
-            out.push(msg::singular_lin(&at, true, &w, sing));
-        }
-        if let Some(w) = self.elbow {
-            out.push(msg::singular_lin(&at, false, &w, sing));
+        for (w, kind) in [
+            (self.wrist, Singular::Wrist),
+            (self.elbow, Singular::Elbow),
+            (self.overhead, Singular::Overhead),
+        ] {
+            if let Some(w) = w {
+                out.push(msg::singular_lin(&at, kind, &w, sing));
+            }
         }
         if let Some((w, from, to)) = self.flip {
             out.push(msg::configuration_flip(&at, &w, from, to));
@@ -166,7 +172,7 @@ impl ArmRule {
         self.limits(&j, at);
         let status = self.follow.solver().status_at(&j, wrist);
         if lin {
-            self.lin(&j, status, m, at);
+            self.lin(&j, wrist, status, m, at);
         }
         self.prev = j;
         self.status = status;
@@ -191,14 +197,17 @@ impl ArmRule {
 
     /// What a LIN to `j` must keep: away from singularities, one
     /// configuration, the axes within their speeds.
-    fn lin(&mut self, j: &Joints, to: u8, m: &Move, at: Along) {
-        let thr = self.follow.solver().arm().singularity;
-        if j[4].abs() < thr {
-            Worst::hit(&mut self.wrist, j[4].abs(), thr, at);
-        }
-        let elbow = (j[2] - self.follow.solver().stretch()).abs();
-        if elbow < thr {
-            Worst::hit(&mut self.elbow, elbow, thr, at);
+    fn lin(&mut self, j: &Joints, wrist: &Vector3<f64>, to: u8, m: &Move, at: Along) {
+        let solver = self.follow.solver();
+        let thr = solver.arm().singularity;
+        let near = solver.singular(j, wrist);
+        for (slot, d) in [&mut self.wrist, &mut self.elbow, &mut self.overhead]
+            .into_iter()
+            .zip(near)
+        {
+            if d < thr {
+                Worst::hit(slot, d, thr, at);
+            }
         }
         let from = self.status;
         if from != to {

@@ -253,6 +253,25 @@ impl Solver {
         (d, [(c2 - fore).abs(), c2 + fore])
     }
 
+    /// How far the solution `j`, whose wrist centre is `w`, is from each
+    /// singular configuration a LIN must keep clear of, deg: the wrist
+    /// (|A5|), the stretched arm (A3 from φ), and the overhead
+    /// ([`Self::overhead`]).
+    pub fn singular(&self, j: &Joints, w: &Vector3<f64>) -> [f64; 3] {
+        [j[4].abs(), (j[2] - self.stretch).abs(), self.overhead(w)]
+    }
+
+    /// How far the wrist centre `w` (robot's frame) is from A1's axis, as
+    /// an angle seen from the shoulder's height on that axis, deg: 0 at the
+    /// overhead singularity (the wrist centre on the axis, where A1 turns
+    /// freely and spins near it). A shoulder offset `b` moves the singular
+    /// line to `b` from the axis.
+    pub fn overhead(&self, w: &Vector3<f64>) -> f64 {
+        let [_, _, b, c1, ..] = self.arm.opw;
+        let r = (w.x * w.x + w.y * w.y - b * b).max(0.0).sqrt();
+        r.atan2((w.z - c1).abs()).to_degrees()
+    }
+
     /// KUKA's Status of a solution: bit 0 the wrist centre behind A1
     /// (overhead), bit 1 A3 at or past its stretch angle, bit 2 A5 ≤ 0.
     pub fn status(&self, j: &Joints) -> u8 {

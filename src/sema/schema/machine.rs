@@ -223,7 +223,7 @@ pub static SINGULARITY: Field = Field::new(
         ZeroUpTo(crate::sema::schema::deg(MAX_ARM_ANGLE_DEG)),
     ),
     Default(DefaultQuantity(crate::sema::schema::deg(5.0))),
-    "how far a LIN must stay from the wrist singularity (A5 = 0) and the stretched arm (A3 at its stretch angle)",
+    "how far a LIN must stay from the wrist singularity (A5 = 0), the stretched arm (A3 at its stretch angle) and A1's axis (the wrist centre overhead, seen from the shoulder)",
 );
 
 /// `spin = auto | 30 deg`.

@@ -126,20 +126,23 @@ pub fn home_limit(
 /// `w.value`) or the stretched arm (A3 `w.value` from its stretch angle).
 pub fn singular_lin(
     a: &ArmAt<'_>,
-    wrist: bool,
+    kind: Singular,
     w: &Worst<impl Display>,
     at: Option<Span>,
 ) -> Diagnostic {
-    let (what, fix) = if wrist {
-        (
+    let (what, fix) = match kind {
+        Singular::Wrist => (
             format!("A5 at {}°, within {}° of the wrist singularity (A5 = 0, where A4 and A6 spin)", short(w.value), short(w.limit)),
             "tilt the nozzle on the flange (`tool = frame(…, b = 20 deg)`) or tilt the base so A5 stays bent",
-        )
-    } else {
-        (
+        ),
+        Singular::Elbow => (
             format!("A3 {}° from the stretched arm, within {}° (the arm straight, the wrist at the edge of its reach)", short(w.value), short(w.limit)),
             "move the base closer to the part so the arm stays bent",
-        )
+        ),
+        Singular::Overhead => (
+            format!("the wrist centre {}° from A1's axis seen from the shoulder, within {}° of the overhead singularity (the wrist centre on A1's axis, where A1 spins)", short(w.value), short(w.limit)),
+            "move the base so the part lies in front of the robot, not above or below its foot",
+        ),
     };
     Diagnostic::error(
         Code::SingularLin,
@@ -151,11 +154,33 @@ pub fn singular_lin(
             plural(w.count)
         ),
     )
-    .label(a.tool, "the tool's angle on the flange")
+    .label(
+        if kind == Singular::Overhead {
+            a.base
+        } else {
+            a.tool
+        },
+        if kind == Singular::Overhead {
+            "the part is placed here"
+        } else {
+            "the tool's angle on the flange"
+        },
+    )
     .label_opt(at, "the distance asked for")
     .help(format!(
         "{fix}; or lower `singularity` if the cell runs there safely"
     ))
+}
+
+/// Which singular configuration a LIN comes near.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Singular {
+    /// A5 near 0: A4 and A6 line up.
+    Wrist,
+    /// A3 near its stretch angle: the arm straight.
+    Elbow,
+    /// The wrist centre near A1's axis.
+    Overhead,
 }
 
 /// A LIN whose solution changes KUKA's Status from `from` to `to`.
