@@ -244,17 +244,7 @@ mod tests {
         for m in CATALOGUE {
             let s = solver(m.key, Isometry3::identity());
             let path: Vec<Joints> = (0..2000)
-                .map(|k| {
-                    let t = k as f64 / 100.0;
-                    [
-                        5.0 + t,
-                        -80.0 + t,
-                        100.0 - t,
-                        170.0 + 3.0 * t,
-                        40.0,
-                        170.0 + 4.0 * t,
-                    ]
-                })
+                .map(|k| super::super::tests::winding(k as f64 / 100.0))
                 .collect();
             let continued = both(&s, &path);
             assert!(continued >= 1990, "{}: {continued} of 2000", m.key);

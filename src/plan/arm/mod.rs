@@ -350,6 +350,19 @@ mod tests {
         }
     }
 
+    /// A path of axis angles away from the wrist singularity, A4 and A6
+    /// winding past ±180° as `t` grows (start at 0).
+    pub(super) fn winding(t: f64) -> Joints {
+        [
+            5.0 + t,
+            -80.0 + t,
+            100.0 - t,
+            170.0 + 3.0 * t,
+            40.0,
+            170.0 + 4.0 * t,
+        ]
+    }
+
     /// Picking the nearest of every solution is what solving each from the
     /// one before does, along a path away from the wrist singularity, A4
     /// and A6 winding past ±180°.
@@ -357,17 +370,10 @@ mod tests {
     fn nearest_is_continuing() {
         for m in CATALOGUE {
             let s = solver(m.key);
-            let mut prev = [5.0, -80.0, 100.0, 170.0, 40.0, 170.0];
+            let mut prev = winding(0.0);
             for k in 0..200 {
                 let t = k as f64 / 20.0;
-                let (to, rot) = s.forward(&[
-                    5.0 + t,
-                    -80.0 + t,
-                    100.0 - t,
-                    170.0 + 3.0 * t,
-                    40.0,
-                    170.0 + 4.0 * t,
-                ]);
+                let (to, rot) = s.forward(&winding(t));
                 let a = Solver::nearest(&s.solutions(&s.flange(to, &rot)), &prev).unwrap();
                 let b = s.solve(to, &rot, &prev)[0];
                 for i in 0..6 {
