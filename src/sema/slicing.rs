@@ -183,7 +183,7 @@ fn normal<'a>(
     };
     let seam = match f.value(&normal::SEAM, diags) {
         Some(v) => seam::read(v, diags).and_then(|rule| match rule {
-            SeamRule::Lowest | SeamRule::SharpestCorner | SeamRule::Staggered { .. } => {
+            SeamRule::Lowest | SeamRule::SharpestCorner => {
                 diags.push(message::bend::planar_seam_on_a_wall(v.span));
                 None
             }

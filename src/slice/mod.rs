@@ -70,6 +70,7 @@ fn duct(
     };
     let plan = normal::Setup {
         seam: slicing.seam,
+        starts: normal::seam_angles(&geo, slicing.seam, layers),
         layers,
         step,
         spacing,

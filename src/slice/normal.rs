@@ -16,6 +16,9 @@ pub struct Setup {
     /// Where each layer starts (rad from the section's x axis, layer by
     /// layer).
     pub seam: SeamRule,
+    /// Each layer's seam angle (rad from the section's x axis), worked out
+    /// from `seam` before slicing ([`seam_angles`]).
+    pub starts: Vec<f64>,
     /// Number of layers.
     pub layers: usize,
     /// Δδ (rad) for an arc spine; the layer height (mm) for a line.
@@ -36,8 +39,9 @@ pub struct Setup {
 impl Setup {
     /// Layer `i`'s seam, rad from the section's x axis.
     pub fn seam_at(&self, i: usize) -> f64 {
-        self.seam
-            .direction(i)
+        self.starts
+            .get(i)
+            .copied()
             .unwrap_or(std::f64::consts::FRAC_PI_2)
     }
 
@@ -55,6 +59,72 @@ impl Setup {
         }
     }
 }
+
+/// The seam angle (rad from the section's x axis) of each of `layers`
+/// layers: the rule's direction; or, for `staggered(shift)`, `shift` of arc
+/// length along the layer's own loop (the way the nozzle runs) past the
+/// angle the layer below started at, wrapping round — layer 0 at the
+/// default 90°. So each layer's start and stop lie a fixed distance on from
+/// the one below, as on a planar wall, on a section that changes too.
+pub fn seam_angles(geo: &LoftGeometry, rule: SeamRule, layers: usize) -> Vec<f64> {
+    let default = std::f64::consts::FRAC_PI_2;
+    let SeamRule::Staggered { shift } = rule else {
+        return (0..layers)
+            .map(|i| rule.direction(i).unwrap_or(default))
+            .collect();
+    };
+    let mut out = Vec::with_capacity(layers);
+    let mut at = default;
+    for i in 0..layers {
+        if i > 0 {
+            at = walk(geo, i as f64 / layers as f64, at, shift.0);
+        }
+        out.push(at);
+    }
+    out
+}
+
+/// How closely [`walk`] follows the section: its chords stray at most this
+/// far (mm) from the outline, so its arc length is the outline's to a few
+/// parts in a million.
+const WALK_CHORD: f64 = 1e-3;
+
+/// The angle `d` mm of arc length along the section at station `s` past
+/// angle `from`, going round the way the points run (and wrapping).
+fn walk(geo: &LoftGeometry, s: f64, from: f64, d: f64) -> f64 {
+    use std::f64::consts::TAU;
+    let f = geo.frame(s);
+    let fine = Spacing::Chord {
+        error: WALK_CHORD,
+        rise: f64::MAX,
+    };
+    let samples = section_points::angles(geo, &f, s, from, fine, MAX_WALK)
+        .or_else(|_| section_points::angles(geo, &f, s, from, Spacing::Count(4096), MAX_WALK))
+        .unwrap_or_default();
+    let mut thetas: Vec<f64> = samples.iter().map(|p| p.theta).collect();
+    thetas.push(from + TAU);
+    let pts: Vec<_> = thetas.iter().map(|&th| geo.point(&f, s, th).0).collect();
+    let lengths: Vec<f64> = pts.windows(2).map(|w| (w[1] - w[0]).norm()).collect();
+    let total: f64 = lengths.iter().sum();
+    if !(total > 0.0 && d.is_finite()) {
+        return from;
+    }
+    let mut left = d.rem_euclid(total);
+    for (j, &l) in lengths.iter().enumerate() {
+        if left <= l {
+            // The point that far along the chord, by its own angle in the
+            // section frame: a straight side is one chord, however long.
+            let t = if l > 0.0 { left / l } else { 0.0 };
+            let q = pts[j] + (pts[j + 1] - pts[j]) * t - f.spine.origin;
+            return q.dot(&f.y).atan2(q.dot(&f.x)).rem_euclid(TAU);
+        }
+        left -= l;
+    }
+    from
+}
+
+/// The most points [`walk`] follows a section by.
+const MAX_WALK: usize = 200_000;
 
 /// A seam this close (relative to the layer's span across the bend) to the
 /// innermost or outermost point sits where the layer height is extreme.
