@@ -10,6 +10,7 @@ pub mod normal;
 pub mod planar;
 mod section_points;
 pub mod segmented_ring;
+pub mod spiral;
 pub mod styling;
 pub mod top;
 pub mod variable;
@@ -118,7 +119,7 @@ fn duct(
         out.push(layer);
     }
     if slicing.layer_change.is_spiral() {
-        join_layers(&mut out);
+        spiral::join_layers(&mut out);
     }
     if let (Some(first), Spine::Arc { .. }, SeamRule::Toward(seam)) =
         (seam_hits.first(), loft.spine, slicing.seam)
@@ -133,26 +134,6 @@ fn duct(
         ));
     }
     Ok((out, warnings))
-}
-
-/// Ends each layer's wall where the next one starts, to the bit: a spiral's
-/// climb ends at the next layer's first point (computed the same way, but
-/// with the nozzle following the wall the direction there is the next
-/// layer's own), so the motion plan goes straight on into it.
-fn join_layers(layers: &mut [Layer]) {
-    for i in 1..layers.len() {
-        let Some(&next) = layers[i].paths.first().and_then(|p| p.points.first()) else {
-            continue;
-        };
-        if let Some(end) = layers[i - 1]
-            .paths
-            .last_mut()
-            .and_then(|p| p.points.last_mut())
-        {
-            end.pos = next.pos;
-            end.normal = next.normal;
-        }
-    }
 }
 
 /// Layer `i` needs `k` points (or more), more than a layer may hold.

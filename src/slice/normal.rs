@@ -5,6 +5,7 @@
 //! their heights: `A(v)/w` ([`crate::deposit`]).
 
 use super::section_points::{self, Sample, Spacing};
+use super::spiral;
 use crate::geometry::{LoftGeometry, SectionFrame};
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
 use crate::sema::model::{Bead, Model, SeamRule};
@@ -394,20 +395,9 @@ impl Climb<'_> {
         normals: &mut [[f32; 3]],
     ) {
         let k = samples.len();
-        let mut along = Vec::with_capacity(k + 1);
-        let mut total = 0.0;
-        along.push(0.0);
-        for w in pos.windows(2) {
-            total += (w[1] - w[0]).norm();
-            along.push(total);
-        }
-        let length = self.length.min(total);
-        if length <= 0.0 {
-            return;
-        }
+        let shares = spiral::shares(pos, self.length);
         let n = self.plan.layers as f64;
-        for j in 0..=k {
-            let t = ((along[j] - (total - length)) / length).clamp(0.0, 1.0);
+        for (j, &t) in shares.iter().enumerate() {
             if t <= 0.0 {
                 continue;
             }
@@ -415,9 +405,7 @@ impl Climb<'_> {
             let f = self.geo.frame(s);
             let theta = samples[j % k].theta;
             pos[j] = self.geo.point(&f, s, theta).0;
-            if self.i == 0 {
-                heights[j] *= 1.0 + t;
-            }
+            heights[j] *= spiral::laid(self.i, t);
             if !self.plan.follow {
                 let z = f.z();
                 normals[j] = [z.x as f32, z.y as f32, z.z as f32];

@@ -203,6 +203,7 @@ pub static PLANAR: Block = Block::new(
         &planar::INFILL,
         &planar::CHORD_ERROR,
         &planar::SEAM,
+        &normal::LAYER_CHANGE,
         &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
