@@ -167,6 +167,15 @@ fn a_planar_one_bead_wall_climbs_its_last_length_and_each_point_lays_one_layer()
                 v / mean
             );
         }
+        // One move, one speed: its ends lay within the rise tolerance
+        // (3 %) of their mean, on the first layer's climb too.
+        for q in pts.windows(2) {
+            let (a, b) = (f64::from(q[0].layer_height), f64::from(q[1].layer_height));
+            assert!(
+                (b - a).abs() <= 0.03 * 0.5 * (a + b) + 1e-6,
+                "layer {i}: {a} {b}"
+            );
+        }
         if let Some(next) = p.layers.get(i + 1) {
             assert_eq!(pts.last().unwrap().pos, next.paths[0].points[0].pos);
         }
@@ -210,4 +219,40 @@ fn a_planar_spiral_needs_one_loop_and_a_seam_that_stays() {
     let m: Vec<String> = c.diagnostics.iter().map(|d| d.message.clone()).collect();
     assert!(c.program.is_none());
     assert!(m.iter().any(|m| m.contains("layer 0 has 2 loops")), "{m:?}");
+}
+
+#[test]
+fn a_first_climb_the_bead_cannot_lay_is_refused_with_its_height_and_speed() {
+    // At 8 mm/s a layer is 0.659 mm (the mass balance, 4 mm wide); the first
+    // climb lays up to twice that, more than the 1.055 mm the bead lays at
+    // its slowest 5 mm/s, and would need 4 mm/s.
+    let src = std::fs::read_to_string("tests/cases/planar/spiral_wall/input.lmd")
+        .unwrap()
+        .replace("speed = 12 mm/s", "speed = 8 mm/s");
+    let c = lmdc::pipeline::compile(&src, &mut ());
+    assert!(c.program.is_none());
+    let h = (20.0 / 60.0) * 0.5 / (7.9e-3 * 8.0) / 4.0;
+    let height = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == lmdc::diag::Code::PointHeight)
+        .expect("a point-height error");
+    assert!(height.message.contains("at layer 1"), "{}", height.message);
+    // The worst point is the last laser-on one of the climb, within one
+    // cut (3 %) of two layer heights.
+    let worst: f64 = height.message["layer height above h_max: the worst is ".len()
+        + height
+            .message
+            .find("layer height above h_max: the worst is ")
+            .unwrap()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(worst > 1.9 * h && worst < 2.0 * h + 1e-3, "{worst} {h}");
+    assert!(c
+        .diagnostics
+        .iter()
+        .any(|d| d.code == lmdc::diag::Code::PointSpeed));
 }

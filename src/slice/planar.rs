@@ -106,14 +106,15 @@ fn spiral_wall(
             return Err(refuse(k, layer.paths.len()));
         };
         let mut pos: Vec<Point3<f64>> = path.points.iter().map(|q| q.pos.into()).collect();
-        if let Some((j, u)) = spiral::climb_start(&pos, length) {
-            let at = pos[j] + (pos[j + 1] - pos[j]) * u;
-            let mut q = path.points[j];
-            q.pos = at.into();
-            path.points.insert(j + 1, q);
-            pos.insert(j + 1, at);
+        if let Some(cut) = spiral::climb_start(&pos, length) {
+            cut_moves(&mut path.points, &mut pos, &[cut]);
         }
-        let t = spiral::shares(&pos, length);
+        let mut t = spiral::shares(&pos, length);
+        if k == 0 {
+            let cuts = spiral::first_climb_cuts(&t, slicing.tolerance.rise);
+            cut_moves(&mut path.points, &mut pos, &cuts);
+            t = spiral::shares(&pos, length);
+        }
         let laid: Vec<f64> = t.iter().map(|&t| spiral::laid(k, t)).collect();
         let m = path.points.len();
         for (j, q) in path.points.iter_mut().enumerate() {
@@ -130,6 +131,27 @@ fn spiral_wall(
     }
     spiral::join_layers(out);
     Ok(())
+}
+
+/// Puts a point on each move `j` a share `u` along it, for every `(j, u)`
+/// of `cuts` (in order), laid like the point the move leaves.
+fn cut_moves(points: &mut Vec<Point>, pos: &mut Vec<Point3<f64>>, cuts: &[(usize, f64)]) {
+    let mut new_points = Vec::with_capacity(points.len() + cuts.len());
+    let mut new_pos = Vec::with_capacity(points.len() + cuts.len());
+    let mut cuts = cuts.iter().peekable();
+    for (j, (q, &p)) in points.iter().zip(pos.iter()).enumerate() {
+        new_points.push(*q);
+        new_pos.push(p);
+        while let Some(&(_, u)) = cuts.next_if(|c| c.0 == j) {
+            let at = p + (pos[j + 1] - p) * u;
+            let mut q = *q;
+            q.pos = at.into();
+            new_points.push(q);
+            new_pos.push(at);
+        }
+    }
+    *points = new_points;
+    *pos = new_pos;
 }
 
 /// Fills, styles and lays every layer of `plan`; `None` after an error that

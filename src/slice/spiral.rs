@@ -53,6 +53,28 @@ pub fn climb_start(pos: &[Point3<f64>], length: f64) -> Option<(usize, f64)> {
     None
 }
 
+/// Where to put points on the first layer's climb so that no move's ends
+/// lay heights more than `rise` (a share of their mean) apart: the climb
+/// lays `1 + t` layer heights, rising along each move, and one move is laid
+/// at one speed — the mean of its ends'. `t` holds each point's share up
+/// the climb ([`shares`]; linear in arc length along each climbing move);
+/// the cuts are `(move, share along it)`, in order.
+pub fn first_climb_cuts(t: &[f64], rise: f64) -> Vec<(usize, f64)> {
+    let mut cuts = Vec::new();
+    if !(rise.is_finite() && rise > 0.0) {
+        return cuts;
+    }
+    for (j, w) in t.windows(2).enumerate() {
+        // (1 + t) ≥ 1: steps of `rise` in t keep each move within it.
+        let pieces = ((w[1] - w[0]) / rise).ceil();
+        if pieces > 1.0 && pieces < 1e6 {
+            let n = pieces as usize;
+            cuts.extend((1..n).map(|i| (j, i as f64 / n as f64)));
+        }
+    }
+    cuts
+}
+
 /// How many layer heights a point `t` up layer `i`'s climb lays: one, or
 /// `1 + t` on the first layer, whose climb rises off the plate.
 pub fn laid(i: usize, t: f64) -> f64 {
@@ -112,6 +134,18 @@ mod tests {
         assert!((u - 0.5).abs() < 1e-12);
         assert_eq!(climb_start(&pos, 50.0), None);
         assert_eq!(laid(0, 0.5), 1.5);
+        // A climb over one move, cut so each piece lays within 3 % of its
+        // mean: 34 pieces of 1/34 of a layer height each.
+        let cuts = first_climb_cuts(&[0.0, 0.0, 1.0], 0.03);
+        assert_eq!(cuts.len(), 33);
+        assert!(cuts.iter().all(|&(j, _)| j == 1));
+        let mut at = vec![0.0];
+        at.extend(cuts.iter().map(|c| c.1));
+        at.push(1.0);
+        for w in at.windows(2) {
+            let (a, b) = (1.0 + w[0], 1.0 + w[1]);
+            assert!((b - a) / (0.5 * (a + b)) <= 0.03, "{w:?}");
+        }
         assert_eq!(laid(3, 0.5), 1.0);
     }
 }
