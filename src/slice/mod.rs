@@ -77,6 +77,7 @@ fn duct(
         spacing,
         max_points: MAX_POINTS,
         follow: slicing.follow_wall,
+        rise: slicing.tolerance.rise,
         climb: match slicing.layer_change {
             LayerChange::Lift => None,
             LayerChange::Spiral { length } => Some(length.map_or(f64::INFINITY, |l| l.0)),

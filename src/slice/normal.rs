@@ -31,6 +31,9 @@ pub struct Setup {
     /// `nozzle = wall`: each point's build direction follows the wall's
     /// lean (`false`: the spine's tangent).
     pub follow: bool,
+    /// `rise_tolerance`: how far (a share of their mean) a move's ends'
+    /// heights may differ, where the first layer's climb is cut.
+    pub rise: f64,
     /// `layer_change = spiral`: how much of the end of each layer's loop
     /// climbs to the next layer (mm; infinite: all of it); `None`: none,
     /// the nozzle lifts between layers.
@@ -277,6 +280,12 @@ pub fn layer(
     pos.push(pos[0]);
     heights.push(heights[0]);
     normals.push(normals[0]);
+    let mut c = Closed {
+        pos,
+        heights,
+        normals,
+        tangents,
+    };
     if let Some(length) = plan.climb {
         let up = Climb {
             geo,
@@ -284,19 +293,11 @@ pub fn layer(
             i,
             length,
         };
-        up.apply(&samples, &mut pos, &mut heights, &mut normals);
+        let mut samples = samples;
+        up.cut(&mut samples, &mut c);
+        up.apply(&samples, &mut c.pos, &mut c.heights, &mut c.normals);
     }
-    let points = wall_points(
-        model,
-        bead,
-        i,
-        &Closed {
-            pos,
-            heights,
-            normals,
-            tangents,
-        },
-    );
+    let points = wall_points(model, bead, i, &c);
     let o = f.spine.origin;
     let layer = Layer {
         index: i,
@@ -376,6 +377,53 @@ struct Climb<'g> {
 }
 
 impl Climb<'_> {
+    /// Puts a point where the loop's climb starts, when that falls inside
+    /// a move, and on the first layer wherever its climb must be cut so
+    /// that each move's ends lay within the rise tolerance of their mean
+    /// ([`spiral::climb_start`], [`spiral::first_climb_cuts`], as on a
+    /// planar wall): each on the section at its angle between its
+    /// neighbours'.
+    fn cut(&self, samples: &mut Vec<Sample>, c: &mut Closed) {
+        let start: Vec<_> = spiral::climb_start(&c.pos, self.length)
+            .into_iter()
+            .collect();
+        self.insert(samples, c, &start);
+        if self.i == 0 {
+            let t = spiral::shares(&c.pos, self.length);
+            let cuts = spiral::first_climb_cuts(&t, self.plan.rise);
+            self.insert(samples, c, &cuts);
+        }
+    }
+
+    /// Inserts a point a share `u` of the angle along move `j` for every
+    /// `(j, u)` of `cuts` (in order).
+    fn insert(&self, samples: &mut Vec<Sample>, c: &mut Closed, cuts: &[(usize, f64)]) {
+        let s = self.i as f64 / self.plan.layers as f64;
+        let f = self.geo.frame(s);
+        let k = samples.len();
+        // Computed from the loop as it is, then put in from the back.
+        let new: Vec<_> = cuts
+            .iter()
+            .filter(|&&(j, _)| j < k)
+            .map(|&(j, u)| {
+                let a = samples[j].theta;
+                let b = samples
+                    .get(j + 1)
+                    .map_or(samples[0].theta + std::f64::consts::TAU, |n| n.theta);
+                let theta = a + u * (b - a);
+                let h = c.heights[j] + u * (c.heights[j + 1] - c.heights[j]);
+                (j, theta, self.geo.point(&f, s, theta).0, h)
+            })
+            .collect();
+        for &(j, theta, p, h) in new.iter().rev() {
+            samples.insert(j + 1, Sample { theta, grid: None });
+            c.pos.insert(j + 1, p);
+            c.heights.insert(j + 1, h);
+            c.normals.insert(j + 1, c.normals[j]);
+            c.tangents.insert(j + 1, c.tangents[j]);
+        }
+    }
+
     /// Moves the points of the loop's last `length` (`pos`, `heights` and
     /// `normals` hold the closed loop: `k + 1` points, the last the first
     /// again) up toward the next layer: a point a share `t` of the way
