@@ -295,5 +295,9 @@ fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
 /// (`layer_change = spiral`): its layers, like a ring's, go on into each
 /// other.
 fn spiral(model: &Model) -> bool {
-    matches!(&model.build, Build::Duct { slicing, .. } if slicing.layer_change.is_spiral())
+    match &model.build {
+        Build::Duct { slicing, .. } => slicing.layer_change.is_spiral(),
+        Build::Block { slicing, .. } => slicing.layer_change.is_spiral(),
+        _ => false,
+    }
 }

@@ -98,3 +98,30 @@ fn without_max_overhang_a_lean_that_lands_builds() {
     );
     assert!(m.contains("more than the 26° `max_overhang` allows"), "{m}");
 }
+
+#[test]
+fn auto_layers_on_the_cone_count_along_the_nozzle() {
+    assert!(CONE.contains("layers = auto"));
+    let c = compile(CONE, &mut ());
+    let m = messages(&c);
+    let ir = c.program.unwrap_or_else(|| panic!("{m}")).into_ir();
+    // The slant from the loft's radii (40 → 20 mm) and height (40 mm).
+    let slant = (40.0f64).hypot(40.0 - 20.0);
+    // The most the bead lays one bead wide: the mass balance at its slowest
+    // speed, A = feed·efficiency/(density·v), over the 4 mm width.
+    let h_max = (20.0 / 60.0) * 0.5 / (7.9e-3 * 5.0) / 4.0;
+    let n = (slant / h_max).ceil() as usize;
+    assert_eq!(ir.layers.len(), n, "{slant} / {h_max}");
+    // Each point lays the slant's share along the nozzle (the last layer's
+    // height is the step from the one below, the same on a cone).
+    for l in &ir.layers {
+        for p in l.paths.iter().flat_map(|p| &p.points) {
+            let h = f64::from(p.layer_height);
+            assert!(
+                (h - slant / n as f64).abs() < 2e-3,
+                "layer {}: {h}",
+                l.index
+            );
+        }
+    }
+}

@@ -255,6 +255,73 @@ fn a_rotating_seam_moves_by_its_step_each_layer() {
     }
 }
 
+/// Where the ray from the section centre at angle `phi` crosses the closed
+/// loop `l`, as arc length along it from its first point.
+fn along_to_angle(l: &[[f64; 2]], phi: f64) -> f64 {
+    use std::f64::consts::TAU;
+    let k = l.len();
+    let rel = |p: [f64; 2]| (p[1].atan2(p[0]) - phi).rem_euclid(TAU);
+    let mut s = 0.0;
+    for j in 0..k {
+        let (a, b) = (l[j], l[(j + 1) % k]);
+        let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+        // The segment runs round the centre: its end's angle past `phi`
+        // is smaller than its start's only where it crosses the ray.
+        if rel(b) < rel(a) || rel(a) == 0.0 {
+            // Solve a + t·(b − a) on the ray: cross(dir, point) = 0.
+            let d = [phi.cos(), phi.sin()];
+            let cross = |p: [f64; 2]| d[0] * p[1] - d[1] * p[0];
+            let (ca, cb) = (cross(a), cross(b));
+            let t = if ca == cb { 0.0 } else { ca / (ca - cb) };
+            return s + t.clamp(0.0, 1.0) * len;
+        }
+        s += len;
+    }
+    panic!("no crossing at {phi}")
+}
+
+#[test]
+fn a_staggered_seam_moves_its_shift_along_each_layers_loop() {
+    let shift: f64 = 37.0;
+    let src = std::fs::read_to_string("examples/sleeve.lmd")
+        .unwrap()
+        .replace("chord_error = 0.05 mm", "chord_error = 0.01 mm")
+        .replace(
+            "seam = rotating(step = 90 deg, from = 0 deg)",
+            "seam = staggered(shift = 37 mm)",
+        );
+    let p = ir(&src);
+    assert!(p.layers.len() > 5, "{}", p.layers.len());
+    // Layer 0 starts at the wall's default seam, 90°.
+    let d0 = (seam_of(&p.layers[0]) - std::f64::consts::FRAC_PI_2).abs();
+    assert!(d0 < 1e-6, "{d0}");
+    let mut wrapped = false;
+    for w in p.layers.windows(2) {
+        let l = uv(&w[1]);
+        let total: f64 = (0..l.len())
+            .map(|j| {
+                let (a, b) = (l[j], l[(j + 1) % l.len()]);
+                (b[0] - a[0]).hypot(b[1] - a[1])
+            })
+            .sum();
+        // From where the layer below started, on this layer's loop, on to
+        // this layer's first point, the way the loop runs.
+        let below = along_to_angle(&l, seam_of(&w[0]));
+        let moved = (total - below).rem_euclid(total);
+        let want = shift.rem_euclid(total);
+        let err = (moved - want).abs().min(total - (moved - want).abs());
+        // The loop's chords (0.01 mm from the outline) run a few µm
+        // shorter than the outline over the shift.
+        assert!(
+            err < 0.01,
+            "layer {}: {moved} mm on, not {want} (loop {total} mm)",
+            w[1].index
+        );
+        wrapped |= seam_of(&w[1]) < seam_of(&w[0]);
+    }
+    assert!(wrapped, "the test should see the seam wrap round");
+}
+
 #[test]
 fn a_random_seam_is_drawn_again_for_each_layer_and_the_same_every_build() {
     let src = loft(

@@ -51,6 +51,13 @@ fn each_loop_climbs_its_last_length_and_the_laser_stays_on() {
             along.push(along.last().unwrap() + d);
         }
         let total = *along.last().unwrap();
+        // A point where the climb starts. It is put on the section at its
+        // angle, and the first layer's cuts too, off the chords the 24
+        // points span (0.3 % shorter than the circle's arcs): within 0.1 mm.
+        assert!(
+            along.iter().any(|s| (s - (total - length)).abs() < 0.1),
+            "layer {i}: {along:?}"
+        );
         for (q, s) in pts.iter().zip(&along) {
             let t = ((s - (total - length)) / length).clamp(0.0, 1.0);
             assert!((q.pos[2] - (z0 + t * h)).abs() < 1e-9, "layer {i}: {q:?}");
@@ -106,4 +113,153 @@ fn a_spiral_with_a_moving_seam_is_refused() {
     let d = c.diagnostics.iter().next().unwrap();
     assert_eq!(d.code, lmdc::diag::Code::ConflictingFields);
     assert!(d.message.contains("its seam cannot move"), "{}", d.message);
+}
+
+/// tests/cases/planar/spiral_wall with `change` for its layer change.
+fn planar_wall(change: &str) -> Result<Program, String> {
+    let src = std::fs::read_to_string("tests/cases/planar/spiral_wall/input.lmd")
+        .unwrap()
+        .replace("layer_change = spiral(length = 15 mm)", change);
+    let c = lmdc::pipeline::compile(&src, &mut ());
+    let m: Vec<String> = c.diagnostics.iter().map(|d| d.message.clone()).collect();
+    c.program.map(|p| p.into_ir()).ok_or_else(|| m.join("\n"))
+}
+
+#[test]
+fn a_planar_one_bead_wall_climbs_its_last_length_and_each_point_lays_one_layer() {
+    let length = 15.0;
+    let p = planar_wall("layer_change = spiral(length = 15 mm)").unwrap();
+    assert_eq!(p.layers.len(), 6);
+    assert!(p.continuous);
+    // The bead's rise one bead wide at the process speed, by the mass
+    // balance: A = feed·efficiency/(density·v), h = A/w.
+    let (feed, eff, rho, w, v) = (20.0 / 60.0, 0.5, 7.9e-3, 4.0, 12.0);
+    let h = feed * eff / (rho * v) / w;
+    for (i, layer) in p.layers.iter().enumerate() {
+        assert_eq!(layer.paths.len(), 1, "layer {i}");
+        let pts = &layer.paths[0].points;
+        let z0 = i as f64 * h;
+        let mut along = vec![0.0];
+        for q in pts.windows(2) {
+            let d = (q[1].pos[0] - q[0].pos[0]).hypot(q[1].pos[1] - q[0].pos[1]);
+            along.push(along.last().unwrap() + d);
+        }
+        let total = *along.last().unwrap();
+        // A 30 × 20 mm rectangle's centre line, closed, and a point where
+        // the climb starts (inside its last side): the moves before it stay
+        // on the layer's plane.
+        assert!((total - 100.0).abs() < 1e-9, "{total}");
+        assert!(
+            along.iter().any(|s| (s - (total - length)).abs() < 1e-9),
+            "layer {i}: {along:?}"
+        );
+        for (j, (q, s)) in pts.iter().zip(&along).enumerate() {
+            let t = ((s - (total - length)) / length).clamp(0.0, 1.0);
+            assert!((q.pos[2] - (z0 + t * h)).abs() < 1e-5, "layer {i}: {q:?}");
+            let laid = if i == 0 { h * (1.0 + t) } else { h };
+            assert!(
+                (f64::from(q.layer_height) - laid).abs() < 1e-5,
+                "layer {i}: {} not {laid}",
+                q.layer_height
+            );
+            // The move on lays the mean of its ends' heights: a mass
+            // balance lays h·v/v', so its speed is v·h/laid.
+            let next = along[(j + 1).min(pts.len() - 1)];
+            let t1 = ((next - (total - length)) / length).clamp(0.0, 1.0);
+            let mean = if i == 0 { 1.0 + 0.5 * (t + t1) } else { 1.0 };
+            assert!(
+                (f64::from(q.speed) - v / mean).abs() < 1e-3,
+                "layer {i} point {j}: {} not {}",
+                q.speed,
+                v / mean
+            );
+        }
+        // One move, one speed: its ends lay within the rise tolerance
+        // (3 %) of their mean, on the first layer's climb too.
+        for q in pts.windows(2) {
+            let (a, b) = (f64::from(q[0].layer_height), f64::from(q[1].layer_height));
+            assert!(
+                (b - a).abs() <= 0.03 * 0.5 * (a + b) + 1e-6,
+                "layer {i}: {a} {b}"
+            );
+        }
+        if let Some(next) = p.layers.get(i + 1) {
+            assert_eq!(pts.last().unwrap().pos, next.paths[0].points[0].pos);
+        }
+    }
+    for m in &p.machines {
+        assert_eq!(laser_starts(&p, m), 1, "{}", m.name());
+    }
+    // A helix: every point but the first rises, one layer a loop.
+    let helix = planar_wall("layer_change = spiral").unwrap();
+    let pts = &helix.layers[2].paths[0].points;
+    assert!(pts.windows(2).all(|q| q[1].pos[2] > q[0].pos[2]));
+    assert!((pts.last().unwrap().pos[2] - pts[0].pos[2] - h).abs() < 1e-5);
+}
+
+#[test]
+fn a_planar_spiral_needs_one_loop_and_a_seam_that_stays() {
+    let src = std::fs::read_to_string("tests/cases/planar/spiral_wall/input.lmd")
+        .unwrap()
+        .replace("contours = 1", "contours = 2");
+    let c = lmdc::pipeline::compile(&src, &mut ());
+    assert!(c.program.is_none());
+    let wide: Vec<String> = c.diagnostics.iter().map(|d| d.message.clone()).collect();
+    let wide = wide.join("\n");
+    assert!(wide.contains("these layers are 2 contour passes"), "{wide}");
+    let moving = std::fs::read_to_string("tests/cases/planar/spiral_wall/input.lmd")
+        .unwrap()
+        .replace("seam = lowest", "seam = staggered(shift = 5 mm)");
+    let c = lmdc::pipeline::compile(&moving, &mut ());
+    assert!(c.program.is_none());
+    let d = c.diagnostics.iter().next().unwrap();
+    assert_eq!(d.code, lmdc::diag::Code::ConflictingFields);
+    assert!(d.message.contains("its seam cannot move"), "{}", d.message);
+    // A hole makes two loops a layer.
+    let holed = std::fs::read_to_string("tests/cases/planar/spiral_wall/input.lmd")
+        .unwrap()
+        .replace(
+            "profile = rectangle(width = 30 mm, height = 20 mm)",
+            "profile = region(outline = rectangle(width = 30 mm, height = 20 mm), holes = [circle(diameter = 6 mm)])",
+        );
+    let c = lmdc::pipeline::compile(&holed, &mut ());
+    let m: Vec<String> = c.diagnostics.iter().map(|d| d.message.clone()).collect();
+    assert!(c.program.is_none());
+    assert!(m.iter().any(|m| m.contains("layer 0 has 2 loops")), "{m:?}");
+}
+
+#[test]
+fn a_first_climb_the_bead_cannot_lay_is_refused_with_its_height_and_speed() {
+    // At 8 mm/s a layer is 0.659 mm (the mass balance, 4 mm wide); the first
+    // climb lays up to twice that, more than the 1.055 mm the bead lays at
+    // its slowest 5 mm/s, and would need 4 mm/s.
+    let src = std::fs::read_to_string("tests/cases/planar/spiral_wall/input.lmd")
+        .unwrap()
+        .replace("speed = 12 mm/s", "speed = 8 mm/s");
+    let c = lmdc::pipeline::compile(&src, &mut ());
+    assert!(c.program.is_none());
+    let h = (20.0 / 60.0) * 0.5 / (7.9e-3 * 8.0) / 4.0;
+    let height = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == lmdc::diag::Code::PointHeight)
+        .expect("a point-height error");
+    assert!(height.message.contains("at layer 1"), "{}", height.message);
+    // The worst point is the last laser-on one of the climb, within one
+    // cut (3 %) of two layer heights.
+    let worst: f64 = height.message["layer height above h_max: the worst is ".len()
+        + height
+            .message
+            .find("layer height above h_max: the worst is ")
+            .unwrap()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(worst > 1.9 * h && worst < 2.0 * h + 1e-3, "{worst} {h}");
+    assert!(c
+        .diagnostics
+        .iter()
+        .any(|d| d.code == lmdc::diag::Code::PointSpeed));
 }

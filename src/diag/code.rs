@@ -128,7 +128,7 @@ codes! {
     SecondSolid = "second-solid", Values,
         "a second `loft` or `extrude`: lmdc builds one solid per file";
     ConflictingFields = "conflicting-fields", Values,
-        "two fields that say one thing twice: `layers` (slicing) and `height` (extrude), an extrusion's `height` and `top`, `points` and `chord_error`, a circle's `diameter` and `radius`, a polygon's `circumradius` and `side`";
+        "two fields that say one thing twice: `layers` (slicing) and `height` (extrude), an extrusion's `height` and `top`, `points` and `chord_error`, a circle's `diameter` and `radius`, a polygon's `circumradius` and `side`; and fields that cannot go together: `layer_change = spiral` with a seam that moves, or on planar layers that are not one loop the same on every layer (more contours, an infill, a hole or an island, a profile that changes)";
     MissingStatement = "missing-statement", Values,
         "a statement the file needs is not there (`part`, `slicing`, `process`); the help shows an example";
     MissingField = "missing-field", Values,

@@ -352,6 +352,8 @@ pub fn assemble(
             offset_span: spec.offset.map(|o| o.1),
             tolerance: spec.tolerance,
             max_overhang: spec.max_overhang,
+            layer_change: spec.layer_change,
+            layer_change_span: spec.layer_change_span,
         },
     ))
 }

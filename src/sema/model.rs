@@ -792,6 +792,10 @@ pub struct PlanarSlicing {
     pub tolerance: Tolerance,
     /// `max_overhang = …`, if written (rad): the contours' lean is checked.
     pub max_overhang: Option<f64>,
+    /// `layer_change = …`: how a one-bead wall goes on to the next layer.
+    pub layer_change: LayerChange,
+    /// `layer_change = …`, if written.
+    pub layer_change_span: Option<Span>,
 }
 
 impl PlanarSlicing {

@@ -4,7 +4,7 @@
 
 use super::eval::Env;
 use super::fields::Fields;
-use super::model::{LinkMode, Pattern, Raster, SeamRule};
+use super::model::{LayerChange, LinkMode, Pattern, Raster, SeamRule};
 use super::schema::slicing::{normal, planar, raster, PLANAR, RASTER};
 use super::schema::Field;
 use super::seam;
@@ -37,6 +37,10 @@ pub struct PlanarSpec {
     pub tolerance: Tolerance,
     /// `max_overhang = …`, if written (rad).
     pub max_overhang: Option<f64>,
+    /// `layer_change = …`: how a one-bead wall goes on to the next layer.
+    pub layer_change: LayerChange,
+    /// `layer_change = …`, if written.
+    pub layer_change_span: Option<Span>,
     /// The block.
     pub span: Span,
 }
@@ -117,6 +121,25 @@ pub fn read<'a>(
         None if f.has(&planar::SEAM) => None,
         None => Some(SeamRule::Lowest),
     };
+    let layer_change = super::slicing::layer_change(&f, diags);
+    let layer_change = match (layer_change, seam, contours, &infill) {
+        (Some(LayerChange::Spiral { .. }), Some(rule), _, _) if rule.moves() => {
+            diags.push(message::bend::spiral_seam_moves(
+                f.span(&normal::LAYER_CHANGE).unwrap_or(span),
+                f.span(&planar::SEAM).unwrap_or(span),
+            ));
+            None
+        }
+        (Some(LayerChange::Spiral { .. }), _, Some(c), Some(i)) if c != 1 || i.is_some() => {
+            diags.push(message::slicing::spiral_not_a_wall(
+                f.span(&normal::LAYER_CHANGE).unwrap_or(span),
+                c,
+                i.is_some(),
+            ));
+            None
+        }
+        (change, ..) => change,
+    };
     Some(PlanarSpec {
         lift: lift?,
         layers: layers?,
@@ -130,6 +153,8 @@ pub fn read<'a>(
             &normal::MAX_OVERHANG,
             f.quantity(&normal::MAX_OVERHANG, diags).map(|(a, _)| a),
         )?,
+        layer_change: layer_change?,
+        layer_change_span: f.span(&normal::LAYER_CHANGE),
         span,
     })
 }

@@ -73,6 +73,15 @@ pub fn link(v: &Spanned, diags: &mut Diagnostics) -> Option<LinkMode> {
 }
 
 impl SeamRule {
+    /// Whether the seam moves from layer to layer (a spiral layer change,
+    /// going on from where the layer ended, cannot take one).
+    pub fn moves(&self) -> bool {
+        matches!(
+            self,
+            SeamRule::Rotating { .. } | SeamRule::Random { .. } | SeamRule::Staggered { .. }
+        )
+    }
+
     /// The direction (rad from +x) the seam of layer `k` (from 0) lies
     /// farthest in, or `None` for a rule that is not a direction.
     pub fn direction(&self, k: usize) -> Option<f64> {

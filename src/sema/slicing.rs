@@ -183,7 +183,7 @@ fn normal<'a>(
     };
     let seam = match f.value(&normal::SEAM, diags) {
         Some(v) => seam::read(v, diags).and_then(|rule| match rule {
-            SeamRule::Lowest | SeamRule::SharpestCorner | SeamRule::Staggered { .. } => {
+            SeamRule::Lowest | SeamRule::SharpestCorner => {
                 diags.push(message::bend::planar_seam_on_a_wall(v.span));
                 None
             }
@@ -202,7 +202,7 @@ fn normal<'a>(
     );
     let layer_change = layer_change(&f, diags);
     if let (Some(LayerChange::Spiral { .. }), Some(rule)) = (layer_change, seam) {
-        if !matches!(rule, SeamRule::Toward(_)) {
+        if rule.moves() {
             diags.push(message::bend::spiral_seam_moves(
                 f.span(&normal::LAYER_CHANGE).unwrap_or(span),
                 f.span(&normal::SEAM).unwrap_or(span),
@@ -226,7 +226,7 @@ fn normal<'a>(
 }
 
 /// Reads `layer_change = lift | spiral | spiral(length)`.
-fn layer_change(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<LayerChange> {
+pub(super) fn layer_change(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<LayerChange> {
     match f.value(&normal::LAYER_CHANGE, diags) {
         Some(v) => match &v.value {
             Value::Call(c) if c.func == "spiral" => {

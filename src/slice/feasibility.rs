@@ -84,6 +84,16 @@ pub fn choose_layers(
             (angle.0, rho_min, rho_max)
         }
     };
+    // What each layer's height is a share of: the spine's length (or angle)
+    // times the distance from the bend axis, or with the nozzle following
+    // the wall the wall's own slant along the nozzle ([`along_nozzle`]).
+    let (rho_min, rho_max, total, step) = match slicing.follow_wall {
+        true => {
+            let [lo, hi] = along_nozzle(geo);
+            (lo, hi, 1.0, total)
+        }
+        false => (rho_min, rho_max, total, total),
+    };
     let (n_lo, n_hi) = layer_range(rho_min, rho_max, total, h_min, h_max);
     let what = match loft.spine {
         Spine::Line { .. } => "layer height",
@@ -108,7 +118,7 @@ pub fn choose_layers(
                     loft.spine_span,
                 ));
             }
-            Ok((n_lo as usize, total / n_lo))
+            Ok((n_lo as usize, step / n_lo))
         }
         Some(n) => {
             let nf = n as f64;
@@ -122,9 +132,45 @@ pub fn choose_layers(
                     slicing.layers_span,
                 ));
             }
-            Ok((n, total / nf))
+            Ok((n, step / nf))
         }
     }
+}
+
+/// Stations and angles [`along_nozzle`] samples the wall at.
+const SLANT_STATIONS: usize = 128;
+/// See [`SLANT_STATIONS`].
+const SLANT_ANGLES: usize = 360;
+
+/// How fast the wall rises along the nozzle when it follows the wall
+/// (`nozzle = wall`), least and most over the wall: the step from a point
+/// to the same section angle a station on, less its part along the layer's
+/// path (what `normal::follow_wall` makes each point's layer height), per
+/// unit of station — a straight cone's slant length `√(L² + (R₀ − R₁)²)`
+/// everywhere. With `n` layers the heights run from the least over `n` to
+/// the most over `n`, so the count is taken along the nozzle as it is laid.
+fn along_nozzle(geo: &LoftGeometry) -> [f64; 2] {
+    use std::f64::consts::TAU;
+    let ds = 1.0 / SLANT_STATIONS as f64;
+    let dth = TAU / SLANT_ANGLES as f64;
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for i in 0..SLANT_STATIONS {
+        let s = i as f64 * ds;
+        let (f, g) = (geo.frame(s), geo.frame(s + ds));
+        for j in 0..SLANT_ANGLES {
+            let th = j as f64 * dth;
+            let p = geo.point(&f, s, th).0;
+            let t = geo.point(&f, s, th + 1e-4).0 - geo.point(&f, s, th - 1e-4).0;
+            let mut d = geo.point(&g, s + ds, th).0 - p;
+            if let Some(t) = t.try_normalize(1e-12) {
+                d -= t * d.dot(&t);
+            }
+            let rate = d.norm() / ds;
+            lo = lo.min(rate);
+            hi = hi.max(rate);
+        }
+    }
+    [lo * (1.0 - MARGIN), hi * (1.0 + MARGIN)]
 }
 
 /// The layer counts whose heights, from `rho_min·total/n` to

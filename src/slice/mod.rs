@@ -10,6 +10,7 @@ pub mod normal;
 pub mod planar;
 mod section_points;
 pub mod segmented_ring;
+pub mod spiral;
 pub mod styling;
 pub mod top;
 pub mod variable;
@@ -70,11 +71,13 @@ fn duct(
     };
     let plan = normal::Setup {
         seam: slicing.seam,
+        starts: normal::seam_angles(&geo, slicing.seam, layers),
         layers,
         step,
         spacing,
         max_points: MAX_POINTS,
         follow: slicing.follow_wall,
+        rise: slicing.tolerance.rise,
         climb: match slicing.layer_change {
             LayerChange::Lift => None,
             LayerChange::Spiral { length } => Some(length.map_or(f64::INFINITY, |l| l.0)),
@@ -117,7 +120,7 @@ fn duct(
         out.push(layer);
     }
     if slicing.layer_change.is_spiral() {
-        join_layers(&mut out);
+        spiral::join_layers(&mut out);
     }
     if let (Some(first), Spine::Arc { .. }, SeamRule::Toward(seam)) =
         (seam_hits.first(), loft.spine, slicing.seam)
@@ -132,26 +135,6 @@ fn duct(
         ));
     }
     Ok((out, warnings))
-}
-
-/// Ends each layer's wall where the next one starts, to the bit: a spiral's
-/// climb ends at the next layer's first point (computed the same way, but
-/// with the nozzle following the wall the direction there is the next
-/// layer's own), so the motion plan goes straight on into it.
-fn join_layers(layers: &mut [Layer]) {
-    for i in 1..layers.len() {
-        let Some(&next) = layers[i].paths.first().and_then(|p| p.points.first()) else {
-            continue;
-        };
-        if let Some(end) = layers[i - 1]
-            .paths
-            .last_mut()
-            .and_then(|p| p.points.last_mut())
-        {
-            end.pos = next.pos;
-            end.normal = next.normal;
-        }
-    }
 }
 
 /// Layer `i` needs `k` points (or more), more than a layer may hold.

@@ -5,6 +5,7 @@
 //! their heights: `A(v)/w` ([`crate::deposit`]).
 
 use super::section_points::{self, Sample, Spacing};
+use super::spiral;
 use crate::geometry::{LoftGeometry, SectionFrame};
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
 use crate::sema::model::{Bead, Model, SeamRule};
@@ -16,6 +17,9 @@ pub struct Setup {
     /// Where each layer starts (rad from the section's x axis, layer by
     /// layer).
     pub seam: SeamRule,
+    /// Each layer's seam angle (rad from the section's x axis), worked out
+    /// from `seam` before slicing ([`seam_angles`]).
+    pub starts: Vec<f64>,
     /// Number of layers.
     pub layers: usize,
     /// Δδ (rad) for an arc spine; the layer height (mm) for a line.
@@ -27,6 +31,9 @@ pub struct Setup {
     /// `nozzle = wall`: each point's build direction follows the wall's
     /// lean (`false`: the spine's tangent).
     pub follow: bool,
+    /// `rise_tolerance`: how far (a share of their mean) a move's ends'
+    /// heights may differ, where the first layer's climb is cut.
+    pub rise: f64,
     /// `layer_change = spiral`: how much of the end of each layer's loop
     /// climbs to the next layer (mm; infinite: all of it); `None`: none,
     /// the nozzle lifts between layers.
@@ -36,8 +43,9 @@ pub struct Setup {
 impl Setup {
     /// Layer `i`'s seam, rad from the section's x axis.
     pub fn seam_at(&self, i: usize) -> f64 {
-        self.seam
-            .direction(i)
+        self.starts
+            .get(i)
+            .copied()
             .unwrap_or(std::f64::consts::FRAC_PI_2)
     }
 
@@ -55,6 +63,72 @@ impl Setup {
         }
     }
 }
+
+/// The seam angle (rad from the section's x axis) of each of `layers`
+/// layers: the rule's direction; or, for `staggered(shift)`, `shift` of arc
+/// length along the layer's own loop (the way the nozzle runs) past the
+/// angle the layer below started at, wrapping round — layer 0 at the
+/// default 90°. So each layer's start and stop lie a fixed distance on from
+/// the one below, as on a planar wall, on a section that changes too.
+pub fn seam_angles(geo: &LoftGeometry, rule: SeamRule, layers: usize) -> Vec<f64> {
+    let default = std::f64::consts::FRAC_PI_2;
+    let SeamRule::Staggered { shift } = rule else {
+        return (0..layers)
+            .map(|i| rule.direction(i).unwrap_or(default))
+            .collect();
+    };
+    let mut out = Vec::with_capacity(layers);
+    let mut at = default;
+    for i in 0..layers {
+        if i > 0 {
+            at = walk(geo, i as f64 / layers as f64, at, shift.0);
+        }
+        out.push(at);
+    }
+    out
+}
+
+/// How closely [`walk`] follows the section: its chords stray at most this
+/// far (mm) from the outline, so its arc length is the outline's to a few
+/// parts in a million.
+const WALK_CHORD: f64 = 1e-3;
+
+/// The angle `d` mm of arc length along the section at station `s` past
+/// angle `from`, going round the way the points run (and wrapping).
+fn walk(geo: &LoftGeometry, s: f64, from: f64, d: f64) -> f64 {
+    use std::f64::consts::TAU;
+    let f = geo.frame(s);
+    let fine = Spacing::Chord {
+        error: WALK_CHORD,
+        rise: f64::MAX,
+    };
+    let samples = section_points::angles(geo, &f, s, from, fine, MAX_WALK)
+        .or_else(|_| section_points::angles(geo, &f, s, from, Spacing::Count(4096), MAX_WALK))
+        .unwrap_or_default();
+    let mut thetas: Vec<f64> = samples.iter().map(|p| p.theta).collect();
+    thetas.push(from + TAU);
+    let pts: Vec<_> = thetas.iter().map(|&th| geo.point(&f, s, th).0).collect();
+    let lengths: Vec<f64> = pts.windows(2).map(|w| (w[1] - w[0]).norm()).collect();
+    let total: f64 = lengths.iter().sum();
+    if !(total > 0.0 && d.is_finite()) {
+        return from;
+    }
+    let mut left = d.rem_euclid(total);
+    for (j, &l) in lengths.iter().enumerate() {
+        if left <= l {
+            // The point that far along the chord, by its own angle in the
+            // section frame: a straight side is one chord, however long.
+            let t = if l > 0.0 { left / l } else { 0.0 };
+            let q = pts[j] + (pts[j + 1] - pts[j]) * t - f.spine.origin;
+            return q.dot(&f.y).atan2(q.dot(&f.x)).rem_euclid(TAU);
+        }
+        left -= l;
+    }
+    from
+}
+
+/// The most points [`walk`] follows a section by.
+const MAX_WALK: usize = 200_000;
 
 /// A seam this close (relative to the layer's span across the bend) to the
 /// innermost or outermost point sits where the layer height is extreme.
@@ -206,6 +280,12 @@ pub fn layer(
     pos.push(pos[0]);
     heights.push(heights[0]);
     normals.push(normals[0]);
+    let mut c = Closed {
+        pos,
+        heights,
+        normals,
+        tangents,
+    };
     if let Some(length) = plan.climb {
         let up = Climb {
             geo,
@@ -213,19 +293,11 @@ pub fn layer(
             i,
             length,
         };
-        up.apply(&samples, &mut pos, &mut heights, &mut normals);
+        let mut samples = samples;
+        up.cut(&mut samples, &mut c);
+        up.apply(&samples, &mut c.pos, &mut c.heights, &mut c.normals);
     }
-    let points = wall_points(
-        model,
-        bead,
-        i,
-        &Closed {
-            pos,
-            heights,
-            normals,
-            tangents,
-        },
-    );
+    let points = wall_points(model, bead, i, &c);
     let o = f.spine.origin;
     let layer = Layer {
         index: i,
@@ -305,6 +377,53 @@ struct Climb<'g> {
 }
 
 impl Climb<'_> {
+    /// Puts a point where the loop's climb starts, when that falls inside
+    /// a move, and on the first layer wherever its climb must be cut so
+    /// that each move's ends lay within the rise tolerance of their mean
+    /// ([`spiral::climb_start`], [`spiral::first_climb_cuts`], as on a
+    /// planar wall): each on the section at its angle between its
+    /// neighbours'.
+    fn cut(&self, samples: &mut Vec<Sample>, c: &mut Closed) {
+        let start: Vec<_> = spiral::climb_start(&c.pos, self.length)
+            .into_iter()
+            .collect();
+        self.insert(samples, c, &start);
+        if self.i == 0 {
+            let t = spiral::shares(&c.pos, self.length);
+            let cuts = spiral::first_climb_cuts(&t, self.plan.rise);
+            self.insert(samples, c, &cuts);
+        }
+    }
+
+    /// Inserts a point a share `u` of the angle along move `j` for every
+    /// `(j, u)` of `cuts` (in order).
+    fn insert(&self, samples: &mut Vec<Sample>, c: &mut Closed, cuts: &[(usize, f64)]) {
+        let s = self.i as f64 / self.plan.layers as f64;
+        let f = self.geo.frame(s);
+        let k = samples.len();
+        // Computed from the loop as it is, then put in from the back.
+        let new: Vec<_> = cuts
+            .iter()
+            .filter(|&&(j, _)| j < k)
+            .map(|&(j, u)| {
+                let a = samples[j].theta;
+                let b = samples
+                    .get(j + 1)
+                    .map_or(samples[0].theta + std::f64::consts::TAU, |n| n.theta);
+                let theta = a + u * (b - a);
+                let h = c.heights[j] + u * (c.heights[j + 1] - c.heights[j]);
+                (j, theta, self.geo.point(&f, s, theta).0, h)
+            })
+            .collect();
+        for &(j, theta, p, h) in new.iter().rev() {
+            samples.insert(j + 1, Sample { theta, grid: None });
+            c.pos.insert(j + 1, p);
+            c.heights.insert(j + 1, h);
+            c.normals.insert(j + 1, c.normals[j]);
+            c.tangents.insert(j + 1, c.tangents[j]);
+        }
+    }
+
     /// Moves the points of the loop's last `length` (`pos`, `heights` and
     /// `normals` hold the closed loop: `k + 1` points, the last the first
     /// again) up toward the next layer: a point a share `t` of the way
@@ -324,20 +443,9 @@ impl Climb<'_> {
         normals: &mut [[f32; 3]],
     ) {
         let k = samples.len();
-        let mut along = Vec::with_capacity(k + 1);
-        let mut total = 0.0;
-        along.push(0.0);
-        for w in pos.windows(2) {
-            total += (w[1] - w[0]).norm();
-            along.push(total);
-        }
-        let length = self.length.min(total);
-        if length <= 0.0 {
-            return;
-        }
+        let shares = spiral::shares(pos, self.length);
         let n = self.plan.layers as f64;
-        for j in 0..=k {
-            let t = ((along[j] - (total - length)) / length).clamp(0.0, 1.0);
+        for (j, &t) in shares.iter().enumerate() {
             if t <= 0.0 {
                 continue;
             }
@@ -345,9 +453,7 @@ impl Climb<'_> {
             let f = self.geo.frame(s);
             let theta = samples[j % k].theta;
             pos[j] = self.geo.point(&f, s, theta).0;
-            if self.i == 0 {
-                heights[j] *= 1.0 + t;
-            }
+            heights[j] *= spiral::laid(self.i, t);
             if !self.plan.follow {
                 let z = f.z();
                 normals[j] = [z.x as f32, z.y as f32, z.z as f32];

@@ -15,6 +15,7 @@
 
 use super::holes;
 use super::layers::{self, Layers};
+use super::spiral;
 use super::styling::{self, Styler};
 use super::MAX_TOTAL_POINTS;
 use crate::bead::MIN_OFFSET_RATIO;
@@ -26,9 +27,11 @@ use crate::geometry::outline;
 use crate::geometry::region::Region;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
 use crate::sema::model::{
-    Bead, Extrusion, LinkMode, Measure, Model, Pattern, PlanarSlicing, SeamRule, Shape,
+    Bead, Extrusion, LayerChange, LinkMode, Measure, Model, Pattern, PlanarSlicing, SeamRule, Shape,
 };
 use crate::style;
+use crate::units::Length;
+use nalgebra::Point3;
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -54,9 +57,101 @@ pub fn slice(
     // Every layer filled: its diagnostics go on with it, errors (a spot left
     // unfilled) included, so the machine checks still run in this run.
     match fill_layers(model, bead, extrusion, slicing, &plan, &mut diags) {
-        Some(out) => Ok((out, diags)),
+        Some(mut out) => match spiral_wall(&mut out, bead, &plan, extrusion, slicing) {
+            Ok(()) => Ok((out, diags)),
+            Err(d) => {
+                diags.push(d);
+                Err(diags)
+            }
+        },
         None => Err(diags),
     }
+}
+
+/// `layer_change = spiral` on a planar one-bead wall: the last `length` of
+/// each layer's loop climbs to the next layer's first point with the laser
+/// on ([`spiral`]). A point a share `t` up the climb lies `t` layer heights
+/// over its layer's plane, one layer height over the climb below; the
+/// first layer's climb lays `(1 + t)` layer heights, at the speed that
+/// lays that. Every layer must be the same single loop (the one the layer
+/// below climbed into).
+fn spiral_wall(
+    out: &mut [Layer],
+    bead: &Bead,
+    plan: &Layers,
+    extrusion: &Extrusion,
+    slicing: &PlanarSlicing,
+) -> Result<(), Diagnostic> {
+    let LayerChange::Spiral { length } = slicing.layer_change else {
+        return Ok(());
+    };
+    let length = length.map_or(f64::INFINITY, |l| l.0);
+    let refuse = |k: usize, loops: usize| {
+        message::slicing::spiral_needs_one_loop(
+            k,
+            loops,
+            slicing.layer_change_span.unwrap_or(slicing.span),
+            extrusion.profile_span,
+        )
+    };
+    if plan.varies() {
+        return Err(refuse(0, 1));
+    }
+    let (h, pitch) = (plan.lift.0, plan.pitch);
+    let deposit = bead.deposit();
+    let speed_for = |laid: f64| deposit.speed_for(Length(laid * h), pitch).0;
+    for layer in out.iter_mut() {
+        let k = layer.index;
+        let [path] = &mut layer.paths[..] else {
+            return Err(refuse(k, layer.paths.len()));
+        };
+        let mut pos: Vec<Point3<f64>> = path.points.iter().map(|q| q.pos.into()).collect();
+        if let Some(cut) = spiral::climb_start(&pos, length) {
+            cut_moves(&mut path.points, &mut pos, &[cut]);
+        }
+        let mut t = spiral::shares(&pos, length);
+        if k == 0 {
+            let cuts = spiral::first_climb_cuts(&t, slicing.tolerance.rise);
+            cut_moves(&mut path.points, &mut pos, &cuts);
+            t = spiral::shares(&pos, length);
+        }
+        let laid: Vec<f64> = t.iter().map(|&t| spiral::laid(k, t)).collect();
+        let m = path.points.len();
+        for (j, q) in path.points.iter_mut().enumerate() {
+            q.pos[2] += t[j] * h;
+            q.layer_height = (laid[j] * h) as f32;
+            // The move on lays the mean of its ends' heights (the last
+            // point has no move: it keeps the speed of the one before).
+            let along = 0.5 * (laid[j] + laid[(j + 1).min(m - 1)]);
+            if along != 1.0 {
+                let v = f64::from(q.speed) * speed_for(along) / speed_for(1.0);
+                q.speed = if v.is_finite() { v as f32 } else { 0.0 };
+            }
+        }
+    }
+    spiral::join_layers(out);
+    Ok(())
+}
+
+/// Puts a point on each move `j` a share `u` along it, for every `(j, u)`
+/// of `cuts` (in order), laid like the point the move leaves.
+fn cut_moves(points: &mut Vec<Point>, pos: &mut Vec<Point3<f64>>, cuts: &[(usize, f64)]) {
+    let mut new_points = Vec::with_capacity(points.len() + cuts.len());
+    let mut new_pos = Vec::with_capacity(points.len() + cuts.len());
+    let mut cuts = cuts.iter().peekable();
+    for (j, (q, &p)) in points.iter().zip(pos.iter()).enumerate() {
+        new_points.push(*q);
+        new_pos.push(p);
+        while let Some(&(_, u)) = cuts.next_if(|c| c.0 == j) {
+            let at = p + (pos[j + 1] - p) * u;
+            let mut q = *q;
+            q.pos = at.into();
+            new_points.push(q);
+            new_pos.push(at);
+        }
+    }
+    *points = new_points;
+    *pos = new_pos;
 }
 
 /// Fills, styles and lays every layer of `plan`; `None` after an error that

@@ -234,13 +234,14 @@ pub fn too_many_duct_points(layers: usize, points: usize, max: usize, slicing: S
 pub fn planar_seam_on_a_wall(at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::BadChoice,
-        "a wall's seam is an angle, `rotating(…)` or `random(…)`",
+        "a wall's seam is an angle, `rotating(…)`, `random(…)` or `staggered(…)`",
     )
     .label(at, "this picks among a planar layer's contour points")
     .help(
-        "`lowest`, `sharpest_corner` and `staggered(…)` choose where a flat contour starts; a wall sliced \
+        "`lowest` and `sharpest_corner` choose where a flat contour starts; a wall sliced \
          normal to its spine starts at an angle in its section frame, e.g. \
-         `seam = rotating(step = 90 deg)` turns it a quarter turn each layer",
+         `seam = rotating(step = 90 deg)` turns it a quarter turn each layer, \
+         `staggered(shift = 10 mm)` moves it 10 mm along the loop each layer",
     )
 }
 

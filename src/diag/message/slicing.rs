@@ -392,3 +392,44 @@ pub fn style_layer_past_end(
     .label(style, "a `when` block that picks nothing")
     .help("layers count from 1 to the last, as in the programs' layer comments")
 }
+
+/// `layer_change = spiral` on planar layers that are not one bead wide.
+pub fn spiral_not_a_wall(change: Span, contours: usize, infill: bool) -> Diagnostic {
+    let what = if infill {
+        "an infill".to_string()
+    } else {
+        format!("{contours} contour passes")
+    };
+    Diagnostic::error(
+        Code::ConflictingFields,
+        format!(
+            "a spiral layer change climbs round one loop into the next layer, but these layers are {what}"
+        ),
+    )
+    .label(change, "each layer climbs into the next here")
+    .help(
+        "a spiral is for a wall one bead wide: `contours = 1` and no `infill`; \
+         or keep `layer_change = lift`",
+    )
+}
+
+/// `layer_change = spiral` on a planar wall whose layer `k` is not the one
+/// loop the layer below climbed into: `loops` loops (a hole or an island
+/// adds one), or a profile that changes from layer to layer.
+pub fn spiral_needs_one_loop(k: usize, loops: usize, change: Span, profile: Span) -> Diagnostic {
+    let why = if loops == 1 {
+        "its profile changes from layer to layer, so the climb would not end where the next layer starts".to_string()
+    } else {
+        format!("layer {k} has {loops} loops (holes or islands), and a climb goes on into one")
+    };
+    Diagnostic::error(
+        Code::ConflictingFields,
+        format!("a spiral layer change needs one loop, the same on every layer: {why}"),
+    )
+    .label(change, "each layer climbs into the next here")
+    .label(profile, "this profile")
+    .help(
+        "slice the part as a loft (`slicing normal`, which climbs between changing sections) \
+         or keep `layer_change = lift`",
+    )
+}

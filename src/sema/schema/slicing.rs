@@ -78,10 +78,10 @@ pub mod normal {
         Either(&[
             Word(&["random"]),
             Quantity(Dim::ANGLE, Any),
-            Call(&[&ROTATING, &RANDOM]),
+            Call(&[&ROTATING, &RANDOM, &STAGGERED]),
         ]),
         Default(DefaultQuantity(crate::sema::schema::deg(90.0))),
-        "where each layer starts and stops, an angle in the section frame, layer by layer",
+        "where each layer starts and stops, an angle in the section frame, layer by layer; `staggered(shift)`: `shift` along its loop past the layer below's start",
     );
     /// `nozzle = …`.
     pub static NOZZLE: Field = Field::new(
@@ -203,6 +203,7 @@ pub static PLANAR: Block = Block::new(
         &planar::INFILL,
         &planar::CHORD_ERROR,
         &planar::SEAM,
+        &normal::LAYER_CHANGE,
         &normal::MAX_OVERHANG,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
