@@ -356,3 +356,105 @@ fn an_outline_leaning_out_past_max_overhang_is_refused_with_its_angle() {
     );
     assert!(c.program.is_some(), "{}", messages(&c));
 }
+
+/// A box from corner `lo` to corner `hi`, its faces out.
+fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Vec<Triangle> {
+    let p =
+        |i: usize, j: usize, k: usize| [[lo[0], hi[0]][i], [lo[1], hi[1]][j], [lo[2], hi[2]][k]];
+    let mut out = Vec::new();
+    quad(&mut out, p(0, 0, 0), p(0, 1, 0), p(1, 1, 0), p(1, 0, 0));
+    quad(&mut out, p(0, 0, 1), p(1, 0, 1), p(1, 1, 1), p(0, 1, 1));
+    quad(&mut out, p(0, 0, 0), p(1, 0, 0), p(1, 0, 1), p(0, 0, 1));
+    quad(&mut out, p(1, 1, 0), p(0, 1, 0), p(0, 1, 1), p(1, 1, 1));
+    quad(&mut out, p(0, 1, 0), p(0, 0, 0), p(0, 0, 1), p(0, 1, 1));
+    quad(&mut out, p(1, 0, 0), p(1, 1, 0), p(1, 1, 1), p(1, 0, 1));
+    out
+}
+
+#[test]
+fn each_layer_of_islands_starts_nearest_where_the_layer_below_ended() {
+    // A plate 1.4 mm thick with three 10 mm pillars on it in a row: above
+    // the plate each layer has three islands.
+    let centres = [[12.0, 10.0], [40.0, 11.0], [66.0, 10.0]];
+    let (plate, top) = (1.4, 4.9);
+    let mut tris = cuboid([0.0, 0.0, 0.0], [80.0, 21.0, plate]);
+    for c in centres {
+        tris.extend(cuboid(
+            [c[0] - 5.0, c[1] - 5.0, plate],
+            [c[0] + 5.0, c[1] + 5.0, top],
+        ));
+    }
+    let c = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(&tris))]),
+    );
+    let m = messages(&c);
+    let ir = c.program.unwrap_or_else(|| panic!("{m}")).into_ir();
+    let island = |p: &lmdc::ir::Point| {
+        centres
+            .iter()
+            .position(|c| (p.pos[0] - c[0]).abs() < 6.0)
+            .expect("a point on a pillar")
+    };
+    let xy = |p: &lmdc::ir::Point| [p.pos[0], p.pos[1]];
+    let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    // Where each layer ends, and on a layer of pillars, each island's start
+    // and end in the order they are laid.
+    let mut end = xy(ir.layers[0].paths.last().unwrap().points.last().unwrap());
+    let (mut laid, mut lowest_first) = (0.0, 0.0);
+    let mut lowest_end = end;
+    let mut pillar_layers = 0;
+    for layer in &ir.layers[1..] {
+        let paths = &layer.paths;
+        if layer.frame.origin[2] < plate - 1e-9 {
+            end = xy(paths.last().unwrap().points.last().unwrap());
+            lowest_end = end;
+            continue;
+        }
+        pillar_layers += 1;
+        // (island, start, end) of each island's run of paths.
+        let mut runs: Vec<(usize, [f64; 2], [f64; 2])> = Vec::new();
+        for p in paths {
+            let i = island(&p.points[0]);
+            let (first, last) = (xy(&p.points[0]), xy(p.points.last().unwrap()));
+            match runs.last_mut() {
+                Some(r) if r.0 == i => r.2 = last,
+                _ => runs.push((i, first, last)),
+            }
+        }
+        assert_eq!(runs.len(), 3, "layer {}: {runs:?}", layer.index);
+        // Each island is the nearest of those left to where the last one
+        // (or the layer below) ended.
+        let mut at = end;
+        for (n, r) in runs.iter().enumerate() {
+            let nearest = runs[n..]
+                .iter()
+                .map(|q| dist(at, q.1))
+                .fold(f64::INFINITY, f64::min);
+            assert_eq!(dist(at, r.1), nearest, "layer {}, island {n}", layer.index);
+            laid += dist(at, r.1);
+            at = r.2;
+        }
+        end = at;
+        // The same islands visited from the lowest (least y, then x: the
+        // first pillar) each layer, then nearest next.
+        let mut left: Vec<_> = runs.clone();
+        left.sort_by_key(|r| r.0);
+        let mut at = lowest_end;
+        let mut next = 0;
+        while !left.is_empty() {
+            let r = left.remove(next);
+            lowest_first += dist(at, r.1);
+            at = r.2;
+            next = (0..left.len())
+                .min_by(|&a, &b| dist(at, left[a].1).total_cmp(&dist(at, left[b].1)))
+                .unwrap_or(0);
+        }
+        lowest_end = at;
+    }
+    assert!(pillar_layers >= 4, "{pillar_layers}");
+    assert!(
+        laid < lowest_first,
+        "travel between islands {laid} mm, from the lowest {lowest_first} mm"
+    );
+}
