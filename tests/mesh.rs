@@ -4,6 +4,7 @@
 //! meshes refused with where.
 
 use lmdc::geometry::mesh::stl::{self, Triangle};
+use lmdc::geometry::mesh::three_mf;
 use lmdc::geometry::outline;
 use lmdc::pipeline::{compile_reading, Compiled};
 use lmdc::sema::model::Build;
@@ -355,4 +356,254 @@ fn an_outline_leaning_out_past_max_overhang_is_refused_with_its_angle() {
         BTreeMap::from([("part.stl", stl::to_binary(&upright))]),
     );
     assert!(c.program.is_some(), "{}", messages(&c));
+}
+
+/// A box from corner `lo` to corner `hi`, its faces out.
+fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Vec<Triangle> {
+    let p =
+        |i: usize, j: usize, k: usize| [[lo[0], hi[0]][i], [lo[1], hi[1]][j], [lo[2], hi[2]][k]];
+    let mut out = Vec::new();
+    quad(&mut out, p(0, 0, 0), p(0, 1, 0), p(1, 1, 0), p(1, 0, 0));
+    quad(&mut out, p(0, 0, 1), p(1, 0, 1), p(1, 1, 1), p(0, 1, 1));
+    quad(&mut out, p(0, 0, 0), p(1, 0, 0), p(1, 0, 1), p(0, 0, 1));
+    quad(&mut out, p(1, 1, 0), p(0, 1, 0), p(0, 1, 1), p(1, 1, 1));
+    quad(&mut out, p(0, 1, 0), p(0, 0, 0), p(0, 0, 1), p(0, 1, 1));
+    quad(&mut out, p(1, 0, 0), p(1, 1, 0), p(1, 1, 1), p(1, 0, 1));
+    out
+}
+
+#[test]
+fn each_layer_of_islands_starts_nearest_where_the_layer_below_ended() {
+    // A plate 1.4 mm thick with three 10 mm pillars on it in a row: above
+    // the plate each layer has three islands.
+    let centres = [[12.0, 10.0], [40.0, 11.0], [66.0, 10.0]];
+    let (plate, top) = (1.4, 4.9);
+    let mut tris = cuboid([0.0, 0.0, 0.0], [80.0, 21.0, plate]);
+    for c in centres {
+        tris.extend(cuboid(
+            [c[0] - 5.0, c[1] - 5.0, plate],
+            [c[0] + 5.0, c[1] + 5.0, top],
+        ));
+    }
+    let c = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(&tris))]),
+    );
+    let m = messages(&c);
+    let ir = c.program.unwrap_or_else(|| panic!("{m}")).into_ir();
+    let island = |p: &lmdc::ir::Point| {
+        centres
+            .iter()
+            .position(|c| (p.pos[0] - c[0]).abs() < 6.0)
+            .expect("a point on a pillar")
+    };
+    let xy = |p: &lmdc::ir::Point| [p.pos[0], p.pos[1]];
+    let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    // Where each layer ends, and on a layer of pillars, each island's start
+    // and end in the order they are laid.
+    let mut end = xy(ir.layers[0].paths.last().unwrap().points.last().unwrap());
+    let (mut laid, mut lowest_first) = (0.0, 0.0);
+    let mut lowest_end = end;
+    let mut pillar_layers = 0;
+    for layer in &ir.layers[1..] {
+        let paths = &layer.paths;
+        if layer.frame.origin[2] < plate - 1e-9 {
+            end = xy(paths.last().unwrap().points.last().unwrap());
+            lowest_end = end;
+            continue;
+        }
+        pillar_layers += 1;
+        // (island, start, end) of each island's run of paths.
+        let mut runs: Vec<(usize, [f64; 2], [f64; 2])> = Vec::new();
+        for p in paths {
+            let i = island(&p.points[0]);
+            let (first, last) = (xy(&p.points[0]), xy(p.points.last().unwrap()));
+            match runs.last_mut() {
+                Some(r) if r.0 == i => r.2 = last,
+                _ => runs.push((i, first, last)),
+            }
+        }
+        assert_eq!(runs.len(), 3, "layer {}: {runs:?}", layer.index);
+        // Each island is the nearest of those left to where the last one
+        // (or the layer below) ended.
+        let mut at = end;
+        for (n, r) in runs.iter().enumerate() {
+            let nearest = runs[n..]
+                .iter()
+                .map(|q| dist(at, q.1))
+                .fold(f64::INFINITY, f64::min);
+            assert_eq!(dist(at, r.1), nearest, "layer {}, island {n}", layer.index);
+            laid += dist(at, r.1);
+            at = r.2;
+        }
+        end = at;
+        // The same islands visited from the lowest (least y, then x: the
+        // first pillar) each layer, then nearest next.
+        let mut left: Vec<_> = runs.clone();
+        left.sort_by_key(|r| r.0);
+        let mut at = lowest_end;
+        let mut next = 0;
+        while !left.is_empty() {
+            let r = left.remove(next);
+            lowest_first += dist(at, r.1);
+            at = r.2;
+            next = (0..left.len())
+                .min_by(|&a, &b| dist(at, left[a].1).total_cmp(&dist(at, left[b].1)))
+                .unwrap_or(0);
+        }
+        lowest_end = at;
+    }
+    assert!(pillar_layers >= 4, "{pillar_layers}");
+    assert!(
+        laid < lowest_first,
+        "travel between islands {laid} mm, from the lowest {lowest_first} mm"
+    );
+}
+
+/// `tris` as a 3MF model's vertices (each distinct corner once, in the
+/// order they first come) and triangles, scaled by `k`.
+fn indexed(tris: &[Triangle], k: f64) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
+    let mut ids: BTreeMap<[u32; 3], usize> = BTreeMap::new();
+    let mut vertices = Vec::new();
+    let faces = tris
+        .iter()
+        .map(|t| {
+            t.map(|c| {
+                *ids.entry(c.map(f32::to_bits)).or_insert_with(|| {
+                    vertices.push(c.map(|x| f64::from(x) * k));
+                    vertices.len() - 1
+                })
+            })
+        })
+        .collect();
+    (vertices, faces)
+}
+
+/// Each layer's region of the mesh program `src` reading `bytes`.
+fn regions(src: &str, bytes: Vec<u8>) -> Vec<lmdc::geometry::region::Region> {
+    let data: lmdc::sema::DataReader = Rc::new(move |_: &str| Ok(bytes.clone()));
+    let (c, model) = compile_reading(src, None, &mut (), data).unwrap();
+    let m = messages(&c);
+    let model = model.unwrap_or_else(|| panic!("{m}"));
+    assert!(c.program.is_some(), "{m}");
+    let (bead, Build::Block { extrusion, slicing }) = (model.bead.as_ref().unwrap(), &model.build)
+    else {
+        panic!("a mesh builds a block");
+    };
+    let plan = layers::plan(bead, extrusion, slicing, &mut Default::default()).unwrap();
+    plan.shapes
+        .iter()
+        .map(|s| outline::region(s, 0.01))
+        .collect()
+}
+
+#[test]
+fn a_3mf_builds_the_plan_of_the_same_stl() {
+    let tris = box_with_hole([15.0, 15.0], 15.0, 5.0, 4.2, 32);
+    let (v, t) = indexed(&tris, 1.0);
+    let plan = |file: &str, bytes: Vec<u8>| {
+        let c = compile(
+            &source(&format!("profile = mesh(\"{file}\")")),
+            BTreeMap::from([("part.stl", bytes.clone()), ("part.3mf", bytes)]),
+        );
+        let m = messages(&c);
+        let p = c.program.unwrap_or_else(|| panic!("{m}"));
+        serde_json::to_value(&p.ir().layers).unwrap()
+    };
+    let stl = plan("part.stl", stl::to_binary(&tris));
+    // Told apart by the name and, under any name, by the ZIP's signature.
+    let package = three_mf::package(&v, &t, "millimeter", &[None]);
+    assert!(plan("part.3mf", package.clone()) == stl);
+    assert!(plan("part.stl", package) == stl);
+}
+
+#[test]
+fn a_3mf_in_inches_is_placed_by_its_build_items() {
+    // The box in inches, made twice by two build items: one turned 90°
+    // about z and moved 2 in along x, one moved 4 in along x and 1 in
+    // along y. The file's origin is the box's corner (the box spans 0 to
+    // 30 mm), so in mm the first spans x 50.8 - 30 to 50.8, y 0 to 30, the
+    // second x 101.6 to 131.6, y 25.4 to 55.4.
+    let tris = box_with_hole([15.0, 15.0], 15.0, 5.0, 2.8, 16);
+    let (v, t) = indexed(&tris, 1.0 / 25.4);
+    let turned = [0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 0.0, 0.0];
+    let moved = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 4.0, 1.0, 0.0];
+    let bytes = three_mf::package(&v, &t, "inch", &[Some(turned), Some(moved)]);
+    let rs = regions(&source("profile = mesh(\"part.3mf\")"), bytes);
+    let area = 4.0 * 15.0 * 15.0 - ngon(5.0, 16);
+    let want = [[[20.8, 0.0], [50.8, 30.0]], [[101.6, 25.4], [131.6, 55.4]]];
+    assert!(!rs.is_empty());
+    for (k, r) in rs.iter().enumerate() {
+        assert_eq!(r.outer().len(), 2, "layer {k}");
+        assert!(
+            (r.area() - 2.0 * area).abs() < 1e-3,
+            "layer {k}: {}",
+            r.area()
+        );
+        let b = r.bounds().unwrap();
+        assert!((b[0][0] - want[0][0][0]).abs() < 1e-4, "{b:?}");
+        assert!((b[0][1] - 0.0).abs() < 1e-4, "{b:?}");
+        assert!((b[1][0] - want[1][1][0]).abs() < 1e-4, "{b:?}");
+        assert!((b[1][1] - want[1][1][1]).abs() < 1e-4, "{b:?}");
+        // The gap between the two islands: a point between them is in
+        // neither, a point in each is in one.
+        assert!(!r.contains([76.0, 20.0]));
+        assert!(r.contains([want[0][0][0] + 1.0, 15.0]));
+        assert!(r.contains([want[1][0][0] + 1.0, 40.4]));
+    }
+    // `units` that disagrees with the file's is refused where it is written.
+    let c = compile(
+        &source("profile = mesh(\"part.3mf\", units = mm)"),
+        BTreeMap::from([("part.3mf", three_mf::package(&v, &t, "inch", &[None]))]),
+    );
+    assert!(
+        messages(&c).contains(
+            "says its unit is the inch (`unit=\"inch\"`), and `units = mm` says otherwise"
+        ),
+        "{}",
+        messages(&c)
+    );
+}
+
+#[test]
+fn a_broken_3mf_is_refused_with_where() {
+    let tris = box_with_hole([15.0, 15.0], 15.0, 5.0, 2.8, 16);
+    let (v, mut t) = indexed(&tris, 1.0);
+    let refused = |bytes: Vec<u8>, says: &str| {
+        let c = compile(
+            &source("profile = mesh(\"part.3mf\")"),
+            BTreeMap::from([("part.3mf", bytes)]),
+        );
+        assert!(c.program.is_none());
+        let m = messages(&c);
+        assert!(m.contains(says), "{m}\nwanted: {says}");
+    };
+    refused(
+        b"solid x\nendsolid x\n".to_vec(),
+        "is no 3MF lmdc can read: a 3MF is a ZIP package, and this is none",
+    );
+    // A missing triangle: open, with the two triangles beside it.
+    let gone = t.remove(21);
+    let mut near: Vec<usize> = (0..t.len())
+        .filter(|&i| t[i].iter().filter(|c| gone.contains(c)).count() == 2)
+        .collect();
+    near.sort_unstable();
+    let list = near.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    refused(
+        three_mf::package(&v, &t, "millimeter", &[None]),
+        &format!(
+            "is open: 3 edge(s) belong to one triangle only, so it encloses no solid; triangles {}",
+            list.join(", ")
+        ),
+    );
+    // A triangle naming a vertex past the last.
+    t[7][1] = v.len() + 3;
+    refused(
+        three_mf::package(&v, &t, "millimeter", &[None]),
+        &format!(
+            "triangle 7 of object 1 names vertex {}, but the object has {} vertices",
+            v.len() + 3,
+            v.len()
+        ),
+    );
 }

@@ -1,6 +1,10 @@
 #!/usr/bin/env python3
 """Writes bracket.stl (binary, mm) beside this script: the part of
-examples/bracket.lmd, a bracket given as a mesh as CAD would export it.
+examples/bracket.lmd, a bracket given as a mesh as CAD would export it; and
+bracket.3mf, the same mesh as a 3MF package (millimetres, one object, one
+build item whose transform turns it 90 deg about z and moves it 30 mm along
+x, so it stands along y with its corner at the origin): the part of
+examples/bracket_3mf.lmd.
 
 A base plate 60 x 30 x 6 mm, its corner at the origin, with a 10 mm hole
 through it at (15, 15), and a boss of 20 mm diameter, 16 mm tall over the
@@ -16,6 +20,7 @@ it writes it. Run: python3 examples/mesh/make_bracket.py
 import math
 import os
 import struct
+import zipfile
 
 N = 64  # rays per cell: a multiple of 8, so the square's corners are on rays
 CELL = 15.0  # half the cell's side
@@ -115,3 +120,54 @@ with open(out, "wb") as f:
             f.write(struct.pack("<3f", *p))
         f.write(b"\0\0")
 print(f"{out}: {len(tris)} triangles")
+
+# The 3MF: each distinct corner once, triangles as indices into them; the
+# numbers as Python writes the floats (each an f32, so the 3MF's triangles
+# are the STL's exactly).
+index = {}
+for t in tris:
+    for p in t:
+        index.setdefault(p, len(index))
+vertices = "".join(f'<vertex x="{p[0]!r}" y="{p[1]!r}" z="{p[2]!r}"/>\n' for p in index)
+triangles = "".join(
+    f'<triangle v1="{index[t[0]]}" v2="{index[t[1]]}" v3="{index[t[2]]}"/>\n' for t in tris
+)
+# Rows m00 m01 m02 / m10 m11 m12 / m20 m21 m22 / m30 m31 m32: a point
+# (x, y, z) goes to (30 - y, x, z).
+TURN = "0 1 0 -1 0 0 0 0 1 30 0 0"
+model = f"""<?xml version="1.0" encoding="UTF-8"?>
+<model unit="millimeter" xml:lang="en-US" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02">
+<metadata name="Title">bracket for examples/bracket_3mf.lmd</metadata>
+<resources>
+<object id="1" type="model">
+<mesh>
+<vertices>
+{vertices}</vertices>
+<triangles>
+{triangles}</triangles>
+</mesh>
+</object>
+</resources>
+<build>
+<item objectid="1" transform="{TURN}"/>
+</build>
+</model>
+"""
+CONTENT_TYPES = """<?xml version="1.0" encoding="UTF-8"?>
+<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types"><Default Extension="rels" ContentType="application/vnd.openxmlformats-package.relationships+xml"/><Default Extension="model" ContentType="application/vnd.ms-package.3dmanufacturing-3dmodel+xml"/></Types>
+"""
+RELS = """<?xml version="1.0" encoding="UTF-8"?>
+<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships"><Relationship Target="/3D/3dmodel.model" Id="rel0" Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel"/></Relationships>
+"""
+out3 = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bracket.3mf")
+with zipfile.ZipFile(out3, "w", zipfile.ZIP_DEFLATED) as z:
+    # A fixed date: the same bytes on every run.
+    for name, text in [
+        ("[Content_Types].xml", CONTENT_TYPES),
+        ("_rels/.rels", RELS),
+        ("3D/3dmodel.model", model),
+    ]:
+        info = zipfile.ZipInfo(name, date_time=(2026, 1, 1, 0, 0, 0))
+        info.compress_type = zipfile.ZIP_DEFLATED
+        z.writestr(info, text)
+print(f"{out3}: {len(index)} vertices, {len(tris)} triangles")

@@ -1,4 +1,4 @@
-//! `mesh(file, units, turn, at)`: a solid given as an STL mesh, read
+//! `mesh(file, units, turn, at)`: a solid given as an STL or 3MF mesh, read
 //! through the program's data reader, checked a closed surface and placed
 //! with its lowest point on the plate ([`crate::geometry::mesh`]).
 
@@ -8,7 +8,7 @@ use super::schema::solid::{mesh, MESH};
 use super::value::{Call, Value};
 use super::DataReader;
 use crate::diag::{message, Diagnostics};
-use crate::geometry::mesh::{stl, Mesh, Placement};
+use crate::geometry::mesh::{stl, three_mf, Mesh, Placement};
 use crate::span::Span;
 use crate::units::{Dim, Length};
 
@@ -35,16 +35,34 @@ pub fn read(
     let bytes = read(&path)
         .map_err(|why| diags.push(message::mesh::unreadable(&path, &why, file_at)))
         .ok()?;
-    let tris = stl::read(&bytes)
-        .map_err(|e| diags.push(message::mesh::not_stl(&path, &e, file_at)))
-        .ok()?;
-    drop(bytes);
     let scale = match units {
         "cm" => 10.0,
         "m" => 1000.0,
         "in" => 25.4,
         _ => 1.0,
     };
+    let (tris, scale) = if is_3mf(&path, &bytes) {
+        let m = three_mf::read(&bytes)
+            .map_err(|e| diags.push(message::mesh::not_3mf(&path, &e, file_at)))
+            .ok()?;
+        if let Some((w, w_at)) = f
+            .has(&mesh::UNITS)
+            .then(|| f.word(&mesh::UNITS, diags))
+            .flatten()
+        {
+            if scale != m.scale {
+                diags.push(message::mesh::units_disagree(&path, m.unit, w, w_at));
+                return None;
+            }
+        }
+        (m.triangles, m.scale)
+    } else {
+        let tris = stl::read(&bytes)
+            .map_err(|e| diags.push(message::mesh::not_stl(&path, &e, file_at)))
+            .ok()?;
+        (tris, scale)
+    };
+    drop(bytes);
     let placement = Placement {
         scale,
         turn: turn.0,
@@ -70,6 +88,12 @@ pub fn read(
         top: Length(hi[2]),
         span: at,
     })
+}
+
+/// Whether the mesh file is a 3MF: named `….3mf`, or a ZIP package (a
+/// binary STL's 80-byte header could start so only by chance; ASCII never).
+fn is_3mf(path: &str, bytes: &[u8]) -> bool {
+    path.to_ascii_lowercase().ends_with(".3mf") || bytes.starts_with(b"PK\x03\x04")
 }
 
 /// A list of three quantities of `dim` (zeros when not written), and where

@@ -195,11 +195,13 @@ fn fill_layers(
             .infill
             .map_or(0.0, |r| (r.angle.0 + r.rotate.0 * k as f64).to_degrees());
         let seam = seam_at(slicing.seam, k);
+        // Where the layer below ended: a layer of islands starts nearest it.
+        let from = last.as_ref().and_then(Filled::end);
         let reuse = matches!(&last, Some(f)
             if f.shape == shape
                 && f.angle.rem_euclid(360.0) == angle.rem_euclid(360.0)
                 && f.seam == seam);
-        let filled = match last.take() {
+        let mut filled = match last.take() {
             Some(f) if reuse => f,
             _ => {
                 let at = Where {
@@ -216,14 +218,9 @@ fn fill_layers(
                     gap_samples,
                 };
                 match fill_shape(shape, &how, &at) {
-                    Ok((region, tracks, gap)) => Filled {
-                        shape,
-                        angle,
-                        seam,
-                        region,
-                        tracks,
-                        gap,
-                    },
+                    Ok((region, islands, gap)) => {
+                        Filled::new(shape, angle, seam, region, islands, gap)
+                    }
                     Err(errors) => {
                         for d in errors {
                             diags.push(d);
@@ -233,6 +230,7 @@ fn fill_layers(
                 }
             }
         };
+        filled.order(from);
         found.layer(k, &filled, slicing.contours, w);
         lean.layer(k, &filled.region);
         total += filled.tracks.iter().map(|t| t.points.len()).sum::<usize>();
@@ -526,8 +524,55 @@ struct Filled<'m> {
     angle: f64,
     seam: Seam,
     region: Region,
+    /// Its tracks in the order they are laid.
     tracks: Vec<Track>,
+    /// Each island's tracks when the layer has more than one (visited in
+    /// the order [`nearest_first`] gives from where the layer below ended);
+    /// empty for a layer of one piece.
+    islands: Vec<Vec<Track>>,
     gap: Option<fill::Gap>,
+}
+
+impl<'m> Filled<'m> {
+    /// A layer filled as `islands` (one list for a layer of one piece,
+    /// which is its tracks; several are ordered by the caller).
+    fn new(
+        shape: &'m Shape,
+        angle: f64,
+        seam: Seam,
+        region: Region,
+        mut islands: Vec<Vec<Track>>,
+        gap: Option<fill::Gap>,
+    ) -> Self {
+        let tracks = if islands.len() == 1 {
+            islands.pop().unwrap_or_default()
+        } else {
+            Vec::new()
+        };
+        Filled {
+            shape,
+            angle,
+            seam,
+            region,
+            tracks,
+            islands,
+            gap,
+        }
+    }
+
+    /// Where its last track ends.
+    fn end(&self) -> Option<[f64; 2]> {
+        self.tracks.last().and_then(|t| t.points.last().copied())
+    }
+
+    /// Its islands' tracks in the order they are laid, starting nearest
+    /// `from` (also on a reused layer: the layer below may have ended
+    /// elsewhere).
+    fn order(&mut self, from: Option<[f64; 2]>) {
+        if !self.islands.is_empty() {
+            self.tracks = nearest_first(self.islands.clone(), from);
+        }
+    }
 }
 
 /// Where the contour loops of layer `k` start.
@@ -552,13 +597,14 @@ struct How {
     gap_samples: usize,
 }
 
-/// A layer's region, its tracks and the farthest spot no bead reaches.
-type FilledShape = (Region, Vec<Track>, Option<fill::Gap>);
+/// A layer's region, each island's tracks (one list for a layer of one
+/// piece) and the farthest spot no bead reaches.
+type FilledShape = (Region, Vec<Vec<Track>>, Option<fill::Gap>);
 
 /// Fills one layer's `shape`: its region checked for holes that do not
 /// make one, then filled ([`fill_layer`]). Separate islands (a mesh's
-/// section) are each checked and filled on their own, and visited nearest
-/// first ([`nearest_first`]): the plan travels from one to the next with
+/// section) are each checked and filled on their own; the caller orders
+/// them ([`nearest_first`]): the plan travels from one to the next with
 /// the laser off, lifted, as between any two tracks that are not linked.
 fn fill_shape(shape: &Shape, how: &How, at: &Where<'_>) -> Result<FilledShape, Vec<Diagnostic>> {
     let chord = at.slicing.chord_error.0;
@@ -576,7 +622,8 @@ fn fill_shape(shape: &Shape, how: &How, at: &Where<'_>) -> Result<FilledShape, V
         Ok((region, tracks, gap))
     };
     let Shape::Islands(parts) = shape else {
-        return one(shape);
+        let (region, tracks, gap) = one(shape)?;
+        return Ok((region, vec![tracks], gap));
     };
     let mut regions = Vec::with_capacity(parts.len());
     let mut fills = Vec::with_capacity(parts.len());
@@ -589,18 +636,22 @@ fn fill_shape(shape: &Shape, how: &How, at: &Where<'_>) -> Result<FilledShape, V
             gap = Some(g);
         }
     }
-    Ok((Region::islands(regions), nearest_first(fills), gap))
+    Ok((Region::islands(regions), fills, gap))
 }
 
-/// The islands' tracks one island after the other: the first island
-/// first (the lowest), then always the one whose first track starts
-/// nearest to where the last ended (ties to the lower). Deterministic, and
-/// short for the handful of islands a layer has (quadratic in their
-/// number).
-fn nearest_first(mut islands: Vec<Vec<Track>>) -> Vec<Track> {
+/// The islands' tracks one island after the other: first the island whose
+/// first track starts nearest to `from` (where the layer below ended; the
+/// lowest island on the first layer), then always the one whose first
+/// track starts nearest to where the last ended. A tie goes to the island
+/// whose lowest point is lower (least y, then least x: the order islands
+/// come in). Deterministic, and short for the handful of islands a layer
+/// has (quadratic in their number); starting near the layer below keeps a
+/// part of several islands from crossing back over itself every layer.
+fn nearest_first(mut islands: Vec<Vec<Track>>, from: Option<[f64; 2]>) -> Vec<Track> {
     let mut out: Vec<Track> = Vec::with_capacity(islands.iter().map(Vec::len).sum());
     while !islands.is_empty() {
-        let end = out.last().and_then(|t| t.points.last().copied());
+        let end = out.last().and_then(|t| t.points.last().copied()).or(from);
+        // `min_by` keeps the first of equal distances: the lower island.
         let next = end.map_or(0, |e| {
             let start = |i: &Vec<Track>| {
                 i.first()

@@ -5,6 +5,7 @@
 
 use crate::diag::{Code, Diagnostic};
 use crate::geometry::mesh::stl::{StlError, MAX_TRIANGLES};
+use crate::geometry::mesh::three_mf::{ThreeMfError, MAX_DEPTH, MAX_MODEL_BYTES};
 use crate::geometry::mesh::{MeshFault, SectionFault};
 use crate::span::Span;
 use crate::units::short;
@@ -70,7 +71,62 @@ pub fn not_stl(path: &str, e: &StlError, at: Span) -> Diagnostic {
         format!("the mesh file `{path}` is no STL lmdc can read: {what}"),
     )
     .label(at, "this file")
-    .help("export the part as STL (binary or ASCII); 3MF, OBJ and STEP are not read")
+    .help("export the part as STL (binary or ASCII) or 3MF; OBJ and STEP are not read")
+}
+
+/// The file `path` is no 3MF lmdc can read.
+pub fn not_3mf(path: &str, e: &ThreeMfError, at: Span) -> Diagnostic {
+    let what = match e {
+        ThreeMfError::NotZip { why } => {
+            format!("a 3MF is a ZIP package, and this is none ({why})")
+        }
+        ThreeMfError::NoModel => {
+            "the package holds no model part (`3D/3dmodel.model`)".to_string()
+        }
+        ThreeMfError::TooLarge { bytes } => format!(
+            "its model parts inflate to {bytes} bytes; lmdc reads at most {MAX_MODEL_BYTES}"
+        ),
+        ThreeMfError::SeveralModels { count } => format!(
+            "its objects lie in {count} model parts (the production extension); lmdc reads a package of one model part"
+        ),
+        ThreeMfError::Xml { why } => format!("its model is no 3MF model lmdc reads: {why}"),
+        ThreeMfError::NoItem => "its build has no item: it makes nothing".to_string(),
+        ThreeMfError::NoObject { id, item } => {
+            format!("build item {item} needs object {id}, which the model does not hold")
+        }
+        ThreeMfError::Index { object, triangle, index, vertices } => format!(
+            "triangle {triangle} of object {object} names vertex {index}, but the object has {vertices} vertices (counted from 0)"
+        ),
+        ThreeMfError::NotFinite { object, item } => format!(
+            "object {object} in build item {item} has a vertex or transform that is not a finite number"
+        ),
+        ThreeMfError::TooDeep { object, item } => format!(
+            "the components of build item {item} nest deeper than {MAX_DEPTH} at object {object} (or contain themselves)"
+        ),
+        ThreeMfError::Empty => "its build items hold no triangle".to_string(),
+        ThreeMfError::TooMany => {
+            format!("its build items hold more than {MAX_TRIANGLES} triangles")
+        }
+    };
+    Diagnostic::error(
+        Code::Mesh,
+        format!("the mesh file `{path}` is no 3MF lmdc can read: {what}"),
+    )
+    .label(at, "this file")
+    .help("export the part again as 3MF (one model part, meshes only) or as STL")
+}
+
+/// A 3MF whose model says its unit is `unit` where the program writes
+/// `units = written`, another.
+pub fn units_disagree(path: &str, unit: &str, written: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Mesh,
+        format!(
+            "the 3MF `{path}` says its unit is the {unit} (`unit=\"{unit}\"`), and `units = {written}` says otherwise"
+        ),
+    )
+    .label(at, "not the file's unit")
+    .help("leave out `units`: a 3MF says its unit itself, and lmdc reads it")
 }
 
 /// The mesh of `path` encloses no solid (`f`).

@@ -9,6 +9,7 @@ mod section;
 pub mod stl;
 #[cfg(test)]
 mod tests;
+pub mod three_mf;
 
 pub use section::{area, islands, Loop, Section, SectionFault, Sections};
 

@@ -220,14 +220,14 @@ pub mod mesh {
         "file",
         Text,
         Required("\"part.stl\""),
-        "the STL file (binary or ASCII), a path relative to the .lmd file",
+        "the STL (binary or ASCII) or 3MF file, a path relative to the .lmd file",
     );
     /// `mesh(units = …)`.
     pub static UNITS: Field = Field::new(
         "units",
         Word(&["mm", "cm", "m", "in"]),
         Default(DefaultWord("mm")),
-        "what one unit of the file's coordinates is (STL files do not say)",
+        "what one unit of an STL's coordinates is (STL files do not say; a 3MF says its own, and `units` may only repeat it)",
     );
     /// `mesh(turn = [rx, ry, rz])`.
     pub static TURN: Field = Field::new(
@@ -249,7 +249,7 @@ pub mod mesh {
 pub static MESH: Block = Block::new(
     "mesh",
     "mesh(file, units, turn, at)",
-    "a solid given as an STL mesh, sliced in flat layers (its height is the extrusion's unless `height` or `layers` is written)",
+    "a solid given as an STL or 3MF mesh, sliced in flat layers (its height is the extrusion's unless `height` or `layers` is written)",
     &[&mesh::FILE, &mesh::UNITS, &mesh::TURN, &mesh::AT],
 )
 .positional(1);

@@ -1,0 +1,457 @@
+//! 3MF files (the 3D Manufacturing Format: a ZIP package holding an XML
+//! model), read with the `threemf` crate, as the triangles of every build
+//! item placed by its transform, and the millimetres one unit of the model
+//! is (its `unit` attribute).
+//!
+//! What lmdc builds is one solid: every build item's object (its mesh, or
+//! its components', each placed by its own transform) goes into one list
+//! of triangles, which [`super::Mesh::new`] welds and checks like an STL's.
+//! Materials, colours, textures, beam lattices, slices and metadata are not
+//! read; a package whose objects lie in more than one model part (the
+//! production extension) is refused.
+//!
+//! Triangles are numbered from 0 through the build items in their order,
+//! each object's triangles in the file's order, so the numbers a fault
+//! names are the object's own when the build has one item of one mesh.
+
+use super::stl::{Triangle, MAX_TRIANGLES};
+use std::collections::HashMap;
+use std::io::Cursor;
+use threemf::model::{Model, Object, Unit};
+
+/// Most bytes the model parts of a package may hold once inflated: a
+/// 3MF of [`MAX_TRIANGLES`] triangles takes about 2 GB of XML.
+pub const MAX_MODEL_BYTES: u64 = 2 << 30;
+
+/// Most levels of components within components.
+pub const MAX_DEPTH: usize = 32;
+
+/// A 3MF's triangles (in the model's unit, each build item placed by its
+/// transform) and how many mm one unit of it is.
+#[derive(Debug)]
+pub struct ThreeMf {
+    /// Every build item's triangles, item after item.
+    pub triangles: Vec<Triangle>,
+    /// Millimetres per unit of the model (its `unit`).
+    pub scale: f64,
+    /// The model's unit as the file names it (`millimeter`, `inch`, …).
+    pub unit: &'static str,
+}
+
+/// Why a file is no 3MF lmdc can read.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ThreeMfError {
+    /// Not a ZIP package (a 3MF is one).
+    NotZip {
+        /// What the ZIP reader said.
+        why: String,
+    },
+    /// A package with no `.model` part.
+    NoModel,
+    /// Model parts that would inflate past [`MAX_MODEL_BYTES`].
+    TooLarge {
+        /// The bytes they declare.
+        bytes: u64,
+    },
+    /// Objects in several model parts (the production extension).
+    SeveralModels {
+        /// How many model parts.
+        count: usize,
+    },
+    /// A model part that is no 3MF model XML lmdc reads.
+    Xml {
+        /// What the XML reader said.
+        why: String,
+    },
+    /// A build with no item: nothing to make.
+    NoItem,
+    /// A build item or component naming an object the model lacks.
+    NoObject {
+        /// The object id it names.
+        id: usize,
+        /// The build item (from 1) it is in.
+        item: usize,
+    },
+    /// A triangle naming a vertex the object lacks.
+    Index {
+        /// The object's id.
+        object: usize,
+        /// The triangle, from 0 in the object.
+        triangle: usize,
+        /// The vertex index it names.
+        index: usize,
+        /// How many vertices the object has.
+        vertices: usize,
+    },
+    /// A vertex or transform that is no finite number.
+    NotFinite {
+        /// The object's id.
+        object: usize,
+        /// The build item (from 1) it is in.
+        item: usize,
+    },
+    /// Components nested deeper than [`MAX_DEPTH`] (or in a loop).
+    TooDeep {
+        /// The object where it went too deep.
+        object: usize,
+        /// The build item (from 1) it is in.
+        item: usize,
+    },
+    /// A build of no triangle.
+    Empty,
+    /// More triangles than [`MAX_TRIANGLES`] once every item is placed.
+    TooMany,
+}
+
+/// A 3MF affine transform as the file writes it: `m00 m01 m02 m10 m11 m12
+/// m20 m21 m22 m30 m31 m32`, a point (x, y, z) going to
+/// (x, y, z, 1) times the 4×3 matrix of those rows.
+type Affine = [f64; 12];
+
+const IDENTITY: Affine = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0];
+
+/// Where `m` takes `p`.
+fn apply(m: &Affine, p: [f64; 3]) -> [f64; 3] {
+    let mut out = [m[9], m[10], m[11]];
+    for (j, o) in out.iter_mut().enumerate() {
+        *o += p[0] * m[j] + p[1] * m[3 + j] + p[2] * m[6 + j];
+    }
+    out
+}
+
+/// `a` then `b`.
+fn then(a: &Affine, b: &Affine) -> Affine {
+    let mut out = [0.0; 12];
+    for row in 0..3 {
+        let v = [a[3 * row], a[3 * row + 1], a[3 * row + 2]];
+        let moved = apply(b, v);
+        let origin = [b[9], b[10], b[11]];
+        for j in 0..3 {
+            out[3 * row + j] = moved[j] - origin[j];
+        }
+    }
+    let t = apply(b, [a[9], a[10], a[11]]);
+    out[9..].copy_from_slice(&t);
+    out
+}
+
+/// Whether `m` mirrors (its linear part's determinant is negative): the
+/// triangles it places run the other way round.
+fn mirrors(m: &Affine) -> bool {
+    let det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
+        + m[2] * (m[3] * m[7] - m[4] * m[6]);
+    det < 0.0
+}
+
+/// The triangles of the 3MF package `bytes`.
+pub fn read(bytes: &[u8]) -> Result<ThreeMf, ThreeMfError> {
+    check_package(bytes)?;
+    let mut models = threemf::read(Cursor::new(bytes)).map_err(|e| match e {
+        threemf::Error::Zip(z) => ThreeMfError::NotZip { why: z.to_string() },
+        threemf::Error::XMLDe(x) => ThreeMfError::Xml { why: x.to_string() },
+        other => ThreeMfError::Xml {
+            why: other.to_string(),
+        },
+    })?;
+    let model = match models.len() {
+        0 => return Err(ThreeMfError::NoModel),
+        1 => models.remove(0),
+        count => return Err(ThreeMfError::SeveralModels { count }),
+    };
+    let (scale, unit) = unit(&model.unit);
+    Ok(ThreeMf {
+        triangles: build(&model)?,
+        scale,
+        unit,
+    })
+}
+
+/// Checks `bytes` is a ZIP package whose model parts inflate to at most
+/// [`MAX_MODEL_BYTES`] (as their entries declare), before inflating any.
+fn check_package(bytes: &[u8]) -> Result<(), ThreeMfError> {
+    let mut zip = zip::ZipArchive::new(Cursor::new(bytes))
+        .map_err(|e| ThreeMfError::NotZip { why: e.to_string() })?;
+    let mut total = 0u64;
+    let mut models = 0usize;
+    for i in 0..zip.len() {
+        let f = zip
+            .by_index_raw(i)
+            .map_err(|e| ThreeMfError::NotZip { why: e.to_string() })?;
+        let name = f
+            .name()
+            .map_err(|e| ThreeMfError::NotZip { why: e.to_string() })?;
+        if name.ends_with(".model") {
+            models += 1;
+            total = total.saturating_add(f.size());
+        }
+    }
+    if models == 0 {
+        return Err(ThreeMfError::NoModel);
+    }
+    if total > MAX_MODEL_BYTES {
+        return Err(ThreeMfError::TooLarge { bytes: total });
+    }
+    Ok(())
+}
+
+/// Millimetres per unit of `u`, and its name in the file.
+fn unit(u: &Unit) -> (f64, &'static str) {
+    match u {
+        Unit::Micron => (0.001, "micron"),
+        Unit::Millimeter => (1.0, "millimeter"),
+        Unit::Centimeter => (10.0, "centimeter"),
+        Unit::Inch => (25.4, "inch"),
+        Unit::Foot => (304.8, "foot"),
+        Unit::Meter => (1000.0, "meter"),
+    }
+}
+
+/// Every build item's triangles, placed.
+fn build(model: &Model) -> Result<Vec<Triangle>, ThreeMfError> {
+    if model.build.item.is_empty() {
+        return Err(ThreeMfError::NoItem);
+    }
+    let objects: HashMap<usize, &Object> =
+        model.resources.object.iter().map(|o| (o.id, o)).collect();
+    let mut out = Vec::new();
+    for (n, item) in model.build.item.iter().enumerate() {
+        let at = Place {
+            objects: &objects,
+            item: n + 1,
+        };
+        let m = item.transform.unwrap_or(IDENTITY);
+        at.object(item.objectid, &m, 0, &mut out)?;
+    }
+    if out.is_empty() {
+        return Err(ThreeMfError::Empty);
+    }
+    Ok(out)
+}
+
+/// Places a build item's objects.
+struct Place<'a> {
+    objects: &'a HashMap<usize, &'a Object>,
+    /// The build item, from 1.
+    item: usize,
+}
+
+impl Place<'_> {
+    /// Adds object `id`'s triangles, placed by `m`, to `out`; `depth`
+    /// components deep.
+    fn object(
+        &self,
+        id: usize,
+        m: &Affine,
+        depth: usize,
+        out: &mut Vec<Triangle>,
+    ) -> Result<(), ThreeMfError> {
+        let item = self.item;
+        let object = self
+            .objects
+            .get(&id)
+            .ok_or(ThreeMfError::NoObject { id, item })?;
+        if depth > MAX_DEPTH {
+            return Err(ThreeMfError::TooDeep { object: id, item });
+        }
+        if m.iter().any(|x| !x.is_finite()) {
+            return Err(ThreeMfError::NotFinite { object: id, item });
+        }
+        if let Some(mesh) = &object.mesh {
+            self.mesh(id, mesh, m, out)?;
+        }
+        for c in object.components.iter().flat_map(|c| &c.component) {
+            let inner = then(&c.transform.unwrap_or(IDENTITY), m);
+            self.object(c.objectid, &inner, depth + 1, out)?;
+        }
+        Ok(())
+    }
+
+    /// Adds a mesh's triangles, placed by `m`, to `out`.
+    fn mesh(
+        &self,
+        id: usize,
+        mesh: &threemf::Mesh,
+        m: &Affine,
+        out: &mut Vec<Triangle>,
+    ) -> Result<(), ThreeMfError> {
+        let tris = &mesh.triangles.triangle;
+        if out.len().saturating_add(tris.len()) > MAX_TRIANGLES {
+            return Err(ThreeMfError::TooMany);
+        }
+        let vs = &mesh.vertices.vertex;
+        let flip = mirrors(m);
+        out.reserve(tris.len());
+        for (t, tri) in tris.iter().enumerate() {
+            let mut corners = [[0f32; 3]; 3];
+            for (c, &v) in corners.iter_mut().zip(&[tri.v1, tri.v2, tri.v3]) {
+                let p = vs.get(v).ok_or(ThreeMfError::Index {
+                    object: id,
+                    triangle: t,
+                    index: v,
+                    vertices: vs.len(),
+                })?;
+                let q = apply(m, [p.x, p.y, p.z]).map(|x| x as f32);
+                if q.iter().any(|x| !x.is_finite()) {
+                    return Err(ThreeMfError::NotFinite {
+                        object: id,
+                        item: self.item,
+                    });
+                }
+                *c = q;
+            }
+            if flip {
+                corners.swap(1, 2);
+            }
+            out.push(corners);
+        }
+        Ok(())
+    }
+}
+
+/// A 3MF package of one object, `tris` (indexed by `vertices`), in `unit`
+/// (its name in the file), built as the items `transforms` (`None`: no
+/// transform): what the tests and the example script write.
+pub fn package(
+    vertices: &[[f64; 3]],
+    tris: &[[usize; 3]],
+    unit: &str,
+    transforms: &[Option<Affine>],
+) -> Vec<u8> {
+    let mut xml = format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<model unit=\"{unit}\" xml:lang=\"en-US\" xmlns=\"http://schemas.microsoft.com/3dmanufacturing/core/2015/02\">\n<resources>\n<object id=\"1\" type=\"model\">\n<mesh>\n<vertices>\n"
+    );
+    for v in vertices {
+        xml += &format!("<vertex x=\"{}\" y=\"{}\" z=\"{}\"/>\n", v[0], v[1], v[2]);
+    }
+    xml += "</vertices>\n<triangles>\n";
+    for t in tris {
+        xml += &format!(
+            "<triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>\n",
+            t[0], t[1], t[2]
+        );
+    }
+    xml += "</triangles>\n</mesh>\n</object>\n</resources>\n<build>\n";
+    for t in transforms {
+        match t {
+            Some(m) => {
+                let m: Vec<String> = m.iter().map(f64::to_string).collect();
+                xml += &format!("<item objectid=\"1\" transform=\"{}\"/>\n", m.join(" "));
+            }
+            None => xml += "<item objectid=\"1\"/>\n",
+        }
+    }
+    xml += "</build>\n</model>\n";
+    zip_model(&xml)
+}
+
+/// A 3MF package whose model part is `xml`.
+fn zip_model(xml: &str) -> Vec<u8> {
+    use std::io::Write;
+    let mut zip = zip::ZipWriter::new(Cursor::new(Vec::new()));
+    let opts = zip::write::SimpleFileOptions::default();
+    let parts = [
+        ("[Content_Types].xml", CONTENT_TYPES),
+        ("_rels/.rels", RELS),
+        ("3D/3dmodel.model", xml),
+    ];
+    for (name, text) in parts {
+        // Writing to memory cannot fail.
+        let _ = zip.start_file(name, opts);
+        let _ = zip.write_all(text.as_bytes());
+    }
+    zip.finish().map(Cursor::into_inner).unwrap_or_default()
+}
+
+const CONTENT_TYPES: &str = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\"><Default Extension=\"rels\" ContentType=\"application/vnd.openxmlformats-package.relationships+xml\"/><Default Extension=\"model\" ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\"/></Types>\n";
+
+const RELS: &str = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Relationships xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\"><Relationship Target=\"/3D/3dmodel.model\" Id=\"rel0\" Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel\"/></Relationships>\n";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn then_is_one_transform_after_the_other() {
+        let a = [
+            0.3, -1.2, 0.5, 2.0, 0.1, -0.7, 0.4, 0.9, 1.5, 3.0, -2.0, 7.0,
+        ];
+        let b = [
+            1.1, 0.2, -0.3, -0.4, 0.8, 0.6, 0.5, -0.9, 1.2, -1.0, 4.0, 0.5,
+        ];
+        for p in [[0.0, 0.0, 0.0], [1.0, 2.0, 3.0], [-4.5, 0.25, 9.0]] {
+            let (one, two) = (apply(&then(&a, &b), p), apply(&b, apply(&a, p)));
+            for j in 0..3 {
+                assert!((one[j] - two[j]).abs() < 1e-12, "{one:?} {two:?}");
+            }
+        }
+        assert!(!mirrors(&IDENTITY));
+        assert!(mirrors(&[
+            -1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0
+        ]));
+    }
+
+    /// A model of one triangle (object 1), object 2 made of object 1 moved
+    /// by `component`, built by an item of object 2 with `item`.
+    fn nested(component: &str, item: &str) -> String {
+        format!(
+            "<?xml version=\"1.0\"?>\n<model unit=\"centimeter\" xmlns=\"http://schemas.microsoft.com/3dmanufacturing/core/2015/02\"><resources>\
+             <object id=\"1\"><mesh><vertices><vertex x=\"1\" y=\"0\" z=\"0\"/><vertex x=\"0\" y=\"1\" z=\"0\"/><vertex x=\"0\" y=\"0\" z=\"1\"/></vertices>\
+             <triangles><triangle v1=\"0\" v2=\"1\" v3=\"2\"/></triangles></mesh></object>\
+             <object id=\"2\"><components><component objectid=\"1\" transform=\"{component}\"/></components></object>\
+             </resources><build><item objectid=\"2\" transform=\"{item}\"/></build></model>"
+        )
+    }
+
+    #[test]
+    fn components_are_placed_by_their_transform_then_the_item_s() {
+        // The component moves by (10, 0, 0), the item mirrors x and moves
+        // by (0, 5, 0): (x, y, z) goes to (-(x + 10), y + 5, z), and the
+        // mirrored triangle's corners swap to keep facing out.
+        let m = read(&zip_model(&nested(
+            "1 0 0 0 1 0 0 0 1 10 0 0",
+            "-1 0 0 0 1 0 0 0 1 0 5 0",
+        )))
+        .unwrap();
+        assert_eq!(m.scale, 10.0);
+        assert_eq!(m.unit, "centimeter");
+        assert_eq!(
+            m.triangles,
+            vec![[[-11.0, 5.0, 0.0], [-10.0, 5.0, 1.0], [-10.0, 6.0, 0.0]]]
+        );
+    }
+
+    #[test]
+    fn what_is_no_3mf_says_where() {
+        assert!(matches!(
+            read(b"PK\x03\x04 no zip"),
+            Err(ThreeMfError::NotZip { .. })
+        ));
+        let loops = nested("1 0 0 0 1 0 0 0 1 0 0 0", "1 0 0 0 1 0 0 0 1 0 0 0")
+            .replace("<component objectid=\"1\"", "<component objectid=\"2\"");
+        assert_eq!(
+            read(&zip_model(&loops)).unwrap_err(),
+            ThreeMfError::TooDeep { object: 2, item: 1 }
+        );
+        let missing = nested("1 0 0 0 1 0 0 0 1 0 0 0", "1 0 0 0 1 0 0 0 1 0 0 0")
+            .replace("<item objectid=\"2\"", "<item objectid=\"9\"");
+        assert_eq!(
+            read(&zip_model(&missing)).unwrap_err(),
+            ThreeMfError::NoObject { id: 9, item: 1 }
+        );
+        let no_item = nested("1 0 0 0 1 0 0 0 1 0 0 0", "1 0 0 0 1 0 0 0 1 0 0 0");
+        let no_item = no_item.replace(
+            "<item objectid=\"2\" transform=\"1 0 0 0 1 0 0 0 1 0 0 0\"/>",
+            "",
+        );
+        assert_eq!(
+            read(&zip_model(&no_item)).unwrap_err(),
+            ThreeMfError::NoItem
+        );
+        let bad = zip_model("<model><resources>");
+        assert!(
+            matches!(read(&bad), Err(ThreeMfError::Xml { .. })),
+            "{:?}",
+            read(&bad)
+        );
+    }
+}
