@@ -64,7 +64,7 @@ pub struct Solved {
 /// interpolates in the axes, not along a line.
 ///
 /// Moves are buffered and solved [`CHUNK`] at a time, in order, each
-/// from the one before ([`super::chain`]: continued from the last solution
+/// from the one before (`plan::arm::chain`: continued from the last solution
 /// where that is provably what the closed form's nearest would be). A full
 /// chunk is solved on a thread of its own while the next one is buffered:
 /// [`Follow::push`] hands it over and gives back the chunk before it;
@@ -137,7 +137,7 @@ impl Follow {
     }
 
     /// How many poses were continued from the one before, and how many
-    /// solved in closed form, so far ([`super::chain`]).
+    /// solved in closed form, so far (`plan::arm::chain`).
     pub fn counts(&self) -> [u64; 2] {
         lock(&self.chain).counts
     }
