@@ -340,8 +340,12 @@ mod tests {
             let n = kin.part([e1, e2]).rotation.inverse() * Vector3::z();
             let got = kin.solve([n.x, n.y, n.z], [e1 + 3.0, e2 - 3.0]);
             prop_assert!(lean(&kin, got, [n.x, n.y, n.z]) < 1e-6, "{got:?}");
-            // Nearest the angles it started from: the same solution.
-            prop_assert!((got[0] - e1).abs() < 1e-6 && (got[1] - e2).abs() < 1e-6,
+            // Nearest the angles it started from: the same solution, or
+            // one at least as near (where the normal lies near the rotate
+            // axis, E2 barely moves it and solutions crowd together).
+            let from = [e1 + 3.0, e2 - 3.0];
+            let cost = |e: [f64; 2]| (e[0] - from[0]).abs() + (e[1] - from[1]).abs();
+            prop_assert!(cost(got) <= cost([e1, e2]) + 1e-6,
                 "{got:?} vs {:?}", [e1, e2]);
         }
 
