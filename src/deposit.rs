@@ -42,7 +42,7 @@ pub const MAX_DRIFT: f64 = 0.5;
 
 /// What a bead model's heights were measured as.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Basis {
     /// A single track on a flat plate: the bead's own height. Its

@@ -89,7 +89,7 @@ pub fn with_positioner(version: u32, machines: &[Machine]) -> u32 {
 
 /// A whole compiled plan.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Program {
     /// Always [`FORMAT`].
     pub format: String,
@@ -142,7 +142,7 @@ fn is_false(b: &bool) -> bool {
 /// the nominal plan: the table's speeds (`v / cos γ` over the transitions),
 /// layers `layer_height` apart.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Ring {
     /// The nozzle's circle about the origin, mm.
     pub radius: f64,
@@ -162,7 +162,7 @@ pub struct Ring {
 
 /// One segment's row of the table, and where its points are.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct RingSegment {
     /// Focal plane to working plane, mm (negative: below).
     pub defocus: f64,
@@ -182,7 +182,7 @@ pub struct RingSegment {
 
 /// How a ring's speeds change from layer to layer.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(tag = "mode", rename_all = "snake_case")]
 pub enum RingRun {
     /// The height loop runs on the machine: after each layer a segment's
@@ -212,7 +212,7 @@ impl RingRun {
 
 /// A PI loop on each segment's layer height (`control::law`).
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct HeightLoop {
     /// Proportional gain, (mm/s)/mm.
     pub kp: f64,
@@ -227,7 +227,7 @@ pub struct HeightLoop {
 /// A machine's height sensor (what a segmented ring's loop reads): an analog input that holds a
 /// segment's mean layer height.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct HeightSensor {
     /// The analog input: `$ANIN[input]` on a robot; on LinuxCNC
     /// `M66 E<input + j>` for segment `j` (from 0).
@@ -241,7 +241,7 @@ pub struct HeightSensor {
 /// A bead model, in the IR's units: what the slicer chose the speeds by
 /// and the verifier predicts each layer's rise with ([`crate::deposit`]).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Bead {
     /// The bead's width, mm.
     pub width: f64,
@@ -272,7 +272,7 @@ pub struct Bead {
 /// (`model = fit(linear, data = "coupons.csv")`): where the numbers of
 /// [`Bead::model`] come from, and how well they match.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct BeadFit {
     /// The data file as the source names it.
     pub data: String,
@@ -293,7 +293,7 @@ pub struct BeadFit {
 
 /// How a bead's height follows the scan speed `v` (mm/s).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum BeadModel {
     /// `h = slope·v + intercept`.
@@ -454,7 +454,7 @@ impl Bead {
 
 /// Units of the IR's numbers.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Units {
     /// Positions and heights.
     pub length: String,
@@ -482,7 +482,7 @@ impl Default for Units {
 
 /// Limits from the bead model and the process window.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Limits {
     /// Allowed layer height `[h_min, h_max]` in mm.
     pub layer_height: [f64; 2],
@@ -523,7 +523,7 @@ fn default_max_drift() -> f64 {
 /// The motion plan dwells at a safe position after a layer that would be
 /// quicker (docs/ir.md).
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Heat {
     /// Least time from one layer's start to the next's, s (0: none).
     pub min_layer_time: f64,
@@ -542,7 +542,7 @@ impl Heat {
 /// layer on the plane `z = station·height`; a variable layer on the planned
 /// top of the layer below, `station` being its fraction `i/N` of the top).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Layer {
     /// 0-based build order.
     pub index: usize,
@@ -566,7 +566,7 @@ pub struct Layer {
 
 /// A right-handed orthonormal frame.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Frame {
     /// Origin, mm.
     pub origin: [f64; 3],
@@ -580,7 +580,7 @@ pub struct Frame {
 
 /// What a path is for.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum PathKind {
     /// A single-bead wall following the section.
@@ -595,7 +595,7 @@ pub enum PathKind {
 
 /// A polyline of process points.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Path {
     /// What the path is.
     pub kind: PathKind,
@@ -606,7 +606,7 @@ pub struct Path {
 /// One process point: where the bead is laid, how the nozzle stands, and the
 /// process values from this point to the next.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Point {
     /// Deposit point on the working plane, mm.
     pub pos: [f64; 3],
@@ -648,7 +648,7 @@ pub struct Point {
 
 /// One row of the style table.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Style {
     /// The id points carry.
     pub id: u16,
@@ -666,7 +666,7 @@ pub struct Style {
 
 /// A machine to write a program for.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum Machine {
     /// An industrial robot programmed in KRL.
@@ -730,7 +730,7 @@ pub struct MachineCommon {
 /// up from rest and slows down to it while the powder keeps flowing
 /// (`ramp = …`).
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum Ramp {
     /// The laser switches where the nozzle stands: each run of deposits
@@ -753,7 +753,7 @@ impl Ramp {
 
 /// A pose `X Y Z A B C` (mm, deg; KUKA ZYX Euler: R = Rz(A)·Ry(B)·Rx(C)).
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Pose {
     /// mm
     pub x: f64,
@@ -772,7 +772,7 @@ pub struct Pose {
 /// A frame on the controller: an index into its table, and optionally a value the
 /// program sets.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct FrameRef {
     /// `TOOL_DATA[n]` / `BASE_DATA[n]`.
     pub index: u16,
@@ -782,7 +782,7 @@ pub struct FrameRef {
 
 /// An axis of the tool frame, with a sign.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum ToolAxis {
     /// +X
@@ -801,7 +801,7 @@ pub enum ToolAxis {
 
 /// A KUKA robot cell.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(from = "wire::Robot", into = "wire::Robot")]
 pub struct Robot {
     /// Name, speed, clearance, cell and height sensor.
@@ -842,7 +842,7 @@ pub struct Robot {
 /// along `rotate.direction`, X along the tilt axis (made square to Z).
 /// Lengths mm, angles deg.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Positioner {
     /// E1: the tilt axis.
     pub tilt: PositionerAxis,
@@ -858,7 +858,7 @@ pub struct Positioner {
 
 /// One axis of a [`Positioner`].
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct PositionerAxis {
     /// Its direction in the robot's frame, unit.
     pub direction: [f64; 3],
@@ -872,7 +872,7 @@ pub struct PositionerAxis {
 
 /// How a positioner's angles are chosen for each layer.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(tag = "keep", rename_all = "snake_case")]
 pub enum Keep {
     /// The layer's mean normal turned straight up (the nozzle vertical).
@@ -895,7 +895,7 @@ pub enum Keep {
 /// The tool's turn about the beam axis, deg, added to the turn lmdc carries
 /// from normal to normal ([`crate::plan::orient`]): 0 keeps that turn.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(tag = "from", rename_all = "snake_case")]
 pub enum Spin {
     /// `spin = auto` (the default): 0°, or the turn lmdc chose where 0°
@@ -936,7 +936,7 @@ impl Spin {
 /// can solve the program's poses to axis angles as lmdc does, its limits
 /// and the margins lmdc checked them with. Lengths mm, angles deg.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Arm {
     /// The catalogue's key (`kr16_2`); none for an arm declared by its
     /// parameters.
@@ -963,7 +963,7 @@ pub struct Arm {
 /// (`gas { … }` and `powder { … }` in a machine block). The motion plan places
 /// the switching ([`crate::plan::Io`]); the back ends write it.
 #[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Cell {
     /// The shielding gas valve.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -992,7 +992,7 @@ impl Cell {
 
 /// A shielding gas valve on a digital output.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Gas {
     /// The output that opens it (`$OUT[n]`; G-code: the output line's `{n}`).
     pub output: u16,
@@ -1005,7 +1005,7 @@ pub struct Gas {
 /// A powder feeder on a digital output, with its rate on an analog one where
 /// the cell has it.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Feeder {
     /// The output that starts it.
     pub output: u16,
@@ -1019,7 +1019,7 @@ pub struct Feeder {
 
 /// An analog output that sets the powder feed rate.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct RateOutput {
     /// `$ANOUT[n]`; G-code: the analog line's `{n}`.
     pub output: u16,
@@ -1029,7 +1029,7 @@ pub struct RateOutput {
 
 /// How a CNC's axes move the nozzle relative to the part.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum Kinematics {
     /// X Y Z only: the nozzle always points down (−Z).
@@ -1079,7 +1079,7 @@ impl Kinematics {
 /// coordinates with the rotary axes at 0, as LinuxCNC's `xyzac-trt-kins`
 /// and `xyzbc-trt-kins` take them (`x-rot-point` … `z-offset`).
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct RotaryTable {
     /// A point of the C axis (which is parallel to Z at tilt 0), mm.
     pub c_axis: [f64; 3],
@@ -1092,7 +1092,7 @@ pub struct RotaryTable {
 
 /// What a tilting table's program writes.
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum TableOutput {
     /// Part coordinates and the rotary angles, with the control's
@@ -1107,7 +1107,7 @@ pub enum TableOutput {
 
 /// Dialect details of a CNC control, from a built-in profile and overrides.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Dialect {
     /// Profile name (`linuxcnc`, `fagor8070`, `sinumerik840d`, `m20`).
     pub profile: String,
@@ -1147,7 +1147,7 @@ fn default_dwell() -> String {
 
 /// What the control's F word measures.
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum FeedUnit {
     /// mm/min (G94 on most controls).
@@ -1177,7 +1177,7 @@ impl FeedUnit {
 
 /// How comments are written.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum CommentStyle {
     /// `(text)`
@@ -1188,7 +1188,7 @@ pub enum CommentStyle {
 
 /// A CNC cell.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(from = "wire::Cnc", into = "wire::Cnc")]
 pub struct Cnc {
     /// Name, feed, clearance, cell and height sensor.
@@ -1255,7 +1255,7 @@ mod wire {
 
     /// A robot's fields in the file's order.
     #[derive(Serialize, Deserialize)]
-    #[cfg_attr(test, derive(schemars::JsonSchema))]
+    #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
     pub(super) struct Robot {
         /// Name from the source; the program is named after the part and this.
         name: String,
@@ -1313,7 +1313,7 @@ mod wire {
 
     /// A CNC's fields in the file's order.
     #[derive(Serialize, Deserialize)]
-    #[cfg_attr(test, derive(schemars::JsonSchema))]
+    #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
     pub(super) struct Cnc {
         /// Name from the source; the program is named after the part and this.
         name: String,
@@ -1474,7 +1474,7 @@ mod wire {
 /// under a work offset whose value is the part's origin in machine
 /// coordinates; the axis limits apply to program position + origin.
 #[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Placement {
     /// 1–6: `G54`–`G59` is selected at the start; 0: none is written (the
     /// control's active one is used).
@@ -1485,7 +1485,7 @@ pub struct Placement {
 
 /// Axis travel limits.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct AxisLimits {
     /// mm
     pub x: [f64; 2],

@@ -1,12 +1,13 @@
 //! The JSON Schemas of what lmdc writes as data: docs/ir.schema.json (the
 //! IR, `--emit ir`) and docs/report.schema.json (`lmdc report --json`, one
 //! object a machine). They are derived from the types that serialise the
-//! data (schemars, in the unit tests only, so the build does not compile
-//! it), with the serialising side's view (`for_serialize`: a field skipped
+//! data (schemars, behind the `json-schema` feature that only CI turns on,
+//! so neither the build nor `cargo test` compiles it), with the serialising side's view (`for_serialize`: a field skipped
 //! when empty is optional, every other field required) and strict objects
 //! (no property the type does not have), so a schema cannot fall behind the
 //! code: the test below fails when a file in docs/ is stale, and
-//! `LMDC_UPDATE_DOCS=1 cargo test --release --lib json_schema` rewrites it.
+//! `LMDC_UPDATE_DOCS=1 cargo test --release --lib --features json-schema
+//! json_schema` rewrites it.
 //! tests/schemas.rs validates every example's output against the files
 //! with an independent validator (Python's jsonschema).
 
@@ -116,7 +117,7 @@ mod tests {
         assert!(
             got == want,
             "{} is stale: the types changed. Rewrite it with \
-             `LMDC_UPDATE_DOCS=1 cargo test --release --lib json_schema` and review the diff",
+             `LMDC_UPDATE_DOCS=1 cargo test --release --lib --features json-schema json_schema` and review the diff",
             path.display()
         );
     }

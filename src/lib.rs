@@ -11,7 +11,7 @@ pub mod fmt;
 pub mod geometry;
 pub mod invalid;
 pub mod ir;
-#[cfg(test)]
+#[cfg(all(test, feature = "json-schema"))]
 mod json_schema;
 pub mod lower;
 pub mod lsp;

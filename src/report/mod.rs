@@ -23,7 +23,7 @@ use serde::Serialize;
 /// What one layer (or the whole plan) costs, and the metal it lays. Lengths
 /// are the tool tip's path; volumes are over the ground (across the normal).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Tally {
     /// Lengths, times, energy and powder.
     #[serde(flatten)]
@@ -57,7 +57,7 @@ impl std::ops::Deref for Tally {
 
 /// One layer's row.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Row {
     /// 1-based layer number.
     pub layer: usize,
@@ -68,7 +68,7 @@ pub struct Row {
 
 /// The bead model the volumes come from (the plan's, as the IR carries it).
 #[derive(Clone, Debug, PartialEq, Serialize)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct BeadInfo {
     /// Bead width, mm.
     pub width_mm: f64,
@@ -90,7 +90,7 @@ pub struct BeadInfo {
 
 /// What the bead model lays against what the plan stacks, over the layers.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct DepositCheck {
     /// What the bead lays over what the plan stacks, the whole plan.
     pub bead_over_stacked: f64,
@@ -113,7 +113,7 @@ pub struct DepositCheck {
 /// assumptions ([`crate::plan::profile`]). The report's times are the
 /// programmed speeds' in any case.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Reached {
     /// The machine's declared path acceleration, mm/s² (`None`: the
     /// programmed speeds are taken as reached, and nothing was checked).
@@ -142,7 +142,7 @@ impl Reached {
 
 /// The whole report of one machine's plan.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Report {
     /// Always `"report"`: the JSON stream of `--message-format json` carries
     /// diagnostics too.

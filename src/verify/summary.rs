@@ -13,7 +13,7 @@ use serde::Serialize;
 /// What one layer of a plan (or the whole plan) costs. Lengths are the tool
 /// tip's path.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-#[cfg_attr(test, derive(schemars::JsonSchema))]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Costs {
     /// Length of the deposit moves (laser on), mm.
     pub deposit_mm: f64,
