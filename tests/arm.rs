@@ -743,3 +743,35 @@ fn the_overhead_singularity_is_a_singular_lin() {
     let just_below = lmdc::pipeline::compile(&overhead_duct(least - 0.01), &mut ());
     assert!(just_below.program.is_some(), "{:?}", just_below.diagnostics);
 }
+
+/// On a real plan every pose but the first (the PTP from home) is
+/// continued from the one before (`plan::arm::chain`): the closed form is
+/// left for where it must decide, and the fast path is not silently dead.
+#[test]
+fn a_plan_is_continued_pose_by_pose() {
+    use lmdc::plan::arm::Follow;
+    use lmdc::plan::{Move, Plan, Visit};
+    let p = build("examples/ramp_wall.lmd");
+    let (machine, robot) = p
+        .ir()
+        .machines
+        .iter()
+        .find_map(|m| match m {
+            Machine::Robot(r) if r.arm.is_some() => Some((m, r)),
+            _ => None,
+        })
+        .expect("the ramp wall's robot declares an arm");
+    struct Push(Follow);
+    impl Visit for Push {
+        fn motion(&mut self, m: &Move) {
+            self.0.push(m);
+        }
+    }
+    let mut v = Push(Follow::new(robot).unwrap());
+    Plan::new(p.ir(), machine).walk(&mut v);
+    let solved = v.0.take().len() as u64;
+    let [continued, closed] = v.0.counts();
+    assert_eq!(continued + closed, v.0.pushed());
+    assert!(solved > 0 && v.0.pushed() > 1000, "{}", v.0.pushed());
+    assert_eq!(closed, 1, "{continued} continued, {closed} in closed form");
+}

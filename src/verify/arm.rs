@@ -37,9 +37,9 @@ pub(super) struct ArmRule {
     /// The arm's reach, mm.
     span: [f64; 2],
     limits: [Option<Worst>; 6],
-    wrist: Option<Worst>,
-    elbow: Option<Worst>,
-    overhead: Option<Worst>,
+    /// The worst pose near each singularity, in [`Singular::ALL`]'s order
+    /// (as [`crate::plan::arm::Solver::singular`] measures them).
+    singular: [Option<Worst>; 3],
     flip: Option<(Worst, u8, u8)>,
     speed: [Option<(Worst, f64)>; 6],
 }
@@ -59,9 +59,7 @@ impl<'p> PlanRule<'p> for ArmRule {
             reach: None,
             span: [0.0; 2],
             limits: [None; 6],
-            wrist: None,
-            elbow: None,
-            overhead: None,
+            singular: [None; 3],
             flip: None,
             speed: [None; 6],
         })
@@ -107,11 +105,7 @@ impl<'p> PlanRule<'p> for ArmRule {
             }
         }
         let sing = cx.origin.written(&SINGULARITY);
-        for (w, kind) in [
-            (self.wrist, Singular::Wrist),
-            (self.elbow, Singular::Elbow),
-            (self.overhead, Singular::Overhead),
-        ] {
+        for (w, kind) in self.singular.into_iter().zip(Singular::ALL) {
             if let Some(w) = w {
                 out.push(msg::singular_lin(&at, kind, &w, sing));
             }
@@ -201,10 +195,7 @@ impl ArmRule {
         let solver = self.follow.solver();
         let thr = solver.arm().singularity;
         let near = solver.singular(j, wrist);
-        for (slot, d) in [&mut self.wrist, &mut self.elbow, &mut self.overhead]
-            .into_iter()
-            .zip(near)
-        {
+        for (slot, d) in self.singular.iter_mut().zip(near) {
             if d < thr {
                 Worst::hit(slot, d, thr, at);
             }

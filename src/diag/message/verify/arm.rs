@@ -140,7 +140,7 @@ pub fn singular_lin(
             "move the base closer to the part so the arm stays bent",
         ),
         Singular::Overhead => (
-            format!("the wrist centre {}° from A1's axis seen from the shoulder, within {}° of the overhead singularity (the wrist centre on A1's axis, where A1 spins)", short(w.value), short(w.limit)),
+            format!("near the overhead singularity: the wrist centre {}° from A1's axis (seen from the shoulder), within {}° of it (on that axis A1 turns freely and spins)", short(w.value), short(w.limit)),
             "move the base so the part lies in front of the robot, not above or below its foot",
         ),
     };
@@ -181,6 +181,12 @@ pub enum Singular {
     Elbow,
     /// The wrist centre near A1's axis.
     Overhead,
+}
+
+impl Singular {
+    /// Every kind, in the order [`crate::plan::arm::Solver::singular`]
+    /// gives their distances.
+    pub const ALL: [Singular; 3] = [Singular::Wrist, Singular::Elbow, Singular::Overhead];
 }
 
 /// A LIN whose solution changes KUKA's Status from `from` to `to`.
