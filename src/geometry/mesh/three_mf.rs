@@ -15,6 +15,7 @@
 //! names are the object's own when the build has one item of one mesh.
 
 use super::stl::{Triangle, MAX_TRIANGLES};
+use nalgebra::{Matrix4, Point3};
 use std::collections::HashMap;
 use std::io::Cursor;
 use threemf::model::{Model, Object, Unit};
@@ -108,39 +109,23 @@ pub enum ThreeMfError {
 /// (x, y, z, 1) times the 4×3 matrix of those rows.
 type Affine = [f64; 12];
 
-const IDENTITY: Affine = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0];
-
-/// Where `m` takes `p`.
-fn apply(m: &Affine, p: [f64; 3]) -> [f64; 3] {
-    let mut out = [m[9], m[10], m[11]];
-    for (j, o) in out.iter_mut().enumerate() {
-        *o += p[0] * m[j] + p[1] * m[3 + j] + p[2] * m[6 + j];
-    }
-    out
-}
-
-/// `a` then `b`.
-fn then(a: &Affine, b: &Affine) -> Affine {
-    let mut out = [0.0; 12];
-    for row in 0..3 {
-        let v = [a[3 * row], a[3 * row + 1], a[3 * row + 2]];
-        let moved = apply(b, v);
-        let origin = [b[9], b[10], b[11]];
-        for j in 0..3 {
-            out[3 * row + j] = moved[j] - origin[j];
-        }
-    }
-    let t = apply(b, [a[9], a[10], a[11]]);
-    out[9..].copy_from_slice(&t);
+/// The transform `m` as a matrix acting on column vectors (x, y, z, 1):
+/// the file's rows are its columns.
+fn matrix(m: &Affine) -> Matrix4<f64> {
+    #[rustfmt::skip]
+    let out = Matrix4::new(
+        m[0], m[3], m[6], m[9],
+        m[1], m[4], m[7], m[10],
+        m[2], m[5], m[8], m[11],
+        0.0, 0.0, 0.0, 1.0,
+    );
     out
 }
 
 /// Whether `m` mirrors (its linear part's determinant is negative): the
 /// triangles it places run the other way round.
-fn mirrors(m: &Affine) -> bool {
-    let det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6])
-        + m[2] * (m[3] * m[7] - m[4] * m[6]);
-    det < 0.0
+fn mirrors(m: &Matrix4<f64>) -> bool {
+    m.fixed_view::<3, 3>(0, 0).determinant() < 0.0
 }
 
 /// The triangles of the 3MF package `bytes`.
@@ -219,7 +204,10 @@ fn build(model: &Model) -> Result<Vec<Triangle>, ThreeMfError> {
             objects: &objects,
             item: n + 1,
         };
-        let m = item.transform.unwrap_or(IDENTITY);
+        let m = item
+            .transform
+            .as_ref()
+            .map_or_else(Matrix4::identity, matrix);
         at.object(item.objectid, &m, 0, &mut out)?;
     }
     if out.is_empty() {
@@ -241,7 +229,7 @@ impl Place<'_> {
     fn object(
         &self,
         id: usize,
-        m: &Affine,
+        m: &Matrix4<f64>,
         depth: usize,
         out: &mut Vec<Triangle>,
     ) -> Result<(), ThreeMfError> {
@@ -260,7 +248,8 @@ impl Place<'_> {
             self.mesh(id, mesh, m, out)?;
         }
         for c in object.components.iter().flat_map(|c| &c.component) {
-            let inner = then(&c.transform.unwrap_or(IDENTITY), m);
+            // The component's own transform first, then the one placing it.
+            let inner = m * c.transform.as_ref().map_or_else(Matrix4::identity, matrix);
             self.object(c.objectid, &inner, depth + 1, out)?;
         }
         Ok(())
@@ -271,7 +260,7 @@ impl Place<'_> {
         &self,
         id: usize,
         mesh: &threemf::Mesh,
-        m: &Affine,
+        m: &Matrix4<f64>,
         out: &mut Vec<Triangle>,
     ) -> Result<(), ThreeMfError> {
         let tris = &mesh.triangles.triangle;
@@ -290,7 +279,8 @@ impl Place<'_> {
                     index: v,
                     vertices: vs.len(),
                 })?;
-                let q = apply(m, [p.x, p.y, p.z]).map(|x| x as f32);
+                let q = m.transform_point(&Point3::new(p.x, p.y, p.z));
+                let q = [q.x as f32, q.y as f32, q.z as f32];
                 if q.iter().any(|x| !x.is_finite()) {
                     return Err(ThreeMfError::NotFinite {
                         object: id,
@@ -370,24 +360,30 @@ const RELS: &str = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Relationships x
 mod tests {
     use super::*;
 
+    /// The file's rows are read as a row vector (x, y, z, 1) times them,
+    /// and a transform after another is their product, the later on the left.
     #[test]
-    fn then_is_one_transform_after_the_other() {
+    fn transforms_read_as_the_file_writes_them() {
         let a = [
             0.3, -1.2, 0.5, 2.0, 0.1, -0.7, 0.4, 0.9, 1.5, 3.0, -2.0, 7.0,
         ];
         let b = [
             1.1, 0.2, -0.3, -0.4, 0.8, 0.6, 0.5, -0.9, 1.2, -1.0, 4.0, 0.5,
         ];
+        let row = |m: &Affine, p: [f64; 3]| -> [f64; 3] {
+            std::array::from_fn(|j| p[0] * m[j] + p[1] * m[3 + j] + p[2] * m[6 + j] + m[9 + j])
+        };
         for p in [[0.0, 0.0, 0.0], [1.0, 2.0, 3.0], [-4.5, 0.25, 9.0]] {
-            let (one, two) = (apply(&then(&a, &b), p), apply(&b, apply(&a, p)));
+            let one = (matrix(&b) * matrix(&a)).transform_point(&Point3::from(p));
+            let two = row(&b, row(&a, p));
             for j in 0..3 {
                 assert!((one[j] - two[j]).abs() < 1e-12, "{one:?} {two:?}");
             }
         }
-        assert!(!mirrors(&IDENTITY));
-        assert!(mirrors(&[
+        assert!(!mirrors(&Matrix4::identity()));
+        assert!(mirrors(&matrix(&[
             -1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0
-        ]));
+        ])));
     }
 
     /// A model of one triangle (object 1), object 2 made of object 1 moved
