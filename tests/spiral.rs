@@ -225,7 +225,7 @@ fn a_planar_spiral_needs_one_loop_and_a_seam_that_stays() {
     let c = lmdc::pipeline::compile(&holed, &mut ());
     let m: Vec<String> = c.diagnostics.iter().map(|d| d.message.clone()).collect();
     assert!(c.program.is_none());
-    assert!(m.iter().any(|m| m.contains("layer 0 has 2 loops")), "{m:?}");
+    assert!(m.iter().any(|m| m.contains("layer 1 has 2 loops")), "{m:?}");
 }
 
 #[test]

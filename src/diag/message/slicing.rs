@@ -413,14 +413,17 @@ pub fn spiral_not_a_wall(change: Span, contours: usize, infill: bool) -> Diagnos
     )
 }
 
-/// `layer_change = spiral` on a planar wall whose layer `k` is not the one
+/// `layer_change = spiral` on a planar wall whose layer `k` (from 0) is not the one
 /// loop the layer below climbed into: `loops` loops (a hole or an island
 /// adds one), or a profile that changes from layer to layer.
 pub fn spiral_needs_one_loop(k: usize, loops: usize, change: Span, profile: Span) -> Diagnostic {
     let why = if loops == 1 {
         "its profile changes from layer to layer, so the climb would not end where the next layer starts".to_string()
     } else {
-        format!("layer {k} has {loops} loops (holes or islands), and a climb goes on into one")
+        format!(
+            "layer {} has {loops} loops (holes or islands), and a climb goes on into one",
+            k + 1
+        )
     };
     Diagnostic::error(
         Code::ConflictingFields,
