@@ -8,7 +8,8 @@
 //! last solution: Newton steps on the crate's own forward kinematics (the
 //! Jacobian taken from it by differences, kept while the arm moves little),
 //! until the crate's forward kinematics puts the flange on the pose to
-//! 10⁻⁸ mm and 10⁻¹⁰ rad. The result is kept only where it is provably the
+//! 10⁻⁸ mm and 10⁻¹⁰ rad and the next step would move no axis by more than
+//! 10⁻¹¹ rad. The result is kept only where it is provably the
 //! solution the closed form's nearest would be: it lies less than
 //! [`MAX_STEP`] from the last, and less than half as far as the nearest
 //! other solution of the pose can lie ([`Solver::separation`]: the other
@@ -32,6 +33,11 @@ const ITERATIONS: usize = 4;
 /// How near the flange must come to the pose, mm and rad.
 const TOL_MM: f64 = 1e-8;
 const TOL_RAD: f64 = 1e-10;
+/// How near the axes must come to the pose's solution, rad: the next
+/// Newton step's size. Near the wrist singularity a pose residual within
+/// [`TOL_RAD`] still leaves A4 and A6 loose by about TOL_RAD / sin A5
+/// (10⁻⁶° at A5 = 0.2°), so convergence is judged on the axes as well.
+const TOL_Q: f64 = 1e-11;
 /// The axis step of the Jacobian's differences, rad.
 const H: f64 = 1e-6;
 /// How far the axes may move from where the Jacobian was taken before it
@@ -129,7 +135,10 @@ impl Chain {
             }
             let f = s.flange_rad(&q)?;
             e = error(target, &f);
-            if e.fixed_rows::<3>(0).norm() < TOL_MM && e.fixed_rows::<3>(3).norm() < TOL_RAD {
+            if e.fixed_rows::<3>(0).norm() < TOL_MM
+                && e.fixed_rows::<3>(3).norm() < TOL_RAD
+                && (inverse * e).amax() < TOL_Q
+            {
                 if k >= 2 {
                     // Slow to settle: the Jacobian is stale.
                     self.jacobian = None;
