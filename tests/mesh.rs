@@ -3,6 +3,7 @@
 //! areas in the plan's contours, layers of separate islands, and broken
 //! meshes refused with where.
 
+use crate::support::three_mf as package;
 use lmdc::geometry::mesh::stl::{self, Triangle};
 use lmdc::geometry::mesh::three_mf;
 use lmdc::geometry::outline;
@@ -512,7 +513,7 @@ fn a_3mf_builds_the_plan_of_the_same_stl() {
     };
     let stl = plan("part.stl", stl::to_binary(&tris));
     // Told apart by the name and, under any name, by the ZIP's signature.
-    let package = three_mf::package(&v, &t, "millimeter", &[None]);
+    let package = package::package(&v, &t, "millimeter", &[None]);
     assert!(plan("part.3mf", package.clone()) == stl);
     assert!(plan("part.stl", package) == stl);
 }
@@ -528,7 +529,7 @@ fn a_3mf_in_inches_is_placed_by_its_build_items() {
     let (v, t) = indexed(&tris, 1.0 / 25.4);
     let turned = [0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 2.0, 0.0, 0.0];
     let moved = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 4.0, 1.0, 0.0];
-    let bytes = three_mf::package(&v, &t, "inch", &[Some(turned), Some(moved)]);
+    let bytes = package::package(&v, &t, "inch", &[Some(turned), Some(moved)]);
     let rs = regions(&source("profile = mesh(\"part.3mf\")"), bytes);
     let area = 4.0 * 15.0 * 15.0 - ngon(5.0, 16);
     let want = [[[20.8, 0.0], [50.8, 30.0]], [[101.6, 25.4], [131.6, 55.4]]];
@@ -554,7 +555,7 @@ fn a_3mf_in_inches_is_placed_by_its_build_items() {
     // `units` that disagrees with the file's is refused where it is written.
     let c = compile(
         &source("profile = mesh(\"part.3mf\", units = mm)"),
-        BTreeMap::from([("part.3mf", three_mf::package(&v, &t, "inch", &[None]))]),
+        BTreeMap::from([("part.3mf", package::package(&v, &t, "inch", &[None]))]),
     );
     assert!(
         messages(&c).contains(
@@ -590,7 +591,7 @@ fn a_broken_3mf_is_refused_with_where() {
     near.sort_unstable();
     let list = near.iter().map(|x| x.to_string()).collect::<Vec<_>>();
     refused(
-        three_mf::package(&v, &t, "millimeter", &[None]),
+        package::package(&v, &t, "millimeter", &[None]),
         &format!(
             "is open: 3 edge(s) belong to one triangle only, so it encloses no solid; triangles {}",
             list.join(", ")
@@ -599,11 +600,79 @@ fn a_broken_3mf_is_refused_with_where() {
     // A triangle naming a vertex past the last.
     t[7][1] = v.len() + 3;
     refused(
-        three_mf::package(&v, &t, "millimeter", &[None]),
+        package::package(&v, &t, "millimeter", &[None]),
         &format!(
             "triangle 7 of object 1 names vertex {}, but the object has {} vertices",
             v.len() + 3,
             v.len()
         ),
+    );
+}
+
+/// A model of one triangle (object 1), object 2 made of object 1 moved
+/// by `component`, built by an item of object 2 with `item`.
+fn nested(component: &str, item: &str) -> String {
+    format!(
+        "<?xml version=\"1.0\"?>\n<model unit=\"centimeter\" xmlns=\"http://schemas.microsoft.com/3dmanufacturing/core/2015/02\"><resources>\
+         <object id=\"1\"><mesh><vertices><vertex x=\"1\" y=\"0\" z=\"0\"/><vertex x=\"0\" y=\"1\" z=\"0\"/><vertex x=\"0\" y=\"0\" z=\"1\"/></vertices>\
+         <triangles><triangle v1=\"0\" v2=\"1\" v3=\"2\"/></triangles></mesh></object>\
+         <object id=\"2\"><components><component objectid=\"1\" transform=\"{component}\"/></components></object>\
+         </resources><build><item objectid=\"2\" transform=\"{item}\"/></build></model>"
+    )
+}
+
+#[test]
+fn components_are_placed_by_their_transform_then_the_item_s() {
+    // The component moves by (10, 0, 0), the item mirrors x and moves
+    // by (0, 5, 0): (x, y, z) goes to (-(x + 10), y + 5, z), and the
+    // mirrored triangle's corners swap to keep facing out.
+    let m = three_mf::read(&package::zip_model(&nested(
+        "1 0 0 0 1 0 0 0 1 10 0 0",
+        "-1 0 0 0 1 0 0 0 1 0 5 0",
+    )))
+    .unwrap();
+    assert_eq!(m.scale, 10.0);
+    assert_eq!(m.unit, "centimeter");
+    assert_eq!(
+        m.triangles,
+        vec![[[-11.0, 5.0, 0.0], [-10.0, 5.0, 1.0], [-10.0, 6.0, 0.0]]]
+    );
+}
+
+#[test]
+fn what_is_no_3mf_says_where() {
+    assert!(matches!(
+        three_mf::read(b"PK\x03\x04 no zip"),
+        Err(three_mf::ThreeMfError::NotZip { .. })
+    ));
+    let loops = nested("1 0 0 0 1 0 0 0 1 0 0 0", "1 0 0 0 1 0 0 0 1 0 0 0")
+        .replace("<component objectid=\"1\"", "<component objectid=\"2\"");
+    assert_eq!(
+        three_mf::read(&package::zip_model(&loops)).unwrap_err(),
+        three_mf::ThreeMfError::TooDeep { object: 2, item: 1 }
+    );
+    let missing = nested("1 0 0 0 1 0 0 0 1 0 0 0", "1 0 0 0 1 0 0 0 1 0 0 0")
+        .replace("<item objectid=\"2\"", "<item objectid=\"9\"");
+    assert_eq!(
+        three_mf::read(&package::zip_model(&missing)).unwrap_err(),
+        three_mf::ThreeMfError::NoObject { id: 9, item: 1 }
+    );
+    let no_item = nested("1 0 0 0 1 0 0 0 1 0 0 0", "1 0 0 0 1 0 0 0 1 0 0 0");
+    let no_item = no_item.replace(
+        "<item objectid=\"2\" transform=\"1 0 0 0 1 0 0 0 1 0 0 0\"/>",
+        "",
+    );
+    assert_eq!(
+        three_mf::read(&package::zip_model(&no_item)).unwrap_err(),
+        three_mf::ThreeMfError::NoItem
+    );
+    let bad = package::zip_model("<model><resources>");
+    assert!(
+        matches!(
+            three_mf::read(&bad),
+            Err(three_mf::ThreeMfError::Xml { .. })
+        ),
+        "{:?}",
+        three_mf::read(&bad)
     );
 }

@@ -19,3 +19,4 @@ pub mod ring;
 pub mod rs274;
 pub mod schema;
 pub mod skip;
+pub mod three_mf;
