@@ -35,11 +35,15 @@
 //! 3-axis CNC, whose nozzle always points down, it is +Z.
 //!
 //! # Continuous layers
-//! A continuous program (`Program::continuous`, a segmented ring) is one run
-//! of deposit moves: a layer's first path joins the last layer's like any
-//! path that starts where the one before ended, so the laser stays on from
-//! the first deposit of the build to the last, by the same rule as below.
-//! Every other program starts each layer with the moves above.
+//! A continuous program (`Program::continuous`, a segmented ring or a
+//! spiral wall) is one run of deposit moves: a layer's first path joins the
+//! last layer's like any path that starts where the one before ended, so
+//! the laser stays on from the first deposit of the build to the last, by
+//! the same rule as below. Where the program cools between layers (a
+//! `dwell` or `min_layer_time`), the nozzle backs off to wait, and the next
+//! layer is reached through the transition as any other: a path joins only
+//! where the nozzle still is. Every other program starts each layer with the
+//! moves above.
 //!
 //! # Segment ends
 //! On a ring, [`Visit::segment_end`] comes right before the move that ends a
@@ -662,7 +666,9 @@ impl<V: Visit> Walker<'_, '_, V> {
     ) {
         let first = &pts[0];
         let mut cur = match self.cursor {
-            Some(c) if !first_in_layer && joins(c.focus, c.normal, first) => c,
+            // A nozzle backed off (to cool between layers) must come back
+            // down: a path joins only where the nozzle still is.
+            Some(c) if !first_in_layer && !self.retracted && joins(c.focus, c.normal, first) => c,
             _ => {
                 // The powder of the path's first deposit, for the cell.
                 let powder = pts[..pts.len() - 1]
