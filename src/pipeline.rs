@@ -242,6 +242,16 @@ fn run<R>(
     };
     crate::overrides::apply(&mut ast, &options.set)?;
     let machine = options.machine.as_deref();
+    // The machines the file declares, checked or not: one refused for its
+    // own errors is reported for them when `--machine` names it, not as
+    // unknown.
+    let names: Vec<String> = ast
+        .stmts
+        .iter()
+        .filter(|s| s.kind.node == "machine")
+        .filter_map(|s| s.name.as_ref().map(|n| n.node.clone()))
+        .collect();
+    let declared = machine.is_some_and(|name| names.iter().any(|n| n == name));
     obs.stage("parse");
     let (model, d) = sema::check_reading(&ast, options.data.as_ref().map(|d| d.0.clone()));
     drop(ast);
@@ -254,15 +264,11 @@ fn run<R>(
         None => Select::All,
         Some(name) => match model.machines.iter().position(|(m, _)| m.name() == name) {
             Some(i) => Select::One(i),
+            None if declared && diagnostics.has_errors() => return Ok(Ran::none()),
             None => {
                 return Err(UsageError::Machine(NoSuchMachine {
                     name: name.to_string(),
-                    declared: model
-                        .machines
-                        .iter()
-                        .map(|(m, _)| m.name())
-                        .collect::<Vec<_>>()
-                        .join(", "),
+                    declared: names.join(", "),
                 }))
             }
         },

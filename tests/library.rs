@@ -71,6 +71,21 @@ fn compile_reports_what_the_options_get_wrong() {
     };
     let d = lmdc::compile(&src, &set).err().unwrap();
     assert_eq!(d.iter().next().unwrap().code, Code::BadSet);
+    // A machine refused for its own mistake is reported for it, not as
+    // unknown, when it is the one asked for; an unknown name lists it.
+    let bad_mill = src.replacen("  work_offset = 1 ", "  work_offset = 9 ", 1);
+    let mill = lmdc::Options {
+        machine: Some("mill3".into()),
+        ..Default::default()
+    };
+    let d = lmdc::compile(&bad_mill, &mill).err().unwrap();
+    let codes: Vec<Code> = d.iter().map(|d| d.code).collect();
+    assert_eq!(codes, [Code::CountRange], "{d:?}");
+    assert!(d.iter().next().unwrap().message.contains("work_offset"));
+    let d = lmdc::compile(&bad_mill, &machine).err().unwrap();
+    let first = d.iter().next().unwrap();
+    assert_eq!(first.code, Code::NoSuchMachine);
+    assert!(first.message.contains("mill3, kr30"), "{}", first.message);
     let broken = src.replacen("let OD = 80 mm", "let OD = 80 deg", 1);
     let d = lmdc::compile(&broken, &lmdc::Options::default())
         .err()
