@@ -349,6 +349,9 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
         "bead track { width = 2.2 mm  speed = 8 mm/s .. 4 mm/s  model = linear(slope = -0.1 s, intercept = 1.5 mm) }";
     degenerate: Degenerate, PLATE,
         "extrude block { profile = outline([0 mm, 0 mm], [0 mm, 0 mm], [10 mm, 10 mm])  size = outer  bead = track }";
+    // Once refused with no word at all (exit 1, nothing printed).
+    empty_outline: Degenerate, PLATE,
+        "extrude block { profile = outline()  size = outer  bead = track }";
     profile_layer: ProfileLayer, PLATE,
         "extrude block { profile = outline([0 mm, 0 mm], [20 mm - layer * 20 mm, 0 mm], [0 mm, 10 mm])  size = outer  bead = track }";
     division_by_zero: DivisionByZero, PLATE, "let a = 1 mm / 0";

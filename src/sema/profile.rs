@@ -98,7 +98,13 @@ fn outline(c: &Call, diags: &mut Diagnostics) -> Option<Outline> {
         }
         last = Some(to);
     }
-    let start = start?;
+    let Some(start) = start else {
+        // `outline()`: nothing was said about it yet.
+        if ok {
+            diags.push(message::shape::too_few_corners(c.func_span));
+        }
+        return None;
+    };
     let arcs = segments.iter().any(|s| matches!(s, Segment::Arc { .. }));
     if ok && segments.len() < 2 && !arcs {
         diags.push(message::shape::too_few_corners(c.func_span));
