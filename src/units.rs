@@ -469,6 +469,21 @@ pub fn in_range(x: f64, [lo, hi]: [f64; 2]) -> bool {
     x >= lo - RANGE_SLACK * lo.abs() && x <= hi + RANGE_SLACK * hi.abs()
 }
 
+/// `v` rounded up to the digits [`short`] prints, so that advice to raise a
+/// value to at least it is enough when followed as printed.
+pub fn short_up(v: f64) -> String {
+    let decimals = if v.abs() >= 100.0 {
+        1
+    } else if v.abs() >= 1.0 {
+        3
+    } else {
+        4
+    };
+    let p = 10f64.powi(decimals);
+    // A hair of slack: a value already printed exactly stays as it is.
+    short(((v * p) - 1e-9).ceil() / p)
+}
+
 /// Formats a number for messages: at most 4 significant decimals, no trailing zeros.
 pub fn short(v: f64) -> String {
     if !v.is_finite() {

@@ -354,6 +354,86 @@ fn gcode_starts_and_ends_at_the_safe_height() {
     }
 }
 
+/// A declared `safe_height` must clear the part: below its highest point
+/// plus the clearance it is refused, with those numbers and the height that
+/// would do; at that height or above, the program lifts to exactly it.
+#[test]
+fn a_safe_height_below_the_part_is_refused_and_one_above_is_kept() {
+    let p = build("examples/sprocket_tooth.lmd");
+    let top = p
+        .ir()
+        .layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .flat_map(|p| &p.points)
+        .map(|pt| pt.focus()[2])
+        .fold(f64::NEG_INFINITY, f64::max);
+    let clearance = 5.0;
+    let with = |safe: f64| {
+        crate::support::example::edited(
+            "sprocket_tooth.lmd",
+            &[(
+                "machine mill3 {\n  kind = cnc\n",
+                &format!("machine mill3 {{\n  kind = cnc\n  safe_height = {safe} mm\n"),
+            )],
+        )
+    };
+    let low = top + clearance - 0.05;
+    let c = lmdc::pipeline::compile(&with(low), &mut ());
+    assert!(c.program.is_none());
+    let d: Vec<_> = c
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == lmdc::diag::Code::SafeHeight)
+        .collect();
+    assert_eq!(d.len(), 1, "{:?}", c.diagnostics);
+    let m = &d[0].message;
+    assert!(
+        m.contains(&format!("safe_height of {} mm", lmdc::units::short(low))),
+        "{m}"
+    );
+    assert!(
+        m.contains(&format!(
+            "highest point is at Z {} mm",
+            lmdc::units::short(top)
+        )),
+        "{m}"
+    );
+    let help = d[0].help.as_deref().unwrap();
+    let advised: f64 = help
+        .split("at least ")
+        .nth(1)
+        .and_then(|t| t.split(" mm").next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("{help}"));
+    assert!(
+        advised >= top + clearance && advised < top + clearance + 0.1,
+        "{help}"
+    );
+    // The advice, followed as printed, builds; and a higher one is where
+    // the program starts and ends.
+    for safe in [advised, top + 40.0] {
+        let c = lmdc::pipeline::compile(&with(safe), &mut ());
+        let p = c.program.unwrap_or_else(|| panic!("{:?}", c.diagnostics));
+        let i = p
+            .ir()
+            .machines
+            .iter()
+            .position(|m| m.name() == "mill3")
+            .unwrap();
+        let text: String = files(&p, i).into_values().collect();
+        let zs: Vec<f64> = text
+            .lines()
+            .filter(|l| l.starts_with("G0") || l.starts_with("G1"))
+            .filter_map(|l| l.split_whitespace().find_map(|w| w.strip_prefix('Z')))
+            .map(|z| z.parse().unwrap())
+            .collect();
+        let want = (safe * 1000.0).round() / 1000.0;
+        assert_eq!(zs.first(), Some(&want), "starts at the safe height {safe}");
+        assert_eq!(zs.last(), Some(&want), "ends at the safe height {safe}");
+    }
+}
+
 /// ramp_wall on a KR 60 HA whose A6 turns only ±135° (an `opw(…)` arm),
 /// with `spin` as given (`None`: not written, `auto`).
 fn narrow_wrist(spin: Option<&str>) -> String {

@@ -517,6 +517,8 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
     needs_tilt: NeedsTilt, DUCT, "machine dmu5 { kind = cnc  axes = 3  max_speed = 100 mm/s }";
     axis_limit: AxisLimit, PLATE,
         "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  limits { x = -5 mm .. 5 mm } }";
+    safe_height: SafeHeight, PLATE,
+        "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  safe_height = 2 mm }";
     name_clash: NameClash, PLATE, "machine Mill { kind = cnc  axes = 3  max_speed = 50 mm/s }";
     transition_speed: TransitionSpeed, RING,
         "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 12 mm/s  height_input = 3  height_full_scale = 2 mm  height_delay = 150 ms }";

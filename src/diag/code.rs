@@ -306,6 +306,8 @@ codes! {
         "the part's layers tilt but the CNC has 3 axes";
     AxisLimit = "axis-limit", Machines,
         "a programmed position or rotary angle is outside the CNC's declared travel";
+    SafeHeight = "safe-height", Machines,
+        "a CNC's declared `safe_height` lies below where its program goes (the part's highest point plus the clearance): the first move across and the program's end would not clear the part";
     AxisSpeed = "axis-speed", Machines,
         "a feed move whose machine axes would move faster than declared: a tilting table's X Y Z (the part turning under the nozzle) beyond `max_speed`, or a rotary axis beyond `rotary_speed`";
     CUnwind = "c-unwind", Machines,

@@ -11,7 +11,7 @@ use crate::diag::message::{self, verify::machine::AnalogOverrun, verify::machine
 use crate::diag::Diagnostics;
 use crate::ir::{AxisLimits, Kinematics, Machine, RotaryTable};
 use crate::plan::kinematics::tilt_of;
-use crate::plan::{effective_kinematics, table, Move, Speed, Visit, Where};
+use crate::plan::{effective_kinematics, table, Move, MoveKind, Speed, Visit, Where};
 use crate::sema::schema::machine::{self, limits};
 use crate::target::{gcode, kuka, written as rounded};
 
@@ -301,5 +301,72 @@ impl<'p> PlanRule<'p> for Analog {
             declared: cx.origin.at(&machine::FULL_SCALE),
             power: cx.program.origins.power,
         }));
+    }
+}
+
+/// `lmd::safe-height`: a CNC's declared `safe_height` that does not clear
+/// the part: below its highest point plus the clearance (what the default
+/// is), or below a move of the plan (the lifts to it aside). The program's
+/// first move goes across at the safe height and it ends there; the plan
+/// would quietly start higher and end lower than declared.
+pub(super) struct SafeHeight {
+    declared: f64,
+    clearance: f64,
+    /// The highest deposit (the part's top) and the highest move, each
+    /// with where it is.
+    top: Option<(f64, Where)>,
+    highest: Option<(f64, Where)>,
+}
+
+impl PlanRule<'_> for SafeHeight {
+    fn new(cx: &MachineCx<'_>) -> Option<Self> {
+        let Machine::Cnc(c) = cx.machine else {
+            return None;
+        };
+        Some(SafeHeight {
+            declared: c.safe_height?,
+            clearance: c.clearance,
+            top: None,
+            highest: None,
+        })
+    }
+
+    fn report(self, cx: &MachineCx<'_>, out: &mut Diagnostics) {
+        let (Some(top), Some(highest)) = (self.top, self.highest) else {
+            return;
+        };
+        let need = (top.0 + self.clearance).max(highest.0);
+        // A written Z is rounded to a micrometre: no finer slack is needed.
+        if self.declared + 1e-6 >= need {
+            return;
+        }
+        let at = cx
+            .origin
+            .written(&machine::SAFE_HEIGHT)
+            .unwrap_or(cx.origin.block);
+        out.push(message::verify::machine::safe_height(
+            &message::verify::machine::LowSafeHeight {
+                machine: cx.machine.name(),
+                declared: self.declared,
+                top,
+                clearance: self.clearance,
+                highest,
+            },
+            at,
+        ));
+    }
+}
+
+impl Visit for SafeHeight {
+    #[inline]
+    fn motion(&mut self, m: &Move) {
+        let z = m.to[2];
+        let higher = |slot: &Option<(f64, Where)>| slot.is_none_or(|(h, _)| z > h);
+        if m.kind == MoveKind::Deposit && higher(&self.top) {
+            self.top = Some((z, m.source()));
+        }
+        if m.kind != MoveKind::Lift && higher(&self.highest) {
+            self.highest = Some((z, m.source()));
+        }
     }
 }

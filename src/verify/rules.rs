@@ -7,7 +7,7 @@ use super::bump::DepositBump;
 use super::cell::CellRule;
 use super::deposit::DepositRule;
 use super::height_loop::{LoopAnalysis, LoopOnMachine};
-use super::machine::{Analog, SpeedLimit, Tilt, Travel};
+use super::machine::{Analog, SafeHeight, SpeedLimit, Tilt, Travel};
 use super::names::FileNames;
 use super::overhang::Overhang;
 use super::positioner::PositionerRule;
@@ -123,6 +123,7 @@ plan_rules! {
     PlanRules {
         tilt: Tilt,
         travel: Travel,
+        safe: SafeHeight,
         unwind: CUnwind,
         axis_speed: AxisSpeed,
         speed: SpeedLimit<'p>,

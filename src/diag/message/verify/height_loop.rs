@@ -6,7 +6,7 @@ use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
 use crate::target::gcode::MAX_ANALOG_INPUT;
 use crate::target::kuka::MAX_ADVANCE;
-use crate::units::short;
+use crate::units::{short, short_up};
 use std::fmt::Display;
 
 /// The declared loop cannot be analysed at all (a degenerate value).
@@ -245,10 +245,4 @@ pub fn transition_speed(t: &FastTransition) -> Diagnostic {
     .label(t.spans[1], "the loop may command up to here")
     .label(t.spans[2], "transition")
     .help(help)
-}
-
-/// `x` rounded up to what `short` prints, so the advice is enough.
-fn short_up(x: f64) -> String {
-    let p = 10f64.powi(2);
-    short((x * p).ceil() / p)
 }

@@ -6,7 +6,7 @@ use crate::diag::{plural, Worst};
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
 use crate::target::{kuka, MAX_WRITTEN, WRITE_TOLERANCE};
-use crate::units::short;
+use crate::units::{short, short_up};
 use std::fmt::Display;
 
 /// Feed moves faster than machine `name`'s `max_speed`.
@@ -379,5 +379,50 @@ pub fn robot_power_unwritable(
         kuka::ANOUT_DECIMALS,
         short(full_scale_power),
         short(full_scale_power * 5e-5 / WRITE_TOLERANCE)
+    ))
+}
+
+/// A CNC's declared `safe_height` that does not clear its part.
+pub struct LowSafeHeight<'a, At> {
+    /// The machine's name.
+    pub machine: &'a str,
+    /// The declared safe height, mm.
+    pub declared: f64,
+    /// The part's highest point (Z, mm) and where.
+    pub top: (f64, At),
+    /// The machine's clearance, mm.
+    pub clearance: f64,
+    /// The plan's highest move (the lifts aside) and where.
+    pub highest: (f64, At),
+}
+
+/// `lmd::safe-height`.
+pub fn safe_height(s: &LowSafeHeight<'_, impl Display>, declared: Span) -> Diagnostic {
+    let over = s.top.0 + s.clearance;
+    let need = over.max(s.highest.0);
+    let higher = if s.highest.0 > over {
+        format!(
+            "; its program goes up to Z {} mm, at {}",
+            short(s.highest.0),
+            s.highest.1
+        )
+    } else {
+        String::new()
+    };
+    Diagnostic::error(
+        Code::SafeHeight,
+        format!(
+            "machine `{}`'s safe_height of {} mm does not clear the part: its highest point is at Z {} mm ({}), and the clearance is {} mm{higher}",
+            s.machine,
+            short(s.declared),
+            short(s.top.0),
+            s.top.1,
+            short(s.clearance)
+        ),
+    )
+    .label(declared, "declared here")
+    .help(format!(
+        "the program's first move goes across at the safe height and its last ends there: raise it to at least {} mm, or leave it out for the default (the highest point plus the clearance)",
+        short_up(need)
     ))
 }
