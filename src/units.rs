@@ -493,6 +493,11 @@ pub fn short(v: f64) -> String {
     if v.abs() >= 1e9 {
         return format!("{v:.3e}");
     }
+    // Too small for four decimals, but not nothing: never print it as 0
+    // (below 1e-12 it is a computation's rounding, and 0 is what it means).
+    if v.abs() >= 1e-12 && v.abs() < 5e-5 {
+        return format!("{v:.1e}");
+    }
     let s = if v.abs() >= 100.0 {
         format!("{v:.1}")
     } else if v.abs() >= 1.0 {
@@ -515,6 +520,24 @@ pub fn short(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn short_never_prints_a_value_as_another() {
+        assert_eq!(short(1e-9), "1.0e-9");
+        assert_eq!(short(-3e-6), "-3.0e-6");
+        assert_eq!(short(0.0), "0");
+        assert_eq!(short(4.7e-17), "0");
+        assert_eq!(short(0.00012), "0.0001");
+        assert_eq!(short(197.14), "197.1");
+        // Rounded up at the digits printed: followed as printed, enough.
+        for v in [207.14, 207.1, 34.9381, 7.69101, 0.00012, 1e-9] {
+            let up: f64 = short_up(v).parse().unwrap();
+            assert!(up >= v - 1e-9 * v.abs(), "{v}: {up}");
+            assert!(up - v < 0.1, "{v}: {up}");
+        }
+        assert_eq!(short_up(207.14), "207.2");
+        assert_eq!(short_up(34.9381), "34.939");
+    }
 
     #[test]
     fn compound_units() {

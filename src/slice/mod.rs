@@ -141,7 +141,7 @@ fn duct(
 fn too_many_points(slicing: &Slicing, i: usize, k: usize) -> Diagnostics {
     match slicing.resolution {
         Resolution::ChordError(e) => {
-            message::bend::too_many_layer_points(e, MAX_POINTS, i, slicing.span).into()
+            message::bend::too_many_layer_points(e, MAX_POINTS, i + 1, slicing.span).into()
         }
         Resolution::Count(_) => {
             message::bend::too_many_section_points(k, MAX_POINTS, slicing.span).into()

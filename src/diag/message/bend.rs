@@ -2,7 +2,7 @@
 //! keeps every layer within the bead's heights around a bend, how many points
 //! its layers need, and where the seam sits.
 
-use crate::diag::{Code, Diagnostic};
+use crate::diag::{plural, Code, Diagnostic};
 use crate::span::Span;
 use crate::units::{short, Angle, Length, Speed};
 
@@ -79,7 +79,8 @@ pub fn layer_count_outside(
     Diagnostic::error(
         Code::LayerHeight,
         format!(
-            "with {n} layers the {what} run {} .. {}, outside the bead's {} .. {}",
+            "with {n} layer{} the {what} run {} .. {}, outside the bead's {} .. {}",
+            plural(n as u64),
             Length(lo),
             Length(hi),
             heights.range[0],
@@ -191,7 +192,7 @@ fn apart(need: f64, have: f64) -> usize {
         .unwrap_or(6)
 }
 
-/// A chord error that needs more than `max` points a layer.
+/// A chord error that needs more than `max` points on `layer` (from 1).
 pub fn too_many_layer_points(
     chord_error: Length,
     max: usize,
