@@ -570,10 +570,23 @@ fn simulate_prints_the_loop_and_writes_its_csv() {
         "no temporary file left"
     );
 
-    let unstable = lmdc(&["simulate", "examples/errors/unstable_loop.lmd"]);
+    // A loop the build refuses: simulated and shown, exit 1, no CSV.
+    let refused = dir.join("refused.csv");
+    let unstable = lmdc(&[
+        "simulate",
+        "examples/errors/unstable_loop.lmd",
+        "--csv",
+        refused.to_str().unwrap(),
+    ]);
     assert_eq!(unstable.status.code(), Some(1));
     let text = String::from_utf8_lossy(&unstable.stdout);
     assert!(text.contains("error: unstable"), "{text}");
+    assert!(!refused.exists(), "a refused loop writes no CSV");
+    assert!(
+        stderr(&unstable).contains("refused.csv not written"),
+        "{}",
+        stderr(&unstable)
+    );
 
     // A valid file without a ring: a usage error, not an error in the file.
     let none = lmdc(&["simulate", "examples/wedge.lmd"]);

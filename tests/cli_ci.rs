@@ -94,6 +94,10 @@ fn usage_and_file_errors_are_json_objects_with_a_code() {
         (vec!["check", s(&good), "--set", "W"], "lmd::usage"),
         (vec!["check", s(&good), "--set", "WW=1mm"], "lmd::bad-set"),
         (vec!["simulate", s(&good)], "lmd::usage"),
+        (
+            vec!["simulate", "examples/segmented_ring.lmd", "--every", "0"],
+            "lmd::usage",
+        ),
     ];
     for (mut args, code) in cases {
         args.extend(["--message-format", "json"]);

@@ -233,9 +233,10 @@ enum Command {
         /// Also write every layer and segment as CSV: layer,segment,speed_mm_s,height_mm,total_mm,target_mm.
         #[arg(long, value_name = "FILE")]
         csv: Option<PathBuf>,
-        /// Print every N-th layer (and the first and the last).
-        #[arg(long, value_name = "N", default_value_t = 10)]
-        every: usize,
+        /// Print every N-th layer (and the first and the last); N ≥ 1.
+        #[arg(long, value_name = "N", default_value_t = 10,
+              value_parser = clap::value_parser!(u64).range(1..))]
+        every: u64,
     },
     /// Run the language server on stdin/stdout for an editor: diagnostics as you type,
     /// hover, go to definition, references and completion (docs/editors.md).
@@ -341,7 +342,10 @@ pub fn run(cli: Cli) -> u8 {
             check(&file, machine.as_deref(), &common, p)
         }
         Command::Fmt { files, check } => fmt::run(&files, check),
-        Command::Simulate { file, csv, every } => simulate(&file, csv.as_deref(), every, &common),
+        Command::Simulate { file, csv, every } => {
+            let every = usize::try_from(every).unwrap_or(usize::MAX);
+            simulate(&file, csv.as_deref(), every, &common)
+        }
         Command::Build {
             file,
             out,
@@ -703,7 +707,10 @@ fn simulate(file: &Path, csv: Option<&Path>, every: usize, common: &Common) -> u
         }
         return EXIT_PROGRAM;
     };
-    if let Some(path) = csv {
+    // A loop the build would refuse is simulated, but says so, and writes
+    // nothing: a failed run leaves no file behind.
+    let refused = simulate::refused(&run);
+    if let Some(path) = csv.filter(|_| !refused) {
         let mut text = String::new();
         // Writing into a String cannot fail.
         let _ = run.simulation.write_csv(&mut text);
@@ -714,8 +721,12 @@ fn simulate(file: &Path, csv: Option<&Path>, every: usize, common: &Common) -> u
         eprintln!("wrote {}", shown(path));
     }
     print!("{}", simulate::report(&run, every));
-    // A loop the build would refuse is simulated, but says so.
-    if simulate::refused(&run) {
+    if refused {
+        let csv = csv.map_or(String::new(), |p| format!("; {} not written", shown(p)));
+        eprintln!(
+            "the build refuses this loop (`lmdc check {}` shows where){csv}",
+            shown(file)
+        );
         EXIT_PROGRAM
     } else {
         0
