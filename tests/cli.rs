@@ -598,3 +598,57 @@ fn simulate_prints_the_loop_and_writes_its_csv() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Two parts whose KRL names come out the same (a name keeps 24
+/// characters, the part's shortened first) are not built into one folder:
+/// the second build is refused (exit 2) naming both parts, and the first
+/// part's programs and the manifest stay as they were, byte for byte.
+#[test]
+fn a_part_whose_krl_names_clash_with_another_s_is_refused() {
+    let work = out_dir("clash");
+    std::fs::create_dir_all(&work).unwrap();
+    let src = std::fs::read_to_string("examples/flange.lmd").unwrap();
+    let file = |name: &str| {
+        let f = work.join(format!("{name}.lmd"));
+        std::fs::write(&f, src.replacen("part flange", &format!("part {name}"), 1)).unwrap();
+        f
+    };
+    let (x, y) = (
+        file("a_very_long_part_name_x"),
+        file("a_very_long_part_name_y"),
+    );
+    let out = work.join("out");
+    let build = |f: &Path| {
+        lmdc(&[
+            "build",
+            f.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--machine",
+            "kr30",
+        ])
+    };
+    let first = build(&x);
+    assert_eq!(first.status.code(), Some(0), "{}", stderr(&first));
+    let files = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| {
+            let p = e.unwrap().path();
+            (p.clone(), std::fs::read(&p).unwrap())
+        })
+        .collect::<Vec<_>>();
+    assert!(files.len() >= 3, "{files:?}");
+    let second = build(&y);
+    assert_eq!(second.status.code(), Some(2), "{}", stderr(&second));
+    let e = stderr(&second);
+    assert!(
+        e.contains("holds the programs of part `a_very_long_part_name_x` on `kr30`")
+            && e.contains("part `a_very_long_part_name_y` on `kr30` would replace them"),
+        "{e}"
+    );
+    for (p, bytes) in &files {
+        assert_eq!(&std::fs::read(p).unwrap(), bytes, "{} changed", p.display());
+    }
+    assert_eq!(listing(&out).len(), files.len(), "{:?}", listing(&out));
+    let _ = std::fs::remove_dir_all(&work);
+}

@@ -31,7 +31,9 @@
 //! The manifest lists, per part and machine, the files lmdc wrote, so a
 //! rebuild that writes fewer KRL modules removes the old extra modules, and
 //! only those: a file lmdc did not write into `DIR` is never removed (unless a
-//! build writes a file of the same name, which replaces it). `DIR/.lmdc-lock`
+//! build writes a file of the same name, which replaces it), and a file
+//! another part or machine wrote is never replaced (the build is refused:
+//! two parts whose KRL names clash would otherwise overwrite each other). `DIR/.lmdc-lock`
 //! keeps two builds out of one directory at the same time; a lock left by a
 //! killed build is taken over. Temporary files an older lmdc left
 //! (`DIR/.lmdc-*.tmp`) are removed too.
@@ -231,19 +233,35 @@ impl AtomicDir {
         }
         let written: HashSet<&str> = self.files.iter().map(String::as_str).collect();
 
-        // Old sets rebuilt now go; the others stay, less any file this build
-        // writes (which passes to the new set).
         let old = Manifest::read(&self.dir);
+        // A file another part or machine wrote is not replaced by this
+        // build's: their names clash (a KRL name cut to its 24 characters),
+        // and one part's programs would silently become another's.
+        let clash = old
+            .sets
+            .iter()
+            .filter(|s| !new_sets.iter().any(|n| n.key == s.key))
+            .find_map(|s| {
+                s.files
+                    .iter()
+                    .find(|f| written.contains(f.as_str()))
+                    .map(|f| (s, f))
+            });
+        if let Some((set, file)) = clash {
+            let this = new_sets
+                .iter()
+                .find(|n| n.files.contains(file))
+                .map(|n| &n.key);
+            return Err(io::Error::other(clash_message(file, &set.key, this)));
+        }
+        // Old sets rebuilt now go; the others stay.
         let mut remove: Vec<String> = Vec::new();
         let mut kept: Vec<FileSet> = Vec::new();
-        for mut set in old.sets {
+        for set in old.sets {
             if new_sets.iter().any(|n| n.key == set.key) {
                 remove.extend(set.files.into_iter().rev());
-            } else {
-                set.files.retain(|f| !written.contains(f.as_str()));
-                if !set.files.is_empty() {
-                    kept.push(set);
-                }
+            } else if !set.files.is_empty() {
+                kept.push(set);
             }
         }
         // Any other file about to be replaced goes first too, so that the
@@ -273,6 +291,24 @@ impl AtomicDir {
         self.created_dir = false;
         Ok(self.files.iter().map(|f| self.dir.join(f)).collect())
     }
+}
+
+/// Why `file`, which `owner`'s build wrote, is not replaced by this build's
+/// (`this`: the set writing it).
+fn clash_message(file: &str, owner: &SetKey, this: Option<&SetKey>) -> String {
+    let who = |k: &SetKey| match &k.machine {
+        Some(m) => format!("part `{}` on `{m}`", k.part),
+        None => format!("part `{}`", k.part),
+    };
+    let this = this.map_or("this build".to_string(), |k| {
+        format!("this build's {}", who(k))
+    });
+    format!(
+        "{file} holds the programs of {}, and {this} would replace them under the same name \
+         (a KRL name keeps 24 characters, the part's name shortened first); nothing was \
+         written: build into another folder, or give the parts names that differ sooner",
+        who(owner)
+    )
 }
 
 impl Drop for AtomicDir {
