@@ -337,6 +337,8 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     expected_text: ExpectedText, PLATE,
         "style edge { colour = 12  speed = 6 mm/s  when { paths = infill } }";
     expected_shape: ExpectedShape, PLATE, "extrude block { profile = 20 mm  size = outer  bead = track }";
+    named_hole: ExpectedShape, PLATE,
+        "section bore = circle(diameter = 4 mm)\nextrude block { profile = region(outline = rectangle(width = 20 mm, height = 10 mm), holes = [bore])  size = outer  bead = track }";
     expected_point: ExpectedPoint, PLATE,
         "extrude block { profile = outline([0 mm, 0 mm], [10 mm, 0 mm], 5 mm)  size = outer  bead = track }";
     expected_name: ExpectedName, PLATE,

@@ -36,6 +36,10 @@ pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> 
             diags.push(message::shape::bolt_circle_not_shape(what, v.span));
             None
         }
+        Value::Symbol(name) => {
+            diags.push(message::shape::named_shape(what, name, v.span));
+            None
+        }
         other => {
             diags.push(message::shape::not_a_shape(
                 what,

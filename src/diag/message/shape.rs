@@ -41,6 +41,19 @@ pub fn bolt_circle_not_shape(what: &str, at: Span) -> Diagnostic {
     .help("list it among a region's holes: `region(outline = …, holes = [bolt_circle(circle(diameter = 12 mm), count = 6, diameter = 85 mm)])`")
 }
 
+/// A name where a shape (`what`) is written out: a section or profile is
+/// taken by name only as an extrusion's profile or a loft's section.
+pub fn named_shape(what: &str, name: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ExpectedShape,
+        format!("{what} must be a 2-D shape written out here, not a name"),
+    )
+    .label(at, format!("the name `{name}`"))
+    .help(format!(
+        "a section or profile is taken by its name only as an extrusion's `profile` or a loft's section; inside `region(…)`, `place(…)` and a region's `holes`, write the shape itself where `{name}` stands (e.g. `circle(diameter = 20 mm)`), using constants (`let`) for the numbers it shares"
+    ))
+}
+
 /// Something that is no 2-D shape is given where one (`what`) is expected.
 pub fn not_a_shape(what: &str, got: Got<'_>, at: Span, sections: &[&str]) -> Diagnostic {
     Diagnostic::error(Code::ExpectedShape, format!("{what} must be a 2-D shape"))
