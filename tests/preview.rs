@@ -1035,6 +1035,35 @@ fn a_plan_refused_for_its_arm_is_drawn_with_its_errors() {
         }
     }
     assert!(past >= 1, "A5 goes past its margin");
+    // The refused machine is drawn, not the first one declared: the
+    // bracket's CNC passes, its robot (based out of reach) does not.
+    let far = std::fs::read_to_string("examples/bracket.lmd")
+        .unwrap()
+        .replacen("x = 1200 mm, y = -300 mm", "x = 3500 mm, y = -300 mm", 1);
+    assert!(far.find("machine mill3") < far.find("machine kr30"));
+    std::fs::create_dir_all(dir.path().join("mesh")).unwrap();
+    std::fs::copy(
+        "examples/mesh/bracket.stl",
+        dir.path().join("mesh/bracket.stl"),
+    )
+    .unwrap();
+    let far_file = dir.path().join("far.lmd");
+    std::fs::write(&far_file, far).unwrap();
+    let far_page = dir.path().join("far.html");
+    let o = Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .args(["preview", far_file.to_str().unwrap(), "-o"])
+        .arg(&far_page)
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let d = data(&std::fs::read_to_string(&far_page).unwrap());
+    assert_eq!(d["meta"]["machine"], "kr30", "{}", d["meta"]);
+    assert_eq!(d["meta"]["refused"][0]["code"], "lmd::reach");
     // A built plan carries no list; another error leaves nothing to draw.
     assert!(data(&page_of("ramp_wall", "kr30"))["meta"]["refused"].is_null());
     let slow = std::fs::read_to_string("examples/errors/arm_joint_limit.lmd")

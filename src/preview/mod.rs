@@ -201,8 +201,14 @@ pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
 /// axes' plot showing where they go past their margins. `None` when the
 /// refused program has no machine's plan to draw.
 pub fn refused_html(refused: &Refused) -> Option<String> {
+    // The arm's failures are a robot's: draw the first robot with an arm,
+    // not the first machine, which may be a CNC that passed.
+    let armed = |m: &VerifiedMachine<'_>| matches!(m.machine(), crate::ir::Machine::Robot(r) if r.arm.is_some());
     Some(page(
-        refused.machines().next()?,
+        refused
+            .machines()
+            .find(armed)
+            .or_else(|| refused.machines().next())?,
         BUDGET,
         Some(refused.failures()),
     ))
