@@ -292,6 +292,17 @@ fn fixed_and_cone_keep_what_they_say() {
         (4..20).contains(&changes),
         "{changes} changes over 281 layers"
     );
+    // A cone's angle is how far a layer may lean: from 0 to 90°.
+    let bad = lmdc::pipeline::compile(
+        &text.replace("keep = vertical", "keep = cone(-5 deg)"),
+        &mut (),
+    );
+    assert!(bad.program.is_none());
+    let m: Vec<&str> = bad.diagnostics.iter().map(|d| d.message.as_str()).collect();
+    assert!(
+        m.iter().any(|m| m.contains("`angle`") && m.contains("90")),
+        "{m:?}"
+    );
 }
 
 /// E2 held within ±45° with the duct's bend axis square to the tilt axis

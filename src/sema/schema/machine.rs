@@ -954,7 +954,7 @@ pub static FIXED: Block = Block::new(
 
 /// The fields of `positioner { … }` and its `keep`'s calls.
 pub mod positioner {
-    use super::super::Bound::{Any, Magnitude, Positive};
+    use super::super::Bound::{Any, Magnitude, Positive, ZeroUpTo};
     use super::super::DefaultValue::{Quantity as DefaultQuantity, Word as DefaultWord};
     use super::super::Kind::{self, Call, Either, List, Quantity, Range, Word};
     use super::super::Need::{Default, Required};
@@ -1035,7 +1035,7 @@ pub mod positioner {
     /// `cone(angle)`.
     pub static CONE_ANGLE: Field = Field::new(
         "angle",
-        Quantity(Dim::ANGLE, Magnitude(crate::sema::schema::deg(90.0))),
+        Quantity(Dim::ANGLE, ZeroUpTo(crate::sema::schema::deg(90.0))),
         Required("15 deg"),
         "how far from straight up a layer's mean normal may lean before the positioner turns",
     );
