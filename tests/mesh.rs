@@ -676,3 +676,125 @@ fn what_is_no_3mf_says_where() {
         three_mf::read(&bad)
     );
 }
+
+/// The numbers of the overlap error in `m`: the layer (from 1), the cut's
+/// height and the point (mm).
+fn overlap_numbers(m: &str) -> (usize, f64, [f64; 2]) {
+    let rest = m
+        .split("the sections of two shells of the mesh overlap on layer ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no overlap error: {m}"));
+    let num = |s: &str| {
+        s.trim()
+            .parse::<f64>()
+            .unwrap_or_else(|_| panic!("{s} in {m}"))
+    };
+    let (layer, rest) = rest.split_once(" (cut at z = ").unwrap();
+    let (z, rest) = rest.split_once(" mm), at (").unwrap();
+    let (x, rest) = rest.split_once(", ").unwrap();
+    let (y, _) = rest.split_once(") mm").unwrap();
+    (layer.parse().unwrap(), num(z), [num(x), num(y)])
+}
+
+/// The layer height the plate program builds the mesh `tris` with.
+fn lift(tris: &[Triangle]) -> f64 {
+    let c = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(tris))]),
+    );
+    let m = messages(&c);
+    let ir = c.program.unwrap_or_else(|| panic!("{m}")).into_ir();
+    ir.layers[1].frame.origin[2] - ir.layers[0].frame.origin[2]
+}
+
+/// Whether `p` lies in the box from `lo` to `hi` (in plan, edges included).
+fn in_box(p: [f64; 2], lo: [f64; 3], hi: [f64; 3]) -> bool {
+    (0..2).all(|i| lo[i] - 1e-9 <= p[i] && p[i] <= hi[i] + 1e-9)
+}
+
+#[test]
+fn overlapping_shells_are_refused_on_the_first_layer_they_share() {
+    // A 10 mm box 3.5 mm tall, and a second standing in it from 1.5 mm up,
+    // overlapping it by 5 × 5 mm in plan: the layers cut below 1.5 mm see
+    // one square, the first above both.
+    let (a, b) = (
+        ([0.0, 0.0, 0.0], [10.0, 10.0, 3.5]),
+        ([5.0, 5.0, 1.5], [15.0, 15.0, 3.5]),
+    );
+    let lift = lift(&cuboid(a.0, a.1));
+    let mut tris = cuboid(a.0, a.1);
+    tris.extend(cuboid(b.0, b.1));
+    let c = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(&tris))]),
+    );
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    let (layer, z, p) = overlap_numbers(&m);
+    // Each layer is cut halfway up: the first cut above the second box's
+    // floor.
+    let first = (1..).find(|&k| (k as f64 - 0.5) * lift > b.0[2]).unwrap();
+    assert_eq!(layer, first, "{m}");
+    // The message's z to its 4 significant digits.
+    assert!((z - (first as f64 - 0.5) * lift).abs() < 1e-3, "{m}");
+    assert!(in_box(p, a.0, a.1) && in_box(p, b.0, b.1), "{p:?}: {m}");
+    assert!(
+        c.diagnostics.iter().any(|d| d
+            .help
+            .as_deref()
+            .is_some_and(|h| h.contains("unite the shells"))),
+        "{m}"
+    );
+}
+
+#[test]
+fn a_shell_inside_another_is_refused_at_a_point_of_both() {
+    // No loops cross: the inner square lies straight in the outer one, with
+    // no hole between, and would be laid twice.
+    let (a, b) = (
+        ([0.0, 0.0, 0.0], [20.0, 20.0, 2.0]),
+        ([5.0, 6.0, 0.0], [12.0, 13.0, 2.0]),
+    );
+    let lift = lift(&cuboid(a.0, a.1));
+    let mut tris = cuboid(a.0, a.1);
+    tris.extend(cuboid(b.0, b.1));
+    let c = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(&tris))]),
+    );
+    let m = messages(&c);
+    let (layer, z, p) = overlap_numbers(&m);
+    assert_eq!(layer, 1, "{m}");
+    assert!((z - lift / 2.0).abs() < 1e-3, "{m}");
+    assert!(in_box(p, a.0, a.1) && in_box(p, b.0, b.1), "{p:?}: {m}");
+}
+
+#[test]
+fn shells_apart_and_islands_in_holes_still_build() {
+    // Two boxes 1 mm apart: two islands on every layer.
+    let mut apart = cuboid([0.0, 0.0, 0.0], [10.0, 10.0, 2.0]);
+    apart.extend(cuboid([11.0, 0.0, 0.0], [21.0, 10.0, 2.0]));
+    let src = source("profile = mesh(\"part.stl\")");
+    for r in regions(&src, stl::to_binary(&apart)) {
+        assert_eq!(r.outer().len(), 2);
+        assert!((r.area() - 200.0).abs() < 1e-6, "{}", r.area());
+    }
+    // A 60 mm box with a hole of radius 18; in the hole a 20 mm box with a
+    // hole of radius 6, and in that hole a 6 mm pillar: outline, hole,
+    // island, its hole, island.
+    let n = 32;
+    let mut nested = box_with_hole([30.0, 30.0], 30.0, 18.0, 2.0, n);
+    nested.extend(box_with_hole([30.0, 30.0], 10.0, 6.0, 2.0, n));
+    nested.extend(cuboid([27.0, 27.0, 0.0], [33.0, 33.0, 2.0]));
+    let want = 3600.0 - ngon(18.0, n) + 400.0 - ngon(6.0, n) + 36.0;
+    let layers = regions(&src, stl::to_binary(&nested));
+    assert_eq!(layers.len(), 3);
+    for r in layers {
+        assert_eq!((r.outer().len(), r.holes().len()), (3, 2));
+        assert!(
+            (r.area() - want).abs() < 1e-3,
+            "{} against {want}",
+            r.area()
+        );
+    }
+}

@@ -184,7 +184,7 @@ codes! {
     Sheet = "sheet", Values,
         "a measurement sheet (`lmdc fit`, `model = fit(…, data = …)`) lmdc cannot read: a cell that is not a number greater than zero (with its line and column), a row with more cells than the header, a measured row without a speed, a header without a `speed` column";
     Mesh = "mesh", Values,
-        "a `mesh(…)` lmdc cannot build: a file that cannot be read or is no STL or 3MF lmdc reads (with where it goes wrong: an STL's line or triangle; a 3MF's build item, object, triangle and vertex index), a 3MF whose `unit` disagrees with `units`, a mesh that is open, non-manifold or has triangles facing both ways (with the triangles' numbers in the file and where), a mesh not standing on the plate, or a layer whose section is empty, does not close or has a hole in no outline (with the layer and a point)";
+        "a `mesh(…)` lmdc cannot build: a file that cannot be read or is no STL or 3MF lmdc reads (with where it goes wrong: an STL's line or triangle; a 3MF's build item, object, triangle and vertex index), a 3MF whose `unit` disagrees with `units`, a mesh that is open, non-manifold or has triangles facing both ways (with the triangles' numbers in the file and where), a mesh not standing on the plate, or a layer whose section is empty, does not close, has a hole in no outline, or has loops of two shells that overlap, cross or touch (with the layer, counted from 1, the height of its cut and a point)";
     SheetUnits = "sheet-units", Values,
         "a measurement sheet's header names a column lmdc reads (`speed`, `height`, `width`, `area`, `mass`, `feed`, `length`, `power`) without its unit in brackets, in a unit lmdc does not convert, or twice";
     TooFewPoints = "too-few-points", Values,

@@ -197,6 +197,13 @@ pub fn section(f: &SectionFault, k: usize, z: f64, at: Span) -> Diagnostic {
             ),
             REPAIR.to_string(),
         ),
+        SectionFault::Overlap { at: p } => (
+            format!(
+                "the sections of two shells of the mesh overlap on {on}, at {}: each shell would be traced and filled in full, crossing the other's contours and laying metal twice where they share",
+                p2(*p)
+            ),
+            "unite the shells into one solid in CAD (a boolean union) and export that one solid, or move the shells apart with a gap between them".to_string(),
+        ),
     };
     Diagnostic::error(Code::Mesh, msg)
         .label(at, "this mesh")
