@@ -469,6 +469,20 @@ pub fn in_range(x: f64, [lo, hi]: [f64; 2]) -> bool {
     x >= lo - RANGE_SLACK * lo.abs() && x <= hi + RANGE_SLACK * hi.abs()
 }
 
+/// Formats a number for messages as [`short`] does, unless that would show
+/// a value that is not 0 as `0`: then with its first two significant digits
+/// (`-0.000081`), so a message that says a point is below the plate does
+/// not show it at 0.
+pub fn nonzero(v: f64) -> String {
+    let s = short(v);
+    if v == 0.0 || !v.is_finite() || s != "0" {
+        return s;
+    }
+    let d = (-v.abs().log10()).floor().max(0.0) as usize + 2;
+    let s = format!("{v:.d$}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
 /// Formats a number for messages: at most 4 significant decimals, no trailing zeros.
 pub fn short(v: f64) -> String {
     if !v.is_finite() {
@@ -500,6 +514,16 @@ pub fn short(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn nonzero_shows_a_small_value_with_its_first_digits() {
+        assert_eq!(short(-0.000_022_04), "0");
+        assert_eq!(nonzero(-0.000_022_04), "-0.000022");
+        assert_eq!(nonzero(0.000_001_1), "0.0000011");
+        assert_eq!(nonzero(0.000_1), "0.0001");
+        assert_eq!(nonzero(2.5), short(2.5));
+        assert_eq!(nonzero(0.0), "0");
+    }
 
     #[test]
     fn compound_units() {

@@ -798,3 +798,80 @@ fn shells_apart_and_islands_in_holes_still_build() {
         );
     }
 }
+
+/// The number after `before` and up to ` mm` in `s`.
+fn number_after(s: &str, before: &str) -> f64 {
+    let rest = s
+        .split(before)
+        .nth(1)
+        .unwrap_or_else(|| panic!("no `{before}` in {s}"));
+    let end = rest.find(" mm").unwrap();
+    rest[..end].parse().unwrap_or_else(|_| panic!("{rest}"))
+}
+
+#[test]
+fn a_mesh_a_hair_below_the_plate_says_by_how_much_and_the_z_that_fixes_it() {
+    // A box laid on its side by 1.5708 rad, not quite a quarter turn: its
+    // far top edge ends 5 mm · cos(1.5708) below the plate.
+    let (lo, hi) = ([0.0, 0.0, 0.0], [10.0, 10.0, 5.0]);
+    let bytes = stl::to_binary(&cuboid(lo, hi));
+    // The rounded quarter turn a user types is the point of the test.
+    #[allow(clippy::approx_constant)]
+    let turn = 1.5708_f64;
+    let below = hi[2] * turn.cos();
+    assert!(below < -1e-6);
+    let call = |z: &str| {
+        format!("profile = mesh(\"part.stl\", turn = [{turn} rad, 0 deg, 0 deg], at = [0 mm, 0 mm, {z}])")
+    };
+    let c = compile(
+        &source(&call("0 mm")),
+        BTreeMap::from([("part.stl", bytes.clone())]),
+    );
+    let m = messages(&c);
+    let shown = number_after(&m, "lowest point at z = ");
+    assert!(m.contains("mm, below the plate"), "{m}");
+    assert!(
+        shown < 0.0 && (shown - below).abs() <= 0.05 * below.abs(),
+        "{m}"
+    );
+    let help = c.diagnostics.iter().find_map(|d| d.help.clone()).unwrap();
+    let fix = number_after(&help, "`at` to ");
+    assert!((0.0..=1e-6).contains(&(fix + below)), "{help}");
+    // Following the advice builds.
+    let c = compile(
+        &source(&call(&format!("{fix} mm"))),
+        BTreeMap::from([("part.stl", bytes)]),
+    );
+    assert!(c.program.is_some(), "{}", messages(&c));
+}
+
+#[test]
+fn a_lowest_point_within_a_millionth_of_a_mm_is_on_the_plate() {
+    let bytes = stl::to_binary(&cuboid([0.0, 0.0, 2.0], [10.0, 10.0, 4.0]));
+    let at = |z: &str| format!("profile = mesh(\"part.stl\", at = [0 mm, 0 mm, {z} mm])");
+    for z in ["-2.0000009", "-1.9999991"] {
+        let c = compile(
+            &source(&at(z)),
+            BTreeMap::from([("part.stl", bytes.clone())]),
+        );
+        assert!(c.program.is_some(), "{z}: {}", messages(&c));
+    }
+    // The box's floor is at the file's z = 2 mm: -2 mm for `at`'s z stands
+    // it on the plate.
+    for (z, low, place) in [
+        ("-2.0000011", "-0.0000011", "below"),
+        ("-1.9999989", "0.0000011", "above"),
+    ] {
+        let c = compile(
+            &source(&at(z)),
+            BTreeMap::from([("part.stl", bytes.clone())]),
+        );
+        let m = messages(&c);
+        assert!(
+            m.contains(&format!("lowest point at z = {low} mm, {place} the plate")),
+            "{m}"
+        );
+        let help = c.diagnostics.iter().find_map(|d| d.help.clone()).unwrap();
+        assert_eq!(number_after(&help, "`at` to "), -2.0, "{help}");
+    }
+}

@@ -6,9 +6,9 @@
 use crate::diag::{Code, Diagnostic};
 use crate::geometry::mesh::stl::{StlError, MAX_TRIANGLES};
 use crate::geometry::mesh::three_mf::{ThreeMfError, MAX_DEPTH, MAX_MODEL_BYTES};
-use crate::geometry::mesh::{MeshFault, SectionFault};
+use crate::geometry::mesh::{MeshFault, SectionFault, ON_PLATE};
 use crate::span::Span;
-use crate::units::short;
+use crate::units::{nonzero, short};
 
 const REPAIR: &str = "repair the mesh (e.g. MeshLab's or PrusaSlicer's repair, or Blender's 3D-Print toolbox) or export it again from CAD as a closed solid";
 
@@ -157,20 +157,20 @@ pub fn fault(path: &str, f: &MeshFault, at: Span) -> Diagnostic {
 }
 
 /// The placed mesh's lowest point is at `z` (mm), not on the plate at 0:
-/// `at[2]` would be `fix`.
+/// `at[2]` would be `fix` (a decimal chosen so that writing it builds,
+/// shown in full).
 pub fn not_on_plate(path: &str, z: f64, fix: f64, at: Span) -> Diagnostic {
     let place = if z > 0.0 { "above" } else { "below" };
     Diagnostic::error(
         Code::Mesh,
         format!(
             "the mesh `{path}`, placed, has its lowest point at z = {} mm, {place} the plate: the layers start on the plate at z = 0",
-            short(z)
+            nonzero(z)
         ),
     )
     .label(at, "placed here")
     .help(format!(
-        "set the third number of `at` to {} mm, so the part stands on the plate",
-        short(fix)
+        "set the third number of `at` to {fix} mm, so the part stands on the plate (its lowest point may be up to {ON_PLATE} mm off it)"
     ))
 }
 
