@@ -875,3 +875,69 @@ fn a_lowest_point_within_a_millionth_of_a_mm_is_on_the_plate() {
         assert_eq!(number_after(&help, "`at` to "), -2.0, "{help}");
     }
 }
+
+/// The fewest points a raster fill of a mesh of volume `v`, surface `s`,
+/// diagonal in plan `d` and height `h` lays in layers `lift` apart, tracks
+/// `offset` apart inside `contours` contours: what docs/language.md gives.
+fn least_fill_points([v, s, d, h]: [f64; 4], lift: f64, offset: f64, contours: f64) -> f64 {
+    let raster = v - s * (contours + 1.0) * offset;
+    let n = (h / lift).ceil();
+    2.0 * (raster / (lift * d * offset) - n).max(0.0)
+}
+
+#[test]
+fn a_mesh_in_the_wrong_units_is_refused_before_slicing_with_its_size() {
+    // A 60 × 30 × 22 box written in mm, read in metres.
+    let (x, y, z) = (60.0, 30.0, 22.0);
+    let bytes = stl::to_binary(&cuboid([0.0; 3], [x, y, z]));
+    let src = |units: &str| source(&format!("profile = mesh(\"part.stl\", units = {units})"));
+    // In mm it builds: its fill has at least the points the bound says.
+    let c = compile(&src("mm"), BTreeMap::from([("part.stl", bytes.clone())]));
+    let m = messages(&c);
+    let ir = c.program.unwrap_or_else(|| panic!("{m}")).into_ir();
+    let lift = ir.layers[1].frame.origin[2] - ir.layers[0].frame.origin[2];
+    // plate.lmd: tracks 1.6 mm apart, no contour (the default with a
+    // raster).
+    let (offset, contours) = (1.6, 0.0);
+    let box_numbers = |k: f64| {
+        let (a, b, c) = (x * k, y * k, z * k);
+        [a * b * c, 2.0 * (a * b + b * c + c * a), a.hypot(b), c]
+    };
+    let laid: usize = ir
+        .layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .filter(|p| p.kind == lmdc::ir::PathKind::Infill)
+        .map(|p| p.points.len())
+        .sum();
+    let bound = least_fill_points(box_numbers(1.0), lift, offset, contours);
+    assert!(bound > 0.0 && bound <= laid as f64, "{bound} > {laid}");
+    // In metres it is refused at once, with its size and the unit in which
+    // it would fit.
+    let c = compile(&src("m"), BTreeMap::from([("part.stl", bytes)]));
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    assert!(
+        m.contains("(read in `units = m`) is 60000 × 30000 × 22000 mm as placed"),
+        "{m}"
+    );
+    let layers = (z * 1000.0 / lift).ceil() as usize;
+    assert!(m.contains(&format!("its {layers} layers of ")), "{m}");
+    let least = least_fill_points(box_numbers(1000.0), lift, offset, contours);
+    let shown = number_after(&m.replace(" points", " mm"), "need at least ");
+    assert!(
+        (shown - least).abs() <= 1e-6 * least,
+        "{shown} against {least}"
+    );
+    assert!(least > 20_000_000.0);
+    assert!(m.contains("more than the 20000000 a plan may hold"), "{m}");
+    assert!(
+        c.diagnostics
+            .iter()
+            .any(|d| d.code == lmdc::diag::Code::TooManyPoints
+                && d.help
+                    .as_deref()
+                    .is_some_and(|h| h.contains("in mm it would be 60 × 30 × 22 mm"))),
+        "{m}"
+    );
+}

@@ -83,6 +83,7 @@ pub fn read(
         path,
         mesh: std::sync::Arc::new(m),
         top: Length(hi[2]),
+        scale,
         span: at,
     })
 }

@@ -174,6 +174,64 @@ pub fn not_on_plate(path: &str, z: f64, fix: f64, at: Span) -> Diagnostic {
     ))
 }
 
+/// What [`too_big`] says: the placed mesh's size and what its fill would
+/// need.
+pub struct TooBig {
+    /// Its size along x, y and z (mm, placed).
+    pub size: [f64; 3],
+    /// The file's unit, when it is one `units` names.
+    pub unit: Option<&'static str>,
+    /// How many layers build it.
+    pub layers: usize,
+    /// The lift (mm).
+    pub lift: f64,
+    /// The track offset (mm).
+    pub pitch: f64,
+    /// The fewest points its fill needs.
+    pub least: f64,
+    /// The most a plan may hold.
+    pub max: usize,
+    /// A unit in which it would fit, and its size then (mm).
+    pub other: Option<(&'static str, [f64; 3])>,
+}
+
+/// `× `-joined sizes, in mm.
+fn size3(s: [f64; 3]) -> String {
+    format!("{} × {} × {} mm", short(s[0]), short(s[1]), short(s[2]))
+}
+
+/// The mesh `path` is too big to fill within the points a plan may hold,
+/// which it would find only after minutes of slicing: most likely a file
+/// read in the wrong unit.
+pub fn too_big(path: &str, t: TooBig, at: Span) -> Diagnostic {
+    let read = t
+        .unit
+        .map(|u| format!(" (read in `units = {u}`)"))
+        .unwrap_or_default();
+    let help = match t.other {
+        Some((u, s)) => format!(
+            "in {u} it would be {}: if the file's numbers are {u}, write `units = {u}` in `mesh(…)`{}",
+            size3(s),
+            if u == "mm" { " or leave `units` out" } else { "" }
+        ),
+        None => "a smaller part, or fewer layers (`height` or `layers`); check the file's `units`".to_string(),
+    };
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!(
+            "the mesh `{path}`{read} is {} as placed: its {} layers of {} mm, filled with tracks {} mm apart, need at least {:.0} points, more than the {} a plan may hold",
+            size3(t.size),
+            t.layers,
+            short(t.lift),
+            short(t.pitch),
+            t.least,
+            t.max
+        ),
+    )
+    .label(at, "this mesh")
+    .help(help)
+}
+
 /// Layer `k`'s section of the mesh, at height `z` (mm), is no region.
 pub fn section(f: &SectionFault, k: usize, z: f64, at: Span) -> Diagnostic {
     let on = format!("layer {} (cut at z = {} mm)", k + 1, short(z));

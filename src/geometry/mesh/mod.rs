@@ -196,13 +196,25 @@ impl Mesh {
         Ok(())
     }
 
-    /// The signed volume (mm³; positive when the triangles face out).
-    fn volume(&self) -> f64 {
+    /// The signed volume (mm³; positive when the triangles face out, as
+    /// they do once [`Mesh::new`] has made it).
+    pub fn volume(&self) -> f64 {
         self.triangles
             .iter()
             .map(|t| {
                 let [a, b, c] = t.map(|i| Vector3::from(self.vertices[i as usize]));
                 a.dot(&b.cross(&c)) / 6.0
+            })
+            .sum()
+    }
+
+    /// The area of its surface (mm²).
+    pub fn surface(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| Vector3::from(self.vertices[i as usize]));
+                (b - a).cross(&(c - a)).norm() / 2.0
             })
             .sum()
     }
