@@ -493,10 +493,13 @@ pub fn short(v: f64) -> String {
     if v.abs() >= 1e9 {
         return format!("{v:.3e}");
     }
-    // Too small for four decimals, but not nothing: never print it as 0
-    // (below 1e-12 it is a computation's rounding, and 0 is what it means).
+    // Too small for four decimals, but not nothing: never print it as 0,
+    // but with its first two significant digits (`-0.000022`; below 1e-12
+    // it is a computation's rounding, and 0 is what it means).
     if v.abs() >= 1e-12 && v.abs() < 5e-5 {
-        return format!("{v:.1e}");
+        let d = (-v.abs().log10()).floor() as usize + 2;
+        let s = format!("{v:.d$}");
+        return s.trim_end_matches('0').trim_end_matches('.').to_string();
     }
     let s = if v.abs() >= 100.0 {
         format!("{v:.1}")
@@ -523,8 +526,10 @@ mod tests {
 
     #[test]
     fn short_never_prints_a_value_as_another() {
-        assert_eq!(short(1e-9), "1.0e-9");
-        assert_eq!(short(-3e-6), "-3.0e-6");
+        assert_eq!(short(1e-9), "0.000000001");
+        assert_eq!(short(-0.000_022_04), "-0.000022");
+        assert_eq!(short(0.000_001_1), "0.0000011");
+        assert_eq!(short(-3e-6), "-0.000003");
         assert_eq!(short(0.0), "0");
         assert_eq!(short(4.7e-17), "0");
         assert_eq!(short(0.00012), "0.0001");

@@ -676,3 +676,268 @@ fn what_is_no_3mf_says_where() {
         three_mf::read(&bad)
     );
 }
+
+/// The numbers of the overlap error in `m`: the layer (from 1), the cut's
+/// height and the point (mm).
+fn overlap_numbers(m: &str) -> (usize, f64, [f64; 2]) {
+    let rest = m
+        .split("the sections of two shells of the mesh overlap on layer ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no overlap error: {m}"));
+    let num = |s: &str| {
+        s.trim()
+            .parse::<f64>()
+            .unwrap_or_else(|_| panic!("{s} in {m}"))
+    };
+    let (layer, rest) = rest.split_once(" (cut at z = ").unwrap();
+    let (z, rest) = rest.split_once(" mm), at (").unwrap();
+    let (x, rest) = rest.split_once(", ").unwrap();
+    let (y, _) = rest.split_once(") mm").unwrap();
+    (layer.parse().unwrap(), num(z), [num(x), num(y)])
+}
+
+/// The layer height the plate program builds the mesh `tris` with.
+fn lift(tris: &[Triangle]) -> f64 {
+    let c = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(tris))]),
+    );
+    let m = messages(&c);
+    let ir = c.program.unwrap_or_else(|| panic!("{m}")).into_ir();
+    ir.layers[1].frame.origin[2] - ir.layers[0].frame.origin[2]
+}
+
+/// Whether `p` lies in the box from `lo` to `hi` (in plan, edges included).
+fn in_box(p: [f64; 2], lo: [f64; 3], hi: [f64; 3]) -> bool {
+    (0..2).all(|i| lo[i] - 1e-9 <= p[i] && p[i] <= hi[i] + 1e-9)
+}
+
+#[test]
+fn overlapping_shells_are_refused_on_the_first_layer_they_share() {
+    // A 10 mm box 3.5 mm tall, and a second standing in it from 1.5 mm up,
+    // overlapping it by 5 × 5 mm in plan: the layers cut below 1.5 mm see
+    // one square, the first above both.
+    let (a, b) = (
+        ([0.0, 0.0, 0.0], [10.0, 10.0, 3.5]),
+        ([5.0, 5.0, 1.5], [15.0, 15.0, 3.5]),
+    );
+    let lift = lift(&cuboid(a.0, a.1));
+    let mut tris = cuboid(a.0, a.1);
+    tris.extend(cuboid(b.0, b.1));
+    let c = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(&tris))]),
+    );
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    let (layer, z, p) = overlap_numbers(&m);
+    // Each layer is cut halfway up: the first cut above the second box's
+    // floor.
+    let first = (1..).find(|&k| (k as f64 - 0.5) * lift > b.0[2]).unwrap();
+    assert_eq!(layer, first, "{m}");
+    // The message's z to its 4 significant digits.
+    assert!((z - (first as f64 - 0.5) * lift).abs() < 1e-3, "{m}");
+    assert!(in_box(p, a.0, a.1) && in_box(p, b.0, b.1), "{p:?}: {m}");
+    assert!(
+        c.diagnostics.iter().any(|d| d
+            .help
+            .as_deref()
+            .is_some_and(|h| h.contains("unite the shells"))),
+        "{m}"
+    );
+}
+
+#[test]
+fn a_shell_inside_another_is_refused_at_a_point_of_both() {
+    // No loops cross: the inner square lies straight in the outer one, with
+    // no hole between, and would be laid twice.
+    let (a, b) = (
+        ([0.0, 0.0, 0.0], [20.0, 20.0, 2.0]),
+        ([5.0, 6.0, 0.0], [12.0, 13.0, 2.0]),
+    );
+    let lift = lift(&cuboid(a.0, a.1));
+    let mut tris = cuboid(a.0, a.1);
+    tris.extend(cuboid(b.0, b.1));
+    let c = compile(
+        &source("profile = mesh(\"part.stl\")"),
+        BTreeMap::from([("part.stl", stl::to_binary(&tris))]),
+    );
+    let m = messages(&c);
+    let (layer, z, p) = overlap_numbers(&m);
+    assert_eq!(layer, 1, "{m}");
+    assert!((z - lift / 2.0).abs() < 1e-3, "{m}");
+    assert!(in_box(p, a.0, a.1) && in_box(p, b.0, b.1), "{p:?}: {m}");
+}
+
+#[test]
+fn shells_apart_and_islands_in_holes_still_build() {
+    // Two boxes 1 mm apart: two islands on every layer.
+    let mut apart = cuboid([0.0, 0.0, 0.0], [10.0, 10.0, 2.0]);
+    apart.extend(cuboid([11.0, 0.0, 0.0], [21.0, 10.0, 2.0]));
+    let src = source("profile = mesh(\"part.stl\")");
+    for r in regions(&src, stl::to_binary(&apart)) {
+        assert_eq!(r.outer().len(), 2);
+        assert!((r.area() - 200.0).abs() < 1e-6, "{}", r.area());
+    }
+    // A 60 mm box with a hole of radius 18; in the hole a 20 mm box with a
+    // hole of radius 6, and in that hole a 6 mm pillar: outline, hole,
+    // island, its hole, island.
+    let n = 32;
+    let mut nested = box_with_hole([30.0, 30.0], 30.0, 18.0, 2.0, n);
+    nested.extend(box_with_hole([30.0, 30.0], 10.0, 6.0, 2.0, n));
+    nested.extend(cuboid([27.0, 27.0, 0.0], [33.0, 33.0, 2.0]));
+    let want = 3600.0 - ngon(18.0, n) + 400.0 - ngon(6.0, n) + 36.0;
+    let layers = regions(&src, stl::to_binary(&nested));
+    assert_eq!(layers.len(), 3);
+    for r in layers {
+        assert_eq!((r.outer().len(), r.holes().len()), (3, 2));
+        assert!(
+            (r.area() - want).abs() < 1e-3,
+            "{} against {want}",
+            r.area()
+        );
+    }
+}
+
+/// The number after `before` and up to ` mm` in `s`.
+fn number_after(s: &str, before: &str) -> f64 {
+    let rest = s
+        .split(before)
+        .nth(1)
+        .unwrap_or_else(|| panic!("no `{before}` in {s}"));
+    let end = rest.find(" mm").unwrap();
+    rest[..end].parse().unwrap_or_else(|_| panic!("{rest}"))
+}
+
+#[test]
+fn a_mesh_a_hair_below_the_plate_says_by_how_much_and_the_z_that_fixes_it() {
+    // A box laid on its side by 1.5708 rad, not quite a quarter turn: its
+    // far top edge ends 5 mm · cos(1.5708) below the plate.
+    let (lo, hi) = ([0.0, 0.0, 0.0], [10.0, 10.0, 5.0]);
+    let bytes = stl::to_binary(&cuboid(lo, hi));
+    // The rounded quarter turn a user types is the point of the test.
+    #[allow(clippy::approx_constant)]
+    let turn = 1.5708_f64;
+    let below = hi[2] * turn.cos();
+    assert!(below < -1e-6);
+    let call = |z: &str| {
+        format!("profile = mesh(\"part.stl\", turn = [{turn} rad, 0 deg, 0 deg], at = [0 mm, 0 mm, {z}])")
+    };
+    let c = compile(
+        &source(&call("0 mm")),
+        BTreeMap::from([("part.stl", bytes.clone())]),
+    );
+    let m = messages(&c);
+    let shown = number_after(&m, "lowest point at z = ");
+    assert!(m.contains("mm, below the plate"), "{m}");
+    assert!(
+        shown < 0.0 && (shown - below).abs() <= 0.05 * below.abs(),
+        "{m}"
+    );
+    let help = c.diagnostics.iter().find_map(|d| d.help.clone()).unwrap();
+    let fix = number_after(&help, "`at` to ");
+    assert!((0.0..=1e-6).contains(&(fix + below)), "{help}");
+    // Following the advice builds.
+    let c = compile(
+        &source(&call(&format!("{fix} mm"))),
+        BTreeMap::from([("part.stl", bytes)]),
+    );
+    assert!(c.program.is_some(), "{}", messages(&c));
+}
+
+#[test]
+fn a_lowest_point_within_a_millionth_of_a_mm_is_on_the_plate() {
+    let bytes = stl::to_binary(&cuboid([0.0, 0.0, 2.0], [10.0, 10.0, 4.0]));
+    let at = |z: &str| format!("profile = mesh(\"part.stl\", at = [0 mm, 0 mm, {z} mm])");
+    for z in ["-2.0000009", "-1.9999991"] {
+        let c = compile(
+            &source(&at(z)),
+            BTreeMap::from([("part.stl", bytes.clone())]),
+        );
+        assert!(c.program.is_some(), "{z}: {}", messages(&c));
+    }
+    // The box's floor is at the file's z = 2 mm: -2 mm for `at`'s z stands
+    // it on the plate.
+    for (z, low, place) in [
+        ("-2.0000011", "-0.0000011", "below"),
+        ("-1.9999989", "0.0000011", "above"),
+    ] {
+        let c = compile(
+            &source(&at(z)),
+            BTreeMap::from([("part.stl", bytes.clone())]),
+        );
+        let m = messages(&c);
+        assert!(
+            m.contains(&format!("lowest point at z = {low} mm, {place} the plate")),
+            "{m}"
+        );
+        let help = c.diagnostics.iter().find_map(|d| d.help.clone()).unwrap();
+        assert_eq!(number_after(&help, "`at` to "), -2.0, "{help}");
+    }
+}
+
+/// The fewest points a raster fill of a mesh of volume `v`, surface `s`,
+/// diagonal in plan `d` and height `h` lays in layers `lift` apart, tracks
+/// `offset` apart inside `contours` contours: what docs/language.md gives.
+fn least_fill_points([v, s, d, h]: [f64; 4], lift: f64, offset: f64, contours: f64) -> f64 {
+    let raster = v - s * (contours + 1.0) * offset;
+    let n = (h / lift).ceil();
+    2.0 * (raster / (lift * d * offset) - n).max(0.0)
+}
+
+#[test]
+fn a_mesh_in_the_wrong_units_is_refused_before_slicing_with_its_size() {
+    // A 60 × 30 × 22 box written in mm, read in metres.
+    let (x, y, z) = (60.0, 30.0, 22.0);
+    let bytes = stl::to_binary(&cuboid([0.0; 3], [x, y, z]));
+    let src = |units: &str| source(&format!("profile = mesh(\"part.stl\", units = {units})"));
+    // In mm it builds: its fill has at least the points the bound says.
+    let c = compile(&src("mm"), BTreeMap::from([("part.stl", bytes.clone())]));
+    let m = messages(&c);
+    let ir = c.program.unwrap_or_else(|| panic!("{m}")).into_ir();
+    let lift = ir.layers[1].frame.origin[2] - ir.layers[0].frame.origin[2];
+    // plate.lmd: tracks 1.6 mm apart, no contour (the default with a
+    // raster).
+    let (offset, contours) = (1.6, 0.0);
+    let box_numbers = |k: f64| {
+        let (a, b, c) = (x * k, y * k, z * k);
+        [a * b * c, 2.0 * (a * b + b * c + c * a), a.hypot(b), c]
+    };
+    let laid: usize = ir
+        .layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .filter(|p| p.kind == lmdc::ir::PathKind::Infill)
+        .map(|p| p.points.len())
+        .sum();
+    let bound = least_fill_points(box_numbers(1.0), lift, offset, contours);
+    assert!(bound > 0.0 && bound <= laid as f64, "{bound} > {laid}");
+    // In metres it is refused at once, with its size and the unit in which
+    // it would fit.
+    let c = compile(&src("m"), BTreeMap::from([("part.stl", bytes)]));
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    assert!(
+        m.contains("(read in `units = m`) is 60000 × 30000 × 22000 mm as placed"),
+        "{m}"
+    );
+    let layers = (z * 1000.0 / lift).ceil() as usize;
+    assert!(m.contains(&format!("its {layers} layers of ")), "{m}");
+    let least = least_fill_points(box_numbers(1000.0), lift, offset, contours);
+    let shown = number_after(&m.replace(" points", " mm"), "need at least ");
+    assert!(
+        (shown - least).abs() <= 1e-6 * least,
+        "{shown} against {least}"
+    );
+    assert!(least > 20_000_000.0);
+    assert!(m.contains("more than the 20000000 a plan may hold"), "{m}");
+    assert!(
+        c.diagnostics
+            .iter()
+            .any(|d| d.code == lmdc::diag::Code::TooManyPoints
+                && d.help
+                    .as_deref()
+                    .is_some_and(|h| h.contains("in mm it would be 60 × 30 × 22 mm"))),
+        "{m}"
+    );
+}

@@ -184,7 +184,7 @@ codes! {
     Sheet = "sheet", Values,
         "a measurement sheet (`lmdc fit`, `model = fit(…, data = …)`) lmdc cannot read: a cell that is not a number greater than zero (with its line and column), a row with more cells than the header, a measured row without a speed, a header without a `speed` column";
     Mesh = "mesh", Values,
-        "a `mesh(…)` lmdc cannot build: a file that cannot be read or is no STL or 3MF lmdc reads (with where it goes wrong: an STL's line or triangle; a 3MF's build item, object, triangle and vertex index), a 3MF whose `unit` disagrees with `units`, a mesh that is open, non-manifold or has triangles facing both ways (with the triangles' numbers in the file and where), a mesh not standing on the plate, or a layer whose section is empty, does not close or has a hole in no outline (with the layer and a point)";
+        "a `mesh(…)` lmdc cannot build: a file that cannot be read or is no STL or 3MF lmdc reads (with where it goes wrong: an STL's line or triangle; a 3MF's build item, object, triangle and vertex index), a 3MF whose `unit` disagrees with `units`, a mesh that is open, non-manifold or has triangles facing both ways (with the triangles' numbers in the file and where), a mesh not standing on the plate, or a layer whose section is empty, does not close, has a hole in no outline, or has loops of two shells that overlap, cross or touch (with the layer, counted from 1, the height of its cut and a point)";
     SheetUnits = "sheet-units", Values,
         "a measurement sheet's header names a column lmdc reads (`speed`, `height`, `width`, `area`, `mass`, `feed`, `length`, `power`) without its unit in brackets, in a unit lmdc does not convert, or twice";
     TooFewPoints = "too-few-points", Values,
@@ -278,7 +278,7 @@ codes! {
     SlowLoop = "slow-loop", Feasibility,
         "the height loop settles in more layers than the build has: an error when less than half of an error is corrected by the last layer (naming the (m/s)/mm reading when 1000 times the gains would do), else a warning with the gains that settle in time";
     TooManyPoints = "too-many-points", Feasibility,
-        "the plan would exceed 20 M points (or 100 000 a layer)";
+        "the plan would exceed 20 M points (or 100 000 a layer); for a mesh, found before slicing from its size (with the size in mm and a `units` in which it would fit)";
     NonFinite = "non-finite", Feasibility,
         "a computed value is not finite: a bug in lmdc, please report it";
     BadDirection = "bad-direction", Feasibility,

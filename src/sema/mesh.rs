@@ -8,12 +8,9 @@ use super::schema::solid::{mesh, MESH};
 use super::value::{Call, Value};
 use super::DataReader;
 use crate::diag::{message, Diagnostics};
-use crate::geometry::mesh::{stl, three_mf, Mesh, Placement};
+use crate::geometry::mesh::{plate_z, stl, three_mf, Mesh, Placement, ON_PLATE};
 use crate::span::Span;
 use crate::units::{Dim, Length};
-
-/// The lowest point may be this far (mm) from the plate.
-const ON_PLATE: f64 = 1e-6;
 
 /// Reads `mesh(…)` (the call `c` at `at`), its file through `data`.
 pub fn read(
@@ -77,7 +74,7 @@ pub fn read(
         diags.push(message::mesh::not_on_plate(
             &path,
             lo[2],
-            place.0[2] - lo[2],
+            plate_z(place.0[2] - lo[2]),
             where_,
         ));
         return None;
@@ -86,6 +83,7 @@ pub fn read(
         path,
         mesh: std::sync::Arc::new(m),
         top: Length(hi[2]),
+        scale,
         span: at,
     })
 }

@@ -715,6 +715,8 @@ pub struct MeshSolid {
     pub mesh: std::sync::Arc<crate::geometry::mesh::Mesh>,
     /// Its highest point (mm): the extrusion's height unless one is written.
     pub top: Length,
+    /// The file's unit: mm per file unit (from `units`, or a 3MF's `unit`).
+    pub scale: f64,
     /// The `mesh(…)` call.
     pub span: Span,
 }

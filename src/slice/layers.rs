@@ -104,6 +104,7 @@ pub fn plan(
             out
         }
         LayerProfile::Mesh(m) => {
+            super::mesh::plausible(m, n, lift, slicing, diags)?;
             let shapes = super::mesh::shapes(m, n, lift, diags)?;
             let total = shapes
                 .iter()

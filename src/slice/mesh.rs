@@ -6,8 +6,83 @@
 
 use crate::diag::{message, Diagnostics};
 use crate::geometry::mesh::{self, Loop};
-use crate::sema::model::{Hole, MeshSolid, Outline, RegionShape, Segment, Shape};
+use crate::sema::model::{Hole, MeshSolid, Outline, PlanarSlicing, RegionShape, Segment, Shape};
+use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
+
+/// The units `mesh(units = …)` takes, with mm per unit: the ones a hint
+/// may suggest.
+const UNITS: [(&str, f64); 4] = [("mm", 1.0), ("in", 25.4), ("cm", 10.0), ("m", 1000.0)];
+
+/// A lower bound of the points a raster fill of the mesh `m`, scaled by
+/// `k`, lays in the layers `lift` apart that build its height, with tracks
+/// `offset` apart inside `contours` contours. The raster fills the layers'
+/// sections less a band along their outlines `(contours + 1)·offset` wide
+/// (contours, and half a track's room, with half as much again to spare),
+/// whose volume over all layers is at most the mesh's surface area times
+/// that width. A layer of raster area `A` no wider than the mesh's
+/// diagonal `D` in plan spans at least `A/D` across any direction, so it
+/// is crossed by at least `A/(D·offset) − 1` raster lines of two ends
+/// each; the layers' areas times the lift add up to the volume. `None` for
+/// a fill without raster, for which no such bound holds.
+fn least_fill_points(m: &MeshSolid, k: f64, lift: f64, slicing: &PlanarSlicing) -> Option<f64> {
+    slicing.infill.as_ref()?;
+    let (lo, hi) = m.mesh.bounds();
+    let diagonal = (hi[0] - lo[0]).hypot(hi[1] - lo[1]) * k;
+    let n = ((hi[2] - lo[2]) * k / lift).ceil();
+    let band = (slicing.contours as f64 + 1.0) * slicing.offset.0;
+    let raster = m.mesh.volume() * k.powi(3) - m.mesh.surface() * k * k * band;
+    let lines = raster / (lift * diagonal * slicing.offset.0) - n;
+    Some(2.0 * lines.max(0.0))
+}
+
+/// Refuses, before any layer is cut, a mesh whose fill would need more
+/// points than a plan may hold ([`MAX_TOTAL_POINTS`]) by a lower bound
+/// ([`least_fill_points`]): a part in the wrong `units` (metres for
+/// millimetres) would otherwise be sliced for minutes and gigabytes before
+/// the fill's own check stops it. The hint names a unit in which it fits.
+pub fn plausible(
+    m: &MeshSolid,
+    n: usize,
+    lift: Length,
+    slicing: &PlanarSlicing,
+    diags: &mut Diagnostics,
+) -> Option<()> {
+    // A `height` or `layers` below the mesh's top builds part of it: its
+    // volume says nothing then.
+    let whole = n as f64 * lift.0 >= m.top.0 * (1.0 - 1e-9);
+    let Some(least) = least_fill_points(m, 1.0, lift.0, slicing).filter(|_| whole) else {
+        return Some(());
+    };
+    if least <= MAX_TOTAL_POINTS as f64 {
+        return Some(());
+    }
+    let (lo, hi) = m.mesh.bounds();
+    let size = [0, 1, 2].map(|i| hi[i] - lo[i]);
+    let unit = UNITS.iter().find(|u| u.1 == m.scale).map(|u| u.0);
+    let fits = UNITS.iter().find(|&&(_, s)| {
+        let k = s / m.scale;
+        s != m.scale
+            && least_fill_points(m, k, lift.0, slicing)
+                .is_some_and(|p| p <= MAX_TOTAL_POINTS as f64)
+    });
+    let other = fits.map(|&(name, s)| (name, size.map(|x| x * s / m.scale)));
+    diags.push(message::mesh::too_big(
+        &m.path,
+        message::mesh::TooBig {
+            size,
+            unit,
+            layers: n,
+            lift: lift.0,
+            pitch: slicing.offset.0,
+            least,
+            max: MAX_TOTAL_POINTS,
+            other,
+        },
+        m.span,
+    ));
+    None
+}
 
 /// The shape of each of `n` layers `lift` apart; `None` after reporting a
 /// layer whose section is no region.

@@ -6,7 +6,7 @@
 use crate::diag::{Code, Diagnostic};
 use crate::geometry::mesh::stl::{StlError, MAX_TRIANGLES};
 use crate::geometry::mesh::three_mf::{ThreeMfError, MAX_DEPTH, MAX_MODEL_BYTES};
-use crate::geometry::mesh::{MeshFault, SectionFault};
+use crate::geometry::mesh::{MeshFault, SectionFault, ON_PLATE};
 use crate::span::Span;
 use crate::units::short;
 
@@ -157,7 +157,8 @@ pub fn fault(path: &str, f: &MeshFault, at: Span) -> Diagnostic {
 }
 
 /// The placed mesh's lowest point is at `z` (mm), not on the plate at 0:
-/// `at[2]` would be `fix`.
+/// `at[2]` would be `fix` (a decimal chosen so that writing it builds,
+/// shown in full).
 pub fn not_on_plate(path: &str, z: f64, fix: f64, at: Span) -> Diagnostic {
     let place = if z > 0.0 { "above" } else { "below" };
     Diagnostic::error(
@@ -169,9 +170,66 @@ pub fn not_on_plate(path: &str, z: f64, fix: f64, at: Span) -> Diagnostic {
     )
     .label(at, "placed here")
     .help(format!(
-        "set the third number of `at` to {} mm, so the part stands on the plate",
-        short(fix)
+        "set the third number of `at` to {fix} mm, so the part stands on the plate (its lowest point may be up to {ON_PLATE} mm off it)"
     ))
+}
+
+/// What [`too_big`] says: the placed mesh's size and what its fill would
+/// need.
+pub struct TooBig {
+    /// Its size along x, y and z (mm, placed).
+    pub size: [f64; 3],
+    /// The file's unit, when it is one `units` names.
+    pub unit: Option<&'static str>,
+    /// How many layers build it.
+    pub layers: usize,
+    /// The lift (mm).
+    pub lift: f64,
+    /// The track offset (mm).
+    pub pitch: f64,
+    /// The fewest points its fill needs.
+    pub least: f64,
+    /// The most a plan may hold.
+    pub max: usize,
+    /// A unit in which it would fit, and its size then (mm).
+    pub other: Option<(&'static str, [f64; 3])>,
+}
+
+/// `× `-joined sizes, in mm.
+fn size3(s: [f64; 3]) -> String {
+    format!("{} × {} × {} mm", short(s[0]), short(s[1]), short(s[2]))
+}
+
+/// The mesh `path` is too big to fill within the points a plan may hold,
+/// which it would find only after minutes of slicing: most likely a file
+/// read in the wrong unit.
+pub fn too_big(path: &str, t: TooBig, at: Span) -> Diagnostic {
+    let read = t
+        .unit
+        .map(|u| format!(" (read in `units = {u}`)"))
+        .unwrap_or_default();
+    let help = match t.other {
+        Some((u, s)) => format!(
+            "in {u} it would be {}: if the file's numbers are {u}, write `units = {u}` in `mesh(…)`{}",
+            size3(s),
+            if u == "mm" { " or leave `units` out" } else { "" }
+        ),
+        None => "a smaller part, or fewer layers (`height` or `layers`); check the file's `units`".to_string(),
+    };
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!(
+            "the mesh `{path}`{read} is {} as placed: its {} layers of {} mm, filled with tracks {} mm apart, need at least {:.0} points, more than the {} a plan may hold",
+            size3(t.size),
+            t.layers,
+            short(t.lift),
+            short(t.pitch),
+            t.least,
+            t.max
+        ),
+    )
+    .label(at, "this mesh")
+    .help(help)
 }
 
 /// Layer `k`'s section of the mesh, at height `z` (mm), is no region.
@@ -196,6 +254,13 @@ pub fn section(f: &SectionFault, k: usize, z: f64, at: Span) -> Diagnostic {
                 p2(*p)
             ),
             REPAIR.to_string(),
+        ),
+        SectionFault::Overlap { at: p } => (
+            format!(
+                "the sections of two shells of the mesh overlap on {on}, at {}: each shell would be traced and filled in full, crossing the other's contours and laying metal twice where they share",
+                p2(*p)
+            ),
+            "unite the shells into one solid in CAD (a boolean union) and export that one solid, or move the shells apart with a gap between them".to_string(),
         ),
     };
     Diagnostic::error(Code::Mesh, msg)

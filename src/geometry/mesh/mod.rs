@@ -19,6 +19,30 @@ use std::collections::HashMap;
 /// Most triangles a fault lists.
 pub const MAX_LISTED: usize = 8;
 
+/// The lowest point may be this far (mm) from the plate: float noise (an
+/// exact quarter turn's cosine is 6·10⁻¹⁷, not 0), far below any bead.
+pub const ON_PLATE: f64 = 1e-6;
+
+/// The third number of `at` that stands the mesh on the plate, when
+/// `exact` would: in the fewest decimals (0 to 7) that keep the lowest
+/// point within [`ON_PLATE`] of it, rounded up (so the point lands on or
+/// just above the plate, never below), unless `exact` is that decimal to
+/// float noise. Following the advice therefore always builds.
+pub fn plate_z(exact: f64) -> f64 {
+    for d in 0..=7 {
+        let k = 10f64.powi(d);
+        let near = (exact * k).round() / k;
+        if (near - exact).abs() <= 1e-12 * exact.abs().max(1.0) {
+            return near;
+        }
+        let up = (exact * k).ceil() / k;
+        if up - exact <= ON_PLATE / 2.0 {
+            return up;
+        }
+    }
+    exact
+}
+
 /// Where a mesh goes: scaled from its file's units to mm, turned about the
 /// x, then the y, then the z axis, then moved.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -172,13 +196,25 @@ impl Mesh {
         Ok(())
     }
 
-    /// The signed volume (mm³; positive when the triangles face out).
-    fn volume(&self) -> f64 {
+    /// The signed volume (mm³; positive when the triangles face out, as
+    /// they do once [`Mesh::new`] has made it).
+    pub fn volume(&self) -> f64 {
         self.triangles
             .iter()
             .map(|t| {
                 let [a, b, c] = t.map(|i| Vector3::from(self.vertices[i as usize]));
                 a.dot(&b.cross(&c)) / 6.0
+            })
+            .sum()
+    }
+
+    /// The area of its surface (mm²).
+    pub fn surface(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| Vector3::from(self.vertices[i as usize]));
+                (b - a).cross(&(c - a)).norm() / 2.0
             })
             .sum()
     }

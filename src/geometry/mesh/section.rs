@@ -11,6 +11,9 @@
 //! counter-clockwise and holes clockwise.
 
 use super::{Mesh, MAX_LISTED};
+use crate::geometry::profile::TOLERANCE;
+use cavalier_contours::polyline::{FindIntersectsOptions, PlineSource, PlineSourceMut, Polyline};
+use cavalier_contours::static_aabb2d_index::StaticAABB2DIndex;
 use std::collections::HashMap;
 
 /// One closed loop of a section, with the solid on its left.
@@ -42,6 +45,14 @@ pub enum SectionFault {
     /// [`Mesh::new`] has none; kept as a check).
     StrayHole {
         /// A point of the hole.
+        at: [f64; 2],
+    },
+    /// Two loops cross or touch, or an outline lies straight inside
+    /// another (no hole between): two shells of the mesh overlap there, and
+    /// the layer would lay metal twice where they do.
+    Overlap {
+        /// A point the two shells share: where their loops meet, or a
+        /// corner of the inner outline.
         at: [f64; 2],
     },
 }
@@ -221,28 +232,40 @@ pub fn area(l: &[[f64; 2]]) -> f64 {
 /// The loops of a section as islands, each an outline and the holes inside
 /// it, ordered by their lowest, then leftmost, point (the order the planar
 /// slicer starts from before it visits them nearest first). A hole belongs
-/// to the smallest outline round it (an island standing in another's hole
-/// keeps its own holes).
+/// to the smallest loop round it, which must be an outline (an island
+/// standing in another's hole keeps its own holes); an outline's smallest
+/// loop round it must be a hole, if any: an outline straight inside
+/// another, or two loops that cross or touch, are shells that overlap
+/// ([`SectionFault::Overlap`]).
 pub fn islands(loops: Vec<Loop>) -> Result<Vec<Section>, SectionFault> {
-    let (outer, holes): (Vec<Loop>, Vec<Loop>) = loops.into_iter().partition(|l| area(l) > 0.0);
-    if outer.is_empty() {
+    let areas: Vec<f64> = loops.iter().map(|l| area(l)).collect();
+    if !areas.iter().any(|&a| a > 0.0) {
         return Err(SectionFault::Empty);
     }
-    let mut out: Vec<Section> = outer
-        .into_iter()
-        .map(|outline| Section {
-            outline,
-            holes: Vec::new(),
-        })
-        .collect();
-    for h in holes {
-        let p = h[0];
-        let round = (0..out.len())
-            .filter(|&i| inside(&out[i].outline, p))
-            .min_by(|&i, &j| area(&out[i].outline).total_cmp(&area(&out[j].outline)));
-        match round {
-            Some(i) => out[i].holes.push(h),
-            None => return Err(SectionFault::StrayHole { at: p }),
+    let parent = nesting(&loops, &areas)?;
+    // Each outline's island, by the outline's number among the loops.
+    let mut island: Vec<Option<usize>> = vec![None; loops.len()];
+    let mut out: Vec<Section> = Vec::new();
+    for (i, l) in loops.iter().enumerate() {
+        let p = parent[i].map(|j| areas[j] > 0.0);
+        match (areas[i] > 0.0, p) {
+            (true, None | Some(false)) => {
+                island[i] = Some(out.len());
+                out.push(Section {
+                    outline: l.clone(),
+                    holes: Vec::new(),
+                });
+            }
+            (true, Some(true)) => return Err(SectionFault::Overlap { at: l[0] }),
+            (false, Some(true)) => {}
+            (false, None | Some(false)) => return Err(SectionFault::StrayHole { at: l[0] }),
+        }
+    }
+    for (i, l) in loops.into_iter().enumerate() {
+        if let (false, Some(j)) = (areas[i] > 0.0, parent[i]) {
+            if let Some(k) = island[j] {
+                out[k].holes.push(l);
+            }
         }
     }
     out.sort_by(|a, b| {
@@ -250,6 +273,97 @@ pub fn islands(loops: Vec<Loop>) -> Result<Vec<Section>, SectionFault> {
         p[1].total_cmp(&q[1]).then(p[0].total_cmp(&q[0]))
     });
     Ok(out)
+}
+
+/// Each loop's parent: the smallest loop round it, if any; the
+/// [`SectionFault::Overlap`] of the first two loops found to cross or
+/// touch. Only loops whose bounding boxes overlap are compared (a sweep
+/// over the boxes sorted by their left side), so a layer of many small
+/// loops side by side costs little more than sorting them.
+fn nesting(loops: &[Loop], areas: &[f64]) -> Result<Vec<Option<usize>>, SectionFault> {
+    let boxes: Vec<[[f64; 2]; 2]> = loops.iter().map(bounds).collect();
+    let mut order: Vec<usize> = (0..loops.len()).collect();
+    order.sort_by(|&a, &b| boxes[a][0][0].total_cmp(&boxes[b][0][0]));
+    let plines: Vec<Polyline<f64>> = loops.iter().map(pline).collect();
+    let mut index: Vec<Option<StaticAABB2DIndex<f64>>> = (0..loops.len()).map(|_| None).collect();
+    let mut parent: Vec<Option<usize>> = vec![None; loops.len()];
+    for (k, &a) in order.iter().enumerate() {
+        for &b in &order[k + 1..] {
+            if boxes[b][0][0] > boxes[a][1][0] {
+                break;
+            }
+            if boxes[b][0][1] > boxes[a][1][1] || boxes[a][0][1] > boxes[b][1][1] {
+                continue;
+            }
+            // The longer loop's segment index, built once, serves every
+            // shorter loop tested against it (an outline round many holes).
+            let (big, small) = if loops[a].len() >= loops[b].len() {
+                (a, b)
+            } else {
+                (b, a)
+            };
+            let idx = index[big].get_or_insert_with(|| plines[big].create_approx_aabb_index());
+            if let Some(at) = meet(&plines[big], idx, &plines[small]) {
+                return Err(SectionFault::Overlap { at });
+            }
+            for (outer, inner) in [(a, b), (b, a)] {
+                let holds =
+                    encloses(boxes[outer], boxes[inner]) && inside(&loops[outer], loops[inner][0]);
+                let smaller = parent[inner].is_none_or(|p| areas[outer].abs() < areas[p].abs());
+                if holds && smaller {
+                    parent[inner] = Some(outer);
+                }
+            }
+        }
+    }
+    Ok(parent)
+}
+
+/// A point where closed polylines `p` (indexed by `index`) and `q` cross
+/// or touch, if they do.
+fn meet(p: &Polyline<f64>, index: &StaticAABB2DIndex<f64>, q: &Polyline<f64>) -> Option<[f64; 2]> {
+    let options = FindIntersectsOptions {
+        pline1_aabb_index: Some(index),
+        pos_equal_eps: TOLERANCE,
+    };
+    let found = p.find_intersects_opt(q, &options);
+    found
+        .basic_intersects
+        .first()
+        .map(|i| [i.point.x, i.point.y])
+        .or_else(|| {
+            found
+                .overlapping_intersects
+                .first()
+                .map(|o| [o.point1.x, o.point1.y])
+        })
+}
+
+/// A loop as a closed polyline of lines.
+fn pline(l: &Loop) -> Polyline<f64> {
+    let mut pl = Polyline::new_closed();
+    for p in l {
+        pl.add(p[0], p[1], 0.0);
+    }
+    pl
+}
+
+/// The loop's bounding box, `[low corner, high corner]`.
+fn bounds(l: &Loop) -> [[f64; 2]; 2] {
+    l.iter().fold(
+        [[f64::INFINITY; 2], [f64::NEG_INFINITY; 2]],
+        |[lo, hi], p| {
+            [
+                [lo[0].min(p[0]), lo[1].min(p[1])],
+                [hi[0].max(p[0]), hi[1].max(p[1])],
+            ]
+        },
+    )
+}
+
+/// Whether box `a` holds box `b`.
+fn encloses(a: [[f64; 2]; 2], b: [[f64; 2]; 2]) -> bool {
+    a[0][0] <= b[0][0] && a[0][1] <= b[0][1] && b[1][0] <= a[1][0] && b[1][1] <= a[1][1]
 }
 
 /// The loop's lowest point (least y, then least x).

@@ -276,3 +276,23 @@ fn two_boxes_are_two_islands_each_with_its_hole() {
     let high = islands(s.loops(4.0).unwrap()).unwrap();
     assert_eq!(high.len(), 1);
 }
+
+#[test]
+fn plate_z_is_the_shortest_decimal_that_stands_the_mesh_on_the_plate() {
+    assert_eq!(plate_z(2.5), 2.5);
+    assert_eq!(plate_z(0.0), 0.0);
+    // 5 decimals would leave it 1.1e-6 mm up: off the plate.
+    assert_eq!(plate_z(12.345_678_9), 12.345_679);
+    assert_eq!(plate_z(0.000_022_04), 0.000_022_1);
+    // Whatever the value, the lowest point lands on the plate or at most
+    // half the tolerance above it, never below.
+    let mut x = 0.000_000_3_f64;
+    while x < 500.0 {
+        let r = plate_z(x);
+        assert!(
+            (r - x).abs() <= 1e-12 * x.max(1.0) || (0.0..=ON_PLATE / 2.0).contains(&(r - x)),
+            "{x} -> {r}"
+        );
+        x = x * 1.37 + 1e-7;
+    }
+}
