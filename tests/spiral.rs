@@ -258,6 +258,13 @@ fn a_first_climb_the_bead_cannot_lay_is_refused_with_its_height_and_speed() {
         .parse()
         .unwrap();
     assert!(worst > 1.9 * h && worst < 2.0 * h + 1e-3, "{worst} {h}");
+    // The advice is a spiral's: the first climb lays twice over, and a
+    // lifted layer change lays one height everywhere.
+    let help = height.help.as_deref().unwrap();
+    assert!(
+        help.contains("up to two layer heights") && help.contains("`layer_change = lift`"),
+        "{help}"
+    );
     assert!(c
         .diagnostics
         .iter()

@@ -122,7 +122,10 @@ impl Range {
 /// height out of range.
 fn layering(p: &Program) -> Layering {
     let o = &p.origins;
-    if o.top.is_some() {
+    if p.continuous && p.ring.is_none() {
+        // A program in one run that is no ring: a spiral wall.
+        Layering::Spiral
+    } else if o.top.is_some() {
         Layering::Variable
     } else if o.spine.is_none() {
         // Planar layers have no spine: their height is the declared or derived lift.

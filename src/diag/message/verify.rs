@@ -84,6 +84,9 @@ pub enum Layering {
     Bent,
     /// Layers following a variable top (H/N each).
     Variable,
+    /// A wall climbing in a spiral (`layer_change = spiral`): its first
+    /// layer's climb lays up to two layer heights, rising off the plate.
+    Spiral,
 }
 
 /// Which end of a range a value passes.
@@ -123,6 +126,8 @@ pub fn point_out_of_range(
         (Height(Layering::Variable), _) => "a variable layer lays H/N where the top is H: `layers = auto` picks the fewest layers that keep it within the bead's heights",
         (Height(Layering::Bent), Below) => "use more layers' worth of height per layer (fewer layers), a larger bend radius, or a bead model that reaches lower heights",
         (Height(Layering::Bent), Above) => "use more layers, a larger bend radius, or a bead model that reaches higher beads",
+        (Height(Layering::Spiral), Below) => "a spiral wall lays one layer height at every point (on a bent spine, the thin side's): fewer layers, a larger bend radius, a bead model that reaches lower heights, or `layer_change = lift`",
+        (Height(Layering::Spiral), Above) => "a spiral wall's first layer climbs off the plate and lays up to two layer heights where its climb ends (more, on a bent spine's thick side): a bead model that reaches twice the layer height, more layers, or `layer_change = lift`, which lays one on every layer",
         (Speed, Below) => "the bead model is not valid this slow: widen its speed range if the process allows",
         (Speed, Above) => "the bead model is not valid this fast: widen its speed range if the process allows",
         (Power, Below) => "raise the power schedule into the laser's range",
