@@ -609,6 +609,9 @@ slicing planar { offset = 1.6 mm  infill = raster(angle = 0 deg) }";
     few_contours: FewContours, PLATE, "slicing planar { layers = 2  offset = 1.6 mm  contours = 5 }";
     powder_mismatch: PowderMismatch, DUCT,
         "bead b { width = 6 mm  speed = 7 mm/s .. 10 mm/s  model = mass_balance(feed = 40 g/min, efficiency = 35 %, density = 7.9 g/cm^3) }";
+    // The density in kg/m^3 for g/cm^3: a thousand times the bead.
+    tall_bead: TallBead, DUCT,
+        "bead b { width = 6 mm  speed = 7 mm/s .. 10 mm/s  model = mass_balance(feed = 40 g/min, efficiency = 35 %, density = 7.9 kg/m^3) }";
     unused: Unused, PLATE, "inheritance { band = 1 mm  hit = 99 % }";
     overlap_stretch: OverlapStretch, WALL,
         "extrude wall { profile = rectangle(width = 30 mm, height = 12 mm)  size = outer  bead = b316  top = 8 mm + 50 % * (y + 6 mm) }

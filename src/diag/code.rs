@@ -361,6 +361,8 @@ codes! {
         "a raster layer has spots more than ¾ of a bead width from every track centre line (not a bead wide, but a quarter bead unreached); names the farthest";
     FewContours = "few-contours", Warnings,
         "fewer contour passes fit inside the profile than `contours` asks for (named: the first such layer)";
+    TallBead = "tall-bead", Warnings,
+        "a mass-balance bead model that lays more than a square of its width in cross-section at its slowest speed (a one-bead wall would rise more than its width a layer): no nozzle lays that; a density, feed or efficiency in the wrong unit most often";
     PowderMismatch = "powder-mismatch", Warnings,
         "a mass-balance bead model fitted at another powder feed than the process feeds";
     Unused = "unused", Warnings,

@@ -395,6 +395,19 @@ fn heights(
         ));
         return None;
     }
+    // A mass balance's bead is a flat cap, a fraction of its width high: a
+    // cross-section of more than a square of its width (a one-bead wall
+    // rising more than its width a layer) is no bead a nozzle lays, but a
+    // density or feed in the wrong unit.
+    let area = deposit.area(Speed(speed[0]), None);
+    if matches!(model, HeightModel::MassBalance { .. }) && area > w.0 * w.0 {
+        diags.push(message::bead::taller_than_wide(
+            Length(area / w.0),
+            Speed(speed[0]),
+            w,
+            model_span,
+        ));
+    }
     let (height, height_span) = match (height, model) {
         // Planar layers of a measured bead rise by A/w (one track) up to its
         // bead's height (tracks at the flat-top offset A/h): the heights it

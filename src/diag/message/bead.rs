@@ -375,3 +375,18 @@ pub fn measured_as_with_mass_balance(at: Span, model: Span) -> Diagnostic {
     .label(model, "mass balance")
     .help("drop `measured_as`")
 }
+
+/// A mass-balance bead whose cross-section at `v` would raise a one-bead
+/// wall `rise` a layer, more than its width `w`.
+pub fn taller_than_wide(rise: Length, v: Speed, w: Length, model: Span) -> Diagnostic {
+    Diagnostic::warning(
+        Code::TallBead,
+        format!(
+            "this mass balance lays so much at {v} that a wall one bead wide would rise {rise} a layer, more than the bead's {w} width"
+        ),
+    )
+    .label(model, "the model")
+    .help(
+        "a laid bead is a flat cap, a fraction of its width high: check the units of the density (steel is about 7.9 g/cm^3, not kg/m^3), the feed (g/min) and the efficiency (%)",
+    )
+}
