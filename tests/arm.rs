@@ -297,6 +297,17 @@ fn krl_first_pose_solves_back_to_the_reported_axes() {
     assert!(checked >= 3);
 }
 
+/// The part's highest point: the highest focus of the IR, mm.
+fn highest_focus(p: &lmdc::verify::Verified) -> f64 {
+    p.ir()
+        .layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .flat_map(|p| &p.points)
+        .map(|pt| pt.focus()[2])
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
 /// The G-code's first move is the safe lift: rs274's first traverse moves
 /// Z alone (X and Y stay where the machine stands, 0 in rs274), to above
 /// every point of the part; the program ends at that height.
@@ -311,14 +322,7 @@ fn gcode_starts_and_ends_at_the_safe_height() {
         return;
     }
     let p = build("examples/sprocket_tooth.lmd");
-    let top = p
-        .ir()
-        .layers
-        .iter()
-        .flat_map(|l| &l.paths)
-        .flat_map(|p| &p.points)
-        .map(|pt| pt.focus()[2])
-        .fold(f64::NEG_INFINITY, f64::max);
+    let top = highest_focus(&p);
     for (i, m) in p.ir().machines.iter().enumerate() {
         let Machine::Cnc(c) = m else { continue };
         let text: String = files(&p, i).into_values().collect();
@@ -360,14 +364,7 @@ fn gcode_starts_and_ends_at_the_safe_height() {
 #[test]
 fn a_safe_height_below_the_part_is_refused_and_one_above_is_kept() {
     let p = build("examples/sprocket_tooth.lmd");
-    let top = p
-        .ir()
-        .layers
-        .iter()
-        .flat_map(|l| &l.paths)
-        .flat_map(|p| &p.points)
-        .map(|pt| pt.focus()[2])
-        .fold(f64::NEG_INFINITY, f64::max);
+    let top = highest_focus(&p);
     let clearance = 5.0;
     let with = |safe: f64| {
         crate::support::example::edited(

@@ -22,6 +22,31 @@ use cavalier_contours::polyline::{
 /// is on it.
 pub const TOLERANCE: f64 = 1e-9;
 
+/// A point where the closed polylines `p` (indexed by `index`, when it has
+/// one) and `q` cross or touch, if they do: where a region's loops, or a
+/// mesh section's, meet.
+pub fn meet(
+    p: &Polyline<f64>,
+    index: Option<&cavalier_contours::static_aabb2d_index::StaticAABB2DIndex<f64>>,
+    q: &Polyline<f64>,
+) -> Option<[f64; 2]> {
+    let options = cavalier_contours::polyline::FindIntersectsOptions {
+        pline1_aabb_index: index,
+        pos_equal_eps: TOLERANCE,
+    };
+    let found = p.find_intersects_opt(q, &options);
+    found
+        .basic_intersects
+        .first()
+        .map(|i| [i.point.x, i.point.y])
+        .or_else(|| {
+            found
+                .overlapping_intersects
+                .first()
+                .map(|o| [o.point1.x, o.point1.y])
+        })
+}
+
 /// Largest coordinate handed to `cavalier_contours`. Beyond it squared
 /// distances lose every digit that matters (and eventually overflow), so such
 /// profiles are neither offset nor tested for self-intersection.

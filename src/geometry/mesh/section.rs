@@ -11,8 +11,8 @@
 //! counter-clockwise and holes clockwise.
 
 use super::{Mesh, MAX_LISTED};
-use crate::geometry::profile::TOLERANCE;
-use cavalier_contours::polyline::{FindIntersectsOptions, PlineSource, PlineSourceMut, Polyline};
+use crate::geometry::profile::meet;
+use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::static_aabb2d_index::StaticAABB2DIndex;
 use std::collections::HashMap;
 
@@ -303,7 +303,7 @@ fn nesting(loops: &[Loop], areas: &[f64]) -> Result<Vec<Option<usize>>, SectionF
                 (b, a)
             };
             let idx = index[big].get_or_insert_with(|| plines[big].create_approx_aabb_index());
-            if let Some(at) = meet(&plines[big], idx, &plines[small]) {
+            if let Some(at) = meet(&plines[big], Some(idx), &plines[small]) {
                 return Err(SectionFault::Overlap { at });
             }
             for (outer, inner) in [(a, b), (b, a)] {
@@ -317,26 +317,6 @@ fn nesting(loops: &[Loop], areas: &[f64]) -> Result<Vec<Option<usize>>, SectionF
         }
     }
     Ok(parent)
-}
-
-/// A point where closed polylines `p` (indexed by `index`) and `q` cross
-/// or touch, if they do.
-fn meet(p: &Polyline<f64>, index: &StaticAABB2DIndex<f64>, q: &Polyline<f64>) -> Option<[f64; 2]> {
-    let options = FindIntersectsOptions {
-        pline1_aabb_index: Some(index),
-        pos_equal_eps: TOLERANCE,
-    };
-    let found = p.find_intersects_opt(q, &options);
-    found
-        .basic_intersects
-        .first()
-        .map(|i| [i.point.x, i.point.y])
-        .or_else(|| {
-            found
-                .overlapping_intersects
-                .first()
-                .map(|o| [o.point1.x, o.point1.y])
-        })
 }
 
 /// A loop as a closed polyline of lines.

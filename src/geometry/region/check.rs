@@ -8,7 +8,7 @@
 
 use super::Region;
 use crate::geometry::profile::{Profile, TOLERANCE};
-use cavalier_contours::polyline::{FindIntersectsOptions, PlineSource};
+use cavalier_contours::polyline::PlineSource;
 use cavalier_contours::static_aabb2d_index::StaticAABB2DIndex;
 
 /// Most faults [`Region::faults`] lists: a thousand holes piled on one
@@ -115,21 +115,7 @@ fn meet(
     index: Option<&StaticAABB2DIndex<f64>>,
     other: &Profile,
 ) -> Option<[f64; 2]> {
-    let options = FindIntersectsOptions {
-        pline1_aabb_index: index,
-        pos_equal_eps: TOLERANCE,
-    };
-    let found = p.find_intersects_opt(&other.to_pline(), &options);
-    found
-        .basic_intersects
-        .first()
-        .map(|i| [i.point.x, i.point.y])
-        .or_else(|| {
-            found
-                .overlapping_intersects
-                .first()
-                .map(|o| [o.point1.x, o.point1.y])
-        })
+    crate::geometry::profile::meet(p, index, &other.to_pline())
 }
 
 /// Every pair of holes whose boxes overlap, tested for crossing and nesting:
