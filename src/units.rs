@@ -484,6 +484,16 @@ pub fn short_up(v: f64) -> String {
     short(((v * p) - 1e-9).ceil() / p)
 }
 
+/// How many mm one `unit` of length is (`mm`, `cm`, `m`, `in`, … as the
+/// unit table reads them; 1 for a word it does not know): what a mesh's
+/// `units` scale its coordinates by.
+pub fn mm_per(unit: &str) -> f64 {
+    parse_unit(unit)
+        .ok()
+        .filter(|(_, d)| *d == Dim::LENGTH)
+        .map_or(1.0, |(f, _)| f)
+}
+
 /// Formats a number for messages: at most 4 significant decimals, no trailing zeros.
 pub fn short(v: f64) -> String {
     if !v.is_finite() {

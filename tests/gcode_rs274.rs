@@ -376,12 +376,7 @@ fn examples_run_in_rs274_and_follow_the_ir() {
         return;
     }
     let mut checked = 0;
-    let mut files: Vec<_> = std::fs::read_dir("examples")
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "lmd"))
-        .collect();
-    files.sort();
+    let files = crate::support::example::files();
     for f in files {
         let src = std::fs::read_to_string(&f).unwrap();
         let ir = crate::support::example::compile_file(&f, &src)

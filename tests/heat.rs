@@ -272,12 +272,7 @@ fn deposits_start_at_their_points(p: &lmdc::ir::Program) -> Result<usize, String
 /// layer's first bead on the way down.
 #[test]
 fn every_deposit_runs_between_its_ir_points_cooled_or_not() {
-    let mut files: Vec<_> = std::fs::read_dir("examples")
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "lmd"))
-        .collect();
-    files.sort();
+    let mut files = crate::support::example::files();
     // The planar one-bead wall climbing in a spiral, as its golden case.
     files.push("tests/cases/planar/spiral_wall/input.lmd".into());
     let mut cooled = 0;

@@ -32,12 +32,7 @@ pub fn read(
     let bytes = read(&path)
         .map_err(|why| diags.push(message::mesh::unreadable(&path, &why, file_at)))
         .ok()?;
-    let scale = match units {
-        "cm" => 10.0,
-        "m" => 1000.0,
-        "in" => 25.4,
-        _ => 1.0,
-    };
+    let scale = crate::units::mm_per(units);
     let (tris, scale) = if is_3mf(&path, &bytes) {
         let m = three_mf::read(&bytes)
             .map_err(|e| diags.push(message::mesh::not_3mf(&path, &e, file_at)))

@@ -10,10 +10,6 @@ use crate::sema::model::{Hole, MeshSolid, Outline, PlanarSlicing, RegionShape, S
 use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
 
-/// The units `mesh(units = …)` takes, with mm per unit: the ones a hint
-/// may suggest.
-const UNITS: [(&str, f64); 4] = [("mm", 1.0), ("in", 25.4), ("cm", 10.0), ("m", 1000.0)];
-
 /// A lower bound of the points a raster fill of the mesh `m`, scaled by
 /// `k`, lays in the layers `lift` apart that build its height, with tracks
 /// `offset` apart inside `contours` contours. The raster fills the layers'
@@ -59,8 +55,17 @@ pub fn plausible(
     }
     let (lo, hi) = m.mesh.bounds();
     let size = [0, 1, 2].map(|i| hi[i] - lo[i]);
-    let unit = UNITS.iter().find(|u| u.1 == m.scale).map(|u| u.0);
-    let fits = UNITS.iter().find(|&&(_, s)| {
+    // The units `mesh(units = …)` takes, with mm per unit: the ones a hint
+    // may suggest.
+    let units: Vec<(&str, f64)> = crate::sema::schema::solid::mesh::UNITS
+        .kind
+        .words()
+        .unwrap_or(&[])
+        .iter()
+        .map(|&u| (u, crate::units::mm_per(u)))
+        .collect();
+    let unit = units.iter().find(|u| u.1 == m.scale).map(|u| u.0);
+    let fits = units.iter().find(|&&(_, s)| {
         let k = s / m.scale;
         s != m.scale
             && least_fill_points(m, k, lift.0, slicing)

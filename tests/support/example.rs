@@ -3,6 +3,17 @@
 //! compiles the unedited file).
 #![allow(dead_code)]
 
+/// Every example's `.lmd` file (`examples/*.lmd`), sorted.
+pub fn files() -> Vec<std::path::PathBuf> {
+    let mut files: Vec<_> = std::fs::read_dir("examples")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "lmd"))
+        .collect();
+    files.sort();
+    files
+}
+
 /// `examples/<name>` with each `(from, to)` of `edits` replaced once.
 pub fn edited(name: &str, edits: &[(&str, &str)]) -> String {
     let mut src = std::fs::read_to_string(format!("examples/{name}")).unwrap();
