@@ -850,6 +850,10 @@ pub struct Positioner {
     pub rotate: PositionerAxis,
     /// How the angles are chosen.
     pub keep: Keep,
+    /// E1 and E2 at home, deg: where the program starts (the PTP from home)
+    /// and ends (the PTP back), with the arm at its `home`.
+    #[serde(default)]
+    pub home: [f64; 2],
     /// Each layer's E1 and E2, deg, in layer order (constant over a
     /// layer): chosen by [`crate::plan::positioner`] after lowering.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

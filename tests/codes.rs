@@ -572,6 +572,7 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
                     tilt: axis([1.0, 0.0, 0.0], [1500.0, 0.0, 500.0]),
                     rotate: axis([0.0, 0.0, 1.0], [1500.0, 0.0, 650.0]),
                     keep: lmdc::ir::Keep::Vertical,
+                    home: [0.0; 2],
                     angles: (0..n).map(|i| [0.0, 10.0 * (i % 2) as f64]).collect(),
                 }));
             }

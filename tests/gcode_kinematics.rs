@@ -5,7 +5,7 @@ use crate::support::gcode_common as common;
 use common::fixture::*;
 use common::*;
 use lmdc::ir::*;
-use lmdc::plan::kinematics::{direction, follow, reposition, Rotary};
+use lmdc::plan::kinematics::{direction, follow, run_start, Rotary};
 use proptest::prelude::*;
 
 const HEADS: [Kinematics; 2] = [Kinematics::HeadAc, Kinematics::HeadBc];
@@ -89,8 +89,9 @@ proptest! {
         let n = unit(theta, phi);
         let prev = Rotary { tilt: 0.0, c: prev_c };
         for kin in HEADS {
-            // A one-sided head with one turn of C: one solution is always inside.
-            let r = reposition(kin, n, prev, [0.0, 120.0], [-180.0, 180.0]);
+            // A one-sided head with one turn of C: one solution is always
+            // inside, for a run of this one direction.
+            let r = run_start(kin, std::iter::once(n), prev, [[0.0, 120.0], [-180.0, 180.0]]);
             prop_assert!(r.tilt >= 0.0 && r.c >= -180.0 && r.c <= 180.0, "{r:?}");
             prop_assert!(close(t_of(kin, r.tilt, r.c), n, 1e-9));
         }

@@ -167,10 +167,26 @@ fn assert_follows(p: &Verified, index: usize, trace: &krl::Trace) {
     }
     assert!(!trace.laser_at_end);
     if ir.loop_on_machine().is_some() {
-        // A ring's loop writes its own moves (docs/krl.md).
-        assert_eq!(trace.ptps, 2, "home at start and end");
+        // A ring's loop writes its own moves (docs/krl.md), its module
+        // starting with the PTP from home too.
+        assert_eq!(trace.ptps, 3, "home, a PTP from home, home");
         return;
     }
+    // Home at the start and the end: the arm's home axes, and a
+    // positioner's home angles with them.
+    assert_eq!(trace.homes.len(), 2, "home at start and end");
+    let mut home = r.home.to_vec();
+    if let Some(p) = &r.positioner {
+        home.extend(p.home);
+    }
+    for h in &trace.homes {
+        assert_eq!(h.len(), home.len(), "{h:?} vs {home:?}");
+        assert!(
+            h.iter().zip(&home).all(|(a, b)| (a - b).abs() < 1e-3),
+            "{h:?} vs {home:?}"
+        );
+    }
+
     assert_eq!(
         trace.ptps, 3,
         "home at start and end, and a PTP from home to the first pose"

@@ -794,11 +794,14 @@ struct Angles {
 
 impl Angles {
     fn pose(&mut self, to: [f64; 3], rot: &nalgebra::Matrix3<f64>) {
-        let j = *self
-            .solver
-            .solve(to, rot, &self.prev)
-            .first()
-            .expect("a plan that built is within reach");
+        // The PTP from home takes the nearest solution, ties by the
+        // documented rule (`Solver::from_home`); every later pose the
+        // nearest the one before.
+        let j = match self.last {
+            None => self.solver.from_home(to, rot, &self.prev),
+            Some(_) => self.solver.solve(to, rot, &self.prev).first().copied(),
+        }
+        .expect("a plan that built is within reach");
         self.prev = j;
         let r = self.layers[self.layer].get_or_insert([[f64::INFINITY, f64::NEG_INFINITY]; 6]);
         for (r, a) in r.iter_mut().zip(j) {
@@ -812,6 +815,10 @@ impl Visit for Angles {
         self.layer = index;
     }
     fn motion(&mut self, m: &Move) {
+        if m.kind == lmdc::plan::MoveKind::Home {
+            // Back to the home axes: no pose.
+            return;
+        }
         if self.normal != Some(m.normal) {
             self.normal = Some(m.normal);
             self.rot = self.orient.rotation(m.normal);
@@ -1130,9 +1137,20 @@ fn the_positioners_angles_are_plotted_layer_by_layer() {
                 a + 1,
                 e[a]
             );
-            let prev = if k == 0 { 0.0 } else { pos.angles[k - 1][a] };
+            let prev = if k == 0 {
+                pos.home[a]
+            } else {
+                pos.angles[k - 1][a]
+            };
+            // The last layer ends with the PTP back home.
+            let after = if k + 1 == layers.len() {
+                pos.home[a]
+            } else {
+                e[a]
+            };
+            let (lo_ok, hi_ok) = (e[a].min(prev).min(after), e[a].max(prev).max(after));
             assert!(
-                lo >= e[a].min(prev) - 1e-9 && hi <= e[a].max(prev) + 1e-9,
+                lo >= lo_ok - 1e-9 && hi <= hi_ok + 1e-9,
                 "layer {k} E{}",
                 a + 1
             );

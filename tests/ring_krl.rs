@@ -141,7 +141,8 @@ fn the_update_routine_sets_the_speeds_lmdc_simulate_computes() {
     let total = s.rows.last().unwrap()[s.segments - 1].total
         - s.rows.last().unwrap()[s.segments - 1].height;
     assert!((last.pos[2] - (total + s.defocus[s.segments - 1])).abs() < 1e-9);
-    assert!(!run.laser_at_end && run.ptps == 2);
+    // Home, the PTP from home to above the first point, home.
+    assert!(!run.laser_at_end && run.ptps == 3);
 }
 
 /// The interpreter's advance-run model has teeth: an update that landed a

@@ -15,7 +15,7 @@
 use super::EmitError;
 use crate::ir::{HeightLoop, HeightSensor, Layer, Program, Ring};
 use crate::numbers::trimmed;
-use crate::plan::{Io, Move, Plan, SegmentEnd, Visit, Where};
+use crate::plan::{Io, Move, MoveKind, Plan, SegmentEnd, Visit, Where};
 use crate::verify::VerifiedMachine;
 
 /// What a looping writer starts from: the ring, its law, the sensor the
@@ -132,6 +132,9 @@ pub struct LoopPlan {
     pub tail: Vec<Move>,
     /// Gas and powder after the tail's moves.
     pub finish: Vec<CellStep>,
+    /// Moves after those: a CNC's lift to its safe height, a robot's PTP
+    /// home.
+    pub park: Vec<Move>,
     /// Layers.
     pub layers: usize,
 }
@@ -239,7 +242,11 @@ impl Visit for Collect<'_> {
         let ends = self.end.take();
         if !m.deposits() {
             if self.started || self.ended {
-                self.out.tail.push(*m);
+                if matches!(m.kind, MoveKind::Lift | MoveKind::Home) {
+                    self.out.park.push(*m);
+                } else {
+                    self.out.tail.push(*m);
+                }
             } else {
                 self.out.head.push(*m);
             }

@@ -311,7 +311,7 @@ codes! {
     AxisSpeed = "axis-speed", Machines,
         "a feed move whose machine axes would move faster than declared: a tilting table's X Y Z (the part turning under the nozzle) beyond `max_speed`, or a rotary axis beyond `rotary_speed`";
     CUnwind = "c-unwind", Machines,
-        "a tilting table's C axis would turn through more than its travel within one layer: lmdc unwinds C only between layers";
+        "a C axis would turn through more than its travel where it cannot unwind: a tilting table's within one layer (lmdc unwinds it only between layers), a tilting head's between two retracts (lmdc unwinds it at every retract, the laser off)";
     NameClash = "name-clash", Machines,
         "two machines whose names differ only in characters a file name drops (`m 1`, `m_1`) would write the same file";
     TransitionSpeed = "transition-speed", Machines,

@@ -33,6 +33,11 @@ pub struct Rotary {
     pub c: f64,
 }
 
+/// An angle within this of an axis's limit (deg) is at the limit: half the
+/// 0.001° the programs print angles with, so a tilt computed as
+/// −30.0000001° against a stop at −30° is written as −30.000 and kept.
+pub const LIMIT_TOL_DEG: f64 = 0.0005;
+
 /// Tilts below this (deg) count as vertical: C stays where it is. It is half the
 /// 0.001° resolution the angles are printed with, so the nozzle direction written
 /// is off by less than the printing already allows.
@@ -111,51 +116,6 @@ pub fn follow(kin: Kinematics, n: [f64; 3], prev: Rotary) -> Rotary {
     }
 }
 
-/// Like [`follow`], but for a free move (laser off, nozzle retracted) where the
-/// axes may take any route: a solution inside `tilt_range` and `c_range` (deg,
-/// `[min, max]`) is preferred to a closer one outside, so a C axis with limited
-/// travel unwinds between paths instead of running into its stop.
-pub fn reposition(
-    kin: Kinematics,
-    n: [f64; 3],
-    prev: Rotary,
-    tilt_range: [f64; 2],
-    c_range: [f64; 2],
-) -> Rotary {
-    let near = follow(kin, n, prev);
-    let inside = |r: Rotary| {
-        r.tilt >= tilt_range[0] && r.tilt <= tilt_range[1] && r.c >= c_range[0] && r.c <= c_range[1]
-    };
-    if inside(near) {
-        return near;
-    }
-    // Both families, each moved by whole turns into the C range when it can be.
-    let (tilt, c) = principal(kin, n);
-    let c = c.unwrap_or(prev.c);
-    let mut best: Option<Rotary> = None;
-    for cand in [
-        Rotary { tilt, c },
-        Rotary {
-            tilt: -tilt,
-            c: c + 180.0,
-        },
-    ] {
-        let mut r = Rotary {
-            tilt: cand.tilt,
-            c: unwrap_near(cand.c, prev.c),
-        };
-        if r.c < c_range[0] {
-            r.c += 360.0 * ((c_range[0] - r.c) / 360.0).ceil();
-        } else if r.c > c_range[1] {
-            r.c -= 360.0 * ((r.c - c_range[1]) / 360.0).ceil();
-        }
-        if inside(r) && best.is_none_or(|b| travel(prev, r) < travel(prev, b)) {
-            best = Some(r);
-        }
-    }
-    best.unwrap_or(near)
-}
-
 /// Where the axes stand over a run of directions followed from a start.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sweep {
@@ -178,9 +138,12 @@ impl Sweep {
         self.c = [self.c[0].min(r.c), self.c[1].max(r.c)];
     }
 
-    /// How far it leaves `tilt_range` and `c_range`, deg (0: inside).
-    fn excess(&self, tilt_range: [f64; 2], c_range: [f64; 2]) -> f64 {
-        let out = |v: [f64; 2], r: [f64; 2]| (r[0] - v[0]).max(0.0) + (v[1] - r[1]).max(0.0);
+    /// How far it leaves `tilt_range` and `c_range`, deg (0: inside, an
+    /// angle within [`LIMIT_TOL_DEG`] of a limit counting as at it).
+    pub fn excess(&self, tilt_range: [f64; 2], c_range: [f64; 2]) -> f64 {
+        let out = |v: [f64; 2], r: [f64; 2]| {
+            (r[0] - v[0] - LIMIT_TOL_DEG).max(0.0) + (v[1] - r[1] - LIMIT_TOL_DEG).max(0.0)
+        };
         out(self.tilt, tilt_range) + out(self.c, c_range)
     }
 }
@@ -201,18 +164,22 @@ pub fn sweep(kin: Kinematics, normals: impl Iterator<Item = [f64; 3]>, start: Ro
     s
 }
 
-/// The axes a run that must not unwind C (a tilting table's layer: the
-/// part turns under the nozzle, and a turn back with the nozzle near the
-/// part would sweep it through the part) starts at, for its first
-/// direction `normals[0]`: of the two solutions, each moved by whole turns
-/// of C, the one closest to `prev` from which [`follow`] keeps every
-/// direction of the run inside `tilt_range` and `c_range`; where none
-/// does, the one that leaves them least (the verifier reports it).
+/// The axes a run that must not unwind C starts at, for its first
+/// direction `normals[0]`: a tilting table's layer (the part turns under
+/// the nozzle, and a turn back with the nozzle near the part would sweep
+/// it through the part), or a head's paths from one retract to the next
+/// (it unwinds only there, the laser off). Of the two solutions, each moved
+/// by whole turns of C, the one from which [`follow`] keeps every
+/// direction of the run inside `tilt_range` and `c_range` (inclusive, to
+/// [`LIMIT_TOL_DEG`]); of those, one on the branch `prev` is on (the sign
+/// of its tilt: a change of branch swings the tilt axis to the other side
+/// and C by half a turn, so it happens only where the run needs it); of
+/// those, the nearest `prev` ([`travel`]). Where none fits, the one that
+/// leaves them least (the verifier reports it).
 pub fn run_start<I>(kin: Kinematics, normals: I, prev: Rotary, ranges: [[f64; 2]; 2]) -> Rotary
 where
     I: Iterator<Item = [f64; 3]> + Clone,
 {
-    let [tilt_range, c_range] = ranges;
     let Some(first) = normals.clone().next() else {
         return prev;
     };
@@ -221,22 +188,67 @@ where
         Some(c) => &[(tilt, c), (-tilt, c + 180.0)],
         None => &[(0.0, prev.c)],
     };
-    let mut best: Option<(f64, f64, Rotary)> = None;
+    let mut best: Option<((f64, bool, f64), Rotary)> = None;
     for &(t, c) in families {
-        let c0 = unwrap_near(c, prev.c);
-        for k in -2..=2 {
-            let start = Rotary {
-                tilt: t,
-                c: c0 + 360.0 * k as f64,
-            };
-            let excess = sweep(kin, normals.clone(), start).excess(tilt_range, c_range);
-            let key = (excess, travel(prev, start));
-            if best.is_none_or(|(e, d, _)| key < (e, d)) {
-                best = Some((key.0, key.1, start));
-            }
+        let start = Rotary {
+            tilt: t,
+            c: unwrap_near(c, prev.c),
+        };
+        let (excess, start) = fit_turns(sweep(kin, normals.clone(), start), start, ranges);
+        let key = (excess, flips(prev, start), travel(prev, start));
+        if best.is_none_or(|(b, _)| key < b) {
+            best = Some((key, start));
         }
     }
-    best.map_or(prev, |b| b.2)
+    best.map_or(prev, |b| b.1)
+}
+
+/// `start` moved by the whole turns of C that keep its run's `sweep`
+/// (followed from `start`) inside `ranges` (tilt, C) and turn it least,
+/// and by how much the run then leaves them (0: inside). Following a run
+/// from a start a whole turn on turns C the same way a whole turn on, so
+/// one sweep gives every start's: the turns that fit form an interval.
+fn fit_turns(sweep: Sweep, start: Rotary, [tilt_range, c_range]: [[f64; 2]; 2]) -> (f64, Rotary) {
+    let tilt_excess = Sweep {
+        tilt: sweep.tilt,
+        c: c_range,
+    }
+    .excess(tilt_range, c_range);
+    let (lo, hi) = (sweep.c[0] - start.c, sweep.c[1] - start.c);
+    let at = |k: f64| Rotary {
+        tilt: start.tilt,
+        c: start.c + 360.0 * k,
+    };
+    let c_excess = |k: f64| {
+        Sweep {
+            tilt: tilt_range,
+            c: [at(k).c + lo, at(k).c + hi],
+        }
+        .excess(tilt_range, c_range)
+    };
+    let k_min = ((c_range[0] - LIMIT_TOL_DEG - lo - start.c) / 360.0).ceil();
+    let k_max = ((c_range[1] + LIMIT_TOL_DEG - hi - start.c) / 360.0).floor();
+    if k_min <= k_max {
+        let k = 0.0f64.clamp(k_min, k_max);
+        return (tilt_excess, at(k));
+    }
+    // Wider than C's travel: centred on it, as near as whole turns allow.
+    let centre = ((c_range[0] + c_range[1] - lo - hi) / 2.0 - start.c) / 360.0;
+    let k = [centre.floor(), centre.ceil()]
+        .into_iter()
+        .min_by(|a, b| {
+            c_excess(*a)
+                .total_cmp(&c_excess(*b))
+                .then(a.abs().total_cmp(&b.abs()))
+        })
+        .unwrap_or(0.0);
+    (tilt_excess + c_excess(k), at(k))
+}
+
+/// Whether the axes change branch from `a` to `b`: both tilted, to
+/// opposite sides.
+pub fn flips(a: Rotary, b: Rotary) -> bool {
+    a.tilt.abs() >= VERTICAL_DEG && b.tilt.abs() >= VERTICAL_DEG && (a.tilt > 0.0) != (b.tilt > 0.0)
 }
 
 #[cfg(test)]
@@ -304,22 +316,64 @@ mod tests {
         );
     }
 
+    /// A layer winding once round at a tilt of 30°, as a cone's with the
+    /// nozzle along its wall.
+    fn winding(from_c: f64) -> Vec<[f64; 3]> {
+        (0..=36)
+            .map(|i| {
+                let c = (i as f64 * 10.0 + from_c).to_radians();
+                [0.5 * c.sin(), -0.5 * c.cos(), 0.75f64.sqrt()]
+            })
+            .collect()
+    }
+
     #[test]
-    fn reposition_unwinds_into_the_c_range() {
-        let kin = Kinematics::HeadAc;
+    fn a_run_keeps_the_branch_the_last_one_took() {
+        // The last layer ended at C 370 with A +30; this one winds from
+        // C 10 through a whole turn. Inside C's ±360° it can start at
+        // C −350 with A +30 (720° of C back), or on the other branch at
+        // C −170 with A −30 (540° of C and 60° of A: nearer). The branch
+        // is kept.
+        let kin = Kinematics::TableAc;
+        let normals = winding(10.0);
         let prev = Rotary {
             tilt: 30.0,
-            c: 350.0,
+            c: 370.0,
         };
-        let r = reposition(
-            kin,
-            [0.5, 0.0, 0.866],
-            prev,
-            [-10.0, 120.0],
-            [-360.0, 360.0],
+        let ranges = [[-30.0, 120.0], [-360.0, 360.0]];
+        let r = run_start(kin, normals.iter().copied(), prev, ranges);
+        assert!(
+            (r.tilt - 30.0).abs() < 1e-9 && (r.c + 350.0).abs() < 1e-6,
+            "{r:?}"
         );
-        // follow() would go to C 450; 90 is inside the range.
-        assert!((r.c - 90.0).abs() < 1e-6, "{r:?}");
-        assert!(r.tilt > 0.0);
+        // Where the branch cannot fit (A stops at 0 on the plus side), the
+        // run changes branch.
+        let r = run_start(
+            kin,
+            normals.iter().copied(),
+            prev,
+            [[-30.0, 0.0], ranges[1]],
+        );
+        assert!(r.tilt < 0.0 && flips(prev, r), "{r:?}");
+    }
+
+    #[test]
+    fn a_limit_is_reachable_to_the_printed_digit() {
+        // A tilt a float's noise past the stop (−30.0000001°) is at it;
+        // 0.001° past it is not.
+        let kin = Kinematics::TableAc;
+        let normals = winding(190.0);
+        // The other branch of the first direction (C 190 at A +30).
+        let prev = Rotary {
+            tilt: -30.0,
+            c: 10.0,
+        };
+        let s = sweep(kin, normals.iter().copied(), prev);
+        let at = |lo: f64| s.excess([lo, 120.0], [-720.0, 720.0]);
+        assert_eq!(at(-30.0 + 1e-7), 0.0);
+        assert!(at(-30.0 + 1e-3) > 0.0);
+        let ranges = [[-30.0 + 1e-7, 0.0], [-720.0, 720.0]];
+        let r = run_start(kin, normals.iter().copied(), prev, ranges);
+        assert!((r.tilt + 30.0).abs() < 1e-6, "{r:?}");
     }
 }

@@ -64,6 +64,8 @@ fn kind(k: MoveKind) -> &'static str {
         MoveKind::LeadIn => "lead_in",
         MoveKind::LeadOut => "lead_out",
         MoveKind::Lift => "lift",
+        MoveKind::FromHome => "from_home",
+        MoveKind::Home => "home",
     }
 }
 

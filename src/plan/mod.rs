@@ -123,8 +123,29 @@ pub enum MoveKind {
     /// Laser off, a CNC's Z alone up to its safe height, every other axis
     /// where it stands: the program's first move (from wherever the machine
     /// is) and its last. Its `to` is the safe height over the next (or
-    /// last) position; a writer moves only Z.
+    /// last) position; a writer moves only Z. On a table written in machine
+    /// coordinates, the last one goes up the machine's Z to where the tip
+    /// is at the safe height of the part ([`Plan::lift_at_end`]).
     Lift,
+    /// Laser off, a robot's first move: a PTP from its home axes (and its
+    /// positioner's home angles) to above the first path. The controller
+    /// interpolates the axes, not a line, so no wrist singularity lies on
+    /// its way (a LIN from KUKA's home, at A5 = 0, would start in one).
+    FromHome,
+    /// Laser off, a robot's last move: a PTP back to its home axes (and its
+    /// positioner's home angles), after the last retract and the cell's end
+    /// sequence. Home is given by axis angles, not a position: its `to` is
+    /// where the robot stands when it starts (no line is travelled), its
+    /// `axes` the positioner's home angles.
+    Home,
+}
+
+impl MoveKind {
+    /// Whether the controller interpolates the move in its axes (a robot's
+    /// PTP), not along a straight line.
+    pub fn ptp(self) -> bool {
+        matches!(self, MoveKind::FromHome | MoveKind::Home)
+    }
 }
 
 /// How fast a move goes.
@@ -357,6 +378,32 @@ pub struct Plan<'a> {
     /// A robot's positioner's angles, each layer's E1 and E2 (deg): a
     /// move's `axes` (tilt E1, C E2), the part's base turning with them.
     held: Option<&'a [[f64; 2]]>,
+    /// A robot's home: its positioner's home angles (zero without one). A
+    /// robot starts and ends there by PTP; a CNC has none.
+    home: Option<Rotary>,
+    /// A table written in machine coordinates: its last lift goes up the
+    /// machine's Z, which the tilted table does not turn.
+    machine_table: Option<(Kinematics, crate::ir::RotaryTable)>,
+    /// A robot's positioner's top speeds (E1, E2, deg/s) and the robot's
+    /// rapid (mm/s): a laser-off line that turns the positioner is slowed
+    /// so that neither axis goes faster ([`Plan::held_to_axes`]).
+    turns: Option<([f64; 2], f64)>,
+}
+
+/// A line whose axes turn by `turn` (deg, each axis) over `d` mm at `speed`:
+/// the speed slowed so no axis turns faster than its top speed `tops`
+/// (deg/s). A line of no length keeps its speed: the controller turns axes
+/// alone at their own speeds. The one rule a plan's laser-off lines and
+/// the verifier's check of them share.
+pub fn held_to_axes(speed: f64, d: f64, turn: [f64; 2], tops: [f64; 2]) -> f64 {
+    let need = (0..2)
+        .map(|i| turn[i].abs() / tops[i])
+        .fold(0.0f64, f64::max);
+    if d <= JOIN_MM || need <= 0.0 || d / speed >= need {
+        speed
+    } else {
+        d / need
+    }
 }
 
 /// The height a CNC lifts to first and ends at: `declared`, else
@@ -414,6 +461,28 @@ impl<'a> Plan<'a> {
             Machine::Robot(r) => r.positioner.as_ref().map(|p| p.angles.as_slice()),
             Machine::Cnc(_) => None,
         };
+        let home =
+            match machine {
+                Machine::Robot(r) => Some(r.positioner.as_ref().map_or_else(
+                    Rotary::default,
+                    |p| Rotary {
+                        tilt: p.home[0],
+                        c: p.home[1],
+                    },
+                )),
+                Machine::Cnc(_) => None,
+            };
+        let machine_table = match machine {
+            Machine::Cnc(c) => table::machine_output(c).map(|t| (effective_kinematics(c), t)),
+            Machine::Robot(_) => None,
+        };
+        let turns = match machine {
+            Machine::Robot(r) => r
+                .positioner
+                .as_ref()
+                .map(|p| ([p.tilt.speed, p.rotate.speed], r.max_speed)),
+            Machine::Cnc(_) => None,
+        };
         Plan {
             program,
             head,
@@ -422,7 +491,34 @@ impl<'a> Plan<'a> {
             lead,
             safe,
             held,
+            home,
+            machine_table,
+            turns,
         }
+    }
+
+    /// Where a CNC's last lift from `last` (part coordinates, the rotary
+    /// axes at `axes`) ends: Z alone up to the safe height `safe`. A table
+    /// written in machine coordinates moves its Z up the machine's axis,
+    /// which a tilted table sees at an angle: the lift goes along it until
+    /// the tip is at the safe height of the part, so the program ends
+    /// there in either output mode. (Past a tilt of about 87° the machine's
+    /// Z barely rises in the part: the lift then goes up the machine's Z by
+    /// as much as the safe height is above the tip, at least the clearance.)
+    pub fn lift_at_end(&self, last: [f64; 3], axes: Rotary, safe: f64) -> [f64; 3] {
+        let rise = safe - last[2];
+        let up = match self.machine_table {
+            Some((kin, t)) => {
+                let o = table::part_point(kin, &t, [0.0; 3], axes);
+                let z = table::part_point(kin, &t, [0.0, 0.0, 1.0], axes);
+                [z[0] - o[0], z[1] - o[1], z[2] - o[2]]
+            }
+            None => [0.0, 0.0, 1.0],
+        };
+        if up[2] < 0.05 {
+            return along(last, up, rise.abs().max(self.clearance));
+        }
+        along(last, up, rise / up[2])
     }
 
     /// A robot's positioner's angles for layer `li` (its last layer's
@@ -461,6 +557,7 @@ impl<'a> Plan<'a> {
             ends: None,
             end_next: None,
             last: None,
+            last_axes: None,
             run_end: None,
             top: f64::NEG_INFINITY,
         };
@@ -569,6 +666,8 @@ struct Walker<'p, 'a, V> {
     end_next: Option<SegmentEnd>,
     /// Where the last move ended.
     last: Option<[f64; 3]>,
+    /// The rotary axes (a positioner's) the last move ended at.
+    last_axes: Option<Rotary>,
     /// With leads: where the last deposit started, and the move itself.
     run_end: Option<([f64; 3], Move)>,
     /// The highest point deposited so far (Z, mm): travels with a vertical
@@ -602,7 +701,7 @@ fn lead_length(v: f32, a: f64) -> f64 {
     v * v / (2.0 * a)
 }
 
-impl<V: Visit> Walker<'_, '_, V> {
+impl<'a, V: Visit> Walker<'_, 'a, V> {
     fn switch_off(&mut self) {
         if self.laser {
             self.laser = false;
@@ -612,7 +711,25 @@ impl<V: Visit> Walker<'_, '_, V> {
 
     /// Sends `m`, switching the laser first when the move needs it changed.
     #[inline]
-    fn send(&mut self, m: Move) {
+    fn send(&mut self, mut m: Move) {
+        if let (Some((tops, rapid)), Some(from), Some(was)) =
+            (self.plan.turns, self.last, self.last_axes)
+        {
+            if m.speed == Speed::Rapid && !m.kind.ptp() && m.axes != was {
+                // The positioner turns on a laser-off line: slowed to its axes.
+                let d = (0..3)
+                    .map(|i| (m.to[i] - from[i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                let turn = [m.axes.tilt - was.tilt, m.axes.c - was.c];
+                // Rounded down to what a program prints, so it stays held.
+                let v = (held_to_axes(rapid, d, turn, tops) * 1000.0).floor() / 1000.0;
+                if v < rapid && v > 0.0 {
+                    m.speed = Speed::Feed(v as f32);
+                }
+            }
+        }
+        self.last_axes = Some(m.axes);
         if self.timed {
             if let (Speed::Feed(v), Some(from)) = (m.speed, self.last) {
                 let d = (0..3)
@@ -755,11 +872,15 @@ impl<V: Visit> Walker<'_, '_, V> {
             layer: li,
             path: pi,
         };
-        let prev = self.cursor.map(|c| c.axes).unwrap_or_default();
+        let prev = self
+            .cursor
+            .map(|c| c.axes)
+            .or(self.plan.home)
+            .unwrap_or_default();
         if let Some(c) = self.cursor.filter(|_| !self.retracted) {
             self.retract(c, clearance);
         }
-        let axes = self.start_axes(li, first, prev, layer_start);
+        let axes = self.start_axes((li, pi), prev, layer_start);
         let f0 = first.focus();
         let entry = second.and_then(|n| self.lead_start(first, n)).unwrap_or(f0);
         let above = along(entry, self.up(first.normal), self.plan.clearance);
@@ -782,8 +903,13 @@ impl<V: Visit> Walker<'_, '_, V> {
             }
         }
         self.over_the_top(first, above, (prev, axes), clearance);
+        // A robot comes from home by PTP; every later travel is a line.
+        let kind = match (self.plan.home, self.last) {
+            (Some(_), None) => MoveKind::FromHome,
+            _ => MoveKind::Travel,
+        };
         self.send(Move {
-            kind: MoveKind::Travel,
+            kind,
             to: above,
             normal: first.normal,
             axes,
@@ -820,32 +946,63 @@ impl<V: Visit> Walker<'_, '_, V> {
         c
     }
 
-    /// The rotary axes at a path's `first` point (layer `li`), reached from
-    /// `prev`. A head may unwind C on any transition, the nozzle retracted
-    /// ([`kinematics::reposition`]). A table turns the part itself: it
+    /// The rotary axes at the first point of path `pi` of layer `li`,
+    /// reached from `prev`, the nozzle retracted and the laser off: where
+    /// C unwinds. A head unwinds on any transition, to where it can follow
+    /// the paths up to the next one (its run, [`Walker::run`]) within its
+    /// stops ([`kinematics::run_start`]). A table turns the part itself: it
     /// unwinds only before a layer's first path, to where the whole layer
-    /// can be followed without unwinding ([`kinematics::run_start`]), and
-    /// follows the normals on every other transition.
-    fn start_axes(&self, li: usize, first: &Point, prev: Rotary, layer_start: bool) -> Rotary {
+    /// can be followed, and follows the normals on every other transition.
+    /// Both keep the branch (the tilt's side) they are on unless the run
+    /// needs the other.
+    fn start_axes(&self, (li, pi): (usize, usize), prev: Rotary, layer_start: bool) -> Rotary {
         if let Some(r) = self.plan.held(li) {
             return r;
         }
         let Head::Tilting(kin, lim) = self.plan.head else {
             return Rotary::default();
         };
-        let n = f64s(first.normal);
+        let ranges = [lim.tilt, lim.rotary];
         if !kin.is_table() {
-            return kinematics::reposition(kin, n, prev, lim.tilt, lim.rotary);
+            let run = self.run(li, pi);
+            let normals = run.iter().flat_map(|p| p.iter()).map(|p| f64s(p.normal));
+            return kinematics::run_start(kin, normals, prev, ranges);
         }
+        let layer = &self.plan.program.layers[li];
         if !layer_start {
+            let n = f64s(layer.paths[pi].points[0].normal);
             return kinematics::follow(kin, n, prev);
         }
-        let normals = self.plan.program.layers[li]
+        let normals = layer
             .paths
             .iter()
             .flat_map(|p| &p.points)
             .map(|p| f64s(p.normal));
-        kinematics::run_start(kin, normals, prev, [lim.tilt, lim.rotary])
+        kinematics::run_start(kin, normals, prev, ranges)
+    }
+
+    /// The paths the nozzle follows from path `pi` of layer `li` up to the
+    /// next transition: that path, and every later one that starts where
+    /// the one before ends, in its layer, and in a continuous program
+    /// (which does not cool between layers) in the next layers too.
+    fn run(&self, li: usize, pi: usize) -> Vec<&'a [Point]> {
+        let program = self.plan.program;
+        let across = program.continuous && program.heat.is_none();
+        let mut out: Vec<&'a [Point]> = vec![&program.layers[li].paths[pi].points];
+        let rest = program.layers[li].paths[pi + 1..].iter().chain(
+            program.layers[li + 1..]
+                .iter()
+                .take_while(|_| across)
+                .flat_map(|l| &l.paths),
+        );
+        for path in rest.map(|p| p.points.as_slice()).filter(|p| !p.is_empty()) {
+            let end = out.last().and_then(|p| p.last());
+            if !end.is_some_and(|e| joins(e.focus(), e.normal, &path[0])) {
+                break;
+            }
+            out.push(path);
+        }
+        out
     }
 
     /// With the nozzle vertical at both ends, the travel to `above` (the
@@ -1061,25 +1218,13 @@ impl<V: Visit> Walker<'_, '_, V> {
         });
     }
 
-    /// After the last path: laser off, retract, and on a CNC Z up to the
-    /// safe height.
+    /// After the last path, one sequence on every machine: laser off,
+    /// retract, feeder off, post-flow, gas off; then a CNC lifts Z alone to
+    /// its safe height, a robot goes home by PTP.
     fn end(&mut self) {
         self.end_run();
         if let Some(c) = self.cursor.filter(|_| !self.retracted) {
             self.retract(c, Where::End);
-        }
-        if let (Some(safe), Some(last), Some(c)) = (self.plan.safe, self.last, self.cursor) {
-            if last[2] < safe {
-                self.send(Move {
-                    kind: MoveKind::Lift,
-                    to: [last[0], last[1], safe],
-                    normal: c.normal,
-                    axes: c.axes,
-                    speed: Speed::Rapid,
-                    power: 0.0,
-                    at: Where::End,
-                });
-            }
         }
         if self.powder.take().is_some() {
             self.v.io(Io::PowderOff);
@@ -1090,6 +1235,25 @@ impl<V: Visit> Walker<'_, '_, V> {
             }
             self.v.io(Io::GasOff);
             self.gas = false;
+        }
+        let (Some(last), Some(c)) = (self.last, self.cursor) else {
+            return;
+        };
+        let park = |kind, to, axes| Move {
+            kind,
+            to,
+            normal: c.normal,
+            axes,
+            speed: Speed::Rapid,
+            power: 0.0,
+            at: Where::End,
+        };
+        if let Some(safe) = self.plan.safe.filter(|&s| last[2] < s) {
+            let to = self.plan.lift_at_end(last, c.axes, safe);
+            self.send(park(MoveKind::Lift, to, c.axes));
+        }
+        if let Some(home) = self.plan.home {
+            self.send(park(MoveKind::Home, last, home));
         }
     }
 }

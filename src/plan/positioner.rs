@@ -308,6 +308,7 @@ mod tests {
                 speed: 90.0,
             },
             keep: Keep::Vertical,
+            home: [0.0; 2],
             angles: Vec::new(),
         }
     }

@@ -3,8 +3,9 @@
 //! every move's pose — the focus where the plan puts it, the tool turned as
 //! the KRL writer turns it ([`crate::plan::orient`]) — solved to axis
 //! angles continuing from the move before (from `home` for the first), so
-//! the program keeps one configuration. The first move is the PTP from
-//! home; every later one is a LIN, where a singular pose or a change of
+//! the program keeps one configuration. The plan's first move is the PTP
+//! from home ([`crate::plan::MoveKind::FromHome`]) and its last the PTP
+//! back; every move between is a LIN, where a singular pose or a change of
 //! configuration stops the controller. Poses are checked where each move
 //! ends and along each LIN every [`crate::plan::arm::LIN_STEP_MM`] and
 //! [`crate::plan::arm::LIN_STEP_DEG`] of turn ([`Follow`]): a pose between
@@ -154,7 +155,9 @@ impl ArmRule {
             self.lo[i] = self.lo[i].min(m.to[i]);
             self.hi[i] = self.hi[i].max(m.to[i]);
         }
-        let lin = self.last.is_some();
+        // A PTP (from home) keeps only its end's rules; every other move
+        // is a LIN.
+        let lin = !m.kind.ptp();
         let Some(j) = j else {
             let (d, span) = self.follow.solver().reach(s.to, &s.rot);
             self.span = span;

@@ -12,8 +12,8 @@ use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::message::verify::table as says;
 use crate::diag::Diagnostics;
 use crate::ir::{Kinematics, Machine, RotaryTable};
-use crate::plan::kinematics::Rotary;
-use crate::plan::{effective_kinematics, table, Move, Speed, Visit, Where};
+use crate::plan::kinematics::{Rotary, LIMIT_TOL_DEG};
+use crate::plan::{effective_kinematics, table, Move, MoveKind, Speed, Visit, Where};
 use crate::sema::schema::machine::{self, limits};
 
 /// `lmd::axis-speed`: a feed move whose machine axes must go faster than
@@ -108,22 +108,25 @@ impl<'p> PlanRule<'p> for AxisSpeed {
     }
 }
 
-/// `lmd::c-unwind`: a layer along which a tilting table's C axis, following
-/// the normals without unwinding, turns further than its travel.
+/// `lmd::c-unwind`: a run the C axis must follow without unwinding, along
+/// which it turns further than its travel: a tilting table's layer, or a
+/// tilting head's paths from one retract to the next (it unwinds there).
 pub(super) struct CUnwind {
     range: [f64; 2],
-    /// The C angles of the layer under way (its points' moves).
-    layer: Option<[f64; 2]>,
-    /// Where the layer's C was furthest from its start.
+    /// A head (runs end at a retract), not a table (runs are layers).
+    head: bool,
+    /// The C angles of the run under way (its points' moves).
+    run: Option<[f64; 2]>,
+    /// Where the run's C was furthest from its start.
     at: Where,
     found: Option<Worst>,
 }
 
 impl CUnwind {
-    fn end_layer(&mut self) {
-        if let Some([lo, hi]) = self.layer.take() {
+    fn end_run(&mut self) {
+        if let Some([lo, hi]) = self.run.take() {
             let width = self.range[1] - self.range[0];
-            if hi - lo > width + 1e-6 {
+            if hi - lo > width + 2.0 * LIMIT_TOL_DEG {
                 Worst::hit(&mut self.found, hi - lo, width, self.at);
             }
         }
@@ -132,18 +135,21 @@ impl CUnwind {
 
 impl Visit for CUnwind {
     fn layer(&mut self, _index: usize, _layer: &crate::ir::Layer) {
-        self.end_layer();
+        self.end_run();
     }
 
     fn motion(&mut self, m: &Move) {
-        // The layer's own points: the moves into the layer still carry the
-        // angles the last one ended at.
+        if self.head && m.kind == MoveKind::Retract {
+            self.end_run();
+        }
+        // The run's own points: the moves into it still carry the angles
+        // the last one ended at.
         if !matches!(m.at, Where::Point { .. }) {
             return;
         }
         let c = m.axes.c;
-        match &mut self.layer {
-            None => self.layer = Some([c, c]),
+        match &mut self.run {
+            None => self.run = Some([c, c]),
             Some(r) => {
                 if c < r[0] || c > r[1] {
                     self.at = m.at;
@@ -159,21 +165,23 @@ impl<'p> PlanRule<'p> for CUnwind {
         let Machine::Cnc(c) = cx.machine else {
             return None;
         };
-        effective_kinematics(c).is_table().then_some(CUnwind {
+        let kin = effective_kinematics(c);
+        (kin != Kinematics::Xyz).then_some(CUnwind {
             range: c.limits.rotary,
-            layer: None,
+            head: !kin.is_table(),
+            run: None,
             at: Where::End,
             found: None,
         })
     }
 
     fn report(mut self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
-        self.end_layer();
+        self.end_run();
         let Some(w) = self.found else { return };
         out.push(says::c_unwind(
             cx.machine.name(),
             &w,
-            self.range,
+            (self.range, self.head),
             cx.origin.at(&limits::C),
         ));
     }

@@ -48,6 +48,9 @@ pub struct Trace {
     pub lins: Vec<Lin>,
     /// `PTP` motions.
     pub ptps: usize,
+    /// The main program's PTPs to axis angles (home), in order: A1..A6,
+    /// then E1 and E2 where a positioner is moved too (E6AXIS).
+    pub homes: Vec<Vec<f64>>,
     /// Modules called, in order.
     pub calls: Vec<String>,
     /// LIN lines per module.
@@ -483,7 +486,9 @@ impl State<'_> {
         }
         // The main program's statements.
         if let Some(p) = l.strip_prefix("PTP ") {
-            let v = aggregate(p, &["A1", "A2", "A3", "A4", "A5", "A6"])?;
+            let axes = ["A1", "A2", "A3", "A4", "A5", "A6", "E1", "E2"];
+            let v = aggregate(p, &axes).or_else(|_| aggregate(p, &axes[..6]))?;
+            self.trace.homes.push(v.clone());
             if v.iter().any(|a| a.abs() > 360.0) {
                 return Err("axis angle beyond ±360".into());
             }

@@ -34,7 +34,7 @@ use crate::back::height_loop::{constants, prepare, CellStep, LayerMove, LoopPlan
 use crate::control::{Step, LAW};
 use crate::ir::{Cnc, HeightLoop, HeightSensor, Kinematics, Ring};
 use crate::numbers::{fixed, trimmed};
-use crate::plan::{effective_kinematics, Move, Speed};
+use crate::plan::{effective_kinematics, Move, MoveKind, Speed};
 use crate::target::gcode::POS_DECIMALS;
 use crate::target::names::gcode_file;
 use crate::verify::VerifiedMachine;
@@ -216,6 +216,12 @@ impl Text<'_> {
             }
             let rot = self.rotary(m);
             let [x, y, z] = m.to.map(|v| fixed(v, POS_DECIMALS));
+            if m.kind == MoveKind::Lift {
+                // Z alone first, from wherever the machine stands.
+                self.line(0, &format!("G0 Z{z}"));
+                self.stats.rapids += 1;
+                continue;
+            }
             match m.speed {
                 Speed::Rapid => {
                     self.line(0, &format!("G0 X{x} Y{y} Z{z}{rot}"));
@@ -376,6 +382,15 @@ impl Text<'_> {
             self.stats.rapids += 1;
         }
         self.cell(&plan.finish);
+        // Then Z alone up to the safe height, over where the build ended.
+        for m in &plan.park {
+            let z = match end {
+                Some(e) => plus("#<zt>", m.to[2] - e[2]),
+                None => fixed(m.to[2], POS_DECIMALS),
+            };
+            self.line(0, &format!("G0 Z{z}"));
+            self.stats.rapids += 1;
+        }
     }
 
     /// Gas and powder, in the dialect's output and dwell lines.

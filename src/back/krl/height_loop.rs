@@ -24,7 +24,7 @@ use crate::back::height_loop::{constants, prepare, CellStep, LayerMove, LoopPlan
 use crate::control::{Step, LAW};
 use crate::ir::{HeightLoop, HeightSensor, Ring, Robot};
 use crate::numbers::{fixed, trimmed};
-use crate::plan::{Move, Speed};
+use crate::plan::{Move, MoveKind, Speed};
 use crate::target::kuka::{ANOUT_DECIMALS, POS_DECIMALS, VEL_DECIMALS};
 use crate::verify::VerifiedMachine;
 use std::fmt::Write as _;
@@ -194,6 +194,10 @@ impl Text<'_> {
             if i + 1 == n {
                 self.cell(&plan.prepare);
             }
+            if m.kind == MoveKind::FromHome {
+                self.from_home(m);
+                continue;
+            }
             let vel = format!("$VEL.CP = {}", self.vel(m));
             self.line(0, &vel);
             if i + 1 == n {
@@ -218,6 +222,30 @@ impl Text<'_> {
             self.line(0, &format!("LIN {pos}"));
             self.stats.lin += 1;
         }
+    }
+
+    /// The PTP from home to above the first point, with the Status and
+    /// Turn the verifier checked where the arm is known (the axes it
+    /// stands for as a comment), as every robot program starts.
+    fn from_home(&mut self, m: &Move) {
+        let pos = self.pos(m);
+        let rot = self.orient.rotation(m.normal);
+        let line = match super::from_home(self.robot, m, &rot) {
+            Some((s, t, j)) => {
+                let axes: Vec<String> = j
+                    .iter()
+                    .enumerate()
+                    .map(|(i, a)| format!("A{} {}", i + 1, fixed(*a, POS_DECIMALS)))
+                    .collect();
+                format!(
+                    "PTP {},S {s},T {t}}} ; from home, axes {}",
+                    pos.trim_end_matches('}'),
+                    axes.join(" ")
+                )
+            }
+            None => format!("PTP {pos} ; from home"),
+        };
+        self.line(0, &line);
     }
 
     /// Gas and powder where the robot stands: after an advance-run stop, as

@@ -227,24 +227,16 @@ impl Visit for Writer<'_, '_> {
             .positioner
             .as_ref()
             .map(|_| [m.axes.tilt, m.axes.c]);
-        if self.last.is_none() {
-            // From home, a PTP to the first pose (above the first point):
-            // a LIN from home would start at A5 = 0, the wrist singularity.
-            let config = crate::plan::arm::Solver::new(self.robot).and_then(|s| {
-                let (to, rot) = match crate::plan::positioner::Kin::of(self.robot) {
-                    Some(k) => {
-                        let part = k.part([m.axes.tilt, m.axes.c]);
-                        let rot = part.rotation.to_rotation_matrix().into_inner() * self.rot;
-                        (k.point([m.axes.tilt, m.axes.c], m.to), rot)
-                    }
-                    None => (m.to, self.rot),
-                };
-                let j = *s.solve(to, &rot, &self.robot.home).first()?;
-                Some((s.status(&j), crate::plan::arm::Solver::turn(&j), j))
-            });
-            self.last = Some(m.kind);
-            self.out.ptp(m.to, self.abc, ext, config);
-            return;
+        match m.kind {
+            MoveKind::FromHome => {
+                self.last = Some(m.kind);
+                let config = from_home(self.robot, m, &self.rot);
+                self.out.ptp(m.to, self.abc, ext, config);
+                return;
+            }
+            // The main program goes home after the modules (main.src.tera).
+            MoveKind::Home => return,
+            _ => {}
         }
         let speed = match m.speed {
             Speed::Rapid => self.robot.max_speed,
@@ -261,6 +253,28 @@ impl Visit for Writer<'_, '_> {
         self.last = Some(m.kind);
         self.out.lin(m.to, self.abc, ext, speed, x, s, deposit);
     }
+}
+
+/// The Status, Turn and axis angles of the PTP from home `m` with the tool
+/// turned `rot`, where the arm is known: the solution the verifier checked
+/// ([`crate::plan::arm::Solver::from_home`]), through the positioner at
+/// the move's angles.
+pub fn from_home(
+    robot: &Robot,
+    m: &Move,
+    rot: &nalgebra::Matrix3<f64>,
+) -> Option<(u8, u8, [f64; 6])> {
+    let s = crate::plan::arm::Solver::new(robot)?;
+    let (to, rot) = match crate::plan::positioner::Kin::of(robot) {
+        Some(k) => {
+            let part = k.part([m.axes.tilt, m.axes.c]);
+            let r = part.rotation.to_rotation_matrix().into_inner() * rot;
+            (k.point([m.axes.tilt, m.axes.c], m.to), r)
+        }
+        None => (m.to, *rot),
+    };
+    let j = s.from_home(to, &rot, &robot.home)?;
+    Some((s.status(&j), crate::plan::arm::Solver::turn(&j), j))
 }
 
 /// The KRL lines of a gas or powder event on `robot` (assignments with a
@@ -380,12 +394,22 @@ fn main_context(ctx: &mut tera::Context, m: VerifiedMachine<'_>, robot: &Robot, 
         &trimmed(robot.blending.unwrap_or(APPROX_MM), 3),
     );
     ctx.insert("home_percent", &HOME_PERCENT);
-    let home: Vec<String> = robot
+    let mut home: Vec<String> = robot
         .home
         .iter()
         .enumerate()
         .map(|(i, a)| format!("A{} {}", i + 1, trimmed(*a, 3)))
         .collect();
+    // An E6AXIS with the positioner's home angles: the program starts from
+    // them and ends at them, as the plan's moves from and back home do.
+    if let Some(p) = &robot.positioner {
+        home.extend(
+            p.home
+                .iter()
+                .enumerate()
+                .map(|(i, e)| format!("E{} {}", i + 1, trimmed(*e, 3))),
+        );
+    }
     ctx.insert("home", &home.join(","));
     ctx.insert("module_lines", &robot.max_points_per_module);
     ctx.insert("lin_lines", &s.lin);

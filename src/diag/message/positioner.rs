@@ -18,6 +18,16 @@ pub fn direction_not_three(key: &str, at: Span, got: &str) -> Diagnostic {
     ))
 }
 
+/// A positioner's `home` that is not two angles.
+pub fn home_not_two_angles(at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::ExpectedPoint,
+        "a positioner's `home` is E1 and E2 at home: two angles `[e1, e2]`".to_string(),
+    )
+    .label(at, format!("this is {got}"))
+    .help("e.g. `home = [0 deg, 0 deg]`, the default".to_string())
+}
+
 /// An axis direction (`key`) of no length.
 pub fn zero_direction(key: &str, at: Span) -> Diagnostic {
     Diagnostic::error(
@@ -110,6 +120,28 @@ pub fn limit(
     } else {
         "E2 would have to wind further than it can: widen `rotate_limits` if the axis turns further, or turn the part on the flange (`base`) so its layers wind less"
     })
+}
+
+/// A positioner's home angle `home` of axis `i` outside its `limits`.
+pub fn home_limit(
+    machine: &str,
+    i: usize,
+    home: f64,
+    limits: [f64; 2],
+    at: Option<Span>,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::PositionerLimit,
+        format!(
+            "the positioner's {} of robot `{machine}` is at {}° at home, outside its limits {}° .. {}°: the program starts and ends there",
+            axis(i),
+            short(home),
+            short(limits[0]),
+            short(limits[1]),
+        ),
+    )
+    .label_opt(at, "declared here")
+    .help("set the positioner's `home = [e1, e2]` to the angles it stands at between programs, inside its limits")
 }
 
 /// A feed move on which positioner axis `i` turns faster than `w.limit`.

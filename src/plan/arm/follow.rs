@@ -6,7 +6,7 @@ use crate::ir::Robot;
 use crate::plan::kinematics::Rotary;
 use crate::plan::orient::Orienter;
 use crate::plan::positioner::Kin;
-use crate::plan::{Move, Where};
+use crate::plan::{Move, MoveKind, Where};
 use nalgebra::{Isometry3, Matrix3, Rotation3, UnitQuaternion, Vector3};
 use std::sync::{Arc, Mutex, PoisonError};
 
@@ -60,8 +60,9 @@ pub struct Solved {
 /// singular while both ends are not. So a move longer than [`LIN_STEP_MM`],
 /// or turning the tool by more than [`LIN_STEP_DEG`], is followed through
 /// poses that far apart (each a sub-move of the same move: the rules name
-/// the move). The first move is the PTP from home, which the controller
-/// interpolates in the axes, not along a line.
+/// the move). The move from home ([`MoveKind::FromHome`]) is a PTP, which
+/// the controller interpolates in the axes, not along a line; the move back
+/// home has no pose to solve.
 ///
 /// Moves are buffered and solved [`CHUNK`] at a time, in order, each
 /// from the one before (`plan::arm::chain`: continued from the last solution
@@ -156,6 +157,10 @@ impl Follow {
     /// full, hands it to a thread to solve and gives back the chunk before
     /// it, solved and chosen in order.
     pub fn push(&mut self, m: &Move) -> Option<Vec<Solved>> {
+        if m.kind == MoveKind::Home {
+            // Back to the home axes: no pose to solve.
+            return None;
+        }
         if self.normal != Some(m.normal) {
             // As the writer does: the tool turns only where the normal changes.
             self.normal = Some(m.normal);
@@ -164,7 +169,9 @@ impl Follow {
             self.rot = (rot, q);
         }
         let q = self.rot.1;
-        if let Some((from, q0, axes)) = self.last.filter(|_| self.between) {
+        // A PTP (from home) is interpolated in the axes: no line to follow.
+        let lin = self.between && !m.kind.ptp();
+        if let Some((from, q0, axes)) = self.last.filter(|_| lin) {
             let d = (0..3)
                 .map(|i| (m.to[i] - from[i]).powi(2))
                 .sum::<f64>()

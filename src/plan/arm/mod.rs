@@ -152,6 +152,34 @@ impl Solver {
         (sols, self.wrist(&f))
     }
 
+    /// The axis angles the PTP from home takes for the tool at `to` with
+    /// axes `rot` (`None` out of reach): of every solution (A4 and A6 in
+    /// the turn nearest `home`'s), the one whose axes differ least from
+    /// `home` in sum. Two equally near (within 10⁻⁹°: the wrist flipped or
+    /// not, A6 at +180° or −180° from home) are told apart so the choice
+    /// never depends on the solver's order: the wrist not flipped first
+    /// (A5 ≥ 0, Status bit 2 clear), then by the axes in order, the lower
+    /// angle first (A6 −180° before +180°). The KRL writer's `S` and `T`
+    /// and the verifier's first pose are both this one.
+    pub fn from_home(&self, to: [f64; 3], rot: &Matrix3<f64>, home: &Joints) -> Option<Joints> {
+        let dist = |j: &Joints| -> f64 { j.iter().zip(home).map(|(a, b)| (a - b).abs()).sum() };
+        self.solve(to, rot, home).into_iter().min_by(|a, b| {
+            let (da, db) = (dist(a), dist(b));
+            if (da - db).abs() > 1e-9 {
+                return da.total_cmp(&db);
+            }
+            let flipped = |j: &Joints| j[4] < 0.0;
+            if flipped(a) != flipped(b) {
+                return flipped(a).cmp(&flipped(b));
+            }
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| x.total_cmp(y))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+    }
+
     /// Every solution for the flange at `f` (in the robot's frame), in no
     /// order: what [`Self::nearest`] picks from.
     pub fn solutions(&self, f: &Isometry3<f64>) -> Vec<Joints> {
@@ -325,6 +353,38 @@ mod tests {
             assert!((t.z - (c1 + c2 - a2)).abs() < 1e-6, "{} z {}", m.key, t.z);
             let z = f.rotation * Vector3::z();
             assert!((z - Vector3::x()).norm() < 1e-9, "{} flange z {z:?}", m.key);
+        }
+    }
+
+    /// The PTP from home to a tool pointing straight down ahead of the arm:
+    /// from KUKA's home (A4 = A5 = A6 = 0) the wrist reaches it either
+    /// unflipped (A5 > 0, A6 a half turn, +180° or −180° as near) or
+    /// flipped (A5 < 0, A4 a half turn), all four equally near. The rule
+    /// takes A5 > 0 and A6 = −180°, whatever order the solver gives.
+    #[test]
+    fn the_ptp_from_home_breaks_ties_by_the_stated_rule() {
+        for m in CATALOGUE {
+            let s = solver(m.key);
+            let home = [0.0, -90.0, 90.0, 0.0, 0.0, 0.0];
+            let [a1, _, _, c1, c2, c3, c4] = s.arm.opw;
+            let to = [a1 + 0.6 * (c3 + c4), 0.0, c1 + 0.3 * c2 - c4];
+            // The flange's Z straight down, its X ahead: A6 a half turn from home.
+            let rot = Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0);
+            let all = s.solve(to, &rot, &home);
+            let j = s.from_home(to, &rot, &home).unwrap();
+            assert!(
+                j[4] > 0.0 && (j[5] + 180.0).abs() < 1e-6 && j[3].abs() < 1e-6,
+                "{} {j:?}",
+                m.key
+            );
+            // Tied with a flipped wrist: the rule, not the order, decided.
+            let dist = |q: &Joints| q.iter().zip(&home).map(|(a, b)| (a - b).abs()).sum::<f64>();
+            assert!(
+                all.iter()
+                    .any(|q| q[4] < 0.0 && (dist(q) - dist(&j)).abs() < 1e-6),
+                "{} {all:?}",
+                m.key
+            );
         }
     }
 

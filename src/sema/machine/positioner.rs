@@ -49,6 +49,7 @@ pub(super) fn read<'a>(
         diags,
     );
     let keep = keep(&b, diags);
+    let home = home(&b, diags);
     let (tilt, rotate) = (tilt?, rotate?);
     let dot: f64 = (0..3)
         .map(|i| tilt.direction[i] * rotate.direction[i])
@@ -67,6 +68,7 @@ pub(super) fn read<'a>(
         tilt,
         rotate,
         keep: keep?,
+        home: home?,
         angles: Vec::new(),
     }))
 }
@@ -113,31 +115,49 @@ fn three(
     dim: Dim,
     diags: &mut Diagnostics,
 ) -> Option<([f64; 3], crate::span::Span)> {
+    list(b, field, dim, diags)
+}
+
+/// A list of `N` quantities of `dim`.
+fn list<const N: usize>(
+    b: &Fields<'_>,
+    field: &Field,
+    dim: Dim,
+    diags: &mut Diagnostics,
+) -> Option<([f64; N], crate::span::Span)> {
     let v = b.value(field, diags)?;
-    let Value::List(items) = &v.value else {
-        diags.push(wrong(field, v.span, &v.value.describe()));
-        return None;
+    let items = match &v.value {
+        Value::List(items) if items.len() == N => items,
+        _ => {
+            diags.push(wrong(field, v.span, &v.value.describe()));
+            return None;
+        }
     };
-    if items.len() != 3 {
-        diags.push(wrong(field, v.span, &v.value.describe()));
-        return None;
+    let mut out = [0.0; N];
+    let mut ok = true;
+    for (o, it) in out.iter_mut().zip(items) {
+        match fields::quantity(it, dim, field.key, diags) {
+            Some(q) => *o = q,
+            None => ok = false,
+        }
     }
-    let c: Vec<_> = items
-        .iter()
-        .map(|it| fields::quantity(it, dim, field.key, diags))
-        .collect();
-    match c[..] {
-        [Some(x), Some(y), Some(z)] => Some(([x, y, z], v.span)),
-        _ => None,
-    }
+    ok.then_some((out, v.span))
 }
 
 fn wrong(field: &Field, at: crate::span::Span, got: &str) -> crate::diag::Diagnostic {
-    if field.kind.dim() == Some(Dim::LENGTH) {
-        message::machine::axis_point_not_a_point(field.key, at, got)
-    } else {
-        message::positioner::direction_not_three(field.key, at, got)
+    match field.kind.dim() {
+        Some(Dim::LENGTH) => message::machine::axis_point_not_a_point(field.key, at, got),
+        Some(Dim::ANGLE) => message::positioner::home_not_two_angles(at, got),
+        _ => message::positioner::direction_not_three(field.key, at, got),
     }
+}
+
+/// `home = [e1, e2]`, deg (default both 0).
+fn home(b: &Fields<'_>, diags: &mut Diagnostics) -> Option<[f64; 2]> {
+    if !b.has(&p::HOME) {
+        return Some([0.0; 2]);
+    }
+    list(b, &p::HOME, Dim::ANGLE, diags).map(|(e, _)| e.map(f64::to_degrees))
 }
 
 /// `keep = vertical | cone(angle) | fixed(e1, e2)`.

@@ -931,6 +931,7 @@ pub static POSITIONER: Block = Block::new(
         &positioner::ROTATE_POINT,
         &positioner::ROTATE_LIMITS,
         &positioner::ROTATE_SPEED,
+        &positioner::HOME,
         &positioner::KEEP,
     ],
 );
@@ -1024,6 +1025,13 @@ pub mod positioner {
         Quantity(Dim::ANGULAR_SPEED, Positive),
         Required("90 deg/s"),
         "E2's top speed",
+    );
+    /// `home = [e1, e2]`.
+    pub static HOME: Field = Field::new(
+        "home",
+        List(&ANGLE, Len::Exactly(2)),
+        Default(super::super::DefaultValue::Described("`[0 deg, 0 deg]`")),
+        "E1 and E2 at home: the program starts from them (the PTP from home) and ends at them (the PTP back), with the arm at its `home`",
     );
     /// `keep = vertical | cone(…) | fixed(…)`.
     pub static KEEP: Field = Field::new(

@@ -51,14 +51,32 @@ pub fn axis_speed(name: &str, axis: &str, w: &Worst<impl Display>, declared: Spa
 pub fn c_unwind(
     name: &str,
     w: &Worst<impl Display>,
-    range: [f64; 2],
+    (range, head): ([f64; 2], bool),
     declared: Span,
 ) -> Diagnostic {
+    let (within, why) = if head {
+        (
+            "between two retracts",
+            "a head unwinds C only where the nozzle has backed off with the laser off, \
+             between paths: declare C's real travel if it turns further (an endless C axis: \
+             as wide as the paths wind), or let the nozzle leave the part more often (a \
+             continuous program: `layer_change = lift` in the slicing, so each layer is a \
+             run of its own)",
+        )
+    } else {
+        (
+            "within one layer",
+            "a table does not unwind C in the middle of a layer (the part would swing round \
+             with the nozzle over it): declare C's real travel if it turns further (an endless \
+             C axis: as wide as the layers wind), or build the part so its layers wind less",
+        )
+    };
+    let runs = if head { "run" } else { "layer" };
     Diagnostic::error(
         Code::CUnwind,
         format!(
-            "the C axis of machine `{name}` would turn through {}° within one layer (up to {}), \
-             more than its travel of {}° ({}° .. {}°; {} layer{} too wide)",
+            "the C axis of machine `{name}` would turn through {}° {within} (up to {}), \
+             more than its travel of {}° ({}° .. {}°; {} {runs}{} too wide)",
             short(w.value),
             w.at,
             short(w.limit),
@@ -69,9 +87,5 @@ pub fn c_unwind(
         ),
     )
     .label(declared, "C's travel declared here")
-    .help(
-        "a table does not unwind C in the middle of a layer (the part would swing round \
-         with the nozzle over it): declare C's real travel if it turns further (an endless \
-         C axis: as wide as the layers wind), or build the part so its layers wind less",
-    )
+    .help(why)
 }
