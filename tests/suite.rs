@@ -52,6 +52,7 @@ mod ring_krl;
 mod ring_rs274;
 mod robustness;
 mod rs274_smoke;
+mod safe_motion;
 mod schemas;
 mod section_points;
 mod spiral;

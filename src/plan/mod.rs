@@ -23,13 +23,23 @@
 //!
 //! Then one move per point: [`MoveKind::Deposit`] from a point whose laser is on
 //! (at its speed and power), [`MoveKind::Travel`] at rapid from one whose laser
-//! is off. After the last path, a last retract. On a CNC the program's first
-//! move is a [`MoveKind::Lift`] of Z alone to its safe height ([`safe_height`]),
-//! then a travel across at that height, before the travel down to above the
-//! first path; its last is a lift to the same height (a robot starts and
-//! ends at home, by PTP). A path joins the one before when
-//! it starts where that one ended, with the same nozzle direction ([`joins`]):
-//! the motion goes straight on.
+//! is off. A path joins the one before when it starts where that one ended,
+//! with the same nozzle direction ([`joins`]): the motion goes straight on.
+//!
+//! # Start and end
+//! One rule for every machine, checked by the verifier like any move. A CNC's
+//! first move is a [`MoveKind::Lift`] of Z alone to its safe height
+//! ([`safe_height`]) from wherever the machine stands, then a travel across
+//! at that height (the rotary axes turning there), then down to above the
+//! first path. A robot's first move is a [`MoveKind::FromHome`]: a PTP from
+//! its home axes (and its positioner's home angles) to above the first
+//! path, which the controller interpolates in the axes (a LIN from KUKA's
+//! home, at A5 = 0, would start in the wrist singularity). After the last
+//! path every machine ends the same way: the laser off (after its
+//! lead-out), a last retract, the feeder off, the gas's post-flow and the
+//! gas off; then a CNC lifts Z alone to its safe height (in the part's
+//! frame, whatever its table's output mode: [`Plan::lift_at_end`]) and a
+//! robot goes back home by PTP ([`MoveKind::Home`]).
 //!
 //! "Up the nozzle" is the point's normal on a robot and a tilting head; on a
 //! 3-axis CNC, whose nozzle always points down, it is +Z.
@@ -77,11 +87,14 @@
 //! that much), and the laser switches on where it ends; the [`MoveKind::LeadOut`] goes on from
 //! the run's last point along its last move at its speed, `v²/2a` long,
 //! after the laser switched off there. The approach comes down onto the
-//! lead-in's start; a gap inside a path travels to it; where a run's start
-//! is reached along a path that joins (a linked raster's laser-off link) the
-//! nozzle first backs up to it. The retract, travel or cooling after a run
-//! start where its lead-out ends. A ring whose loop runs on the machine gets
-//! no leads (its programs write their own moves).
+//! lead-in's start; a gap inside a path (a linked raster's laser-off link
+//! among them) travels straight from the lead-out's end to it, not along
+//! the gap's points; where a run's start is reached along a separate path
+//! that joins, the nozzle first backs up to it. The retract, travel or
+//! cooling after a run start where its lead-out ends. The blending is the
+//! machine's, else what its program sets ([`crate::target::blending`]). A
+//! ring whose loop runs on the machine gets no leads (its programs write
+//! their own moves).
 
 pub mod arm;
 pub mod kinematics;
