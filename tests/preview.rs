@@ -795,10 +795,10 @@ struct Angles {
 impl Angles {
     fn pose(&mut self, to: [f64; 3], rot: &nalgebra::Matrix3<f64>) {
         // The PTP from home takes the nearest solution, ties by the
-        // documented rule (`Solver::from_home`); every later pose the
+        // documented rule (`Solver::home_solution`); every later pose the
         // nearest the one before.
         let j = match self.last {
-            None => self.solver.from_home(to, rot, &self.prev),
+            None => self.solver.home_solution(to, rot, &self.prev),
             Some(_) => self.solver.solve(to, rot, &self.prev).first().copied(),
         }
         .expect("a plan that built is within reach");

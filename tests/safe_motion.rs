@@ -576,3 +576,37 @@ proptest! {
         }
     }
 }
+
+/// Where no side of the tilt fits a layer's winding within C's stops, the
+/// head changes branch between layers, retracted, and the report names
+/// those layers: C −100° .. 370° holds a whole turn only from a start
+/// within −100° .. 10°, and the rotating seam moves each layer's start by
+/// 90°, so every other layer needs the other side.
+#[test]
+fn a_branch_change_happens_laser_off_and_the_report_names_its_layers() {
+    let path = Path::new("tests/cases/table/cone_head_stops/input.lmd");
+    let src = std::fs::read_to_string(path).unwrap().replace(
+        "c = -360 deg .. 360 deg",
+        "a = -120 deg .. 120 deg\n    c = -100 deg .. 370 deg",
+    );
+    let p = lmdc::pipeline::compile(&src, &mut ())
+        .program
+        .expect("builds");
+    let text = emit(&p).remove("cone_head_mill5.ngc").unwrap();
+    let r = rotary(&text, 'A');
+    let mut changed = Vec::new();
+    for w in r.windows(2) {
+        if w[0].0 * w[1].0 < 0.0 {
+            assert!(!w[1].2, "the tilt changes side with the laser on: {w:?}");
+            changed.push(w[1].3);
+        }
+    }
+    assert!(changed.len() >= 10, "{changed:?}");
+    let m = p.machines().next().unwrap();
+    let report = lmdc::report::Report::of_plan(m);
+    assert_eq!(report.branch_changes, changed);
+    assert!(lmdc::report::text::render(&report).contains(&format!(
+        "retracted, before layers {}, {}",
+        changed[0], changed[1]
+    )));
+}

@@ -174,7 +174,7 @@ pub fn sweep(kin: Kinematics, normals: impl Iterator<Item = [f64; 3]>, start: Ro
 /// [`LIMIT_TOL_DEG`]); of those, one on the branch `prev` is on (the sign
 /// of its tilt: a change of branch swings the tilt axis to the other side
 /// and C by half a turn, so it happens only where the run needs it); of
-/// those, the nearest `prev` ([`travel`]). Where none fits, the one that
+/// those, the nearest `prev` (the least axis travel). Where none fits, the one that
 /// leaves them least (the verifier reports it).
 pub fn run_start<I>(kin: Kinematics, normals: I, prev: Rotary, ranges: [[f64; 2]; 2]) -> Rotary
 where

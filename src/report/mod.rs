@@ -183,6 +183,12 @@ pub struct Report {
     /// Share of the design the plan stacks: the strips its deposits fill,
     /// times its layer heights (below 1: design volume no track fills).
     pub design_filled: Option<f64>,
+    /// The layers (from 1) before which a tilting head or table swings its
+    /// tilt to the other side (C half a turn with it), retracted with the
+    /// laser off: where a layer needs the other of the axes' two
+    /// solutions. Empty where it keeps one side throughout.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub branch_changes: Vec<usize>,
 }
 
 impl Report {
@@ -295,6 +301,7 @@ impl Report {
             design_mass_g: None,
             design_efficiency: None,
             design_filled: None,
+            branch_changes: summary.branch_changes.iter().map(|l| l + 1).collect(),
         }
     }
 

@@ -148,6 +148,15 @@ fn totals(out: &mut String, r: &Report) {
         "powder fed  {} (while the laser is on)",
         mass(t.powder_g)
     );
+    if !r.branch_changes.is_empty() {
+        let layers: Vec<String> = r.branch_changes.iter().map(|l| l.to_string()).collect();
+        let _ = writeln!(
+            out,
+            "tilt        swings to its other side (C half a turn with it), retracted, before layer{} {}: those layers need the other solution within the axes' stops",
+            if layers.len() == 1 { "" } else { "s" },
+            layers.join(", ")
+        );
+    }
 }
 
 /// The metal: what the bead model lays, what the layers stack, the design.

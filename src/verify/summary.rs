@@ -6,8 +6,9 @@
 //! Times are the program's at its programmed speeds, rapids at the machine's
 //! `max_speed`; accelerations are not modelled.
 
-use crate::ir::{Layer, Machine, Program};
-use crate::plan::{Move, Speed, Visit};
+use crate::ir::{Kinematics, Layer, Machine, Program};
+use crate::plan::kinematics::{flips, Rotary};
+use crate::plan::{effective_kinematics, Move, Speed, Visit};
 use serde::Serialize;
 
 /// What one layer of a plan (or the whole plan) costs. Lengths are the tool
@@ -63,6 +64,11 @@ pub struct Summary {
     pub files: Vec<String>,
     /// Rapid moves are timed at this speed (the machine's `max_speed`), mm/s.
     pub rapid_mm_s: f64,
+    /// The layers (from 0) whose laser-off moves in swing a tilting head's
+    /// or table's tilt to its other side, C half a turn with it: where the
+    /// run needed the other branch of the axes' two solutions
+    /// ([`crate::plan::kinematics::run_start`]).
+    pub branch_changes: Vec<usize>,
 }
 
 /// The speed a machine's rapid moves are timed at: its `max_speed`.
@@ -82,6 +88,9 @@ pub(super) struct Summarize<'p> {
     at: Option<[f64; 3]>,
     moves: u64,
     rows: Vec<Costs>,
+    /// A CNC with rotary axes: the axes the last move ended at.
+    tilting: Option<Rotary>,
+    branch_changes: Vec<usize>,
 }
 
 impl<'p> Summarize<'p> {
@@ -93,6 +102,13 @@ impl<'p> Summarize<'p> {
             at: None,
             moves: 0,
             rows: vec![Costs::default(); program.layers.len()],
+            tilting: match machine {
+                Machine::Cnc(c) if effective_kinematics(c) != Kinematics::Xyz => {
+                    Some(Rotary::default())
+                }
+                _ => None,
+            },
+            branch_changes: Vec::new(),
         }
     }
 
@@ -108,6 +124,7 @@ impl<'p> Summarize<'p> {
             layers: self.rows,
             total,
             rapid_mm_s: self.rapid,
+            branch_changes: self.branch_changes,
         }
     }
 }
@@ -128,6 +145,11 @@ impl Visit for Summarize<'_> {
     #[inline]
     fn motion(&mut self, m: &Move) {
         self.moves += 1;
+        if let Some(was) = self.tilting.replace(m.axes) {
+            if flips(was, m.axes) && self.branch_changes.last() != Some(&self.layer) {
+                self.branch_changes.push(self.layer);
+            }
+        }
         // The first move starts wherever the machine stands: no length.
         let d = self.at.replace(m.to).map_or(0.0, |from| dist(from, m.to));
         let v = match m.speed {

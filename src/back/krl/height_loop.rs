@@ -195,7 +195,7 @@ impl Text<'_> {
                 self.cell(&plan.prepare);
             }
             if m.kind == MoveKind::FromHome {
-                self.from_home(m);
+                self.ptp_from_home(m);
                 continue;
             }
             let vel = format!("$VEL.CP = {}", self.vel(m));
@@ -227,10 +227,10 @@ impl Text<'_> {
     /// The PTP from home to above the first point, with the Status and
     /// Turn the verifier checked where the arm is known (the axes it
     /// stands for as a comment), as every robot program starts.
-    fn from_home(&mut self, m: &Move) {
+    fn ptp_from_home(&mut self, m: &Move) {
         let pos = self.pos(m);
         let rot = self.orient.rotation(m.normal);
-        let line = match super::from_home(self.robot, m, &rot) {
+        let line = match super::home_config(self.robot, m, &rot) {
             Some((s, t, j)) => {
                 let axes: Vec<String> = j
                     .iter()

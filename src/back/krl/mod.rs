@@ -230,7 +230,7 @@ impl Visit for Writer<'_, '_> {
         match m.kind {
             MoveKind::FromHome => {
                 self.last = Some(m.kind);
-                let config = from_home(self.robot, m, &self.rot);
+                let config = home_config(self.robot, m, &self.rot);
                 self.out.ptp(m.to, self.abc, ext, config);
                 return;
             }
@@ -257,9 +257,9 @@ impl Visit for Writer<'_, '_> {
 
 /// The Status, Turn and axis angles of the PTP from home `m` with the tool
 /// turned `rot`, where the arm is known: the solution the verifier checked
-/// ([`crate::plan::arm::Solver::from_home`]), through the positioner at
+/// ([`crate::plan::arm::Solver::home_solution`]), through the positioner at
 /// the move's angles.
-pub fn from_home(
+pub fn home_config(
     robot: &Robot,
     m: &Move,
     rot: &nalgebra::Matrix3<f64>,
@@ -273,7 +273,7 @@ pub fn from_home(
         }
         None => (m.to, *rot),
     };
-    let j = s.from_home(to, &rot, &robot.home)?;
+    let j = s.home_solution(to, &rot, &robot.home)?;
     Some((s.status(&j), crate::plan::arm::Solver::turn(&j), j))
 }
 

@@ -102,7 +102,7 @@ impl Chain {
         let joints = match (self.first, Solver::nearest(&sols, &self.prev)) {
             (false, Some(j)) => Some(j),
             _ if sols.is_empty() => None,
-            _ => s.from_home(to, rot, &self.prev),
+            _ => s.home_solution(to, rot, &self.prev),
         };
         self.first = false;
         if let Some(j) = joints {

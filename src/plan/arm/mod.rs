@@ -161,7 +161,7 @@ impl Solver {
     /// (A5 ≥ 0, Status bit 2 clear), then by the axes in order, the lower
     /// angle first (A6 −180° before +180°). The KRL writer's `S` and `T`
     /// and the verifier's first pose are both this one.
-    pub fn from_home(&self, to: [f64; 3], rot: &Matrix3<f64>, home: &Joints) -> Option<Joints> {
+    pub fn home_solution(&self, to: [f64; 3], rot: &Matrix3<f64>, home: &Joints) -> Option<Joints> {
         let dist = |j: &Joints| -> f64 { j.iter().zip(home).map(|(a, b)| (a - b).abs()).sum() };
         self.solve(to, rot, home).into_iter().min_by(|a, b| {
             let (da, db) = (dist(a), dist(b));
@@ -371,7 +371,7 @@ mod tests {
             // The flange's Z straight down, its X ahead: A6 a half turn from home.
             let rot = Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0);
             let all = s.solve(to, &rot, &home);
-            let j = s.from_home(to, &rot, &home).unwrap();
+            let j = s.home_solution(to, &rot, &home).unwrap();
             assert!(
                 j[4] > 0.0 && (j[5] + 180.0).abs() < 1e-6 && j[3].abs() < 1e-6,
                 "{} {j:?}",
