@@ -237,6 +237,50 @@ fn machine_coordinates_reconstruct_the_ir_path() {
     assert!(!text.contains("M428") && text.contains("machine axes"));
 }
 
+/// Both programs end at the part's safe height (issue 31: the machine-
+/// coordinate program ended with the tip 2.68 mm below it): the last line
+/// moves Z alone, the table standing where the last layer left it, and the
+/// tip it puts under the nozzle, read back through the test's forward
+/// kinematics, is at the height the first line lifted to (at A = C = 0,
+/// where the two frames agree).
+#[test]
+fn both_programs_end_at_the_parts_safe_height() {
+    let (v, tcp, machine) = example();
+    for (name, text) in [("trt_tcp", &tcp), ("trt_machine", &machine)] {
+        let cnc = table_of(&v, name);
+        let t = cnc.table.expect("a table");
+        let o = cnc.placement.origin;
+        let lines = motion(text, 'A');
+        let (first, before, last) = (lines[0], lines[lines.len() - 2], lines[lines.len() - 1]);
+        let last_line = text
+            .lines()
+            .filter(|l| l.starts_with("G0") || l.starts_with("G1"))
+            .next_back()
+            .unwrap();
+        assert!(
+            last_line.starts_with("G0 Z") && !last_line.contains(['X', 'Y', 'A', 'C']),
+            "{name}: {last_line}"
+        );
+        assert_eq!((before.tilt, before.c), (last.tilt, last.c), "{name}");
+        assert!(
+            last.tilt.abs() > 20.0,
+            "{name}: the table is tilted at the end"
+        );
+        let safe = first.xyz[2];
+        let tip = if name == "trt_machine" {
+            let m = [last.xyz[0] + o[0], last.xyz[1] + o[1], last.xyz[2] + o[2]];
+            part_point(cnc.kinematics, &t, o, m, last.tilt, last.c)
+        } else {
+            last.xyz
+        };
+        assert!(
+            (tip[2] - safe).abs() < 0.002,
+            "{name}: the tip ends at z = {}, the safe height is {safe}",
+            tip[2]
+        );
+    }
+}
+
 #[test]
 fn tcp_output_writes_part_coordinates_and_the_same_angles() {
     let (v, tcp, machine) = example();
