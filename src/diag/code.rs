@@ -158,7 +158,7 @@ codes! {
     ExpectedName = "expected-name", Values,
         "a value where the name of a declared bead model belongs (`wall = my_bead`, `bead = my_bead`)";
     Type = "type", Values,
-        "a value of the wrong kind in a machine block: a `home` that is not six angles, a `preamble` or `postamble` that is not texts";
+        "a value of the wrong kind in a machine block: a `home` that is not six angles, a `preamble` or `postamble` that is not texts, a `load` that is not `load(…)` or whose `cog` is not three lengths";
     BadChoice = "bad-choice", Values,
         "a word that is not one of the field's choices (`kind = robott`); a `colour` that is not `#rrggbb`, a `paths` that is not `outer_contour`, `inner_contour`, `contour` or `infill`";
     EmptyRange = "empty-range", Values,
@@ -351,6 +351,8 @@ codes! {
 
     ArmUnchecked = "arm-unchecked", Warnings,
         "a robot declares an `arm` but its `base` or `tool` is only an index into the controller's table (`base = 1`): lmdc cannot solve the poses, so reach, axis limits and singularities are not checked; says how to declare the value";
+    LoadUnchecked = "load-unchecked", Warnings,
+        "a robot declares no tool `load`: its program sets `$LOAD = LOAD_DATA[n]` (n the tool's number), whatever the controller holds there, which lmdc cannot check; says how to declare the mass and centre of gravity the program then sets";
     ShortTrack = "short-track", Warnings,
         "planar tracks shorter than the bead width (they overheat and pile up); counts them and names the first layer";
     LiftMismatch = "lift-mismatch", Warnings,
