@@ -335,7 +335,7 @@ codes! {
     PowderRate = "powder-rate", Machines,
         "a powder feed the feeder's analog rate output cannot write: beyond its `full_scale`, or changing inside a path where the rate cannot follow";
     Reach = "reach", Machines,
-        "a robot's move its declared `arm` cannot reach from where `base` puts the part (or only on the far side of a singularity): says where, how far the wrist centre would have to be from A1 against what the arm reaches, and where a base would bring the part within reach";
+        "a robot's move its declared `arm` cannot reach from where `base` puts the part (or only on the far side of a singularity): says where, how far the wrist centre would have to be from A2 against what the arm reaches (\"at least\" where the part's points were found beyond reach before any pose was solved), and a base, in front of the robot and above its foot, from where the arm reaches the part, or that none can";
     JointLimit = "joint-limit", Machines,
         "a robot's axis (A1–A6) beyond its limit less the `joint_margin` on a move of the plan, or its `home` outside its limits; names the axis, the worst move, by how much, and what would turn it less (the base, the tool's angle)";
     SingularLin = "singular-lin", Machines,
