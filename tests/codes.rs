@@ -538,6 +538,12 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
     // The duct 9 m in front of a KR 60 HA, whose wrist reaches 1.7 m from A2.
     reach: Reach, DUCT,
         "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 9000 mm) }";
+    // A plate 3 m long on a KR 60 HA: its far end beyond reach from its
+    // points, and no base in front of the robot, above its foot, reaches
+    // both ends.
+    reach_no_base: Reach, PLATE.without(&["machine mill"]),
+        "extrude block { profile = rectangle(width = 3000 mm, height = 4 mm)  size = outer  bead = track }
+machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm, z = 400 mm) }";
     // A5 of a KR 60 HA turns ±119°.
     joint_limit: JointLimit, DUCT,
         "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm)  home = [0 deg, -90 deg, 90 deg, 0 deg, 150 deg, 0 deg] }";

@@ -138,8 +138,12 @@ pub enum Fix {
         /// The most two reachable foci lie apart, mm.
         most: f64,
     },
-    /// None of the bases tried lets the arm follow the plan.
-    Unfound,
+    /// None of the bases tried lets the arm follow the plan; the part's
+    /// extent along one axis is `across` mm (0: not known).
+    Unfound {
+        /// The part's extent, mm.
+        across: f64,
+    },
 }
 
 /// A base that brings `machine`'s poses of `program` within reach, turned
@@ -152,13 +156,13 @@ pub enum Fix {
 /// followed).
 pub fn fix(program: &Program, machine: &Machine) -> Fix {
     let Machine::Robot(robot) = machine else {
-        return Fix::Unfound;
+        return Fix::Unfound { across: 0.0 };
     };
     let Some(s) = Solver::new(robot) else {
-        return Fix::Unfound;
+        return Fix::Unfound { across: 0.0 };
     };
     let Some(r) = Reach::of(&s, robot) else {
-        return Fix::Unfound;
+        return Fix::Unfound { across: 0.0 };
     };
     let b = robot.base.value.unwrap_or_default();
     let turn = frame(&Pose {
@@ -199,7 +203,7 @@ pub fn fix(program: &Program, machine: &Machine) -> Fix {
             return Fix::Base(base);
         }
     }
-    Fix::Unfound
+    Fix::Unfound { across }
 }
 
 /// The bases to try, in whole mm, nearest first to where lmdc would put

@@ -31,7 +31,7 @@ pub(super) fn quick(cx: &MachineCx<'_>, at: &ArmAt<'_>, b: &Beyond) -> Diagnosti
 /// The report `make` writes with what would fix it.
 fn with_fix(cx: &MachineCx<'_>, make: impl FnOnce(ReachFix<'_>) -> Diagnostic) -> Diagnostic {
     let Machine::Robot(r) = cx.machine else {
-        return make(ReachFix::Unfound);
+        return make(ReachFix::Unfound { across: 0.0 });
     };
     if r.positioner.is_some() {
         return make(ReachFix::Positioner);
@@ -52,6 +52,6 @@ fn with_fix(cx: &MachineCx<'_>, make: impl FnOnce(ReachFix<'_>) -> Diagnostic) -
             make(ReachFix::Base(&text))
         }
         Fix::TooLarge { across, most } => make(ReachFix::TooLarge { across, most }),
-        Fix::Unfound => make(ReachFix::Unfound),
+        Fix::Unfound { across } => make(ReachFix::Unfound { across }),
     }
 }

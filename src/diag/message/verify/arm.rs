@@ -37,8 +37,12 @@ pub enum ReachFix<'a> {
         /// The most two reachable foci lie apart, mm.
         most: f64,
     },
-    /// No base lmdc tried lets the arm follow the plan.
-    Unfound,
+    /// No base lmdc tried lets the arm follow the plan, the part `across`
+    /// mm along one axis (0: not known).
+    Unfound {
+        /// The part's extent, mm.
+        across: f64,
+    },
     /// The part rides a positioner: its place in the cell is the
     /// positioner's.
     Positioner,
@@ -85,9 +89,16 @@ pub fn reach(
             a.arm,
             short(most)
         )),
-        ReachFix::Unfound => d.help(
-            "no base lmdc tried (the part in front of the robot, on or above the plane of its foot) lets the arm follow the plan: a shorter tool, a tool tilted on the flange, a larger arm or a positioner",
-        ),
+        ReachFix::Unfound { across } => {
+            let size = if across > 0.0 {
+                format!(" (the part is {} mm across)", short(across))
+            } else {
+                String::new()
+            };
+            d.help(format!(
+                "no base lmdc tried (the part in front of the robot, on or above the plane of its foot) lets the arm follow the plan{size}: a larger arm, a positioner, a shorter tool or one tilted on the flange; or check the part's lengths and their units"
+            ))
+        }
         ReachFix::Positioner => d
             .help("the part rides the positioner: bring the positioner nearer the robot (`tilt_point` and `rotate_point` are in the robot's frame), or the part nearer the rotate axis on its flange (`base`), then check again"),
     }
