@@ -780,6 +780,25 @@ pub struct FrameRef {
     pub value: Option<Pose>,
 }
 
+/// A robot tool's load (`load = load(…)`), as KUKA's `LOAD_DATA[n]` holds
+/// it and the main program sets it (`$LOAD`): the mass, where its centre of
+/// gravity is and how its principal axes of inertia are turned, in the
+/// flange's frame (`$FLANGE`), and its principal moments of inertia.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+pub struct Load {
+    /// Mass, kg (`M`).
+    pub mass: f64,
+    /// Centre of gravity in the flange's frame, mm (`CM` X, Y, Z).
+    pub cog: [f64; 3],
+    /// The principal axes of inertia turned from the flange's, KUKA A, B,
+    /// C, deg (`CM` A, B, C).
+    pub inertia_axes: [f64; 3],
+    /// Principal moments of inertia about the centre of gravity, kg·m²
+    /// (`J` X, Y, Z); all 0: a point mass.
+    pub inertia: [f64; 3],
+}
+
 /// An axis of the tool frame, with a sign.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
@@ -808,6 +827,9 @@ pub struct Robot {
     pub common: MachineCommon,
     /// Tool (TCP at the laser focus).
     pub tool: FrameRef,
+    /// The tool's load, when the robot declares it: the program sets it
+    /// (`$LOAD`); none: the controller's `LOAD_DATA[n]` of the tool's index.
+    pub load: Option<Load>,
     /// Base the part is programmed in.
     pub base: FrameRef,
     /// Which tool axis the beam travels along.
@@ -1265,6 +1287,10 @@ mod wire {
         name: String,
         /// Tool (TCP at the laser focus).
         tool: FrameRef,
+        /// The tool's load, when declared (absent: the controller's
+        /// `LOAD_DATA[n]`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        load: Option<super::Load>,
         /// Base the part is programmed in.
         base: FrameRef,
         /// Which tool axis the beam travels along.
@@ -1383,6 +1409,7 @@ mod wire {
                     ramp: r.ramp,
                 },
                 tool: r.tool,
+                load: r.load,
                 base: r.base,
                 beam: r.beam,
                 laser_out: r.laser_out,
@@ -1403,6 +1430,7 @@ mod wire {
             Robot {
                 name: c.name,
                 tool: r.tool,
+                load: r.load,
                 base: r.base,
                 beam: r.beam,
                 laser_out: r.laser_out,

@@ -44,6 +44,8 @@ impl Dim {
     pub const ACCELERATION: Dim = Dim::new(1, 0, -2, 0);
     /// rad/s: a robot axis's speed.
     pub const ANGULAR_SPEED: Dim = Dim::new(0, 0, -1, 1);
+    /// g·mm²: a moment of inertia (a robot tool's load).
+    pub const INERTIA: Dim = Dim::new(2, 1, 0, 0);
 
     /// Builds a dimension from exponents.
     pub const fn new(l: i8, m: i8, t: i8, a: i8) -> Dim {
@@ -78,13 +80,14 @@ impl Dim {
             (Dim::LENGTH, "a length (mm)"),
             (Dim::ANGLE, "an angle (deg)"),
             (Dim::TIME, "a time (s)"),
-            (Dim::MASS, "a mass (g)"),
+            (Dim::MASS, "a mass (kg)"),
             (Dim::SPEED, "a speed (mm/s)"),
             (Dim::ACCELERATION, "an acceleration (mm/s^2)"),
             (Dim::ANGULAR_SPEED, "an angular speed (deg/s)"),
             (Dim::MASS_FLOW, "a powder feed rate (g/min)"),
             (Dim::POWER, "a power (W)"),
             (Dim::DENSITY, "a density (g/cm^3)"),
+            (Dim::INERTIA, "a moment of inertia (kg*m^2)"),
             (Dim::new(2, 0, 0, 0), "an area (mm^2)"),
             (Dim::new(3, 0, 0, 0), "a volume (mm^3)"),
             (Dim::new(2, 1, -2, 0), "an energy (J)"),
@@ -389,6 +392,12 @@ typed_quantity!(
 typed_quantity!(
     /// A time in s.
     Time, Dim::TIME, "s");
+typed_quantity!(
+    /// A mass in g (shown in kg: a robot tool's load).
+    Mass, Dim::MASS, "kg");
+typed_quantity!(
+    /// A moment of inertia in g·mm² (shown in kg·m², as KUKA's `$LOAD.J`).
+    Inertia, Dim::INERTIA, "kg*m^2");
 
 impl Length {
     fn display_value(self) -> f64 {
@@ -455,6 +464,24 @@ impl Density {
 impl Time {
     fn display_value(self) -> f64 {
         self.0
+    }
+}
+impl Mass {
+    fn display_value(self) -> f64 {
+        self.kg()
+    }
+    /// In kg.
+    pub fn kg(self) -> f64 {
+        self.0 / 1000.0
+    }
+}
+impl Inertia {
+    fn display_value(self) -> f64 {
+        self.kg_m2()
+    }
+    /// In kg·m² (1 kg·m² = 10⁹ g·mm²).
+    pub fn kg_m2(self) -> f64 {
+        self.0 * 1e-9
     }
 }
 

@@ -68,6 +68,7 @@ machine mill {
 
 machine kr30 {
   kind = robot
+  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])
   laser = 1
   power_output = 1
   full_scale = 4000 W

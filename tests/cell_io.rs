@@ -24,7 +24,7 @@ const ARRIVAL: f64 = 2.5;
 
 /// The sprocket tooth on its robot and its mill, with gas and powder
 /// declared on both, and `process` added to its process block.
-pub(crate) fn tooth(process: &str) -> String {
+fn tooth(process: &str) -> String {
     let io = |gas: u16, powder: u16, rate: u16| {
         format!(
             "  gas {{\n    output = {gas}\n    pre_flow = {PRE_FLOW} s\n    post_flow = {POST_FLOW} s\n  }}\n  \

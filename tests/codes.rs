@@ -344,7 +344,7 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     expected_name: ExpectedName, PLATE,
         "extrude block { profile = rectangle(width = 20 mm, height = 10 mm)  size = outer  bead = 2 mm }";
     wrong_type: Type, PLATE,
-        "machine kr { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  home = [0 deg, 90 deg] }";
+        "machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  home = [0 deg, 90 deg] }";
     bad_choice: BadChoice, PLATE,
         "extrude block { profile = rectangle(width = 20 mm, height = 10 mm)  size = outr  bead = track }";
     empty_range: EmptyRange, PLATE,
@@ -401,7 +401,7 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
         "process { speed = 6 mm/s  power = 1500 W  power_range = 1600 W .. 2000 W  powder = 8 g/min  defocus = -3 mm }";
     nothing_deposited: NothingDeposited, PLATE, "slicing planar { layers = 2  offset = 1.6 mm  contours = 0 }";
     out_of_range: OutOfRange, PLATE,
-        "machine kr { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 5000 mm/s }";
+        "machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 5000 mm/s }";
     out_of_range_axes: OutOfRange, PLATE, "machine mill { kind = cnc  axes = 4  max_speed = 50 mm/s }";
     layer_outside_profile: LayerOutsideProfile, PLATE,
         "process { speed = 6 mm/s  power = 1500 W + layer * 10 W  powder = 8 g/min  defocus = -3 mm }";
@@ -523,40 +523,46 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
         "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  safe_height = 2 mm }";
     name_clash: NameClash, PLATE, "machine Mill { kind = cnc  axes = 3  max_speed = 50 mm/s }";
     transition_speed: TransitionSpeed, RING,
-        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 12 mm/s  height_input = 3  height_full_scale = 2 mm  height_delay = 150 ms }";
+        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 12 mm/s  height_input = 3  height_full_scale = 2 mm  height_delay = 150 ms }";
     loop_dialect: LoopDialect, RING,
         "machine mill { kind = cnc  axes = 3  dialect = fagor8070  max_speed = 50 mm/s  height_input = 3  height_full_scale = 2 mm }";
     loop_timing: LoopTiming, RING,
         "ring wall { radius = 40 mm  segments = 1  table { defocus = [-8 mm]  power = [1200 W]  width = [6.25 mm]  speed = [4 mm/s] } }";
     height_sensor: HeightSensor, RING, "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s }";
     analog_range: AnalogRange, PLATE,
-        "machine kr { kind = robot  laser = 1  power_output = 1  full_scale = 1000 W  max_speed = 100 mm/s }";
+        "machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 1000 W  max_speed = 100 mm/s }";
     output_clash: OutputClash, PLATE,
-        "machine kr { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  gas { output = 1 } }";
+        "machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  gas { output = 1 } }";
     io_dialect: IoDialect, PLATE,
         "machine mill { kind = cnc  axes = 3  dialect = fagor8070  max_speed = 50 mm/s  gas { output = 2 } }";
     // The duct 9 m in front of a KR 60 HA, whose wrist reaches 1.7 m from A2.
     reach: Reach, DUCT,
-        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 9000 mm) }";
+        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 9000 mm) }";
+    // A plate 3 m long on a KR 60 HA: its far end beyond reach from its
+    // points, and no base in front of the robot, above its foot, reaches
+    // both ends.
+    reach_no_base: Reach, PLATE.without(&["machine mill"]),
+        "extrude block { profile = rectangle(width = 3000 mm, height = 4 mm)  size = outer  bead = track }
+machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm, z = 400 mm) }";
     // A5 of a KR 60 HA turns ±119°.
     joint_limit: JointLimit, DUCT,
-        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm)  home = [0 deg, -90 deg, 90 deg, 0 deg, 150 deg, 0 deg] }";
+        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm)  home = [0 deg, -90 deg, 90 deg, 0 deg, 150 deg, 0 deg] }";
     // The part held up in front of the wrist, the nozzle pointing away from
     // the robot along the forearm: A5 = 0 at the duct's origin.
     singular_lin: SingularLin, DUCT,
-        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1650 mm, z = 1810 mm, b = -90 deg) }";
+        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1650 mm, z = 1810 mm, b = -90 deg) }";
     // The duct round A1's axis, 3 mm off: the wrist centre passes over A1
     // (overhead), and A1 would spin round to follow it.
     configuration_flip: ConfigurationFlip, DUCT,
-        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 3 mm, z = 1000 mm) }";
+        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 3 mm, z = 1000 mm) }";
     joint_speed: JointSpeed, DUCT,
-        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = -3 mm, z = 1000 mm) }";
+        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = -3 mm, z = 1000 mm) }";
     // The rotate axis along the tilt axis: the part could only turn.
     positioner_axes: PositionerAxes, DUCT,
-        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1)  positioner { tilt_axis = [0, 0, 1]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 2]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
+        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1)  positioner { tilt_axis = [0, 0, 1]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 2]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
     // The duct's 3° bend on a tilt held within ±1°: neither solution fits.
     positioner_limit: PositionerLimit, DUCT,
-        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1, a = 90 deg)  positioner { tilt_axis = [1, 0, 0]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -1 deg .. 1 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 1]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
+        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1, a = 90 deg)  positioner { tilt_axis = [1, 0, 0]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -1 deg .. 1 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 1]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
     // A cone leaning 30° with the nozzle along its wall: every layer winds
     // C once round, and C turns only 340°.
     c_unwind: CUnwind, DUCT,
@@ -585,9 +591,18 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
             }
         });
     loop_on_positioner: LoopDialect, RING,
-        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 50 mm/s  height_input = 3  height_full_scale = 2 mm  height_delay = 150 ms  base = frame(1)  positioner { tilt_axis = [1, 0, 0]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 1]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
+        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 50 mm/s  height_input = 3  height_full_scale = 2 mm  height_delay = 150 ms  base = frame(1)  positioner { tilt_axis = [1, 0, 0]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 1]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
     arm_unchecked: ArmUnchecked, DUCT,
-        "machine kr60 { kind = robot  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha }";
+        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha }";
+    // A robot without its tool's load: the controller's LOAD_DATA[1].
+    load_unchecked: LoadUnchecked, DUCT,
+        "machine kr60 { kind = robot  tool = frame(1, z = 350 mm)  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s }";
+    // A nozzle's mass written in kg for g, its centre of gravity 3 m out.
+    load_out_of_range: OutOfRange, DUCT,
+        "machine kr60 { kind = robot  load = load(mass = 18000 kg, cog = [0 mm, 0 mm, 3 m])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s }";
+    // The load's number, as for `tool = 1`: LOAD_DATA[n] is the tool's.
+    load_not_a_load: Type, DUCT,
+        "machine kr60 { kind = robot  load = 1  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s }";
     // Sinumerik's own system variables in the help, not LinuxCNC's M64.
     io_dialect_sinumerik: IoDialect, PLATE,
         "machine mill { kind = cnc  axes = 3  dialect = sinumerik840d  max_speed = 50 mm/s  gas { output = 2 } }";

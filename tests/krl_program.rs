@@ -62,7 +62,31 @@ fn run(p: &Verified, index: usize) -> (krl::Files, krl::Trace) {
     }
     let trace = krl::run(&files, &main, r.laser_out, r.power_out)
         .unwrap_or_else(|e| panic!("KRL check failed: {e}"));
+    assert_load(r, trace.load.as_ref());
     (files, trace)
+}
+
+/// The main program sets the load the robot declares, to the digits it
+/// writes, or the controller's load data of its tool.
+fn assert_load(r: &Robot, got: Option<&krl::LoadSet>) {
+    let Some(l) = r.load else {
+        assert_eq!(got, Some(&krl::LoadSet::Table(r.tool.index)));
+        return;
+    };
+    let Some(krl::LoadSet::Value { mass, cm, j }) = got else {
+        panic!("want the declared load {l:?}, got {got:?}")
+    };
+    let near = |a: f64, b: f64, tol: f64| (a - b).abs() <= tol;
+    assert!(near(*mass, l.mass, 5e-4), "M {mass} want {}", l.mass);
+    for i in 0..3 {
+        assert!(near(cm[i], l.cog[i], 5e-4), "CM {cm:?} want {:?}", l.cog);
+        assert!(near(cm[3 + i], l.inertia_axes[i], 5e-4), "CM {cm:?}");
+        assert!(
+            near(j[i], l.inertia[i], 5e-7),
+            "J {j:?} want {:?}",
+            l.inertia
+        );
+    }
 }
 
 /// The interpreter's run as the strict checker's trace.

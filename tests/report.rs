@@ -35,6 +35,7 @@ process {
 }
 machine r {
   kind = robot
+  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])
   tool = 1
   base = 1
   laser = 1

@@ -46,6 +46,7 @@ mod positioner;
 mod preview;
 mod program_text;
 mod progress;
+mod reach;
 mod report;
 mod ring;
 mod ring_krl;

@@ -158,7 +158,7 @@ codes! {
     ExpectedName = "expected-name", Values,
         "a value where the name of a declared bead model belongs (`wall = my_bead`, `bead = my_bead`)";
     Type = "type", Values,
-        "a value of the wrong kind in a machine block: a `home` that is not six angles, a `preamble` or `postamble` that is not texts";
+        "a value of the wrong kind in a machine block: a `home` that is not six angles, a `preamble` or `postamble` that is not texts, a `load` that is not `load(…)` or whose `cog` is not three lengths";
     BadChoice = "bad-choice", Values,
         "a word that is not one of the field's choices (`kind = robott`); a `colour` that is not `#rrggbb`, a `paths` that is not `outer_contour`, `inner_contour`, `contour` or `infill`";
     EmptyRange = "empty-range", Values,
@@ -335,7 +335,7 @@ codes! {
     PowderRate = "powder-rate", Machines,
         "a powder feed the feeder's analog rate output cannot write: beyond its `full_scale`, or changing inside a path where the rate cannot follow";
     Reach = "reach", Machines,
-        "a robot's move its declared `arm` cannot reach from where `base` puts the part (or only on the far side of a singularity): says where, how far the wrist centre would have to be from A1 against what the arm reaches, and where a base would bring the part within reach";
+        "a robot's move its declared `arm` cannot reach from where `base` puts the part (or only on the far side of a singularity): says where, how far the wrist centre would have to be from A2 against what the arm reaches (\"at least\" where the part's points were found beyond reach before any pose was solved), and a base, in front of the robot and above its foot, from where the arm reaches the part, or that none can";
     JointLimit = "joint-limit", Machines,
         "a robot's axis (A1–A6) beyond its limit less the `joint_margin` on a move of the plan, or its `home` outside its limits; names the axis, the worst move, by how much, and what would turn it less (the base, the tool's angle)";
     SingularLin = "singular-lin", Machines,
@@ -351,6 +351,8 @@ codes! {
 
     ArmUnchecked = "arm-unchecked", Warnings,
         "a robot declares an `arm` but its `base` or `tool` is only an index into the controller's table (`base = 1`): lmdc cannot solve the poses, so reach, axis limits and singularities are not checked; says how to declare the value";
+    LoadUnchecked = "load-unchecked", Warnings,
+        "a robot declares no tool `load`: its program sets `$LOAD = LOAD_DATA[n]` (n the tool's number), whatever the controller holds there, which lmdc cannot check; says how to declare the mass and centre of gravity the program then sets";
     ShortTrack = "short-track", Warnings,
         "planar tracks shorter than the bead width (they overheat and pile up); counts them and names the first layer";
     LiftMismatch = "lift-mismatch", Warnings,

@@ -31,7 +31,9 @@ pub fn choose(program: &mut Program) {
         let Machine::Robot(r) = &program.machines[i] else {
             continue;
         };
-        if !matches!(r.spin, Spin::Auto { .. }) || Follow::new(r).is_none() {
+        // A part the arm cannot reach is refused without solving a pose.
+        let refused = || super::arm::reach::beyond(program, r).is_some();
+        if !matches!(r.spin, Spin::Auto { .. }) || Follow::new(r).is_none() || refused() {
             continue;
         }
         let deg = best(program, &program.machines[i]);
@@ -68,7 +70,7 @@ fn best(program: &Program, machine: &Machine) -> f64 {
 /// About [`SAMPLES`] of the plan's moves, evenly spread, the first and the
 /// last among them: one walk, spaced by the IR's point count (a move a point,
 /// and a few more a path), no copy of the whole plan.
-fn sample(program: &Program, plan: &Plan<'_>) -> Vec<Move> {
+pub fn sample(program: &Program, plan: &Plan<'_>) -> Vec<Move> {
     let points: usize = program
         .layers
         .iter()

@@ -87,11 +87,15 @@ impl Visit for Collect {
 }
 
 /// The arm's axes along `plan`, when `machine` is a robot with an arm lmdc
-/// can solve.
+/// can solve and a part not beyond its reach (refused from its points, its
+/// poses are not solved: there is nothing to plot).
 pub fn of(machine: &Machine, plan: &crate::plan::Plan<'_>, layers: usize) -> Option<Arm> {
     let Machine::Robot(r) = machine else {
         return None;
     };
+    if crate::plan::arm::reach::beyond(plan.program(), r).is_some() {
+        return None;
+    }
     let follow = Follow::new(r)?;
     let a = follow.solver().arm();
     let arm = Arm {

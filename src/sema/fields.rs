@@ -11,7 +11,9 @@ use crate::diag::{message, Diagnostic, Diagnostics};
 
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, Stmt};
-use crate::units::{short, Angle, Density, Dim, Length, MassFlow, Power, Quantity, Speed, Time};
+use crate::units::{
+    short, Angle, Density, Dim, Inertia, Length, Mass, MassFlow, Power, Quantity, Speed, Time,
+};
 
 /// One field: its key and its evaluated value (`None` if evaluation failed and was
 /// reported already), or the statements of a nested block.
@@ -570,6 +572,8 @@ pub fn shown(value: f64, dim: Dim) -> String {
         Dim::MASS_FLOW => MassFlow(value).to_string(),
         Dim::DENSITY => Density(value).to_string(),
         Dim::TIME => Time(value).to_string(),
+        Dim::MASS => Mass(value).to_string(),
+        Dim::INERTIA => Inertia(value).to_string(),
         other => format!("{} {}", short(value), other.unit_string()),
     }
 }

@@ -20,6 +20,8 @@ use crate::plan::{Move, Speed, Visit};
 use crate::sema::schema::machine::{ARM, BASE, HOME, SINGULARITY, TOOL};
 use nalgebra::Vector3;
 
+mod reach;
+
 /// The worst pose of a kind, where it lies (a move's target, or on its way).
 type Worst = crate::diag::Worst<Along>;
 
@@ -31,9 +33,9 @@ pub(super) struct ArmRule {
     prev: Joints,
     status: u8,
     last: Option<[f64; 3]>,
-    /// The extent of the plan's poses in the base, for a base that reaches.
-    lo: [f64; 3],
-    hi: [f64; 3],
+    /// A part beyond reach, found before any pose is solved: the plan is
+    /// then not followed.
+    quick: Option<crate::plan::arm::reach::Beyond>,
     reach: Option<Worst>,
     /// The arm's reach, mm.
     span: [f64; 2],
@@ -55,8 +57,7 @@ impl<'p> PlanRule<'p> for ArmRule {
             prev: r.home,
             status: 0,
             last: None,
-            lo: [f64::INFINITY; 3],
-            hi: [f64::NEG_INFINITY; 3],
+            quick: crate::plan::arm::reach::beyond(cx.program, r),
             reach: None,
             span: [0.0; 2],
             limits: [None; 6],
@@ -64,6 +65,10 @@ impl<'p> PlanRule<'p> for ArmRule {
             flip: None,
             speed: [None; 6],
         })
+    }
+
+    fn settled(&self) -> bool {
+        self.quick.is_some()
     }
 
     fn report(mut self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
@@ -89,16 +94,12 @@ impl<'p> PlanRule<'p> for ArmRule {
                 out.push(msg::home_limit(&at, cx.origin.at(&HOME), i, *h, lim));
             }
         }
+        if let Some(b) = self.quick {
+            out.push(reach::quick(cx, &at, &b));
+            return;
+        }
         if let Some(w) = self.reach {
-            let base;
-            let fix = match r.positioner {
-                Some(_) => msg::ReachFix::Positioner,
-                None => {
-                    base = self.base_that_reaches(r);
-                    msg::ReachFix::Base(&base)
-                }
-            };
-            out.push(msg::reach(&at, &w, self.span, fix));
+            out.push(reach::report(cx, &at, &w, self.span));
         }
         for (i, w) in self.limits.iter().enumerate() {
             if let Some(w) = w {
@@ -124,6 +125,9 @@ impl<'p> PlanRule<'p> for ArmRule {
 
 impl Visit for ArmRule {
     fn motion(&mut self, m: &Move) {
+        if self.quick.is_some() {
+            return;
+        }
         if let Some(done) = self.follow.push(m) {
             self.follow_up(done);
         }
@@ -151,10 +155,6 @@ impl ArmRule {
     /// One move reaching axis angles `j` (none: out of reach).
     fn step(&mut self, s: &Solved, at: Along, j: Option<Joints>) {
         let (m, wrist) = (&s.m, &s.wrist);
-        for i in 0..3 {
-            self.lo[i] = self.lo[i].min(m.to[i]);
-            self.hi[i] = self.hi[i].max(m.to[i]);
-        }
         // A PTP (from home) keeps only its end's rules; every other move
         // is a LIN.
         let lin = !m.kind.ptp();
@@ -243,40 +243,5 @@ impl ArmRule {
                 self.speed[i] = slot.map(|w| (w, speed));
             }
         }
-    }
-
-    /// A base that puts the centre of the plan's poses at 60 % of the
-    /// forearm's reach in front of A1, a tool length and the wrist below A2,
-    /// turned as declared: written as `frame(…)`.
-    fn base_that_reaches(&self, r: &crate::ir::Robot) -> String {
-        let [a1, a2, _, c1, c2, c3, c4] = self.follow.solver().arm().opw;
-        let tool = r
-            .tool
-            .value
-            .map_or(0.0, |t| (t.x * t.x + t.y * t.y + t.z * t.z).sqrt());
-        let target = nalgebra::Vector3::new(
-            a1 + 0.6 * (c2 + (c3 * c3 + a2 * a2).sqrt()),
-            0.0,
-            c1 - tool - c4,
-        );
-        let centre = nalgebra::Vector3::new(
-            (self.lo[0] + self.hi[0]) / 2.0,
-            (self.lo[1] + self.hi[1]) / 2.0,
-            (self.lo[2] + self.hi[2]) / 2.0,
-        );
-        let b = r.base.value.unwrap_or_default();
-        let rot = crate::plan::arm::frame(&b).rotation;
-        let t = target - rot * centre;
-        let n = crate::numbers::trimmed;
-        format!(
-            "frame({}, x = {} mm, y = {} mm, z = {} mm, a = {} deg, b = {} deg, c = {} deg)",
-            r.base.index,
-            n(t.x, 0),
-            n(t.y, 0),
-            n(t.z, 0),
-            n(b.a, 1),
-            n(b.b, 1),
-            n(b.c, 1)
-        )
     }
 }

@@ -39,6 +39,13 @@ pub(crate) trait PlanRule<'p>: Visit + Sized {
 
     /// Every kind of violation found, once each.
     fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics);
+
+    /// Whether the rule knows what it reports before following the plan
+    /// (a part beyond the arm's reach): a walk that only such rules would
+    /// follow is not taken.
+    fn settled(&self) -> bool {
+        false
+    }
 }
 
 /// What a rule over the whole program sees.

@@ -62,6 +62,13 @@ macro_rules! plan_rules {
                 false $(|| self.$field.is_some())*
             }
 
+            /// Whether every rule of the set that applies knows what it
+            /// reports without following the plan.
+            #[allow(dead_code, reason = "only the slow set is asked")]
+            pub fn settled(&self) -> bool {
+                true $(&& self.$field.as_ref().is_none_or(|r| r.settled()))*
+            }
+
             /// What each found.
             pub fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
                 $(if let Some(r) = self.$field {

@@ -57,6 +57,7 @@ process {{
 }}
 machine kr60 {{
   kind = robot
+  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])
   laser = 1
   power_output = 1
   full_scale = 4000 W

@@ -28,6 +28,12 @@ pub fn robot() -> Robot {
                 c: 0.0,
             }),
         },
+        load: Some(Load {
+            mass: 12.5,
+            cog: [0.0, 0.0, 140.0],
+            inertia_axes: [0.0; 3],
+            inertia: [0.2, 0.2, 0.05],
+        }),
         base: FrameRef {
             index: 1,
             value: None,

@@ -62,6 +62,55 @@ pub struct Trace {
     /// Everything the motion modules do, in order: the timeline of motions,
     /// waits and the cell's outputs.
     pub events: Vec<Event>,
+    /// What the main program sets `$LOAD` to, before its first motion.
+    pub load: Option<LoadSet>,
+}
+
+/// A `$LOAD` the main program sets.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LoadSet {
+    /// `LOAD_DATA[n]`: the controller's load data of tool `n`.
+    Table(u16),
+    /// `{M …,CM {X …,Y …,Z …,A …,B …,C …},J {X …,Y …,Z …}}`: the mass (kg),
+    /// the centre of gravity and principal axes (mm, deg), the principal
+    /// moments of inertia (kg·m²).
+    Value {
+        mass: f64,
+        cm: [f64; 6],
+        j: [f64; 3],
+    },
+}
+
+/// `$LOAD`'s right-hand side: a table entry, or a LOAD aggregate with a
+/// mass above zero and moments of inertia of zero or more.
+fn load(rhs: &str) -> Result<LoadSet, String> {
+    if let Some(n) = rhs
+        .strip_prefix("LOAD_DATA[")
+        .and_then(|r| r.strip_suffix(']'))
+    {
+        return n
+            .parse()
+            .map(LoadSet::Table)
+            .map_err(|e| format!("LOAD_DATA[{n}]: {e}"));
+    }
+    let bad = || format!("`{rhs}` is not a LOAD aggregate {{M …,CM {{…}},J {{…}}}}");
+    let inner = rhs
+        .strip_prefix("{M ")
+        .and_then(|r| r.strip_suffix('}'))
+        .ok_or_else(bad)?;
+    let (m, rest) = inner.split_once(",CM ").ok_or_else(bad)?;
+    let (cm, j) = rest.split_once(",J ").ok_or_else(bad)?;
+    let mass = number(m)?;
+    let cm = aggregate(cm, &["X", "Y", "Z", "A", "B", "C"])?;
+    let j = aggregate(j, &["X", "Y", "Z"])?;
+    if mass <= 0.0 || j.iter().any(|j| *j < 0.0) {
+        return Err(format!("`{rhs}`: a mass ≤ 0 or a moment of inertia < 0"));
+    }
+    Ok(LoadSet::Value {
+        mass,
+        cm: [cm[0], cm[1], cm[2], cm[3], cm[4], cm[5]],
+        j: [j[0], j[1], j[2]],
+    })
 }
 
 /// One step of a motion module.
@@ -485,7 +534,17 @@ impl State<'_> {
             return Err("statement not allowed in a motion module".into());
         }
         // The main program's statements.
+        if let Some(rhs) = l.strip_prefix("$LOAD = ") {
+            if self.trace.load.is_some() || self.trace.ptps > 0 {
+                return Err("$LOAD set twice, or after the robot moved".into());
+            }
+            self.trace.load = Some(load(rhs)?);
+            return Ok(false);
+        }
         if let Some(p) = l.strip_prefix("PTP ") {
+            if self.trace.load.is_none() {
+                return Err("the robot moves before the program sets $LOAD".into());
+            }
             let axes = ["A1", "A2", "A3", "A4", "A5", "A6", "E1", "E2"];
             let v = aggregate(p, &axes).or_else(|_| aggregate(p, &axes[..6]))?;
             self.trace.homes.push(v.clone());

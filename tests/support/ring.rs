@@ -218,6 +218,7 @@ process {{
 }}
 {robot_start}machine kr60 {{
   kind = robot
+  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])
   tool = frame(1, z = 350 mm)
   base = 1
   beam = {beam}

@@ -23,7 +23,7 @@ pub use crate::plan::orient;
 
 use super::context::{counts, layer_context, shown, styles};
 use super::{EmitError, Sink, Templates};
-use crate::ir::{FrameRef, Layer, Robot, ToolAxis};
+use crate::ir::{FrameRef, Layer, Load, Robot, ToolAxis};
 use crate::numbers::{fixed, trimmed};
 use crate::plan::{Io, Move, MoveKind, Speed, Visit};
 use crate::target::kuka;
@@ -360,6 +360,22 @@ fn frame_value(f: &FrameRef) -> Option<String> {
     })
 }
 
+/// A tool's load as KRL's LOAD aggregate (`$LOAD`): mass kg, centre of
+/// gravity and principal axes in the flange's frame (mm, deg), principal
+/// moments of inertia kg·m²; `None` when the controller's `LOAD_DATA[n]` is
+/// used.
+fn load_value(l: Option<&Load>) -> Option<String> {
+    l.map(|l| {
+        let [x, y, z] = l.cog.map(|c| fixed(c, 3));
+        let [a, b, c] = l.inertia_axes.map(|c| fixed(c, 3));
+        let [jx, jy, jz] = l.inertia.map(|j| fixed(j, 6));
+        format!(
+            "{{M {},CM {{X {x},Y {y},Z {z},A {a},B {b},C {c}}},J {{X {jx},Y {jy},Z {jz}}}}}",
+            fixed(l.mass, 3)
+        )
+    })
+}
+
 fn beam_text(b: ToolAxis) -> &'static str {
     match b {
         ToolAxis::PlusX => "+X",
@@ -376,6 +392,7 @@ fn main_context(ctx: &mut tera::Context, m: VerifiedMachine<'_>, robot: &Robot, 
     styles(ctx, m.ir(), &comment_safe);
     ctx.insert("tool_index", &robot.tool.index);
     ctx.insert("tool_value", &frame_value(&robot.tool));
+    ctx.insert("load_value", &load_value(robot.load.as_ref()));
     ctx.insert("base_index", &robot.base.index);
     ctx.insert("base_value", &frame_value(&robot.base));
     ctx.insert(

@@ -17,6 +17,7 @@ pub mod field;
 pub mod fill;
 pub mod hole;
 pub mod internal;
+pub mod load;
 pub mod machine;
 pub mod mesh;
 pub mod positioner;

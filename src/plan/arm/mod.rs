@@ -273,12 +273,19 @@ impl Solver {
     /// How far the wrist centre is from the A2 axis where the tool is at
     /// `to` with `rot`, and the nearest and farthest the arm puts it, mm.
     pub fn reach(&self, to: [f64; 3], rot: &Matrix3<f64>) -> (f64, [f64; 2]) {
-        let [a1, a2, _, c1, c2, c3, _] = self.arm.opw;
+        let [a1, _, _, c1, ..] = self.arm.opw;
         let w = self.wrist(&self.flange(to, rot));
         let h = (w.x * w.x + w.y * w.y).sqrt();
         let d = ((h - a1).powi(2) + (w.z - c1).powi(2)).sqrt();
+        (d, self.span())
+    }
+
+    /// The nearest and farthest the arm puts the wrist centre from the A2
+    /// axis, mm: the upper arm and the forearm folded and stretched.
+    pub fn span(&self) -> [f64; 2] {
+        let [_, a2, _, _, c2, c3, _] = self.arm.opw;
         let fore = (c3 * c3 + a2 * a2).sqrt();
-        (d, [(c2 - fore).abs(), c2 + fore])
+        [(c2 - fore).abs(), c2 + fore]
     }
 
     /// How far the solution `j`, whose wrist centre is `w`, is from each
@@ -325,6 +332,7 @@ impl Solver {
 
 mod chain;
 mod follow;
+pub mod reach;
 
 pub use follow::{Along, Follow, Solved, CHUNK, LIN_STEP_DEG, LIN_STEP_MM};
 

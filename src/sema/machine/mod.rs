@@ -4,6 +4,7 @@
 //! powder) is read here; [`robot`] and [`cnc`] read the rest.
 
 mod cnc;
+mod load;
 mod positioner;
 mod robot;
 

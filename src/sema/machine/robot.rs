@@ -4,7 +4,7 @@ use super::super::cell;
 use super::super::eval::Env;
 use super::super::fields::{self, Fields};
 use super::super::schema::machine::{
-    frame, opw, ARM, BASE, BEAM, CLEARANCE, FRAME, FULL_SCALE, HOME, JOINT_MARGIN, LASER,
+    frame, opw, ARM, BASE, BEAM, CLEARANCE, FRAME, FULL_SCALE, HOME, JOINT_MARGIN, KIND, LASER,
     MAX_ANGLE_DEG, MAX_FRAME_MM, MAX_SPEED, MODULE_LINES, OPW, POSITIONER_BLOCK, POWER_OUTPUT,
     ROBOT, SINGULARITY, SPIN, TOOL,
 };
@@ -59,6 +59,7 @@ pub(super) fn read<'a>(
 
 fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
     let tool = frame_ref(f, &TOOL, diags);
+    let load = super::load::read(f, diags);
     let base = frame_ref(f, &BASE, diags);
     let beam = f.word_or_default(&BEAM, diags).map(|b| match b {
         "x" => ToolAxis::PlusX,
@@ -89,9 +90,21 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
     let spin = spin(f, diags);
     let moves = motion(f, diags);
     let sensor = height_sensor(f, 1, kuka::MAX_ANIN, diags);
+    if let (Some(None), Some(t)) = (&load, &tool) {
+        // The tool whose load data it is, or the robot's `kind = robot`.
+        let written = f.span(&TOOL);
+        let at = written.or(f.span(&KIND)).unwrap_or(f.block_span());
+        diags.push(message::load::unchecked(
+            name,
+            t.index,
+            at,
+            written.is_some(),
+        ));
+    }
     Some(Robot {
         common: common(name, vmax.map(|v| v.0), clearance, sensor, moves)?,
         tool: tool?,
+        load: load?,
         base: base?,
         beam: beam?,
         laser_out: laser?.0 as u16,

@@ -237,6 +237,91 @@ pub static SPIN: Field = Field::new(
     "the tool's turn about the beam, free for a coaxial nozzle; `auto`: 0° unless the `arm`'s rules fail there, then the turn that keeps the axes farthest from their limits and singularities (docs/robots.md)",
 );
 
+/// `load = load(…)`.
+pub static LOAD: Field = Field::new(
+    "load",
+    Call(&[&LOAD_DATA]),
+    Optional,
+    "the tool's load — its mass, centre of gravity and, optionally, inertia — which the program sets as `$LOAD` (KUKA's load data of the tool's number); none: the controller's `LOAD_DATA[n]` is used, unchecked (`lmd::load-unchecked`)",
+);
+
+/// Heaviest tool load lmdc takes, kg: above any KUKA arm's rated payload
+/// (the KR 1000 titan's 1300 kg), short of a typo's.
+pub const MAX_LOAD_KG: f64 = 1500.0;
+/// Farthest a load's centre of gravity may lie from the flange along each
+/// axis, mm: beyond any nozzle's, short of a typo's.
+pub const MAX_COG_MM: f64 = 2000.0;
+/// Largest principal moment of inertia of a load, kg·m²: more than the
+/// heaviest load at a metre, short of a typo's.
+pub const MAX_INERTIA_KG_M2: f64 = 2000.0;
+
+/// `load(mass, cog, inertia, inertia_axes)`: a robot tool's load, as
+/// KUKA's `LOAD_DATA` holds it.
+pub static LOAD_DATA: Block = Block::new(
+    "load",
+    "load(mass = 12 kg, cog = [0 mm, 0 mm, 150 mm])",
+    "the tool's load as KUKA's `$LOAD` takes it: its mass, and where its centre of gravity and principal axes of inertia are in the flange's frame (`$FLANGE`)",
+    &[
+        &load::MASS,
+        &load::COG,
+        &load::INERTIA,
+        &load::INERTIA_AXES,
+    ],
+);
+
+/// The arguments of `load(…)`.
+pub mod load {
+    use super::super::Bound::{Magnitude, PositiveUpTo, ZeroUpTo};
+    use super::super::DefaultValue::Described;
+    use super::super::Field;
+    use super::super::Kind::{List, Quantity};
+    use super::super::Len;
+    use super::super::Need::{Default, Required};
+    use super::{MAX_ANGLE_DEG, MAX_COG_MM, MAX_INERTIA_KG_M2, MAX_LOAD_KG};
+    use crate::units::Dim;
+
+    /// `mass = 12 kg`.
+    pub static MASS: Field = Field::new(
+        "mass",
+        Quantity(Dim::MASS, PositiveUpTo(MAX_LOAD_KG * 1000.0)),
+        Required("12 kg"),
+        "the tool's mass with everything it carries (nozzle, hoses and fibre as far as they hang on the flange): KUKA's `M`",
+    );
+    /// `cog = [x, y, z]`.
+    pub static COG: Field = Field::new(
+        "cog",
+        List(
+            &Quantity(Dim::LENGTH, Magnitude(MAX_COG_MM)),
+            Len::Exactly(3),
+        ),
+        Required("[0 mm, 0 mm, 150 mm]"),
+        "its centre of gravity in the flange's frame (Z out of the flange): KUKA's `CM` X, Y, Z",
+    );
+    /// `inertia = [jx, jy, jz]`.
+    pub static INERTIA: Field = Field::new(
+        "inertia",
+        List(
+            &Quantity(Dim::INERTIA, ZeroUpTo(MAX_INERTIA_KG_M2 * 1e9)),
+            Len::Exactly(3),
+        ),
+        Default(Described("`[0 kg*m^2, 0 kg*m^2, 0 kg*m^2]`: a point mass")),
+        "its principal moments of inertia about its centre of gravity: KUKA's `J` X, Y, Z",
+    );
+    /// `inertia_axes = [a, b, c]`.
+    pub static INERTIA_AXES: Field = Field::new(
+        "inertia_axes",
+        List(
+            &Quantity(
+                Dim::ANGLE,
+                Magnitude(crate::sema::schema::deg(MAX_ANGLE_DEG)),
+            ),
+            Len::Exactly(3),
+        ),
+        Default(Described("`[0 deg, 0 deg, 0 deg]`: along the flange's axes")),
+        "how its principal axes of inertia are turned from the flange's, KUKA A, B, C: KUKA's `CM` A, B, C",
+    );
+}
+
 /// `opw(a1, a2, b, c1, c2, c3, c4, limits, speeds)`: an arm by its parameters.
 pub static OPW: Block = Block::new(
     "opw",
@@ -349,6 +434,7 @@ pub static ROBOT: Block = Block::new(
     &[
         &KIND,
         &TOOL,
+        &LOAD,
         &BASE,
         &BEAM,
         &LASER,
@@ -701,6 +787,7 @@ pub static MACHINE: Block = Block::new(
     &[
         &KIND,
         &TOOL,
+        &LOAD,
         &BASE,
         &BEAM,
         &LASER,

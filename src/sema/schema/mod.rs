@@ -498,9 +498,14 @@ fn plural(d: Dim) -> String {
         .strip_prefix("a ")
         .or_else(|| one.strip_prefix("an "))
         .unwrap_or(&one);
-    match one.split_once(" (") {
-        Some((noun, unit)) => format!("{noun}s ({unit}"),
-        None => format!("{one}s"),
+    let (noun, unit) = match one.split_once(" (") {
+        Some((noun, unit)) => (noun, format!(" ({unit}")),
+        None => (one, String::new()),
+    };
+    // `moment of inertia`: the head noun takes the plural.
+    match noun.split_once(" of ") {
+        Some((head, of)) => format!("{head}s of {of}{unit}"),
+        None => format!("{noun}s{unit}"),
     }
 }
 
@@ -569,6 +574,7 @@ pub static BLOCKS: &[&Block] = &[
     &style::INHERITANCE,
     &machine::ROBOT,
     &machine::FRAME,
+    &machine::LOAD_DATA,
     &machine::CNC,
     &machine::LIMITS,
     &machine::GAS,

@@ -13,7 +13,8 @@ pub enum Value {
     Array(Vec<Value>),
     /// Declared, never assigned: reading it is KRL's "value not assigned".
     Unset(Ty),
-    /// A system table (`TOOL_DATA[n]`) whose value the test does not know.
+    /// A system table (`TOOL_DATA[n]`, `LOAD_DATA[n]`) whose value the test
+    /// does not know.
     Opaque,
 }
 

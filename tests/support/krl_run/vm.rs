@@ -428,7 +428,16 @@ impl Vm<'_> {
             Expr::Agg(parts) => {
                 let mut s = BTreeMap::new();
                 for (k, x) in parts {
-                    s.insert(k.clone(), self.eval(x, f)?.num()?);
+                    match self.eval(x, f)? {
+                        // A nested aggregate (`$LOAD`'s `CM {…}`), flattened:
+                        // its members as `CM.X`.
+                        Value::Struct(inner) => {
+                            s.extend(inner.into_iter().map(|(m, v)| (format!("{k}.{m}"), v)));
+                        }
+                        v => {
+                            s.insert(k.clone(), v.num()?);
+                        }
+                    }
                 }
                 Value::Struct(s)
             }
@@ -457,7 +466,7 @@ impl Vm<'_> {
     }
 
     fn read(&mut self, p: &Place, f: &mut Frame) -> Result<Value, String> {
-        if p.name == "TOOL_DATA" || p.name == "BASE_DATA" {
+        if ["TOOL_DATA", "BASE_DATA", "LOAD_DATA"].contains(&p.name.as_str()) {
             return Ok(Value::Opaque);
         }
         if p.name == "$ANIN" {

@@ -25,25 +25,45 @@ pub struct ArmAt<'a> {
 
 /// What would bring a plan the arm cannot reach within its reach.
 pub enum ReachFix<'a> {
-    /// A base that would bring the part's centre within reach, as written.
+    /// A base, as written, that stands the part on or above the robot's
+    /// foot, in front of it, from where the arm follows a sample of the
+    /// plan's moves.
     Base(&'a str),
+    /// No base can: two of the part's points lie `across` mm apart, no two
+    /// foci the arm reaches more than `most`.
+    TooLarge {
+        /// The part's extent, mm.
+        across: f64,
+        /// The most two reachable foci lie apart, mm.
+        most: f64,
+    },
+    /// No base lmdc tried lets the arm follow the plan, the part `across`
+    /// mm along one axis (0: not known).
+    Unfound {
+        /// The part's extent, mm.
+        across: f64,
+    },
     /// The part rides a positioner: its place in the cell is the
     /// positioner's.
     Positioner,
 }
 
 /// Poses the arm cannot reach: the worst's wrist centre `value` mm from A2,
-/// against the arm's `span` of reach.
+/// against the arm's `span` of reach; `quick`: found from the part's points
+/// before any pose was solved (at least that many poses, the wrist centre
+/// at least that far, whatever the tool's turn).
 pub fn reach(
     a: &ArmAt<'_>,
     w: &Worst<impl Display>,
     span: [f64; 2],
+    quick: bool,
     fix: ReachFix<'_>,
 ) -> Diagnostic {
+    let least = if quick { "at least " } else { "" };
     let d = Diagnostic::error(
         Code::Reach,
         format!(
-            "robot `{}` cannot reach {} pose{} of the plan: at {} its wrist centre would have to be {} mm from the A2 axis, and the {} reaches {} to {} mm",
+            "robot `{}` cannot reach {least}{} pose{} of the plan: at {} its wrist centre would have to be {least}{} mm from the A2 axis, and the {} reaches {} to {} mm",
             a.machine,
             w.count,
             plural(w.count),
@@ -54,16 +74,32 @@ pub fn reach(
             short(span[1])
         ),
     );
+    let d = match fix {
+        ReachFix::Positioner => d.label(a.base, "the part's place on the positioner's flange"),
+        _ => d.label(a.base, "the part is placed here"),
+    }
+    .label(a.declared, "the arm declared here");
     match fix {
-        ReachFix::Base(base) => d
-            .label(a.base, "the part is placed here")
-            .label(a.declared, "the arm declared here")
-            .help(format!(
-                "move the base so the part sits in front of the robot: e.g. `base = {base}` puts the part's centre at 60 % of the forearm's reach in front of A1, a tool length below A2 (then check again)"
-            )),
+        ReachFix::Base(base) => d.help(format!(
+            "move the base so the part stands in front of the robot, on or above the plane of its foot: e.g. `base = {base}`, from where the arm follows a sample of the plan's moves within its limits (then check again)"
+        )),
+        ReachFix::TooLarge { across, most } => d.help(format!(
+            "no base brings the whole part within reach: two of its points lie {} mm apart, and no two poses the {} reaches with this tool lie more than {} mm apart; check the part's lengths and their units, or use a larger arm",
+            short(across),
+            a.arm,
+            short(most)
+        )),
+        ReachFix::Unfound { across } => {
+            let size = if across > 0.0 {
+                format!(" (the part is {} mm across)", short(across))
+            } else {
+                String::new()
+            };
+            d.help(format!(
+                "no base lmdc tried (the part in front of the robot, on or above the plane of its foot) lets the arm follow the plan{size}: a larger arm, a positioner, a shorter tool or one tilted on the flange; or check the part's lengths and their units"
+            ))
+        }
         ReachFix::Positioner => d
-            .label(a.base, "the part's place on the positioner's flange")
-            .label(a.declared, "the arm declared here")
             .help("the part rides the positioner: bring the positioner nearer the robot (`tilt_point` and `rotate_point` are in the robot's frame), or the part nearer the rotate axis on its flange (`base`), then check again"),
     }
 }
