@@ -254,8 +254,7 @@ fn both_programs_end_at_the_parts_safe_height() {
         let (first, before, last) = (lines[0], lines[lines.len() - 2], lines[lines.len() - 1]);
         let last_line = text
             .lines()
-            .filter(|l| l.starts_with("G0") || l.starts_with("G1"))
-            .next_back()
+            .rfind(|l| l.starts_with("G0") || l.starts_with("G1"))
             .unwrap();
         assert!(
             last_line.starts_with("G0 Z") && !last_line.contains(['X', 'Y', 'A', 'C']),
