@@ -294,8 +294,8 @@ fn format(id: lsp_server::RequestId, doc: &Doc) -> Response {
 /// (`fit(…, data = "…")`) read beside it when it is a file on disk.
 fn compile(uri: &str, text: &str) -> pipeline::Compiled {
     let dir = file_path(uri).and_then(|p| p.parent().map(std::path::Path::to_path_buf));
-    let reader: crate::sema::DataReader = std::rc::Rc::new(move |name: &str| match &dir {
-        Some(d) => std::fs::read(d.join(name)).map_err(|e| e.to_string()),
+    let reader: crate::sema::DataReader = std::rc::Rc::new(move |name: &str, kind| match &dir {
+        Some(d) => crate::sema::data::read_file(&d.join(name), kind),
         None => Err("the document is not a file on disk".into()),
     });
     match pipeline::compile_reading(text, None, &mut (), reader) {

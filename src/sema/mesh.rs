@@ -2,6 +2,7 @@
 //! through the program's data reader, checked a closed surface and placed
 //! with its lowest point on the plate ([`crate::geometry::mesh`]).
 
+use super::data::Data;
 use super::fields::{self, Fields};
 use super::model::MeshSolid;
 use super::schema::solid::{mesh, MESH};
@@ -29,7 +30,8 @@ pub fn read(
         diags.push(message::mesh::no_reader(file_at));
         return None;
     };
-    let bytes = read(&path)
+    let bytes = read(&path, Data::Mesh)
+        .and_then(|b| Data::Mesh.too_long(&b).map_or(Ok(b), Err))
         .map_err(|why| diags.push(message::mesh::unreadable(&path, &why, file_at)))
         .ok()?;
     let scale = crate::units::mm_per(units);
