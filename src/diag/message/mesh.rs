@@ -5,7 +5,9 @@
 
 use crate::diag::{Code, Diagnostic};
 use crate::geometry::mesh::stl::{StlError, MAX_TRIANGLES};
-use crate::geometry::mesh::three_mf::{ThreeMfError, MAX_DEPTH, MAX_MODEL_BYTES};
+use crate::geometry::mesh::three_mf::{
+    ThreeMfError, MAX_DEPTH, MAX_MODEL_BYTES, MAX_RATIO, RATIO_FREE,
+};
 use crate::geometry::mesh::{MeshFault, SectionFault, ON_PLATE};
 use crate::span::Span;
 use crate::units::short;
@@ -85,6 +87,11 @@ pub fn not_3mf(path: &str, e: &ThreeMfError, at: Span) -> Diagnostic {
         }
         ThreeMfError::TooLarge { bytes } => format!(
             "its model parts inflate to {bytes} bytes; lmdc reads at most {MAX_MODEL_BYTES}"
+        ),
+        ThreeMfError::Inflates { bytes, compressed } => format!(
+            "its model part inflates {compressed} bytes to {bytes}, {} times over; lmdc reads a model part past {} MB that inflates at most {MAX_RATIO} times (a mesh's XML inflates 5 to 10 times; this is mostly blank or repeated)",
+            bytes / (*compressed).max(1),
+            RATIO_FREE >> 20
         ),
         ThreeMfError::SeveralModels { count } => format!(
             "its objects lie in {count} model parts (the production extension); lmdc reads a package of one model part"
