@@ -28,7 +28,7 @@ pub const EXIT_PROGRAM: u8 = 1;
 pub const EXIT_USAGE: u8 = 2;
 
 /// Largest source file lmdc reads (16 MiB).
-pub const MAX_SOURCE: u64 = 16 << 20;
+pub const MAX_SOURCE: u64 = lmdc::sema::data::MAX_SOURCE;
 
 /// lmdc compiles a .lmd description of a laser metal deposition part into the
 /// programs that build it: KRL for KUKA robots, G-code for CNCs.
@@ -381,7 +381,7 @@ pub fn run(cli: Cli) -> u8 {
             report::run(args, &common, p)
         }
         Command::Lsp => match lmdc::lsp::run_stdio() {
-            Ok(()) => 0,
+            Ok(status) => status,
             Err(e) => {
                 eprintln!("error: the language server stopped: {e}");
                 EXIT_USAGE

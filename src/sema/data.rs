@@ -11,6 +11,9 @@
 use crate::geometry::mesh::stl::MAX_TRIANGLES;
 use std::io::Read;
 
+/// Most bytes of a `.lmd` source, from a file, a pipe or an editor.
+pub const MAX_SOURCE: u64 = 16 << 20;
+
 /// Most bytes of a measurement sheet, for `fit(…)` and `lmdc fit` alike:
 /// tens of thousands of coupons' rows.
 pub const MAX_SHEET: u64 = 16 << 20;
