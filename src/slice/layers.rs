@@ -9,7 +9,7 @@ use crate::diag::message::{self, slicing::BeadHeights, slicing::LiftFix};
 use crate::diag::Diagnostics;
 use crate::sema::model::MAX_LAYERS;
 use crate::sema::model::{
-    Bead, Extent, Extrusion, HeightModel, LayerProfile, PlanarSlicing, Shape,
+    Bead, Extent, Extrusion, HeightModel, LayerProfile, Measure, PlanarSlicing, Shape,
 };
 use crate::span::Span;
 use crate::units::Length;
@@ -72,12 +72,17 @@ pub fn plan(
     };
     // A mesh is held to the plan's limits from its size first: read in
     // the wrong unit, it would be refused only after it is cut.
+    let inset = match extrusion.measure {
+        Measure::Outer => width.0 / 2.0,
+        Measure::Centre => 0.0,
+    };
+    let band = super::mesh::band(slicing, inset);
     if let LayerProfile::Mesh(m) = &extrusion.profile {
         let planned = match extrusion.extent {
             Extent::Layers(n, _) => n as f64,
             Extent::Height(height, _) => layer_count(height, lift),
         };
-        super::mesh::plausible(m, planned, lift, slicing, diags)?;
+        super::mesh::plausible(m, (planned, lift), (slicing, band), diags)?;
     }
     let n = match extrusion.extent {
         Extent::Layers(n, _) => n,
@@ -112,7 +117,7 @@ pub fn plan(
             }
             out
         }
-        LayerProfile::Mesh(m) => super::mesh::shapes(m, n, lift, slicing, diags)?,
+        LayerProfile::Mesh(m) => super::mesh::shapes(m, (n, lift), (slicing, band), diags)?,
     };
     Some(Layers {
         shapes,

@@ -13,10 +13,14 @@ use crate::slice::layers::MAX_PROFILE_WORK;
 use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
 
-/// The raster band along a layer's outlines: `(contours + 1)·offset` wide
-/// (contours, and half a track's room, with half as much again to spare).
-fn band(slicing: &PlanarSlicing) -> f64 {
-    (slicing.contours as f64 + 1.0) * slicing.offset.0
+/// The band along a layer's outlines a raster leaves out: `(contours +
+/// 1)·offset` wide (contours, and half a track's room, with half as much
+/// again to spare), or as deep as the raster starts, `inset +
+/// contours·offset` (the first contour's `inset` from the outline), when
+/// that is deeper (tracks overlapping by more than half a width).
+pub fn band(slicing: &PlanarSlicing, inset: f64) -> f64 {
+    let (c, d) = (slicing.contours as f64, slicing.offset.0);
+    ((c + 1.0) * d).max(inset + c * d)
 }
 
 /// A lower bound of the points a raster fill of the mesh `m`, scaled by
@@ -29,32 +33,76 @@ fn band(slicing: &PlanarSlicing) -> f64 {
 /// `A/(D·offset) − 1` raster lines of two ends each; the layers' areas
 /// times the lift add up to the volume. `None` for a fill without raster,
 /// for which no such bound holds.
-fn least_fill_points(m: &MeshSolid, k: f64, lift: f64, slicing: &PlanarSlicing) -> Option<f64> {
+fn least_fill_points(
+    m: &MeshSolid,
+    k: f64,
+    lift: f64,
+    (slicing, band): (&PlanarSlicing, f64),
+) -> Option<f64> {
     slicing.infill.as_ref()?;
     let (lo, hi) = m.mesh.bounds();
     let diagonal = (hi[0] - lo[0]).hypot(hi[1] - lo[1]) * k;
     let n = ((hi[2] - lo[2]) * k / lift).ceil();
-    let raster = m.mesh.volume() * k.powi(3) - m.mesh.surface() * k * k * band(slicing);
+    let raster = m.mesh.volume() * k.powi(3) - m.mesh.surface() * k * k * band;
     let lines = raster / (lift * diagonal * slicing.offset.0) - n;
     Some(2.0 * lines.max(0.0))
 }
 
-/// [`least_fill_points`] of one layer's section, from its own area,
-/// outlines and width (so a tall narrow boss on a wide plate counts its
-/// own lines, not the plate's): cut, it bounds the fill far closer than
-/// the whole mesh's volume does.
-fn least_section_points(islands: &[mesh::Section], slicing: &PlanarSlicing) -> f64 {
+/// [`least_fill_points`] of one layer's section, with its raster lines
+/// at `angle` (rad), from each island's own area, outlines and size (so a
+/// tall narrow boss on a wide plate counts its own lines, not the
+/// plate's): a line meets the island along at most its extent `L` in the
+/// lines' direction, so at least `A/(L·offset) − 1` lines cross its raster
+/// area `A`; and an island with no hole whose outline is convex keeps a
+/// convex raster area exactly the band narrower on each side, crossed by
+/// at least `(W − 2·band)/offset − 1` lines for its width `W` across them.
+fn least_section_points(
+    islands: &[mesh::Section],
+    angle: f64,
+    (slicing, band): (&PlanarSlicing, f64),
+) -> f64 {
     if slicing.infill.is_none() {
         return 0.0;
     }
+    let (u, n) = ([angle.cos(), angle.sin()], [-angle.sin(), angle.cos()]);
+    let extent = |l: &mesh::Loop, d: [f64; 2]| {
+        let (lo, hi) = l
+            .iter()
+            .map(|p| p[0] * d[0] + p[1] * d[1])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x), hi.max(x))
+            });
+        hi - lo
+    };
+    let offset = slicing.offset.0;
     islands
         .iter()
         .map(|s| {
-            let raster = s.area() - s.perimeter() * band(slicing);
-            let lines = raster / (s.diagonal() * slicing.offset.0) - 1.0;
-            2.0 * lines.max(0.0)
+            let raster = s.area() - s.perimeter() * band;
+            let by_area = raster / (extent(&s.outline, u) * offset) - 1.0;
+            let by_width = match s.holes.is_empty() && convex(&s.outline) {
+                true => (extent(&s.outline, n) - 2.0 * band) / offset - 1.0,
+                false => 0.0,
+            };
+            2.0 * by_area.max(by_width).max(0.0)
         })
         .sum()
+}
+
+/// Whether the loop turns one way only at every corner.
+fn convex(l: &mesh::Loop) -> bool {
+    let k = l.len();
+    let turn = |i: usize| {
+        let (a, b, c) = (l[i], l[(i + 1) % k], l[(i + 2) % k]);
+        (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0])
+    };
+    let (mut left, mut right) = (false, false);
+    for i in 0..k {
+        let t = turn(i);
+        left |= t > 0.0;
+        right |= t < 0.0;
+    }
+    !(left && right)
 }
 
 /// What slicing the mesh scaled by `k` into `layers` layers `lift` apart
@@ -64,14 +112,19 @@ fn least_section_points(islands: &[mesh::Section], slicing: &PlanarSlicing) -> f
 /// the whole mesh).
 ///
 /// [`Mesh::crossings`]: crate::geometry::mesh::Mesh::crossings
-fn cost(m: &MeshSolid, k: f64, lift: f64, layers: f64, slicing: &PlanarSlicing) -> Option<Over> {
+fn cost(
+    m: &MeshSolid,
+    k: f64,
+    (lift, layers): (f64, f64),
+    fill: (&PlanarSlicing, f64),
+) -> Option<Over> {
     let pieces = m
         .mesh
         .crossings(k, lift, layers.min(MAX_LAYERS as f64 + 1.0));
     // A `height` or `layers` below the mesh's top builds part of it: its
     // volume says nothing then.
     let whole = layers * lift >= m.top.0 * k * (1.0 - 1e-9);
-    let points = least_fill_points(m, k, lift, slicing).filter(|_| whole);
+    let points = least_fill_points(m, k, lift, fill).filter(|_| whole);
     if layers > MAX_LAYERS as f64 {
         Some(Over::Layers {
             n: layers,
@@ -100,12 +153,12 @@ fn cost(m: &MeshSolid, k: f64, lift: f64, layers: f64, slicing: &PlanarSlicing) 
 /// The hint names a unit in which it fits.
 pub fn plausible(
     m: &MeshSolid,
-    layers: f64,
-    lift: Length,
-    slicing: &PlanarSlicing,
+    (layers, lift): (f64, Length),
+    (slicing, band): (&PlanarSlicing, f64),
     diags: &mut Diagnostics,
 ) -> Option<()> {
-    let Some(over) = cost(m, 1.0, lift.0, layers, slicing) else {
+    let fill = (slicing, band);
+    let Some(over) = cost(m, 1.0, (lift.0, layers), fill) else {
         return Some(());
     };
     let whole = layers * lift.0 >= m.top.0 * (1.0 - 1e-9);
@@ -115,7 +168,7 @@ pub fn plausible(
         } else {
             layers
         };
-        cost(m, k, lift.0, n, slicing).is_none()
+        cost(m, k, (lift.0, n), fill).is_none()
     };
     diags.push(too_big(m, layers as usize, lift, slicing, over, fits));
     None
@@ -170,9 +223,8 @@ fn too_big(
 /// the profile's budget.
 pub fn shapes(
     m: &MeshSolid,
-    n: usize,
-    lift: Length,
-    slicing: &PlanarSlicing,
+    (n, lift): (usize, Length),
+    (slicing, band): (&PlanarSlicing, f64),
     diags: &mut Diagnostics,
 ) -> Option<Vec<Shape>> {
     let mut sections = m.mesh.sections();
@@ -186,7 +238,10 @@ pub fn shapes(
             .and_then(mesh::islands)
             .map_err(|f| diags.push(message::mesh::section(&f, k, z, m.span)))
             .ok()?;
-        least += least_section_points(&section, slicing);
+        let angle = slicing
+            .infill
+            .map_or(0.0, |r| r.angle.0 + r.rotate.0 * k as f64);
+        least += least_section_points(&section, angle, (slicing, band));
         pieces += section
             .iter()
             .flat_map(|s| std::iter::once(&s.outline).chain(&s.holes))
