@@ -150,6 +150,36 @@ fn a_sleeve_of_half_a_million_layers_is_refused_at_once() {
     );
 }
 
+/// A drawn 2 m plate in 10 000 layers, its raster turned a quarter a
+/// layer: 25 M points, found only as they were laid (the fill, and the
+/// gap check walking 25 km of track a layer, ran for over ten minutes at
+/// 1.9 GB). Its raster's bound is worked out from the profile at each
+/// angle first; the help gives the layers and the spacing that fit.
+#[test]
+fn a_plate_of_too_many_raster_points_is_refused_before_it_is_filled() {
+    let src = "part p
+profile q = rectangle(width = 2 m, height = 2 m)
+bead b { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
+extrude e { profile = q  bead = b }
+slicing planar { layers = 10000  offset = 1.6 mm  infill = raster(angle = 0 deg, rotate = 90 deg) }
+process { power = 1500 W  powder = 8 g/min }
+machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+";
+    let r = check("plate.lmd", src, &[], &[]);
+    // Lines 1.6 mm apart across a 2 m square less a 1.6 mm band each
+    // side: 1247.5 − 1 lines of two ends, a layer.
+    let least: f64 = 10000.0 * 2.0 * ((2000.0 * 2000.0 - 8000.0 * 1.6) / (2000.0 * 1.6) - 1.0);
+    refused(
+        &r,
+        "lmd::too-many-points",
+        &[
+            &format!("lays at least {least:.0} points"),
+            &format!("at most {:.0} layers", (10000.0 * 20e6 / least).floor()),
+        ],
+    );
+    assert!(r.took < Duration::from_secs(10), "{:?}", r.took);
+}
+
 /// The examples' bracket as a 3MF in `unit`.
 fn bracket_3mf(unit: &str) -> Vec<u8> {
     let bytes = std::fs::read("examples/mesh/bracket.3mf").unwrap();

@@ -76,7 +76,7 @@ pub fn plan(
         Measure::Outer => width.0 / 2.0,
         Measure::Centre => 0.0,
     };
-    let band = super::mesh::band(slicing, inset);
+    let band = super::budget::band(slicing, inset);
     if let LayerProfile::Mesh(m) = &extrusion.profile {
         let planned = match extrusion.extent {
             Extent::Layers(n, _) => n as f64,

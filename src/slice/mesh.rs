@@ -9,19 +9,10 @@ use crate::diag::{message, Diagnostics};
 use crate::geometry::mesh::{self, Loop};
 use crate::sema::model::MAX_LAYERS;
 use crate::sema::model::{Hole, MeshSolid, Outline, PlanarSlicing, RegionShape, Segment, Shape};
+use crate::slice::budget::{least_raster_points, Island};
 use crate::slice::layers::MAX_PROFILE_WORK;
 use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
-
-/// The band along a layer's outlines a raster leaves out: `(contours +
-/// 1)·offset` wide (contours, and half a track's room, with half as much
-/// again to spare), or as deep as the raster starts, `inset +
-/// contours·offset` (the first contour's `inset` from the outline), when
-/// that is deeper (tracks overlapping by more than half a width).
-pub fn band(slicing: &PlanarSlicing, inset: f64) -> f64 {
-    let (c, d) = (slicing.contours as f64, slicing.offset.0);
-    ((c + 1.0) * d).max(inset + c * d)
-}
 
 /// A lower bound of the points a raster fill of the mesh `m`, scaled by
 /// `k`, lays in the layers `lift` apart that build its height, with tracks
@@ -48,14 +39,9 @@ fn least_fill_points(
     Some(2.0 * lines.max(0.0))
 }
 
-/// [`least_fill_points`] of one layer's section, with its raster lines
-/// at `angle` (rad), from each island's own area, outlines and size (so a
-/// tall narrow boss on a wide plate counts its own lines, not the
-/// plate's): a line meets the island along at most its extent `L` in the
-/// lines' direction, so at least `A/(L·offset) − 1` lines cross its raster
-/// area `A`; and an island with no hole whose outline is convex keeps a
-/// convex raster area exactly the band narrower on each side, crossed by
-/// at least `(W − 2·band)/offset − 1` lines for its width `W` across them.
+/// [`least_raster_points`] of one layer's section, with its raster lines
+/// at `angle` (rad), island by island (so a tall narrow boss on a wide
+/// plate counts its own lines, not the plate's).
 fn least_section_points(
     islands: &[mesh::Section],
     angle: f64,
@@ -74,17 +60,17 @@ fn least_section_points(
             });
         hi - lo
     };
-    let offset = slicing.offset.0;
     islands
         .iter()
         .map(|s| {
-            let raster = s.area() - s.perimeter() * band;
-            let by_area = raster / (extent(&s.outline, u) * offset) - 1.0;
-            let by_width = match s.holes.is_empty() && convex(&s.outline) {
-                true => (extent(&s.outline, n) - 2.0 * band) / offset - 1.0,
-                false => 0.0,
+            let island = Island {
+                area: s.area(),
+                perimeter: s.perimeter(),
+                along: extent(&s.outline, u),
+                convex_width: (s.holes.is_empty() && convex(&s.outline))
+                    .then(|| extent(&s.outline, n)),
             };
-            2.0 * by_area.max(by_width).max(0.0)
+            least_raster_points(&island, band, slicing.offset.0)
         })
         .sum()
 }

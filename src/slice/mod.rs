@@ -1,6 +1,7 @@
 //! Slicing: the semantic model's solid → layers of process points (the IR's
 //! layers). Reads the model and the geometry built from it.
 
+mod budget;
 pub mod calibration;
 pub mod feasibility;
 mod holes;
