@@ -4,9 +4,10 @@
 //! `auto` chose), go to definition and references of names, completion of
 //! fields, statements, words, names and units, and formatting (`lmdc fmt`).
 //!
-//! The transport is `lsp-server` (rust-analyzer's); the few LSP types it
-//! answers with are built as JSON here. Every request is answered from the
-//! latest text of the document (full sync).
+//! The framing is lmdc's own ([`transport`]: capped, and every malformed
+//! message answered), the messages `lsp-server`'s (rust-analyzer's); the
+//! few LSP types it answers with are built as JSON here. Every request is
+//! answered from the latest text of the document (full sync).
 
 mod features;
 mod names;

@@ -126,22 +126,7 @@ pub fn choose_layers(
             }
             // Refused here, from the count alone: every layer's seam and
             // points are allocated and computed after this.
-            let most = MAX_LAYERS.min(MAX_TOTAL_POINTS / per_layer.max(1)).max(1);
-            if n_lo > most as f64 {
-                return Err(message::bend::too_many_wall_layers(
-                    n_lo,
-                    WallLimit {
-                        layers: most,
-                        points: (most < MAX_LAYERS).then(|| {
-                            (per_layer, MAX_TOTAL_POINTS, fewer(slicing, per_layer, n_lo))
-                        }),
-                    },
-                    Length(rho_max * total / most as f64),
-                    efficiency_for(bead, rho_max * total / most as f64 / h_max),
-                    heights(bead),
-                    slicing.layers_span.unwrap_or(slicing.span),
-                ));
-            }
+            within_budget(n_lo, rho_max * total, (bead, slicing), per_layer)?;
             Ok((n_lo as usize, step / n_lo))
         }
         Some(n) => {
@@ -159,6 +144,35 @@ pub fn choose_layers(
             Ok((n, step / nf))
         }
     }
+}
+
+/// Refuses `n` layers of `per_layer` points, more than a plan may have,
+/// for a wall whose thickest point stacks `reach` (mm) over all layers:
+/// with the bead height, and a mass balance's efficiency, that would fit.
+fn within_budget(
+    n: f64,
+    reach: f64,
+    (bead, slicing): (&Bead, &Slicing),
+    per_layer: usize,
+) -> Result<(), Diagnostic> {
+    let most = MAX_LAYERS.min(MAX_TOTAL_POINTS / per_layer.max(1)).max(1);
+    if n <= most as f64 {
+        return Ok(());
+    }
+    let fits = reach / most as f64;
+    let h_max = bead.heights(bead.width)[1].0;
+    Err(message::bend::too_many_wall_layers(
+        n,
+        WallLimit {
+            layers: most,
+            points: (most < MAX_LAYERS)
+                .then(|| (per_layer, MAX_TOTAL_POINTS, fewer(slicing, per_layer, n))),
+        },
+        Length(fits),
+        efficiency_for(bead, fits / h_max),
+        heights(bead),
+        slicing.layers_span.unwrap_or(slicing.span),
+    ))
 }
 
 /// How `n` layers of `per_layer` points each would hold no more than a
