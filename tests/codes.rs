@@ -195,7 +195,7 @@ fn run(line: &Line) -> (String, Vec<Code>) {
             let src = merge(base, text);
             // Measurement sheets (`fit(…, data = "…")`) are read from
             // tests/codes/, as from beside a file there.
-            let data: lmdc::sema::DataReader = std::rc::Rc::new(|path: &str| {
+            let data: lmdc::sema::DataReader = std::rc::Rc::new(|path: &str, _| {
                 fs::read(Path::new(DIR).join(path)).map_err(|e| e.to_string())
             });
             let c = lmdc::pipeline::compile_reading(&src, None, &mut (), data).unwrap();

@@ -8,6 +8,7 @@ mod support;
 mod all_errors;
 mod arm;
 mod atomic_output;
+mod budgets;
 mod calibrate;
 mod cases;
 mod cell_io;

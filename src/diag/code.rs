@@ -278,7 +278,7 @@ codes! {
     SlowLoop = "slow-loop", Feasibility,
         "the height loop settles in more layers than the build has: an error when less than half of an error is corrected by the last layer (naming the (m/s)/mm reading when 1000 times the gains would do), else a warning with the gains that settle in time";
     TooManyPoints = "too-many-points", Feasibility,
-        "the plan would exceed 20 M points (or 100 000 a layer); for a mesh, found before slicing from its size (with the size in mm and a `units` in which it would fit)";
+        "the plan would exceed 20 M points (or 100 000 a layer, or 100 000 layers), found before slicing from cheap bounds: for a wall, from its layer count (with the bead height that would fit); for a mesh, from its size (with the size in mm and a `units` in which it would fit)";
     NonFinite = "non-finite", Feasibility,
         "a computed value is not finite: a bug in lmdc, please report it";
     BadDirection = "bad-direction", Feasibility,

@@ -717,6 +717,9 @@ pub struct MeshSolid {
     pub top: Length,
     /// The file's unit: mm per file unit (from `units`, or a 3MF's `unit`).
     pub scale: f64,
+    /// A 3MF's own name for its unit (`millimeter`, `foot`); `None` for an
+    /// STL, whose unit `units` says.
+    pub file_unit: Option<&'static str>,
     /// The `mesh(…)` call.
     pub span: Span,
 }

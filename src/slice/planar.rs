@@ -53,6 +53,14 @@ pub fn slice(
     let Some(plan) = layers::plan(bead, extrusion, slicing, &mut diags) else {
         return Err(diags);
     };
+    let inset = match extrusion.measure {
+        Measure::Outer => bead.width.0 / 2.0,
+        Measure::Centre => 0.0,
+    };
+    let band = super::budget::band(slicing, inset);
+    if super::budget::planar(&plan, extrusion, slicing, band, &mut diags).is_none() {
+        return Err(diags);
+    }
     styling::never_applies(&model.styles, plan.shapes.len(), &mut diags);
     // Every layer filled: its diagnostics go on with it, errors (a spot left
     // unfilled) included, so the machine checks still run in this run.
