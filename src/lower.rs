@@ -77,6 +77,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             })
             .collect(),
         heat: model.process.heat,
+        fixtures: model.fixtures.clone(),
         continuous: ring.is_some() || spiral(model),
         bead,
         ring,
@@ -274,6 +275,7 @@ fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
         machines,
         styles: Vec::new(),
         heat: model.process.heat,
+        fixtures: model.fixtures.clone(),
         continuous: false,
         bead: None,
         ring: None,

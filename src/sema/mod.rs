@@ -16,6 +16,7 @@ mod declare;
 pub mod eval;
 mod extrude;
 mod fields;
+mod fixture;
 mod loft;
 mod machine;
 mod machines;
@@ -96,6 +97,7 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         diags.push(message::statement::control_without_ring(*at));
     }
     let machines = machines::read(&mut env, &st, diags);
+    let fixtures = fixture::read(&mut env, &st, diags);
     let styles = style::read(&mut env, st.get("style"), diags);
     style::unprogrammed_powder(&styles, &machines, diags);
     let inheritance = style::inheritance_statement(&mut env, &st, diags);
@@ -155,6 +157,7 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         bead: if ring { None } else { Some(bead?) },
         process: process.process?,
         machines,
+        fixtures,
         styles: styles?,
         tolerance,
     })
