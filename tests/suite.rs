@@ -15,6 +15,7 @@ mod cell_io;
 mod cli;
 mod cli_ci;
 mod codes;
+mod collision;
 mod deposit;
 mod diagnostics;
 mod duct_geometry;

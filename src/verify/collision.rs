@@ -76,6 +76,9 @@ pub(super) struct Collision<'p> {
     cert: Option<(Pose, f64)>,
     /// The head's lowest point along its beam at that pose (`x·up`).
     low: f64,
+    /// The last pose a move ended at, and the head's lowest points there
+    /// along Z and along its beam.
+    lows: Option<(Pose, (f64, f64))>,
     /// The material's bound along a beam direction (cached: most moves keep
     /// their direction).
     support: Option<([f64; 3], f64)>,
@@ -86,6 +89,8 @@ pub(super) struct Collision<'p> {
     runs: Vec<[u32; 4]>,
     /// Whether the grid is built (the first pose the plane does not clear).
     indexed: bool,
+    /// The IR point whose bead end was bounded last.
+    bounded: Option<Where>,
     width: f64,
     /// The worst by obstacle kind: the plate, fixtures, the part.
     worst: [Option<Worst<Close>>; 3],
@@ -120,11 +125,13 @@ impl<'p> PlanRule<'p> for Collision<'p> {
             material,
             cert: None,
             low: 0.0,
+            lows: None,
             support: None,
             last: None,
             layer: 0,
             runs: Vec::new(),
             indexed: false,
+            bounded: None,
             width,
             worst: [None, None, None],
             raise: [Some(0.0); 3],
@@ -242,8 +249,15 @@ impl Collision<'_> {
     fn clear_between(&mut self, a: &Pose, b: &Pose) -> bool {
         let up = b.up;
         let z = [0.0, 0.0, 1.0];
-        let plate = self.head.lowest(a, z).0.min(self.head.lowest(b, z).0);
-        let low = self.head.lowest(a, up).0.min(self.head.lowest(b, up).0);
+        // The last move ended at `a`: its lows are known.
+        let (pa, la) = match self.lows {
+            Some((p, lows)) if p == *a => lows,
+            _ => (self.head.lowest(a, z).0, self.head.lowest(a, up).0),
+        };
+        let lows_b = (self.head.lowest(b, z).0, self.head.lowest(b, up).0);
+        self.lows = Some((*b, lows_b));
+        let plate = pa.min(lows_b.0);
+        let low = la.min(lows_b.1);
         let clear = if self.material.is_empty() {
             f64::INFINITY
         } else {
@@ -254,7 +268,7 @@ impl Collision<'_> {
             return false;
         }
         self.cert = Some((*b, d));
-        self.low = self.head.lowest(b, up).0;
+        self.low = lows_b.1;
         true
     }
 
@@ -398,10 +412,14 @@ impl Collision<'_> {
         let (w, rise) = self.section(&from);
         let r = (w * w + rise * rise).sqrt() / 2.0;
         let group = self.layer as u32;
-        for p in [from.pos, to.pos] {
+        // A run's moves share their ends: each bounds its end, the run's
+        // first its start too.
+        let first = self.bounded != Some(m.source());
+        for p in [from.pos, to.pos].into_iter().skip(usize::from(!first)) {
             let at = add(p, scale(n, rise / 2.0));
             self.add(Lump { at, r, group }, n, false);
         }
+        self.bounded = Some(m.at);
         if self.indexed {
             self.lumps(&from, &to, group);
         } else if let Where::Point { layer, path, point } = m.at {
