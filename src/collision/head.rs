@@ -155,25 +155,42 @@ impl HeadShape {
     }
 }
 
-pub(super) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+// Three-vector arithmetic, for the checks' own few lines (nalgebra's
+// types would only be converted to and from).
+
+/// `a − b`.
+pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-pub(super) fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+/// `a + b`.
+pub fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
-pub(super) fn scale(a: [f64; 3], k: f64) -> [f64; 3] {
+/// `k·a`.
+pub fn scale(a: [f64; 3], k: f64) -> [f64; 3] {
     [a[0] * k, a[1] * k, a[2] * k]
 }
 
-pub(super) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+/// `a·b`.
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-pub(super) fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+/// `|a − b|`.
+pub fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     let d = sub(a, b);
     dot(d, d).sqrt()
+}
+
+/// `a × b`.
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@
 //! above; and past [`MAX_LUMPS`] in all, every cell keeps its box (the
 //! head's distance is then bounded by the boxes, less closely beside them).
 
-use super::head::{add, dot, sub, HeadShape, Pose};
+use super::head::{add, cross, dot, sub, HeadShape, Pose};
 use std::collections::HashMap;
 
 /// A point of material with the radius it stands for.
@@ -113,14 +113,6 @@ impl Group {
         }
         h
     }
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 fn unit(a: [f64; 3]) -> [f64; 3] {
