@@ -268,6 +268,75 @@ fn definition_and_references_follow_names() {
     stop(c);
 }
 
+/// A unit is what the grammar reads after a number, whatever the file
+/// declares: `W` in `1800 W` is watts beside `let W = 3 mm`, and the
+/// constant's references are only its own uses.
+#[test]
+fn a_unit_spelt_as_a_constant_is_the_unit() {
+    let mut c = started();
+    let uri = "file:///units.lmd";
+    let text = "let W = 3 mm\nlet s = 2\nbead b {\n  width = W\n  power = 1800 W\n  speed = 5 mm/s * s\n}\n";
+    c.open(uri, text);
+    let at_power = pos(text, "1800 W", 0, 5);
+    assert_eq!(
+        c.at("textDocument/definition", uri, at_power),
+        Value::Null,
+        "a unit has no declaration"
+    );
+    let refs = c.at("textDocument/references", uri, at_power);
+    assert!(refs.as_array().is_none_or(|r| r.is_empty()), "{refs}");
+    let h = c.at("textDocument/hover", uri, at_power);
+    let md = h["contents"]["value"].as_str().unwrap_or_default();
+    assert!(md.contains("a power"), "{h}");
+    let h = c.at("textDocument/hover", uri, pos(text, "mm/s", 0, 3));
+    let md = h["contents"]["value"].as_str().unwrap_or_default();
+    assert!(md.contains("`mm/s`") && md.contains("a speed"), "{h}");
+    // The constant's own: its declaration and `width = W`, not the unit.
+    let refs = c.at("textDocument/references", uri, pos(text, "= W", 0, 2));
+    let lines: Vec<u64> = refs
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["range"]["start"]["line"].as_u64().unwrap())
+        .collect();
+    assert_eq!(lines, [0, 3], "{refs}");
+    // `s` after `*` is the constant, `s` in `mm/s` the second.
+    let d = c.at("textDocument/definition", uri, pos(text, "* s", 0, 2));
+    assert_eq!(d["range"]["start"]["line"], 1, "{d}");
+    assert_eq!(
+        c.at("textDocument/definition", uri, pos(text, "mm/s", 0, 3)),
+        Value::Null
+    );
+    stop(c);
+}
+
+/// After `=`, completion offers the field's own choices from the block
+/// tables, and only the names that field can take.
+#[test]
+fn completion_after_equals_offers_the_fields_choices() {
+    let mut c = started();
+    let uri = "file:///kind.lmd";
+    let text = "bead b {\n  width = 3 mm\n}\nlet d = 2 mm\nmachine m {\n  kind = \n}\n";
+    c.open(uri, text);
+    let labels = |v: &Value| -> Vec<String> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|c| c["label"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let got = labels(&c.at("textDocument/completion", uri, pos(text, "kind = ", 0, 7)));
+    assert_eq!(got, ["robot", "cnc"], "the kind's words, no names");
+    // Inside the machine before its kind: either kind's fields.
+    let text2 = "machine m {\n  \n}\n";
+    c.open("file:///m.lmd", text2);
+    let got = labels(&c.at("textDocument/completion", "file:///m.lmd", (1, 2)));
+    for f in ["kind", "tool", "dialect", "head"] {
+        assert!(got.contains(&f.to_string()), "{f}: {got:?}");
+    }
+    stop(c);
+}
+
 #[test]
 fn completion_works_in_a_file_that_does_not_parse_yet() {
     let mut c = started();

@@ -64,6 +64,12 @@ pub fn hover(text: &str, offset: usize, chosen: Chosen<'_>) -> Option<Hover> {
     let word = &text[t.span.start..t.span.end];
     let frames = scan::frames(text, &toks, t.span.start);
     let next = toks.get(i + 1).map(|n| n.tok);
+    if let Some(u) = names::unit_at(text, &toks, i) {
+        return Some(Hover {
+            markdown: describe_unit(&text[u.start..u.end]),
+            span: u,
+        });
+    }
     let markdown = if next == Some(Tok::Punct('(')) {
         schema::block(word)
             .filter(|b| b.is_call())
@@ -87,6 +93,17 @@ pub fn hover(text: &str, offset: usize, chosen: Chosen<'_>) -> Option<Hover> {
         markdown,
         span: t.span,
     })
+}
+
+/// What a unit measures, or that lmdc does not read it.
+fn describe_unit(unit: &str) -> String {
+    match crate::units::parse_unit(unit) {
+        Ok((_, dim)) => format!("**`{unit}`** measures {}", dim.describe()),
+        Err(_) => match crate::units::unit_meant(unit) {
+            Some(m) => format!("**`{unit}`**: no unit lmdc reads; did you mean `{m}`?"),
+            None => format!("**`{unit}`**: no unit lmdc reads"),
+        },
+    }
 }
 
 /// The hover of a key: a field of the block around it, or a top-level
@@ -151,7 +168,11 @@ fn describe_decl(text: &str, d: &Decl) -> String {
 pub fn definition(text: &str, offset: usize) -> Option<Span> {
     let offset = boundary(text, offset);
     let toks = scan::tokens(text);
-    let t = toks[scan::at(&toks, offset)?];
+    let i = scan::at(&toks, offset)?;
+    if names::is_unit(text, &toks, i) {
+        return None;
+    }
+    let t = toks[i];
     let word = &text[t.span.start..t.span.end];
     names::declarations(text, &toks)
         .into_iter()
@@ -164,7 +185,7 @@ pub fn definition(text: &str, offset: usize) -> Option<Span> {
 pub fn references(text: &str, offset: usize, with_declaration: bool) -> Vec<Span> {
     let offset = boundary(text, offset);
     let toks = scan::tokens(text);
-    let Some(i) = scan::at(&toks, offset) else {
+    let Some(i) = scan::at(&toks, offset).filter(|&i| !names::is_unit(text, &toks, i)) else {
         return Vec::new();
     };
     let word = &text[toks[i].span.start..toks[i].span.end];
@@ -314,7 +335,7 @@ fn values(text: &str, toks: &[Token], field: Option<&Field>) -> Vec<Completion> 
         collect_kind(&f.kind, &mut out);
     }
     for d in names::declarations(text, toks) {
-        if d.kind != "machine" {
+        if field.map_or(d.kind != "machine", |f| takes(&f.kind, &d.kind)) {
             out.push(Completion {
                 label: d.name.clone(),
                 kind: 6,
@@ -325,6 +346,23 @@ fn values(text: &str, toks: &[Token], field: Option<&Field>) -> Vec<Completion> 
         }
     }
     out
+}
+
+/// Whether a field of `kind` may be given a name declared by `decl` (`let`,
+/// `bead`, …): a bead's name where a bead is named, a constant where a
+/// number or an expression goes, never where only words or texts do.
+fn takes(kind: &Kind, decl: &str) -> bool {
+    match kind {
+        Kind::Name(k) => *k == decl,
+        Kind::Shape => matches!(decl, "let" | "section" | "profile"),
+        Kind::Quantity(..) | Kind::Range(_) | Kind::Count(..) | Kind::Io(_) | Kind::Point => {
+            decl == "let"
+        }
+        Kind::List(k, _) | Kind::Layered(k) | Kind::Deferred(k) => takes(k, decl),
+        Kind::Either(ks) => ks.iter().any(|k| takes(k, decl)),
+        Kind::Word(_) | Kind::Text | Kind::Lines | Kind::Call(_) => false,
+        Kind::Block(_) | Kind::Blocks(_) => false,
+    }
 }
 
 fn collect_kind(kind: &Kind, out: &mut Vec<Completion>) {

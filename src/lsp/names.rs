@@ -58,8 +58,38 @@ pub fn declarations(text: &str, toks: &[Token]) -> Vec<Decl> {
     out
 }
 
-/// Where `name` is used: every token of it that is not a field's key or a
-/// declaration's name.
+/// The unit token `i` is (part of), whole: `W` in `power = 1800 W`,
+/// `mm/s` for the `s` of `7 mm/s`. The grammar decides, read from each
+/// number before it on its line ([`crate::syntax::unit_after`]), so a unit
+/// spelt as a constant's name is never taken for the constant.
+pub fn unit_at(text: &str, toks: &[Token], i: usize) -> Option<Span> {
+    let t = toks[i];
+    for p in toks[..i].iter().rev().take(16) {
+        if p.line != t.line {
+            return None;
+        }
+        match p.tok {
+            Tok::Number => {
+                let unit = crate::syntax::unit_after(text, p.span.start)
+                    .filter(|u| u.start <= t.span.start && t.span.end <= u.end);
+                if unit.is_some() {
+                    return unit;
+                }
+            }
+            Tok::Ident | Tok::Punct('/' | '*' | '^' | '-' | '·') => {}
+            _ => return None,
+        }
+    }
+    None
+}
+
+/// Whether token `i` is (part of) a unit ([`unit_at`]).
+pub fn is_unit(text: &str, toks: &[Token], i: usize) -> bool {
+    unit_at(text, toks, i).is_some()
+}
+
+/// Where `name` is used: every token of it that is not a field's key, a
+/// declaration's name or a unit.
 pub fn uses(text: &str, toks: &[Token], name: &str, decls: &[Decl]) -> Vec<Span> {
     toks.iter()
         .enumerate()
@@ -68,6 +98,7 @@ pub fn uses(text: &str, toks: &[Token], name: &str, decls: &[Decl]) -> Vec<Span>
                 && &text[t.span.start..t.span.end] == name
                 && !decls.iter().any(|d| d.name_span == t.span)
                 && !is_key(toks, *i)
+                && !is_unit(text, toks, *i)
         })
         .map(|(_, t)| t.span)
         .collect()
@@ -101,5 +132,26 @@ mod tests {
         let u = uses(text, &t, "w", &d);
         assert_eq!(u.len(), 2);
         assert!(u.iter().all(|s| &text[s.start..s.end] == "w"));
+    }
+
+    #[test]
+    fn a_unit_spelt_as_a_constant_is_a_unit() {
+        let text = "let W = 3 mm\nlet s = 2\np = 1800 W  v = 7 mm/s  q = s * W\nk = 1.5 KW\n";
+        let t = tokens(text);
+        let d = declarations(text, &t);
+        let at = |needle: &str, n: usize| {
+            let o = text.match_indices(needle).nth(n).unwrap().0;
+            t.iter().position(|t| t.span.start == o).unwrap()
+        };
+        assert!(is_unit(text, &t, at("W", 1)), "1800 W");
+        assert!(is_unit(text, &t, at("s", 1)), "mm/s");
+        assert!(
+            is_unit(text, &t, at("KW", 0)),
+            "an unknown unit at a line's end"
+        );
+        assert!(!is_unit(text, &t, at("s", 2)), "s * W uses the constant");
+        assert!(!is_unit(text, &t, at("W", 2)), "s * W uses the constant");
+        let w: Vec<usize> = uses(text, &t, "W", &d).iter().map(|s| s.start).collect();
+        assert_eq!(w, [text.find("* W").unwrap() + 2]);
     }
 }

@@ -186,7 +186,10 @@ fn brace_block(text: &str, toks: &[Token], i: usize, stack: &[Frame]) -> Option<
         None => (last, None),
     };
     match kind {
-        "machine" => machine_kind(text, toks, i).and_then(schema::block),
+        // Until its kind is written, a machine takes what either kind does.
+        "machine" => machine_kind(text, toks, i)
+            .and_then(schema::block)
+            .or(Some(&schema::machine::MACHINE)),
         "slicing" => name.and_then(schema::block),
         "process"
             if toks

@@ -3,4 +3,4 @@
 pub mod ast;
 mod parse;
 
-pub use parse::{parse, MAX_EXPR_DEPTH, MAX_NESTING};
+pub use parse::{parse, unit_after, MAX_EXPR_DEPTH, MAX_NESTING};

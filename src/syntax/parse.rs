@@ -44,6 +44,21 @@ pub fn parse(source: &str) -> Result<File, Diagnostic> {
     Ok(File { stmts })
 }
 
+/// The unit written after the number that starts at byte `number` of
+/// `source`, as the grammar reads a quantity there (`mm/s` in `7 mm/s`,
+/// `KW` in `1.5 KW` at a line's end), or `None` when the number stands
+/// alone. The language server asks this to tell a unit from a name spelt
+/// the same (`W` in `1800 W` beside `let W = 3 mm`): only the grammar
+/// decides what a word after a number is.
+pub fn unit_after(source: &str, number: usize) -> Option<Span> {
+    let rest = source.get(number..)?;
+    let quantity = LmdParser::parse(Rule::quantity, rest).ok()?.next()?;
+    quantity
+        .into_inner()
+        .find(|p| matches!(p.as_rule(), Rule::unit | Rule::unknown_unit))
+        .map(|u| Span::new(number + u.as_span().start(), number + u.as_span().end()))
+}
+
 /// The source as the grammar reads it, byte for byte as long as `source`, so
 /// every span points at the same text in both: a leading byte order mark
 /// (U+FEFF, 3 bytes, which editors on Windows write) becomes 3 spaces, and a
