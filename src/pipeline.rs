@@ -62,6 +62,9 @@ pub struct Options {
     /// Reads the data files the program names (`fit(…, data = "…")`;
     /// `None`: a program that names one is refused).
     pub data: Option<DataFiles>,
+    /// Warnings expected by code (`--allow CODE`): reported, each marked
+    /// allowed, failing no run.
+    pub allow: Vec<crate::diag::Code>,
 }
 
 /// Reads a data file a program names, by its path as written.
@@ -185,6 +188,9 @@ fn compile_keeping<R>(
     meanwhile: impl FnOnce(&Verified, &mut dyn Observer) -> R,
 ) -> Result<(Compiled, Option<R>), UsageError> {
     let mut diagnostics = Diagnostics::new();
+    for &code in &options.allow {
+        diagnostics.allow(code, ALLOWED_BY_COMMAND_LINE);
+    }
     let mut from = Provenance::new(source, options.file.as_deref());
     from.set = options.set.iter().map(|s| s.to_string()).collect();
     let ran = run(
@@ -206,6 +212,9 @@ fn compile_keeping<R>(
         ran.made,
     ))
 }
+
+/// The reason a warning allowed by `--allow` gives.
+pub const ALLOWED_BY_COMMAND_LINE: &str = "--allow on the command line";
 
 /// What [`run`] gives back besides the diagnostics.
 struct Ran<R> {

@@ -132,6 +132,93 @@ fn usage_and_file_errors_are_json_objects_with_a_code() {
     assert!(m.contains("mill") && m.contains("kr"), "{m}");
 }
 
+/// `--allow CODE` and a file's `allow "lmd::CODE" = "why"` expect a
+/// warning: reported, marked allowed (JSON's `allowed`), failing no run;
+/// `--deny CODE` fails on that code alone. Codes are checked.
+#[test]
+fn warnings_are_allowed_and_denied_by_code() {
+    let d = dir("allow");
+    let out = d.join("out");
+    let build = |file: &str, flags: &[&str]| {
+        let mut args = vec!["build", file, "-o", s(&out), "--message-format", "json"];
+        args.extend_from_slice(flags);
+        lmdc(&args)
+    };
+    // flange's only warning is lmd::short-track.
+    let o = build(
+        "examples/flange.lmd",
+        &["--deny-warnings", "--allow", "short-track"],
+    );
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let lines = json_lines(&o);
+    let w: Vec<&Value> = lines
+        .iter()
+        .filter(|l| l["severity"] == "warning")
+        .collect();
+    assert!(!w.is_empty());
+    for l in &w {
+        assert_eq!(l["code"], "lmd::short-track");
+        assert_eq!(l["allowed"], "--allow on the command line");
+    }
+    assert!(!written(&out).is_empty());
+    // --deny fails on its code, not on others.
+    std::fs::remove_dir_all(&out).unwrap();
+    let o = build("examples/flange.lmd", &["--deny", "lmd::short-track"]);
+    assert_eq!(o.status.code(), Some(1));
+    let last = json_lines(&o).last().unwrap().clone();
+    assert_eq!(last["code"], "lmd::denied-warnings");
+    assert!(
+        last["message"]
+            .as_str()
+            .unwrap()
+            .contains("--deny lmd::short-track"),
+        "{last}"
+    );
+    assert!(written(&out).is_empty());
+    let o = build("examples/flange.lmd", &["--deny", "unused,height-rounded"]);
+    assert_eq!(o.status.code(), Some(0));
+    // The file expects it, with its reason: --deny-warnings passes, the
+    // reason is in every report of it.
+    let f = d.join("flange.lmd");
+    let src = std::fs::read_to_string("examples/flange.lmd").unwrap();
+    let why = "the spokes end in short tracks by design";
+    std::fs::write(
+        &f,
+        format!("{src}\nallow \"lmd::short-track\" = \"{why}\"\n"),
+    )
+    .unwrap();
+    std::fs::remove_dir_all(&out).unwrap();
+    let o = build(s(&f), &["--deny-warnings"]);
+    assert_eq!(o.status.code(), Some(0));
+    assert!(json_lines(&o)
+        .iter()
+        .filter(|l| l["severity"] == "warning")
+        .all(|l| l["allowed"] == why));
+    let o = lmdc(&["check", s(&f)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("allowed warning[lmd::short-track]") && err.contains(why),
+        "{err}"
+    );
+    // Codes are checked: unknown, not a warning, both allowed and denied.
+    for flags in [
+        &["--allow", "shrt-track"][..],
+        &["--allow", "lmd::collision"],
+        &["--deny", "nope"],
+        &["--allow", "unused", "--deny", "lmd::unused"],
+    ] {
+        let mut args = vec!["check", "examples/flange.lmd"];
+        args.extend_from_slice(flags);
+        let o = lmdc(&args);
+        assert_eq!(o.status.code(), Some(2), "{flags:?}");
+    }
+}
+
 #[test]
 fn deny_warnings_fails_a_file_with_warnings_and_writes_nothing() {
     let d = dir("deny");

@@ -291,6 +291,8 @@ one_line_tests! {
 
     // Names, units and values
     unknown_statement: UnknownStatement, PLATE, "partt plate";
+    allow: Allow, PLATE, "allow \"lmd::height-round\" = \"the top is rounded up on purpose\"";
+    allow_an_error: Allow, PLATE, "allow \"collision\" = \"the clamp is moved before the run\"";
     unknown_field: UnknownField, PLATE,
         "bead track { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s)  widht = 2 mm }";
     unknown_name: UnknownName, PLATE,

@@ -120,6 +120,7 @@ fn the_schema_documents_every_field_the_encoder_writes() {
         message: "unused `x`".into(),
         labels: vec![label(0, 4, "here"), label(5, 6, "")],
         help: Some("remove it".into()),
+        allowed: Some("kept for the next revision".into()),
     };
     let line = lmdc::diag::json::Encoder::new("f.lmd", "part x\n").line(&d);
     let v: Value = serde_json::from_str(&line).unwrap();

@@ -62,6 +62,17 @@ pub struct Cli {
     /// (for CI; the warnings are reported as usual).
     #[arg(long, global = true)]
     deny_warnings: bool,
+    /// Expect the warnings of CODE (`lmd::height-rounded` or
+    /// `height-rounded`): still reported, marked allowed, never failing the
+    /// run; repeatable or comma-separated. A file can expect one itself,
+    /// with its reason: `allow "lmd::CODE" = "why"`.
+    #[arg(long, global = true, value_name = "CODE", value_delimiter = ',', value_parser = warning_code)]
+    allow: Vec<lmdc::diag::Code>,
+    /// Fail on the warnings of CODE, as --deny-warnings does on all (exit
+    /// status 1, nothing written) unless the file allows them; repeatable
+    /// or comma-separated.
+    #[arg(long, global = true, value_name = "CODE", value_delimiter = ',', value_parser = warning_code)]
+    deny: Vec<lmdc::diag::Code>,
     /// Replace the value of the file's top-level `let NAME` by VALUE, in a
     /// unit of the same kind as the file's (`--set R1=300mm`); repeatable,
     /// for parameter sweeps. The programs' headers list what was set.
@@ -77,6 +88,10 @@ pub struct Common {
     pub format: MessageFormat,
     /// `--deny-warnings`.
     pub deny_warnings: bool,
+    /// `--allow`.
+    pub allow: Vec<lmdc::diag::Code>,
+    /// `--deny`.
+    pub deny: Vec<lmdc::diag::Code>,
     /// `--set`.
     pub set: Vec<Override>,
 }
@@ -89,15 +104,21 @@ impl Common {
             machine: machine.map(str::to_string),
             set: self.set.clone(),
             data: Some(pipeline::DataFiles(data_reader(file))),
+            allow: self.allow.clone(),
         }
     }
 
-    /// The exit code `--deny-warnings` calls for after `d` was printed
-    /// (`None`: go on).
+    /// The exit code `--deny-warnings` and `--deny` call for after `d` was
+    /// printed (`None`: go on): the warnings they name that nothing allows.
     pub fn denied(&self, file: &Path, d: &lmdc::diag::Diagnostics) -> Option<u8> {
-        use lmdc::diag::Severity;
-        let n = d.iter().filter(|x| x.severity == Severity::Warning).count();
-        (self.deny_warnings && n > 0).then(|| messages::fail(file, usage::denied_warnings(n)))
+        let n = d.unallowed_warnings(|c| self.deny_warnings || self.deny.contains(&c));
+        let how = if self.deny_warnings {
+            "--deny-warnings".to_string()
+        } else {
+            let codes: Vec<&str> = self.deny.iter().map(|c| c.as_str()).collect();
+            format!("--deny {}", codes.join(","))
+        };
+        (n > 0).then(|| messages::fail(file, usage::denied_warnings(n, &how)))
     }
 }
 
@@ -318,6 +339,22 @@ fn fit_command(command: Command, output: (bool, MessageFormat)) -> u8 {
     )
 }
 
+/// A warning's code as `--allow` and `--deny` take it.
+fn warning_code(text: &str) -> Result<lmdc::diag::Code, String> {
+    use lmdc::sema::allow;
+    match allow::code(text) {
+        Some(c) if allow::warns(c) => Ok(c),
+        Some(c) => Err(format!(
+            "{} is not a warning: only warnings can be allowed or denied",
+            c.as_str()
+        )),
+        None => Err(format!(
+            "no code of lmdc's is `{text}` (docs/diagnostics.md lists every code; \
+             a warning's report names its own)"
+        )),
+    }
+}
+
 /// Runs the command line; returns the exit code.
 pub fn run(cli: Cli) -> u8 {
     let color = match cli.color {
@@ -327,10 +364,16 @@ pub fn run(cli: Cli) -> u8 {
     };
     let format = cli.message_format;
     messages::set_format(format);
+    if let Some(c) = cli.allow.iter().find(|c| cli.deny.contains(c)) {
+        let d = usage::allow_and_deny(c.as_str());
+        return messages::fail(Path::new(""), d);
+    }
     let common = Common {
         color,
         format,
         deny_warnings: cli.deny_warnings,
+        allow: cli.allow,
+        deny: cli.deny,
         set: cli.set,
     };
     // Progress only where a person watches: a terminal, not a log.

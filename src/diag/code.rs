@@ -109,6 +109,8 @@ codes! {
     Number = "number", Syntax,
         "a number too large to represent";
 
+    Allow = "allow", Values,
+        "an `allow \"lmd::CODE\" = \"why\"` that names no warning code or gives no reason";
     UnknownStatement = "unknown-statement", Values,
         "a top-level word that starts no statement (`part let section profile bead loft extrude slicing process style inheritance machine`)";
     UnknownField = "unknown-field", Values,

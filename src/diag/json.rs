@@ -33,6 +33,11 @@ pub struct JsonDiagnostic {
     pub spans: Vec<JsonSpan>,
     /// What would fix it, if lmdc knows.
     pub help: Option<String>,
+    /// For a warning the file or the command line expects, why (the file's
+    /// `allow` reason, or `--allow`); absent otherwise. An allowed warning
+    /// fails no run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub allowed: Option<String>,
 }
 
 /// A labelled place in the source.
@@ -107,6 +112,7 @@ impl<'s> Encoder<'s> {
                 .map(|(i, l)| self.span(l, i == 0))
                 .collect(),
             help: d.help.clone(),
+            allowed: d.allowed.clone(),
         }
     }
 
@@ -178,6 +184,7 @@ impl JsonDiagnostic {
                 })
                 .collect(),
             help: self.help.clone(),
+            allowed: self.allowed.clone(),
         })
     }
 }

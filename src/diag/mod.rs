@@ -46,6 +46,11 @@ pub struct Diagnostic {
     pub labels: Vec<Label>,
     /// What would fix it.
     pub help: Option<String>,
+    /// For a warning the file or the command line expects: why (the
+    /// reason of the file's `allow "lmd::…" = "…"`, or `--allow`). An
+    /// allowed warning is reported but fails no run (`--deny-warnings`,
+    /// `--deny`).
+    pub allowed: Option<String>,
 }
 
 impl Diagnostic {
@@ -57,6 +62,7 @@ impl Diagnostic {
             message: message.into(),
             labels: Vec::new(),
             help: None,
+            allowed: None,
         }
     }
 
@@ -107,6 +113,9 @@ impl fmt::Display for Diagnostic {
 #[derive(Clone, Debug, Default)]
 pub struct Diagnostics {
     items: Vec<Diagnostic>,
+    /// The warnings expected, by code, and why: each one recorded, before
+    /// or after, is marked [`Diagnostic::allowed`].
+    allows: Vec<(Code, String)>,
 }
 
 impl Diagnostics {
@@ -116,13 +125,47 @@ impl Diagnostics {
     }
 
     /// Records a diagnostic.
-    pub fn push(&mut self, d: Diagnostic) {
+    pub fn push(&mut self, mut d: Diagnostic) {
+        self.mark(&mut d);
         self.items.push(d);
     }
 
-    /// Records all of `other`.
+    /// Records all of `other`, and the warnings it allows.
     pub fn extend(&mut self, other: Diagnostics) {
-        self.items.extend(other.items);
+        for (code, why) in other.allows {
+            self.allow(code, why);
+        }
+        for d in other.items {
+            self.push(d);
+        }
+    }
+
+    /// Expects the warnings of `code`, for the reason `why`: those recorded
+    /// so far and those to come are allowed (the first reason given for a
+    /// code stands).
+    pub fn allow(&mut self, code: Code, why: impl Into<String>) {
+        if self.allows.iter().any(|(c, _)| *c == code) {
+            return;
+        }
+        self.allows.push((code, why.into()));
+        let allows = std::mem::take(&mut self.allows);
+        for d in &mut self.items {
+            mark(&allows, d);
+        }
+        self.allows = allows;
+    }
+
+    fn mark(&self, d: &mut Diagnostic) {
+        mark(&self.allows, d);
+    }
+
+    /// Number of warnings not allowed ([`Diagnostic::allowed`]) whose code
+    /// `counts` says yes to.
+    pub fn unallowed_warnings(&self, counts: impl Fn(Code) -> bool) -> usize {
+        self.items
+            .iter()
+            .filter(|d| d.severity == Severity::Warning && d.allowed.is_none() && counts(d.code))
+            .count()
     }
 
     /// True when any recorded diagnostic is an error.
@@ -165,7 +208,21 @@ impl Diagnostics {
 
 impl From<Diagnostic> for Diagnostics {
     fn from(d: Diagnostic) -> Self {
-        Diagnostics { items: vec![d] }
+        Diagnostics {
+            items: vec![d],
+            allows: Vec::new(),
+        }
+    }
+}
+
+/// Marks `d` allowed when it is a warning whose code `allows` expects (an
+/// error is never allowed).
+fn mark(allows: &[(Code, String)], d: &mut Diagnostic) {
+    if d.severity != Severity::Warning || d.allowed.is_some() {
+        return;
+    }
+    if let Some((_, why)) = allows.iter().find(|(c, _)| *c == d.code) {
+        d.allowed = Some(why.clone());
     }
 }
 
@@ -628,7 +685,7 @@ pub fn render_at_most(
         miette::GraphicalTheme::unicode_nocolor()
     };
     let handler = miette::GraphicalReportHandler::new_themed(theme).with_width(100);
-    let all: Vec<&Diagnostic> = diags.iter().collect();
+    let all: Vec<&Diagnostic> = diags.iter().filter(|d| d.allowed.is_none()).collect();
     let errors = diags.error_count();
     let warnings = all.len() - errors;
     // Errors first: a warning must not crowd out an error that stops the build.
@@ -665,6 +722,15 @@ pub fn render_at_most(
         // Writing into a String cannot fail.
         let _ = handler.render_report(&mut out, &r);
         out.push('\n');
+    }
+    // An allowed warning is expected: a line, not a report.
+    for d in diags.iter().filter(|d| d.allowed.is_some()) {
+        out.push_str(&format!(
+            "allowed warning[{}]: {} ({})\n",
+            d.code.as_str(),
+            sanitize(&d.message),
+            sanitize(d.allowed.as_deref().unwrap_or_default()),
+        ));
     }
     let hidden = all.len() - all.len().min(max);
     if hidden > 0 {

@@ -6,6 +6,7 @@
 //! and becomes "nothing", and every check that does not need it still runs
 //! (a wrong power does not hide a style's wrong speed).
 
+pub mod allow;
 mod bead;
 mod calibration;
 mod cell;
@@ -77,6 +78,7 @@ pub fn check_reading(file: &File, data: Option<DataReader>) -> (Option<Model>, D
 
 fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) -> Option<Model> {
     let st = Statements::group(file, diags);
+    allow::read(&st, diags);
     let mut env = Env::new();
     env.data = data;
     // Constants first: everything else may use them, in any order.

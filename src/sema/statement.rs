@@ -25,6 +25,7 @@ pub const KINDS: &[&str] = &[
     "machine",
     "fixture",
     "calibration",
+    "allow",
 ];
 
 /// A file's statements by kind, each kind in source order.

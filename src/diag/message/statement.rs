@@ -174,3 +174,38 @@ pub fn control_without_ring(at: Span) -> Diagnostic {
     .label(at, "control")
     .help("remove `control`, or build a `ring NAME { … }` with `slicing continuous { … }`")
 }
+
+/// An `allow` statement whose code is no code of lmdc's; `suggestion` is
+/// the nearest one.
+pub fn allow_unknown_code(code: &str, at: Span, suggestion: Option<&str>) -> Diagnostic {
+    let d = Diagnostic::error(Code::Allow, format!("`{code}` is no code of lmdc's"))
+        .label(at, "no such code");
+    match suggestion {
+        Some(m) => d.help(format!(
+            "did you mean `{m}`? docs/diagnostics.md lists every code"
+        )),
+        None => d.help("docs/diagnostics.md lists every code; a warning's report names its own"),
+    }
+}
+
+/// An `allow` statement that names an error's code: only a warning can be
+/// expected.
+pub fn allow_error_code(code: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Allow,
+        format!("`{code}` stops the build; only a warning can be allowed"),
+    )
+    .label(at, "not a warning")
+    .help("fix what the error says; `allow` takes the codes of docs/diagnostics.md's Warnings")
+}
+
+/// An `allow` statement not written `allow "lmd::CODE" = "why"`, or with an
+/// empty reason.
+pub fn allow_shape(at: Span, what: &str) -> Diagnostic {
+    Diagnostic::error(Code::Allow, format!("an `allow` needs {what}"))
+        .label(at, "here")
+        .help(
+            "write `allow \"lmd::height-rounded\" = \"why this warning is expected\"`: \
+             the code its report names, and the reason, which every report of it then shows",
+        )
+}

@@ -71,14 +71,27 @@ pub fn output(what: &str) -> Diagnostic {
     Diagnostic::error(Code::Output, what)
 }
 
-/// `--deny-warnings` with `n` warnings reported.
-pub fn denied_warnings(n: usize) -> Diagnostic {
+/// `--deny-warnings` or `--deny` (`how`, as written) with `n` warnings
+/// reported that they fail and nothing allows.
+pub fn denied_warnings(n: usize, how: &str) -> Diagnostic {
     Diagnostic::error(
         Code::DeniedWarnings,
         format!(
-            "{n} warning{} and --deny-warnings: nothing is written",
+            "{n} warning{} and {how}: nothing is written",
             if n == 1 { "" } else { "s" }
         ),
     )
-    .help("fix what the warnings say, or build without --deny-warnings")
+    .help(format!(
+        "fix what the warnings say; or, where one is expected, say so in the file with its \
+         reason, `allow \"lmd::CODE\" = \"why\"`, or build with --allow CODE; or without {how}"
+    ))
+}
+
+/// The same code given to `--allow` and `--deny`.
+pub fn allow_and_deny(code: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::Usage,
+        format!("{code} is both allowed and denied on the command line"),
+    )
+    .help("give it to --allow or to --deny, not both")
 }
