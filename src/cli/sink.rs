@@ -189,13 +189,15 @@ impl AtomicDir {
     /// nothing in the directory changes). A build flushes while the last
     /// checks run; [`Self::commit`] flushes what is left.
     pub fn flush(&mut self) -> io::Result<()> {
-        for name in &self.files[self.flushed..] {
-            // Reopened to flush: a build of thousands of modules cannot keep
-            // them all open.
-            OpenOptions::new()
-                .write(true)
-                .open(self.staging.join(name))?
-                .sync_all()?;
+        if self.flushed < self.files.len() && !sync_filesystem(&self.staging)? {
+            for name in &self.files[self.flushed..] {
+                // Reopened to flush: a build of thousands of modules cannot
+                // keep them all open.
+                OpenOptions::new()
+                    .write(true)
+                    .open(self.staging.join(name))?
+                    .sync_all()?;
+            }
         }
         self.flushed = self.files.len();
         sync_dir(&self.staging)
@@ -409,6 +411,34 @@ fn write_durably(dir: &Path, name: &str, bytes: &[u8]) -> io::Result<()> {
     drop(f);
     fs::rename(&tmp, dir.join(name))?;
     sync_dir(dir)
+}
+
+/// Flushes everything written to the filesystem that holds `dir` to disk,
+/// the staged files among it, in one call (Linux's syncfs: a dense part's
+/// 3 600 files cost 3 600 fsyncs otherwise, seconds of system time, and
+/// a file's fsync on ext4 flushes the journal anyway). `false` where the
+/// system has no such call: the caller flushes file by file.
+fn sync_filesystem(dir: &Path) -> io::Result<bool> {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::fd::AsRawFd;
+        let d = File::open(dir)?;
+        // SAFETY: syncfs reads nothing but the descriptor, open until the
+        // end of this block.
+        if unsafe { libc::syncfs(d.as_raw_fd()) } == 0 {
+            return Ok(true);
+        }
+        let e = io::Error::last_os_error();
+        if e.raw_os_error() == Some(libc::ENOSYS) {
+            return Ok(false);
+        }
+        Err(e)
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = dir;
+        Ok(false)
+    }
 }
 
 /// Flushes a directory's entries (renames, removals) to disk, where the
