@@ -291,6 +291,9 @@ one_line_tests! {
 
     // Names, units and values
     unknown_statement: UnknownStatement, PLATE, "partt plate";
+    value_as_statement: UnknownStatement, PLATE, "mesh \"block.stl\"";
+    value_as_field: UnknownField, PLATE,
+        "slicing planar { layers = 2  offset = 1.6 mm  infill = raster(angle = 0 deg)  spiral = true }";
     allow: Allow, PLATE, "allow \"lmd::height-round\" = \"the top is rounded up on purpose\"";
     allow_an_error: Allow, PLATE, "allow \"collision\" = \"the clamp is moved before the run\"";
     unknown_field: UnknownField, PLATE,

@@ -498,6 +498,48 @@ fn regions(src: &str, bytes: Vec<u8>) -> Vec<lmdc::geometry::region::Region> {
         .collect()
 }
 
+/// A part drawn in inches and read in mm is too narrow for a bead: refused
+/// before it is cut, with its size in inches and `units = in`, which then
+/// builds; a 3MF that names the wrong unit gets the unit to export it with.
+#[test]
+fn a_mesh_too_small_for_a_bead_names_the_unit_it_would_fit_in() {
+    // 2.4 × 1.2 × 0.9 in, its numbers read as mm; plate.lmd's bead is
+    // 2.2 mm wide, its contour 1.1 mm inside the faces (`size = outer`).
+    let (v, t) = indexed(&cuboid([0.0; 3], [2.4, 1.2, 0.9]), 1.0);
+    let bytes = stl::to_binary(&cuboid([0.0; 3], [2.4, 1.2, 0.9]));
+    let src = |units: &str| source(&format!("profile = mesh(\"part.stl\"{units})"));
+    let c = compile(&src(""), BTreeMap::from([("part.stl", bytes.clone())]));
+    assert!(c.program.is_none());
+    let d: Vec<_> = c.diagnostics.iter().collect();
+    assert_eq!(d.len(), 1, "{}", messages(&c));
+    assert_eq!(d[0].code, lmdc::diag::Code::FillEmpty);
+    assert!(
+        d[0].message
+            .contains("is 2.4 × 1.2 × 0.9 mm as placed: narrower than the 2.2 mm bead"),
+        "{}",
+        d[0].message
+    );
+    let help = d[0].help.as_deref().unwrap();
+    assert!(
+        help.starts_with("in inches it would be 60.96 × 30.48 × 22.86 mm")
+            && help.contains("write `units = in`"),
+        "{help}"
+    );
+    // Following it builds.
+    let c = compile(&src(", units = in"), BTreeMap::from([("part.stl", bytes)]));
+    assert!(c.program.is_some(), "{}", messages(&c));
+    // A 3MF whose model says millimetre: export it again in inches.
+    let c = compile(
+        &source("profile = mesh(\"part.3mf\")"),
+        BTreeMap::from([("part.3mf", package::package(&v, &t, "millimeter", &[None]))]),
+    );
+    let help = c.diagnostics.iter().find_map(|d| d.help.clone()).unwrap();
+    assert!(
+        help.contains("not the `millimeter` it names, export it again with `unit=\"inch\"`"),
+        "{help}"
+    );
+}
+
 #[test]
 fn a_3mf_builds_the_plan_of_the_same_stl() {
     let tris = box_with_hole([15.0, 15.0], 15.0, 5.0, 4.2, 32);

@@ -77,11 +77,16 @@ impl<'a> Fields<'a> {
             let key = s.kind.node.as_str();
             let Some(field) = block.accepted().find(|f| f.key == key) else {
                 let fields: Vec<&str> = block.accepted().map(|f| f.key).collect();
+                // A value written as a key (`spiral = true`) is pointed to
+                // the field that takes it.
+                let taken = block.field_taking(key).map(|(_, written)| written);
                 diags.push(message::field::unknown_field(
                     &what,
                     key,
                     s.kind.span,
-                    did_you_mean(key, fields.iter().copied()),
+                    taken
+                        .as_deref()
+                        .or_else(|| did_you_mean(key, fields.iter().copied())),
                     &fields,
                 ));
                 continue;

@@ -41,12 +41,19 @@ impl<'f> Statements<'f> {
         for s in &file.stmts {
             let k = s.kind.node.as_str();
             if !KINDS.contains(&k) {
-                diags.push(message::statement::unknown_statement(
-                    k,
-                    s.kind.span,
-                    suggest::did_you_mean(k, KINDS.iter().copied()),
-                    KINDS,
-                ));
+                let d = match super::schema::statement_taking(k) {
+                    // A value written as a statement (`mesh "part.stl"`).
+                    Some((syntax, written)) => {
+                        message::statement::value_as_statement(k, s.kind.span, syntax, &written)
+                    }
+                    None => message::statement::unknown_statement(
+                        k,
+                        s.kind.span,
+                        suggest::did_you_mean(k, KINDS.iter().copied()),
+                        KINDS,
+                    ),
+                };
+                diags.push(d);
                 continue;
             }
             by_kind.entry(k).or_default().push(s);

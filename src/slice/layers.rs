@@ -83,6 +83,7 @@ pub fn plan(
             Extent::Height(height, _) => layer_count(height, lift),
         };
         super::mesh::plausible(m, (planned, lift), (slicing, band), diags)?;
+        super::mesh::wide_enough(m, inset, width, diags)?;
     }
     let n = match extrusion.extent {
         Extent::Layers(n, _) => n,

@@ -160,6 +160,61 @@ pub fn plausible(
     None
 }
 
+/// Whether the mesh is wide enough for a track: narrower than `2·inset`
+/// (the band an outer contour keeps from the faces) nothing fits on any
+/// layer, which fill would find only as `lmd::fill-empty` with a help to
+/// make it larger. Refused here instead, with the size it would have in a
+/// larger unit where a few beads `width` wide fit across it (a part drawn
+/// in inches read in mm).
+pub fn wide_enough(
+    m: &MeshSolid,
+    inset: f64,
+    width: Length,
+    diags: &mut Diagnostics,
+) -> Option<()> {
+    let (lo, hi) = m.mesh.bounds();
+    let size = [0, 1, 2].map(|i| hi[i] - lo[i]);
+    if inset <= 0.0 || size[0].min(size[1]) > 2.0 * inset {
+        return Some(());
+    }
+    let units = mesh_units();
+    let unit = units.iter().find(|u| u.1 == m.scale).map(|u| u.0);
+    // Every larger unit in which it is a part a cell builds: a few beads
+    // across, at most 2 m.
+    let mut others: Vec<(&str, [f64; 3])> = units
+        .iter()
+        .filter(|&&(_, s)| s > m.scale)
+        .map(|&(name, s)| (name, size.map(|x| x * s / m.scale)))
+        .filter(|(_, big)| big[0].min(big[1]) >= 4.0 * width.0 && big[0].max(big[1]) <= 2000.0)
+        .collect();
+    // Inches first: the unit a drawing read as mm most often is in.
+    others.sort_by_key(|&(name, _)| name != "in");
+    diags.push(message::mesh::too_small(
+        &m.path,
+        message::mesh::TooSmall {
+            size,
+            unit,
+            file_unit: m.file_unit,
+            width: width.0,
+            others,
+        },
+        m.span,
+    ));
+    None
+}
+
+/// The units `mesh(units = …)` takes, with mm per unit: the ones a hint may
+/// suggest.
+fn mesh_units() -> Vec<(&'static str, f64)> {
+    crate::sema::schema::solid::mesh::UNITS
+        .kind
+        .words()
+        .unwrap_or(&[])
+        .iter()
+        .map(|&u| (u, crate::units::mm_per(u)))
+        .collect()
+}
+
 /// The message for a mesh that is `over` a limit, with a unit in which
 /// it `fits` (the scale from its own unit to that one).
 fn too_big(
@@ -172,15 +227,7 @@ fn too_big(
 ) -> crate::diag::Diagnostic {
     let (lo, hi) = m.mesh.bounds();
     let size = [0, 1, 2].map(|i| hi[i] - lo[i]);
-    // The units `mesh(units = …)` takes, with mm per unit: the ones a hint
-    // may suggest.
-    let units: Vec<(&str, f64)> = crate::sema::schema::solid::mesh::UNITS
-        .kind
-        .words()
-        .unwrap_or(&[])
-        .iter()
-        .map(|&u| (u, crate::units::mm_per(u)))
-        .collect();
+    let units = mesh_units();
     let unit = units.iter().find(|u| u.1 == m.scale).map(|u| u.0);
     let other = units
         .iter()

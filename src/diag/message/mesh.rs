@@ -254,18 +254,10 @@ pub fn too_big(path: &str, t: TooBig, at: Span) -> Diagnostic {
         (None, Some(u)) => format!(" (read in `units = {u}`)"),
         (None, None) => String::new(),
     };
-    let help = match (t.other, t.file_unit) {
-        (Some((u, s)), Some(f)) => format!(
-            "in {u} it would be {}: if the file's numbers are {u}, not the `{f}` it names, export it again with `unit=\"{}\"` (a 3MF names its unit itself)",
-            size3(s),
-            three_mf_unit(u)
-        ),
-        (Some((u, s)), None) => format!(
-            "in {u} it would be {}: if the file's numbers are {u}, write `units = {u}` in `mesh(…)`{}",
-            size3(s),
-            if u == "mm" { " or leave `units` out" } else { "" }
-        ),
-        (None, _) => "a smaller part, or fewer layers (`height` or `layers`); check the file's `units`".to_string(),
+    let help = match t.other {
+        Some(other) => in_other_unit(other, t.file_unit),
+        None => "a smaller part, or fewer layers (`height` or `layers`); check the file's `units`"
+            .to_string(),
     };
     let layers = format!("{} layers of {} mm", t.layers, short(t.lift));
     let need = match t.over {
@@ -286,6 +278,83 @@ pub fn too_big(path: &str, t: TooBig, at: Span) -> Diagnostic {
         format!(
             "the mesh `{path}`{read} is {} as placed: {need}",
             size3(t.size)
+        ),
+    )
+    .label(at, "this mesh")
+    .help(help)
+}
+
+/// What the mesh would be in the unit `u`, at size `s` (mm), and how to read
+/// it so: `units = u` for an STL, exported again for a 3MF naming
+/// `file_unit` itself.
+fn in_other_unit((u, s): (&str, [f64; 3]), file_unit: Option<&str>) -> String {
+    let said = spoken(u);
+    match file_unit {
+        Some(f) => format!(
+            "in {said} it would be {}: if the file's numbers are {said}, not the `{f}` it names, export it again with `unit=\"{}\"` (a 3MF names its unit itself)",
+            size3(s),
+            three_mf_unit(u)
+        ),
+        None => format!(
+            "in {said} it would be {}: if the file's numbers are {said}, write `units = {u}` in `mesh(…)`{}",
+            size3(s),
+            if u == "mm" { " or leave `units` out" } else { "" }
+        ),
+    }
+}
+
+/// A unit as a sentence says it: `in` is inches.
+fn spoken(u: &str) -> &str {
+    match u {
+        "in" => "inches",
+        other => other,
+    }
+}
+
+/// A mesh too narrow for any track, and what it would be in another unit.
+#[derive(Clone, Debug)]
+pub struct TooSmall {
+    /// Its size along x, y and z (mm, placed).
+    pub size: [f64; 3],
+    /// The file's unit, when it is one `units` names.
+    pub unit: Option<&'static str>,
+    /// The unit a 3MF names for itself; `None` for an STL.
+    pub file_unit: Option<&'static str>,
+    /// The bead's width (mm).
+    pub width: f64,
+    /// The larger units in which a few beads fit across it, and its size
+    /// then, the likeliest first.
+    pub others: Vec<(&'static str, [f64; 3])>,
+}
+
+/// The mesh `path` is narrower than the band its outer contour takes:
+/// no track fits on any layer. Most likely a file drawn in a larger unit
+/// (inches) read in a smaller one.
+pub fn too_small(path: &str, t: TooSmall, at: Span) -> Diagnostic {
+    let read = match (t.file_unit, t.unit) {
+        (Some(f), _) => format!(" (its unit `{f}`)"),
+        (None, Some(u)) => format!(" (read in `units = {u}`)"),
+        (None, None) => String::new(),
+    };
+    let help = match t.others.split_first() {
+        Some((&first, rest)) => {
+            let also: Vec<String> = rest
+                .iter()
+                .map(|&(u, s)| format!("; in {}, {}", spoken(u), size3(s)))
+                .collect();
+            format!("{}{}", in_other_unit(first, t.file_unit), also.concat())
+        }
+        None => format!(
+            "a part at least {} mm across, or a narrower bead; check the file's `units`",
+            short(t.width)
+        ),
+    };
+    Diagnostic::error(
+        Code::FillEmpty,
+        format!(
+            "the mesh `{path}`{read} is {} as placed: narrower than the {} mm bead, no track fits in it",
+            size3(t.size),
+            short(t.width)
         ),
     )
     .label(at, "this mesh")

@@ -24,6 +24,17 @@ pub fn unknown_statement(
     }
 }
 
+/// A top-level word that is a value of a field of the statement written
+/// `syntax` (`mesh` in `extrude NAME { profile = mesh(…) }`).
+pub fn value_as_statement(kind: &str, at: Span, syntax: &str, written: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::UnknownStatement,
+        format!("`{kind}` does not start a statement: it is a value"),
+    )
+    .label(at, "a value, not a statement")
+    .help(format!("write it as `{written}` in `{syntax}`"))
+}
+
 /// A file lacks a statement it needs (`example` shows one).
 pub fn missing_statement(kind: &str, example: &str) -> Diagnostic {
     Diagnostic::error(

@@ -249,6 +249,20 @@ impl Block {
         self.fields.iter().copied().find(|f| f.key == key)
     }
 
+    /// The field of this block that takes `word` as its value, a word
+    /// (`spiral`) or a call (`spiral(…)`), with how it is written there:
+    /// `layer_change = spiral(…)`. For a word written as a key by mistake
+    /// (`spiral = true`).
+    pub fn field_taking(&self, word: &str) -> Option<(&'static Field, String)> {
+        self.fields.iter().copied().find_map(|f| {
+            let value = match takes_word(&f.kind, word)? {
+                Some(call) => call.syntax.to_string(),
+                None => word.to_string(),
+            };
+            Some((f, format!("{} = {value}", f.key)))
+        })
+    }
+
     /// Whether `f` is one of the block's entries (taken or refused).
     pub fn owns(&self, f: &Field) -> bool {
         self.accepted().any(|g| g == f)
@@ -592,6 +606,34 @@ pub static BLOCKS: &[&Block] = &[
     &calibration::WALL,
     &calibration::PAD,
 ];
+
+/// Whether a value of `kind` may be the call `word(…)` (`Some(Some(call))`,
+/// which wins) or the word `word` (`Some(None)`).
+fn takes_word(kind: &Kind, word: &str) -> Option<Option<&'static Block>> {
+    match kind {
+        Kind::Call(bs) => bs.iter().copied().find(|b| b.name == word).map(Some),
+        Kind::Word(ws) => ws.contains(&word).then_some(None),
+        Kind::Either(ks) => {
+            let all: Vec<_> = ks.iter().filter_map(|k| takes_word(k, word)).collect();
+            all.iter()
+                .copied()
+                .find(Option::is_some)
+                .or(all.first().copied())
+        }
+        Kind::Layered(k) | Kind::Deferred(k) | Kind::List(k, _) => takes_word(k, word),
+        _ => None,
+    }
+}
+
+/// Where a top-level word that starts no statement is a value: the
+/// statement and field that take it (`mesh` → `extrude NAME { profile =
+/// mesh(…) }`), as that statement's syntax and the field written.
+pub fn statement_taking(word: &str) -> Option<(&'static str, String)> {
+    BLOCKS
+        .iter()
+        .filter(|b| !b.is_call() && b.syntax.ends_with('}'))
+        .find_map(|b| b.field_taking(word).map(|(_, written)| (b.syntax, written)))
+}
 
 /// The block or call named `name` in [`BLOCKS`].
 pub fn block(name: &str) -> Option<&'static Block> {
