@@ -271,3 +271,65 @@ fn a_bead_fitted_when_compiled_is_seed_003_within_the_noise() {
     assert_eq!(w.len(), 6);
     assert!((w[0][0] - 4.0).abs() < 1e-12 && (w[0][1] - 2.625).abs() < 1e-12);
 }
+
+/// `lmdc fit --json` gives every fitted number at full precision, as the
+/// library fits it (to the last bit serde_json's parser keeps, not the
+/// text's six digits), lists each model it could not fit with why, and
+/// follows docs/fit.schema.json.
+#[test]
+fn the_json_has_every_number_at_full_precision_and_the_models_not_fitted() {
+    let data = "tests/fit/seed_003/data.csv";
+    let out = Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .args(["fit", data, "--json"])
+        .output()
+        .expect("runs");
+    assert_eq!(out.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let schema: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string("docs/fit.schema.json").unwrap()).unwrap();
+    let errors = crate::support::schema::validate(&schema, &v);
+    assert!(errors.is_empty(), "{errors:?}");
+    // Without a density the mass balance is not fitted, and says so.
+    let not = v["not_fitted"].as_array().unwrap();
+    assert_eq!(not.len(), 1, "{not:?}");
+    assert_eq!(not[0]["model"], "mass_balance");
+    assert!(not[0]["reason"].as_str().unwrap().contains("density"));
+    assert!(not[0]["help"].as_str().unwrap().contains("--density"));
+    // The numbers are the library's own.
+    let s = sheet::read(&std::fs::read_to_string(data).unwrap()).unwrap();
+    let linear = fit::fit(&s, Kind::Linear, Given::default()).unwrap();
+    let HeightModel::Linear { slope, intercept } = linear.model else {
+        panic!()
+    };
+    let j = v["fits"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["model"] == "linear")
+        .unwrap();
+    // serde_json's default parser may miss the last bit.
+    let same = |got: &serde_json::Value, want: f64| {
+        let g = got.as_f64().unwrap();
+        assert!(
+            (g - want).abs() <= 2.0 * f64::EPSILON * want.abs(),
+            "{g} against {want}"
+        );
+    };
+    same(&j["parameters"]["slope"], slope);
+    same(&j["parameters"]["intercept"], intercept.0);
+    assert!(
+        (slope - -0.1367).abs() > 1e-7,
+        "more digits than the text's"
+    );
+    same(&j["r2"], linear.r2);
+    let residuals = j["residuals"].as_array().unwrap();
+    assert_eq!(residuals.len(), linear.residuals.len());
+    for (r, &(line, x)) in residuals.iter().zip(&linear.residuals) {
+        assert_eq!(r["line"].as_u64(), Some(line as u64));
+        same(&r["residual"], x);
+    }
+    // A broken document fails the schema: the test can fail.
+    let mut bad = v.clone();
+    bad["fits"][0]["parameters"] = serde_json::json!({ "slope": 1.0 });
+    assert!(!crate::support::schema::validate(&schema, &bad).is_empty());
+}

@@ -99,7 +99,7 @@ pub fn run(a: Args<'_>, (color, format): (bool, MessageFormat)) -> u8 {
     };
     let block = bead_block(chosen, &basis);
     let out = if a.json {
-        let j = Json::new(&sheet, &fits, chosen, &block);
+        let j = Json::new(&sheet, (&fits, &skipped), chosen, &block);
         serde_json::to_string_pretty(&j).unwrap_or_default() + "\n"
     } else {
         report(&name, &sheet, &fits, &skipped, chosen, &block)
@@ -290,7 +290,7 @@ fn report(
     s
 }
 
-/// `lmdc fit --json`.
+/// `lmdc fit --json`: every number at full precision (docs/fit.schema.json).
 #[derive(Serialize)]
 struct Json<'a> {
     coupons: usize,
@@ -298,6 +298,8 @@ struct Json<'a> {
     /// The speeds measured, mm/s.
     range: [f64; 2],
     fits: Vec<JsonFit<'a>>,
+    /// The models asked for that could not be fitted, and why.
+    not_fitted: Vec<NotFitted>,
     favoured: &'a str,
     bead: &'a str,
 }
@@ -305,19 +307,113 @@ struct Json<'a> {
 #[derive(Serialize)]
 struct JsonFit<'a> {
     model: &'a str,
-    /// As the language writes it.
+    /// The fitted numbers, in the units the schema names.
+    parameters: Parameters,
+    /// As the language writes it (six significant digits).
     text: String,
     r2: f64,
     adjusted_r2: Option<f64>,
     aicc: Option<f64>,
     rms: f64,
     unit: &'a str,
-    /// `[line, measured − fitted]`.
-    residuals: &'a [(usize, f64)],
+    residuals: Vec<Residual>,
+}
+
+/// A model's fitted numbers: mm, mm/s, s (a slope in mm per mm/s), g/min,
+/// g/cm³, and the efficiency as a fraction.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum Parameters {
+    Linear {
+        slope: f64,
+        intercept: f64,
+    },
+    Power {
+        height: f64,
+        speed: f64,
+        exponent: f64,
+    },
+    MassBalance {
+        feed: f64,
+        efficiency: f64,
+        density: f64,
+    },
+    Table {
+        speed: Vec<f64>,
+        height: Vec<f64>,
+        width: Option<Vec<f64>>,
+    },
+    Measured {
+        height: f64,
+        speed: f64,
+    },
+}
+
+/// One coupon's residual: measured − fitted, in the fit's unit.
+#[derive(Serialize)]
+struct Residual {
+    line: usize,
+    residual: f64,
+}
+
+/// A model that could not be fitted.
+#[derive(Serialize)]
+struct NotFitted {
+    model: &'static str,
+    /// What lmdc says of it, as its diagnostics do.
+    reason: String,
+    help: Option<String>,
+}
+
+impl Parameters {
+    fn of(f: &Fit) -> Parameters {
+        match &f.model {
+            HeightModel::Linear { slope, intercept } => Parameters::Linear {
+                slope: *slope,
+                intercept: intercept.0,
+            },
+            HeightModel::Power {
+                height,
+                speed,
+                exponent,
+            } => Parameters::Power {
+                height: height.0,
+                speed: speed.0,
+                exponent: *exponent,
+            },
+            HeightModel::MassBalance {
+                feed,
+                efficiency,
+                density,
+            } => Parameters::MassBalance {
+                feed: feed.g_min(),
+                efficiency: *efficiency,
+                density: density.0 * 1000.0,
+            },
+            HeightModel::Table(t) => Parameters::Table {
+                speed: t.speeds().to_vec(),
+                height: t.heights().to_vec(),
+                width: f
+                    .widths
+                    .as_ref()
+                    .filter(|w| w.speeds() == t.speeds())
+                    .map(|w| w.widths().to_vec()),
+            },
+            HeightModel::Measured { height, speed } => Parameters::Measured {
+                height: height.0,
+                speed: speed.0,
+            },
+        }
+    }
 }
 
 impl<'a> Json<'a> {
-    fn new(sheet: &Sheet, fits: &'a [Fit], chosen: &'a Fit, block: &'a str) -> Json<'a> {
+    fn new(
+        sheet: &Sheet,
+        (fits, skipped): (&'a [Fit], &[(Kind, Vec<lmdc::diag::Diagnostic>)]),
+        chosen: &'a Fit,
+        block: &'a str,
+    ) -> Json<'a> {
         Json {
             coupons: sheet.coupons.len(),
             unmeasured: sheet.unmeasured,
@@ -326,13 +422,30 @@ impl<'a> Json<'a> {
                 .iter()
                 .map(|f| JsonFit {
                     model: f.kind.name(),
+                    parameters: Parameters::of(f),
                     text: model_text(f),
                     r2: f.r2,
                     adjusted_r2: f.adjusted_r2(),
                     aicc: f.aicc(),
                     rms: f.rms,
                     unit: f.unit,
-                    residuals: &f.residuals,
+                    residuals: f
+                        .residuals
+                        .iter()
+                        .map(|&(line, residual)| Residual { line, residual })
+                        .collect(),
+                })
+                .collect(),
+            not_fitted: skipped
+                .iter()
+                .map(|(k, d)| NotFitted {
+                    model: k.name(),
+                    reason: d
+                        .iter()
+                        .map(|d| d.message.as_str())
+                        .collect::<Vec<_>>()
+                        .join("; "),
+                    help: d.iter().find_map(|d| d.help.clone()),
                 })
                 .collect(),
             favoured: chosen.kind.name(),

@@ -1,7 +1,8 @@
 //! A JSON Schema validator for the keywords lmdc's schemas use: `type`
 //! (one or a list), `const`, `enum`, `required`, `properties`,
-//! `additionalProperties: false`, `items`, `minimum`, `pattern` (only the
-//! `^prefix[class]+$` shape docs/diagnostics.schema.json uses). A keyword it
+//! `additionalProperties: false`, `items`, `minItems`, `maxItems`,
+//! `minimum`, `oneOf`, `$ref` to the schema's own `$defs`, `pattern` (only
+//! the `^prefix[class]+$` shape docs/diagnostics.schema.json uses). A keyword it
 //! does not know fails the validation, so the schema cannot grow past what
 //! the test checks. A crate (jsonschema) would pull in a regex engine and an
 //! HTTP client for one schema of eight fields.
@@ -10,14 +11,24 @@
 use serde_json::Value;
 
 /// Keywords that only document.
-const NOTES: [&str; 5] = ["$schema", "$id", "title", "description", "$comment"];
+const NOTES: [&str; 6] = [
+    "$schema",
+    "$id",
+    "title",
+    "description",
+    "$comment",
+    "$defs",
+];
 
 /// Every way `v` breaks `schema`, with the JSON path where.
 pub fn validate(schema: &Value, v: &Value) -> Vec<String> {
     let mut errors = Vec::new();
-    check(schema, v, "$", &mut errors);
+    check(schema, v, "$", &mut (schema, &mut errors));
     errors
 }
+
+/// The root schema (for `$ref`) and the errors found.
+type Cx<'a, 'e> = (&'a Value, &'e mut Vec<String>);
 
 fn type_of(v: &Value) -> &'static str {
     match v {
@@ -36,7 +47,9 @@ fn is(v: &Value, t: &str) -> bool {
     have == t || (t == "number" && have == "integer")
 }
 
-fn check(schema: &Value, v: &Value, at: &str, errors: &mut Vec<String>) {
+fn check(schema: &Value, v: &Value, at: &str, cx: &mut Cx<'_, '_>) {
+    let root = cx.0;
+    let errors = &mut *cx.1;
     let Some(s) = schema.as_object() else {
         errors.push(format!("{at}: the schema is not an object"));
         return;
@@ -73,7 +86,7 @@ fn check(schema: &Value, v: &Value, at: &str, errors: &mut Vec<String>) {
                 if let (Some(props), Some(o)) = (want.as_object(), v.as_object()) {
                     for (name, sub) in props {
                         if let Some(x) = o.get(name) {
-                            check(sub, x, &format!("{at}.{name}"), errors);
+                            check(sub, x, &format!("{at}.{name}"), &mut (root, &mut *errors));
                         }
                     }
                 }
@@ -94,7 +107,42 @@ fn check(schema: &Value, v: &Value, at: &str, errors: &mut Vec<String>) {
             }
             "items" => {
                 for (i, x) in v.as_array().into_iter().flatten().enumerate() {
-                    check(want, x, &format!("{at}[{i}]"), errors);
+                    check(want, x, &format!("{at}[{i}]"), &mut (root, &mut *errors));
+                }
+            }
+            "minItems" | "maxItems" => {
+                if let (Some(n), Some(a)) = (want.as_u64(), v.as_array()) {
+                    let len = a.len() as u64;
+                    if (key == "minItems" && len < n) || (key == "maxItems" && len > n) {
+                        errors.push(format!("{at}: {len} items, {key} {n}"));
+                    }
+                }
+            }
+            "oneOf" => {
+                let passing = want
+                    .as_array()
+                    .into_iter()
+                    .flatten()
+                    .filter(|sub| {
+                        let mut e = Vec::new();
+                        check(sub, v, at, &mut (root, &mut e));
+                        e.is_empty()
+                    })
+                    .count();
+                if passing != 1 {
+                    errors.push(format!("{at}: {passing} of oneOf's schemas hold, not one"));
+                }
+            }
+            "$ref" => {
+                let target = want
+                    .as_str()
+                    .and_then(|r| r.strip_prefix("#/$defs/"))
+                    .and_then(|name| root.get("$defs")?.get(name));
+                match target {
+                    Some(sub) => check(sub, v, at, &mut (root, &mut *errors)),
+                    None => errors.push(format!(
+                        "{at}: $ref {want} is not one of the schema's $defs"
+                    )),
                 }
             }
             "minimum" => {
