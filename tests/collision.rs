@@ -87,6 +87,62 @@ fn a_fixture_in_the_heads_way_is_refused_and_moved_away_builds() {
     assert!(c.program.is_some(), "{:#?}", c.diagnostics);
 }
 
+/// The distance from `p` to the segment `a`–`b`, seen from above.
+fn to_segment_xy(p: [f64; 2], a: [f64; 3], b: [f64; 3]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a[0] + t * d[0] - p[0]).hypot(a[1] + t * d[1] - p[1])
+}
+
+#[test]
+fn a_travel_across_the_bore_goes_over_the_post_by_the_clearance() {
+    // Before, it crossed at the ring's top plus the clearance, its nozzle
+    // through the post (lmd::collision on both machines).
+    let src = std::fs::read_to_string("tests/cases/collision/travel_over_post/input.lmd").unwrap();
+    let c = compile(&src, &mut ());
+    let v = c.program.as_ref().expect("builds");
+    let (post_top, post_r, clearance) = (40.0, 10.0, 10.0);
+    for m in v.machines() {
+        let mut last: Option<[f64; 3]> = None;
+        let mut over = 0;
+        m.plan().walk(&mut |mv: &Move| {
+            if let (Some(a), MoveKind::Travel) = (last, mv.kind) {
+                // A move that passes over the post itself.
+                if to_segment_xy([0.0, 0.0], a, mv.to) < post_r {
+                    over += 1;
+                    let low = a[2].min(mv.to[2]);
+                    assert!(
+                        low >= post_top + clearance - 1e-6,
+                        "{}: over the post at Z {low} ({:?})",
+                        m.machine().name(),
+                        mv.at
+                    );
+                }
+            }
+            last = Some(mv.to);
+        });
+        assert!(over > 0, "{}: no travel over the post", m.machine().name());
+    }
+    // Without the post the same travels cross at the ring's top plus the
+    // clearance, well below it: the post is what raises them.
+    let bare = src.split("fixture post").next().unwrap().to_string()
+        + &src[src.find("slicing planar").unwrap()..];
+    let c = compile(&bare, &mut ());
+    let v = c.program.as_ref().expect("builds bare");
+    let mut highest = f64::NEG_INFINITY;
+    v.machine(0).unwrap().plan().walk(&mut |mv: &Move| {
+        if mv.kind == MoveKind::Travel {
+            highest = highest.max(mv.to[2]);
+        }
+    });
+    assert!(highest < post_top - 20.0, "{highest}");
+}
+
 /// The head's solids of a machine, as (start, end, radius at start, at
 /// end) up the beam from the focus.
 fn solids(head: &lmdc::ir::Head) -> Vec<[f64; 4]> {
@@ -212,15 +268,16 @@ proptest! {
             );
         let c = lmdc::pipeline::compile_for(&src, Some("mill"), &mut ()).unwrap();
         let refused = c.diagnostics.iter().any(|d| d.code == Code::Collision && d.message.contains("fixture `clamp`"));
-        // The independent distance, over the plan of the same IR.
-        let ir = match &c.program {
-            Some(p) => p.ir().clone(),
-            None => {
-                // Rebuild without the fixture for the plan's poses.
-                let bare = src.split("\nfixture clamp").next().unwrap().to_string();
-                lmdc::pipeline::compile_for(&bare, Some("mill"), &mut ()).unwrap().program.expect("builds bare").ir().clone()
-            }
-        };
+        // The independent distance, over the plan of the same IR: built
+        // without the fixture (a refused program has none), which is then
+        // put back, so the travels rise over it as lmdc's did.
+        let bare = src.split("\nfixture clamp").next().unwrap().to_string();
+        let mut ir = lmdc::pipeline::compile_for(&bare, Some("mill"), &mut ()).unwrap().program.expect("builds bare").ir().clone();
+        ir.fixtures.push(lmdc::ir::Fixture {
+            name: "clamp".into(),
+            shape: lmdc::ir::FixtureShape::Box { size },
+            at: [x, y, 0.0],
+        });
         let m = ir.machines.iter().find(|m| m.name() == "mill").unwrap();
         let mut poses = Poses { last: None, out: Vec::new() };
         lmdc::plan::Plan::new(&ir, m).walk(&mut poses);
