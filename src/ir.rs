@@ -1719,6 +1719,9 @@ pub struct Origins {
     pub ring: Option<RingOrigins>,
     /// Each machine's declaration, by index in [`Program::machines`].
     pub machines: Vec<MachineOrigin>,
+    /// Where each fixture is placed (its `at`, else its name), by index in
+    /// [`Program::fixtures`].
+    pub fixtures: Vec<Span>,
 }
 
 /// Where a ring's declarations are, for the loop's and the transitions'

@@ -151,6 +151,10 @@ impl<'p> PlanRule<'p> for Collision<'p> {
                 Obstacle::Fixture(i) => says::With::Fixture(&self.program.fixtures[i].name),
                 Obstacle::Part(l) => says::With::Part(l + 1),
             };
+            let placed = match w.at.what {
+                Obstacle::Fixture(i) => self.program.origins.fixtures.get(i).copied(),
+                _ => None,
+            };
             out.push(says::collision(&says::Hit {
                 machine: cx.machine.name(),
                 body: &self.head.names[w.at.body],
@@ -158,6 +162,7 @@ impl<'p> PlanRule<'p> for Collision<'p> {
                 worst: w,
                 standoff: raise.map(|r| self.standoff + r),
                 declared,
+                placed,
             }));
         }
     }
