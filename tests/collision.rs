@@ -100,6 +100,18 @@ fn a_fixture_in_the_heads_way_is_refused_and_moved_away_builds() {
     assert!(c.program.is_some(), "{:#?}", c.diagnostics);
 }
 
+/// Whether the segment `a`–`b`, seen from above, meets the rectangle
+/// `lo`–`hi` (sampled every 0.05 mm: the travels here are short).
+fn crosses_xy(a: [f64; 3], b: [f64; 3], lo: [f64; 2], hi: [f64; 2]) -> bool {
+    let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+    let n = (len / 0.05).ceil().max(1.0) as usize;
+    (0..=n).any(|k| {
+        let t = k as f64 / n as f64;
+        let p = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+        p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1]
+    })
+}
+
 /// The distance from `p` to the segment `a`–`b`, seen from above.
 fn to_segment_xy(p: [f64; 2], a: [f64; 3], b: [f64; 3]) -> f64 {
     let d = [b[0] - a[0], b[1] - a[1]];
@@ -251,6 +263,62 @@ impl Visit for Poses {
         }
         self.out.push(m.to);
         self.last = Some(m.to);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// A box of random size and height anywhere over the plate's part (the
+    /// plan is what is tested, not whether the head would clear it while
+    /// depositing): every travel between paths of either machine's plan
+    /// that crosses its footprint on its way, seen from above, does so at
+    /// least the clearance above its
+    /// top, and every one that crosses the part does so at least the
+    /// clearance above the highest focus laid before it.
+    #[test]
+    fn every_travel_over_a_fixture_or_the_part_clears_it_by_the_clearance(
+        x in -15.0f64..15.0,
+        y in -10.0f64..10.0,
+        size in prop::array::uniform3(2.0f64..12.0),
+        height in 3.0f64..60.0,
+    ) {
+        let src = std::fs::read_to_string("tests/codes/plate.lmd").unwrap();
+        let mut ir = compile(&src, &mut ()).program.expect("builds").ir().clone();
+        let (lo, hi) = ([x - size[0] / 2.0, y - size[1] / 2.0], [x + size[0] / 2.0, y + size[1] / 2.0]);
+        ir.fixtures.push(lmdc::ir::Fixture {
+            name: "box".into(),
+            shape: lmdc::ir::FixtureShape::Box { size: [size[0], size[1], height] },
+            at: [x, y, 0.0],
+        });
+        for m in &ir.machines {
+            let clearance = m.common().clearance;
+            let (mut last, mut top): (Option<[f64; 3]>, f64) = (None, f64::NEG_INFINITY);
+            let mut failed = None;
+            lmdc::plan::Plan::new(&ir, m).walk(&mut |mv: &Move| {
+                // The travels between paths (a gap inside a path goes
+                // along its layer).
+                let between = matches!(mv.at, lmdc::plan::Where::Clearance { .. });
+                if let (Some(a), MoveKind::Travel, true) = (last, mv.kind, between) {
+                    let low = a[2].min(mv.to[2]);
+                    // On its way: a path that starts over the box (the
+                    // part stands in it) is reached from above it.
+                    let inside = |p: [f64; 3]| crosses_xy(p, p, lo, hi);
+                    let over_box = crosses_xy(a, mv.to, lo, hi) && !inside(a) && !inside(mv.to);
+                    if over_box && low < height + clearance - 1e-6 {
+                        failed.get_or_insert(format!("{}: over the box at Z {low}, its top {height}", m.name()));
+                    }
+                    if low < top + clearance - 1e-6 {
+                        failed.get_or_insert(format!("{}: a travel at Z {low}, the part's top {top}", m.name()));
+                    }
+                }
+                if mv.kind == MoveKind::Deposit {
+                    top = top.max(mv.to[2]);
+                }
+                last = Some(mv.to);
+            });
+            prop_assert!(failed.is_none(), "{}", failed.unwrap());
+        }
     }
 }
 
