@@ -797,6 +797,45 @@ impl Default for Head {
     }
 }
 
+impl Head {
+    /// The ends of its solids, from the tip up: each `(s, r)`, `s` up the
+    /// beam from the focus and `r` the radius there, mm.
+    fn rims(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let mut s = self.standoff;
+        self.bodies.iter().flat_map(move |b| {
+            let rims = [
+                (s, b.diameters[0] / 2.0),
+                (s + b.length, b.diameters[1] / 2.0),
+            ];
+            s += b.length;
+            rims
+        })
+    }
+
+    /// How far above its focus the head's lowest point lies (mm, negative
+    /// below it) with its beam's Z component `up_z` (the cosine of its
+    /// tilt): a solid of revolution reaches lowest on the rim of one of its
+    /// ends, at `s·cos θ − r·sin θ`.
+    pub fn lowest_above_focus(&self, up_z: f64) -> f64 {
+        let c = up_z.clamp(-1.0, 1.0);
+        let across = (1.0 - c * c).sqrt();
+        self.rims()
+            .map(|(s, r)| s * c - r * across)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// At most how far the head reaches sideways from the vertical line
+    /// through its focus (mm) with its beam's Z component `up_z`: a rim's
+    /// centre lies `s·sin θ` off it, its points `r` farther at most.
+    pub fn spread(&self, up_z: f64) -> f64 {
+        let c = up_z.clamp(-1.0, 1.0);
+        let across = (1.0 - c * c).sqrt();
+        self.rims()
+            .map(|(s, r)| s.abs() * across + r)
+            .fold(0.0, f64::max)
+    }
+}
+
 /// A fixture or clamp on the plate (`fixture NAME { … }`), in the part's
 /// coordinates: what the head must keep its gap from.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -808,6 +847,21 @@ pub struct Fixture {
     pub shape: FixtureShape,
     /// The centre of its bottom face, mm.
     pub at: [f64; 3],
+}
+
+impl Fixture {
+    /// The box round it, mm: its least and greatest X, Y and Z.
+    pub fn bounds(&self) -> ([f64; 3], [f64; 3]) {
+        let [x, y, z] = self.at;
+        let (half, height) = match self.shape {
+            FixtureShape::Box { size } => ([size[0] / 2.0, size[1] / 2.0], size[2]),
+            FixtureShape::Cylinder { diameter, length } => ([diameter / 2.0; 2], length),
+        };
+        (
+            [x - half[0], y - half[1], z],
+            [x + half[0], y + half[1], z + height],
+        )
+    }
 }
 
 /// A fixture's shape, standing on its bottom face.
@@ -1665,6 +1719,9 @@ pub struct Origins {
     pub ring: Option<RingOrigins>,
     /// Each machine's declaration, by index in [`Program::machines`].
     pub machines: Vec<MachineOrigin>,
+    /// Where each fixture is placed (its `at`, else its name), by index in
+    /// [`Program::fixtures`].
+    pub fixtures: Vec<Span>,
 }
 
 /// Where a ring's declarations are, for the loop's and the transitions'

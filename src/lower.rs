@@ -65,7 +65,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         machines,
         styles: styles(model),
         heat: model.process.heat,
-        fixtures: model.fixtures.clone(),
+        fixtures: model.fixtures.iter().map(|(f, _)| f.clone()).collect(),
         continuous: ring.is_some() || spiral(model),
         bead,
         ring,
@@ -94,6 +94,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
                 _ => None,
             },
             machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
+            fixtures: model.fixtures.iter().map(|(_, at)| *at).collect(),
         },
     };
     let mut program = program;
@@ -263,7 +264,7 @@ fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
         machines,
         styles: Vec::new(),
         heat: model.process.heat,
-        fixtures: model.fixtures.clone(),
+        fixtures: model.fixtures.iter().map(|(f, _)| f.clone()).collect(),
         continuous: false,
         bead: None,
         ring: None,
@@ -277,6 +278,7 @@ fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
             slicing: Some(c.span),
             ring: None,
             machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
+            fixtures: model.fixtures.iter().map(|(_, at)| *at).collect(),
         },
     }
 }

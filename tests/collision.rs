@@ -28,7 +28,20 @@ fn number_after(text: &str, before: &str) -> f64 {
 
 #[test]
 fn a_steep_nozzle_over_the_plate_is_refused_and_the_standoff_it_names_builds() {
-    let src = case("nozzle_plate");
+    standoff_followed("nozzle_plate");
+}
+
+#[test]
+fn a_tilted_tables_plate_under_the_nozzle_is_refused_and_the_standoff_it_names_builds() {
+    // The same cone on an A/C table: the part and its plate turn, the
+    // nozzle stays vertical; checked in the part's coordinates alike.
+    standoff_followed("table_plate");
+}
+
+/// The case `name` is refused for the plate with a standoff that builds,
+/// and a hundredth less does not.
+fn standoff_followed(name: &str) {
+    let src = case(name);
     let c = compile(&src, &mut ());
     assert!(c.program.is_none());
     let d = c
@@ -85,6 +98,74 @@ fn a_fixture_in_the_heads_way_is_refused_and_moved_away_builds() {
     let moved = src.replace("at = [20 mm, 0 mm, 0 mm]", "at = [60 mm, 0 mm, 0 mm]");
     let c = compile(&moved, &mut ());
     assert!(c.program.is_some(), "{:#?}", c.diagnostics);
+}
+
+/// Whether the segment `a`–`b`, seen from above, meets the rectangle
+/// `lo`–`hi` (sampled every 0.05 mm: the travels here are short).
+fn crosses_xy(a: [f64; 3], b: [f64; 3], lo: [f64; 2], hi: [f64; 2]) -> bool {
+    let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+    let n = (len / 0.05).ceil().max(1.0) as usize;
+    (0..=n).any(|k| {
+        let t = k as f64 / n as f64;
+        let p = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+        p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1]
+    })
+}
+
+/// The distance from `p` to the segment `a`–`b`, seen from above.
+fn to_segment_xy(p: [f64; 2], a: [f64; 3], b: [f64; 3]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a[0] + t * d[0] - p[0]).hypot(a[1] + t * d[1] - p[1])
+}
+
+#[test]
+fn a_travel_across_the_bore_goes_over_the_post_by_the_clearance() {
+    // Before, it crossed at the ring's top plus the clearance, its nozzle
+    // through the post (lmd::collision on both machines).
+    let src = std::fs::read_to_string("tests/cases/collision/travel_over_post/input.lmd").unwrap();
+    let c = compile(&src, &mut ());
+    let v = c.program.as_ref().expect("builds");
+    let (post_top, post_r, clearance) = (40.0, 10.0, 10.0);
+    for m in v.machines() {
+        let mut last: Option<[f64; 3]> = None;
+        let mut over = 0;
+        m.plan().walk(&mut |mv: &Move| {
+            if let (Some(a), MoveKind::Travel) = (last, mv.kind) {
+                // A move that passes over the post itself.
+                if to_segment_xy([0.0, 0.0], a, mv.to) < post_r {
+                    over += 1;
+                    let low = a[2].min(mv.to[2]);
+                    assert!(
+                        low >= post_top + clearance - 1e-6,
+                        "{}: over the post at Z {low} ({:?})",
+                        m.machine().name(),
+                        mv.at
+                    );
+                }
+            }
+            last = Some(mv.to);
+        });
+        assert!(over > 0, "{}: no travel over the post", m.machine().name());
+    }
+    // Without the post the same travels cross at the ring's top plus the
+    // clearance, well below it: the post is what raises them.
+    let bare = src.split("fixture post").next().unwrap().to_string()
+        + &src[src.find("slicing planar").unwrap()..];
+    let c = compile(&bare, &mut ());
+    let v = c.program.as_ref().expect("builds bare");
+    let mut highest = f64::NEG_INFINITY;
+    v.machine(0).unwrap().plan().walk(&mut |mv: &Move| {
+        if mv.kind == MoveKind::Travel {
+            highest = highest.max(mv.to[2]);
+        }
+    });
+    assert!(highest < post_top - 20.0, "{highest}");
 }
 
 /// The head's solids of a machine, as (start, end, radius at start, at
@@ -186,6 +267,62 @@ impl Visit for Poses {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// A box of random size and height anywhere over the plate's part (the
+    /// plan is what is tested, not whether the head would clear it while
+    /// depositing): every travel between paths of either machine's plan
+    /// that crosses its footprint on its way, seen from above, does so at
+    /// least the clearance above its
+    /// top, and every one that crosses the part does so at least the
+    /// clearance above the highest focus laid before it.
+    #[test]
+    fn every_travel_over_a_fixture_or_the_part_clears_it_by_the_clearance(
+        x in -15.0f64..15.0,
+        y in -10.0f64..10.0,
+        size in prop::array::uniform3(2.0f64..12.0),
+        height in 3.0f64..60.0,
+    ) {
+        let src = std::fs::read_to_string("tests/codes/plate.lmd").unwrap();
+        let mut ir = compile(&src, &mut ()).program.expect("builds").ir().clone();
+        let (lo, hi) = ([x - size[0] / 2.0, y - size[1] / 2.0], [x + size[0] / 2.0, y + size[1] / 2.0]);
+        ir.fixtures.push(lmdc::ir::Fixture {
+            name: "box".into(),
+            shape: lmdc::ir::FixtureShape::Box { size: [size[0], size[1], height] },
+            at: [x, y, 0.0],
+        });
+        for m in &ir.machines {
+            let clearance = m.common().clearance;
+            let (mut last, mut top): (Option<[f64; 3]>, f64) = (None, f64::NEG_INFINITY);
+            let mut failed = None;
+            lmdc::plan::Plan::new(&ir, m).walk(&mut |mv: &Move| {
+                // The travels between paths (a gap inside a path goes
+                // along its layer).
+                let between = matches!(mv.at, lmdc::plan::Where::Clearance { .. });
+                if let (Some(a), MoveKind::Travel, true) = (last, mv.kind, between) {
+                    let low = a[2].min(mv.to[2]);
+                    // On its way: a path that starts over the box (the
+                    // part stands in it) is reached from above it.
+                    let inside = |p: [f64; 3]| crosses_xy(p, p, lo, hi);
+                    let over_box = crosses_xy(a, mv.to, lo, hi) && !inside(a) && !inside(mv.to);
+                    if over_box && low < height + clearance - 1e-6 {
+                        failed.get_or_insert(format!("{}: over the box at Z {low}, its top {height}", m.name()));
+                    }
+                    if low < top + clearance - 1e-6 {
+                        failed.get_or_insert(format!("{}: a travel at Z {low}, the part's top {top}", m.name()));
+                    }
+                }
+                if mv.kind == MoveKind::Deposit {
+                    top = top.max(mv.to[2]);
+                }
+                last = Some(mv.to);
+            });
+            prop_assert!(failed.is_none(), "{}", failed.unwrap());
+        }
+    }
+}
+
+proptest! {
     #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
 
     /// A clamp of random size and place beside the plate, a head of random
@@ -212,15 +349,16 @@ proptest! {
             );
         let c = lmdc::pipeline::compile_for(&src, Some("mill"), &mut ()).unwrap();
         let refused = c.diagnostics.iter().any(|d| d.code == Code::Collision && d.message.contains("fixture `clamp`"));
-        // The independent distance, over the plan of the same IR.
-        let ir = match &c.program {
-            Some(p) => p.ir().clone(),
-            None => {
-                // Rebuild without the fixture for the plan's poses.
-                let bare = src.split("\nfixture clamp").next().unwrap().to_string();
-                lmdc::pipeline::compile_for(&bare, Some("mill"), &mut ()).unwrap().program.expect("builds bare").ir().clone()
-            }
-        };
+        // The independent distance, over the plan of the same IR: built
+        // without the fixture (a refused program has none), which is then
+        // put back, so the travels rise over it as lmdc's did.
+        let bare = src.split("\nfixture clamp").next().unwrap().to_string();
+        let mut ir = lmdc::pipeline::compile_for(&bare, Some("mill"), &mut ()).unwrap().program.expect("builds bare").ir().clone();
+        ir.fixtures.push(lmdc::ir::Fixture {
+            name: "clamp".into(),
+            shape: lmdc::ir::FixtureShape::Box { size },
+            at: [x, y, 0.0],
+        });
         let m = ir.machines.iter().find(|m| m.name() == "mill").unwrap();
         let mut poses = Poses { last: None, out: Vec::new() };
         lmdc::plan::Plan::new(&ir, m).walk(&mut poses);

@@ -211,6 +211,46 @@ mod tests {
         assert!((h.reach - 160f64.hypot(30.0)).abs() < 1e-9);
     }
 
+    /// The plan's own bounds of how low and how wide a tilted head hangs
+    /// about its focus (`ir::Head::lowest_above_focus`, `spread`) against
+    /// points sampled on the solids' rims here: the lowest exactly, the
+    /// spread never short.
+    #[test]
+    fn the_plans_hang_and_spread_bound_the_sampled_rims() {
+        let typical = Head::typical();
+        let h = HeadShape::of(&typical);
+        for deg in [0.0f64, 10.0, 30.0, 50.0, 70.0, 85.0] {
+            let t = deg.to_radians();
+            let up = [t.sin(), 0.0, t.cos()];
+            let side = [t.cos(), 0.0, -t.sin()];
+            let (mut low, mut wide) = (f64::INFINITY, 0.0f64);
+            for b in &h.bodies {
+                for k in 0..2 {
+                    for j in 0..3600 {
+                        let a = std::f64::consts::TAU * f64::from(j) / 3600.0;
+                        let (sa, ca) = a.sin_cos();
+                        let p = add(
+                            scale(up, b.s[k]),
+                            add(scale(side, b.r[k] * ca), [0.0, b.r[k] * sa, 0.0]),
+                        );
+                        low = low.min(p[2]);
+                        wide = wide.max(p[0].hypot(p[1]));
+                    }
+                }
+            }
+            let plan_low = typical.lowest_above_focus(up[2]);
+            assert!((plan_low - low).abs() < 1e-3, "{deg}°: {plan_low} vs {low}");
+            let pose = Pose {
+                focus: [0.0; 3],
+                up,
+            };
+            assert!((h.lowest(&pose, [0.0, 0.0, 1.0]).0 - plan_low).abs() < 1e-9);
+            let spread = typical.spread(up[2]);
+            assert!(spread >= wide - 1e-9, "{deg}°: {spread} vs {wide}");
+            assert!(spread <= wide + 31.0, "{deg}°: {spread} vs {wide}");
+        }
+    }
+
     #[test]
     fn points_below_beside_and_inside() {
         let h = head();

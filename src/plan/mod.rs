@@ -15,9 +15,11 @@
 //! 1. [`MoveKind::Retract`]: `clearance` back up the nozzle from where the last
 //!    path ended (not before the first path);
 //! 2. [`MoveKind::Travel`]: to `clearance` above the path's first point —
-//!    with a vertical nozzle at both ends, over the top: up to `clearance`
-//!    above the highest point deposited so far, across, and down, whenever
-//!    either end lies lower (a straight line could cut a ridge laid before);
+//!    over the top: up to `clearance` above the highest point deposited so
+//!    far and every fixture on the way, across, and down, whenever either
+//!    end lies lower (a straight line could cut a ridge laid before, a
+//!    taller island, a clamp); with a tilted nozzle by what its retract
+//!    rises, `clearance·cos θ`, and what its head hangs below the focus;
 //! 3. [`MoveKind::Approach`]: down to the first point, at the path's first speed
 //!    when the path deposits from its first point, else at the machine's rapid.
 //!
@@ -380,6 +382,9 @@ enum Head {
 pub struct Plan<'a> {
     program: &'a Program,
     head: Head,
+    /// What the machine carries along the beam: how low and how wide it
+    /// hangs about the focus, for the travels over what is there.
+    tool: &'a crate::ir::Head,
     clearance: f64,
     cell: &'a Cell,
     /// The acceleration leads are sized by, and the corner blending a
@@ -420,8 +425,9 @@ pub fn held_to_axes(speed: f64, d: f64, turn: [f64; 2], tops: [f64; 2]) -> f64 {
 }
 
 /// The height a CNC lifts to first and ends at: `declared`, else
-/// `clearance` above the highest focus of the program (what no retract,
-/// travel or approach rises above).
+/// `clearance` above the highest focus of the program or the highest
+/// fixture's top, whichever is higher (what no retract, travel or approach
+/// rises above).
 pub fn safe_height(program: &Program, declared: Option<f64>, clearance: f64) -> f64 {
     declared.unwrap_or_else(|| {
         let top = program
@@ -430,6 +436,7 @@ pub fn safe_height(program: &Program, declared: Option<f64>, clearance: f64) -> 
             .flat_map(|l| &l.paths)
             .flat_map(|p| &p.points)
             .map(|p| p.focus()[2])
+            .chain(program.fixtures.iter().map(|f| f.bounds().1[2]))
             .fold(f64::NEG_INFINITY, f64::max);
         if top.is_finite() {
             top + clearance
@@ -499,6 +506,7 @@ impl<'a> Plan<'a> {
         Plan {
             program,
             head,
+            tool: &common.head,
             clearance: common.clearance,
             cell: machine.cell(),
             lead,
@@ -683,8 +691,8 @@ struct Walker<'p, 'a, V> {
     last_axes: Option<Rotary>,
     /// With leads: where the last deposit started, and the move itself.
     run_end: Option<([f64; 3], Move)>,
-    /// The highest point deposited so far (Z, mm): travels with a vertical
-    /// nozzle pass at least `clearance` above it.
+    /// The highest focus deposited so far (Z, mm): travels pass at least
+    /// `clearance` above it ([`Walker::travel_height`]).
     top: f64,
 }
 
@@ -706,6 +714,29 @@ fn unit(a: [f64; 3], b: [f64; 3]) -> Option<[f64; 3]> {
     let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
     (len > JOIN_MM).then(|| d.map(|c| c / len))
+}
+
+/// Whether the segment from `a` to `b`, seen from above, passes within
+/// `margin` of the box from `lo` to `hi` (its X and Y; by the box grown by
+/// `margin`, a slab test).
+fn crosses_box(a: [f64; 3], b: [f64; 3], lo: [f64; 3], hi: [f64; 3], margin: f64) -> bool {
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for i in 0..2 {
+        let (l, h, d) = (lo[i] - margin, hi[i] + margin, b[i] - a[i]);
+        if d.abs() < 1e-12 {
+            if a[i] < l || a[i] > h {
+                return false;
+            }
+            continue;
+        }
+        let (u, v) = ((l - a[i]) / d, (h - a[i]) / d);
+        t0 = t0.max(u.min(v));
+        t1 = t1.min(u.max(v));
+        if t0 > t1 {
+            return false;
+        }
+    }
+    true
 }
 
 /// How long a lead at `v` mm/s is with acceleration `a`: `v²/2a`, mm.
@@ -1018,12 +1049,15 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
         out
     }
 
-    /// With the nozzle vertical at both ends, the travel to `above` (the
-    /// clearance point over the next path's `first` point) passes at least
-    /// `clearance` above everything built so far: a straight line between
-    /// the two clearance points could cut through a ridge of an earlier
-    /// layer (a top that is higher in the middle than at the tracks' ends).
-    /// Rises there and crosses, with the head at `axes` (before, after).
+    /// The travel to `above` (the clearance point over the next path's
+    /// `first` point) passes over everything it could meet by the
+    /// clearance ([`Walker::travel_height`]): a straight line between the
+    /// two clearance points could cut through a ridge of an earlier layer
+    /// (a top that is higher in the middle than at the tracks' ends), a
+    /// taller island built before, or a fixture on the way. Rises there and
+    /// crosses, with the head at `axes` (before, after), wherever either
+    /// end lies lower; a nozzle that points sideways or down (its beam
+    /// within 3° of level or below) is left to the collision check.
     fn over_the_top(
         &mut self,
         first: &Point,
@@ -1031,21 +1065,18 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
         (prev, axes): (Rotary, Rotary),
         clearance: Where,
     ) {
-        let vertical = |n: [f64; 3]| n[2] >= 1.0 - 1e-9;
-        let safe = self.top + self.plan.clearance;
-        let lift = match (self.last, self.cursor) {
-            (Some(from), Some(c))
-                if vertical(self.up(c.normal))
-                    && vertical(self.up(first.normal))
-                    && from[2].min(above[2]) < safe - 1e-6 =>
-            {
-                Some((from, c.normal))
-            }
-            _ => None,
-        };
-        let Some((from, normal)) = lift else {
+        let (Some(from), Some(c)) = (self.last, self.cursor) else {
             return;
         };
+        let ups = [self.up(c.normal)[2], self.up(first.normal)[2]];
+        if ups.iter().any(|&u| u < 0.05) {
+            return;
+        }
+        let safe = self.travel_height(from, above, ups);
+        if from[2].min(above[2]) >= safe - 1e-6 {
+            return;
+        }
+        let normal = c.normal;
         if from[2] < safe {
             self.send(Move {
                 kind: MoveKind::Travel,
@@ -1057,15 +1088,45 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
                 at: clearance,
             });
         }
+        if above[2] >= safe {
+            // The travel on to `above` goes no lower than `safe`.
+            return;
+        }
         self.send(Move {
             kind: MoveKind::Travel,
-            to: [above[0], above[1], safe.max(above[2])],
+            to: [above[0], above[1], safe],
             normal: first.normal,
             axes,
             speed: Speed::Rapid,
             power: first.power,
             at: clearance,
         });
+    }
+
+    /// The least height (Z) of the focus on a travel from `from` to `to`
+    /// with the beam's Z component `ups` at its ends: above the highest
+    /// focus deposited so far (the part, every island of it) and the top
+    /// of every fixture the head passes within its gap of (by its box), by
+    /// as much as a retract along the beam rises (the clearance, times the
+    /// lesser `up_z`: no lower over anything than its ends stand over their
+    /// own paths), and as much more as a tilted head hangs below its
+    /// focus.
+    fn travel_height(&self, from: [f64; 3], to: [f64; 3], ups: [f64; 2]) -> f64 {
+        let tool = self.plan.tool;
+        let hang = ups
+            .iter()
+            .map(|&u| -tool.lowest_above_focus(u))
+            .fold(0.0, f64::max);
+        let reach = ups.iter().map(|&u| tool.spread(u)).fold(0.0, f64::max) + tool.gap;
+        let mut top = self.top;
+        for f in &self.plan.program.fixtures {
+            let (lo, hi) = f.bounds();
+            if hi[2] > top && crosses_box(from, to, lo, hi, reach) {
+                top = hi[2];
+            }
+        }
+        let rise = ups.iter().fold(1.0f64, |a, &u| a.min(u));
+        top + self.plan.clearance * rise + hang
     }
 
     /// Before layer `next`: dwell, retracted, for the declared interlayer

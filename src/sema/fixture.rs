@@ -9,11 +9,17 @@ use super::statement::{shape_error, Statements};
 use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Fixture, FixtureShape};
+use crate::span::Span;
 use crate::units::Dim;
 use std::collections::BTreeMap;
 
-/// Every fixture that is written right.
-pub fn read<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnostics) -> Vec<Fixture> {
+/// Every fixture that is written right, with where it is placed (its
+/// `at`, else its name): what a collision with it points at.
+pub fn read<'a>(
+    env: &mut Env<'a>,
+    st: &Statements<'a>,
+    diags: &mut Diagnostics,
+) -> Vec<(Fixture, Span)> {
     let mut out = Vec::new();
     let mut seen = BTreeMap::new();
     for s in st.get("fixture") {
@@ -35,13 +41,15 @@ pub fn read<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnostics)
             diags,
         );
         let shape = shape(&f, diags);
+        let placed = f.span(&c::AT).unwrap_or(n.span);
         let at = at(&f, diags);
         if let (Some(shape), Some(at)) = (shape, at) {
-            out.push(Fixture {
+            let fixture = Fixture {
                 name: n.node.clone(),
                 shape,
                 at,
-            });
+            };
+            out.push((fixture, placed));
         }
     }
     out

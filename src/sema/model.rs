@@ -28,8 +28,9 @@ pub struct Model {
     pub process: Process,
     /// Machines to write programs for, with where they and their fields are declared.
     pub machines: Vec<(Machine, MachineOrigin)>,
-    /// Fixtures and clamps on the plate (`fixture NAME { … }`).
-    pub fixtures: Vec<crate::ir::Fixture>,
+    /// Fixtures and clamps on the plate (`fixture NAME { … }`), each with
+    /// where it is placed (its `at`, else its name).
+    pub fixtures: Vec<(crate::ir::Fixture, crate::span::Span)>,
     /// Process styles and how they pass from layer to layer.
     pub styles: Styles,
     /// How closely the bead model must lay the planned layers.

@@ -151,6 +151,10 @@ impl<'p> PlanRule<'p> for Collision<'p> {
                 Obstacle::Fixture(i) => says::With::Fixture(&self.program.fixtures[i].name),
                 Obstacle::Part(l) => says::With::Part(l + 1),
             };
+            let placed = match w.at.what {
+                Obstacle::Fixture(i) => self.program.origins.fixtures.get(i).copied(),
+                _ => None,
+            };
             out.push(says::collision(&says::Hit {
                 machine: cx.machine.name(),
                 body: &self.head.names[w.at.body],
@@ -158,6 +162,7 @@ impl<'p> PlanRule<'p> for Collision<'p> {
                 worst: w,
                 standoff: raise.map(|r| self.standoff + r),
                 declared,
+                placed,
             }));
         }
     }
@@ -585,4 +590,63 @@ fn lerp3(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
         a[1] + t * (b[1] - a[1]),
         a[2] + t * (b[2] - a[2]),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diag::Code;
+    use crate::ir::MachineOrigin;
+    use crate::plan::Speed;
+
+    /// A travel made straight across the post of the case
+    /// `collision/travel_over_post` at the ring's top plus the clearance —
+    /// as the plan made it before it went over what is there — is found by
+    /// the rule, whatever made it.
+    #[test]
+    fn a_travel_through_a_fixture_is_found_along_the_move() {
+        let src =
+            std::fs::read_to_string("tests/cases/collision/travel_over_post/input.lmd").unwrap();
+        let c = crate::pipeline::compile(&src, &mut ());
+        let v = c.program.expect("builds");
+        let program = v.ir();
+        let origin = MachineOrigin::default();
+        let cx = MachineCx {
+            program,
+            machine: &program.machines[0],
+            origin: &origin,
+        };
+        let mut rule = Collision::new(&cx).unwrap();
+        let travel = |x: f64| Move {
+            kind: MoveKind::Travel,
+            to: [x, 0.0, 11.0],
+            normal: [0.0, 0.0, 1.0],
+            axes: Default::default(),
+            speed: Speed::Rapid,
+            power: 0.0,
+            at: Where::Clearance { layer: 1, path: 2 },
+        };
+        let mut out = Diagnostics::new();
+        let mut beside = Collision::new(&cx).unwrap();
+        beside.motion(&travel(-45.0));
+        beside.report(&cx, &mut out);
+        assert!(out.is_empty(), "beside the post: clear");
+        // Both ends clear of it, the middle through it.
+        rule.motion(&travel(-45.0));
+        rule.motion(&travel(45.0));
+        rule.report(&cx, &mut out);
+        let d: Vec<_> = out.iter().filter(|d| d.code == Code::Collision).collect();
+        assert_eq!(d.len(), 1, "{out:?}");
+        assert!(
+            d[0].message.contains("runs into fixture `post`"),
+            "{}",
+            d[0].message
+        );
+        assert!(
+            d[0].message
+                .contains("the clearance move before layer 2, path 3"),
+            "{}",
+            d[0].message
+        );
+    }
 }

@@ -34,6 +34,8 @@ pub struct Hit<'a, At> {
     pub standoff: Option<f64>,
     /// The declared head, if any.
     pub declared: Option<Span>,
+    /// Where the fixture it meets is placed (its `at`, else its name).
+    pub placed: Option<Span>,
 }
 
 /// A body of the head closer than its gap to something.
@@ -71,6 +73,10 @@ pub fn collision<At: Display>(h: &Hit<'_, At>) -> Diagnostic {
     let d = Diagnostic::error(Code::Collision, message).help(format!(
         "{fix}; `head {{ … }}` says what the machine carries (docs/collision.md)"
     ));
+    let d = match (h.with, h.placed) {
+        (With::Fixture(name), Some(at)) => d.label(at, format!("fixture `{name}` stands here")),
+        _ => d,
+    };
     match h.declared {
         Some(at) => d.label(at, "the head as declared"),
         None => d,

@@ -722,7 +722,7 @@ pub static ANALOG_OUTPUT: Field = Field::new(
 pub static SAFE_HEIGHT: Field = Field::new(
     "safe_height",
     Quantity(Dim::LENGTH, Any),
-    Default(Described("the part's highest point plus the clearance")),
+    Default(Described("the part's highest point (or the highest fixture's top) plus the clearance")),
     "the height (Z, part coordinates) the program's first move lifts the nozzle to before X, Y and the rotary axes move, and its last move ends at; at least the default (`lmd::safe-height`)",
 );
 

@@ -38,6 +38,7 @@ G1 X-0.556 Y2.963 Z-7.936 B0.600 C0.000 F545.9
 M5
 ; layer 3 of 5: station 0.4000, height 0.596..0.660 mm, 1 path, 9 points
 G0 X-0.451 Y2.963 Z2.063 B0.600 C0.000
+G0 X-0.451 Y2.963 Z2.088 B0.600 C0.000
 G0 X-0.884 Y2.853 Z2.706 B1.200 C0.000
 G1 X-1.093 Y2.853 Z-7.292 B1.200 C0.000 F522 S2100
 M3
@@ -52,6 +53,7 @@ G1 X-1.093 Y2.853 Z-7.292 B1.200 C0.000 F542.3
 M5
 ; layer 4 of 5: station 0.6000, height 0.592..0.665 mm, 1 path, 9 points
 G0 X-0.884 Y2.853 Z2.706 B1.200 C0.000
+G0 X-0.884 Y2.853 Z2.748 B1.200 C0.000
 G0 X-1.287 Y2.673 Z3.357 B1.800 C0.000
 G1 X-1.601 Y2.673 Z-6.638 B1.800 C0.000 F518.4
 M3
@@ -66,6 +68,7 @@ G1 X-1.601 Y2.673 Z-6.638 B1.800 C0.000 F538.4
 M5
 ; layer 5 of 5: station 0.8000, height 0.587..0.669 mm, 1 path, 9 points
 G0 X-1.287 Y2.673 Z3.357 B1.800 C0.000
+G0 X-1.287 Y2.673 Z3.420 B1.800 C0.000
 G0 X-1.649 Y2.427 Z4.015 B2.400 C0.000
 G1 X-2.068 Y2.427 Z-5.976 B2.400 C0.000 F515.1
 M3
@@ -81,6 +84,6 @@ M5
 G0 X-1.649 Y2.427 Z4.015 B2.400 C0.000
 G0 Z4.114
 #RTCP OFF
-; end of small_duct_fagor: 40 deposit moves, 5 laser starts, 58 motion lines
+; end of small_duct_fagor: 40 deposit moves, 5 laser starts, 61 motion lines
 M5
 M30
