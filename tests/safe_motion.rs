@@ -128,6 +128,23 @@ fn check_gcode(name: &str, text: &str) {
             assert_eq!(a, b, "{name}: ends at the height it started at");
         }
     }
+    // No move goes nowhere: every motion line changes where the axes are
+    // (a layer change straight up and down wrote its crossing twice).
+    let mut at: BTreeMap<char, &str> = BTreeMap::new();
+    for mv in &m {
+        let was = at.clone();
+        for (k, v) in &mv.words {
+            if "XYZABC".contains(*k) {
+                at.insert(*k, v);
+            }
+        }
+        assert!(
+            at != was,
+            "{name}: line {} moves nowhere: {:?}",
+            mv.at + 1,
+            mv.words
+        );
+    }
 }
 
 /// Rule 1 for a robot's programs: the main program goes home by PTP first

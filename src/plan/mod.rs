@@ -1077,10 +1077,12 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
             return;
         }
         let normal = c.normal;
+        let mut here = from;
         if from[2] < safe {
+            here = [from[0], from[1], safe];
             self.send(Move {
                 kind: MoveKind::Travel,
-                to: [from[0], from[1], safe],
+                to: here,
                 normal,
                 axes: prev,
                 speed: Speed::Rapid,
@@ -1090,6 +1092,12 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
         }
         if above[2] >= safe {
             // The travel on to `above` goes no lower than `safe`.
+            return;
+        }
+        // Straight up and down (the next path starts under where the last
+        // ended, a layer change of a wall): nothing to cross.
+        let across = [above[0], above[1], safe];
+        if across == here && axes == prev && first.normal == normal {
             return;
         }
         self.send(Move {
