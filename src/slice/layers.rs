@@ -125,7 +125,8 @@ pub fn plan(
 /// The layers that build `height`: whole ones, at least as tall as asked
 /// (machining takes off the rest).
 fn whole_layers(height: Length, at: Span, lift: Length, diags: &mut Diagnostics) -> Option<usize> {
-    let n = (height.0 / lift.0 * (1.0 - 1e-9)).ceil();
+    // Float noise (a mesh's f32 coordinates in inches) is no extra layer.
+    let n = crate::units::whole_count(height.0 / lift.0);
     if n > MAX_LAYERS as f64 {
         diags.push(message::slicing::too_many_layers(
             height, lift, MAX_LAYERS, at,

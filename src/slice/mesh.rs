@@ -46,7 +46,7 @@ pub fn plausible(
 ) -> Option<()> {
     // A `height` or `layers` below the mesh's top builds part of it: its
     // volume says nothing then.
-    let whole = n as f64 * lift.0 >= m.top.0 * (1.0 - 1e-9);
+    let whole = n as f64 >= crate::units::whole_count(m.top.0 / lift.0);
     let Some(least) = least_fill_points(m, 1.0, lift.0, slicing).filter(|_| whole) else {
         return Some(());
     };
