@@ -252,7 +252,7 @@ codes! {
     BendTooTight = "bend-too-tight", Feasibility,
         "normal slicing of this bend needs layers whose outer/inner height ratio exceeds what the bead model can lay; names the radius, speed range and section size that would work";
     FillGap = "fill-gap", Feasibility,
-        "planar tracks further apart than the bead is wide would leave gaps (names the flat-top offset `A/h`); or a raster fill leaves a spot more than a bead width from every track — a part of the profile narrower than the offset that no line crosses (names the layer, the point and its distance)";
+        "planar tracks further apart than the bead is wide would leave gaps (names the flat-top offset `A/h`); two neighbouring tracks that run parallel farther apart than the bead (names the layer, where, how far apart and the strip left); or a raster fill leaves a spot more than a bead width from every track — a part of the profile narrower than the offset that no line crosses (names the layer, the point and its distance)";
     Overlap = "overlap", Feasibility,
         "planar tracks closer than 30 % of the bead width: the layer would pile up instead of levelling (as a warning: a contour pass that is a sliver, its sides closer than 30 % of the bead width)";
     SelfIntersecting = "self-intersecting", Feasibility,
