@@ -123,6 +123,10 @@ pub struct Program {
     /// predicted by (none on a ring, whose segments have their own widths).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub bead: Option<Bead>,
+    /// Fixtures and clamps on the plate, which every machine's head keeps
+    /// its gap from.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub fixtures: Vec<Fixture>,
     /// Layers in build order.
     pub layers: Vec<Layer>,
     /// Source spans of the declarations the checks refer to; not serialised.
@@ -725,6 +729,105 @@ pub struct MachineCommon {
     pub blending: Option<f64>,
     /// How the program starts and stops a bead.
     pub ramp: Ramp,
+    /// What it carries along the beam, for the collision checks.
+    pub head: Head,
+}
+
+/// What a machine carries along the beam (docs/collision.md): solids of
+/// revolution about the beam, stacked from the nozzle's tip up, each kept
+/// `gap` away from the plate, the fixtures and the part as it grows.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+pub struct Head {
+    /// The nozzle tip's distance from the laser focus, up the beam, mm: the
+    /// tool's own geometry (a larger defocus below the surface brings the
+    /// tip nearer the part).
+    pub standoff: f64,
+    /// From the tip up.
+    pub bodies: Vec<HeadBody>,
+    /// The least distance kept between the head and anything else, mm.
+    pub gap: f64,
+    /// Whether the machine declared it (else lmdc's typical coaxial nozzle,
+    /// [`Head::typical`], and the warning `lmd::head-unchecked`).
+    pub declared: bool,
+}
+
+/// One solid of a [`Head`]: a frustum about the beam (a cylinder where its
+/// two diameters are equal).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+pub struct HeadBody {
+    /// What it is (`nozzle`, `body`, `housing`), for the messages.
+    pub name: String,
+    /// Its length along the beam, mm.
+    pub length: f64,
+    /// Its diameters at its lower and upper ends, mm.
+    pub diameters: [f64; 2],
+}
+
+impl Head {
+    /// A typical coaxial DED nozzle, for a machine that declares no head: a
+    /// conical nozzle 45 mm long from a 12 mm tip to 40 mm, on a body 60 mm
+    /// across and 100 mm long, its tip 15 mm above the focus; a gap of 2 mm.
+    /// Not any one product: the size of the discrete-jet and annular
+    /// nozzles of 1–4 kW cells (docs/collision.md).
+    pub fn typical() -> Head {
+        Head {
+            standoff: 15.0,
+            bodies: vec![
+                HeadBody {
+                    name: "nozzle".into(),
+                    length: 45.0,
+                    diameters: [12.0, 40.0],
+                },
+                HeadBody {
+                    name: "body".into(),
+                    length: 100.0,
+                    diameters: [60.0, 60.0],
+                },
+            ],
+            gap: 2.0,
+            declared: false,
+        }
+    }
+}
+
+impl Default for Head {
+    fn default() -> Self {
+        Head::typical()
+    }
+}
+
+/// A fixture or clamp on the plate (`fixture NAME { … }`), in the part's
+/// coordinates: what the head must keep its gap from.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+pub struct Fixture {
+    /// Its name from the source.
+    pub name: String,
+    /// Its shape.
+    pub shape: FixtureShape,
+    /// The centre of its bottom face, mm.
+    pub at: [f64; 3],
+}
+
+/// A fixture's shape, standing on its bottom face.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+#[serde(tag = "shape", rename_all = "snake_case")]
+pub enum FixtureShape {
+    /// A box, its sides along X, Y and Z, mm.
+    Box {
+        /// Along X, Y and Z, mm.
+        size: [f64; 3],
+    },
+    /// An upright cylinder, mm.
+    Cylinder {
+        /// mm.
+        diameter: f64,
+        /// Its height, mm.
+        length: f64,
+    },
 }
 
 /// How a machine's program starts and stops a bead, where the nozzle speeds
@@ -1340,6 +1443,9 @@ mod wire {
         /// How the program starts and stops a bead.
         #[serde(default, skip_serializing_if = "Ramp::is_none")]
         ramp: Ramp,
+        /// What it carries along the beam (absent: lmdc's typical nozzle).
+        #[serde(default)]
+        head: super::Head,
     }
 
     /// A CNC's fields in the file's order.
@@ -1394,6 +1500,9 @@ mod wire {
         /// How the program starts and stops a bead.
         #[serde(default, skip_serializing_if = "Ramp::is_none")]
         ramp: Ramp,
+        /// What it carries along the beam (absent: lmdc's typical nozzle).
+        #[serde(default)]
+        head: super::Head,
     }
 
     impl From<Robot> for super::Robot {
@@ -1408,6 +1517,7 @@ mod wire {
                     acceleration: r.acceleration,
                     blending: r.blending,
                     ramp: r.ramp,
+                    head: r.head,
                 },
                 tool: r.tool,
                 load: r.load,
@@ -1449,6 +1559,7 @@ mod wire {
                 acceleration: c.acceleration,
                 blending: c.blending,
                 ramp: c.ramp,
+                head: c.head,
             }
         }
     }
@@ -1465,6 +1576,7 @@ mod wire {
                     acceleration: c.acceleration,
                     blending: c.blending,
                     ramp: c.ramp,
+                    head: c.head,
                 },
                 axes: c.axes,
                 kinematics: c.kinematics,
@@ -1498,6 +1610,7 @@ mod wire {
                 acceleration: m.acceleration,
                 blending: m.blending,
                 ramp: m.ramp,
+                head: m.head,
             }
         }
     }

@@ -3,6 +3,7 @@
 
 pub mod back;
 pub mod bead;
+pub mod collision;
 pub mod control;
 pub mod deposit;
 pub mod diag;

@@ -63,20 +63,9 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         units: Units::default(),
         limits,
         machines,
-        styles: model
-            .styles
-            .table
-            .iter()
-            .map(|s| Style {
-                id: s.id,
-                name: s.name.clone(),
-                power: s.power.map(|p| p.watts()),
-                speed: s.speed.map(|v| v.0),
-                powder: s.powder.map(|m| m.g_min()),
-                colour: s.colour.clone(),
-            })
-            .collect(),
+        styles: styles(model),
         heat: model.process.heat,
+        fixtures: model.fixtures.clone(),
         continuous: ring.is_some() || spiral(model),
         bead,
         ring,
@@ -274,6 +263,7 @@ fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
         machines,
         styles: Vec::new(),
         heat: model.process.heat,
+        fixtures: model.fixtures.clone(),
         continuous: false,
         bead: None,
         ring: None,
@@ -300,4 +290,21 @@ fn spiral(model: &Model) -> bool {
         Build::Block { slicing, .. } => slicing.layer_change.is_spiral(),
         _ => false,
     }
+}
+
+/// The style table as the IR holds it.
+fn styles(model: &Model) -> Vec<Style> {
+    model
+        .styles
+        .table
+        .iter()
+        .map(|s| Style {
+            id: s.id,
+            name: s.name.clone(),
+            power: s.power.map(|p| p.watts()),
+            speed: s.speed.map(|v| v.0),
+            powder: s.powder.map(|m| m.g_min()),
+            colour: s.colour.clone(),
+        })
+        .collect()
 }

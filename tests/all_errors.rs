@@ -61,6 +61,7 @@ inheritance {
 
 machine mill {
   kind = cnc
+  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }
   axes = 3
   dialect = m20
   max_speed = 100 mm/s
@@ -68,6 +69,7 @@ machine mill {
 
 machine kr30 {
   kind = robot
+  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }
   load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])
   laser = 1
   power_output = 1

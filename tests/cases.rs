@@ -120,7 +120,7 @@ pub fn produce(case: &Path) -> BTreeMap<String, Vec<u8>> {
     // Its data files (`fit(…, data = "…")`) beside it, as the CLI reads them.
     let dir = case.to_path_buf();
     let data: lmdc::sema::DataReader =
-        std::rc::Rc::new(move |path: &str| fs::read(dir.join(path)).map_err(|e| e.to_string()));
+        std::rc::Rc::new(move |path: &str, _| fs::read(dir.join(path)).map_err(|e| e.to_string()));
     let options = Options {
         file: Some(name.clone()),
         data: Some(DataFiles(data)),

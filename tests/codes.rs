@@ -195,7 +195,7 @@ fn run(line: &Line) -> (String, Vec<Code>) {
             let src = merge(base, text);
             // Measurement sheets (`fit(…, data = "…")`) are read from
             // tests/codes/, as from beside a file there.
-            let data: lmdc::sema::DataReader = std::rc::Rc::new(|path: &str| {
+            let data: lmdc::sema::DataReader = std::rc::Rc::new(|path: &str, _| {
                 fs::read(Path::new(DIR).join(path)).map_err(|e| e.to_string())
             });
             let c = lmdc::pipeline::compile_reading(&src, None, &mut (), data).unwrap();
@@ -315,7 +315,7 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
         "extrude block { profile = circle(diameter = 10 mm, radius = 5 mm)  size = outer  bead = track }";
     missing_statement: MissingStatement, PLATE.without(&["process"]), "";
     missing_field: MissingField, PLATE, "process { speed = 6 mm/s  power = 1500 W  defocus = -3 mm }";
-    missing_field_lead: MissingField, PLATE, "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  ramp = lead }";
+    missing_field_lead: MissingField, PLATE, "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  ramp = lead }";
     missing_solid: MissingSolid, PLATE.without(&["solid"]), "";
     missing_machine: MissingMachine, PLATE.without(&["machine mill", "machine kr"]), "";
     cycle: Cycle, PLATE, "let a = b\nlet b = a";
@@ -344,7 +344,7 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     expected_name: ExpectedName, PLATE,
         "extrude block { profile = rectangle(width = 20 mm, height = 10 mm)  size = outer  bead = 2 mm }";
     wrong_type: Type, PLATE,
-        "machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  home = [0 deg, 90 deg] }";
+        "machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  home = [0 deg, 90 deg] }";
     bad_choice: BadChoice, PLATE,
         "extrude block { profile = rectangle(width = 20 mm, height = 10 mm)  size = outr  bead = track }";
     empty_range: EmptyRange, PLATE,
@@ -401,8 +401,8 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
         "process { speed = 6 mm/s  power = 1500 W  power_range = 1600 W .. 2000 W  powder = 8 g/min  defocus = -3 mm }";
     nothing_deposited: NothingDeposited, PLATE, "slicing planar { layers = 2  offset = 1.6 mm  contours = 0 }";
     out_of_range: OutOfRange, PLATE,
-        "machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 5000 mm/s }";
-    out_of_range_axes: OutOfRange, PLATE, "machine mill { kind = cnc  axes = 4  max_speed = 50 mm/s }";
+        "machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 5000 mm/s }";
+    out_of_range_axes: OutOfRange, PLATE, "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 4  max_speed = 50 mm/s }";
     layer_outside_profile: LayerOutsideProfile, PLATE,
         "process { speed = 6 mm/s  power = 1500 W + layer * 10 W  powder = 8 g/min  defocus = -3 mm }";
     position_outside_top: PositionOutsideTop, PLATE,
@@ -512,64 +512,70 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
     });
 
     // Machines
-    machine_speed: MachineSpeed, PLATE, "machine mill { kind = cnc  axes = 3  max_speed = 5 mm/s }";
-    resolution: Resolution, PLATE, "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  s_per_watt = 0.0001 }";
+    machine_speed: MachineSpeed, PLATE, "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 5 mm/s }";
+    resolution: Resolution, PLATE, "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  s_per_watt = 0.0001 }";
     program_text: ProgramText, PLATE,
-        r#"machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  postamble = ["M5"] }"#;
-    needs_tilt: NeedsTilt, DUCT, "machine dmu5 { kind = cnc  axes = 3  max_speed = 100 mm/s }";
+        r#"machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  postamble = ["M5"] }"#;
+    needs_tilt: NeedsTilt, DUCT, "machine dmu5 { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 100 mm/s }";
     axis_limit: AxisLimit, PLATE,
-        "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  limits { x = -5 mm .. 5 mm } }";
+        "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  limits { x = -5 mm .. 5 mm } }";
     safe_height: SafeHeight, PLATE,
-        "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  safe_height = 2 mm }";
-    name_clash: NameClash, PLATE, "machine Mill { kind = cnc  axes = 3  max_speed = 50 mm/s }";
+        "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  safe_height = 2 mm }";
+    name_clash: NameClash, PLATE, "machine Mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s }";
     transition_speed: TransitionSpeed, RING,
-        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 12 mm/s  height_input = 3  height_full_scale = 2 mm  height_delay = 150 ms }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 12 mm/s  height_input = 3  height_full_scale = 2 mm  height_delay = 150 ms }";
     loop_dialect: LoopDialect, RING,
-        "machine mill { kind = cnc  axes = 3  dialect = fagor8070  max_speed = 50 mm/s  height_input = 3  height_full_scale = 2 mm }";
+        "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  dialect = fagor8070  max_speed = 50 mm/s  height_input = 3  height_full_scale = 2 mm }";
     loop_timing: LoopTiming, RING,
         "ring wall { radius = 40 mm  segments = 1  table { defocus = [-8 mm]  power = [1200 W]  width = [6.25 mm]  speed = [4 mm/s] } }";
-    height_sensor: HeightSensor, RING, "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s }";
+    height_sensor: HeightSensor, RING, "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s }";
     analog_range: AnalogRange, PLATE,
-        "machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 1000 W  max_speed = 100 mm/s }";
+        "machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 1000 W  max_speed = 100 mm/s }";
     output_clash: OutputClash, PLATE,
-        "machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  gas { output = 1 } }";
+        "machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  gas { output = 1 } }";
     io_dialect: IoDialect, PLATE,
-        "machine mill { kind = cnc  axes = 3  dialect = fagor8070  max_speed = 50 mm/s  gas { output = 2 } }";
+        "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  dialect = fagor8070  max_speed = 50 mm/s  gas { output = 2 } }";
     // The duct 9 m in front of a KR 60 HA, whose wrist reaches 1.7 m from A2.
     reach: Reach, DUCT,
-        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 9000 mm) }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 9000 mm) }";
     // A plate 3 m long on a KR 60 HA: its far end beyond reach from its
     // points, and no base in front of the robot, above its foot, reaches
     // both ends.
     reach_no_base: Reach, PLATE.without(&["machine mill"]),
         "extrude block { profile = rectangle(width = 3000 mm, height = 5.4 mm)  size = outer  bead = track }
-machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm, z = 400 mm) }";
+machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm, z = 400 mm) }";
     // A5 of a KR 60 HA turns ±119°.
     joint_limit: JointLimit, DUCT,
-        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm)  home = [0 deg, -90 deg, 90 deg, 0 deg, 150 deg, 0 deg] }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm)  home = [0 deg, -90 deg, 90 deg, 0 deg, 150 deg, 0 deg] }";
     // The part held up in front of the wrist, the nozzle pointing away from
     // the robot along the forearm: A5 = 0 at the duct's origin.
     singular_lin: SingularLin, DUCT,
-        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1650 mm, z = 1810 mm, b = -90 deg) }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1650 mm, z = 1810 mm, b = -90 deg) }";
     // The duct round A1's axis, 3 mm off: the wrist centre passes over A1
     // (overhead), and A1 would spin round to follow it.
     configuration_flip: ConfigurationFlip, DUCT,
-        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 3 mm, z = 1000 mm) }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 3 mm, z = 1000 mm) }";
     joint_speed: JointSpeed, DUCT,
-        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = -3 mm, z = 1000 mm) }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = -3 mm, z = 1000 mm) }";
     // The rotate axis along the tilt axis: the part could only turn.
     positioner_axes: PositionerAxes, DUCT,
-        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1)  positioner { tilt_axis = [0, 0, 1]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 2]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1)  positioner { tilt_axis = [0, 0, 1]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 2]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
     // The duct's 3° bend on a tilt held within ±1°: neither solution fits.
     positioner_limit: PositionerLimit, DUCT,
-        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1, a = 90 deg)  positioner { tilt_axis = [1, 0, 0]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -1 deg .. 1 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 1]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1, a = 90 deg)  positioner { tilt_axis = [1, 0, 0]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -1 deg .. 1 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 1]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
+    // A clamp 30 mm tall 5 mm from the plate's end: the nozzle's cone
+    // reaches over it.
+    collision: Collision, PLATE,
+        "fixture clamp { shape = box(size = [10 mm, 10 mm, 30 mm])  at = [20 mm, 0 mm, 0 mm] }";
+    head_unchecked: HeadUnchecked, PLATE,
+        "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s }";
     // A cone leaning 30° with the nozzle along its wall: every layer winds
     // C once round, and C turns only 340°.
     c_unwind: CUnwind, DUCT,
-        "loft duct { from = circle(diameter = 80 mm)  to = circle(diameter = 40 mm)  spine = line(length = 34.641 mm)  wall = b }\nslicing normal { layers = auto  points = 24  nozzle = wall }\nmachine dmu5 { kind = cnc  axes = 5  max_speed = 100 mm/s  limits { c = -170 deg .. 170 deg } }";
+        "loft duct { from = circle(diameter = 80 mm)  to = circle(diameter = 40 mm)  spine = line(length = 34.641 mm)  wall = b }\nslicing normal { layers = auto  points = 24  nozzle = wall }\nmachine dmu5 { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 5  max_speed = 100 mm/s  limits { c = -170 deg .. 170 deg } }";
     // The same cone, C turning at most 5°/s as it follows the wall.
     axis_speed: AxisSpeed, DUCT,
-        "loft duct { from = circle(diameter = 80 mm)  to = circle(diameter = 40 mm)  spine = line(length = 34.641 mm)  wall = b }\nslicing normal { layers = auto  points = 24  nozzle = wall }\nmachine dmu5 { kind = cnc  axes = 5  max_speed = 100 mm/s  rotary_speed = 5 deg/s }";
+        "loft duct { from = circle(diameter = 80 mm)  to = circle(diameter = 40 mm)  spine = line(length = 34.641 mm)  wall = b }\nslicing normal { layers = auto  points = 24  nozzle = wall }\nmachine dmu5 { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 5  max_speed = 100 mm/s  rotary_speed = 5 deg/s }";
     positioner_speed: PositionerSpeed, RING,
         ir("the robot has a positioner whose E2 turns 10° and back layer by layer: the ring's layers run on into each other", |p| {
             let n = p.layers.len();
@@ -591,32 +597,32 @@ machine kr { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])
             }
         });
     loop_on_positioner: LoopDialect, RING,
-        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 50 mm/s  height_input = 3  height_full_scale = 2 mm  height_delay = 150 ms  base = frame(1)  positioner { tilt_axis = [1, 0, 0]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 1]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 50 mm/s  height_input = 3  height_full_scale = 2 mm  height_delay = 150 ms  base = frame(1)  positioner { tilt_axis = [1, 0, 0]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 1]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";
     arm_unchecked: ArmUnchecked, DUCT,
-        "machine kr60 { kind = robot  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha }";
     // A robot without its tool's load: the controller's LOAD_DATA[1].
     load_unchecked: LoadUnchecked, DUCT,
-        "machine kr60 { kind = robot  tool = frame(1, z = 350 mm)  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  tool = frame(1, z = 350 mm)  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s }";
     // A nozzle's mass written in kg for g, its centre of gravity 3 m out.
     load_out_of_range: OutOfRange, DUCT,
-        "machine kr60 { kind = robot  load = load(mass = 18000 kg, cog = [0 mm, 0 mm, 3 m])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18000 kg, cog = [0 mm, 0 mm, 3 m])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s }";
     // The load's number, as for `tool = 1`: LOAD_DATA[n] is the tool's.
     load_not_a_load: Type, DUCT,
-        "machine kr60 { kind = robot  load = 1  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = 1  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s }";
     // Sinumerik's own system variables in the help, not LinuxCNC's M64.
     io_dialect_sinumerik: IoDialect, PLATE,
-        "machine mill { kind = cnc  axes = 3  dialect = sinumerik840d  max_speed = 50 mm/s  gas { output = 2 } }";
+        "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  dialect = sinumerik840d  max_speed = 50 mm/s  gas { output = 2 } }";
     // 6 mm/s from rest at 100 mm/s²: v²/2a = 0.18 mm of ramp lays 0.18 mm of
     // bead more, 8.2 % of a 2.2 mm bead width at each start and end.
     deposit_bump: DepositBump, PLATE,
-        "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  acceleration = 100 mm/s^2 }";
+        "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  acceleration = 100 mm/s^2 }";
     // Leads take care of the starts and ends; the contour's unblended
     // corners are full stops.
     deposit_bump_at_corners: DepositBump, PLATE,
         r#"slicing planar { layers = 2  offset = 1.6 mm  contours = 1  infill = raster(angle = 0 deg) }
-machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  acceleration = 100 mm/s^2  blending = 0 mm  ramp = lead  laser_on = "M62 P0"  laser_off = "M63 P0" }"#;
+machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  acceleration = 100 mm/s^2  blending = 0 mm  ramp = lead  laser_on = "M62 P0"  laser_off = "M63 P0" }"#;
     powder_rate: PowderRate, PLATE,
-        "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  powder { output = 3  arrival = 2 s  rate_output = 2  full_scale = 5 g/min } }";
+        "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  powder { output = 3  arrival = 2 s  rate_output = 2  full_scale = 5 g/min } }";
 
     // Warnings
     short_track: ShortTrack, PLATE,

@@ -176,7 +176,7 @@ bead b {{
 extrude e {{ profile = rectangle(width = 20 mm, height = 10 mm)  size = outer  bead = b }}
 slicing planar {{ {slicing} }}
 process {{ speed = 6 mm/s  power = 1000 W  powder = 12 g/min  defocus = 0 mm }}
-machine m {{ kind = cnc  axes = 3  max_speed = 50 mm/s }}
+machine m {{ kind = cnc  head {{ standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }}  axes = 3  max_speed = 50 mm/s }}
 "
     )
 }
@@ -273,7 +273,7 @@ slicing planar {{
   rise_tolerance = {tolerance} %
 }}
 process {{ speed = 6 mm/s  power = 1500 W  powder = 8 g/min  defocus = -3 mm }}
-machine m {{ kind = cnc  axes = 3  max_speed = 50 mm/s }}
+machine m {{ kind = cnc  head {{ standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }}  axes = 3  max_speed = 50 mm/s }}
 ",
         height = 2.2 + 5.0 * offset
     )

@@ -248,7 +248,7 @@ fn a_bead_fitted_when_compiled_is_seed_003_within_the_noise() {
     let src = std::fs::read_to_string(dir.join("input.lmd")).unwrap();
     let root = dir.to_path_buf();
     let data: lmdc::sema::DataReader =
-        std::rc::Rc::new(move |p: &str| std::fs::read(root.join(p)).map_err(|e| e.to_string()));
+        std::rc::Rc::new(move |p: &str, _| std::fs::read(root.join(p)).map_err(|e| e.to_string()));
     let (c, _) = lmdc::pipeline::compile_reading(&src, None, &mut (), data).unwrap();
     let p = c.program.expect("compiles").into_ir();
     let b = p.bead.as_ref().unwrap();

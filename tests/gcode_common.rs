@@ -182,6 +182,7 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
         });
     }
     Program {
+        fixtures: Vec::new(),
         format: FORMAT.into(),
         version: VERSION_BASIC,
         part: "planar block".into(),

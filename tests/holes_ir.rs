@@ -90,6 +90,7 @@ process {{
 }}
 machine m {{
   kind = cnc
+  head {{ standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }}
   axes = 3
   dialect = linuxcnc
   max_speed = 50 mm/s

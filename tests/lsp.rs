@@ -367,3 +367,98 @@ fn formatting_is_lmdc_fmt_as_one_edit() {
     );
     stop(c);
 }
+
+impl Client {
+    /// Sends `body` framed as it is, whatever it holds.
+    fn send_raw(&mut self, body: &[u8]) {
+        write!(self.stdin, "Content-Length: {}\r\n\r\n", body.len()).unwrap();
+        self.stdin.write_all(body).unwrap();
+        self.stdin.flush().unwrap();
+    }
+
+    /// The error code and id of the next message, which must be an error.
+    fn error(&mut self) -> (i64, Value) {
+        let m = self.read();
+        let code = m["error"]["code"].as_i64();
+        (
+            code.unwrap_or_else(|| panic!("no error: {m}")),
+            m["id"].clone(),
+        )
+    }
+}
+
+/// Issue 39: a framed `[]`, `null`, `{`, invalid UTF-8 or a
+/// `Content-Length` of 3·10⁹ stopped the server (exit 2, or an abort after
+/// allocating 2.8 GiB). Each is answered with the protocol's error, and the
+/// session goes on.
+#[test]
+fn malformed_messages_are_answered_and_the_session_goes_on() {
+    let mut c = started();
+    for body in [&b"[]"[..], b"null", b"42", b"{\"jsonrpc\": \"2.0\"}"] {
+        c.send_raw(body);
+        assert_eq!(c.error(), (-32600, Value::Null), "{body:?}");
+    }
+    for body in [&b"{"[..], b"\xff\xfe{}", b"{\"a\": \"\xc3\x28\"}"] {
+        c.send_raw(body);
+        assert_eq!(c.error(), (-32700, Value::Null), "{body:?}");
+    }
+    // Past the cap: its bytes are skipped as they come, never held, and
+    // the frame after them is read.
+    let n = lmdc::lsp::transport::MAX_MESSAGE + 1;
+    write!(c.stdin, "Content-Length: {n}\r\n\r\n").unwrap();
+    let chunk = vec![b' '; 1 << 20];
+    let mut left = n as usize;
+    while left > 0 {
+        let k = left.min(chunk.len());
+        c.stdin.write_all(&chunk[..k]).unwrap();
+        left -= k;
+    }
+    assert_eq!(c.error(), (-32700, Value::Null));
+    // An unknown method, with its id.
+    c.send(json!({ "jsonrpc": "2.0", "id": 77, "method": "lmd/unknown", "params": {} }));
+    assert_eq!(c.error(), (-32601, json!(77)));
+    // Still serving.
+    let d = c.open("file:///m.lmd", "part p\nlet x = 1 mm +\n");
+    assert!(!d.is_empty());
+    stop(c);
+}
+
+/// Issue 39: a request before `initialize`, between `initialize` and
+/// `initialized`, or after `shutdown` stopped the server (exit 2). Before
+/// `initialize` it is refused with -32002, after `shutdown` with -32600;
+/// between the two handshake messages it is answered.
+#[test]
+fn requests_in_every_state_are_answered() {
+    let mut c = Client::start();
+    let hover = |id: i64| {
+        json!({ "jsonrpc": "2.0", "id": id, "method": "textDocument/hover",
+                "params": { "textDocument": { "uri": "file:///x.lmd" },
+                            "position": { "line": 0, "character": 0 } } })
+    };
+    c.send(hover(1));
+    assert_eq!(c.error(), (-32002, json!(1)));
+    c.request("initialize", json!({ "capabilities": {} }));
+    let r = c.request("textDocument/hover", hover(0)["params"].clone());
+    assert_eq!(r, Value::Null);
+    c.notify("initialized", json!({}));
+    c.send(json!({ "jsonrpc": "2.0", "id": "again", "method": "initialize", "params": {} }));
+    assert_eq!(c.error(), (-32600, json!("again")));
+    c.request("shutdown", Value::Null);
+    c.send(hover(9));
+    assert_eq!(c.error(), (-32600, json!(9)));
+    c.notify("exit", Value::Null);
+    assert_eq!(c.child.wait().unwrap().code(), Some(0));
+}
+
+/// `exit` without `shutdown`, or the input ending, ends the server with
+/// status 1, as the protocol asks.
+#[test]
+fn exit_without_shutdown_is_status_1() {
+    let mut c = started();
+    c.notify("exit", Value::Null);
+    assert_eq!(c.child.wait().unwrap().code(), Some(1));
+    let c = started();
+    drop(c.stdin);
+    let mut child = c.child;
+    assert_eq!(child.wait().unwrap().code(), Some(1));
+}

@@ -18,6 +18,7 @@ fn three_mistakes() -> String {
     ]) + "
 machine slow {
   kind = cnc
+  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }
   axes = 5
   dialect = linuxcnc
   max_speed = 5 mm/s
@@ -48,7 +49,7 @@ fn one_machine_is_checked_alone() {
 fn warnings_come_with_errors() {
     // The seam at the bend's extreme is a warning; the slow machine an error.
     let src = duct(&[("seam = 90 deg", "seam = 0 deg")])
-        + "machine slow { kind = cnc\n axes = 5\n max_speed = 5 mm/s }\n";
+        + "machine slow { kind = cnc\n head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }\n axes = 5\n max_speed = 5 mm/s }\n";
     let c = compile(&src, &mut ());
     let codes: Vec<&str> = c.diagnostics.iter().map(|d| d.code.as_str()).collect();
     assert!(codes.contains(&"lmd::seam-at-bend-extreme"), "{codes:?}");
@@ -57,7 +58,7 @@ fn warnings_come_with_errors() {
 
 #[test]
 fn two_machines_that_would_write_one_file() {
-    let src = duct(&[]) + "machine DMU5 { kind = cnc\n axes = 5\n max_speed = 100 mm/s }\n";
+    let src = duct(&[]) + "machine DMU5 { kind = cnc\n head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }\n axes = 5\n max_speed = 100 mm/s }\n";
     let c = compile(&src, &mut ());
     let clash: Vec<_> = c
         .diagnostics

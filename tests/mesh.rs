@@ -79,7 +79,7 @@ fn source(profile: &str) -> String {
 
 /// Compiles `src` with `files` as the files beside it.
 fn compile(src: &str, files: BTreeMap<&'static str, Vec<u8>>) -> Compiled {
-    let data: lmdc::sema::DataReader = Rc::new(move |p: &str| {
+    let data: lmdc::sema::DataReader = Rc::new(move |p: &str, _| {
         files
             .get(p)
             .cloned()
@@ -227,7 +227,7 @@ fn islands_are_filled_each_and_joined_by_a_laser_off_travel() {
     tris.extend(box_with_hole(b.0, b.1, b.2, b.3, 16));
     let data: lmdc::sema::DataReader = {
         let bytes = stl::to_binary(&tris);
-        Rc::new(move |_: &str| Ok(bytes.clone()))
+        Rc::new(move |_: &str, _| Ok(bytes.clone()))
     };
     let (c, model) =
         compile_reading(&source("profile = mesh(\"part.stl\")"), None, &mut (), data).unwrap();
@@ -489,7 +489,7 @@ fn indexed(tris: &[Triangle], k: f64) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
 
 /// Each layer's region of the mesh program `src` reading `bytes`.
 fn regions(src: &str, bytes: Vec<u8>) -> Vec<lmdc::geometry::region::Region> {
-    let data: lmdc::sema::DataReader = Rc::new(move |_: &str| Ok(bytes.clone()));
+    let data: lmdc::sema::DataReader = Rc::new(move |_: &str, _| Ok(bytes.clone()));
     let (c, model) = compile_reading(src, None, &mut (), data).unwrap();
     let m = messages(&c);
     let model = model.unwrap_or_else(|| panic!("{m}"));

@@ -211,7 +211,7 @@ bead track { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
 extrude cone { profile = disc  bead = track }
 slicing planar { layers = 6  layer_height = 0.51 mm  offset = 1.6 mm  contours = 1 }
 process { power = 1500 W  powder = 8 g/min }
-machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+machine m { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
 "#;
     let p = build_source(src);
     assert_eq!(p.layers.len(), 6);
@@ -242,7 +242,7 @@ slicing planar { layers = 2  offset = 1.6 mm  infill = raster(angle = 0 deg) }
 process { power = 1500 W  power_range = 1000 W .. 2000 W  powder = 8 g/min }
 style rim { power = 1600 W  when { near_boundary = 1 mm } }
 style corner { power = 1400 W  when { near_corner = 3 mm } }
-machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+machine m { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
 "#;
     let p = build_source(src);
     for layer in &p.layers {
@@ -363,7 +363,7 @@ bead b {{ width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }}
 extrude e {{ profile = q  bead = b }}
 slicing planar {{ layers = 2  offset = 1.6 mm  infill = raster(angle = 0 deg) }}
 process {{ power = 1500 W  powder = 8 g/min }}
-machine m {{ kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}
+machine m {{ kind = cnc  head {{ standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }}  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}
 ",
             x = 30.0 + tab
         )
@@ -431,7 +431,7 @@ bead b { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
 extrude e { profile = q  bead = b }
 slicing planar { layers = 2  contours = 1 }
 process { power = 1500 W  powder = 8 g/min }
-machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+machine m { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
 "#;
     let c = compile(src, &mut ());
     let m = with_code(&c.diagnostics, "lmd::overlap");
@@ -452,7 +452,7 @@ extrude e {
 }
 slicing planar { layers = 3  offset = 1.6 mm  infill = raster(angle = 0 deg) }
 process { power = 1500 W  powder = 8 g/min }
-machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+machine m { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
 "#;
     let p = build_source(src);
     for (k, layer) in p.layers.iter().enumerate() {
@@ -499,7 +499,7 @@ bead b { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
 extrude e { profile = q  bead = b }
 slicing planar { layers = 2  offset = 1.6 mm  contours = 1 }
 process { power = 1500 W  powder = 8 g/min }
-machine m { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+machine m { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
 "#;
     let d = diagnose(src);
     let codes: Vec<&str> = d.iter().map(|x| x.code.as_str()).collect();

@@ -146,7 +146,7 @@ fn pathological_planar_inputs() {
              bead b {{ width = w  model = measured(height = 0.7 mm, speed = 6 mm/s) }}\n\
              extrude e {{ profile = q  bead = b }}\nslicing planar {{ {slicing} }}\n\
              process {{ power = 1500 W  powder = 8 g/min }}\n\
-             machine m {{ kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}\n"
+             machine m {{ kind = cnc  head {{ standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }}  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}\n"
         )
     };
     let square = "outline([0 mm, 0 mm], [10 mm, 0 mm], [10 mm, 10 mm], [0 mm, 10 mm])";
@@ -290,7 +290,7 @@ fn small_part(extra: &str) -> String {
          extrude e {{ profile = q  bead = b }}\n\
          slicing planar {{ layers = 2  offset = 1.6 mm  infill = raster() }}\n\
          process {{ power = 1500 W  powder = 8 g/min }}\n\
-         machine m {{ kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}\n{extra}\n"
+         machine m {{ kind = cnc  head {{ standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }}  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }}\n{extra}\n"
     )
 }
 

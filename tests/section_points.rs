@@ -45,6 +45,7 @@ process {{
 }}
 machine m {{
   kind = cnc
+  head {{ standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }}
   axes = 5
   kinematics = head_ac
   max_speed = 100 mm/s

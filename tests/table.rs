@@ -456,6 +456,9 @@ fn table_machine(output: TableOutput, c_range: [f64; 2]) -> Cnc {
         output,
     });
     c.limits.rotary = c_range;
+    // The hand-made layers lean 30° over a small circle: a nozzle standing
+    // off farther keeps clear of them (what is checked here is C).
+    c.head.standoff = 40.0;
     c
 }
 

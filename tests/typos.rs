@@ -23,7 +23,7 @@ process {
   powder = 8 g/min
   defocus = -2 mm
 }
-machine mill { kind = cnc  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
+machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  dialect = linuxcnc  max_speed = 50 mm/s }
 ";
     if edit.0.is_empty() {
         return src.to_string();

@@ -470,7 +470,7 @@ bead b316 {{ width = 2.4 mm  speed = 4 mm/s .. 8.7 mm/s  model = linear(slope = 
 extrude wall {{ profile = rectangle(width = 30 mm, height = {width})  size = outer  bead = b316  top = 8 mm + 50 % * (y + 6 mm) }}
 slicing variable {{ layers = auto  scan = x  segments {{ tolerance = 0.1 mm }} }}
 process {{ power = 1000 W  powder = 12 g/min  defocus = 0 mm }}
-machine mill {{ kind = cnc  axes = 3  max_speed = 50 mm/s }}
+machine mill {{ kind = cnc  head {{ standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }}  axes = 3  max_speed = 50 mm/s }}
 "
         )
     };

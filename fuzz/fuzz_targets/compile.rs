@@ -5,7 +5,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use lmdc::back::{MemorySink, Templates};
-use lmdc::pipeline::{compile, emit, select_machines};
+use lmdc::pipeline::{compile, emit};
 
 fuzz_target!(|data: &[u8]| {
     let Ok(src) = std::str::from_utf8(data) else {
@@ -17,8 +17,7 @@ fuzz_target!(|data: &[u8]| {
         if p.ir().point_count() > 200_000 {
             return; // valid but slow to emit in a fuzz loop
         }
-        let which = select_machines(&p, None).unwrap();
         let mut sink = MemorySink::default();
-        let _ = emit(&p, &which, &Templates::builtin().unwrap(), &mut sink, &mut ());
+        let _ = emit(&p, &Templates::builtin().unwrap(), &mut sink, &mut ());
     }
 });

@@ -288,16 +288,32 @@ fn cells_span(cells: &[(String, Span)]) -> Span {
 /// The rows of `text` that are not blank or comments: their line (from 1)
 /// and their cells, each with its span (a quoted cell's, quotes included).
 fn rows(text: &str) -> impl Iterator<Item = (usize, Vec<(String, Span)>)> + '_ {
+    lines(text).enumerate().filter_map(|(i, (at, line))| {
+        let t = line.trim();
+        (!t.is_empty() && !t.starts_with('#')).then(|| (i + 1, cells(line, at)))
+    })
+}
+
+/// The lines of `text`, each with the byte it starts at, without its end:
+/// LF, CRLF or a lone CR (as old Mac spreadsheets write a CSV).
+fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> + '_ {
+    let b = text.as_bytes();
     let mut start = 0;
-    text.split_inclusive('\n')
-        .enumerate()
-        .filter_map(move |(i, raw)| {
-            let at = start;
-            start += raw.len();
-            let line = raw.trim_end_matches(['\n', '\r']);
-            let t = line.trim();
-            (!t.is_empty() && !t.starts_with('#')).then(|| (i + 1, cells(line, at)))
-        })
+    std::iter::from_fn(move || {
+        if start >= b.len() {
+            return None;
+        }
+        let at = start;
+        let end = b[at..]
+            .iter()
+            .position(|&c| c == b'\n' || c == b'\r')
+            .map_or(b.len(), |k| at + k);
+        start = match b.get(end..end + 2) {
+            Some(b"\r\n") => end + 2,
+            _ => end + 1,
+        };
+        Some((at, &text[at..end]))
+    })
 }
 
 /// The cells of one line starting at byte `at`: comma-separated, a field
@@ -361,6 +377,32 @@ mod tests {
         assert!((c.get(Column::Height).unwrap() - 1.28).abs() < 1e-12);
         assert_eq!(c.get(Column::Area), None);
         assert_eq!(s.coupons[1].line, 6);
+    }
+
+    /// A sheet saved with lone CRs (an old Mac spreadsheet's CSV) reads as
+    /// the same sheet with LFs or CRLFs: it once read as one header line
+    /// and "0 coupons measured".
+    #[test]
+    fn lf_crlf_and_cr_line_ends_read_the_same() {
+        let text = "id,speed (mm/s),height (mm)\n# plate 1\nc1,4,1.2\n\nc2,6,0.9\nc3,8,bad\n";
+        let lf = read(text).unwrap_err();
+        let place = |d: &Diagnostics, t: &str| {
+            let sp = d.iter().next().unwrap().labels[0].span;
+            t[sp.start..sp.end].to_string()
+        };
+        for end in ["\r\n", "\r"] {
+            let t = text.replace('\n', end);
+            let d = read(&t).unwrap_err();
+            assert_eq!(d.error_count(), lf.error_count());
+            assert_eq!(place(&d, &t), "bad");
+            let good = t.replace("bad", "0.7");
+            let s = read(&good).unwrap();
+            assert_eq!(s.coupons.len(), 3);
+            assert_eq!(
+                s.coupons.iter().map(|c| c.line).collect::<Vec<_>>(),
+                [3, 5, 6]
+            );
+        }
     }
 
     #[test]

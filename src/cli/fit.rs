@@ -3,7 +3,7 @@
 //! and the `bead { … }` block to paste (docs/calibration.md).
 
 use super::messages::{self, MessageFormat};
-use super::{read_source, EXIT_PROGRAM, EXIT_USAGE};
+use super::{read_sheet, EXIT_PROGRAM, EXIT_USAGE};
 use lmdc::bead::fit::{self, Fit, Given, Kind};
 use lmdc::bead::sheet::{self, Sheet};
 use lmdc::bead::HeightModel;
@@ -33,7 +33,7 @@ pub struct Args<'a> {
 
 /// Runs `lmdc fit`; returns the exit code.
 pub fn run(a: Args<'_>, (color, format): (bool, MessageFormat)) -> u8 {
-    let Some(text) = read_source(a.file) else {
+    let Some(text) = read_sheet(a.file) else {
         return EXIT_USAGE;
     };
     let basis = match (a.kind, a.offset) {

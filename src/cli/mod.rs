@@ -28,7 +28,7 @@ pub const EXIT_PROGRAM: u8 = 1;
 pub const EXIT_USAGE: u8 = 2;
 
 /// Largest source file lmdc reads (16 MiB).
-pub const MAX_SOURCE: u64 = 16 << 20;
+pub const MAX_SOURCE: u64 = lmdc::sema::data::MAX_SOURCE;
 
 /// lmdc compiles a .lmd description of a laser metal deposition part into the
 /// programs that build it: KRL for KUKA robots, G-code for CNCs.
@@ -381,7 +381,7 @@ pub fn run(cli: Cli) -> u8 {
             report::run(args, &common, p)
         }
         Command::Lsp => match lmdc::lsp::run_stdio() {
-            Ok(()) => 0,
+            Ok(status) => status,
             Err(e) => {
                 eprintln!("error: the language server stopped: {e}");
                 EXIT_USAGE
@@ -757,34 +757,42 @@ pub(crate) fn read_source(file: &Path) -> Option<String> {
     if bytes.len() as u64 > MAX_SOURCE {
         return fail(format!("it is larger than {} MB", MAX_SOURCE >> 20));
     }
-    match String::from_utf8(bytes) {
-        Ok(s) => Some(s),
-        Err(e) => fail(format!(
-            "it is not UTF-8 text (invalid byte at offset {})",
-            e.utf8_error().valid_up_to()
-        )),
+    text(file, bytes)
+}
+
+/// Reads a measurement sheet for `lmdc fit`, as `fit(…, data = …)` reads
+/// one: at most [`lmdc::sema::data::MAX_SHEET`] bytes, one cap for both.
+pub(crate) fn read_sheet(file: &Path) -> Option<String> {
+    match lmdc::sema::data::read_file(file, lmdc::sema::data::Data::Sheet) {
+        Ok(bytes) => text(file, bytes),
+        Err(why) => {
+            messages::fail(file, usage::unreadable(&shown(file), &why));
+            None
+        }
     }
 }
 
-/// Most bytes a data file may have: a binary STL of the most triangles
-/// lmdc reads (`geometry::mesh::stl::MAX_TRIANGLES`) is just under it.
-const MAX_DATA: u64 = 1 << 30;
+/// `bytes` of `file` as text, or `None` after saying they are not UTF-8.
+fn text(file: &Path, bytes: Vec<u8>) -> Option<String> {
+    match String::from_utf8(bytes) {
+        Ok(s) => Some(s),
+        Err(e) => {
+            let why = format!(
+                "it is not UTF-8 text (invalid byte at offset {})",
+                e.utf8_error().valid_up_to()
+            );
+            messages::fail(file, usage::unreadable(&shown(file), &why));
+            None
+        }
+    }
+}
 
 /// Reads the data files a program names (`fit(…, data = "…")`,
-/// `mesh(file = "…")`), relative to the folder of the .lmd file `file`.
+/// `mesh(file = "…")`), relative to the folder of the .lmd file `file`,
+/// each no further than its kind's cap ([`lmdc::sema::data`]).
 pub fn data_reader(file: &Path) -> lmdc::sema::DataReader {
     let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
-    std::rc::Rc::new(move |path: &str| {
-        let f = std::fs::File::open(dir.join(path)).map_err(|e| e.to_string())?;
-        let mut bytes = Vec::new();
-        f.take(MAX_DATA + 1)
-            .read_to_end(&mut bytes)
-            .map_err(|e| e.to_string())?;
-        if bytes.len() as u64 > MAX_DATA {
-            return Err(format!("it is larger than {} MB", MAX_DATA >> 20));
-        }
-        Ok(bytes)
-    })
+    std::rc::Rc::new(move |path: &str, kind| lmdc::sema::data::read_file(&dir.join(path), kind))
 }
 
 /// A path as it is safe to print: no control character from its name reaches

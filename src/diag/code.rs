@@ -278,7 +278,7 @@ codes! {
     SlowLoop = "slow-loop", Feasibility,
         "the height loop settles in more layers than the build has: an error when less than half of an error is corrected by the last layer (naming the (m/s)/mm reading when 1000 times the gains would do), else a warning with the gains that settle in time";
     TooManyPoints = "too-many-points", Feasibility,
-        "the plan would exceed 20 M points (or 100 000 a layer); for a mesh, found before slicing from its size (with the size in mm and a `units` in which it would fit)";
+        "the plan would exceed 20 M points (or 100 000 a layer, or 100 000 layers), found before slicing from cheap bounds: for a wall, from its layer count (with the bead height that would fit); for a mesh, from its size (with the size in mm and a `units` in which it would fit)";
     NonFinite = "non-finite", Feasibility,
         "a computed value is not finite: a bug in lmdc, please report it";
     BadDirection = "bad-direction", Feasibility,
@@ -310,6 +310,8 @@ codes! {
         "a CNC's declared `safe_height` lies below where its program goes (the part's highest point plus the clearance): the first move across and the program's end would not clear the part";
     AxisSpeed = "axis-speed", Machines,
         "a feed move whose machine axes would move faster than declared: a tilting table's X Y Z (the part turning under the nozzle) beyond `max_speed`, or a rotary axis beyond `rotary_speed`";
+    Collision = "collision", Machines,
+        "a body of a machine's head (its nozzle, body, housing) would come within its `gap` of the plate, a fixture or the part as laid so far, at some pose of the plan; names the body, what it meets, where and how close, and what keeps the gap";
     CUnwind = "c-unwind", Machines,
         "a C axis would turn through more than its travel where it cannot unwind: a tilting table's within one layer (lmdc unwinds it only between layers), a tilting head's between two retracts (lmdc unwinds it at every retract, the laser off)";
     NameClash = "name-clash", Machines,
@@ -351,6 +353,8 @@ codes! {
 
     ArmUnchecked = "arm-unchecked", Warnings,
         "a robot declares an `arm` but its `base` or `tool` is only an index into the controller's table (`base = 1`): lmdc cannot solve the poses, so reach, axis limits and singularities are not checked; says how to declare the value";
+    HeadUnchecked = "head-unchecked", Warnings,
+        "a machine declares no `head`: its collisions were checked with a typical coaxial nozzle, not its own; says how to declare it";
     LoadUnchecked = "load-unchecked", Warnings,
         "a robot declares no tool `load`: its program sets `$LOAD = LOAD_DATA[n]` (n the tool's number), whatever the controller holds there, which lmdc cannot check; says how to declare the mass and centre of gravity the program then sets";
     ShortTrack = "short-track", Warnings,

@@ -76,8 +76,17 @@ pub struct Apart {
     pub length: f64,
 }
 
-/// Most samples a layer gets: the step grows beyond it.
-pub const MAX_STRIP_SAMPLES: usize = 200_000;
+/// Most samples a layer gets: the step grows beyond it (a part's layers
+/// share [`STRIP_SAMPLES`]).
+pub const MAX_STRIP_SAMPLES: usize = 50_000;
+
+/// Samples a whole part's layers share, so that the cost stays linear in
+/// the layers however fine the bead (every layer gets at least
+/// [`MIN_STRIP_SAMPLES`], and every move one).
+pub const STRIP_SAMPLES: usize = 2_000_000;
+
+/// Fewest samples a layer's step is chosen for.
+pub const MIN_STRIP_SAMPLES: usize = 2_000;
 
 /// The gap [`strips`] looks for reaches this many bead widths: beyond, the
 /// coverage check finds the spot (`fill::gap`).
@@ -183,7 +192,12 @@ pub fn strips(
             w
         },
     };
-    let sides: Vec<Sides> = samples.iter().map(|p| grid.sides(&near, p)).collect();
+    let mut seen = vec![usize::MAX; moves.len()];
+    let sides: Vec<Sides> = samples
+        .iter()
+        .enumerate()
+        .map(|(i, p)| grid.sides(&near, (i, p), &mut seen))
+        .collect();
     let mut pitch: Vec<Vec<(f64, f64)>> = strands
         .iter()
         .map(|s| vec![(0.0, 0.0); s.points.len().saturating_sub(1)])
@@ -462,29 +476,49 @@ impl Grid {
             (lo, hi) = ([0.0; 2], [0.0; 2]);
         }
         let span = [hi[0] - lo[0], hi[1] - lo[1]];
-        let cell = w.max((span[0] * span[1] / MAX_CELLS as f64).sqrt());
-        let cols = (span[0] / cell).floor() as usize + 1;
-        let rows = (span[1] / cell).floor() as usize + 1;
-        let range = |m: &Move, k: usize, n: usize| {
-            let (a, b) = (m.a[k].min(m.b[k]), m.a[k].max(m.b[k]));
-            let i = |x: f64| (((x - lo[k]) / cell) as usize).min(n - 1);
-            i(a)..=i(b)
-        };
-        let mut cells: Vec<Vec<usize>> = vec![Vec::new(); cols * rows];
-        for (i, m) in moves.iter().enumerate() {
-            for r in range(m, 1, rows) {
-                for c in range(m, 0, cols) {
-                    cells[r * cols + c].push(i);
+        // About as many cells as moves (at least a bead a cell): a grid
+        // finer than the moves costs its cells, not its queries.
+        let cells = MAX_CELLS.min(4 * moves.len() + 16) as f64;
+        let cell = w.max((span[0] * span[1] / cells).sqrt());
+        let cols = ((span[0] / cell).floor() as usize + 1).min(MAX_CELLS);
+        let rows = ((span[1] / cell).floor() as usize + 1).min(MAX_CELLS / cols);
+        let col = |x: f64| ((((x - lo[0]) / cell).max(0.0)) as usize).min(cols - 1);
+        let row = |y: f64| ((((y - lo[1]) / cell).max(0.0)) as usize).min(rows - 1);
+        // Each move in the cells it passes through, column by column (not
+        // every cell of its box: a long diagonal chord would fill a square
+        // of them), counted first and then placed (one list for all cells).
+        let visit = |m: &Move, f: &mut dyn FnMut(usize)| {
+            let (c0, c1) = (col(m.a[0].min(m.b[0])), col(m.a[0].max(m.b[0])));
+            let dx = m.b[0] - m.a[0];
+            for c in c0..=c1 {
+                let (y0, y1) = if c0 == c1 || dx == 0.0 {
+                    (m.a[1], m.b[1])
+                } else {
+                    let x = |k: usize| lo[0] + k as f64 * cell;
+                    let (xa, xb) = (m.a[0].min(m.b[0]), m.a[0].max(m.b[0]));
+                    let y = |x: f64| m.a[1] + (m.b[1] - m.a[1]) * ((x - m.a[0]) / dx);
+                    (y(x(c).max(xa)), y(x(c + 1).min(xb)))
+                };
+                for r in row(y0.min(y1))..=row(y0.max(y1)) {
+                    f(r * cols + c);
                 }
             }
+        };
+        let mut start = vec![0usize; cols * rows + 1];
+        for m in moves {
+            visit(m, &mut |k| start[k + 1] += 1);
         }
-        let mut start = Vec::with_capacity(cells.len() + 1);
-        let mut items = Vec::new();
-        for c in cells {
-            start.push(items.len());
-            items.extend(c);
+        for k in 0..cols * rows {
+            start[k + 1] += start[k];
         }
-        start.push(items.len());
+        let mut fill = start.clone();
+        let mut items = vec![0usize; start[cols * rows]];
+        for (i, m) in moves.iter().enumerate() {
+            visit(m, &mut |k| {
+                items[fill[k]] = i;
+                fill[k] += 1;
+            });
+        }
         Grid {
             origin: lo,
             cell,
@@ -495,9 +529,10 @@ impl Grid {
         }
     }
 
-    /// `p`'s nearest neighbour on its left and on its right, within the
-    /// gap's reach.
-    fn sides(&self, near: &Near<'_>, p: &Sample) -> Sides {
+    /// `p`'s (sample `i`'s) nearest neighbour on its left and on its
+    /// right, within the gap's reach (`seen` marks the moves looked at for
+    /// it: a move lies in several cells).
+    fn sides(&self, near: &Near<'_>, (i, p): (usize, &Sample), seen: &mut [usize]) -> Sides {
         let w = near.w;
         let reach = REACH * w;
         let span = (reach / self.cell).ceil() as isize;
@@ -505,22 +540,22 @@ impl Grid {
         let r0 = ((p.at[1] - self.origin[1]) / self.cell) as isize;
         let normal = [-p.dir[1], p.dir[0]];
         let mut out = Sides::default();
-        let mut seen: Vec<usize> = Vec::new();
         for r in (r0 - span).max(0)..=(r0 + span).min(self.rows as isize - 1) {
             for c in (c0 - span).max(0)..=(c0 + span).min(self.cols as isize - 1) {
                 let k = r as usize * self.cols + c as usize;
                 for &j in &self.items[self.start[k]..self.start[k + 1]] {
-                    if seen.contains(&j) {
+                    if std::mem::replace(&mut seen[j], i) == i {
                         continue;
                     }
-                    seen.push(j);
                     let m = &near.moves[j];
                     let t = closest(m, p.at);
-                    if m.chain == p.chain && !near.comes_back(p, m, t) {
-                        continue;
-                    }
                     let q = at(m, t);
                     let d = [q[0] - p.at[0], q[1] - p.at[1]];
+                    if d[0] * d[0] + d[1] * d[1] > reach * reach
+                        || m.chain == p.chain && !near.comes_back(p, m, t)
+                    {
+                        continue;
+                    }
                     let b = (d[0] * p.dir[0] + d[1] * p.dir[1]).abs();
                     let a = d[0] * normal[0] + d[1] * normal[1];
                     // Beside it: within half a bead along, or farther

@@ -4,35 +4,38 @@
 //! `auto` chose), go to definition and references of names, completion of
 //! fields, statements, words, names and units, and formatting (`lmdc fmt`).
 //!
-//! The transport is `lsp-server` (rust-analyzer's); the few LSP types it
-//! answers with are built as JSON here. Every request is answered from the
-//! latest text of the document (full sync).
+//! The framing is lmdc's own ([`transport`]: capped, and every malformed
+//! message answered), the messages `lsp-server`'s (rust-analyzer's); the
+//! few LSP types it answers with are built as JSON here. Every request is
+//! answered from the latest text of the document (full sync).
 
 mod features;
 mod names;
 mod scan;
 mod text;
+pub mod transport;
 
 pub use features::{completion, definition, hover, references, Completion, Hover, UNITS};
 pub use text::{Encoding, LineIndex};
 
 use crate::diag::{Diagnostic, Severity};
 use crate::pipeline;
-use lsp_server::{Connection, Message, Notification, Request, Response};
+use lsp_server::{Message, Notification, Request, Response};
 use serde_json::{json, Value};
 use std::collections::HashMap;
 use std::error::Error;
+use std::io::{BufRead, Write};
 
-/// What can end the server.
+/// What can end the server: its output failing (the client gone).
 pub type ServerError = Box<dyn Error + Send + Sync>;
 
-/// Runs the server on stdin/stdout until the client says `exit`.
-pub fn run_stdio() -> Result<(), ServerError> {
-    let (connection, io) = Connection::stdio();
-    serve(&connection)?;
-    drop(connection);
-    io.join()?;
-    Ok(())
+/// Runs the server on stdin/stdout until the client says `exit` (or its
+/// input ends); the exit status the protocol asks for: 0 after
+/// `shutdown`, 1 without.
+pub fn run_stdio() -> Result<u8, ServerError> {
+    let stdin = std::io::stdin();
+    let stdout = std::io::stdout();
+    Ok(serve(&mut stdin.lock(), &mut stdout.lock())?)
 }
 
 /// An open document.
@@ -54,51 +57,201 @@ struct Chosen {
     spin: Option<String>,
 }
 
-/// Serves one client on `connection`: the handshake, then requests and
-/// notifications until `shutdown`.
-pub fn serve(connection: &Connection) -> Result<(), ServerError> {
-    let (id, params) = connection.initialize_start()?;
-    let encoding = negotiate(&params);
-    let name = match encoding {
-        Encoding::Utf8 => "utf-8",
-        Encoding::Utf16 => "utf-16",
-    };
-    connection.initialize_finish(
-        id,
-        json!({
-            "capabilities": {
-                "positionEncoding": name,
-                "textDocumentSync": 1,
-                "hoverProvider": true,
-                "definitionProvider": true,
-                "referencesProvider": true,
-                "completionProvider": { "triggerCharacters": [" ", "="] },
-                "documentFormattingProvider": true,
-            },
-            "serverInfo": { "name": "lmdc", "version": env!("CARGO_PKG_VERSION") },
-        }),
-    )?;
+/// Where the session is: before `initialize`, serving, or after
+/// `shutdown` (only `exit` is heeded then).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum State {
+    Uninitialized,
+    Running(Encoding),
+    ShutDown,
+}
+
+/// Serves one client from `input` to `output` until `exit` or the end of
+/// the input; the exit status (0 after `shutdown`, else 1). Nothing the
+/// client sends ends it earlier: a frame that is no JSON is answered with
+/// a parse error (-32700), a value that is no request, response or
+/// notification with an invalid request (-32600), an unknown method with
+/// -32601, a request before `initialize` with -32002 and one after
+/// `shutdown` with an invalid request; only failing to write ends it
+/// with an error.
+pub fn serve(input: &mut impl BufRead, output: &mut impl Write) -> std::io::Result<u8> {
+    let mut state = State::Uninitialized;
     let mut docs: HashMap<String, Doc> = HashMap::new();
-    for msg in &connection.receiver {
+    loop {
+        let msg = match transport::read(input)? {
+            transport::Incoming::End => return Ok(exit_status(state)),
+            transport::Incoming::Malformed(why) => {
+                transport::write(output, &error(Value::Null, PARSE_ERROR, &why))?;
+                continue;
+            }
+            transport::Incoming::Value(v) => match message(v) {
+                Ok(m) => m,
+                Err(reply) => {
+                    transport::write(output, &reply)?;
+                    continue;
+                }
+            },
+        };
+        // A bug the compiler panics on fails the one request (an internal
+        // error), not the session.
         match msg {
             Message::Request(req) => {
-                if connection.handle_shutdown(&req)? {
-                    return Ok(());
-                }
-                let resp = answer(&docs, req);
-                connection.sender.send(Message::Response(resp))?;
+                let id = serde_json::to_value(&req.id).unwrap_or(Value::Null);
+                let reply = guarded(|| request(&mut state, &docs, req)).unwrap_or_else(|| {
+                    error(
+                        id,
+                        INTERNAL_ERROR,
+                        "lmdc stopped on an internal error (a bug)",
+                    )
+                });
+                transport::write(output, &reply)?;
             }
+            Message::Notification(n) if n.method == "exit" => return Ok(exit_status(state)),
             Message::Notification(n) => {
-                if let Some(uri) = update(&mut docs, n, encoding) {
+                let State::Running(encoding) = state else {
+                    continue;
+                };
+                let note = guarded(|| {
+                    let uri = update(&mut docs, n, encoding)?;
                     let params = docs.get_mut(&uri).map(|d| publish(&uri, d));
-                    let note = Notification::new("textDocument/publishDiagnostics".into(), params);
-                    connection.sender.send(Message::Notification(note))?;
+                    Some(Notification::new(
+                        "textDocument/publishDiagnostics".into(),
+                        params,
+                    ))
+                });
+                if let Some(note) = note.flatten() {
+                    transport::write(output, &to_value(Message::Notification(note)))?;
                 }
             }
             Message::Response(_) => {}
         }
     }
-    Ok(())
+}
+
+/// `f`'s result, or `None` if it panicked (the panic's message went to
+/// stderr, as the command line's does).
+fn guarded<T>(f: impl FnOnce() -> T) -> Option<T> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).ok()
+}
+
+/// The exit status for ending in `state`: 0 after `shutdown`, else 1.
+fn exit_status(state: State) -> u8 {
+    match state {
+        State::ShutDown => 0,
+        _ => 1,
+    }
+}
+
+/// JSON-RPC's codes for a frame that is no JSON and a value that is no
+/// message.
+const PARSE_ERROR: i32 = lsp_server::ErrorCode::ParseError as i32;
+const INVALID_REQUEST: i32 = lsp_server::ErrorCode::InvalidRequest as i32;
+/// JSON-RPC's code for a request the server failed on.
+const INTERNAL_ERROR: i32 = lsp_server::ErrorCode::InternalError as i32;
+
+/// An error response to the request `id` (`null` when it has none).
+fn error(id: Value, code: i32, message: &str) -> Value {
+    json!({ "jsonrpc": "2.0", "id": id, "error": { "code": code, "message": message } })
+}
+
+/// A message as JSON, with the protocol's `"jsonrpc": "2.0"`.
+fn to_value(m: Message) -> Value {
+    let mut v = serde_json::to_value(m).unwrap_or(Value::Null);
+    if let Some(o) = v.as_object_mut() {
+        o.insert("jsonrpc".into(), json!("2.0"));
+    }
+    v
+}
+
+/// The message `v` is, or the invalid-request error to answer it with:
+/// a request has a method and an id (a number or a text), a notification
+/// a method and no id, a response an id and a result or an error.
+fn message(v: Value) -> Result<Message, Value> {
+    let id = v.get("id").cloned().unwrap_or(Value::Null);
+    let invalid = |why: &str| error(id.clone(), INVALID_REQUEST, why);
+    let Some(o) = v.as_object() else {
+        return Err(invalid(
+            "a message is a JSON object (lmdc takes no batches)",
+        ));
+    };
+    let kind = match (o.get("method"), o.contains_key("id")) {
+        (Some(Value::String(_)), true) => "request",
+        (Some(Value::String(_)), false) => "notification",
+        (None, true) if o.contains_key("result") || o.contains_key("error") => "response",
+        _ => {
+            return Err(invalid(
+                "a message has a `method` (a request or a notification) or is a response",
+            ))
+        }
+    };
+    let id = match &id {
+        Value::String(_) | Value::Number(_) | Value::Null => id.clone(),
+        _ => Value::Null,
+    };
+    serde_json::from_value::<Message>(v)
+        .ok()
+        .filter(|m| match m {
+            Message::Request(_) => kind == "request",
+            Message::Notification(_) => kind == "notification",
+            Message::Response(_) => kind == "response",
+        })
+        .ok_or_else(|| {
+            error(
+                id,
+                INVALID_REQUEST,
+                &format!("this is no {kind} lmdc reads"),
+            )
+        })
+}
+
+/// Answers a request in `state`, which `initialize` and `shutdown` move on.
+fn request(state: &mut State, docs: &HashMap<String, Doc>, req: Request) -> Value {
+    let id = serde_json::to_value(&req.id).unwrap_or(Value::Null);
+    match (*state, req.method.as_str()) {
+        (State::Uninitialized, "initialize") => {
+            let encoding = negotiate(&req.params);
+            *state = State::Running(encoding);
+            json!({ "jsonrpc": "2.0", "id": id, "result": capabilities(encoding) })
+        }
+        (State::Uninitialized, _) => error(
+            id,
+            lsp_server::ErrorCode::ServerNotInitialized as i32,
+            "the server is not initialized: `initialize` comes first",
+        ),
+        (State::ShutDown, _) => error(
+            id,
+            INVALID_REQUEST,
+            "the server is shut down: only `exit` is heeded",
+        ),
+        (State::Running(_), "initialize") => {
+            error(id, INVALID_REQUEST, "`initialize` was already received")
+        }
+        (State::Running(_), "shutdown") => {
+            *state = State::ShutDown;
+            json!({ "jsonrpc": "2.0", "id": id, "result": null })
+        }
+        (State::Running(_), _) => to_value(Message::Response(answer(docs, req))),
+    }
+}
+
+/// What the server offers, answering `initialize`.
+fn capabilities(encoding: Encoding) -> Value {
+    let name = match encoding {
+        Encoding::Utf8 => "utf-8",
+        Encoding::Utf16 => "utf-16",
+    };
+    json!({
+        "capabilities": {
+            "positionEncoding": name,
+            "textDocumentSync": 1,
+            "hoverProvider": true,
+            "definitionProvider": true,
+            "referencesProvider": true,
+            "completionProvider": { "triggerCharacters": [" ", "="] },
+            "documentFormattingProvider": true,
+        },
+        "serverInfo": { "name": "lmdc", "version": env!("CARGO_PKG_VERSION") },
+    })
 }
 
 /// UTF-8 positions if the client offers them, else the protocol's UTF-16.
@@ -148,6 +301,13 @@ fn update(docs: &mut HashMap<String, Doc>, n: Notification, encoding: Encoding) 
 /// diagnostics, each at its first label, the other labels as related
 /// information.
 fn publish(uri: &str, doc: &mut Doc) -> Value {
+    // A document past what `lmdc check` reads is not compiled either.
+    let max = crate::sema::data::MAX_SOURCE;
+    if doc.text.len() as u64 > max {
+        let why = format!("it is larger than {} MB", max >> 20);
+        let d = crate::diag::message::usage::unreadable(uri, &why);
+        return json!({ "uri": uri, "diagnostics": [diagnostic(uri, doc, &d)] });
+    }
     let c = compile(uri, &doc.text);
     doc.chosen = c.program.as_ref().map(|p| chosen_by(p.ir()));
     let items: Vec<Value> = c
@@ -190,8 +350,25 @@ fn range(doc: &Doc, start: usize, end: usize) -> Value {
     json!({ "start": { "line": l0, "character": c0 }, "end": { "line": l1, "character": c1 } })
 }
 
+/// The requests the server answers (after `initialize`, before
+/// `shutdown`).
+const METHODS: [&str; 5] = [
+    "textDocument/hover",
+    "textDocument/definition",
+    "textDocument/references",
+    "textDocument/completion",
+    "textDocument/formatting",
+];
+
 /// Answers one request.
 fn answer(docs: &HashMap<String, Doc>, req: Request) -> Response {
+    if !METHODS.contains(&req.method.as_str()) {
+        return Response::new_err(
+            req.id,
+            lsp_server::ErrorCode::MethodNotFound as i32,
+            format!("lmdc does not answer {}", req.method),
+        );
+    }
     let doc = req
         .params
         .pointer("/textDocument/uri")
@@ -294,8 +471,8 @@ fn format(id: lsp_server::RequestId, doc: &Doc) -> Response {
 /// (`fit(…, data = "…")`) read beside it when it is a file on disk.
 fn compile(uri: &str, text: &str) -> pipeline::Compiled {
     let dir = file_path(uri).and_then(|p| p.parent().map(std::path::Path::to_path_buf));
-    let reader: crate::sema::DataReader = std::rc::Rc::new(move |name: &str| match &dir {
-        Some(d) => std::fs::read(d.join(name)).map_err(|e| e.to_string()),
+    let reader: crate::sema::DataReader = std::rc::Rc::new(move |name: &str, kind| match &dir {
+        Some(d) => crate::sema::data::read_file(&d.join(name), kind),
         None => Err("the document is not a file on disk".into()),
     });
     match pipeline::compile_reading(text, None, &mut (), reader) {

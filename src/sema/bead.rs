@@ -1,5 +1,6 @@
 //! `bead NAME { width, height, speed, model }`: a bead model.
 
+use super::data::Data;
 use super::eval::{unknown_name, Env};
 use super::fields::{self, Fields};
 use super::model::{Bead, HeightModel};
@@ -256,7 +257,8 @@ fn fitted(
         diags.push(message::calib::no_data_reader(at));
         return None;
     };
-    let text = read(&path)
+    let text = read(&path, Data::Sheet)
+        .and_then(|b| Data::Sheet.too_long(&b).map_or(Ok(b), Err))
         .and_then(|b| String::from_utf8(b).map_err(|e| not_text(&e)))
         .map_err(|why| diags.push(message::calib::unreadable_data(&path, &why, at)))
         .ok()?;

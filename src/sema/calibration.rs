@@ -54,6 +54,7 @@ pub fn check<'a>(
         bead: None,
         process: process?,
         machines,
+        fixtures: Vec::new(),
         styles: Styles::default(),
         tolerance: Tolerance::default(),
     })

@@ -2,6 +2,7 @@
 //! through the program's data reader, checked a closed surface and placed
 //! with its lowest point on the plate ([`crate::geometry::mesh`]).
 
+use super::data::Data;
 use super::fields::{self, Fields};
 use super::model::MeshSolid;
 use super::schema::solid::{mesh, MESH};
@@ -29,11 +30,12 @@ pub fn read(
         diags.push(message::mesh::no_reader(file_at));
         return None;
     };
-    let bytes = read(&path)
+    let bytes = read(&path, Data::Mesh)
+        .and_then(|b| Data::Mesh.too_long(&b).map_or(Ok(b), Err))
         .map_err(|why| diags.push(message::mesh::unreadable(&path, &why, file_at)))
         .ok()?;
     let scale = crate::units::mm_per(units);
-    let (tris, scale) = if is_3mf(&path, &bytes) {
+    let (tris, scale, file_unit) = if is_3mf(&path, &bytes) {
         let m = three_mf::read(&bytes)
             .map_err(|e| diags.push(message::mesh::not_3mf(&path, &e, file_at)))
             .ok()?;
@@ -47,12 +49,12 @@ pub fn read(
                 return None;
             }
         }
-        (m.triangles, m.scale)
+        (m.triangles, m.scale, Some(m.unit))
     } else {
         let tris = stl::read(&bytes)
             .map_err(|e| diags.push(message::mesh::not_stl(&path, &e, file_at)))
             .ok()?;
-        (tris, scale)
+        (tris, scale, None)
     };
     drop(bytes);
     let placement = Placement {
@@ -79,6 +81,7 @@ pub fn read(
         mesh: std::sync::Arc::new(m),
         top: Length(hi[2]),
         scale,
+        file_unit,
         span: at,
     })
 }

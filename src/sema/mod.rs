@@ -11,10 +11,12 @@ mod calibration;
 mod cell;
 mod continuous;
 mod control;
+pub mod data;
 mod declare;
 pub mod eval;
 mod extrude;
 mod fields;
+mod fixture;
 mod loft;
 mod machine;
 mod machines;
@@ -58,9 +60,11 @@ pub fn check(file: &File) -> (Option<Model>, Diagnostics) {
 
 /// Reads the data files a program names (`fit(…, data = "coupons.csv")`,
 /// `mesh(file = "part.stl")`): the bytes of the file at a path as the
-/// program writes it (relative to the program's file), or why it cannot.
-/// The caller decides where files are; sema opens none itself.
-pub type DataReader = std::rc::Rc<dyn Fn(&str) -> Result<Vec<u8>, String>>;
+/// program writes it (relative to the program's file), or why it cannot;
+/// read as the kind of data it is ([`data::Data`]: a reader stops at its
+/// cap, with [`data::read_capped`]). The caller decides where files are;
+/// sema opens none itself.
+pub type DataReader = std::rc::Rc<dyn Fn(&str, data::Data) -> Result<Vec<u8>, String>>;
 
 /// [`check`], reading the data files the program names with `data` (none:
 /// a program that names one is refused, there being no file to read it
@@ -93,6 +97,7 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         diags.push(message::statement::control_without_ring(*at));
     }
     let machines = machines::read(&mut env, &st, diags);
+    let fixtures = fixture::read(&mut env, &st, diags);
     let styles = style::read(&mut env, st.get("style"), diags);
     style::unprogrammed_powder(&styles, &machines, diags);
     let inheritance = style::inheritance_statement(&mut env, &st, diags);
@@ -152,6 +157,7 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         bead: if ring { None } else { Some(bead?) },
         process: process.process?,
         machines,
+        fixtures,
         styles: styles?,
         tolerance,
     })

@@ -28,6 +28,8 @@ pub struct Model {
     pub process: Process,
     /// Machines to write programs for, with where they and their fields are declared.
     pub machines: Vec<(Machine, MachineOrigin)>,
+    /// Fixtures and clamps on the plate (`fixture NAME { … }`).
+    pub fixtures: Vec<crate::ir::Fixture>,
     /// Process styles and how they pass from layer to layer.
     pub styles: Styles,
     /// How closely the bead model must lay the planned layers.
@@ -717,6 +719,9 @@ pub struct MeshSolid {
     pub top: Length,
     /// The file's unit: mm per file unit (from `units`, or a 3MF's `unit`).
     pub scale: f64,
+    /// A 3MF's own name for its unit (`millimeter`, `foot`); `None` for an
+    /// STL, whose unit `units` says.
+    pub file_unit: Option<&'static str>,
     /// The `mesh(…)` call.
     pub span: Span,
 }

@@ -23,6 +23,7 @@ pub const KINDS: &[&str] = &[
     "style",
     "inheritance",
     "machine",
+    "fixture",
     "calibration",
 ];
 

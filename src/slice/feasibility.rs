@@ -1,10 +1,13 @@
 //! Choosing the layer count of normal slicing, and explaining in the user's
 //! terms why a part cannot be built with its bead model.
 
-use crate::diag::message::{self, bend::Heights, bend::TooTight};
+use crate::bead::HeightModel;
+use crate::diag::message;
+use crate::diag::message::bend::{Fewer, Heights, TooTight, WallLimit};
 use crate::diag::Diagnostic;
 use crate::geometry::LoftGeometry;
-use crate::sema::model::{Bead, Loft, Measure, Section, Slicing, Spine};
+use crate::sema::model::{Bead, Loft, Measure, Resolution, Section, Slicing, Spine, MAX_LAYERS};
+use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::{Length, Speed};
 
 /// How far the outline reaches toward (`inward`) and away from (`outward`) the
@@ -43,12 +46,15 @@ pub fn reach(geo: &LoftGeometry) -> Reach {
 const MARGIN: f64 = 1e-5;
 
 /// The number of layers and the step (Δδ in rad for an arc; the layer height
-/// for a line), or the reasons it cannot be built.
+/// for a line), or the reasons it cannot be built. `per_layer`: the fewest
+/// points a layer will have, so that `layers = auto` is held to the
+/// layers and points a plan may have before anything is sliced.
 pub fn choose_layers(
     loft: &Loft,
     geo: &LoftGeometry,
     bead: &Bead,
     slicing: &Slicing,
+    per_layer: usize,
 ) -> Result<(usize, f64), Diagnostic> {
     // A wall one bead wide: the heights it stacks are its rises A/w.
     let [h_min, h_max] = bead.heights(bead.width).map(|h| h.0);
@@ -118,6 +124,9 @@ pub fn choose_layers(
                     loft.spine_span,
                 ));
             }
+            // Refused here, from the count alone: every layer's seam and
+            // points are allocated and computed after this.
+            within_budget(n_lo, rho_max * total, (bead, slicing), per_layer)?;
             Ok((n_lo as usize, step / n_lo))
         }
         Some(n) => {
@@ -134,6 +143,60 @@ pub fn choose_layers(
             }
             Ok((n, step / nf))
         }
+    }
+}
+
+/// Refuses `n` layers of `per_layer` points, more than a plan may have,
+/// for a wall whose thickest point stacks `reach` (mm) over all layers:
+/// with the bead height, and a mass balance's efficiency, that would fit.
+fn within_budget(
+    n: f64,
+    reach: f64,
+    (bead, slicing): (&Bead, &Slicing),
+    per_layer: usize,
+) -> Result<(), Diagnostic> {
+    let most = MAX_LAYERS.min(MAX_TOTAL_POINTS / per_layer.max(1)).max(1);
+    if n <= most as f64 {
+        return Ok(());
+    }
+    let fits = reach / most as f64;
+    let h_max = bead.heights(bead.width)[1].0;
+    Err(message::bend::too_many_wall_layers(
+        n,
+        WallLimit {
+            layers: most,
+            points: (most < MAX_LAYERS)
+                .then(|| (per_layer, MAX_TOTAL_POINTS, fewer(slicing, per_layer, n))),
+        },
+        Length(fits),
+        efficiency_for(bead, fits / h_max),
+        heights(bead),
+        slicing.layers_span.unwrap_or(slicing.span),
+    ))
+}
+
+/// How `n` layers of `per_layer` points each would hold no more than a
+/// plan may: a larger chord error, or `points = k` (the section's corners
+/// and the closing point come on top of `k`), when 8 or more do.
+fn fewer(slicing: &Slicing, per_layer: usize, n: f64) -> Option<Fewer> {
+    match slicing.resolution {
+        Resolution::ChordError(_) => Some(Fewer::ChordError),
+        Resolution::Count(k) => {
+            let extra = per_layer.saturating_sub(k) as f64;
+            let fit = (MAX_TOTAL_POINTS as f64 / n).floor() - extra;
+            (fit >= 8.0).then_some(Fewer::Points(fit as usize))
+        }
+    }
+}
+
+/// The catch efficiency (a share) at which a mass-balance bead lays `k`
+/// times what it does: its heights grow with it in proportion.
+fn efficiency_for(bead: &Bead, k: f64) -> Option<f64> {
+    match bead.model {
+        HeightModel::MassBalance { efficiency, .. } => {
+            Some(efficiency * k).filter(|e| e.is_finite() && *e > 0.0)
+        }
+        _ => None,
     }
 }
 
@@ -303,8 +366,25 @@ fn suggest_scale(
         }
     }
     let start = (hi * 1000.0).floor();
-    let scales = (0..1000).map(|k| (start - k as f64) / 10.0);
-    first_lasting(scales.take_while(|&p| p > 0.0), declared.is_some(), |p| {
+    // A smaller section narrows the heights a bend needs, so the smallest
+    // candidate passes if any does: tried first, it spares a thousand
+    // samplings of the loft (seconds) when the bead is far off (a density
+    // in kg/m^3 read as g/cm^3).
+    let scales: Vec<f64> = (0..1000)
+        .map(|k| (start - k as f64) / 10.0)
+        .take_while(|&p| p > 0.0)
+        .collect();
+    let w = bead.width.0;
+    if let Some(&p) = scales
+        .iter()
+        .rfind(|&&p| scaled(loft, p / 100.0, w).is_some())
+    {
+        let least = counts(reach_at(p / 100.0)?, radius, angle, h, declared)?;
+        if declared.is_none() && least < 1.0 {
+            return None;
+        }
+    }
+    first_lasting(scales.into_iter(), declared.is_some(), |p| {
         counts(reach_at(p / 100.0)?, radius, angle, h, declared)
     })
 }

@@ -9,7 +9,7 @@ use crate::diag::message::{self, slicing::BeadHeights, slicing::LiftFix};
 use crate::diag::Diagnostics;
 use crate::sema::model::MAX_LAYERS;
 use crate::sema::model::{
-    Bead, Extent, Extrusion, HeightModel, LayerProfile, PlanarSlicing, Shape,
+    Bead, Extent, Extrusion, HeightModel, LayerProfile, Measure, PlanarSlicing, Shape,
 };
 use crate::span::Span;
 use crate::units::Length;
@@ -23,7 +23,7 @@ const HEIGHT_TOLERANCE: f64 = 0.01;
 
 /// Most outline pieces over all layers: every piece of every layer is offset,
 /// clipped and checked, so the work (and the profiles kept) grows with it.
-const MAX_PROFILE_WORK: usize = 20_000_000;
+pub const MAX_PROFILE_WORK: usize = 20_000_000;
 
 /// The layers an extrusion is built in.
 pub struct Layers {
@@ -70,6 +70,20 @@ pub fn plan(
             true,
         ),
     };
+    // A mesh is held to the plan's limits from its size first: read in
+    // the wrong unit, it would be refused only after it is cut.
+    let inset = match extrusion.measure {
+        Measure::Outer => width.0 / 2.0,
+        Measure::Centre => 0.0,
+    };
+    let band = super::budget::band(slicing, inset);
+    if let LayerProfile::Mesh(m) = &extrusion.profile {
+        let planned = match extrusion.extent {
+            Extent::Layers(n, _) => n as f64,
+            Extent::Height(height, _) => layer_count(height, lift),
+        };
+        super::mesh::plausible(m, (planned, lift), (slicing, band), diags)?;
+    }
     let n = match extrusion.extent {
         Extent::Layers(n, _) => n,
         Extent::Height(height, at) => whole_layers(height, at, lift, diags)?,
@@ -103,16 +117,7 @@ pub fn plan(
             }
             out
         }
-        LayerProfile::Mesh(m) => {
-            super::mesh::plausible(m, n, lift, slicing, diags)?;
-            let shapes = super::mesh::shapes(m, n, lift, diags)?;
-            let total = shapes
-                .iter()
-                .map(Shape::pieces)
-                .fold(0usize, usize::saturating_add);
-            within_budget(total, extrusion.profile_span, diags)?;
-            shapes
-        }
+        LayerProfile::Mesh(m) => super::mesh::shapes(m, (n, lift), (slicing, band), diags)?,
     };
     Some(Layers {
         shapes,
@@ -125,8 +130,7 @@ pub fn plan(
 /// The layers that build `height`: whole ones, at least as tall as asked
 /// (machining takes off the rest).
 fn whole_layers(height: Length, at: Span, lift: Length, diags: &mut Diagnostics) -> Option<usize> {
-    // Float noise (a mesh's f32 coordinates in inches) is no extra layer.
-    let n = crate::units::whole_count(height.0 / lift.0);
+    let n = layer_count(height, lift);
     if n > MAX_LAYERS as f64 {
         diags.push(message::slicing::too_many_layers(
             height, lift, MAX_LAYERS, at,
@@ -139,6 +143,13 @@ fn whole_layers(height: Length, at: Span, lift: Length, diags: &mut Diagnostics)
         diags.push(message::slicing::height_rounded(n, lift, built, height, at));
     }
     Some(n)
+}
+
+/// How many layers of `lift` build `height` (whole ones, not fewer than
+/// it needs).
+fn layer_count(height: Length, lift: Length) -> f64 {
+    // Float noise (a mesh's f32 coordinates in inches) is no extra layer.
+    crate::units::whole_count(height.0 / lift.0)
 }
 
 fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> {

@@ -1,6 +1,7 @@
 //! Slicing: the semantic model's solid → layers of process points (the IR's
 //! layers). Reads the model and the geometry built from it.
 
+mod budget;
 pub mod calibration;
 pub mod feasibility;
 mod holes;
@@ -15,7 +16,7 @@ pub mod styling;
 pub mod top;
 pub mod variable;
 
-use crate::diag::message::{self, bend::SeamAdvice};
+use crate::diag::message::{self, bend::LayerAt, bend::SeamAdvice};
 use crate::diag::Diagnostics;
 use crate::geometry::LoftGeometry;
 use crate::ir::Layer;
@@ -60,8 +61,6 @@ fn duct(
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     let mut warnings = Diagnostics::new();
     let geo = LoftGeometry::new(loft);
-    let (layers, step) =
-        feasibility::choose_layers(loft, &geo, bead, slicing).map_err(Diagnostics::from)?;
     let spacing = match slicing.resolution {
         Resolution::Count(k) => Spacing::Count(k),
         Resolution::ChordError(e) => Spacing::Chord {
@@ -69,6 +68,23 @@ fn duct(
             rise: slicing.tolerance.rise,
         },
     };
+    // The points every layer will have, from a few sections: the layers
+    // and points are held to the plan's limits before any layer's seam or
+    // points are allocated.
+    let per_layer = section_points::fewest(&geo, spacing, MAX_POINTS)
+        .map_err(|(s, k)| too_many_points(slicing, LayerAt::Along(s), k))?;
+    let (layers, step) = feasibility::choose_layers(loft, &geo, bead, slicing, per_layer)
+        .map_err(Diagnostics::from)?;
+    if layers.saturating_mul(per_layer) > MAX_TOTAL_POINTS {
+        return Err(message::bend::too_many_duct_points(
+            layers,
+            per_layer,
+            MAX_TOTAL_POINTS,
+            matches!(spacing, Spacing::Chord { .. }),
+            slicing.span,
+        )
+        .into());
+    }
     let plan = normal::Setup {
         seam: slicing.seam,
         starts: normal::seam_angles(&geo, slicing.seam, layers),
@@ -83,24 +99,13 @@ fn duct(
             LayerChange::Spiral { length } => Some(length.map_or(f64::INFINITY, |l| l.0)),
         },
     };
-    if let Spacing::Count(k) = spacing {
-        if layers.saturating_mul(k + 1) > MAX_TOTAL_POINTS {
-            return Err(message::bend::too_many_duct_points(
-                layers,
-                k + 1,
-                MAX_TOTAL_POINTS,
-                slicing.span,
-            )
-            .into());
-        }
-    }
     let mut out = Vec::with_capacity(layers);
     let mut seam_hits = Vec::new();
     let mut scan = normal::SeamScan::new(plan.scan_grid());
     let mut total = 0usize;
     for i in 0..layers {
         let (layer, seam) = normal::layer(model, bead, &geo, &plan, i, &mut scan)
-            .map_err(|k| too_many_points(slicing, i, k))?;
+            .map_err(|k| too_many_points(slicing, LayerAt::Layer(i + 1), k))?;
         total += layer.paths.iter().map(|p| p.points.len()).sum::<usize>();
         if total > MAX_TOTAL_POINTS {
             let k = layer.paths.iter().map(|p| p.points.len()).sum::<usize>();
@@ -108,6 +113,7 @@ fn duct(
                 layers,
                 k,
                 MAX_TOTAL_POINTS,
+                matches!(spacing, Spacing::Chord { .. }),
                 slicing.span,
             )
             .into());
@@ -137,11 +143,11 @@ fn duct(
     Ok((out, warnings))
 }
 
-/// Layer `i` needs `k` points (or more), more than a layer may hold.
-fn too_many_points(slicing: &Slicing, i: usize, k: usize) -> Diagnostics {
+/// A layer (`at`) needs `k` points (or more), more than a layer may hold.
+fn too_many_points(slicing: &Slicing, at: LayerAt, k: usize) -> Diagnostics {
     match slicing.resolution {
         Resolution::ChordError(e) => {
-            message::bend::too_many_layer_points(e, MAX_POINTS, i + 1, slicing.span).into()
+            message::bend::too_many_layer_points(e, MAX_POINTS, at, slicing.span).into()
         }
         Resolution::Count(_) => {
             message::bend::too_many_section_points(k, MAX_POINTS, slicing.span).into()

@@ -54,6 +54,14 @@ pub fn slice(
     let Some(plan) = layers::plan(bead, extrusion, slicing, &mut diags) else {
         return Err(diags);
     };
+    let inset = match extrusion.measure {
+        Measure::Outer => bead.width.0 / 2.0,
+        Measure::Centre => 0.0,
+    };
+    let band = super::budget::band(slicing, inset);
+    if super::budget::planar(&plan, extrusion, slicing, band, &mut diags).is_none() {
+        return Err(diags);
+    }
     styling::never_applies(&model.styles, plan.shapes.len(), &mut diags);
     // Every layer filled: its diagnostics go on with it, errors (a spot left
     // unfilled) included, so the machine checks still run in this run.
@@ -155,6 +163,16 @@ fn cut_moves(points: &mut Vec<Point>, pos: &mut Vec<Point3<f64>>, cuts: &[(usize
     *pos = new_pos;
 }
 
+/// The samples the gap check and the strips' measure take of each of `n`
+/// layers: a budget over the whole part keeps them linear however many
+/// layers there are.
+fn samples_per_layer(n: usize) -> (usize, usize) {
+    let gap = (GAP_SAMPLES / n.max(1)).clamp(500, fill::MAX_SAMPLES);
+    let strips =
+        (pitch::STRIP_SAMPLES / n.max(1)).clamp(pitch::MIN_STRIP_SAMPLES, pitch::MAX_STRIP_SAMPLES);
+    (gap, strips)
+}
+
 /// Fills, styles and lays every layer of `plan`; `None` after an error that
 /// leaves no layers to go on with. (A spot left unfilled is an error that
 /// leaves every layer: the layers come back with it.)
@@ -183,9 +201,7 @@ fn fill_layers(
     // every arc into a thousand chords there.
     let mut styler = Styler::new(&model.styles, slicing.chord_error.0.max(w / 100.0));
     let values = Values::table(model, slicing);
-    // The gap check samples each layer; a budget over the whole part keeps it
-    // linear however many layers there are.
-    let gap_samples = (GAP_SAMPLES / n.max(1)).clamp(500, fill::MAX_SAMPLES);
+    let (gap_samples, strip_samples) = samples_per_layer(n);
     // The last layer's shape, raster angle, profile, tracks and gap: a layer
     // like it (a fixed profile, no rotation) reuses them instead of filling
     // and checking the same shape again.
@@ -218,6 +234,7 @@ fn fill_layers(
                     w,
                     pitch,
                     gap_samples,
+                    strip_samples,
                 };
                 match fill_shape(shape, &how, &at) {
                     Ok((region, islands, gap)) => {
@@ -628,6 +645,8 @@ struct How {
     w: f64,
     pitch: f64,
     gap_samples: usize,
+    /// The samples [`fill::pitch::strips`] takes of the layer.
+    strip_samples: usize,
 }
 
 /// A layer's region, each island's tracks (one list for a layer of one
@@ -654,7 +673,7 @@ struct TrackPitch {
 impl Island {
     /// `tracks` of `region` with a bead `w` wide, the lift chosen for
     /// strips `offset` wide, their strips measured.
-    fn new(region: &Region, tracks: Vec<Track>, [w, offset]: [f64; 2]) -> Self {
+    fn new(region: &Region, tracks: Vec<Track>, [w, offset]: [f64; 2], samples: usize) -> Self {
         let links: Vec<Option<Vec<[f64; 2]>>> = tracks
             .iter()
             .enumerate()
@@ -676,9 +695,7 @@ impl Island {
                 chain,
             })
             .collect();
-        let found = pitch::strips(&strands, [w, offset], pitch::MAX_STRIP_SAMPLES, |p| {
-            region.contains(p)
-        });
+        let found = pitch::strips(&strands, [w, offset], samples, |p| region.contains(p));
         let pitch = found
             .pitch
             .into_iter()
@@ -789,7 +806,7 @@ fn fill_shape(shape: &Shape, how: &How, at: &Where<'_>) -> Result<FilledShape, V
             return Err(faults);
         }
         let (tracks, gap) = fill_layer(&region, how, at).map_err(|e| vec![e])?;
-        let island = Island::new(&region, tracks, [how.w, how.pitch]);
+        let island = Island::new(&region, tracks, [how.w, how.pitch], how.strip_samples);
         Ok((region, island, gap))
     };
     let Shape::Islands(parts) = shape else {

@@ -188,3 +188,24 @@ fn gap_fits(
         _ => true,
     }
 }
+
+/// Stations [`fewest`] samples a loft's layers at.
+const ESTIMATE_STATIONS: usize = 9;
+
+/// The fewest points a layer gets (its samples and the closing point) at
+/// [`ESTIMATE_STATIONS`] stations spread over the loft: what a plan's
+/// point budget is checked with before any layer is sliced (a few
+/// sections' worth of work). `Err((s, n))`: station `s` (0 ..= 1) needs
+/// more than `max`, `n` so far.
+pub fn fewest(geo: &LoftGeometry, spacing: Spacing, max: usize) -> Result<usize, (f64, usize)> {
+    let mut least = usize::MAX;
+    for i in 0..ESTIMATE_STATIONS {
+        let s = i as f64 / (ESTIMATE_STATIONS - 1) as f64;
+        let f = geo.frame(s);
+        let n = angles(geo, &f, s, std::f64::consts::FRAC_PI_2, spacing, max)
+            .map_err(|n| (s, n))?
+            .len();
+        least = least.min(n + 1);
+    }
+    Ok(least)
+}

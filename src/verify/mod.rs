@@ -22,6 +22,7 @@
 mod arm;
 mod bump;
 mod cell;
+mod collision;
 mod deposit;
 pub mod height_loop;
 mod machine;

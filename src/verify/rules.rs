@@ -5,6 +5,7 @@
 use super::arm::ArmRule;
 use super::bump::DepositBump;
 use super::cell::CellRule;
+use super::collision::Collision;
 use super::deposit::DepositRule;
 use super::height_loop::{LoopAnalysis, LoopOnMachine};
 use super::machine::{Analog, SafeHeight, SpeedLimit, Tilt, Travel};
@@ -140,6 +141,7 @@ plan_rules! {
         ring: LoopOnMachine,
         bump: DepositBump<'p>,
         positioner: PositionerRule,
+        collision: Collision<'p>,
     }
 }
 

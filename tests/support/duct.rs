@@ -57,6 +57,7 @@ process {{
 }}
 machine kr60 {{
   kind = robot
+  head {{ standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }}
   load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])
   laser = 1
   power_output = 1

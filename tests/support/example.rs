@@ -42,7 +42,7 @@ pub fn compile_file(path: &std::path::Path, src: &str) -> lmdc::pipeline::Compil
         .map(std::path::Path::to_path_buf)
         .unwrap_or_default();
     let data: lmdc::sema::DataReader =
-        std::rc::Rc::new(move |p: &str| std::fs::read(dir.join(p)).map_err(|e| e.to_string()));
+        std::rc::Rc::new(move |p: &str, _| std::fs::read(dir.join(p)).map_err(|e| e.to_string()));
     lmdc::pipeline::compile_reading(src, None, &mut (), data)
         .expect("no machine named")
         .0

@@ -16,6 +16,7 @@ pub fn robot() -> Robot {
             acceleration: None,
             blending: None,
             ramp: Ramp::None,
+            head: Head::typical(),
         },
         tool: FrameRef {
             index: 1,
@@ -62,6 +63,7 @@ pub fn cnc5() -> Cnc {
             acceleration: None,
             blending: None,
             ramp: Ramp::None,
+            head: Head::typical(),
         },
         axes: 5,
         kinematics: Kinematics::HeadAc,
@@ -159,6 +161,7 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
         });
     }
     Program {
+        fixtures: Vec::new(),
         format: FORMAT.into(),
         version: VERSION_BASIC,
         part: "bent tube".into(),

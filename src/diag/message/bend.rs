@@ -192,17 +192,33 @@ fn apart(need: f64, have: f64) -> usize {
         .unwrap_or(6)
 }
 
-/// A chord error that needs more than `max` points on `layer` (from 1).
+/// Where a layer is: its number (from 1), or how far along the loft its
+/// section lies (a share, for a check made before the layers are counted).
+#[derive(Clone, Copy)]
+pub enum LayerAt {
+    /// Layer number, from 1.
+    Layer(usize),
+    /// A share of the way along the loft.
+    Along(f64),
+}
+
+/// A chord error that needs more than `max` points on a layer (`at`).
 pub fn too_many_layer_points(
     chord_error: Length,
     max: usize,
-    layer: usize,
+    at: LayerAt,
     slicing: Span,
 ) -> Diagnostic {
+    let on = match at {
+        LayerAt::Layer(n) => format!("layer {n}"),
+        LayerAt::Along(s) if s <= 0.0 => "the first layer".to_string(),
+        LayerAt::Along(s) if s >= 1.0 => "the last layer".to_string(),
+        LayerAt::Along(s) => format!("the layer {}% along the loft", short(s * 100.0)),
+    };
     Diagnostic::error(
         Code::TooManyPoints,
         format!(
-            "a chord error of {chord_error} needs more than {max} points on layer {layer} \
+            "a chord error of {chord_error} needs more than {max} points on {on} \
              (its section's outline)"
         ),
     )
@@ -221,14 +237,106 @@ pub fn too_many_section_points(k: usize, max: usize, slicing: Span) -> Diagnosti
     .help("ask for fewer points a layer")
 }
 
-/// `layers` layers of `points` points each pass `max`.
-pub fn too_many_duct_points(layers: usize, points: usize, max: usize, slicing: Span) -> Diagnostic {
+/// `layers` layers of `points` points each pass `max`; `chord`: the points
+/// are placed by a chord error (else counted, `points = k`).
+pub fn too_many_duct_points(
+    layers: usize,
+    points: usize,
+    max: usize,
+    chord: bool,
+    slicing: Span,
+) -> Diagnostic {
+    // The fewest points a layer can have: a section's eight seeds and the
+    // closing point.
+    let fits = max / layers.max(1);
+    let help = if fits < 9 {
+        format!(
+            "even 8 points a layer pass it: fewer layers ({} at most), a bead that lays more a layer",
+            max / 9
+        )
+    } else if chord {
+        format!("a larger chord error, for at most {fits} points a layer")
+    } else {
+        format!("at most `points = {}` a layer", fits - 1)
+    };
     Diagnostic::error(
         Code::TooManyPoints,
-        format!("{layers} layers × {points} points is more than {max} points"),
+        format!("{layers} layers × {points} points is more than the {max} points a plan may hold"),
     )
     .label(slicing, "slicing")
-    .help("use fewer points a layer (or a larger chord error)")
+    .help(help)
+}
+
+/// The most layers a wall may have: a plan's limit on layers, or fewer
+/// when its limit on points comes first.
+pub struct WallLimit {
+    /// The most layers.
+    pub layers: usize,
+    /// When the points limit it: the points a layer has, the most a plan
+    /// may hold, and how a layer would have few enough, if it can.
+    pub points: Option<(usize, usize, Option<Fewer>)>,
+}
+
+/// How a layer would have fewer points.
+pub enum Fewer {
+    /// A larger chord error.
+    ChordError,
+    /// `points = k`.
+    Points(usize),
+}
+
+/// `layers = auto` builds the wall in `n` layers (the bead lays at most
+/// `heights.range[1]` a layer), more than `limit` allows; a bead laying
+/// `fits` a layer would build it in as many as it allows (a mass balance's
+/// `efficiency`, a share, would). Usually a bead model's number in the
+/// wrong unit (an efficiency of 35e-6 %, a density in kg/m³ for g/cm³),
+/// or a part far larger than meant.
+pub fn too_many_wall_layers(
+    n: f64,
+    limit: WallLimit,
+    fits: Length,
+    efficiency: Option<f64>,
+    heights: Heights,
+    slicing: Span,
+) -> Diagnostic {
+    let most = limit.layers;
+    let (what, fewer) = match limit.points {
+        None => (format!("a plan may have at most {most} layers"), None),
+        Some((k, max, fewer)) => (
+            format!("a plan may hold at most {max} points, {most} layers of its {k} points"),
+            match fewer {
+                Some(Fewer::ChordError) => Some("a larger chord error".to_string()),
+                Some(Fewer::Points(k)) => Some(format!("`points = {k}`")),
+                None => None,
+            },
+        ),
+    };
+    let efficiency = efficiency.map_or(String::new(), |e| {
+        format!(
+            " (this mass balance with an efficiency of at least {} %)",
+            short(e * 100.0)
+        )
+    });
+    let fewer = fewer.map_or(String::new(), |f| format!("; or fewer points a layer: {f}"));
+    let n = if n.is_finite() {
+        format!("{n:.0}")
+    } else {
+        "endless".to_string()
+    };
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!(
+            "the wall needs {n} layers: this bead lays at most {} a layer, and {what}",
+            heights.range[1]
+        ),
+    )
+    .label(heights.span, "the bead's heights")
+    .label(slicing, "the layer count")
+    .help(format!(
+        "a bead that lays at least {fits} a layer builds it in {most} layers{efficiency}{fewer}; \
+         or a smaller part. A bead far off has a number in the wrong unit, most often (an \
+         efficiency in %, a density in g/cm^3, a feed in g/min)"
+    ))
 }
 
 /// `seam = lowest` or `sharpest_corner` on a normal-sliced wall.

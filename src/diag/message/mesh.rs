@@ -5,7 +5,9 @@
 
 use crate::diag::{Code, Diagnostic};
 use crate::geometry::mesh::stl::{StlError, MAX_TRIANGLES};
-use crate::geometry::mesh::three_mf::{ThreeMfError, MAX_DEPTH, MAX_MODEL_BYTES};
+use crate::geometry::mesh::three_mf::{
+    ThreeMfError, MAX_DEPTH, MAX_MODEL_BYTES, MAX_RATIO, RATIO_FREE,
+};
 use crate::geometry::mesh::{MeshFault, SectionFault, ON_PLATE};
 use crate::span::Span;
 use crate::units::short;
@@ -85,6 +87,11 @@ pub fn not_3mf(path: &str, e: &ThreeMfError, at: Span) -> Diagnostic {
         }
         ThreeMfError::TooLarge { bytes } => format!(
             "its model parts inflate to {bytes} bytes; lmdc reads at most {MAX_MODEL_BYTES}"
+        ),
+        ThreeMfError::Inflates { bytes, compressed } => format!(
+            "its model part inflates {compressed} bytes to {bytes}, {} times over; lmdc reads a model part past {} MB that inflates at most {MAX_RATIO} times (a mesh's XML inflates 5 to 10 times; this is mostly blank or repeated)",
+            bytes / (*compressed).max(1),
+            RATIO_FREE >> 20
         ),
         ThreeMfError::SeveralModels { count } => format!(
             "its objects lie in {count} model parts (the production extension); lmdc reads a package of one model part"
@@ -174,23 +181,50 @@ pub fn not_on_plate(path: &str, z: f64, fix: f64, at: Span) -> Diagnostic {
     ))
 }
 
-/// What [`too_big`] says: the placed mesh's size and what its fill would
-/// need.
+/// Which of a plan's limits a mesh would pass, and by how much.
+#[derive(Clone, Copy, Debug)]
+pub enum Over {
+    /// Its layers.
+    Layers {
+        /// How many layers build it.
+        n: f64,
+        /// The most a plan may have.
+        max: usize,
+    },
+    /// The pieces of outline its sections have over all layers.
+    Pieces {
+        /// How many.
+        n: f64,
+        /// The most a plan's profiles may have.
+        max: usize,
+    },
+    /// The points its fill lays.
+    Points {
+        /// The fewest it can lay.
+        least: f64,
+        /// The most a plan may hold.
+        max: usize,
+    },
+}
+
+/// What [`too_big`] says: the placed mesh's size and what slicing it
+/// would need.
 pub struct TooBig {
     /// Its size along x, y and z (mm, placed).
     pub size: [f64; 3],
     /// The file's unit, when it is one `units` names.
     pub unit: Option<&'static str>,
+    /// The unit a 3MF names for itself (`foot`), which `units` cannot
+    /// change; `None` for an STL.
+    pub file_unit: Option<&'static str>,
     /// How many layers build it.
     pub layers: usize,
     /// The lift (mm).
     pub lift: f64,
     /// The track offset (mm).
     pub pitch: f64,
-    /// The fewest points its fill needs.
-    pub least: f64,
-    /// The most a plan may hold.
-    pub max: usize,
+    /// The limit it passes.
+    pub over: Over,
     /// A unit in which it would fit, and its size then (mm).
     pub other: Option<(&'static str, [f64; 3])>,
 }
@@ -200,32 +234,58 @@ fn size3(s: [f64; 3]) -> String {
     format!("{} × {} × {} mm", short(s[0]), short(s[1]), short(s[2]))
 }
 
-/// The mesh `path` is too big to fill within the points a plan may hold,
-/// which it would find only after minutes of slicing: most likely a file
-/// read in the wrong unit.
+/// A unit `mesh(units = …)` takes, as a 3MF's `unit` names it.
+fn three_mf_unit(u: &str) -> &str {
+    match u {
+        "mm" => "millimeter",
+        "cm" => "centimeter",
+        "m" => "meter",
+        "in" => "inch",
+        other => other,
+    }
+}
+
+/// The mesh `path` is too big to slice within a plan's limits, which it
+/// would find only after minutes of slicing: most likely a file read in
+/// the wrong unit.
 pub fn too_big(path: &str, t: TooBig, at: Span) -> Diagnostic {
-    let read = t
-        .unit
-        .map(|u| format!(" (read in `units = {u}`)"))
-        .unwrap_or_default();
-    let help = match t.other {
-        Some((u, s)) => format!(
+    let read = match (t.file_unit, t.unit) {
+        (Some(f), _) => format!(" (its unit `{f}`)"),
+        (None, Some(u)) => format!(" (read in `units = {u}`)"),
+        (None, None) => String::new(),
+    };
+    let help = match (t.other, t.file_unit) {
+        (Some((u, s)), Some(f)) => format!(
+            "in {u} it would be {}: if the file's numbers are {u}, not the `{f}` it names, export it again with `unit=\"{}\"` (a 3MF names its unit itself)",
+            size3(s),
+            three_mf_unit(u)
+        ),
+        (Some((u, s)), None) => format!(
             "in {u} it would be {}: if the file's numbers are {u}, write `units = {u}` in `mesh(…)`{}",
             size3(s),
             if u == "mm" { " or leave `units` out" } else { "" }
         ),
-        None => "a smaller part, or fewer layers (`height` or `layers`); check the file's `units`".to_string(),
+        (None, _) => "a smaller part, or fewer layers (`height` or `layers`); check the file's `units`".to_string(),
+    };
+    let layers = format!("{} layers of {} mm", t.layers, short(t.lift));
+    let need = match t.over {
+        Over::Layers { n, max } => format!(
+            "it needs {n:.0} layers of {} mm, more than the {max} a plan may have",
+            short(t.lift)
+        ),
+        Over::Pieces { n, max } => format!(
+            "its {layers} cut its faces into {n:.0} pieces of outline, more than the {max} a plan's profiles may have"
+        ),
+        Over::Points { least, max } => format!(
+            "its {layers}, filled with tracks {} mm apart, need at least {least:.0} points, more than the {max} a plan may hold",
+            short(t.pitch)
+        ),
     };
     Diagnostic::error(
         Code::TooManyPoints,
         format!(
-            "the mesh `{path}`{read} is {} as placed: its {} layers of {} mm, filled with tracks {} mm apart, need at least {:.0} points, more than the {} a plan may hold",
-            size3(t.size),
-            t.layers,
-            short(t.lift),
-            short(t.pitch),
-            t.least,
-            t.max
+            "the mesh `{path}`{read} is {} as placed: {need}",
+            size3(t.size)
         ),
     )
     .label(at, "this mesh")

@@ -12,6 +12,7 @@
 pub mod bead;
 pub mod bend;
 pub mod calib;
+pub mod collision;
 pub mod control;
 pub mod field;
 pub mod fill;

@@ -26,6 +26,38 @@ pub fn too_many_fill_points(max: usize, slicing: Span) -> Diagnostic {
     .help("use fewer layers or a larger chord error")
 }
 
+/// What [`too_many_raster_points`] says: a planar plan's layers, the
+/// raster's spacing and the fewest points it lays.
+pub struct RasterBudget {
+    /// How many layers.
+    pub layers: usize,
+    /// The raster lines' spacing.
+    pub offset: Length,
+    /// The fewest points the raster lays over all layers.
+    pub least: f64,
+    /// The most a plan may hold.
+    pub max: usize,
+}
+
+/// A planar plan whose raster lays at least `b.least` points, more than
+/// a plan may hold, found before any layer is filled.
+pub fn too_many_raster_points(b: RasterBudget, slicing: Span) -> Diagnostic {
+    let share = b.max as f64 / b.least;
+    let layers = (b.layers as f64 * share).floor();
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!(
+            "the raster of these {} layers, lines {} apart, lays at least {:.0} points, more than the {} a plan may hold",
+            b.layers, b.offset, b.least, b.max
+        ),
+    )
+    .label(slicing, "slicing")
+    .help(format!(
+        "at most {layers:.0} layers of this profile fit, or lines about {} apart (`offset`); or a smaller profile",
+        Length(b.offset.0 / share)
+    ))
+}
+
 /// The spans a fill's findings point at: the extruded shape and the slicing.
 #[derive(Clone, Copy)]
 pub struct FillAt {

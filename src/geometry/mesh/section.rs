@@ -93,6 +93,61 @@ impl Mesh {
     }
 }
 
+impl Mesh {
+    /// How many pieces of outline the sections of the mesh, scaled by `k`
+    /// (its lowest point staying on the plate), cut `lift` apart halfway
+    /// up each of `layers` layers, have together: one for every triangle
+    /// a cutting plane crosses (the count of [`Sections::loops`]'s pieces,
+    /// in time linear in the triangles, before any is cut).
+    pub fn crossings(&self, k: f64, lift: f64, layers: f64) -> f64 {
+        let last = layers - 1.0;
+        self.triangles
+            .iter()
+            .map(|t| {
+                let z = t.map(|i| self.vertices[i as usize][2] * k / lift - 0.5);
+                let lo = z[0].min(z[1]).min(z[2]).ceil().max(0.0);
+                let hi = z[0].max(z[1]).max(z[2]).floor().min(last);
+                (hi - lo + 1.0).max(0.0)
+            })
+            .sum()
+    }
+}
+
+impl Section {
+    /// The island's area (mm²): its outline's less its holes'.
+    pub fn area(&self) -> f64 {
+        area(&self.outline).abs() - self.holes.iter().map(|h| area(h).abs()).sum::<f64>()
+    }
+
+    /// The length of all its loops (mm).
+    pub fn perimeter(&self) -> f64 {
+        std::iter::once(&self.outline)
+            .chain(&self.holes)
+            .map(|l| {
+                (0..l.len())
+                    .map(|i| {
+                        let (a, b) = (l[i], l[(i + 1) % l.len()]);
+                        (b[0] - a[0]).hypot(b[1] - a[1])
+                    })
+                    .sum::<f64>()
+            })
+            .sum()
+    }
+
+    /// The diagonal of the box round its outline (mm): no line across the
+    /// island is longer.
+    pub fn diagonal(&self) -> f64 {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &self.outline {
+            for i in 0..2 {
+                lo[i] = lo[i].min(p[i]);
+                hi[i] = hi[i].max(p[i]);
+            }
+        }
+        (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+    }
+}
+
 impl Sections<'_> {
     /// The loops of the plane `z = h`, each with the solid on its left.
     /// Heights must not fall from one call to the next (a lower one is

@@ -20,9 +20,19 @@ use std::collections::HashMap;
 use std::io::Cursor;
 use threemf::model::{Model, Object, Unit};
 
-/// Most bytes the model parts of a package may hold once inflated: a
-/// 3MF of [`MAX_TRIANGLES`] triangles takes about 2 GB of XML.
-pub const MAX_MODEL_BYTES: u64 = 2 << 30;
+/// Most bytes the model parts of a package may hold once inflated, as
+/// much as a mesh file may have (`sema::data::MAX_MESH`): about 10 M
+/// triangles of XML, which the reader holds parsed at about twice that.
+pub const MAX_MODEL_BYTES: u64 = 1 << 30;
+
+/// Most times a model part may inflate its compressed size, once it is
+/// past [`RATIO_FREE`] bytes: a mesh's XML deflates about 5 to 10 times,
+/// a ZIP bomb's blank space a thousand.
+pub const MAX_RATIO: u64 = 100;
+
+/// Model parts up to this many bytes inflated are read whatever their
+/// ratio: they cost little.
+pub const RATIO_FREE: u64 = 16 << 20;
 
 /// Most levels of components within components.
 pub const MAX_DEPTH: usize = 32;
@@ -53,6 +63,14 @@ pub enum ThreeMfError {
     TooLarge {
         /// The bytes they declare.
         bytes: u64,
+    },
+    /// A model part that inflates more than [`MAX_RATIO`] times its
+    /// compressed size (past [`RATIO_FREE`] bytes): a ZIP bomb.
+    Inflates {
+        /// The bytes it declares inflated.
+        bytes: u64,
+        /// Its bytes compressed.
+        compressed: u64,
     },
     /// Objects in several model parts (the production extension).
     SeveralModels {
@@ -131,6 +149,8 @@ fn mirrors(m: &Matrix4<f64>) -> bool {
 /// The triangles of the 3MF package `bytes`.
 pub fn read(bytes: &[u8]) -> Result<ThreeMf, ThreeMfError> {
     check_package(bytes)?;
+    // The ZIP reader inflates an entry no further than it declares (an
+    // I/O error past it), so the declared sizes checked bound the work.
     let mut models = threemf::read(Cursor::new(bytes)).map_err(|e| match e {
         threemf::Error::Zip(z) => ThreeMfError::NotZip { why: z.to_string() },
         threemf::Error::XMLDe(x) => ThreeMfError::Xml { why: x.to_string() },
@@ -152,7 +172,8 @@ pub fn read(bytes: &[u8]) -> Result<ThreeMf, ThreeMfError> {
 }
 
 /// Checks `bytes` is a ZIP package whose model parts inflate to at most
-/// [`MAX_MODEL_BYTES`] (as their entries declare), before inflating any.
+/// [`MAX_MODEL_BYTES`] together and [`MAX_RATIO`] times their compressed
+/// size each (as their entries declare), before inflating any.
 fn check_package(bytes: &[u8]) -> Result<(), ThreeMfError> {
     let mut zip = zip::ZipArchive::new(Cursor::new(bytes))
         .map_err(|e| ThreeMfError::NotZip { why: e.to_string() })?;
@@ -167,7 +188,11 @@ fn check_package(bytes: &[u8]) -> Result<(), ThreeMfError> {
             .map_err(|e| ThreeMfError::NotZip { why: e.to_string() })?;
         if name.ends_with(".model") {
             models += 1;
-            total = total.saturating_add(f.size());
+            let (bytes, compressed) = (f.size(), f.compressed_size());
+            if bytes > RATIO_FREE && bytes > compressed.saturating_mul(MAX_RATIO) {
+                return Err(ThreeMfError::Inflates { bytes, compressed });
+            }
+            total = total.saturating_add(bytes);
         }
     }
     if models == 0 {

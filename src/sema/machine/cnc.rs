@@ -53,10 +53,12 @@ pub(super) fn read<'a>(
         &[],
         diags,
     );
-    let (mut c, cell) = (c?, cell?);
+    let head = super::head::read(env, &f, name, &mut at, diags);
+    let (mut c, cell, head) = (c?, cell?, head?);
     lines?;
     at.extend(cell.spans);
     c.common.cell = cell.cell;
+    c.common.head = head;
     Some((Machine::Cnc(c), at))
 }
 

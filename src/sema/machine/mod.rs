@@ -4,6 +4,7 @@
 //! powder) is read here; [`robot`] and [`cnc`] read the rest.
 
 mod cnc;
+mod head;
 mod load;
 mod positioner;
 mod robot;
@@ -107,6 +108,7 @@ fn common(
         acceleration: motion.acceleration,
         blending: motion.blending,
         ramp: motion.ramp,
+        head: crate::ir::Head::typical(),
     })
 }
 

@@ -45,7 +45,8 @@ pub(super) fn read<'a>(
         .collect();
     let c = cell::read(env, &f, cell::KUKA, None, &taken, diags);
     let positioner = super::positioner::read(env, &f, &mut at, diags);
-    let (mut r, c, positioner) = (r?, c?, positioner?);
+    let head = super::head::read(env, &f, name, &mut at, diags);
+    let (mut r, c, positioner, head) = (r?, c?, positioner?, head?);
     if let (Some(_), None) = (&positioner, r.base.value) {
         let block = f.span(&POSITIONER_BLOCK).unwrap_or(span);
         diags.push(message::positioner::needs_base(block, f.span(&BASE)));
@@ -53,6 +54,7 @@ pub(super) fn read<'a>(
     }
     at.extend(c.spans);
     r.common.cell = c.cell;
+    r.common.head = head;
     r.positioner = positioner.map(Box::new);
     Some((Machine::Robot(r), at))
 }

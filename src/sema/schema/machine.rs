@@ -456,6 +456,7 @@ pub static ROBOT: Block = Block::new(
         &HEIGHT_DELAY,
         &GAS_BLOCK,
         &POWDER_BLOCK,
+        &super::collision::HEAD_BLOCK,
         &POSITIONER_BLOCK,
     ],
 );
@@ -774,6 +775,7 @@ pub static CNC: Block = Block::new(
         &LIMITS_BLOCK,
         &GAS_BLOCK,
         &POWDER_BLOCK,
+        &super::collision::HEAD_BLOCK,
     ],
 )
 .with_examples(&[(&MAX_SPEED, "100 mm/s")]);
@@ -833,6 +835,7 @@ pub static MACHINE: Block = Block::new(
         &LIMITS_BLOCK,
         &GAS_BLOCK,
         &POWDER_BLOCK,
+        &super::collision::HEAD_BLOCK,
         &POSITIONER_BLOCK,
     ],
 );

@@ -19,6 +19,7 @@
 
 pub mod bead;
 pub mod calibration;
+pub mod collision;
 pub mod control;
 pub mod machine;
 pub mod process;
@@ -582,6 +583,11 @@ pub static BLOCKS: &[&Block] = &[
     &machine::POSITIONER,
     &machine::CONE,
     &machine::FIXED,
+    &collision::HEAD,
+    &collision::FRUSTUM,
+    &collision::CYLINDER,
+    &collision::FIXTURE,
+    &collision::BOX,
     &calibration::CALIBRATION,
     &calibration::WALL,
     &calibration::PAD,

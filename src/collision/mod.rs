@@ -1,0 +1,6 @@
+//! Nothing the machine carries hits anything (docs/collision.md): the head's
+//! solids ([`head`]) against the plate, the fixtures and the part as it grows
+//! ([`material`]), at every pose of the plan.
+
+pub mod head;
+pub mod material;

@@ -1,0 +1,149 @@
+//! The head against the cell (docs/collision.md): a body of the head that
+//! comes within its gap of the plate, a fixture or the part laid so far
+//! (`lmd::collision`), and a machine that declares no head
+//! (`lmd::head-unchecked`).
+
+use crate::diag::{plural, Code, Diagnostic, Worst};
+use crate::span::Span;
+use crate::units::{short, short_up};
+use std::fmt::Display;
+
+/// What a body came too close to.
+#[derive(Clone, Copy, Debug)]
+pub enum With<'a> {
+    /// The plate (the part's `z = 0`).
+    Plate,
+    /// The fixture of this name.
+    Fixture(&'a str),
+    /// The part as laid so far, at its layer (from 1).
+    Part(usize),
+}
+
+/// One kind of collision, the worst of it and what fixes it.
+pub struct Hit<'a, At> {
+    /// The machine.
+    pub machine: &'a str,
+    /// The head's body (`nozzle`, `body`, …).
+    pub body: &'a str,
+    /// What it comes too close to.
+    pub with: With<'a>,
+    /// The closest approach (its value the distance, its limit the gap).
+    pub worst: &'a Worst<At>,
+    /// The standoff that keeps the gap at every pose found too close,
+    /// where raising the head along its beam does (mm).
+    pub standoff: Option<f64>,
+    /// The declared head, if any.
+    pub declared: Option<Span>,
+}
+
+/// A body of the head closer than its gap to something.
+pub fn collision<At: Display>(h: &Hit<'_, At>) -> Diagnostic {
+    let w = h.worst;
+    let what = match h.with {
+        With::Plate => "the plate".to_string(),
+        With::Fixture(name) => format!("fixture `{name}`"),
+        With::Part(layer) => format!("the part laid so far (layer {layer})"),
+    };
+    let how = if w.value <= 0.0 {
+        format!("runs into {what}")
+    } else {
+        format!("comes within {} mm of {what}", short(w.value))
+    };
+    let message = format!(
+        "the {} of machine `{}` {how} at {}, where it must keep {} mm ({} pose{} too close)",
+        h.body,
+        h.machine,
+        w.at,
+        short(w.limit),
+        w.count,
+        plural(w.count)
+    );
+    let fix = match (h.with, h.standoff) {
+        (With::Fixture(name), _) => format!(
+            "move fixture `{name}` clear of the head's way (or lower it), or build the part where the head passes farther from it"
+        ),
+        (_, Some(s)) => format!(
+            "a `standoff` of {} mm (the nozzle's tip that far from the focus) keeps the gap at every such pose; or tilt the nozzle less there, or bring the focus nearer the surface (a smaller defocus below it) by as much",
+            short_up(s)
+        ),
+        (_, None) => "the head passes beside what it comes near: tilt the nozzle less there, turn the part (a positioner's `keep`, the layers' `nozzle`), or build it in another order".to_string(),
+    };
+    let d = Diagnostic::error(Code::Collision, message).help(format!(
+        "{fix}; `head {{ … }}` says what the machine carries (docs/collision.md)"
+    ));
+    match h.declared {
+        Some(at) => d.label(at, "the head as declared"),
+        None => d,
+    }
+}
+
+/// A machine that declares no head: a typical coaxial nozzle was checked.
+pub fn head_unchecked(machine: &str, at: Span) -> Diagnostic {
+    Diagnostic::warning(
+        Code::HeadUnchecked,
+        format!(
+            "machine `{machine}` declares no head: collisions were checked with a typical coaxial nozzle (a 45 mm cone from a 12 mm tip to 40 mm on a body 60 mm across, its tip 15 mm above the focus), not the machine's own"
+        ),
+    )
+    .label(at, "no `head { … }` here")
+    .help(
+        "declare what the machine carries, e.g. `head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm)  body = cylinder(length = 100 mm, diameter = 60 mm) }` (docs/collision.md)",
+    )
+}
+
+/// A head's solid (`key`) written as something other than a solid.
+pub fn not_a_solid(key: &str, at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::Type,
+        format!("a head's `{key}` is a solid about the beam: `frustum(…)` or `cylinder(…)`"),
+    )
+    .label(at, format!("this is {got}"))
+    .help(format!(
+        "e.g. `{key} = frustum(length = 45 mm, tip = 12 mm, top = 40 mm)` (tapering from its lower end up) or `{key} = cylinder(length = 100 mm, diameter = 60 mm)`"
+    ))
+}
+
+/// A fixture's `shape` that is no shape.
+pub fn not_a_shape(at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::Type,
+        "a fixture's `shape` is `box(size = [x, y, z])` or an upright `cylinder(length = …, diameter = …)`",
+    )
+    .label(at, format!("this is {got}"))
+    .help("e.g. `shape = box(size = [40 mm, 20 mm, 30 mm])`, standing on its bottom face at `at`")
+}
+
+/// A fixture's `key` (`size`, `at`) that is not three lengths.
+pub fn not_three(key: &str, at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::Type,
+        format!("a fixture's `{key}` is three lengths `[x, y, z]`"),
+    )
+    .label(at, format!("this is {got}"))
+    .help(format!("e.g. `{key} = [40 mm, 20 mm, 30 mm]`"))
+}
+
+/// A fixture's size `mm` not above zero or beyond `max`.
+pub fn bad_size(at: Span, mm: f64, max: f64) -> Diagnostic {
+    Diagnostic::error(
+        Code::OutOfRange,
+        format!(
+            "a fixture {} mm in size is no fixture lmdc checks: each side is above 0 and at most {} m",
+            short(mm),
+            short(max / 1000.0)
+        ),
+    )
+    .label(at, "here")
+    .help("write the fixture's real size, in its units")
+}
+
+/// A second fixture named `name`.
+pub fn duplicate_fixture(name: &str, at: Span, first: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::DuplicateName,
+        format!("there are two fixtures called `{name}`"),
+    )
+    .label(at, "this one")
+    .label(first, "and this one")
+    .help("give each fixture a name of its own: the messages name them")
+}

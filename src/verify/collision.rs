@@ -1,0 +1,588 @@
+//! `lmd::collision`: the machine's head ([`crate::collision::head`]) keeps its
+//! gap from the plate, the fixtures and the part as it grows, at every pose
+//! of the plan (docs/collision.md).
+//!
+//! The plan is followed move by move. The part grows behind it: each
+//! deposit move lays its bead as lumps ([`crate::collision::material`])
+//! once the head has passed over it. A pose is *checked*: the plate by the
+//! head's lowest point, the material first by the plane through the nozzle's
+//! tip square to the beam (everything below it, by the groups' bounds: the
+//! head is clear) and else lump by lump near the head. A checked pose
+//! certifies every pose within its distance less the gap of it (the head
+//! cannot have moved further), so the plan is checked again only where it
+//! has moved that far: on a long move, at poses along it, and never less
+//! than every 0.5 mm where it comes close. A bead laid after the check
+//! shortens the certified distance by its own.
+
+use super::rule::{MachineCx, PlanRule};
+use crate::collision::head::{add, cross, dist, dot, scale, sub, HeadShape, Pose};
+use crate::collision::material::{Lump, Material};
+use crate::diag::message::collision as says;
+use crate::diag::{Diagnostics, Worst};
+use crate::ir::{Fixture, FixtureShape, Kinematics, Machine, Point, Program};
+use crate::plan::{effective_kinematics, Move, MoveKind, Visit, Where};
+use crate::sema::schema::collision::HEAD_BLOCK;
+
+/// How far a check looks for material, mm: beyond it the head is clear by
+/// at least this.
+const CAP_MM: f64 = 8.0;
+/// The least a check moves on where the head comes close, mm.
+const MIN_STEP_MM: f64 = 0.5;
+/// Beads are laid as lumps this far apart along their path, mm (each
+/// standing for the stretch behind it).
+const BEAD_STEP_MM: f64 = 1.5;
+/// Fixtures' surfaces are sampled this far apart, mm.
+const FIXTURE_STEP_MM: f64 = 2.0;
+/// A bead's width where the program has none (a ring's), mm.
+const DEFAULT_WIDTH_MM: f64 = 3.0;
+
+/// What the head came too close to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Obstacle {
+    /// The plate, the part's `z = 0`.
+    Plate,
+    /// A fixture, by index.
+    Fixture(usize),
+    /// The part laid so far, in this layer (from 0).
+    Part(usize),
+}
+
+/// Where the head came closest: the move, the body and what it hit.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Close {
+    pub at: Where,
+    pub body: usize,
+    pub what: Obstacle,
+}
+
+impl std::fmt::Display for Close {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.at)
+    }
+}
+
+/// The rule over one machine's plan.
+pub(super) struct Collision<'p> {
+    program: &'p Program,
+    head: HeadShape,
+    standoff: f64,
+    /// A 3-axis CNC's nozzle points straight down whatever the normal.
+    vertical: bool,
+    /// Its plan meets a tilted layer (refused by `lmd::needs-tilt`): not
+    /// followed further.
+    tilted: bool,
+    material: Material,
+    /// The last checked pose and how far it is from everything, mm.
+    cert: Option<(Pose, f64)>,
+    /// The head's lowest point along its beam at that pose (`x·up`).
+    low: f64,
+    /// The last pose a move ended at, and the head's lowest points there
+    /// along Z and along its beam.
+    lows: Option<(Pose, (f64, f64))>,
+    /// The material's bound along a beam direction (cached: most moves keep
+    /// their direction).
+    support: Option<([f64; 3], f64)>,
+    last: Option<Pose>,
+    layer: usize,
+    /// The deposits so far, as runs `[layer, path, first, last]` of
+    /// points, until the grid is built ([`Collision::index`]).
+    runs: Vec<[u32; 4]>,
+    /// Whether the grid is built (the first pose the plane does not clear).
+    indexed: bool,
+    /// The IR point whose bead end was bounded last.
+    bounded: Option<Where>,
+    width: f64,
+    /// The worst by obstacle kind: the plate, fixtures, the part.
+    worst: [Option<Worst<Close>>; 3],
+    /// By obstacle kind, how much higher up its beam the head must sit to
+    /// keep its gap at every pose found too close; `None` once one pose is
+    /// not helped by that (material beside the head).
+    raise: [Option<f64>; 3],
+}
+
+impl<'p> PlanRule<'p> for Collision<'p> {
+    fn new(cx: &MachineCx<'p>) -> Option<Self> {
+        let common = cx.machine.common();
+        let vertical = match cx.machine {
+            Machine::Cnc(c) => effective_kinematics(c) == Kinematics::Xyz,
+            Machine::Robot(_) => false,
+        };
+        let mut material = Material::default();
+        for (i, f) in cx.program.fixtures.iter().enumerate() {
+            fixture_lumps(f, i, &mut material);
+        }
+        let width = cx
+            .program
+            .bead
+            .as_ref()
+            .map_or(DEFAULT_WIDTH_MM, |b| b.width);
+        Some(Collision {
+            program: cx.program,
+            head: HeadShape::of(&common.head),
+            standoff: common.head.standoff,
+            vertical,
+            tilted: false,
+            material,
+            cert: None,
+            low: 0.0,
+            lows: None,
+            support: None,
+            last: None,
+            layer: 0,
+            runs: Vec::new(),
+            indexed: false,
+            bounded: None,
+            width,
+            worst: [None, None, None],
+            raise: [Some(0.0); 3],
+        })
+    }
+
+    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+        let declared = cx.origin.written(&HEAD_BLOCK);
+        for (w, raise) in self
+            .worst
+            .iter()
+            .zip(self.raise)
+            .filter_map(|(w, r)| Some((w.as_ref()?, r)))
+        {
+            let with = match w.at.what {
+                Obstacle::Plate => says::With::Plate,
+                Obstacle::Fixture(i) => says::With::Fixture(&self.program.fixtures[i].name),
+                Obstacle::Part(l) => says::With::Part(l + 1),
+            };
+            out.push(says::collision(&says::Hit {
+                machine: cx.machine.name(),
+                body: &self.head.names[w.at.body],
+                with,
+                worst: w,
+                standoff: raise.map(|r| self.standoff + r),
+                declared,
+            }));
+        }
+    }
+}
+
+impl Visit for Collision<'_> {
+    fn layer(&mut self, index: usize, _layer: &crate::ir::Layer) {
+        self.layer = index;
+    }
+
+    fn motion(&mut self, m: &Move) {
+        if m.kind == MoveKind::Home || self.tilted {
+            // Back home by PTP: the axes' path, not a pose of the plan.
+            return;
+        }
+        if self.vertical && m.normal[2] < 1.0 - 1e-6 {
+            // Layers a 3-axis machine cannot follow: `lmd::needs-tilt`
+            // refuses the plan, whose poses mean nothing.
+            self.tilted = true;
+            self.worst = [None, None, None];
+            return;
+        }
+        let pose = Pose {
+            focus: m.to,
+            up: self.up(m.normal),
+        };
+        match self.last.filter(|_| !m.kind.ptp()) {
+            Some(from) => self.sweep(from, pose, m.at),
+            None => self.check(&pose, m.at),
+        }
+        self.last = Some(pose);
+        if m.deposits() {
+            self.lay(m);
+        }
+    }
+}
+
+impl Collision<'_> {
+    fn up(&self, normal: [f32; 3]) -> [f64; 3] {
+        if self.vertical {
+            return [0.0, 0.0, 1.0];
+        }
+        let n = normal.map(f64::from);
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        n.map(|c| c / len)
+    }
+
+    /// Follows the head from `a` to `b`, checking it wherever it has moved
+    /// as far as its last check certified.
+    fn sweep(&mut self, a: Pose, b: Pose, at: Where) {
+        if a.up == b.up && self.clear_between(&a, &b) {
+            return;
+        }
+        let rate = a.moved(&b, self.head.reach);
+        if rate <= 0.0 {
+            if self.cert.is_none() {
+                self.check(&b, at);
+            }
+            return;
+        }
+        let gap = self.head.gap;
+        let mut t = 0.0;
+        loop {
+            let margin = match self.cert {
+                Some((p, d)) => {
+                    let here = lerp(&a, &b, t);
+                    if p.moved(&b, self.head.reach)
+                        .max(p.moved(&here, self.head.reach))
+                        <= d - gap
+                    {
+                        return;
+                    }
+                    (d - gap - p.moved(&here, self.head.reach)).max(MIN_STEP_MM)
+                }
+                None => 0.0,
+            };
+            t = (t + margin / rate).min(1.0);
+            self.check(&lerp(&a, &b, t), at);
+            if t >= 1.0 {
+                return;
+            }
+        }
+    }
+
+    /// Whether the head, its beam the same at `a` and `b`, keeps its gap
+    /// all the way between them by the plane through its tip and the
+    /// plate (both linear along the move: their least is at an end); if
+    /// so, `b` is certified.
+    fn clear_between(&mut self, a: &Pose, b: &Pose) -> bool {
+        let up = b.up;
+        let z = [0.0, 0.0, 1.0];
+        // The last move ended at `a`: its lows are known.
+        let (pa, la) = match self.lows {
+            Some((p, lows)) if p == *a => lows,
+            _ => (self.head.lowest(a, z).0, self.head.lowest(a, up).0),
+        };
+        let lows_b = (self.head.lowest(b, z).0, self.head.lowest(b, up).0);
+        self.lows = Some((*b, lows_b));
+        let plate = pa.min(lows_b.0);
+        let low = la.min(lows_b.1);
+        let clear = if self.material.is_empty() {
+            f64::INFINITY
+        } else {
+            low - self.highest(up)
+        };
+        let d = plate.min(clear);
+        if d < self.head.gap {
+            return false;
+        }
+        self.cert = Some((*b, d));
+        self.low = lows_b.1;
+        true
+    }
+
+    /// Checks the head at `pose` against everything, recording what it
+    /// comes within its gap of, and certifies the pose.
+    fn check(&mut self, pose: &Pose, at: Where) {
+        let gap = self.head.gap;
+        let (plate, body) = self.head.lowest(pose, [0.0, 0.0, 1.0]);
+        let mut d = plate;
+        if plate < gap {
+            let close = Close {
+                at,
+                body,
+                what: Obstacle::Plate,
+            };
+            Worst::hit(&mut self.worst[0], plate, gap, close);
+            // Up the beam by Δ raises the lowest point by Δ·up_z.
+            let need = (pose.up[2] > 0.05).then(|| (gap - plate) / pose.up[2]);
+            self.raise[0] = self.raise[0].zip(need).map(|(a, b)| a.max(b));
+        }
+        if !self.material.is_empty() {
+            let (low, _) = self.head.lowest(pose, pose.up);
+            let clear = low - self.highest(pose.up);
+            if clear >= gap {
+                // Everything lies below the plane through the tip.
+                d = d.min(clear);
+            } else {
+                self.index();
+                match self.material.nearest(&self.head, pose, CAP_MM) {
+                    Some((near, body, lump)) => {
+                        d = d.min(near);
+                        if near < gap {
+                            self.hit(near, body, lump, (pose, at));
+                        }
+                    }
+                    None => d = d.min(CAP_MM),
+                }
+            }
+        }
+        self.cert = Some((*pose, d));
+        self.low = self.head.lowest(pose, pose.up).0;
+    }
+
+    fn hit(&mut self, d: f64, body: usize, lump: Lump, (pose, at): (&Pose, Where)) {
+        let fixtures = self.program.fixtures.len() as u32;
+        let (slot, what) = if lump.group >= u32::MAX - fixtures {
+            (1, Obstacle::Fixture((u32::MAX - lump.group - 1) as usize))
+        } else {
+            (2, Obstacle::Part(lump.group as usize))
+        };
+        let close = Close { at, body, what };
+        Worst::hit(&mut self.worst[slot], d, self.head.gap, close);
+        let need = self.raise_for(pose, &lump);
+        self.raise[slot] = self.raise[slot].zip(need).map(|(a, b)| a.max(b));
+    }
+
+    /// How far up its beam the head at `pose` must sit to keep its gap from
+    /// `lump`, where that helps: the lump lies below the nozzle's tip, so
+    /// the distance grows as the head rises (found by halving, to 0.01 mm).
+    fn raise_for(&self, pose: &Pose, lump: &Lump) -> Option<f64> {
+        if lump.r <= 0.0 {
+            // A cell's box: where in it the material lies is not known.
+            return None;
+        }
+        let tip = self.head.bodies.first()?.s[0];
+        if dot(sub(lump.at, pose.focus), pose.up) >= tip {
+            return None;
+        }
+        let clear = |raise: f64| {
+            let p = Pose {
+                focus: add(pose.focus, scale(pose.up, raise)),
+                up: pose.up,
+            };
+            self.head.distance(&p, lump.at).0 - lump.r >= self.head.gap
+        };
+        let mut hi = self.head.gap + lump.r;
+        while !clear(hi) {
+            hi *= 2.0;
+            if hi > 1e4 {
+                return None;
+            }
+        }
+        let mut lo = 0.0;
+        while hi - lo > 0.01 {
+            let mid = (lo + hi) / 2.0;
+            if clear(mid) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Some(hi)
+    }
+
+    /// The material's bound along `u`, cached for the direction last asked.
+    fn highest(&mut self, u: [f64; 3]) -> f64 {
+        match self.support {
+            Some((v, h)) if v == u => h,
+            _ => {
+                let h = self.material.highest(u);
+                self.support = Some((u, h));
+                h
+            }
+        }
+    }
+
+    /// Bounds material (and puts it in the grid once the grid is built),
+    /// keeping the certificate and the cached bound.
+    fn add(&mut self, l: Lump, n: [f64; 3], grid: bool) {
+        if let Some((v, h)) = self.support.as_mut() {
+            *h = h.max(dot(l.at, *v) + l.r);
+        }
+        if let Some((p, d)) = self.cert.as_mut() {
+            // A lump below the plane through the tip by at least the
+            // certified distance cannot shorten it (the bead just laid,
+            // under the nozzle); else, nor one beyond the head's reach.
+            let below = self.low - (dot(l.at, p.up) + l.r);
+            let v = sub(l.at, p.focus);
+            let near = self.head.reach + *d + l.r;
+            if below < *d && dot(v, v) < near * near {
+                *d = d.min(self.head.distance(p, l.at).0 - l.r);
+            }
+        }
+        if grid {
+            self.material.add(l, n);
+        } else {
+            self.material.bound(&l, n);
+        }
+    }
+
+    /// Lays the bead of deposit move `m`: bounded by a sphere round each
+    /// end holding its cross-section, and, once the grid is built, put in
+    /// it as lumps.
+    fn lay(&mut self, m: &Move) {
+        let (Some(from), Some(to)) = (m.source().point(self.program), m.at.point(self.program))
+        else {
+            return;
+        };
+        let (from, to) = (*from, *to);
+        let n = from.normal.map(f64::from);
+        let (w, rise) = self.section(&from);
+        let r = (w * w + rise * rise).sqrt() / 2.0;
+        let group = self.layer as u32;
+        // A run's moves share their ends: each bounds its end, the run's
+        // first its start too.
+        let first = self.bounded != Some(m.source());
+        for p in [from.pos, to.pos].into_iter().skip(usize::from(!first)) {
+            let at = add(p, scale(n, rise / 2.0));
+            self.add(Lump { at, r, group }, n, false);
+        }
+        self.bounded = Some(m.at);
+        if self.indexed {
+            self.lumps(&from, &to, group);
+        } else if let Where::Point { layer, path, point } = m.at {
+            let key = [layer, path, point].map(|k| k as u32);
+            match self.runs.last_mut() {
+                Some(run) if run[0] == key[0] && run[1] == key[1] && run[3] + 1 == key[2] => {
+                    run[3] = key[2];
+                }
+                _ => self.runs.push([key[0], key[1], key[2], key[2]]),
+            }
+        }
+    }
+
+    /// Builds the grid, once: the bead of every deposit so far as lumps.
+    fn index(&mut self) {
+        if self.indexed {
+            return;
+        }
+        self.indexed = true;
+        let program = self.program;
+        for [layer, path, first, last] in std::mem::take(&mut self.runs) {
+            let pts = &program.layers[layer as usize].paths[path as usize].points;
+            for k in first..=last {
+                let (from, to) = (&pts[k as usize - 1], &pts[k as usize]);
+                self.lumps(from, to, layer);
+            }
+        }
+    }
+
+    /// A bead's width and height at `p`, mm.
+    fn section(&self, p: &Point) -> (f64, f64) {
+        (
+            self.width.max(f64::from(p.pitch)),
+            f64::from(p.rise.max(0.0)),
+        )
+    }
+
+    /// The lumps of the bead from `from` to `to` in the grid: every
+    /// [`BEAD_STEP_MM`] or less, each standing for the stretch behind it,
+    /// three across a bead wider than twice its height.
+    fn lumps(&mut self, from: &Point, to: &Point, group: u32) {
+        let n = from.normal.map(f64::from);
+        let (w, rise) = self.section(from);
+        let len = dist(from.pos, to.pos);
+        let pieces = (len / BEAD_STEP_MM).ceil().max(1.0);
+        let along = len / pieces;
+        let side = cross(sub(to.pos, from.pos), n);
+        let side_len = dot(side, side).sqrt();
+        let across: &[f64] = if w / 2.0 <= rise || side_len < 1e-9 {
+            &[0.0]
+        } else {
+            &[-1.0, 0.0, 1.0]
+        };
+        let part = if across.len() == 1 { w / 2.0 } else { w / 6.0 };
+        let r = (along * along + part * part + rise * rise / 4.0).sqrt();
+        let side = if side_len > 1e-9 {
+            scale(side, w / 3.0 / side_len)
+        } else {
+            [0.0; 3]
+        };
+        for k in 1..=pieces as usize {
+            let t = k as f64 / pieces;
+            let centre = add(lerp3(from.pos, to.pos, t), scale(n, rise / 2.0));
+            for &q in across {
+                let at = add(centre, scale(side, q));
+                self.material.insert(Lump { at, r, group });
+            }
+        }
+    }
+}
+
+/// The lumps of fixture `f` (index `i`): its surface every
+/// [`FIXTURE_STEP_MM`], each lump standing for the patch round it. Groups
+/// count down from `u32::MAX`, apart from the layers.
+fn fixture_lumps(f: &Fixture, i: usize, m: &mut Material) {
+    let group = u32::MAX - 1 - i as u32;
+    let mut put = |at: [f64; 3], r: f64| m.add(Lump { at, r, group }, [0.0, 0.0, 1.0]);
+    let [x0, y0, z0] = f.at;
+    match f.shape {
+        FixtureShape::Box { size } => {
+            let half = [size[0] / 2.0, size[1] / 2.0, size[2]];
+            let lo = [x0 - half[0], y0 - half[1], z0];
+            let hi = [x0 + half[0], y0 + half[1], z0 + half[2]];
+            for axis in 0..3 {
+                let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+                let (na, nb) = (steps(hi[a] - lo[a]), steps(hi[b] - lo[b]));
+                let r =
+                    ((hi[a] - lo[a]) / na as f64 / 2.0).hypot((hi[b] - lo[b]) / nb as f64 / 2.0);
+                for face in [lo[axis], hi[axis]] {
+                    for ia in 0..=na {
+                        for ib in 0..=nb {
+                            let mut p = [0.0; 3];
+                            p[axis] = face;
+                            p[a] = lo[a] + (hi[a] - lo[a]) * ia as f64 / na as f64;
+                            p[b] = lo[b] + (hi[b] - lo[b]) * ib as f64 / nb as f64;
+                            put(p, r);
+                        }
+                    }
+                }
+            }
+        }
+        FixtureShape::Cylinder { diameter, length } => {
+            let rad = diameter / 2.0;
+            let around = steps(std::f64::consts::PI * diameter).max(8);
+            let up = steps(length);
+            let radial = steps(rad);
+            let arc = std::f64::consts::PI * diameter / around as f64;
+            let r = (arc / 2.0)
+                .hypot(length / up as f64 / 2.0)
+                .max((rad / radial as f64 / 2.0).hypot(arc / 2.0));
+            for k in 0..around {
+                let a = k as f64 / around as f64 * std::f64::consts::TAU;
+                let (s, c) = a.sin_cos();
+                for h in 0..=up {
+                    put(
+                        [
+                            x0 + rad * c,
+                            y0 + rad * s,
+                            z0 + length * h as f64 / up as f64,
+                        ],
+                        r,
+                    );
+                }
+                for q in 0..radial {
+                    let rr = rad * q as f64 / radial as f64;
+                    for z in [z0, z0 + length] {
+                        put([x0 + rr * c, y0 + rr * s, z], r);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// How many pieces of at most [`FIXTURE_STEP_MM`] a length takes.
+fn steps(len: f64) -> usize {
+    ((len / FIXTURE_STEP_MM).ceil() as usize).clamp(1, 10_000)
+}
+
+fn lerp(a: &Pose, b: &Pose, t: f64) -> Pose {
+    if a.up == b.up {
+        // The same beam: the same bits, which the cached bound is keyed by.
+        return Pose {
+            focus: lerp3(a.focus, b.focus, t),
+            up: a.up,
+        };
+    }
+    let up = lerp3(a.up, b.up, t);
+    let len = dot(up, up).sqrt();
+    Pose {
+        focus: lerp3(a.focus, b.focus, t),
+        up: if len > 1e-12 {
+            scale(up, 1.0 / len)
+        } else {
+            b.up
+        },
+    }
+}
+
+fn lerp3(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
+    [
+        a[0] + t * (b[0] - a[0]),
+        a[1] + t * (b[1] - a[1]),
+        a[2] + t * (b[2] - a[2]),
+    ]
+}
