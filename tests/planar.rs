@@ -615,3 +615,64 @@ fn a_staggered_seam_moves_by_its_shift_along_a_one_bead_wall() {
         assert!((p[0] - x).abs() < 1e-9, "layer {k}: {p:?}");
     }
 }
+
+/// The laser-on points of layer 1's path `k`: their (pitch, rise, layer
+/// height, speed).
+fn strips(p: &Program, k: usize) -> Vec<[f64; 4]> {
+    p.layers[0].paths[k]
+        .points
+        .iter()
+        .filter(|q| q.laser_on)
+        .map(|q| [q.pitch, q.rise, q.layer_height, q.speed].map(f64::from))
+        .collect()
+}
+
+/// Issue 33 item 2: two contours a bead apart with nothing between them
+/// (case planar/contours_bead_apart) are two walls one bead wide: each
+/// fills 3 mm (the old plan said the offset, 2.168 mm, and they rose
+/// 0.723 mm a 1 mm layer), and runs slower to rise its layer.
+#[test]
+fn two_contours_a_bead_apart_are_two_one_bead_walls() {
+    let p = build("tests/cases/planar/contours_bead_apart/input.lmd");
+    assert_eq!(p.layers.len(), 20);
+    for k in 0..2 {
+        for [pitch, rise, h, v] in strips(&p, k) {
+            assert!((pitch - 3.0).abs() < 1e-4, "path {k}: pitch {pitch}");
+            assert!(
+                (rise / h - 1.0).abs() < 1e-3,
+                "path {k}: rise {rise} of {h}"
+            );
+            assert!(v < 7.0 && v > 6.8, "path {k}: {v} mm/s");
+        }
+    }
+}
+
+/// Issue 33 item 2: a fin 4.5 mm wide with one contour of a 3 mm bead
+/// overlaps itself along its long sides (case
+/// errors/planar/fin_overlaps_itself, refused with a one-speed bead).
+/// Following the help — the bead measured over a speed range — builds:
+/// the long sides fill 0.75 + 1.5 mm and run faster, the ends fill the
+/// bead, and every move rises its layer.
+#[test]
+fn a_fin_that_overlaps_itself_builds_with_a_bead_over_a_speed_range() {
+    let src =
+        std::fs::read_to_string("tests/cases/errors/planar/fin_overlaps_itself/input.lmd").unwrap();
+    let d = diagnose(&src);
+    let help = d.iter().find(|d| d.code == "lmd::deposit");
+    let help = help.and_then(|d| d.help.clone()).expect("lmd::deposit");
+    assert!(help.contains("strips from 2.25 mm to 3 mm wide"), "{help}");
+    assert!(help.contains("over a speed range"), "{help}");
+    let fixed = src.replace(
+        "  model = measured(height = 1 mm, speed = 10 mm/s)",
+        "  speed = 6 mm/s .. 18 mm/s\n  model = linear(slope = -0.1 mm / (1 mm/s), intercept = 2 mm)",
+    );
+    let p = build_source(&fixed);
+    let moves = strips(&p, 0);
+    let sides = moves.iter().filter(|m| (m[0] - 2.25).abs() < 1e-3).count();
+    let ends = moves.iter().filter(|m| (m[0] - 3.0).abs() < 1e-3).count();
+    assert_eq!((sides, ends, moves.len()), (2, 2, 4), "{moves:?}");
+    for [pitch, rise, h, v] in moves {
+        assert!((rise / h - 1.0).abs() < 1e-3, "{pitch}: rise {rise} of {h}");
+        assert!(v > 10.0 || pitch > 2.9, "{pitch}: {v} mm/s");
+    }
+}
