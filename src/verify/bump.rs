@@ -218,6 +218,51 @@ mod tests {
         assert!(bumps(&plate(&format!("{KR} }}"))).is_empty());
     }
 
+    /// The figure after `before` in `text`.
+    fn number_after(text: &str, before: &str) -> f64 {
+        let at = text.find(before).map(|i| i + before.len());
+        let s: String = text[at.unwrap_or_else(|| panic!("no `{before}` in {text}"))..]
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || *c == '.')
+            .collect();
+        s.parse().unwrap()
+    }
+
+    /// The acceleration the help asks for.
+    fn asked(src: &str) -> f64 {
+        let c = compile(src, &mut ());
+        let d = c.diagnostics.iter().find(|d| d.code == Code::DepositBump);
+        let help = d.and_then(|d| d.help.clone()).expect("lmd::deposit-bump");
+        number_after(&help, "an acceleration of at least ")
+    }
+
+    #[test]
+    fn the_acceleration_the_help_asks_for_passes() {
+        // Ramps at the runs' ends alone: the closing line's 6.39 mm/s needs
+        // 6.39²/(2·0.03·2.2) = 309.4 mm/s², asked as 310 (it was rounded
+        // to 309, which fails).
+        let ends = |a: &str| plate(&format!("{KR}  acceleration = {a} mm/s^2 }}"));
+        let a = asked(&ends("100"));
+        assert_eq!(a, 310.0);
+        assert!(bumps(&ends("310")).is_empty());
+        assert_eq!(bumps(&ends("309")).len(), 1);
+        // With no blending the contour's corners stop the nozzle: two ramps,
+        // 6.39²/(0.03·2.2) = 618.7 mm/s² (the help asked for the one ramp's
+        // 309, where the corners still failed; case
+        // errors/machines/stopped_corners).
+        let stops = |a: &str| {
+            plate(&format!(
+                "{KR}  acceleration = {a} mm/s^2  blending = 0 mm }}"
+            ))
+        };
+        let a = asked(&stops("100"));
+        assert_eq!(a, 619.0);
+        assert!(bumps(&stops("619")).is_empty());
+        assert_eq!(bumps(&stops("309")).len(), 1);
+        // The corners at 6 mm/s alone need 545.5 mm/s².
+        assert_eq!(bumps(&stops("545")).len(), 1);
+    }
+
     #[test]
     fn a_cnc_whose_laser_lines_stop_it_gains_nothing_from_leads() {
         let cnc = "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s  acceleration = 100 mm/s^2  blending = 0.5 mm  ramp = lead";
