@@ -335,7 +335,7 @@ codes! {
     DepositBump = "deposit-bump", Machines,
         "where a machine with a declared `acceleration` slows down — a run of deposits starting from rest or stopping, a corner its blending cannot round at speed — the powder keeps flowing and the bead grows as 1/v: over a bead width it rises above its layer by more than `rise_tolerance`; says how many places, the worst, by how much and over what length, and the lead, speed, acceleration or blending that would keep it";
     PowderRate = "powder-rate", Machines,
-        "a powder feed the feeder's analog rate output cannot write: beyond its `full_scale`, or changing inside a path where the rate cannot follow";
+        "a powder feed the feeder's analog rate output cannot write: beyond its `full_scale`, or changing inside a path where the rate cannot follow; or a style's own powder feed on a machine whose feeder has no rate output (its tracks would get the rate the feeder is set to)";
     Reach = "reach", Machines,
         "a robot's move its declared `arm` cannot reach from where `base` puts the part (or only on the far side of a singularity): says where, how far the wrist centre would have to be from A2 against what the arm reaches (\"at least\" where the part's points were found beyond reach before any pose was solved), and a base, in front of the robot and above its foot, from where the arm reaches the part, or that none can";
     JointLimit = "joint-limit", Machines,
