@@ -621,8 +621,9 @@ pub struct Point {
     pub tangent: [f32; 3],
     /// Local height of this layer here, mm.
     pub layer_height: f32,
-    /// Path speed from this point to the next (the nozzle's speed along the
-    /// path), mm/s. The bead model holds for its component across the normal.
+    /// Path speed from this point to the next (the nozzle's focus's speed
+    /// along the path), mm/s. The bead model holds for the deposit point's
+    /// speed across the normal ([`Point::speed_across`]).
     pub speed: f32,
     /// Laser power, W.
     pub power: f32,
@@ -1782,32 +1783,35 @@ impl MachineOrigin {
 }
 
 impl Point {
-    /// The speed the bead model holds for on the move to `next`: the
-    /// component of this point's speed across its normal,
-    /// `speed·|Δf − (Δf·n)n| / |Δf|` for the nozzle's move `Δf` (focus to
-    /// focus). A bead map is measured on flat tracks, and what sets a
-    /// layer's thickness is the metal laid per length across the build
-    /// direction: a path that climbs along the normal (a variable layer
-    /// following the planned top of the one below; a ring's nozzle climbing
-    /// to the next segment's defocus) runs `√(1 + s²)` faster than the
-    /// ground it covers. For a move in the layer's plane at one defocus —
-    /// every planar and normal-sliced path — this is the speed itself; so it
-    /// is for a path's last point, which has no move.
+    /// The speed the bead model holds for on the move to `next`: the speed
+    /// at which the **deposit point** moves over the ground it covers,
+    /// `speed·ground / |Δf|`, where `speed` is the nozzle's (the focus's:
+    /// what the program writes), `Δf` the focus's move and `ground` the
+    /// deposit points' move across the normal ([`Point::ground_to`]). The
+    /// metal lands at the deposit point: where the nozzle is tilted and
+    /// defocused, the focus runs on another curve than the deposit (a cone
+    /// with the nozzle along its wall: the focus on a circle larger than
+    /// the deposit's), and the deposit covers its own ground in the time
+    /// the focus takes for its move. A bead map is measured on flat
+    /// tracks, and what sets a layer's thickness is the metal laid per
+    /// length across the build direction: a path that climbs along the
+    /// normal (a variable layer following the planned top of the one
+    /// below; a ring's nozzle climbing to the next segment's defocus) runs
+    /// `√(1 + s²)` faster than the ground it covers. For a move in the
+    /// layer's plane at one defocus and one normal — every planar path —
+    /// this is the speed itself; so it is for a path's last point, which
+    /// has no move.
     #[inline]
     pub fn speed_across(&self, next: Option<&Point>) -> f64 {
         let v = self.speed as f64;
         let Some(q) = next else { return v };
         let (a, b) = (self.focus(), q.focus());
         let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let n = self.normal.map(|c| c as f64);
         let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-        // Along the normal's length squared: the rule for unit normals checks it.
-        let n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-        if !(len2 > 0.0 && n2 > 0.0) {
+        if len2.is_nan() || len2 <= 0.0 {
             return v;
         }
-        v * ((len2 - along * along / n2).max(0.0) / len2).sqrt()
+        v * self.ground_to(next) / len2.sqrt()
     }
 
     /// How much the layer rises on the move to `next` by the deposit model
@@ -1910,6 +1914,32 @@ mod tests {
         t.normal = [s, 0.0, s];
         let u = point([-1.0, 2.0, 1.0], 6.0);
         assert!((t.speed_across(Some(&u)) - 6.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn a_tilted_defocused_nozzle_lays_at_the_deposit_points_speed() {
+        // A cone's top layer with the nozzle along its wall (26.6° in) and
+        // the focus 4 mm below: the deposit circles at 20.47 mm, the focus
+        // at 20.47 + 4·sin 26.6° = 22.26 mm. The program runs the focus at
+        // 5 mm/s; the deposit covers its smaller circle in the same time.
+        let (r, tilt, step) = (20.47_f64, 26.565_f64.to_radians(), 0.01_f64);
+        let at = |th: f64| {
+            let mut p = point([r * th.cos(), r * th.sin(), 0.0], 5.0);
+            // The build direction leans in, toward the axis.
+            let n = [-tilt.sin() * th.cos(), -tilt.sin() * th.sin(), tilt.cos()];
+            p.normal = n.map(|c| c as f32);
+            p.defocus = -4.0;
+            p
+        };
+        let (a, b) = (at(0.0), at(step));
+        let focus_r = r + 4.0 * tilt.sin();
+        assert!((focus_r - 22.26).abs() < 0.01);
+        let want = 5.0 * r / focus_r;
+        assert!(
+            (a.speed_across(Some(&b)) - want).abs() < 1e-4,
+            "{} vs {want}",
+            a.speed_across(Some(&b))
+        );
     }
 }
 

@@ -491,6 +491,25 @@ impl Inertia {
 /// land a rounding outside it.
 pub const RANGE_SLACK: f64 = 1e-6;
 
+/// How far (relative) a quotient may lie past a whole number and still be
+/// that many: a mesh's coordinates are `f32` (about 6·10⁻⁸ relative each),
+/// and a unit conversion and a turn add roundings of their own, so a part
+/// drawn 15 mm tall in inches reads back as 15.0000019 mm. A millionth of
+/// the count is a nanometre a layer on millimetre layers: no machine builds
+/// it, and a whole layer (of a millimetre of metal) for it is a defect.
+pub const COUNT_SLACK: f64 = 1e-6;
+
+/// The whole number of pieces of `q` units (layers of a height): `⌈q⌉`,
+/// except that `q` within [`COUNT_SLACK`] of a whole number is that number.
+pub fn whole_count(q: f64) -> f64 {
+    let r = q.round();
+    if (q - r).abs() <= COUNT_SLACK * r.abs().max(1.0) {
+        r
+    } else {
+        q.ceil()
+    }
+}
+
 /// Whether `x` lies in `lo ..= hi`, allowing [`RANGE_SLACK`] of each end.
 pub fn in_range(x: f64, [lo, hi]: [f64; 2]) -> bool {
     x >= lo - RANGE_SLACK * lo.abs() && x <= hi + RANGE_SLACK * hi.abs()
@@ -560,6 +579,19 @@ pub fn short(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn float_noise_is_no_extra_layer() {
+        // 15 mm drawn in inches, stored as f32: 0.59055126 in.
+        let top = f64::from(0.590_551_26_f32) * 25.4;
+        assert!(top > 15.0 && top < 15.00001, "{top}");
+        assert_eq!(whole_count(top / 1.0), 15.0);
+        assert_eq!(whole_count(8.4 / 1.2), 7.0);
+        // A real remainder is a layer, however thin.
+        assert_eq!(whole_count(15.001), 16.0);
+        assert_eq!(whole_count(14.2), 15.0);
+        assert_eq!(whole_count(0.3), 1.0);
+    }
 
     #[test]
     fn short_never_prints_a_value_as_another() {

@@ -9,7 +9,7 @@ use proptest::prelude::*;
 /// machines (and two sections it does not use, a place for their mistakes).
 const VALID: &str = r#"part plate
 
-let w = 40 mm
+let w = 39.6 mm  // 19 offsets of 2.085 mm: the raster meets the contour an offset away
 
 section disc = circle(diameter = 30 mm)
 section ring = polygon(sides = 6, circumradius = 10 mm)
@@ -107,8 +107,8 @@ const MISTAKES: &[Mistake] = &[
         says: "`paths` must be one of",
     },
     Mistake {
-        find: "let w = 40 mm\n",
-        replace: "let w = 40 mm\nlet w = 50 mm\n",
+        find: "let w = 39.6 mm  // 19 offsets of 2.085 mm: the raster meets the contour an offset away\n",
+        replace: "let w = 39.6 mm  // 19 offsets of 2.085 mm: the raster meets the contour an offset away\nlet w = 50 mm\n",
         code: "lmd::duplicate-name",
         says: "`w` is declared twice",
     },

@@ -302,19 +302,19 @@ one_line_tests! {
         "extrude block { profile = rectangle(width = 20 mm, height = 10 mm)  size = outer  bead = trak }";
     unknown_unit: UnknownUnit, PLATE, "let p = 1.5 KW";
     argument: Argument, PLATE,
-        "extrude block { profile = rectangle(width = 20 mm, height = 10 mm, depth = 3 mm)  size = outer  bead = track }";
+        "extrude block { profile = rectangle(width = 20 mm, height = 10.2 mm, depth = 3 mm)  size = outer  bead = track }";
     duplicate_name: DuplicateName, PLATE,
         "bead track { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }
 bead track { width = 2.4 mm  model = measured(height = 0.7 mm, speed = 6 mm/s) }";
     duplicate_field: DuplicateField, PLATE,
         "bead track { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s)  width = 2 mm }";
     duplicate_argument: DuplicateField, PLATE,
-        "extrude block { profile = rectangle(width = 20 mm, height = 10 mm, width = 30 mm)  size = outer  bead = track }";
+        "extrude block { profile = rectangle(width = 20 mm, height = 10.2 mm, width = 30 mm)  size = outer  bead = track }";
     duplicate_statement: DuplicateStatement, PLATE,
         "process { speed = 6 mm/s  power = 1500 W  powder = 8 g/min  defocus = -3 mm }
 process { speed = 6 mm/s  power = 1600 W  powder = 8 g/min  defocus = -3 mm }";
     second_solid: SecondSolid, PLATE,
-        "extrude block { profile = rectangle(width = 20 mm, height = 10 mm)  size = outer  bead = track }
+        "extrude block { profile = rectangle(width = 20 mm, height = 10.2 mm)  size = outer  bead = track }
 loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = line(length = 20 mm)  wall = track }";
     conflicting_fields: ConflictingFields, PLATE,
         "extrude block { profile = circle(diameter = 10 mm, radius = 5 mm)  size = outer  bead = track }";
@@ -505,7 +505,7 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
         first_point(p).tangent = [2.0, 0.0, 0.0];
     });
     stacking: Stacking, PLATE,
-        "extrude block { profile = place(rectangle(width = 20 mm, height = 10 mm), at = [0 mm, layer * 5 mm], turn = 0 deg)  size = outer  bead = track }";
+        "extrude block { profile = place(rectangle(width = 20 mm, height = 10.2 mm), at = [0 mm, layer * 5 mm], turn = 0 deg)  size = outer  bead = track }";
     point_height: PointHeight, PLATE, ir("the first deposit's layer height is 5 mm", |p| {
         first_point(p).layer_height = 5.0;
     });
@@ -547,7 +547,7 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
     // points, and no base in front of the robot, above its foot, reaches
     // both ends.
     reach_no_base: Reach, PLATE.without(&["machine mill"]),
-        "extrude block { profile = rectangle(width = 3000 mm, height = 4 mm)  size = outer  bead = track }
+        "extrude block { profile = rectangle(width = 3000 mm, height = 5.4 mm)  size = outer  bead = track }
 machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm, z = 400 mm) }";
     // A5 of a KR 60 HA turns ±119°.
     joint_limit: JointLimit, DUCT,
@@ -636,7 +636,7 @@ slicing planar { layers = 2  offset = 1.6 mm  infill = raster(angle = 90 deg) }"
     lift_mismatch: LiftMismatch, PLATE,
         "slicing planar { layers = 2  layer_height = 0.674 mm  offset = 1.6 mm  infill = raster(angle = 0 deg) }";
     height_rounded: HeightRounded, PLATE,
-        "extrude block { profile = rectangle(width = 20 mm, height = 10 mm)  size = outer  bead = track  height = 1 mm }
+        "extrude block { profile = rectangle(width = 20 mm, height = 10.2 mm)  size = outer  bead = track  height = 1 mm }
 slicing planar { offset = 1.6 mm  infill = raster(angle = 0 deg) }";
     thin_gap: ThinGap, PLATE,
         "extrude block { profile = outline([0 mm, 0 mm], [30 mm, 0 mm], [30 mm, 9.9 mm], [31.8 mm, 9.9 mm], [31.8 mm, 10.5 mm], [30 mm, 10.5 mm], [30 mm, 20 mm], [0 mm, 20 mm])  bead = track }";

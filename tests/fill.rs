@@ -24,6 +24,7 @@ fn raster(angle: f64, d: f64, extend: f64, pattern: Pattern) -> FillSpec {
             pattern,
             extend,
             link: Linking::None,
+            closing: f64::INFINITY,
         }),
         seam: Seam::Lowest,
     }
@@ -288,6 +289,7 @@ fn contours_lie_at_their_offsets_and_come_first() {
             pattern: Pattern::Serpentine,
             extend: 1.6,
             link: Linking::None,
+            closing: f64::INFINITY,
         }),
         seam: Seam::Lowest,
     };
@@ -522,6 +524,7 @@ fn output_is_deterministic() {
             pattern: Pattern::Serpentine,
             extend: 0.9,
             link: Linking::None,
+            closing: f64::INFINITY,
         }),
         seam: Seam::Lowest,
     };
@@ -560,7 +563,7 @@ proptest! {
             inset,
             contours,
             offset: d,
-            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::Serpentine, extend, link: Linking::None }),
+            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::Serpentine, extend, link: Linking::None, closing: f64::INFINITY }),
             seam: Seam::Lowest,
         };
         let tracks = match fill(&p, &spec, chord) {
@@ -643,7 +646,7 @@ proptest! {
             inset,
             contours,
             offset: d,
-            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::OneWay, extend, link: Linking::None }),
+            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::OneWay, extend, link: Linking::None, closing: f64::INFINITY }),
             seam: Seam::Lowest,
         };
         let tracks = match fill(&p, &spec, 0.01) {
@@ -694,7 +697,7 @@ proptest! {
             inset,
             contours,
             offset: d,
-            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::Serpentine, extend: d, link: Linking::None }),
+            raster: Some(RasterSpec { angle_deg: angle, offset: d, pattern: Pattern::Serpentine, extend: d, link: Linking::None, closing: f64::INFINITY }),
             seam: Seam::Lowest,
         };
         let tracks = match fill(&p, &spec, 0.01) {

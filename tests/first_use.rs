@@ -102,8 +102,11 @@ fn the_io_help_speaks_the_dialects_language() {
     }
 }
 
+/// Issue 33 item 3: a style's powder is programmed (the feeder's rate
+/// output) or refused where the machine cannot program it (it was a warning,
+/// "recorded, not programmed", and the plan credited the style's feed).
 #[test]
-fn a_styles_powder_warns_only_where_a_machine_cannot_program_it() {
+fn a_styles_powder_is_refused_where_a_machine_cannot_program_it() {
     let src = std::fs::read_to_string("examples/flange.lmd").unwrap();
     assert!(
         src.contains("rate_output"),
@@ -115,13 +118,13 @@ fn a_styles_powder_warns_only_where_a_machine_cannot_program_it() {
     let powder = |src: &str| -> Vec<String> {
         codes(src)
             .into_iter()
-            .filter(|(c, m, _)| *c == Code::Unused && m.contains("powder"))
+            .filter(|(c, _, _)| *c == Code::PowderRate)
             .map(|(_, m, _)| m)
             .collect()
     };
     // Both machines' feeders have a rate output: both program it.
     assert_eq!(powder(&styled), Vec::<String>::new());
-    // Without the robot's, the warning names the robot alone.
+    // Without the robot's, the robot alone refuses it.
     let robot_plain = styled.replacen(
         "    rate_output = 2  // $ANOUT[2]\n    full_scale = 40 g/min\n",
         "",
@@ -131,20 +134,37 @@ fn a_styles_powder_warns_only_where_a_machine_cannot_program_it() {
     let w = powder(&robot_plain);
     assert_eq!(w.len(), 1, "{w:?}");
     assert!(
-        w[0].contains("not programmed on `kr30`") && !w[0].contains("mill3"),
+        w[0].contains("style `slow_edge` feeds 10 g/min, which machine `kr30` cannot program"),
         "{w:?}"
     );
-    // Without either, the old warning: recorded, not programmed.
-    let plain = robot_plain
-        .replacen("    rate_output = 0", "    // rate_output = 0", 1)
-        .replacen(
-            "    full_scale = 40 g/min  //",
-            "    // full_scale = 40 g/min  //",
-            1,
-        );
-    let w = powder(&plain);
+    let c = lmdc::pipeline::compile(&robot_plain, &mut ());
+    assert!(c.program.is_none(), "refused");
+}
+
+/// Case errors/styles/style_powder_unfed, refused: following its help — a
+/// rate output on the feeder — builds, and the plan sets the rim's feed
+/// before its run and waits the powder's arrival there.
+#[test]
+fn following_the_unfed_powder_help_builds() {
+    let src =
+        std::fs::read_to_string("tests/cases/errors/styles/style_powder_unfed/input.lmd").unwrap();
+    assert!(lmdc::pipeline::compile(&src, &mut ()).program.is_none());
+    let fixed = src.replacen(
+        "    arrival = 2.5 s\n",
+        "    arrival = 2.5 s\n    rate_output = 2\n    full_scale = 40 g/min\n",
+        1,
+    );
+    let c = lmdc::pipeline::compile(&fixed, &mut ());
     assert!(
-        w.len() == 1 && w[0].contains("recorded, not programmed"),
-        "{w:?}"
+        c.diagnostics.iter().all(|d| d.code != Code::PowderRate),
+        "{:?}",
+        c.diagnostics
     );
+    let ir = c.program.expect("builds").into_ir();
+    let fed: Vec<f32> = ir.layers[0]
+        .paths
+        .iter()
+        .map(|p| p.points[0].powder)
+        .collect();
+    assert!(fed.contains(&9.6) && fed.contains(&8.0), "{fed:?}");
 }

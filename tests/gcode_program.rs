@@ -194,15 +194,21 @@ fn modal_words_in_the_planar_examples() {
             let tracks: usize = p.ir().layers.iter().map(|l| l.paths.len()).sum();
             assert_eq!(starts, tracks, "{file}: one laser start a track");
             assert_eq!(deposits, ir_deposits(p.ir()), "{file}");
-            // Speed changes between consecutive tracks are the only F changes
-            // after the first F (the chord's styles keep the process speed:
-            // a style's own speed would change the bead the model lays).
-            let speeds: Vec<f32> = p
+            // Speed changes between consecutive feed moves — each track's
+            // approach at its first speed, then its deposits — are the only
+            // F changes after the first F (a track's speed follows the
+            // strip it fills: a contour a bead from the raster runs slower;
+            // F is written to 0.1 mm/min).
+            let speeds: Vec<i64> = p
                 .ir()
                 .layers
                 .iter()
                 .flat_map(|l| &l.paths)
-                .map(|path| path.points[0].speed)
+                .flat_map(|path| {
+                    let deposits = path.points.iter().filter(|q| q.laser_on);
+                    std::iter::once(&path.points[0]).chain(deposits)
+                })
+                .map(|q| (f64::from(q.speed) * 600.0).round() as i64)
                 .collect();
             let changes = speeds.windows(2).filter(|w| w[0] != w[1]).count();
             let f_words = body

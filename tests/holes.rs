@@ -38,6 +38,7 @@ fn spec(w: f64, d: f64, contours: usize, angle: f64, link: Linking) -> FillSpec 
             pattern: Pattern::Serpentine,
             extend: d,
             link,
+            closing: f64::INFINITY,
         }),
         seam: Seam::Lowest,
     }

@@ -71,7 +71,8 @@ profile p = region(
 )
 bead b {{
   width = 3 mm
-  model = measured(height = 1 mm, speed = 10 mm/s)
+  speed = 4 mm/s .. 18 mm/s
+  model = linear(slope = -0.1 mm / (1 mm/s), intercept = 2 mm)
 }}
 extrude e {{
   profile = p

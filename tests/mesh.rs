@@ -64,10 +64,17 @@ fn box_with_hole(c: [f64; 2], a: f64, r: f64, h: f64, n: usize) -> Vec<Triangle>
 fn source(profile: &str) -> String {
     include_str!("codes/plate.lmd")
         .replace(
-            "profile = rectangle(width = 20 mm, height = 10 mm)",
+            "profile = rectangle(width = 20 mm, height = 10.2 mm)  // 5 offsets between the outermost tracks",
             profile,
         )
         .replace("  layers = 2\n", "")
+        // A mesh's sections are no whole number of offsets wide: a bead over
+        // a speed range lays each track's strip (0.7 mm at 6 mm/s, as the
+        // base's).
+        .replace(
+            "  model = measured(height = 0.7 mm, speed = 6 mm/s)",
+            "  speed = 2 mm/s .. 12 mm/s\n  model = linear(slope = -0.1 mm / (1 mm/s), intercept = 1.3 mm)",
+        )
 }
 
 /// Compiles `src` with `files` as the files beside it.

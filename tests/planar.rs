@@ -144,13 +144,20 @@ fn chord_points_carry_their_styles_values() {
             let style = path.points[0].style;
             for pt in &path.points {
                 assert_eq!(pt.style, style, "one style a track");
-                let (power, speed) = match style {
-                    0 => (2000.0, 10.0),
-                    1 => (2300.0, 10.0),
-                    2 => (1700.0, 10.0),
+                let power = match style {
+                    0 => 2000.0,
+                    1 => 2300.0,
+                    2 => 1700.0,
                     s => panic!("unknown style {s}"),
                 };
-                assert_eq!((pt.power, pt.speed, pt.powder), (power, speed, 12.0));
+                assert_eq!((pt.power, pt.powder), (power, 12.0));
+                // The styles keep the process speed where a track fills the
+                // offset; elsewhere its speed lays the layer over its strip.
+                if (pt.pitch - 2.0845803).abs() < 1e-5 {
+                    assert_eq!(pt.speed, 10.0);
+                } else if pt.laser_on {
+                    assert!((pt.rise / pt.layer_height - 1.0).abs() < 1e-3, "{pt:?}");
+                }
             }
             // The outer contour is `edge` on every layer, and only it.
             assert_eq!(path.kind == PathKind::Contour, style == 1);
@@ -575,10 +582,10 @@ fn wall_seams(seam: &str, layers: usize) -> Vec<[f64; 2]> {
 
 #[test]
 fn a_staggered_seam_moves_by_its_shift_along_a_one_bead_wall() {
-    // The bead (2.2 mm, `size = outer`) runs on the 17.8 × 7.8 mm rectangle
+    // The bead (2.2 mm, `size = outer`) runs on the 17.8 × 8 mm rectangle
     // half a bead inside the plate, counter-clockwise from its lowest, then
     // leftmost, corner; layer k starts 7·k mm along it.
-    let (a, b) = (17.8, 7.8);
+    let (a, b) = (17.8, 8.0);
     let at = |d: f64| {
         let d = d.rem_euclid(2.0 * (a + b));
         let (x0, y0) = (-a / 2.0, -b / 2.0);
@@ -606,5 +613,66 @@ fn a_staggered_seam_moves_by_its_shift_along_a_one_bead_wall() {
     for (k, p) in rot.iter().enumerate() {
         let x = if k % 2 == 0 { -a / 2.0 } else { a / 2.0 };
         assert!((p[0] - x).abs() < 1e-9, "layer {k}: {p:?}");
+    }
+}
+
+/// The laser-on points of layer 1's path `k`: their (pitch, rise, layer
+/// height, speed).
+fn strips(p: &Program, k: usize) -> Vec<[f64; 4]> {
+    p.layers[0].paths[k]
+        .points
+        .iter()
+        .filter(|q| q.laser_on)
+        .map(|q| [q.pitch, q.rise, q.layer_height, q.speed].map(f64::from))
+        .collect()
+}
+
+/// Issue 33 item 2: two contours a bead apart with nothing between them
+/// (case planar/contours_bead_apart) are two walls one bead wide: each
+/// fills 3 mm (the old plan said the offset, 2.168 mm, and they rose
+/// 0.723 mm a 1 mm layer), and runs slower to rise its layer.
+#[test]
+fn two_contours_a_bead_apart_are_two_one_bead_walls() {
+    let p = build("tests/cases/planar/contours_bead_apart/input.lmd");
+    assert_eq!(p.layers.len(), 20);
+    for k in 0..2 {
+        for [pitch, rise, h, v] in strips(&p, k) {
+            assert!((pitch - 3.0).abs() < 1e-4, "path {k}: pitch {pitch}");
+            assert!(
+                (rise / h - 1.0).abs() < 1e-3,
+                "path {k}: rise {rise} of {h}"
+            );
+            assert!(v < 7.0 && v > 6.8, "path {k}: {v} mm/s");
+        }
+    }
+}
+
+/// Issue 33 item 2: a fin 4.5 mm wide with one contour of a 3 mm bead
+/// overlaps itself along its long sides (case
+/// errors/planar/fin_overlaps_itself, refused with a one-speed bead).
+/// Following the help — the bead measured over a speed range — builds:
+/// the long sides fill 0.75 + 1.5 mm and run faster, the ends fill the
+/// bead, and every move rises its layer.
+#[test]
+fn a_fin_that_overlaps_itself_builds_with_a_bead_over_a_speed_range() {
+    let src =
+        std::fs::read_to_string("tests/cases/errors/planar/fin_overlaps_itself/input.lmd").unwrap();
+    let d = diagnose(&src);
+    let help = d.iter().find(|d| d.code == "lmd::deposit");
+    let help = help.and_then(|d| d.help.clone()).expect("lmd::deposit");
+    assert!(help.contains("strips from 2.25 mm to 3 mm wide"), "{help}");
+    assert!(help.contains("over a speed range"), "{help}");
+    let fixed = src.replace(
+        "  model = measured(height = 1 mm, speed = 10 mm/s)",
+        "  speed = 6 mm/s .. 18 mm/s\n  model = linear(slope = -0.1 mm / (1 mm/s), intercept = 2 mm)",
+    );
+    let p = build_source(&fixed);
+    let moves = strips(&p, 0);
+    let sides = moves.iter().filter(|m| (m[0] - 2.25).abs() < 1e-3).count();
+    let ends = moves.iter().filter(|m| (m[0] - 3.0).abs() < 1e-3).count();
+    assert_eq!((sides, ends, moves.len()), (2, 2, 4), "{moves:?}");
+    for [pitch, rise, h, v] in moves {
+        assert!((rise / h - 1.0).abs() < 1e-3, "{pitch}: rise {rise} of {h}");
+        assert!(v > 10.0 || pitch > 2.9, "{pitch}: {v} mm/s");
     }
 }

@@ -254,7 +254,7 @@ codes! {
     BendTooTight = "bend-too-tight", Feasibility,
         "normal slicing of this bend needs layers whose outer/inner height ratio exceeds what the bead model can lay; names the radius, speed range and section size that would work";
     FillGap = "fill-gap", Feasibility,
-        "planar tracks further apart than the bead is wide would leave gaps (names the flat-top offset `A/h`); or a raster fill leaves a spot more than a bead width from every track — a part of the profile narrower than the offset that no line crosses (names the layer, the point and its distance)";
+        "planar tracks further apart than the bead is wide would leave gaps (names the flat-top offset `A/h`); two neighbouring tracks that run parallel farther apart than the bead (names the layer, where, how far apart and the strip left); or a raster fill leaves a spot more than a bead width from every track — a part of the profile narrower than the offset that no line crosses (names the layer, the point and its distance)";
     Overlap = "overlap", Feasibility,
         "planar tracks closer than 30 % of the bead width: the layer would pile up instead of levelling (as a warning: a contour pass that is a sliver, its sides closer than 30 % of the bead width)";
     SelfIntersecting = "self-intersecting", Feasibility,
@@ -337,7 +337,7 @@ codes! {
     DepositBump = "deposit-bump", Machines,
         "where a machine with a declared `acceleration` slows down — a run of deposits starting from rest or stopping, a corner its blending cannot round at speed — the powder keeps flowing and the bead grows as 1/v: over a bead width it rises above its layer by more than `rise_tolerance`; says how many places, the worst, by how much and over what length, and the lead, speed, acceleration or blending that would keep it";
     PowderRate = "powder-rate", Machines,
-        "a powder feed the feeder's analog rate output cannot write: beyond its `full_scale`, or changing inside a path where the rate cannot follow";
+        "a powder feed the feeder's analog rate output cannot write: beyond its `full_scale`, or changing inside a path where the rate cannot follow; or a style's own powder feed on a machine whose feeder has no rate output (its tracks would get the rate the feeder is set to)";
     Reach = "reach", Machines,
         "a robot's move its declared `arm` cannot reach from where `base` puts the part (or only on the far side of a singularity): says where, how far the wrist centre would have to be from A2 against what the arm reaches (\"at least\" where the part's points were found beyond reach before any pose was solved), and a base, in front of the robot and above its foot, from where the arm reaches the part, or that none can";
     JointLimit = "joint-limit", Machines,

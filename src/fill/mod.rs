@@ -28,8 +28,9 @@
 //!   the region's extreme point, and over a circular edge of radius `R` line
 //!   `n` meets the circle `sqrt(R² − (R − n·d)²)` from the circle's centre
 //!   line — seed 001's `X_n`. When more than half an offset
-//!   ([`CLOSING`]) is left between the last such line and `s_max`, a closing
-//!   line sits on `s_max`, so the far edge is not short by up to an offset.
+//!   ([`CLOSING`]; less where [`RasterSpec::closing`] says) is left between
+//!   the last such line and `s_max`, a closing line sits on `s_max`, so the
+//!   far edge is not short by up to an offset.
 //! - **Clipping** is exact, against the region's lines and true arcs (not a
 //!   flattened polygon), and the region is closed: a line lying along a
 //!   straight edge yields that edge, a line touching an arc yields the touch
@@ -91,6 +92,7 @@ mod error;
 mod extend;
 mod inside;
 pub mod link;
+pub mod pitch;
 mod raster;
 
 pub use coverage::{gap, gap_in, Gap, MAX_SAMPLES};
@@ -174,6 +176,11 @@ pub struct RasterSpec {
     /// Whether neighbouring tracks are linked (serpentine only: one-way
     /// tracks are never linked).
     pub link: Linking,
+    /// More than this left (mm) between the last whole-offset line and the
+    /// region's far extreme gets a closing line on the extreme: at most
+    /// [`CLOSING`] offsets; less where a contour runs an offset beyond the
+    /// region, so that no line lies farther than a bead from it.
+    pub closing: f64,
 }
 
 /// How a layer is filled.

@@ -43,7 +43,7 @@ pub(super) fn tracks(
     let Some(extent) = pieces.extent() else {
         return Ok(Vec::new());
     };
-    let line_s = line_positions(extent, spec.offset)?;
+    let line_s = line_positions(extent, spec.offset, spec.closing)?;
     let (lines, ends) = clip_lines(&pieces, &line_s, extent.0, spec.offset, cx, points_left)?;
 
     let mut grown = extend_kept(&lines, spec.extend);
@@ -93,8 +93,10 @@ pub(super) fn tracks(
     Ok(out)
 }
 
-/// Each raster line's `s` over the extent `(s_min, s_max)`, `d` apart.
-fn line_positions((s_min, s_max): (f64, f64), d: f64) -> Result<Vec<f64>, FillError> {
+/// Each raster line's `s` over the extent `(s_min, s_max)`, `d` apart,
+/// with a closing line on `s_max` where more than `closing` (at most
+/// [`CLOSING`] offsets) is left.
+fn line_positions((s_min, s_max): (f64, f64), d: f64, closing: f64) -> Result<Vec<f64>, FillError> {
     let count = ((s_max - s_min) / d + LINE_SLACK).floor() + 1.0;
     if count > MAX_LINES as f64 {
         return Err(FillError::TooManyLines(Count {
@@ -107,7 +109,7 @@ fn line_positions((s_min, s_max): (f64, f64), d: f64) -> Result<Vec<f64>, FillEr
     // When more than half an offset is left beyond the last whole-offset
     // line, one more line on the far extreme keeps that edge from coming
     // up short by up to an offset (the last two lines are then closer).
-    let closing = s_max - (s_min + (count - 1) as f64 * d) > CLOSING * d;
+    let closing = s_max - (s_min + (count - 1) as f64 * d) > closing.min(CLOSING * d);
     let count = count + usize::from(closing);
     // The last may sit a hair past `s_max`, so clamp it back onto the
     // extreme it is meant to touch.

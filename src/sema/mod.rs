@@ -101,7 +101,6 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
     let machines = machines::read(&mut env, &st, diags);
     let fixtures = fixture::read(&mut env, &st, diags);
     let styles = style::read(&mut env, st.get("style"), diags);
-    style::unprogrammed_powder(&styles, &machines, diags);
     let inheritance = style::inheritance_statement(&mut env, &st, diags);
 
     let solid_kind = solid.kind;

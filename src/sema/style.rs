@@ -33,8 +33,6 @@ pub struct Written {
     style: Style,
     power_span: Option<Span>,
     speed_span: Option<Span>,
-    /// Where `powder` is written.
-    powder_span: Option<Span>,
     /// Whether every field read without error; incomplete styles are still
     /// checked against the bead and the laser, so all errors show at once.
     complete: bool,
@@ -165,7 +163,6 @@ fn style<'a>(
         },
         power_span: power.map(|p| p.1),
         speed_span: speed.map(|v| v.1),
-        powder_span: powder.map(|m| m.1),
         complete,
     };
     (written, id != Some(None))
@@ -491,31 +488,4 @@ fn values_fit(
         }
     }
     ok
-}
-
-/// Warns of each style's `powder` that some machine does not program: a
-/// machine programs a track's feed only through its feeder's rate output
-/// (`powder { rate_output … }`, which the plan switches between tracks).
-pub fn unprogrammed_powder(
-    styles: &[Written],
-    machines: &[(crate::ir::Machine, crate::ir::MachineOrigin)],
-    diags: &mut Diagnostics,
-) {
-    let without: Vec<&str> = machines
-        .iter()
-        .filter(|(m, _)| m.cell().powder.is_none_or(|p| p.rate.is_none()))
-        .map(|(m, _)| m.name())
-        .collect();
-    if !machines.is_empty() && without.is_empty() {
-        return;
-    }
-    let all = without.len() == machines.len();
-    for w in styles {
-        if let Some(sp) = w.powder_span {
-            let what = format!("style `{}`", w.style.name);
-            diags.push(message::style::powder_not_programmed(
-                &what, sp, &without, all,
-            ));
-        }
-    }
 }

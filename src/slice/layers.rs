@@ -149,7 +149,8 @@ fn whole_layers(height: Length, at: Span, lift: Length, diags: &mut Diagnostics)
 /// How many layers of `lift` build `height` (whole ones, not fewer than
 /// it needs).
 fn layer_count(height: Length, lift: Length) -> f64 {
-    (height.0 / lift.0 * (1.0 - 1e-9)).ceil()
+    // Float noise (a mesh's f32 coordinates in inches) is no extra layer.
+    crate::units::whole_count(height.0 / lift.0)
 }
 
 fn within_budget(total: usize, at: Span, diags: &mut Diagnostics) -> Option<()> {

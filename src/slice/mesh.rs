@@ -109,7 +109,8 @@ fn cost(
         .crossings(k, lift, layers.min(MAX_LAYERS as f64 + 1.0));
     // A `height` or `layers` below the mesh's top builds part of it: its
     // volume says nothing then.
-    let whole = layers * lift >= m.top.0 * k * (1.0 - 1e-9);
+    // Float noise (a mesh's f32 coordinates in inches) is no extra layer.
+    let whole = layers >= crate::units::whole_count(m.top.0 * k / lift);
     let points = least_fill_points(m, k, lift, fill).filter(|_| whole);
     if layers > MAX_LAYERS as f64 {
         Some(Over::Layers {
@@ -147,10 +148,10 @@ pub fn plausible(
     let Some(over) = cost(m, 1.0, (lift.0, layers), fill) else {
         return Some(());
     };
-    let whole = layers * lift.0 >= m.top.0 * (1.0 - 1e-9);
+    let whole = layers >= crate::units::whole_count(m.top.0 / lift.0);
     let fits = |k: f64| {
         let n = if whole {
-            (m.top.0 * k / lift.0 * (1.0 - 1e-9)).ceil().max(1.0)
+            crate::units::whole_count(m.top.0 * k / lift.0).max(1.0)
         } else {
             layers
         };

@@ -346,14 +346,19 @@ fn wall_points(model: &Model, bead: &Bead, i: usize, c: &Closed) -> Vec<Point> {
         // from the first point, as the next loop round would have it.)
         let next = if j < k { j + 1 } else { 1 % k };
         let along = 0.5 * (h + c.heights[next]);
-        let v = deposit.speed_for(Length(along), bead.width);
+        // The bead's speed is the deposit point's over its ground; the
+        // program moves the focus, which a tilted, defocused nozzle carries
+        // on another curve: its speed is scaled by the two moves' lengths.
+        let from = if j < k { j } else { 0 };
+        let v =
+            deposit.speed_for(Length(along), bead.width).0 * focus_over_ground(c, from, defocus);
         let p = c.pos[j];
         points.push(Point {
             pos: [p.x, p.y, p.z],
             normal: c.normals[j],
             tangent: [t.x as f32, t.y as f32, t.z as f32],
             layer_height: h as f32,
-            speed: clamp_speed(v) as f32,
+            speed: clamp_speed(Speed(v)) as f32,
             power,
             powder,
             defocus,
@@ -364,6 +369,26 @@ fn wall_points(model: &Model, bead: &Bead, i: usize, c: &Closed) -> Vec<Point> {
         });
     }
     points
+}
+
+/// How much longer the focus's move from point `j` of `c` to the next is
+/// than the ground the deposit point covers (across point `j`'s normal):
+/// the path speed over the deposit's speed ([`crate::ir::Point::speed_across`]).
+/// 1 where the nozzle is not defocused, or the move covers no ground.
+fn focus_over_ground(c: &Closed, j: usize, defocus: f32) -> f64 {
+    let (Some(p), Some(q)) = (c.pos.get(j), c.pos.get(j + 1)) else {
+        return 1.0;
+    };
+    let n = |i: usize| Vector3::from(c.normals[i].map(f64::from));
+    let (n0, n1) = (n(j), n(j + 1));
+    let d = q - p;
+    let ground = (d - n0 * d.dot(&n0)).norm();
+    let focus = (d + (n1 - n0) * f64::from(defocus)).norm();
+    if ground > 1e-12 && focus.is_finite() {
+        focus / ground
+    } else {
+        1.0
+    }
 }
 
 /// A spiral layer change on layer `i`: the end of its loop climbs to the

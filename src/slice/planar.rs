@@ -20,6 +20,7 @@ use super::styling::{self, Styler};
 use super::MAX_TOTAL_POINTS;
 use crate::bead::MIN_OFFSET_RATIO;
 use crate::diag::{message, Diagnostic, Diagnostics, Worst};
+use crate::fill::pitch::{self, Apart, Strand};
 use crate::fill::{
     self, FillError, FillSpec, Linking, Pattern as FillPattern, RasterSpec, Seam, Track, TrackKind,
 };
@@ -30,7 +31,7 @@ use crate::sema::model::{
     Bead, Extrusion, LayerChange, LinkMode, Measure, Model, Pattern, PlanarSlicing, SeamRule, Shape,
 };
 use crate::style;
-use crate::units::Length;
+use crate::units::{Length, Speed};
 use nalgebra::Point3;
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -162,6 +163,16 @@ fn cut_moves(points: &mut Vec<Point>, pos: &mut Vec<Point3<f64>>, cuts: &[(usize
     *pos = new_pos;
 }
 
+/// The samples the gap check and the strips' measure take of each of `n`
+/// layers: a budget over the whole part keeps them linear however many
+/// layers there are.
+fn samples_per_layer(n: usize) -> (usize, usize) {
+    let gap = (GAP_SAMPLES / n.max(1)).clamp(500, fill::MAX_SAMPLES);
+    let strips =
+        (pitch::STRIP_SAMPLES / n.max(1)).clamp(pitch::MIN_STRIP_SAMPLES, pitch::MAX_STRIP_SAMPLES);
+    (gap, strips)
+}
+
 /// Fills, styles and lays every layer of `plan`; `None` after an error that
 /// leaves no layers to go on with. (A spot left unfilled is an error that
 /// leaves every layer: the layers come back with it.)
@@ -190,9 +201,7 @@ fn fill_layers(
     // every arc into a thousand chords there.
     let mut styler = Styler::new(&model.styles, slicing.chord_error.0.max(w / 100.0));
     let values = Values::table(model, slicing);
-    // The gap check samples each layer; a budget over the whole part keeps it
-    // linear however many layers there are.
-    let gap_samples = (GAP_SAMPLES / n.max(1)).clamp(500, fill::MAX_SAMPLES);
+    let (gap_samples, strip_samples) = samples_per_layer(n);
     // The last layer's shape, raster angle, profile, tracks and gap: a layer
     // like it (a fixed profile, no rotation) reuses them instead of filling
     // and checking the same shape again.
@@ -223,7 +232,9 @@ fn fill_layers(
                     seam,
                     inset,
                     w,
+                    pitch,
                     gap_samples,
+                    strip_samples,
                 };
                 match fill_shape(shape, &how, &at) {
                     Ok((region, islands, gap)) => {
@@ -251,7 +262,12 @@ fn fill_layers(
         }
         let styles = styler.layer(k, &filled.region, &filled.tracks);
         found.used.extend(styles.iter().copied());
-        out.push(layer(&values, k, n, [lift, pitch], &filled.tracks, &styles));
+        let tracks = Tracks {
+            tracks: &filled.tracks,
+            pitch: &filled.pitch,
+            styles: &styles,
+        };
+        out.push(layer(&values, k, n, [lift, pitch], &tracks));
         last = Some(filled);
     }
     found.report(model, bead, extrusion, slicing, diags);
@@ -362,6 +378,10 @@ struct Findings {
     /// first such spot.
     gaps: usize,
     first_gap: Option<(usize, fill::Gap)>,
+    /// Layers whose neighbouring tracks run farther apart than the bead,
+    /// and the widest such gap.
+    apart: usize,
+    widest: Option<(usize, Apart)>,
     /// Layers with a spot no bead reaches, and the farthest such spot.
     thin_gaps: usize,
     thin: Option<(usize, fill::Gap)>,
@@ -378,6 +398,12 @@ struct Findings {
 
 impl Findings {
     fn layer(&mut self, k: usize, f: &Filled, contours: usize, w: f64) {
+        if let Some(a) = f.apart {
+            self.apart += 1;
+            if self.widest.is_none_or(|(_, o)| a.apart > o.apart) {
+                self.widest = Some((k, a));
+            }
+        }
         if let Some(g) = f.gap {
             if g.distance > w {
                 self.gaps += 1;
@@ -453,6 +479,9 @@ impl Findings {
         };
         if let Some((k, g)) = self.first_gap {
             diags.push(say::fill_gap(self.gaps, k, &g, w, at));
+        }
+        if let Some((k, a)) = self.widest {
+            diags.push(say::tracks_apart(self.apart, k, &a, w, at));
         }
         if let Some((k, g)) = self.thin {
             diags.push(say::thin_gap(self.thin_gaps, k, &g, w, at));
@@ -534,38 +563,44 @@ struct Filled<'m> {
     region: Region,
     /// Its tracks in the order they are laid.
     tracks: Vec<Track>,
-    /// Each island's tracks when the layer has more than one (visited in
-    /// the order [`nearest_first`] gives from where the layer below ended);
-    /// empty for a layer of one piece.
-    islands: Vec<Vec<Track>>,
+    /// The strips their moves fill, track by track.
+    pitch: Vec<TrackPitch>,
+    /// Each island's tracks (visited in the order [`nearest_first`] gives
+    /// from where the layer below ended; one for a layer of one piece).
+    islands: Vec<Island>,
     gap: Option<fill::Gap>,
+    /// The widest gap between neighbouring tracks of any island.
+    apart: Option<Apart>,
 }
 
 impl<'m> Filled<'m> {
-    /// A layer filled as `islands` (one list for a layer of one piece,
-    /// which is its tracks; several are ordered by the caller).
+    /// A layer filled as `islands` (one for a layer of one piece; several
+    /// are ordered by [`Filled::order`]).
     fn new(
         shape: &'m Shape,
         angle: f64,
         seam: Seam,
         region: Region,
-        mut islands: Vec<Vec<Track>>,
+        islands: Vec<Island>,
         gap: Option<fill::Gap>,
     ) -> Self {
-        let tracks = if islands.len() == 1 {
-            islands.pop().unwrap_or_default()
-        } else {
-            Vec::new()
-        };
-        Filled {
+        let apart = islands
+            .iter()
+            .filter_map(|i| i.apart)
+            .max_by(|a, b| a.apart.total_cmp(&b.apart));
+        let mut filled = Filled {
             shape,
             angle,
             seam,
             region,
-            tracks,
+            tracks: Vec::new(),
+            pitch: Vec::new(),
             islands,
             gap,
-        }
+            apart,
+        };
+        filled.order(None);
+        filled
     }
 
     /// Where its last track ends.
@@ -577,9 +612,15 @@ impl<'m> Filled<'m> {
     /// `from` (also on a reused layer: the layer below may have ended
     /// elsewhere).
     fn order(&mut self, from: Option<[f64; 2]>) {
-        if !self.islands.is_empty() {
-            self.tracks = nearest_first(self.islands.clone(), from);
-        }
+        let order = nearest_first(&self.islands, from);
+        self.tracks = order
+            .iter()
+            .flat_map(|&i| self.islands[i].tracks.iter().cloned())
+            .collect();
+        self.pitch = order
+            .iter()
+            .flat_map(|&i| self.islands[i].pitch.iter().cloned())
+            .collect();
     }
 }
 
@@ -594,20 +635,158 @@ fn seam_at(rule: SeamRule, k: usize) -> Seam {
 }
 
 /// How a layer is filled: the raster's angle (deg), where contours start,
-/// how far the first pass is inset, the bead's width, and the gap check's
-/// samples.
+/// how far the first pass is inset, the bead's width, the strip the lift
+/// was chosen for, and the gap check's samples.
 #[derive(Clone, Copy)]
 struct How {
     angle: f64,
     seam: Seam,
     inset: f64,
     w: f64,
+    pitch: f64,
     gap_samples: usize,
+    /// The samples [`fill::pitch::strips`] takes of the layer.
+    strip_samples: usize,
 }
 
 /// A layer's region, each island's tracks (one list for a layer of one
-/// piece) and the farthest spot no bead reaches.
-type FilledShape = (Region, Vec<Vec<Track>>, Option<fill::Gap>);
+/// piece) with the strips they fill, and the farthest spot no bead reaches.
+type FilledShape = (Region, Vec<Island>, Option<fill::Gap>);
+
+/// One island's tracks, the strip each of their moves fills
+/// ([`fill::pitch`]) and the widest gap between neighbours.
+#[derive(Clone)]
+struct Island {
+    tracks: Vec<Track>,
+    pitch: Vec<TrackPitch>,
+    apart: Option<Apart>,
+}
+
+/// The pitches of a track's moves, and of its laser-on link's to the next
+/// track (empty without one).
+#[derive(Clone, Debug, Default)]
+struct TrackPitch {
+    track: Vec<f64>,
+    link: Vec<f64>,
+}
+
+impl Island {
+    /// `tracks` of `region` with a bead `w` wide, the lift chosen for
+    /// strips `offset` wide, their strips measured.
+    fn new(region: &Region, tracks: Vec<Track>, [w, offset]: [f64; 2], samples: usize) -> Self {
+        let links: Vec<Option<Vec<[f64; 2]>>> = tracks
+            .iter()
+            .enumerate()
+            .map(|(i, t)| match (&t.link, tracks.get(i + 1)) {
+                (Some(l), Some(next)) if l.laser => {
+                    Some(link_points(t, &l.via, next)).filter(|p| p.len() >= 2)
+                }
+                _ => None,
+            })
+            .collect();
+        // A link's metal fills the ends of the two tracks' strips, as an
+        // extension would: it is laid like the track it leaves, and no
+        // deposit counts it as a neighbour.
+        let strands: Vec<Strand<'_>> = tracks
+            .iter()
+            .enumerate()
+            .map(|(chain, t)| Strand {
+                points: &t.points,
+                chain,
+            })
+            .collect();
+        let found = pitch::strips(&strands, [w, offset], samples, |p| region.contains(p));
+        let pitch = found
+            .pitch
+            .into_iter()
+            .zip(tracks.iter().zip(&links))
+            .map(|(mut track, (t, link))| {
+                steady(&t.points, &mut track, offset);
+                (track, (t, link))
+            })
+            .map(|(track, (t, link))| TrackPitch {
+                link: link.as_ref().map_or_else(Vec::new, |l| {
+                    vec![mean_pitch(&t.points, &track, w); l.len() - 1]
+                }),
+                track,
+            })
+            .collect();
+        Island {
+            tracks,
+            pitch,
+            apart: found.apart,
+        }
+    }
+}
+
+/// How far (a share) the strips of a run of moves may differ and be laid
+/// as one, at their mean: a third of the default `rise_tolerance`, so that
+/// a contour's chords, each measured a little differently, keep one speed.
+const STEADY: f64 = 0.01;
+
+/// Lays runs of a track's moves whose `pitch`es lie within [`STEADY`] of
+/// their mean (over their lengths) at that mean, and a run within
+/// [`STEADY`] of the fill's `offset` at the offset: a track keeps its
+/// speed where its strip hardly changes, and a regular fill the process
+/// speed.
+fn steady(points: &[[f64; 2]], pitch: &mut [f64], offset: f64) {
+    let lengths: Vec<f64> = points
+        .windows(2)
+        .map(|m| (m[1][0] - m[0][0]).hypot(m[1][1] - m[0][1]))
+        .collect();
+    let mut start = 0;
+    while start < pitch.len() {
+        let (mut sum, mut len) = (0.0, 0.0);
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut end = start;
+        while end < pitch.len() {
+            let (p, l) = (pitch[end], lengths.get(end).copied().unwrap_or(0.0));
+            let (s, n) = (sum + p * l, len + l);
+            let mean = if n > 0.0 { s / n } else { p };
+            let (a, b) = (lo.min(p), hi.max(p));
+            if end > start && (b > mean * (1.0 + STEADY) || a < mean * (1.0 - STEADY)) {
+                break;
+            }
+            (sum, len, lo, hi) = (s, n, a, b);
+            end += 1;
+        }
+        let mean = if len > 0.0 { sum / len } else { pitch[start] };
+        let mean = if (mean / offset - 1.0).abs() <= STEADY {
+            offset
+        } else {
+            mean
+        };
+        pitch[start..end].fill(mean);
+        start = end;
+    }
+}
+
+/// The mean of a track's moves' pitches over its length (`w` where it has
+/// none).
+fn mean_pitch(points: &[[f64; 2]], pitch: &[f64], w: f64) -> f64 {
+    let (mut sum, mut len) = (0.0, 0.0);
+    for (m, &p) in points.windows(2).zip(pitch) {
+        let l = (m[1][0] - m[0][0]).hypot(m[1][1] - m[0][1]);
+        sum += p * l;
+        len += l;
+    }
+    if len > 0.0 {
+        sum / len
+    } else {
+        w
+    }
+}
+
+/// The points of the link from track `t` along `via` to `next`, without
+/// points that repeat the one before: the path the IR lays it as.
+fn link_points(t: &Track, via: &[[f64; 2]], next: &Track) -> Vec<[f64; 2]> {
+    let mut points = Vec::with_capacity(via.len() + 2);
+    points.extend(t.points.last().copied());
+    points.extend_from_slice(via);
+    points.extend(next.points.first().copied());
+    points.dedup_by(|b, a| (b[0] - a[0]).hypot(b[1] - a[1]) <= DISTINCT);
+    points
+}
 
 /// Fills one layer's `shape`: its region checked for holes that do not
 /// make one, then filled ([`fill_layer`]). Separate islands (a mesh's
@@ -627,19 +806,20 @@ fn fill_shape(shape: &Shape, how: &How, at: &Where<'_>) -> Result<FilledShape, V
             return Err(faults);
         }
         let (tracks, gap) = fill_layer(&region, how, at).map_err(|e| vec![e])?;
-        Ok((region, tracks, gap))
+        let island = Island::new(&region, tracks, [how.w, how.pitch], how.strip_samples);
+        Ok((region, island, gap))
     };
     let Shape::Islands(parts) = shape else {
-        let (region, tracks, gap) = one(shape)?;
-        return Ok((region, vec![tracks], gap));
+        let (region, island, gap) = one(shape)?;
+        return Ok((region, vec![island], gap));
     };
     let mut regions = Vec::with_capacity(parts.len());
     let mut fills = Vec::with_capacity(parts.len());
     let mut gap: Option<fill::Gap> = None;
     for part in parts {
-        let (region, tracks, g) = one(part)?;
+        let (region, island, g) = one(part)?;
         regions.push(region);
-        fills.push(tracks);
+        fills.push(island);
         if let Some(g) = g.filter(|g| gap.is_none_or(|o| g.distance > o.distance)) {
             gap = Some(g);
         }
@@ -655,22 +835,31 @@ fn fill_shape(shape: &Shape, how: &How, at: &Where<'_>) -> Result<FilledShape, V
 /// come in). Deterministic, and short for the handful of islands a layer
 /// has (quadratic in their number); starting near the layer below keeps a
 /// part of several islands from crossing back over itself every layer.
-fn nearest_first(mut islands: Vec<Vec<Track>>, from: Option<[f64; 2]>) -> Vec<Track> {
-    let mut out: Vec<Track> = Vec::with_capacity(islands.iter().map(Vec::len).sum());
-    while !islands.is_empty() {
-        let end = out.last().and_then(|t| t.points.last().copied()).or(from);
+fn nearest_first(islands: &[Island], from: Option<[f64; 2]>) -> Vec<usize> {
+    let mut left: Vec<usize> = (0..islands.len()).collect();
+    let mut out = Vec::with_capacity(islands.len());
+    let mut end = from;
+    while !left.is_empty() {
         // `min_by` keeps the first of equal distances: the lower island.
         let next = end.map_or(0, |e| {
-            let start = |i: &Vec<Track>| {
-                i.first()
+            let start = |i: usize| {
+                islands[i]
+                    .tracks
+                    .first()
                     .and_then(|t| t.points.first())
                     .map_or(f64::INFINITY, |p| (p[0] - e[0]).hypot(p[1] - e[1]))
             };
-            (0..islands.len())
-                .min_by(|&a, &b| start(&islands[a]).total_cmp(&start(&islands[b])))
+            (0..left.len())
+                .min_by(|&a, &b| start(left[a]).total_cmp(&start(left[b])))
                 .unwrap_or(0)
         });
-        out.extend(islands.remove(next));
+        let i = left.remove(next);
+        end = islands[i]
+            .tracks
+            .last()
+            .and_then(|t| t.points.last().copied())
+            .or(end);
+        out.push(i);
     }
     out
 }
@@ -689,6 +878,7 @@ fn fill_layer(
         inset,
         w,
         gap_samples,
+        ..
     } = *how;
     let slicing = at.slicing;
     let spec = FillSpec {
@@ -707,6 +897,13 @@ fn fill_layer(
                 LinkMode::None => Linking::None,
                 LinkMode::LaserOn => Linking::LaserOn,
                 LinkMode::LaserOff => Linking::LaserOff,
+            },
+            // The last contour runs an offset beyond the raster's region:
+            // the last line stays within a bead of it.
+            closing: if slicing.contours > 0 {
+                (w - slicing.offset.0).max(0.0)
+            } else {
+                f64::INFINITY
             },
         }),
         seam,
@@ -743,16 +940,17 @@ fn fill_error(e: FillError, layer: &Where<'_>) -> Diagnostic {
     )
 }
 
+/// A layer's tracks in the order they are laid, the strips their moves
+/// fill and their styles.
+struct Tracks<'a> {
+    tracks: &'a [Track],
+    pitch: &'a [TrackPitch],
+    styles: &'a [u16],
+}
+
 /// Layer `k` of `n`: each track a path, and each link a path between its
-/// two tracks.
-fn layer(
-    values: &Values,
-    k: usize,
-    n: usize,
-    [lift, pitch]: [f64; 2],
-    tracks: &[Track],
-    styles: &[u16],
-) -> Layer {
+/// two tracks. `pitch` is the strip the plan's lift was chosen for.
+fn layer(values: &Values, k: usize, n: usize, [lift, pitch]: [f64; 2], t: &Tracks<'_>) -> Layer {
     let z = k as f64 * lift;
     let at = |style: u16| Laid {
         z,
@@ -761,31 +959,30 @@ fn layer(
         deposit: values.of(style, k),
         defocus: values.defocus,
         style,
+        bead: values.adapts(style),
     };
-    let mut paths = Vec::with_capacity(tracks.len());
-    for (i, (t, &style)) in tracks.iter().zip(styles).enumerate() {
-        let kind = match t.kind {
+    let mut paths = Vec::with_capacity(t.tracks.len());
+    let none = TrackPitch::default();
+    for (i, (track, &style)) in t.tracks.iter().zip(t.styles).enumerate() {
+        let kind = match track.kind {
             TrackKind::Contour { .. } => PathKind::Contour,
             TrackKind::Infill => PathKind::Infill,
         };
+        let pitch = t.pitch.get(i).unwrap_or(&none);
         // `distinct` left at least two points.
-        paths.push(path(kind, &t.points, true, &at(style)));
-        let (Some(link), Some(next)) = (&t.link, tracks.get(i + 1)) else {
+        paths.push(path(kind, &track.points, &pitch.track, &at(style)));
+        let (Some(link), Some(next)) = (&track.link, t.tracks.get(i + 1)) else {
             continue;
         };
-        let mut points = Vec::with_capacity(link.via.len() + 2);
-        points.extend(t.points.last().copied());
-        points.extend_from_slice(&link.via);
-        points.push(next.points[0]);
-        points.dedup_by(|b, a| (b[0] - a[0]).hypot(b[1] - a[1]) <= DISTINCT);
+        let points = link_points(track, &link.via, next);
         if points.len() >= 2 {
             // A link that deposits is laid like the track it leaves.
-            let kind = if link.laser {
-                PathKind::Infill
+            let (kind, moves) = if link.laser {
+                (PathKind::Infill, &pitch.link[..])
             } else {
-                PathKind::Travel
+                (PathKind::Travel, &[][..])
             };
-            paths.push(path(kind, &points, link.laser, &at(style)));
+            paths.push(path(kind, &points, moves, &at(style)));
         }
     }
     Layer {
@@ -807,16 +1004,44 @@ fn layer(
 struct Laid {
     z: f64,
     lift: f64,
+    /// The strip the lift was chosen for, mm.
     pitch: f64,
     deposit: Deposit,
     defocus: f32,
     style: u16,
+    /// The bead, where the track's speed follows the strip it fills (its
+    /// speed is the process block's, and the model has a speed to choose).
+    bead: Option<crate::deposit::Deposit>,
+}
+
+impl Laid {
+    /// The speed of a move filling a strip `p` wide: the track's own where
+    /// that is the strip the lift was chosen for or the speed is fixed,
+    /// else the speed at which it lays, over `p`, what the track lays over
+    /// the plan's strip.
+    fn speed(&self, p: f64) -> f32 {
+        let v = self.deposit.speed;
+        let Some(bead) = &self.bead else { return v };
+        if (p - self.pitch).abs() <= 1e-6 * self.pitch || p.is_nan() || p <= 0.0 {
+            return v;
+        }
+        let powder = crate::units::MassFlow(f64::from(self.deposit.powder) / 60.0);
+        let rise = bead.rise(Speed(f64::from(v)), Length(self.pitch), Some(powder));
+        let u = bead.clone().fed(powder).speed_for(rise, Length(p)).0;
+        if u.is_finite() && u > 0.0 {
+            u as f32
+        } else {
+            v
+        }
+    }
 }
 
 /// The IR path through `pts` (at least two, each distinct from the next),
-/// the laser on from each point to the next when `laser`.
-fn path(kind: PathKind, pts: &[[f64; 2]], laser: bool, l: &Laid) -> Path {
+/// the laser on from each point to the next where `pitch` gives the strip
+/// the move fills (none: a laser-off path).
+fn path(kind: PathKind, pts: &[[f64; 2]], pitch: &[f64], l: &Laid) -> Path {
     let m = pts.len();
+    let laser = !pitch.is_empty();
     let points = (0..m)
         .map(|i| {
             // Every point has a neighbour at a distance to take a direction from.
@@ -827,18 +1052,20 @@ fn path(kind: PathKind, pts: &[[f64; 2]], laser: bool, l: &Laid) -> Path {
             };
             let (dx, dy) = (pts[b][0] - pts[a][0], pts[b][1] - pts[a][1]);
             let len = dx.hypot(dy).max(1e-12);
+            // The last point (no move) keeps the move before's.
+            let p = pitch.get(i.min(m.saturating_sub(2))).copied();
             Point {
                 pos: [pts[i][0], pts[i][1], l.z],
                 normal: [0.0, 0.0, 1.0],
                 tangent: [(dx / len) as f32, (dy / len) as f32, 0.0],
                 layer_height: l.lift as f32,
-                speed: l.deposit.speed,
+                speed: p.map_or(l.deposit.speed, |p| l.speed(p)),
                 power: l.deposit.power,
                 powder: l.deposit.powder,
                 defocus: l.defocus,
                 laser_on: laser && i + 1 < m,
                 style: l.style,
-                pitch: l.pitch as f32,
+                pitch: p.unwrap_or(l.pitch) as f32,
                 rise: 0.0,
             }
         })
@@ -862,6 +1089,8 @@ struct Values<'m> {
     powder: f32,
     defocus: f32,
     styles: BTreeMap<u16, &'m crate::sema::model::Style>,
+    /// The bead's deposit model, where it has speeds to choose from.
+    bead: Option<crate::deposit::Deposit>,
 }
 
 impl<'m> Values<'m> {
@@ -872,7 +1101,22 @@ impl<'m> Values<'m> {
             powder: model.process.powder.g_min() as f32,
             defocus: model.process.defocus.0 as f32,
             styles: model.styles.table.iter().map(|s| (s.id, s)).collect(),
+            bead: model
+                .bead
+                .as_ref()
+                .filter(|b| !matches!(b.model, crate::sema::model::HeightModel::Measured { .. }))
+                .map(|b| b.deposit()),
         }
+    }
+
+    /// The bead model a track of `style` picks its speed from, by the strip
+    /// it fills: where its speed is the process block's (the style sets
+    /// none) and the model has speeds to choose from (not `measured`).
+    fn adapts(&self, style: u16) -> Option<crate::deposit::Deposit> {
+        if self.styles.get(&style).is_some_and(|s| s.speed.is_some()) {
+            return None;
+        }
+        self.bead.clone()
     }
 
     /// The values of `style` on layer `k` (the process power may be a ramp).

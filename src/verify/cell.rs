@@ -37,12 +37,18 @@ pub(super) struct CellRule<'p> {
     rate_differs: Option<Worst>,
     /// Rates beyond the output's full scale.
     rate_over: Option<Worst>,
+    /// Deposits of a style with a powder feed of its own on a machine
+    /// whose feeder has no rate output: the feed (as its value) and the
+    /// style's id (as its limit).
+    unfed: Option<Worst>,
 }
 
 impl<'p> CellRule<'p> {
-    /// The rule for a machine with `cell`, or `None` when it switches nothing.
+    /// The rule for a machine with `cell`, or `None` when it switches
+    /// nothing and no style feeds powder of its own.
     fn with(program: &'p Program, cell: &Cell) -> Option<Self> {
-        (!cell.is_none()).then(|| CellRule {
+        let styled = program.styles.iter().any(|s| s.powder.is_some());
+        (!cell.is_none() || styled).then(|| CellRule {
             program,
             cell: cell.clone(),
             t: 0.0,
@@ -54,6 +60,7 @@ impl<'p> CellRule<'p> {
             powder_short: None,
             rate_differs: None,
             rate_over: None,
+            unfed: None,
         })
     }
 
@@ -82,6 +89,19 @@ impl<'p> CellRule<'p> {
                 name,
                 &w,
                 o.at(&powder::FULL_SCALE),
+            ));
+        }
+        if let Some(w) = self.unfed {
+            let style = self
+                .program
+                .styles
+                .iter()
+                .find(|s| f64::from(s.id) == w.limit);
+            out.push(cell::style_powder_unfed(
+                name,
+                &w,
+                style.map_or("", |s| s.name.as_str()),
+                o.block,
             ));
         }
         if let (Some(w), Some(r)) = (self.rate_over, full) {
@@ -135,6 +155,16 @@ impl Visit for CellRule<'_> {
             return;
         }
         let Some(full) = self.cell.powder.and_then(|p| p.rate) else {
+            // No rate output: the feeder gives the rate it is set to, and a
+            // style's own feed would be credited without being fed.
+            let point = m.source().point(self.program);
+            if let Some(p) = point.filter(|p| p.style != 0) {
+                let own = self.program.styles.iter().find(|s| s.id == p.style);
+                if own.is_some_and(|s| s.powder.is_some()) {
+                    let at = m.source();
+                    Worst::hit(&mut self.unfed, f64::from(p.powder), f64::from(p.style), at);
+                }
+            }
             return;
         };
         let Some(feed) = m.source().point(self.program).map(|p| p.powder) else {

@@ -57,6 +57,7 @@ pub(crate) fn check(p: &Program) -> Option<DepositMiss<Where>> {
     let d = bead.deposit();
     let mut found = Found {
         tol: p.limits.rise_tolerance,
+        strips: [f64::INFINITY, 0.0],
         ..Found::default()
     };
     let mut drift = Drift::default();
@@ -87,6 +88,8 @@ pub(crate) fn check(p: &Program) -> Option<DepositMiss<Where>> {
                 };
                 let len = pt.ground_to(next);
                 found.checked += 1;
+                let strip = pt.pitch as f64;
+                found.strips = [found.strips[0].min(strip), found.strips[1].max(strip)];
                 len_sum += len;
                 err_sum += len * (rise - h);
                 found.laid += len * rise;
@@ -134,6 +137,7 @@ pub(crate) fn check(p: &Program) -> Option<DepositMiss<Where>> {
         },
         tolerance: found.tol,
         drift,
+        strips: found.strips,
     })
 }
 
@@ -146,6 +150,8 @@ struct Found {
     checked: u64,
     laid: f64,
     planned: f64,
+    /// The narrowest and widest strip of a laser-on point, mm.
+    strips: [f64; 2],
 }
 
 impl Found {

@@ -2,6 +2,7 @@
 //! found worth a look in those it made.
 
 use crate::diag::{Code, Diagnostic};
+use crate::fill::pitch::Apart;
 use crate::fill::{FillError, Gap};
 use crate::span::Span;
 use crate::units::{short, Length, Speed};
@@ -85,6 +86,32 @@ pub fn fill_gap(layers: usize, k: usize, g: &Gap, w: f64, at: FillAt) -> Diagnos
     .label(at.shape, "this shape")
     .label(at.slicing, "fill")
     .help("raster lines miss parts of a profile narrower than the offset, and line ends reach at most `extend` past their neighbours: a smaller offset, a larger `extend`, a contour pass or another raster angle fills them")
+}
+
+/// Neighbouring tracks farther apart than the bead `w` on `layers` layers
+/// (the widest, `a`, on layer `k`).
+pub fn tracks_apart(layers: usize, k: usize, a: &Apart, w: f64, at: FillAt) -> Diagnostic {
+    Diagnostic::error(
+        Code::FillGap,
+        format!(
+            "neighbouring tracks run farther apart than the bead is wide on {} layer{}: on layer {}, at ({}, {}) mm, {} apart over {}, leaving a strip {} wide that neither {} bead covers",
+            layers,
+            plural(layers),
+            k + 1,
+            short(a.at[0]),
+            short(a.at[1]),
+            Length(a.apart),
+            Length(a.length),
+            Length(a.apart - w),
+            Length(w)
+        ),
+    )
+    .label(at.shape, "this shape")
+    .label(at.slicing, "fill")
+    .help(format!(
+        "a raster's last track lies up to an offset and a half from the contour where the profile is not a whole number of offsets wide, and contours round a narrow part may run more than a bead apart: tracks at most {} apart close the strip (a smaller offset, another raster angle, a contour less or more)",
+        Length(w)
+    ))
 }
 
 /// Spots no bead reaches on `layers` layers (the farthest on layer `k`).

@@ -32,31 +32,6 @@ pub fn duplicate_id(id: u16, at: Span, prev: Span) -> Diagnostic {
         .help("give every style its own id")
 }
 
-/// A style (`what`) sets a powder feed that the machines `without` (all of
-/// them when `all`) do not program: their feeders have no rate output.
-pub fn powder_not_programmed(what: &str, at: Span, without: &[&str], all: bool) -> Diagnostic {
-    let names = without
-        .iter()
-        .map(|n| format!("`{n}`"))
-        .collect::<Vec<_>>()
-        .join(", ");
-    if all {
-        Diagnostic::warning(
-            Code::Unused,
-            format!("{what}'s powder feed is recorded, not programmed: no machine's feeder has a rate output"),
-        )
-        .label(at, "in the IR and the programs' style table only")
-        .help("a machine programs each track's powder feed through its feeder's rate output: give it `powder { output = …  arrival = …  rate_output = …  full_scale = … }`; or leave `powder` out")
-    } else {
-        Diagnostic::warning(
-            Code::Unused,
-            format!("{what}'s powder feed is not programmed on {names}: its feeder has no rate output"),
-        )
-        .label(at, "programmed only where the feeder's rate output is declared")
-        .help(format!("give {names} a `rate_output` and `full_scale` in its `powder` block, or leave `powder` out"))
-    }
-}
-
 /// A style (`what`) sets neither power, speed nor powder.
 pub fn no_process_value(what: &str, at: Span) -> Diagnostic {
     Diagnostic::warning(Code::Unused, format!("{what} sets no process value"))

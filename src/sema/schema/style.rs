@@ -46,7 +46,7 @@ pub mod values {
         "powder",
         Quantity(Dim::MASS_FLOW, Positive),
         Optional,
-        "recorded, not programmed: feeders are not switched track by track",
+        "the powder feed of its tracks, programmed through the feeder's rate output (refused on a machine without one)",
     );
     /// `colour = …`.
     pub static COLOUR: Field = Field::new(

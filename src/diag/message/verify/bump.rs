@@ -167,8 +167,13 @@ pub fn deposit_bump(
         .label_opt(blending, "the corner blending")
         .label_opt(ramp, "how runs start and stop");
     let mut help = Vec::new();
+    // The worst corner's dip: the speed it is programmed at and reached.
+    let corner = b
+        .worst_inside
+        .and_then(|i| i.corner)
+        .map(|c| (c.speed, c.reached));
     if let Some(e) = &b.worst_end {
-        help.push(ends_help(m, e));
+        help.push(ends_help(m, e, corner));
     }
     if let Some(e) = &b.worst_short {
         help.push(short_help(m, e, b.worst_end.is_none()));
@@ -188,11 +193,26 @@ pub fn deposit_bump(
     d.help(help.join("; "))
 }
 
-/// The fixes for the bumps where runs start and end.
-fn ends_help(m: &Model, e: &Bump) -> String {
+/// The fixes for the bumps where runs start and end; `corner` the worst
+/// corner inside a run, its programmed and reached speeds, mm/s.
+///
+/// A ramp from rest to `v` at `a` lays `v²/2a` more bead than the plan
+/// (the integral of `v/u − 1` over it); a corner passed at `u` costs two
+/// ramps, `(v − u)²/a`. So the ends pass at `a ≥ v²/(2·tol·w)` or
+/// `v ≤ √(2·a·tol·w)`, and a corner the nozzle stops at needs twice the
+/// acceleration (`u` only grows with it, so the figure holds).
+fn ends_help(m: &Model, e: &Bump, corner: Option<(f64, f64)>) -> String {
+    let tw = m.tolerance * m.window;
     let ramp = e.speed * e.speed / (2.0 * m.accel);
-    let most = (2.0 * m.accel * m.tolerance * m.window).sqrt();
-    let least = e.speed * e.speed / (2.0 * m.tolerance * m.window);
+    let (mut most, mut least) = ((2.0 * m.accel * tw).sqrt(), e.speed * e.speed / (2.0 * tw));
+    if let Some((v, u)) = corner {
+        most = most.min(u + (m.accel * tw).sqrt());
+        // Another corner may be programmed as fast as the ends' run.
+        least = least.max((v.max(e.speed) - u).max(0.0).powi(2) / tw);
+    }
+    // Rounded the safe way: the figures are printed to 0.01 mm/s and
+    // 1 mm/s².
+    let (most, least) = ((most * 100.0).floor() / 100.0, least.ceil());
     let mut s = format!(
         "from rest the nozzle needs v²/2a = {} to reach {} at {} mm/s²: ",
         mm(ramp),
@@ -210,8 +230,13 @@ fn ends_help(m: &Model, e: &Bump) -> String {
     }
     if most < e.speed {
         s.push_str(&format!(
-            "; or scan at most {} (a ramp then lays no more than the tolerance over a bead width), or give the machine an acceleration of at least {} mm/s²",
+            "; or scan at most {} (a ramp then lays no more than the tolerance over a bead width{}), or give the machine an acceleration of at least {} mm/s²",
             speed(most),
+            if corner.is_some() {
+                ", and the two ramps of the corner inside the run no more either"
+            } else {
+                ""
+            },
             trimmed(least, 0)
         ));
     } else if let Some(c) = &e.corner {

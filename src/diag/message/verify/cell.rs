@@ -68,6 +68,30 @@ pub fn rate_changes_in_path(name: &str, w: &Worst<impl Display>, programmed: Spa
     .help("keep one powder feed along each path (a style's `powder` applies to whole paths), or set the rate on the feeder and drop `rate_output`")
 }
 
+/// Deposits of style `style` (the worst's value its feed, g/min) on a
+/// machine whose feeder has no rate output (`machine`: its declaration).
+pub fn style_powder_unfed(
+    name: &str,
+    w: &Worst<impl Display>,
+    style: &str,
+    machine: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::PowderRate,
+        format!(
+            "style `{style}` feeds {} g/min, which machine `{name}` cannot program: its feeder has no rate output, so the style's tracks get whatever rate the feeder is set to, while the plan's speeds and heights count on the style's ({} move{}, the first at {})",
+            short(w.value),
+            w.count,
+            plural(w.count),
+            w.at
+        ),
+    )
+    .label(machine, "no rate output for the powder feed")
+    .help(format!(
+        "give `{name}` a powder feeder with a rate output (`powder {{ output = …  arrival = …  rate_output = …  full_scale = … }}`): the plan then sets each track's feed and waits its arrival; or leave `powder` out of the style"
+    ))
+}
+
 /// A powder feed beyond the feed-rate output's full scale.
 pub fn rate_over_full_scale(
     name: &str,

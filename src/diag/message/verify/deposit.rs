@@ -69,6 +69,8 @@ pub struct DepositMiss<At> {
     pub tolerance: f64,
     /// The layers' errors added up.
     pub drift: Drift,
+    /// The narrowest and the widest strip a laser-on point fills, mm.
+    pub strips: [f64; 2],
 }
 
 fn mm(x: f64) -> String {
@@ -137,6 +139,12 @@ pub fn deposit_miss(
                 "at the worst point {} mm/s lays the planned {}",
                 trimmed(v, 2),
                 mm(p.planned)
+            )),
+            // One height fits every strip only where the strips agree.
+            None if m.strips[1] > m.strips[0] * (1.0 + m.tolerance) => help.push_str(&format!(
+                "the bead is measured at one speed, and the tracks fill strips from {} to {} wide (where they lie: a contour a bead from its neighbours fills the bead, a loop that comes back within a bead of itself less), which it raises by different heights: measure the bead over a speed range (`speed = … .. …` with a `linear(…)` or `table(…)` model) and the slicer runs each strip at the speed that lays its layer",
+                mm(m.strips[0]),
+                mm(m.strips[1])
             )),
             None => help.push_str(&format!(
                 "the bead is measured at one speed, where it raises this strip {} a layer: plan that height",
