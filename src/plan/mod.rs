@@ -1330,7 +1330,9 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
             power: 0.0,
             at: Where::End,
         };
-        if let Some(safe) = self.plan.safe.filter(|&s| last[2] < s) {
+        // A lift shorter than half the printed digit (0.001 mm) would be
+        // written as a line that moves nowhere: the retract ended there.
+        if let Some(safe) = self.plan.safe.filter(|&s| last[2] < s - 5e-4) {
             let to = self.plan.lift_at_end(last, c.axes, safe);
             self.send(park(MoveKind::Lift, to, c.axes));
         }
