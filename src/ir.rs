@@ -270,6 +270,11 @@ pub struct Bead {
     /// (`model = fit(…, data = "…")`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fit: Option<BeadFit>,
+    /// The nozzle's tilts from vertical the model was measured at, deg
+    /// (`tilt`): a deposit tilted more than 5° beyond them is warned
+    /// (`lmd::bead-tilt`). Absent: measured with the nozzle vertical.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tilt: Option<[f64; 2]>,
 }
 
 /// A bead model fitted at compile time to measured coupons
@@ -442,6 +447,7 @@ impl Bead {
             }),
             measured: None,
             fit: None,
+            tilt: None,
         }
     }
 
@@ -1653,6 +1659,8 @@ pub struct Origins {
     pub bead_height: Option<Span>,
     /// The bead model's speed range.
     pub bead_speed: Option<Span>,
+    /// The bead's `tilt` where written, else its block.
+    pub bead: Option<Span>,
     /// The laser power declaration.
     pub power: Option<Span>,
     /// The spine (bend radius).

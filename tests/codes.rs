@@ -645,6 +645,12 @@ slicing planar { offset = 1.6 mm  infill = raster(angle = 0 deg) }";
     overlap_stretch: OverlapStretch, WALL,
         "extrude wall { profile = rectangle(width = 30 mm, height = 12 mm)  size = outer  bead = b316  top = 8 mm + 50 % * (y + 6 mm) }
 slicing variable { layers = auto  scan = x  segments { tolerance = 0.1 mm } }";
+    // The duct's nozzle stands within 3° of vertical; its bead says it was
+    // measured tilted 10° to 20°.
+    bead_tilt: BeadTilt, DUCT,
+        "bead b { width = 6 mm  speed = 7 mm/s .. 10 mm/s  model = mass_balance(feed = 45.9 g/min, efficiency = 35 %, density = 7.9 g/cm^3)  tilt = 10 deg .. 20 deg }";
+    bead_tilt_beyond_90: OutOfRange, DUCT,
+        "bead b { width = 6 mm  speed = 7 mm/s .. 10 mm/s  model = mass_balance(feed = 45.9 g/min, efficiency = 35 %, density = 7.9 g/cm^3)  tilt = 30 deg .. 100 deg }";
     seam_at_bend_extreme: SeamAtBendExtreme, DUCT, "slicing normal { layers = auto  points = 8  seam = 0 deg }";
 }
 

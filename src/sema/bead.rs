@@ -40,6 +40,7 @@ pub fn read<'a>(
         f.require(&schema::SPEED, diags);
     }
     let height = f.range(&schema::HEIGHT, diags);
+    let tilt = tilt(&f, diags);
     let declared_height = height.map(|([lo, hi], _)| [Length(lo), Length(hi)]);
     let model = f.value(&schema::MODEL, diags);
     let model_span = model.map(|m| m.span);
@@ -91,6 +92,7 @@ pub fn read<'a>(
         measured: measured_speeds.map(|[lo, hi]| [Speed(lo), Speed(hi)]),
         fit,
         declared_height,
+        tilt: tilt?,
         feed: None,
         speed: [Speed(speed[0]), Speed(speed[1])],
         height,
@@ -98,6 +100,22 @@ pub fn read<'a>(
         height_span,
         speed_span,
     })
+}
+
+/// `tilt = lo .. hi`: the nozzle's tilts the model was measured at, rad,
+/// within 0° .. 90° and increasing; `Some(None)` when not written.
+fn tilt(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Option<([f64; 2], Span)>> {
+    if !f.has(&schema::TILT) {
+        return Some(None);
+    }
+    let ([lo, hi], at) = f.range(&schema::TILT, diags)?;
+    if !(0.0..=90.0_f64.to_radians() * (1.0 + 1e-9)).contains(&lo)
+        || !(lo..=90.0_f64.to_radians() * (1.0 + 1e-9)).contains(&hi)
+    {
+        diags.push(message::bead::bad_tilt([lo, hi], at));
+        return None;
+    }
+    Some(Some(([lo, hi], at)))
 }
 
 /// What the model's heights were measured as (`measured_as = …`; a single

@@ -258,6 +258,9 @@ pub struct Bead {
     pub fit: Option<crate::bead::fit::Summary>,
     /// The `height = …` range as declared, if it is.
     pub declared_height: Option<[Length; 2]>,
+    /// The nozzle's tilts from vertical the model was measured at (`tilt`),
+    /// rad, and where they are written; `None`: vertical.
+    pub tilt: Option<([f64; 2], Span)>,
     /// The process's powder feed, which a mass-balance model lays by
     /// ([`crate::deposit::Deposit::fed`]); `None` until the process is read.
     pub feed: Option<crate::units::MassFlow>,

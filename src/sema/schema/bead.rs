@@ -52,6 +52,14 @@ pub static MEASURED_AS: Field = Field::new(
     "what the model's heights are: a single track's (`track`), the rise per layer of a wall one bead wide (`wall`) or of filled layers (`layer(offset)`)",
 );
 
+/// `tilt = …`.
+pub static TILT: Field = Field::new(
+    "tilt",
+    Range(Dim::ANGLE),
+    Default(Described("`0 deg .. 0 deg`: measured with the nozzle vertical")),
+    "the nozzle's tilts from vertical the model was measured at; a deposit tilted more than 5° beyond them is warned (`lmd::bead-tilt`)",
+);
+
 /// `extrapolate = …`.
 pub static EXTRAPOLATE: Field = Field::new(
     "extrapolate",
@@ -65,7 +73,15 @@ pub static BEAD: Block = Block::new(
     "bead",
     "bead NAME { … }",
     "a bead model: how high a track of it is at each scan speed",
-    &[&WIDTH, &HEIGHT, &SPEED, &MODEL, &MEASURED_AS, &EXTRAPOLATE],
+    &[
+        &WIDTH,
+        &HEIGHT,
+        &SPEED,
+        &MODEL,
+        &MEASURED_AS,
+        &TILT,
+        &EXTRAPOLATE,
+    ],
 );
 
 /// `layer(offset)` of `measured_as`.
