@@ -275,6 +275,15 @@ pub struct Bead {
     /// (`lmd::bead-tilt`). Absent: measured with the nozzle vertical.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tilt: Option<[f64; 2]>,
+    /// The laser powers the model was measured at, W (`powers`, or a fit's
+    /// coupons'): a process at another is warned (`lmd::extrapolation`).
+    /// Absent: not known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub powers: Option<Vec<f64>>,
+    /// The powder feeds it was measured at, g/min (`powders`, or a fit's
+    /// coupons'). Absent: not known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub powders: Option<Vec<f64>>,
 }
 
 /// A bead model fitted at compile time to measured coupons
@@ -448,6 +457,8 @@ impl Bead {
             measured: None,
             fit: None,
             tilt: None,
+            powers: None,
+            powders: None,
         }
     }
 

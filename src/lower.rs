@@ -111,6 +111,14 @@ fn ir_bead(b: &crate::sema::model::Bead) -> ir::Bead {
     ir::Bead {
         measured: b.measured.map(|[lo, hi]| [lo.0, hi.0]),
         tilt: b.tilt.map(|(t, _)| t.map(f64::to_degrees)),
+        powers: b
+            .powers
+            .as_ref()
+            .map(|(v, _)| v.iter().map(|p| p.watts()).collect()),
+        powders: b
+            .powders
+            .as_ref()
+            .map(|(v, _)| v.iter().map(|f| f.g_min()).collect()),
         fit: b.fit.as_ref().map(|f| ir::BeadFit {
             data: f.data.clone(),
             model: f.kind.name().to_string(),

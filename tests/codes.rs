@@ -380,6 +380,15 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     // A tetrahedron without its slanted face (tests/codes/open.stl).
     mesh: Mesh, PLATE,
         "extrude block { profile = mesh(\"open.stl\")  size = outer  bead = track }";
+    // Coupons at 1200 W and 1500 W, one line pooled over both: the line
+    // at 1500 W lies 0.2 mm above the one at 1200 W.
+    pooled_fit: PooledFit, PLATE,
+        "bead track { width = 2.2 mm  model = fit(linear, data = \"pooled_fit.csv\") }";
+    // The same sheet's coupons at 1200 W, for a process at 1500 W.
+    extrapolation_power: Extrapolation, PLATE,
+        "bead track { width = 2.2 mm  model = fit(linear, data = \"pooled_fit.csv\", power = 1200 W) }";
+    no_coupons_at_the_power: TooFewPoints, PLATE,
+        "bead track { width = 2.2 mm  model = fit(linear, data = \"pooled_fit.csv\", power = 1400 W) }";
     too_few_points: TooFewPoints, PLATE,
         "bead track { width = 2.2 mm  model = fit(power, data = \"too_few_points.csv\") }";
     // Twelve coupons 30 mm long on a plate 40 × 20 mm.

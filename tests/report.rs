@@ -117,6 +117,8 @@ fn one_straight_track_with_a_mass_balance_bead() {
         measured: None,
         fit: None,
         tilt: None,
+        powers: None,
+        powders: None,
     });
     let at = |x: f64, on: bool| Point {
         pos: [x, 0.0, 0.0],

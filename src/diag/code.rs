@@ -369,6 +369,8 @@ codes! {
         "fewer contour passes fit inside the profile than `contours` asks for (named: the first such layer)";
     TallBead = "tall-bead", Warnings,
         "a mass-balance bead model that lays more than a square of its width in cross-section at its slowest speed (a one-bead wall would rise more than its width a layer): no nozzle lays that; a density, feed or efficiency in the wrong unit most often";
+    PooledFit = "pooled-fit", Warnings,
+        "a `fit(…)` over coupons laid at several powers or powder feeds that one model pooled over them misfits: each group fitted apart explains the coupons better for the numbers it takes (lower AICc); names each group's mean residual and the `power` / `powder` that fits one";
     BeadTilt = "bead-tilt", Warnings,
         "a deposit whose nozzle tilts from vertical more than 5° beyond the tilts its bead was measured at (the bead's `tilt`, vertical unless written): its heights there are not the ones measured";
     PowderMismatch = "powder-mismatch", Warnings,

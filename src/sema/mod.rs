@@ -46,7 +46,7 @@ pub use top::TopHeights;
 use crate::diag::{message, Diagnostics};
 use crate::syntax::ast::File;
 use eval::Env;
-use model::Model;
+use model::{Model, PowerSchedule};
 use statement::Statements;
 
 /// Checks a parsed file. Returns every diagnostic (errors and warnings) found,
@@ -145,6 +145,13 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
     );
     if let (Some(b), Some((powder, at))) = (&bead, process.powder) {
         bead::check_feed(b, powder, at, diags);
+    }
+    if let (Some(b), Some(p), false) = (&bead, &process.process, ring) {
+        let power = match p.power {
+            PowerSchedule::Constant(w) => w,
+            PowerSchedule::Ramp { to, .. } => to,
+        };
+        bead::check_measured_at(b, (power, p.power_span), (p.powder, p.powder_span), diags);
     }
     // The slicers lay the feed the process runs.
     let bead = bead.map(|mut b| {

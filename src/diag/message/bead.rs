@@ -466,3 +466,51 @@ pub fn bead_tilt(
         lo.max(0.0)
     ))
 }
+
+/// The process runs the laser at `power` (written at `at`), a power bead
+/// `bead` was not measured at (`measured`, said at `bead_at`).
+pub fn unmeasured_power(
+    bead: &str,
+    power: Power,
+    measured: &[Power],
+    at: Span,
+    bead_at: Span,
+) -> Diagnostic {
+    let list: Vec<String> = measured.iter().map(|p| p.to_string()).collect();
+    Diagnostic::warning(
+        Code::Extrapolation,
+        format!(
+            "bead `{bead}` was measured at {}, the process runs the laser at {power}: how much the melt pool catches changes with the power, and the bead's heights there are a guess",
+            list.join(", ")
+        ),
+    )
+    .label(at, "the process's power")
+    .label(bead_at, "the powers measured")
+    .help(format!(
+        "lay coupons at {power} and fit the bead to them (`powers = [{power}]` in the calibration, `fit(…, power = {power})`), or run the process at a power measured"
+    ))
+}
+
+/// The process feeds `powder` (written at `at`), a feed bead `bead` was not
+/// measured at (`measured`, said at `bead_at`).
+pub fn unmeasured_powder(
+    bead: &str,
+    powder: MassFlow,
+    measured: &[MassFlow],
+    at: Span,
+    bead_at: Span,
+) -> Diagnostic {
+    let list: Vec<String> = measured.iter().map(|p| p.to_string()).collect();
+    Diagnostic::warning(
+        Code::Extrapolation,
+        format!(
+            "bead `{bead}` was measured at a powder feed of {}, the process feeds {powder}: how much of it the melt pool catches changes with the feed, and the bead's heights there are a guess",
+            list.join(", ")
+        ),
+    )
+    .label(at, "the process's feed")
+    .label(bead_at, "the feeds measured")
+    .help(format!(
+        "lay coupons at {powder} and fit the bead to them (`powders = [{powder}]` in the calibration, `fit(…, powder = {powder})`), or feed a powder measured"
+    ))
+}
