@@ -387,6 +387,12 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     // The same sheet's coupons at 1200 W, for a process at 1500 W.
     extrapolation_power: Extrapolation, PLATE,
         "bead track { width = 2.2 mm  model = fit(linear, data = \"pooled_fit.csv\", power = 1200 W) }";
+    // The plate's bead measured at the process's 1500 W and 8 g/min; a
+    // style runs its raster at 1800 W.
+    extrapolation_style_power: Extrapolation, PLATE,
+        "bead track { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s)  powers = [1500 W]  powders = [8 g/min] }
+process { speed = 6 mm/s  power = 1500 W  power_range = 1000 W .. 2000 W  powder = 8 g/min  defocus = -3 mm }
+style edge { id = 1  power = 1800 W  when { paths = infill } }";
     no_coupons_at_the_power: TooFewPoints, PLATE,
         "bead track { width = 2.2 mm  model = fit(linear, data = \"pooled_fit.csv\", power = 1400 W) }";
     too_few_points: TooFewPoints, PLATE,

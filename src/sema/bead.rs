@@ -568,29 +568,41 @@ pub fn check_feed(bead: &Bead, powder: MassFlow, at: Span, diags: &mut Diagnosti
     }
 }
 
-/// Warns (`lmd::extrapolation`) where the process runs the laser at a power
-/// (`power`, a ramp's last; written at `power_at`) or feeds powder
-/// (`powder`, at `powder_at`) that the bead was not measured at, when its
-/// `powers` or `powders` are known: within 1 % of one of them counts.
+/// Warns (`lmd::extrapolation`) where the process (a ramp's last power) or
+/// a style (named) runs the laser at a power, or feeds powder, that the
+/// bead was not measured at, when its `powers` or `powders` are known:
+/// within 1 % of one of them counts. Each value comes with where it is
+/// written.
+#[allow(clippy::type_complexity)]
 pub fn check_measured_at(
     bead: &Bead,
-    (power, power_at): (Power, Span),
-    (powder, powder_at): (MassFlow, Span),
+    powers: &[(Power, Span, Option<&str>)],
+    powders: &[(MassFlow, Span, Option<&str>)],
     diags: &mut Diagnostics,
 ) {
     let near = |x: f64, of: f64| (x - of).abs() <= 0.01 * of;
     if let Some((ps, at)) = &bead.powers {
-        if !ps.iter().any(|p| near(power.0, p.0)) {
-            diags.push(message::bead::unmeasured_power(
-                &bead.name, power, ps, power_at, *at,
-            ));
+        for &(power, power_at, style) in powers {
+            if !ps.iter().any(|p| near(power.0, p.0)) {
+                diags.push(message::bead::unmeasured_power(
+                    (&bead.name, *at),
+                    power,
+                    ps,
+                    (power_at, style),
+                ));
+            }
         }
     }
     if let Some((fs, at)) = &bead.powders {
-        if !fs.iter().any(|f| near(powder.0, f.0)) {
-            diags.push(message::bead::unmeasured_powder(
-                &bead.name, powder, fs, powder_at, *at,
-            ));
+        for &(powder, powder_at, style) in powders {
+            if !fs.iter().any(|f| near(powder.0, f.0)) {
+                diags.push(message::bead::unmeasured_powder(
+                    (&bead.name, *at),
+                    powder,
+                    fs,
+                    (powder_at, style),
+                ));
+            }
         }
     }
 }

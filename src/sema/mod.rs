@@ -147,11 +147,7 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         bead::check_feed(b, powder, at, diags);
     }
     if let (Some(b), Some(p), false) = (&bead, &process.process, ring) {
-        let power = match p.power {
-            PowerSchedule::Constant(w) => w,
-            PowerSchedule::Ramp { to, .. } => to,
-        };
-        bead::check_measured_at(b, (power, p.power_span), (p.powder, p.powder_span), diags);
+        measured_at(b, p, styles.as_ref(), diags);
     }
     // The slicers lay the feed the process runs.
     let bead = bead.map(|mut b| {
@@ -168,4 +164,31 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         styles: styles?,
         tolerance,
     })
+}
+
+/// Warns where the process or a style runs `b` at a power or feed it was
+/// not measured at ([`bead::check_measured_at`]): the process's power (a
+/// ramp's last) and feed, and each style's that sets one.
+fn measured_at(
+    b: &model::Bead,
+    p: &model::Process,
+    styles: Option<&model::Styles>,
+    diags: &mut Diagnostics,
+) {
+    let power = match p.power {
+        PowerSchedule::Constant(w) => w,
+        PowerSchedule::Ramp { to, .. } => to,
+    };
+    let mut powers = vec![(power, p.power_span, None)];
+    let mut powders = vec![(p.powder, p.powder_span, None)];
+    // A style's power or feed lays its tracks with the same bead.
+    for s in styles.iter().flat_map(|s| &s.table) {
+        if let Some(w) = s.power {
+            powers.push((w, s.span, Some(s.name.as_str())));
+        }
+        if let Some(f) = s.powder {
+            powders.push((f, s.span, Some(s.name.as_str())));
+        }
+    }
+    bead::check_measured_at(b, &powers, &powders, diags);
 }

@@ -467,48 +467,55 @@ pub fn bead_tilt(
     ))
 }
 
-/// The process runs the laser at `power` (written at `at`), a power bead
-/// `bead` was not measured at (`measured`, said at `bead_at`).
+/// The process, or style `at.1`, runs the laser at `power` (written at
+/// `at.0`), a power bead `bead.0` was not measured at (`measured`, said at
+/// `bead.1`).
 pub fn unmeasured_power(
-    bead: &str,
+    (bead, bead_at): (&str, Span),
     power: Power,
     measured: &[Power],
-    at: Span,
-    bead_at: Span,
+    (at, style): (Span, Option<&str>),
 ) -> Diagnostic {
     let list: Vec<String> = measured.iter().map(|p| p.to_string()).collect();
+    let who = match style {
+        Some(s) => format!("style `{s}` runs"),
+        None => "the process runs".to_string(),
+    };
     Diagnostic::warning(
         Code::Extrapolation,
         format!(
-            "bead `{bead}` was measured at {}, the process runs the laser at {power}: how much the melt pool catches changes with the power, and the bead's heights there are a guess",
+            "bead `{bead}` was measured at {}, {who} the laser at {power}: how much the melt pool catches changes with the power, and the bead's heights there are a guess",
             list.join(", ")
         ),
     )
-    .label(at, "the process's power")
+    .label(at, if style.is_some() { "the style's power" } else { "the process's power" })
     .label(bead_at, "the powers measured")
     .help(format!(
-        "lay coupons at {power} and fit the bead to them (`powers = [{power}]` in the calibration, `fit(…, power = {power})`), or run the process at a power measured"
+        "lay coupons at {power} and fit the bead to them (`powers = [{power}]` in the calibration, `fit(…, power = {power})`), or run the laser at a power measured"
     ))
 }
 
-/// The process feeds `powder` (written at `at`), a feed bead `bead` was not
-/// measured at (`measured`, said at `bead_at`).
+/// The process, or style `at.1`, feeds `powder` (written at `at.0`), a
+/// feed bead `bead.0` was not measured at (`measured`, said at `bead.1`).
 pub fn unmeasured_powder(
-    bead: &str,
+    (bead, bead_at): (&str, Span),
     powder: MassFlow,
     measured: &[MassFlow],
-    at: Span,
-    bead_at: Span,
+    (at, style): (Span, Option<&str>),
 ) -> Diagnostic {
     let list: Vec<String> = measured.iter().map(|p| p.to_string()).collect();
+    let who = match style {
+        Some(s) => format!("style `{s}` feeds"),
+        None => "the process feeds".to_string(),
+    };
     Diagnostic::warning(
         Code::Extrapolation,
         format!(
-            "bead `{bead}` was measured at a powder feed of {}, the process feeds {powder}: how much of it the melt pool catches changes with the feed, and the bead's heights there are a guess",
+            "bead `{bead}` was measured at a powder feed of {}, {who} {powder}: how much of it the melt pool catches changes with the feed, and the bead's heights there are a guess",
             list.join(", ")
         ),
     )
-    .label(at, "the process's feed")
+    .label(at, if style.is_some() { "the style's feed" } else { "the process's feed" })
     .label(bead_at, "the feeds measured")
     .help(format!(
         "lay coupons at {powder} and fit the bead to them (`powders = [{powder}]` in the calibration, `fit(…, powder = {powder})`), or feed a powder measured"
