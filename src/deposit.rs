@@ -35,6 +35,17 @@ use serde::{Deserialize, Serialize};
 /// calibration, and what writing a speed to 0.1 mm/s rounds at 7–10 mm/s.
 pub const RISE_TOLERANCE: f64 = 0.03;
 
+/// The lean from the nozzle's axis past which a layer leaning out over the
+/// one below is warned when the slicing sets no `max_overhang`, deg: the
+/// rule of thumb of powder DED (and of FDM), where the melt pool starts to
+/// run off the edge without a tilted nozzle or support (`lmd::overhang`).
+pub const DEFAULT_OVERHANG: f64 = 45.0;
+
+/// The step across the nozzle, in bead widths, past which a layer is warned
+/// by default whatever its lean: a bead half off the one below (thick layers
+/// reach it below 45°). `lmd::stacking` refuses ¾ of a width.
+pub const DEFAULT_OVERHANG_STEP: f64 = 0.5;
+
 /// How far the layers' mean errors may add up by default, mm (`max_drift`):
 /// a standoff off by more than about half a millimetre changes how much
 /// powder the melt pool catches.

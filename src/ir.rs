@@ -270,6 +270,20 @@ pub struct Bead {
     /// (`model = fit(…, data = "…")`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fit: Option<BeadFit>,
+    /// The nozzle's tilts from vertical the model was measured at, deg
+    /// (`tilt`): a deposit tilted more than 5° beyond them is warned
+    /// (`lmd::bead-tilt`). Absent: measured with the nozzle vertical.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tilt: Option<[f64; 2]>,
+    /// The laser powers the model was measured at, W (`powers`, or a fit's
+    /// coupons'): a process at another is warned (`lmd::extrapolation`).
+    /// Absent: not known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub powers: Option<Vec<f64>>,
+    /// The powder feeds it was measured at, g/min (`powders`, or a fit's
+    /// coupons'). Absent: not known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub powders: Option<Vec<f64>>,
 }
 
 /// A bead model fitted at compile time to measured coupons
@@ -442,6 +456,9 @@ impl Bead {
             }),
             measured: None,
             fit: None,
+            tilt: None,
+            powers: None,
+            powders: None,
         }
     }
 
@@ -1708,6 +1725,8 @@ pub struct Origins {
     pub bead_height: Option<Span>,
     /// The bead model's speed range.
     pub bead_speed: Option<Span>,
+    /// The bead's `tilt` where written, else its block.
+    pub bead: Option<Span>,
     /// The laser power declaration.
     pub power: Option<Span>,
     /// The spine (bend radius).

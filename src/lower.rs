@@ -73,6 +73,10 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         origins: Origins {
             bead_height,
             bead_speed,
+            bead: model
+                .bead
+                .as_ref()
+                .map(|b| b.tilt.map_or(b.span, |(_, at)| at)),
             power: Some(model.process.power_span),
             spine: match &model.build {
                 Build::Duct { loft, .. } => Some(loft.spine_span),
@@ -107,6 +111,15 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
 fn ir_bead(b: &crate::sema::model::Bead) -> ir::Bead {
     ir::Bead {
         measured: b.measured.map(|[lo, hi]| [lo.0, hi.0]),
+        tilt: b.tilt.map(|(t, _)| t.map(f64::to_degrees)),
+        powers: b
+            .powers
+            .as_ref()
+            .map(|(v, _)| v.iter().map(|p| p.watts()).collect()),
+        powders: b
+            .powders
+            .as_ref()
+            .map(|(v, _)| v.iter().map(|f| f.g_min()).collect()),
         fit: b.fit.as_ref().map(|f| ir::BeadFit {
             data: f.data.clone(),
             model: f.kind.name().to_string(),
@@ -272,6 +285,7 @@ fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
         origins: Origins {
             bead_height: Some(c.span),
             bead_speed: Some(c.span),
+            bead: None,
             power: Some(model.process.power_span),
             spine: None,
             top: None,

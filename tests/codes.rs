@@ -385,6 +385,21 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     // A tetrahedron without its slanted face (tests/codes/open.stl).
     mesh: Mesh, PLATE,
         "extrude block { profile = mesh(\"open.stl\")  size = outer  bead = track }";
+    // Coupons at 1200 W and 1500 W, one line pooled over both: the line
+    // at 1500 W lies 0.2 mm above the one at 1200 W.
+    pooled_fit: PooledFit, PLATE,
+        "bead track { width = 2.2 mm  model = fit(linear, data = \"pooled_fit.csv\") }";
+    // The same sheet's coupons at 1200 W, for a process at 1500 W.
+    extrapolation_power: Extrapolation, PLATE,
+        "bead track { width = 2.2 mm  model = fit(linear, data = \"pooled_fit.csv\", power = 1200 W) }";
+    // The plate's bead measured at the process's 1500 W and 8 g/min; a
+    // style runs its raster at 1800 W.
+    extrapolation_style_power: Extrapolation, PLATE,
+        "bead track { width = 2.2 mm  model = measured(height = 0.7 mm, speed = 6 mm/s)  powers = [1500 W]  powders = [8 g/min] }
+process { speed = 6 mm/s  power = 1500 W  power_range = 1000 W .. 2000 W  powder = 8 g/min  defocus = -3 mm }
+style edge { id = 1  power = 1800 W  when { paths = infill } }";
+    no_coupons_at_the_power: TooFewPoints, PLATE,
+        "bead track { width = 2.2 mm  model = fit(linear, data = \"pooled_fit.csv\", power = 1400 W) }";
     too_few_points: TooFewPoints, PLATE,
         "bead track { width = 2.2 mm  model = fit(power, data = \"too_few_points.csv\") }";
     // Twelve coupons 30 mm long on a plate 40 × 20 mm.
@@ -650,6 +665,12 @@ slicing planar { offset = 1.6 mm  infill = raster(angle = 0 deg) }";
     overlap_stretch: OverlapStretch, WALL,
         "extrude wall { profile = rectangle(width = 30 mm, height = 12 mm)  size = outer  bead = b316  top = 8 mm + 50 % * (y + 6 mm) }
 slicing variable { layers = auto  scan = x  segments { tolerance = 0.1 mm } }";
+    // The duct's nozzle stands within 3° of vertical; its bead says it was
+    // measured tilted 10° to 20°.
+    bead_tilt: BeadTilt, DUCT,
+        "bead b { width = 6 mm  speed = 7 mm/s .. 10 mm/s  model = mass_balance(feed = 45.9 g/min, efficiency = 35 %, density = 7.9 g/cm^3)  tilt = 10 deg .. 20 deg }";
+    bead_tilt_beyond_90: OutOfRange, DUCT,
+        "bead b { width = 6 mm  speed = 7 mm/s .. 10 mm/s  model = mass_balance(feed = 45.9 g/min, efficiency = 35 %, density = 7.9 g/cm^3)  tilt = 30 deg .. 100 deg }";
     seam_at_bend_extreme: SeamAtBendExtreme, DUCT, "slicing normal { layers = auto  points = 8  seam = 0 deg }";
 }
 

@@ -328,8 +328,207 @@ fn the_json_has_every_number_at_full_precision_and_the_models_not_fitted() {
         assert_eq!(r["line"].as_u64(), Some(line as u64));
         same(&r["residual"], x);
     }
+    // A sheet at two powers adds its groups and the power line, to the
+    // schema too.
+    let out = Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .args([
+            "fit",
+            "tests/fit/by_power/data.csv",
+            "--model",
+            "mass_balance",
+        ])
+        .args(["--density", "7.9", "--json"])
+        .output()
+        .expect("runs");
+    let groups: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(
+        groups["groups"]["pooling_hides"].as_bool().unwrap(),
+        "{groups}"
+    );
+    assert!(groups["power_line"]["at"].as_array().unwrap().len() >= 2);
+    let errors = crate::support::schema::validate(&schema, &groups);
+    assert!(errors.is_empty(), "{errors:?}");
     // A broken document fails the schema: the test can fail.
     let mut bad = v.clone();
     bad["fits"][0]["parameters"] = serde_json::json!({ "slope": 1.0 });
     assert!(!crate::support::schema::validate(&schema, &bad).is_empty());
+}
+
+/// Issue 33's reproducer (tests/fit/by_power/data.csv): twelve coupons at
+/// 1200 W (η 0.37) and twelve at 1600 W (η 0.422), 12 g/min, with 1 % of
+/// scatter. Pooled, one η lies between the two, with every residual
+/// negative at 1200 W and positive at 1600 W; each power fitted apart
+/// gives back its own η; fitting apart has the lower AICc, so pooling
+/// hides the power. Every η is checked against `Σ A·x / Σ x²`, `x =
+/// ṁ/(ρ·v)`, worked out here from the file.
+#[test]
+fn pooling_two_powers_hides_the_power() {
+    let text = std::fs::read_to_string("tests/fit/by_power/data.csv").unwrap();
+    let s = sheet::read(&text).unwrap();
+    let given = Given {
+        density: Some(Density(7.9e-3)),
+        feed: None,
+    };
+    let eta_of = |keep: &dyn Fn(f64) -> bool| {
+        let (mut sxy, mut sxx) = (0.0, 0.0);
+        for c in s
+            .coupons
+            .iter()
+            .filter(|c| keep(c.get(Column::Power).unwrap()))
+        {
+            let x = c.get(Column::Feed).unwrap() / 60.0 / (7.9e-3 * c.speed());
+            sxy += x * c.get(Column::Area).unwrap();
+            sxx += x * x;
+        }
+        sxy / sxx
+    };
+    let efficiency = |f: &fit::Fit| match f.model {
+        HeightModel::MassBalance { efficiency, .. } => efficiency,
+        _ => panic!("{:?}", f.model),
+    };
+    let pooled = fit::fit(&s, Kind::MassBalance, given).unwrap();
+    let eta = efficiency(&pooled);
+    assert!((eta - eta_of(&|_| true)).abs() < 1e-12);
+    assert!((eta - 0.396).abs() < 0.001, "{eta}");
+    assert_eq!(pooled.powers, [1200.0, 1600.0]);
+    let p = fit::pooling(&s, &pooled, given).expect("two groups");
+    assert_eq!(p.groups.len(), 2);
+    for ((g, r, alone), (power, want)) in p.groups.iter().zip([(1200.0, 0.37), (1600.0, 0.422)]) {
+        assert_eq!(
+            (g.power, g.feed, g.lines.len()),
+            (Some(power), Some(12.0), 12)
+        );
+        let got = efficiency(alone.as_ref().unwrap());
+        assert!((got - eta_of(&|w| w == power)).abs() < 1e-12);
+        assert!((got - want).abs() < 0.002, "{power} W: {got}");
+        // Every residual of the pooled η on one side.
+        if power < 1400.0 {
+            assert_eq!((r.negative, r.positive), (12, 0));
+        } else {
+            assert_eq!((r.negative, r.positive), (0, 12));
+        }
+    }
+    assert!(p.hides(), "{:?}", p.aicc);
+    // The power as a variable: with two powers the line passes through
+    // each power's own η, about the coupons' mean power (1400 W).
+    let line = fit::power_line(&s, given).unwrap();
+    assert_eq!(line.power, 1400.0);
+    let apart: Vec<f64> = p
+        .groups
+        .iter()
+        .map(|g| efficiency(g.2.as_ref().unwrap()))
+        .collect();
+    assert!((line.slope - (apart[1] - apart[0]) / 400.0).abs() < 1e-9);
+    for ((w, e), want) in line.at.iter().zip(&apart) {
+        assert!((e - want).abs() < 1e-9, "{w} W: {e} vs {want}");
+    }
+    assert!((line.aicc.unwrap() - p.aicc.unwrap()[1]).abs() < 1e-6);
+    // One power alone is one group: nothing to pool.
+    let one = fit::Group {
+        power: Some(1200.0),
+        feed: Some(12.0),
+        lines: p.groups[0].0.lines.clone(),
+    }
+    .sheet(&s);
+    let f = fit::fit(&one, Kind::MassBalance, given).unwrap();
+    assert!(fit::pooling(&one, &f, given).is_none());
+}
+
+/// Coupons of one power whose two halves differ only by scatter: fitting
+/// them apart buys nothing, and pooling hides nothing.
+#[test]
+fn pooling_two_powers_that_lay_alike_hides_nothing() {
+    let text = std::fs::read_to_string("tests/fit/by_power/data.csv").unwrap();
+    // Both halves at η 0.37: the 1600 W areas scaled down by 0.37/0.422.
+    let alike: String = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            if i == 0 || !l.contains(",1600,") {
+                return format!("{l}\n");
+            }
+            let (head, area) = l.rsplit_once(',').unwrap();
+            let a: f64 = area.parse().unwrap();
+            format!("{head},{}\n", a * 0.37 / 0.422)
+        })
+        .collect();
+    let s = sheet::read(&alike).unwrap();
+    let given = Given {
+        density: Some(Density(7.9e-3)),
+        feed: None,
+    };
+    let pooled = fit::fit(&s, Kind::MassBalance, given).unwrap();
+    let p = fit::pooling(&s, &pooled, given).unwrap();
+    assert!(!p.hides(), "{:?}", p.aicc);
+}
+
+/// `fit(…, power = …)` fits the coupons laid at that power only, and the
+/// bead says so (the IR's `powers`); a process at another power is warned
+/// (`lmd::extrapolation`); pooled over both powers, the fit is warned of
+/// (`lmd::pooled-fit`), its help naming the `power` that selects each.
+#[test]
+fn a_fit_at_the_process_power_takes_its_coupons() {
+    let dir = Path::new("tests/fit/by_power");
+    let root = dir.to_path_buf();
+    let data: lmdc::sema::DataReader =
+        std::rc::Rc::new(move |p: &str, _| std::fs::read(root.join(p)).map_err(|e| e.to_string()));
+    let src = |power: &str, select: &str| {
+        std::fs::read_to_string("tests/cases/calib/seed_003_fit/input.lmd")
+            .unwrap()
+            .replace(
+                "model = fit(linear, data = \"coupons.csv\")",
+                &format!(
+                    "model = fit(mass_balance, data = \"data.csv\", density = 7.9 g/cm^3{select})"
+                ),
+            )
+            .replace("power = 1000 W", &format!("power = {power}"))
+    };
+    let run = |s: String| {
+        let (c, _) = lmdc::pipeline::compile_reading(&s, None, &mut (), data.clone()).unwrap();
+        c
+    };
+    let codes = |c: &lmdc::pipeline::Compiled| -> Vec<lmdc::diag::Code> {
+        c.diagnostics.iter().map(|d| d.code).collect()
+    };
+    let base = src("1600 W", "");
+    assert!(
+        base.contains("power = 1600 W") && base.contains("data.csv"),
+        "{base}"
+    );
+    // Pooled: warned, with both selections in the help.
+    let c = run(base);
+    let pooled = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == lmdc::diag::Code::PooledFit)
+        .unwrap_or_else(|| panic!("{:?}", c.diagnostics));
+    let help = pooled.help.clone().unwrap_or_default();
+    assert!(
+        help.contains("`power = 1200 W` or `power = 1600 W`"),
+        "{help}"
+    );
+    // Following it: the 1600 W coupons alone, no warning.
+    let c = run(src("1600 W", ", power = 1600 W"));
+    assert!(codes(&c).is_empty(), "{:?}", c.diagnostics);
+    let ir = c.program.unwrap().into_ir();
+    let b = ir.bead.unwrap();
+    assert_eq!(b.powers, Some(vec![1600.0]));
+    assert_eq!(b.powders, Some(vec![12.0]));
+    assert_eq!(b.fit.unwrap().points, 12);
+    let lmdc::ir::BeadModel::MassBalance { efficiency, .. } = b.model else {
+        panic!()
+    };
+    assert!((efficiency - 0.422).abs() < 0.002, "{efficiency}");
+    // The 1600 W coupons for a process at 1200 W: warned.
+    let c = run(src("1200 W", ", power = 1600 W"));
+    assert_eq!(
+        codes(&c),
+        [lmdc::diag::Code::Extrapolation],
+        "{:?}",
+        c.diagnostics
+    );
+    assert!(c
+        .diagnostics
+        .iter()
+        .all(|d| d.message.contains("measured at 1600 W")));
 }

@@ -116,6 +116,9 @@ fn one_straight_track_with_a_mass_balance_bead() {
         widths: None,
         measured: None,
         fit: None,
+        tilt: None,
+        powers: None,
+        powders: None,
     });
     let at = |x: f64, on: bool| Point {
         pos: [x, 0.0, 0.0],

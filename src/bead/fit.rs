@@ -119,6 +119,12 @@ pub struct Fit {
     pub widths: Option<Widths>,
     /// The mean width measured, mm.
     pub mean_width: Option<f64>,
+    /// The laser powers the coupons fitted were laid at, W, increasing
+    /// (empty where the sheet has none).
+    pub powers: Vec<f64>,
+    /// The powder feeds they were laid at, g/min, increasing (empty where
+    /// the sheet has none).
+    pub feeds: Vec<f64>,
 }
 
 /// What a program says of a model it fitted when compiled: where the
@@ -421,7 +427,15 @@ fn finish(
             [a.min(v), b.max(v)]
         });
     let (widths, mean_width) = widths(sheet);
+    let values = |col: Column| {
+        let mut v: Vec<f64> = coupons.iter().filter_map(|c| c.get(col)).collect();
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        v
+    };
     Fit {
+        powers: values(Column::Power),
+        feeds: values(Column::Feed),
         kind,
         model,
         range,
@@ -477,6 +491,249 @@ fn widths(sheet: &Sheet) -> (Option<Widths>, Option<f64>) {
         .collect();
     let all = mean(&with, |c| c.get(Column::Width));
     (Widths::new(&speeds, &means).ok(), Some(all))
+}
+
+/// The distinct values of `col` among the coupons of `sheet`, increasing.
+pub fn values(sheet: &Sheet, col: Column) -> Vec<f64> {
+    let mut v: Vec<f64> = sheet.coupons.iter().filter_map(|c| c.get(col)).collect();
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+/// Coupons laid at one laser power and one powder feed (either `None`
+/// where the sheet has no such column or the cell is empty).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Group {
+    /// The power, W.
+    pub power: Option<f64>,
+    /// The powder feed, g/min.
+    pub feed: Option<f64>,
+    /// The lines of its coupons in the file.
+    pub lines: Vec<usize>,
+}
+
+impl Group {
+    /// The coupons of `sheet` in this group, as a sheet of their own.
+    pub fn sheet(&self, sheet: &Sheet) -> Sheet {
+        let mut s = sheet.clone();
+        s.coupons.retain(|c| self.lines.contains(&c.line));
+        s
+    }
+}
+
+/// The groups of coupons of `sheet` by power and powder feed, by power
+/// then feed (one group when every coupon was laid at one of each).
+pub fn groups(sheet: &Sheet) -> Vec<Group> {
+    let same = |a: Option<f64>, b: Option<f64>| match (a, b) {
+        (Some(a), Some(b)) => (a - b).abs() <= 1e-9 * a.abs().max(b.abs()),
+        (a, b) => a.is_none() && b.is_none(),
+    };
+    let mut out: Vec<Group> = Vec::new();
+    for c in &sheet.coupons {
+        let (p, f) = (c.get(Column::Power), c.get(Column::Feed));
+        match out.iter_mut().find(|g| same(g.power, p) && same(g.feed, f)) {
+            Some(g) => g.lines.push(c.line),
+            None => out.push(Group {
+                power: p,
+                feed: f,
+                lines: vec![c.line],
+            }),
+        }
+    }
+    let key = |x: Option<f64>| x.unwrap_or(f64::NEG_INFINITY);
+    out.sort_by(|a, b| {
+        key(a.power)
+            .total_cmp(&key(b.power))
+            .then(key(a.feed).total_cmp(&key(b.feed)))
+    });
+    out
+}
+
+/// How a pooled fit's residuals fall in one group.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Residuals {
+    /// Their mean, in the fit's unit.
+    pub mean: f64,
+    /// How many are below zero (the model over the coupon).
+    pub negative: usize,
+    /// How many are above zero.
+    pub positive: usize,
+}
+
+/// What fitting each group on its own says of a fit pooled over them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pooling {
+    /// Each group, the pooled fit's residuals in it, and the model fitted
+    /// to it alone (or why it could not be).
+    pub groups: Vec<(Group, Residuals, Result<Fit, Fault>)>,
+    /// The small-sample Akaike criterion of the pooled fit and of the
+    /// groups fitted apart (one residual scatter, every group's numbers),
+    /// when the coupons are enough for both.
+    pub aicc: Option<[f64; 2]>,
+}
+
+impl Pooling {
+    /// Whether pooling hides a factor: fitting each group apart explains
+    /// the coupons better for the numbers it takes (the lower AICc, the
+    /// criterion [`favoured`] picks models by).
+    pub fn hides(&self) -> bool {
+        self.aicc.is_some_and(|[pooled, apart]| apart < pooled)
+    }
+}
+
+/// `pooled` (a fit over every coupon of `sheet`) against the same model
+/// fitted to each group of coupons apart; `None` when the sheet holds one
+/// group.
+pub fn pooling(sheet: &Sheet, pooled: &Fit, given: Given) -> Option<Pooling> {
+    let groups = groups(sheet);
+    if groups.len() < 2 {
+        return None;
+    }
+    let mut out = Vec::new();
+    for g in groups {
+        let rs: Vec<f64> = pooled
+            .residuals
+            .iter()
+            .filter(|r| g.lines.contains(&r.0))
+            .map(|r| r.1)
+            .collect();
+        let residuals = Residuals {
+            mean: rs.iter().sum::<f64>() / rs.len().max(1) as f64,
+            negative: rs.iter().filter(|&&r| r < 0.0).count(),
+            positive: rs.iter().filter(|&&r| r > 0.0).count(),
+        };
+        let alone = fit(&g.sheet(sheet), pooled.kind, given);
+        out.push((g, residuals, alone));
+    }
+    let aicc = aicc_apart(pooled, &out);
+    Some(Pooling { groups: out, aicc })
+}
+
+/// The AICc of `pooled` and of its groups fitted apart, each as
+/// `n·ln(SS/n) + 2k + 2k(k+1)/(n−k−1)` over the same coupons (`k` the
+/// numbers fitted and the scatter): `None` where a group could not be
+/// fitted or the coupons are too few.
+fn aicc_apart(pooled: &Fit, groups: &[(Group, Residuals, Result<Fit, Fault>)]) -> Option<[f64; 2]> {
+    let ss = |f: &Fit| f.residuals.iter().map(|r| r.1 * r.1).sum::<f64>();
+    let n = pooled.residuals.len();
+    let mut apart = (0.0, 0usize, 0usize);
+    for (_, _, f) in groups {
+        let f = f.as_ref().ok()?;
+        apart.0 += ss(f);
+        apart.1 += f.kind.parameters(f.speeds);
+        apart.2 += f.residuals.len();
+    }
+    // Every coupon in a group, else the two do not compare.
+    if apart.2 != n {
+        return None;
+    }
+    let crit = |ss: f64, k: usize| {
+        let (nf, kf) = (n as f64, k as f64);
+        (n > k + 1).then(|| {
+            nf * (ss / nf).max(1e-300).ln() + 2.0 * kf + 2.0 * kf * (kf + 1.0) / (nf - kf - 1.0)
+        })
+    };
+    let p = pooled.kind.parameters(pooled.speeds) + 1;
+    Some([crit(ss(pooled), p)?, crit(apart.0, apart.1 + 1)?])
+}
+
+/// A mass balance whose catch efficiency is a line in the laser power,
+/// `η(P) = η₀ + s·(P − P₀)`, fitted by least squares to coupons laid at two
+/// powers or more (the power as a variable, where pooling hides it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PowerLine {
+    /// The reference power `P₀`, W: the coupons' mean, to 10 W.
+    pub power: f64,
+    /// `η₀`, the efficiency at `P₀`.
+    pub efficiency: f64,
+    /// `s`, the efficiency's change per watt.
+    pub slope: f64,
+    /// The powers measured, W, increasing, and `η` at each.
+    pub at: Vec<(f64, f64)>,
+    /// R² of the areas or masses, as [`Fit::r2`].
+    pub r2: f64,
+    /// The RMS residual, in [`Fit::unit`].
+    pub rms: f64,
+    /// Its small-sample Akaike criterion over the same coupons as
+    /// [`Pooling::aicc`] (three numbers: `η₀`, `s` and the scatter).
+    pub aicc: Option<f64>,
+}
+
+/// [`PowerLine`] fitted to the coupons of `sheet` that have a power, with
+/// `given` as [`fit`] takes it; `None` unless they were laid at two powers
+/// or more and the mass balance fits.
+pub fn power_line(sheet: &Sheet, given: Given) -> Option<PowerLine> {
+    let density = given.density?;
+    let by_mass = !sheet.has(Column::Area) && sheet.has(Column::Mass);
+    let measured = if by_mass { Column::Mass } else { Column::Area };
+    let feed = |c: &Coupon| c.get(Column::Feed).or(given.feed.map(|f| f.g_min()));
+    let coupons: Vec<&Coupon> = sheet
+        .coupons
+        .iter()
+        .filter(|c| c.get(measured).is_some() && feed(c).is_some())
+        .filter(|c| c.get(Column::Power).is_some())
+        .filter(|c| !by_mass || c.get(Column::Length).is_some())
+        .collect();
+    let powers = {
+        let mut v: Vec<f64> = coupons
+            .iter()
+            .filter_map(|c| c.get(Column::Power))
+            .collect();
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        v
+    };
+    if powers.len() < 2 {
+        return None;
+    }
+    let x = |c: &Coupon| {
+        let per_s = feed(c).unwrap_or(0.0) / 60.0;
+        match by_mass {
+            false => per_s / (density.0 * c.speed()),
+            true => per_s * c.get(Column::Length).unwrap_or(0.0) / c.speed(),
+        }
+    };
+    let p0 = (mean(&coupons, |c| c.get(Column::Power)) / 10.0).round() * 10.0;
+    let d = |c: &Coupon| c.get(Column::Power).unwrap_or(p0) - p0;
+    // Normal equations of y = a·x + b·x·d.
+    let (mut sxx, mut sxxd, mut sxxdd, mut sxy, mut sxyd) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for c in &coupons {
+        let (xi, di, yi) = (x(c), d(c), c.get(measured).unwrap_or(0.0));
+        sxx += xi * xi;
+        sxxd += xi * xi * di;
+        sxxdd += xi * xi * di * di;
+        sxy += xi * yi;
+        sxyd += xi * yi * di;
+    }
+    let det = sxx * sxxdd - sxxd * sxxd;
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let a = (sxy * sxxdd - sxyd * sxxd) / det;
+    let b = (sxx * sxyd - sxxd * sxy) / det;
+    let measured_v: Vec<f64> = coupons
+        .iter()
+        .map(|c| c.get(measured).unwrap_or(0.0))
+        .collect();
+    let fitted: Vec<f64> = coupons.iter().map(|c| x(c) * (a + b * d(c))).collect();
+    let (residuals, r2, rms) = scatter(&coupons, &measured_v, &fitted);
+    let n = residuals.len();
+    let ss: f64 = residuals.iter().map(|r| r.1 * r.1).sum();
+    let k = 3.0;
+    let nf = n as f64;
+    let aicc = (nf > k + 1.0)
+        .then(|| nf * (ss / nf).max(1e-300).ln() + 2.0 * k + 2.0 * k * (k + 1.0) / (nf - k - 1.0));
+    let at = powers.iter().map(|&p| (p, a + b * (p - p0))).collect();
+    Some(PowerLine {
+        power: p0,
+        efficiency: a,
+        slope: b,
+        at,
+        r2,
+        rms,
+        aicc,
+    })
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 
 use super::messages::{self, MessageFormat};
 use super::{read_sheet, EXIT_PROGRAM, EXIT_USAGE};
-use lmdc::bead::fit::{self, Fit, Given, Kind};
+use lmdc::bead::fit::{self, Fit, Given, Group, Kind, Pooling};
 use lmdc::bead::sheet::{self, Sheet};
 use lmdc::bead::HeightModel;
 use lmdc::diag::Diagnostics;
@@ -98,11 +98,21 @@ pub fn run(a: Args<'_>, (color, format): (bool, MessageFormat)) -> u8 {
         None => fit::favoured(&fits).unwrap_or(&fits[0]),
     };
     let block = bead_block(chosen, &basis);
+    let pooling = fit::pooling(&sheet, chosen, given);
     let out = if a.json {
-        let j = Json::new(&sheet, (&fits, &skipped), chosen, &block);
+        let mut j = Json::new(&sheet, (&fits, &skipped), chosen, &block);
+        j.groups = pooling.as_ref().map(|p| JsonPooling::new(p, &basis));
+        j.power_line = fit::power_line(&sheet, given);
         serde_json::to_string_pretty(&j).unwrap_or_default() + "\n"
     } else {
-        report(&name, &sheet, &fits, &skipped, chosen, &block)
+        let mut s = report(&name, &sheet, &fits, &skipped, chosen, &block);
+        if let Some(p) = &pooling {
+            pooling_text(&mut s, p, chosen, &basis);
+        }
+        if let Some(l) = fit::power_line(&sheet, given) {
+            power_line_text(&mut s, &l, pooling.as_ref(), chosen.unit);
+        }
+        s
     };
     print!("{out}");
     0
@@ -210,6 +220,24 @@ fn bead_block(f: &Fit, basis: &str) -> String {
     if !matches!(f.model, HeightModel::MassBalance { .. }) {
         let _ = writeln!(s, "  measured_as = {basis}");
     }
+    let list = |xs: &[f64], unit: &str| {
+        let v: Vec<String> = xs.iter().map(|x| format!("{} {unit}", sig(*x))).collect();
+        v.join(", ")
+    };
+    if !f.powers.is_empty() {
+        let _ = writeln!(
+            s,
+            "  powers = [{}]    // the powers measured",
+            list(&f.powers, "W")
+        );
+    }
+    if !f.feeds.is_empty() {
+        let _ = writeln!(
+            s,
+            "  powders = [{}]    // the powder feeds measured",
+            list(&f.feeds, "g/min")
+        );
+    }
     s.push_str("}\n");
     s
 }
@@ -290,6 +318,147 @@ fn report(
     s
 }
 
+/// The words for a group: `1200 W, 12 g/min` (what the sheet says of it).
+fn group_name(g: &Group) -> String {
+    let mut parts = Vec::new();
+    if let Some(p) = g.power {
+        parts.push(format!("{} W", sig(p)));
+    }
+    if let Some(f) = g.feed {
+        parts.push(format!("{} g/min", sig(f)));
+    }
+    if parts.is_empty() {
+        "no power or feed".to_string()
+    } else {
+        parts.join(", ")
+    }
+}
+
+/// What the groups differ in: `the power`, `the powder feed` or both.
+fn factor(p: &Pooling) -> &'static str {
+    let differ = |f: fn(&Group) -> Option<f64>| {
+        let first = f(&p.groups[0].0);
+        p.groups.iter().any(|g| f(&g.0) != first)
+    };
+    match (differ(|g| g.power), differ(|g| g.feed)) {
+        (true, true) => "the power and the powder feed",
+        (false, true) => "the powder feed",
+        _ => "the power",
+    }
+}
+
+/// The text of the groups: each fitted apart, the pooled residuals in each,
+/// and whether pooling hides what they differ in.
+fn pooling_text(s: &mut String, p: &Pooling, pooled: &Fit, basis: &str) {
+    let kind = pooled.kind.name();
+    let _ = writeln!(
+        s,
+        "\nthe sheet holds {} groups of coupons, by power and powder feed; {kind} fitted to each apart:",
+        p.groups.len()
+    );
+    for (g, _, f) in &p.groups {
+        match f {
+            Ok(f) => {
+                let _ = writeln!(
+                    s,
+                    "  {:<22}{:>3} coupons  R² {:.6}  RMS {} {}  {}",
+                    group_name(g),
+                    g.lines.len(),
+                    f.r2,
+                    sig(f.rms),
+                    f.unit,
+                    model_text(f)
+                );
+            }
+            Err(_) => {
+                let _ = writeln!(
+                    s,
+                    "  {:<22}{:>3} coupons  not fitted: too few for {kind} on their own",
+                    group_name(g),
+                    g.lines.len()
+                );
+            }
+        }
+    }
+    let by: Vec<String> = p
+        .groups
+        .iter()
+        .map(|(g, r, _)| {
+            format!(
+                "{}: mean {}{} {}, {} of {} negative, {} positive",
+                group_name(g),
+                if r.mean > 0.0 { "+" } else { "" },
+                sig(r.mean),
+                pooled.unit,
+                r.negative,
+                g.lines.len(),
+                r.positive
+            )
+        })
+        .collect();
+    let _ = writeln!(
+        s,
+        "the pooled {kind}'s residuals by group: {}",
+        by.join("; ")
+    );
+    match p.aicc {
+        Some([pooled_aicc, apart]) if p.hides() => {
+            let _ = writeln!(
+                s,
+                "pooling hides {}: the groups fitted apart explain the coupons better for the numbers they take (AICc {:.1} against {:.1} pooled); build with the block of the power and feed the part runs at (below)",
+                factor(p),
+                apart,
+                pooled_aicc
+            );
+        }
+        Some([pooled_aicc, apart]) => {
+            let _ = writeln!(
+                s,
+                "pooling hides nothing the coupons show: the groups fitted apart do not explain them better for the numbers they take (AICc {:.1} against {:.1} pooled)",
+                apart, pooled_aicc
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "too few coupons to tell whether pooling hides {}",
+                factor(p)
+            );
+        }
+    }
+    for (g, _, f) in &p.groups {
+        if let Ok(f) = f {
+            let _ = writeln!(s, "\n// the coupons at {}", group_name(g));
+            s.push_str(&bead_block(f, basis));
+        }
+    }
+}
+
+/// The mass balance with the power as a variable: its line, its `η` at
+/// each power measured, and its AICc beside the pooled and apart fits'.
+fn power_line_text(s: &mut String, l: &fit::PowerLine, p: Option<&Pooling>, unit: &str) {
+    let at: Vec<String> =
+        l.at.iter()
+            .map(|(w, e)| format!("{} at {} W", sig(*e), sig(*w)))
+            .collect();
+    let aicc = match (l.aicc, p.and_then(|p| p.aicc)) {
+        (Some(a), Some([pooled, apart])) => {
+            format!(", AICc {a:.1} against {pooled:.1} pooled and {apart:.1} apart")
+        }
+        _ => String::new(),
+    };
+    let _ = writeln!(
+        s,
+        "\nmass_balance with the power as a variable: efficiency = {} + {} /W·(P − {} W) (R² {:.6}, RMS {} {unit}{aicc}): {}; a part at a power P between them takes `mass_balance(…, efficiency = …)` at P, with `powers = [P]` (docs/calibration.md)",
+        sig(l.efficiency),
+        sig(l.slope),
+        sig(l.power),
+        l.r2,
+        sig(l.rms),
+        at.join(", ")
+    );
+}
+
 /// `lmdc fit --json`: every number at full precision (docs/fit.schema.json).
 #[derive(Serialize)]
 struct Json<'a> {
@@ -302,6 +471,87 @@ struct Json<'a> {
     not_fitted: Vec<NotFitted>,
     favoured: &'a str,
     bead: &'a str,
+    /// The coupons by power and powder feed, where the sheet holds several
+    /// groups: the favoured model fitted to each apart.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    groups: Option<JsonPooling>,
+    /// A mass balance whose efficiency is a line in the power, where the
+    /// coupons were laid at two powers or more.
+    #[serde(skip_serializing_if = "Option::is_none", serialize_with = "power_line")]
+    power_line: Option<fit::PowerLine>,
+}
+
+/// `power_line` as `{power, efficiency, slope, at: [[W, η]…], r2, rms, aicc}`.
+fn power_line<S: serde::Serializer>(l: &Option<fit::PowerLine>, s: S) -> Result<S::Ok, S::Error> {
+    let v = l.as_ref().map(|l| {
+        serde_json::json!({
+            "power": l.power,
+            "efficiency": l.efficiency,
+            "slope": l.slope,
+            "at": l.at,
+            "r2": l.r2,
+            "rms": l.rms,
+            "aicc": l.aicc,
+        })
+    });
+    serde::Serialize::serialize(&v, s)
+}
+
+/// `lmdc fit --json`'s groups.
+#[derive(Serialize)]
+struct JsonPooling {
+    /// Whether fitting each group apart explains the coupons better for
+    /// the numbers it takes (lower AICc).
+    pooling_hides: bool,
+    /// The AICc pooled and apart.
+    aicc: Option<[f64; 2]>,
+    groups: Vec<JsonGroup>,
+}
+
+#[derive(Serialize)]
+struct JsonGroup {
+    /// W.
+    power: Option<f64>,
+    /// g/min.
+    feed: Option<f64>,
+    coupons: usize,
+    /// The pooled fit's mean residual in the group.
+    pooled_mean_residual: f64,
+    pooled_negative: usize,
+    pooled_positive: usize,
+    /// The model fitted to the group alone, as the language writes it.
+    text: Option<String>,
+    r2: Option<f64>,
+    rms: Option<f64>,
+    bead: Option<String>,
+}
+
+impl JsonPooling {
+    fn new(p: &Pooling, basis: &str) -> JsonPooling {
+        JsonPooling {
+            pooling_hides: p.hides(),
+            aicc: p.aicc,
+            groups: p
+                .groups
+                .iter()
+                .map(|(g, r, f)| {
+                    let f = f.as_ref().ok();
+                    JsonGroup {
+                        power: g.power,
+                        feed: g.feed,
+                        coupons: g.lines.len(),
+                        pooled_mean_residual: r.mean,
+                        pooled_negative: r.negative,
+                        pooled_positive: r.positive,
+                        text: f.map(model_text),
+                        r2: f.map(|f| f.r2),
+                        rms: f.map(|f| f.rms),
+                        bead: f.map(|f| bead_block(f, basis)),
+                    }
+                })
+                .collect(),
+        }
+    }
 }
 
 #[derive(Serialize)]
@@ -450,6 +700,8 @@ impl<'a> Json<'a> {
                 .collect(),
             favoured: chosen.kind.name(),
             bead: block,
+            groups: None,
+            power_line: None,
         }
     }
 }

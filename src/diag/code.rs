@@ -286,7 +286,7 @@ codes! {
     BadDirection = "bad-direction", Feasibility,
         "a computed direction is not a unit vector: a bug in lmdc, please report it";
     Overhang = "overhang", Feasibility,
-        "a wall's layer, or a planar layer's outline or hole, leans out over the one below, from the nozzle's axis, by more than the slicing's `max_overhang` (without one, what lands is `lmd::stacking`'s ¾ bead a layer); names the angle, the limit and where, and the fixes (the nozzle following the wall, the part turned)";
+        "a wall's layer, or a planar layer's outline or hole, leans out over the one below, from the nozzle's axis, by more than the slicing's `max_overhang` (an error), or without one by more than 45° or a step of half the bead (a warning; beyond ¾ bead `lmd::stacking` refuses it); names the angle, the limit and where, and the fixes (the nozzle following the wall, the part turned, `max_overhang`)";
     Stacking = "stacking", Feasibility,
         "a deposit lands more than ¾ of a bead width (across the nozzle) from every bead of the layer below: the layers do not lie on each other (a twist or section that jumps between layers)";
     PointHeight = "point-height", Feasibility,
@@ -371,6 +371,10 @@ codes! {
         "fewer contour passes fit inside the profile than `contours` asks for (named: the first such layer)";
     TallBead = "tall-bead", Warnings,
         "a mass-balance bead model that lays more than a square of its width in cross-section at its slowest speed (a one-bead wall would rise more than its width a layer): no nozzle lays that; a density, feed or efficiency in the wrong unit most often";
+    PooledFit = "pooled-fit", Warnings,
+        "a `fit(…)` over coupons laid at several powers or powder feeds that one model pooled over them misfits: each group fitted apart explains the coupons better for the numbers it takes (lower AICc); names each group's mean residual and the `power` / `powder` that fits one";
+    BeadTilt = "bead-tilt", Warnings,
+        "a deposit whose nozzle tilts from vertical more than 5° beyond the tilts its bead was measured at (the bead's `tilt`, vertical unless written): its heights there are not the ones measured";
     PowderMismatch = "powder-mismatch", Warnings,
         "a mass-balance bead model fitted at another powder feed than the process feeds";
     Unused = "unused", Warnings,

@@ -11,12 +11,13 @@ use super::schema::Field;
 use super::suggest::did_you_mean;
 use super::value::{Spanned, Value};
 use crate::bead::fit::{self, Given, Kind, Summary};
+use crate::bead::sheet::Column;
 use crate::bead::{sheet, Table, TableFault, Widths};
 use crate::deposit::Basis;
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{Density, Length, MassFlow, Speed};
+use crate::units::{Density, Length, MassFlow, Power, Speed};
 use std::collections::BTreeMap;
 
 /// Reads a bead block.
@@ -40,6 +41,7 @@ pub fn read<'a>(
         f.require(&schema::SPEED, diags);
     }
     let height = f.range(&schema::HEIGHT, diags);
+    let tilt = tilt(&f, diags);
     let declared_height = height.map(|([lo, hi], _)| [Length(lo), Length(hi)]);
     let model = f.value(&schema::MODEL, diags);
     let model_span = model.map(|m| m.span);
@@ -52,10 +54,19 @@ pub fn read<'a>(
         false
     });
     let read = height_model(model, span, env.data.as_ref(), diags);
-    let (model, widths, measured_speeds, fit) = match read {
-        Some(r) => (Some(r.model), r.widths, r.measured, r.fit),
-        None => (None, None, None, None),
+    let (model, widths, measured_speeds, fit, at) = match read {
+        Some(r) => (Some(r.model), r.widths, r.measured, r.fit, r.at),
+        None => (None, None, None, None, At::default()),
     };
+    // Internal units: a fit's powers in W, its feeds in g/min.
+    let fit_powers = at
+        .powers
+        .map(|v| v.into_iter().map(|w| Power::from_watts(w).0).collect());
+    let fit_feeds = at.feeds.map(|v| v.into_iter().map(|g| g / 60.0).collect());
+    let powers = measured_at(&f, &schema::POWERS, fit_powers, model_span, diags)
+        .map(|o| o.map(|(v, s)| (v.into_iter().map(Power).collect(), s)));
+    let powders = measured_at(&f, &schema::POWDERS, fit_feeds, model_span, diags)
+        .map(|o| o.map(|(v, s)| (v.into_iter().map(MassFlow).collect(), s)));
     let basis = basis(&f, model.as_ref(), model_span, diags);
     let (model, basis) = (model?, basis?);
     let model_span = model_span.unwrap_or(span);
@@ -91,6 +102,9 @@ pub fn read<'a>(
         measured: measured_speeds.map(|[lo, hi]| [Speed(lo), Speed(hi)]),
         fit,
         declared_height,
+        tilt: tilt?,
+        powers: powers?,
+        powders: powders?,
         feed: None,
         speed: [Speed(speed[0]), Speed(speed[1])],
         height,
@@ -98,6 +112,39 @@ pub fn read<'a>(
         height_span,
         speed_span,
     })
+}
+
+/// The powers or feeds the model was measured at (`field`, internal
+/// units): as written, else what its fit's coupons were laid at (`fit`,
+/// said at `model`); `Some(None)` when neither says.
+fn measured_at(
+    f: &Fields<'_>,
+    field: &Field,
+    fit: Option<Vec<f64>>,
+    model: Option<Span>,
+    diags: &mut Diagnostics,
+) -> Option<Option<(Vec<f64>, Span)>> {
+    if f.has(field) {
+        let at = f.span(field).unwrap_or_else(|| f.block_span());
+        return list(f, field, diags).map(|v| Some((v, at)));
+    }
+    Some(fit.filter(|v| !v.is_empty()).zip(model))
+}
+
+/// `tilt = lo .. hi`: the nozzle's tilts the model was measured at, rad,
+/// within 0° .. 90° and increasing; `Some(None)` when not written.
+fn tilt(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Option<([f64; 2], Span)>> {
+    if !f.has(&schema::TILT) {
+        return Some(None);
+    }
+    let ([lo, hi], at) = f.range(&schema::TILT, diags)?;
+    if !(0.0..=90.0_f64.to_radians() * (1.0 + 1e-9)).contains(&lo)
+        || !(lo..=90.0_f64.to_radians() * (1.0 + 1e-9)).contains(&hi)
+    {
+        diags.push(message::bead::bad_tilt([lo, hi], at));
+        return None;
+    }
+    Some(Some(([lo, hi], at)))
 }
 
 /// What the model's heights were measured as (`measured_as = …`; a single
@@ -237,6 +284,14 @@ struct Read {
     widths: Option<Widths>,
     measured: Option<[f64; 2]>,
     fit: Option<Summary>,
+    at: At,
+}
+
+/// The powers (W) and feeds (g/min) a fit's coupons were laid at.
+#[derive(Default)]
+struct At {
+    powers: Option<Vec<f64>>,
+    feeds: Option<Vec<f64>>,
 }
 
 /// `fit(model, data, density, feed)`: the model fitted to the data file,
@@ -251,6 +306,8 @@ fn fitted(
     let path = a.text(&args::DATA, diags);
     let density = a.quantity(&args::FIT_DENSITY, diags);
     let feed = a.quantity(&args::FIT_FEED, diags);
+    let power = a.quantity(&args::FIT_POWER, diags);
+    let powder = a.quantity(&args::FIT_POWDER, diags);
     let ((kind, _), (path, at)) = (kind?, path?);
     let kind = Kind::of(kind)?;
     let Some(read) = data else {
@@ -267,9 +324,23 @@ fn fitted(
             diags.push(message::calib::in_data(&d, &path, &text, at));
         }
     };
-    let sheet = sheet::read(&text)
+    let mut sheet = sheet::read(&text)
         .map_err(|ds| in_data(ds.into_vec(), diags))
         .ok()?;
+    let select = [
+        power.map(|(p, s)| (Column::Power, Power(p).watts(), s)),
+        powder.map(|(p, s)| (Column::Feed, MassFlow(p).g_min(), s)),
+    ];
+    for (col, x, s) in select.into_iter().flatten() {
+        let all = fit::values(&sheet, col);
+        sheet
+            .coupons
+            .retain(|c| c.get(col).is_some_and(|v| (v - x).abs() <= 1e-6 * x));
+        if sheet.coupons.is_empty() {
+            diags.push(message::calib::no_coupons_at(col.name(), x, &all, &path, s));
+            return None;
+        }
+    }
     let given = Given {
         density: density.map(|d| Density(d.0)),
         feed: feed.map(|f| MassFlow(f.0)),
@@ -277,10 +348,17 @@ fn fitted(
     let f = fit::fit(&sheet, kind, given)
         .map_err(|e| in_data(fit::diagnose(&e, kind, &sheet), diags))
         .ok()?;
+    if let Some(p) = fit::pooling(&sheet, &f, given).filter(fit::Pooling::hides) {
+        diags.push(message::calib::pooled_fit(&p, &f, &path, at));
+    }
     Some(Read {
         widths: f.widths.clone(),
         measured: Some(f.range),
         fit: Some(f.summary(&path)),
+        at: At {
+            powers: Some(f.powers.clone()),
+            feeds: Some(f.feeds.clone()),
+        },
         model: f.model,
     })
 }
@@ -312,6 +390,7 @@ fn height_model(
                 model: HeightModel::Table(t),
                 widths: w,
                 fit: None,
+                at: At::default(),
             });
         }
         Value::Call(c) if c.func == "power" => {
@@ -332,6 +411,7 @@ fn height_model(
         widths: None,
         measured: None,
         fit: None,
+        at: At::default(),
     })
 }
 
@@ -484,6 +564,45 @@ pub fn check_feed(bead: &Bead, powder: MassFlow, at: Span, diags: &mut Diagnosti
             diags.push(message::bead::powder_mismatch(
                 &bead.name, *feed, powder, at, bead.span,
             ));
+        }
+    }
+}
+
+/// Warns (`lmd::extrapolation`) where the process (a ramp's last power) or
+/// a style (named) runs the laser at a power, or feeds powder, that the
+/// bead was not measured at, when its `powers` or `powders` are known:
+/// within 1 % of one of them counts. Each value comes with where it is
+/// written.
+#[allow(clippy::type_complexity)]
+pub fn check_measured_at(
+    bead: &Bead,
+    powers: &[(Power, Span, Option<&str>)],
+    powders: &[(MassFlow, Span, Option<&str>)],
+    diags: &mut Diagnostics,
+) {
+    let near = |x: f64, of: f64| (x - of).abs() <= 0.01 * of;
+    if let Some((ps, at)) = &bead.powers {
+        for &(power, power_at, style) in powers {
+            if !ps.iter().any(|p| near(power.0, p.0)) {
+                diags.push(message::bead::unmeasured_power(
+                    (&bead.name, *at),
+                    power,
+                    ps,
+                    (power_at, style),
+                ));
+            }
+        }
+    }
+    if let Some((fs, at)) = &bead.powders {
+        for &(powder, powder_at, style) in powders {
+            if !fs.iter().any(|f| near(powder.0, f.0)) {
+                diags.push(message::bead::unmeasured_powder(
+                    (&bead.name, *at),
+                    powder,
+                    fs,
+                    (powder_at, style),
+                ));
+            }
         }
     }
 }

@@ -96,6 +96,10 @@ fn statement<'a>(
     let powders = list(&f, &schema::POWDERS, diags)
         .map(|l| l.map(|v| v.into_iter().map(MassFlow).collect::<Vec<_>>()));
     let repeat = f.count_or_default(&schema::REPEAT, diags);
+    let random = f
+        .word_or_default(&schema::ORDER, diags)
+        .map(|w| w == "random");
+    let seed = f.count_or_default(&schema::SEED, diags);
     let kind = kind(&f, diags);
     let length = f.quantity(&schema::LENGTH, diags).map(|(l, _)| Length(l));
     let spacing = f.quantity(&schema::SPACING, diags).map(|(l, _)| Length(l));
@@ -124,6 +128,9 @@ fn statement<'a>(
     let counts = [speeds.len(), powers.len(), powders.len(), repeat];
     within_count(counts, s.span, diags)?;
     let mut coupons = matrix(&speeds, &powers, &powders, repeat);
+    if random? {
+        shuffle(&mut coupons, seed? as u64);
+    }
     let footprint = kind.footprint(width);
     let (plate, plate_span) = plate?;
     let room = Room {
@@ -397,6 +404,36 @@ fn matrix(speeds: &[Speed], powers: &[Power], powders: &[MassFlow], repeat: usiz
         }
     }
     out
+}
+
+/// Shuffles `coupons` by `seed` (Fisher–Yates over SplitMix64, written out
+/// here so that a seed lays the same order whatever crate versions lmdc is
+/// built with) and numbers them again in the order they are laid: `c01`
+/// is the first laid. Laid in speed order, a plate that warms up or a
+/// feeder that drifts would look like a speed effect; shuffled, it is
+/// scatter the fit sees as such.
+fn shuffle(coupons: &mut [Coupon], seed: u64) {
+    let mut state = seed;
+    let mut next = move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    };
+    for i in (1..coupons.len()).rev() {
+        // Unbiased enough: 2⁶⁴ over at most 10 000 coupons.
+        let j = (next() % (i as u64 + 1)) as usize;
+        coupons.swap(i, j);
+    }
+    let ids: Vec<String> = {
+        let mut v: Vec<String> = coupons.iter().map(|c| c.id.clone()).collect();
+        v.sort();
+        v
+    };
+    for (c, id) in coupons.iter_mut().zip(ids) {
+        c.id = id;
+    }
 }
 
 /// The plate and the room a coupon takes on it.

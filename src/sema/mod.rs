@@ -47,7 +47,7 @@ pub use top::TopHeights;
 use crate::diag::{message, Diagnostics};
 use crate::syntax::ast::File;
 use eval::Env;
-use model::Model;
+use model::{Model, PowerSchedule};
 use statement::Statements;
 
 /// Checks a parsed file. Returns every diagnostic (errors and warnings) found,
@@ -147,6 +147,9 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
     if let (Some(b), Some((powder, at))) = (&bead, process.powder) {
         bead::check_feed(b, powder, at, diags);
     }
+    if let (Some(b), Some(p), false) = (&bead, &process.process, ring) {
+        measured_at(b, p, styles.as_ref(), diags);
+    }
     // The slicers lay the feed the process runs.
     let bead = bead.map(|mut b| {
         b.feed = process.powder.map(|(p, _)| p);
@@ -162,4 +165,31 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         styles: styles?,
         tolerance,
     })
+}
+
+/// Warns where the process or a style runs `b` at a power or feed it was
+/// not measured at ([`bead::check_measured_at`]): the process's power (a
+/// ramp's last) and feed, and each style's that sets one.
+fn measured_at(
+    b: &model::Bead,
+    p: &model::Process,
+    styles: Option<&model::Styles>,
+    diags: &mut Diagnostics,
+) {
+    let power = match p.power {
+        PowerSchedule::Constant(w) => w,
+        PowerSchedule::Ramp { to, .. } => to,
+    };
+    let mut powers = vec![(power, p.power_span, None)];
+    let mut powders = vec![(p.powder, p.powder_span, None)];
+    // A style's power or feed lays its tracks with the same bead.
+    for s in styles.iter().flat_map(|s| &s.table) {
+        if let Some(w) = s.power {
+            powers.push((w, s.span, Some(s.name.as_str())));
+        }
+        if let Some(f) = s.powder {
+            powders.push((f, s.span, Some(s.name.as_str())));
+        }
+    }
+    bead::check_measured_at(b, &powers, &powders, diags);
 }

@@ -259,6 +259,15 @@ pub struct Bead {
     pub fit: Option<crate::bead::fit::Summary>,
     /// The `height = …` range as declared, if it is.
     pub declared_height: Option<[Length; 2]>,
+    /// The nozzle's tilts from vertical the model was measured at (`tilt`),
+    /// rad, and where they are written; `None`: vertical.
+    pub tilt: Option<([f64; 2], Span)>,
+    /// The laser powers the model was measured at (`powers`, or a fit's
+    /// coupons'), and where they are said; `None`: not known.
+    pub powers: Option<(Vec<crate::units::Power>, Span)>,
+    /// The powder feeds it was measured at (`powders`, or a fit's
+    /// coupons'), and where they are said; `None`: not known.
+    pub powders: Option<(Vec<MassFlow>, Span)>,
     /// The process's powder feed, which a mass-balance model lays by
     /// ([`crate::deposit::Deposit::fed`]); `None` until the process is read.
     pub feed: Option<crate::units::MassFlow>,

@@ -206,7 +206,7 @@ fn fill_layers(
     // like it (a fixed profile, no rotation) reuses them instead of filling
     // and checking the same shape again.
     let mut last: Option<Filled> = None;
-    let mut lean = Lean::new(slicing.max_overhang, lift, slicing.chord_error.0);
+    let mut lean = Lean::new(slicing.max_overhang, lift, slicing.chord_error.0, w);
     for (k, shape) in plan.shapes.iter().enumerate() {
         let angle = slicing
             .infill
@@ -283,8 +283,15 @@ const LEAN_SAMPLES: usize = 512;
 /// of the layer outside the layer below's region, by its distance to that
 /// region, over the layer height, is its lean from the vertical nozzle. A
 /// layer that leans in stands on the layer below and is not counted.
+/// Without `max_overhang` a lean past 45° or a step past half a bead is
+/// warned ([`crate::deposit::DEFAULT_OVERHANG`]).
 struct Lean {
-    limit: Option<f64>,
+    /// The lean allowed, rad.
+    limit: f64,
+    /// Whether the file declared it (`max_overhang`: an error past it).
+    declared: bool,
+    /// The bead's width, mm.
+    bead: f64,
     lift: f64,
     chord: f64,
     below: Option<Region>,
@@ -313,9 +320,15 @@ impl std::fmt::Display for Spot {
 }
 
 impl Lean {
-    fn new(limit: Option<f64>, lift: f64, chord: f64) -> Self {
+    fn new(limit: Option<f64>, lift: f64, chord: f64, bead: f64) -> Self {
+        use crate::deposit::{DEFAULT_OVERHANG, DEFAULT_OVERHANG_STEP};
+        let default = DEFAULT_OVERHANG
+            .to_radians()
+            .min((DEFAULT_OVERHANG_STEP * bead).atan2(lift));
         Lean {
-            limit,
+            limit: limit.unwrap_or(default),
+            declared: limit.is_some(),
+            bead,
             lift,
             chord,
             below: None,
@@ -326,7 +339,7 @@ impl Lean {
 
     /// Measures layer `k`'s region against the one below, then keeps it.
     fn layer(&mut self, k: usize, region: &Region) {
-        let Some(limit) = self.limit else { return };
+        let limit = self.limit;
         if let Some(below) = &self.below {
             let pts: Vec<[f64; 2]> = region.polylines(self.chord).concat();
             let stride = pts.len().div_ceil(LEAN_SAMPLES).max(1);
@@ -335,6 +348,11 @@ impl Lean {
                     continue;
                 }
                 let d = below.distance_to_boundary(p);
+                // Past ¾ of a bead it lands beside the layer below:
+                // lmd::stacking's error, not a second report.
+                if !self.declared && d > 0.75 * self.bead {
+                    continue;
+                }
                 let lean = d.atan2(self.lift);
                 if lean > limit {
                     let at = Spot { k, at: p };
@@ -354,6 +372,9 @@ impl Lean {
                 step: self.step,
                 height: self.lift,
                 planar: true,
+                declared: self.declared,
+                bead: self.bead,
+                tilting: None,
             };
             diags.push(message::verify::overhang(&w, &fix, Some(slicing)));
         }

@@ -20,6 +20,7 @@
 //! again.
 
 mod arm;
+mod bead_tilt;
 mod bump;
 mod cell;
 mod collision;

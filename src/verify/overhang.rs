@@ -5,11 +5,12 @@
 //! built with a vertical nozzle leans by its half-angle, the same cone with
 //! the nozzle following the wall (`nozzle = wall`) by nothing.
 //!
-//! The limit is the file's `max_overhang`. Without one, the limit is what
-//! the bead carries at all, a step of ¾ of its width a layer
-//! (`atan(3w / 4h)` at the layer's height `h`), which [`super::stacking`]
-//! already holds every deposit to and reports with the lean (one report
-//! for one fault), so this rule runs only where `max_overhang` is written.
+//! The limit is the file's `max_overhang`, and a layer past it is an
+//! error. Without one, a layer leaning more than
+//! [`DEFAULT_OVERHANG`](crate::deposit::DEFAULT_OVERHANG) (45°) or stepping
+//! more than half a bead is warned: the melt pool may run off the edge
+//! there, and the file says nothing of what its bead carries. Farther than
+//! ¾ of a bead is [`super::stacking`]'s (one report for one fault).
 //! Only walls one bead wide (a loft's layers) are checked here: a filled
 //! planar layer leaning in is carried by the layer below, so its lean is
 //! measured against the layer below's region by the planar slicer
@@ -19,9 +20,10 @@
 
 use super::rule::{ProgramCx, ProgramRule, Worst};
 use super::stacking::{nearest, samples, FAR, REACH};
+use crate::deposit::{DEFAULT_OVERHANG, DEFAULT_OVERHANG_STEP};
 use crate::diag::message::verify::OverhangFix;
 use crate::diag::{message, Diagnostics};
-use crate::ir::{PathKind, Program};
+use crate::ir::{Kinematics, Machine, PathKind, Program};
 use crate::plan::Where;
 
 /// `lmd::overhang`: wall layers leaning out over the layer below by more
@@ -37,8 +39,12 @@ impl ProgramRule for Overhang {
 fn check(p: &Program, out: &mut Diagnostics) {
     let w = p.limits.bead_width;
     // The IR holds degrees; the leans below are radians.
-    let Some(limit) = p.limits.max_overhang.map(f64::to_radians) else {
-        return;
+    let declared = p.limits.max_overhang.map(f64::to_radians);
+    // Without `max_overhang`: 45°, or a step of half a bead on a thick layer.
+    let limit_at = |h: f64| {
+        declared.unwrap_or_else(|| {
+            (DEFAULT_OVERHANG.to_radians()).min((DEFAULT_OVERHANG_STEP * w).atan2(h))
+        })
     };
     if !(w.is_finite() && w > 0.0) {
         return;
@@ -75,6 +81,7 @@ fn check(p: &Program, out: &mut Diagnostics) {
                 continue;
             }
             let lean = d.atan2(h);
+            let limit = limit_at(h);
             if lean > limit {
                 let at = Where::Point {
                     layer: li + 1,
@@ -93,6 +100,23 @@ fn check(p: &Program, out: &mut Diagnostics) {
         step: there.0,
         height: there.1,
         planar: there.2,
+        declared: declared.is_some(),
+        bead: w,
+        tilting: p
+            .machines
+            .iter()
+            .find(|m| tilts(m))
+            .map(|m| m.name().to_string()),
     };
     out.push(message::verify::overhang(&f, &fix, p.origins.slicing));
+}
+
+/// Whether `m` can tilt its nozzle with a wall: a robot, or a CNC's tilting
+/// head (a tilting table keeps the nozzle vertical and turns the part,
+/// which `nozzle = wall` also builds).
+fn tilts(m: &Machine) -> bool {
+    match m {
+        Machine::Robot(_) => true,
+        Machine::Cnc(c) => c.kinematics != Kinematics::Xyz,
+    }
 }

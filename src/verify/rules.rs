@@ -3,6 +3,7 @@
 //! line here.
 
 use super::arm::ArmRule;
+use super::bead_tilt::BeadTilt;
 use super::bump::DepositBump;
 use super::cell::CellRule;
 use super::collision::Collision;
@@ -142,6 +143,7 @@ plan_rules! {
         bump: DepositBump<'p>,
         positioner: PositionerRule,
         collision: Collision<'p>,
+        bead_tilt: BeadTilt,
     }
 }
 

@@ -38,6 +38,7 @@ bead b {{
   width = 6 mm
   speed = 7 mm/s .. 10 mm/s
   model = mass_balance(feed = 45.9 g/min, efficiency = 35 %, density = 7.9 g/cm^3)
+  tilt = 0 deg .. {tilt} deg  // the nozzle follows the bend (lmd::bead-tilt)
 }}
 loft duct {{
   from = inlet
@@ -69,6 +70,7 @@ machine kr60 {{
             s = self.side,
             r = self.radius,
             a = self.bend_deg,
+            tilt = self.bend_deg.clamp(0.0, 90.0),
             t = self.twist_deg,
             size = if self.outer { "outer" } else { "centre" },
             k = self.points,

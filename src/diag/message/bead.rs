@@ -390,3 +390,134 @@ pub fn taller_than_wide(rise: Length, v: Speed, w: Length, model: Span) -> Diagn
         "a laid bead is a flat cap, a fraction of its width high: check the units of the density (steel is about 7.9 g/cm^3, not kg/m^3), the feed (g/min) and the efficiency (%)",
     )
 }
+
+/// A bead's `tilt` range is not within 0° .. 90°, increasing (`tilt`
+/// in rad).
+pub fn bad_tilt(tilt: [f64; 2], at: Span) -> Diagnostic {
+    let deg = |a: f64| short((a.to_degrees() * 1e3).round() / 1e3);
+    Diagnostic::error(
+        Code::OutOfRange,
+        format!(
+            "a bead's `tilt` is the nozzle's tilts from vertical it was measured at, from 0° up to 90°, not {}° .. {}°",
+            deg(tilt[0]),
+            deg(tilt[1])
+        ),
+    )
+    .label(at, "the tilts measured")
+    .help("write the tilts of the coupons' nozzle from vertical, the lower first: `tilt = 0 deg .. 30 deg`")
+}
+
+/// Where a deposit tilts beyond its bead's measured tilts: the machine, the
+/// tilts measured (deg) and whether they were written, and the tilt that
+/// would cover every deposit (deg, rounded up).
+pub struct TiltBeyond<'a> {
+    /// The machine whose plan tilts so.
+    pub machine: &'a str,
+    /// The tilts the bead was measured at, deg.
+    pub measured: [f64; 2],
+    /// Whether the bead's `tilt` is written (else: vertical).
+    pub written: bool,
+    /// Whether the machine is a robot on a positioner (which can turn the
+    /// part to bring the nozzle nearer vertical).
+    pub positioner: bool,
+}
+
+/// Deposits of `t.machine`'s plan whose nozzle tilts from vertical beyond
+/// the bead's measured tilts by more than 5°; `w.value` is the worst tilt
+/// (deg), `w.limit` the end of the measured range it passes.
+pub fn bead_tilt(
+    w: &crate::diag::Worst<impl std::fmt::Display>,
+    t: &TiltBeyond<'_>,
+    bead: Option<Span>,
+) -> Diagnostic {
+    let deg = |a: f64| short((a * 10.0).round() / 10.0);
+    let measured = if t.written {
+        format!(
+            "the {}° .. {}° its bead was measured at",
+            deg(t.measured[0]),
+            deg(t.measured[1])
+        )
+    } else {
+        "the vertical nozzle its bead was measured with (no `tilt` in the bead)".to_string()
+    };
+    let turn = if w.value < w.limit {
+        ""
+    } else if t.positioner {
+        "; or turn the part so the nozzle stands nearer vertical (the positioner's `keep`)"
+    } else {
+        "; or build it where the part turns under a vertical nozzle (a tilting table, a robot's positioner)"
+    };
+    let cover = (w.value.max(t.measured[1])).ceil();
+    let lo = t.measured[0].min(w.value).floor();
+    Diagnostic::warning(
+        Code::BeadTilt,
+        format!(
+            "machine `{}` tilts the nozzle {}° from vertical while it deposits, more than 5° outside {measured}, at {} ({} deposit{}): the bead's heights are not the ones measured there (a tilted melt pool runs downhill)",
+            t.machine,
+            deg(w.value),
+            w.at,
+            w.count,
+            crate::diag::plural(w.count)
+        ),
+    )
+    .label_opt(bead, if t.written { "the tilts measured" } else { "the bead, measured vertical" })
+    .help(format!(
+        "lay coupons with the nozzle tilted as this part tilts it, fit the bead to them and say so (`tilt = {} deg .. {cover} deg` in the bead){turn}",
+        lo.max(0.0)
+    ))
+}
+
+/// The process, or style `at.1`, runs the laser at `power` (written at
+/// `at.0`), a power bead `bead.0` was not measured at (`measured`, said at
+/// `bead.1`).
+pub fn unmeasured_power(
+    (bead, bead_at): (&str, Span),
+    power: Power,
+    measured: &[Power],
+    (at, style): (Span, Option<&str>),
+) -> Diagnostic {
+    let list: Vec<String> = measured.iter().map(|p| p.to_string()).collect();
+    let who = match style {
+        Some(s) => format!("style `{s}` runs"),
+        None => "the process runs".to_string(),
+    };
+    Diagnostic::warning(
+        Code::Extrapolation,
+        format!(
+            "bead `{bead}` was measured at {}, {who} the laser at {power}: how much the melt pool catches changes with the power, and the bead's heights there are a guess",
+            list.join(", ")
+        ),
+    )
+    .label(at, if style.is_some() { "the style's power" } else { "the process's power" })
+    .label(bead_at, "the powers measured")
+    .help(format!(
+        "lay coupons at {power} and fit the bead to them (`powers = [{power}]` in the calibration, `fit(…, power = {power})`), or run the laser at a power measured"
+    ))
+}
+
+/// The process, or style `at.1`, feeds `powder` (written at `at.0`), a
+/// feed bead `bead.0` was not measured at (`measured`, said at `bead.1`).
+pub fn unmeasured_powder(
+    (bead, bead_at): (&str, Span),
+    powder: MassFlow,
+    measured: &[MassFlow],
+    (at, style): (Span, Option<&str>),
+) -> Diagnostic {
+    let list: Vec<String> = measured.iter().map(|p| p.to_string()).collect();
+    let who = match style {
+        Some(s) => format!("style `{s}` feeds"),
+        None => "the process feeds".to_string(),
+    };
+    Diagnostic::warning(
+        Code::Extrapolation,
+        format!(
+            "bead `{bead}` was measured at a powder feed of {}, {who} {powder}: how much of it the melt pool catches changes with the feed, and the bead's heights there are a guess",
+            list.join(", ")
+        ),
+    )
+    .label(at, if style.is_some() { "the style's feed" } else { "the process's feed" })
+    .label(bead_at, "the feeds measured")
+    .help(format!(
+        "lay coupons at {powder} and fit the bead to them (`powders = [{powder}]` in the calibration, `fit(…, powder = {powder})`), or feed a powder measured"
+    ))
+}

@@ -2,7 +2,7 @@
 //! data = "…")`): its spans are bytes of the sheet, which the report draws
 //! with its file name, line and column.
 
-use crate::bead::fit::{Fault, Kind};
+use crate::bead::fit::{Fault, Group, Kind, Pooling};
 use crate::bead::TableFault;
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
@@ -361,4 +361,106 @@ pub fn too_many_coupons(n: usize, max: usize, at: Span) -> Diagnostic {
     )
     .label(at, "speeds × powers × powders × repeat")
     .help("give fewer speeds, powers, powder feeds or a smaller `repeat`")
+}
+
+/// A group of coupons as a sheet says it: `1200 W, 12 g/min`.
+pub fn group_name(g: &Group) -> String {
+    let mut parts = Vec::new();
+    if let Some(p) = g.power {
+        parts.push(format!("{} W", short(p)));
+    }
+    if let Some(f) = g.feed {
+        parts.push(format!("{} g/min", short(f)));
+    }
+    if parts.is_empty() {
+        "no power or feed".to_string()
+    } else {
+        parts.join(", ")
+    }
+}
+
+/// `fit(…, power = …)` or `powder = …` (`column`, `x` in W or g/min,
+/// written at `at`) selects no coupon of `path`, whose coupons were laid at
+/// `all`.
+pub fn no_coupons_at(column: &str, x: f64, all: &[f64], path: &str, at: Span) -> Diagnostic {
+    let (unit, key) = if column == "power" {
+        ("W", "power")
+    } else {
+        ("g/min", "powder")
+    };
+    let laid: Vec<String> = all
+        .iter()
+        .map(|v| format!("{} {unit}", short(*v)))
+        .collect();
+    let laid = if laid.is_empty() {
+        format!("it has no `{column}` column")
+    } else {
+        format!("its coupons were laid at {}", laid.join(", "))
+    };
+    Diagnostic::error(
+        Code::TooFewPoints,
+        format!("`{path}` has no coupon laid at {} {unit}: {laid}", short(x)),
+    )
+    .label(at, format!("the coupons at this {column}"))
+    .help(format!(
+        "fit the coupons at a {column} the sheet has (`{key} = …`), or lay coupons at {} {unit} and measure them",
+        short(x)
+    ))
+}
+
+/// One `fit(…)` (`f`) pooled over coupons of `path` laid at several powers
+/// or feeds that fitting each group apart explains better (`p`); `at`
+/// names the file.
+pub fn pooled_fit(p: &Pooling, f: &crate::bead::fit::Fit, path: &str, at: Span) -> Diagnostic {
+    let residuals: Vec<String> = p
+        .groups
+        .iter()
+        .map(|(g, r, _)| {
+            format!(
+                "{}{} {} at {} ({} of {} below)",
+                if r.mean > 0.0 { "+" } else { "" },
+                short(r.mean),
+                f.unit,
+                group_name(g),
+                r.negative,
+                g.lines.len()
+            )
+        })
+        .collect();
+    let differ = |get: fn(&Group) -> Option<f64>| {
+        let first = get(&p.groups[0].0);
+        p.groups.iter().any(|g| get(&g.0) != first)
+    };
+    let (power, feed) = (differ(|g| g.power), differ(|g| g.feed));
+    let select: Vec<String> = p
+        .groups
+        .iter()
+        .map(|(g, _, _)| {
+            let mut a = Vec::new();
+            if let (true, Some(w)) = (power, g.power) {
+                a.push(format!("power = {} W", short(w)));
+            }
+            if let (true, Some(m)) = (feed, g.feed) {
+                a.push(format!("powder = {} g/min", short(m)));
+            }
+            format!("`{}`", a.join(", "))
+        })
+        .collect();
+    let apart = p.aicc.map_or(String::new(), |[pooled, apart]| {
+        format!(" (AICc {:.1} against {:.1} pooled)", apart, pooled)
+    });
+    Diagnostic::warning(
+        Code::PooledFit,
+        format!(
+            "`{path}` holds coupons laid at {} groups of power and powder feed, and one {} pooled over them hides the difference: its residuals average {}; each group fitted apart explains the coupons better{apart}",
+            p.groups.len(),
+            f.kind.name(),
+            residuals.join(", ")
+        ),
+    )
+    .label(at, "these coupons")
+    .help(format!(
+        "fit the coupons laid at the power and feed the part runs at: {} in `fit(…)`; `lmdc fit {path}` prints every group's fit",
+        select.join(" or ")
+    ))
 }

@@ -213,7 +213,7 @@ pub fn stacking(
             Some(n) => format!("`layers = {n}` (thinner layers, each stepping less) or "),
             None => String::new(),
         };
-        format!("{here}{count}{lands}: check the twist, the bend and the section sizes for jumps between layers")
+        format!("{here}{count}{lands}: check the twist, the bend and the section sizes for jumps between layers; a wall that leans all along (a cone) steps by nothing with the nozzle tilted along it (`nozzle = wall` in `slicing normal`, on a robot or a 5-axis head)")
     } else {
         // Flat or variable layers: the profile or the fill moves them.
         let raster = if fix.raster {
@@ -252,39 +252,71 @@ pub struct OverhangFix {
     /// Whether it is a planar layer's contour (a filled part's outline or
     /// hole), not a wall sliced normal to its spine.
     pub planar: bool,
+    /// Whether the limit is the file's `max_overhang` (an error); else the
+    /// default's, 45° or a step of half the bead (a warning).
+    pub declared: bool,
+    /// The bead's width, mm.
+    pub bead: f64,
+    /// A machine of the file that tilts its nozzle (a robot, a tilting
+    /// head), if one does.
+    pub tilting: Option<String>,
 }
 
 /// A wall's layers lean out over the layer below by more than the declared
-/// `max_overhang`; `w.value` is the worst lean (rad), `w.limit` the limit.
+/// `max_overhang` (an error) or, without one, by more than 45° or half a
+/// bead a layer (a warning); `w.value` is the worst lean (rad), `w.limit`
+/// the limit there.
 pub fn overhang(w: &Worst<impl Display>, fix: &OverhangFix, slicing: Option<Span>) -> Diagnostic {
     let deg = |a: f64| short((a.to_degrees() * 10.0).round() / 10.0);
-    // The layer count at which the same lean steps within the limit does
-    // not exist: the lean stays as the layers thin.
     let what = if fix.planar {
         "the part's outline"
     } else {
         "the wall"
     };
-    let help = if fix.planar {
-        "turn the part (`turn` of its mesh) so the outline leans less over the layer below; build it on a machine that tilts and slice it as a wall (`slicing normal`, `nozzle = wall`); or allow more, if the bead carries it (`max_overhang`; more, thinner layers do not change a lean)"
+    // The lean that passes, rounded up so that it does.
+    let accept = (w.value.to_degrees()).ceil();
+    let allow = if fix.declared {
+        "or allow more, if the bead carries it (`max_overhang`; more, thinner layers do not change a lean)".to_string()
     } else {
-        "tilt the nozzle with the wall (`nozzle = wall` in `slicing normal`, on a 5-axis machine or a robot); turn the part so the wall leans less; or allow more, if the bead carries it (`max_overhang`; more, thinner layers do not change a lean)"
+        format!("or, if the bead carries it, say how far a layer may lean: `max_overhang = {accept} deg` in the slicing accepts this lean and makes any layer leaning farther an error (more, thinner layers do not change a lean)")
     };
-    Diagnostic::error(
-        Code::Overhang,
-        format!(
-            "{what} leans out {}° from the nozzle's axis over the layer below (a step of {} mm on a {} mm layer), more than the {}° `max_overhang` allows, at {} ({} place{} so far over)",
-            deg(w.value),
-            short(fix.step),
-            short(fix.height),
-            deg(w.limit),
-            w.at,
-            w.count,
-            plural(w.count)
-        ),
-    )
-    .label_opt(slicing, "the layers come from here")
-    .help(help)
+    let tilt = match &fix.tilting {
+        Some(m) => format!("`{m}` tilts"),
+        None => "on a robot or a 5-axis head; none of this file's machines tilts".to_string(),
+    };
+    let help = if fix.planar {
+        format!("turn the part (`turn` of its mesh) so the outline leans less over the layer below; build it on a machine that tilts and slice it as a wall (`slicing normal`, `nozzle = wall`); {allow}")
+    } else {
+        format!("tilt the nozzle with the wall (`nozzle = wall` in `slicing normal`; {tilt}); turn the part so the wall leans less; {allow}")
+    };
+    let head = format!(
+        "{what} leans out {}° from the nozzle's axis over the layer below (a step of {} mm on a {} mm layer)",
+        deg(w.value),
+        short(fix.step),
+        short(fix.height),
+    );
+    let count = format!("{} place{} so far over", w.count, plural(w.count));
+    let d = if fix.declared {
+        Diagnostic::error(
+            Code::Overhang,
+            format!(
+                "{head}, more than the {}° `max_overhang` allows, at {} ({count})",
+                deg(w.limit),
+                w.at
+            ),
+        )
+    } else {
+        Diagnostic::warning(
+            Code::Overhang,
+            format!(
+                "{head}, more than the {}° a layer may lean without `max_overhang` (45°, or a step of half the {} mm bead), at {} ({count})",
+                deg(w.limit),
+                short(fix.bead),
+                w.at
+            ),
+        )
+    };
+    d.label_opt(slicing, "the layers come from here").help(help)
 }
 
 #[cfg(test)]

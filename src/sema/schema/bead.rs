@@ -52,6 +52,30 @@ pub static MEASURED_AS: Field = Field::new(
     "what the model's heights are: a single track's (`track`), the rise per layer of a wall one bead wide (`wall`) or of filled layers (`layer(offset)`)",
 );
 
+/// `tilt = …`.
+pub static TILT: Field = Field::new(
+    "tilt",
+    Range(Dim::ANGLE),
+    Default(Described("`0 deg .. 0 deg`: measured with the nozzle vertical")),
+    "the nozzle's tilts from vertical the model was measured at; a deposit tilted more than 5° beyond them is warned (`lmd::bead-tilt`)",
+);
+
+/// `powers = […]`.
+pub static POWERS: Field = Field::new(
+    "powers",
+    List(&Quantity(Dim::POWER, Positive), Len::Any),
+    Default(Described("a `fit(…)`'s coupons' powers; else not known")),
+    "the laser powers the model was measured at: a process at another power is warned (`lmd::extrapolation`)",
+);
+
+/// `powders = […]`.
+pub static POWDERS: Field = Field::new(
+    "powders",
+    List(&Quantity(Dim::MASS_FLOW, Positive), Len::Any),
+    Default(Described("a `fit(…)`'s coupons' feeds; else not known")),
+    "the powder feeds the model was measured at: a process at another feed is warned (`lmd::extrapolation`)",
+);
+
 /// `extrapolate = …`.
 pub static EXTRAPOLATE: Field = Field::new(
     "extrapolate",
@@ -65,7 +89,17 @@ pub static BEAD: Block = Block::new(
     "bead",
     "bead NAME { … }",
     "a bead model: how high a track of it is at each scan speed",
-    &[&WIDTH, &HEIGHT, &SPEED, &MODEL, &MEASURED_AS, &EXTRAPOLATE],
+    &[
+        &WIDTH,
+        &HEIGHT,
+        &SPEED,
+        &MODEL,
+        &MEASURED_AS,
+        &TILT,
+        &POWERS,
+        &POWDERS,
+        &EXTRAPOLATE,
+    ],
 );
 
 /// `layer(offset)` of `measured_as`.
@@ -199,6 +233,20 @@ pub mod model {
         super::super::Need::Optional,
         "the powder feed of coupons whose row has none (a `mass_balance` fit)",
     );
+    /// `fit(power = …)`.
+    pub static FIT_POWER: Field = Field::new(
+        "power",
+        Quantity(Dim::POWER, Positive),
+        super::super::Need::Optional,
+        "fit only the coupons laid at this laser power (a sheet of several powers)",
+    );
+    /// `fit(powder = …)`.
+    pub static FIT_POWDER: Field = Field::new(
+        "powder",
+        Quantity(Dim::MASS_FLOW, Positive),
+        super::super::Need::Optional,
+        "fit only the coupons laid at this powder feed (a sheet of several feeds)",
+    );
     /// `measured(speed = …)`.
     pub static SPEED: Field = Field::new(
         "speed",
@@ -240,17 +288,19 @@ pub static TABLE: Block = Block::new(
     &[&model::SPEEDS, &model::HEIGHTS, &model::WIDTHS],
 );
 
-/// `fit(model, data, density, feed)`: a model fitted at compile time to
-/// a measurement sheet.
+/// `fit(model, data, density, feed, power, powder)`: a model fitted at
+/// compile time to a measurement sheet.
 pub static FIT: Block = Block::new(
     "fit",
-    "fit(model, data, density, feed)",
+    "fit(model, data, density, feed, power, powder)",
     "a model fitted when the file is compiled to the coupons of a measurement sheet (`lmdc fit` prints the same fit)",
     &[
         &model::FIT_MODEL,
         &model::DATA,
         &model::FIT_DENSITY,
         &model::FIT_FEED,
+        &model::FIT_POWER,
+        &model::FIT_POWDER,
     ],
 )
 .positional(2);

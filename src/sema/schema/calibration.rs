@@ -108,6 +108,22 @@ pub static PLATE: Field = Field::new(
     "the plate's size along x and y: the coupons must fit on it",
 );
 
+/// `order = …`.
+pub static ORDER: Field = Field::new(
+    "order",
+    Word(&["random", "sorted"]),
+    Default(DefaultWord("random")),
+    "the order the coupons are laid and placed in: `random`, shuffled by `seed` (a drifting plate temperature or powder then is no speed effect), or `sorted` by powder, power and speed",
+);
+
+/// `seed = …`.
+pub static SEED: Field = Field::new(
+    "seed",
+    Count(0, 1_000_000),
+    Default(DefaultCount(1)),
+    "the shuffle of `order = random`: the same seed lays the same order, on every machine and lmdc version",
+);
+
 /// `calibration { … }`.
 pub static CALIBRATION: Block = Block::new(
     "calibration",
@@ -120,6 +136,8 @@ pub static CALIBRATION: Block = Block::new(
         &POWERS,
         &POWDERS,
         &REPEAT,
+        &ORDER,
+        &SEED,
         &COUPON,
         &LENGTH,
         &SPACING,

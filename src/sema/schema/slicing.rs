@@ -108,8 +108,8 @@ pub mod normal {
     pub static MAX_OVERHANG: Field = Field::new(
         "max_overhang",
         Quantity(Dim::ANGLE, Positive),
-        Default(Described("what lands: `atan(3w / 4h)`, `lmd::stacking`")),
-        "the most a wall's layer (or a planar layer's contour) may lean out over the one below, from the nozzle's axis (`lmd::overhang`)",
+        Default(Described("a warning past 45° or a step of half the bead; `lmd::stacking` refuses ¾ bead")),
+        "the most a wall's layer (or a planar layer's contour) may lean out over the one below, from the nozzle's axis; past it, an error (`lmd::overhang`)",
     );
 }
 
