@@ -73,6 +73,7 @@ fn full(text: &str) -> String {
 pub const ALSO_WARNINGS: &[Code] = &[
     Code::Extrapolation,
     Code::Overlap,
+    Code::Overhang,
     Code::UnstableLoop,
     Code::SlowLoop,
 ];
