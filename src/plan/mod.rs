@@ -1330,11 +1330,14 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
             power: 0.0,
             at: Where::End,
         };
-        // A lift shorter than half the printed digit (0.001 mm) would be
-        // written as a line that moves nowhere: the retract ended there.
-        if let Some(safe) = self.plan.safe.filter(|&s| last[2] < s - 5e-4) {
+        if let Some(safe) = self.plan.safe.filter(|&s| last[2] < s) {
             let to = self.plan.lift_at_end(last, c.axes, safe);
-            self.send(park(MoveKind::Lift, to, c.axes));
+            // A lift within the printed digit (0.001 mm) would be written
+            // as a line that moves nowhere: the retract ended there.
+            let printed = |x: f64| (x * 1000.0).round();
+            if (0..3).any(|i| printed(to[i]) != printed(last[i])) {
+                self.send(park(MoveKind::Lift, to, c.axes));
+            }
         }
         if let Some(home) = self.plan.home {
             self.send(park(MoveKind::Home, last, home));
