@@ -123,6 +123,15 @@ fn stop(mut c: Client) {
     assert!(status.success(), "lmdc lsp exited with {status}");
 }
 
+/// The labels of a completion list.
+fn labels(v: &Value) -> Vec<String> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["label"].as_str().unwrap().to_string())
+        .collect()
+}
+
 /// The line and UTF-16 column of the `n`-th (from 0) occurrence of `needle`,
 /// plus `skip` characters.
 fn pos(text: &str, needle: &str, n: usize, skip: usize) -> (usize, usize) {
@@ -318,13 +327,6 @@ fn completion_after_equals_offers_the_fields_choices() {
     let uri = "file:///kind.lmd";
     let text = "bead b {\n  width = 3 mm\n}\nlet d = 2 mm\nmachine m {\n  kind = \n}\n";
     c.open(uri, text);
-    let labels = |v: &Value| -> Vec<String> {
-        v.as_array()
-            .unwrap()
-            .iter()
-            .map(|c| c["label"].as_str().unwrap().to_string())
-            .collect()
-    };
     let got = labels(&c.at("textDocument/completion", uri, pos(text, "kind = ", 0, 7)));
     assert_eq!(got, ["robot", "cnc"], "the kind's words, no names");
     // Inside the machine before its kind: either kind's fields.
@@ -347,13 +349,6 @@ fn completion_works_in_a_file_that_does_not_parse_yet() {
         d.iter().any(|d| d["severity"] == 1),
         "an unfinished file has errors"
     );
-    let labels = |v: &Value| -> Vec<String> {
-        v.as_array()
-            .unwrap()
-            .iter()
-            .map(|c| c["label"].as_str().unwrap().to_string())
-            .collect()
-    };
     let fields = labels(&c.at("textDocument/completion", uri, pos(text, "wi", 0, 2)));
     for f in ["width", "speed", "model"] {
         assert!(fields.contains(&f.to_string()), "{fields:?}");
