@@ -1775,6 +1775,10 @@ pub struct MachineOrigin {
     /// ([`crate::sema::schema::machine`]: `MAX_SPEED`, `limits::X`,
     /// `gas::PRE_FLOW`, …; `NAME` for the machine's name).
     pub fields: Vec<(&'static Field, Span)>,
+    /// The `head { … }` block, if the machine declares one: what a
+    /// collision points at (the verifier reads it here, not through the
+    /// language's tables).
+    pub head: Option<Span>,
 }
 
 impl MachineOrigin {
@@ -1783,6 +1787,7 @@ impl MachineOrigin {
         MachineOrigin {
             block,
             fields: Vec::new(),
+            head: None,
         }
     }
 

@@ -126,7 +126,7 @@ impl Diagnostics {
 
     /// Records a diagnostic.
     pub fn push(&mut self, mut d: Diagnostic) {
-        self.mark(&mut d);
+        mark(&self.allows, &mut d);
         self.items.push(d);
     }
 
@@ -148,15 +148,9 @@ impl Diagnostics {
             return;
         }
         self.allows.push((code, why.into()));
-        let allows = std::mem::take(&mut self.allows);
         for d in &mut self.items {
-            mark(&allows, d);
+            mark(&self.allows, d);
         }
-        self.allows = allows;
-    }
-
-    fn mark(&self, d: &mut Diagnostic) {
-        mark(&self.allows, d);
     }
 
     /// Number of warnings not allowed ([`Diagnostic::allowed`]) whose code

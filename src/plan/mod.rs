@@ -1332,9 +1332,9 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
         };
         if let Some(safe) = self.plan.safe.filter(|&s| last[2] < s) {
             let to = self.plan.lift_at_end(last, c.axes, safe);
-            // A lift within the printed digit (0.001 mm) would be written
-            // as a line that moves nowhere: the retract ended there.
-            let printed = |x: f64| (x * 1000.0).round();
+            // A lift within the printed digit would be written as a line
+            // that moves nowhere: the retract ended there.
+            let printed = |x| crate::target::written(x, crate::target::gcode::POS_DECIMALS);
             if (0..3).any(|i| printed(to[i]) != printed(last[i])) {
                 self.send(park(MoveKind::Lift, to, c.axes));
             }

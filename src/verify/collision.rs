@@ -21,7 +21,6 @@ use crate::diag::message::collision as says;
 use crate::diag::{Diagnostics, Worst};
 use crate::ir::{Fixture, FixtureShape, Kinematics, Machine, Point, Program};
 use crate::plan::{effective_kinematics, Move, MoveKind, Visit, Where};
-use crate::sema::schema::collision::HEAD_BLOCK;
 
 /// How far a check looks for material, mm: beyond it the head is clear by
 /// at least this.
@@ -139,7 +138,7 @@ impl<'p> PlanRule<'p> for Collision<'p> {
     }
 
     fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
-        let declared = cx.origin.written(&HEAD_BLOCK);
+        let declared = cx.origin.head;
         for (w, raise) in self
             .worst
             .iter()

@@ -249,11 +249,7 @@ fn three_mf_unit(u: &str) -> &str {
 /// would find only after minutes of slicing: most likely a file read in
 /// the wrong unit.
 pub fn too_big(path: &str, t: TooBig, at: Span) -> Diagnostic {
-    let read = match (t.file_unit, t.unit) {
-        (Some(f), _) => format!(" (its unit `{f}`)"),
-        (None, Some(u)) => format!(" (read in `units = {u}`)"),
-        (None, None) => String::new(),
-    };
+    let read = read_in(t.file_unit, t.unit);
     let help = match t.other {
         Some(other) => in_other_unit(other, t.file_unit),
         None => "a smaller part, or fewer layers (`height` or `layers`); check the file's `units`"
@@ -303,6 +299,16 @@ fn in_other_unit((u, s): (&str, [f64; 3]), file_unit: Option<&str>) -> String {
     }
 }
 
+/// How a mesh's numbers were read: ` (its unit `foot`)` for a 3MF, ` (read
+/// in `units = m`)` for an STL read in a unit `units` names.
+fn read_in(file_unit: Option<&str>, unit: Option<&str>) -> String {
+    match (file_unit, unit) {
+        (Some(f), _) => format!(" (its unit `{f}`)"),
+        (None, Some(u)) => format!(" (read in `units = {u}`)"),
+        (None, None) => String::new(),
+    }
+}
+
 /// A unit as a sentence says it: `in` is inches.
 fn spoken(u: &str) -> &str {
     match u {
@@ -331,11 +337,7 @@ pub struct TooSmall {
 /// no track fits on any layer. Most likely a file drawn in a larger unit
 /// (inches) read in a smaller one.
 pub fn too_small(path: &str, t: TooSmall, at: Span) -> Diagnostic {
-    let read = match (t.file_unit, t.unit) {
-        (Some(f), _) => format!(" (its unit `{f}`)"),
-        (None, Some(u)) => format!(" (read in `units = {u}`)"),
-        (None, None) => String::new(),
-    };
+    let read = read_in(t.file_unit, t.unit);
     let help = match t.others.split_first() {
         Some((&first, rest)) => {
             let also: Vec<String> = rest
