@@ -344,6 +344,23 @@ fn a_sheet_with_cr_line_ends_is_read() {
     assert_eq!(cr.stdout.replace("cr.csv", "lf.csv"), lf.stdout);
 }
 
+/// A duct wall 1 µm wide, 20 000 points a layer, its nozzle inside the part
+/// (an extreme of the proptest below): the collision check measured every
+/// lump of every point near the head at every point, and took 136 s (600 s
+/// at 100 000 points). A crowded cell now merges lumps and the check steps
+/// 0.5 mm where the head is close, so it answers well inside the limit.
+#[test]
+fn a_wall_of_dense_points_inside_the_head_is_answered() {
+    let src = example("twisted_duct.lmd")
+        .replace("efficiency = 35 %", "efficiency = 1e-3 %")
+        .replace("let feed = 45.9 g/min", "let feed = 45.9 g/s")
+        .replace("width = 6 mm", "width = 1 um")
+        .replace("points = 360", "points = 20000");
+    let r = check("x.lmd", &src, &[], &["--machine", "dmu5"]);
+    assert_eq!(r.code, Some(1), "{}", r.stderr);
+    assert!(r.stderr.contains("lmd::collision"), "{}", r.stderr);
+}
+
 /// A source of extreme values: the duct with `points = 24` (so that what
 /// is accepted is small), or a 10 × 10 × 5 mm box read in a unit.
 /// (Each with the machine to check: the CNC, the robots' arms being

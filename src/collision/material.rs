@@ -18,7 +18,7 @@
 //! above; and past [`MAX_LUMPS`] in all, every cell keeps its box (the
 //! head's distance is then bounded by the boxes, less closely beside them).
 
-use super::head::{add, cross, dot, sub, HeadShape, Pose};
+use super::head::{add, cross, dist, dot, sub, HeadShape, Pose};
 use std::collections::HashMap;
 
 /// A point of material with the radius it stands for.
@@ -37,6 +37,9 @@ pub struct Lump {
 struct Stored {
     at: [f32; 3],
     r: f32,
+    /// Its radius as laid, before it took in the lumps beside it
+    /// ([`MERGE`]).
+    r0: f32,
     group: u32,
 }
 
@@ -45,11 +48,30 @@ impl Stored {
         // Rounded outward: the f32 position is within 1e-7 relative of the
         // f64 one, which the radius takes up.
         let slack = l.at.iter().fold(0.0f64, |m, c| m.max(c.abs())) * 2e-7;
+        let r = (l.r + slack) as f32;
         Stored {
             at: l.at.map(|c| c as f32),
-            r: (l.r + slack) as f32,
+            r,
+            r0: r,
             group: l.group,
         }
+    }
+
+    /// Takes in `l` where it lies almost wholly inside: within
+    /// [`MERGE`] of this lump's radius as laid, so a lump grows by at most
+    /// that fraction however many it takes in.
+    fn take_in(&mut self, l: &Lump) -> bool {
+        if l.group != self.group {
+            return false;
+        }
+        let at = self.at.map(f64::from);
+        let reach = dist(at, l.at) + l.r;
+        let r0 = f64::from(self.r0);
+        if reach > r0 * (1.0 + MERGE) {
+            return false;
+        }
+        self.r = self.r.max((reach * (1.0 + 1e-6)) as f32);
+        true
     }
 
     fn lump(&self) -> Lump {
@@ -209,6 +231,15 @@ pub const COARSE: i32 = 4;
 /// Lumps a cell holds before it keeps only their box, where they lie flat.
 pub const CELL_LUMPS: usize = 256;
 
+/// How much larger than laid a lump of a crowded cell (past
+/// [`CELL_LUMPS`]) may grow to take in the next lump of its layer: a path
+/// of points far closer than its bead is wide (a wall of 100 000 points a
+/// layer) then keeps a lump every few tenths of a bead, not one a point,
+/// so the head's neighbourhood holds as many lumps as any other plan's.
+/// The material is overstated by at most this fraction of a lump, only
+/// there.
+pub const MERGE: f64 = 1.0 / 32.0;
+
 /// How flat, mm: the box of a plate's layers bounds the head from above as
 /// closely as their lumps.
 pub const FLAT_MM: f64 = 4.0;
@@ -306,6 +337,13 @@ impl Material {
             } => {
                 *a = min3(*a, lo);
                 *b = max3(*b, hi);
+                let crowded = lumps.len() >= CELL_LUMPS;
+                if let Some(s) = lumps.last_mut().filter(|_| crowded) {
+                    if s.take_in(&l) {
+                        self.r_max = self.r_max.max(f64::from(s.r));
+                        return;
+                    }
+                }
                 lumps.push(Stored::of(&l));
                 self.held += 1;
                 if lumps.len() >= CELL_LUMPS && b[2] - a[2] <= FLAT_MM {

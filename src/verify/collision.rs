@@ -239,6 +239,17 @@ impl Collision<'_> {
                 None => 0.0,
             };
             t = (t + margin / rate).min(1.0);
+            if t >= 1.0
+                && self
+                    .cert
+                    .is_some_and(|(p, _)| p.moved(&b, self.head.reach) < MIN_STEP_MM)
+            {
+                // The move ends within a step of the last check: a path of
+                // points closer than that is checked against the material
+                // every step, not at every point (the plate, at every one).
+                self.check_plate(&b, at);
+                return;
+            }
             self.check(&lerp(&a, &b, t), at);
             if t >= 1.0 {
                 return;
@@ -280,19 +291,7 @@ impl Collision<'_> {
     /// comes within its gap of, and certifies the pose.
     fn check(&mut self, pose: &Pose, at: Where) {
         let gap = self.head.gap;
-        let (plate, body) = self.head.lowest(pose, [0.0, 0.0, 1.0]);
-        let mut d = plate;
-        if plate < gap {
-            let close = Close {
-                at,
-                body,
-                what: Obstacle::Plate,
-            };
-            Worst::hit(&mut self.worst[0], plate, gap, close);
-            // Up the beam by Δ raises the lowest point by Δ·up_z.
-            let need = (pose.up[2] > 0.05).then(|| (gap - plate) / pose.up[2]);
-            self.raise[0] = self.raise[0].zip(need).map(|(a, b)| a.max(b));
-        }
+        let mut d = self.check_plate(pose, at);
         if !self.material.is_empty() {
             let (low, _) = self.head.lowest(pose, pose.up);
             let clear = low - self.highest(pose.up);
@@ -314,6 +313,25 @@ impl Collision<'_> {
         }
         self.cert = Some((*pose, d));
         self.low = self.head.lowest(pose, pose.up).0;
+    }
+
+    /// Checks the head at `pose` against the plate (its lowest point: a
+    /// few operations, so every pose is checked); returns its distance.
+    fn check_plate(&mut self, pose: &Pose, at: Where) -> f64 {
+        let gap = self.head.gap;
+        let (plate, body) = self.head.lowest(pose, [0.0, 0.0, 1.0]);
+        if plate < gap {
+            let close = Close {
+                at,
+                body,
+                what: Obstacle::Plate,
+            };
+            Worst::hit(&mut self.worst[0], plate, gap, close);
+            // Up the beam by Δ raises the lowest point by Δ·up_z.
+            let need = (pose.up[2] > 0.05).then(|| (gap - plate) / pose.up[2]);
+            self.raise[0] = self.raise[0].zip(need).map(|(a, b)| a.max(b));
+        }
+        plate
     }
 
     fn hit(&mut self, d: f64, body: usize, lump: Lump, (pose, at): (&Pose, Where)) {
