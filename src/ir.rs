@@ -8,7 +8,6 @@
 
 use crate::bead::{HeightModel, Table, Widths};
 use crate::deposit::{Basis, Deposit};
-use crate::sema::schema::Field;
 use crate::span::Span;
 use crate::units::{Density, Length, MassFlow, Speed};
 use serde::{Deserialize, Serialize};
@@ -719,7 +718,7 @@ impl Machine {
 }
 
 /// What every machine has, whatever its kind: the fields a robot's and a
-/// CNC's blocks share (one entry each in [`crate::sema::schema::machine`]).
+/// CNC's blocks share (one entry each in the language's machine table).
 /// A [`Robot`] and a [`Cnc`] dereference to theirs, so `robot.max_speed`
 /// reads it; the IR's JSON keeps each field where it always was among the
 /// kind's own.
@@ -1766,18 +1765,89 @@ pub struct RingOrigins {
     pub layers: Span,
 }
 
+/// A machine's field that a check may point at: the IR's own name for a
+/// place in the source, so the verifier needs none of the language's tables.
+/// The checker records each field it reads under its key
+/// (`sema::schema::machine::ORIGIN_KEYS`); a key is an enum, so a typo
+/// cannot compile.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MachineField {
+    /// The machine's name (`machine NAME { … }`): what a check points at
+    /// when no field declares what it is about.
+    Name,
+    /// `max_speed`.
+    MaxSpeed,
+    /// `rotary_speed` (a CNC's rotary axes).
+    RotarySpeed,
+    /// `acceleration`.
+    Acceleration,
+    /// `blending`.
+    Blending,
+    /// `ramp`.
+    Ramp,
+    /// `axes` (a CNC's axis letters).
+    Axes,
+    /// `full_scale` (a robot's laser power output).
+    FullScale,
+    /// `safe_height`.
+    SafeHeight,
+    /// `feed_units`.
+    FeedUnits,
+    /// `s_decimals`.
+    SDecimals,
+    /// `s_per_watt`.
+    SPerWatt,
+    /// `table_output`.
+    TableOutput,
+    /// `dialect`.
+    Dialect,
+    /// `height_input`.
+    HeightInput,
+    /// `height_delay`.
+    HeightDelay,
+    /// A robot's `arm`.
+    Arm,
+    /// A robot's `base`.
+    Base,
+    /// A robot's `tool`.
+    Tool,
+    /// A robot's `home`.
+    Home,
+    /// A robot's `singularity`.
+    Singularity,
+    /// One axis of a CNC's `limits { … }`: `X`, `Y`, `Z`, `A`, `B` or `C`.
+    Limit(char),
+    /// `gas { pre_flow }`.
+    GasPreFlow,
+    /// `powder { arrival }`.
+    PowderArrival,
+    /// `powder { full_scale }`.
+    PowderFullScale,
+    /// The `positioner { … }` block.
+    Positioner,
+    /// `positioner { keep }`.
+    PositionerKeep,
+    /// `positioner { home }`.
+    PositionerHome,
+    /// `positioner { tilt_limits }`.
+    TiltLimits,
+    /// `positioner { tilt_speed }`.
+    TiltSpeed,
+    /// `positioner { rotate_limits }`.
+    RotateLimits,
+    /// `positioner { rotate_speed }`.
+    RotateSpeed,
+}
+
 /// Where a machine and the fields the checks refer to were declared.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct MachineOrigin {
     /// The whole `machine` block.
     pub block: Span,
-    /// The fields given, each by its entry in the machine's tables
-    /// ([`crate::sema::schema::machine`]: `MAX_SPEED`, `limits::X`,
-    /// `gas::PRE_FLOW`, …; `NAME` for the machine's name).
-    pub fields: Vec<(&'static Field, Span)>,
+    /// The fields given that a check may point at, each by its key.
+    pub fields: Vec<(MachineField, Span)>,
     /// The `head { … }` block, if the machine declares one: what a
-    /// collision points at (the verifier reads it here, not through the
-    /// language's tables).
+    /// collision points at.
     pub head: Option<Span>,
 }
 
@@ -1792,7 +1862,7 @@ impl MachineOrigin {
     }
 
     /// Where `field` was given, if it was.
-    pub fn written(&self, field: &Field) -> Option<Span> {
+    pub fn written(&self, field: MachineField) -> Option<Span> {
         self.fields
             .iter()
             .find(|(f, _)| *f == field)
@@ -1801,7 +1871,7 @@ impl MachineOrigin {
 
     /// Where `field` was given, else the block: what a diagnostic about
     /// the limit that field declares points at.
-    pub fn at(&self, field: &Field) -> Span {
+    pub fn at(&self, field: MachineField) -> Span {
         self.written(field).unwrap_or(self.block)
     }
 }

@@ -540,6 +540,24 @@ pub fn mm_per(unit: &str) -> f64 {
         .map_or(1.0, |(f, _)| f)
 }
 
+/// A value of dimension `dim` for a message, in the unit that kind of value
+/// is written in (W, g/min, deg, …), not in lmdc's internal units.
+pub fn shown(value: f64, dim: Dim) -> String {
+    match dim {
+        Dim::NONE => short(value),
+        Dim::LENGTH => Length(value).to_string(),
+        Dim::ANGLE => Angle(value).to_string(),
+        Dim::SPEED => Speed(value).to_string(),
+        Dim::POWER => Power(value).to_string(),
+        Dim::MASS_FLOW => MassFlow(value).to_string(),
+        Dim::DENSITY => Density(value).to_string(),
+        Dim::TIME => Time(value).to_string(),
+        Dim::MASS => Mass(value).to_string(),
+        Dim::INERTIA => Inertia(value).to_string(),
+        other => format!("{} {}", short(value), other.unit_string()),
+    }
+}
+
 /// Formats a number for messages: at most 4 significant decimals, no trailing zeros.
 pub fn short(v: f64) -> String {
     if !v.is_finite() {

@@ -138,7 +138,7 @@ fn first_layer_is_the_circle_and_the_end_section_the_square() {
     let lmdc::sema::model::Build::Duct { loft, .. } = &model.build else {
         panic!("the duct is a loft")
     };
-    let geo = lmdc::geometry::LoftGeometry::new(loft);
+    let geo = loft.geometry();
     let frame = geo.frame(1.0);
     let half = d.side / 2.0 - 3.0;
     let mut corners = 0;

@@ -24,7 +24,7 @@ fuzz_target!(|data: &[u8]| {
     };
     for k in Kind::ALL {
         if let Err(e) = fit::fit(&s, k, given) {
-            let _ = fit::diagnose(&e, k, &s);
+            let _ = lmdc::diag::sheet::fault(&e, k, s.header);
         }
     }
 });

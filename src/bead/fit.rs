@@ -210,12 +210,6 @@ pub fn fit(sheet: &Sheet, kind: Kind, given: Given) -> Result<Fit, Fault> {
     }
 }
 
-/// What lmdc says when `kind` cannot be fitted to `sheet` (`fault`): its
-/// spans are bytes of the sheet.
-pub fn diagnose(fault: &Fault, kind: Kind, sheet: &Sheet) -> Vec<crate::diag::Diagnostic> {
-    crate::diag::message::calib::fault(fault, kind, sheet.header)
-}
-
 /// The model the data favour among `fits`: the lowest [`Fit::aicc`]
 /// (the first of equals, in the order of [`Kind::ALL`]).
 pub fn favoured(fits: &[Fit]) -> Option<&Fit> {

@@ -10,7 +10,6 @@
 //! coupon not measured yet and is skipped; a cell that is not a number is
 //! an error pointing at it.
 
-use crate::diag::{message::calib as message, Diagnostics};
 use crate::span::Span;
 
 /// A quantity a sheet may hold, and the units its header may give it in
@@ -137,14 +136,62 @@ impl Sheet {
 /// them filled is a coupon still to measure.
 const MEASURED: [Column; 4] = [Column::Height, Column::Width, Column::Area, Column::Mass];
 
-/// Reads `text`, a measurement sheet; every mistake in it is a diagnostic
-/// whose spans are bytes of `text`.
-pub fn read(text: &str) -> Result<Sheet, Diagnostics> {
-    let mut diags = Diagnostics::new();
+/// A mistake in a measurement sheet, its spans bytes of the sheet's text:
+/// the data of what `diag::message::calib::sheet` says.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SheetFault {
+    /// The sheet holds no row at all.
+    Empty(Span),
+    /// The header (its cells) has no `speed` column.
+    NoSpeedColumn(Span),
+    /// A row has more cells than the header; `at` is the first extra one.
+    ExtraCell {
+        /// The row's line, from 1.
+        line: usize,
+        /// The first cell too many.
+        at: Span,
+        /// How many columns the header has.
+        columns: usize,
+    },
+    /// A measured row has no speed.
+    NoSpeed {
+        /// The row's line, from 1.
+        line: usize,
+        /// Its first cell.
+        at: Span,
+    },
+    /// A cell is not a number.
+    NotANumber(Column, String, Span),
+    /// A cell is zero or below.
+    NotPositive(Column, String, Span),
+    /// A column is named twice: here and first.
+    DuplicateColumn(Column, Span, Span),
+    /// A column does not say its unit.
+    MissingUnit(Column, Span),
+    /// A column's unit is not one lmdc converts.
+    WrongUnit(Column, String, Span),
+}
+
+impl SheetFault {
+    /// Where the mistake is, in the sheet's text.
+    pub fn span(&self) -> Span {
+        match self {
+            SheetFault::Empty(at) | SheetFault::NoSpeedColumn(at) => *at,
+            SheetFault::ExtraCell { at, .. } | SheetFault::NoSpeed { at, .. } => *at,
+            SheetFault::NotANumber(_, _, at) | SheetFault::NotPositive(_, _, at) => *at,
+            SheetFault::DuplicateColumn(_, at, _) => *at,
+            SheetFault::MissingUnit(_, at) | SheetFault::WrongUnit(_, _, at) => *at,
+        }
+    }
+}
+
+/// Reads `text`, a measurement sheet; every mistake in it is a
+/// [`SheetFault`] whose spans are bytes of `text`.
+pub fn read(text: &str) -> Result<Sheet, Vec<SheetFault>> {
+    let mut diags = Vec::new();
     let mut lines = rows(text);
     let Some((_, header)) = lines.next() else {
-        diags.push(message::empty_sheet(Span::new(0, text.len())));
-        return Err(diags);
+        return Err(vec![SheetFault::Empty(Span::new(0, text.len()))]);
     };
     let (id, kinds) = header_columns(&header, &mut diags);
     let named = |c: Column| {
@@ -153,10 +200,10 @@ pub fn read(text: &str) -> Result<Sheet, Diagnostics> {
             .any(|h| Column::of(split_unit(&h.0).0) == Some(c))
     };
     if !named(Column::Speed) {
-        diags.push(message::no_speed_column(cells_span(&header)));
+        diags.push(SheetFault::NoSpeedColumn(cells_span(&header)));
     }
     // A header lmdc cannot read makes every row's complaint the same one.
-    if diags.has_errors() {
+    if !diags.is_empty() {
         return Err(diags);
     }
     let mut sheet = Sheet {
@@ -167,7 +214,11 @@ pub fn read(text: &str) -> Result<Sheet, Diagnostics> {
     };
     for (line, cells) in lines {
         if let Some(extra) = cells.get(header.len()) {
-            diags.push(message::extra_cell(line, extra.1, header.len()));
+            diags.push(SheetFault::ExtraCell {
+                line,
+                at: extra.1,
+                columns: header.len(),
+            });
             continue;
         }
         let mut values = [None; 8];
@@ -184,7 +235,7 @@ pub fn read(text: &str) -> Result<Sheet, Diagnostics> {
         }
         if !filled(Column::Speed) {
             let at = cells.first().map_or(Span::new(0, 0), |c| c.1);
-            diags.push(message::no_speed(line, at));
+            diags.push(SheetFault::NoSpeed { line, at });
             continue;
         }
         sheet.coupons.push(Coupon {
@@ -196,10 +247,10 @@ pub fn read(text: &str) -> Result<Sheet, Diagnostics> {
             values,
         });
     }
-    if diags.has_errors() {
-        Err(diags)
-    } else {
+    if diags.is_empty() {
         Ok(sheet)
+    } else {
+        Err(diags)
     }
 }
 
@@ -208,7 +259,7 @@ pub fn read(text: &str) -> Result<Sheet, Diagnostics> {
 #[allow(clippy::type_complexity)]
 fn header_columns(
     header: &[(String, Span)],
-    diags: &mut Diagnostics,
+    diags: &mut Vec<SheetFault>,
 ) -> (Option<usize>, Vec<Option<(Column, f64)>>) {
     let mut id = None;
     let mut seen: Vec<(Column, Span)> = Vec::new();
@@ -223,19 +274,18 @@ fn header_columns(
             }
             let col = Column::of(name)?;
             if let Some((_, first)) = seen.iter().find(|(c, _)| *c == col) {
-                diags.push(message::duplicate_column(col.name(), *at, *first));
+                diags.push(SheetFault::DuplicateColumn(col, *at, *first));
                 return None;
             }
             seen.push((col, *at));
             let Some(unit) = unit else {
-                diags.push(message::missing_unit(col.name(), col.units()[0].0, *at));
+                diags.push(SheetFault::MissingUnit(col, *at));
                 return None;
             };
             match col.units().iter().find(|(u, _)| *u == unit) {
                 Some(&(_, factor)) => Some((col, factor)),
                 None => {
-                    let units: Vec<&str> = col.units().iter().map(|u| u.0).collect();
-                    diags.push(message::wrong_unit(col.name(), unit, &units, *at));
+                    diags.push(SheetFault::WrongUnit(col, unit.to_string(), *at));
                     None
                 }
             }
@@ -259,7 +309,7 @@ fn split_unit(cell: &str) -> (&str, Option<&str>) {
 
 /// A cell as a number of `col`: empty is `None`; anything else must be a
 /// finite number greater than zero (every quantity of a coupon is).
-fn number(cell: &str, at: Span, col: Column, diags: &mut Diagnostics) -> Option<f64> {
+fn number(cell: &str, at: Span, col: Column, diags: &mut Vec<SheetFault>) -> Option<f64> {
     let t = cell.trim();
     if t.is_empty() {
         return None;
@@ -267,11 +317,11 @@ fn number(cell: &str, at: Span, col: Column, diags: &mut Diagnostics) -> Option<
     match t.parse::<f64>() {
         Ok(x) if x.is_finite() && x > 0.0 => Some(x),
         Ok(x) if x.is_finite() => {
-            diags.push(message::not_positive_cell(col.name(), t, at));
+            diags.push(SheetFault::NotPositive(col, t.to_string(), at));
             None
         }
         _ => {
-            diags.push(message::not_a_number(col.name(), t, at));
+            diags.push(SheetFault::NotANumber(col, t.to_string(), at));
             None
         }
     }
@@ -386,14 +436,14 @@ mod tests {
     fn lf_crlf_and_cr_line_ends_read_the_same() {
         let text = "id,speed (mm/s),height (mm)\n# plate 1\nc1,4,1.2\n\nc2,6,0.9\nc3,8,bad\n";
         let lf = read(text).unwrap_err();
-        let place = |d: &Diagnostics, t: &str| {
-            let sp = d.iter().next().unwrap().labels[0].span;
+        let place = |d: &[SheetFault], t: &str| {
+            let sp = d[0].span();
             t[sp.start..sp.end].to_string()
         };
         for end in ["\r\n", "\r"] {
             let t = text.replace('\n', end);
             let d = read(&t).unwrap_err();
-            assert_eq!(d.error_count(), lf.error_count());
+            assert_eq!(d.len(), lf.len());
             assert_eq!(place(&d, &t), "bad");
             let good = t.replace("bad", "0.7");
             let s = read(&good).unwrap();
@@ -409,10 +459,10 @@ mod tests {
     fn a_bad_cell_is_pointed_at() {
         let text = "speed (mm/s),height (mm)\n4,1.2\n6,1,0x\n";
         let d = read(text).unwrap_err();
-        assert_eq!(d.error_count(), 1);
+        assert_eq!(d.len(), 1);
         let text = "speed (mm/s),height (mm)\n4,1.2\n6, abc \n";
         let d = read(text).unwrap_err();
-        let sp = d.iter().next().unwrap().labels[0].span;
+        let sp = d[0].span();
         assert_eq!(&text[sp.start..sp.end], "abc");
     }
 }

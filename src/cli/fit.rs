@@ -7,7 +7,7 @@ use super::{read_sheet, EXIT_PROGRAM, EXIT_USAGE};
 use lmdc::bead::fit::{self, Fit, Given, Group, Kind, Pooling};
 use lmdc::bead::sheet::{self, Sheet};
 use lmdc::bead::HeightModel;
-use lmdc::diag::Diagnostics;
+use lmdc::diag::{sheet as says, Diagnostics};
 use lmdc::units::{Density, MassFlow};
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -65,8 +65,8 @@ pub fn run(a: Args<'_>, (color, format): (bool, MessageFormat)) -> u8 {
     let print = |d: &Diagnostics| messages::print(d, a.file, &text, color, format);
     let sheet = match sheet::read(&text) {
         Ok(s) => s,
-        Err(d) => {
-            print(&d);
+        Err(faults) => {
+            print(&says::faults(&faults));
             return EXIT_PROGRAM;
         }
     };
@@ -80,7 +80,7 @@ pub fn run(a: Args<'_>, (color, format): (bool, MessageFormat)) -> u8 {
     for k in kinds {
         match fit::fit(&sheet, k, given) {
             Ok(f) => fits.push(f),
-            Err(e) => skipped.push((k, fit::diagnose(&e, k, &sheet))),
+            Err(e) => skipped.push((k, says::fault(&e, k, sheet.header))),
         }
     }
     // Asked for one model that cannot be fitted, or none fits: say why.

@@ -8,6 +8,11 @@ pub mod json;
 pub(crate) mod message;
 /// The reports of the command line's mistakes (the binary writes them).
 pub use message::usage;
+/// The reports of a measurement sheet's mistakes and of a model it cannot
+/// be fitted to (`lmdc fit` prints them).
+pub mod sheet {
+    pub use super::message::calib::{fault, sheet as faults};
+}
 mod worst;
 
 use crate::span::Span;

@@ -1,17 +1,18 @@
 //! Geometry of the solid: sections, their morph, the spine and the twisted
-//! section frames, with nalgebra poses. Reads the semantic model only.
+//! section frames, with nalgebra poses. Its types are its own (the
+//! checker builds them from the language), so it reads no stage.
 
 pub mod mesh;
 pub mod outline;
 pub mod profile;
 pub mod region;
 pub mod section;
+pub mod shape;
 pub mod spine;
 
-use crate::sema::model::{Loft, Spine};
 use nalgebra::{Point3, Vector3};
-use section::Blend;
-use spine::SpineFrame;
+use section::{Blend, Morph, Section};
+use spine::{Spine, SpineFrame};
 
 /// A section frame: where the section at a station sits and how it is turned.
 #[derive(Clone, Copy, Debug)]
@@ -50,12 +51,13 @@ pub struct LoftGeometry {
 }
 
 impl LoftGeometry {
-    /// The geometry of a checked loft.
-    pub fn new(loft: &Loft) -> Self {
+    /// The geometry of a loft from `from` to `to` along `spine`, the end
+    /// turned by `twist` (rad) about it.
+    pub fn new(from: Section, to: Section, morph: Morph, spine: Spine, twist: f64) -> Self {
         LoftGeometry {
-            spine: loft.spine,
-            blend: Blend::new(loft.from, loft.to, loft.morph),
-            twist: loft.twist.0,
+            spine,
+            blend: Blend::new(from, to, morph),
+            twist,
         }
     }
 

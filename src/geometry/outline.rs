@@ -6,7 +6,8 @@
 
 use super::profile::{Profile, Vertex};
 use super::region::Region;
-use crate::sema::model::{Outline, Section, Segment, Shape, Turn};
+use super::section::Section;
+use super::shape::{Outline, Segment, Shape, Turn};
 use std::f64::consts::PI;
 
 /// The outer outline of `shape` (a region's holes are left out: see

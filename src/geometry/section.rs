@@ -2,8 +2,93 @@
 //! centred, so it is fully described by its radius at each angle of its frame.
 //! The morph between two sections works on that form too.
 
-use crate::sema::model::{Morph, Section};
+use crate::units::Length;
 use std::f64::consts::PI;
+
+/// A parametric section shape, sizes in mm, centred on its frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Section {
+    /// `circle(diameter)`
+    Circle {
+        /// Radius.
+        r: Length,
+    },
+    /// `ellipse(width, height)`: semi-axes along x and y.
+    Ellipse {
+        /// Semi-axis along x.
+        a: Length,
+        /// Semi-axis along y.
+        b: Length,
+    },
+    /// `square(side)`, `rectangle(width, height)`: half sides.
+    Rectangle {
+        /// Half width (x).
+        a: Length,
+        /// Half height (y).
+        b: Length,
+    },
+    /// `rounded_rectangle(width, height, radius)`.
+    RoundedRectangle {
+        /// Half width (x).
+        a: Length,
+        /// Half height (y).
+        b: Length,
+        /// Corner radius.
+        r: Length,
+    },
+    /// `polygon(sides, circumradius | side)`: a vertex on +x.
+    Polygon {
+        /// Number of sides.
+        n: u32,
+        /// Circumradius.
+        r: Length,
+    },
+}
+
+/// How the section changes from the start to the end shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Morph {
+    /// Superellipse whose exponent and semi-axes move linearly between the ends
+    /// (circle/ellipse/square/rectangle ends only).
+    Superellipse,
+    /// Linear blend of the polar radius at each angle.
+    Radial,
+}
+
+impl Section {
+    /// The section offset inward by `d` (for sizes measured at the wall's outer
+    /// face: the bead's centre line runs `w/2` inside). Exact for every shape but
+    /// the ellipse, whose offset curve is not an ellipse (its semi-axes shrink by
+    /// `d`). `None` if nothing is left.
+    pub fn inset(self, d: Length) -> Option<Section> {
+        let d = d.0;
+        let pos = |x: f64| (x > 1e-9).then_some(Length(x));
+        Some(match self {
+            Section::Circle { r } => Section::Circle { r: pos(r.0 - d)? },
+            Section::Ellipse { a, b } => Section::Ellipse {
+                a: pos(a.0 - d)?,
+                b: pos(b.0 - d)?,
+            },
+            Section::Rectangle { a, b } => Section::Rectangle {
+                a: pos(a.0 - d)?,
+                b: pos(b.0 - d)?,
+            },
+            Section::RoundedRectangle { a, b, r } => Section::RoundedRectangle {
+                a: pos(a.0 - d)?,
+                b: pos(b.0 - d)?,
+                r: Length((r.0 - d).max(0.0)),
+            },
+            Section::Polygon { n, r } => {
+                // Moving each side in by d moves the vertices in by d / cos(π/n).
+                let dr = d / (std::f64::consts::PI / n as f64).cos();
+                Section::Polygon {
+                    n,
+                    r: pos(r.0 - dr)?,
+                }
+            }
+        })
+    }
+}
 
 /// Distance from the centre to the outline of `s` in direction `theta` (rad,
 /// from the section's x axis).

@@ -1,8 +1,25 @@
 //! The spine: the centre line a loft's sections are swept along, and the frame
 //! it carries at each station.
 
-use crate::sema::model::Spine;
+use crate::units::{Angle, Length};
 use nalgebra::{Point3, Vector3};
+
+/// The spine the sections are swept along.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Spine {
+    /// A straight line along +Z.
+    Line {
+        /// Length.
+        length: Length,
+    },
+    /// An arc that starts along +Z and bends toward +X about an axis parallel to Y.
+    Arc {
+        /// Bend radius of the centre line.
+        radius: Length,
+        /// Bend angle.
+        angle: Angle,
+    },
+}
 
 /// Where the spine is at a station, and its frame before twist.
 #[derive(Clone, Copy, Debug)]

@@ -18,7 +18,6 @@
 use crate::diag::Diagnostics;
 use crate::geometry::outline::{profile, region};
 use crate::geometry::profile::Profile;
-use crate::geometry::LoftGeometry;
 use crate::sema::model::{Build, Loft, Measure, Model, Shape, Spine, Top, TopExtrusion};
 use serde::Serialize;
 
@@ -93,7 +92,7 @@ pub fn volume(model: &Model) -> Design {
 fn loft_wall(loft: &Loft, w: f64) -> Result<(f64, String), String> {
     // The checker already moved a section measured at its outer face to the
     // bead's centre line (sema/loft.rs): the sections are the mid-curve.
-    let geo = LoftGeometry::new(loft);
+    let geo = loft.geometry();
     let (length, radius) = match loft.spine {
         Spine::Line { length } => (length.0, None),
         Spine::Arc { radius, angle } => (radius.0 * angle.0.abs(), Some(radius.0)),

@@ -325,7 +325,7 @@ fn fitted(
         }
     };
     let mut sheet = sheet::read(&text)
-        .map_err(|ds| in_data(ds.into_vec(), diags))
+        .map_err(|fs| in_data(message::calib::sheet(&fs).into_vec(), diags))
         .ok()?;
     let select = [
         power.map(|(p, s)| (Column::Power, Power(p).watts(), s)),
@@ -346,7 +346,7 @@ fn fitted(
         feed: feed.map(|f| MassFlow(f.0)),
     };
     let f = fit::fit(&sheet, kind, given)
-        .map_err(|e| in_data(fit::diagnose(&e, kind, &sheet), diags))
+        .map_err(|e| in_data(message::calib::fault(&e, kind, sheet.header), diags))
         .ok()?;
     if let Some(p) = fit::pooling(&sheet, &f, given).filter(fit::Pooling::hides) {
         diags.push(message::calib::pooled_fit(&p, &f, &path, at));

@@ -28,6 +28,7 @@ use super::schema::Field;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, Feeder, Gas, RateOutput};
 use crate::span::Span;
+use crate::target::outputs::Outputs;
 
 /// A CNC's lines that switch outputs (defaults from the dialect).
 pub static CNC_LINES: [&Field; 3] = [
@@ -35,33 +36,6 @@ pub static CNC_LINES: [&Field; 3] = [
     &machine::OUTPUT_OFF,
     &machine::ANALOG_OUTPUT,
 ];
-
-/// How a machine's control numbers its outputs.
-#[derive(Clone, Copy, Debug)]
-pub struct Outputs {
-    /// Digital outputs `lo..=hi`.
-    pub digital: (usize, usize),
-    /// Analog outputs `lo..=hi`.
-    pub analog: (usize, usize),
-}
-
-/// KUKA: `$OUT[1..4096]`, `$ANOUT[1..32]`.
-pub const KUKA: Outputs = Outputs {
-    digital: (1, 4096),
-    analog: (1, 32),
-};
-
-/// LinuxCNC: `motion.digital-out-NN` and `motion.analog-out-NN`, 00–63.
-pub const LINUXCNC: Outputs = Outputs {
-    digital: (0, 63),
-    analog: (0, 63),
-};
-
-/// Another G-code control, through the lines the machine block gives.
-pub const OTHER_CNC: Outputs = Outputs {
-    digital: (0, 9999),
-    analog: (0, 9999),
-};
 
 /// The built-in output lines of a G-code dialect: on, off, analog (empty
 /// where lmdc knows none).

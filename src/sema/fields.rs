@@ -8,12 +8,11 @@ use super::schema::{Block, Bound, DefaultValue, Field, Need};
 use super::suggest::did_you_mean;
 use super::value::{Call, Spanned, Value};
 use crate::diag::{message, Diagnostic, Diagnostics};
+pub use crate::units::shown;
 
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, Stmt};
-use crate::units::{
-    short, Angle, Density, Dim, Inertia, Length, Mass, MassFlow, Power, Quantity, Speed, Time,
-};
+use crate::units::{Dim, Quantity};
 
 /// One field: its key and its evaluated value (`None` if evaluation failed and was
 /// reported already), or the statements of a nested block.
@@ -562,24 +561,6 @@ fn default_quantity(f: &Field) -> f64 {
     match f.need {
         Need::Default(DefaultValue::Quantity(q)) => q,
         _ => panic!("`{}` has no quantity as its default", f.key),
-    }
-}
-
-/// A value of dimension `dim` for a message, in the unit that kind of value
-/// is written in (W, g/min, deg, …), not in lmdc's internal units.
-pub fn shown(value: f64, dim: Dim) -> String {
-    match dim {
-        Dim::NONE => short(value),
-        Dim::LENGTH => Length(value).to_string(),
-        Dim::ANGLE => Angle(value).to_string(),
-        Dim::SPEED => Speed(value).to_string(),
-        Dim::POWER => Power(value).to_string(),
-        Dim::MASS_FLOW => MassFlow(value).to_string(),
-        Dim::DENSITY => Density(value).to_string(),
-        Dim::TIME => Time(value).to_string(),
-        Dim::MASS => Mass(value).to_string(),
-        Dim::INERTIA => Inertia(value).to_string(),
-        other => format!("{} {}", short(value), other.unit_string()),
     }
 }
 

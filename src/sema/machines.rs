@@ -37,18 +37,7 @@ pub fn read<'a>(
         }
         if let Some((m, mut fields)) = machine::read(env, &n.node, stmts, s.span, diags) {
             fields.push((&NAME, n.span));
-            let head = fields
-                .iter()
-                .find(|(f, _)| *f == &crate::sema::schema::collision::HEAD_BLOCK)
-                .map(|&(_, at)| at);
-            machines.push((
-                m,
-                MachineOrigin {
-                    block: s.span,
-                    fields,
-                    head,
-                },
-            ));
+            machines.push((m, machine::origin::origin(s.span, &fields)));
         }
     }
     if st.get("machine").is_empty() {

@@ -7,6 +7,10 @@ use crate::span::Span;
 use crate::syntax::ast::Expr;
 use crate::units::{Angle, Length, MassFlow, Power, Speed};
 
+pub use crate::geometry::section::{Morph, Section};
+pub use crate::geometry::shape::{Hole, Outline, Placed, RegionShape, Segment, Shape, Turn};
+pub use crate::geometry::spine::Spine;
+
 mod calibration;
 mod segmented_ring;
 mod top;
@@ -131,46 +135,6 @@ pub struct Inheritance {
     pub hit: f64,
 }
 
-/// A parametric section shape, sizes in mm, centred on its frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Section {
-    /// `circle(diameter)`
-    Circle {
-        /// Radius.
-        r: Length,
-    },
-    /// `ellipse(width, height)`: semi-axes along x and y.
-    Ellipse {
-        /// Semi-axis along x.
-        a: Length,
-        /// Semi-axis along y.
-        b: Length,
-    },
-    /// `square(side)`, `rectangle(width, height)`: half sides.
-    Rectangle {
-        /// Half width (x).
-        a: Length,
-        /// Half height (y).
-        b: Length,
-    },
-    /// `rounded_rectangle(width, height, radius)`.
-    RoundedRectangle {
-        /// Half width (x).
-        a: Length,
-        /// Half height (y).
-        b: Length,
-        /// Corner radius.
-        r: Length,
-    },
-    /// `polygon(sides, circumradius | side)`: a vertex on +x.
-    Polygon {
-        /// Number of sides.
-        n: u32,
-        /// Circumradius.
-        r: Length,
-    },
-}
-
 /// Where the section's size is measured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Measure {
@@ -179,33 +143,6 @@ pub enum Measure {
     /// The size is the outer face of the wall: the path runs half a bead width
     /// inside.
     Outer,
-}
-
-/// The spine the sections are swept along.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Spine {
-    /// A straight line along +Z.
-    Line {
-        /// Length.
-        length: Length,
-    },
-    /// An arc that starts along +Z and bends toward +X about an axis parallel to Y.
-    Arc {
-        /// Bend radius of the centre line.
-        radius: Length,
-        /// Bend angle.
-        angle: Angle,
-    },
-}
-
-/// How the section changes from the start to the end shape.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Morph {
-    /// Superellipse whose exponent and semi-axes move linearly between the ends
-    /// (circle/ellipse/square/rectangle ends only).
-    Superellipse,
-    /// Linear blend of the polar radius at each angle.
-    Radial,
 }
 
 /// A loft built as a single-bead wall.
@@ -231,6 +168,14 @@ pub struct Loft {
     pub spine_span: Span,
     /// `from` and `to` values.
     pub section_spans: [Span; 2],
+}
+
+impl Loft {
+    /// The loft's geometry, ready to be evaluated at any station.
+    pub fn geometry(&self) -> crate::geometry::LoftGeometry {
+        let (from, to) = (self.from, self.to);
+        crate::geometry::LoftGeometry::new(from, to, self.morph, self.spine, self.twist.0)
+    }
 }
 
 /// A bead model.
@@ -458,41 +403,6 @@ pub struct Process {
     pub heat: crate::ir::Heat,
 }
 
-impl Section {
-    /// The section offset inward by `d` (for sizes measured at the wall's outer
-    /// face: the bead's centre line runs `w/2` inside). Exact for every shape but
-    /// the ellipse, whose offset curve is not an ellipse (its semi-axes shrink by
-    /// `d`). `None` if nothing is left.
-    pub fn inset(self, d: Length) -> Option<Section> {
-        let d = d.0;
-        let pos = |x: f64| (x > 1e-9).then_some(Length(x));
-        Some(match self {
-            Section::Circle { r } => Section::Circle { r: pos(r.0 - d)? },
-            Section::Ellipse { a, b } => Section::Ellipse {
-                a: pos(a.0 - d)?,
-                b: pos(b.0 - d)?,
-            },
-            Section::Rectangle { a, b } => Section::Rectangle {
-                a: pos(a.0 - d)?,
-                b: pos(b.0 - d)?,
-            },
-            Section::RoundedRectangle { a, b, r } => Section::RoundedRectangle {
-                a: pos(a.0 - d)?,
-                b: pos(b.0 - d)?,
-                r: Length((r.0 - d).max(0.0)),
-            },
-            Section::Polygon { n, r } => {
-                // Moving each side in by d moves the vertices in by d / cos(π/n).
-                let dr = d / (std::f64::consts::PI / n as f64).cos();
-                Section::Polygon {
-                    n,
-                    r: pos(r.0 - dr)?,
-                }
-            }
-        })
-    }
-}
-
 /// A solid with the slicing strategy that builds it: each strategy takes the
 /// solids it can slice, so a mismatch cannot reach the slicer.
 #[derive(Clone, Debug)]
@@ -523,118 +433,6 @@ pub enum Build {
     Ring(RingBuild),
     /// Coupons to measure a bead on (`calibration { … }`).
     Calibration(Calibration),
-}
-
-/// Which way an arc turns, seen along the outline.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Turn {
-    /// Counter-clockwise: a convex corner of a counter-clockwise outline.
-    Left,
-    /// Clockwise.
-    Right,
-}
-
-/// A piece of an outline, from the end of the previous one.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Segment {
-    /// A straight line to a point.
-    Line {
-        /// End point `[x, y]`.
-        to: [Length; 2],
-    },
-    /// The shorter circular arc of a radius to a point.
-    Arc {
-        /// End point `[x, y]`.
-        to: [Length; 2],
-        /// Radius.
-        radius: Length,
-        /// Which way it turns.
-        turn: Turn,
-    },
-}
-
-/// A closed outline of lines and arcs; it closes with a line back to `start`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Outline {
-    /// First point.
-    pub start: [Length; 2],
-    /// The pieces after it.
-    pub segments: Vec<Segment>,
-}
-
-/// A 2-D shape to extrude.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Shape {
-    /// A parametric section, centred on the origin.
-    Section(Section),
-    /// An outline of lines and arcs.
-    Outline(Outline),
-    /// A shape turned about the origin, then moved: `place(…)`.
-    Placed(Box<Placed>),
-    /// An outline with holes: `region(…)`.
-    Region(Box<RegionShape>),
-    /// Separate islands on one layer, each an outline or a region: a mesh's
-    /// section (never written in a file). The planar slicer fills each on
-    /// its own and visits them nearest first.
-    Islands(Vec<Shape>),
-}
-
-impl Shape {
-    /// Whether the shape has holes (only a [`Shape::Region`], placed or not).
-    pub fn has_holes(&self) -> bool {
-        match self {
-            Shape::Section(_) | Shape::Outline(_) => false,
-            Shape::Placed(p) => p.shape.has_holes(),
-            Shape::Region(r) => !r.holes.is_empty(),
-            Shape::Islands(v) => v.iter().any(Shape::has_holes),
-        }
-    }
-
-    /// The pieces of all its outlines (an ellipse's flattening counts as 8):
-    /// the work an offset of it does.
-    pub fn pieces(&self) -> usize {
-        match self {
-            Shape::Outline(o) => o.segments.len() + 1,
-            Shape::Section(_) => 8,
-            Shape::Placed(p) => p.shape.pieces(),
-            Shape::Region(r) => {
-                r.outline.pieces() + r.holes.iter().map(|h| h.shape.pieces()).sum::<usize>()
-            }
-            Shape::Islands(v) => v.iter().map(Shape::pieces).sum(),
-        }
-    }
-}
-
-/// `place(shape, at = [x, y], turn = a)`: the shape turned by `turn` about
-/// the origin (counter-clockwise), then moved by `at`.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Placed {
-    /// What is placed.
-    pub shape: Shape,
-    /// Rotation about the origin, counter-clockwise.
-    pub turn: Angle,
-    /// Where the shape's origin goes.
-    pub at: [Length; 2],
-}
-
-/// `region(outline = …, holes = […])`: a planar profile with openings.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RegionShape {
-    /// The outer outline (without holes of its own).
-    pub outline: Shape,
-    /// Where the outline is written.
-    pub outline_span: Span,
-    /// The holes, in the order written (a bolt circle's in its order).
-    pub holes: Vec<Hole>,
-}
-
-/// One hole of a [`RegionShape`].
-#[derive(Clone, Debug, PartialEq)]
-pub struct Hole {
-    /// Its outline (without holes of its own).
-    pub shape: Shape,
-    /// Where it is written (a bolt circle's holes share its span).
-    pub span: Span,
 }
 
 /// The ways of a contour loop's seam (where it starts and ends) from layer

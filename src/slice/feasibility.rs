@@ -347,7 +347,7 @@ fn suggest_scale(
     declared: Option<usize>,
 ) -> Option<f64> {
     let h = bead.heights(bead.width).map(|h| h.0);
-    let reach_at = |s: f64| Some(reach(&LoftGeometry::new(&scaled(loft, s, bead.width.0)?)));
+    let reach_at = |s: f64| Some(reach(&scaled(loft, s, bead.width.0)?.geometry()));
     let ratio_fits = |s: f64| {
         reach_at(s).is_some_and(|r| {
             let q = (radius + r.outward) / (radius - r.inward);

@@ -207,10 +207,7 @@ pub fn wide_enough(
 /// The units `mesh(units = …)` takes, with mm per unit: the ones a hint may
 /// suggest.
 fn mesh_units() -> Vec<(&'static str, f64)> {
-    crate::sema::schema::solid::mesh::UNITS
-        .kind
-        .words()
-        .unwrap_or(&[])
+    crate::geometry::mesh::UNITS
         .iter()
         .map(|&u| (u, crate::units::mm_per(u)))
         .collect()

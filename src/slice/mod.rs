@@ -18,7 +18,6 @@ pub mod variable;
 
 use crate::diag::message::{self, bend::LayerAt, bend::SeamAdvice};
 use crate::diag::Diagnostics;
-use crate::geometry::LoftGeometry;
 use crate::ir::Layer;
 use crate::sema::model::MAX_POINTS;
 use crate::sema::model::{
@@ -60,7 +59,7 @@ fn duct(
     slicing: &Slicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     let mut warnings = Diagnostics::new();
-    let geo = LoftGeometry::new(loft);
+    let geo = loft.geometry();
     let spacing = match slicing.resolution {
         Resolution::Count(k) => Spacing::Count(k),
         Resolution::ChordError(e) => Spacing::Chord {

@@ -9,6 +9,7 @@ pub mod arm;
 pub mod gcode;
 pub mod kuka;
 pub mod names;
+pub mod outputs;
 
 use crate::ir::Machine;
 

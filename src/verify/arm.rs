@@ -15,9 +15,9 @@ use super::rule::{MachineCx, PlanRule};
 use crate::diag::message::verify::arm::{self as msg, ArmAt, Singular};
 use crate::diag::Diagnostics;
 use crate::ir::Machine;
+use crate::ir::MachineField::{Arm, Base, Home, Singularity, Tool};
 use crate::plan::arm::{Along, Follow, Joints, Solved};
 use crate::plan::{Move, Speed, Visit};
-use crate::sema::schema::machine::{ARM, BASE, HOME, SINGULARITY, TOOL};
 use nalgebra::Vector3;
 
 mod reach;
@@ -85,13 +85,13 @@ impl<'p> PlanRule<'p> for ArmRule {
         let at = ArmAt {
             machine: &r.name,
             arm: name,
-            declared: cx.origin.at(&ARM),
-            base: cx.origin.at(&BASE),
-            tool: cx.origin.at(&TOOL),
+            declared: cx.origin.at(Arm),
+            base: cx.origin.at(Base),
+            tool: cx.origin.at(Tool),
         };
         for (i, (h, lim)) in r.home.iter().zip(arm.limits).enumerate() {
             if *h < lim[0] || *h > lim[1] {
-                out.push(msg::home_limit(&at, cx.origin.at(&HOME), i, *h, lim));
+                out.push(msg::home_limit(&at, cx.origin.at(Home), i, *h, lim));
             }
         }
         if let Some(b) = self.quick {
@@ -106,7 +106,7 @@ impl<'p> PlanRule<'p> for ArmRule {
                 out.push(msg::joint_limit(&at, i, w, arm.margin));
             }
         }
-        let sing = cx.origin.written(&SINGULARITY);
+        let sing = cx.origin.written(Singularity);
         for (w, kind) in self.singular.into_iter().zip(Singular::ALL) {
             if let Some(w) = w {
                 out.push(msg::singular_lin(&at, kind, &w, sing));

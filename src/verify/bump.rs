@@ -23,10 +23,10 @@ mod pool;
 use super::rule::{MachineCx, PlanRule};
 use crate::diag::message::verify::bump::{Bumps, Model};
 use crate::diag::{message, Diagnostics};
+use crate::ir::MachineField;
 use crate::ir::{Machine, Program, Ramp};
 use crate::plan::profile::{Dynamics, Profiler};
 use crate::plan::{Move, MoveKind, Speed, Visit};
-use crate::sema::schema::machine::{ACCELERATION, BLENDING, RAMP};
 use pool::{Laid, Pool};
 
 /// The melt pool's length where the IR does not know the bead's width, mm.
@@ -107,9 +107,9 @@ impl<'p> PlanRule<'p> for DepositBump<'p> {
         out.push(message::verify::bump::deposit_bump(
             cx.machine.name(),
             &bumps,
-            Some(o.at(&ACCELERATION)),
-            o.written(&BLENDING),
-            o.written(&RAMP),
+            Some(o.at(MachineField::Acceleration)),
+            o.written(MachineField::Blending),
+            o.written(MachineField::Ramp),
         ));
     }
 }

@@ -10,9 +10,9 @@
 
 use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::{message, Diagnostics};
+use crate::ir::MachineField;
 use crate::ir::{Cell, MachineOrigin, Program};
 use crate::plan::{Io, Move, Speed, Visit};
-use crate::sema::schema::machine::{gas, powder};
 
 /// Slack on times, s: the plan waits exactly the declared times, which sums
 /// of move times may miss by rounding.
@@ -72,7 +72,7 @@ impl<'p> CellRule<'p> {
                 name,
                 &w,
                 g.pre_flow,
-                o.at(&gas::PRE_FLOW),
+                o.at(MachineField::GasPreFlow),
             ));
         }
         if let (Some(w), Some(p)) = (self.powder_short, self.cell.powder) {
@@ -80,7 +80,7 @@ impl<'p> CellRule<'p> {
                 name,
                 &w,
                 p.arrival,
-                o.at(&powder::ARRIVAL),
+                o.at(MachineField::PowderArrival),
             ));
         }
         let full = self.cell.powder.and_then(|p| p.rate);
@@ -88,7 +88,7 @@ impl<'p> CellRule<'p> {
             out.push(cell::rate_changes_in_path(
                 name,
                 &w,
-                o.at(&powder::FULL_SCALE),
+                o.at(MachineField::PowderFullScale),
             ));
         }
         if let Some(w) = self.unfed {
@@ -109,7 +109,7 @@ impl<'p> CellRule<'p> {
                 name,
                 &w,
                 r.full_scale,
-                o.at(&powder::FULL_SCALE),
+                o.at(MachineField::PowderFullScale),
             ));
         }
     }

@@ -11,9 +11,9 @@ use crate::diag::message::verify::height_loop::{
     self as says, FastTransition, LateUpdate, LoopFields,
 };
 use crate::diag::Diagnostics;
+use crate::ir::MachineField;
 use crate::ir::{Machine, MachineOrigin, Program, Ring, RingOrigins, RingRun};
 use crate::plan::{Move, Visit};
-use crate::sema::schema::machine;
 use crate::target::gcode::{LOOP_PROFILE, MAX_ANALOG_INPUT};
 use crate::target::kuka::MAX_ADVANCE;
 use crate::units::{Angle, Length, Speed};
@@ -107,7 +107,7 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
         if crate::plan::table::machine_output(c).is_some() {
             out.push(says::loop_on_table_machine(
                 name,
-                origin.at(&machine::TABLE_OUTPUT),
+                origin.at(MachineField::TableOutput),
                 o.run,
             ));
         }
@@ -115,14 +115,14 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
             out.push(says::loop_dialect(
                 name,
                 &c.dialect.profile,
-                origin.at(&machine::DIALECT),
+                origin.at(MachineField::Dialect),
                 o.run,
             ));
         }
     }
     if let Machine::Robot(rb) = m {
         if rb.positioner.is_some() {
-            let at = origin.at(&machine::POSITIONER_BLOCK);
+            let at = origin.at(MachineField::Positioner);
             out.push(says::loop_on_positioner(name, at, o.run));
         }
     }
@@ -140,7 +140,7 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
                 r.segments.len(),
                 s.input,
                 last,
-                origin.at(&machine::HEIGHT_INPUT),
+                origin.at(MachineField::HeightInput),
             ));
         }
     }
@@ -200,7 +200,7 @@ fn robot_timing(
     out.push(says::loop_timing(
         name,
         &why,
-        origin.at(&machine::HEIGHT_DELAY),
+        origin.at(MachineField::HeightDelay),
         o.ring,
     ));
 }
@@ -251,6 +251,6 @@ fn transitions(
         top,
         transition_fits,
         radius_fits,
-        spans: [origin.at(&machine::MAX_SPEED), o.clamp, o.transition],
+        spans: [origin.at(MachineField::MaxSpeed), o.clamp, o.transition],
     }));
 }

@@ -9,10 +9,10 @@
 use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::message::{self, verify::machine::AnalogOverrun, verify::machine::AxisOverrun};
 use crate::diag::Diagnostics;
+use crate::ir::MachineField;
 use crate::ir::{AxisLimits, Kinematics, Machine, RotaryTable};
 use crate::plan::kinematics::tilt_of;
 use crate::plan::{effective_kinematics, table, Move, MoveKind, Speed, Visit, Where};
-use crate::sema::schema::machine::{self, limits};
 use crate::target::{gcode, kuka, written as rounded};
 
 /// A normal tilted more than this (deg) cannot be followed by a vertical nozzle.
@@ -46,7 +46,7 @@ impl<'p> PlanRule<'p> for SpeedLimit<'p> {
         out.push(message::verify::machine::machine_speed(
             cx.machine.name(),
             &w,
-            cx.origin.at(&machine::MAX_SPEED),
+            cx.origin.at(MachineField::MaxSpeed),
             cx.program.origins.bead_speed,
         ));
     }
@@ -186,11 +186,17 @@ impl<'p> PlanRule<'p> for Travel {
             "A"
         };
         let tilt = if tilt_name == "B" {
-            &limits::B
+            MachineField::Limit('B')
         } else {
-            &limits::A
+            MachineField::Limit('A')
         };
-        let fields = [&limits::X, &limits::Y, &limits::Z, tilt, &limits::C];
+        let fields = [
+            MachineField::Limit('X'),
+            MachineField::Limit('Y'),
+            MachineField::Limit('Z'),
+            tilt,
+            MachineField::Limit('C'),
+        ];
         let lim = self.lim;
         let ranges = [lim.x, lim.y, lim.z, lim.tilt, lim.rotary];
         for (i, w) in self.axes.iter().enumerate() {
@@ -252,7 +258,7 @@ impl<'p> PlanRule<'p> for Tilt {
         out.push(message::verify::machine::needs_tilt(
             cx.machine.name(),
             &w,
-            cx.origin.at(&machine::AXES),
+            cx.origin.at(MachineField::Axes),
         ));
     }
 }
@@ -298,7 +304,7 @@ impl<'p> PlanRule<'p> for Analog {
             full_scale: r.full_scale_power,
             needed: rounded(w.value / r.full_scale_power, kuka::ANOUT_DECIMALS),
             worst: w,
-            declared: cx.origin.at(&machine::FULL_SCALE),
+            declared: cx.origin.at(MachineField::FullScale),
             power: cx.program.origins.power,
         }));
     }
@@ -342,7 +348,7 @@ impl PlanRule<'_> for SafeHeight {
         }
         let at = cx
             .origin
-            .written(&machine::SAFE_HEIGHT)
+            .written(MachineField::SafeHeight)
             .unwrap_or(cx.origin.block);
         out.push(message::verify::machine::safe_height(
             &message::verify::machine::LowSafeHeight {

@@ -9,9 +9,9 @@
 use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::message::positioner as says;
 use crate::diag::Diagnostics;
+use crate::ir::MachineField;
 use crate::ir::{Machine, Positioner};
 use crate::plan::{Move, Speed, Visit, JOIN_MM};
-use crate::sema::schema::machine::{positioner as field, POSITIONER_BLOCK};
 
 /// `lmd::positioner-limit` and `lmd::positioner-speed` of one robot.
 pub(super) struct PositionerRule {
@@ -87,11 +87,15 @@ impl<'p> PlanRule<'p> for PositionerRule {
         let p = &self.positioner;
         let keep = cx
             .origin
-            .written(&field::KEEP)
-            .or(cx.origin.written(&POSITIONER_BLOCK));
+            .written(MachineField::PositionerKeep)
+            .or(cx.origin.written(MachineField::Positioner));
         let fields = [
-            (&p.tilt, &field::TILT_LIMITS, &field::TILT_SPEED),
-            (&p.rotate, &field::ROTATE_LIMITS, &field::ROTATE_SPEED),
+            (&p.tilt, MachineField::TiltLimits, MachineField::TiltSpeed),
+            (
+                &p.rotate,
+                MachineField::RotateLimits,
+                MachineField::RotateSpeed,
+            ),
         ];
         for (i, (axis, limits, _)) in fields.iter().enumerate() {
             let mut worst: Option<crate::diag::Worst<usize>> = None;
@@ -105,7 +109,7 @@ impl<'p> PlanRule<'p> for PositionerRule {
                 }
             }
             if let Some(w) = worst {
-                let declared = cx.origin.written(limits);
+                let declared = cx.origin.written(*limits);
                 out.push(says::limit(name, i, &w, axis.limits, declared, keep));
             }
             let [lo, hi] = axis.limits;
@@ -113,8 +117,8 @@ impl<'p> PlanRule<'p> for PositionerRule {
             if home < lo - 1e-9 || home > hi + 1e-9 {
                 let at = cx
                     .origin
-                    .written(&field::HOME)
-                    .or(cx.origin.written(limits));
+                    .written(MachineField::PositionerHome)
+                    .or(cx.origin.written(*limits));
                 out.push(says::home_limit(name, i, home, axis.limits, at));
             }
         }

@@ -8,8 +8,8 @@ use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::message::verify::machine::SpeedWord;
 use crate::diag::{message, Diagnostics};
 use crate::ir::Machine;
+use crate::ir::MachineField as Field;
 use crate::plan::{Move, Speed, Visit};
-use crate::sema::schema::{machine, Field};
 use crate::target::{gcode, kuka, quantised, written, MAX_WRITTEN};
 
 /// `lmd::resolution`: powers and speeds one machine cannot write, and
@@ -47,19 +47,19 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
     fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
         let (machine, o) = (cx.machine, cx.origin);
         let speeds = cx.program.origins.bead_speed;
-        let has = |f: &Field| o.written(f).is_some();
+        let has = |f: Field| o.written(f).is_some();
         if let Some(w) = self.position {
             out.push(message::verify::machine::position_too_large(
                 machine.name(),
                 &w,
-                o.at(&machine::NAME),
+                o.at(Field::Name),
             ));
         }
         if let Some(w) = self.speed {
             // The setting that decides how F is written, if declared.
             let field = match machine {
-                Machine::Cnc(_) if has(&machine::FEED_UNITS) => &machine::FEED_UNITS,
-                _ => &machine::NAME,
+                Machine::Cnc(_) if has(Field::FeedUnits) => Field::FeedUnits,
+                _ => Field::Name,
             };
             let word = match machine {
                 Machine::Cnc(c) => SpeedWord::F {
@@ -81,10 +81,10 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
         if let Some(w) = self.power {
             let d = match machine {
                 Machine::Cnc(c) => {
-                    let field = if has(&machine::S_DECIMALS) {
-                        &machine::S_DECIMALS
+                    let field = if has(Field::SDecimals) {
+                        Field::SDecimals
                     } else {
-                        &machine::S_PER_WATT
+                        Field::SPerWatt
                     };
                     message::verify::machine::cnc_power_unwritable(
                         &c.name,
@@ -100,7 +100,7 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
                     r.power_out,
                     r.full_scale_power,
                     &w,
-                    o.at(&machine::FULL_SCALE),
+                    o.at(Field::FullScale),
                 ),
             };
             out.push(d);

@@ -11,10 +11,10 @@
 use super::rule::{MachineCx, PlanRule, Worst};
 use crate::diag::message::verify::table as says;
 use crate::diag::Diagnostics;
+use crate::ir::MachineField;
 use crate::ir::{Kinematics, Machine, RotaryTable};
 use crate::plan::kinematics::{Rotary, LIMIT_TOL_DEG};
 use crate::plan::{effective_kinematics, table, Move, MoveKind, Speed, Visit, Where};
-use crate::sema::schema::machine::{self, limits};
 
 /// `lmd::axis-speed`: a feed move whose machine axes must go faster than
 /// the machine does: a table's linear axes beyond `max_speed`, a rotary
@@ -94,9 +94,9 @@ impl<'p> PlanRule<'p> for AxisSpeed {
         for (i, w) in self.found.iter().enumerate() {
             let Some(w) = w else { continue };
             let (axis, field) = match i {
-                0 => ("X Y Z".to_string(), &machine::MAX_SPEED),
-                1 => (tilt.to_string(), &machine::ROTARY_SPEED),
-                _ => ("C".to_string(), &machine::ROTARY_SPEED),
+                0 => ("X Y Z".to_string(), MachineField::MaxSpeed),
+                1 => (tilt.to_string(), MachineField::RotarySpeed),
+                _ => ("C".to_string(), MachineField::RotarySpeed),
             };
             out.push(says::axis_speed(
                 cx.machine.name(),
@@ -182,7 +182,7 @@ impl<'p> PlanRule<'p> for CUnwind {
             cx.machine.name(),
             &w,
             (self.range, self.head),
-            cx.origin.at(&limits::C),
+            cx.origin.at(MachineField::Limit('C')),
         ));
     }
 }

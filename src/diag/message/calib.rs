@@ -3,6 +3,7 @@
 //! with its file name, line and column.
 
 use crate::bead::fit::{Fault, Group, Kind, Pooling};
+use crate::bead::sheet::SheetFault;
 use crate::bead::TableFault;
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
@@ -147,15 +148,37 @@ fn not_given(model: &str, what: &str, header: Span) -> Diagnostic {
     ))
 }
 
+/// Every mistake `faults` found in a measurement sheet, in order.
+pub fn sheet(faults: &[SheetFault]) -> crate::diag::Diagnostics {
+    let mut out = crate::diag::Diagnostics::new();
+    for f in faults {
+        out.push(match f {
+            SheetFault::Empty(at) => empty_sheet(*at),
+            SheetFault::NoSpeedColumn(at) => no_speed_column(*at),
+            SheetFault::ExtraCell { line, at, columns } => extra_cell(*line, *at, *columns),
+            SheetFault::NoSpeed { line, at } => no_speed(*line, *at),
+            SheetFault::NotANumber(c, t, at) => not_a_number(c.name(), t, *at),
+            SheetFault::NotPositive(c, t, at) => not_positive_cell(c.name(), t, *at),
+            SheetFault::DuplicateColumn(c, at, first) => duplicate_column(c.name(), *at, *first),
+            SheetFault::MissingUnit(c, at) => missing_unit(c.name(), c.units()[0].0, *at),
+            SheetFault::WrongUnit(c, unit, at) => {
+                let units: Vec<&str> = c.units().iter().map(|u| u.0).collect();
+                wrong_unit(c.name(), unit, &units, *at)
+            }
+        });
+    }
+    out
+}
+
 /// The sheet holds no row at all.
-pub fn empty_sheet(at: Span) -> Diagnostic {
+fn empty_sheet(at: Span) -> Diagnostic {
     Diagnostic::error(Code::Sheet, "the measurement sheet is empty")
         .label(at, "no header, no coupons")
         .help("the first line names the columns with their units: `id,speed (mm/s),width (mm),height (mm)`; one coupon a line follows")
 }
 
 /// The header (at `at`) has no `speed` column.
-pub fn no_speed_column(at: Span) -> Diagnostic {
+fn no_speed_column(at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::Sheet,
         "the measurement sheet has no `speed` column: every model is a function of the scan speed",
@@ -165,7 +188,7 @@ pub fn no_speed_column(at: Span) -> Diagnostic {
 }
 
 /// Line `line` has more cells than the header's `n`; the first extra at `at`.
-pub fn extra_cell(line: usize, at: Span, n: usize) -> Diagnostic {
+fn extra_cell(line: usize, at: Span, n: usize) -> Diagnostic {
     Diagnostic::error(
         Code::Sheet,
         format!("line {line} has more cells than the header's {n}"),
@@ -175,7 +198,7 @@ pub fn extra_cell(line: usize, at: Span, n: usize) -> Diagnostic {
 }
 
 /// A measured row (line `line`) has no speed.
-pub fn no_speed(line: usize, at: Span) -> Diagnostic {
+fn no_speed(line: usize, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::Sheet,
         format!("the coupon on line {line} is measured but has no speed"),
@@ -185,7 +208,7 @@ pub fn no_speed(line: usize, at: Span) -> Diagnostic {
 }
 
 /// A cell of column `col` (`text`, at `at`) is not a number.
-pub fn not_a_number(col: &str, text: &str, at: Span) -> Diagnostic {
+fn not_a_number(col: &str, text: &str, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::Sheet,
         format!("a `{col}` cell must be a number, not `{text}`"),
@@ -195,7 +218,7 @@ pub fn not_a_number(col: &str, text: &str, at: Span) -> Diagnostic {
 }
 
 /// A cell of column `col` (`text`, at `at`) is zero or below.
-pub fn not_positive_cell(col: &str, text: &str, at: Span) -> Diagnostic {
+fn not_positive_cell(col: &str, text: &str, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::Sheet,
         format!("a `{col}` must be greater than zero, not {text}"),
@@ -205,7 +228,7 @@ pub fn not_positive_cell(col: &str, text: &str, at: Span) -> Diagnostic {
 }
 
 /// Column `col` (at `at`) is named twice, first at `first`.
-pub fn duplicate_column(col: &str, at: Span, first: Span) -> Diagnostic {
+fn duplicate_column(col: &str, at: Span, first: Span) -> Diagnostic {
     Diagnostic::error(
         Code::SheetUnits,
         format!("the sheet has two `{col}` columns"),
@@ -216,7 +239,7 @@ pub fn duplicate_column(col: &str, at: Span, first: Span) -> Diagnostic {
 }
 
 /// Column `col` (at `at`) has no unit; `unit` is the one lmdc uses.
-pub fn missing_unit(col: &str, unit: &str, at: Span) -> Diagnostic {
+fn missing_unit(col: &str, unit: &str, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::SheetUnits,
         format!("the `{col}` column does not say its unit"),
@@ -228,7 +251,7 @@ pub fn missing_unit(col: &str, unit: &str, at: Span) -> Diagnostic {
 }
 
 /// Column `col` (at `at`) is in `unit`, which lmdc does not convert.
-pub fn wrong_unit(col: &str, unit: &str, units: &[&str], at: Span) -> Diagnostic {
+fn wrong_unit(col: &str, unit: &str, units: &[&str], at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::SheetUnits,
         format!("lmdc does not read a `{col}` in `{unit}`"),

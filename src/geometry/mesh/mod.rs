@@ -16,6 +16,10 @@ pub use section::{area, islands, Loop, Section, SectionFault, Sections};
 use nalgebra::{Rotation3, Vector3};
 use std::collections::HashMap;
 
+/// The units a mesh's coordinates may be in (`mesh(units = …)`): an STL
+/// does not say; a 3MF's own unit is one of them.
+pub const UNITS: &[&str] = &["mm", "cm", "m", "in"];
+
 /// Most triangles a fault lists.
 pub const MAX_LISTED: usize = 8;
 

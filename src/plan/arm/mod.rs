@@ -331,6 +331,7 @@ impl Solver {
 }
 
 mod chain;
+pub mod clearance;
 mod follow;
 pub mod reach;
 

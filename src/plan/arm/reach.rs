@@ -13,9 +13,10 @@
 //! radius `√(a1² + b²)` round A1's axis at the height `c1`: a focus farther
 //! than those two lengths together from that circle is out of reach.
 
+use super::clearance::{self, clearance};
 use super::{frame, Solver};
 use crate::ir::{Machine, Pose, Program, Robot, Spin};
-use crate::plan::{spin, Plan, Where};
+use crate::plan::{Plan, Where};
 use nalgebra::{Isometry3, Point3, Rotation3, Vector3};
 
 /// How far beyond A2's circle round A1's axis a suggested base keeps the
@@ -127,8 +128,8 @@ pub fn beyond(program: &Program, robot: &Robot) -> Option<Beyond> {
 pub enum Fix {
     /// A base, in whole mm and turned as declared, that stands the part on
     /// or above the plane of the robot's foot and in front of it, from
-    /// which the arm follows [`spin::SAMPLES`] of the plan's moves within
-    /// every rule [`spin::clearance`] checks.
+    /// which the arm follows [`clearance::SAMPLES`] of the plan's moves within
+    /// every rule [`clearance()`] checks.
     Base(Pose),
     /// No base can: two of the part's points lie `across` mm apart, and no
     /// two foci the arm reaches with this tool lie more than `most` apart.
@@ -150,9 +151,9 @@ pub enum Fix {
 /// as declared: `TooLarge` where the part is larger than any two poses the
 /// arm reaches lie apart; else the first base tried (nearest where lmdc
 /// would put the part, in front of the robot and above its foot, in steps
-/// of [`STEP_MM`]) from which every sampled wrist centre ([`spin::sample`]'s
+/// of [`STEP_MM`]) from which every sampled wrist centre ([`clearance::sample`]'s
 /// moves) lies within [`KEEP`] of the reach and the arm follows the sampled
-/// moves within every rule [`spin::clearance`] checks (at most [`TRIES`]
+/// moves within every rule [`clearance()`] checks (at most [`TRIES`]
 /// followed).
 pub fn fix(program: &Program, machine: &Machine) -> Fix {
     let Machine::Robot(robot) = machine else {
@@ -184,7 +185,7 @@ pub fn fix(program: &Program, machine: &Machine) -> Fix {
         Spin::Declared { deg } => deg,
         Spin::Auto { .. } => 0.0,
     };
-    let moves = spin::sample(program, &Plan::new(program, machine));
+    let moves = clearance::sample(program, &Plan::new(program, machine));
     let wrists = wrists(robot, deg, &moves, &turn);
     for t in candidates(&s, &r, robot, lo, hi)
         .into_iter()
@@ -199,7 +200,7 @@ pub fn fix(program: &Program, machine: &Machine) -> Fix {
             ..b
         };
         moved.base.value = Some(base);
-        if spin::clearance(&moved, deg, &moves) >= 0.0 {
+        if clearance(&moved, deg, &moves) >= 0.0 {
             return Fix::Base(base);
         }
     }

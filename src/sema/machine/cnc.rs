@@ -40,9 +40,9 @@ pub(super) fn read<'a>(
         .map_or("linuxcnc", |c| c.dialect.profile.as_str())
         .to_string();
     let outputs = if profile == "linuxcnc" {
-        cell::LINUXCNC
+        crate::target::outputs::LINUXCNC
     } else {
-        cell::OTHER_CNC
+        crate::target::outputs::OTHER_CNC
     };
     let lines = cell::cnc_lines(&f, &profile, diags);
     let cell = cell::read(

@@ -6,6 +6,7 @@
 mod cnc;
 mod head;
 mod load;
+pub mod origin;
 mod positioner;
 mod robot;
 

@@ -43,7 +43,7 @@ pub(super) fn read<'a>(
             ]
         })
         .collect();
-    let c = cell::read(env, &f, cell::KUKA, None, &taken, diags);
+    let c = cell::read(env, &f, crate::target::outputs::KUKA, None, &taken, diags);
     let positioner = super::positioner::read(env, &f, &mut at, diags);
     let head = super::head::read(env, &f, name, &mut at, diags);
     let (mut r, c, positioner, head) = (r?, c?, positioner?, head?);

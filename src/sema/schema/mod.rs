@@ -28,7 +28,7 @@ pub mod slicing;
 pub mod solid;
 pub mod style;
 
-use super::fields::shown;
+use crate::units::shown;
 use crate::units::Dim;
 
 /// An angle in degrees, in radians as [`f64::to_radians`] gives it (so a
@@ -481,7 +481,7 @@ impl Bound {
 impl Io {
     /// The signal and the numbers each control gives it.
     pub fn describe(self) -> String {
-        use super::cell::{KUKA, LINUXCNC, OTHER_CNC};
+        use crate::target::outputs::{KUKA, LINUXCNC, OTHER_CNC};
         use crate::target::{gcode, kuka};
         let range = |(lo, hi): (usize, usize)| format!("{lo}–{hi}");
         match self {

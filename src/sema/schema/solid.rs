@@ -225,7 +225,7 @@ pub mod mesh {
     /// `mesh(units = …)`.
     pub static UNITS: Field = Field::new(
         "units",
-        Word(&["mm", "cm", "m", "in"]),
+        Word(crate::geometry::mesh::UNITS),
         Default(DefaultWord("mm")),
         "what one unit of an STL's coordinates is (STL files do not say; a 3MF says its own, and `units` may only repeat it)",
     );
