@@ -35,6 +35,7 @@ mod holes_ir;
 mod krl_parser;
 mod krl_program;
 mod laser_timing;
+mod layering;
 mod library;
 mod lsp;
 mod machine_checks;

@@ -4,9 +4,9 @@
 //! (`--deny-warnings`, `--deny`): a CI gate stays strict for every other
 //! warning (docs/diagnostics.md, "Expected warnings").
 
-use super::statement::Statements;
-use super::suggest;
 use crate::diag::{message, Code, Diagnostics, Group};
+use crate::sema::statement::Statements;
+use crate::sema::suggest;
 use crate::syntax::ast::{Body, ExprKind};
 
 /// Reads every `allow` statement, telling `diags` which warnings the file

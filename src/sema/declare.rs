@@ -3,15 +3,15 @@
 //! fails is left out, but its name is kept so that a use of it is not
 //! reported a second time as unknown.
 
-use super::bead;
-use super::eval::Env;
-use super::model::{Bead, Section};
-use super::profile;
-use super::section;
-use super::statement::{shape_error, Statements};
-use super::value::Value;
 use crate::diag::message::{self, statement::Declaration};
 use crate::diag::Diagnostics;
+use crate::sema::eval::Env;
+use crate::sema::model::{Bead, Section};
+use crate::sema::process::bead;
+use crate::sema::solid::profile;
+use crate::sema::solid::section;
+use crate::sema::statement::{shape_error, Statements};
+use crate::sema::value::Value;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr};
 use std::collections::BTreeMap;

@@ -2,9 +2,9 @@
 //! and the failed expression evaluates to `None`, so one mistake is reported once
 //! and does not cascade.
 
-use super::suggest::did_you_mean;
-use super::value::{Call, CallArg, Spanned, Value};
 use crate::diag::{message, Diagnostic, Diagnostics};
+use crate::sema::suggest::did_you_mean;
+use crate::sema::value::{Call, CallArg, Spanned, Value};
 use crate::span::Span;
 use crate::syntax::ast::{Arg, BinOp, Expr, ExprKind, UnOp};
 use crate::units::{parse_unit, Dim, Quantity};

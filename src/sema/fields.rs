@@ -3,11 +3,11 @@
 //! problem — unknown field, duplicate, missing, wrong unit, out of range — is
 //! reported, and reading goes on.
 
-use super::eval::Env;
-use super::schema::{Block, Bound, DefaultValue, Field, Need};
-use super::suggest::did_you_mean;
-use super::value::{Call, Spanned, Value};
 use crate::diag::{message, Diagnostic, Diagnostics};
+use crate::sema::eval::Env;
+use crate::sema::schema::{Block, Bound, DefaultValue, Field, Need};
+use crate::sema::suggest::did_you_mean;
+use crate::sema::value::{Call, Spanned, Value};
 pub use crate::units::shown;
 
 use crate::span::Span;
@@ -90,7 +90,7 @@ impl<'a> Fields<'a> {
                 ));
                 continue;
             };
-            let repeated = matches!(field.kind, super::schema::Kind::Blocks(_));
+            let repeated = matches!(field.kind, crate::sema::schema::Kind::Blocks(_));
             if let Some(prev) = entries.iter().find(|e| e.field == field && !repeated) {
                 diags.push(message::field::duplicate_field(
                     key,
@@ -593,7 +593,7 @@ pub fn quantity(v: &Spanned, dim: Dim, key: &str, diags: &mut Diagnostics) -> Op
             None
         }
         other => {
-            if let Some(d) = super::eval::position_outside_top(other, v.span) {
+            if let Some(d) = crate::sema::eval::position_outside_top(other, v.span) {
                 diags.push(d);
                 return None;
             }

@@ -7,47 +7,30 @@
 //! (a wrong power does not hide a style's wrong speed).
 
 pub mod allow;
-mod bead;
-mod calibration;
-mod cell;
-mod continuous;
-mod control;
 pub mod data;
 mod declare;
 pub mod eval;
-mod extrude;
 mod fields;
-mod fixture;
-mod loft;
 mod machine;
-mod machines;
-mod mesh;
 pub mod model;
-mod planar;
-mod process;
-mod profile;
+pub(crate) mod process;
 mod program_text;
-mod region;
 pub mod schema;
-mod seam;
-mod section;
-mod segmented_ring;
 pub mod slicing;
-mod solid;
+pub(crate) mod solid;
 mod statement;
-mod style;
 mod suggest;
-mod top;
 pub mod value;
-mod variable;
 
-pub use profile::LayerShapes;
-pub use top::TopHeights;
+pub use solid::profile::LayerShapes;
+pub use solid::top::TopHeights;
 
 use crate::diag::{message, Diagnostics};
 use crate::syntax::ast::File;
 use eval::Env;
+use machine::{fixture, statements as machines};
 use model::{Model, PowerSchedule};
+use process::{bead, calibration, control, style};
 use statement::Statements;
 
 /// Checks a parsed file. Returns every diagnostic (errors and warnings) found,

@@ -2,8 +2,8 @@
 //! whatever its kind: its shape (`kind NAME { … }`, `kind NAME = value`) and
 //! how often it may appear.
 
-use super::suggest;
 use crate::diag::{message, Diagnostic, Diagnostics};
+use crate::sema::suggest;
 use crate::syntax::ast::{Body, File, Stmt};
 use std::collections::BTreeMap;
 
@@ -41,7 +41,7 @@ impl<'f> Statements<'f> {
         for s in &file.stmts {
             let k = s.kind.node.as_str();
             if !KINDS.contains(&k) {
-                let d = match super::schema::statement_taking(k) {
+                let d = match crate::sema::schema::statement_taking(k) {
                     // A value written as a statement (`mesh "part.stl"`).
                     Some((syntax, written)) => {
                         message::statement::value_as_statement(k, s.kind.span, syntax, &written)

@@ -1,6 +1,6 @@
 //! What an expression evaluates to: a quantity, a range, a name, a text, a
 //! call or a list, each with the span it was written at. The evaluator is
-//! [`super::eval`]; the words a message uses for each kind of value are in
+//! [`crate::sema::eval`]; the words a message uses for each kind of value are in
 //! `crate::diag::message::value`, which reads a value as a `Got`.
 
 use crate::diag::message::value::Got;

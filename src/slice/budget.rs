@@ -7,7 +7,6 @@
 //! limit (a 2 m plate in 10 000 layers: minutes and gigabytes). A mesh's
 //! sections are bounded the same way as they are cut ([`super::mesh`]).
 
-use super::layers::Layers;
 use super::MAX_TOTAL_POINTS;
 use crate::diag::{message, Diagnostics};
 use crate::geometry::outline;
@@ -99,12 +98,17 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     (b[0] - a[0]).hypot(b[1] - a[1])
 }
 
-/// Refuses, before any layer is filled, a drawn profile's plan whose
-/// raster lays more points than a plan may hold by [`least_raster_points`]
-/// on every layer (a fixed profile measured once per raster angle). A
+/// Most outline pieces over all layers: every piece of every layer is offset,
+/// clipped and checked, so the work (and the profiles kept) grows with it.
+pub const MAX_PROFILE_WORK: usize = 20_000_000;
+
+/// Refuses, before any layer is filled, a drawn profile's plan (the
+/// layers' `shapes`, `fixed` where they are all one) whose raster lays
+/// more points than a plan may hold by [`least_raster_points`] on every
+/// layer (a fixed profile measured once per raster angle). A
 /// mesh's layers were bounded as they were cut.
 pub fn planar(
-    plan: &Layers,
+    (shapes, fixed): (&[Shape], bool),
     extrusion: &Extrusion,
     slicing: &PlanarSlicing,
     band: f64,
@@ -117,10 +121,9 @@ pub fn planar(
         return Some(());
     }
     let chord = slicing.chord_error.0;
-    let fixed = !plan.varies();
     let mut by_angle: HashMap<u64, f64> = HashMap::new();
     let mut least = 0.0;
-    for (k, shape) in plan.shapes.iter().enumerate() {
+    for (k, shape) in shapes.iter().enumerate() {
         let angle = (raster.angle.0 + raster.rotate.0 * k as f64).rem_euclid(std::f64::consts::PI);
         let measure = || {
             islands(shape, angle, chord)
@@ -138,7 +141,7 @@ pub fn planar(
     }
     diags.push(message::slicing::too_many_raster_points(
         message::slicing::RasterBudget {
-            layers: plan.shapes.len(),
+            layers: shapes.len(),
             offset: slicing.offset,
             least,
             max: MAX_TOTAL_POINTS,

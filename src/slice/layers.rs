@@ -21,9 +21,7 @@ const LIFT_TOLERANCE: f64 = 0.02;
 /// A height this far (relative) from a whole number of layers is reported.
 const HEIGHT_TOLERANCE: f64 = 0.01;
 
-/// Most outline pieces over all layers: every piece of every layer is offset,
-/// clipped and checked, so the work (and the profiles kept) grows with it.
-pub const MAX_PROFILE_WORK: usize = 20_000_000;
+use super::budget::MAX_PROFILE_WORK;
 
 /// The layers an extrusion is built in.
 pub struct Layers {

@@ -9,8 +9,7 @@ use crate::diag::{message, Diagnostics};
 use crate::geometry::mesh::{self, Loop};
 use crate::sema::model::MAX_LAYERS;
 use crate::sema::model::{Hole, MeshSolid, Outline, PlanarSlicing, RegionShape, Segment, Shape};
-use crate::slice::budget::{least_raster_points, Island};
-use crate::slice::layers::MAX_PROFILE_WORK;
+use crate::slice::budget::{least_raster_points, Island, MAX_PROFILE_WORK};
 use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
 

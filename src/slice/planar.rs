@@ -59,7 +59,15 @@ pub fn slice(
         Measure::Centre => 0.0,
     };
     let band = super::budget::band(slicing, inset);
-    if super::budget::planar(&plan, extrusion, slicing, band, &mut diags).is_none() {
+    if super::budget::planar(
+        (&plan.shapes, !plan.varies()),
+        extrusion,
+        slicing,
+        band,
+        &mut diags,
+    )
+    .is_none()
+    {
         return Err(diags);
     }
     styling::never_applies(&model.styles, plan.shapes.len(), &mut diags);

@@ -2,22 +2,22 @@
 //! the dialect and the lines that override it, the travel limits and where
 //! the part sits.
 
-use super::super::cell;
-use super::super::eval::Env;
-use super::super::fields::{self, Fields};
-use super::super::program_text;
-use super::super::schema::machine::{
-    limits, AXES, CLEARANCE, CNC, C_AXIS, DIALECT, DWELL, FEED_UNITS, KINEMATICS, LASER_OFF,
-    LASER_ON, MAX_SPEED, ORIGIN, POSTAMBLE, PREAMBLE, ROTARY_SPEED, SAFE_HEIGHT, S_DECIMALS,
-    S_PER_WATT, TABLE_OUTPUT, TCP_OFF, TCP_ON, TILT_AXIS, WORK_OFFSET,
-};
-use super::super::schema::Field;
-use super::super::value::{Spanned, Value};
 use super::{common, height_sensor, limits_block, motion, Written};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{
     AxisLimits, Cnc, Dialect, FeedUnit, Kinematics, Machine, Placement, RotaryTable, TableOutput,
 };
+use crate::sema::eval::Env;
+use crate::sema::fields::{self, Fields};
+use crate::sema::machine::cell;
+use crate::sema::program_text;
+use crate::sema::schema::machine::{
+    limits, AXES, CLEARANCE, CNC, C_AXIS, DIALECT, DWELL, FEED_UNITS, KINEMATICS, LASER_OFF,
+    LASER_ON, MAX_SPEED, ORIGIN, POSTAMBLE, PREAMBLE, ROTARY_SPEED, SAFE_HEIGHT, S_DECIMALS,
+    S_PER_WATT, TABLE_OUTPUT, TCP_OFF, TCP_ON, TILT_AXIS, WORK_OFFSET,
+};
+use crate::sema::schema::Field;
+use crate::sema::value::{Spanned, Value};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::target::gcode as dialect;

@@ -2,17 +2,15 @@
 //! collision checks (docs/collision.md). A machine without one is checked
 //! with a typical coaxial nozzle, and `lmd::head-unchecked` says so.
 
-use super::super::eval::Env;
-use super::super::fields::Fields;
-use super::super::schema::collision::{
-    self as c, CYLINDER, FRUSTUM, HEAD, HEAD_BLOCK, MAX_SIZE_MM,
-};
-use super::super::schema::machine::KIND;
-use super::super::schema::Field;
-use super::super::value::Value;
 use super::Written;
 use crate::diag::{message, Diagnostic, Diagnostics};
 use crate::ir::{Head, HeadBody};
+use crate::sema::eval::Env;
+use crate::sema::fields::Fields;
+use crate::sema::schema::collision::{self as c, CYLINDER, FRUSTUM, HEAD, HEAD_BLOCK, MAX_SIZE_MM};
+use crate::sema::schema::machine::KIND;
+use crate::sema::schema::Field;
+use crate::sema::value::Value;
 use crate::span::Span;
 
 /// The head of the machine block `f` (named `machine`), its fields' spans

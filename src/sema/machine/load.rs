@@ -1,12 +1,12 @@
 //! A robot's `load = load(…)`: the tool's mass, centre of gravity and
 //! inertia, which the program sets as KUKA's `$LOAD` (docs/robots.md).
 
-use super::super::fields::{self, Fields};
-use super::super::schema::machine::{load as l, LOAD, LOAD_DATA, MAX_LOAD_KG};
-use super::super::schema::{Bound, Field, Kind};
-use super::super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::ir::Load;
+use crate::sema::fields::{self, Fields};
+use crate::sema::schema::machine::{load as l, LOAD, LOAD_DATA, MAX_LOAD_KG};
+use crate::sema::schema::{Bound, Field, Kind};
+use crate::sema::value::Value;
 use crate::span::Span;
 use crate::units::{Dim, Inertia, Mass};
 

@@ -3,12 +3,15 @@
 //! [`Machine`]. What either kind has (the height sensor, the cell's gas and
 //! powder) is read here; [`robot`] and [`cnc`] read the rest.
 
+pub mod cell;
 mod cnc;
+pub mod fixture;
 mod head;
 mod load;
 pub mod origin;
 mod positioner;
 mod robot;
+pub mod statements;
 
 use super::eval::Env;
 use super::fields::{self, Fields};

@@ -1,14 +1,14 @@
 //! A robot's `positioner { … }`: a tilt axis (E1) carrying a rotate axis
 //! (E2) whose flange carries the part's base (docs/robots.md).
 
-use super::super::eval::Env;
-use super::super::fields::{self, Fields};
-use super::super::schema::machine::{positioner as p, CONE, FIXED, POSITIONER, POSITIONER_BLOCK};
-use super::super::schema::Field;
-use super::super::value::Value;
 use super::Written;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Keep, Positioner, PositionerAxis};
+use crate::sema::eval::Env;
+use crate::sema::fields::{self, Fields};
+use crate::sema::schema::machine::{positioner as p, CONE, FIXED, POSITIONER, POSITIONER_BLOCK};
+use crate::sema::schema::Field;
+use crate::sema::value::Value;
 use crate::units::Dim;
 
 /// Axes closer than this to parallel (deg) cannot tilt a part.
@@ -188,8 +188,8 @@ fn keep(b: &Fields<'_>, diags: &mut Diagnostics) -> Option<Keep> {
                         q.to_degrees(),
                         true,
                         s,
-                        super::super::schema::machine::MAX_FRAME_MM,
-                        super::super::schema::machine::MAX_ANGLE_DEG,
+                        crate::sema::schema::machine::MAX_FRAME_MM,
+                        crate::sema::schema::machine::MAX_ANGLE_DEG,
                     )
                 };
                 a.bounded_or_default(field, out, diags)

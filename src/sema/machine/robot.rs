@@ -1,18 +1,18 @@
 //! `machine NAME { kind = robot … }`: a KUKA robot, programmed in KRL.
 
-use super::super::cell;
-use super::super::eval::Env;
-use super::super::fields::{self, Fields};
-use super::super::schema::machine::{
+use super::{common, height_sensor, motion, Written};
+use crate::diag::{message, Diagnostics};
+use crate::ir::{Arm, FrameRef, Machine, Pose, Robot, Spin, ToolAxis};
+use crate::sema::eval::Env;
+use crate::sema::fields::{self, Fields};
+use crate::sema::machine::cell;
+use crate::sema::schema::machine::{
     frame, opw, ARM, BASE, BEAM, CLEARANCE, FRAME, FULL_SCALE, HOME, JOINT_MARGIN, KIND, LASER,
     MAX_ANGLE_DEG, MAX_FRAME_MM, MAX_SPEED, MODULE_LINES, OPW, POSITIONER_BLOCK, POWER_OUTPUT,
     ROBOT, SINGULARITY, SPIN, TOOL,
 };
-use super::super::schema::Field;
-use super::super::value::Value;
-use super::{common, height_sensor, motion, Written};
-use crate::diag::{message, Diagnostics};
-use crate::ir::{Arm, FrameRef, Machine, Pose, Robot, Spin, ToolAxis};
+use crate::sema::schema::Field;
+use crate::sema::value::Value;
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::target::kuka;
@@ -171,7 +171,7 @@ fn arm(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Option<Arm>> {
 /// `opw(…)`: an arm by its parameters, in KUKA's axis angles.
 fn opw_arm(a: &Fields<'_>, diags: &mut Diagnostics) -> Option<Arm> {
     let len = |field: &Field, diags: &mut Diagnostics| match field.need {
-        super::super::schema::Need::Required(_) => a.quantity(field, diags).map(|q| q.0),
+        crate::sema::schema::Need::Required(_) => a.quantity(field, diags).map(|q| q.0),
         _ => a.quantity_or_default(field, diags),
     };
     let ps = [
@@ -234,7 +234,7 @@ fn six<T: Copy + Default>(
     a: &Fields<'_>,
     field: &Field,
     diags: &mut Diagnostics,
-    item: impl Fn(&super::super::value::Spanned, &mut Diagnostics) -> Option<T>,
+    item: impl Fn(&crate::sema::value::Spanned, &mut Diagnostics) -> Option<T>,
 ) -> Option<[T; 6]> {
     let v = a.value(field, diags)?;
     let items = match &v.value {

@@ -2,17 +2,17 @@
 //! machines and a `calibration { … }` block — the coupons `lmdc calibrate`
 //! lays to measure the bead, laid out on the plate.
 
-use super::eval::{unknown_name, Env};
-use super::fields::{self, Fields};
-use super::model::{
+use crate::diag::{message, Diagnostics};
+use crate::sema::eval::{unknown_name, Env};
+use crate::sema::fields::{self, Fields};
+use crate::sema::model::{
     Build, Calibration, Coupon, CouponKind, Model, PowerSchedule, Process, Styles, Tolerance,
 };
-use super::schema::bead as bead_schema;
-use super::schema::calibration::{self as schema, coupon, CALIBRATION, PAD, WALL};
-use super::statement::{shape_error, single, Statements};
-use super::value::Value;
-use super::{machines, process};
-use crate::diag::{message, Diagnostics};
+use crate::sema::schema::bead as bead_schema;
+use crate::sema::schema::calibration::{self as schema, coupon, CALIBRATION, PAD, WALL};
+use crate::sema::statement::{shape_error, single, Statements};
+use crate::sema::value::Value;
+use crate::sema::{machine::statements as machines, process};
 use crate::span::Span;
 use crate::syntax::ast::Body;
 use crate::units::{Length, MassFlow, Power, Speed};
@@ -107,7 +107,7 @@ fn statement<'a>(
         .quantity(&schema::LAYER_HEIGHT, diags)
         .map(|(h, _)| Length(h));
     let origin = match f.value(&schema::ORIGIN, diags) {
-        Some(v) => super::profile::point(v, diags).map(|[x, y]| [x.0, y.0]),
+        Some(v) => crate::sema::solid::profile::point(v, diags).map(|[x, y]| [x.0, y.0]),
         None => (!f.has(&schema::ORIGIN)).then_some([0.0, 0.0]),
     };
     let plate = plate(&f, diags);
@@ -285,7 +285,7 @@ fn speeds(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Vec<Speed>> {
 
 /// A quantity of `dim` greater than zero.
 fn positive(
-    v: &super::value::Spanned,
+    v: &crate::sema::value::Spanned,
     dim: crate::units::Dim,
     key: &str,
     diags: &mut Diagnostics,
@@ -306,7 +306,7 @@ fn positive(
 /// A list field: `Some(None)` when not written, `None` when wrong.
 fn list(
     f: &Fields<'_>,
-    field: &'static super::schema::Field,
+    field: &'static crate::sema::schema::Field,
     diags: &mut Diagnostics,
 ) -> Option<Option<Vec<f64>>> {
     if !f.has(field) {

@@ -6,13 +6,13 @@
 //! `y`, checked here at one point of the footprint and evaluated by the
 //! slicer at every point it samples ([`TopHeights`]).
 
-use super::eval::Env;
-use super::fields::{self, Fields};
-use super::model::{Axis, Shape, Top, TopExpr};
-use super::schema::solid::{top, EDGES, MAX_SLOPE_DEG, PLANE};
-use super::schema::Field;
-use super::value::Value;
 use crate::diag::{message, Diagnostics};
+use crate::sema::eval::Env;
+use crate::sema::fields::{self, Fields};
+use crate::sema::model::{Axis, Shape, Top, TopExpr};
+use crate::sema::schema::solid::{top, EDGES, MAX_SLOPE_DEG, PLANE};
+use crate::sema::schema::Field;
+use crate::sema::value::Value;
 use crate::span::Span;
 use crate::syntax::ast::{Expr, ExprKind};
 use crate::units::{Dim, Length};
@@ -72,7 +72,7 @@ pub fn read(
 }
 
 /// `edges(along = x, from = 20 mm, to = 36 mm)`.
-fn edges(c: &super::value::Call, diags: &mut Diagnostics) -> Option<Top> {
+fn edges(c: &crate::sema::value::Call, diags: &mut Diagnostics) -> Option<Top> {
     let a = Fields::call(c, &EDGES, diags);
     let along = a.word(&top::ALONG, diags);
     let from = a.quantity(&top::FROM, diags);
@@ -86,7 +86,7 @@ fn edges(c: &super::value::Call, diags: &mut Diagnostics) -> Option<Top> {
 }
 
 /// `plane(at = [0 mm, 0 mm], height = 14 mm, slope_x = 8 mm / 60 mm, slope_y = 20 %)`.
-fn plane(c: &super::value::Call, diags: &mut Diagnostics) -> Option<Top> {
+fn plane(c: &crate::sema::value::Call, diags: &mut Diagnostics) -> Option<Top> {
     let a = Fields::call(c, &PLANE, diags);
     let at = match a.value(&top::AT, diags) {
         None if a.has(&top::AT) => None,
@@ -104,7 +104,7 @@ fn plane(c: &super::value::Call, diags: &mut Diagnostics) -> Option<Top> {
 }
 
 /// A point `[x, y]` of two lengths.
-fn point(v: &super::value::Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
+fn point(v: &crate::sema::value::Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
     match &v.value {
         Value::List(items) if items.len() == 2 => {
             let x = fields::quantity(&items[0], Dim::LENGTH, "x", diags);

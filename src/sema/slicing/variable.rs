@@ -6,19 +6,19 @@
 //! the tracks run and where their speed changes is the slicer's decision
 //! ([`crate::slice::top`]).
 //!
-//! [`Build::Variable`]: super::model::Build::Variable
+//! [`Build::Variable`]: crate::sema::model::Build::Variable
 
-use super::eval::Env;
-use super::extrude::{declared_offset, Source, Written};
-use super::fields::Fields;
-use super::model::{
+use crate::diag::{message, Diagnostics};
+use crate::sema::eval::Env;
+use crate::sema::fields::Fields;
+use crate::sema::model::Tolerance;
+use crate::sema::model::{
     Axis, Bead, HeightModel, Shape, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE,
 };
-use super::profile;
-use super::schema::slicing::{variable, SEGMENTS, VARIABLE};
-use super::value::Value;
-use crate::diag::{message, Diagnostics};
-use crate::sema::model::Tolerance;
+use crate::sema::schema::slicing::{variable, SEGMENTS, VARIABLE};
+use crate::sema::solid::extrude::{declared_offset, Source, Written};
+use crate::sema::solid::profile;
+use crate::sema::value::Value;
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Length, Speed};
@@ -119,7 +119,7 @@ pub fn read<'a>(
     VariableSpec {
         slicing,
         offset: declared,
-        tolerance: super::slicing::tolerance(&f, diags).unwrap_or_default(),
+        tolerance: super::shared::tolerance(&f, diags).unwrap_or_default(),
     }
 }
 

@@ -6,22 +6,22 @@
 //! it follows `layer`, as the expression the slicer evaluates on each layer
 //! ([`crate::slice::layers`] decides the layers).
 //!
-//! [`Build::Block`]: super::model::Build::Block
+//! [`Build::Block`]: crate::sema::model::Build::Block
 
-use super::eval::{unknown_name, Env};
-use super::fields::Fields;
-use super::model::{
-    Bead, Extent, Extrusion, HeightModel, LayerProfile, Measure, PlanarSlicing, ProfileExpr, Shape,
-    Top,
-};
-use super::planar::PlanarSpec;
-use super::profile;
-use super::schema::solid::{extrude, EXTRUDE};
-use super::top;
-use super::value::{Spanned, Value};
 use crate::bead::{flat_top_offset, MIN_OFFSET_RATIO};
 use crate::diag::message::{self, solid::BeadSpeeds};
 use crate::diag::Diagnostics;
+use crate::sema::eval::{unknown_name, Env};
+use crate::sema::fields::Fields;
+use crate::sema::model::{
+    Bead, Extent, Extrusion, HeightModel, LayerProfile, Measure, PlanarSlicing, ProfileExpr, Shape,
+    Top,
+};
+use crate::sema::schema::solid::{extrude, EXTRUDE};
+use crate::sema::slicing::planar::PlanarSpec;
+use crate::sema::solid::profile;
+use crate::sema::solid::top;
+use crate::sema::value::{Spanned, Value};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, Stmt};
 use crate::units::{Length, Speed};
@@ -30,7 +30,7 @@ use std::collections::BTreeMap;
 /// What an extrusion may refer to.
 pub struct Scope<'s, 'a> {
     /// `section NAME = …`
-    pub sections: &'s BTreeMap<String, (super::model::Section, Span)>,
+    pub sections: &'s BTreeMap<String, (crate::sema::model::Section, Span)>,
     /// `profile NAME = …`, kept as expressions: they may depend on `layer`.
     pub profiles: &'s BTreeMap<String, (&'a Expr, Span)>,
     /// `bead NAME { … }`
@@ -43,25 +43,25 @@ pub struct Scope<'s, 'a> {
 
 /// Where an extrusion's shape comes from.
 #[derive(Clone, Debug)]
-pub(super) enum Source<'a> {
+pub(in crate::sema) enum Source<'a> {
     /// One shape.
     Fixed(Shape),
     /// A profile's expression (it may follow the layer).
     Expr(&'a Expr),
     /// A mesh, cut on every layer.
-    Mesh(super::model::MeshSolid),
+    Mesh(crate::sema::model::MeshSolid),
 }
 
 /// An extrude block as written.
 pub struct Written<'a> {
-    pub(super) name: String,
-    pub(super) source: Source<'a>,
+    pub(in crate::sema) name: String,
+    pub(in crate::sema) source: Source<'a>,
     height: Option<(Length, Span)>,
     /// `top = …` and where, if written (then there is no `height`).
-    pub(super) top: Option<(Top, Span)>,
-    pub(super) measure: Measure,
-    pub(super) span: Span,
-    pub(super) profile_span: Span,
+    pub(in crate::sema) top: Option<(Top, Span)>,
+    pub(in crate::sema) measure: Measure,
+    pub(in crate::sema) span: Span,
+    pub(in crate::sema) profile_span: Span,
 }
 
 /// Reads an extrude block; returns it and its bead model, each when it is
@@ -113,8 +113,8 @@ pub fn read<'a>(
         diags.push(message::solid::height_and_top(hs, ts));
     }
     let height = height.filter(|_| !(f.has(&extrude::HEIGHT) && f.has(&extrude::TOP)));
-    let measure = super::loft::measure(&f, &extrude::SIZE, diags);
-    let bead = super::bead::named(
+    let measure = crate::sema::solid::loft::measure(&f, &extrude::SIZE, diags);
+    let bead = crate::sema::process::bead::named(
         f.value(&extrude::BEAD, diags),
         extrude::BEAD.key,
         "the layers",
@@ -156,19 +156,19 @@ fn read_top(
         }
         Some(Source::Mesh(_)) | None => None,
     };
-    let at = super::top::reference_point(shape.as_ref());
+    let at = crate::sema::solid::top::reference_point(shape.as_ref());
     top::read(env, e, at, scope.constants, diags)
 }
 
 fn source<'a>(
     v: &Spanned,
     scope: &Scope<'_, 'a>,
-    data: Option<&super::DataReader>,
+    data: Option<&crate::sema::DataReader>,
     diags: &mut Diagnostics,
 ) -> Option<Source<'a>> {
     match &v.value {
         Value::Call(c) if c.func == "mesh" => {
-            super::mesh::read(c, v.span, data, diags).map(Source::Mesh)
+            crate::sema::solid::mesh::read(c, v.span, data, diags).map(Source::Mesh)
         }
         Value::Symbol(n) => {
             if let Some((e, _)) = scope.profiles.get(n) {
@@ -249,7 +249,7 @@ fn extent(w: &Written<'_>, spec: &PlanarSpec, diags: &mut Diagnostics) -> Option
 
 /// Whether tracks `d` apart (declared at `at`) neither leave gaps nor pile
 /// up with `bead`; `flat` is the flat-top offset, if known, for the help.
-pub(super) fn declared_offset(
+pub(in crate::sema) fn declared_offset(
     d: Length,
     at: Span,
     bead: &Bead,

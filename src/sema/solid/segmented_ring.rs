@@ -3,19 +3,19 @@
 //! row of process values, and its pairing with `slicing continuous { … }`
 //! and `control height { … }` into a [`Build::Ring`].
 //!
-//! [`Build::Ring`]: super::model::Build::Ring
+//! [`Build::Ring`]: crate::sema::model::Build::Ring
 
-use super::continuous::ContinuousSpec;
-use super::control::ControlSpec;
-use super::eval::Env;
-use super::fields::{self, Fields};
-use super::model::{HeightControl, RingBuild};
-use super::schema::solid::{ring, table, RING, TABLE};
-use super::schema::{Bound, Field, Kind};
-use super::value::Value;
 use crate::control::{self, Controller, Plant, SegmentProcess, SegmentTable};
 use crate::diag::{message, Diagnostics};
 use crate::ir::RingOrigins;
+use crate::sema::eval::Env;
+use crate::sema::fields::{self, Fields};
+use crate::sema::model::{HeightControl, RingBuild};
+use crate::sema::process::control::ControlSpec;
+use crate::sema::schema::solid::{ring, table, RING, TABLE};
+use crate::sema::schema::{Bound, Field, Kind};
+use crate::sema::slicing::continuous::ContinuousSpec;
+use crate::sema::value::Value;
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Angle, Length, MassFlow, Power, Speed};

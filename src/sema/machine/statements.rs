@@ -1,13 +1,13 @@
 //! Every `machine NAME { … }` statement: names given once, each block read by
-//! [`machine::read`](super::machine::read) on its own, so one machine's
+//! [`machine::read`](crate::sema::machine::read) on its own, so one machine's
 //! mistakes do not hide another's.
 
-use super::eval::Env;
-use super::machine;
-use super::schema::machine::NAME;
-use super::statement::{shape_error, Statements};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Machine, MachineOrigin};
+use crate::sema::eval::Env;
+use crate::sema::machine;
+use crate::sema::schema::machine::NAME;
+use crate::sema::statement::{shape_error, Statements};
 use crate::span::Span;
 use crate::syntax::ast::Body;
 use std::collections::BTreeMap;

@@ -1,18 +1,22 @@
 //! The `slicing STRATEGY { … }` statement: `slicing normal { layers, points |
 //! chord_error, seam }` is read here; `planar`, `variable` and `continuous`
-//! by `super::planar`, `super::variable` and `super::continuous`.
+//! by `crate::sema::slicing::planar`, `crate::sema::slicing::variable` and `crate::sema::slicing::continuous`.
 
-use super::eval::Env;
-use super::fields::Fields;
-use super::model::{LayerChange, Resolution, SeamRule, Slicing};
-use super::planar;
-use super::schema::slicing::{self as schema, normal};
-use super::seam;
-use super::statement::{shape_error, single, Statements};
-use super::suggest::did_you_mean;
-use super::value::Value;
+pub mod continuous;
+pub mod planar;
+pub mod seam;
+pub mod shared;
+pub mod variable;
+
 use crate::diag::{message, Diagnostics};
+use crate::sema::eval::Env;
+use crate::sema::fields::Fields;
 use crate::sema::model::Tolerance;
+use crate::sema::model::{LayerChange, Resolution, SeamRule, Slicing};
+use crate::sema::schema::slicing::{self as schema, normal};
+use crate::sema::statement::{shape_error, single, Statements};
+use crate::sema::suggest::did_you_mean;
+use crate::sema::value::Value;
 use crate::span::{Span, Spanned};
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Angle, Length};
@@ -26,11 +30,11 @@ pub enum Spec {
     /// `slicing normal { … }`
     Normal(Slicing),
     /// `slicing planar { … }`
-    Planar(super::planar::PlanarSpec),
+    Planar(crate::sema::slicing::planar::PlanarSpec),
     /// `slicing variable { … }`
-    Variable(super::variable::VariableSpec),
+    Variable(crate::sema::slicing::variable::VariableSpec),
     /// `slicing continuous { … }`
-    Continuous(super::continuous::ContinuousSpec),
+    Continuous(crate::sema::slicing::continuous::ContinuousSpec),
 }
 
 /// The slicing statement as read: the strategy named (when it is one lmdc
@@ -45,7 +49,7 @@ pub struct Read<'s> {
 }
 
 /// The file's `slicing STRATEGY { … }` statement.
-pub(super) fn statement<'a>(
+pub(in crate::sema) fn statement<'a>(
     env: &mut Env<'a>,
     st: &Statements<'a>,
     diags: &mut Diagnostics,
@@ -93,16 +97,6 @@ fn any_strategy<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mu
     Fields::block(env, stmts, &schema::ANY, "slicing".into(), span, diags);
 }
 
-/// `rise_tolerance` and `max_drift` of a strategy with a bead model.
-pub(super) fn tolerance(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Tolerance> {
-    let rise = f.quantity_or_default(&schema::RISE_TOLERANCE, diags);
-    let drift = f.quantity_or_default(&schema::MAX_DRIFT, diags);
-    Some(Tolerance {
-        rise: rise?,
-        drift: Length(drift?),
-    })
-}
-
 impl Spec {
     /// How closely the bead model must lay the layers (the defaults for a
     /// ring, which has none).
@@ -129,12 +123,13 @@ fn read<'a>(
             return planar::read(env, stmts, span, diags).map(Spec::Planar)
         }
         Some(s) if s.node == "variable" => {
-            return Some(Spec::Variable(super::variable::read(
+            return Some(Spec::Variable(crate::sema::slicing::variable::read(
                 env, stmts, span, diags,
             )))
         }
         Some(s) if s.node == "continuous" => {
-            return super::continuous::read(env, stmts, span, diags).map(Spec::Continuous)
+            return crate::sema::slicing::continuous::read(env, stmts, span, diags)
+                .map(Spec::Continuous)
         }
         Some(s) if STRATEGIES.contains(&s.node.as_str()) => {}
         Some(s) => {
@@ -194,13 +189,13 @@ fn normal<'a>(
             .quantity_or_default(&normal::SEAM, diags)
             .map(|a| SeamRule::Toward(Angle(a))),
     };
-    let tolerance = tolerance(&f, diags);
+    let tolerance = shared::tolerance(&f, diags);
     let nozzle = f.word_or_default(&normal::NOZZLE, diags);
     let overhang = f.optional(
         &normal::MAX_OVERHANG,
         f.quantity(&normal::MAX_OVERHANG, diags).map(|(a, _)| a),
     );
-    let layer_change = layer_change(&f, diags);
+    let layer_change = shared::layer_change(&f, diags);
     if let (Some(LayerChange::Spiral { .. }), Some(rule)) = (layer_change, seam) {
         if rule.moves() {
             diags.push(message::bend::spiral_seam_moves(
@@ -223,29 +218,4 @@ fn normal<'a>(
         layer_change: layer_change?,
         layer_change_span: f.span(&normal::LAYER_CHANGE),
     })
-}
-
-/// Reads `layer_change = lift | spiral | spiral(length)`.
-pub(super) fn layer_change(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<LayerChange> {
-    match f.value(&normal::LAYER_CHANGE, diags) {
-        Some(v) => match &v.value {
-            Value::Call(c) if c.func == "spiral" => {
-                let args = Fields::call(c, &schema::SPIRAL, diags);
-                let length = args.optional(
-                    &normal::LENGTH,
-                    args.quantity(&normal::LENGTH, diags)
-                        .map(|(l, _)| Length(l)),
-                );
-                length.map(|length| LayerChange::Spiral { length })
-            }
-            _ => f
-                .word_or_default(&normal::LAYER_CHANGE, diags)
-                .map(|w| match w {
-                    "spiral" => LayerChange::Spiral { length: None },
-                    _ => LayerChange::Lift,
-                }),
-        },
-        None if f.has(&normal::LAYER_CHANGE) => None,
-        None => Some(LayerChange::Lift),
-    }
 }

@@ -1,20 +1,20 @@
 //! `bead NAME { width, height, speed, model }`: a bead model.
 
-use super::data::Data;
-use super::eval::{unknown_name, Env};
-use super::fields::{self, Fields};
-use super::model::{Bead, HeightModel};
-use super::schema::bead::{
-    self as schema, model as args, BEAD, FIT, LAYER, LINEAR, MASS_BALANCE, MEASURED, POWER, TABLE,
-};
-use super::schema::Field;
-use super::suggest::did_you_mean;
-use super::value::{Spanned, Value};
 use crate::bead::fit::{self, Given, Kind, Summary};
 use crate::bead::sheet::Column;
 use crate::bead::{sheet, Table, TableFault, Widths};
 use crate::deposit::Basis;
 use crate::diag::{message, Diagnostics};
+use crate::sema::data::Data;
+use crate::sema::eval::{unknown_name, Env};
+use crate::sema::fields::{self, Fields};
+use crate::sema::model::{Bead, HeightModel};
+use crate::sema::schema::bead::{
+    self as schema, model as args, BEAD, FIT, LAYER, LINEAR, MASS_BALANCE, MEASURED, POWER, TABLE,
+};
+use crate::sema::schema::Field;
+use crate::sema::suggest::did_you_mean;
+use crate::sema::value::{Spanned, Value};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Density, Length, MassFlow, Power, Speed};
@@ -219,7 +219,7 @@ fn extrapolation(
 /// `table(speed, height, width)`: the heights (and widths) measured at
 /// each speed, or every fault of them.
 fn table(
-    c: &super::value::Call,
+    c: &crate::sema::value::Call,
     at: Span,
     diags: &mut Diagnostics,
 ) -> Option<(Table, Option<Widths>)> {
@@ -297,8 +297,8 @@ struct At {
 /// `fit(model, data, density, feed)`: the model fitted to the data file,
 /// read with `data`.
 fn fitted(
-    c: &super::value::Call,
-    data: Option<&super::DataReader>,
+    c: &crate::sema::value::Call,
+    data: Option<&crate::sema::DataReader>,
     diags: &mut Diagnostics,
 ) -> Option<Read> {
     let a = Fields::call(c, &FIT, diags);
@@ -377,7 +377,7 @@ fn not_text(e: &std::string::FromUtf8Error) -> String {
 fn height_model(
     model: Option<&Spanned>,
     block: Span,
-    data: Option<&super::DataReader>,
+    data: Option<&crate::sema::DataReader>,
     diags: &mut Diagnostics,
 ) -> Option<Read> {
     let at = model.map_or(block, |m| m.span);

@@ -1,18 +1,23 @@
 //! The solid a file builds (`loft`, `extrude` or `ring`), and its pairing
 //! with the slicing strategy into a [`Plan`].
 
-use super::control::ControlSpec;
-use super::declare::Declared;
-use super::eval::Env;
-use super::extrude;
-use super::loft;
-use super::model::{Bead, Build, Loft};
-use super::segmented_ring;
-use super::slicing::{self, Spec};
-use super::statement::{shape_error, Statements};
-use super::variable;
+pub mod extrude;
+pub mod loft;
+pub mod mesh;
+pub mod profile;
+pub mod section;
+pub mod segmented_ring;
+pub mod top;
+
 use crate::diag::message::{self, solid::SlicingMismatch};
 use crate::diag::Diagnostics;
+use crate::sema::declare::Declared;
+use crate::sema::eval::Env;
+use crate::sema::model::{Bead, Build, Loft};
+use crate::sema::process::control::ControlSpec;
+use crate::sema::slicing::variable;
+use crate::sema::slicing::{self, Spec};
+use crate::sema::statement::{shape_error, Statements};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{MassFlow, Speed};

@@ -2,13 +2,13 @@
 //! fixtures on the plate, in the part's coordinates, which every machine's
 //! head keeps its gap from (docs/collision.md).
 
-use super::eval::Env;
-use super::fields::{self, Fields};
-use super::schema::collision::{self as c, BOX, CYLINDER, FIXTURE, MAX_SIZE_MM};
-use super::statement::{shape_error, Statements};
-use super::value::Value;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Fixture, FixtureShape};
+use crate::sema::eval::Env;
+use crate::sema::fields::{self, Fields};
+use crate::sema::schema::collision::{self as c, BOX, CYLINDER, FIXTURE, MAX_SIZE_MM};
+use crate::sema::statement::{shape_error, Statements};
+use crate::sema::value::Value;
 use crate::span::Span;
 use crate::units::Dim;
 use std::collections::BTreeMap;
@@ -96,7 +96,7 @@ fn at(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<[f64; 3]> {
 }
 
 /// Three lengths `[x, y, z]`.
-fn three(v: &super::value::Spanned, key: &str, diags: &mut Diagnostics) -> Option<[f64; 3]> {
+fn three(v: &crate::sema::value::Spanned, key: &str, diags: &mut Diagnostics) -> Option<[f64; 3]> {
     let items = match &v.value {
         Value::List(items) if items.len() == 3 => items,
         other => {

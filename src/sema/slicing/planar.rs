@@ -2,15 +2,15 @@
 //! chord_error, seam }`: flat layers, their tracks (contours and a raster
 //! infill) and how far each layer rises (declared, or `auto` from the bead).
 
-use super::eval::Env;
-use super::fields::Fields;
-use super::model::{LayerChange, LinkMode, Pattern, Raster, SeamRule};
-use super::schema::slicing::{normal, planar, raster, PLANAR, RASTER};
-use super::schema::Field;
-use super::seam;
-use super::value::{Call, Spanned as SpannedValue, Value};
 use crate::diag::{message, Diagnostics};
+use crate::sema::eval::Env;
+use crate::sema::fields::Fields;
 use crate::sema::model::Tolerance;
+use crate::sema::model::{LayerChange, LinkMode, Pattern, Raster, SeamRule};
+use crate::sema::schema::slicing::{normal, planar, raster, PLANAR, RASTER};
+use crate::sema::schema::Field;
+use crate::sema::slicing::seam;
+use crate::sema::value::{Call, Spanned as SpannedValue, Value};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Angle, Length};
@@ -121,7 +121,7 @@ pub fn read<'a>(
         None if f.has(&planar::SEAM) => None,
         None => Some(SeamRule::Lowest),
     };
-    let layer_change = super::slicing::layer_change(&f, diags);
+    let layer_change = super::shared::layer_change(&f, diags);
     let layer_change = match (layer_change, seam, contours, &infill) {
         (Some(LayerChange::Spiral { .. }), Some(rule), _, _) if rule.moves() => {
             diags.push(message::bend::spiral_seam_moves(
@@ -148,7 +148,7 @@ pub fn read<'a>(
         infill: infill?,
         chord_error: chord_error?,
         seam: seam?,
-        tolerance: super::slicing::tolerance(&f, diags)?,
+        tolerance: super::shared::tolerance(&f, diags)?,
         max_overhang: f.optional(
             &normal::MAX_OVERHANG,
             f.quantity(&normal::MAX_OVERHANG, diags).map(|(a, _)| a),

@@ -2,14 +2,14 @@
 //! through the program's data reader, checked a closed surface and placed
 //! with its lowest point on the plate ([`crate::geometry::mesh`]).
 
-use super::data::Data;
-use super::fields::{self, Fields};
-use super::model::MeshSolid;
-use super::schema::solid::{mesh, MESH};
-use super::value::{Call, Value};
-use super::DataReader;
 use crate::diag::{message, Diagnostics};
 use crate::geometry::mesh::{plate_z, stl, three_mf, Mesh, Placement, ON_PLATE};
+use crate::sema::data::Data;
+use crate::sema::fields::{self, Fields};
+use crate::sema::model::MeshSolid;
+use crate::sema::schema::solid::{mesh, MESH};
+use crate::sema::value::{Call, Value};
+use crate::sema::DataReader;
 use crate::span::Span;
 use crate::units::{Dim, Length};
 
@@ -96,7 +96,7 @@ fn is_3mf(path: &str, bytes: &[u8]) -> bool {
 /// it is written.
 fn triple(
     f: &Fields<'_>,
-    field: &super::schema::Field,
+    field: &crate::sema::schema::Field,
     dim: Dim,
     diags: &mut Diagnostics,
 ) -> Option<([f64; 3], Option<Span>)> {

@@ -20,13 +20,13 @@
 //! no output used twice, times within reason, and output lines a control can
 //! read.
 
-use super::eval::Env;
-use super::fields::Fields;
-use super::program_text;
-use super::schema::machine::{self, gas, powder};
-use super::schema::Field;
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Cell, Feeder, Gas, RateOutput};
+use crate::sema::eval::Env;
+use crate::sema::fields::Fields;
+use crate::sema::program_text;
+use crate::sema::schema::machine::{self, gas, powder};
+use crate::sema::schema::Field;
 use crate::span::Span;
 use crate::target::outputs::Outputs;
 

@@ -2,14 +2,19 @@
 //! a ring's process is only `powder` and `power_range`, the rest being per
 //! segment in its table.
 
-use super::eval::Env;
-use super::fields::Fields;
-use super::model::{within, PowerSchedule, Process};
-use super::schema::process::{self as schema, ramp, PROCESS, RAMP, RING_PROCESS};
-use super::statement::{shape_error, single, Statements};
-use super::value::{Spanned, Value};
+pub mod bead;
+pub mod calibration;
+pub mod control;
+pub mod style;
+
 use crate::diag::{message, Diagnostics};
 use crate::ir::Heat;
+use crate::sema::eval::Env;
+use crate::sema::fields::Fields;
+use crate::sema::model::{within, PowerSchedule, Process};
+use crate::sema::schema::process::{self as schema, ramp, PROCESS, RAMP, RING_PROCESS};
+use crate::sema::statement::{shape_error, single, Statements};
+use crate::sema::value::{Spanned, Value};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Length, MassFlow, Power, Speed};

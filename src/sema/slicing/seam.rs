@@ -4,12 +4,12 @@
 //! A seam on the same spot of every layer stacks its start/stop defects into
 //! a seam line up the part; moving it spreads them out.
 
-use super::fields::{self, Fields};
-use super::model::{LinkMode, SeamRule};
-use super::schema::slicing::{planar, raster, RANDOM, ROTATING, STAGGERED};
-use super::suggest::did_you_mean;
-use super::value::{Call, Spanned, Value};
 use crate::diag::{message, Diagnostics};
+use crate::sema::fields::{self, Fields};
+use crate::sema::model::{LinkMode, SeamRule};
+use crate::sema::schema::slicing::{planar, raster, RANDOM, ROTATING, STAGGERED};
+use crate::sema::suggest::did_you_mean;
+use crate::sema::value::{Call, Spanned, Value};
 use crate::units::{Angle, Dim, Length};
 
 /// Reads `seam = …`: `lowest`, `sharpest_corner`, an angle,

@@ -2,18 +2,18 @@
 //! style table, the rules that pick a style's tracks, and checks of every
 //! style's values against the bead model and the laser.
 
-use super::eval::Env;
-use super::fields::Fields;
-use super::model::{Bead, Inheritance, PathSelect, Style, StyleCondition, Styles};
-use super::planar::PlanarSpec;
-use super::process::Laser;
-use super::schema::style::{self as schema, values, when, INHERITANCE, STYLE, WHEN};
-use super::schema::{DefaultValue, Need};
-use super::statement::{single_optional, Statements};
-use super::value::Value;
 use crate::diag::message::style::{StyleBead, Unstyled};
 use crate::diag::message::{self, statement::Declaration};
 use crate::diag::Diagnostics;
+use crate::sema::eval::Env;
+use crate::sema::fields::Fields;
+use crate::sema::model::{Bead, Inheritance, PathSelect, Style, StyleCondition, Styles};
+use crate::sema::process::Laser;
+use crate::sema::schema::style::{self as schema, values, when, INHERITANCE, STYLE, WHEN};
+use crate::sema::schema::{DefaultValue, Need};
+use crate::sema::slicing::planar::PlanarSpec;
+use crate::sema::statement::{single_optional, Statements};
+use crate::sema::value::Value;
 use crate::span::{Span, Spanned};
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Angle, Dim, Length, MassFlow, Power, Speed};

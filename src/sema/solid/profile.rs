@@ -4,17 +4,32 @@
 //! closes with a line back to the start. Its numbers may use `layer`, so the
 //! profile can change from layer to layer (a sprocket tooth's corner arc
 //! that grows a track offset a layer).
-
-use super::eval::Env;
-use super::fields::{self, Fields};
-use super::model::{Outline, ProfileExpr, Segment, Shape, Turn};
-use super::region;
-use super::schema::shape::{piece, ARC};
-use super::section;
-use super::value::{Call, Spanned, Value};
+//!
+//! Besides, planar profiles with holes and placed shapes (a region is a
+//! shape whose outline and holes are shapes: one reader, recursive):
+//!
+//! - `region(outline = SHAPE, holes = [SHAPE, …])`: a profile with openings;
+//! - `place(SHAPE, at = [x, y], turn = a)`: a shape turned about the origin,
+//!   then moved (a section is centred on the origin until placed);
+//! - `bolt_circle(SHAPE, count = n, diameter = D, from = a, at = [x, y])`,
+//!   in a hole list only: `n` copies of the shape on a circle of diameter `D`
+//!   about `at` (default the origin), the first at angle `a`, each turned
+//!   with the pattern — the way a drawing dimensions bolt holes (pitch circle
+//!   diameter).
+//!
+//! Whether the holes lie inside the outline, apart from each other, is a
+//! question of the geometry on each layer: the slicer answers it
+//! ([`crate::slice::planar`]).
 use crate::diag::{message, Diagnostics};
+use crate::sema::eval::Env;
+use crate::sema::fields::{self, Fields};
+use crate::sema::model::{Hole, Outline, Placed, ProfileExpr, RegionShape, Segment, Shape, Turn};
+use crate::sema::schema::shape::{piece, ARC, BOLT_CIRCLE, PLACE, REGION};
+use crate::sema::solid::section;
+use crate::sema::value::{Call, Spanned, Value};
+use crate::span::Span;
 use crate::syntax::ast::Expr;
-use crate::units::{Dim, Length};
+use crate::units::{Angle, Dim, Length};
 
 /// The shapes a profile can be, besides the section shapes.
 pub const OUTLINE: &str = "outline";
@@ -23,15 +38,15 @@ pub const OUTLINE: &str = "outline";
 pub const MAX_SEGMENTS: usize = 10_000;
 
 /// Reads a profile value: `outline(…)`, a section shape, `place(…)` of
-/// one, or `region(…)` (see [`super::region`]).
+/// one, or `region(…)` (see [`region`]).
 pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> {
     match &v.value {
         Value::Call(c) if c.func == OUTLINE => outline(c, diags).map(Shape::Outline),
         Value::Call(c) if section::SHAPES.contains(&c.func.as_str()) => {
             section::read(c, diags).map(Shape::Section)
         }
-        Value::Call(c) if c.func == "region" => region::region(c, diags),
-        Value::Call(c) if c.func == "place" => region::place(c, diags),
+        Value::Call(c) if c.func == "region" => region(c, diags),
+        Value::Call(c) if c.func == "place" => place(c, diags),
         Value::Call(c) if c.func == "bolt_circle" => {
             diags.push(message::shape::bolt_circle_not_shape(what, v.span));
             None
@@ -144,7 +159,7 @@ fn on_one_line(start: [Length; 2], segments: &[Segment]) -> bool {
 }
 
 /// A point `[x, y]` of two lengths.
-pub(super) fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
+pub(in crate::sema) fn point(v: &Spanned, diags: &mut Diagnostics) -> Option<[Length; 2]> {
     match &v.value {
         Value::List(items) if items.len() == 2 => {
             let x = fields::quantity(&items[0], Dim::LENGTH, "x", diags);
@@ -207,4 +222,122 @@ impl LayerShapes<'_> {
             shape(&v, "a profile", diags)
         })
     }
+}
+
+pub use crate::sema::schema::shape::MAX_HOLES;
+
+/// Reads `region(outline = …, holes = […])`.
+pub fn region(c: &Call, diags: &mut Diagnostics) -> Option<Shape> {
+    let f = Fields::call(c, &REGION, diags);
+    let outline = f
+        .value(&piece::OUTLINE, diags)
+        .and_then(|v| plain(v, "the outline of a region", diags).map(|s| (s, v.span)));
+    let holes = match f.value(&piece::HOLES, diags) {
+        None if f.has(&piece::HOLES) => None,
+        None => Some(Vec::new()),
+        Some(v) => holes(v, diags),
+    };
+    let (outline, outline_span) = outline?;
+    Some(Shape::Region(Box::new(RegionShape {
+        outline,
+        outline_span,
+        holes: holes?,
+    })))
+}
+
+/// Reads `place(shape, at = [x, y], turn = a)`.
+pub fn place(c: &Call, diags: &mut Diagnostics) -> Option<Shape> {
+    let f = Fields::call(c, &PLACE, diags);
+    let inner = f
+        .value(&piece::PLACED, diags)
+        .and_then(|v| shape(v, "what `place` places", diags));
+    let at = at(&f, diags);
+    let turn = f.quantity_or_default(&piece::PLACE_TURN, diags).map(Angle);
+    Some(Shape::Placed(Box::new(Placed {
+        shape: inner?,
+        turn: turn?,
+        at: at?,
+    })))
+}
+
+/// `at = [x, y]`, the origin when not written.
+fn at(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<[Length; 2]> {
+    match f.value(&piece::AT, diags) {
+        Some(v) => point(v, diags),
+        None if f.has(&piece::AT) => None,
+        None => Some([Length(0.0); 2]),
+    }
+}
+
+/// A shape that must be one outline: no holes of its own.
+fn plain(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> {
+    let s = shape(v, what, diags)?;
+    if s.has_holes() {
+        diags.push(message::shape::holes_in_hole(what, v.span));
+        return None;
+    }
+    Some(s)
+}
+
+/// The list of holes, bolt circles expanded.
+fn holes(v: &Spanned, diags: &mut Diagnostics) -> Option<Vec<Hole>> {
+    let Value::List(items) = &v.value else {
+        diags.push(message::shape::holes_not_list(v.value.got(), v.span));
+        return None;
+    };
+    let mut out = Vec::new();
+    let mut ok = true;
+    for item in items {
+        let read = match &item.value {
+            Value::Call(c) if c.func == "bolt_circle" => bolt_circle(c, item.span, diags),
+            _ => plain(item, "a hole", diags).map(|shape| {
+                vec![Hole {
+                    shape,
+                    span: item.span,
+                }]
+            }),
+        };
+        match read {
+            Some(h) => out.extend(h),
+            None => ok = false,
+        }
+    }
+    if out.len() > MAX_HOLES {
+        diags.push(message::shape::too_many_holes(MAX_HOLES, out.len(), v.span));
+
+        return None;
+    }
+    ok.then_some(out)
+}
+
+/// `count` copies of the hole on the pitch circle: copy `k` is the hole
+/// moved to `[D/2, 0]`, turned about the origin by `from + k·360°/count` and
+/// moved by `at`.
+fn bolt_circle(c: &Call, span: Span, diags: &mut Diagnostics) -> Option<Vec<Hole>> {
+    let f = Fields::call(c, &BOLT_CIRCLE, diags);
+    let at = at(&f, diags);
+    let hole = f
+        .value(&piece::HOLE, diags)
+        .and_then(|v| plain(v, "a bolt circle's hole", diags));
+    let count = f.count(&piece::COUNT, diags);
+    let diameter = f.quantity(&piece::PITCH, diags);
+    let from = f.quantity_or_default(&piece::FROM, diags).map(Angle);
+    let (hole, (count, _), (diameter, _), from, at) = (hole?, count?, diameter?, from?, at?);
+    let moved = Shape::Placed(Box::new(Placed {
+        shape: hole,
+        turn: Angle(0.0),
+        at: [Length(diameter / 2.0), Length(0.0)],
+    }));
+    Some(
+        (0..count)
+            .map(|k| Hole {
+                shape: Shape::Placed(Box::new(Placed {
+                    shape: moved.clone(),
+                    turn: Angle(from.0 + std::f64::consts::TAU * k as f64 / count as f64),
+                    at,
+                })),
+                span,
+            })
+            .collect(),
+    )
 }

@@ -9,15 +9,15 @@
 //! length (`-3 mm/s/mm`, `-0.003 m/s/mm`); a plain number, `Hz` or `s^-1` is
 //! refused with both readings spelled out.
 
-use super::eval::Env;
-use super::fields::Fields;
-use super::model::LoopRun;
-use super::schema::control::{self as schema, plant, CONTROL, INVERSE_SPEED};
-use super::schema::Field;
-use super::statement::{shape_error, single, Statements};
-use super::value::Value;
 use crate::control::{Clamp, SpeedPerLength};
 use crate::diag::{message, Diagnostics};
+use crate::sema::eval::Env;
+use crate::sema::fields::Fields;
+use crate::sema::model::LoopRun;
+use crate::sema::schema::control::{self as schema, plant, CONTROL, INVERSE_SPEED};
+use crate::sema::schema::Field;
+use crate::sema::statement::{shape_error, single, Statements};
+use crate::sema::value::Value;
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, ExprKind, Stmt};
 use crate::units::{Dim, Length, Speed};

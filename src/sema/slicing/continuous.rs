@@ -2,10 +2,10 @@
 //! layers laid in one run, each rising `layer_height` inside the last
 //! transition of the layer below, the points at most `step` apart.
 
-use super::eval::Env;
-use super::fields::Fields;
-use super::schema::slicing::{continuous, CONTINUOUS, MAX_STEP_DEG};
 use crate::diag::{message, Diagnostics};
+use crate::sema::eval::Env;
+use crate::sema::fields::Fields;
+use crate::sema::schema::slicing::{continuous, CONTINUOUS, MAX_STEP_DEG};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Angle, Length};

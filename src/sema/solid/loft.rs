@@ -1,14 +1,14 @@
 //! `loft NAME { from, to, spine, twist, morph, size, wall }`: a solid swept from
 //! one section to another along a spine, built as a single-bead wall.
 
-use super::eval::{unknown_name, Env};
-use super::fields::Fields;
-use super::model::{Bead, Loft, Measure, Morph, Section, Spine};
-use super::schema::solid::{loft, spine, ARC, LINE, LOFT};
-use super::schema::Field;
-use super::section;
-use super::value::{Spanned, Value};
 use crate::diag::{message, Diagnostics};
+use crate::sema::eval::{unknown_name, Env};
+use crate::sema::fields::Fields;
+use crate::sema::model::{Bead, Loft, Measure, Morph, Section, Spine};
+use crate::sema::schema::solid::{loft, spine, ARC, LINE, LOFT};
+use crate::sema::schema::Field;
+use crate::sema::solid::section;
+use crate::sema::value::{Spanned, Value};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
 use crate::units::{Angle, Length};
@@ -49,7 +49,7 @@ pub fn read<'a>(
     let twist = f.quantity_or_default(&loft::TWIST, diags).map(Angle);
     let measure = measure(&f, &loft::SIZE, diags);
     let morph = f.word(&loft::MORPH, diags);
-    let bead = super::bead::named(
+    let bead = crate::sema::process::bead::named(
         f.value(&loft::WALL, diags),
         loft::WALL.key,
         "the wall",
@@ -93,7 +93,11 @@ pub fn read<'a>(
 }
 
 /// `size = centre | center | outer` (`f` the block's `size` field).
-pub(super) fn measure(fields: &Fields<'_>, f: &Field, diags: &mut Diagnostics) -> Option<Measure> {
+pub(in crate::sema) fn measure(
+    fields: &Fields<'_>,
+    f: &Field,
+    diags: &mut Diagnostics,
+) -> Option<Measure> {
     match fields.word_or_default(f, diags)? {
         "outer" => Some(Measure::Outer),
         _ => Some(Measure::Centre),

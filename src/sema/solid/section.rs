@@ -1,13 +1,13 @@
 //! Section shapes: `circle(diameter = 60 mm)`, `square(side = 60 mm)`, …
 
-use super::fields::Fields;
-use super::model::Section;
-use super::schema::shape::{
+use crate::diag::{message, Diagnostics};
+use crate::sema::fields::Fields;
+use crate::sema::model::Section;
+use crate::sema::schema::shape::{
     section, CIRCLE, ELLIPSE, POLYGON, RECTANGLE, ROUNDED_RECTANGLE, SQUARE,
 };
-use super::schema::Field;
-use super::value::Call;
-use crate::diag::{message, Diagnostics};
+use crate::sema::schema::Field;
+use crate::sema::value::Call;
 use crate::span::Span;
 use crate::units::Length;
 
