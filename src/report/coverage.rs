@@ -112,7 +112,7 @@ pub fn missing(model: &Model, program: &Program) -> Option<Missing> {
     let mut scratch = crate::diag::Diagnostics::new();
     let bead = model.bead.as_ref()?;
     let layers = crate::slice::layers::plan(bead, extrusion, slicing, &mut scratch)?;
-    if layers.shapes.len() != program.layers.len() || !(w > 0.0) {
+    if layers.shapes.len() != program.layers.len() || w.is_nan() || w <= 0.0 {
         return None;
     }
     let per_layer = (CELLS / layers.shapes.len().max(1)).clamp(1, LAYER_CELLS);

@@ -282,7 +282,7 @@ fn design(out: &mut String, r: &Report) {
             if let (None, Some(f)) = (&r.design_missing, r.design_filled.filter(|f| *f < 0.995)) {
                 let _ = write!(
                     line,
-                    "; {} ({}) more than the layers stack (where, lmdc measures for flat layers only)",
+                    "; it holds {} ({}) more than the layers stack (lmdc breaks that down for flat layers only)",
                     percent(1.0 - f),
                     volume((1.0 - f) * volume_mm3)
                 );
