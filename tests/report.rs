@@ -249,3 +249,188 @@ fn a_file_with_errors_reports_nothing() {
     let o = lmdc(&["report", "examples/twisted_duct.lmd", "--density", "-1"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+/// A small generator of points, so the sampling below is the same every run.
+struct Lcg(u64);
+
+impl Lcg {
+    /// Uniform in [0, 1).
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The squared distance from `p` to the segment `a b`.
+fn to_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (d, q) = ([b[0] - a[0], b[1] - a[1]], [p[0] - a[0], p[1] - a[1]]);
+    let l2 = d[0] * d[0] + d[1] * d[1];
+    let t = if l2 > 0.0 {
+        ((q[0] * d[0] + q[1] * d[1]) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (q[0] - t * d[0]).powi(2) + (q[1] - t * d[1]).powi(2)
+}
+
+/// Whether `p` lies within half its pitch of a deposit move of `layer`.
+fn in_a_strip(layer: &lmdc::ir::Layer, p: [f64; 2]) -> bool {
+    layer
+        .paths
+        .iter()
+        .flat_map(|q| q.points.windows(2))
+        .any(|m| {
+            let r = m[0].pitch as f64 / 2.0;
+            m[0].laser_on
+                && r > 0.0
+                && to_segment(p, [m[0].pos[0], m[0].pos[1]], [m[1].pos[0], m[1].pos[1]]) <= r * r
+        })
+}
+
+#[test]
+fn the_flange_says_how_much_of_its_design_is_the_band_at_its_faces() {
+    // Issue 33 item 5: the design line said "2.0 % outside every strip,
+    // where the outermost beads round off", where the band between the
+    // faces and the contours' strips alone is more. Sampled here at random
+    // over the flange's own circles (not lmdc's grid): a point of the
+    // design no deposit's strip covers is the band at the faces within
+    // half a bead (1.5 mm) of the outline or a hole, else missing for
+    // other reasons (raster ends short of the contours).
+    let src = std::fs::read_to_string("examples/flange.lmd").unwrap();
+    let (c, model) = compile_with_model(&src, &Default::default(), &mut ()).unwrap();
+    let (p, model) = (c.program.expect("compiles"), model.unwrap());
+    let m = p.machines().next().unwrap();
+    let r = Report::new(m, &model, Some(7.9));
+    let got = r.design_missing.expect("a breakdown for flat layers");
+    let bolts: Vec<[f64; 2]> = (0..6)
+        .map(|k| {
+            let a = (30.0 + 60.0 * k as f64).to_radians();
+            [30.0 * a.cos(), 30.0 * a.sin()]
+        })
+        .collect();
+    let face = |q: [f64; 2]| {
+        let r = q[0].hypot(q[1]);
+        let hole = bolts
+            .iter()
+            .map(|c| (q[0] - c[0]).hypot(q[1] - c[1]) - 4.5)
+            .fold(f64::INFINITY, f64::min);
+        (40.0 - r).min(r - 15.0).min(hole)
+    };
+    let (mut rng, mut n, mut counts) = (Lcg(33), 0usize, [0usize; 3]);
+    let layers = &p.ir().layers;
+    for _ in 0..120_000 {
+        let q = [80.0 * rng.next() - 40.0, 80.0 * rng.next() - 40.0];
+        let layer = &layers[(rng.next() * layers.len() as f64) as usize];
+        let d = face(q);
+        if d < 0.0 {
+            continue;
+        }
+        n += 1;
+        if in_a_strip(layer, q) {
+            counts[0] += 1;
+        } else if d < 1.5 {
+            counts[1] += 1;
+        } else {
+            counts[2] += 1;
+        }
+    }
+    let share = |k: usize| counts[k] as f64 / n as f64;
+    // 1.3 · √(p(1 − p)/n) is below 0.1 % here; the grid's cell adds a little.
+    let near = |a: f64, b: f64, what: &str| {
+        assert!((a - b).abs() < 0.004, "{what}: lmdc {a}, sampled {b}")
+    };
+    near(got.covered.share, share(0), "covered");
+    near(got.faces.share, share(1), "the band at the faces");
+    near(got.other.share, share(2), "missing otherwise");
+    assert_eq!(got.hollows.share, 0.0, "the flange is filled");
+    // The band if every contour filled half the offset on its face side
+    // (d = A/h = seg(3 mm, 1 mm)/1 mm), as the issue measured it: 5.5 %.
+    // Between a bolt hole and the outline the layer is two contours
+    // across, and each fills its full half bead towards its face
+    // (fill::pitch), so the band is less.
+    let d = segment_area(3.0, 1.0);
+    let b = 1.5 - d / 2.0;
+    let pi = std::f64::consts::PI;
+    let band = pi * (40f64.powi(2) - (40.0 - b).powi(2))
+        + pi * ((15.0 + b).powi(2) - 225.0)
+        + 6.0 * pi * ((4.5 + b).powi(2) - 4.5f64.powi(2));
+    let area = pi * (1600.0 - 225.0 - 6.0 * 4.5 * 4.5);
+    assert!((band / area - 0.0552).abs() < 5e-4, "{}", band / area);
+    assert!(
+        got.faces.share > 0.6 * band / area && got.faces.share < band / area,
+        "{:?}",
+        got.faces
+    );
+    // The figures add up to the design, and are given in grams too.
+    let sum = got.covered.share + got.faces.share + got.hollows.share + got.other.share;
+    close(sum, 1.0, "the design's parts");
+    let v = r.design_volume().unwrap();
+    close(
+        got.faces.volume_mm3,
+        got.faces.share * v,
+        "the band's volume",
+    );
+    close(
+        got.faces.mass_g.unwrap(),
+        7.9e-3 * got.faces.volume_mm3,
+        "its mass",
+    );
+    let text = lmdc::report::text::render(&r);
+    let faces = format!("{:.1} %", got.faces.share * 100.0);
+    assert!(
+        text.contains(&format!("{faces} (")) && text.contains("is the band at the faces"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_contour_only_part_reports_its_inside_as_a_hollow_on_purpose() {
+    // A 30 × 20 mm block's faces, one contour of a 2 mm bead and no
+    // infill: the contour fills the 2 mm at the faces (a wall one bead
+    // wide), and the 26 × 16 mm inside is the hollow the plan leaves on
+    // purpose; it was "the outermost beads round off" (82.5 % on the
+    // issue's part).
+    let src = BOX
+        .replace(
+            "width = 20 mm, height = 10 mm",
+            "width = 30 mm, height = 20 mm",
+        )
+        .replace("size = centre", "size = outer");
+    let (c, model) = compile_with_model(&src, &Default::default(), &mut ()).unwrap();
+    let (p, model) = (c.program.expect("compiles"), model.unwrap());
+    let r = Report::new(p.machines().next().unwrap(), &model, None);
+    let got = r.design_missing.expect("a breakdown");
+    let hollow = 26.0 * 16.0 / 600.0;
+    assert!((got.hollows.share - hollow).abs() < 0.004, "{got:?}");
+    // The faces: only the four corners' squares outside the contour's
+    // round strip, 4·(1 − π/4) mm² of 600.
+    let corners = 4.0 * (1.0 - std::f64::consts::FRAC_PI_4) / 600.0;
+    assert!((got.faces.share - corners).abs() < 0.002, "{got:?}");
+    assert!(got.other.share < 0.002, "{got:?}");
+    let text = lmdc::report::text::render(&r);
+    let line = text.lines().find(|l| l.starts_with("unfilled")).unwrap();
+    assert!(
+        line.contains(&format!("{:.1} % (", hollow * 100.0))
+            && line.contains("is hollow on purpose"),
+        "{line}"
+    );
+    // Drawn as the tracks' centre line (the box above, 20 × 10): the
+    // design is widened by half a bead, the contour's strip is the whole
+    // of it, and the inside 18 × 8 is hollow.
+    let (c, model) = compile_with_model(BOX, &Default::default(), &mut ()).unwrap();
+    let (p, model) = (c.program.expect("compiles"), model.unwrap());
+    let r = Report::new(p.machines().next().unwrap(), &model, None);
+    let got = r.design_missing.expect("a breakdown");
+    let design = 200.0 + 60.0 + std::f64::consts::PI;
+    assert!(
+        (got.hollows.share - 144.0 / design).abs() < 0.004,
+        "{got:?}"
+    );
+    assert!(
+        got.faces.share < 0.003 && got.other.share < 0.003,
+        "{got:?}"
+    );
+}

@@ -10,6 +10,7 @@
 //! energy and powder; the bead model, the density and the design solid are
 //! in the checked model, which [`Report::new`] reads too.
 
+pub mod coverage;
 pub mod design;
 pub mod text;
 mod volume;
@@ -180,9 +181,15 @@ pub struct Report {
     pub design_mass_g: Option<f64>,
     /// Share of the powder fed the design solid needs caught.
     pub design_efficiency: Option<f64>,
-    /// Share of the design the plan stacks: the strips its deposits fill,
-    /// times its layer heights (below 1: design volume no track fills).
+    /// The plan's stacked volume over the design's: the strips its
+    /// deposits fill times its layer heights, where strips that overlap
+    /// count twice (so it says nothing of where the design is not filled:
+    /// see `design_missing`).
     pub design_filled: Option<f64>,
+    /// What of the design the deposits' strips cover, and what they leave
+    /// (the band at the faces, hollows left on purpose, the rest), for an
+    /// extrusion in flat layers.
+    pub design_missing: Option<coverage::Missing>,
     /// The layers (from 1) before which a tilting head or table swings its
     /// tilt to the other side (C half a turn with it), retracted with the
     /// laser off: where a layer needs the other of the axes' two
@@ -195,7 +202,12 @@ impl Report {
     /// The report of `machine`'s plan, against the design solid of `model`;
     /// `density` (g/cm³) replaces or supplies the density.
     pub fn new(machine: VerifiedMachine<'_>, model: &Model, density: Option<f64>) -> Report {
-        Self::from_parts(machine, design::volume(model), density)
+        let mut r = Self::from_parts(machine, design::volume(model), density);
+        if let (Some(v), Some(_)) = (r.design_volume(), &r.bead) {
+            r.design_missing =
+                coverage::missing(model, machine.ir()).map(|m| m.scaled(v, r.density_g_cm3));
+        }
+        r
     }
 
     /// The report of `machine`'s plan against `design`; `density` (g/cm³)
@@ -301,6 +313,7 @@ impl Report {
             design_mass_g: None,
             design_efficiency: None,
             design_filled: None,
+            design_missing: None,
             branch_changes: summary.branch_changes.iter().map(|l| l + 1).collect(),
         }
     }

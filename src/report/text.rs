@@ -279,10 +279,10 @@ fn design(out: &mut String, r: &Report) {
                 ratio(t.stacked_volume_mm3, *volume_mm3),
                 ratio(t.bead_volume_mm3, *volume_mm3)
             );
-            if let Some(f) = r.design_filled.filter(|f| *f < 0.995) {
+            if let (None, Some(f)) = (&r.design_missing, r.design_filled.filter(|f| *f < 0.995)) {
                 let _ = write!(
                     line,
-                    "; {} ({}) lies outside every deposit's strip: where the outermost beads round off at the part's edges and ends",
+                    "; it holds {} ({}) more than the layers stack (lmdc breaks that down for flat layers only)",
                     percent(1.0 - f),
                     volume((1.0 - f) * volume_mm3)
                 );
@@ -296,12 +296,48 @@ fn design(out: &mut String, r: &Report) {
                 );
             }
             let _ = writeln!(out, "{line}");
+            if let Some(m) = &r.design_missing {
+                missing(out, m, r.design_filled);
+            }
         }
         Some(Design::Unknown { why }) => {
             let _ = writeln!(out, "design      volume not known: {why}");
         }
         None => {}
     }
+}
+
+/// What of the design the strips cover and what they leave, each figure
+/// named for what it is.
+fn missing(out: &mut String, m: &super::coverage::Missing, stacked: Option<f64>) {
+    let figure = |f: &super::coverage::Figure| {
+        let mass = f
+            .mass_g
+            .map_or(String::new(), |g| format!(" = {}", mass(g)));
+        format!("{} ({}{mass})", percent(f.share), volume(f.volume_mm3))
+    };
+    // What the layers stack beyond what the strips cover: strips laid over
+    // each other (links along a contour, raster ends over its strip).
+    let twice = stacked
+        .map(|s| s - m.covered.share)
+        .filter(|x| *x >= 0.0005)
+        .map_or(String::new(), |x| {
+            format!(
+                ", and the layers stack {} of it more than that where strips overlap (counted twice)",
+                percent(x)
+            )
+        });
+    let _ = writeln!(
+        out,
+        "unfilled    the deposits' strips cover {} of the design{twice}; \
+         {} is the band at the faces, between them and the outermost beads' strips, where the beads round off; \
+         {} is hollow on purpose (inside contours with no infill); {} is missing for other reasons \
+         (gaps between tracks, track ends short of a contour)",
+        figure(&m.covered),
+        figure(&m.faces),
+        figure(&m.hollows),
+        figure(&m.other)
+    );
 }
 
 fn ratio(a: f64, b: f64) -> String {

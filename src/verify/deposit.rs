@@ -138,7 +138,91 @@ pub(crate) fn check(p: &Program) -> Option<DepositMiss<Where>> {
         tolerance: found.tol,
         drift,
         strips: found.strips,
+        style: found
+            .point
+            .filter(|w| w.style != 0 && w.needs.is_some())
+            .map(|w| style_speeds(p, &d, w.style)),
     })
+}
+
+/// The rise a point lays at the path speed `v`, and the speed across the
+/// normal over the path speed (the style's speed is a path speed).
+fn rise_at(d: &crate::deposit::Deposit, pt: &crate::ir::Point, across: f64, v: f64) -> f64 {
+    let powder = crate::units::MassFlow(pt.powder as f64 / 60.0);
+    d.rise(
+        crate::units::Speed(v * across),
+        Length(pt.pitch as f64),
+        Some(powder),
+    )
+    .0
+}
+
+/// The speed in `1e-3 .. 1e5` mm/s at which the decreasing `f` crosses 0.
+fn root(f: impl Fn(f64) -> f64) -> f64 {
+    let (mut lo, mut hi) = (1e-3f64, 1e5f64);
+    for _ in 0..80 {
+        let mid = (lo * hi).sqrt();
+        if f(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    (lo * hi).sqrt()
+}
+
+/// The speeds `style`'s own speed may take: each of its deposits' speeds
+/// within the tolerance, and the one that lays its tracks' planned
+/// heights on the whole.
+fn style_speeds(
+    p: &Program,
+    d: &crate::deposit::Deposit,
+    style: u16,
+) -> message::verify::deposit::StyleSpeeds {
+    let tol = p.limits.rise_tolerance;
+    let mut moves = Vec::new();
+    for path in p.layers.iter().flat_map(|l| &l.paths) {
+        for (k, pt) in path.points.iter().enumerate() {
+            let next = path.points.get(k + 1);
+            let len = pt.ground_to(next);
+            if pt.style != style || !pt.laser_on || pt.pitch <= 0.0 || len <= 0.0 {
+                continue;
+            }
+            let h = match next {
+                Some(q) if q.layer_height > 0.0 => {
+                    0.5 * (pt.layer_height as f64 + q.layer_height as f64)
+                }
+                _ => pt.layer_height as f64,
+            };
+            let across = if pt.speed > 0.0 {
+                pt.speed_across(next) / pt.speed as f64
+            } else {
+                1.0
+            };
+            moves.push((pt, across, h, len));
+        }
+    }
+    let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
+    let mut strips = [f64::INFINITY, 0.0f64];
+    for &(pt, across, h, _) in &moves {
+        lo = lo.max(root(|v| rise_at(d, pt, across, v) - h * (1.0 + tol)));
+        hi = hi.min(root(|v| rise_at(d, pt, across, v) - h * (1.0 - tol)));
+        strips = [
+            strips[0].min(pt.pitch as f64),
+            strips[1].max(pt.pitch as f64),
+        ];
+    }
+    let even = root(|v| {
+        moves
+            .iter()
+            .map(|&(pt, across, h, len)| len * (rise_at(d, pt, across, v) - h))
+            .sum()
+    });
+    message::verify::deposit::StyleSpeeds {
+        style,
+        strips,
+        fits: (lo <= hi && !moves.is_empty()).then(|| (even.clamp(lo, hi), [lo, hi])),
+    }
 }
 
 /// The runs off by more than the tolerance, and the plan's totals.

@@ -24,6 +24,20 @@ pub struct WorstPoint {
     pub style: u16,
 }
 
+/// The speeds a style's own speed may take: what every one of its tracks
+/// lays against what it plans.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StyleSpeeds {
+    /// The style.
+    pub style: u16,
+    /// The narrowest and the widest strip its tracks fill, mm.
+    pub strips: [f64; 2],
+    /// The speed at which its tracks lay, over their length, what they
+    /// plan, and the speeds at which every one lays within the tolerance,
+    /// mm/s (`None`: no one speed does).
+    pub fits: Option<(f64, [f64; 2])>,
+}
+
 /// How the layers' mean errors add up.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Drift {
@@ -71,6 +85,9 @@ pub struct DepositMiss<At> {
     pub drift: Drift,
     /// The narrowest and the widest strip a laser-on point fills, mm.
     pub strips: [f64; 2],
+    /// Where the worst point's style sets its speed: the speeds that style
+    /// may take.
+    pub style: Option<StyleSpeeds>,
 }
 
 fn mm(x: f64) -> String {
@@ -133,7 +150,9 @@ pub fn deposit_miss(
         .label_opt(bead, "the bead model")
         .label_opt(slicing, "the layers");
     let mut help = format!("{drift}. ");
-    if let Some(p) = &m.point {
+    if let Some(s) = &m.style {
+        help.push_str(&style_speed(s, m.tolerance));
+    } else if let Some(p) = &m.point {
         match p.needs {
             Some(v) => help.push_str(&format!(
                 "at the worst point {} mm/s lays the planned {}",
@@ -161,4 +180,35 @@ pub fn deposit_miss(
     }
     help.push_str("let the slicer pick the speeds and layer heights (`layer_height = auto`, `layers = auto`), or give the bead model as it was measured (`measured_as`)");
     d.help(help)
+}
+
+/// The speed a style's own speed should take, or why none does. Speeds are
+/// printed to 0.01 mm/s inside the range that passes.
+fn style_speed(s: &StyleSpeeds, tolerance: f64) -> String {
+    let strips = if s.strips[1] > s.strips[0] * (1.0 + 1e-3) {
+        format!("strips {} to {} wide", mm(s.strips[0]), mm(s.strips[1]))
+    } else {
+        format!("strips {} wide", mm(s.strips[0]))
+    };
+    let leave = "or leave `speed` out of the style and the slicer runs each strip at the speed that lays its layer";
+    match s.fits {
+        Some((v, [lo, hi])) => {
+            let lo = (lo * 100.0).ceil() / 100.0;
+            let hi = (hi * 100.0).floor() / 100.0;
+            let v = ((v * 100.0).round() / 100.0).max(lo).min(hi);
+            format!(
+                "style {} sets the speed of its tracks, which fill {strips}: `speed = {} mm/s` in it lays them the planned height on the whole, each within {} (each stays within it from {} to {} mm/s, though away from the middle the layers' errors add up), {leave}; ",
+                s.style,
+                trimmed(v, 2),
+                percent(tolerance),
+                trimmed(lo, 2),
+                trimmed(hi, 2)
+            )
+        }
+        None => format!(
+            "style {} sets one speed for tracks that fill {strips}, which no one speed raises alike within {}: leave `speed` out of the style and the slicer runs each strip at the speed that lays its layer, or pick tracks whose strips agree; ",
+            s.style,
+            percent(tolerance)
+        ),
+    }
 }
