@@ -1055,7 +1055,16 @@ pub struct Positioner {
     /// layer): chosen by [`crate::plan::positioner`] after lowering.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub angles: Vec<[f64; 2]>,
+    /// The faceplate's diameter, mm: a disc on E2's flange, its face where
+    /// the part's base sits, [`FACEPLATE_THICKNESS_MM`] thick behind it,
+    /// which the arm's links keep their gap from (docs/collision.md);
+    /// `None`: not declared, not checked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub faceplate: Option<f64>,
 }
+
+/// How thick a positioner's faceplate is taken to be, mm.
+pub const FACEPLATE_THICKNESS_MM: f64 = 40.0;
 
 /// One axis of a [`Positioner`].
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]

@@ -100,6 +100,40 @@ fn a_fixture_in_the_heads_way_is_refused_and_moved_away_builds() {
     assert!(c.program.is_some(), "{:#?}", c.diagnostics);
 }
 
+#[test]
+fn a_forearm_over_the_faceplate_at_full_tilt_is_refused_and_the_faceplate_it_names_builds() {
+    let src = case("forearm_faceplate");
+    let c = compile(&src, &mut ());
+    assert!(c.program.is_none());
+    let d: Vec<_> = c
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == Code::Collision)
+        .collect();
+    assert_eq!(d.len(), 1, "{d:#?}");
+    let m = &d[0].message;
+    assert!(
+        m.contains("the forearm of robot `kr60` runs ")
+            && m.contains(" mm into the positioner's faceplate"),
+        "{m}"
+    );
+    // Near full tilt: the last layers, E1 past 85°.
+    let layer = number_after(m, "before layer ") as usize;
+    assert!(layer > 500, "{m}");
+    let help = d[0].help.as_deref().unwrap();
+    let across = number_after(help, "a faceplate at most ");
+    assert!(across > 1200.0 && across < 1300.0, "{help}");
+    let fixed = src.replace("faceplate = 1300 mm", &format!("faceplate = {across} mm"));
+    let c = compile(&fixed, &mut ());
+    assert!(c.program.is_some(), "{:#?}", c.diagnostics);
+    // The rim was what it met: a tenth of a millimetre more is refused again.
+    let more = src.replace(
+        "faceplate = 1300 mm",
+        &format!("faceplate = {} mm", across + 0.1),
+    );
+    assert!(compile(&more, &mut ()).program.is_none());
+}
+
 /// Whether the segment `a`–`b`, seen from above, meets the rectangle
 /// `lo`–`hi` (sampled every 0.05 mm: the travels here are short).
 fn crosses_xy(a: [f64; 3], b: [f64; 3], lo: [f64; 2], hi: [f64; 2]) -> bool {
