@@ -424,3 +424,83 @@ proptest! {
         }
     }
 }
+
+/// The head's lowest point above the plate at a pose: every rim of its
+/// solids sampled every 0.1°, independently of lmdc's closed form.
+fn lowest_rim(head: &lmdc::ir::Head, focus: [f64; 3], up: [f64; 3]) -> f64 {
+    // Two directions square to the beam.
+    let pick = if up[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let e1 = cross(up, pick);
+    let n = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
+    let e1 = e1.map(|c| c / n);
+    let e2 = cross(up, e1);
+    let mut s = head.standoff;
+    let mut low = f64::INFINITY;
+    for b in &head.bodies {
+        for (at, d) in [(s, b.diameters[0]), (s + b.length, b.diameters[1])] {
+            for k in 0..3600 {
+                let (sa, ca) = (f64::from(k) / 3600.0 * std::f64::consts::TAU).sin_cos();
+                let z = focus[2] + at * up[2] + d / 2.0 * (ca * e1[2] + sa * e2[2]);
+                low = low.min(z);
+            }
+        }
+        s += b.length;
+    }
+    low
+}
+
+/// Every move's end of machine `i`'s plan: the focus and the beam.
+struct Ends(Vec<([f64; 3], [f64; 3])>);
+
+impl Visit for Ends {
+    fn motion(&mut self, m: &Move) {
+        if m.kind != MoveKind::Home {
+            self.0.push((m.to, m.normal.map(f64::from)));
+        }
+    }
+}
+
+/// `lmdc report`'s closest approach of the nozzle to the plate is the
+/// least of the head's lowest rim point over every move's end, sampled
+/// here (the ring's beam never turns: the plate's distance is linear
+/// along each move, its least at an end), on both machines.
+#[test]
+fn the_reported_approach_to_the_plate_is_the_lowest_rim_over_the_plan() {
+    let src = std::fs::read_to_string("tests/cases/collision/travel_over_post/input.lmd").unwrap();
+    let c = compile(&src, &mut ());
+    let v = c.program.expect("builds");
+    for m in v.machines() {
+        let head = &m.machine().common().head;
+        let mut ends = Ends(Vec::new());
+        m.plan().walk(&mut ends);
+        let expected = ends
+            .0
+            .iter()
+            .map(|(f, n)| lowest_rim(head, *f, *n))
+            .fold(f64::INFINITY, f64::min);
+        let r = lmdc::report::Report::of_plan(m);
+        let a = r
+            .approaches
+            .iter()
+            .find(|a| a.body == "nozzle" && a.with == "plate")
+            .expect("the nozzle's approach to the plate");
+        assert!(
+            (a.distance_mm - expected).abs() < 1e-6,
+            "{}: {} vs {expected}",
+            m.machine().name(),
+            a.distance_mm
+        );
+        assert!(a.layer.is_some() && a.path.is_some(), "{a:?}");
+    }
+}

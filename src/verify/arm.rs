@@ -130,6 +130,15 @@ impl<'p> PlanRule<'p> for ArmRule {
     }
 }
 
+impl ArmRule {
+    /// The closest approaches of the arm's links to the cell.
+    pub(super) fn approaches(&self, cx: &MachineCx<'_>) -> Vec<crate::verify::approach::Approach> {
+        self.links
+            .as_ref()
+            .map_or_else(Vec::new, |l| l.approaches(cx))
+    }
+}
+
 impl Visit for ArmRule {
     fn motion(&mut self, m: &Move) {
         if self.quick.is_some() {
@@ -175,7 +184,7 @@ impl ArmRule {
         };
         self.limits(&j, at);
         if let Some(l) = &mut self.links {
-            l.check(self.follow.solver(), &j, m.axes, at);
+            l.check(self.follow.solver(), &j, m, at);
         }
         let status = self.follow.solver().status_at(&j, wrist);
         if lin {

@@ -15,7 +15,9 @@ use crate::ir::{Robot, FACEPLATE_THICKNESS_MM};
 use crate::plan::arm::{frame, Along, Joints, Solver};
 use crate::plan::kinematics::Rotary;
 use crate::plan::positioner::Kin;
+use crate::plan::Move;
 use crate::sema::schema::machine::{positioner::FACEPLATE, ARM};
+use crate::verify::approach::Approach;
 use crate::verify::rule::MachineCx;
 use nalgebra::{Isometry3, Point3};
 
@@ -32,8 +34,9 @@ impl std::fmt::Display for LinkAt {
     }
 }
 
-/// The closest a link came to a solid: the distance and where.
-pub type Approach = (f64, Along);
+/// The closest a link came to a solid: the distance, where, and the
+/// focus there (the part's coordinates).
+type Closest = (f64, Along, [f64; 3]);
 
 /// The arm's links against the cell, along one robot's plan.
 pub(crate) struct Links {
@@ -54,7 +57,7 @@ pub(crate) struct Links {
     at: Option<(Rotary, Isometry3<f64>, Isometry3<f64>)>,
     worst: Vec<Option<Worst<LinkAt>>>,
     /// By solid, by link.
-    closest: Vec<[Option<Approach>; 3]>,
+    closest: Vec<[Option<Closest>; 3]>,
     /// The largest faceplate that keeps the gap at every pose found too
     /// close (`None` once a pose is not helped by any).
     keeps: Option<f64>,
@@ -110,7 +113,8 @@ impl Links {
     }
 
     /// The arm at axis angles `j`, the positioner at `axes`, at `along`.
-    pub(crate) fn check(&mut self, solver: &Solver, j: &Joints, axes: Rotary, along: Along) {
+    pub(crate) fn check(&mut self, solver: &Solver, j: &Joints, m: &Move, along: Along) {
+        let axes = m.axes;
         let caps = capsules(&solver.joint_points(j), self.radii);
         let (part_inv, face_inv) = self.frames(axes);
         let plate = usize::from(self.faceplate.is_some());
@@ -122,7 +126,7 @@ impl Links {
                     continue;
                 };
                 if d < beyond {
-                    self.closest[k][*link] = Some((d, along));
+                    self.closest[k][*link] = Some((d, along, m.to));
                 }
                 if d < self.gap {
                     let at = LinkAt { along, link: *link };
@@ -153,6 +157,32 @@ impl Links {
         // Just short of the gap's edge, floored to what is printed.
         let need = Solid::faceplate_keeping(&c, FACEPLATE_THICKNESS_MM, d, self.gap + 0.005);
         self.keeps = need.map(|n| (n * 10.0).floor() / 10.0);
+    }
+
+    /// The closest approach of each link to each solid, where a pose came
+    /// near enough to measure.
+    pub(crate) fn approaches(&self, cx: &MachineCx<'_>) -> Vec<Approach> {
+        let plate = usize::from(self.faceplate.is_some());
+        let mut out = Vec::new();
+        for (k, links) in self.closest.iter().enumerate() {
+            let with = if k < plate {
+                "positioner faceplate".to_string()
+            } else {
+                format!("fixture {}", cx.program.fixtures[k - plate].name)
+            };
+            for (link, c) in links.iter().enumerate() {
+                if let Some((d, at, focus)) = *c {
+                    out.push(Approach::new(
+                        (LINKS[link], &with),
+                        (d, self.gap),
+                        at.at,
+                        at.way,
+                        focus,
+                    ));
+                }
+            }
+        }
+        out
     }
 
     /// The reports: one for each solid a link came too close to.
