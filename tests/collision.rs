@@ -504,3 +504,98 @@ fn the_reported_approach_to_the_plate_is_the_lowest_rim_over_the_plan() {
         assert!(a.layer.is_some() && a.path.is_some(), "{a:?}");
     }
 }
+
+/// Every pose the arm is solved at: the frames' origins and the
+/// positioner's angles.
+struct ArmPoses {
+    follow: lmdc::plan::arm::Follow,
+    got: Vec<([[f64; 3]; 6], [f64; 2])>,
+}
+
+impl ArmPoses {
+    fn keep(&mut self, solved: Vec<lmdc::plan::arm::Solved>) {
+        for s in solved {
+            if let Some(j) = s.joints {
+                let p = self.follow.solver().joint_points(&j);
+                self.got.push((p, [s.m.axes.tilt, s.m.axes.c]));
+            }
+        }
+    }
+}
+
+impl Visit for ArmPoses {
+    fn motion(&mut self, m: &Move) {
+        if let Some(s) = self.follow.push(m) {
+            self.keep(s);
+        }
+    }
+}
+
+/// With the faceplate the help names, the case builds, and `lmdc report`'s
+/// closest approach of the forearm to the faceplate is the one sampled
+/// here: the forearm's axis every 0.1 mm at every pose the arm is solved
+/// at, each point's distance to the disc (1281.1 mm across, 40 mm thick
+/// behind its face) less the KR 60 HA's forearm radius, 140 mm.
+#[test]
+fn the_reported_approach_of_the_forearm_is_the_sampled_one() {
+    let src = case("forearm_faceplate").replace("faceplate = 1300 mm", "faceplate = 1281.1 mm");
+    let c = compile(&src, &mut ());
+    let v = c.program.expect("builds");
+    let m = v.machines().next().unwrap();
+    let lmdc::ir::Machine::Robot(robot) = m.machine() else {
+        panic!("a robot");
+    };
+    let mut poses = ArmPoses {
+        follow: lmdc::plan::arm::Follow::new(robot).unwrap(),
+        got: Vec::new(),
+    };
+    m.plan().walk(&mut poses);
+    let rest = poses.follow.take();
+    poses.keep(rest);
+    let kin = lmdc::plan::positioner::Kin::of(robot).unwrap();
+    let base_inv = lmdc::plan::arm::frame(robot.base.value.as_ref().unwrap()).inverse();
+    let (radius, thickness, link) = (1281.1 / 2.0, 40.0, 140.0);
+    // The least over the forearm's two stretches, every `step` mm.
+    let least = |p: &[[f64; 3]; 6], e: [f64; 2], step: f64| {
+        let inv = (kin.part(e) * base_inv).inverse();
+        let mut d = f64::INFINITY;
+        for (a, b) in [(p[2], p[3]), (p[3], p[4])] {
+            let len =
+                ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt();
+            let n = (len / step).ceil().max(1.0) as usize;
+            for k in 0..=n {
+                let t = k as f64 / n as f64;
+                let q = inv
+                    * nalgebra::Point3::from(std::array::from_fn::<f64, 3, _>(|i| {
+                        a[i] + t * (b[i] - a[i])
+                    }));
+                let dh = (-thickness - q.z).max(q.z).max(0.0);
+                let dr = (q.x.hypot(q.y) - radius).max(0.0);
+                d = d.min(dh.hypot(dr) - link);
+            }
+        }
+        d
+    };
+    let coarse: Vec<f64> = poses.got.iter().map(|(p, e)| least(p, *e, 10.0)).collect();
+    let best = coarse.iter().copied().fold(f64::INFINITY, f64::min);
+    let sampled = poses
+        .got
+        .iter()
+        .zip(&coarse)
+        .filter(|(_, c)| **c <= best + 10.0)
+        .map(|((p, e), _)| least(p, *e, 0.1))
+        .fold(f64::INFINITY, f64::min);
+    let r = lmdc::report::Report::of_plan(m);
+    let a = r
+        .approaches
+        .iter()
+        .find(|a| a.body == "forearm" && a.with == "positioner faceplate")
+        .expect("the forearm's approach");
+    assert!(a.distance_mm >= 2.0, "{a:?}");
+    assert!(
+        a.distance_mm <= sampled + 1e-6 && a.distance_mm >= sampled - 0.05,
+        "{} vs {sampled}",
+        a.distance_mm
+    );
+    assert!(a.layer.unwrap() > 500, "{a:?}");
+}

@@ -152,7 +152,7 @@ impl Visit for ArmRule {
 
 impl ArmRule {
     /// Solves the moves still buffered and follows them in order.
-    fn flush(&mut self) {
+    pub(super) fn flush(&mut self) {
         let rest = self.follow.take();
         self.follow_up(rest);
     }

@@ -362,6 +362,7 @@ fn slow_rules(p: &Program, i: usize) -> Option<(bool, impl FnOnce() -> SlowFound
         if !settled {
             Plan::new(p, cx.machine).walk(&mut walk);
         }
+        walk.flush();
         let near = walk.approaches(&cx);
         walk.report(&cx, &mut d);
         (d, (i, near))

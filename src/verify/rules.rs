@@ -167,7 +167,16 @@ impl PlanRules<'_> {
 }
 
 impl SlowRules<'_> {
-    /// The closest approaches the arm's links came to the cell.
+    /// Follows the moves the arm still holds: its approaches are then
+    /// complete.
+    pub fn flush(&mut self) {
+        if let Some(a) = &mut self.arm {
+            a.flush();
+        }
+    }
+
+    /// The closest approaches the arm's links came to the cell (after
+    /// [`Self::flush`]).
     pub fn approaches(&self, cx: &MachineCx<'_>) -> Vec<super::approach::Approach> {
         self.arm
             .as_ref()
