@@ -599,3 +599,40 @@ fn the_reported_approach_of_the_forearm_is_the_sampled_one() {
     );
     assert!(a.layer.unwrap() > 500, "{a:?}");
 }
+
+/// `lmdc preview` carries the closest approaches the report gives, each at
+/// the focus of its pose, for the page to mark; the page says the tightest.
+#[test]
+fn the_preview_marks_the_closest_approaches() {
+    let src = std::fs::read_to_string("tests/cases/collision/travel_over_post/input.lmd").unwrap();
+    let c = compile(&src, &mut ());
+    let v = c.program.expect("builds");
+    let m = v.machines().next().unwrap();
+    let page = lmdc::preview::html(m);
+    let start = page
+        .find(r#"<script id="data" type="application/json">"#)
+        .unwrap();
+    let rest = &page[start..];
+    let json = &rest[rest.find('>').unwrap() + 1..rest.find("</script>").unwrap()];
+    let data: serde_json::Value = serde_json::from_str(json).unwrap();
+    let marked = data["meta"]["approaches"].as_array().expect("approaches");
+    let report = lmdc::report::Report::of_plan(m);
+    assert_eq!(marked.len(), report.approaches.len());
+    assert!(!marked.is_empty());
+    for (p, r) in marked.iter().zip(&report.approaches) {
+        assert_eq!(p["body"], r.body.as_str());
+        assert_eq!(p["with"], r.with.as_str());
+        assert_eq!(p["distance_mm"].as_f64().unwrap(), r.distance_mm);
+        for k in 0..3 {
+            assert_eq!(p["focus"][k].as_f64().unwrap(), r.focus[k]);
+        }
+    }
+    // The post's approach lies near the post (20 mm across at the origin).
+    let post = report
+        .approaches
+        .iter()
+        .find(|a| a.with == "fixture post")
+        .expect("the nozzle near the post");
+    assert!(post.focus[0].hypot(post.focus[1]) < 40.0, "{post:?}");
+    assert!(page.contains(r#"<p id="approach" hidden></p>"#));
+}
