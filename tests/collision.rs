@@ -636,3 +636,53 @@ fn the_preview_marks_the_closest_approaches() {
     assert!(post.focus[0].hypot(post.focus[1]) < 40.0, "{post:?}");
     assert!(page.contains(r#"<p id="approach" hidden></p>"#));
 }
+
+/// A fixture where the forearm passes is refused for the arm: a block
+/// 60 mm on a side, in the part's coordinates (turning with the
+/// positioner), centred on the forearm's axis where it came closest to the
+/// faceplate.
+#[test]
+fn a_fixture_in_the_forearms_way_is_refused_naming_it() {
+    let src = case("forearm_faceplate").replace("faceplate = 1300 mm", "faceplate = 1281.1 mm");
+    let c = compile(&src, &mut ());
+    let v = c.program.expect("builds");
+    let m = v.machines().next().unwrap();
+    let lmdc::ir::Machine::Robot(robot) = m.machine() else {
+        panic!("a robot");
+    };
+    let mut poses = ArmPoses {
+        follow: lmdc::plan::arm::Follow::new(robot).unwrap(),
+        got: Vec::new(),
+    };
+    m.plan().walk(&mut poses);
+    let rest = poses.follow.take();
+    poses.keep(rest);
+    let kin = lmdc::plan::positioner::Kin::of(robot).unwrap();
+    // The forearm's far end (the wrist centre) at its lowest pose, in the
+    // part's coordinates.
+    let (p, e) = poses
+        .got
+        .iter()
+        .min_by(|a, b| a.0[4][2].total_cmp(&b.0[4][2]))
+        .unwrap();
+    let mid: [f64; 3] = std::array::from_fn(|i| (p[3][i] + p[4][i]) / 2.0);
+    let q = kin.part(*e).inverse() * nalgebra::Point3::from(mid);
+    let block = format!(
+        "\nfixture block {{\n  shape = box(size = [60 mm, 60 mm, 60 mm])\n  at = [{:.1} mm, {:.1} mm, {:.1} mm]\n}}\n",
+        q.x,
+        q.y,
+        q.z - 30.0
+    );
+    let c = compile(&format!("{src}{block}"), &mut ());
+    let d: Vec<&str> = c
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == Code::Collision)
+        .map(|d| d.message.as_str())
+        .collect();
+    assert!(
+        d.iter()
+            .any(|m| m.contains("of robot `kr60` runs") && m.contains("into fixture `block`")),
+        "{d:#?}"
+    );
+}

@@ -298,22 +298,14 @@ pub fn verify_with<R>(
         // is not written meanwhile.
         let (settled, slow): (Vec<_>, Vec<_>) = slow.into_iter().partition(|(done, _)| *done);
         let mut failures = Diagnostics::new();
-        for (_, h) in settled {
-            let (d, near) = joined(h);
-            failures.extend(d);
-            found.push(near);
-        }
+        join_slow(settled, &mut failures, &mut found);
         let mut made = None;
         if !diags.has_errors() && !failures.has_errors() {
             v.warnings = diags.clone();
             made = Some(meanwhile(&v, !slow.is_empty()));
         }
         let passed = !diags.has_errors();
-        for (_, h) in slow {
-            let (d, near) = joined(h);
-            failures.extend(d);
-            found.push(near);
-        }
+        join_slow(slow, &mut failures, &mut found);
         diags.extend(failures.clone());
         (diags, made, passed.then_some(failures), found)
     });
@@ -324,6 +316,18 @@ pub fn verify_with<R>(
             s.approaches.extend(near);
         }
     }
+    outcome(v, diags, made, failures)
+}
+
+/// The outcome of a verification: `v` with its warnings where `diags`
+/// has no error, else the errors (and the plan refused only by the slow
+/// rules, with their `failures`).
+fn outcome<R>(
+    mut v: Verified,
+    diags: Diagnostics,
+    made: Option<R>,
+    failures: Option<Diagnostics>,
+) -> Outcome<R> {
     match failures {
         _ if !diags.has_errors() => {
             v.warnings = diags;
@@ -343,6 +347,20 @@ pub fn verify_with<R>(
             made: None,
             refused: None,
         },
+    }
+}
+
+/// Joins the slow rules' threads `handles`, their diagnostics into
+/// `failures` and their approaches into `found`.
+fn join_slow<'s>(
+    handles: Vec<(bool, std::thread::ScopedJoinHandle<'s, SlowFound>)>,
+    failures: &mut Diagnostics,
+    found: &mut Vec<(usize, Vec<approach::Approach>)>,
+) {
+    for (_, h) in handles {
+        let (d, near) = joined(h);
+        failures.extend(d);
+        found.push(near);
     }
 }
 
