@@ -101,8 +101,11 @@ pub(super) struct Collision<'p> {
     /// The closest each body came to each obstacle, by
     /// [`Collision::slot`]: the distance, the move, how far along it, the
     /// focus.
-    closest: Vec<Option<(f64, Where, f64, [f64; 3])>>,
+    closest: Vec<Option<Nearest>>,
 }
+
+/// A closest approach: the distance, the move, how far along it, the focus.
+type Nearest = (f64, Where, f64, [f64; 3]);
 
 impl<'p> PlanRule<'p> for Collision<'p> {
     fn new(cx: &MachineCx<'p>) -> Option<Self> {
