@@ -1167,6 +1167,12 @@ pub struct Arm {
     /// How far from a singular configuration (A5 = 0, the arm stretched) a
     /// LIN must stay, deg.
     pub singularity: f64,
+    /// The radii of its links as the collision checks take them — the
+    /// upper arm, the forearm, the wrist — where the robot declares them
+    /// (`arm_links`), mm; `None`: the catalogue's
+    /// ([`crate::target::arm::Model::links`]), for an arm from it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub links: Option<[f64; 3]>,
 }
 
 /// The cell's shielding gas and powder feeder as a machine switches them

@@ -686,3 +686,43 @@ fn a_fixture_in_the_forearms_way_is_refused_naming_it() {
         "{d:#?}"
     );
 }
+
+/// A robot's declared `arm_links` replace the catalogue's radii: with the
+/// forearm 40 mm thinner, the case builds, and the forearm's closest
+/// approach to the faceplate (the same pose's) is 40 mm farther than with
+/// the catalogue's 140 mm on the faceplate the help names.
+#[test]
+fn declared_link_radii_replace_the_catalogues() {
+    let fixed = case("forearm_faceplate").replace("faceplate = 1300 mm", "faceplate = 1281.1 mm");
+    let approach = |src: &str| {
+        let c = compile(src, &mut ());
+        let v = c.program.expect("builds");
+        let m = v.machines().next().unwrap();
+        lmdc::report::Report::of_plan(m)
+            .approaches
+            .iter()
+            .find(|a| a.body == "forearm")
+            .map(|a| a.distance_mm)
+            .unwrap()
+    };
+    let thinner = case("forearm_faceplate").replace(
+        "arm = kr60ha ",
+        "arm_links = [190 mm, 100 mm, 100 mm]  arm = kr60ha ",
+    );
+    assert_ne!(thinner, case("forearm_faceplate"));
+    let (a, b) = (
+        approach(&fixed),
+        approach(&thinner.replace("faceplate = 1300 mm", "faceplate = 1281.1 mm")),
+    );
+    assert!((b - a - 40.0).abs() < 1e-9, "{a} {b}");
+    assert!(compile(&thinner, &mut ()).program.is_some());
+    // Not three lengths: refused, saying what it takes.
+    let wrong = case("forearm_faceplate").replace(
+        "arm = kr60ha ",
+        "arm_links = [190 mm, 100 mm]  arm = kr60ha ",
+    );
+    let c = compile(&wrong, &mut ());
+    assert!(c.diagnostics.iter().any(|d| d
+        .message
+        .contains("`arm_links` is three lengths above zero")));
+}

@@ -72,6 +72,7 @@ impl Model {
             speeds: self.speeds,
             margin,
             singularity,
+            links: None,
         }
     }
 }

@@ -97,6 +97,16 @@ pub fn head_unchecked(machine: &str, at: Span) -> Diagnostic {
     )
 }
 
+/// A robot's `arm_links` that is not three lengths above zero.
+pub fn not_three_links(at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::Type,
+        "`arm_links` is three lengths above zero: the radii of the upper arm, the forearm and the wrist",
+    )
+    .label(at, format!("this is {got}"))
+    .help("e.g. `arm_links = [190 mm, 140 mm, 100 mm]` (a KR 60 HA's, docs/collision.md)")
+}
+
 /// A head's solid (`key`) written as something other than a solid.
 pub fn not_a_solid(key: &str, at: Span, got: &str) -> Diagnostic {
     Diagnostic::error(

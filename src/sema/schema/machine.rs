@@ -215,6 +215,14 @@ pub static JOINT_MARGIN: Field = Field::new(
     "how far inside its limits every axis of the `arm` must stay",
 );
 
+/// `arm_links = [190 mm, 140 mm, 100 mm]`.
+pub static ARM_LINKS: Field = Field::new(
+    "arm_links",
+    List(&Quantity(Dim::LENGTH, Positive), Len::Exactly(3)),
+    Optional,
+    "the radii of the arm's links as the collision checks take them, each a capsule: the upper arm, the forearm, the wrist (docs/collision.md, *The arm*); none: the catalogue's, for an arm from it (an `opw(…)` arm's links are then not checked)",
+);
+
 /// `singularity = 5 deg`.
 pub static SINGULARITY: Field = Field::new(
     "singularity",
@@ -445,6 +453,7 @@ pub static ROBOT: Block = Block::new(
         &ARM,
         &JOINT_MARGIN,
         &SINGULARITY,
+        &ARM_LINKS,
         &SPIN,
         &CLEARANCE,
         &ACCELERATION,
@@ -800,6 +809,7 @@ pub static MACHINE: Block = Block::new(
         &ARM,
         &JOINT_MARGIN,
         &SINGULARITY,
+        &ARM_LINKS,
         &SPIN,
         &CLEARANCE,
         &ACCELERATION,

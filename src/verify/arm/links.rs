@@ -68,8 +68,11 @@ impl Links {
     /// `cx`'s fixtures: `None` where the arm is not from the catalogue,
     /// its base has no value, or there is nothing to check.
     pub(crate) fn new(cx: &MachineCx<'_>, robot: &Robot) -> Option<Links> {
-        let model = robot.arm.as_ref()?.model.as_deref()?;
-        let radii = crate::target::arm::model(model)?.links;
+        let arm = robot.arm.as_ref()?;
+        let radii = match arm.links {
+            Some(r) => r,
+            None => crate::target::arm::model(arm.model.as_deref()?)?.links,
+        };
         let base = frame(robot.base.value.as_ref()?);
         let faceplate = robot.positioner.as_ref().and_then(|p| p.faceplate);
         let mut solids: Vec<Solid> = faceplate
