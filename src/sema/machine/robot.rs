@@ -155,7 +155,7 @@ fn arm(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Option<Arm>> {
     arm.margin = margin;
     arm.singularity = singularity;
     if let Some(v) = f.value(&ARM_LINKS, diags) {
-        arm.links = Some(links(&v, diags)?);
+        arm.links = Some(links(v, diags)?);
     } else if f.has(&ARM_LINKS) {
         return None;
     }
