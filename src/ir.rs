@@ -1054,7 +1054,16 @@ pub struct Positioner {
     /// layer): chosen by [`crate::plan::positioner`] after lowering.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub angles: Vec<[f64; 2]>,
+    /// The faceplate's diameter, mm: a disc on E2's flange, its face where
+    /// the part's base sits, [`FACEPLATE_THICKNESS_MM`] thick behind it,
+    /// which the arm's links keep their gap from (docs/collision.md);
+    /// `None`: not declared, not checked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub faceplate: Option<f64>,
 }
+
+/// How thick a positioner's faceplate is taken to be, mm.
+pub const FACEPLATE_THICKNESS_MM: f64 = 40.0;
 
 /// One axis of a [`Positioner`].
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
@@ -1157,6 +1166,12 @@ pub struct Arm {
     /// How far from a singular configuration (A5 = 0, the arm stretched) a
     /// LIN must stay, deg.
     pub singularity: f64,
+    /// The radii of its links as the collision checks take them — the
+    /// upper arm, the forearm, the wrist — where the robot declares them
+    /// (`arm_links`), mm; `None`: the catalogue's
+    /// ([`crate::target::arm::Model::links`]), for an arm from it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub links: Option<[f64; 3]>,
 }
 
 /// The cell's shielding gas and powder feeder as a machine switches them
@@ -1837,6 +1852,8 @@ pub enum MachineField {
     RotateLimits,
     /// `positioner { rotate_speed }`.
     RotateSpeed,
+    /// `positioner { faceplate }`.
+    Faceplate,
 }
 
 /// Where a machine and the fields the checks refer to were declared.

@@ -613,6 +613,7 @@ machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45
                     keep: lmdc::ir::Keep::Vertical,
                     home: [0.0; 2],
                     angles: (0..n).map(|i| [0.0, 10.0 * (i % 2) as f64]).collect(),
+                    faceplate: None,
                 }));
             }
         });

@@ -100,6 +100,40 @@ fn a_fixture_in_the_heads_way_is_refused_and_moved_away_builds() {
     assert!(c.program.is_some(), "{:#?}", c.diagnostics);
 }
 
+#[test]
+fn a_forearm_over_the_faceplate_at_full_tilt_is_refused_and_the_faceplate_it_names_builds() {
+    let src = case("forearm_faceplate");
+    let c = compile(&src, &mut ());
+    assert!(c.program.is_none());
+    let d: Vec<_> = c
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == Code::Collision)
+        .collect();
+    assert_eq!(d.len(), 1, "{d:#?}");
+    let m = &d[0].message;
+    assert!(
+        m.contains("the forearm of robot `kr60` runs ")
+            && m.contains(" mm into the positioner's faceplate"),
+        "{m}"
+    );
+    // Near full tilt: the last layers, E1 past 85°.
+    let layer = number_after(m, "before layer ") as usize;
+    assert!(layer > 500, "{m}");
+    let help = d[0].help.as_deref().unwrap();
+    let across = number_after(help, "a faceplate at most ");
+    assert!(across > 1200.0 && across < 1300.0, "{help}");
+    let fixed = src.replace("faceplate = 1300 mm", &format!("faceplate = {across} mm"));
+    let c = compile(&fixed, &mut ());
+    assert!(c.program.is_some(), "{:#?}", c.diagnostics);
+    // The rim was what it met: a tenth of a millimetre more is refused again.
+    let more = src.replace(
+        "faceplate = 1300 mm",
+        &format!("faceplate = {} mm", across + 0.1),
+    );
+    assert!(compile(&more, &mut ()).program.is_none());
+}
+
 /// Whether the segment `a`–`b`, seen from above, meets the rectangle
 /// `lo`–`hi` (sampled every 0.05 mm: the travels here are short).
 fn crosses_xy(a: [f64; 3], b: [f64; 3], lo: [f64; 2], hi: [f64; 2]) -> bool {
@@ -389,4 +423,306 @@ proptest! {
             prop_assert!(!refused, "head {near:.3} mm from the clamp, refused: {:#?}", c.diagnostics);
         }
     }
+}
+
+/// The head's lowest point above the plate at a pose: every rim of its
+/// solids sampled every 0.1°, independently of lmdc's closed form.
+fn lowest_rim(head: &lmdc::ir::Head, focus: [f64; 3], up: [f64; 3]) -> f64 {
+    // Two directions square to the beam.
+    let pick = if up[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let e1 = cross(up, pick);
+    let n = (e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]).sqrt();
+    let e1 = e1.map(|c| c / n);
+    let e2 = cross(up, e1);
+    let mut s = head.standoff;
+    let mut low = f64::INFINITY;
+    for b in &head.bodies {
+        for (at, d) in [(s, b.diameters[0]), (s + b.length, b.diameters[1])] {
+            for k in 0..3600 {
+                let (sa, ca) = (f64::from(k) / 3600.0 * std::f64::consts::TAU).sin_cos();
+                let z = focus[2] + at * up[2] + d / 2.0 * (ca * e1[2] + sa * e2[2]);
+                low = low.min(z);
+            }
+        }
+        s += b.length;
+    }
+    low
+}
+
+/// Every move's end of machine `i`'s plan: the focus and the beam.
+struct Ends(Vec<([f64; 3], [f64; 3])>);
+
+impl Visit for Ends {
+    fn motion(&mut self, m: &Move) {
+        if m.kind != MoveKind::Home {
+            self.0.push((m.to, m.normal.map(f64::from)));
+        }
+    }
+}
+
+/// `lmdc report`'s closest approach of the nozzle to the plate is the
+/// least of the head's lowest rim point over every move's end, sampled
+/// here (the ring's beam never turns: the plate's distance is linear
+/// along each move, its least at an end), on both machines.
+#[test]
+fn the_reported_approach_to_the_plate_is_the_lowest_rim_over_the_plan() {
+    let src = std::fs::read_to_string("tests/cases/collision/travel_over_post/input.lmd").unwrap();
+    let c = compile(&src, &mut ());
+    let v = c.program.expect("builds");
+    for m in v.machines() {
+        let head = &m.machine().common().head;
+        let mut ends = Ends(Vec::new());
+        m.plan().walk(&mut ends);
+        let expected = ends
+            .0
+            .iter()
+            .map(|(f, n)| lowest_rim(head, *f, *n))
+            .fold(f64::INFINITY, f64::min);
+        let r = lmdc::report::Report::of_plan(m);
+        let a = r
+            .approaches
+            .iter()
+            .find(|a| a.body == "nozzle" && a.with == "plate")
+            .expect("the nozzle's approach to the plate");
+        assert!(
+            (a.distance_mm - expected).abs() < 1e-6,
+            "{}: {} vs {expected}",
+            m.machine().name(),
+            a.distance_mm
+        );
+        assert!(a.layer.is_some() && a.path.is_some(), "{a:?}");
+    }
+}
+
+/// Every pose the arm is solved at: the frames' origins and the
+/// positioner's angles.
+struct ArmPoses {
+    follow: lmdc::plan::arm::Follow,
+    got: Vec<([[f64; 3]; 6], [f64; 2])>,
+}
+
+impl ArmPoses {
+    fn keep(&mut self, solved: Vec<lmdc::plan::arm::Solved>) {
+        for s in solved {
+            if let Some(j) = s.joints {
+                let p = self.follow.solver().joint_points(&j);
+                self.got.push((p, [s.m.axes.tilt, s.m.axes.c]));
+            }
+        }
+    }
+}
+
+impl Visit for ArmPoses {
+    fn motion(&mut self, m: &Move) {
+        if let Some(s) = self.follow.push(m) {
+            self.keep(s);
+        }
+    }
+}
+
+/// With the faceplate the help names, the case builds, and `lmdc report`'s
+/// closest approach of the forearm to the faceplate is the one sampled
+/// here: the forearm's axis every 0.1 mm at every pose the arm is solved
+/// at, each point's distance to the disc (1281.1 mm across, 40 mm thick
+/// behind its face) less the KR 60 HA's forearm radius, 140 mm.
+#[test]
+fn the_reported_approach_of_the_forearm_is_the_sampled_one() {
+    let src = case("forearm_faceplate").replace("faceplate = 1300 mm", "faceplate = 1281.1 mm");
+    let c = compile(&src, &mut ());
+    let v = c.program.expect("builds");
+    let m = v.machines().next().unwrap();
+    let lmdc::ir::Machine::Robot(robot) = m.machine() else {
+        panic!("a robot");
+    };
+    let mut poses = ArmPoses {
+        follow: lmdc::plan::arm::Follow::new(robot).unwrap(),
+        got: Vec::new(),
+    };
+    m.plan().walk(&mut poses);
+    let rest = poses.follow.take();
+    poses.keep(rest);
+    let kin = lmdc::plan::positioner::Kin::of(robot).unwrap();
+    let base_inv = lmdc::plan::arm::frame(robot.base.value.as_ref().unwrap()).inverse();
+    let (radius, thickness, link) = (1281.1 / 2.0, 40.0, 140.0);
+    // The least over the forearm's two stretches, every `step` mm.
+    let least = |p: &[[f64; 3]; 6], e: [f64; 2], step: f64| {
+        let inv = (kin.part(e) * base_inv).inverse();
+        let mut d = f64::INFINITY;
+        for (a, b) in [(p[2], p[3]), (p[3], p[4])] {
+            let len =
+                ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt();
+            let n = (len / step).ceil().max(1.0) as usize;
+            for k in 0..=n {
+                let t = k as f64 / n as f64;
+                let q = inv
+                    * nalgebra::Point3::from(std::array::from_fn::<f64, 3, _>(|i| {
+                        a[i] + t * (b[i] - a[i])
+                    }));
+                let dh = (-thickness - q.z).max(q.z).max(0.0);
+                let dr = (q.x.hypot(q.y) - radius).max(0.0);
+                d = d.min(dh.hypot(dr) - link);
+            }
+        }
+        d
+    };
+    let coarse: Vec<f64> = poses.got.iter().map(|(p, e)| least(p, *e, 10.0)).collect();
+    let best = coarse.iter().copied().fold(f64::INFINITY, f64::min);
+    let sampled = poses
+        .got
+        .iter()
+        .zip(&coarse)
+        .filter(|(_, c)| **c <= best + 10.0)
+        .map(|((p, e), _)| least(p, *e, 0.1))
+        .fold(f64::INFINITY, f64::min);
+    let r = lmdc::report::Report::of_plan(m);
+    let a = r
+        .approaches
+        .iter()
+        .find(|a| a.body == "forearm" && a.with == "positioner faceplate")
+        .expect("the forearm's approach");
+    assert!(a.distance_mm >= 2.0, "{a:?}");
+    assert!(
+        a.distance_mm <= sampled + 1e-6 && a.distance_mm >= sampled - 0.05,
+        "{} vs {sampled}",
+        a.distance_mm
+    );
+    assert!(a.layer.unwrap() > 500, "{a:?}");
+}
+
+/// `lmdc preview` carries the closest approaches the report gives, each at
+/// the focus of its pose, for the page to mark; the page says the tightest.
+#[test]
+fn the_preview_marks_the_closest_approaches() {
+    let src = std::fs::read_to_string("tests/cases/collision/travel_over_post/input.lmd").unwrap();
+    let c = compile(&src, &mut ());
+    let v = c.program.expect("builds");
+    let m = v.machines().next().unwrap();
+    let page = lmdc::preview::html(m);
+    let start = page
+        .find(r#"<script id="data" type="application/json">"#)
+        .unwrap();
+    let rest = &page[start..];
+    let json = &rest[rest.find('>').unwrap() + 1..rest.find("</script>").unwrap()];
+    let data: serde_json::Value = serde_json::from_str(json).unwrap();
+    let marked = data["meta"]["approaches"].as_array().expect("approaches");
+    let report = lmdc::report::Report::of_plan(m);
+    assert_eq!(marked.len(), report.approaches.len());
+    assert!(!marked.is_empty());
+    for (p, r) in marked.iter().zip(&report.approaches) {
+        assert_eq!(p["body"], r.body.as_str());
+        assert_eq!(p["with"], r.with.as_str());
+        assert_eq!(p["distance_mm"].as_f64().unwrap(), r.distance_mm);
+        for k in 0..3 {
+            assert_eq!(p["focus"][k].as_f64().unwrap(), r.focus[k]);
+        }
+    }
+    // The post's approach lies near the post (20 mm across at the origin).
+    let post = report
+        .approaches
+        .iter()
+        .find(|a| a.with == "fixture post")
+        .expect("the nozzle near the post");
+    assert!(post.focus[0].hypot(post.focus[1]) < 40.0, "{post:?}");
+    assert!(page.contains(r#"<p id="approach" hidden></p>"#));
+}
+
+/// A fixture where the forearm passes is refused for the arm: a block
+/// 60 mm on a side, in the part's coordinates (turning with the
+/// positioner), centred on the forearm's axis where it came closest to the
+/// faceplate.
+#[test]
+fn a_fixture_in_the_forearms_way_is_refused_naming_it() {
+    let src = case("forearm_faceplate").replace("faceplate = 1300 mm", "faceplate = 1281.1 mm");
+    let c = compile(&src, &mut ());
+    let v = c.program.expect("builds");
+    let m = v.machines().next().unwrap();
+    let lmdc::ir::Machine::Robot(robot) = m.machine() else {
+        panic!("a robot");
+    };
+    let mut poses = ArmPoses {
+        follow: lmdc::plan::arm::Follow::new(robot).unwrap(),
+        got: Vec::new(),
+    };
+    m.plan().walk(&mut poses);
+    let rest = poses.follow.take();
+    poses.keep(rest);
+    let kin = lmdc::plan::positioner::Kin::of(robot).unwrap();
+    // The forearm's far end (the wrist centre) at its lowest pose, in the
+    // part's coordinates.
+    let (p, e) = poses
+        .got
+        .iter()
+        .min_by(|a, b| a.0[4][2].total_cmp(&b.0[4][2]))
+        .unwrap();
+    let mid: [f64; 3] = std::array::from_fn(|i| (p[3][i] + p[4][i]) / 2.0);
+    let q = kin.part(*e).inverse() * nalgebra::Point3::from(mid);
+    let block = format!(
+        "\nfixture block {{\n  shape = box(size = [60 mm, 60 mm, 60 mm])\n  at = [{:.1} mm, {:.1} mm, {:.1} mm]\n}}\n",
+        q.x,
+        q.y,
+        q.z - 30.0
+    );
+    let c = compile(&format!("{src}{block}"), &mut ());
+    let d: Vec<&str> = c
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == Code::Collision)
+        .map(|d| d.message.as_str())
+        .collect();
+    assert!(
+        d.iter()
+            .any(|m| m.contains("of robot `kr60` runs") && m.contains("into fixture `block`")),
+        "{d:#?}"
+    );
+}
+
+/// A robot's declared `arm_links` replace the catalogue's radii: with the
+/// forearm 40 mm thinner, the case builds, and the forearm's closest
+/// approach to the faceplate (the same pose's) is 40 mm farther than with
+/// the catalogue's 140 mm on the faceplate the help names.
+#[test]
+fn declared_link_radii_replace_the_catalogues() {
+    let fixed = case("forearm_faceplate").replace("faceplate = 1300 mm", "faceplate = 1281.1 mm");
+    let approach = |src: &str| {
+        let c = compile(src, &mut ());
+        let v = c.program.expect("builds");
+        let m = v.machines().next().unwrap();
+        lmdc::report::Report::of_plan(m)
+            .approaches
+            .iter()
+            .find(|a| a.body == "forearm")
+            .map(|a| a.distance_mm)
+            .unwrap()
+    };
+    let thinner = case("forearm_faceplate").replace(
+        "arm = kr60ha ",
+        "arm_links = [190 mm, 100 mm, 100 mm]  arm = kr60ha ",
+    );
+    assert_ne!(thinner, case("forearm_faceplate"));
+    let (a, b) = (
+        approach(&fixed),
+        approach(&thinner.replace("faceplate = 1300 mm", "faceplate = 1281.1 mm")),
+    );
+    assert!((b - a - 40.0).abs() < 1e-9, "{a} {b}");
+    assert!(compile(&thinner, &mut ()).program.is_some());
+    // Not three lengths: refused, saying what it takes.
+    let wrong = case("forearm_faceplate").replace(
+        "arm = kr60ha ",
+        "arm_links = [190 mm, 100 mm]  arm = kr60ha ",
+    );
+    let c = compile(&wrong, &mut ());
+    assert!(c.diagnostics.iter().any(|d| d
+        .message
+        .contains("`arm_links` is three lengths above zero")));
 }

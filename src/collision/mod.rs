@@ -2,5 +2,7 @@
 //! solids ([`head`]) against the plate, the fixtures and the part as it grows
 //! ([`material`]), at every pose of the plan.
 
+pub mod arm;
+pub mod capsule;
 pub mod head;
 pub mod material;

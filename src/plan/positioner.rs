@@ -310,6 +310,7 @@ mod tests {
             keep: Keep::Vertical,
             home: [0.0; 2],
             angles: Vec::new(),
+            faceplate: None,
         }
     }
 

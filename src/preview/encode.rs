@@ -89,6 +89,9 @@ pub struct Meta<'a> {
     /// The arm's errors where the plan was refused for them (`None`: the
     /// plan built).
     pub refused: Option<Vec<Failure>>,
+    /// The closest each body came to each thing of the cell, where
+    /// measured (docs/collision.md): the page marks each at its focus.
+    pub approaches: &'a [crate::verify::approach::Approach],
     /// Who wrote the page.
     pub generator: &'static str,
 }

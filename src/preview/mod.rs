@@ -266,6 +266,7 @@ fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnosti
                 })
                 .collect()
         }),
+        approaches: &machine.summary().approaches,
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };
     let data = c.cols.encode(&meta);

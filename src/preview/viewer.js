@@ -423,6 +423,30 @@
     if (movesOnly) return;
     drawAxes(c, dpr);
     drawScaleBar(c, dpr);
+    drawApproaches(c, dpr);
+  }
+
+  // The closest approach of each body to each thing of the cell, marked at
+  // the focus where it happens: the tightest (least room over its gap) a
+  // ring, red where it is within its gap, orange else; the others a dot.
+  const APPROACHES = M.approaches || [];
+  const tightest = APPROACHES.reduce((best, a, i) =>
+    best < 0 || a.distance_mm - a.gap_mm < APPROACHES[best].distance_mm - APPROACHES[best].gap_mm ? i : best, -1);
+  function drawApproaches(c, dpr) {
+    APPROACHES.forEach((a, i) => {
+      const [u, v] = at(c, a.focus[0], a.focus[1], a.focus[2]);
+      const top = i === tightest;
+      ctx.beginPath();
+      ctx.arc(u, v, (top ? 7 : 3) * dpr, 0, 2 * Math.PI);
+      ctx.lineWidth = 2 * dpr;
+      ctx.strokeStyle = !top ? "#666" : a.distance_mm < a.gap_mm ? "#c0392b" : "#e08a00";
+      ctx.stroke();
+      if (top) {
+        ctx.fillStyle = ctx.strokeStyle;
+        ctx.font = `${12 * dpr}px system-ui, sans-serif`;
+        ctx.fillText(`${a.body} – ${a.with}: ${fmt(a.distance_mm)} mm`, u + 10 * dpr, v - 8 * dpr);
+      }
+    });
   }
 
   let queued = false;
@@ -764,6 +788,16 @@
     box.appendChild(list);
     box.hidden = false;
     box.dataset.errors = M.refused.length;
+  }
+  if (tightest >= 0) {
+    const a = APPROACHES[tightest], p = $("approach");
+    const hit = a.distance_mm < a.gap_mm;
+    p.textContent = `${hit ? "Collision" : "Closest approach"}: ${a.body} – ${a.with}, ` +
+      `${fmt(a.distance_mm)} mm (it keeps ${fmt(a.gap_mm)} mm) at ${a.at}; marked in the view.`;
+    p.classList.toggle("hit", hit);
+    p.hidden = false;
+    p.dataset.approaches = APPROACHES.length;
+    p.dataset.distance = a.distance_mm;
   }
   if (ARM) $("armplots").hidden = false;
   if (ROT) $("rotaryplots").hidden = false;

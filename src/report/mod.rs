@@ -196,6 +196,11 @@ pub struct Report {
     /// solutions. Empty where it keeps one side throughout.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub branch_changes: Vec<usize>,
+    /// The closest each body the machine carries came to each thing of the
+    /// cell, where the collision checks measured it (docs/collision.md,
+    /// *Closest approaches*).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub approaches: Vec<crate::verify::approach::Approach>,
 }
 
 impl Report {
@@ -315,6 +320,7 @@ impl Report {
             design_filled: None,
             design_missing: None,
             branch_changes: summary.branch_changes.iter().map(|l| l + 1).collect(),
+            approaches: summary.approaches.clone(),
         }
     }
 

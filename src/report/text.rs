@@ -113,7 +113,26 @@ pub fn render(r: &Report) -> String {
     out.push('\n');
     totals(&mut out, r);
     metal(&mut out, r);
+    approaches(&mut out, r);
     out
+}
+
+/// The closest approach of each body to each thing of the cell.
+fn approaches(out: &mut String, r: &Report) {
+    if r.approaches.is_empty() {
+        return;
+    }
+    let _ = writeln!(out, "\nclosest approaches (the gap each body keeps):");
+    for a in &r.approaches {
+        let pair = format!("{} – {}", a.body, a.with);
+        let _ = writeln!(
+            out,
+            "  {pair:<34} {:>9} mm (gap {} mm) at {}",
+            trimmed(a.distance_mm, 2),
+            trimmed(a.gap_mm, 3),
+            a.at
+        );
+    }
 }
 
 /// The totals in words: time, length, laser, powder.

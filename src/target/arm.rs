@@ -51,6 +51,11 @@ pub struct Model {
     pub speeds: [f64; 6],
     /// The ROS-Industrial support package its numbers come from.
     pub source: &'static str,
+    /// The radii of the capsules the collision checks take its links as —
+    /// the upper arm, the forearm, the wrist — mm: lmdc's estimates of
+    /// each link's envelope from KUKA's dimensioned drawings, rounded up
+    /// (docs/collision.md, *The arm*).
+    pub links: [f64; 3],
 }
 
 impl Model {
@@ -67,6 +72,7 @@ impl Model {
             speeds: self.speeds,
             margin,
             singularity,
+            links: None,
         }
     }
 }
@@ -107,6 +113,7 @@ pub const CATALOGUE: &[Model] = &[
         ],
         speeds: [360.0, 300.0, 360.0, 450.0, 450.0, 540.0],
         source: "kuka_kr6_support: opw_parameters_kr6r900_2.yaml, kr6r900_2_macro.xacro",
+        links: [80.0, 70.0, 55.0],
     },
     Model {
         key: "kr16_2",
@@ -122,6 +129,7 @@ pub const CATALOGUE: &[Model] = &[
         ],
         speeds: [156.0, 156.0, 156.0, 330.0, 330.0, 615.0],
         source: "kuka_kr16_support: opw_parameters_kr16_2.yaml, kr16_2_macro.xacro",
+        links: [130.0, 100.0, 75.0],
     },
     Model {
         key: "kr60ha",
@@ -137,6 +145,7 @@ pub const CATALOGUE: &[Model] = &[
         ],
         speeds: [128.0, 102.0, 128.0, 260.0, 245.0, 322.0],
         source: "kuka_kr60_support: opw_parameters_kr60ha.yaml, kr60ha_macro.xacro",
+        links: [190.0, 140.0, 100.0],
     },
     Model {
         key: "kr150_r3100_2",
@@ -152,6 +161,7 @@ pub const CATALOGUE: &[Model] = &[
         ],
         speeds: [105.0, 107.0, 114.0, 190.0, 180.0, 260.0],
         source: "kuka_kr150_support: opw_parameters_kr150_r3100-2.yaml, kr150_r3100-2_macro.xacro",
+        links: [260.0, 200.0, 130.0],
     },
 ];
 

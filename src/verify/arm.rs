@@ -20,6 +20,7 @@ use crate::plan::arm::{Along, Follow, Joints, Solved};
 use crate::plan::{Move, Speed, Visit};
 use nalgebra::Vector3;
 
+pub(crate) mod links;
 mod reach;
 
 /// The worst pose of a kind, where it lies (a move's target, or on its way).
@@ -45,6 +46,8 @@ pub(super) struct ArmRule {
     singular: [Option<Worst>; 3],
     flip: Option<(Worst, u8, u8)>,
     speed: [Option<(Worst, f64)>; 6],
+    /// The links against the faceplate and the fixtures (`lmd::collision`).
+    links: Option<links::Links>,
 }
 
 impl<'p> PlanRule<'p> for ArmRule {
@@ -64,6 +67,7 @@ impl<'p> PlanRule<'p> for ArmRule {
             singular: [None; 3],
             flip: None,
             speed: [None; 6],
+            links: links::Links::new(cx, r),
         })
     }
 
@@ -120,6 +124,18 @@ impl<'p> PlanRule<'p> for ArmRule {
                 out.push(msg::joint_speed(&at, i, w, *v));
             }
         }
+        if let Some(l) = &self.links {
+            l.report(cx, out);
+        }
+    }
+}
+
+impl ArmRule {
+    /// The closest approaches of the arm's links to the cell.
+    pub(super) fn approaches(&self, cx: &MachineCx<'_>) -> Vec<crate::verify::approach::Approach> {
+        self.links
+            .as_ref()
+            .map_or_else(Vec::new, |l| l.approaches(cx))
     }
 }
 
@@ -136,7 +152,7 @@ impl Visit for ArmRule {
 
 impl ArmRule {
     /// Solves the moves still buffered and follows them in order.
-    fn flush(&mut self) {
+    pub(super) fn flush(&mut self) {
         let rest = self.follow.take();
         self.follow_up(rest);
     }
@@ -167,6 +183,9 @@ impl ArmRule {
             return;
         };
         self.limits(&j, at);
+        if let Some(l) = &mut self.links {
+            l.check(self.follow.solver(), &j, m, at);
+        }
         let status = self.follow.solver().status_at(&j, wrist);
         if lin {
             self.lin(&j, wrist, status, m, at);

@@ -14,6 +14,7 @@
 //! than every 0.5 mm where it comes close. A bead laid after the check
 //! shortens the certified distance by its own.
 
+use super::approach::Approach;
 use super::rule::{MachineCx, PlanRule};
 use crate::collision::head::{add, cross, dist, dot, scale, sub, HeadShape, Pose};
 use crate::collision::material::{Lump, Material};
@@ -97,7 +98,14 @@ pub(super) struct Collision<'p> {
     /// keep its gap at every pose found too close; `None` once one pose is
     /// not helped by that (material beside the head).
     raise: [Option<f64>; 3],
+    /// The closest each body came to each obstacle, by
+    /// [`Collision::slot`]: the distance, the move, how far along it, the
+    /// focus.
+    closest: Vec<Option<Nearest>>,
 }
+
+/// A closest approach: the distance, the move, how far along it, the focus.
+type Nearest = (f64, Where, f64, [f64; 3]);
 
 impl<'p> PlanRule<'p> for Collision<'p> {
     fn new(cx: &MachineCx<'p>) -> Option<Self> {
@@ -134,6 +142,7 @@ impl<'p> PlanRule<'p> for Collision<'p> {
             width,
             worst: [None, None, None],
             raise: [Some(0.0); 3],
+            closest: vec![None; common.head.bodies.len() * (cx.program.fixtures.len() + 2)],
         })
     }
 
@@ -182,6 +191,7 @@ impl Visit for Collision<'_> {
             // refuses the plan, whose poses mean nothing.
             self.tilted = true;
             self.worst = [None, None, None];
+            self.closest.fill(None);
             return;
         }
         let pose = Pose {
@@ -190,8 +200,12 @@ impl Visit for Collision<'_> {
         };
         match self.last.filter(|_| !m.kind.ptp()) {
             Some(from) => self.sweep(from, pose, m.at),
-            None => self.check(&pose, m.at),
+            None => self.check(&pose, (m.at, 1.0)),
         }
+        // The plate's distance is linear along a move that keeps its beam:
+        // its ends give the closest approach.
+        let (plate, body) = self.head.lowest(&pose, [0.0, 0.0, 1.0]);
+        self.near(body, Obstacle::Plate, plate, (m.at, 1.0, pose.focus));
         self.last = Some(pose);
         if m.deposits() {
             self.lay(m);
@@ -218,7 +232,7 @@ impl Collision<'_> {
         let rate = a.moved(&b, self.head.reach);
         if rate <= 0.0 {
             if self.cert.is_none() {
-                self.check(&b, at);
+                self.check(&b, (at, 1.0));
             }
             return;
         }
@@ -247,10 +261,10 @@ impl Collision<'_> {
                 // The move ends within a step of the last check: a path of
                 // points closer than that is checked against the material
                 // every step, not at every point (the plate, at every one).
-                self.check_plate(&b, at);
+                self.check_plate(&b, (at, t));
                 return;
             }
-            self.check(&lerp(&a, &b, t), at);
+            self.check(&lerp(&a, &b, t), (at, t));
             if t >= 1.0 {
                 return;
             }
@@ -289,9 +303,9 @@ impl Collision<'_> {
 
     /// Checks the head at `pose` against everything, recording what it
     /// comes within its gap of, and certifies the pose.
-    fn check(&mut self, pose: &Pose, at: Where) {
+    fn check(&mut self, pose: &Pose, (at, way): (Where, f64)) {
         let gap = self.head.gap;
-        let mut d = self.check_plate(pose, at);
+        let mut d = self.check_plate(pose, (at, way));
         if !self.material.is_empty() {
             let (low, _) = self.head.lowest(pose, pose.up);
             let clear = low - self.highest(pose.up);
@@ -303,6 +317,8 @@ impl Collision<'_> {
                 match self.material.nearest(&self.head, pose, CAP_MM) {
                     Some((near, body, lump)) => {
                         d = d.min(near);
+                        let what = self.obstacle(&lump);
+                        self.near(body, what, near, (at, way, pose.focus));
                         if near < gap {
                             self.hit(near, body, lump, (pose, at));
                         }
@@ -317,9 +333,10 @@ impl Collision<'_> {
 
     /// Checks the head at `pose` against the plate (its lowest point: a
     /// few operations, so every pose is checked); returns its distance.
-    fn check_plate(&mut self, pose: &Pose, at: Where) -> f64 {
+    fn check_plate(&mut self, pose: &Pose, (at, way): (Where, f64)) -> f64 {
         let gap = self.head.gap;
         let (plate, body) = self.head.lowest(pose, [0.0, 0.0, 1.0]);
+        self.near(body, Obstacle::Plate, plate, (at, way, pose.focus));
         if plate < gap {
             let close = Close {
                 at,
@@ -334,12 +351,73 @@ impl Collision<'_> {
         plate
     }
 
-    fn hit(&mut self, d: f64, body: usize, lump: Lump, (pose, at): (&Pose, Where)) {
+    /// What a lump is of: a fixture or the part.
+    fn obstacle(&self, lump: &Lump) -> Obstacle {
         let fixtures = self.program.fixtures.len() as u32;
-        let (slot, what) = if lump.group >= u32::MAX - fixtures {
-            (1, Obstacle::Fixture((u32::MAX - lump.group - 1) as usize))
+        if lump.group >= u32::MAX - fixtures {
+            Obstacle::Fixture((u32::MAX - lump.group - 1) as usize)
         } else {
-            (2, Obstacle::Part(lump.group as usize))
+            Obstacle::Part(lump.group as usize)
+        }
+    }
+
+    /// Where body `body`'s closest approach to `what` is kept.
+    fn slot(&self, body: usize, what: Obstacle) -> usize {
+        let kinds = self.program.fixtures.len() + 2;
+        body * kinds
+            + match what {
+                Obstacle::Plate => 0,
+                Obstacle::Part(_) => 1,
+                Obstacle::Fixture(i) => 2 + i,
+            }
+    }
+
+    /// Keeps `d` as body `body`'s closest approach to `what` where it is.
+    fn near(
+        &mut self,
+        body: usize,
+        what: Obstacle,
+        d: f64,
+        (at, way, focus): (Where, f64, [f64; 3]),
+    ) {
+        let k = self.slot(body, what);
+        if let Some(slot) = self.closest.get_mut(k) {
+            if slot.is_none_or(|c| d < c.0) {
+                *slot = Some((d, at, way, focus));
+            }
+        }
+    }
+
+    /// The closest approaches found, by body and obstacle.
+    pub(super) fn approaches(&self) -> Vec<Approach> {
+        let kinds = self.program.fixtures.len() + 2;
+        let mut out = Vec::new();
+        for (k, c) in self.closest.iter().enumerate() {
+            let Some((d, at, way, focus)) = *c else {
+                continue;
+            };
+            let with = match k % kinds {
+                0 => "plate".to_string(),
+                1 => "part".to_string(),
+                i => format!("fixture {}", self.program.fixtures[i - 2].name),
+            };
+            out.push(Approach::new(
+                (&self.head.names[k / kinds], &with),
+                (d, self.head.gap),
+                at,
+                way,
+                focus,
+            ));
+        }
+        out
+    }
+
+    fn hit(&mut self, d: f64, body: usize, lump: Lump, (pose, at): (&Pose, Where)) {
+        let what = self.obstacle(&lump);
+        let slot = if matches!(what, Obstacle::Fixture(_)) {
+            1
+        } else {
+            2
         };
         let close = Close { at, body, what };
         Worst::hit(&mut self.worst[slot], d, self.head.gap, close);

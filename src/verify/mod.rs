@@ -19,6 +19,7 @@
 //! which the writers' headers and the report read instead of walking the plan
 //! again.
 
+pub mod approach;
 mod arm;
 mod bead_tilt;
 mod bump;
@@ -158,8 +159,10 @@ fn machine_rules(p: &Program, i: usize) -> (Diagnostics, Option<(usize, Summary)
     let mut walk = (rules::PlanRules::new(&cx), summary::Summarize::new(p, m));
     Plan::new(p, m).walk(&mut walk);
     let (rules, summary) = walk;
+    let approaches = rules.approaches();
     rules.report(&cx, &mut d);
-    let summary = summary.finish(|moves| names::files(p, m, moves));
+    let mut summary = summary.finish(|moves| names::files(p, m, moves));
+    summary.approaches = approaches;
     (d, Some((i, summary)))
 }
 
@@ -252,7 +255,7 @@ pub fn verify_with<R>(
         warnings: Diagnostics::new(),
         provenance,
     };
-    let (diags, made, failures) = std::thread::scope(|s| {
+    let (diags, made, failures, found) = std::thread::scope(|s| {
         let p = &v.program;
         let alone = ProgramCx {
             program: p,
@@ -261,7 +264,7 @@ pub fn verify_with<R>(
         let mut diags = run(rules::BEFORE_PLANS, &alone);
         // A plan through non-finite points would only repeat that error.
         if diags.iter().any(|d| d.code == Code::NonFinite) {
-            return (diags, None, None);
+            return (diags, None, None, Vec::new());
         }
         // Every rule reads the IR only: the slow rules, the rules beside
         // the plans and each machine's plan run side by side, and report
@@ -271,6 +274,7 @@ pub fn verify_with<R>(
             .filter_map(|&i| slow_rules(p, i))
             .map(|(settled, walk)| (settled, s.spawn(walk)))
             .collect();
+        let mut found = Vec::new();
         let beside = s.spawn(move || run(rules::BESIDE_PLANS, &alone));
         let walked: Vec<_> = machines
             .iter()
@@ -294,21 +298,36 @@ pub fn verify_with<R>(
         // is not written meanwhile.
         let (settled, slow): (Vec<_>, Vec<_>) = slow.into_iter().partition(|(done, _)| *done);
         let mut failures = Diagnostics::new();
-        for (_, h) in settled {
-            failures.extend(joined(h));
-        }
+        join_slow(settled, &mut failures, &mut found);
         let mut made = None;
         if !diags.has_errors() && !failures.has_errors() {
             v.warnings = diags.clone();
             made = Some(meanwhile(&v, !slow.is_empty()));
         }
         let passed = !diags.has_errors();
-        for (_, h) in slow {
-            failures.extend(joined(h));
-        }
+        join_slow(slow, &mut failures, &mut found);
         diags.extend(failures.clone());
-        (diags, made, passed.then_some(failures))
+        (diags, made, passed.then_some(failures), found)
     });
+    // The arm's closest approaches join its plan's summary (the writers,
+    // meanwhile, did not read them).
+    for (i, near) in found {
+        if let Some((_, s)) = v.machines.iter_mut().find(|(m, _)| *m == i) {
+            s.approaches.extend(near);
+        }
+    }
+    outcome(v, diags, made, failures)
+}
+
+/// The outcome of a verification: `v` with its warnings where `diags`
+/// has no error, else the errors (and the plan refused only by the slow
+/// rules, with their `failures`).
+fn outcome<R>(
+    mut v: Verified,
+    diags: Diagnostics,
+    made: Option<R>,
+    failures: Option<Diagnostics>,
+) -> Outcome<R> {
     match failures {
         _ if !diags.has_errors() => {
             v.warnings = diags;
@@ -331,6 +350,20 @@ pub fn verify_with<R>(
     }
 }
 
+/// Joins the slow rules' threads `handles`, their diagnostics into
+/// `failures` and their approaches into `found`.
+fn join_slow<'s>(
+    handles: Vec<(bool, std::thread::ScopedJoinHandle<'s, SlowFound>)>,
+    failures: &mut Diagnostics,
+    found: &mut Vec<(usize, Vec<approach::Approach>)>,
+) {
+    for (_, h) in handles {
+        let (d, near) = joined(h);
+        failures.extend(d);
+        found.push(near);
+    }
+}
+
 /// What a rule's thread returned; its panic, passed on.
 fn joined<T>(h: std::thread::ScopedJoinHandle<'_, T>) -> T {
     h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))
@@ -338,7 +371,7 @@ fn joined<T>(h: std::thread::ScopedJoinHandle<'_, T>) -> T {
 
 /// Machine `i`'s slow rules, as a walk to run on a thread of its own, where
 /// any applies, and whether they know their answer without walking.
-fn slow_rules(p: &Program, i: usize) -> Option<(bool, impl FnOnce() -> Diagnostics + Send + '_)> {
+fn slow_rules(p: &Program, i: usize) -> Option<(bool, impl FnOnce() -> SlowFound + Send + '_)> {
     let cx = machine_cx(p, i)?;
     let mut walk = rules::SlowRules::new(&cx);
     let settled = walk.settled();
@@ -347,10 +380,16 @@ fn slow_rules(p: &Program, i: usize) -> Option<(bool, impl FnOnce() -> Diagnosti
         if !settled {
             Plan::new(p, cx.machine).walk(&mut walk);
         }
+        walk.flush();
+        let near = walk.approaches(&cx);
         walk.report(&cx, &mut d);
-        d
+        (d, (i, near))
     }))
 }
+
+/// What a machine's slow rules found: their diagnostics, and the machine's
+/// index with the closest approaches they measured.
+type SlowFound = (Diagnostics, (usize, Vec<approach::Approach>));
 
 /// What machine `i`'s plan rules see of it.
 fn machine_cx(p: &Program, i: usize) -> Option<MachineCx<'_>> {

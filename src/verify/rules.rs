@@ -156,3 +156,30 @@ plan_rules! {
         arm: ArmRule,
     }
 }
+
+impl PlanRules<'_> {
+    /// The closest approaches the head's collision rule found.
+    pub fn approaches(&self) -> Vec<super::approach::Approach> {
+        self.collision
+            .as_ref()
+            .map_or_else(Vec::new, |c| c.approaches())
+    }
+}
+
+impl SlowRules<'_> {
+    /// Follows the moves the arm still holds: its approaches are then
+    /// complete.
+    pub fn flush(&mut self) {
+        if let Some(a) = &mut self.arm {
+            a.flush();
+        }
+    }
+
+    /// The closest approaches the arm's links came to the cell (after
+    /// [`Self::flush`]).
+    pub fn approaches(&self, cx: &MachineCx<'_>) -> Vec<super::approach::Approach> {
+        self.arm
+            .as_ref()
+            .map_or_else(Vec::new, |a| a.approaches(cx))
+    }
+}

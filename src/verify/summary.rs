@@ -69,6 +69,9 @@ pub struct Summary {
     /// run needed the other branch of the axes' two solutions
     /// ([`crate::plan::kinematics::run_start`]).
     pub branch_changes: Vec<usize>,
+    /// The closest each body came to each thing of the cell
+    /// ([`super::approach`]): the head's, then the arm's links'.
+    pub approaches: Vec<super::approach::Approach>,
 }
 
 /// The speed a machine's rapid moves are timed at: its `max_speed`.
@@ -125,6 +128,7 @@ impl<'p> Summarize<'p> {
             total,
             rapid_mm_s: self.rapid,
             branch_changes: self.branch_changes,
+            approaches: Vec::new(),
         }
     }
 }

@@ -97,6 +97,16 @@ pub fn head_unchecked(machine: &str, at: Span) -> Diagnostic {
     )
 }
 
+/// A robot's `arm_links` that is not three lengths above zero.
+pub fn not_three_links(at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::Type,
+        "`arm_links` is three lengths above zero: the radii of the upper arm, the forearm and the wrist",
+    )
+    .label(at, format!("this is {got}"))
+    .help("e.g. `arm_links = [190 mm, 140 mm, 100 mm]` (a KR 60 HA's, docs/collision.md)")
+}
+
 /// A head's solid (`key`) written as something other than a solid.
 pub fn not_a_solid(key: &str, at: Span, got: &str) -> Diagnostic {
     Diagnostic::error(
@@ -152,4 +162,76 @@ pub fn duplicate_fixture(name: &str, at: Span, first: Span) -> Diagnostic {
     .label(at, "this one")
     .label(first, "and this one")
     .help("give each fixture a name of its own: the messages name them")
+}
+
+/// What an arm's link came too close to.
+#[derive(Clone, Copy, Debug)]
+pub enum Against<'a> {
+    /// The positioner's faceplate, and the diameter at most it may have
+    /// to keep the gap at every pose found too close, where a smaller one
+    /// does (mm).
+    Faceplate(Option<f64>),
+    /// The fixture of this name.
+    Fixture(&'a str),
+}
+
+/// One kind of an arm's collision: its link, the worst and what fixes it.
+pub struct LinkHit<'a, At> {
+    /// The robot.
+    pub machine: &'a str,
+    /// The link (`upper arm`, `forearm`, `wrist`).
+    pub link: &'a str,
+    /// What it comes too close to.
+    pub with: Against<'a>,
+    /// The closest approach (its value the distance, its limit the gap).
+    pub worst: &'a Worst<At>,
+    /// Where the arm is declared.
+    pub arm: Span,
+    /// Where the faceplate is declared or the fixture placed.
+    pub placed: Option<Span>,
+}
+
+/// A link of a robot's arm closer than its gap to the positioner's
+/// faceplate or a fixture.
+pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
+    let w = h.worst;
+    let what = match h.with {
+        Against::Faceplate(_) => "the positioner's faceplate".to_string(),
+        Against::Fixture(name) => format!("fixture `{name}`"),
+    };
+    let how = if w.value <= 0.0 {
+        format!("runs {} mm into {what}", short(-w.value))
+    } else {
+        format!("comes within {} mm of {what}", short(w.value))
+    };
+    let message = format!(
+        "the {} of robot `{}` {how} at {}, where it must keep {} mm ({} pose{} too close)",
+        h.link,
+        h.machine,
+        w.at,
+        short(w.limit),
+        w.count,
+        plural(w.count)
+    );
+    let fix = match h.with {
+        Against::Faceplate(Some(d)) => format!(
+            "a faceplate at most {} mm across (`faceplate = {} mm`) keeps the gap at every such pose; or tilt the part less there (the positioner's `tilt_limits` or `keep`), or stand the positioner farther from the arm",
+            short(d),
+            short(d)
+        ),
+        Against::Faceplate(None) => "the link passes over the faceplate's middle: tilt the part less there (the positioner's `tilt_limits` or `keep`), stand the positioner farther from the arm, or raise the part off the faceplate".to_string(),
+        Against::Fixture(name) => format!(
+            "move fixture `{name}` out of the arm's way, or build the part where the arm passes farther from it"
+        ),
+    };
+    let d = Diagnostic::error(Code::Collision, message)
+        .help(format!(
+            "{fix}; the arm's links are capsules sized from its catalogue entry (docs/collision.md, *The arm*)"
+        ))
+        .label(h.arm, "the arm");
+    match (h.with, h.placed) {
+        (Against::Faceplate(_), Some(at)) => d.label(at, "the faceplate"),
+        (Against::Fixture(name), Some(at)) => d.label(at, format!("fixture `{name}` stands here")),
+        _ => d,
+    }
 }

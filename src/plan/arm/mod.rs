@@ -258,6 +258,17 @@ impl Solver {
         )
     }
 
+    /// The origins of the arm's frames at axis angles `j`, in the robot's
+    /// frame, as the solver's forward kinematics chains them: A1 at the
+    /// shoulder's height, the A2 axis (the shoulder), the A3 axis (the
+    /// elbow), the forearm's start past its offset `a2`, the wrist centre
+    /// and the flange. The collision checks hang the arm's links on them
+    /// ([`crate::collision::arm`]).
+    pub fn joint_points(&self, j: &Joints) -> [[f64; 3]; 6] {
+        let poses = self.kin.forward_with_joint_poses(&j.map(f64::to_radians));
+        poses.map(|p| [p.translation.x, p.translation.y, p.translation.z])
+    }
+
     /// The tool's focus in the base, and its axes, at axis angles `j`.
     pub fn forward(&self, j: &Joints) -> ([f64; 3], Matrix3<f64>) {
         let tcp = self.base.inverse() * self.forward_flange(j) * self.tool_inv.inverse();

@@ -10,7 +10,7 @@ use crate::sema::schema::Field;
 use crate::span::Span;
 
 /// Each field a check may name, with its key in the IR.
-static KEYS: [(&Field, K); 37] = [
+static KEYS: [(&Field, K); 38] = [
     (&m::NAME, K::Name),
     (&m::MAX_SPEED, K::MaxSpeed),
     (&m::ROTARY_SPEED, K::RotarySpeed),
@@ -44,6 +44,7 @@ static KEYS: [(&Field, K); 37] = [
     (&m::POSITIONER_BLOCK, K::Positioner),
     (&p::KEEP, K::PositionerKeep),
     (&p::HOME, K::PositionerHome),
+    (&p::FACEPLATE, K::Faceplate),
     (&p::TILT_LIMITS, K::TiltLimits),
     (&p::TILT_SPEED, K::TiltSpeed),
     (&p::ROTATE_LIMITS, K::RotateLimits),

@@ -50,6 +50,7 @@ pub(super) fn read<'a>(
     );
     let keep = keep(&b, diags);
     let home = home(&b, diags);
+    let faceplate = b.optional(&p::FACEPLATE, b.quantity(&p::FACEPLATE, diags).map(|q| q.0));
     let (tilt, rotate) = (tilt?, rotate?);
     let dot: f64 = (0..3)
         .map(|i| tilt.direction[i] * rotate.direction[i])
@@ -70,6 +71,7 @@ pub(super) fn read<'a>(
         keep: keep?,
         home: home?,
         angles: Vec::new(),
+        faceplate: faceplate?,
     }))
 }
 

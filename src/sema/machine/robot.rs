@@ -6,6 +6,7 @@ use crate::ir::{Arm, FrameRef, Machine, Pose, Robot, Spin, ToolAxis};
 use crate::sema::eval::Env;
 use crate::sema::fields::{self, Fields};
 use crate::sema::machine::cell;
+use crate::sema::schema::machine::ARM_LINKS;
 use crate::sema::schema::machine::{
     frame, opw, ARM, BASE, BEAM, CLEARANCE, FRAME, FULL_SCALE, HOME, JOINT_MARGIN, KIND, LASER,
     MAX_ANGLE_DEG, MAX_FRAME_MM, MAX_SPEED, MODULE_LINES, OPW, POSITIONER_BLOCK, POWER_OUTPUT,
@@ -153,6 +154,11 @@ fn arm(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Option<Arm>> {
     };
     arm.margin = margin;
     arm.singularity = singularity;
+    if let Some(v) = f.value(&ARM_LINKS, diags) {
+        arm.links = Some(links(v, diags)?);
+    } else if f.has(&ARM_LINKS) {
+        return None;
+    }
     for (field, what) in [(&BASE, "base"), (&TOOL, "tool")] {
         let declared = f
             .value(field, &mut Diagnostics::default())
@@ -166,6 +172,36 @@ fn arm(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Option<Arm>> {
         }
     }
     Some(Some(arm))
+}
+
+/// `arm_links = [r, r, r]`: three lengths above zero, mm.
+fn links(v: &super::super::value::Spanned, diags: &mut Diagnostics) -> Option<[f64; 3]> {
+    let items = match &v.value {
+        Value::List(items) if items.len() == 3 => items,
+        _ => {
+            diags.push(message::collision::not_three_links(
+                v.span,
+                &v.value.describe(),
+            ));
+            return None;
+        }
+    };
+    let mut out = [0.0; 3];
+    let mut ok = true;
+    for (o, it) in out.iter_mut().zip(items) {
+        match fields::quantity(it, crate::units::Dim::LENGTH, ARM_LINKS.key, diags) {
+            Some(r) if r > 0.0 => *o = r,
+            Some(_) => {
+                diags.push(message::collision::not_three_links(
+                    it.span,
+                    "a length not above zero",
+                ));
+                ok = false;
+            }
+            None => ok = false,
+        }
+    }
+    ok.then_some(out)
 }
 
 /// `opw(…)`: an arm by its parameters, in KUKA's axis angles.
@@ -226,6 +262,7 @@ fn opw_arm(a: &Fields<'_>, diags: &mut Diagnostics) -> Option<Arm> {
         speeds: speeds?,
         margin: 0.0,
         singularity: 0.0,
+        links: None,
     })
 }
 

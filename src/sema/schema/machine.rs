@@ -215,6 +215,14 @@ pub static JOINT_MARGIN: Field = Field::new(
     "how far inside its limits every axis of the `arm` must stay",
 );
 
+/// `arm_links = [190 mm, 140 mm, 100 mm]`.
+pub static ARM_LINKS: Field = Field::new(
+    "arm_links",
+    List(&Quantity(Dim::LENGTH, Positive), Len::Exactly(3)),
+    Optional,
+    "the radii of the arm's links as the collision checks take them, each a capsule: the upper arm, the forearm, the wrist (docs/collision.md, *The arm*); none: the catalogue's, for an arm from it (an `opw(…)` arm's links are then not checked)",
+);
+
 /// `singularity = 5 deg`.
 pub static SINGULARITY: Field = Field::new(
     "singularity",
@@ -445,6 +453,7 @@ pub static ROBOT: Block = Block::new(
         &ARM,
         &JOINT_MARGIN,
         &SINGULARITY,
+        &ARM_LINKS,
         &SPIN,
         &CLEARANCE,
         &ACCELERATION,
@@ -800,6 +809,7 @@ pub static MACHINE: Block = Block::new(
         &ARM,
         &JOINT_MARGIN,
         &SINGULARITY,
+        &ARM_LINKS,
         &SPIN,
         &CLEARANCE,
         &ACCELERATION,
@@ -1023,6 +1033,7 @@ pub static POSITIONER: Block = Block::new(
         &positioner::ROTATE_SPEED,
         &positioner::HOME,
         &positioner::KEEP,
+        &positioner::FACEPLATE,
     ],
 );
 
@@ -1048,7 +1059,7 @@ pub mod positioner {
     use super::super::Bound::{Any, Magnitude, Positive, ZeroUpTo};
     use super::super::DefaultValue::{Quantity as DefaultQuantity, Word as DefaultWord};
     use super::super::Kind::{self, Call, Either, List, Quantity, Range, Word};
-    use super::super::Need::{Default, Required};
+    use super::super::Need::{Default, Optional, Required};
     use super::super::{Field, Len};
     use super::MAX_ANGLE_DEG;
     use crate::units::Dim;
@@ -1122,6 +1133,13 @@ pub mod positioner {
         List(&ANGLE, Len::Exactly(2)),
         Default(super::super::DefaultValue::Described("`[0 deg, 0 deg]`")),
         "E1 and E2 at home: the program starts from them (the PTP from home) and ends at them (the PTP back), with the arm at its `home`",
+    );
+    /// `faceplate = 600 mm`.
+    pub static FACEPLATE: Field = Field::new(
+        "faceplate",
+        Quantity(Dim::LENGTH, Positive),
+        Optional,
+        "the faceplate's diameter: a disc on E2's flange, its face where the part's base sits, 40 mm thick behind it, which the arm's links keep their gap from (docs/collision.md); none: not checked",
     );
     /// `keep = vertical | cone(…) | fixed(…)`.
     pub static KEEP: Field = Field::new(

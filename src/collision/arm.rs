@@ -1,0 +1,222 @@
+//! A robot's arm as the collision checks see it: its links as capsules
+//! hung on the frames of its forward kinematics
+//! ([`crate::plan::arm::Solver::joint_points`]), and the solids of the cell
+//! they keep clear of — a positioner's faceplate (a disc), the fixtures (a
+//! box, an upright cylinder) — each a closed-form point distance searched
+//! along the capsule's axis ([`super::capsule`]).
+
+use super::capsule::{box_point, cylinder_point, least_along, segment_point, Capsule};
+use super::head::{dot, sub};
+use crate::ir::{Fixture, FixtureShape};
+use nalgebra::{Isometry3, Point3};
+
+/// The links' names, in the order their radii are given
+/// ([`crate::target::arm::Model::links`]).
+pub const LINKS: [&str; 3] = ["upper arm", "forearm", "wrist"];
+
+/// The arm's capsules at the frames' origins `p`
+/// ([`crate::plan::arm::Solver::joint_points`]) with the links' radii
+/// `radii`: each with the index of its link in [`LINKS`]. The upper arm
+/// runs from the shoulder to the elbow, the forearm from the elbow past
+/// its offset to the wrist centre (two capsules), the wrist from there to
+/// the flange.
+pub fn capsules(p: &[[f64; 3]; 6], radii: [f64; 3]) -> [(usize, Capsule); 4] {
+    let cap = |a: usize, b: usize, link: usize| {
+        (
+            link,
+            Capsule {
+                a: p[a],
+                b: p[b],
+                r: radii[link],
+            },
+        )
+    };
+    [cap(1, 2, 0), cap(2, 3, 1), cap(3, 4, 1), cap(4, 5, 2)]
+}
+
+/// A solid of the cell in a frame of its own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Solid {
+    /// A box, its sides along the frame's axes, mm.
+    Box {
+        /// Its least corner.
+        lo: [f64; 3],
+        /// Its greatest corner.
+        hi: [f64; 3],
+    },
+    /// A cylinder about the frame's Z through `(x, y)`, from `z[0]` to
+    /// `z[1]`, of radius `r`, mm. A faceplate is one: its face at `z = 0`,
+    /// its thickness below.
+    Cylinder {
+        /// Its axis's X and Y.
+        xy: [f64; 2],
+        /// Its ends along Z.
+        z: [f64; 2],
+        /// Its radius.
+        r: f64,
+    },
+}
+
+impl Solid {
+    /// A fixture's solid, in the part's coordinates.
+    pub fn of(f: &Fixture) -> Solid {
+        match f.shape {
+            FixtureShape::Box { .. } => {
+                let (lo, hi) = f.bounds();
+                Solid::Box { lo, hi }
+            }
+            FixtureShape::Cylinder { diameter, length } => Solid::Cylinder {
+                xy: [f.at[0], f.at[1]],
+                z: [f.at[2], f.at[2] + length],
+                r: diameter / 2.0,
+            },
+        }
+    }
+
+    /// A faceplate `diameter` across and `thickness` thick, its face on
+    /// the frame's `z = 0`, round its Z axis.
+    pub fn faceplate(diameter: f64, thickness: f64) -> Solid {
+        Solid::Cylinder {
+            xy: [0.0, 0.0],
+            z: [-thickness, 0.0],
+            r: diameter / 2.0,
+        }
+    }
+
+    /// The distance from `p` to it, mm (0 inside).
+    pub fn distance(&self, p: [f64; 3]) -> f64 {
+        match *self {
+            Solid::Box { lo, hi } => box_point(lo, hi, p),
+            Solid::Cylinder { xy, z, r } => {
+                let rho = (p[0] - xy[0]).hypot(p[1] - xy[1]);
+                cylinder_point(p[2], rho, z, r)
+            }
+        }
+    }
+
+    /// A sphere round it: its centre and radius, mm.
+    pub fn bound(&self) -> ([f64; 3], f64) {
+        match *self {
+            Solid::Box { lo, hi } => {
+                let c = std::array::from_fn(|k| (lo[k] + hi[k]) / 2.0);
+                let h = sub(hi, c);
+                (c, dot(h, h).sqrt())
+            }
+            Solid::Cylinder { xy, z, r } => (
+                [xy[0], xy[1], (z[0] + z[1]) / 2.0],
+                r.hypot((z[1] - z[0]) / 2.0),
+            ),
+        }
+    }
+
+    /// The distance from the capsule `c` (in the robot's frame) to it,
+    /// its frame's pose being `frame` in the robot's: `None` where the
+    /// spheres round both say it is farther than `beyond`.
+    pub fn capsule(&self, frame_inv: &Isometry3<f64>, c: &Capsule, beyond: f64) -> Option<f64> {
+        let local = |p: [f64; 3]| {
+            let q = frame_inv * Point3::from(p);
+            [q.x, q.y, q.z]
+        };
+        let (a, b) = (local(c.a), local(c.b));
+        let (centre, r) = self.bound();
+        if segment_point(a, b, centre) - r - c.r > beyond {
+            return None;
+        }
+        Some(least_along(a, b, |p| self.distance(p)).0 - c.r)
+    }
+
+    /// The diameter, at most `diameter`, a faceplate of `thickness` (as
+    /// [`Solid::faceplate`]) may have and keep `keep` from the capsule `c`
+    /// (in its frame): found by halving, to 0.01 mm; `None` where not
+    /// even its centre keeps it.
+    pub fn faceplate_keeping(c: &Capsule, thickness: f64, diameter: f64, keep: f64) -> Option<f64> {
+        let clear = |d: f64| {
+            least_along(c.a, c.b, |p| Solid::faceplate(d, thickness).distance(p)).0 - c.r >= keep
+        };
+        if !clear(0.0) {
+            return None;
+        }
+        let (mut lo, mut hi) = (0.0, diameter);
+        if clear(hi) {
+            return Some(hi);
+        }
+        while hi - lo > 0.01 {
+            let mid = (lo + hi) / 2.0;
+            if clear(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        Some(lo)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::arm::Solver;
+    use crate::target::arm::CATALOGUE;
+
+    /// The links hang where the forward kinematics puts the wrist centre
+    /// and the flange: the wrist's capsule ends `c4` from the wrist centre,
+    /// at the flange the solver's own forward kinematics gives.
+    #[test]
+    fn links_end_at_the_flange() {
+        for m in CATALOGUE {
+            let s = Solver::with(
+                m.arm(0.0, 5.0),
+                Isometry3::identity(),
+                Isometry3::identity(),
+            );
+            for j in [
+                [0.0, -90.0, 90.0, 0.0, 0.0, 0.0],
+                [30.0, -60.0, 70.0, 40.0, 50.0, -20.0],
+                [-100.0, -120.0, 120.0, -90.0, -40.0, 180.0],
+            ] {
+                let p = s.joint_points(&j);
+                let f = s.forward_flange(&j).translation.vector;
+                assert!((p[5][0] - f.x).abs() < 1e-6 && (p[5][2] - f.z).abs() < 1e-6);
+                let c4 = super::super::head::dist(p[4], p[5]);
+                assert!((c4 - m.opw.c4).abs() < 1e-6, "{}", m.key);
+                let upper = super::super::head::dist(p[1], p[2]);
+                assert!((upper - m.opw.c2).abs() < 1e-6, "{}", m.key);
+                let caps = capsules(&p, m.links);
+                assert_eq!(caps[3].1.r, m.links[2]);
+            }
+        }
+    }
+
+    /// A faceplate's distance to a capsule over its rim, and the diameter
+    /// that keeps a gap from it.
+    #[test]
+    fn faceplate_distances() {
+        let plate = Solid::faceplate(600.0, 40.0);
+        // Level, 100 mm above the face, reaching 50 mm past the rim.
+        let c = Capsule {
+            a: [250.0, 0.0, 100.0],
+            b: [350.0, 0.0, 100.0],
+            r: 60.0,
+        };
+        let d = plate.capsule(&Isometry3::identity(), &c, 1e9).unwrap();
+        assert!((d - 40.0).abs() < 1e-6, "{d}");
+        // Upright beside the rim, 30 mm off it.
+        let c = Capsule {
+            a: [330.0 + 20.0, 0.0, -100.0],
+            b: [350.0, 0.0, 100.0],
+            r: 20.0,
+        };
+        let d = plate.capsule(&Isometry3::identity(), &c, 1e9).unwrap();
+        assert!((d - 30.0).abs() < 1e-6, "{d}");
+        // To keep 50 mm, the rim must draw back 20 mm: 560 mm across.
+        let keep = Solid::faceplate_keeping(&c, 40.0, 600.0, 50.0).unwrap();
+        assert!((keep - 560.0).abs() < 0.02, "{keep}");
+        // Far away: culled.
+        let far = Capsule {
+            a: [5000.0, 0.0, 0.0],
+            b: [5100.0, 0.0, 0.0],
+            r: 10.0,
+        };
+        assert_eq!(plate.capsule(&Isometry3::identity(), &far, 100.0), None);
+    }
+}
