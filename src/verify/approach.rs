@@ -1,7 +1,7 @@
 //! The closest each body a machine carries came to each thing of the cell
 //! along its plan (docs/collision.md, *Closest approaches*): what
 //! `lmdc report` lists and `lmdc preview` marks, gathered by the collision
-//! rules as they check ([`super::collision`], [`super::arm`]).
+//! rules as they check (`verify::collision`, `verify::arm`).
 
 use crate::plan::Where;
 use serde::Serialize;
