@@ -523,6 +523,22 @@ impl ArmPoses {
     }
 }
 
+/// The robot of `m` and the points of its arm (with the positioner's
+/// angles) at every pose its arm rule solves.
+fn arm_poses(m: &lmdc::verify::VerifiedMachine<'_>) -> (lmdc::ir::Robot, ArmPoses) {
+    let lmdc::ir::Machine::Robot(robot) = m.machine() else {
+        panic!("a robot");
+    };
+    let mut poses = ArmPoses {
+        follow: lmdc::plan::arm::Follow::new(robot).unwrap(),
+        got: Vec::new(),
+    };
+    m.plan().walk(&mut poses);
+    let rest = poses.follow.take();
+    poses.keep(rest);
+    (robot.clone(), poses)
+}
+
 impl Visit for ArmPoses {
     fn motion(&mut self, m: &Move) {
         if let Some(s) = self.follow.push(m) {
@@ -542,16 +558,8 @@ fn the_reported_approach_of_the_forearm_is_the_sampled_one() {
     let c = compile(&src, &mut ());
     let v = c.program.expect("builds");
     let m = v.machines().next().unwrap();
-    let lmdc::ir::Machine::Robot(robot) = m.machine() else {
-        panic!("a robot");
-    };
-    let mut poses = ArmPoses {
-        follow: lmdc::plan::arm::Follow::new(robot).unwrap(),
-        got: Vec::new(),
-    };
-    m.plan().walk(&mut poses);
-    let rest = poses.follow.take();
-    poses.keep(rest);
+    let (robot, poses) = arm_poses(&m);
+    let robot = &robot;
     let kin = lmdc::plan::positioner::Kin::of(robot).unwrap();
     let base_inv = lmdc::plan::arm::frame(robot.base.value.as_ref().unwrap()).inverse();
     let (radius, thickness, link) = (1281.1 / 2.0, 40.0, 140.0);
@@ -647,16 +655,8 @@ fn a_fixture_in_the_forearms_way_is_refused_naming_it() {
     let c = compile(&src, &mut ());
     let v = c.program.expect("builds");
     let m = v.machines().next().unwrap();
-    let lmdc::ir::Machine::Robot(robot) = m.machine() else {
-        panic!("a robot");
-    };
-    let mut poses = ArmPoses {
-        follow: lmdc::plan::arm::Follow::new(robot).unwrap(),
-        got: Vec::new(),
-    };
-    m.plan().walk(&mut poses);
-    let rest = poses.follow.take();
-    poses.keep(rest);
+    let (robot, poses) = arm_poses(&m);
+    let robot = &robot;
     let kin = lmdc::plan::positioner::Kin::of(robot).unwrap();
     // The forearm's far end (the wrist centre) at its lowest pose, in the
     // part's coordinates.
