@@ -45,6 +45,7 @@ pub fn read(st: &Statements<'_>, diags: &mut Diagnostics) {
         if !warns(code) {
             diags.push(message::statement::allow_error_code(
                 code.as_str(),
+                ALSO_WARNINGS,
                 name.span,
             ));
             continue;

@@ -200,14 +200,18 @@ pub fn allow_unknown_code(code: &str, at: Span, suggestion: Option<&str>) -> Dia
 }
 
 /// An `allow` statement that names an error's code: only a warning can be
-/// expected.
-pub fn allow_error_code(code: &str, at: Span) -> Diagnostic {
+/// expected; `also` are the codes outside the Warnings group that warn.
+pub fn allow_error_code(code: &str, also: &[Code], at: Span) -> Diagnostic {
+    let also: Vec<String> = also.iter().map(|c| format!("`{}`", c.as_str())).collect();
     Diagnostic::error(
         Code::Allow,
         format!("`{code}` stops the build; only a warning can be allowed"),
     )
     .label(at, "not a warning")
-    .help("fix what the error says; `allow` takes the codes of docs/diagnostics.md's Warnings")
+    .help(format!(
+        "fix what the error says; `allow` takes the code of a warning: those of docs/diagnostics.md's Warnings, and {}",
+        also.join(", ")
+    ))
 }
 
 /// An `allow` statement not written `allow "lmd::CODE" = "why"`, or with an
