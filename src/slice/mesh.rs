@@ -177,8 +177,7 @@ pub fn wide_enough(
     if inset <= 0.0 || size[0].min(size[1]) > 2.0 * inset {
         return Some(());
     }
-    let units = mesh_units();
-    let unit = units.iter().find(|u| u.1 == m.scale).map(|u| u.0);
+    let (units, unit) = mesh_units(m);
     // Every larger unit in which it is a part a cell builds: a few beads
     // across, at most 2 m.
     let mut others: Vec<(&str, [f64; 3])> = units
@@ -204,12 +203,14 @@ pub fn wide_enough(
 }
 
 /// The units `mesh(units = …)` takes, with mm per unit: the ones a hint may
-/// suggest.
-fn mesh_units() -> Vec<(&'static str, f64)> {
-    crate::geometry::mesh::UNITS
+/// suggest; and the one `m` is read in, if it is one of them.
+fn mesh_units(m: &MeshSolid) -> (Vec<(&'static str, f64)>, Option<&'static str>) {
+    let units: Vec<(&'static str, f64)> = crate::geometry::mesh::UNITS
         .iter()
         .map(|&u| (u, crate::units::mm_per(u)))
-        .collect()
+        .collect();
+    let unit = units.iter().find(|u| u.1 == m.scale).map(|u| u.0);
+    (units, unit)
 }
 
 /// The message for a mesh that is `over` a limit, with a unit in which
@@ -224,8 +225,7 @@ fn too_big(
 ) -> crate::diag::Diagnostic {
     let (lo, hi) = m.mesh.bounds();
     let size = [0, 1, 2].map(|i| hi[i] - lo[i]);
-    let units = mesh_units();
-    let unit = units.iter().find(|u| u.1 == m.scale).map(|u| u.0);
+    let (units, unit) = mesh_units(m);
     let other = units
         .iter()
         .find(|&&(_, s)| s != m.scale && fits(s / m.scale))
