@@ -92,6 +92,18 @@ impl<'a> Env<'a> {
         }
     }
 
+    /// An environment with a file's `let`s, as a model keeps them to
+    /// evaluate an expression again later (a profile on each layer, a top
+    /// at each point). A name declared twice was reported by the checker;
+    /// the first declaration is the one it used.
+    pub fn with_constants(constants: &'a [(String, Span, Expr)]) -> Self {
+        let mut env = Env::new();
+        for (name, span, e) in constants {
+            let _ = env.declare(name, *span, e);
+        }
+        env
+    }
+
     /// Declares `let name = expr`. Returns the span of an earlier declaration of
     /// the same name, if any.
     pub fn declare(&mut self, name: &str, name_span: Span, expr: &'a Expr) -> Option<Span> {

@@ -199,14 +199,8 @@ pub struct LayerShapes<'m> {
 impl ProfileExpr {
     /// An evaluator of the profile on any layer.
     pub fn evaluator(&self) -> LayerShapes<'_> {
-        let mut env = Env::new();
-        for (name, span, e) in &self.constants {
-            // A name declared twice was reported by the checker; the first
-            // declaration is the one it used.
-            let _ = env.declare(name, *span, e);
-        }
         LayerShapes {
-            env,
+            env: Env::with_constants(&self.constants),
             expr: &self.expr,
         }
     }

@@ -152,14 +152,8 @@ pub struct TopHeights<'m> {
 impl TopExpr {
     /// An evaluator of the top at any point.
     pub fn evaluator(&self) -> TopHeights<'_> {
-        let mut env = Env::new();
-        for (name, span, e) in &self.constants {
-            // A name declared twice was reported by the checker; the first
-            // declaration is the one it used.
-            let _ = env.declare(name, *span, e);
-        }
         TopHeights {
-            env,
+            env: Env::with_constants(&self.constants),
             expr: &self.expr,
         }
     }
