@@ -1854,6 +1854,8 @@ pub enum MachineField {
     RotateSpeed,
     /// `positioner { faceplate }`.
     Faceplate,
+    /// The `head { … }` block: what a collision points at.
+    Head,
 }
 
 /// Where a machine and the fields the checks refer to were declared.
@@ -1863,9 +1865,6 @@ pub struct MachineOrigin {
     pub block: Span,
     /// The fields given that a check may point at, each by its key.
     pub fields: Vec<(MachineField, Span)>,
-    /// The `head { … }` block, if the machine declares one: what a
-    /// collision points at.
-    pub head: Option<Span>,
 }
 
 impl MachineOrigin {
@@ -1874,7 +1873,6 @@ impl MachineOrigin {
         MachineOrigin {
             block,
             fields: Vec::new(),
-            head: None,
         }
     }
 

@@ -12,10 +12,9 @@
 //! the singularity threshold; ties to the smaller turn), if it does better
 //! than 0°. One turn for the whole program: the tool turns with the normal
 //! as before, smoothly, only offset. The choice is made on about
-//! [`SAMPLES`] moves spread over the plan; the verifier then checks every
-//! move with it, as with a declared `spin`.
+//! [`SAMPLES`](super::arm::clearance::SAMPLES) moves spread over the plan;
+//! the verifier then checks every move with it, as with a declared `spin`.
 
-pub use super::arm::clearance::SAMPLES;
 use super::arm::clearance::{clearance, sample};
 use super::arm::Follow;
 use super::Plan;

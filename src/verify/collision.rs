@@ -147,7 +147,7 @@ impl<'p> PlanRule<'p> for Collision<'p> {
     }
 
     fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
-        let declared = cx.origin.head;
+        let declared = cx.origin.written(crate::ir::MachineField::Head);
         for (w, raise) in self
             .worst
             .iter()

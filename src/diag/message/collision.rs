@@ -46,20 +46,8 @@ pub fn collision<At: Display>(h: &Hit<'_, At>) -> Diagnostic {
         With::Fixture(name) => format!("fixture `{name}`"),
         With::Part(layer) => format!("the part laid so far (layer {layer})"),
     };
-    let how = if w.value <= 0.0 {
-        format!("runs into {what}")
-    } else {
-        format!("comes within {} mm of {what}", short(w.value))
-    };
-    let message = format!(
-        "the {} of machine `{}` {how} at {}, where it must keep {} mm ({} pose{} too close)",
-        h.body,
-        h.machine,
-        w.at,
-        short(w.limit),
-        w.count,
-        plural(w.count)
-    );
+    let who = format!("the {} of machine `{}`", h.body, h.machine);
+    let message = too_close(&who, &what, w, false);
     let fix = match (h.with, h.standoff) {
         (With::Fixture(name), _) => format!(
             "move fixture `{name}` clear of the head's way (or lower it), or build the part where the head passes farther from it"
@@ -81,6 +69,24 @@ pub fn collision<At: Display>(h: &Hit<'_, At>) -> Diagnostic {
         Some(at) => d.label(at, "the head as declared"),
         None => d,
     }
+}
+
+/// `who` (a head's body, an arm's link) closer than its gap to `what` at
+/// worst `w`: how close (how deep, with `depth`, where it runs into it),
+/// where, the gap and how many poses.
+fn too_close<At: Display>(who: &str, what: &str, w: &Worst<At>, depth: bool) -> String {
+    let how = match (w.value <= 0.0, depth) {
+        (true, true) => format!("runs {} mm into {what}", short(-w.value)),
+        (true, false) => format!("runs into {what}"),
+        (false, _) => format!("comes within {} mm of {what}", short(w.value)),
+    };
+    format!(
+        "{who} {how} at {}, where it must keep {} mm ({} pose{} too close)",
+        w.at,
+        short(w.limit),
+        w.count,
+        plural(w.count)
+    )
 }
 
 /// A machine that declares no head: a typical coaxial nozzle was checked.
@@ -199,20 +205,8 @@ pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
         Against::Faceplate(_) => "the positioner's faceplate".to_string(),
         Against::Fixture(name) => format!("fixture `{name}`"),
     };
-    let how = if w.value <= 0.0 {
-        format!("runs {} mm into {what}", short(-w.value))
-    } else {
-        format!("comes within {} mm of {what}", short(w.value))
-    };
-    let message = format!(
-        "the {} of robot `{}` {how} at {}, where it must keep {} mm ({} pose{} too close)",
-        h.link,
-        h.machine,
-        w.at,
-        short(w.limit),
-        w.count,
-        plural(w.count)
-    );
+    let who = format!("the {} of robot `{}`", h.link, h.machine);
+    let message = too_close(&who, &what, w, true);
     let fix = match h.with {
         Against::Faceplate(Some(d)) => format!(
             "a faceplate at most {} mm across (`faceplate = {} mm`) keeps the gap at every such pose; or tilt the part less there (the positioner's `tilt_limits` or `keep`), or stand the positioner farther from the arm",

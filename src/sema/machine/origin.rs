@@ -10,7 +10,7 @@ use crate::sema::schema::Field;
 use crate::span::Span;
 
 /// Each field a check may name, with its key in the IR.
-static KEYS: [(&Field, K); 38] = [
+static KEYS: [(&Field, K); 39] = [
     (&m::NAME, K::Name),
     (&m::MAX_SPEED, K::MaxSpeed),
     (&m::ROTARY_SPEED, K::RotarySpeed),
@@ -45,6 +45,7 @@ static KEYS: [(&Field, K); 38] = [
     (&p::KEEP, K::PositionerKeep),
     (&p::HOME, K::PositionerHome),
     (&p::FACEPLATE, K::Faceplate),
+    (&HEAD_BLOCK, K::Head),
     (&p::TILT_LIMITS, K::TiltLimits),
     (&p::TILT_SPEED, K::TiltSpeed),
     (&p::ROTATE_LIMITS, K::RotateLimits),
@@ -65,10 +66,6 @@ pub fn origin(block: Span, written: &Written) -> MachineOrigin {
             .iter()
             .filter_map(|&(f, at)| key(f).map(|k| (k, at)))
             .collect(),
-        head: written
-            .iter()
-            .find(|(f, _)| *f == &HEAD_BLOCK)
-            .map(|&(_, at)| at),
     }
 }
 
