@@ -382,6 +382,12 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
         "bead track { width = 2.2 mm  model = fit(linear, data = \"sheet_units.csv\") }";
     // The duct's square corners lean out a few degrees from the spine.
     overhang: Overhang, DUCT, "slicing normal { layers = auto  points = 8  max_overhang = 1 deg }";
+    // A scan with a line of two numbers (tests/codes/two_columns.xyz).
+    scan: Scan, WALL,
+        "extrude wall { profile = rectangle(width = 30 mm, height = 2.4 mm)  size = outer  bead = b316  on = scan(\"two_columns.xyz\")  top = 12 mm }";
+    // A scan of x −10..10 mm under a wall 30 mm long (tests/codes/short.xyz).
+    scan_coverage: ScanCoverage, WALL,
+        "extrude wall { profile = rectangle(width = 30 mm, height = 2.4 mm)  size = outer  bead = b316  on = scan(\"short.xyz\")  top = 12 mm }";
     // A tetrahedron without its slanted face (tests/codes/open.stl).
     mesh: Mesh, PLATE,
         "extrude block { profile = mesh(\"open.stl\")  size = outer  bead = track }";
@@ -714,7 +720,7 @@ fn the_bases_compile_cleanly() {
 }
 
 /// Every file in tests/codes/ is a base, the report of a test here or a
-/// measurement sheet or mesh a test reads (`*.csv`, `*.stl`).
+/// measurement sheet, mesh or scan a test reads (`*.csv`, `*.stl`, `*.xyz`).
 #[test]
 fn every_report_has_its_test() {
     let names: BTreeSet<String> = lines()
@@ -724,7 +730,11 @@ fn every_report_has_its_test() {
         .collect();
     for e in fs::read_dir(DIR).unwrap() {
         let name = e.unwrap().file_name().to_string_lossy().into_owned();
-        if names.contains(&name) || name.ends_with(".csv") || name.ends_with(".stl") {
+        if names.contains(&name)
+            || name.ends_with(".csv")
+            || name.ends_with(".stl")
+            || name.ends_with(".xyz")
+        {
             continue;
         }
         let path = Path::new(DIR).join(&name);

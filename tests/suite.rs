@@ -50,6 +50,7 @@ mod preview;
 mod program_text;
 mod progress;
 mod reach;
+mod repair;
 mod report;
 mod ring;
 mod ring_krl;

@@ -6,6 +6,7 @@ pub mod mesh;
 pub mod outline;
 pub mod profile;
 pub mod region;
+pub mod scan;
 pub mod section;
 pub mod shape;
 pub mod spine;

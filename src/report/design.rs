@@ -229,7 +229,28 @@ fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
         }
         (None, _) => return Err("the top is not known".into()),
     };
-    Ok((v * widen, "the footprint's integral of its top".to_string()))
+    let Some(base) = &ex.base else {
+        return Ok((v * widen, "the footprint's integral of its top".to_string()));
+    };
+    // On a scan: less the measured part under the footprint (what is there).
+    let (dx, dy) = ((hi[0] - lo[0]) / GRID as f64, (hi[1] - lo[1]) / GRID as f64);
+    let mut under = 0.0;
+    for i in 0..GRID {
+        for j in 0..GRID {
+            let q = [lo[0] + (i as f64 + 0.5) * dx, lo[1] + (j as f64 + 0.5) * dy];
+            if p.contains(q) {
+                let b = base
+                    .surface
+                    .at(q)
+                    .ok_or("the scan does not cover the footprint everywhere")?;
+                under += b * dx * dy;
+            }
+        }
+    }
+    Ok((
+        (v - under) * widen,
+        "the footprint's integral of its top less the scanned surface".to_string(),
+    ))
 }
 
 #[cfg(test)]

@@ -29,6 +29,8 @@ pub enum Data {
     Sheet,
     /// A mesh: an STL (binary or ASCII) or a 3MF.
     Mesh,
+    /// A scan to build on: PLY, XYZ text, STL or 3MF (capped as a mesh).
+    Scan,
 }
 
 impl Data {
@@ -36,7 +38,7 @@ impl Data {
     pub fn cap(self) -> u64 {
         match self {
             Data::Sheet => MAX_SHEET,
-            Data::Mesh => MAX_MESH,
+            Data::Mesh | Data::Scan => MAX_MESH,
         }
     }
 
@@ -64,6 +66,8 @@ pub fn read_capped(r: impl Read, kind: Data) -> Result<Vec<u8>, String> {
     let mut r = r.take(kind.cap() + 1);
     let mut bytes = Vec::new();
     if kind == Data::Mesh {
+        // A scan is not held to an STL's count: a PLY or XYZ text may start
+        // with anything a binary STL header could.
         (&mut r)
             .take(STL_HEAD as u64)
             .read_to_end(&mut bytes)

@@ -22,6 +22,7 @@ pub mod load;
 pub mod machine;
 pub mod mesh;
 pub mod positioner;
+pub mod scan;
 pub mod segmented_ring;
 pub mod shape;
 pub mod slicing;

@@ -97,6 +97,21 @@ pub struct TopExtrusion {
     pub shape_span: Span,
     /// The `top = …` field.
     pub top_span: Span,
+    /// `on = scan(…)`: the measured surface the layers start on, if any
+    /// (then `top` is the finished surface's height above z = 0, not
+    /// above the base).
+    pub base: Option<ScanBase>,
+}
+
+/// A scan a repair is built on (`on = scan(…)`).
+#[derive(Clone, Debug)]
+pub struct ScanBase {
+    /// The file, as written.
+    pub path: String,
+    /// Its surface seen from above, placed.
+    pub surface: std::sync::Arc<crate::geometry::scan::HeightField>,
+    /// Where `scan(…)` is written.
+    pub span: Span,
 }
 
 /// `slicing variable { layers, scan, offset, segments { tolerance, min_length } }`.

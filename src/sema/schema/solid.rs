@@ -195,6 +195,13 @@ pub mod extrude {
         Optional,
         "the finished part's height at every point, an expression of `x` and `y`",
     );
+    /// `on = …`.
+    pub static ON: Field = Field::new(
+        "on",
+        Call(&[&SCAN]),
+        Optional,
+        "the measured part the layers are built on, `scan(file = …)`; `top` is then the finished surface's height above the part's z = 0 (docs/repair.md)",
+    );
 }
 
 /// `extrude NAME { … }`: a profile built up in layers.
@@ -208,6 +215,7 @@ pub static EXTRUDE: Block = Block::new(
         &extrude::SIZE,
         &extrude::BEAD,
         &extrude::TOP,
+        &extrude::ON,
     ],
 );
 
@@ -251,6 +259,70 @@ pub static MESH: Block = Block::new(
     "mesh(file, units, turn, at)",
     "a solid given as an STL or 3MF mesh, sliced in flat layers (its height is the extrusion's unless `height` or `layers` is written)",
     &[&mesh::FILE, &mesh::UNITS, &mesh::TURN, &mesh::AT],
+)
+.positional(1);
+
+/// The arguments of `scan(…)`.
+pub mod scan {
+    use super::*;
+
+    /// `scan(file = "…")`.
+    pub static FILE: Field = Field::new(
+        "file",
+        Text,
+        Required("\"worn.ply\""),
+        "the scan: PLY (points or faces), XYZ/CSV text (a point a line), STL or 3MF, a path relative to the .lmd file",
+    );
+    /// `scan(units = …)`.
+    pub static UNITS: Field = Field::new(
+        "units",
+        Word(crate::geometry::mesh::UNITS),
+        Default(DefaultWord("mm")),
+        "what one unit of the scan's coordinates is",
+    );
+    /// `scan(turn = [rx, ry, rz])`.
+    pub static TURN: Field = Field::new(
+        "turn",
+        List(&Quantity(Dim::ANGLE, Any), Len::Exactly(3)),
+        Default(Described("`[0 deg, 0 deg, 0 deg]`")),
+        "turns about the x, then the y, then the z axis (right-handed), after scaling and before moving",
+    );
+    /// `scan(at = [x, y, z])`.
+    pub static AT: Field = Field::new(
+        "at",
+        List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3)),
+        Default(Described("`[0 mm, 0 mm, 0 mm]`")),
+        "where the scan's origin goes in the part's coordinates, after turning",
+    );
+    /// `scan(cell = …)`.
+    pub static CELL: Field = Field::new(
+        "cell",
+        Quantity(Dim::LENGTH, Positive),
+        Default(DefaultQuantity(1.0)),
+        "the side of the grid's cells the surface is estimated on (a plane fitted through each cell's points)",
+    );
+    /// `scan(outlier = …)`.
+    pub static OUTLIER: Field = Field::new(
+        "outlier",
+        Quantity(Dim::LENGTH, Positive),
+        Default(DefaultQuantity(0.5)),
+        "how far a cell may stand out of its neighbours' median before it is taken for a spike and replaced by it",
+    );
+}
+
+/// `scan(file, units, turn, at, cell, outlier)`: a measured part's surface.
+pub static SCAN: Block = Block::new(
+    "scan",
+    "scan(file, units, turn, at, cell, outlier)",
+    "a measured part's surface seen from above, the base a repair is built on",
+    &[
+        &scan::FILE,
+        &scan::UNITS,
+        &scan::TURN,
+        &scan::AT,
+        &scan::CELL,
+        &scan::OUTLIER,
+    ],
 )
 .positional(1);
 

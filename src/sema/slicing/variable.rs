@@ -180,6 +180,7 @@ pub fn assemble(
             profile_span: w.profile_span,
             shape_span,
             top_span,
+            base: w.base,
         },
         slicing,
     ))

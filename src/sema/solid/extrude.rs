@@ -59,6 +59,8 @@ pub struct Written<'a> {
     height: Option<(Length, Span)>,
     /// `top = …` and where, if written (then there is no `height`).
     pub(in crate::sema) top: Option<(Top, Span)>,
+    /// `on = scan(…)`, if written (only with `top`).
+    pub(in crate::sema) base: Option<crate::sema::model::ScanBase>,
     pub(in crate::sema) measure: Measure,
     pub(in crate::sema) span: Span,
     pub(in crate::sema) profile_span: Span,
@@ -113,6 +115,10 @@ pub fn read<'a>(
         diags.push(message::solid::height_and_top(hs, ts));
     }
     let height = height.filter(|_| !(f.has(&extrude::HEIGHT) && f.has(&extrude::TOP)));
+    let base = on(&f, data.as_ref(), diags);
+    if let (Some(on), None) = (f.span(&extrude::ON), f.span(&extrude::TOP)) {
+        diags.push(message::scan::needs_top(on));
+    }
     let measure = crate::sema::solid::loft::measure(&f, &extrude::SIZE, diags);
     let bead = crate::sema::process::bead::named(
         f.value(&extrude::BEAD, diags),
@@ -122,12 +128,13 @@ pub fn read<'a>(
         scope.declared,
         diags,
     );
-    let written = match (source, height, top, measure) {
-        (Some(source), Some(height), Some(top), Some(measure)) => Some(Written {
+    let written = match (source, height, top, measure, base) {
+        (Some(source), Some(height), Some(top), Some(measure), Some(base)) => Some(Written {
             name: name.to_string(),
             source,
             height,
             top,
+            base,
             measure,
             span,
             profile_span,
@@ -135,6 +142,22 @@ pub fn read<'a>(
         _ => None,
     };
     (written, bead)
+}
+
+/// `on = scan(…)`: `Some(None)` when not written, `None` when written
+/// wrong (reported).
+fn on(
+    f: &Fields<'_>,
+    data: Option<&crate::sema::DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<Option<crate::sema::model::ScanBase>> {
+    let Some(v) = f.value(&extrude::ON, diags) else {
+        return (!f.has(&extrude::ON)).then_some(None);
+    };
+    match &v.value {
+        Value::Call(c) => crate::sema::solid::scan::read(c, v.span, data, diags).map(Some),
+        _ => None,
+    }
 }
 
 /// Reads `top = e` over the footprint `source` (tried at a point of it).

@@ -94,7 +94,7 @@ fn is_3mf(path: &str, bytes: &[u8]) -> bool {
 
 /// A list of three quantities of `dim` (zeros when not written), and where
 /// it is written.
-fn triple(
+pub(in crate::sema) fn triple(
     f: &Fields<'_>,
     field: &crate::sema::schema::Field,
     dim: Dim,

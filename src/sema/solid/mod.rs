@@ -5,6 +5,7 @@ pub mod extrude;
 pub mod loft;
 pub mod mesh;
 pub mod profile;
+pub mod scan;
 pub mod section;
 pub mod segmented_ring;
 pub mod top;

@@ -10,7 +10,7 @@
 
 use super::count_input;
 use super::footprint::{spaced, Footprint, Sampled};
-use super::surface::Surface;
+use super::surface::{Form, Surface};
 use crate::diag::message::{
     self,
     top::{CountBead, CountOutside, Decimal, TopFix},
@@ -339,9 +339,9 @@ fn sugar_fix(
     let plane = |v: f64| {
         let mut tried = ex.clone();
         tried.top = param.set(&ex.top, v)?;
-        match Surface::new(&tried, |axis| probe.fp.written_extent(axis)) {
-            Surface::Plane { h0, slope } => Some((h0, slope)),
-            Surface::Expr(_) => None,
+        match Surface::new(&tried, |axis| probe.fp.written_extent(axis)).form {
+            Form::Plane { h0, slope } if ex.base.is_none() => Some((h0, slope)),
+            _ => None,
         }
     };
     let ((h0, s0), (h1, s1)) = (plane(0.0)?, plane(1.0)?);

@@ -1,5 +1,6 @@
 //! The IR layers of a variable-top solid. Layer `i` (from 0) of `N` is laid
-//! on the planned top of layer `i − 1`: its points sit at `z = i·H/N` and
+//! on the planned top of layer `i − 1`: its points sit at `z = B + i·H/N`
+//! (`B` the scanned surface a repair starts on, else 0) and
 //! each lays `H/N` there (`layer_height`), so the layers' heights add up to
 //! the top at every point. Speeds come from the bead map: each segment's
 //! height `H_seg/N` gives the *horizontal* speed, and the nozzle, climbing
@@ -9,27 +10,38 @@
 //! layer to the next and one track to the next; the laser is on along each.
 
 use super::tracks::Track;
+use crate::geometry::scan::HeightField;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
-use crate::sema::model::{Axis, Bead, Model};
+use crate::sema::model::{Axis, Bead, Model, TopExtrusion};
 use crate::slice::variable::speed::{path_speed, HeightMap};
 use crate::units::{Length, Speed};
 use std::num::NonZeroU32;
 
-/// The process values every point shares.
-pub struct Process {
+/// The process values every point shares, and the surface the first
+/// layer lies on.
+pub struct Process<'m> {
     powder: f32,
     defocus: f32,
     speeds: [f64; 2],
+    base: Option<&'m HeightField>,
 }
 
-impl Process {
-    /// The model's process block and bead speed range.
-    pub fn of(model: &Model, bead: &Bead) -> Self {
+impl<'m> Process<'m> {
+    /// The model's process block and bead speed range, and `ex`'s scan.
+    pub fn of(model: &Model, bead: &Bead, ex: &'m TopExtrusion) -> Self {
         Process {
             powder: model.process.powder.g_min() as f32,
             defocus: model.process.defocus.0 as f32,
             speeds: [bead.speed[0].0, bead.speed[1].0],
+            base: ex.base.as_ref().map(|b| &*b.surface),
         }
+    }
+
+    /// The height the first layer lies on at `(x, y)`: the scan's, or the
+    /// plate's 0. The tracks' points are where the scan has a surface (the
+    /// count checked every one).
+    fn base(&self, x: f64, y: f64) -> f64 {
+        self.base.and_then(|b| b.at([x, y])).unwrap_or(0.0)
     }
 }
 
@@ -37,7 +49,7 @@ impl Process {
 pub fn layer(
     model: &Model,
     maps: &[impl HeightMap],
-    process: &Process,
+    process: &Process<'_>,
     tracks: &[Track],
     scan: Axis,
     i: u32,
@@ -82,7 +94,7 @@ pub fn layer(
 fn track(
     tr: &Track,
     map: &impl HeightMap,
-    process: &Process,
+    process: &Process<'_>,
     scan: Axis,
     i: u32,
     n: f64,
@@ -95,7 +107,7 @@ fn track(
             .zip(&tr.h)
             .map(|(&t, &h)| {
                 let [x, y] = super::footprint::Footprint::point(scan, t, tr.c);
-                [x, y, frac * h]
+                [x, y, process.base(x, y) + frac * h]
             })
             .collect();
     let speeds = segment_speeds(tr, &pos, map, process.speeds, n);

@@ -203,7 +203,7 @@ fn finish(
         )
         .into());
     }
-    let process = emit::Process::of(model, bead);
+    let process = emit::Process::of(model, bead, ex);
     // Each track's speeds raise the layer by its height over the strip it
     // fills.
     let maps = p

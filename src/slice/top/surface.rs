@@ -3,14 +3,29 @@
 //! checker's evaluator. A point where the top is not a positive length is
 //! reported with the point, and with the inner error when there is one (a
 //! division by zero there).
+//!
+//! On a scan (`on = scan(…)`, docs/repair.md) the layers stack the
+//! thickness between the scanned surface `B(x, y)` and the top: [`Surface::at`]
+//! gives `H − B` (the slicer's emitter adds `B` back to place the layers). A
+//! point the scan does not cover, or where the top is not above it, is
+//! reported as such (`lmd::scan-coverage`).
 
 use crate::diag::message::{self, top::BadTop, top::TopAt};
 use crate::diag::Diagnostics;
+use crate::geometry::scan::HeightField;
 use crate::sema::model::{Axis, Top, TopExtrusion};
 use crate::sema::TopHeights;
 
-/// The top, ready to evaluate.
-pub enum Surface<'m> {
+/// The top, ready to evaluate, over its base.
+pub struct Surface<'m> {
+    /// The top's form.
+    pub form: Form<'m>,
+    /// The scanned surface under it, if the part is built on a scan.
+    base: Option<&'m HeightField>,
+}
+
+/// How the top is written.
+pub enum Form<'m> {
     /// `h0 + sx·x + sy·y`.
     Plane {
         /// Height at the origin, mm.
@@ -26,8 +41,34 @@ impl<'m> Surface<'m> {
     /// The top of `ex` over a footprint whose written extent along an axis
     /// is `extent(axis)` (the extreme edges `edges(…)` refers to).
     pub fn new(ex: &'m TopExtrusion, extent: impl Fn(Axis) -> [f64; 2]) -> Self {
+        Surface {
+            form: Form::new(ex, extent),
+            base: ex.base.as_ref().map(|b| &*b.surface),
+        }
+    }
+
+    /// The thickness to lay at `p` (the top over the plate, or over the
+    /// scan): a positive, finite height, or why not.
+    pub fn at(&mut self, p: [f64; 2]) -> Result<f64, Bad> {
+        let h = self.form.at(p)?;
+        let Some(base) = self.base else {
+            return Ok(h);
+        };
+        let Some(b) = base.at(p) else {
+            return Err(Bad::new(p, Why::Uncovered));
+        };
+        if h - b > 0.0 && (h - b).is_finite() {
+            Ok(h - b)
+        } else {
+            Err(Bad::new(p, Why::Below { top: h, surface: b }))
+        }
+    }
+}
+
+impl<'m> Form<'m> {
+    fn new(ex: &'m TopExtrusion, extent: impl Fn(Axis) -> [f64; 2]) -> Self {
         match &ex.top {
-            Top::Plane { at, height, slope } => Surface::Plane {
+            Top::Plane { at, height, slope } => Form::Plane {
                 h0: height.0 - slope[0] * at[0].0 - slope[1] * at[1].0,
                 slope: *slope,
             },
@@ -42,20 +83,20 @@ impl<'m> Surface<'m> {
                     Axis::X => [k, 0.0],
                     Axis::Y => [0.0, k],
                 };
-                Surface::Plane {
+                Form::Plane {
                     h0: from.0 - k * lo,
                     slope,
                 }
             }
-            Top::Expr(e) => Surface::Expr(e.evaluator()),
+            Top::Expr(e) => Form::Expr(e.evaluator()),
         }
     }
 
     /// The top at `p`: a positive, finite height, or why not.
-    pub fn at(&mut self, p: [f64; 2]) -> Result<f64, Bad> {
+    fn at(&mut self, p: [f64; 2]) -> Result<f64, Bad> {
         let (h, inner) = match self {
-            Surface::Plane { h0, slope } => (Some(*h0 + slope[0] * p[0] + slope[1] * p[1]), None),
-            Surface::Expr(e) => {
+            Form::Plane { h0, slope } => (Some(*h0 + slope[0] * p[0] + slope[1] * p[1]), None),
+            Form::Expr(e) => {
                 let mut d = Diagnostics::new();
                 let h = e.at(p[0], p[1], &mut d).map(|l| l.0);
                 (h.filter(|_| !d.has_errors()), Some(d))
@@ -63,30 +104,85 @@ impl<'m> Surface<'m> {
         };
         match h {
             Some(h) if h.is_finite() && h > 0.0 => Ok(h),
-            _ => Err(Bad {
-                at: p,
-                value: h,
-                inner: inner.unwrap_or_default(),
-            }),
+            _ => Err(Bad::new(
+                p,
+                Why::Top {
+                    value: h,
+                    inner: inner.unwrap_or_default(),
+                },
+            )),
         }
     }
 }
 
-/// A point of the footprint where the top is not a positive height.
+/// A point of the footprint where there is no positive height to lay.
 #[derive(Debug)]
 pub struct Bad {
     /// Where, mm.
     pub at: [f64; 2],
-    /// The value there, if it could be computed.
-    pub value: Option<f64>,
-    /// Why it could not be, if not.
-    pub inner: Diagnostics,
+    /// Why.
+    pub why: Why,
+}
+
+/// Why a point has no height to lay.
+#[derive(Debug)]
+pub enum Why {
+    /// The top is not a positive length there.
+    Top {
+        /// The value there, if it could be computed.
+        value: Option<f64>,
+        /// Why it could not be, if not.
+        inner: Diagnostics,
+    },
+    /// The scan has no point there.
+    Uncovered,
+    /// The top is not above the scanned surface there.
+    Below {
+        /// The top, mm.
+        top: f64,
+        /// The scanned surface, mm.
+        surface: f64,
+    },
 }
 
 impl Bad {
+    fn new(at: [f64; 2], why: Why) -> Self {
+        Bad { at, why }
+    }
+
     /// The diagnostics of the first bad point, `more` other points counted.
     pub fn report(self, ex: &TopExtrusion, more: usize) -> Diagnostics {
-        let bad = match self.value {
+        let mut out = Diagnostics::new();
+        let (value, inner) = match self.why {
+            Why::Top { value, inner } => (value, inner),
+            Why::Uncovered => {
+                if let Some(b) = &ex.base {
+                    let extent = b.surface.extent();
+                    out.push(message::scan::uncovered(
+                        self.at,
+                        more,
+                        extent,
+                        ex.shape_span,
+                        b.span,
+                    ));
+                }
+                return out;
+            }
+            Why::Below { top, surface } => {
+                if let Some(b) = &ex.base {
+                    out.push(message::scan::top_below(
+                        self.at,
+                        top,
+                        surface,
+                        more,
+                        ex.top_span,
+                        b.span,
+                    ));
+                }
+                return out;
+            }
+        };
+        let bad = match value {
             Some(h) if h.is_finite() => BadTop::NotPositive(h),
             Some(_) => BadTop::NotFinite,
             None => BadTop::Failed,
@@ -95,15 +191,14 @@ impl Bad {
             top: ex.top_span,
             shape: ex.shape_span,
         };
-        let mut out = Diagnostics::new();
         out.push(message::top::bad_top(
             self.at,
             more,
             bad,
-            self.inner.has_errors(),
+            inner.has_errors(),
             at,
         ));
-        out.extend(self.inner);
+        out.extend(inner);
         out
     }
 }

@@ -1,0 +1,167 @@
+//! A measured part to build on: a scan as points or a triangle mesh (PLY,
+//! ASCII XYZ/CSV, STL, 3MF), placed in the part's coordinates, and the
+//! surface seen from above as a height field on a square grid
+//! ([`HeightField`]), the base a repair's first layer lies on
+//! (docs/repair.md).
+//!
+//! The readers return [`Raw`]: the file's vertices in its own units and its
+//! faces as triangles of vertex indices. [`HeightField::new`] places them
+//! and estimates the surface robustly (the median of each cell's points,
+//! then cells that stand out from their neighbours by more than a declared
+//! height replaced by the neighbours' median).
+
+mod grid;
+pub mod ply;
+pub mod xyz;
+
+pub use grid::{Estimate, GridFault, HeightField, Stats, MAX_CELLS};
+
+/// Most vertices (points) a scan may have: 12 bytes each once read and 16
+/// while the grid sorts them; a line scanner's pass over a 300 mm part at
+/// 0.1 mm is a few million.
+pub const MAX_POINTS: usize = 10_000_000;
+
+/// Most triangles a scan's faces may have (as for a mesh solid).
+pub const MAX_FACES: usize = crate::geometry::mesh::stl::MAX_TRIANGLES;
+
+/// A scan as read: vertices in the file's units, and triangles (faces of
+/// more corners fanned into triangles) as indices into them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Raw {
+    /// The points, in the file's units, in its order.
+    pub vertices: Vec<[f32; 3]>,
+    /// Triangles of three vertex indices; empty for a point cloud.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl Raw {
+    /// A scan given as an STL's or 3MF's triangles (corners as written).
+    pub fn from_triangles(tris: &[crate::geometry::mesh::stl::Triangle]) -> Raw {
+        let mut vertices = Vec::with_capacity(tris.len() * 3);
+        let mut triangles = Vec::with_capacity(tris.len());
+        for t in tris {
+            let i = vertices.len() as u32;
+            vertices.extend_from_slice(t);
+            triangles.push([i, i + 1, i + 2]);
+        }
+        Raw {
+            vertices,
+            triangles,
+        }
+    }
+}
+
+/// Why a scan file cannot be read.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ScanError {
+    /// A PLY whose header or body the reader refused (its words).
+    Ply(String),
+    /// A PLY with no `vertex` element, or one without `x`, `y` and `z`.
+    NoVertices,
+    /// A face naming a vertex the file does not have.
+    BadIndex {
+        /// The face, from 0.
+        face: usize,
+        /// The index it names.
+        index: i64,
+    },
+    /// A line of an XYZ/CSV file that is not three numbers or more.
+    Line {
+        /// The line, from 1.
+        line: usize,
+        /// What it holds (shortened).
+        text: String,
+    },
+    /// A coordinate that is no finite number.
+    NotFinite {
+        /// The vertex, from 0.
+        vertex: usize,
+    },
+    /// More points or faces than lmdc reads.
+    TooMany {
+        /// "points" or "faces".
+        what: &'static str,
+        /// How many the file says or has.
+        count: u64,
+        /// The most lmdc reads.
+        max: usize,
+    },
+    /// No point at all.
+    Empty,
+}
+
+impl std::fmt::Display for ScanError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ScanError::Ply(why) => write!(f, "it is no PLY file lmdc can read: {why}"),
+            ScanError::NoVertices => write!(
+                f,
+                "it has no `vertex` element with `x`, `y` and `z` properties"
+            ),
+            ScanError::BadIndex { face, index } => write!(
+                f,
+                "face {face} names vertex {index}, which the file does not have"
+            ),
+            ScanError::Line { line, text } => write!(
+                f,
+                "line {line} (`{text}`) is not three numbers x, y, z (separated by spaces, commas or semicolons)"
+            ),
+            ScanError::NotFinite { vertex } => {
+                write!(f, "point {vertex} has a coordinate that is no finite number")
+            }
+            ScanError::TooMany { what, count, max } => {
+                write!(f, "it has {count} {what}, more than the {max} lmdc reads")
+            }
+            ScanError::Empty => write!(f, "it has no point"),
+        }
+    }
+}
+
+/// The formats a scan may be in, by the file's name (or its first bytes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Stanford PLY, ASCII or binary.
+    Ply,
+    /// STL, binary or ASCII.
+    Stl,
+    /// A 3MF package.
+    ThreeMf,
+    /// Text: a point a line, `x y z` or `x,y,z` (more columns ignored).
+    Xyz,
+}
+
+impl Format {
+    /// The format of `path` with contents `bytes`: the magic words first
+    /// (`ply`, a ZIP's `PK`, an STL's `solid` or binary length), then the
+    /// extension; anything else is read as XYZ text.
+    pub fn of(path: &str, bytes: &[u8]) -> Format {
+        let ext = path
+            .rsplit_once('.')
+            .map(|(_, e)| e.to_ascii_lowercase())
+            .unwrap_or_default();
+        if bytes.starts_with(b"ply") {
+            Format::Ply
+        } else if bytes.starts_with(b"PK") || ext == "3mf" {
+            Format::ThreeMf
+        } else if ext == "stl" {
+            Format::Stl
+        } else {
+            Format::Xyz
+        }
+    }
+}
+
+/// Checks every vertex is finite and there is one.
+pub(crate) fn check_points(raw: &Raw) -> Result<(), ScanError> {
+    if raw.vertices.is_empty() {
+        return Err(ScanError::Empty);
+    }
+    if let Some(v) = raw
+        .vertices
+        .iter()
+        .position(|p| p.iter().any(|c| !c.is_finite()))
+    {
+        return Err(ScanError::NotFinite { vertex: v });
+    }
+    Ok(())
+}

@@ -1,0 +1,308 @@
+//! Repair on scanned parts (`on = scan(…)`, docs/repair.md), through the
+//! whole pipeline: the example's first layer on its scan and its last at
+//! the top, its volume against the integral of top − surface, the scan's
+//! formats giving the same plan, and a property test over random worn
+//! surfaces generated here.
+
+use lmdc::ir::Program;
+use lmdc::pipeline::{compile_reading, Compiled};
+use proptest::prelude::*;
+use std::collections::BTreeMap;
+use std::rc::Rc;
+
+/// A worn face: flat at `face` mm, a trough `depth` deep at `(cx, cy)`,
+/// `sx` and `sy` wide (Gaussian).
+#[derive(Clone, Copy, Debug)]
+struct Wear {
+    face: f64,
+    depth: f64,
+    c: [f64; 2],
+    s: [f64; 2],
+}
+
+impl Wear {
+    fn z(&self, x: f64, y: f64) -> f64 {
+        let u = (x - self.c[0]) / self.s[0];
+        let v = (y - self.c[1]) / self.s[1];
+        self.face - self.depth * (-(u * u) - v * v).exp()
+    }
+}
+
+/// The example's wear (examples/repair/make_worn_pad.py).
+fn example_z(x: f64, y: f64) -> f64 {
+    10.0 - 1.5 * (-((x - 5.0) / 15.0).powi(2)).exp() * (1.0 - (y / 14.0).powi(2))
+}
+
+/// Points over x −33..33, y −13..13 every 0.5 mm, with a deterministic
+/// noise of about `noise` mm RMS (a sum of uniforms from a small LCG).
+fn scan(surface: impl Fn(f64, f64) -> f64, noise: f64, seed: u64) -> Vec<[f64; 3]> {
+    let mut state = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    let mut uniform = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let mut out = Vec::new();
+    for j in 0..53 {
+        for i in 0..133 {
+            let (x, y) = (-33.0 + 0.5 * i as f64, -13.0 + 0.5 * j as f64);
+            // Three uniforms: variance 3/12 = 1/4, so RMS noise/2 · 2.
+            let e = (uniform() + uniform() + uniform()) * 2.0 * noise;
+            out.push([x, y, surface(x, y) + e]);
+        }
+    }
+    out
+}
+
+/// A binary little-endian PLY of points.
+fn ply(points: &[[f64; 3]]) -> Vec<u8> {
+    let mut b = format!(
+        "ply\nformat binary_little_endian 1.0\nelement vertex {}\n\
+property float x\nproperty float y\nproperty float z\nend_header\n",
+        points.len()
+    )
+    .into_bytes();
+    for p in points {
+        for c in p {
+            b.extend((*c as f32).to_le_bytes());
+        }
+    }
+    b
+}
+
+/// The same points as XYZ text.
+fn xyz(points: &[[f64; 3]]) -> Vec<u8> {
+    points
+        .iter()
+        .map(|p| format!("{} {} {}\n", p[0] as f32, p[1] as f32, p[2] as f32))
+        .collect::<String>()
+        .into_bytes()
+}
+
+/// examples/worn_pad.lmd with its scan `file`, its `top` and footprint.
+fn source(file: &str, top: f64, width: f64, height: f64) -> String {
+    include_str!("../examples/worn_pad.lmd")
+        .replace("\"repair/worn_pad.ply\"", &format!("\"{file}\""))
+        .replace("top = 13 mm", &format!("top = {top} mm"))
+        .replace(
+            "rectangle(width = 60 mm, height = 20 mm)",
+            &format!("rectangle(width = {width} mm, height = {height} mm)"),
+        )
+}
+
+/// Compiles `src` with `files` beside it.
+fn compile(src: &str, files: BTreeMap<String, Vec<u8>>) -> Compiled {
+    let data: lmdc::sema::DataReader = Rc::new(move |p: &str, _| {
+        files
+            .get(p)
+            .cloned()
+            .ok_or_else(|| format!("no file `{p}`"))
+    });
+    compile_reading(src, None, &mut (), data).unwrap().0
+}
+
+fn messages(c: &Compiled) -> String {
+    c.diagnostics
+        .iter()
+        .map(|d| format!("{}: {}", d.code.as_str(), d.message))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The laser-on moves: (start, end, layer height, pitch) of each.
+fn moves(p: &Program) -> Vec<([f64; 3], [f64; 3], f64, f64)> {
+    let mut out = Vec::new();
+    for l in &p.layers {
+        for path in &l.paths {
+            for w in path.points.windows(2) {
+                if w[0].laser_on {
+                    out.push((
+                        w[0].pos,
+                        w[1].pos,
+                        f64::from(w[0].layer_height),
+                        f64::from(w[0].pitch),
+                    ));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// What an accepted plan on a scan of `z` to `top` over a `w × h` footprint
+/// must hold: the first layer on the surface within `tol`, the last one
+/// ending at the top within `tol`, nothing outside the footprint, and the
+/// volume the layers stack within 3 % of `∫(top − z)` over the tracks'
+/// strips, integrated here from the formula.
+fn check_plan(p: &Program, z: impl Fn(f64, f64) -> f64, top: f64, w: f64, h: f64, tol: f64) {
+    let first = &p.layers[0];
+    for pt in first.paths.iter().flat_map(|p| &p.points) {
+        let [x, y, pz] = pt.pos;
+        assert!(
+            (pz - z(x, y)).abs() <= tol,
+            "first layer at ({x}, {y}): {pz} vs {}",
+            z(x, y)
+        );
+    }
+    let last = p.layers.last().unwrap();
+    for pt in last.paths.iter().flat_map(|p| &p.points) {
+        let end = pt.pos[2] + f64::from(pt.layer_height);
+        assert!(
+            (end - top).abs() <= tol,
+            "last layer ends at {end}, not {top}"
+        );
+    }
+    let mv = moves(p);
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    let mut stacked = 0.0;
+    let mut half_pitch: f64 = 0.0;
+    for (a, b, lh, pitch) in &mv {
+        for q in [a, b] {
+            assert!(
+                q[0].abs() <= w / 2.0 + 1e-6 && q[1].abs() <= h / 2.0 + 1e-6,
+                "{q:?} outside"
+            );
+            for k in 0..2 {
+                lo[k] = lo[k].min(q[k]);
+                hi[k] = hi[k].max(q[k]);
+            }
+        }
+        let run = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+        stacked += lh * pitch * run;
+        half_pitch = half_pitch.max(pitch / 2.0);
+    }
+    // The strips: along the tracks (x) from end to end, across from the
+    // first track's outer edge to the last's.
+    let (y0, y1) = (lo[1] - half_pitch, hi[1] + half_pitch);
+    let (nx, ny) = (600, 200);
+    let (dx, dy) = ((hi[0] - lo[0]) / nx as f64, (y1 - y0) / ny as f64);
+    let mut integral = 0.0;
+    for i in 0..nx {
+        for j in 0..ny {
+            let (x, y) = (lo[0] + (i as f64 + 0.5) * dx, y0 + (j as f64 + 0.5) * dy);
+            integral += (top - z(x, y)) * dx * dy;
+        }
+    }
+    let ratio = stacked / integral;
+    assert!(
+        (ratio - 1.0).abs() < 0.03,
+        "stacked {stacked} mm³ vs ∫ {integral} mm³ ({ratio})"
+    );
+}
+
+#[test]
+fn the_worn_pad_is_levelled_from_its_scan_to_its_top() {
+    let bytes = std::fs::read("examples/repair/worn_pad.ply").unwrap();
+    let files = BTreeMap::from([("repair/worn_pad.ply".to_string(), bytes)]);
+    let src = include_str!("../examples/worn_pad.lmd");
+    let c = compile(src, files);
+    let m = messages(&c);
+    let p = c.program.unwrap_or_else(|| panic!("{m}"));
+    let p = p.ir();
+    // 3 .. 4.5 mm deep over the tracks with beads of 0.6455 .. 1.28 mm:
+    // ⌈4.5/1.28⌉ = 4 ≤ N ≤ ⌊3/0.6455⌋ = 4.
+    assert_eq!(p.layers.len(), 4);
+    // The scan's noise is 0.03 mm RMS: the fitted surface is within 0.06.
+    check_plan(p, example_z, 13.0, 60.0, 20.0, 0.06);
+}
+
+#[test]
+fn ply_and_xyz_text_give_the_same_plan() {
+    let wear = Wear {
+        face: 10.0,
+        depth: 1.2,
+        c: [0.0, 0.0],
+        s: [12.0, 8.0],
+    };
+    let pts = scan(|x, y| wear.z(x, y), 0.0, 1);
+    let plan = |name: &str, bytes: Vec<u8>| {
+        let c = compile(
+            &source(name, 13.0, 60.0, 20.0),
+            BTreeMap::from([(name.to_string(), bytes)]),
+        );
+        let m = messages(&c);
+        serde_json::to_string(c.program.unwrap_or_else(|| panic!("{m}")).ir()).unwrap()
+    };
+    assert!(plan("s.ply", ply(&pts)) == plan("s.xyz", xyz(&pts)));
+}
+
+#[test]
+fn a_scan_that_misses_part_of_the_footprint_is_refused_with_where() {
+    let wear = Wear {
+        face: 10.0,
+        depth: 1.0,
+        c: [0.0, 0.0],
+        s: [10.0, 10.0],
+    };
+    let mut pts = scan(|x, y| wear.z(x, y), 0.0, 1);
+    // A shadow of the scanner's: nothing over x 10..14 mm, y 0..5 mm.
+    pts.retain(|p| !(p[0] > 10.0 && p[0] < 14.0 && p[1] > 0.0 && p[1] < 5.0));
+    let c = compile(
+        &source("s.ply", 13.0, 60.0, 20.0),
+        BTreeMap::from([("s.ply".to_string(), ply(&pts))]),
+    );
+    let m = messages(&c);
+    assert!(c.program.is_none(), "{m}");
+    assert!(
+        m.contains("lmd::scan-coverage: the scan has no point under ("),
+        "{m}"
+    );
+    // The place named lies in the shadow.
+    let at = m.split("under (").nth(1).unwrap();
+    let xy: Vec<f64> = at
+        .split(')')
+        .next()
+        .unwrap()
+        .split(", ")
+        .map(|s| s.parse().unwrap())
+        .collect();
+    assert!(
+        xy[0] > 9.0 && xy[0] < 15.0 && xy[1] > -1.0 && xy[1] < 6.0,
+        "{xy:?}"
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Random worn faces: every plan lmdc accepts starts on the surface
+    /// (within the scan's noise and the grid's fit), ends at the top, lays
+    /// nothing outside the footprint and stacks ∫(top − surface) within
+    /// 3 %; the ones it refuses are refused for the layer count or the
+    /// bead's rise (never a panic, never a plan off the surface).
+    #[test]
+    fn plans_on_random_worn_faces_start_on_the_scan_and_end_at_the_top(
+        depth in 0.2f64..2.5,
+        cx in -20.0f64..20.0,
+        cy in -6.0f64..6.0,
+        sx in 8.0f64..30.0,
+        sy in 6.0f64..15.0,
+        build_up in 1.0f64..5.0,
+        noise in 0.0f64..0.04,
+        seed in 0u64..1000,
+    ) {
+        let wear = Wear { face: 10.0, depth, c: [cx, cy], s: [sx, sy] };
+        let top = 10.0 + build_up;
+        let pts = scan(|x, y| wear.z(x, y), noise, seed);
+        let c = compile(
+            &source("s.ply", top, 60.0, 20.0),
+            BTreeMap::from([("s.ply".to_string(), ply(&pts))]),
+        );
+        let m = messages(&c);
+        match c.program {
+            Some(p) => check_plan(p.ir(), |x, y| wear.z(x, y), top, 60.0, 20.0, 0.05 + 3.0 * noise),
+            // A trough too sharp for the layers' constant-speed
+            // segments is refused by the deposit rule (seed 003's limit,
+            // not the scan's).
+            None => prop_assert!(
+                m.contains("lmd::no-layer-count")
+                    || m.contains("lmd::layer-height")
+                    || m.contains("lmd::deposit"),
+                "refused for another reason:\n{m}"
+            ),
+        }
+    }
+}
