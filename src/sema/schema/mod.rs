@@ -555,6 +555,7 @@ pub static BLOCKS: &[&Block] = &[
     &solid::ARC,
     &solid::EXTRUDE,
     &solid::MESH,
+    &solid::SCAN,
     &solid::EDGES,
     &solid::PLANE,
     &shape::CIRCLE,
