@@ -598,7 +598,12 @@ fn fixture_lumps(f: &Fixture, i: usize, m: &mut Material) {
     let group = u32::MAX - 1 - i as u32;
     let mut put = |at: [f64; 3], r: f64| m.add(Lump { at, r, group }, [0.0, 0.0, 1.0]);
     let [x0, y0, z0] = f.at;
-    match f.shape {
+    match &f.shape {
+        FixtureShape::Mesh { samples, .. } => {
+            for s in samples.0.iter() {
+                put([x0 + s[0], y0 + s[1], z0 + s[2]], s[3]);
+            }
+        }
         FixtureShape::Box { size } => {
             let half = [size[0] / 2.0, size[1] / 2.0, size[2]];
             let lo = [x0 - half[0], y0 - half[1], z0];
@@ -623,6 +628,7 @@ fn fixture_lumps(f: &Fixture, i: usize, m: &mut Material) {
         }
         FixtureShape::Cylinder { diameter, length } => {
             let rad = diameter / 2.0;
+            let (diameter, length) = (*diameter, *length);
             let around = steps(std::f64::consts::PI * diameter).max(8);
             let up = steps(length);
             let radial = steps(rad);

@@ -129,7 +129,7 @@ pub fn not_a_solid(key: &str, at: Span, got: &str) -> Diagnostic {
 pub fn not_a_shape(at: Span, got: &str) -> Diagnostic {
     Diagnostic::error(
         Code::Type,
-        "a fixture's `shape` is `box(size = [x, y, z])` or an upright `cylinder(length = …, diameter = …)`",
+        "a fixture's `shape` is `box(size = [x, y, z])`, an upright `cylinder(length = …, diameter = …)` or `mesh(file = \"…\")`",
     )
     .label(at, format!("this is {got}"))
     .help("e.g. `shape = box(size = [40 mm, 20 mm, 30 mm])`, standing on its bottom face at `at`")
@@ -157,6 +157,44 @@ pub fn bad_size(at: Span, mm: f64, max: f64) -> Diagnostic {
     )
     .label(at, "here")
     .help("write the fixture's real size, in its units")
+}
+
+/// A fixture's `mesh(at = …)`: the fixture's own `at` places it.
+pub fn mesh_fixture_at(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Mesh,
+        "a fixture's mesh is placed by the fixture's `at` (where the file's origin goes), not by `mesh(at = …)`",
+    )
+    .label(at, "here")
+    .help("move this `at` out of `mesh(…)` into the fixture's block: `fixture NAME { shape = mesh(file = \"…\")  at = [x, y, z] }`")
+}
+
+/// A fixture's mesh `path` with `n` triangles, more than `max`.
+pub fn mesh_fixture_too_big(path: &str, n: usize, max: usize, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!(
+            "the fixture's mesh `{path}` has {n} triangles, more than the {max} a fixture's mesh may have"
+        ),
+    )
+    .label(at, "this mesh")
+    .help("export the fixture more coarsely or decimate it (MeshLab's quadric edge collapse, Blender's Decimate): the check samples its faces every 2 mm and needs no finer triangles")
+}
+
+/// A fixture's mesh `path` whose box is `size` (mm, as read), past `max`.
+pub fn mesh_fixture_size(path: &str, size: [f64; 3], max: f64, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Mesh,
+        format!(
+            "the fixture's mesh `{path}` is {} × {} × {} mm as read: a fixture lmdc checks is at most {} m along each side",
+            short(size[0]),
+            short(size[1]),
+            short(size[2]),
+            short(max / 1000.0)
+        ),
+    )
+    .label(at, "this mesh")
+    .help("check its `units` (an STL does not say its own: `units = mm` unless written)")
 }
 
 /// A second fixture named `name`.
