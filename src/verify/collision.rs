@@ -14,6 +14,8 @@
 //! than every 0.5 mm where it comes close. A bead laid after the check
 //! shortens the certified distance by its own.
 
+mod moved;
+
 use super::approach::Approach;
 use super::rule::{MachineCx, PlanRule};
 use crate::collision::head::{add, cross, dist, dot, scale, sub, HeadShape, Pose};
@@ -102,6 +104,12 @@ pub(super) struct Collision<'p> {
     /// [`Collision::slot`]: the distance, the move, how far along it, the
     /// focus.
     closest: Vec<Option<Nearest>>,
+    /// Which fixtures a pose came within the gap of.
+    fixture_hit: Vec<bool>,
+    /// The box round every focus of the plan, seen from above (least and
+    /// greatest X and Y), and the least `|up_z|` of its beams: how far the
+    /// head reaches sideways ([`Collision::moved`]).
+    extent: ([f64; 2], [f64; 2], f64),
 }
 
 /// A closest approach: the distance, the move, how far along it, the focus.
@@ -143,6 +151,8 @@ impl<'p> PlanRule<'p> for Collision<'p> {
             worst: [None, None, None],
             raise: [Some(0.0); 3],
             closest: vec![None; common.head.bodies.len() * (cx.program.fixtures.len() + 2)],
+            fixture_hit: vec![false; cx.program.fixtures.len()],
+            extent: ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2], 1.0),
         })
     }
 
@@ -163,6 +173,10 @@ impl<'p> PlanRule<'p> for Collision<'p> {
                 Obstacle::Fixture(i) => self.program.origins.fixtures.get(i).copied(),
                 _ => None,
             };
+            let moved = match w.at.what {
+                Obstacle::Fixture(i) => self.moved(cx, i),
+                _ => None,
+            };
             out.push(says::collision(&says::Hit {
                 machine: cx.machine.name(),
                 body: &self.head.names[w.at.body],
@@ -171,6 +185,7 @@ impl<'p> PlanRule<'p> for Collision<'p> {
                 standoff: raise.map(|r| self.standoff + r),
                 declared,
                 placed,
+                moved,
             }));
         }
     }
@@ -198,6 +213,12 @@ impl Visit for Collision<'_> {
             focus: m.to,
             up: self.up(m.normal),
         };
+        let (lo, hi, up_z) = &mut self.extent;
+        for k in 0..2 {
+            lo[k] = lo[k].min(m.to[k]);
+            hi[k] = hi[k].max(m.to[k]);
+        }
+        *up_z = up_z.min(pose.up[2].abs());
         match self.last.filter(|_| !m.kind.ptp()) {
             Some(from) => self.sweep(from, pose, m.at),
             None => self.check(&pose, (m.at, 1.0)),
@@ -414,7 +435,10 @@ impl Collision<'_> {
 
     fn hit(&mut self, d: f64, body: usize, lump: Lump, (pose, at): (&Pose, Where)) {
         let what = self.obstacle(&lump);
-        let slot = if matches!(what, Obstacle::Fixture(_)) {
+        let slot = if let Obstacle::Fixture(i) = what {
+            if let Some(h) = self.fixture_hit.get_mut(i) {
+                *h = true;
+            }
             1
         } else {
             2

@@ -36,6 +36,20 @@ pub struct Hit<'a, At> {
     pub declared: Option<Span>,
     /// Where the fixture it meets is placed (its `at`, else its name).
     pub placed: Option<Span>,
+    /// Where that fixture keeps the gap, checked by making the plan again
+    /// with it there.
+    pub moved: Option<Moved>,
+}
+
+/// A fixture moved along X or Y.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Moved {
+    /// The direction, as printed (`−x`).
+    pub axis: &'static str,
+    /// How far, mm.
+    pub by: f64,
+    /// Its `at` there, mm.
+    pub at: [f64; 3],
 }
 
 /// A body of the head closer than its gap to something.
@@ -48,15 +62,23 @@ pub fn collision<At: Display>(h: &Hit<'_, At>) -> Diagnostic {
     };
     let who = format!("the {} of machine `{}`", h.body, h.machine);
     let message = too_close(&who, &what, w, false);
-    let fix = match (h.with, h.standoff) {
-        (With::Fixture(name), _) => format!(
+    let fix = match (h.with, h.standoff, &h.moved) {
+        (With::Fixture(name), _, Some(m)) => format!(
+            "move fixture `{name}` {} mm in {} (`at = [{} mm, {} mm, {} mm]`): the plan made again with it there, its travels over it included, keeps the gap at every pose; or lower it, or build the part where the head passes farther from it",
+            short(m.by),
+            m.axis,
+            short(m.at[0]),
+            short(m.at[1]),
+            short(m.at[2])
+        ),
+        (With::Fixture(name), _, None) => format!(
             "move fixture `{name}` clear of the head's way (or lower it), or build the part where the head passes farther from it"
         ),
-        (_, Some(s)) => format!(
+        (_, Some(s), _) => format!(
             "a `standoff` of {} mm (the nozzle's tip that far from the focus) keeps the gap at every such pose; or tilt the nozzle less there, or bring the focus nearer the surface (a smaller defocus below it) by as much",
             short_up(s)
         ),
-        (_, None) => "the head passes beside what it comes near: tilt the nozzle less there, turn the part (a positioner's `keep`, the layers' `nozzle`), or build it in another order".to_string(),
+        (_, None, _) => "the head passes beside what it comes near: tilt the nozzle less there, turn the part (a positioner's `keep`, the layers' `nozzle`), or build it in another order".to_string(),
     };
     let d = Diagnostic::error(Code::Collision, message).help(format!(
         "{fix}; `head {{ … }}` says what the machine carries (docs/collision.md)"
