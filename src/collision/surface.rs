@@ -29,6 +29,11 @@ pub const STEP_MM: f64 = 2.0;
 /// docs).
 pub const MAX_SAMPLES: usize = 1_000_000;
 
+/// Most triangles a fixture's mesh may have: a clamp's, exported finely,
+/// not a scan's (its samples are bounded anyway; this bounds the reading
+/// and the time to sample).
+pub const MAX_TRIANGLES: usize = 2_000_000;
+
 /// A triangle's corners, mm.
 pub type Triangle = [[f64; 3]; 3];
 

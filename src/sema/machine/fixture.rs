@@ -96,11 +96,6 @@ fn shape(
     None
 }
 
-/// Most triangles a fixture's mesh may have: a clamp's, exported finely,
-/// not a scan's (its samples are bounded anyway, docs/collision.md; this
-/// bounds the reading).
-pub const MAX_TRIANGLES: usize = 2_000_000;
-
 /// `mesh(file, units, turn)`: the file's triangles scaled to mm and
 /// turned, about the fixture's origin (its `at` moves it), sampled for the
 /// collision checks ([`crate::collision::surface`]). The surface need not
@@ -121,11 +116,11 @@ fn mesh(
     let turn = mesh_reader::triple(&f, &solid::mesh::TURN, Dim::ANGLE, diags);
     let ((path, file_at), units, turn) = (file?, units?, turn?);
     let (tris, scale, file_unit) = mesh_reader::load(&f, (&path, file_at), data, diags)?;
-    if tris.len() > MAX_TRIANGLES {
+    if tris.len() > crate::collision::surface::MAX_TRIANGLES {
         diags.push(message::collision::mesh_fixture_too_big(
             &path,
             tris.len(),
-            MAX_TRIANGLES,
+            crate::collision::surface::MAX_TRIANGLES,
             file_at,
         ));
         return None;
