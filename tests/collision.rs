@@ -153,6 +153,61 @@ fn fixture_moved(name: &str, want: (f64, &str)) {
     );
 }
 
+/// A mesh fixture's box, turned, is what the IR gives and what a CNC's
+/// default safe height clears: the clamp laid on its side (a quarter turn
+/// about x, its origin raised 5 mm to stand it on the plate) is 10 mm
+/// tall, stood up 30 mm; its JSON names the file, not its samples.
+#[test]
+fn a_mesh_fixtures_turned_box_is_in_the_ir_and_under_the_safe_height() {
+    let src = case("mesh_fixture");
+    for (turn, z, top) in [("", 0, 30.0), (", turn = [90 deg, 0 deg, 0 deg]", 5, 10.0)] {
+        let src = src
+            .replace("units = mm)", &format!("units = mm{turn})"))
+            .replace(
+                "at = [20 mm, 0 mm, 0 mm]",
+                &format!("at = [40 mm, 0 mm, {z} mm]"),
+            );
+        let c = compile_beside("mesh_fixture", &src);
+        let v = c.program.unwrap_or_else(|| panic!("{:#?}", c.diagnostics));
+        let ir = v.ir();
+        let f = &ir.fixtures[0];
+        let (lo, hi) = f.bounds();
+        assert!(
+            (hi[2] - top).abs() < 1e-9 && lo[2].abs() < 1e-9,
+            "{lo:?} {hi:?}"
+        );
+        assert!(
+            (lo[0] - 35.0).abs() < 1e-9 && (hi[0] - 45.0).abs() < 1e-9,
+            "{lo:?} {hi:?}"
+        );
+        let lmdc::ir::FixtureShape::Mesh { tolerance, .. } = &f.shape else {
+            panic!("{:?}", f.shape)
+        };
+        assert!(
+            *tolerance > 0.0 && *tolerance <= 4.0 / 3.0 + 1e-9,
+            "{tolerance}"
+        );
+        let json = serde_json::to_value(f).unwrap();
+        assert_eq!(json["shape"]["shape"], "mesh");
+        assert_eq!(json["shape"]["file"], "clamp.stl");
+        assert!(json["shape"].get("samples").is_none(), "{json}");
+        let m = ir.machines.iter().find(|m| m.name() == "mill").unwrap();
+        let clearance = m.common().clearance;
+        let part_top = ir
+            .layers
+            .iter()
+            .flat_map(|l| &l.paths)
+            .flat_map(|p| &p.points)
+            .map(|p| p.focus()[2])
+            .fold(f64::NEG_INFINITY, f64::max);
+        let safe = lmdc::plan::safe_height(ir, None, clearance);
+        assert!(
+            (safe - (top.max(part_top) + clearance)).abs() < 1e-9,
+            "{safe} for a top of {top}"
+        );
+    }
+}
+
 /// A fixture's mesh of more triangles than a fixture may have is refused
 /// by its count, before it is sampled.
 #[test]

@@ -147,7 +147,7 @@ fn mesh(
         }
     }
     let size = [0, 1, 2].map(|k| max[k] - min[k]);
-    if size.iter().any(|s| !(*s <= MAX_SIZE_MM)) {
+    if size.iter().any(|s| s.is_nan() || *s > MAX_SIZE_MM) {
         diags.push(message::collision::mesh_fixture_size(
             &path,
             size,

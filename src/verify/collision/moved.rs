@@ -41,7 +41,7 @@ impl Collision<'_> {
             .sum();
         let dirs = (BUDGET / (points.max(1) * PROBES)).min(DIRECTIONS.len());
         let (lo, hi, up_z) = self.extent;
-        if dirs == 0 || !(lo[0] <= hi[0]) {
+        if dirs == 0 || lo[0].is_nan() || lo[0] > hi[0] {
             return None;
         }
         let tolerance = match &f.shape {
