@@ -110,6 +110,8 @@ pub(super) struct Collision<'p> {
     /// greatest X and Y), and the least `|up_z|` of its beams: how far the
     /// head reaches sideways ([`Collision::moved`]).
     extent: ([f64; 2], [f64; 2], f64),
+    /// The one fixture checked, in a probe ([`Collision::against`]).
+    only: Option<usize>,
 }
 
 /// A closest approach: the distance, the move, how far along it, the focus.
@@ -117,43 +119,7 @@ type Nearest = (f64, Where, f64, [f64; 3]);
 
 impl<'p> PlanRule<'p> for Collision<'p> {
     fn new(cx: &MachineCx<'p>) -> Option<Self> {
-        let common = cx.machine.common();
-        let vertical = match cx.machine {
-            Machine::Cnc(c) => effective_kinematics(c) == Kinematics::Xyz,
-            Machine::Robot(_) => false,
-        };
-        let mut material = Material::default();
-        for (i, f) in cx.program.fixtures.iter().enumerate() {
-            fixture_lumps(f, i, &mut material);
-        }
-        let width = cx
-            .program
-            .bead
-            .as_ref()
-            .map_or(DEFAULT_WIDTH_MM, |b| b.width);
-        Some(Collision {
-            program: cx.program,
-            head: HeadShape::of(&common.head),
-            standoff: common.head.standoff,
-            vertical,
-            tilted: false,
-            material,
-            cert: None,
-            low: 0.0,
-            lows: None,
-            support: None,
-            last: None,
-            layer: 0,
-            runs: Vec::new(),
-            indexed: false,
-            bounded: None,
-            width,
-            worst: [None, None, None],
-            raise: [Some(0.0); 3],
-            closest: vec![None; common.head.bodies.len() * (cx.program.fixtures.len() + 2)],
-            fixture_hit: vec![false; cx.program.fixtures.len()],
-            extent: ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2], 1.0),
-        })
+        Self::against(cx, None)
     }
 
     fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
@@ -188,6 +154,54 @@ impl<'p> PlanRule<'p> for Collision<'p> {
                 moved,
             }));
         }
+    }
+}
+
+impl<'p> Collision<'p> {
+    /// The rule for `cx`'s machine; with `only`, against that fixture alone
+    /// (no other fixture, no part laid): what a probe of where to move it
+    /// asks ([`moved`]), which another obstacle nearer the head would hide.
+    fn against(cx: &MachineCx<'p>, only: Option<usize>) -> Option<Self> {
+        let common = cx.machine.common();
+        let vertical = match cx.machine {
+            Machine::Cnc(c) => effective_kinematics(c) == Kinematics::Xyz,
+            Machine::Robot(_) => false,
+        };
+        let mut material = Material::default();
+        for (i, f) in cx.program.fixtures.iter().enumerate() {
+            if only.is_none_or(|o| o == i) {
+                fixture_lumps(f, i, &mut material);
+            }
+        }
+        let width = cx
+            .program
+            .bead
+            .as_ref()
+            .map_or(DEFAULT_WIDTH_MM, |b| b.width);
+        Some(Collision {
+            program: cx.program,
+            head: HeadShape::of(&common.head),
+            standoff: common.head.standoff,
+            vertical,
+            tilted: false,
+            material,
+            cert: None,
+            low: 0.0,
+            lows: None,
+            support: None,
+            last: None,
+            layer: 0,
+            runs: Vec::new(),
+            indexed: false,
+            bounded: None,
+            width,
+            worst: [None, None, None],
+            raise: [Some(0.0); 3],
+            closest: vec![None; common.head.bodies.len() * (cx.program.fixtures.len() + 2)],
+            fixture_hit: vec![false; cx.program.fixtures.len()],
+            extent: ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2], 1.0),
+            only,
+        })
     }
 }
 
@@ -228,7 +242,7 @@ impl Visit for Collision<'_> {
         let (plate, body) = self.head.lowest(&pose, [0.0, 0.0, 1.0]);
         self.near(body, Obstacle::Plate, plate, (m.at, 1.0, pose.focus));
         self.last = Some(pose);
-        if m.deposits() {
+        if m.deposits() && self.only.is_none() {
             self.lay(m);
         }
     }

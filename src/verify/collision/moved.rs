@@ -3,7 +3,7 @@
 //! now stands, so the plan changes with it — and checking the head along
 //! it (docs/collision.md, *What is said*).
 
-use super::super::rule::{MachineCx, PlanRule};
+use super::super::rule::MachineCx;
 use super::Collision;
 use crate::diag::message::collision::Moved;
 use crate::ir::FixtureShape;
@@ -136,7 +136,7 @@ fn probe(cx: &MachineCx<'_>, i: usize, at: [f64; 3]) -> bool {
         machine,
         origin: cx.origin,
     };
-    let Some(mut rule) = Collision::new(&moved) else {
+    let Some(mut rule) = Collision::against(&moved, Some(i)) else {
         return false;
     };
     Plan::new(&program, machine).walk(&mut rule);
