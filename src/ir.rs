@@ -870,9 +870,15 @@ impl Fixture {
     /// The box round it, mm: its least and greatest X, Y and Z.
     pub fn bounds(&self) -> ([f64; 3], [f64; 3]) {
         let [x, y, z] = self.at;
-        let (half, height) = match self.shape {
+        let (half, height) = match &self.shape {
             FixtureShape::Box { size } => ([size[0] / 2.0, size[1] / 2.0], size[2]),
-            FixtureShape::Cylinder { diameter, length } => ([diameter / 2.0; 2], length),
+            FixtureShape::Cylinder { diameter, length } => ([diameter / 2.0; 2], *length),
+            FixtureShape::Mesh { min, max, .. } => {
+                return (
+                    [x + min[0], y + min[1], z + min[2]],
+                    [x + max[0], y + max[1], z + max[2]],
+                )
+            }
         };
         (
             [x - half[0], y - half[1], z],
@@ -881,8 +887,9 @@ impl Fixture {
     }
 }
 
-/// A fixture's shape, standing on its bottom face.
-#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+/// A fixture's shape: a box or a cylinder standing on its bottom face, or
+/// a mesh placed by its own origin.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(tag = "shape", rename_all = "snake_case")]
 pub enum FixtureShape {
@@ -898,6 +905,45 @@ pub enum FixtureShape {
         /// Its height, mm.
         length: f64,
     },
+    /// A triangle mesh from a file (`mesh(file = …)`), its own origin at
+    /// the fixture's `at`: scaled to mm and turned as declared. Its
+    /// triangles are not in the IR (a file may hold millions): the file,
+    /// its units and turn say how to read it again, the box where it is.
+    Mesh {
+        /// The file as the source names it.
+        file: String,
+        /// What one unit of its coordinates is (`mm`, `cm`, `m`, `in`).
+        units: String,
+        /// Its turns about x, then y, then z, degrees.
+        turn: [f64; 3],
+        /// The least corner of the box round it, from `at`, mm.
+        min: [f64; 3],
+        /// The greatest corner of the box round it, from `at`, mm.
+        max: [f64; 3],
+        /// How far at most a point of its surface lies from the sample the
+        /// collision checks stand it for, mm (docs/collision.md).
+        tolerance: f64,
+        /// Its surface as samples from `at`, `[x, y, z, radius]` in mm
+        /// ([`crate::collision::surface`]): beside the IR, not in it.
+        #[serde(skip)]
+        samples: MeshSamples,
+    },
+}
+
+/// A mesh fixture's samples, shared (a program and its copies hold one).
+#[derive(Clone, Default)]
+pub struct MeshSamples(pub std::sync::Arc<Vec<[f64; 4]>>);
+
+impl PartialEq for MeshSamples {
+    fn eq(&self, other: &Self) -> bool {
+        std::sync::Arc::ptr_eq(&self.0, &other.0) || self.0 == other.0
+    }
+}
+
+impl std::fmt::Debug for MeshSamples {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} samples", self.0.len())
+    }
 }
 
 /// How a machine's program starts and stops a bead, where the nozzle speeds

@@ -593,6 +593,17 @@ machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45
     // reaches over it.
     collision: Collision, PLATE,
         "fixture clamp { shape = box(size = [10 mm, 10 mm, 30 mm])  at = [20 mm, 0 mm, 0 mm] }";
+    // A fixture's mesh file that is not there, one placed inside
+    // `mesh(…)`, one read in metres (a 30 m clamp), one with no triangle
+    // (tests/codes/*.stl).
+    fixture_mesh_missing: Mesh, PLATE,
+        "fixture clamp { shape = mesh(file = \"no_such.stl\")  at = [20 mm, 0 mm, 0 mm] }";
+    fixture_mesh_at: Mesh, PLATE,
+        "fixture clamp { shape = mesh(file = \"clamp.stl\", at = [20 mm, 0 mm, 0 mm]) }";
+    fixture_mesh_size: Mesh, PLATE,
+        "fixture clamp { shape = mesh(file = \"clamp.stl\", units = m)  at = [20 mm, 0 mm, 0 mm] }";
+    fixture_mesh_empty: Mesh, PLATE,
+        "fixture clamp { shape = mesh(file = \"empty.stl\")  at = [20 mm, 0 mm, 0 mm] }";
     head_unchecked: HeadUnchecked, PLATE,
         "machine mill { kind = cnc  axes = 3  max_speed = 50 mm/s }";
     // A cone leaning 30° with the nozzle along its wall: every layer winds

@@ -84,20 +84,152 @@ fn a_body_running_into_the_layer_it_builds_is_refused_without_a_standoff() {
 }
 
 #[test]
-fn a_fixture_in_the_heads_way_is_refused_and_moved_away_builds() {
-    let src = case("head_fixture");
-    let c = compile(&src, &mut ());
-    let msgs: Vec<&str> = c
+fn a_fixture_in_the_heads_way_is_refused_and_moved_where_the_help_says_builds() {
+    fixture_moved("head_fixture", (9.1, "+x"));
+}
+
+/// The mesh of the same clamp (a 10 × 10 × 30 mm box drawn as 12
+/// triangles, its origin the centre of its bottom face) in the same place:
+/// refused the same way (its faces sampled otherwise than the box's, so
+/// the move differs by a few tenths), and moved as its help says, builds.
+#[test]
+fn a_mesh_fixture_in_the_heads_way_is_refused_and_moved_where_the_help_says_builds() {
+    fixture_moved("mesh_fixture", (8.7, "+x"));
+}
+
+/// Compiles `src` with the files of the case `name` beside it.
+fn compile_beside(name: &str, src: &str) -> lmdc::pipeline::Compiled {
+    let dir = std::path::PathBuf::from(format!("tests/cases/errors/collision/{name}"));
+    let data: lmdc::sema::DataReader = std::rc::Rc::new(move |path: &str, _| {
+        std::fs::read(dir.join(path)).map_err(|e| e.to_string())
+    });
+    lmdc::pipeline::compile_reading(src, None, &mut (), data)
+        .unwrap()
+        .0
+}
+
+/// The case `name` is refused for fixture `clamp` (at `[20 mm, 0, 0]`) on
+/// both machines, each help naming a move of `want` (mm, direction) at
+/// most; moved by the largest, it builds; a tenth of a millimetre less, it
+/// is refused (the help's search found that tenth refused).
+fn fixture_moved(name: &str, want: (f64, &str)) {
+    let src = case(name);
+    let at_line = "at = [20 mm, 0 mm, 0 mm]";
+    let c = compile_beside(name, &src);
+    assert!(c.program.is_none());
+    let helps: Vec<&str> = c
         .diagnostics
         .iter()
         .filter(|d| d.code == Code::Collision)
-        .map(|d| d.message.as_str())
+        .inspect(|d| assert!(d.message.contains("fixture `clamp`"), "{}", d.message))
+        .map(|d| d.help.as_deref().unwrap())
         .collect();
-    assert_eq!(msgs.len(), 2, "both machines: {msgs:?}");
-    assert!(msgs.iter().all(|m| m.contains("fixture `clamp`")));
-    let moved = src.replace("at = [20 mm, 0 mm, 0 mm]", "at = [60 mm, 0 mm, 0 mm]");
-    let c = compile(&moved, &mut ());
+    assert_eq!(helps.len(), 2, "both machines: {helps:?}");
+    let by = helps
+        .iter()
+        .map(|h| number_after(h, "move fixture `clamp` "))
+        .fold(0.0, f64::max);
+    assert!((by - want.0).abs() < 1e-9, "{helps:?}");
+    let at = |by: f64| {
+        let x = if want.1 == "+x" { 20.0 + by } else { 20.0 - by };
+        format!("at = [{} mm, 0 mm, 0 mm]", (x * 10.0f64).round() / 10.0)
+    };
+    for h in &helps {
+        let b = number_after(h, "move fixture `clamp` ");
+        assert!(
+            h.contains(&format!("mm in {} (`{}`)", want.1, at(b))),
+            "{h}"
+        );
+    }
+    let c = compile_beside(name, &src.replace(at_line, &at(by)));
     assert!(c.program.is_some(), "{:#?}", c.diagnostics);
+    let c = compile_beside(name, &src.replace(at_line, &at(by - 0.1)));
+    assert!(
+        c.diagnostics
+            .iter()
+            .any(|d| d.code == Code::Collision && d.message.contains("fixture `clamp`")),
+        "{:#?}",
+        c.diagnostics
+    );
+}
+
+/// A mesh fixture's box, turned, is what the IR gives and what a CNC's
+/// default safe height clears: the clamp laid on its side (a quarter turn
+/// about x, its origin raised 5 mm to stand it on the plate) is 10 mm
+/// tall, stood up 30 mm; its JSON names the file, not its samples.
+#[test]
+fn a_mesh_fixtures_turned_box_is_in_the_ir_and_under_the_safe_height() {
+    let src = case("mesh_fixture");
+    for (turn, z, top) in [("", 0, 30.0), (", turn = [90 deg, 0 deg, 0 deg]", 5, 10.0)] {
+        let src = src
+            .replace("units = mm)", &format!("units = mm{turn})"))
+            .replace(
+                "at = [20 mm, 0 mm, 0 mm]",
+                &format!("at = [40 mm, 0 mm, {z} mm]"),
+            );
+        let c = compile_beside("mesh_fixture", &src);
+        let v = c.program.unwrap_or_else(|| panic!("{:#?}", c.diagnostics));
+        let ir = v.ir();
+        let f = &ir.fixtures[0];
+        let (lo, hi) = f.bounds();
+        assert!(
+            (hi[2] - top).abs() < 1e-9 && lo[2].abs() < 1e-9,
+            "{lo:?} {hi:?}"
+        );
+        assert!(
+            (lo[0] - 35.0).abs() < 1e-9 && (hi[0] - 45.0).abs() < 1e-9,
+            "{lo:?} {hi:?}"
+        );
+        let lmdc::ir::FixtureShape::Mesh { tolerance, .. } = &f.shape else {
+            panic!("{:?}", f.shape)
+        };
+        assert!(
+            *tolerance > 0.0 && *tolerance <= 4.0 / 3.0 + 1e-9,
+            "{tolerance}"
+        );
+        let json = serde_json::to_value(f).unwrap();
+        assert_eq!(json["shape"]["shape"], "mesh");
+        assert_eq!(json["shape"]["file"], "clamp.stl");
+        assert!(json["shape"].get("samples").is_none(), "{json}");
+        let m = ir.machines.iter().find(|m| m.name() == "mill").unwrap();
+        let clearance = m.common().clearance;
+        let part_top = ir
+            .layers
+            .iter()
+            .flat_map(|l| &l.paths)
+            .flat_map(|p| &p.points)
+            .map(|p| p.focus()[2])
+            .fold(f64::NEG_INFINITY, f64::max);
+        let safe = lmdc::plan::safe_height(ir, None, clearance);
+        assert!(
+            (safe - (top.max(part_top) + clearance)).abs() < 1e-9,
+            "{safe} for a top of {top}"
+        );
+    }
+}
+
+/// A fixture's mesh of more triangles than a fixture may have is refused
+/// by its count, before it is sampled.
+#[test]
+fn a_fixture_mesh_past_its_triangles_is_refused() {
+    let n = lmdc::collision::surface::MAX_TRIANGLES + 1;
+    let tri: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let stl = lmdc::geometry::mesh::stl::to_binary(&vec![tri; n]);
+    let data: lmdc::sema::DataReader = std::rc::Rc::new(move |_: &str, _| Ok(stl.clone()));
+    let src = case("mesh_fixture");
+    let c = lmdc::pipeline::compile_reading(&src, None, &mut (), data)
+        .unwrap()
+        .0;
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == Code::TooManyPoints)
+        .expect("refused by its count");
+    assert!(
+        d.message.contains(&format!("has {n} triangles")),
+        "{}",
+        d.message
+    );
 }
 
 #[test]

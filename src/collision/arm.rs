@@ -58,10 +58,11 @@ pub enum Solid {
 }
 
 impl Solid {
-    /// A fixture's solid, in the part's coordinates.
+    /// A fixture's solid, in the part's coordinates: a mesh's is the box
+    /// round it (never nearer the link than the mesh is).
     pub fn of(f: &Fixture) -> Solid {
         match f.shape {
-            FixtureShape::Box { .. } => {
+            FixtureShape::Box { .. } | FixtureShape::Mesh { .. } => {
                 let (lo, hi) = f.bounds();
                 Solid::Box { lo, hi }
             }

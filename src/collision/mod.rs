@@ -6,3 +6,4 @@ pub mod arm;
 pub mod capsule;
 pub mod head;
 pub mod material;
+pub mod surface;

@@ -14,6 +14,8 @@
 //! than every 0.5 mm where it comes close. A bead laid after the check
 //! shortens the certified distance by its own.
 
+mod moved;
+
 use super::approach::Approach;
 use super::rule::{MachineCx, PlanRule};
 use crate::collision::head::{add, cross, dist, dot, scale, sub, HeadShape, Pose};
@@ -102,6 +104,14 @@ pub(super) struct Collision<'p> {
     /// [`Collision::slot`]: the distance, the move, how far along it, the
     /// focus.
     closest: Vec<Option<Nearest>>,
+    /// Which fixtures a pose came within the gap of.
+    fixture_hit: Vec<bool>,
+    /// The box round every focus of the plan, seen from above (least and
+    /// greatest X and Y), and the least `|up_z|` of its beams: how far the
+    /// head reaches sideways ([`Collision::moved`]).
+    extent: ([f64; 2], [f64; 2], f64),
+    /// The one fixture checked, in a probe ([`Collision::against`]).
+    only: Option<usize>,
 }
 
 /// A closest approach: the distance, the move, how far along it, the focus.
@@ -109,6 +119,49 @@ type Nearest = (f64, Where, f64, [f64; 3]);
 
 impl<'p> PlanRule<'p> for Collision<'p> {
     fn new(cx: &MachineCx<'p>) -> Option<Self> {
+        Self::against(cx, None)
+    }
+
+    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+        let declared = cx.origin.written(crate::ir::MachineField::Head);
+        for (w, raise) in self
+            .worst
+            .iter()
+            .zip(self.raise)
+            .filter_map(|(w, r)| Some((w.as_ref()?, r)))
+        {
+            let with = match w.at.what {
+                Obstacle::Plate => says::With::Plate,
+                Obstacle::Fixture(i) => says::With::Fixture(&self.program.fixtures[i].name),
+                Obstacle::Part(l) => says::With::Part(l + 1),
+            };
+            let placed = match w.at.what {
+                Obstacle::Fixture(i) => self.program.origins.fixtures.get(i).copied(),
+                _ => None,
+            };
+            let moved = match w.at.what {
+                Obstacle::Fixture(i) => self.moved(cx, i),
+                _ => None,
+            };
+            out.push(says::collision(&says::Hit {
+                machine: cx.machine.name(),
+                body: &self.head.names[w.at.body],
+                with,
+                worst: w,
+                standoff: raise.map(|r| self.standoff + r),
+                declared,
+                placed,
+                moved,
+            }));
+        }
+    }
+}
+
+impl<'p> Collision<'p> {
+    /// The rule for `cx`'s machine; with `only`, against that fixture alone
+    /// (no other fixture, no part laid): what a probe of where to move it
+    /// asks ([`moved`]), which another obstacle nearer the head would hide.
+    fn against(cx: &MachineCx<'p>, only: Option<usize>) -> Option<Self> {
         let common = cx.machine.common();
         let vertical = match cx.machine {
             Machine::Cnc(c) => effective_kinematics(c) == Kinematics::Xyz,
@@ -116,7 +169,9 @@ impl<'p> PlanRule<'p> for Collision<'p> {
         };
         let mut material = Material::default();
         for (i, f) in cx.program.fixtures.iter().enumerate() {
-            fixture_lumps(f, i, &mut material);
+            if only.is_none_or(|o| o == i) {
+                fixture_lumps(f, i, &mut material);
+            }
         }
         let width = cx
             .program
@@ -143,36 +198,10 @@ impl<'p> PlanRule<'p> for Collision<'p> {
             worst: [None, None, None],
             raise: [Some(0.0); 3],
             closest: vec![None; common.head.bodies.len() * (cx.program.fixtures.len() + 2)],
+            fixture_hit: vec![false; cx.program.fixtures.len()],
+            extent: ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2], 1.0),
+            only,
         })
-    }
-
-    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
-        let declared = cx.origin.written(crate::ir::MachineField::Head);
-        for (w, raise) in self
-            .worst
-            .iter()
-            .zip(self.raise)
-            .filter_map(|(w, r)| Some((w.as_ref()?, r)))
-        {
-            let with = match w.at.what {
-                Obstacle::Plate => says::With::Plate,
-                Obstacle::Fixture(i) => says::With::Fixture(&self.program.fixtures[i].name),
-                Obstacle::Part(l) => says::With::Part(l + 1),
-            };
-            let placed = match w.at.what {
-                Obstacle::Fixture(i) => self.program.origins.fixtures.get(i).copied(),
-                _ => None,
-            };
-            out.push(says::collision(&says::Hit {
-                machine: cx.machine.name(),
-                body: &self.head.names[w.at.body],
-                with,
-                worst: w,
-                standoff: raise.map(|r| self.standoff + r),
-                declared,
-                placed,
-            }));
-        }
     }
 }
 
@@ -198,6 +227,12 @@ impl Visit for Collision<'_> {
             focus: m.to,
             up: self.up(m.normal),
         };
+        let (lo, hi, up_z) = &mut self.extent;
+        for k in 0..2 {
+            lo[k] = lo[k].min(m.to[k]);
+            hi[k] = hi[k].max(m.to[k]);
+        }
+        *up_z = up_z.min(pose.up[2].abs());
         match self.last.filter(|_| !m.kind.ptp()) {
             Some(from) => self.sweep(from, pose, m.at),
             None => self.check(&pose, (m.at, 1.0)),
@@ -207,7 +242,7 @@ impl Visit for Collision<'_> {
         let (plate, body) = self.head.lowest(&pose, [0.0, 0.0, 1.0]);
         self.near(body, Obstacle::Plate, plate, (m.at, 1.0, pose.focus));
         self.last = Some(pose);
-        if m.deposits() {
+        if m.deposits() && self.only.is_none() {
             self.lay(m);
         }
     }
@@ -414,7 +449,10 @@ impl Collision<'_> {
 
     fn hit(&mut self, d: f64, body: usize, lump: Lump, (pose, at): (&Pose, Where)) {
         let what = self.obstacle(&lump);
-        let slot = if matches!(what, Obstacle::Fixture(_)) {
+        let slot = if let Obstacle::Fixture(i) = what {
+            if let Some(h) = self.fixture_hit.get_mut(i) {
+                *h = true;
+            }
             1
         } else {
             2
@@ -598,7 +636,12 @@ fn fixture_lumps(f: &Fixture, i: usize, m: &mut Material) {
     let group = u32::MAX - 1 - i as u32;
     let mut put = |at: [f64; 3], r: f64| m.add(Lump { at, r, group }, [0.0, 0.0, 1.0]);
     let [x0, y0, z0] = f.at;
-    match f.shape {
+    match &f.shape {
+        FixtureShape::Mesh { samples, .. } => {
+            for s in samples.0.iter() {
+                put([x0 + s[0], y0 + s[1], z0 + s[2]], s[3]);
+            }
+        }
         FixtureShape::Box { size } => {
             let half = [size[0] / 2.0, size[1] / 2.0, size[2]];
             let lo = [x0 - half[0], y0 - half[1], z0];
@@ -623,6 +666,7 @@ fn fixture_lumps(f: &Fixture, i: usize, m: &mut Material) {
         }
         FixtureShape::Cylinder { diameter, length } => {
             let rad = diameter / 2.0;
+            let (diameter, length) = (*diameter, *length);
             let around = steps(std::f64::consts::PI * diameter).max(8);
             let up = steps(length);
             let radial = steps(rad);

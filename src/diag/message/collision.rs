@@ -36,6 +36,20 @@ pub struct Hit<'a, At> {
     pub declared: Option<Span>,
     /// Where the fixture it meets is placed (its `at`, else its name).
     pub placed: Option<Span>,
+    /// Where that fixture keeps the gap, checked by making the plan again
+    /// with it there.
+    pub moved: Option<Moved>,
+}
+
+/// A fixture moved along X or Y.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Moved {
+    /// The direction, as printed (`−x`).
+    pub axis: &'static str,
+    /// How far, mm.
+    pub by: f64,
+    /// Its `at` there, mm.
+    pub at: [f64; 3],
 }
 
 /// A body of the head closer than its gap to something.
@@ -48,15 +62,23 @@ pub fn collision<At: Display>(h: &Hit<'_, At>) -> Diagnostic {
     };
     let who = format!("the {} of machine `{}`", h.body, h.machine);
     let message = too_close(&who, &what, w, false);
-    let fix = match (h.with, h.standoff) {
-        (With::Fixture(name), _) => format!(
+    let fix = match (h.with, h.standoff, &h.moved) {
+        (With::Fixture(name), _, Some(m)) => format!(
+            "move fixture `{name}` {} mm in {} (`at = [{} mm, {} mm, {} mm]`): the plan made again with it there, its travels over it included, keeps the gap at every pose; or lower it, or build the part where the head passes farther from it",
+            short(m.by),
+            m.axis,
+            short(m.at[0]),
+            short(m.at[1]),
+            short(m.at[2])
+        ),
+        (With::Fixture(name), _, None) => format!(
             "move fixture `{name}` clear of the head's way (or lower it), or build the part where the head passes farther from it"
         ),
-        (_, Some(s)) => format!(
+        (_, Some(s), _) => format!(
             "a `standoff` of {} mm (the nozzle's tip that far from the focus) keeps the gap at every such pose; or tilt the nozzle less there, or bring the focus nearer the surface (a smaller defocus below it) by as much",
             short_up(s)
         ),
-        (_, None) => "the head passes beside what it comes near: tilt the nozzle less there, turn the part (a positioner's `keep`, the layers' `nozzle`), or build it in another order".to_string(),
+        (_, None, _) => "the head passes beside what it comes near: tilt the nozzle less there, turn the part (a positioner's `keep`, the layers' `nozzle`), or build it in another order".to_string(),
     };
     let d = Diagnostic::error(Code::Collision, message).help(format!(
         "{fix}; `head {{ … }}` says what the machine carries (docs/collision.md)"
@@ -129,7 +151,7 @@ pub fn not_a_solid(key: &str, at: Span, got: &str) -> Diagnostic {
 pub fn not_a_shape(at: Span, got: &str) -> Diagnostic {
     Diagnostic::error(
         Code::Type,
-        "a fixture's `shape` is `box(size = [x, y, z])` or an upright `cylinder(length = …, diameter = …)`",
+        "a fixture's `shape` is `box(size = [x, y, z])`, an upright `cylinder(length = …, diameter = …)` or `mesh(file = \"…\")`",
     )
     .label(at, format!("this is {got}"))
     .help("e.g. `shape = box(size = [40 mm, 20 mm, 30 mm])`, standing on its bottom face at `at`")
@@ -157,6 +179,44 @@ pub fn bad_size(at: Span, mm: f64, max: f64) -> Diagnostic {
     )
     .label(at, "here")
     .help("write the fixture's real size, in its units")
+}
+
+/// A fixture's `mesh(at = …)`: the fixture's own `at` places it.
+pub fn mesh_fixture_at(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Mesh,
+        "a fixture's mesh is placed by the fixture's `at` (where the file's origin goes), not by `mesh(at = …)`",
+    )
+    .label(at, "here")
+    .help("move this `at` out of `mesh(…)` into the fixture's block: `fixture NAME { shape = mesh(file = \"…\")  at = [x, y, z] }`")
+}
+
+/// A fixture's mesh `path` with `n` triangles, more than `max`.
+pub fn mesh_fixture_too_big(path: &str, n: usize, max: usize, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooManyPoints,
+        format!(
+            "the fixture's mesh `{path}` has {n} triangles, more than the {max} a fixture's mesh may have"
+        ),
+    )
+    .label(at, "this mesh")
+    .help("export the fixture more coarsely or decimate it (MeshLab's quadric edge collapse, Blender's Decimate): the check samples its faces every 2 mm and needs no finer triangles")
+}
+
+/// A fixture's mesh `path` whose box is `size` (mm, as read), past `max`.
+pub fn mesh_fixture_size(path: &str, size: [f64; 3], max: f64, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Mesh,
+        format!(
+            "the fixture's mesh `{path}` is {} × {} × {} mm as read: a fixture lmdc checks is at most {} m along each side",
+            short(size[0]),
+            short(size[1]),
+            short(size[2]),
+            short(max / 1000.0)
+        ),
+    )
+    .label(at, "this mesh")
+    .help("check its `units` (an STL does not say its own: `units = mm` unless written)")
 }
 
 /// A second fixture named `name`.

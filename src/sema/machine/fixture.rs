@@ -1,12 +1,15 @@
 //! The `fixture NAME { shape = …  at = […] }` statements: the clamps and
 //! fixtures on the plate, in the part's coordinates, which every machine's
-//! head keeps its gap from (docs/collision.md).
+//! head keeps its gap from (docs/collision.md): a box, a cylinder, or a
+//! mesh read as the part's is.
 
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Fixture, FixtureShape};
 use crate::sema::eval::Env;
 use crate::sema::fields::{self, Fields};
 use crate::sema::schema::collision::{self as c, BOX, CYLINDER, FIXTURE, MAX_SIZE_MM};
+use crate::sema::schema::solid;
+use crate::sema::solid::mesh as mesh_reader;
 use crate::sema::statement::{shape_error, Statements};
 use crate::sema::value::Value;
 use crate::span::Span;
@@ -40,7 +43,7 @@ pub fn read<'a>(
             s.span,
             diags,
         );
-        let shape = shape(&f, diags);
+        let shape = shape(&f, env.data.as_ref(), diags);
         let placed = f.span(&c::AT).unwrap_or(n.span);
         let at = at(&f, diags);
         if let (Some(shape), Some(at)) = (shape, at) {
@@ -55,8 +58,12 @@ pub fn read<'a>(
     out
 }
 
-/// `shape = box(size = […]) | cylinder(length, diameter)`.
-fn shape(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<FixtureShape> {
+/// `shape = box(size = […]) | cylinder(length, diameter) | mesh(file, …)`.
+fn shape(
+    f: &Fields<'_>,
+    data: Option<&crate::sema::DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<FixtureShape> {
     let v = f.value(&c::SHAPE, diags)?;
     let Value::Call(call) = &v.value else {
         diags.push(message::collision::not_a_shape(v.span, &v.value.describe()));
@@ -82,8 +89,83 @@ fn shape(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<FixtureShape> {
             length: length?.0,
         });
     }
+    if call.func == solid::MESH.name {
+        return mesh(call, v.span, data, diags);
+    }
     diags.push(message::collision::not_a_shape(v.span, &v.value.describe()));
     None
+}
+
+/// `mesh(file, units, turn)`: the file's triangles scaled to mm and
+/// turned, about the fixture's origin (its `at` moves it), sampled for the
+/// collision checks ([`crate::collision::surface`]). The surface need not
+/// be closed: only its faces are kept clear of.
+fn mesh(
+    call: &crate::sema::value::Call,
+    at: Span,
+    data: Option<&crate::sema::DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<FixtureShape> {
+    let f = Fields::call(call, &solid::MESH, diags);
+    if let Some(place) = f.span(&solid::mesh::AT) {
+        diags.push(message::collision::mesh_fixture_at(place));
+        return None;
+    }
+    let file = f.text(&solid::mesh::FILE, diags);
+    let units = f.word_or_default(&solid::mesh::UNITS, diags);
+    let turn = mesh_reader::triple(&f, &solid::mesh::TURN, Dim::ANGLE, diags);
+    let ((path, file_at), units, turn) = (file?, units?, turn?);
+    let (tris, scale, file_unit) = mesh_reader::load(&f, (&path, file_at), data, diags)?;
+    if tris.len() > crate::collision::surface::MAX_TRIANGLES {
+        diags.push(message::collision::mesh_fixture_too_big(
+            &path,
+            tris.len(),
+            crate::collision::surface::MAX_TRIANGLES,
+            file_at,
+        ));
+        return None;
+    }
+    let [rx, ry, rz] = turn.0;
+    let rot = nalgebra::Rotation3::from_euler_angles(rx, ry, rz);
+    let placed: Vec<[[f64; 3]; 3]> = tris
+        .iter()
+        .map(|t| {
+            t.map(|c| {
+                let p = nalgebra::Vector3::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2]));
+                let q = rot * (p * scale);
+                [q.x, q.y, q.z]
+            })
+        })
+        .collect();
+    drop(tris);
+    let mut min = [f64::INFINITY; 3];
+    let mut max = [f64::NEG_INFINITY; 3];
+    for c in placed.iter().flatten() {
+        for k in 0..3 {
+            min[k] = min[k].min(c[k]);
+            max[k] = max[k].max(c[k]);
+        }
+    }
+    let size = [0, 1, 2].map(|k| max[k] - min[k]);
+    if size.iter().any(|s| s.is_nan() || *s > MAX_SIZE_MM) {
+        diags.push(message::collision::mesh_fixture_size(
+            &path,
+            size,
+            MAX_SIZE_MM,
+            at,
+        ));
+        return None;
+    }
+    let surface = crate::collision::surface::sample(&placed);
+    Some(FixtureShape::Mesh {
+        file: path,
+        units: file_unit.unwrap_or(units).to_string(),
+        turn: turn.0.map(f64::to_degrees),
+        min,
+        max,
+        tolerance: surface.tolerance,
+        samples: crate::ir::MeshSamples(std::sync::Arc::new(surface.samples)),
+    })
 }
 
 /// `at = [x, y, z]` (default the origin).

@@ -140,9 +140,9 @@ pub static FIXTURE: Block = Block::new(
 /// `shape = box(…) | cylinder(…)`.
 pub static SHAPE: Field = Field::new(
     "shape",
-    Call(&[&BOX, &CYLINDER]),
+    Call(&[&BOX, &CYLINDER, &super::solid::MESH]),
     Required("box(size = [40 mm, 20 mm, 30 mm])"),
-    "its shape: a box, or an upright cylinder",
+    "its shape: a box, an upright cylinder, or a mesh file (`mesh(file = \"clamp.stl\", units = mm, turn = [0 deg, 0 deg, 30 deg])`, its own origin at `at`)",
 );
 
 /// `at = [x, y, z]`.
@@ -150,5 +150,5 @@ pub static AT: Field = Field::new(
     "at",
     List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3)),
     Default(Described("`[0 mm, 0 mm, 0 mm]`")),
-    "the centre of its bottom face, in the part's coordinates",
+    "the centre of its bottom face (a mesh's: where its file's origin goes), in the part's coordinates",
 );

@@ -25,38 +25,8 @@ pub fn read(
     let units = f.word_or_default(&mesh::UNITS, diags);
     let turn = triple(&f, &mesh::TURN, Dim::ANGLE, diags);
     let place = triple(&f, &mesh::AT, Dim::LENGTH, diags);
-    let ((path, file_at), units, turn, place) = (file?, units?, turn?, place?);
-    let Some(read) = data else {
-        diags.push(message::mesh::no_reader(file_at));
-        return None;
-    };
-    let bytes = read(&path, Data::Mesh)
-        .and_then(|b| Data::Mesh.too_long(&b).map_or(Ok(b), Err))
-        .map_err(|why| diags.push(message::mesh::unreadable(&path, &why, file_at)))
-        .ok()?;
-    let scale = crate::units::mm_per(units);
-    let (tris, scale, file_unit) = if is_3mf(&path, &bytes) {
-        let m = three_mf::read(&bytes)
-            .map_err(|e| diags.push(message::mesh::not_3mf(&path, &e, file_at)))
-            .ok()?;
-        if let Some((w, w_at)) = f
-            .has(&mesh::UNITS)
-            .then(|| f.word(&mesh::UNITS, diags))
-            .flatten()
-        {
-            if scale != m.scale {
-                diags.push(message::mesh::units_disagree(&path, m.unit, w, w_at));
-                return None;
-            }
-        }
-        (m.triangles, m.scale, Some(m.unit))
-    } else {
-        let tris = stl::read(&bytes)
-            .map_err(|e| diags.push(message::mesh::not_stl(&path, &e, file_at)))
-            .ok()?;
-        (tris, scale, None)
-    };
-    drop(bytes);
+    let ((path, file_at), _, turn, place) = (file?, units?, turn?, place?);
+    let (tris, scale, file_unit) = load(&f, (&path, file_at), data, diags)?;
     let placement = Placement {
         scale,
         turn: turn.0,
@@ -86,6 +56,49 @@ pub fn read(
     })
 }
 
+/// The triangles of the mesh file `path` (named at `file_at`) that the call
+/// `f` reads — through `data`, an STL or a 3MF — with the mm per unit of
+/// its numbers and, for a 3MF, the unit it names: what the part's and a
+/// fixture's `mesh(…)` share.
+pub fn load(
+    f: &Fields<'_>,
+    (path, file_at): (&str, Span),
+    data: Option<&DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<(Vec<stl::Triangle>, f64, Option<&'static str>)> {
+    let units = f.word_or_default(&mesh::UNITS, diags)?;
+    let Some(read) = data else {
+        diags.push(message::mesh::no_reader(file_at));
+        return None;
+    };
+    let bytes = read(path, Data::Mesh)
+        .and_then(|b| Data::Mesh.too_long(&b).map_or(Ok(b), Err))
+        .map_err(|why| diags.push(message::mesh::unreadable(path, &why, file_at)))
+        .ok()?;
+    let scale = crate::units::mm_per(units);
+    if is_3mf(path, &bytes) {
+        let m = three_mf::read(&bytes)
+            .map_err(|e| diags.push(message::mesh::not_3mf(path, &e, file_at)))
+            .ok()?;
+        if let Some((w, w_at)) = f
+            .has(&mesh::UNITS)
+            .then(|| f.word(&mesh::UNITS, diags))
+            .flatten()
+        {
+            if scale != m.scale {
+                diags.push(message::mesh::units_disagree(path, m.unit, w, w_at));
+                return None;
+            }
+        }
+        Some((m.triangles, m.scale, Some(m.unit)))
+    } else {
+        let tris = stl::read(&bytes)
+            .map_err(|e| diags.push(message::mesh::not_stl(path, &e, file_at)))
+            .ok()?;
+        Some((tris, scale, None))
+    }
+}
+
 /// Whether the mesh file is a 3MF: named `….3mf`, or a ZIP package (a
 /// binary STL's 80-byte header could start so only by chance; ASCII never).
 fn is_3mf(path: &str, bytes: &[u8]) -> bool {
@@ -94,7 +107,7 @@ fn is_3mf(path: &str, bytes: &[u8]) -> bool {
 
 /// A list of three quantities of `dim` (zeros when not written), and where
 /// it is written.
-pub(in crate::sema) fn triple(
+pub fn triple(
     f: &Fields<'_>,
     field: &crate::sema::schema::Field,
     dim: Dim,
