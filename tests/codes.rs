@@ -382,6 +382,8 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
         "bead track { width = 2.2 mm  model = fit(linear, data = \"sheet_units.csv\") }";
     // The duct's square corners lean out a few degrees from the spine.
     overhang: Overhang, DUCT, "slicing normal { layers = auto  points = 8  max_overhang = 1 deg }";
+    // A sine of 1.2 has no angle.
+    domain: Domain, PLATE, "let A = asin(1.2)\nlet B = A";
     // A scan with a line of two numbers (tests/codes/two_columns.xyz).
     scan: Scan, WALL,
         "extrude wall { profile = rectangle(width = 30 mm, height = 2.4 mm)  size = outer  bead = b316  on = scan(\"two_columns.xyz\")  top = 12 mm }";

@@ -173,6 +173,8 @@ codes! {
         "arithmetic that divides by zero";
     BadExponent = "bad-exponent", Values,
         "a power whose exponent is not a plain number, or that has no real answer";
+    Domain = "domain", Values,
+        "a function's value outside its domain: `sqrt` of a negative value, `asin` or `acos` of a number outside -1 .. 1, `tan` of a right angle";
     Overflow = "overflow", Values,
         "arithmetic whose result is too large to represent";
     NotPositive = "not-positive", Values,

@@ -367,6 +367,10 @@ impl<'a> Env<'a> {
         }
         if matches!(func.node.as_str(), "min" | "max") && !self.lets.contains_key(&func.node) {
             min_max(&func.node, e.span, &out, diags)
+        } else if crate::sema::math::FUNCTIONS.contains(&func.node.as_str())
+            && !self.lets.contains_key(&func.node)
+        {
+            crate::sema::math::call(&func.node, e.span, &out, diags)
         } else {
             Some(Value::Call(Call {
                 func: func.node.clone(),

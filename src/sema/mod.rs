@@ -12,6 +12,7 @@ mod declare;
 pub mod eval;
 mod fields;
 mod machine;
+mod math;
 pub mod model;
 mod process;
 mod program_text;

@@ -201,6 +201,76 @@ pub fn min_max_not_number(func: &str, got: Got<'_>, at: Span) -> Diagnostic {
     .help(format!("e.g. `{func}(layer + 2, 10)`"))
 }
 
+/// A math function is given the wrong number of values, or named ones.
+pub fn math_arity(func: &str, n: usize, at: Span) -> Diagnostic {
+    let example = match func {
+        "sin" | "cos" | "tan" => "30 deg",
+        "asin" | "acos" => "0.5",
+        "abs" => "-3 mm",
+        _ => "2",
+    };
+    let (what, e) = if n == 2 {
+        (
+            "two values, without names",
+            "`atan2(3 mm, 4 mm)`".to_string(),
+        )
+    } else {
+        ("one value, without a name", format!("`{func}({example})`"))
+    };
+    Diagnostic::error(Code::Argument, format!("`{func}` takes {what}"))
+        .label(at, "here")
+        .help(format!("e.g. {e}"))
+}
+
+/// A math function is given something that is not a number.
+pub fn math_not_number(func: &str, got: Got<'_>, at: Span) -> Diagnostic {
+    Diagnostic::error(Code::ExpectedNumber, format!("`{func}` takes numbers"))
+        .label(at, format!("this is {}", got.describe()))
+}
+
+/// A math function is given a value of the wrong kind (`sin(30)`).
+pub fn math_unit(func: &str, want: Dim, got: Dim, at: Span) -> Diagnostic {
+    let help = if want == Dim::ANGLE {
+        format!("`{func}` takes an angle: write its unit, e.g. `{func}(30 deg)`")
+    } else {
+        format!("`{func}` takes a plain number, e.g. `{func}(0.5)` or a ratio `{func}(3 mm / 6 mm)`, and gives an angle")
+    };
+    Diagnostic::error(
+        Code::UnitMismatch,
+        format!("`{func}` takes {}, not {}", want.describe(), got.describe()),
+    )
+    .label(at, format!("this is {}", got.describe()))
+    .help(help)
+}
+
+/// `sqrt` of a value whose unit has an odd power (`sqrt(4 mm)`).
+pub fn math_sqrt_unit(got: Dim, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::UnitMismatch,
+        format!(
+            "`sqrt` of {} has no unit: its powers are not all even",
+            got.describe()
+        ),
+    )
+    .label(at, "this value")
+    .help("take the root of an area (`sqrt(9 mm^2)` is `3 mm`) or of a plain number")
+}
+
+/// A math function's value lies outside its domain (`asin(2)`).
+pub fn math_domain(func: &str, what: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Domain,
+        format!("`{func}` of {what} has no real value"),
+    )
+    .label(at, "this value")
+}
+
+/// `asin` or `acos` of `v`, outside −1 .. 1.
+pub fn math_outside_one(func: &str, v: f64, at: Span) -> Diagnostic {
+    math_domain(func, &format!("{} (outside -1 .. 1)", short(v)), at)
+        .help("a sine or cosine lies between -1 and 1: is it a ratio of the right lengths?")
+}
+
 /// `min` or `max` is given values of different dimensions.
 pub fn min_max_units_differ(func: &str, first: Dim, this: Dim, at: Span) -> Diagnostic {
     Diagnostic::error(
@@ -260,6 +330,6 @@ pub fn unknown_name(
 pub fn is_arithmetic_failure(d: &Diagnostic) -> bool {
     matches!(
         d.code,
-        Code::DivisionByZero | Code::Overflow | Code::BadExponent
+        Code::DivisionByZero | Code::Overflow | Code::BadExponent | Code::Domain
     )
 }
