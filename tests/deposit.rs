@@ -468,12 +468,14 @@ fn mean_error(p: &Program, i: usize) -> f64 {
 #[derive(Clone, Debug)]
 enum Part {
     /// A block `[x, y]` mm (a disc where `round`), `contours` round it, a
-    /// raster at `raster` deg or none.
+    /// raster at `raster` deg or none, its tracks linked with the laser on
+    /// (`Some(true)`), off (`Some(false)`) or not at all.
     Flat {
         size: [f64; 2],
         round: bool,
         contours: usize,
         raster: Option<f64>,
+        link: Option<bool>,
     },
     /// A cone from a base diameter to a top one over a height, mm.
     Cone { base: f64, top: f64, height: f64 },
@@ -496,14 +498,20 @@ fn random_part(part: &Part, w: f64, feed: f64, eff: f64, defocus: f64) -> String
             round,
             contours,
             raster,
+            link,
         } => {
             let profile = if *round {
                 format!("circle(diameter = {} mm)", size[0])
             } else {
                 format!("rectangle(width = {} mm, height = {} mm)", size[0], size[1])
             };
+            let link = match link {
+                Some(true) => ", pattern = serpentine, link = laser_on",
+                Some(false) => ", pattern = serpentine, link = laser_off",
+                None => "",
+            };
             let infill = raster.map_or(String::new(), |a| {
-                format!("infill = raster(angle = {a} deg, rotate = 90 deg)")
+                format!("infill = raster(angle = {a} deg, rotate = 90 deg{link})")
             });
             format!(
                 "part p\n{bead}\nextrude e {{ profile = {profile}  size = outer  bead = b }}\n\
@@ -527,12 +535,14 @@ fn parts() -> impl Strategy<Value = Part> {
             any::<bool>(),
             1..4usize,
             proptest::option::of(0.0..180.0f64),
+            proptest::option::of(any::<bool>()),
         )
-            .prop_map(|((x, y), round, contours, raster)| Part::Flat {
+            .prop_map(|((x, y), round, contours, raster, link)| Part::Flat {
                 size: [x.round(), y.round()],
                 round,
                 contours,
                 raster: raster.map(f64::round),
+                link,
             }),
         (50.0..90.0f64, 0.3..0.9f64, 15.0..40.0f64).prop_map(|(base, share, height)| {
             Part::Cone {
@@ -575,6 +585,12 @@ proptest! {
         let balance = matches!(p.bead.as_ref().unwrap().model, BeadModel::MassBalance { .. });
         prop_assert!(balance);
         let (tol, max_drift) = (p.limits.rise_tolerance, p.limits.max_drift);
+        let twin = src
+            .contains("link = laser_on")
+            .then(|| compile(&src.replace("link = laser_on", "link = laser_off"), &mut ()).program)
+            .flatten()
+            .map(|p| p.into_ir())
+            .filter(|t| t.layers.len() == p.layers.len());
         let mut drift = 0.0;
         for (i, (laid, stacked)) in layers(&p).into_iter().enumerate() {
             prop_assert!(stacked > 0.0, "layer {} stacks nothing", i + 1);
@@ -587,6 +603,82 @@ proptest! {
             );
             drift += mean_error(&p, i);
             prop_assert!(drift.abs() <= max_drift + 1e-3, "after layer {}: {} mm\n{}", i + 1, drift, src);
+            // No strip counted twice where a laser-on link turns (a link
+            // along the raster's ends did): the strips the layer is
+            // credited with, `pitch` wide along each move, exceed their
+            // union by no more than the same part's with the laser off
+            // through its links (a wall of overlapped contours fills a
+            // strip beside its centre line, not round it, either way).
+            if let Some(twin) = &twin {
+                let (credited, union) = strips(&p.layers[i]);
+                let (c_off, u_off) = strips(&twin.layers[i]);
+                prop_assert!(
+                    credited - union <= (c_off - u_off).max(0.0) + 0.005 * credited,
+                    "layer {}: strips {} mm² over a union of {} mm² (laser off: {} over {})\n{}",
+                    i + 1, credited, union, c_off, u_off, src
+                );
+            }
         }
     }
+}
+
+/// A flat layer's strips: `Σ pitch·length` over its laser-on moves, and
+/// the area of their union (each move a capsule `pitch` wide round its
+/// centre line), counted on a 0.2 mm grid, mm².
+fn strips(layer: &lmdc::ir::Layer) -> (f64, f64) {
+    let moves: Vec<([f64; 2], [f64; 2], f64)> = layer
+        .paths
+        .iter()
+        .flat_map(|p| p.points.windows(2))
+        .filter(|m| m[0].laser_on && m[0].pitch > 0.0)
+        .map(|m| {
+            let at = |q: &Point| [q.pos[0], q.pos[1]];
+            (at(&m[0]), at(&m[1]), m[0].pitch as f64 / 2.0)
+        })
+        .collect();
+    let credited: f64 = moves
+        .iter()
+        .map(|(a, b, r)| 2.0 * r * (b[0] - a[0]).hypot(b[1] - a[1]))
+        .sum();
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for (a, b, r) in &moves {
+        for k in 0..2 {
+            lo[k] = lo[k].min(a[k].min(b[k]) - r);
+            hi[k] = hi[k].max(a[k].max(b[k]) + r);
+        }
+    }
+    let h = 0.2;
+    let mut covered = vec![false; 0];
+    let (nx, ny) = (
+        ((hi[0] - lo[0]) / h).ceil().max(0.0) as usize,
+        ((hi[1] - lo[1]) / h).ceil().max(0.0) as usize,
+    );
+    covered.resize(nx * ny, false);
+    for (a, b, r) in &moves {
+        let cell = |x: f64, o: f64| ((x - o) / h).floor().max(0.0) as usize;
+        let (i0, j0) = (
+            cell(a[0].min(b[0]) - r, lo[0]),
+            cell(a[1].min(b[1]) - r, lo[1]),
+        );
+        let i1 = cell(a[0].max(b[0]) + r, lo[0]).min(nx.saturating_sub(1));
+        let j1 = cell(a[1].max(b[1]) + r, lo[1]).min(ny.saturating_sub(1));
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                let p = [lo[0] + (i as f64 + 0.5) * h, lo[1] + (j as f64 + 0.5) * h];
+                let d = [b[0] - a[0], b[1] - a[1]];
+                let l2 = d[0] * d[0] + d[1] * d[1];
+                let t = if l2 > 0.0 {
+                    (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / l2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let (x, y) = (p[0] - a[0] - t * d[0], p[1] - a[1] - t * d[1]);
+                if x * x + y * y <= r * r {
+                    covered[j * nx + i] = true;
+                }
+            }
+        }
+    }
+    let union = covered.iter().filter(|&&c| c).count() as f64 * h * h;
+    (credited, union)
 }

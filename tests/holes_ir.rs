@@ -333,16 +333,31 @@ fn linking_saves_starts_and_lifts() {
         none.retracts
     );
     assert!(off.level_travels > 0);
-    // Linked with the laser on: a layer is a few deposits (8 contours and
-    // a dozen or so raster chains instead of ~95 tracks).
+    // Linked with the laser on: tracks whose ends lie level join in
+    // half-circle turns, one deposit; where the flange's round edges slant
+    // the link is laid with the laser off at the layer's height, as
+    // `laser_off` lays it (fill::link): a third fewer starts than without
+    // links (345 of 516), the same lifts as with the laser off, and fewer
+    // level moves.
     assert!(
-        on.starts * 4 < none.starts,
+        on.starts * 4 < none.starts * 3,
         "{} vs {}",
         on.starts,
         none.starts
     );
-    assert!(on.starts <= 25 * layers, "{} starts", on.starts);
-    assert_eq!(on.level_travels, 0);
+    assert!(on.starts <= 60 * layers, "{} starts", on.starts);
+    assert!(
+        on.retracts <= off.retracts,
+        "{} vs {}",
+        on.retracts,
+        off.retracts
+    );
+    assert!(
+        on.level_travels > 0 && on.level_travels < off.level_travels,
+        "{} vs {}",
+        on.level_travels,
+        off.level_travels
+    );
 }
 
 /// The first point of the outer contour (the loop farthest from the

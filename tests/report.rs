@@ -434,3 +434,102 @@ fn a_contour_only_part_reports_its_inside_as_a_hollow_on_purpose() {
         "{got:?}"
     );
 }
+
+/// The flange's layers, sampled at random over its own circles (not lmdc's
+/// grid): the share of the design some deposit's strip covers, and what
+/// the layers stack over the design (`Σ pitch·length` over each layer's
+/// laser-on moves, from the IR alone, times the layer's lift, over the
+/// design's area times the lift).
+fn flange_strips(src: &str) -> (Report, f64, f64) {
+    let (c, model) = compile_with_model(src, &Default::default(), &mut ()).unwrap();
+    let (p, model) = (c.program.expect("compiles"), model.unwrap());
+    let m = p.machines().next().unwrap();
+    let r = Report::new(m, &model, None);
+    let bolts: Vec<[f64; 2]> = (0..6)
+        .map(|k| {
+            let a = (30.0 + 60.0 * k as f64).to_radians();
+            [30.0 * a.cos(), 30.0 * a.sin()]
+        })
+        .collect();
+    let inside = |q: [f64; 2]| {
+        let r = q[0].hypot(q[1]);
+        (15.0..=40.0).contains(&r)
+            && bolts
+                .iter()
+                .all(|c| (q[0] - c[0]).hypot(q[1] - c[1]) >= 4.5)
+    };
+    let pi = std::f64::consts::PI;
+    let area = pi * (1600.0 - 225.0 - 6.0 * 4.5 * 4.5);
+    let layers = &p.ir().layers;
+    // Every layer is as thick (a flat flange): the shares weigh them alike.
+    let credited: f64 = layers
+        .iter()
+        .flat_map(|l| l.paths.iter().flat_map(|q| q.points.windows(2)))
+        .filter(|m| m[0].laser_on)
+        .map(|m| {
+            let d = (m[1].pos[0] - m[0].pos[0]).hypot(m[1].pos[1] - m[0].pos[1]);
+            m[0].pitch as f64 * d
+        })
+        .sum::<f64>()
+        / (area * layers.len() as f64);
+    let (mut rng, mut n, mut hit) = (Lcg(7), 0usize, 0usize);
+    for _ in 0..120_000 {
+        let q = [80.0 * rng.next() - 40.0, 80.0 * rng.next() - 40.0];
+        let layer = &layers[(rng.next() * layers.len() as f64) as usize];
+        if inside(q) {
+            n += 1;
+            hit += usize::from(in_a_strip(layer, q));
+        }
+    }
+    (r, hit as f64 / n as f64, credited)
+}
+
+#[test]
+fn the_flange_s_laser_on_turns_lay_no_strip_twice() {
+    // Issue 33: the flange's laser-on links ran along the contours, each
+    // credited a strip of its own on top of the raster ends' (8.1 % of
+    // the design counted twice, the layers stacking 101.4 %). Its turns
+    // are half circles across the tracks' spacing now, the raster ends
+    // trimmed beside them: what the layers stack is what the strips cover,
+    // counted independently here (`Σ pitch·length` against the sampled
+    // union of the strips), with the laser on and off through the links.
+    let on = std::fs::read_to_string("examples/flange.lmd").unwrap();
+    assert!(on.contains("link = laser_on"));
+    let off = on.replace("link = laser_on", "link = laser_off");
+    let mut stacks = Vec::new();
+    for src in [&on, &off] {
+        let (r, covered, credited) = flange_strips(src);
+        let got = r.design_missing.expect("a breakdown for flat layers");
+        let filled = r.design_filled.expect("a design volume");
+        // The sampled union: 1.3 · √(p(1 − p)/n) is below 0.2 %.
+        assert!(
+            (got.covered.share - covered).abs() < 0.004,
+            "covered: lmdc {}, sampled {covered}",
+            got.covered.share
+        );
+        assert!(
+            (filled - credited).abs() < 2e-3,
+            "stacked: lmdc {filled}, from the IR {credited}"
+        );
+        // Nothing counted twice: the stack is at most what the strips
+        // cover (the union of round-ended strips is a little more than
+        // their rectangles where a track ends short of the next).
+        assert!(
+            credited <= covered + 0.004,
+            "the layers stack {credited} of the design where strips cover {covered}"
+        );
+        assert!(credited > 0.85 && credited < 0.95, "{credited}");
+        // The report agrees: its text says nothing of strips counted twice.
+        let text = lmdc::report::text::render(&r);
+        assert!(!text.contains("counted twice"), "{text}");
+        let stacked = r.deposit.as_ref().expect("a deposit check");
+        assert!(
+            (stacked.bead_over_stacked - 1.0).abs() < 0.005,
+            "{stacked:?}"
+        );
+        stacks.push(credited);
+    }
+    // The turns lay what the trimmed ends leave: the laser-on flange
+    // stacks as much of its design as the unlinked one, within 1 %.
+    assert!((stacks[0] - stacks[1]).abs() < 0.01, "{stacks:?}");
+}

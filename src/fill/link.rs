@@ -12,13 +12,32 @@
 //! turns back before the next line (the top of a hole, a notch) links
 //! nothing: the tracks beyond it belong to another stretch of edge.
 //!
-//! The link is the straight move from one track end to the next if that
-//! stays inside the part, else the edge itself (through the points between
-//! the two ends; arcs flattened within the chord error, bulging into the part
-//! where the edge is concave, so that no chord cuts the corner); if neither
-//! stays inside, the tracks are not linked. Inside means within the region
-//! where track centre lines may run (the profile less the inset: half a bead
-//! for `size = outer`), every point and every segment (`inside::Inside`).
+//! A link laid with the laser off is the straight move from one track end
+//! to the next if that stays inside the part, else the edge itself (through
+//! the points between the two ends; arcs flattened within the chord error,
+//! bulging into the part where the edge is concave, so that no chord cuts
+//! the corner); if neither stays inside, the tracks are not linked. Inside
+//! means within the region where track centre lines may run (the profile
+//! less the inset: half a bead for `size = outer`), every point and every
+//! segment (`inside::Inside`).
+//!
+//! A link laid with the laser on deposits, so where it lies decides what
+//! the layer stacks: a move along the edge from one track end to the next
+//! would lay the inner half of its bead on the two tracks' ends, whose
+//! strips already reach its centre line (issue 33: 8 % of the flange
+//! counted twice). It is a half circle instead, its diameter the two
+//! lines' spacing and its apex on the edge midway between the ends, and
+//! both tracks end level half the spacing short of the ends' mean
+//! (trimmed). A strip as wide as the spacing along such a half circle
+//! covers the half disc round its centre once (its inner edge shrinks to
+//! the centre), which is exactly what the trimmed ends leave: the turn
+//! lays, at the tracks' speed, the metal its own strip holds. Where the two
+//! ends lie more than half the spacing apart along the lines (a slanted or
+//! curved edge), trimming them level would leave the staircase between
+//! them bare: there, and where the turn would leave the region or a track
+//! shrink to nothing, the link is laid with the laser off, as `laser_off`
+//! lays it (the tracks keep their extensions, and the metal they lay is
+//! theirs alone).
 //!
 //! Chains are grown greedily: the first unlinked track (lowest line, then
 //! lowest along it) starts one, running forwards; each link turns it back,
@@ -64,6 +83,8 @@ pub(super) struct Step {
     g: usize,
     forward: bool,
     via: Option<Vec<[f64; 2]>>,
+    /// Whether the laser stays on through the link (`via`).
+    laser: bool,
     from: Option<f64>,
     to: Option<f64>,
 }
@@ -74,6 +95,7 @@ pub(super) struct Step {
 struct Found {
     g: usize,
     via: Vec<[f64; 2]>,
+    laser: bool,
     end: Option<f64>,
     start: Option<f64>,
 }
@@ -95,6 +117,7 @@ pub(super) fn chains(c: &Chains<'_>, within: &Pieces, laser: bool) -> Vec<Vec<St
                 g: g0,
                 forward: true,
                 via: None,
+                laser: false,
                 from: None,
                 to: None,
             }];
@@ -105,6 +128,7 @@ pub(super) fn chains(c: &Chains<'_>, within: &Pieces, laser: bool) -> Vec<Vec<St
                 };
                 let (n, forward) = (last.n + 1, !last.forward);
                 last.via = Some(f.via);
+                last.laser = f.laser;
                 last.to = f.end;
                 used[n][f.g] = true;
                 chain.push(Step {
@@ -112,6 +136,7 @@ pub(super) fn chains(c: &Chains<'_>, within: &Pieces, laser: bool) -> Vec<Vec<St
                     g: f.g,
                     forward,
                     via: None,
+                    laser: false,
                     from: f.start,
                     to: None,
                 });
@@ -129,7 +154,6 @@ pub(super) fn tracks(
     grown: &[Vec<(usize, [f64; 2])>],
     s: &[f64],
     frame: &Frame,
-    laser: bool,
     points_left: &mut u64,
 ) -> Result<Vec<Track>, FillError> {
     let mut out = Vec::new();
@@ -139,7 +163,7 @@ pub(super) fn tracks(
         let (from, to) = (step.from.unwrap_or(from), step.to.unwrap_or(to));
         let link = step.via.as_ref().map(|via| Link {
             via: via.iter().map(|&p| frame.world(p)).collect(),
-            laser,
+            laser: step.laser,
         });
         spend(points_left, 2 + link.as_ref().map_or(0, |l| l.via.len()))?;
         out.push(Track {
@@ -154,14 +178,14 @@ pub(super) fn tracks(
 /// The interval of line `n + 1` that the track `last` links to at its end
 /// (the +t one when running forward), and the link.
 ///
-/// Three links are tried, the first that stays inside wins: straight from
-/// the track's end to the next one's start; along the edge between them;
-/// along the edge from where the tracks were clipped. The last is for ends
-/// that an extension moved past the region (a slanted or curved edge): with
-/// the laser off the nozzle goes back along its own track to the edge, and
-/// out along the next track to its start; with the laser on the link, which
-/// deposits along the edge, takes the extensions' place and the tracks end
-/// and start where they were clipped.
+/// With the laser on, the link is a round turn where the ends allow one
+/// ([`round_turn`]). Else, and with the laser off, the link is laid with
+/// the laser off, and three are tried, the first that stays inside wins:
+/// straight from the track's end to the next one's start; along the edge
+/// between them; along the edge from where the tracks were clipped. The
+/// last is for ends that an extension moved past the region (a slanted or
+/// curved edge): the nozzle goes back along its own track to the edge, and
+/// out along the next track to its start.
 fn next(
     c: &Chains<'_>,
     inside: &mut Inside<'_>,
@@ -192,10 +216,16 @@ fn next(
         Some(Found {
             g: g1,
             via: dedup(via, p, q),
+            laser: false,
             end,
             start,
         })
     };
+    if laser {
+        if let Some(turn) = round_turn(c, inside, last, g1, [b, t1], [s0, s1]) {
+            return Some(turn);
+        }
+    }
     if inside.path(&[p, q], n) {
         return found(Vec::new(), None, None);
     }
@@ -214,23 +244,71 @@ fn next(
     if !inside.path(&clipped_path, n) {
         return None;
     }
-    if laser {
-        // The tracks now end at b0 and start at b1: the link's own points
-        // are those strictly between. Neither track may shrink to nothing.
-        let this_start = last.from.unwrap_or(grown[1 - side]);
-        let next_end = c.grown[n + 1][g1].1[1 - side];
-        if (b - this_start).abs() < MIN_TRACK || (t1 - next_end).abs() < MIN_TRACK {
-            return None;
-        }
-        Some(Found {
-            g: g1,
-            via: dedup(edge, b0, b1),
-            end: Some(b),
-            start: Some(t1),
-        })
-    } else {
-        found(clipped_path, None, None)
+    found(clipped_path, None, None)
+}
+
+/// A link laid with the laser on between line `n`'s track `last`, which
+/// meets the edge at `t = b` on `s0`, and interval `g1` of line `n + 1`,
+/// which meets it at `t1` on `s1`: a half circle whose diameter is the
+/// lines' spacing `s1 − s0`, its apex on the edge midway between the two
+/// ends, and both tracks ending level where it starts and ends, half the
+/// spacing short of the ends' mean (the raster ends beside a turn are
+/// trimmed). A strip as wide as the spacing along a half circle of that
+/// diameter covers the half disc round its centre exactly once (its inner
+/// edge shrinks to the centre), so the turn's metal fills the strip the
+/// trimmed ends leave and nothing the tracks already fill. `None` where the
+/// ends lie more than half the spacing apart along the lines (a slanted
+/// edge: trimming them level would leave the staircase bare), the turn
+/// leaves the region, or a track would shrink to nothing.
+fn round_turn(
+    c: &Chains<'_>,
+    inside: &mut Inside<'_>,
+    last: &Step,
+    g1: usize,
+    [b, t1]: [f64; 2],
+    [s0, s1]: [f64; 2],
+) -> Option<Found> {
+    let (n, side) = (last.n, usize::from(last.forward));
+    let out = if last.forward { 1.0 } else { -1.0 };
+    let r = 0.5 * (s1 - s0);
+    if !(r.is_finite() && r > 0.0) || (t1 - b).abs() > r {
+        return None;
     }
+    let level = 0.5 * (b + t1) - out * r;
+    let this_start = last.from.unwrap_or(c.grown[n].get(last.g)?.1[1 - side]);
+    let next_end = c.grown[n + 1].get(g1)?.1[1 - side];
+    if out * (level - this_start) < MIN_TRACK || out * (level - next_end) < MIN_TRACK {
+        return None;
+    }
+    let e = c.chord_error.max(1e-9);
+    let step = 2.0 * (1.0 - (e / r).min(1.0)).acos();
+    let k = (PI / step).ceil();
+    let k = if k.is_finite() {
+        (k as usize).clamp(2, MAX_ARC_CHORDS)
+    } else {
+        MAX_ARC_CHORDS
+    };
+    let mid = 0.5 * (s0 + s1);
+    let via: Vec<[f64; 2]> = (1..k)
+        .map(|i| {
+            let phi = -0.5 * PI + PI * i as f64 / k as f64;
+            [level + out * r * phi.cos(), mid + r * phi.sin()]
+        })
+        .collect();
+    let mut path = Vec::with_capacity(via.len() + 4);
+    path.extend([[b, s0], [level, s0]]);
+    path.extend_from_slice(&via);
+    path.extend([[level, s1], [t1, s1]]);
+    if !inside.path(&path, n) {
+        return None;
+    }
+    Some(Found {
+        g: g1,
+        via,
+        laser: true,
+        end: Some(level),
+        start: Some(level),
+    })
 }
 
 /// The points without repeats (of each other or of the ends).
@@ -328,7 +406,85 @@ fn flatten(p: &Piece, from: [f64; 2], to: [f64; 2], chord_error: f64, out: &mut 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fill::{fill, FillSpec, Linking, Pattern, RasterSpec, Seam};
     use crate::geometry::profile::Profile;
+
+    fn rectangle(link: Linking) -> Vec<Track> {
+        // 30 × 14 mm from the origin, a bead 3 mm wide: one contour 2 mm
+        // inside the outline's half-bead inset, raster lines 2 mm apart
+        // from y = 3.5 mm to 9.5 mm between x = 3.5 and 26.5 mm (the
+        // straight edges the turns come to).
+        let spec = FillSpec {
+            inset: 1.5,
+            contours: 1,
+            offset: 2.0,
+            raster: Some(RasterSpec {
+                angle_deg: 0.0,
+                offset: 2.0,
+                pattern: Pattern::Serpentine,
+                extend: 2.0,
+                link,
+                closing: f64::INFINITY,
+            }),
+            seam: Seam::Lowest,
+        };
+        fill(&Profile::rectangle(30.0, 14.0), &spec, 0.01).unwrap()
+    }
+
+    #[test]
+    fn a_laser_on_turn_is_a_half_circle_across_the_spacing() {
+        let tracks = rectangle(Linking::LaserOn);
+        let raster: Vec<&Track> = tracks
+            .iter()
+            .filter(|t| t.kind == TrackKind::Infill)
+            .collect();
+        let off = rectangle(Linking::LaserOff);
+        let unlinked: Vec<&Track> = off.iter().filter(|t| t.kind == TrackKind::Infill).collect();
+        assert_eq!(raster.len(), 4);
+        let turns: Vec<_> = raster
+            .windows(2)
+            .filter_map(|p| {
+                let l = p[0].link.as_ref()?;
+                Some((p[0], l, p[1]))
+            })
+            .collect();
+        assert_eq!(
+            turns.len(),
+            3,
+            "every track linked with the laser on: {raster:?}"
+        );
+        for (a, l, b) in turns {
+            assert!(l.laser);
+            let (p, q) = (*a.points.last().unwrap(), b.points[0]);
+            // Both ends level, half the 2 mm spacing short of the edge at
+            // x = 3.5 or 26.5 mm (the laser-off raster's ends).
+            assert!((p[0] - q[0]).abs() < 1e-9 && (q[1] - p[1] - 2.0).abs() < 1e-9);
+            let inward = (p[0] - 15.0).abs();
+            assert!((inward - 10.5).abs() < 1e-9, "{p:?}");
+            let centre = [p[0], 0.5 * (p[1] + q[1])];
+            for v in &l.via {
+                let r = (v[0] - centre[0]).hypot(v[1] - centre[1]);
+                assert!((r - 1.0).abs() < 1e-9, "{v:?} is {r} from {centre:?}");
+                // On the outer side of the ends, up to the edge.
+                let out = (v[0] - 15.0).abs();
+                assert!(out > 10.5 && out <= 11.5 + 1e-9, "{v:?}");
+            }
+            // Flattened within the chord error: the half circle's apex
+            // is a point of it or a chord's middle within 0.01 mm of it.
+            let apex = l
+                .via
+                .iter()
+                .map(|v| (v[0] - 15.0).abs())
+                .fold(0.0, f64::max);
+            assert!(apex > 11.49, "{apex}");
+        }
+        // The laser-off raster's tracks run to the edge, 1 mm further.
+        for (t, u) in raster.iter().zip(&unlinked) {
+            let len = |t: &Track| (t.points[1][0] - t.points[0][0]).abs();
+            assert!((len(u) - 23.0).abs() < 1e-9, "{:?}", u.points);
+            assert!(len(t) < len(u) - 1.0 + 1e-9, "{:?}", t.points);
+        }
+    }
 
     #[test]
     fn walking_up_a_hole_follows_its_edge_and_stops_at_its_top() {

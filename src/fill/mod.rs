@@ -60,10 +60,12 @@
 //!   and on a line run backwards its intervals come in that backward order.
 //!   Each raster interval is one two-point [`Track`].
 //! - **Links** ([`Linking`], serpentine only): neighbouring tracks are joined
-//!   at their ends along the edge when the link stays where track centre
-//!   lines may run (the region less the inset); the tracks then come in
-//!   chains, each track carrying its [`Link`] to the next. The rule is in
-//!   [`link`].
+//!   at their ends when the link stays where track centre lines may run
+//!   (the region less the inset): with the laser off along the edge, with
+//!   it on by a half circle across their spacing, the two ends trimmed
+//!   level to meet it (where the edge slants, that link is laid with the
+//!   laser off); the tracks then come in chains, each track carrying its
+//!   [`Link`] to the next. The rule is in [`link`].
 //!
 //! The output depends only on the inputs. If nothing at all results, `fill`
 //! returns [`FillError::Empty`]: a layer without tracks cannot be built.

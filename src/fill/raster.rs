@@ -65,7 +65,7 @@ pub(super) fn tracks(
             &Pieces::new(within.loops(), &frame),
             laser,
         );
-        return link::tracks(&chains, &grown, &line_s, &frame, laser, points_left);
+        return link::tracks(&chains, &grown, &line_s, &frame, points_left);
     }
 
     let mut out = Vec::new();

@@ -336,7 +336,8 @@ fn missing(out: &mut String, m: &super::coverage::Missing, stacked: Option<f64>)
         format!("{} ({}{mass})", percent(f.share), volume(f.volume_mm3))
     };
     // What the layers stack beyond what the strips cover: strips laid over
-    // each other (links along a contour, raster ends over its strip).
+    // each other (a laser-on link along the raster's ends did, before its
+    // round turn).
     let twice = stacked
         .map(|s| s - m.covered.share)
         .filter(|x| *x >= 0.0005)

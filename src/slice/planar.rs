@@ -713,16 +713,23 @@ impl Island {
                 _ => None,
             })
             .collect();
-        // A link's metal fills the ends of the two tracks' strips, as an
-        // extension would: it is laid like the track it leaves, and no
-        // deposit counts it as a neighbour.
-        let strands: Vec<Strand<'_>> = tracks
+        // A laser-on link is a half circle across the two tracks' spacing
+        // (`fill::link`), whose strip is the half disc the tracks' trimmed
+        // ends leave: the layer's strips are measured on the tracks as they
+        // were before the trim (the fill's front at the edge, which a
+        // contour beside it sees), and the turn fills its spacing.
+        let measured: Vec<Vec<[f64; 2]>> = tracks
             .iter()
             .enumerate()
-            .map(|(chain, t)| Strand {
-                points: &t.points,
-                chain,
+            .map(|(i, t)| {
+                let before = i.checked_sub(1).and_then(|k| links[k].as_ref());
+                untrimmed(&t.points, before, links[i].as_ref())
             })
+            .collect();
+        let strands: Vec<Strand<'_>> = measured
+            .iter()
+            .enumerate()
+            .map(|(chain, points)| Strand { points, chain })
             .collect();
         let found = pitch::strips(&strands, [w, offset], samples, |p| region.contains(p));
         let pitch = found
@@ -733,10 +740,10 @@ impl Island {
                 steady(&t.points, &mut track, offset);
                 (track, (t, link))
             })
-            .map(|(track, (t, link))| TrackPitch {
-                link: link.as_ref().map_or_else(Vec::new, |l| {
-                    vec![mean_pitch(&t.points, &track, w); l.len() - 1]
-                }),
+            .map(|(track, (_, link))| TrackPitch {
+                link: link
+                    .as_ref()
+                    .map_or_else(Vec::new, |l| vec![turn_pitch(l, offset, w); l.len() - 1]),
                 track,
             })
             .collect();
@@ -790,19 +797,58 @@ fn steady(points: &[[f64; 2]], pitch: &mut [f64], offset: f64) {
     }
 }
 
-/// The mean of a track's moves' pitches over its length (`w` where it has
-/// none).
-fn mean_pitch(points: &[[f64; 2]], pitch: &[f64], w: f64) -> f64 {
-    let (mut sum, mut len) = (0.0, 0.0);
-    for (m, &p) in points.windows(2).zip(pitch) {
-        let l = (m[1][0] - m[0][0]).hypot(m[1][1] - m[0][1]);
-        sum += p * l;
-        len += l;
+/// A track's `points` with the ends that a laser-on link trims restored:
+/// the start by half the chord of the link `before` it (ending at its
+/// first point), the end by half that of the link `after` it, along the
+/// track.
+fn untrimmed(
+    points: &[[f64; 2]],
+    before: Option<&Vec<[f64; 2]>>,
+    after: Option<&Vec<[f64; 2]>>,
+) -> Vec<[f64; 2]> {
+    let mut out = points.to_vec();
+    let half = |l: &Vec<[f64; 2]>| match (l.first(), l.last()) {
+        (Some(a), Some(b)) => 0.5 * (b[0] - a[0]).hypot(b[1] - a[1]),
+        _ => 0.0,
+    };
+    // `end` moved by `by` away from `other`, along the track.
+    let grow = |end: [f64; 2], other: [f64; 2], by: f64| {
+        let d = [end[0] - other[0], end[1] - other[1]];
+        let len = d[0].hypot(d[1]);
+        if len > 0.0 && by.is_finite() {
+            [end[0] + d[0] / len * by, end[1] + d[1] / len * by]
+        } else {
+            end
+        }
+    };
+    let n = out.len();
+    if n < 2 {
+        return out;
     }
-    if len > 0.0 {
-        sum / len
-    } else {
+    if let Some(l) = before {
+        out[0] = grow(points[0], points[1], half(l));
+    }
+    if let Some(l) = after {
+        out[n - 1] = grow(points[n - 1], points[n - 2], half(l));
+    }
+    out
+}
+
+/// The strip a laser-on link's half circle fills: its diameter, the chord
+/// from its first point to its last (the fill's `offset` when within
+/// [`STEADY`] of it, so a regular fill's turns keep the tracks' speed; `w`
+/// where it has no length).
+fn turn_pitch(link: &[[f64; 2]], offset: f64, w: f64) -> f64 {
+    let chord = match (link.first(), link.last()) {
+        (Some(a), Some(b)) => (b[0] - a[0]).hypot(b[1] - a[1]),
+        _ => 0.0,
+    };
+    if !(chord.is_finite() && chord > 0.0) {
         w
+    } else if (chord / offset - 1.0).abs() <= STEADY {
+        offset
+    } else {
+        chord
     }
 }
 
