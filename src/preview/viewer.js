@@ -1078,7 +1078,7 @@
     if (m) {
       jump.hidden = false;
       jump.textContent = hit ? "go to the collision" : "go to the closest approach";
-      jump.dataset.move = m.kept;
+      jump.dataset.target = m.kept;
       jump.addEventListener("click", () => goTo(m.kept, m.exact ? a.way : 1));
     }
   }
