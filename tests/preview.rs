@@ -765,6 +765,12 @@ fn chromium_draws_the_examples() {
             let (shot, _) = screenshot(&chromium, &file, &hash);
             std::fs::write(format!("docs/preview/{example}_{mode}.png"), shot).unwrap();
         }
+        // And the bodies at a move, mid-build.
+        let file = dir.path().join("flange.html");
+        std::fs::write(&file, page("flange", preview::BUDGET).0).unwrap();
+        dom(&chromium, &file, "move=1200");
+        let (shot, _) = screenshot(&chromium, &file, "move=1200");
+        std::fs::write("docs/preview/flange_bodies.png", shot).unwrap();
     }
 }
 

@@ -15,6 +15,13 @@
 //! the smallest that fits, and says so on the page: a page of a few MB that
 //! a browser draws interactively, against 3.6 M points of the dense duct.
 //!
+//! A slider over the kept moves draws, at the chosen one, the head's
+//! solids about the beam (the machine's `head`, as the collision check
+//! takes it), a robot's links as capsules ([`joints::Links`]) and the part
+//! laid by then; a button goes to the closest approach's move. Each kept
+//! move's place in the plan rides in about two bytes
+//! (`encode::Poses`).
+//!
 //! For a robot with an arm the page also plots each axis's range layer by
 //! layer against its limits ([`joints`]), solved as the verifier solves it;
 //! for a 5-axis CNC, its tilt axis and C ([`rotary`]): on a tilting table,

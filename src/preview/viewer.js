@@ -2,7 +2,8 @@
 // orthographically. Deposits are drawn in colour buckets (one stroke per
 // colour, so a frame is a few dozen strokes however many moves), travel
 // moves faint and grey, over the substrate (a grid at z = 0) with the part's
-// axes and a scale bar. Reads the JSON in <script id="data">, written by
+// axes and a scale bar; a slider over the moves draws the head's solids and
+// a robot's links at the chosen one over the part laid by then. Reads the JSON in <script id="data">, written by
 // src/preview/encode.rs; needs nothing from the network.
 "use strict";
 (function () {
