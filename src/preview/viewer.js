@@ -3,8 +3,9 @@
 // colour, so a frame is a few dozen strokes however many moves), travel
 // moves faint and grey, over the substrate (a grid at z = 0) with the part's
 // axes and a scale bar; a slider over the moves draws the head's solids and
-// a robot's links at the chosen one over the part laid by then. Reads the JSON in <script id="data">, written by
-// src/preview/encode.rs; needs nothing from the network.
+// a robot's links at the chosen one over the part laid by then. Reads the
+// JSON in <script id="data">, written by src/preview/encode.rs; needs
+// nothing from the network.
 "use strict";
 (function () {
   const D = JSON.parse(document.getElementById("data").textContent);
@@ -972,13 +973,13 @@
     const laser = FLAGS[i] & DEPOSIT ? `laser on (${KIND_WORDS[KIND[i]]})` : "laser off";
     const thinned = P_INDEX[N - 1] + 1 > N;
     const along = pose.way < 1 ? `${Math.round(pose.way * 100)} % of the way along ` : "";
-    s.textContent = `move ${i + 1} of ${N}` + (thinned ? ` (the plan's ${P_INDEX[i] + 1}th of ${M.moves})` : "") +
+    s.textContent = `move ${i + 1} of ${N}` + (thinned ? ` (the plan's move ${P_INDEX[i] + 1} of ${M.moves})` : "") +
       `: ${along}the move to ${where(i)}, ${laser}; laid so far: ${LAID[i]} of ${DEPOSITS} deposit moves` +
       (thinned ? ` (the plan's ${P_LAID[i]} of ${PLAN_DEPOSITS})` : "");
     const k = armMove(i);
     if (ARM_LINKS && k >= 0 && ARM_LINKS.moves[k] !== i)
-      s.textContent += `; the arm as at move ${ARM_LINKS.moves[k] + 1} (the page carries it at every ` +
-        `${Math.ceil(N / ARM_LINKS.moves.length)}th move or so)`;
+      s.textContent += `; the arm as at move ${ARM_LINKS.moves[k] + 1} (the page carries it at ` +
+        `${ARM_LINKS.moves.length} of its ${N} moves)`;
     const d = s.dataset;
     d.move = i; d.planMove = P_INDEX[i]; d.way = pose.way;
     d.kind = ["point", "clearance", "end"][P_KIND[i]];
