@@ -53,8 +53,8 @@ pub struct Arm {
 /// coordinates (on a positioner they turn with the part).
 #[derive(Serialize)]
 pub struct Links {
-    /// The links' names and radii, mm, as the collision check takes them
-    /// (`upper arm`, `forearm`, `wrist`; `None`: an `opw(…)` arm without
+    /// The links' radii, mm, as the collision check takes them (the upper
+    /// arm's, the forearm's, the wrist's; `None`: an `opw(…)` arm without
     /// `arm_links`, whose links are not checked: drawn as lines).
     pub radii: Option<[f64; 3]>,
     /// The page's moves posed, ascending.
@@ -90,8 +90,9 @@ impl Hang {
         Some(w.1)
     }
 
-    /// The frames' origins at axes `j` (robot's frame) in the part's
-    /// coordinates, the positioner at `axes`.
+    /// Keeps the frames' origins `points` (in the robot's frame) for the
+    /// page's move `kept`, in the part's coordinates with the positioner
+    /// at `axes` (the collision check's frames, `verify::arm::links`).
     fn hang(&mut self, kept: usize, points: [[f64; 3]; 6], axes: Rotary) {
         let part = match &self.kin {
             Some(k) => k.part([axes.tilt, axes.c]),
