@@ -1081,7 +1081,9 @@
       jump.hidden = false;
       jump.textContent = hit ? "go to the collision" : "go to the closest approach";
       jump.dataset.target = m.kept;
-      jump.addEventListener("click", () => goTo(m.kept, m.exact ? a.way : 1));
+      // The pose along the move needs the move before it on the page too.
+      const whole = m.kept === 0 || P_INDEX[m.kept - 1] === P_INDEX[m.kept] - 1;
+      jump.addEventListener("click", () => goTo(m.kept, m.exact && whole ? a.way : 1));
     }
   }
   // The address may ask for a move (#move=K, from 0), a step from it
