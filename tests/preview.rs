@@ -63,9 +63,12 @@ fn the_page_is_self_contained_and_deterministic() {
     assert_eq!(d["meta"]["layers"], layers);
     assert_eq!(d["meta"]["decimation"], serde_json::json!([1, 1]));
     assert_eq!(d["meta"]["kept"], d["meta"]["moves"]);
-    // 16 bytes a move, base64: about 22 bytes a move on the page.
+    // 16 bytes a move and about 2 of its place, base64: about 25 bytes a
+    // move on the page; the arm's links at most 36 bytes (48 in base64)
+    // at each of `joints::POSES` moves.
     let kept = d["meta"]["kept"].as_u64().unwrap() as usize;
-    assert!(a.len() < 24 * kept + 150_000, "{} bytes", a.len());
+    let arm = 48 * kept.min(preview::joints::POSES);
+    assert!(a.len() < 28 * kept + arm + 150_000, "{} bytes", a.len());
 }
 
 #[test]
@@ -762,6 +765,12 @@ fn chromium_draws_the_examples() {
             let (shot, _) = screenshot(&chromium, &file, &hash);
             std::fs::write(format!("docs/preview/{example}_{mode}.png"), shot).unwrap();
         }
+        // And the bodies at a move, mid-build.
+        let file = dir.path().join("flange.html");
+        std::fs::write(&file, page("flange", preview::BUDGET).0).unwrap();
+        dom(&chromium, &file, "move=1200");
+        let (shot, _) = screenshot(&chromium, &file, "move=1200");
+        std::fs::write("docs/preview/flange_bodies.png", shot).unwrap();
     }
 }
 
@@ -1160,4 +1169,293 @@ fn the_positioners_angles_are_plotted_layer_by_layer() {
     let top = pos.angles.last().unwrap()[0];
     assert!(top.abs() > 30.0, "{top}");
     assert!(data(&page_of("twisted_duct", "kr60"))["meta"]["rotary"].is_null());
+}
+
+/// A move of the plan as the bodies' tests see it.
+struct Pose {
+    to: [f64; 3],
+    normal: [f64; 3],
+    at: Where,
+    deposit: bool,
+    home: bool,
+}
+
+struct Poses(Vec<Pose>);
+
+impl Visit for Poses {
+    fn motion(&mut self, m: &Move) {
+        let n = m.normal.map(f64::from);
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        self.0.push(Pose {
+            to: m.to,
+            normal: n.map(|c| c / len),
+            at: m.at,
+            deposit: m.deposits(),
+            home: m.kind == lmdc::plan::MoveKind::Home,
+        });
+    }
+}
+
+/// Every move of `example`'s machine `name`, and its page at `budget`.
+fn poses_and_page(example: &str, name: &str, budget: usize) -> (Vec<Pose>, String, Value) {
+    let p = verified(example);
+    let m = p
+        .machines()
+        .find(|m| m.machine().name() == name)
+        .expect("the machine is checked");
+    let mut v = Poses(Vec::new());
+    m.plan().walk(&mut v);
+    let html = preview::html_within(m, budget);
+    let head = serde_json::to_value(&m.machine().common().head).unwrap();
+    (v.0, html, head)
+}
+
+/// `(layer, path, point)` from 1 as the page's `#pose` says them, of `at`.
+fn place(at: Where) -> (String, String, String) {
+    match at {
+        Where::Point { layer, path, point } => (
+            (layer + 1).to_string(),
+            (path + 1).to_string(),
+            (point + 1).to_string(),
+        ),
+        Where::Clearance { layer, path } => (
+            (layer + 1).to_string(),
+            (path + 1).to_string(),
+            String::new(),
+        ),
+        Where::End => unreachable!("the end is not asked for"),
+    }
+}
+
+/// Three numbers an attribute holds, comma-separated.
+fn triple(dom: &str, name: &str) -> [f64; 3] {
+    let s = attr(dom, name).unwrap_or_else(|| panic!("no {name}"));
+    let v: Vec<f64> = s.split(',').map(|x| x.parse().unwrap()).collect();
+    [v[0], v[1], v[2]]
+}
+
+/// The page carries the head each machine declares, number for number,
+/// and lmdc's typical one for a machine that declares none.
+#[test]
+fn the_page_carries_the_heads_geometry_as_the_ir_gives_it() {
+    for (example, name) in [
+        ("ramp_wall", "kr30"),
+        ("flange", "mill3"),
+        ("sleeve", "mill5"),
+    ] {
+        let (_, html, head) = poses_and_page(example, name, preview::BUDGET);
+        let d = data(&html);
+        let got = &d["meta"]["head"];
+        assert_eq!(got, &head, "{example} {name}");
+        let bodies = got["bodies"].as_array().unwrap();
+        assert!(!bodies.is_empty(), "{example}");
+        if example == "ramp_wall" {
+            // As examples/ramp_wall.lmd declares it.
+            assert_eq!(got["standoff"], 15.0);
+            assert_eq!(bodies[0]["name"], "nozzle");
+            assert_eq!(bodies[0]["length"], 45.0);
+            assert_eq!(bodies[0]["diameters"], serde_json::json!([12.0, 40.0]));
+            assert_eq!(bodies[1]["diameters"], serde_json::json!([60.0, 60.0]));
+            assert_eq!(got["declared"], true);
+        }
+    }
+    // Without its head block the robot carries the typical head.
+    let src = std::fs::read_to_string("examples/ramp_wall.lmd").unwrap();
+    let start = src.find("machine kr30").unwrap();
+    let open = start + src[start..].find("  head {").unwrap();
+    let close = open + src[open..].find("\n  }\n").unwrap() + 5;
+    let src = format!("{}{}", &src[..open], &src[close..]);
+    let p = compile(&src, &mut ())
+        .program
+        .expect("builds without a head");
+    let m = p.machines().find(|m| m.machine().name() == "kr30").unwrap();
+    let d = data(&preview::html(m));
+    let typical = serde_json::to_value(lmdc::ir::Head::typical()).unwrap();
+    assert_eq!(d["meta"]["head"], typical);
+    assert_eq!(d["meta"]["head"]["declared"], false);
+}
+
+/// The quantisation step of the page's positions: the largest of x, y, z.
+fn position_step(d: &Value) -> f64 {
+    (0..3)
+        .map(|k| {
+            let r = &d["ranges"][k];
+            (r[1].as_f64().unwrap() - r[0].as_f64().unwrap()) / 65535.0
+        })
+        .fold(0.0, f64::max)
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// Each approach's page move is the plan's move it happened on: its
+/// target is the approach's place and its line passes through the
+/// approach's focus `way` along it. A robot's links hang at every move of
+/// a small page, in the part's coordinates: A1's height stays where the
+/// base puts it, and the flange is the tool's 300 mm from the focus.
+#[test]
+fn the_page_finds_each_approachs_move_and_hangs_the_arm_at_each() {
+    let (poses, html, _) = poses_and_page("ramp_wall", "kr30", preview::BUDGET);
+    let d = data(&html);
+    let n = d["meta"]["kept"].as_u64().unwrap() as usize;
+    assert_eq!(n, poses.len(), "undecimated");
+    let approaches = d["meta"]["approaches"].as_array().unwrap();
+    let moves = d["meta"]["approach_moves"].as_array().unwrap();
+    assert!(!approaches.is_empty());
+    assert_eq!(approaches.len(), moves.len());
+    for (a, m) in approaches.iter().zip(moves) {
+        let k = m["kept"].as_u64().unwrap() as usize;
+        assert_eq!(m["exact"], true, "{a}");
+        let at = |f: &str| a[f].as_u64().map(|v| v as usize - 1);
+        let want = match (at("layer"), at("path"), at("point")) {
+            (Some(layer), Some(path), Some(point)) => Where::Point { layer, path, point },
+            (Some(layer), Some(path), None) => Where::Clearance { layer, path },
+            _ => Where::End,
+        };
+        assert_eq!(poses[k].at, want, "{a}");
+        let way = a["way"].as_f64().unwrap();
+        let from = poses[k.saturating_sub(1)].to;
+        let focus: [f64; 3] = std::array::from_fn(|i| a["focus"][i].as_f64().unwrap());
+        let on = std::array::from_fn(|i| from[i] + way * (poses[k].to[i] - from[i]));
+        assert!(distance(on, focus) < 1e-6, "{a}: the move passes {on:?}");
+    }
+
+    let links = &d["meta"]["arm"]["links"];
+    assert_eq!(links["radii"], serde_json::json!([190.0, 140.0, 100.0]));
+    let posed: Vec<usize> = links["moves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_u64().unwrap() as usize)
+        .collect();
+    assert_eq!(
+        posed,
+        (0..n).collect::<Vec<_>>(),
+        "every move of a small page"
+    );
+    let bytes = unbase64(links["points"].as_str().unwrap());
+    assert_eq!(bytes.len(), n * 36);
+    let mut step = 0.0f64;
+    let value = |i: usize, k: usize| {
+        let r = &links["ranges"][k];
+        let (lo, hi) = (r[0].as_f64().unwrap(), r[1].as_f64().unwrap());
+        lo + u16::from_le_bytes([bytes[2 * i], bytes[2 * i + 1]]) as f64 * (hi - lo) / 65535.0
+    };
+    for k in 0..3 {
+        let r = &links["ranges"][k];
+        step = step.max((r[1].as_f64().unwrap() - r[0].as_f64().unwrap()) / 65535.0);
+    }
+    let point =
+        |m: usize, j: usize| -> [f64; 3] { std::array::from_fn(|k| value(18 * m + 3 * j + k, k)) };
+    let a1 = point(0, 0);
+    for (m, pose) in poses.iter().enumerate() {
+        assert!(distance(point(m, 0), a1) < 2.0 * step, "move {m}: A1 moved");
+        if pose.home {
+            continue;
+        }
+        let tool = distance(point(m, 5), pose.to);
+        assert!(
+            (tool - 300.0).abs() < 2.0 * step,
+            "move {m}: the flange {tool} mm from the focus"
+        );
+    }
+    // The shoulder is the base's 1.3 m from the part's origin, or about.
+    assert!(a1[0] < -1000.0, "{a1:?}");
+}
+
+/// Headless Chromium at `#move=K`: the page's `#pose` says move K's place,
+/// focus, beam and the deposits laid by then, and the head's tip stands
+/// `standoff` up the beam; ← steps back; on a thinned page the move's
+/// place in the plan is the plan's; the closest approach's button lands on
+/// its move.
+#[test]
+fn chromium_shows_the_bodies_at_the_sliders_move() {
+    let Some(chromium) = chromium("chromium_shows_the_bodies_at_the_sliders_move") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    // A 3-axis CNC whole, and the twisted duct's robot thinned (its beam
+    // turns layer by layer).
+    for (example, name, budget) in [
+        ("flange", "mill3", preview::BUDGET),
+        ("twisted_duct", "kr60", 20_000),
+    ] {
+        let (poses, html, head) = poses_and_page(example, name, budget);
+        let d = data(&html);
+        let n = d["meta"]["kept"].as_u64().unwrap() as usize;
+        let step = position_step(&d);
+        let standoff = head["standoff"].as_f64().unwrap();
+        let file = dir.path().join(format!("{example}.html"));
+        std::fs::write(&file, &html).unwrap();
+        let first_deposit = (0..poses.len()).find(|&i| poses[i].deposit).unwrap();
+        let mut checked = 0;
+        for k in [first_deposit, n / 2, n - 3] {
+            let dom = dom(&chromium, &file, &format!("move={k}"));
+            assert_eq!(number(&dom, "data-move"), k as f64, "{example}");
+            let j = number(&dom, "data-plan-move") as usize;
+            if budget == preview::BUDGET {
+                assert_eq!(j, k, "{example}: undecimated");
+            }
+            let want = &poses[j];
+            let focus = triple(&dom, "data-focus");
+            assert!(
+                distance(focus, want.to) <= 2.0 * step + 1e-3,
+                "{example} {k}: {focus:?} vs {:?}",
+                want.to
+            );
+            let beam = triple(&dom, "data-beam");
+            assert!(
+                distance(beam, want.normal) < 1e-3,
+                "{example} {k}: {beam:?} vs {:?}",
+                want.normal
+            );
+            let tip = triple(&dom, "data-tip");
+            let up: [f64; 3] = std::array::from_fn(|i| focus[i] + standoff * beam[i]);
+            assert!(distance(tip, up) < 2e-3, "{example} {k}: the tip {tip:?}");
+            let (layer, path, point) = place(want.at);
+            assert_eq!(attr(&dom, "data-layer").unwrap(), layer, "{example} {k}");
+            assert_eq!(attr(&dom, "data-path").unwrap(), path, "{example} {k}");
+            assert_eq!(attr(&dom, "data-point").unwrap(), point, "{example} {k}");
+            let laid = poses[..=j].iter().filter(|p| p.deposit).count();
+            assert_eq!(number(&dom, "data-laid-plan"), laid as f64, "{example} {k}");
+            if budget == preview::BUDGET {
+                assert_eq!(number(&dom, "data-laid"), laid as f64, "{example} {k}");
+            }
+            if name == "kr60" {
+                // The arm at this move or the last posed before it.
+                let arm = number(&dom, "data-arm-move");
+                assert!(
+                    arm <= k as f64 && arm >= k as f64 - 20.0,
+                    "{example} {k}: arm at {arm}"
+                );
+            }
+            checked += 1;
+        }
+        assert_eq!(checked, 3);
+        // Three presses of ← from the middle.
+        let dom = dom(&chromium, &file, &format!("move={}&step=-3", n / 2));
+        assert_eq!(number(&dom, "data-move"), (n / 2 - 3) as f64, "{example}");
+    }
+
+    // The button lands on the tightest approach's move, at its pose.
+    let (poses, html, _) = poses_and_page("ramp_wall", "kr30", preview::BUDGET);
+    let d = data(&html);
+    let approaches = d["meta"]["approaches"].as_array().unwrap();
+    let room = |a: &Value| a["distance_mm"].as_f64().unwrap() - a["gap_mm"].as_f64().unwrap();
+    let tightest = (0..approaches.len())
+        .min_by(|&a, &b| room(&approaches[a]).total_cmp(&room(&approaches[b])))
+        .unwrap();
+    let k = d["meta"]["approach_moves"][tightest]["kept"]
+        .as_u64()
+        .unwrap() as usize;
+    let file = dir.path().join("ramp_wall.html");
+    std::fs::write(&file, &html).unwrap();
+    let dom = dom(&chromium, &file, "jump=closest");
+    assert_eq!(number(&dom, "data-move"), k as f64);
+    assert_eq!(
+        number(&dom, "data-way"),
+        approaches[tightest]["way"].as_f64().unwrap()
+    );
+    assert!(poses[k].at != Where::End || approaches[tightest]["layer"].is_null());
 }

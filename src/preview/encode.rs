@@ -9,6 +9,7 @@
 
 use super::{Decimation, Kind};
 use crate::ir::Style;
+use crate::plan::Where;
 use serde::Serialize;
 
 /// One kept move.
@@ -92,8 +93,26 @@ pub struct Meta<'a> {
     /// The closest each body came to each thing of the cell, where
     /// measured (docs/collision.md): the page marks each at its focus.
     pub approaches: &'a [crate::verify::approach::Approach],
+    /// The page's move each approach happened on (by index, as
+    /// `approaches`): the first kept move at or after the plan's move
+    /// whose target it names and whose line passes nearest its focus;
+    /// `exact` where that very move is kept.
+    pub approach_moves: &'a [Option<ApproachMove>],
+    /// The head the machine carries along the beam, as the collision
+    /// checks take it (docs/collision.md): the page draws it at a move.
+    pub head: &'a crate::ir::Head,
     /// Who wrote the page.
     pub generator: &'static str,
+}
+
+/// The page's move an approach happened on.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ApproachMove {
+    /// The kept move's index on the page.
+    pub kept: usize,
+    /// Whether it is the plan's move of the approach (else the plan's move
+    /// was thinned out and this is the next one kept).
+    pub exact: bool,
 }
 
 /// One error of a refused plan, as the page lists it.
@@ -125,6 +144,9 @@ struct Data<'a> {
     error: String,
     style: String,
     flags: String,
+    /// Where each move is, its beam and its place in the plan
+    /// ([`Poses`]).
+    poses: String,
 }
 
 impl Columns {
@@ -138,8 +160,9 @@ impl Columns {
         self.rows.len()
     }
 
-    /// The JSON object the page's viewer reads (safe inside `<script>`).
-    pub fn encode(&self, meta: &Meta<'_>) -> String {
+    /// The JSON object the page's viewer reads (safe inside `<script>`),
+    /// with `poses` the moves' places and beams.
+    pub fn encode(&self, meta: &Meta<'_>, poses: &Poses) -> String {
         let range = |f: Field| {
             let mut r = [f64::INFINITY, f64::NEG_INFINITY];
             for v in self.rows.iter().filter_map(f) {
@@ -208,6 +231,7 @@ impl Columns {
                     })
                     .collect::<Vec<_>>(),
             ),
+            poses: base64(&poses.bytes),
         };
         // '<' only occurs inside JSON strings, where \u003c means the same:
         // no name can close the script element.
@@ -217,8 +241,108 @@ impl Columns {
     }
 }
 
+/// Where a kept move lies: its target's place, and how many moves of the
+/// plan lie between it and the kept move before.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Place {
+    /// The plan's move index (from 0, every move counted).
+    pub index: usize,
+    /// Deposit moves of the plan up to this one, itself included.
+    pub laid: usize,
+    /// Where its target comes from.
+    pub at: Where,
+    /// Up the beam, unit.
+    pub beam: [f64; 3],
+    /// Whether it deposits.
+    pub deposit: bool,
+}
+
+/// The kept moves' places as one byte stream, each move a tag byte and
+/// what changed since the move before, in LEB128 varints: `at`'s kind in
+/// the tag's two low bits (0 a point, 1 a clearance move, 2 the end);
+/// bit 2: the layer changed (its index follows); bit 3: the path changed
+/// (its index follows, and the point counts from 0 again); bit 4: plan
+/// moves were left out before it (how many, and how many of them
+/// deposit, follow); bit 5: the beam turned (three little-endian `i16`
+/// of the unit vector times 32767 follow, after the varints). A point's
+/// index follows last, zigzag-coded from the point before. Most moves
+/// take two bytes: the moves of a path are one point apart and keep
+/// their beam.
+#[derive(Default)]
+pub struct Poses {
+    bytes: Vec<u8>,
+    layer: usize,
+    path: usize,
+    point: usize,
+    beam: Option<[i16; 3]>,
+    next: usize,
+    laid: usize,
+}
+
+/// The tag bits of [`Poses`].
+const LAYER_CHANGED: u8 = 4;
+const PATH_CHANGED: u8 = 8;
+const SKIPPED: u8 = 16;
+const BEAM_TURNED: u8 = 32;
+
+impl Poses {
+    /// Adds the next kept move.
+    pub fn push(&mut self, p: &Place) {
+        let (kind, layer, path, point) = match p.at {
+            Where::Point { layer, path, point } => (0, layer, path, Some(point)),
+            Where::Clearance { layer, path } => (1, layer, path, None),
+            Where::End => (2, self.layer, self.path, None),
+        };
+        let beam = p
+            .beam
+            .map(|c| (c.clamp(-1.0, 1.0) * 32767.0).round() as i16);
+        let mut tag = kind;
+        let mut tail = Vec::new();
+        if layer != self.layer {
+            tag |= LAYER_CHANGED;
+            varint(&mut tail, layer as u64);
+        }
+        if path != self.path || layer != self.layer {
+            tag |= PATH_CHANGED;
+            varint(&mut tail, path as u64);
+            self.point = 0;
+        }
+        let skipped = p.index.saturating_sub(self.next);
+        if skipped > 0 {
+            tag |= SKIPPED;
+            let own = usize::from(p.deposit);
+            varint(&mut tail, skipped as u64);
+            varint(&mut tail, p.laid.saturating_sub(own + self.laid) as u64);
+        }
+        if let Some(point) = point {
+            let d = point as i64 - self.point as i64;
+            varint(&mut tail, ((d << 1) ^ (d >> 63)) as u64);
+            self.point = point;
+        }
+        if self.beam != Some(beam) {
+            tag |= BEAM_TURNED;
+            for c in beam {
+                tail.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+        self.bytes.push(tag);
+        self.bytes.extend_from_slice(&tail);
+        (self.layer, self.path, self.beam) = (layer, path, Some(beam));
+        (self.next, self.laid) = (p.index + 1, p.laid);
+    }
+}
+
+/// `v` as an LEB128 varint.
+fn varint(out: &mut Vec<u8>, mut v: u64) {
+    while v >= 0x80 {
+        out.push((v as u8 & 0x7f) | 0x80);
+        v >>= 7;
+    }
+    out.push(v as u8);
+}
+
 /// `v` as a 16-bit fraction of `[lo, hi]` (0 outside, or for a flat range).
-fn quantise(v: f64, lo: f64, hi: f64) -> u16 {
+pub(super) fn quantise(v: f64, lo: f64, hi: f64) -> u16 {
     if !(v.is_finite() && hi > lo) {
         return 0;
     }

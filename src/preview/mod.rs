@@ -15,6 +15,13 @@
 //! the smallest that fits, and says so on the page: a page of a few MB that
 //! a browser draws interactively, against 3.6 M points of the dense duct.
 //!
+//! A slider over the kept moves draws, at the chosen one, the head's
+//! solids about the beam (the machine's `head`, as the collision check
+//! takes it), a robot's links as capsules ([`joints::Links`]) and the part
+//! laid by then; a button goes to the closest approach's move. Each kept
+//! move's place in the plan rides in about two bytes
+//! (`encode::Poses`).
+//!
 //! For a robot with an arm the page also plots each axis's range layer by
 //! layer against its limits ([`joints`]), solved as the verifier solves it;
 //! for a 5-axis CNC, its tilt axis and C ([`rotary`]): on a tilting table,
@@ -91,6 +98,65 @@ struct Collect<'a> {
     errors: error::Layers,
     /// Where the last move ended.
     last: Option<[f64; 3]>,
+    /// The kept moves' places and beams.
+    poses: encode::Poses,
+    /// The plan's index of each kept move.
+    kept: Vec<usize>,
+    /// Moves of the plan so far, and deposits among them.
+    index: usize,
+    laid: usize,
+    /// The place of the deposit move left pending.
+    pending_place: Option<encode::Place>,
+    /// Up the beam is +Z whatever the normal (a 3-axis CNC, as the
+    /// collision check takes it).
+    vertical: bool,
+    /// The approaches' moves, found as the plan goes by.
+    approaches: Vec<Seek>,
+}
+
+/// The plan's move an approach happened on: the move whose target it
+/// names and whose line passes nearest its focus (`way` along it).
+struct Seek {
+    at: Where,
+    way: f64,
+    focus: [f64; 3],
+    /// The distance from the focus, and the plan's move index.
+    best: Option<(f64, usize)>,
+}
+
+impl Seek {
+    fn of(a: &crate::verify::approach::Approach) -> Seek {
+        let at = match (a.layer, a.path, a.point) {
+            (Some(l), Some(p), Some(q)) => Where::Point {
+                layer: l - 1,
+                path: p - 1,
+                point: q - 1,
+            },
+            (Some(l), Some(p), None) => Where::Clearance {
+                layer: l - 1,
+                path: p - 1,
+            },
+            _ => Where::End,
+        };
+        Seek {
+            at,
+            way: a.way,
+            focus: a.focus,
+            best: None,
+        }
+    }
+
+    fn offer(&mut self, from: [f64; 3], m: &Move, index: usize) {
+        if m.at != self.at {
+            return;
+        }
+        let d = (0..3)
+            .map(|k| (from[k] + self.way * (m.to[k] - from[k]) - self.focus[k]).powi(2))
+            .sum::<f64>();
+        if self.best.is_none_or(|(b, _)| d < b) {
+            self.best = Some((d, index));
+        }
+    }
 }
 
 impl<'a> Collect<'a> {
@@ -107,7 +173,31 @@ impl<'a> Collect<'a> {
         }
     }
 
-    fn push(&mut self, m: &Move) {
+    /// The place of the move the plan is at.
+    fn place(&self, m: &Move) -> encode::Place {
+        let beam = if self.vertical {
+            [0.0, 0.0, 1.0]
+        } else {
+            let n = m.normal.map(f64::from);
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            if len > 0.0 && len.is_finite() {
+                n.map(|c| c / len)
+            } else {
+                [0.0, 0.0, 1.0]
+            }
+        };
+        encode::Place {
+            index: self.index,
+            laid: self.laid,
+            at: m.at,
+            beam,
+            deposit: m.deposits(),
+        }
+    }
+
+    fn push(&mut self, m: &Move, place: encode::Place) {
+        self.poses.push(&place);
+        self.kept.push(place.index);
         let src = self.source(m);
         let speed = match m.speed {
             Speed::Feed(v) => v,
@@ -132,9 +222,25 @@ impl<'a> Collect<'a> {
     }
 
     fn flush(&mut self) {
-        if let Some(m) = self.pending.take() {
-            self.push(&m);
+        if let (Some(m), Some(place)) = (self.pending.take(), self.pending_place.take()) {
+            self.push(&m, place);
         }
+    }
+
+    /// The page's move of each approach.
+    fn approach_moves(&self) -> Vec<Option<encode::ApproachMove>> {
+        self.approaches
+            .iter()
+            .map(|a| {
+                let (_, index) = a.best?;
+                let kept = self.kept.partition_point(|&k| k < index);
+                let kept = kept.min(self.kept.len().checked_sub(1)?);
+                Some(encode::ApproachMove {
+                    kept,
+                    exact: self.kept[kept] == index,
+                })
+            })
+            .collect()
     }
 }
 
@@ -165,7 +271,13 @@ impl Visit for Collect<'_> {
             if let (Some((p, _)), Some(from)) = (self.source(m), from) {
                 self.errors.deposit(p, error::ground(from, m.to, p.normal));
             }
+            self.laid += 1;
         }
+        for a in &mut self.approaches {
+            a.offer(from.unwrap_or(m.to), m, self.index);
+        }
+        let place = self.place(m);
+        self.index += 1;
         if !self.keep_layer {
             return;
         }
@@ -174,13 +286,15 @@ impl Visit for Collect<'_> {
             self.run += 1;
             if k.is_multiple_of(self.d.moves) {
                 self.pending = None;
-                self.push(m);
+                self.pending_place = None;
+                self.push(m, place);
             } else {
                 self.pending = Some(*m);
+                self.pending_place = Some(place);
             }
         } else {
             self.flush();
-            self.push(m);
+            self.push(m, place);
         }
     }
 }
@@ -234,11 +348,25 @@ fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnosti
         kinds: Vec::new(),
         errors: error::Layers::default(),
         last: None,
+        poses: encode::Poses::default(),
+        kept: Vec::new(),
+        index: 0,
+        laid: 0,
+        pending_place: None,
+        vertical: match machine.machine() {
+            crate::ir::Machine::Cnc(c) => {
+                crate::plan::effective_kinematics(c) == crate::ir::Kinematics::Xyz
+            }
+            crate::ir::Machine::Robot(_) => false,
+        },
+        approaches: machine.summary().approaches.iter().map(Seek::of).collect(),
     };
     plan.walk(&mut c);
     c.flush();
+    let approach_moves = c.approach_moves();
     let layer_error = c.errors.finish();
-    let arm = joints::of(machine.machine(), &plan, program.layers.len());
+    let want = posed(&c.kept, &approach_moves);
+    let arm = joints::of(machine.machine(), &plan, program.layers.len(), want);
     let rotary = rotary::of(machine.machine(), &plan);
     let meta = encode::Meta {
         part: &program.part,
@@ -267,14 +395,32 @@ fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnosti
                 .collect()
         }),
         approaches: &machine.summary().approaches,
+        approach_moves: &approach_moves,
+        head: &machine.machine().common().head,
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };
-    let data = c.cols.encode(&meta);
+    let data = c.cols.encode(&meta, &c.poses);
     // In page order, each marker replaced once: no inserted text is
     // searched again (the viewer's code mentions the markers' names).
     PAGE.replacen("{{TITLE}}", &encode::escape_html(&program.part), 1)
         .replacen("/*DATA*/", &data, 1)
         .replacen("/*VIEWER*/", VIEWER, 1)
+}
+
+/// The page's moves the arm is posed at, as `(plan move index, page move
+/// index)` ascending: every k-th kept move (and the last), `k` the least
+/// that keeps them within [`joints::POSES`], and every approach's move.
+fn posed(kept: &[usize], approaches: &[Option<encode::ApproachMove>]) -> Vec<(usize, usize)> {
+    let k = kept.len().div_ceil(joints::POSES).max(1);
+    let mut out: Vec<usize> = (0..kept.len())
+        .filter(|i| i.is_multiple_of(k) || i + 1 == kept.len())
+        .chain(approaches.iter().flatten().map(|a| a.kept))
+        .collect();
+    out.sort_unstable();
+    out.dedup();
+    out.into_iter()
+        .filter_map(|i| Some((*kept.get(i)?, i)))
+        .collect()
 }
 
 #[cfg(test)]

@@ -2,8 +2,10 @@
 // orthographically. Deposits are drawn in colour buckets (one stroke per
 // colour, so a frame is a few dozen strokes however many moves), travel
 // moves faint and grey, over the substrate (a grid at z = 0) with the part's
-// axes and a scale bar. Reads the JSON in <script id="data">, written by
-// src/preview/encode.rs; needs nothing from the network.
+// axes and a scale bar; a slider over the moves draws the head's solids and
+// a robot's links at the chosen one over the part laid by then. Reads the
+// JSON in <script id="data">, written by src/preview/encode.rs; needs
+// nothing from the network.
 "use strict";
 (function () {
   const D = JSON.parse(document.getElementById("data").textContent);
@@ -48,6 +50,51 @@
   const LAYER_NUMBER = new Float32Array(N);
   for (let i = 0; i < N; i++) LAYER_NUMBER[i] = STARTS.length ? STARTS[LAYER[i]][0] : 0;
   VALUES.layer = LAYER_NUMBER;
+  // Where each move is (encode.rs, Poses): a tag byte and what changed
+  // since the move before, in LEB128 varints. Decoded once into columns: its
+  // target's kind (0 a point, 1 a clearance move, 2 the end), layer, path and
+  // point (from 0), the plan's move index, the plan's deposit moves up to it
+  // (its own included), and the unit vector up its beam.
+  const P_KIND = new Uint8Array(N), P_LAYER = new Uint32Array(N), P_PATH = new Uint32Array(N);
+  const P_POINT = new Uint32Array(N), P_INDEX = new Float64Array(N), P_LAID = new Float64Array(N);
+  const BEAM = new Float32Array(3 * N);
+  (function () {
+    const b = bytes(D.poses || "");
+    let at = 0, layer = 0, path = 0, point = 0, index = -1, laid = 0, beam = [0, 0, 1];
+    const varint = () => {
+      let v = 0, scale = 1, x;
+      do { x = b[at++]; v += (x & 127) * scale; scale *= 128; } while (x & 128 && at < b.length);
+      return v;
+    };
+    for (let i = 0; i < N && at < b.length; i++) {
+      const tag = b[at++];
+      if (tag & 4) layer = varint();
+      if (tag & 8) { path = varint(); point = 0; }
+      let skipped = 0, skippedLaid = 0;
+      if (tag & 16) { skipped = varint(); skippedLaid = varint(); }
+      const kind = tag & 3;
+      if (kind === 0) { const z = varint(); point += z % 2 ? -(z + 1) / 2 : z / 2; }
+      if (tag & 32) {
+        beam = [0, 1, 2].map((k) => {
+          const v = b[at + 2 * k] | (b[at + 2 * k + 1] << 8);
+          return (v >= 32768 ? v - 65536 : v) / 32767;
+        });
+        at += 6;
+        const len = Math.hypot(...beam) || 1;
+        beam = beam.map((v) => v / len);
+      }
+      index += 1 + skipped;
+      laid += skippedLaid + (FLAGS[i] & DEPOSIT ? 1 : 0);
+      P_KIND[i] = kind; P_LAYER[i] = layer; P_PATH[i] = path; P_POINT[i] = point;
+      P_INDEX[i] = index; P_LAID[i] = laid;
+      BEAM.set(beam, 3 * i);
+    }
+  })();
+  // The page's deposit moves up to each move, its own included.
+  const LAID = new Uint32Array(N);
+  for (let i = 0, n = 0; i < N; i++) { if (FLAGS[i] & DEPOSIT) n++; LAID[i] = n; }
+  const DEPOSITS = N ? LAID[N - 1] : 0;
+  const PLAN_DEPOSITS = N ? P_LAID[N - 1] : 0;
   const UNITS = { speed: "mm/s", height: "mm", power: "W", layer: "" };
   const TITLES = {
     speed: "speed", height: "layer height", power: "laser power", style: "style", layer: "layer",
@@ -248,6 +295,10 @@
   const PX = new Float32Array(N), PY = new Float32Array(N);
   let range = [0, Math.max(STARTS.length - 1, 0)];
   let showTravel = true;
+  // The move the bodies stand at (an index into the page's moves) and how
+  // far along the move to it (1: its end); the part is drawn as laid by then.
+  const pose = { cur: Math.max(N - 1, 0), way: 1 };
+  let showBodies = true, showRest = true;
 
   // The substrate: the deposits' footprint on z = 0 and a margin, out to
   // whole steps of its grid (a round length, about an eighth of it).
@@ -306,13 +357,13 @@
   // one colour may hold every move (a plan at its height, one path kind),
   // and one path of 300 000 lines strokes slower than twenty of 16 000.
   const CHUNK = 16384;
-  function strokeList(list) {
+  function strokeList(list, upto) {
     const [a, b] = range;
     let n = 0;
     ctx.beginPath();
     for (let k = 0; k < list.length; k++) {
       const i = list[k];
-      if (i === 0 || FLAGS[i] & GAP) continue;
+      if (i === 0 || i > upto || FLAGS[i] & GAP) continue;
       const l = LAYER[i];
       if (l < a || l > b) continue;
       ctx.moveTo(PX[i - 1], PY[i - 1]);
@@ -410,20 +461,177 @@
     if (!movesOnly) drawSubstrate(c, dpr);
     project(c);
     ctx.lineCap = "round";
+    // The part laid up to the shown move; what comes after it faint.
+    const upto = pose.cur;
+    if (showRest && upto < N - 1) {
+      ctx.lineWidth = 1.2 * dpr;
+      ctx.strokeStyle = REST_GREY;
+      strokeRest(upto);
+    }
     if (showTravel) {
       ctx.lineWidth = dpr;
       ctx.strokeStyle = mode === "kind" ? TRAVEL_KIND_COLOUR : TRAVEL_GREY;
-      strokeList(travel);
+      strokeList(travel, upto);
     }
     ctx.lineWidth = 1.6 * dpr;
     for (const b of order) {
       ctx.strokeStyle = colours[b];
-      strokeList(buckets[b]);
+      strokeList(buckets[b], upto);
     }
     if (movesOnly) return;
     drawAxes(c, dpr);
     drawScaleBar(c, dpr);
+    if (showBodies) drawBodies(c, dpr);
     drawApproaches(c, dpr);
+  }
+
+  // The deposits after move `upto`, in the layers shown.
+  function strokeRest(upto) {
+    const [a, b] = range;
+    let n = 0;
+    ctx.beginPath();
+    for (let i = upto + 1; i < N; i++) {
+      if (!(FLAGS[i] & DEPOSIT) || FLAGS[i] & GAP || LAYER[i] < a || LAYER[i] > b) continue;
+      ctx.moveTo(PX[i - 1], PY[i - 1]);
+      ctx.lineTo(PX[i], PY[i]);
+      if (++n === CHUNK) { ctx.stroke(); ctx.beginPath(); n = 0; }
+    }
+    ctx.stroke();
+  }
+
+  // --- the bodies at a move -------------------------------------------------
+  // The head's solids about the beam at the shown move's focus (docs/
+  // collision.md): each a frustum from `s0` to `s1` up the beam, its radii
+  // `r0` and `r1`, the nozzle's tip `standoff` above the focus. Orthographic,
+  // so a solid's outline is the convex hull of its two rims' projections.
+  const HEAD = M.head || { standoff: 0, bodies: [], gap: 0 };
+  const SOLIDS = (function () {
+    let s = HEAD.standoff;
+    return HEAD.bodies.map((b) => {
+      const f = { name: b.name, s: [s, s + b.length], r: [b.diameters[0] / 2, b.diameters[1] / 2] };
+      s += b.length;
+      return f;
+    });
+  })();
+  const ARM_LINKS = M.arm && M.arm.links;
+  const LINK_POINTS = ARM_LINKS ? (function () {
+    const b = bytes(ARM_LINKS.points), out = new Float64Array(b.length / 2);
+    for (let i = 0; i < out.length; i++) {
+      const [lo, hi] = ARM_LINKS.ranges[i % 3];
+      out[i] = lo + (b[2 * i] | (b[2 * i + 1] << 8)) * ((hi - lo) / 65535);
+    }
+    return out;
+  })() : null;
+  const BODY_FILL = "rgba(70,78,92,0.16)", BODY_EDGE = "rgba(55,60,72,0.85)", RIM = "rgba(55,60,72,0.45)";
+  const REST_GREY = "rgba(160,160,160,0.22)";
+
+  // The shown pose: its focus and the unit vector up its beam, `way` along
+  // the move to it (1: at its end; an approach may lie within a move).
+  function posed() {
+    const i = pose.cur, t = i > 0 ? pose.way : 1;
+    const a = i > 0 ? i - 1 : i;
+    const lerp = (A) => A[a] + t * (A[i] - A[a]);
+    const f = [lerp(X), lerp(Y), lerp(Z)];
+    let u = [0, 1, 2].map((k) => BEAM[3 * a + k] + t * (BEAM[3 * i + k] - BEAM[3 * a + k]));
+    const len = Math.hypot(...u) || 1;
+    u = u.map((v) => v / len);
+    return { focus: f, up: u };
+  }
+  // Two unit vectors square to `u` and to each other.
+  function across(u) {
+    const h = Math.abs(u[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0];
+    const cross = (p, q) => [p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]];
+    let e1 = cross(u, h);
+    const l = Math.hypot(...e1);
+    e1 = e1.map((v) => v / l);
+    return [e1, cross(u, e1)];
+  }
+  // The convex hull of screen points (monotone chain), counter-clockwise.
+  function hull(pts) {
+    pts = pts.slice().sort((p, q) => p[0] - q[0] || p[1] - q[1]);
+    const turn = (o, a, b) => (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    const half = (list) => {
+      const h = [];
+      for (const p of list) {
+        while (h.length >= 2 && turn(h[h.length - 2], h[h.length - 1], p) <= 0) h.pop();
+        h.push(p);
+      }
+      h.pop();
+      return h;
+    };
+    return half(pts).concat(half(pts.slice().reverse()));
+  }
+  const RIM_STEPS = 36;
+  function drawHead(c, dpr) {
+    const { focus: f, up: u } = posed();
+    const [e1, e2] = across(u);
+    const point = (s, r, a) => at(c, ...[0, 1, 2].map((k) =>
+      f[k] + s * u[k] + r * (Math.cos(a) * e1[k] + Math.sin(a) * e2[k])));
+    // The beam from the focus up to the nozzle's tip, dashed.
+    const [fu, fv] = at(c, ...f), [tu, tv] = point(HEAD.standoff, 0, 0);
+    ctx.setLineDash([3 * dpr, 3 * dpr]);
+    ctx.strokeStyle = BODY_EDGE; ctx.lineWidth = dpr;
+    ctx.beginPath(); ctx.moveTo(fu, fv); ctx.lineTo(tu, tv); ctx.stroke();
+    ctx.setLineDash([]);
+    for (const b of SOLIDS) {
+      const rims = [0, 1].map((e) => Array.from({ length: RIM_STEPS }, (_, k) =>
+        point(b.s[e], b.r[e], (2 * Math.PI * k) / RIM_STEPS)));
+      const h = hull(rims[0].concat(rims[1]));
+      ctx.beginPath();
+      h.forEach(([x, y], k) => (k ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+      ctx.closePath();
+      ctx.fillStyle = BODY_FILL; ctx.fill();
+      ctx.strokeStyle = BODY_EDGE; ctx.lineWidth = 1.2 * dpr; ctx.stroke();
+      ctx.strokeStyle = RIM; ctx.lineWidth = dpr;
+      for (const rim of rims) {
+        ctx.beginPath();
+        rim.forEach(([x, y], k) => (k ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+        ctx.closePath(); ctx.stroke();
+      }
+    }
+    const tip = [0, 1, 2].map((k) => f[k] + HEAD.standoff * u[k]);
+    return { focus: f, up: u, tip };
+  }
+  // The posed move of the arm at or before move `i` (-1: none).
+  function armMove(i) {
+    if (!ARM_LINKS) return -1;
+    const m = ARM_LINKS.moves;
+    let lo = 0, hi = m.length;
+    while (lo < hi) { const mid = (lo + hi) >> 1; if (m[mid] <= i) lo = mid + 1; else hi = mid; }
+    return lo - 1;
+  }
+  // A robot's links as capsules (a segment and a radius: orthographically a
+  // stroke as wide as the capsule with round caps), on the frames the
+  // collision check hangs them on: the upper arm A2–A3, the forearm A3 past
+  // its offset to the wrist centre, the wrist to the flange; the column
+  // from A1's height to A2 a line.
+  const CAPSULES = [[1, 2, 0], [2, 3, 1], [3, 4, 1], [4, 5, 2]];
+  function drawArm(c, dpr, k) {
+    const p = (j) => at(c, ...[0, 1, 2].map((a) => LINK_POINTS[18 * k + 3 * j + a]));
+    const radii = ARM_LINKS.radii;
+    ctx.lineCap = "round";
+    for (const [a, b, link] of CAPSULES) {
+      const [u0, v0] = p(a), [u1, v1] = p(b);
+      ctx.beginPath(); ctx.moveTo(u0, v0); ctx.lineTo(u1, v1);
+      if (radii) {
+        ctx.lineWidth = Math.max(2 * radii[link] * c.scale, dpr);
+        ctx.strokeStyle = "rgba(85,95,115,0.2)"; ctx.stroke();
+      }
+      ctx.lineWidth = 1.5 * dpr; ctx.strokeStyle = BODY_EDGE; ctx.stroke();
+    }
+    const [u0, v0] = p(0), [u1, v1] = p(1);
+    ctx.setLineDash([4 * dpr, 4 * dpr]);
+    ctx.beginPath(); ctx.moveTo(u0, v0); ctx.lineTo(u1, v1); ctx.stroke();
+    ctx.setLineDash([]);
+  }
+  function drawBodies(c, dpr) {
+    if (!N) return;
+    const k = armMove(pose.cur);
+    if (k >= 0) drawArm(c, dpr, k);
+    const h = drawHead(c, dpr);
+    const s = $("pose");
+    s.dataset.tip = h.tip.map((v) => v.toFixed(4)).join(",");
+    s.dataset.armMove = k >= 0 ? ARM_LINKS.moves[k] : -1;
   }
 
   // The closest approach of each body to each thing of the cell, marked at
@@ -748,6 +956,74 @@
   }, { passive: false });
   window.addEventListener("resize", () => { resize(); plot(); plotLayers(); plotJoints(); plotRotary(); redraw(); });
 
+  // --- the move slider: the bodies at any move ------------------------------
+  const moveInput = $("move");
+  moveInput.max = String(Math.max(N - 1, 0));
+  moveInput.value = String(pose.cur);
+  const KIND_WORDS = M.kinds;
+  // Where move `i` is, in the messages' words (layers, paths, points from 1).
+  function where(i) {
+    if (P_KIND[i] === 2) return "the retract after the last path";
+    if (P_KIND[i] === 1) return `the clearance move before layer ${P_LAYER[i] + 1}, path ${P_PATH[i] + 1}`;
+    return `layer ${P_LAYER[i] + 1}, path ${P_PATH[i] + 1}, point ${P_POINT[i] + 1}`;
+  }
+  function showPose() {
+    const i = pose.cur, s = $("pose");
+    if (!N) return;
+    const laser = FLAGS[i] & DEPOSIT ? `laser on (${KIND_WORDS[KIND[i]]})` : "laser off";
+    const thinned = P_INDEX[N - 1] + 1 > N;
+    const along = pose.way < 1 ? `${Math.round(pose.way * 100)} % of the way along ` : "";
+    s.textContent = `move ${i + 1} of ${N}` + (thinned ? ` (the plan's move ${P_INDEX[i] + 1} of ${M.moves})` : "") +
+      `: ${along}the move to ${where(i)}, ${laser}; laid so far: ${LAID[i]} of ${DEPOSITS} deposit moves` +
+      (thinned ? ` (the plan's ${P_LAID[i]} of ${PLAN_DEPOSITS})` : "");
+    const k = armMove(i);
+    if (ARM_LINKS && k >= 0 && ARM_LINKS.moves[k] !== i)
+      s.textContent += `; the arm as at move ${ARM_LINKS.moves[k] + 1} (the page carries it at ` +
+        `${ARM_LINKS.moves.length} of its ${N} moves)`;
+    const d = s.dataset;
+    d.move = i; d.planMove = P_INDEX[i]; d.way = pose.way;
+    d.kind = ["point", "clearance", "end"][P_KIND[i]];
+    d.layer = P_LAYER[i] + 1; d.path = P_PATH[i] + 1; d.point = P_KIND[i] === 0 ? P_POINT[i] + 1 : "";
+    d.focus = [X[i], Y[i], Z[i]].map((v) => v.toFixed(4)).join(",");
+    d.beam = [0, 1, 2].map((k) => BEAM[3 * i + k].toFixed(5)).join(",");
+    d.laid = LAID[i]; d.laidPlan = P_LAID[i];
+    moveInput.value = String(i);
+  }
+  function goTo(i, way) {
+    pose.cur = Math.min(Math.max(Math.round(i), 0), Math.max(N - 1, 0));
+    pose.way = way === undefined ? 1 : way;
+    showPose(); redraw();
+  }
+  // The first move of the layer before (or of this one, from inside it), or
+  // of the layer after.
+  function layerStep(dir) {
+    if (!STARTS.length) return pose.cur;
+    const k = LAYER[pose.cur];
+    if (dir < 0) return pose.cur > STARTS[k][1] ? STARTS[k][1] : STARTS[Math.max(k - 1, 0)][1];
+    return k + 1 < STARTS.length ? STARTS[k + 1][1] : N - 1;
+  }
+  moveInput.addEventListener("input", () => goTo(+moveInput.value));
+  $("prev").addEventListener("click", () => goTo(pose.cur - 1));
+  $("next").addEventListener("click", () => goTo(pose.cur + 1));
+  $("prevlayer").addEventListener("click", () => goTo(layerStep(-1)));
+  $("nextlayer").addEventListener("click", () => goTo(layerStep(1)));
+  $("first").addEventListener("click", () => goTo(0));
+  $("last").addEventListener("click", () => goTo(N - 1));
+  $("bodies").addEventListener("change", (e) => { showBodies = e.target.checked; redraw(); });
+  $("rest").addEventListener("change", (e) => { showRest = e.target.checked; redraw(); });
+  // Arrows step a move (with shift, a layer), Home and End go to the ends,
+  // `c` to the closest approach; not while a control that takes keys has
+  // the focus.
+  document.addEventListener("keydown", (e) => {
+    if (/^(INPUT|SELECT|TEXTAREA)$/.test(e.target.tagName || "")) return;
+    const go = {
+      ArrowLeft: () => goTo(e.shiftKey ? layerStep(-1) : pose.cur - 1),
+      ArrowRight: () => goTo(e.shiftKey ? layerStep(1) : pose.cur + 1),
+      Home: () => goTo(0), End: () => goTo(N - 1), c: () => $("jump").click(),
+    }[e.key];
+    if (go) { e.preventDefault(); go(); }
+  });
+
   // --- the page's own account of what it shows (tests read it) ------------
   $("heading").textContent = `${M.part} on ${M.machine}`;
   document.title = `lmdc preview: ${M.part} on ${M.machine}: ${M.layers} layers`;
@@ -798,7 +1074,27 @@
     p.hidden = false;
     p.dataset.approaches = APPROACHES.length;
     p.dataset.distance = a.distance_mm;
+    // The button takes the slider to the move the approach happened on (at
+    // the pose along it, where that move is on the page).
+    const m = (M.approach_moves || [])[tightest], jump = $("jump");
+    if (m) {
+      jump.hidden = false;
+      jump.textContent = hit ? "go to the collision" : "go to the closest approach";
+      jump.dataset.target = m.kept;
+      // The pose along the move needs the move before it on the page too.
+      const whole = m.kept === 0 || P_INDEX[m.kept - 1] === P_INDEX[m.kept] - 1;
+      jump.addEventListener("click", () => goTo(m.kept, m.exact && whole ? a.way : 1));
+    }
   }
+  // The address may ask for a move (#move=K, from 0), a step from it
+  // (#step=-3: as many presses of ← or →), the closest approach
+  // (#jump=closest: the button's click), or no bodies (#bodies=0).
+  if (ask.get("bodies") === "0") { $("bodies").checked = false; showBodies = false; }
+  if (ask.has("move")) { moveInput.value = ask.get("move"); moveInput.dispatchEvent(new Event("input")); }
+  for (let n = Math.abs(+ask.get("step") || 0); n > 0; n--)
+    document.dispatchEvent(new KeyboardEvent("keydown", { key: +ask.get("step") < 0 ? "ArrowLeft" : "ArrowRight" }));
+  if (ask.get("jump") === "closest") $("jump").click();
+  showPose();
   if (ARM) $("armplots").hidden = false;
   if (ROT) $("rotaryplots").hidden = false;
   resize();
