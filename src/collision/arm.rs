@@ -6,13 +6,57 @@
 //! along the capsule's axis ([`super::capsule`]).
 
 use super::capsule::{box_point, cylinder_point, least_along, segment_point, Capsule};
-use super::head::{dot, sub};
+use super::head::{dot, sub, Frustum, Pose};
 use crate::ir::{Fixture, FixtureShape};
 use nalgebra::{Isometry3, Point3};
 
-/// The links' names, in the order their radii are given
-/// ([`crate::target::arm::Model::links`]).
-pub const LINKS: [&str; 3] = ["upper arm", "forearm", "wrist"];
+/// The links' names: the three whose radii a model gives
+/// ([`crate::target::arm::Model::links`]) in that order, then the column
+/// ([`crate::target::arm::Model::column`]) and the tool.
+pub const LINKS: [&str; 5] = ["upper arm", "forearm", "wrist", "column", "tool"];
+
+/// The index in [`LINKS`] of the upper arm.
+pub const UPPER_ARM: usize = 0;
+/// The index in [`LINKS`] of the wrist.
+pub const WRIST: usize = 2;
+/// The index in [`LINKS`] of the column.
+pub const COLUMN: usize = 3;
+/// The index in [`LINKS`] of the tool.
+pub const TOOL: usize = 4;
+
+/// The column's capsules at the frames' origins `p`: from the robot's
+/// foot (its frame's origin) up A1's axis to the shoulder's height, then
+/// on to the A2 axis, of radius `r`.
+pub fn column(p: &[[f64; 3]; 6], r: f64) -> [Capsule; 2] {
+    [
+        Capsule {
+            a: [0.0; 3],
+            b: p[0],
+            r,
+        },
+        Capsule { a: p[0], b: p[1], r },
+    ]
+}
+
+/// The least distance between two capsules (negative where they
+/// overlap): the segments' distance, convex along either, less both radii.
+pub fn capsule_capsule(c: &Capsule, d: &Capsule) -> f64 {
+    least_along(c.a, c.b, |p| segment_point(d.a, d.b, p)).0 - c.r - d.r
+}
+
+/// The least distance from a head's body `b` at `pose` to the capsule `c`
+/// (negative where the capsule's axis runs inside it, by the radius): a
+/// point's distance to a solid of revolution is convex, so a search along
+/// the capsule's axis finds it.
+pub fn body_capsule(b: &Frustum, pose: &Pose, c: &Capsule) -> f64 {
+    let at = |p: [f64; 3]| {
+        let v = sub(p, pose.focus);
+        let s = dot(v, pose.up);
+        let rho = (dot(v, v) - s * s).max(0.0).sqrt();
+        b.distance(s, rho)
+    };
+    least_along(c.a, c.b, at).0 - c.r
+}
 
 /// The arm's capsules at the frames' origins `p`
 /// ([`crate::plan::arm::Solver::joint_points`]) with the links' radii

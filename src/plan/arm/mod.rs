@@ -269,6 +269,12 @@ impl Solver {
         poses.map(|p| [p.translation.x, p.translation.y, p.translation.z])
     }
 
+    /// The tool's frame (its origin the focus) in the robot's frame at
+    /// axis angles `j`: where the collision checks hang the head.
+    pub fn tcp(&self, j: &Joints) -> Isometry3<f64> {
+        self.forward_flange(j) * self.tool_inv.inverse()
+    }
+
     /// The tool's focus in the base, and its axes, at axis angles `j`.
     pub fn forward(&self, j: &Joints) -> ([f64; 3], Matrix3<f64>) {
         let tcp = self.base.inverse() * self.forward_flange(j) * self.tool_inv.inverse();
