@@ -34,7 +34,11 @@ pub fn column(p: &[[f64; 3]; 6], r: f64) -> [Capsule; 2] {
             b: p[0],
             r,
         },
-        Capsule { a: p[0], b: p[1], r },
+        Capsule {
+            a: p[0],
+            b: p[1],
+            r,
+        },
     ]
 }
 
@@ -262,5 +266,100 @@ mod tests {
             r: 10.0,
         };
         assert_eq!(plate.capsule(&Isometry3::identity(), &far, 100.0), None);
+    }
+
+    /// Points sampled every 1/2000 of a segment.
+    fn sampled(a: [f64; 3], b: [f64; 3]) -> impl Iterator<Item = [f64; 3]> {
+        (0..=2000).map(move |k| {
+            let t = f64::from(k) / 2000.0;
+            std::array::from_fn(|i| a[i] + t * (b[i] - a[i]))
+        })
+    }
+
+    proptest::proptest! {
+        /// Two capsules' distance against one axis sampled every 1/2000
+        /// of it, each point's distance to the other axis by projection:
+        /// never above it, below it by no more than the step.
+        #[test]
+        fn capsules_apart_as_sampled(
+            a in proptest::array::uniform3(-500.0f64..500.0),
+            b in proptest::array::uniform3(-500.0f64..500.0),
+            c in proptest::array::uniform3(-500.0f64..500.0),
+            d in proptest::array::uniform3(-500.0f64..500.0),
+            r in 1.0f64..100.0,
+        ) {
+            let (p, q) = (Capsule { a, b, r }, Capsule { a: c, b: d, r: r / 2.0 });
+            let got = capsule_capsule(&p, &q);
+            let step = super::super::head::dist(a, b) / 2000.0;
+            let want = sampled(a, b)
+                .map(|x| segment_point(c, d, x))
+                .fold(f64::INFINITY, f64::min)
+                - 1.5 * r;
+            proptest::prop_assert!(got <= want + 1e-6, "{} vs {}", got, want);
+            proptest::prop_assert!(got >= want - step - 1e-6, "{} vs {}", got, want);
+        }
+
+        /// A head's nozzle (a frustum 12 mm across at its tip, 40 mm at
+        /// its top, 45 mm long, 15 mm up the beam) against a capsule: its
+        /// axis sampled every 1/2000, each point's distance to the cone
+        /// by its (s, ρ) outline.
+        #[test]
+        fn a_body_and_a_capsule_apart_as_sampled(
+            c in proptest::array::uniform3(-200.0f64..200.0),
+            d in proptest::array::uniform3(-200.0f64..200.0),
+            tilt in 0.0f64..3.0,
+            r in 1.0f64..50.0,
+        ) {
+            let body = Frustum { s: [15.0, 60.0], r: [6.0, 20.0] };
+            let pose = Pose { focus: [3.0, -2.0, 1.0], up: [tilt.sin(), 0.0, tilt.cos()] };
+            let cap = Capsule { a: c, b: d, r };
+            let got = body_capsule(&body, &pose, &cap);
+            let step = super::super::head::dist(c, d) / 2000.0;
+            let want = sampled(c, d)
+                .map(|p| {
+                    let v = sub(p, pose.focus);
+                    let s = dot(v, pose.up);
+                    body.distance(s, (dot(v, v) - s * s).max(0.0).sqrt())
+                })
+                .fold(f64::INFINITY, f64::min)
+                - r;
+            proptest::prop_assert!(got <= want + 1e-6, "{} vs {}", got, want);
+            proptest::prop_assert!(got >= want - step - 1e-6, "{} vs {}", got, want);
+        }
+    }
+
+    /// Every catalogue arm at KUKA's home keeps its wrist clear of its
+    /// upper arm and its column (the non-adjacent pairs checked); folded
+    /// (A3 at its upper limit, A5 bent back), the KR 60 HA's wrist comes
+    /// within its radius and the upper arm's of the upper arm's axis,
+    /// as the points' own distance says.
+    #[test]
+    fn home_is_clear_and_a_folded_arm_is_not() {
+        for m in CATALOGUE {
+            let s = Solver::with(
+                m.arm(0.0, 5.0),
+                Isometry3::identity(),
+                Isometry3::identity(),
+            );
+            let p = s.joint_points(&[0.0, -90.0, 90.0, 0.0, 0.0, 0.0]);
+            let caps = capsules(&p, m.links);
+            let wrist = caps[3].1;
+            assert!(capsule_capsule(&wrist, &caps[0].1) > 0.0, "{}", m.key);
+            for col in column(&p, m.column) {
+                assert!(capsule_capsule(&wrist, &col) > 0.0, "{}", m.key);
+            }
+        }
+        let m = crate::target::arm::model("kr60ha").unwrap();
+        let s = Solver::with(
+            m.arm(0.0, 5.0),
+            Isometry3::identity(),
+            Isometry3::identity(),
+        );
+        let p = s.joint_points(&[0.0, -90.0, 158.0, 0.0, 110.0, 0.0]);
+        let caps = capsules(&p, m.links);
+        let d = capsule_capsule(&caps[3].1, &caps[0].1);
+        let axes = segment_point(p[1], p[2], p[5]).min(segment_point(p[1], p[2], p[4]));
+        assert!(d <= axes - 190.0 - 100.0 + 1e-9, "{d} vs {axes}");
+        assert!(d < 0.0, "{d}");
     }
 }

@@ -78,7 +78,9 @@ impl std::fmt::Display for Place {
                 "{:.0} % of the way along the PTP from home to {at}",
                 way * 100.0
             ),
-            Place::Ptp { back: true, way, .. } => {
+            Place::Ptp {
+                back: true, way, ..
+            } => {
                 write!(f, "{:.0} % of the way along the PTP back home", way * 100.0)
             }
         }

@@ -29,7 +29,11 @@ pub(crate) fn path(a: End, b: End) -> Vec<(f64, End)> {
         .fold(0.0f64, f64::max);
     let n = (most / PTP_STEP_DEG).ceil();
     // A runaway count (a non-finite angle) is refused by the other rules.
-    let n = if n.is_finite() { n.clamp(1.0, 1e5) as usize } else { 1 };
+    let n = if n.is_finite() {
+        n.clamp(1.0, 1e5) as usize
+    } else {
+        1
+    };
     (0..=n)
         .map(|k| {
             let t = k as f64 / n as f64;
@@ -134,8 +138,14 @@ mod tests {
     /// the same share of its way).
     #[test]
     fn the_path_is_a_line_in_the_axes() {
-        let a = ([0.0, -90.0, 90.0, 0.0, 0.0, 0.0], Rotary { tilt: 0.0, c: 0.0 });
-        let b = ([31.0, -60.0, 70.0, 10.0, 45.0, -5.0], Rotary { tilt: 40.0, c: 3.0 });
+        let a = (
+            [0.0, -90.0, 90.0, 0.0, 0.0, 0.0],
+            Rotary { tilt: 0.0, c: 0.0 },
+        );
+        let b = (
+            [31.0, -60.0, 70.0, 10.0, 45.0, -5.0],
+            Rotary { tilt: 40.0, c: 3.0 },
+        );
         let p = path(a, b);
         // E1 moves most: 40° in 20 steps.
         assert_eq!(p.len(), 21);
