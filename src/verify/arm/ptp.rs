@@ -144,13 +144,13 @@ mod tests {
         );
         let b = (
             [31.0, -60.0, 70.0, 10.0, 45.0, -5.0],
-            Rotary { tilt: 40.0, c: 3.0 },
+            Rotary { tilt: 50.0, c: 3.0 },
         );
         let p = path(a, b);
-        // E1 moves most: 40° in 20 steps.
-        assert_eq!(p.len(), 21);
+        // E1 moves most: 50° in 25 steps.
+        assert_eq!(p.len(), 26);
         assert_eq!(p[0].1 .0, a.0);
-        assert_eq!(p[20].1 .0, b.0);
+        assert_eq!(p[25].1 .0, b.0);
         for w in p.windows(2) {
             for i in 0..6 {
                 assert!((w[1].1 .0[i] - w[0].1 .0[i]).abs() <= PTP_STEP_DEG + 1e-12);
