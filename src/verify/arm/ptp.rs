@@ -158,10 +158,9 @@ mod tests {
             assert!((w[1].1 .1.tilt - w[0].1 .1.tilt).abs() <= PTP_STEP_DEG + 1e-12);
         }
         let (t, (j, _)) = p[5];
-        for i in 0..6 {
-            let share = (j[i] - a.0[i]) / (b.0[i] - a.0[i]);
-            if (b.0[i] - a.0[i]).abs() > 0.0 {
-                assert!((share - t).abs() < 1e-12);
+        for ((x, x0), x1) in j.iter().zip(a.0).zip(b.0) {
+            if (x1 - x0).abs() > 0.0 {
+                assert!(((x - x0) / (x1 - x0) - t).abs() < 1e-12);
             }
         }
         // No move: one step, both ends.
