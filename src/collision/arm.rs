@@ -231,6 +231,11 @@ mod tests {
                 assert!((upper - m.opw.c2).abs() < 1e-6, "{}", m.key);
                 let caps = capsules(&p, m.links);
                 assert_eq!(caps[3].1.r, m.links[2]);
+                // One pass of the forward kinematics gives the same.
+                let (q, tcp) = s.joint_frames(&j);
+                assert_eq!(q, p);
+                let d = tcp.translation.vector - s.tcp(&j).translation.vector;
+                assert!(d.norm() < 1e-9 && tcp.rotation.angle_to(&s.tcp(&j).rotation) < 1e-9);
             }
         }
     }

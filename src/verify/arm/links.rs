@@ -2,8 +2,8 @@
 //! catalogue entry ([`crate::target::arm::Model::links`], `column`) and
 //! hung on the axis angles [`super::ArmRule`] solves at every pose, keep
 //! the head's gap from the positioner's faceplate and the fixtures
-//! ([`crate::collision::arm`]); without a positioner the wrist and the
-//! tool keep it from the plate; the wrist, the tool and the head keep it
+//! ([`crate::collision::arm`]); without a positioner the tool keeps it
+//! from the plate; the wrist, the tool and the head keep it
 //! from the upper arm and the column (an arm folded back onto itself:
 //! adjacent links always touch at their joint, so are not checked). On
 //! the PTPs from and back to home ([`super::ptp`]) the head is checked too,
@@ -112,8 +112,7 @@ enum Target {
     Faceplate,
     /// The program's fixture of this index.
     Fixture(usize),
-    /// The plate: the wrist and the tool without a positioner, the head on
-    /// a PTP.
+    /// The plate: the tool without a positioner, the head on a PTP.
     Plate,
     /// The arm's own link (in [`LINKS`]).
     Own(usize),
@@ -294,8 +293,7 @@ impl<'p> Links<'p> {
         place: Place,
         focus: [f64; 3],
     ) {
-        let p = solver.joint_points(j);
-        let tcp = solver.tcp(j);
+        let (p, tcp) = solver.joint_frames(j);
         let up = tcp.rotation * self.up;
         let head = Pose {
             focus: tcp.translation.vector.into(),
@@ -332,7 +330,10 @@ impl<'p> Links<'p> {
                     }
                 }
                 Target::Plate if self.kin.is_none() => {
-                    for (link, cap) in caps.iter().filter(|c| c.0 == WRIST || c.0 == TOOL) {
+                    // The tool only: the wrist of a tool angled on its
+                    // flange works beside the part, at its height
+                    // (docs/collision.md, *The arm*).
+                    for (link, cap) in caps.iter().filter(|c| c.0 == TOOL) {
                         let z = |q: [f64; 3]| (part_inv * Point3::from(q)).z;
                         let d = z(cap.a).min(z(cap.b)) - cap.r;
                         self.record(k, *link, d, place, focus);
