@@ -576,15 +576,17 @@ machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45
     joint_limit: JointLimit, DUCT,
         "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1300 mm)  home = [0 deg, -90 deg, 90 deg, 0 deg, 150 deg, 0 deg] }";
     // The part held up in front of the wrist, the nozzle pointing away from
-    // the robot along the forearm: A5 = 0 at the duct's origin.
+    // the robot along the forearm: A5 = 0 at the duct's origin. KUKA's home
+    // would put the nozzle below the plate (lmd::collision on the PTP): the
+    // forearm raised 30° above it, here and in the next two.
     singular_lin: SingularLin, DUCT,
-        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1650 mm, z = 1810 mm, b = -90 deg) }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 1650 mm, z = 1810 mm, b = -90 deg)  home = [0 deg, -90 deg, 60 deg, 0 deg, 0 deg, 0 deg] }";
     // The duct round A1's axis, 3 mm off: the wrist centre passes over A1
     // (overhead), and A1 would spin round to follow it.
     configuration_flip: ConfigurationFlip, DUCT,
-        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 3 mm, z = 1000 mm) }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 3 mm, z = 1000 mm)  home = [0 deg, -90 deg, 60 deg, 0 deg, 0 deg, 0 deg] }";
     joint_speed: JointSpeed, DUCT,
-        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = -3 mm, z = 1000 mm) }";
+        "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = -3 mm, z = 1000 mm)  home = [0 deg, -90 deg, 60 deg, 0 deg, 0 deg, 0 deg] }";
     // The rotate axis along the tilt axis: the part could only turn.
     positioner_axes: PositionerAxes, DUCT,
         "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  base = frame(1)  positioner { tilt_axis = [0, 0, 1]  tilt_point = [1500 mm, 0 mm, 500 mm]  tilt_limits = -90 deg .. 90 deg  tilt_speed = 60 deg/s  rotate_axis = [0, 0, 2]  rotate_point = [1500 mm, 0 mm, 650 mm]  rotate_limits = -360 deg .. 360 deg  rotate_speed = 90 deg/s } }";

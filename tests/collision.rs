@@ -858,3 +858,141 @@ fn declared_link_radii_replace_the_catalogues() {
         .message
         .contains("`arm_links` is three lengths above zero")));
 }
+
+/// The robot of a program's first machine, its plan's poses solved as the
+/// arm rule solves them: each with its move's kind and axis angles.
+fn solved_poses(ir: &lmdc::ir::Program) -> (lmdc::ir::Robot, Vec<(MoveKind, [f64; 6])>) {
+    let lmdc::ir::Machine::Robot(robot) = &ir.machines[0] else {
+        panic!("a robot");
+    };
+    struct Solve(lmdc::plan::arm::Follow, Vec<(MoveKind, [f64; 6])>);
+    impl Visit for Solve {
+        fn motion(&mut self, m: &Move) {
+            if let Some(s) = self.0.push(m) {
+                self.1
+                    .extend(s.iter().filter_map(|s| Some((s.m.kind, s.joints?))));
+            }
+        }
+    }
+    let mut s = Solve(lmdc::plan::arm::Follow::new(robot).unwrap(), Vec::new());
+    lmdc::plan::Plan::new(ir, &ir.machines[0]).walk(&mut s);
+    let rest = s.0.take();
+    s.1.extend(rest.iter().filter_map(|s| Some((s.m.kind, s.joints?))));
+    (robot.clone(), s.1)
+}
+
+/// The case `errors/collision/ptp_from_home`: the wedge on a table level
+/// with the flange at KUKA's home. The PTP from home swings the nozzle
+/// down through the plate: refused, how deep as the head's rims sampled
+/// every 0.1° at poses every 0.05° of the PTP's largest axis move give it
+/// (lmdc's poses, every 2°, find it no deeper and at most 1 mm shallower),
+/// and the `home` its help names builds.
+#[test]
+fn a_ptp_from_home_through_the_plate_is_refused_and_the_home_it_names_builds() {
+    let src = case("ptp_from_home");
+    let c = compile(&src, &mut ());
+    let d: Vec<_> = c
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == Code::Collision)
+        .collect();
+    assert_eq!(d.len(), 1, "{d:#?}");
+    let m = &d[0].message;
+    assert!(
+        m.contains("the nozzle of robot `kr30` runs ")
+            && m.contains(
+                "of the way along the PTP from home to the clearance move before layer 1, path 1"
+            ),
+        "{m}"
+    );
+    let depth = number_after(m, "runs ");
+    let refused = c.refused.expect("refused by the arm's rules");
+    let (robot, poses) = solved_poses(refused.ir());
+    let first = poses
+        .iter()
+        .find(|p| p.0 == MoveKind::FromHome)
+        .expect("the PTP from home")
+        .1;
+    let solver = lmdc::plan::arm::Solver::new(&robot).unwrap();
+    let base_inv = lmdc::plan::arm::frame(robot.base.value.as_ref().unwrap()).inverse();
+    let most = (0..6)
+        .map(|i| (first[i] - robot.home[i]).abs())
+        .fold(0.0, f64::max);
+    let n = (most / 0.05).ceil() as usize;
+    let mut lowest = f64::INFINITY;
+    for k in 0..=n {
+        let t = k as f64 / n as f64;
+        let j: [f64; 6] = std::array::from_fn(|i| robot.home[i] + t * (first[i] - robot.home[i]));
+        let tcp = base_inv * solver.tcp(&j);
+        let up = tcp.rotation * -nalgebra::Vector3::z();
+        let f = tcp.translation.vector;
+        lowest = lowest.min(lowest_rim(
+            &robot.common.head,
+            [f.x, f.y, f.z],
+            [up.x, up.y, up.z],
+        ));
+    }
+    assert!(lowest < 0.0, "{lowest}");
+    assert!(depth <= -lowest + 1e-3, "{depth} vs {lowest}");
+    assert!(depth >= -lowest - 1.0, "{depth} vs {lowest}");
+    // The help's home.
+    let help = d[0].help.as_deref().unwrap();
+    let at = help.find("`home = [").expect("a home") + 1;
+    let end = at + help[at..].find(']').unwrap() + 1;
+    let home = help[at..end].replace('\n', " ");
+    let fixed = src.replace("  arm = kr60ha ", &format!("  {home}\n  arm = kr60ha "));
+    let c = compile(&fixed, &mut ());
+    assert!(c.program.is_some(), "{home}: {:#?}", c.diagnostics);
+}
+
+/// `examples/errors/arm_joint_limit.lmd` holds its nozzle on a tool turned
+/// 80° on the flange; with `spin = auto` it builds. Without a positioner
+/// the tool keeps the gap from the plate (the wrist, beside the part at
+/// its height, is not held to it): `lmdc report`'s closest approach of the
+/// tool to the plate is the least, over every pose the arm is solved at,
+/// of the lower end of the tool's axis (the flange to the head's top,
+/// 160 mm up the beam from the focus) in the part's coordinates, less the
+/// head's top radius, 30 mm; the wrist's own is below the plane and not
+/// refused.
+#[test]
+fn the_tool_keeps_its_gap_from_the_plate_and_the_wrist_beside_the_part_is_not_held_to_it() {
+    let src = std::fs::read_to_string("examples/errors/arm_joint_limit.lmd")
+        .unwrap()
+        .replacen("  spin = 0 deg\n", "", 1);
+    let c = compile(&src, &mut ());
+    let v = c.program.expect("with spin = auto it builds");
+    let (robot, poses) = solved_poses(v.ir());
+    let solver = lmdc::plan::arm::Solver::new(&robot).unwrap();
+    let base_inv = lmdc::plan::arm::frame(robot.base.value.as_ref().unwrap()).inverse();
+    let z = |p: [f64; 3]| (base_inv * nalgebra::Point3::from(p)).z;
+    let (mut wrist, mut tool) = (f64::INFINITY, f64::INFINITY);
+    for (_, j) in &poses {
+        let p = solver.joint_points(j);
+        wrist = wrist.min(z(p[4]).min(z(p[5])) - 100.0);
+        let top = solver.tcp(j) * nalgebra::Point3::new(0.0, 0.0, -160.0);
+        tool = tool.min(z(p[5]).min((base_inv * top).z) - 30.0);
+    }
+    assert!(wrist < 0.0, "{wrist}");
+    let m = v.machines().next().unwrap();
+    let r = lmdc::report::Report::of_plan(m);
+    let a = r
+        .approaches
+        .iter()
+        .find(|a| a.body == "tool" && a.with == "plate")
+        .expect("the tool's approach to the plate");
+    assert!(tool >= a.gap_mm, "{tool}");
+    // The PTPs' poses (every 2° of their axes) are among the report's: it
+    // is never farther than the plan's poses give.
+    assert!(a.distance_mm <= tool + 1e-9, "{} vs {tool}", a.distance_mm);
+    if a.way >= 1.0 {
+        assert!(
+            (a.distance_mm - tool).abs() < 1e-9,
+            "{} vs {tool}",
+            a.distance_mm
+        );
+    }
+    assert!(!r
+        .approaches
+        .iter()
+        .any(|a| a.body == "wrist" && a.with == "plate"));
+}

@@ -6,13 +6,61 @@
 //! along the capsule's axis ([`super::capsule`]).
 
 use super::capsule::{box_point, cylinder_point, least_along, segment_point, Capsule};
-use super::head::{dot, sub};
+use super::head::{dot, sub, Frustum, Pose};
 use crate::ir::{Fixture, FixtureShape};
 use nalgebra::{Isometry3, Point3};
 
-/// The links' names, in the order their radii are given
-/// ([`crate::target::arm::Model::links`]).
-pub const LINKS: [&str; 3] = ["upper arm", "forearm", "wrist"];
+/// The links' names: the three whose radii a model gives
+/// ([`crate::target::arm::Model::links`]) in that order, then the column
+/// ([`crate::target::arm::Model::column`]) and the tool.
+pub const LINKS: [&str; 5] = ["upper arm", "forearm", "wrist", "column", "tool"];
+
+/// The index in [`LINKS`] of the upper arm.
+pub const UPPER_ARM: usize = 0;
+/// The index in [`LINKS`] of the wrist.
+pub const WRIST: usize = 2;
+/// The index in [`LINKS`] of the column.
+pub const COLUMN: usize = 3;
+/// The index in [`LINKS`] of the tool.
+pub const TOOL: usize = 4;
+
+/// The column's capsules at the frames' origins `p`: from the robot's
+/// foot (its frame's origin) up A1's axis to the shoulder's height, then
+/// on to the A2 axis, of radius `r`.
+pub fn column(p: &[[f64; 3]; 6], r: f64) -> [Capsule; 2] {
+    [
+        Capsule {
+            a: [0.0; 3],
+            b: p[0],
+            r,
+        },
+        Capsule {
+            a: p[0],
+            b: p[1],
+            r,
+        },
+    ]
+}
+
+/// The least distance between two capsules (negative where they
+/// overlap): the segments' distance, convex along either, less both radii.
+pub fn capsule_capsule(c: &Capsule, d: &Capsule) -> f64 {
+    least_along(c.a, c.b, |p| segment_point(d.a, d.b, p)).0 - c.r - d.r
+}
+
+/// The least distance from a head's body `b` at `pose` to the capsule `c`
+/// (negative where the capsule's axis runs inside it, by the radius): a
+/// point's distance to a solid of revolution is convex, so a search along
+/// the capsule's axis finds it.
+pub fn body_capsule(b: &Frustum, pose: &Pose, c: &Capsule) -> f64 {
+    let at = |p: [f64; 3]| {
+        let v = sub(p, pose.focus);
+        let s = dot(v, pose.up);
+        let rho = (dot(v, v) - s * s).max(0.0).sqrt();
+        b.distance(s, rho)
+    };
+    least_along(c.a, c.b, at).0 - c.r
+}
 
 /// The arm's capsules at the frames' origins `p`
 /// ([`crate::plan::arm::Solver::joint_points`]) with the links' radii
@@ -184,6 +232,11 @@ mod tests {
                 assert!((upper - m.opw.c2).abs() < 1e-6, "{}", m.key);
                 let caps = capsules(&p, m.links);
                 assert_eq!(caps[3].1.r, m.links[2]);
+                // One pass of the forward kinematics gives the same.
+                let (q, tcp) = s.joint_frames(&j);
+                assert_eq!(q, p);
+                let d = tcp.translation.vector - s.tcp(&j).translation.vector;
+                assert!(d.norm() < 1e-9 && tcp.rotation.angle_to(&s.tcp(&j).rotation) < 1e-9);
             }
         }
     }
@@ -219,5 +272,100 @@ mod tests {
             r: 10.0,
         };
         assert_eq!(plate.capsule(&Isometry3::identity(), &far, 100.0), None);
+    }
+
+    /// Points sampled every 1/2000 of a segment.
+    fn sampled(a: [f64; 3], b: [f64; 3]) -> impl Iterator<Item = [f64; 3]> {
+        (0..=2000).map(move |k| {
+            let t = f64::from(k) / 2000.0;
+            std::array::from_fn(|i| a[i] + t * (b[i] - a[i]))
+        })
+    }
+
+    proptest::proptest! {
+        /// Two capsules' distance against one axis sampled every 1/2000
+        /// of it, each point's distance to the other axis by projection:
+        /// never above it, below it by no more than the step.
+        #[test]
+        fn capsules_apart_as_sampled(
+            a in proptest::array::uniform3(-500.0f64..500.0),
+            b in proptest::array::uniform3(-500.0f64..500.0),
+            c in proptest::array::uniform3(-500.0f64..500.0),
+            d in proptest::array::uniform3(-500.0f64..500.0),
+            r in 1.0f64..100.0,
+        ) {
+            let (p, q) = (Capsule { a, b, r }, Capsule { a: c, b: d, r: r / 2.0 });
+            let got = capsule_capsule(&p, &q);
+            let step = super::super::head::dist(a, b) / 2000.0;
+            let want = sampled(a, b)
+                .map(|x| segment_point(c, d, x))
+                .fold(f64::INFINITY, f64::min)
+                - 1.5 * r;
+            proptest::prop_assert!(got <= want + 1e-6, "{} vs {}", got, want);
+            proptest::prop_assert!(got >= want - step - 1e-6, "{} vs {}", got, want);
+        }
+
+        /// A head's nozzle (a frustum 12 mm across at its tip, 40 mm at
+        /// its top, 45 mm long, 15 mm up the beam) against a capsule: its
+        /// axis sampled every 1/2000, each point's distance to the cone
+        /// by its (s, ρ) outline.
+        #[test]
+        fn a_body_and_a_capsule_apart_as_sampled(
+            c in proptest::array::uniform3(-200.0f64..200.0),
+            d in proptest::array::uniform3(-200.0f64..200.0),
+            tilt in 0.0f64..3.0,
+            r in 1.0f64..50.0,
+        ) {
+            let body = Frustum { s: [15.0, 60.0], r: [6.0, 20.0] };
+            let pose = Pose { focus: [3.0, -2.0, 1.0], up: [tilt.sin(), 0.0, tilt.cos()] };
+            let cap = Capsule { a: c, b: d, r };
+            let got = body_capsule(&body, &pose, &cap);
+            let step = super::super::head::dist(c, d) / 2000.0;
+            let want = sampled(c, d)
+                .map(|p| {
+                    let v = sub(p, pose.focus);
+                    let s = dot(v, pose.up);
+                    body.distance(s, (dot(v, v) - s * s).max(0.0).sqrt())
+                })
+                .fold(f64::INFINITY, f64::min)
+                - r;
+            proptest::prop_assert!(got <= want + 1e-6, "{} vs {}", got, want);
+            proptest::prop_assert!(got >= want - step - 1e-6, "{} vs {}", got, want);
+        }
+    }
+
+    /// Every catalogue arm at KUKA's home keeps its wrist clear of its
+    /// upper arm and its column (the non-adjacent pairs checked); folded
+    /// (A3 at its upper limit, A5 bent back), the KR 60 HA's wrist comes
+    /// within its radius and the upper arm's of the upper arm's axis,
+    /// as the points' own distance says.
+    #[test]
+    fn home_is_clear_and_a_folded_arm_is_not() {
+        for m in CATALOGUE {
+            let s = Solver::with(
+                m.arm(0.0, 5.0),
+                Isometry3::identity(),
+                Isometry3::identity(),
+            );
+            let p = s.joint_points(&[0.0, -90.0, 90.0, 0.0, 0.0, 0.0]);
+            let caps = capsules(&p, m.links);
+            let wrist = caps[3].1;
+            assert!(capsule_capsule(&wrist, &caps[0].1) > 0.0, "{}", m.key);
+            for col in column(&p, m.column) {
+                assert!(capsule_capsule(&wrist, &col) > 0.0, "{}", m.key);
+            }
+        }
+        let m = crate::target::arm::model("kr60ha").unwrap();
+        let s = Solver::with(
+            m.arm(0.0, 5.0),
+            Isometry3::identity(),
+            Isometry3::identity(),
+        );
+        let p = s.joint_points(&[0.0, -90.0, 158.0, 0.0, 110.0, 0.0]);
+        let caps = capsules(&p, m.links);
+        let d = capsule_capsule(&caps[3].1, &caps[0].1);
+        let axes = segment_point(p[1], p[2], p[5]).min(segment_point(p[1], p[2], p[4]));
+        assert!(d <= axes - 190.0 - 100.0 + 1e-9, "{d} vs {axes}");
+        assert!(d < 0.0, "{d}");
     }
 }

@@ -56,6 +56,11 @@ pub struct Model {
     /// each link's envelope from KUKA's dimensioned drawings, rounded up
     /// (docs/collision.md, *The arm*).
     pub links: [f64; 3],
+    /// The radius of the capsule the collision checks take its column
+    /// as — from the foot up A1's axis to the shoulder's height, then to
+    /// the A2 axis — mm: an estimate like the links', of the rotating
+    /// column's envelope with A1's and A2's drives (docs/collision.md).
+    pub column: f64,
 }
 
 impl Model {
@@ -114,6 +119,7 @@ pub const CATALOGUE: &[Model] = &[
         speeds: [360.0, 300.0, 360.0, 450.0, 450.0, 540.0],
         source: "kuka_kr6_support: opw_parameters_kr6r900_2.yaml, kr6r900_2_macro.xacro",
         links: [80.0, 70.0, 55.0],
+        column: 110.0,
     },
     Model {
         key: "kr16_2",
@@ -130,6 +136,7 @@ pub const CATALOGUE: &[Model] = &[
         speeds: [156.0, 156.0, 156.0, 330.0, 330.0, 615.0],
         source: "kuka_kr16_support: opw_parameters_kr16_2.yaml, kr16_2_macro.xacro",
         links: [130.0, 100.0, 75.0],
+        column: 200.0,
     },
     Model {
         key: "kr60ha",
@@ -146,6 +153,7 @@ pub const CATALOGUE: &[Model] = &[
         speeds: [128.0, 102.0, 128.0, 260.0, 245.0, 322.0],
         source: "kuka_kr60_support: opw_parameters_kr60ha.yaml, kr60ha_macro.xacro",
         links: [190.0, 140.0, 100.0],
+        column: 260.0,
     },
     Model {
         key: "kr150_r3100_2",
@@ -162,6 +170,7 @@ pub const CATALOGUE: &[Model] = &[
         speeds: [105.0, 107.0, 114.0, 190.0, 180.0, 260.0],
         source: "kuka_kr150_support: opw_parameters_kr150_r3100-2.yaml, kr150_r3100-2_macro.xacro",
         links: [260.0, 200.0, 130.0],
+        column: 340.0,
     },
 ];
 

@@ -17,17 +17,19 @@ use crate::diag::Diagnostics;
 use crate::ir::Machine;
 use crate::ir::MachineField::{Arm, Base, Home, Singularity, Tool};
 use crate::plan::arm::{Along, Follow, Joints, Solved};
+use crate::plan::kinematics::Rotary;
 use crate::plan::{Move, Speed, Visit};
 use nalgebra::Vector3;
 
 pub(crate) mod links;
+pub(crate) mod ptp;
 mod reach;
 
 /// The worst pose of a kind, where it lies (a move's target, or on its way).
 type Worst = crate::diag::Worst<Along>;
 
 /// The arm rules of one robot.
-pub(super) struct ArmRule {
+pub(super) struct ArmRule<'p> {
     /// The arm following the plan (`plan::arm`, as the preview plots it).
     follow: Follow,
     /// The last solution, its Status, and where the last move ended.
@@ -47,10 +49,17 @@ pub(super) struct ArmRule {
     flip: Option<(Worst, u8, u8)>,
     speed: [Option<(Worst, f64)>; 6],
     /// The links against the faceplate and the fixtures (`lmd::collision`).
-    links: Option<links::Links>,
+    links: Option<links::Links<'p>>,
+    /// Home: the arm's axes and the positioner's.
+    home: ptp::End,
+    /// The PTP from home's end (its axes, the move it reaches, the focus
+    /// there), once solved.
+    first: Option<(ptp::End, crate::plan::Where, [f64; 3])>,
+    /// The last pose solved: its axes and focus.
+    end: Option<(ptp::End, [f64; 3])>,
 }
 
-impl<'p> PlanRule<'p> for ArmRule {
+impl<'p> PlanRule<'p> for ArmRule<'p> {
     fn new(cx: &MachineCx<'p>) -> Option<Self> {
         let Machine::Robot(r) = cx.machine else {
             return None;
@@ -68,6 +77,17 @@ impl<'p> PlanRule<'p> for ArmRule {
             flip: None,
             speed: [None; 6],
             links: links::Links::new(cx, r),
+            home: (
+                r.home,
+                r.positioner
+                    .as_ref()
+                    .map_or_else(Rotary::default, |p| Rotary {
+                        tilt: p.home[0],
+                        c: p.home[1],
+                    }),
+            ),
+            first: None,
+            end: None,
         })
     }
 
@@ -125,23 +145,49 @@ impl<'p> PlanRule<'p> for ArmRule {
             }
         }
         if let Some(l) = &self.links {
-            l.report(cx, out);
+            l.report(cx, self.home_keeping(l), out);
         }
     }
 }
 
-impl ArmRule {
+impl ArmRule<'_> {
     /// The closest approaches of the arm's links to the cell.
-    pub(super) fn approaches(&self, cx: &MachineCx<'_>) -> Vec<crate::verify::approach::Approach> {
+    pub(super) fn approaches(&self) -> Vec<crate::verify::approach::Approach> {
         self.links
             .as_ref()
-            .map_or_else(Vec::new, |l| l.approaches(cx))
+            .map_or_else(Vec::new, links::Links::approaches)
+    }
+
+    /// A `home` whose PTPs keep the gap, where a PTP does not and one is
+    /// found ([`ptp::home_keeping`]).
+    fn home_keeping(&self, l: &links::Links<'_>) -> Option<(Joints, ptp::HomeFrom)> {
+        let ((first, at, focus), (last, end)) = (self.first?, self.end?);
+        if !l.ptp_hit() {
+            return None;
+        }
+        ptp::home_keeping(
+            l,
+            self.follow.solver(),
+            (self.home, first, last),
+            (at, focus, end),
+        )
     }
 }
 
-impl Visit for ArmRule {
+impl Visit for ArmRule<'_> {
     fn motion(&mut self, m: &Move) {
         if self.quick.is_some() {
+            return;
+        }
+        if m.kind == crate::plan::MoveKind::Home {
+            // Everything before is solved first: the PTP starts where the
+            // last move ended.
+            self.flush();
+            if let (Some(l), Some((last, focus))) = (&mut self.links, self.end) {
+                let home = (self.home.0, m.axes);
+                let at = (crate::plan::Where::End, focus);
+                ptp::check(l, self.follow.solver(), (home, last), true, at);
+            }
             return;
         }
         if let Some(done) = self.follow.push(m) {
@@ -150,7 +196,7 @@ impl Visit for ArmRule {
     }
 }
 
-impl ArmRule {
+impl ArmRule<'_> {
     /// Solves the moves still buffered and follows them in order.
     pub(super) fn flush(&mut self) {
         let rest = self.follow.take();
@@ -184,8 +230,15 @@ impl ArmRule {
         };
         self.limits(&j, at);
         if let Some(l) = &mut self.links {
-            l.check(self.follow.solver(), &j, m, at);
+            let solver = self.follow.solver();
+            if m.kind == crate::plan::MoveKind::FromHome {
+                let first = ((j, m.axes), m.at, m.to);
+                ptp::check(l, solver, (self.home, first.0), false, (m.at, m.to));
+                self.first = Some(first);
+            }
+            l.check(solver, &j, m.axes, links::Place::Move(at), m.to);
         }
+        self.end = Some(((j, m.axes), m.to));
         let status = self.follow.solver().status_at(&j, wrist);
         if lin {
             self.lin(&j, wrist, status, m, at);
@@ -196,7 +249,7 @@ impl ArmRule {
     }
 }
 
-impl ArmRule {
+impl ArmRule<'_> {
     /// Each axis within its limits less the margin.
     fn limits(&mut self, j: &Joints, at: Along) {
         let arm = self.follow.solver().arm();

@@ -632,7 +632,7 @@ impl Collision<'_> {
 /// The lumps of fixture `f` (index `i`): its surface every
 /// [`FIXTURE_STEP_MM`], each lump standing for the patch round it. Groups
 /// count down from `u32::MAX`, apart from the layers.
-fn fixture_lumps(f: &Fixture, i: usize, m: &mut Material) {
+pub(super) fn fixture_lumps(f: &Fixture, i: usize, m: &mut Material) {
     let group = u32::MAX - 1 - i as u32;
     let mut put = |at: [f64; 3], r: f64| m.add(Lump { at, r, group }, [0.0, 0.0, 1.0]);
     let [x0, y0, z0] = f.at;

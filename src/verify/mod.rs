@@ -381,7 +381,7 @@ fn slow_rules(p: &Program, i: usize) -> Option<(bool, impl FnOnce() -> SlowFound
             Plan::new(p, cx.machine).walk(&mut walk);
         }
         walk.flush();
-        let near = walk.approaches(&cx);
+        let near = walk.approaches();
         walk.report(&cx, &mut d);
         (d, (i, near))
     }))

@@ -153,7 +153,7 @@ plan_rules! {
     /// of their own, on another thread, beside the other rules — and, in a
     /// build, beside the writers ([`super::verify_with`]).
     SlowRules {
-        arm: ArmRule,
+        arm: ArmRule<'p>,
     }
 }
 
@@ -177,9 +177,7 @@ impl SlowRules<'_> {
 
     /// The closest approaches the arm's links came to the cell (after
     /// [`Self::flush`]).
-    pub fn approaches(&self, cx: &MachineCx<'_>) -> Vec<super::approach::Approach> {
-        self.arm
-            .as_ref()
-            .map_or_else(Vec::new, |a| a.approaches(cx))
+    pub fn approaches(&self) -> Vec<super::approach::Approach> {
+        self.arm.as_ref().map_or_else(Vec::new, ArmRule::approaches)
     }
 }

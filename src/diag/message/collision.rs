@@ -239,13 +239,30 @@ pub enum Against<'a> {
     Faceplate(Option<f64>),
     /// The fixture of this name.
     Fixture(&'a str),
+    /// The plate (the part's `z = 0`), without a positioner.
+    Plate,
+    /// Another link of the same arm (`upper arm`, `column`).
+    Own(&'a str),
+    /// The part, finished (on the PTP back home).
+    Part,
+}
+
+/// How a `home` the help proposes was found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HomeFrom {
+    /// The first pose's A1 and wrist, the upper arm as at home and the
+    /// forearm raised this many degrees above home's.
+    Raised(u8),
+    /// The first pose's own axes.
+    First,
 }
 
 /// One kind of an arm's collision: its link, the worst and what fixes it.
 pub struct LinkHit<'a, At> {
     /// The robot.
     pub machine: &'a str,
-    /// The link (`upper arm`, `forearm`, `wrist`).
+    /// The link (`upper arm`, `forearm`, `wrist`, `column`, `tool`) or the
+    /// head's body (`nozzle`, …) it carries.
     pub link: &'a str,
     /// What it comes too close to.
     pub with: Against<'a>,
@@ -255,34 +272,61 @@ pub struct LinkHit<'a, At> {
     pub arm: Span,
     /// Where the faceplate is declared or the fixture placed.
     pub placed: Option<Span>,
+    /// Where the worst lies on a PTP from or back to home: the axis angles
+    /// of a `home` whose PTPs keep the gap, where one was found (`None`
+    /// inside: none was).
+    pub ptp: Option<Option<([f64; 6], HomeFrom)>>,
+    /// Where `home` is declared, if it is.
+    pub home: Option<Span>,
 }
 
-/// A link of a robot's arm closer than its gap to the positioner's
-/// faceplate or a fixture.
+/// A link of a robot's arm (or the head it carries, on a PTP) closer than
+/// its gap to the positioner's faceplate, a fixture, the plate, another
+/// link or the part.
 pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
     let w = h.worst;
     let what = match h.with {
         Against::Faceplate(_) => "the positioner's faceplate".to_string(),
         Against::Fixture(name) => format!("fixture `{name}`"),
+        Against::Plate => "the plate".to_string(),
+        Against::Own(link) => format!("its own {link}"),
+        Against::Part => "the part".to_string(),
     };
     let who = format!("the {} of robot `{}`", h.link, h.machine);
     let message = too_close(&who, &what, w, true);
-    let fix = match h.with {
-        Against::Faceplate(Some(d)) => format!(
+    let fix = match (h.ptp, h.with) {
+        (Some(Some((home, from))), _) => format!(
+            "the axes' straight path from `home` passes through it: `home = [{}]` ({}) keeps the gap on both PTPs; or a home of your own, checked the same way",
+            home.iter().map(|a| format!("{} deg", short(*a))).collect::<Vec<_>>().join(", "),
+            match from {
+                HomeFrom::Raised(0) => "the first pose's A1 and wrist, the arm as at home".to_string(),
+                HomeFrom::Raised(up) => format!("the first pose's A1 and wrist, the upper arm as at home and the forearm raised {up}° above it"),
+                HomeFrom::First => "the first pose's own axes, above the first path".to_string(),
+            }
+        ),
+        (Some(None), _) => "the axes' straight path from `home` passes through it: a `home` with the arm raised above the cell and turned towards the part, or the part placed where the arm comes down onto it from above".to_string(),
+        (None, Against::Faceplate(Some(d))) => format!(
             "a faceplate at most {} mm across (`faceplate = {} mm`) keeps the gap at every such pose; or tilt the part less there (the positioner's `tilt_limits` or `keep`), or stand the positioner farther from the arm",
             short(d),
             short(d)
         ),
-        Against::Faceplate(None) => "the link passes over the faceplate's middle: tilt the part less there (the positioner's `tilt_limits` or `keep`), stand the positioner farther from the arm, or raise the part off the faceplate".to_string(),
-        Against::Fixture(name) => format!(
+        (None, Against::Faceplate(None)) => "the link passes over the faceplate's middle: tilt the part less there (the positioner's `tilt_limits` or `keep`), stand the positioner farther from the arm, or raise the part off the faceplate".to_string(),
+        (None, Against::Fixture(name)) => format!(
             "move fixture `{name}` out of the arm's way, or build the part where the arm passes farther from it"
         ),
+        (None, Against::Plate) => "the link hangs down to the part's plane there: tilt the nozzle less there (the wrist hangs lower the more it leans), or a tool that holds the flange farther from the focus".to_string(),
+        (None, Against::Own(_)) => "the arm folds back onto itself there: stand the part farther from the arm's foot (the robot's `base`), or tilt the nozzle less there".to_string(),
+        (None, Against::Part) => "the head passes through the finished part on its way home: a `home` above the part".to_string(),
     };
     let d = Diagnostic::error(Code::Collision, message)
         .help(format!(
             "{fix}; the arm's links are capsules sized from its catalogue entry (docs/collision.md, *The arm*)"
         ))
         .label(h.arm, "the arm");
+    let d = match (h.ptp, h.home) {
+        (Some(_), Some(at)) => d.label(at, "home"),
+        _ => d,
+    };
     match (h.with, h.placed) {
         (Against::Faceplate(_), Some(at)) => d.label(at, "the faceplate"),
         (Against::Fixture(name), Some(at)) => d.label(at, format!("fixture `{name}` stands here")),

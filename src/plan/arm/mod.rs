@@ -269,6 +269,25 @@ impl Solver {
         poses.map(|p| [p.translation.x, p.translation.y, p.translation.z])
     }
 
+    /// The tool's frame (its origin the focus) in the robot's frame at
+    /// axis angles `j`: where the collision checks hang the head.
+    pub fn tcp(&self, j: &Joints) -> Isometry3<f64> {
+        self.forward_flange(j) * self.tool_inv.inverse()
+    }
+
+    /// [`Self::joint_points`] and [`Self::tcp`] from one pass of the
+    /// forward kinematics (the collision checks ask both at every pose).
+    pub fn joint_frames(&self, j: &Joints) -> ([[f64; 3]; 6], Isometry3<f64>) {
+        let poses = self.kin.forward_with_joint_poses(&j.map(f64::to_radians));
+        let (t, q) = (poses[5].translation, poses[5].rotation);
+        let flange = Isometry3::from_parts(
+            Translation3::new(t.x, t.y, t.z),
+            UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q.w, q.x, q.y, q.z)),
+        );
+        let points = poses.map(|p| [p.translation.x, p.translation.y, p.translation.z]);
+        (points, flange * self.tool_inv.inverse())
+    }
+
     /// The tool's focus in the base, and its axes, at axis angles `j`.
     pub fn forward(&self, j: &Joints) -> ([f64; 3], Matrix3<f64>) {
         let tcp = self.base.inverse() * self.forward_flange(j) * self.tool_inv.inverse();
