@@ -11,6 +11,15 @@ fn p2(p: [f64; 2]) -> String {
     format!("({}, {}) mm", short(p[0]), short(p[1]))
 }
 
+/// " and at N other points", or nothing.
+fn others(more: usize) -> String {
+    match more {
+        0 => String::new(),
+        1 => " and at 1 other point".to_string(),
+        n => format!(" and at {n} other points"),
+    }
+}
+
 /// The scan file `path` cannot be read (`why`).
 pub fn unreadable(path: &str, why: &str, at: Span) -> Diagnostic {
     Diagnostic::error(Code::Scan, format!("cannot read the scan `{path}`: {why}"))
@@ -80,11 +89,7 @@ pub fn uncovered(
     at: Span,
     scan: Span,
 ) -> Diagnostic {
-    let others = match more {
-        0 => String::new(),
-        1 => " and at 1 other point".to_string(),
-        n => format!(" and at {n} other points"),
-    };
+    let others = others(more);
     Diagnostic::error(
         Code::ScanCoverage,
         format!(
@@ -112,11 +117,7 @@ pub fn top_below(
     at: Span,
     scan: Span,
 ) -> Diagnostic {
-    let others = match more {
-        0 => String::new(),
-        1 => " and at 1 other point".to_string(),
-        n => format!(" and at {n} other points"),
-    };
+    let others = others(more);
     Diagnostic::error(
         Code::ScanCoverage,
         format!(

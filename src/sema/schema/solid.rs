@@ -278,14 +278,7 @@ pub mod scan {
         "units",
         Word(crate::geometry::mesh::UNITS),
         Default(DefaultWord("mm")),
-        "what one unit of the scan's coordinates is",
-    );
-    /// `scan(turn = [rx, ry, rz])`.
-    pub static TURN: Field = Field::new(
-        "turn",
-        List(&Quantity(Dim::ANGLE, Any), Len::Exactly(3)),
-        Default(Described("`[0 deg, 0 deg, 0 deg]`")),
-        "turns about the x, then the y, then the z axis (right-handed), after scaling and before moving",
+        "what one unit of the scan's coordinates is (a 3MF says its own)",
     );
     /// `scan(at = [x, y, z])`.
     pub static AT: Field = Field::new(
@@ -318,7 +311,7 @@ pub static SCAN: Block = Block::new(
     &[
         &scan::FILE,
         &scan::UNITS,
-        &scan::TURN,
+        &mesh::TURN,
         &scan::AT,
         &scan::CELL,
         &scan::OUTLIER,

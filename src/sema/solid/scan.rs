@@ -9,7 +9,7 @@ use crate::geometry::scan::{self, Estimate, Format, HeightField, Raw};
 use crate::sema::data::Data;
 use crate::sema::fields::Fields;
 use crate::sema::model::ScanBase;
-use crate::sema::schema::solid::{scan as field, SCAN};
+use crate::sema::schema::solid::{mesh, scan as field, SCAN};
 use crate::sema::solid::mesh::triple;
 use crate::sema::value::Call;
 use crate::sema::DataReader;
@@ -26,7 +26,7 @@ pub fn read(
     let f = Fields::call(c, &SCAN, diags);
     let file = f.text(&field::FILE, diags);
     let units = f.word_or_default(&field::UNITS, diags);
-    let turn = triple(&f, &field::TURN, Dim::ANGLE, diags);
+    let turn = triple(&f, &mesh::TURN, Dim::ANGLE, diags);
     let place = triple(&f, &field::AT, Dim::LENGTH, diags);
     let cell = f.quantity_or_default(&field::CELL, diags);
     let outlier = f.quantity_or_default(&field::OUTLIER, diags);
