@@ -9,10 +9,11 @@ use crate::diag::message::collision::Moved;
 use crate::ir::FixtureShape;
 use crate::plan::Plan;
 
-/// Most points a search re-plans in all (a probe walks the whole plan):
-/// past it, fewer directions are searched, or none, and the help names no
-/// distance.
-const BUDGET: usize = 20_000_000;
+/// Most points a search re-plans in all (a probe walks the whole plan, a
+/// few tenths of a second for 50 k points): past it, fewer directions are
+/// searched, or none, and the help names no distance. A refused build
+/// should not wait much longer than a built one.
+const BUDGET: usize = 2_000_000;
 
 /// The probes a direction's search takes at most: a box beyond every
 /// focus's reach, then halving to a tenth of a millimetre.
