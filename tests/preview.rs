@@ -26,10 +26,12 @@ fn verified(example: &str) -> Verified {
     // The flange's raster ends all lie on round edges, where links are laid
     // with the laser off (fill::link); a square plate's are level, and turn.
     let src = match example {
-        "square_plate" => std::fs::read_to_string("examples/flange.lmd").unwrap().replace(
-            "  profile = ring\n",
-            "  profile = rectangle(width = 80 mm, height = 60 mm)\n",
-        ),
+        "square_plate" => std::fs::read_to_string("examples/flange.lmd")
+            .unwrap()
+            .replace(
+                "  profile = ring\n",
+                "  profile = rectangle(width = 80 mm, height = 60 mm)\n",
+            ),
         _ => std::fs::read_to_string(format!("examples/{example}.lmd")).unwrap(),
     };
     compile(&src, &mut ()).program.expect("compiles")
