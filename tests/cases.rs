@@ -216,13 +216,14 @@ fn every_case_produces_its_files() {
     for case in all.iter().filter(|c| c.to_string_lossy().contains(&only)) {
         ran += 1;
         let produced = produce(case);
-        // The input and its data files (measurement sheets, meshes, a
-        // folder of them) are the case's; a sheet `lmdc calibrate` writes
+        // The input and its data files (measurement sheets, meshes, scans,
+        // a folder of them) are the case's; a sheet `lmdc calibrate` writes
         // (`*.coupons.csv`) is an output.
         let p = expected::check_dir(case, &produced, |f| {
             f == INPUT
                 || (f.ends_with(".csv") && !f.ends_with(".coupons.csv"))
                 || f.ends_with(".stl")
+                || f.ends_with(".ply")
                 || case.join(f).is_dir()
         });
         if !p.is_empty() {

@@ -79,13 +79,7 @@ fn source(profile: &str) -> String {
 
 /// Compiles `src` with `files` as the files beside it.
 fn compile(src: &str, files: BTreeMap<&'static str, Vec<u8>>) -> Compiled {
-    let data: lmdc::sema::DataReader = Rc::new(move |p: &str, _| {
-        files
-            .get(p)
-            .cloned()
-            .ok_or_else(|| format!("no file `{p}`"))
-    });
-    compile_reading(src, None, &mut (), data).unwrap().0
+    crate::support::data::compile_with_files(src, files)
 }
 
 fn messages(c: &Compiled) -> String {

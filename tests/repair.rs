@@ -5,10 +5,9 @@
 //! surfaces generated here.
 
 use lmdc::ir::Program;
-use lmdc::pipeline::{compile_reading, Compiled};
+use lmdc::pipeline::Compiled;
 use proptest::prelude::*;
 use std::collections::BTreeMap;
-use std::rc::Rc;
 
 /// A worn face: flat at `face` mm, a trough `depth` deep at `(cx, cy)`,
 /// `sx` and `sy` wide (Gaussian).
@@ -95,13 +94,7 @@ fn source(file: &str, top: f64, width: f64, height: f64) -> String {
 
 /// Compiles `src` with `files` beside it.
 fn compile(src: &str, files: BTreeMap<String, Vec<u8>>) -> Compiled {
-    let data: lmdc::sema::DataReader = Rc::new(move |p: &str, _| {
-        files
-            .get(p)
-            .cloned()
-            .ok_or_else(|| format!("no file `{p}`"))
-    });
-    compile_reading(src, None, &mut (), data).unwrap().0
+    crate::support::data::compile_with_files(src, files)
 }
 
 fn messages(c: &Compiled) -> String {

@@ -179,6 +179,27 @@ fn centroid(pts: &[[f64; 2]]) -> Option<(f64, [f64; 2])> {
     (a.abs() > 1e-12).then(|| (a / 2.0, [cx / (3.0 * a), cy / (3.0 * a)]))
 }
 
+/// `∫ f dA` over the footprint `p` within its bounds `[lo, hi]`, by the
+/// midpoints of a [`GRID`] × [`GRID`] grid; the first point `f` has no
+/// value at ends it.
+fn integral(
+    p: &Profile,
+    [lo, hi]: [[f64; 2]; 2],
+    mut f: impl FnMut([f64; 2]) -> Result<f64, &'static str>,
+) -> Result<f64, String> {
+    let (dx, dy) = ((hi[0] - lo[0]) / GRID as f64, (hi[1] - lo[1]) / GRID as f64);
+    let mut sum = 0.0;
+    for i in 0..GRID {
+        for j in 0..GRID {
+            let q = [lo[0] + (i as f64 + 0.5) * dx, lo[1] + (j as f64 + 0.5) * dy];
+            if p.contains(q) {
+                sum += f(q)? * dx * dy;
+            }
+        }
+    }
+    Ok(sum)
+}
+
 fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
     let p = profile(&ex.shape, CHORD);
     let pts = p.polyline(CHORD);
@@ -212,20 +233,12 @@ fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
         (None, Top::Expr(e)) => {
             let mut heights = e.evaluator();
             let mut scratch = Diagnostics::new();
-            let (dx, dy) = ((hi[0] - lo[0]) / GRID as f64, (hi[1] - lo[1]) / GRID as f64);
-            let mut sum = 0.0;
-            for i in 0..GRID {
-                for j in 0..GRID {
-                    let q = [lo[0] + (i as f64 + 0.5) * dx, lo[1] + (j as f64 + 0.5) * dy];
-                    if p.contains(q) {
-                        let h = heights
-                            .at(q[0], q[1], &mut scratch)
-                            .ok_or("the top has no value somewhere on the footprint")?;
-                        sum += h.0 * dx * dy;
-                    }
-                }
-            }
-            sum
+            integral(&p, [lo, hi], |q| {
+                heights
+                    .at(q[0], q[1], &mut scratch)
+                    .map(|h| h.0)
+                    .ok_or("the top has no value somewhere on the footprint")
+            })?
         }
         (None, _) => return Err("the top is not known".into()),
     };
@@ -233,20 +246,9 @@ fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
         return Ok((v * widen, "the footprint's integral of its top".to_string()));
     };
     // On a scan: less the measured part under the footprint (what is there).
-    let (dx, dy) = ((hi[0] - lo[0]) / GRID as f64, (hi[1] - lo[1]) / GRID as f64);
-    let mut under = 0.0;
-    for i in 0..GRID {
-        for j in 0..GRID {
-            let q = [lo[0] + (i as f64 + 0.5) * dx, lo[1] + (j as f64 + 0.5) * dy];
-            if p.contains(q) {
-                let b = base
-                    .surface
-                    .at(q)
-                    .ok_or("the scan does not cover the footprint everywhere")?;
-                under += b * dx * dy;
-            }
-        }
-    }
+    let under = integral(&p, [lo, hi], |q| {
+        (base.surface.at(q)).ok_or("the scan does not cover the footprint everywhere")
+    })?;
     Ok((
         (v - under) * widen,
         "the footprint's integral of its top less the scanned surface".to_string(),

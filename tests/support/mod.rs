@@ -2,6 +2,7 @@
 //! `tests/suite.rs` (the separate test programs include the ones they need
 //! with `#[path]`).
 
+pub mod data;
 pub mod duct;
 pub mod example;
 pub mod expected;

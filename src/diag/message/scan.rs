@@ -41,7 +41,7 @@ pub fn no_reader(at: Span) -> Diagnostic {
 pub fn bad(path: &str, format: &str, e: &ScanError, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::Scan,
-        format!("the scan `{path}` is read as {format}, and {e}"),
+        format!("cannot read the scan `{path}` as {format}: {e}"),
     )
     .label(at, "this file")
     .help("export the scan as PLY (ASCII or binary, points or faces), as text with a point `x y z` a line, or as STL or 3MF")

@@ -119,7 +119,7 @@ impl HeightField {
             },
         };
         if raw.triangles.is_empty() {
-            g.medians(raw.vertices.iter().map(placed));
+            g.fit_points(raw.vertices.iter().map(placed));
         } else {
             let v: Vec<[f64; 3]> = raw.vertices.iter().map(placed).collect();
             for t in &raw.triangles {
@@ -140,7 +140,7 @@ impl HeightField {
 
     /// Each cell's height from the points of its 3 × 3 cells ([`fit`]);
     /// a cell without points of its own stays empty. The noise about it.
-    fn medians(&mut self, points: impl Iterator<Item = [f64; 3]>) {
+    fn fit_points(&mut self, points: impl Iterator<Item = [f64; 3]>) {
         // The point's offset from its cell's centre, and its height.
         let mut pairs: Vec<(u32, [f32; 3])> = points
             .filter_map(|p| {

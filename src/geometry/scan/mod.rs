@@ -93,7 +93,7 @@ pub enum ScanError {
 impl std::fmt::Display for ScanError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            ScanError::Ply(why) => write!(f, "it is no PLY file lmdc can read: {why}"),
+            ScanError::Ply(why) => write!(f, "the PLY reader stopped: {why}"),
             ScanError::NoVertices => write!(
                 f,
                 "it has no `vertex` element with `x`, `y` and `z` properties"

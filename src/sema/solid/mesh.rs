@@ -66,7 +66,6 @@ pub fn load(
     data: Option<&DataReader>,
     diags: &mut Diagnostics,
 ) -> Option<(Vec<stl::Triangle>, f64, Option<&'static str>)> {
-    let units = f.word_or_default(&mesh::UNITS, diags)?;
     let Some(read) = data else {
         diags.push(message::mesh::no_reader(file_at));
         return None;
@@ -75,9 +74,23 @@ pub fn load(
         .and_then(|b| Data::Mesh.too_long(&b).map_or(Ok(b), Err))
         .map_err(|why| diags.push(message::mesh::unreadable(path, &why, file_at)))
         .ok()?;
+    decode(f, (path, file_at), &bytes, diags)
+}
+
+/// The triangles of an STL's or a 3MF's `bytes` (read from `path`), with
+/// the mm per unit of its numbers (`f`'s `units`, which a 3MF's own unit
+/// must agree with) and, for a 3MF, the unit it names: what a mesh's and
+/// a scan's readers share.
+pub fn decode(
+    f: &Fields<'_>,
+    (path, file_at): (&str, Span),
+    bytes: &[u8],
+    diags: &mut Diagnostics,
+) -> Option<(Vec<stl::Triangle>, f64, Option<&'static str>)> {
+    let units = f.word_or_default(&mesh::UNITS, diags)?;
     let scale = crate::units::mm_per(units);
-    if is_3mf(path, &bytes) {
-        let m = three_mf::read(&bytes)
+    if is_3mf(path, bytes) {
+        let m = three_mf::read(bytes)
             .map_err(|e| diags.push(message::mesh::not_3mf(path, &e, file_at)))
             .ok()?;
         if let Some((w, w_at)) = f
@@ -92,7 +105,7 @@ pub fn load(
         }
         Some((m.triangles, m.scale, Some(m.unit)))
     } else {
-        let tris = stl::read(&bytes)
+        let tris = stl::read(bytes)
             .map_err(|e| diags.push(message::mesh::not_stl(path, &e, file_at)))
             .ok()?;
         Some((tris, scale, None))

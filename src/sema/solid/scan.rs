@@ -4,16 +4,17 @@
 //! coordinates and estimated on a grid (docs/repair.md).
 
 use crate::diag::{message, Diagnostics};
-use crate::geometry::mesh::{stl, three_mf, Placement};
+use crate::geometry::mesh::Placement;
 use crate::geometry::scan::{self, Estimate, Format, HeightField, Raw};
 use crate::sema::data::Data;
 use crate::sema::fields::Fields;
 use crate::sema::model::ScanBase;
 use crate::sema::schema::solid::{mesh, scan as field, SCAN};
-use crate::sema::solid::mesh::triple;
+use crate::sema::solid::mesh::{decode, triple};
 use crate::sema::value::Call;
 use crate::sema::DataReader;
 use crate::span::Span;
+use crate::units::mm_per;
 use crate::units::Dim;
 
 /// Reads `scan(…)` (the call `c` at `at`), its file through `data`.
@@ -41,27 +42,20 @@ pub fn read(
         .map_err(|why| diags.push(message::scan::unreadable(&path, &why, file_at)))
         .ok()?;
     let format = Format::of(&path, &bytes);
-    let mut scale = crate::units::mm_per(units);
-    let raw = match format {
-        Format::Ply => scan::ply::read(&bytes).map_err(|e| ("PLY", e)),
-        Format::Xyz => scan::xyz::read(&bytes).map_err(|e| ("XYZ text", e)),
-        Format::Stl => match stl::read(&bytes) {
-            Ok(t) => Ok(Raw::from_triangles(&t)),
-            Err(e) => {
-                diags.push(message::mesh::not_stl(&path, &e, file_at));
-                return None;
-            }
-        },
-        Format::ThreeMf => match three_mf::read(&bytes) {
-            Ok(m) => {
-                scale = m.scale;
-                Ok(Raw::from_triangles(&m.triangles))
-            }
-            Err(e) => {
-                diags.push(message::mesh::not_3mf(&path, &e, file_at));
-                return None;
-            }
-        },
+    let (raw, scale) = match format {
+        Format::Ply => (
+            scan::ply::read(&bytes).map_err(|e| ("PLY", e)),
+            mm_per(units),
+        ),
+        Format::Xyz => (
+            scan::xyz::read(&bytes).map_err(|e| ("XYZ text", e)),
+            mm_per(units),
+        ),
+        // The mesh solid's reader: the same errors, and a 3MF's own unit.
+        Format::Stl | Format::ThreeMf => {
+            let (tris, scale, _) = decode(&f, (&path, file_at), &bytes, diags)?;
+            (Ok(Raw::from_triangles(&tris)), scale)
+        }
     };
     drop(bytes);
     let raw = raw
