@@ -478,8 +478,7 @@ fn render(chromium: &Path, example: &str) -> Vec<u8> {
     let file = dir.path().join(format!("{example}.html"));
     std::fs::write(&file, html).unwrap();
 
-    let o = browse(chromium, &file, "", &["--dump-dom"]);
-    let dom = String::from_utf8_lossy(&o.stdout);
+    let (dom, bytes, img) = dom_and_screenshot(chromium, &file, "");
     assert!(
         dom.contains(&format!(": {layers} layers</title>")),
         "{example}: the title does not give {layers} layers:\n{}",
@@ -494,7 +493,6 @@ fn render(chromium: &Path, example: &str) -> Vec<u8> {
         .unwrap_or_else(|| panic!("{example}: the view reported nothing painted"));
     assert!(painted > 1000, "{example}: {painted} pixels painted");
 
-    let (bytes, img) = screenshot(chromium, &file, "");
     // Coloured pixels (not white, grey or black text) in the view.
     let coloured = img.rgb.iter().filter(|p| coloured(p)).count();
     assert!(
@@ -510,15 +508,17 @@ fn coloured(p: &[u8; 3]) -> bool {
     p.iter().max().unwrap() - p.iter().min().unwrap() > 40
 }
 
-/// The screenshot of `file` at `#hash`: its bytes, decoded.
-fn screenshot(chromium: &Path, file: &Path, hash: &str) -> (Vec<u8>, png::Image) {
+/// The DOM of `file` at `#hash` (checked as [`dom`] checks it) and its
+/// screenshot, bytes and decoded, from one run of the browser (a run costs
+/// most of a second to start).
+fn dom_and_screenshot(chromium: &Path, file: &Path, hash: &str) -> (String, Vec<u8>, png::Image) {
     let dir = tempfile::tempdir().unwrap();
     let shot = dir.path().join("shot.png");
     let o = browse(
         chromium,
         file,
         hash,
-        &[&format!("--screenshot={}", shot.display())],
+        &["--dump-dom", &format!("--screenshot={}", shot.display())],
     );
     let bytes = std::fs::read(&shot).unwrap_or_else(|e| {
         panic!(
@@ -529,13 +529,17 @@ fn screenshot(chromium: &Path, file: &Path, hash: &str) -> (Vec<u8>, png::Image)
     });
     let img = png::decode(&bytes).unwrap();
     assert_eq!((img.width, img.height), (1280, 1000));
-    (bytes, img)
+    (checked_dom(o, file, hash), bytes, img)
 }
 
 /// The DOM of `file` at `#hash` after its scripts ran, checked for a script
 /// error and for having run to its end.
 fn dom(chromium: &Path, file: &Path, hash: &str) -> String {
-    let o = browse(chromium, file, hash, &["--dump-dom"]);
+    checked_dom(browse(chromium, file, hash, &["--dump-dom"]), file, hash)
+}
+
+/// The DOM a run of the browser dumped, checked as [`dom`] says.
+fn checked_dom(o: Output, file: &Path, hash: &str) -> String {
     let dom = String::from_utf8_lossy(&o.stdout).into_owned();
     let at = format!("{}#{hash}", file.display());
     assert!(
@@ -677,9 +681,8 @@ fn the_scale_bar_measures_the_view_at_every_zoom() {
     // last zoom drew it would not measure a round length at the next.
     for zoom in [0.5, 1.0, 1.5] {
         let hash = format!("view=top&zoom={zoom}");
-        // What the page says it drew (--dump-dom's viewport is not the
-        // screenshot's: the numbers differ, the rules hold).
-        let dom = dom(&chromium, &file, &hash);
+        // What the page says it drew, and what the screenshot shows.
+        let (dom, _, img) = dom_and_screenshot(&chromium, &file, &hash);
         let (mm, px, ppm) = (
             number(&dom, "data-scale-mm"),
             number(&dom, "data-scale-px"),
@@ -697,7 +700,6 @@ fn the_scale_bar_measures_the_view_at_every_zoom() {
         // of the legend, and the longest dark row near the left edge: the
         // bar.
         let top = number(&dom, "data-view-top") as usize;
-        let (_, img) = screenshot(&chromium, &file, &hash);
         let at = |x: usize, y: usize| img.rgb[y * img.width + x];
         let bottom = (top + 1..img.height)
             .find(|&y| at(5, y) != [255; 3])
@@ -772,15 +774,13 @@ fn chromium_draws_the_examples() {
             let file = dir.path().join(format!("{example}.html"));
             std::fs::write(&file, page(example, preview::BUDGET).0).unwrap();
             let hash = format!("colour={mode}");
-            dom(&chromium, &file, &hash);
-            let (shot, _) = screenshot(&chromium, &file, &hash);
+            let (_, shot, _) = dom_and_screenshot(&chromium, &file, &hash);
             std::fs::write(format!("docs/preview/{example}_{mode}.png"), shot).unwrap();
         }
         // And the bodies at a move, mid-build.
         let file = dir.path().join("flange.html");
         std::fs::write(&file, page("flange", preview::BUDGET).0).unwrap();
-        dom(&chromium, &file, "move=1200");
-        let (shot, _) = screenshot(&chromium, &file, "move=1200");
+        let (_, shot, _) = dom_and_screenshot(&chromium, &file, "move=1200");
         std::fs::write("docs/preview/flange_bodies.png", shot).unwrap();
     }
 }

@@ -67,7 +67,11 @@ impl Collision<'_> {
         order.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut best: Option<Moved> = None;
         for &(far, k, sign, name) in order.iter().take(dirs) {
-            if let Some(m) = search(cx, i, (k, sign, name), far) {
+            // Past the first direction found, only a shorter move counts:
+            // a direction refused at the best move so far costs one plan,
+            // not a dozen.
+            let within = best.as_ref().map_or(far, |b| far.min(b.by));
+            if let Some(m) = search(cx, i, (k, sign, name), within) {
                 if best.as_ref().is_none_or(|b| m.by < b.by) {
                     best = Some(m);
                 }
