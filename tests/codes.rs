@@ -342,8 +342,12 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     expected_text: ExpectedText, PLATE,
         "style edge { colour = 12  speed = 6 mm/s  when { paths = infill } }";
     expected_shape: ExpectedShape, PLATE, "extrude block { profile = 20 mm  size = outer  bead = track }";
+    // A name where a shape goes that is no profile or section (`bore`
+    // would be written out: tests/named_shapes.rs).
     named_hole: ExpectedShape, PLATE,
-        "section bore = circle(diameter = 4 mm)\nextrude block { profile = region(outline = rectangle(width = 20 mm, height = 10 mm), holes = [bore])  size = outer  bead = track }";
+        "section bore = circle(diameter = 4 mm)\nextrude block { profile = region(outline = rectangle(width = 20 mm, height = 10 mm), holes = [bores])  size = outer  bead = track }";
+    shape_cycle: Cycle, PLATE,
+        "profile lug = region(outline = rectangle(width = 20 mm, height = 10 mm), holes = [place(lug, at = [0 mm, 0 mm], turn = 0 deg)])\nextrude block { profile = lug  size = outer  bead = track }";
     expected_point: ExpectedPoint, PLATE,
         "extrude block { profile = outline([0 mm, 0 mm], [10 mm, 0 mm], 5 mm)  size = outer  bead = track }";
     expected_name: ExpectedName, PLATE,

@@ -41,6 +41,7 @@ mod lsp;
 mod machine_checks;
 mod mesh;
 mod message_format;
+mod named_shapes;
 mod overhang;
 mod placement;
 mod plan_lines;

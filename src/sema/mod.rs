@@ -14,6 +14,7 @@ mod fields;
 mod machine;
 mod math;
 pub mod model;
+pub mod named_shape;
 mod process;
 mod program_text;
 pub mod schema;
@@ -61,6 +62,9 @@ pub fn check_reading(file: &File, data: Option<DataReader>) -> (Option<Model>, D
 }
 
 fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) -> Option<Model> {
+    // Shapes named inside shapes, written out first: everything after reads
+    // one self-contained expression per shape.
+    let file = &*named_shape::expand(file, diags);
     let st = Statements::group(file, diags);
     allow::read(&st, diags);
     let mut env = Env::new();

@@ -41,17 +41,42 @@ pub fn bolt_circle_not_shape(what: &str, at: Span) -> Diagnostic {
     .help("list it among a region's holes: `region(outline = …, holes = [bolt_circle(circle(diameter = 12 mm), count = 6, diameter = 85 mm)])`")
 }
 
-/// A name where a shape (`what`) is written out: a section or profile is
-/// taken by name only as an extrusion's profile or a loft's section.
-pub fn named_shape(what: &str, name: &str, at: Span) -> Diagnostic {
-    Diagnostic::error(
+/// A name where a shape (`what`) goes that is no profile or section
+/// (`close`: a declared one it may be a typo of).
+pub fn named_shape(what: &str, name: &str, at: Span, close: Option<&str>) -> Diagnostic {
+    let d = Diagnostic::error(
         Code::ExpectedShape,
-        format!("{what} must be a 2-D shape written out here, not a name"),
+        format!("{what} must be a 2-D shape; `{name}` is no profile or section"),
     )
-    .label(at, format!("the name `{name}`"))
-    .help(format!(
-        "a section or profile is taken by its name only as an extrusion's `profile` or a loft's section; inside `region(…)`, `place(…)` and a region's `holes`, write the shape itself where `{name}` stands (e.g. `circle(diameter = 20 mm)`), using constants (`let`) for the numbers it shares"
-    ))
+    .label(at, format!("the name `{name}`"));
+    match close {
+        Some(s) => d.help(format!("did you mean `{s}`? A profile or section is taken by its name wherever a shape goes (`profile NAME = …`, `section NAME = …`)")),
+        None => d.help(format!(
+            "declare it (`profile {name} = outline(…)` or `section {name} = circle(…)`), or write the shape itself here (e.g. `circle(diameter = 20 mm)`)"
+        )),
+    }
+}
+
+/// A profile or section is placed inside itself, directly or through
+/// others (`profile a = place(a, …)`).
+pub fn shape_cycle(name: &str, at: Span, decl: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Cycle,
+        format!("the shape `{name}` is placed inside itself"),
+    )
+    .label(at, format!("`{name}` here, inside its own shape"))
+    .label(decl, "declared here")
+    .help("a shape can hold others by name, not itself: write the inner shape out, or name a shape declared without this one")
+}
+
+/// Shapes named inside shapes write out more than `max` expression nodes.
+pub fn shapes_too_large(max: usize, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TooLarge,
+        format!("the shapes named inside shapes here write out more than {max} pieces"),
+    )
+    .label(at, "written out from here on")
+    .help("name each shape once where it is used: copies of copies grow with every level (three holes of a region of three holes …)")
 }
 
 /// Something that is no 2-D shape is given where one (`what`) is expected.

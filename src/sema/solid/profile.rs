@@ -51,8 +51,12 @@ pub fn shape(v: &Spanned, what: &str, diags: &mut Diagnostics) -> Option<Shape> 
             diags.push(message::shape::bolt_circle_not_shape(what, v.span));
             None
         }
+        // A name leading back to its own shape, reported as it was
+        // written out (`crate::sema::named_shape`).
+        Value::Symbol(name) if name == crate::sema::named_shape::REPORTED => None,
+        // Profiles and sections were written out where they are named.
         Value::Symbol(name) => {
-            diags.push(message::shape::named_shape(what, name, v.span));
+            diags.push(message::shape::named_shape(what, name, v.span, None));
             None
         }
         other => {
