@@ -1470,3 +1470,84 @@ fn chromium_shows_the_bodies_at_the_sliders_move() {
     );
     assert!(poses[k].at != Where::End || approaches[tightest]["layer"].is_null());
 }
+
+/// The fixtures are on the page as the IR places them, and drawn where they
+/// stand: the post in the ring's bore (tests/cases/collision/
+/// travel_over_post), seen from the top, is a circle of its 20 mm diameter
+/// round the point the page says its top's centre is drawn at, in the
+/// fixtures' colour, with nothing of that colour between it and the ring.
+#[test]
+fn chromium_draws_the_fixtures_where_they_stand() {
+    let Some(chromium) = chromium("chromium_draws_the_fixtures_where_they_stand") else {
+        return;
+    };
+    let src = std::fs::read_to_string("tests/cases/collision/travel_over_post/input.lmd").unwrap();
+    let p = compile(&src, &mut ()).program.expect("builds");
+    let m = p.machines().find(|m| m.machine().name() == "mill").unwrap();
+    let html = preview::html(m);
+    let f = &data(&html)["meta"]["fixtures"];
+    assert_eq!(
+        f,
+        &serde_json::json!([{ "name": "post", "kind": "cylinder",
+            "lo": [-10.0, -10.0, 0.0], "hi": [10.0, 10.0, 40.0] }])
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("post.html");
+    std::fs::write(&file, html).unwrap();
+    let (dom, _, img) = dom_and_screenshot(&chromium, &file, "view=top&bodies=0");
+    assert_eq!(number(&dom, "data-fixtures"), 1.0);
+    // The view's rows (white, from its top to the plots' grey) left of
+    // the legend; the DOM's numbers are from another viewport than the
+    // screenshot's (a few tens of pixels off), so the scale is measured
+    // here: the ring's outer track, 100 − 2.2 mm across its centre line,
+    // centred on the post.
+    let view_top = number(&dom, "data-view-top") as usize;
+    let at = |x: usize, y: usize| img.rgb[y * img.width + x];
+    let bottom = (view_top + 1..img.height)
+        .find(|&y| at(5, y) != [255; 3])
+        .unwrap_or(img.height);
+    // The fixtures' brown-orange (170, 90, 20): not the X axis's red, the
+    // ring's speed colours or the travels' grey.
+    let orange = |p: &[u8; 3]| {
+        let [r, g, b] = p.map(f64::from);
+        r > 120.0 && (0.4..0.7).contains(&(g / r)) && b < 0.35 * r
+    };
+    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+    let mut pixels = Vec::new();
+    for y in view_top..bottom {
+        for x in 0..1000 {
+            let p = at(x, y);
+            if orange(&p) {
+                pixels.push((x as f64, y as f64));
+            } else if coloured(&p) {
+                for (k, v) in [x as f64, y as f64].into_iter().enumerate() {
+                    lo[k] = lo[k].min(v);
+                    hi[k] = hi[k].max(v);
+                }
+            }
+        }
+    }
+    let top = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
+    // Lines 1.6 px wide: the span is that much wider than the path.
+    let r = 10.0 * (hi[0] - lo[0] + 1.0 - 1.6) / 97.8;
+    // The rim's pixels by quadrant: a circle of the post's radius, not a
+    // mark beside the point.
+    let (mut rim, mut between) = ([0; 4], Vec::new());
+    for &(x, y) in &pixels {
+        let (dx, dy) = (x - top[0], y - top[1]);
+        let d = dx.hypot(dy);
+        if (0.8 * r..=1.2 * r).contains(&d) {
+            rim[usize::from(dx > 0.0) + 2 * usize::from(dy > 0.0)] += 1;
+        } else if (1.6 * r..=2.4 * r).contains(&d) {
+            between.push((x, y));
+        }
+    }
+    assert!(
+        rim.iter().all(|&n| n as f64 > r / 3.0),
+        "{rim:?} pixels on the post's rim by quadrant (radius {r:.1} px about {top:?})"
+    );
+    assert!(
+        between.len() < 5,
+        "fixture pixels between the post and the ring (about {top:?}, r {r:.1}): {between:?}"
+    );
+}

@@ -101,8 +101,43 @@ pub struct Meta<'a> {
     /// The head the machine carries along the beam, as the collision
     /// checks take it (docs/collision.md): the page draws it at a move.
     pub head: &'a crate::ir::Head,
+    /// The fixtures, as the page draws them.
+    pub fixtures: Vec<FixtureBox<'a>>,
     /// Who wrote the page.
     pub generator: &'static str,
+}
+
+/// A fixture as the page draws it, in the part's coordinates: the box
+/// round it and what fills the box (`box`, an upright `cylinder` touching
+/// its sides, a `mesh` drawn as its box).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FixtureBox<'a> {
+    /// Its name from the source.
+    pub name: &'a str,
+    /// `box`, `cylinder` or `mesh`.
+    pub kind: &'static str,
+    /// The least corner, mm.
+    pub lo: [f64; 3],
+    /// The greatest corner, mm.
+    pub hi: [f64; 3],
+}
+
+impl<'a> FixtureBox<'a> {
+    /// The IR's fixture `f` as drawn.
+    pub fn of(f: &'a crate::ir::Fixture) -> Self {
+        let (lo, hi) = f.bounds();
+        let kind = match f.shape {
+            crate::ir::FixtureShape::Box { .. } => "box",
+            crate::ir::FixtureShape::Cylinder { .. } => "cylinder",
+            crate::ir::FixtureShape::Mesh { .. } => "mesh",
+        };
+        FixtureBox {
+            name: &f.name,
+            kind,
+            lo,
+            hi,
+        }
+    }
 }
 
 /// The page's move an approach happened on.

@@ -397,6 +397,11 @@ fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnosti
         approaches: &machine.summary().approaches,
         approach_moves: &approach_moves,
         head: &machine.machine().common().head,
+        fixtures: program
+            .fixtures
+            .iter()
+            .map(encode::FixtureBox::of)
+            .collect(),
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };
     let data = c.cols.encode(&meta, &c.poses);

@@ -481,6 +481,7 @@
     if (movesOnly) return;
     drawAxes(c, dpr);
     drawScaleBar(c, dpr);
+    drawFixtures(c, dpr);
     if (showBodies) drawBodies(c, dpr);
     drawApproaches(c, dpr);
   }
@@ -497,6 +498,57 @@
       if (++n === CHUNK) { ctx.stroke(); ctx.beginPath(); n = 0; }
     }
     ctx.stroke();
+  }
+
+  // --- the fixtures --------------------------------------------------------
+  // In the part's coordinates, as the collision checks take them (docs/
+  // collision.md): a box's twelve edges, an upright cylinder's rims and
+  // four sides, a mesh's box dashed; the name over the top's centre, where
+  // the canvas's data-fixture-tops says it is drawn (CSS px, for the tests).
+  const FIXTURES = M.fixtures || [];
+  const FIXTURE_EDGE = "rgba(170,90,20,0.95)";
+  function drawFixtures(c, dpr) {
+    const tops = [];
+    for (const f of FIXTURES) {
+      const [x0, y0, z0] = f.lo, [x1, y1, z1] = f.hi;
+      const seg = (a, b) => {
+        const [u0, v0] = at(c, ...a), [u1, v1] = at(c, ...b);
+        ctx.moveTo(u0, v0);
+        ctx.lineTo(u1, v1);
+      };
+      ctx.beginPath();
+      if (f.kind === "cylinder") {
+        const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2, r = (x1 - x0) / 2;
+        const rim = (a) => [cx + r * Math.cos(a), cy + r * Math.sin(a)];
+        for (const z of [z0, z1]) {
+          for (let k = 0; k < 48; k++) {
+            seg([...rim(2 * Math.PI * k / 48), z], [...rim(2 * Math.PI * (k + 1) / 48), z]);
+          }
+        }
+        for (let k = 0; k < 4; k++) {
+          const p = rim(Math.PI * k / 2);
+          seg([...p, z0], [...p, z1]);
+        }
+      } else {
+        const xs = [x0, x1], ys = [y0, y1], zs = [z0, z1];
+        for (const y of ys) for (const z of zs) seg([x0, y, z], [x1, y, z]);
+        for (const x of xs) for (const z of zs) seg([x, y0, z], [x, y1, z]);
+        for (const x of xs) for (const y of ys) seg([x, y, z0], [x, y, z1]);
+      }
+      ctx.setLineDash(f.kind === "mesh" ? [5 * dpr, 4 * dpr] : []);
+      ctx.lineWidth = 1.5 * dpr;
+      ctx.strokeStyle = FIXTURE_EDGE;
+      ctx.stroke();
+      ctx.setLineDash([]);
+      const [u, v] = at(c, (x0 + x1) / 2, (y0 + y1) / 2, z1);
+      ctx.fillStyle = FIXTURE_EDGE;
+      ctx.font = `${11 * dpr}px sans-serif`;
+      ctx.textAlign = "center";
+      ctx.fillText(f.name, u, v - 6 * dpr);
+      tops.push(`${(u / dpr).toFixed(1)},${(v / dpr).toFixed(1)}`);
+    }
+    canvas.dataset.fixtures = FIXTURES.length;
+    canvas.dataset.fixtureTops = tops.join(";");
   }
 
   // --- the bodies at a move -------------------------------------------------
