@@ -1551,3 +1551,51 @@ fn chromium_draws_the_fixtures_where_they_stand() {
         "fixture pixels between the post and the ring (about {top:?}, r {r:.1}): {between:?}"
     );
 }
+
+/// A positioner's faceplate is on the page where the part stands on it:
+/// the forearm case's base turns the part about Z only, so the face is the
+/// part's plane z = 0 through its origin, facing up, as wide as declared;
+/// the browser draws it without a script error.
+#[test]
+fn the_page_carries_the_faceplate_the_part_stands_on() {
+    let src = std::fs::read_to_string("tests/cases/errors/collision/forearm_faceplate/input.lmd")
+        .unwrap()
+        .replace("faceplate = 1300 mm", "faceplate = 1281.1 mm");
+    let p = compile(&src, &mut ()).program.expect("builds");
+    let html = preview::html(p.machines().next().unwrap());
+    let f = &data(&html)["meta"]["faceplate"];
+    let v = |k: &str| -> Vec<f64> {
+        f[k].as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    };
+    assert_eq!(f["diameter"].as_f64(), Some(1281.1));
+    assert_eq!(f["thickness"].as_f64(), Some(40.0));
+    for (got, want) in [
+        (v("centre"), [0.0, 0.0, 0.0]),
+        (v("normal"), [0.0, 0.0, 1.0]),
+    ] {
+        assert!(
+            got.iter().zip(want).all(|(g, w)| (g - w).abs() < 1e-9),
+            "{got:?} vs {want:?}"
+        );
+    }
+    // `u` and `v` across the face: square to the normal and to each other.
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let (u, w, n) = (v("u"), v("v"), v("normal"));
+    assert!(dot(&u, &n).abs() < 1e-9 && dot(&w, &n).abs() < 1e-9 && dot(&u, &w).abs() < 1e-9);
+    // A robot without a positioner has none.
+    let kr30 = page_of("ramp_wall", "kr30");
+    assert!(data(&kr30)["meta"]["faceplate"].is_null());
+
+    let Some(chromium) = chromium("the_page_carries_the_faceplate_the_part_stands_on") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("faceplate.html");
+    std::fs::write(&file, html).unwrap();
+    let dom = dom(&chromium, &file, "");
+    assert_eq!(number(&dom, "data-faceplate"), 1281.1);
+}

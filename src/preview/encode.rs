@@ -103,6 +103,8 @@ pub struct Meta<'a> {
     pub head: &'a crate::ir::Head,
     /// The fixtures, as the page draws them.
     pub fixtures: Vec<FixtureBox<'a>>,
+    /// A positioner's faceplate, where declared.
+    pub faceplate: Option<Faceplate>,
     /// Who wrote the page.
     pub generator: &'static str,
 }
@@ -137,6 +139,53 @@ impl<'a> FixtureBox<'a> {
             lo,
             hi,
         }
+    }
+}
+
+/// A positioner's faceplate as the page draws it, in the part's
+/// coordinates (it turns with the part): a disc `diameter` across, its face
+/// through `centre`, `thickness` behind it against `normal`, `u` and `v`
+/// across it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Faceplate {
+    /// mm.
+    pub diameter: f64,
+    /// mm.
+    pub thickness: f64,
+    /// The face's centre, mm.
+    pub centre: [f64; 3],
+    /// Out of the face, towards the part.
+    pub normal: [f64; 3],
+    /// Across the face.
+    pub u: [f64; 3],
+    /// Across the face, square to `u`.
+    pub v: [f64; 3],
+}
+
+impl Faceplate {
+    /// The faceplate of `machine`, a robot's positioner's where it declares
+    /// one and its base has a value: in the part's coordinates the
+    /// faceplate's frame is the base's inverse, as the arm's check takes it
+    /// (`verify::arm::links`).
+    pub fn of(machine: &crate::ir::Machine) -> Option<Faceplate> {
+        let crate::ir::Machine::Robot(robot) = machine else {
+            return None;
+        };
+        let diameter = robot.positioner.as_ref()?.faceplate?;
+        let face = crate::plan::arm::frame(robot.base.value.as_ref()?).inverse();
+        let axis = |v: nalgebra::Vector3<f64>| {
+            let w = face * v;
+            [w.x, w.y, w.z]
+        };
+        let c = face * nalgebra::Point3::origin();
+        Some(Faceplate {
+            diameter,
+            thickness: crate::ir::FACEPLATE_THICKNESS_MM,
+            centre: [c.x, c.y, c.z],
+            normal: axis(nalgebra::Vector3::z()),
+            u: axis(nalgebra::Vector3::x()),
+            v: axis(nalgebra::Vector3::y()),
+        })
     }
 }
 

@@ -402,6 +402,7 @@ fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnosti
             .iter()
             .map(encode::FixtureBox::of)
             .collect(),
+        faceplate: encode::Faceplate::of(machine.machine()),
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };
     let data = c.cols.encode(&meta, &c.poses);

@@ -549,6 +549,36 @@
     }
     canvas.dataset.fixtures = FIXTURES.length;
     canvas.dataset.fixtureTops = tops.join(";");
+    drawFaceplate(c, dpr);
+  }
+
+  // A positioner's faceplate: its face's rim and the rim `thickness` behind
+  // it, joined at four points, in the part's coordinates (it turns with the
+  // part), faint blue-grey; the plate's grid lies on its face when the base
+  // puts the part there.
+  const FACEPLATE = M.faceplate;
+  function drawFaceplate(c, dpr) {
+    if (!FACEPLATE) return;
+    const { diameter, thickness, centre, normal, u, v } = FACEPLATE;
+    const r = diameter / 2;
+    const p = (a, depth) => [0, 1, 2].map((k) =>
+      centre[k] + r * (Math.cos(a) * u[k] + Math.sin(a) * v[k]) - depth * normal[k]);
+    ctx.beginPath();
+    for (const depth of [0, thickness]) {
+      for (let k = 0; k <= 96; k++) {
+        const [x, y] = at(c, ...p(2 * Math.PI * k / 96, depth));
+        k ? ctx.lineTo(x, y) : ctx.moveTo(x, y);
+      }
+    }
+    for (let k = 0; k < 4; k++) {
+      const [x0, y0] = at(c, ...p(Math.PI * k / 2, 0)), [x1, y1] = at(c, ...p(Math.PI * k / 2, thickness));
+      ctx.moveTo(x0, y0);
+      ctx.lineTo(x1, y1);
+    }
+    ctx.lineWidth = 1.2 * dpr;
+    ctx.strokeStyle = "rgba(70,90,130,0.55)";
+    ctx.stroke();
+    canvas.dataset.faceplate = diameter;
   }
 
   // --- the bodies at a move -------------------------------------------------
