@@ -866,7 +866,28 @@ pub struct Fixture {
     pub at: [f64; 3],
 }
 
+/// The name the part a repair builds on goes by among the fixtures
+/// (`extrude { on = scan(…) }`, docs/repair.md): its estimated surface is an
+/// obstacle as a mesh fixture is. Not a name a file can give a fixture (it
+/// has a space), so it never meets a declared one.
+pub const SCANNED_PART: &str = "scanned part";
+
 impl Fixture {
+    /// Whether this is the scanned part a repair builds on.
+    pub fn is_scan(&self) -> bool {
+        self.name == SCANNED_PART
+    }
+
+    /// How the messages and the report name it: `fixture NAME`, or `the
+    /// scanned part`.
+    pub fn label(&self) -> String {
+        if self.is_scan() {
+            "the scanned part".into()
+        } else {
+            format!("fixture {}", self.name)
+        }
+    }
+
     /// The box round it, mm: its least and greatest X, Y and Z.
     pub fn bounds(&self) -> ([f64; 3], [f64; 3]) {
         let [x, y, z] = self.at;

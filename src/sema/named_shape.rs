@@ -29,7 +29,7 @@ const SHAPE_ARGS: [&str; 2] = ["outline", "holes"];
 pub const MAX_NODES: usize = 200_000;
 
 /// What a name leading back to its own shape is replaced by: a symbol no
-/// source can write, which [`crate::sema::solid::profile::shape`] takes as
+/// source can write, which the profile reader (`sema::solid::profile`) takes as
 /// reported already.
 pub const REPORTED: &str = "\u{0}reported";
 

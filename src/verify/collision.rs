@@ -140,6 +140,8 @@ impl<'p> PlanRule<'p> for Collision<'p> {
                 _ => None,
             };
             let moved = match w.at.what {
+                // The part built on stays where it is.
+                Obstacle::Fixture(i) if self.program.fixtures[i].is_scan() => None,
                 Obstacle::Fixture(i) => self.moved(cx, i),
                 _ => None,
             };
@@ -434,7 +436,7 @@ impl Collision<'_> {
             let with = match k % kinds {
                 0 => "plate".to_string(),
                 1 => "part".to_string(),
-                i => format!("fixture {}", self.program.fixtures[i - 2].name),
+                i => self.program.fixtures[i - 2].label(),
             };
             out.push(Approach::new(
                 (&self.head.names[k / kinds], &with),

@@ -361,6 +361,47 @@ impl HeightField {
     pub fn cell(&self) -> f64 {
         self.cell
     }
+
+    /// The surface as spheres `[x, y, z, radius]` (mm) that hold it, for
+    /// the collision checks: one a block of `k × k` cells, `k` the least
+    /// that keeps them within `max` (1 below a million cells). A block's
+    /// sphere is centred over it, halfway between the lowest and highest
+    /// height of its cells and their neighbours (the surface between
+    /// centres runs to them), and reaches its corners at both: the
+    /// surface over the block lies inside it.
+    pub fn samples(&self, max: usize) -> Vec<[f64; 4]> {
+        let mut k = 1;
+        while self.stats.filled.div_ceil(k * k) > max.max(1) {
+            k += 1;
+        }
+        let height = |i: usize, j: usize| f64::from(self.z[j * self.nx + i]);
+        let mut out = Vec::new();
+        for bj in (0..self.ny).step_by(k) {
+            for bi in (0..self.nx).step_by(k) {
+                let (i1, j1) = ((bi + k).min(self.nx), (bj + k).min(self.ny));
+                let filled = (bj..j1).any(|j| (bi..i1).any(|i| !height(i, j).is_nan()));
+                if !filled {
+                    continue;
+                }
+                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+                for j in bj.saturating_sub(1)..(j1 + 1).min(self.ny) {
+                    for i in bi.saturating_sub(1)..(i1 + 1).min(self.nx) {
+                        let z = height(i, j);
+                        if !z.is_nan() {
+                            lo = lo.min(z);
+                            hi = hi.max(z);
+                        }
+                    }
+                }
+                let (w, d) = ((i1 - bi) as f64 * self.cell, (j1 - bj) as f64 * self.cell);
+                let x = self.origin[0] + bi as f64 * self.cell + w / 2.0;
+                let y = self.origin[1] + bj as f64 * self.cell + d / 2.0;
+                let r = ((w / 2.0).powi(2) + (d / 2.0).powi(2) + ((hi - lo) / 2.0).powi(2)).sqrt();
+                out.push([x, y, (lo + hi) / 2.0, r]);
+            }
+        }
+        out
+    }
 }
 
 /// A cell's height at its centre from the points around it (offsets from

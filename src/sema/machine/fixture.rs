@@ -200,3 +200,33 @@ fn three(v: &crate::sema::value::Spanned, key: &str, diags: &mut Diagnostics) ->
     }
     ok.then_some(out)
 }
+
+/// The scanned part an extrusion is built on, as an obstacle: its
+/// estimated surface (docs/repair.md) as samples, each a sphere holding the
+/// surface over a block of cells, at most [`crate::collision::surface::MAX_SAMPLES`]
+/// of them; its box from the lowest surface to the highest (the travels
+/// rise over it, the arm's links keep their gap from it).
+pub fn scanned(scan: &crate::sema::model::ScanBase) -> Fixture {
+    let samples = scan.surface.samples(crate::collision::surface::MAX_SAMPLES);
+    let (mut min, mut max) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for s in &samples {
+        for k in 0..3 {
+            min[k] = min[k].min(s[k] - s[3]);
+            max[k] = max[k].max(s[k] + s[3]);
+        }
+    }
+    let tolerance = samples.iter().map(|s| s[3]).fold(0.0, f64::max);
+    Fixture {
+        name: crate::ir::SCANNED_PART.to_string(),
+        shape: FixtureShape::Mesh {
+            file: scan.path.clone(),
+            units: "mm".into(),
+            turn: [0.0; 3],
+            min,
+            max,
+            tolerance,
+            samples: crate::ir::MeshSamples(std::sync::Arc::new(samples)),
+        },
+        at: [0.0; 3],
+    }
+}

@@ -55,6 +55,14 @@ enum Solid<'a> {
 }
 
 impl Read<'_> {
+    /// The scanned part an extrusion is built on, when it is read.
+    pub fn scan(&self) -> Option<&crate::sema::model::ScanBase> {
+        match &self.solid {
+            Some(Solid::Extrude(w)) => w.base.as_ref(),
+            _ => None,
+        }
+    }
+
     /// The table's powers and where they are written, when the solid is a
     /// ring whose powers are right.
     pub fn ring_powers(&self) -> Option<([crate::units::Power; 2], Span)> {

@@ -479,7 +479,7 @@ impl<'p> Links<'p> {
     fn with(&self, k: usize) -> String {
         match self.targets[k] {
             Target::Faceplate => "positioner faceplate".to_string(),
-            Target::Fixture(i) => format!("fixture {}", self.program.fixtures[i].name),
+            Target::Fixture(i) => self.program.fixtures[i].label(),
             Target::Plate => "plate".to_string(),
             Target::Own(o) => LINKS[o].to_string(),
             Target::Part => "part".to_string(),
