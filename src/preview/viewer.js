@@ -482,6 +482,7 @@
     drawAxes(c, dpr);
     drawScaleBar(c, dpr);
     drawFixtures(c, dpr);
+    drawFaceplate(c, dpr);
     if (showBodies) drawBodies(c, dpr);
     drawApproaches(c, dpr);
   }
@@ -549,7 +550,6 @@
     }
     canvas.dataset.fixtures = FIXTURES.length;
     canvas.dataset.fixtureTops = tops.join(";");
-    drawFaceplate(c, dpr);
   }
 
   // A positioner's faceplate: its face's rim and the rim `thickness` behind

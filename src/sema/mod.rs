@@ -64,7 +64,7 @@ pub fn check_reading(file: &File, data: Option<DataReader>) -> (Option<Model>, D
 fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) -> Option<Model> {
     // Shapes named inside shapes, written out first: everything after reads
     // one self-contained expression per shape.
-    let file = &*named_shape::expand(file, diags);
+    let file = &named_shape::expand(file, diags);
     let st = Statements::group(file, diags);
     allow::read(&st, diags);
     let mut env = Env::new();

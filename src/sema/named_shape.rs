@@ -15,7 +15,6 @@
 use crate::diag::{message, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Expr, ExprKind, File, Stmt};
-use std::borrow::Cow;
 use std::collections::BTreeMap;
 
 /// The calls whose arguments are shapes.
@@ -33,9 +32,8 @@ pub const MAX_NODES: usize = 200_000;
 /// reported already.
 pub const REPORTED: &str = "\u{0}reported";
 
-/// `file` with every profile or section named inside a shape written out;
-/// borrowed when no shape names one.
-pub fn expand<'f>(file: &'f File, diags: &mut Diagnostics) -> Cow<'f, File> {
+/// `file` with every profile or section named inside a shape written out.
+pub fn expand(file: &File, diags: &mut Diagnostics) -> File {
     let mut decls: BTreeMap<&str, (&Expr, Span)> = BTreeMap::new();
     for s in &file.stmts {
         if let (kind, Some(n), Body::Assign(e)) = (s.kind.node.as_str(), &s.name, &s.body) {
@@ -44,10 +42,6 @@ pub fn expand<'f>(file: &'f File, diags: &mut Diagnostics) -> Cow<'f, File> {
                 decls.entry(n.node.as_str()).or_insert((e, n.span));
             }
         }
-    }
-    let alias = |s: &Stmt| matches!((s.kind.node.as_str(), &s.body), ("profile", Body::Assign(e)) if shape_names(e));
-    if !file.stmts.iter().any(|s| alias(s) || names_in(s)) {
-        return Cow::Borrowed(file);
     }
     let lets = (file.stmts.iter())
         .filter(|s| s.kind.node == "let")
@@ -69,38 +63,16 @@ pub fn expand<'f>(file: &'f File, diags: &mut Diagnostics) -> Cow<'f, File> {
             _ => None,
         };
         x.stack.extend(own.clone());
-        // `profile p = ring`: another's name as the whole shape.
-        if let (Some(_), "profile", Body::Assign(e)) = (&own, s.kind.node.as_str(), &mut s.body) {
-            x.shape(e, "a profile", diags);
+        match (s.kind.node.as_str(), &mut s.body) {
+            // A profile is a shape as a whole: `profile p = ring` too.
+            ("profile", Body::Assign(e)) => x.shape(e, "a profile", diags),
+            _ => x.stmt(s, diags),
         }
-        x.stmt(s, diags);
         if own.is_some() {
             x.stack.pop();
         }
     }
-    Cow::Owned(out)
-}
-
-/// Whether statement `s` has a name where a shape goes.
-fn names_in(s: &Stmt) -> bool {
-    match &s.body {
-        Body::Assign(e) => expr_names(e),
-        Body::Block(stmts, _) => stmts.iter().any(names_in),
-        Body::None => false,
-    }
-}
-
-fn expr_names(e: &Expr) -> bool {
-    match &e.kind {
-        ExprKind::Call { func, args } => args.iter().any(|a| {
-            let shaped = SHAPE_CALLS.contains(&func.node.as_str()) && shape_arg(a);
-            (shaped && shape_names(&a.value)) || expr_names(&a.value)
-        }),
-        ExprKind::List(items) => items.iter().any(expr_names),
-        ExprKind::Unary { expr, .. } => expr_names(expr),
-        ExprKind::Binary { lhs, rhs, .. } => expr_names(lhs) || expr_names(rhs),
-        _ => false,
-    }
+    out
 }
 
 /// Whether an argument is a shape: unnamed, or `outline` / `holes`.
@@ -108,16 +80,6 @@ fn shape_arg(a: &crate::syntax::ast::Arg) -> bool {
     a.name
         .as_ref()
         .is_none_or(|n| SHAPE_ARGS.contains(&n.node.as_str()))
-}
-
-/// Whether a shape argument's value is a name, or a list holding one: a
-/// declaration's to write out, or another to say what it is not.
-fn shape_names(v: &Expr) -> bool {
-    match &v.kind {
-        ExprKind::Ident(_) => true,
-        ExprKind::List(items) => items.iter().any(shape_names),
-        _ => false,
-    }
 }
 
 struct Expander<'f> {
@@ -160,8 +122,9 @@ impl Expander<'_> {
                                 _ => "what `bolt_circle` repeats",
                             };
                         self.shape(&mut a.value, what, diags);
+                    } else {
+                        self.expr(&mut a.value, diags);
                     }
-                    self.expr(&mut a.value, diags);
                 }
             }
             ExprKind::List(items) => {
@@ -178,7 +141,8 @@ impl Expander<'_> {
         }
     }
 
-    /// Writes out a shape argument's declared name (or each in its list).
+    /// Writes out a shape's declared name (or each in its list), and the
+    /// names inside any other shape, each expression walked once.
     fn shape(&mut self, v: &mut Expr, what: &str, diags: &mut Diagnostics) {
         match &mut v.kind {
             ExprKind::List(items) => {
@@ -212,12 +176,13 @@ impl Expander<'_> {
                 self.nodes += size;
                 let mut written = decl.clone();
                 self.stack.push(name);
-                // Names inside the declaration are written out in turn.
-                self.expr(&mut written, diags);
+                // Names inside the declaration (itself a shape) are written
+                // out in turn: `profile a = b` with `profile b = c` too.
+                self.shape(&mut written, what, diags);
                 self.stack.pop();
                 *v = written;
             }
-            _ => {}
+            _ => self.expr(v, diags),
         }
     }
 }
@@ -252,6 +217,18 @@ mod tests {
         assert!(d.is_empty());
         assert!(body.contains("circle"), "{body}");
         assert!(body.contains("Ident(\"ring\")"), "{body}");
+    }
+
+    #[test]
+    fn a_name_for_a_name_is_written_out_to_the_shape() {
+        let (body, d) = expanded(
+            "section c = circle(diameter = 9 mm)\nprofile b = c\nprofile a = place(b, at = [0 mm, 0 mm], turn = 0 deg)",
+        );
+        assert!(d.is_empty(), "{d:?}");
+        assert!(
+            body.contains("circle") && !body.contains("Ident(\"b\")"),
+            "{body}"
+        );
     }
 
     #[test]

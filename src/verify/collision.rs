@@ -132,7 +132,10 @@ impl<'p> PlanRule<'p> for Collision<'p> {
         {
             let with = match w.at.what {
                 Obstacle::Plate => says::With::Plate,
-                Obstacle::Fixture(i) => says::With::Fixture(&self.program.fixtures[i].name),
+                Obstacle::Fixture(i) => match &self.program.fixtures[i] {
+                    f if f.is_scan() => says::With::Scan,
+                    f => says::With::Fixture(&f.name),
+                },
                 Obstacle::Part(l) => says::With::Part(l + 1),
             };
             let placed = match w.at.what {

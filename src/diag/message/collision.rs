@@ -15,6 +15,8 @@ pub enum With<'a> {
     Plate,
     /// The fixture of this name.
     Fixture(&'a str),
+    /// The scanned part a repair builds on (docs/repair.md).
+    Scan,
     /// The part as laid so far, at its layer (from 1).
     Part(usize),
 }
@@ -55,21 +57,20 @@ pub struct Moved {
 /// A body of the head closer than its gap to something.
 pub fn collision<At: Display>(h: &Hit<'_, At>) -> Diagnostic {
     let w = h.worst;
-    let scan = matches!(h.with, With::Fixture(n) if n == crate::ir::SCANNED_PART);
     let what = match h.with {
         With::Plate => "the plate".to_string(),
-        With::Fixture(_) if scan => "the scanned part".to_string(),
+        With::Scan => "the scanned part".to_string(),
         With::Fixture(name) => format!("fixture `{name}`"),
         With::Part(layer) => format!("the part laid so far (layer {layer})"),
     };
     let who = format!("the {} of machine `{}`", h.body, h.machine);
     let message = too_close(&who, &what, w, false);
     let fix = match (h.with, h.standoff, &h.moved) {
-        (With::Fixture(_), Some(s), _) if scan => format!(
+        (With::Scan, Some(s), _) => format!(
             "the head comes down onto the part it builds on (its scanned surface, docs/repair.md): a `standoff` of {} mm (the nozzle's tip that far from the focus) keeps the gap at every such pose; or tilt the nozzle less there",
             short_up(s)
         ),
-        (With::Fixture(_), None, _) if scan => "the head comes down onto the part it builds on (its scanned surface, docs/repair.md): a `standoff` that holds the nozzle farther from it, a higher travel `clearance`, or the nozzle tilted less there".to_string(),
+        (With::Scan, None, _) => "the head comes down onto the part it builds on (its scanned surface, docs/repair.md): a `standoff` that holds the nozzle farther from it, a higher travel `clearance`, or the nozzle tilted less there".to_string(),
         (With::Fixture(name), _, Some(m)) => format!(
             "move fixture `{name}` {} mm in {} (`at = [{} mm, {} mm, {} mm]`): the plan made again with it there, its travels over it included, keeps the gap at every pose; or lower it, or build the part where the head passes farther from it",
             short(m.by),
@@ -91,7 +92,7 @@ pub fn collision<At: Display>(h: &Hit<'_, At>) -> Diagnostic {
         "{fix}; `head {{ … }}` says what the machine carries (docs/collision.md)"
     ));
     let d = match (h.with, h.placed) {
-        (With::Fixture(_), Some(at)) if scan => d.label(at, "the part built on, as scanned"),
+        (With::Scan, Some(at)) => d.label(at, "the part built on, as scanned"),
         (With::Fixture(name), Some(at)) => d.label(at, format!("fixture `{name}` stands here")),
         _ => d,
     };
@@ -247,6 +248,8 @@ pub enum Against<'a> {
     Faceplate(Option<f64>),
     /// The fixture of this name.
     Fixture(&'a str),
+    /// The scanned part a repair builds on (docs/repair.md).
+    Scan,
     /// The plate (the part's `z = 0`), without a positioner.
     Plate,
     /// Another link of the same arm (`upper arm`, `column`).
@@ -293,10 +296,9 @@ pub struct LinkHit<'a, At> {
 /// link or the part.
 pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
     let w = h.worst;
-    let scan = matches!(h.with, Against::Fixture(n) if n == crate::ir::SCANNED_PART);
     let what = match h.with {
         Against::Faceplate(_) => "the positioner's faceplate".to_string(),
-        Against::Fixture(_) if scan => "the scanned part".to_string(),
+        Against::Scan => "the scanned part".to_string(),
         Against::Fixture(name) => format!("fixture `{name}`"),
         Against::Plate => "the plate".to_string(),
         Against::Own(link) => format!("its own {link}"),
@@ -321,7 +323,7 @@ pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
             short(d)
         ),
         (None, Against::Faceplate(None)) => "the link passes over the faceplate's middle: tilt the part less there (the positioner's `tilt_limits` or `keep`), stand the positioner farther from the arm, or raise the part off the faceplate".to_string(),
-        (None, Against::Fixture(_)) if scan => "the arm reaches down past the part it builds on (its scanned surface, docs/repair.md): tilt the nozzle less there, or stand the part where the arm comes onto it from above".to_string(),
+        (None, Against::Scan) => "the arm reaches down past the part it builds on (its scanned surface, docs/repair.md): tilt the nozzle less there, or stand the part where the arm comes onto it from above".to_string(),
         (None, Against::Fixture(name)) => format!(
             "move fixture `{name}` out of the arm's way, or build the part where the arm passes farther from it"
         ),
@@ -340,7 +342,7 @@ pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
     };
     match (h.with, h.placed) {
         (Against::Faceplate(_), Some(at)) => d.label(at, "the faceplate"),
-        (Against::Fixture(_), Some(at)) if scan => d.label(at, "the part built on, as scanned"),
+        (Against::Scan, Some(at)) => d.label(at, "the part built on, as scanned"),
         (Against::Fixture(name), Some(at)) => d.label(at, format!("fixture `{name}` stands here")),
         _ => d,
     }

@@ -526,7 +526,10 @@ impl<'p> Links<'p> {
                     cx.origin.written(MachineField::Faceplate),
                 ),
                 Target::Fixture(i) => (
-                    Against::Fixture(&cx.program.fixtures[i].name),
+                    match &cx.program.fixtures[i] {
+                        f if f.is_scan() => Against::Scan,
+                        f => Against::Fixture(&f.name),
+                    },
                     cx.program.origins.fixtures.get(i).copied(),
                 ),
                 Target::Plate => (Against::Plate, None),
