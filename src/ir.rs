@@ -853,8 +853,10 @@ impl Head {
     }
 }
 
-/// A fixture or clamp on the plate (`fixture NAME { … }`), in the part's
-/// coordinates: what the head must keep its gap from.
+/// A fixture or clamp (`fixture NAME { … }`): what the head and the arm
+/// must keep their gap from. On the plate, in the part's coordinates (it
+/// turns with a table or a positioner); or, with `machine`, fixed to that
+/// machine, in its own coordinates (docs/collision.md).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Fixture {
@@ -862,8 +864,15 @@ pub struct Fixture {
     pub name: String,
     /// Its shape.
     pub shape: FixtureShape,
-    /// The centre of its bottom face, mm.
+    /// The centre of its bottom face, mm: in the part's coordinates, or
+    /// in its machine's.
     pub at: [f64; 3],
+    /// The machine it is fixed to (`machine = NAME`), by name: `at` is in
+    /// that machine's coordinates (a CNC's at every rotary axis 0, a
+    /// robot's own frame), it does not turn with the part, and only that
+    /// machine's plan is checked against it. Absent: on the plate.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub machine: Option<String>,
 }
 
 /// The name the part a repair builds on goes by among the fixtures
@@ -876,6 +885,17 @@ impl Fixture {
     /// Whether this is the scanned part a repair builds on.
     pub fn is_scan(&self) -> bool {
         self.name == SCANNED_PART
+    }
+
+    /// Whether the plan of machine `name` meets it, and how: `Some(false)`
+    /// on the plate (the part's coordinates), `Some(true)` fixed to that
+    /// machine, `None` fixed to another one.
+    pub fn fixed_to(&self, name: &str) -> Option<bool> {
+        match &self.machine {
+            None => Some(false),
+            Some(m) if m == name => Some(true),
+            Some(_) => None,
+        }
     }
 
     /// How the messages and the report name it: `fixture NAME`, or `the

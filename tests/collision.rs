@@ -200,7 +200,8 @@ fn a_mesh_fixtures_turned_box_is_in_the_ir_and_under_the_safe_height() {
             .flat_map(|p| &p.points)
             .map(|p| p.focus()[2])
             .fold(f64::NEG_INFINITY, f64::max);
-        let safe = lmdc::plan::safe_height(ir, None, clearance);
+        let boxes = lmdc::plan::part_frame::fixture_boxes(ir, m);
+        let safe = lmdc::plan::safe_height(ir, &boxes, None, clearance);
         assert!(
             (safe - (top.max(part_top) + clearance)).abs() < 1e-9,
             "{safe} for a top of {top}"
@@ -456,6 +457,7 @@ proptest! {
             name: "box".into(),
             shape: lmdc::ir::FixtureShape::Box { size: [size[0], size[1], height] },
             at: [x, y, 0.0],
+            machine: None,
         });
         for m in &ir.machines {
             let clearance = m.common().clearance;
@@ -524,6 +526,7 @@ proptest! {
             name: "clamp".into(),
             shape: lmdc::ir::FixtureShape::Box { size },
             at: [x, y, 0.0],
+            machine: None,
         });
         let m = ir.machines.iter().find(|m| m.name() == "mill").unwrap();
         let mut poses = Poses { last: None, out: Vec::new() };

@@ -23,6 +23,7 @@ mod editor_grammar;
 mod fill;
 mod first_use;
 mod fit;
+mod fixed_fixtures;
 mod fixture_sanity;
 mod fmt;
 mod gcode_kinematics;

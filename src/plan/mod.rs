@@ -102,6 +102,7 @@ pub mod arm;
 pub mod kinematics;
 pub mod lines;
 pub mod orient;
+pub mod part_frame;
 pub mod positioner;
 pub mod profile;
 pub mod spin;
@@ -393,6 +394,8 @@ pub struct Plan<'a> {
     /// A CNC's safe height: declared, else the highest focus plus the
     /// clearance (none on a robot, which starts and ends at home).
     safe: Option<f64>,
+    /// The machine planned for.
+    machine: &'a Machine,
     /// A robot's positioner's angles, each layer's E1 and E2 (deg): a
     /// move's `axes` (tilt E1, C E2), the part's base turning with them.
     held: Option<&'a [[f64; 2]]>,
@@ -428,7 +431,12 @@ pub fn held_to_axes(speed: f64, d: f64, turn: [f64; 2], tops: [f64; 2]) -> f64 {
 /// `clearance` above the highest focus of the program or the highest
 /// fixture's top, whichever is higher (what no retract, travel or approach
 /// rises above).
-pub fn safe_height(program: &Program, declared: Option<f64>, clearance: f64) -> f64 {
+pub fn safe_height(
+    program: &Program,
+    fixtures: &[part_frame::Placed<'_>],
+    declared: Option<f64>,
+    clearance: f64,
+) -> f64 {
     declared.unwrap_or_else(|| {
         let top = program
             .layers
@@ -436,7 +444,7 @@ pub fn safe_height(program: &Program, declared: Option<f64>, clearance: f64) -> 
             .flat_map(|l| &l.paths)
             .flat_map(|p| &p.points)
             .map(|p| p.focus()[2])
-            .chain(program.fixtures.iter().map(|f| f.bounds().1[2]))
+            .chain(fixtures.iter().map(|f| f.bounds.1[2]))
             .fold(f64::NEG_INFINITY, f64::max);
         if top.is_finite() {
             top + clearance
@@ -473,8 +481,14 @@ impl<'a> Plan<'a> {
             }
             _ => None,
         };
+        let boxes = part_frame::fixture_boxes(program, machine);
         let safe = match machine {
-            Machine::Cnc(c) => Some(safe_height(program, c.safe_height, common.clearance)),
+            Machine::Cnc(c) => Some(safe_height(
+                program,
+                &boxes,
+                c.safe_height,
+                common.clearance,
+            )),
             Machine::Robot(_) => None,
         };
         let held = match machine {
@@ -511,6 +525,7 @@ impl<'a> Plan<'a> {
             cell: machine.cell(),
             lead,
             safe,
+            machine,
             held,
             home,
             machine_table,
@@ -581,6 +596,7 @@ impl<'a> Plan<'a> {
             last_axes: None,
             run_end: None,
             top: f64::NEG_INFINITY,
+            boxes: part_frame::fixture_boxes(self.program, self.machine),
         };
         let continuous = self.program.continuous;
         for (li, layer) in self.program.layers.iter().enumerate() {
@@ -694,6 +710,9 @@ struct Walker<'p, 'a, V> {
     /// The highest focus deposited so far (Z, mm): travels pass at least
     /// `clearance` above it ([`Walker::travel_height`]).
     top: f64,
+    /// The boxes of the fixtures the travels rise over, in the part's
+    /// coordinates ([`part_frame::fixture_boxes`]).
+    boxes: Vec<part_frame::Placed<'p>>,
 }
 
 /// Powder rates that print the same (they come from the same declaration).
@@ -1127,8 +1146,10 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
             .fold(0.0, f64::max);
         let reach = ups.iter().map(|&u| tool.spread(u)).fold(0.0, f64::max) + tool.gap;
         let mut top = self.top;
-        for f in &self.plan.program.fixtures {
-            let (lo, hi) = f.bounds();
+        for &part_frame::Placed {
+            bounds: (lo, hi), ..
+        } in &self.boxes
+        {
             if hi[2] > top && crosses_box(from, to, lo, hi, reach) {
                 top = hi[2];
             }

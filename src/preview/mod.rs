@@ -397,11 +397,7 @@ fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnosti
         approaches: &machine.summary().approaches,
         approach_moves: &approach_moves,
         head: &machine.machine().common().head,
-        fixtures: program
-            .fixtures
-            .iter()
-            .map(encode::FixtureBox::of)
-            .collect(),
+        fixtures: fixture_boxes(program, machine.machine()),
         faceplate: encode::Faceplate::of(machine.machine()),
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };
@@ -441,4 +437,26 @@ mod tests {
         assert!(3_607_000usize.div_ceil(16) <= BUDGET);
         assert_eq!(decimation(10, 0).moves, 4);
     }
+}
+
+/// The fixtures `machine`'s head meets, as drawn in the part's coordinates
+/// (docs/collision.md): those on the plate, and those fixed to the machine
+/// where the part does not turn, as their box there (a turned one's box
+/// dashed, as a mesh's). Where a table or a positioner turns the part, a
+/// fixture fixed to the machine stands elsewhere at every move: not drawn.
+fn fixture_boxes<'a>(
+    program: &'a crate::ir::Program,
+    machine: &crate::ir::Machine,
+) -> Vec<encode::FixtureBox<'a>> {
+    crate::plan::part_frame::fixture_boxes(program, machine)
+        .into_iter()
+        .map(|p| {
+            let mut b = encode::FixtureBox::of(p.fixture);
+            (b.lo, b.hi) = p.bounds;
+            if p.turned {
+                b.kind = "mesh";
+            }
+            b
+        })
+        .collect()
 }

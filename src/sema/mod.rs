@@ -87,7 +87,7 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         diags.push(message::statement::control_without_ring(*at));
     }
     let machines = machines::read(&mut env, &st, diags);
-    let mut fixtures = fixture::read(&mut env, &st, diags);
+    let mut fixtures = fixture::read(&mut env, &st, &machines, diags);
     // The part built on is there before the first bead: an obstacle to
     // every body, as a fixture is (docs/repair.md).
     fixtures.extend(solid.scan().map(|s| (fixture::scanned(s), s.span)));

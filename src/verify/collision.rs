@@ -14,6 +14,7 @@
 //! than every 0.5 mm where it comes close. A bead laid after the check
 //! shortens the certified distance by its own.
 
+mod fixed;
 mod moved;
 
 use super::approach::Approach;
@@ -112,6 +113,8 @@ pub(super) struct Collision<'p> {
     extent: ([f64; 2], [f64; 2], f64),
     /// The one fixture checked, in a probe ([`Collision::against`]).
     only: Option<usize>,
+    /// The fixtures fixed to the machine, checked in its coordinates.
+    fixed: Option<fixed::Fixed>,
 }
 
 /// A closest approach: the distance, the move, how far along it, the focus.
@@ -172,12 +175,15 @@ impl<'p> Collision<'p> {
             Machine::Cnc(c) => effective_kinematics(c) == Kinematics::Xyz,
             Machine::Robot(_) => false,
         };
+        let name = cx.machine.name();
         let mut material = Material::default();
         for (i, f) in cx.program.fixtures.iter().enumerate() {
-            if only.is_none_or(|o| o == i) {
+            if f.fixed_to(name) == Some(false) && only.is_none_or(|o| o == i) {
                 fixture_lumps(f, i, &mut material);
             }
         }
+        let frame = crate::plan::part_frame::PartFrame::of(cx.machine);
+        let fixed = fixed::Fixed::new(cx.program, name, frame, only);
         let width = cx
             .program
             .bead
@@ -206,6 +212,7 @@ impl<'p> Collision<'p> {
             fixture_hit: vec![false; cx.program.fixtures.len()],
             extent: ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2], 1.0),
             only,
+            fixed,
         })
     }
 }
@@ -247,6 +254,7 @@ impl Visit for Collision<'_> {
         let (plate, body) = self.head.lowest(&pose, [0.0, 0.0, 1.0]);
         self.near(body, Obstacle::Plate, plate, (m.at, 1.0, pose.focus));
         self.last = Some(pose);
+        self.follow_fixed(m, pose);
         if m.deposits() && self.only.is_none() {
             self.lay(m);
         }
@@ -254,6 +262,23 @@ impl Visit for Collision<'_> {
 }
 
 impl Collision<'_> {
+    /// Follows the head along move `m` (to `pose`) against the fixtures
+    /// fixed to the machine, where it has any.
+    fn follow_fixed(&mut self, m: &Move, pose: Pose) {
+        let Some(fixed) = self.fixed.as_mut() else {
+            return;
+        };
+        let mut found = Vec::new();
+        fixed.follow(&self.head, (pose, m.axes), m.kind.ptp(), &mut found);
+        for f in found {
+            let what = self.obstacle(&f.lump);
+            self.near(f.body, what, f.d, (m.at, f.way, f.focus));
+            if f.d < self.head.gap {
+                self.hit(f.d, f.body, f.lump, (&f.pose, m.at));
+            }
+        }
+    }
+
     fn up(&self, normal: [f32; 3]) -> [f64; 3] {
         if self.vertical {
             return [0.0, 0.0, 1.0];

@@ -190,6 +190,28 @@ pub fn bad_size(at: Span, mm: f64, max: f64) -> Diagnostic {
     .help("write the fixture's real size, in its units")
 }
 
+/// A fixture's `machine = …` that is not a bare name.
+pub fn fixture_machine_not_a_name(at: Span, got: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::ExpectedName,
+        "`machine` names the machine the fixture is fixed to",
+    )
+    .label(at, format!("this is {got}"))
+    .help("write the name of a `machine NAME { … }` of this file: `machine = mill5`")
+}
+
+/// Fixture `name` is fixed to robot `robot`, whose base has no value.
+pub fn fixture_unplaced(name: &str, robot: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::MissingField,
+        format!(
+            "fixture `{name}` is fixed to robot `{robot}`, whose `base` is an index without values: where the part stands in the robot's frame is not known, so where the fixture stands from the part is not either"
+        ),
+    )
+    .label(at, "fixed to this robot")
+    .help("give the base its values (`base = 1 [x, y, z, a, b, c]`), or place the fixture in the part's coordinates (without `machine`)")
+}
+
 /// A fixture's `mesh(at = …)`: the fixture's own `at` places it.
 pub fn mesh_fixture_at(at: Span) -> Diagnostic {
     Diagnostic::error(

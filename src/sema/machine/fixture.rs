@@ -1,10 +1,12 @@
-//! The `fixture NAME { shape = …  at = […] }` statements: the clamps and
-//! fixtures on the plate, in the part's coordinates, which every machine's
-//! head keeps its gap from (docs/collision.md): a box, a cylinder, or a
-//! mesh read as the part's is.
+//! The `fixture NAME { shape = …  at = […]  machine = … }` statements: the
+//! clamps and fixtures on the plate, in the part's coordinates, which every
+//! machine's head keeps its gap from, or fixed to one machine in its own
+//! coordinates (docs/collision.md): a box, a cylinder, or a mesh read as
+//! the part's is.
 
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Fixture, FixtureShape};
+use crate::ir::{Fixture, FixtureShape, Machine, MachineOrigin};
+use crate::sema::eval::unknown_name;
 use crate::sema::eval::Env;
 use crate::sema::fields::{self, Fields};
 use crate::sema::schema::collision::{self as c, BOX, CYLINDER, FIXTURE, MAX_SIZE_MM};
@@ -21,6 +23,7 @@ use std::collections::BTreeMap;
 pub fn read<'a>(
     env: &mut Env<'a>,
     st: &Statements<'a>,
+    machines: &[(Machine, MachineOrigin)],
     diags: &mut Diagnostics,
 ) -> Vec<(Fixture, Span)> {
     let mut out = Vec::new();
@@ -46,11 +49,13 @@ pub fn read<'a>(
         let shape = shape(&f, env.data.as_ref(), diags);
         let placed = f.span(&c::AT).unwrap_or(n.span);
         let at = at(&f, diags);
-        if let (Some(shape), Some(at)) = (shape, at) {
+        let machine = machine(&f, (st, machines), &n.node, diags);
+        if let (Some(shape), Some(at), Some(machine)) = (shape, at, machine) {
             let fixture = Fixture {
                 name: n.node.clone(),
                 shape,
                 at,
+                machine,
             };
             out.push((fixture, placed));
         }
@@ -168,6 +173,40 @@ fn mesh(
     })
 }
 
+/// `machine = NAME`: a machine of the file (`Some(None)` without it);
+/// `None` where it is written wrong or places nothing.
+fn machine(
+    f: &Fields<'_>,
+    (st, machines): (&Statements<'_>, &[(Machine, MachineOrigin)]),
+    fixture: &str,
+    diags: &mut Diagnostics,
+) -> Option<Option<String>> {
+    let Some(v) = f.value(&c::MACHINE, diags) else {
+        return (!f.has(&c::MACHINE)).then_some(None);
+    };
+    let Value::Symbol(name) = &v.value else {
+        diags.push(message::collision::fixture_machine_not_a_name(
+            v.span,
+            &v.value.describe(),
+        ));
+        return None;
+    };
+    let declared: Vec<&str> = (st.get("machine").iter())
+        .filter_map(|s| s.name.as_ref().map(|n| n.node.as_str()))
+        .collect();
+    if !declared.contains(&name.as_str()) {
+        diags.push(unknown_name(name, v.span, "machine", &declared));
+        return None;
+    }
+    match machines.iter().find(|(m, _)| m.name() == name) {
+        Some((Machine::Robot(r), _)) if r.base.value.is_none() => {
+            diags.push(message::collision::fixture_unplaced(fixture, name, v.span));
+            None
+        }
+        _ => Some(Some(name.clone())),
+    }
+}
+
 /// `at = [x, y, z]` (default the origin).
 fn at(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<[f64; 3]> {
     match f.value(&c::AT, diags) {
@@ -228,5 +267,6 @@ pub fn scanned(scan: &crate::sema::model::ScanBase) -> Fixture {
             samples: crate::ir::MeshSamples(std::sync::Arc::new(samples)),
         },
         at: [0.0; 3],
+        machine: None,
     }
 }

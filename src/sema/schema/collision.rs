@@ -129,12 +129,20 @@ pub static SIZE: Field = Field::new(
     "its size along X, Y and Z",
 );
 
-/// `fixture NAME { shape, at }`.
+/// `fixture NAME { shape, at, machine }`.
 pub static FIXTURE: Block = Block::new(
     "fixture",
     "fixture clamp { shape = box(size = [40 mm, 20 mm, 30 mm])  at = [60 mm, 0 mm, 0 mm] }",
-    "a fixture or clamp on the plate, in the part's coordinates, which every machine's head keeps its gap from",
-    &[&SHAPE, &AT],
+    "a fixture or clamp on the plate, in the part's coordinates, which every machine's head keeps its gap from; or, with `machine`, fixed to that machine in its own coordinates",
+    &[&SHAPE, &AT, &MACHINE],
+);
+
+/// `machine = NAME`.
+pub static MACHINE: Field = Field::new(
+    "machine",
+    super::Kind::Name("machine"),
+    Optional,
+    "the machine it is fixed to, not turning with the part (a tailstock, a probe, a column): `at` is then in that machine's coordinates — a CNC's with every rotary axis at 0, a robot's own frame (its foot) — and only that machine is checked against it; none: on the plate, in the part's coordinates",
 );
 
 /// `shape = box(…) | cylinder(…)`.
@@ -150,5 +158,5 @@ pub static AT: Field = Field::new(
     "at",
     List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3)),
     Default(Described("`[0 mm, 0 mm, 0 mm]`")),
-    "the centre of its bottom face (a mesh's: where its file's origin goes), in the part's coordinates",
+    "the centre of its bottom face (a mesh's: where its file's origin goes), in the part's coordinates (with `machine`, in that machine's)",
 );

@@ -155,9 +155,11 @@ pub(crate) struct Links<'p> {
     /// The largest faceplate that keeps the gap at every pose found too
     /// close (`None` once a pose is not helped by any).
     keeps: Option<f64>,
-    /// What the head meets on a PTP, once built: the fixtures, and (`true`)
-    /// the finished part.
+    /// What the head meets on a PTP, once built: the fixtures on the
+    /// plate, and (`true`) the finished part.
     material: Option<(Material, bool)>,
+    /// The fixtures fixed to the robot, in its frame, once built.
+    fixed: Option<Material>,
 }
 
 impl<'p> Links<'p> {
@@ -177,9 +179,15 @@ impl<'p> Links<'p> {
             .map(|d| Solid::faceplate(d, FACEPLATE_THICKNESS_MM))
             .into_iter()
             .collect();
-        solids.extend(cx.program.fixtures.iter().map(Solid::of));
+        // Another machine's fixtures are not in this robot's cell.
+        let name = cx.machine.name();
+        let ours: Vec<usize> = (cx.program.fixtures.iter().enumerate())
+            .filter(|(_, f)| f.fixed_to(name).is_some())
+            .map(|(i, _)| i)
+            .collect();
+        solids.extend(ours.iter().map(|&i| Solid::of(&cx.program.fixtures[i])));
         let mut targets: Vec<Target> = faceplate.map(|_| Target::Faceplate).into_iter().collect();
-        targets.extend((0..cx.program.fixtures.len()).map(Target::Fixture));
+        targets.extend(ours.iter().map(|&i| Target::Fixture(i)));
         targets.extend([Target::Plate, Target::Own(UPPER_ARM)]);
         let column = model.map(|m| m.column);
         if column.is_some() {
@@ -207,6 +215,7 @@ impl<'p> Links<'p> {
             at: None,
             keeps: faceplate,
             material: None,
+            fixed: None,
         })
     }
 
@@ -232,6 +241,7 @@ impl<'p> Links<'p> {
             closest: vec![vec![None; self.closest[0].len()]; self.closest.len()],
             keeps: self.faceplate,
             material: None,
+            fixed: None,
         }
     }
 
@@ -318,7 +328,14 @@ impl<'p> Links<'p> {
         for k in 0..self.targets.len() {
             match self.targets[k] {
                 Target::Faceplate | Target::Fixture(_) => {
-                    let inv = if k < plate { face_inv } else { part_inv };
+                    let inv = match self.targets[k] {
+                        Target::Faceplate => face_inv,
+                        // Fixed to the robot: in its own frame.
+                        Target::Fixture(i) if self.program.fixtures[i].machine.is_some() => {
+                            Isometry3::identity()
+                        }
+                        _ => part_inv,
+                    };
                     for (link, cap) in &caps {
                         let Some(d) = self.solids[k].capsule(&inv, cap, self.beyond(k, *link))
                         else {
@@ -349,7 +366,7 @@ impl<'p> Links<'p> {
                 focus: part.translation.vector.into(),
                 up: (part.rotation * self.up).into(),
             };
-            self.head_on_ptp(&pose, place, focus);
+            self.head_on_ptp([&pose, &head], place, focus);
         }
     }
 
@@ -391,17 +408,22 @@ impl<'p> Links<'p> {
         }
     }
 
-    /// The head at `pose` (the part's coordinates) on a PTP: against the
-    /// plate by its lowest point, the fixtures and the part by their lumps.
-    fn head_on_ptp(&mut self, pose: &Pose, place: Place, focus: [f64; 3]) {
+    /// The head on a PTP at `pose` (the part's coordinates; `robot`, the
+    /// same in the robot's frame): against the plate by its lowest point,
+    /// the fixtures and the part by their lumps.
+    fn head_on_ptp(&mut self, [pose, robot]: [&Pose; 2], place: Place, focus: [f64; 3]) {
         let plate = self.slot(Target::Plate);
         let (d, body) = self.head.lowest(pose, [0.0, 0.0, 1.0]);
         self.record(plate, LINKS.len() + body, d, place, focus);
-        let near = match &self.material {
+        let on_plate = match &self.material {
             Some((m, _)) => m.nearest(&self.head, pose, CAP_MM),
             None => None,
         };
-        if let Some((d, body, lump)) = near {
+        let fixed = match &self.fixed {
+            Some(m) => m.nearest(&self.head, robot, CAP_MM),
+            None => None,
+        };
+        for (d, body, lump) in [on_plate, fixed].into_iter().flatten() {
             let fixtures = self.program.fixtures.len() as u32;
             let what = if lump.group >= u32::MAX - fixtures {
                 Target::Fixture((u32::MAX - lump.group - 1) as usize)
@@ -426,9 +448,18 @@ impl<'p> Links<'p> {
             return;
         }
         let mut m = Material::default();
+        let mut fixed = Material::default();
         for (i, f) in self.program.fixtures.iter().enumerate() {
-            crate::verify::collision::fixture_lumps(f, i, &mut m);
+            match &f.machine {
+                None => crate::verify::collision::fixture_lumps(f, i, &mut m),
+                // Only this robot's reach the links' targets.
+                Some(_) if self.targets.contains(&Target::Fixture(i)) => {
+                    crate::verify::collision::fixture_lumps(f, i, &mut fixed);
+                }
+                Some(_) => {}
+            }
         }
+        self.fixed = (!fixed.is_empty()).then_some(fixed);
         if part {
             let spheres: Vec<_> = poses.iter().map(|p| self.head.bound(p)).collect();
             part_lumps(self.program, &spheres, &mut m);

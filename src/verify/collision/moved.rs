@@ -41,7 +41,11 @@ impl Collision<'_> {
             .map(|p| p.points.len())
             .sum();
         let dirs = (BUDGET / (points.max(1) * PROBES)).min(DIRECTIONS.len());
-        let (lo, hi, up_z) = self.extent;
+        // A fixture fixed to the machine moves in its coordinates.
+        let (lo, hi, up_z) = match (&f.machine, &self.fixed) {
+            (Some(_), Some(fixed)) => fixed.extent,
+            _ => self.extent,
+        };
         if dirs == 0 || lo[0].is_nan() || lo[0] > hi[0] {
             return None;
         }
