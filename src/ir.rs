@@ -873,6 +873,12 @@ pub struct Fixture {
     /// machine's plan is checked against it. Absent: on the plate.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub machine: Option<String>,
+    /// Fixed to its machine's tilt axis (`turns_with = tilt`): a table's
+    /// cradle or trunnion, turning with A or B and not with C; a
+    /// positioner's tilting arm, with E1 and not E2. `at` is where it
+    /// stands with every rotary axis at 0.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub tilts: bool,
 }
 
 /// The name the part a repair builds on goes by among the fixtures

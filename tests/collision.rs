@@ -458,6 +458,7 @@ proptest! {
             shape: lmdc::ir::FixtureShape::Box { size: [size[0], size[1], height] },
             at: [x, y, 0.0],
             machine: None,
+            tilts: false,
         });
         for m in &ir.machines {
             let clearance = m.common().clearance;
@@ -527,6 +528,7 @@ proptest! {
             shape: lmdc::ir::FixtureShape::Box { size },
             at: [x, y, 0.0],
             machine: None,
+            tilts: false,
         });
         let m = ir.machines.iter().find(|m| m.name() == "mill").unwrap();
         let mut poses = Poses { last: None, out: Vec::new() };

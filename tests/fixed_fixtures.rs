@@ -239,3 +239,65 @@ fn a_block_fixed_to_the_robot_over_a_positioner_is_met_where_the_head_is() {
         "on the plate, {at} is far from the duct"
     );
 }
+
+/// A block on an A/C table's cradle (`turns_with = tilt`): it tilts with
+/// A and not with C. Placed where the cone's 60° tilt swings it into the
+/// head's body — the body's point 110 mm up the beam from the focus, at
+/// machine (250, 266.6, 240.6) mm, is the cradle's
+/// `p + Rx(60°)·(M − p)` = (250, 68.4, 207.9) mm with the table level —
+/// it is refused; the same block on the machine's base (no tilt) stands
+/// 200 mm from the head and is not.
+#[test]
+fn a_block_on_a_tables_cradle_turns_into_the_head_with_the_tilt() {
+    let src = case("machine_fixture");
+    let probe = "fixture probe {\n  shape = cylinder(length = 200 mm, diameter = 30 mm)\n  at = [250 mm, 310 mm, 100 mm]  // machine coordinates: beside the table\n  machine = trt\n}";
+    assert!(src.contains(probe));
+    let (s, c) = (60f64.to_radians().sin(), 60f64.to_radians().cos());
+    // M − p, p the tilt axis's point (0, 200, 50): turned back by +60°.
+    let (y, z) = (266.612 - 200.0, 240.6 - 50.0);
+    let at = [250.0, 200.0 + c * y - s * z, 50.0 + s * y + c * z - 10.0];
+    let block = |turns: &str| {
+        format!(
+            "fixture clamp {{\n  shape = box(size = [20 mm, 20 mm, 20 mm])\n  at = [{:.1} mm, {:.1} mm, {:.1} mm]\n  machine = trt\n  turns_with = {turns}\n}}",
+            at[0], at[1], at[2]
+        )
+    };
+    let on_cradle = collisions(&src.replace(probe, &block("tilt")));
+    assert_eq!(on_cradle.len(), 1, "{on_cradle:#?}");
+    assert!(
+        on_cradle[0].0.contains("the body of machine `trt` runs")
+            && on_cradle[0].0.contains("into fixture `clamp`"),
+        "{on_cradle:#?}"
+    );
+    assert_eq!(collisions(&src.replace(probe, &block("nothing"))), vec![]);
+}
+
+/// `turns_with = tilt` needs a machine with a tilt axis.
+#[test]
+fn turning_with_a_tilt_the_machine_has_not_is_refused() {
+    let src = case("head_fixture");
+    let at = "  at = [20 mm, 0 mm, 0 mm]  // the centre of its bottom face\n";
+    let c = compile(
+        &src.replace(at, &format!("{at}  machine = mill\n  turns_with = tilt\n")),
+        &mut (),
+    );
+    assert!(
+        c.diagnostics
+            .iter()
+            .any(|d| d.code == Code::ConflictingFields
+                && d.message.contains("machine `mill` has no tilt axis")),
+        "{:#?}",
+        c.diagnostics
+    );
+    let c = compile(
+        &src.replace(at, &format!("{at}  turns_with = tilt\n")),
+        &mut (),
+    );
+    assert!(
+        c.diagnostics
+            .iter()
+            .any(|d| d.code == Code::ConflictingFields && d.message.contains("on the plate")),
+        "{:#?}",
+        c.diagnostics
+    );
+}

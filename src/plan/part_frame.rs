@@ -73,8 +73,18 @@ impl PartFrame {
     }
 
     /// The part's frame in the machine's coordinates with the rotary axes
-    /// (a table's, a positioner's E1 and E2) at `axes`.
-    pub fn at(&self, axes: Rotary) -> Isometry3<f64> {
+    /// (a table's, a positioner's E1 and E2) at `axes`; with `tilts`, in
+    /// the tilt axis's body's (a table's cradle, a positioner's tilting
+    /// arm) as it stands with every rotary axis at 0: the C axis (E2)
+    /// alone turns the part in it.
+    pub fn at(&self, axes: Rotary, tilts: bool) -> Isometry3<f64> {
+        if tilts {
+            let c_only = Rotary { tilt: 0.0, ..axes };
+            return match self {
+                PartFrame::Positioner(k) => k.part_on_tilt([axes.tilt, axes.c]),
+                _ => self.at(c_only, false),
+            };
+        }
         match self {
             PartFrame::Fixed(f) => *f,
             PartFrame::Table {
@@ -193,7 +203,7 @@ mod tests {
                 origin: Vector3::from(origin),
             };
             let r = Rotary { tilt, c };
-            let got = frame.at(r) * Point3::from(w);
+            let got = frame.at(r, false) * Point3::from(w);
             let plus = [w[0] + origin[0], w[1] + origin[1], w[2] + origin[2]];
             let want = super::super::table::machine_point(kin, &t, plus, r);
             for k in 0..3 {

@@ -97,6 +97,13 @@ impl Kin {
             * self.flange_base
     }
 
+    /// The part's base in the frame of the tilting arm (E1's body, as it
+    /// stands in the robot's frame at E1 = 0) with the positioner at `e`:
+    /// what turns with E1 and not with E2 sees the part there.
+    pub fn part_on_tilt(&self, e: [f64; 2]) -> Isometry3<f64> {
+        about(&self.rotate.0, &self.rotate.1, e[1]) * self.flange_base
+    }
+
     /// A point `to` of the part (in its base) in the robot's frame at `e`.
     pub fn point(&self, e: [f64; 2], to: [f64; 3]) -> [f64; 3] {
         let p = self.part(e) * Point3::from(to);

@@ -113,8 +113,9 @@ pub(super) struct Collision<'p> {
     extent: ([f64; 2], [f64; 2], f64),
     /// The one fixture checked, in a probe ([`Collision::against`]).
     only: Option<usize>,
-    /// The fixtures fixed to the machine, checked in its coordinates.
-    fixed: Option<fixed::Fixed>,
+    /// The fixtures fixed to the machine, checked in its coordinates: on
+    /// its base, and on its tilt axis's body.
+    fixed: Vec<fixed::Fixed>,
 }
 
 /// A closest approach: the distance, the move, how far along it, the focus.
@@ -183,7 +184,10 @@ impl<'p> Collision<'p> {
             }
         }
         let frame = crate::plan::part_frame::PartFrame::of(cx.machine);
-        let fixed = fixed::Fixed::new(cx.program, name, frame, only);
+        let fixed = [false, true]
+            .into_iter()
+            .filter_map(|tilts| fixed::Fixed::new(cx.program, name, (frame.clone(), tilts), only))
+            .collect();
         let width = cx
             .program
             .bead
@@ -265,11 +269,10 @@ impl Collision<'_> {
     /// Follows the head along move `m` (to `pose`) against the fixtures
     /// fixed to the machine, where it has any.
     fn follow_fixed(&mut self, m: &Move, pose: Pose) {
-        let Some(fixed) = self.fixed.as_mut() else {
-            return;
-        };
         let mut found = Vec::new();
-        fixed.follow(&self.head, (pose, m.axes), m.kind.ptp(), &mut found);
+        for fixed in &mut self.fixed {
+            fixed.follow(&self.head, (pose, m.axes), m.kind.ptp(), &mut found);
+        }
         for f in found {
             let what = self.obstacle(&f.lump);
             self.near(f.body, what, f.d, (m.at, f.way, f.focus));

@@ -200,6 +200,27 @@ pub fn fixture_machine_not_a_name(at: Span, got: &str) -> Diagnostic {
     .help("write the name of a `machine NAME { … }` of this file: `machine = mill5`")
 }
 
+/// `turns_with = tilt` on a fixture on the plate.
+pub fn tilts_without_machine(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConflictingFields,
+        "`turns_with = tilt` says which axis of its machine a fixture turns with, but this one is on the plate (no `machine`)",
+    )
+    .label(at, "turns with the tilt axis of no machine")
+    .help("name the machine whose tilt axis carries it (`machine = trt`), or leave `turns_with` out: a fixture on the plate turns with the part")
+}
+
+/// `turns_with = tilt` on a fixture fixed to machine `machine`, which has
+/// no tilting table or positioner.
+pub fn nothing_tilts(machine: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConflictingFields,
+        format!("machine `{machine}` has no tilt axis for the fixture to turn with: no tilting table (`kinematics = table_ac` or `table_bc` on 5 axes) and no positioner"),
+    )
+    .label(at, "turns with the tilt axis")
+    .help("leave `turns_with` out (the fixture stands on the machine's base), or fix it to a machine with a tilting table or a positioner")
+}
+
 /// Fixture `name` is fixed to robot `robot`, whose base has no value.
 pub fn fixture_unplaced(name: &str, robot: &str, at: Span) -> Diagnostic {
     Diagnostic::error(

@@ -50,12 +50,16 @@ pub fn read<'a>(
         let placed = f.span(&c::AT).unwrap_or(n.span);
         let at = at(&f, diags);
         let machine = machine(&f, (st, machines), &n.node, diags);
-        if let (Some(shape), Some(at), Some(machine)) = (shape, at, machine) {
+        let tilts = machine
+            .as_ref()
+            .and_then(|m| tilts(&f, m.as_deref(), machines, diags));
+        if let (Some(shape), Some(at), Some(machine), Some(tilts)) = (shape, at, machine, tilts) {
             let fixture = Fixture {
                 name: n.node.clone(),
                 shape,
                 at,
                 machine,
+                tilts,
             };
             out.push((fixture, placed));
         }
@@ -207,6 +211,37 @@ fn machine(
     }
 }
 
+/// `turns_with = nothing | tilt`: whether the fixture turns with the tilt
+/// axis of `machine` (the machine it is fixed to, if any), which must have
+/// one to turn with.
+fn tilts(
+    f: &Fields<'_>,
+    machine: Option<&str>,
+    machines: &[(Machine, MachineOrigin)],
+    diags: &mut Diagnostics,
+) -> Option<bool> {
+    let word = f.word_or_default(&c::TURNS_WITH, diags)?;
+    if word != "tilt" {
+        return Some(false);
+    }
+    let at = f.span(&c::TURNS_WITH).unwrap_or_default();
+    let Some(name) = machine else {
+        diags.push(message::collision::tilts_without_machine(at));
+        return None;
+    };
+    let tilting = match machines.iter().find(|(m, _)| m.name() == name) {
+        Some((Machine::Cnc(c), _)) => crate::plan::effective_kinematics(c).is_table(),
+        Some((Machine::Robot(r), _)) => r.positioner.is_some(),
+        // A machine refused on its own: nothing more to say.
+        None => return None,
+    };
+    if !tilting {
+        diags.push(message::collision::nothing_tilts(name, at));
+        return None;
+    }
+    Some(true)
+}
+
 /// `at = [x, y, z]` (default the origin).
 fn at(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<[f64; 3]> {
     match f.value(&c::AT, diags) {
@@ -268,5 +303,6 @@ pub fn scanned(scan: &crate::sema::model::ScanBase) -> Fixture {
         },
         at: [0.0; 3],
         machine: None,
+        tilts: false,
     }
 }

@@ -134,7 +134,15 @@ pub static FIXTURE: Block = Block::new(
     "fixture",
     "fixture clamp { shape = box(size = [40 mm, 20 mm, 30 mm])  at = [60 mm, 0 mm, 0 mm] }",
     "a fixture or clamp on the plate, in the part's coordinates, which every machine's head keeps its gap from; or, with `machine`, fixed to that machine in its own coordinates",
-    &[&SHAPE, &AT, &MACHINE],
+    &[&SHAPE, &AT, &MACHINE, &TURNS_WITH],
+);
+
+/// `turns_with = nothing | tilt`.
+pub static TURNS_WITH: Field = Field::new(
+    "turns_with",
+    super::Kind::Word(&["nothing", "tilt"]),
+    Default(super::DefaultValue::Word("nothing")),
+    "with `machine`, what of the machine it stands on: `nothing`, its base, which no axis turns; `tilt`, the tilt axis's body — a tilting table's cradle or trunnion (turning with A or B, not with C), a positioner's tilting arm (with E1, not E2) — `at` then where it stands with every rotary axis at 0",
 );
 
 /// `machine = NAME`.

@@ -158,8 +158,10 @@ pub(crate) struct Links<'p> {
     /// What the head meets on a PTP, once built: the fixtures on the
     /// plate, and (`true`) the finished part.
     material: Option<(Material, bool)>,
-    /// The fixtures fixed to the robot, in its frame, once built.
-    fixed: Option<Material>,
+    /// The fixtures fixed to the robot, once built: on its base (in its
+    /// frame), and on its positioner's tilting arm (`true`: in the arm's
+    /// frame at E1 = 0).
+    fixed: Vec<(bool, Material)>,
 }
 
 impl<'p> Links<'p> {
@@ -215,7 +217,7 @@ impl<'p> Links<'p> {
             at: None,
             keeps: faceplate,
             material: None,
-            fixed: None,
+            fixed: Vec::new(),
         })
     }
 
@@ -241,7 +243,7 @@ impl<'p> Links<'p> {
             closest: vec![vec![None; self.closest[0].len()]; self.closest.len()],
             keeps: self.faceplate,
             material: None,
-            fixed: None,
+            fixed: Vec::new(),
         }
     }
 
@@ -330,9 +332,10 @@ impl<'p> Links<'p> {
                 Target::Faceplate | Target::Fixture(_) => {
                     let inv = match self.targets[k] {
                         Target::Faceplate => face_inv,
-                        // Fixed to the robot: in its own frame.
+                        // Fixed to the robot: in its own frame, or in its
+                        // positioner's tilting arm's.
                         Target::Fixture(i) if self.program.fixtures[i].machine.is_some() => {
-                            Isometry3::identity()
+                            self.machine_inv(i, axes, part_inv)
                         }
                         _ => part_inv,
                     };
@@ -366,7 +369,7 @@ impl<'p> Links<'p> {
                 focus: part.translation.vector.into(),
                 up: (part.rotation * self.up).into(),
             };
-            self.head_on_ptp([&pose, &head], place, focus);
+            self.head_on_ptp([&pose, &head], axes, place, focus);
         }
     }
 
@@ -409,9 +412,15 @@ impl<'p> Links<'p> {
     }
 
     /// The head on a PTP at `pose` (the part's coordinates; `robot`, the
-    /// same in the robot's frame): against the plate by its lowest point,
+    /// same in the robot's frame), the positioner at `axes`: against the plate by its lowest point,
     /// the fixtures and the part by their lumps.
-    fn head_on_ptp(&mut self, [pose, robot]: [&Pose; 2], place: Place, focus: [f64; 3]) {
+    fn head_on_ptp(
+        &mut self,
+        [pose, robot]: [&Pose; 2],
+        axes: Rotary,
+        place: Place,
+        focus: [f64; 3],
+    ) {
         let plate = self.slot(Target::Plate);
         let (d, body) = self.head.lowest(pose, [0.0, 0.0, 1.0]);
         self.record(plate, LINKS.len() + body, d, place, focus);
@@ -419,11 +428,24 @@ impl<'p> Links<'p> {
             Some((m, _)) => m.nearest(&self.head, pose, CAP_MM),
             None => None,
         };
-        let fixed = match &self.fixed {
-            Some(m) => m.nearest(&self.head, robot, CAP_MM),
-            None => None,
-        };
-        for (d, body, lump) in [on_plate, fixed].into_iter().flatten() {
+        let mut near = vec![on_plate];
+        for (tilts, m) in &self.fixed {
+            let inv = match (tilts, &self.kin) {
+                (true, Some((kin, _))) => {
+                    let e = [axes.tilt, axes.c];
+                    kin.part_on_tilt(e) * kin.part(e).inverse()
+                }
+                _ => Isometry3::identity(),
+            };
+            let f = inv * Point3::from(robot.focus);
+            let u = inv.rotation * Vector3::from(robot.up);
+            let pose = Pose {
+                focus: [f.x, f.y, f.z],
+                up: [u.x, u.y, u.z],
+            };
+            near.push(m.nearest(&self.head, &pose, CAP_MM));
+        }
+        for (d, body, lump) in near.into_iter().flatten() {
             let fixtures = self.program.fixtures.len() as u32;
             let what = if lump.group >= u32::MAX - fixtures {
                 Target::Fixture((u32::MAX - lump.group - 1) as usize)
@@ -432,6 +454,16 @@ impl<'p> Links<'p> {
             };
             let k = self.slot(what);
             self.record(k, LINKS.len() + body, d, place, focus);
+        }
+    }
+
+    /// Where fixture `i`, fixed to the robot, sees the robot's frame with
+    /// the positioner at `axes` (`part_inv`: the part's frame there,
+    /// inverted): its own frame, or its positioner's tilting arm's.
+    fn machine_inv(&self, i: usize, axes: Rotary, part_inv: Isometry3<f64>) -> Isometry3<f64> {
+        match (&self.kin, self.program.fixtures[i].tilts) {
+            (Some((kin, _)), true) => kin.part_on_tilt([axes.tilt, axes.c]) * part_inv,
+            _ => Isometry3::identity(),
         }
     }
 
@@ -448,18 +480,19 @@ impl<'p> Links<'p> {
             return;
         }
         let mut m = Material::default();
-        let mut fixed = Material::default();
+        let mut fixed = [(false, Material::default()), (true, Material::default())];
         for (i, f) in self.program.fixtures.iter().enumerate() {
             match &f.machine {
                 None => crate::verify::collision::fixture_lumps(f, i, &mut m),
                 // Only this robot's reach the links' targets.
                 Some(_) if self.targets.contains(&Target::Fixture(i)) => {
-                    crate::verify::collision::fixture_lumps(f, i, &mut fixed);
+                    let on = &mut fixed[usize::from(f.tilts)].1;
+                    crate::verify::collision::fixture_lumps(f, i, on);
                 }
                 Some(_) => {}
             }
         }
-        self.fixed = (!fixed.is_empty()).then_some(fixed);
+        self.fixed = fixed.into_iter().filter(|f| !f.1.is_empty()).collect();
         if part {
             let spheres: Vec<_> = poses.iter().map(|p| self.head.bound(p)).collect();
             part_lumps(self.program, &spheres, &mut m);

@@ -33,9 +33,11 @@ pub(super) struct Found {
     pub focus: [f64; 3],
 }
 
-/// The check against one machine's own fixtures.
+/// The check against one machine's own fixtures: those on its base, or
+/// those on its tilt axis's body (`tilts`).
 pub(super) struct Fixed {
     frame: PartFrame,
+    pub(super) tilts: bool,
     material: Material,
     /// The last checked pose (the machine's coordinates) and how far it is
     /// from every fixture, mm (at most [`CAP_MM`]).
@@ -50,17 +52,18 @@ pub(super) struct Fixed {
 
 impl Fixed {
     /// The check of machine `name` (whose part's frame is `frame`) against
-    /// the fixtures of `program` fixed to it; with `only`, that one alone.
-    /// `None` where it has none.
+    /// the fixtures of `program` fixed to it, on its tilt axis's body or
+    /// not (`tilts`); with `only`, that one alone. `None` where it has
+    /// none.
     pub(super) fn new(
         program: &Program,
         name: &str,
-        frame: Option<PartFrame>,
+        (frame, tilts): (Option<PartFrame>, bool),
         only: Option<usize>,
     ) -> Option<Fixed> {
         let mut material = Material::default();
         for (i, f) in program.fixtures.iter().enumerate() {
-            if f.fixed_to(name) == Some(true) && only.is_none_or(|o| o == i) {
+            if f.fixed_to(name) == Some(true) && f.tilts == tilts && only.is_none_or(|o| o == i) {
                 fixture_lumps(f, i, &mut material);
             }
         }
@@ -69,6 +72,7 @@ impl Fixed {
         }
         Some(Fixed {
             frame: frame?,
+            tilts,
             material,
             cert: None,
             last: None,
@@ -79,7 +83,7 @@ impl Fixed {
     /// The head at `p` (the part's coordinates) with the axes at `axes`,
     /// in the machine's coordinates.
     fn in_machine(&self, p: &Pose, axes: Rotary) -> Pose {
-        let iso = self.frame.at(axes);
+        let iso = self.frame.at(axes, self.tilts);
         let f = iso * Point3::from(p.focus);
         let u = iso.rotation * Vector3::from(p.up);
         Pose {

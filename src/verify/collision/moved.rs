@@ -42,10 +42,8 @@ impl Collision<'_> {
             .sum();
         let dirs = (BUDGET / (points.max(1) * PROBES)).min(DIRECTIONS.len());
         // A fixture fixed to the machine moves in its coordinates.
-        let (lo, hi, up_z) = match (&f.machine, &self.fixed) {
-            (Some(_), Some(fixed)) => fixed.extent,
-            _ => self.extent,
-        };
+        let fixed = (self.fixed.iter()).find(|x| f.machine.is_some() && x.tilts == f.tilts);
+        let (lo, hi, up_z) = fixed.map_or(self.extent, |x| x.extent);
         if dirs == 0 || lo[0].is_nan() || lo[0] > hi[0] {
             return None;
         }
