@@ -5,7 +5,7 @@
 //! arm*).
 //!
 //! Each node holds a run of the samples, split at the median of its box's
-//! longest side until a leaf holds at most [`LEAF`]; its sphere holds every
+//! longest side until a leaf holds at most 8; its sphere holds every
 //! sample's own (its centre the run's box's, its radius the farthest
 //! sample's distance plus that sample's radius). A sphere's distance to the
 //! segment less its radius bounds every sample in it from below, so a
