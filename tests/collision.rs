@@ -1001,3 +1001,255 @@ fn the_tool_keeps_its_gap_from_the_plate_and_the_wrist_beside_the_part_is_not_he
         .iter()
         .any(|a| a.body == "wrist" && a.with == "plate"));
 }
+
+/// The diagnostics of `src` (with the case `name`'s files beside it) that
+/// are `lmd::collision`s.
+fn collisions(name: &str, src: &str) -> Vec<lmdc::diag::Diagnostic> {
+    compile_beside(name, src)
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == Code::Collision)
+        .cloned()
+        .collect()
+}
+
+/// The case `errors/collision/link_fixture`: a block where the forearm
+/// comes down beside the duct. Refused for the forearm, naming the block
+/// and where; the help's move (the least of four directions, the plan made
+/// again with the block there) builds, and a tenth of a millimetre short
+/// of it is refused again.
+#[test]
+fn a_fixture_in_a_links_way_is_refused_and_moved_where_the_help_says_builds() {
+    let name = "link_fixture";
+    let src = case(name);
+    let d = collisions(name, &src);
+    assert_eq!(d.len(), 1, "{d:#?}");
+    let m = &d[0].message;
+    assert!(
+        m.contains("the forearm of robot `kr60` runs ")
+            && m.contains(" mm into fixture `block` at layer 5, path 1, point 6"),
+        "{m}"
+    );
+    assert!((number_after(m, "runs ") - 21.137).abs() < 1e-9, "{m}");
+    let help = d[0].help.as_deref().unwrap();
+    let by = number_after(help, "move fixture `block` ");
+    assert!((by - 28.0).abs() < 1e-9, "{help}");
+    assert!(
+        help.contains("mm in +x (`at = [28 mm, -450 mm, 0 mm]`)"),
+        "{help}"
+    );
+    let at_line = "at = [0 mm, -450 mm, 0 mm]";
+    let c = compile_beside(name, &src.replace(at_line, "at = [28 mm, -450 mm, 0 mm]"));
+    assert!(c.program.is_some(), "{:#?}", c.diagnostics);
+    let d = collisions(name, &src.replace(at_line, "at = [27.9 mm, -450 mm, 0 mm]"));
+    assert!(
+        d.iter()
+            .any(|d| d.message.contains("of robot `kr60` comes within")
+                && d.message.contains("of fixture `block`")),
+        "{d:#?}"
+    );
+}
+
+/// A binary STL of `quads` (each four corners, two triangles).
+fn stl_of(quads: &[[[f32; 3]; 4]]) -> Vec<u8> {
+    let tris: Vec<[[f32; 3]; 3]> = quads
+        .iter()
+        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+        .collect();
+    lmdc::geometry::mesh::stl::to_binary(&tris)
+}
+
+/// An L-shaped bracket beside the duct of the case `link_fixture`: a floor
+/// strip 40 mm wide at `floor` (mm, the part's Z) from y = −800 mm to
+/// −200 mm and a wall at y = −800 mm from z = −60 mm to 60 mm. Its box
+/// holds the place where the forearm and the wrist come down (the block
+/// of the case); the L's floor, 60 mm below the plate, and its wall lie
+/// clear of them.
+fn bracket(floor: f32) -> Vec<u8> {
+    stl_of(&[
+        [
+            [-20.0, -800.0, floor],
+            [20.0, -800.0, floor],
+            [20.0, -200.0, floor],
+            [-20.0, -200.0, floor],
+        ],
+        [
+            [-20.0, -800.0, -60.0],
+            [20.0, -800.0, -60.0],
+            [20.0, -800.0, 60.0],
+            [-20.0, -800.0, 60.0],
+        ],
+    ])
+}
+
+/// A link against a mesh fixture is checked against the mesh, not its box:
+/// the L of [`bracket`] builds, though its box — the same box as a box
+/// fixture, what a mesh was checked as before — is refused (the wrist runs
+/// into it); the L with its floor raised to 30 mm, under the wrist, is
+/// refused for the mesh itself. `lmdc report` gives the wrist's closest
+/// approach to the L within the samples' tolerance below the distance to
+/// its floor and wall computed here from the arm's poses.
+#[test]
+fn a_link_through_a_mesh_fixtures_empty_box_builds_and_one_into_the_mesh_is_refused() {
+    let src = case("link_fixture");
+    let src = &src[..src.find("fixture block").unwrap()];
+    let with = |shape: &str, at: &str| {
+        format!("{src}fixture bracket {{\n  shape = {shape}\n  at = [{at}]\n}}\n")
+    };
+    let read = |stl: Vec<u8>, text: &str| {
+        let data: lmdc::sema::DataReader = std::rc::Rc::new(move |_: &str, _| Ok(stl.clone()));
+        lmdc::pipeline::compile_reading(text, None, &mut (), data)
+            .unwrap()
+            .0
+    };
+    let mesh = with("mesh(file = \"bracket.stl\")", "0 mm, 0 mm, 0 mm");
+    let c = read(bracket(-60.0), &mesh);
+    let v = c.program.unwrap_or_else(|| panic!("{:#?}", c.diagnostics));
+    let (lo, hi) = v.ir().fixtures[0].bounds();
+    assert_eq!((lo, hi), ([-20.0, -800.0, -60.0], [20.0, -200.0, 60.0]));
+    // Its box as a box: refused.
+    let boxed = with(
+        "box(size = [40 mm, 600 mm, 120 mm])",
+        "0 mm, -500 mm, -60 mm",
+    );
+    let d = collisions("link_fixture", &boxed);
+    assert!(
+        d.iter()
+            .any(|d| d.message.contains("the wrist of robot `kr60` runs ")
+                && d.message.contains("into fixture `bracket`")),
+        "{d:#?}"
+    );
+    // The floor raised under the wrist: refused for the mesh.
+    let c = read(bracket(30.0), &mesh);
+    assert!(
+        c.diagnostics.iter().any(|d| d.code == Code::Collision
+            && d.message.contains("the wrist of robot `kr60` runs ")
+            && d.message.contains("into fixture `bracket`")),
+        "{:#?}",
+        c.diagnostics
+    );
+    // The wrist's approach, against its axis's distance to the floor's and
+    // the wall's rectangles less its radius (100 mm), at every solved pose.
+    let m = v.machines().next().unwrap();
+    let (robot, poses) = arm_poses(&m);
+    let base_inv = lmdc::plan::arm::frame(robot.base.value.as_ref().unwrap()).inverse();
+    let rect = |q: nalgebra::Point3<f64>| {
+        let floor = [
+            (q.x.abs() - 20.0).max(0.0),
+            (-800.0 - q.y).max(q.y + 200.0).max(0.0),
+            q.z + 60.0,
+        ];
+        let wall = [
+            (q.x.abs() - 20.0).max(0.0),
+            q.y + 800.0,
+            (q.z.abs() - 60.0).max(0.0),
+        ];
+        let n = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        n(floor).min(n(wall))
+    };
+    let mut least = f64::INFINITY;
+    for (p, _) in &poses.got {
+        let (a, b) = (p[4], p[5]);
+        for k in 0..=2000 {
+            let t = f64::from(k) / 2000.0;
+            let q = base_inv
+                * nalgebra::Point3::from(std::array::from_fn::<f64, 3, _>(|i| {
+                    a[i] + t * (b[i] - a[i])
+                }));
+            least = least.min(rect(q) - 100.0);
+        }
+    }
+    let r = lmdc::report::Report::of_plan(m);
+    let a = r
+        .approaches
+        .iter()
+        .find(|a| a.body == "wrist" && a.with == "fixture bracket")
+        .expect("the wrist's approach to the bracket");
+    let lmdc::ir::FixtureShape::Mesh { tolerance, .. } = &v.ir().fixtures[0].shape else {
+        panic!("a mesh")
+    };
+    // The PTPs' poses are among the report's, not among these: never
+    // farther than these give, nearer by at most the tolerance where the
+    // closest is on the plan's own poses.
+    assert!(
+        a.distance_mm <= least + 1e-6,
+        "{} vs {least}",
+        a.distance_mm
+    );
+    if a.way >= 1.0 {
+        assert!(
+            a.distance_mm >= least - tolerance - 1e-6,
+            "{} vs {least}",
+            a.distance_mm
+        );
+    }
+    assert!(a.distance_mm > 2.0 && a.distance_mm < 60.0, "{a:?}");
+}
+
+/// The case `errors/collision/arm_folded`: the part so close in front of
+/// the foot that the arm folds back and the head's body runs into the
+/// column. The help's base, 43 mm farther out along X (the line from the
+/// foot through the base), builds; a millimetre nearer is refused again.
+#[test]
+fn an_arm_folded_onto_itself_is_refused_and_the_base_it_names_builds() {
+    let src = case("arm_folded");
+    let d = collisions("arm_folded", &src);
+    assert_eq!(d.len(), 1, "{d:#?}");
+    let m = &d[0].message;
+    assert!(
+        m.contains("the body of robot `kr60` runs ")
+            && m.contains(" mm into its own column at layer 1"),
+        "{m}"
+    );
+    let help = d[0].help.as_deref().unwrap().replace('\n', " ");
+    let help = help.split_whitespace().collect::<Vec<_>>().join(" ");
+    let by = number_after(&help, "the part stood ");
+    assert!((by - 43.0).abs() < 1e-9, "{help}");
+    let at = help.find("`base = frame(").expect("a base") + 1;
+    let base = &help[at..at + help[at..].find('`').unwrap()];
+    assert_eq!(
+        base,
+        "base = frame(1, x = 643 mm, y = 0 mm, z = 800 mm, a = 0 deg, b = 0 deg, c = 0 deg)"
+    );
+    let line = "base = frame(1, x = 600 mm, z = 800 mm)";
+    let c = compile(&src.replace(line, base), &mut ());
+    assert!(c.program.is_some(), "{:#?}", c.diagnostics);
+    let nearer = src.replace(line, "base = frame(1, x = 642 mm, z = 800 mm)");
+    let d = collisions("arm_folded", &nearer);
+    assert!(
+        d.iter().any(|d| d.message.contains("into its own column")
+            || d.message.contains("of its own column")),
+        "{d:#?}"
+    );
+}
+
+/// The case `errors/collision/tool_plate`: the tool, 80° off the flange's
+/// axis and pinned at a 60° turn about the beam, hangs its flange down to
+/// the plate where the bent duct's layers lean. The help's turn (the
+/// nearest to 60° either way with every arm rule kept) builds; a tenth of
+/// a degree nearer 60° is refused again.
+#[test]
+fn a_tool_down_at_the_plate_is_refused_and_the_spin_it_names_builds() {
+    let src = case("tool_plate");
+    let d = collisions("tool_plate", &src);
+    assert_eq!(d.len(), 1, "{d:#?}");
+    let m = &d[0].message;
+    assert!(
+        m.contains("the tool of robot `kr60` runs ")
+            && m.contains(" mm into the plate at layer 28"),
+        "{m}"
+    );
+    let help = d[0].help.as_deref().unwrap().replace('\n', " ");
+    let spin = number_after(&help, "turned to `spin = ");
+    assert!((spin - 71.8).abs() < 1e-9, "{help}");
+    let line = "spin = 60 deg";
+    let c = compile(&src.replace(line, "spin = 71.8 deg"), &mut ());
+    assert!(c.program.is_some(), "{:#?}", c.diagnostics);
+    let d = collisions("tool_plate", &src.replace(line, "spin = 71.7 deg"));
+    assert!(
+        d.iter()
+            .any(|d| d.message.contains("the tool of robot `kr60`")
+                && d.message.contains("the plate")),
+        "{d:#?}"
+    );
+}

@@ -3,12 +3,15 @@
 //! ([`crate::plan::arm::Solver::joint_points`]), and the solids of the cell
 //! they keep clear of — a positioner's faceplate (a disc), the fixtures (a
 //! box, an upright cylinder) — each a closed-form point distance searched
-//! along the capsule's axis ([`super::capsule`]).
+//! along the capsule's axis ([`super::capsule`]); a mesh fixture by its
+//! surface samples, in a tree of spheres ([`super::sample_tree`]).
 
 use super::capsule::{box_point, cylinder_point, least_along, segment_point, Capsule};
 use super::head::{dot, sub, Frustum, Pose};
+use super::sample_tree::SampleTree;
 use crate::ir::{Fixture, FixtureShape};
 use nalgebra::{Isometry3, Point3};
+use std::sync::Arc;
 
 /// The links' names: the three whose radii a model gives
 /// ([`crate::target::arm::Model::links`]) in that order, then the column
@@ -83,7 +86,7 @@ pub fn capsules(p: &[[f64; 3]; 6], radii: [f64; 3]) -> [(usize, Capsule); 4] {
 }
 
 /// A solid of the cell in a frame of its own.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub enum Solid {
     /// A box, its sides along the frame's axes, mm.
     Box {
@@ -103,18 +106,43 @@ pub enum Solid {
         /// Its radius.
         r: f64,
     },
+    /// A mesh's surface as samples ([`super::surface`]), within its box.
+    Mesh {
+        /// Its box's least corner.
+        lo: [f64; 3],
+        /// Its box's greatest corner.
+        hi: [f64; 3],
+        /// The largest sample's radius: how far past the box a sample
+        /// reaches, mm.
+        tolerance: f64,
+        /// The samples.
+        tree: Arc<SampleTree>,
+    },
 }
 
 impl Solid {
-    /// A fixture's solid, in the part's coordinates: a mesh's is the box
-    /// round it (never nearer the link than the mesh is).
+    /// A fixture's solid, in the part's coordinates: a mesh's is its
+    /// surface samples, each a point and the radius it stands for (never
+    /// farther from the link than the mesh is; nearer by at most the
+    /// samples' `tolerance`, docs/collision.md).
     pub fn of(f: &Fixture) -> Solid {
-        match f.shape {
-            FixtureShape::Box { .. } | FixtureShape::Mesh { .. } => {
+        match &f.shape {
+            FixtureShape::Box { .. } => {
                 let (lo, hi) = f.bounds();
                 Solid::Box { lo, hi }
             }
-            FixtureShape::Cylinder { diameter, length } => Solid::Cylinder {
+            FixtureShape::Mesh {
+                samples, tolerance, ..
+            } => {
+                let (lo, hi) = f.bounds();
+                Solid::Mesh {
+                    lo,
+                    hi,
+                    tolerance: *tolerance,
+                    tree: Arc::new(SampleTree::new(&samples.0, f.at)),
+                }
+            }
+            &FixtureShape::Cylinder { diameter, length } => Solid::Cylinder {
                 xy: [f.at[0], f.at[1]],
                 z: [f.at[2], f.at[2] + length],
                 r: diameter / 2.0,
@@ -132,14 +160,18 @@ impl Solid {
         }
     }
 
-    /// The distance from `p` to it, mm (0 inside).
+    /// The distance from `p` to it, mm (0 inside; a mesh's, by its
+    /// samples: negative inside one).
     pub fn distance(&self, p: [f64; 3]) -> f64 {
-        match *self {
-            Solid::Box { lo, hi } => box_point(lo, hi, p),
-            Solid::Cylinder { xy, z, r } => {
+        match self {
+            Solid::Box { lo, hi } => box_point(*lo, *hi, p),
+            &Solid::Cylinder { xy, z, r } => {
                 let rho = (p[0] - xy[0]).hypot(p[1] - xy[1]);
                 cylinder_point(p[2], rho, z, r)
             }
+            Solid::Mesh { tree, .. } => tree
+                .least_to_segment(p, p, f64::INFINITY)
+                .unwrap_or(f64::INFINITY),
         }
     }
 
@@ -151,6 +183,7 @@ impl Solid {
                 let h = sub(hi, c);
                 (c, dot(h, h).sqrt())
             }
+            Solid::Mesh { ref tree, .. } => tree.bound(),
             Solid::Cylinder { xy, z, r } => (
                 [xy[0], xy[1], (z[0] + z[1]) / 2.0],
                 r.hypot((z[1] - z[0]) / 2.0),
@@ -170,6 +203,23 @@ impl Solid {
         let (centre, r) = self.bound();
         if segment_point(a, b, centre) - r - c.r > beyond {
             return None;
+        }
+        if let Solid::Mesh {
+            lo,
+            hi,
+            tolerance,
+            tree,
+        } = self
+        {
+            // Its box first (a sample's centre lies on the surface, or
+            // merged within its radius of it: its sphere reaches past the
+            // box by twice its radius at most), then the samples near the
+            // axis.
+            let boxed = least_along(a, b, |p| box_point(*lo, *hi, p)).0 - 2.0 * tolerance;
+            if boxed - c.r > beyond {
+                return None;
+            }
+            return Some(tree.least_to_segment(a, b, beyond + c.r)? - c.r);
         }
         Some(least_along(a, b, |p| self.distance(p)).0 - c.r)
     }

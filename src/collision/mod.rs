@@ -6,4 +6,5 @@ pub mod arm;
 pub mod capsule;
 pub mod head;
 pub mod material;
+pub mod sample_tree;
 pub mod surface;

@@ -21,6 +21,7 @@ use crate::plan::kinematics::Rotary;
 use crate::plan::{Move, Speed, Visit};
 use nalgebra::Vector3;
 
+mod fix;
 pub(crate) mod links;
 pub(crate) mod ptp;
 mod reach;
@@ -145,12 +146,49 @@ impl<'p> PlanRule<'p> for ArmRule<'p> {
             }
         }
         if let Some(l) = &self.links {
-            l.report(cx, self.home_keeping(l), out);
+            let fixes = self.link_fixes(cx, l);
+            l.report(cx, self.home_keeping(l), &fixes, out);
         }
     }
 }
 
 impl ArmRule<'_> {
+    /// Whether the arm followed the plan keeping every rule: every pose
+    /// reached, within the axes' limits, no singular LIN, one
+    /// configuration, the axes within their speeds, the links clear.
+    fn clean(&self) -> bool {
+        self.quick.is_none()
+            && self.reach.is_none()
+            && self.limits.iter().all(Option::is_none)
+            && self.singular.iter().all(Option::is_none)
+            && self.flip.is_none()
+            && self.speed.iter().all(Option::is_none)
+            && self.links.as_ref().is_none_or(links::Links::clear)
+    }
+
+    /// By target of `l`, the change its help names, where a search finds
+    /// one ([`fix`]).
+    fn link_fixes(
+        &self,
+        cx: &MachineCx<'_>,
+        l: &links::Links<'_>,
+    ) -> Vec<Option<crate::diag::message::collision::LinkFix>> {
+        use crate::diag::message::collision::LinkFix;
+        let wanted = l.searches();
+        let mut fixes = vec![None; wanted.iter().map(|w| w.0 + 1).max().unwrap_or(0)];
+        let mut searches = fix::Searches::of(cx);
+        let tool_angled = fix::tool_off_beam(cx.machine);
+        for (k, what) in wanted {
+            fixes[k] = match what {
+                links::Search::Fixture(i) => searches.fixture(cx, i).map(LinkFix::Moved),
+                links::Search::Base => searches.base(cx),
+                links::Search::Spin if tool_angled => searches.spin(cx),
+                links::Search::Spin => None,
+            };
+        }
+        fixes
+    }
+
     /// The closest approaches of the arm's links to the cell.
     pub(super) fn approaches(&self) -> Vec<crate::verify::approach::Approach> {
         self.links

@@ -662,6 +662,17 @@ impl Collision<'_> {
     }
 }
 
+/// Whether the head keeps its gap from fixture `i` at every pose of `cx`'s
+/// machine's plan (made again: its travels rise over the fixture where it
+/// stands in `cx`'s program), the fixture alone checked.
+pub(super) fn head_clear_of(cx: &MachineCx<'_>, i: usize) -> bool {
+    let Some(mut rule) = Collision::against(cx, Some(i)) else {
+        return false;
+    };
+    crate::plan::Plan::new(cx.program, cx.machine).walk(&mut rule);
+    !rule.fixture_hit[i]
+}
+
 /// The lumps of fixture `f` (index `i`): its surface every
 /// [`FIXTURE_STEP_MM`], each lump standing for the patch round it. Groups
 /// count down from `u32::MAX`, apart from the layers.

@@ -311,6 +311,32 @@ pub enum HomeFrom {
     First,
 }
 
+/// A change to the file that keeps an arm's link clear, found by making
+/// the plan again with it and following the arm along it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LinkFix {
+    /// The fixture in the link's way, moved.
+    Moved(Moved),
+    /// The part's base stood `by` mm farther from the arm's foot, along the
+    /// horizontal line from the foot to it: `base = frame(index, …)` with
+    /// `pose` (x, y, z mm, a, b, c deg).
+    Base {
+        /// How far, mm.
+        by: f64,
+        /// `BASE_DATA[index]`.
+        index: u16,
+        /// The base there.
+        pose: [f64; 6],
+    },
+    /// The tool turned about the beam to `deg` (`spin = deg`) from `from`.
+    Spin {
+        /// The turn, deg.
+        deg: f64,
+        /// The turn used, deg.
+        from: f64,
+    },
+}
+
 /// One kind of an arm's collision: its link, the worst and what fixes it.
 pub struct LinkHit<'a, At> {
     /// The robot.
@@ -332,6 +358,8 @@ pub struct LinkHit<'a, At> {
     pub ptp: Option<Option<([f64; 6], HomeFrom)>>,
     /// Where `home` is declared, if it is.
     pub home: Option<Span>,
+    /// A change checked to keep the link clear, where one was found.
+    pub fix: Option<LinkFix>,
 }
 
 /// A link of a robot's arm (or the head it carries, on a PTP) closer than
@@ -349,8 +377,9 @@ pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
     };
     let who = format!("the {} of robot `{}`", h.link, h.machine);
     let message = too_close(&who, &what, w, true);
-    let fix = match (h.ptp, h.with) {
-        (Some(Some((home, from))), _) => format!(
+    let fix = match (h.ptp, h.with, &h.fix) {
+        (None, _, Some(f)) => link_fix(h.with, f),
+        (Some(Some((home, from))), _, _) => format!(
             "the axes' straight path from `home` passes through it: `home = [{}]` ({}) keeps the gap on both PTPs; or a home of your own, checked the same way",
             home.iter().map(|a| format!("{} deg", short(*a))).collect::<Vec<_>>().join(", "),
             match from {
@@ -359,20 +388,20 @@ pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
                 HomeFrom::First => "the first pose's own axes, above the first path".to_string(),
             }
         ),
-        (Some(None), _) => "the axes' straight path from `home` passes through it: a `home` with the arm raised above the cell and turned towards the part, or the part placed where the arm comes down onto it from above".to_string(),
-        (None, Against::Faceplate(Some(d))) => format!(
+        (Some(None), _, _) => "the axes' straight path from `home` passes through it: a `home` with the arm raised above the cell and turned towards the part, or the part placed where the arm comes down onto it from above".to_string(),
+        (None, Against::Faceplate(Some(d)), _) => format!(
             "a faceplate at most {} mm across (`faceplate = {} mm`) keeps the gap at every such pose; or tilt the part less there (the positioner's `tilt_limits` or `keep`), or stand the positioner farther from the arm",
             short(d),
             short(d)
         ),
-        (None, Against::Faceplate(None)) => "the link passes over the faceplate's middle: tilt the part less there (the positioner's `tilt_limits` or `keep`), stand the positioner farther from the arm, or raise the part off the faceplate".to_string(),
-        (None, Against::Scan) => "the arm reaches down past the part it builds on (its scanned surface, docs/repair.md): tilt the nozzle less there, or stand the part where the arm comes onto it from above".to_string(),
-        (None, Against::Fixture(name)) => format!(
+        (None, Against::Faceplate(None), _) => "the link passes over the faceplate's middle: tilt the part less there (the positioner's `tilt_limits` or `keep`), stand the positioner farther from the arm, or raise the part off the faceplate".to_string(),
+        (None, Against::Scan, _) => "the arm reaches down past the part it builds on (its scanned surface, docs/repair.md): tilt the nozzle less there, or stand the part where the arm comes onto it from above".to_string(),
+        (None, Against::Fixture(name), _) => format!(
             "move fixture `{name}` out of the arm's way, or build the part where the arm passes farther from it"
         ),
-        (None, Against::Plate) => "the link hangs down to the part's plane there: tilt the nozzle less there (the wrist hangs lower the more it leans), or a tool that holds the flange farther from the focus".to_string(),
-        (None, Against::Own(_)) => "the arm folds back onto itself there: stand the part farther from the arm's foot (the robot's `base`), or tilt the nozzle less there".to_string(),
-        (None, Against::Part) => "the head passes through the finished part on its way home: a `home` above the part".to_string(),
+        (None, Against::Plate, _) => "the link hangs down to the part's plane there: tilt the nozzle less there (the wrist hangs lower the more it leans), or a tool that holds the flange farther from the focus".to_string(),
+        (None, Against::Own(_), _) => "the arm folds back onto itself there: stand the part farther from the arm's foot (the robot's `base`), or tilt the nozzle less there".to_string(),
+        (None, Against::Part, _) => "the head passes through the finished part on its way home: a `home` above the part".to_string(),
     };
     let d = Diagnostic::error(Code::Collision, message)
         .help(format!(
@@ -388,5 +417,45 @@ pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
         (Against::Scan, Some(at)) => d.label(at, "the part built on, as scanned"),
         (Against::Fixture(name), Some(at)) => d.label(at, format!("fixture `{name}` stands here")),
         _ => d,
+    }
+}
+
+/// The help's change for a link too close to `with` (docs/collision.md,
+/// *What is said*).
+fn link_fix(with: Against<'_>, f: &LinkFix) -> String {
+    let mm = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{} mm", short(*x)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match (f, with) {
+        (LinkFix::Moved(m), Against::Fixture(name)) => format!(
+            "move fixture `{name}` {} mm in {} (`at = [{}]`): the plan made again with it there, its travels over it included, keeps the arm's links and the head clear of it at every pose; or build the part where the arm passes farther from it",
+            short(m.by),
+            m.axis,
+            mm(&m.at)
+        ),
+        (LinkFix::Base { by, index, pose }, _) => format!(
+            "the arm folds back onto itself there: the part stood {} mm farther from the arm's foot, along the level line from the foot through the base (`base = frame({index}, x = {}, y = {}, z = {}, a = {} deg, b = {} deg, c = {} deg)`), keeps the arm unfolded enough — the plan followed from there reaches every pose within the axes' limits, no LIN singular or changing configuration, and the links keep their gap at every pose; or tilt the nozzle less there",
+            short(*by),
+            mm(&pose[0..1]),
+            mm(&pose[1..2]),
+            mm(&pose[2..3]),
+            short(pose[3]),
+            short(pose[4]),
+            short(pose[5])
+        ),
+        (LinkFix::Spin { deg, from }, _) => format!(
+            "the tool is angled on its flange, and turned as it is about the beam ({} deg) it holds the flange down at the part's plane there: turned to `spin = {} deg` it holds it higher — the plan followed with that turn reaches every pose within the axes' limits, no LIN singular or changing configuration, and the links keep their gap at every pose; or tilt the nozzle less there",
+            short(*from),
+            short(*deg)
+        ),
+        (LinkFix::Moved(m), _) => format!(
+            "move it {} mm in {} (`at = [{}]`)",
+            short(m.by),
+            m.axis,
+            mm(&m.at)
+        ),
     }
 }

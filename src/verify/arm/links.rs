@@ -18,7 +18,7 @@ use crate::collision::arm::{
 use crate::collision::capsule::{segment_point, Capsule};
 use crate::collision::head::{add, dist, scale, HeadShape, Pose};
 use crate::collision::material::{Lump, Material};
-use crate::diag::message::collision::{self as says, Against};
+use crate::diag::message::collision::{self as says, Against, LinkFix};
 use crate::diag::Diagnostics;
 use crate::diag::Worst;
 use crate::ir::MachineField;
@@ -245,6 +245,38 @@ impl<'p> Links<'p> {
             material: None,
             fixed: Vec::new(),
         }
+    }
+
+    /// Whether a pose was found within the gap of fixture `i`.
+    pub(crate) fn fixture_hit(&self, i: usize) -> bool {
+        let k = self.slot(Target::Fixture(i));
+        self.targets[k] == Target::Fixture(i) && self.worst[k].is_some()
+    }
+
+    /// Whether no pose was found too close to anything.
+    pub(crate) fn clear(&self) -> bool {
+        self.worst.iter().all(Option::is_none)
+    }
+
+    /// What the help may search for, by target, where its worst pose lies
+    /// off the PTPs (whose help is a home): a fixture to move (not the
+    /// scanned part), a base farther off (the arm against itself), a turn
+    /// about the beam (the tool at the plate).
+    pub(crate) fn searches(&self) -> Vec<(usize, Search)> {
+        let mut out = Vec::new();
+        for (k, w) in self.worst.iter().enumerate() {
+            let Some(w) = w.as_ref().filter(|w| !w.at.place.ptp()) else {
+                continue;
+            };
+            let search = match self.targets[k] {
+                Target::Fixture(i) if !self.program.fixtures[i].is_scan() => Search::Fixture(i),
+                Target::Own(_) => Search::Base,
+                Target::Plate if w.at.link == TOOL => Search::Spin,
+                _ => continue,
+            };
+            out.push((k, search));
+        }
+        out
     }
 
     /// Whether any pose on a PTP was found too close.
@@ -573,11 +605,13 @@ impl<'p> Links<'p> {
     }
 
     /// The reports: one for each target a link came too close to; `home`,
-    /// a home whose PTPs keep the gap where one was found.
+    /// a home whose PTPs keep the gap where one was found; `fixes`, by
+    /// target, a change found to keep it ([`Links::searches`]).
     pub(crate) fn report(
         &self,
         cx: &MachineCx<'_>,
         home: Option<([f64; 6], says::HomeFrom)>,
+        fixes: &[Option<LinkFix>],
         out: &mut Diagnostics,
     ) {
         for (k, w) in self.worst.iter().enumerate() {
@@ -609,13 +643,25 @@ impl<'p> Links<'p> {
                 placed,
                 ptp: w.at.place.ptp().then_some(home),
                 home: cx.origin.written(MachineField::Home),
+                fix: fixes.get(k).cloned().flatten(),
             }));
         }
     }
 }
 
+/// What a link's help searches for ([`Links::searches`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Search {
+    /// Where to move the fixture of this index.
+    Fixture(usize),
+    /// A base farther from the arm's foot.
+    Base,
+    /// A turn of the tool about the beam.
+    Spin,
+}
+
 /// The beam's direction in the tool's frame.
-fn beam(axis: ToolAxis) -> Vector3<f64> {
+pub(crate) fn beam(axis: ToolAxis) -> Vector3<f64> {
     match axis {
         ToolAxis::PlusX => Vector3::x(),
         ToolAxis::MinusX => -Vector3::x(),

@@ -7,7 +7,6 @@ use super::super::rule::MachineCx;
 use super::Collision;
 use crate::diag::message::collision::Moved;
 use crate::ir::FixtureShape;
-use crate::plan::Plan;
 
 /// Most points a search re-plans in all (a probe walks the whole plan, a
 /// few tenths of a second for 50 k points): past it, fewer directions are
@@ -143,9 +142,5 @@ fn probe(cx: &MachineCx<'_>, i: usize, at: [f64; 3]) -> bool {
         machine,
         origin: cx.origin,
     };
-    let Some(mut rule) = Collision::against(&moved, Some(i)) else {
-        return false;
-    };
-    Plan::new(&program, machine).walk(&mut rule);
-    !rule.fixture_hit[i]
+    super::head_clear_of(&moved, i)
 }
