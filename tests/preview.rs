@@ -1599,3 +1599,76 @@ fn the_page_carries_the_faceplate_the_part_stands_on() {
     let dom = dom(&chromium, &file, "");
     assert_eq!(number(&dom, "data-faceplate"), 1281.1);
 }
+
+/// A probe fixed beside an A/C table (the case errors/collision/
+/// machine_fixture, moved where its help says, so it builds) is on the
+/// page as declared, in the machine's coordinates, with the table's turns;
+/// at a deposit move the browser brings it into the part's coordinates by
+/// the table's angles there: its least corner where lmdc's own frame
+/// (`PartFrame`) puts it at those angles, and the angles the plan's at
+/// some move.
+#[test]
+fn chromium_draws_a_machines_fixture_where_the_table_takes_it() {
+    let Some(chromium) = chromium("chromium_draws_a_machines_fixture_where_the_table_takes_it")
+    else {
+        return;
+    };
+    let src = std::fs::read_to_string("tests/cases/errors/collision/machine_fixture/input.lmd")
+        .unwrap()
+        .replace(
+            "at = [250 mm, 310 mm, 100 mm]",
+            "at = [250 mm, 349.9 mm, 100 mm]",
+        );
+    let p = compile(&src, &mut ())
+        .program
+        .expect("builds with the help's move");
+    let m = p.machines().next().unwrap();
+    let html = preview::html(m);
+    let d = data(&html);
+    let moving = &d["meta"]["moving"];
+    assert_eq!(moving["fixtures"][0]["name"], "probe", "{moving}");
+    assert_eq!(
+        moving["fixtures"][0]["lo"],
+        serde_json::json!([235.0, 334.9, 100.0])
+    );
+    assert_eq!(
+        d["meta"]["fixtures"],
+        serde_json::json!([]),
+        "not among those that stand still"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("probe.html");
+    std::fs::write(&file, html).unwrap();
+    let n = d["meta"]["kept"].as_u64().unwrap() as usize;
+    let dom = dom(&chromium, &file, &format!("move={}&view=top", n / 2));
+    let said = attr(&dom, "data-moving").expect("data-moving");
+    let (axes, corner) = said.split_once('|').unwrap();
+    let axes: Vec<f64> = axes.split(',').map(|v| v.parse().unwrap()).collect();
+    let corner: Vec<f64> = corner.split(',').map(|v| v.parse().unwrap()).collect();
+    let mut seen = Vec::new();
+    struct Axes<'a>(&'a mut Vec<[f64; 2]>);
+    impl Visit for Axes<'_> {
+        fn motion(&mut self, m: &Move) {
+            self.0.push([m.axes.tilt, m.axes.c]);
+        }
+    }
+    m.plan().walk(&mut Axes(&mut seen));
+    assert!(
+        seen.iter()
+            .any(|a| (a[0] - axes[0]).abs() < 1e-9 && (a[1] - axes[1]).abs() < 1e-9),
+        "{axes:?} is no move's"
+    );
+    assert!((axes[0] - 60.0).abs() < 0.1, "the cone's tilt: {axes:?}");
+    let frame = lmdc::plan::part_frame::PartFrame::of(m.machine()).unwrap();
+    let r = lmdc::plan::kinematics::Rotary {
+        tilt: axes[0],
+        c: axes[1],
+    };
+    let want = frame.at(r, false).inverse() * nalgebra::Point3::new(235.0, 334.9, 100.0);
+    for k in 0..3 {
+        assert!(
+            (corner[k] - want[k]).abs() < 1e-3,
+            "{corner:?} vs {want:?} at {axes:?}"
+        );
+    }
+}

@@ -114,6 +114,72 @@ impl PartFrame {
     }
 }
 
+/// A turn about an axis by its angle: what a moving part's frame is made
+/// of ([`PartFrame::turns`]).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Turn {
+    /// The axis's direction, unit.
+    pub dir: [f64; 3],
+    /// A point of the axis, mm.
+    pub point: [f64; 3],
+    /// The axis's angle times this is the turn (right-handed about
+    /// `dir`): a table's turns the part against its angle.
+    pub sign: f64,
+}
+
+impl Turn {
+    /// The turn by the axis's angle `deg`.
+    pub fn by(&self, deg: f64) -> Isometry3<f64> {
+        let axis = nalgebra::Unit::new_normalize(Vector3::from(self.dir));
+        let p = Vector3::from(self.point);
+        Translation3::from(p)
+            * UnitQuaternion::from_axis_angle(&axis, (self.sign * deg).to_radians())
+            * Translation3::from(-p)
+    }
+}
+
+impl PartFrame {
+    /// A moving frame as what it is made of: the tilt axis's turn, then
+    /// the C axis's (E2's), then a constant, so that
+    /// `at(axes, false) = tilt.by(axes.tilt) · c.by(axes.c) · then` and
+    /// `at(axes, true) = c.by(axes.c) · then`. `None` where it does not
+    /// move.
+    pub fn turns(&self) -> Option<([Turn; 2], Isometry3<f64>)> {
+        match self {
+            PartFrame::Fixed(_) => None,
+            PartFrame::Table {
+                kin,
+                c,
+                tilt,
+                origin,
+            } => {
+                let x = if *kin == Kinematics::TableBc {
+                    [0.0, 1.0, 0.0]
+                } else {
+                    [1.0, 0.0, 0.0]
+                };
+                let turn = |dir, p: &Vector3<f64>| Turn {
+                    dir,
+                    point: [p.x, p.y, p.z],
+                    sign: -1.0,
+                };
+                let then =
+                    Isometry3::from_parts(Translation3::from(*origin), UnitQuaternion::identity());
+                Some(([turn(x, tilt), turn([0.0, 0.0, 1.0], c)], then))
+            }
+            PartFrame::Positioner(k) => {
+                let ([t, r], then) = k.parts();
+                let turn = |(dir, point)| Turn {
+                    dir,
+                    point,
+                    sign: 1.0,
+                };
+                Some(([turn(t), turn(r)], then))
+            }
+        }
+    }
+}
+
 /// A box's least and greatest corners, mm.
 pub type Bounds = ([f64; 3], [f64; 3]);
 
@@ -177,6 +243,79 @@ mod tests {
     use crate::ir::RotaryTable;
     use nalgebra::Point3;
     use proptest::prelude::*;
+
+    /// The frame made again from its turns, on or off the tilt axis.
+    fn composed(f: &PartFrame, axes: Rotary, tilts: bool) -> Isometry3<f64> {
+        let ([t, c], then) = f.turns().expect("a moving frame");
+        let on_c = c.by(axes.c) * then;
+        if tilts {
+            on_c
+        } else {
+            t.by(axes.tilt) * on_c
+        }
+    }
+
+    fn close(a: &Isometry3<f64>, b: &Isometry3<f64>) -> bool {
+        (a.to_homogeneous() - b.to_homogeneous()).abs().max() < 1e-9
+    }
+
+    /// What the preview draws from (the turns) is the frame the check
+    /// takes, for a table and a positioner, on or off the tilt axis.
+    #[test]
+    fn the_turns_make_the_frame() {
+        let table = PartFrame::Table {
+            kin: Kinematics::TableBc,
+            c: Vector3::new(12.0, -7.0, 30.0),
+            tilt: Vector3::new(0.0, -20.0, 95.0),
+            origin: Vector3::new(40.0, 5.0, -3.0),
+        };
+        let p = crate::ir::Positioner {
+            tilt: crate::ir::PositionerAxis {
+                direction: [1.0, 0.0, 0.0],
+                point: [1500.0, 0.0, 500.0],
+                limits: [-90.0, 90.0],
+                speed: 90.0,
+            },
+            rotate: crate::ir::PositionerAxis {
+                direction: [0.0, 0.0, 1.0],
+                point: [1500.0, 0.0, 700.0],
+                limits: [-360.0, 360.0],
+                speed: 90.0,
+            },
+            keep: crate::ir::Keep::Vertical,
+            home: [0.0; 2],
+            angles: Vec::new(),
+            faceplate: None,
+        };
+        let base = crate::ir::Pose {
+            x: 10.0,
+            y: -20.0,
+            z: 30.0,
+            a: 90.0,
+            b: 0.0,
+            c: 0.0,
+        };
+        let pos = PartFrame::Positioner(Kin::new(&p, &base));
+        for f in [&table, &pos] {
+            for axes in [
+                Rotary {
+                    tilt: 37.0,
+                    c: -123.0,
+                },
+                Rotary {
+                    tilt: -80.0,
+                    c: 400.0,
+                },
+            ] {
+                for tilts in [false, true] {
+                    assert!(
+                        close(&composed(f, axes, tilts), &f.at(axes, tilts)),
+                        "{f:?} {axes:?} {tilts}"
+                    );
+                }
+            }
+        }
+    }
 
     proptest! {
         /// A table's frame puts every point of the part where the

@@ -97,6 +97,14 @@ impl Kin {
             * self.flange_base
     }
 
+    /// The two turns (E1's axis, then E2's: unit direction and a point)
+    /// and the flange at zero times the base, whose product is
+    /// [`Kin::part`].
+    pub fn parts(&self) -> ([([f64; 3], [f64; 3]); 2], Isometry3<f64>) {
+        let turn = |(d, p): &(Unit<Vector3<f64>>, Vector3<f64>)| ([d.x, d.y, d.z], [p.x, p.y, p.z]);
+        ([turn(&self.tilt), turn(&self.rotate)], self.flange_base)
+    }
+
     /// The part's base in the frame of the tilting arm (E1's body, as it
     /// stands in the robot's frame at E1 = 0) with the positioner at `e`:
     /// what turns with E1 and not with E2 sees the part there.

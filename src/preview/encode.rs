@@ -103,6 +103,9 @@ pub struct Meta<'a> {
     pub head: &'a crate::ir::Head,
     /// The fixtures, as the page draws them.
     pub fixtures: Vec<FixtureBox<'a>>,
+    /// The fixtures fixed to a machine whose table or positioner turns the
+    /// part, drawn at the slider's move (`None`: none).
+    pub moving: Option<super::moving::Moving<'a>>,
     /// A positioner's faceplate, where declared.
     pub faceplate: Option<Faceplate>,
     /// Who wrote the page.

@@ -31,6 +31,7 @@ mod encode;
 mod error;
 pub mod joints;
 mod kind;
+pub mod moving;
 pub mod rotary;
 
 use crate::diag::{Diagnostics, Severity};
@@ -366,6 +367,7 @@ fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnosti
     let approach_moves = c.approach_moves();
     let layer_error = c.errors.finish();
     let want = posed(&c.kept, &approach_moves);
+    let moving = moving::of(program, machine.machine(), &plan, want.clone());
     let arm = joints::of(machine.machine(), &plan, program.layers.len(), want);
     let rotary = rotary::of(machine.machine(), &plan);
     let meta = encode::Meta {
@@ -398,6 +400,7 @@ fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnosti
         approach_moves: &approach_moves,
         head: &machine.machine().common().head,
         fixtures: fixture_boxes(program, machine.machine()),
+        moving,
         faceplate: encode::Faceplate::of(machine.machine()),
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };

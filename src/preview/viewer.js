@@ -482,6 +482,7 @@
     drawAxes(c, dpr);
     drawScaleBar(c, dpr);
     drawFixtures(c, dpr);
+    drawMoving(c, dpr);
     drawFaceplate(c, dpr);
     if (showBodies) drawBodies(c, dpr);
     drawApproaches(c, dpr);
@@ -508,48 +509,97 @@
   // the canvas's data-fixture-tops says it is drawn (CSS px, for the tests).
   const FIXTURES = M.fixtures || [];
   const FIXTURE_EDGE = "rgba(170,90,20,0.95)";
+  // One fixture's edges, each point brought into the part's coordinates by
+  // `map`, and its name over its top's centre; returns where that is drawn.
+  function strokeFixture(c, dpr, f, map) {
+    const [x0, y0, z0] = f.lo, [x1, y1, z1] = f.hi;
+    const seg = (a, b) => {
+      const [u0, v0] = at(c, ...map(a)), [u1, v1] = at(c, ...map(b));
+      ctx.moveTo(u0, v0);
+      ctx.lineTo(u1, v1);
+    };
+    ctx.beginPath();
+    if (f.kind === "cylinder") {
+      const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2, r = (x1 - x0) / 2;
+      const rim = (a) => [cx + r * Math.cos(a), cy + r * Math.sin(a)];
+      for (const z of [z0, z1]) {
+        for (let k = 0; k < 48; k++) {
+          seg([...rim(2 * Math.PI * k / 48), z], [...rim(2 * Math.PI * (k + 1) / 48), z]);
+        }
+      }
+      for (let k = 0; k < 4; k++) {
+        const p = rim(Math.PI * k / 2);
+        seg([...p, z0], [...p, z1]);
+      }
+    } else {
+      const xs = [x0, x1], ys = [y0, y1], zs = [z0, z1];
+      for (const y of ys) for (const z of zs) seg([x0, y, z], [x1, y, z]);
+      for (const x of xs) for (const z of zs) seg([x, y0, z], [x, y1, z]);
+      for (const x of xs) for (const y of ys) seg([x, y, z0], [x, y, z1]);
+    }
+    ctx.setLineDash(f.kind === "mesh" ? [5 * dpr, 4 * dpr] : []);
+    ctx.lineWidth = 1.5 * dpr;
+    ctx.strokeStyle = FIXTURE_EDGE;
+    ctx.stroke();
+    ctx.setLineDash([]);
+    const [u, v] = at(c, ...map([(x0 + x1) / 2, (y0 + y1) / 2, z1]));
+    ctx.fillStyle = FIXTURE_EDGE;
+    ctx.font = `${11 * dpr}px sans-serif`;
+    ctx.textAlign = "center";
+    ctx.fillText(f.name, u, v - 6 * dpr);
+    return [u, v];
+  }
   function drawFixtures(c, dpr) {
     const tops = [];
     for (const f of FIXTURES) {
-      const [x0, y0, z0] = f.lo, [x1, y1, z1] = f.hi;
-      const seg = (a, b) => {
-        const [u0, v0] = at(c, ...a), [u1, v1] = at(c, ...b);
-        ctx.moveTo(u0, v0);
-        ctx.lineTo(u1, v1);
-      };
-      ctx.beginPath();
-      if (f.kind === "cylinder") {
-        const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2, r = (x1 - x0) / 2;
-        const rim = (a) => [cx + r * Math.cos(a), cy + r * Math.sin(a)];
-        for (const z of [z0, z1]) {
-          for (let k = 0; k < 48; k++) {
-            seg([...rim(2 * Math.PI * k / 48), z], [...rim(2 * Math.PI * (k + 1) / 48), z]);
-          }
-        }
-        for (let k = 0; k < 4; k++) {
-          const p = rim(Math.PI * k / 2);
-          seg([...p, z0], [...p, z1]);
-        }
-      } else {
-        const xs = [x0, x1], ys = [y0, y1], zs = [z0, z1];
-        for (const y of ys) for (const z of zs) seg([x0, y, z], [x1, y, z]);
-        for (const x of xs) for (const z of zs) seg([x, y0, z], [x, y1, z]);
-        for (const x of xs) for (const y of ys) seg([x, y, z0], [x, y, z1]);
-      }
-      ctx.setLineDash(f.kind === "mesh" ? [5 * dpr, 4 * dpr] : []);
-      ctx.lineWidth = 1.5 * dpr;
-      ctx.strokeStyle = FIXTURE_EDGE;
-      ctx.stroke();
-      ctx.setLineDash([]);
-      const [u, v] = at(c, (x0 + x1) / 2, (y0 + y1) / 2, z1);
-      ctx.fillStyle = FIXTURE_EDGE;
-      ctx.font = `${11 * dpr}px sans-serif`;
-      ctx.textAlign = "center";
-      ctx.fillText(f.name, u, v - 6 * dpr);
+      const [u, v] = strokeFixture(c, dpr, f, (p) => p);
       tops.push(`${(u / dpr).toFixed(1)},${(v / dpr).toFixed(1)}`);
     }
     canvas.dataset.fixtures = FIXTURES.length;
     canvas.dataset.fixtureTops = tops.join(";");
+  }
+
+  // Fixtures fixed to a machine whose table or positioner turns the part
+  // (docs/collision.md): each as declared, in the machine's coordinates or
+  // its tilt axis's body's, brought into the part's by the frame at the
+  // last posed move at or before the slider's — part = then⁻¹ · C⁻¹ · T⁻¹
+  // · x, the tilt's turn left out on the tilt axis's body. The canvas's
+  // data-moving says the axes used and the first one's least corner in the
+  // part's coordinates (for the tests).
+  const MOVING = M.moving;
+  // `p` turned about turn `t` by its axis at `deg` (Rodrigues' formula).
+  function turnBy(t, deg, p) {
+    const a = t.sign * deg * Math.PI / 180, c = Math.cos(a), s = Math.sin(a);
+    const k = t.dir, v = [p[0] - t.point[0], p[1] - t.point[1], p[2] - t.point[2]];
+    const kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    const x = [k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]];
+    return [0, 1, 2].map((i) => v[i] * c + x[i] * s + k[i] * kv * (1 - c) + t.point[i]);
+  }
+  function movingMove(i) {
+    const m = MOVING.moves;
+    let lo = 0, hi = m.length;
+    while (lo < hi) { const mid = (lo + hi) >> 1; if (m[mid] <= i) lo = mid + 1; else hi = mid; }
+    return lo - 1;
+  }
+  function drawMoving(c, dpr) {
+    if (!MOVING || !N) return;
+    const k = Math.max(movingMove(pose.cur), 0);
+    if (!MOVING.axes.length) return;
+    const [tilt, rot] = MOVING.axes[k], R = MOVING.then;
+    const unthen = (p) => {
+      const d = [p[0] - R[0][3], p[1] - R[1][3], p[2] - R[2][3]];
+      return [0, 1, 2].map((j) => R[0][j] * d[0] + R[1][j] * d[1] + R[2][j] * d[2]);
+    };
+    const said = [];
+    MOVING.fixtures.forEach((f, n) => {
+      const toPart = (p) => {
+        const q = MOVING.tilts[n] ? p : turnBy(MOVING.turns[0], -tilt, p);
+        return unthen(turnBy(MOVING.turns[1], -rot, q));
+      };
+      strokeFixture(c, dpr, f, toPart);
+      if (!n) said.push(...toPart(f.lo).map((v) => v.toFixed(4)));
+    });
+    canvas.dataset.moving = `${tilt},${rot}|${said.join(",")}`;
   }
 
   // A positioner's faceplate: its face's rim and the rim `thickness` behind
