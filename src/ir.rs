@@ -706,6 +706,14 @@ impl Machine {
         }
     }
 
+    /// The same, to change (a check's help tries another head).
+    pub fn common_mut(&mut self) -> &mut MachineCommon {
+        match self {
+            Machine::Robot(r) => &mut r.common,
+            Machine::Cnc(c) => &mut c.common,
+        }
+    }
+
     /// The machine's name from the source.
     pub fn name(&self) -> &str {
         &self.common().name

@@ -67,7 +67,7 @@ fn standoff_followed(name: &str) {
 }
 
 #[test]
-fn a_body_running_into_the_layer_it_builds_is_refused_without_a_standoff() {
+fn a_body_running_into_the_layer_it_builds_is_refused_and_the_slimmer_body_it_names_builds() {
     let c = compile(&case("body_part"), &mut ());
     let d = c
         .diagnostics
@@ -79,8 +79,34 @@ fn a_body_running_into_the_layer_it_builds_is_refused_without_a_standoff() {
         "{}",
         d.message
     );
-    // Raising the head does not take the body off the part beside it.
-    assert!(!d.help.as_deref().unwrap().contains("`standoff` of"));
+    // Raising the head does not take the body off the part beside it; a
+    // slimmer body does: with it the body keeps its gap (the plate's
+    // collision stays), a tenth wider it does not; with the plate's
+    // standoff too, the cone builds.
+    let help = d.help.as_deref().unwrap();
+    assert!(!help.contains("`standoff` of"), "{help}");
+    let across = number_after(help, "body = cylinder(length = 100 mm, diameter = ");
+    assert!(across < 60.0, "{help}");
+    let plate = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == Code::Collision && d.message.contains("the plate"))
+        .expect("the plate's collision");
+    let standoff = number_after(plate.help.as_deref().unwrap(), "a `standoff` of ");
+    let with =
+        |d: f64| case("body_part").replace("diameter = 60 mm)", &format!("diameter = {d} mm)"));
+    let body_hit = |src: &str| {
+        compile(src, &mut ())
+            .diagnostics
+            .iter()
+            .any(|d| d.code == Code::Collision && d.message.contains("the body"))
+    };
+    assert!(!body_hit(&with(across)), "{across} mm");
+    let wider = ((across + 0.1) * 10.0f64).round() / 10.0;
+    assert!(body_hit(&with(wider)), "{wider} mm");
+    let both = with(across).replace("standoff = 15 mm", &format!("standoff = {standoff} mm"));
+    let c = compile(&both, &mut ());
+    assert!(c.program.is_some(), "{:#?}", c.diagnostics);
 }
 
 #[test]

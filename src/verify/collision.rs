@@ -16,6 +16,7 @@
 
 mod fixed;
 mod moved;
+mod narrow;
 
 use super::approach::Approach;
 use super::rule::{MachineCx, PlanRule};
@@ -101,6 +102,10 @@ pub(super) struct Collision<'p> {
     /// keep its gap at every pose found too close; `None` once one pose is
     /// not helped by that (material beside the head).
     raise: [Option<f64>; 3],
+    /// By body, how much its radii must shrink (the factor) to keep its
+    /// gap from the part at every pose found too close; `None` once a pose
+    /// is not helped by that (the part along its axis).
+    narrow: Vec<Option<f64>>,
     /// The closest each body came to each obstacle, by
     /// [`Collision::slot`]: the distance, the move, how far along it, the
     /// focus.
@@ -161,6 +166,10 @@ impl<'p> PlanRule<'p> for Collision<'p> {
                 declared,
                 placed,
                 moved,
+                narrower: match w.at.what {
+                    Obstacle::Part(_) => self.narrowed(cx, w.at.body),
+                    _ => None,
+                },
             }));
         }
     }
@@ -212,6 +221,7 @@ impl<'p> Collision<'p> {
             width,
             worst: [None, None, None],
             raise: [Some(0.0); 3],
+            narrow: vec![Some(1.0); common.head.bodies.len()],
             closest: vec![None; common.head.bodies.len() * (cx.program.fixtures.len() + 2)],
             fixture_hit: vec![false; cx.program.fixtures.len()],
             extent: ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2], 1.0),
@@ -494,6 +504,44 @@ impl Collision<'_> {
         Worst::hit(&mut self.worst[slot], d, self.head.gap, close);
         let need = self.raise_for(pose, &lump);
         self.raise[slot] = self.raise[slot].zip(need).map(|(a, b)| a.max(b));
+        if slot == 2 {
+            let k = self.narrow_for(pose, &lump, body);
+            self.narrow[body] = self.narrow[body].zip(k).map(|(a, b)| a.min(b));
+        }
+    }
+
+    /// How much body `body`'s radii must shrink (the factor, below 1) for
+    /// it to keep its gap from `lump` at `pose`, found by halving to 1/10⁴;
+    /// `None` where even its axis does not.
+    fn narrow_for(&self, pose: &Pose, lump: &Lump, body: usize) -> Option<f64> {
+        let b = self.head.bodies.get(body)?;
+        if lump.r <= 0.0 {
+            // A cell's box: where in it the material lies is not known.
+            return None;
+        }
+        let v = sub(lump.at, pose.focus);
+        let s = dot(v, pose.up);
+        let rho = (dot(v, v) - s * s).max(0.0).sqrt();
+        let clear = |k: f64| {
+            let f = crate::collision::head::Frustum {
+                s: b.s,
+                r: b.r.map(|r| r * k),
+            };
+            f.distance(s, rho) - lump.r >= self.head.gap
+        };
+        if !clear(0.0) {
+            return None;
+        }
+        let (mut lo, mut hi) = (0.0, 1.0);
+        while hi - lo > 1e-4 {
+            let mid = (lo + hi) / 2.0;
+            if clear(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        Some(lo)
     }
 
     /// How far up its beam the head at `pose` must sit to keep its gap from

@@ -41,6 +41,18 @@ pub struct Hit<'a, At> {
     /// Where that fixture keeps the gap, checked by making the plan again
     /// with it there.
     pub moved: Option<Moved>,
+    /// The body made narrower so that it keeps the gap from the part at
+    /// every pose found too close (where raising the head does not help).
+    pub narrower: Option<Narrower>,
+}
+
+/// A head's body as declared, narrowed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Narrower {
+    /// Its length, mm.
+    pub length: f64,
+    /// Its diameters at its lower and upper ends, mm (equal: a cylinder).
+    pub diameters: [f64; 2],
 }
 
 /// A fixture moved along X or Y.
@@ -86,6 +98,19 @@ pub fn collision<At: Display>(h: &Hit<'_, At>) -> Diagnostic {
             "a `standoff` of {} mm (the nozzle's tip that far from the focus) keeps the gap at every such pose; or tilt the nozzle less there, or bring the focus nearer the surface (a smaller defocus below it) by as much",
             short_up(s)
         ),
+        (With::Part(_), None, _) if h.narrower.is_some() => {
+            let n = h.narrower.as_ref().expect("matched");
+            let [d0, d1] = n.diameters.map(short);
+            let shape = if n.diameters[0] == n.diameters[1] {
+                format!("cylinder(length = {} mm, diameter = {d0} mm)", short(n.length))
+            } else {
+                format!("frustum(length = {} mm, tip = {d0} mm, top = {d1} mm)", short(n.length))
+            };
+            format!(
+                "the part leans over the head's side here, and raising the head does not take its {} off it: a {} at most {d1} mm across (`{} = {shape}`) would keep the gap at every such pose — a slimmer head; else tilt the nozzle less there, turn the part (a positioner's `keep`, the layers' `nozzle`), or build it in another order",
+                h.body, h.body, h.body
+            )
+        }
         (_, None, _) => "the head passes beside what it comes near: tilt the nozzle less there, turn the part (a positioner's `keep`, the layers' `nozzle`), or build it in another order".to_string(),
     };
     let d = Diagnostic::error(Code::Collision, message).help(format!(

@@ -230,7 +230,8 @@ fn tilts(
         return None;
     };
     let tilting = match machines.iter().find(|(m, _)| m.name() == name) {
-        Some((Machine::Cnc(c), _)) => crate::plan::effective_kinematics(c).is_table(),
+        // Fewer than five axes: no rotary axes, whatever the kinematics.
+        Some((Machine::Cnc(c), _)) => c.axes >= 5 && c.kinematics.is_table(),
         Some((Machine::Robot(r), _)) => r.positioner.is_some(),
         // A machine refused on its own: nothing more to say.
         None => return None,
