@@ -33,6 +33,9 @@ use crate::ir::{Keep, Machine, Pose, Positioner, Program};
 use crate::plan::arm::frame;
 use nalgebra::{Isometry3, Point3, Rotation3, Translation3, Unit, UnitQuaternion, Vector3};
 
+/// An axis as a unit direction and a point of it, mm.
+pub type AxisLine = ([f64; 3], [f64; 3]);
+
 /// The positioner's kinematics with the part's base on its flange.
 #[derive(Clone, Debug)]
 pub struct Kin {
@@ -100,7 +103,7 @@ impl Kin {
     /// The two turns (E1's axis, then E2's: unit direction and a point)
     /// and the flange at zero times the base, whose product is
     /// [`Kin::part`].
-    pub fn parts(&self) -> ([([f64; 3], [f64; 3]); 2], Isometry3<f64>) {
+    pub fn parts(&self) -> ([AxisLine; 2], Isometry3<f64>) {
         let turn = |(d, p): &(Unit<Vector3<f64>>, Vector3<f64>)| ([d.x, d.y, d.z], [p.x, p.y, p.z]);
         ([turn(&self.tilt), turn(&self.rotate)], self.flange_base)
     }

@@ -428,20 +428,6 @@ fn posed(kept: &[usize], approaches: &[Option<encode::ApproachMove>]) -> Vec<(us
         .collect()
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn decimation_fits_the_budget_with_the_smallest_stride() {
-        assert_eq!(decimation(70_000, BUDGET).moves, 1);
-        let d = decimation(3_607_000, BUDGET);
-        assert_eq!((d.layers, d.moves), (4, 4));
-        assert!(3_607_000usize.div_ceil(16) <= BUDGET);
-        assert_eq!(decimation(10, 0).moves, 4);
-    }
-}
-
 /// The fixtures `machine`'s head meets, as drawn in the part's coordinates
 /// (docs/collision.md): those on the plate, and those fixed to the machine
 /// where the part does not turn, as their box there (a turned one's box
@@ -462,4 +448,18 @@ fn fixture_boxes<'a>(
             b
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimation_fits_the_budget_with_the_smallest_stride() {
+        assert_eq!(decimation(70_000, BUDGET).moves, 1);
+        let d = decimation(3_607_000, BUDGET);
+        assert_eq!((d.layers, d.moves), (4, 4));
+        assert!(3_607_000usize.div_ceil(16) <= BUDGET);
+        assert_eq!(decimation(10, 0).moves, 4);
+    }
 }
