@@ -9,12 +9,12 @@ use lmdc::pipeline::compile;
 use lmdc::plan::{Move, MoveKind, Visit};
 use proptest::prelude::*;
 
-fn case(name: &str) -> String {
+pub(crate) fn case(name: &str) -> String {
     std::fs::read_to_string(format!("tests/cases/errors/collision/{name}/input.lmd")).unwrap()
 }
 
 /// The number after `before` in `text`.
-fn number_after(text: &str, before: &str) -> f64 {
+pub(crate) fn number_after(text: &str, before: &str) -> f64 {
     let at = text
         .find(before)
         .unwrap_or_else(|| panic!("no `{before}` in {text}"))
@@ -1287,8 +1287,12 @@ struct Moves<'a> {
     ir: &'a lmdc::ir::Program,
     width: f64,
     last: Option<[f64; 3]>,
-    out: Vec<([f64; 3], [f64; 3], Option<([f64; 3], [f64; 3], f64, f64)>)>,
+    out: Vec<([f64; 3], [f64; 3], Option<Bead>)>,
 }
+
+/// A bead's centre line's ends, and the radii of a capsule inside it and
+/// of one round it.
+type Bead = ([f64; 3], [f64; 3], f64, f64);
 
 impl Visit for Moves<'_> {
     fn motion(&mut self, m: &Move) {
@@ -1359,7 +1363,7 @@ fn head_to_beads(ir: &lmdc::ir::Program) -> (f64, f64) {
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let (mut inner, mut outer) = (f64::INFINITY, f64::INFINITY);
-    let mut laid: Vec<([f64; 3], [f64; 3], f64, f64)> = Vec::new();
+    let mut laid: Vec<Bead> = Vec::new();
     for i in 1..moves.out.len() {
         let (a, ua, _) = moves.out[i - 1];
         let (b, ub, bead) = moves.out[i];

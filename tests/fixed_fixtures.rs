@@ -5,25 +5,9 @@
 //! (the same refusal, the same distances); on a tilting table it is met
 //! where the table takes the part, and the help's move builds.
 
+use super::collision::{case, number_after};
 use lmdc::diag::Code;
 use lmdc::pipeline::compile;
-
-fn case(name: &str) -> String {
-    std::fs::read_to_string(format!("tests/cases/errors/collision/{name}/input.lmd")).unwrap()
-}
-
-/// The number after `before` in `text`.
-fn number_after(text: &str, before: &str) -> f64 {
-    let at = text
-        .find(before)
-        .unwrap_or_else(|| panic!("no `{before}` in {text}"))
-        + before.len();
-    let s: String = text[at..]
-        .chars()
-        .take_while(|c| c.is_ascii_digit() || *c == '.' || *c == '-')
-        .collect();
-    s.parse().unwrap()
-}
 
 /// The collision messages of `src`, and their helps.
 fn collisions(src: &str) -> Vec<(String, String)> {

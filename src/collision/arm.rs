@@ -235,19 +235,10 @@ impl Solid {
         if !clear(0.0) {
             return None;
         }
-        let (mut lo, mut hi) = (0.0, diameter);
-        if clear(hi) {
-            return Some(hi);
+        if clear(diameter) {
+            return Some(diameter);
         }
-        while hi - lo > 0.01 {
-            let mid = (lo + hi) / 2.0;
-            if clear(mid) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        Some(lo)
+        Some(super::bisect(0.0, diameter, 0.01, clear))
     }
 }
 

@@ -532,16 +532,7 @@ impl Collision<'_> {
         if !clear(0.0) {
             return None;
         }
-        let (mut lo, mut hi) = (0.0, 1.0);
-        while hi - lo > 1e-4 {
-            let mid = (lo + hi) / 2.0;
-            if clear(mid) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        Some(lo)
+        Some(crate::collision::bisect(0.0, 1.0, 1e-4, clear))
     }
 
     /// How far up its beam the head at `pose` must sit to keep its gap from
@@ -570,16 +561,7 @@ impl Collision<'_> {
                 return None;
             }
         }
-        let mut lo = 0.0;
-        while hi - lo > 0.01 {
-            let mid = (lo + hi) / 2.0;
-            if clear(mid) {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
-        Some(hi)
+        Some(crate::collision::bisect(hi, 0.0, 0.01, clear))
     }
 
     /// The material's bound along `u`, cached for the direction last asked.
