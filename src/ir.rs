@@ -1121,7 +1121,7 @@ pub struct Robot {
     pub max_points_per_module: usize,
     /// The arm, when the robot declares it: its reach, axis limits,
     /// singularities and axis speeds are then checked on every move.
-    pub arm: Option<Arm>,
+    pub arm: Option<Box<Arm>>,
     /// The tool's turn about the beam (`spin`): free for a coaxial nozzle,
     /// declared or chosen by lmdc ([`crate::plan::spin`]).
     pub spin: Spin,
@@ -1268,11 +1268,18 @@ pub struct Arm {
     /// LIN must stay, deg.
     pub singularity: f64,
     /// The radii of its links as the collision checks take them — the
-    /// upper arm, the forearm, the wrist — where the robot declares them
-    /// (`arm_links`), mm; `None`: the catalogue's
-    /// ([`crate::target::arm::Model::links`]), for an arm from it.
+    /// upper arm, the forearm, the wrist — mm: the robot's own
+    /// (`arm_links`), else the catalogue's
+    /// ([`crate::target::arm::Model::links`]); `None`: an `opw(…)` arm
+    /// without `arm_links`, whose links are not checked.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub links: Option<[f64; 3]>,
+    /// The radius of its column (the foot up to A2, taking in A1's and
+    /// A2's drives) as the collision checks take it, mm: the catalogue's
+    /// ([`crate::target::arm::Model::column`]); `None`: an `opw(…)` arm,
+    /// whose column is not known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub column: Option<f64>,
 }
 
 /// The cell's shielding gas and powder feeder as a machine switches them
@@ -1714,7 +1721,7 @@ mod wire {
                 full_scale_power: r.full_scale_power,
                 home: r.home,
                 max_points_per_module: r.max_points_per_module,
-                arm: r.arm,
+                arm: r.arm.map(Box::new),
                 spin: r.spin,
                 positioner: r.positioner,
             }
@@ -1736,7 +1743,7 @@ mod wire {
                 max_speed: c.max_speed,
                 home: r.home,
                 max_points_per_module: r.max_points_per_module,
-                arm: r.arm,
+                arm: r.arm.map(|a| *a),
                 spin: r.spin,
                 positioner: r.positioner,
                 clearance: c.clearance,

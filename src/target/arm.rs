@@ -77,7 +77,8 @@ impl Model {
             speeds: self.speeds,
             margin,
             singularity,
-            links: None,
+            links: Some(self.links),
+            column: Some(self.column),
         }
     }
 }

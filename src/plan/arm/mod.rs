@@ -66,7 +66,7 @@ impl Solver {
             base
         };
         let tool = frame(&robot.tool.value?);
-        Some(Solver::with(arm, base, tool))
+        Some(Solver::with(*arm, base, tool))
     }
 
     /// The solver of `arm` with a base and tool frame.

@@ -115,7 +115,7 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
         full_scale_power: Power(full?.0).watts(),
         home: home?,
         max_points_per_module: lines?,
-        arm: arm?,
+        arm: arm?.map(Box::new),
         spin: spin?,
         positioner: None,
     })
@@ -263,6 +263,7 @@ fn opw_arm(a: &Fields<'_>, diags: &mut Diagnostics) -> Option<Arm> {
         margin: 0.0,
         singularity: 0.0,
         links: None,
+        column: None,
     })
 }
 

@@ -171,10 +171,9 @@ impl<'p> Links<'p> {
     pub(crate) fn new(cx: &MachineCx<'p>, robot: &Robot) -> Option<Links<'p>> {
         let arm = robot.arm.as_ref()?;
         let model = arm.model.as_deref().and_then(crate::target::arm::model);
-        let radii = match arm.links {
-            Some(r) => r,
-            None => model?.links,
-        };
+        // The IR's, else (an IR written before it carried them) the
+        // catalogue's.
+        let radii = arm.links.or(model.map(|m| m.links))?;
         let base = frame(robot.base.value.as_ref()?);
         let faceplate = robot.positioner.as_ref().and_then(|p| p.faceplate);
         let mut solids: Vec<Solid> = faceplate
@@ -191,7 +190,7 @@ impl<'p> Links<'p> {
         let mut targets: Vec<Target> = faceplate.map(|_| Target::Faceplate).into_iter().collect();
         targets.extend(ours.iter().map(|&i| Target::Fixture(i)));
         targets.extend([Target::Plate, Target::Own(UPPER_ARM)]);
-        let column = model.map(|m| m.column);
+        let column = arm.column.or(model.map(|m| m.column));
         if column.is_some() {
             targets.push(Target::Own(COLUMN));
         }
