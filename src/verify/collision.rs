@@ -115,7 +115,7 @@ pub(super) struct Collision<'p> {
     /// The box round every focus of the plan, seen from above (least and
     /// greatest X and Y), and the least `|up_z|` of its beams: how far the
     /// head reaches sideways ([`Collision::moved`]).
-    extent: ([f64; 2], [f64; 2], f64),
+    extent: Extent,
     /// The one fixture checked, in a probe ([`Collision::against`]).
     only: Option<usize>,
     /// The fixtures fixed to the machine, checked in its coordinates: on
@@ -253,12 +253,7 @@ impl Visit for Collision<'_> {
             focus: m.to,
             up: self.up(m.normal),
         };
-        let (lo, hi, up_z) = &mut self.extent;
-        for k in 0..2 {
-            lo[k] = lo[k].min(m.to[k]);
-            hi[k] = hi[k].max(m.to[k]);
-        }
-        *up_z = up_z.min(pose.up[2].abs());
+        widen(&mut self.extent, &pose);
         match self.last.filter(|_| !m.kind.ptp()) {
             Some(from) => self.sweep(from, pose, m.at),
             None => self.check(&pose, (m.at, 1.0)),
@@ -775,6 +770,20 @@ pub(super) fn fixture_lumps(f: &Fixture, i: usize, m: &mut Material) {
 /// How many pieces of at most [`FIXTURE_STEP_MM`] a length takes.
 fn steps(len: f64) -> usize {
     ((len / FIXTURE_STEP_MM).ceil() as usize).clamp(1, 10_000)
+}
+
+/// The box round every focus seen from above, and the least `|up_z|` of
+/// the beams: how far a plan's head reaches sideways.
+type Extent = ([f64; 2], [f64; 2], f64);
+
+/// Takes the head at `pose` into `extent`.
+fn widen(extent: &mut Extent, pose: &Pose) {
+    let (lo, hi, up_z) = extent;
+    for k in 0..2 {
+        lo[k] = lo[k].min(pose.focus[k]);
+        hi[k] = hi[k].max(pose.focus[k]);
+    }
+    *up_z = up_z.min(pose.up[2].abs());
 }
 
 fn lerp(a: &Pose, b: &Pose, t: f64) -> Pose {

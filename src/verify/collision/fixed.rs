@@ -9,7 +9,7 @@
 //! in pieces over which its axes turn at most [`PIECE_DEG`], each taken as
 //! straight.
 
-use super::{fixture_lumps, lerp, CAP_MM, MIN_STEP_MM};
+use super::{fixture_lumps, lerp, widen, Extent, CAP_MM, MIN_STEP_MM};
 use crate::collision::head::{HeadShape, Pose};
 use crate::collision::material::{Lump, Material};
 use crate::ir::Program;
@@ -47,7 +47,7 @@ pub(super) struct Fixed {
     /// As [`super::Collision`]'s `extent`, in the machine's coordinates:
     /// the box round every focus checked, seen from above, and the least
     /// `|up_z|` (where to move a fixture, [`super::Collision::moved`]).
-    pub(super) extent: ([f64; 2], [f64; 2], f64),
+    pub(super) extent: Extent,
 }
 
 impl Fixed {
@@ -137,7 +137,7 @@ impl Fixed {
     ) {
         let (b, eb) = Self::along(&ends, t1);
         let end = self.in_machine(&b, eb);
-        self.widen(&end);
+        widen(&mut self.extent, &end);
         let (a, ea) = Self::along(&ends, t0);
         let rate = self.in_machine(&a, ea).moved(&end, head.reach) / (t1 - t0);
         let mut t = t0;
@@ -166,17 +166,6 @@ impl Fixed {
         }
     }
 
-    /// Takes the head at `pose` (the machine's coordinates) into the
-    /// extent.
-    fn widen(&mut self, pose: &Pose) {
-        let (lo, hi, up_z) = &mut self.extent;
-        for k in 0..2 {
-            lo[k] = lo[k].min(pose.focus[k]);
-            hi[k] = hi[k].max(pose.focus[k]);
-        }
-        *up_z = up_z.min(pose.up[2].abs());
-    }
-
     /// Checks the head at `p` (the part's coordinates) with the axes at
     /// `axes`, `way` along its move, and certifies the pose.
     fn check(
@@ -187,7 +176,7 @@ impl Fixed {
         out: &mut Vec<Found>,
     ) {
         let pose = self.in_machine(p, axes);
-        self.widen(&pose);
+        widen(&mut self.extent, &pose);
         let d = match self.material.nearest(head, &pose, CAP_MM) {
             Some((d, body, lump)) => {
                 out.push(Found {
