@@ -16,7 +16,9 @@ mod segmented_ring;
 mod top;
 pub use calibration::{Calibration, Coupon, CouponKind};
 pub use segmented_ring::{HeightControl, LoopRun, RingBuild};
-pub use top::{Axis, ScanBase, Top, TopExpr, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE};
+pub use top::{
+    Axis, Level, ScanBase, Top, TopExpr, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE,
+};
 
 /// A whole checked `.lmd` file.
 #[derive(Clone, Debug)]

@@ -134,3 +134,70 @@ pub fn top_below(
         short(surface)
     ))
 }
+
+/// `level = …` on a variable slicing whose part is not built on a scan.
+pub fn level_without_scan(at: Span, solid: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Scan,
+        "`level` levels a scanned part's wear before the regular layers, and this part is not built on a scan",
+    )
+    .label(at, "levelling")
+    .label(solid, "built on the plate")
+    .help("build on the scan with `on = scan(file = …)` in the extrusion, or leave `level` out")
+}
+
+/// The scan rises above the level by more than a levelling pass may leave
+/// (`slack`) at `at_point`.
+pub fn above_level(
+    at_point: [f64; 2],
+    surface: f64,
+    level: f64,
+    slack: f64,
+    at: Span,
+    scan: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::ScanCoverage,
+        format!(
+            "the scanned surface at {} is at {} mm, {} mm above the level {} mm: the regular layers would run into the part there",
+            p2(at_point),
+            short(surface),
+            short(surface - level),
+            short(level),
+        ),
+    )
+    .label(at, "the level")
+    .label(scan, "the scan")
+    .help(format!(
+        "raise the level to at least {} mm (the scan may stand at most {} mm, half the lowest bead, above it), or write `level = auto` (the scan's highest point under the tracks)",
+        short(surface - slack),
+        short(slack)
+    ))
+}
+
+/// The top is `gap` mm above the level at `at_point`, less than one
+/// regular layer of `h_min`.
+pub fn top_near_level(
+    at_point: [f64; 2],
+    top: f64,
+    level: f64,
+    h_min: f64,
+    at: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::ScanCoverage,
+        format!(
+            "the top ({} mm) at {} is {} mm above the level {} mm: a regular layer lays at least {} mm",
+            short(top),
+            p2(at_point),
+            short(top - level),
+            short(level),
+            short(h_min)
+        ),
+    )
+    .label(at, "the level")
+    .help(format!(
+        "lower the level to {} mm or below, or raise the top; `level = none` lays every layer as a fraction of the top less the scan",
+        short(top - h_min)
+    ))
+}

@@ -125,6 +125,9 @@ pub struct VariableSlicing {
     /// A fixed centre distance between tracks and where it is declared;
     /// `None`: `balanced`, each pair spaced so that unequal beads meet level.
     pub offset: Option<(Length, Span)>,
+    /// `level = …`: on a scan, levelling passes up to a height, then
+    /// regular layers (docs/repair.md, *Levelling*).
+    pub level: Level,
     /// `E_H`: the largest mean |height error| of the finished top along a
     /// track that constant-speed segments may leave.
     pub tolerance: Length,
@@ -136,6 +139,28 @@ pub struct VariableSlicing {
     pub tolerance_span: Option<Span>,
     /// `min_length = …`, if written.
     pub min_length_span: Option<Span>,
+}
+
+/// How a repair's layers start on the scan (`level = …`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Level {
+    /// `none`: every layer lays the same fraction of the top less the scan.
+    None,
+    /// `auto`: levelling up to the scan's highest point under the tracks.
+    Auto(Span),
+    /// A height above the part's `z = 0`: levelling passes fill the wear up
+    /// to it, regular layers go on from it to the top.
+    At(Length, Span),
+}
+
+impl Level {
+    /// Where it is written, unless `none`.
+    pub fn span(self) -> Option<Span> {
+        match self {
+            Level::None => None,
+            Level::Auto(s) | Level::At(_, s) => Some(s),
+        }
+    }
 }
 
 /// The `segments` tolerance when none is written: a tenth of a millimetre of

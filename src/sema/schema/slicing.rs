@@ -355,6 +355,13 @@ pub mod variable {
         Default(DefaultWord("balanced")),
         "the distance between track centres; `balanced`: neighbouring beads meet level",
     );
+    /// `level = …`.
+    pub static LEVEL: Field = Field::new(
+        "level",
+        Either(&[Word(&["none", "auto"]), Quantity(Dim::LENGTH, Any)]),
+        Default(DefaultWord("none")),
+        "on a scan: fill the wear up to this height first (levelling passes, nothing where it is thinner than half the lowest bead), then regular layers to the top; `auto`: the scan's highest point under the tracks; `none`: every layer a fraction of the top less the scan",
+    );
     /// `segments { … }`.
     pub static SEGMENTS: Field = Field::new(
         "segments",
@@ -387,6 +394,7 @@ pub static VARIABLE: Block = Block::new(
         &variable::LAYERS,
         &variable::SCAN,
         &variable::OFFSET,
+        &variable::LEVEL,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
         &variable::SEGMENTS,

@@ -13,7 +13,7 @@ use crate::sema::eval::Env;
 use crate::sema::fields::Fields;
 use crate::sema::model::Tolerance;
 use crate::sema::model::{
-    Axis, Bead, HeightModel, Shape, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE,
+    Axis, Bead, HeightModel, Level, Shape, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE,
 };
 use crate::sema::schema::slicing::{variable, SEGMENTS, VARIABLE};
 use crate::sema::solid::extrude::{declared_offset, Source, Written};
@@ -78,6 +78,15 @@ pub fn read<'a>(
             .quantity(&variable::OFFSET, diags)
             .map(|(d, sp)| Some((Length(d), sp))),
     };
+    let level = match f.value(&variable::LEVEL, diags) {
+        None if f.has(&variable::LEVEL) => None,
+        None => Some(Level::None),
+        Some(v) if v.value == Value::Symbol("none".into()) => Some(Level::None),
+        Some(v) if v.value == Value::Symbol("auto".into()) => Some(Level::Auto(v.span)),
+        Some(_) => f
+            .quantity(&variable::LEVEL, diags)
+            .map(|(z, sp)| Level::At(Length(z), sp)),
+    };
     let segments = match f.nested(&variable::SEGMENTS) {
         Some((inner, at)) => {
             let s = Fields::block(
@@ -101,12 +110,13 @@ pub fn read<'a>(
         None => Some((None, None)),
     };
     let declared = offset.flatten();
-    let slicing = match (segments, layers, scan, offset) {
-        (Some((tolerance, min_length)), Some(layers), Some(scan), Some(offset)) => {
+    let slicing = match (segments, layers, scan, offset, level) {
+        (Some((tolerance, min_length)), Some(layers), Some(scan), Some(offset), Some(level)) => {
             Some(VariableSlicing {
                 layers,
                 scan,
                 offset,
+                level,
                 tolerance: tolerance.map_or(DEFAULT_TOLERANCE, |t| Length(t.0)),
                 min_length: min_length.map(|m| Length(m.0)),
                 span,
@@ -169,6 +179,10 @@ pub fn assemble(
 ) -> Option<(TopExtrusion, VariableSlicing)> {
     let slicing = spec.slicing?;
     let (top, top_span) = w.top?;
+    if let (Some(at), None) = (slicing.level.span(), &w.base) {
+        diags.push(message::scan::level_without_scan(at, w.span));
+        return None;
+    }
     let (shape, shape_span) = footprint(env, w.source, w.profile_span, diags)?;
     Some((
         TopExtrusion {

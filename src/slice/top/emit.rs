@@ -9,10 +9,10 @@
 //! ([`crate::slice::variable::speed`]). Tracks alternate direction, one
 //! layer to the next and one track to the next; the laser is on along each.
 
+use super::surface::Base;
 use super::tracks::Track;
-use crate::geometry::scan::HeightField;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
-use crate::sema::model::{Axis, Bead, Model, TopExtrusion};
+use crate::sema::model::{Axis, Bead, Model};
 use crate::slice::variable::speed::{path_speed, HeightMap};
 use crate::units::{Length, Speed};
 use std::num::NonZeroU32;
@@ -23,17 +23,21 @@ pub struct Process<'m> {
     powder: f32,
     defocus: f32,
     speeds: [f64; 2],
-    base: Option<&'m HeightField>,
+    base: Base<'m>,
+    /// The index of the first layer these layers follow (the levelling
+    /// passes before them), for the power schedule.
+    pub first: u32,
 }
 
 impl<'m> Process<'m> {
     /// The model's process block and bead speed range, and `ex`'s scan.
-    pub fn of(model: &Model, bead: &Bead, ex: &'m TopExtrusion) -> Self {
+    pub fn of(model: &Model, bead: &Bead, base: Base<'m>) -> Self {
         Process {
             powder: model.process.powder.g_min() as f32,
             defocus: model.process.defocus.0 as f32,
             speeds: [bead.speed[0].0, bead.speed[1].0],
-            base: ex.base.as_ref().map(|b| &*b.surface),
+            base,
+            first: 0,
         }
     }
 
@@ -41,7 +45,7 @@ impl<'m> Process<'m> {
     /// plate's 0. The tracks' points are where the scan has a surface (the
     /// count checked every one).
     fn base(&self, x: f64, y: f64) -> f64 {
-        self.base.and_then(|b| b.at([x, y])).unwrap_or(0.0)
+        self.base.at([x, y]).unwrap_or(0.0)
     }
 }
 
@@ -55,7 +59,7 @@ pub fn layer(
     i: u32,
     n: NonZeroU32,
 ) -> Layer {
-    let power = model.process.power.at(i as usize).watts() as f32;
+    let power = model.process.power.at((process.first + i) as usize).watts() as f32;
     let nf = n.get() as f64;
     let paths = tracks
         .iter()
@@ -91,7 +95,7 @@ pub fn layer(
 
 /// The points of one track on layer `i`, backwards when `reverse`.
 #[allow(clippy::too_many_arguments)]
-fn track(
+pub(super) fn track(
     tr: &Track,
     map: &impl HeightMap,
     process: &Process<'_>,

@@ -24,13 +24,14 @@ mod deposit;
 mod emit;
 mod footprint;
 mod layout;
+mod level;
 mod surface;
 mod too_short;
 mod tracks;
 
 use crate::diag::{message, Diagnostics};
 use crate::ir::Layer;
-use crate::sema::model::{Axis, Bead, Model, TopExtrusion, VariableSlicing};
+use crate::sema::model::{Axis, Bead, Level, Model, TopExtrusion, VariableSlicing};
 use crate::slice::variable::segments::SegmentSpec;
 use crate::slice::variable::speed::BeadMap;
 use crate::slice::variable::Positive;
@@ -39,7 +40,7 @@ use crate::units::Length;
 use count::TopRange;
 use footprint::{sample, Footprint, Sampled};
 use std::num::NonZeroU32;
-use surface::Surface;
+use surface::{Base, Surface};
 
 /// Rounds of count → layout → tracks before the range must have settled.
 const MAX_ROUNDS: usize = 6;
@@ -56,9 +57,35 @@ pub fn slice(
     ex: &TopExtrusion,
     slicing: &VariableSlicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    match (&ex.base, slicing.level) {
+        (Some(scan), Level::Auto(_) | Level::At(..)) => {
+            level::slice(model, bead, ex, slicing, scan)
+        }
+        _ => build(model, bead, ex, slicing, Base::of(ex, None), 0).map(|b| (b.layers, b.warnings)),
+    }
+}
+
+/// Variable layers built: the layers, their warnings, and the tracks' lines.
+pub(super) struct Built {
+    layers: Vec<Layer>,
+    warnings: Diagnostics,
+    scan: Axis,
+    lines: layout::Layout,
+}
+
+/// Slices `ex` from `base` up to its top; the layers follow `first` layers
+/// laid before them (the power schedule's index).
+fn build(
+    model: &Model,
+    bead: &Bead,
+    ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+    base: Base<'_>,
+    first: u32,
+) -> Result<Built, Diagnostics> {
     let w = bead.width.0;
     let fp = Footprint::new(ex, w)?;
-    let mut top = Surface::new(ex, |axis| fp.written_extent(axis));
+    let mut top = Surface::over(ex, |axis| fp.written_extent(axis), base);
     // Samples every eighth of a bead: a top that bends within a bead is
     // seen, a plane costs nothing (its samples are dropped again).
     let pitch = w / 8.0;
@@ -136,7 +163,15 @@ pub fn slice(
             scan,
             n,
         };
-        return finish(model, bead, ex, slicing, &tracks);
+        let mut process = emit::Process::of(model, bead, base);
+        process.first = first;
+        let (layers, warnings) = finish(model, bead, ex, slicing, &tracks, &process)?;
+        return Ok(Built {
+            layers,
+            warnings,
+            scan,
+            lines,
+        });
     }
     if let Some((miss, n)) = missed {
         return Err(deposit::report(&miss, n, bead, slicing, ex).into());
@@ -186,6 +221,7 @@ fn finish(
     ex: &TopExtrusion,
     slicing: &VariableSlicing,
     p: &Planned<'_>,
+    process: &emit::Process<'_>,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     let n = p.n;
     let mut warnings = Diagnostics::new();
@@ -203,7 +239,6 @@ fn finish(
         )
         .into());
     }
-    let process = emit::Process::of(model, bead, ex);
     // Each track's speeds raise the layer by its height over the strip it
     // fills.
     let maps = p
@@ -213,7 +248,7 @@ fn finish(
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| internal(e.to_string()))?;
     let layers = (0..n.get())
-        .map(|i| emit::layer(model, &maps, &process, p.tracks, p.scan, i, n))
+        .map(|i| emit::layer(model, &maps, process, p.tracks, p.scan, i, n))
         .collect();
     Ok((layers, warnings))
 }

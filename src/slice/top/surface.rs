@@ -20,8 +20,39 @@ use crate::sema::TopHeights;
 pub struct Surface<'m> {
     /// The top's form.
     pub form: Form<'m>,
-    /// The scanned surface under it, if the part is built on a scan.
-    base: Option<&'m HeightField>,
+    /// What the layers start on.
+    base: Base<'m>,
+}
+
+/// What a variable solid's layers start on.
+#[derive(Clone, Copy, Debug)]
+pub enum Base<'m> {
+    /// The plate, at z = 0.
+    Plate,
+    /// The scanned surface a repair builds on.
+    Scan(&'m HeightField),
+    /// A level the levelling passes left (`level = …`), mm.
+    Level(f64),
+}
+
+impl<'m> Base<'m> {
+    /// `ex`'s base: its scan, or the plate; or the level `z` when given.
+    pub fn of(ex: &'m TopExtrusion, level: Option<f64>) -> Self {
+        match (level, &ex.base) {
+            (Some(z), _) => Base::Level(z),
+            (None, Some(b)) => Base::Scan(&b.surface),
+            (None, None) => Base::Plate,
+        }
+    }
+
+    /// Its height at `p`, mm, where it has one.
+    pub fn at(self, p: [f64; 2]) -> Option<f64> {
+        match self {
+            Base::Plate => Some(0.0),
+            Base::Scan(s) => s.at(p),
+            Base::Level(z) => Some(z),
+        }
+    }
 }
 
 /// How the top is written.
@@ -41,9 +72,14 @@ impl<'m> Surface<'m> {
     /// The top of `ex` over a footprint whose written extent along an axis
     /// is `extent(axis)` (the extreme edges `edges(…)` refers to).
     pub fn new(ex: &'m TopExtrusion, extent: impl Fn(Axis) -> [f64; 2]) -> Self {
+        Self::over(ex, extent, Base::of(ex, None))
+    }
+
+    /// The top of `ex` over `base`.
+    pub fn over(ex: &'m TopExtrusion, extent: impl Fn(Axis) -> [f64; 2], base: Base<'m>) -> Self {
         Surface {
             form: Form::new(ex, extent),
-            base: ex.base.as_ref().map(|b| &*b.surface),
+            base,
         }
     }
 
@@ -51,10 +87,10 @@ impl<'m> Surface<'m> {
     /// scan): a positive, finite height, or why not.
     pub fn at(&mut self, p: [f64; 2]) -> Result<f64, Bad> {
         let h = self.form.at(p)?;
-        let Some(base) = self.base else {
+        if let Base::Plate = self.base {
             return Ok(h);
-        };
-        let Some(b) = base.at(p) else {
+        }
+        let Some(b) = self.base.at(p) else {
             return Err(Bad::new(p, Why::Uncovered));
         };
         if h - b > 0.0 && (h - b).is_finite() {

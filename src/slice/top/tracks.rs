@@ -114,49 +114,14 @@ pub fn plan(
                 .into_iter()
                 .filter_map(|t| eval(Footprint::point(scan, t, c)).map(|h| (t, h)))
                 .collect();
-            let kept = straight_dropped(&samples);
-            if kept.len() < 2 {
-                continue;
-            }
-            let profile = TrackProfile::new(kept.iter().map(|&(t, h)| (Length(t), Length(h))))
-                .map_err(Problem::Invalid)?;
-            match segment(&profile, spec) {
-                Ok(s) => {
-                    let mut t: Vec<f64> = kept.iter().map(|p| p.0).collect();
-                    t.extend(s.segments.iter().map(|g| g.start.0));
-                    t.sort_by(f64::total_cmp);
-                    t.dedup_by(|x, y| (*x - *y).abs() <= 1e-9 * y.abs().max(1.0));
-                    let h: Vec<f64> = t
-                        .iter()
-                        .map(|&t| eval(Footprint::point(scan, t, c)).unwrap_or(f64::NAN))
-                        .collect();
-                    let mut q = 0;
-                    let seg = t
-                        .windows(2)
-                        .map(|m| {
-                            let mid = 0.5 * (m[0] + m[1]);
-                            while q + 1 < s.segments.len() && mid >= s.segments[q].end.0 {
-                                q += 1;
-                            }
-                            q
-                        })
-                        .collect();
-                    let heights = s.segments.iter().map(|g| g.height.0).collect();
-                    out.tracks.push(Track {
-                        c,
-                        pitch: track_pitch,
-                        t,
-                        h,
-                        seg,
-                        heights,
-                    });
-                }
-                Err(error) => out.failures.push(Failure {
-                    c,
-                    length: b - a,
-                    error,
-                    profile,
-                }),
+            match segmented(c, track_pitch, &samples, spec, |t| {
+                eval(Footprint::point(scan, t, c))
+            })
+            .map_err(Problem::Invalid)?
+            {
+                Some(Ok(track)) => out.tracks.push(track),
+                Some(Err(failure)) => out.failures.push(failure),
+                None => {}
             }
         }
     }
@@ -165,6 +130,65 @@ pub fn plan(
     }
     out.range = range(&out.tracks, scan);
     Ok(out)
+}
+
+/// The track on line `c` (filling a strip `pitch` wide) through `samples`
+/// of its height `(t, h)`, in the fewest segments within `spec`; `h(t)`
+/// gives the height at a segment's end. `None` for fewer than two samples
+/// off a straight line; a [`Failure`] when the tolerance needs segments too
+/// short.
+pub(super) fn segmented(
+    c: f64,
+    pitch: f64,
+    samples: &[(f64, f64)],
+    spec: SegmentSpec,
+    mut h: impl FnMut(f64) -> Option<f64>,
+) -> Result<Option<Result<Track, Failure>>, Invalid> {
+    let kept = straight_dropped(samples);
+    let (Some(first), Some(last)) = (kept.first(), kept.last()) else {
+        return Ok(None);
+    };
+    if kept.len() < 2 {
+        return Ok(None);
+    }
+    let length = last.0 - first.0;
+    let profile = TrackProfile::new(kept.iter().map(|&(t, h)| (Length(t), Length(h))))?;
+    let s = match segment(&profile, spec) {
+        Ok(s) => s,
+        Err(error) => {
+            return Ok(Some(Err(Failure {
+                c,
+                length,
+                error,
+                profile,
+            })))
+        }
+    };
+    let mut t: Vec<f64> = kept.iter().map(|p| p.0).collect();
+    t.extend(s.segments.iter().map(|g| g.start.0));
+    t.sort_by(f64::total_cmp);
+    t.dedup_by(|x, y| (*x - *y).abs() <= 1e-9 * y.abs().max(1.0));
+    let heights_at: Vec<f64> = t.iter().map(|&t| h(t).unwrap_or(f64::NAN)).collect();
+    let mut q = 0;
+    let seg = t
+        .windows(2)
+        .map(|m| {
+            let mid = 0.5 * (m[0] + m[1]);
+            while q + 1 < s.segments.len() && mid >= s.segments[q].end.0 {
+                q += 1;
+            }
+            q
+        })
+        .collect();
+    let heights = s.segments.iter().map(|g| g.height.0).collect();
+    Ok(Some(Ok(Track {
+        c,
+        pitch,
+        t,
+        h: heights_at,
+        seg,
+        heights,
+    })))
 }
 
 /// The samples without those a straight line through their neighbours
