@@ -472,6 +472,7 @@ pub static ANY: Block = Block::new(
         &planar::OFFSET,
         &planar::INFILL,
         &variable::SCAN,
+        &variable::LEVEL,
         &continuous::STEP,
         &variable::SEGMENTS,
     ],

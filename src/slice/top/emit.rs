@@ -1,6 +1,7 @@
 //! The IR layers of a variable-top solid. Layer `i` (from 0) of `N` is laid
 //! on the planned top of layer `i − 1`: its points sit at `z = B + i·H/N`
-//! (`B` the scanned surface a repair starts on, else 0) and
+//! (`B` the scanned surface a repair starts on, or the level its levelling
+//! passes reached, else 0) and
 //! each lays `H/N` there (`layer_height`), so the layers' heights add up to
 //! the top at every point. Speeds come from the bead map: each segment's
 //! height `H_seg/N` gives the *horizontal* speed, and the nozzle, climbing
@@ -24,20 +25,17 @@ pub struct Process<'m> {
     defocus: f32,
     speeds: [f64; 2],
     base: Base<'m>,
-    /// The index of the first layer these layers follow (the levelling
-    /// passes before them), for the power schedule.
-    pub first: u32,
 }
 
 impl<'m> Process<'m> {
-    /// The model's process block and bead speed range, and `ex`'s scan.
+    /// The model's process block and bead speed range, and what the layers
+    /// start on.
     pub fn of(model: &Model, bead: &Bead, base: Base<'m>) -> Self {
         Process {
             powder: model.process.powder.g_min() as f32,
             defocus: model.process.defocus.0 as f32,
             speeds: [bead.speed[0].0, bead.speed[1].0],
             base,
-            first: 0,
         }
     }
 
@@ -59,7 +57,7 @@ pub fn layer(
     i: u32,
     n: NonZeroU32,
 ) -> Layer {
-    let power = model.process.power.at((process.first + i) as usize).watts() as f32;
+    let power = model.process.power.at(i as usize).watts() as f32;
     let nf = n.get() as f64;
     let paths = tracks
         .iter()

@@ -71,7 +71,7 @@ pub(super) fn slice(
     let z = height(&fp, &scan.surface, slicing.level, lowest / 2.0, w)
         .map_err(|e| e.report(ex, slicing, scan))?;
     top_clear(&fp, ex, z, lowest, w, slicing)?;
-    let regular = build(model, bead, ex, slicing, Base::Level(z), 0)?;
+    let regular = build(model, bead, ex, slicing, Base::Level(z))?;
     let spec = SegmentSpec {
         tolerance: positive("tolerance", slicing.tolerance)?,
         min_length: positive("min_length", slicing.min_length.unwrap_or(bead.width))?,

@@ -61,7 +61,7 @@ pub fn slice(
         (Some(scan), Level::Auto(_) | Level::At(..)) => {
             level::slice(model, bead, ex, slicing, scan)
         }
-        _ => build(model, bead, ex, slicing, Base::of(ex, None), 0).map(|b| (b.layers, b.warnings)),
+        _ => build(model, bead, ex, slicing, Base::of(ex, None)).map(|b| (b.layers, b.warnings)),
     }
 }
 
@@ -73,15 +73,24 @@ pub(super) struct Built {
     lines: layout::Layout,
 }
 
-/// Slices `ex` from `base` up to its top; the layers follow `first` layers
-/// laid before them (the power schedule's index).
+impl Built {
+    fn new(layers: Vec<Layer>, warnings: Diagnostics, scan: Axis, lines: layout::Layout) -> Self {
+        Built {
+            layers,
+            warnings,
+            scan,
+            lines,
+        }
+    }
+}
+
+/// Slices `ex` from `base` up to its top.
 fn build(
     model: &Model,
     bead: &Bead,
     ex: &TopExtrusion,
     slicing: &VariableSlicing,
     base: Base<'_>,
-    first: u32,
 ) -> Result<Built, Diagnostics> {
     let w = bead.width.0;
     let fp = Footprint::new(ex, w)?;
@@ -163,15 +172,9 @@ fn build(
             scan,
             n,
         };
-        let mut process = emit::Process::of(model, bead, base);
-        process.first = first;
+        let process = emit::Process::of(model, bead, base);
         let (layers, warnings) = finish(model, bead, ex, slicing, &tracks, &process)?;
-        return Ok(Built {
-            layers,
-            warnings,
-            scan,
-            lines,
-        });
+        return Ok(Built::new(layers, warnings, scan, lines));
     }
     if let Some((miss, n)) = missed {
         return Err(deposit::report(&miss, n, bead, slicing, ex).into());
