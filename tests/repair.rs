@@ -202,6 +202,30 @@ fn the_worn_pad_is_levelled_from_its_scan_to_its_top() {
     check_plan(p, example_z, 13.0, 60.0, 20.0, 0.06);
 }
 
+/// The report's finish (docs/repair.md, *The report*): the worn pad's
+/// first layer is a quarter of 3 to 4.5 mm (the trough's formula, within
+/// the scan's noise); the finished face, as the bead model lays the
+/// segments, within the segments' tolerance of the top on average: a
+/// stretch's mean error is at most `tolerance` = 0.1 mm by construction,
+/// and the RMS of a sawtooth is under its half-range.
+#[test]
+fn the_worn_pads_report_gives_its_first_layer_and_its_finish() {
+    let bytes = std::fs::read("examples/repair/worn_pad.ply").unwrap();
+    let files = BTreeMap::from([("repair/worn_pad.ply".to_string(), bytes)]);
+    let src = include_str!("../examples/worn_pad.lmd");
+    let (c, model) = crate::support::data::compile_with_files_and_model(src, files);
+    let m = messages(&c);
+    let p = c.program.unwrap_or_else(|| panic!("{m}"));
+    let r = lmdc::report::Report::new(p.machines().next().unwrap(), &model.unwrap(), None);
+    let f = r.finish.expect("a repair's finish");
+    let [lo, hi] = f.first_layer_mm;
+    assert!((lo - 3.0 / 4.0).abs() <= 0.06 / 4.0 + 1e-3, "{lo}");
+    assert!((4.4 / 4.0..=4.5 / 4.0 + 0.06 / 4.0).contains(&hi), "{hi}");
+    assert!(f.points > 1000, "{}", f.points);
+    assert!(f.rms_mm <= 0.15, "{f:?}");
+    assert!(f.below_mm <= 0.4 && f.above_mm <= 0.4, "{f:?}");
+}
+
 /// What an accepted plan that levels a scan of `z` up to `level` before
 /// regular layers to `top` must hold (docs/repair.md, *Levelling*): the
 /// passes below the level, each place of them laid in `c` passes of the

@@ -533,3 +533,48 @@ fn the_flange_s_laser_on_turns_lay_no_strip_twice() {
     // stacks as much of its design as the unlinked one, within 1 %.
     assert!((stacks[0] - stacks[1]).abs() < 0.01, "{stacks:?}");
 }
+
+/// A variable top's finish (docs/repair.md, *The report*): the ramp wall's
+/// one track is laid in `m` equal stretches of constant speed, each at the
+/// height of its middle (the top is a plane, seed 003), so the finished top
+/// is a sawtooth `16 %·L/(2m)` either way of the design, its RMS that over
+/// √3. The bead model lays what each stretch plans, so that is what the
+/// report predicts; the first layer is the top at the track's ends over the
+/// layer count.
+#[test]
+fn a_ramp_walls_finish_is_its_segments_sawtooth() {
+    let src = std::fs::read_to_string("examples/ramp_wall.lmd").unwrap();
+    let (c, model) = compile_with_model(&src, &Default::default(), &mut ()).unwrap();
+    let (p, model) = (c.program.expect("compiles"), model.unwrap());
+    let r = Report::new(p.machines().next().unwrap(), &model, None);
+    let f = r.finish.expect("a variable top's finish");
+    let layers = &p.ir().layers;
+    let track = &layers.last().unwrap().paths[0].points;
+    let xs = track.iter().map(|q| q.pos[0]);
+    let (x0, x1) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+        (a.min(x), b.max(x))
+    });
+    let mut m = 1;
+    for w in track.windows(2).filter(|w| w[0].laser_on && w[1].laser_on) {
+        m += usize::from(w[0].speed != w[1].speed);
+    }
+    let amplitude = 0.16 * (x1 - x0) / (2.0 * m as f64);
+    // Sampled every 0.3 mm: the tooth's tip is found within 0.16 × 0.15.
+    for (got, what) in [(f.below_mm, "below"), (f.above_mm, "above")] {
+        assert!(
+            (got - amplitude).abs() <= 0.16 * 0.15 + 1e-6,
+            "{what}: {got} vs {amplitude} ({m} stretches)"
+        );
+    }
+    // About eight samples a tooth: the sampled RMS within 1 %.
+    let rms = amplitude / 3f64.sqrt();
+    assert!(
+        (f.rms_mm - rms).abs() <= 0.01 * rms,
+        "RMS {} vs {rms}",
+        f.rms_mm
+    );
+    let n = layers.len() as f64;
+    let top = |x: f64| 20.0 + 0.16 * (x + 50.0);
+    close(f.first_layer_mm[0], top(x0) / n, "first layer, thinnest");
+    close(f.first_layer_mm[1], top(x1) / n, "first layer, thickest");
+}

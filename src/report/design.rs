@@ -200,6 +200,30 @@ fn integral(
     Ok(sum)
 }
 
+/// A plane's or edges' top at `c` over a footprint within `[lo, hi]`
+/// (`None` for an expression).
+pub(super) fn linear_top(ex: &TopExtrusion, [lo, hi]: [[f64; 2]; 2], c: [f64; 2]) -> Option<f64> {
+    match &ex.top {
+        Top::Plane { at, height, slope } => {
+            Some(height.0 + slope[0] * (c[0] - at[0].0) + slope[1] * (c[1] - at[1].0))
+        }
+        Top::Edges { along, from, to } => {
+            let k = match along {
+                crate::sema::model::Axis::X => 0,
+                crate::sema::model::Axis::Y => 1,
+            };
+            let span = hi[k] - lo[k];
+            let t = if span > 0.0 {
+                (c[k] - lo[k]) / span
+            } else {
+                0.0
+            };
+            Some(from.0 + (to.0 - from.0) * t)
+        }
+        Top::Expr(_) => None,
+    }
+}
+
 fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
     let p = profile(&ex.shape, CHORD);
     let pts = p.polyline(CHORD);
@@ -207,27 +231,7 @@ fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
     let footprint = p.area();
     let widen = widened(&p, ex.measure, w) / footprint;
     let [lo, hi] = p.bounds().ok_or("the footprint is empty")?;
-    let linear = |c: [f64; 2]| -> Option<f64> {
-        match &ex.top {
-            Top::Plane { at, height, slope } => {
-                Some(height.0 + slope[0] * (c[0] - at[0].0) + slope[1] * (c[1] - at[1].0))
-            }
-            Top::Edges { along, from, to } => {
-                let k = match along {
-                    crate::sema::model::Axis::X => 0,
-                    crate::sema::model::Axis::Y => 1,
-                };
-                let span = hi[k] - lo[k];
-                let t = if span > 0.0 {
-                    (c[k] - lo[k]) / span
-                } else {
-                    0.0
-                };
-                Some(from.0 + (to.0 - from.0) * t)
-            }
-            Top::Expr(_) => None,
-        }
-    };
+    let linear = |c: [f64; 2]| linear_top(ex, [lo, hi], c);
     let v = match (linear(c), &ex.top) {
         (Some(h), _) => footprint * h,
         (None, Top::Expr(e)) => {

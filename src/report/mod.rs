@@ -12,6 +12,7 @@
 
 pub mod coverage;
 pub mod design;
+pub mod finish;
 pub mod text;
 mod volume;
 
@@ -190,6 +191,10 @@ pub struct Report {
     /// (the band at the faces, hollows left on purpose, the rest), for an
     /// extrusion in flat layers.
     pub design_missing: Option<coverage::Missing>,
+    /// A variable top's finished surface as the bead model predicts it,
+    /// against the top (docs/repair.md, *The report*).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub finish: Option<finish::Finish>,
     /// The layers (from 1) before which a tilting head or table swings its
     /// tilt to the other side (C half a turn with it), retracted with the
     /// laser off: where a layer needs the other of the axes' two
@@ -212,6 +217,7 @@ impl Report {
             r.design_missing =
                 coverage::missing(model, machine.ir()).map(|m| m.scaled(v, r.density_g_cm3));
         }
+        r.finish = finish::of(machine.ir(), model);
         r
     }
 
@@ -319,6 +325,7 @@ impl Report {
             design_efficiency: None,
             design_filled: None,
             design_missing: None,
+            finish: None,
             branch_changes: summary.branch_changes.iter().map(|l| l + 1).collect(),
             approaches: summary.approaches.clone(),
         }

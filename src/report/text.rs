@@ -3,6 +3,7 @@
 
 use super::{Design, Report, Tally};
 use crate::numbers::{duration, energy, length, mass, trimmed};
+use crate::units::short;
 use std::fmt::Write;
 
 /// A duration as `h:mm:ss.s` for the table.
@@ -318,12 +319,32 @@ fn design(out: &mut String, r: &Report) {
             if let Some(m) = &r.design_missing {
                 missing(out, m, r.design_filled);
             }
+            if let Some(f) = &r.finish {
+                finish(out, f);
+            }
         }
         Some(Design::Unknown { why }) => {
             let _ = writeln!(out, "design      volume not known: {why}");
         }
         None => {}
     }
+}
+
+/// The finished surface the bead model predicts against the top.
+fn finish(out: &mut String, f: &super::finish::Finish) {
+    let at = |p: [f64; 2]| format!("({}, {})", short(p[0]), short(p[1]));
+    let _ = writeln!(
+        out,
+        "finish      the bead model's surface at {} places along the last layer's tracks: up to {} mm below the top at {}, up to {} mm above it at {}, RMS {} mm; the first layer {} .. {} mm thick",
+        f.points,
+        short(f.below_mm),
+        at(f.below_at),
+        short(f.above_mm),
+        at(f.above_at),
+        short(f.rms_mm),
+        short(f.first_layer_mm[0]),
+        short(f.first_layer_mm[1]),
+    );
 }
 
 /// What of the design the strips cover and what they leave, each figure

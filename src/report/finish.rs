@@ -1,0 +1,222 @@
+//! The finished surface a variable-top plan lays, as its own bead model
+//! predicts it, against the top the file asks for (docs/repair.md, *The
+//! report*): where a repair ends up against its target.
+//!
+//! Every eighth of a bead along the last layer's tracks, the surface is the base under it (the
+//! scan a repair starts on, else the plate) plus what every layer's move
+//! over that place raises it by, `A/pitch` at the move's speed
+//! ([`crate::ir::Point::predicted_rise`]). The tracks of a variable top run
+//! along x or y, so a place is a line (the cross coordinate) and a
+//! position along it: each layer's moves on the line are sorted once and
+//! looked up by halving. A place a layer does not lay (a levelling pass
+//! that leaves it, a too-thin gap) adds nothing there.
+
+use super::design::linear_top;
+use crate::deposit::Deposit;
+use crate::diag::Diagnostics;
+use crate::geometry::outline::profile;
+use crate::ir::{Layer, Program};
+use crate::sema::model::{Build, Model, Top, TopExtrusion};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Chord error of the footprint's outline, mm (as the design volume's).
+const CHORD: f64 = 0.005;
+
+/// Most places one track is looked at.
+const MAX_SAMPLES: f64 = 100_000.0;
+
+/// The predicted finished surface against the top.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+pub struct Finish {
+    /// The places it is predicted at: every eighth of a bead along the
+    /// last layer's tracks.
+    pub points: usize,
+    /// The most the surface lies below the top (≥ 0), mm, and where.
+    pub below_mm: f64,
+    /// Where it lies lowest against the top, mm.
+    pub below_at: [f64; 2],
+    /// The most it stands above the top (≥ 0), mm.
+    pub above_mm: f64,
+    /// Where it stands highest against the top, mm.
+    pub above_at: [f64; 2],
+    /// The root mean square of its departure from the top, mm.
+    pub rms_mm: f64,
+    /// The first layer's thickness, least and greatest, mm.
+    pub first_layer_mm: [f64; 2],
+}
+
+/// A line's moves in one layer: (from, to, rise), sorted.
+type Moves = Vec<(f64, f64, f64)>;
+
+/// The key of the line a move runs on, and its ends along it: along x (a
+/// constant y) or along y (a constant x); `None` for a move across.
+fn on_line(a: [f64; 3], b: [f64; 3]) -> Option<((u8, i64), f64, f64)> {
+    let key = |c: f64| (c * 1e6).round() as i64;
+    if (a[1] - b[1]).abs() <= 1e-9 {
+        Some(((0, key(a[1])), a[0].min(b[0]), a[0].max(b[0])))
+    } else if (a[0] - b[0]).abs() <= 1e-9 {
+        Some(((1, key(a[0])), a[1].min(b[1]), a[1].max(b[1])))
+    } else {
+        None
+    }
+}
+
+/// Every layer's laser-on moves by line.
+fn moves(layers: &[Layer], d: &Deposit) -> BTreeMap<(u8, i64), Vec<Moves>> {
+    let mut out: BTreeMap<(u8, i64), Vec<Moves>> = BTreeMap::new();
+    for (li, layer) in layers.iter().enumerate() {
+        for path in &layer.paths {
+            for (k, pt) in path.points.iter().enumerate() {
+                let Some(next) = path.points.get(k + 1).filter(|_| pt.laser_on) else {
+                    continue;
+                };
+                let Some((key, t0, t1)) = on_line(pt.pos, next.pos) else {
+                    continue;
+                };
+                let rise = pt.predicted_rise(d, Some(next));
+                let per = out
+                    .entry(key)
+                    .or_insert_with(|| vec![Vec::new(); layers.len()]);
+                per[li].push((t0, t1, rise));
+            }
+        }
+    }
+    for per in out.values_mut() {
+        for m in per.iter_mut() {
+            m.sort_by(|a, b| a.0.total_cmp(&b.0));
+        }
+    }
+    out
+}
+
+/// What a layer's sorted moves raise the place `t` by: the move over it
+/// (the first, where two meet), or nothing.
+fn rise_at(m: &Moves, t: f64) -> f64 {
+    let i = m.partition_point(|&(t0, ..)| t0 <= t + 1e-9);
+    m[..i]
+        .iter()
+        .rev()
+        .take(2)
+        .find(|&&(t0, t1, _)| t >= t0 - 1e-9 && t <= t1 + 1e-9)
+        .map_or(0.0, |&(.., r)| r)
+}
+
+/// The finished surface `model`'s variable top is predicted at, from
+/// `program`'s layers; `None` for another build or a plan without a bead.
+pub fn of(program: &Program, model: &Model) -> Option<Finish> {
+    let Build::Variable { extrusion: ex, .. } = &model.build else {
+        return None;
+    };
+    let d = program.bead.as_ref()?.deposit();
+    let last = program.layers.last()?;
+    let by_line = moves(&program.layers, &d);
+    let mut top = Target::new(ex)?;
+    let mut f = Finish {
+        points: 0,
+        below_mm: 0.0,
+        below_at: [0.0; 2],
+        above_mm: 0.0,
+        above_at: [0.0; 2],
+        rms_mm: 0.0,
+        first_layer_mm: first_layer(&program.layers[0])?,
+    };
+    let mut squares = 0.0;
+    // Every eighth of a bead along the last layer's tracks.
+    let step = program.limits.bead_width / 8.0;
+    if !(step.is_finite() && step > 0.0) {
+        return None;
+    }
+    for path in &last.paths {
+        // The line the path runs on (a variable top's tracks are straight).
+        let Some((line, ..)) = path
+            .points
+            .windows(2)
+            .find_map(|w| on_line(w[0].pos, w[1].pos))
+        else {
+            continue;
+        };
+        let Some(per) = by_line.get(&line) else {
+            continue;
+        };
+        let (first, end) = (path.points[0].pos, path.points[path.points.len() - 1].pos);
+        let (t0, t1, c) = match line.0 {
+            0 => (first[0].min(end[0]), first[0].max(end[0]), first[1]),
+            _ => (first[1].min(end[1]), first[1].max(end[1]), first[0]),
+        };
+        let n = ((t1 - t0) / step).ceil().clamp(1.0, MAX_SAMPLES) as usize;
+        for i in 0..=n {
+            let t = t0 + (t1 - t0) * i as f64 / n as f64;
+            let [x, y] = if line.0 == 0 { [t, c] } else { [c, t] };
+            let (Some(base), Some(want)) = (top.base([x, y]), top.at([x, y])) else {
+                continue;
+            };
+            let off = base + per.iter().map(|m| rise_at(m, t)).sum::<f64>() - want;
+            f.points += 1;
+            squares += off * off;
+            if -off > f.below_mm {
+                (f.below_mm, f.below_at) = (-off, [x, y]);
+            }
+            if off > f.above_mm {
+                (f.above_mm, f.above_at) = (off, [x, y]);
+            }
+        }
+    }
+    (f.points > 0).then(|| {
+        f.rms_mm = (squares / f.points as f64).sqrt();
+        f
+    })
+}
+
+/// The first layer's least and greatest thickness along its laser-on
+/// moves (both ends of each).
+fn first_layer(layer: &Layer) -> Option<[f64; 2]> {
+    let hs = layer
+        .paths
+        .iter()
+        .flat_map(|p| p.points.windows(2))
+        .filter(|w| w[0].laser_on)
+        .flat_map(|w| [w[0].layer_height, w[1].layer_height])
+        .map(f64::from);
+    let (lo, hi) = hs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), h| {
+        (a.min(h), b.max(h))
+    });
+    (lo <= hi).then_some([lo, hi])
+}
+
+/// The top the file asks for and the base the layers start on.
+struct Target<'m> {
+    ex: &'m TopExtrusion,
+    bounds: [[f64; 2]; 2],
+    heights: Option<crate::sema::TopHeights<'m>>,
+}
+
+impl<'m> Target<'m> {
+    fn new(ex: &'m TopExtrusion) -> Option<Self> {
+        let bounds = profile(&ex.shape, CHORD).bounds()?;
+        let heights = match &ex.top {
+            Top::Expr(e) => Some(e.evaluator()),
+            _ => None,
+        };
+        Some(Target {
+            ex,
+            bounds,
+            heights,
+        })
+    }
+
+    fn at(&mut self, p: [f64; 2]) -> Option<f64> {
+        match &mut self.heights {
+            Some(h) => h.at(p[0], p[1], &mut Diagnostics::new()).map(|l| l.0),
+            None => linear_top(self.ex, self.bounds, p),
+        }
+    }
+
+    fn base(&self, p: [f64; 2]) -> Option<f64> {
+        match &self.ex.base {
+            Some(b) => b.surface.at(p),
+            None => Some(0.0),
+        }
+    }
+}
