@@ -1672,3 +1672,61 @@ fn chromium_draws_a_machines_fixture_where_the_table_takes_it() {
         );
     }
 }
+
+/// A repair's page (docs/repair.md, *The preview*): the worn pad levelled
+/// to its face carries its scan as the scan's surface (every point on the
+/// surface the report's base reads, within the float's rounding) and its
+/// finish as the report's (the same extremes, and the places' departures
+/// reaching them); Chromium draws them and says so on the canvas.
+#[test]
+fn a_repairs_page_draws_its_scan_and_its_finish() {
+    let bytes = std::fs::read("examples/repair/worn_pad.ply").unwrap();
+    let files = std::collections::BTreeMap::from([("repair/worn_pad.ply".to_string(), bytes)]);
+    let src = std::fs::read_to_string("tests/cases/repair/worn_pad_level/input.lmd").unwrap();
+    let (c, model) = crate::support::data::compile_with_files_and_model(&src, files);
+    let (p, model) = (c.program.expect("builds"), model.unwrap());
+    let m = p.machines().next().unwrap();
+    let finish = lmdc::report::finish::of(m.ir(), &model).expect("a finish");
+    let html = preview::html_of(m, &model);
+    let d = data(&html);
+    let repair = &d["meta"]["repair"];
+    let scan = repair["scan"].as_array().unwrap();
+    assert!(scan.len() > 1000, "{}", scan.len());
+    let lmdc::sema::model::Build::Variable { extrusion, .. } = &model.build else {
+        panic!("a variable top")
+    };
+    let surface = &extrusion.base.as_ref().unwrap().surface;
+    for q in scan {
+        let q: Vec<f64> = q
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        let z = surface.at([q[0], q[1]]).expect("on the scan");
+        assert!((q[2] - z).abs() <= 1e-5 * z.abs().max(1.0), "{q:?} vs {z}");
+    }
+    // (serde_json reads a float back within its last bit)
+    assert!((repair["below"].as_f64().unwrap() - finish.below_mm).abs() <= 1e-12);
+    assert!((repair["above"].as_f64().unwrap() - finish.above_mm).abs() <= 1e-12);
+    let offs: Vec<f64> = repair["finish"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|q| q[3].as_f64().unwrap())
+        .collect();
+    assert_eq!(offs.len(), finish.points);
+    let lowest = offs.iter().copied().fold(f64::INFINITY, f64::min);
+    let highest = offs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    assert!((lowest + finish.below_mm).abs() <= 1e-6, "{lowest}");
+    assert!((highest - finish.above_mm).abs() <= 1e-6, "{highest}");
+    let Some(chromium) = chromium("a_repairs_page_draws_its_scan_and_its_finish") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("repair.html");
+    std::fs::write(&file, html).unwrap();
+    let dom = dom(&chromium, &file, "");
+    assert_eq!(number(&dom, "data-scan") as usize, scan.len());
+    assert_eq!(number(&dom, "data-finish") as usize, offs.len());
+}

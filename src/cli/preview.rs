@@ -20,10 +20,11 @@ pub fn run(
         return EXIT_USAGE;
     };
     let options = common.options(file, machine);
-    let compiled = match lmdc::pipeline::compile_with(&source, &options, &mut progress) {
-        Ok(c) => c,
-        Err(e) => return messages::fail(file, usage::refused(&e)),
-    };
+    let (compiled, model) =
+        match lmdc::pipeline::compile_with_model(&source, &options, &mut progress) {
+            Ok(c) => c,
+            Err(e) => return messages::fail(file, usage::refused(&e)),
+        };
     let (color, format) = (common.color, common.format);
     progress.print(|| messages::print(&compiled.diagnostics, file, &source, color, format));
     if let Some(code) = common.denied(file, &compiled.diagnostics) {
@@ -38,7 +39,11 @@ pub fn run(
                 eprintln!("error: the file declares no machine whose plan could be shown");
                 return EXIT_PROGRAM;
             };
-            (lmdc::preview::html(m), &program.ir().part, 0)
+            let page = match &model {
+                Some(model) => lmdc::preview::html_of(m, model),
+                None => lmdc::preview::html(m),
+            };
+            (page, &program.ir().part, 0)
         }
         (None, Some(refused)) => match lmdc::preview::refused_html(refused) {
             Some(page) => (page, &refused.ir().part, EXIT_PROGRAM),

@@ -108,6 +108,9 @@ pub struct Meta<'a> {
     pub moving: Option<super::moving::Moving<'a>>,
     /// A positioner's faceplate, where declared.
     pub faceplate: Option<Faceplate>,
+    /// A part on a scan or up to a top: the scan and the finish.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub repair: Option<&'a super::repair::Overlay>,
     /// Who wrote the page.
     pub generator: &'static str,
 }

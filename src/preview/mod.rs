@@ -32,6 +32,7 @@ mod error;
 pub mod joints;
 mod kind;
 pub mod moving;
+pub mod repair;
 pub mod rotary;
 
 use crate::diag::{Diagnostics, Severity};
@@ -308,7 +309,15 @@ pub fn html(machine: VerifiedMachine<'_>) -> String {
 
 /// The preview page with at most about `budget` moves.
 pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
-    page(machine, budget, None)
+    page(machine, budget, None, None)
+}
+
+/// The preview page of `machine`'s plan with what `model` adds: a part
+/// built on a scan or up to a top draws the scan and the finish
+/// ([`repair`]).
+pub fn html_of(machine: VerifiedMachine<'_>, model: &crate::sema::model::Model) -> String {
+    let overlay = repair::of(machine.ir(), model);
+    page(machine, BUDGET, None, overlay.as_ref())
 }
 
 /// The page of a plan refused only by the arm's rules: drawn as the other
@@ -326,10 +335,16 @@ pub fn refused_html(refused: &Refused) -> Option<String> {
             .or_else(|| refused.machines().next())?,
         BUDGET,
         Some(refused.failures()),
+        None,
     ))
 }
 
-fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnostics>) -> String {
+fn page(
+    machine: VerifiedMachine<'_>,
+    budget: usize,
+    failures: Option<&Diagnostics>,
+    repair: Option<&repair::Overlay>,
+) -> String {
     let program = machine.ir();
     let plan = machine.plan();
     let mut count = Count(0);
@@ -402,6 +417,7 @@ fn page(machine: VerifiedMachine<'_>, budget: usize, failures: Option<&Diagnosti
         fixtures: fixture_boxes(program, machine.machine()),
         moving,
         faceplate: encode::Faceplate::of(machine.machine()),
+        repair,
         generator: concat!("lmdc ", env!("CARGO_PKG_VERSION")),
     };
     let data = c.cols.encode(&meta, &c.poses);

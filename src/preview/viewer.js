@@ -481,6 +481,7 @@
     if (movesOnly) return;
     drawAxes(c, dpr);
     drawScaleBar(c, dpr);
+    drawRepair(c, dpr);
     drawFixtures(c, dpr);
     drawMoving(c, dpr);
     drawFaceplate(c, dpr);
@@ -500,6 +501,42 @@
       if (++n === CHUNK) { ctx.stroke(); ctx.beginPath(); n = 0; }
     }
     ctx.stroke();
+  }
+
+  // --- a repair's scan and finish ------------------------------------------
+  // The scanned surface as grey dots; the finished face's places (the
+  // report's finish, docs/repair.md) at the top asked for, blue where the
+  // bead model's face lies below it and red where above, full colour at the
+  // larger of the two extremes; the legend names them. The canvas's
+  // data-scan, data-finish and data-finish-range say what is drawn.
+  const REPAIR = M.repair || null;
+  function drawRepair(c, dpr) {
+    if (!REPAIR) return;
+    const s = 1.6 * dpr;
+    ctx.fillStyle = "rgba(120,120,120,0.35)";
+    for (const [x, y, z] of REPAIR.scan) {
+      const [u, v] = at(c, x, y, z);
+      ctx.fillRect(u - s / 2, v - s / 2, s, s);
+    }
+    const worst = Math.max(REPAIR.below, REPAIR.above, 1e-9);
+    for (const [x, y, top, off] of REPAIR.finish) {
+      const k = Math.min(1, Math.abs(off) / worst);
+      const fade = Math.round(235 * (1 - k));
+      ctx.fillStyle = off < 0 ? `rgb(${fade},${fade},255)` : `rgb(255,${fade},${fade})`;
+      const [u, v] = at(c, x, y, top);
+      ctx.fillRect(u - s, v - s, 2 * s, 2 * s);
+    }
+    if (REPAIR.finish.length) {
+      ctx.fillStyle = "#333";
+      ctx.font = `${11 * dpr}px sans-serif`;
+      ctx.textAlign = "left";
+      ctx.fillText(
+        `finished face vs top: ${REPAIR.below.toFixed(3)} mm below (blue) .. ${REPAIR.above.toFixed(3)} mm above (red)`,
+        16 * dpr, canvas.height - 36 * dpr);
+    }
+    canvas.dataset.scan = REPAIR.scan.length;
+    canvas.dataset.finish = REPAIR.finish.length;
+    canvas.dataset.finishRange = `${REPAIR.below},${REPAIR.above}`;
   }
 
   // --- the fixtures --------------------------------------------------------

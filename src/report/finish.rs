@@ -106,6 +106,23 @@ fn rise_at(m: &Moves, t: f64) -> f64 {
 /// The finished surface `model`'s variable top is predicted at, from
 /// `program`'s layers; `None` for another build or a plan without a bead.
 pub fn of(program: &Program, model: &Model) -> Option<Finish> {
+    sampled(program, model).map(|(f, _)| f)
+}
+
+/// A place the finish is predicted at: where, the top asked for there
+/// and how far the predicted face departs from it (above: positive), mm.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Where, mm.
+    pub at: [f64; 2],
+    /// The top asked for, mm.
+    pub top: f64,
+    /// The predicted face less the top, mm.
+    pub off: f64,
+}
+
+/// [`of`], with every place it looked at.
+pub fn sampled(program: &Program, model: &Model) -> Option<(Finish, Vec<Sample>)> {
     let Build::Variable { extrusion: ex, .. } = &model.build else {
         return None;
     };
@@ -123,6 +140,7 @@ pub fn of(program: &Program, model: &Model) -> Option<Finish> {
         first_layer_mm: first_layer(&program.layers[0])?,
     };
     let mut squares = 0.0;
+    let mut samples = Vec::new();
     // Every eighth of a bead along the last layer's tracks.
     let step = program.limits.bead_width / 8.0;
     if !(step.is_finite() && step > 0.0) {
@@ -153,6 +171,11 @@ pub fn of(program: &Program, model: &Model) -> Option<Finish> {
                 continue;
             };
             let off = base + per.iter().map(|m| rise_at(m, t)).sum::<f64>() - want;
+            samples.push(Sample {
+                at: [x, y],
+                top: want,
+                off,
+            });
             f.points += 1;
             squares += off * off;
             if -off > f.below_mm {
@@ -165,7 +188,7 @@ pub fn of(program: &Program, model: &Model) -> Option<Finish> {
     }
     (f.points > 0).then(|| {
         f.rms_mm = (squares / f.points as f64).sqrt();
-        f
+        (f, samples)
     })
 }
 
