@@ -328,7 +328,10 @@ fn source(points: &[[f64; 2]], beads: usize, side: &str, ends: &str) -> String {
     // The CNC alone: the robot's arm checks are the slow part.
     let cnc = text.split("machine kr30 {").next().unwrap_or_default();
     cnc.lines()
-        .filter(|l| !l.starts_with("    arc(") && !l.starts_with("    polyline(points = [[60"))
+        .filter(|l| {
+            let l = l.trim_start();
+            !l.starts_with("arc(") && !l.starts_with("polyline(points = [[60")
+        })
         .collect::<Vec<_>>()
         .join("\n")
         .replace(

@@ -97,6 +97,13 @@
 //! machine's, else what its program sets ([`crate::target::blending`]). A
 //! ring whose loop runs on the machine gets no leads (its programs write
 //! their own moves).
+//!
+//! A path of the IR's kind [`Lead`](crate::ir::PathKind::Lead) (a wall
+//! along an open path with `ends = lead(…)`) is a lead of its own: its
+//! moves run at its points' speed with the laser off, as a
+//! [`MoveKind::LeadOut`] where it goes on from a run under way, else as a
+//! [`MoveKind::LeadIn`] onto the run that joins its end; the machine's own
+//! lead-in and lead-out are then left out.
 
 pub mod arm;
 pub mod kinematics;

@@ -109,13 +109,13 @@ pub fn chain_gap(gap: Length, end: [f64; 2], before: Span, next: Span) -> Diagno
     .help("start each piece where the one before ends (an arc starts at its `from` angle on its circle)")
 }
 
-/// An arc whose `from` and `to` are the same angle, or more than a turn
+/// An arc whose `from` and `to` are the same angle, or a turn or more
 /// apart.
 pub fn arc_sweep(sweep_deg: f64, at: Span) -> Diagnostic {
     Diagnostic::error(
         Code::Degenerate,
         format!(
-            "this arc turns by {}°: a path's arc turns by more than nothing and at most a whole turn",
+            "this arc turns by {}°: a path's arc turns by more than nothing and less than a whole turn",
             short(sweep_deg)
         ),
     )

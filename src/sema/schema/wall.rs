@@ -125,7 +125,7 @@ pub mod path {
         "to",
         Quantity(Dim::ANGLE, Any),
         Required("90 deg"),
-        "the angle it ends at: counter-clockwise when larger than `from`, clockwise when smaller, at most a turn away",
+        "the angle it ends at: counter-clockwise when larger than `from`, clockwise when smaller, less than a turn away",
     );
     /// `chain(pieces = …)`.
     pub static PIECES: Field = Field::new(

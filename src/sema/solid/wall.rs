@@ -287,7 +287,8 @@ fn arc(c: &Call, diags: &mut Diagnostics) -> Option<Vec<Vertex>> {
     let (centre, (r, _), (a, a_at), (b, b_at)) = (centre?, radius?, from?, to?);
     let sweep = b - a;
     let turn = std::f64::consts::TAU;
-    if sweep == 0.0 || sweep.abs() > turn * (1.0 + 1e-12) || !sweep.is_finite() {
+    // A whole turn ends where it starts: a closed loop, not a path.
+    if sweep == 0.0 || sweep.abs() >= turn * (1.0 - 1e-9) || !sweep.is_finite() {
         diags.push(message::wall::arc_sweep(
             sweep.to_degrees(),
             a_at.join(b_at),
