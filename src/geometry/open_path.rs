@@ -355,7 +355,7 @@ impl OpenPath {
                 .next()
                 .is_some_and(|v| (v.x - moved[0]).hypot(v.y - moved[1]) <= END_TOLERANCE)
         });
-        let Some(end) = first.and_then(|pl| pl.iter_vertexes().last()) else {
+        let Some(end) = first.and_then(|pl| pl.iter_vertexes().next_back()) else {
             return start;
         };
         self.nearest([end.x, end.y])

@@ -875,8 +875,8 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
                         .find(|p| p.laser_on)
                         .map(|p| p.powder)
                 };
-                let powder = deposits(pts)
-                    .or_else(|| after.filter(|_| self.lead_path).and_then(|a| deposits(a)));
+                let powder =
+                    deposits(pts).or_else(|| after.filter(|_| self.lead_path).and_then(deposits));
                 let feed_in = pts.get(1).filter(|_| first.laser_on);
                 self.transition((li, pi, first_in_layer), first, feed_in, powder)
             }

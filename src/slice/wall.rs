@@ -154,8 +154,8 @@ fn layer(wall: &OpenWall, tracks: &[Track], k: usize, n: usize, laid: &Laid) -> 
         let (j, forward) = if wall.one_way {
             (i, true)
         } else {
-            let j = if k % 2 == 0 { i } else { m - 1 - i };
-            (j, (k * m + i) % 2 == 0)
+            let j = if k.is_multiple_of(2) { i } else { m - 1 - i };
+            (j, (k * m + i).is_multiple_of(2))
         };
         let track = if forward {
             None

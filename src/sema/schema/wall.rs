@@ -18,7 +18,7 @@ pub const MAX_PATH_POINTS: usize = 10_000;
 const PATH: Kind = Call(&[&POLYLINE, &ARC, &CHAIN]);
 
 /// The fields of `wall NAME { … }`.
-pub mod wall {
+pub mod fields {
     use super::*;
 
     /// `along = …`.
@@ -78,13 +78,13 @@ pub static WALL: Block = Block::new(
     "wall NAME { … }",
     "a wall laid along an open path, built in flat layers",
     &[
-        &wall::ALONG,
-        &wall::BEADS,
-        &wall::SIDE,
-        &wall::HEIGHT,
-        &wall::BEAD,
-        &wall::ENDS,
-        &wall::DIRECTION,
+        &fields::ALONG,
+        &fields::BEADS,
+        &fields::SIDE,
+        &fields::HEIGHT,
+        &fields::BEAD,
+        &fields::ENDS,
+        &fields::DIRECTION,
     ],
 );
 

@@ -16,7 +16,9 @@ use crate::geometry::profile::Vertex;
 use crate::sema::eval::Env;
 use crate::sema::fields::Fields;
 use crate::sema::model::{Bead, Extent, OpenWall, PlanarSlicing, WallEnds, WallSide};
-use crate::sema::schema::wall::{path, wall, CHAIN, LEAD, MAX_PATH_POINTS, POLYLINE, WALL};
+use crate::sema::schema::wall::{
+    fields as wall, path, CHAIN, LEAD, MAX_PATH_POINTS, POLYLINE, WALL,
+};
 use crate::sema::slicing::planar::PlanarSpec;
 use crate::sema::solid::profile::point;
 use crate::sema::value::{Call, Spanned, Value};
@@ -201,7 +203,7 @@ impl Pieces {
         };
         if let (Some(end), Some(before)) = (self.vertices.last_mut(), self.last) {
             let gap = (first.x - end.x).hypot(first.y - end.y);
-            if !(gap <= MEET) {
+            if gap > MEET || gap.is_nan() {
                 diags.push(message::wall::chain_gap(
                     Length(gap),
                     [end.x, end.y],
@@ -325,6 +327,10 @@ fn extent(w: &Written, spec: &PlanarSpec, diags: &mut Diagnostics) -> Option<Ext
 /// written in `slicing`.
 const NOT_FOR_A_WALL: &[&str] = &["contours", "infill", "seam", "layer_change"];
 
+/// The slicing statement and the process block's speed (`Some(None)` when
+/// not written, `None` when wrong) a wall is assembled with.
+type Context<'s> = (Option<&'s Stmt>, Option<Option<(Speed, Span)>>);
+
 /// Joins a wall with its planar slicing and its bead: the speed checked
 /// against the bead, the beads' offset (`auto`: the flat-top offset `A/h`)
 /// checked against its width, and the path against the wall's width.
@@ -332,7 +338,7 @@ pub fn assemble(
     w: Written,
     bead: &Bead,
     spec: PlanarSpec,
-    (slicing, speed): (Option<&Stmt>, Option<Option<(Speed, Span)>>),
+    (slicing, speed): Context<'_>,
     diags: &mut Diagnostics,
 ) -> Option<(OpenWall, PlanarSlicing)> {
     let mut ok = true;
