@@ -603,7 +603,8 @@ pub struct Frame {
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 #[serde(rename_all = "snake_case")]
 pub enum PathKind {
-    /// A single-bead wall following the section.
+    /// A bead of a wall: a loft's single bead following the section, or a
+    /// bead of a wall along an open path.
     Wall,
     /// A contour pass of a filled solid.
     Contour,
@@ -611,6 +612,11 @@ pub enum PathKind {
     Infill,
     /// A laser-off move between deposits.
     Travel,
+    /// A laser-off lead onto a deposit's first point or on from its last
+    /// (a wall along an open path with `ends = lead(…)`): the nozzle runs
+    /// it at its points' speed, so it is at speed where the laser switches
+    /// on and brakes after it switched off ([`crate::plan`]).
+    Lead,
 }
 
 /// A polyline of process points.

@@ -88,7 +88,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             },
             slicing: Some(match &model.build {
                 Build::Duct { slicing, .. } => slicing.span,
-                Build::Block { slicing, .. } => slicing.span,
+                Build::Block { slicing, .. } | Build::Wall { slicing, .. } => slicing.span,
                 Build::Variable { slicing, .. } => slicing.span,
                 Build::Ring(r) => r.origins.layers,
                 Build::Calibration(c) => c.span,
@@ -149,7 +149,9 @@ fn ir_bead(b: &crate::sema::model::Bead) -> ir::Bead {
 /// narrowest.
 fn layer_heights(build: &Build, bead: &crate::sema::model::Bead, layers: &[Layer]) -> [f64; 2] {
     let pitch = match build {
-        Build::Block { slicing, .. } if slicing.overlapped() => slicing.offset,
+        Build::Block { slicing, .. } | Build::Wall { slicing, .. } if slicing.overlapped() => {
+            slicing.offset
+        }
         Build::Variable { .. } => {
             let Some([narrow, wide]) = pitches(layers) else {
                 return bead.height.map(|h| h.0);
@@ -201,7 +203,9 @@ fn max_overhang(build: &Build) -> Option<f64> {
     match build {
         // The IR's angles are degrees (`units.angle`).
         Build::Duct { slicing, .. } => slicing.max_overhang.map(f64::to_degrees),
-        Build::Block { slicing, .. } => slicing.max_overhang.map(f64::to_degrees),
+        Build::Block { slicing, .. } | Build::Wall { slicing, .. } => {
+            slicing.max_overhang.map(f64::to_degrees)
+        }
         _ => None,
     }
 }

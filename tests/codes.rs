@@ -125,7 +125,7 @@ fn key(statement: &str) -> Option<String> {
         .collect();
     Some(match kind.as_str() {
         "part" | "slicing" | "process" | "inheritance" => kind,
-        "loft" | "extrude" | "ring" => "solid".into(),
+        "loft" | "extrude" | "ring" | "wall" => "solid".into(),
         _ => format!("{kind} {name}"),
     })
 }
@@ -492,6 +492,8 @@ inheritance { band = 1 mm  hit = 120 % }";
     overlap: Overlap, PLATE, "slicing planar { layers = 2  offset = 0.5 mm  infill = raster(angle = 0 deg) }";
     self_intersecting: SelfIntersecting, PLATE,
         "extrude block { profile = outline([0 mm, 0 mm], [20 mm, 10 mm], [20 mm, 0 mm], [0 mm, 10 mm])  bead = track }";
+    path_bend: PathBend, PLATE,
+        "wall rib { along = arc(centre = [0 mm, 0 mm], radius = 1 mm, from = 0 deg, to = 90 deg)  bead = track }\nslicing planar { layers = 2 }";
     hole: Hole, PLATE,
         "extrude block { profile = region(outline = rectangle(width = 20 mm, height = 10 mm), holes = [place(circle(diameter = 4 mm), at = [10 mm, 0 mm], turn = 0 deg)])  size = outer  bead = track }";
     fill_empty: FillEmpty, PLATE,

@@ -54,6 +54,21 @@ fn deposits(p: &Program) -> Vec<Deposit> {
     out
 }
 
+/// Where each lead-out of machine `m`'s plan ends, in order.
+fn lead_outs(p: &Program, m: usize) -> Vec<[f64; 3]> {
+    struct Ends(Vec<[f64; 3]>);
+    impl lmdc::plan::Visit for Ends {
+        fn motion(&mut self, m: &lmdc::plan::Move) {
+            if m.kind == lmdc::plan::MoveKind::LeadOut {
+                self.0.push(m.to);
+            }
+        }
+    }
+    let mut ends = Ends(Vec::new());
+    lmdc::plan::Plan::new(p, &p.machines[m]).walk(&mut ends);
+    ends.0
+}
+
 fn near3(got: [f64; 3], want: [f64; 3], tol: f64) -> bool {
     (0..3).all(|i| (got[i] - want[i]).abs() <= tol)
 }
@@ -107,6 +122,17 @@ fn check_against_ir(ir: Program) -> usize {
 
     let want = deposits(v.ir());
     let mut next = 0; // index into `want` of the next deposit move
+                      // Lead-outs: laser-off G1 moves on from a deposit's end (a machine's
+                      // `ramp = lead`, a wall's `ends = lead(…)`), in the plan's order.
+    let lead_outs = lead_outs(v.ir(), 0);
+    let mut next_lead = 0;
+    // A laser switched by a motion-synchronised output (M62/M63 P<n>).
+    let synced = |line: &str| {
+        line.trim()
+            .strip_prefix("M62 P")
+            .and_then(|n| n.trim().parse::<u32>().ok())
+    };
+    let laser_bit = synced(&cnc.dialect.laser_on);
     let (mut feed, mut speed, mut laser) = (0.0f64, 0.0f64, false);
     let mut prev_c: Option<f64> = None;
     let s_tol = 0.5 * 10f64.powi(-(cnc.dialect.s_decimals as i32)) + 1e-9;
@@ -120,6 +146,14 @@ fn check_against_ir(ir: Program) -> usize {
             }
             CanonCall::SpindleOnCcw => panic!("M4 is not a laser switch"),
             CanonCall::SpindleOff => laser = false,
+            CanonCall::DigitalOut {
+                index,
+                on,
+                synced: true,
+            } if Some(index) == laser_bit => {
+                assert!(laser != on, "laser switched the same way twice");
+                laser = on;
+            }
             CanonCall::Traverse { a, b, c, .. } => {
                 assert!(!laser, "G0 with the laser on");
                 let axes = match kin {
@@ -131,10 +165,18 @@ fn check_against_ir(ir: Program) -> usize {
                 prev_c = Some(c);
             }
             CanonCall::Feed { x, y, z, a, b, c } => {
+                let pos = [x, y, z];
+                if !laser
+                    && lead_outs
+                        .get(next_lead)
+                        .is_some_and(|l| near3(pos, *l, 1e-3))
+                {
+                    next_lead += 1;
+                    continue;
+                }
                 let d = want
                     .get(next)
                     .unwrap_or_else(|| panic!("more G1 moves than the IR has deposits"));
-                let pos = [x, y, z];
                 let (target, process) = if laser {
                     next += 1;
                     (d.to, d.from)

@@ -305,7 +305,7 @@ fn the_page_classes_each_move_by_its_path() {
                 Some(PathKind::Wall) => &["wall"],
                 Some(PathKind::Contour) => &["contour"],
                 Some(PathKind::Infill) => &["infill", "link"],
-                Some(PathKind::Travel) => &["travel"],
+                Some(PathKind::Travel | PathKind::Lead) => &["travel"],
             };
             assert!(
                 want.contains(&kinds[i]),

@@ -70,3 +70,4 @@ mod typos;
 mod variable_errors;
 mod variable_rs274;
 mod variable_top;
+mod wall;

@@ -263,6 +263,8 @@ codes! {
         "planar tracks closer than 30 % of the bead width: the layer would pile up instead of levelling (as a warning: a contour pass that is a sliver, its sides closer than 30 % of the bead width)";
     SelfIntersecting = "self-intersecting", Feasibility,
         "a profile's edges cross on some layer";
+    PathBend = "path-bend", Feasibility,
+        "a wall along an open path cannot follow it: an arc bends tighter than the wall reaches to its inside, or the wall's face runs into itself (a sharp bend whose inside eats a whole piece, two stretches of the path closer than the wall is wide); names the radius or the place, and what would fit";
     Hole = "hole", Feasibility,
         "a hole of a `region(…)` crosses, touches or lies outside the outline, or crosses, touches or lies inside another hole (on some layer)";
     FillEmpty = "fill-empty", Feasibility,

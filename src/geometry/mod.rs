@@ -3,6 +3,7 @@
 //! checker builds them from the language), so it reads no stage.
 
 pub mod mesh;
+pub mod open_path;
 pub mod outline;
 pub mod profile;
 pub mod region;

@@ -6,7 +6,7 @@ use crate::span::Span;
 
 /// The statement words that declare a name others may use.
 pub const DECLARING: &[&str] = &[
-    "let", "section", "profile", "bead", "loft", "extrude", "style", "machine", "ring",
+    "let", "section", "profile", "bead", "loft", "extrude", "style", "machine", "ring", "wall",
 ];
 
 /// A declared name.

@@ -198,6 +198,8 @@ fn brace_block(text: &str, toks: &[Token], i: usize, stack: &[Frame]) -> Option<
         {
             schema::block("ring_process")
         }
+        // `wall(…)` is a calibration coupon; the statement is a wall along a path.
+        "wall" => Some(&schema::wall::WALL),
         k => schema::block(k),
     }
     .filter(|b| !b.is_call())

@@ -97,6 +97,13 @@
 //! machine's, else what its program sets ([`crate::target::blending`]). A
 //! ring whose loop runs on the machine gets no leads (its programs write
 //! their own moves).
+//!
+//! A path of the IR's kind [`Lead`](crate::ir::PathKind::Lead) (a wall
+//! along an open path with `ends = lead(…)`) is a lead of its own: its
+//! moves run at its points' speed with the laser off, as a
+//! [`MoveKind::LeadOut`] where it goes on from a run under way, else as a
+//! [`MoveKind::LeadIn`] onto the run that joins its end; the machine's own
+//! lead-in and lead-out are then left out.
 
 pub mod arm;
 pub mod kinematics;
@@ -595,6 +602,8 @@ impl<'a> Plan<'a> {
             last: None,
             last_axes: None,
             run_end: None,
+            lead_path: false,
+            last_kind: None,
             top: f64::NEG_INFINITY,
             boxes: part_frame::fixture_boxes(self.program, self.machine),
         };
@@ -624,6 +633,7 @@ impl<'a> Plan<'a> {
                     .iter()
                     .map(|p| p.points.as_slice())
                     .find(|p| !p.is_empty());
+                w.lead_path = path.kind == crate::ir::PathKind::Lead;
                 w.path(li, pi, (&path.points, after), first);
                 first = false;
                 w.ends = None;
@@ -707,6 +717,11 @@ struct Walker<'p, 'a, V> {
     last_axes: Option<Rotary>,
     /// With leads: where the last deposit started, and the move itself.
     run_end: Option<([f64; 3], Move)>,
+    /// Whether the path being walked is a lead of its own
+    /// ([`PathKind::Lead`](crate::ir::PathKind::Lead)).
+    lead_path: bool,
+    /// What the last move sent was.
+    last_kind: Option<MoveKind>,
     /// The highest focus deposited so far (Z, mm): travels pass at least
     /// `clearance` above it ([`Walker::travel_height`]).
     top: f64,
@@ -793,6 +808,7 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
             }
         }
         self.last_axes = Some(m.axes);
+        self.last_kind = Some(m.kind);
         if self.timed {
             if let (Speed::Feed(v), Some(from)) = (m.speed, self.last) {
                 let d = (0..3)
@@ -850,11 +866,17 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
             // down: a path joins only where the nozzle still is.
             Some(c) if !first_in_layer && !self.retracted && joins(c.focus, c.normal, first) => c,
             _ => {
-                // The powder of the path's first deposit, for the cell.
-                let powder = pts[..pts.len() - 1]
-                    .iter()
-                    .find(|p| p.laser_on)
-                    .map(|p| p.powder);
+                // The powder of the path's first deposit, for the cell (a
+                // lead's: of the deposit it leads onto, so the powder is
+                // ready before the nozzle runs up to speed).
+                let deposits = |pts: &[Point]| {
+                    pts[..pts.len().saturating_sub(1)]
+                        .iter()
+                        .find(|p| p.laser_on)
+                        .map(|p| p.powder)
+                };
+                let powder =
+                    deposits(pts).or_else(|| after.filter(|_| self.lead_path).and_then(deposits));
                 let feed_in = pts.get(1).filter(|_| first.laser_on);
                 self.transition((li, pi, first_in_layer), first, feed_in, powder)
             }
@@ -864,6 +886,13 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
             cur.axes = r;
         }
         self.retracted = false;
+        // A lead of its own that goes on from a run under way is its
+        // lead-out; any other, a lead-in onto the run that joins its end.
+        let lead = self.lead_path.then_some(if self.laser {
+            MoveKind::LeadOut
+        } else {
+            MoveKind::LeadIn
+        });
         for (k, seg) in pts.windows(2).enumerate() {
             let (from, to) = (&seg[0], &seg[1]);
             if to.normal != cur.normal {
@@ -887,6 +916,10 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
                     self.lead_in((li, pi, k), from, to, cur);
                 }
                 (MoveKind::Deposit, Speed::Feed(from.speed), to.focus())
+            } else if let Some(kind) = lead {
+                // At the deposit's speed, laser off: the laser switches
+                // off before a lead-out, on after a lead-in.
+                (kind, Speed::Feed(from.speed), to.focus())
             } else {
                 self.end_run();
                 // A gap ends where the next run's lead-in starts: in this
@@ -1255,6 +1288,10 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
         to: &Point,
         cur: Cursor,
     ) {
+        if self.last_kind == Some(MoveKind::LeadIn) {
+            // The path's own lead-in brought the nozzle up to speed.
+            return;
+        }
         let Some(start) = self.lead_start(from, to) else {
             return;
         };

@@ -43,7 +43,7 @@ pub fn classify(layer: &Layer) -> Vec<Kind> {
             PathKind::Wall => Kind::Wall,
             PathKind::Contour => Kind::Contour,
             PathKind::Infill => Kind::Infill,
-            PathKind::Travel => Kind::Travel,
+            PathKind::Travel | PathKind::Lead => Kind::Travel,
         };
         if let (Some(first), Some((Kind::Infill, last))) = (path.points.first(), before) {
             if kind == Kind::Infill

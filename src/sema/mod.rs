@@ -127,6 +127,7 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         &inheritance,
         &style::Context {
             loft: solid_kind == Some(solid::Kind::Loft),
+            wall: solid_kind == Some(solid::Kind::Wall),
             variable,
             ring,
             planar: planar.as_ref(),

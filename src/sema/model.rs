@@ -14,11 +14,13 @@ pub use crate::geometry::spine::Spine;
 mod calibration;
 mod segmented_ring;
 mod top;
+mod wall;
 pub use calibration::{Calibration, Coupon, CouponKind};
 pub use segmented_ring::{HeightControl, LoopRun, RingBuild};
 pub use top::{
     Axis, Level, ScanBase, Top, TopExpr, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE,
 };
+pub use wall::{OpenWall, WallEnds, WallSide};
 
 /// A whole checked `.lmd` file.
 #[derive(Clone, Debug)]
@@ -435,6 +437,14 @@ pub enum Build {
     Ring(RingBuild),
     /// Coupons to measure a bead on (`calibration { … }`).
     Calibration(Calibration),
+    /// A wall along an open path, built in flat layers.
+    Wall {
+        /// The wall and its path.
+        wall: OpenWall,
+        /// Planar slicing: the layer height, the beads' offset, the chord
+        /// error.
+        slicing: PlanarSlicing,
+    },
 }
 
 /// The ways of a contour loop's seam (where it starts and ends) from layer

@@ -17,6 +17,7 @@ pub const KINDS: &[&str] = &[
     "loft",
     "extrude",
     "ring",
+    "wall",
     "slicing",
     "control",
     "process",

@@ -53,21 +53,7 @@ pub fn plan(
     diags: &mut Diagnostics,
 ) -> Option<Layers> {
     let width = bead.width;
-    let overlapped = slicing.overlapped();
-    // Overlapped tracks fill their offset each, a lone track its width: the
-    // layer rises A/pitch at the process speed ([`crate::deposit`]).
-    let pitch = if overlapped { slicing.offset } else { width };
-    let laid = bead.deposit().rise(slicing.speed, pitch, None);
-    let (lift, lift_derived) = match slicing.lift {
-        Some((l, at)) => (
-            declared_lift((l, at), laid, (overlapped, pitch), slicing, bead, diags)?,
-            false,
-        ),
-        None => (
-            derived_lift(laid, (overlapped, pitch), slicing, bead, diags)?,
-            true,
-        ),
-    };
+    let (lift, pitch, lift_derived) = lift(bead, slicing, diags)?;
     // A mesh is held to the plan's limits from its size first: read in
     // the wrong unit, it would be refused only after it is cut.
     let inset = match extrusion.measure {
@@ -126,9 +112,40 @@ pub fn plan(
     })
 }
 
+/// How far each layer rises, the strip each track fills (the offset of
+/// overlapped tracks, else the bead's width: the layer rises `A/pitch`
+/// at the process speed, [`crate::deposit`]) and whether the lift was
+/// derived (`layer_height = auto`); `None` after reporting a lift the bead
+/// does not stack.
+pub(super) fn lift(
+    bead: &Bead,
+    slicing: &PlanarSlicing,
+    diags: &mut Diagnostics,
+) -> Option<(Length, Length, bool)> {
+    let overlapped = slicing.overlapped();
+    let pitch = if overlapped {
+        slicing.offset
+    } else {
+        bead.width
+    };
+    let laid = bead.deposit().rise(slicing.speed, pitch, None);
+    match slicing.lift {
+        Some((l, at)) => declared_lift((l, at), laid, (overlapped, pitch), slicing, bead, diags)
+            .map(|l| (l, pitch, false)),
+        None => {
+            derived_lift(laid, (overlapped, pitch), slicing, bead, diags).map(|l| (l, pitch, true))
+        }
+    }
+}
+
 /// The layers that build `height`: whole ones, at least as tall as asked
 /// (machining takes off the rest).
-fn whole_layers(height: Length, at: Span, lift: Length, diags: &mut Diagnostics) -> Option<usize> {
+pub(super) fn whole_layers(
+    height: Length,
+    at: Span,
+    lift: Length,
+    diags: &mut Diagnostics,
+) -> Option<usize> {
     let n = layer_count(height, lift);
     if n > MAX_LAYERS as f64 {
         diags.push(message::slicing::too_many_layers(

@@ -15,6 +15,7 @@ pub mod spiral;
 pub mod styling;
 pub mod top;
 pub mod variable;
+pub mod wall;
 
 use crate::diag::message::{self, bend::LayerAt, bend::SeamAdvice};
 use crate::diag::Diagnostics;
@@ -48,6 +49,7 @@ pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
         Build::Variable { extrusion, slicing } => top::slice(model, bead, extrusion, slicing),
         Build::Ring(r) => segmented_ring::build(r).map(|(layers, _)| (layers, Diagnostics::new())),
         Build::Calibration(c) => Ok((calibration::build(c, &model.process), Diagnostics::new())),
+        Build::Wall { wall, slicing } => wall::slice(model, bead, wall, slicing),
     }
 }
 

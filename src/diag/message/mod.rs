@@ -34,3 +34,4 @@ pub mod top;
 pub mod usage;
 pub mod value;
 pub mod verify;
+pub mod wall;

@@ -42,6 +42,8 @@ pub enum SlicingMismatch<'a> {
     Ring(&'a str),
     /// A loft or an extrusion sliced `continuous`.
     Continuous,
+    /// A wall along a path sliced with the named strategy (not `planar`).
+    Wall(&'a str),
 }
 
 /// The solid and the slicing strategy (written at `at`) do not go together.
@@ -70,6 +72,10 @@ pub fn slicing_mismatch(m: SlicingMismatch<'_>, at: Span) -> Diagnostic {
         SlicingMismatch::Continuous => (
             "continuous slicing builds a ring".to_string(),
             "slice a loft with `slicing normal { … }`, an extrusion with `slicing planar { … }` (or `variable` with a `top`)",
+        ),
+        SlicingMismatch::Wall(s) => (
+            format!("{s} slicing does not build a wall along a path"),
+            "slice a wall along a path with `slicing planar { … }`: flat layers, one bead height apart",
         ),
         SlicingMismatch::TopExtrusionPlanar => (
             "planar slicing lays flat layers of one height, and this extrusion has a `top`".to_string(),

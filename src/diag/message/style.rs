@@ -146,6 +146,8 @@ pub enum Unstyled {
     Ring,
     /// Variable layers: speeds from the bead model.
     Variable,
+    /// A wall along an open path: the same beads every layer.
+    Wall,
 }
 
 /// Styles are declared for a solid or layers that have none.
@@ -153,6 +155,10 @@ pub fn styles_unsupported(kind: Unstyled, at: Span) -> Diagnostic {
     let (message, help) = match kind {
         Unstyled::Loft => (
             "styles pick tracks of planar layers; a loft's wall is one track a layer",
+            "schedule the wall's power in `process` (e.g. `power = ramp(…)`)",
+        ),
+        Unstyled::Wall => (
+            "styles pick tracks of filled planar layers; a wall along a path lays the same beads on every layer",
             "schedule the wall's power in `process` (e.g. `power = ramp(…)`)",
         ),
         Unstyled::Ring => (

@@ -24,6 +24,7 @@ const PART_ONLY: &[&str] = &[
     "loft",
     "extrude",
     "ring",
+    "wall",
     "slicing",
     "control",
     "style",

@@ -383,6 +383,8 @@ fn inheritance<'a>(
 pub struct Context<'c> {
     /// Whether the solid is a loft, whose wall is one track a layer.
     pub loft: bool,
+    /// Whether the solid is a wall along an open path.
+    pub wall: bool,
     /// Whether the layers are variable, whose speeds come from
     /// the bead model.
     pub variable: bool,
@@ -410,6 +412,7 @@ pub fn assemble(
     for (unstyled, kind) in [
         (cx.loft, Unstyled::Loft),
         (cx.ring, Unstyled::Ring),
+        (cx.wall, Unstyled::Wall),
         (cx.variable, Unstyled::Variable),
     ] {
         if let (true, Some(first)) = (unstyled, written.first()) {

@@ -27,6 +27,7 @@ pub mod shape;
 pub mod slicing;
 pub mod solid;
 pub mod style;
+pub mod wall;
 
 use crate::units::shown;
 use crate::units::Dim;
@@ -558,6 +559,11 @@ pub static BLOCKS: &[&Block] = &[
     &solid::SCAN,
     &solid::EDGES,
     &solid::PLANE,
+    &wall::WALL,
+    &wall::POLYLINE,
+    &wall::ARC,
+    &wall::CHAIN,
+    &wall::LEAD,
     &shape::CIRCLE,
     &shape::ELLIPSE,
     &shape::SQUARE,

@@ -217,7 +217,7 @@ fn source<'a>(
 
 /// The scan speed of planar layers: `process { speed }`, else the speed a
 /// measured bead model was measured at.
-fn scan_speed(
+pub(in crate::sema) fn scan_speed(
     speed: Option<(Speed, Span)>,
     bead: &Bead,
     at: Span,

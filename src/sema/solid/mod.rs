@@ -9,6 +9,7 @@ pub mod scan;
 pub mod section;
 pub mod segmented_ring;
 pub mod top;
+pub mod wall;
 
 use crate::diag::message::{self, solid::SlicingMismatch};
 use crate::diag::Diagnostics;
@@ -34,6 +35,8 @@ pub enum Kind {
     TopExtrude,
     /// `ring NAME { … }`, sliced in one continuous run.
     Ring,
+    /// `wall NAME { … }`, a wall along an open path in flat layers.
+    Wall,
 }
 
 /// The solid as read: its kind when the file has one, the solid when its
@@ -52,6 +55,7 @@ enum Solid<'a> {
     Loft(Loft),
     Extrude(extrude::Written<'a>),
     Ring(segmented_ring::Written),
+    Wall(wall::Written),
 }
 
 impl Read<'_> {
@@ -94,6 +98,7 @@ pub fn read<'a>(
     let mut solids: Vec<&Stmt> = st.get("loft").to_vec();
     solids.extend(st.get("extrude"));
     solids.extend(st.get("ring"));
+    solids.extend(st.get("wall"));
     solids.sort_by_key(|s| s.span.start);
     let Some((s, rest)) = solids.split_first() else {
         diags.push(message::solid::missing_solid());
@@ -136,6 +141,19 @@ pub fn read<'a>(
         ("ring", Some(n), Body::Block(stmts, _)) => {
             let w = segmented_ring::read(env, &n.node, stmts, s.span, diags);
             (Kind::Ring, Some(Solid::Ring(w)), None)
+        }
+        ("wall", Some(n), Body::Block(stmts, _)) => {
+            let beads = (&decl.beads, decl.names.as_slice());
+            let (w, b) = wall::read(env, &n.node, stmts, s.span, beads, diags);
+            (Kind::Wall, w.map(Solid::Wall), b)
+        }
+        ("wall", _, _) => {
+            diags.push(shape_error(
+                s,
+                "wall NAME { … }",
+                "wall rib { along = polyline(points = [[0 mm, 0 mm], [40 mm, 0 mm]])  bead = my_bead  height = 12 mm }",
+            ));
+            (Kind::Wall, None, None)
         }
         ("ring", _, _) => {
             diags.push(shape_error(
@@ -210,6 +228,10 @@ pub fn build(
                 .filter(|_| side_ok)
                 .map(|(extrusion, slicing)| Build::Variable { extrusion, slicing })
         }
+        (Some(Solid::Wall(w)), Some(Spec::Planar(spec)), Some(b)) => {
+            wall::assemble(w, b, spec, (slicing.stmt, speed), diags)
+                .map(|(wall, slicing)| Build::Wall { wall, slicing })
+        }
         (Some(Solid::Ring(w)), Some(Spec::Continuous(spec)), _) => {
             segmented_ring::assemble(w, spec, ring_cx.control, ring_cx.powder, diags)
                 .map(Build::Ring)
@@ -240,6 +262,9 @@ fn mismatch(
             SlicingMismatch::Continuous
         }
         (Some(Kind::TopExtrude), Some("planar")) => SlicingMismatch::TopExtrusionPlanar,
+        (Some(Kind::Wall), Some(s @ ("normal" | "variable" | "continuous"))) => {
+            SlicingMismatch::Wall(s)
+        }
         _ => return false,
     };
     let at = stmt.map(|s| s.span).unwrap_or(Span::new(0, 0));
