@@ -112,6 +112,7 @@ pub fn render(r: &Report) -> String {
     row(&mut out, "total", &r.total, volumes);
     out.push('\n');
     totals(&mut out, r);
+    registration(&mut out, r);
     metal(&mut out, r);
     approaches(&mut out, r);
     out
@@ -176,6 +177,37 @@ fn totals(out: &mut String, r: &Report) {
             layers.join(", ")
         );
     }
+}
+
+/// The scan's best fit to its nominal: the move, the residual, the
+/// placement that would give it without the fit.
+fn registration(out: &mut String, r: &Report) {
+    let Some(g) = &r.registration else {
+        return;
+    };
+    let v = |p: [f64; 3], d: usize| {
+        format!(
+            "{}, {}, {}",
+            trimmed(p[0], d),
+            trimmed(p[1], d),
+            trimmed(p[2], d)
+        )
+    };
+    let _ = writeln!(
+        out,
+        "scan fit    the scan moved onto its nominal `{}` by [{}] mm and turned [{}]° after its declared placement: {} mm RMS, {} mm at most, over the {} of its {} points fitted that lie near it (the rest worn or stray), within the `fit_tolerance` of {} mm; {} iterations (placed as `turn = [{}] deg`, `at = [{}] mm`)",
+        g.nominal,
+        v(g.moved, 3),
+        v(g.turned, 3),
+        trimmed(g.rms, 4),
+        trimmed(g.max, 4),
+        percent(g.inliers),
+        g.points,
+        trimmed(g.tolerance, 4),
+        g.iterations,
+        v(g.turn, 4),
+        v(g.at, 4),
+    );
 }
 
 /// The metal: what the bead model lays, what the layers stack, the design.
