@@ -195,16 +195,16 @@ fn registration(out: &mut String, r: &Report) {
     };
     let _ = writeln!(
         out,
-        "scan fit    the scan moved onto its nominal `{}` by [{}] mm and turned [{}]° after its declared placement: {} mm RMS, {} mm at most, over the {} of its {} points fitted that lie near it (the rest worn or stray), within the `fit_tolerance` of {} mm; {} iterations (placed as `turn = [{}] deg`, `at = [{}] mm`)",
+        "scan fit    the scan moved onto its nominal `{}` by [{}] mm and turned [{}]° after its declared placement, in {} iterations: it keeps {} of the {} points fitted (the rest worn or stray), {} mm RMS from the nominal and {} mm at most, within the `fit_tolerance` of {} mm (the same place as `turn = [{}] deg`, `at = [{}] mm` without `register`)",
         g.nominal,
         v(g.moved, 3),
         v(g.turned, 3),
-        trimmed(g.rms, 4),
-        trimmed(g.max, 4),
+        g.iterations,
         percent(g.inliers),
         g.points,
+        trimmed(g.rms, 4),
+        trimmed(g.max, 4),
         trimmed(g.tolerance, 4),
-        g.iterations,
         v(g.turn, 4),
         v(g.at, 4),
     );

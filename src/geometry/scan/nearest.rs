@@ -11,7 +11,8 @@
 //!
 //! Each node holds a run of the triangles, split at the median of their
 //! centres along its box's longest side until a leaf holds at most
-//! [`LEAF`]. Built in `O(n log n)`, deterministic (ties broken by index).
+//! four. Built in `O(n log n)`, deterministic (ties broken by the
+//! corners themselves).
 
 /// Most triangles a leaf holds.
 const LEAF: usize = 4;

@@ -365,7 +365,7 @@ fn solve(pts: &[[f64; 3]], m: &Matches, limit: f64, check: bool) -> Result<Rigid
     let mut free = Vec::new();
     for k in 0..6 {
         let (l, v) = (eig.eigenvalues[k], eig.eigenvectors.column(k).into_owned());
-        if !(l > FREE * top) {
+        if l.is_nan() || l <= FREE * top {
             free.push(freedom(&v));
             continue;
         }

@@ -306,6 +306,6 @@ pub fn scanned(scan: &crate::sema::model::ScanBase) -> Fixture {
         at: [0.0; 3],
         machine: None,
         tilts: false,
-        registration: scan.registration.clone(),
+        registration: scan.registration.as_deref().cloned(),
     }
 }

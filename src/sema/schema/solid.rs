@@ -306,7 +306,7 @@ pub mod scan {
         "register",
         Call(&[&MESH]),
         Optional,
-        "the nominal, `mesh(file, units, turn, at)`: the part as designed in the part's coordinates; the scan is moved onto it by a best fit that leaves the worn region out, starting from `turn` and `at` (docs/repair.md, *Registration*)",
+        "the nominal: the part as designed, placed in the part's coordinates by its own `turn` and `at` (it need not be closed nor stand on the plate); the scan is moved onto it by a best fit that leaves the worn region out, starting from where the scan's `turn` and `at` put it (docs/repair.md, *Registration*)",
     );
     /// `scan(fit_tolerance = …)`.
     pub static FIT_TOLERANCE: Field = Field::new(

@@ -70,7 +70,7 @@ pub fn read(
                 tolerance_at: f.span(&field::FIT_TOLERANCE),
             };
             let (pose, r) = fit(&ask, n, diags)?;
-            (pose, Some(r))
+            (pose, Some(Box::new(r)))
         }
     };
     let est = Estimate { cell, outlier };
