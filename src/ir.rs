@@ -893,6 +893,44 @@ pub struct Fixture {
     /// stands with every rotary axis at 0.
     #[serde(default, skip_serializing_if = "is_false")]
     pub tilts: bool,
+    /// The scanned part's best fit to its nominal (`scan(register = …)`):
+    /// how it was moved and how well it fits. Absent: placed as declared,
+    /// or not a scan.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub registration: Option<Registration>,
+}
+
+/// How a scan was moved onto its nominal by a best fit, and how well it
+/// fits (`scan(register = …, fit_tolerance = …)`, docs/repair.md,
+/// *Registration*).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+pub struct Registration {
+    /// The nominal's file, as the source names it.
+    pub nominal: String,
+    /// The shift the fit found after the declared placement, mm (with
+    /// `turned`, about the part's origin: `p ↦ R·p + moved`).
+    pub moved: [f64; 3],
+    /// The turn the fit found after the declared placement, deg: about x,
+    /// then y, then z, as `turn` is written.
+    pub turned: [f64; 3],
+    /// The whole placement, declared and fitted together: the `turn` (deg)
+    /// that places the scan so without `register`…
+    pub turn: [f64; 3],
+    /// …and the `at` (mm).
+    pub at: [f64; 3],
+    /// RMS distance to the nominal of the points the fit keeps, mm.
+    pub rms: f64,
+    /// The farthest kept point's distance, mm.
+    pub max: f64,
+    /// The share of the fitted points kept (the rest: worn, stray), 0–1.
+    pub inliers: f64,
+    /// The points fitted (every k-th of the scan's, at most 50 000).
+    pub points: usize,
+    /// The iterations the fit took.
+    pub iterations: usize,
+    /// `fit_tolerance`: the most `rms` may be, mm.
+    pub tolerance: f64,
 }
 
 /// The name the part a repair builds on goes by among the fixtures

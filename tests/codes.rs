@@ -394,6 +394,10 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     // A scan of x −10..10 mm under a wall 30 mm long (tests/codes/short.xyz).
     scan_coverage: ScanCoverage, WALL,
         "extrude wall { profile = rectangle(width = 30 mm, height = 2.4 mm)  size = outer  bead = b316  on = scan(\"short.xyz\")  top = 12 mm }";
+    // The flat scan of tests/codes/short.xyz registered to the top of a
+    // 10 mm box (tests/codes/clamp.stl, its top moved to z = 2 mm).
+    scan_registration: ScanRegistration, WALL,
+        "extrude wall { profile = rectangle(width = 30 mm, height = 2.4 mm)  size = outer  bead = b316  on = scan(\"short.xyz\", register = mesh(\"clamp.stl\", at = [0 mm, 0 mm, -28 mm]))  top = 12 mm }";
     // A tetrahedron without its slanted face (tests/codes/open.stl).
     mesh: Mesh, PLATE,
         "extrude block { profile = mesh(\"open.stl\")  size = outer  bead = track }";

@@ -485,6 +485,7 @@ proptest! {
             at: [x, y, 0.0],
             machine: None,
             tilts: false,
+            registration: None,
         });
         for m in &ir.machines {
             let clearance = m.common().clearance;
@@ -555,6 +556,7 @@ proptest! {
             at: [x, y, 0.0],
             machine: None,
             tilts: false,
+            registration: None,
         });
         let m = ir.machines.iter().find(|m| m.name() == "mill").unwrap();
         let mut poses = Poses { last: None, out: Vec::new() };

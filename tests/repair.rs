@@ -617,3 +617,118 @@ fn the_scanned_part_is_an_obstacle_to_the_head() {
         .iter()
         .any(|a| a.body == "forearm" && a.with == "the scanned part"));
 }
+
+/// The example's files (examples/repair/), by their names there.
+fn example_files(names: &[&str]) -> BTreeMap<String, Vec<u8>> {
+    names
+        .iter()
+        .map(|n| {
+            let bytes = std::fs::read(format!("examples/repair/{n}")).unwrap();
+            (format!("repair/{n}"), bytes)
+        })
+        .collect()
+}
+
+/// Registration (docs/repair.md): the worn pad scanned with its sides and
+/// its flange and displaced by a known move (1.5° about z, 0.5° about x,
+/// then (1.2, −0.8, 0.3) mm: examples/repair/make_worn_pad.py), registered
+/// to its nominal, plans the layers of the undisplaced scan (worn_pad.lmd,
+/// the same top points): as many, the first on the analytic worn surface
+/// and the last ending at the top within the same 0.06 mm. The move found
+/// undoes the known one within 0.02 mm and 0.01°, its residual is the
+/// scanner's 0.03 mm noise (and the flanks of the trough within three
+/// deviations of it: 0.036 mm at most), and the report gives it.
+#[test]
+fn a_displaced_scan_registered_plans_the_layers_of_the_undisplaced_one() {
+    let plain = compile(
+        include_str!("../examples/worn_pad.lmd"),
+        example_files(&["worn_pad.ply"]),
+    );
+    let reg = compile(
+        include_str!("../examples/worn_pad_registered.lmd"),
+        example_files(&["worn_pad_displaced.ply", "pad_nominal.stl"]),
+    );
+    let (m1, m2) = (messages(&plain), messages(&reg));
+    let (a, verified) = (
+        plain.program.unwrap_or_else(|| panic!("{m1}")),
+        reg.program.unwrap_or_else(|| panic!("{m2}")),
+    );
+    let (a, b) = (a.ir(), verified.ir());
+    let scan = b.fixtures.iter().find(|f| f.is_scan()).unwrap();
+    eprintln!("{:?}", scan.registration);
+    assert_eq!(a.layers.len(), b.layers.len());
+    check_plan(b, example_z, 13.0, 60.0, 20.0, 0.06);
+    // The move found is the known one's inverse.
+    let r = scan.registration.as_ref().unwrap();
+    let known =
+        nalgebra::Rotation3::from_euler_angles(0.5f64.to_radians(), 0.0, 1.5f64.to_radians());
+    let back = known.inverse();
+    let (x, y, z) = back.euler_angles();
+    let shift = -(back * nalgebra::Vector3::new(1.2, -0.8, 0.3));
+    let turned = [x, y, z].map(f64::to_degrees);
+    for ((got, want), (moved, shift)) in r.turned.iter().zip(turned).zip(r.moved.iter().zip(&shift))
+    {
+        assert!((got - want).abs() < 0.01, "{r:?}");
+        assert!((moved - shift).abs() < 0.02, "{r:?}");
+    }
+    // The noise, and the trough's flanks within three deviations of it.
+    assert!(r.rms > 0.03 && r.rms < 0.036, "{r:?}");
+    assert!(r.inliers > 0.5 && r.inliers < 0.9, "{r:?}");
+    let report = lmdc::report::Report::of_plan(verified.machines().next().unwrap());
+    assert_eq!(report.registration.as_ref(), Some(r));
+    let text = lmdc::report::text::render(&report);
+    assert!(
+        text.contains("scan fit    the scan moved onto its nominal `repair/pad_nominal.stl`"),
+        "{text}"
+    );
+}
+
+/// A nominal that is not this part (a 40 × 40 mm block under the 66 × 26
+/// mm pad) is refused, and so is a tolerance without a nominal.
+#[test]
+fn a_wrong_nominal_or_a_tolerance_alone_is_refused() {
+    let mut files = example_files(&["worn_pad_displaced.ply"]);
+    files.insert(
+        "repair/pad_nominal.stl".into(),
+        block_stl([-20.0, -20.0, 0.0], [20.0, 20.0, 10.0]),
+    );
+    let c = compile(include_str!("../examples/worn_pad_registered.lmd"), files);
+    let m = messages(&c);
+    assert!(c.program.is_none(), "{m}");
+    assert!(m.starts_with("lmd::scan-registration: "), "{m}");
+    let alone = include_str!("../examples/worn_pad.lmd")
+        .replace("cell = 1 mm)", "cell = 1 mm, fit_tolerance = 0.1 mm)");
+    let c = compile(&alone, example_files(&["worn_pad.ply"]));
+    let m = messages(&c);
+    assert!(
+        m.starts_with("lmd::scan: `fit_tolerance` bounds a best fit to a nominal"),
+        "{m}"
+    );
+}
+
+/// A binary STL of the box `lo..hi`.
+fn block_stl(lo: [f64; 3], hi: [f64; 3]) -> Vec<u8> {
+    let c = |i: usize| [0, 1, 2].map(|k| if (i >> k) & 1 == 1 { hi[k] } else { lo[k] } as f32);
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let mut b = vec![b' '; 80];
+    b.extend(12u32.to_le_bytes());
+    for q in quads {
+        for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+            b.extend([0u8; 12]);
+            for i in t {
+                for v in c(i) {
+                    b.extend(v.to_le_bytes());
+                }
+            }
+            b.extend([0u8; 2]);
+        }
+    }
+    b
+}

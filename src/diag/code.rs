@@ -190,7 +190,7 @@ codes! {
     Mesh = "mesh", Values,
         "a `mesh(…)` lmdc cannot build: a file that cannot be read or is no STL or 3MF lmdc reads (with where it goes wrong: an STL's line or triangle; a 3MF's build item, object, triangle and vertex index), a 3MF whose `unit` disagrees with `units`, a mesh that is open, non-manifold or has triangles facing both ways (with the triangles' numbers in the file and where), a mesh not standing on the plate, or a layer whose section is empty, does not close, has a hole in no outline, or has loops of two shells that overlap, cross or touch (with the layer, counted from 1, the height of its cut and a point)";
     Scan = "scan", Values,
-        "a `scan(…)` lmdc cannot build on: a file that cannot be read or is no PLY, XYZ/CSV, STL or 3MF it reads (with the line, face or point), more points than it reads, a grid of more cells than it keeps (with the `cell` that fits), a mesh with no face seen from above, or `on` without `top`";
+        "a `scan(…)` lmdc cannot build on: a file that cannot be read or is no PLY, XYZ/CSV, STL or 3MF it reads (with the line, face or point), more points than it reads, a grid of more cells than it keeps (with the `cell` that fits), a mesh with no face seen from above, `on` without `top`, or `fit_tolerance` without `register`";
     SheetUnits = "sheet-units", Values,
         "a measurement sheet's header names a column lmdc reads (`speed`, `height`, `width`, `area`, `mass`, `feed`, `length`, `power`) without its unit in brackets, in a unit lmdc does not convert, or twice";
     TooFewPoints = "too-few-points", Values,
@@ -277,6 +277,8 @@ codes! {
         "the declared `layers` gives heights outside `h_min..h_max`; names the counts that work";
     ScanCoverage = "scan-coverage", Feasibility,
         "a repair's footprint reaches where the scan has no point (with the first such place and how many), or its top lies below the scanned surface somewhere in it (with where and by how much): nothing to build on, or nothing to add";
+    ScanRegistration = "scan-registration", Feasibility,
+        "a scan's best fit to its nominal (`scan(register = …)`, docs/repair.md) that leaves the points it keeps farther from the nominal than `fit_tolerance` (RMS), keeps fewer than 100 points, does not settle in 50 iterations, or leaves the scan free to slide or turn (a nominal whose faces under the scan do not fix it); names the RMS, the tolerance, the share of the points kept and the move found";
     TopHeight = "top-height", Feasibility,
         "an extrusion's `top` is zero, negative or cannot be computed at a point where a track runs (named, with the inner error)";
     SegmentsTooShort = "segments-too-short", Feasibility,

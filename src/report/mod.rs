@@ -206,6 +206,10 @@ pub struct Report {
     /// *Closest approaches*).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub approaches: Vec<crate::verify::approach::Approach>,
+    /// A repair's scan moved onto its nominal by a best fit: the move found
+    /// and how well it fits (docs/repair.md, *Registration*).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub registration: Option<crate::ir::Registration>,
 }
 
 impl Report {
@@ -328,6 +332,11 @@ impl Report {
             finish: None,
             branch_changes: summary.branch_changes.iter().map(|l| l + 1).collect(),
             approaches: summary.approaches.clone(),
+            registration: program
+                .fixtures
+                .iter()
+                .find(|f| f.is_scan())
+                .and_then(|f| f.registration.clone()),
         }
     }
 

@@ -113,6 +113,7 @@ pub fn render(r: &Report) -> String {
     row(&mut out, "total", &r.total, volumes);
     out.push('\n');
     totals(&mut out, r);
+    registration(&mut out, r);
     metal(&mut out, r);
     approaches(&mut out, r);
     out
@@ -177,6 +178,37 @@ fn totals(out: &mut String, r: &Report) {
             layers.join(", ")
         );
     }
+}
+
+/// The scan's best fit to its nominal: the move, the residual, the
+/// placement that would give it without the fit.
+fn registration(out: &mut String, r: &Report) {
+    let Some(g) = &r.registration else {
+        return;
+    };
+    let v = |p: [f64; 3], d: usize| {
+        format!(
+            "{}, {}, {}",
+            trimmed(p[0], d),
+            trimmed(p[1], d),
+            trimmed(p[2], d)
+        )
+    };
+    let _ = writeln!(
+        out,
+        "scan fit    the scan moved onto its nominal `{}` by [{}] mm and turned [{}]° after its declared placement, in {} iterations: it keeps {} of the {} points fitted (the rest worn or stray), {} mm RMS from the nominal and {} mm at most, within the `fit_tolerance` of {} mm (the same place as `turn = [{}] deg`, `at = [{}] mm` without `register`)",
+        g.nominal,
+        v(g.moved, 3),
+        v(g.turned, 3),
+        g.iterations,
+        percent(g.inliers),
+        g.points,
+        trimmed(g.rms, 4),
+        trimmed(g.max, 4),
+        trimmed(g.tolerance, 4),
+        v(g.turn, 4),
+        v(g.at, 4),
+    );
 }
 
 /// The metal: what the bead model lays, what the layers stack, the design.

@@ -1,9 +1,10 @@
 //! What lmdc says about a scan a repair is built on (`on = scan(…)`,
 //! docs/repair.md): a file it cannot read, a grid too fine, a footprint
-//! the scan does not cover, a top below the scanned surface.
+//! the scan does not cover, a top below the scanned surface, a best fit to
+//! its nominal refused.
 
 use crate::diag::{Code, Diagnostic};
-use crate::geometry::scan::{GridFault, ScanError, MAX_CELLS};
+use crate::geometry::scan::{FitFault, Freedom, GridFault, ScanError, MAX_CELLS};
 use crate::span::Span;
 use crate::units::short;
 
@@ -200,4 +201,152 @@ pub fn top_near_level(
         "lower the level to {} mm or below, or raise the top; `level = none` lays every layer as a fraction of the top less the scan",
         short(top - h_min)
     ))
+}
+
+/// `(x, y, z)` rounded for people.
+fn p3(p: [f64; 3]) -> String {
+    format!("({}, {}, {})", short(p[0]), short(p[1]), short(p[2]))
+}
+
+/// A direction: an axis's name when it lies along one, else its numbers.
+fn direction(d: [f64; 3]) -> String {
+    let axis = (0..3).find(|&k| d[k].abs() > 0.995);
+    match axis {
+        Some(k) => ["x", "y", "z"][k].to_string(),
+        None => format!("({:.2}, {:.2}, {:.2})", d[0], d[1], d[2]),
+    }
+}
+
+/// What the scan `scan` and its nominal `nominal` are called in a message.
+pub struct Registering<'a> {
+    /// The scan's file.
+    pub scan: &'a str,
+    /// The nominal's file.
+    pub nominal: &'a str,
+    /// `scan(…)`.
+    pub at: Span,
+    /// `register = mesh(…)`.
+    pub register: Span,
+}
+
+/// What every refused fit's help says the fit needs.
+const FIT_NEEDS: &str = "the best fit starts from the scan's `turn` and `at` and finds the nominal only from within a few mm and degrees of it: place the scan nearer";
+
+/// The best fit leaves an RMS of `fit.rms` over `tolerance`.
+pub fn fit_too_loose(
+    r: &Registering<'_>,
+    fit: &crate::ir::Registration,
+    tolerance_at: Option<Span>,
+) -> Diagnostic {
+    let d = Diagnostic::error(
+        Code::ScanRegistration,
+        format!(
+            "the scan `{}` fits its nominal `{}` to {} mm RMS, more than the `fit_tolerance` of {} mm (the best fit keeps {:.1} % of its points, moved {} mm and turned {}° after the declared placement)",
+            r.scan,
+            r.nominal,
+            short(fit.rms),
+            short(fit.tolerance),
+            fit.inliers * 100.0,
+            p3(fit.moved),
+            p3(fit.turned)
+        ),
+    )
+    .label(r.at, "this scan")
+    .label(r.register, "the nominal");
+    let d = match tolerance_at {
+        Some(t) => d.label(t, "the tolerance"),
+        None => d,
+    };
+    d.help(format!(
+        "{FIT_NEEDS}; or the nominal is not this part, or not in the part's coordinates; or, if the part differs from its nominal this much where it is not worn, raise `fit_tolerance` (to {} mm)",
+        crate::units::short_up(fit.rms)
+    ))
+}
+
+/// The best fit cannot be made (`fault`).
+pub fn fit_refused(r: &Registering<'_>, fault: &FitFault) -> Diagnostic {
+    let (message, help) = match fault {
+        FitFault::NoNominal => (
+            format!("the nominal `{}` has no triangle with an area", r.nominal),
+            "export the part as designed as a mesh of its faces (STL or 3MF)".to_string(),
+        ),
+        FitFault::TooFewInliers {
+            inliers,
+            points,
+            limit,
+        } => (
+            format!(
+                "the best fit of the scan `{}` to its nominal `{}` keeps only {inliers} of its {points} points (within {} mm of the nominal): too few to place it",
+                r.scan,
+                r.nominal,
+                short(*limit)
+            ),
+            format!("{FIT_NEEDS}; or the scan holds too few points, or the nominal is not this part"),
+        ),
+        FitFault::NotSettled { iterations, step } => (
+            format!(
+                "the best fit of the scan `{}` to its nominal `{}` does not settle: after {iterations} iterations it still moves points by {} mm",
+                r.scan,
+                r.nominal,
+                short(*step)
+            ),
+            format!("{FIT_NEEDS}; or the nominal is not this part"),
+        ),
+        FitFault::Undetermined { free, .. } => (
+            format!(
+                "the nominal `{}` does not fix where the scan `{}` goes: under the points the fit keeps, its faces leave the scan free to {}",
+                r.nominal,
+                r.scan,
+                freedoms(free)
+            ),
+            "scan more of the part than a face that fixes only some of its place (a flat face fixes its height and tilt, not where along it): its sides, an edge, a hole; or leave `register` out and place the scan by `turn` and `at`".to_string(),
+        ),
+    };
+    Diagnostic::error(
+        match fault {
+            FitFault::NoNominal => Code::Scan,
+            _ => Code::ScanRegistration,
+        },
+        message,
+    )
+    .label(r.at, "this scan")
+    .label(r.register, "the nominal")
+    .help(help)
+}
+
+/// "slide along x and y and turn about z".
+fn freedoms(free: &[Freedom]) -> String {
+    let mut slides = Vec::new();
+    let mut turns = Vec::new();
+    for f in free {
+        match f {
+            Freedom::Slide(d) => slides.push(direction(*d)),
+            Freedom::Turn(d) => turns.push(direction(*d)),
+        }
+    }
+    let and = |v: &[String]| match v {
+        [] => String::new(),
+        [one] => one.clone(),
+        [init @ .., last] => format!("{} and {last}", init.join(", ")),
+    };
+    match (slides.is_empty(), turns.is_empty()) {
+        (false, false) => format!(
+            "slide along {} and turn about {}",
+            and(&slides),
+            and(&turns)
+        ),
+        (false, true) => format!("slide along {}", and(&slides)),
+        (true, false) => format!("turn about {}", and(&turns)),
+        (true, true) => "move".to_string(),
+    }
+}
+
+/// `fit_tolerance` without `register`: nothing to fit to.
+pub fn tolerance_without_nominal(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Scan,
+        "`fit_tolerance` bounds a best fit to a nominal, and this scan has none (`register`)",
+    )
+    .label(at, "a tolerance for no fit")
+    .help("add `register = mesh(file = \"nominal.stl\")` (the part as designed), or leave `fit_tolerance` out")
 }

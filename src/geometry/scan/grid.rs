@@ -17,9 +17,9 @@
 //! are empty, the filled ones are averaged with the same weights, and a point whose own cell is empty has no surface
 //! ([`HeightField::at`] is `None`): the scan does not cover it.
 
-use super::Raw;
+use super::{Pose, Raw};
+#[cfg(test)]
 use crate::geometry::mesh::Placement;
-use nalgebra::{Rotation3, Vector3};
 
 /// Most cells of a height field: 64 MB of heights.
 pub const MAX_CELLS: usize = 16_000_000;
@@ -80,14 +80,12 @@ pub struct Stats {
 }
 
 impl HeightField {
-    /// The height field of `raw`, placed by `place`, estimated by `est`.
-    pub fn new(raw: &Raw, place: Placement, est: Estimate) -> Result<HeightField, GridFault> {
-        let rot = Rotation3::from_euler_angles(place.turn[0], place.turn[1], place.turn[2]);
-        let at = Vector3::from(place.at);
-        let placed = |v: &[f32; 3]| -> [f64; 3] {
-            let p = rot * (Vector3::new(v[0] as f64, v[1] as f64, v[2] as f64) * place.scale) + at;
-            [p.x, p.y, p.z]
-        };
+    /// The height field of `raw`, placed by `place` (a declared
+    /// [`crate::geometry::mesh::Placement`], or a [`Pose`] a best fit
+    /// moved), estimated by `est`.
+    pub fn new(raw: &Raw, place: impl Into<Pose>, est: Estimate) -> Result<HeightField, GridFault> {
+        let pose: Pose = place.into();
+        let placed = |v: &[f32; 3]| pose.apply(v);
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         for v in &raw.vertices {
             let p = placed(v);

@@ -8,13 +8,61 @@
 //! faces as triangles of vertex indices. [`HeightField::new`] places them
 //! and estimates the surface robustly (the median of each cell's points,
 //! then cells that stand out from their neighbours by more than a declared
-//! height replaced by the neighbours' median).
+//! height replaced by the neighbours' median). Before that, a scan may be
+//! moved onto its nominal by a best fit ([`register`]).
 
 mod grid;
+pub mod nearest;
 pub mod ply;
+pub mod register;
 pub mod xyz;
 
 pub use grid::{Estimate, GridFault, HeightField, Stats, MAX_CELLS};
+pub use register::{Fit, FitFault, Freedom, Rigid};
+
+use crate::geometry::mesh::Placement;
+use nalgebra::{Rotation3, Vector3};
+
+/// Where a scan's points go in the part's coordinates: scaled, turned,
+/// moved — a declared placement, and a best fit's move after it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    /// mm per file unit.
+    pub scale: f64,
+    /// The turn, after scaling.
+    pub rot: Rotation3<f64>,
+    /// Where the file's origin goes, mm.
+    pub at: Vector3<f64>,
+}
+
+impl From<Placement> for Pose {
+    fn from(p: Placement) -> Pose {
+        Pose {
+            scale: p.scale,
+            rot: Rotation3::from_euler_angles(p.turn[0], p.turn[1], p.turn[2]),
+            at: Vector3::from(p.at),
+        }
+    }
+}
+
+impl Pose {
+    /// The vertex `v` placed, mm.
+    pub fn apply(&self, v: &[f32; 3]) -> [f64; 3] {
+        let p = self.rot
+            * (Vector3::new(f64::from(v[0]), f64::from(v[1]), f64::from(v[2])) * self.scale)
+            + self.at;
+        [p.x, p.y, p.z]
+    }
+
+    /// This pose, then the rigid move `m`.
+    pub fn then(&self, m: &Rigid) -> Pose {
+        Pose {
+            scale: self.scale,
+            rot: m.rot * self.rot,
+            at: m.rot * self.at + m.shift,
+        }
+    }
+}
 
 /// Most vertices (points) a scan may have: 12 bytes each once read and 16
 /// while the grid sorts them; a line scanner's pass over a 300 mm part at

@@ -60,6 +60,7 @@ pub fn read<'a>(
                 at,
                 machine,
                 tilts,
+                registration: None,
             };
             out.push((fixture, placed));
         }
@@ -305,5 +306,6 @@ pub fn scanned(scan: &crate::sema::model::ScanBase) -> Fixture {
         at: [0.0; 3],
         machine: None,
         tilts: false,
+        registration: scan.registration.as_deref().cloned(),
     }
 }

@@ -110,6 +110,9 @@ pub struct ScanBase {
     pub path: String,
     /// Its surface seen from above, placed.
     pub surface: std::sync::Arc<crate::geometry::scan::HeightField>,
+    /// Its best fit to its nominal, when it was registered to one (boxed:
+    /// most scans have none).
+    pub registration: Option<Box<crate::ir::Registration>>,
     /// Where `scan(…)` is written.
     pub span: Span,
 }

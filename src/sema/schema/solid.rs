@@ -301,12 +301,27 @@ pub mod scan {
         Default(DefaultQuantity(0.5)),
         "how far a cell may stand out of its neighbours' median before it is taken for a spike and replaced by it",
     );
+    /// `scan(register = mesh(…))`.
+    pub static REGISTER: Field = Field::new(
+        "register",
+        Call(&[&MESH]),
+        Optional,
+        "the nominal: the part as designed, placed in the part's coordinates by its own `turn` and `at` (it need not be closed nor stand on the plate); the scan is moved onto it by a best fit that leaves the worn region out, starting from where the scan's `turn` and `at` put it (docs/repair.md, *Registration*)",
+    );
+    /// `scan(fit_tolerance = …)`.
+    pub static FIT_TOLERANCE: Field = Field::new(
+        "fit_tolerance",
+        Quantity(Dim::LENGTH, Positive),
+        Default(DefaultQuantity(0.1)),
+        "with `register`: the most the best fit may leave between the scan and the nominal, as the RMS distance of the points it keeps; more is refused (`lmd::scan-registration`)",
+    );
 }
 
-/// `scan(file, units, turn, at, cell, outlier)`: a measured part's surface.
+/// `scan(file, units, turn, at, cell, outlier, register, fit_tolerance)`:
+/// a measured part's surface.
 pub static SCAN: Block = Block::new(
     "scan",
-    "scan(file, units, turn, at, cell, outlier)",
+    "scan(file, units, turn, at, cell, outlier, register, fit_tolerance)",
     "a measured part's surface seen from above, the base a repair is built on",
     &[
         &scan::FILE,
@@ -315,6 +330,8 @@ pub static SCAN: Block = Block::new(
         &scan::AT,
         &scan::CELL,
         &scan::OUTLIER,
+        &scan::REGISTER,
+        &scan::FIT_TOLERANCE,
     ],
 )
 .positional(1);

@@ -1,17 +1,21 @@
-//! `scan(file, units, turn, at, cell, outlier)`: the measured surface a
-//! repair is built on, read through the program's data reader in any of
-//! the formats [`crate::geometry::scan`] reads, placed in the part's
-//! coordinates and estimated on a grid (docs/repair.md).
+//! `scan(file, units, turn, at, cell, outlier, register, fit_tolerance)`:
+//! the measured surface a repair is built on, read through the program's
+//! data reader in any of the formats [`crate::geometry::scan`] reads,
+//! placed in the part's coordinates — as declared, or moved from there
+//! onto its nominal by a best fit ([`crate::geometry::scan::register`]) —
+//! and estimated on a grid (docs/repair.md).
 
 use crate::diag::{message, Diagnostics};
 use crate::geometry::mesh::Placement;
-use crate::geometry::scan::{self, Estimate, Format, HeightField, Raw};
+use crate::geometry::scan::nearest::Tri;
+use crate::geometry::scan::register::{register, Nominal};
+use crate::geometry::scan::{self, Estimate, Format, HeightField, Pose, Raw};
 use crate::sema::data::Data;
 use crate::sema::fields::Fields;
 use crate::sema::model::ScanBase;
-use crate::sema::schema::solid::{mesh, scan as field, SCAN};
-use crate::sema::solid::mesh::{decode, triple};
-use crate::sema::value::Call;
+use crate::sema::schema::solid::{mesh, scan as field, MESH, SCAN};
+use crate::sema::solid::mesh::{decode, load, triple};
+use crate::sema::value::{Call, Value};
 use crate::sema::DataReader;
 use crate::span::Span;
 use crate::units::mm_per;
@@ -31,8 +35,15 @@ pub fn read(
     let place = triple(&f, &field::AT, Dim::LENGTH, diags);
     let cell = f.quantity_or_default(&field::CELL, diags);
     let outlier = f.quantity_or_default(&field::OUTLIER, diags);
-    let ((path, file_at), units, turn, place, cell, outlier) =
-        (file?, units?, turn?, place?, cell?, outlier?);
+    let nominal = nominal(&f, data, diags);
+    let tolerance = f.quantity_or_default(&field::FIT_TOLERANCE, diags);
+    let ((path, file_at), units, turn, place, cell, outlier, nominal, tolerance) = (
+        file?, units?, turn?, place?, cell?, outlier?, nominal?, tolerance?,
+    );
+    if let (None, Some(t)) = (&nominal, f.span(&field::FIT_TOLERANCE)) {
+        diags.push(message::scan::tolerance_without_nominal(t));
+        return None;
+    }
     let Some(read) = data else {
         diags.push(message::scan::no_reader(file_at));
         return None;
@@ -41,38 +52,158 @@ pub fn read(
         .and_then(|b| Data::Scan.too_long(&b).map_or(Ok(b), Err))
         .map_err(|why| diags.push(message::scan::unreadable(&path, &why, file_at)))
         .ok()?;
-    let format = Format::of(&path, &bytes);
-    let (raw, scale) = match format {
-        Format::Ply => (
-            scan::ply::read(&bytes).map_err(|e| ("PLY", e)),
-            mm_per(units),
-        ),
-        Format::Xyz => (
-            scan::xyz::read(&bytes).map_err(|e| ("XYZ text", e)),
-            mm_per(units),
-        ),
-        // The mesh solid's reader: the same errors, and a 3MF's own unit.
-        Format::Stl | Format::ThreeMf => {
-            let (tris, scale, _) = decode(&f, (&path, file_at), &bytes, diags)?;
-            (Ok(Raw::from_triangles(&tris)), scale)
-        }
-    };
+    let (raw, scale) = raw(&f, (&path, file_at), &bytes, units, diags)?;
     drop(bytes);
-    let raw = raw
-        .map_err(|(what, e)| diags.push(message::scan::bad(&path, what, &e, file_at)))
-        .ok()?;
-    let placement = Placement {
+    let declared = Pose::from(Placement {
         scale,
         turn: turn.0,
         at: place.0,
+    });
+    let (pose, registration) = match &nominal {
+        None => (declared, None),
+        Some(n) => {
+            let ask = Fit {
+                raw: &raw,
+                declared,
+                tolerance,
+                scan: (&path, at),
+                tolerance_at: f.span(&field::FIT_TOLERANCE),
+            };
+            let (pose, r) = fit(&ask, n, diags)?;
+            (pose, Some(Box::new(r)))
+        }
     };
     let est = Estimate { cell, outlier };
-    let surface = HeightField::new(&raw, placement, est)
+    let surface = HeightField::new(&raw, pose, est)
         .map_err(|e| diags.push(message::scan::grid(&path, &e, cell, at)))
         .ok()?;
     Some(ScanBase {
         path,
         surface: std::sync::Arc::new(surface),
+        registration,
         span: at,
     })
+}
+
+/// The scan's points and faces as its format reads them, with the mm per
+/// unit of its numbers (`units`, or a 3MF's own).
+fn raw(
+    f: &Fields<'_>,
+    (path, file_at): (&str, Span),
+    bytes: &[u8],
+    units: &str,
+    diags: &mut Diagnostics,
+) -> Option<(Raw, f64)> {
+    let (raw, scale) = match Format::of(path, bytes) {
+        Format::Ply => (
+            scan::ply::read(bytes).map_err(|e| ("PLY", e)),
+            mm_per(units),
+        ),
+        Format::Xyz => (
+            scan::xyz::read(bytes).map_err(|e| ("XYZ text", e)),
+            mm_per(units),
+        ),
+        // The mesh solid's reader: the same errors, and a 3MF's own unit.
+        Format::Stl | Format::ThreeMf => {
+            let (tris, scale, _) = decode(f, (path, file_at), bytes, diags)?;
+            (Ok(Raw::from_triangles(&tris)), scale)
+        }
+    };
+    let raw = raw
+        .map_err(|(what, e)| diags.push(message::scan::bad(path, what, &e, file_at)))
+        .ok()?;
+    Some((raw, scale))
+}
+
+/// The nominal of `register = mesh(…)`, placed, with its file and where
+/// it is written: `Some(None)` when not written, `None` when written wrong
+/// (reported).
+fn nominal(
+    f: &Fields<'_>,
+    data: Option<&DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<Option<(Nominal, String, Span)>> {
+    let Some(v) = f.value(&field::REGISTER, diags) else {
+        return (!f.has(&field::REGISTER)).then_some(None);
+    };
+    let Value::Call(c) = &v.value else {
+        return None;
+    };
+    let g = Fields::call(c, &MESH, diags);
+    let file = g.text(&mesh::FILE, diags);
+    let turn = triple(&g, &mesh::TURN, Dim::ANGLE, diags);
+    let place = triple(&g, &mesh::AT, Dim::LENGTH, diags);
+    let ((path, file_at), turn, place) = (file?, turn?, place?);
+    let (tris, scale, _) = load(&g, (&path, file_at), data, diags)?;
+    let [rx, ry, rz] = turn.0;
+    let rot = nalgebra::Rotation3::from_euler_angles(rx, ry, rz);
+    let at = nalgebra::Vector3::from(place.0);
+    let placed: Vec<Tri> = tris
+        .iter()
+        .map(|t| {
+            t.map(|c| {
+                let p = nalgebra::Vector3::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2]));
+                let q = rot * (p * scale) + at;
+                [q.x, q.y, q.z]
+            })
+        })
+        .collect();
+    drop(tris);
+    Some(Some((Nominal::new(&placed), path, v.span)))
+}
+
+/// What a best fit is asked: the scan's points, their declared placement,
+/// the tolerance, and where the scan and the tolerance are written.
+struct Fit<'a> {
+    raw: &'a Raw,
+    declared: Pose,
+    tolerance: f64,
+    scan: (&'a str, Span),
+    tolerance_at: Option<Span>,
+}
+
+/// The scan's best fit to `nominal`: its whole pose and the record of the
+/// fit; `None` when refused (reported).
+fn fit(
+    ask: &Fit<'_>,
+    (nominal, nominal_path, register_at): &(Nominal, String, Span),
+    diags: &mut Diagnostics,
+) -> Option<(Pose, crate::ir::Registration)> {
+    let names = message::scan::Registering {
+        scan: ask.scan.0,
+        nominal: nominal_path,
+        at: ask.scan.1,
+        register: *register_at,
+    };
+    let found = register(ask.raw, &ask.declared, nominal)
+        .map_err(|e| diags.push(message::scan::fit_refused(&names, &e)))
+        .ok()?;
+    let pose = ask.declared.then(&found.moved);
+    let (x, y, z) = pose.rot.euler_angles();
+    let record = crate::ir::Registration {
+        nominal: nominal_path.clone(),
+        moved: [
+            found.moved.shift.x,
+            found.moved.shift.y,
+            found.moved.shift.z,
+        ],
+        turned: found.moved.angles().map(f64::to_degrees),
+        turn: [x, y, z].map(f64::to_degrees),
+        at: [pose.at.x, pose.at.y, pose.at.z],
+        rms: found.rms,
+        max: found.max,
+        inliers: found.share(),
+        points: found.points,
+        iterations: found.iterations,
+        tolerance: ask.tolerance,
+    };
+    if found.rms > ask.tolerance {
+        diags.push(message::scan::fit_too_loose(
+            &names,
+            &record,
+            ask.tolerance_at,
+        ));
+        return None;
+    }
+    Some((pose, record))
 }
