@@ -483,3 +483,47 @@ pub fn simulate(source: &str, set: &[Override]) -> Result<Simulated, SetError> {
         }
     }
 }
+
+/// What the preview draws of a part built on a scan or up to a top: the
+/// scanned surface on a square grid of its `cell` (coarser past
+/// [`crate::preview::repair::MAX_SCAN`] points) and the report's finish
+/// ([`crate::report::finish`]); `None` for another solid. Here because it
+/// joins the model with the report for the preview, which read only the
+/// plan.
+pub fn repair_overlay(
+    program: &crate::ir::Program,
+    model: &Model,
+) -> Option<crate::preview::repair::Overlay> {
+    use crate::preview::repair::{Overlay, MAX_FINISH, MAX_SCAN};
+    let crate::sema::model::Build::Variable { extrusion, .. } = &model.build else {
+        return None;
+    };
+    let mut out = Overlay::default();
+    if let Some(base) = &extrusion.base {
+        let s = &base.surface;
+        let ([x0, y0], [x1, y1]) = s.extent();
+        let area = ((x1 - x0) * (y1 - y0)).abs();
+        let step = s.cell().max((area / MAX_SCAN as f64).sqrt());
+        if step.is_finite() && step > 0.0 {
+            let (nx, ny) = (((x1 - x0) / step) as usize, ((y1 - y0) / step) as usize);
+            for j in 0..=ny {
+                for i in 0..=nx {
+                    let p = [x0 + i as f64 * step, y0 + j as f64 * step];
+                    if let Some(z) = s.at(p) {
+                        out.scan.push([p[0] as f32, p[1] as f32, z as f32]);
+                    }
+                }
+            }
+        }
+    }
+    if let Some((f, samples)) = crate::report::finish::sampled(program, model) {
+        let k = samples.len().div_ceil(MAX_FINISH).max(1);
+        out.finish = samples
+            .iter()
+            .step_by(k)
+            .map(|s| [s.at[0] as f32, s.at[1] as f32, s.top as f32, s.off as f32])
+            .collect();
+        (out.below, out.above) = (f.below_mm, f.above_mm);
+    }
+    Some(out)
+}

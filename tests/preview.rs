@@ -1687,7 +1687,8 @@ fn a_repairs_page_draws_its_scan_and_its_finish() {
     let (p, model) = (c.program.expect("builds"), model.unwrap());
     let m = p.machines().next().unwrap();
     let finish = lmdc::report::finish::of(m.ir(), &model).expect("a finish");
-    let html = preview::html_of(m, &model);
+    let overlay = lmdc::pipeline::repair_overlay(m.ir(), &model);
+    let html = preview::html_with(m, overlay.as_ref());
     let d = data(&html);
     let repair = &d["meta"]["repair"];
     let scan = repair["scan"].as_array().unwrap();

@@ -39,10 +39,10 @@ pub fn run(
                 eprintln!("error: the file declares no machine whose plan could be shown");
                 return EXIT_PROGRAM;
             };
-            let page = match &model {
-                Some(model) => lmdc::preview::html_of(m, model),
-                None => lmdc::preview::html(m),
-            };
+            let overlay = model
+                .as_ref()
+                .and_then(|model| lmdc::pipeline::repair_overlay(m.ir(), model));
+            let page = lmdc::preview::html_with(m, overlay.as_ref());
             (page, &program.ir().part, 0)
         }
         (None, Some(refused)) => match lmdc::preview::refused_html(refused) {

@@ -312,12 +312,10 @@ pub fn html_within(machine: VerifiedMachine<'_>, budget: usize) -> String {
     page(machine, budget, None, None)
 }
 
-/// The preview page of `machine`'s plan with what `model` adds: a part
-/// built on a scan or up to a top draws the scan and the finish
-/// ([`repair`]).
-pub fn html_of(machine: VerifiedMachine<'_>, model: &crate::sema::model::Model) -> String {
-    let overlay = repair::of(machine.ir(), model);
-    page(machine, BUDGET, None, overlay.as_ref())
+/// The preview page of `machine`'s plan with a part's scan and finish
+/// drawn over it ([`repair`]; `crate::pipeline::repair_overlay` makes it).
+pub fn html_with(machine: VerifiedMachine<'_>, overlay: Option<&repair::Overlay>) -> String {
+    page(machine, BUDGET, None, overlay)
 }
 
 /// The page of a plan refused only by the arm's rules: drawn as the other
