@@ -598,6 +598,16 @@ pub struct Frame {
     pub z: [f64; 3],
 }
 
+impl Frame {
+    /// The part's own axes at its origin: a flat layer's frame.
+    pub const PART: Frame = Frame {
+        origin: [0.0; 3],
+        x: [1.0, 0.0, 0.0],
+        y: [0.0, 1.0, 0.0],
+        z: [0.0, 0.0, 1.0],
+    };
+}
+
 /// What a path is for.
 #[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq, Eq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]

@@ -79,12 +79,7 @@ pub fn layer(
     Layer {
         index: i as usize,
         station: i as f64 / nf,
-        frame: Frame {
-            origin: [0.0; 3],
-            x: [1.0, 0.0, 0.0],
-            y: [0.0, 1.0, 0.0],
-            z: [0.0, 0.0, 1.0],
-        },
+        frame: Frame::PART,
         paths,
         label: String::new(),
         on_plate: false,

@@ -404,12 +404,7 @@ fn passes_laid(
             Layer {
                 index: k as usize,
                 station: 0.0,
-                frame: Frame {
-                    origin: [0.0; 3],
-                    x: [1.0, 0.0, 0.0],
-                    y: [0.0, 1.0, 0.0],
-                    z: [0.0, 0.0, 1.0],
-                },
+                frame: Frame::PART,
                 paths,
                 label: String::new(),
                 on_plate: false,
