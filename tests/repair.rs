@@ -9,6 +9,8 @@ use lmdc::pipeline::Compiled;
 use proptest::prelude::*;
 use std::collections::BTreeMap;
 
+mod blade;
+
 /// A worn face: flat at `face` mm, a trough `depth` deep at `(cx, cy)`,
 /// `sx` and `sy` wide (Gaussian).
 #[derive(Clone, Copy, Debug)]

@@ -6,9 +6,9 @@
 
 use crate::diag::message::mesh::Over;
 use crate::diag::{message, Diagnostics};
-use crate::geometry::mesh::{self, Loop};
+use crate::geometry::mesh;
 use crate::sema::model::MAX_LAYERS;
-use crate::sema::model::{Hole, MeshSolid, Outline, PlanarSlicing, RegionShape, Segment, Shape};
+use crate::sema::model::{MeshSolid, PlanarSlicing, Shape};
 use crate::slice::budget::{least_raster_points, Island, MAX_PROFILE_WORK};
 use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
@@ -295,49 +295,7 @@ pub fn shapes(
             diags.push(too_big(m, n, lift, slicing, over, fits));
             return None;
         }
-        out.push(layer_shape(section, m));
+        out.push(mesh::shape_of(section, m.span));
     }
     Some(out)
-}
-
-/// A layer's islands as its shape: the one island's shape, or
-/// [`Shape::Islands`].
-fn layer_shape(mut islands: Vec<mesh::Section>, m: &MeshSolid) -> Shape {
-    if islands.len() == 1 {
-        return shape(islands.remove(0), m);
-    }
-    Shape::Islands(islands.into_iter().map(|s| shape(s, m)).collect())
-}
-
-/// An island as a shape: a region when it has holes.
-fn shape(s: mesh::Section, m: &MeshSolid) -> Shape {
-    let outer = Shape::Outline(outline(&s.outline));
-    if s.holes.is_empty() {
-        return outer;
-    }
-    Shape::Region(Box::new(RegionShape {
-        outline: outer,
-        outline_span: m.span,
-        holes: s
-            .holes
-            .iter()
-            .map(|h| Hole {
-                shape: Shape::Outline(outline(h)),
-                span: m.span,
-            })
-            .collect(),
-    }))
-}
-
-/// A loop as an outline of lines, back to its start.
-fn outline(l: &Loop) -> Outline {
-    let mm = |p: [f64; 2]| [Length(p[0]), Length(p[1])];
-    Outline {
-        start: mm(l[0]),
-        segments: l[1..]
-            .iter()
-            .chain(std::iter::once(&l[0]))
-            .map(|&p| Segment::Line { to: mm(p) })
-            .collect(),
-    }
 }

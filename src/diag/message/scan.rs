@@ -4,6 +4,8 @@
 //! its nominal refused.
 
 use crate::diag::{Code, Diagnostic};
+use crate::geometry::mesh::SectionFault;
+use crate::geometry::scan::section::{CutFault, MAX_LOOPS};
 use crate::geometry::scan::{FitFault, Freedom, GridFault, ScanError, MAX_CELLS};
 use crate::span::Span;
 use crate::units::short;
@@ -349,4 +351,65 @@ pub fn tolerance_without_nominal(at: Span) -> Diagnostic {
     )
     .label(at, "a tolerance for no fit")
     .help("add `register = mesh(file = \"nominal.stl\")` (the part as designed), or leave `fit_tolerance` out")
+}
+
+/// `profile = scan_section(…)` on an extrusion without `on = scan(…)`.
+pub fn section_without_scan(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Scan,
+        "`scan_section(…)` is the section of the part scanned in `on = scan(…)`, and this extrusion is built on no scan",
+    )
+    .label(at, "a section of which scan?")
+    .help("add `on = scan(file = \"part.ply\")` (a scan with faces), or draw the profile")
+}
+
+/// The section of the scan `path` at `z` is no profile.
+pub fn section(path: &str, z: f64, fault: &CutFault, at: Span, scan: Span) -> Diagnostic {
+    let z = short(z);
+    let (what, help) = match fault {
+        CutFault::NoFaces => (
+            format!("the scan `{path}` has points only, and a section is cut through faces"),
+            "mesh the scan (the scanner's software, or Open3D's or MeshLab's surface reconstruction) and export it as PLY with faces, STL or 3MF; or draw the profile".to_string(),
+        ),
+        CutFault::Empty { span: Some([lo, hi]) } => (
+            format!(
+                "the scan `{path}` has nothing to cut at z = {z} mm: its faces reach from z = {} to {} mm",
+                short(*lo),
+                short(*hi)
+            ),
+            "cut it where the scan shows the part whole, below the worn or missing part".to_string(),
+        ),
+        CutFault::Empty { span: None } => (
+            format!("the scan `{path}` has no faces with an area to cut at z = {z} mm"),
+            "check the scan's faces and `units`".to_string(),
+        ),
+        CutFault::Open { at } => (
+            format!(
+                "the scan `{path}`'s faces do not close round the part at z = {z} mm: the cut runs out at {}",
+                p2(*at)
+            ),
+            "the scan has a hole there (a shadow, a reflection): cut a little higher or lower, or fill the hole in the scan".to_string(),
+        ),
+        CutFault::TooMany { loops } => (
+            format!("the scan `{path}`'s section at z = {z} mm falls into {loops} loops"),
+            format!("at most {MAX_LOOPS} are taken for a part; a scan this broken needs cleaning first"),
+        ),
+        CutFault::Islands(f) => (
+            format!("the scan `{path}`'s section at z = {z} mm is no region: {}", islands(f)),
+            "the scan has faces crossing there (two overlapping passes?): clean it or cut at another height".to_string(),
+        ),
+    };
+    Diagnostic::error(Code::Scan, what)
+        .label(at, "this section")
+        .label(scan, "this scan")
+        .help(help)
+}
+
+fn islands(f: &SectionFault) -> String {
+    match f {
+        SectionFault::Empty => "it is empty".to_string(),
+        SectionFault::Open { at, .. } => format!("a chain ends at {}", p2(*at)),
+        SectionFault::StrayHole { at } => format!("a hole at {} lies in no outline", p2(*at)),
+        SectionFault::Overlap { at } => format!("two loops meet at {}", p2(*at)),
+    }
 }

@@ -11,7 +11,7 @@ pub mod stl;
 mod tests;
 pub mod three_mf;
 
-pub use section::{area, islands, Loop, Section, SectionFault, Sections};
+pub use section::{area, islands, oriented, shape_of, Loop, Section, SectionFault, Sections};
 
 use nalgebra::{Rotation3, Vector3};
 use std::collections::HashMap;

@@ -12,6 +12,9 @@
 
 use super::{Mesh, MAX_LISTED};
 use crate::geometry::profile::meet;
+use crate::geometry::shape::{Hole, Outline, RegionShape, Segment, Shape};
+use crate::span::Span;
+use crate::units::Length;
 use cavalier_contours::polyline::{PlineSource, PlineSourceMut, Polyline};
 use cavalier_contours::static_aabb2d_index::StaticAABB2DIndex;
 use std::collections::HashMap;
@@ -328,6 +331,73 @@ pub fn islands(loops: Vec<Loop>) -> Result<Vec<Section>, SectionFault> {
         p[1].total_cmp(&q[1]).then(p[0].total_cmp(&q[0]))
     });
     Ok(out)
+}
+
+/// A section's islands as one shape: the one island's, or
+/// [`Shape::Islands`]; `span` is where the shape is written (its holes'
+/// too).
+pub fn shape_of(mut islands: Vec<Section>, span: Span) -> Shape {
+    if islands.len() == 1 {
+        return islands.remove(0).shape(span);
+    }
+    Shape::Islands(islands.into_iter().map(|s| s.shape(span)).collect())
+}
+
+impl Section {
+    /// The island as a shape: a region when it has holes.
+    pub fn shape(self, span: Span) -> Shape {
+        let outer = Shape::Outline(outline(&self.outline));
+        if self.holes.is_empty() {
+            return outer;
+        }
+        Shape::Region(Box::new(RegionShape {
+            outline: outer,
+            outline_span: span,
+            holes: self
+                .holes
+                .iter()
+                .map(|h| Hole {
+                    shape: Shape::Outline(outline(h)),
+                    span,
+                })
+                .collect(),
+        }))
+    }
+}
+
+/// A loop as an outline of lines, back to its start.
+fn outline(l: &Loop) -> Outline {
+    let mm = |p: [f64; 2]| [Length(p[0]), Length(p[1])];
+    Outline {
+        start: mm(l[0]),
+        segments: l[1..]
+            .iter()
+            .chain(std::iter::once(&l[0]))
+            .map(|&p| Segment::Line { to: mm(p) })
+            .collect(),
+    }
+}
+
+/// The loops of a section whose faces may run either way round (a
+/// scan's, not a solid's) as islands: each loop turned so that the ones
+/// inside an even number of others run counter-clockwise (outlines) and
+/// the rest clockwise (holes), then [`islands`].
+pub fn oriented(mut loops: Vec<Loop>) -> Result<Vec<Section>, SectionFault> {
+    let areas: Vec<f64> = loops.iter().map(|l| area(l)).collect();
+    let parent = nesting(&loops, &areas)?;
+    for i in 0..loops.len() {
+        let mut depth = 0usize;
+        let mut p = parent[i];
+        // Parents are strictly larger, so the chain ends.
+        while let Some(j) = p {
+            depth += 1;
+            p = parent[j];
+        }
+        if (areas[i] > 0.0) != depth.is_multiple_of(2) {
+            loops[i].reverse();
+        }
+    }
+    islands(loops)
 }
 
 /// Each loop's parent: the smallest loop round it, if any; the

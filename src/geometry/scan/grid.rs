@@ -6,7 +6,9 @@
 //! from the plane left out by a robust rule ([`fit`]): a local fit, whose
 //! noise is the scan's over the root of the points it holds (36 at 0.5 mm
 //! points and 1 mm cells: a sixth). **Faces** (a mesh): the highest face
-//! over the cell's centre (the surface a nozzle meets coming down).
+//! over the cell's centre (the surface a nozzle meets coming down); a
+//! cell at the part's rim, which faces cover only in part, the height of
+//! the faces' point nearest its centre.
 //! Then **spikes**: a cell whose height departs from the median of its
 //! filled neighbours (at least three of the eight) by more than
 //! [`Estimate::outlier`] takes that median instead — a burr of stray
@@ -120,8 +122,20 @@ impl HeightField {
             g.fit_points(raw.vertices.iter().map(placed));
         } else {
             let v: Vec<[f64; 3]> = raw.vertices.iter().map(placed).collect();
+            let mut rim = vec![f32::NAN; g.z.len()];
             for t in &raw.triangles {
-                g.raster([v[t[0] as usize], v[t[1] as usize], v[t[2] as usize]]);
+                g.raster(
+                    [v[t[0] as usize], v[t[1] as usize], v[t[2] as usize]],
+                    &mut rim,
+                );
+            }
+            // A cell no face covers at its centre but one covers in part
+            // (at the part's rim) takes that face's height nearest its
+            // centre: a track's bead reaches to the rim.
+            for (z, r) in g.z.iter_mut().zip(rim) {
+                if z.is_nan() {
+                    *z = r;
+                }
             }
         }
         g.despike(est.outlier);
@@ -201,8 +215,10 @@ impl HeightField {
     }
 
     /// The triangle `t` over the cells whose centres it covers, seen from
-    /// above; each cell keeps the highest.
-    fn raster(&mut self, t: [[f64; 3]; 3]) {
+    /// above; each cell keeps the highest. A cell it covers only in part
+    /// gets in `rim` the height of its point nearest the cell's centre
+    /// (the highest of those).
+    fn raster(&mut self, t: [[f64; 3]; 3], rim: &mut [f32]) {
         let [a, b, c] = t;
         let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
         if det.abs() < 1e-12 {
@@ -223,11 +239,16 @@ impl HeightField {
                 let l2 = ((c[0] - x) * (a[1] - y) - (a[0] - x) * (c[1] - y)) / det;
                 let l3 = 1.0 - l1 - l2;
                 let eps = -1e-9;
+                let k = j as usize * self.nx + i as usize;
                 if l1 >= eps && l2 >= eps && l3 >= eps {
                     let z = (l1 * a[2] + l2 * b[2] + l3 * c[2]) as f32;
-                    let k = j as usize * self.nx + i as usize;
                     if self.z[k].is_nan() || z > self.z[k] {
                         self.z[k] = z;
+                    }
+                } else if let Some(z) = nearest_in_cell(t, [x, y], self.cell / 2.0) {
+                    let z = z as f32;
+                    if rim[k].is_nan() || z > rim[k] {
+                        rim[k] = z;
                     }
                 }
             }
@@ -408,6 +429,30 @@ impl HeightField {
 /// median, a least-squares plane through them, then again through those
 /// within three robust deviations of the plane, up to three times — a
 /// stray return left in tilts a plane a little and is left out of the next.
+/// The height of the point of triangle `t`'s edges nearest `c`, when it
+/// lies in the square of half side `h` round `c` (the cell): the triangle
+/// covers part of the cell, not its centre.
+fn nearest_in_cell(t: [[f64; 3]; 3], c: [f64; 2], h: f64) -> Option<f64> {
+    let mut best: Option<(f64, [f64; 3])> = None;
+    for s in 0..3 {
+        let (a, b) = (t[s], t[(s + 1) % 3]);
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        let u = if len2 > 0.0 {
+            (((c[0] - a[0]) * d[0] + (c[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = [a[0] + u * d[0], a[1] + u * d[1], a[2] + u * (b[2] - a[2])];
+        let dist = (q[0] - c[0]).hypot(q[1] - c[1]);
+        if best.is_none_or(|(bd, _)| dist < bd) {
+            best = Some((dist, q));
+        }
+    }
+    let (_, q) = best?;
+    ((q[0] - c[0]).abs() <= h && (q[1] - c[1]).abs() <= h).then_some(q[2])
+}
+
 /// The plane is read at the centre (on a sloped surface the points' mean
 /// need not lie there). With fewer than 3 points, or too little spread to
 /// tilt a plane, the median. Returns the height, the kept points' sum of
@@ -611,6 +656,26 @@ mod tests {
         let g = HeightField::new(&raw, PLACE, EST).unwrap();
         let z = g.at([4.5, 6.5]).unwrap();
         assert!((z - 1.45).abs() < 1e-6, "{z}");
+    }
+
+    #[test]
+    fn a_cell_a_face_covers_in_part_takes_its_nearest_height() {
+        // A right triangle over x + y <= 10 and a point at (10, 10) that
+        // stretches the grid over the square: cell (9, 1)'s centre
+        // (9.5, 1.5) is off the face but its corner (9, 1) is on it; cell
+        // (9, 2)'s square misses the face.
+        let raw = Raw {
+            vertices: vec![
+                [0.0, 0.0, 5.0],
+                [10.0, 0.0, 5.0],
+                [0.0, 10.0, 5.0],
+                [10.0, 10.0, 0.0],
+            ],
+            triangles: vec![[0, 1, 2]],
+        };
+        let g = HeightField::new(&raw, PLACE, EST).unwrap();
+        assert_eq!(g.at([9.7, 1.3]), Some(5.0));
+        assert_eq!(g.at([9.7, 2.3]), None);
     }
 
     #[test]

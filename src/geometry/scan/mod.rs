@@ -15,6 +15,7 @@ mod grid;
 pub mod nearest;
 pub mod ply;
 pub mod register;
+pub mod section;
 pub mod xyz;
 
 pub use grid::{Estimate, GridFault, HeightField, Stats, MAX_CELLS};

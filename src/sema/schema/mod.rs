@@ -557,6 +557,7 @@ pub static BLOCKS: &[&Block] = &[
     &solid::EXTRUDE,
     &solid::MESH,
     &solid::SCAN,
+    &solid::SCAN_SECTION,
     &solid::EDGES,
     &solid::PLANE,
     &wall::WALL,

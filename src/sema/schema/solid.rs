@@ -159,10 +159,10 @@ pub mod extrude {
         Layered(&Either(&[
             Name("profile or section"),
             Shape,
-            Call(&[&MESH]),
+            Call(&[&MESH, &SCAN_SECTION]),
         ])),
         Required("my_profile"),
-        "the shape each layer fills, or a `mesh(…)` whose sections the layers fill",
+        "the shape each layer fills, a `mesh(…)` whose sections the layers fill, or `scan_section(z = …)`: the section of the part scanned in `on`",
     );
     /// `height = …`.
     pub static HEIGHT: Field = Field::new(
@@ -333,6 +333,29 @@ pub static SCAN: Block = Block::new(
         &scan::REGISTER,
         &scan::FIT_TOLERANCE,
     ],
+)
+.positional(1);
+
+/// The arguments of `scan_section(…)`.
+pub mod scan_section {
+    use super::*;
+
+    /// `scan_section(z = …)`.
+    pub static Z: Field = Field::new(
+        "z",
+        Quantity(Dim::LENGTH, Any),
+        Required("36 mm"),
+        "the height of the cut, in the part's coordinates (where the scan's placement puts it): below the worn or missing part, where the scan shows the part whole",
+    );
+}
+
+/// `scan_section(z)`: the section of the scanned part at a height, as a
+/// profile.
+pub static SCAN_SECTION: Block = Block::new(
+    "scan_section",
+    "scan_section(z)",
+    "the section of the extrusion's scanned part (`on = scan(…)`, with faces) at a height, as its profile: the part continued upward as it is",
+    &[&scan_section::Z],
 )
 .positional(1);
 

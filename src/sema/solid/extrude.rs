@@ -13,13 +13,15 @@ use crate::diag::message::{self, solid::BeadSpeeds};
 use crate::diag::Diagnostics;
 use crate::sema::eval::{unknown_name, Env};
 use crate::sema::fields::Fields;
+use crate::sema::model::ScanBase;
 use crate::sema::model::{
     Bead, Extent, Extrusion, HeightModel, LayerProfile, Measure, PlanarSlicing, ProfileExpr, Shape,
     Top,
 };
-use crate::sema::schema::solid::{extrude, EXTRUDE};
+use crate::sema::schema::solid::{extrude, scan_section, EXTRUDE, SCAN_SECTION};
 use crate::sema::slicing::planar::PlanarSpec;
 use crate::sema::solid::profile;
+use crate::sema::solid::scan::Cut;
 use crate::sema::solid::top;
 use crate::sema::value::{Spanned, Value};
 use crate::span::Span;
@@ -88,7 +90,13 @@ pub fn read<'a>(
     let profile = f.value(&extrude::PROFILE, diags);
     let profile_span = profile.map(|p| p.span).unwrap_or(span);
     let data = env.data.clone();
-    let mut source = profile.and_then(|v| source(v, scope, data.as_ref(), diags));
+    // A section of the scan is cut while the scan is read.
+    let cut = profile.and_then(|v| scan_section(v, diags));
+    let on = on(&f, data.as_ref(), cut.flatten(), diags);
+    let mut source = match (profile, cut) {
+        (Some(v), Some(z)) => z.and_then(|z| from_scan(v.span, z, on.as_ref(), diags)),
+        _ => profile.and_then(|v| source(v, scope, data.as_ref(), diags)),
+    };
     // A profile written inline that follows the layer is evaluated per layer,
     // like a named one.
     if let Some(Source::Fixed(_)) = source {
@@ -115,7 +123,7 @@ pub fn read<'a>(
         diags.push(message::solid::height_and_top(hs, ts));
     }
     let height = height.filter(|_| !(f.has(&extrude::HEIGHT) && f.has(&extrude::TOP)));
-    let base = on(&f, data.as_ref(), diags);
+    let base = on.map(|o| o.map(|(b, _)| b));
     if let (Some(on), None) = (f.span(&extrude::ON), f.span(&extrude::TOP)) {
         diags.push(message::scan::needs_top(on));
     }
@@ -144,19 +152,58 @@ pub fn read<'a>(
     (written, bead)
 }
 
-/// `on = scan(…)`: `Some(None)` when not written, `None` when written
-/// wrong (reported).
+/// `on = scan(…)`, with its section at `z` when the profile asks for one:
+/// `Some(None)` when not written, `None` when written wrong (reported).
 fn on(
     f: &Fields<'_>,
     data: Option<&crate::sema::DataReader>,
+    z: Option<f64>,
     diags: &mut Diagnostics,
-) -> Option<Option<crate::sema::model::ScanBase>> {
+) -> Option<Option<(ScanBase, Cut)>> {
     let Some(v) = f.value(&extrude::ON, diags) else {
         return (!f.has(&extrude::ON)).then_some(None);
     };
     match &v.value {
-        Value::Call(c) => crate::sema::solid::scan::read(c, v.span, data, diags).map(Some),
+        Value::Call(c) => crate::sema::solid::scan::read(c, v.span, data, z, diags).map(Some),
         _ => None,
+    }
+}
+
+/// `profile = scan_section(z)`: `Some(Some(z))`, or `Some(None)` when its
+/// height is written wrong (reported); `None` for any other profile.
+fn scan_section(v: &Spanned, diags: &mut Diagnostics) -> Option<Option<f64>> {
+    match &v.value {
+        Value::Call(c) if c.func == SCAN_SECTION.name => {
+            let f = Fields::call(c, &SCAN_SECTION, diags);
+            Some(f.quantity(&scan_section::Z, diags).map(|q| q.0))
+        }
+        _ => None,
+    }
+}
+
+/// The profile `scan_section(z)` (written at `at`) from the scan `on`
+/// read with its section.
+fn from_scan<'a>(
+    at: Span,
+    z: f64,
+    on: Option<&Option<(ScanBase, Cut)>>,
+    diags: &mut Diagnostics,
+) -> Option<Source<'a>> {
+    match on? {
+        None => {
+            diags.push(message::scan::section_without_scan(at));
+            None
+        }
+        Some((_, Some(Ok(islands)))) => Some(Source::Fixed(crate::geometry::mesh::shape_of(
+            islands.clone(),
+            at,
+        ))),
+        Some((b, Some(Err(fault)))) => {
+            diags.push(message::scan::section(&b.path, z, fault, at, b.span));
+            None
+        }
+        // Asked for, so cut.
+        Some((_, None)) => None,
     }
 }
 

@@ -6,9 +6,10 @@
 //! and estimated on a grid (docs/repair.md).
 
 use crate::diag::{message, Diagnostics};
-use crate::geometry::mesh::Placement;
+use crate::geometry::mesh::{Placement, Section};
 use crate::geometry::scan::nearest::Tri;
 use crate::geometry::scan::register::{register, Nominal};
+use crate::geometry::scan::section::{self, CutFault};
 use crate::geometry::scan::{self, Estimate, Format, HeightField, Pose, Raw};
 use crate::sema::data::Data;
 use crate::sema::fields::Fields;
@@ -21,13 +22,20 @@ use crate::span::Span;
 use crate::units::mm_per;
 use crate::units::Dim;
 
-/// Reads `scan(…)` (the call `c` at `at`), its file through `data`.
+/// The section of a scan a profile asks for (`scan_section(z)`), when
+/// asked: the islands or why there are none.
+pub type Cut = Option<Result<Vec<Section>, CutFault>>;
+
+/// Reads `scan(…)` (the call `c` at `at`), its file through `data`, and
+/// its section at `z` when a profile asks for one (cut where the scan is
+/// placed, after any best fit).
 pub fn read(
     c: &Call,
     at: Span,
     data: Option<&DataReader>,
+    z: Option<f64>,
     diags: &mut Diagnostics,
-) -> Option<ScanBase> {
+) -> Option<(ScanBase, Cut)> {
     let f = Fields::call(c, &SCAN, diags);
     let file = f.text(&field::FILE, diags);
     let units = f.word_or_default(&field::UNITS, diags);
@@ -77,12 +85,14 @@ pub fn read(
     let surface = HeightField::new(&raw, pose, est)
         .map_err(|e| diags.push(message::scan::grid(&path, &e, cell, at)))
         .ok()?;
-    Some(ScanBase {
+    let cut = z.map(|z| section::cut(&raw, &pose, z));
+    let base = ScanBase {
         path,
         surface: std::sync::Arc::new(surface),
         registration,
         span: at,
-    })
+    };
+    Some((base, cut))
 }
 
 /// The scan's points and faces as its format reads them, with the mm per

@@ -1,9 +1,9 @@
 //! Where the tracks of a variable-top solid can run: straight lines along the
 //! scan axis, clipped exactly against the footprint (lines and true arcs, the
-//! raster's clip), ending half a bead inside its edges when the footprint is
-//! the part's outer face (`size = outer`). Across the scan axis the first and
-//! last track centres sit half a bead inside the outer face, as in a planar
-//! fill.
+//! raster's clip) offset half a bead inward when the footprint is the part's
+//! outer face (`size = outer`), so that no bead passes a curved or slanted
+//! edge either. Across the scan axis the first and last track centres sit
+//! half a bead inside the outer face, as in a planar fill.
 //!
 //! Also the top sampled over that region, for the layer count: its lowest
 //! and highest points, each line's mean, and how much it rises along a line.
@@ -25,7 +25,12 @@ const MAX_SAMPLES: f64 = 1e6;
 
 /// The footprint of a variable-top solid, for one bead width.
 pub struct Footprint {
+    /// Where the track centre lines may run: the footprint, offset inward
+    /// by the inset.
     region: Vec<Profile>,
+    /// How much the clipped lines are shortened at both ends: the inset
+    /// where the offset footprint is empty, else 0.
+    shorten: f64,
     bounds: [[f64; 2]; 2],
     /// How far inside the written footprint the tracks' centre lines end
     /// (half a bead for `size = outer`, else 0).
@@ -45,13 +50,22 @@ impl Footprint {
             .bounds()
             .filter(|b| b.iter().flatten().all(|v| v.is_finite()))
             .ok_or_else(|| message::top::footprint_empty(ex.shape_span))?;
+        let inset = match ex.measure {
+            Measure::Outer => width / 2.0,
+            Measure::Centre => 0.0,
+        };
+        // A footprint exactly a bead wide offsets to nothing: its centre
+        // line then runs along the written footprint, shortened by the
+        // inset at its ends.
+        let inner = (inset > 0.0)
+            .then(|| profile.offset_inward(inset))
+            .filter(|r| !r.is_empty());
+        let shorten = if inner.is_some() { 0.0 } else { inset };
         Ok(Footprint {
-            region: vec![profile],
+            region: inner.unwrap_or_else(|| vec![profile]),
+            shorten,
             bounds,
-            inset: match ex.measure {
-                Measure::Outer => width / 2.0,
-                Measure::Centre => 0.0,
-            },
+            inset,
             width,
         })
     }
@@ -89,8 +103,8 @@ impl Footprint {
     }
 
     /// The intervals along `scan` where tracks run on the lines at cross
-    /// coordinates `at`: the clip, shortened by the inset at both ends,
-    /// points dropped.
+    /// coordinates `at`: the clip by the inset footprint (or by the written
+    /// one, shortened), points dropped.
     pub fn intervals(&self, scan: Axis, at: &[f64]) -> Vec<Vec<[f64; 2]>> {
         // Along x the raster frame's cross coordinate is y; along y (90°)
         // it is −x.
@@ -103,7 +117,7 @@ impl Footprint {
             .into_iter()
             .map(|line| {
                 line.into_iter()
-                    .map(|[a, b]| [a + self.inset, b - self.inset])
+                    .map(|[a, b]| [a + self.shorten, b - self.shorten])
                     .filter(|[a, b]| b - a >= MIN_TRACK)
                     .collect()
             })
