@@ -220,7 +220,7 @@ pub(super) fn linear_top(ex: &TopExtrusion, [lo, hi]: [[f64; 2]; 2], c: [f64; 2]
             };
             Some(from.0 + (to.0 - from.0) * t)
         }
-        Top::Expr(_) => None,
+        Top::Expr(_) | Top::Mesh(_) => None,
     }
 }
 
@@ -244,6 +244,11 @@ fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
                     .ok_or("the top has no value somewhere on the footprint")
             })?
         }
+        (None, Top::Mesh(m)) => integral(&p, [lo, hi], |q| {
+            m.surface
+                .at(q)
+                .ok_or("the target mesh does not cover the footprint everywhere")
+        })?,
         (None, _) => return Err("the top is not known".into()),
     };
     let Some(base) = &ex.base else {

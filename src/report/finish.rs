@@ -230,6 +230,9 @@ impl<'m> Target<'m> {
     }
 
     fn at(&mut self, p: [f64; 2]) -> Option<f64> {
+        if let Some(h) = self.ex.top.mesh_at(p) {
+            return h;
+        }
         match &mut self.heights {
             Some(h) => h.at(p[0], p[1], &mut Diagnostics::new()).map(|l| l.0),
             None => linear_top(self.ex, self.bounds, p),

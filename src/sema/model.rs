@@ -18,7 +18,7 @@ mod wall;
 pub use calibration::{Calibration, Coupon, CouponKind};
 pub use segmented_ring::{HeightControl, LoopRun, RingBuild};
 pub use top::{
-    Axis, Level, ScanBase, Top, TopExpr, TopExtrusion, VariableSlicing, DEFAULT_TOLERANCE,
+    Axis, Level, ScanBase, Top, TopExpr, TopExtrusion, TopMesh, VariableSlicing, DEFAULT_TOLERANCE,
 };
 pub use wall::{OpenWall, WallEnds, WallSide};
 

@@ -423,3 +423,13 @@ pub fn mesh_with_top(at: Span) -> Diagnostic {
     .label(at, "this mesh")
     .help("leave out `top` and slice it with `slicing planar { … }`")
 }
+
+/// `top = mesh(…)` whose faces are all upright: no surface seen from above.
+pub fn no_upper_face(path: &str, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Mesh,
+        format!("the target `{path}` has no face seen from above: every face stands upright"),
+    )
+    .label(at, "the finished part")
+    .help("a target mesh is the part as designed, its upper faces the finished surface: check its `turn` (a part lying on its side?)")
+}

@@ -415,6 +415,8 @@ pub enum BadTop {
     NotFinite,
     /// Its expression failed there (the errors follow).
     Failed,
+    /// A target mesh with no face over the point.
+    OffTarget,
 }
 
 /// The top is not a positive height at `p` (and at `more` other points);
@@ -433,8 +435,13 @@ pub fn bad_top(p: [f64; 2], more: usize, bad: BadTop, inner: bool, at: TopAt) ->
         ),
         BadTop::NotFinite => format!("the top is not a finite number at ({x}, {y}) mm{others}"),
         BadTop::Failed => format!("the top cannot be computed at ({x}, {y}) mm{others}"),
+        BadTop::OffTarget => format!(
+            "the target mesh has no face over ({x}, {y}) mm, where a track runs{others}"
+        ),
     };
-    let help = if inner {
+    let help = if matches!(bad, BadTop::OffTarget) {
+        "a target mesh is the part as designed, and its faces must cover the footprint seen from above: check its `at` and `turn`, or keep the footprint within it"
+    } else if inner {
         "the top is the finished part's height above the substrate, computed at every point a track runs through: the error below says what failed there"
     } else {
         "the top is the finished part's height above the substrate: make it positive over the whole footprint"

@@ -5,6 +5,7 @@
 //! Triangles are numbered from 0 in the order of the file, so an error can
 //! name the ones a repair tool should look at.
 
+pub mod highest;
 mod section;
 pub mod stl;
 #[cfg(test)]

@@ -64,6 +64,29 @@ pub enum Top {
     /// Any expression of the position builtins `x` and `y`, evaluated at
     /// every point the slicer samples ([`crate::sema::TopHeights`]).
     Expr(TopExpr),
+    /// `mesh(file, units, turn, at)`: the part as designed, its highest
+    /// face over each point (docs/repair.md, *A target mesh*).
+    Mesh(TopMesh),
+}
+
+/// A top given as a mesh: its file and its upper surface, placed.
+#[derive(Clone, Debug)]
+pub struct TopMesh {
+    /// The file, as written.
+    pub path: String,
+    /// The highest face over each point.
+    pub surface: std::sync::Arc<crate::geometry::mesh::highest::Highest>,
+}
+
+impl Top {
+    /// The top at `p` (mm) when it is a mesh: `Some(None)` where no face
+    /// is over `p`; `None` for any other top.
+    pub fn mesh_at(&self, p: [f64; 2]) -> Option<Option<f64>> {
+        match self {
+            Top::Mesh(m) => Some(m.surface.at(p)),
+            _ => None,
+        }
+    }
 }
 
 /// A top written as an expression of `x` and `y`, kept as the user wrote it

@@ -190,10 +190,10 @@ pub mod extrude {
         "top",
         Deferred(&Either(&[
             Quantity(Dim::LENGTH, Positive),
-            Call(&[&EDGES, &PLANE]),
+            Call(&[&EDGES, &PLANE, &MESH]),
         ])),
         Optional,
-        "the finished part's height at every point, an expression of `x` and `y`",
+        "the finished part's height at every point, an expression of `x` and `y`; or `mesh(…)`, the part as designed, its highest face over each point",
     );
     /// `on = …`.
     pub static ON: Field = Field::new(

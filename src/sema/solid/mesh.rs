@@ -151,3 +151,34 @@ pub fn triple(
         }
     }
 }
+
+/// The triangles of `mesh(file, units, turn, at)` (the call `c`), placed
+/// in the part's coordinates as written (mm), with the file's path: a
+/// nominal or a target, which need not be a closed solid nor stand on the
+/// plate.
+pub fn placed(
+    c: &Call,
+    data: Option<&DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<(Vec<[[f64; 3]; 3]>, String)> {
+    let g = Fields::call(c, &MESH, diags);
+    let file = g.text(&mesh::FILE, diags);
+    let turn = triple(&g, &mesh::TURN, Dim::ANGLE, diags);
+    let place = triple(&g, &mesh::AT, Dim::LENGTH, diags);
+    let ((path, file_at), turn, place) = (file?, turn?, place?);
+    let (tris, scale, _) = load(&g, (&path, file_at), data, diags)?;
+    let [rx, ry, rz] = turn.0;
+    let rot = nalgebra::Rotation3::from_euler_angles(rx, ry, rz);
+    let at = nalgebra::Vector3::from(place.0);
+    let placed = tris
+        .iter()
+        .map(|t| {
+            t.map(|c| {
+                let p = nalgebra::Vector3::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2]));
+                let q = rot * (p * scale) + at;
+                [q.x, q.y, q.z]
+            })
+        })
+        .collect();
+    Some((placed, path))
+}

@@ -7,15 +7,14 @@
 
 use crate::diag::{message, Diagnostics};
 use crate::geometry::mesh::{Placement, Section};
-use crate::geometry::scan::nearest::Tri;
 use crate::geometry::scan::register::{register, Nominal};
 use crate::geometry::scan::section::{self, CutFault};
 use crate::geometry::scan::{self, Estimate, Format, HeightField, Pose, Raw};
 use crate::sema::data::Data;
 use crate::sema::fields::Fields;
 use crate::sema::model::ScanBase;
-use crate::sema::schema::solid::{mesh, scan as field, MESH, SCAN};
-use crate::sema::solid::mesh::{decode, load, triple};
+use crate::sema::schema::solid::{mesh, scan as field, SCAN};
+use crate::sema::solid::mesh::{decode, triple};
 use crate::sema::value::{Call, Value};
 use crate::sema::DataReader;
 use crate::span::Span;
@@ -139,26 +138,7 @@ fn nominal(
     let Value::Call(c) = &v.value else {
         return None;
     };
-    let g = Fields::call(c, &MESH, diags);
-    let file = g.text(&mesh::FILE, diags);
-    let turn = triple(&g, &mesh::TURN, Dim::ANGLE, diags);
-    let place = triple(&g, &mesh::AT, Dim::LENGTH, diags);
-    let ((path, file_at), turn, place) = (file?, turn?, place?);
-    let (tris, scale, _) = load(&g, (&path, file_at), data, diags)?;
-    let [rx, ry, rz] = turn.0;
-    let rot = nalgebra::Rotation3::from_euler_angles(rx, ry, rz);
-    let at = nalgebra::Vector3::from(place.0);
-    let placed: Vec<Tri> = tris
-        .iter()
-        .map(|t| {
-            t.map(|c| {
-                let p = nalgebra::Vector3::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2]));
-                let q = rot * (p * scale) + at;
-                [q.x, q.y, q.z]
-            })
-        })
-        .collect();
-    drop(tris);
+    let (placed, path) = crate::sema::solid::mesh::placed(c, data, diags)?;
     Some(Some((Nominal::new(&placed), path, v.span)))
 }
 

@@ -2,7 +2,8 @@
 //! the substrate at every point of the footprint. Two forms of sugar say what
 //! labs build — `edges(along, from, to)` (heights on the footprint's two
 //! extreme edges, linear between) and `plane(at, height, slope_x, slope_y)` —
-//! and any other expression is a function of the position builtins `x` and
+//! a mesh of the part as designed (`mesh(…)`, its highest face over each
+//! point), and any other expression is a function of the position builtins `x` and
 //! `y`, checked here at one point of the footprint and evaluated by the
 //! slicer at every point it samples ([`TopHeights`]).
 
@@ -10,7 +11,7 @@ use crate::diag::{message, Diagnostics};
 use crate::sema::eval::Env;
 use crate::sema::fields::{self, Fields};
 use crate::sema::model::{Axis, Shape, Top, TopExpr};
-use crate::sema::schema::solid::{top, EDGES, MAX_SLOPE_DEG, PLANE};
+use crate::sema::schema::solid::{top, EDGES, MAX_SLOPE_DEG, MESH, PLANE};
 use crate::sema::schema::Field;
 use crate::sema::value::Value;
 use crate::span::Span;
@@ -31,6 +32,13 @@ pub fn read(
     diags: &mut Diagnostics,
 ) -> Option<Top> {
     if let ExprKind::Call { func, .. } = &expr.kind {
+        if func.node == MESH.name {
+            let v = env.eval(expr, diags)?;
+            let Value::Call(c) = &v.value else {
+                return None;
+            };
+            return target(c, v.span, env.data.clone().as_ref(), diags);
+        }
         if SUGAR.contains(&func.node.as_str()) {
             // Evaluated as any call: `along = x` stays the word `x`.
             let before = env.layer_reads();
@@ -177,4 +185,23 @@ pub fn reference_point(shape: Option<&Shape>) -> [f64; 2] {
         Some(Shape::Outline(o)) => [o.start[0].0, o.start[1].0],
         _ => [0.0, 0.0],
     }
+}
+
+/// `top = mesh(…)`: the part as designed, its upper faces the finished
+/// surface.
+fn target(
+    c: &crate::sema::value::Call,
+    at: Span,
+    data: Option<&crate::sema::DataReader>,
+    diags: &mut Diagnostics,
+) -> Option<Top> {
+    let (faces, path) = crate::sema::solid::mesh::placed(c, data, diags)?;
+    let Some(surface) = crate::geometry::mesh::highest::Highest::new(faces) else {
+        diags.push(message::mesh::no_upper_face(&path, at));
+        return None;
+    };
+    Some(Top::Mesh(crate::sema::model::TopMesh {
+        path,
+        surface: std::sync::Arc::new(surface),
+    }))
 }

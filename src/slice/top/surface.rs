@@ -12,6 +12,7 @@
 
 use crate::diag::message::{self, top::BadTop, top::TopAt};
 use crate::diag::Diagnostics;
+use crate::geometry::mesh::highest::Highest;
 use crate::geometry::scan::HeightField;
 use crate::sema::model::{Axis, Top, TopExtrusion};
 use crate::sema::TopHeights;
@@ -66,6 +67,8 @@ pub enum Form<'m> {
     },
     /// An expression of `x` and `y`.
     Expr(TopHeights<'m>),
+    /// A target mesh's highest face.
+    Mesh(&'m Highest),
 }
 
 impl<'m> Surface<'m> {
@@ -125,6 +128,7 @@ impl<'m> Form<'m> {
                 }
             }
             Top::Expr(e) => Form::Expr(e.evaluator()),
+            Top::Mesh(m) => Form::Mesh(&m.surface),
         }
     }
 
@@ -136,6 +140,12 @@ impl<'m> Form<'m> {
                 let mut d = Diagnostics::new();
                 let h = e.at(p[0], p[1], &mut d).map(|l| l.0);
                 (h.filter(|_| !d.has_errors()), Some(d))
+            }
+            Form::Mesh(m) => {
+                let Some(h) = m.at(p) else {
+                    return Err(Bad::new(p, Why::OffTarget));
+                };
+                (Some(h), None)
             }
         };
         match h {
@@ -172,6 +182,8 @@ pub enum Why {
     },
     /// The scan has no point there.
     Uncovered,
+    /// The target mesh has no face over it.
+    OffTarget,
     /// The top is not above the scanned surface there.
     Below {
         /// The top, mm.
@@ -191,6 +203,20 @@ impl Bad {
         let mut out = Diagnostics::new();
         let (value, inner) = match self.why {
             Why::Top { value, inner } => (value, inner),
+            Why::OffTarget => {
+                let at = TopAt {
+                    top: ex.top_span,
+                    shape: ex.shape_span,
+                };
+                out.push(message::top::bad_top(
+                    self.at,
+                    more,
+                    BadTop::OffTarget,
+                    false,
+                    at,
+                ));
+                return out;
+            }
             Why::Uncovered => {
                 if let Some(b) = &ex.base {
                     let extent = b.surface.extent();

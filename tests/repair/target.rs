@@ -1,0 +1,129 @@
+//! A target given as a mesh (`top = mesh(…)`, docs/repair.md, *A target
+//! mesh*): the part as designed, its highest face over each point the
+//! finished surface. A box's flat top and a wedge's sloped one plan exactly
+//! what the same top written as a height or a plane plans; a target that
+//! does not cover the footprint is refused with where.
+
+use super::{compile, messages};
+use lmdc::ir::Program;
+use std::collections::BTreeMap;
+
+/// A binary STL of the block `lo`..`hi` whose top corners stand at
+/// `top(x, y)` (a plane when `top` is linear).
+fn solid_stl(lo: [f64; 3], hi: [f64; 3], top: impl Fn(f64, f64) -> f64) -> Vec<u8> {
+    let c = |i: usize| {
+        let (x, y) = (
+            if i & 1 == 1 { hi[0] } else { lo[0] },
+            if i & 2 == 2 { hi[1] } else { lo[1] },
+        );
+        let z = if i & 4 == 4 { top(x, y) } else { lo[2] };
+        [x as f32, y as f32, z as f32]
+    };
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let mut b = vec![b' '; 80];
+    b.extend(12u32.to_le_bytes());
+    for q in quads {
+        for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+            b.extend([0u8; 12]);
+            for i in t {
+                for v in c(i) {
+                    b.extend(v.to_le_bytes());
+                }
+            }
+            b.extend([0u8; 2]);
+        }
+    }
+    b
+}
+
+/// examples/worn_pad.lmd with `top = …` as given, its scan and `target.stl`.
+fn pad(top: &str, target: Vec<u8>) -> lmdc::pipeline::Compiled {
+    let src = include_str!("../../examples/worn_pad.lmd").replace("top = 13 mm", top);
+    let files = BTreeMap::from([
+        (
+            "repair/worn_pad.ply".to_string(),
+            std::fs::read("examples/repair/worn_pad.ply").unwrap(),
+        ),
+        ("target.stl".to_string(), target),
+    ]);
+    compile(&src, files)
+}
+
+/// Every point's place, height and speed, layer by layer.
+fn points(p: &Program) -> Vec<[f64; 5]> {
+    p.layers
+        .iter()
+        .flat_map(|l| &l.paths)
+        .flat_map(|p| &p.points)
+        .map(|q| {
+            [
+                q.pos[0],
+                q.pos[1],
+                q.pos[2],
+                f64::from(q.layer_height),
+                f64::from(q.speed),
+            ]
+        })
+        .collect()
+}
+
+fn same(a: &Program, b: &Program) {
+    let (a, b) = (points(a), points(b));
+    assert_eq!(a.len(), b.len());
+    for (p, q) in a.iter().zip(&b) {
+        for k in 0..5 {
+            // f32 corners: 13 mm and 0.5 % of 40 mm are exact in f32, the
+            // plane's heights within a micrometre.
+            assert!((p[k] - q[k]).abs() < 2e-4, "{p:?} vs {q:?}");
+        }
+    }
+}
+
+#[test]
+fn a_boxs_flat_top_plans_what_the_height_plans() {
+    let target = solid_stl([-40.0, -20.0, 0.0], [40.0, 20.0, 13.0], |_, _| 13.0);
+    let by_mesh = pad("top = mesh(file = \"target.stl\")", target.clone());
+    let by_height = pad("top = 13 mm", target);
+    let (m, h) = (messages(&by_mesh), messages(&by_height));
+    let (m, h) = (
+        by_mesh.program.unwrap_or_else(|| panic!("{m}")),
+        by_height.program.unwrap_or_else(|| panic!("{h}")),
+    );
+    same(m.ir(), h.ir());
+}
+
+#[test]
+fn a_wedges_sloped_top_plans_what_the_plane_plans() {
+    // 13 mm at x = 0, rising 0.5 % along x.
+    let z = |x: f64, _: f64| 13.0 + 0.005 * x;
+    let target = solid_stl([-40.0, -20.0, 0.0], [40.0, 20.0, 0.0], z);
+    let by_mesh = pad("top = mesh(file = \"target.stl\")", target.clone());
+    let plane = "top = plane(at = [0 mm, 0 mm], height = 13 mm, slope_x = 0.5 %, slope_y = 0)";
+    let by_plane = pad(plane, target);
+    let (m, p) = (messages(&by_mesh), messages(&by_plane));
+    let (m, p) = (
+        by_mesh.program.unwrap_or_else(|| panic!("{m}")),
+        by_plane.program.unwrap_or_else(|| panic!("{p}")),
+    );
+    same(m.ir(), p.ir());
+}
+
+#[test]
+fn a_target_that_misses_part_of_the_footprint_is_refused_with_where() {
+    // The pad is 60 mm long; the target stops at x = 20 mm.
+    let target = solid_stl([-40.0, -20.0, 0.0], [20.0, 20.0, 13.0], |_, _| 13.0);
+    let c = pad("top = mesh(file = \"target.stl\")", target);
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    assert!(
+        m.contains("lmd::top-height: the target mesh has no face over (2"),
+        "{m}"
+    );
+}
