@@ -127,3 +127,24 @@ fn a_target_that_misses_part_of_the_footprint_is_refused_with_where() {
         "{m}"
     );
 }
+
+/// A target with an overhang over the pad: a ledge sticking out at
+/// 11..12 mm over x 10..20 mm (above the worn face, under the 13 mm top)
+/// on a block standing on the part. Laid from above, the layers would
+/// fill under the ledge: refused, naming the ledge's underside.
+#[test]
+fn a_target_with_an_overhang_is_refused_where_it_is() {
+    let mut stl = solid_stl([-40.0, -20.0, 0.0], [40.0, 20.0, 10.5], |_, _| 10.5);
+    let ledge = solid_stl([10.0, -20.0, 11.0], [20.0, 20.0, 13.0], |_, _| 13.0);
+    // Two blocks in one file: 24 triangles.
+    stl.extend_from_slice(&ledge[84..]);
+    stl[80..84].copy_from_slice(&24u32.to_le_bytes());
+    let c = pad("top = mesh(file = \"target.stl\")", stl);
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    assert!(
+        m.contains("lmd::top-height: the target has an overhang over (1")
+            && m.contains("a face of it runs at 11 mm"),
+        "{m}"
+    );
+}

@@ -600,3 +600,26 @@ pub fn unfillable(u: &Unfillable<'_>) -> Diagnostic {
         short(u.width)
     ))
 }
+
+/// A target mesh with a face between its top and the base at `p`: an
+/// overhang (heights `[top, under, base]`, mm), at `more` other points too.
+pub fn undercut(p: [f64; 2], [top, under, base]: [f64; 3], more: usize, at: Span) -> Diagnostic {
+    let others = match more {
+        0 => String::new(),
+        1 => " (and at 1 other point sampled)".to_string(),
+        n => format!(" (and at {n} other points sampled)"),
+    };
+    Diagnostic::error(
+        Code::TopHeight,
+        format!(
+            "the target has an overhang over ({}, {}) mm{others}: its top is at {} mm, but a face of it runs at {} mm, above the base at {} mm",
+            short(p[0]),
+            short(p[1]),
+            short(top),
+            short(under),
+            short(base)
+        ),
+    )
+    .label(at, "the target")
+    .help("these layers are laid from above with the nozzle vertical, so they would fill under the overhang: build the part to the overhang's underside here, and the overhang in a later step with the part tilted")
+}

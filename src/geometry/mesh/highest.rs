@@ -103,23 +103,45 @@ impl Highest {
         self
     }
 
-    /// The height of the highest face over `p` (mm), if any face is over
-    /// it.
-    pub fn at(&self, p: [f64; 2]) -> Option<f64> {
+    /// The heights of the faces over `p` higher than `z` (mm), highest
+    /// first, faces meeting at an edge or corner the ray passes through
+    /// counted once. From the top down they enter and leave the part in
+    /// turn: three or more mean the part leaves and enters again above
+    /// `z` (an overhang, a cavity).
+    pub fn crossings_above(&self, p: [f64; 2], z: f64) -> Vec<f64> {
+        let mut hs: Vec<f64> = self
+            .near(p)
+            .iter()
+            .filter_map(|&f| height(&self.faces[f as usize], p))
+            .filter(|&h| h > z)
+            .collect();
+        hs.sort_by(|a, b| b.total_cmp(a));
+        hs.dedup_by(|a, b| (*a - *b).abs() <= 1e-6);
+        hs
+    }
+
+    /// The faces of `p`'s bucket (none off the grid).
+    fn near(&self, p: [f64; 2]) -> &[u32] {
         let (fx, fy) = (
             (p[0] - self.origin[0]) / self.cell,
             (p[1] - self.origin[1]) / self.cell,
         );
         if !(fx >= 0.0 && fy >= 0.0) {
-            return None;
+            return &[];
         }
         let (i, j) = (fx.floor() as usize, fy.floor() as usize);
         if i >= self.n[0] || j >= self.n[1] {
-            return None;
+            return &[];
         }
         let c = j * self.n[0] + i;
+        &self.entries[self.start[c] as usize..self.start[c + 1] as usize]
+    }
+
+    /// The height of the highest face over `p` (mm), if any face is over
+    /// it.
+    pub fn at(&self, p: [f64; 2]) -> Option<f64> {
         let mut best: Option<f64> = None;
-        for &f in &self.entries[self.start[c] as usize..self.start[c + 1] as usize] {
+        for &f in self.near(p) {
             if let Some(z) = height(&self.faces[f as usize], p) {
                 best = Some(best.map_or(z, |b: f64| b.max(z)));
             }
@@ -179,6 +201,11 @@ mod tests {
         }
         assert_eq!(h.at([5.1, 0.0]), None);
         assert_eq!(h.at([0.0, -30.0]), None);
+        // Above its floor the ray meets the top alone, on an edge of two
+        // of its triangles too; above -1 mm the floor as well.
+        assert_eq!(h.crossings_above([1.0, 1.0], 0.5), vec![12.5]);
+        assert_eq!(h.crossings_above([0.0, 0.0], 0.5), vec![12.5]);
+        assert_eq!(h.crossings_above([1.0, 1.0], -1.0), vec![12.5, 0.0]);
     }
 
     /// Many small faces of a dome `z = 10 − (x² + y²)/20`: the height

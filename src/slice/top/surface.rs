@@ -96,6 +96,23 @@ impl<'m> Surface<'m> {
         let Some(b) = self.base.at(p) else {
             return Err(Bad::new(p, Why::Uncovered));
         };
+        if let Form::Mesh(m) = &self.form {
+            // Down from the top the ray leaves the part and enters it
+            // again above the base: an overhang (or a cavity) the layers,
+            // laid from above, would fill. (Two crossings are a target
+            // whose underside stands over the wear: filled down to the
+            // scan, as meant.)
+            if let [_, under, _, ..] = m.crossings_above(p, b)[..] {
+                return Err(Bad::new(
+                    p,
+                    Why::Undercut {
+                        top: h,
+                        under,
+                        surface: b,
+                    },
+                ));
+            }
+        }
         if h - b > 0.0 && (h - b).is_finite() {
             Ok(h - b)
         } else {
@@ -184,6 +201,16 @@ pub enum Why {
     Uncovered,
     /// The target mesh has no face over it.
     OffTarget,
+    /// The target mesh has a face under its top and above the base there:
+    /// an overhang the layers, laid from above, cannot leave open.
+    Undercut {
+        /// The top, mm.
+        top: f64,
+        /// The highest face under it, mm.
+        under: f64,
+        /// The base, mm.
+        surface: f64,
+    },
     /// The top is not above the scanned surface there.
     Below {
         /// The top, mm.
@@ -203,6 +230,19 @@ impl Bad {
         let mut out = Diagnostics::new();
         let (value, inner) = match self.why {
             Why::Top { value, inner } => (value, inner),
+            Why::Undercut {
+                top,
+                under,
+                surface,
+            } => {
+                out.push(message::top::undercut(
+                    self.at,
+                    [top, under, surface],
+                    more,
+                    ex.top_span,
+                ));
+                return out;
+            }
             Why::OffTarget => {
                 let at = TopAt {
                     top: ex.top_span,
