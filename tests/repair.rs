@@ -711,27 +711,5 @@ fn a_wrong_nominal_or_a_tolerance_alone_is_refused() {
 
 /// A binary STL of the box `lo..hi`.
 fn block_stl(lo: [f64; 3], hi: [f64; 3]) -> Vec<u8> {
-    let c = |i: usize| [0, 1, 2].map(|k| if (i >> k) & 1 == 1 { hi[k] } else { lo[k] } as f32);
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let mut b = vec![b' '; 80];
-    b.extend(12u32.to_le_bytes());
-    for q in quads {
-        for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
-            b.extend([0u8; 12]);
-            for i in t {
-                for v in c(i) {
-                    b.extend(v.to_le_bytes());
-                }
-            }
-            b.extend([0u8; 2]);
-        }
-    }
-    b
+    target::solid_stl(lo, hi, |_, _| hi[2])
 }

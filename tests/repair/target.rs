@@ -10,7 +10,7 @@ use std::collections::BTreeMap;
 
 /// A binary STL of the block `lo`..`hi` whose top corners stand at
 /// `top(x, y)` (a plane when `top` is linear).
-fn solid_stl(lo: [f64; 3], hi: [f64; 3], top: impl Fn(f64, f64) -> f64) -> Vec<u8> {
+pub(super) fn solid_stl(lo: [f64; 3], hi: [f64; 3], top: impl Fn(f64, f64) -> f64) -> Vec<u8> {
     let c = |i: usize| {
         let (x, y) = (
             if i & 1 == 1 { hi[0] } else { lo[0] },

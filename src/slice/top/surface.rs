@@ -229,7 +229,7 @@ impl Bad {
     pub fn report(self, ex: &TopExtrusion, more: usize) -> Diagnostics {
         let mut out = Diagnostics::new();
         let (value, inner) = match self.why {
-            Why::Top { value, inner } => (value, inner),
+            Why::Top { value, inner } => (value, Some(inner)),
             Why::Undercut {
                 top,
                 under,
@@ -243,20 +243,7 @@ impl Bad {
                 ));
                 return out;
             }
-            Why::OffTarget => {
-                let at = TopAt {
-                    top: ex.top_span,
-                    shape: ex.shape_span,
-                };
-                out.push(message::top::bad_top(
-                    self.at,
-                    more,
-                    BadTop::OffTarget,
-                    false,
-                    at,
-                ));
-                return out;
-            }
+            Why::OffTarget => (None, None),
             Why::Uncovered => {
                 if let Some(b) = &ex.base {
                     let extent = b.surface.extent();
@@ -284,11 +271,13 @@ impl Bad {
                 return out;
             }
         };
-        let bad = match value {
-            Some(h) if h.is_finite() => BadTop::NotPositive(h),
-            Some(_) => BadTop::NotFinite,
-            None => BadTop::Failed,
+        let bad = match (value, &inner) {
+            (Some(h), _) if h.is_finite() => BadTop::NotPositive(h),
+            (Some(_), _) => BadTop::NotFinite,
+            (None, Some(_)) => BadTop::Failed,
+            (None, None) => BadTop::OffTarget,
         };
+        let inner = inner.unwrap_or_default();
         let at = TopAt {
             top: ex.top_span,
             shape: ex.shape_span,
