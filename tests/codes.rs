@@ -677,6 +677,15 @@ machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45
         "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  powder { output = 3  arrival = 2 s  rate_output = 2  full_scale = 5 g/min } }";
 
     // Warnings
+    // As arcs that meet left them; lowering merges such points, so the IR
+    // is edited after it.
+    short_move: ShortMove, PLATE, ir("a point 0.3 µm on from the first deposit's", |p| {
+        let path = &mut p.layers[0].paths[0];
+        let k = path.points.iter().position(|x| x.laser_on).unwrap();
+        let mut r = path.points[k];
+        r.pos[0] += 0.0003;
+        path.points.insert(k + 1, r);
+    });
     short_track: ShortTrack, PLATE,
         "extrude block { profile = rectangle(width = 20 mm, height = 3 mm)  size = outer  bead = track }
 slicing planar { layers = 2  offset = 1.6 mm  infill = raster(angle = 90 deg) }";
