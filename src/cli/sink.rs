@@ -403,7 +403,10 @@ fn main_program(files: &[String]) -> (&[String], &[String]) {
     let Some(last) = files.last().map(|f| stem(f)) else {
         return (&[], &[]);
     };
-    let k = files.iter().rposition(|f| stem(f) != last).map_or(0, |k| k + 1);
+    let k = files
+        .iter()
+        .rposition(|f| stem(f) != last)
+        .map_or(0, |k| k + 1);
     let (modules, main) = files.split_at(k);
     (main, modules)
 }
@@ -440,9 +443,10 @@ fn finish(dir: &Path, journal: &Journal) -> io::Result<()> {
                 s.spawn(move || rest.iter().skip(t).step_by(REMOVERS).try_for_each(remove))
             })
             .collect();
-        workers
-            .into_iter()
-            .try_for_each(|w| w.join().unwrap_or_else(|_| Err(io::Error::other("a removal failed"))))
+        workers.into_iter().try_for_each(|w| {
+            w.join()
+                .unwrap_or_else(|_| Err(io::Error::other("a removal failed")))
+        })
     })?;
     sync_dir(dir)?;
     for f in &journal.moves {

@@ -11,8 +11,8 @@ use crate::ir::Machine;
 use crate::ir::MachineField as Field;
 use crate::plan::kinematics::Rotary;
 use crate::plan::{Move, MoveKind, Speed, Visit};
-use crate::target::{gcode, kuka, quantised, written, MAX_WRITTEN, POSITION_STEP};
 use crate::target::same_direction;
+use crate::target::{gcode, kuka, quantised, written, MAX_WRITTEN, POSITION_STEP};
 
 /// `lmd::resolution`: powers and speeds one machine cannot write, and
 /// positions too large to.
