@@ -7,6 +7,7 @@ use crate::ir::{self, Layer, Limits, Origins, Program, Style, Units, FORMAT};
 use crate::sema::model::{Build, Model, RingBuild};
 use crate::slice;
 use crate::span::Span;
+use crate::target::{self, POSITION_STEP};
 use crate::units::Length;
 
 /// Builds the IR of a checked model; returns it with the slicer's warnings, or
@@ -21,7 +22,10 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
             (layers, Diagnostics::new(), Some(ring))
         }
         _ => {
-            let (layers, warnings) = slice::slice(model)?;
+            let (mut layers, warnings) = slice::slice(model)?;
+            // A ring's segments name its points by index: only the others
+            // are merged.
+            merge_short_moves(&mut layers);
             (layers, warnings, None)
         }
     };
@@ -104,6 +108,55 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
     let mut program = program;
     predict_rises(&mut program);
     Ok((program, warnings))
+}
+
+/// Merges each path's moves shorter than the step programs write
+/// positions at ([`POSITION_STEP`]), where the nozzle also stands as it
+/// did (arcs that meet leave points a fraction of a µm apart, which print
+/// as a move to where the nozzle is, or one digit off it). The earlier
+/// point of such a move goes, since its values hold only over the move;
+/// the path's first point keeps its place and takes the next one's values.
+/// A chain of such points merges only while it stays within one step of
+/// where it began, so a curve sampled finely keeps its shape. A path that
+/// is all one place keeps its points; the verifier names such moves that remain
+/// (`lmd::short-move`).
+pub fn merge_short_moves(layers: &mut [Layer]) {
+    for path in layers.iter_mut().flat_map(|l| &mut l.paths) {
+        let points = &mut path.points;
+        if points.len() < 3 || points.iter().all(|p| same_place(&points[0], p)) {
+            continue;
+        }
+        let mut kept = 1;
+        let mut anchor = points[0];
+        for k in 1..points.len() {
+            let p = points[k];
+            if !same_place(&anchor, &p) {
+                if kept != k {
+                    points[kept] = p;
+                }
+                kept += 1;
+                anchor = p;
+            } else if kept == 1 {
+                points[0] = ir::Point {
+                    pos: points[0].pos,
+                    ..p
+                };
+            } else {
+                points[kept - 1] = p;
+            }
+        }
+        points.truncate(kept);
+    }
+}
+
+/// Whether a move from `a` to `b` is shorter than a printed step and keeps
+/// the nozzle's direction within a printed step of a degree.
+fn same_place(a: &ir::Point, b: &ir::Point) -> bool {
+    let d2: f64 = (0..3).map(|i| (a.pos[i] - b.pos[i]).powi(2)).sum();
+    if d2 >= POSITION_STEP * POSITION_STEP {
+        return false;
+    }
+    target::same_direction(a.normal, b.normal)
 }
 
 /// The IR's statement of the bead model: as declared (each point carries
@@ -327,4 +380,76 @@ fn styles(model: &Model) -> Vec<Style> {
             colour: s.colour.clone(),
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ir::{Frame, Path, PathKind, Point};
+
+    fn point(x: f64, speed: f32) -> Point {
+        Point {
+            pos: [x, 0.0, 0.0],
+            normal: [0.0, 0.0, 1.0],
+            tangent: [1.0, 0.0, 0.0],
+            layer_height: 0.5,
+            speed,
+            power: 1000.0,
+            powder: 10.0,
+            defocus: 0.0,
+            laser_on: true,
+            style: 0,
+            pitch: 2.0,
+            rise: 0.0,
+        }
+    }
+
+    fn merged(xs: &[(f64, f32)]) -> Vec<(f64, f32)> {
+        let points = xs.iter().map(|&(x, v)| point(x, v)).collect();
+        let mut layers = [Layer {
+            index: 0,
+            station: 0.0,
+            frame: Frame::PART,
+            paths: vec![Path {
+                kind: PathKind::Contour,
+                points,
+            }],
+            label: String::new(),
+            on_plate: false,
+        }];
+        merge_short_moves(&mut layers);
+        let p = &layers[0].paths[0].points;
+        p.iter().map(|p| (p.pos[0], p.speed)).collect()
+    }
+
+    /// Issue 38 item 5: arcs that meet left points 0.3 µm apart, written as
+    /// `X-14.646` then `X-14.647`. The earlier point of such a move goes
+    /// (the later one's values hold on), the path's ends keep their places,
+    /// and a chain merges only within one step of where it began.
+    #[test]
+    fn moves_below_the_printed_step_are_merged() {
+        let v = |x: f64| (x, 5.0);
+        // Inside: the later point stays, with its own speed.
+        assert_eq!(
+            merged(&[v(0.0), (10.0, 5.0), (10.0003, 7.0), v(20.0)]),
+            [v(0.0), (10.0003, 7.0), v(20.0)]
+        );
+        // At the start: the first place, the next point's values.
+        assert_eq!(
+            merged(&[v(0.0), (0.0003, 7.0), v(20.0)]),
+            [(0.0, 7.0), v(20.0)]
+        );
+        // At the end: the last place.
+        assert_eq!(merged(&[v(0.0), v(20.0), v(20.0004)]), [v(0.0), v(20.0004)]);
+        // A fine chain keeps a point a step on from where it began.
+        assert_eq!(
+            merged(&[v(0.0), v(1.0), v(1.0006), v(1.0012), v(1.0018), v(5.0)]),
+            [v(0.0), v(1.0006), v(1.0018), v(5.0)]
+        );
+        // A step or more, or a path that is all one place: as they were.
+        let same = [v(0.0), v(0.001), v(0.002)];
+        assert_eq!(merged(&same), same);
+        let one = [v(1.0), v(1.0002), v(1.0001)];
+        assert_eq!(merged(&one), one);
+    }
 }

@@ -442,3 +442,25 @@ fn coupons_are_laid_in_a_seeded_random_order() {
     let expected: Vec<[String; 3]> = order.iter().map(|&k| sorted.0[k].clone()).collect();
     assert_eq!(random.0, expected);
 }
+
+/// docs/calibration.md shows the sheet's start as `lmdc calibrate` writes
+/// it for examples/calibration.lmd: its three `#` lines, the header and
+/// the first coupon (issue 38 item 6: the example left the `#` lines out).
+#[test]
+fn the_sheet_in_the_docs_starts_as_lmdc_writes_it() {
+    let (_, model) =
+        pipeline::compile_with_model(EXAMPLE, &pipeline::Options::default(), &mut ()).unwrap();
+    let Some(Build::Calibration(cal)) = model.map(|m| m.build) else {
+        panic!("no calibration")
+    };
+    let sheet = lmdc::slice::calibration::sheet("coupons", &cal);
+    let docs = std::fs::read_to_string("docs/calibration.md").unwrap();
+    let shown: Vec<&str> = docs
+        .lines()
+        .skip_while(|l| !l.starts_with("# lmdc calibrate:"))
+        .take_while(|l| !l.starts_with("```"))
+        .collect();
+    assert_eq!(shown.len(), 5, "{shown:?}");
+    let written: Vec<&str> = sheet.lines().take(shown.len()).collect();
+    assert_eq!(shown, written);
+}

@@ -627,6 +627,13 @@ machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45
     // The same cone, C turning at most 5°/s as it follows the wall.
     axis_speed: AxisSpeed, DUCT,
         "loft duct { from = circle(diameter = 80 mm)  to = circle(diameter = 40 mm)  spine = line(length = 34.641 mm)  wall = b }\nslicing normal { layers = auto  points = 24  nozzle = wall }\nmachine dmu5 { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 5  max_speed = 100 mm/s  rotary_speed = 5 deg/s }";
+    // The cone on an A/C table (issue 38 item 5): the table turns the part
+    // under the nozzle, C once round a layer, which it cannot unwind.
+    c_unwind_table: CUnwind, DUCT,
+        "loft duct { from = circle(diameter = 80 mm)  to = circle(diameter = 40 mm)  spine = line(length = 34.641 mm)  wall = b }\nslicing normal { layers = auto  points = 24  nozzle = wall }\nmachine dmu5 { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 5  kinematics = table_ac  c_axis = [0 mm, 0 mm, 0 mm]  tilt_axis = [0 mm, 0 mm, -100 mm]  max_speed = 100 mm/s  limits { c = -170 deg .. 170 deg } }";
+    // The same table's C turning at most 5°/s.
+    axis_speed_table: AxisSpeed, DUCT,
+        "loft duct { from = circle(diameter = 80 mm)  to = circle(diameter = 40 mm)  spine = line(length = 34.641 mm)  wall = b }\nslicing normal { layers = auto  points = 24  nozzle = wall }\nmachine dmu5 { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 5  kinematics = table_ac  c_axis = [0 mm, 0 mm, 0 mm]  tilt_axis = [0 mm, 0 mm, -100 mm]  max_speed = 100 mm/s  rotary_speed = 5 deg/s }";
     positioner_speed: PositionerSpeed, RING,
         ir("the robot has a positioner whose E2 turns 10° and back layer by layer: the ring's layers run on into each other", |p| {
             let n = p.layers.len();
@@ -677,6 +684,15 @@ machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45
         "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  powder { output = 3  arrival = 2 s  rate_output = 2  full_scale = 5 g/min } }";
 
     // Warnings
+    // As arcs that meet left them; lowering merges such points, so the IR
+    // is edited after it.
+    short_move: ShortMove, PLATE, ir("a point 0.3 µm on from the first deposit's", |p| {
+        let path = &mut p.layers[0].paths[0];
+        let k = path.points.iter().position(|x| x.laser_on).unwrap();
+        let mut r = path.points[k];
+        r.pos[0] += 0.0003;
+        path.points.insert(k + 1, r);
+    });
     short_track: ShortTrack, PLATE,
         "extrude block { profile = rectangle(width = 20 mm, height = 3 mm)  size = outer  bead = track }
 slicing planar { layers = 2  offset = 1.6 mm  infill = raster(angle = 90 deg) }";

@@ -249,6 +249,11 @@ fn the_extension_manifest_names_the_grammar_and_the_server() {
         .join(g["path"].as_str().unwrap())
         .exists());
     assert_eq!(p["contributes"]["languages"][0]["extensions"][0], ".lmd");
+    // vsce packages the licence it names from beside the manifest (issue
+    // 38 item 6: there was none).
+    assert_eq!(p["license"], "MIT");
+    let text = |f: &str| std::fs::read_to_string(f).unwrap();
+    assert_eq!(text("editors/vscode/LICENSE"), text("LICENSE-MIT"));
     let js = std::fs::read_to_string("editors/vscode/extension.js").unwrap();
     assert!(js.contains("args: [\"lsp\"]"));
     let conf: Value = serde_json::from_str(

@@ -478,6 +478,15 @@ fn malformed_messages_are_answered_and_the_session_goes_on() {
         left -= k;
     }
     assert_eq!(c.error(), (-32700, Value::Null));
+    // Headers without `Content-Length`; a body without headers, the next
+    // frame's glued to it: answered, and that frame read (issue 38 item 2).
+    write!(c.stdin, "Content-Type: application/vscode-jsonrpc\r\n\r\n").unwrap();
+    c.stdin.flush().unwrap();
+    assert_eq!(c.error(), (-32700, Value::Null));
+    write!(c.stdin, "{{\"jsonrpc\": \"2.0\", \"id\": 5}}").unwrap();
+    c.send(json!({ "jsonrpc": "2.0", "id": 78, "method": "lmd/unknown", "params": {} }));
+    assert_eq!(c.error(), (-32700, Value::Null));
+    assert_eq!(c.error(), (-32601, json!(78)));
     // An unknown method, with its id.
     c.send(json!({ "jsonrpc": "2.0", "id": 77, "method": "lmd/unknown", "params": {} }));
     assert_eq!(c.error(), (-32601, json!(77)));

@@ -15,7 +15,9 @@
 //!    rebuilt, newest first, so a KRL main program goes before its modules),
 //!    the files to move in (in the order the back end wrote them: modules
 //!    before the main program that calls them) and the manifest that results;
-//! 3. the removals, then the moves, are carried out; then the manifest
+//! 3. the removals, then the moves, are carried out (each rebuilt set's main
+//!    program is removed first, then the rest side by side: a removal
+//!    mostly waits on the disk); then the manifest
 //!    `DIR/.lmdc-manifest` is replaced (temporary name, rename) and the staging
 //!    folder removed.
 //!
@@ -88,13 +90,24 @@ struct Manifest {
 struct Journal {
     format: String,
     version: u32,
-    /// Files to remove from the output directory, in this order.
+    /// Files to remove from the output directory: the first [`Self::serial`]
+    /// in this order, then the others side by side.
     remove: Vec<String>,
+    /// How many of `remove` go one by one before the rest: each rebuilt
+    /// set's main program. A journal without it (an older lmdc's) removes
+    /// every file in order.
+    #[serde(default = "every_file")]
+    serial: usize,
     /// Files to move from the staging folder into the output directory, in
     /// this order.
     moves: Vec<String>,
     /// The manifest once done.
     manifest: Manifest,
+}
+
+/// A journal's [`Journal::serial`] where it does not say: every file.
+fn every_file() -> usize {
+    usize::MAX
 }
 
 impl Manifest {
@@ -256,16 +269,24 @@ impl AtomicDir {
                 .map(|n| &n.key);
             return Err(io::Error::other(clash_message(file, &set.key, this)));
         }
-        // Old sets rebuilt now go; the others stay.
+        // Old sets rebuilt now go; the others stay. Each set's main program
+        // goes first, so no set is ever left with its main program and not
+        // every module it calls; the rest go side by side.
         let mut remove: Vec<String> = Vec::new();
+        let mut rest: Vec<String> = Vec::new();
         let mut kept: Vec<FileSet> = Vec::new();
         for set in old.sets {
             if new_sets.iter().any(|n| n.key == set.key) {
-                remove.extend(set.files.into_iter().rev());
+                let (main, modules) = main_program(&set.files);
+                // Plain names only (as below), so `serial` counts them.
+                remove.extend(main.iter().rev().filter(|f| is_plain_name(f)).cloned());
+                rest.extend(modules.iter().rev().cloned());
             } else if !set.files.is_empty() {
                 kept.push(set);
             }
         }
+        let serial = remove.len();
+        remove.append(&mut rest);
         // Any other file about to be replaced goes first too, so that the
         // directory never shows an old file beside a new one.
         let mut removed: HashSet<String> = remove.iter().cloned().collect();
@@ -283,6 +304,7 @@ impl AtomicDir {
             format: "lmdc-journal".into(),
             version: 1,
             remove,
+            serial,
             moves: self.files.clone(),
             manifest: Manifest::new(kept),
         };
@@ -373,21 +395,59 @@ fn recover_locked(dir: &Path) -> io::Result<()> {
     Ok(())
 }
 
+/// A set's files, in the order written, split into its main program (the
+/// last file written and the others of its name: a KRL main program's
+/// `.src` and `.dat`) and what it calls, written before it.
+fn main_program(files: &[String]) -> (&[String], &[String]) {
+    let stem = |f: &str| f.rsplit_once('.').map_or(f, |(s, _)| s).to_string();
+    let Some(last) = files.last().map(|f| stem(f)) else {
+        return (&[], &[]);
+    };
+    let k = files
+        .iter()
+        .rposition(|f| stem(f) != last)
+        .map_or(0, |k| k + 1);
+    let (modules, main) = files.split_at(k);
+    (main, modules)
+}
+
+/// How many threads remove files side by side: a removal waits on the
+/// disk far more than it computes (on the dense duct's 3608 files, a
+/// second and more of waiting each 1000 one by one, a tenth of a second
+/// with four at a time).
+const REMOVERS: usize = 4;
+
 /// Carries out a journal; each step is skipped when already done, so a
 /// journal can be finished again after a kill.
 fn finish(dir: &Path, journal: &Journal) -> io::Result<()> {
     let staging = dir.join(STAGING);
     let moves: HashSet<&str> = journal.moves.iter().map(String::as_str).collect();
-    for f in &journal.remove {
+    let remove = |f: &String| -> io::Result<()> {
         // A file that has already been moved in is the new one: keep it.
         if moves.contains(f.as_str()) && !staging.join(f).exists() {
-            continue;
+            return Ok(());
         }
         match fs::remove_file(dir.join(f)) {
-            Err(e) if e.kind() != io::ErrorKind::NotFound => return Err(e),
-            _ => {}
+            Err(e) if e.kind() != io::ErrorKind::NotFound => Err(e),
+            _ => Ok(()),
         }
-    }
+    };
+    let (first, rest) = journal
+        .remove
+        .split_at(journal.serial.min(journal.remove.len()));
+    first.iter().try_for_each(remove)?;
+    std::thread::scope(|s| {
+        let workers: Vec<_> = (0..REMOVERS)
+            .map(|t| {
+                let remove = &remove;
+                s.spawn(move || rest.iter().skip(t).step_by(REMOVERS).try_for_each(remove))
+            })
+            .collect();
+        workers.into_iter().try_for_each(|w| {
+            w.join()
+                .unwrap_or_else(|_| Err(io::Error::other("a removal failed")))
+        })
+    })?;
     sync_dir(dir)?;
     for f in &journal.moves {
         let from = staging.join(f);
@@ -678,6 +738,7 @@ mod tests {
             format: "lmdc-journal".into(),
             version: 1,
             remove: vec!["p.src".into(), "m2.src".into(), "m1.src".into()],
+            serial: 1,
             moves: vec!["m1.src".into(), "p.src".into()],
             manifest: Manifest::new(vec![FileSet {
                 key: key("r"),
@@ -695,6 +756,17 @@ mod tests {
         assert_eq!(fs::read_to_string(d.join("p.src")).unwrap(), "new");
         assert_eq!(Manifest::read(&d), journal.manifest);
         fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[test]
+    fn a_sets_main_program_is_its_last_name() {
+        let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        let krl = names(&["p_m1.src", "p_m1.dat", "p.src", "p.dat"]);
+        let (main, modules) = main_program(&krl);
+        assert_eq!((main, modules), (&krl[2..], &krl[..2]));
+        let one = names(&["p.ngc"]);
+        assert_eq!(main_program(&one), (&one[..], &[][..]));
+        assert_eq!(main_program(&[]), (&[][..], &[][..]));
     }
 
     #[test]

@@ -369,6 +369,8 @@ codes! {
         "a machine declares no `head`: its collisions were checked with a typical coaxial nozzle, not its own; says how to declare it";
     LoadUnchecked = "load-unchecked", Warnings,
         "a robot declares no tool `load`: its program sets `$LOAD = LOAD_DATA[n]` (n the tool's number), whatever the controller holds there, which lmdc cannot check; says how to declare the mass and centre of gravity the program then sets";
+    ShortMove = "short-move", Warnings,
+        "a machine's move shorter than the 0.001 mm its program writes positions at, the nozzle standing as it was: it prints as no move, or as a step of one digit the part does not make; lmdc merges such points of a path, so one that remains is a path of one place or a plan's own move; counts them and names the shortest";
     ShortTrack = "short-track", Warnings,
         "planar tracks shorter than the bead width (they overheat and pile up); counts them and names the first layer";
     LiftMismatch = "lift-mismatch", Warnings,

@@ -78,8 +78,15 @@ pub fn serve(input: &mut impl BufRead, output: &mut impl Write) -> std::io::Resu
     let mut state = State::Uninitialized;
     let mut docs: HashMap<String, Doc> = HashMap::new();
     loop {
-        let msg = match transport::read(input)? {
+        let mut incoming = transport::read(input)?;
+        if let transport::Incoming::Behind(why, frame) = incoming {
+            transport::write(output, &error(Value::Null, PARSE_ERROR, &why))?;
+            incoming = *frame;
+        }
+        let msg = match incoming {
             transport::Incoming::End => return Ok(exit_status(state)),
+            // `read` puts nothing behind a frame but a frame.
+            transport::Incoming::Behind(..) => continue,
             transport::Incoming::Malformed(why) => {
                 transport::write(output, &error(Value::Null, PARSE_ERROR, &why))?;
                 continue;

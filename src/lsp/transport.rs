@@ -26,6 +26,10 @@ pub enum Incoming {
     /// A frame that holds no JSON value, and why: to be answered with a
     /// parse error.
     Malformed(String),
+    /// Bytes that were no frame (a body sent without its headers), and why,
+    /// then the frame whose `Content-Length` followed them on their line:
+    /// the bytes are answered with a parse error, the frame as it reads.
+    Behind(String, Box<Incoming>),
     /// The input ended.
     End,
 }
@@ -34,6 +38,9 @@ pub enum Incoming {
 pub fn read(r: &mut impl BufRead) -> io::Result<Incoming> {
     let mut length: Option<Result<u64, String>> = None;
     let mut any = false;
+    // Bytes before a `Content-Length` on its line: the headers were left
+    // out of a message, and the next frame's are glued to its body.
+    let mut junk = None;
     loop {
         let Some(line) = header_line(r)? else {
             return Ok(Incoming::End);
@@ -47,6 +54,13 @@ pub fn read(r: &mut impl BufRead) -> io::Result<Incoming> {
             continue;
         }
         any = true;
+        let line = match glued_header(line) {
+            Some(k) => {
+                junk = Some(k);
+                &line[k..]
+            }
+            None => line,
+        };
         let text = String::from_utf8_lossy(line);
         if let Some((name, value)) = text.split_once(':') {
             if name.trim().eq_ignore_ascii_case("content-length") {
@@ -59,6 +73,29 @@ pub fn read(r: &mut impl BufRead) -> io::Result<Incoming> {
             }
         }
     }
+    let frame = frame(r, length)?;
+    Ok(match junk {
+        Some(n) => Incoming::Behind(
+            format!("{n} bytes without `Content-Length` before a frame"),
+            Box::new(frame),
+        ),
+        None => frame,
+    })
+}
+
+/// Where a `Content-Length` header starts in a line that holds something
+/// else before it (the end of a body sent without headers), if it does.
+fn glued_header(line: &[u8]) -> Option<usize> {
+    const NAME: &[u8] = b"content-length:";
+    let k = line
+        .windows(NAME.len())
+        .position(|w| w.eq_ignore_ascii_case(NAME))?;
+    // A header's name at the line's start is the header itself.
+    (k > 0).then_some(k)
+}
+
+/// The body a frame's headers announce, read from `r`.
+fn frame(r: &mut impl BufRead, length: Option<Result<u64, String>>) -> io::Result<Incoming> {
     let n = match length {
         None => {
             return Ok(Incoming::Malformed(
@@ -134,6 +171,13 @@ mod tests {
             match read(&mut r).unwrap() {
                 Incoming::Value(v) => out.push(v.to_string()),
                 Incoming::Malformed(why) => out.push(format!("malformed: {why}")),
+                Incoming::Behind(why, then) => {
+                    out.push(format!("malformed: {why}"));
+                    match *then {
+                        Incoming::Value(v) => out.push(v.to_string()),
+                        other => out.push(format!("{other:?}")),
+                    }
+                }
                 Incoming::End => return out,
             }
         }
@@ -163,5 +207,19 @@ mod tests {
         let mut input = vec![b'a'; 3 * MAX_HEADER as usize];
         input.extend(b"\r\nContent-Length: 2\r\n\r\n{}");
         assert_eq!(frames(&input), ["{}"]);
+    }
+
+    #[test]
+    fn a_body_without_headers_is_malformed_and_the_next_frame_read() {
+        let input = b"{\"id\": 1}Content-Length: 2\r\n\r\n[]Content-Type: x\r\n\r\nContent-Length: 4\r\n\r\nnull";
+        assert_eq!(
+            frames(input),
+            [
+                "malformed: 9 bytes without `Content-Length` before a frame",
+                "[]",
+                "malformed: a frame without `Content-Length`",
+                "null"
+            ]
+        );
     }
 }

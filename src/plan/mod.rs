@@ -116,6 +116,7 @@ pub mod spin;
 pub mod table;
 
 use crate::ir::{AxisLimits, Cell, Kinematics, Layer, Machine, Point, Program, Ramp, Ring};
+use crate::target::{self, POSITION_STEP};
 use kinematics::Rotary;
 
 /// A path joins the previous one when it starts within this distance (mm) of
@@ -601,6 +602,7 @@ impl<'a> Plan<'a> {
             end_next: None,
             last: None,
             last_axes: None,
+            last_normal: None,
             run_end: None,
             lead_path: false,
             last_kind: None,
@@ -715,6 +717,8 @@ struct Walker<'p, 'a, V> {
     last: Option<[f64; 3]>,
     /// The rotary axes (a positioner's) the last move ended at.
     last_axes: Option<Rotary>,
+    /// The nozzle's direction the last move ended at.
+    last_normal: Option<[f32; 3]>,
     /// With leads: where the last deposit started, and the move itself.
     run_end: Option<([f64; 3], Move)>,
     /// Whether the path being walked is a lead of its own
@@ -808,6 +812,7 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
             }
         }
         self.last_axes = Some(m.axes);
+        self.last_normal = Some(m.normal);
         self.last_kind = Some(m.kind);
         if self.timed {
             if let (Speed::Feed(v), Some(from)) = (m.speed, self.last) {
@@ -1004,15 +1009,17 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
             (Some(_), None) => MoveKind::FromHome,
             _ => MoveKind::Travel,
         };
-        self.send(Move {
-            kind,
-            to: above,
-            normal: first.normal,
-            axes,
-            speed: Speed::Rapid,
-            power: first.power,
-            at: clearance,
-        });
+        if !self.stands_at(above, first.normal, axes) {
+            self.send(Move {
+                kind,
+                to: above,
+                normal: first.normal,
+                axes,
+                speed: Speed::Rapid,
+                power: first.power,
+                at: clearance,
+            });
+        }
         if let Some(rate) = powder.filter(|&r| !self.ready(r)) {
             self.prepare(rate);
         }
@@ -1128,14 +1135,13 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
         if from[2].min(above[2]) >= safe - 1e-6 {
             return;
         }
-        let normal = c.normal;
-        let mut here = from;
-        if from[2] < safe {
-            here = [from[0], from[1], safe];
+        // A rise shorter than a printed step would print as none, or as a
+        // step of one digit: the travel across starts where it is.
+        if safe - from[2] >= POSITION_STEP {
             self.send(Move {
                 kind: MoveKind::Travel,
-                to: here,
-                normal,
+                to: [from[0], from[1], safe],
+                normal: c.normal,
                 axes: prev,
                 speed: Speed::Rapid,
                 power: first.power,
@@ -1149,7 +1155,7 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
         // Straight up and down (the next path starts under where the last
         // ended, a layer change of a wall): nothing to cross.
         let across = [above[0], above[1], safe];
-        if across == here && axes == prev && first.normal == normal {
+        if self.stands_at(across, first.normal, axes) {
             return;
         }
         self.send(Move {
@@ -1161,6 +1167,23 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
             power: first.power,
             at: clearance,
         });
+    }
+
+    /// Whether the nozzle already stands at `to`, turned to `normal` and
+    /// `axes`, within the step a program prints ([`POSITION_STEP`]): a
+    /// travel there would print as no move, or as a step of one digit
+    /// (`lmd::short-move`). After a lift or home, where the nozzle stands
+    /// is not the last move's `to`.
+    fn stands_at(&self, to: [f64; 3], normal: [f32; 3], axes: Rotary) -> bool {
+        let (Some(at), Some(n), Some(a)) = (self.last, self.last_normal, self.last_axes) else {
+            return false;
+        };
+        let d2: f64 = (0..3).map(|i| (to[i] - at[i]).powi(2)).sum();
+        !matches!(self.last_kind, Some(MoveKind::Lift | MoveKind::Home))
+            && d2 < POSITION_STEP * POSITION_STEP
+            && (axes.tilt - a.tilt).abs() < POSITION_STEP
+            && (axes.c - a.c).abs() < POSITION_STEP
+            && target::same_direction(n, normal)
     }
 
     /// The least height (Z) of the focus on a travel from `from` to `to`

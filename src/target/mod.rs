@@ -36,6 +36,32 @@ pub fn written(v: f64, decimals: usize) -> f64 {
     (v * s).round() / s
 }
 
+/// The least step of a position every program writes, mm: KRL's and
+/// G-code's X Y Z have three decimals ([`kuka::POS_DECIMALS`],
+/// [`gcode::POS_DECIMALS`]), and their angles as many in degrees. A move
+/// shorter than this prints as no move, or as a step of one digit the part
+/// does not make (`X-14.646` then `X-14.647` for 0.3 µm).
+pub const POSITION_STEP: f64 = 1e-3;
+// The step is the one both back ends print at.
+const _: () = assert!(kuka::POS_DECIMALS == 3 && gcode::POS_DECIMALS == 3);
+
+/// Whether two nozzle directions (unit vectors) lie within a printed step
+/// of a degree ([`POSITION_STEP`]) of each other: a move between them
+/// turns the nozzle by less than its program can say.
+pub fn same_direction(a: [f32; 3], b: [f32; 3]) -> bool {
+    // The angle by its sine: near 0 an f32 normal's dot with itself can be
+    // 1 − 6e-8, whose arc cosine is 0.02°.
+    let [a, b] = [a, b].map(|n| n.map(f64::from));
+    let cross = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    let dot: f64 = (0..3).map(|i| a[i] * b[i]).sum();
+    let sin = cross.iter().map(|c| c * c).sum::<f64>().sqrt();
+    dot > 0.0 && sin < POSITION_STEP.to_radians()
+}
+
 /// How far a written power or speed may be from the planned one, relative: a
 /// program says a value only when its printed resolution gets within this.
 pub const WRITE_TOLERANCE: f64 = 0.005;

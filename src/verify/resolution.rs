@@ -9,8 +9,10 @@ use crate::diag::message::verify::machine::SpeedWord;
 use crate::diag::{message, Diagnostics};
 use crate::ir::Machine;
 use crate::ir::MachineField as Field;
-use crate::plan::{Move, Speed, Visit};
-use crate::target::{gcode, kuka, quantised, written, MAX_WRITTEN};
+use crate::plan::kinematics::Rotary;
+use crate::plan::{Move, MoveKind, Speed, Visit};
+use crate::target::same_direction;
+use crate::target::{gcode, kuka, quantised, written, MAX_WRITTEN, POSITION_STEP};
 
 /// `lmd::resolution`: powers and speeds one machine cannot write, and
 /// positions too large to.
@@ -162,5 +164,62 @@ fn power_word(m: &Machine) -> (f64, usize) {
     match m {
         Machine::Cnc(c) => (c.dialect.s_per_watt, c.dialect.s_decimals),
         Machine::Robot(r) => (1.0 / r.full_scale_power, kuka::ANOUT_DECIMALS),
+    }
+}
+
+/// `lmd::short-move`: moves shorter than the step positions are written
+/// at ([`POSITION_STEP`]) where the nozzle stands as it did: each prints
+/// as no move or a step of one digit. Lowering merges them inside a path,
+/// so what is found here is a path of one place or a plan's own move.
+pub(super) struct ShortMoves {
+    /// The last move's target, nozzle direction and rotary axes.
+    last: Option<([f64; 3], [f32; 3], Rotary)>,
+    found: Option<Worst>,
+}
+
+impl<'p> PlanRule<'p> for ShortMoves {
+    fn new(_cx: &MachineCx<'p>) -> Option<Self> {
+        Some(ShortMoves {
+            last: None,
+            found: None,
+        })
+    }
+
+    fn report(self, cx: &MachineCx<'p>, out: &mut Diagnostics) {
+        if let Some(w) = self.found {
+            out.push(message::verify::machine::short_moves(
+                cx.machine.name(),
+                &w,
+                cx.origin.at(Field::Name),
+            ));
+        }
+    }
+}
+
+impl Visit for ShortMoves {
+    #[inline]
+    fn motion(&mut self, m: &Move) {
+        // A lift writes Z alone, and home is axis angles: neither's `to` is
+        // where the program leaves the nozzle. A PTP from home comes from
+        // axis angles too.
+        if matches!(m.kind, MoveKind::Lift | MoveKind::Home) {
+            self.last = None;
+            return;
+        }
+        let last = self.last.replace((m.to, m.normal, m.axes));
+        let (Some((to, normal, axes)), false) = (last, m.kind == MoveKind::FromHome) else {
+            return;
+        };
+        let d2: f64 = (0..3).map(|i| (m.to[i] - to[i]).powi(2)).sum();
+        if d2 >= POSITION_STEP * POSITION_STEP {
+            return;
+        }
+        // A turn of the nozzle or the axes in place is a move of its own.
+        let turned = (m.axes.tilt - axes.tilt).abs() >= POSITION_STEP
+            || (m.axes.c - axes.c).abs() >= POSITION_STEP
+            || !same_direction(normal, m.normal);
+        if !turned {
+            Worst::hit(&mut self.found, d2.sqrt(), POSITION_STEP, m.at);
+        }
     }
 }

@@ -14,7 +14,7 @@ use super::names::FileNames;
 use super::overhang::Overhang;
 use super::positioner::PositionerRule;
 use super::process::ProcessRules;
-use super::resolution::Resolution;
+use super::resolution::{Resolution, ShortMoves};
 use super::rule::{MachineCx, PlanRule, ProgramCx, ProgramRule};
 use super::stacking::Stacking;
 use super::table::{AxisSpeed, CUnwind};
@@ -138,6 +138,7 @@ plan_rules! {
         speed: SpeedLimit<'p>,
         analog: Analog,
         resolution: Resolution<'p>,
+        short_moves: ShortMoves,
         cell: CellRule<'p>,
         ring: LoopOnMachine,
         bump: DepositBump<'p>,

@@ -220,6 +220,29 @@ pub fn position_too_large(name: &str, w: &Worst<impl Display>, machine: Span) ->
     .help("check the part's dimensions and units")
 }
 
+/// Moves of machine `name`'s plan shorter than the printed step (`w`: the
+/// shortest, mm, against the step).
+pub fn short_moves(name: &str, w: &Worst<impl Display>, machine: Span) -> Diagnostic {
+    Diagnostic::warning(
+        Code::ShortMove,
+        format!(
+            "machine `{name}` would write {} move{} shorter than the {} mm its positions are \
+             written at, the shortest {} mm at {}: each prints as no move, or as a step of one \
+             digit the part does not make",
+            w.count,
+            plural(w.count),
+            short(w.limit),
+            short(w.value),
+            w.at,
+        ),
+    )
+    .label(machine, "machine")
+    .help(
+        "lmdc merges such points inside a path; a path whose points all lie in one place is \
+         left as it is: look at the profile there (arcs or lines that meet in a sliver)",
+    )
+}
+
 /// How a machine writes its speeds.
 #[derive(Clone, Copy, Debug)]
 pub enum SpeedWord {
