@@ -513,9 +513,15 @@ pub fn predict(
             return Err(overheat(&build, i, interpass, b.max_interpass));
         }
         let power = match (budget, base_after(&base, i, loads.len())) {
-            (Some(b @ Budget { lever: Lever::Power { least }, .. }), Some(next)) => {
-                least_power(&build, load, next, b.max_interpass, least[i], i + 1)?
-            }
+            (
+                Some(
+                    b @ Budget {
+                        lever: Lever::Power { least },
+                        ..
+                    },
+                ),
+                Some(next),
+            ) => least_power(&build, load, next, b.max_interpass, least[i], i + 1)?,
             _ => 1.0,
         };
         let peak = build.lay(&Load {

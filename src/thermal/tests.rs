@@ -35,7 +35,8 @@ impl Fd {
         // loss terms.
         let dt = 0.2 * self.dx * self.dx / alpha;
         let mut t = vec![ambient; nx * nz];
-        let active = |i: usize, k: usize, top: usize| k < pt || (k < pt + top && i < self.wall_cells);
+        let active =
+            |i: usize, k: usize, top: usize| k < pt || (k < pt + top && i < self.wall_cells);
         let cell_c = m.volumetric() * self.dx * self.dx;
         let g = m.conductivity; // between two cells, per metre of wall
         let layer_mean = |t: &[f64], l: usize| {
@@ -47,7 +48,10 @@ impl Fd {
         for layer in 0..self.layers {
             interpass.push(if layer == 0 {
                 // The plate under the wall's footprint.
-                (0..self.wall_cells).map(|i| t[(pt - 1) * nx + i]).sum::<f64>() / self.wall_cells as f64
+                (0..self.wall_cells)
+                    .map(|i| t[(pt - 1) * nx + i])
+                    .sum::<f64>()
+                    / self.wall_cells as f64
             } else {
                 layer_mean(&t, layer - 1)
             });
@@ -59,7 +63,11 @@ impl Fd {
                 let steps = (length / dt).ceil() as usize;
                 let h = length / steps as f64;
                 // Half the wall's cells: the source per cell of the half.
-                let source = if phase { 0.5 * self.q / self.wall_cells as f64 } else { 0.0 };
+                let source = if phase {
+                    0.5 * self.q / self.wall_cells as f64
+                } else {
+                    0.0
+                };
                 for _ in 0..steps {
                     for k in 0..nz {
                         for i in 0..nx {
@@ -235,7 +243,11 @@ fn least_cooling_meets_the_limit_and_no_less_does() {
         // 10 % less from the same state breaks it.
         let shorter = |j: usize| if j == i { 0.9 * p[j].wait } else { p[j].wait };
         let q = predict(m, plate, &vec![load; i + 1], shorter, None).unwrap();
-        assert!(q[i].interpass > 200.0, "layer {i}: {} with 90 %", q[i].interpass);
+        assert!(
+            q[i].interpass > 200.0,
+            "layer {i}: {} with 90 %",
+            q[i].interpass
+        );
     }
     // The waits grow as the plate warms.
     assert!(p[29].wait > p[5].wait && p[5].wait > 0.0, "{p:?}");
