@@ -9,7 +9,7 @@ use crate::slice;
 use crate::span::Span;
 use crate::units::Length;
 
-mod heat;
+pub mod heat;
 
 /// Builds the IR of a checked model; returns it with the slicer's warnings, or
 /// the errors that make the part unbuildable.

@@ -17,19 +17,7 @@ const M: f64 = 1e-3;
 pub fn predict(program: &Program, declared: &Thermal, at: Span) -> Result<Thermal, Diagnostics> {
     let width = program.limits.bead_width;
     let loads: Vec<(Load, [f64; 3])> = program.layers.iter().map(|l| load(l, width)).collect();
-    let material = Material {
-        conductivity: declared.conductivity,
-        density: declared.density,
-        heat_capacity: declared.heat_capacity,
-        emissivity: declared.emissivity,
-        absorptivity: declared.absorptivity,
-        heat_transfer: declared.heat_transfer,
-    };
-    let plate = Plate {
-        size: declared.plate.map(|x| x * M),
-        temperature: declared.preheat,
-        ambient: declared.ambient,
-    };
+    let (material, plate) = cell(declared);
     let heat = program.heat;
     let base = |i: usize| base_wait(heat, loads[i - 1].0.time);
     let least = least_power(program);
@@ -57,6 +45,10 @@ pub fn predict(program: &Program, declared: &Thermal, at: Span) -> Result<Therma
             longest: MAX_DWELL_S,
             needs: o.needs,
             preheat: o.layer == 0,
+            floor: match declared.cooling {
+                Cooling::Power => Some(power_floor(program)),
+                Cooling::Dwell => None,
+            },
         };
         Diagnostics::from(message::thermal::interpass(o, at))
     })?;
@@ -83,17 +75,37 @@ pub fn predict(program: &Program, declared: &Thermal, at: Span) -> Result<Therma
     })
 }
 
+/// The model's material and plate as the IR's thermal block states them.
+pub fn cell(t: &Thermal) -> (Material, Plate) {
+    let material = Material {
+        conductivity: t.conductivity,
+        density: t.density,
+        heat_capacity: t.heat_capacity,
+        emissivity: t.emissivity,
+        absorptivity: t.absorptivity,
+        heat_transfer: t.heat_transfer,
+    };
+    let plate = Plate {
+        size: t.plate.map(|x| x * M),
+        temperature: t.preheat,
+        ambient: t.ambient,
+    };
+    (material, plate)
+}
+
+/// Each layer's load as the model takes it, from the IR's points (their
+/// powers as the plan lays them).
+pub fn loads(program: &Program) -> Vec<Load> {
+    let width = program.limits.bead_width;
+    program.layers.iter().map(|l| load(l, width).0).collect()
+}
+
 /// The least share of its power each layer may be laid at: its lowest
 /// laser-on power brought down to the bottom of the laser's range, or of
 /// the bead's measured powers where they are known (lower would be
 /// extrapolation, `lmd::extrapolation`).
 fn least_power(program: &Program) -> Vec<f64> {
-    let bead = program
-        .bead
-        .as_ref()
-        .and_then(|b| b.powers.as_ref())
-        .and_then(|p| p.iter().copied().reduce(f64::min));
-    let floor = bead.map_or(program.limits.power[0], |b| b.max(program.limits.power[0]));
+    let floor = power_floor(program);
     program
         .layers
         .iter()
@@ -111,6 +123,17 @@ fn least_power(program: &Program) -> Vec<f64> {
             }
         })
         .collect()
+}
+
+/// The least power a layer may be laid at, W: the bottom of the laser's
+/// range, or of the bead's measured powers where they are known and higher.
+fn power_floor(program: &Program) -> f64 {
+    let bead = program
+        .bead
+        .as_ref()
+        .and_then(|b| b.powers.as_ref())
+        .and_then(|p| p.iter().copied().reduce(f64::min));
+    bead.map_or(program.limits.power[0], |b| b.max(program.limits.power[0]))
 }
 
 /// Lays each layer at the share of its power the prediction chose.
@@ -132,7 +155,7 @@ pub fn scale_powers(program: &mut Program) {
 /// The wait the plan keeps before a layer whatever the budget, s: the
 /// declared dwell, or what the layer before (`time` s) falls short of the
 /// minimum layer time.
-fn base_wait(heat: Heat, time: f64) -> f64 {
+pub fn base_wait(heat: Heat, time: f64) -> f64 {
     heat.dwell.max(heat.min_layer_time - time).max(0.0)
 }
 
@@ -177,8 +200,11 @@ fn load(layer: &Layer, width: f64) -> (Load, [f64; 3]) {
             volume += area * d;
             length += d;
             heights += p.layer_height as f64 * d;
-            for x in [p.pos, q.pos] {
-                plan.push([on(x, f.x), on(x, f.y)]);
+            // Each deposit's start, and the end of a run: every point of
+            // the deposits once.
+            plan.push([on(p.pos, f.x), on(p.pos, f.y)]);
+            if !q.laser_on || std::ptr::eq(q, path.points.last().expect("a pair")) {
+                plan.push([on(q.pos, f.x), on(q.pos, f.y)]);
             }
         }
     }

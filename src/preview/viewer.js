@@ -321,7 +321,7 @@
 
   function resize() {
     const dpr = window.devicePixelRatio || 1;
-    for (const c of [canvas, $("plot"), $("errplot")].concat(ARM ? [$("joints")] : [], ROT ? [$("rotary")] : [])) {
+    for (const c of [canvas, $("plot"), $("errplot")].concat(ARM ? [$("joints")] : [], ROT ? [$("rotary")] : [], HEAT ? [$("thermal")] : [])) {
       c.width = Math.max(1, Math.round(c.clientWidth * dpr));
       c.height = Math.max(1, Math.round(c.clientHeight * dpr));
     }
@@ -1075,6 +1075,32 @@
     c.dataset.layers = L.length;
   }
 
+  // The thermal model's prediction layer by layer (docs/thermal.md): each
+  // layer's interpass temperature against the limit (red), and its own
+  // temperature when laid; below, the wait before each layer.
+  const HEAT = M.thermal;
+  function plotHeat() {
+    if (!HEAT) return;
+    const c = $("thermal"), g = clear(c);
+    const W = c.width, H = c.height, dpr = window.devicePixelRatio || 1;
+    const n = HEAT.interpass.length, xs = HEAT.interpass.map((_, k) => k + 1);
+    const gap = 8 * dpr, ph = (H - 3 * gap) / 2;
+    const box = (a) => ({ left: 70 * dpr, right: W - 16 * dpr, top: gap + a * (ph + gap), height: ph - 4 * dpr });
+    const marks = HEAT.limit == null ? [] : [[HEAT.limit, "#c0392b"]];
+    panel(g, box(0), xs, 0.5, n + 0.5, {
+      series: [[HEAT.peak, "#e67e22", 1], [HEAT.interpass, "#1f4e79", 2]], marks,
+      fmt: (x) => `${fmt(x)} °C`, label: "°C: interpass (blue), the layer as laid (orange)",
+    });
+    panel(g, box(1), xs, 0.5, n + 0.5, {
+      series: [[HEAT.wait, "#555", 1]], fmt: (x) => `${fmt(x)} s`, label: "wait before the layer, s",
+    });
+    $("thermal-title").textContent = `${HEAT.material}: each layer's predicted temperatures` +
+      (HEAT.limit == null ? "" : `, the interpass limit ${fmt(HEAT.limit)} °C (red)`);
+    $("thermal-note").textContent = "The interpass temperature is the part's where and when the nozzle starts the layer; " +
+      "the layer as laid is its mean, not the melt pool's.";
+    c.dataset.layers = n;
+  }
+
   // --- controls -----------------------------------------------------------
   function showRange() {
     if (!STARTS.length) return;
@@ -1266,6 +1292,7 @@
   showPose();
   if (ARM) $("armplots").hidden = false;
   if (ROT) $("rotaryplots").hidden = false;
+  if (HEAT) $("thermalplots").hidden = false;
   resize();
   // Where the view is on the page, CSS pixels (a test measures its screenshot).
   canvas.dataset.viewTop = Math.round(canvas.getBoundingClientRect().top + window.scrollY);
@@ -1288,5 +1315,6 @@
   plotLayers();
   plotJoints();
   plotRotary();
+  plotHeat();
   document.documentElement.dataset.ready = select.value;
 })();

@@ -70,14 +70,19 @@ impl Heat {
                 power_share: l.power,
             })
             .collect();
+        // The first layer that is the hottest (many start at the limit).
         let hottest = |key: fn(&HeatRow) -> f64| {
-            layers
-                .iter()
-                .max_by(|a, b| key(a).total_cmp(&key(b)))
-                .map_or((0.0, 0), |r| (key(r), r.layer))
+            layers.iter().fold((f64::NEG_INFINITY, 0), |(t, at), r| {
+                if key(r) > t {
+                    (key(r), r.layer)
+                } else {
+                    (t, at)
+                }
+            })
         };
-        let (hottest_interpass_c, hottest_layer) = hottest(|r| r.interpass_c);
-        let (peak_c, peak_layer) = hottest(|r| r.peak_c);
+        let finite = |(t, at): (f64, usize)| if t.is_finite() { (t, at) } else { (0.0, 0) };
+        let (hottest_interpass_c, hottest_layer) = finite(hottest(|r| r.interpass_c));
+        let (peak_c, peak_layer) = finite(hottest(|r| r.peak_c));
         Some(Heat {
             material: t.material.clone(),
             max_interpass_c: t.max_interpass,

@@ -25,6 +25,7 @@
 //! whatever their points (the loads are summed from the points once).
 
 pub mod alloy;
+pub mod fit;
 
 pub use alloy::{alloy, Alloy, ALLOYS};
 

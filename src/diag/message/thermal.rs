@@ -55,6 +55,9 @@ pub struct Overheat<'a> {
     /// Whether it is the plate's preheat that is above the limit (the
     /// first layer).
     pub preheat: bool,
+    /// The least power the layer before may be laid at, W (`cooling =
+    /// power`).
+    pub floor: Option<f64>,
 }
 
 /// No allowed cooling keeps a layer within `max_interpass`.
@@ -77,26 +80,29 @@ pub fn interpass(o: Overheat<'_>, at: Span) -> Diagnostic {
                 short_up(o.interpass)
             ));
     }
-    let how = match o.cooling {
-        "power" => {
-            "at the least power the bead's measured powers and the laser's range allow".to_string()
-        }
+    let how = match (o.cooling, o.floor) {
+        ("power", Some(w)) => format!(
+            "with the layer before at {} W, the least the laser's range and the bead's measured powers allow",
+            short(w)
+        ),
+        ("power", None) => "at the least power the laser's range and the bead's measured powers allow".to_string(),
         _ => format!("after the longest wait lmdc plans ({} s)", short(o.longest)),
     };
+    let raise = format!(
+        "raise `max_interpass` to at least {} degC",
+        short_up(o.interpass)
+    );
     let fix = match (o.cooling, o.needs) {
-        ("power", _) => format!(
-            "allow waits too (`cooling = dwell`), or raise `max_interpass` to at least {} degC",
-            short_up(o.interpass)
+        ("power", Some(w)) => format!(
+            "a wait of {} s before the layer would keep it: allow waits (`cooling = dwell`), or {raise}",
+            short_up(w)
         ),
+        ("power", None) => format!("allow waits (`cooling = dwell`), or {raise}"),
         (_, Some(w)) => format!(
-            "a wait of {} s would keep it; raise `max_interpass` to at least {} degC, or lay less heat per layer (a lower power or a larger part's layers)",
-            short_up(w),
-            short_up(o.interpass)
+            "a wait of {} s would keep it, longer than lmdc plans: {raise}, or lay less heat per layer (a lower power)",
+            short_up(w)
         ),
-        (_, None) => format!(
-            "raise `max_interpass` to at least {} degC, or lay less heat per layer (a lower power)",
-            short_up(o.interpass)
-        ),
+        (_, None) => format!("{raise}, or lay less heat per layer (a lower power)"),
     };
     d.label(at, format!("predicted {how}")).help(fix)
 }
