@@ -40,16 +40,16 @@ pub const COARSENING: u32 = 6;
 /// The first implicit step of a cooling, s; the next ones grow by
 /// [`STEP_GROWTH`] as the fast modes (the top layer into the ones below:
 /// tenths of a second) have died out.
-const FIRST_STEP: f64 = 0.05;
+pub const FIRST_STEP: f64 = 0.05;
 /// How much each cooling step is longer than the last.
-const STEP_GROWTH: f64 = 1.25;
+pub const STEP_GROWTH: f64 = 1.25;
 /// The longest step while a layer is laid, s.
 const DEPOSIT_STEP: f64 = 0.25;
 /// The most steps a layer's deposit is split into.
 const MAX_DEPOSIT_STEPS: usize = 64;
 
 /// A material's thermal data, SI units, each taken as constant (the mean
-/// over the interpass range, [`alloy`]).
+/// over the interpass range, [`ALLOYS`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {
     /// Thermal conductivity, W/(m·K).
