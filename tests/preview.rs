@@ -1021,8 +1021,9 @@ fn chromium_draws_the_rotary_plot_only_for_five_axes() {
 }
 
 /// A plan with a thermal block plots each layer's predicted temperatures
-/// and waits (docs/thermal.md) without a script error; one without has no
-/// such plot.
+/// and waits (docs/thermal.md), and colours its moves by their layer's
+/// interpass temperature, without a script error; one without has no such
+/// plot.
 #[test]
 fn chromium_draws_the_thermal_plot_only_with_a_thermal_block() {
     let Some(chromium) = chromium("chromium_draws_the_thermal_plot_only_with_a_thermal_block")
@@ -1047,6 +1048,10 @@ fn chromium_draws_the_thermal_plot_only_with_a_thermal_block() {
             assert_eq!(number(&dom, "data-layers"), layers as f64, "{example}");
             let title = text_of(&dom, r#"<h2 id="thermal-title""#);
             assert!(title.contains("the interpass limit 250 °C"), "{title}");
+            // The moves coloured by their layer's interpass temperature.
+            let dom = self::dom(&chromium, &file, "colour=interpass");
+            assert_eq!(attr(&dom, "data-ready").as_deref(), Some("interpass"));
+            assert!(attr(&dom, "data-js-error").is_none());
         }
     }
 }

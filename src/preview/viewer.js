@@ -50,6 +50,12 @@
   const LAYER_NUMBER = new Float32Array(N);
   for (let i = 0; i < N; i++) LAYER_NUMBER[i] = STARTS.length ? STARTS[LAYER[i]][0] : 0;
   VALUES.layer = LAYER_NUMBER;
+  // With a thermal prediction (docs/thermal.md): each move coloured by its
+  // layer's interpass temperature.
+  if (M.thermal) {
+    const t = M.thermal.interpass;
+    VALUES.interpass = LAYER_NUMBER.map((l) => t[Math.min(Math.max(l - 1, 0), t.length - 1)] || 0);
+  }
   // Where each move is (encode.rs, Poses): a tag byte and what changed
   // since the move before, in LEB128 varints. Decoded once into columns: its
   // target's kind (0 a point, 1 a clearance move, 2 the end), layer, path and
@@ -95,9 +101,10 @@
   for (let i = 0, n = 0; i < N; i++) { if (FLAGS[i] & DEPOSIT) n++; LAID[i] = n; }
   const DEPOSITS = N ? LAID[N - 1] : 0;
   const PLAN_DEPOSITS = N ? P_LAID[N - 1] : 0;
-  const UNITS = { speed: "mm/s", height: "mm", power: "W", layer: "" };
+  const UNITS = { speed: "mm/s", height: "mm", power: "W", layer: "", interpass: "°C" };
   const TITLES = {
     speed: "speed", height: "layer height", power: "laser power", style: "style", layer: "layer",
+    interpass: "interpass temperature: the layer's start, predicted",
     error: "height error: predicted rise / layer height − 1", kind: "path kind",
   };
 
@@ -1239,6 +1246,7 @@
   // what one saw; the tests render each colouring this way).
   const ask = new URLSearchParams(location.hash.slice(1));
   const select = $("quantity");
+  if (M.thermal) select.add(new Option("interpass temperature", "interpass"));
   if ([...select.options].some((o) => o.value === ask.get("colour"))) select.value = ask.get("colour");
   if (ask.get("view") === "top") Object.assign(view, { yaw: 0, pitch: Math.PI / 2 });
   if (+ask.get("zoom") > 0) view.zoom *= +ask.get("zoom");

@@ -147,7 +147,7 @@ fn levenberg_marquardt(
         while lambda < 1e10 {
             let (p, q, s) = (a[0][0] * (1.0 + lambda), a[1][1] * (1.0 + lambda), a[0][1]);
             let det = p * q - s * s;
-            if !(det.abs() > 0.0) {
+            if det == 0.0 || !det.is_finite() {
                 lambda *= 4.0;
                 continue;
             }
