@@ -110,6 +110,10 @@ pub struct Program {
     /// Cooling between layers.
     #[serde(default, skip_serializing_if = "Heat::is_none")]
     pub heat: Heat,
+    /// The thermal model's data and each layer's predicted temperatures,
+    /// with the waits a `max_interpass` asks (absent: no `thermal` block).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<Thermal>,
     /// Whether each layer's path goes on into the next layer's without the
     /// laser going off: the build is one run of deposit moves (a segmented
     /// ring, or a wall with `layer_change = spiral`).
@@ -556,6 +560,113 @@ impl Heat {
     pub fn is_none(&self) -> bool {
         self.min_layer_time <= 0.0 && self.dwell <= 0.0
     }
+}
+
+impl Program {
+    /// The wait before layer `i` that the thermal budget added to, s, which
+    /// the motion plan keeps (0: none added; the plan then waits what the
+    /// declared `dwell` and `min_layer_time` ask, by its own layer times).
+    pub fn thermal_wait(&self, i: usize) -> f64 {
+        self.thermal
+            .as_ref()
+            .and_then(|t| t.layers.get(i))
+            .filter(|l| l.added > 0.0)
+            .map_or(0.0, |l| l.wait)
+    }
+
+    /// Whether the plan stops to cool between layers: a declared dwell or
+    /// minimum layer time, or a wait the thermal budget added.
+    pub fn cools(&self) -> bool {
+        !self.heat.is_none()
+            || self
+                .thermal
+                .as_ref()
+                .is_some_and(|t| t.layers.iter().any(|l| l.added > 0.0))
+    }
+}
+
+/// How a plan keeps its interpass limit.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "snake_case")]
+pub enum Cooling {
+    /// The least wait before each layer that keeps it.
+    #[default]
+    Dwell,
+    /// The least power reduction of the layer before, within the bead's
+    /// measured powers and the laser's range.
+    Power,
+}
+
+/// The thermal model's data (docs/thermal.md) and what it predicts of each
+/// layer.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+pub struct Thermal {
+    /// The alloy, as `material = …` names it.
+    pub material: String,
+    /// Thermal conductivity, W/(m·K).
+    pub conductivity: f64,
+    /// Density, kg/m³.
+    pub density: f64,
+    /// Specific heat capacity, J/(kg·K).
+    pub heat_capacity: f64,
+    /// The surface's emissivity.
+    pub emissivity: f64,
+    /// The share of the laser's power the part takes up.
+    pub absorptivity: f64,
+    /// Heat transfer coefficient to the cell's gas, W/(m²·K).
+    pub heat_transfer: f64,
+    /// The plate's length, width and thickness, mm.
+    pub plate: [f64; 3],
+    /// The plate's temperature when the build starts, °C.
+    pub preheat: f64,
+    /// The cell's gas and walls, °C.
+    pub ambient: f64,
+    /// The interpass temperature no layer starts above, °C (absent:
+    /// predicted, not limited).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_interpass: Option<f64>,
+    /// How the limit is kept.
+    pub cooling: Cooling,
+    /// Each layer's prediction, in layer order.
+    pub layers: Vec<LayerHeat>,
+}
+
+/// One layer's predicted temperatures (docs/thermal.md).
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+pub struct LayerHeat {
+    /// Where the layer starts: its first deposit point, mm.
+    pub at: [f64; 3],
+    /// When, s from the build's start (deposits and waits; rapid moves
+    /// between paths counted as instant, so the part is taken to cool
+    /// less than it does).
+    pub time: f64,
+    /// The temperature of the top of the part there and then, °C: the
+    /// layer below's (the plate's under the first).
+    pub interpass: f64,
+    /// The layer's own temperature when it is laid, °C: the hottest it is
+    /// as a whole (not the melt pool's).
+    pub peak: f64,
+    /// The wait before the layer, s: the declared `dwell` or
+    /// `min_layer_time`'s, or longer where `max_interpass` asks; the
+    /// motion plan waits at least this.
+    pub wait: f64,
+    /// What `max_interpass` added to the wait, s.
+    pub added: f64,
+    /// The share of its declared power the layer is laid at (`cooling =
+    /// power`; absent: 1).
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub power: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn is_one(x: &f64) -> bool {
+    *x == 1.0
 }
 
 /// One layer: deposited on the plane at `station` of the spine (a planar

@@ -29,6 +29,7 @@ pub mod span;
 pub mod style;
 pub mod syntax;
 pub mod target;
+pub mod thermal;
 pub mod units;
 pub mod verify;
 

@@ -10,6 +10,8 @@ use crate::span::Span;
 use crate::target::{self, POSITION_STEP};
 use crate::units::Length;
 
+pub mod heat;
+
 /// Builds the IR of a checked model; returns it with the slicer's warnings, or
 /// the errors that make the part unbuildable.
 pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
@@ -69,6 +71,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         machines,
         styles: styles(model),
         heat: model.process.heat,
+        thermal: None,
         fixtures: model.fixtures.iter().map(|(f, _)| f.clone()).collect(),
         continuous: ring.is_some() || spiral(model),
         bead,
@@ -107,6 +110,10 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
     };
     let mut program = program;
     predict_rises(&mut program);
+    if let Some((declared, at)) = &model.process.thermal {
+        program.thermal = Some(heat::predict(&program, declared, *at)?);
+        heat::scale_powers(&mut program);
+    }
     Ok((program, warnings))
 }
 
@@ -334,6 +341,7 @@ fn calibration(model: &Model, c: &crate::sema::model::Calibration) -> Program {
         machines,
         styles: Vec::new(),
         heat: model.process.heat,
+        thermal: None,
         fixtures: model.fixtures.iter().map(|(f, _)| f.clone()).collect(),
         continuous: false,
         bead: None,

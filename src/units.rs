@@ -7,8 +7,9 @@
 
 use std::fmt;
 
-/// Exponents of the base dimensions length, mass, time and angle. Angle is kept as a
-/// dimension of its own so that `60 mm + 45 deg` is an error.
+/// Exponents of the base dimensions length, mass, time, angle and
+/// temperature. Angle is kept as a dimension of its own so that
+/// `60 mm + 45 deg` is an error.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub struct Dim {
     /// Length exponent.
@@ -19,6 +20,9 @@ pub struct Dim {
     pub t: i8,
     /// Angle exponent.
     pub a: i8,
+    /// Temperature exponent (°C: temperatures are levels in °C, and a
+    /// difference of one °C is one kelvin).
+    pub k: i8,
 }
 
 impl Dim {
@@ -46,20 +50,37 @@ impl Dim {
     pub const ANGULAR_SPEED: Dim = Dim::new(0, 0, -1, 1);
     /// g·mm²: a moment of inertia (a robot tool's load).
     pub const INERTIA: Dim = Dim::new(2, 1, 0, 0);
+    /// °C: a temperature (an interpass limit, a preheat).
+    pub const TEMPERATURE: Dim = Dim {
+        l: 0,
+        m: 0,
+        t: 0,
+        a: 0,
+        k: 1,
+    };
+    /// W/(mm²·°C), scaled: a heat transfer coefficient.
+    pub const HEAT_TRANSFER: Dim = Dim {
+        l: 0,
+        m: 1,
+        t: -3,
+        a: 0,
+        k: -1,
+    };
 
     /// Builds a dimension from exponents.
     pub const fn new(l: i8, m: i8, t: i8, a: i8) -> Dim {
-        Dim { l, m, t, a }
+        Dim { l, m, t, a, k: 0 }
     }
 
     /// Product of two dimensions.
     pub fn times(self, o: Dim) -> Dim {
-        Dim::new(
-            self.l.saturating_add(o.l),
-            self.m.saturating_add(o.m),
-            self.t.saturating_add(o.t),
-            self.a.saturating_add(o.a),
-        )
+        Dim {
+            l: self.l.saturating_add(o.l),
+            m: self.m.saturating_add(o.m),
+            t: self.t.saturating_add(o.t),
+            a: self.a.saturating_add(o.a),
+            k: self.k.saturating_add(o.k),
+        }
     }
 
     /// Quotient of two dimensions.
@@ -70,7 +91,13 @@ impl Dim {
     /// Integer power.
     pub fn powi(self, n: i32) -> Dim {
         let p = |e: i8| (e as i32 * n).clamp(-100, 100) as i8;
-        Dim::new(p(self.l), p(self.m), p(self.t), p(self.a))
+        Dim {
+            l: p(self.l),
+            m: p(self.m),
+            t: p(self.t),
+            a: p(self.a),
+            k: p(self.k),
+        }
     }
 
     /// A name a process engineer recognises, with an example unit.
@@ -91,6 +118,11 @@ impl Dim {
             (Dim::new(2, 0, 0, 0), "an area (mm^2)"),
             (Dim::new(3, 0, 0, 0), "a volume (mm^3)"),
             (Dim::new(2, 1, -2, 0), "an energy (J)"),
+            (Dim::TEMPERATURE, "a temperature (degC)"),
+            (
+                Dim::HEAT_TRANSFER,
+                "a heat transfer coefficient (W/m^2/degC)",
+            ),
         ];
         for (d, name) in known {
             if d == self {
@@ -109,6 +141,7 @@ impl Dim {
             (self.l, "mm"),
             (self.a, "rad"),
             (self.t, "s"),
+            (self.k, "degC"),
         ] {
             let (list, e) = if e > 0 { (&mut num, e) } else { (&mut den, -e) };
             match e {
@@ -239,6 +272,19 @@ const UNITS: &[UnitDef] = &[
         name: "Hz",
         factor: 1.0,
         dim: Dim::new(0, 0, -1, 0),
+    },
+    // Temperatures are levels in °C (no kelvin: a level in K is not a
+    // factor of one in °C, and lmdc has no offsets in its units); in a
+    // compound unit (`W/m^2/degC`) one °C is a kelvin's difference.
+    UnitDef {
+        name: "degC",
+        factor: 1.0,
+        dim: Dim::TEMPERATURE,
+    },
+    UnitDef {
+        name: "°C",
+        factor: 1.0,
+        dim: Dim::TEMPERATURE,
     },
     UnitDef {
         name: "%",
@@ -396,9 +442,17 @@ typed_quantity!(
     /// A mass in g (shown in kg: a robot tool's load).
     Mass, Dim::MASS, "kg");
 typed_quantity!(
+    /// A temperature in °C.
+    Temperature, Dim::TEMPERATURE, "°C");
+typed_quantity!(
     /// A moment of inertia in g·mm² (shown in kg·m², as KUKA's `$LOAD.J`).
     Inertia, Dim::INERTIA, "kg*m^2");
 
+impl Temperature {
+    fn display_value(self) -> f64 {
+        self.0
+    }
+}
 impl Length {
     fn display_value(self) -> f64 {
         self.0
@@ -554,6 +608,7 @@ pub fn shown(value: f64, dim: Dim) -> String {
         Dim::TIME => Time(value).to_string(),
         Dim::MASS => Mass(value).to_string(),
         Dim::INERTIA => Inertia(value).to_string(),
+        Dim::TEMPERATURE => Temperature(value).to_string(),
         other => format!("{} {}", short(value), other.unit_string()),
     }
 }

@@ -492,6 +492,18 @@ inheritance { band = 1 mm  hit = 120 % }";
     // Seed 001's fixed lift: tracks 1.6 mm apart lay A/d = 0.691 mm a layer.
     deposit: Deposit, PLATE,
         "slicing planar { layers = 2  layer_height = 0.6 mm  offset = 1.6 mm  infill = raster(angle = 0 deg) }";
+    // The plate preheated above the limit: the first layer starts too hot.
+    interpass: Interpass, PLATE,
+        "process { speed = 6 mm/s  power = 1500 W  powder = 8 g/min  defocus = -3 mm  thermal { material = ss316l  preheat = 250 degC  max_interpass = 200 degC } }";
+    // No power within the range keeps the second layer within 200 °C.
+    interpass_by_power: Interpass, PLATE,
+        "process { speed = 6 mm/s  power = 1500 W  powder = 8 g/min  defocus = -3 mm  thermal { material = ss316l  max_interpass = 200 degC  cooling = power } }";
+    thermal_material: BadChoice, PLATE,
+        "process { speed = 6 mm/s  power = 1500 W  powder = 8 g/min  defocus = -3 mm  thermal { material = ss316  max_interpass = 200 degC } }";
+    thermal_temperature: OutOfRange, PLATE,
+        "process { speed = 6 mm/s  power = 1500 W  powder = 8 g/min  defocus = -3 mm  thermal { material = ti64  max_interpass = 2000 degC } }";
+    thermal_plate: Type, PLATE,
+        "process { speed = 6 mm/s  power = 1500 W  powder = 8 g/min  defocus = -3 mm  thermal { material = in718  plate = [200 mm, 20 mm] } }";
     fill_gap: FillGap, PLATE, "slicing planar { layers = 2  offset = 3 mm  infill = raster(angle = 0 deg) }";
     overlap: Overlap, PLATE, "slicing planar { layers = 2  offset = 0.5 mm  infill = raster(angle = 0 deg) }";
     self_intersecting: SelfIntersecting, PLATE,

@@ -199,6 +199,7 @@ pub fn planar(layers: usize, machines: Vec<Machine>) -> Program {
         machines,
         styles: Vec::new(),
         heat: Heat::default(),
+        thermal: None,
         continuous: false,
         ring: None,
         bead: None,

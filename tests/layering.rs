@@ -17,8 +17,9 @@ const LAYERS: &[&[&str]] = &[
     // cross-section and fit, the solid's geometry, the loop's control
     // theory, the band styles' regions.
     &["bead", "geometry", "control", "style"],
-    // One deposit model; a layer's fill over geometry.
-    &["deposit", "fill"],
+    // One deposit model; a layer's fill over geometry; the thermal model of
+    // a part as it is built.
+    &["deposit", "fill", "thermal"],
     // The IR: the contract between the front end and the back ends.
     &["ir"],
     // What lmdc knows of controllers; the head's solids and the material.

@@ -1020,6 +1020,42 @@ fn chromium_draws_the_rotary_plot_only_for_five_axes() {
     }
 }
 
+/// A plan with a thermal block plots each layer's predicted temperatures
+/// and waits (docs/thermal.md), and colours its moves by their layer's
+/// interpass temperature, without a script error; one without has no such
+/// plot.
+#[test]
+fn chromium_draws_the_thermal_plot_only_with_a_thermal_block() {
+    let Some(chromium) = chromium("chromium_draws_the_thermal_plot_only_with_a_thermal_block")
+    else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    for (example, name, thermal) in [("thin_wall", "mill3", true), ("rib", "mill3", false)] {
+        let file = dir.path().join(format!("{example}_{name}.html"));
+        std::fs::write(&file, page_of(example, name)).unwrap();
+        let dom = dom(&chromium, &file, "");
+        assert_eq!(
+            attr(&dom, "data-ready").as_deref(),
+            Some("speed"),
+            "{example}"
+        );
+        assert!(attr(&dom, "data-js-error").is_none(), "{example}");
+        let section = dom.contains(r#"<section id="thermalplots">"#);
+        assert_eq!(section, thermal, "{example}: the thermal plot shown");
+        if thermal {
+            let layers = verified(example).ir().layers.len();
+            assert_eq!(number(&dom, "data-layers"), layers as f64, "{example}");
+            let title = text_of(&dom, r#"<h2 id="thermal-title""#);
+            assert!(title.contains("the interpass limit 250 °C"), "{title}");
+            // The moves coloured by their layer's interpass temperature.
+            let dom = self::dom(&chromium, &file, "colour=interpass");
+            assert_eq!(attr(&dom, "data-ready").as_deref(), Some("interpass"));
+            assert!(attr(&dom, "data-js-error").is_none());
+        }
+    }
+}
+
 /// A plan refused by its arm alone (A5 past its margin) is previewed: the
 /// command exits 1 and writes the page, which lists the error with its
 /// place and fix, and whose axis plot ticks as past the margin exactly the

@@ -66,6 +66,7 @@ mod spiral;
 mod stacking;
 mod style;
 mod table;
+mod thermal;
 mod typos;
 mod variable_errors;
 mod variable_rs274;

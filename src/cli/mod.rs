@@ -3,6 +3,7 @@
 
 mod calibrate;
 mod fit;
+mod fit_thermal;
 mod fmt;
 pub mod messages;
 pub mod preview;
@@ -237,6 +238,11 @@ enum Command {
         /// One JSON object on stdout instead of text.
         #[arg(long)]
         json: bool,
+        /// Fit the thermal model instead: DATA holds interpass temperatures measured on a
+        /// build of this file's plan (`layer, interpass (degC)` a row), and the absorptivity
+        /// and heat transfer coefficient that fit them best are printed (docs/thermal.md).
+        #[arg(long, value_name = "FILE.lmd")]
+        plan: Option<PathBuf>,
     },
     /// Format .lmd files in the canonical layout (docs/fmt.md), in place; from stdin to
     /// stdout without FILES. Comments are kept and the meaning never changes.
@@ -321,10 +327,14 @@ fn fit_command(command: Command, output: (bool, MessageFormat)) -> u8 {
         density,
         feed,
         json,
+        plan,
     } = command
     else {
         unreachable!("only `lmdc fit` comes here")
     };
+    if let Some(plan) = plan {
+        return fit_thermal::run(&data, &plan, json, output);
+    }
     fit::run(
         fit::Args {
             file: &data,
@@ -840,7 +850,7 @@ pub fn data_reader(file: &Path) -> lmdc::sema::DataReader {
 
 /// A path as it is safe to print: no control character from its name reaches
 /// the terminal.
-fn shown(path: &Path) -> String {
+pub(crate) fn shown(path: &Path) -> String {
     lmdc::diag::sanitize(&path.display().to_string()).into_owned()
 }
 

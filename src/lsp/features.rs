@@ -36,8 +36,32 @@ pub struct Completion {
 /// The units completion offers after a number (each one lmdc reads: a test
 /// parses them all).
 pub const UNITS: &[&str] = &[
-    "mm", "cm", "m", "um", "in", "deg", "rad", "s", "ms", "min", "h", "W", "kW", "g", "kg", "%",
-    "mm/s", "mm/min", "mm/s^2", "g/min", "g/s", "g/cm^3", "J/mm", "Hz",
+    "mm",
+    "cm",
+    "m",
+    "um",
+    "in",
+    "deg",
+    "rad",
+    "s",
+    "ms",
+    "min",
+    "h",
+    "W",
+    "kW",
+    "g",
+    "kg",
+    "%",
+    "mm/s",
+    "mm/min",
+    "mm/s^2",
+    "g/min",
+    "g/s",
+    "g/cm^3",
+    "J/mm",
+    "Hz",
+    "degC",
+    "W/m^2/degC",
 ];
 
 /// What a compiled plan chose for a field written `auto`, if it knows.

@@ -595,7 +595,7 @@ impl<'a> Plan<'a> {
             retracted: false,
             laser: false,
             layer_time: 0.0,
-            timed: !self.program.heat.is_none(),
+            timed: self.program.cools(),
             gas: false,
             powder: None,
             ends: None,
@@ -1090,7 +1090,7 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
     /// (which does not cool between layers) in the next layers too.
     fn run(&self, li: usize, pi: usize) -> Vec<&'a [Point]> {
         let program = self.plan.program;
-        let across = program.continuous && program.heat.is_none();
+        let across = program.continuous && !program.cools();
         let mut out: Vec<&'a [Point]> = vec![&program.layers[li].paths[pi].points];
         let rest = program.layers[li].paths[pi + 1..].iter().chain(
             program.layers[li + 1..]
@@ -1215,12 +1215,16 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
     }
 
     /// Before layer `next`: dwell, retracted, for the declared interlayer
-    /// dwell or what the last layer fell short of the minimum layer time.
+    /// dwell, what the last layer fell short of the minimum layer time, or
+    /// the wait the thermal budget chose (docs/thermal.md).
     /// Rapid moves count as instant, so the real layer time is at least the
     /// minimum whatever the machine's rapid speed.
     fn cool(&mut self, next: usize) {
         let heat = self.plan.program.heat;
-        let wait = heat.dwell.max(heat.min_layer_time - self.layer_time);
+        let wait = heat
+            .dwell
+            .max(heat.min_layer_time - self.layer_time)
+            .max(self.plan.program.thermal_wait(next));
         if wait <= 0.0 {
             return;
         }

@@ -52,6 +52,35 @@ pub struct Columns {
 }
 
 /// What the viewer is told besides the moves.
+/// The thermal prediction the page plots layer by layer (docs/thermal.md).
+#[derive(Serialize)]
+pub struct Heat<'a> {
+    /// The alloy.
+    pub material: &'a str,
+    /// The interpass limit, °C (`None`: not limited).
+    pub limit: Option<f64>,
+    /// Each layer's interpass temperature, °C.
+    pub interpass: Vec<f64>,
+    /// Each layer's temperature when laid, °C.
+    pub peak: Vec<f64>,
+    /// Each layer's wait before it, s.
+    pub wait: Vec<f64>,
+}
+
+impl<'a> Heat<'a> {
+    /// The IR's prediction, if it has one.
+    pub fn of(program: &'a crate::ir::Program) -> Option<Heat<'a>> {
+        let t = program.thermal.as_ref()?;
+        Some(Heat {
+            material: &t.material,
+            limit: t.max_interpass,
+            interpass: t.layers.iter().map(|l| l.interpass).collect(),
+            peak: t.layers.iter().map(|l| l.peak).collect(),
+            wait: t.layers.iter().map(|l| l.wait).collect(),
+        })
+    }
+}
+
 #[derive(Serialize)]
 pub struct Meta<'a> {
     /// Part name.
@@ -87,6 +116,10 @@ pub struct Meta<'a> {
     pub arm: Option<&'a super::joints::Arm>,
     /// A 5-axis CNC's tilt axis and C layer by layer (`None`: none).
     pub rotary: Option<&'a super::rotary::Rotary>,
+    /// Each layer's predicted interpass and peak temperatures (`None`: no
+    /// thermal block).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<Heat<'a>>,
     /// The arm's errors where the plan was refused for them (`None`: the
     /// plan built).
     pub refused: Option<Vec<Failure>>,

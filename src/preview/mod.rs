@@ -399,6 +399,7 @@ fn page(
         layer_error: &layer_error,
         arm: arm.as_ref(),
         rotary: rotary.as_ref(),
+        thermal: encode::Heat::of(program),
         refused: failures.map(|f| {
             f.iter()
                 .filter(|d| d.severity == Severity::Error)

@@ -50,6 +50,12 @@
   const LAYER_NUMBER = new Float32Array(N);
   for (let i = 0; i < N; i++) LAYER_NUMBER[i] = STARTS.length ? STARTS[LAYER[i]][0] : 0;
   VALUES.layer = LAYER_NUMBER;
+  // With a thermal prediction (docs/thermal.md): each move coloured by its
+  // layer's interpass temperature.
+  if (M.thermal) {
+    const t = M.thermal.interpass;
+    VALUES.interpass = LAYER_NUMBER.map((l) => t[Math.min(Math.max(l - 1, 0), t.length - 1)] || 0);
+  }
   // Where each move is (encode.rs, Poses): a tag byte and what changed
   // since the move before, in LEB128 varints. Decoded once into columns: its
   // target's kind (0 a point, 1 a clearance move, 2 the end), layer, path and
@@ -95,9 +101,10 @@
   for (let i = 0, n = 0; i < N; i++) { if (FLAGS[i] & DEPOSIT) n++; LAID[i] = n; }
   const DEPOSITS = N ? LAID[N - 1] : 0;
   const PLAN_DEPOSITS = N ? P_LAID[N - 1] : 0;
-  const UNITS = { speed: "mm/s", height: "mm", power: "W", layer: "" };
+  const UNITS = { speed: "mm/s", height: "mm", power: "W", layer: "", interpass: "°C" };
   const TITLES = {
     speed: "speed", height: "layer height", power: "laser power", style: "style", layer: "layer",
+    interpass: "interpass temperature: the layer's start, predicted",
     error: "height error: predicted rise / layer height − 1", kind: "path kind",
   };
 
@@ -321,7 +328,7 @@
 
   function resize() {
     const dpr = window.devicePixelRatio || 1;
-    for (const c of [canvas, $("plot"), $("errplot")].concat(ARM ? [$("joints")] : [], ROT ? [$("rotary")] : [])) {
+    for (const c of [canvas, $("plot"), $("errplot")].concat(ARM ? [$("joints")] : [], ROT ? [$("rotary")] : [], HEAT ? [$("thermal")] : [])) {
       c.width = Math.max(1, Math.round(c.clientWidth * dpr));
       c.height = Math.max(1, Math.round(c.clientHeight * dpr));
     }
@@ -1075,6 +1082,32 @@
     c.dataset.layers = L.length;
   }
 
+  // The thermal model's prediction layer by layer (docs/thermal.md): each
+  // layer's interpass temperature against the limit (red), and its own
+  // temperature when laid; below, the wait before each layer.
+  const HEAT = M.thermal;
+  function plotHeat() {
+    if (!HEAT) return;
+    const c = $("thermal"), g = clear(c);
+    const W = c.width, H = c.height, dpr = window.devicePixelRatio || 1;
+    const n = HEAT.interpass.length, xs = HEAT.interpass.map((_, k) => k + 1);
+    const gap = 8 * dpr, ph = (H - 3 * gap) / 2;
+    const box = (a) => ({ left: 70 * dpr, right: W - 16 * dpr, top: gap + a * (ph + gap), height: ph - 4 * dpr });
+    const marks = HEAT.limit == null ? [] : [[HEAT.limit, "#c0392b"]];
+    panel(g, box(0), xs, 0.5, n + 0.5, {
+      series: [[HEAT.peak, "#e67e22", 1], [HEAT.interpass, "#1f4e79", 2]], marks,
+      fmt: (x) => `${fmt(x)} °C`, label: "°C: interpass (blue), the layer as laid (orange)",
+    });
+    panel(g, box(1), xs, 0.5, n + 0.5, {
+      series: [[HEAT.wait, "#555", 1]], fmt: (x) => `${fmt(x)} s`, label: "wait before the layer, s",
+    });
+    $("thermal-title").textContent = `${HEAT.material}: each layer's predicted temperatures` +
+      (HEAT.limit == null ? "" : `, the interpass limit ${fmt(HEAT.limit)} °C (red)`);
+    $("thermal-note").textContent = "The interpass temperature is the part's where and when the nozzle starts the layer; " +
+      "the layer as laid is its mean, not the melt pool's.";
+    c.dataset.layers = n;
+  }
+
   // --- controls -----------------------------------------------------------
   function showRange() {
     if (!STARTS.length) return;
@@ -1213,6 +1246,7 @@
   // what one saw; the tests render each colouring this way).
   const ask = new URLSearchParams(location.hash.slice(1));
   const select = $("quantity");
+  if (M.thermal) select.add(new Option("interpass temperature", "interpass"));
   if ([...select.options].some((o) => o.value === ask.get("colour"))) select.value = ask.get("colour");
   if (ask.get("view") === "top") Object.assign(view, { yaw: 0, pitch: Math.PI / 2 });
   if (+ask.get("zoom") > 0) view.zoom *= +ask.get("zoom");
@@ -1266,6 +1300,7 @@
   showPose();
   if (ARM) $("armplots").hidden = false;
   if (ROT) $("rotaryplots").hidden = false;
+  if (HEAT) $("thermalplots").hidden = false;
   resize();
   // Where the view is on the page, CSS pixels (a test measures its screenshot).
   canvas.dataset.viewTop = Math.round(canvas.getBoundingClientRect().top + window.scrollY);
@@ -1288,5 +1323,6 @@
   plotLayers();
   plotJoints();
   plotRotary();
+  plotHeat();
   document.documentElement.dataset.ready = select.value;
 })();

@@ -13,6 +13,7 @@
 pub mod coverage;
 pub mod design;
 pub mod finish;
+pub mod heat;
 pub mod text;
 mod volume;
 
@@ -210,6 +211,11 @@ pub struct Report {
     /// and how well it fits (docs/repair.md, *Registration*).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub registration: Option<crate::ir::Registration>,
+    /// Each layer's predicted interpass and peak temperatures, and what
+    /// keeping `max_interpass` cost (docs/thermal.md); absent without a
+    /// `thermal` block.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<heat::Heat>,
 }
 
 impl Report {
@@ -337,6 +343,7 @@ impl Report {
                 .iter()
                 .find(|f| f.is_scan())
                 .and_then(|f| f.registration.clone()),
+            thermal: heat::Heat::of(program),
         }
     }
 

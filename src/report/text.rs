@@ -115,8 +115,58 @@ pub fn render(r: &Report) -> String {
     totals(&mut out, r);
     registration(&mut out, r);
     metal(&mut out, r);
+    thermal(&mut out, r);
     approaches(&mut out, r);
     out
+}
+
+/// The thermal prediction: the hottest start and peak, what the limit
+/// cost, and each layer's temperatures.
+fn thermal(out: &mut String, r: &Report) {
+    let Some(h) = &r.thermal else { return };
+    let limit = match h.max_interpass_c {
+        Some(m) => {
+            let how = match h.cooling {
+                crate::ir::Cooling::Dwell => {
+                    format!("kept by waiting {} longer", duration(h.added_s))
+                }
+                crate::ir::Cooling::Power => format!(
+                    "kept by lowering the power of {} layer{}",
+                    h.layers_at_less_power,
+                    if h.layers_at_less_power == 1 { "" } else { "s" }
+                ),
+            };
+            format!(" (limit {} °C, {how})", trimmed(m, 1))
+        }
+        None => String::new(),
+    };
+    let _ = writeln!(
+        out,
+        "\nthermal     {}: the hottest start of a layer {} °C, layer {}{limit}; the hottest layer as laid {} °C, layer {} (its mean, not the melt pool's; docs/thermal.md)",
+        h.material,
+        trimmed(h.hottest_interpass_c, 1),
+        h.hottest_layer,
+        trimmed(h.peak_c, 1),
+        h.peak_layer
+    );
+    let _ = writeln!(
+        out,
+        "{:>6} {:>11} {:>12} {:>9} {:>9} {:>9} {:>7}",
+        "layer", "starts", "interpass °C", "peak °C", "wait s", "added s", "power"
+    );
+    for l in &h.layers {
+        let _ = writeln!(
+            out,
+            "{:>6} {:>11} {:>12} {:>9} {:>9} {:>9} {:>7}",
+            l.layer,
+            clock(l.start_s),
+            format!("{:.1}", l.interpass_c),
+            format!("{:.1}", l.peak_c),
+            format!("{:.1}", l.wait_s),
+            format!("{:.1}", l.added_s),
+            percent(l.power_share)
+        );
+    }
 }
 
 /// The closest approach of each body to each thing of the cell.

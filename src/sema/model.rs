@@ -405,6 +405,9 @@ pub struct Process {
     pub powder_span: Span,
     /// Cooling between layers (`min_layer_time`, `dwell`).
     pub heat: crate::ir::Heat,
+    /// The thermal model's data and limit (`thermal { … }`), its layers
+    /// empty, and where a refused limit is reported.
+    pub thermal: Option<(crate::ir::Thermal, Span)>,
 }
 
 /// A solid with the slicing strategy that builds it: each strategy takes the

@@ -178,6 +178,7 @@ pub fn bent_tube(layers: usize, k: usize, bend_deg: f64, machines: Vec<Machine>)
         machines,
         styles: Vec::new(),
         heat: Heat::default(),
+        thermal: None,
         continuous: false,
         ring: None,
         bead: None,

@@ -6,6 +6,7 @@ pub mod bead;
 pub mod calibration;
 pub mod control;
 pub mod style;
+pub mod thermal;
 
 use crate::diag::{message, Diagnostics};
 use crate::ir::Heat;
@@ -135,6 +136,7 @@ fn read_ring<'a>(
     let process = match (powder, laser) {
         (Some((powder, powder_span)), Some(l)) if ok => Some(Process {
             heat: Heat::default(),
+            thermal: None,
             speed: None,
             powder,
             powder_span,
@@ -168,13 +170,14 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
     let power = power_v.and_then(|v| power_schedule(&f, v, diags));
     let range = f.range(&schema::POWER_RANGE, diags);
     let heat = heat(&f, diags);
+    let thermal = thermal::read(env, &f, diags);
     let speed = f.optional(
         &schema::SPEED,
         f.quantity(&schema::SPEED, diags)
             .map(|(v, sp)| (Speed(v), sp)),
     );
     let laser = laser(&f, power, range, power_span, diags);
-    let process = match (powder, defocus, power, laser, speed, heat) {
+    let process = match (powder, defocus, power, laser, speed, heat, thermal) {
         (
             Some((powder, powder_span)),
             Some(defocus),
@@ -182,8 +185,10 @@ fn read<'a>(env: &mut Env<'a>, stmts: &'a [Stmt], span: Span, diags: &mut Diagno
             Some(l),
             Some(speed),
             Some(heat),
+            Some(thermal),
         ) => Some(Process {
             heat,
+            thermal,
             speed,
             powder,
             powder_span,

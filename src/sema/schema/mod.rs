@@ -592,6 +592,7 @@ pub static BLOCKS: &[&Block] = &[
     &process::PROCESS,
     &process::RING_PROCESS,
     &process::RAMP,
+    &process::THERMAL,
     &style::STYLE,
     &style::WHEN,
     &style::INHERITANCE,

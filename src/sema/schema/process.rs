@@ -2,11 +2,11 @@
 //! `powder` and `power_range`: its table gives the rest per segment), and
 //! `ramp(…)`.
 
-use super::Bound::{Any, Positive, ZeroUpTo};
-use super::DefaultValue::{Described, Quantity as DefaultQuantity};
-use super::Kind::{Call, Count, Either, Quantity, Range};
+use super::Bound::{Any, Positive, PositiveUpTo, Within, ZeroUpTo};
+use super::DefaultValue::{Described, Quantity as DefaultQuantity, Word as DefaultWord};
+use super::Kind::{Block as Nested, Call, Count, Either, List, Quantity, Range, Word};
 use super::Need::{Default, Optional, Required};
-use super::{Block, Field};
+use super::{Block, Field, Len};
 use crate::units::Dim;
 
 /// Longest interlayer time lmdc plans, s (an hour).
@@ -81,8 +81,96 @@ pub static PROCESS: Block = Block::new(
         &SPEED,
         &MIN_LAYER_TIME,
         &DWELL,
+        &THERMAL_BLOCK,
     ],
 );
+
+/// `thermal { … }`.
+pub static THERMAL_BLOCK: Field = Field::new(
+    "thermal",
+    Nested(&THERMAL),
+    Optional,
+    "the alloy and the plate, from which lmdc predicts each layer's interpass temperature, and the limit it keeps it within (docs/thermal.md); none: no prediction",
+);
+
+/// `thermal { material, absorptivity, heat_transfer, plate, preheat,
+/// max_interpass, cooling }`.
+pub static THERMAL: Block = Block::new(
+    "thermal",
+    "thermal { material = ss316l  max_interpass = 200 degC }",
+    "the thermal model's data and the interpass temperature the plan keeps (docs/thermal.md)",
+    &[
+        &thermal::MATERIAL,
+        &thermal::ABSORPTIVITY,
+        &thermal::HEAT_TRANSFER,
+        &thermal::PLATE,
+        &thermal::PREHEAT,
+        &thermal::MAX_INTERPASS,
+        &thermal::COOLING,
+    ],
+);
+
+/// The fields of `thermal { … }`.
+pub mod thermal {
+    use super::*;
+
+    /// The hottest preheat or limit lmdc takes, °C: above any alloy's
+    /// interpass range, short of a typo's.
+    pub const MAX_TEMPERATURE: f64 = 1000.0;
+
+    /// `material = ss316l`.
+    pub static MATERIAL: Field = Field::new(
+        "material",
+        Word(crate::thermal::alloy::KEYS),
+        Required("ss316l"),
+        "the alloy, whose conductivity, density, heat capacity, emissivity and absorptivity the model takes (docs/thermal.md, *Alloys*)",
+    );
+    /// `absorptivity = 0.35`.
+    pub static ABSORPTIVITY: Field = Field::new(
+        "absorptivity",
+        Quantity(Dim::NONE, Within(1.0)),
+        Default(Described("the alloy's")),
+        "the share of the laser's power the part takes up: the model's least certain number, which a calibration build should fit",
+    );
+    /// `heat_transfer = 20 W/m^2/degC`.
+    pub static HEAT_TRANSFER: Field = Field::new(
+        "heat_transfer",
+        Quantity(Dim::HEAT_TRANSFER, Positive),
+        Default(Described("20 W/m^2/degC")),
+        "the heat transfer coefficient from the part to the cell's gas (convection; radiation is added from the alloy's emissivity)",
+    );
+    /// `plate = [200 mm, 200 mm, 20 mm]`.
+    pub static PLATE: Field = Field::new(
+        "plate",
+        List(
+            &Quantity(Dim::LENGTH, PositiveUpTo(super::super::collision::MAX_SIZE_MM)),
+            Len::Exactly(3),
+        ),
+        Default(Described("[200 mm, 200 mm, 20 mm]")),
+        "the plate's length, width and thickness, the part standing in its middle: the heat sink under the first layers",
+    );
+    /// `preheat = 25 degC`.
+    pub static PREHEAT: Field = Field::new(
+        "preheat",
+        Quantity(Dim::TEMPERATURE, Within(MAX_TEMPERATURE)),
+        Default(Described("25 degC, the cell's")),
+        "the plate's temperature when the build starts (the cell's gas and walls are at 25 °C)",
+    );
+    /// `max_interpass = 200 degC`.
+    pub static MAX_INTERPASS: Field = Field::new(
+        "max_interpass",
+        Quantity(Dim::TEMPERATURE, Within(MAX_TEMPERATURE)),
+        Optional,
+        "the hottest a layer may be where and when the next starts on it: lmdc plans the cooling that keeps every layer within it, or refuses the plan; none: predicted, not limited",
+    );
+    /// `cooling = dwell`.
+    pub static COOLING: Field = Field::new(
+        "cooling",
+        Word(&["dwell", "power"]),
+        Default(DefaultWord("dwell")),
+        "how lmdc keeps `max_interpass`: `dwell`, the least wait before each layer that does; `power`, the least power reduction within the bead's measured powers and the laser's range, the speeds and so the layers unchanged",
+    );
+}
 
 /// A ring's `process { … }`: its table gives the power, defocus and speed
 /// of each segment, and its layers run on without a stop (why each is

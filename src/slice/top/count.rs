@@ -464,7 +464,7 @@ fn track_ends(probe: &Probe<'_>) -> Vec<[f64; 2]> {
 
 /// The corners of the convex hull of `points` (Andrew's monotone chain);
 /// fewer than three points come back as they are.
-fn hull(mut points: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
+pub(crate) fn hull(mut points: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
     points.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
     points.dedup();
     if points.len() < 3 {

@@ -20,6 +20,8 @@
 //! the points it makes.
 
 mod count;
+/// The convex hull of points (the thermal model's outline of a layer).
+pub(crate) use count::hull;
 mod deposit;
 mod emit;
 mod footprint;

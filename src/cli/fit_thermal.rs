@@ -1,0 +1,192 @@
+//! `lmdc fit TEMPERATURES.csv --plan FILE.lmd`: fits the thermal model's
+//! absorptivity and heat transfer coefficient to interpass temperatures
+//! measured on a build of FILE's plan (docs/thermal.md, *Calibration*),
+//! and prints them with the residuals and the `thermal { … }` to paste.
+
+use super::messages::{self, MessageFormat};
+use super::{data_reader, read_sheet, read_source, shown, EXIT_PROGRAM, EXIT_USAGE};
+use lmdc::lower::heat;
+use lmdc::pipeline;
+use lmdc::thermal::fit::{self, Measured};
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// What the fit found, as `--json` writes it.
+#[derive(Serialize)]
+struct Report {
+    /// The alloy the plan declares.
+    material: String,
+    /// The share of the laser's power the part takes up.
+    absorptivity: f64,
+    /// W/(m²·K).
+    heat_transfer: f64,
+    /// K.
+    rms: f64,
+    /// `[layer (1-based), measured °C, predicted °C]` per row.
+    rows: Vec<[f64; 3]>,
+    /// The first and last layer measured (1-based).
+    layers: [usize; 2],
+    /// Which ended at the edge of the range searched (absorptivity, heat
+    /// transfer): the data do not settle it.
+    at_edge: [bool; 2],
+}
+
+/// Runs the fit of `sheet` over the plan of `plan`; returns the exit code.
+pub fn run(sheet: &Path, plan: &Path, json: bool, (color, format): (bool, MessageFormat)) -> u8 {
+    let (Some(text), Some(source)) = (read_sheet(sheet), read_source(plan)) else {
+        return EXIT_USAGE;
+    };
+    let measured = match read(&text) {
+        Ok(m) => m,
+        Err(e) => {
+            eprintln!("error: {}: {e}", shown(sheet));
+            return EXIT_USAGE;
+        }
+    };
+    let options = pipeline::Options {
+        file: Some(plan.display().to_string()),
+        machine: None,
+        set: Vec::new(),
+        data: Some(pipeline::DataFiles(data_reader(plan))),
+        allow: Vec::new(),
+    };
+    let compiled = match pipeline::compile_with(&source, &options, &mut ()) {
+        Ok(c) => c,
+        Err(e) => return messages::fail(plan, lmdc::diag::usage::refused(&e)),
+    };
+    messages::print(&compiled.diagnostics, plan, &source, color, format);
+    let Some(verified) = compiled.program else {
+        return EXIT_PROGRAM;
+    };
+    let program = verified.ir();
+    let Some(t) = &program.thermal else {
+        eprintln!(
+            "error: {} has no `thermal {{ … }}` in its process block: nothing to fit",
+            shown(plan)
+        );
+        return EXIT_USAGE;
+    };
+    let (material, plate) = heat::cell(t);
+    let waits: Vec<f64> = t.layers.iter().map(|l| l.wait).collect();
+    let Some(f) = fit::fit(material, plate, &heat::loads(program), &waits, &measured) else {
+        eprintln!(
+            "error: {} measures a layer the plan does not have (it has {})",
+            shown(sheet),
+            program.layers.len()
+        );
+        return EXIT_USAGE;
+    };
+    let rows: Vec<[f64; 3]> = measured
+        .iter()
+        .zip(&f.residuals)
+        .map(|(m, r)| [(m.layer + 1) as f64, m.interpass, m.interpass + r])
+        .collect();
+    let first = measured.iter().map(|m| m.layer + 1).min().unwrap_or(1);
+    let last = measured.iter().map(|m| m.layer + 1).max().unwrap_or(1);
+    let r = Report {
+        material: t.material.clone(),
+        absorptivity: f.absorptivity,
+        heat_transfer: f.heat_transfer,
+        rms: f.rms,
+        rows,
+        layers: [first, last],
+        at_edge: f.at_edge,
+    };
+    if json {
+        println!("{}", serde_json::to_string(&r).expect("plain data"));
+    } else {
+        print!("{}", text_of(&r, program.layers.len(), &shown(sheet)));
+    }
+    0
+}
+
+/// The sheet: a header, then `layer, interpass` a row (the layer from 1,
+/// the temperature in °C); `#` starts a comment.
+fn read(text: &str) -> Result<Vec<Measured>, String> {
+    let mut out = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() || (out.is_empty() && !line.starts_with(|c: char| c.is_ascii_digit())) {
+            continue;
+        }
+        let cells: Vec<&str> = line.split(',').map(str::trim).collect();
+        let (Some(layer), Some(t)) = (
+            cells
+                .first()
+                .and_then(|c| c.parse::<usize>().ok())
+                .filter(|&l| l >= 1),
+            cells
+                .get(1)
+                .and_then(|c| c.parse::<f64>().ok())
+                .filter(|t| t.is_finite()),
+        ) else {
+            return Err(format!(
+                "line {}: a row is `layer, interpass (degC)`, the layer from 1: `{line}`",
+                n + 1
+            ));
+        };
+        out.push(Measured {
+            layer: layer - 1,
+            interpass: t,
+        });
+    }
+    if out.len() < 3 {
+        return Err("fewer than three measurements: two numbers are fitted".into());
+    }
+    Ok(out)
+}
+
+/// The fit in words.
+fn text_of(r: &Report, layers: usize, sheet: &str) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "thermal model fitted to {sheet}: {} interpass temperatures of layers {}–{} ({}'s data otherwise)\n",
+        r.rows.len(),
+        r.layers[0],
+        r.layers[1],
+        r.material
+    );
+    let edge = |e: bool| {
+        if e {
+            "  (at the edge of the range searched: the data do not settle it)"
+        } else {
+            ""
+        }
+    };
+    let _ = writeln!(
+        out,
+        "absorptivity    {:.3}{}",
+        r.absorptivity,
+        edge(r.at_edge[0])
+    );
+    let _ = writeln!(
+        out,
+        "heat_transfer   {:.1} W/m^2/degC{}",
+        r.heat_transfer,
+        edge(r.at_edge[1])
+    );
+    let _ = writeln!(out, "residuals       RMS {:.1} K\n", r.rms);
+    let _ = writeln!(
+        out,
+        "{:>6} {:>12} {:>13} {:>10}",
+        "layer", "measured °C", "predicted °C", "residual K"
+    );
+    for [l, m, p] in &r.rows {
+        let _ = writeln!(out, "{:>6} {:>12.1} {:>13.1} {:>10.1}", l, m, p, p - m);
+    }
+    let _ = writeln!(
+        out,
+        "\nin the process block:\n  thermal {{\n    material = {}\n    absorptivity = {:.3}\n    heat_transfer = {:.1} W/m^2/degC\n  }}",
+        r.material, r.absorptivity, r.heat_transfer
+    );
+    if r.layers[1] < layers {
+        let _ = writeln!(
+            out,
+            "\nmeasured up to layer {} of {layers}: the later layers' predictions extrapolate the fit",
+            r.layers[1]
+        );
+    }
+    out
+}

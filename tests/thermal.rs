@@ -1,0 +1,140 @@
+//! The thermal budget over random plans (docs/thermal.md): every plan lmdc
+//! accepts with a `max_interpass` starts every layer within it; the wait
+//! `cooling = dwell` chooses is the least (10 % less and the layer starts
+//! above the limit); `cooling = power` lowers powers within the laser's
+//! range and the plan still passes every rule, the deposit's among them.
+
+use lmdc::lower::heat;
+use lmdc::pipeline::compile;
+use lmdc::thermal::predict;
+use proptest::prelude::*;
+
+/// The one-line tests' plate (flat raster layers, a CNC and a robot) with
+/// `layers` layers of a `width` mm wide block and a thermal block.
+fn plate(width: f64, layers: usize, process: &str, thermal: &str) -> String {
+    std::fs::read_to_string("tests/codes/plate.lmd")
+        .unwrap()
+        .replace("width = 20 mm", &format!("width = {width} mm"))
+        .replace("layers = 2\n", &format!("layers = {layers}\n"))
+        .replace(
+            "  defocus = -3 mm\n",
+            &format!("  defocus = -3 mm\n  {process}\n  thermal {{ {thermal} }}\n"),
+        )
+}
+
+/// The IR of `src`, or `None` when lmdc refuses it for its interpass
+/// limit alone (any other error fails the test).
+fn accepted(src: &str) -> Option<lmdc::ir::Program> {
+    let c = compile(src, &mut ());
+    match c.program {
+        Some(v) => Some(v.ir().clone()),
+        None => {
+            let codes: Vec<_> = c.diagnostics.iter().map(|d| d.code.as_str()).collect();
+            assert!(
+                codes.iter().all(|c| *c == "lmd::interpass"),
+                "{codes:?}\n{src}"
+            );
+            None
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(8))]
+
+    #[test]
+    fn waits_keep_the_limit_and_are_the_least(
+        width in 12.0f64..30.0,
+        layers in 3usize..7,
+        limit in 120.0f64..400.0,
+        thick in 5.0f64..20.0,
+    ) {
+        let src = plate(
+            width.round(),
+            layers,
+            "",
+            &format!("material = ss316l  plate = [80 mm, 80 mm, {thick:.1} mm]  max_interpass = {limit:.1} degC"),
+        );
+        let Some(p) = accepted(&src) else { return Ok(()) };
+        let t = p.thermal.as_ref().unwrap();
+        let limit = t.max_interpass.unwrap();
+        for (i, l) in t.layers.iter().enumerate() {
+            prop_assert!(l.interpass <= limit + 1e-9, "layer {i}: {l:?}");
+        }
+        let (material, cell) = heat::cell(t);
+        let loads = heat::loads(&p);
+        let waits: Vec<f64> = t.layers.iter().map(|l| l.wait).collect();
+        for (i, l) in t.layers.iter().enumerate().filter(|(_, l)| l.added > 0.0) {
+            let shorter = |j: usize| if j == i { 0.9 * waits[j] } else { waits[j] };
+            let q = predict(material, cell, &loads[..=i], shorter, None).unwrap();
+            prop_assert!(q[i].interpass > limit, "layer {i} with 90 % of {}: {}", l.wait, q[i].interpass);
+        }
+    }
+
+    #[test]
+    fn lower_powers_keep_the_limit_and_the_deposit(
+        layers in 3usize..7,
+        limit in 250.0f64..500.0,
+        dwell in 10.0f64..40.0,
+    ) {
+        let src = plate(
+            20.0,
+            layers,
+            &format!("power_range = 600 W .. 1500 W\n  dwell = {dwell:.0} s"),
+            &format!("material = in718  max_interpass = {limit:.1} degC  cooling = power"),
+        );
+        // Accepted means verified: the deposit rule and the laser's range
+        // hold at the powers chosen.
+        let Some(p) = accepted(&src) else { return Ok(()) };
+        let t = p.thermal.as_ref().unwrap();
+        for (i, l) in t.layers.iter().enumerate() {
+            prop_assert!(l.interpass <= t.max_interpass.unwrap() + 1e-9, "layer {i}: {l:?}");
+            prop_assert!(l.added == 0.0 && (0.4 - 1e-6..=1.0).contains(&l.power), "{l:?}");
+        }
+        let powers = p.layers.iter().flat_map(|l| &l.paths).flat_map(|p| &p.points).filter(|p| p.laser_on);
+        for q in powers {
+            prop_assert!((600.0 - 1e-3..=1500.0).contains(&(q.power as f64)));
+        }
+    }
+}
+
+/// `lmdc fit --plan`: temperatures the plan's own prediction gives come
+/// back as the alloy's absorptivity and the default heat transfer
+/// coefficient, with residuals of a fraction of a kelvin.
+#[test]
+fn fit_finds_the_values_that_made_the_temperatures() {
+    // The wall without its limit and with a dwell: layers that warm up
+    // from the plate's temperature, which both numbers shape.
+    let src = std::fs::read_to_string("examples/thin_wall.lmd")
+        .unwrap()
+        .replace("    max_interpass = 250 degC\n", "")
+        .replace("  defocus = -1 mm\n", "  defocus = -1 mm\n  dwell = 10 s\n");
+    let dir = tempfile::tempdir().unwrap();
+    let plan = dir.path().join("wall.lmd");
+    std::fs::write(&plan, &src).unwrap();
+    let c = compile(&src, &mut ());
+    let p = c.program.expect("the example compiles");
+    let t = p.ir().thermal.as_ref().unwrap();
+    let mut sheet = String::from("layer, interpass (degC)\n");
+    for (i, l) in t.layers.iter().enumerate().skip(1).step_by(4) {
+        sheet.push_str(&format!("{}, {:.3}\n", i + 1, l.interpass));
+    }
+    let file = dir.path().join("temperatures.csv");
+    std::fs::write(&file, sheet).unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .arg("fit")
+        .arg(&file)
+        .arg("--plan")
+        .arg(&plan)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let eta = r["absorptivity"].as_f64().unwrap();
+    let h = r["heat_transfer"].as_f64().unwrap();
+    assert!(t.max_interpass.is_none() && t.layers[39].interpass > 200.0);
+    assert!((eta - t.absorptivity).abs() < 0.005, "{r}");
+    assert!((h - t.heat_transfer).abs() < 1.0, "{r}");
+    assert!(r["rms"].as_f64().unwrap() < 0.05, "{r}");
+}
