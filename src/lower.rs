@@ -77,36 +77,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         bead,
         ring,
         layers,
-        origins: Origins {
-            bead_height,
-            bead_speed,
-            bead: model
-                .bead
-                .as_ref()
-                .map(|b| b.tilt.map_or(b.span, |(_, at)| at)),
-            power: Some(model.process.power_span),
-            spine: match &model.build {
-                Build::Duct { loft, .. } => Some(loft.spine_span),
-                _ => None,
-            },
-            top: match &model.build {
-                Build::Variable { extrusion, .. } => Some(extrusion.top_span),
-                _ => None,
-            },
-            slicing: Some(match &model.build {
-                Build::Duct { slicing, .. } => slicing.span,
-                Build::Block { slicing, .. } | Build::Wall { slicing, .. } => slicing.span,
-                Build::Variable { slicing, .. } => slicing.span,
-                Build::Ring(r) => r.origins.layers,
-                Build::Calibration(c) => c.span,
-            }),
-            ring: match &model.build {
-                Build::Ring(r) => Some(r.origins),
-                _ => None,
-            },
-            machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
-            fixtures: model.fixtures.iter().map(|(_, at)| *at).collect(),
-        },
+        origins: origins(model, bead_height, bead_speed),
     };
     let mut program = program;
     predict_rises(&mut program);
@@ -115,6 +86,40 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         heat::scale_powers(&mut program);
     }
     Ok((program, warnings))
+}
+
+/// Where the IR's limits and parts are written in the source.
+fn origins(model: &Model, bead_height: Option<Span>, bead_speed: Option<Span>) -> Origins {
+    Origins {
+        bead_height,
+        bead_speed,
+        bead: model
+            .bead
+            .as_ref()
+            .map(|b| b.tilt.map_or(b.span, |(_, at)| at)),
+        power: Some(model.process.power_span),
+        spine: match &model.build {
+            Build::Duct { loft, .. } => Some(loft.spine_span),
+            _ => None,
+        },
+        top: match &model.build {
+            Build::Variable { extrusion, .. } => Some(extrusion.top_span),
+            _ => None,
+        },
+        slicing: Some(match &model.build {
+            Build::Duct { slicing, .. } => slicing.span,
+            Build::Block { slicing, .. } | Build::Wall { slicing, .. } => slicing.span,
+            Build::Variable { slicing, .. } => slicing.span,
+            Build::Ring(r) => r.origins.layers,
+            Build::Calibration(c) => c.span,
+        }),
+        ring: match &model.build {
+            Build::Ring(r) => Some(r.origins),
+            _ => None,
+        },
+        machines: model.machines.iter().map(|(_, o)| o.clone()).collect(),
+        fixtures: model.fixtures.iter().map(|(_, at)| *at).collect(),
+    }
 }
 
 /// Merges each path's moves shorter than the step programs write
