@@ -125,9 +125,10 @@ fn origins(model: &Model, bead_height: Option<Span>, bead_speed: Option<Span>) -
 /// Merges each path's moves shorter than the step programs write
 /// positions at ([`POSITION_STEP`]), where the nozzle also stands as it
 /// did (arcs that meet leave points a fraction of a µm apart, which print
-/// as a move to where the nozzle is, or one digit off it). The earlier
-/// point of such a move goes, since its values hold only over the move;
-/// the path's first point keeps its place and takes the next one's values.
+/// as a move to where the nozzle is, or one digit off it). Of the two
+/// places the one nearer its neighbours' line goes (a corner stays), and
+/// the later point's values hold on, since the earlier one's hold only
+/// over the move; the path's first and last points keep their places.
 /// A chain of such points merges only while it stays within one step of
 /// where it began, so a curve sampled finely keeps its shape. A path that
 /// is all one place keeps its points; the verifier names such moves that remain
@@ -154,11 +155,41 @@ pub fn merge_short_moves(layers: &mut [Layer]) {
                     ..p
                 };
             } else {
-                points[kept - 1] = p;
+                // The place that goes is the one its neighbours' line
+                // passes nearer: beside a corner, the point on the edge
+                // goes and the corner stays. The later point's values go
+                // on (they hold over the move onward); the path's last
+                // point keeps its place.
+                let a = points[kept - 1];
+                let keep_a = points.get(k + 1).is_some_and(|next| {
+                    off_segment(a.pos, points[kept - 2].pos, p.pos)
+                        > off_segment(p.pos, a.pos, next.pos)
+                });
+                points[kept - 1] = if keep_a {
+                    ir::Point { pos: a.pos, ..p }
+                } else {
+                    p
+                };
             }
         }
         points.truncate(kept);
     }
+}
+
+/// How far `x` lies from the segment from `u` to `v`, mm.
+fn off_segment(x: [f64; 3], u: [f64; 3], v: [f64; 3]) -> f64 {
+    let d = [v[0] - u[0], v[1] - u[1], v[2] - u[2]];
+    let w = [x[0] - u[0], x[1] - u[1], x[2] - u[2]];
+    let dd: f64 = d.iter().map(|c| c * c).sum();
+    let t = if dd > 0.0 {
+        ((0..3).map(|i| w[i] * d[i]).sum::<f64>() / dd).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (0..3)
+        .map(|i| (w[i] - t * d[i]).powi(2))
+        .sum::<f64>()
+        .sqrt()
 }
 
 /// Whether a move from `a` to `b` is shorter than a printed step and keeps
@@ -401,8 +432,12 @@ mod tests {
     use crate::ir::{Frame, Path, PathKind, Point};
 
     fn point(x: f64, speed: f32) -> Point {
+        at([x, 0.0], speed)
+    }
+
+    fn at([x, y]: [f64; 2], speed: f32) -> Point {
         Point {
-            pos: [x, 0.0, 0.0],
+            pos: [x, y, 0.0],
             normal: [0.0, 0.0, 1.0],
             tangent: [1.0, 0.0, 0.0],
             layer_height: 0.5,
@@ -419,6 +454,13 @@ mod tests {
 
     fn merged(xs: &[(f64, f32)]) -> Vec<(f64, f32)> {
         let points = xs.iter().map(|&(x, v)| point(x, v)).collect();
+        merged_path(points)
+            .iter()
+            .map(|p| (p.pos[0], p.speed))
+            .collect()
+    }
+
+    fn merged_path(points: Vec<Point>) -> Vec<Point> {
         let mut layers = [Layer {
             index: 0,
             station: 0.0,
@@ -431,8 +473,7 @@ mod tests {
             on_plate: false,
         }];
         merge_short_moves(&mut layers);
-        let p = &layers[0].paths[0].points;
-        p.iter().map(|p| (p.pos[0], p.speed)).collect()
+        std::mem::take(&mut layers[0].paths[0].points)
     }
 
     /// Issue 38 item 5: arcs that meet left points 0.3 µm apart, written as
@@ -464,5 +505,21 @@ mod tests {
         assert_eq!(merged(&same), same);
         let one = [v(1.0), v(1.0002), v(1.0001)];
         assert_eq!(merged(&one), one);
+        // Beside a corner, the corner stays, with the later point's values.
+        let corner = merged_path(vec![
+            at([0.0, 0.0], 5.0),
+            at([10.0, 0.0], 5.0),
+            at([10.0, 0.0007], 7.0),
+            at([10.0, 10.0], 5.0),
+        ]);
+        let got: Vec<_> = corner.iter().map(|p| (p.pos, p.speed)).collect();
+        assert_eq!(
+            got,
+            [
+                ([0.0, 0.0, 0.0], 5.0),
+                ([10.0, 0.0, 0.0], 7.0),
+                ([10.0, 10.0, 0.0], 5.0)
+            ]
+        );
     }
 }

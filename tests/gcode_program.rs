@@ -317,10 +317,11 @@ fn a_new_layer_starts_with_a_transition_even_where_the_last_ended() {
         .skip(1)
         .take_while(|l| !l.starts_with("M3"))
         .collect();
+    // Retract and approach; no travel between, which would go nowhere
+    // (it was written as a second `G0 … Z7.000`, issue 38 item 5).
     assert_eq!(
         before_deposit,
         [
-            "G0 X0.000 Y0.000 Z7.000",
             "G0 X0.000 Y0.000 Z7.000",
             "G1 X0.000 Y0.000 Z-3.000 F360 S1600"
         ],
