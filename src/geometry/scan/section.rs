@@ -11,7 +11,7 @@
 
 use super::{Pose, Raw};
 use crate::geometry::mesh::{oriented, Loop, Section, SectionFault};
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// Most loops a section may have before it is taken for noise, not a part
 /// (each is nested against the others).
@@ -155,16 +155,16 @@ fn walk(
 ) -> Result<Vec<Loop>, CutFault> {
     let mut starts: Vec<Edge> = next.keys().copied().collect();
     starts.sort_unstable();
-    let mut seen: HashMap<Edge, ()> = HashMap::with_capacity(next.len());
+    let mut seen: HashSet<Edge> = HashSet::with_capacity(next.len());
     let mut loops = Vec::new();
     for s in starts {
-        if seen.contains_key(&s) {
+        if seen.contains(&s) {
             continue;
         }
         let mut pts = Vec::new();
         let (mut prev, mut e) = (None, s);
         loop {
-            seen.insert(e, ());
+            seen.insert(e);
             pts.push(point(e, placed, h));
             let [a, b] = next[&e];
             let (Some(a), Some(b)) = (a, b) else {
