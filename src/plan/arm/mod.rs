@@ -360,6 +360,7 @@ impl Solver {
     }
 }
 
+mod abb;
 mod chain;
 pub mod clearance;
 mod follow;
