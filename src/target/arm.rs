@@ -108,7 +108,7 @@ impl Model {
     }
 }
 
-/// ROS-Industrial's KUKA convention, every arm's here and an `opw(…)`
+/// ROS-Industrial's KUKA convention, every KUKA arm's here and an `opw(…)`
 /// arm's: A2's zero is the upper arm level (OPW's is upright), and A1, A4,
 /// A6 turn the other way from OPW's (the lengths are zero: only the
 /// offsets and signs are read from it).
