@@ -369,6 +369,26 @@ pub fn abb_needs(what: &str, at: Span, example: &str) -> Diagnostic {
     .help(format!("declare it: {example}"))
 }
 
+/// A catalogue arm (`name`) of another maker than the robot's controller
+/// (`abb`: the controller is ABB's, the arm KUKA's; else the other way).
+pub fn arm_of_other_maker(name: &str, abb: bool, arm: Span, controller: Option<Span>) -> Diagnostic {
+    let (arm_maker, ctl, fix) = if abb {
+        ("a KUKA", "an ABB controller (RAPID)", "an ABB arm (`irb2600_12_165`, `irb4600_60_205`, `irb4600_40_255`, `irb6700_200_260`), or `controller = kuka`")
+    } else {
+        ("an ABB", "a KUKA controller (KRL)", "`controller = abb` for RAPID, or a KUKA arm (`kr6_r900_2`, `kr16_2`, `kr60ha`, `kr150_r3100_2`)")
+    };
+    let d = Diagnostic::error(
+        Code::ConflictingFields,
+        format!("the {name} is {arm_maker} arm, and this robot has {ctl}: its axis angles and program would not be the arm's"),
+    )
+    .label(arm, format!("{arm_maker} arm"));
+    let d = match controller {
+        Some(at) => d.label(at, "the controller"),
+        None => d,
+    };
+    d.help(format!("declare {fix}"))
+}
+
 /// An item of `opw(…)`'s `key` list that is not what it takes.
 pub fn arm_list_item(key: &str, at: Span, got: &str, wanted: &str) -> Diagnostic {
     Diagnostic::error(Code::Type, format!("each item of `{key}` is {wanted}"))

@@ -93,7 +93,7 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
     let clearance = f.quantity_or_default(&CLEARANCE, diags);
     let lines = f.count_or_default(&MODULE_LINES, diags);
     let home = home(f, controller, diags);
-    let arm = arm(f, diags);
+    let arm = controller.and_then(|c| arm(f, c, diags));
     let spin = spin(f, diags);
     let moves = motion(f, diags);
     let sensor = height_sensor(f, 1, kuka::MAX_ANIN, diags);
@@ -177,7 +177,7 @@ fn spin(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Spin> {
 /// `arm = …` with `joint_margin` and `singularity`: `Some(None)` when no arm
 /// is declared. An arm whose `base` or `tool` is only an index on the
 /// controller cannot be checked: a warning says how to declare them.
-fn arm(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Option<Arm>> {
+fn arm(f: &Fields<'_>, controller: Controller, diags: &mut Diagnostics) -> Option<Option<Arm>> {
     let margin = f.quantity_or_default(&JOINT_MARGIN, diags);
     let singularity = f.quantity_or_default(&SINGULARITY, diags);
     let v = match f.value(&ARM, diags) {
@@ -187,10 +187,23 @@ fn arm(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Option<Arm>> {
     };
     let (margin, singularity) = (margin?.to_degrees(), singularity?.to_degrees());
     let mut arm = match &v.value {
-        Value::Call(c) if c.func == "opw" => opw_arm(&Fields::call(c, &OPW, diags), diags)?,
+        Value::Call(c) if c.func == "opw" => {
+            opw_arm(&Fields::call(c, &OPW, diags), controller, diags)?
+        }
         _ => {
             let word = fields::word(v, ARM.key, crate::target::arm::KEYS, diags)?;
-            crate::target::arm::model(word)?.arm(0.0, 0.0)
+            let model = crate::target::arm::model(word)?;
+            if maker(controller) != model.maker {
+                let at = f.span(&CONTROLLER).or(f.span(&KIND));
+                diags.push(message::machine::arm_of_other_maker(
+                    model.name,
+                    controller == Controller::Abb,
+                    v.span,
+                    at,
+                ));
+                return None;
+            }
+            model.arm(0.0, 0.0)
         }
     };
     arm.margin = margin;
@@ -246,7 +259,15 @@ fn links(v: &super::super::value::Spanned, diags: &mut Diagnostics) -> Option<[f
 }
 
 /// `opw(…)`: an arm by its parameters, in KUKA's axis angles.
-fn opw_arm(a: &Fields<'_>, diags: &mut Diagnostics) -> Option<Arm> {
+/// The maker whose arms a controller drives.
+fn maker(c: Controller) -> crate::target::arm::Maker {
+    match c {
+        Controller::Kuka => crate::target::arm::Maker::Kuka,
+        Controller::Abb => crate::target::arm::Maker::Abb,
+    }
+}
+
+fn opw_arm(a: &Fields<'_>, controller: Controller, diags: &mut Diagnostics) -> Option<Arm> {
     let len = |field: &Field, diags: &mut Diagnostics| match field.need {
         crate::sema::schema::Need::Required(_) => a.quantity(field, diags).map(|q| q.0),
         _ => a.quantity_or_default(field, diags),
@@ -293,7 +314,11 @@ fn opw_arm(a: &Fields<'_>, diags: &mut Diagnostics) -> Option<Arm> {
     for (o, p) in opw.iter_mut().zip(ps) {
         *o = p?;
     }
-    let k = crate::target::arm::KUKA;
+    // The axis angles are the controller's own: KUKA's or ABB's convention.
+    let k = match controller {
+        Controller::Kuka => crate::target::arm::KUKA,
+        Controller::Abb => crate::target::arm::ABB,
+    };
     Some(Arm {
         model: None,
         opw,

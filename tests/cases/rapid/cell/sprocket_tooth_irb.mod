@@ -19,7 +19,7 @@ MODULE sprocket_tooth_irb
   VAR triggdata lmd_power_end;
 
   PROC main()
-    ConfJ \Off;
+    ConfJ \On;
     ConfL \Off;
     SetDO do1, 0;
     SetAO ao1, 0;

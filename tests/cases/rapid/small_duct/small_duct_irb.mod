@@ -61,7 +61,7 @@ MODULE small_duct_irb
   VAR triggdata lmd_power_end;
 
   PROC main()
-    ConfJ \Off;
+    ConfJ \On;
     ConfL \Off;
     SetDO do3, 0;
     SetAO ao2, 0;
