@@ -14,10 +14,10 @@
 pub mod modules;
 
 use super::context::{counts, layer_context, shown, styles};
+use super::fmt::key as key_of;
 use super::krl::{comment_safe, home_config};
 use super::{EmitError, Sink, Templates};
 use crate::ir::{Layer, Load, Pose, Robot, ToolAxis};
-use super::fmt::key as key_of;
 use crate::numbers::{fixed, trimmed};
 use crate::plan::arm::{Joints, Solver};
 use crate::plan::positioner::Kin;
@@ -470,11 +470,7 @@ fn home_text(robot: &Robot) -> String {
     let axes: Vec<String> = robot.home.iter().map(|a| trimmed(*a, 3)).collect();
     let mut ext = Vec::new();
     modules::extax(&mut ext, robot.positioner.as_ref().map(|p| p.home));
-    format!(
-        "[[{}],{}]",
-        axes.join(","),
-        String::from_utf8_lossy(&ext)
-    )
+    format!("[[{}],{}]", axes.join(","), String::from_utf8_lossy(&ext))
 }
 
 /// The zone `lmd_z` of the robot's blending `b` mm, in the pattern of
@@ -550,7 +546,10 @@ fn main_context(
             "Off"
         },
     );
-    ctx.insert("positioner", &robot.positioner.as_deref().map(positioner_text));
+    ctx.insert(
+        "positioner",
+        &robot.positioner.as_deref().map(positioner_text),
+    );
     ctx.insert("spin", &super::krl::spin_text(robot.spin));
     ctx.insert("beam", beam_text(robot.beam));
     ctx.insert("laser_out", &robot.laser_out);
@@ -578,9 +577,13 @@ mod tests {
             (Vector3::new(1.0, 2.0, -0.5), 250.0),
             (Vector3::z(), -90.0),
         ] {
-            let r = Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), f64::to_radians(deg));
+            let r = Rotation3::from_axis_angle(
+                &nalgebra::Unit::new_normalize(axis),
+                f64::to_radians(deg),
+            );
             let q = quaternion(r.matrix());
-            let uq = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]));
+            let uq =
+                UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]));
             let v = Vector3::new(0.3, -0.7, 0.2);
             assert!((uq * v - r * v).norm() < 1e-12, "{axis:?} {deg}");
             let lead = q.iter().find(|c| c.abs() >= 5e-7).unwrap();
@@ -589,7 +592,10 @@ mod tests {
         }
         // Straight down with the tool's X along the base's: a half turn about X.
         let down = Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0);
-        assert_eq!(quaternion(&down).map(|c| trimmed(c, 6)), ["0", "1", "0", "0"]);
+        assert_eq!(
+            quaternion(&down).map(|c| trimmed(c, 6)),
+            ["0", "1", "0", "0"]
+        );
     }
 
     /// The first fifty speeds are named in the order used, a speed used

@@ -371,7 +371,12 @@ pub fn abb_needs(what: &str, at: Span, example: &str) -> Diagnostic {
 
 /// A catalogue arm (`name`) of another maker than the robot's controller
 /// (`abb`: the controller is ABB's, the arm KUKA's; else the other way).
-pub fn arm_of_other_maker(name: &str, abb: bool, arm: Span, controller: Option<Span>) -> Diagnostic {
+pub fn arm_of_other_maker(
+    name: &str,
+    abb: bool,
+    arm: Span,
+    controller: Option<Span>,
+) -> Diagnostic {
     let (arm_maker, ctl, fix) = if abb {
         ("a KUKA", "an ABB controller (RAPID)", "an ABB arm (`irb2600_12_165`, `irb4600_60_205`, `irb4600_40_255`, `irb6700_200_260`), or `controller = kuka`")
     } else {

@@ -8,9 +8,9 @@ use crate::sema::fields::{self, Fields};
 use crate::sema::machine::cell;
 use crate::sema::schema::machine::ARM_LINKS;
 use crate::sema::schema::machine::{
-    frame, opw, ARM, BASE, BEAM, CLEARANCE, CONTROLLER, FRAME, FULL_SCALE, HOME, JOINT_MARGIN, KIND, LASER,
-    MAX_ANGLE_DEG, MAX_FRAME_MM, MAX_SPEED, MODULE_LINES, OPW, POSITIONER_BLOCK, POWER_OUTPUT,
-    ROBOT, SINGULARITY, SPIN, TOOL,
+    frame, opw, ARM, BASE, BEAM, CLEARANCE, CONTROLLER, FRAME, FULL_SCALE, HOME, JOINT_MARGIN,
+    KIND, LASER, MAX_ANGLE_DEG, MAX_FRAME_MM, MAX_SPEED, MODULE_LINES, OPW, POSITIONER_BLOCK,
+    POWER_OUTPUT, ROBOT, SINGULARITY, SPIN, TOOL,
 };
 use crate::sema::schema::Field;
 use crate::sema::value::Value;
@@ -138,7 +138,11 @@ fn abb_frames(
     load: Option<&Option<crate::ir::Load>>,
     diags: &mut Diagnostics,
 ) {
-    let at = |field: &Field| f.span(field).or(f.span(&CONTROLLER)).unwrap_or(f.block_span());
+    let at = |field: &Field| {
+        f.span(field)
+            .or(f.span(&CONTROLLER))
+            .unwrap_or(f.block_span())
+    };
     if let Some(FrameRef { value: None, .. }) = tool {
         diags.push(message::machine::abb_needs(
             "tool",
