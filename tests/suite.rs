@@ -51,6 +51,7 @@ mod positioner;
 mod preview;
 mod program_text;
 mod progress;
+mod rapid_oracle;
 mod reach;
 mod repair;
 mod report;
