@@ -1265,6 +1265,9 @@ pub enum ToolAxis {
 pub struct Robot {
     /// Name, speed, clearance, cell and height sensor.
     pub common: MachineCommon,
+    /// The controller its program is written for: KRL for KUKA, RAPID for
+    /// ABB.
+    pub controller: Controller,
     /// Tool (TCP at the laser focus).
     pub tool: FrameRef,
     /// The tool's load, when the robot declares it: the program sets it
@@ -1294,6 +1297,25 @@ pub struct Robot {
     /// E2, mathematically coupled): `base` is then where the part's base
     /// sits on its flange, and every pose is in that moving base.
     pub positioner: Option<Box<Positioner>>,
+}
+
+/// The controller a robot's program is written for (`controller = …`).
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize, PartialEq, Eq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+#[serde(rename_all = "lowercase")]
+pub enum Controller {
+    /// A KUKA KR C4/C5 (KSS 8.x): KRL.
+    #[default]
+    Kuka,
+    /// An ABB IRC5 or OmniCore: RAPID (docs/rapid.md).
+    Abb,
+}
+
+impl Controller {
+    /// KUKA's, the default (left out of the IR's JSON).
+    pub fn is_kuka(&self) -> bool {
+        *self == Controller::Kuka
+    }
 }
 
 /// A robot's two-axis positioner (`positioner { … }`): a tilt axis (KUKA's
@@ -1747,6 +1769,9 @@ mod wire {
     pub(super) struct Robot {
         /// Name from the source; the program is named after the part and this.
         name: String,
+        /// The controller its program is written for (absent: KUKA).
+        #[serde(default, skip_serializing_if = "super::Controller::is_kuka")]
+        controller: super::Controller,
         /// Tool (TCP at the laser focus).
         tool: FrameRef,
         /// The tool's load, when declared (absent: the controller's
@@ -1866,6 +1891,7 @@ mod wire {
     impl From<Robot> for super::Robot {
         fn from(r: Robot) -> Self {
             super::Robot {
+                controller: r.controller,
                 common: MachineCommon {
                     name: r.name,
                     max_speed: r.max_speed,
@@ -1898,6 +1924,7 @@ mod wire {
             let c = r.common;
             Robot {
                 name: c.name,
+                controller: r.controller,
                 tool: r.tool,
                 load: r.load,
                 base: r.base,
@@ -2095,6 +2122,8 @@ pub enum MachineField {
     HeightDelay,
     /// A robot's `arm`.
     Arm,
+    /// A robot's `controller`.
+    Controller,
     /// A robot's `base`.
     Base,
     /// A robot's `tool`.

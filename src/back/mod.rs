@@ -11,6 +11,7 @@ pub(crate) mod fmt;
 pub mod gcode;
 pub mod height_loop;
 pub mod krl;
+pub mod rapid;
 pub mod templates;
 
 use crate::ir::Machine;
@@ -87,6 +88,9 @@ pub fn emit(
     sink: &mut dyn Sink,
 ) -> Result<(), EmitError> {
     match m.machine() {
+        Machine::Robot(r) if r.controller == crate::ir::Controller::Abb => {
+            rapid::emit(m, r, templates, sink)
+        }
         Machine::Robot(r) => krl::emit(m, r, templates, sink),
         Machine::Cnc(c) => gcode::emit(m, c, templates, sink),
     }

@@ -27,6 +27,18 @@ const BUILTIN: &[(&str, &str)] = &[
         include_str!("../../templates/krl/layer.tera"),
     ),
     (
+        "rapid/main.mod.tera",
+        include_str!("../../templates/rapid/main.mod.tera"),
+    ),
+    (
+        "rapid/module.mod.tera",
+        include_str!("../../templates/rapid/module.mod.tera"),
+    ),
+    (
+        "rapid/layer.tera",
+        include_str!("../../templates/rapid/layer.tera"),
+    ),
+    (
         "gcode/header.tera",
         include_str!("../../templates/gcode/header.tera"),
     ),
@@ -56,7 +68,7 @@ impl Templates {
     ///
     /// A `dir` that is not a directory, that holds none of the templates, or
     /// that holds a `.tera` file lmdc does not use (a misspelt name, a file
-    /// outside `krl/` and `gcode/`) is an error: the built-in templates in
+    /// outside `krl/`, `rapid/` and `gcode/`) is an error: the built-in templates in
     /// place of a site's own preamble must never pass unnoticed.
     pub fn load(dir: Option<&Path>) -> Result<Self, String> {
         if let Some(d) = dir {

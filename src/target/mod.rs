@@ -10,6 +10,7 @@ pub mod gcode;
 pub mod kuka;
 pub mod names;
 pub mod outputs;
+pub mod rapid;
 
 use crate::ir::Machine;
 

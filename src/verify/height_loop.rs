@@ -121,6 +121,10 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
         }
     }
     if let Machine::Robot(rb) = m {
+        if rb.controller == crate::ir::Controller::Abb {
+            let at = origin.at(MachineField::Controller);
+            out.push(says::loop_dialect(name, &"ABB RAPID", at, o.run));
+        }
         if rb.positioner.is_some() {
             let at = origin.at(MachineField::Positioner);
             out.push(says::loop_on_positioner(name, at, o.run));

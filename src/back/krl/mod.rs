@@ -461,7 +461,7 @@ fn positioner_text(p: &crate::ir::Positioner) -> Vec<String> {
 
 /// The header's line on the tool's turn about the beam; empty at the
 /// default (`auto`, 0°).
-fn spin_text(spin: crate::ir::Spin) -> String {
+pub(crate) fn spin_text(spin: crate::ir::Spin) -> String {
     let n = crate::numbers::trimmed;
     match spin {
         s if s.is_default() => String::new(),

@@ -358,6 +358,17 @@ pub fn arm_unchecked(what: &str, at: Span, arm: Span) -> Diagnostic {
     ))
 }
 
+/// An ABB robot whose `what` (`tool`, `base`, `load`) is not declared in
+/// full: its RAPID program declares it, so lmdc must know it.
+pub fn abb_needs(what: &str, at: Span, example: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::MissingField,
+        format!("an ABB robot's program declares its {what}: its value is needed"),
+    )
+    .label(at, format!("the {what}'s value is not declared"))
+    .help(format!("declare it: {example}"))
+}
+
 /// An item of `opw(…)`'s `key` list that is not what it takes.
 pub fn arm_list_item(key: &str, at: Span, got: &str, wanted: &str) -> Diagnostic {
     Diagnostic::error(Code::Type, format!("each item of `{key}` is {wanted}"))

@@ -10,7 +10,7 @@ use crate::sema::schema::Field;
 use crate::span::Span;
 
 /// Each field a check may name, with its key in the IR.
-static KEYS: [(&Field, K); 39] = [
+static KEYS: [(&Field, K); 40] = [
     (&m::NAME, K::Name),
     (&m::MAX_SPEED, K::MaxSpeed),
     (&m::ROTARY_SPEED, K::RotarySpeed),
@@ -28,6 +28,7 @@ static KEYS: [(&Field, K); 39] = [
     (&m::HEIGHT_INPUT, K::HeightInput),
     (&m::HEIGHT_DELAY, K::HeightDelay),
     (&m::ARM, K::Arm),
+    (&m::CONTROLLER, K::Controller),
     (&m::BASE, K::Base),
     (&m::TOOL, K::Tool),
     (&m::HOME, K::Home),

@@ -2,13 +2,13 @@
 
 use super::{common, height_sensor, motion, Written};
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Arm, FrameRef, Machine, Pose, Robot, Spin, ToolAxis};
+use crate::ir::{Arm, Controller, FrameRef, Machine, Pose, Robot, Spin, ToolAxis};
 use crate::sema::eval::Env;
 use crate::sema::fields::{self, Fields};
 use crate::sema::machine::cell;
 use crate::sema::schema::machine::ARM_LINKS;
 use crate::sema::schema::machine::{
-    frame, opw, ARM, BASE, BEAM, CLEARANCE, FRAME, FULL_SCALE, HOME, JOINT_MARGIN, KIND, LASER,
+    frame, opw, ARM, BASE, BEAM, CLEARANCE, CONTROLLER, FRAME, FULL_SCALE, HOME, JOINT_MARGIN, KIND, LASER,
     MAX_ANGLE_DEG, MAX_FRAME_MM, MAX_SPEED, MODULE_LINES, OPW, POSITIONER_BLOCK, POWER_OUTPUT,
     ROBOT, SINGULARITY, SPIN, TOOL,
 };
@@ -61,6 +61,10 @@ pub(super) fn read<'a>(
 }
 
 fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
+    let controller = f.word_or_default(&CONTROLLER, diags).map(|c| match c {
+        "abb" => Controller::Abb,
+        _ => Controller::Kuka,
+    });
     let tool = frame_ref(f, &TOOL, diags);
     let load = super::load::read(f, diags);
     let base = frame_ref(f, &BASE, diags);
@@ -75,25 +79,27 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
     let laser = f.count(&LASER, diags);
     let anout = f.count(&POWER_OUTPUT, diags);
     let full = f.quantity(&FULL_SCALE, diags);
+    let top = match controller {
+        Some(Controller::Abb) => crate::target::rapid::V_TCP_MAX,
+        _ => kuka::VEL_CP_MAX,
+    };
     let vmax = f.quantity(&MAX_SPEED, diags).and_then(|(v, span)| {
-        if v <= kuka::VEL_CP_MAX {
+        if v <= top {
             return Some((v, span));
         }
-        diags.push(message::machine::robot_speed_too_high(
-            v,
-            span,
-            kuka::VEL_CP_MAX,
-        ));
+        diags.push(message::machine::robot_speed_too_high(v, span, top));
         None
     });
     let clearance = f.quantity_or_default(&CLEARANCE, diags);
     let lines = f.count_or_default(&MODULE_LINES, diags);
-    let home = home(f, diags);
+    let home = home(f, controller, diags);
     let arm = arm(f, diags);
     let spin = spin(f, diags);
     let moves = motion(f, diags);
     let sensor = height_sensor(f, 1, kuka::MAX_ANIN, diags);
-    if let (Some(None), Some(t)) = (&load, &tool) {
+    if controller == Some(Controller::Abb) {
+        abb_frames(f, tool.as_ref(), base.as_ref(), load.as_ref(), diags);
+    } else if let (Some(None), Some(t)) = (&load, &tool) {
         // The tool whose load data it is, or the robot's `kind = robot`.
         let written = f.span(&TOOL);
         let at = written.or(f.span(&KIND)).unwrap_or(f.block_span());
@@ -106,6 +112,7 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
     }
     Some(Robot {
         common: common(name, vmax.map(|v| v.0), clearance, sensor, moves)?,
+        controller: controller?,
         tool: tool?,
         load: load?,
         base: base?,
@@ -119,6 +126,40 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
         spin: spin?,
         positioner: None,
     })
+}
+
+/// An ABB robot's program declares its `tooldata` and `wobjdata` in full
+/// (RAPID has no numbered tables to fall back on, and a `tooldata` holds
+/// its load): a tool, base or load left to the controller is refused.
+fn abb_frames(
+    f: &Fields<'_>,
+    tool: Option<&FrameRef>,
+    base: Option<&FrameRef>,
+    load: Option<&Option<crate::ir::Load>>,
+    diags: &mut Diagnostics,
+) {
+    let at = |field: &Field| f.span(field).or(f.span(&CONTROLLER)).unwrap_or(f.block_span());
+    if let Some(FrameRef { value: None, .. }) = tool {
+        diags.push(message::machine::abb_needs(
+            "tool",
+            at(&TOOL),
+            "`tool = frame(1, z = 350 mm)`: the laser focus from the flange, which the program's `tooldata` holds",
+        ));
+    }
+    if let Some(FrameRef { value: None, .. }) = base {
+        diags.push(message::machine::abb_needs(
+            "base",
+            at(&BASE),
+            "`base = frame(1, x = 1200 mm, y = 0 mm, z = 400 mm)`: where the part's origin sits from the robot's base frame, which the program's `wobjdata` holds",
+        ));
+    }
+    if let Some(None) = load {
+        diags.push(message::machine::abb_needs(
+            "load",
+            at(&TOOL),
+            "`load = load(mass = 12 kg, cog = [0 mm, 0 mm, 120 mm])`: the mass of all the flange carries and its centre of gravity, which the program's `tooldata` holds (ABB's controller refuses a tool without mass)",
+        ));
+    }
 }
 
 /// `spin = auto | angle`.
@@ -357,9 +398,16 @@ fn frame_ref(f: &Fields<'_>, field: &Field, diags: &mut Diagnostics) -> Option<F
 }
 
 /// `home = [a1, …, a6]`: six axis angles, deg.
-fn home(f: &Fields<'_>, diags: &mut Diagnostics) -> Option<[f64; 6]> {
+fn home(
+    f: &Fields<'_>,
+    controller: Option<Controller>,
+    diags: &mut Diagnostics,
+) -> Option<[f64; 6]> {
     let v = match f.value(&HOME, diags) {
         None if f.has(&HOME) => return None,
+        None if controller == Some(Controller::Abb) => {
+            return Some([0.0, 0.0, 0.0, 0.0, 90.0, 0.0])
+        }
         None => return Some([0.0, -90.0, 90.0, 0.0, 0.0, 0.0]),
         Some(v) => v,
     };

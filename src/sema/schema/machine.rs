@@ -147,6 +147,14 @@ pub static BASE: Field = Field::new(
     "the base the part is programmed in: `BASE_DATA[n]`, or `frame(n, …)` to set it",
 );
 
+/// `controller = kuka`.
+pub static CONTROLLER: Field = Field::new(
+    "controller",
+    Word(&["kuka", "abb"]),
+    Default(DefaultWord("kuka")),
+    "the robot's controller: `kuka` (KRL) or `abb` (RAPID, docs/rapid.md)",
+);
+
 /// `beam = z`.
 pub static BEAM: Field = Field::new(
     "beam",
@@ -189,8 +197,8 @@ pub static HOME: Field = Field::new(
         ),
         Len::Exactly(6),
     ),
-    Default(Described("`[0 deg, -90 deg, 90 deg, 0 deg, 0 deg, 0 deg]`")),
-    "the axis angles of the home position, moved to (PTP) at the start and the end",
+    Default(Described("`[0 deg, -90 deg, 90 deg, 0 deg, 0 deg, 0 deg]` on KUKA, `[0 deg, 0 deg, 0 deg, 0 deg, 90 deg, 0 deg]` on ABB (the flange facing down)")),
+    "the axis angles of the home position, moved to (PTP, `MoveAbsJ`) at the start and the end",
 );
 
 /// `arm = kr16_2 | opw(…)`.
@@ -438,9 +446,10 @@ pub static MODULE_LINES: Field = Field::new(
 pub static ROBOT: Block = Block::new(
     "robot",
     "machine NAME { kind = robot … }",
-    "a KUKA robot, programmed in KRL",
+    "a KUKA robot programmed in KRL, or an ABB robot in RAPID",
     &[
         &KIND,
+        &CONTROLLER,
         &TOOL,
         &LOAD,
         &BASE,

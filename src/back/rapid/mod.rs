@@ -1,0 +1,564 @@
+//! ABB RAPID back end (IRC5 with RobotWare 6, OmniCore with RobotWare 7):
+//! a main module `<stem>.mod` with the data and `PROC main()`, which calls
+//! motion modules `<stem>_m001.mod`, … of at most the robot's
+//! `max_points_per_module` motion instructions each. The subset written,
+//! and why each instruction is the one it is: docs/rapid.md.
+//!
+//! The motion is the plan's ([`crate::plan`]), as the KRL back end writes
+//! it: every move a `MoveL` to the laser focus with the tool's beam along
+//! −normal, the laser and its power switched on the path by `TriggIO`
+//! triggers of a `TriggL`, gas and powder where the robot stands.
+//! Positions carry the configuration (`confdata`) of the solution the
+//! verifier checked, and a positioner's angles as external axes.
+
+pub mod modules;
+
+use super::context::{counts, layer_context, shown, styles};
+use super::krl::{comment_safe, home_config};
+use super::{EmitError, Sink, Templates};
+use crate::ir::{Layer, Load, Pose, Robot, ToolAxis};
+use super::fmt::key as key_of;
+use crate::numbers::{fixed, trimmed};
+use crate::plan::arm::{Joints, Solver};
+use crate::plan::positioner::Kin;
+use crate::plan::{orient::Orienter, Io, Move, MoveKind, Speed, Visit};
+use crate::target::names::KrlNames;
+use crate::target::rapid::{self as abb, AO_DECIMALS, POS_DECIMALS, QUAT_DECIMALS, SPEED_DECIMALS};
+use crate::verify::VerifiedMachine;
+use modules::{Modules, Set, Target};
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
+use std::collections::HashMap;
+use std::io::Write;
+
+/// The speed of the joint moves from and back to home (ABB's `v200`).
+pub const HOME_SPEED: &str = "v200";
+
+/// The names of `robot`'s files for the verified plan `m`: KRL's scheme
+/// (its 24 characters are inside RAPID's 32), a stem that is a RAPID
+/// keyword prefixed with `p`.
+pub fn names(m: VerifiedMachine<'_>, robot: &Robot) -> KrlNames {
+    let mut n = super::krl::names(m, robot);
+    let upper = n.stem.to_ascii_uppercase();
+    if abb::RESERVED.contains(&upper.as_str()) {
+        n.stem = format!("p{}", n.stem);
+    }
+    n
+}
+
+/// Writes the RAPID modules of the verified robot `m` (`robot` is its
+/// machine).
+pub fn emit(
+    m: VerifiedMachine<'_>,
+    robot: &Robot,
+    t: &Templates,
+    sink: &mut dyn Sink,
+) -> Result<(), EmitError> {
+    let prog = m.ir();
+    let names = names(m, robot);
+    let base = base_context(m, robot, &names.stem);
+    // Rendered first, so a broken template leaves no file.
+    let mut first = base.clone();
+    main_context(&mut first, m, robot, &[], modules::Stats::default());
+    first.insert("modules", &[names.module(0)]);
+    t.render("rapid/main.mod.tera", &first)
+        .map_err(EmitError::Template)?;
+
+    let mut w = Writer {
+        out: Modules::new(
+            sink,
+            t,
+            base.clone(),
+            names.clone(),
+            robot.max_points_per_module,
+            robot.laser_out,
+            robot.power_out,
+        ),
+        orient: Orienter::for_robot(robot),
+        conf: Conf::new(robot),
+        robot,
+        templates: t,
+        base: &base,
+        layers: prog.layers.len(),
+        normal: None,
+        rot: Matrix3::identity(),
+        quat: [1.0, 0.0, 0.0, 0.0],
+        speeds: Speeds::default(),
+        switch: None,
+        power: None,
+        last: None,
+        error: None,
+    };
+    m.plan().walk(&mut w);
+    if let Some(e) = w.error {
+        return Err(e);
+    }
+    let speeds = w.speeds.list;
+    let (modules, stats) = w.out.finish()?;
+    let mut ctx = base;
+    main_context(&mut ctx, m, robot, &speeds, stats);
+    ctx.insert("modules", &modules);
+    let text = t
+        .render("rapid/main.mod.tera", &ctx)
+        .map_err(EmitError::Template)?;
+    let mut out = sink.create(&format!("{}.mod", names.stem))?;
+    out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(())
+}
+
+/// The analog output's value for `power` W: the fraction of full scale,
+/// as written.
+pub fn ao(power: f32, robot: &Robot) -> f64 {
+    crate::target::written(power as f64 / robot.full_scale_power, AO_DECIMALS)
+}
+
+/// The most `speeddata` the main module declares: a program whose speed
+/// changes from point to point (a height↔speed map) writes the speeds
+/// after these in place, as aggregates.
+pub const NAMED_SPEEDS: usize = 50;
+
+/// The `speeddata` a program moves at: the first [`NAMED_SPEEDS`] named
+/// `lmd_v1`, `lmd_v2`, … in the order first used, the rest in place.
+#[derive(Default)]
+struct Speeds {
+    /// `(name, v_tcp as written)`.
+    list: Vec<(String, String)>,
+    by_key: HashMap<i64, usize>,
+}
+
+impl Speeds {
+    /// How a motion at `v` mm/s names its speed.
+    fn text(&mut self, v: f64) -> String {
+        let k = key_of(v, SPEED_DECIMALS);
+        if let Some(&i) = self.by_key.get(&k) {
+            return self.list[i].0.clone();
+        }
+        let n = self.list.len();
+        if n == NAMED_SPEEDS {
+            return speeddata(&trimmed(v, SPEED_DECIMALS));
+        }
+        self.by_key.insert(k, n);
+        let name = format!("lmd_v{}", n + 1);
+        self.list.push((name.clone(), trimmed(v, SPEED_DECIMALS)));
+        name
+    }
+}
+
+/// A `speeddata` of `v_tcp` (mm/s, as written): the reorientation,
+/// linear and rotating external axis speeds of ABB's `v`-speeds, so the
+/// TCP speed is the one that binds.
+pub fn speeddata(v_tcp: &str) -> String {
+    format!("[{v_tcp},500,5000,1000]")
+}
+
+/// The configuration of each position: the arm solved from the solution
+/// before, as the verifier follows it, from the one it starts from home.
+struct Conf {
+    solver: Option<Solver>,
+    kin: Option<Kin>,
+    prev: Option<Joints>,
+}
+
+impl Conf {
+    fn new(robot: &Robot) -> Self {
+        Conf {
+            solver: Solver::new(robot),
+            kin: Kin::of(robot),
+            prev: None,
+        }
+    }
+
+    /// The `confdata` of the move from home, whose solution is `j`.
+    fn home(&mut self, j: Option<Joints>) -> [i32; 4] {
+        self.prev = j;
+        match (&self.solver, j) {
+            (Some(s), Some(j)) => s.confdata(&j),
+            _ => [0; 4],
+        }
+    }
+
+    /// The `confdata` of the move `m` with the tool turned `rot`: the
+    /// solution nearest the last (`[0, 0, 0, 0]` without an arm).
+    fn of(&mut self, m: &Move, rot: &Matrix3<f64>) -> [i32; 4] {
+        let (Some(s), Some(prev)) = (&self.solver, self.prev) else {
+            return [0; 4];
+        };
+        let (to, rot) = match &self.kin {
+            Some(k) => {
+                let e = [m.axes.tilt, m.axes.c];
+                let r = k.part(e).rotation.to_rotation_matrix().into_inner() * rot;
+                (k.point(e, m.to), r)
+            }
+            None => (m.to, *rot),
+        };
+        match s.solve(to, &rot, &prev).first() {
+            Some(j) => {
+                self.prev = Some(*j);
+                s.confdata(j)
+            }
+            None => s.confdata(&prev),
+        }
+    }
+}
+
+/// Writes a robot's motion plan.
+struct Writer<'a, 's> {
+    out: Modules<'s>,
+    orient: Orienter,
+    conf: Conf,
+    robot: &'a Robot,
+    templates: &'a Templates,
+    base: &'a tera::Context,
+    layers: usize,
+    normal: Option<[f32; 3]>,
+    rot: Matrix3<f64>,
+    quat: [f64; 4],
+    speeds: Speeds,
+    /// A laser switch waiting for the next motion's start.
+    switch: Option<bool>,
+    /// The power last set, in 1/10⁴ of full scale.
+    power: Option<i64>,
+    last: Option<MoveKind>,
+    error: Option<EmitError>,
+}
+
+impl Writer<'_, '_> {
+    /// The power to set before depositing at `power` W, if it changed.
+    fn power(&mut self, power: f32) -> Option<Set> {
+        let x = ao(power, self.robot);
+        let k = key_of(x, AO_DECIMALS);
+        (self.power != Some(k)).then(|| {
+            self.power = Some(k);
+            Set::Power(x)
+        })
+    }
+
+    fn target(&mut self, m: &Move, conf: [i32; 4]) -> Target {
+        Target {
+            pos: m.to,
+            quat: self.quat,
+            conf,
+            ext: self
+                .robot
+                .positioner
+                .as_ref()
+                .map(|_| [m.axes.tilt, m.axes.c]),
+        }
+    }
+}
+
+impl Visit for Writer<'_, '_> {
+    fn layer(&mut self, index: usize, layer: &Layer) {
+        let mut ctx = self.base.clone();
+        layer_context(&mut ctx, index, self.layers, layer);
+        match self.templates.render("rapid/layer.tera", &ctx) {
+            Ok(text) => self.out.layer(index + 1, &text),
+            Err(e) => {
+                self.error.get_or_insert(EmitError::Template(e));
+            }
+        }
+    }
+
+    fn laser_on(&mut self, next: &Move) {
+        if self.last == Some(MoveKind::LeadIn) {
+            // On the fly, where the lead-in ends, at the run's power.
+            let mut set: Vec<Set> = self.power(next.power).into_iter().collect();
+            set.push(Set::Laser(true));
+            self.out.at_end(&set);
+            return;
+        }
+        self.switch = Some(true);
+    }
+
+    fn laser_off(&mut self) {
+        self.switch = Some(false);
+    }
+
+    fn dwell(&mut self, seconds: f64) {
+        self.out.wait(seconds);
+    }
+
+    fn io(&mut self, event: Io) {
+        let mut lines = Vec::new();
+        if self.switch == Some(false) {
+            // A guard: the plan retracts before any switching.
+            self.switch = None;
+            lines.push(format!("SetDO do{}, 0; ! laser off", self.robot.laser_out));
+        }
+        lines.extend(io_lines(self.robot, event));
+        self.out.io(&lines);
+    }
+
+    fn motion(&mut self, m: &Move) {
+        if self.normal != Some(m.normal) {
+            self.normal = Some(m.normal);
+            self.rot = self.orient.rotation(m.normal);
+            self.quat = quaternion(&self.rot);
+        }
+        match m.kind {
+            MoveKind::FromHome => {
+                self.last = Some(m.kind);
+                let j = home_config(self.robot, m, &self.rot).map(|c| c.2);
+                let conf = self.conf.home(j);
+                let t = self.target(m, conf);
+                self.out.joint(&t, HOME_SPEED);
+                return;
+            }
+            // `main` goes home after the motion modules.
+            MoveKind::Home => return,
+            _ => {}
+        }
+        let conf = self.conf.of(m, &self.rot);
+        let t = self.target(m, conf);
+        let speed = match m.speed {
+            Speed::Rapid => self.robot.max_speed,
+            Speed::Feed(v) => v as f64,
+        };
+        let deposit = m.deposits();
+        let mut start: Vec<Set> = Vec::new();
+        if deposit {
+            start.extend(self.power(m.power));
+        }
+        if m.kind == MoveKind::LeadOut && self.switch == Some(false) {
+            // Off where the last deposit ends, the robot going on.
+            self.switch = None;
+            self.out.at_end(&[Set::Laser(false)]);
+        }
+        if let Some(on) = self.switch.take() {
+            start.push(Set::Laser(on));
+        }
+        self.last = Some(m.kind);
+        let speed = self.speeds.text(speed);
+        self.out.line(&t, &speed, &start, deposit);
+    }
+}
+
+/// The unit quaternion `[q1, q2, q3, q4]` (scalar first) of the rotation
+/// `r`, its first non-zero component (as written) positive so one
+/// orientation is always written alike.
+pub fn quaternion(r: &Matrix3<f64>) -> [f64; 4] {
+    let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*r));
+    let c = q.into_inner().coords;
+    let q = [c.w, c.x, c.y, c.z];
+    let lead = q
+        .iter()
+        .find(|v| key_of(**v, QUAT_DECIMALS) != 0)
+        .copied()
+        .unwrap_or(1.0);
+    if lead < 0.0 {
+        q.map(|v| -v)
+    } else {
+        q
+    }
+}
+
+/// The RAPID lines of a gas or powder event on `robot`, each with its
+/// comment.
+pub fn io_lines(robot: &Robot, event: Io) -> Vec<String> {
+    let cell = &robot.cell;
+    let mut lines = Vec::new();
+    let rate = |lines: &mut Vec<String>, g_min: f32| {
+        if let Some(r) = cell.powder.and_then(|p| p.rate) {
+            lines.push(format!(
+                "SetAO ao{}, {}; ! powder {} g/min",
+                r.output,
+                fixed(g_min as f64 / r.full_scale, AO_DECIMALS),
+                trimmed(g_min as f64, 2)
+            ));
+        }
+    };
+    let out = |n: u16, on: bool, what: &str| {
+        format!(
+            "SetDO do{n}, {}; ! {what} {}",
+            u8::from(on),
+            if on { "on" } else { "off" }
+        )
+    };
+    match (event, cell.gas, cell.powder) {
+        (Io::GasOn, Some(g), _) => lines.push(out(g.output, true, "gas")),
+        (Io::GasOff, Some(g), _) => lines.push(out(g.output, false, "gas")),
+        (Io::PowderOn(r), _, Some(p)) => {
+            rate(&mut lines, r);
+            lines.push(out(p.output, true, "powder"));
+        }
+        (Io::PowderRate(r), _, Some(_)) => rate(&mut lines, r),
+        (Io::PowderOff, _, Some(p)) => lines.push(out(p.output, false, "powder")),
+        _ => {}
+    }
+    lines
+}
+
+/// Variables every template of the verified robot `m` sees.
+fn base_context(m: VerifiedMachine<'_>, robot: &Robot, stem: &str) -> tera::Context {
+    let p = m.ir();
+    let mut ctx = tera::Context::new();
+    ctx.insert(
+        "summary",
+        &comment_safe(&super::context::summary(m.summary())),
+    );
+    ctx.insert("program", stem);
+    ctx.insert("part", &comment_safe(&shown(&p.part)));
+    ctx.insert("machine", &comment_safe(&shown(&robot.name)));
+    ctx.insert("generator", concat!("lmdc ", env!("CARGO_PKG_VERSION")));
+    super::context::provenance(&mut ctx, m.provenance(), &comment_safe);
+    ctx
+}
+
+/// `[[x,y,z],[q1,q2,q3,q4]]` of a pose (a KUKA frame `X Y Z A B C`).
+fn pose_text(p: &Pose) -> String {
+    let f = crate::plan::arm::frame(p);
+    let q = quaternion(&f.rotation.to_rotation_matrix().into_inner());
+    let t = f.translation.vector;
+    format!(
+        "[[{},{},{}],[{}]]",
+        trimmed(t.x, POS_DECIMALS),
+        trimmed(t.y, POS_DECIMALS),
+        trimmed(t.z, POS_DECIMALS),
+        quat_text(q)
+    )
+}
+
+fn quat_text(q: [f64; 4]) -> String {
+    q.map(|v| trimmed(v, QUAT_DECIMALS)).join(",")
+}
+
+/// The `tooldata`: held by the robot, its frame and its load (mass kg,
+/// centre of gravity mm, principal axes, moments of inertia kg·m²).
+fn tooldata(robot: &Robot) -> String {
+    let identity = Pose::default();
+    let frame = pose_text(robot.tool.value.as_ref().unwrap_or(&identity));
+    let load = robot.load.unwrap_or(Load {
+        mass: 0.0,
+        cog: [0.0; 3],
+        inertia_axes: [0.0; 3],
+        inertia: [0.0; 3],
+    });
+    let [x, y, z] = load.cog.map(|c| trimmed(c, 3));
+    let [a, b, c] = load.inertia_axes;
+    let aom = pose_text(&Pose {
+        a,
+        b,
+        c,
+        ..Pose::default()
+    });
+    // `[[0,0,0],[q]]` → `[q]`.
+    let aom = &aom[aom.find("],[").map_or(0, |i| i + 2)..aom.len() - 1];
+    let [ix, iy, iz] = load.inertia.map(|j| trimmed(j, 6));
+    format!(
+        "[TRUE,{frame},[{},[{x},{y},{z}],{aom},{ix},{iy},{iz}]]",
+        trimmed(load.mass, 3)
+    )
+}
+
+/// The mechanical unit a positioner's work object moves with.
+pub const POSITIONER_UNIT: &str = "STN1";
+
+/// The `wobjdata`: the base as the user frame, or, on a positioner, the
+/// base on its flange as the object frame of a frame the unit moves.
+fn wobjdata(robot: &Robot) -> String {
+    let identity = Pose::default();
+    let base = pose_text(robot.base.value.as_ref().unwrap_or(&identity));
+    let zero = "[[0,0,0],[1,0,0,0]]";
+    match robot.positioner {
+        Some(_) => format!("[FALSE,FALSE,\"{POSITIONER_UNIT}\",{zero},{base}]"),
+        None => format!("[FALSE,TRUE,\"\",{base},{zero}]"),
+    }
+}
+
+/// The home `jointtarget`: the arm's axes, a positioner's two.
+fn home_text(robot: &Robot) -> String {
+    let axes: Vec<String> = robot.home.iter().map(|a| trimmed(*a, 3)).collect();
+    let mut ext = Vec::new();
+    modules::extax(&mut ext, robot.positioner.as_ref().map(|p| p.home));
+    format!(
+        "[[{}],{}]",
+        axes.join(","),
+        String::from_utf8_lossy(&ext)
+    )
+}
+
+/// The zone `lmd_z` of the robot's blending `b` mm, in the pattern of
+/// ABB's z-zones (`z1 = [FALSE,1,1,1,0.1,1,0.1]`).
+fn zone_text(b: f64) -> String {
+    let (b, t) = (trimmed(b, 3), trimmed(b / 10.0, 4));
+    format!("[FALSE,{b},{b},{b},{t},{b},{t}]")
+}
+
+/// The header's lines on a positioner: its axes, as the controller's
+/// mechanical unit must have them (docs/rapid.md).
+fn positioner_text(p: &crate::ir::Positioner) -> Vec<String> {
+    let v = |a: [f64; 3], d: usize| {
+        let t: Vec<String> = a.iter().map(|c| trimmed(*c, d)).collect();
+        format!("[{}]", t.join(", "))
+    };
+    let axis = |name: &str, a: &crate::ir::PositionerAxis| {
+        format!(
+            "{name} about {} through {} mm, {} .. {} deg, {} deg/s",
+            v(a.direction, 6),
+            v(a.point, 3),
+            trimmed(a.limits[0], 3),
+            trimmed(a.limits[1], 3),
+            trimmed(a.speed, 3)
+        )
+    };
+    vec![
+        axis("eax_a (tilt)", &p.tilt),
+        axis("eax_b (rotate, at eax_a = 0)", &p.rotate),
+        format!("the work object moves with the mechanical unit {POSITIONER_UNIT}; every position is in it"),
+    ]
+}
+
+fn beam_text(b: ToolAxis) -> &'static str {
+    match b {
+        ToolAxis::PlusX => "+X",
+        ToolAxis::MinusX => "-X",
+        ToolAxis::PlusY => "+Y",
+        ToolAxis::MinusY => "-Y",
+        ToolAxis::PlusZ => "+Z",
+        ToolAxis::MinusZ => "-Z",
+    }
+}
+
+fn main_context(
+    ctx: &mut tera::Context,
+    m: VerifiedMachine<'_>,
+    robot: &Robot,
+    speeds: &[(String, String)],
+    s: modules::Stats,
+) {
+    counts(ctx, m.ir());
+    styles(ctx, m.ir(), &comment_safe);
+    ctx.insert("tooldata", &tooldata(robot));
+    ctx.insert("wobjdata", &wobjdata(robot));
+    ctx.insert("home", &home_text(robot));
+    let speeds: Vec<_> = speeds
+        .iter()
+        .map(|(n, v)| serde_json::json!({ "name": n, "data": speeddata(v) }))
+        .collect();
+    ctx.insert("speeds", &speeds);
+    ctx.insert(
+        "zone",
+        &zone_text(robot.blending.unwrap_or(crate::target::kuka::APO_CDIS_MM)),
+    );
+    ctx.insert("triggers", &modules::TRIGGERS);
+    ctx.insert("home_speed", HOME_SPEED);
+    ctx.insert(
+        "conf_j",
+        if robot.arm.is_some() && robot.tool.value.is_some() && robot.base.value.is_some() {
+            "On"
+        } else {
+            "Off"
+        },
+    );
+    ctx.insert("positioner", &robot.positioner.as_deref().map(positioner_text));
+    ctx.insert("spin", &super::krl::spin_text(robot.spin));
+    ctx.insert("beam", beam_text(robot.beam));
+    ctx.insert("laser_out", &robot.laser_out);
+    ctx.insert("power_out", &robot.power_out);
+    ctx.insert("full_scale", &trimmed(robot.full_scale_power, 3));
+    ctx.insert("clearance", &trimmed(robot.clearance, 3));
+    ctx.insert("module_lines", &robot.max_points_per_module);
+    ctx.insert("move_lines", &s.moves);
+    ctx.insert("deposits", &s.deposits);
+    ctx.insert("laser_starts", &s.laser_ons);
+}
