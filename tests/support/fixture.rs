@@ -7,6 +7,7 @@ use lmdc::ir::*;
 /// A robot as a cell would declare it.
 pub fn robot() -> Robot {
     Robot {
+        controller: Controller::Kuka,
         common: MachineCommon {
             name: "kr60".into(),
             max_speed: 250.0,

@@ -834,13 +834,16 @@ fn wobjdata(e: &Expr) -> R<WobjData> {
     )
 }
 
-/// A speeddata's `v_tcp`; all four speeds above zero.
+/// A speeddata's `v_tcp`, above zero; the other three ABB's `v`-speeds'.
 fn speeddata(e: &Expr) -> R<f64> {
     let v = nums::<4>(e, "a speeddata", 3)?;
-    if v.iter().any(|v| *v <= 0.0) {
+    if v[0] <= 0.0 || v[1..] != [500.0, 5000.0, 1000.0] {
         return err(
             e.line,
-            format!("a speeddata's speeds are above 0, got `{}`", show(e)),
+            format!(
+                "a speeddata is [v_tcp,500,5000,1000], v_tcp above 0, got `{}`",
+                show(e)
+            ),
         );
     }
     Ok(v[0])
@@ -963,8 +966,14 @@ const TYPES: [(&str, &str); 6] = [
 
 fn declare(m: &Module) -> Result<BTreeMap<String, Data>, String> {
     let mut data = BTreeMap::new();
+    let mut speeds = 0;
     for d in &m.decls {
         declare_one(d, &mut data).map_err(|e| e.at(&m.file))?;
+        speeds += usize::from(d.ty == "speeddata");
+        if speeds > 50 {
+            let e = "at most 50 speeddata are declared; further speeds are written in place";
+            return Err(E::At(d.line, e.into()).at(&m.file));
+        }
     }
     Ok(data)
 }
@@ -1281,19 +1290,17 @@ impl State<'_> {
         self.motion(i, Kind::TriggL, target, &tail, fired)
     }
 
+    /// `TriggIO <name>, 0 [\Start] \DOp:=do<laser>, 0|1;` or the same with
+    /// `\AOp:=ao<power>, <fraction>`: `lmd_on`, `lmd_off`, `lmd_power` with
+    /// `\Start`, `lmd_on_end`, `lmd_off_end`, `lmd_power_end` without.
     fn trigg_io(&mut self, i: &Instr, args: &[&Expr]) -> R<()> {
-        if shape(&i.args) == "E, E \\AOp:=E, E" {
-            return err(
-                i.line,
-                "a power trigger switches where its move starts: \\Start",
-            );
-        }
         let form = want(
             i,
             &[
                 "E, E \\Start \\DOp:=E, E",
                 "E, E \\DOp:=E, E",
                 "E, E \\Start \\AOp:=E, E",
+                "E, E \\AOp:=E, E",
             ],
         )?;
         let (name, _) = self.lookup(args[0], "triggdata")?;
@@ -1301,40 +1308,39 @@ impl State<'_> {
         if num(args[1])? != 0.0 {
             return err(i.line, "a trigger's distance is 0");
         }
-        let set = if form < 2 {
-            let n = signal(opt(i, "DOp")?, "do")?;
-            if n != self.laser_no {
-                return err(
-                    i.line,
-                    format!(
-                        "a trigger switches the laser, do{}, not do{n}",
-                        self.laser_no
-                    ),
-                );
-            }
-            Set::Laser(digital(args[2])?)
+        let (sig, prefix, want_no) = if form < 2 {
+            ("DOp", "do", self.laser_no)
         } else {
-            let n = signal(opt(i, "AOp")?, "ao")?;
-            if n != self.power_no {
-                return err(
-                    i.line,
-                    format!("a trigger sets the power, ao{}, not ao{n}", self.power_no),
-                );
-            }
-            Set::Power(analog(args[2])?)
+            ("AOp", "ao", self.power_no)
         };
-        let meant = matches!(
-            (name.as_str(), set),
-            ("lmd_on", Set::Laser(true))
-                | ("lmd_off", Set::Laser(false))
-                | ("lmd_power", Set::Power(_))
-        );
-        if !meant {
+        let n = signal(opt(i, sig)?, prefix)?;
+        if n != want_no {
             return err(
                 i.line,
-                format!(
-                    "{name}: lmd_on switches the laser on, lmd_off off, lmd_power sets the power"
-                ),
+                format!("a trigger switches the laser's {prefix}{want_no}, not {prefix}{n}"),
+            );
+        }
+        let set = if form < 2 {
+            Set::Laser(digital(args[2])?)
+        } else {
+            Set::Power(analog(args[2])?)
+        };
+        let start = form % 2 == 0;
+        let meant = match set {
+            Set::Laser(true) => "lmd_on",
+            Set::Laser(false) => "lmd_off",
+            Set::Power(_) => "lmd_power",
+        };
+        let meant = if start {
+            meant.to_string()
+        } else {
+            format!("{meant}_end")
+        };
+        if name != meant {
+            let at = if start { "starts" } else { "ends" };
+            return err(
+                i.line,
+                format!("this trigger, where its move {at}, is {meant}, not {name}"),
             );
         }
         if self.pending.iter().any(|t| t.name == name) {
@@ -1346,7 +1352,7 @@ impl State<'_> {
         self.pending.push(Trig {
             name,
             line: i.line,
-            start: form != 1,
+            start,
             set,
         });
         Ok(())
@@ -1379,6 +1385,22 @@ impl State<'_> {
         }
         self.axes(i, &target, !wobj.ufmec.is_empty())?;
         let (start, end): (Vec<Trig>, Vec<Trig>) = fired.into_iter().partition(|t| t.start);
+        let switches = start.iter().any(|t| matches!(t.set, Set::Laser(_)));
+        if let Some(m) = self
+            .trace
+            .motions
+            .last()
+            .filter(|m| switches && m.zone.is_some())
+        {
+            return err(
+                i.line,
+                format!(
+                    "the laser switches where this move starts, but the move before \
+                     ({}.mod:{}) is blended: it ends fine, so the switch is at its point",
+                    m.module, m.line
+                ),
+            );
+        }
         self.fire(&start)?;
         if self.laser && matches!(kind, Kind::MoveAbsJ | Kind::MoveJ) {
             return err(i.line, format!("{kind:?} with the laser on"));
@@ -1425,13 +1447,21 @@ impl State<'_> {
         Ok(())
     }
 
-    /// A motion's `v_tcp`: declared speeddata, or for MoveAbsJ RAPID's `v<n>`.
+    /// A motion's `v_tcp`: declared speeddata; for the joint moves also
+    /// RAPID's `v<n>`, for the linear ones also a speeddata in place.
     fn speed(&self, e: &Expr, kind: Kind) -> R<f64> {
-        if let (X::Name(n), Kind::MoveAbsJ) = (&e.kind, kind) {
-            let v = n.strip_prefix('v').and_then(|v| v.parse::<u32>().ok());
-            if let Some(v) = v.filter(|v| PREDEFINED_SPEEDS.contains(v) && format!("v{v}") == *n) {
-                return Ok(v as f64);
+        let joint = matches!(kind, Kind::MoveAbsJ | Kind::MoveJ);
+        match &e.kind {
+            X::Agg(_) if !joint => return speeddata(e),
+            X::Agg(_) => return err(e.line, "a joint move runs at v200 or a declared speed"),
+            X::Name(n) if joint => {
+                let v = n.strip_prefix('v').and_then(|v| v.parse::<u32>().ok());
+                let known = |v: &u32| PREDEFINED_SPEEDS.contains(v) && format!("v{v}") == *n;
+                if let Some(v) = v.filter(known) {
+                    return Ok(f64::from(v));
+                }
             }
+            _ => {}
         }
         match self.lookup(e, "speeddata")? {
             (_, Value::Speed(v)) => Ok(*v),
@@ -1451,8 +1481,8 @@ impl State<'_> {
     }
 
     /// External axes: eax_a and eax_b are the positioner's where the work
-    /// object moves with one, the rest `9E+09`; confdata zero without
-    /// configuration monitoring.
+    /// object moves with one, the rest `9E+09`; confdata zero where no arm
+    /// is declared (`ConfJ \\Off`).
     fn axes(&self, i: &Instr, target: &Target, positioner: bool) -> R<()> {
         let (extax, conf) = match target {
             Target::Pose(p) => (&p.extax, Some(p.conf)),
@@ -1469,8 +1499,11 @@ impl State<'_> {
             };
             return err(i.line, why);
         }
-        if self.trace.conf_l == Some(false) && conf.is_some_and(|c| c != [0; 4]) {
-            return err(i.line, "under ConfL \\Off the confdata is [0,0,0,0]");
+        if self.trace.conf_j == Some(false) && conf.is_some_and(|c| c != [0; 4]) {
+            return err(
+                i.line,
+                "under ConfJ \\Off (no arm declared) the confdata is [0,0,0,0]",
+            );
         }
         Ok(())
     }
