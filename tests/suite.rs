@@ -52,6 +52,7 @@ mod preview;
 mod program_text;
 mod progress;
 mod rapid_oracle;
+mod rapid_program;
 mod reach;
 mod repair;
 mod report;
