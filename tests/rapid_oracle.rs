@@ -25,13 +25,15 @@ fn doc_modules() -> Files {
 }
 
 /// The doc's program made whole: its main calls `duct_m002`, which the doc
-/// does not show; the second module is the first one renamed, its move from
-/// the first module's end a MoveL at the first module's first linear speed.
+/// does not show; the second module is the first one renamed, its layer the
+/// second, its move from the first module's end a MoveL at the first
+/// module's first linear speed.
 fn sample() -> Files {
     let mut files = doc_modules();
     let m1 = files.get("duct_m001.mod").expect("the doc's motion module");
     let m2 = m1
         .replace("duct_m001", "duct_m002")
+        .replace("! layer 1 of 12", "! layer 2 of 12")
         .replace("v200, fine", "lmd_v2, fine")
         .replace("MoveJ", "MoveL");
     files.insert("duct_m002.mod".into(), m2);
@@ -149,27 +151,166 @@ const MAIN: &str = "duct.mod";
 const ALL: &str = "*";
 const LONG: &str = "lmd_v1_a_name_of_33_characters___";
 
-const BROKEN: [Broken; 20] = [
-    Broken { what: "an exponent", file: M1, edits: &[("[[101,0,0.5]", "[[1.01E+02,0,0.5]")], says: "`1.01E+02` is not a plain decimal", at: "1.01E+02" },
-    Broken { what: "9E+09 in a position", file: M1, edits: &[("[[100,0,20]", "[[100,0,9E+09]")], says: "`9E+09` is not a plain decimal", at: "[100,0,9E+09]" },
-    Broken { what: "NaN", file: M1, edits: &[("[[102,0,0.5]", "[[102,0,NaN]")], says: "`NaN`: NaN and inf are not numbers", at: "NaN" },
-    Broken { what: "a name of 33 characters", file: ALL, edits: &[("lmd_v1", LONG)], says: "has 33 characters, more than 32", at: "CONST speeddata lmd_v1_a" },
-    Broken { what: "a reserved word", file: ALL, edits: &[("lmd_z", "ENDIF")], says: "`ENDIF` is a RAPID reserved word", at: "CONST zonedata" },
-    Broken { what: "an unnormalised quaternion", file: M1, edits: &[("[[101,0,0.5],[0,0,1,0]", "[[101,0,0.5],[0,0,1.0001,0]")], says: "has norm 1.0001", at: "1.0001" },
-    Broken { what: "a trigger not used", file: M1, edits: &[("lmd_on \\T2:=lmd_power", "lmd_on")], says: "TriggIO lmd_power is not used by the TriggL", at: "TriggIO lmd_power" },
-    Broken { what: "a redundant laser switch", file: M1, edits: &[("    MoveL [[102", "    TriggIO lmd_on_end, 0 \\DOp:=do1, 1;\n    TriggL [[102"), ("lmd_v1, lmd_z,", "lmd_v1, lmd_on_end, lmd_z,")], says: "TriggIO lmd_on_end switches the laser on, and it is on already", at: "TriggIO lmd_on_end" },
-    Broken { what: "a trigger named for another switch", file: M1, edits: &[("TriggIO lmd_power, 0 \\Start", "TriggIO lmd_power, 0")], says: "where its move ends, is lmd_power_end, not lmd_power", at: "TriggIO lmd_power" },
-    Broken { what: "a switch at the start after a blended motion", file: M1, edits: &[("lmd_v2, fine", "lmd_v2, lmd_z")], says: "the laser switches where this move starts, but the move before (duct_m001.mod:5) is blended", at: "TriggL [[101" },
-    Broken { what: "an undeclared speeddata", file: M1, edits: &[("lmd_v2", "lmd_v3")], says: "`lmd_v3` is not declared (want a speeddata)", at: "lmd_v3" },
-    Broken { what: "v200 on a linear move", file: M1, edits: &[("lmd_v2, fine", "v200, fine")], says: "`v200` is not declared (want a speeddata)", at: "[[100,0,0.5]" },
-    Broken { what: "a speeddata unlike ABB's", file: M1, edits: &[("[7.25,500,5000,1000]", "[7.25,500,5000,100]")], says: "a speeddata is [v_tcp,500,5000,1000]", at: "7.25" },
-    Broken { what: "MoveAbsJ in a motion module", file: M1, edits: &[("  ENDPROC", "    MoveAbsJ lmd_home \\NoEOffs, v200, fine, lmd_tool \\WObj:=lmd_wobj;\n  ENDPROC")], says: "MoveAbsJ in the motion module duct_m001", at: "MoveAbsJ" },
-    Broken { what: "a wrong module name", file: M1, edits: &[("MODULE duct_m001", "MODULE duct_m01")], says: "the file duct_m001.mod holds `MODULE duct_m01`", at: "MODULE duct_m01" },
-    Broken { what: "cfx 8", file: M1, edits: &[("[[100,0,20],[0,0,1,0],[0,0,-1,0]", "[[100,0,20],[0,0,1,0],[0,0,-1,8]")], says: "cfx 8 outside 0..7", at: "MoveJ" },
-    Broken { what: "a configuration without an arm", file: MAIN, edits: &[("ConfJ \\On", "ConfJ \\Off")], says: "under ConfJ \\Off (no arm declared) the confdata is [0,0,0,0]", at: "duct_m001.mod|MoveJ" },
-    Broken { what: "an analog value 1.5", file: M1, edits: &[("\\AOp:=ao2, 0.5", "\\AOp:=ao2, 1.5")], says: "the analog value 1.5 is outside 0..1", at: "AOp" },
-    Broken { what: "a wait after a blended motion", file: M1, edits: &[("[7.25,500,5000,1000], fine", "[7.25,500,5000,1000], lmd_z")], says: "WaitTime after a blended motion (duct_m001.mod:12)", at: "WaitTime" },
-    Broken { what: "the laser switched by SetDO in a motion module", file: M1, edits: &[("SetDO do3, 1;", "SetDO do1, 1;")], says: "the laser and its power switch only by TriggIO", at: "SetDO" },
+/// The sample's move to 102 made a TriggL switching the laser on again.
+const ON_AGAIN: &str = "    TriggIO lmd_on_end, 0 \\DOp:=do1, 1;\n    TriggL [[102";
+/// A move home at the end of a motion module.
+const HOME_AGAIN: &str =
+    "    MoveAbsJ lmd_home \\NoEOffs, v200, fine, lmd_tool \\WObj:=lmd_wobj;\n  ENDPROC";
+
+const BROKEN: [Broken; 21] = [
+    Broken {
+        what: "an exponent",
+        file: M1,
+        edits: &[("[[101,0,0.5]", "[[1.01E+02,0,0.5]")],
+        says: "`1.01E+02` is not a plain decimal",
+        at: "1.01E+02",
+    },
+    Broken {
+        what: "9E+09 in a position",
+        file: M1,
+        edits: &[("[[100,0,20]", "[[100,0,9E+09]")],
+        says: "`9E+09` is not a plain decimal",
+        at: "[100,0,9E+09]",
+    },
+    Broken {
+        what: "NaN",
+        file: M1,
+        edits: &[("[[102,0,0.5]", "[[102,0,NaN]")],
+        says: "`NaN`: NaN and inf are not numbers",
+        at: "NaN",
+    },
+    Broken {
+        what: "a name of 33 characters",
+        file: ALL,
+        edits: &[("lmd_v1", LONG)],
+        says: "has 33 characters, more than 32",
+        at: "CONST speeddata lmd_v1_a",
+    },
+    Broken {
+        what: "a reserved word",
+        file: ALL,
+        edits: &[("lmd_z", "ENDIF")],
+        says: "`ENDIF` is a RAPID reserved word",
+        at: "CONST zonedata",
+    },
+    Broken {
+        what: "an unnormalised quaternion",
+        file: M1,
+        edits: &[("[[101,0,0.5],[0,0,1,0]", "[[101,0,0.5],[0,0,1.0001,0]")],
+        says: "has norm 1.0001",
+        at: "1.0001",
+    },
+    Broken {
+        what: "a trigger not used",
+        file: M1,
+        edits: &[("lmd_on \\T2:=lmd_power", "lmd_on")],
+        says: "TriggIO lmd_power is not used by the TriggL",
+        at: "TriggIO lmd_power",
+    },
+    Broken {
+        what: "a redundant laser switch",
+        file: M1,
+        edits: &[
+            ("    MoveL [[102", ON_AGAIN),
+            ("lmd_v1, lmd_z,", "lmd_v1, lmd_on_end, lmd_z,"),
+        ],
+        says: "TriggIO lmd_on_end switches the laser on, and it is on already",
+        at: "TriggIO lmd_on_end",
+    },
+    Broken {
+        what: "a trigger named for another switch",
+        file: M1,
+        edits: &[("TriggIO lmd_power, 0 \\Start", "TriggIO lmd_power, 0")],
+        says: "where its move ends, is lmd_power_end, not lmd_power",
+        at: "TriggIO lmd_power",
+    },
+    Broken {
+        what: "a switch at the start after a blended motion",
+        file: M1,
+        edits: &[("lmd_v2, fine", "lmd_v2, lmd_z")],
+        says: "the move before (duct_m001.mod:5) is blended",
+        at: "TriggL [[101",
+    },
+    Broken {
+        what: "an undeclared speeddata",
+        file: M1,
+        edits: &[("lmd_v2", "lmd_v3")],
+        says: "`lmd_v3` is not declared (want a speeddata)",
+        at: "lmd_v3",
+    },
+    Broken {
+        what: "v200 on a linear move",
+        file: M1,
+        edits: &[("lmd_v2, fine", "v200, fine")],
+        says: "`v200` is not declared (want a speeddata)",
+        at: "[[100,0,0.5]",
+    },
+    Broken {
+        what: "a speeddata unlike ABB's",
+        file: M1,
+        edits: &[("[7.25,500,5000,1000]", "[7.25,500,5000,100]")],
+        says: "a speeddata is [v_tcp,500,5000,1000]",
+        at: "7.25",
+    },
+    Broken {
+        what: "MoveAbsJ in a motion module",
+        file: M1,
+        edits: &[("  ENDPROC", HOME_AGAIN)],
+        says: "MoveAbsJ in the motion module duct_m001",
+        at: "MoveAbsJ",
+    },
+    Broken {
+        what: "a wrong module name",
+        file: M1,
+        edits: &[("MODULE duct_m001", "MODULE duct_m01")],
+        says: "the file duct_m001.mod holds `MODULE duct_m01`",
+        at: "MODULE duct_m01",
+    },
+    Broken {
+        what: "cfx 8",
+        file: M1,
+        edits: &[(
+            "[[100,0,20],[0,0,1,0],[0,0,-1,0]",
+            "[[100,0,20],[0,0,1,0],[0,0,-1,8]",
+        )],
+        says: "cfx 8 outside 0..7",
+        at: "MoveJ",
+    },
+    Broken {
+        what: "a configuration without an arm",
+        file: MAIN,
+        edits: &[("ConfJ \\On", "ConfJ \\Off")],
+        says: "under ConfJ \\Off (no arm declared) the confdata is [0,0,0,0]",
+        at: "duct_m001.mod|MoveJ",
+    },
+    Broken {
+        what: "an analog value 1.5",
+        file: M1,
+        edits: &[("\\AOp:=ao2, 0.5", "\\AOp:=ao2, 1.5")],
+        says: "the analog value 1.5 is outside 0..1",
+        at: "AOp",
+    },
+    Broken {
+        what: "a wait after a blended motion",
+        file: M1,
+        edits: &[("[7.25,500,5000,1000], fine", "[7.25,500,5000,1000], lmd_z")],
+        says: "WaitTime after a blended motion (duct_m001.mod:12)",
+        at: "WaitTime",
+    },
+    Broken {
+        what: "a layer comment out of order",
+        file: M1,
+        edits: &[("! layer 1 of 12", "! layer 2 of 12")],
+        says: "`layer 2 of 12` after layer 0 of 0",
+        at: "! layer",
+    },
+    Broken {
+        what: "the laser switched by SetDO in a motion module",
+        file: M1,
+        edits: &[("SetDO do3, 1;", "SetDO do1, 1;")],
+        says: "the laser and its power switch only by TriggIO",
+        at: "SetDO",
+    },
 ];
 
 #[test]

@@ -232,6 +232,7 @@ pub fn run(files: &Files, main: &str, laser: u16, power: u16) -> Result<Trace, S
         pending: Vec::new(),
         stopped: true,
         module: String::new(),
+        layer: (0, 0),
     };
     for (name, d) in &data {
         if let Value::Speed(v) = d.value {
@@ -304,7 +305,8 @@ struct Instr {
 
 #[derive(Debug)]
 enum Line {
-    Note(String),
+    /// A whole-line comment: its line and text.
+    Note(usize, String),
     Instr(Instr),
 }
 
@@ -414,7 +416,7 @@ fn routine(p: Pair<Rule>) -> Routine {
         match (k, q.as_rule()) {
             (0, _) => r.keyword = q.as_str().to_string(),
             (1, _) => r.name = q.as_str().to_string(),
-            (_, Rule::note) => r.body.push(Line::Note(q.as_str().to_string())),
+            (_, Rule::note) => r.body.push(Line::Note(line_of(&q), q.as_str().to_string())),
             (_, Rule::instr) => r.body.push(Line::Instr(instr(q))),
             _ => {}
         }
@@ -612,6 +614,17 @@ fn check_name(n: &str, line: usize) -> R<()> {
         return err(line, format!("`{n}` is a RAPID reserved word"));
     }
     Ok(())
+}
+
+/// `! layer N of M: …`: N and M.
+fn layer_note(text: &str) -> Option<(usize, usize)> {
+    let rest = text
+        .strip_prefix('!')?
+        .trim_start()
+        .strip_prefix("layer ")?;
+    let (n, rest) = rest.split_once(" of ")?;
+    let (of, _) = rest.split_once(':')?;
+    Some((n.parse().ok()?, of.parse().ok()?))
 }
 
 /// A signal `<prefix><n>` (`do1`, `ao2`).
@@ -1061,6 +1074,8 @@ struct State<'a> {
     stopped: bool,
     /// The module running.
     module: String,
+    /// The last `! layer N of M` comment's N and M.
+    layer: (usize, usize),
 }
 
 impl<'a> State<'a> {
@@ -1072,16 +1087,7 @@ impl<'a> State<'a> {
         let saved = std::mem::replace(&mut self.module, m.name.clone());
         for l in &r.body {
             match l {
-                Line::Note(text) => {
-                    if text
-                        .trim_start_matches('!')
-                        .trim_start()
-                        .starts_with("layer ")
-                    {
-                        let n = self.trace.motions.len();
-                        self.trace.layers.push((n, text.clone()));
-                    }
-                }
+                Line::Note(line, text) => self.note(*line, text).map_err(|e| e.at(&m.file))?,
                 Line::Instr(i) => self.instr(i).map_err(|e| e.at(&m.file))?,
             }
         }
@@ -1093,6 +1099,28 @@ impl<'a> State<'a> {
             return Err(E::At(t.line, e).at(&m.file));
         }
         self.module = saved;
+        Ok(())
+    }
+
+    /// A whole-line comment: `! layer N of M: …` numbers the layers 1, 2, …
+    /// of one M.
+    fn note(&mut self, line: usize, text: &str) -> R<()> {
+        let Some((n, of)) = layer_note(text) else {
+            return Ok(());
+        };
+        let (last, total) = self.layer;
+        if n != last + 1 || (last > 0 && of != total) || n > of {
+            return err(
+                line,
+                format!(
+                    "`layer {n} of {of}` after layer {last} of {total}: the layer comments \
+                     number the layers 1, 2, … of one total"
+                ),
+            );
+        }
+        self.layer = (n, of);
+        let motions = self.trace.motions.len();
+        self.trace.layers.push((motions, text.to_string()));
         Ok(())
     }
 
