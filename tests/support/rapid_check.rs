@@ -15,18 +15,24 @@
 //! data; numbers are plain decimals (an exponent only as `9E+09`, "no axis",
 //! in external axes), to the doc's decimals; names have at most 32
 //! characters, a letter first, and are no RAPID reserved word; data is
-//! declared (with the storage class the doc gives its type) before any
-//! routine and is of the type its use wants; quaternions have norm 1 within
-//! 1e-5; confdata are integers with cfx 0..7, `[0,0,0,0]` under `ConfL \Off`;
-//! speeddata speeds are above zero; analog values 0..1; signals are
+//! declared (with the storage class the doc gives its type, `lmd_` names)
+//! before any routine and is of the type its use wants; quaternions have
+//! norm 1 within 1e-5; confdata are integers with cfx 0..7, `[0,0,0,0]`
+//! under `ConfJ \Off` (no arm); speeddata are `[v_tcp,500,5000,1000]` with
+//! v_tcp > 0, at most 50 declared, ABB's `v<n>` only for the joint moves, in
+//! place only for the linear ones; analog values 0..1; signals are
 //! `do<n>`/`ao<n>`, the laser's and its power's only switched by `TriggIO`
-//! in the motion modules (the main routine may only switch them off); a
-//! `TriggL`'s triggers are set by `TriggIO`s since the previous motion and
-//! every `TriggIO` is used by the `TriggL` right after it; a trigger that
-//! switches the laser to the state it has is refused; `MoveAbsJ` only in
-//! main, `MoveJ` only as the move from home; other outputs and dwells only
-//! where the robot stands, with the laser off; a wait never follows a blended
-//! motion.
+//! in the motion modules (the main routine may only switch them off); the
+//! triggers are `lmd_on`/`lmd_off`/`lmd_power` with `\Start` and their
+//! `_end` twins without, distance 0; a `TriggL`'s triggers are set by
+//! `TriggIO`s since the previous motion and every `TriggIO` is used by the
+//! `TriggL` right after it; a trigger that switches the laser to the state
+//! it has is refused, and one that switches it where its move starts
+//! follows a fine point; `MoveAbsJ` only in main, `MoveJ` only as the move
+//! from home; other outputs and dwells only where the robot stands, with the
+//! laser off, in a motion module with a comment; a wait never follows a
+//! blended motion; `! layer N of M` comments number the layers 1, 2, …;
+//! every module is called.
 //!
 //! Stricter than RobotStudio/RobotWare: it reads only the subset (these
 //! instructions, argument forms, data types and storage classes; keywords in
