@@ -333,7 +333,7 @@ codes! {
     TransitionSpeed = "transition-speed", Machines,
         "a ring's transition, run at the loop's top speed, moves faster than a machine's `max_speed` (`v / cos γ`, γ its climb); names the clamp, transition angle or `max_speed` that would fit";
     LoopDialect = "loop-dialect", Machines,
-        "a height loop to run on a machine whose programs cannot (a G-code dialect other than LinuxCNC); `run = schedule` writes an open-loop speed schedule instead";
+        "a height loop to run on a machine whose programs cannot (a G-code dialect other than LinuxCNC, an ABB robot); `run = schedule` writes an open-loop speed schedule instead";
     LoopTiming = "loop-timing", Machines,
         "on a robot, a ring segment's update (a trigger `height_delay` after its end) could land after the advance run has read the values it sets: too few segments or moves between them";
     HeightSensor = "height-sensor", Machines,

@@ -115,6 +115,7 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
             out.push(says::loop_dialect(
                 name,
                 &c.dialect.profile,
+                "dialect",
                 origin.at(MachineField::Dialect),
                 o.run,
             ));
@@ -123,7 +124,7 @@ fn check_machine(p: &Program, m: &Machine, origin: &MachineOrigin, out: &mut Dia
     if let Machine::Robot(rb) = m {
         if rb.controller == crate::ir::Controller::Abb {
             let at = origin.at(MachineField::Controller);
-            out.push(says::loop_dialect(name, &"ABB RAPID", at, o.run));
+            out.push(says::loop_dialect(name, &"ABB", "controller", at, o.run));
         }
         if rb.positioner.is_some() {
             let at = origin.at(MachineField::Positioner);

@@ -562,3 +562,56 @@ fn main_context(
     ctx.insert("deposits", &s.deposits);
     ctx.insert("laser_starts", &s.laser_ons);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    /// The quaternion turns vectors as the matrix does, and one
+    /// orientation is written one way whatever sign nalgebra gives.
+    #[test]
+    fn quaternions_turn_as_the_matrix_and_lead_positive() {
+        for (axis, deg) in [
+            (Vector3::x(), 180.0),
+            (Vector3::y(), 180.0),
+            (Vector3::new(1.0, 2.0, -0.5), 250.0),
+            (Vector3::z(), -90.0),
+        ] {
+            let r = Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), f64::to_radians(deg));
+            let q = quaternion(r.matrix());
+            let uq = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[0], q[1], q[2], q[3]));
+            let v = Vector3::new(0.3, -0.7, 0.2);
+            assert!((uq * v - r * v).norm() < 1e-12, "{axis:?} {deg}");
+            let lead = q.iter().find(|c| c.abs() >= 5e-7).unwrap();
+            assert!(*lead > 0.0, "{q:?}");
+            assert!((q.iter().map(|c| c * c).sum::<f64>() - 1.0).abs() < 1e-12);
+        }
+        // Straight down with the tool's X along the base's: a half turn about X.
+        let down = Matrix3::new(1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0, 0.0, -1.0);
+        assert_eq!(quaternion(&down).map(|c| trimmed(c, 6)), ["0", "1", "0", "0"]);
+    }
+
+    /// The first fifty speeds are named in the order used, a speed used
+    /// again keeps its name, the fifty-first is written in place.
+    #[test]
+    fn fifty_speeds_are_named_and_the_rest_written_in_place() {
+        let mut s = Speeds::default();
+        assert_eq!(s.text(8.0), "lmd_v1");
+        assert_eq!(s.text(250.0), "lmd_v2");
+        assert_eq!(s.text(8.0004), "lmd_v1", "the same as written");
+        for i in 0..48 {
+            assert_eq!(s.text(10.0 + i as f64), format!("lmd_v{}", i + 3));
+        }
+        assert_eq!(s.text(7.25), "[7.25,500,5000,1000]");
+        assert_eq!(s.text(250.0), "lmd_v2");
+        assert_eq!(s.list.len(), NAMED_SPEEDS);
+    }
+
+    /// The zone follows ABB's z-zones: `z1`'s numbers at 1 mm.
+    #[test]
+    fn the_zone_is_shaped_like_abbs() {
+        assert_eq!(zone_text(1.0), "[FALSE,1,1,1,0.1,1,0.1]");
+        assert_eq!(zone_text(0.2), "[FALSE,0.2,0.2,0.2,0.02,0.2,0.02]");
+    }
+}

@@ -39,7 +39,7 @@ pub static KIND: Field = Field::new(
     "kind",
     Word(&["robot", "cnc"]),
     Required("robot"),
-    "which controller the programs are for: a KUKA robot (KRL) or a CNC (G-code)",
+    "which controller the programs are for: a robot (KRL for KUKA, RAPID for ABB: `controller`) or a CNC (G-code)",
 );
 
 /// The highest speed, either kind.
@@ -47,7 +47,7 @@ pub static MAX_SPEED: Field = Field::new(
     "max_speed",
     Quantity(Dim::SPEED, Positive),
     Required("250 mm/s"),
-    "the highest path speed, which rapid moves run at (a robot's within what KUKA's $VEL.CP takes)",
+    "the highest path speed, which rapid moves run at (a robot's within what KUKA's $VEL.CP takes, 3000 mm/s; an ABB robot's up to v7000)",
 );
 
 /// The back-off between paths, either kind.
@@ -168,7 +168,7 @@ pub static LASER: Field = Field::new(
     "laser",
     Count(1, 4096),
     Required("1"),
-    "the digital output `$OUT[n]` that switches the laser",
+    "the digital output `$OUT[n]` (ABB: `do<n>`) that switches the laser",
 );
 
 /// `power_output = 1`.
@@ -176,7 +176,7 @@ pub static POWER_OUTPUT: Field = Field::new(
     "power_output",
     Count(1, 32),
     Required("1"),
-    "the analog output `$ANOUT[n]` that sets the power",
+    "the analog output `$ANOUT[n]` (ABB: `ao<n>`) that sets the power",
 );
 
 /// `full_scale = 4000 W`.

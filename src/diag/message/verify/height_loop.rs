@@ -64,15 +64,22 @@ pub fn loop_finding(f: &Finding, o: &LoopFields) -> Diagnostic {
     }
 }
 
-/// A closed loop asked of a G-code dialect that cannot run one.
-pub fn loop_dialect(name: &str, profile: &dyn Display, dialect: Span, run: Span) -> Diagnostic {
+/// A closed loop asked of a G-code dialect or a robot controller
+/// (`what`: `dialect`, `controller`) that cannot run one.
+pub fn loop_dialect(
+    name: &str,
+    profile: &dyn Display,
+    what: &str,
+    dialect: Span,
+    run: Span,
+) -> Diagnostic {
     Diagnostic::error(
         Code::LoopDialect,
         format!(
-            "the height loop is to run on machine `{name}`, and a closed loop is not supported on the {profile} dialect"
+            "the height loop is to run on machine `{name}`, and a closed loop is not supported on the {profile} {what}"
         ),
     )
-    .label(dialect, "dialect")
+    .label(dialect, what.to_string())
     .label(run, "the loop runs on the machine")
     .help("`run = schedule` writes an open-loop speed schedule (the loop run against the declared plant) that every dialect runs; a closed loop runs on LinuxCNC and KUKA robots")
 }
