@@ -307,3 +307,42 @@ fn examples_on_abb_robots_follow_their_ir() {
     }
     assert!(robots >= 10, "{robots} examples compile for an ABB robot");
 }
+
+/// The golden RAPID of tests/cases/rapid/ (what the writer is held to)
+/// passes the reader and follows its IR.
+#[test]
+fn the_golden_cases_pass_the_reader_and_follow_their_ir() {
+    let mut cases = 0;
+    for dir in std::fs::read_dir("tests/cases/rapid").unwrap() {
+        let dir = dir.unwrap().path();
+        let input = dir.join("input.lmd");
+        let src = std::fs::read_to_string(&input).unwrap();
+        let compiled = crate::support::example::compile_file(&input, &src);
+        let p = compiled
+            .program
+            .unwrap_or_else(|| panic!("{} compiles", input.display()));
+        let mut files = Files::new();
+        for f in std::fs::read_dir(&dir).unwrap() {
+            let f = f.unwrap().path();
+            if f.extension().is_some_and(|e| e == "mod") {
+                let name = f.file_name().unwrap().to_string_lossy().into_owned();
+                files.insert(name, std::fs::read_to_string(&f).unwrap());
+            }
+        }
+        let (i, r) = p
+            .ir()
+            .machines
+            .iter()
+            .enumerate()
+            .find_map(|(i, m)| match m {
+                Machine::Robot(r) if r.controller == Controller::Abb => Some((i, r)),
+                _ => None,
+            })
+            .expect("an ABB robot");
+        let trace = rapid::run(&files, &main_name(&files), r.laser_out, r.power_out)
+            .unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+        assert_follows(&p, i, &trace);
+        cases += 1;
+    }
+    assert!(cases >= 2, "{cases} RAPID cases");
+}
