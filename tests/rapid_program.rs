@@ -346,3 +346,47 @@ fn the_golden_cases_pass_the_reader_and_follow_their_ir() {
     }
     assert!(cases >= 2, "{cases} RAPID cases");
 }
+
+/// An emitted program broken the ways a writer could break it is refused
+/// by the reader, naming the problem.
+#[test]
+fn an_emitted_program_broken_is_refused() {
+    let p = planar_robot(fixture::robot());
+    let r = robot(&p, 0);
+    let files = robot_files(&p, 0);
+    let main = main_name(&files);
+    let m1 = format!("{main}_m001.mod");
+    let main_file = format!("{main}.mod");
+    // (file, the first line holding this is dropped or edited, into, says)
+    let cases: [(&str, &str, Option<(&str, &str)>, &str); 4] = [
+        (&m1, "TriggIO lmd_on,", None, "which no TriggIO set"),
+        (&main_file, "ConfJ", None, "main sets ConfJ and ConfL"),
+        (&main_file, "WaitRob", None, "a WaitRob \\InPos comes first"),
+        (
+            &m1,
+            "MoveL [",
+            Some(("9E+09", "9.0E+09")),
+            "not a plain decimal",
+        ),
+    ];
+    for (file, holding, edit, says) in cases {
+        let mut broken = files.clone();
+        let text = &broken[file];
+        let k = text.lines().position(|l| l.contains(holding));
+        let k = k.unwrap_or_else(|| panic!("{file} has no line holding `{holding}`"));
+        let lines: Vec<String> = text
+            .lines()
+            .enumerate()
+            .filter_map(|(i, l)| match (i == k, edit) {
+                (false, _) => Some(l.to_string()),
+                (true, None) => None,
+                (true, Some((a, b))) => Some(l.replacen(a, b, 1)),
+            })
+            .collect();
+        broken.insert(file.to_string(), lines.join("\n") + "\n");
+        let e = rapid::run(&broken, &main, r.laser_out, r.power_out)
+            .err()
+            .unwrap_or_else(|| panic!("`{holding}` in {file} broken, accepted"));
+        assert!(e.contains(says), "`{holding}` in {file}: {e}");
+    }
+}
