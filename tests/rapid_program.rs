@@ -358,7 +358,8 @@ fn an_emitted_program_broken_is_refused() {
     let m1 = format!("{main}_m001.mod");
     let main_file = format!("{main}.mod");
     // (file, the first line holding this is dropped or edited, into, says)
-    let cases: [(&str, &str, Option<(&str, &str)>, &str); 4] = [
+    type Case<'a> = (&'a str, &'a str, Option<(&'a str, &'a str)>, &'a str);
+    let cases: [Case; 4] = [
         (&m1, "TriggIO lmd_on,", None, "which no TriggIO set"),
         (&main_file, "ConfJ", None, "main sets ConfJ and ConfL"),
         (&main_file, "WaitRob", None, "a WaitRob \\InPos comes first"),
