@@ -37,10 +37,14 @@ const fn j(xyz: [f64; 3], axis: [f64; 3], limit: [f64; 2], speed: f64) -> Joint 
 const Z_DOWN: [f64; 3] = [0.0, 0.0, -1.0];
 const Y: [f64; 3] = [0.0, 1.0, 0.0];
 const X_BACK: [f64; 3] = [-1.0, 0.0, 0.0];
+const Z: [f64; 3] = [0.0, 0.0, 1.0];
+const X: [f64; 3] = [1.0, 0.0, 0.0];
 
 /// Each catalogue arm's URDF, as ros-industrial/kuka_experimental writes it
 /// (`<joint_a1…a6>`: origin, axis, `<limit lower upper velocity>` in deg and
-/// deg/s; then `tool0` at `xyz`, turned `rpy = 0 90° 0` from `link_6`).
+/// deg/s; then `tool0` at `xyz`, turned `rpy = 0 90° 0` from `link_6`), or
+/// ros-industrial/abb_experimental (`<joint_1…6>`, likewise; `tool0` turned
+/// `rpy = 0 90° 0` from `flange`, which is `link_6`).
 fn urdf(key: &str) -> ([Joint; 6], [f64; 3]) {
     match key {
         // kuka_kr6_support/urdf/kr6r900_2_macro.xacro
@@ -91,9 +95,76 @@ fn urdf(key: &str) -> ([Joint; 6], [f64; 3]) {
             ],
             [0.0; 3],
         ),
+        _ => abb_urdf(key),
+    }
+}
+
+/// The ABB arms' URDFs (ros-industrial/abb_experimental, commit 20b9cf8),
+/// limits and speeds in deg and deg/s as written (`${radians(…)}`) or, where
+/// written in rad to three decimals, the degrees they round
+/// ([`URDF_RAD_DEG`]).
+fn abb_urdf(key: &str) -> ([Joint; 6], [f64; 3]) {
+    match key {
+        // abb_irb2600_support/urdf/irb2600_12_165_macro.xacro (rad: ±3.14159,
+        // −2.705…1.658, −2.705…1.309, ±6.981, ±2.094, ±6.981; 3.054, 6.283, 8.727)
+        "irb2600_12_165" => (
+            [
+                j([0.0, 0.0, 0.445], Z, [-180.0, 180.0], 175.0),
+                j([0.15, 0.0, 0.0], Y, [-155.0, 95.0], 175.0),
+                j([0.0, 0.0, 0.7], Y, [-155.0, 75.0], 175.0),
+                j([0.0, 0.0, 0.115], X, [-400.0, 400.0], 360.0),
+                j([0.795, 0.0, 0.0], Y, [-120.0, 120.0], 360.0),
+                j([0.085, 0.0, 0.0], X, [-400.0, 400.0], 500.0),
+            ],
+            [0.0; 3],
+        ),
+        // abb_irb4600_support/urdf/irb4600_60_205_macro.xacro (rad: ±3.141,
+        // −1.570…2.617, −3.141…1.308, ±6.981, −2.181…2.094, ±6.981;
+        // 3.054, 4.363, 6.283)
+        "irb4600_60_205" => (
+            [
+                j([0.0, 0.0, 0.495], Z, [-180.0, 180.0], 175.0),
+                j([0.175, 0.0, 0.0], Y, [-90.0, 150.0], 175.0),
+                j([0.0, 0.0, 0.9], Y, [-180.0, 75.0], 175.0),
+                j([0.0, 0.0, 0.175], X, [-400.0, 400.0], 250.0),
+                j([0.960, 0.0, 0.0], Y, [-125.0, 120.0], 250.0),
+                j([0.135, 0.0, 0.0], X, [-400.0, 400.0], 360.0),
+            ],
+            [0.0; 3],
+        ),
+        // abb_irb4600_support/urdf/irb4600_40_255_macro.xacro
+        "irb4600_40_255" => (
+            [
+                j([0.0, 0.0, 0.495], Z, [-180.0, 180.0], 175.0),
+                j([0.175, 0.0, 0.0], Y, [-90.0, 150.0], 175.0),
+                j([0.0, 0.0, 1.095], Y, [-180.0, 75.0], 175.0),
+                j([0.0, 0.0, 0.175], X, [-400.0, 400.0], 250.0),
+                j([1.270, 0.0, 0.0], Y, [-125.0, 120.0], 250.0),
+                j([0.135, 0.0, 0.0], X, [-400.0, 400.0], 360.0),
+            ],
+            [0.0; 3],
+        ),
+        // abb_irb6700_support/urdf/irb6700_200_260_macro.xacro (speeds as
+        // ABB's product specification, abb_experimental#124)
+        "irb6700_200_260" => (
+            [
+                j([0.0, 0.0, 0.78], Z, [-170.0, 170.0], 110.0),
+                j([0.32, 0.0, 0.0], Y, [-65.0, 85.0], 110.0),
+                j([0.0, 0.0, 1.125], Y, [-180.0, 70.0], 110.0),
+                j([0.0, 0.0, 0.2], X, [-300.0, 300.0], 190.0),
+                j([1.1425, 0.0, 0.0], Y, [-130.0, 130.0], 150.0),
+                j([0.2, 0.0, 0.0], X, [-360.0, 360.0], 210.0),
+            ],
+            [0.0; 3],
+        ),
         _ => panic!("no URDF for {key}"),
     }
 }
+
+/// The URDFs written in rad to three decimals (IRB 2600, IRB 4600-60/2.05)
+/// give each limit and speed within this of the whole degrees the
+/// catalogue takes (the most: 4600-60/2.05's A2 2.617 rad, 149.943°), deg.
+const URDF_RAD_DEG: f64 = 0.06;
 
 /// The flange (`tool0`) by the URDF's chain at axis angles `q` (deg), mm.
 fn urdf_flange(key: &str, q: &[f64; 6]) -> Isometry3<f64> {
@@ -138,13 +209,60 @@ fn catalogue_limits_and_speeds_are_the_urdfs() {
     }
 }
 
-/// The two arms rs-opw-kinematics ships from the same ROS-Industrial files.
+/// The URDFs written in rad: each number within [`URDF_RAD_DEG`] of the
+/// degrees the catalogue and the table above take.
+#[test]
+// The URDFs' own numbers (3.14159, 6.283 …), not approximations of π to fix.
+#[allow(clippy::approx_constant)]
+fn urdf_radians_round_to_the_catalogues_degrees() {
+    for (key, rad) in [
+        (
+            "irb2600_12_165",
+            [
+                [-3.14159, 3.14159, 3.054],
+                [-2.705, 1.658, 3.054],
+                [-2.705, 1.309, 3.054],
+                [-6.981, 6.981, 6.283],
+                [-2.094, 2.094, 6.283],
+                [-6.981, 6.981, 8.727],
+            ],
+        ),
+        (
+            "irb4600_60_205",
+            [
+                [-3.141, 3.141, 3.054],
+                [-1.570, 2.617, 3.054],
+                [-3.141, 1.308, 3.054],
+                [-6.981, 6.981, 4.363],
+                [-2.181, 2.094, 4.363],
+                [-6.981, 6.981, 6.283],
+            ],
+        ),
+    ] {
+        let m = lmdc::target::arm::model(key).unwrap();
+        for (i, [lo, hi, v]) in rad.iter().enumerate() {
+            let near = |deg: f64, r: f64| (deg - r.to_degrees()).abs() < URDF_RAD_DEG;
+            assert!(
+                near(m.limits[i][0], *lo) && near(m.limits[i][1], *hi),
+                "{key} A{}",
+                i + 1
+            );
+            assert!(near(m.speeds[i], *v), "{key} A{}", i + 1);
+        }
+    }
+}
+
+/// The arms rs-opw-kinematics ships from the same ROS-Industrial files (its
+/// ABB sets in ABB's convention, as `irb2400_10` has it).
 #[test]
 fn catalogue_opw_sets_are_the_crates() {
     use rs_opw_kinematics::parameters::opw_kinematics::Parameters;
     for (key, p) in [
         ("kr6_r900_2", Parameters::kuka_kr6_r900_2()),
         ("kr150_r3100_2", Parameters::kuka_kr150_r3100_2()),
+        ("irb2600_12_165", Parameters::irb2600_12_165()),
+        ("irb4600_60_205", Parameters::irb4600_60_205()),
+        ("irb4600_40_255", Parameters::irb4600_40_255()),
     ] {
         let a = arm_of(lmdc::target::arm::model(key).unwrap());
         let theirs = [p.a1, p.a2, p.b, p.c1, p.c2, p.c3, p.c4].map(|x| x * 1000.0);
@@ -156,6 +274,35 @@ fn catalogue_opw_sets_are_the_crates() {
             assert!((o.to_radians() - t).abs() < 1e-12, "{key}");
         }
     }
+}
+
+/// The IRB 4600-60/2.05 at its calibration position (every axis 0) puts
+/// the axes where a calibration study outside ROS-Industrial does
+/// (Ssz990220/Kinematic_Param_Calibration, `init_kine_param.m`: the axes'
+/// points 175/495, 175/1395, 175/1570, 1135/1570, 1270/1570 mm, x/z): the
+/// wrist centre 1135 mm ahead and 1570 mm up, the flange 1270 mm ahead,
+/// facing forward.
+#[test]
+fn irb4600_at_zero_is_where_a_second_source_has_it() {
+    let m = lmdc::target::arm::model("irb4600_60_205").unwrap();
+    let s = Solver::with(arm_of(m), Isometry3::identity(), Isometry3::identity());
+    let p = s.joint_points(&[0.0; 6]);
+    for (got, want) in [
+        (p[1], [175.0, 495.0]),
+        (p[2], [175.0, 1395.0]),
+        (p[3], [175.0, 1570.0]),
+        (p[4], [1135.0, 1570.0]),
+        (p[5], [1270.0, 1570.0]),
+    ] {
+        assert!(
+            (got[0] - want[0]).abs() < 1e-6
+                && got[1].abs() < 1e-6
+                && (got[2] - want[1]).abs() < 1e-6,
+            "{got:?} vs {want:?}"
+        );
+    }
+    let z = s.forward_flange(&[0.0; 6]).rotation * Vector3::z();
+    assert!((z - Vector3::x()).norm() < 1e-9, "{z:?}");
 }
 
 proptest! {

@@ -260,7 +260,7 @@ mod tests {
                 Isometry3::identity(),
             );
             for j in [
-                [0.0, -90.0, 90.0, 0.0, 0.0, 0.0],
+                s.upright(),
                 [30.0, -60.0, 70.0, 40.0, 50.0, -20.0],
                 [-100.0, -120.0, 120.0, -90.0, -40.0, 180.0],
             ] {
@@ -375,7 +375,7 @@ mod tests {
         }
     }
 
-    /// Every catalogue arm at KUKA's home keeps its wrist clear of its
+    /// Every catalogue arm upright (KUKA's home, ABB's zero) keeps its wrist clear of its
     /// upper arm and its column (the non-adjacent pairs checked); folded
     /// (A3 at its upper limit, A5 bent back), the KR 60 HA's wrist comes
     /// within its radius and the upper arm's of the upper arm's axis,
@@ -388,7 +388,7 @@ mod tests {
                 Isometry3::identity(),
                 Isometry3::identity(),
             );
-            let p = s.joint_points(&[0.0, -90.0, 90.0, 0.0, 0.0, 0.0]);
+            let p = s.joint_points(&s.upright());
             let caps = capsules(&p, m.links);
             let wrist = caps[3].1;
             assert!(capsule_capsule(&wrist, &caps[0].1) > 0.0, "{}", m.key);

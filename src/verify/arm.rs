@@ -102,11 +102,11 @@ impl<'p> PlanRule<'p> for ArmRule<'p> {
         };
         self.flush();
         let arm = self.follow.solver().arm();
-        let name = arm
-            .model
-            .as_deref()
-            .and_then(crate::target::arm::model)
-            .map_or("opw(…) arm", |m| m.name);
+        let model = arm.model.as_deref().and_then(crate::target::arm::model);
+        let name = model.map_or("opw(…) arm", |m| m.name);
+        // An `opw(…)` arm is in KUKA's convention.
+        let maker = model.map_or(crate::target::arm::Maker::Kuka, |m| m.maker);
+        let up = (maker, self.follow.solver().upright());
         let at = ArmAt {
             machine: &r.name,
             arm: name,
@@ -116,7 +116,7 @@ impl<'p> PlanRule<'p> for ArmRule<'p> {
         };
         for (i, (h, lim)) in r.home.iter().zip(arm.limits).enumerate() {
             if *h < lim[0] || *h > lim[1] {
-                out.push(msg::home_limit(&at, cx.origin.at(Home), i, *h, lim));
+                out.push(msg::home_limit(&at, cx.origin.at(Home), i, *h, lim, up));
             }
         }
         if let Some(b) = self.quick {

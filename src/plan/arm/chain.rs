@@ -226,7 +226,7 @@ mod tests {
     /// kinematics) solved by a continuing chain and by the closed form
     /// alone; asserts they choose the same, gives how many were continued.
     fn both(s: &Solver, path: &[Joints]) -> u64 {
-        let home = [0.0, -90.0, 90.0, 0.0, 0.0, 0.0];
+        let home = s.upright();
         let (mut fast, mut closed) = (Chain::new(home, true), Chain::new(home, false));
         for j in path {
             let (to, rot) = s.forward(j);
@@ -252,8 +252,9 @@ mod tests {
     fn smooth_paths_are_continued() {
         for m in CATALOGUE {
             let s = solver(m.key, Isometry3::identity());
+            let up = s.upright();
             let path: Vec<Joints> = (0..2000)
-                .map(|k| super::super::tests::winding(k as f64 / 100.0))
+                .map(|k| super::super::tests::winding(&up, k as f64 / 100.0))
                 .collect();
             let continued = both(&s, &path);
             assert!(continued >= 1990, "{}: {continued} of 2000", m.key);
@@ -325,9 +326,12 @@ mod tests {
         ) {
             let base = Isometry3::translation(base_x, 0.0, 0.0);
             let s = solver(CATALOGUE[arm].key, base);
-            let mut j = start;
-            j[1] = j[1].clamp(-140.0, 0.0);
-            j[2] = j[2].clamp(-110.0, 150.0);
+            // The upper arm and the forearm kept as KUKA's A2 −140°…0° and
+            // A3 −110°…150° keep them, in the solver's angles.
+            let mut t = s.theta(&start);
+            t[1] = t[1].clamp(-50.0, 90.0);
+            t[2] = t[2].clamp(-110.0, 150.0);
+            let mut j = s.axes(&t);
             let mut path = Vec::new();
             for d in &dirs {
                 for _ in 0..60 {

@@ -1,13 +1,18 @@
 //! A robot's arm: the tool poses of the plan solved to axis angles A1–A6
 //! with rs-opw-kinematics (closed-form inverse kinematics of an arm with an
-//! ortho-parallel base and a spherical wrist), and what KUKA's controller
-//! calls the solution's configuration (Status and Turn).
+//! ortho-parallel base and a spherical wrist), and what the controllers
+//! call the solution's configuration: KUKA's Status and Turn, ABB's
+//! `confdata` (`abb.rs`).
 //!
 //! Frames, as on the controller: a pose `P` (the laser focus, `X Y Z A B C`
 //! in `$BASE`) is reached with the flange at `BASE · P · TOOL⁻¹` in the
 //! robot's own frame (`$ROBROOT`, taken as `$WORLD`); the solver's `tool0` is
-//! KUKA's `$FLANGE` and its joints are KUKA's axis angles
-//! ([`crate::target::arm`]). Angles here are degrees.
+//! KUKA's `$FLANGE` or ABB's `tool0` and its joints are the controller's
+//! axis angles, in the arm's offsets and signs ([`crate::target::arm`]):
+//! an axis angle is `(θ + offset)·sign` of the solver's OPW angle `θ`.
+//! Nothing here assumes one maker's convention: where an axis's direction
+//! matters (A1's forward, A3's stretch) it is read through the arm's
+//! offsets and signs. Angles here are degrees.
 
 use crate::ir::{Arm, Pose, Robot};
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
@@ -26,12 +31,11 @@ pub struct Solver {
     arm: Arm,
     base: Isometry3<f64>,
     tool_inv: Isometry3<f64>,
-    /// A3's angle where the arm is stretched (the wrist centre farthest
-    /// from A2), deg: KUKA's φ of Status bit 1.
+    /// A3's axis angle where the arm is stretched (the wrist centre
+    /// farthest from A2), deg, with the arm's offset and sign: KUKA's φ of
+    /// Status bit 1, and where the two elbow solutions of a pose meet (and
+    /// 180° on, folded).
     stretch: f64,
-    /// A3 where the two elbow solutions of a pose meet (the arm stretched;
-    /// 180° on, folded), deg, with the arm's offset and sign.
-    elbows_meet: f64,
 }
 
 /// The crate's pose of the flange `f`.
@@ -86,10 +90,9 @@ impl Solver {
         };
         Solver {
             kin: OPWKinematics::new(p),
-            stretch: (-a2).atan2(c3).to_degrees(),
             // The closed form's θ3 = ±t − atan2(a2, c3) on the model; an
             // axis angle is (θ + offset)·sign.
-            elbows_meet: ((-a2).atan2(c3).to_degrees() + arm.offsets[2]) * f64::from(arm.signs[2]),
+            stretch: ((-a2).atan2(c3).to_degrees() + arm.offsets[2]) * f64::from(arm.signs[2]),
             arm,
             base,
             tool_inv: tool.inverse(),
@@ -101,9 +104,42 @@ impl Solver {
         &self.arm
     }
 
-    /// A3's stretch angle, deg.
+    /// A3's stretch angle, deg (an axis angle, in the arm's convention).
     pub fn stretch(&self) -> f64 {
         self.stretch
+    }
+
+    /// The solver's OPW angles `θ` of the axis angles `j`, deg: `j` is
+    /// `(θ + offset)·sign` (a sign is ±1, its own inverse).
+    pub fn theta(&self, j: &Joints) -> [f64; 6] {
+        std::array::from_fn(|i| j[i] * f64::from(self.arm.signs[i]) - self.arm.offsets[i])
+    }
+
+    /// The axis angles of the solver's OPW angles `theta`, deg.
+    pub fn axes(&self, theta: &[f64; 6]) -> Joints {
+        std::array::from_fn(|i| (theta[i] + self.arm.offsets[i]) * f64::from(self.arm.signs[i]))
+    }
+
+    /// The arm upright in its own axis angles ([`crate::target::arm::upright`]):
+    /// KUKA's home, ABB's zero.
+    pub fn upright(&self) -> Joints {
+        crate::target::arm::upright(&self.arm.offsets, &self.arm.signs)
+    }
+
+    /// The direction the arm faces at axis angles `j`: the horizontal unit
+    /// vector from A1's axis towards A2's, in the robot's frame (OPW's A1
+    /// turns about +Z; the arm's sign and offset say how its A1 does).
+    pub fn facing(&self, j: &Joints) -> Vector3<f64> {
+        let t = (j[0] * f64::from(self.arm.signs[0]) - self.arm.offsets[0]).to_radians();
+        Vector3::new(t.cos(), t.sin(), 0.0)
+    }
+
+    /// Whether A3 is at or past its stretch angle, folding the forearm
+    /// forward of the upper arm (OPW's θ3 at or above its stretched value):
+    /// KUKA's Status bit 1, the wrist centre *in front of* the lower arm
+    /// in ABB's `cfx` where the arm is not folded past 180°.
+    pub fn elbow_forward(&self, j: &Joints) -> bool {
+        (j[2] - self.stretch) * f64::from(self.arm.signs[2]) >= 0.0
     }
 
     /// The flange, in the robot's frame, where the tool's focus is at `to`
@@ -216,7 +252,7 @@ impl Solver {
             return 0.0;
         }
         let shoulder = 180.0 - 2.0 * b.abs().atan2(r2.sqrt()).to_degrees();
-        let u = ((j[2] - self.elbows_meet + 180.0).rem_euclid(360.0) - 180.0).abs();
+        let u = ((j[2] - self.stretch + 180.0).rem_euclid(360.0) - 180.0).abs();
         let elbow = 2.0 * u.min(180.0 - u);
         shoulder.min(elbow).min(360.0)
     }
@@ -338,7 +374,11 @@ impl Solver {
     }
 
     /// KUKA's Status of a solution: bit 0 the wrist centre behind A1
-    /// (overhead), bit 1 A3 at or past its stretch angle, bit 2 A5 ≤ 0.
+    /// (overhead), bit 1 A3 at or past its stretch angle
+    /// ([`Self::elbow_forward`]), bit 2 A5 ≤ 0. On an arm of another maker
+    /// it is still what the verifier tells configurations apart by (a LIN
+    /// that changes it changes configuration); ABB's own is
+    /// [`Self::confdata`].
     pub fn status(&self, j: &Joints) -> u8 {
         self.status_at(j, &self.wrist(&self.forward_flange(j)))
     }
@@ -346,10 +386,17 @@ impl Solver {
     /// [`Self::status`] of a solution whose wrist centre is `w` (from
     /// [`Self::solve_at`]: no forward kinematics).
     pub fn status_at(&self, j: &Joints, w: &Vector3<f64>) -> u8 {
-        // A1 turns about −Z: the arm's forward direction at A1 = θ.
-        let t = j[0].to_radians();
-        let ahead = w.x * t.cos() - w.y * t.sin();
-        u8::from(ahead < 0.0) | (u8::from(j[2] >= self.stretch) << 1) | (u8::from(j[4] <= 0.0) << 2)
+        u8::from(self.behind_a1(j, w))
+            | (u8::from(self.elbow_forward(j)) << 1)
+            | (u8::from(j[4] <= 0.0) << 2)
+    }
+
+    /// Whether the wrist centre `w` (robot's frame) of the solution `j` is
+    /// behind A1's axis: on the other side of it from where the arm faces
+    /// ([`Self::facing`]) — KUKA's Status bit 0, ABB's `cfx` bit 2.
+    pub fn behind_a1(&self, j: &Joints, w: &Vector3<f64>) -> bool {
+        let f = self.facing(j);
+        w.x * f.x + w.y * f.y < 0.0
     }
 
     /// KUKA's Turn: bit `i` set where axis `i + 1` is negative.
@@ -378,14 +425,15 @@ mod tests {
         Solver::with(arm, Isometry3::identity(), Isometry3::identity())
     }
 
-    /// At KUKA's home (A2 −90°, A3 90°, the rest 0) the flange faces
-    /// forward: `$POS_ACT` reads `A 0, B 90, C 0`, at the upper arm's top
-    /// plus the forearm and the wrist ahead.
+    /// Upright — KUKA's home (A2 −90°, A3 90°, the rest 0), ABB's zero —
+    /// the flange faces forward: `$POS_ACT` reads `A 0, B 90, C 0`, at the
+    /// upper arm's top plus the forearm and the wrist ahead.
     #[test]
     fn home_faces_forward() {
         for m in CATALOGUE {
             let s = solver(m.key);
-            let f = s.forward_flange(&[0.0, -90.0, 90.0, 0.0, 0.0, 0.0]);
+            assert_eq!(s.upright(), m.upright());
+            let f = s.forward_flange(&s.upright());
             let [a1, a2, _, c1, c2, c3, c4] = s.arm.opw;
             let t = f.translation.vector;
             assert!((t.x - (a1 + c3 + c4)).abs() < 1e-6, "{} x {}", m.key, t.x);
@@ -397,7 +445,7 @@ mod tests {
     }
 
     /// The PTP from home to a tool pointing straight down ahead of the arm:
-    /// from KUKA's home (A4 = A5 = A6 = 0) the wrist reaches it either
+    /// from the upright home (A4 = A5 = A6 = 0) the wrist reaches it either
     /// unflipped (A5 > 0, A6 a half turn, +180° or −180° as near) or
     /// flipped (A5 < 0, A4 a half turn), all four equally near. The rule
     /// takes A5 > 0 and A6 = −180°, whatever order the solver gives.
@@ -405,7 +453,7 @@ mod tests {
     fn the_ptp_from_home_breaks_ties_by_the_stated_rule() {
         for m in CATALOGUE {
             let s = solver(m.key);
-            let home = [0.0, -90.0, 90.0, 0.0, 0.0, 0.0];
+            let home = s.upright();
             let [a1, _, _, c1, c2, c3, c4] = s.arm.opw;
             let to = [a1 + 0.6 * (c3 + c4), 0.0, c1 + 0.3 * c2 - c4];
             // The flange's Z straight down, its X ahead: A6 a half turn from home.
@@ -434,7 +482,9 @@ mod tests {
         for m in CATALOGUE {
             let s = solver(m.key);
             let dist = |a3: f64| {
-                let f = s.forward_flange(&[0.0, -90.0, a3, 0.0, 0.0, 0.0]);
+                let mut j = s.upright();
+                j[2] = a3;
+                let f = s.forward_flange(&j);
                 let w = s.wrist(&f);
                 let [a1, _, _, c1, ..] = s.arm.opw;
                 ((w.x - a1).powi(2) + (w.z - c1).powi(2)).sqrt()
@@ -451,16 +501,18 @@ mod tests {
     }
 
     /// A path of axis angles away from the wrist singularity, A4 and A6
-    /// winding past ±180° as `t` grows (start at 0).
-    pub(super) fn winding(t: f64) -> Joints {
-        [
+    /// winding past ±180° as `t` grows (start at 0), from the arm's upright
+    /// pose `up` ([`Solver::upright`]).
+    pub(super) fn winding(up: &Joints, t: f64) -> Joints {
+        let d = [
             5.0 + t,
-            -80.0 + t,
-            100.0 - t,
+            10.0 + t,
+            10.0 - t,
             170.0 + 3.0 * t,
             40.0,
             170.0 + 4.0 * t,
-        ]
+        ];
+        std::array::from_fn(|i| up[i] + d[i])
     }
 
     /// Picking the nearest of every solution is what solving each from the
@@ -470,10 +522,11 @@ mod tests {
     fn nearest_is_continuing() {
         for m in CATALOGUE {
             let s = solver(m.key);
-            let mut prev = winding(0.0);
+            let up = s.upright();
+            let mut prev = winding(&up, 0.0);
             for k in 0..200 {
                 let t = k as f64 / 20.0;
-                let (to, rot) = s.forward(&winding(t));
+                let (to, rot) = s.forward(&winding(&up, t));
                 let a = Solver::nearest(&s.solutions(&s.flange(to, &rot)), &prev).unwrap();
                 let b = s.solve(to, &rot, &prev)[0];
                 for i in 0..6 {

@@ -333,7 +333,7 @@ mod tests {
             let least = r.least(&Point3::from(f));
             prop_assert!(least <= ring + 1e-6, "bound {least} > {ring}");
             if least > r.span[1] {
-                let home = [0.0, -90.0, 90.0, 0.0, 0.0, 0.0];
+                let home = s.upright();
                 prop_assert!(s.solve(f, &rot, &home).is_empty(), "solved beyond the bound {least}");
             }
         }

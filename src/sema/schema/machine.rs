@@ -806,6 +806,7 @@ pub static MACHINE: Block = Block::new(
     "a machine whose kind is missing or wrong",
     &[
         &KIND,
+        &CONTROLLER,
         &TOOL,
         &LOAD,
         &BASE,

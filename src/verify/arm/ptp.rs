@@ -84,7 +84,7 @@ pub(crate) fn check(
 /// A `home` whose PTPs keep the gap, for the help, and how it was
 /// found ([`HomeFrom`]): the first pose's A1 and wrist with the upper arm
 /// as at `home` and the forearm as there, then raised 30° and 60° more
-/// (A3 less), else the first pose's own axes, rounded to a tenth of a
+/// (A3 less, by its sign), else the first pose's own axes, rounded to a tenth of a
 /// degree — each within the axes' limits and tried on both PTPs with
 /// `links`' checks; `None` where none keeps it.
 pub(crate) fn home_keeping(
@@ -95,7 +95,10 @@ pub(crate) fn home_keeping(
 ) -> Option<(Joints, HomeFrom)> {
     let round = |j: Joints| j.map(|a| (a * 10.0).round() / 10.0);
     let f = first.0;
-    let raised = |up: f64| round([f[0], home.0[1], home.0[2] - up, f[3], f[4], f[5]]);
+    // Raising the forearm is A3 less on KUKA's and ABB's arms, more on an
+    // arm whose A3 turns the other way.
+    let sign3 = f64::from(solver.arm().signs[2]);
+    let raised = |up: f64| round([f[0], home.0[1], home.0[2] - up * sign3, f[3], f[4], f[5]]);
     let limits = solver.arm().limits;
     let margin = solver.arm().margin;
     [

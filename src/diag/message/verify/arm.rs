@@ -133,14 +133,25 @@ pub fn joint_limit(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, margin: 
     .help(format!("{fix}; or lower `joint_margin` if the cell really runs that close"))
 }
 
-/// `home` outside the arm's limits: axis `axis` (0-based) at `value` deg.
+/// `home` outside the arm's limits: axis `axis` (0-based) at `value` deg;
+/// the help suggests the arm's upright pose `up` (its maker's convention:
+/// KUKA's home, ABB's zero) with axis 5 bent 30°.
 pub fn home_limit(
     a: &ArmAt<'_>,
     home: Span,
     axis: usize,
     value: f64,
     range: [f64; 2],
+    (maker, up): (crate::target::arm::Maker, [f64; 6]),
 ) -> Diagnostic {
+    let mut h = up;
+    h[4] = 30.0;
+    // `+ 0.0`: KUKA's A1 of 0° is −0° through its sign.
+    let h: Vec<String> = h.iter().map(|x| format!("{} deg", x + 0.0)).collect();
+    let theirs = match maker {
+        crate::target::arm::Maker::Kuka => "`$H_POS`",
+        crate::target::arm::Maker::Abb => "its home `jointtarget`",
+    };
     Diagnostic::error(
         Code::JointLimit,
         format!(
@@ -155,7 +166,10 @@ pub fn home_limit(
     )
     .label(home, "home declared here")
     .label(a.declared, "the arm declared here")
-    .help("declare the home the robot has on its controller (`$H_POS`), within its limits: e.g. `home = [0 deg, -90 deg, 90 deg, 0 deg, 30 deg, 0 deg]`")
+    .help(format!(
+        "declare the home the robot has on its controller ({theirs}), within its limits: e.g. `home = [{}]`",
+        h.join(", ")
+    ))
 }
 
 /// A LIN within `w.limit` deg of a singularity: the wrist (`wrist`: A5 at
@@ -273,4 +287,40 @@ pub fn joint_speed(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, speed: f
         "lower the path speed there to {} mm/s or less, or keep the path away from the wrist singularity (tilt the nozzle on the flange) where a short move turns the wrist far",
         short(fits)
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::target::arm::Maker;
+
+    /// The home a limit error suggests is the arm's own upright pose in its
+    /// maker's convention, with its maker's name for the home.
+    #[test]
+    fn home_limit_suggests_the_makers_home() {
+        let a = ArmAt {
+            machine: "r",
+            arm: "IRB 4600-60/2.05",
+            declared: Span::new(0, 0),
+            base: Span::new(0, 0),
+            tool: Span::new(0, 0),
+        };
+        let help = |maker, up| {
+            home_limit(&a, Span::new(0, 0), 1, -90.0, [-90.0, 150.0], (maker, up))
+                .help
+                .unwrap()
+        };
+        let abb = help(Maker::Abb, [0.0; 6]);
+        assert!(abb.contains("(its home `jointtarget`)"), "{abb}");
+        assert!(
+            abb.contains("`home = [0 deg, 0 deg, 0 deg, 0 deg, 30 deg, 0 deg]`"),
+            "{abb}"
+        );
+        let kuka = help(Maker::Kuka, [-0.0, -90.0, 90.0, 0.0, 0.0, 0.0]);
+        assert!(kuka.contains("(`$H_POS`)"), "{kuka}");
+        assert!(
+            kuka.contains("`home = [0 deg, -90 deg, 90 deg, 0 deg, 30 deg, 0 deg]`"),
+            "{kuka}"
+        );
+    }
 }
