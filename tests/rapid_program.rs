@@ -272,9 +272,10 @@ fn same_ir_same_bytes() {
     assert_eq!(robot_files(&p, 0), robot_files(&p, 0));
 }
 
-/// The examples' robots made ABB robots, without their (KUKA) arms, checked
-/// and followed: those that compile so (an ABB robot declares its tool,
-/// base and load in full; a height loop is not written in RAPID).
+/// The examples' robots made ABB robots, their KUKA arms an IRB 4600-40/2.55,
+/// checked and followed: those that compile so (an ABB robot declares its
+/// tool, base and load in full; a height loop is not written in RAPID; the
+/// arm reaches the part where the KUKA arm did).
 #[test]
 fn examples_on_abb_robots_follow_their_ir() {
     let mut robots = 0;
@@ -286,8 +287,10 @@ fn examples_on_abb_robots_follow_their_ir() {
         let src: String = src
             .replacen("kind = robot", "kind = robot\n  controller = abb", 1)
             .lines()
-            .filter(|l| !l.trim_start().starts_with("arm ="))
-            .map(|l| format!("{l}\n"))
+            .map(|l| match l.trim_start().starts_with("arm =") {
+                true => "  arm = irb4600_40_255\n".to_string(),
+                false => format!("{l}\n"),
+            })
             .collect();
         let Some(p) = crate::support::example::compile_file(&path, &src).program else {
             continue;
