@@ -51,6 +51,8 @@ mod positioner;
 mod preview;
 mod program_text;
 mod progress;
+mod rapid_oracle;
+mod rapid_program;
 mod reach;
 mod repair;
 mod report;

@@ -16,6 +16,7 @@ pub mod krl_parser;
 pub mod krl_run;
 pub mod m66;
 pub mod png;
+pub mod rapid_check;
 pub mod ring;
 pub mod rs274;
 pub mod schema;
