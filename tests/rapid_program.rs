@@ -394,3 +394,84 @@ fn an_emitted_program_broken_is_refused() {
         assert!(e.contains(says), "`{holding}` in {file}: {e}");
     }
 }
+
+/// An ABB cell drawn at random: an arm of the catalogue, the part placed
+/// in front of it, a tool turned about the beam, blending, leads, module
+/// size.
+#[allow(clippy::too_many_arguments)]
+fn abb_cell(
+    arm: usize,
+    at: [f64; 3],
+    tool_z: f64,
+    spin: f64,
+    blending: Option<f64>,
+    lead: bool,
+    lines: usize,
+) -> Robot {
+    let keys: Vec<&str> = lmdc::target::arm::CATALOGUE
+        .iter()
+        .filter(|m| m.maker == lmdc::target::arm::Maker::Abb)
+        .map(|m| m.key)
+        .collect();
+    let model = lmdc::target::arm::model(keys[arm % keys.len()]).unwrap();
+    let mut r = abb(fixture::robot());
+    r.arm = Some(Box::new(model.arm(2.0, 5.0)));
+    r.home = [0.0, 0.0, 0.0, 0.0, 90.0, 0.0];
+    r.base.value = Some(Pose {
+        x: at[0],
+        y: at[1],
+        z: at[2],
+        ..Pose::default()
+    });
+    r.tool.value = Some(Pose {
+        z: tool_z,
+        ..Pose::default()
+    });
+    r.spin = Spin::Declared { deg: spin };
+    r.blending = blending;
+    if lead {
+        r.acceleration = Some(1000.0);
+        r.ramp = Ramp::Lead;
+    }
+    r.max_points_per_module = lines;
+    r
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+
+    /// Random plans on random ABB cells: every plan the checks accept is
+    /// written as RAPID the reader accepts and that follows its IR move by
+    /// move, home to home; every position's configuration is one the
+    /// reader takes (its form), and `ConfJ` is on for a checked arm.
+    #[test]
+    fn random_plans_on_random_abb_cells_read_back_as_their_ir(
+        arm in 0usize..8,
+        at in (900.0f64..1500.0, -300.0f64..300.0, 0.0f64..500.0),
+        tool_z in 200.0f64..400.0,
+        spin in proptest::sample::select(vec![0.0, 30.0, -90.0]),
+        blending in proptest::option::of(0.1f64..2.0),
+        lead in proptest::bool::ANY,
+        lines in 5usize..60,
+        tube in proptest::bool::ANY,
+        layers in 1usize..5,
+    ) {
+        let r = abb_cell(arm, [at.0, at.1, at.2], tool_z, spin, blending, lead, lines);
+        let machines = vec![Machine::Robot(r)];
+        let program = if tube {
+            fixture::bent_tube(layers + 1, 12, 30.0, machines)
+        } else {
+            planar(layers, machines)
+        };
+        // A cell whose arm cannot build the plan is refused with reasons:
+        // the checks' business (tests/reach.rs and the cases), not this test's.
+        let Ok(p) = lmdc::verify::verify(program, lmdc::verify::Select::All) else {
+            return Ok(());
+        };
+        let (files, trace) = run(&p, 0);
+        assert_follows(&p, 0, &trace);
+        assert_homes(robot(&p, 0), &trace);
+        let main = &files[&format!("{}.mod", main_name(&files))];
+        proptest::prop_assert!(main.contains("ConfJ \\On;"), "{main}");
+    }
+}
