@@ -6,6 +6,7 @@
 use crate::support::krl_check as krl;
 use crate::support::krl_run;
 use crate::support::m66;
+use crate::support::rapid_check as rapid;
 use crate::support::rs274;
 use crate::support::skip;
 
@@ -216,6 +217,29 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
                             from_gcode(text, &c.dialect)
                         }
                     }
+                }
+                Machine::Robot(r) if r.controller == lmdc::ir::Controller::Abb => {
+                    robots += 1;
+                    let files: rapid::Files = sink
+                        .files
+                        .into_iter()
+                        .map(|(n, b)| (n, String::from_utf8(b).unwrap()))
+                        .collect();
+                    let main = files
+                        .keys()
+                        .filter_map(|n| n.strip_suffix(".mod"))
+                        .min_by_key(|n| n.len())
+                        .expect("a main module")
+                        .to_string();
+                    let trace = rapid::run(&files, &main, r.laser_out, r.power_out)
+                        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                    from_motions(
+                        trace
+                            .motions
+                            .iter()
+                            .filter_map(|m| m.pose().map(|t| (m.laser, t.pos))),
+                        trace.laser_at_end,
+                    )
                 }
                 Machine::Robot(r) => {
                     robots += 1;

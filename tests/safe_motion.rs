@@ -205,16 +205,67 @@ fn check_all(what: &str, files: &BTreeMap<String, String>, p: &lmdc::ir::Program
         .keys()
         .filter(|n| n.ends_with(".src") && !is_module(n))
         .collect();
-    let robots = p
-        .machines
-        .iter()
-        .filter(|m| matches!(m, lmdc::ir::Machine::Robot(_)))
-        .count();
-    assert_eq!(mains.len(), robots, "{what}: a main program a robot");
+    let robot = |abb: bool| {
+        p.machines
+            .iter()
+            .filter(|m| {
+                matches!(m, lmdc::ir::Machine::Robot(r) if (r.controller == lmdc::ir::Controller::Abb) == abb)
+            })
+            .count()
+    };
+    assert_eq!(mains.len(), robot(false), "{what}: a main program a robot");
+    check_rapid(what, files, robot(true));
     for main in mains {
         // A positioner's programs couple the base to it.
         let ext = files[main].contains("$ACT_EX_AX");
         check_krl(files, main, ext);
+    }
+}
+
+/// Rule 1 on an ABB robot's RAPID (`abb` of them): `main` goes home
+/// (`MoveAbsJ`) first and last, and the motion modules leave home once,
+/// by the `MoveJ` that is their first motion.
+fn check_rapid(what: &str, files: &BTreeMap<String, String>, abb: usize) {
+    let stems: Vec<&str> = files
+        .keys()
+        .filter_map(|n| n.strip_suffix(".mod"))
+        .collect();
+    let mains: Vec<&str> = stems
+        .iter()
+        .copied()
+        .filter(|s| {
+            !s.rsplit_once("_m")
+                .is_some_and(|(_, n)| n.bytes().all(|b| b.is_ascii_digit()))
+        })
+        .collect();
+    assert_eq!(mains.len(), abb, "{what}: a main module an ABB robot");
+    let is_motion = |l: &&str| {
+        ["MoveAbsJ ", "MoveJ ", "MoveL ", "TriggL "]
+            .iter()
+            .any(|k| l.starts_with(k))
+    };
+    for main in mains {
+        let text = &files[&format!("{main}.mod")];
+        let motions: Vec<&str> = text
+            .lines()
+            .map(str::trim_start)
+            .filter(is_motion)
+            .collect();
+        assert!(
+            motions.len() == 2 && motions.iter().all(|l| l.starts_with("MoveAbsJ lmd_home")),
+            "{what}: {main} moves home and back only, by MoveAbsJ: {motions:?}"
+        );
+        let moves: Vec<&str> = files
+            .iter()
+            .filter(|(n, _)| n.starts_with(&format!("{main}_m")))
+            .flat_map(|(_, t)| t.lines().map(str::trim_start).filter(is_motion))
+            .collect();
+        assert!(
+            moves[0].starts_with("MoveJ "),
+            "{what}: {main} starts with {}",
+            moves[0]
+        );
+        assert_eq!(moves.iter().filter(|l| l.starts_with("MoveJ ")).count(), 1);
     }
 }
 

@@ -6,6 +6,7 @@
 //! [`VerifiedMachine`], so a plan that has not passed the checks cannot reach
 //! them, and cannot fail on a limit.
 
+pub mod cell;
 pub mod context;
 pub(crate) mod fmt;
 pub mod gcode;

@@ -280,42 +280,27 @@ pub fn home_config(
 /// The KRL lines of a gas or powder event on `robot` (assignments with a
 /// comment; the caller puts them after an advance-run stop).
 pub fn io_lines(robot: &Robot, event: Io) -> Vec<String> {
-    let cell = &robot.cell;
-    let mut lines = Vec::new();
-    let rate = |lines: &mut Vec<String>, g_min: f32| {
-        if let Some(r) = cell.powder.and_then(|p| p.rate) {
-            lines.push(format!(
-                "$ANOUT[{}]={} ; powder {} g/min",
-                r.output,
-                fixed(g_min as f64 / r.full_scale, kuka::ANOUT_DECIMALS),
+    use crate::back::cell::CellOut;
+    crate::back::cell::outputs(robot, event)
+        .into_iter()
+        .map(|o| match o {
+            CellOut::Rate { n, fraction, g_min } => format!(
+                "$ANOUT[{n}]={} ; powder {} g/min",
+                fixed(fraction, kuka::ANOUT_DECIMALS),
                 trimmed(g_min as f64, 2)
-            ));
-        }
-    };
-    let out = |n: u16, on: bool, what: &str| {
-        format!(
-            "$OUT[{n}]={} ; {what} {}",
-            if on { "TRUE" } else { "FALSE" },
-            if on { "on" } else { "off" }
-        )
-    };
-    match (event, cell.gas, cell.powder) {
-        (Io::GasOn, Some(g), _) => lines.push(out(g.output, true, "gas")),
-        (Io::GasOff, Some(g), _) => lines.push(out(g.output, false, "gas")),
-        (Io::PowderOn(r), _, Some(p)) => {
-            rate(&mut lines, r);
-            lines.push(out(p.output, true, "powder"));
-        }
-        (Io::PowderRate(r), _, Some(_)) => rate(&mut lines, r),
-        (Io::PowderOff, _, Some(p)) => lines.push(out(p.output, false, "powder")),
-        _ => {}
-    }
-    lines
+            ),
+            CellOut::Switch { n, on, what } => format!(
+                "$OUT[{n}]={} ; {what} {}",
+                if on { "TRUE" } else { "FALSE" },
+                if on { "on" } else { "off" }
+            ),
+        })
+        .collect()
 }
 
 /// Variables every template of the verified robot `m` sees, the plan's
 /// one-line summary among them.
-fn base_context(m: VerifiedMachine<'_>, robot: &Robot, stem: &str) -> tera::Context {
+pub(crate) fn base_context(m: VerifiedMachine<'_>, robot: &Robot, stem: &str) -> tera::Context {
     let p = m.ir();
     let mut ctx = tera::Context::new();
     ctx.insert(
@@ -376,7 +361,7 @@ fn load_value(l: Option<&Load>) -> Option<String> {
     })
 }
 
-fn beam_text(b: ToolAxis) -> &'static str {
+pub(crate) fn beam_text(b: ToolAxis) -> &'static str {
     match b {
         ToolAxis::PlusX => "+X",
         ToolAxis::MinusX => "-X",

@@ -13,11 +13,11 @@
 
 pub mod modules;
 
-use super::context::{counts, layer_context, shown, styles};
+use super::context::{counts, layer_context, styles};
 use super::fmt::key as key_of;
-use super::krl::{comment_safe, home_config};
+use super::krl::{base_context, beam_text, comment_safe, home_config};
 use super::{EmitError, Sink, Templates};
-use crate::ir::{Layer, Load, Pose, Robot, ToolAxis};
+use crate::ir::{Layer, Load, Pose, Robot};
 use crate::numbers::{fixed, trimmed};
 use crate::plan::arm::{Joints, Solver};
 use crate::plan::positioner::Kin;
@@ -355,53 +355,22 @@ pub fn quaternion(r: &Matrix3<f64>) -> [f64; 4] {
 /// The RAPID lines of a gas or powder event on `robot`, each with its
 /// comment.
 pub fn io_lines(robot: &Robot, event: Io) -> Vec<String> {
-    let cell = &robot.cell;
-    let mut lines = Vec::new();
-    let rate = |lines: &mut Vec<String>, g_min: f32| {
-        if let Some(r) = cell.powder.and_then(|p| p.rate) {
-            lines.push(format!(
-                "SetAO ao{}, {}; ! powder {} g/min",
-                r.output,
-                fixed(g_min as f64 / r.full_scale, AO_DECIMALS),
+    use crate::back::cell::CellOut;
+    crate::back::cell::outputs(robot, event)
+        .into_iter()
+        .map(|o| match o {
+            CellOut::Rate { n, fraction, g_min } => format!(
+                "SetAO ao{n}, {}; ! powder {} g/min",
+                fixed(fraction, AO_DECIMALS),
                 trimmed(g_min as f64, 2)
-            ));
-        }
-    };
-    let out = |n: u16, on: bool, what: &str| {
-        format!(
-            "SetDO do{n}, {}; ! {what} {}",
-            u8::from(on),
-            if on { "on" } else { "off" }
-        )
-    };
-    match (event, cell.gas, cell.powder) {
-        (Io::GasOn, Some(g), _) => lines.push(out(g.output, true, "gas")),
-        (Io::GasOff, Some(g), _) => lines.push(out(g.output, false, "gas")),
-        (Io::PowderOn(r), _, Some(p)) => {
-            rate(&mut lines, r);
-            lines.push(out(p.output, true, "powder"));
-        }
-        (Io::PowderRate(r), _, Some(_)) => rate(&mut lines, r),
-        (Io::PowderOff, _, Some(p)) => lines.push(out(p.output, false, "powder")),
-        _ => {}
-    }
-    lines
-}
-
-/// Variables every template of the verified robot `m` sees.
-fn base_context(m: VerifiedMachine<'_>, robot: &Robot, stem: &str) -> tera::Context {
-    let p = m.ir();
-    let mut ctx = tera::Context::new();
-    ctx.insert(
-        "summary",
-        &comment_safe(&super::context::summary(m.summary())),
-    );
-    ctx.insert("program", stem);
-    ctx.insert("part", &comment_safe(&shown(&p.part)));
-    ctx.insert("machine", &comment_safe(&shown(&robot.name)));
-    ctx.insert("generator", concat!("lmdc ", env!("CARGO_PKG_VERSION")));
-    super::context::provenance(&mut ctx, m.provenance(), &comment_safe);
-    ctx
+            ),
+            CellOut::Switch { n, on, what } => format!(
+                "SetDO do{n}, {}; ! {what} {}",
+                u8::from(on),
+                if on { "on" } else { "off" }
+            ),
+        })
+        .collect()
 }
 
 /// `[[x,y,z],[q1,q2,q3,q4]]` of a pose (a KUKA frame `X Y Z A B C`).
@@ -502,17 +471,6 @@ fn positioner_text(p: &crate::ir::Positioner) -> Vec<String> {
         axis("eax_b (rotate, at eax_a = 0)", &p.rotate),
         format!("the work object moves with the mechanical unit {POSITIONER_UNIT}; every position is in it"),
     ]
-}
-
-fn beam_text(b: ToolAxis) -> &'static str {
-    match b {
-        ToolAxis::PlusX => "+X",
-        ToolAxis::MinusX => "-X",
-        ToolAxis::PlusY => "+Y",
-        ToolAxis::MinusY => "-Y",
-        ToolAxis::PlusZ => "+Z",
-        ToolAxis::MinusZ => "-Z",
-    }
 }
 
 fn main_context(
