@@ -382,7 +382,13 @@ fn main_context(ctx: &mut tera::Context, m: VerifiedMachine<'_>, robot: &Robot, 
     ctx.insert("base_value", &frame_value(&robot.base));
     ctx.insert(
         "positioner",
-        &robot.positioner.as_deref().map(positioner_text),
+        &robot.positioner.as_deref().map(|p| {
+            positioner_text(
+                p,
+                ["E1 (tilt)", "E2 (rotate, at E1 = 0)"],
+                "the base turns with E1 and E2 ($BASE coupled to MACHINE_DEF[2]); every position is in it",
+            )
+        }),
     );
     ctx.insert("beam", beam_text(robot.beam));
     ctx.insert("spin", &spin_text(robot.spin));
@@ -419,9 +425,14 @@ fn main_context(ctx: &mut tera::Context, m: VerifiedMachine<'_>, robot: &Robot, 
     ctx.insert("laser_starts", &s.laser_ons);
 }
 
-/// The header's lines on a positioner: its axes, as the controller's
-/// coupled kinematics must have them (docs/robots.md).
-fn positioner_text(p: &crate::ir::Positioner) -> Vec<String> {
+/// The header's lines on a positioner: its axes under the controller's
+/// `names` (tilt, rotate), as its coupled kinematics must have them
+/// (docs/robots.md), then how positions follow it (`coupling`).
+pub(crate) fn positioner_text(
+    p: &crate::ir::Positioner,
+    names: [&str; 2],
+    coupling: &str,
+) -> Vec<String> {
     let v = |a: [f64; 3], d: usize| {
         let t: Vec<String> = a.iter().map(|c| trimmed(*c, d)).collect();
         format!("[{}]", t.join(", "))
@@ -437,10 +448,9 @@ fn positioner_text(p: &crate::ir::Positioner) -> Vec<String> {
         )
     };
     vec![
-        axis("E1 (tilt)", &p.tilt),
-        axis("E2 (rotate, at E1 = 0)", &p.rotate),
-        "the base turns with E1 and E2 ($BASE coupled to MACHINE_DEF[2]); every position is in it"
-            .to_string(),
+        axis(names[0], &p.tilt),
+        axis(names[1], &p.rotate),
+        coupling.to_string(),
     ]
 }
 

@@ -15,7 +15,7 @@ pub mod modules;
 
 use super::context::{counts, layer_context, styles};
 use super::fmt::key as key_of;
-use super::krl::{base_context, beam_text, comment_safe, home_config};
+use super::krl::{base_context, beam_text, comment_safe, home_config, positioner_text};
 use super::{EmitError, Sink, Templates};
 use crate::ir::{Layer, Load, Pose, Robot};
 use crate::numbers::{fixed, trimmed};
@@ -449,30 +449,6 @@ fn zone_text(b: f64) -> String {
     format!("[FALSE,{b},{b},{b},{t},{b},{t}]")
 }
 
-/// The header's lines on a positioner: its axes, as the controller's
-/// mechanical unit must have them (docs/rapid.md).
-fn positioner_text(p: &crate::ir::Positioner) -> Vec<String> {
-    let v = |a: [f64; 3], d: usize| {
-        let t: Vec<String> = a.iter().map(|c| trimmed(*c, d)).collect();
-        format!("[{}]", t.join(", "))
-    };
-    let axis = |name: &str, a: &crate::ir::PositionerAxis| {
-        format!(
-            "{name} about {} through {} mm, {} .. {} deg, {} deg/s",
-            v(a.direction, 6),
-            v(a.point, 3),
-            trimmed(a.limits[0], 3),
-            trimmed(a.limits[1], 3),
-            trimmed(a.speed, 3)
-        )
-    };
-    vec![
-        axis("eax_a (tilt)", &p.tilt),
-        axis("eax_b (rotate, at eax_a = 0)", &p.rotate),
-        format!("the work object moves with the mechanical unit {POSITIONER_UNIT}; every position is in it"),
-    ]
-}
-
 fn main_context(
     ctx: &mut tera::Context,
     m: VerifiedMachine<'_>,
@@ -498,7 +474,9 @@ fn main_context(
     ctx.insert("home_speed", HOME_SPEED);
     ctx.insert(
         "conf_j",
-        if robot.arm.is_some() && robot.tool.value.is_some() && robot.base.value.is_some() {
+        // The arm is checked, and the configurations written, where it
+        // can be solved.
+        if Solver::new(robot).is_some() {
             "On"
         } else {
             "Off"
@@ -506,7 +484,13 @@ fn main_context(
     );
     ctx.insert(
         "positioner",
-        &robot.positioner.as_deref().map(positioner_text),
+        &robot.positioner.as_deref().map(|p| {
+            positioner_text(
+                p,
+                ["eax_a (tilt)", "eax_b (rotate, at eax_a = 0)"],
+                &format!("the work object moves with the mechanical unit {POSITIONER_UNIT}; every position is in it"),
+            )
+        }),
     );
     ctx.insert("spin", &super::krl::spin_text(robot.spin));
     ctx.insert("beam", beam_text(robot.beam));

@@ -196,22 +196,11 @@ impl<'a> Modules<'a> {
     /// before then ends `fine` when one switches the laser).
     pub fn line(&mut self, to: &Target, speed: &str, start: &[Set], deposit: bool) {
         let stop = start.iter().any(|s| matches!(s, Set::Laser(_)));
-        self.open(stop);
-        let mut head = Vec::with_capacity(160);
-        head.extend_from_slice(b"MoveL ");
-        robtarget(&mut head, to);
-        head.extend_from_slice(b", ");
-        head.extend_from_slice(speed.as_bytes());
         if start.contains(&Set::Laser(true)) {
             self.stats.laser_ons += 1;
         }
-        self.pending = Some(Pending {
-            head,
-            triggers: start.iter().map(|s| (*s, At::Start)).collect(),
-            joint: false,
-        });
-        self.lines += 1;
-        self.stats.moves += 1;
+        let triggers = start.iter().map(|s| (*s, At::Start)).collect();
+        self.motion(b"MoveL ", to, speed, triggers, stop);
         if deposit {
             self.stats.deposits += 1;
         }
@@ -220,16 +209,30 @@ impl<'a> Modules<'a> {
     /// The move from home to the first position: a `MoveJ` at `speed`,
     /// ending `fine`, with the configuration the verifier checked.
     pub fn joint(&mut self, to: &Target, speed: &str) {
-        self.open(true);
+        self.motion(b"MoveJ ", to, speed, Vec::new(), true);
+    }
+
+    /// Holds back the motion `word` (`MoveL `, `MoveJ `) to `to` at
+    /// `speed` with its `triggers`, after ending the one before (`fine`
+    /// when `stop`).
+    fn motion(
+        &mut self,
+        word: &[u8],
+        to: &Target,
+        speed: &str,
+        triggers: Vec<(Set, At)>,
+        stop: bool,
+    ) {
+        self.open(stop);
         let mut head = Vec::with_capacity(160);
-        head.extend_from_slice(b"MoveJ ");
+        head.extend_from_slice(word);
         robtarget(&mut head, to);
         head.extend_from_slice(b", ");
         head.extend_from_slice(speed.as_bytes());
         self.pending = Some(Pending {
             head,
-            triggers: Vec::new(),
-            joint: true,
+            triggers,
+            joint: word == b"MoveJ ",
         });
         self.lines += 1;
         self.stats.moves += 1;
