@@ -145,6 +145,7 @@ mod tests {
             let f = s.forward_flange(&j);
             let mut sols: Vec<Joints> = Vec::new();
             for q in s.solutions(&f).into_iter().filter(|q| q.iter().all(|a| a.is_finite())) {
+                let q = s.within_turn(q);
                 for k in 0..9 {
                     let (d4, d6) = (360.0 * f64::from(k / 3 - 1), 360.0 * f64::from(k % 3 - 1));
                     let mut q = q;

@@ -99,7 +99,7 @@ impl Chain {
         }
         self.counts[1] += 1;
         let sols = s.solutions(&f);
-        let joints = match (self.first, Solver::nearest(&sols, &self.prev)) {
+        let joints = match (self.first, s.nearest(&sols, &self.prev)) {
             (false, Some(j)) => Some(j),
             _ if sols.is_empty() => None,
             _ => s.home_solution(to, rot, &self.prev),
@@ -177,10 +177,7 @@ impl Chain {
     /// it is provably the nearest: a small step from the last, much smaller
     /// than the way to any other solution, off the wrist singularity.
     fn guarded(&self, s: &Solver, q: [f64; 6], wrist: &Vector3<f64>) -> Option<Joints> {
-        let mut j = q.map(f64::to_degrees);
-        for i in [0, 1, 2, 4] {
-            j[i] -= 360.0 * ((j[i] + 180.0) / 360.0).floor();
-        }
+        let j = s.within_turn(q.map(f64::to_degrees));
         let step: f64 = j.iter().zip(&self.prev).map(|(a, b)| (a - b).abs()).sum();
         // Another solution q' lies at least `separation` from j, so at least
         // separation − step from the last: farther than j when 2·step is less.

@@ -159,6 +159,20 @@ impl Solver {
         self.solve_at(to, rot, prev).0
     }
 
+    /// `j` with A1, A2, A3 and A5 in the one turn centred on the middle of
+    /// their limits: these axes turn less than a full turn, so the angle in
+    /// that turn is the only one they can take (the solver keeps every axis
+    /// in the turn nearest the last). Centred on the limits, not on 0°: a
+    /// KUKA A2 of −185° (limits −190°…45°) is in range, its 175° is not.
+    pub fn within_turn(&self, mut j: Joints) -> Joints {
+        for i in [0, 1, 2, 4] {
+            let [lo, hi] = self.arm.limits[i];
+            let low = (lo + hi) / 2.0 - 180.0;
+            j[i] -= 360.0 * ((j[i] - low) / 360.0).floor();
+        }
+        j
+    }
+
     /// [`Self::solve`], and the wrist centre of the pose in the robot's
     /// frame (what [`Self::status_at`] reads).
     pub fn solve_at(
@@ -174,16 +188,7 @@ impl Solver {
             .kin
             .inverse_continuing(&pose, &prev)
             .into_iter()
-            .map(|j| {
-                let mut j = j.map(f64::to_degrees);
-                // A1, A2, A3 and A5 turn less than a full turn: the angle
-                // in [−180°, 180°) is the only one they can take (the
-                // solver keeps every axis in the turn nearest the last).
-                for i in [0, 1, 2, 4] {
-                    j[i] -= 360.0 * ((j[i] + 180.0) / 360.0).floor();
-                }
-                j
-            })
+            .map(|j| self.within_turn(j.map(f64::to_degrees)))
             .collect();
         (sols, self.wrist(&f))
     }
@@ -259,11 +264,12 @@ impl Solver {
 
     /// Of `sols` (from [`Self::solutions`]), the one nearest `prev` (the
     /// sum of the axes' differences, as the solver sorts), every axis in the
-    /// turn nearest `prev`'s, A1, A2, A3 and A5 in [−180°, 180°). `None`
+    /// turn nearest `prev`'s, A1, A2, A3 and A5 in their one turn
+    /// ([`Self::within_turn`]). `None`
     /// where there is none, or where the pose is at the wrist singularity
     /// (A5 within 10⁻⁶° of 0): A4 and A6 are then split by the move before,
     /// which only [`Self::solve_at`] does.
-    pub fn nearest(sols: &[Joints], prev: &Joints) -> Option<Joints> {
+    pub fn nearest(&self, sols: &[Joints], prev: &Joints) -> Option<Joints> {
         let mut best: Option<(f64, Joints)> = None;
         for s in sols {
             if s[4].abs() < 1e-6 {
@@ -273,9 +279,7 @@ impl Solver {
             for i in 0..6 {
                 j[i] = prev[i] + ((j[i] - prev[i] + 180.0).rem_euclid(360.0) - 180.0);
             }
-            for i in [0, 1, 2, 4] {
-                j[i] -= 360.0 * ((j[i] + 180.0) / 360.0).floor();
-            }
+            let j = self.within_turn(j);
             let d: f64 = j.iter().zip(prev).map(|(a, b)| (a - b).abs()).sum();
             if best.is_none_or(|(bd, _)| d < bd) {
                 best = Some((d, j));
@@ -444,6 +448,24 @@ mod tests {
         }
     }
 
+    /// An axis whose limits reach past ±180° (the KR 6 R900-2's A2,
+    /// −190°…45°) is solved in its limits: a pose with A2 at −185° comes
+    /// back at −185°, not at the 175° of the same turn outside them.
+    #[test]
+    fn a_limit_past_a_half_turn_keeps_its_angle() {
+        let s = solver("kr6_r900_2");
+        let j = [10.0, -185.0, 100.0, 20.0, 40.0, 30.0];
+        let f = s.forward_flange(&j);
+        let all: Vec<Joints> = s.solutions(&f).into_iter().map(|q| s.within_turn(q)).collect();
+        let near = s.nearest(&all, &j).unwrap();
+        for i in 0..6 {
+            assert!((near[i] - j[i]).abs() < 1e-6, "{near:?}");
+        }
+        let tcp = s.forward(&j);
+        let solved = s.solve(tcp.0, &tcp.1, &j);
+        assert!((solved[0][1] + 185.0).abs() < 1e-6, "{solved:?}");
+    }
+
     /// The PTP from home to a tool pointing straight down ahead of the arm:
     /// from the upright home (A4 = A5 = A6 = 0) the wrist reaches it either
     /// unflipped (A5 > 0, A6 a half turn, +180° or −180° as near) or
@@ -527,7 +549,7 @@ mod tests {
             for k in 0..200 {
                 let t = k as f64 / 20.0;
                 let (to, rot) = s.forward(&winding(&up, t));
-                let a = Solver::nearest(&s.solutions(&s.flange(to, &rot)), &prev).unwrap();
+                let a = s.nearest(&s.solutions(&s.flange(to, &rot)), &prev).unwrap();
                 let b = s.solve(to, &rot, &prev)[0];
                 for i in 0..6 {
                     assert!((a[i] - b[i]).abs() < 1e-6, "{}: {a:?} vs {b:?}", m.key);
