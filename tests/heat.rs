@@ -235,17 +235,8 @@ fn deposits_start_at_their_points(p: &lmdc::ir::Program) -> Result<usize, String
                 let off = |a: [f64; 3], b: [f64; 3]| {
                     (0..3).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max)
                 };
-                // A path the one before joins (its start within
-                // `JOIN_MM` of that one's end: two levelling pieces meeting
-                // where the pass count changes) is deposited on from that
-                // end.
-                let start = if point == 1 {
-                    lmdc::plan::JOIN_MM
-                } else {
-                    1e-9
-                };
                 match self.last {
-                    Some(l) if off(l, from) < start && off(m.to, to) < 1e-9 => self.n += 1,
+                    Some(l) if off(l, from) < 1e-9 && off(m.to, to) < 1e-9 => self.n += 1,
                     l => {
                         self.bad = Some(format!(
                             "the deposit to {} starts at {l:?}, its IR point is at {from:?}",

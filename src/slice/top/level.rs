@@ -301,8 +301,8 @@ impl Line<'_> {
     /// The stretches of `[a, b]` on the line at `c` that take the same
     /// number of passes (at least one), each at least a bead long; where
     /// the count changes between two samples, the place is found by
-    /// halving (to a millionth of the step), so a stretch holds no point
-    /// of another count.
+    /// halving (to a millionth of the step) and both stretches end there,
+    /// so a stretch holds no point more than that from its own count.
     fn runs(&self, a: f64, b: f64, c: f64, step: f64, range: [f64; 2]) -> Vec<(u32, [f64; 2])> {
         let count = |t: f64| self.gap(t, c).map_or(0, |g| passes(g, range).0);
         let ts = spaced(a, b, step);
@@ -325,7 +325,10 @@ impl Line<'_> {
                         hi = mid;
                     }
                 }
-                (lo, hi)
+                // Both stretches meet at the bracket's middle: one point,
+                // so the plan joins the two pieces without a gap.
+                let mid = 0.5 * (lo + hi);
+                (mid, mid)
             };
             if counts[start] > 0 && to - from >= self.bead.width.0 {
                 out.push((counts[start], [from, to]));
