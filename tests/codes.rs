@@ -394,6 +394,9 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     // A scan of x −10..10 mm under a wall 30 mm long (tests/codes/short.xyz).
     scan_coverage: ScanCoverage, WALL,
         "extrude wall { profile = rectangle(width = 30 mm, height = 2.4 mm)  size = outer  bead = b316  on = scan(\"short.xyz\")  top = 12 mm }";
+    // The flat scan of tests/codes/short.xyz (z = 2 mm) levelled at 1 mm.
+    repair_level: RepairLevel, WALL,
+        "extrude wall { profile = rectangle(width = 16 mm, height = 2.4 mm)  size = outer  bead = b316  on = scan(\"short.xyz\")  top = 12 mm }\nslicing variable { layers = auto  scan = x  level = 1 mm }";
     // The flat scan of tests/codes/short.xyz registered to the top of a
     // 10 mm box (tests/codes/clamp.stl, its top moved to z = 2 mm).
     scan_registration: ScanRegistration, WALL,

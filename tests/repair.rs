@@ -389,7 +389,7 @@ fn a_level_the_scan_stands_above_or_the_top_too_near_is_refused() {
     let m = messages(&c);
     assert!(c.program.is_none(), "{m}");
     assert!(
-        m.contains("lmd::scan-coverage: the scanned surface at ("),
+        m.contains("lmd::repair-level: the scanned surface at ("),
         "{m}"
     );
     assert!(m.contains("mm above the level 9 mm"), "{m}");
@@ -397,7 +397,10 @@ fn a_level_the_scan_stands_above_or_the_top_too_near_is_refused() {
     let m = messages(&c);
     assert!(c.program.is_none(), "{m}");
     assert!(
-        m.contains("is 0.5 mm above the level 12.5 mm: a regular layer lays at least 0.6455 mm"),
+        m.contains("lmd::repair-level: the top (13 mm) at (")
+            && m.contains(
+                "is 0.5 mm above the level 12.5 mm: a regular layer lays at least 0.6455 mm"
+            ),
         "{m}"
     );
     let plate = src.replace(

@@ -277,6 +277,8 @@ codes! {
         "the declared `layers` gives heights outside `h_min..h_max`; names the counts that work";
     ScanCoverage = "scan-coverage", Feasibility,
         "a repair's footprint reaches where the scan has no point (with the first such place and how many), or its top lies below the scanned surface somewhere in it (with where and by how much): nothing to build on, or nothing to add";
+    RepairLevel = "repair-level", Feasibility,
+        "a levelled repair's `level` (`slicing variable`, docs/repair.md) lies below the scanned surface by more than a levelling pass may leave (with where, and the level that works), or the top stands less than a regular layer's lowest bead above it";
     ScanRegistration = "scan-registration", Feasibility,
         "a scan's best fit to its nominal (`scan(register = …)`, docs/repair.md) that leaves the points it keeps farther from the nominal than `fit_tolerance` (RMS), keeps fewer than 100 points, does not settle in 50 iterations, or leaves the scan free to slide or turn (a nominal whose faces under the scan do not fix it); names the RMS, the tolerance, the share of the points kept and the move found";
     TopHeight = "top-height", Feasibility,

@@ -160,7 +160,7 @@ pub fn above_level(
     scan: Span,
 ) -> Diagnostic {
     Diagnostic::error(
-        Code::ScanCoverage,
+        Code::RepairLevel,
         format!(
             "the scanned surface at {} is at {} mm, {} mm above the level {} mm: the regular layers would run into the part there",
             p2(at_point),
@@ -188,7 +188,7 @@ pub fn top_near_level(
     at: Span,
 ) -> Diagnostic {
     Diagnostic::error(
-        Code::ScanCoverage,
+        Code::RepairLevel,
         format!(
             "the top ({} mm) at {} is {} mm above the level {} mm: a regular layer lays at least {} mm",
             short(top),
