@@ -125,6 +125,21 @@ fn a_displaced_worn_scan_is_brought_back() {
     assert!(fit.iterations < MAX_ITERATIONS, "{fit:?}");
 }
 
+/// A fit still moving when its iterations run out is refused, with the
+/// iterations taken and its last step, not returned half way: the
+/// displaced scan above takes more than three.
+#[test]
+fn a_fit_that_has_not_settled_is_refused() {
+    let d = displacement();
+    let pts = worn_block(0.02, 7);
+    let fault = register_within(&raw(&pts, &d), &PLACE.into(), &nominal(), 3).unwrap_err();
+    let FitFault::NotSettled { iterations, step } = fault else {
+        panic!("{fault:?}");
+    };
+    assert_eq!(iterations, 3);
+    assert!(step > SETTLED && step.is_finite(), "{step}");
+}
+
 #[test]
 fn a_noiseless_scan_comes_back_to_float_precision() {
     let d = displacement();
