@@ -314,7 +314,9 @@ impl<'s> Printer<'s> {
     }
 
     /// The source of `span` as written, its first line at `depth` and the
-    /// lines after it moved so that the least indented is one level deeper.
+    /// lines after it moved so that the least indented is one level deeper;
+    /// a last line that closes a bracket goes back to `depth`, as a broken
+    /// call's `)` does.
     fn verbatim(&self, span: Span, depth: usize) -> String {
         let text = self.src[span.start..span.end]
             .replace("\r\n", "\n")
@@ -322,7 +324,14 @@ impl<'s> Printer<'s> {
         let mut lines = text.lines();
         let pad = INDENT.repeat(depth);
         let mut out = format!("{pad}{}", lines.next().unwrap_or_default().trim());
-        let rest: Vec<&str> = lines.collect();
+        let mut rest: Vec<&str> = lines.collect();
+        let closing = rest
+            .last()
+            .map(|l| l.trim())
+            .filter(|l| l.starts_with([')', ']', '}']));
+        if closing.is_some() {
+            rest.pop();
+        }
         let least = rest
             .iter()
             .filter(|l| !l.trim().is_empty())
@@ -336,6 +345,11 @@ impl<'s> Printer<'s> {
                 out.push_str(&deeper);
                 out.push_str(l[least.min(l.len() - l.trim_start().len())..].trim_end());
             }
+        }
+        if let Some(close) = closing {
+            out.push('\n');
+            out.push_str(&pad);
+            out.push_str(close);
         }
         out
     }
@@ -626,6 +640,12 @@ mod tests {
         let src = "let L = [1 mm,   // one\n      2 mm]\n";
         assert_eq!(fmt(src), "let L = [1 mm,   // one\n  2 mm]\n");
         assert_eq!(fmt(&fmt(src)), fmt(src));
+        // Broken one item a line, its `)` back at the statement's depth
+        // as a call lmdc breaks itself, however deep it was written.
+        let src = "extrude e {\n  on = scan(\n      file = \"a.ply\",  // the scan\n        cell = 1 mm,\n    )\n}\n";
+        let want = "extrude e {\n  on = scan(\n    file = \"a.ply\",  // the scan\n      cell = 1 mm,\n  )\n}\n";
+        assert_eq!(fmt(src), want);
+        assert_eq!(fmt(want), want);
     }
 
     #[test]
