@@ -249,7 +249,7 @@ pub mod mesh {
         "at",
         List(&Quantity(Dim::LENGTH, Any), Len::Exactly(3)),
         Default(Described("`[0 mm, 0 mm, 0 mm]`")),
-        "where the file's origin goes, after turning; the lowest point must come to z = 0 (the plate)",
+        "where the file's origin goes, after turning, in the part's coordinates: a mesh solid's lowest point must come to z = 0 (the plate); a `register` nominal or a `top` target goes where the part is, wherever that is",
     );
 }
 
@@ -257,7 +257,7 @@ pub mod mesh {
 pub static MESH: Block = Block::new(
     "mesh",
     "mesh(file, units, turn, at)",
-    "a solid given as an STL or 3MF mesh, sliced in flat layers (its height is the extrusion's unless `height` or `layers` is written)",
+    "a solid given as an STL or 3MF mesh, sliced in flat layers (its height is the extrusion's unless `height` or `layers` is written); also a repair's nominal (`scan(register = mesh(…))`) and target (`top = mesh(…)`), which are not sliced",
     &[&mesh::FILE, &mesh::UNITS, &mesh::TURN, &mesh::AT],
 )
 .positional(1);
