@@ -6,8 +6,69 @@
 #[allow(dead_code)]
 mod laser_property;
 
+/// docs/testing.md's crate of one's own: its test, compiled here as a
+/// user's crate compiles it (lmdc's public API only) and run.
+#[path = "../examples/my-parts/tests/flange.rs"]
+mod my_parts;
+
 use lmdc::diag::Code;
 use proptest::prelude::*;
+
+/// The code block of docs/testing.md that opens with `first`.
+fn testing_md_block(doc: &str, lang: &str, first: &str) -> String {
+    let open = format!("```{lang}\n{first}\n");
+    let start = doc.find(&open).unwrap_or_else(|| panic!("no {open:?}")) + lang.len() + 4;
+    let end = start + doc[start..].find("```").unwrap();
+    doc[start..end].to_string()
+}
+
+/// docs/testing.md's two files are examples/my-parts' (its manifest with
+/// lmdc at `../..`, in the checkout, for `../lmdc`, beside it), and Cargo
+/// takes that manifest: copied beside a lock file of lmdc's with lmdc by
+/// its absolute path, `cargo tree --offline` resolves lmdc and proptest.
+/// A manifest Cargo refuses (no target of the crate's own: a crate of
+/// tests alone is one), or a dependency lmdc's lock does not hold, fails.
+#[test]
+fn the_crate_of_ones_own_is_examples_my_parts_and_cargo_takes_it() {
+    let doc = std::fs::read_to_string("docs/testing.md").unwrap();
+    let read = |p: &str| std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{p}: {e}"));
+    let manifest = testing_md_block(&doc, "toml", "# my-parts/Cargo.toml");
+    let test = testing_md_block(&doc, "rust", "// my-parts/tests/flange.rs");
+    assert_eq!(
+        manifest.replace("\"../lmdc\"", "\"../..\""),
+        read("examples/my-parts/Cargo.toml")
+    );
+    assert_eq!(test, read("examples/my-parts/tests/flange.rs"));
+    let dir = tempfile::tempdir().unwrap();
+    let root = std::env::current_dir().unwrap();
+    let here = |p: &str| dir.path().join(p);
+    let lmdc = format!("{:?}", root.display().to_string());
+    std::fs::write(here("Cargo.toml"), manifest.replace("\"../lmdc\"", &lmdc)).unwrap();
+    std::fs::copy("Cargo.lock", here("Cargo.lock")).unwrap();
+    for d in ["src", "tests", "parts"] {
+        std::fs::create_dir(here(d)).unwrap();
+    }
+    std::fs::copy("examples/my-parts/src/lib.rs", here("src/lib.rs")).unwrap();
+    std::fs::write(here("tests/flange.rs"), &test).unwrap();
+    std::fs::copy("examples/flange.lmd", here("parts/flange.lmd")).unwrap();
+    let out = std::process::Command::new(option_env!("CARGO").unwrap_or("cargo"))
+        .args(["tree", "--offline", "-e", "normal,dev", "--depth", "1"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let tree = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(tree.starts_with("my-parts v0.1.0"), "{tree}");
+    assert!(
+        tree.contains(&format!("lmdc v{}", env!("CARGO_PKG_VERSION"))),
+        "{tree}"
+    );
+    assert!(tree.contains("proptest v1."), "{tree}");
+}
 
 #[test]
 fn the_laser_is_on_for_deposits_only_on_every_example() {

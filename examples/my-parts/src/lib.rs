@@ -1,0 +1,1 @@
+//! My parts: the `.lmd` files in `parts/` and their tests in `tests/`.
