@@ -44,6 +44,14 @@ pub const VERSION_COUPONS: u32 = 6;
 /// fixed in the cell and put every pose somewhere else.
 pub const VERSION_POSITIONER: u32 = 7;
 
+/// Version 8: a plan a version 7 reader would run wrong in another way: a
+/// layer's wait that the thermal budget added (`thermal.layers[].added`
+/// above 0), which the plan waits and a reader that ignores `thermal`
+/// would not, so the layer would start above its interpass limit; or a
+/// robot whose `controller` is not KUKA's, which such a reader would
+/// write KRL for. Written only for such a plan ([`with_later`]).
+pub const VERSION_BUDGET: u32 = 8;
+
 /// Version 3: a segmented [`Ring`] built in one continuous run, with a
 /// height loop that runs on the machine or a fixed speed schedule (a segmented ring's;
 /// ignored, the nominal speeds would run open loop), and the machines'
@@ -86,13 +94,33 @@ pub fn with_positioner(version: u32, machines: &[Machine]) -> u32 {
     }
 }
 
+/// `program`'s version, or [`VERSION_BUDGET`] where the thermal budget
+/// added a wait or a robot has another controller than KUKA's.
+pub fn with_later(program: &Program) -> u32 {
+    let waits = program
+        .thermal
+        .as_ref()
+        .is_some_and(|t| t.layers.iter().any(|l| l.added > 0.0));
+    let controller = program
+        .machines
+        .iter()
+        .any(|m| matches!(m, Machine::Robot(r) if r.controller != Controller::Kuka));
+    if waits || controller {
+        VERSION_BUDGET
+    } else {
+        program.version
+    }
+}
+
 /// A whole compiled plan.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Program {
     /// Always [`FORMAT`].
     pub format: String,
-    /// [`version_for`] the plan: 4 with a bead model, 3 for a ring.
+    /// [`version_for`] the plan: 4 with a bead model, 3 for a ring; later
+    /// versions for what an older reader would misread ([`with_positioner`],
+    /// [`with_later`]).
     pub version: u32,
     /// The part's name (used for file names).
     pub part: String,

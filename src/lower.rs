@@ -85,6 +85,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
         program.thermal = Some(heat::predict(&program, declared, *at)?);
         heat::scale_powers(&mut program);
     }
+    program.version = ir::with_later(&program);
     Ok((program, warnings))
 }
 

@@ -342,6 +342,13 @@ fn the_golden_cases_pass_the_reader_and_follow_their_ir() {
                 _ => None,
             })
             .expect("an ABB robot");
+        // A reader before version 8 would write KRL for it.
+        assert_eq!(
+            p.ir().version,
+            lmdc::ir::VERSION_BUDGET,
+            "{}",
+            dir.display()
+        );
         let trace = rapid::run(&files, &main_name(&files), r.laser_out, r.power_out)
             .unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
         assert_follows(&p, i, &trace);

@@ -61,6 +61,10 @@ proptest! {
         for (i, l) in t.layers.iter().enumerate() {
             prop_assert!(l.interpass <= limit + 1e-9, "layer {i}: {l:?}");
         }
+        // A wait the budget added is one an older reader would not wait.
+        let added = t.layers.iter().any(|l| l.added > 0.0);
+        let want = if added { lmdc::ir::VERSION_BUDGET } else { lmdc::ir::VERSION };
+        prop_assert_eq!(p.version, want);
         let (material, cell) = heat::cell(t);
         let loads = heat::loads(&p);
         let waits: Vec<f64> = t.layers.iter().map(|l| l.wait).collect();
