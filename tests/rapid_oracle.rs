@@ -34,7 +34,7 @@ fn sample() -> Files {
     let m2 = m1
         .replace("duct_m001", "duct_m002")
         .replace("! layer 1 of 12", "! layer 2 of 12")
-        .replace("v200, fine", "lmd_v2, fine")
+        .replace("v200, fine", "lmd_v1, fine")
         .replace("MoveJ", "MoveL");
     files.insert("duct_m002.mod".into(), m2);
     files
@@ -76,7 +76,7 @@ fn the_samples_run_as_the_doc_says() {
         let ([x, z], (laser, power, speed, zone, at_end)) = per_move[k % 6];
         let at = format!("motion {}: {m:?}", k + 1);
         // The second module starts with the power the first left, its first
-        // move a MoveL at lmd_v2.
+        // move a MoveL at lmd_v1.
         let (power, speed) = match k {
             6 => (0.5, 250.0),
             7.. => (0.5, speed),
@@ -101,8 +101,8 @@ fn the_samples_run_as_the_doc_says() {
     assert_eq!(t.layers.len(), 2);
     assert_eq!((t.layers[0].0, t.layers[1].0), (1, 7));
     assert_eq!(t.moves_per_module["duct_m001"], 6);
-    assert_eq!(t.speeds["lmd_v1"], 8.0);
-    assert_eq!(t.speeds["lmd_v2"], 250.0);
+    assert_eq!(t.speeds["lmd_v1"], 250.0);
+    assert_eq!(t.speeds["lmd_v2"], 8.0);
     assert_eq!((t.conf_j, t.conf_l), (Some(true), Some(false)));
     assert_the_cell(&t);
 }
@@ -212,7 +212,7 @@ const BROKEN: [Broken; 21] = [
         file: M1,
         edits: &[
             ("    MoveL [[102", ON_AGAIN),
-            ("lmd_v1, lmd_z,", "lmd_v1, lmd_on_end, lmd_z,"),
+            ("lmd_v2, lmd_z,", "lmd_v2, lmd_on_end, lmd_z,"),
         ],
         says: "TriggIO lmd_on_end switches the laser on, and it is on already",
         at: "TriggIO lmd_on_end",
@@ -227,21 +227,21 @@ const BROKEN: [Broken; 21] = [
     Broken {
         what: "a switch at the start after a blended motion",
         file: M1,
-        edits: &[("lmd_v2, fine", "lmd_v2, lmd_z")],
+        edits: &[("lmd_v1, fine", "lmd_v1, lmd_z")],
         says: "the move before (duct_m001.mod:5) is blended",
         at: "TriggL [[101",
     },
     Broken {
         what: "an undeclared speeddata",
         file: M1,
-        edits: &[("lmd_v2", "lmd_v3")],
+        edits: &[("lmd_v1", "lmd_v3")],
         says: "`lmd_v3` is not declared (want a speeddata)",
         at: "lmd_v3",
     },
     Broken {
         what: "v200 on a linear move",
         file: M1,
-        edits: &[("lmd_v2, fine", "v200, fine")],
+        edits: &[("lmd_v1, fine", "v200, fine")],
         says: "`v200` is not declared (want a speeddata)",
         at: "[[100,0,0.5]",
     },
