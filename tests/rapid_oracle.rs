@@ -41,7 +41,7 @@ fn sample() -> Files {
 }
 
 fn run(files: &Files) -> Result<rapid::Trace, String> {
-    rapid::run(files, "duct", 1, 2)
+    rapid::run(files, "duct", "do1", "ao2")
 }
 
 #[test]
@@ -124,13 +124,22 @@ fn assert_the_cell(t: &rapid::Trace) {
     use Event::*;
     let module = |first: usize| {
         let mut v: Vec<Event> = (first..first + 6).map(Motion).collect();
-        v.extend([Dwell(2.5), WaitRob, SetDO(3, true)]);
+        v.extend([Dwell(2.5), WaitRob, SetDO("do3".into(), true)]);
         v
     };
-    let mut want = vec![SetDO(1, false), SetAO(2, 0.0), Motion(0)];
+    let mut want = vec![
+        SetDO("do1".into(), false),
+        SetAO("ao2".into(), 0.0),
+        Motion(0),
+    ];
     want.extend(module(1));
     want.extend(module(7));
-    want.extend([WaitRob, SetDO(1, false), SetAO(2, 0.0), Motion(13)]);
+    want.extend([
+        WaitRob,
+        SetDO("do1".into(), false),
+        SetAO("ao2".into(), 0.0),
+        Motion(13),
+    ]);
     assert_eq!(t.events, want);
 }
 
