@@ -1305,10 +1305,11 @@ pub struct Robot {
     pub base: FrameRef,
     /// Which tool axis the beam travels along.
     pub beam: ToolAxis,
-    /// `$OUT[n]` that switches the laser on.
-    pub laser_out: u16,
-    /// `$ANOUT[n]` that sets the power.
-    pub power_out: u16,
+    /// `$OUT[n]` that switches the laser on (ABB: `do<n>`, or the named
+    /// signal).
+    pub laser_out: Signal,
+    /// `$ANOUT[n]` that sets the power (ABB: `ao<n>`, or the named signal).
+    pub power_out: Signal,
     /// Power at `$ANOUT = 1.0`, W.
     pub full_scale_power: f64,
     /// Axis angles of the home position, deg.
@@ -1343,6 +1344,42 @@ impl Controller {
     /// KUKA's, the default (left out of the IR's JSON).
     pub fn is_kuka(&self) -> bool {
         *self == Controller::Kuka
+    }
+}
+
+/// An output a machine switches or sets: by number (KUKA's `$OUT[n]` and
+/// `$ANOUT[n]`, ABB's `do<n>` and `ao<n>`, a G-code output line's `{n}`),
+/// or, on an ABB robot, by the signal's name in the controller's I/O
+/// configuration (`doLaserOn`, a RAPID identifier). The IR's JSON writes a
+/// number as a number and a name as a text.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+#[serde(untagged)]
+pub enum Signal {
+    /// The output's number.
+    Number(u16),
+    /// The signal's name (ABB only).
+    Name(String),
+}
+
+impl Signal {
+    /// The output's number; `None` for a named signal, which only an ABB
+    /// robot has (sema refuses a name elsewhere).
+    pub fn number(&self) -> Option<u16> {
+        match self {
+            Signal::Number(n) => Some(*n),
+            Signal::Name(_) => None,
+        }
+    }
+}
+
+impl std::fmt::Display for Signal {
+    /// The number, or the name.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Signal::Number(n) => write!(f, "{n}"),
+            Signal::Name(s) => f.write_str(s),
+        }
     }
 }
 
@@ -1529,11 +1566,12 @@ impl Cell {
 }
 
 /// A shielding gas valve on a digital output.
-#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Gas {
-    /// The output that opens it (`$OUT[n]`; G-code: the output line's `{n}`).
-    pub output: u16,
+    /// The output that opens it (`$OUT[n]`; ABB: `do<n>` or a signal's
+    /// name; G-code: the output line's `{n}`).
+    pub output: Signal,
     /// How long the gas flows before the laser first starts, s.
     pub pre_flow: f64,
     /// How long it flows on after the laser last stops, s.
@@ -1542,11 +1580,11 @@ pub struct Gas {
 
 /// A powder feeder on a digital output, with its rate on an analog one where
 /// the cell has it.
-#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Feeder {
     /// The output that starts it.
-    pub output: u16,
+    pub output: Signal,
     /// Time from starting it (or changing its rate) until the powder arrives
     /// at the nozzle, s.
     pub arrival: f64,
@@ -1556,11 +1594,12 @@ pub struct Feeder {
 }
 
 /// An analog output that sets the powder feed rate.
-#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct RateOutput {
-    /// `$ANOUT[n]`; G-code: the analog line's `{n}`.
-    pub output: u16,
+    /// `$ANOUT[n]`; ABB: `ao<n>` or a signal's name; G-code: the analog
+    /// line's `{n}`.
+    pub output: Signal,
     /// The feed rate at 1.0, g/min.
     pub full_scale: f64,
 }
@@ -1810,10 +1849,12 @@ mod wire {
         base: FrameRef,
         /// Which tool axis the beam travels along.
         beam: ToolAxis,
-        /// `$OUT[n]` that switches the laser on.
-        laser_out: u16,
-        /// `$ANOUT[n]` that sets the power.
-        power_out: u16,
+        /// `$OUT[n]` that switches the laser on (ABB: `do<n>`, or a
+        /// signal's name).
+        laser_out: super::Signal,
+        /// `$ANOUT[n]` that sets the power (ABB: `ao<n>`, or a signal's
+        /// name).
+        power_out: super::Signal,
         /// Power at `$ANOUT = 1.0`, W.
         full_scale_power: f64,
         /// Highest path speed (a CNC's feed), mm/s.

@@ -320,8 +320,11 @@ fn machine_is_plain_data_in_the_ir() {
     let Machine::Robot(r) = &p.ir().machines[0] else {
         panic!()
     };
-    let f = r.cell.powder.unwrap();
-    assert_eq!((f.output, f.arrival), (3, ARRIVAL));
+    let f = r.cell.powder.clone().unwrap();
+    assert_eq!(
+        (&f.output, f.arrival),
+        (&lmdc::ir::Signal::Number(3), ARRIVAL)
+    );
     assert_eq!(f.rate.unwrap().full_scale, 60.0);
     let json = serde_json::to_value(p.ir()).unwrap();
     assert_eq!(json["machines"][0]["cell"]["gas"]["pre_flow"], PRE_FLOW);

@@ -588,6 +588,10 @@ slicing normal { layers = auto  points = 400  seam = 90 deg }";
         "machine kr { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 2000 W  max_speed = 100 mm/s  gas { output = 1 } }";
     io_dialect: IoDialect, PLATE,
         "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  dialect = fagor8070  max_speed = 50 mm/s  gas { output = 2 } }";
+    // A signal's name on a CNC, whose output lines take a number (an ABB
+    // robot's cases are in tests/cases/errors/robot/).
+    signal_name: SignalName, PLATE,
+        "machine mill { kind = cnc  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  axes = 3  max_speed = 50 mm/s  gas { output = \"doGas\" } }";
     // The duct 9 m in front of a KR 60 HA, whose wrist reaches 1.7 m from A2.
     reach: Reach, DUCT,
         "machine kr60 { kind = robot  head { standoff = 15 mm  nozzle = frustum(length = 45 mm, tip = 12 mm, top = 40 mm) }  load = load(mass = 18 kg, cog = [0 mm, 0 mm, 160 mm])  laser = 1  power_output = 1  full_scale = 4000 W  max_speed = 250 mm/s  arm = kr60ha  tool = frame(1, z = 350 mm)  base = frame(1, x = 9000 mm) }";

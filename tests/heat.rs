@@ -87,7 +87,13 @@ fn emit_all(p: &lmdc::verify::Verified) -> Vec<(Machine, Vec<(String, String)>)>
 
 fn krl_trace(files: Vec<(String, String)>, r: &lmdc::ir::Robot) -> krl::Trace {
     let files: krl::Files = files.into_iter().collect();
-    krl::run(&files, "sprocket_tooth_kr30", r.laser_out, r.power_out).unwrap()
+    krl::run(
+        &files,
+        "sprocket_tooth_kr30",
+        r.laser_out.number().unwrap(),
+        r.power_out.number().unwrap(),
+    )
+    .unwrap()
 }
 
 #[test]

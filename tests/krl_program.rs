@@ -53,15 +53,20 @@ fn run(p: &Verified, index: usize) -> (krl::Files, krl::Trace) {
         let run = krl_run::run_steady(
             &files,
             &main,
-            r.laser_out,
-            r.power_out,
+            r.laser_out.number().unwrap(),
+            r.power_out.number().unwrap(),
             law.target / s.full_scale,
         )
         .unwrap_or_else(|e| panic!("KRL run failed: {e}"));
         return (files, ring_trace(run));
     }
-    let trace = krl::run(&files, &main, r.laser_out, r.power_out)
-        .unwrap_or_else(|e| panic!("KRL check failed: {e}"));
+    let trace = krl::run(
+        &files,
+        &main,
+        r.laser_out.number().unwrap(),
+        r.power_out.number().unwrap(),
+    )
+    .unwrap_or_else(|e| panic!("KRL check failed: {e}"));
     assert_load(r, trace.load.as_ref());
     (files, trace)
 }

@@ -231,8 +231,9 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
                         .min_by_key(|n| n.len())
                         .expect("a main module")
                         .to_string();
-                    let trace = rapid::run(&files, &main, r.laser_out, r.power_out)
-                        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                    let trace =
+                        rapid::run(&files, &main, &rapid::signals(r).0, &rapid::signals(r).1)
+                            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
                     from_motions(
                         trace
                             .motions
@@ -255,8 +256,8 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
                             let run = krl_run::run_steady(
                                 &files,
                                 &main,
-                                r.laser_out,
-                                r.power_out,
+                                r.laser_out.number().unwrap(),
+                                r.power_out.number().unwrap(),
                                 law.target / s.full_scale,
                             )
                             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -266,8 +267,13 @@ fn every_example_switches_the_laser_at_the_same_ir_points_in_krl_and_gcode() {
                             )
                         }
                         _ => {
-                            let trace = krl::run(&files, &main, r.laser_out, r.power_out)
-                                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                            let trace = krl::run(
+                                &files,
+                                &main,
+                                r.laser_out.number().unwrap(),
+                                r.power_out.number().unwrap(),
+                            )
+                            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
                             from_krl(&trace)
                         }
                     }

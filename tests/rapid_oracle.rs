@@ -34,14 +34,14 @@ fn sample() -> Files {
     let m2 = m1
         .replace("duct_m001", "duct_m002")
         .replace("! layer 1 of 12", "! layer 2 of 12")
-        .replace("v200, fine", "lmd_v2, fine")
+        .replace("v200, fine", "lmd_v1, fine")
         .replace("MoveJ", "MoveL");
     files.insert("duct_m002.mod".into(), m2);
     files
 }
 
 fn run(files: &Files) -> Result<rapid::Trace, String> {
-    rapid::run(files, "duct", 1, 2)
+    rapid::run(files, "duct", "do1", "ao2")
 }
 
 #[test]
@@ -76,7 +76,7 @@ fn the_samples_run_as_the_doc_says() {
         let ([x, z], (laser, power, speed, zone, at_end)) = per_move[k % 6];
         let at = format!("motion {}: {m:?}", k + 1);
         // The second module starts with the power the first left, its first
-        // move a MoveL at lmd_v2.
+        // move a MoveL at lmd_v1.
         let (power, speed) = match k {
             6 => (0.5, 250.0),
             7.. => (0.5, speed),
@@ -101,8 +101,8 @@ fn the_samples_run_as_the_doc_says() {
     assert_eq!(t.layers.len(), 2);
     assert_eq!((t.layers[0].0, t.layers[1].0), (1, 7));
     assert_eq!(t.moves_per_module["duct_m001"], 6);
-    assert_eq!(t.speeds["lmd_v1"], 8.0);
-    assert_eq!(t.speeds["lmd_v2"], 250.0);
+    assert_eq!(t.speeds["lmd_v1"], 250.0);
+    assert_eq!(t.speeds["lmd_v2"], 8.0);
     assert_eq!((t.conf_j, t.conf_l), (Some(true), Some(false)));
     assert_the_cell(&t);
 }
@@ -124,13 +124,22 @@ fn assert_the_cell(t: &rapid::Trace) {
     use Event::*;
     let module = |first: usize| {
         let mut v: Vec<Event> = (first..first + 6).map(Motion).collect();
-        v.extend([Dwell(2.5), WaitRob, SetDO(3, true)]);
+        v.extend([Dwell(2.5), WaitRob, SetDO("do3".into(), true)]);
         v
     };
-    let mut want = vec![SetDO(1, false), SetAO(2, 0.0), Motion(0)];
+    let mut want = vec![
+        SetDO("do1".into(), false),
+        SetAO("ao2".into(), 0.0),
+        Motion(0),
+    ];
     want.extend(module(1));
     want.extend(module(7));
-    want.extend([WaitRob, SetDO(1, false), SetAO(2, 0.0), Motion(13)]);
+    want.extend([
+        WaitRob,
+        SetDO("do1".into(), false),
+        SetAO("ao2".into(), 0.0),
+        Motion(13),
+    ]);
     assert_eq!(t.events, want);
 }
 
@@ -212,7 +221,7 @@ const BROKEN: [Broken; 21] = [
         file: M1,
         edits: &[
             ("    MoveL [[102", ON_AGAIN),
-            ("lmd_v1, lmd_z,", "lmd_v1, lmd_on_end, lmd_z,"),
+            ("lmd_v2, lmd_z,", "lmd_v2, lmd_on_end, lmd_z,"),
         ],
         says: "TriggIO lmd_on_end switches the laser on, and it is on already",
         at: "TriggIO lmd_on_end",
@@ -227,21 +236,21 @@ const BROKEN: [Broken; 21] = [
     Broken {
         what: "a switch at the start after a blended motion",
         file: M1,
-        edits: &[("lmd_v2, fine", "lmd_v2, lmd_z")],
+        edits: &[("lmd_v1, fine", "lmd_v1, lmd_z")],
         says: "the move before (duct_m001.mod:5) is blended",
         at: "TriggL [[101",
     },
     Broken {
         what: "an undeclared speeddata",
         file: M1,
-        edits: &[("lmd_v2", "lmd_v3")],
+        edits: &[("lmd_v1", "lmd_v3")],
         says: "`lmd_v3` is not declared (want a speeddata)",
         at: "lmd_v3",
     },
     Broken {
         what: "v200 on a linear move",
         file: M1,
-        edits: &[("lmd_v2, fine", "v200, fine")],
+        edits: &[("lmd_v1, fine", "v200, fine")],
         says: "`v200` is not declared (want a speeddata)",
         at: "[[100,0,0.5]",
     },

@@ -56,7 +56,7 @@ fn run(p: &Verified, index: usize) -> (Files, rapid::Trace) {
     assert_eq!(r.controller, Controller::Abb);
     let files = robot_files(p, index);
     let main = main_name(&files);
-    let trace = rapid::run(&files, &main, r.laser_out, r.power_out)
+    let trace = rapid::run(&files, &main, &rapid::signals(r).0, &rapid::signals(r).1)
         .unwrap_or_else(|e| panic!("RAPID check failed: {e}"));
     (files, trace)
 }
@@ -204,6 +204,36 @@ fn planar_program_follows_the_ir() {
     assert!(files.keys().all(|n| n.ends_with(".mod")));
 }
 
+/// Named signals (`laser = "doLaserOn"`, a gas valve's `"doGas"`) are
+/// written by name, and the reader maps the laser and its power by the
+/// names it is given: the trace follows the IR, the gas switches on
+/// `doGas`, and the same program read as if the laser were `do5` is
+/// refused at its first trigger.
+#[test]
+fn named_signals_are_written_and_read_back_by_name() {
+    let mut robot = fixture::robot();
+    robot.laser_out = Signal::Name("doLaserOn".into());
+    robot.power_out = Signal::Name("aoLaserPower".into());
+    robot.cell.gas = Some(Gas {
+        output: Signal::Name("doGas".into()),
+        pre_flow: 1.0,
+        post_flow: 1.0,
+    });
+    let p = planar_robot(robot);
+    let (files, trace) = run(&p, 0);
+    assert_follows(&p, 0, &trace);
+    let text: String = files.values().map(String::as_str).collect();
+    assert!(text.contains("\\DOp:=doLaserOn, 1;"), "{text}");
+    assert!(text.contains("\\AOp:=aoLaserPower, "), "{text}");
+    assert!(!text.contains("do5") && !text.contains("ao1"), "{text}");
+    use rapid::Event::SetDO;
+    assert!(trace.events.contains(&SetDO("doGas".into(), true)));
+    assert!(trace.events.contains(&SetDO("doLaserOn".into(), false)));
+    let e = rapid::run(&files, &main_name(&files), "do5", "aoLaserPower")
+        .expect_err("the laser is doLaserOn, not do5");
+    assert!(e.contains("switches the laser's do5, not doLaserOn"), "{e}");
+}
+
 /// With `ramp = lead` the laser switches on the fly at the ends of the
 /// lead-ins and of the last deposits, where those moves are blended.
 #[test]
@@ -349,8 +379,13 @@ fn the_golden_cases_pass_the_reader_and_follow_their_ir() {
             "{}",
             dir.display()
         );
-        let trace = rapid::run(&files, &main_name(&files), r.laser_out, r.power_out)
-            .unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
+        let trace = rapid::run(
+            &files,
+            &main_name(&files),
+            &rapid::signals(r).0,
+            &rapid::signals(r).1,
+        )
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()));
         assert_follows(&p, i, &trace);
         cases += 1;
     }
@@ -395,7 +430,7 @@ fn an_emitted_program_broken_is_refused() {
             })
             .collect();
         broken.insert(file.to_string(), lines.join("\n") + "\n");
-        let e = rapid::run(&broken, &main, r.laser_out, r.power_out)
+        let e = rapid::run(&broken, &main, &rapid::signals(r).0, &rapid::signals(r).1)
             .err()
             .unwrap_or_else(|| panic!("`{holding}` in {file} broken, accepted"));
         assert!(e.contains(says), "`{holding}` in {file}: {e}");

@@ -41,8 +41,8 @@ fn setup() -> Setup {
     let rows = ring::simulation(&src);
     Setup {
         files: ring::files(&p, "kr60"),
-        laser: robot.laser_out,
-        power: robot.power_out,
+        laser: robot.laser_out.number().unwrap(),
+        power: robot.power_out.number().unwrap(),
         scale: sensor.full_scale,
         input: sensor.input,
         segments: r.segments.len(),
@@ -204,7 +204,7 @@ mod shapes {
                 .unwrap()
                 .trim_end_matches(".src")
                 .to_string();
-            let run = krl_run::run_steady(&files, &main, robot.laser_out, robot.power_out, ring::on_target_reading(&p, "kr60"))
+            let run = krl_run::run_steady(&files, &main, robot.laser_out.number().unwrap(), robot.power_out.number().unwrap(), ring::on_target_reading(&p, "kr60"))
                 .unwrap_or_else(|e| panic!("{e}\n{src}"));
             let want: Vec<_> = ir
                 .layers

@@ -343,7 +343,9 @@ codes! {
     AnalogRange = "analog-range", Machines,
         "the laser power would need `$ANOUT` outside −1…1 for the robot's `full_scale`";
     OutputClash = "output-clash", Machines,
-        "two things a machine switches (laser, gas valve, powder feeder, power or feed-rate analog output) declared on the same output";
+        "two things a machine switches (laser, gas valve, powder feeder, power or feed-rate analog output) declared on the same output, or on an ABB robot on the same signal";
+    SignalName = "signal-name", Machines,
+        "an output given a signal's name (`laser = \"doLaserOn\"`) where outputs are numbered (a KUKA robot, a CNC), or a name an ABB robot's program cannot use: not a RAPID name of at most 32 characters, a RAPID reserved word, or one of lmdc's own (`lmd_…`, `main`, `v200`, `fine`)";
     IoDialect = "io-dialect", Machines,
         "gas or powder declared on a CNC whose dialect has no built-in output line (only LinuxCNC's `M64`/`M65`/`M68` are): give `output_on`, `output_off` (and `analog_output`)";
     PowderArrival = "powder-arrival", Machines,

@@ -1242,7 +1242,7 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
         // A feeder that would run longer than its arrival time for nothing
         // stops; the next path's preparation waits the arrival time again,
         // so the pause is as long as asked.
-        match (self.plan.cell.powder, self.powder) {
+        match (&self.plan.cell.powder, self.powder) {
             (Some(f), Some(_)) if wait > f.arrival => {
                 self.v.io(Io::PowderOff);
                 self.powder = None;
@@ -1257,7 +1257,7 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
     fn ready(&self, powder: f32) -> bool {
         let cell = self.plan.cell;
         let gas = cell.gas.is_none() || self.gas;
-        let feed = match (cell.powder, self.powder) {
+        let feed = match (&cell.powder, self.powder) {
             (None, _) => true,
             (Some(_), None) => false,
             (Some(f), Some(r)) => f.rate.is_none() || same_rate(r, powder),
@@ -1270,12 +1270,12 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
     fn prepare(&mut self, powder: f32) {
         let cell = self.plan.cell;
         let mut wait = 0.0f64;
-        if let (Some(g), false) = (cell.gas, self.gas) {
+        if let (Some(g), false) = (&cell.gas, self.gas) {
             self.v.io(Io::GasOn);
             self.gas = true;
             wait = wait.max(g.pre_flow);
         }
-        if let Some(f) = cell.powder {
+        if let Some(f) = &cell.powder {
             match self.powder {
                 None => {
                     self.v.io(Io::PowderOn(powder));
@@ -1396,7 +1396,7 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
         if self.powder.take().is_some() {
             self.v.io(Io::PowderOff);
         }
-        if let (Some(g), true) = (self.plan.cell.gas, self.gas) {
+        if let (Some(g), true) = (&self.plan.cell.gas, self.gas) {
             if g.post_flow > 0.0 {
                 self.v.dwell(g.post_flow);
             }

@@ -1,6 +1,15 @@
 //! ABB IRC5 and OmniCore controllers (RobotWare 6 and 7) as lmdc writes
 //! RAPID for them (docs/rapid.md).
 
+/// The RAPID name of an output: the signal's own name, or by number
+/// `do<n>` (`analog`: `ao<n>`).
+pub fn signal(s: &crate::ir::Signal, analog: bool) -> String {
+    match s {
+        crate::ir::Signal::Number(n) => format!("{}{n}", if analog { "ao" } else { "do" }),
+        crate::ir::Signal::Name(name) => name.clone(),
+    }
+}
+
 /// Longest RAPID name (modules, routines, data).
 pub const MAX_NAME: usize = 32;
 

@@ -12,7 +12,8 @@
 //! the ends of a LIN can break a rule its ends keep.
 
 use super::rule::{MachineCx, PlanRule};
-use crate::diag::message::verify::arm::{self as msg, ArmAt, Singular};
+use crate::diag::message::verify::arm::{self as msg, ArmAt, Flip, Singular};
+use crate::diag::message::words::Words;
 use crate::diag::Diagnostics;
 use crate::ir::Machine;
 use crate::ir::MachineField::{Arm, Base, Home, Singularity, Tool};
@@ -47,7 +48,7 @@ pub(super) struct ArmRule<'p> {
     /// The worst pose near each singularity, in [`Singular::ALL`]'s order
     /// (as [`crate::plan::arm::Solver::singular`] measures them).
     singular: [Option<Worst>; 3],
-    flip: Option<(Worst, u8, u8)>,
+    flip: Option<(Worst, Flip)>,
     speed: [Option<(Worst, f64)>; 6],
     /// The links against the faceplate and the fixtures (`lmd::collision`).
     links: Option<links::Links<'p>>,
@@ -104,15 +105,14 @@ impl<'p> PlanRule<'p> for ArmRule<'p> {
         let arm = self.follow.solver().arm();
         let model = arm.model.as_deref().and_then(crate::target::arm::model);
         let name = model.map_or("opw(…) arm", |m| m.name);
-        // An `opw(…)` arm is in KUKA's convention.
-        let maker = model.map_or(crate::target::arm::Maker::Kuka, |m| m.maker);
-        let up = (maker, self.follow.solver().upright());
+        let up = self.follow.solver().upright();
         let at = ArmAt {
             machine: &r.name,
             arm: name,
             declared: cx.origin.at(Arm),
             base: cx.origin.at(Base),
             tool: cx.origin.at(Tool),
+            words: Words::of(r.controller),
         };
         for (i, (h, lim)) in r.home.iter().zip(arm.limits).enumerate() {
             if *h < lim[0] || *h > lim[1] {
@@ -137,8 +137,8 @@ impl<'p> PlanRule<'p> for ArmRule<'p> {
                 out.push(msg::singular_lin(&at, kind, &w, sing));
             }
         }
-        if let Some((w, from, to)) = self.flip {
-            out.push(msg::configuration_flip(&at, &w, from, to));
+        if let Some((w, flip)) = &self.flip {
+            out.push(msg::configuration_flip(&at, w, flip));
         }
         for (i, s) in self.speed.iter().enumerate() {
             if let Some((w, v)) = s {
@@ -317,8 +317,15 @@ impl ArmRule<'_> {
         if from != to {
             let mut slot = self.flip.map(|f| f.0);
             Worst::hit(&mut slot, 1.0, 0.0, at);
-            let keep = self.flip.map_or((from, to), |f| (f.1, f.2));
-            self.flip = slot.map(|w| (w, keep.0, keep.1));
+            // The first change is reported: its Status and `confdata`.
+            let keep = self.flip.map_or_else(
+                || Flip {
+                    status: [from, to],
+                    confdata: [solver.confdata(&self.prev), solver.confdata(j)],
+                },
+                |f| f.1,
+            );
+            self.flip = slot.map(|w| (w, keep));
         }
         let (Speed::Feed(v), Some(last)) = (m.speed, self.last) else {
             return;

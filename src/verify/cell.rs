@@ -75,7 +75,7 @@ impl<'p> CellRule<'p> {
                 o.at(MachineField::GasPreFlow),
             ));
         }
-        if let (Some(w), Some(p)) = (self.powder_short, self.cell.powder) {
+        if let (Some(w), Some(p)) = (self.powder_short, &self.cell.powder) {
             out.push(cell::powder_too_early(
                 name,
                 &w,
@@ -83,7 +83,7 @@ impl<'p> CellRule<'p> {
                 o.at(MachineField::PowderArrival),
             ));
         }
-        let full = self.cell.powder.and_then(|p| p.rate);
+        let full = self.cell.powder.as_ref().and_then(|p| p.rate.as_ref());
         if let Some(w) = self.rate_differs {
             out.push(cell::rate_changes_in_path(
                 name,
@@ -128,13 +128,13 @@ impl<'p> PlanRule<'p> for CellRule<'p> {
 impl Visit for CellRule<'_> {
     fn laser_on(&mut self, next: &Move) {
         let at = next.source();
-        if let Some(g) = self.cell.gas {
+        if let Some(g) = &self.cell.gas {
             let waited = self.gas_since.map_or(0.0, |s| self.t - s);
             if waited + TIME_SLACK_S < g.pre_flow || self.gas_since.is_none() {
                 Worst::hit(&mut self.gas_short, waited, g.pre_flow, at);
             }
         }
-        if let Some(p) = self.cell.powder {
+        if let Some(p) = &self.cell.powder {
             let waited = self.powder_since.map_or(0.0, |s| self.t - s);
             if waited + TIME_SLACK_S < p.arrival || self.powder_since.is_none() {
                 Worst::hit(&mut self.powder_short, waited, p.arrival, at);
@@ -154,7 +154,7 @@ impl Visit for CellRule<'_> {
         if !m.deposits() {
             return;
         }
-        let Some(full) = self.cell.powder.and_then(|p| p.rate) else {
+        let Some(full) = self.cell.powder.as_ref().and_then(|p| p.rate.as_ref()) else {
             // No rate output: the feeder gives the rate it is set to, and a
             // style's own feed would be credited without being fed.
             let point = m.source().point(self.program);
@@ -224,12 +224,12 @@ mod tests {
     fn cell() -> Cell {
         Cell {
             gas: Some(Gas {
-                output: 2,
+                output: crate::ir::Signal::Number(2),
                 pre_flow: 2.0,
                 post_flow: 1.0,
             }),
             powder: Some(Feeder {
-                output: 3,
+                output: crate::ir::Signal::Number(3),
                 arrival: 3.0,
                 rate: None,
             }),

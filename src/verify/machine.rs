@@ -300,7 +300,8 @@ impl<'p> PlanRule<'p> for Analog {
         };
         out.push(message::verify::machine::analog_range(&AnalogOverrun {
             robot: &r.name,
-            output: r.power_out,
+            output: &r.power_out,
+            words: crate::diag::message::words::Words::of(r.controller),
             full_scale: r.full_scale_power,
             needed: rounded(w.value / r.full_scale_power, kuka::ANOUT_DECIMALS),
             worst: w,

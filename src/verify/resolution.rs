@@ -98,8 +98,8 @@ impl<'p> PlanRule<'p> for Resolution<'p> {
                     )
                 }
                 Machine::Robot(r) => message::verify::machine::robot_power_unwritable(
-                    &r.name,
-                    r.power_out,
+                    (&r.name, message::words::Words::of(r.controller)),
+                    &r.power_out,
                     r.full_scale_power,
                     &w,
                     o.at(Field::FullScale),

@@ -21,7 +21,9 @@
 //! under `ConfJ \Off` (no arm); speeddata are `[v_tcp,500,5000,1000]` with
 //! v_tcp > 0, at most 50 declared, ABB's `v<n>` only for the joint moves, in
 //! place only for the linear ones; analog values 0..1; signals are
-//! `do<n>`/`ao<n>`, the laser's and its power's only switched by `TriggIO`
+//! `do<n>`/`ao<n>` or named (a RAPID name, no `lmd_` data, not `ao<n>` for
+//! a digital one nor `do<n>` for an analog one), the laser's and its
+//! power's (the names `run` is given) only switched by `TriggIO`
 //! in the motion modules (the main routine may only switch them off); the
 //! triggers are `lmd_on`/`lmd_off`/`lmd_power` with `\Start` and their
 //! `_end` twins without, distance 0; a `TriggL`'s triggers are set by
@@ -149,10 +151,10 @@ pub enum Event {
     Dwell(f64),
     /// `WaitRob \InPos`.
     WaitRob,
-    /// `SetDO do<n>, 0|1`.
-    SetDO(u16, bool),
-    /// `SetAO ao<n>, x`.
-    SetAO(u16, f64),
+    /// `SetDO <signal>, 0|1` (`do3`, `doGas`).
+    SetDO(String, bool),
+    /// `SetAO <signal>, x` (`ao2`, `aoPowderRate`).
+    SetAO(String, f64),
 }
 
 /// A `tooldata`.
@@ -209,10 +211,21 @@ pub struct Trace {
     pub power_at_end: f64,
 }
 
+/// The signals of an ABB robot's laser and its power as docs/rapid.md
+/// names them: the names the robot gives (`laser = "doLaserOn"`), else
+/// `do<laser>` and `ao<power_output>`.
+pub fn signals(r: &lmdc::ir::Robot) -> (String, String) {
+    let name = |s: &lmdc::ir::Signal, prefix: &str| match s {
+        lmdc::ir::Signal::Number(n) => format!("{prefix}{n}"),
+        lmdc::ir::Signal::Name(name) => name.clone(),
+    };
+    (name(&r.laser_out, "do"), name(&r.power_out, "ao"))
+}
+
 /// Reads every file and runs `PROC main()` of `<main>.mod`; `laser` and
-/// `power` are the numbers of the laser's digital output (`do<laser>`) and
-/// of its power's analog output (`ao<power>`).
-pub fn run(files: &Files, main: &str, laser: u16, power: u16) -> Result<Trace, String> {
+/// `power` are the signals of the laser's digital output (`do1`,
+/// `doLaserOn`) and of its power's analog output (`ao2`, `aoLaserPower`).
+pub fn run(files: &Files, main: &str, laser: &str, power: &str) -> Result<Trace, String> {
     let mut modules = BTreeMap::new();
     for (file, text) in files {
         let stem = file
@@ -230,8 +243,8 @@ pub fn run(files: &Files, main: &str, laser: u16, power: u16) -> Result<Trace, S
         modules: &modules,
         data: &data,
         main,
-        laser_no: laser,
-        power_no: power,
+        laser_no: laser.to_string(),
+        power_no: power.to_string(),
         trace: Trace::default(),
         laser: false,
         power: 0.0,
@@ -633,16 +646,41 @@ fn layer_note(text: &str) -> Option<(usize, usize)> {
     Some((n.parse().ok()?, of.parse().ok()?))
 }
 
-/// A signal `<prefix><n>` (`do1`, `ao2`).
-fn signal(e: &Expr, prefix: &str) -> R<u16> {
-    let n = match &e.kind {
-        X::Name(s) => s.strip_prefix(prefix),
-        _ => None,
+/// A signal, digital (`do1`, `doLaserOn`) or `analog` (`ao2`,
+/// `aoLaserPower`): `do<n>`/`ao<n>` by number, or a signal's own name — a
+/// RAPID name that is not the program's data (`lmd_…`, or declared), nor
+/// the numbered name of the other kind.
+fn signal(e: &Expr, analog: bool, data: &BTreeMap<String, Data>) -> R<String> {
+    let (want, other) = if analog { ("ao", "do") } else { ("do", "ao") };
+    let X::Name(s) = &e.kind else {
+        return err(e.line, format!("`{}` is not a signal", show(e)));
     };
-    match n.and_then(|n| n.parse::<u16>().ok().filter(|k| k.to_string() == n)) {
-        Some(k) => Ok(k),
-        None => err(e.line, format!("`{}` is not a signal {prefix}<n>", show(e))),
+    check_name(s, e.line)?;
+    let number = |p: &str| {
+        s.strip_prefix(p)
+            .filter(|n| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()))
+    };
+    if number(other).is_some() {
+        return err(
+            e.line,
+            format!("`{s}` is not a signal {want}<n> or a signal's name"),
+        );
     }
+    if let Some(n) = number(want) {
+        if n.parse::<u16>()
+            .ok()
+            .filter(|k| k.to_string() == n)
+            .is_none()
+        {
+            return err(e.line, format!("`{s}` is not a signal {want}<n>"));
+        }
+    }
+    let own = s.to_ascii_lowercase().starts_with("lmd_")
+        || data.keys().any(|k| k.eq_ignore_ascii_case(s));
+    if own {
+        return err(e.line, format!("`{s}` is the program's data, not a signal"));
+    }
+    Ok(s.clone())
 }
 
 // ------------------------------------------------------------------ values
@@ -1068,8 +1106,8 @@ struct State<'a> {
     modules: &'a BTreeMap<String, Module>,
     data: &'a BTreeMap<String, Data>,
     main: &'a str,
-    laser_no: u16,
-    power_no: u16,
+    laser_no: String,
+    power_no: String,
     trace: Trace,
     laser: bool,
     power: f64,
@@ -1342,16 +1380,16 @@ impl State<'_> {
         if num(args[1])? != 0.0 {
             return err(i.line, "a trigger's distance is 0");
         }
-        let (sig, prefix, want_no) = if form < 2 {
-            ("DOp", "do", self.laser_no)
+        let (sig, want_no) = if form < 2 {
+            ("DOp", &self.laser_no)
         } else {
-            ("AOp", "ao", self.power_no)
+            ("AOp", &self.power_no)
         };
-        let n = signal(opt(i, sig)?, prefix)?;
-        if n != want_no {
+        let n = signal(opt(i, sig)?, form >= 2, self.data)?;
+        if &n != want_no {
             return err(
                 i.line,
-                format!("a trigger switches the laser's {prefix}{want_no}, not {prefix}{n}"),
+                format!("a trigger switches the laser's {want_no}, not {n}"),
             );
         }
         let set = if form < 2 {
@@ -1582,11 +1620,11 @@ impl State<'_> {
         let dig = i.name == "SetDO";
         let (n, value) = if dig {
             (
-                signal(args[0], "do")?,
+                signal(args[0], false, self.data)?,
                 f64::from(u8::from(digital(args[1])?)),
             )
         } else {
-            (signal(args[0], "ao")?, analog(args[1])?)
+            (signal(args[0], true, self.data)?, analog(args[1])?)
         };
         if !self.stopped {
             return err(

@@ -17,7 +17,7 @@ mod writer;
 
 use super::context::{counts, layer_context, shown, styles};
 use super::{EmitError, Sink, Templates};
-use crate::ir::{Cell, Cnc, Kinematics, Layer, Program, RotaryTable};
+use crate::ir::{Cell, Cnc, Kinematics, Layer, Program, RotaryTable, Signal};
 use crate::numbers::trimmed;
 use crate::plan::kinematics::Rotary;
 use crate::plan::{effective_kinematics, table, Io, Move, MoveKind, Speed, Visit};
@@ -189,27 +189,29 @@ impl Visit for Motion<'_, '_> {
 /// delimiters saying what it switches.
 pub fn io_lines(cell: &Cell, comment: (&str, &str), event: Io) -> Vec<String> {
     // (line with `{n}` and `{v}`, output, value, what it switches)
-    let mut lines: Vec<(&str, u16, Option<f64>, String)> = Vec::new();
+    let mut lines: Vec<(&str, &Signal, Option<f64>, String)> = Vec::new();
     let rate = |g_min: f32| {
-        cell.powder.and_then(|p| p.rate).map(|r| {
+        cell.powder.as_ref().and_then(|p| p.rate.as_ref()).map(|r| {
             (
                 cell.analog_output.as_str(),
-                r.output,
+                &r.output,
                 Some(g_min as f64 / r.full_scale),
                 format!("powder {} g/min", trimmed(g_min as f64, 2)),
             )
         })
     };
     let (on, off) = (cell.output_on.as_str(), cell.output_off.as_str());
-    match (event, cell.gas, cell.powder) {
-        (Io::GasOn, Some(g), _) => lines.push((on, g.output, None, "gas on".into())),
-        (Io::GasOff, Some(g), _) => lines.push((off, g.output, None, "gas off".into())),
+    // A CNC's outputs are numbered (sema refuses a signal's name): `{n}`
+    // is the number.
+    match (event, &cell.gas, &cell.powder) {
+        (Io::GasOn, Some(g), _) => lines.push((on, &g.output, None, "gas on".into())),
+        (Io::GasOff, Some(g), _) => lines.push((off, &g.output, None, "gas off".into())),
         (Io::PowderOn(r), _, Some(p)) => {
             lines.extend(rate(r));
-            lines.push((on, p.output, None, "powder on".into()));
+            lines.push((on, &p.output, None, "powder on".into()));
         }
         (Io::PowderRate(r), _, Some(_)) => lines.extend(rate(r)),
-        (Io::PowderOff, _, Some(p)) => lines.push((off, p.output, None, "powder off".into())),
+        (Io::PowderOff, _, Some(p)) => lines.push((off, &p.output, None, "powder off".into())),
         _ => {}
     }
     let (open, close) = comment;

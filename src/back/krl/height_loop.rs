@@ -203,7 +203,7 @@ impl Text<'_> {
             if i + 1 == n {
                 if let Some(first) = plan.body.first() {
                     let x = super::anout(first.planned.power, self.robot);
-                    let (p, l) = (self.robot.power_out, self.robot.laser_out);
+                    let (p, l) = (&self.robot.power_out, &self.robot.laser_out);
                     self.line(
                         0,
                         &format!(
@@ -436,7 +436,7 @@ impl Text<'_> {
         let end = plan.last.last().or(plan.body.last()).map(|m| m.planned.to);
         for (i, m) in plan.tail.iter().enumerate() {
             if i == 0 {
-                let l = self.robot.laser_out;
+                let l = &self.robot.laser_out;
                 self.line(
                     0,
                     &format!("TRIGGER WHEN DISTANCE=0 DELAY=0 DO $OUT[{l}]=FALSE"),

@@ -77,8 +77,8 @@ pub fn emit(
             base.clone(),
             names.clone(),
             robot.max_points_per_module,
-            robot.laser_out,
-            robot.power_out,
+            number(&robot.laser_out),
+            number(&robot.power_out),
         ),
         orient: Orienter::for_robot(robot),
         robot,
@@ -275,6 +275,12 @@ pub fn home_config(
     };
     let j = s.home_solution(to, &rot, &robot.home)?;
     Some((s.status(&j), crate::plan::arm::Solver::turn(&j), j))
+}
+
+/// A KUKA robot's output number: sema gives a KUKA robot numbered outputs
+/// only (a signal's name is ABB's), so a name has none to write (0).
+fn number(s: &crate::ir::Signal) -> u16 {
+    s.number().unwrap_or_default()
 }
 
 /// The KRL lines of a gas or powder event on `robot` (assignments with a

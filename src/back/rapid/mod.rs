@@ -23,7 +23,9 @@ use crate::plan::arm::{Joints, Solver};
 use crate::plan::positioner::Kin;
 use crate::plan::{orient::Orienter, Io, Move, MoveKind, Speed, Visit};
 use crate::target::names::KrlNames;
-use crate::target::rapid::{self as abb, AO_DECIMALS, POS_DECIMALS, QUAT_DECIMALS, SPEED_DECIMALS};
+use crate::target::rapid::{
+    self as abb, signal, AO_DECIMALS, POS_DECIMALS, QUAT_DECIMALS, SPEED_DECIMALS,
+};
 use crate::verify::VerifiedMachine;
 use modules::{Modules, Set, Target};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion};
@@ -70,8 +72,10 @@ pub fn emit(
             base.clone(),
             names.clone(),
             robot.max_points_per_module,
-            robot.laser_out,
-            robot.power_out,
+            [
+                signal(&robot.laser_out, false),
+                signal(&robot.power_out, true),
+            ],
         ),
         orient: Orienter::for_robot(robot),
         conf: Conf::new(robot),
@@ -283,7 +287,8 @@ impl Visit for Writer<'_, '_> {
         if self.switch == Some(false) {
             // A guard: the plan retracts before any switching.
             self.switch = None;
-            lines.push(format!("SetDO do{}, 0; ! laser off", self.robot.laser_out));
+            let laser = signal(&self.robot.laser_out, false);
+            lines.push(format!("SetDO {laser}, 0; ! laser off"));
         }
         lines.extend(io_lines(self.robot, event));
         self.out.io(&lines);
@@ -360,12 +365,14 @@ pub fn io_lines(robot: &Robot, event: Io) -> Vec<String> {
         .into_iter()
         .map(|o| match o {
             CellOut::Rate { n, fraction, g_min } => format!(
-                "SetAO ao{n}, {}; ! powder {} g/min",
+                "SetAO {}, {}; ! powder {} g/min",
+                signal(n, true),
                 fixed(fraction, AO_DECIMALS),
                 trimmed(g_min as f64, 2)
             ),
             CellOut::Switch { n, on, what } => format!(
-                "SetDO do{n}, {}; ! {what} {}",
+                "SetDO {}, {}; ! {what} {}",
+                signal(n, false),
                 u8::from(on),
                 if on { "on" } else { "off" }
             ),
@@ -496,6 +503,8 @@ fn main_context(
     ctx.insert("beam", beam_text(robot.beam));
     ctx.insert("laser_out", &robot.laser_out);
     ctx.insert("power_out", &robot.power_out);
+    ctx.insert("laser_signal", &signal(&robot.laser_out, false));
+    ctx.insert("power_signal", &signal(&robot.power_out, true));
     ctx.insert("full_scale", &trimmed(robot.full_scale_power, 3));
     ctx.insert("clearance", &trimmed(robot.clearance, 3));
     ctx.insert("module_lines", &robot.max_points_per_module);

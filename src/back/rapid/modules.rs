@@ -102,8 +102,10 @@ pub struct Modules<'a> {
     base: tera::Context,
     names: KrlNames,
     max_lines: usize,
-    laser_out: u16,
-    power_out: u16,
+    /// The laser's digital signal and its power's analog one
+    /// ([`crate::target::rapid::signal`]).
+    laser_out: String,
+    power_out: String,
     body: Vec<u8>,
     lines: usize,
     pending: Option<Pending>,
@@ -123,16 +125,16 @@ pub struct Modules<'a> {
 }
 
 impl<'a> Modules<'a> {
-    /// A writer naming modules by `names`, switching the laser on
-    /// `do<laser_out>` and its power on `ao<power_out>`.
+    /// A writer naming modules by `names`, switching the laser on the
+    /// signal `laser_out` (`do1`, `doLaserOn`) and its power on
+    /// `power_out` (`ao2`, `aoLaserPower`).
     pub fn new(
         sink: &'a mut dyn Sink,
         t: &'a Templates,
         base: tera::Context,
         names: KrlNames,
         max_lines: usize,
-        laser_out: u16,
-        power_out: u16,
+        [laser_out, power_out]: [String; 2],
     ) -> Self {
         Modules {
             sink,
@@ -307,13 +309,13 @@ impl<'a> Modules<'a> {
             });
             match s {
                 Set::Laser(on) => {
-                    b.extend_from_slice(b" \\DOp:=do");
-                    push_u64(b, self.laser_out as u64);
+                    b.extend_from_slice(b" \\DOp:=");
+                    b.extend_from_slice(self.laser_out.as_bytes());
                     b.extend_from_slice(if *on { b", 1;\n" } else { b", 0;\n" });
                 }
                 Set::Power(x) => {
-                    b.extend_from_slice(b" \\AOp:=ao");
-                    push_u64(b, self.power_out as u64);
+                    b.extend_from_slice(b" \\AOp:=");
+                    b.extend_from_slice(self.power_out.as_bytes());
                     b.extend_from_slice(b", ");
                     push_fixed(b, *x, AO_DECIMALS);
                     b.extend_from_slice(b";\n");

@@ -3,6 +3,7 @@
 //! (`lmd::collision`), and a machine that declares no head
 //! (`lmd::head-unchecked`).
 
+use crate::diag::message::words::Words;
 use crate::diag::{plural, Code, Diagnostic, Worst};
 use crate::span::Span;
 use crate::units::{short, short_up};
@@ -385,6 +386,8 @@ pub struct LinkHit<'a, At> {
     pub home: Option<Span>,
     /// A change checked to keep the link clear, where one was found.
     pub fix: Option<LinkFix>,
+    /// The robot's controller's words for its axes and moves.
+    pub words: Words,
 }
 
 /// A link of a robot's arm (or the head it carries, on a PTP) closer than
@@ -402,16 +405,18 @@ pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
     };
     let who = format!("the {} of robot `{}`", h.link, h.machine);
     let message = too_close(&who, &what, w, true);
+    let a1 = h.words.axis(0);
     let fix = match (h.ptp, h.with, &h.fix) {
-        (None, _, Some(f)) => link_fix(h.with, f),
+        (None, _, Some(f)) => link_fix(h.with, f, h.words),
         (Some(Some((home, from))), _, _) => format!(
-            "the axes' straight path from `home` passes through it: `home = [{}]` ({}) keeps the gap on both PTPs; or a home of your own, checked the same way",
+            "the axes' straight path from `home` passes through it: `home = [{}]` ({}) keeps the gap on {}; or a home of your own, checked the same way",
             home.iter().map(|a| format!("{} deg", short(*a))).collect::<Vec<_>>().join(", "),
             match from {
-                HomeFrom::Raised(0) => "the first pose's A1 and wrist, the arm as at home".to_string(),
-                HomeFrom::Raised(up) => format!("the first pose's A1 and wrist, the upper arm as at home and the forearm raised {up}° above it"),
+                HomeFrom::Raised(0) => format!("the first pose's {a1} and wrist, the arm as at home"),
+                HomeFrom::Raised(up) => format!("the first pose's {a1} and wrist, the upper arm as at home and the forearm raised {up}° above it"),
                 HomeFrom::First => "the first pose's own axes, above the first path".to_string(),
-            }
+            },
+            h.words.home_moves()
         ),
         (Some(None), _, _) => "the axes' straight path from `home` passes through it: a `home` with the arm raised above the cell and turned towards the part, or the part placed where the arm comes down onto it from above".to_string(),
         (None, Against::Faceplate(Some(d)), _) => format!(
@@ -447,7 +452,8 @@ pub fn link_collision<At: Display>(h: &LinkHit<'_, At>) -> Diagnostic {
 
 /// The help's change for a link too close to `with` (docs/collision.md,
 /// *What is said*).
-fn link_fix(with: Against<'_>, f: &LinkFix) -> String {
+fn link_fix(with: Against<'_>, f: &LinkFix, words: Words) -> String {
+    let lin = words.lin();
     let mm = |v: &[f64]| {
         v.iter()
             .map(|x| format!("{} mm", short(*x)))
@@ -462,7 +468,7 @@ fn link_fix(with: Against<'_>, f: &LinkFix) -> String {
             mm(&m.at)
         ),
         (LinkFix::Base { by, index, pose }, _) => format!(
-            "the arm folds back onto itself there: the part stood {} mm farther from the arm's foot, along the level line from the foot through the base (`base = frame({index}, x = {}, y = {}, z = {}, a = {} deg, b = {} deg, c = {} deg)`), keeps the arm unfolded enough — the plan followed from there reaches every pose within the axes' limits, no LIN singular or changing configuration, and the links keep their gap at every pose; or tilt the nozzle less there",
+            "the arm folds back onto itself there: the part stood {} mm farther from the arm's foot, along the level line from the foot through the base (`base = frame({index}, x = {}, y = {}, z = {}, a = {} deg, b = {} deg, c = {} deg)`), keeps the arm unfolded enough — the plan followed from there reaches every pose within the axes' limits, no {lin} singular or changing configuration, and the links keep their gap at every pose; or tilt the nozzle less there",
             short(*by),
             mm(&pose[0..1]),
             mm(&pose[1..2]),
@@ -472,7 +478,7 @@ fn link_fix(with: Against<'_>, f: &LinkFix) -> String {
             short(pose[5])
         ),
         (LinkFix::Spin { deg, from }, _) => format!(
-            "the tool is angled on its flange, and turned as it is about the beam ({} deg) it holds the flange down at the part's plane there: turned to `spin = {} deg` it holds it higher — the plan followed with that turn reaches every pose within the axes' limits, no LIN singular or changing configuration, and the links keep their gap at every pose; or tilt the nozzle less there",
+            "the tool is angled on its flange, and turned as it is about the beam ({} deg) it holds the flange down at the part's plane there: turned to `spin = {} deg` it holds it higher — the plan followed with that turn reaches every pose within the axes' limits, no {lin} singular or changing configuration, and the links keep their gap at every pose; or tilt the nozzle less there",
             short(*from),
             short(*deg)
         ),

@@ -1,6 +1,7 @@
 //! What lmdc says about a `machine` block: its kind, frames, axes, dialect,
 //! program texts, height sensor, and the gas and powder of its cell.
 
+use crate::diag::message::words::Words;
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
 use crate::units::short;
@@ -57,13 +58,18 @@ pub fn robot_speed_too_high(speed: f64, at: Span, cap: f64) -> Diagnostic {
     ))
 }
 
-/// Axis `axis` (1-based) of `home` is at `deg`, beyond ±`max_deg`.
-pub fn home_axis_out_of_range(axis: usize, deg: f64, at: Span, max_deg: f64) -> Diagnostic {
+/// Axis `axis` (0-based) of `home` is at `deg`, beyond ±`max_deg`.
+pub fn home_axis_out_of_range(
+    (axis, words): (usize, Words),
+    deg: f64,
+    at: Span,
+    max_deg: f64,
+) -> Diagnostic {
     Diagnostic::error(
         Code::OutOfRange,
         format!(
-            "home axis A{} at {}° is beyond any robot axis",
-            axis,
+            "home {} at {}° is beyond any robot axis",
+            words.an_axis(axis),
             short(deg)
         ),
     )
@@ -73,11 +79,15 @@ pub fn home_axis_out_of_range(axis: usize, deg: f64, at: Span, max_deg: f64) -> 
     ))
 }
 
-/// `home` is not a list of six angles (`got` describes what it is).
-pub fn home_not_six_angles(at: Span, got: &str) -> Diagnostic {
+/// `home` is not a list of six angles (`got` describes what it is); the
+/// example is the controller's usual home.
+pub fn home_not_six_angles(at: Span, got: &str, words: Words) -> Diagnostic {
     Diagnostic::error(Code::Type, "`home` is the list of the six axis angles")
         .label(at, format!("this is {got}"))
-        .help("e.g. `home = [0 deg, -90 deg, 90 deg, 0 deg, 0 deg, 0 deg]`")
+        .help(match words {
+            Words::Kuka => "e.g. `home = [0 deg, -90 deg, 90 deg, 0 deg, 0 deg, 0 deg]`",
+            Words::Abb => "e.g. `home = [0 deg, 0 deg, 0 deg, 0 deg, 90 deg, 0 deg]`",
+        })
 }
 
 /// A CNC declared with `axes = 4`.
@@ -204,21 +214,64 @@ pub fn no_machine() -> Diagnostic {
 pub fn output_clash(
     what: &str,
     other: &str,
-    analog: bool,
-    n: usize,
+    (analog, on): (bool, &crate::ir::Signal),
     at: Span,
     first: Option<Span>,
 ) -> Diagnostic {
+    let (on, fix) = match on {
+        crate::ir::Signal::Number(n) => (
+            format!("{} output {n}", if analog { "analog" } else { "digital" }),
+            "give each its own output number",
+        ),
+        crate::ir::Signal::Name(name) => (
+            format!("signal `{name}`"),
+            "give each its own signal (RAPID's names are the same in upper and lower case)",
+        ),
+    };
     Diagnostic::error(
         Code::OutputClash,
-        format!(
-            "{what} and {other} are both on {} output {n}",
-            if analog { "analog" } else { "digital" }
-        ),
+        format!("{what} and {other} are both on {on}"),
     )
     .label(at, what.to_string())
     .label_opt(first, other.to_string())
-    .help("every output switches one thing: give each its own output number")
+    .help(format!("every output switches one thing: {fix}"))
+}
+
+/// An output `key` given a signal's name (`at`) on a machine whose outputs
+/// are numbered: a KUKA robot's (`robot`) or a CNC's.
+pub fn signal_name_numbered(key: &str, at: Span, robot: bool) -> Diagnostic {
+    let (who, numbered, example) = if robot {
+        (
+            "a KUKA robot",
+            "KRL switches `$OUT[n]` and sets `$ANOUT[n]`",
+            if key == "power_output" || key == "rate_output" {
+                "2"
+            } else {
+                "1"
+            },
+        )
+    } else {
+        ("a CNC", "its output lines take the number as `{n}`", "2")
+    };
+    Diagnostic::error(
+        Code::SignalName,
+        format!("`{key}` names a signal, and this machine is {who}, whose outputs are numbered: {numbered}"),
+    )
+    .label(at, "a signal's name")
+    .help(format!(
+        "give the output's number, e.g. `{key} = {example}`; signals are named on an ABB robot (`controller = abb`, docs/rapid.md)"
+    ))
+}
+
+/// A signal's name `name` for output `key` that RAPID cannot take or that
+/// the program uses itself: `why` says which.
+pub fn signal_name_invalid(key: &str, name: &str, at: Span, why: &str) -> Diagnostic {
+    Diagnostic::error(
+        Code::SignalName,
+        format!("`{key} = \"{name}\"` is not a signal's name the program can use: {why}"),
+    )
+    .label(at, "the signal's name")
+    .help("name the signal as the controller's I/O configuration does: a RAPID name, a letter then letters, digits and `_`, at most 32 characters (e.g. `\"doLaserOn\"`, `\"aoLaserPower\"`), not a RAPID reserved word nor one of lmdc's own names (`lmd_…`, `main`, `v200`, `fine`)")
 }
 
 /// A `powder` block (`at`) without `arrival`.
@@ -395,17 +448,17 @@ pub fn arm_of_other_maker(
 }
 
 /// An item of `opw(…)`'s `key` list that is not what it takes.
-pub fn arm_list_item(key: &str, at: Span, got: &str, wanted: &str) -> Diagnostic {
+pub fn arm_list_item((key, words): (&str, Words), at: Span, got: &str, wanted: &str) -> Diagnostic {
     Diagnostic::error(Code::Type, format!("each item of `{key}` is {wanted}"))
         .label(at, format!("this is {got}"))
-        .help(format!("one item per axis, A1 to A6: {wanted}"))
+        .help(format!("one item per axis, {}: {wanted}", words.six_axes()))
 }
 
 /// `opw(…)`'s `key` is not a list of six.
-pub fn arm_list_not_six(key: &str, at: Span, got: &str) -> Diagnostic {
+pub fn arm_list_not_six((key, words): (&str, Words), at: Span, got: &str) -> Diagnostic {
     Diagnostic::error(
         Code::Type,
-        format!("`{key}` is a list of six, one per axis A1 to A6"),
+        format!("`{key}` is a list of six, one per axis {}", words.six_axes()),
     )
     .label(at, format!("this is {got}"))
     .help(if key == "limits" {

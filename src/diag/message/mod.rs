@@ -36,3 +36,4 @@ pub mod usage;
 pub mod value;
 pub mod verify;
 pub mod wall;
+pub mod words;

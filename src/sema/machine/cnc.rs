@@ -48,7 +48,7 @@ pub(super) fn read<'a>(
     let cell = cell::read(
         env,
         &f,
-        outputs,
+        (outputs, cell::Naming::Cnc),
         lines.clone().map(|l| (l, profile.as_str())),
         &[],
         diags,

@@ -1,8 +1,9 @@
 //! `machine NAME { kind = robot … }`: a KUKA robot, programmed in KRL.
 
 use super::{common, height_sensor, motion, Written};
+use crate::diag::message::words::Words;
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Arm, Controller, FrameRef, Machine, Pose, Robot, Spin, ToolAxis};
+use crate::ir::{Arm, Controller, FrameRef, Machine, Pose, Robot, Signal, Spin, ToolAxis};
 use crate::sema::eval::Env;
 use crate::sema::fields::{self, Fields};
 use crate::sema::machine::cell;
@@ -29,14 +30,22 @@ pub(super) fn read<'a>(
 ) -> Option<(Machine, Written)> {
     let f = Fields::block(env, stmts, &ROBOT, format!("robot `{name}`"), span, diags);
     let mut at: Written = f.written().collect();
-    let r = robot(name, &f, diags);
+    let controller = f.word_or_default(&CONTROLLER, diags).map(|c| match c {
+        "abb" => Controller::Abb,
+        _ => Controller::Kuka,
+    });
+    let naming = match controller {
+        Some(Controller::Abb) => cell::Naming::Abb,
+        _ => cell::Naming::Kuka,
+    };
+    let r = robot(name, &f, (controller, naming), diags);
     let taken: Vec<_> = r
         .iter()
         .flat_map(|r| {
             [
-                (r.laser_out as usize, false, "the laser", f.span(&LASER)),
+                (r.laser_out.clone(), false, "the laser", f.span(&LASER)),
                 (
-                    r.power_out as usize,
+                    r.power_out.clone(),
                     true,
                     "the laser power",
                     f.span(&POWER_OUTPUT),
@@ -44,7 +53,8 @@ pub(super) fn read<'a>(
             ]
         })
         .collect();
-    let c = cell::read(env, &f, crate::target::outputs::KUKA, None, &taken, diags);
+    let outputs = (crate::target::outputs::KUKA, naming);
+    let c = cell::read(env, &f, outputs, None, &taken, diags);
     let positioner = super::positioner::read(env, &f, &mut at, diags);
     let head = super::head::read(env, &f, name, &mut at, diags);
     let (mut r, c, positioner, head) = (r?, c?, positioner?, head?);
@@ -60,11 +70,12 @@ pub(super) fn read<'a>(
     Some((Machine::Robot(r), at))
 }
 
-fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
-    let controller = f.word_or_default(&CONTROLLER, diags).map(|c| match c {
-        "abb" => Controller::Abb,
-        _ => Controller::Kuka,
-    });
+fn robot(
+    name: &str,
+    f: &Fields<'_>,
+    (controller, naming): (Option<Controller>, cell::Naming),
+    diags: &mut Diagnostics,
+) -> Option<Robot> {
     let tool = frame_ref(f, &TOOL, diags);
     let load = super::load::read(f, diags);
     let base = frame_ref(f, &BASE, diags);
@@ -76,8 +87,26 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
         "-z" => ToolAxis::MinusZ,
         _ => ToolAxis::PlusZ,
     });
-    let laser = f.count(&LASER, diags);
-    let anout = f.count(&POWER_OUTPUT, diags);
+    let outs = crate::target::outputs::KUKA;
+    let laser = cell::signal(f, &LASER, outs.digital, naming, diags);
+    let anout = cell::signal(f, &POWER_OUTPUT, outs.analog, naming, diags);
+    // Numbered, the two are `do<n>` and `ao<n>`: named, they must differ.
+    let anout = match (&laser, anout) {
+        (Some((l @ Signal::Name(a), on)), Some((Signal::Name(b), at)))
+            if a.eq_ignore_ascii_case(&b) =>
+        {
+            let d = message::machine::output_clash(
+                "the laser power",
+                "the laser",
+                (true, l),
+                at,
+                Some(*on),
+            );
+            diags.push(d);
+            None
+        }
+        (_, anout) => anout,
+    };
     let full = f.quantity(&FULL_SCALE, diags);
     let top = match controller {
         Some(Controller::Abb) => crate::target::rapid::V_TCP_MAX,
@@ -117,8 +146,8 @@ fn robot(name: &str, f: &Fields<'_>, diags: &mut Diagnostics) -> Option<Robot> {
         load: load?,
         base: base?,
         beam: beam?,
-        laser_out: laser?.0 as u16,
-        power_out: anout?.0 as u16,
+        laser_out: laser?.0,
+        power_out: anout?.0,
         full_scale_power: Power(full?.0).watts(),
         home: home?,
         max_points_per_module: lines?,
@@ -262,7 +291,6 @@ fn links(v: &super::super::value::Spanned, diags: &mut Diagnostics) -> Option<[f
     ok.then_some(out)
 }
 
-/// `opw(…)`: an arm by its parameters, in KUKA's axis angles.
 /// The maker whose arms a controller drives.
 fn maker(c: Controller) -> crate::target::arm::Maker {
     match c {
@@ -271,7 +299,9 @@ fn maker(c: Controller) -> crate::target::arm::Maker {
     }
 }
 
+/// `opw(…)`: an arm by its parameters, in the controller's axis angles.
 fn opw_arm(a: &Fields<'_>, controller: Controller, diags: &mut Diagnostics) -> Option<Arm> {
+    let words = Words::of(controller);
     let len = |field: &Field, diags: &mut Diagnostics| match field.need {
         crate::sema::schema::Need::Required(_) => a.quantity(field, diags).map(|q| q.0),
         _ => a.quantity_or_default(field, diags),
@@ -285,13 +315,13 @@ fn opw_arm(a: &Fields<'_>, controller: Controller, diags: &mut Diagnostics) -> O
         len(&opw::C3, diags),
         len(&opw::C4, diags),
     ];
-    let limits = six(a, &opw::LIMITS, diags, |it, diags| match &it.value {
+    let limits = six(a, &opw::LIMITS, words, diags, |it, diags| match &it.value {
         Value::Range(lo, hi) if lo.dim == crate::units::Dim::ANGLE && lo.value < hi.value => {
             Some([lo.value.to_degrees(), hi.value.to_degrees()])
         }
         _ => {
             diags.push(message::machine::arm_list_item(
-                opw::LIMITS.key,
+                (opw::LIMITS.key, words),
                 it.span,
                 &it.value.describe(),
                 "a range of angles, low first: `-185 deg .. 185 deg`",
@@ -299,12 +329,21 @@ fn opw_arm(a: &Fields<'_>, controller: Controller, diags: &mut Diagnostics) -> O
             None
         }
     });
-    let speeds = six(a, &opw::SPEEDS, diags, |it, diags| {
-        match fields::quantity(it, crate::units::Dim::ANGULAR_SPEED, opw::SPEEDS.key, diags) {
+    let speeds = six(
+        a,
+        &opw::SPEEDS,
+        words,
+        diags,
+        |it, diags| match fields::quantity(
+            it,
+            crate::units::Dim::ANGULAR_SPEED,
+            opw::SPEEDS.key,
+            diags,
+        ) {
             Some(x) if x > 0.0 => Some(x.to_degrees()),
             Some(_) => {
                 diags.push(message::machine::arm_list_item(
-                    opw::SPEEDS.key,
+                    (opw::SPEEDS.key, words),
                     it.span,
                     &it.value.describe(),
                     "a speed above zero: `156 deg/s`",
@@ -312,8 +351,8 @@ fn opw_arm(a: &Fields<'_>, controller: Controller, diags: &mut Diagnostics) -> O
                 None
             }
             None => None,
-        }
-    });
+        },
+    );
     let mut opw = [0.0; 7];
     for (o, p) in opw.iter_mut().zip(ps) {
         *o = p?;
@@ -341,6 +380,7 @@ fn opw_arm(a: &Fields<'_>, controller: Controller, diags: &mut Diagnostics) -> O
 fn six<T: Copy + Default>(
     a: &Fields<'_>,
     field: &Field,
+    words: Words,
     diags: &mut Diagnostics,
     item: impl Fn(&crate::sema::value::Spanned, &mut Diagnostics) -> Option<T>,
 ) -> Option<[T; 6]> {
@@ -349,7 +389,7 @@ fn six<T: Copy + Default>(
         Value::List(items) if items.len() == 6 => items,
         other => {
             diags.push(message::machine::arm_list_not_six(
-                field.key,
+                (field.key, words),
                 v.span,
                 &other.describe(),
             ));
@@ -440,10 +480,12 @@ fn home(
         None => return Some([0.0, -90.0, 90.0, 0.0, 0.0, 0.0]),
         Some(v) => v,
     };
+    let words = Words::of(controller.unwrap_or_default());
     let Value::List(items) = &v.value else {
         diags.push(message::machine::home_not_six_angles(
             v.span,
             &v.value.describe(),
+            words,
         ));
         return None;
     };
@@ -451,6 +493,7 @@ fn home(
         diags.push(message::machine::home_not_six_angles(
             v.span,
             &v.value.describe(),
+            words,
         ));
         return None;
     }
@@ -461,7 +504,7 @@ fn home(
             Some(a) if a.to_degrees().abs() <= MAX_ANGLE_DEG => out[i] = a.to_degrees(),
             Some(a) => {
                 diags.push(message::machine::home_axis_out_of_range(
-                    i + 1,
+                    (i, words),
                     a.to_degrees(),
                     it.span,
                     MAX_ANGLE_DEG,

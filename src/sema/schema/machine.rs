@@ -166,17 +166,17 @@ pub static BEAM: Field = Field::new(
 /// `laser = 1`.
 pub static LASER: Field = Field::new(
     "laser",
-    Count(1, 4096),
+    Either(&[Count(1, 4096), Text]),
     Required("1"),
-    "the digital output `$OUT[n]` (ABB: `do<n>`) that switches the laser",
+    "the digital output `$OUT[n]` (ABB: `do<n>`, or the signal's name, `\"doLaserOn\"`) that switches the laser",
 );
 
 /// `power_output = 1`.
 pub static POWER_OUTPUT: Field = Field::new(
     "power_output",
-    Count(1, 32),
+    Either(&[Count(1, 32), Text]),
     Required("1"),
-    "the analog output `$ANOUT[n]` (ABB: `ao<n>`) that sets the power",
+    "the analog output `$ANOUT[n]` (ABB: `ao<n>`, or the signal's name, `\"aoLaserPower\"`) that sets the power",
 );
 
 /// `full_scale = 4000 W`.
@@ -930,7 +930,7 @@ pub static LIMITS: Block = Block::new(
 pub mod gas {
     use super::super::Bound::ZeroUpTo;
     use super::super::DefaultValue::Quantity as DefaultQuantity;
-    use super::super::Kind::{Io, Quantity};
+    use super::super::Kind::{Either, Io, Quantity, Text};
     use super::super::Need::{Default, Required};
     use super::super::{Field, Io as Signal};
     use super::MAX_CELL_TIME_S;
@@ -939,9 +939,9 @@ pub mod gas {
     /// `output = 2`.
     pub static OUTPUT: Field = Field::new(
         "output",
-        Io(Signal::DigitalOut),
+        Either(&[Io(Signal::DigitalOut), Text]),
         Required("2"),
-        "the digital output that opens the valve",
+        "the digital output that opens the valve (ABB: or the signal's name, `\"doGas\"`)",
     );
     /// `pre_flow = 2 s`.
     pub static PRE_FLOW: Field = Field::new(
@@ -970,7 +970,7 @@ pub static GAS: Block = Block::new(
 /// The fields of `powder { … }`.
 pub mod powder {
     use super::super::Bound::{Positive, ZeroUpTo};
-    use super::super::Kind::{Io, Quantity};
+    use super::super::Kind::{Either, Io, Quantity, Text};
     use super::super::Need::{Optional, Required};
     use super::super::{Field, Io as Signal};
     use super::MAX_CELL_TIME_S;
@@ -979,9 +979,9 @@ pub mod powder {
     /// `output = 3`.
     pub static OUTPUT: Field = Field::new(
         "output",
-        Io(Signal::DigitalOut),
+        Either(&[Io(Signal::DigitalOut), Text]),
         Required("3"),
-        "the digital output that starts the feeder",
+        "the digital output that starts the feeder (ABB: or the signal's name, `\"doPowder\"`)",
     );
     /// `arrival = 2.5 s`.
     pub static ARRIVAL: Field = Field::new(
@@ -993,9 +993,9 @@ pub mod powder {
     /// `rate_output = 2`.
     pub static RATE_OUTPUT: Field = Field::new(
         "rate_output",
-        Io(Signal::AnalogOut),
+        Either(&[Io(Signal::AnalogOut), Text]),
         Optional,
-        "the analog output that sets the feed rate (with `full_scale`)",
+        "the analog output that sets the feed rate, with `full_scale` (ABB: or the signal's name, `\"aoPowderRate\"`)",
     );
     /// `full_scale = 60 g/min`.
     pub static FULL_SCALE: Field = Field::new(

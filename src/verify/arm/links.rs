@@ -19,6 +19,7 @@ use crate::collision::capsule::{segment_point, Capsule};
 use crate::collision::head::{add, dist, scale, HeadShape, Pose};
 use crate::collision::material::{Lump, Material};
 use crate::diag::message::collision::{self as says, Against, LinkFix};
+use crate::diag::message::words::Words;
 use crate::diag::Diagnostics;
 use crate::diag::Worst;
 use crate::ir::MachineField;
@@ -65,9 +66,15 @@ impl Place {
     }
 }
 
-impl std::fmt::Display for Place {
+/// A place as a message names it, the joint moves in its controller's
+/// words.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Worded(pub Place, pub Words);
+
+impl std::fmt::Display for Worded {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match *self {
+        let Worded(place, words) = *self;
+        match place {
             Place::Move(a) => write!(f, "{a}"),
             Place::Ptp {
                 back: false,
@@ -75,14 +82,18 @@ impl std::fmt::Display for Place {
                 at,
             } => write!(
                 f,
-                "{:.0} % of the way along the PTP from home to {at}",
-                way * 100.0
+                "{:.0} % of the way along the {} from home to {at}",
+                way * 100.0,
+                words.leave_home()
             ),
             Place::Ptp {
                 back: true, way, ..
-            } => {
-                write!(f, "{:.0} % of the way along the PTP back home", way * 100.0)
-            }
+            } => write!(
+                f,
+                "{:.0} % of the way along the {} back home",
+                way * 100.0,
+                words.back_home()
+            ),
         }
     }
 }
@@ -93,12 +104,6 @@ impl std::fmt::Display for Place {
 pub(crate) struct LinkAt {
     pub place: Place,
     pub link: usize,
-}
-
-impl std::fmt::Display for LinkAt {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}", self.place)
-    }
 }
 
 /// The closest a link came to a solid: the distance, where, and the
@@ -613,6 +618,10 @@ impl<'p> Links<'p> {
         fixes: &[Option<LinkFix>],
         out: &mut Diagnostics,
     ) {
+        let words = match cx.machine {
+            crate::ir::Machine::Robot(r) => Words::of(r.controller),
+            _ => Words::Kuka,
+        };
         for (k, w) in self.worst.iter().enumerate() {
             let Some(w) = w else {
                 continue;
@@ -633,16 +642,23 @@ impl<'p> Links<'p> {
                 Target::Own(o) => (Against::Own(LINKS[o]), None),
                 Target::Part => (Against::Part, None),
             };
+            let worst = crate::diag::Worst {
+                at: Worded(w.at.place, words),
+                count: w.count,
+                value: w.value,
+                limit: w.limit,
+            };
             out.push(says::link_collision(&says::LinkHit {
                 machine: cx.machine.name(),
                 link: self.who(w.at.link),
                 with,
-                worst: w,
+                worst: &worst,
                 arm: cx.origin.at(MachineField::Arm),
                 placed,
                 ptp: w.at.place.ptp().then_some(home),
                 home: cx.origin.written(MachineField::Home),
                 fix: fixes.get(k).cloned().flatten(),
+                words,
             }));
         }
     }
@@ -724,5 +740,43 @@ fn part_lumps(program: &Program, spheres: &[([f64; 3], f64)], m: &mut Material) 
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The joint moves from and back to home are KUKA's PTPs, and on an
+    /// ABB robot the `MoveJ` from home and the `MoveAbsJ` back.
+    #[test]
+    fn ptp_places_are_named_in_the_controllers_words() {
+        let from = Place::Ptp {
+            back: false,
+            way: 0.5,
+            at: Where::End,
+        };
+        let back = Place::Ptp {
+            back: true,
+            way: 0.25,
+            at: Where::End,
+        };
+        let said = |p, w| Worded(p, w).to_string();
+        assert_eq!(
+            said(from, Words::Kuka),
+            "50 % of the way along the PTP from home to the retract after the last path"
+        );
+        assert_eq!(
+            said(from, Words::Abb),
+            "50 % of the way along the MoveJ from home to the retract after the last path"
+        );
+        assert_eq!(
+            said(back, Words::Kuka),
+            "25 % of the way along the PTP back home"
+        );
+        assert_eq!(
+            said(back, Words::Abb),
+            "25 % of the way along the MoveAbsJ back home"
+        );
     }
 }

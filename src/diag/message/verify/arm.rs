@@ -3,6 +3,7 @@
 //! `lmd::joint-speed`): where in the file, by how much, and what would fix
 //! it — the base, the tool's angle on the flange, the speed.
 
+use crate::diag::message::words::Words;
 use crate::diag::{plural, Worst};
 use crate::diag::{Code, Diagnostic};
 use crate::span::Span;
@@ -21,6 +22,8 @@ pub struct ArmAt<'a> {
     pub base: Span,
     /// `tool = …`.
     pub tool: Span,
+    /// Its controller's words for axes, moves and configurations.
+    pub words: Words,
 }
 
 /// What would bring a plan the arm cannot reach within its reach.
@@ -60,10 +63,14 @@ pub fn reach(
     fix: ReachFix<'_>,
 ) -> Diagnostic {
     let least = if quick { "at least " } else { "" };
+    let a2 = match a.words {
+        Words::Kuka => "the A2 axis",
+        Words::Abb => "axis 2",
+    };
     let d = Diagnostic::error(
         Code::Reach,
         format!(
-            "robot `{}` cannot reach {least}{} pose{} of the plan: at {} its wrist centre would have to be {least}{} mm from the A2 axis, and the {} reaches {} to {} mm",
+            "robot `{}` cannot reach {least}{} pose{} of the plan: at {} its wrist centre would have to be {least}{} mm from {a2}, and the {} reaches {} to {} mm",
             a.machine,
             w.count,
             plural(w.count),
@@ -109,15 +116,15 @@ pub fn reach(
 pub fn joint_limit(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, margin: f64) -> Diagnostic {
     let by = (w.value - w.limit).abs();
     let fix = match axis {
-        0 => "turn the base (`base = frame(…, a = …)`) or move it so the part lies in front of A1's middle",
-        1 | 2 => "move the base so the part lies at a comfortable distance and height from the robot",
-        _ => "tilt the nozzle on the flange (`tool = frame(…, b = …)`) or the base so the wrist turns less, or turn the tool about the beam (`spin = auto` lets lmdc choose the turn; a pinned `spin = … deg` is used as written)",
+        0 => format!("turn the base (`base = frame(…, a = …)`) or move it so the part lies in front of {}'s middle", a.words.axis(0)),
+        1 | 2 => "move the base so the part lies at a comfortable distance and height from the robot".to_string(),
+        _ => "tilt the nozzle on the flange (`tool = frame(…, b = …)`) or the base so the wrist turns less, or turn the tool about the beam (`spin = auto` lets lmdc choose the turn; a pinned `spin = … deg` is used as written)".to_string(),
     };
     Diagnostic::error(
         Code::JointLimit,
         format!(
-            "axis A{} of robot `{}` would turn to {}°, {}° past {}° (its limit less the {}° margin), at {} ({} pose{})",
-            axis + 1,
+            "{} of robot `{}` would turn to {}°, {}° past {}° (its limit less the {}° margin), at {} ({} pose{})",
+            a.words.an_axis(axis),
             a.machine,
             short(w.value),
             short(by),
@@ -134,30 +141,28 @@ pub fn joint_limit(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, margin: 
 }
 
 /// `home` outside the arm's limits: axis `axis` (0-based) at `value` deg;
-/// the help suggests the arm's upright pose `up` (its maker's convention:
-/// KUKA's home, ABB's zero) with axis 5 bent 30°.
+/// the help suggests the arm's upright pose `up` (its convention's: KUKA's
+/// home, ABB's zero) with axis 5 bent 30°, and names the home as the
+/// controller does.
 pub fn home_limit(
     a: &ArmAt<'_>,
     home: Span,
     axis: usize,
     value: f64,
     range: [f64; 2],
-    (maker, up): (crate::target::arm::Maker, [f64; 6]),
+    up: [f64; 6],
 ) -> Diagnostic {
     let mut h = up;
     h[4] = 30.0;
     // `+ 0.0`: KUKA's A1 of 0° is −0° through its sign.
     let h: Vec<String> = h.iter().map(|x| format!("{} deg", x + 0.0)).collect();
-    let theirs = match maker {
-        crate::target::arm::Maker::Kuka => "`$H_POS`",
-        crate::target::arm::Maker::Abb => "its home `jointtarget`",
-    };
+    let theirs = a.words.home();
     Diagnostic::error(
         Code::JointLimit,
         format!(
-            "robot `{}`'s home puts A{} at {}°, outside the {}'s {}° to {}°",
+            "robot `{}`'s home puts {} at {}°, outside the {}'s {}° to {}°",
             a.machine,
-            axis + 1,
+            a.words.axis(axis),
             short(value),
             a.arm,
             short(range[0]),
@@ -180,24 +185,30 @@ pub fn singular_lin(
     w: &Worst<impl Display>,
     at: Option<Span>,
 ) -> Diagnostic {
+    let x = |i| a.words.axis(i);
+    let (a46, a1_line, on_it) = match a.words {
+        Words::Kuka => ("A4 and A6", "A1's axis", "on that axis A1"),
+        Words::Abb => ("axes 4 and 6", "the line of axis 1", "on that line axis 1"),
+    };
     let (what, fix) = match kind {
         Singular::Wrist => (
-            format!("A5 at {}°, within {}° of the wrist singularity (A5 = 0, where A4 and A6 spin)", short(w.value), short(w.limit)),
-            "tilt the nozzle on the flange (`tool = frame(…, b = 20 deg)`) or tilt the base so A5 stays bent",
+            format!("{} at {}°, within {}° of the wrist singularity ({} = 0, where {a46} spin)", x(4), short(w.value), short(w.limit), x(4)),
+            format!("tilt the nozzle on the flange (`tool = frame(…, b = 20 deg)`) or tilt the base so {} stays bent", x(4)),
         ),
         Singular::Elbow => (
-            format!("A3 {}° from the stretched arm, within {}° (the arm straight, the wrist at the edge of its reach)", short(w.value), short(w.limit)),
-            "move the base closer to the part so the arm stays bent",
+            format!("{} {}° from the stretched arm, within {}° (the arm straight, the wrist at the edge of its reach)", x(2), short(w.value), short(w.limit)),
+            "move the base closer to the part so the arm stays bent".to_string(),
         ),
         Singular::Overhead => (
-            format!("near the overhead singularity: the wrist centre {}° from A1's axis (seen from the shoulder), within {}° of it (on that axis A1 turns freely and spins)", short(w.value), short(w.limit)),
-            "move the base so the part lies in front of the robot, not above or below its foot",
+            format!("near the overhead singularity: the wrist centre {}° from {a1_line} (seen from the shoulder), within {}° of it ({on_it} turns freely and spins)", short(w.value), short(w.limit)),
+            "move the base so the part lies in front of the robot, not above or below its foot".to_string(),
         ),
     };
     Diagnostic::error(
         Code::SingularLin,
         format!(
-            "a LIN of robot `{}` passes {what}, at {} ({} pose{})",
+            "a {} of robot `{}` passes {what}, at {} ({} pose{})",
+            a.words.lin(),
             a.machine,
             w.at,
             w.count,
@@ -239,20 +250,45 @@ impl Singular {
     pub const ALL: [Singular; 3] = [Singular::Wrist, Singular::Elbow, Singular::Overhead];
 }
 
-/// A LIN whose solution changes KUKA's Status from `from` to `to`.
-pub fn configuration_flip(a: &ArmAt<'_>, w: &Worst<impl Display>, from: u8, to: u8) -> Diagnostic {
+/// A configuration change on a LIN: the solutions' KUKA Status and ABB
+/// `confdata` before and after it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Flip {
+    /// KUKA's Status, from and to.
+    pub status: [u8; 2],
+    /// ABB's `[cf1, cf4, cf6, cfx]`, from and to.
+    pub confdata: [[i32; 4]; 2],
+}
+
+/// A LIN whose solution changes configuration: KUKA's Status (ABB's
+/// `confdata`, whose `cfx` a Status change changes) from one to the other.
+pub fn configuration_flip(a: &ArmAt<'_>, w: &Worst<impl Display>, flip: &Flip) -> Diagnostic {
+    let [from, to] = flip.status;
     let change = from ^ to;
     let what = if change & 4 != 0 {
-        "the wrist flips (A5 changes sign)"
+        format!("the wrist flips ({} changes sign)", a.words.axis(4))
     } else if change & 2 != 0 {
-        "the elbow passes the stretched arm"
+        "the elbow passes the stretched arm".to_string()
     } else {
-        "the wrist centre passes over A1"
+        format!("the wrist centre passes over {}", a.words.axis(0))
     };
+    let conf = match a.words {
+        Words::Kuka => format!("Status {from:03b} to {to:03b}"),
+        Words::Abb => {
+            let cf = flip
+                .confdata
+                .map(|c| format!("[{},{},{},{}]", c[0], c[1], c[2], c[3]));
+            format!(
+                "`confdata` {} to {}, cfx {} to {}",
+                cf[0], cf[1], flip.confdata[0][3], flip.confdata[1][3]
+            )
+        }
+    };
+    let lin = a.words.lin();
     Diagnostic::error(
         Code::ConfigurationFlip,
         format!(
-            "a LIN of robot `{}` changes configuration (Status {from:03b} to {to:03b}: {what}) at {}; the controller stops there ({} pose{})",
+            "a {lin} of robot `{}` changes configuration ({conf}: {what}) at {}; the controller stops there ({} pose{})",
             a.machine,
             w.at,
             w.count,
@@ -261,7 +297,7 @@ pub fn configuration_flip(a: &ArmAt<'_>, w: &Worst<impl Display>, from: u8, to: 
     )
     .label(a.tool, "the tool's angle on the flange")
     .label(a.base, "the part is placed here")
-    .help("a LIN keeps one configuration: tilt the nozzle on the flange (`tool = frame(…, b = …)`) or move the base so the path stays on one side")
+    .help(format!("a {lin} keeps one configuration: tilt the nozzle on the flange (`tool = frame(…, b = …)`) or move the base so the path stays on one side"))
 }
 
 /// Axis `axis` (0-based) would turn at `w.value` deg/s against its top
@@ -271,8 +307,8 @@ pub fn joint_speed(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, speed: f
     Diagnostic::error(
         Code::JointSpeed,
         format!(
-            "axis A{} of robot `{}` would have to turn at {}°/s, beyond its {}°/s, to follow the path at {} mm/s at {} ({} pose{})",
-            axis + 1,
+            "{} of robot `{}` would have to turn at {}°/s, beyond its {}°/s, to follow the path at {} mm/s at {} ({} pose{})",
+            a.words.an_axis(axis),
             a.machine,
             short(w.value),
             short(w.limit),
@@ -292,31 +328,31 @@ pub fn joint_speed(a: &ArmAt<'_>, axis: usize, w: &Worst<impl Display>, speed: f
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::target::arm::Maker;
 
     /// The home a limit error suggests is the arm's own upright pose in its
-    /// maker's convention, with its maker's name for the home.
+    /// convention, with its controller's name for the home.
     #[test]
     fn home_limit_suggests_the_makers_home() {
-        let a = ArmAt {
-            machine: "r",
-            arm: "IRB 4600-60/2.05",
-            declared: Span::new(0, 0),
-            base: Span::new(0, 0),
-            tool: Span::new(0, 0),
-        };
-        let help = |maker, up| {
-            home_limit(&a, Span::new(0, 0), 1, -90.0, [-90.0, 150.0], (maker, up))
+        let help = |words, up| {
+            let a = ArmAt {
+                machine: "r",
+                arm: "IRB 4600-60/2.05",
+                declared: Span::new(0, 0),
+                base: Span::new(0, 0),
+                tool: Span::new(0, 0),
+                words,
+            };
+            home_limit(&a, Span::new(0, 0), 1, -90.0, [-90.0, 150.0], up)
                 .help
                 .unwrap()
         };
-        let abb = help(Maker::Abb, [0.0; 6]);
+        let abb = help(Words::Abb, [0.0; 6]);
         assert!(abb.contains("(its home `jointtarget`)"), "{abb}");
         assert!(
             abb.contains("`home = [0 deg, 0 deg, 0 deg, 0 deg, 30 deg, 0 deg]`"),
             "{abb}"
         );
-        let kuka = help(Maker::Kuka, [-0.0, -90.0, 90.0, 0.0, 0.0, 0.0]);
+        let kuka = help(Words::Kuka, [-0.0, -90.0, 90.0, 0.0, 0.0, 0.0]);
         assert!(kuka.contains("(`$H_POS`)"), "{kuka}");
         assert!(
             kuka.contains("`home = [0 deg, -90 deg, 90 deg, 0 deg, 30 deg, 0 deg]`"),

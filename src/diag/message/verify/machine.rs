@@ -159,8 +159,10 @@ pub fn needs_tilt(name: &str, w: &Worst<impl Display>, axes: Span) -> Diagnostic
 pub struct AnalogOverrun<'a, At> {
     /// The robot's name.
     pub robot: &'a str,
-    /// Its power output's number.
-    pub output: u16,
+    /// Its power output.
+    pub output: &'a crate::ir::Signal,
+    /// Its controller's words for the output.
+    pub words: crate::diag::message::words::Words,
     /// The power at $ANOUT = 1.0, W.
     pub full_scale: f64,
     /// The output the worst power needs, as written.
@@ -179,9 +181,9 @@ pub fn analog_range(a: &AnalogOverrun<'_, impl Display>) -> Diagnostic {
     Diagnostic::error(
         Code::AnalogRange,
         format!(
-            "laser power {} W needs $ANOUT[{}] = {} on robot `{}`, beyond the analog output's 1.0 ({} move{}, the worst at {})",
+            "laser power {} W needs {} = {} on robot `{}`, beyond the analog output's 1.0 ({} move{}, the worst at {})",
             short(w.value),
-            a.output,
+            a.words.analog_out(a.output),
             short(a.needed),
             a.robot,
             w.count,
@@ -192,8 +194,9 @@ pub fn analog_range(a: &AnalogOverrun<'_, impl Display>) -> Diagnostic {
     .label(
         a.declared,
         format!(
-            "full_scale = {} W is the power at $ANOUT = 1.0",
-            short(a.full_scale)
+            "full_scale = {} W is the power at {} = 1.0",
+            short(a.full_scale),
+            a.words.analog_outs(a.output)
         ),
     )
     .label_opt(a.power, "the power comes from here")
@@ -376,8 +379,8 @@ pub fn cnc_power_unwritable(
 /// scale `full_scale_power` W) cannot write within the tolerance; `w` holds
 /// the planned power and (as its limit) what would be given.
 pub fn robot_power_unwritable(
-    name: &str,
-    output: u16,
+    (name, words): (&str, crate::diag::message::words::Words),
+    output: &crate::ir::Signal,
     full_scale_power: f64,
     w: &Worst<impl Display>,
     full_scale: Span,
@@ -386,8 +389,9 @@ pub fn robot_power_unwritable(
     Diagnostic::error(
         Code::Resolution,
         format!(
-            "robot `{name}` cannot write the laser power {} W: $ANOUT[{output}] = {} would give {} W, at {} ({} move{})",
+            "robot `{name}` cannot write the laser power {} W: {} = {} would give {} W, at {} ({} move{})",
             short(w.value),
+            words.analog_out(output),
             short(w.limit / full_scale_power),
             short(w.limit),
             w.at,
@@ -397,8 +401,9 @@ pub fn robot_power_unwritable(
     )
     .label(full_scale, "the analog output's scale")
     .help(format!(
-        "$ANOUT is written with {} decimals of full_scale = {} W: powers below {} W do not come out within {tol} %; \
+        "{} is written with {} decimals of full_scale = {} W: powers below {} W do not come out within {tol} %; \
          declare the full scale the laser really has",
+        words.analog_outs(output),
         kuka::ANOUT_DECIMALS,
         short(full_scale_power),
         short(full_scale_power * 5e-5 / WRITE_TOLERANCE)
