@@ -456,7 +456,11 @@ mod tests {
         let s = solver("kr6_r900_2");
         let j = [10.0, -185.0, 100.0, 20.0, 40.0, 30.0];
         let f = s.forward_flange(&j);
-        let all: Vec<Joints> = s.solutions(&f).into_iter().map(|q| s.within_turn(q)).collect();
+        let all: Vec<Joints> = s
+            .solutions(&f)
+            .into_iter()
+            .map(|q| s.within_turn(q))
+            .collect();
         let near = s.nearest(&all, &j).unwrap();
         for i in 0..6 {
             assert!((near[i] - j[i]).abs() < 1e-6, "{near:?}");
