@@ -33,8 +33,8 @@ pub enum Fault<'a> {
     Tight(f64, f64),
 }
 
-/// `top = NAME` naming the solid `name` (declared at `decl`), which cannot
-/// be a target, for `fault`.
+/// `top = NAME` naming the solid `name` (declared at `decl`, or the field
+/// refused there), which cannot be a target, for `fault`.
 pub fn cannot(name: &str, fault: Fault<'_>, at: Span, decl: Span) -> Diagnostic {
     let (message, help) = match fault {
         Fault::Itself => (
@@ -46,7 +46,7 @@ pub fn cannot(name: &str, fault: Fault<'_>, at: Span, decl: Span) -> Diagnostic 
             WHAT_WORKS.to_string(),
         ),
         Fault::Field(key) => (
-            format!("the target `{name}` has a `{key}` of its own"),
+            format!("the target `{name}` has its own `{key}`"),
             format!("{WHAT_WORKS}: write its height, or give the repair's top as a `plane(…)` or an expression"),
         ),
         Fault::FollowsLayer => (
@@ -78,9 +78,15 @@ pub fn cannot(name: &str, fault: Fault<'_>, at: Span, decl: Span) -> Diagnostic 
             "a loft's stations are planes through the bend's axis: sections that reach it overlap themselves; bend it on a radius larger than its sections reach".to_string(),
         ),
     };
+    // A field refused is pointed at; else the target's name.
+    let what = match fault {
+        Fault::Field(key) => format!("its `{key}`"),
+        Fault::Centre => "its `size`".to_string(),
+        _ => "the target".to_string(),
+    };
     Diagnostic::error(Code::TargetSolid, message)
         .label(at, "the top")
-        .label(decl, "the target")
+        .label(decl, what)
         .help(help)
 }
 

@@ -155,13 +155,17 @@ fn refused(
     diags: &mut Diagnostics,
 ) -> bool {
     let mut ok = true;
-    for key in keys.iter().filter(|k| f.has(k)) {
-        cx.refuse::<()>(Fault::Field(key.key), diags);
-        ok = false;
+    for key in keys {
+        if let Some(at) = f.span(key) {
+            diags.push(target::cannot(cx.name, Fault::Field(key.key), cx.at, at));
+            ok = false;
+        }
     }
-    if f.word(size, diags).is_some_and(|(w, _)| w != "outer") {
-        cx.refuse::<()>(Fault::Centre, diags);
-        ok = false;
+    if let Some((w, at)) = f.word(size, diags) {
+        if w != "outer" {
+            diags.push(target::cannot(cx.name, Fault::Centre, cx.at, at));
+            ok = false;
+        }
     }
     ok
 }
@@ -235,7 +239,8 @@ fn extrusion<'a>(
             Source::Mesh(_) => return None,
         };
     let Some(height) = height else {
-        if !f.has(&extrude::HEIGHT) {
+        // A target with a top of its own is refused for that alone.
+        if !f.has(&extrude::HEIGHT) && !f.has(&extrude::TOP) {
             return cx.refuse(Fault::NoHeight, diags);
         }
         return None;
