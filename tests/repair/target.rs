@@ -159,10 +159,16 @@ fn pad_on(nominal: &str) -> lmdc::pipeline::Compiled {
     let src = include_str!("../../examples/worn_pad.lmd")
         .replace("top = 13 mm", "top = nominal")
         .replace("extrude pad {", &format!("{nominal}\n\nextrude pad {{"));
-    let files = BTreeMap::from([(
-        "repair/worn_pad.ply".to_string(),
-        std::fs::read("examples/repair/worn_pad.ply").unwrap(),
-    )]);
+    let files = BTreeMap::from([
+        (
+            "repair/worn_pad.ply".to_string(),
+            std::fs::read("examples/repair/worn_pad.ply").unwrap(),
+        ),
+        (
+            "target.stl".to_string(),
+            solid_stl([-40.0, -20.0, 0.0], [40.0, 20.0, 13.0], |_, _| 13.0),
+        ),
+    ]);
     compile(&src, files)
 }
 
@@ -187,9 +193,10 @@ fn built(c: lmdc::pipeline::Compiled) -> lmdc::verify::Verified {
     c.program.unwrap_or_else(|| panic!("{m}"))
 }
 
-/// A box declared as an extrusion of a rectangle to 13 mm, or lofted
-/// straight up 13 mm, plans exactly what `top = 13 mm` plans: the same
-/// IR, point for point, and the same programs.
+/// A box declared as an extrusion of a rectangle to 13 mm or lofted
+/// straight up 13 mm plans exactly what `top = 13 mm` plans: the same IR,
+/// point for point, and the same programs; an extrusion of a box's mesh,
+/// within float noise.
 #[test]
 fn a_box_solids_flat_top_plans_exactly_what_the_height_plans() {
     let by_height = built(pad("top = 13 mm", Vec::new()));
@@ -200,6 +207,9 @@ fn a_box_solids_flat_top_plans_exactly_what_the_height_plans() {
         assert_eq!(points(by_solid.ir()), points(by_height.ir()), "{nominal}");
         assert_eq!(programs(&by_solid), programs(&by_height), "{nominal}");
     }
+    // A mesh's face is read within float noise, as `top = mesh(…)` is.
+    let meshed = "extrude nominal {\n  profile = mesh(file = \"target.stl\")\n}";
+    same(built(pad_on(meshed)).ir(), by_height.ir());
 }
 
 /// A box bent along an arc of 2 m through 0.5° stands on the plate and
