@@ -526,6 +526,8 @@ slicing planar { layers = 2  offset = 0.8 mm  infill = raster(angle = 0 deg) }";
     layer_height: LayerHeight, WALL, "slicing variable { layers = 3  segments { tolerance = 0.1 mm } }";
     top_height: TopHeight, WALL,
         "extrude wall { profile = rectangle(width = 30 mm, height = 2.4 mm)  size = outer  bead = b316  top = 5 mm - x }";
+    target_solid: TargetSolid, WALL,
+        "extrude wall { profile = rectangle(width = 30 mm, height = 2.4 mm)  size = outer  bead = b316  top = b316 }";
     segments_too_short: SegmentsTooShort, WALL, "slicing variable { layers = auto  segments { tolerance = 0.02 mm } }";
     gain_sign: GainSign, RING,
         "control height { kp = 0.003 m/s/mm  ki = -0.00035 m/s/mm  clamp = 1.9 mm/s .. 20 mm/s  plant = inverse_speed(drift = 0.1 %) }";

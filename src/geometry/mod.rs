@@ -11,6 +11,7 @@ pub mod scan;
 pub mod section;
 pub mod shape;
 pub mod spine;
+pub mod target;
 
 use nalgebra::{Point3, Vector3};
 use section::{Blend, Morph, Section};

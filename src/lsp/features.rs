@@ -377,7 +377,8 @@ fn values(text: &str, toks: &[Token], field: Option<&Field>) -> Vec<Completion> 
 /// number or an expression goes, never where only words or texts do.
 fn takes(kind: &Kind, decl: &str) -> bool {
     match kind {
-        Kind::Name(k) => *k == decl,
+        // A solid (a repair's target, `top = NAME`) is an extrusion or a loft.
+        Kind::Name(k) => *k == decl || (*k == "solid" && matches!(decl, "extrude" | "loft")),
         Kind::Shape => matches!(decl, "let" | "section" | "profile"),
         Kind::Quantity(..) | Kind::Range(_) | Kind::Count(..) | Kind::Io(_) | Kind::Point => {
             decl == "let"

@@ -220,7 +220,7 @@ pub(super) fn linear_top(ex: &TopExtrusion, [lo, hi]: [[f64; 2]; 2], c: [f64; 2]
             };
             Some(from.0 + (to.0 - from.0) * t)
         }
-        Top::Expr(_) | Top::Mesh(_) => None,
+        Top::Expr(_) | Top::Mesh(_) | Top::Solid(_) => None,
     }
 }
 
@@ -248,6 +248,11 @@ fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
             m.surface
                 .at(q)
                 .ok_or("the target mesh does not cover the footprint everywhere")
+        })?,
+        (None, Top::Solid(t)) => integral(&p, [lo, hi], |q| {
+            t.surface
+                .at(q)
+                .ok_or("the target solid does not cover the footprint everywhere")
         })?,
         (None, _) => return Err("the top is not known".into()),
     };

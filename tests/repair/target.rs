@@ -148,3 +148,154 @@ fn a_target_with_an_overhang_is_refused_where_it_is() {
         "{m}"
     );
 }
+
+// A target given as a solid of the file (`top = NAME`, docs/repair.md, *A
+// target solid*): the solid is not built, its highest surface over each
+// point is the finished surface.
+
+/// examples/worn_pad.lmd with `top = nominal` and `nominal`, the block
+/// given (the part as designed), declared before the pad.
+fn pad_on(nominal: &str) -> lmdc::pipeline::Compiled {
+    let src = include_str!("../../examples/worn_pad.lmd")
+        .replace("top = 13 mm", "top = nominal")
+        .replace("extrude pad {", &format!("{nominal}\n\nextrude pad {{"));
+    let files = BTreeMap::from([
+        (
+            "repair/worn_pad.ply".to_string(),
+            std::fs::read("examples/repair/worn_pad.ply").unwrap(),
+        ),
+        (
+            "target.stl".to_string(),
+            solid_stl([-40.0, -20.0, 0.0], [40.0, 20.0, 13.0], |_, _| 13.0),
+        ),
+    ]);
+    compile(&src, files)
+}
+
+/// Every program the plan's machines are written, less the line naming
+/// the source and its hash.
+fn programs(p: &lmdc::verify::Verified) -> BTreeMap<String, String> {
+    let mut sink = lmdc::back::MemorySink::default();
+    let templates = lmdc::back::Templates::builtin().unwrap();
+    lmdc::pipeline::emit(p, &templates, &mut sink, &mut ()).unwrap();
+    sink.files
+        .into_iter()
+        .map(|(n, b)| {
+            let text = String::from_utf8(b).unwrap();
+            let kept: Vec<&str> = text.lines().filter(|l| !l.contains("sha256")).collect();
+            (n, kept.join("\n"))
+        })
+        .collect()
+}
+
+fn built(c: lmdc::pipeline::Compiled) -> lmdc::verify::Verified {
+    let m = messages(&c);
+    c.program.unwrap_or_else(|| panic!("{m}"))
+}
+
+/// A box declared as an extrusion of a rectangle to 13 mm or lofted
+/// straight up 13 mm plans exactly what `top = 13 mm` plans: the same IR,
+/// point for point, and the same programs; an extrusion of a box's mesh,
+/// within float noise.
+#[test]
+fn a_box_solids_flat_top_plans_exactly_what_the_height_plans() {
+    let by_height = built(pad("top = 13 mm", Vec::new()));
+    let extruded = "extrude nominal {\n  profile = rectangle(width = 80 mm, height = 40 mm)\n  height = 13 mm\n}";
+    let lofted = "loft nominal {\n  from = rectangle(width = 80 mm, height = 40 mm)\n  to = rectangle(width = 80 mm, height = 40 mm)\n  spine = line(length = 13 mm)\n}";
+    for nominal in [extruded, lofted] {
+        let by_solid = built(pad_on(nominal));
+        assert_eq!(points(by_solid.ir()), points(by_height.ir()), "{nominal}");
+        assert_eq!(programs(&by_solid), programs(&by_height), "{nominal}");
+    }
+    // A mesh's face is read within float noise, as `top = mesh(…)` is.
+    let meshed = "extrude nominal {\n  profile = mesh(file = \"target.stl\")\n}";
+    same(built(pad_on(meshed)).ir(), by_height.ir());
+}
+
+/// A box bent along an arc of 2 m through 0.5° stands on the plate and
+/// leans toward +x: over the pad its top is its end section, tilted 0.5°.
+/// It plans what that plane plans, within the programs' 0.001 mm.
+#[test]
+fn a_bent_lofts_tilted_end_plans_what_its_plane_plans() {
+    let (r, a) = (2000.0_f64, 0.5_f64.to_radians());
+    let (xc, zc) = (r - r * a.cos(), r * a.sin());
+    let nominal = "loft nominal {\n  from = rectangle(width = 80 mm, height = 40 mm)\n  to = rectangle(width = 80 mm, height = 40 mm)\n  spine = arc(radius = 2000 mm, angle = 0.5 deg)\n}";
+    let by_loft = built(pad_on(nominal));
+    let plane = format!(
+        "top = plane(at = [{xc:.12} mm, 0 mm], height = {zc:.12} mm, slope_x = {:.15}, slope_y = 0)",
+        -a.tan()
+    );
+    let by_plane = built(pad(&plane, Vec::new()));
+    let (l, p) = (points(by_loft.ir()), points(by_plane.ir()));
+    assert_eq!(l.len(), p.len());
+    for (a, b) in l.iter().zip(&p) {
+        for k in 0..5 {
+            assert!((a[k] - b[k]).abs() < 1e-4, "{a:?} vs {b:?}");
+        }
+    }
+}
+
+/// A target solid that stops short of the footprint is refused with where.
+#[test]
+fn a_target_solid_short_of_the_footprint_is_refused_with_where() {
+    let nominal = "extrude nominal {\n  profile = place(rectangle(width = 60 mm, height = 40 mm), at = [-10 mm, 0 mm])\n  height = 13 mm\n}";
+    let c = pad_on(nominal);
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    assert!(
+        m.contains("lmd::top-height: the target solid `nominal` has no part over (2"),
+        "{m}"
+    );
+}
+
+/// A bar twisted half a turn over 13 mm: over the pad's ends a vertical
+/// line is in it near the bottom and the top and out of it between (the
+/// bar turned across), so the solid overhangs the scan there: refused,
+/// naming its underside, 13·(1 − asin(1/3)/π) = 11.59 mm at x = 28.8 mm.
+#[test]
+fn a_target_solid_with_an_overhang_is_refused_where_it_is() {
+    let nominal = "loft nominal {\n  from = rectangle(width = 80 mm, height = 20 mm)\n  to = rectangle(width = 80 mm, height = 20 mm)\n  spine = line(length = 13 mm)\n  twist = 180 deg\n}";
+    let c = pad_on(nominal);
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    assert!(
+        m.contains("lmd::top-height: the target solid `nominal` has an overhang over (")
+            && m.contains("its underside runs at 1"),
+        "{m}"
+    );
+}
+
+/// Names that are no target: the extrusion itself, a bead, a wall, and a
+/// typo (with the solid it is closest to).
+#[test]
+fn names_that_are_no_target_are_refused_with_what_works() {
+    let itself = pad("top = pad", Vec::new());
+    assert!(
+        messages(&itself)
+            .contains("lmd::target-solid: `top = pad` names the extrusion it is written in"),
+        "{}",
+        messages(&itself)
+    );
+    let bead = pad("top = b316", Vec::new());
+    assert!(
+        messages(&bead).contains("lmd::target-solid: `top = b316` names a bead, not a solid"),
+        "{}",
+        messages(&bead)
+    );
+    let src = include_str!("../../examples/worn_pad.lmd").replace("top = 13 mm", "top = nominl");
+    let src = src.replace(
+        "slicing variable {",
+        "extrude nominal {\n  profile = rectangle(width = 80 mm, height = 40 mm)\n  height = 13 mm\n}\n\nslicing variable {",
+    );
+    let files = BTreeMap::from([(
+        "repair/worn_pad.ply".to_string(),
+        std::fs::read("examples/repair/worn_pad.ply").unwrap(),
+    )]);
+    let m = messages(&compile(&src, files));
+    // `nominl` names no solid, so `nominal` is a second one to build.
+    assert!(
+        m.contains("lmd::unknown-name: there is no solid called `nominl`")
+            && m.contains("lmd::second-solid"),
+        "{m}"
+    );
+}

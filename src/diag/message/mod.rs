@@ -30,6 +30,7 @@ pub mod solid;
 pub mod statement;
 pub mod style;
 pub mod syntax;
+pub mod target;
 pub mod thermal;
 pub mod top;
 pub mod usage;

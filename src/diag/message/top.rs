@@ -417,6 +417,8 @@ pub enum BadTop {
     Failed,
     /// A target mesh with no face over the point.
     OffTarget,
+    /// A target solid of the file (named) with no part over the point.
+    OffSolid(String),
 }
 
 /// The top is not a positive height at `p` (and at `more` other points);
@@ -438,9 +440,14 @@ pub fn bad_top(p: [f64; 2], more: usize, bad: BadTop, inner: bool, at: TopAt) ->
         BadTop::OffTarget => format!(
             "the target mesh has no face over ({x}, {y}) mm, where a track runs{others}"
         ),
+        BadTop::OffSolid(ref name) => format!(
+            "the target solid `{name}` has no part over ({x}, {y}) mm, where a track runs{others}"
+        ),
     };
     let help = if matches!(bad, BadTop::OffTarget) {
         "a target mesh is the part as designed, and its faces must cover the footprint seen from above: check its `at` and `turn`, or keep the footprint within it"
+    } else if matches!(bad, BadTop::OffSolid(_)) {
+        "a target solid is the part as designed, and seen from above it must cover the footprint: make its shape reach over the footprint, or keep the footprint within it"
     } else if inner {
         "the top is the finished part's height above the substrate, computed at every point a track runs through: the error below says what failed there"
     } else {
@@ -603,16 +610,26 @@ pub fn unfillable(u: &Unfillable<'_>) -> Diagnostic {
 
 /// A target mesh with a face between its top and the base at `p`: an
 /// overhang (heights `[top, under, base]`, mm), at `more` other points too.
-pub fn undercut(p: [f64; 2], [top, under, base]: [f64; 3], more: usize, at: Span) -> Diagnostic {
+pub fn undercut(
+    p: [f64; 2],
+    [top, under, base]: [f64; 3],
+    more: usize,
+    solid: Option<&str>,
+    at: Span,
+) -> Diagnostic {
     let others = match more {
         0 => String::new(),
         1 => " (and at 1 other point sampled)".to_string(),
         n => format!(" (and at {n} other points sampled)"),
     };
+    let (what, under_is) = match solid {
+        Some(name) => (format!("target solid `{name}`"), "its underside runs"),
+        None => ("target".to_string(), "a face of it runs"),
+    };
     Diagnostic::error(
         Code::TopHeight,
         format!(
-            "the target has an overhang over ({}, {}) mm{others}: its top is at {} mm, but a face of it runs at {} mm, above the base at {} mm",
+            "the {what} has an overhang over ({}, {}) mm{others}: its top is at {} mm, but {under_is} at {} mm, above the base at {} mm",
             short(p[0]),
             short(p[1]),
             short(top),

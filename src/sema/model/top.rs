@@ -67,6 +67,18 @@ pub enum Top {
     /// `mesh(file, units, turn, at)`: the part as designed, its highest
     /// face over each point (docs/repair.md, *A target mesh*).
     Mesh(TopMesh),
+    /// `NAME`: a solid of the file, not built, its highest surface over
+    /// each point (docs/repair.md, *A target solid*).
+    Solid(TopSolid),
+}
+
+/// A top given as a solid of the file: its name and its surface.
+#[derive(Clone, Debug)]
+pub struct TopSolid {
+    /// The solid's name.
+    pub name: String,
+    /// Its highest surface over each point.
+    pub surface: std::sync::Arc<crate::geometry::target::Target>,
 }
 
 /// A top given as a mesh: its file and its upper surface, placed.
@@ -79,11 +91,12 @@ pub struct TopMesh {
 }
 
 impl Top {
-    /// The top at `p` (mm) when it is a mesh: `Some(None)` where no face
-    /// is over `p`; `None` for any other top.
+    /// The top at `p` (mm) when it is a mesh or a solid: `Some(None)`
+    /// where none of it is over `p`; `None` for any other top.
     pub fn mesh_at(&self, p: [f64; 2]) -> Option<Option<f64>> {
         match self {
             Top::Mesh(m) => Some(m.surface.at(p)),
+            Top::Solid(s) => Some(s.surface.at(p)),
             _ => None,
         }
     }

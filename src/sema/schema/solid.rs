@@ -191,9 +191,10 @@ pub mod extrude {
         Deferred(&Either(&[
             Quantity(Dim::LENGTH, Positive),
             Call(&[&EDGES, &PLANE, &MESH]),
+            Name("solid"),
         ])),
         Optional,
-        "the finished part's height at every point, an expression of `x` and `y`; or `mesh(…)`, the part as designed, its highest face over each point",
+        "the finished part's height at every point, an expression of `x` and `y`; or the part as designed, its highest surface over each point: `mesh(…)`, or the name of an `extrude` or `loft` of the file, which is then not built (docs/repair.md, *A target solid*)",
     );
     /// `on = …`.
     pub static ON: Field = Field::new(

@@ -25,7 +25,7 @@ use crate::sema::solid::scan::Cut;
 use crate::sema::solid::top;
 use crate::sema::value::{Spanned, Value};
 use crate::span::Span;
-use crate::syntax::ast::{Body, Expr, Stmt};
+use crate::syntax::ast::{Body, Expr, ExprKind, Stmt};
 use crate::units::{Length, Speed};
 use std::collections::BTreeMap;
 
@@ -41,6 +41,9 @@ pub struct Scope<'s, 'a> {
     pub declared: &'s [String],
     /// Every `let` of the file, kept with a `top` written as an expression.
     pub constants: &'s [(String, Span, Expr)],
+    /// The file's named statements a `top = NAME` may name (solids) or
+    /// mistake for one (sections, profiles, beads).
+    pub statements: &'s [&'a Stmt],
 }
 
 /// Where an extrusion's shape comes from.
@@ -117,7 +120,9 @@ pub fn read<'a>(
     );
     let top = match f.expr(&extrude::TOP) {
         None => Some(None),
-        Some(e) => read_top(env, e, source.as_ref(), scope, diags).map(|t| Some((t, e.span))),
+        Some(e) => {
+            read_top(env, e, (name, source.as_ref()), scope, diags).map(|t| Some((t, e.span)))
+        }
     };
     if let (Some(hs), Some(ts)) = (f.span(&extrude::HEIGHT), f.span(&extrude::TOP)) {
         diags.push(message::solid::height_and_top(hs, ts));
@@ -208,13 +213,19 @@ fn from_scan<'a>(
 }
 
 /// Reads `top = e` over the footprint `source` (tried at a point of it).
-fn read_top(
-    env: &mut Env<'_>,
+fn read_top<'a>(
+    env: &mut Env<'a>,
     e: &Expr,
-    source: Option<&Source<'_>>,
-    scope: &Scope<'_, '_>,
+    (own, source): (&str, Option<&Source<'_>>),
+    scope: &Scope<'_, 'a>,
     diags: &mut Diagnostics,
 ) -> Option<Top> {
+    // `top = NAME`: a solid of the file as the target.
+    if let ExprKind::Ident(n) = &e.kind {
+        if let Some(t) = crate::sema::solid::target::read(env, n, e.span, own, scope, diags) {
+            return t;
+        }
+    }
     let shape = match source {
         Some(Source::Fixed(s)) => Some(s.clone()),
         Some(Source::Expr(p)) => {
@@ -230,7 +241,7 @@ fn read_top(
     top::read(env, e, at, scope.constants, diags)
 }
 
-fn source<'a>(
+pub(in crate::sema) fn source<'a>(
     v: &Spanned,
     scope: &Scope<'_, 'a>,
     data: Option<&crate::sema::DataReader>,

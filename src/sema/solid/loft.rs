@@ -107,7 +107,7 @@ pub(in crate::sema) fn measure(
 /// The morph between two sections: as written (`morph`), else the
 /// superellipse where both ends are of its family, else radial. It needs
 /// only the two ends.
-fn morph_between(
+pub(in crate::sema) fn morph_between(
     f: &Fields<'_>,
     from: Option<Section>,
     to: Option<Section>,
@@ -169,7 +169,11 @@ fn measured_sections(
     }
 }
 
-fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Option<Section> {
+pub(in crate::sema) fn section_value(
+    v: &Spanned,
+    scope: &Scope<'_>,
+    diags: &mut Diagnostics,
+) -> Option<Section> {
     match &v.value {
         Value::Symbol(s) => match scope.sections.get(s) {
             Some((sec, _)) => Some(*sec),
@@ -192,7 +196,7 @@ fn section_value(v: &Spanned, scope: &Scope<'_>, diags: &mut Diagnostics) -> Opt
     }
 }
 
-fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
+pub(in crate::sema) fn spine_value(v: &Spanned, diags: &mut Diagnostics) -> Option<(Spine, Span)> {
     let spine = match &v.value {
         Value::Call(c) if c.func == "line" => {
             let f = Fields::call(c, &LINE, diags);

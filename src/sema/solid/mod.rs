@@ -8,6 +8,7 @@ pub mod profile;
 pub mod scan;
 pub mod section;
 pub mod segmented_ring;
+pub mod target;
 pub mod top;
 pub mod wall;
 
@@ -95,11 +96,7 @@ pub fn read<'a>(
     decl: &Declared<'a>,
     diags: &mut Diagnostics,
 ) -> Read<'a> {
-    let mut solids: Vec<&Stmt> = st.get("loft").to_vec();
-    solids.extend(st.get("extrude"));
-    solids.extend(st.get("ring"));
-    solids.extend(st.get("wall"));
-    solids.sort_by_key(|s| s.span.start);
+    let (solids, statements) = to_build(st, decl);
     let Some((s, rest)) = solids.split_first() else {
         diags.push(message::solid::missing_solid());
         return Read {
@@ -128,6 +125,7 @@ pub fn read<'a>(
                 beads: &decl.beads,
                 declared: &decl.names,
                 constants: &decl.constants,
+                statements: &statements,
             };
             let (w, b) = extrude::read(env, &n.node, stmts, s.span, &scope, diags);
             // Whether it has a top decides its slicing, even when the top is wrong.
@@ -185,6 +183,32 @@ pub fn read<'a>(
         solid,
         bead,
     }
+}
+
+/// The solid statements to build, in source order, and the named
+/// statements a `top = NAME` may name or mistake for a solid. A solid a
+/// `top` names is the part as designed, read as the target where it is
+/// named: it is not built.
+fn to_build<'a>(st: &Statements<'a>, decl: &Declared<'a>) -> (Vec<&'a Stmt>, Vec<&'a Stmt>) {
+    let mut solids: Vec<&Stmt> = target::SOLIDS
+        .iter()
+        .flat_map(|k| st.get(k))
+        .copied()
+        .collect();
+    solids.sort_by_key(|s| s.span.start);
+    let targets = target::named(&solids, &decl.constants);
+    let statements: Vec<&Stmt> = ["section", "profile", "bead"]
+        .iter()
+        .flat_map(|k| st.get(k))
+        .chain(solids.iter())
+        .copied()
+        .collect();
+    solids.retain(|s| {
+        s.name
+            .as_ref()
+            .is_none_or(|n| !targets.contains(n.node.as_str()))
+    });
+    (solids, statements)
 }
 
 /// Pairs the solid with its slicing: a loft is sliced normal to its spine,

@@ -135,7 +135,7 @@ fn no_count(
                 .filter_map(|p| sugar_fix(p, ex, bead, slicing, probe, beads))
                 .collect()
         }
-        Top::Expr(_) | Top::Mesh(_) => expr_fixes(e, slicing),
+        Top::Expr(_) | Top::Mesh(_) | Top::Solid(_) => expr_fixes(e, slicing),
     };
     let fit = |b: HeightRange| fits(e.top, b, slicing).is_some();
     // Millimetres to a tenth of a micrometre below 1 mm, as lengths print.

@@ -14,6 +14,7 @@ use crate::diag::message::{self, top::BadTop, top::TopAt};
 use crate::diag::Diagnostics;
 use crate::geometry::mesh::highest::Highest;
 use crate::geometry::scan::HeightField;
+use crate::geometry::target::Target;
 use crate::sema::model::{Axis, Top, TopExtrusion};
 use crate::sema::TopHeights;
 
@@ -69,6 +70,8 @@ pub enum Form<'m> {
     Expr(TopHeights<'m>),
     /// A target mesh's highest face.
     Mesh(&'m Highest),
+    /// A target solid's highest surface.
+    Solid(&'m Target),
 }
 
 impl<'m> Surface<'m> {
@@ -89,29 +92,40 @@ impl<'m> Surface<'m> {
     /// The thickness to lay at `p` (the top over the plate, or over the
     /// scan): a positive, finite height, or why not.
     pub fn at(&mut self, p: [f64; 2]) -> Result<f64, Bad> {
-        let h = self.form.at(p)?;
-        if let Base::Plate = self.base {
+        let base = match self.base {
+            Base::Plate => None,
+            b => Some(b.at(p)),
+        };
+        // A solid's crossings above the base start with its top (one walk
+        // down a loft, not two).
+        let crossings = match (&self.form, base) {
+            (Form::Mesh(m), Some(Some(b))) => m.crossings_above(p, b),
+            (Form::Solid(t), Some(Some(b))) => t.crossings_above(p, b),
+            _ => Vec::new(),
+        };
+        let h = match (&self.form, crossings.first()) {
+            (Form::Solid(_), Some(&h)) if h > 0.0 && h.is_finite() => h,
+            _ => self.form.at(p)?,
+        };
+        let Some(base) = base else {
             return Ok(h);
-        }
-        let Some(b) = self.base.at(p) else {
+        };
+        let Some(b) = base else {
             return Err(Bad::new(p, Why::Uncovered));
         };
-        if let Form::Mesh(m) = &self.form {
-            // Down from the top the ray leaves the part and enters it
-            // again above the base: an overhang (or a cavity) the layers,
-            // laid from above, would fill. (Two crossings are a target
-            // whose underside stands over the wear: filled down to the
-            // scan, as meant.)
-            if let [_, under, _, ..] = m.crossings_above(p, b)[..] {
-                return Err(Bad::new(
-                    p,
-                    Why::Undercut {
-                        top: h,
-                        under,
-                        surface: b,
-                    },
-                ));
-            }
+        // Down from the top the ray leaves the part and enters it again
+        // above the base: an overhang (or a cavity) the layers, laid from
+        // above, would fill. (Two crossings are a target whose underside
+        // stands over the wear: filled down to the scan, as meant.)
+        if let [_, under, _, ..] = crossings[..] {
+            return Err(Bad::new(
+                p,
+                Why::Undercut {
+                    top: h,
+                    under,
+                    surface: b,
+                },
+            ));
         }
         if h - b > 0.0 && (h - b).is_finite() {
             Ok(h - b)
@@ -146,6 +160,7 @@ impl<'m> Form<'m> {
             }
             Top::Expr(e) => Form::Expr(e.evaluator()),
             Top::Mesh(m) => Form::Mesh(&m.surface),
+            Top::Solid(t) => Form::Solid(&t.surface),
         }
     }
 
@@ -160,6 +175,12 @@ impl<'m> Form<'m> {
             }
             Form::Mesh(m) => {
                 let Some(h) = m.at(p) else {
+                    return Err(Bad::new(p, Why::OffTarget));
+                };
+                (Some(h), None)
+            }
+            Form::Solid(t) => {
+                let Some(h) = t.at(p) else {
                     return Err(Bad::new(p, Why::OffTarget));
                 };
                 (Some(h), None)
@@ -239,6 +260,7 @@ impl Bad {
                     self.at,
                     [top, under, surface],
                     more,
+                    solid_name(ex),
                     ex.top_span,
                 ));
                 return out;
@@ -275,7 +297,10 @@ impl Bad {
             (Some(h), _) if h.is_finite() => BadTop::NotPositive(h),
             (Some(_), _) => BadTop::NotFinite,
             (None, Some(_)) => BadTop::Failed,
-            (None, None) => BadTop::OffTarget,
+            (None, None) => match solid_name(ex) {
+                Some(name) => BadTop::OffSolid(name.to_string()),
+                None => BadTop::OffTarget,
+            },
         };
         let inner = inner.unwrap_or_default();
         let at = TopAt {
@@ -291,5 +316,13 @@ impl Bad {
         ));
         out.extend(inner);
         out
+    }
+}
+
+/// The target solid's name, when the top is one.
+fn solid_name(ex: &TopExtrusion) -> Option<&str> {
+    match &ex.top {
+        Top::Solid(t) => Some(&t.name),
+        _ => None,
     }
 }

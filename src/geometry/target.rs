@@ -1,0 +1,354 @@
+//! A repair's target given as a solid of the language (`top = NAME`,
+//! docs/repair.md, *A target solid*): the part as designed, whose highest
+//! surface over each point is the finished surface, the surface a nozzle
+//! coming down would meet.
+//!
+//! - An extrusion of a fixed shape to a height stands on the plate: over a
+//!   point of its shape its top is the height, exactly, and a vertical
+//!   line meets nothing else above the plate.
+//! - An extrusion of a mesh is the mesh's highest face
+//!   ([`Highest`], exact).
+//! - A loft is known exactly point by point: the station whose plane
+//!   holds a point (for a straight spine its height over the length, for
+//!   an arc its angle about the bend axis), and there whether the point
+//!   lies within the section's outline (the blend's radius in the twisted
+//!   section frame). Down a vertical line its surface is found by
+//!   sampling that test every [`STEP`] and bisecting each change to
+//!   [`RESOLUTION`], far under the 0.001 mm programs are written to; a
+//!   line that starts inside, at the loft's highest station of a straight
+//!   spine, has its top there exactly. A piece of the loft thinner than
+//!   the step along a vertical line can be missed.
+
+use super::mesh::highest::Highest;
+use super::region::Region;
+use super::section::{Morph, Section};
+use super::spine::Spine;
+use super::LoftGeometry;
+use nalgebra::Point3;
+
+/// How far apart (mm) a vertical line is tested against a loft before
+/// its changes are bisected.
+pub const STEP: f64 = 0.05;
+
+/// How closely (mm) a loft's surface is found along a vertical line.
+pub const RESOLUTION: f64 = 1e-9;
+
+/// A solid whose highest surface over each point is a repair's finished
+/// surface.
+#[derive(Debug)]
+pub enum Target {
+    /// An extrusion of `region` from the plate up to `height` (mm).
+    Prism {
+        /// Its shape, seen from above.
+        region: Region,
+        /// Its height, mm.
+        height: f64,
+    },
+    /// An extrusion of a mesh: the mesh's faces.
+    Mesh(Highest),
+    /// A loft.
+    Loft(LoftTarget),
+}
+
+impl Target {
+    /// The height of the solid's highest surface over `p` (mm), if any of
+    /// it is over `p`.
+    pub fn at(&self, p: [f64; 2]) -> Option<f64> {
+        match self {
+            Target::Prism { region, height } => region.contains(p).then_some(*height),
+            Target::Mesh(m) => m.at(p),
+            Target::Loft(l) => l.crossings(p, f64::NEG_INFINITY, true).first().copied(),
+        }
+    }
+
+    /// The heights where the vertical line over `p` crosses the solid's
+    /// surface above `z` (mm), highest first: from the top down it enters
+    /// and leaves the solid in turn, so three or more mean the solid leaves
+    /// and enters again above `z` (an overhang, a cavity).
+    pub fn crossings_above(&self, p: [f64; 2], z: f64) -> Vec<f64> {
+        match self {
+            Target::Prism { region, height } if region.contains(p) => {
+                [*height, 0.0].into_iter().filter(|&h| h > z).collect()
+            }
+            Target::Prism { .. } => Vec::new(),
+            Target::Mesh(m) => m.crossings_above(p, z),
+            Target::Loft(l) => l.crossings(p, z, false),
+        }
+    }
+}
+
+/// A loft as a target: its sections as written are its faces.
+#[derive(Debug)]
+pub struct LoftTarget {
+    geometry: LoftGeometry,
+    /// The heights (mm) every point of the loft lies within.
+    z: [f64; 2],
+}
+
+/// Why a loft cannot be a target.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LoftFault {
+    /// Its sections reach the bend's axis or past it (`radius` of the
+    /// bend, `reach` of the sections, mm): its stations' planes meet
+    /// inside it.
+    Tight {
+        /// The bend's radius, mm.
+        radius: f64,
+        /// The farthest any section reaches from the spine, mm.
+        reach: f64,
+    },
+}
+
+impl LoftTarget {
+    /// The loft from `from` to `to` (faces as given) along `spine`, the end
+    /// turned by `twist` (rad).
+    pub fn new(
+        from: Section,
+        to: Section,
+        morph: Morph,
+        spine: Spine,
+        twist: f64,
+    ) -> Result<Self, LoftFault> {
+        let geometry = LoftGeometry::new(from, to, morph, spine, twist);
+        let reach = geometry.blend.max_radius();
+        let z = match spine {
+            Spine::Line { length } => [0.0, length.0],
+            Spine::Arc { radius, angle } => {
+                if reach >= radius.0 {
+                    return Err(LoftFault::Tight {
+                        radius: radius.0,
+                        reach,
+                    });
+                }
+                arc_heights(&geometry, radius.0 * angle.0.abs() + reach * angle.0.abs())
+            }
+        };
+        Ok(LoftTarget { geometry, z })
+    }
+
+    /// Whether `q` lies in the loft (its faces included).
+    pub fn contains(&self, q: [f64; 3]) -> bool {
+        let Some(s) = self.station(q) else {
+            return false;
+        };
+        let f = self.geometry.frame(s);
+        let d = Point3::from(q) - f.spine.origin;
+        let (u, v) = (d.dot(&f.x), d.dot(&f.y));
+        let r = u.hypot(v);
+        r <= 1e-12 || r <= self.geometry.blend.radius(s, v.atan2(u)) + 1e-9
+    }
+
+    /// The station (0..1) whose plane holds `q`, if `q` is between the
+    /// end sections' planes.
+    fn station(&self, q: [f64; 3]) -> Option<f64> {
+        let s = match self.geometry.spine {
+            Spine::Line { length } => q[2] / length.0,
+            Spine::Arc { radius, angle } => {
+                // The stations' planes all hold the bend axis, parallel to
+                // y through (R, 0, 0); the spine leaves it along -x.
+                (q[2].atan2(radius.0 - q[0])) / angle.0
+            }
+        };
+        (-1e-12..=1.0 + 1e-12)
+            .contains(&s)
+            .then_some(s.clamp(0.0, 1.0))
+    }
+
+    /// The heights where the vertical line over `p` crosses the loft's
+    /// surface above `z`, highest first; only the first when `first`.
+    fn crossings(&self, p: [f64; 2], z: f64, first: bool) -> Vec<f64> {
+        let inside = |h: f64| self.contains([p[0], p[1], h]);
+        let [lo, hi] = self.z;
+        let lo = lo.max(z);
+        let mut out = Vec::new();
+        if hi <= lo {
+            return out;
+        }
+        let n = ((hi - lo) / STEP).ceil().max(1.0) as usize;
+        let at = |k: usize| hi - (hi - lo) * k as f64 / n as f64;
+        let mut was = inside(hi);
+        if was {
+            out.push(hi);
+            if first {
+                return out;
+            }
+        }
+        for k in 1..=n {
+            let h = at(k);
+            let is = inside(h);
+            if is != was {
+                out.push(bisect(&inside, at(k - 1), h, was));
+                if first {
+                    return out;
+                }
+            }
+            was = is;
+        }
+        // Inside down to the loft's lowest height: its bottom.
+        if was && lo == self.z[0] {
+            out.push(lo);
+        }
+        out
+    }
+}
+
+/// The heights (mm) a bent loft lies within: its outline's at 129
+/// stations and 720 angles, widened by what can lie between them (`sweep`
+/// is how far, mm, its farthest point travels from end to end) and a
+/// twentieth of its reach for the outline between the angles.
+fn arc_heights(geometry: &LoftGeometry, sweep: f64) -> [f64; 2] {
+    const STATIONS: usize = 128;
+    const ANGLES: usize = 720;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for k in 0..=STATIONS {
+        let s = k as f64 / STATIONS as f64;
+        let f = geometry.frame(s);
+        for j in 0..ANGLES {
+            let theta = std::f64::consts::TAU * j as f64 / ANGLES as f64;
+            let z = geometry.point(&f, s, theta).0.z;
+            lo = lo.min(z);
+            hi = hi.max(z);
+        }
+    }
+    let slack = sweep / STATIONS as f64 + geometry.blend.max_radius() / 20.0 + STEP;
+    [lo - slack, hi + slack]
+}
+
+/// The height between `above` (inside when `was`) and `below` (the
+/// other) where the test changes, within [`RESOLUTION`]; the side inside
+/// is returned, so that the height found is in the solid.
+fn bisect(inside: &impl Fn(f64) -> bool, mut above: f64, mut below: f64, was: bool) -> f64 {
+    while above - below > RESOLUTION {
+        let mid = 0.5 * (above + below);
+        if inside(mid) == was {
+            above = mid;
+        } else {
+            below = mid;
+        }
+    }
+    if was {
+        above
+    } else {
+        below
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::units::{Angle, Length};
+
+    fn rect(w: f64, h: f64) -> Section {
+        Section::Rectangle {
+            a: Length(w / 2.0),
+            b: Length(h / 2.0),
+        }
+    }
+
+    /// A box lofted straight up: its top is its length, exactly, inside
+    /// it, and nothing is beside it.
+    #[test]
+    fn a_straight_box_lofts_top_is_its_length_exactly() {
+        let spine = Spine::Line {
+            length: Length(13.0),
+        };
+        let l = LoftTarget::new(
+            rect(80.0, 40.0),
+            rect(80.0, 40.0),
+            Morph::Superellipse,
+            spine,
+            0.0,
+        )
+        .unwrap();
+        let t = Target::Loft(l);
+        for p in [[0.0, 0.0], [39.0, -19.0], [-12.3, 7.7]] {
+            assert_eq!(t.at(p), Some(13.0), "{p:?}");
+            assert_eq!(t.crossings_above(p, 2.0), vec![13.0]);
+        }
+        assert_eq!(t.at([41.0, 0.0]), None);
+        let c = t.crossings_above([1.0, 1.0], -1.0);
+        assert_eq!(c.len(), 2);
+        assert!(c[1].abs() <= RESOLUTION, "{c:?}");
+    }
+
+    /// A cone (a circle of 60 mm to one of 20 mm over 20 mm): its top at
+    /// radius r is where the section's radius is r.
+    #[test]
+    fn a_cones_top_is_where_its_section_reaches_the_point() {
+        let spine = Spine::Line {
+            length: Length(20.0),
+        };
+        let circle = |d: f64| Section::Circle { r: Length(d / 2.0) };
+        let l = LoftTarget::new(circle(60.0), circle(20.0), Morph::Radial, spine, 0.0).unwrap();
+        let t = Target::Loft(l);
+        for r in [12.0, 20.0, 29.0] {
+            let want = 20.0 * (30.0 - r) / 20.0;
+            let got = t.at([r * 0.6, r * 0.8]).unwrap();
+            assert!((got - want).abs() <= 2.0 * RESOLUTION, "{r}: {got}");
+        }
+        assert_eq!(t.at([5.0, 0.0]), Some(20.0));
+    }
+
+    /// A box bent along an arc: its top is the end section's plane,
+    /// tilted by the bend's angle.
+    #[test]
+    fn a_bent_boxs_top_is_its_tilted_end() {
+        let (r, a) = (2000.0_f64, 0.5_f64.to_radians());
+        let spine = Spine::Arc {
+            radius: Length(r),
+            angle: Angle(a),
+        };
+        let l = LoftTarget::new(
+            rect(80.0, 40.0),
+            rect(80.0, 40.0),
+            Morph::Superellipse,
+            spine,
+            0.0,
+        )
+        .unwrap();
+        let t = Target::Loft(l);
+        let (xc, zc) = (r - r * a.cos(), r * a.sin());
+        for p in [[0.0, 0.0], [25.0, 9.0], [-30.0, -9.0]] {
+            let want = zc - a.tan() * (p[0] - xc);
+            let got = t.at(p).unwrap();
+            assert!(
+                (got - want).abs() <= 2.0 * RESOLUTION,
+                "{p:?}: {got} vs {want}"
+            );
+        }
+    }
+
+    /// A loft bent tighter than its sections reach is refused.
+    #[test]
+    fn a_loft_bent_round_its_own_section_is_refused() {
+        let spine = Spine::Arc {
+            radius: Length(30.0),
+            angle: Angle(1.0),
+        };
+        let got = LoftTarget::new(
+            rect(80.0, 40.0),
+            rect(80.0, 40.0),
+            Morph::Superellipse,
+            spine,
+            0.0,
+        );
+        assert!(matches!(got, Err(LoftFault::Tight { .. })));
+    }
+
+    /// A prism's crossings: its top, then the plate.
+    #[test]
+    fn a_prisms_crossings_are_its_top_and_the_plate() {
+        let region = crate::geometry::outline::region(
+            &crate::geometry::shape::Shape::Section(rect(10.0, 10.0)),
+            0.001,
+        );
+        let t = Target::Prism {
+            region,
+            height: 7.5,
+        };
+        assert_eq!(t.at([1.0, 1.0]), Some(7.5));
+        assert_eq!(t.at([6.0, 1.0]), None);
+        assert_eq!(t.crossings_above([1.0, 1.0], -1.0), vec![7.5, 0.0]);
+        assert_eq!(t.crossings_above([1.0, 1.0], 1.0), vec![7.5]);
+    }
+}
