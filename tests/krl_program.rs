@@ -5,6 +5,7 @@
 //! names are what KRL accepts.
 
 use crate::support::gcode_common::{fixture, planar, verified};
+use crate::support::ir_moves::{beam_axis, deposits, dist};
 use crate::support::krl_check as krl;
 use crate::support::krl_run;
 use lmdc::back::krl::orient::Orienter;
@@ -119,32 +120,6 @@ fn ring_trace(run: krl_run::Run) -> krl::Trace {
         laser_at_end: run.laser_at_end,
         ..krl::Trace::default()
     }
-}
-
-fn beam_axis(b: ToolAxis) -> (usize, f64) {
-    match b {
-        ToolAxis::PlusX => (0, 1.0),
-        ToolAxis::MinusX => (0, -1.0),
-        ToolAxis::PlusY => (1, 1.0),
-        ToolAxis::MinusY => (1, -1.0),
-        ToolAxis::PlusZ => (2, 1.0),
-        ToolAxis::MinusZ => (2, -1.0),
-    }
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
-}
-
-/// Every IR deposit (a segment whose start has the laser on), in order.
-fn deposits(p: &Program) -> Vec<(Point, Point)> {
-    p.layers
-        .iter()
-        .flat_map(|l| &l.paths)
-        .flat_map(|path| path.points.windows(2))
-        .filter(|w| w[0].laser_on)
-        .map(|w| (w[0], w[1]))
-        .collect()
 }
 
 /// The trace does what the IR asks: laser-on LINs are exactly the IR's deposits,

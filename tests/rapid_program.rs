@@ -6,6 +6,7 @@
 //! the start and the end. The RAPID twin of tests/krl_program.rs.
 
 use crate::support::gcode_common::{fixture, planar, verified};
+use crate::support::ir_moves::{beam_axis, deposits, dist};
 use crate::support::rapid_check::{self as rapid, Files, Kind, Target};
 use lmdc::back::{MemorySink, Templates};
 use lmdc::ir::*;
@@ -61,17 +62,6 @@ fn run(p: &Verified, index: usize) -> (Files, rapid::Trace) {
     (files, trace)
 }
 
-fn beam_axis(b: ToolAxis) -> (usize, f64) {
-    match b {
-        ToolAxis::PlusX => (0, 1.0),
-        ToolAxis::MinusX => (0, -1.0),
-        ToolAxis::PlusY => (1, 1.0),
-        ToolAxis::MinusY => (1, -1.0),
-        ToolAxis::PlusZ => (2, 1.0),
-        ToolAxis::MinusZ => (2, -1.0),
-    }
-}
-
 /// Column `k` of the rotation of the unit quaternion `q` (`q1` scalar),
 /// written out by hand.
 fn quat_column(q: [f64; 4], k: usize) -> [f64; 3] {
@@ -94,21 +84,6 @@ fn quat_column(q: [f64; 4], k: usize) -> [f64; 3] {
         ],
     ];
     [m[0][k], m[1][k], m[2][k]]
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
-}
-
-/// Every IR deposit (a segment whose start has the laser on), in order.
-fn deposits(p: &Program) -> Vec<(Point, Point)> {
-    p.layers
-        .iter()
-        .flat_map(|l| &l.paths)
-        .flat_map(|path| path.points.windows(2))
-        .filter(|w| w[0].laser_on)
-        .map(|w| (w[0], w[1]))
-        .collect()
 }
 
 /// The trace does what the IR asks: the laser-on motions are exactly the

@@ -8,6 +8,7 @@ pub mod example;
 pub mod expected;
 #[path = "../gcode_common.rs"]
 pub mod gcode_common;
+pub mod ir_moves;
 // The G-code helpers bring the fixtures along (their own programs include
 // gcode_common alone).
 pub use gcode_common::fixture;
