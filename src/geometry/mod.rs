@@ -103,3 +103,18 @@ impl LoftGeometry {
         }
     }
 }
+
+/// Halving between `good` (where `ok` holds) and `bad` (where it does not)
+/// until they are within `tol`: the last value found to hold, the nearest
+/// `bad` — the largest clear diameter, the least clear raise.
+pub fn bisect(mut good: f64, mut bad: f64, tol: f64, ok: impl Fn(f64) -> bool) -> f64 {
+    while (bad - good).abs() > tol {
+        let mid = (good + bad) / 2.0;
+        if ok(mid) {
+            good = mid;
+        } else {
+            bad = mid;
+        }
+    }
+    good
+}

@@ -177,7 +177,9 @@ impl LoftTarget {
             let h = at(k);
             let is = inside(h);
             if is != was {
-                out.push(bisect(&inside, at(k - 1), h, was));
+                // The end inside is the one kept: the height found is in the solid.
+                let (good, bad) = if was { (at(k - 1), h) } else { (h, at(k - 1)) };
+                out.push(super::bisect(good, bad, RESOLUTION, inside));
                 if first {
                     return out;
                 }
@@ -212,25 +214,6 @@ fn arc_heights(geometry: &LoftGeometry, sweep: f64) -> [f64; 2] {
     }
     let slack = sweep / STATIONS as f64 + geometry.blend.max_radius() / 20.0 + STEP;
     [lo - slack, hi + slack]
-}
-
-/// The height between `above` (inside when `was`) and `below` (the
-/// other) where the test changes, within [`RESOLUTION`]; the side inside
-/// is returned, so that the height found is in the solid.
-fn bisect(inside: &impl Fn(f64) -> bool, mut above: f64, mut below: f64, was: bool) -> f64 {
-    while above - below > RESOLUTION {
-        let mid = 0.5 * (above + below);
-        if inside(mid) == was {
-            above = mid;
-        } else {
-            below = mid;
-        }
-    }
-    if was {
-        above
-    } else {
-        below
-    }
 }
 
 #[cfg(test)]
