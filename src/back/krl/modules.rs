@@ -1,27 +1,28 @@
 //! The streaming module writer: motion lines go into the body of the current
 //! module; when it holds `max_lines` LIN lines it is closed (rendered through
 //! `krl/module.src.tera` and `krl/module.dat.tera`, written to the sink) and the
-//! next one begins. Holding one module in memory bounds memory by the module
-//! size, whatever the part's size.
+//! next one begins ([`ModuleStream`]).
 //!
 //! Per-point hot path: numbers are appended with [`push_fixed`], no `format!` and
 //! no tera per line.
 
 use super::orient::Abc;
 use crate::back::fmt::{key, put_fixed, put_trimmed, MAX_NUMBER};
+use crate::back::module_stream::{ModuleFiles, ModuleStream};
 use crate::back::{EmitError, Sink, Templates};
 use crate::numbers::{push_fixed, push_u64};
 use crate::target::names::KrlNames;
-use std::io::Write;
 
 pub use crate::target::kuka::{ANOUT_DECIMALS, POS_DECIMALS, VEL_DECIMALS};
 /// Room for `,A …,B …,C …,E1 …,E2 …}`.
 const ABC_BYTES: usize = 1 + 3 * (3 + MAX_NUMBER) + 2 * (4 + MAX_NUMBER);
 /// Room for one LIN line: its words, X Y Z and the orientation.
 const LINE: usize = 8 + 3 * (3 + MAX_NUMBER) + ABC_BYTES;
-/// Marker the module template's `body` variable is rendered as, where the motion
-/// lines go.
-const BODY: &str = "\u{1}lmdc-body\u{1}";
+/// A KRL module's files: its program and its data list.
+const FILES: ModuleFiles = ModuleFiles {
+    body: ("krl/module.src.tera", "src"),
+    beside: Some(("krl/module.dat.tera", "dat")),
+};
 
 /// A laser output switch attached to the start of a motion.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -45,15 +46,9 @@ pub struct Stats {
 
 /// Writes the motion modules of one robot program.
 pub struct Modules<'a> {
-    sink: &'a mut dyn Sink,
-    t: &'a Templates,
-    base: tera::Context,
-    names: KrlNames,
-    max_lines: usize,
+    stream: ModuleStream<'a>,
     laser_out: u16,
     power_out: u16,
-    body: Vec<u8>,
-    lines: usize,
     /// The last LIN line awaits its approximation word.
     pending: bool,
     /// Where that LIN line starts in `body`.
@@ -67,19 +62,6 @@ pub struct Modules<'a> {
     abc_last: Option<(Abc, Option<[f64; 2]>)>,
     abc_text: [u8; ABC_BYTES],
     abc_len: usize,
-    /// Layer numbers (1-based) whose comment blocks are in this module.
-    layers: Option<(usize, usize)>,
-    /// A layer comment block waiting for the layer's first motion, and its number.
-    pre: Vec<u8>,
-    pre_layer: Option<usize>,
-    /// The last layer whose comment block was placed (1-based; 0: none yet).
-    current: usize,
-    /// The layer already under way when this module starts (0: it starts
-    /// with a layer's comment block, or before any).
-    continues: usize,
-    /// The modules written so far.
-    modules: Vec<String>,
-    error: Option<EmitError>,
     /// What has been written.
     pub stats: Stats,
 }
@@ -96,15 +78,9 @@ impl<'a> Modules<'a> {
         power_out: u16,
     ) -> Self {
         Modules {
-            sink,
-            t,
-            base,
-            names,
-            max_lines: max_lines.max(1),
+            stream: ModuleStream::new(sink, t, base, names, FILES, max_lines),
             laser_out,
             power_out,
-            body: Vec::with_capacity(1 << 16),
-            lines: 0,
             pending: false,
             lin_at: 0,
             at_rest: false,
@@ -112,13 +88,6 @@ impl<'a> Modules<'a> {
             abc_last: None,
             abc_text: [0; ABC_BYTES],
             abc_len: 0,
-            layers: None,
-            pre: Vec::new(),
-            pre_layer: None,
-            current: 0,
-            continues: 0,
-            modules: Vec::new(),
-            error: None,
             stats: Stats::default(),
         }
     }
@@ -126,22 +95,10 @@ impl<'a> Modules<'a> {
     /// A layer's comment block: it goes before the layer's first motion, in the
     /// module that motion goes to.
     pub fn layer(&mut self, number: usize, text: &str) {
-        self.pre.extend_from_slice(text.as_bytes());
+        let pre = self.stream.layer(number);
+        pre.extend_from_slice(text.as_bytes());
         if !text.is_empty() && !text.ends_with('\n') {
-            self.pre.push(b'\n');
-        }
-        self.pre_layer = Some(number);
-    }
-
-    fn place_pre(&mut self) {
-        if let Some(number) = self.pre_layer.take() {
-            self.body.extend_from_slice(&self.pre);
-            self.pre.clear();
-            self.layers = Some(match self.layers {
-                Some((first, _)) => (first, number),
-                None => (number, number),
-            });
-            self.current = number;
+            pre.push(b'\n');
         }
     }
 
@@ -163,10 +120,10 @@ impl<'a> Modules<'a> {
     ) {
         self.end_pending(switch.is_none());
         self.at_rest = false;
-        if self.lines >= self.max_lines {
+        if self.stream.full() {
             self.roll();
         }
-        self.place_pre();
+        self.stream.place_pre();
         // The same printed speed is the same key; both are m/s at VEL_DECIMALS.
         let v = speed / 1000.0;
         let key = key(v, VEL_DECIMALS);
@@ -176,9 +133,9 @@ impl<'a> Modules<'a> {
             line[..10].copy_from_slice(b"$VEL.CP = ");
             let at = put_trimmed(&mut line, 10, v, VEL_DECIMALS);
             line[at] = b'\n';
-            self.body.extend_from_slice(&line[..at + 1]);
+            self.stream.body.extend_from_slice(&line[..at + 1]);
         }
-        let b = &mut self.body;
+        let b = &mut self.stream.body;
         if let Some(x) = anout {
             b.extend_from_slice(b"TRIGGER WHEN DISTANCE=0 DELAY=0 DO $ANOUT[");
             push_u64(b, self.power_out as u64);
@@ -217,7 +174,7 @@ impl<'a> Modules<'a> {
             self.abc_len = at + 1;
         }
         // One line, formatted in place on the stack and appended with one copy.
-        self.lin_at = self.body.len();
+        self.lin_at = self.stream.body.len();
         let mut line = [0u8; LINE];
         line[..7].copy_from_slice(b"LIN {X ");
         let mut at = put_fixed(&mut line, 7, pos[0], POS_DECIMALS);
@@ -227,9 +184,9 @@ impl<'a> Modules<'a> {
         at = put_fixed(&mut line, at + 3, pos[2], POS_DECIMALS);
         line[at..at + self.abc_len].copy_from_slice(&self.abc_text[..self.abc_len]);
         at += self.abc_len;
-        self.body.extend_from_slice(&line[..at]);
+        self.stream.body.extend_from_slice(&line[..at]);
         self.pending = true;
-        self.lines += 1;
+        self.stream.lines += 1;
         self.stats.lin += 1;
         if deposit {
             self.stats.deposits += 1;
@@ -249,11 +206,11 @@ impl<'a> Modules<'a> {
     ) {
         self.end_pending(false);
         self.at_rest = false;
-        if self.lines >= self.max_lines {
+        if self.stream.full() {
             self.roll();
         }
-        self.place_pre();
-        let b = &mut self.body;
+        self.stream.place_pre();
+        let b = &mut self.stream.body;
         b.extend_from_slice(b"PTP {X ");
         push_fixed(b, pos[0], POS_DECIMALS);
         b.extend_from_slice(b",Y ");
@@ -287,7 +244,7 @@ impl<'a> Modules<'a> {
             }
             None => b.extend_from_slice(b"} ; from home\n"),
         }
-        self.lines += 1;
+        self.stream.lines += 1;
     }
 
     /// Switches the laser (after setting the power `anout`, when given) at
@@ -317,8 +274,8 @@ impl<'a> Modules<'a> {
         if switch == Switch::On {
             self.stats.laser_ons += 1;
         }
-        let at = self.lin_at.min(self.body.len());
-        self.body.splice(at..at, t);
+        let at = self.lin_at.min(self.stream.body.len());
+        self.stream.body.splice(at..at, t);
     }
 
     /// `WAIT SEC seconds`: the robot stands still (the advance run stops there,
@@ -326,9 +283,9 @@ impl<'a> Modules<'a> {
     pub fn wait(&mut self, seconds: f64) {
         self.end_pending(false);
         self.at_rest = true;
-        self.body.extend_from_slice(b"WAIT SEC ");
-        push_fixed(&mut self.body, seconds, 2);
-        self.body.push(b'\n');
+        self.stream.body.extend_from_slice(b"WAIT SEC ");
+        push_fixed(&mut self.stream.body, seconds, 2);
+        self.stream.body.push(b'\n');
     }
 
     /// Output assignments (`$OUT[n]=TRUE`, …) where the robot stands: after an
@@ -337,32 +294,27 @@ impl<'a> Modules<'a> {
     pub fn io(&mut self, lines: &[String]) {
         self.end_pending(false);
         if !self.at_rest {
-            self.body
+            self.stream
+                .body
                 .extend_from_slice(b"WAIT SEC 0 ; advance-run stop: the outputs switch here\n");
             self.at_rest = true;
         }
         for l in lines {
-            self.body.extend_from_slice(l.as_bytes());
-            self.body.push(b'\n');
+            self.stream.body.extend_from_slice(l.as_bytes());
+            self.stream.body.push(b'\n');
         }
     }
 
     /// Closes the last module; returns the module names in call order.
     pub fn finish(mut self) -> Result<(Vec<String>, Stats), EmitError> {
         self.end_pending(false);
-        self.place_pre();
-        if self.lines > 0 || !self.body.is_empty() {
-            self.roll();
-        }
-        match self.error {
-            Some(e) => Err(e),
-            None => Ok((self.modules, self.stats)),
-        }
+        Ok((self.stream.finish()?, self.stats))
     }
 
     fn end_pending(&mut self, approximate: bool) {
         if self.pending {
-            self.body
+            self.stream
+                .body
                 .extend_from_slice(if approximate { b" C_DIS\n" } else { b"\n" });
             self.pending = false;
         }
@@ -371,58 +323,8 @@ impl<'a> Modules<'a> {
     /// Writes the current module and starts the next.
     fn roll(&mut self) {
         self.end_pending(true);
-        let name = self.names.module(self.modules.len());
-        if self.error.is_none() {
-            if let Err(e) = self.write(&name) {
-                self.error = Some(e);
-            }
-        }
-        self.modules.push(name);
-        self.body.clear();
-        self.lines = 0;
+        self.stream.close();
         self.vel = None;
-        self.layers = None;
-        // Mid-layer unless the next motion opens a layer with its block.
-        self.continues = if self.pre_layer.is_some() {
-            0
-        } else {
-            self.current
-        };
-    }
-
-    fn write(&mut self, name: &str) -> Result<(), EmitError> {
-        let mut ctx = self.base.clone();
-        ctx.insert("name", name);
-        ctx.insert("module", &(self.modules.len() + 1));
-        ctx.insert("lines", &self.lines);
-        let (first, last) = self.layers.unwrap_or((0, 0));
-        ctx.insert("first_layer", &first);
-        ctx.insert("last_layer", &last);
-        ctx.insert("continues", &self.continues);
-        ctx.insert("body", BODY);
-        let src = self
-            .t
-            .render("krl/module.src.tera", &ctx)
-            .map_err(EmitError::Template)?;
-        let (head, tail) = src.split_once(BODY).ok_or_else(|| {
-            EmitError::Template("template krl/module.src.tera: it must contain {{ body }}".into())
-        })?;
-        let dat = self
-            .t
-            .render("krl/module.dat.tera", &ctx)
-            .map_err(EmitError::Template)?;
-        let mut out = self.sink.create(&format!("{name}.src"))?;
-        out.write_all(head.as_bytes())?;
-        out.write_all(&self.body)?;
-        out.write_all(tail.as_bytes())?;
-        out.flush()?;
-        drop(out);
-        if !dat.is_empty() {
-            let mut out = self.sink.create(&format!("{name}.dat"))?;
-            out.write_all(dat.as_bytes())?;
-            out.flush()?;
-        }
-        Ok(())
     }
 }
 

@@ -1,21 +1,24 @@
 //! The streaming module writer of RAPID: motion instructions go into the
 //! routine of the current motion module; when it holds `max_lines` of them
 //! the module is closed (rendered through `rapid/module.mod.tera`, written
-//! to the sink) and the next begins, so memory is bounded by a module.
+//! to the sink) and the next begins ([`ModuleStream`]).
 //!
 //! A motion is held back until the next one says how it ends (`fine` where
 //! the plan stops or the next motion switches the laser at its start, the
 //! zone `lmd_z` otherwise) and whether the laser switches at its end, which
 //! turns it from a `MoveL` into a `TriggL`.
 
+use crate::back::module_stream::{ModuleFiles, ModuleStream};
 use crate::back::{EmitError, Sink, Templates};
 use crate::numbers::{push_fixed, push_trimmed, push_u64};
 use crate::target::names::KrlNames;
 use crate::target::rapid::{AO_DECIMALS, POS_DECIMALS, QUAT_DECIMALS};
-use std::io::Write;
 
-/// Marker the module template's `body` variable is rendered as.
-const BODY: &str = "\u{1}lmdc-body\u{1}";
+/// A RAPID motion module is one file.
+const FILES: ModuleFiles = ModuleFiles {
+    body: ("rapid/module.mod.tera", "mod"),
+    beside: None,
+};
 
 /// Where a trigger fires on its motion.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -97,29 +100,15 @@ struct Pending {
 
 /// Writes the motion modules of one robot program.
 pub struct Modules<'a> {
-    sink: &'a mut dyn Sink,
-    t: &'a Templates,
-    base: tera::Context,
-    names: KrlNames,
-    max_lines: usize,
+    stream: ModuleStream<'a>,
     /// The laser's digital signal and its power's analog one
     /// ([`crate::target::rapid::signal`]).
     laser_out: String,
     power_out: String,
-    body: Vec<u8>,
-    lines: usize,
     pending: Option<Pending>,
-    /// Layer comment lines waiting for the layer's first motion.
-    pre: Vec<u8>,
-    pre_layer: Option<usize>,
-    layers: Option<(usize, usize)>,
-    current: usize,
-    continues: usize,
     /// The robot stands still after the last instruction (`WaitRob \InPos`
     /// or `WaitTime \InPos`).
     at_rest: bool,
-    modules: Vec<String>,
-    error: Option<EmitError>,
     /// What has been written.
     pub stats: Stats,
 }
@@ -137,47 +126,22 @@ impl<'a> Modules<'a> {
         [laser_out, power_out]: [String; 2],
     ) -> Self {
         Modules {
-            sink,
-            t,
-            base,
-            names,
-            max_lines: max_lines.max(1),
+            stream: ModuleStream::new(sink, t, base, names, FILES, max_lines),
             laser_out,
             power_out,
-            body: Vec::with_capacity(1 << 16),
-            lines: 0,
             pending: None,
-            pre: Vec::new(),
-            pre_layer: None,
-            layers: None,
-            current: 0,
-            continues: 0,
             at_rest: false,
-            modules: Vec::new(),
-            error: None,
             stats: Stats::default(),
         }
     }
 
     /// A layer's comment lines (`! …`), placed before its first motion.
     pub fn layer(&mut self, number: usize, text: &str) {
+        let pre = self.stream.layer(number);
         for l in text.lines().filter(|l| !l.trim().is_empty()) {
-            self.pre.extend_from_slice(b"    ");
-            self.pre.extend_from_slice(l.trim_end().as_bytes());
-            self.pre.push(b'\n');
-        }
-        self.pre_layer = Some(number);
-    }
-
-    fn place_pre(&mut self) {
-        if let Some(number) = self.pre_layer.take() {
-            self.body.extend_from_slice(&self.pre);
-            self.pre.clear();
-            self.layers = Some(match self.layers {
-                Some((first, _)) => (first, number),
-                None => (number, number),
-            });
-            self.current = number;
+            pre.extend_from_slice(b"    ");
+            pre.extend_from_slice(l.trim_end().as_bytes());
+            pre.push(b'\n');
         }
     }
 
@@ -187,10 +151,10 @@ impl<'a> Modules<'a> {
     fn open(&mut self, stop: bool) {
         self.end_pending(!stop);
         self.at_rest = false;
-        if self.lines >= self.max_lines {
+        if self.stream.full() {
             self.roll();
         }
-        self.place_pre();
+        self.stream.place_pre();
     }
 
     /// A linear motion to `to` at the speed `speed` (a `speeddata`'s
@@ -236,7 +200,7 @@ impl<'a> Modules<'a> {
             triggers,
             joint: word == b"MoveJ ",
         });
-        self.lines += 1;
+        self.stream.lines += 1;
         self.stats.moves += 1;
     }
 
@@ -258,9 +222,11 @@ impl<'a> Modules<'a> {
     pub fn wait(&mut self, seconds: f64) {
         self.end_pending(false);
         self.at_rest = true;
-        self.body.extend_from_slice(b"    WaitTime \\InPos, ");
-        push_trimmed(&mut self.body, seconds, 2);
-        self.body.extend_from_slice(b";\n");
+        self.stream
+            .body
+            .extend_from_slice(b"    WaitTime \\InPos, ");
+        push_trimmed(&mut self.stream.body, seconds, 2);
+        self.stream.body.extend_from_slice(b";\n");
     }
 
     /// Output instructions (`SetDO do3, 1; ! gas on`) where the robot
@@ -269,27 +235,22 @@ impl<'a> Modules<'a> {
     pub fn io(&mut self, lines: &[String]) {
         self.end_pending(false);
         if !self.at_rest {
-            self.body.extend_from_slice(b"    WaitRob \\InPos;\n");
+            self.stream
+                .body
+                .extend_from_slice(b"    WaitRob \\InPos;\n");
             self.at_rest = true;
         }
         for l in lines {
-            self.body.extend_from_slice(b"    ");
-            self.body.extend_from_slice(l.as_bytes());
-            self.body.push(b'\n');
+            self.stream.body.extend_from_slice(b"    ");
+            self.stream.body.extend_from_slice(l.as_bytes());
+            self.stream.body.push(b'\n');
         }
     }
 
     /// Closes the last module; returns the module names in call order.
     pub fn finish(mut self) -> Result<(Vec<String>, Stats), EmitError> {
         self.end_pending(false);
-        self.place_pre();
-        if self.lines > 0 || !self.body.is_empty() {
-            self.roll();
-        }
-        match self.error {
-            Some(e) => Err(e),
-            None => Ok((self.modules, self.stats)),
-        }
+        Ok((self.stream.finish()?, self.stats))
     }
 
     /// Writes the motion held back: its `TriggIO`s, then the instruction
@@ -298,7 +259,7 @@ impl<'a> Modules<'a> {
         let Some(p) = self.pending.take() else {
             return;
         };
-        let b = &mut self.body;
+        let b = &mut self.stream.body;
         for (s, at) in &p.triggers {
             b.extend_from_slice(b"    TriggIO ");
             b.extend_from_slice(s.var(*at).as_bytes());
@@ -353,46 +314,7 @@ impl<'a> Modules<'a> {
     /// Writes the current module and starts the next.
     fn roll(&mut self) {
         self.end_pending(true);
-        let name = self.names.module(self.modules.len());
-        if self.error.is_none() {
-            if let Err(e) = self.write(&name) {
-                self.error = Some(e);
-            }
-        }
-        self.modules.push(name);
-        self.body.clear();
-        self.lines = 0;
-        self.layers = None;
-        self.continues = if self.pre_layer.is_some() {
-            0
-        } else {
-            self.current
-        };
-    }
-
-    fn write(&mut self, name: &str) -> Result<(), EmitError> {
-        let mut ctx = self.base.clone();
-        ctx.insert("name", name);
-        ctx.insert("module", &(self.modules.len() + 1));
-        ctx.insert("lines", &self.lines);
-        let (first, last) = self.layers.unwrap_or((0, 0));
-        ctx.insert("first_layer", &first);
-        ctx.insert("last_layer", &last);
-        ctx.insert("continues", &self.continues);
-        ctx.insert("body", BODY);
-        let text = self
-            .t
-            .render("rapid/module.mod.tera", &ctx)
-            .map_err(EmitError::Template)?;
-        let (head, tail) = text.split_once(BODY).ok_or_else(|| {
-            EmitError::Template("template rapid/module.mod.tera: it must contain {{ body }}".into())
-        })?;
-        let mut out = self.sink.create(&format!("{name}.mod"))?;
-        out.write_all(head.as_bytes())?;
-        out.write_all(&self.body)?;
-        out.write_all(tail.as_bytes())?;
-        out.flush()?;
-        Ok(())
+        self.stream.close();
     }
 }
 
