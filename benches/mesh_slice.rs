@@ -7,7 +7,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use lmdc::geometry::mesh::stl::{self, Triangle};
-use lmdc::geometry::mesh::{region, Mesh, Placement};
+use lmdc::geometry::mesh::{islands, Mesh, Placement};
 use std::f64::consts::TAU;
 
 const ROUND: usize = 1000;
@@ -90,10 +90,11 @@ fn mesh(c: &mut Criterion) {
             let lift = HEIGHT / LAYERS as f64;
             (0..LAYERS)
                 .map(|k| {
-                    region(s.loops((k as f64 + 0.5) * lift).unwrap())
+                    islands(s.loops((k as f64 + 0.5) * lift).unwrap())
                         .unwrap()
-                        .holes
-                        .len()
+                        .iter()
+                        .map(|island| island.holes.len())
+                        .sum::<usize>()
                 })
                 .sum::<usize>()
         })
