@@ -31,6 +31,7 @@ mod level;
 mod surface;
 mod too_short;
 mod tracks;
+mod undercut;
 
 use crate::diag::{message, Diagnostics};
 use crate::ir::Layer;
