@@ -7,6 +7,7 @@
 
 use super::{compile, messages};
 use lmdc::ir::Program;
+use proptest::prelude::*;
 use std::collections::BTreeMap;
 
 const RADIUS: f64 = 40.0;
@@ -139,5 +140,74 @@ fn the_tilt_is_capped_by_the_bead_and_the_machine() {
             }
         }
         assert!(at_cap > 100, "{cap}°: {at_cap} points at the cap");
+    }
+}
+
+/// [`super::scan`]'s points over x −23..23 mm and y −16..16 mm: the pad
+/// and 4 mm round it, as a shaft's scan would see it (within a bead of the
+/// scan's edge its slope is fitted on one side only).
+fn shaft_scan(surface: impl Fn(f64, f64) -> f64, noise: f64, seed: u64) -> Vec<[f64; 3]> {
+    let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+    let mut uniform = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let mut out = Vec::new();
+    for j in 0..65 {
+        for i in 0..93 {
+            let (x, y) = (-23.0 + 0.5 * i as f64, -16.0 + 0.5 * j as f64);
+            let e = (uniform() + uniform() + uniform()) * 2.0 * noise;
+            out.push([x, y, surface(x, y) + e]);
+        }
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// Random shafts (radius, noise) under random caps (the bead's
+    /// `tilt`), levelled flat 1 to 4 mm over the crown: every accepted
+    /// plan's nozzle is the cylinder's normal, scaled by `1 − i/N` and
+    /// capped, within 0.25° at every point, never past the cap; a refusal
+    /// is for the layer count or the deposit rule, never anything else.
+    #[test]
+    fn random_shafts_are_followed_within_the_cap(
+        radius in 30.0f64..120.0,
+        cap in 5.0f64..25.0,
+        build_up in 1.0f64..4.0,
+        noise in 0.0f64..0.03,
+        seed in 0u64..1000,
+    ) {
+        let z = move |_: f64, y: f64| (radius * radius - y * y).sqrt();
+        let pts = shaft_scan(z, noise, seed);
+        let top = radius + build_up;
+        let src = SRC
+            .replace("\"repair/shaft_pad.ply\"", "\"s.ply\"")
+            .replace("top = 43 mm", &format!("top = {top} mm"))
+            .replace("tilt = 0 deg .. 20 deg", &format!("tilt = 0 deg .. {cap} deg"));
+        let c = compile(&src, BTreeMap::from([("s.ply".to_string(), super::ply(&pts))]));
+        let m = messages(&c);
+        match c.program {
+            Some(p) => {
+                let p = p.ir();
+                let n = p.layers.len() as f64;
+                for (i, pos, normal, _) in deposits(p) {
+                    let y = pos[1];
+                    let g = (1.0 - i as f64 / n) * y / z(0.0, y);
+                    let g = g.signum() * g.abs().min(cap.to_radians().tan());
+                    let len = g.hypot(1.0);
+                    let want = [0.0, g / len, 1.0 / len];
+                    prop_assert!(tilt(normal) <= cap + 1e-3, "{pos:?}: {normal:?}");
+                    prop_assert!(angle(normal, want) < 0.25, "{pos:?}: {normal:?} vs {want:?}");
+                }
+            }
+            None => prop_assert!(
+                m.contains("lmd::no-layer-count") || m.contains("lmd::deposit"),
+                "refused for another reason:\n{m}"
+            ),
+        }
     }
 }

@@ -137,29 +137,37 @@ impl<'m> Follow<'m> {
     }
 
     /// The scan's slope at `p`: the least-squares plane through its
-    /// surface sampled every cell over `reach` either way along x and y
-    /// (where it has one); flat where the samples do not fix a plane.
+    /// surface sampled every cell over `reach` either way along x and y.
+    /// Only samples whose mirror about `p` is on the scan too are taken
+    /// (a window symmetric about `p` gives a quadratic surface's slope at
+    /// `p` exactly; one cut by the scan's edge, the slope a cell or two
+    /// inward); where they do not fix a plane, every sample; flat where
+    /// those do not either.
     pub fn gradient(&self, p: [f64; 2]) -> [f64; 2] {
         let c = self.surface.cell();
         let k = (self.reach / c).ceil().clamp(1.0, MAX_HALF_WINDOW) as i32;
-        // z = a + gx·x + gy·y about p: its normal equations.
-        let mut m = Matrix3::<f64>::zeros();
-        let mut r = Vector3::<f64>::zeros();
-        for i in -k..=k {
-            for j in -k..=k {
-                let (dx, dy) = (i as f64 * c, j as f64 * c);
-                let Some(z) = self.surface.at([p[0] + dx, p[1] + dy]) else {
-                    continue;
-                };
-                let v = Vector3::new(1.0, dx, dy);
-                m += v * v.transpose();
-                r += v * z;
-            }
-        }
-        match m.lu().solve(&r) {
-            Some(x) if x[1].is_finite() && x[2].is_finite() && m[(0, 0)] >= 3.0 => [x[1], x[2]],
-            _ => [0.0, 0.0],
-        }
+        let at = |i: i32, j: i32| self.surface.at([p[0] + i as f64 * c, p[1] + j as f64 * c]);
+        [true, false]
+            .into_iter()
+            .find_map(|mirrored| {
+                // z = a + gx·x + gy·y about p: its normal equations.
+                let mut m = Matrix3::<f64>::zeros();
+                let mut r = Vector3::<f64>::zeros();
+                for i in -k..=k {
+                    for j in -k..=k {
+                        let Some(z) = at(i, j) else { continue };
+                        if mirrored && at(-i, -j).is_none() {
+                            continue;
+                        }
+                        let v = Vector3::new(1.0, i as f64 * c, j as f64 * c);
+                        m += v * v.transpose();
+                        r += v * z;
+                    }
+                }
+                let x = m.lu().solve(&r)?;
+                (x[1].is_finite() && x[2].is_finite()).then_some([x[1], x[2]])
+            })
+            .unwrap_or([0.0, 0.0])
     }
 
     /// The point at `p` on a layer whose slope is `weight` of the scan's
