@@ -481,6 +481,7 @@ pub static ANY: Block = Block::new(
         &planar::INFILL,
         &variable::SCAN,
         &variable::LEVEL,
+        &variable::FOLLOW,
         &continuous::STEP,
         &variable::SEGMENTS,
     ],
