@@ -397,6 +397,8 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     // The flat scan of tests/codes/short.xyz (z = 2 mm) levelled at 1 mm.
     repair_level: RepairLevel, WALL,
         "extrude wall { profile = rectangle(width = 16 mm, height = 2.4 mm)  size = outer  bead = b316  on = scan(\"short.xyz\")  top = 12 mm }\nslicing variable { layers = auto  scan = x  level = 1 mm }";
+    // The wall, built on the plate, asked to follow a scanned surface.
+    follow_surface: FollowSurface, WALL, "slicing variable { layers = auto  follow = surface }";
     // The flat scan of tests/codes/short.xyz registered to the top of a
     // 10 mm box (tests/codes/clamp.stl, its top moved to z = 2 mm).
     scan_registration: ScanRegistration, WALL,

@@ -10,6 +10,7 @@ use proptest::prelude::*;
 use std::collections::BTreeMap;
 
 mod blade;
+mod follow;
 mod target;
 
 /// A worn face: flat at `face` mm, a trough `depth` deep at `(cx, cy)`,

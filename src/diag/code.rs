@@ -283,6 +283,8 @@ codes! {
         "a levelled repair's `level` (`slicing variable`, docs/repair.md) lies below the scanned surface by more than a levelling pass may leave (with where, and the level that works), or the top stands less than a regular layer's lowest bead above it";
     ScanRegistration = "scan-registration", Feasibility,
         "a scan's best fit to its nominal (`scan(register = …)`, docs/repair.md) that leaves the points it keeps farther from the nominal than `fit_tolerance` (RMS), keeps fewer than 100 points, does not settle in 50 iterations, or leaves the scan free to slide or turn (a nominal whose faces under the scan do not fix it); names the RMS, the tolerance, the share of the points kept and the move found";
+    FollowSurface = "follow-surface", Feasibility,
+        "`follow = surface` (`slicing variable`, docs/repair.md) where the nozzle cannot follow the scanned surface: a part not built on a scan, a bead measured with the nozzle vertical only (no `tilt`), or a machine whose nozzle stays vertical (a 3-axis CNC, named)";
     TopHeight = "top-height", Feasibility,
         "an extrusion's `top` is zero, negative or cannot be computed at a point where a track runs (named, with the inner error)";
     SegmentsTooShort = "segments-too-short", Feasibility,

@@ -75,7 +75,15 @@ fn moves(layers: &[Layer], d: &Deposit) -> BTreeMap<(u8, i64), Vec<Moves>> {
                 let Some((key, t0, t1)) = on_line(pt.pos, next.pos) else {
                     continue;
                 };
-                let rise = pt.predicted_rise(d, Some(next));
+                // A rise along a tilted nozzle (`follow = surface`) raises
+                // the face by it over the normal's vertical share; a
+                // vertical normal's share is exactly 1.
+                let n = pt.normal.map(f64::from);
+                let up = n[2] / (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                let rise = match pt.predicted_rise(d, Some(next)) {
+                    r if up > 0.0 && up < 1.0 => r / up,
+                    r => r,
+                };
                 let per = out
                     .entry(key)
                     .or_insert_with(|| vec![Vec::new(); layers.len()]);

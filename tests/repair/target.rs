@@ -147,6 +147,78 @@ fn a_target_with_an_overhang_is_refused_where_it_is() {
             && m.contains("a face of it runs at 11 mm"),
         "{m}"
     );
+    // Under the ledge is a gap over the block: whichever way the layers
+    // are laid, the ledge's underside stands on nothing.
+    assert!(
+        m.contains(
+            "no build direction within 85° of vertical puts the underside here on metal below it"
+        ),
+        "{m}"
+    );
+}
+
+/// A target whose overhang leans: a block to 10.5 mm with a wall on it,
+/// 10 mm thick, leaning 40.5° toward +x up to 13 mm (the pad along y, its
+/// faces extruded from the section in x–z). Over x 0..2.13 mm the wall
+/// overhangs the block; the layers stand under it when their direction
+/// tilts toward +x by more than its 40.5°, found to the degree above.
+#[test]
+fn a_leaning_overhang_is_refused_with_the_tilt_that_builds_it() {
+    let lean = 40.5f64.to_radians().tan() * 2.5;
+    let section = [
+        [-40.0, 0.0],
+        [40.0, 0.0],
+        [40.0, 10.5],
+        [0.0, 10.5],
+        [lean, 13.0],
+        [lean - 10.0, 13.0],
+        [-10.0, 10.5],
+        [-40.0, 10.5],
+    ];
+    let c = pad(
+        "top = mesh(file = \"target.stl\")",
+        extruded_stl(&section, [-20.0, 20.0]),
+    );
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    let number = |after: &str, until: char| -> f64 {
+        let from = m.find(after).unwrap_or_else(|| panic!("{after}: {m}")) + after.len();
+        m[from..]
+            .split(until)
+            .next()
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap()
+    };
+    let x = number("overhang over (", ',');
+    assert!(x > 0.0 && x < lean, "{m}");
+    assert_eq!(number("tilted ", '°'), 41.0, "{m}");
+    assert_eq!(number("from vertical toward ", '°'), 0.0, "{m}");
+}
+
+/// The faces of a section in x–z (a closed polygon) extruded along y over
+/// `y`: a binary STL of its sides (the end caps, seen edge-on from above,
+/// are left out: a target mesh need not be closed).
+fn extruded_stl(section: &[[f64; 2]], y: [f64; 2]) -> Vec<u8> {
+    let mut tris = Vec::new();
+    for (k, a) in section.iter().enumerate() {
+        let b = section[(k + 1) % section.len()];
+        let c = |p: [f64; 2], y: f64| [p[0] as f32, y as f32, p[1] as f32];
+        let q = [c(*a, y[0]), c(b, y[0]), c(b, y[1]), c(*a, y[1])];
+        tris.push([q[0], q[1], q[2]]);
+        tris.push([q[0], q[2], q[3]]);
+    }
+    let mut out = vec![b' '; 80];
+    out.extend((tris.len() as u32).to_le_bytes());
+    for t in tris {
+        out.extend([0u8; 12]);
+        for v in t.iter().flatten() {
+            out.extend(v.to_le_bytes());
+        }
+        out.extend([0u8; 2]);
+    }
+    out
 }
 
 // A target given as a solid of the file (`top = NAME`, docs/repair.md, *A

@@ -413,3 +413,45 @@ fn islands(f: &SectionFault) -> String {
         SectionFault::Overlap { at } => format!("two loops meet at {}", p2(*at)),
     }
 }
+
+/// `follow = surface` on a part built on the plate: there is no scanned
+/// surface to follow.
+pub fn follow_without_scan(at: Span, solid: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::FollowSurface,
+        "`follow = surface` tilts the nozzle to a scanned part's surface, and this part is not built on a scan",
+    )
+    .label(at, "the nozzle along the scan's normal")
+    .label(solid, "built on the plate")
+    .help("build on the scan with `on = scan(file = …)` in the extrusion, or leave `follow` out (the nozzle vertical)")
+}
+
+/// `follow = surface` with a bead measured with the nozzle vertical only.
+pub fn follow_untilted_bead(bead: &str, at: Span, bead_at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::FollowSurface,
+        format!(
+            "`follow = surface` tilts the nozzle to the scanned surface's normal, but bead `{bead}` was measured with the nozzle vertical only (it has no `tilt`): a tilted melt pool runs downhill, and the heights it lays at each speed are not the ones measured"
+        ),
+    )
+    .label(at, "the nozzle along the scan's normal")
+    .label(bead_at, "measured vertical")
+    .help(format!(
+        "lay the bead's coupons with the nozzle tilted too and write the tilts they cover in bead `{bead}`, e.g. `tilt = 0 deg .. 20 deg`: the nozzle then follows the surface up to the upper one; or leave `follow` out"
+    ))
+}
+
+/// `follow = surface` and a machine whose nozzle stays vertical.
+pub fn follow_on_vertical_machine(machine: &str, at: Span, axes: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::FollowSurface,
+        format!(
+            "`follow = surface` tilts the nozzle to the scanned surface's normal, but machine `{machine}` moves X Y Z only and keeps the nozzle vertical"
+        ),
+    )
+    .label(at, "the nozzle along the scan's normal")
+    .label(axes, "no tilting axis")
+    .help(format!(
+        "build it on a machine that tilts the nozzle or the part (a 5-axis CNC: `axes = 5` with `kinematics = head_ac`, `head_bc`, `table_ac` or `table_bc`; a robot), take machine `{machine}` out of this file, or leave `follow` out (the nozzle vertical on every machine)"
+    ))
+}

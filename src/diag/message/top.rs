@@ -616,6 +616,7 @@ pub fn undercut(
     more: usize,
     solid: Option<&str>,
     at: Span,
+    reach: Option<[f64; 2]>,
 ) -> Diagnostic {
     let others = match more {
         0 => String::new(),
@@ -626,10 +627,18 @@ pub fn undercut(
         Some(name) => (format!("target solid `{name}`"), "its underside runs"),
         None => ("target".to_string(), "a face of it runs"),
     };
+    let tilt = match reach {
+        Some([t, a]) => format!(
+            "; built along a direction tilted {}° from vertical toward {}° (from +x, counter-clockwise), the line through the underside here stands on the scan in one piece: a head or table that tilts that far would build it",
+            short(t),
+            short(a),
+        ),
+        None => "; no build direction within 85° of vertical puts the underside here on metal below it: no tilt builds it".to_string(),
+    };
     Diagnostic::error(
         Code::TopHeight,
         format!(
-            "the {what} has an overhang over ({}, {}) mm{others}: its top is at {} mm, but {under_is} at {} mm, above the base at {} mm",
+            "the {what} has an overhang over ({}, {}) mm{others}: its top is at {} mm, but {under_is} at {} mm, above the base at {} mm{tilt}",
             short(p[0]),
             short(p[1]),
             short(top),
@@ -638,5 +647,5 @@ pub fn undercut(
         ),
     )
     .label(at, "the target")
-    .help("these layers are laid from above with the nozzle vertical, so they would fill under the overhang: build the part to the overhang's underside here, and the overhang in a later step with the part tilted")
+    .help("these layers are laid from above with the nozzle vertical, so they would fill under the overhang, and repair along a tilted direction is not planned yet (docs/repair.md, *Not yet*): build the part to the overhang's underside here, and the overhang in a later step with the part tilted")
 }

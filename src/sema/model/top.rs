@@ -167,6 +167,10 @@ pub struct VariableSlicing {
     /// `level = …`: on a scan, levelling passes up to a height, then
     /// regular layers (docs/repair.md, *Levelling*).
     pub level: Level,
+    /// `follow = surface` and where: on a scan, the nozzle along the
+    /// scanned surface's normal (docs/repair.md, *Following the surface*);
+    /// `None`: vertical.
+    pub follow: Option<Span>,
     /// `E_H`: the largest mean |height error| of the finished top along a
     /// track that constant-speed segments may leave.
     pub tolerance: Length,

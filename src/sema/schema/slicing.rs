@@ -362,6 +362,13 @@ pub mod variable {
         Default(DefaultWord("none")),
         "on a scan: fill the wear up to this height first (levelling passes, nothing where it is thinner than half the lowest bead), then regular layers to the top; `auto`: the scan's highest point under the tracks; `none`: every layer a fraction of the top less the scan",
     );
+    /// `follow = …`.
+    pub static FOLLOW: Field = Field::new(
+        "follow",
+        Word(&["vertical", "surface"]),
+        Default(DefaultWord("vertical")),
+        "on a scan, with a machine that tilts the nozzle: `surface` lays the layers on the scan with the nozzle along the scanned surface's normal (within the bead's measured `tilt` and the machine's tilt axis), back to vertical as the layers level it; `vertical`: the nozzle straight down",
+    );
     /// `segments { … }`.
     pub static SEGMENTS: Field = Field::new(
         "segments",
@@ -395,6 +402,7 @@ pub static VARIABLE: Block = Block::new(
         &variable::SCAN,
         &variable::OFFSET,
         &variable::LEVEL,
+        &variable::FOLLOW,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
         &variable::SEGMENTS,
@@ -473,6 +481,7 @@ pub static ANY: Block = Block::new(
         &planar::INFILL,
         &variable::SCAN,
         &variable::LEVEL,
+        &variable::FOLLOW,
         &continuous::STEP,
         &variable::SEGMENTS,
     ],

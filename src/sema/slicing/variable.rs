@@ -87,6 +87,11 @@ pub fn read<'a>(
             .quantity(&variable::LEVEL, diags)
             .map(|(z, sp)| Level::At(Length(z), sp)),
     };
+    let follow = match f.word(&variable::FOLLOW, diags) {
+        None if f.has(&variable::FOLLOW) => None,
+        Some(("surface", at)) => Some(Some(at)),
+        _ => Some(None),
+    };
     let segments = match f.nested(&variable::SEGMENTS) {
         Some((inner, at)) => {
             let s = Fields::block(
@@ -110,20 +115,26 @@ pub fn read<'a>(
         None => Some((None, None)),
     };
     let declared = offset.flatten();
-    let slicing = match (segments, layers, scan, offset, level) {
-        (Some((tolerance, min_length)), Some(layers), Some(scan), Some(offset), Some(level)) => {
-            Some(VariableSlicing {
-                layers,
-                scan,
-                offset,
-                level,
-                tolerance: tolerance.map_or(DEFAULT_TOLERANCE, |t| Length(t.0)),
-                min_length: min_length.map(|m| Length(m.0)),
-                span,
-                tolerance_span: tolerance.map(|t| t.1),
-                min_length_span: min_length.map(|m| m.1),
-            })
-        }
+    let slicing = match (segments, layers, scan, offset, level, follow) {
+        (
+            Some((tolerance, min_length)),
+            Some(layers),
+            Some(scan),
+            Some(offset),
+            Some(level),
+            Some(follow),
+        ) => Some(VariableSlicing {
+            layers,
+            scan,
+            offset,
+            level,
+            follow,
+            tolerance: tolerance.map_or(DEFAULT_TOLERANCE, |t| Length(t.0)),
+            min_length: min_length.map(|m| Length(m.0)),
+            span,
+            tolerance_span: tolerance.map(|t| t.1),
+            min_length_span: min_length.map(|m| m.1),
+        }),
         _ => None,
     };
     VariableSpec {
@@ -181,6 +192,10 @@ pub fn assemble(
     let (top, top_span) = w.top?;
     if let (Some(at), None) = (slicing.level.span(), &w.base) {
         diags.push(message::scan::level_without_scan(at, w.span));
+        return None;
+    }
+    if let (Some(at), None) = (slicing.follow, &w.base) {
+        diags.push(message::scan::follow_without_scan(at, w.span));
         return None;
     }
     let (shape, shape_span) = footprint(env, w.source, w.profile_span, diags)?;

@@ -10,6 +10,7 @@
 //! ([`crate::slice::variable::speed`]). Tracks alternate direction, one
 //! layer to the next and one track to the next; the laser is on along each.
 
+use super::follow::{Follow, Tilted};
 use super::surface::Base;
 use super::tracks::Track;
 use crate::ir::{Frame, Layer, Path, PathKind, Point};
@@ -25,6 +26,10 @@ pub struct Process<'m> {
     defocus: f32,
     speeds: [f64; 2],
     base: Base<'m>,
+    /// `follow = surface`: the nozzle along the scan's normal.
+    follow: Option<Follow<'m>>,
+    /// The bead's width, mm: what the scan's slope is fitted over.
+    width: f64,
 }
 
 impl<'m> Process<'m> {
@@ -36,7 +41,20 @@ impl<'m> Process<'m> {
             defocus: model.process.defocus.0 as f32,
             speeds: [bead.speed[0].0, bead.speed[1].0],
             base,
+            follow: None,
+            width: bead.width.0,
         }
+    }
+
+    /// This process with the nozzle along the scan's normal up to `max`
+    /// rad from vertical, when given and the layers start on the scan (a
+    /// level's layers are flat: vertical).
+    pub fn following(mut self, max: Option<f64>) -> Self {
+        self.follow = match (max, self.base) {
+            (Some(m), Base::Scan(s)) => Some(Follow::new(s, m, self.width)),
+            _ => None,
+        };
+        self
     }
 
     /// The height the first layer lies on at `(x, y)`: the scan's, or the
@@ -107,7 +125,14 @@ pub(super) fn track(
                 [x, y, process.base(x, y) + frac * h]
             })
             .collect();
-    let speeds = segment_speeds(tr, &pos, map, process.speeds, n);
+    // Layer `i` lies on `B + (i/N)·(top − B)`: its slope is `1 − i/N` of the
+    // scan's where the top is flat (module `follow`).
+    let tilts: Option<Vec<Tilted>> = process.follow.map(|f| {
+        pos.iter()
+            .map(|p| f.at([p[0], p[1]], 1.0 - frac, scan))
+            .collect()
+    });
+    let speeds = segment_speeds(tr, &pos, tilts.as_deref(), map, process.speeds, n);
     let m = pos.len();
     // Move j runs from point j to j + 1 in the track's own direction.
     let order: Vec<usize> = if reverse {
@@ -132,18 +157,19 @@ pub(super) fn track(
                 pos[b][2] - pos[a][2],
             ];
             let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-12);
+            let tilt = tilts.as_ref().map_or(Tilted::VERTICAL, |t| t[j]);
             Point {
                 pos: pos[j],
-                normal: [0.0, 0.0, 1.0],
+                normal: tilt.normal.map(|v| v as f32),
                 tangent: d.map(|v| (v / len) as f32),
-                layer_height: (tr.h[j] / n) as f32,
+                layer_height: (tr.h[j] / n * tilt.along_normal) as f32,
                 speed: speeds[tr.seg[mv.min(tr.seg.len() - 1)]] as f32,
                 power,
                 powder: process.powder,
                 defocus: process.defocus,
                 laser_on: k + 1 < m,
                 style: 0,
-                pitch: tr.pitch as f32,
+                pitch: tilt.pitch(tr.pitch) as f32,
                 rise: 0.0,
             }
         })
@@ -154,30 +180,52 @@ pub(super) fn track(
 /// `H_seg/N`, times `√(1 + s²)` with `s` the slope of the segment's chord
 /// on this layer's path; kept where every move of the segment crosses the
 /// ground within the bead's speed range (on a curved top the moves' slopes
-/// differ a little from the chord's).
+/// differ a little from the chord's). With the nozzle tilted (`tilts`), the
+/// speed across its axis is the map's for `H_seg/N·cos α` (module
+/// `follow`), and the path speed that speed over the chord's share across
+/// the segment's mean normal.
 fn segment_speeds(
     tr: &Track,
     pos: &[[f64; 3]],
+    tilts: Option<&[Tilted]>,
     map: &impl HeightMap,
     [v_lo, v_hi]: [f64; 2],
     n: f64,
 ) -> Vec<f64> {
     let q_count = tr.heights.len();
-    // Per segment: first and last point, and the steepest and flattest move.
+    // Per segment: first and last point, and the steepest and flattest move;
+    // with a tilted nozzle, its mean normal and slope along the track.
     let mut first = vec![usize::MAX; q_count];
     let mut last = vec![0usize; q_count];
     let mut steep = vec![1.0f64; q_count];
     let mut flat = vec![f64::INFINITY; q_count];
+    let mut tilt_sum = vec![([0.0f64; 3], 0.0f64, 0usize); q_count];
     for (j, &q) in tr.seg.iter().enumerate() {
         first[q] = first[q].min(j);
         last[q] = j + 1;
-        let f = climb(pos[j], pos[j + 1]);
+        let f = match tilts {
+            None => climb(pos[j], pos[j + 1]),
+            Some(t) => {
+                let s = &mut tilt_sum[q];
+                for (a, v) in s.0.iter_mut().zip(t[j].normal) {
+                    *a += v;
+                }
+                s.1 += t[j].along_track;
+                s.2 += 1;
+                climb_across(pos[j], pos[j + 1], t[j].normal)
+            }
+        };
         steep[q] = steep[q].max(f);
         flat[q] = flat[q].min(f);
     }
     (0..q_count)
         .map(|q| {
-            let h = Length(tr.heights[q] / n);
+            let (normal, along, count) = tilt_sum[q];
+            let h = match count {
+                0 => tr.heights[q] / n,
+                c => tr.heights[q] / n * along / c as f64,
+            };
+            let h = Length(h);
             // The layer count keeps every height in the map's range.
             let v_h = map.horizontal_speed(h).unwrap_or_else(|e| {
                 let r = e.heights;
@@ -187,9 +235,13 @@ fn segment_speeds(
                 return v_h.0;
             }
             let (a, b) = (pos[first[q]], pos[last[q]]);
-            let run = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
-            let slope = if run > 0.0 { (b[2] - a[2]) / run } else { 0.0 };
-            let v = path_speed(v_h, slope).map_or(v_h.0, |v: Speed| v.0);
+            let v = if count > 0 {
+                v_h.0 * climb_across(a, b, normal)
+            } else {
+                let run = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+                let slope = if run > 0.0 { (b[2] - a[2]) / run } else { 0.0 };
+                path_speed(v_h, slope).map_or(v_h.0, |v: Speed| v.0)
+            };
             let (lo, hi) = (v_lo * steep[q], v_hi * flat[q]);
             if lo <= hi {
                 v.clamp(lo, hi)
@@ -198,6 +250,24 @@ fn segment_speeds(
             }
         })
         .collect()
+}
+
+/// Path length per unit of ground across the normal `n` (need not be
+/// unit) from `a` to `b`: `|d| / |d ⊥ n|`, the vertical case's `√(1 + s²)`.
+fn climb_across(a: [f64; 3], b: [f64; 3], n: [f64; 3]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if nn <= 0.0 || len2 <= 0.0 {
+        return 1.0;
+    }
+    let along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    let across2 = len2 - along * along / nn;
+    if across2 > 1e-18 * len2 {
+        (len2 / across2).sqrt()
+    } else {
+        1.0
+    }
 }
 
 /// Path length per unit of ground from `a` to `b`: `√(1 + s²)`.

@@ -90,7 +90,8 @@ pub(super) fn slice(
         let all = pieces.len() + failures.len();
         return Err(too_short::report(&failures, all, regular.scan, bead, slicing, ex, min).into());
     }
-    let mut layers = passes_laid(model, bead, &pieces, &regular.lines, &on)?;
+    let tilt = super::follow::limit(model, bead, slicing);
+    let mut layers = passes_laid(model, bead, &pieces, &regular.lines, &on, tilt)?;
     let first = layers.len();
     let mut rest = regular.layers;
     for (i, layer) in rest.iter_mut().enumerate() {
@@ -360,16 +361,18 @@ fn mean_heights(track: &mut Track) {
 }
 
 /// The levelling passes as layers: pass `k` lays every piece of more than
-/// `k` passes, line after line, the lines alternating direction.
+/// `k` passes, line after line, the lines alternating direction; the nozzle
+/// along the scan's normal up to `tilt` rad when given (`follow = surface`).
 fn passes_laid(
     model: &Model,
     bead: &Bead,
     pieces: &[Piece],
     lines: &Layout,
     on: &Line<'_>,
+    tilt: Option<f64>,
 ) -> Result<Vec<Layer>, Diagnostics> {
     let count = pieces.iter().map(|p| p.n).max().unwrap_or(0);
-    let process = Process::of(model, bead, Base::Scan(on.surface));
+    let process = Process::of(model, bead, Base::Scan(on.surface)).following(tilt);
     let maps = lines
         .pitches
         .iter()

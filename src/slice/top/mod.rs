@@ -24,12 +24,14 @@ mod count;
 pub(crate) use count::hull;
 mod deposit;
 mod emit;
+mod follow;
 mod footprint;
 mod layout;
 mod level;
 mod surface;
 mod too_short;
 mod tracks;
+mod undercut;
 
 use crate::diag::{message, Diagnostics};
 use crate::ir::Layer;
@@ -59,6 +61,7 @@ pub fn slice(
     ex: &TopExtrusion,
     slicing: &VariableSlicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    follow::check(model, bead, slicing)?;
     match (&ex.base, slicing.level) {
         (Some(scan), Level::Auto(_) | Level::At(..)) => {
             level::slice(model, bead, ex, slicing, scan)
@@ -174,7 +177,8 @@ fn build(
             scan,
             n,
         };
-        let process = emit::Process::of(model, bead, base);
+        let process =
+            emit::Process::of(model, bead, base).following(follow::limit(model, bead, slicing));
         let (layers, warnings) = finish(model, bead, ex, slicing, &tracks, &process)?;
         return Ok(Built::new(layers, warnings, scan, lines));
     }

@@ -256,12 +256,14 @@ impl Bad {
                 under,
                 surface,
             } => {
+                let reach = super::undercut::least_tilt(ex, self.at, under, top);
                 out.push(message::top::undercut(
                     self.at,
                     [top, under, surface],
                     more,
                     solid_name(ex),
                     ex.top_span,
+                    reach,
                 ));
                 return out;
             }
