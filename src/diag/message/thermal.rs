@@ -110,11 +110,17 @@ pub fn interpass(o: Overheat<'_>, at: Span) -> Diagnostic {
             short_up(w)
         ),
         ("power", None) => format!("allow waits (`cooling = dwell`), or {raise}"),
-        ("order", Some(w)) => format!(
-            "a wait of {} s before the layer would keep it: the islands are too few or too close in time to cool each other's turn; allow waits (`cooling = dwell`), or {raise}",
-            short_up(w)
-        ),
-        ("order", None) => format!("allow waits (`cooling = dwell`), or {raise}"),
+        ("order", needs) => {
+            let why = if o.island.is_some() {
+                "each island cools only while the others are laid, too short here"
+            } else {
+                "a layer of one piece has no order to choose"
+            };
+            let wait = needs.map_or(String::new(), |w| {
+                format!(": a wait of {} s before the layer would keep it", short_up(w))
+            });
+            format!("{why}{wait}; allow waits (`cooling = dwell`), or {raise}")
+        }
         (_, Some(w)) => format!(
             "a wait of {} s would keep it, longer than lmdc plans: {raise}, or lay less heat per layer (a lower power)",
             short_up(w)
