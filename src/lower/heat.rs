@@ -189,7 +189,8 @@ impl Parts {
             parts.loads.push(vec![load]);
             parts.orders.push(vec![0]);
             parts.starts.push(vec![start]);
-            parts.paths.push(vec![0..layer.paths.len()]);
+            let all = 0..layer.paths.len();
+            parts.paths.push(vec![all]);
         }
         parts
     }
@@ -292,7 +293,7 @@ struct Island {
 /// order is then not the model's to change) or the layer is too dense to
 /// sample (`MAX_ISLAND_SAMPLES`).
 fn islands(layer: &Layer, w: f64) -> Option<Vec<Island>> {
-    if !(w > 0.0) || layer.on_plate {
+    if w.is_nan() || w <= 0.0 || layer.on_plate {
         return None;
     }
     let f = &layer.frame;
@@ -352,8 +353,8 @@ fn islands(layer: &Layer, w: f64) -> Option<Vec<Island>> {
     let first = (0..n).find(|&i| deposits[i])?;
     let mut owner = Vec::with_capacity(n);
     let mut last = find(&mut root, first);
-    for i in 0..n {
-        if deposits[i] {
+    for (i, deposit) in deposits.iter().enumerate() {
+        if *deposit {
             last = find(&mut root, i);
         }
         owner.push(last);

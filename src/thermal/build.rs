@@ -500,8 +500,8 @@ pub(super) mod reference {
             for (c, col) in self.columns.iter().enumerate() {
                 let base = nodes.len();
                 couple(&mut a, s - 1, base, self.feet[c]);
-                for i in 0..col.len() - 1 {
-                    couple(&mut a, base + i, base + i + 1, col[i].up);
+                for (i, node) in col.iter().enumerate().take(col.len() - 1) {
+                    couple(&mut a, base + i, base + i + 1, node.up);
                 }
                 nodes.extend_from_slice(col);
                 tops.push((base + col.len() - 1, col.len() > 1, c == into));
@@ -525,10 +525,11 @@ pub(super) mod reference {
                     .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
                     .unwrap();
                 a.swap(col, p);
-                for r in col + 1..total {
-                    let f = a[r][col] / a[col][col];
-                    for k in col..=total {
-                        a[r][k] -= f * a[col][k];
+                let pivot = a[col].clone();
+                for row in a.iter_mut().take(total).skip(col + 1) {
+                    let f = row[col] / pivot[col];
+                    for (x, p) in row.iter_mut().zip(&pivot).skip(col) {
+                        *x -= f * p;
                     }
                 }
             }
