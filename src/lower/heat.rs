@@ -3,7 +3,7 @@
 //! the waits a `max_interpass` asks written into the IR.
 
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Cooling, Heat, IslandHeat, Layer, LayerHeat, Program, Thermal};
+use crate::ir::{Cooling, Heat, IslandHeat, Layer, LayerHeat, PathKind, Program, Thermal};
 use crate::sema::schema::process::MAX_DWELL_S;
 use crate::span::Span;
 use crate::thermal::{self, Budget, Lever, Load, Material, Plate};
@@ -289,9 +289,9 @@ struct Island {
 /// wide, deposits in the same or neighbouring cells joined (so deposits
 /// within a bead of each other always are, and islands about three beads
 /// apart or more never). A laser-off path belongs to the deposit before
-/// it. `None` where an island's paths are not one run of the layer's (its
-/// order is then not the model's to change) or the layer is too dense to
-/// sample (`MAX_ISLAND_SAMPLES`).
+/// it, a lead onto a deposit to that deposit. `None` where an island's
+/// paths are not one run of the layer's (its order is then not the model's
+/// to change) or the layer is too dense to sample (`MAX_ISLAND_SAMPLES`).
 fn islands(layer: &Layer, w: f64) -> Option<Vec<Island>> {
     if w.is_nan() || w <= 0.0 || layer.on_plate {
         return None;
@@ -354,8 +354,10 @@ fn islands(layer: &Layer, w: f64) -> Option<Vec<Island>> {
     let mut owner = Vec::with_capacity(n);
     let mut last = find(&mut root, first);
     for (i, deposit) in deposits.iter().enumerate() {
-        if *deposit {
-            last = find(&mut root, i);
+        // A lead onto a deposit belongs to that deposit.
+        let lead_in = layer.paths[i].kind == PathKind::Lead && deposits.get(i + 1) == Some(&true);
+        if *deposit || lead_in {
+            last = find(&mut root, i + usize::from(lead_in));
         }
         owner.push(last);
     }
