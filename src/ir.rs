@@ -52,6 +52,13 @@ pub const VERSION_POSITIONER: u32 = 7;
 /// write KRL for. Written only for such a plan ([`with_later`]).
 pub const VERSION_BUDGET: u32 = 8;
 
+/// Version 9: a plan whose thermal block predicts islands (`cooling =
+/// order`, or `thermal.layers[].islands`): a version 8 reader does not
+/// know the word `order` for `thermal.cooling`, nor that a layer's
+/// interpass limit holds island by island. Written only for such a plan
+/// ([`with_later`]).
+pub const VERSION_ORDER: u32 = 9;
+
 /// Version 3: a segmented [`Ring`] built in one continuous run, with a
 /// height loop that runs on the machine or a fixed speed schedule (a segmented ring's;
 /// ignored, the nominal speeds would run open loop), and the machines'
@@ -94,9 +101,16 @@ pub fn with_positioner(version: u32, machines: &[Machine]) -> u32 {
     }
 }
 
-/// `program`'s version, or [`VERSION_BUDGET`] where the thermal budget
-/// added a wait or a robot has another controller than KUKA's.
+/// `program`'s version, [`VERSION_ORDER`] where its thermal block predicts
+/// islands, or [`VERSION_BUDGET`] where the thermal budget added a wait or
+/// a robot has another controller than KUKA's.
 pub fn with_later(program: &Program) -> u32 {
+    let islands = program.thermal.as_ref().is_some_and(|t| {
+        t.cooling == Cooling::Order || t.layers.iter().any(|l| !l.islands.is_empty())
+    });
+    if islands {
+        return VERSION_ORDER;
+    }
     let waits = program
         .thermal
         .as_ref()
@@ -624,6 +638,9 @@ pub enum Cooling {
     /// The least power reduction of the layer before, within the bead's
     /// measured powers and the laser's range.
     Power,
+    /// Each layer's islands laid in the order that starts each the
+    /// coolest, no wait beyond the declared ones.
+    Order,
 }
 
 /// The thermal model's data (docs/thermal.md) and what it predicts of each
@@ -657,12 +674,18 @@ pub struct Thermal {
     pub max_interpass: Option<f64>,
     /// How the limit is kept.
     pub cooling: Cooling,
+    /// `cooling = order`: what `cooling = dwell` would add to the waits to
+    /// keep the limit with the islands in the slicer's order, s (absent:
+    /// another cooling, no limit, or waits of at most an hour would not
+    /// keep it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dwell_alone: Option<f64>,
     /// Each layer's prediction, in layer order.
     pub layers: Vec<LayerHeat>,
 }
 
 /// One layer's predicted temperatures (docs/thermal.md).
-#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct LayerHeat {
     /// Where the layer starts: its first deposit point, mm.
@@ -687,6 +710,27 @@ pub struct LayerHeat {
     /// power`; absent: 1).
     #[serde(default = "one", skip_serializing_if = "is_one")]
     pub power: f64,
+    /// A layer of several islands: each island's prediction, in the order
+    /// they are laid (absent: a layer of one piece, whose figures are the
+    /// layer's).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub islands: Vec<IslandHeat>,
+}
+
+/// One island of a layer of several: its predicted temperatures
+/// (docs/thermal.md, *Islands*).
+#[derive(Clone, Copy, Debug, Serialize, Deserialize, PartialEq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+pub struct IslandHeat {
+    /// Where the island starts: its first deposit point, mm.
+    pub at: [f64; 3],
+    /// When, s from the build's start.
+    pub time: f64,
+    /// The temperature of the top of the island below it there and then
+    /// (the plate's under the first layer), °C.
+    pub interpass: f64,
+    /// The island's own temperature when it is laid, °C.
+    pub peak: f64,
 }
 
 fn one() -> f64 {

@@ -82,7 +82,7 @@ pub fn lower(model: &Model) -> Result<(Program, Diagnostics), Diagnostics> {
     let mut program = program;
     predict_rises(&mut program);
     if let Some((declared, at)) = &model.process.thermal {
-        program.thermal = Some(heat::predict(&program, declared, *at)?);
+        program.thermal = Some(heat::predict(&mut program, declared, *at)?);
         heat::scale_powers(&mut program);
     }
     program.version = ir::with_later(&program);

@@ -503,6 +503,9 @@ inheritance { band = 1 mm  hit = 120 % }";
     // No power within the range keeps the second layer within 200 °C.
     interpass_by_power: Interpass, PLATE,
         "process { speed = 6 mm/s  power = 1500 W  powder = 8 g/min  defocus = -3 mm  thermal { material = ss316l  max_interpass = 200 degC  cooling = power } }";
+    // One island: no order to choose, and no wait allowed.
+    interpass_by_order: Interpass, PLATE,
+        "process { speed = 6 mm/s  power = 1500 W  powder = 8 g/min  defocus = -3 mm  thermal { material = ss316l  max_interpass = 200 degC  cooling = order } }";
     thermal_material: BadChoice, PLATE,
         "process { speed = 6 mm/s  power = 1500 W  powder = 8 g/min  defocus = -3 mm  thermal { material = ss316  max_interpass = 200 degC } }";
     thermal_temperature: OutOfRange, PLATE,

@@ -314,7 +314,7 @@ codes! {
     Deposit = "deposit", Feasibility,
         "the plan's own bead model does not lay the layers it plans: a point's predicted rise (`A/pitch` at its speed) off its layer height by more than `rise_tolerance`, or the layers' error adding up past `max_drift`; says where, how much, after how many layers, and the speed, offset or layer height that would lay it";
     Interpass = "interpass", Feasibility,
-        "no cooling `thermal { cooling }` allows keeps a layer within `max_interpass`: names the layer, its predicted interpass temperature after the most cooling allowed, and what would keep it (a wait, a higher limit, another `cooling`)";
+        "no cooling `thermal { cooling }` allows keeps a layer within `max_interpass`: names the layer (and, in a layer of several islands, the island and where it starts), its predicted interpass temperature after the most cooling allowed (the longest wait, the least power, the best order of its islands), and what would keep it (a wait, a higher limit, another `cooling`)";
 
     MachineSpeed = "machine-speed", Machines,
         "the plan moves faster than a machine's `max_speed` (named, with the worst move)";

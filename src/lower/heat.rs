@@ -3,7 +3,7 @@
 //! the waits a `max_interpass` asks written into the IR.
 
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Cooling, Heat, Layer, LayerHeat, Program, Thermal};
+use crate::ir::{Cooling, Heat, IslandHeat, Layer, LayerHeat, PathKind, Program, Thermal};
 use crate::sema::schema::process::MAX_DWELL_S;
 use crate::span::Span;
 use crate::thermal::{self, Budget, Lever, Load, Material, Plate};
@@ -13,13 +13,18 @@ const M: f64 = 1e-3;
 
 /// The IR's thermal block for `program`, its layers predicted, each wait
 /// the least that keeps `max_interpass`; or the refusal of the first layer
-/// no allowed cooling keeps within it, reported at `at`.
-pub fn predict(program: &Program, declared: &Thermal, at: Span) -> Result<Thermal, Diagnostics> {
-    let width = program.limits.bead_width;
-    let loads: Vec<(Load, [f64; 3])> = program.layers.iter().map(|l| load(l, width)).collect();
+/// no allowed cooling keeps within it, reported at `at`. With `cooling =
+/// order`, each layer's paths are reordered island by island as the
+/// prediction chose.
+pub fn predict(
+    program: &mut Program,
+    declared: &Thermal,
+    at: Span,
+) -> Result<Thermal, Diagnostics> {
+    let parts = Parts::of(program);
     let (material, plate) = cell(declared);
     let heat = program.heat;
-    let base = |i: usize| base_wait(heat, loads[i - 1].0.time);
+    let base = |i: usize| base_wait(heat, parts.time(i - 1));
     let least = least_power(program);
     let budget = declared.max_interpass.map(|max_interpass| Budget {
         max_interpass,
@@ -28,51 +33,212 @@ pub fn predict(program: &Program, declared: &Thermal, at: Span) -> Result<Therma
                 longest: MAX_DWELL_S,
             },
             Cooling::Power => Lever::Power { least: &least },
+            Cooling::Order => Lever::Order,
         },
     });
-    let just: Vec<Load> = loads.iter().map(|l| l.0).collect();
-    let predicted = thermal::predict(material, plate, &just, base, budget).map_err(|o| {
-        let limit = declared.max_interpass.unwrap_or(0.0);
-        let cooling = match declared.cooling {
-            Cooling::Dwell => "dwell",
-            Cooling::Power => "power",
-        };
-        let o = message::thermal::Overheat {
-            layer: o.layer + 1,
-            interpass: o.interpass,
-            limit,
-            cooling,
-            longest: MAX_DWELL_S,
-            needs: o.needs,
-            preheat: o.layer == 0,
-            floor: match declared.cooling {
-                Cooling::Power => Some(power_floor(program)),
-                Cooling::Dwell => None,
+    let run = |budget| {
+        thermal::predict_islands(material, plate, &parts.loads, &parts.orders, base, budget)
+    };
+    let predicted = run(budget).map_err(|o| refusal(program, declared, &parts, o, at))?;
+    // What waits alone would have cost, for the report to weigh the order
+    // against.
+    let dwell_alone = match budget {
+        Some(b) if declared.cooling == Cooling::Order => run(Some(Budget {
+            lever: Lever::Dwell {
+                longest: MAX_DWELL_S,
             },
-        };
-        Diagnostics::from(message::thermal::interpass(o, at))
-    })?;
+            ..b
+        }))
+        .ok()
+        .map(|p| {
+            p.iter()
+                .enumerate()
+                .skip(1)
+                .map(|(i, l)| (l.layer.wait - base(i)).max(0.0))
+                .sum::<f64>()
+        }),
+        _ => None,
+    };
     let layers = predicted
         .iter()
-        .zip(&loads)
         .enumerate()
-        .map(|(i, (p, (_, start)))| {
+        .map(|(i, p)| {
             let base = if i == 0 { 0.0 } else { base(i) };
+            let islands = parts.islands_heat(i, &p.islands);
+            let start = islands.first().map_or(parts.starts[i][0], |s| s.at);
             LayerHeat {
-                at: *start,
-                time: p.start,
-                interpass: p.interpass,
-                peak: p.peak,
-                wait: p.wait,
-                added: (p.wait - base).max(0.0),
-                power: p.power,
+                at: start,
+                time: p.layer.start,
+                interpass: p.layer.interpass,
+                peak: p.layer.peak,
+                wait: p.layer.wait,
+                added: (p.layer.wait - base).max(0.0),
+                power: p.layer.power,
+                islands,
             }
         })
         .collect();
+    if declared.cooling == Cooling::Order {
+        for (i, (layer, p)) in program.layers.iter_mut().zip(&predicted).enumerate() {
+            let order: Vec<usize> = p.islands.iter().map(|i| i.island).collect();
+            parts.reorder(layer, i, &order);
+        }
+    }
     Ok(Thermal {
         layers,
+        dwell_alone,
         ..declared.clone()
     })
+}
+
+/// The refusal of the layer `o` names.
+fn refusal(
+    program: &Program,
+    declared: &Thermal,
+    parts: &Parts,
+    o: thermal::Overheat,
+    at: Span,
+) -> Diagnostics {
+    let limit = declared.max_interpass.unwrap_or(0.0);
+    let cooling = match declared.cooling {
+        Cooling::Dwell => "dwell",
+        Cooling::Power => "power",
+        Cooling::Order => "order",
+    };
+    let island = (parts.loads.get(o.layer).map_or(0, Vec::len) > 1)
+        .then(|| parts.island_start(o.layer, o.island));
+    let o = message::thermal::Overheat {
+        layer: o.layer + 1,
+        interpass: o.interpass,
+        limit,
+        cooling,
+        longest: MAX_DWELL_S,
+        needs: o.needs,
+        preheat: o.layer == 0,
+        floor: match declared.cooling {
+            Cooling::Power => Some(power_floor(program)),
+            _ => None,
+        },
+        island,
+    };
+    Diagnostics::from(message::thermal::interpass(o, at))
+}
+
+/// A plan's layers as the model takes them: each layer's islands (a
+/// *column* each, standing on the same column's island of the layer
+/// below), their loads, where they start and which paths they are.
+struct Parts {
+    /// `loads[i][c]`: column `c`'s island of layer `i`.
+    loads: Vec<Vec<Load>>,
+    /// `orders[i]`: the columns in the order the slicer lays them.
+    orders: Vec<Vec<usize>>,
+    /// `starts[i][c]`: where column `c`'s island of layer `i` starts, mm.
+    starts: Vec<Vec<[f64; 3]>>,
+    /// `paths[i][c]`: the paths of column `c`'s island of layer `i`, in
+    /// the plan's order (a run of them).
+    paths: Vec<Vec<std::ops::Range<usize>>>,
+}
+
+impl Parts {
+    /// The islands of `program`'s layers, where every layer has as many
+    /// and each stands on one island of the layer below; else each layer
+    /// as one piece (the part as one column).
+    fn of(program: &Program) -> Parts {
+        let width = program.limits.bead_width;
+        let found: Option<Vec<Vec<Island>>> =
+            program.layers.iter().map(|l| islands(l, width)).collect();
+        let columns = found.as_deref().and_then(|f| columns(f, width));
+        let (Some(found), Some(columns)) = (found, columns) else {
+            return Parts::whole(program, width);
+        };
+        let n = columns.first().map_or(0, Vec::len);
+        let mut parts = Parts {
+            loads: Vec::with_capacity(found.len()),
+            orders: Vec::with_capacity(found.len()),
+            starts: Vec::with_capacity(found.len()),
+            paths: Vec::with_capacity(found.len()),
+        };
+        for ((layer, isl), col) in program.layers.iter().zip(&found).zip(&columns) {
+            let mut loads = vec![None; n];
+            let mut starts = vec![layer.frame.origin; n];
+            let mut paths = vec![0..0; n];
+            for (g, island) in isl.iter().enumerate() {
+                let (load, start) = load(layer, island.paths.clone(), width);
+                loads[col[g]] = Some(load);
+                starts[col[g]] = start;
+                paths[col[g]] = island.paths.clone();
+            }
+            parts.loads.push(loads.into_iter().flatten().collect());
+            parts.orders.push(col.clone());
+            parts.starts.push(starts);
+            parts.paths.push(paths);
+        }
+        parts
+    }
+
+    /// Each layer as one piece: today's lumped column.
+    fn whole(program: &Program, width: f64) -> Parts {
+        let mut parts = Parts {
+            loads: Vec::new(),
+            orders: Vec::new(),
+            starts: Vec::new(),
+            paths: Vec::new(),
+        };
+        for layer in &program.layers {
+            let (load, start) = load(layer, 0..layer.paths.len(), width);
+            parts.loads.push(vec![load]);
+            parts.orders.push(vec![0]);
+            parts.starts.push(vec![start]);
+            let all = 0..layer.paths.len();
+            parts.paths.push(vec![all]);
+        }
+        parts
+    }
+
+    /// How long layer `i` takes to lay, s (rapid moves instant).
+    fn time(&self, i: usize) -> f64 {
+        self.loads[i].iter().map(|l| l.time).sum()
+    }
+
+    /// Where island (column) `c` of layer `i` starts, mm.
+    fn island_start(&self, i: usize, c: usize) -> [f64; 3] {
+        self.starts[i].get(c).copied().unwrap_or([0.0; 3])
+    }
+
+    /// The IR's islands of layer `i` as predicted (none for a layer of
+    /// one piece).
+    fn islands_heat(&self, i: usize, p: &[thermal::IslandPrediction]) -> Vec<IslandHeat> {
+        if p.len() < 2 {
+            return Vec::new();
+        }
+        p.iter()
+            .map(|q| IslandHeat {
+                at: self.island_start(i, q.island),
+                time: q.start,
+                interpass: q.interpass,
+                peak: q.peak,
+            })
+            .collect()
+    }
+
+    /// Lays `layer`'s islands in `order` (columns): their runs of paths
+    /// one after the other. The motion plan joins them as it joins any
+    /// two paths (a lift, a travel above what is built, the lowering).
+    fn reorder(&self, layer: &mut Layer, i: usize, order: &[usize]) {
+        let Some(runs) = self.paths.get(i) else {
+            return;
+        };
+        if order.len() < 2 || runs.len() != order.len() {
+            return;
+        }
+        let mut paths = Vec::with_capacity(layer.paths.len());
+        for &c in order {
+            paths.extend(layer.paths[runs[c].clone()].iter().cloned());
+        }
+        if paths.len() == layer.paths.len() {
+            layer.paths = paths;
+        }
+    }
 }
 
 /// The model's material and plate as the IR's thermal block states them.
@@ -97,7 +263,167 @@ pub fn cell(t: &Thermal) -> (Material, Plate) {
 /// powers as the plan lays them).
 pub fn loads(program: &Program) -> Vec<Load> {
     let width = program.limits.bead_width;
-    program.layers.iter().map(|l| load(l, width).0).collect()
+    program
+        .layers
+        .iter()
+        .map(|l| load(l, 0..l.paths.len(), width).0)
+        .collect()
+}
+
+/// The most samples [`islands`] takes of a plan's layer (a bead apart
+/// each half a bead along its deposits): past it the layer is taken as
+/// one piece, so that finding islands stays cheap on a dense layer.
+const MAX_ISLAND_SAMPLES: usize = 200_000;
+
+/// One island of a layer: a run of its paths whose deposits touch (come
+/// within about a bead of each other), and the box round them in the
+/// layer's frame, mm.
+#[derive(Clone, Debug)]
+struct Island {
+    paths: std::ops::Range<usize>,
+    bounds: [f64; 4],
+}
+
+/// The islands of `layer`, in the order it lays them: its deposits
+/// sampled every half a bead `w` along, each sample in a grid of cells `w`
+/// wide, deposits in the same or neighbouring cells joined (so deposits
+/// within a bead of each other always are, and islands about three beads
+/// apart or more never). A laser-off path belongs to the deposit before
+/// it, a lead onto a deposit to that deposit. `None` where an island's
+/// paths are not one run of the layer's (its order is then not the model's
+/// to change) or the layer is too dense to sample (`MAX_ISLAND_SAMPLES`).
+fn islands(layer: &Layer, w: f64) -> Option<Vec<Island>> {
+    if w.is_nan() || w <= 0.0 || layer.on_plate {
+        return None;
+    }
+    let f = &layer.frame;
+    let on = |p: [f64; 3]| {
+        let d = [p[0] - f.origin[0], p[1] - f.origin[1], p[2] - f.origin[2]];
+        let dot = |a: [f64; 3]| d[0] * a[0] + d[1] * a[1] + d[2] * a[2];
+        [dot(f.x), dot(f.y)]
+    };
+    let n = layer.paths.len();
+    let mut root: Vec<usize> = (0..n).collect();
+    fn find(root: &mut [usize], mut i: usize) -> usize {
+        while root[i] != i {
+            root[i] = root[root[i]];
+            i = root[i];
+        }
+        i
+    }
+    let mut cells: std::collections::HashMap<(i64, i64), usize> = Default::default();
+    let mut bounds = vec![[f64::MAX, f64::MAX, f64::MIN, f64::MIN]; n];
+    let mut deposits = vec![false; n];
+    let mut samples = 0usize;
+    for (i, path) in layer.paths.iter().enumerate() {
+        for pair in path.points.windows(2).filter(|p| p[0].laser_on) {
+            let (a, b) = (on(pair[0].pos), on(pair[1].pos));
+            let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+            let k = (len / (0.5 * w)).ceil().max(1.0) as usize;
+            samples += k + 1;
+            if samples > MAX_ISLAND_SAMPLES || !len.is_finite() {
+                return None;
+            }
+            deposits[i] = true;
+            for j in 0..=k {
+                let u = j as f64 / k as f64;
+                let q = [a[0] + (b[0] - a[0]) * u, a[1] + (b[1] - a[1]) * u];
+                let bx = &mut bounds[i];
+                *bx = [
+                    bx[0].min(q[0]),
+                    bx[1].min(q[1]),
+                    bx[2].max(q[0]),
+                    bx[3].max(q[1]),
+                ];
+                let cell = ((q[0] / w).floor() as i64, (q[1] / w).floor() as i64);
+                for dx in -1..=1 {
+                    for dy in -1..=1 {
+                        if let Some(&o) = cells.get(&(cell.0 + dx, cell.1 + dy)) {
+                            let (r, s) = (find(&mut root, o), find(&mut root, i));
+                            root[r.max(s)] = r.min(s);
+                        }
+                    }
+                }
+                cells.entry(cell).or_insert(i);
+            }
+        }
+    }
+    // Each path's island: a deposit's root; a laser-off path the deposit's
+    // before it (the first deposit's, before any).
+    let first = (0..n).find(|&i| deposits[i])?;
+    let mut owner = Vec::with_capacity(n);
+    let mut last = find(&mut root, first);
+    for (i, deposit) in deposits.iter().enumerate() {
+        // A lead onto a deposit belongs to that deposit.
+        let lead_in = layer.paths[i].kind == PathKind::Lead && deposits.get(i + 1) == Some(&true);
+        if *deposit || lead_in {
+            last = find(&mut root, i + usize::from(lead_in));
+        }
+        owner.push(last);
+    }
+    let mut out: Vec<(usize, Island)> = Vec::new();
+    for (i, &o) in owner.iter().enumerate() {
+        let again = out.last().is_some_and(|(r, _)| *r == o);
+        // An island met again after another: not one run.
+        if !again && out.iter().any(|(r, _)| *r == o) {
+            return None;
+        }
+        match out.last_mut() {
+            Some((_, isl)) if again => {
+                isl.paths.end = i + 1;
+                let (b, c) = (&mut isl.bounds, bounds[i]);
+                *b = [
+                    b[0].min(c[0]),
+                    b[1].min(c[1]),
+                    b[2].max(c[2]),
+                    b[3].max(c[3]),
+                ];
+            }
+            _ => out.push((
+                o,
+                Island {
+                    paths: i..i + 1,
+                    bounds: bounds[i],
+                },
+            )),
+        }
+    }
+    Some(out.into_iter().map(|(_, i)| i).collect())
+}
+
+/// Each layer's islands' columns (`[i][g]`: the column of layer `i`'s
+/// island `g`), where every layer has as many islands and each overlaps
+/// (its box grown by a bead `w`) exactly one island of the layer below
+/// and no other island of it does: the islands stand on each other as
+/// columns. `None` where they merge, split, appear or end (the part is
+/// then taken as one column).
+fn columns(found: &[Vec<Island>], w: f64) -> Option<Vec<Vec<usize>>> {
+    let n = found.first()?.len();
+    let mut out: Vec<Vec<usize>> = vec![(0..n).collect()];
+    for pair in found.windows(2) {
+        let (below, above) = (&pair[0], &pair[1]);
+        if above.len() != n || below.len() != n {
+            return None;
+        }
+        let overlaps = |a: &Island, b: &Island| {
+            let (p, q) = (a.bounds, b.bounds);
+            p[0] - w <= q[2] && q[0] - w <= p[2] && p[1] - w <= q[3] && q[1] - w <= p[3]
+        };
+        let cols = out.last()?;
+        let mut col = Vec::with_capacity(n);
+        let mut taken = vec![false; n];
+        for isl in above {
+            let mut on = below.iter().enumerate().filter(|(_, b)| overlaps(isl, b));
+            let (g, _) = on.next()?;
+            if on.next().is_some() || taken[g] {
+                return None;
+            }
+            taken[g] = true;
+            col.push(cols[g]);
+        }
+        out.push(col);
+    }
+    Some(out)
 }
 
 /// The least share of its power each layer may be laid at: its lowest
@@ -159,7 +485,8 @@ pub fn base_wait(heat: Heat, time: f64) -> f64 {
     heat.dwell.max(heat.min_layer_time - time).max(0.0)
 }
 
-/// A layer's load (SI) and where it starts (its first deposit point, mm):
+/// The load (SI) of a layer's run of `paths` (all of them, or an
+/// island's) and where it starts (its first deposit point, mm):
 /// the laser's energy and the time over its moves at their speeds (rapid
 /// moves between paths instant), the metal its deposits lay (`rise ×
 /// pitch`, else a bead's width times the layer height), its height (the
@@ -167,14 +494,14 @@ pub fn base_wait(heat: Heat, time: f64) -> f64 {
 /// points grown by half a bead (the perimeter of the hull plus `π·w`), the
 /// outline of the part's outside for a solid layer, short of a hollow
 /// part's inner faces (which makes the model cool it less than it cools).
-fn load(layer: &Layer, width: f64) -> (Load, [f64; 3]) {
+fn load(layer: &Layer, paths: std::ops::Range<usize>, width: f64) -> (Load, [f64; 3]) {
     let (mut energy, mut time, mut volume, mut length, mut heights) = (0.0, 0.0, 0.0, 0.0, 0.0);
     let mut start = None;
     let mut plan = Vec::new();
     let f = &layer.frame;
     let on =
         |p: [f64; 3], axis: [f64; 3]| (0..3).map(|k| (p[k] - f.origin[k]) * axis[k]).sum::<f64>();
-    for path in &layer.paths {
+    for path in &layer.paths[paths] {
         for pair in path.points.windows(2) {
             let (p, q) = (&pair[0], &pair[1]);
             let d = (0..3)

@@ -6,7 +6,7 @@ use crate::ir::{Cooling, Program};
 use serde::Serialize;
 
 /// One layer's predicted temperatures.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct HeatRow {
     /// 1-based layer number.
@@ -24,6 +24,24 @@ pub struct HeatRow {
     pub added_s: f64,
     /// The share of its declared power it is laid at (`cooling = power`).
     pub power_share: f64,
+    /// A layer of several islands: each island's, in the order they are
+    /// laid (empty: a layer of one piece).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub islands: Vec<IslandRow>,
+}
+
+/// One island of a layer of several.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+pub struct IslandRow {
+    /// Where it starts (its first deposit point's x and y), mm.
+    pub at_mm: [f64; 2],
+    /// When it starts, s from the build's start.
+    pub start_s: f64,
+    /// The temperature of the island below where and when it starts, °C.
+    pub interpass_c: f64,
+    /// The island's own temperature when laid, °C.
+    pub peak_c: f64,
 }
 
 /// The thermal prediction of the plan.
@@ -46,6 +64,12 @@ pub struct Heat {
     pub peak_layer: usize,
     /// The time the limit added to the waits, s.
     pub added_s: f64,
+    /// `cooling = order`: what waits alone (`cooling = dwell`, the islands
+    /// in the slicer's order) would have added, s (absent: another
+    /// cooling, or waits of at most an hour would not keep the limit).
+    pub dwell_alone_s: Option<f64>,
+    /// `cooling = order`: the time the order saves against waits alone, s.
+    pub saved_s: Option<f64>,
     /// How many layers laid at less than their power.
     pub layers_at_less_power: usize,
     /// Per layer.
@@ -68,6 +92,16 @@ impl Heat {
                 wait_s: l.wait,
                 added_s: l.added,
                 power_share: l.power,
+                islands: l
+                    .islands
+                    .iter()
+                    .map(|i| IslandRow {
+                        at_mm: [i.at[0], i.at[1]],
+                        start_s: i.time,
+                        interpass_c: i.interpass,
+                        peak_c: i.peak,
+                    })
+                    .collect(),
             })
             .collect();
         // The first layer that is the hottest (many start at the limit).
@@ -81,7 +115,13 @@ impl Heat {
             })
         };
         let finite = |(t, at): (f64, usize)| if t.is_finite() { (t, at) } else { (0.0, 0) };
-        let (hottest_interpass_c, hottest_layer) = finite(hottest(|r| r.interpass_c));
+        // A layer of islands starts as hot as its hottest island.
+        let (hottest_interpass_c, hottest_layer) = finite(hottest(|r| {
+            r.islands
+                .iter()
+                .map(|i| i.interpass_c)
+                .fold(r.interpass_c, f64::max)
+        }));
         let (peak_c, peak_layer) = finite(hottest(|r| r.peak_c));
         Some(Heat {
             material: t.material.clone(),
@@ -92,6 +132,10 @@ impl Heat {
             peak_c,
             peak_layer,
             added_s: layers.iter().map(|r| r.added_s).sum(),
+            dwell_alone_s: t.dwell_alone,
+            saved_s: t
+                .dwell_alone
+                .map(|d| d - layers.iter().map(|r| r.added_s).sum::<f64>()),
             layers_at_less_power: layers.iter().filter(|r| r.power_share < 1.0).count(),
             layers,
         })

@@ -135,6 +135,13 @@ fn thermal(out: &mut String, r: &Report) {
                     h.layers_at_less_power,
                     if h.layers_at_less_power == 1 { "" } else { "s" }
                 ),
+                crate::ir::Cooling::Order => match h.dwell_alone_s {
+                    Some(d) => format!(
+                        "kept by the order of the islands with no wait added, where waiting alone would add {}",
+                        duration(d)
+                    ),
+                    None => "kept by the order of the islands; waits alone of at most an hour would not keep it".to_string(),
+                },
             };
             format!(" (limit {} °C, {how})", trimmed(m, 1))
         }
@@ -166,6 +173,18 @@ fn thermal(out: &mut String, r: &Report) {
             format!("{:.1}", l.added_s),
             percent(l.power_share)
         );
+        for i in &l.islands {
+            let _ = writeln!(
+                out,
+                "{:>6} {:>11} {:>12} {:>9}   island at ({} mm, {} mm)",
+                "",
+                clock(i.start_s),
+                format!("{:.1}", i.interpass_c),
+                format!("{:.1}", i.peak_c),
+                trimmed(i.at_mm[0], 1),
+                trimmed(i.at_mm[1], 1)
+            );
+        }
     }
 }
 

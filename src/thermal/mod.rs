@@ -25,9 +25,11 @@
 //! whatever their points (the loads are summed from the points once).
 
 pub mod alloy;
+mod build;
 pub mod fit;
 
 pub use alloy::{alloy, Alloy, ALLOYS};
+pub use build::Build;
 
 /// Stefan–Boltzmann constant, W/(m²·K⁴).
 const SIGMA: f64 = 5.670_374_419e-8;
@@ -149,286 +151,6 @@ struct Node {
     footprint: f64,
 }
 
-/// The part as it is built: the plate's rings, then the fin's nodes from
-/// the bottom up, one chain.
-#[derive(Clone, Debug)]
-pub struct Build {
-    material: Material,
-    plate: Plate,
-    /// Plate rings from the outermost in, then the fin's nodes.
-    nodes: Vec<Node>,
-    /// How many of `nodes` are the plate's.
-    rings: usize,
-}
-
-impl Build {
-    /// A plate at its start temperature, nothing on it yet.
-    pub fn new(material: Material, plate: Plate) -> Build {
-        Build {
-            material,
-            plate,
-            nodes: Vec::new(),
-            rings: 0,
-        }
-    }
-
-    /// The temperature of the top of the part, where the next layer goes,
-    /// °C: the top layer's, or the plate's under the first.
-    pub fn top(&self) -> f64 {
-        self.nodes.last().map_or(self.plate.temperature, |n| n.t)
-    }
-
-    /// How many nodes the chain has (the cost of a step).
-    pub fn nodes(&self) -> usize {
-        self.nodes.len()
-    }
-
-    /// Lays a layer: it appears at the ambient temperature on top and takes
-    /// up the laser's absorbed energy evenly over its time. Returns the
-    /// layer's temperature when it is laid (its peak: it cools from then
-    /// on), °C.
-    pub fn lay(&mut self, load: &Load) -> f64 {
-        if !load.valid() {
-            // Nothing laid (a layer of travel only): the time passes.
-            self.cool(load.time.max(0.0));
-            return self.top();
-        }
-        if self.nodes.is_empty() {
-            self.rings = self.plate_rings(load);
-        }
-        self.push(load);
-        let steps = ((load.time / DEPOSIT_STEP).ceil() as usize).clamp(1, MAX_DEPOSIT_STEPS);
-        let dt = load.time / steps as f64;
-        let heat = self.material.absorptivity * load.energy;
-        if dt <= 0.0 {
-            // Laid at once: the energy lands on the layer as it appears.
-            let top = self.nodes.len() - 1;
-            self.nodes[top].t += heat / self.nodes[top].capacity;
-            return self.top();
-        }
-        for _ in 0..steps {
-            self.step(dt, heat / load.time);
-        }
-        self.top()
-    }
-
-    /// Cools for `seconds`, nothing laid: steps from [`FIRST_STEP`]
-    /// growing by [`STEP_GROWTH`], the last cut to what remains, so that a
-    /// longer cooling repeats a shorter one's steps (the temperature it
-    /// predicts never rises with the time allowed, and
-    /// [`Build::cooling_to`]'s answer is what this cools to).
-    pub fn cool(&mut self, seconds: f64) {
-        let mut left = seconds;
-        let mut dt = FIRST_STEP;
-        while left > 0.0 {
-            let d = left.min(dt);
-            self.step(d, 0.0);
-            left -= d;
-            dt *= STEP_GROWTH;
-        }
-    }
-
-    /// The least cooling, s, after which the top is at most `limit` °C, if
-    /// one of at most `longest` s is; to a thousandth of the step it falls
-    /// in. Leaves `self` untouched.
-    pub fn cooling_to(&self, limit: f64, longest: f64) -> Option<f64> {
-        if self.top() <= limit {
-            return Some(0.0);
-        }
-        // March the same steps `cool` takes; bisect in the step it crosses
-        // in, from the state at its start.
-        let (mut at, mut done, mut dt) = (self.clone(), 0.0, FIRST_STEP);
-        while done < longest {
-            let d = dt.min(longest - done);
-            let mut next = at.clone();
-            next.step(d, 0.0);
-            if next.top() <= limit {
-                let (mut lo, mut hi) = (0.0, d);
-                while hi - lo > 1e-3 * d {
-                    let mid = 0.5 * (lo + hi);
-                    let mut m = at.clone();
-                    m.step(mid, 0.0);
-                    if m.top() <= limit {
-                        hi = mid;
-                    } else {
-                        lo = mid;
-                    }
-                }
-                return Some(done + hi);
-            }
-            at = next;
-            done += d;
-            dt *= STEP_GROWTH;
-        }
-        None
-    }
-
-    /// The plate's rings about the first layer's footprint (area `A₀`,
-    /// outline `P₀`): the plate within `r` of it has the area
-    /// `A(r) = A₀ + P₀·r + π·r²` (Steiner), the first ring reaching half
-    /// the plate's thickness out (the cone heat spreads down in), each next
-    /// twice as far, the last to the plate's area. Returns how many.
-    fn plate_rings(&mut self, first: &Load) -> usize {
-        let m = self.material;
-        let [lx, ly, thick] = self.plate.size;
-        let (a0, p0) = (first.footprint(), first.perimeter);
-        let area = |r: f64| a0 + p0 * r + std::f64::consts::PI * r * r;
-        let outline = |r: f64| p0 + 2.0 * std::f64::consts::PI * r;
-        let total = (lx * ly).max(area(thick) * 2.0);
-        // The radius at which the area is the plate's.
-        let reach = {
-            let (a, b, c) = (std::f64::consts::PI, p0, a0 - total);
-            (-b + (b * b - 4.0 * a * c).sqrt()) / (2.0 * a)
-        };
-        let mut radii = vec![0.5 * thick];
-        while radii[radii.len() - 1] * 2.0 < reach {
-            let r = radii[radii.len() - 1] * 2.0;
-            radii.push(r);
-        }
-        radii.push(reach);
-        // Innermost first, then reversed so the chain runs outside in.
-        let mut rings = Vec::with_capacity(radii.len());
-        for (j, &r) in radii.iter().enumerate() {
-            let inner = if j == 0 { 0.0 } else { radii[j - 1] };
-            let plan = area(r) - if j == 0 { 0.0 } else { area(inner) };
-            let top = if j == 0 { plan - a0 } else { plan };
-            let edge = if j + 1 == radii.len() {
-                outline(r) * thick
-            } else {
-                0.0
-            };
-            // To the next ring out: across the boundary at `r`, between the
-            // two rings' middles.
-            let out = radii.get(j + 1).map_or(0.0, |&next| {
-                m.conductivity * thick * outline(r) / (0.5 * (next - inner))
-            });
-            rings.push(Node {
-                capacity: m.volumetric() * plan * thick,
-                surface: top.max(0.0) + edge,
-                t: self.plate.temperature,
-                up: out,
-                layers: 0,
-                height: thick,
-                footprint: plan,
-            });
-        }
-        // The chain runs from the outermost ring in: a ring's `up` is the
-        // conductance to the next inner one.
-        rings.reverse();
-        let n = rings.len();
-        for i in 0..n - 1 {
-            rings[i].up = rings[i + 1].up;
-        }
-        self.nodes = rings;
-        n
-    }
-
-    /// Puts a new layer on top at the ambient temperature, joined to the
-    /// node below, and merges what has grown deep.
-    fn push(&mut self, load: &Load) {
-        let m = self.material;
-        let layer = Node {
-            capacity: m.volumetric() * load.volume,
-            surface: load.perimeter * load.height,
-            t: self.plate.ambient,
-            up: 0.0,
-            layers: 1,
-            height: load.height,
-            footprint: load.footprint(),
-        };
-        let below = self.nodes.len() - 1;
-        self.nodes[below].up = self.link(below, &layer);
-        self.nodes.push(layer);
-        self.merge();
-    }
-
-    /// Conductance from node `i` (the plate's innermost ring, or a fin
-    /// node) up into `above`, W/K: their half-heights in series, the
-    /// ring's down from its top through the cone under the footprint.
-    fn link(&self, i: usize, above: &Node) -> f64 {
-        let k = self.material.conductivity;
-        let n = &self.nodes[i];
-        let lower = if n.layers == 0 {
-            0.5 * n.height / (k * 0.5 * (above.footprint + n.footprint))
-        } else {
-            0.5 * n.height / (k * n.footprint)
-        };
-        1.0 / (lower + 0.5 * above.height / (k * above.footprint))
-    }
-
-    /// Merges neighbouring fin nodes whose layers together are at most a
-    /// [`COARSENING`]th of their depth below the top: energy kept, the
-    /// temperature the mean weighted by heat capacity.
-    fn merge(&mut self) {
-        let mut depth = 0u32; // layers above node i
-        let mut i = self.nodes.len() - 1;
-        while i > self.rings + 1 {
-            depth += self.nodes[i].layers;
-            let (a, b) = (self.nodes[i - 2], self.nodes[i - 1]);
-            // Node i−1 lies under `depth` layers; merge it with the one below.
-            if (a.layers + b.layers) * COARSENING <= depth {
-                let capacity = a.capacity + b.capacity;
-                let height = a.height + b.height;
-                let merged = Node {
-                    capacity,
-                    surface: a.surface + b.surface,
-                    t: (a.t * a.capacity + b.t * b.capacity) / capacity,
-                    up: 0.0,
-                    layers: a.layers + b.layers,
-                    height,
-                    footprint: (a.footprint * a.height + b.footprint * b.height) / height,
-                };
-                self.nodes[i - 2] = merged;
-                self.nodes.remove(i - 1);
-                i -= 1;
-                let below = i - 2;
-                self.nodes[below].up = self.link(below, &self.nodes[i - 1].clone());
-                let up = self.link(i - 1, &self.nodes[i].clone());
-                self.nodes[i - 1].up = up;
-            }
-            i -= 1;
-        }
-    }
-
-    /// One implicit Euler step of `dt` s with `power` W into the top node:
-    /// `(C/dt + H + G₋ + G₊)·T' − G₋·T'₋ − G₊·T'₊ = C/dt·T + H·T∞ + Q`,
-    /// solved by the Thomas algorithm.
-    fn step(&mut self, dt: f64, power: f64) {
-        let n = self.nodes.len();
-        if n == 0 || dt <= 0.0 {
-            return;
-        }
-        let (m, ambient) = (self.material, self.plate.ambient);
-        let mut diag = vec![0.0; n];
-        let mut rhs = vec![0.0; n];
-        for (i, node) in self.nodes.iter().enumerate() {
-            let top = if i + 1 == n { node.footprint } else { 0.0 };
-            let h = m.loss(node.t, ambient) * (node.surface + top);
-            let below = if i > 0 { self.nodes[i - 1].up } else { 0.0 };
-            diag[i] = node.capacity / dt + h + below + node.up;
-            rhs[i] = node.capacity / dt * node.t + h * ambient;
-        }
-        rhs[n - 1] += power;
-        // Forward sweep: the sub- and super-diagonal are −up of the node
-        // below.
-        let mut c = vec![0.0; n];
-        for i in 0..n {
-            let (a, prev_c, prev_r) = if i > 0 {
-                (-self.nodes[i - 1].up, c[i - 1], rhs[i - 1])
-            } else {
-                (0.0, 0.0, 0.0)
-            };
-            let d = diag[i] - a * prev_c;
-            c[i] = -self.nodes[i].up / d;
-            rhs[i] = (rhs[i] - a * prev_r) / d;
-        }
-        for i in (0..n).rev() {
-            let next = if i + 1 < n { self.nodes[i + 1].t } else { 0.0 };
-            self.nodes[i].t = rhs[i] - c[i] * next;
-        }
-    }
-}
-
 /// What a budget may change to keep its limit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Lever<'a> {
@@ -443,6 +165,9 @@ pub enum Lever<'a> {
         /// The least share of its power each layer may be laid at.
         least: &'a [f64],
     },
+    /// Lay each layer's islands in the order that starts each the coolest
+    /// (no wait beyond the declared ones).
+    Order,
 }
 
 /// The interpass temperature a plan keeps and how.
@@ -459,9 +184,10 @@ pub struct Budget<'a> {
 pub struct Prediction {
     /// The time from the build's start to the layer's, s.
     pub start: f64,
-    /// The temperature of the top of the part when the layer starts, °C.
+    /// The temperature of the top of the part when the layer starts, °C:
+    /// under its first island.
     pub interpass: f64,
-    /// The layer's temperature when it is laid, °C.
+    /// The layer's temperature when it is laid, °C: its hottest island's.
     pub peak: f64,
     /// The wait before the layer, s (0 before the first).
     pub wait: f64,
@@ -469,26 +195,49 @@ pub struct Prediction {
     pub power: f64,
 }
 
+/// One island of a layer as predicted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IslandPrediction {
+    /// The island (its column: its index in the layer's loads).
+    pub island: usize,
+    /// When the nozzle starts it, s from the build's start.
+    pub start: f64,
+    /// The top of its column then, °C: its interpass temperature.
+    pub interpass: f64,
+    /// Its temperature when laid, °C.
+    pub peak: f64,
+}
+
+/// A layer of islands as predicted: the layer's figures, and each island's
+/// in the order they are laid (the order a [`Lever::Order`] chose).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LayerPrediction {
+    /// The layer as a whole.
+    pub layer: Prediction,
+    /// Its islands, in the order they are laid.
+    pub islands: Vec<IslandPrediction>,
+}
+
 /// A layer whose start no allowed cooling brings within the budget.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Overheat {
     /// The layer, 0-based.
     pub layer: usize,
+    /// The island of it that starts too hot (0 for a layer of one piece).
+    pub island: usize,
     /// Its interpass temperature after the most cooling allowed, °C.
     pub interpass: f64,
-    /// The wait that would bring it within the limit, s, if one within
-    /// ten hours does.
+    /// The wait before the layer that would bring it within the limit, s,
+    /// if one within ten hours does.
     pub needs: Option<f64>,
 }
 
 /// The longest wait an [`Overheat`] looks for, s.
 const LONGEST_ADVICE: f64 = 36_000.0;
 
-/// Predicts every layer of a build laid with the waits `base(i)` before
-/// layer `i` (i ≥ 1), each kept within a budget where one is given: the
-/// wait lengthened, or the power of the layer before lowered, to the least
-/// that keeps the layer's interpass temperature within it. Returns the
-/// predictions, or the first layer nothing allowed keeps in.
+/// Predicts every layer of a build of one island a layer laid with the
+/// waits `base(i)` before layer `i` (i ≥ 1): [`predict_islands`] with one
+/// column.
 pub fn predict(
     material: Material,
     plate: Plate,
@@ -496,24 +245,69 @@ pub fn predict(
     base: impl Fn(usize) -> f64,
     budget: Option<Budget<'_>>,
 ) -> Result<Vec<Prediction>, Overheat> {
+    let layers: Vec<Vec<Load>> = loads.iter().map(|l| vec![*l]).collect();
+    let orders = vec![vec![0]; loads.len()];
+    let p = predict_islands(material, plate, &layers, &orders, base, budget)?;
+    Ok(p.into_iter().map(|l| l.layer).collect())
+}
+
+/// Predicts every layer of a build whose layers are laid as islands
+/// (`layers[i][c]`: island `c` of layer `i`, standing on island `c` of the
+/// layer below; every layer has as many), in the order `orders[i]`, with
+/// the waits `base(i)` before layer `i` (i ≥ 1), each kept within a budget
+/// where one is given: the wait lengthened, the power of the layer before
+/// lowered, or the islands reordered, as the lever allows, to the least
+/// that keeps every island's interpass temperature within it. Returns the
+/// predictions, or the first layer nothing allowed keeps in.
+pub fn predict_islands(
+    material: Material,
+    plate: Plate,
+    layers: &[Vec<Load>],
+    orders: &[Vec<usize>],
+    base: impl Fn(usize) -> f64,
+    budget: Option<Budget<'_>>,
+) -> Result<Vec<LayerPrediction>, Overheat> {
     let mut build = Build::new(material, plate);
-    let mut out = Vec::with_capacity(loads.len());
+    let mut out = Vec::with_capacity(layers.len());
     let mut clock = 0.0;
-    for (i, load) in loads.iter().enumerate() {
+    for (i, loads) in layers.iter().enumerate() {
+        // The plate is set up under the first layer that lays metal.
+        if build.columns() == 0 {
+            build.stand(loads);
+        }
+        let mut order = orders[i].clone();
+        if let Some(Budget {
+            lever: Lever::Order,
+            ..
+        }) = budget
+        {
+            order = coolest_first(&build, loads, &order);
+        }
         let mut wait = if i == 0 { 0.0 } else { base(i).max(0.0) };
         if let (Some(b), true) = (budget, i > 0) {
             if let Lever::Dwell { longest } = b.lever {
-                wait = wait.max(least_wait(&build, b.max_interpass, longest, i)?);
+                let cooled = least_wait(&build, loads, &order, b.max_interpass, longest, i)?;
+                wait = wait.max(cooled);
             }
         }
         build.cool(wait);
         clock += wait;
-        let interpass = build.top();
         // A wait found to a thousandth of its step may land a rounding above.
-        if let Some(b) = budget.filter(|b| interpass > b.max_interpass + 1e-9) {
-            return Err(overheat(&build, i, interpass, b.max_interpass));
+        if let Some(b) = budget {
+            let (hottest, c) = starts(&build, loads, &order);
+            if hottest > b.max_interpass + 1e-9 {
+                return Err(overheat(
+                    &build,
+                    loads,
+                    &order,
+                    i,
+                    c,
+                    hottest,
+                    b.max_interpass,
+                ));
+            }
         }
-        let power = match (budget, base_after(&base, i, loads.len())) {
+        let power = match (budget, base_after(&base, i, layers.len())) {
             (
                 Some(
                     b @ Budget {
@@ -522,23 +316,118 @@ pub fn predict(
                     },
                 ),
                 Some(next),
-            ) => least_power(&build, load, next, b.max_interpass, least[i], i + 1)?,
+            ) => {
+                let now = Laying {
+                    loads,
+                    order: &order,
+                };
+                let then = Laying {
+                    loads: &layers[i + 1],
+                    order: &orders[i + 1],
+                };
+                least_power(&build, now, then, next, b.max_interpass, least[i], i + 1)?
+            }
             _ => 1.0,
         };
-        let peak = build.lay(&Load {
-            energy: load.energy * power,
-            ..*load
+        let islands = lay_layer(&mut build, loads, &order, power, clock);
+        let first = islands.first().copied();
+        out.push(LayerPrediction {
+            layer: Prediction {
+                start: clock,
+                interpass: first.map_or(build.top(), |f| f.interpass),
+                peak: islands.iter().map(|p| p.peak).fold(f64::MIN, f64::max),
+                wait,
+                power,
+            },
+            islands,
         });
-        out.push(Prediction {
-            start: clock,
-            interpass,
-            peak,
-            wait,
-            power,
-        });
-        clock += load.time;
+        clock += order.iter().map(|&c| loads[c].time).sum::<f64>();
     }
     Ok(out)
+}
+
+/// Lays a layer's islands in `order` at the share `power` of their power,
+/// from `clock` s; each island's start, interpass and peak.
+fn lay_layer(
+    build: &mut Build,
+    loads: &[Load],
+    order: &[usize],
+    power: f64,
+    clock: f64,
+) -> Vec<IslandPrediction> {
+    let mut at = clock;
+    let mut out = Vec::with_capacity(order.len());
+    for &c in order {
+        let interpass = build.top_of(c);
+        let load = &loads[c];
+        let peak = build.lay_on(
+            c,
+            &Load {
+                energy: load.energy * power,
+                ..*load
+            },
+        );
+        out.push(IslandPrediction {
+            island: c,
+            start: at,
+            interpass,
+            peak,
+        });
+        at += load.time;
+    }
+    out
+}
+
+/// The hottest interpass temperature of a layer's islands laid in `order`
+/// from `build` now, °C, and which island it is. A layer of one island
+/// is not laid (its interpass is the top now).
+fn starts(build: &Build, loads: &[Load], order: &[usize]) -> (f64, usize) {
+    let first = order.first().copied().unwrap_or(0);
+    if order.len() < 2 {
+        return (build.top_of(first), first);
+    }
+    let mut b = build.clone();
+    let mut hottest = (f64::MIN, first);
+    for (k, &c) in order.iter().enumerate() {
+        let t = b.top_of(c);
+        if t > hottest.0 {
+            hottest = (t, c);
+        }
+        if k + 1 < order.len() {
+            b.lay_on(c, &loads[c]);
+        }
+    }
+    hottest
+}
+
+/// The order of a layer's islands that starts each the coolest: the
+/// island whose column's top is the coolest when the last is laid goes
+/// next (the one that has cooled longest). Kept only where it starts the
+/// layer's hottest island cooler than the plan's own `order`, which
+/// equal temperatures keep.
+fn coolest_first(build: &Build, loads: &[Load], order: &[usize]) -> Vec<usize> {
+    if order.len() < 2 {
+        return order.to_vec();
+    }
+    let mut b = build.clone();
+    let mut left = order.to_vec();
+    let mut chosen = Vec::with_capacity(order.len());
+    while !left.is_empty() {
+        // `min_by` keeps the first of equals: the plan's order.
+        let k = (0..left.len())
+            .min_by(|&x, &y| b.top_of(left[x]).total_cmp(&b.top_of(left[y])))
+            .unwrap_or(0);
+        let c = left.remove(k);
+        if !left.is_empty() {
+            b.lay_on(c, &loads[c]);
+        }
+        chosen.push(c);
+    }
+    if starts(build, loads, &chosen).0 < starts(build, loads, order).0 {
+        chosen
+    } else {
+        order.to_vec()
+    }
 }
 
 /// The wait before layer `i + 1`, if there is one.
@@ -546,37 +435,88 @@ fn base_after(base: &impl Fn(usize) -> f64, i: usize, n: usize) -> Option<f64> {
     (i + 1 < n).then(|| base(i + 1).max(0.0))
 }
 
-/// The least wait, at most `longest`, that brings the top of `build`
-/// within `limit` before layer `layer`.
-fn least_wait(build: &Build, limit: f64, longest: f64, layer: usize) -> Result<f64, Overheat> {
-    build.cooling_to(limit, longest).ok_or_else(|| {
+/// The least wait, at most `longest`, after which every island of the
+/// layer `layer` laid in `order` on `build` starts within `limit`: the
+/// first island's from [`Build::cooling_of`]; where a later one still
+/// starts above it, bisected to a thousandth of a second.
+fn least_wait(
+    build: &Build,
+    loads: &[Load],
+    order: &[usize],
+    limit: f64,
+    longest: f64,
+    layer: usize,
+) -> Result<f64, Overheat> {
+    let refuse = || {
         let mut after = build.clone();
         after.cool(longest);
-        overheat(build, layer, after.top(), limit)
-    })
+        let (t, c) = starts(&after, loads, order);
+        overheat(build, loads, order, layer, c, t, limit)
+    };
+    let first = order.first().copied().unwrap_or(0);
+    let w0 = build.cooling_of(first, limit, longest).ok_or_else(refuse)?;
+    let after = |w: f64| {
+        let mut b = build.clone();
+        b.cool(w);
+        starts(&b, loads, order).0
+    };
+    if order.len() < 2 || after(w0) <= limit {
+        return Ok(w0);
+    }
+    if after(longest) > limit {
+        return Err(refuse());
+    }
+    let (mut lo, mut hi) = (w0, longest);
+    while hi - lo > 1e-3 {
+        let mid = 0.5 * (lo + hi);
+        if after(mid) <= limit {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(hi)
 }
 
-/// The refusal of layer `layer`, `interpass` °C after the most cooling
-/// allowed, with the wait that would do from `build`.
-fn overheat(build: &Build, layer: usize, interpass: f64, limit: f64) -> Overheat {
+/// The refusal of island `island` of layer `layer`, `interpass` °C after
+/// the most cooling allowed, with the wait before the layer that would do
+/// from `build`.
+fn overheat(
+    build: &Build,
+    loads: &[Load],
+    order: &[usize],
+    layer: usize,
+    island: usize,
+    interpass: f64,
+    limit: f64,
+) -> Overheat {
     let needs = if layer == 0 {
         None
     } else {
-        build.cooling_to(limit, LONGEST_ADVICE)
+        least_wait(build, loads, order, limit, LONGEST_ADVICE, layer).ok()
     };
     Overheat {
         layer,
+        island,
         interpass,
         needs,
     }
 }
 
+/// A layer's islands and the order they are laid in.
+#[derive(Clone, Copy)]
+struct Laying<'a> {
+    loads: &'a [Load],
+    order: &'a [usize],
+}
+
 /// The largest share of its power, from `least` to 1, at which laying
-/// `load` on `build` and waiting `wait` leaves the top within `limit`
-/// before layer `next` (to a ten-thousandth).
+/// `now` on `build` and waiting `wait` leaves every island of `then`
+/// within `limit` when it starts (layer `next`; to a ten-thousandth).
 fn least_power(
     build: &Build,
-    load: &Load,
+    now: Laying<'_>,
+    then: Laying<'_>,
     wait: f64,
     limit: f64,
     least: f64,
@@ -584,19 +524,19 @@ fn least_power(
 ) -> Result<f64, Overheat> {
     let top = |share: f64| {
         let mut b = build.clone();
-        b.lay(&Load {
-            energy: load.energy * share,
-            ..*load
-        });
+        lay_layer(&mut b, now.loads, now.order, share, 0.0);
         b.cool(wait);
-        (b.top(), b)
+        let (t, c) = starts(&b, then.loads, then.order);
+        (t, c, b)
     };
     if top(1.0).0 <= limit {
         return Ok(1.0);
     }
-    let (at_least, b) = top(least);
+    let (at_least, c, b) = top(least);
     if at_least > limit {
-        return Err(overheat(&b, next, at_least, limit));
+        return Err(overheat(
+            &b, then.loads, then.order, next, c, at_least, limit,
+        ));
     }
     let (mut lo, mut hi) = (least, 1.0);
     while hi - lo > 1e-4 {

@@ -275,3 +275,234 @@ fn refuses_a_limit_below_the_plate() {
     assert_eq!(e.layer, 0);
     assert_eq!(e.interpass, 250.0);
 }
+
+/// A square pillar's layer, `side_mm` on a side and 1 mm high, the laser
+/// putting out `energy` J over `time` s.
+fn pillar(side_mm: f64, energy: f64, time: f64) -> Load {
+    let side = side_mm * 1e-3;
+    Load {
+        energy,
+        time,
+        volume: side * side * 1e-3,
+        height: 1e-3,
+        perimeter: 4.0 * side,
+    }
+}
+
+/// A 200 × 200 × 20 mm plate at 25 °C.
+fn plate() -> Plate {
+    Plate {
+        size: [0.2, 0.2, 0.02],
+        temperature: 25.0,
+        ambient: 25.0,
+    }
+}
+
+/// With one island the tree's elimination (columns folded onto the plate,
+/// then filled back) is the chain's Thomas algorithm to rounding: the
+/// model of islands reduces to the model of one fin (which keeps its own
+/// solve, so every single-island prediction is the same to the bit).
+#[test]
+fn one_column_solved_as_a_tree_is_the_chain() {
+    let mut chain = Build::new(steel(), plate());
+    for _ in 0..12 {
+        chain.lay(&pillar(10.0, 800.0, 4.0));
+        chain.cool(3.0);
+    }
+    let mut tree = chain.clone();
+    for k in 0..40 {
+        let power = if k % 3 == 0 { 150.0 } else { 0.0 };
+        chain.step_once(0.3, power, 0);
+        tree.tree_once(0.3, power, 0);
+        for (a, b) in chain.temperatures().iter().zip(tree.temperatures()) {
+            assert!((a - b).abs() <= 1e-12 * a.abs().max(1.0), "{a} vs {b}");
+        }
+    }
+}
+
+/// Several columns on the plate: each step's tree elimination against the
+/// same implicit system solved densely (Gaussian elimination with
+/// pivoting, in the test), to 1e-10 of the temperatures.
+#[test]
+fn the_tree_solve_is_the_dense_solve() {
+    let mut b = Build::new(steel(), plate());
+    let layer = [
+        pillar(10.0, 800.0, 4.0),
+        pillar(6.0, 500.0, 2.5),
+        pillar(14.0, 1200.0, 6.0),
+    ];
+    b.stand(&layer);
+    for l in 0..15 {
+        for (c, load) in layer.iter().enumerate() {
+            b.lay_on(c, load);
+        }
+        let mut dense = b.clone();
+        let into = l % 3;
+        b.step_once(0.4, 200.0, into);
+        dense.dense_step(0.4, 200.0, into);
+        for (x, y) in b.temperatures().iter().zip(dense.temperatures()) {
+            assert!((x - y).abs() <= 1e-10 * x.abs().max(1.0), "{x} vs {y}");
+        }
+    }
+    assert_eq!(b.columns(), 3);
+}
+
+/// Without losses (no convection, no radiation) the heat the columns and
+/// the plate hold is exactly what the laser put in: the tree's elimination
+/// neither makes nor loses heat between the columns and the plate.
+#[test]
+fn islands_keep_the_energy_they_take() {
+    let m = Material {
+        emissivity: 0.0,
+        heat_transfer: 0.0,
+        ..steel()
+    };
+    let mut b = Build::new(m, plate());
+    let loads = [pillar(10.0, 800.0, 4.0), pillar(5.0, 300.0, 1.5)];
+    b.stand(&loads);
+    let mut taken = 0.0;
+    for _ in 0..10 {
+        for (c, l) in loads.iter().enumerate() {
+            // Each layer appears at the ambient, the plate's start.
+            b.lay_on(c, l);
+            taken += m.absorptivity * l.energy;
+        }
+        b.cool(2.0);
+    }
+    let held = b.heat_above(25.0);
+    assert!(
+        (held - taken).abs() <= 1e-9 * taken,
+        "{held} J held, {taken} J taken"
+    );
+}
+
+/// Two identical islands far apart on a large thick plate each behave like
+/// one island built alone, with the other's deposit time as a wait (the
+/// plate couples them, little where it is large): every interpass within
+/// 2 % of the rise above ambient.
+#[test]
+fn far_apart_islands_are_single_builds_sharing_a_plate() {
+    let big = Plate {
+        size: [0.6, 0.6, 0.04],
+        ..plate()
+    };
+    let load = pillar(10.0, 800.0, 4.0);
+    let n = 30;
+    let two = predict_islands(
+        steel(),
+        big,
+        &vec![vec![load; 2]; n],
+        &vec![vec![0, 1]; n],
+        |_| 2.0,
+        None,
+    )
+    .unwrap();
+    // Island 0 alone: it cools through island 1's deposit and the wait.
+    let one = predict(steel(), big, &vec![load; n], |_| 2.0 + load.time, None).unwrap();
+    let rise = one.iter().map(|p| p.interpass - 25.0).fold(0.0, f64::max);
+    for (i, (a, b)) in two.iter().zip(&one).enumerate() {
+        let t = a.islands[0].interpass;
+        eprintln!("layer {i}: {t} against {}", b.interpass);
+        assert!(
+            (t - b.interpass).abs() <= 0.02 * rise,
+            "layer {i}: {t} against {} (rise {rise})",
+            b.interpass
+        );
+    }
+}
+
+/// Two pillars laid in the order a slicer that starts each layer nearest
+/// where the last ended lays them: turn about, so each island is laid
+/// last in one layer and first in the next, with no time to cool between.
+/// `Lever::Order` starts each layer with the island that has cooled
+/// longest (the same order every layer) and keeps a limit without a wait
+/// that waits alone keep only by waiting.
+#[test]
+fn the_order_keeps_the_limit_that_waits_buy() {
+    let layers = vec![vec![pillar(8.0, 900.0, 5.0), pillar(8.0, 900.0, 5.0)]; 25];
+    let orders: Vec<Vec<usize>> = (0..25)
+        .map(|i| if i % 2 == 0 { vec![0, 1] } else { vec![1, 0] })
+        .collect();
+    let free = predict_islands(steel(), plate(), &layers, &orders, |_| 0.0, None).unwrap();
+    let hottest = |p: &[LayerPrediction]| {
+        p.iter()
+            .flat_map(|l| &l.islands)
+            .map(|i| i.interpass)
+            .fold(f64::MIN, f64::max)
+    };
+    let best = predict_islands(
+        steel(),
+        plate(),
+        &layers,
+        &orders,
+        |_| 0.0,
+        Some(Budget {
+            max_interpass: 1000.0,
+            lever: Lever::Order,
+        }),
+    )
+    .unwrap();
+    eprintln!(
+        "hottest in the plan's order {}, best order {}",
+        hottest(&free),
+        hottest(&best)
+    );
+    let limit = hottest(&best) + 0.25 * (hottest(&free) - hottest(&best));
+    let budget = |lever| {
+        Some(Budget {
+            max_interpass: limit,
+            lever,
+        })
+    };
+    let ordered = predict_islands(
+        steel(),
+        plate(),
+        &layers,
+        &orders,
+        |_| 0.0,
+        budget(Lever::Order),
+    )
+    .unwrap();
+    assert!(hottest(&ordered) <= limit);
+    assert!(ordered.iter().all(|l| l.layer.wait == 0.0));
+    // The same order every layer: the first island laid is the one the
+    // layer before laid first.
+    for pair in ordered.windows(2) {
+        assert_eq!(pair[0].islands[0].island, pair[1].islands[0].island);
+    }
+    let waited = predict_islands(
+        steel(),
+        plate(),
+        &layers,
+        &orders,
+        |_| 0.0,
+        budget(Lever::Dwell { longest: 3600.0 }),
+    )
+    .unwrap();
+    let added: f64 = waited.iter().map(|l| l.layer.wait).sum();
+    assert!(hottest(&waited) <= limit + 1e-9);
+    eprintln!("waits alone add {added} s");
+    assert!(added > 1.0, "waits alone add {added} s");
+}
+
+/// Where no order keeps the limit, `Lever::Order` refuses the layer, its
+/// island and the wait that would keep it.
+#[test]
+fn the_order_refuses_what_it_cannot_keep() {
+    let layers = vec![vec![pillar(6.0, 700.0, 3.0), pillar(6.0, 700.0, 3.0)]; 20];
+    let orders = vec![vec![0, 1]; 20];
+    let e = predict_islands(
+        steel(),
+        plate(),
+        &layers,
+        &orders,
+        |_| 0.0,
+        Some(Budget {
+            max_interpass: 150.0,
+            lever: Lever::Order,
+        }),
+    )
+    .unwrap_err();
+    assert!(e.layer > 0 && e.interpass > 150.0, "{e:?}");
+    assert!(e.needs.is_some_and(|w| w > 0.0), "{e:?}");
+}

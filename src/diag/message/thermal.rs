@@ -58,15 +58,26 @@ pub struct Overheat<'a> {
     /// The least power the layer before may be laid at, W (`cooling =
     /// power`).
     pub floor: Option<f64>,
+    /// Where the island that starts too hot starts, mm, in a layer of
+    /// several.
+    pub island: Option<[f64; 3]>,
 }
 
 /// No allowed cooling keeps a layer within `max_interpass`.
 pub fn interpass(o: Overheat<'_>, at: Span) -> Diagnostic {
+    let which = match o.island {
+        Some([x, y, _]) => format!(
+            "the island of layer {} at ({} mm, {} mm)",
+            o.layer,
+            short(x),
+            short(y)
+        ),
+        None => format!("layer {}", o.layer),
+    };
     let d = Diagnostic::error(
         Code::Interpass,
         format!(
-            "layer {} would start at {} °C, above `max_interpass` ({} °C)",
-            o.layer,
+            "{which} would start at {} °C, above `max_interpass` ({} °C)",
             short(o.interpass),
             short(o.limit)
         ),
@@ -86,6 +97,7 @@ pub fn interpass(o: Overheat<'_>, at: Span) -> Diagnostic {
             short(w)
         ),
         ("power", None) => "at the least power the laser's range and the bead's measured powers allow".to_string(),
+        ("order", _) => "with the layer's islands in the order that starts each the coolest (the one that has cooled longest first), no wait beyond the declared ones".to_string(),
         _ => format!("after the longest wait lmdc plans ({} s)", short(o.longest)),
     };
     let raise = format!(
@@ -98,6 +110,17 @@ pub fn interpass(o: Overheat<'_>, at: Span) -> Diagnostic {
             short_up(w)
         ),
         ("power", None) => format!("allow waits (`cooling = dwell`), or {raise}"),
+        ("order", needs) => {
+            let why = if o.island.is_some() {
+                "each island cools only while the others are laid, too short here"
+            } else {
+                "a layer of one piece has no order to choose"
+            };
+            let wait = needs.map_or(String::new(), |w| {
+                format!(": a wait of {} s before the layer would keep it", short_up(w))
+            });
+            format!("{why}{wait}; allow waits (`cooling = dwell`), or {raise}")
+        }
         (_, Some(w)) => format!(
             "a wait of {} s would keep it, longer than lmdc plans: {raise}, or lay less heat per layer (a lower power)",
             short_up(w)

@@ -78,8 +78,10 @@ pub fn read<'a>(
             max_interpass: max_interpass?.map(|q| q.0),
             cooling: match cooling? {
                 "power" => Cooling::Power,
+                "order" => Cooling::Order,
                 _ => Cooling::Dwell,
             },
+            dwell_alone: None,
             layers: Vec::new(),
         },
         at,

@@ -166,9 +166,9 @@ pub mod thermal {
     /// `cooling = dwell`.
     pub static COOLING: Field = Field::new(
         "cooling",
-        Word(&["dwell", "power"]),
+        Word(&["dwell", "power", "order"]),
         Default(DefaultWord("dwell")),
-        "how lmdc keeps `max_interpass`: `dwell`, the least wait before each layer that does; `power`, the least power reduction within the bead's measured powers and the laser's range, the speeds and so the layers unchanged",
+        "how lmdc keeps `max_interpass`: `dwell`, the least wait before each layer that does; `power`, the least power reduction within the bead's measured powers and the laser's range, the speeds and so the layers unchanged; `order`, each layer's islands laid in the order that starts each the coolest, no wait added",
     );
 }
 

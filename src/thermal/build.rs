@@ -1,0 +1,570 @@
+//! The part as it is built: a fin of layer nodes per island (a *column*)
+//! standing on a shared plate of rings (docs/thermal.md, *The model*).
+//!
+//! One island makes one chain of nodes, solved by the Thomas algorithm.
+//! Several islands make a tree: the plate's outer rings are shared, each
+//! column stands on its own first ring (its *foot*, the plate within half
+//! the plate's thickness of its footprint), and the columns meet only in
+//! the plate. A tree is solved in linear time too: each column is
+//! eliminated from its top down onto the shared rings, the rings' chain is
+//! solved, and the columns are filled back from the foot up.
+
+use super::{
+    Load, Material, Node, Plate, COARSENING, DEPOSIT_STEP, FIRST_STEP, MAX_DEPOSIT_STEPS,
+    STEP_GROWTH,
+};
+use std::f64::consts::PI;
+
+/// The part as it is built: the plate's shared rings, then one column per
+/// island, each its foot ring and its fin's nodes from the bottom up.
+#[derive(Clone, Debug)]
+pub struct Build {
+    material: Material,
+    plate: Plate,
+    /// The plate's rings every column shares, from the outermost in.
+    shared: Vec<Node>,
+    /// Each island's column: its foot ring, then its fin's nodes.
+    columns: Vec<Vec<Node>>,
+    /// The conductance from the innermost shared ring into each column's
+    /// foot, W/K.
+    feet: Vec<f64>,
+}
+
+impl Build {
+    /// A plate at its start temperature, nothing on it yet.
+    pub fn new(material: Material, plate: Plate) -> Build {
+        Build {
+            material,
+            plate,
+            shared: Vec::new(),
+            columns: Vec::new(),
+            feet: Vec::new(),
+        }
+    }
+
+    /// The temperature of the top of the part, where the next layer goes,
+    /// °C: the top of the first column (the part's, with one island), or
+    /// the plate's under the first layer.
+    pub fn top(&self) -> f64 {
+        self.top_of(0)
+    }
+
+    /// The temperature of the top of island `c`'s column, °C: its top
+    /// layer's, or the plate's under it before its first layer.
+    pub fn top_of(&self, c: usize) -> f64 {
+        match self.columns.get(c) {
+            Some(col) if col.len() > 1 => col[col.len() - 1].t,
+            Some(col) => col.first().map_or(self.plate.temperature, |n| n.t),
+            None => self.plate.temperature,
+        }
+    }
+
+    /// How many nodes the model has (the cost of a step).
+    pub fn nodes(&self) -> usize {
+        self.shared.len() + self.columns.iter().map(Vec::len).sum::<usize>()
+    }
+
+    /// How many islands' columns stand on the plate (0 before the first
+    /// layer).
+    pub fn columns(&self) -> usize {
+        self.columns.len()
+    }
+
+    /// Lays a layer of one island (the whole part's): see
+    /// [`Build::lay_on`].
+    pub fn lay(&mut self, load: &Load) -> f64 {
+        if self.columns.is_empty() && load.valid() {
+            self.stand(std::slice::from_ref(load));
+        }
+        self.lay_on(0, load)
+    }
+
+    /// Sets up the plate under the first layer's islands, one column each
+    /// (their loads give their footprints); nothing if already set up or
+    /// an island lays no metal.
+    pub fn stand(&mut self, firsts: &[Load]) {
+        if self.columns.is_empty() && !firsts.is_empty() && firsts.iter().all(Load::valid) {
+            self.plate_rings(firsts);
+        }
+    }
+
+    /// Lays island `c`'s part of a layer: it appears at the ambient
+    /// temperature on top of the island's column and takes up the laser's
+    /// absorbed energy evenly over its time. Returns its temperature when
+    /// it is laid (its peak: it cools from then on), °C. A load without
+    /// metal, or an island with no column, only lets its time pass.
+    pub fn lay_on(&mut self, c: usize, load: &Load) -> f64 {
+        if !load.valid() || c >= self.columns.len() {
+            self.cool(load.time.max(0.0));
+            return self.top_of(c);
+        }
+        self.push(c, load);
+        let steps = ((load.time / DEPOSIT_STEP).ceil() as usize).clamp(1, MAX_DEPOSIT_STEPS);
+        let dt = load.time / steps as f64;
+        let heat = self.material.absorptivity * load.energy;
+        if dt <= 0.0 {
+            // Laid at once: the energy lands on the layer as it appears.
+            let col = &mut self.columns[c];
+            let top = col.len() - 1;
+            col[top].t += heat / col[top].capacity;
+            return self.top_of(c);
+        }
+        for _ in 0..steps {
+            self.step(dt, heat / load.time, c);
+        }
+        self.top_of(c)
+    }
+
+    /// Cools for `seconds`, nothing laid: steps from [`FIRST_STEP`]
+    /// growing by [`STEP_GROWTH`], the last cut to what remains, so that a
+    /// longer cooling repeats a shorter one's steps (the temperature it
+    /// predicts never rises with the time allowed, and
+    /// [`Build::cooling_to`]'s answer is what this cools to).
+    pub fn cool(&mut self, seconds: f64) {
+        let mut left = seconds;
+        let mut dt = FIRST_STEP;
+        while left > 0.0 {
+            let d = left.min(dt);
+            self.step(d, 0.0, 0);
+            left -= d;
+            dt *= STEP_GROWTH;
+        }
+    }
+
+    /// The least cooling, s, after which the top of the first column is at
+    /// most `limit` °C, if one of at most `longest` s is: see
+    /// [`Build::cooling_of`].
+    pub fn cooling_to(&self, limit: f64, longest: f64) -> Option<f64> {
+        self.cooling_of(0, limit, longest)
+    }
+
+    /// The least cooling, s, after which the top of island `c`'s column is
+    /// at most `limit` °C, if one of at most `longest` s is; to a
+    /// thousandth of the step it falls in. Leaves `self` untouched.
+    pub fn cooling_of(&self, c: usize, limit: f64, longest: f64) -> Option<f64> {
+        if self.top_of(c) <= limit {
+            return Some(0.0);
+        }
+        // March the same steps `cool` takes; bisect in the step it crosses
+        // in, from the state at its start.
+        let (mut at, mut done, mut dt) = (self.clone(), 0.0, FIRST_STEP);
+        while done < longest {
+            let d = dt.min(longest - done);
+            let mut next = at.clone();
+            next.step(d, 0.0, 0);
+            if next.top_of(c) <= limit {
+                let (mut lo, mut hi) = (0.0, d);
+                while hi - lo > 1e-3 * d {
+                    let mid = 0.5 * (lo + hi);
+                    let mut m = at.clone();
+                    m.step(mid, 0.0, 0);
+                    if m.top_of(c) <= limit {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                return Some(done + hi);
+            }
+            at = next;
+            done += d;
+            dt *= STEP_GROWTH;
+        }
+        None
+    }
+
+    /// The plate's rings about the first layer's islands (footprints `Aᵢ`,
+    /// outlines `Pᵢ`, `n` of them): the plate within `r` of them has the
+    /// area `A(r) = ΣAᵢ + ΣPᵢ·r + n·π·r²` (Steiner, while they are more
+    /// than `2r` apart). Each island's foot reaches half the plate's
+    /// thickness out (the cone heat spreads down in); the shared rings
+    /// each reach twice as far as the last, the outermost to the plate's
+    /// area. With one island this is the chain of rings about its
+    /// footprint.
+    fn plate_rings(&mut self, firsts: &[Load]) {
+        let m = self.material;
+        let [lx, ly, thick] = self.plate.size;
+        let n = firsts.len() as f64;
+        let a0: f64 = firsts.iter().map(Load::footprint).sum();
+        let p0: f64 = firsts.iter().map(|l| l.perimeter).sum();
+        let area = |r: f64| a0 + p0 * r + n * PI * r * r;
+        let outline = |r: f64| p0 + n * 2.0 * PI * r;
+        let total = (lx * ly).max(area(thick) * 2.0);
+        // The radius at which the area is the plate's.
+        let reach = {
+            let (a, b, c) = (n * PI, p0, a0 - total);
+            (-b + (b * b - 4.0 * a * c).sqrt()) / (2.0 * a)
+        };
+        let mut radii = vec![0.5 * thick];
+        while radii[radii.len() - 1] * 2.0 < reach {
+            let r = radii[radii.len() - 1] * 2.0;
+            radii.push(r);
+        }
+        radii.push(reach);
+        // Innermost first (the feet, as one), then reversed so the chain
+        // runs outside in.
+        let mut rings = Vec::with_capacity(radii.len());
+        for (j, &r) in radii.iter().enumerate() {
+            let inner = if j == 0 { 0.0 } else { radii[j - 1] };
+            let plan = area(r) - if j == 0 { 0.0 } else { area(inner) };
+            let top = if j == 0 { plan - a0 } else { plan };
+            let edge = if j + 1 == radii.len() {
+                outline(r) * thick
+            } else {
+                0.0
+            };
+            // To the next ring out: across the boundary at `r`, between the
+            // two rings' middles.
+            let out = radii.get(j + 1).map_or(0.0, |&next| {
+                m.conductivity * thick * outline(r) / (0.5 * (next - inner))
+            });
+            rings.push(Node {
+                capacity: m.volumetric() * plan * thick,
+                surface: top.max(0.0) + edge,
+                t: self.plate.temperature,
+                up: out,
+                layers: 0,
+                height: thick,
+                footprint: plan,
+            });
+        }
+        // The chain runs from the outermost ring in: a ring's `up` is the
+        // conductance to the next inner one.
+        rings.reverse();
+        let count = rings.len();
+        for i in 0..count - 1 {
+            rings[i].up = rings[i + 1].up;
+        }
+        let feet = rings.pop().expect("at least two rings");
+        let into = rings[count - 2].up;
+        self.shared = rings;
+        // Each island's foot: its share of the innermost ring by its
+        // footprint (all of it for one island: `a/a` is exactly 1).
+        for l in firsts {
+            let share = l.footprint() / a0;
+            self.columns.push(vec![Node {
+                capacity: feet.capacity * share,
+                surface: feet.surface * share,
+                footprint: feet.footprint * share,
+                // Joined to a layer when the island's first is laid.
+                up: 0.0,
+                ..feet
+            }]);
+            self.feet.push(into * share);
+        }
+    }
+
+    /// Puts a new layer on top of column `c` at the ambient temperature,
+    /// joined to the node below, and merges what has grown deep.
+    fn push(&mut self, c: usize, load: &Load) {
+        let m = self.material;
+        let layer = Node {
+            capacity: m.volumetric() * load.volume,
+            surface: load.perimeter * load.height,
+            t: self.plate.ambient,
+            up: 0.0,
+            layers: 1,
+            height: load.height,
+            footprint: load.footprint(),
+        };
+        let col = &mut self.columns[c];
+        let below = col.len() - 1;
+        col[below].up = link(m.conductivity, &col[below], &layer);
+        col.push(layer);
+        merge(m.conductivity, col);
+    }
+
+    /// One implicit Euler step of `dt` s with `power` W into the top of
+    /// column `into`: `(C/dt + H + G₋ + G₊)·T' − G₋·T'₋ − G₊·T'₊ = C/dt·T +
+    /// H·T∞ + Q`. One column with the shared rings is a chain (the Thomas
+    /// algorithm); several are a tree ([`Build::tree_step`]).
+    fn step(&mut self, dt: f64, power: f64, into: usize) {
+        if dt <= 0.0 || self.columns.is_empty() {
+            return;
+        }
+        if self.columns.len() > 1 {
+            self.tree_step(dt, power, into);
+            return;
+        }
+        let mut chain = self.shared.clone();
+        let last = chain.len() - 1;
+        chain[last].up = self.feet[0];
+        chain.extend_from_slice(&self.columns[0]);
+        chain_step(&mut chain, self.material, self.plate.ambient, dt, power);
+        for (i, n) in chain.iter().enumerate() {
+            if i < self.shared.len() {
+                self.shared[i].t = n.t;
+            } else {
+                self.columns[0][i - self.shared.len()].t = n.t;
+            }
+        }
+    }
+
+    /// [`Build::step`] over several columns: each eliminated from its top
+    /// down onto the innermost shared ring, the rings solved as a chain,
+    /// the columns filled back from their feet up. Linear in the nodes.
+    fn tree_step(&mut self, dt: f64, power: f64, into: usize) {
+        let (m, ambient) = (self.material, self.plate.ambient);
+        let row = |n: &Node, top: bool, below: f64| {
+            let face = if top { n.footprint } else { 0.0 };
+            let h = m.loss(n.t, ambient) * (n.surface + face);
+            (
+                n.capacity / dt + h + below + n.up,
+                n.capacity / dt * n.t + h * ambient,
+            )
+        };
+        // Each column from the top down: `a·T = r + g·T_below` folds into
+        // the node below as `a₋ −= g²/a`, `r₋ += g·r/a`.
+        let mut folded: Vec<Vec<(f64, f64)>> = Vec::with_capacity(self.columns.len());
+        let (mut diag_j, mut rhs_j) = (0.0, 0.0);
+        for (c, col) in self.columns.iter().enumerate() {
+            let k = col.len();
+            let mut ar: Vec<(f64, f64)> = col
+                .iter()
+                .enumerate()
+                .map(|(i, n)| {
+                    let below = if i == 0 { self.feet[c] } else { col[i - 1].up };
+                    row(n, i + 1 == k && k > 1, below)
+                })
+                .collect();
+            if c == into {
+                ar[k - 1].1 += power;
+            }
+            for i in (1..k).rev() {
+                let g = col[i - 1].up;
+                let (a, r) = ar[i];
+                ar[i - 1].0 -= g * g / a;
+                ar[i - 1].1 += g * r / a;
+            }
+            let (a, r) = ar[0];
+            diag_j -= self.feet[c] * self.feet[c] / a;
+            rhs_j += self.feet[c] * r / a;
+            folded.push(ar);
+        }
+        // The shared rings: a chain whose innermost ring carries the feet.
+        let feet: f64 = self.feet.iter().sum();
+        let s = self.shared.len();
+        let mut diag = vec![0.0; s];
+        let mut rhs = vec![0.0; s];
+        for (i, n) in self.shared.iter().enumerate() {
+            let below = if i > 0 { self.shared[i - 1].up } else { 0.0 };
+            let up = if i + 1 == s { feet } else { n.up };
+            let face = n.surface;
+            let h = m.loss(n.t, ambient) * face;
+            diag[i] = n.capacity / dt + h + below + up;
+            rhs[i] = n.capacity / dt * n.t + h * ambient;
+        }
+        diag[s - 1] += diag_j;
+        rhs[s - 1] += rhs_j;
+        let ups: Vec<f64> = self.shared.iter().map(|n| n.up).collect();
+        let ts = thomas(&diag, &mut rhs, &ups);
+        for (n, t) in self.shared.iter_mut().zip(&ts) {
+            n.t = *t;
+        }
+        let junction = ts[s - 1];
+        for (c, col) in self.columns.iter_mut().enumerate() {
+            let ar = &folded[c];
+            let mut below = (junction, self.feet[c]);
+            for (i, n) in col.iter_mut().enumerate() {
+                let (a, r) = ar[i];
+                n.t = (r + below.1 * below.0) / a;
+                below = (n.t, n.up);
+            }
+        }
+    }
+}
+
+/// Conductance from `below` (a plate ring, or a fin node) up into `above`,
+/// W/K: their half-heights in series, the ring's down from its top through
+/// the cone under the footprint.
+fn link(k: f64, n: &Node, above: &Node) -> f64 {
+    let lower = if n.layers == 0 {
+        0.5 * n.height / (k * 0.5 * (above.footprint + n.footprint))
+    } else {
+        0.5 * n.height / (k * n.footprint)
+    };
+    1.0 / (lower + 0.5 * above.height / (k * above.footprint))
+}
+
+/// Merges neighbouring fin nodes of a column (its foot ring first) whose
+/// layers together are at most a [`COARSENING`]th of their depth below
+/// the top: energy kept, the temperature the mean weighted by heat
+/// capacity.
+fn merge(k: f64, col: &mut Vec<Node>) {
+    let mut depth = 0u32; // layers above node i
+    let mut i = col.len() - 1;
+    while i > 2 {
+        depth += col[i].layers;
+        let (a, b) = (col[i - 2], col[i - 1]);
+        // Node i−1 lies under `depth` layers; merge it with the one below.
+        if (a.layers + b.layers) * COARSENING <= depth {
+            let capacity = a.capacity + b.capacity;
+            let height = a.height + b.height;
+            let merged = Node {
+                capacity,
+                surface: a.surface + b.surface,
+                t: (a.t * a.capacity + b.t * b.capacity) / capacity,
+                up: 0.0,
+                layers: a.layers + b.layers,
+                height,
+                footprint: (a.footprint * a.height + b.footprint * b.height) / height,
+            };
+            col[i - 2] = merged;
+            col.remove(i - 1);
+            i -= 1;
+            let below = i - 2;
+            col[below].up = link(k, &col[below], &col[i - 1]);
+            col[i - 1].up = link(k, &col[i - 1], &col[i]);
+        }
+        i -= 1;
+    }
+}
+
+/// One implicit Euler step of a chain of nodes (bottom first), `power` W
+/// into the top one, which also loses heat from its top face.
+fn chain_step(nodes: &mut [Node], m: Material, ambient: f64, dt: f64, power: f64) {
+    let n = nodes.len();
+    let mut diag = vec![0.0; n];
+    let mut rhs = vec![0.0; n];
+    for (i, node) in nodes.iter().enumerate() {
+        let top = if i + 1 == n { node.footprint } else { 0.0 };
+        let h = m.loss(node.t, ambient) * (node.surface + top);
+        let below = if i > 0 { nodes[i - 1].up } else { 0.0 };
+        diag[i] = node.capacity / dt + h + below + node.up;
+        rhs[i] = node.capacity / dt * node.t + h * ambient;
+    }
+    rhs[n - 1] += power;
+    let ups: Vec<f64> = nodes.iter().map(|n| n.up).collect();
+    for (node, t) in nodes.iter_mut().zip(thomas(&diag, &mut rhs, &ups)) {
+        node.t = t;
+    }
+}
+
+/// Solves the symmetric tridiagonal system with `diag` and off-diagonal
+/// `−ups[i]` between unknowns `i` and `i + 1` (the Thomas algorithm).
+fn thomas(diag: &[f64], rhs: &mut [f64], ups: &[f64]) -> Vec<f64> {
+    let n = diag.len();
+    let mut c = vec![0.0; n];
+    for i in 0..n {
+        let (a, prev_c, prev_r) = if i > 0 {
+            (-ups[i - 1], c[i - 1], rhs[i - 1])
+        } else {
+            (0.0, 0.0, 0.0)
+        };
+        let d = diag[i] - a * prev_c;
+        c[i] = if i + 1 < n { -ups[i] / d } else { 0.0 };
+        rhs[i] = (rhs[i] - a * prev_r) / d;
+    }
+    let mut t = vec![0.0; n];
+    for i in (0..n).rev() {
+        let next = if i + 1 < n { t[i + 1] } else { 0.0 };
+        t[i] = rhs[i] - c[i] * next;
+    }
+    t
+}
+
+#[cfg(test)]
+pub(super) mod reference {
+    //! Exposes the tree's internals to the tests.
+    use super::*;
+
+    impl Build {
+        /// Every node's temperature: the shared rings, then each column.
+        pub fn temperatures(&self) -> Vec<f64> {
+            self.shared
+                .iter()
+                .chain(self.columns.iter().flatten())
+                .map(|n| n.t)
+                .collect()
+        }
+
+        /// The same step solved as a dense linear system (Gaussian
+        /// elimination), for the tests to check the tree solve against.
+        pub fn dense_step(&mut self, dt: f64, power: f64, into: usize) {
+            let (m, ambient) = (self.material, self.plate.ambient);
+            let s = self.shared.len();
+            let total = self.nodes();
+            let mut a = vec![vec![0.0; total + 1]; total];
+            let mut nodes: Vec<Node> = Vec::new();
+            let couple = |a: &mut Vec<Vec<f64>>, i: usize, j: usize, g: f64| {
+                a[i][i] += g;
+                a[j][j] += g;
+                a[i][j] -= g;
+                a[j][i] -= g;
+            };
+            nodes.extend_from_slice(&self.shared);
+            for i in 0..s - 1 {
+                couple(&mut a, i, i + 1, self.shared[i].up);
+            }
+            let mut tops = Vec::new();
+            for (c, col) in self.columns.iter().enumerate() {
+                let base = nodes.len();
+                couple(&mut a, s - 1, base, self.feet[c]);
+                for (i, node) in col.iter().enumerate().take(col.len() - 1) {
+                    couple(&mut a, base + i, base + i + 1, node.up);
+                }
+                nodes.extend_from_slice(col);
+                tops.push((base + col.len() - 1, col.len() > 1, c == into));
+            }
+            for (i, n) in nodes.iter().enumerate() {
+                let top = tops.iter().find(|t| t.0 == i);
+                let face = match top {
+                    Some((_, true, _)) => n.footprint,
+                    _ => 0.0,
+                };
+                let h = m.loss(n.t, ambient) * (n.surface + face);
+                a[i][i] += n.capacity / dt + h;
+                a[i][total] = n.capacity / dt * n.t + h * ambient;
+                if let Some((_, _, true)) = top {
+                    a[i][total] += power;
+                }
+            }
+            // Gaussian elimination with partial pivoting.
+            for col in 0..total {
+                let p = (col..total)
+                    .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
+                    .unwrap();
+                a.swap(col, p);
+                let pivot = a[col].clone();
+                for row in a.iter_mut().take(total).skip(col + 1) {
+                    let f = row[col] / pivot[col];
+                    for (x, p) in row.iter_mut().zip(&pivot).skip(col) {
+                        *x -= f * p;
+                    }
+                }
+            }
+            let mut t = vec![0.0; total];
+            for r in (0..total).rev() {
+                let sum: f64 = (r + 1..total).map(|k| a[r][k] * t[k]).sum();
+                t[r] = (a[r][total] - sum) / a[r][r];
+            }
+            let mut it = t.into_iter();
+            for n in self
+                .shared
+                .iter_mut()
+                .chain(self.columns.iter_mut().flatten())
+            {
+                n.t = it.next().unwrap();
+            }
+        }
+
+        /// Steps once, as the model does.
+        pub fn step_once(&mut self, dt: f64, power: f64, into: usize) {
+            self.step(dt, power, into);
+        }
+
+        /// Steps once by the tree's elimination, however many columns.
+        pub fn tree_once(&mut self, dt: f64, power: f64, into: usize) {
+            self.tree_step(dt, power, into);
+        }
+
+        /// The heat the part and the plate hold above `from` °C, J.
+        pub fn heat_above(&self, from: f64) -> f64 {
+            self.shared
+                .iter()
+                .chain(self.columns.iter().flatten())
+                .map(|n| n.capacity * (n.t - from))
+                .sum()
+        }
+    }
+}
