@@ -45,11 +45,9 @@ use serde::{Deserialize, Serialize};
 use std::cell::Cell;
 use std::collections::HashSet;
 use std::fs::{self, File, OpenOptions};
-use std::io::{self, Write};
+use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
-
-mod writer;
 
 /// The folder new files are written to before they replace the old ones.
 pub const STAGING: &str = ".lmdc-staging";
@@ -151,9 +149,6 @@ pub struct AtomicDir {
     flushed: usize,
     /// The journal is written: the staging folder must stay until done.
     journaled: bool,
-    /// Creates and fills the staged files while the back ends format the
-    /// next ones; started by the first file, stopped by a flush.
-    writer: Option<writer::Writer>,
     _lock: DirLock,
 }
 
@@ -186,7 +181,6 @@ impl AtomicDir {
             sets: Vec::new(),
             flushed: 0,
             journaled: false,
-            writer: None,
             _lock: lock,
         })
     }
@@ -208,9 +202,6 @@ impl AtomicDir {
     /// nothing in the directory changes). A build flushes while the last
     /// checks run; [`Self::commit`] flushes what is left.
     pub fn flush(&mut self) -> io::Result<()> {
-        if let Some(mut w) = self.writer.take() {
-            w.finish()?;
-        }
         if self.flushed < self.files.len() && !sync_filesystem(&self.staging)? {
             for name in &self.files[self.flushed..] {
                 // Reopened to flush: a build of thousands of modules cannot
@@ -350,10 +341,6 @@ impl Drop for AtomicDir {
         // staging folder goes, and an output directory it created for
         // nothing. After the commit point the staging folder is kept for the
         // next build to finish the job.
-        if let Some(mut w) = self.writer.take() {
-            // No file may appear in the staging folder after it is removed.
-            let _ = w.finish();
-        }
         if !self.journaled {
             let _ = fs::remove_dir_all(&self.staging);
             if self.created_dir {
@@ -593,6 +580,24 @@ fn is_running_lmdc(pid: u32) -> bool {
     }
 }
 
+/// A buffered writer that reports flush errors when the back end flushes (it
+/// must: errors at drop are lost).
+struct StagedWriter {
+    inner: BufWriter<File>,
+}
+
+impl Write for StagedWriter {
+    fn write(&mut self, b: &[u8]) -> io::Result<usize> {
+        self.inner.write(b)
+    }
+    fn write_all(&mut self, b: &[u8]) -> io::Result<()> {
+        self.inner.write_all(b)
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        self.inner.flush()
+    }
+}
+
 impl Sink for AtomicDir {
     fn create(&mut self, name: &str) -> io::Result<Box<dyn Write + '_>> {
         if !is_plain_name(name) {
@@ -607,16 +612,15 @@ impl Sink for AtomicDir {
                 format!("two programs would both be written to {name}: give the machines more distinct names"),
             ));
         }
-        if self.writer.is_none() {
-            self.writer = Some(writer::Writer::start(self.staging.clone())?);
-        }
-        let file = match &self.writer {
-            Some(w) => w.create(name)?,
-            None => unreachable!("started above"),
-        };
+        let file = OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(self.staging.join(name))?;
         self.files.push(name.to_string());
         self.count.set(self.files.len());
-        Ok(Box::new(file))
+        Ok(Box::new(StagedWriter {
+            inner: BufWriter::with_capacity(1 << 20, file),
+        }))
     }
 }
 
