@@ -19,30 +19,32 @@ use std::io::{self, Write};
 /// Appends `v` with three decimals, fixed point, to `out`: an integer
 /// formatter (no float formatting), the floor's one computation.
 fn fixed3(out: &mut Vec<u8>, v: f64) {
-    let milli = (v * 1000.0).round() as i64;
-    if milli < 0 {
-        out.push(b'-');
+    // Half away from zero by a cast (no call to `round`).
+    let milli = (v * 1000.0 + 0.5f64.copysign(v)) as i64;
+    let mut m = milli.unsigned_abs();
+    // Digits from the last, into a buffer on the stack; appended at once.
+    let mut buf = [0u8; 24];
+    let mut i = buf.len();
+    for _ in 0..3 {
+        i -= 1;
+        buf[i] = b'0' + (m % 10) as u8;
+        m /= 10;
     }
-    let m = milli.unsigned_abs();
-    let (whole, frac) = (m / 1000, m % 1000);
-    let mut digits = [0u8; 20];
-    let mut n = 0;
-    let mut w = whole;
+    i -= 1;
+    buf[i] = b'.';
     loop {
-        digits[n] = b'0' + (w % 10) as u8;
-        n += 1;
-        w /= 10;
-        if w == 0 {
+        i -= 1;
+        buf[i] = b'0' + (m % 10) as u8;
+        m /= 10;
+        if m == 0 {
             break;
         }
     }
-    out.extend(digits[..n].iter().rev());
-    out.extend_from_slice(&[
-        b'.',
-        b'0' + (frac / 100) as u8,
-        b'0' + (frac / 10 % 10) as u8,
-        b'0' + (frac % 10) as u8,
-    ]);
+    if milli < 0 {
+        i -= 1;
+        buf[i] = b'-';
+    }
+    out.extend_from_slice(&buf[i..]);
 }
 
 /// Where the floor writes.
