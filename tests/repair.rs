@@ -39,6 +39,17 @@ fn example_z(x: f64, y: f64) -> f64 {
 /// Points over x −33..33, y −13..13 every 0.5 mm, with a deterministic
 /// noise of about `noise` mm RMS (a sum of uniforms from a small LCG).
 fn scan(surface: impl Fn(f64, f64) -> f64, noise: f64, seed: u64) -> Vec<[f64; 3]> {
+    scan_over(surface, noise, seed, [-33.0, -13.0], [133, 53])
+}
+
+/// [`scan`]'s points every 0.5 mm from `from`, `count` of them along x and y.
+fn scan_over(
+    surface: impl Fn(f64, f64) -> f64,
+    noise: f64,
+    seed: u64,
+    from: [f64; 2],
+    [nx, ny]: [usize; 2],
+) -> Vec<[f64; 3]> {
     let mut state = seed
         .wrapping_mul(6364136223846793005)
         .wrapping_add(1442695040888963407);
@@ -49,9 +60,9 @@ fn scan(surface: impl Fn(f64, f64) -> f64, noise: f64, seed: u64) -> Vec<[f64; 3
         (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
     };
     let mut out = Vec::new();
-    for j in 0..53 {
-        for i in 0..133 {
-            let (x, y) = (-33.0 + 0.5 * i as f64, -13.0 + 0.5 * j as f64);
+    for j in 0..ny {
+        for i in 0..nx {
+            let (x, y) = (from[0] + 0.5 * i as f64, from[1] + 0.5 * j as f64);
             // Three uniforms: variance 3/12 = 1/4, so RMS noise/2 · 2.
             let e = (uniform() + uniform() + uniform()) * 2.0 * noise;
             out.push([x, y, surface(x, y) + e]);

@@ -27,7 +27,12 @@ fn plate(width: f64, layers: usize, process: &str, thermal: &str) -> String {
 /// The IR of `src`, or `None` when lmdc refuses it for its interpass
 /// limit alone (any other error fails the test).
 fn accepted(src: &str) -> Option<lmdc::ir::Program> {
-    let c = compile(src, &mut ());
+    kept(compile(src, &mut ()), src)
+}
+
+/// The IR of the compiled `src`, or `None` when lmdc refused it for its
+/// interpass limit alone (any other error fails the test).
+fn kept(c: lmdc::pipeline::Compiled, src: &str) -> Option<lmdc::ir::Program> {
     match c.program {
         Some(v) => Some(v.ir().clone()),
         None => {
@@ -171,18 +176,10 @@ fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Vec<lmdc::geometry::mesh::stl::Triangle
 /// for its limit alone.
 fn pillars(src: &str, tris: &[lmdc::geometry::mesh::stl::Triangle]) -> Option<lmdc::ir::Program> {
     let stl = lmdc::geometry::mesh::stl::to_binary(tris);
-    let c = crate::support::data::compile_with_files(src, [("mesh/two_pillars.stl", stl)]);
-    match c.program {
-        Some(v) => Some(v.ir().clone()),
-        None => {
-            let codes: Vec<_> = c.diagnostics.iter().map(|d| d.code.as_str()).collect();
-            assert!(
-                codes.iter().all(|c| *c == "lmd::interpass"),
-                "{codes:?}\n{src}"
-            );
-            None
-        }
-    }
+    kept(
+        crate::support::data::compile_with_files(src, [("mesh/two_pillars.stl", stl)]),
+        src,
+    )
 }
 
 /// The hottest start of an island of the plan, °C.

@@ -12,7 +12,7 @@ pub(crate) mod fmt;
 pub mod gcode;
 pub mod height_loop;
 pub mod krl;
-pub(crate) mod module_stream;
+pub mod module_stream;
 pub mod rapid;
 pub mod templates;
 

@@ -147,22 +147,7 @@ fn the_tilt_is_capped_by_the_bead_and_the_machine() {
 /// and 4 mm round it, as a shaft's scan would see it (within a bead of the
 /// scan's edge its slope is fitted on one side only).
 fn shaft_scan(surface: impl Fn(f64, f64) -> f64, noise: f64, seed: u64) -> Vec<[f64; 3]> {
-    let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
-    let mut uniform = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
-    let mut out = Vec::new();
-    for j in 0..65 {
-        for i in 0..93 {
-            let (x, y) = (-23.0 + 0.5 * i as f64, -16.0 + 0.5 * j as f64);
-            let e = (uniform() + uniform() + uniform()) * 2.0 * noise;
-            out.push([x, y, surface(x, y) + e]);
-        }
-    }
-    out
+    super::scan_over(surface, noise, seed, [-23.0, -16.0], [93, 65])
 }
 
 /// The report's finish (docs/repair.md, *The report*) reads a tilted

@@ -17,6 +17,7 @@ use crate::sema::model::{Top, TopSolid};
 use crate::sema::schema::solid::{extrude, loft, EXTRUDE, LOFT, SCAN_SECTION};
 use crate::sema::solid::extrude::{Scope, Source};
 use crate::sema::solid::profile;
+use crate::sema::suggest::did_you_mean;
 use crate::sema::value::Value;
 use crate::span::Span;
 use crate::syntax::ast::{Body, ExprKind, Stmt};
@@ -32,7 +33,10 @@ const CHORD: f64 = 0.001;
 pub const SOLIDS: [&str; 4] = ["loft", "extrude", "ring", "wall"];
 
 /// The solids some extrusion's `top` names (not itself, not a constant):
-/// they are targets, not built.
+/// they are targets, not built. A name no solid has, which is no constant
+/// or position either, is taken for the solid its "did you mean" offers:
+/// the typo is reported where the target is read, and that solid stays
+/// out of the build rather than being read as a second part to build.
 pub fn named<'a>(
     solids: &[&'a Stmt],
     constants: &[(String, Span, crate::syntax::ast::Expr)],
@@ -48,8 +52,16 @@ pub fn named<'a>(
             if let Body::Assign(e) = &f.body {
                 if let ExprKind::Ident(n) = &e.kind {
                     let constant = constants.iter().any(|(c, _, _)| c == n);
-                    if names.contains(n.as_str()) && name_of(s) != Some(n) && !constant {
-                        out.extend(names.get(n.as_str()));
+                    let builtin = POSITION.contains(&n.as_str()) || n == LAYER || n == Z;
+                    if constant || builtin || name_of(s) == Some(n) {
+                        continue;
+                    }
+                    let others = names.iter().copied().filter(|m| Some(*m) != name_of(s));
+                    match names.get(n.as_str()) {
+                        Some(m) => {
+                            out.insert(*m);
+                        }
+                        None => out.extend(did_you_mean(n, others)),
                     }
                 }
             }
