@@ -1836,6 +1836,19 @@ pub struct Cnc {
     pub rotary_speed: Option<f64>,
 }
 
+impl Cnc {
+    /// The kinematics its program is written for: a machine declared with
+    /// fewer than five axes has no rotary axes, whatever its kinematics
+    /// says.
+    pub fn effective_kinematics(&self) -> Kinematics {
+        if self.axes >= 5 {
+            self.kinematics
+        } else {
+            Kinematics::Xyz
+        }
+    }
+}
+
 impl std::ops::Deref for Robot {
     type Target = MachineCommon;
 

@@ -465,11 +465,7 @@ pub fn safe_height(
 /// The kinematics a CNC program is written for: a machine declared with fewer
 /// than five axes has no rotary axes, whatever its kinematics says.
 pub fn effective_kinematics(cnc: &crate::ir::Cnc) -> Kinematics {
-    if cnc.axes >= 5 {
-        cnc.kinematics
-    } else {
-        Kinematics::Xyz
-    }
+    cnc.effective_kinematics()
 }
 
 impl<'a> Plan<'a> {

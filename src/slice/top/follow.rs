@@ -30,7 +30,6 @@
 use crate::diag::{message, Diagnostics};
 use crate::geometry::scan::HeightField;
 use crate::ir::{Kinematics, Machine};
-use crate::plan::effective_kinematics;
 use crate::sema::model::{Axis, Bead, Model, VariableSlicing};
 use nalgebra::{Matrix3, Vector3};
 
@@ -91,7 +90,7 @@ pub fn check(model: &Model, bead: &Bead, slicing: &VariableSlicing) -> Result<()
     }
     for (m, origin) in &model.machines {
         if let Machine::Cnc(c) = m {
-            if effective_kinematics(c) == Kinematics::Xyz {
+            if c.effective_kinematics() == Kinematics::Xyz {
                 let axes = origin.at(crate::ir::MachineField::Axes);
                 out.push(message::scan::follow_on_vertical_machine(
                     m.name(),
@@ -115,7 +114,7 @@ pub fn limit(model: &Model, bead: &Bead, slicing: &VariableSlicing) -> Option<f6
     slicing.follow?;
     let (tilt, _) = bead.tilt?;
     let machines = model.machines.iter().filter_map(|(m, _)| match m {
-        Machine::Cnc(c) if effective_kinematics(c) != Kinematics::Xyz => {
+        Machine::Cnc(c) if c.effective_kinematics() != Kinematics::Xyz => {
             let [lo, hi] = c.limits.tilt;
             Some(lo.abs().max(hi.abs()).to_radians())
         }
