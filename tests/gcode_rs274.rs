@@ -104,7 +104,7 @@ fn check_against_ir(ir: Program) -> usize {
     let Machine::Cnc(cnc) = ir.machines[0].clone() else {
         panic!("machine 0 must be a CNC")
     };
-    let kin = lmdc::plan::effective_kinematics(&cnc);
+    let kin = cnc.effective_kinematics();
     let v = verified(ir);
     let (_, mut text) = emit(&v, 0);
     if let (Some(_), Some(s)) = (v.ir().loop_on_machine(), cnc.height_sensor) {

@@ -12,7 +12,7 @@ use std::io::Write;
 /// Writes `plan` (of `machine`) as JSON lines into `out`.
 pub fn write(plan: &Plan<'_>, machine: &Machine, out: &mut dyn Write) -> std::io::Result<()> {
     let axes = match machine {
-        Machine::Cnc(c) => match super::effective_kinematics(c).tilt_letter() {
+        Machine::Cnc(c) => match c.effective_kinematics().tilt_letter() {
             None => None,
             Some('B') => Some("B"),
             Some(_) => Some("A"),

@@ -462,18 +462,12 @@ pub fn safe_height(
     })
 }
 
-/// The kinematics a CNC program is written for: a machine declared with fewer
-/// than five axes has no rotary axes, whatever its kinematics says.
-pub fn effective_kinematics(cnc: &crate::ir::Cnc) -> Kinematics {
-    cnc.effective_kinematics()
-}
-
 impl<'a> Plan<'a> {
     /// The plan of `machine` for `program`.
     pub fn new(program: &'a Program, machine: &'a Machine) -> Self {
         let head = match machine {
             Machine::Robot(_) => Head::Free,
-            Machine::Cnc(c) => match effective_kinematics(c) {
+            Machine::Cnc(c) => match c.effective_kinematics() {
                 Kinematics::Xyz => Head::Vertical,
                 k => Head::Tilting(k, c.limits),
             },
@@ -511,7 +505,7 @@ impl<'a> Plan<'a> {
                 Machine::Cnc(_) => None,
             };
         let machine_table = match machine {
-            Machine::Cnc(c) => table::machine_output(c).map(|t| (effective_kinematics(c), t)),
+            Machine::Cnc(c) => table::machine_output(c).map(|t| (c.effective_kinematics(), t)),
             Machine::Robot(_) => None,
         };
         let turns = match machine {

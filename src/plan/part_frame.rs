@@ -41,7 +41,7 @@ impl PartFrame {
     pub fn of(machine: &Machine) -> Option<PartFrame> {
         match machine {
             Machine::Cnc(c) => {
-                let kin = super::effective_kinematics(c);
+                let kin = c.effective_kinematics();
                 let origin = Vector3::from(c.placement.origin);
                 if !kin.is_table() {
                     return Some(PartFrame::Fixed(Isometry3::from_parts(

@@ -91,7 +91,7 @@ pub fn written(
 /// ([`TableOutput::Machine`]).
 pub fn machine_output(cnc: &Cnc) -> Option<RotaryTable> {
     cnc.table
-        .filter(|t| t.output == TableOutput::Machine && super::effective_kinematics(cnc).is_table())
+        .filter(|t| t.output == TableOutput::Machine && cnc.effective_kinematics().is_table())
 }
 
 /// Below this (mm) a machine chord counts as no linear motion: the control

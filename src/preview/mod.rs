@@ -368,9 +368,7 @@ fn page(
         laid: 0,
         pending_place: None,
         vertical: match machine.machine() {
-            crate::ir::Machine::Cnc(c) => {
-                crate::plan::effective_kinematics(c) == crate::ir::Kinematics::Xyz
-            }
+            crate::ir::Machine::Cnc(c) => c.effective_kinematics() == crate::ir::Kinematics::Xyz,
             crate::ir::Machine::Robot(_) => false,
         },
         approaches: machine.summary().approaches.iter().map(Seek::of).collect(),

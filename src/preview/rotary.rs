@@ -7,7 +7,7 @@
 //! (rotate), the angles it turns the part to, layer by layer.
 
 use crate::ir::{Layer, Machine};
-use crate::plan::{effective_kinematics, Move, Visit};
+use crate::plan::{Move, Visit};
 use serde::Serialize;
 
 /// What the page says about the rotary axes.
@@ -47,7 +47,7 @@ impl Visit for Rotary {
 pub fn of(machine: &Machine, plan: &crate::plan::Plan<'_>) -> Option<Rotary> {
     let mut r = match machine {
         Machine::Cnc(c) => {
-            let kin = effective_kinematics(c);
+            let kin = c.effective_kinematics();
             let tilt = kin.tilt_letter()?;
             Rotary {
                 kinematics: kin.word(),

@@ -25,7 +25,7 @@ use crate::collision::material::{Lump, Material};
 use crate::diag::message::collision as says;
 use crate::diag::{Diagnostics, Worst};
 use crate::ir::{Fixture, FixtureShape, Kinematics, Machine, Point, Program};
-use crate::plan::{effective_kinematics, Move, MoveKind, Visit, Where};
+use crate::plan::{Move, MoveKind, Visit, Where};
 
 /// How far a check looks for material, mm: beyond it the head is clear by
 /// at least this.
@@ -182,7 +182,7 @@ impl<'p> Collision<'p> {
     fn against(cx: &MachineCx<'p>, only: Option<usize>) -> Option<Self> {
         let common = cx.machine.common();
         let vertical = match cx.machine {
-            Machine::Cnc(c) => effective_kinematics(c) == Kinematics::Xyz,
+            Machine::Cnc(c) => c.effective_kinematics() == Kinematics::Xyz,
             Machine::Robot(_) => false,
         };
         let name = cx.machine.name();

@@ -12,7 +12,7 @@ use crate::diag::Diagnostics;
 use crate::ir::MachineField;
 use crate::ir::{AxisLimits, Kinematics, Machine, RotaryTable};
 use crate::plan::kinematics::tilt_of;
-use crate::plan::{effective_kinematics, table, Move, MoveKind, Speed, Visit, Where};
+use crate::plan::{table, Move, MoveKind, Speed, Visit, Where};
 use crate::target::{gcode, kuka, written as rounded};
 
 /// A normal tilted more than this (deg) cannot be followed by a vertical nozzle.
@@ -164,7 +164,7 @@ impl<'p> PlanRule<'p> for Travel {
         let Machine::Cnc(c) = cx.machine else {
             return None;
         };
-        let kin = effective_kinematics(c);
+        let kin = c.effective_kinematics();
         Some(Travel {
             lim: c.limits,
             origin: c.placement.origin,
@@ -180,7 +180,7 @@ impl<'p> PlanRule<'p> for Travel {
         let Machine::Cnc(cnc) = cx.machine else {
             return;
         };
-        let tilt_name = if effective_kinematics(cnc).tilt_letter() == Some('B') {
+        let tilt_name = if cnc.effective_kinematics().tilt_letter() == Some('B') {
             "B"
         } else {
             "A"
@@ -247,7 +247,7 @@ impl<'p> PlanRule<'p> for Tilt {
         let Machine::Cnc(c) = cx.machine else {
             return None;
         };
-        (effective_kinematics(c) == Kinematics::Xyz).then(|| Tilt {
+        (c.effective_kinematics() == Kinematics::Xyz).then(|| Tilt {
             tan2: NEEDS_TILT_DEG.to_radians().tan().powi(2),
             found: None,
         })

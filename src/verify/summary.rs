@@ -8,7 +8,7 @@
 
 use crate::ir::{Kinematics, Layer, Machine, Program};
 use crate::plan::kinematics::{flips, Rotary};
-use crate::plan::{effective_kinematics, Move, Speed, Visit};
+use crate::plan::{Move, Speed, Visit};
 use serde::Serialize;
 
 /// What one layer of a plan (or the whole plan) costs. Lengths are the tool
@@ -106,7 +106,7 @@ impl<'p> Summarize<'p> {
             moves: 0,
             rows: vec![Costs::default(); program.layers.len()],
             tilting: match machine {
-                Machine::Cnc(c) if effective_kinematics(c) != Kinematics::Xyz => {
+                Machine::Cnc(c) if c.effective_kinematics() != Kinematics::Xyz => {
                     Some(Rotary::default())
                 }
                 _ => None,

@@ -14,7 +14,7 @@ use crate::diag::Diagnostics;
 use crate::ir::MachineField;
 use crate::ir::{Kinematics, Machine, RotaryTable};
 use crate::plan::kinematics::{Rotary, LIMIT_TOL_DEG};
-use crate::plan::{effective_kinematics, table, Move, MoveKind, Speed, Visit, Where};
+use crate::plan::{table, Move, MoveKind, Speed, Visit, Where};
 
 /// `lmd::axis-speed`: a feed move whose machine axes must go faster than
 /// the machine does: a table's linear axes beyond `max_speed`, a rotary
@@ -74,7 +74,7 @@ impl<'p> PlanRule<'p> for AxisSpeed {
         let Machine::Cnc(c) = cx.machine else {
             return None;
         };
-        let kin = effective_kinematics(c);
+        let kin = c.effective_kinematics();
         let table = c.table.filter(|_| kin.is_table());
         (table.is_some() || (kin != Kinematics::Xyz && c.rotary_speed.is_some())).then_some(
             AxisSpeed {
@@ -165,7 +165,7 @@ impl<'p> PlanRule<'p> for CUnwind {
         let Machine::Cnc(c) = cx.machine else {
             return None;
         };
-        let kin = effective_kinematics(c);
+        let kin = c.effective_kinematics();
         (kin != Kinematics::Xyz).then_some(CUnwind {
             range: c.limits.rotary,
             head: !kin.is_table(),

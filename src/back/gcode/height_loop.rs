@@ -34,7 +34,7 @@ use crate::back::height_loop::{constants, prepare, CellStep, LayerMove, LoopPlan
 use crate::control::{Step, LAW};
 use crate::ir::{Cnc, HeightLoop, HeightSensor, Kinematics, Ring};
 use crate::numbers::{fixed, trimmed};
-use crate::plan::{effective_kinematics, Move, MoveKind, Speed};
+use crate::plan::{Move, MoveKind, Speed};
 use crate::target::gcode::POS_DECIMALS;
 use crate::target::names::gcode_file;
 use crate::verify::VerifiedMachine;
@@ -57,7 +57,7 @@ pub fn emit(
         sensor,
         plan,
     } = prepare(m, cnc.height_sensor, "G-code")?;
-    let kin = effective_kinematics(cnc);
+    let kin = cnc.effective_kinematics();
     let five = kin != Kinematics::Xyz;
     let file = gcode_file(&prog.part, cnc);
     let base = base_context(m, cnc, kin, &file);

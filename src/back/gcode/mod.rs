@@ -20,7 +20,7 @@ use super::{EmitError, Sink, Templates};
 use crate::ir::{Cell, Cnc, Kinematics, Layer, Program, RotaryTable, Signal};
 use crate::numbers::trimmed;
 use crate::plan::kinematics::Rotary;
-use crate::plan::{effective_kinematics, table, Io, Move, MoveKind, Speed, Visit};
+use crate::plan::{table, Io, Move, MoveKind, Speed, Visit};
 use crate::target::gcode::{blending_line, RATE_DECIMALS};
 use crate::target::names::gcode_file;
 use crate::verify::VerifiedMachine;
@@ -43,7 +43,7 @@ pub fn emit(
     if prog.loop_on_machine().is_some() {
         return height_loop::emit(m, cnc, t, sink);
     }
-    let kin = effective_kinematics(cnc);
+    let kin = cnc.effective_kinematics();
     let five = kin != Kinematics::Xyz;
     let tilt_letter = kin.tilt_letter().map(|c| c as u8);
     let file = gcode_file(&prog.part, cnc);
