@@ -110,6 +110,11 @@ impl LoftGeometry {
 pub fn bisect(mut good: f64, mut bad: f64, tol: f64, ok: impl Fn(f64) -> bool) -> f64 {
     while (bad - good).abs() > tol {
         let mid = (good + bad) / 2.0;
+        // Far from zero the ends can be one float apart and still wider
+        // than `tol`: nothing lies between them.
+        if mid == good || mid == bad {
+            break;
+        }
         if ok(mid) {
             good = mid;
         } else {

@@ -13,7 +13,8 @@
 //!   an arc its angle about the bend axis), and there whether the point
 //!   lies within the section's outline (the blend's radius in the twisted
 //!   section frame). Down a vertical line its surface is found by
-//!   sampling that test every [`STEP`] and bisecting each change to
+//!   sampling that test every [`STEP`] (or at [`MAX_LINE_SAMPLES`] over
+//!   a taller loft) and bisecting each change to
 //!   [`RESOLUTION`], far under the 0.001 mm programs are written to; a
 //!   line that starts inside, at the loft's highest station of a straight
 //!   spine, has its top there exactly. A piece of the loft thinner than
@@ -32,6 +33,12 @@ pub const STEP: f64 = 0.05;
 
 /// How closely (mm) a loft's surface is found along a vertical line.
 pub const RESOLUTION: f64 = 1e-9;
+
+/// The most samples down one vertical line: a loft taller than
+/// `STEP · MAX_LINE_SAMPLES` (100 mm) is sampled more coarsely, so a
+/// repair under a tall designed part (a 7 m bend took minutes a line
+/// set) costs a bounded time per point of the footprint.
+pub const MAX_LINE_SAMPLES: f64 = 2000.0;
 
 /// A solid whose highest surface over each point is a repair's finished
 /// surface.
@@ -157,41 +164,51 @@ impl LoftTarget {
     /// The heights where the vertical line over `p` crosses the loft's
     /// surface above `z`, highest first; only the first when `first`.
     fn crossings(&self, p: [f64; 2], z: f64, first: bool) -> Vec<f64> {
-        let inside = |h: f64| self.contains([p[0], p[1], h]);
         let [lo, hi] = self.z;
         let lo = lo.max(z);
-        let mut out = Vec::new();
-        if hi <= lo {
+        let bottom = lo == self.z[0];
+        march([lo, hi], bottom, first, |h| self.contains([p[0], p[1], h]))
+    }
+}
+
+/// The heights where `inside` changes down `[lo, hi]`, highest first
+/// (only the first when `first`): `hi` when it starts inside, each change
+/// between samples bisected, and `lo` when it is still inside there and
+/// `lo` is the solid's `bottom`. The samples are [`STEP`] apart, or
+/// [`MAX_LINE_SAMPLES`] over the line where that is wider, so the work
+/// per line is bounded whatever the solid's height.
+fn march([lo, hi]: [f64; 2], bottom: bool, first: bool, inside: impl Fn(f64) -> bool) -> Vec<f64> {
+    let mut out = Vec::new();
+    if hi <= lo || !(hi - lo).is_finite() {
+        return out;
+    }
+    let n = ((hi - lo) / STEP).ceil().clamp(1.0, MAX_LINE_SAMPLES) as usize;
+    let at = |k: usize| hi - (hi - lo) * k as f64 / n as f64;
+    let mut was = inside(hi);
+    if was {
+        out.push(hi);
+        if first {
             return out;
         }
-        let n = ((hi - lo) / STEP).ceil().max(1.0) as usize;
-        let at = |k: usize| hi - (hi - lo) * k as f64 / n as f64;
-        let mut was = inside(hi);
-        if was {
-            out.push(hi);
+    }
+    for k in 1..=n {
+        let h = at(k);
+        let is = inside(h);
+        if is != was {
+            // The end inside is the one kept: the height found is in the solid.
+            let (good, bad) = if was { (at(k - 1), h) } else { (h, at(k - 1)) };
+            out.push(super::bisect(good, bad, RESOLUTION, &inside));
             if first {
                 return out;
             }
         }
-        for k in 1..=n {
-            let h = at(k);
-            let is = inside(h);
-            if is != was {
-                // The end inside is the one kept: the height found is in the solid.
-                let (good, bad) = if was { (at(k - 1), h) } else { (h, at(k - 1)) };
-                out.push(super::bisect(good, bad, RESOLUTION, inside));
-                if first {
-                    return out;
-                }
-            }
-            was = is;
-        }
-        // Inside down to the loft's lowest height: its bottom.
-        if was && lo == self.z[0] {
-            out.push(lo);
-        }
-        out
+        was = is;
     }
+    // Inside down to the loft's lowest height: its bottom.
+    if was && bottom {
+        out.push(lo);
+    }
+    out
 }
 
 /// The heights (mm) a bent loft lies within: its outline's at 129
@@ -319,6 +336,43 @@ mod tests {
     }
 
     /// A prism's crossings: its top, then the plate.
+    /// Down a line of 1 m, two pieces 200 mm apart: the samples are capped
+    /// at [`MAX_LINE_SAMPLES`] (and the bisections of its four changes), and
+    /// every change is still found to [`RESOLUTION`].
+    #[test]
+    fn a_tall_lines_samples_are_bounded_and_its_changes_found() {
+        let calls = std::cell::Cell::new(0usize);
+        let inside = |h: f64| {
+            calls.set(calls.get() + 1);
+            (0.0..=400.0).contains(&h) || (600.0..=1000.0).contains(&h)
+        };
+        let out = march([0.0, 1000.0], true, false, inside);
+        assert_eq!(out.len(), 4, "{out:?}");
+        for (h, want) in out.iter().zip([1000.0, 600.0, 400.0, 0.0]) {
+            assert!((h - want).abs() <= 1e-6, "{h} against {want}");
+        }
+        // 2001 samples, and at most 31 halvings of a 0.5 mm step per change.
+        assert!(calls.get() <= 2001 + 2 * 31, "{} calls", calls.get());
+    }
+
+    /// A line of 20 mm keeps the 0.05 mm step: a piece 0.06 mm thick is seen.
+    #[test]
+    fn a_short_line_sees_a_piece_thicker_than_the_step() {
+        let out = march([0.0, 20.0], false, false, |h| (10.0..=10.06).contains(&h));
+        assert_eq!(out.len(), 2, "{out:?}");
+    }
+
+    /// Ends far from zero, one float apart, end the bisection.
+    #[test]
+    fn a_bisection_far_from_zero_ends() {
+        let good = 1e12_f64;
+        let bad = f64::from_bits(good.to_bits() + 1);
+        assert_eq!(
+            super::super::bisect(good, bad, RESOLUTION, |h| h <= good),
+            good
+        );
+    }
+
     #[test]
     fn a_prisms_crossings_are_its_top_and_the_plate() {
         let region = crate::geometry::outline::region(
