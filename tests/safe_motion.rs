@@ -397,7 +397,8 @@ fn rotary(text: &str, tilt: char) -> Vec<(f64, f64, bool, usize)> {
 
 /// The cone leaning 30° on a head whose C stops at ±360°: every layer
 /// winds C once round, and the head unwinds between layers, laser off, on
-/// the travel, keeping A on one side; a head whose C turns only 340° is
+/// the travel, to the start of least travel (A on either side, never
+/// changing side with the laser on); a head whose C turns only 340° is
 /// refused with the turn one layer needs.
 #[test]
 fn a_heads_c_unwinds_between_layers_within_its_stops() {
@@ -408,9 +409,15 @@ fn a_heads_c_unwinds_between_layers_within_its_stops() {
     let r = rotary(text, 'A');
     assert!(r.iter().all(|&(_, c, ..)| (-360.0..=360.0).contains(&c)));
     assert!(
-        r.iter().filter(|x| x.2).all(|&(a, ..)| a > 29.9),
-        "one branch"
+        r.iter().filter(|x| x.2).all(|&(a, ..)| a.abs() > 29.9),
+        "leaning 30° while it lays"
     );
+    for w in r.windows(2) {
+        assert!(
+            w[0].0 * w[1].0 > 0.0 || !w[1].2,
+            "the tilt changes side with the laser on: {w:?}"
+        );
+    }
     let mut unwound = 0;
     for w in r.windows(2) {
         let turn = (w[1].1 - w[0].1).abs();
@@ -674,7 +681,7 @@ fn a_branch_change_happens_laser_off_and_the_report_names_its_layers() {
     let report = lmdc::report::Report::of_plan(m);
     assert_eq!(report.branch_changes, changed);
     assert!(lmdc::report::text::render(&report).contains(&format!(
-        "retracted, before layers {}, {}",
+        "other side (the axes' other solution for the same nozzle direction) in layers {}, {}",
         changed[0], changed[1]
     )));
 }

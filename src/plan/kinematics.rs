@@ -171,11 +171,16 @@ pub fn sweep(kin: Kinematics, normals: impl Iterator<Item = [f64; 3]>, start: Ro
 /// (it unwinds only there, the laser off). Of the two solutions, each moved
 /// by whole turns of C, the one from which [`follow`] keeps every
 /// direction of the run inside `tilt_range` and `c_range` (inclusive, to
-/// [`LIMIT_TOL_DEG`]); of those, one on the branch `prev` is on (the sign
-/// of its tilt: a change of branch swings the tilt axis to the other side
-/// and C by half a turn, so it happens only where the run needs it); of
-/// those, the nearest `prev` (the least axis travel). Where none fits, the one that
-/// leaves them least (the verifier reports it).
+/// [`LIMIT_TOL_DEG`]); on a table, of those, one on the branch `prev` is
+/// on (the sign of its tilt: a change of branch swings the part through
+/// level to the other side, so it happens only where the run needs it); of
+/// those, the nearest `prev` (the least axis travel). A head takes the
+/// nearest of those that fit, either branch: where a run starts across
+/// the vertical from where the last ended (a track back over a shaft's
+/// crown) the head swings its tilt through vertical, retracted, rather
+/// than turn C half a turn, which wound a repair's C by a turn every few
+/// tracks. Where none fits, the one that leaves them least (the verifier
+/// reports it).
 pub fn run_start<I>(kin: Kinematics, normals: I, prev: Rotary, ranges: [[f64; 2]; 2]) -> Rotary
 where
     I: Iterator<Item = [f64; 3]> + Clone,
@@ -195,7 +200,11 @@ where
             c: unwrap_near(c, prev.c),
         };
         let (excess, start) = fit_turns(sweep(kin, normals.clone(), start), start, ranges);
-        let key = (excess, flips(prev, start), travel(prev, start));
+        let key = (
+            excess,
+            kin.is_table() && flips(prev, start),
+            travel(prev, start),
+        );
         if best.is_none_or(|(b, _)| key < b) {
             best = Some((key, start));
         }
@@ -355,6 +364,28 @@ mod tests {
             [[-30.0, 0.0], ranges[1]],
         );
         assert!(r.tilt < 0.0 && flips(prev, r), "{r:?}");
+    }
+
+    #[test]
+    fn a_head_swings_its_tilt_through_vertical_rather_than_turn_c_half_a_turn() {
+        // A track back over a shaft's crown (its axis along x): the last
+        // run ended leaning 12° to −y (A +12, C 0); this one starts leaning
+        // 12° to +y. A head swings A to −12 with C where it is (24° of A);
+        // a table keeps its branch and turns C half a turn instead.
+        let (s, c) = 12f64.to_radians().sin_cos();
+        let normals = [[0.0, s, c], [0.0, 0.5 * s, 1.0]];
+        let prev = Rotary { tilt: 12.0, c: 0.0 };
+        let ranges = [[-90.0, 90.0], [-720.0, 720.0]];
+        let head = run_start(Kinematics::HeadAc, normals.into_iter(), prev, ranges);
+        assert!(
+            (head.tilt + 12.0).abs() < 1e-9 && head.c.abs() < 1e-9,
+            "{head:?}"
+        );
+        let table = run_start(Kinematics::TableAc, normals.into_iter(), prev, ranges);
+        assert!(
+            (table.tilt - 12.0).abs() < 1e-9 && (table.c.abs() - 180.0).abs() < 1e-9,
+            "{table:?}"
+        );
     }
 
     #[test]

@@ -1046,8 +1046,8 @@ impl<'a, V: Visit> Walker<'_, 'a, V> {
     /// stops ([`kinematics::run_start`]). A table turns the part itself: it
     /// unwinds only before a layer's first path, to where the whole layer
     /// can be followed, and follows the normals on every other transition.
-    /// Both keep the branch (the tilt's side) they are on unless the run
-    /// needs the other.
+    /// A table keeps the branch (the tilt's side) it is on unless the run
+    /// needs the other; a head takes the start of least axis travel.
     fn start_axes(&self, (li, pi): (usize, usize), prev: Rotary, layer_start: bool) -> Rotary {
         if let Some(r) = self.plan.held(li) {
             return r;

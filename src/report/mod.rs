@@ -196,10 +196,12 @@ pub struct Report {
     /// against the top (docs/repair.md, *The report*).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub finish: Option<finish::Finish>,
-    /// The layers (from 1) before which a tilting head or table swings its
-    /// tilt to the other side (C half a turn with it), retracted with the
-    /// laser off: where a layer needs the other of the axes' two
-    /// solutions. Empty where it keeps one side throughout.
+    /// The layers (from 1) in which a tilting head's or table's tilt goes
+    /// over to its other side (the other of the axes' two solutions for a
+    /// nozzle direction): a table only retracted, where a layer needs it
+    /// within the stops; a head through vertical, C staying where it is
+    /// (docs/ir.md, *Rotary axes with stops*). Empty where it keeps one
+    /// side throughout.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub branch_changes: Vec<usize>,
     /// The closest each body the machine carries came to each thing of the

@@ -242,7 +242,7 @@ fn totals(out: &mut String, r: &Report) {
         let layers: Vec<String> = r.branch_changes.iter().map(|l| l.to_string()).collect();
         let _ = writeln!(
             out,
-            "tilt        swings to its other side (C half a turn with it), retracted, before layer{} {}: those layers need the other solution within the axes' stops",
+            "tilt        goes over to its other side (the axes' other solution for the same nozzle direction) in layer{} {}: a table turns the part over only retracted, where a layer needs it within the stops; a head swings through vertical, C staying where it is",
             if layers.len() == 1 { "" } else { "s" },
             layers.join(", ")
         );

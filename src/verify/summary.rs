@@ -64,10 +64,10 @@ pub struct Summary {
     pub files: Vec<String>,
     /// Rapid moves are timed at this speed (the machine's `max_speed`), mm/s.
     pub rapid_mm_s: f64,
-    /// The layers (from 0) whose laser-off moves in swing a tilting head's
-    /// or table's tilt to its other side, C half a turn with it: where the
-    /// run needed the other branch of the axes' two solutions
-    /// ([`crate::plan::kinematics::run_start`]).
+    /// The layers (from 0) in which a tilting head's or table's tilt goes
+    /// over to its other side: a table where a layer needs the other
+    /// branch of the axes' two solutions, a head where its nozzle passes
+    /// through vertical ([`crate::plan::kinematics::run_start`]).
     pub branch_changes: Vec<usize>,
     /// The closest each body came to each thing of the cell
     /// ([`super::approach`]): the head's, then the arm's links'.
