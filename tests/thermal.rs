@@ -456,4 +456,89 @@ fn order_and_dwell_wait_less_than_dwell_alone() {
             i + 1
         );
     }
+    // The report says which levers it pulled and what waits alone cost.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("mesh")).unwrap();
+    std::fs::write(
+        dir.path().join("mesh/two_pillars.stl"),
+        lmdc::geometry::mesh::stl::to_binary(&tris),
+    )
+    .unwrap();
+    let plan = dir.path().join("pillars.lmd");
+    std::fs::write(
+        &plan,
+        src.replace("cooling = order", "cooling = [order, dwell]"),
+    )
+    .unwrap();
+    let report = |json: bool| {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_lmdc"));
+        c.arg("report").arg(&plan).arg("--machine").arg("mill3");
+        if json {
+            c.arg("--json");
+        }
+        let o = c.env("NO_COLOR", "1").output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let text = report(false);
+    assert!(
+        text.contains("kept by the order of the islands in ")
+            && text.contains(" longer, where waiting alone would add "),
+        "{text}"
+    );
+    let r: serde_json::Value = serde_json::from_str(report(true).trim()).unwrap();
+    let h = &r["thermal"];
+    assert_eq!(h["cooling"], serde_json::json!(["order", "dwell"]));
+    let reordered = tb.layers.iter().filter(|l| l.reordered).count();
+    assert_eq!(h["layers_reordered"].as_u64(), Some(reordered as u64));
+    let saved = h["saved_s"].as_f64().unwrap();
+    assert!((saved - (added(td) - added(tb))).abs() < 1e-6, "{h}");
+}
+
+/// `lmdc fit --plan` over a plan of islands runs the model with a column
+/// per island, in the order the plan lays them: the temperatures the two
+/// pillars' own prediction gives (where each layer starts, on its first
+/// island) come back as the alloy's absorptivity and the default heat
+/// transfer coefficient, with residuals of a fraction of a kelvin.
+#[test]
+fn fit_over_islands_finds_the_values_that_made_the_temperatures() {
+    let src = std::fs::read_to_string("examples/two_pillars.lmd").unwrap();
+    let tris = [
+        cuboid([0.0, 0.0, 0.0], [12.0, 12.0, 10.0]),
+        cuboid([40.0, 0.0, 0.0], [52.0, 12.0, 10.0]),
+    ]
+    .concat();
+    let p = pillars(&src, &tris).expect("order keeps 320 °C");
+    let t = p.thermal.as_ref().unwrap();
+    assert!(t.layers.iter().all(|l| l.islands.len() == 2));
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("mesh")).unwrap();
+    std::fs::write(
+        dir.path().join("mesh/two_pillars.stl"),
+        lmdc::geometry::mesh::stl::to_binary(&tris),
+    )
+    .unwrap();
+    let plan = dir.path().join("pillars.lmd");
+    std::fs::write(&plan, &src).unwrap();
+    let mut sheet = String::from("layer, interpass (degC)\n");
+    for (i, l) in t.layers.iter().enumerate().skip(1).step_by(2) {
+        sheet.push_str(&format!("{}, {:.3}\n", i + 1, l.interpass));
+    }
+    let file = dir.path().join("temperatures.csv");
+    std::fs::write(&file, sheet).unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .arg("fit")
+        .arg(&file)
+        .arg("--plan")
+        .arg(&plan)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let eta = r["absorptivity"].as_f64().unwrap();
+    let h = r["heat_transfer"].as_f64().unwrap();
+    assert!((eta - t.absorptivity).abs() < 0.005, "{r}");
+    assert!((h - t.heat_transfer).abs() < 1.0, "{r}");
+    assert!(r["rms"].as_f64().unwrap() < 0.05, "{r}");
 }

@@ -151,7 +151,9 @@ fn predicted(o: &Overheat<'_>) -> String {
             "after the longest wait lmdc plans ({} s)",
             short(o.longest)
         ));
-    } else if o.cooling == ["order"] {
+    } else if o.cooling == ["order"] || o.cooling.len() > 1 {
+        // Without `dwell` a list waits no longer than declared (`cooling =
+        // power` alone says so in its fix: allow waits).
         how.push("no wait beyond the declared ones".to_string());
     }
     how.join(", ")
