@@ -59,6 +59,11 @@ pub const VERSION_BUDGET: u32 = 8;
 /// ([`with_later`]).
 pub const VERSION_ORDER: u32 = 9;
 
+/// Version 10: a plan that allows several cooling levers at once
+/// (`thermal.cooling` a list, `["order", "dwell"]`): a version 9 reader
+/// reads one word there. Written only for such a plan ([`with_later`]).
+pub const VERSION_LEVERS: u32 = 10;
+
 /// Version 3: a segmented [`Ring`] built in one continuous run, with a
 /// height loop that runs on the machine or a fixed speed schedule (a segmented ring's;
 /// ignored, the nominal speeds would run open loop), and the machines'
@@ -101,12 +106,19 @@ pub fn with_positioner(version: u32, machines: &[Machine]) -> u32 {
     }
 }
 
-/// `program`'s version, [`VERSION_ORDER`] where its thermal block predicts
-/// islands, or [`VERSION_BUDGET`] where the thermal budget added a wait or
+/// `program`'s version, [`VERSION_LEVERS`] where its thermal block allows
+/// several levers, [`VERSION_ORDER`] where it predicts islands, or [`VERSION_BUDGET`] where the thermal budget added a wait or
 /// a robot has another controller than KUKA's.
 pub fn with_later(program: &Program) -> u32 {
+    if program
+        .thermal
+        .as_ref()
+        .is_some_and(|t| t.cooling.levers().len() > 1)
+    {
+        return VERSION_LEVERS;
+    }
     let islands = program.thermal.as_ref().is_some_and(|t| {
-        t.cooling == Cooling::Order || t.layers.iter().any(|l| !l.islands.is_empty())
+        t.cooling.allows(Cooling::Order) || t.layers.iter().any(|l| !l.islands.is_empty())
     });
     if islands {
         return VERSION_ORDER;
@@ -643,6 +655,72 @@ pub enum Cooling {
     Order,
 }
 
+impl Cooling {
+    /// The word the language and the IR write it as.
+    pub fn word(self) -> &'static str {
+        match self {
+            Cooling::Dwell => "dwell",
+            Cooling::Power => "power",
+            Cooling::Order => "order",
+        }
+    }
+}
+
+/// The levers a plan may pull to keep its interpass limit: one, written as
+/// its word (`"order"`), or several, as a list (`["order", "dwell"]`,
+/// version 10), each at most once. lmdc pulls them in the order that
+/// costs the least time whatever the list's order: the islands' order,
+/// then the power, then the wait (docs/thermal.md, *The budget*).
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq, Eq)]
+#[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
+#[serde(untagged)]
+pub enum Levers {
+    /// One lever.
+    One(Cooling),
+    /// Several, as written.
+    Several(Vec<Cooling>),
+}
+
+impl Default for Levers {
+    fn default() -> Levers {
+        Levers::One(Cooling::Dwell)
+    }
+}
+
+impl Levers {
+    /// The levers `list` names: one as its word, several as a list (an
+    /// empty list: the default).
+    pub fn of(list: &[Cooling]) -> Levers {
+        match list {
+            [] => Levers::default(),
+            [one] => Levers::One(*one),
+            many => Levers::Several(many.to_vec()),
+        }
+    }
+
+    /// The levers, as written.
+    pub fn levers(&self) -> &[Cooling] {
+        match self {
+            Levers::One(c) => std::slice::from_ref(c),
+            Levers::Several(v) => v,
+        }
+    }
+
+    /// Whether `lever` is allowed.
+    pub fn allows(&self, lever: Cooling) -> bool {
+        self.levers().contains(&lever)
+    }
+
+    /// As the source writes it: `order`, `[order, dwell]`.
+    pub fn written(&self) -> String {
+        let words: Vec<&str> = self.levers().iter().map(|c| c.word()).collect();
+        match self {
+            Levers::One(c) => c.word().to_string(),
+            Levers::Several(_) => format!("[{}]", words.join(", ")),
+        }
+    }
+}
+
 /// The thermal model's data (docs/thermal.md) and what it predicts of each
 /// layer.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -672,12 +750,12 @@ pub struct Thermal {
     /// predicted, not limited).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_interpass: Option<f64>,
-    /// How the limit is kept.
-    pub cooling: Cooling,
-    /// `cooling = order`: what `cooling = dwell` would add to the waits to
-    /// keep the limit with the islands in the slicer's order, s (absent:
-    /// another cooling, no limit, or waits of at most an hour would not
-    /// keep it).
+    /// How the limit may be kept.
+    pub cooling: Levers,
+    /// `cooling` with another lever than `dwell`: what `cooling = dwell`
+    /// would add to the waits to keep the limit with the islands in the
+    /// slicer's order, s (absent: waits alone, no limit, or waits of at
+    /// most an hour would not keep it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub dwell_alone: Option<f64>,
     /// Each layer's prediction, in layer order.
@@ -715,6 +793,10 @@ pub struct LayerHeat {
     /// layer's).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub islands: Vec<IslandHeat>,
+    /// Whether the budget laid the islands in another order than the
+    /// slicer's (`cooling` with `order`; absent: the slicer's).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub reordered: bool,
 }
 
 /// One island of a layer of several: its predicted temperatures

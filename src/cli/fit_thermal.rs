@@ -69,7 +69,9 @@ pub fn run(sheet: &Path, plan: &Path, json: bool, (color, format): (bool, Messag
     };
     let (material, plate) = heat::cell(t);
     let waits: Vec<f64> = t.layers.iter().map(|l| l.wait).collect();
-    let Some(f) = fit::fit(material, plate, &heat::loads(program), &waits, &measured) else {
+    // Each layer's islands as the plan predicted them, a column each.
+    let (layers, orders) = heat::island_loads(program);
+    let Some(f) = fit::fit(material, plate, &layers, &orders, &waits, &measured) else {
         eprintln!(
             "error: {} measures a layer the plan does not have (it has {})",
             shown(sheet),

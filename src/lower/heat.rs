@@ -6,16 +6,16 @@ use crate::diag::{message, Diagnostics};
 use crate::ir::{Cooling, Heat, IslandHeat, Layer, LayerHeat, PathKind, Program, Thermal};
 use crate::sema::schema::process::MAX_DWELL_S;
 use crate::span::Span;
-use crate::thermal::{self, Budget, Lever, Load, Material, Plate};
+use crate::thermal::{self, Budget, Lever, Levers, Load, Material, Plate};
 
 /// mm → m.
 const M: f64 = 1e-3;
 
 /// The IR's thermal block for `program`, its layers predicted, each wait
 /// the least that keeps `max_interpass`; or the refusal of the first layer
-/// no allowed cooling keeps within it, reported at `at`. With `cooling =
-/// order`, each layer's paths are reordered island by island as the
-/// prediction chose.
+/// no allowed cooling keeps within it, reported at `at`. Where `cooling`
+/// allows `order`, each layer's paths are reordered island by island as
+/// the prediction chose.
 pub fn predict(
     program: &mut Program,
     declared: &Thermal,
@@ -26,27 +26,36 @@ pub fn predict(
     let heat = program.heat;
     let base = |i: usize| base_wait(heat, parts.time(i - 1));
     let least = least_power(program);
+    let levers = declared
+        .cooling
+        .levers()
+        .iter()
+        .fold(Levers::default(), |l, c| {
+            l.with(match c {
+                Cooling::Dwell => Lever::Dwell {
+                    longest: MAX_DWELL_S,
+                },
+                Cooling::Power => Lever::Power { least: &least },
+                Cooling::Order => Lever::Order,
+            })
+        });
     let budget = declared.max_interpass.map(|max_interpass| Budget {
         max_interpass,
-        lever: match declared.cooling {
-            Cooling::Dwell => Lever::Dwell {
-                longest: MAX_DWELL_S,
-            },
-            Cooling::Power => Lever::Power { least: &least },
-            Cooling::Order => Lever::Order,
-        },
+        levers,
     });
     let run = |budget| {
         thermal::predict_islands(material, plate, &parts.loads, &parts.orders, base, budget)
     };
     let predicted = run(budget).map_err(|o| refusal(program, declared, &parts, o, at))?;
-    // What waits alone would have cost, for the report to weigh the order
-    // against.
+    // What waits alone would have cost, for the report to weigh the free
+    // levers against.
+    let alone = declared.cooling.levers() != [Cooling::Dwell];
     let dwell_alone = match budget {
-        Some(b) if declared.cooling == Cooling::Order => run(Some(Budget {
-            lever: Lever::Dwell {
+        Some(b) if alone => run(Some(Budget {
+            levers: Lever::Dwell {
                 longest: MAX_DWELL_S,
-            },
+            }
+            .into(),
             ..b
         }))
         .ok()
@@ -75,10 +84,11 @@ pub fn predict(
                 added: (p.layer.wait - base).max(0.0),
                 power: p.layer.power,
                 islands,
+                reordered: p.layer.reordered,
             }
         })
         .collect();
-    if declared.cooling == Cooling::Order {
+    if declared.cooling.allows(Cooling::Order) {
         for (i, (layer, p)) in program.layers.iter_mut().zip(&predicted).enumerate() {
             let order: Vec<usize> = p.islands.iter().map(|i| i.island).collect();
             parts.reorder(layer, i, &order);
@@ -100,25 +110,22 @@ fn refusal(
     at: Span,
 ) -> Diagnostics {
     let limit = declared.max_interpass.unwrap_or(0.0);
-    let cooling = match declared.cooling {
-        Cooling::Dwell => "dwell",
-        Cooling::Power => "power",
-        Cooling::Order => "order",
-    };
+    let cooling: Vec<&str> = declared.cooling.levers().iter().map(|c| c.word()).collect();
     let island = (parts.loads.get(o.layer).map_or(0, Vec::len) > 1)
         .then(|| parts.island_start(o.layer, o.island));
     let o = message::thermal::Overheat {
         layer: o.layer + 1,
         interpass: o.interpass,
         limit,
-        cooling,
+        cooling: &cooling,
         longest: MAX_DWELL_S,
         needs: o.needs,
+        by_order: o.by_order,
         preheat: o.layer == 0,
-        floor: match declared.cooling {
-            Cooling::Power => Some(power_floor(program)),
-            _ => None,
-        },
+        floor: declared
+            .cooling
+            .allows(Cooling::Power)
+            .then(|| power_floor(program)),
         island,
     };
     Diagnostics::from(message::thermal::interpass(o, at))
@@ -268,6 +275,15 @@ pub fn loads(program: &Program) -> Vec<Load> {
         .iter()
         .map(|l| load(l, 0..l.paths.len(), width).0)
         .collect()
+}
+
+/// Each layer's islands' loads as the model takes them from the IR's
+/// points (`[i][c]`: column `c`'s island of layer `i`), and the order the
+/// layer's paths lay them in: what [`predict`] ran the model over, for a
+/// check to run it again (a layer of one piece: one load).
+pub fn island_loads(program: &Program) -> (Vec<Vec<Load>>, Vec<Vec<usize>>) {
+    let parts = Parts::of(program);
+    (parts.loads, parts.orders)
 }
 
 /// The most samples [`islands`] takes of a plan's layer (a bead apart

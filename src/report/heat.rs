@@ -2,7 +2,7 @@
 //! temperatures as the IR carries them (docs/thermal.md), and what keeping
 //! `max_interpass` cost.
 
-use crate::ir::{Cooling, Program};
+use crate::ir::{Levers, Program};
 use serde::Serialize;
 
 /// One layer's predicted temperatures.
@@ -52,8 +52,8 @@ pub struct Heat {
     pub material: String,
     /// The limit, °C (absent: predicted, not limited).
     pub max_interpass_c: Option<f64>,
-    /// How it is kept.
-    pub cooling: Cooling,
+    /// The levers it may be kept by (one word, or a list).
+    pub cooling: Levers,
     /// The hottest start of a layer, °C, and the layer (1-based).
     pub hottest_interpass_c: f64,
     /// Which layer starts the hottest (1-based).
@@ -64,14 +64,18 @@ pub struct Heat {
     pub peak_layer: usize,
     /// The time the limit added to the waits, s.
     pub added_s: f64,
-    /// `cooling = order`: what waits alone (`cooling = dwell`, the islands
-    /// in the slicer's order) would have added, s (absent: another
-    /// cooling, or waits of at most an hour would not keep the limit).
+    /// `cooling` with another lever than `dwell`: what waits alone
+    /// (`cooling = dwell`, the islands in the slicer's order) would have
+    /// added, s (absent: waits alone, or waits of at most an hour would
+    /// not keep the limit).
     pub dwell_alone_s: Option<f64>,
-    /// `cooling = order`: the time the order saves against waits alone, s.
+    /// The time the levers save against waits alone, s.
     pub saved_s: Option<f64>,
     /// How many layers laid at less than their power.
     pub layers_at_less_power: usize,
+    /// How many layers laid their islands in another order than the
+    /// slicer's.
+    pub layers_reordered: usize,
     /// Per layer.
     pub layers: Vec<HeatRow>,
 }
@@ -126,7 +130,7 @@ impl Heat {
         Some(Heat {
             material: t.material.clone(),
             max_interpass_c: t.max_interpass,
-            cooling: t.cooling,
+            cooling: t.cooling.clone(),
             hottest_interpass_c,
             hottest_layer,
             peak_c,
@@ -137,6 +141,7 @@ impl Heat {
                 .dwell_alone
                 .map(|d| d - layers.iter().map(|r| r.added_s).sum::<f64>()),
             layers_at_less_power: layers.iter().filter(|r| r.power_share < 1.0).count(),
+            layers_reordered: t.layers.iter().filter(|l| l.reordered).count(),
             layers,
         })
     }

@@ -120,31 +120,60 @@ pub fn render(r: &Report) -> String {
     out
 }
 
+/// How the limit was kept: by which levers, and the time waits alone would
+/// have added.
+fn kept(h: &crate::report::heat::Heat) -> String {
+    use crate::ir::Cooling;
+    let layers = |n: usize| format!("{n} layer{}", if n == 1 { "" } else { "s" });
+    match h.cooling.levers() {
+        [Cooling::Dwell] => format!("kept by waiting {} longer", duration(h.added_s)),
+        [Cooling::Power] => format!(
+            "kept by lowering the power of {}",
+            layers(h.layers_at_less_power)
+        ),
+        [Cooling::Order] => match h.dwell_alone_s {
+            Some(d) => format!(
+                "kept by the order of the islands with no wait added, where waiting alone would add {}",
+                duration(d)
+            ),
+            None => "kept by the order of the islands; waits alone of at most an hour would not keep it".to_string(),
+        },
+        _ => {
+            let mut by = Vec::new();
+            if h.layers_reordered > 0 {
+                by.push(format!(
+                    "the order of the islands in {}",
+                    layers(h.layers_reordered)
+                ));
+            }
+            if h.layers_at_less_power > 0 {
+                by.push(format!(
+                    "lowering the power of {}",
+                    layers(h.layers_at_less_power)
+                ));
+            }
+            if h.added_s > 0.0 {
+                by.push(format!("waiting {} longer", duration(h.added_s)));
+            }
+            let by = if by.is_empty() {
+                "kept with nothing changed".to_string()
+            } else {
+                format!("kept by {}", by.join(", "))
+            };
+            match h.dwell_alone_s {
+                Some(d) => format!("{by}, where waiting alone would add {}", duration(d)),
+                None => format!("{by}; waits alone of at most an hour would not keep it"),
+            }
+        }
+    }
+}
+
 /// The thermal prediction: the hottest start and peak, what the limit
 /// cost, and each layer's temperatures.
 fn thermal(out: &mut String, r: &Report) {
     let Some(h) = &r.thermal else { return };
     let limit = match h.max_interpass_c {
-        Some(m) => {
-            let how = match h.cooling {
-                crate::ir::Cooling::Dwell => {
-                    format!("kept by waiting {} longer", duration(h.added_s))
-                }
-                crate::ir::Cooling::Power => format!(
-                    "kept by lowering the power of {} layer{}",
-                    h.layers_at_less_power,
-                    if h.layers_at_less_power == 1 { "" } else { "s" }
-                ),
-                crate::ir::Cooling::Order => match h.dwell_alone_s {
-                    Some(d) => format!(
-                        "kept by the order of the islands with no wait added, where waiting alone would add {}",
-                        duration(d)
-                    ),
-                    None => "kept by the order of the islands; waits alone of at most an hour would not keep it".to_string(),
-                },
-            };
-            format!(" (limit {} °C, {how})", trimmed(m, 1))
-        }
+        Some(m) => format!(" (limit {} °C, {})", trimmed(m, 1), kept(h)),
         None => String::new(),
     };
     let _ = writeln!(

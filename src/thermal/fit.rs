@@ -9,7 +9,7 @@
 //! settle it ([`Fitted::at_edge`]): the fit says so rather than
 //! extrapolate.
 
-use super::{predict, Load, Material, Plate};
+use super::{predict_islands, Load, Material, Plate};
 
 /// The absorptivities searched.
 pub const ABSORPTIVITY: [f64; 2] = [0.05, 0.95];
@@ -43,18 +43,22 @@ pub struct Fitted {
 }
 
 /// Fits the absorptivity and heat transfer coefficient of `material` to
-/// `measured`, the plan's layers laid as `loads` with the waits `waits`
-/// (before each layer; the first's is not used). `None` without a
-/// measurement of a layer the plan has.
+/// `measured`, the plan's layers laid as `layers` (each layer's islands'
+/// loads, a column each, as [`predict_islands`] takes them; a layer of one
+/// piece: one) in the order `orders` with the waits `waits` (before each
+/// layer; the first's is not used). A measurement is the layer's
+/// interpass temperature: where the nozzle starts it, on its first
+/// island. `None` without a measurement of a layer the plan has.
 pub fn fit(
     material: Material,
     plate: Plate,
-    loads: &[Load],
+    layers: &[Vec<Load>],
+    orders: &[Vec<usize>],
     waits: &[f64],
     measured: &[Measured],
 ) -> Option<Fitted> {
     let last = measured.iter().map(|m| m.layer).max()?;
-    if last >= loads.len() || last >= waits.len() {
+    if last >= layers.len() || last >= orders.len() || last >= waits.len() {
         return None;
     }
     let residuals = |eta: f64, h: f64| -> Vec<f64> {
@@ -63,12 +67,20 @@ pub fn fit(
             heat_transfer: h,
             ..material
         };
-        let p = predict(m, plate, &loads[..=last], |i| waits[i], None).unwrap_or_default();
+        let p = predict_islands(
+            m,
+            plate,
+            &layers[..=last],
+            &orders[..=last],
+            |i| waits[i],
+            None,
+        )
+        .unwrap_or_default();
         measured
             .iter()
             .map(|x| {
                 p.get(x.layer)
-                    .map_or(f64::INFINITY, |p| p.interpass - x.interpass)
+                    .map_or(f64::INFINITY, |p| p.layer.interpass - x.interpass)
             })
             .collect()
     };
@@ -171,6 +183,7 @@ fn levenberg_marquardt(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::thermal::predict;
 
     /// Temperatures the model itself predicts with known values come back
     /// as those values, residuals nil.
@@ -205,7 +218,9 @@ mod tests {
                 interpass: p[layer].interpass,
             })
             .collect();
-        let f = fit(base, plate, &loads, &waits, &measured).unwrap();
+        let layers: Vec<Vec<Load>> = loads.iter().map(|l| vec![*l]).collect();
+        let orders = vec![vec![0]; layers.len()];
+        let f = fit(base, plate, &layers, &orders, &waits, &measured).unwrap();
         assert!((f.absorptivity - 0.42).abs() < 0.01, "{f:?}");
         assert!((f.heat_transfer - 35.0).abs() < 3.5, "{f:?}");
         assert!(f.rms < 0.5, "{f:?}");

@@ -151,7 +151,7 @@ struct Node {
     footprint: f64,
 }
 
-/// What a budget may change to keep its limit.
+/// One thing a budget may change to keep its limit.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Lever<'a> {
     /// Wait before a layer, at most `longest` s.
@@ -170,13 +170,54 @@ pub enum Lever<'a> {
     Order,
 }
 
+/// What a budget may change to keep its limit, any of them at once. They
+/// are pulled in the order that costs the least time: the islands' order
+/// (free), then the power of the layer before (free, within its range),
+/// then the least wait for what is still too hot.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Levers<'a> {
+    /// Whether each layer's islands may be reordered.
+    pub order: bool,
+    /// The least share of its power each layer may be laid at, if the
+    /// power may be lowered.
+    pub power: Option<&'a [f64]>,
+    /// The longest wait lmdc plans, s, if it may wait.
+    pub dwell: Option<f64>,
+}
+
+impl<'a> Levers<'a> {
+    /// These levers with `lever` allowed too.
+    pub fn with(self, lever: Lever<'a>) -> Levers<'a> {
+        match lever {
+            Lever::Dwell { longest } => Levers {
+                dwell: Some(longest),
+                ..self
+            },
+            Lever::Power { least } => Levers {
+                power: Some(least),
+                ..self
+            },
+            Lever::Order => Levers {
+                order: true,
+                ..self
+            },
+        }
+    }
+}
+
+impl<'a> From<Lever<'a>> for Levers<'a> {
+    fn from(lever: Lever<'a>) -> Levers<'a> {
+        Levers::default().with(lever)
+    }
+}
+
 /// The interpass temperature a plan keeps and how.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Budget<'a> {
     /// The interpass temperature no layer may start above, °C.
     pub max_interpass: f64,
-    /// How it is kept.
-    pub lever: Lever<'a>,
+    /// What may change to keep it.
+    pub levers: Levers<'a>,
 }
 
 /// One layer's prediction.
@@ -193,6 +234,8 @@ pub struct Prediction {
     pub wait: f64,
     /// The share of its power the layer is laid at.
     pub power: f64,
+    /// Whether its islands are laid in another order than the plan's.
+    pub reordered: bool,
 }
 
 /// One island of a layer as predicted.
@@ -230,6 +273,9 @@ pub struct Overheat {
     /// The wait before the layer that would bring it within the limit, s,
     /// if one within ten hours does.
     pub needs: Option<f64>,
+    /// Whether laying the layer's islands in the order that starts each
+    /// the coolest would bring it within the limit with no more wait.
+    pub by_order: bool,
 }
 
 /// The longest wait an [`Overheat`] looks for, s.
@@ -255,10 +301,11 @@ pub fn predict(
 /// (`layers[i][c]`: island `c` of layer `i`, standing on island `c` of the
 /// layer below; every layer has as many), in the order `orders[i]`, with
 /// the waits `base(i)` before layer `i` (i ≥ 1), each kept within a budget
-/// where one is given: the wait lengthened, the power of the layer before
-/// lowered, or the islands reordered, as the lever allows, to the least
-/// that keeps every island's interpass temperature within it. Returns the
-/// predictions, or the first layer nothing allowed keeps in.
+/// where one is given: the islands reordered, the power of the layer
+/// before lowered, the wait lengthened, as the levers allow and in that
+/// order (the free ones first), to the least that keeps every island's
+/// interpass temperature within it. Returns the predictions, or the first
+/// layer nothing allowed keeps in.
 pub fn predict_islands(
     material: Material,
     plate: Plate,
@@ -275,48 +322,24 @@ pub fn predict_islands(
         if build.columns() == 0 {
             build.stand(loads);
         }
-        let mut order = orders[i].clone();
-        if let Some(Budget {
-            lever: Lever::Order,
-            ..
-        }) = budget
-        {
-            order = coolest_first(&build, loads, &order);
-        }
-        let mut wait = if i == 0 { 0.0 } else { base(i).max(0.0) };
-        if let (Some(b), true) = (budget, i > 0) {
-            if let Lever::Dwell { longest } = b.lever {
-                let cooled = least_wait(&build, loads, &order, b.max_interpass, longest, i)?;
-                wait = wait.max(cooled);
-            }
-        }
+        let declared = if i == 0 { 0.0 } else { base(i).max(0.0) };
+        let (order, wait) = match budget {
+            Some(b) => order_and_wait(&build, loads, &orders[i], declared, b, i)?,
+            None => (orders[i].clone(), declared),
+        };
         build.cool(wait);
         clock += wait;
         // A wait found to a thousandth of its step may land a rounding above.
         if let Some(b) = budget {
             let (hottest, c) = starts(&build, loads, &order);
             if hottest > b.max_interpass + 1e-9 {
-                return Err(overheat(
-                    &build,
-                    loads,
-                    &order,
-                    i,
-                    c,
-                    hottest,
-                    b.max_interpass,
-                ));
+                let limit = b.max_interpass;
+                return Err(overheat(&build, loads, &order, i, c, hottest, limit));
             }
         }
         let power = match (budget, base_after(&base, i, layers.len())) {
-            (
-                Some(
-                    b @ Budget {
-                        lever: Lever::Power { least },
-                        ..
-                    },
-                ),
-                Some(next),
-            ) => {
+            (Some(b), Some(next)) if b.levers.power.is_some() => {
+                let least = b.levers.power.and_then(|l| l.get(i)).copied();
                 let now = Laying {
                     loads,
                     order: &order,
@@ -325,7 +348,7 @@ pub fn predict_islands(
                     loads: &layers[i + 1],
                     order: &orders[i + 1],
                 };
-                least_power(&build, now, then, next, b.max_interpass, least[i], i + 1)?
+                least_power(&build, now, then, next, b, least.unwrap_or(1.0), i + 1)?
             }
             _ => 1.0,
         };
@@ -338,12 +361,71 @@ pub fn predict_islands(
                 peak: islands.iter().map(|p| p.peak).fold(f64::MIN, f64::max),
                 wait,
                 power,
+                reordered: order != orders[i],
             },
             islands,
         });
         clock += order.iter().map(|&c| loads[c].time).sum::<f64>();
     }
     Ok(out)
+}
+
+/// The order layer `layer`'s islands are laid in on `build` and the wait
+/// before it, as `b`'s levers allow: the order that starts each the
+/// coolest, then the least wait (at least `declared`) after which every
+/// island starts within the limit. With both, the plan's own order where
+/// it needs a shorter wait (a tie keeps the coolest first).
+fn order_and_wait(
+    build: &Build,
+    loads: &[Load],
+    plan: &[usize],
+    declared: f64,
+    b: Budget<'_>,
+    layer: usize,
+) -> Result<(Vec<usize>, f64), Overheat> {
+    let mut candidates = vec![plan.to_vec()];
+    if b.levers.order {
+        let best = coolest_first(build, loads, plan);
+        if best != plan {
+            candidates.insert(0, best);
+        }
+    }
+    let Some(longest) = b.levers.dwell.filter(|_| layer > 0) else {
+        return Ok((candidates.remove(0), declared));
+    };
+    let mut chosen: Option<(Vec<usize>, f64)> = None;
+    let mut refused = None;
+    // The declared wait, where it is enough: the least wait is found to a
+    // thousandth of its step, which may land a hair above a declared wait
+    // the power was chosen to keep the limit with.
+    let enough = |order: &[usize]| {
+        let mut after = build.clone();
+        after.cool(declared);
+        starts(&after, loads, order).0 <= b.max_interpass
+    };
+    for order in candidates {
+        let least = if enough(&order) {
+            Ok(declared)
+        } else {
+            least_wait(build, loads, &order, b.max_interpass, longest, layer)
+        };
+        match least {
+            Ok(w) => {
+                let w = w.max(declared);
+                if chosen.as_ref().is_none_or(|(_, c)| w < *c) {
+                    chosen = Some((order, w));
+                }
+            }
+            Err(o) => {
+                refused.get_or_insert(o);
+            }
+        }
+    }
+    match (chosen, refused) {
+        (Some(c), _) => Ok(c),
+        (None, Some(o)) => Err(o),
+        (None, None) => Ok((plan.to_vec(), declared)),
+    }
 }
 
 /// Lays a layer's islands in `order` at the share `power` of their power,
@@ -495,11 +577,16 @@ fn overheat(
     } else {
         least_wait(build, loads, order, limit, LONGEST_ADVICE, layer).ok()
     };
+    let by_order = order.len() > 1 && {
+        let best = coolest_first(build, loads, order);
+        starts(build, loads, &best).0 <= limit
+    };
     Overheat {
         layer,
         island,
         interpass,
         needs,
+        by_order,
     }
 }
 
@@ -512,30 +599,42 @@ struct Laying<'a> {
 
 /// The largest share of its power, from `least` to 1, at which laying
 /// `now` on `build` and waiting `wait` leaves every island of `then`
-/// within `limit` when it starts (layer `next`; to a ten-thousandth).
+/// within `b`'s limit when it starts (layer `next`; to a ten-thousandth),
+/// `then`'s islands in the order they will be laid (the coolest first
+/// where `b` may reorder them). Where even `least` does not and `b` may
+/// wait, `least`: the wait before `next` makes up the rest.
 fn least_power(
     build: &Build,
     now: Laying<'_>,
     then: Laying<'_>,
     wait: f64,
-    limit: f64,
+    b: Budget<'_>,
     least: f64,
     next: usize,
 ) -> Result<f64, Overheat> {
+    let limit = b.max_interpass;
     let top = |share: f64| {
-        let mut b = build.clone();
-        lay_layer(&mut b, now.loads, now.order, share, 0.0);
-        b.cool(wait);
-        let (t, c) = starts(&b, then.loads, then.order);
-        (t, c, b)
+        let mut after = build.clone();
+        lay_layer(&mut after, now.loads, now.order, share, 0.0);
+        after.cool(wait);
+        let order = if b.levers.order {
+            coolest_first(&after, then.loads, then.order)
+        } else {
+            then.order.to_vec()
+        };
+        let (t, c) = starts(&after, then.loads, &order);
+        (t, c, after, order)
     };
     if top(1.0).0 <= limit {
         return Ok(1.0);
     }
-    let (at_least, c, b) = top(least);
+    let (at_least, c, after, order) = top(least);
     if at_least > limit {
+        if b.levers.dwell.is_some() {
+            return Ok(least);
+        }
         return Err(overheat(
-            &b, then.loads, then.order, next, c, at_least, limit,
+            &after, then.loads, &order, next, c, at_least, limit,
         ));
     }
     let (mut lo, mut hi) = (least, 1.0);

@@ -232,7 +232,7 @@ fn least_cooling_meets_the_limit_and_no_less_does() {
     };
     let budget = Budget {
         max_interpass: 200.0,
-        lever: Lever::Dwell { longest: 3600.0 },
+        levers: Lever::Dwell { longest: 3600.0 }.into(),
     };
     let p = predict(m, plate, &vec![load; 30], |_| 0.0, Some(budget)).unwrap();
     for (i, l) in p.iter().enumerate().skip(1) {
@@ -269,7 +269,7 @@ fn refuses_a_limit_below_the_plate() {
     };
     let budget = Budget {
         max_interpass: 200.0,
-        lever: Lever::Dwell { longest: 60.0 },
+        levers: Lever::Dwell { longest: 60.0 }.into(),
     };
     let e = predict(steel(), plate, &[load], |_| 0.0, Some(budget)).unwrap_err();
     assert_eq!(e.layer, 0);
@@ -438,7 +438,7 @@ fn the_order_keeps_the_limit_that_waits_buy() {
         |_| 0.0,
         Some(Budget {
             max_interpass: 1000.0,
-            lever: Lever::Order,
+            levers: Lever::Order.into(),
         }),
     )
     .unwrap();
@@ -448,10 +448,10 @@ fn the_order_keeps_the_limit_that_waits_buy() {
         hottest(&best)
     );
     let limit = hottest(&best) + 0.25 * (hottest(&free) - hottest(&best));
-    let budget = |lever| {
+    let budget = |lever: Lever<'static>| {
         Some(Budget {
             max_interpass: limit,
-            lever,
+            levers: lever.into(),
         })
     };
     let ordered = predict_islands(
@@ -499,7 +499,7 @@ fn the_order_refuses_what_it_cannot_keep() {
         |_| 0.0,
         Some(Budget {
             max_interpass: 150.0,
-            lever: Lever::Order,
+            levers: Lever::Order.into(),
         }),
     )
     .unwrap_err();

@@ -37,6 +37,30 @@ pub fn plate_not_three(got: Got<'_>, at: Span) -> Diagnostic {
     .help("e.g. `plate = [200 mm, 200 mm, 20 mm]`")
 }
 
+/// `cooling = []`: no lever to keep the limit with.
+pub fn no_levers(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Type,
+        "`cooling` names the levers lmdc may pull to keep `max_interpass`: at least one",
+    )
+    .label(at, "this list is empty")
+    .help("e.g. `cooling = [order, dwell]`: the islands' order first, then the least wait; or leave `cooling` out for waits alone")
+}
+
+/// `cooling` names the lever `word` a second time (`first`: where it is
+/// named first).
+pub fn lever_twice(word: &str, at: Span, first: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::BadChoice,
+        format!("`cooling` names `{word}` twice"),
+    )
+    .label(at, "named again here")
+    .label(first, "first named here")
+    .help(format!(
+        "each lever is allowed once, and lmdc pulls them in the order that costs the least time whatever the list's order (the islands' order, then the power, then the wait): remove this `{word}`"
+    ))
+}
+
 /// What a refused interpass limit would need.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Overheat<'a> {
@@ -46,12 +70,15 @@ pub struct Overheat<'a> {
     pub interpass: f64,
     /// The limit, °C.
     pub limit: f64,
-    /// How the limit is kept (`dwell`, `power`).
-    pub cooling: &'a str,
+    /// The levers allowed to keep the limit (`dwell`, `power`, `order`), as
+    /// written.
+    pub cooling: &'a [&'a str],
     /// The longest wait lmdc plans, s.
     pub longest: f64,
     /// The wait that would keep the layer within the limit, s, if known.
     pub needs: Option<f64>,
+    /// Whether laying the layer's islands coolest first would keep it.
+    pub by_order: bool,
     /// Whether it is the plate's preheat that is above the limit (the
     /// first layer).
     pub preheat: bool,
@@ -91,20 +118,50 @@ pub fn interpass(o: Overheat<'_>, at: Span) -> Diagnostic {
                 short_up(o.interpass)
             ));
     }
-    let how = match (o.cooling, o.floor) {
-        ("power", Some(w)) => format!(
-            "with the layer before at {} W, the least the laser's range and the bead's measured powers allow",
-            short(w)
-        ),
-        ("power", None) => "at the least power the laser's range and the bead's measured powers allow".to_string(),
-        ("order", _) => "with the layer's islands in the order that starts each the coolest (the one that has cooled longest first), no wait beyond the declared ones".to_string(),
-        _ => format!("after the longest wait lmdc plans ({} s)", short(o.longest)),
-    };
     let raise = format!(
         "raise `max_interpass` to at least {} degC",
         short_up(o.interpass)
     );
-    let fix = match (o.cooling, o.needs) {
+    let fix = match o.cooling {
+        [one] => one_lever(&o, one, &raise),
+        _ => levers_fix(&o, &raise),
+    };
+    d.label(at, format!("predicted {}", predicted(&o)))
+        .help(fix)
+}
+
+/// How the refused prediction was made: with the most each allowed lever
+/// gives, in the order lmdc pulls them.
+fn predicted(o: &Overheat<'_>) -> String {
+    let mut how = Vec::new();
+    let allows = |w: &str| o.cooling.contains(&w);
+    if allows("order") {
+        how.push("with the layer's islands in the order that starts each the coolest (the one that has cooled longest first)".to_string());
+    }
+    match (allows("power"), o.floor) {
+        (true, Some(w)) => how.push(format!(
+            "with the layer before at {} W, the least the laser's range and the bead's measured powers allow",
+            short(w)
+        )),
+        (true, None) => how.push("at the least power the laser's range and the bead's measured powers allow".to_string()),
+        _ => {}
+    }
+    if allows("dwell") {
+        how.push(format!(
+            "after the longest wait lmdc plans ({} s)",
+            short(o.longest)
+        ));
+    } else if o.cooling == ["order"] || o.cooling.len() > 1 {
+        // Without `dwell` a list waits no longer than declared (`cooling =
+        // power` alone says so in its fix: allow waits).
+        how.push("no wait beyond the declared ones".to_string());
+    }
+    how.join(", ")
+}
+
+/// The fix where `cooling` is one word, `lever`.
+fn one_lever(o: &Overheat<'_>, lever: &str, raise: &str) -> String {
+    match (lever, o.needs) {
         ("power", Some(w)) => format!(
             "a wait of {} s before the layer would keep it: allow waits (`cooling = dwell`), or {raise}",
             short_up(w)
@@ -112,7 +169,7 @@ pub fn interpass(o: Overheat<'_>, at: Span) -> Diagnostic {
         ("power", None) => format!("allow waits (`cooling = dwell`), or {raise}"),
         ("order", needs) => {
             let why = if o.island.is_some() {
-                "each island cools only while the others are laid, too short here"
+                "each island cools only while the others are laid, which is too short here"
             } else {
                 "a layer of one piece has no order to choose"
             };
@@ -126,6 +183,38 @@ pub fn interpass(o: Overheat<'_>, at: Span) -> Diagnostic {
             short_up(w)
         ),
         (_, None) => format!("{raise}, or lay less heat per layer (a lower power)"),
+    }
+}
+
+/// The fix where `cooling` names several levers: the lever not allowed
+/// that would keep the layer (the order, a wait), written into the list.
+fn levers_fix(o: &Overheat<'_>, raise: &str) -> String {
+    let with = |w: &str| {
+        let mut all: Vec<&str> = o.cooling.to_vec();
+        all.push(w);
+        format!("`cooling = [{}]`", all.join(", "))
     };
-    d.label(at, format!("predicted {how}")).help(fix)
+    let allows = |w: &str| o.cooling.contains(&w);
+    let mut fixes = Vec::new();
+    if !allows("order") && o.by_order {
+        fixes.push(format!(
+            "allow order ({}): laying the islands coolest first keeps it",
+            with("order")
+        ));
+    }
+    match (allows("dwell"), o.needs) {
+        (false, Some(w)) => fixes.push(format!(
+            "allow dwell ({}): a {} s wait before the layer keeps it",
+            with("dwell"),
+            short_up(w)
+        )),
+        (false, None) => fixes.push(format!("allow dwell ({})", with("dwell"))),
+        (true, Some(w)) => fixes.push(format!(
+            "a wait of {} s would keep it, longer than lmdc plans: lay less heat per layer (a lower power)",
+            short_up(w)
+        )),
+        (true, None) => fixes.push("lay less heat per layer (a lower power)".to_string()),
+    }
+    fixes.push(raise.to_string());
+    fixes.join("; or ")
 }

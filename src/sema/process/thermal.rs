@@ -3,7 +3,7 @@
 //! left for the lowering to predict).
 
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Cooling, Thermal};
+use crate::ir::{Cooling, Levers, Thermal};
 use crate::sema::eval::Env;
 use crate::sema::fields::{self, Fields};
 use crate::sema::schema::process::thermal::{self as t, MAX_TEMPERATURE};
@@ -59,7 +59,7 @@ pub fn read<'a>(
     };
     let preheat = temperature(&t::PREHEAT);
     let max_interpass = temperature(&t::MAX_INTERPASS);
-    let cooling = b.word_or_default(&t::COOLING, diags);
+    let cooling = cooling(&b, diags);
     let alloy = crate::thermal::alloy(material?)?;
     let m = alloy.material;
     let at = max_interpass.flatten().map_or(span, |(_, at)| at);
@@ -76,16 +76,56 @@ pub fn read<'a>(
             preheat: preheat?.map_or(AMBIENT, |q| q.0),
             ambient: AMBIENT,
             max_interpass: max_interpass?.map(|q| q.0),
-            cooling: match cooling? {
-                "power" => Cooling::Power,
-                "order" => Cooling::Order,
-                _ => Cooling::Dwell,
-            },
+            cooling: cooling?,
             dwell_alone: None,
             layers: Vec::new(),
         },
         at,
     )))
+}
+
+/// `cooling = order` or `cooling = [order, dwell]`, or the default: each
+/// word a lever, each at most once, a list not empty (each wrong word
+/// reported where it is written).
+fn cooling(b: &Fields<'_>, diags: &mut Diagnostics) -> Option<Levers> {
+    if !b.has(&t::COOLING) {
+        return Some(Levers::default());
+    }
+    let v = b.value(&t::COOLING, diags)?;
+    let Value::List(items) = &v.value else {
+        let w = fields::word(v, t::COOLING.key, t::LEVERS, diags)?;
+        return Some(Levers::One(lever(w)));
+    };
+    if items.is_empty() {
+        diags.push(message::thermal::no_levers(v.span));
+        return None;
+    }
+    let mut out: Vec<(Cooling, Span)> = Vec::with_capacity(items.len());
+    let mut ok = true;
+    for it in items {
+        let Some(w) = fields::word(it, t::COOLING.key, t::LEVERS, diags) else {
+            ok = false;
+            continue;
+        };
+        let c = lever(w);
+        if let Some((_, first)) = out.iter().find(|(o, _)| *o == c) {
+            diags.push(message::thermal::lever_twice(w, it.span, *first));
+            ok = false;
+            continue;
+        }
+        out.push((c, it.span));
+    }
+    let levers: Vec<Cooling> = out.into_iter().map(|(c, _)| c).collect();
+    ok.then(|| Levers::of(&levers))
+}
+
+/// The lever a word of `cooling` names.
+fn lever(word: &str) -> Cooling {
+    match word {
+        "power" => Cooling::Power,
+        "order" => Cooling::Order,
+        _ => Cooling::Dwell,
+    }
 }
 
 /// `plate = [l, w, t]`, mm, or the default.

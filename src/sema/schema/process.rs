@@ -163,12 +163,14 @@ pub mod thermal {
         Optional,
         "the hottest a layer may be where and when the next starts on it: lmdc plans the cooling that keeps every layer within it, or refuses the plan; none: predicted, not limited",
     );
-    /// `cooling = dwell`.
+    /// The levers `cooling` names.
+    pub const LEVERS: &[&str] = &["dwell", "power", "order"];
+    /// `cooling = dwell`, `cooling = [order, dwell]`.
     pub static COOLING: Field = Field::new(
         "cooling",
-        Word(&["dwell", "power", "order"]),
+        Either(&[Word(LEVERS), List(&Word(LEVERS), Len::Any)]),
         Default(DefaultWord("dwell")),
-        "how lmdc keeps `max_interpass`: `dwell`, the least wait before each layer that does; `power`, the least power reduction within the bead's measured powers and the laser's range, the speeds and so the layers unchanged; `order`, each layer's islands laid in the order that starts each the coolest, no wait added",
+        "how lmdc may keep `max_interpass`, one lever or a list of them: `order`, each layer's islands laid in the order that starts each the coolest; `power`, the least power reduction within the bead's measured powers and the laser's range, the speeds and so the layers unchanged; `dwell`, the least wait before each layer that does. With several, the order first and the power next (neither costs time), then the least wait for what is still too hot",
     );
 }
 
