@@ -498,6 +498,35 @@ mod tests {
         assert!(matches!(got, Err(LoftFault::Tight { .. })));
     }
 
+    /// A box turned 30° about y: along a turned vertical line its top is
+    /// where the turned line meets the box's top face, its inside test
+    /// the box's, and a line beside it meets nothing.
+    #[test]
+    fn a_turned_boxs_crossings_are_its_faces_along_the_line() {
+        let region = crate::geometry::outline::region(
+            &crate::geometry::shape::Shape::Section(rect(40.0, 20.0)),
+            0.001,
+        );
+        let prism = std::sync::Arc::new(Target::Prism {
+            region,
+            height: 10.0,
+        });
+        let a = 30.0f64.to_radians();
+        let rot = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::y_axis(), -a);
+        let t = Target::Turned(Turned::new(Inner::Solid(prism), rot).unwrap());
+        // The turned line over (0, 0): back in the part it runs along
+        // d = (sin 30°, 0, cos 30°) through the origin, meeting the top
+        // (z = 10) at z' = 10 / cos 30° and the plate at 0.
+        let c = t.crossings_above([0.0, 0.0], -1.0);
+        assert_eq!(c.len(), 2, "{c:?}");
+        assert!((c[0] - 10.0 / a.cos()).abs() < 1e-6, "{c:?}");
+        assert!(c[1].abs() < 1e-6, "{c:?}");
+        assert!((t.at([0.0, 0.0]).unwrap() - c[0]).abs() < 1e-6);
+        assert!(t.contains([0.0, 0.0, 5.0]));
+        assert!(!t.contains([0.0, 0.0, 12.0]));
+        assert_eq!(t.at([0.0, 30.0]), None);
+    }
+
     /// A prism's crossings: its top, then the plate.
     #[test]
     fn a_prisms_crossings_are_its_top_and_the_plate() {

@@ -247,3 +247,16 @@ fn a_head_that_tilts_too_little_is_refused_with_the_tilt_needed() {
     let help = c.diagnostics.iter().find_map(|d| d.help.clone()).unwrap();
     assert!(help.contains("machine `mill5`'s tilt axis"), "{help}");
 }
+
+/// Levelling is not planned along a tilted direction yet: refused at
+/// `level`, naming the direction chosen, rather than levelled from above.
+#[test]
+fn levelling_along_a_tilted_direction_is_refused_at_the_field() {
+    let c = slab(35.0, "direction = auto\n  level = auto");
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    assert!(
+        m.contains("lmd::top-height: the target is built along a direction tilted 30° toward 0° (`direction = auto`), and `level` is not planned along a tilted direction yet"),
+        "{m}"
+    );
+}

@@ -678,6 +678,41 @@ mod tests {
         assert_eq!(g.stats.spikes, 0);
     }
 
+    /// A flat surface turned 30° about y reads back as the plane it
+    /// turns into, within float noise of the turned points; a step
+    /// facing away from the direction hides what is behind it.
+    #[test]
+    fn a_turned_plane_is_the_plane_turned_and_a_step_hides_its_back() {
+        let g = HeightField::new(&cloud(20.0, 4, |_, _| 5.0), PLACE, EST).unwrap();
+        let a = 30.0f64.to_radians();
+        let rot = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::y_axis(), -a);
+        let t = g.turned(&rot, f64::INFINITY).unwrap();
+        // z = 5 turned by −30° about y: z' = x'·tan 30° + 5 / cos 30°.
+        for p in [[5.0, 5.0], [10.0, 12.0], [12.0, 3.0]] {
+            let want = p[0] * a.tan() + 5.0 / a.cos();
+            let got = t.at(p).unwrap();
+            assert!((got - want).abs() < 1e-3, "{p:?}: {got} vs {want}");
+        }
+        assert!(t.at([-20.0, 5.0]).is_none());
+        // A 10 mm step up at x = 10, seen along a direction tilted 60°
+        // toward +x: its face hides the foot before it.
+        let g = HeightField::new(
+            &cloud(20.0, 4, |x, _| if x < 10.0 { 0.0 } else { 10.0 }),
+            PLACE,
+            EST,
+        )
+        .unwrap();
+        let b = 60.0f64.to_radians();
+        let rot = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::y_axis(), -b);
+        let t = g.turned(&rot, f64::INFINITY).unwrap();
+        // The foot at x = 6 (z = 0): up along the direction the line meets
+        // the step's face about 4 mm on, so the surface seen there is the
+        // face's, that much higher.
+        let foot = rot * nalgebra::Vector3::new(6.0, 5.0, 0.0);
+        let seen = t.at([foot.x, foot.y]).unwrap();
+        assert!(seen > foot.z + 3.0, "{seen} vs {}", foot.z);
+    }
+
     #[test]
     fn noise_and_a_burr_are_seen_through() {
         // ±0.05 mm of deterministic noise, and a burr of stray returns 3 mm

@@ -374,7 +374,7 @@ pub mod variable {
         "direction",
         Word(&["vertical", "auto"]),
         Default(DefaultWord("vertical")),
-        "on a scan, toward a target mesh or solid that overhangs it: `auto` plans the fill along the least tilted build direction (within the bead's measured `tilt` and the machines' tilt axes) along which every line over the footprint meets the target in one piece above the scan, the part's outline projected along it, and tilts the nozzle by it; `vertical`: the layers laid from above",
+        "on a scan, toward a target mesh or solid that overhangs it: `auto` plans the fill along the least tilted build direction (within the bead's measured `tilt` and the machines' tilt axes) along which every line over the footprint meets the target in one piece above the scan (the footprint, the finished face's outline, projected along it), the nozzle or the part tilted by it; `vertical`: the layers laid from above",
     );
     /// `segments { … }`.
     pub static SEGMENTS: Field = Field::new(
