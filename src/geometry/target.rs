@@ -213,7 +213,7 @@ impl Turned {
 /// `bottom` (the solid's own lowest height).
 fn walk(inside: impl Fn(f64) -> bool, [lo, hi]: [f64; 2], first: bool, bottom: bool) -> Vec<f64> {
     let mut out = Vec::new();
-    if !(hi > lo) {
+    if hi.is_nan() || lo.is_nan() || hi <= lo {
         return out;
     }
     let n = ((hi - lo) / STEP).ceil().clamp(1.0, 1e7) as usize;

@@ -260,3 +260,30 @@ fn levelling_along_a_tilted_direction_is_refused_at_the_field() {
         "{m}"
     );
 }
+
+/// Where vertical builds the target, `direction = auto` plans exactly
+/// what the file without it plans: a box's mesh on the worn pad, the IR
+/// the same point for point.
+#[test]
+fn a_target_vertical_builds_is_planned_as_without_direction() {
+    let plan = |direction: &str| {
+        let src = include_str!("../../examples/worn_pad.lmd")
+            .replace("top = 13 mm", "top = mesh(file = \"target.stl\")")
+            .replace("offset = 2 mm", &format!("offset = 2 mm\n  {direction}"));
+        let files = BTreeMap::from([
+            (
+                "repair/worn_pad.ply".to_string(),
+                std::fs::read("examples/repair/worn_pad.ply").unwrap(),
+            ),
+            (
+                "target.stl".to_string(),
+                super::target::solid_stl([-40.0, -20.0, 0.0], [40.0, 20.0, 13.0], |_, _| 13.0),
+            ),
+        ]);
+        let c = compile(&src, files);
+        let m = messages(&c);
+        c.program.unwrap_or_else(|| panic!("{m}"))
+    };
+    let (auto, vertical) = (plan("direction = auto"), plan(""));
+    assert_eq!(auto.ir().layers, vertical.ir().layers);
+}
