@@ -12,6 +12,7 @@ use std::collections::BTreeMap;
 mod blade;
 mod follow;
 mod target;
+mod tilted;
 
 /// A worn face: flat at `face` mm, a trough `depth` deep at `(cx, cy)`,
 /// `sx` and `sy` wide (Gaussian).

@@ -286,7 +286,7 @@ codes! {
     FollowSurface = "follow-surface", Feasibility,
         "`follow = surface` (`slicing variable`, docs/repair.md) where the nozzle cannot follow the scanned surface: a part not built on a scan, a bead measured with the nozzle vertical only (no `tilt`), or a machine whose nozzle stays vertical (a 3-axis CNC, named)";
     TopHeight = "top-height", Feasibility,
-        "an extrusion's `top` is zero, negative or cannot be computed at a point where a track runs (named, with the inner error)";
+        "an extrusion's `top` is zero, negative or cannot be computed at a point where a track runs (named, with the inner error); or a target mesh or solid overhangs the scan where the layers would fill under it: laid from above (named, with the least tilt that builds it there and `direction = auto`), or along no direction the bead's `tilt` and the machines' tilt axes allow (the line that fails, the tilt needed)";
     SegmentsTooShort = "segments-too-short", Feasibility,
         "meeting the `segments` height tolerance along a track needs constant-speed segments shorter than `min_length`; names the tolerance that works";
     GainSign = "gain-sign", Feasibility,

@@ -55,6 +55,9 @@ pub enum Target {
     Mesh(Highest),
     /// A loft.
     Loft(LoftTarget),
+    /// A target mesh or solid turned so a tilted build direction is up
+    /// (docs/repair.md, *Undercuts*).
+    Turned(Turned),
 }
 
 impl Target {
@@ -65,7 +68,41 @@ impl Target {
             Target::Prism { region, height } => region.contains(p).then_some(*height),
             Target::Mesh(m) => m.at(p),
             Target::Loft(l) => l.crossings(p, f64::NEG_INFINITY, true).first().copied(),
+            Target::Turned(t) => t.crossings(p, f64::NEG_INFINITY, true).first().copied(),
         }
+    }
+
+    /// Whether `q` (mm) lies in the solid, its faces included: a mesh's
+    /// when the vertical line up from `q` crosses its faces an odd number
+    /// of times.
+    pub fn contains(&self, q: [f64; 3]) -> bool {
+        match self {
+            Target::Prism { region, height } => {
+                (0.0..=*height).contains(&q[2]) && region.contains([q[0], q[1]])
+            }
+            Target::Mesh(m) => mesh_contains(m, q),
+            Target::Loft(l) => l.contains(q),
+            Target::Turned(t) => t.contains_turned(q),
+        }
+    }
+
+    /// The box (mm) the solid lies within, lowest corner and highest;
+    /// `None` when it has no finite box.
+    pub fn bounds(&self) -> Option<[[f64; 3]; 2]> {
+        let b = match self {
+            Target::Prism { region, height } => {
+                let [lo, hi] = region.bounds()?;
+                [[lo[0], lo[1], 0.0], [hi[0], hi[1], *height]]
+            }
+            Target::Mesh(m) => m.bounds(),
+            Target::Loft(l) => l.bounds,
+            Target::Turned(t) => {
+                let [lo, hi] = t.z;
+                let [a, b] = t.xy;
+                [[a[0], a[1], lo], [b[0], b[1], hi]]
+            }
+        };
+        b.iter().flatten().all(|v| v.is_finite()).then_some(b)
     }
 
     /// The heights where the vertical line over `p` crosses the solid's
@@ -80,8 +117,138 @@ impl Target {
             Target::Prism { .. } => Vec::new(),
             Target::Mesh(m) => m.crossings_above(p, z),
             Target::Loft(l) => l.crossings(p, z, false),
+            Target::Turned(t) => t.crossings(p, z, false),
         }
     }
+}
+
+/// Whether `q` lies in a mesh: an odd number of its faces above it.
+fn mesh_contains(m: &Highest, q: [f64; 3]) -> bool {
+    m.crossings_above([q[0], q[1]], q[2]).len() % 2 == 1
+}
+
+/// What a turned target turns: a target mesh or a target solid.
+#[derive(Debug)]
+pub enum Inner {
+    /// `top = mesh(…)`.
+    Mesh(std::sync::Arc<Highest>),
+    /// `top = NAME`.
+    Solid(std::sync::Arc<Target>),
+}
+
+impl Inner {
+    fn contains(&self, q: [f64; 3]) -> bool {
+        match self {
+            Inner::Mesh(m) => mesh_contains(m, q),
+            Inner::Solid(t) => t.contains(q),
+        }
+    }
+
+    fn bounds(&self) -> Option<[[f64; 3]; 2]> {
+        let b = match self {
+            Inner::Mesh(m) => m.bounds(),
+            Inner::Solid(t) => t.bounds()?,
+        };
+        b.iter().flatten().all(|v| v.is_finite()).then_some(b)
+    }
+}
+
+/// A target seen along a tilted build direction: the part's coordinates
+/// turned by `rot` so the direction is up. Its surface along a vertical
+/// line of the turned frame is found as a loft's is: the inside test
+/// (turned back into the part) every [`STEP`], each change bisected to
+/// [`RESOLUTION`]. A piece thinner than the step along the line can be
+/// missed.
+#[derive(Debug)]
+pub struct Turned {
+    inner: Inner,
+    /// Part to turned frame.
+    rot: nalgebra::Rotation3<f64>,
+    /// The turned heights (mm) it lies within.
+    z: [f64; 2],
+    /// Its turned extent in x and y (mm).
+    xy: [[f64; 2]; 2],
+}
+
+impl Turned {
+    /// `inner` turned by `rot`; `None` when it has no finite box.
+    pub fn new(inner: Inner, rot: nalgebra::Rotation3<f64>) -> Option<Turned> {
+        let [lo, hi] = inner.bounds()?;
+        let (mut a, mut b) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for k in 0..8 {
+            let c = [
+                if k & 1 == 0 { lo[0] } else { hi[0] },
+                if k & 2 == 0 { lo[1] } else { hi[1] },
+                if k & 4 == 0 { lo[2] } else { hi[2] },
+            ];
+            let t = rot * nalgebra::Vector3::from(c);
+            for i in 0..3 {
+                a[i] = a[i].min(t[i]);
+                b[i] = b[i].max(t[i]);
+            }
+        }
+        // A face at the box's very top is inside at the start of a walk.
+        Some(Turned {
+            inner,
+            rot,
+            z: [a[2] - STEP, b[2] + STEP],
+            xy: [[a[0], a[1]], [b[0], b[1]]],
+        })
+    }
+
+    /// Whether the turned point `q` lies in the target.
+    fn contains_turned(&self, q: [f64; 3]) -> bool {
+        let p = self.rot.inverse() * nalgebra::Vector3::from(q);
+        self.inner.contains([p.x, p.y, p.z])
+    }
+
+    /// The turned heights where the vertical line over `p` crosses the
+    /// surface above `z`, highest first; only the first when `first`.
+    fn crossings(&self, p: [f64; 2], z: f64, first: bool) -> Vec<f64> {
+        let [x, y] = self.xy;
+        if !(p[0] >= x[0] && p[0] <= y[0] && p[1] >= x[1] && p[1] <= y[1]) {
+            return Vec::new();
+        }
+        let inside = |h: f64| self.contains_turned([p[0], p[1], h]);
+        walk(inside, [self.z[0].max(z), self.z[1]], first, false)
+    }
+}
+
+/// The heights in `[lo, hi]` where `inside` changes, highest first (only
+/// the first when `first`): tested every [`STEP`] down from `hi`, each
+/// change bisected to [`RESOLUTION`]; `lo` too when inside there and
+/// `bottom` (the solid's own lowest height).
+fn walk(inside: impl Fn(f64) -> bool, [lo, hi]: [f64; 2], first: bool, bottom: bool) -> Vec<f64> {
+    let mut out = Vec::new();
+    if hi.is_nan() || lo.is_nan() || hi <= lo {
+        return out;
+    }
+    let n = ((hi - lo) / STEP).ceil().clamp(1.0, 1e7) as usize;
+    let at = |k: usize| hi - (hi - lo) * k as f64 / n as f64;
+    let mut was = inside(hi);
+    if was {
+        out.push(hi);
+        if first {
+            return out;
+        }
+    }
+    for k in 1..=n {
+        let h = at(k);
+        let is = inside(h);
+        if is != was {
+            // The end inside is the one kept: the height found is in the solid.
+            let (good, bad) = if was { (at(k - 1), h) } else { (h, at(k - 1)) };
+            out.push(super::bisect(good, bad, RESOLUTION, &inside));
+            if first {
+                return out;
+            }
+        }
+        was = is;
+    }
+    if was && bottom {
+        out.push(lo);
+    }
+    out
 }
 
 /// A loft as a target: its sections as written are its faces.
@@ -90,6 +257,9 @@ pub struct LoftTarget {
     geometry: LoftGeometry,
     /// The heights (mm) every point of the loft lies within.
     z: [f64; 2],
+    /// A box (mm) it lies within: the heights, and x and y within its
+    /// sections' reach of the spine (a bent spine's run added).
+    bounds: [[f64; 3]; 2],
 }
 
 /// Why a loft cannot be a target.
@@ -130,7 +300,17 @@ impl LoftTarget {
                 arc_heights(&geometry, radius.0 * angle.0.abs() + reach * angle.0.abs())
             }
         };
-        Ok(LoftTarget { geometry, z })
+        let run = match spine {
+            Spine::Line { .. } => 0.0,
+            Spine::Arc { radius, angle } => radius.0 * angle.0.abs(),
+        };
+        let r = reach + run;
+        let bounds = [[-r, -reach, z[0]], [r, reach, z[1]]];
+        Ok(LoftTarget {
+            geometry,
+            z,
+            bounds,
+        })
     }
 
     /// Whether `q` lies in the loft (its faces included).
@@ -333,6 +513,35 @@ mod tests {
             0.0,
         );
         assert!(matches!(got, Err(LoftFault::Tight { .. })));
+    }
+
+    /// A box turned 30° about y: along a turned vertical line its top is
+    /// where the turned line meets the box's top face, its inside test
+    /// the box's, and a line beside it meets nothing.
+    #[test]
+    fn a_turned_boxs_crossings_are_its_faces_along_the_line() {
+        let region = crate::geometry::outline::region(
+            &crate::geometry::shape::Shape::Section(rect(40.0, 20.0)),
+            0.001,
+        );
+        let prism = std::sync::Arc::new(Target::Prism {
+            region,
+            height: 10.0,
+        });
+        let a = 30.0f64.to_radians();
+        let rot = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::y_axis(), -a);
+        let t = Target::Turned(Turned::new(Inner::Solid(prism), rot).unwrap());
+        // The turned line over (0, 0): back in the part it runs along
+        // d = (sin 30°, 0, cos 30°) through the origin, meeting the top
+        // (z = 10) at z' = 10 / cos 30° and the plate at 0.
+        let c = t.crossings_above([0.0, 0.0], -1.0);
+        assert_eq!(c.len(), 2, "{c:?}");
+        assert!((c[0] - 10.0 / a.cos()).abs() < 1e-6, "{c:?}");
+        assert!(c[1].abs() < 1e-6, "{c:?}");
+        assert!((t.at([0.0, 0.0]).unwrap() - c[0]).abs() < 1e-6);
+        assert!(t.contains([0.0, 0.0, 5.0]));
+        assert!(!t.contains([0.0, 0.0, 12.0]));
+        assert_eq!(t.at([0.0, 30.0]), None);
     }
 
     /// A prism's crossings: its top, then the plate.

@@ -134,6 +134,14 @@ pub fn sampled(program: &Program, model: &Model) -> Option<(Finish, Vec<Sample>)
     let Build::Variable { extrusion: ex, .. } = &model.build else {
         return None;
     };
+    // A fill along a tilted direction (`direction = auto`) lays its
+    // tracks across the part's x and y and its rises along the
+    // direction: the vertical columns sampled here would mix layers, so
+    // no finish is predicted rather than a wrong one (docs/repair.md,
+    // *Not yet*).
+    if program.layers.iter().any(|l| l.frame.z != [0.0, 0.0, 1.0]) {
+        return None;
+    }
     let d = program.bead.as_ref()?.deposit();
     let last = program.layers.last()?;
     let by_line = moves(&program.layers, &d);

@@ -195,12 +195,18 @@ fn a_leaning_overhang_is_refused_with_the_tilt_that_builds_it() {
     assert!(x > 0.0 && x < lean, "{m}");
     assert_eq!(number("tilted ", '°'), 41.0, "{m}");
     assert_eq!(number("from vertical toward ", '°'), 0.0, "{m}");
+    // What would plan it: the fill along a tilted direction, asked for.
+    let help = c.diagnostics.iter().find_map(|d| d.help.clone()).unwrap();
+    assert!(
+        help.contains("`direction = auto` in `slicing variable`"),
+        "{help}"
+    );
 }
 
 /// The faces of a section in x–z (a closed polygon) extruded along y over
 /// `y`: a binary STL of its sides (the end caps, seen edge-on from above,
 /// are left out: a target mesh need not be closed).
-fn extruded_stl(section: &[[f64; 2]], y: [f64; 2]) -> Vec<u8> {
+pub(super) fn extruded_stl(section: &[[f64; 2]], y: [f64; 2]) -> Vec<u8> {
     let mut tris = Vec::new();
     for (k, a) in section.iter().enumerate() {
         let b = section[(k + 1) % section.len()];

@@ -629,11 +629,15 @@ pub fn undercut(
     };
     let tilt = match reach {
         Some([t, a]) => format!(
-            "; built along a direction tilted {}° from vertical toward {}° (from +x, counter-clockwise), the line through the underside here stands on the scan in one piece: a head or table that tilts that far would build it",
+            "; along a build direction tilted {}° from vertical toward {}° (from +x, counter-clockwise), the line through the underside here runs in the target down to the scan and leaves it once above: layers laid along it would stand on each other here",
             short(t),
             short(a),
         ),
         None => "; no build direction within 85° of vertical puts the underside here on metal below it: no tilt builds it".to_string(),
+    };
+    let help = match reach {
+        Some(_) => "these layers are laid from above with the nozzle vertical, so they would fill under the overhang: `direction = auto` in `slicing variable` plans the fill along the least tilted direction that builds every point of the footprint, within the bead's measured `tilt` and each machine's tilt axis (docs/repair.md, *Undercuts*); or build the part to the overhang's underside here, and the overhang in a later step with the part tilted",
+        None => "these layers are laid from above with the nozzle vertical, so they would fill under the overhang, and a ledge over a gap stands on nothing from any side: build the part to the ledge's underside, then the ledge on a support or in a later step with the part turned over",
     };
     Diagnostic::error(
         Code::TopHeight,
@@ -647,5 +651,106 @@ pub fn undercut(
         ),
     )
     .label(at, "the target")
-    .help("these layers are laid from above with the nozzle vertical, so they would fill under the overhang, and repair along a tilted direction is not planned yet (docs/repair.md, *Not yet*): build the part to the overhang's underside here, and the overhang in a later step with the part tilted")
+    .help(help)
+}
+
+/// Why no build direction within the machines' tilt builds a target's
+/// overhang (`direction = auto`, docs/repair.md, *Undercuts*).
+pub struct Untilted<'a> {
+    /// The footprint's point (mm, in the part) whose line along the best
+    /// direction allowed meets the target in more than one piece, and the
+    /// height along that line where its upper piece starts.
+    pub at: [f64; 3],
+    /// Whether that line enters the target again (else it meets none of
+    /// it above the scan, or runs off the scan).
+    pub again: bool,
+    /// The most tilt allowed (deg) and what holds it there.
+    pub limit: (f64, &'a str),
+    /// The least tilt (deg) and its azimuth (deg from +x) that builds
+    /// every point, if one within 85° does.
+    pub needs: Option<[f64; 2]>,
+    /// `direction = auto`.
+    pub direction: Span,
+    /// `top = …`.
+    pub top: Span,
+}
+
+/// `direction = auto` finds no build direction within the machines' tilt
+/// along which every line over the footprint meets the target in one
+/// piece above the scan.
+pub fn untilted(u: &Untilted<'_>) -> Diagnostic {
+    let (limit, by) = u.limit;
+    let needs = match u.needs {
+        Some([t, a]) => format!(
+            "; the least tilt that builds every point is {}° toward {}° (from +x, counter-clockwise), {}° more than allowed",
+            short(t),
+            short(a),
+            short(t - limit)
+        ),
+        None => "; no direction within 85° of vertical builds every point".to_string(),
+    };
+    let help = match u.needs {
+        Some(_) => format!(
+            "layers laid along a direction stand on each other only where each line along it meets the target in one piece from the scan up; the tilt is held to {}° by {by}: a machine that tilts the nozzle or the part farther (its tilt axis's limits), with the bead's `tilt` measured that far, would build it; or build the part to the overhang's underside and the overhang in a later step with the part tilted",
+            short(limit)
+        ),
+        None => "no one direction builds every point of the footprint (a ledge over a gap, or overhangs leaning different ways): build the part in steps, first up to the overhangs' undersides, then each overhang along its own direction, with its own footprint".to_string(),
+    };
+    let meets = if u.again {
+        "leaves the target and enters it again above the scan"
+    } else {
+        "meets none of the target above the scan, or runs off the scan"
+    };
+    let within = if limit < 1.0 {
+        format!("the target's overhangs need a tilted build direction, and {by} holds the nozzle vertical: down it")
+    } else {
+        format!(
+            "no build direction within {}° of vertical builds the target's overhangs: along the best of them",
+            short(limit)
+        )
+    };
+    Diagnostic::error(
+        Code::TopHeight,
+        format!(
+            "{within} the line through ({}, {}, {}) mm {meets}{needs}",
+            short(u.at[0]),
+            short(u.at[1]),
+            short(u.at[2]),
+        ),
+    )
+    .label(u.direction, "the build direction searched for")
+    .label(u.top, "the target")
+    .help(help)
+}
+
+/// `direction = auto` chose a tilted direction, and `level` or `follow`
+/// asks for layers it does not plan along one yet.
+pub fn tilted_with(
+    field: &str,
+    [tilt, azimuth]: [f64; 2],
+    at: Span,
+    direction: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::TopHeight,
+        format!(
+            "the target is built along a direction tilted {}° toward {}° (`direction = auto`), and `{field}` is not planned along a tilted direction yet",
+            short(tilt),
+            short(azimuth)
+        ),
+    )
+    .label(at, format!("`{field}`"))
+    .label(direction, "the tilted build direction")
+    .help(format!("leave `{field}` out for the tilted fill (docs/repair.md, *Undercuts*), or build the overhang apart"))
+}
+
+/// A diagnostic of a fill planned along a tilted direction, its points
+/// given in the frame turned so the direction is up.
+pub fn in_turned_frame(mut d: Diagnostic, [tilt, azimuth]: [f64; 2]) -> Diagnostic {
+    d.message.push_str(&format!(
+        " (planned along the build direction tilted {}° toward {}°: points are in the frame turned so that it is up)",
+        short(tilt),
+        short(azimuth)
+    ));
+    d
 }

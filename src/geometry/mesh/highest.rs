@@ -103,6 +103,18 @@ impl Highest {
         self
     }
 
+    /// The box its faces lie within (mm): lowest corner, highest.
+    pub fn bounds(&self) -> [[f64; 3]; 2] {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in self.faces.iter().flatten() {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        [lo, hi]
+    }
+
     /// The heights of the faces over `p` higher than `z` (mm), highest
     /// first, faces meeting at an edge or corner the ray passes through
     /// counted once. From the top down they enter and leave the part in

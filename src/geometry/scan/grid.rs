@@ -371,6 +371,79 @@ impl HeightField {
         })
     }
 
+    /// The surface turned by `rot` (about the part's origin) and seen
+    /// from above again, on cells of the same side: what a build direction
+    /// `rot⁻¹·z` sees of it (docs/repair.md, *Undercuts*). The surface
+    /// between cell centres (two triangles a square of four filled
+    /// centres) is turned and rastered as a scan's faces are: each cell
+    /// takes the highest face over its centre, the one a nozzle along the
+    /// direction meets first, so what the surface hides from that side
+    /// (behind a steep flank) is hidden, and a cell no face covers is no
+    /// surface (`lmd::scan-coverage` where a track runs). The outer half
+    /// cell, which the centres do not span, is left out.
+    pub fn turned(
+        &self,
+        rot: &nalgebra::Rotation3<f64>,
+        outlier: f64,
+    ) -> Result<HeightField, GridFault> {
+        let (nx, ny) = (self.nx, self.ny);
+        let mut index = vec![u32::MAX; self.z.len()];
+        let mut vertices = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                let z = self.z[j * nx + i];
+                if z.is_nan() {
+                    continue;
+                }
+                index[j * nx + i] = vertices.len() as u32;
+                // About the grid's origin, so f32 keeps its precision.
+                let (x, y) = ((i as f64 + 0.5) * self.cell, (j as f64 + 0.5) * self.cell);
+                vertices.push([x as f32, y as f32, z]);
+            }
+        }
+        let mut triangles = Vec::new();
+        for j in 0..ny.saturating_sub(1) {
+            for i in 0..nx.saturating_sub(1) {
+                let c = [
+                    index[j * nx + i],
+                    index[j * nx + i + 1],
+                    index[(j + 1) * nx + i],
+                    index[(j + 1) * nx + i + 1],
+                ];
+                if c.contains(&u32::MAX) {
+                    continue;
+                }
+                triangles.push([c[0], c[1], c[3]]);
+                triangles.push([c[0], c[3], c[2]]);
+            }
+        }
+        if triangles.is_empty() {
+            return Err(GridFault::NoSurface);
+        }
+        let raw = Raw {
+            vertices,
+            triangles,
+        };
+        let origin = nalgebra::Vector3::new(self.origin[0], self.origin[1], 0.0);
+        let pose = Pose {
+            scale: 1.0,
+            rot: *rot,
+            at: rot * origin,
+        };
+        let mut g = HeightField::new(
+            &raw,
+            pose,
+            Estimate {
+                cell: self.cell,
+                outlier,
+            },
+        )?;
+        // The points are the estimate's, not the scan's.
+        g.stats.points = self.stats.points;
+        g.stats.noise = self.stats.noise;
+        Ok(g)
+    }
+
     /// The scan's extent in x and y (mm): its lowest corner and highest.
     pub fn extent(&self) -> ([f64; 2], [f64; 2]) {
         self.stats.xy_range
@@ -603,6 +676,41 @@ mod tests {
         }
         assert_eq!(g.at([-1.0, 5.0]), None);
         assert_eq!(g.stats.spikes, 0);
+    }
+
+    /// A flat surface turned 30° about y reads back as the plane it
+    /// turns into, within float noise of the turned points; a step
+    /// facing away from the direction hides what is behind it.
+    #[test]
+    fn a_turned_plane_is_the_plane_turned_and_a_step_hides_its_back() {
+        let g = HeightField::new(&cloud(20.0, 4, |_, _| 5.0), PLACE, EST).unwrap();
+        let a = 30.0f64.to_radians();
+        let rot = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::y_axis(), -a);
+        let t = g.turned(&rot, f64::INFINITY).unwrap();
+        // z = 5 turned by −30° about y: z' = x'·tan 30° + 5 / cos 30°.
+        for p in [[5.0, 5.0], [10.0, 12.0], [12.0, 3.0]] {
+            let want = p[0] * a.tan() + 5.0 / a.cos();
+            let got = t.at(p).unwrap();
+            assert!((got - want).abs() < 1e-3, "{p:?}: {got} vs {want}");
+        }
+        assert!(t.at([-20.0, 5.0]).is_none());
+        // A 10 mm step up at x = 10, seen along a direction tilted 60°
+        // toward +x: its face hides the foot before it.
+        let g = HeightField::new(
+            &cloud(20.0, 4, |x, _| if x < 10.0 { 0.0 } else { 10.0 }),
+            PLACE,
+            EST,
+        )
+        .unwrap();
+        let b = 60.0f64.to_radians();
+        let rot = nalgebra::Rotation3::from_axis_angle(&nalgebra::Vector3::y_axis(), -b);
+        let t = g.turned(&rot, f64::INFINITY).unwrap();
+        // The foot at x = 6 (z = 0): up along the direction the line meets
+        // the step's face about 4 mm on, so the surface seen there is the
+        // face's, that much higher.
+        let foot = rot * nalgebra::Vector3::new(6.0, 5.0, 0.0);
+        let seen = t.at([foot.x, foot.y]).unwrap();
+        assert!(seen > foot.z + 3.0, "{seen} vs {}", foot.z);
     }
 
     #[test]

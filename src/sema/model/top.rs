@@ -171,6 +171,11 @@ pub struct VariableSlicing {
     /// scanned surface's normal (docs/repair.md, *Following the surface*);
     /// `None`: vertical.
     pub follow: Option<Span>,
+    /// `direction = auto` and where: on a scan, the fill planned along the
+    /// least tilted build direction that builds the target's overhangs
+    /// (docs/repair.md, *Undercuts*); `None`: `vertical`, the layers laid
+    /// from above.
+    pub direction: Option<Span>,
     /// `E_H`: the largest mean |height error| of the finished top along a
     /// track that constant-speed segments may leave.
     pub tolerance: Length,

@@ -369,6 +369,13 @@ pub mod variable {
         Default(DefaultWord("vertical")),
         "on a scan, with a machine that tilts the nozzle: `surface` lays the layers on the scan with the nozzle along the scanned surface's normal (within the bead's measured `tilt` and the machine's tilt axis), back to vertical as the layers level it; `vertical`: the nozzle straight down",
     );
+    /// `direction = …`.
+    pub static DIRECTION: Field = Field::new(
+        "direction",
+        Word(&["vertical", "auto"]),
+        Default(DefaultWord("vertical")),
+        "on a scan, toward a target mesh or solid that overhangs it: `auto` plans the fill along the least tilted build direction (within the bead's measured `tilt` and the machines' tilt axes) along which every line over the footprint meets the target in one piece above the scan (the footprint, the finished face's outline, projected along it), the nozzle or the part tilted by it; `vertical`: the layers laid from above",
+    );
     /// `segments { … }`.
     pub static SEGMENTS: Field = Field::new(
         "segments",
@@ -403,6 +410,7 @@ pub static VARIABLE: Block = Block::new(
         &variable::OFFSET,
         &variable::LEVEL,
         &variable::FOLLOW,
+        &variable::DIRECTION,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
         &variable::SEGMENTS,

@@ -87,11 +87,8 @@ pub fn read<'a>(
             .quantity(&variable::LEVEL, diags)
             .map(|(z, sp)| Level::At(Length(z), sp)),
     };
-    let follow = match f.word(&variable::FOLLOW, diags) {
-        None if f.has(&variable::FOLLOW) => None,
-        Some(("surface", at)) => Some(Some(at)),
-        _ => Some(None),
-    };
+    let follow = chosen(&f, &variable::FOLLOW, "surface", diags);
+    let direction = chosen(&f, &variable::DIRECTION, "auto", diags);
     let segments = match f.nested(&variable::SEGMENTS) {
         Some((inner, at)) => {
             let s = Fields::block(
@@ -115,20 +112,21 @@ pub fn read<'a>(
         None => Some((None, None)),
     };
     let declared = offset.flatten();
-    let slicing = match (segments, layers, scan, offset, level, follow) {
+    let slicing = match (segments, layers, scan, offset, level, (follow, direction)) {
         (
             Some((tolerance, min_length)),
             Some(layers),
             Some(scan),
             Some(offset),
             Some(level),
-            Some(follow),
+            (Some(follow), Some(direction)),
         ) => Some(VariableSlicing {
             layers,
             scan,
             offset,
             level,
             follow,
+            direction,
             tolerance: tolerance.map_or(DEFAULT_TOLERANCE, |t| Length(t.0)),
             min_length: min_length.map(|m| Length(m.0)),
             span,
@@ -141,6 +139,21 @@ pub fn read<'a>(
         slicing,
         offset: declared,
         tolerance: super::shared::tolerance(&f, diags).unwrap_or_default(),
+    }
+}
+
+/// A field of two words read as where `word` (the one that is not the
+/// default) is written: `Some(None)` for the default, `None` when wrong.
+fn chosen(
+    f: &Fields<'_>,
+    field: &crate::sema::schema::Field,
+    word: &str,
+    diags: &mut Diagnostics,
+) -> Option<Option<Span>> {
+    match f.word(field, diags) {
+        None if f.has(field) => None,
+        Some((w, at)) if w == word => Some(Some(at)),
+        _ => Some(None),
     }
 }
 

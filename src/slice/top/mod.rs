@@ -29,6 +29,7 @@ mod footprint;
 mod layout;
 mod level;
 mod surface;
+mod tilted;
 mod too_short;
 mod tracks;
 mod undercut;
@@ -62,6 +63,11 @@ pub fn slice(
     slicing: &VariableSlicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     follow::check(model, bead, slicing)?;
+    if let Some(at) = slicing.direction {
+        if let Some(tilted) = tilted::slice(model, bead, ex, slicing, at) {
+            return tilted;
+        }
+    }
     match (&ex.base, slicing.level) {
         (Some(scan), Level::Auto(_) | Level::At(..)) => {
             level::slice(model, bead, ex, slicing, scan)

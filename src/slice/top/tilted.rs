@@ -1,0 +1,488 @@
+//! `direction = auto` (docs/repair.md, *Undercuts*): a target that
+//! overhangs the scan, filled along a tilted build direction `d`.
+//!
+//! Layers laid along `d` stand on each other along `d`: every line along
+//! `d` over the footprint must meet the target above the scan in one
+//! piece, from the scan up, or its upper piece is laid on nothing. The
+//! lines are the footprint's points at the finished face's height (the
+//! profile is the face's outline seen from above), followed down along
+//! `−d` to the scan. The directions tried tilt from vertical in steps of
+//! [`TILT_STEP`] toward [`AZIMUTHS`] directions round the vertical, up to
+//! the most the bead and the machines tilt; the first that builds every
+//! line is the least tilt. A direction that fails at a line is likely to
+//! fail there again at the next, so that line is tried first.
+//!
+//! Then the fill is planned as a vertical one is, in the part turned so
+//! that `d` is up: the scan's surface turned and rastered again (what it
+//! hides from `d`'s side is no surface: `lmd::scan-coverage`), the target
+//! turned (its inside test turned back into the part), the footprint the
+//! profile at the face's height projected along `d`. Its layers are
+//! turned back: each point's position, nozzle and travel direction, and
+//! the layer's frame, whose `z` is then `d`. A point's layer height and
+//! pitch are along and across `d`, as they were along and across the
+//! turned vertical: `lmd::stacking`, deposit and the bead's tilt read them
+//! as a tilted nozzle's.
+
+use super::surface::Base;
+use crate::diag::message::top::Untilted;
+use crate::diag::{message, Diagnostics};
+use crate::geometry::outline;
+use crate::geometry::scan::HeightField;
+use crate::geometry::shape::{Outline, Segment, Shape};
+use crate::geometry::target::{Inner, Target, Turned};
+use crate::ir::{Frame, Kinematics, Layer, Machine};
+use crate::sema::model::{Bead, Model, ScanBase, Top, TopExtrusion, TopSolid, VariableSlicing};
+use crate::span::Span;
+use crate::units::Length;
+use nalgebra::{Rotation3, Vector3};
+use std::sync::Arc;
+
+/// Degrees between the tilts tried.
+const TILT_STEP: f64 = 1.0;
+
+/// The directions round the vertical tried at each tilt.
+const AZIMUTHS: usize = 24;
+
+/// The most tilt tried, deg: a line nearer horizontal runs along the part.
+const MAX_TILT: f64 = 85.0;
+
+/// The step along a line, mm: a piece of the target thinner than this
+/// along it can be missed.
+const STEP: f64 = 0.05;
+
+/// Most lines over the footprint (their spacing grows to fit).
+const MAX_LINES: f64 = 4000.0;
+
+/// How far inside the footprint's edge the outermost lines run, mm: on
+/// it, to within a hundredth of a millimetre.
+const EDGE: f64 = 0.01;
+
+/// Chord error of the footprint's outline, mm (the footprint's own).
+const CHORD_ERROR: f64 = 0.01;
+
+/// A build direction: its tilt from vertical and the direction it tilts
+/// toward, deg from +x counter-clockwise.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Direction {
+    tilt: f64,
+    azimuth: f64,
+}
+
+impl Direction {
+    const VERTICAL: Direction = Direction {
+        tilt: 0.0,
+        azimuth: 0.0,
+    };
+
+    /// The unit vector.
+    fn vector(self) -> [f64; 3] {
+        let (st, ct) = self.tilt.to_radians().sin_cos();
+        let (sa, ca) = self.azimuth.to_radians().sin_cos();
+        [st * ca, st * sa, ct]
+    }
+
+    fn pair(self) -> [f64; 2] {
+        [self.tilt, self.azimuth]
+    }
+
+    /// Every direction tried with a tilt in `(from, to]` deg, least tilt
+    /// first.
+    fn tried(from: f64, to: f64) -> impl Iterator<Item = Direction> {
+        let steps = (to.min(MAX_TILT) / TILT_STEP + 1e-9).floor() as usize;
+        let first = (from / TILT_STEP + 1e-9).floor() as usize + 1;
+        (first..=steps).flat_map(|k| {
+            (0..AZIMUTHS).map(move |a| Direction {
+                tilt: k as f64 * TILT_STEP,
+                azimuth: a as f64 * 360.0 / AZIMUTHS as f64,
+            })
+        })
+    }
+}
+
+/// What a line along a direction meets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Meets {
+    /// The target in one piece from the scan up.
+    OnePiece,
+    /// The target again above the scan after leaving it, at this point.
+    Again([f64; 3]),
+    /// No scan under it, or no target over the scan.
+    Nothing,
+}
+
+/// The lines over the footprint and what they are tested against.
+struct Lines<'a> {
+    /// The footprint's points, mm.
+    from: Vec<[f64; 2]>,
+    /// The finished face's height the lines pass through, mm.
+    face: f64,
+    /// Above the target and below the scan, mm.
+    z: [f64; 2],
+    scan: &'a HeightField,
+    top: &'a Top,
+}
+
+impl Lines<'_> {
+    fn inside(&self, q: [f64; 3]) -> bool {
+        match self.top {
+            Top::Mesh(m) => m.surface.crossings_above([q[0], q[1]], q[2]).len() % 2 == 1,
+            Top::Solid(s) => s.surface.contains(q),
+            _ => false,
+        }
+    }
+
+    /// What the line through footprint point `k` along `d` meets, walked
+    /// down from above the target to the scan.
+    fn meets(&self, k: usize, d: [f64; 3]) -> Meets {
+        let p = self.from[k];
+        let at = |s: f64| [p[0] + s * d[0], p[1] + s * d[1], self.face + s * d[2]];
+        let top = (self.z[1] - self.face) / d[2];
+        let bottom = (self.z[0] - self.face) / d[2];
+        let n = ((top - bottom) / STEP).ceil().clamp(1.0, 1e6) as usize;
+        let (mut was, mut pieces) = (false, 0);
+        for i in 0..=n {
+            let q = at(top - (top - bottom) * i as f64 / n as f64);
+            match self.scan.at([q[0], q[1]]) {
+                Some(b) if q[2] <= b => {
+                    return if pieces > 0 {
+                        Meets::OnePiece
+                    } else {
+                        Meets::Nothing
+                    }
+                }
+                // Off the scan below its highest point: nothing known to
+                // stand on.
+                None if q[2] <= self.scan.stats.z_range[1] => return Meets::Nothing,
+                _ => {}
+            }
+            let is = self.inside(q);
+            if is && !was {
+                pieces += 1;
+                if pieces > 1 {
+                    return Meets::Again(q);
+                }
+            }
+            was = is;
+        }
+        Meets::Nothing
+    }
+
+    /// The first line (the one at `first` tried first) along `d` that does
+    /// not meet the target in one piece, and what it meets; `None` when
+    /// every one does. `nothing`: whether a line meeting nothing fails.
+    fn fails(&self, d: Direction, first: usize, nothing: bool) -> Option<(usize, Meets)> {
+        let v = d.vector();
+        let n = self.from.len();
+        (0..n)
+            .map(|i| (first + i) % n)
+            .find_map(|k| match self.meets(k, v) {
+                Meets::OnePiece => None,
+                Meets::Nothing if !nothing => None,
+                m => Some((k, m)),
+            })
+    }
+
+    /// The least tilted direction in `(from, to]` deg that builds every
+    /// line.
+    fn least(&self, from: f64, to: f64, witness: &mut usize) -> Option<Direction> {
+        Direction::tried(from, to).find(|&d| match self.fails(d, *witness, true) {
+            Some((k, _)) => {
+                *witness = k;
+                false
+            }
+            None => true,
+        })
+    }
+}
+
+/// The fill of `ex` along the least tilted direction that builds it, when
+/// vertical does not (`direction = auto` at `at`); `None` when vertical
+/// builds it (or the top is no target mesh or solid on a scan), to be
+/// planned from above as without `direction`.
+pub(super) fn slice(
+    model: &Model,
+    bead: &Bead,
+    ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+    at: Span,
+) -> Option<Result<(Vec<Layer>, Diagnostics), Diagnostics>> {
+    let lines = lines(ex, bead)?;
+    // Vertical is today's plan: its other refusals (a line off the scan or
+    // the target) are its own.
+    let (mut witness, _) = lines.fails(Direction::VERTICAL, 0, false)?;
+    let (limit, by) = limit(model, bead);
+    let Some(d) = lines.least(0.0, limit, &mut witness) else {
+        return Some(Err(untilted(&lines, ex, at, (limit, &by), witness).into()));
+    };
+    Some(plan(model, bead, ex, slicing, at, &lines, d))
+}
+
+/// The lines over `ex`'s footprint (every eighth of a bead, or wider to
+/// keep to [`MAX_LINES`]), when its top is a target mesh or
+/// solid on a scan and has a face over the footprint.
+fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
+    let scan = &ex.base.as_ref()?.surface;
+    let bounds = match &ex.top {
+        Top::Mesh(m) => m.surface.bounds(),
+        Top::Solid(s) => s.surface.bounds()?,
+        _ => return None,
+    };
+    let profile = outline::profile(&ex.shape, CHORD_ERROR);
+    let [lo, hi] = profile.bounds()?;
+    let spacing = (bead.width.0 / 8.0).max(((hi[0] - lo[0]) * (hi[1] - lo[1]) / MAX_LINES).sqrt());
+    if !(spacing.is_finite() && spacing > 0.0) {
+        return None;
+    }
+    let count = |k: usize| ((hi[k] - lo[k]) / spacing).floor() as usize + 1;
+    let mut from = Vec::new();
+    for j in 0..count(1) {
+        for i in 0..count(0) {
+            let p = [
+                lo[0] + (i as f64 + 0.5) * spacing,
+                lo[1] + (j as f64 + 0.5) * spacing,
+            ];
+            if profile.contains(p) && profile.distance_to_boundary(p) >= EDGE {
+                from.push(p);
+            }
+        }
+    }
+    // And along the edge, where the outer beads' edges are: a line there
+    // along a direction that leans less than the target's face leaves the
+    // target through it.
+    for edge in profile.offset_inward(EDGE) {
+        let ring = edge.polyline(CHORD_ERROR);
+        for (k, &a) in ring.iter().enumerate() {
+            let b = ring[(k + 1) % ring.len()];
+            let n = ((b[0] - a[0]).hypot(b[1] - a[1]) / spacing)
+                .ceil()
+                .clamp(1.0, 1e4) as usize;
+            from.extend((0..n).map(|i| {
+                let t = i as f64 / n as f64;
+                [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+            }));
+        }
+    }
+    // The finished face: the target's highest point over the footprint.
+    let face = from
+        .iter()
+        .filter_map(|&p| ex.top.mesh_at(p).flatten())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let z = [scan.stats.z_range[0] - 1.0, bounds[1][2] + 1.0];
+    let usable = !from.is_empty() && face.is_finite() && z.iter().all(|v| v.is_finite());
+    usable.then_some(Lines {
+        from,
+        face,
+        z,
+        scan,
+        top: &ex.top,
+    })
+}
+
+/// The most tilt from vertical (deg) the bead and the machines allow, and
+/// what holds it there: the bead's measured `tilt` (none: vertical), each
+/// CNC's tilt axis (a 3-axis one's nozzle stays vertical). A robot's arm
+/// has no single tilt limit; its poses are checked by its rules.
+fn limit(model: &Model, bead: &Bead) -> (f64, String) {
+    let mut most = match bead.tilt {
+        Some((t, _)) => (
+            t[1].to_degrees(),
+            format!("bead `{}`'s measured `tilt`", bead.name),
+        ),
+        None => (
+            0.0,
+            format!("bead `{}`, measured vertical (no `tilt`)", bead.name),
+        ),
+    };
+    for (m, _) in &model.machines {
+        if let Machine::Cnc(c) = m {
+            let t = match c.effective_kinematics() {
+                Kinematics::Xyz => 0.0,
+                _ => c.limits.tilt[0].abs().max(c.limits.tilt[1].abs()),
+            };
+            if t < most.0 {
+                most = (t, format!("machine `{}`'s tilt axis", m.name()));
+            }
+        }
+    }
+    (most.0.clamp(0.0, MAX_TILT), most.1)
+}
+
+/// The refusal when no direction within `limit` builds every line: where
+/// the most tilted allowed direction toward the one that would fails.
+fn untilted(
+    lines: &Lines<'_>,
+    ex: &TopExtrusion,
+    at: Span,
+    limit: (f64, &str),
+    witness: usize,
+) -> crate::diag::Diagnostic {
+    let mut k = witness;
+    let needs = lines.least(limit.0, MAX_TILT, &mut k);
+    let best = Direction {
+        tilt: (limit.0 / TILT_STEP + 1e-9).floor() * TILT_STEP,
+        azimuth: needs.map_or(0.0, |d| d.azimuth),
+    };
+    let (point, again) = match lines.fails(best, witness, true) {
+        Some((_, Meets::Again(q))) => (q, true),
+        Some((k, _)) => {
+            let p = lines.from[k];
+            ([p[0], p[1], lines.face], false)
+        }
+        None => {
+            let p = lines.from[witness.min(lines.from.len().saturating_sub(1))];
+            ([p[0], p[1], lines.face], true)
+        }
+    };
+    message::top::untilted(&Untilted {
+        at: point,
+        again,
+        limit,
+        needs: needs.map(Direction::pair),
+        direction: at,
+        top: ex.top_span,
+    })
+}
+
+/// The fill planned along `d` in the part turned so that `d` is up, and
+/// turned back.
+fn plan(
+    model: &Model,
+    bead: &Bead,
+    ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+    at: Span,
+    lines: &Lines<'_>,
+    d: Direction,
+) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    let tilted = |field: &str, span: Span| message::top::tilted_with(field, d.pair(), span, at);
+    if let Some(span) = slicing.level.span() {
+        return Err(tilted("level", span).into());
+    }
+    if let Some(span) = slicing.follow {
+        return Err(tilted("follow", span).into());
+    }
+    let v = Vector3::from(d.vector());
+    let rot = Rotation3::rotation_between(&v, &Vector3::z()).unwrap_or_else(Rotation3::identity);
+    let turned = turn(ex, lines, rot)?;
+    let base = Base::of(&turned, None);
+    let built = super::build(model, bead, &turned, slicing, base).map_err(|e| {
+        let mut out = Diagnostics::new();
+        for x in e.into_vec() {
+            out.push(message::top::in_turned_frame(x, d.pair()));
+        }
+        out
+    })?;
+    let back = rot.inverse();
+    let layers = built
+        .layers
+        .into_iter()
+        .map(|l| turn_back(l, &back))
+        .collect();
+    Ok((layers, built.warnings))
+}
+
+/// `ex` turned by `rot`: its scan turned and rastered again, its target
+/// turned, its footprint the profile at the face's height turned.
+fn turn(
+    ex: &TopExtrusion,
+    lines: &Lines<'_>,
+    rot: Rotation3<f64>,
+) -> Result<TopExtrusion, Diagnostics> {
+    let internal = |what: &str| message::top::internal(what);
+    let scan = ex
+        .base
+        .as_ref()
+        .ok_or_else(|| internal("a tilted fill without a scan"))?;
+    let surface = scan
+        .surface
+        .turned(&rot, f64::INFINITY)
+        .map_err(|_| internal("the scan turned to the build direction has no surface"))?;
+    let (inner, name) = match &ex.top {
+        Top::Mesh(m) => (Inner::Mesh(m.surface.clone()), m.path.clone()),
+        Top::Solid(s) => (Inner::Solid(s.surface.clone()), s.name.clone()),
+        _ => return Err(internal("a tilted fill of a top that is no target")),
+    };
+    let target =
+        Turned::new(inner, rot).ok_or_else(|| internal("the target has no finite extent"))?;
+    let profile = outline::profile(&ex.shape, CHORD_ERROR);
+    let mut pts: Vec<[Length; 2]> = Vec::new();
+    for p in profile.polyline(CHORD_ERROR) {
+        let q = rot * Vector3::new(p[0], p[1], lines.face);
+        let q = [Length(q.x), Length(q.y)];
+        if pts.last() != Some(&q) {
+            pts.push(q);
+        }
+    }
+    if pts.len() > 1 && pts.first() == pts.last() {
+        pts.pop();
+    }
+    let (start, rest) = pts
+        .split_first()
+        .ok_or_else(|| internal("an empty footprint"))?;
+    let shape = Shape::Outline(Outline {
+        start: *start,
+        segments: rest.iter().map(|&to| Segment::Line { to }).collect(),
+    });
+    Ok(TopExtrusion {
+        shape,
+        top: Top::Solid(TopSolid {
+            name,
+            surface: Arc::new(Target::Turned(target)),
+        }),
+        base: Some(ScanBase {
+            surface: Arc::new(surface),
+            ..scan.clone()
+        }),
+        ..ex.clone()
+    })
+}
+
+/// A layer planned in the turned frame, turned back into the part by
+/// `back`.
+fn turn_back(mut layer: Layer, back: &Rotation3<f64>) -> Layer {
+    let turn = |v: [f64; 3]| {
+        let t = back * Vector3::from(v);
+        [t.x, t.y, t.z]
+    };
+    let turn32 = |v: [f32; 3]| {
+        let t = turn(v.map(f64::from));
+        t.map(|c| c as f32)
+    };
+    for p in layer.paths.iter_mut().flat_map(|p| &mut p.points) {
+        p.pos = turn(p.pos);
+        p.normal = turn32(p.normal);
+        p.tangent = turn32(p.tangent);
+    }
+    let f = layer.frame;
+    layer.frame = Frame {
+        origin: turn(f.origin),
+        x: turn(f.x),
+        y: turn(f.y),
+        z: turn(f.z),
+    };
+    layer
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn directions_are_tried_least_tilt_first_within_the_limit() {
+        let all: Vec<Direction> = Direction::tried(0.0, 2.5).collect();
+        assert_eq!(all.len(), 2 * AZIMUTHS);
+        assert_eq!(all[0].pair(), [1.0, 0.0]);
+        assert_eq!(all[AZIMUTHS].pair(), [2.0, 0.0]);
+        assert_eq!(Direction::tried(0.0, 0.0).count(), 0);
+        assert_eq!(
+            Direction::tried(30.0, 31.0).next().map(|d| d.tilt),
+            Some(31.0)
+        );
+        let v = Direction {
+            tilt: 30.0,
+            azimuth: 90.0,
+        }
+        .vector();
+        assert!((v[1] - 0.5).abs() < 1e-12 && v[0].abs() < 1e-12, "{v:?}");
+    }
+}
