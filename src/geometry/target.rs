@@ -156,7 +156,8 @@ impl Inner {
 /// A target seen along a tilted build direction: the part's coordinates
 /// turned by `rot` so the direction is up. Its surface along a vertical
 /// line of the turned frame is found as a loft's is: the inside test
-/// (turned back into the part) every [`STEP`], each change bisected to
+/// (turned back into the part) every [`STEP`] (at most
+/// [`MAX_LINE_SAMPLES`] times a line), each change bisected to
 /// [`RESOLUTION`]. A piece thinner than the step along the line can be
 /// missed.
 #[derive(Debug)]
@@ -210,45 +211,8 @@ impl Turned {
             return Vec::new();
         }
         let inside = |h: f64| self.contains_turned([p[0], p[1], h]);
-        walk(inside, [self.z[0].max(z), self.z[1]], first, false)
+        march([self.z[0].max(z), self.z[1]], false, first, inside)
     }
-}
-
-/// The heights in `[lo, hi]` where `inside` changes, highest first (only
-/// the first when `first`): tested every [`STEP`] down from `hi`, each
-/// change bisected to [`RESOLUTION`]; `lo` too when inside there and
-/// `bottom` (the solid's own lowest height).
-fn walk(inside: impl Fn(f64) -> bool, [lo, hi]: [f64; 2], first: bool, bottom: bool) -> Vec<f64> {
-    let mut out = Vec::new();
-    if hi.is_nan() || lo.is_nan() || hi <= lo {
-        return out;
-    }
-    let n = ((hi - lo) / STEP).ceil().clamp(1.0, 1e7) as usize;
-    let at = |k: usize| hi - (hi - lo) * k as f64 / n as f64;
-    let mut was = inside(hi);
-    if was {
-        out.push(hi);
-        if first {
-            return out;
-        }
-    }
-    for k in 1..=n {
-        let h = at(k);
-        let is = inside(h);
-        if is != was {
-            // The end inside is the one kept: the height found is in the solid.
-            let (good, bad) = if was { (at(k - 1), h) } else { (h, at(k - 1)) };
-            out.push(super::bisect(good, bad, RESOLUTION, &inside));
-            if first {
-                return out;
-            }
-        }
-        was = is;
-    }
-    if was && bottom {
-        out.push(lo);
-    }
-    out
 }
 
 /// A loft as a target: its sections as written are its faces.
