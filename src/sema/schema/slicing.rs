@@ -490,6 +490,7 @@ pub static ANY: Block = Block::new(
         &variable::SCAN,
         &variable::LEVEL,
         &variable::FOLLOW,
+        &variable::DIRECTION,
         &continuous::STEP,
         &variable::SEGMENTS,
     ],
