@@ -134,16 +134,7 @@ fn fit_finds_the_values_that_made_the_temperatures() {
     }
     let file = dir.path().join("temperatures.csv");
     std::fs::write(&file, sheet).unwrap();
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lmdc"))
-        .arg("fit")
-        .arg(&file)
-        .arg("--plan")
-        .arg(&plan)
-        .arg("--json")
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let r = fit_plan(&file, &plan);
     let eta = r["absorptivity"].as_f64().unwrap();
     let h = r["heat_transfer"].as_f64().unwrap();
     assert!(t.max_interpass.is_none() && t.layers[39].interpass > 200.0);
@@ -526,19 +517,24 @@ fn fit_over_islands_finds_the_values_that_made_the_temperatures() {
     }
     let file = dir.path().join("temperatures.csv");
     std::fs::write(&file, sheet).unwrap();
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lmdc"))
-        .arg("fit")
-        .arg(&file)
-        .arg("--plan")
-        .arg(&plan)
-        .arg("--json")
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let r = fit_plan(&file, &plan);
     let eta = r["absorptivity"].as_f64().unwrap();
     let h = r["heat_transfer"].as_f64().unwrap();
     assert!((eta - t.absorptivity).abs() < 0.005, "{r}");
     assert!((h - t.heat_transfer).abs() < 1.0, "{r}");
     assert!(r["rms"].as_f64().unwrap() < 0.05, "{r}");
+}
+
+/// `lmdc fit SHEET --plan PLAN --json`, which must succeed: its object.
+fn fit_plan(sheet: &std::path::Path, plan: &std::path::Path) -> serde_json::Value {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .arg("fit")
+        .arg(sheet)
+        .arg("--plan")
+        .arg(plan)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    serde_json::from_slice(&o.stdout).unwrap()
 }

@@ -113,24 +113,6 @@ fn slab(a: f64, direction: &str) -> lmdc::pipeline::Compiled {
     compile(&src, files)
 }
 
-/// The laser-on moves: start, end, layer height along the nozzle, pitch.
-fn laid(p: &Program) -> Vec<([f64; 3], [f64; 3], f64, f64)> {
-    let mut out = Vec::new();
-    for path in p.layers.iter().flat_map(|l| &l.paths) {
-        for w in path.points.windows(2) {
-            if w[0].laser_on {
-                out.push((
-                    w[0].pos,
-                    w[1].pos,
-                    f64::from(w[0].layer_height),
-                    f64::from(w[0].pitch),
-                ));
-            }
-        }
-    }
-    out
-}
-
 /// Planned along the least tilt that builds it: 30° toward +x (the slab's
 /// lean, to the degree; its faces leave the lines at the footprint's edge
 /// less tilted); every point's nozzle and every layer's frame along it;
@@ -164,7 +146,7 @@ fn a_leaning_slab_is_filled_along_its_lean_on_a_tilting_head() {
         }
     }
     assert!(p.layers.len() >= 4, "{}", p.layers.len());
-    let moves = laid(p);
+    let moves = super::moves(p);
     assert!(moves.len() > 100);
     for (a, b, h, _) in &moves {
         let mid = [0, 1, 2].map(|k| (a[k] + b[k]) / 2.0 + d[k] * h / 2.0);
