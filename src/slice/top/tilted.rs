@@ -138,7 +138,11 @@ impl Lines<'_> {
         let at = |s: f64| [p[0] + s * d[0], p[1] + s * d[1], self.face + s * d[2]];
         let top = (self.z[1] - self.face) / d[2];
         let bottom = (self.z[0] - self.face) / d[2];
-        let n = ((top - bottom) / STEP).ceil().clamp(1.0, 1e6) as usize;
+        // As a loft's vertical lines: a tall target is walked more coarsely,
+        // so each line costs a bounded time.
+        let n = ((top - bottom) / STEP)
+            .ceil()
+            .clamp(1.0, crate::geometry::target::MAX_LINE_SAMPLES) as usize;
         let (mut was, mut pieces) = (false, 0);
         for i in 0..=n {
             let q = at(top - (top - bottom) * i as f64 / n as f64);
