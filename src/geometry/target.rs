@@ -86,6 +86,25 @@ impl Target {
         }
     }
 
+    /// The most samples of its inside test one vertical line takes: a
+    /// loft's or a turned target's walk ([`march`]); 1 for a prism or a
+    /// mesh, whose crossings are found from their faces.
+    pub fn line_samples(&self) -> f64 {
+        let walk = |[lo, hi]: [f64; 2]| {
+            let n = ((hi - lo) / STEP).ceil();
+            if n.is_finite() {
+                n.clamp(1.0, MAX_LINE_SAMPLES)
+            } else {
+                MAX_LINE_SAMPLES
+            }
+        };
+        match self {
+            Target::Prism { .. } | Target::Mesh(_) => 1.0,
+            Target::Loft(l) => walk(l.z),
+            Target::Turned(t) => walk(t.z),
+        }
+    }
+
     /// The box (mm) the solid lies within, lowest corner and highest;
     /// `None` when it has no finite box.
     pub fn bounds(&self) -> Option<[[f64; 3]; 2]> {
@@ -509,6 +528,35 @@ mod tests {
     }
 
     /// A prism's crossings: its top, then the plate.
+    /// A line down a loft takes a sample every 0.05 mm of its height, at
+    /// most [`MAX_LINE_SAMPLES`]; a prism's is found from its faces.
+    #[test]
+    fn a_lofts_line_samples_follow_its_height_up_to_the_cap() {
+        let box_of = |length: f64| {
+            let spine = Spine::Line {
+                length: Length(length),
+            };
+            let l = LoftTarget::new(
+                rect(80.0, 40.0),
+                rect(80.0, 40.0),
+                Morph::Radial,
+                spine,
+                0.0,
+            );
+            Target::Loft(l.unwrap())
+        };
+        assert_eq!(box_of(13.0).line_samples(), 260.0);
+        assert_eq!(box_of(1000.0).line_samples(), MAX_LINE_SAMPLES);
+        let prism = Target::Prism {
+            region: crate::geometry::outline::region(
+                &crate::geometry::shape::Shape::Section(rect(10.0, 10.0)),
+                0.001,
+            ),
+            height: 13.0,
+        };
+        assert_eq!(prism.line_samples(), 1.0);
+    }
+
     /// Down a line of 1 m, two pieces 200 mm apart: the samples are capped
     /// at [`MAX_LINE_SAMPLES`] (and the bisections of its four changes), and
     /// every change is still found to [`RESOLUTION`].

@@ -194,8 +194,9 @@ pub fn sample(
     };
     let [t_lo, t_hi] = fp.written_extent(scan);
     let cells = (c_hi - c_lo + pitch) * (t_hi - t_lo + pitch) / (pitch * pitch);
-    let pitch = if cells > MAX_SAMPLES {
-        pitch * (cells / MAX_SAMPLES).sqrt()
+    let most = top.most_samples(MAX_SAMPLES);
+    let pitch = if cells > most {
+        pitch * (cells / most).sqrt()
     } else {
         pitch
     };

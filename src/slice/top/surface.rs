@@ -18,6 +18,10 @@ use crate::geometry::target::Target;
 use crate::sema::model::{Axis, Top, TopExtrusion};
 use crate::sema::TopHeights;
 
+/// The most inside tests of a target solid one pass over the footprint
+/// makes ([`Surface::most_samples`]): some seconds.
+pub const LINE_WORK: f64 = 1e7;
+
 /// The top, ready to evaluate, over its base.
 pub struct Surface<'m> {
     /// The top's form.
@@ -86,6 +90,18 @@ impl<'m> Surface<'m> {
         Surface {
             form: Form::new(ex, extent),
             base,
+        }
+    }
+
+    /// How many points a pass over the footprint may evaluate, `most` for
+    /// a top that is cheap at a point: fewer for a target solid walked
+    /// down each line ([`Target::line_samples`]), so that a pass tests its
+    /// inside at most [`LINE_WORK`] times (a tall loft over a large
+    /// footprint is sampled more coarsely rather than for hours).
+    pub fn most_samples(&self, most: f64) -> f64 {
+        match self.form {
+            Form::Solid(t) => most.min(LINE_WORK / t.line_samples()),
+            _ => most,
         }
     }
 

@@ -93,6 +93,7 @@ pub fn plan(
     };
     let mut bad: Option<Bad> = None;
     let mut more = 0usize;
+    let most = top.most_samples(MAX_SAMPLES);
     let mut eval = |p: [f64; 2]| match top.at(p) {
         Ok(h) => Some(h),
         Err(e) => {
@@ -107,7 +108,7 @@ pub fn plan(
     let lines = fp.intervals(scan, &layout.centres);
     // A huge footprint is sampled more coarsely: a bounded number of points.
     let total: f64 = lines.iter().flatten().map(|[a, b]| b - a).sum();
-    let pitch = pitch.max(total / MAX_SAMPLES);
+    let pitch = pitch.max(total / most);
     for ((&c, &track_pitch), intervals) in layout.centres.iter().zip(&layout.pitches).zip(lines) {
         for [a, b] in intervals {
             let samples: Vec<(f64, f64)> = spaced(a, b, pitch)
