@@ -87,7 +87,7 @@ impl Target {
     }
 
     /// The most samples of its inside test one vertical line takes: a
-    /// loft's or a turned target's walk ([`march`]); 1 for a prism or a
+    /// loft's or a turned target's walk (`march`); 1 for a prism or a
     /// mesh, whose crossings are found from their faces.
     pub fn line_samples(&self) -> f64 {
         let walk = |[lo, hi]: [f64; 2]| {
