@@ -193,11 +193,7 @@ fn hottest_island(p: &lmdc::ir::Program) -> f64 {
 #[test]
 fn the_pillars_keep_their_limit_by_their_order() {
     let src = std::fs::read_to_string("examples/two_pillars.lmd").unwrap();
-    let tris = [
-        cuboid([0.0, 0.0, 0.0], [12.0, 12.0, 10.0]),
-        cuboid([40.0, 0.0, 0.0], [52.0, 12.0, 10.0]),
-    ]
-    .concat();
+    let tris = two_pillars();
     let order = pillars(&src, &tris).expect("order keeps 320 °C");
     let dwell = pillars(&src.replace("cooling = order", "cooling = dwell"), &tris).unwrap();
     let (to, td) = (
@@ -407,11 +403,7 @@ fn order_and_dwell_wait_less_than_dwell_alone() {
     let src = std::fs::read_to_string("examples/two_pillars.lmd")
         .unwrap()
         .replace("max_interpass = 320 degC", "max_interpass = 250 degC");
-    let tris = [
-        cuboid([0.0, 0.0, 0.0], [12.0, 12.0, 10.0]),
-        cuboid([40.0, 0.0, 0.0], [52.0, 12.0, 10.0]),
-    ]
-    .concat();
+    let tris = two_pillars();
     assert!(pillars(&src, &tris).is_none(), "order alone keeps 250 °C");
     let both = pillars(
         &src.replace("cooling = order", "cooling = [order, dwell]"),
@@ -494,11 +486,7 @@ fn order_and_dwell_wait_less_than_dwell_alone() {
 #[test]
 fn fit_over_islands_finds_the_values_that_made_the_temperatures() {
     let src = std::fs::read_to_string("examples/two_pillars.lmd").unwrap();
-    let tris = [
-        cuboid([0.0, 0.0, 0.0], [12.0, 12.0, 10.0]),
-        cuboid([40.0, 0.0, 0.0], [52.0, 12.0, 10.0]),
-    ]
-    .concat();
+    let tris = two_pillars();
     let p = pillars(&src, &tris).expect("order keeps 320 °C");
     let t = p.thermal.as_ref().unwrap();
     assert!(t.layers.iter().all(|l| l.islands.len() == 2));
@@ -537,4 +525,14 @@ fn fit_plan(sheet: &std::path::Path, plan: &std::path::Path) -> serde_json::Valu
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     serde_json::from_slice(&o.stdout).unwrap()
+}
+
+/// The mesh of examples/two_pillars.lmd: two 12 mm pillars 10 mm tall,
+/// 28 mm apart.
+fn two_pillars() -> Vec<lmdc::geometry::mesh::stl::Triangle> {
+    [
+        cuboid([0.0, 0.0, 0.0], [12.0, 12.0, 10.0]),
+        cuboid([40.0, 0.0, 0.0], [52.0, 12.0, 10.0]),
+    ]
+    .concat()
 }
