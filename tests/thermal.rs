@@ -128,13 +128,7 @@ fn fit_finds_the_values_that_made_the_temperatures() {
     let c = compile(&src, &mut ());
     let p = c.program.expect("the example compiles");
     let t = p.ir().thermal.as_ref().unwrap();
-    let mut sheet = String::from("layer, interpass (degC)\n");
-    for (i, l) in t.layers.iter().enumerate().skip(1).step_by(4) {
-        sheet.push_str(&format!("{}, {:.3}\n", i + 1, l.interpass));
-    }
-    let file = dir.path().join("temperatures.csv");
-    std::fs::write(&file, sheet).unwrap();
-    let r = fit_plan(&file, &plan);
+    let r = fit_every(dir.path(), t, 4, &plan);
     let eta = r["absorptivity"].as_f64().unwrap();
     let h = r["heat_transfer"].as_f64().unwrap();
     assert!(t.max_interpass.is_none() && t.layers[39].interpass > 200.0);
@@ -499,18 +493,29 @@ fn fit_over_islands_finds_the_values_that_made_the_temperatures() {
     .unwrap();
     let plan = dir.path().join("pillars.lmd");
     std::fs::write(&plan, &src).unwrap();
-    let mut sheet = String::from("layer, interpass (degC)\n");
-    for (i, l) in t.layers.iter().enumerate().skip(1).step_by(2) {
-        sheet.push_str(&format!("{}, {:.3}\n", i + 1, l.interpass));
-    }
-    let file = dir.path().join("temperatures.csv");
-    std::fs::write(&file, sheet).unwrap();
-    let r = fit_plan(&file, &plan);
+    let r = fit_every(dir.path(), t, 2, &plan);
     let eta = r["absorptivity"].as_f64().unwrap();
     let h = r["heat_transfer"].as_f64().unwrap();
     assert!((eta - t.absorptivity).abs() < 0.005, "{r}");
     assert!((h - t.heat_transfer).abs() < 1.0, "{r}");
     assert!(r["rms"].as_f64().unwrap() < 0.05, "{r}");
+}
+
+/// `lmdc fit` over a sheet of `t`'s interpass temperatures, every
+/// `step`-th layer from the second, written into `dir`, with `--plan PLAN`.
+fn fit_every(
+    dir: &std::path::Path,
+    t: &lmdc::ir::Thermal,
+    step: usize,
+    plan: &std::path::Path,
+) -> serde_json::Value {
+    let mut sheet = String::from("layer, interpass (degC)\n");
+    for (i, l) in t.layers.iter().enumerate().skip(1).step_by(step) {
+        sheet.push_str(&format!("{}, {:.3}\n", i + 1, l.interpass));
+    }
+    let file = dir.join("temperatures.csv");
+    std::fs::write(&file, sheet).unwrap();
+    fit_plan(&file, plan)
 }
 
 /// `lmdc fit SHEET --plan PLAN --json`, which must succeed: its object.
