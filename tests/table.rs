@@ -704,3 +704,54 @@ fn a_table_must_say_where_its_axes_are() {
         );
     }
 }
+
+/// A fill along a tilted direction (docs/repair.md, *Undercuts*) on a
+/// table: examples/leaning_slab.lmd's slab, leaning 30° toward +x, on this
+/// example's machine-coordinate table. The table turns the part so that
+/// the slab's lean stands up under the vertical nozzle: every deposit read
+/// back through the test's forward kinematics is the IR's point, and the
+/// direction the table stands up is the lean, 30° from the part's
+/// vertical, on every deposit.
+#[test]
+fn a_leaning_slab_is_filled_with_the_table_standing_its_lean_up() {
+    let slab = std::fs::read_to_string("examples/leaning_slab.lmd").unwrap();
+    let table = std::fs::read_to_string(EXAMPLE).unwrap();
+    let machine = &table[table.find("machine trt_machine").unwrap()..];
+    let machine = &machine[..machine.find("\n}\n").unwrap() + 3];
+    let src = format!("{}{machine}", &slab[..slab.find("machine mill5").unwrap()]);
+    let file = |p: &str| std::fs::read(format!("examples/{p}")).unwrap();
+    let c = crate::support::data::compile_with_files(
+        &src,
+        ["repair/worn_pad.ply", "repair/leaning_slab.stl"].map(|p| (p, file(p))),
+    );
+    let v = c.program.unwrap_or_else(|| {
+        panic!(
+            "{}",
+            lmdc::diag::render(&c.diagnostics, "leaning_slab", &src, false)
+        )
+    });
+    let cnc = table_of(&v, "trt_machine");
+    let t = cnc.table.expect("a table");
+    let o = cnc.placement.origin;
+    let text = ring::files(&v, "trt_machine").into_values().next().unwrap();
+    let lines = motion(&text, 'A');
+    let n = check_deposits(&v, &cnc, &lines, &|l| {
+        let m = [l.xyz[0] + o[0], l.xyz[1] + o[1], l.xyz[2] + o[2]];
+        (
+            part_point(cnc.kinematics, &t, o, m, l.tilt, l.c),
+            resolution(&t, m),
+        )
+    });
+    assert!(n > 1000, "{n} deposits");
+    let lean = 30f64.to_radians();
+    let d = [lean.sin(), 0.0, lean.cos()];
+    for l in lines.iter().filter(|l| !l.rapid && l.laser) {
+        let up = nozzle_in_part(cnc.kinematics, l.tilt, l.c);
+        assert!(
+            norm(minus(up, d)) < 1e-4,
+            "the table at A{} C{} stands {up:?} up, not the slab's lean",
+            l.tilt,
+            l.c
+        );
+    }
+}
