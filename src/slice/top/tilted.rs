@@ -7,9 +7,12 @@
 //! lines are the footprint's points at the finished face's height (the
 //! profile is the face's outline seen from above), followed down along
 //! `−d` to the scan. The directions tried tilt from vertical in steps of
-//! [`TILT_STEP`] toward [`AZIMUTHS`] directions round the vertical, up to
-//! the most the bead and the machines tilt; the first that builds every
-//! line is the least tilt. A direction that fails at a line is likely to
+//! [`TILT_STEP`], toward directions round the vertical as far apart (at
+//! least [`AZIMUTHS`]), up to the most the bead and the machines tilt; the
+//! first that builds every line is the least tilt. Along a tilted
+//! direction the outermost lines run [`SLACK`] of a bead inside the
+//! footprint's edge, so that a face leaning between two directions tried
+//! does not refuse both. A direction that fails at a line is likely to
 //! fail there again at the next, so that line is tried first.
 //!
 //! Then the fill is planned as a vertical one is, in the part turned so
@@ -40,7 +43,9 @@ use std::sync::Arc;
 /// Degrees between the tilts tried.
 const TILT_STEP: f64 = 1.0;
 
-/// The directions round the vertical tried at each tilt.
+/// The directions round the vertical tried at the least tilt; at more,
+/// as many more as keep them [`TILT_STEP`] apart (a multiple of 4, so the
+/// part's axes are among them).
 const AZIMUTHS: usize = 24;
 
 /// The most tilt tried, deg: a line nearer horizontal runs along the part.
@@ -56,6 +61,15 @@ const MAX_LINES: f64 = 4000.0;
 /// How far inside the footprint's edge the outermost lines run, mm: on
 /// it, to within a hundredth of a millimetre.
 const EDGE: f64 = 0.01;
+
+/// How far inside the footprint's edge the outermost lines run along a
+/// tilted direction, in bead widths. A face of the target leaning as the
+/// direction does is met by the lines along its edge only to the angle
+/// the directions are tried at: a line a hundredth inside a slab's face
+/// that leans 36.6° leaves it through the face along 36° or 37°. The
+/// sliver this lets through, at most a twentieth of a bead wide, is less
+/// than a bead's own flank (it is laid over, or left, by that much).
+const SLACK: f64 = 1.0 / 20.0;
 
 /// Chord error of the footprint's outline, mm (the footprint's own).
 const CHORD_ERROR: f64 = 0.01;
@@ -86,16 +100,39 @@ impl Direction {
     }
 
     /// Every direction tried with a tilt in `(from, to]` deg, least tilt
-    /// first.
-    fn tried(from: f64, to: f64) -> impl Iterator<Item = Direction> {
+    /// first: at each tilt the [`AZIMUTHS`], then when `fine` as many
+    /// more as [`Direction::azimuths`] says.
+    fn tried(from: f64, to: f64, fine: bool) -> impl Iterator<Item = Direction> {
         let steps = (to.min(MAX_TILT) / TILT_STEP + 1e-9).floor() as usize;
         let first = (from / TILT_STEP + 1e-9).floor() as usize + 1;
-        (first..=steps).flat_map(|k| {
-            (0..AZIMUTHS).map(move |a| Direction {
-                tilt: k as f64 * TILT_STEP,
-                azimuth: a as f64 * 360.0 / AZIMUTHS as f64,
-            })
+        (first..=steps).flat_map(move |k| {
+            let tilt = k as f64 * TILT_STEP;
+            let n = if fine { Self::azimuths(tilt) } else { 0 };
+            let coarse = (0..AZIMUTHS).map(|a| a as f64 * 360.0 / AZIMUTHS as f64);
+            let fine = (0..n)
+                .map(move |a| a as f64 * 360.0 / n as f64)
+                .filter(|&az| Self::off_coarse(az));
+            coarse
+                .chain(fine)
+                .map(move |azimuth| Direction { tilt, azimuth })
         })
+    }
+
+    /// How many directions round the vertical are tried at `tilt` deg: at
+    /// least [`AZIMUTHS`], and enough that neighbours are at most
+    /// [`TILT_STEP`] apart (a slab leaning 30° toward 37° is met within a
+    /// degree, not 7°). The [`AZIMUTHS`] are tried first at each tilt, so
+    /// that a lean along them is built along it, not along a neighbour
+    /// within a hundredth.
+    fn azimuths(tilt: f64) -> usize {
+        let round = 360.0 * tilt.to_radians().sin() / TILT_STEP;
+        AZIMUTHS.max(4 * (round / 4.0).ceil() as usize)
+    }
+
+    /// Whether `azimuth` deg is none of the [`AZIMUTHS`].
+    fn off_coarse(azimuth: f64) -> bool {
+        let k = azimuth * AZIMUTHS as f64 / 360.0;
+        (k - k.round()).abs() > 1e-9
     }
 }
 
@@ -112,8 +149,12 @@ enum Meets {
 
 /// The lines over the footprint and what they are tested against.
 struct Lines<'a> {
-    /// The footprint's points, mm.
+    /// The footprint's points, mm, the outermost [`EDGE`] inside its edge:
+    /// the vertical lines.
     from: Vec<[f64; 2]>,
+    /// The same, the outermost [`SLACK`] bead widths inside: the tilted
+    /// lines.
+    slack: Vec<[f64; 2]>,
     /// The finished face's height the lines pass through, mm.
     face: f64,
     /// Above the target and below the scan, mm.
@@ -131,10 +172,19 @@ impl Lines<'_> {
         }
     }
 
-    /// What the line through footprint point `k` along `d` meets, walked
+    /// The footprint points of the lines, the outermost [`SLACK`] of a
+    /// bead inside the edge when `slack`.
+    fn points(&self, slack: bool) -> &[[f64; 2]] {
+        if slack {
+            &self.slack
+        } else {
+            &self.from
+        }
+    }
+
+    /// What the line through footprint point `p` along `d` meets, walked
     /// down from above the target to the scan.
-    fn meets(&self, k: usize, d: [f64; 3]) -> Meets {
-        let p = self.from[k];
+    fn meets(&self, p: [f64; 2], d: [f64; 3]) -> Meets {
         let at = |s: f64| [p[0] + s * d[0], p[1] + s * d[1], self.face + s * d[2]];
         let top = (self.z[1] - self.face) / d[2];
         let bottom = (self.z[0] - self.face) / d[2];
@@ -174,12 +224,19 @@ impl Lines<'_> {
     /// The first line (the one at `first` tried first) along `d` that does
     /// not meet the target in one piece, and what it meets; `None` when
     /// every one does. `nothing`: whether a line meeting nothing fails.
-    fn fails(&self, d: Direction, first: usize, nothing: bool) -> Option<(usize, Meets)> {
+    fn fails(
+        &self,
+        d: Direction,
+        first: usize,
+        nothing: bool,
+        slack: bool,
+    ) -> Option<(usize, Meets)> {
         let v = d.vector();
-        let n = self.from.len();
+        let points = self.points(slack);
+        let n = points.len();
         (0..n)
             .map(|i| (first + i) % n)
-            .find_map(|k| match self.meets(k, v) {
+            .find_map(|k| match self.meets(points[k], v) {
                 Meets::OnePiece => None,
                 Meets::Nothing if !nothing => None,
                 m => Some((k, m)),
@@ -187,9 +244,30 @@ impl Lines<'_> {
     }
 
     /// The least tilted direction in `(from, to]` deg that builds every
-    /// line.
-    fn least(&self, from: f64, to: f64, witness: &mut usize) -> Option<Direction> {
-        Direction::tried(from, to).find(|&d| match self.fails(d, *witness, true) {
+    /// line, the outermost [`SLACK`] of a bead inside the edge, among
+    /// every direction [`Direction::azimuths`] says (`fine`) or the
+    /// [`AZIMUTHS`] alone; or, one step more tilted at most, one that
+    /// builds them to a hundredth of a millimetre: a slab leaning 30° is
+    /// built along 30°, not along 29° within the slack.
+    fn least(&self, from: f64, to: f64, fine: bool, witness: &mut usize) -> Option<Direction> {
+        let d = self.first(Direction::tried(from, to, fine), true, witness)?;
+        // Within the slack a face leaning along one of the azimuths tried
+        // first is met a step early; along its own lean the lines meet it
+        // to the hundredth.
+        let near = Direction::tried(d.tilt - TILT_STEP, (d.tilt + TILT_STEP).min(to), false);
+        Some(self.first(near, false, &mut witness.clone()).unwrap_or(d))
+    }
+
+    /// The first of `tried` that builds every line (the outermost
+    /// [`SLACK`] of a bead inside the edge when `slack`); `witness`: the
+    /// line tried first, then the last that failed.
+    fn first(
+        &self,
+        mut tried: impl Iterator<Item = Direction>,
+        slack: bool,
+        witness: &mut usize,
+    ) -> Option<Direction> {
+        tried.find(|&d| match self.fails(d, *witness, true, slack) {
             Some((k, _)) => {
                 *witness = k;
                 false
@@ -213,9 +291,9 @@ pub(super) fn slice(
     let lines = lines(ex, bead)?;
     // Vertical is today's plan: its other refusals (a line off the scan or
     // the target) are its own.
-    let (mut witness, _) = lines.fails(Direction::VERTICAL, 0, false)?;
+    let (mut witness, _) = lines.fails(Direction::VERTICAL, 0, false, false)?;
     let (limit, by) = limit(model, bead);
-    let Some(d) = lines.least(0.0, limit, &mut witness) else {
+    let Some(d) = lines.least(0.0, limit, true, &mut witness) else {
         return Some(Err(untilted(&lines, ex, at, (limit, &by), witness).into()));
     };
     Some(plan(model, bead, ex, slicing, at, &lines, d))
@@ -237,6 +315,38 @@ fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
     if !(spacing.is_finite() && spacing > 0.0) {
         return None;
     }
+    let from = footprint(&profile, [lo, hi], spacing, EDGE);
+    let slack = footprint(&profile, [lo, hi], spacing, SLACK * bead.width.0);
+    // The finished face: the target's highest point over the footprint.
+    let face = from
+        .iter()
+        .filter_map(|&p| ex.top.mesh_at(p).flatten())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let z = [scan.stats.z_range[0] - 1.0, bounds[1][2] + 1.0];
+    let usable = !from.is_empty()
+        && !slack.is_empty()
+        && face.is_finite()
+        && z.iter().all(|v| v.is_finite());
+    usable.then_some(Lines {
+        from,
+        slack,
+        face,
+        z,
+        scan,
+        top: &ex.top,
+    })
+}
+
+/// The points of `profile` (within `bounds`) every `spacing` at least
+/// `edge` inside its edge, and along its edge `edge` inside, where the
+/// outer beads' edges are: a line there along a direction that leans less
+/// than the target's face leaves the target through it.
+fn footprint(
+    profile: &crate::geometry::profile::Profile,
+    [lo, hi]: [[f64; 2]; 2],
+    spacing: f64,
+    edge: f64,
+) -> Vec<[f64; 2]> {
     let count = |k: usize| ((hi[k] - lo[k]) / spacing).floor() as usize + 1;
     let mut from = Vec::new();
     for j in 0..count(1) {
@@ -245,16 +355,13 @@ fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
                 lo[0] + (i as f64 + 0.5) * spacing,
                 lo[1] + (j as f64 + 0.5) * spacing,
             ];
-            if profile.contains(p) && profile.distance_to_boundary(p) >= EDGE {
+            if profile.contains(p) && profile.distance_to_boundary(p) >= edge {
                 from.push(p);
             }
         }
     }
-    // And along the edge, where the outer beads' edges are: a line there
-    // along a direction that leans less than the target's face leaves the
-    // target through it.
-    for edge in profile.offset_inward(EDGE) {
-        let ring = edge.polyline(CHORD_ERROR);
+    for ring in profile.offset_inward(edge) {
+        let ring = ring.polyline(CHORD_ERROR);
         for (k, &a) in ring.iter().enumerate() {
             let b = ring[(k + 1) % ring.len()];
             let n = ((b[0] - a[0]).hypot(b[1] - a[1]) / spacing)
@@ -266,20 +373,7 @@ fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
             }));
         }
     }
-    // The finished face: the target's highest point over the footprint.
-    let face = from
-        .iter()
-        .filter_map(|&p| ex.top.mesh_at(p).flatten())
-        .fold(f64::NEG_INFINITY, f64::max);
-    let z = [scan.stats.z_range[0] - 1.0, bounds[1][2] + 1.0];
-    let usable = !from.is_empty() && face.is_finite() && z.iter().all(|v| v.is_finite());
-    usable.then_some(Lines {
-        from,
-        face,
-        z,
-        scan,
-        top: &ex.top,
-    })
+    from
 }
 
 /// The most tilt from vertical (deg) the bead and the machines allow, and
@@ -321,19 +415,22 @@ fn untilted(
     witness: usize,
 ) -> crate::diag::Diagnostic {
     let mut k = witness;
-    let needs = lines.least(limit.0, MAX_TILT, &mut k);
+    // Only to say what would build it: the [`AZIMUTHS`] alone, so that a
+    // refusal costs no more than a plan.
+    let needs = lines.least(limit.0, MAX_TILT, false, &mut k);
     let best = Direction {
         tilt: (limit.0 / TILT_STEP + 1e-9).floor() * TILT_STEP,
         azimuth: needs.map_or(0.0, |d| d.azimuth),
     };
-    let (point, again) = match lines.fails(best, witness, true) {
+    let points = lines.points(true);
+    let (point, again) = match lines.fails(best, witness, true, true) {
         Some((_, Meets::Again(q))) => (q, true),
         Some((k, _)) => {
-            let p = lines.from[k];
+            let p = points[k];
             ([p[0], p[1], lines.face], false)
         }
         None => {
-            let p = lines.from[witness.min(lines.from.len().saturating_sub(1))];
+            let p = points[witness % points.len()];
             ([p[0], p[1], lines.face], true)
         }
     };
@@ -473,13 +570,24 @@ mod tests {
 
     #[test]
     fn directions_are_tried_least_tilt_first_within_the_limit() {
-        let all: Vec<Direction> = Direction::tried(0.0, 2.5).collect();
+        let all: Vec<Direction> = Direction::tried(0.0, 2.5, true).collect();
         assert_eq!(all.len(), 2 * AZIMUTHS);
+        // At 30°, 2° round the vertical is a degree of arc: the 24 first,
+        // then the 168 of the 180 every 2° that are none of them.
+        let at30: Vec<Direction> = Direction::tried(29.0, 30.0, true).collect();
+        assert_eq!(at30.len(), AZIMUTHS + 168);
+        assert_eq!(at30[1].azimuth, 15.0);
+        assert_eq!(at30[AZIMUTHS].azimuth, 2.0);
+        let mut az: Vec<f64> = at30.iter().map(|d| d.azimuth).collect();
+        az.sort_by(f64::total_cmp);
+        assert!(az
+            .windows(2)
+            .all(|w| w[1] - w[0] <= 2.0 + 1e-9 && w[1] > w[0]));
         assert_eq!(all[0].pair(), [1.0, 0.0]);
         assert_eq!(all[AZIMUTHS].pair(), [2.0, 0.0]);
-        assert_eq!(Direction::tried(0.0, 0.0).count(), 0);
+        assert_eq!(Direction::tried(0.0, 0.0, true).count(), 0);
         assert_eq!(
-            Direction::tried(30.0, 31.0).next().map(|d| d.tilt),
+            Direction::tried(30.0, 31.0, true).next().map(|d| d.tilt),
             Some(31.0)
         );
         let v = Direction {
