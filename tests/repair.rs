@@ -11,6 +11,7 @@ use std::collections::BTreeMap;
 
 mod blade;
 mod follow;
+mod lean;
 mod target;
 mod tilted;
 
