@@ -211,21 +211,26 @@ fn check_deposits(
     n
 }
 
+/// The part's point a machine-coordinate line of `cnc` brings under the
+/// nozzle, and how far off it can print.
+fn machine_to_part(cnc: &Cnc, l: &Line) -> ([f64; 3], f64) {
+    let t = cnc.table.expect("a table");
+    let o = cnc.placement.origin;
+    let m = [l.xyz[0] + o[0], l.xyz[1] + o[1], l.xyz[2] + o[2]];
+    (
+        part_point(cnc.kinematics, &t, o, m, l.tilt, l.c),
+        resolution(&t, m),
+    )
+}
+
 #[test]
 fn machine_coordinates_reconstruct_the_ir_path() {
     let (v, _, text) = example();
     let cnc = table_of(&v, "trt_machine");
     let t = cnc.table.expect("a table");
     assert_eq!(t.output, TableOutput::Machine);
-    let o = cnc.placement.origin;
     let lines = motion(&text, 'A');
-    let n = check_deposits(&v, &cnc, &lines, &|l| {
-        let m = [l.xyz[0] + o[0], l.xyz[1] + o[1], l.xyz[2] + o[2]];
-        (
-            part_point(cnc.kinematics, &t, o, m, l.tilt, l.c),
-            resolution(&t, m),
-        )
-    });
+    let n = check_deposits(&v, &cnc, &lines, &|l| machine_to_part(&cnc, l));
     assert!(n > 1000, "{n} deposits");
     // The table really turns: the part's points are not where the program
     // writes them.
@@ -731,17 +736,9 @@ fn a_leaning_slab_is_filled_with_the_table_standing_its_lean_up() {
         )
     });
     let cnc = table_of(&v, "trt_machine");
-    let t = cnc.table.expect("a table");
-    let o = cnc.placement.origin;
     let text = ring::files(&v, "trt_machine").into_values().next().unwrap();
     let lines = motion(&text, 'A');
-    let n = check_deposits(&v, &cnc, &lines, &|l| {
-        let m = [l.xyz[0] + o[0], l.xyz[1] + o[1], l.xyz[2] + o[2]];
-        (
-            part_point(cnc.kinematics, &t, o, m, l.tilt, l.c),
-            resolution(&t, m),
-        )
-    });
+    let n = check_deposits(&v, &cnc, &lines, &|l| machine_to_part(&cnc, l));
     assert!(n > 1000, "{n} deposits");
     let lean = 30f64.to_radians();
     let d = [lean.sin(), 0.0, lean.cos()];
