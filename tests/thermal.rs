@@ -275,12 +275,12 @@ fn added(t: &lmdc::ir::Thermal) -> f64 {
 fn hottest_with_a_shorter_wait(p: &lmdc::ir::Program, i: usize) -> f64 {
     let t = p.thermal.as_ref().unwrap();
     let (material, cell) = heat::cell(t);
-    let (loads, orders) = heat::island_loads(p);
+    let (loads, orders, columns) = heat::island_loads(p);
     let waits: Vec<f64> = t.layers.iter().map(|l| l.wait).collect();
     let shorter = |j: usize| if j == i { 0.9 * waits[j] } else { waits[j] };
-    let q =
-        lmdc::thermal::predict_islands(material, cell, &loads[..=i], &orders[..=i], shorter, None)
-            .unwrap();
+    let (loads, orders) = (&loads[..=i], &orders[..=i]);
+    let q = lmdc::thermal::predict_tree(material, cell, &columns, loads, orders, shorter, None)
+        .unwrap();
     q[i].islands
         .iter()
         .map(|s| s.interpass)
