@@ -518,13 +518,13 @@ impl Build {
             n.t = *t;
         }
         let junction = ts[s - 1];
-        for c in 0..self.columns.len() {
+        for (c, row) in rows.iter().enumerate() {
             let under = match self.stands[c] {
                 Stand::Plate => junction,
                 Stand::On(p) => self.columns[p].last().map_or(junction, |n| n.t),
             };
             let mut below = (under, self.below[c]);
-            for (n, &(a, r)) in self.columns[c].iter_mut().zip(&rows[c]) {
+            for (n, &(a, r)) in self.columns[c].iter_mut().zip(row) {
                 n.t = (r + below.1 * below.0) / a;
                 below = (n.t, n.up);
             }
