@@ -221,24 +221,29 @@ fn the_pillars_keep_their_limit_by_their_order() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(16))]
 
-    /// Random plans of two to three pillars (sizes, gaps, heights, power,
-    /// limit): every plan lmdc accepts with `cooling = order` starts every
-    /// island of every layer within the limit, adds no wait, and passes
-    /// every rule of the verifier with its layers reordered (accepted means
+    /// Random plans of two to three pillars (sizes, gaps, heights — some
+    /// ending below the top, whose columns then cool as the others rise —,
+    /// power, limit): every plan lmdc accepts with `cooling = order`
+    /// starts every island of every layer within the limit, adds no wait,
+    /// never has more islands than the layer below, and passes every rule
+    /// of the verifier with its layers reordered (accepted means
     /// verified: the deposit, stacking and collision rules among them);
     /// the order never starts an island hotter than the slicer's own order
     /// would.
     #[test]
     fn the_order_keeps_every_island_within_the_limit(
         sides in proptest::collection::vec(8.0f64..16.0, 2..4),
+        heights in proptest::collection::vec(2.0f64..8.0, 3),
         gap in 10.0f64..30.0,
         power in 400.0f64..600.0,
         limit in 120.0f64..330.0,
     ) {
         let mut x = 0.0;
         let mut tris = Vec::new();
-        for s in &sides {
-            tris.extend(cuboid([x, 0.0, 0.0], [x + s.round(), s.round(), 6.0]));
+        // The first pillar 6 mm tall (the ten layers' 5.4 mm under its
+        // top), the others from 2 mm to 8 mm: some end below the top.
+        for (s, h) in sides.iter().zip(std::iter::once(&6.0).chain(&heights)) {
+            tris.extend(cuboid([x, 0.0, 0.0], [x + s.round(), s.round(), h.round()]));
             x += s.round() + gap.round();
         }
         let src = std::fs::read_to_string("examples/two_pillars.lmd")
@@ -251,8 +256,12 @@ proptest! {
             eprintln!("accepted: {} pillars, {power:.0} W, {limit:.0} °C", sides.len());
         }
         let t = p.thermal.as_ref().unwrap();
+        // The pillars standing at each layer (a layer of one: no islands).
+        prop_assert!(t.layers[0].islands.len() == sides.len());
         for (i, l) in t.layers.iter().enumerate() {
-            prop_assert_eq!(l.islands.len(), sides.len(), "layer {}", i);
+            let below = if i == 0 { sides.len() } else { t.layers[i - 1].islands.len() };
+            prop_assert!(l.islands.len() <= below, "layer {}", i);
+            prop_assert!(l.interpass <= limit.round() + 1e-9, "layer {}", i);
             prop_assert!(l.added == 0.0);
             for isl in &l.islands {
                 prop_assert!(isl.interpass <= limit.round() + 1e-9, "layer {}: {:?}", i, isl);
@@ -275,12 +284,12 @@ fn added(t: &lmdc::ir::Thermal) -> f64 {
 fn hottest_with_a_shorter_wait(p: &lmdc::ir::Program, i: usize) -> f64 {
     let t = p.thermal.as_ref().unwrap();
     let (material, cell) = heat::cell(t);
-    let (loads, orders) = heat::island_loads(p);
+    let (loads, orders, columns) = heat::island_loads(p);
     let waits: Vec<f64> = t.layers.iter().map(|l| l.wait).collect();
     let shorter = |j: usize| if j == i { 0.9 * waits[j] } else { waits[j] };
-    let q =
-        lmdc::thermal::predict_islands(material, cell, &loads[..=i], &orders[..=i], shorter, None)
-            .unwrap();
+    let (loads, orders) = (&loads[..=i], &orders[..=i]);
+    let q = lmdc::thermal::predict_tree(material, cell, &columns, loads, orders, shorter, None)
+        .unwrap();
     q[i].islands
         .iter()
         .map(|s| s.interpass)
@@ -348,6 +357,7 @@ proptest! {
     #[test]
     fn the_levers_together_keep_every_island_with_the_least_wait(
         sides in proptest::collection::vec(8.0f64..16.0, 2..4),
+        heights in proptest::collection::vec(2.0f64..8.0, 3),
         gap in 10.0f64..30.0,
         power in 400.0f64..600.0,
         limit in 150.0f64..330.0,
@@ -355,8 +365,10 @@ proptest! {
     ) {
         let mut x = 0.0;
         let mut tris = Vec::new();
-        for s in &sides {
-            tris.extend(cuboid([x, 0.0, 0.0], [x + s.round(), s.round(), 6.0]));
+        // The first pillar 6 mm tall (the ten layers' 5.4 mm under its
+        // top), the others from 2 mm to 8 mm: some end below the top.
+        for (s, h) in sides.iter().zip(std::iter::once(&6.0).chain(&heights)) {
+            tris.extend(cuboid([x, 0.0, 0.0], [x + s.round(), s.round(), h.round()]));
             x += s.round() + gap.round();
         }
         let cooling = if all { "[order, power, dwell]" } else { "[order, dwell]" };
@@ -373,8 +385,10 @@ proptest! {
         }
         prop_assert_eq!(p.version, lmdc::ir::VERSION_LEVERS);
         let t = p.thermal.as_ref().unwrap();
+        prop_assert!(t.layers[0].islands.len() == sides.len());
         for (i, l) in t.layers.iter().enumerate() {
-            prop_assert_eq!(l.islands.len(), sides.len(), "layer {}", i);
+            let below = if i == 0 { sides.len() } else { t.layers[i - 1].islands.len() };
+            prop_assert!(l.islands.len() <= below, "layer {}", i);
             for isl in &l.islands {
                 prop_assert!(isl.interpass <= limit.round() + 1e-9, "layer {}: {:?}", i, isl);
             }
@@ -540,4 +554,86 @@ fn two_pillars() -> Vec<lmdc::geometry::mesh::stl::Triangle> {
         cuboid([40.0, 0.0, 0.0], [52.0, 12.0, 10.0]),
     ]
     .concat()
+}
+
+/// Two pillars of different heights (10 mm and 5 mm): a column each while
+/// both stand (each layer of the two lists both islands: the part is not
+/// taken as one column), then one piece. Each pillar's interpass rises
+/// to the shorter's last layer, and the taller's keeps rising after the
+/// shorter ends.
+#[test]
+fn a_pillar_that_ends_keeps_a_column_each_while_both_stand() {
+    let src = std::fs::read_to_string("examples/two_pillars.lmd")
+        .unwrap()
+        .replace("    max_interpass = 320 degC\n", "")
+        .replace("    cooling = order\n", "");
+    let tris = [
+        cuboid([0.0, 0.0, 0.0], [12.0, 12.0, 10.0]),
+        cuboid([40.0, 0.0, 0.0], [52.0, 12.0, 5.0]),
+    ]
+    .concat();
+    let p = pillars(&src, &tris).expect("no limit");
+    let t = p.thermal.as_ref().unwrap();
+    let two: Vec<usize> = (0..t.layers.len())
+        .filter(|&i| t.layers[i].islands.len() == 2)
+        .collect();
+    // 5 mm of 0.54 mm layers: nine under the shorter's top.
+    assert_eq!(two, (0..9).collect::<Vec<_>>(), "{:?}", t.layers);
+    assert!(t.layers[9..].iter().all(|l| l.islands.is_empty()));
+    // Each pillar's interpass layer by layer while both stand: laid turn
+    // about (first in one layer, second in the next), each rises from
+    // every layer to the next but one, the shorter to its last.
+    let of = |right: bool| -> Vec<f64> {
+        t.layers[..9]
+            .iter()
+            .filter_map(|l| l.islands.iter().find(|i| (i.at[0] > 20.0) == right))
+            .map(|i| i.interpass)
+            .collect()
+    };
+    let (tall, short) = (of(false), of(true));
+    let rises = |v: &[f64]| v.iter().zip(&v[2..]).all(|(a, b)| b > a);
+    assert!(rises(&short) && short.len() == 9, "{short:?}");
+    assert!(rises(&tall) && tall.len() == 9, "{tall:?}");
+    let after: Vec<f64> = t.layers[9..].iter().map(|l| l.interpass).collect();
+    assert!(after.windows(2).all(|w| w[1] > w[0]), "{after:?}");
+}
+
+/// `lmdc fit --plan` over a sheet with an island column (`layer, island,
+/// interpass`, islands from 1 in the order the report lists them): the
+/// two pillars' own prediction, every island of every other layer, comes
+/// back as the absorptivity and heat transfer coefficient that made it,
+/// to a thousandth; the report lists each row's island.
+#[test]
+fn fit_per_island_finds_the_values_that_made_the_temperatures() {
+    let src = std::fs::read_to_string("examples/two_pillars.lmd").unwrap();
+    let tris = two_pillars();
+    let p = pillars(&src, &tris).expect("order keeps 320 °C");
+    let t = p.thermal.as_ref().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("mesh")).unwrap();
+    std::fs::write(
+        dir.path().join("mesh/two_pillars.stl"),
+        lmdc::geometry::mesh::stl::to_binary(&tris),
+    )
+    .unwrap();
+    let plan = dir.path().join("pillars.lmd");
+    std::fs::write(&plan, &src).unwrap();
+    let mut sheet = String::from("layer, island, interpass (degC)\n");
+    for (i, l) in t.layers.iter().enumerate().skip(1).step_by(2) {
+        for (g, isl) in l.islands.iter().enumerate() {
+            sheet.push_str(&format!("{}, {}, {:.4}\n", i + 1, g + 1, isl.interpass));
+        }
+    }
+    let file = dir.path().join("temperatures.csv");
+    std::fs::write(&file, sheet).unwrap();
+    let r = fit_plan(&file, &plan);
+    let eta = r["absorptivity"].as_f64().unwrap();
+    let h = r["heat_transfer"].as_f64().unwrap();
+    assert!((eta - t.absorptivity).abs() < 1e-3, "{r}");
+    assert!((h - t.heat_transfer).abs() < 1e-3 * t.heat_transfer, "{r}");
+    assert!(r["rms"].as_f64().unwrap() < 0.01, "{r}");
+    let islands = r["islands"].as_array().unwrap();
+    assert_eq!(islands.len(), r["rows"].as_array().unwrap().len());
+    assert_eq!(islands[0].as_u64(), Some(1));
+    assert_eq!(islands[1].as_u64(), Some(2));
 }

@@ -25,6 +25,10 @@ struct Report {
     rms: f64,
     /// `[layer (1-based), measured °C, predicted °C]` per row.
     rows: Vec<[f64; 3]>,
+    /// Each row's island (1-based, in the order the report lists them;
+    /// `null`: the layer's start), where the sheet has an island column.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    islands: Vec<Option<usize>>,
     /// The first and last layer measured (1-based).
     layers: [usize; 2],
     /// Which ended at the edge of the range searched (absorptivity, heat
@@ -70,10 +74,16 @@ pub fn run(sheet: &Path, plan: &Path, json: bool, (color, format): (bool, Messag
     let (material, plate) = heat::cell(t);
     let waits: Vec<f64> = t.layers.iter().map(|l| l.wait).collect();
     // Each layer's islands as the plan predicted them, a column each.
-    let (layers, orders) = heat::island_loads(program);
-    let Some(f) = fit::fit(material, plate, &layers, &orders, &waits, &measured) else {
+    let (layers, orders, columns) = heat::island_loads(program);
+    let cell = fit::Plan {
+        columns: &columns,
+        layers: &layers,
+        orders: &orders,
+        waits: &waits,
+    };
+    let Some(f) = fit::fit(material, plate, cell, &measured) else {
         eprintln!(
-            "error: {} measures a layer the plan does not have (it has {})",
+            "error: {} measures a layer or an island the plan does not have (it has {} layers)",
             shown(sheet),
             program.layers.len()
         );
@@ -84,6 +94,11 @@ pub fn run(sheet: &Path, plan: &Path, json: bool, (color, format): (bool, Messag
         .zip(&f.residuals)
         .map(|(m, r)| [(m.layer + 1) as f64, m.interpass, m.interpass + r])
         .collect();
+    let islands: Vec<Option<usize>> = if measured.iter().any(|m| m.island.is_some()) {
+        measured.iter().map(|m| m.island.map(|g| g + 1)).collect()
+    } else {
+        Vec::new()
+    };
     let first = measured.iter().map(|m| m.layer + 1).min().unwrap_or(1);
     let last = measured.iter().map(|m| m.layer + 1).max().unwrap_or(1);
     let r = Report {
@@ -92,6 +107,7 @@ pub fn run(sheet: &Path, plan: &Path, json: bool, (color, format): (bool, Messag
         heat_transfer: f.heat_transfer,
         rms: f.rms,
         rows,
+        islands,
         layers: [first, last],
         at_edge: f.at_edge,
     };
@@ -104,7 +120,9 @@ pub fn run(sheet: &Path, plan: &Path, json: bool, (color, format): (bool, Messag
 }
 
 /// The sheet: a header, then `layer, interpass` a row (the layer from 1,
-/// the temperature in °C); `#` starts a comment.
+/// the temperature in °C), or `layer, island, interpass` (the island from
+/// 1, in the order the report lists the layer's islands); `#` starts a
+/// comment.
 fn read(text: &str) -> Result<Vec<Measured>, String> {
     let mut out = Vec::new();
     for (n, line) in text.lines().enumerate() {
@@ -113,23 +131,22 @@ fn read(text: &str) -> Result<Vec<Measured>, String> {
             continue;
         }
         let cells: Vec<&str> = line.split(',').map(str::trim).collect();
-        let (Some(layer), Some(t)) = (
-            cells
-                .first()
-                .and_then(|c| c.parse::<usize>().ok())
-                .filter(|&l| l >= 1),
-            cells
-                .get(1)
-                .and_then(|c| c.parse::<f64>().ok())
-                .filter(|t| t.is_finite()),
-        ) else {
+        let count = |c: &str| c.parse::<usize>().ok().filter(|&l| l >= 1);
+        let (layer, island, t) = match cells[..] {
+            [l, t] => (count(l), Some(None), t),
+            [l, i, t] => (count(l), count(i).map(Some), t),
+            _ => (None, None, ""),
+        };
+        let t = t.parse::<f64>().ok().filter(|t| t.is_finite());
+        let (Some(layer), Some(island), Some(t)) = (layer, island, t) else {
             return Err(format!(
-                "line {}: a row is `layer, interpass (degC)`, the layer from 1: `{line}`",
+                "line {}: a row is `layer, interpass (degC)` or `layer, island, interpass (degC)`, the layer and the island from 1: `{line}`",
                 n + 1
             ));
         };
         out.push(Measured {
             layer: layer - 1,
+            island: island.map(|i| i - 1),
             interpass: t,
         });
     }
@@ -170,13 +187,19 @@ fn text_of(r: &Report, layers: usize, sheet: &str) -> String {
         edge(r.at_edge[1])
     );
     let _ = writeln!(out, "residuals       RMS {:.1} K\n", r.rms);
+    let island = if r.islands.is_empty() { "" } else { " island" };
     let _ = writeln!(
         out,
-        "{:>6} {:>12} {:>13} {:>10}",
+        "{:>6}{island} {:>12} {:>13} {:>10}",
         "layer", "measured °C", "predicted °C", "residual K"
     );
-    for [l, m, p] in &r.rows {
-        let _ = writeln!(out, "{:>6} {:>12.1} {:>13.1} {:>10.1}", l, m, p, p - m);
+    for (k, [l, m, p]) in r.rows.iter().enumerate() {
+        let g = match r.islands.get(k) {
+            Some(Some(g)) => format!(" {g:>6}"),
+            Some(None) => format!(" {:>6}", "-"),
+            None => String::new(),
+        };
+        let _ = writeln!(out, "{:>6}{g} {:>12.1} {:>13.1} {:>10.1}", l, m, p, p - m);
     }
     let _ = writeln!(
         out,

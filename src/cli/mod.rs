@@ -239,8 +239,9 @@ enum Command {
         #[arg(long)]
         json: bool,
         /// Fit the thermal model instead: DATA holds interpass temperatures measured on a
-        /// build of this file's plan (`layer, interpass (degC)` a row), and the absorptivity
-        /// and heat transfer coefficient that fit them best are printed (docs/thermal.md).
+        /// build of this file's plan (`layer, interpass (degC)` a row, or `layer, island,
+        /// interpass (degC)`), and the absorptivity and heat transfer coefficient that fit
+        /// them best are printed (docs/thermal.md).
         #[arg(long, value_name = "FILE.lmd")]
         plan: Option<PathBuf>,
     },

@@ -44,7 +44,8 @@ pub fn predict(
         levers,
     });
     let run = |budget| {
-        thermal::predict_islands(material, plate, &parts.loads, &parts.orders, base, budget)
+        let (loads, orders) = (&parts.loads, &parts.orders);
+        thermal::predict_tree(material, plate, &parts.columns, loads, orders, base, budget)
     };
     let predicted = run(budget).map_err(|o| refusal(program, declared, &parts, o, at))?;
     // What waits alone would have cost, for the report to weigh the free
@@ -131,25 +132,27 @@ fn refusal(
     Diagnostics::from(message::thermal::interpass(o, at))
 }
 
-/// A plan's layers as the model takes them: each layer's islands (a
-/// *column* each, standing on the same column's island of the layer
-/// below), their loads, where they start and which paths they are.
+/// A plan's layers as the model takes them: each layer's islands in the
+/// plan's order, the column each is laid on, their loads, where they
+/// start and which paths they are.
 struct Parts {
-    /// `loads[i][c]`: column `c`'s island of layer `i`.
+    /// `loads[i][g]`: island `g` of layer `i`.
     loads: Vec<Vec<Load>>,
-    /// `orders[i]`: the columns in the order the slicer lays them.
+    /// `orders[i]`: the islands in the order the slicer lays them.
     orders: Vec<Vec<usize>>,
-    /// `starts[i][c]`: where column `c`'s island of layer `i` starts, mm.
+    /// Which column each island is laid on, and where each column stands.
+    columns: thermal::Columns,
+    /// `starts[i][g]`: where island `g` of layer `i` starts, mm.
     starts: Vec<Vec<[f64; 3]>>,
-    /// `paths[i][c]`: the paths of column `c`'s island of layer `i`, in
-    /// the plan's order (a run of them).
+    /// `paths[i][g]`: the paths of island `g` of layer `i`, in the plan's
+    /// order (a run of them).
     paths: Vec<Vec<std::ops::Range<usize>>>,
 }
 
 impl Parts {
-    /// The islands of `program`'s layers, where every layer has as many
-    /// and each stands on one island of the layer below; else each layer
-    /// as one piece (the part as one column).
+    /// The islands of `program`'s layers, where each stands on at most
+    /// one island of the layer below ([`columns`]); else each layer as one
+    /// piece (the part as one column).
     fn of(program: &Program) -> Parts {
         let width = program.limits.bead_width;
         let found: Option<Vec<Vec<Island>>> =
@@ -158,27 +161,24 @@ impl Parts {
         let (Some(found), Some(columns)) = (found, columns) else {
             return Parts::whole(program, width);
         };
-        let n = columns.first().map_or(0, Vec::len);
         let mut parts = Parts {
             loads: Vec::with_capacity(found.len()),
             orders: Vec::with_capacity(found.len()),
+            columns,
             starts: Vec::with_capacity(found.len()),
             paths: Vec::with_capacity(found.len()),
         };
-        for ((layer, isl), col) in program.layers.iter().zip(&found).zip(&columns) {
-            let mut loads = vec![None; n];
-            let mut starts = vec![layer.frame.origin; n];
-            let mut paths = vec![0..0; n];
-            for (g, island) in isl.iter().enumerate() {
-                let (load, start) = load(layer, island.paths.clone(), width);
-                loads[col[g]] = Some(load);
-                starts[col[g]] = start;
-                paths[col[g]] = island.paths.clone();
-            }
-            parts.loads.push(loads.into_iter().flatten().collect());
-            parts.orders.push(col.clone());
+        for (layer, isl) in program.layers.iter().zip(&found) {
+            let (loads, starts): (Vec<Load>, Vec<[f64; 3]>) = isl
+                .iter()
+                .map(|island| load(layer, island.paths.clone(), width))
+                .unzip();
+            parts.loads.push(loads);
+            parts.orders.push((0..isl.len()).collect());
             parts.starts.push(starts);
-            parts.paths.push(paths);
+            parts
+                .paths
+                .push(isl.iter().map(|i| i.paths.clone()).collect());
         }
         parts
     }
@@ -188,6 +188,10 @@ impl Parts {
         let mut parts = Parts {
             loads: Vec::new(),
             orders: Vec::new(),
+            columns: thermal::Columns {
+                stands: vec![thermal::Stand::Plate],
+                of: vec![vec![0]; program.layers.len()],
+            },
             starts: Vec::new(),
             paths: Vec::new(),
         };
@@ -207,7 +211,7 @@ impl Parts {
         self.loads[i].iter().map(|l| l.time).sum()
     }
 
-    /// Where island (column) `c` of layer `i` starts, mm.
+    /// Where island `c` of layer `i` starts, mm.
     fn island_start(&self, i: usize, c: usize) -> [f64; 3] {
         self.starts[i].get(c).copied().unwrap_or([0.0; 3])
     }
@@ -228,7 +232,7 @@ impl Parts {
             .collect()
     }
 
-    /// Lays `layer`'s islands in `order` (columns): their runs of paths
+    /// Lays `layer`'s islands in `order`: their runs of paths
     /// one after the other. The motion plan joins them as it joins any
     /// two paths (a lift, a travel above what is built, the lowering).
     fn reorder(&self, layer: &mut Layer, i: usize, order: &[usize]) {
@@ -278,12 +282,13 @@ pub fn loads(program: &Program) -> Vec<Load> {
 }
 
 /// Each layer's islands' loads as the model takes them from the IR's
-/// points (`[i][c]`: column `c`'s island of layer `i`), and the order the
-/// layer's paths lay them in: what [`predict`] ran the model over, for a
-/// check to run it again (a layer of one piece: one load).
-pub fn island_loads(program: &Program) -> (Vec<Vec<Load>>, Vec<Vec<usize>>) {
+/// points (`[i][g]`: island `g` of layer `i`, in the plan's order), the
+/// order the layer's paths lay them in and the columns they are laid on:
+/// what [`predict`] ran the model over, for a check to run it again (a
+/// layer of one piece: one load).
+pub fn island_loads(program: &Program) -> (Vec<Vec<Load>>, Vec<Vec<usize>>, thermal::Columns) {
     let parts = Parts::of(program);
-    (parts.loads, parts.orders)
+    (parts.loads, parts.orders, parts.columns)
 }
 
 /// The most samples [`islands`] takes of a plan's layer (a bead apart
@@ -407,39 +412,60 @@ fn islands(layer: &Layer, w: f64) -> Option<Vec<Island>> {
     Some(out.into_iter().map(|(_, i)| i).collect())
 }
 
-/// Each layer's islands' columns (`[i][g]`: the column of layer `i`'s
-/// island `g`), where every layer has as many islands and each overlaps
-/// (its box grown by a bead `w`) exactly one island of the layer below
-/// and no other island of it does: the islands stand on each other as
-/// columns. `None` where they merge, split, appear or end (the part is
-/// then taken as one column).
-fn columns(found: &[Vec<Island>], w: f64) -> Option<Vec<Vec<usize>>> {
-    let n = found.first()?.len();
-    let mut out: Vec<Vec<usize>> = vec![(0..n).collect()];
+/// The columns the islands of `found`'s layers are laid on: an island of
+/// layer `i + 1` stands on the islands of layer `i` whose box it overlaps,
+/// its own grown by a bead `w`. An island on one island that nothing else
+/// of its layer stands on goes on its column; islands that split off one
+/// (several on it) each on a column of their own on top of its column; an
+/// island on none on a column of its own on the plate (a boss that starts
+/// on the plate; the verifier refuses what would start in the air); an
+/// island that nothing stands on ends its column. `None` where an island
+/// stands on several (islands that merge): the part is then taken as one
+/// column.
+fn columns(found: &[Vec<Island>], w: f64) -> Option<thermal::Columns> {
+    use thermal::Stand;
+    let mut stands: Vec<Stand> = vec![Stand::Plate; found.first()?.len()];
+    let mut of: Vec<Vec<usize>> = vec![(0..stands.len()).collect()];
+    let overlaps = |a: &Island, b: &Island| {
+        let (p, q) = (a.bounds, b.bounds);
+        p[0] - w <= q[2] && q[0] - w <= p[2] && p[1] - w <= q[3] && q[1] - w <= p[3]
+    };
     for pair in found.windows(2) {
         let (below, above) = (&pair[0], &pair[1]);
-        if above.len() != n || below.len() != n {
-            return None;
-        }
-        let overlaps = |a: &Island, b: &Island| {
-            let (p, q) = (a.bounds, b.bounds);
-            p[0] - w <= q[2] && q[0] - w <= p[2] && p[1] - w <= q[3] && q[1] - w <= p[3]
-        };
-        let cols = out.last()?;
-        let mut col = Vec::with_capacity(n);
-        let mut taken = vec![false; n];
+        let cols = of.last()?.clone();
+        // What each island above stands on, and how many stand on each
+        // island below.
+        let mut on = Vec::with_capacity(above.len());
+        let mut carried = vec![0usize; below.len()];
         for isl in above {
-            let mut on = below.iter().enumerate().filter(|(_, b)| overlaps(isl, b));
-            let (g, _) = on.next()?;
-            if on.next().is_some() || taken[g] {
+            let mut under = below.iter().enumerate().filter(|(_, b)| overlaps(isl, b));
+            let first = under.next().map(|(g, _)| g);
+            if under.next().is_some() {
                 return None;
             }
-            taken[g] = true;
-            col.push(cols[g]);
+            if let Some(g) = first {
+                carried[g] += 1;
+            }
+            on.push(first);
         }
-        out.push(col);
+        let mut col = Vec::with_capacity(above.len());
+        for g in on {
+            let c = match g {
+                Some(g) if carried[g] == 1 => cols[g],
+                Some(g) => {
+                    stands.push(Stand::On(cols[g]));
+                    stands.len() - 1
+                }
+                None => {
+                    stands.push(Stand::Plate);
+                    stands.len() - 1
+                }
+            };
+            col.push(c);
+        }
+        of.push(col);
     }
-    Some(out)
+    Some(thermal::Columns { stands, of })
 }
 
 /// The least share of its power each layer may be laid at: its lowest

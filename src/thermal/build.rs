@@ -2,12 +2,15 @@
 //! standing on a shared plate of rings (docs/thermal.md, *The model*).
 //!
 //! One island makes one chain of nodes, solved by the Thomas algorithm.
-//! Several islands make a tree: the plate's outer rings are shared, each
-//! column stands on its own first ring (its *foot*, the plate within half
-//! the plate's thickness of its footprint), and the columns meet only in
-//! the plate. A tree is solved in linear time too: each column is
-//! eliminated from its top down onto the shared rings, the rings' chain is
-//! solved, and the columns are filled back from the foot up.
+//! Several islands make a tree rooted at the plate: the plate's outer
+//! rings are shared; a column that stands on the plate stands on its own
+//! first ring (its *foot*, its share of the plate within half the plate's
+//! thickness of the islands); a column of an island that split off stands
+//! on the top node of the column it split from. A tree is solved in linear
+//! time too: each column is eliminated from its top down onto what it
+//! stands on (the columns last made first, so a column's children are
+//! folded into its top before it is eliminated), the rings' chain is
+//! solved, and the columns are filled back from their bottoms up.
 
 use super::{
     Load, Material, Node, Plate, COARSENING, DEPOSIT_STEP, FIRST_STEP, MAX_DEPOSIT_STEPS,
@@ -15,19 +18,42 @@ use super::{
 };
 use std::f64::consts::PI;
 
+/// Where a column of islands stands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stand {
+    /// On the plate: on its own foot, a share of the plate's first ring.
+    Plate,
+    /// On the top node of column `c` (made before it): an island that
+    /// split off the island below.
+    On(usize),
+}
+
 /// The part as it is built: the plate's shared rings, then one column per
-/// island, each its foot ring and its fin's nodes from the bottom up.
+/// island, each (standing on the plate) its foot ring and its fin's nodes
+/// from the bottom up, or (standing on a column) its fin's nodes.
 #[derive(Clone, Debug)]
 pub struct Build {
     material: Material,
     plate: Plate,
     /// The plate's rings every column shares, from the outermost in.
     shared: Vec<Node>,
-    /// Each island's column: its foot ring, then its fin's nodes.
+    /// Each island's column: its foot ring (on the plate), then its fin's
+    /// nodes.
     columns: Vec<Vec<Node>>,
-    /// The conductance from the innermost shared ring into each column's
-    /// foot, W/K.
-    feet: Vec<f64>,
+    /// Where each column stands.
+    stands: Vec<Stand>,
+    /// The conductance into each column's lowest node from what it stands
+    /// on, W/K: the innermost shared ring into its foot; the top of the
+    /// column below into its first layer (0 until that is laid).
+    below: Vec<f64>,
+    /// Each column's share of what it stands on, by footprint.
+    shares: Vec<f64>,
+    /// The area a column's first layer covers on its foot, m²: its foot's
+    /// top loses heat from it too until that layer is laid.
+    bare: Vec<f64>,
+    /// Whether a column carries others on its top (whose face is then
+    /// covered).
+    carries: Vec<bool>,
 }
 
 impl Build {
@@ -38,7 +64,11 @@ impl Build {
             plate,
             shared: Vec::new(),
             columns: Vec::new(),
-            feet: Vec::new(),
+            stands: Vec::new(),
+            below: Vec::new(),
+            shares: Vec::new(),
+            bare: Vec::new(),
+            carries: Vec::new(),
         }
     }
 
@@ -50,12 +80,21 @@ impl Build {
     }
 
     /// The temperature of the top of island `c`'s column, °C: its top
-    /// layer's, or the plate's under it before its first layer.
+    /// layer's, or before its first layer what it stands on: its foot, or
+    /// the top of the column it split from.
     pub fn top_of(&self, c: usize) -> f64 {
-        match self.columns.get(c) {
-            Some(col) if col.len() > 1 => col[col.len() - 1].t,
-            Some(col) => col.first().map_or(self.plate.temperature, |n| n.t),
-            None => self.plate.temperature,
+        let mut c = c;
+        // A column made before its parent's first layer has none: the
+        // parents are earlier columns, so this ends.
+        loop {
+            match self.columns.get(c) {
+                Some(col) if !col.is_empty() => return col[col.len() - 1].t,
+                Some(_) => match self.stands[c] {
+                    Stand::On(p) if p < c => c = p,
+                    _ => return self.plate.temperature,
+                },
+                None => return self.plate.temperature,
+            }
         }
     }
 
@@ -64,8 +103,7 @@ impl Build {
         self.shared.len() + self.columns.iter().map(Vec::len).sum::<usize>()
     }
 
-    /// How many islands' columns stand on the plate (0 before the first
-    /// layer).
+    /// How many islands' columns the model has (0 before the first layer).
     pub fn columns(&self) -> usize {
         self.columns.len()
     }
@@ -80,12 +118,78 @@ impl Build {
     }
 
     /// Sets up the plate under the first layer's islands, one column each
-    /// (their loads give their footprints); nothing if already set up or
-    /// an island lays no metal.
+    /// standing on the plate (their loads give their footprints): see
+    /// [`Build::plant`].
     pub fn stand(&mut self, firsts: &[Load]) {
-        if self.columns.is_empty() && !firsts.is_empty() && firsts.iter().all(Load::valid) {
-            self.plate_rings(firsts);
+        self.plant(&vec![Stand::Plate; firsts.len()], firsts);
+    }
+
+    /// Sets up every column the build will have: column `c` stands where
+    /// `stands[c]` says, and `firsts[c]` is its first layer (its footprint
+    /// and outline). The plate's rings are about every column that ever
+    /// stands on it, each foot its share of the first ring by its first
+    /// layer's footprint, fixed from the start (a column that appears
+    /// later has its foot from the start, bare until it is laid on); a
+    /// column that splits off another takes its share of that column's
+    /// top by its footprint among the columns that split off it. Nothing
+    /// if already set up, or a column lays no metal, or none stands on the
+    /// plate; a column said to stand on a later one stands on the plate.
+    pub fn plant(&mut self, stands: &[Stand], firsts: &[Load]) {
+        if !self.columns.is_empty() || stands.len() != firsts.len() || firsts.is_empty() {
+            return;
         }
+        if !firsts.iter().all(Load::valid) {
+            return;
+        }
+        let stands: Vec<Stand> = (0..stands.len())
+            .map(|c| match stands[c] {
+                Stand::On(p) if p < c => Stand::On(p),
+                _ => Stand::Plate,
+            })
+            .collect();
+        let on_plate: Vec<Load> = firsts
+            .iter()
+            .zip(&stands)
+            .filter(|(_, s)| **s == Stand::Plate)
+            .map(|(l, _)| *l)
+            .collect();
+        let (foot, into) = self.plate_rings(&on_plate);
+        let plate_area: f64 = on_plate.iter().map(Load::footprint).sum();
+        // Each parent's children's footprints together.
+        let mut children = vec![0.0; stands.len()];
+        for (s, l) in stands.iter().zip(firsts) {
+            if let Stand::On(p) = s {
+                children[*p] += l.footprint();
+            }
+        }
+        for (s, l) in stands.iter().zip(firsts) {
+            let (col, below, share) = match s {
+                Stand::Plate => {
+                    // All of the ring for one island: `a/a` is exactly 1.
+                    let share = l.footprint() / plate_area;
+                    let foot = Node {
+                        capacity: foot.capacity * share,
+                        surface: foot.surface * share,
+                        footprint: foot.footprint * share,
+                        // Joined to a layer when the island's first is laid.
+                        up: 0.0,
+                        ..foot
+                    };
+                    (vec![foot], into * share, share)
+                }
+                Stand::On(p) => (Vec::new(), 0.0, l.footprint() / children[*p]),
+            };
+            self.columns.push(col);
+            self.below.push(below);
+            self.shares.push(share);
+            self.bare.push(if *s == Stand::Plate {
+                l.footprint()
+            } else {
+                0.0
+            });
+        }
+        self.carries = vec![false; stands.len()];
+        self.stands = stands;
     }
 
     /// Lays island `c`'s part of a layer: it appears at the ambient
@@ -173,15 +277,16 @@ impl Build {
         None
     }
 
-    /// The plate's rings about the first layer's islands (footprints `Aᵢ`,
-    /// outlines `Pᵢ`, `n` of them): the plate within `r` of them has the
-    /// area `A(r) = ΣAᵢ + ΣPᵢ·r + n·π·r²` (Steiner, while they are more
-    /// than `2r` apart). Each island's foot reaches half the plate's
+    /// The plate's rings about the islands standing on it (footprints
+    /// `Aᵢ`, outlines `Pᵢ`, `n` of them): the plate within `r` of them has
+    /// the area `A(r) = ΣAᵢ + ΣPᵢ·r + n·π·r²` (Steiner, while they are
+    /// more than `2r` apart). The feet together reach half the plate's
     /// thickness out (the cone heat spreads down in); the shared rings
     /// each reach twice as far as the last, the outermost to the plate's
     /// area. With one island this is the chain of rings about its
-    /// footprint.
-    fn plate_rings(&mut self, firsts: &[Load]) {
+    /// footprint. Sets the shared rings; returns the feet as one ring and
+    /// its conductance to the innermost shared ring.
+    fn plate_rings(&mut self, firsts: &[Load]) -> (Node, f64) {
         let m = self.material;
         let [lx, ly, thick] = self.plate.size;
         let n = firsts.len() as f64;
@@ -238,24 +343,13 @@ impl Build {
         let feet = rings.pop().expect("at least two rings");
         let into = rings[count - 2].up;
         self.shared = rings;
-        // Each island's foot: its share of the innermost ring by its
-        // footprint (all of it for one island: `a/a` is exactly 1).
-        for l in firsts {
-            let share = l.footprint() / a0;
-            self.columns.push(vec![Node {
-                capacity: feet.capacity * share,
-                surface: feet.surface * share,
-                footprint: feet.footprint * share,
-                // Joined to a layer when the island's first is laid.
-                up: 0.0,
-                ..feet
-            }]);
-            self.feet.push(into * share);
-        }
+        (feet, into)
     }
 
     /// Puts a new layer on top of column `c` at the ambient temperature,
-    /// joined to the node below, and merges what has grown deep.
+    /// joined to the node below (a column's first layer that split off
+    /// another: to that one's top, by its share of it), and merges what
+    /// has grown deep.
     fn push(&mut self, c: usize, load: &Load) {
         let m = self.material;
         let layer = Node {
@@ -267,11 +361,40 @@ impl Build {
             height: load.height,
             footprint: load.footprint(),
         };
+        if let (Stand::On(p), true) = (self.stands[c], self.columns[c].is_empty()) {
+            // A parent without a layer of its own carries nothing.
+            if let Some(top) = self.columns[p].last() {
+                let part = Node {
+                    footprint: top.footprint * self.shares[c],
+                    ..*top
+                };
+                self.below[c] = link(m.conductivity, &part, &layer);
+                self.carries[p] = true;
+            }
+        }
         let col = &mut self.columns[c];
-        let below = col.len() - 1;
-        col[below].up = link(m.conductivity, &col[below], &layer);
+        if let Some(below) = col.last_mut() {
+            below.up = link(m.conductivity, below, &layer);
+        }
         col.push(layer);
         merge(m.conductivity, col);
+    }
+
+    /// The area node `i` of column `c` loses heat from besides its sides,
+    /// m²: a column's top layer its top face (unless it carries others),
+    /// a foot not yet laid on the area its island will cover.
+    fn face(&self, c: usize, i: usize) -> f64 {
+        let col = &self.columns[c];
+        let foot = self.stands[c] == Stand::Plate;
+        if i + 1 != col.len() {
+            0.0
+        } else if foot && i == 0 {
+            self.bare[c]
+        } else if self.carries[c] {
+            0.0
+        } else {
+            col[i].footprint
+        }
     }
 
     /// One implicit Euler step of `dt` s with `power` W into the top of
@@ -282,13 +405,13 @@ impl Build {
         if dt <= 0.0 || self.columns.is_empty() {
             return;
         }
-        if self.columns.len() > 1 {
+        if self.columns.len() > 1 || self.columns[0].len() < 2 {
             self.tree_step(dt, power, into);
             return;
         }
         let mut chain = self.shared.clone();
         let last = chain.len() - 1;
-        chain[last].up = self.feet[0];
+        chain[last].up = self.below[0];
         chain.extend_from_slice(&self.columns[0]);
         chain_step(&mut chain, self.material, self.plate.ambient, dt, power);
         for (i, n) in chain.iter().enumerate() {
@@ -300,57 +423,90 @@ impl Build {
         }
     }
 
-    /// [`Build::step`] over several columns: each eliminated from its top
-    /// down onto the innermost shared ring, the rings solved as a chain,
-    /// the columns filled back from their feet up. Linear in the nodes.
+    /// Each column's rows of [`Build::step`]'s system before elimination,
+    /// `(diagonal, right-hand side)` per node from the bottom up: a top
+    /// that carries columns has their conductances on its diagonal.
+    fn rows(&self, dt: f64, power: f64, into: usize) -> Vec<Vec<(f64, f64)>> {
+        let (m, ambient) = (self.material, self.plate.ambient);
+        let mut rows: Vec<Vec<(f64, f64)>> = self
+            .columns
+            .iter()
+            .enumerate()
+            .map(|(c, col)| {
+                col.iter()
+                    .enumerate()
+                    .map(|(i, n)| {
+                        let below = if i == 0 { self.below[c] } else { col[i - 1].up };
+                        let h = m.loss(n.t, ambient) * (n.surface + self.face(c, i));
+                        (
+                            n.capacity / dt + h + below + n.up,
+                            n.capacity / dt * n.t + h * ambient,
+                        )
+                    })
+                    .collect()
+            })
+            .collect();
+        if let Some(top) = rows.get_mut(into).and_then(|r| r.last_mut()) {
+            top.1 += power;
+        }
+        for (c, s) in self.stands.iter().enumerate() {
+            if let (Stand::On(p), false) = (s, self.columns[c].is_empty()) {
+                if let Some(top) = rows[*p].last_mut() {
+                    top.0 += self.below[c];
+                }
+            }
+        }
+        rows
+    }
+
+    /// [`Build::step`] over a tree of columns: each eliminated from its
+    /// top down onto what it stands on, the last made first (a column's
+    /// children stand on it and are made after it), the rings solved as a
+    /// chain, the columns filled back from their bottoms up, the first
+    /// made first. Linear in the nodes.
     fn tree_step(&mut self, dt: f64, power: f64, into: usize) {
         let (m, ambient) = (self.material, self.plate.ambient);
-        let row = |n: &Node, top: bool, below: f64| {
-            let face = if top { n.footprint } else { 0.0 };
-            let h = m.loss(n.t, ambient) * (n.surface + face);
-            (
-                n.capacity / dt + h + below + n.up,
-                n.capacity / dt * n.t + h * ambient,
-            )
-        };
+        let mut rows = self.rows(dt, power, into);
         // Each column from the top down: `a·T = r + g·T_below` folds into
         // the node below as `a₋ −= g²/a`, `r₋ += g·r/a`.
-        let mut folded: Vec<Vec<(f64, f64)>> = Vec::with_capacity(self.columns.len());
         let (mut diag_j, mut rhs_j) = (0.0, 0.0);
-        for (c, col) in self.columns.iter().enumerate() {
-            let k = col.len();
-            let mut ar: Vec<(f64, f64)> = col
-                .iter()
-                .enumerate()
-                .map(|(i, n)| {
-                    let below = if i == 0 { self.feet[c] } else { col[i - 1].up };
-                    row(n, i + 1 == k && k > 1, below)
-                })
-                .collect();
-            if c == into {
-                ar[k - 1].1 += power;
-            }
-            for i in (1..k).rev() {
+        for c in (0..self.columns.len()).rev() {
+            let col = &self.columns[c];
+            for i in (1..col.len()).rev() {
                 let g = col[i - 1].up;
-                let (a, r) = ar[i];
-                ar[i - 1].0 -= g * g / a;
-                ar[i - 1].1 += g * r / a;
+                let (a, r) = rows[c][i];
+                rows[c][i - 1].0 -= g * g / a;
+                rows[c][i - 1].1 += g * r / a;
             }
-            let (a, r) = ar[0];
-            diag_j -= self.feet[c] * self.feet[c] / a;
-            rhs_j += self.feet[c] * r / a;
-            folded.push(ar);
+            let Some(&(a, r)) = rows[c].first() else {
+                continue;
+            };
+            let g = self.below[c];
+            match self.stands[c] {
+                Stand::Plate => {
+                    diag_j -= g * g / a;
+                    rhs_j += g * r / a;
+                }
+                Stand::On(p) => {
+                    if let Some(top) = rows[p].last_mut() {
+                        top.0 -= g * g / a;
+                        top.1 += g * r / a;
+                    }
+                }
+            }
         }
         // The shared rings: a chain whose innermost ring carries the feet.
-        let feet: f64 = self.feet.iter().sum();
+        let feet: f64 = (0..self.columns.len())
+            .filter(|&c| self.stands[c] == Stand::Plate)
+            .map(|c| self.below[c])
+            .sum();
         let s = self.shared.len();
         let mut diag = vec![0.0; s];
         let mut rhs = vec![0.0; s];
         for (i, n) in self.shared.iter().enumerate() {
             let below = if i > 0 { self.shared[i - 1].up } else { 0.0 };
             let up = if i + 1 == s { feet } else { n.up };
-            let face = n.surface;
-            let h = m.loss(n.t, ambient) * face;
+            let h = m.loss(n.t, ambient) * n.surface;
             diag[i] = n.capacity / dt + h + below + up;
             rhs[i] = n.capacity / dt * n.t + h * ambient;
         }
@@ -362,11 +518,13 @@ impl Build {
             n.t = *t;
         }
         let junction = ts[s - 1];
-        for (c, col) in self.columns.iter_mut().enumerate() {
-            let ar = &folded[c];
-            let mut below = (junction, self.feet[c]);
-            for (i, n) in col.iter_mut().enumerate() {
-                let (a, r) = ar[i];
+        for (c, row) in rows.iter().enumerate() {
+            let under = match self.stands[c] {
+                Stand::Plate => junction,
+                Stand::On(p) => self.columns[p].last().map_or(junction, |n| n.t),
+            };
+            let mut below = (under, self.below[c]);
+            for (n, &(a, r)) in self.columns[c].iter_mut().zip(row) {
                 n.t = (r + below.1 * below.0) / a;
                 below = (n.t, n.up);
             }
@@ -496,28 +654,41 @@ pub(super) mod reference {
             for i in 0..s - 1 {
                 couple(&mut a, i, i + 1, self.shared[i].up);
             }
-            let mut tops = Vec::new();
+            // Each column's first node's index.
+            let mut bases = Vec::new();
             for (c, col) in self.columns.iter().enumerate() {
                 let base = nodes.len();
-                couple(&mut a, s - 1, base, self.feet[c]);
-                for (i, node) in col.iter().enumerate().take(col.len() - 1) {
+                bases.push(base);
+                if !col.is_empty() {
+                    let under = match self.stands[c] {
+                        Stand::Plate => Some(s - 1),
+                        Stand::On(p) => {
+                            let len = self.columns[p].len();
+                            (len > 0).then(|| bases[p] + len - 1)
+                        }
+                    };
+                    if let Some(u) = under {
+                        couple(&mut a, u, base, self.below[c]);
+                    }
+                }
+                for (i, node) in col.iter().enumerate().take(col.len().saturating_sub(1)) {
                     couple(&mut a, base + i, base + i + 1, node.up);
                 }
                 nodes.extend_from_slice(col);
-                tops.push((base + col.len() - 1, col.len() > 1, c == into));
+            }
+            let mut faces = vec![0.0; total];
+            for (c, col) in self.columns.iter().enumerate() {
+                for i in 0..col.len() {
+                    faces[bases[c] + i] = self.face(c, i);
+                }
+                if c == into && !col.is_empty() {
+                    a[bases[c] + col.len() - 1][total] += power;
+                }
             }
             for (i, n) in nodes.iter().enumerate() {
-                let top = tops.iter().find(|t| t.0 == i);
-                let face = match top {
-                    Some((_, true, _)) => n.footprint,
-                    _ => 0.0,
-                };
-                let h = m.loss(n.t, ambient) * (n.surface + face);
+                let h = m.loss(n.t, ambient) * (n.surface + faces[i]);
                 a[i][i] += n.capacity / dt + h;
-                a[i][total] = n.capacity / dt * n.t + h * ambient;
-                if let Some((_, _, true)) = top {
-                    a[i][total] += power;
-                }
+                a[i][total] += n.capacity / dt * n.t + h * ambient;
             }
             // Gaussian elimination with partial pivoting.
             for col in 0..total {

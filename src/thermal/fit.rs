@@ -9,7 +9,7 @@
 //! settle it ([`Fitted::at_edge`]): the fit says so rather than
 //! extrapolate.
 
-use super::{predict_islands, Load, Material, Plate};
+use super::{predict_tree, Columns, Load, Material, Plate};
 
 /// The absorptivities searched.
 pub const ABSORPTIVITY: [f64; 2] = [0.05, 0.95];
@@ -17,13 +17,29 @@ pub const ABSORPTIVITY: [f64; 2] = [0.05, 0.95];
 pub const HEAT_TRANSFER: [f64; 2] = [1.0, 500.0];
 
 /// One measurement: the temperature where and when layer `layer` (0-based)
-/// starts.
+/// starts, or one of its islands.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Measured {
     /// The layer, 0-based.
     pub layer: usize,
+    /// The island, 0-based in the order the layer lays them (the report's
+    /// order); `None`: the layer's start, on its first island.
+    pub island: Option<usize>,
     /// Its interpass temperature, °C.
     pub interpass: f64,
+}
+
+/// A plan's layers as the model runs them for a fit.
+#[derive(Clone, Copy, Debug)]
+pub struct Plan<'a> {
+    /// The columns each layer's islands are laid on.
+    pub columns: &'a Columns,
+    /// Each layer's islands' loads (a layer of one piece: one).
+    pub layers: &'a [Vec<Load>],
+    /// The order each layer lays its islands in.
+    pub orders: &'a [Vec<usize>],
+    /// The wait before each layer, s (the first's is not used).
+    pub waits: &'a [f64],
 }
 
 /// What a fit found.
@@ -43,22 +59,29 @@ pub struct Fitted {
 }
 
 /// Fits the absorptivity and heat transfer coefficient of `material` to
-/// `measured`, the plan's layers laid as `layers` (each layer's islands'
-/// loads, a column each, as [`predict_islands`] takes them; a layer of one
-/// piece: one) in the order `orders` with the waits `waits` (before each
-/// layer; the first's is not used). A measurement is the layer's
-/// interpass temperature: where the nozzle starts it, on its first
-/// island. `None` without a measurement of a layer the plan has.
+/// `measured`, the plan's layers laid as `plan` says (as [`predict_tree`]
+/// runs them). A measurement is a layer's interpass temperature: where
+/// the nozzle starts it (on its first island), or one of its islands.
+/// `None` without a measurement, or with one of a layer or an island the
+/// plan does not have.
 pub fn fit(
     material: Material,
     plate: Plate,
-    layers: &[Vec<Load>],
-    orders: &[Vec<usize>],
-    waits: &[f64],
+    plan: Plan<'_>,
     measured: &[Measured],
 ) -> Option<Fitted> {
+    let Plan {
+        columns,
+        layers,
+        orders,
+        waits,
+    } = plan;
     let last = measured.iter().map(|m| m.layer).max()?;
     if last >= layers.len() || last >= orders.len() || last >= waits.len() {
+        return None;
+    }
+    let islands = |m: &Measured| m.island.is_none_or(|g| g < layers[m.layer].len());
+    if !measured.iter().all(islands) {
         return None;
     }
     let residuals = |eta: f64, h: f64| -> Vec<f64> {
@@ -67,9 +90,10 @@ pub fn fit(
             heat_transfer: h,
             ..material
         };
-        let p = predict_islands(
+        let p = predict_tree(
             m,
             plate,
+            columns,
             &layers[..=last],
             &orders[..=last],
             |i| waits[i],
@@ -79,8 +103,11 @@ pub fn fit(
         measured
             .iter()
             .map(|x| {
-                p.get(x.layer)
-                    .map_or(f64::INFINITY, |p| p.layer.interpass - x.interpass)
+                let at = p.get(x.layer).and_then(|p| match x.island {
+                    Some(g) => p.islands.get(g).map(|i| i.interpass),
+                    None => Some(p.layer.interpass),
+                });
+                at.map_or(f64::INFINITY, |t| t - x.interpass)
             })
             .collect()
     };
@@ -215,12 +242,20 @@ mod tests {
         let measured: Vec<Measured> = (1..20)
             .map(|layer| Measured {
                 layer,
+                island: None,
                 interpass: p[layer].interpass,
             })
             .collect();
         let layers: Vec<Vec<Load>> = loads.iter().map(|l| vec![*l]).collect();
         let orders = vec![vec![0]; layers.len()];
-        let f = fit(base, plate, &layers, &orders, &waits, &measured).unwrap();
+        let columns = Columns::side_by_side(&layers);
+        let plan = Plan {
+            columns: &columns,
+            layers: &layers,
+            orders: &orders,
+            waits: &waits,
+        };
+        let f = fit(base, plate, plan, &measured).unwrap();
         assert!((f.absorptivity - 0.42).abs() < 0.01, "{f:?}");
         assert!((f.heat_transfer - 35.0).abs() < 3.5, "{f:?}");
         assert!(f.rms < 0.5, "{f:?}");

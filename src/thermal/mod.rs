@@ -29,7 +29,7 @@ mod build;
 pub mod fit;
 
 pub use alloy::{alloy, Alloy, ALLOYS};
-pub use build::Build;
+pub use build::{Build, Stand};
 
 /// Stefan–Boltzmann constant, W/(m²·K⁴).
 const SIGMA: f64 = 5.670_374_419e-8;
@@ -241,7 +241,7 @@ pub struct Prediction {
 /// One island of a layer as predicted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IslandPrediction {
-    /// The island (its column: its index in the layer's loads).
+    /// The island: its index in the layer's loads.
     pub island: usize,
     /// When the nozzle starts it, s from the build's start.
     pub start: f64,
@@ -297,15 +297,62 @@ pub fn predict(
     Ok(p.into_iter().map(|l| l.layer).collect())
 }
 
+/// How a build's islands stand on each other: the model's columns and,
+/// layer by layer, the column each island is laid on (docs/thermal.md,
+/// *Islands*). A column stands on the plate or on the top of a column
+/// made before it (an island that split); an island that ends leaves its
+/// column cooling, one that appears on the plate has a column of its own.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Columns {
+    /// Where each column stands.
+    pub stands: Vec<Stand>,
+    /// `of[i][g]`: the column island `g` of layer `i` is laid on.
+    pub of: Vec<Vec<usize>>,
+}
+
+impl Columns {
+    /// Island `c` of every layer on column `c`, each column on the plate
+    /// (a layer of fewer islands leaves the last columns cooling; a
+    /// column first laid on later has its foot from the start).
+    pub fn side_by_side(layers: &[Vec<Load>]) -> Columns {
+        let n = layers.iter().map(Vec::len).max().unwrap_or(0);
+        Columns {
+            stands: vec![Stand::Plate; n],
+            of: layers.iter().map(|l| (0..l.len()).collect()).collect(),
+        }
+    }
+
+    /// Each column's first layer that lays metal, if every column has one.
+    fn firsts(&self, layers: &[Vec<Load>]) -> Option<Vec<Load>> {
+        let mut firsts: Vec<Option<Load>> = vec![None; self.stands.len()];
+        for (loads, cols) in layers.iter().zip(&self.of) {
+            for (load, &c) in loads.iter().zip(cols) {
+                if let Some(f) = firsts.get_mut(c).filter(|f| f.is_none()) {
+                    *f = load.valid().then_some(*load);
+                }
+            }
+        }
+        firsts.into_iter().collect()
+    }
+}
+
+/// An island of a layer: its load and the column it is laid on.
+#[derive(Clone, Copy, Debug)]
+struct Isle {
+    load: Load,
+    column: usize,
+}
+
+/// The column of island `g` (none: past every column, which only lets
+/// its time pass).
+fn column(loads: &[Isle], g: usize) -> usize {
+    loads.get(g).map_or(usize::MAX, |l| l.column)
+}
+
 /// Predicts every layer of a build whose layers are laid as islands
-/// (`layers[i][c]`: island `c` of layer `i`, standing on island `c` of the
-/// layer below; every layer has as many), in the order `orders[i]`, with
-/// the waits `base(i)` before layer `i` (i ≥ 1), each kept within a budget
-/// where one is given: the islands reordered, the power of the layer
-/// before lowered, the wait lengthened, as the levers allow and in that
-/// order (the free ones first), to the least that keeps every island's
-/// interpass temperature within it. Returns the predictions, or the first
-/// layer nothing allowed keeps in.
+/// side by side ([`Columns::side_by_side`]: `layers[i][c]`, island `c` of
+/// layer `i`, standing on island `c` of the layer below): see
+/// [`predict_tree`].
 pub fn predict_islands(
     material: Material,
     plate: Plate,
@@ -314,14 +361,51 @@ pub fn predict_islands(
     base: impl Fn(usize) -> f64,
     budget: Option<Budget<'_>>,
 ) -> Result<Vec<LayerPrediction>, Overheat> {
+    let columns = Columns::side_by_side(layers);
+    predict_tree(material, plate, &columns, layers, orders, base, budget)
+}
+
+/// Predicts every layer of a build whose layers are laid as islands
+/// (`layers[i][g]`: island `g` of layer `i`, laid on the column
+/// `columns.of[i][g]`), in the order `orders[i]` (islands), with
+/// the waits `base(i)` before layer `i` (i ≥ 1), each kept within a budget
+/// where one is given: the islands reordered, the power of the layer
+/// before lowered, the wait lengthened, as the levers allow and in that
+/// order (the free ones first), to the least that keeps every island's
+/// interpass temperature within it. Returns the predictions, or the first
+/// layer nothing allowed keeps in.
+pub fn predict_tree(
+    material: Material,
+    plate: Plate,
+    columns: &Columns,
+    layers: &[Vec<Load>],
+    orders: &[Vec<usize>],
+    base: impl Fn(usize) -> f64,
+    budget: Option<Budget<'_>>,
+) -> Result<Vec<LayerPrediction>, Overheat> {
     let mut build = Build::new(material, plate);
+    // The plate is set up under every column's first layer that lays
+    // metal.
+    if let Some(firsts) = columns.firsts(layers) {
+        build.plant(&columns.stands, &firsts);
+    }
+    let layers: Vec<Vec<Isle>> = layers
+        .iter()
+        .enumerate()
+        .map(|(i, loads)| {
+            let of = columns.of.get(i);
+            let col = |g: usize| of.and_then(|o| o.get(g)).copied();
+            (0..loads.len())
+                .map(|g| Isle {
+                    load: loads[g],
+                    column: col(g).unwrap_or(usize::MAX),
+                })
+                .collect()
+        })
+        .collect();
     let mut out = Vec::with_capacity(layers.len());
     let mut clock = 0.0;
     for (i, loads) in layers.iter().enumerate() {
-        // The plate is set up under the first layer that lays metal.
-        if build.columns() == 0 {
-            build.stand(loads);
-        }
         let declared = if i == 0 { 0.0 } else { base(i).max(0.0) };
         let (order, wait) = match budget {
             Some(b) => order_and_wait(&build, loads, &orders[i], declared, b, i)?,
@@ -365,7 +449,7 @@ pub fn predict_islands(
             },
             islands,
         });
-        clock += order.iter().map(|&c| loads[c].time).sum::<f64>();
+        clock += order.iter().map(|&c| loads[c].load.time).sum::<f64>();
     }
     Ok(out)
 }
@@ -377,7 +461,7 @@ pub fn predict_islands(
 /// it needs a shorter wait (a tie keeps the coolest first).
 fn order_and_wait(
     build: &Build,
-    loads: &[Load],
+    loads: &[Isle],
     plan: &[usize],
     declared: f64,
     b: Budget<'_>,
@@ -432,7 +516,7 @@ fn order_and_wait(
 /// from `clock` s; each island's start, interpass and peak.
 fn lay_layer(
     build: &mut Build,
-    loads: &[Load],
+    loads: &[Isle],
     order: &[usize],
     power: f64,
     clock: f64,
@@ -440,10 +524,10 @@ fn lay_layer(
     let mut at = clock;
     let mut out = Vec::with_capacity(order.len());
     for &c in order {
-        let interpass = build.top_of(c);
-        let load = &loads[c];
+        let interpass = build.top_of(column(loads, c));
+        let load = &loads[c].load;
         let peak = build.lay_on(
-            c,
+            column(loads, c),
             &Load {
                 energy: load.energy * power,
                 ..*load
@@ -463,20 +547,20 @@ fn lay_layer(
 /// The hottest interpass temperature of a layer's islands laid in `order`
 /// from `build` now, °C, and which island it is. A layer of one island
 /// is not laid (its interpass is the top now).
-fn starts(build: &Build, loads: &[Load], order: &[usize]) -> (f64, usize) {
+fn starts(build: &Build, loads: &[Isle], order: &[usize]) -> (f64, usize) {
     let first = order.first().copied().unwrap_or(0);
     if order.len() < 2 {
-        return (build.top_of(first), first);
+        return (build.top_of(column(loads, first)), first);
     }
     let mut b = build.clone();
     let mut hottest = (f64::MIN, first);
     for (k, &c) in order.iter().enumerate() {
-        let t = b.top_of(c);
+        let t = b.top_of(column(loads, c));
         if t > hottest.0 {
             hottest = (t, c);
         }
         if k + 1 < order.len() {
-            b.lay_on(c, &loads[c]);
+            b.lay_on(column(loads, c), &loads[c].load);
         }
     }
     hottest
@@ -487,7 +571,7 @@ fn starts(build: &Build, loads: &[Load], order: &[usize]) -> (f64, usize) {
 /// next (the one that has cooled longest). Kept only where it starts the
 /// layer's hottest island cooler than the plan's own `order`, which
 /// equal temperatures keep.
-fn coolest_first(build: &Build, loads: &[Load], order: &[usize]) -> Vec<usize> {
+fn coolest_first(build: &Build, loads: &[Isle], order: &[usize]) -> Vec<usize> {
     if order.len() < 2 {
         return order.to_vec();
     }
@@ -497,11 +581,14 @@ fn coolest_first(build: &Build, loads: &[Load], order: &[usize]) -> Vec<usize> {
     while !left.is_empty() {
         // `min_by` keeps the first of equals: the plan's order.
         let k = (0..left.len())
-            .min_by(|&x, &y| b.top_of(left[x]).total_cmp(&b.top_of(left[y])))
+            .min_by(|&x, &y| {
+                let top = |k: usize| b.top_of(column(loads, left[k]));
+                top(x).total_cmp(&top(y))
+            })
             .unwrap_or(0);
         let c = left.remove(k);
         if !left.is_empty() {
-            b.lay_on(c, &loads[c]);
+            b.lay_on(column(loads, c), &loads[c].load);
         }
         chosen.push(c);
     }
@@ -523,7 +610,7 @@ fn base_after(base: &impl Fn(usize) -> f64, i: usize, n: usize) -> Option<f64> {
 /// starts above it, bisected to a thousandth of a second.
 fn least_wait(
     build: &Build,
-    loads: &[Load],
+    loads: &[Isle],
     order: &[usize],
     limit: f64,
     longest: f64,
@@ -536,7 +623,9 @@ fn least_wait(
         overheat(build, loads, order, layer, c, t, limit)
     };
     let first = order.first().copied().unwrap_or(0);
-    let w0 = build.cooling_of(first, limit, longest).ok_or_else(refuse)?;
+    let w0 = build
+        .cooling_of(column(loads, first), limit, longest)
+        .ok_or_else(refuse)?;
     let after = |w: f64| {
         let mut b = build.clone();
         b.cool(w);
@@ -565,7 +654,7 @@ fn least_wait(
 /// from `build`.
 fn overheat(
     build: &Build,
-    loads: &[Load],
+    loads: &[Isle],
     order: &[usize],
     layer: usize,
     island: usize,
@@ -593,7 +682,7 @@ fn overheat(
 /// A layer's islands and the order they are laid in.
 #[derive(Clone, Copy)]
 struct Laying<'a> {
-    loads: &'a [Load],
+    loads: &'a [Isle],
     order: &'a [usize],
 }
 

@@ -506,3 +506,205 @@ fn the_order_refuses_what_it_cannot_keep() {
     assert!(e.layer > 0 && e.interpass > 150.0, "{e:?}");
     assert!(e.needs.is_some_and(|w| w > 0.0), "{e:?}");
 }
+
+/// A tree of every kind: column 0 a pillar that splits at layer 4 into
+/// columns 2 and 3 (each on its top), of which 3 ends at layer 8; column
+/// 1 a pillar that ends at layer 6; column 4 a boss that appears on the
+/// plate at layer 5. Each layer's islands `(column, load)`.
+fn forest() -> (Vec<Stand>, Vec<Vec<(usize, Load)>>) {
+    let stands = vec![
+        Stand::Plate,
+        Stand::Plate,
+        Stand::On(0),
+        Stand::On(0),
+        Stand::Plate,
+    ];
+    let layers = (0..12)
+        .map(|i| {
+            let mut l = Vec::new();
+            if i < 4 {
+                l.push((0, pillar(12.0, 900.0, 4.0)));
+            } else {
+                l.push((2, pillar(6.0, 400.0, 2.0)));
+                if i < 8 {
+                    l.push((3, pillar(5.0, 300.0, 1.5)));
+                }
+            }
+            if i < 6 {
+                l.push((1, pillar(10.0, 800.0, 4.0)));
+            }
+            if i >= 5 {
+                l.push((4, pillar(8.0, 600.0, 3.0)));
+            }
+            l
+        })
+        .collect();
+    (stands, layers)
+}
+
+/// The first layer of each column of [`forest`].
+fn forest_firsts(layers: &[Vec<(usize, Load)>], n: usize) -> Vec<Load> {
+    (0..n)
+        .map(|c| {
+            let first = layers.iter().flatten().find(|(k, _)| *k == c);
+            first.map(|(_, l)| *l).unwrap()
+        })
+        .collect()
+}
+
+/// Islands that split, end and appear: every step's tree elimination
+/// (children folded into their parent's top, columns onto the plate)
+/// against the same implicit system solved densely, to 1e-10, through
+/// deposits and cooling.
+#[test]
+fn a_tree_of_splits_ends_and_appearances_is_the_dense_solve() {
+    let (stands, layers) = forest();
+    let mut b = Build::new(steel(), plate());
+    b.plant(&stands, &forest_firsts(&layers, stands.len()));
+    assert_eq!(b.columns(), 5);
+    for (i, layer) in layers.iter().enumerate() {
+        for (c, load) in layer {
+            b.lay_on(*c, load);
+        }
+        let into = layer[i % layer.len()].0;
+        for power in [300.0, 0.0] {
+            let mut dense = b.clone();
+            b.step_once(0.4, power, into);
+            dense.dense_step(0.4, power, into);
+            for (x, y) in b.temperatures().iter().zip(dense.temperatures()) {
+                assert!((x - y).abs() <= 1e-10 * x.abs().max(1.0), "{x} vs {y}");
+            }
+        }
+        b.cool(1.5);
+    }
+}
+
+/// Without losses the heat a tree of splits, ends and appearances holds
+/// is what the laser put in, to 1e-9: neither a split's fold into its
+/// parent's top nor a foot bare until its boss appears makes or loses
+/// heat.
+#[test]
+fn a_tree_keeps_the_energy_it_takes() {
+    let m = Material {
+        emissivity: 0.0,
+        heat_transfer: 0.0,
+        ..steel()
+    };
+    let (stands, layers) = forest();
+    let mut b = Build::new(m, plate());
+    b.plant(&stands, &forest_firsts(&layers, stands.len()));
+    let mut taken = 0.0;
+    for layer in &layers {
+        for (c, l) in layer {
+            b.lay_on(*c, l);
+            taken += m.absorptivity * l.energy;
+        }
+        b.cool(2.0);
+    }
+    let held = b.heat_above(25.0);
+    assert!(
+        (held - taken).abs() <= 1e-9 * taken,
+        "{held} J held, {taken} J taken"
+    );
+}
+
+/// Islands that split start on their parent's top: the first child laid
+/// starts at the temperature the parent's top has then, and the one laid
+/// after it hotter (the first's heat reaches it through the parent's top)
+/// but cooler than the first child's peak.
+#[test]
+fn a_fork_starts_on_its_stem() {
+    let stem = pillar(12.0, 900.0, 4.0);
+    let branch = pillar(5.0, 300.0, 1.5);
+    let layers: Vec<Vec<Load>> = (0..10)
+        .map(|i| if i < 5 { vec![stem] } else { vec![branch; 2] })
+        .collect();
+    let mut of: Vec<Vec<usize>> = vec![vec![0]; 5];
+    of.extend(vec![vec![1, 2]; 5]);
+    let columns = Columns {
+        stands: vec![Stand::Plate, Stand::On(0), Stand::On(0)],
+        of,
+    };
+    let orders: Vec<Vec<usize>> = layers.iter().map(|l| (0..l.len()).collect()).collect();
+    let p = predict_tree(steel(), plate(), &columns, &layers, &orders, |_| 1.0, None).unwrap();
+    // The stem alone, one column: the same up to the fork.
+    let alone = predict(steel(), plate(), &[stem; 5], |_| 1.0, None).unwrap();
+    for (a, b) in p.iter().zip(&alone) {
+        assert!((a.layer.interpass - b.interpass).abs() < 1e-9);
+    }
+    let mut b = Build::new(steel(), plate());
+    for _ in 0..5 {
+        b.cool(1.0);
+        b.lay(&stem);
+    }
+    b.cool(1.0);
+    let fork = &p[5].islands;
+    assert!((fork[0].interpass - b.top()).abs() < 1e-9, "{fork:?}");
+    assert!(fork[1].interpass > fork[0].interpass, "{fork:?}");
+    assert!(fork[1].interpass < fork[0].peak, "{fork:?}");
+}
+
+/// Two equal pillars side by side, the second ending at half height: up
+/// to there the two start each layer within a kelvin of each other (laid
+/// in turn, the second a deposit later); after, the taller is a single
+/// pillar on a plate that the shorter warmed and that the shorter, now a
+/// fin, cools: it starts every layer within 1 % of its rise above ambient
+/// of the same pillar built alone with the same waits (laying the other,
+/// then no wait). It starts a kelvin or so cooler: the two effects nearly
+/// cancel, the fin's a little the larger.
+#[test]
+fn a_pillar_that_ends_leaves_the_taller_as_one() {
+    let load = pillar(10.0, 800.0, 4.0);
+    let n = 24;
+    let layers: Vec<Vec<Load>> = (0..n)
+        .map(|i| if i < n / 2 { vec![load; 2] } else { vec![load] })
+        .collect();
+    let orders: Vec<Vec<usize>> = layers.iter().map(|l| (0..l.len()).collect()).collect();
+    let two = predict_islands(steel(), plate(), &layers, &orders, |_| 2.0, None).unwrap();
+    // The taller alone: waits 2 s plus the other's deposit while it stands.
+    let wait = |i: usize| if i <= n / 2 { 2.0 + load.time } else { 2.0 };
+    let one = predict(steel(), plate(), &vec![load; n], wait, None).unwrap();
+    let last = &two[n / 2 - 1].islands;
+    assert!(
+        (last[1].interpass - last[0].interpass).abs() < 1.0,
+        "{last:?}"
+    );
+    let rise = one.iter().map(|p| p.interpass - 25.0).fold(0.0, f64::max);
+    for i in n / 2..n {
+        let (t, alone) = (two[i].layer.interpass, one[i].interpass);
+        eprintln!("layer {i}: {t} against {alone} alone");
+        assert_eq!(two[i].islands.len(), 1);
+        assert!(
+            (t - alone).abs() <= 0.01 * rise,
+            "layer {i}: {t} against {alone}"
+        );
+    }
+}
+
+/// A boss that appears on the plate half way through the build of a
+/// pillar starts on its own foot: warmer than the plate's preheat (the
+/// pillar's heat has spread into the plate under it) and far cooler than
+/// the pillar's top; its foot is the plate's until then, so the pillar
+/// before it appears is the pillar with its foot laid out bare.
+#[test]
+fn a_boss_that_appears_later_starts_on_the_plate() {
+    let tall = pillar(10.0, 800.0, 4.0);
+    let boss = pillar(8.0, 500.0, 3.0);
+    let n = 16;
+    let layers: Vec<Vec<Load>> = (0..n)
+        .map(|i| if i < 8 { vec![tall] } else { vec![tall, boss] })
+        .collect();
+    let orders: Vec<Vec<usize>> = layers.iter().map(|l| (0..l.len()).collect()).collect();
+    let columns = Columns::side_by_side(&layers);
+    assert_eq!(columns.stands, [Stand::Plate; 2]);
+    let p = predict_tree(steel(), plate(), &columns, &layers, &orders, |_| 2.0, None).unwrap();
+    let first = p[8].islands[1];
+    assert!(first.interpass > 25.0 + 1e-3, "{first:?}");
+    assert!(first.interpass < 0.5 * (p[8].islands[0].interpass + 25.0));
+    // The boss's first layers start cooler than the pillar's.
+    for l in &p[8..] {
+        assert!(l.islands[1].interpass < l.islands[0].interpass, "{l:?}");
+    }
+    let first_interpass: Vec<f64> = p.iter().map(|l| l.layer.interpass).collect();
+    assert!(first_interpass.windows(2).take(7).all(|w| w[1] > w[0]));
+}
