@@ -637,3 +637,39 @@ fn fit_per_island_finds_the_values_that_made_the_temperatures() {
     assert_eq!(islands[0].as_u64(), Some(1));
     assert_eq!(islands[1].as_u64(), Some(2));
 }
+
+/// A field of 17 × 17 pins (3 mm square, 8 mm apart): more islands a
+/// layer than lmdc tells apart (256), so the part is taken as one column
+/// (each layer one temperature, no island listed) and the plan is made
+/// quickly; 4 × 4 of the same pins are told apart, a column each.
+#[test]
+fn a_field_of_pins_past_the_island_cap_is_one_column() {
+    let src = std::fs::read_to_string("examples/two_pillars.lmd")
+        .unwrap()
+        .replace("    max_interpass = 320 degC\n", "")
+        .replace("    cooling = order\n", "")
+        .replace("layers = 18", "layers = 2");
+    let field = |n: usize| -> Vec<lmdc::geometry::mesh::stl::Triangle> {
+        (0..n * n)
+            .flat_map(|k| {
+                let (x, y) = ((k % n) as f64 * 8.0, (k / n) as f64 * 8.0);
+                cuboid([x, y, 0.0], [x + 3.0, y + 3.0, 1.2])
+            })
+            .collect()
+    };
+    let few = pillars(&src, &field(4)).expect("no limit");
+    let t = few.thermal.as_ref().unwrap();
+    assert!(
+        t.layers.iter().all(|l| l.islands.len() == 16),
+        "{:?}",
+        t.layers
+    );
+    let many = pillars(&src, &field(17)).expect("no limit");
+    let t = many.thermal.as_ref().unwrap();
+    assert_eq!(t.layers.len(), 2);
+    assert!(
+        t.layers.iter().all(|l| l.islands.is_empty()),
+        "{:?}",
+        t.layers[0].islands.len()
+    );
+}

@@ -296,6 +296,12 @@ pub fn island_loads(program: &Program) -> (Vec<Vec<Load>>, Vec<Vec<usize>>, ther
 /// one piece, so that finding islands stays cheap on a dense layer.
 const MAX_ISLAND_SAMPLES: usize = 200_000;
 
+/// The most islands a layer is taken as: past it (a lattice of pins, a
+/// field of dots) the part is one column, so that telling them apart and
+/// matching them to the layer below, which compares every pair, stays
+/// cheap.
+const MAX_ISLANDS: usize = 256;
+
 /// One island of a layer: a run of its paths whose deposits touch (come
 /// within about a bead of each other), and the box round them in the
 /// layer's frame, mm.
@@ -312,7 +318,8 @@ struct Island {
 /// apart or more never). A laser-off path belongs to the deposit before
 /// it, a lead onto a deposit to that deposit. `None` where an island's
 /// paths are not one run of the layer's (its order is then not the model's
-/// to change) or the layer is too dense to sample (`MAX_ISLAND_SAMPLES`).
+/// to change), the layer is too dense to sample (`MAX_ISLAND_SAMPLES`) or
+/// has more than `MAX_ISLANDS` islands.
 fn islands(layer: &Layer, w: f64) -> Option<Vec<Island>> {
     if w.is_nan() || w <= 0.0 || layer.on_plate {
         return None;
@@ -386,7 +393,7 @@ fn islands(layer: &Layer, w: f64) -> Option<Vec<Island>> {
     for (i, &o) in owner.iter().enumerate() {
         let again = out.last().is_some_and(|(r, _)| *r == o);
         // An island met again after another: not one run.
-        if !again && out.iter().any(|(r, _)| *r == o) {
+        if !again && (out.len() == MAX_ISLANDS || out.iter().any(|(r, _)| *r == o)) {
             return None;
         }
         match out.last_mut() {
