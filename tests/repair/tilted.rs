@@ -63,7 +63,11 @@ fn worn(x: f64, y: f64) -> f64 {
 /// from above, on a 5-axis head whose A axis turns `a` either way and a
 /// bead measured up to 35°; `direction` as given.
 fn slab(a: f64, direction: &str) -> lmdc::pipeline::Compiled {
-    let src = include_str!("../../examples/worn_pad.lmd");
+    slab_with(a, direction, include_str!("../../examples/worn_pad.lmd"))
+}
+
+/// [`slab`] from `src`, the worn pad's file as edited by the test.
+fn slab_with(a: f64, direction: &str, src: &str) -> lmdc::pipeline::Compiled {
     let machines = src.find("machine mill3").unwrap();
     let head = format!(
         "machine mill5 {{
@@ -268,4 +272,82 @@ fn a_target_vertical_builds_is_planned_as_without_direction() {
     };
     let (auto, vertical) = (plan("direction = auto"), plan(""));
     assert_eq!(auto.ir().layers, vertical.ir().layers);
+}
+
+/// A bead that lays only 0.84 .. 0.91 mm (6 to 6.5 mm/s, its tracks 2 mm
+/// apart) cannot lay the slab's fill along its lean, 4.4 to 5.8 mm deep
+/// along it: no whole number of layers fits both ends. The refusal comes from the planner in the
+/// frame turned so the lean is up, and names where the fill is deepest and
+/// shallowest as points of the part: each on the slab's face (13.5 mm
+/// high) within its outline seen from above, and the depth it prints
+/// there is the depth along the lean down to the worn surface, found here
+/// from the surface's formula.
+#[test]
+fn a_refusal_of_the_tilted_plan_names_its_points_in_the_part() {
+    let src = include_str!("../../examples/worn_pad.lmd")
+        .replace("speed = 4 mm/s .. 8.7 mm/s", "speed = 6 mm/s .. 6.5 mm/s");
+    let c = slab_with(35.0, "direction = auto", &src);
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code.as_str() == "lmd::no-layer-count")
+        .unwrap_or_else(|| panic!("{m}"));
+    assert!(
+        d.message
+            .contains("planned along the build direction tilted 30° toward 0° from +x"),
+        "{}",
+        d.message
+    );
+    let label = d
+        .labels
+        .iter()
+        .find_map(|l| l.text.strip_prefix("where the tracks run: "))
+        .unwrap_or_else(|| panic!("{:?}", d.labels));
+    let named = depths_at(label);
+    assert_eq!(named.len(), 2, "{label}");
+    let tilt = LEAN.to_radians();
+    let s = shift();
+    for (depth, p) in &named {
+        assert!((p[2] - (10.0 + HEIGHT)).abs() < 1e-3, "{label}");
+        assert!(
+            (BASE[0] + s..=BASE[1] + s).contains(&p[0]) && p[1].abs() <= 10.0,
+            "{label}"
+        );
+        // Down the lean from p to the worn surface, bisected.
+        let below = |t: f64| p[2] - t * tilt.cos() < worn(p[0] - t * tilt.sin(), p[1]);
+        let (mut lo, mut hi) = (0.0, 20.0);
+        for _ in 0..60 {
+            let mid = (lo + hi) / 2.0;
+            if below(mid) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        assert!(
+            (depth - lo).abs() < 0.06,
+            "{label}: {depth} mm printed at {p:?}, {lo} mm down the lean to the surface"
+        );
+    }
+    assert!(named[0].0 > named[1].0 + 1.0, "{label}");
+}
+
+/// The depths and points of "5.7 mm at (x, y, z) mm, 4 mm at (x, y, z) mm".
+fn depths_at(label: &str) -> Vec<(f64, [f64; 3])> {
+    let number = |s: &str| s.trim().trim_end_matches("mm").trim().parse::<f64>();
+    label
+        .split(") mm")
+        .filter_map(|part| {
+            let (depth, point) = part.split_once(" at (")?;
+            let depth = number(depth.trim_start_matches(',')).ok()?;
+            let xyz: Vec<f64> = point
+                .split(", ")
+                .map(number)
+                .collect::<Result<_, _>>()
+                .ok()?;
+            Some((depth, xyz.try_into().ok()?))
+        })
+        .collect()
 }

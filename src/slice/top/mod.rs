@@ -189,7 +189,7 @@ fn build(
         return Ok(Built::new(layers, warnings, scan, lines));
     }
     if let Some((miss, n)) = missed {
-        return Err(deposit::report(&miss, n, bead, slicing, ex).into());
+        return Err(deposit::report(&miss, n, bead, slicing, ex, scan).into());
     }
     Err(internal(
         "the top's range over the tracks did not settle".into(),

@@ -31,7 +31,9 @@ use crate::geometry::scan::HeightField;
 use crate::geometry::shape::{Outline, Segment, Shape};
 use crate::geometry::target::{Inner, Target, Turned};
 use crate::ir::{Frame, Kinematics, Layer, Machine};
-use crate::sema::model::{Bead, Model, ScanBase, Top, TopExtrusion, TopSolid, VariableSlicing};
+use crate::sema::model::{
+    Bead, Model, ScanBase, Top, TopExtrusion, TopSolid, TurnedFrame, VariableSlicing,
+};
 use crate::span::Span;
 use crate::units::Length;
 use nalgebra::{Rotation3, Vector3};
@@ -385,8 +387,9 @@ fn plan(
     Ok((layers, built.warnings))
 }
 
-/// `ex` turned by `rot`: its scan turned and rastered again, its target
-/// turned, its footprint the profile at the face's height turned.
+/// `ex` turned by `rot`: its scan turned and rastered again, its
+/// target turned, its footprint the profile at the face's height turned,
+/// and the way back into the part for the points its messages name.
 fn turn(
     ex: &TopExtrusion,
     lines: &Lines<'_>,
@@ -436,6 +439,10 @@ fn turn(
         base: Some(ScanBase {
             surface: Arc::new(surface),
             ..scan.clone()
+        }),
+        turned: Some(TurnedFrame {
+            back: rot.inverse(),
+            face: lines.face,
         }),
         ..ex.clone()
     })
