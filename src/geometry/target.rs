@@ -142,7 +142,7 @@ impl Target {
 }
 
 /// Whether `q` lies in a mesh: an odd number of its faces above it.
-fn mesh_contains(m: &Highest, q: [f64; 3]) -> bool {
+pub fn mesh_contains(m: &Highest, q: [f64; 3]) -> bool {
     m.crossings_above([q[0], q[1]], q[2]).len() % 2 == 1
 }
 

@@ -100,6 +100,17 @@ impl Top {
             _ => None,
         }
     }
+
+    /// Whether `q` (mm) lies in the top when it is a target mesh or solid
+    /// (the part as designed); `false` for any other top, which has no
+    /// inside.
+    pub fn contains(&self, q: [f64; 3]) -> bool {
+        match self {
+            Top::Mesh(m) => crate::geometry::target::mesh_contains(&m.surface, q),
+            Top::Solid(s) => s.surface.contains(q),
+            _ => false,
+        }
+    }
 }
 
 /// A top written as an expression of `x` and `y`, kept as the user wrote it

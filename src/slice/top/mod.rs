@@ -23,6 +23,7 @@ mod count;
 /// The convex hull of points (the thermal model's outline of a layer).
 pub(crate) use count::hull;
 mod deposit;
+mod direction;
 mod emit;
 mod follow;
 mod footprint;

@@ -6,9 +6,8 @@
 //! piece, from the scan up, or its upper piece is laid on nothing. The
 //! lines are the footprint's points at the finished face's height (the
 //! profile is the face's outline seen from above), followed down along
-//! `−d` to the scan. The directions tried tilt from vertical in steps of
-//! [`TILT_STEP`] toward [`AZIMUTHS`] directions round the vertical, up to
-//! the most the bead and the machines tilt; the first that builds every
+//! `−d` to the scan. The directions tried are [`Direction::tried`]'s, up
+//! to the most the bead and the machines tilt; the first that builds every
 //! line is the least tilt. A direction that fails at a line is likely to
 //! fail there again at the next, so that line is tried first.
 //!
@@ -23,6 +22,7 @@
 //! turned vertical: `lmd::stacking`, deposit and the bead's tilt read them
 //! as a tilted nozzle's.
 
+use super::direction::{Direction, MAX_TILT, TILT_STEP};
 use super::surface::Base;
 use crate::diag::message::top::Untilted;
 use crate::diag::{message, Diagnostics};
@@ -39,15 +39,6 @@ use crate::units::Length;
 use nalgebra::{Rotation3, Vector3};
 use std::sync::Arc;
 
-/// Degrees between the tilts tried.
-const TILT_STEP: f64 = 1.0;
-
-/// The directions round the vertical tried at each tilt.
-const AZIMUTHS: usize = 24;
-
-/// The most tilt tried, deg: a line nearer horizontal runs along the part.
-const MAX_TILT: f64 = 85.0;
-
 /// The step along a line, mm: a piece of the target thinner than this
 /// along it can be missed.
 const STEP: f64 = 0.05;
@@ -61,45 +52,6 @@ const EDGE: f64 = 0.01;
 
 /// Chord error of the footprint's outline, mm (the footprint's own).
 const CHORD_ERROR: f64 = 0.01;
-
-/// A build direction: its tilt from vertical and the direction it tilts
-/// toward, deg from +x counter-clockwise.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Direction {
-    tilt: f64,
-    azimuth: f64,
-}
-
-impl Direction {
-    const VERTICAL: Direction = Direction {
-        tilt: 0.0,
-        azimuth: 0.0,
-    };
-
-    /// The unit vector.
-    fn vector(self) -> [f64; 3] {
-        let (st, ct) = self.tilt.to_radians().sin_cos();
-        let (sa, ca) = self.azimuth.to_radians().sin_cos();
-        [st * ca, st * sa, ct]
-    }
-
-    fn pair(self) -> [f64; 2] {
-        [self.tilt, self.azimuth]
-    }
-
-    /// Every direction tried with a tilt in `(from, to]` deg, least tilt
-    /// first.
-    fn tried(from: f64, to: f64) -> impl Iterator<Item = Direction> {
-        let steps = (to.min(MAX_TILT) / TILT_STEP + 1e-9).floor() as usize;
-        let first = (from / TILT_STEP + 1e-9).floor() as usize + 1;
-        (first..=steps).flat_map(|k| {
-            (0..AZIMUTHS).map(move |a| Direction {
-                tilt: k as f64 * TILT_STEP,
-                azimuth: a as f64 * 360.0 / AZIMUTHS as f64,
-            })
-        })
-    }
-}
 
 /// What a line along a direction meets.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -125,14 +77,6 @@ struct Lines<'a> {
 }
 
 impl Lines<'_> {
-    fn inside(&self, q: [f64; 3]) -> bool {
-        match self.top {
-            Top::Mesh(m) => m.surface.crossings_above([q[0], q[1]], q[2]).len() % 2 == 1,
-            Top::Solid(s) => s.surface.contains(q),
-            _ => false,
-        }
-    }
-
     /// What the line through footprint point `k` along `d` meets, walked
     /// down from above the target to the scan.
     fn meets(&self, k: usize, d: [f64; 3]) -> Meets {
@@ -161,7 +105,7 @@ impl Lines<'_> {
                 None if q[2] <= self.scan.stats.z_range[1] => return Meets::Nothing,
                 _ => {}
             }
-            let is = self.inside(q);
+            let is = self.top.contains(q);
             if is && !was {
                 pieces += 1;
                 if pieces > 1 {
@@ -472,28 +416,4 @@ fn turn_back(mut layer: Layer, back: &Rotation3<f64>) -> Layer {
         z: turn(f.z),
     };
     layer
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn directions_are_tried_least_tilt_first_within_the_limit() {
-        let all: Vec<Direction> = Direction::tried(0.0, 2.5).collect();
-        assert_eq!(all.len(), 2 * AZIMUTHS);
-        assert_eq!(all[0].pair(), [1.0, 0.0]);
-        assert_eq!(all[AZIMUTHS].pair(), [2.0, 0.0]);
-        assert_eq!(Direction::tried(0.0, 0.0).count(), 0);
-        assert_eq!(
-            Direction::tried(30.0, 31.0).next().map(|d| d.tilt),
-            Some(31.0)
-        );
-        let v = Direction {
-            tilt: 30.0,
-            azimuth: 90.0,
-        }
-        .vector();
-        assert!((v[1] - 0.5).abs() < 1e-12 && v[0].abs() < 1e-12, "{v:?}");
-    }
 }
