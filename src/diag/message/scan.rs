@@ -7,7 +7,7 @@ use crate::diag::{Code, Diagnostic};
 use crate::geometry::mesh::SectionFault;
 use crate::geometry::scan::section::{CutFault, MAX_LOOPS};
 use crate::geometry::scan::{FitFault, Freedom, GridFault, ScanError, MAX_CELLS};
-use crate::sema::model::TurnedFrame;
+use crate::geometry::target::TurnedFrame;
 use crate::span::Span;
 use crate::units::short;
 

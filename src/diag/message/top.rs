@@ -2,7 +2,7 @@
 //! footprint, its tracks and the segments that follow it.
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
-use crate::sema::model::TurnedFrame;
+use crate::geometry::target::TurnedFrame;
 use crate::slice::variable::layers::{NoLayerCount, OutOfRange, MAX_LAYERS};
 use crate::slice::variable::segments::{SegmentError, MAX_SEGMENTS};
 use crate::span::Span;

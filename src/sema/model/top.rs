@@ -4,6 +4,7 @@
 //! each lay the same fraction `H/N` of the local height.
 
 use super::{Measure, Shape};
+pub use crate::geometry::target::TurnedFrame;
 use crate::span::Span;
 use crate::syntax::ast::Expr;
 use crate::units::Length;
@@ -152,39 +153,6 @@ pub struct TopExtrusion {
     /// direction is up (`direction = auto`): how the points its messages
     /// name go back into the part. `None` for the part as the file gives it.
     pub turned: Option<TurnedFrame>,
-}
-
-/// A fill planned in a frame turned so that its build direction is up
-/// (`direction = auto`, docs/repair.md, *Undercuts*): what a process
-/// engineer reads in a refusal is the part's coordinates, so the
-/// planner's points are named back in the part.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TurnedFrame {
-    /// From the planning frame back into the part.
-    pub back: nalgebra::Rotation3<f64>,
-    /// The finished face's height in the part, mm: the footprint the file
-    /// draws lies there, and each point of the turned footprint is the
-    /// line along the direction through one of its points.
-    pub face: f64,
-}
-
-impl TurnedFrame {
-    /// The part's point at `p` (mm, in the planning frame).
-    pub fn point(&self, p: [f64; 3]) -> [f64; 3] {
-        let q = self.back * nalgebra::Vector3::from(p);
-        [q.x, q.y, q.z]
-    }
-
-    /// The part's point that the planning frame's footprint point `p`
-    /// (mm) stands for: where its vertical line, the build direction's
-    /// line in the part, crosses the finished face's height.
-    pub fn footprint(&self, p: [f64; 2]) -> [f64; 3] {
-        // The part's z along the turned vertical through p is
-        // r₂₀·x + r₂₁·y + r₂₂·z, r₂₂ the direction's z (> 0 within 85°).
-        let r = self.back.matrix();
-        let z = (self.face - r[(2, 0)] * p[0] - r[(2, 1)] * p[1]) / r[(2, 2)];
-        self.point([p[0], p[1], z])
-    }
 }
 
 /// A scan a repair is built on (`on = scan(…)`).
