@@ -22,6 +22,9 @@
 mod count;
 /// The convex hull of points (the thermal model's outline of a layer).
 pub(crate) use count::hull;
+/// A footprint seen along a tilted build direction (the report's design
+/// volume of a tilted fill).
+pub(crate) use tilted::seen_along;
 mod deposit;
 mod direction;
 mod emit;

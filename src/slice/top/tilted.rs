@@ -311,8 +311,7 @@ fn plan(
     if let Some(span) = slicing.follow {
         return Err(tilted("follow", span).into());
     }
-    let v = Vector3::from(d.vector());
-    let rot = Rotation3::rotation_between(&v, &Vector3::z()).unwrap_or_else(Rotation3::identity);
+    let rot = up(d.vector());
     let turned = turn(ex, lines, rot)?;
     let base = Base::of(&turned, None);
     let built = super::build(model, bead, &turned, slicing, base).map_err(|e| {
@@ -329,6 +328,25 @@ fn plan(
         .map(|l| turn_back(l, &back))
         .collect();
     Ok((layers, built.warnings))
+}
+
+/// The rotation that turns `d` (a unit vector) up.
+fn up(d: [f64; 3]) -> Rotation3<f64> {
+    Rotation3::rotation_between(&Vector3::from(d), &Vector3::z())
+        .unwrap_or_else(Rotation3::identity)
+}
+
+/// `ex` seen along `d` (a unit vector, tilted less than 85°) as a fill
+/// along it is planned with `bead`: turned so `d` is up, its scan, target
+/// and footprint (the profile at the finished face's height) with it.
+/// `None` when its top is no target on a scan or does not turn. What the
+/// report integrates a tilted fill's design volume over.
+pub(crate) fn seen_along(ex: &TopExtrusion, bead: &Bead, d: [f64; 3]) -> Option<TopExtrusion> {
+    if d[2].is_nan() || d[2] < MAX_TILT.to_radians().cos() - 1e-9 {
+        return None;
+    }
+    let lines = lines(ex, bead)?;
+    turn(ex, &lines, up(d)).ok()
 }
 
 /// `ex` turned by `rot`: its scan turned and rastered again, its
