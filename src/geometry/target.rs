@@ -142,8 +142,41 @@ impl Target {
 }
 
 /// Whether `q` lies in a mesh: an odd number of its faces above it.
-fn mesh_contains(m: &Highest, q: [f64; 3]) -> bool {
+pub fn mesh_contains(m: &Highest, q: [f64; 3]) -> bool {
     m.crossings_above([q[0], q[1]], q[2]).len() % 2 == 1
+}
+
+/// A fill planned in a frame turned so that its build direction is up
+/// (`direction = auto`, docs/repair.md, *Undercuts*): what a process
+/// engineer reads in a refusal is the part's coordinates, so the
+/// planner's points are named back in the part.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TurnedFrame {
+    /// From the planning frame back into the part.
+    pub back: nalgebra::Rotation3<f64>,
+    /// The finished face's height in the part, mm: the footprint the file
+    /// draws lies there, and each point of the turned footprint is the
+    /// line along the direction through one of its points.
+    pub face: f64,
+}
+
+impl TurnedFrame {
+    /// The part's point at `p` (mm, in the planning frame).
+    pub fn point(&self, p: [f64; 3]) -> [f64; 3] {
+        let q = self.back * nalgebra::Vector3::from(p);
+        [q.x, q.y, q.z]
+    }
+
+    /// The part's point that the planning frame's footprint point `p`
+    /// (mm) stands for: where its vertical line, the build direction's
+    /// line in the part, crosses the finished face's height.
+    pub fn footprint(&self, p: [f64; 2]) -> [f64; 3] {
+        // The part's z along the turned vertical through p is
+        // r₂₀·x + r₂₁·y + r₂₂·z, r₂₂ the direction's z (> 0 within 85°).
+        let r = self.back.matrix();
+        let z = (self.face - r[(2, 0)] * p[0] - r[(2, 1)] * p[1]) / r[(2, 2)];
+        self.point([p[0], p[1], z])
+    }
 }
 
 /// What a turned target turns: a target mesh or a target solid.

@@ -13,7 +13,12 @@
 //!   `A + P·w/2 + π·w²/4`, exact for a convex outline);
 //! - a footprint up to a top: `∫ top dA` over the footprint (a
 //!   plane or edges top: the area times the top at the centroid; an
-//!   expression: sampled on a 256 × 256 grid).
+//!   expression: sampled on a 256 × 256 grid);
+//! - a footprint filled along a tilted build direction `d`
+//!   (`direction = auto`): the same integral in the part turned so `d` is
+//!   up, as the fill is planned — over the footprint seen along `d`, of
+//!   the target's length along `d` above the scan (a 64 × 64 grid: each
+//!   point walks a line through the target).
 
 use crate::diag::Diagnostics;
 use crate::geometry::outline::{profile, region};
@@ -28,6 +33,9 @@ const ANGLES: usize = 720;
 const CHORD: f64 = 0.005;
 /// Samples a side of an expression top's grid.
 const GRID: usize = 256;
+/// Samples a side of the grid along a tilted build direction, whose
+/// points each walk a line through the target.
+const GRID_ALONG: usize = 64;
 
 /// The design solid's volume, or why it is not known.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -48,8 +56,9 @@ pub enum Design {
     },
 }
 
-/// The design volume of `model`'s solid.
-pub fn volume(model: &Model) -> Design {
+/// The design volume of `model`'s solid; `along`: the build direction
+/// of a fill planned along a tilted one (the plan's layers' frame z).
+pub fn volume(model: &Model, along: Option<[f64; 3]>) -> Design {
     let Some(bead) = &model.bead else {
         return Design::Unknown {
             why: "a ring's wall has no bead model (its segment table gives the widths)".into(),
@@ -73,7 +82,15 @@ pub fn volume(model: &Model) -> Design {
                 })
                 .ok_or_else(|| "the layers could not be planned".to_string())
         }
-        Build::Variable { extrusion, .. } => top_volume(extrusion, w),
+        Build::Variable { extrusion, .. } => match along {
+            None => top_volume(extrusion, w, GRID),
+            Some(d) => crate::slice::top::seen_along(extrusion, bead, d)
+                .ok_or_else(|| "the part does not turn to the build direction".to_string())
+                .and_then(|turned| top_volume(&turned, w, GRID_ALONG))
+                .map(|(v, _)| {
+                    (v, "the footprint seen along the build direction: its integral, along it, of the target less the scanned surface".to_string())
+                }),
+        },
         #[allow(unreachable_patterns)]
         _ => Err("lmdc does not measure this kind of solid yet".into()),
     };
@@ -180,17 +197,18 @@ fn centroid(pts: &[[f64; 2]]) -> Option<(f64, [f64; 2])> {
 }
 
 /// `∫ f dA` over the footprint `p` within its bounds `[lo, hi]`, by the
-/// midpoints of a [`GRID`] × [`GRID`] grid; the first point `f` has no
-/// value at ends it.
+/// midpoints of an `n` × `n` grid; the first point `f` has no value at
+/// ends it.
 fn integral(
     p: &Profile,
     [lo, hi]: [[f64; 2]; 2],
+    n: usize,
     mut f: impl FnMut([f64; 2]) -> Result<f64, &'static str>,
 ) -> Result<f64, String> {
-    let (dx, dy) = ((hi[0] - lo[0]) / GRID as f64, (hi[1] - lo[1]) / GRID as f64);
+    let (dx, dy) = ((hi[0] - lo[0]) / n as f64, (hi[1] - lo[1]) / n as f64);
     let mut sum = 0.0;
-    for i in 0..GRID {
-        for j in 0..GRID {
+    for i in 0..n {
+        for j in 0..n {
             let q = [lo[0] + (i as f64 + 0.5) * dx, lo[1] + (j as f64 + 0.5) * dy];
             if p.contains(q) {
                 sum += f(q)? * dx * dy;
@@ -224,7 +242,9 @@ pub(super) fn linear_top(ex: &TopExtrusion, [lo, hi]: [[f64; 2]; 2], c: [f64; 2]
     }
 }
 
-fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
+/// `∫ (top − base) dA` over `ex`'s footprint (a grid `n` a side where the
+/// top is sampled), and what it measured.
+fn top_volume(ex: &TopExtrusion, w: f64, n: usize) -> Result<(f64, String), String> {
     let p = profile(&ex.shape, CHORD);
     let pts = p.polyline(CHORD);
     let (_, c) = centroid(&pts).ok_or("the footprint is empty")?;
@@ -237,19 +257,19 @@ fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
         (None, Top::Expr(e)) => {
             let mut heights = e.evaluator();
             let mut scratch = Diagnostics::new();
-            integral(&p, [lo, hi], |q| {
+            integral(&p, [lo, hi], n, |q| {
                 heights
                     .at(q[0], q[1], &mut scratch)
                     .map(|h| h.0)
                     .ok_or("the top has no value somewhere on the footprint")
             })?
         }
-        (None, Top::Mesh(m)) => integral(&p, [lo, hi], |q| {
+        (None, Top::Mesh(m)) => integral(&p, [lo, hi], n, |q| {
             m.surface
                 .at(q)
                 .ok_or("the target mesh does not cover the footprint everywhere")
         })?,
-        (None, Top::Solid(t)) => integral(&p, [lo, hi], |q| {
+        (None, Top::Solid(t)) => integral(&p, [lo, hi], n, |q| {
             t.surface
                 .at(q)
                 .ok_or("the target solid does not cover the footprint everywhere")
@@ -260,7 +280,7 @@ fn top_volume(ex: &TopExtrusion, w: f64) -> Result<(f64, String), String> {
         return Ok((v * widen, "the footprint's integral of its top".to_string()));
     };
     // On a scan: less the measured part under the footprint (what is there).
-    let under = integral(&p, [lo, hi], |q| {
+    let under = integral(&p, [lo, hi], n, |q| {
         (base.surface.at(q)).ok_or("the scan does not cover the footprint everywhere")
     })?;
     Ok((

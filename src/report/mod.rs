@@ -224,7 +224,15 @@ impl Report {
     /// The report of `machine`'s plan, against the design solid of `model`;
     /// `density` (g/cm³) replaces or supplies the density.
     pub fn new(machine: VerifiedMachine<'_>, model: &Model, density: Option<f64>) -> Report {
-        let mut r = Self::from_parts(machine, design::volume(model), density);
+        // A fill along a tilted build direction (`direction = auto`) has
+        // that direction as every layer's frame z.
+        let along = machine
+            .ir()
+            .layers
+            .first()
+            .map(|l| l.frame.z)
+            .filter(|&z| z != [0.0, 0.0, 1.0]);
+        let mut r = Self::from_parts(machine, design::volume(model, along), density);
         if let (Some(v), Some(_)) = (r.design_volume(), &r.bead) {
             r.design_missing =
                 coverage::missing(model, machine.ir()).map(|m| m.scaled(v, r.density_g_cm3));

@@ -18,8 +18,8 @@ mod wall;
 pub use calibration::{Calibration, Coupon, CouponKind};
 pub use segmented_ring::{HeightControl, LoopRun, RingBuild};
 pub use top::{
-    Axis, Level, ScanBase, Top, TopExpr, TopExtrusion, TopMesh, TopSolid, VariableSlicing,
-    DEFAULT_TOLERANCE,
+    Axis, Level, ScanBase, Top, TopExpr, TopExtrusion, TopMesh, TopSolid, TurnedFrame,
+    VariableSlicing, DEFAULT_TOLERANCE,
 };
 pub use wall::{OpenWall, WallEnds, WallSide};
 

@@ -63,7 +63,17 @@ fn worn(x: f64, y: f64) -> f64 {
 /// from above, on a 5-axis head whose A axis turns `a` either way and a
 /// bead measured up to 35°; `direction` as given.
 fn slab(a: f64, direction: &str) -> lmdc::pipeline::Compiled {
-    let src = include_str!("../../examples/worn_pad.lmd");
+    slab_with(a, direction, include_str!("../../examples/worn_pad.lmd"))
+}
+
+/// [`slab`] from `src`, the worn pad's file as edited by the test.
+fn slab_with(a: f64, direction: &str, src: &str) -> lmdc::pipeline::Compiled {
+    let (src, files) = slab_input(a, direction, src);
+    compile(&src, files)
+}
+
+/// The file and the files it reads of [`slab_with`].
+fn slab_input(a: f64, direction: &str, src: &str) -> (String, BTreeMap<String, Vec<u8>>) {
     let machines = src.find("machine mill3").unwrap();
     let head = format!(
         "machine mill5 {{
@@ -110,7 +120,7 @@ fn slab(a: f64, direction: &str) -> lmdc::pipeline::Compiled {
             super::target::extruded_stl(&section(), [-20.0, 20.0]),
         ),
     ]);
-    compile(&src, files)
+    (src, files)
 }
 
 /// Planned along the least tilt that builds it: 30° toward +x (the slab's
@@ -268,4 +278,138 @@ fn a_target_vertical_builds_is_planned_as_without_direction() {
     };
     let (auto, vertical) = (plan("direction = auto"), plan(""));
     assert_eq!(auto.ir().layers, vertical.ir().layers);
+}
+
+/// A bead that lays only 0.84 .. 0.91 mm (6 to 6.5 mm/s, its tracks 2 mm
+/// apart) cannot lay the slab's fill along its lean, 4.4 to 5.8 mm deep
+/// along it: no whole number of layers fits both ends. The refusal comes from the planner in the
+/// frame turned so the lean is up, and names where the fill is deepest and
+/// shallowest as points of the part: each on the slab's face (13.5 mm
+/// high) within its outline seen from above, and the depth it prints
+/// there is the depth along the lean down to the worn surface, found here
+/// from the surface's formula.
+#[test]
+fn a_refusal_of_the_tilted_plan_names_its_points_in_the_part() {
+    let src = include_str!("../../examples/worn_pad.lmd")
+        .replace("speed = 4 mm/s .. 8.7 mm/s", "speed = 6 mm/s .. 6.5 mm/s");
+    let c = slab_with(35.0, "direction = auto", &src);
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code.as_str() == "lmd::no-layer-count")
+        .unwrap_or_else(|| panic!("{m}"));
+    assert!(
+        d.message
+            .contains("planned along the build direction tilted 30° toward 0° from +x"),
+        "{}",
+        d.message
+    );
+    let label = d
+        .labels
+        .iter()
+        .find_map(|l| l.text.strip_prefix("where the tracks run: "))
+        .unwrap_or_else(|| panic!("{:?}", d.labels));
+    let named = depths_at(label);
+    assert_eq!(named.len(), 2, "{label}");
+    let tilt = LEAN.to_radians();
+    let s = shift();
+    for (depth, p) in &named {
+        assert!((p[2] - (10.0 + HEIGHT)).abs() < 1e-3, "{label}");
+        assert!(
+            (BASE[0] + s..=BASE[1] + s).contains(&p[0]) && p[1].abs() <= 10.0,
+            "{label}"
+        );
+        // Down the lean from p to the worn surface, bisected.
+        let below = |t: f64| p[2] - t * tilt.cos() < worn(p[0] - t * tilt.sin(), p[1]);
+        let (mut lo, mut hi) = (0.0, 20.0);
+        for _ in 0..60 {
+            let mid = (lo + hi) / 2.0;
+            if below(mid) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        assert!(
+            (depth - lo).abs() < 0.06,
+            "{label}: {depth} mm printed at {p:?}, {lo} mm down the lean to the surface"
+        );
+    }
+    assert!(named[0].0 > named[1].0 + 1.0, "{label}");
+}
+
+/// The depths and points of "5.7 mm at (x, y, z) mm, 4 mm at (x, y, z) mm".
+fn depths_at(label: &str) -> Vec<(f64, [f64; 3])> {
+    let number = |s: &str| s.trim().trim_end_matches("mm").trim().parse::<f64>();
+    label
+        .split(") mm")
+        .filter_map(|part| {
+            let (depth, point) = part.split_once(" at (")?;
+            let depth = number(depth.trim_start_matches(',')).ok()?;
+            let xyz: Vec<f64> = point
+                .split(", ")
+                .map(number)
+                .collect::<Result<_, _>>()
+                .ok()?;
+            Some((depth, xyz.try_into().ok()?))
+        })
+        .collect()
+}
+
+/// The report's design volume of the slab filled along its lean is the
+/// fill over the whole footprint seen along the lean: the points of the
+/// part as designed above the worn surface's formula whose line along the
+/// lean meets the slab's face (13.5 mm) within its outline seen from
+/// above, counted here on a 0.1 mm grid, within 0.6 % (0.2 % apart).
+/// Integrated from above (the face less the surface over the outline),
+/// the trough's depth is paired with other places: 1.3 % more.
+#[test]
+fn the_report_integrates_the_design_volume_along_the_lean() {
+    let (src, files) = slab_input(
+        35.0,
+        "direction = auto",
+        include_str!("../../examples/worn_pad.lmd"),
+    );
+    let (c, model) = crate::support::data::compile_with_files_and_model(&src, files);
+    let m = messages(&c);
+    let p = c.program.unwrap_or_else(|| panic!("{m}"));
+    let r = lmdc::report::Report::new(p.machines().next().unwrap(), &model.unwrap(), None);
+    let v = r.design_volume().expect("the design volume along the lean");
+    let tilt = LEAN.to_radians();
+    let face = [BASE[0] + shift(), BASE[1] + shift()];
+    let cell = 0.1;
+    let mut fill = 0.0;
+    for i in 0..700 {
+        let x = -20.0 + (i as f64 + 0.5) * cell;
+        for k in 0..70 {
+            let z = 7.0 + (k as f64 + 0.5) * cell;
+            let on_face = x + (10.0 + HEIGHT - z) * tilt.tan();
+            if on_face < face[0] || on_face > face[1] || !in_target([x, 0.0, z]) {
+                continue;
+            }
+            for j in 0..200 {
+                let y = -10.0 + (j as f64 + 0.5) * cell;
+                if z > worn(x, y) {
+                    fill += cell * cell * cell;
+                }
+            }
+        }
+    }
+    // From above: the top (13.5 mm) less the surface over the outline.
+    let mut above = 0.0;
+    for i in 0..240 {
+        let x = face[0] + (i as f64 + 0.5) * cell;
+        for j in 0..200 {
+            let y = -10.0 + (j as f64 + 0.5) * cell;
+            above += (10.0 + HEIGHT - worn(x, y)) * cell * cell;
+        }
+    }
+    assert!(
+        (v / fill - 1.0).abs() < 0.006,
+        "the report's {v} mm³ against the fill's {fill} mm³"
+    );
+    // The check tells the two apart.
+    assert!((above / fill - 1.0).abs() > 0.01, "{above} {fill}");
 }

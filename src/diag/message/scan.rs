@@ -7,6 +7,7 @@ use crate::diag::{Code, Diagnostic};
 use crate::geometry::mesh::SectionFault;
 use crate::geometry::scan::section::{CutFault, MAX_LOOPS};
 use crate::geometry::scan::{FitFault, Freedom, GridFault, ScanError, MAX_CELLS};
+use crate::geometry::target::TurnedFrame;
 use crate::span::Span;
 use crate::units::short;
 
@@ -91,24 +92,30 @@ pub fn uncovered(
     extent: ([f64; 2], [f64; 2]),
     at: Span,
     scan: Span,
+    turned: Option<&TurnedFrame>,
 ) -> Diagnostic {
     let others = others(more);
+    // Turned, the extent is the turned scan's: no place in the part.
+    let help = match turned {
+        Some(_) => "scan the part there too, or keep the footprint within what the scan covers seen along the build direction (what a steep flank hides from its side is not covered); a coarser `cell` bridges small gaps".to_string(),
+        None => format!(
+            "scan the part there too, or keep the footprint within what the scan covers (it spans x {} .. {} mm, y {} .. {} mm, with gaps where it has no point); a coarser `cell` bridges small gaps",
+            short(extent.0[0]),
+            short(extent.1[0]),
+            short(extent.0[1]),
+            short(extent.1[1])
+        ),
+    };
     Diagnostic::error(
         Code::ScanCoverage,
         format!(
             "the scan has no point under {}{others} where a track runs: there is nothing measured to build on",
-            p2(at_point)
+            super::top::spot(turned, at_point)
         ),
     )
     .label(at, "the footprint")
     .label(scan, "the scan")
-    .help(format!(
-        "scan the part there too, or keep the footprint within what the scan covers (it spans x {} .. {} mm, y {} .. {} mm, with gaps where it has no point); a coarser `cell` bridges small gaps",
-        short(extent.0[0]),
-        short(extent.1[0]),
-        short(extent.0[1]),
-        short(extent.1[1])
-    ))
+    .help(help)
 }
 
 /// The top lies `by` mm below (or on) the scanned surface at `at_point`.
@@ -117,25 +124,30 @@ pub fn top_below(
     top: f64,
     surface: f64,
     more: usize,
-    at: Span,
-    scan: Span,
+    [at, scan]: [Span; 2],
+    turned: Option<&TurnedFrame>,
 ) -> Diagnostic {
+    use super::top::{height, spot};
     let others = others(more);
+    let help = match turned {
+        Some(_) => "raise the target above the scanned surface there along the build direction, or keep the footprint to where the part is worn below it".to_string(),
+        None => format!(
+            "raise the top above {} mm there, or keep the footprint to where the part is worn below the top",
+            short(surface)
+        ),
+    };
     Diagnostic::error(
         Code::ScanCoverage,
         format!(
-            "the top ({} mm) is not above the scanned surface ({} mm) at {}{others} where a track runs: there is nothing to add there",
-            short(top),
-            short(surface),
-            p2(at_point)
+            "the top ({}) is not above the scanned surface ({}) at {}{others} where a track runs: there is nothing to add there",
+            height(turned, at_point, top),
+            height(turned, at_point, surface),
+            spot(turned, at_point)
         ),
     )
     .label(at, "the top")
     .label(scan, "the scan")
-    .help(format!(
-        "raise the top above {} mm there, or keep the footprint to where the part is worn below the top",
-        short(surface)
-    ))
+    .help(help)
 }
 
 /// `level = …` on a variable slicing whose part is not built on a scan.

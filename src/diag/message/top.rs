@@ -2,6 +2,7 @@
 //! footprint, its tracks and the segments that follow it.
 
 use crate::diag::{Code, Diagnostic, Diagnostics};
+use crate::geometry::target::TurnedFrame;
 use crate::slice::variable::layers::{NoLayerCount, OutOfRange, MAX_LAYERS};
 use crate::slice::variable::segments::{SegmentError, MAX_SEGMENTS};
 use crate::span::Span;
@@ -11,13 +12,43 @@ fn at(p: [f64; 2]) -> String {
     format!("({}, {}) mm", short(p[0]), short(p[1]))
 }
 
-/// The spans a top's messages point at.
+fn p3(p: [f64; 3]) -> String {
+    format!("({}, {}, {}) mm", short(p[0]), short(p[1]), short(p[2]))
+}
+
+/// A point of a variable top's footprint (mm, in the frame the fill is
+/// planned in) as its messages name it: `(x, y) mm`, or, for a fill
+/// planned turned so its build direction is up, the part's point that its
+/// line along the direction stands for, on the finished face's height:
+/// `(x, y, z) mm`.
+pub(crate) fn spot(turned: Option<&TurnedFrame>, p: [f64; 2]) -> String {
+    match turned {
+        None => at(p),
+        Some(t) => p3(t.footprint(p)),
+    }
+}
+
+/// A height `z` (mm) over the footprint point `p`, in the frame the fill
+/// is planned in: `z mm`, or, planned turned, the part's point there:
+/// `(x, y, z) mm` (a height along the build direction is a point on its
+/// line).
+pub(crate) fn height(turned: Option<&TurnedFrame>, p: [f64; 2], z: f64) -> String {
+    match turned {
+        None => format!("{} mm", short(z)),
+        Some(t) => p3(t.point([p[0], p[1], z])),
+    }
+}
+
+/// The spans a top's messages point at, and the frame its points are in.
 #[derive(Clone, Copy)]
 pub struct TopAt {
     /// The top.
     pub top: Span,
     /// The footprint.
     pub shape: Span,
+    /// Set when the fill is planned turned: its points go back into the
+    /// part.
+    pub turned: Option<TurnedFrame>,
 }
 
 /// The top needs more than [`MAX_LAYERS`] layers of at most `h_max`.
@@ -164,17 +195,18 @@ pub struct CountBead<'a> {
 }
 
 /// No whole number of layers lays every point of the top (lowest at
-/// `low_at`, highest at `high_at`, both where the tracks run) within the
-/// bead's heights; `fixes` are the changes of the top that would work,
-/// `declared` the file's layer count if it declares one.
+/// `low_at`, highest at `high_at`, both where the tracks run, named in
+/// the part when the fill is planned `turned`) within the bead's heights;
+/// `fixes` are the changes of the top that would work, `declared` the
+/// file's layer count if it declares one.
 pub fn no_count(
     e: &NoLayerCount,
-    low_at: [f64; 2],
-    high_at: [f64; 2],
+    [low_at, high_at]: [[f64; 2]; 2],
     fixes: &[TopFix],
     bead: &CountBead,
     declared: Option<u32>,
     top: Span,
+    turned: Option<&TurnedFrame>,
 ) -> Diagnostic {
     let (lo, hi) = (e.top.low(), e.top.high());
     let (h_lo, h_hi) = (e.bead.low(), e.bead.high());
@@ -225,8 +257,8 @@ pub fn no_count(
             top,
             format!(
                 "where the tracks run: {hi} at {}, {lo} at {}",
-                at(high_at),
-                at(low_at)
+                spot(turned, high_at),
+                spot(turned, low_at)
             ),
         )
         .label(bead.heights, format!("the bead lays {h_lo} .. {h_hi}"))
@@ -296,15 +328,12 @@ pub fn count_outside(c: &CountOutside) -> Diagnostic {
     .help(help)
 }
 
-/// The footprint's outline crosses itself at `p`.
-pub fn footprint_crosses(p: [f64; 2], shape: Span) -> Diagnostic {
+/// The footprint's outline crosses itself at `p` (named in the part when
+/// the fill is planned `turned`).
+pub fn footprint_crosses(p: [f64; 2], shape: Span, turned: Option<&TurnedFrame>) -> Diagnostic {
     Diagnostic::error(
         Code::SelfIntersecting,
-        format!(
-            "the footprint crosses itself at ({}, {}) mm",
-            short(p[0]),
-            short(p[1])
-        ),
+        format!("the footprint crosses itself at {}", spot(turned, p)),
     )
     .label(shape, "this outline's edges cross")
     .help("reorder the outline's points so its edges do not cross")
@@ -424,7 +453,7 @@ pub enum BadTop {
 /// The top is not a positive height at `p` (and at `more` other points);
 /// `inner` holds what failed when it could not be computed.
 pub fn bad_top(p: [f64; 2], more: usize, bad: BadTop, inner: bool, at: TopAt) -> Diagnostic {
-    let (x, y) = (short(p[0]), short(p[1]));
+    let p = spot(at.turned.as_ref(), p);
     let others = match more {
         0 => String::new(),
         1 => " (and at 1 other point sampled)".to_string(),
@@ -432,16 +461,16 @@ pub fn bad_top(p: [f64; 2], more: usize, bad: BadTop, inner: bool, at: TopAt) ->
     };
     let message = match bad {
         BadTop::NotPositive(h) => format!(
-            "the top is {} at ({x}, {y}) mm, where a track runs{others}: every deposited point needs a height above the substrate",
+            "the top is {} at {p}, where a track runs{others}: every deposited point needs a height above the substrate",
             Length(h)
         ),
-        BadTop::NotFinite => format!("the top is not a finite number at ({x}, {y}) mm{others}"),
-        BadTop::Failed => format!("the top cannot be computed at ({x}, {y}) mm{others}"),
-        BadTop::OffTarget => format!(
-            "the target mesh has no face over ({x}, {y}) mm, where a track runs{others}"
-        ),
+        BadTop::NotFinite => format!("the top is not a finite number at {p}{others}"),
+        BadTop::Failed => format!("the top cannot be computed at {p}{others}"),
+        BadTop::OffTarget => {
+            format!("the target mesh has no face over {p}, where a track runs{others}")
+        }
         BadTop::OffSolid(ref name) => format!(
-            "the target solid `{name}` has no part over ({x}, {y}) mm, where a track runs{others}"
+            "the target solid `{name}` has no part over {p}, where a track runs{others}"
         ),
     };
     let help = if matches!(bad, BadTop::OffTarget) {
@@ -472,6 +501,9 @@ pub struct TooShortSegments {
     pub length: Length,
     /// The worst track's place across the scan (axis name, mm), when there are several.
     pub place: Option<(&'static str, f64)>,
+    /// For a fill planned turned, the part's point at the worst track's
+    /// middle, named instead of its place in the turned frame.
+    pub through: Option<[f64; 3]>,
     /// How many tracks fail, of how many.
     pub failing: usize,
     /// How many tracks a layer has.
@@ -489,9 +521,10 @@ pub struct TooShortSegments {
 /// Segments shorter than the controller's minimum (`lmd::segments-too-short`).
 pub fn segments_too_short(t: &TooShortSegments) -> Diagnostic {
     let (tol, min_length, length) = (t.tolerance, t.min_length, t.length);
-    let place = match t.place {
-        Some((axis, c)) => format!(" at {axis} = {} mm", short(c)),
-        None => String::new(),
+    let place = match (t.through, t.place) {
+        (Some(p), _) => format!(" through {}", p3(p)),
+        (None, Some((axis, c))) => format!(" at {axis} = {} mm", short(c)),
+        (None, None) => String::new(),
     };
     let others = match t.failing {
         1 => String::new(),
@@ -540,6 +573,9 @@ pub fn segments_too_short(t: &TooShortSegments) -> Diagnostic {
 pub struct UnfillableTrack {
     /// Its line across the scan axis, mm.
     pub across: f64,
+    /// The point along it where the speed is farthest outside the bead's,
+    /// mm along the scan axis.
+    pub along: f64,
     /// The strip it fills, mm.
     pub pitch: f64,
     /// The layer height it must lay there, mm.
@@ -565,6 +601,10 @@ pub struct Unfillable<'a> {
     pub width: f64,
     /// Whether the count was declared.
     pub declared: bool,
+    /// For a fill planned turned, the part's point of the track where its
+    /// speed is farthest out, named instead of its line in the turned
+    /// frame.
+    pub through: Option<[f64; 3]>,
     /// The slicing block, the footprint, the bead's speeds.
     pub spans: [Span; 3],
 }
@@ -579,6 +619,10 @@ pub fn unfillable(u: &Unfillable<'_>) -> Diagnostic {
     } else {
         ("faster than", hi)
     };
+    let track = match u.through {
+        Some(p) => format!("through {}", p3(p)),
+        None => format!("{} mm across", short(t.across)),
+    };
     let counts = if u.declared {
         format!("with the declared {} layers", u.layers)
     } else {
@@ -587,8 +631,7 @@ pub fn unfillable(u: &Unfillable<'_>) -> Diagnostic {
     Diagnostic::error(
         Code::NoLayerCount,
         format!(
-            "{counts}, the track {} mm across fills a strip {} mm wide and must raise its layer {} mm: that needs {} mm/s, {dir} bead `{}` holds ({} mm/s); over its speeds it raises that strip {} .. {} mm",
-            short(t.across),
+            "{counts}, the track {track} fills a strip {} mm wide and must raise its layer {} mm: that needs {} mm/s, {dir} bead `{}` holds ({} mm/s); over its speeds it raises that strip {} .. {} mm",
             short(t.pitch),
             short(t.height),
             short(t.speed),
@@ -609,7 +652,10 @@ pub fn unfillable(u: &Unfillable<'_>) -> Diagnostic {
 }
 
 /// A target mesh with a face between its top and the base at `p`: an
-/// overhang (heights `[top, under, base]`, mm), at `more` other points too.
+/// overhang (heights `[top, under, base]`, mm), at `more` other points too;
+/// `reach` the least tilt that builds it, if one does. Planned `turned`,
+/// the points are named in the part and no tilt is searched: the fill is
+/// already along its direction.
 pub fn undercut(
     p: [f64; 2],
     [top, under, base]: [f64; 3],
@@ -617,6 +663,7 @@ pub fn undercut(
     solid: Option<&str>,
     at: Span,
     reach: Option<[f64; 2]>,
+    turned: Option<&TurnedFrame>,
 ) -> Diagnostic {
     let others = match more {
         0 => String::new(),
@@ -627,27 +674,28 @@ pub fn undercut(
         Some(name) => (format!("target solid `{name}`"), "its underside runs"),
         None => ("target".to_string(), "a face of it runs"),
     };
-    let tilt = match reach {
-        Some([t, a]) => format!(
+    let tilt = match (turned, reach) {
+        (Some(_), _) => String::new(),
+        (None, Some([t, a])) => format!(
             "; along a build direction tilted {}° from vertical toward {}° (from +x, counter-clockwise), the line through the underside here runs in the target down to the scan and leaves it once above: layers laid along it would stand on each other here",
             short(t),
             short(a),
         ),
-        None => "; no build direction within 85° of vertical puts the underside here on metal below it: no tilt builds it".to_string(),
+        (None, None) => "; no build direction within 85° of vertical puts the underside here on metal below it: no tilt builds it".to_string(),
     };
-    let help = match reach {
-        Some(_) => "these layers are laid from above with the nozzle vertical, so they would fill under the overhang: `direction = auto` in `slicing variable` plans the fill along the least tilted direction that builds every point of the footprint, within the bead's measured `tilt` and each machine's tilt axis (docs/repair.md, *Undercuts*); or build the part to the overhang's underside here, and the overhang in a later step with the part tilted",
-        None => "these layers are laid from above with the nozzle vertical, so they would fill under the overhang, and a ledge over a gap stands on nothing from any side: build the part to the ledge's underside, then the ledge on a support or in a later step with the part turned over",
+    let help = match (turned, reach) {
+        (Some(_), _) => "layers laid along the build direction stand on each other only where its line meets the target in one piece from the scan up, and here it meets it in two: build the part to the overhang's underside, and the overhang in a later step along its own direction",
+        (None, Some(_)) => "these layers are laid from above with the nozzle vertical, so they would fill under the overhang: `direction = auto` in `slicing variable` plans the fill along the least tilted direction that builds every point of the footprint, within the bead's measured `tilt` and each machine's tilt axis (docs/repair.md, *Undercuts*); or build the part to the overhang's underside here, and the overhang in a later step with the part tilted",
+        (None, None) => "these layers are laid from above with the nozzle vertical, so they would fill under the overhang, and a ledge over a gap stands on nothing from any side: build the part to the ledge's underside, then the ledge on a support or in a later step with the part turned over",
     };
     Diagnostic::error(
         Code::TopHeight,
         format!(
-            "the {what} has an overhang over ({}, {}) mm{others}: its top is at {} mm, but {under_is} at {} mm, above the base at {} mm{tilt}",
-            short(p[0]),
-            short(p[1]),
-            short(top),
-            short(under),
-            short(base)
+            "the {what} has an overhang over {}{others}: its top is at {}, but {under_is} at {}, above the base at {}{tilt}",
+            spot(turned, p),
+            height(turned, p, top),
+            height(turned, p, under),
+            height(turned, p, base)
         ),
     )
     .label(at, "the target")
@@ -744,11 +792,13 @@ pub fn tilted_with(
     .help(format!("leave `{field}` out for the tilted fill (docs/repair.md, *Undercuts*), or build the overhang apart"))
 }
 
-/// A diagnostic of a fill planned along a tilted direction, its points
-/// given in the frame turned so the direction is up.
+/// A diagnostic of a fill planned along a tilted direction, in the frame
+/// turned so the direction is up: its points are named in the part (by
+/// the message that names them), its heights, `over` and `under` are
+/// along the direction.
 pub fn in_turned_frame(mut d: Diagnostic, [tilt, azimuth]: [f64; 2]) -> Diagnostic {
     d.message.push_str(&format!(
-        " (planned along the build direction tilted {}° toward {}°: points are in the frame turned so that it is up)",
+        " (planned along the build direction tilted {}° toward {}° from +x, counter-clockwise: heights, over and under are along it, points in the part)",
         short(tilt),
         short(azimuth)
     ));

@@ -4,6 +4,7 @@
 //! each lay the same fraction `H/N` of the local height.
 
 use super::{Measure, Shape};
+pub use crate::geometry::target::TurnedFrame;
 use crate::span::Span;
 use crate::syntax::ast::Expr;
 use crate::units::Length;
@@ -100,6 +101,17 @@ impl Top {
             _ => None,
         }
     }
+
+    /// Whether `q` (mm) lies in the top when it is a target mesh or solid
+    /// (the part as designed); `false` for any other top, which has no
+    /// inside.
+    pub fn contains(&self, q: [f64; 3]) -> bool {
+        match self {
+            Top::Mesh(m) => crate::geometry::target::mesh_contains(&m.surface, q),
+            Top::Solid(s) => s.surface.contains(q),
+            _ => false,
+        }
+    }
 }
 
 /// A top written as an expression of `x` and `y`, kept as the user wrote it
@@ -137,6 +149,10 @@ pub struct TopExtrusion {
     /// (then `top` is the finished surface's height above z = 0, not
     /// above the base).
     pub base: Option<ScanBase>,
+    /// Set when this is the footprint turned so that a tilted build
+    /// direction is up (`direction = auto`): how the points its messages
+    /// name go back into the part. `None` for the part as the file gives it.
+    pub turned: Option<TurnedFrame>,
 }
 
 /// A scan a repair is built on (`on = scan(…)`).

@@ -223,6 +223,7 @@ pub fn assemble(
             shape_span,
             top_span,
             base: w.base,
+            turned: None,
         },
         slicing,
     ))

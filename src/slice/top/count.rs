@@ -163,12 +163,12 @@ fn no_count(
     let declared = slicing.layers.map(|l| l.0.get());
     message::top::no_count(
         e,
-        top.low_at,
-        top.high_at,
+        [top.low_at, top.high_at],
         &fixes,
         &cb,
         declared,
         ex.top_span,
+        ex.turned.as_ref(),
     )
 }
 

@@ -6,10 +6,11 @@
 //! the bead's range at one layer count, the next count's thinner layers may
 //! fit.
 
+use super::footprint::Footprint;
 use super::tracks::Track;
 use crate::diag::message::top::{Unfillable, UnfillableTrack};
 use crate::diag::Diagnostic;
-use crate::sema::model::{Bead, TopExtrusion, VariableSlicing};
+use crate::sema::model::{Axis, Bead, TopExtrusion, VariableSlicing};
 use crate::units::Length;
 use std::num::NonZeroU32;
 
@@ -24,7 +25,7 @@ pub fn unfillable(tracks: &[Track], n: NonZeroU32, bead: &Bead) -> Option<Unfill
     for t in tracks {
         // Every point's height, as the count keeps every point's within the
         // bead's (the segments' heights lie between them).
-        for &top in &t.h {
+        for (j, &top) in t.h.iter().enumerate() {
             let h = top / n.get() as f64;
             let v = d.speed_for(Length(h), Length(t.pitch)).0;
             let off = if v < lo * (1.0 - SLACK) {
@@ -43,6 +44,7 @@ pub fn unfillable(tracks: &[Track], n: NonZeroU32, bead: &Bead) -> Option<Unfill
                     off,
                     UnfillableTrack {
                         across: t.c,
+                        along: t.t[j],
                         pitch: t.pitch,
                         height: h,
                         speed: v,
@@ -81,15 +83,20 @@ pub fn nearest(tracks: &[Track], n: NonZeroU32, bead: &Bead) -> Option<NonZeroU3
     NonZeroU32::new(c as u32)
 }
 
-/// No layer count lets the tracks lay their layers.
+/// No layer count lets the tracks (along `scan`) lay their layers.
 pub fn report(
     miss: &UnfillableTrack,
     n: NonZeroU32,
     bead: &Bead,
     slicing: &VariableSlicing,
     ex: &TopExtrusion,
+    scan: Axis,
 ) -> Diagnostic {
+    let through = ex
+        .turned
+        .map(|f| f.footprint(Footprint::point(scan, miss.along, miss.across)));
     crate::diag::message::top::unfillable(&Unfillable {
+        through,
         track: *miss,
         layers: n.get(),
         bead: &bead.name,

@@ -44,7 +44,11 @@ impl Footprint {
     pub fn new(ex: &TopExtrusion, width: f64) -> Result<Self, Diagnostic> {
         let profile = outline::profile(&ex.shape, CHORD_ERROR);
         if let Some(p) = profile.self_intersection() {
-            return Err(message::top::footprint_crosses(p, ex.shape_span));
+            return Err(message::top::footprint_crosses(
+                p,
+                ex.shape_span,
+                ex.turned.as_ref(),
+            ));
         }
         let bounds = profile
             .bounds()

@@ -132,10 +132,15 @@ enum NoLevel {
 impl NoLevel {
     fn report(self, ex: &TopExtrusion, slicing: &VariableSlicing, scan: &ScanBase) -> Diagnostics {
         match self {
-            NoLevel::Uncovered(at, more) => {
-                message::scan::uncovered(at, more, scan.surface.extent(), ex.shape_span, scan.span)
-                    .into()
-            }
+            NoLevel::Uncovered(at, more) => message::scan::uncovered(
+                at,
+                more,
+                scan.surface.extent(),
+                ex.shape_span,
+                scan.span,
+                None,
+            )
+            .into(),
             NoLevel::Above {
                 at,
                 surface,

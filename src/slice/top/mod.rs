@@ -22,7 +22,11 @@
 mod count;
 /// The convex hull of points (the thermal model's outline of a layer).
 pub(crate) use count::hull;
+/// A footprint seen along a tilted build direction (the report's design
+/// volume of a tilted fill).
+pub(crate) use tilted::seen_along;
 mod deposit;
+mod direction;
 mod emit;
 mod follow;
 mod footprint;
@@ -189,7 +193,7 @@ fn build(
         return Ok(Built::new(layers, warnings, scan, lines));
     }
     if let Some((miss, n)) = missed {
-        return Err(deposit::report(&miss, n, bead, slicing, ex).into());
+        return Err(deposit::report(&miss, n, bead, slicing, ex, scan).into());
     }
     Err(internal(
         "the top's range over the tracks did not settle".into(),

@@ -272,7 +272,11 @@ impl Bad {
                 under,
                 surface,
             } => {
-                let reach = super::undercut::least_tilt(ex, self.at, under, top);
+                // Planned turned, the fill is along its direction already.
+                let reach = match ex.turned {
+                    Some(_) => None,
+                    None => super::undercut::least_tilt(ex, self.at, under, top),
+                };
                 out.push(message::top::undercut(
                     self.at,
                     [top, under, surface],
@@ -280,6 +284,7 @@ impl Bad {
                     solid_name(ex),
                     ex.top_span,
                     reach,
+                    ex.turned.as_ref(),
                 ));
                 return out;
             }
@@ -293,6 +298,7 @@ impl Bad {
                         extent,
                         ex.shape_span,
                         b.span,
+                        ex.turned.as_ref(),
                     ));
                 }
                 return out;
@@ -304,8 +310,8 @@ impl Bad {
                         top,
                         surface,
                         more,
-                        ex.top_span,
-                        b.span,
+                        [ex.top_span, b.span],
+                        ex.turned.as_ref(),
                     ));
                 }
                 return out;
@@ -324,6 +330,7 @@ impl Bad {
         let at = TopAt {
             top: ex.top_span,
             shape: ex.shape_span,
+            turned: ex.turned,
         };
         out.push(message::top::bad_top(
             self.at,

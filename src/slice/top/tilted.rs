@@ -6,11 +6,10 @@
 //! piece, from the scan up, or its upper piece is laid on nothing. The
 //! lines are the footprint's points at the finished face's height (the
 //! profile is the face's outline seen from above), followed down along
-//! `−d` to the scan. The directions tried tilt from vertical in steps of
-//! [`TILT_STEP`], toward directions round the vertical as far apart (at
-//! least [`AZIMUTHS`]), up to the most the bead and the machines tilt; the
-//! first that builds every line is the least tilt. Along a tilted
-//! direction the outermost lines run [`SLACK`] of a bead inside the
+//! `−d` to the scan. The directions tried are [`Direction::tried`]'s
+//! (a degree of arc apart), up to the most the bead and the machines
+//! tilt; the first that builds every line is the least tilt. Along a
+//! tilted direction the outermost lines run [`SLACK`] of a bead inside the
 //! footprint's edge, so that a face leaning between two directions tried
 //! does not refuse both. A direction that fails at a line is likely to
 //! fail there again at the next, so that line is tried first.
@@ -26,6 +25,7 @@
 //! turned vertical: `lmd::stacking`, deposit and the bead's tilt read them
 //! as a tilted nozzle's.
 
+use super::direction::{Direction, MAX_TILT, TILT_STEP};
 use super::surface::Base;
 use crate::diag::message::top::Untilted;
 use crate::diag::{message, Diagnostics};
@@ -34,22 +34,13 @@ use crate::geometry::scan::HeightField;
 use crate::geometry::shape::{Outline, Segment, Shape};
 use crate::geometry::target::{Inner, Target, Turned};
 use crate::ir::{Frame, Kinematics, Layer, Machine};
-use crate::sema::model::{Bead, Model, ScanBase, Top, TopExtrusion, TopSolid, VariableSlicing};
+use crate::sema::model::{
+    Bead, Model, ScanBase, Top, TopExtrusion, TopSolid, TurnedFrame, VariableSlicing,
+};
 use crate::span::Span;
 use crate::units::Length;
 use nalgebra::{Rotation3, Vector3};
 use std::sync::Arc;
-
-/// Degrees between the tilts tried.
-const TILT_STEP: f64 = 1.0;
-
-/// The directions round the vertical tried at the least tilt; at more,
-/// as many more as keep them [`TILT_STEP`] apart (a multiple of 4, so the
-/// part's axes are among them).
-const AZIMUTHS: usize = 24;
-
-/// The most tilt tried, deg: a line nearer horizontal runs along the part.
-const MAX_TILT: f64 = 85.0;
 
 /// The step along a line, mm: a piece of the target thinner than this
 /// along it can be missed.
@@ -73,68 +64,6 @@ const SLACK: f64 = 1.0 / 20.0;
 
 /// Chord error of the footprint's outline, mm (the footprint's own).
 const CHORD_ERROR: f64 = 0.01;
-
-/// A build direction: its tilt from vertical and the direction it tilts
-/// toward, deg from +x counter-clockwise.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Direction {
-    tilt: f64,
-    azimuth: f64,
-}
-
-impl Direction {
-    const VERTICAL: Direction = Direction {
-        tilt: 0.0,
-        azimuth: 0.0,
-    };
-
-    /// The unit vector.
-    fn vector(self) -> [f64; 3] {
-        let (st, ct) = self.tilt.to_radians().sin_cos();
-        let (sa, ca) = self.azimuth.to_radians().sin_cos();
-        [st * ca, st * sa, ct]
-    }
-
-    fn pair(self) -> [f64; 2] {
-        [self.tilt, self.azimuth]
-    }
-
-    /// Every direction tried with a tilt in `(from, to]` deg, least tilt
-    /// first: at each tilt the [`AZIMUTHS`], then when `fine` as many
-    /// more as [`Direction::azimuths`] says.
-    fn tried(from: f64, to: f64, fine: bool) -> impl Iterator<Item = Direction> {
-        let steps = (to.min(MAX_TILT) / TILT_STEP + 1e-9).floor() as usize;
-        let first = (from / TILT_STEP + 1e-9).floor() as usize + 1;
-        (first..=steps).flat_map(move |k| {
-            let tilt = k as f64 * TILT_STEP;
-            let n = if fine { Self::azimuths(tilt) } else { 0 };
-            let coarse = (0..AZIMUTHS).map(|a| a as f64 * 360.0 / AZIMUTHS as f64);
-            let fine = (0..n)
-                .map(move |a| a as f64 * 360.0 / n as f64)
-                .filter(|&az| Self::off_coarse(az));
-            coarse
-                .chain(fine)
-                .map(move |azimuth| Direction { tilt, azimuth })
-        })
-    }
-
-    /// How many directions round the vertical are tried at `tilt` deg: at
-    /// least [`AZIMUTHS`], and enough that neighbours are at most
-    /// [`TILT_STEP`] apart (a slab leaning 30° toward 37° is met within a
-    /// degree, not 7°). The [`AZIMUTHS`] are tried first at each tilt, so
-    /// that a lean along them is built along it, not along a neighbour
-    /// within a hundredth.
-    fn azimuths(tilt: f64) -> usize {
-        let round = 360.0 * tilt.to_radians().sin() / TILT_STEP;
-        AZIMUTHS.max(4 * (round / 4.0).ceil() as usize)
-    }
-
-    /// Whether `azimuth` deg is none of the [`AZIMUTHS`].
-    fn off_coarse(azimuth: f64) -> bool {
-        let k = azimuth * AZIMUTHS as f64 / 360.0;
-        (k - k.round()).abs() > 1e-9
-    }
-}
 
 /// What a line along a direction meets.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -164,14 +93,6 @@ struct Lines<'a> {
 }
 
 impl Lines<'_> {
-    fn inside(&self, q: [f64; 3]) -> bool {
-        match self.top {
-            Top::Mesh(m) => m.surface.crossings_above([q[0], q[1]], q[2]).len() % 2 == 1,
-            Top::Solid(s) => s.surface.contains(q),
-            _ => false,
-        }
-    }
-
     /// The footprint points of the lines, the outermost [`SLACK`] of a
     /// bead inside the edge when `slack`.
     fn points(&self, slack: bool) -> &[[f64; 2]] {
@@ -209,7 +130,7 @@ impl Lines<'_> {
                 None if q[2] <= self.scan.stats.z_range[1] => return Meets::Nothing,
                 _ => {}
             }
-            let is = self.inside(q);
+            let is = self.top.contains(q);
             if is && !was {
                 pieces += 1;
                 if pieces > 1 {
@@ -246,7 +167,7 @@ impl Lines<'_> {
     /// The least tilted direction in `(from, to]` deg that builds every
     /// line, the outermost [`SLACK`] of a bead inside the edge, among
     /// every direction [`Direction::azimuths`] says (`fine`) or the
-    /// [`AZIMUTHS`] alone; or, one step more tilted at most, one that
+    /// [`AZIMUTHS`](super::direction::AZIMUTHS) alone; or, one step more tilted at most, one that
     /// builds them to a hundredth of a millimetre: a slab leaning 30° is
     /// built along 30°, not along 29° within the slack.
     fn least(&self, from: f64, to: f64, fine: bool, witness: &mut usize) -> Option<Direction> {
@@ -415,7 +336,7 @@ fn untilted(
     witness: usize,
 ) -> crate::diag::Diagnostic {
     let mut k = witness;
-    // Only to say what would build it: the [`AZIMUTHS`] alone, so that a
+    // Only to say what would build it: the 24 azimuths alone, so that a
     // refusal costs no more than a plan.
     let needs = lines.least(limit.0, MAX_TILT, false, &mut k);
     let best = Direction {
@@ -462,8 +383,7 @@ fn plan(
     if let Some(span) = slicing.follow {
         return Err(tilted("follow", span).into());
     }
-    let v = Vector3::from(d.vector());
-    let rot = Rotation3::rotation_between(&v, &Vector3::z()).unwrap_or_else(Rotation3::identity);
+    let rot = up(d.vector());
     let turned = turn(ex, lines, rot)?;
     let base = Base::of(&turned, None);
     let built = super::build(model, bead, &turned, slicing, base).map_err(|e| {
@@ -482,8 +402,28 @@ fn plan(
     Ok((layers, built.warnings))
 }
 
-/// `ex` turned by `rot`: its scan turned and rastered again, its target
-/// turned, its footprint the profile at the face's height turned.
+/// The rotation that turns `d` (a unit vector) up.
+fn up(d: [f64; 3]) -> Rotation3<f64> {
+    Rotation3::rotation_between(&Vector3::from(d), &Vector3::z())
+        .unwrap_or_else(Rotation3::identity)
+}
+
+/// `ex` seen along `d` (a unit vector, tilted less than 85°) as a fill
+/// along it is planned with `bead`: turned so `d` is up, its scan, target
+/// and footprint (the profile at the finished face's height) with it.
+/// `None` when its top is no target on a scan or does not turn. What the
+/// report integrates a tilted fill's design volume over.
+pub(crate) fn seen_along(ex: &TopExtrusion, bead: &Bead, d: [f64; 3]) -> Option<TopExtrusion> {
+    if d[2].is_nan() || d[2] < MAX_TILT.to_radians().cos() - 1e-9 {
+        return None;
+    }
+    let lines = lines(ex, bead)?;
+    turn(ex, &lines, up(d)).ok()
+}
+
+/// `ex` turned by `rot`: its scan turned and rastered again, its
+/// target turned, its footprint the profile at the face's height turned,
+/// and the way back into the part for the points its messages name.
 fn turn(
     ex: &TopExtrusion,
     lines: &Lines<'_>,
@@ -534,6 +474,10 @@ fn turn(
             surface: Arc::new(surface),
             ..scan.clone()
         }),
+        turned: Some(TurnedFrame {
+            back: rot.inverse(),
+            face: lines.face,
+        }),
         ..ex.clone()
     })
 }
@@ -562,39 +506,4 @@ fn turn_back(mut layer: Layer, back: &Rotation3<f64>) -> Layer {
         z: turn(f.z),
     };
     layer
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn directions_are_tried_least_tilt_first_within_the_limit() {
-        let all: Vec<Direction> = Direction::tried(0.0, 2.5, true).collect();
-        assert_eq!(all.len(), 2 * AZIMUTHS);
-        // At 30°, 2° round the vertical is a degree of arc: the 24 first,
-        // then the 168 of the 180 every 2° that are none of them.
-        let at30: Vec<Direction> = Direction::tried(29.0, 30.0, true).collect();
-        assert_eq!(at30.len(), AZIMUTHS + 168);
-        assert_eq!(at30[1].azimuth, 15.0);
-        assert_eq!(at30[AZIMUTHS].azimuth, 2.0);
-        let mut az: Vec<f64> = at30.iter().map(|d| d.azimuth).collect();
-        az.sort_by(f64::total_cmp);
-        assert!(az
-            .windows(2)
-            .all(|w| w[1] - w[0] <= 2.0 + 1e-9 && w[1] > w[0]));
-        assert_eq!(all[0].pair(), [1.0, 0.0]);
-        assert_eq!(all[AZIMUTHS].pair(), [2.0, 0.0]);
-        assert_eq!(Direction::tried(0.0, 0.0, true).count(), 0);
-        assert_eq!(
-            Direction::tried(30.0, 31.0, true).next().map(|d| d.tilt),
-            Some(31.0)
-        );
-        let v = Direction {
-            tilt: 30.0,
-            azimuth: 90.0,
-        }
-        .vector();
-        assert!((v[1] - 0.5).abs() < 1e-12 && v[0].abs() < 1e-12, "{v:?}");
-    }
 }

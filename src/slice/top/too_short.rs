@@ -2,6 +2,7 @@
 //! shorter than the controller's minimum (`lmd::segments-too-short`), with
 //! the tolerance that works on every track.
 
+use super::footprint::Footprint;
 use super::tracks::Failure;
 use crate::diag::message::{self, top::TooShortSegments};
 use crate::diag::Diagnostic;
@@ -69,6 +70,9 @@ pub fn report(
         min_declared: slicing.min_length.is_some(),
         length,
         place: (tracks > 1).then(|| (scan.across().name(), worst.c)),
+        through: ex
+            .turned
+            .map(|f| f.footprint(Footprint::point(scan, worst.middle, worst.c))),
         failing: failures.len(),
         tracks,
         error: worst.error,

@@ -51,6 +51,8 @@ pub struct Failure {
     pub c: f64,
     /// Its length, mm.
     pub length: f64,
+    /// Its middle along the scan axis, mm.
+    pub middle: f64,
     /// Why.
     pub error: SegmentError,
     /// The top along it, to find a tolerance that works.
@@ -160,6 +162,7 @@ pub(super) fn segmented(
             return Ok(Some(Err(Failure {
                 c,
                 length,
+                middle: (first.0 + last.0) / 2.0,
                 error,
                 profile,
             })))

@@ -9,22 +9,11 @@
 //! it). For the overhang's underside there, `u`, a direction builds it
 //! when the line through `u` runs down inside the target until it reaches
 //! the scan, and up from `u` leaves the target once. The directions tried
-//! tilt from vertical in steps of [`TILT_STEP`] degrees toward
-//! [`AZIMUTHS`] directions round the vertical; the first that builds it is
-//! the least tilt, to that step. A point is in the target when the
-//! vertical line over it crosses the target's surface an odd number of
-//! times above it.
+//! are [`Direction::tried`]'s, as `direction = auto` tries them; the first
+//! that builds it is the least tilt, to their step.
 
+use super::direction::{Direction, MAX_TILT};
 use crate::sema::model::{Top, TopExtrusion};
-
-/// Degrees between the tilts tried.
-const TILT_STEP: f64 = 1.0;
-
-/// The directions round the vertical tried at each tilt.
-const AZIMUTHS: usize = 24;
-
-/// The most tilt tried, deg: a line nearer horizontal runs along the part.
-const MAX_TILT: f64 = 85.0;
 
 /// How far above the refused point's top the line up is followed, mm.
 const ABOVE: f64 = 20.0;
@@ -39,30 +28,16 @@ const STEP: f64 = 0.02;
 /// within [`MAX_TILT`] does, or `ex`'s target is no mesh or solid on a scan.
 pub fn least_tilt(ex: &TopExtrusion, p: [f64; 2], under: f64, top: f64) -> Option<[f64; 2]> {
     let scan = &ex.base.as_ref()?.surface;
-    let inside = |q: [f64; 3]| {
-        let n = match &ex.top {
-            Top::Mesh(m) => m.surface.crossings_above([q[0], q[1]], q[2]).len(),
-            Top::Solid(s) => s.surface.crossings_above([q[0], q[1]], q[2]).len(),
-            _ => 0,
-        };
-        n % 2 == 1
-    };
     if !matches!(ex.top, Top::Mesh(_) | Top::Solid(_)) {
         return None;
     }
+    let inside = |q: [f64; 3]| ex.top.contains(q);
     let u = [p[0], p[1], under];
-    let steps = (MAX_TILT / TILT_STEP) as usize;
-    (1..=steps).find_map(|k| {
-        let tilt = k as f64 * TILT_STEP;
-        (0..AZIMUTHS).find_map(|a| {
-            let azimuth = a as f64 * 360.0 / AZIMUTHS as f64;
-            let (st, ct) = tilt.to_radians().sin_cos();
-            let (sa, ca) = azimuth.to_radians().sin_cos();
-            let d = [st * ca, st * sa, ct];
-            let built =
-                stands(&inside, &|q| scan.at(q), u, d) && leaves_once(&inside, u, d, top + ABOVE);
-            built.then_some([tilt, azimuth])
-        })
+    Direction::tried(0.0, MAX_TILT, false).find_map(|dir| {
+        let d = dir.vector();
+        let built =
+            stands(&inside, &|q| scan.at(q), u, d) && leaves_once(&inside, u, d, top + ABOVE);
+        built.then_some(dir.pair())
     })
 }
 
