@@ -410,7 +410,7 @@ impl Material {
         let big = self.cell * COARSE as f64;
         let lo = sub(centre, [reach; 3]).map(|c| (c / big).floor().clamp(-1e9, 1e9) as i32);
         let hi = add(centre, [reach; 3]).map(|c| (c / big).floor().clamp(-1e9, 1e9) as i32);
-        let (low, _) = head.lowest(pose, pose.up);
+        let planes = planes(head, pose);
         let mut best: Option<(f64, usize, Lump)> = None;
         let limit = |b: &Option<(f64, usize, Lump)>| b.map_or(cap, |b| b.0.min(cap));
         for i in lo[0]..=hi[0] {
@@ -429,8 +429,11 @@ impl Material {
                     for key in fine {
                         let cell = &self.cells[key];
                         let (clo, chi) = cell.bounds();
-                        let bound = box_bound(pose, (centre, radius), low, (clo, chi))
-                            .max(near_box(head, pose, (clo, chi)));
+                        let bound = box_bound(&planes, (centre, radius), (clo, chi)).max(near_box(
+                            head,
+                            pose,
+                            (clo, chi),
+                        ));
                         // Clear of the head (a bound above 0), or no
                         // nearer than what was found.
                         if bound >= limit(&best) && bound > 0.0 {
@@ -466,20 +469,48 @@ impl Material {
     }
 }
 
+/// How many directions a pose's head is bounded along for the boxes
+/// ([`planes`]).
+const PLANES: usize = 5;
+
+/// Planes the head at `pose` lies wholly above: for each unit direction
+/// `n`, the least `x·n` of its points. From the beam's direction to Z, in
+/// their plane: the plane square to a tilted beam, through its tip, cuts
+/// through a flat box of beads beside the nozzle (a box 12 mm wide rises
+/// 6 mm along a beam tilted 30°), while a plane nearer the level one
+/// passes over it — the box of a plate's layers under a nozzle tilted 30°
+/// was bounded 1.16 mm from the head, its beads lying 7 mm below it.
+fn planes(head: &HeadShape, pose: &Pose) -> [([f64; 3], f64); PLANES] {
+    let z = [0.0, 0.0, 1.0];
+    std::array::from_fn(|k| {
+        let t = k as f64 / (PLANES - 1) as f64;
+        let v = [0, 1, 2].map(|a| pose.up[a] * (1.0 - t) + z[a] * t);
+        let len = dot(v, v).sqrt();
+        // A beam pointing straight down: Z's plane is as good as its own.
+        let n = if len > 1e-9 { v.map(|c| c / len) } else { z };
+        (n, head.lowest(pose, n).0)
+    })
+}
+
 /// A lower bound of the head's distance to anything in the box `lo`–`hi`:
-/// the larger of how far the box lies below the plane through the head's
-/// lowest point square to its beam (`low` along `up`), and how far it lies
+/// the largest of how far the box lies below each of the planes the head
+/// lies above ([`planes`]: the plane through its lowest point square to
+/// its beam, and planes nearer the level one), and how far it lies
 /// outside the sphere round the head.
 fn box_bound(
-    pose: &Pose,
+    planes: &[([f64; 3], f64)],
     (centre, radius): ([f64; 3], f64),
-    low: f64,
     (lo, hi): ([f64; 3], [f64; 3]),
 ) -> f64 {
-    let top = (0..3)
-        .map(|a| if pose.up[a] >= 0.0 { hi[a] } else { lo[a] } * pose.up[a])
-        .sum::<f64>();
-    let below = low - top;
+    let below = planes
+        .iter()
+        .map(|&(n, low)| {
+            let top = (0..3)
+                .map(|a| if n[a] >= 0.0 { hi[a] } else { lo[a] } * n[a])
+                .sum::<f64>();
+            low - top
+        })
+        .fold(f64::NEG_INFINITY, f64::max);
     let outside = {
         let d2: f64 = (0..3)
             .map(|a| {
@@ -513,6 +544,71 @@ mod tests {
     use super::super::head::scale;
     use super::*;
     use proptest::prelude::*;
+
+    /// The head sampled on its solids' surfaces: rings every 0.5 mm up each
+    /// and every degree round it (not `HeadShape::distance`'s outline).
+    fn sampled(head: &HeadShape, pose: &Pose) -> Vec<[f64; 3]> {
+        let up = pose.up;
+        let side = unit(cross(up, [0.0, 1.0, 0.0]));
+        let other = cross(up, side);
+        let mut out = Vec::new();
+        for b in &head.bodies {
+            let steps = ((b.s[1] - b.s[0]) / 0.5).ceil() as usize;
+            for i in 0..=steps {
+                let t = i as f64 / steps as f64;
+                let (s, r) = (
+                    b.s[0] + t * (b.s[1] - b.s[0]),
+                    b.r[0] + t * (b.r[1] - b.r[0]),
+                );
+                for j in 0..360 {
+                    let (sa, ca) = f64::from(j).to_radians().sin_cos();
+                    let p = add(pose.focus, scale(up, s));
+                    out.push(add(p, add(scale(side, r * ca), scale(other, r * sa))));
+                }
+            }
+        }
+        out
+    }
+
+    /// A flat cell of beads (a layer on a plate) keeps only its box; a
+    /// nozzle tilted 30° beside it, its tip 13 mm above them and its cone
+    /// leaning over them (`lmdc check` of the leaning slab mirrored, layer
+    /// 1, path 5, point 41), is bounded no nearer than the gap — the
+    /// plane square to the beam alone bounded it 1.16 mm away — and never
+    /// farther than the head's surface, sampled, lies from the lumps.
+    #[test]
+    fn a_flat_box_beside_a_tilted_nozzle_is_bounded_from_above() {
+        let head = HeadShape::of(&crate::ir::Head::typical());
+        let mut m = Material::default();
+        let mut lumps = Vec::new();
+        for i in 0..18 {
+            for j in 0..18 {
+                let at = [-10.7 + 0.6 * f64::from(i), -10.7 + 0.6 * f64::from(j), 9.6];
+                let l = Lump {
+                    at,
+                    r: 1.3,
+                    group: 0,
+                };
+                lumps.push(l);
+                m.add(l, [-0.5, 0.0, 0.866]);
+            }
+        }
+        assert!(matches!(m.cells.values().next(), Some(Cell::Box { .. })));
+        let pose = Pose {
+            focus: [11.17, -0.8, 8.75],
+            up: unit([-0.5, 0.0, 0.866]),
+        };
+        let points = sampled(&head, &pose);
+        let truth = lumps
+            .iter()
+            .flat_map(|l| points.iter().map(|p| dist(*p, l.at) - l.r))
+            .fold(f64::INFINITY, f64::min);
+        assert!(truth > 7.0 && truth < 8.0, "{truth}");
+        let cap = 20.0;
+        let (d, ..) = m.nearest(&head, &pose, cap).expect("within the cap");
+        assert!(d <= truth + 1e-9, "{d} vs {truth}");
+        assert!(d >= head.gap && d > truth - 1.5, "{d} vs {truth}");
+    }
 
     proptest! {
         /// A group's bound along any direction is at least every lump's
@@ -579,8 +675,7 @@ mod tests {
             let head = HeadShape::of(&crate::ir::Head::typical());
             let hi = add(p, size);
             let inside = [0, 1, 2].map(|a| p[a] + t[a] * size[a]);
-            let (low, _) = head.lowest(&pose, pose.up);
-            let b = box_bound(&pose, head.bound(&pose), low, (p, hi));
+            let b = box_bound(&planes(&head, &pose), head.bound(&pose), (p, hi));
             prop_assert!(b <= head.distance(&pose, inside).0 + 1e-9);
         }
     }
