@@ -167,9 +167,10 @@ impl Lines<'_> {
     /// The least tilted direction in `(from, to]` deg that builds every
     /// line, the outermost [`SLACK`] of a bead inside the edge, among
     /// every direction [`Direction::azimuths`] says (`fine`) or the
-    /// [`AZIMUTHS`](super::direction::AZIMUTHS) alone; or, one step more tilted at most, one that
-    /// builds them to a hundredth of a millimetre: a slab leaning 30° is
-    /// built along 30°, not along 29° within the slack.
+    /// [`AZIMUTHS`](super::direction::AZIMUTHS) alone; or, one step more
+    /// tilted at most, one that builds them to a hundredth of a
+    /// millimetre: a slab leaning 30° is built along 30°, not along 29°
+    /// within the slack.
     fn least(&self, from: f64, to: f64, fine: bool, witness: &mut usize) -> Option<Direction> {
         let d = self.first(Direction::tried(from, to, fine), true, witness)?;
         // Within the slack a face leaning along one of the azimuths tried
