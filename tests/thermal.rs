@@ -169,6 +169,25 @@ fn pillars(src: &str, tris: &[lmdc::geometry::mesh::stl::Triangle]) -> Option<lm
     )
 }
 
+/// `src` and its pillars' STL written where `lmdc` reads them (the STL as
+/// `mesh/two_pillars.stl` beside the plan): the folder, kept while it is
+/// held, and the plan's path.
+fn pillars_on_disk(
+    src: &str,
+    tris: &[lmdc::geometry::mesh::stl::Triangle],
+) -> (tempfile::TempDir, std::path::PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("mesh")).unwrap();
+    std::fs::write(
+        dir.path().join("mesh/two_pillars.stl"),
+        lmdc::geometry::mesh::stl::to_binary(tris),
+    )
+    .unwrap();
+    let plan = dir.path().join("pillars.lmd");
+    std::fs::write(&plan, src).unwrap();
+    (dir, plan)
+}
+
 /// The hottest start of an island of the plan, °C.
 fn hottest_island(p: &lmdc::ir::Program) -> f64 {
     let t = p.thermal.as_ref().unwrap();
@@ -448,19 +467,10 @@ fn order_and_dwell_wait_less_than_dwell_alone() {
         );
     }
     // The report says which levers it pulled and what waits alone cost.
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::create_dir(dir.path().join("mesh")).unwrap();
-    std::fs::write(
-        dir.path().join("mesh/two_pillars.stl"),
-        lmdc::geometry::mesh::stl::to_binary(&tris),
-    )
-    .unwrap();
-    let plan = dir.path().join("pillars.lmd");
-    std::fs::write(
-        &plan,
-        src.replace("cooling = order", "cooling = [order, dwell]"),
-    )
-    .unwrap();
+    let (_dir, plan) = pillars_on_disk(
+        &src.replace("cooling = order", "cooling = [order, dwell]"),
+        &tris,
+    );
     let report = |json: bool| {
         let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_lmdc"));
         c.arg("report").arg(&plan).arg("--machine").arg("mill3");
@@ -498,15 +508,7 @@ fn fit_over_islands_finds_the_values_that_made_the_temperatures() {
     let p = pillars(&src, &tris).expect("order keeps 320 °C");
     let t = p.thermal.as_ref().unwrap();
     assert!(t.layers.iter().all(|l| l.islands.len() == 2));
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::create_dir(dir.path().join("mesh")).unwrap();
-    std::fs::write(
-        dir.path().join("mesh/two_pillars.stl"),
-        lmdc::geometry::mesh::stl::to_binary(&tris),
-    )
-    .unwrap();
-    let plan = dir.path().join("pillars.lmd");
-    std::fs::write(&plan, &src).unwrap();
+    let (dir, plan) = pillars_on_disk(&src, &tris);
     let r = fit_every(dir.path(), t, 2, &plan);
     let eta = r["absorptivity"].as_f64().unwrap();
     let h = r["heat_transfer"].as_f64().unwrap();
@@ -609,15 +611,7 @@ fn fit_per_island_finds_the_values_that_made_the_temperatures() {
     let tris = two_pillars();
     let p = pillars(&src, &tris).expect("order keeps 320 °C");
     let t = p.thermal.as_ref().unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::create_dir(dir.path().join("mesh")).unwrap();
-    std::fs::write(
-        dir.path().join("mesh/two_pillars.stl"),
-        lmdc::geometry::mesh::stl::to_binary(&tris),
-    )
-    .unwrap();
-    let plan = dir.path().join("pillars.lmd");
-    std::fs::write(&plan, &src).unwrap();
+    let (dir, plan) = pillars_on_disk(&src, &tris);
     let mut sheet = String::from("layer, island, interpass (degC)\n");
     for (i, l) in t.layers.iter().enumerate().skip(1).step_by(2) {
         for (g, isl) in l.islands.iter().enumerate() {

@@ -410,7 +410,9 @@ impl Material {
         let big = self.cell * COARSE as f64;
         let lo = sub(centre, [reach; 3]).map(|c| (c / big).floor().clamp(-1e9, 1e9) as i32);
         let hi = add(centre, [reach; 3]).map(|c| (c / big).floor().clamp(-1e9, 1e9) as i32);
-        let planes = planes(head, pose);
+        // Only where a fine cell is near: most poses pass every coarse
+        // cell far from the head.
+        let bounding = std::cell::OnceCell::new();
         let mut best: Option<(f64, usize, Lump)> = None;
         let limit = |b: &Option<(f64, usize, Lump)>| b.map_or(cap, |b| b.0.min(cap));
         for i in lo[0]..=hi[0] {
@@ -429,7 +431,8 @@ impl Material {
                     for key in fine {
                         let cell = &self.cells[key];
                         let (clo, chi) = cell.bounds();
-                        let bound = box_bound(&planes, (centre, radius), (clo, chi)).max(near_box(
+                        let planes = bounding.get_or_init(|| planes(head, pose));
+                        let bound = box_bound(planes, (centre, radius), (clo, chi)).max(near_box(
                             head,
                             pose,
                             (clo, chi),

@@ -183,18 +183,30 @@ fn a_leaning_slab_is_filled_along_its_lean_on_a_tilting_head() {
     // as far as the tracks' strips reach.
     let half = 1.2 / tilt.cos();
     let x_face = [BASE[0] + shift() + half, BASE[1] + shift() - half];
+    let fill = fill_along(x_face, tracks_across(p));
+    assert!(
+        (planned / fill - 1.0).abs() < 0.03,
+        "planned {planned} mm³ against the fill's {fill} mm³"
+    );
+}
+
+/// The fill along the lean, mm³: the points of the part as designed above
+/// the worn surface's formula (on a 0.1 mm grid) whose line along the
+/// lean meets the slab's face (13.5 mm) within `face` along x, across y
+/// over `across` (the section is the same along y: the scan's depth is
+/// integrated).
+fn fill_along(face: [f64; 2], across: [f64; 2]) -> f64 {
+    let tilt = LEAN.to_radians();
     let cell = 0.1;
     let mut fill = 0.0;
-    let across = tracks_across(p);
     for i in 0..700 {
         let x = -20.0 + (i as f64 + 0.5) * cell;
         for k in 0..70 {
             let z = 7.0 + (k as f64 + 0.5) * cell;
             let on_face = x + (10.0 + HEIGHT - z) * tilt.tan();
-            if on_face < x_face[0] || on_face > x_face[1] || !in_target([x, 0.0, z]) {
+            if on_face < face[0] || on_face > face[1] || !in_target([x, 0.0, z]) {
                 continue;
             }
-            // Across y the section is the same: integrate the scan's depth.
             for j in 0..((across[1] - across[0]) / cell).round() as usize {
                 let y = across[0] + (j as f64 + 0.5) * cell;
                 if z > worn(x, y) {
@@ -203,10 +215,7 @@ fn a_leaning_slab_is_filled_along_its_lean_on_a_tilting_head() {
             }
         }
     }
-    assert!(
-        (planned / fill - 1.0).abs() < 0.03,
-        "planned {planned} mm³ against the fill's {fill} mm³"
-    );
+    fill
 }
 
 /// The y the tracks' strips cover: their outer centres and half their
@@ -377,26 +386,9 @@ fn the_report_integrates_the_design_volume_along_the_lean() {
     let p = c.program.unwrap_or_else(|| panic!("{m}"));
     let r = lmdc::report::Report::new(p.machines().next().unwrap(), &model.unwrap(), None);
     let v = r.design_volume().expect("the design volume along the lean");
-    let tilt = LEAN.to_radians();
     let face = [BASE[0] + shift(), BASE[1] + shift()];
+    let fill = fill_along(face, [-10.0, 10.0]);
     let cell = 0.1;
-    let mut fill = 0.0;
-    for i in 0..700 {
-        let x = -20.0 + (i as f64 + 0.5) * cell;
-        for k in 0..70 {
-            let z = 7.0 + (k as f64 + 0.5) * cell;
-            let on_face = x + (10.0 + HEIGHT - z) * tilt.tan();
-            if on_face < face[0] || on_face > face[1] || !in_target([x, 0.0, z]) {
-                continue;
-            }
-            for j in 0..200 {
-                let y = -10.0 + (j as f64 + 0.5) * cell;
-                if z > worn(x, y) {
-                    fill += cell * cell * cell;
-                }
-            }
-        }
-    }
     // From above: the top (13.5 mm) less the surface over the outline.
     let mut above = 0.0;
     for i in 0..240 {

@@ -798,7 +798,7 @@ pub fn tilted_with(
 /// along the direction.
 pub fn in_turned_frame(mut d: Diagnostic, [tilt, azimuth]: [f64; 2]) -> Diagnostic {
     d.message.push_str(&format!(
-        " (planned along the build direction tilted {}° toward {}° from +x, counter-clockwise: heights, over and under are along it, points in the part)",
+        " (planned along the build direction tilted {}° toward {}° from +x, counter-clockwise: heights and depths here are measured along it, points are in the part's coordinates)",
         short(tilt),
         short(azimuth)
     ));
