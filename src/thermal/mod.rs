@@ -407,35 +407,21 @@ pub fn predict_tree(
     let mut clock = 0.0;
     for (i, loads) in layers.iter().enumerate() {
         let declared = if i == 0 { 0.0 } else { base(i).max(0.0) };
-        let (order, wait) = match budget {
-            Some(b) => order_and_wait(&build, loads, &orders[i], declared, b, i)?,
-            None => (orders[i].clone(), declared),
+        let (order, wait, power) = match budget {
+            Some(b) => {
+                let then = base_after(&base, i, layers.len()).map(|wait| Then {
+                    laying: Laying {
+                        loads: &layers[i + 1],
+                        order: &orders[i + 1],
+                    },
+                    wait,
+                });
+                levers(&build, loads, &orders[i], declared, b, i, then)?
+            }
+            None => (orders[i].clone(), declared, 1.0),
         };
         build.cool(wait);
         clock += wait;
-        // A wait found to a thousandth of its step may land a rounding above.
-        if let Some(b) = budget {
-            let (hottest, c) = starts(&build, loads, &order);
-            if hottest > b.max_interpass + 1e-9 {
-                let limit = b.max_interpass;
-                return Err(overheat(&build, loads, &order, i, c, hottest, limit));
-            }
-        }
-        let power = match (budget, base_after(&base, i, layers.len())) {
-            (Some(b), Some(next)) if b.levers.power.is_some() => {
-                let least = b.levers.power.and_then(|l| l.get(i)).copied();
-                let now = Laying {
-                    loads,
-                    order: &order,
-                };
-                let then = Laying {
-                    loads: &layers[i + 1],
-                    order: &orders[i + 1],
-                };
-                least_power(&build, now, then, next, b, least.unwrap_or(1.0), i + 1)?
-            }
-            _ => 1.0,
-        };
         let islands = lay_layer(&mut build, loads, &order, power, clock);
         let first = islands.first().copied();
         out.push(LayerPrediction {
@@ -452,6 +438,107 @@ pub fn predict_tree(
         clock += order.iter().map(|&c| loads[c].load.time).sum::<f64>();
     }
     Ok(out)
+}
+
+/// The layer after one and the wait before it.
+#[derive(Clone, Copy)]
+struct Then<'a> {
+    laying: Laying<'a>,
+    wait: f64,
+}
+
+/// How many times [`levers`] settles a layer's wait against its power.
+const SETTLE: usize = 8;
+
+/// Layer `layer`'s order, the wait before it and the share of its power
+/// it is laid at, as `b`'s levers allow, on `build` before the wait. The
+/// wait is found with the layer at full power, then the power that keeps
+/// the layer after it (`then`) in, then the wait again with the layer at
+/// that power (laying its first islands cooler lets its later ones start
+/// cooler, so the wait may shrink), and so on until they settle: each
+/// power is chosen after the wait it is laid after, and each wait
+/// against a power no lower than the one laid, so the pair kept always
+/// keeps the limit. Refuses where a layer starts above it after all.
+fn levers(
+    build: &Build,
+    loads: &[Isle],
+    plan: &[usize],
+    declared: f64,
+    b: Budget<'_>,
+    layer: usize,
+    then: Option<Then<'_>>,
+) -> Result<(Vec<usize>, f64, f64), Overheat> {
+    let (mut order, mut wait) = order_and_wait(build, loads, plan, declared, b, layer)?;
+    let mut power = 1.0;
+    let Some(then) = then.filter(|_| b.levers.power.is_some()) else {
+        return kept(build, loads, order, wait, power, b, layer);
+    };
+    let least = b.levers.power.and_then(|l| l.get(layer)).copied();
+    for round in 0..SETTLE {
+        let mut after = build.clone();
+        after.cool(wait);
+        let now = Laying {
+            loads,
+            order: &order,
+        };
+        let share = least_power(
+            &after,
+            now,
+            then.laying,
+            then.wait,
+            b,
+            least.unwrap_or(1.0),
+            layer + 1,
+        )?;
+        let settled = share >= power - 1e-4 && round > 0;
+        power = share.min(power);
+        if settled || power >= 1.0 || b.levers.dwell.is_none() || round + 1 == SETTLE {
+            break;
+        }
+        let (o, w) = order_and_wait(build, &at_share(loads, power), plan, declared, b, layer)?;
+        if w >= wait && o == order {
+            break;
+        }
+        (order, wait) = (o, w);
+    }
+    kept(build, loads, order, wait, power, b, layer)
+}
+
+/// `order`, `wait` and `power` for layer `layer` on `build`, or its
+/// refusal where an island starts above the limit after all (a wait found
+/// to a thousandth of its step may land a rounding above).
+fn kept(
+    build: &Build,
+    loads: &[Isle],
+    order: Vec<usize>,
+    wait: f64,
+    power: f64,
+    b: Budget<'_>,
+    layer: usize,
+) -> Result<(Vec<usize>, f64, f64), Overheat> {
+    let mut after = build.clone();
+    after.cool(wait);
+    let scaled = at_share(loads, power);
+    let (hottest, c) = starts(&after, &scaled, &order);
+    if hottest > b.max_interpass + 1e-9 {
+        let limit = b.max_interpass;
+        return Err(overheat(&after, &scaled, &order, layer, c, hottest, limit));
+    }
+    Ok((order, wait, power))
+}
+
+/// A layer's islands laid at the share `power` of their power.
+fn at_share(loads: &[Isle], power: f64) -> Vec<Isle> {
+    loads
+        .iter()
+        .map(|isle| Isle {
+            load: Load {
+                energy: isle.load.energy * power,
+                ..isle.load
+            },
+            ..*isle
+        })
+        .collect()
 }
 
 /// The order layer `layer`'s islands are laid in on `build` and the wait
@@ -607,7 +694,7 @@ fn base_after(base: &impl Fn(usize) -> f64, i: usize, n: usize) -> Option<f64> {
 /// The least wait, at most `longest`, after which every island of the
 /// layer `layer` laid in `order` on `build` starts within `limit`: the
 /// first island's from [`Build::cooling_of`]; where a later one still
-/// starts above it, bisected to a thousandth of a second.
+/// starts above it, bisected to a thousandth of itself.
 fn least_wait(
     build: &Build,
     loads: &[Isle],
@@ -637,8 +724,11 @@ fn least_wait(
     if after(longest) > limit {
         return Err(refuse());
     }
+    // To a thousandth of the wait (at least a microsecond): a wait of
+    // milliseconds is found as closely, relative to itself, as one of
+    // minutes.
     let (mut lo, mut hi) = (w0, longest);
-    while hi - lo > 1e-3 {
+    while hi - lo > (1e-3 * hi).max(1e-6) {
         let mid = 0.5 * (lo + hi);
         if after(mid) <= limit {
             hi = mid;
