@@ -12,6 +12,7 @@ use std::collections::BTreeMap;
 mod blade;
 mod follow;
 mod lean;
+mod lean_finish;
 mod target;
 mod tilted;
 

@@ -10,13 +10,20 @@
 //! position along it: each layer's moves on the line are sorted once and
 //! looked up by halving. A place a layer does not lay (a levelling pass
 //! that leaves it, a too-thin gap) adds nothing there.
+//!
+//! A fill along a tilted build direction `d` (`direction = auto`) is
+//! predicted in the part turned so that `d` is up, as its planner laid it:
+//! its tracks run along that frame's x or y, its layers rise along `d`,
+//! the scan and the target are the ones it was planned on
+//! ([`crate::slice::top::seen_along`]), and every place is named back in
+//! the part, its departure measured along `d`.
 
 use super::design::linear_top;
 use crate::deposit::Deposit;
 use crate::diag::Diagnostics;
 use crate::geometry::outline::profile;
 use crate::ir::{Layer, Program};
-use crate::sema::model::{Build, Model, Top, TopExtrusion};
+use crate::sema::model::{Build, Model, Top, TopExtrusion, TurnedFrame};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -45,6 +52,11 @@ pub struct Finish {
     pub rms_mm: f64,
     /// The first layer's thickness, least and greatest, mm.
     pub first_layer_mm: [f64; 2],
+    /// The build direction departures are measured along, where it is
+    /// tilted (`direction = auto`); the places are then on the target's
+    /// face, seen from above. Vertical: none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub along: Option<[f64; 3]>,
 }
 
 /// A line's moves in one layer: (from, to, rise), sorted.
@@ -63,8 +75,9 @@ fn on_line(a: [f64; 3], b: [f64; 3]) -> Option<((u8, i64), f64, f64)> {
     }
 }
 
-/// Every layer's laser-on moves by line.
-fn moves(layers: &[Layer], d: &Deposit) -> BTreeMap<(u8, i64), Vec<Moves>> {
+/// Every layer's laser-on moves by line, in the frame `turn` takes the
+/// part into (the build direction up).
+fn moves(layers: &[Layer], d: &Deposit, turn: &Turn) -> BTreeMap<(u8, i64), Vec<Moves>> {
     let mut out: BTreeMap<(u8, i64), Vec<Moves>> = BTreeMap::new();
     for (li, layer) in layers.iter().enumerate() {
         for path in &layer.paths {
@@ -72,13 +85,14 @@ fn moves(layers: &[Layer], d: &Deposit) -> BTreeMap<(u8, i64), Vec<Moves>> {
                 let Some(next) = path.points.get(k + 1).filter(|_| pt.laser_on) else {
                     continue;
                 };
-                let Some((key, t0, t1)) = on_line(pt.pos, next.pos) else {
+                let Some((key, t0, t1)) = on_line(turn.planned(pt.pos), turn.planned(next.pos))
+                else {
                     continue;
                 };
                 // A rise along a tilted nozzle (`follow = surface`) raises
                 // the face by it over the normal's vertical share; a
                 // vertical normal's share is exactly 1.
-                let n = pt.normal.map(f64::from);
+                let n = turn.planned(pt.normal.map(f64::from));
                 let up = n[2] / (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
                 let rise = match pt.predicted_rise(d, Some(next)) {
                     r if up > 0.0 && up < 1.0 => r / up,
@@ -134,17 +148,21 @@ pub fn sampled(program: &Program, model: &Model) -> Option<(Finish, Vec<Sample>)
     let Build::Variable { extrusion: ex, .. } = &model.build else {
         return None;
     };
-    // A fill along a tilted direction (`direction = auto`) lays its
-    // tracks across the part's x and y and its rises along the
-    // direction: the vertical columns sampled here would mix layers, so
-    // no finish is predicted rather than a wrong one (docs/repair.md,
-    // *Not yet*).
-    if program.layers.iter().any(|l| l.frame.z != [0.0, 0.0, 1.0]) {
-        return None;
-    }
+    // A fill along a tilted direction is predicted where it was planned:
+    // in the part turned so the direction is up.
+    let along = tilted(program);
+    let seen;
+    let (ex, turn) = match along {
+        None => (ex, Turn::default()),
+        Some(d) => {
+            seen = crate::slice::top::seen_along(ex, model.bead.as_ref()?, d)?;
+            let frame = seen.turned?;
+            (&seen, Turn { frame: Some(frame) })
+        }
+    };
     let d = program.bead.as_ref()?.deposit();
     let last = program.layers.last()?;
-    let by_line = moves(&program.layers, &d);
+    let by_line = moves(&program.layers, &d, &turn);
     let mut top = Target::new(ex)?;
     let mut f = Finish {
         points: 0,
@@ -154,6 +172,7 @@ pub fn sampled(program: &Program, model: &Model) -> Option<(Finish, Vec<Sample>)
         above_at: [0.0; 2],
         rms_mm: 0.0,
         first_layer_mm: first_layer(&program.layers[0])?,
+        along,
     };
     let mut squares = 0.0;
     let mut samples = Vec::new();
@@ -167,14 +186,15 @@ pub fn sampled(program: &Program, model: &Model) -> Option<(Finish, Vec<Sample>)
         let Some((line, ..)) = path
             .points
             .windows(2)
-            .find_map(|w| on_line(w[0].pos, w[1].pos))
+            .find_map(|w| on_line(turn.planned(w[0].pos), turn.planned(w[1].pos)))
         else {
             continue;
         };
         let Some(per) = by_line.get(&line) else {
             continue;
         };
-        let (first, end) = (path.points[0].pos, path.points[path.points.len() - 1].pos);
+        let first = turn.planned(path.points[0].pos);
+        let end = turn.planned(path.points[path.points.len() - 1].pos);
         let (t0, t1, c) = match line.0 {
             0 => (first[0].min(end[0]), first[0].max(end[0]), first[1]),
             _ => (first[1].min(end[1]), first[1].max(end[1]), first[0]),
@@ -187,18 +207,20 @@ pub fn sampled(program: &Program, model: &Model) -> Option<(Finish, Vec<Sample>)
                 continue;
             };
             let off = base + per.iter().map(|m| rise_at(m, t)).sum::<f64>() - want;
+            // The place on the target, named in the part.
+            let at = turn.back([x, y, want]);
             samples.push(Sample {
-                at: [x, y],
-                top: want,
+                at: [at[0], at[1]],
+                top: at[2],
                 off,
             });
             f.points += 1;
             squares += off * off;
             if -off > f.below_mm {
-                (f.below_mm, f.below_at) = (-off, [x, y]);
+                (f.below_mm, f.below_at) = (-off, [at[0], at[1]]);
             }
             if off > f.above_mm {
-                (f.above_mm, f.above_at) = (off, [x, y]);
+                (f.above_mm, f.above_at) = (off, [at[0], at[1]]);
             }
         }
     }
@@ -206,6 +228,38 @@ pub fn sampled(program: &Program, model: &Model) -> Option<(Finish, Vec<Sample>)
         f.rms_mm = (squares / f.points as f64).sqrt();
         (f, samples)
     })
+}
+
+/// The build direction of a plan laid along a tilted one (`direction =
+/// auto`: every layer's frame z the same, not vertical).
+fn tilted(program: &Program) -> Option<[f64; 3]> {
+    let d = program.layers.first()?.frame.z;
+    (d != [0.0, 0.0, 1.0]).then_some(d)
+}
+
+/// The way between the part and the frame a fill was planned in: none
+/// for a vertical fill, else its build direction turned up.
+#[derive(Default)]
+struct Turn {
+    frame: Option<TurnedFrame>,
+}
+
+impl Turn {
+    /// `p` (mm, or a direction) of the part in the planning frame.
+    fn planned(&self, p: [f64; 3]) -> [f64; 3] {
+        match &self.frame {
+            Some(f) => {
+                let q = f.back.inverse() * nalgebra::Vector3::from(p);
+                [q.x, q.y, q.z]
+            }
+            None => p,
+        }
+    }
+
+    /// The part's point at `p` of the planning frame.
+    fn back(&self, p: [f64; 3]) -> [f64; 3] {
+        self.frame.as_ref().map_or(p, |f| f.point(p))
+    }
 }
 
 /// The first layer's least and greatest thickness along its laser-on

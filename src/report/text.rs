@@ -463,9 +463,18 @@ fn design(out: &mut String, r: &Report) {
 /// The finished surface the bead model predicts against the top.
 fn finish(out: &mut String, f: &super::finish::Finish) {
     let at = |p: [f64; 2]| format!("({}, {})", short(p[0]), short(p[1]));
+    // A tilted fill's departures are along its build direction.
+    let along = f.along.map_or(String::new(), |d| {
+        format!(
+            " (along the build direction ({}, {}, {}))",
+            short(d[0]),
+            short(d[1]),
+            short(d[2])
+        )
+    });
     let _ = writeln!(
         out,
-        "finish      the bead model's surface at {} places along the last layer's tracks: up to {} mm below the top at {}, up to {} mm above it at {}, RMS {} mm; the first layer {} .. {} mm thick",
+        "finish      the bead model's surface at {} places along the last layer's tracks{along}: up to {} mm below the top at {}, up to {} mm above it at {}, RMS {} mm; the first layer {} .. {} mm thick",
         f.points,
         short(f.below_mm),
         at(f.below_at),

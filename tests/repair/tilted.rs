@@ -9,16 +9,16 @@ use lmdc::ir::Program;
 use std::collections::BTreeMap;
 
 /// The slab's lean from vertical, deg.
-const LEAN: f64 = 30.0;
+pub(super) const LEAN: f64 = 30.0;
 
 /// Its height over the block, mm (from z = 10 to 13.5).
-const HEIGHT: f64 = 3.5;
+pub(super) const HEIGHT: f64 = 3.5;
 
 /// Its base's x, mm.
-const BASE: [f64; 2] = [-12.0, 12.0];
+pub(super) const BASE: [f64; 2] = [-12.0, 12.0];
 
 /// How far its top is shifted along x from its base, mm.
-fn shift() -> f64 {
+pub(super) fn shift() -> f64 {
     HEIGHT * LEAN.to_radians().tan()
 }
 
@@ -55,7 +55,7 @@ fn in_target(q: [f64; 3]) -> bool {
 
 /// The worn pad's surface (examples/repair/make_worn_pad.py), without its
 /// noise.
-fn worn(x: f64, y: f64) -> f64 {
+pub(super) fn worn(x: f64, y: f64) -> f64 {
     10.0 - 1.5 * (-((x - 5.0) / 15.0).powi(2)).exp() * (1.0 - (y / 14.0).powi(2))
 }
 
@@ -73,7 +73,11 @@ fn slab_with(a: f64, direction: &str, src: &str) -> lmdc::pipeline::Compiled {
 }
 
 /// The file and the files it reads of [`slab_with`].
-fn slab_input(a: f64, direction: &str, src: &str) -> (String, BTreeMap<String, Vec<u8>>) {
+pub(super) fn slab_input(
+    a: f64,
+    direction: &str,
+    src: &str,
+) -> (String, BTreeMap<String, Vec<u8>>) {
     let machines = src.find("machine mill3").unwrap();
     let head = format!(
         "machine mill5 {{
