@@ -122,7 +122,7 @@ fn refusal(
         longest: MAX_DWELL_S,
         needs: o.needs,
         by_order: o.by_order,
-        preheat: o.layer == 0,
+        first_layer: (o.layer == 0).then_some(declared.preheat),
         floor: declared
             .cooling
             .allows(Cooling::Power)

@@ -79,9 +79,10 @@ pub struct Overheat<'a> {
     pub needs: Option<f64>,
     /// Whether laying the layer's islands coolest first would keep it.
     pub by_order: bool,
-    /// Whether it is the plate's preheat that is above the limit (the
-    /// first layer).
-    pub preheat: bool,
+    /// The plate's preheat, °C, where the layer is the first: nothing
+    /// waits before it, so only the preheat or the islands laid before
+    /// this one in the layer make it start too hot.
+    pub first_layer: Option<f64>,
     /// The least power the layer before may be laid at, W (`cooling =
     /// power`).
     pub floor: Option<f64>,
@@ -109,14 +110,22 @@ pub fn interpass(o: Overheat<'_>, at: Span) -> Diagnostic {
             short(o.limit)
         ),
     );
-    if o.preheat {
-        return d
-            .label(at, "the limit")
-            .help(format!(
-                "the plate is preheated to {} °C: lower `preheat`, or raise `max_interpass` to at least {} degC",
-                short(o.interpass),
-                short_up(o.interpass)
-            ));
+    if let Some(preheat) = o.first_layer {
+        let why = if o.interpass <= preheat + 1e-6 {
+            format!("the plate is preheated to {} °C", short(o.interpass))
+        } else {
+            // A later island of the first layer, warmed through the plate
+            // by the ones laid before it: no lever waits within a layer.
+            format!(
+                "the plate starts at {} °C, and the islands laid before this one in the first layer warm the plate under it to {} °C (nothing waits before the first layer)",
+                short(preheat),
+                short(o.interpass)
+            )
+        };
+        return d.label(at, "the limit").help(format!(
+            "{why}: lower `preheat`, or raise `max_interpass` to at least {} degC",
+            short_up(o.interpass)
+        ));
     }
     let raise = format!(
         "raise `max_interpass` to at least {} degC",
