@@ -415,57 +415,74 @@ impl Material {
         let bounding = std::cell::OnceCell::new();
         let mut best: Option<(f64, usize, Lump)> = None;
         let limit = |b: &Option<(f64, usize, Lump)>| b.map_or(cap, |b| b.0.min(cap));
-        for i in lo[0]..=hi[0] {
-            for j in lo[1]..=hi[1] {
-                for k in lo[2]..=hi[2] {
-                    let Some(fine) = self.coarse.get(&[i, j, k]) else {
-                        continue;
-                    };
-                    // The coarse cell's material lies within its
-                    // half-diagonal (and a lump's radius) of its centre.
-                    let c = [i, j, k].map(|q| (q as f64 + 0.5) * big);
-                    let far = head.distance(pose, c).0 - big * 0.5 * 3f64.sqrt() - self.r_max;
-                    if far >= limit(&best) && far > 0.0 {
-                        continue;
+        let mut visit = |key: [i32; 3], fine: &Vec<[i32; 3]>| {
+            // The coarse cell's material lies within its
+            // half-diagonal (and a lump's radius) of its centre.
+            let c = key.map(|q| (q as f64 + 0.5) * big);
+            let far = head.distance(pose, c).0 - big * 0.5 * 3f64.sqrt() - self.r_max;
+            if far >= limit(&best) && far > 0.0 {
+                return;
+            }
+            for key in fine {
+                let cell = &self.cells[key];
+                let (clo, chi) = cell.bounds();
+                let planes = bounding.get_or_init(|| planes(head, pose));
+                let bound = box_bound(planes, (centre, radius), (clo, chi)).max(near_box(
+                    head,
+                    pose,
+                    (clo, chi),
+                ));
+                // Clear of the head (a bound above 0), or no
+                // nearer than what was found.
+                if bound >= limit(&best) && bound > 0.0 {
+                    continue;
+                }
+                match cell {
+                    Cell::Box { group, .. } if bound < limit(&best) => {
+                        let at = [0, 1, 2].map(|a| (clo[a] + chi[a]) / 2.0);
+                        let l = Lump {
+                            at,
+                            r: 0.0,
+                            group: *group,
+                        };
+                        best = Some((bound, 0, l));
                     }
-                    for key in fine {
-                        let cell = &self.cells[key];
-                        let (clo, chi) = cell.bounds();
-                        let planes = bounding.get_or_init(|| planes(head, pose));
-                        let bound = box_bound(planes, (centre, radius), (clo, chi)).max(near_box(
-                            head,
-                            pose,
-                            (clo, chi),
-                        ));
-                        // Clear of the head (a bound above 0), or no
-                        // nearer than what was found.
-                        if bound >= limit(&best) && bound > 0.0 {
-                            continue;
-                        }
-                        match cell {
-                            Cell::Box { group, .. } if bound < limit(&best) => {
-                                let at = [0, 1, 2].map(|a| (clo[a] + chi[a]) / 2.0);
-                                let l = Lump {
-                                    at,
-                                    r: 0.0,
-                                    group: *group,
-                                };
-                                best = Some((bound, 0, l));
-                            }
-                            Cell::Box { .. } => {}
-                            Cell::Lumps { lumps, .. } => {
-                                for s in lumps {
-                                    let l = s.lump();
-                                    let (d, body) = head.distance(pose, l.at);
-                                    let d = d - l.r;
-                                    if d < limit(&best) {
-                                        best = Some((d, body, l));
-                                    }
-                                }
+                    Cell::Box { .. } => {}
+                    Cell::Lumps { lumps, .. } => {
+                        for s in lumps {
+                            let l = s.lump();
+                            let (d, body) = head.distance(pose, l.at);
+                            let d = d - l.r;
+                            if d < limit(&best) {
+                                best = Some((d, body, l));
                             }
                         }
                     }
                 }
+            }
+        };
+        // The occupied coarse cells within reach, in one order: the box's
+        // own where it holds no more cells than are occupied, else the
+        // occupied ones in it, sorted (a lump metres wide makes the reach,
+        // and the box, vast).
+        let span: f64 = (0..3).map(|a| f64::from(hi[a] - lo[a]) + 1.0).product();
+        if span <= self.coarse.len() as f64 {
+            for i in lo[0]..=hi[0] {
+                for j in lo[1]..=hi[1] {
+                    for k in lo[2]..=hi[2] {
+                        if let Some(fine) = self.coarse.get(&[i, j, k]) {
+                            visit([i, j, k], fine);
+                        }
+                    }
+                }
+            }
+        } else {
+            let mut keys: Vec<[i32; 3]> = (self.coarse.keys().copied())
+                .filter(|q| (0..3).all(|a| (lo[a]..=hi[a]).contains(&q[a])))
+                .collect();
+            keys.sort_unstable();
+            for key in keys {
+                visit(key, &self.coarse[&key]);
             }
         }
         best

@@ -82,6 +82,24 @@ pub fn model_height_not_positive(
     .help("narrow the speed range to where the model gives positive heights")
 }
 
+/// The bead model gives a height `h` at `v` taller than any bead a
+/// nozzle lays (`most`): a model in the wrong unit.
+pub fn model_height_too_tall(
+    h: Length,
+    v: Speed,
+    most: Length,
+    speed_at: Span,
+    model_at: Span,
+) -> Diagnostic {
+    Diagnostic::error(
+        Code::InfeasibleBead,
+        format!("the bead model gives a height of {h} at {v}, more than the {most} lmdc takes for a laid bead"),
+    )
+    .label(model_at, "model")
+    .label(speed_at, "speed range")
+    .help("a laser-deposited bead is tenths of a millimetre to a few millimetres high: check the model's numbers and units (`intercept = 0.9 mm`, `slope = -0.03 mm / (1 mm/s)`)")
+}
+
 /// A `table(…)` (at `at`) is no table: `fault` says why, its entries
 /// counted from 0; `what` names the list checked against the speeds
 /// ("heights", "widths"), `speeds` and `values` its lists (mm/s, mm).

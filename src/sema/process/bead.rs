@@ -454,6 +454,10 @@ fn one_point_model(value: &Value, at: Span, diags: &mut Diagnostics) -> Option<H
     }
 }
 
+/// The tallest bead lmdc takes, mm: ten times a tall laser-deposited
+/// bead's 5 mm (a taller one is a model in the wrong unit).
+const MAX_BEAD_HEIGHT: f64 = 50.0;
+
 /// The heights a bead of width `w` lays over its `speed` range (declared at
 /// `spans.0`), narrowed to `height` if written: the layer heights allowed,
 /// and where they are declared (`spans.1`, the model, when not written).
@@ -474,6 +478,18 @@ fn heights(
             Speed(speed[1]),
             speed_span,
             Some(model_span),
+        ));
+        return None;
+    }
+    // Metres of bead are a model in the wrong unit; the plan's layers,
+    // its collision lumps and its machine moves would scale with them.
+    if h_hi > MAX_BEAD_HEIGHT {
+        diags.push(message::bead::model_height_too_tall(
+            Length(h_hi),
+            Speed(speed[0]),
+            Length(MAX_BEAD_HEIGHT),
+            speed_span,
+            model_span,
         ));
         return None;
     }
