@@ -706,12 +706,15 @@ fn a_boss_that_appears_later_starts_on_the_plate() {
     assert!(first_interpass.windows(2).take(7).all(|w| w[1] > w[0]));
 }
 
+/// Each layer's islands `(column, load)`.
+type LaidOn = Vec<Vec<(usize, Load)>>;
+
 /// Two pillars (columns 0 and 1, on the plate) joined at layer 6 by a
 /// bridge (column 2, on column 0's top and joined to column 1's) as wide
 /// as both with the gap between, and a boss (column 3) beside them from
 /// layer 2: the stands, the joins and each layer's islands `(column,
 /// load)`.
-fn bridge() -> (Vec<Stand>, Vec<(usize, usize)>, Vec<Vec<(usize, Load)>>) {
+fn bridge() -> (Vec<Stand>, Vec<(usize, usize)>, LaidOn) {
     let stands = vec![Stand::Plate, Stand::Plate, Stand::On(0), Stand::Plate];
     let layers = (0..12)
         .map(|i| {
@@ -730,7 +733,7 @@ fn bridge() -> (Vec<Stand>, Vec<(usize, usize)>, Vec<Vec<(usize, Load)>>) {
 }
 
 /// A build of [`bridge`] with `m`, set up.
-fn bridge_build(m: Material) -> (Build, Vec<Vec<(usize, Load)>>) {
+fn bridge_build(m: Material) -> (Build, LaidOn) {
     let (stands, joins, layers) = bridge();
     let mut b = Build::new(m, plate());
     b.plant_merged(&stands, &joins, &forest_firsts(&layers, stands.len()));
@@ -933,4 +936,55 @@ fn a_bridge_through_the_prediction() {
     assert!(p
         .iter()
         .all(|l| l.layer.interpass.is_finite() && l.layer.peak.is_finite()));
+}
+
+/// The conjugate gradients on their own: a small symmetric positive
+/// definite system (a chain with a cycle) preconditioned by its diagonal
+/// is solved to its tolerance; a diagonal one of 200 spread eigenvalues,
+/// unpreconditioned, is not within the iterations allowed, and says so
+/// (what makes a prediction fall back to one column), its iterate finite.
+#[test]
+fn conjugate_gradients_converge_or_say_they_did_not() {
+    use super::cg::{solve, MAX_ITERATIONS, TOLERANCE};
+    let n = 12;
+    let apply = |x: &[f64]| {
+        let mut y: Vec<f64> = x
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (3.0 + i as f64) * v)
+            .collect();
+        for i in 0..n {
+            let j = (i + 1) % n;
+            y[i] -= x[j];
+            y[j] -= x[i];
+        }
+        y
+    };
+    let b: Vec<f64> = (0..n).map(|i| (i as f64).sin() + 2.0).collect();
+    let diag = |r: &[f64]| -> Vec<f64> {
+        r.iter()
+            .enumerate()
+            .map(|(i, v)| v / (3.0 + i as f64))
+            .collect()
+    };
+    let (x, converged) = solve(&b, diag, apply);
+    assert!(converged);
+    let r: f64 = apply(&x)
+        .iter()
+        .zip(&b)
+        .map(|(a, b)| (a - b).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    let norm = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+    assert!(r <= TOLERANCE * norm * 1.01, "residual {r}");
+    let m = 200;
+    let spread = |x: &[f64]| -> Vec<f64> {
+        x.iter()
+            .enumerate()
+            .map(|(i, v)| 10f64.powf(8.0 * i as f64 / m as f64) * v)
+            .collect()
+    };
+    let (x, converged) = solve(&vec![1.0; m], |r| r.to_vec(), spread);
+    assert!(m > MAX_ITERATIONS && !converged);
+    assert!(x.iter().all(|v| v.is_finite()));
 }
