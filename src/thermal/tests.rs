@@ -988,3 +988,28 @@ fn conjugate_gradients_converge_or_say_they_did_not() {
     assert!(m > MAX_ITERATIONS && !converged);
     assert!(x.iter().all(|v| v.is_finite()));
 }
+
+/// The fallback of a graph not solved: each layer's islands as one load
+/// keeps their energy, time, metal, outline and footprint (the height
+/// the one that keeps it), an island without metal only its time; the
+/// one column it makes predicts a finite build.
+#[test]
+fn islands_as_one_load_keep_what_they_lay() {
+    let (a, b) = (pillar(10.0, 800.0, 4.0), pillar(6.0, 500.0, 2.5));
+    let empty = Load {
+        volume: 0.0,
+        ..pillar(4.0, 100.0, 1.0)
+    };
+    let layers = vec![vec![a, b, empty]; 8];
+    let one = one_column(&layers);
+    let l = one[0][0];
+    assert_eq!(one.len(), 8);
+    assert!((l.energy - 1300.0).abs() < 1e-9 && (l.time - 7.5).abs() < 1e-12);
+    assert!((l.volume - a.volume - b.volume).abs() < 1e-18);
+    assert!((l.footprint() - a.footprint() - b.footprint()).abs() < 1e-15);
+    assert!((l.perimeter - a.perimeter - b.perimeter).abs() < 1e-15);
+    let p = predict(steel(), plate(), &vec![l; 8], |_| 1.0, None).unwrap();
+    assert!(p
+        .iter()
+        .all(|q| q.interpass.is_finite() && q.peak > q.interpass));
+}
