@@ -667,3 +667,181 @@ fn a_field_of_pins_past_the_island_cap_is_one_column() {
         t.layers[0].islands.len()
     );
 }
+
+/// The triangles of a prism from `y0` to `y1` (mm) over the polygon
+/// `outline` in the xz plane (counter-clockwise, x right, z up), its
+/// faces `fan`, triangles of the outline's corners (counter-clockwise),
+/// facing out.
+fn prism(
+    outline: &[[f64; 2]],
+    fan: &[[usize; 3]],
+    y: [f64; 2],
+) -> Vec<lmdc::geometry::mesh::stl::Triangle> {
+    let p = |i: usize, y: f64| {
+        let [x, z] = outline[i % outline.len()];
+        [x as f32, y as f32, z as f32]
+    };
+    let n = outline.len();
+    let mut tris: Vec<_> = fan
+        .iter()
+        .flat_map(|&[a, b, c]| {
+            [
+                [p(a, y[0]), p(b, y[0]), p(c, y[0])],
+                [p(a, y[1]), p(c, y[1]), p(b, y[1])],
+            ]
+        })
+        .collect();
+    for i in 0..n {
+        let (a, b) = (i, i + 1);
+        tris.push([p(a, y[0]), p(b, y[1]), p(b, y[0])]);
+        tris.push([p(a, y[0]), p(a, y[1]), p(b, y[1])]);
+    }
+    tris
+}
+
+/// Two 12 mm pillars 10 mm apart whose inner faces lean in from 4 mm up
+/// (40° from the vertical) until they meet 10 mm up, then one block to
+/// 14 mm: an arch, two islands a layer that merge into one part way up.
+fn arch() -> Vec<lmdc::geometry::mesh::stl::Triangle> {
+    arch_of(10.0, 6.0)
+}
+
+/// An arch of two 12 mm pillars `gap` mm apart whose inner faces lean in
+/// from 4 mm up until they meet `rise` mm higher, then one block to 4 mm
+/// above that.
+fn arch_of(gap: f64, rise: f64) -> Vec<lmdc::geometry::mesh::stl::Triangle> {
+    let (right, top) = (12.0 + gap, 8.0 + rise);
+    let outline = [
+        [0.0, 0.0],
+        [12.0, 0.0],
+        [12.0, 4.0],
+        [12.0 + 0.5 * gap, 4.0 + rise],
+        [right, 4.0],
+        [right, 0.0],
+        [right + 12.0, 0.0],
+        [right + 12.0, top],
+        [0.0, top],
+    ];
+    let fan = [
+        [0, 1, 2],
+        [0, 2, 8],
+        [2, 3, 8],
+        [3, 7, 8],
+        [3, 4, 7],
+        [4, 6, 7],
+        [4, 5, 6],
+    ];
+    prism(&outline, &fan, [0.0, 12.0])
+}
+
+/// The plan of an arch's first `layers` layers: examples/two_pillars.lmd
+/// with no limit.
+fn arch_plan(layers: usize) -> String {
+    std::fs::read_to_string("examples/two_pillars.lmd")
+        .unwrap()
+        .replace("    max_interpass = 320 degC\n", "")
+        .replace("    cooling = order\n", "")
+        .replace("layers = 18", &format!("layers = {layers}"))
+}
+
+/// Of a plan whose two islands a layer merge into one at layer `m`
+/// (returned), the bridge's first interpass temperature and the two
+/// pillars' tops at that moment, each found by laying the bridge's first
+/// layer as two halves, one on each pillar, first the one then the other.
+fn bridge_and_tops(p: &lmdc::ir::Program) -> (usize, f64, [f64; 2]) {
+    let t = p.thermal.as_ref().unwrap();
+    let (loads, orders, columns) = heat::island_loads(p);
+    let m = (0..loads.len()).find(|&i| loads[i].len() == 1).unwrap();
+    let (material, cell) = heat::cell(t);
+    let waits: Vec<f64> = t.layers.iter().map(|l| l.wait).collect();
+    let mut halves = loads[..=m].to_vec();
+    let half = lmdc::thermal::Load {
+        energy: 0.5 * loads[m][0].energy,
+        time: 0.5 * loads[m][0].time,
+        volume: 0.5 * loads[m][0].volume,
+        ..loads[m][0]
+    };
+    halves[m] = vec![half; 2];
+    let apart = lmdc::thermal::Columns {
+        stands: columns.stands[..2].to_vec(),
+        joins: Vec::new(),
+        of: columns.of[..m]
+            .iter()
+            .cloned()
+            .chain([columns.of[m - 1].clone()])
+            .collect(),
+    };
+    let top = |order: Vec<usize>| {
+        let mut o = orders[..m].to_vec();
+        o.push(order);
+        let q =
+            lmdc::thermal::predict_tree(material, cell, &apart, &halves, &o, |j| waits[j], None);
+        q.unwrap()[m].layer.interpass
+    };
+    (m, t.layers[m].interpass, [top(vec![0, 1]), top(vec![1, 0])])
+}
+
+/// Islands that merge (issue 36): the arch's two pillars are a column
+/// each until they join, and the part is not taken as one column: every
+/// layer below the join lists both pillars, each starting as in the same
+/// plan cut before the join (the pillars with no bridge after them); the
+/// bridge's layers are one island on a column standing on both pillars'
+/// (a join), its first layer starting between the two pillars' tops at
+/// that moment (each found by laying the bridge's first layer as two
+/// halves, one on each pillar, first the one then the other).
+#[test]
+fn an_arch_stands_on_both_its_pillars() {
+    let src = arch_plan(24);
+    let p = pillars(&src, &arch()).expect("no limit");
+    let t = p.thermal.as_ref().unwrap();
+    let (loads, _, columns) = heat::island_loads(&p);
+    let (m, bridge, [a, b]) = bridge_and_tops(&p);
+    assert!((8..20).contains(&m), "merged at layer {m}");
+    assert!(loads[m..].iter().all(|l| l.len() == 1));
+    assert!(t.layers[..m].iter().all(|l| l.islands.len() == 2));
+    assert_eq!(columns.stands.len(), 3, "{columns:?}");
+    assert_eq!(columns.joins.len(), 1, "{columns:?}");
+    // Cut before the join: the same pillars, the same starts.
+    let cut = pillars(&arch_plan(m), &arch()).unwrap();
+    let c = cut.thermal.as_ref().unwrap();
+    for (x, y) in t.layers.iter().zip(&c.layers) {
+        for (x, y) in x.islands.iter().zip(&y.islands) {
+            assert!((x.interpass - y.interpass).abs() < 1e-9, "{x:?} vs {y:?}");
+        }
+    }
+    eprintln!("bridge starts at {bridge} °C, the pillars' tops {a} and {b} °C");
+    assert!(
+        a.min(b) < bridge && bridge < a.max(b),
+        "{bridge} not between {a} and {b}"
+    );
+    assert!(t
+        .layers
+        .iter()
+        .all(|l| l.interpass.is_finite() && l.peak.is_finite()));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(4))]
+
+    /// Arches of random gaps and leans (40° at most): the pillars are a
+    /// column each up to the join and the bridge one island joined to
+    /// both, which starts between the two pillars' tops; every
+    /// temperature is finite.
+    #[test]
+    fn arches_start_their_bridge_between_their_pillars(
+        gap in 8.0f64..12.0,
+        lean in 0.6f64..0.83,
+    ) {
+        let rise = 0.5 * gap / lean;
+        // Whole layers of 0.54 mm within the arch's 8 mm + rise.
+        let layers = ((8.0 + rise - 0.3) / 0.54).floor() as usize;
+        let p = pillars(&arch_plan(layers), &arch_of(gap, rise)).expect("no limit");
+        let t = p.thermal.as_ref().unwrap();
+        let (m, bridge, [a, b]) = bridge_and_tops(&p);
+        let (_, _, columns) = heat::island_loads(&p);
+        prop_assert!(t.layers[..m].iter().all(|l| l.islands.len() == 2));
+        prop_assert!(!columns.joins.is_empty(), "{:?}", columns);
+        prop_assert!(a.min(b) < bridge && bridge < a.max(b), "{} not between {} and {}", bridge, a, b);
+        prop_assert!(t.layers.iter().all(|l| l.interpass.is_finite() && l.peak.is_finite()));
+    }
+}

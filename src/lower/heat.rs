@@ -150,9 +150,9 @@ struct Parts {
 }
 
 impl Parts {
-    /// The islands of `program`'s layers, where each stands on at most
-    /// one island of the layer below ([`columns`]); else each layer as one
-    /// piece (the part as one column).
+    /// The islands of `program`'s layers and the columns they stand on
+    /// ([`columns`]); where they cannot be told apart ([`islands`]), each
+    /// layer as one piece (the part as one column).
     fn of(program: &Program) -> Parts {
         let width = program.limits.bead_width;
         let found: Option<Vec<Vec<Island>>> =
@@ -190,6 +190,7 @@ impl Parts {
             orders: Vec::new(),
             columns: thermal::Columns {
                 stands: vec![thermal::Stand::Plate],
+                joins: Vec::new(),
                 of: vec![vec![0]; program.layers.len()],
             },
             starts: Vec::new(),
@@ -424,14 +425,15 @@ fn islands(layer: &Layer, w: f64) -> Option<Vec<Island>> {
 /// its own grown by a bead `w`. An island on one island that nothing else
 /// of its layer stands on goes on its column; islands that split off one
 /// (several on it) each on a column of their own on top of its column; an
-/// island on none on a column of its own on the plate (a boss that starts
-/// on the plate; the verifier refuses what would start in the air); an
-/// island that nothing stands on ends its column. `None` where an island
-/// stands on several (islands that merge): the part is then taken as one
-/// column.
+/// island on several (islands that merge) on a column of its own on top
+/// of the first's column, joined to the others'; an island on none on a
+/// column of its own on the plate (a boss that starts on the plate; the
+/// verifier refuses what would start in the air); an island that nothing
+/// stands on ends its column.
 fn columns(found: &[Vec<Island>], w: f64) -> Option<thermal::Columns> {
     use thermal::Stand;
     let mut stands: Vec<Stand> = vec![Stand::Plate; found.first()?.len()];
+    let mut joins = Vec::new();
     let mut of: Vec<Vec<usize>> = vec![(0..stands.len()).collect()];
     let overlaps = |a: &Island, b: &Island| {
         let (p, q) = (a.bounds, b.bounds);
@@ -442,37 +444,39 @@ fn columns(found: &[Vec<Island>], w: f64) -> Option<thermal::Columns> {
         let cols = of.last()?.clone();
         // What each island above stands on, and how many stand on each
         // island below.
-        let mut on = Vec::with_capacity(above.len());
         let mut carried = vec![0usize; below.len()];
-        for isl in above {
-            let mut under = below.iter().enumerate().filter(|(_, b)| overlaps(isl, b));
-            let first = under.next().map(|(g, _)| g);
-            if under.next().is_some() {
-                return None;
-            }
-            if let Some(g) = first {
-                carried[g] += 1;
-            }
-            on.push(first);
-        }
-        let mut col = Vec::with_capacity(above.len());
-        for g in on {
-            let c = match g {
-                Some(g) if carried[g] == 1 => cols[g],
-                Some(g) => {
-                    stands.push(Stand::On(cols[g]));
-                    stands.len() - 1
+        let on: Vec<Vec<usize>> = above
+            .iter()
+            .map(|isl| {
+                let under: Vec<usize> = (0..below.len())
+                    .filter(|&g| overlaps(isl, &below[g]))
+                    .collect();
+                for &g in &under {
+                    carried[g] += 1;
                 }
-                None => {
+                under
+            })
+            .collect();
+        let mut col = Vec::with_capacity(above.len());
+        for under in on {
+            let c = match under[..] {
+                [g] if carried[g] == 1 => cols[g],
+                [] => {
                     stands.push(Stand::Plate);
                     stands.len() - 1
+                }
+                [g, ref others @ ..] => {
+                    stands.push(Stand::On(cols[g]));
+                    let c = stands.len() - 1;
+                    joins.extend(others.iter().map(|&h| (c, cols[h])));
+                    c
                 }
             };
             col.push(c);
         }
         of.push(col);
     }
-    Some(thermal::Columns { stands, of })
+    Some(thermal::Columns { stands, joins, of })
 }
 
 /// The least share of its power each layer may be laid at: its lowest

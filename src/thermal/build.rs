@@ -11,12 +11,20 @@
 //! stands on (the columns last made first, so a column's children are
 //! folded into its top before it is eliminated), the rings' chain is
 //! solved, and the columns are filled back from their bottoms up.
+//!
+//! A column of islands that merged stands on the tops of several columns:
+//! on the first as in a tree, on the others by *joins*, which close cycles
+//! through the plate. Such a graph is solved by conjugate gradients with
+//! the tree's solve (the joins left out) as the preconditioner
+//! ([`super::cg`]).
 
 use super::{
     Load, Material, Node, Plate, COARSENING, DEPOSIT_STEP, FIRST_STEP, MAX_DEPOSIT_STEPS,
     STEP_GROWTH,
 };
 use std::f64::consts::PI;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 /// Where a column of islands stands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -24,8 +32,21 @@ pub enum Stand {
     /// On the plate: on its own foot, a share of the plate's first ring.
     Plate,
     /// On the top node of column `c` (made before it): an island that
-    /// split off the island below.
+    /// split off the island below, or of islands that merged, the first
+    /// of the columns they stand on (the others are its joins).
     On(usize),
+}
+
+/// A merged column's link to a column it stands on besides its [`Stand`].
+#[derive(Clone, Copy, Debug)]
+struct Join {
+    /// The column stood on (made before the merged one).
+    parent: usize,
+    /// The merged column's share of that column's top, by footprint.
+    share: f64,
+    /// The conductance between that top and the merged column's first
+    /// layer, W/K (0 until that is laid).
+    g: f64,
 }
 
 /// The part as it is built: the plate's shared rings, then one column per
@@ -54,6 +75,13 @@ pub struct Build {
     /// Whether a column carries others on its top (whose face is then
     /// covered).
     carries: Vec<bool>,
+    /// Each column's joins: the tops it stands on besides `stands`' (a
+    /// column of islands that merged; empty for every other).
+    joins: Vec<Vec<Join>>,
+    /// Set where a step's conjugate gradients did not converge; shared by
+    /// the clones a prediction tries its levers on, so that the prediction
+    /// knows to fall back to one column.
+    unsolved: Arc<AtomicBool>,
 }
 
 impl Build {
@@ -69,7 +97,16 @@ impl Build {
             shares: Vec::new(),
             bare: Vec::new(),
             carries: Vec::new(),
+            joins: Vec::new(),
+            unsolved: Arc::new(AtomicBool::new(false)),
         }
+    }
+
+    /// Whether every step so far was solved to its tolerance (a step of a
+    /// graph of merged columns whose conjugate gradients did not converge
+    /// was not), in this build or any clone of it.
+    pub fn solved(&self) -> bool {
+        !self.unsolved.load(Ordering::Relaxed)
     }
 
     /// The temperature of the top of the part, where the next layer goes,
@@ -83,6 +120,14 @@ impl Build {
     /// layer's, or before its first layer what it stands on: its foot, or
     /// the top of the column it split from.
     pub fn top_of(&self, c: usize) -> f64 {
+        match self.columns.get(c) {
+            Some(col) if col.is_empty() && !self.joins[c].is_empty() => self.merged_top(c),
+            _ => self.tree_top(c),
+        }
+    }
+
+    /// [`Build::top_of`] following each column's [`Stand`] alone.
+    fn tree_top(&self, c: usize) -> f64 {
         let mut c = c;
         // A column made before its parent's first layer has none: the
         // parents are earlier columns, so this ends.
@@ -96,6 +141,41 @@ impl Build {
                 None => return self.plate.temperature,
             }
         }
+    }
+
+    /// The top of a merged column before its first layer: the mean of the
+    /// tops it stands on, each weighted by the area its first layer will
+    /// be joined to it by ([`Build::tops_under`]).
+    fn merged_top(&self, c: usize) -> f64 {
+        let tops = self.tops_under(c);
+        let total: f64 = tops.iter().map(|(_, n)| n.footprint).sum();
+        if total.is_nan() || total <= 0.0 {
+            return self.tree_top(c);
+        }
+        tops.iter().map(|(_, n)| n.footprint / total * n.t).sum()
+    }
+
+    /// The tops column `c` stands on that have a layer, each as the part
+    /// of it `c` takes (its footprint times `c`'s share of it), with the
+    /// column: its [`Stand`]'s first, then its joins'.
+    fn tops_under(&self, c: usize) -> Vec<(usize, Node)> {
+        let part = |p: usize, share: f64| {
+            self.columns[p].last().map(|top| {
+                let part = Node {
+                    footprint: top.footprint * share,
+                    ..*top
+                };
+                (p, part)
+            })
+        };
+        let first = match self.stands[c] {
+            Stand::On(p) => part(p, self.shares[c]),
+            Stand::Plate => None,
+        };
+        first
+            .into_iter()
+            .chain(self.joins[c].iter().filter_map(|j| part(j.parent, j.share)))
+            .collect()
     }
 
     /// How many nodes the model has (the cost of a step).
@@ -135,6 +215,15 @@ impl Build {
     /// if already set up, or a column lays no metal, or none stands on the
     /// plate; a column said to stand on a later one stands on the plate.
     pub fn plant(&mut self, stands: &[Stand], firsts: &[Load]) {
+        self.plant_merged(stands, &[], firsts);
+    }
+
+    /// [`Build::plant`] with islands that merge: each `(c, p)` of `joins`
+    /// says that column `c`, standing on a column's top, stands on column
+    /// `p`'s top too (`p` made before `c`, not `c`'s [`Stand`]; others are
+    /// left out). A column's share of each top it stands on is by its
+    /// footprint among every column that stands on that top.
+    pub fn plant_merged(&mut self, stands: &[Stand], joins: &[(usize, usize)], firsts: &[Load]) {
         if !self.columns.is_empty() || stands.len() != firsts.len() || firsts.is_empty() {
             return;
         }
@@ -147,6 +236,13 @@ impl Build {
                 _ => Stand::Plate,
             })
             .collect();
+        let mut joins: Vec<(usize, usize)> = joins
+            .iter()
+            .copied()
+            .filter(|&(c, p)| matches!(stands.get(c), Some(Stand::On(q)) if *q != p && p < c))
+            .collect();
+        joins.sort_unstable();
+        joins.dedup();
         let on_plate: Vec<Load> = firsts
             .iter()
             .zip(&stands)
@@ -161,6 +257,9 @@ impl Build {
             if let Stand::On(p) = s {
                 children[*p] += l.footprint();
             }
+        }
+        for &(c, p) in &joins {
+            children[p] += firsts[c].footprint();
         }
         for (s, l) in stands.iter().zip(firsts) {
             let (col, below, share) = match s {
@@ -186,6 +285,14 @@ impl Build {
                 l.footprint()
             } else {
                 0.0
+            });
+        }
+        self.joins = vec![Vec::new(); stands.len()];
+        for (c, p) in joins {
+            self.joins[c].push(Join {
+                parent: p,
+                share: firsts[c].footprint() / children[p],
+                g: 0.0,
             });
         }
         self.carries = vec![false; stands.len()];
@@ -361,16 +468,8 @@ impl Build {
             height: load.height,
             footprint: load.footprint(),
         };
-        if let (Stand::On(p), true) = (self.stands[c], self.columns[c].is_empty()) {
-            // A parent without a layer of its own carries nothing.
-            if let Some(top) = self.columns[p].last() {
-                let part = Node {
-                    footprint: top.footprint * self.shares[c],
-                    ..*top
-                };
-                self.below[c] = link(m.conductivity, &part, &layer);
-                self.carries[p] = true;
-            }
+        if self.columns[c].is_empty() {
+            self.join_first(c, &layer);
         }
         let col = &mut self.columns[c];
         if let Some(below) = col.last_mut() {
@@ -378,6 +477,35 @@ impl Build {
         }
         col.push(layer);
         merge(m.conductivity, col);
+    }
+
+    /// Joins column `c`'s first layer to the tops it stands on (none on the
+    /// plate): each by the part of the top `c` takes and, where it stands
+    /// on several (islands that merged), the layer's footprint shared
+    /// among them by those parts. A parent without a layer of its own
+    /// carries nothing.
+    fn join_first(&mut self, c: usize, layer: &Node) {
+        let k = self.material.conductivity;
+        let tops = self.tops_under(c);
+        let total: f64 = tops.iter().map(|(_, n)| n.footprint).sum();
+        let merged = !self.joins[c].is_empty();
+        for (p, part) in tops {
+            let on = if merged {
+                Node {
+                    footprint: layer.footprint * part.footprint / total,
+                    ..*layer
+                }
+            } else {
+                *layer
+            };
+            let g = link(k, &part, &on);
+            if self.stands[c] == Stand::On(p) {
+                self.below[c] = g;
+            } else if let Some(j) = self.joins[c].iter_mut().find(|j| j.parent == p) {
+                j.g = g;
+            }
+            self.carries[p] = true;
+        }
     }
 
     /// The area node `i` of column `c` loses heat from besides its sides,
@@ -400,13 +528,21 @@ impl Build {
     /// One implicit Euler step of `dt` s with `power` W into the top of
     /// column `into`: `(C/dt + H + G₋ + G₊)·T' − G₋·T'₋ − G₊·T'₊ = C/dt·T +
     /// H·T∞ + Q`. One column with the shared rings is a chain (the Thomas
-    /// algorithm); several are a tree ([`Build::tree_step`]).
+    /// algorithm); several are a tree ([`Build::tree_step`]), or with
+    /// joins a graph ([`Build::graph_solve`]).
     fn step(&mut self, dt: f64, power: f64, into: usize) {
         if dt <= 0.0 || self.columns.is_empty() {
             return;
         }
         if self.columns.len() > 1 || self.columns[0].len() < 2 {
-            self.tree_step(dt, power, into);
+            let joins = self.join_links();
+            if joins.is_empty() {
+                self.tree_step(dt, power, into);
+            } else {
+                let (diag, rhs) = self.system(dt, power, into);
+                let t = self.graph_solve(&diag, &rhs, &joins);
+                self.set_temperatures(&t);
+            }
             return;
         }
         let mut chain = self.shared.clone();
@@ -423,111 +559,215 @@ impl Build {
         }
     }
 
-    /// Each column's rows of [`Build::step`]'s system before elimination,
-    /// `(diagonal, right-hand side)` per node from the bottom up: a top
-    /// that carries columns has their conductances on its diagonal.
-    fn rows(&self, dt: f64, power: f64, into: usize) -> Vec<Vec<(f64, f64)>> {
-        let (m, ambient) = (self.material, self.plate.ambient);
-        let mut rows: Vec<Vec<(f64, f64)>> = self
-            .columns
+    /// Where each column's nodes start in a step's flat vectors: the
+    /// shared rings first, then each column from its bottom up.
+    fn offsets(&self) -> Vec<usize> {
+        let mut at = self.shared.len();
+        self.columns
             .iter()
-            .enumerate()
-            .map(|(c, col)| {
-                col.iter()
-                    .enumerate()
-                    .map(|(i, n)| {
-                        let below = if i == 0 { self.below[c] } else { col[i - 1].up };
-                        let h = m.loss(n.t, ambient) * (n.surface + self.face(c, i));
-                        (
-                            n.capacity / dt + h + below + n.up,
-                            n.capacity / dt * n.t + h * ambient,
-                        )
-                    })
-                    .collect()
+            .map(|col| {
+                let o = at;
+                at += col.len();
+                o
             })
-            .collect();
-        if let Some(top) = rows.get_mut(into).and_then(|r| r.last_mut()) {
-            top.1 += power;
-        }
-        for (c, s) in self.stands.iter().enumerate() {
-            if let (Stand::On(p), false) = (s, self.columns[c].is_empty()) {
-                if let Some(top) = rows[*p].last_mut() {
-                    top.0 += self.below[c];
-                }
-            }
-        }
-        rows
+            .collect()
     }
 
-    /// [`Build::step`] over a tree of columns: each eliminated from its
-    /// top down onto what it stands on, the last made first (a column's
-    /// children stand on it and are made after it), the rings solved as a
-    /// chain, the columns filled back from their bottoms up, the first
-    /// made first. Linear in the nodes.
-    fn tree_step(&mut self, dt: f64, power: f64, into: usize) {
+    /// The flat index of column `c`'s top node, if it has one.
+    fn top_index(&self, at: &[usize], c: usize) -> Option<usize> {
+        let len = self.columns[c].len();
+        (len > 0).then(|| at[c] + len - 1)
+    }
+
+    /// [`Build::step`]'s system over the tree (the joins left out), flat
+    /// ([`Build::offsets`]): each node's diagonal and right-hand side. A
+    /// top that carries columns has their conductances on its diagonal;
+    /// the innermost shared ring has the feet's.
+    fn system(&self, dt: f64, power: f64, into: usize) -> (Vec<f64>, Vec<f64>) {
         let (m, ambient) = (self.material, self.plate.ambient);
-        let mut rows = self.rows(dt, power, into);
-        // Each column from the top down: `a·T = r + g·T_below` folds into
-        // the node below as `a₋ −= g²/a`, `r₋ += g·r/a`.
-        let (mut diag_j, mut rhs_j) = (0.0, 0.0);
-        for c in (0..self.columns.len()).rev() {
-            let col = &self.columns[c];
-            for i in (1..col.len()).rev() {
-                let g = col[i - 1].up;
-                let (a, r) = rows[c][i];
-                rows[c][i - 1].0 -= g * g / a;
-                rows[c][i - 1].1 += g * r / a;
-            }
-            let Some(&(a, r)) = rows[c].first() else {
-                continue;
-            };
-            let g = self.below[c];
-            match self.stands[c] {
-                Stand::Plate => {
-                    diag_j -= g * g / a;
-                    rhs_j += g * r / a;
-                }
-                Stand::On(p) => {
-                    if let Some(top) = rows[p].last_mut() {
-                        top.0 -= g * g / a;
-                        top.1 += g * r / a;
-                    }
-                }
-            }
-        }
-        // The shared rings: a chain whose innermost ring carries the feet.
+        let (mut diag, mut rhs) = (Vec::new(), Vec::new());
         let feet: f64 = (0..self.columns.len())
             .filter(|&c| self.stands[c] == Stand::Plate)
             .map(|c| self.below[c])
             .sum();
         let s = self.shared.len();
-        let mut diag = vec![0.0; s];
-        let mut rhs = vec![0.0; s];
         for (i, n) in self.shared.iter().enumerate() {
             let below = if i > 0 { self.shared[i - 1].up } else { 0.0 };
             let up = if i + 1 == s { feet } else { n.up };
             let h = m.loss(n.t, ambient) * n.surface;
-            diag[i] = n.capacity / dt + h + below + up;
-            rhs[i] = n.capacity / dt * n.t + h * ambient;
+            diag.push(n.capacity / dt + h + below + up);
+            rhs.push(n.capacity / dt * n.t + h * ambient);
         }
-        diag[s - 1] += diag_j;
-        rhs[s - 1] += rhs_j;
+        for (c, col) in self.columns.iter().enumerate() {
+            for (i, n) in col.iter().enumerate() {
+                let below = if i == 0 { self.below[c] } else { col[i - 1].up };
+                let h = m.loss(n.t, ambient) * (n.surface + self.face(c, i));
+                diag.push(n.capacity / dt + h + below + n.up);
+                rhs.push(n.capacity / dt * n.t + h * ambient);
+            }
+        }
+        let at = self.offsets();
+        if let Some(top) = (into < self.columns.len())
+            .then(|| self.top_index(&at, into))
+            .flatten()
+        {
+            rhs[top] += power;
+        }
+        for (c, s) in self.stands.iter().enumerate() {
+            if let (Stand::On(p), false) = (s, self.columns[c].is_empty()) {
+                if let Some(top) = self.top_index(&at, *p) {
+                    diag[top] += self.below[c];
+                }
+            }
+        }
+        (diag, rhs)
+    }
+
+    /// [`Build::step`] over a tree of columns: [`Build::tree_solve`].
+    fn tree_step(&mut self, dt: f64, power: f64, into: usize) {
+        let (diag, rhs) = self.system(dt, power, into);
+        let t = self.tree_solve(&diag, &rhs);
+        self.set_temperatures(&t);
+    }
+
+    /// Solves the tree's system with `diag` on its diagonal (flat,
+    /// [`Build::offsets`]) and the tree's conductances off it for `rhs`:
+    /// each column eliminated from its top down onto what it stands on,
+    /// the last made first (a column's children stand on it and are made
+    /// after it), the rings solved as a chain, the columns filled back
+    /// from their bottoms up, the first made first. Linear in the nodes.
+    fn tree_solve(&self, diag: &[f64], rhs: &[f64]) -> Vec<f64> {
+        let (mut a, mut r) = (diag.to_vec(), rhs.to_vec());
+        let at = self.offsets();
+        // Each column from the top down: `a·T = r + g·T_below` folds into
+        // the node below as `a₋ −= g²/a`, `r₋ += g·r/a`.
+        let (mut diag_j, mut rhs_j) = (0.0, 0.0);
+        for c in (0..self.columns.len()).rev() {
+            let (col, o) = (&self.columns[c], at[c]);
+            for i in (1..col.len()).rev() {
+                let g = col[i - 1].up;
+                let (ai, ri) = (a[o + i], r[o + i]);
+                a[o + i - 1] -= g * g / ai;
+                r[o + i - 1] += g * ri / ai;
+            }
+            if col.is_empty() {
+                continue;
+            }
+            let (a0, r0, g) = (a[o], r[o], self.below[c]);
+            match self.stands[c] {
+                Stand::Plate => {
+                    diag_j -= g * g / a0;
+                    rhs_j += g * r0 / a0;
+                }
+                Stand::On(p) => {
+                    if let Some(top) = self.top_index(&at, p) {
+                        a[top] -= g * g / a0;
+                        r[top] += g * r0 / a0;
+                    }
+                }
+            }
+        }
+        // The shared rings: a chain whose innermost ring carries the feet.
+        let s = self.shared.len();
+        a[s - 1] += diag_j;
+        r[s - 1] += rhs_j;
         let ups: Vec<f64> = self.shared.iter().map(|n| n.up).collect();
-        let ts = thomas(&diag, &mut rhs, &ups);
-        for (n, t) in self.shared.iter_mut().zip(&ts) {
-            n.t = *t;
-        }
-        let junction = ts[s - 1];
-        for (c, row) in rows.iter().enumerate() {
+        let mut t = thomas(&a[..s], &mut r[..s], &ups);
+        let junction = t[s - 1];
+        t.resize(a.len(), 0.0);
+        for (c, col) in self.columns.iter().enumerate() {
             let under = match self.stands[c] {
                 Stand::Plate => junction,
-                Stand::On(p) => self.columns[p].last().map_or(junction, |n| n.t),
+                Stand::On(p) => self.top_index(&at, p).map_or(junction, |top| t[top]),
             };
             let mut below = (under, self.below[c]);
-            for (n, &(a, r)) in self.columns[c].iter_mut().zip(row) {
-                n.t = (r + below.1 * below.0) / a;
-                below = (n.t, n.up);
+            for (i, n) in col.iter().enumerate() {
+                let k = at[c] + i;
+                t[k] = (r[k] + below.1 * below.0) / a[k];
+                below = (t[k], n.up);
             }
+        }
+        t
+    }
+
+    /// The joins that carry heat, as `(node, node, conductance)` in the
+    /// flat vectors: a merged column's first node and a top it stands on.
+    fn join_links(&self) -> Vec<(usize, usize, f64)> {
+        let at = self.offsets();
+        let mut links = Vec::new();
+        for (c, joins) in self.joins.iter().enumerate() {
+            let Some(&first) = at.get(c).filter(|_| !self.columns[c].is_empty()) else {
+                continue;
+            };
+            for j in joins.iter().filter(|j| j.g > 0.0) {
+                if let Some(top) = self.top_index(&at, j.parent) {
+                    links.push((first, top, j.g));
+                }
+            }
+        }
+        links
+    }
+
+    /// The tree's conductances as `(node, node, conductance)` in the flat
+    /// vectors: the rings' chain, the feet, each column's nodes and each
+    /// column on the top it stands on.
+    fn tree_links(&self) -> Vec<(usize, usize, f64)> {
+        let at = self.offsets();
+        let s = self.shared.len();
+        let mut links: Vec<(usize, usize, f64)> =
+            (1..s).map(|i| (i - 1, i, self.shared[i - 1].up)).collect();
+        for (c, col) in self.columns.iter().enumerate() {
+            if col.is_empty() {
+                continue;
+            }
+            let under = match self.stands[c] {
+                Stand::Plate => Some(s - 1),
+                Stand::On(p) => self.top_index(&at, p),
+            };
+            if let Some(u) = under {
+                links.push((u, at[c], self.below[c]));
+            }
+            links.extend((1..col.len()).map(|i| (at[c] + i - 1, at[c] + i, col[i - 1].up)));
+        }
+        links
+    }
+
+    /// Solves [`Build::step`]'s system over a graph: the tree's (`diag`,
+    /// `rhs`, [`Build::system`]) with the joins' conductances `joins`
+    /// added, by conjugate gradients preconditioned by the tree's solve
+    /// ([`super::cg`]). Where they do not converge, the build is marked
+    /// unsolved ([`Build::solved`]) and the last iterate kept.
+    fn graph_solve(&self, diag: &[f64], rhs: &[f64], joins: &[(usize, usize, f64)]) -> Vec<f64> {
+        let mut full = diag.to_vec();
+        for &(i, j, g) in joins {
+            full[i] += g;
+            full[j] += g;
+        }
+        let mut links = self.tree_links();
+        links.extend_from_slice(joins);
+        let apply = |x: &[f64]| {
+            let mut y: Vec<f64> = full.iter().zip(x).map(|(d, x)| d * x).collect();
+            for &(i, j, g) in &links {
+                y[i] -= g * x[j];
+                y[j] -= g * x[i];
+            }
+            y
+        };
+        let (t, converged) = super::cg::solve(rhs, |r| self.tree_solve(diag, r), apply);
+        if !converged {
+            self.unsolved.store(true, Ordering::Relaxed);
+        }
+        t
+    }
+
+    /// Sets every node's temperature from the flat vector `t`.
+    fn set_temperatures(&mut self, t: &[f64]) {
+        let nodes = self
+            .shared
+            .iter_mut()
+            .chain(self.columns.iter_mut().flatten());
+        for (n, t) in nodes.zip(t) {
+            n.t = *t;
         }
     }
 }
@@ -675,6 +915,10 @@ pub(super) mod reference {
                     couple(&mut a, base + i, base + i + 1, node.up);
                 }
                 nodes.extend_from_slice(col);
+            }
+            // A merged column's joins to the other tops it stands on.
+            for (i, j, g) in self.join_links() {
+                couple(&mut a, i, j, g);
             }
             let mut faces = vec![0.0; total];
             for (c, col) in self.columns.iter().enumerate() {

@@ -26,6 +26,7 @@
 
 pub mod alloy;
 mod build;
+mod cg;
 pub mod fit;
 
 pub use alloy::{alloy, Alloy, ALLOYS};
@@ -301,11 +302,16 @@ pub fn predict(
 /// layer by layer, the column each island is laid on (docs/thermal.md,
 /// *Islands*). A column stands on the plate or on the top of a column
 /// made before it (an island that split); an island that ends leaves its
-/// column cooling, one that appears on the plate has a column of its own.
+/// column cooling, one that appears on the plate has a column of its own;
+/// islands that merge are a column standing on the top of one column
+/// (its [`Stand`]) and joined to the tops of the others.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Columns {
     /// Where each column stands.
     pub stands: Vec<Stand>,
+    /// `(c, p)`: column `c` (islands that merged) stands on column `p`'s
+    /// top too, besides its [`Stand`].
+    pub joins: Vec<(usize, usize)>,
     /// `of[i][g]`: the column island `g` of layer `i` is laid on.
     pub of: Vec<Vec<usize>>,
 }
@@ -318,7 +324,17 @@ impl Columns {
         let n = layers.iter().map(Vec::len).max().unwrap_or(0);
         Columns {
             stands: vec![Stand::Plate; n],
+            joins: Vec::new(),
             of: layers.iter().map(|l| (0..l.len()).collect()).collect(),
+        }
+    }
+
+    /// Every layer's islands on one column.
+    fn one(layers: usize) -> Columns {
+        Columns {
+            stands: vec![Stand::Plate],
+            joins: Vec::new(),
+            of: vec![vec![0]; layers],
         }
     }
 
@@ -373,7 +389,10 @@ pub fn predict_islands(
 /// before lowered, the wait lengthened, as the levers allow and in that
 /// order (the free ones first), to the least that keeps every island's
 /// interpass temperature within it. Returns the predictions, or the first
-/// layer nothing allowed keeps in.
+/// layer nothing allowed keeps in. Where a step of columns that merged is
+/// not solved to its tolerance ([`Build::solved`]), the whole prediction
+/// is made again with each layer's islands as one load on one column
+/// (`one_column`).
 pub fn predict_tree(
     material: Material,
     plate: Plate,
@@ -383,12 +402,75 @@ pub fn predict_tree(
     base: impl Fn(usize) -> f64,
     budget: Option<Budget<'_>>,
 ) -> Result<Vec<LayerPrediction>, Overheat> {
+    let (predicted, solved) = predict_on(material, plate, columns, layers, orders, &base, budget);
+    if solved {
+        return predicted;
+    }
+    let one = one_column(layers);
+    let orders = vec![vec![0]; one.len()];
+    let columns = Columns::one(one.len());
+    predict_on(material, plate, &columns, &one, &orders, &base, budget).0
+}
+
+/// Each layer's islands as one load: their energies, times, metal and
+/// outlines summed, the height the one that keeps their footprints' sum.
+fn one_column(layers: &[Vec<Load>]) -> Vec<Vec<Load>> {
+    layers
+        .iter()
+        .map(|loads| {
+            let valid = || loads.iter().filter(|l| l.valid());
+            let volume: f64 = valid().map(|l| l.volume).sum();
+            let footprint: f64 = valid().map(Load::footprint).sum();
+            let height = if footprint > 0.0 {
+                volume / footprint
+            } else {
+                0.0
+            };
+            vec![Load {
+                energy: valid().map(|l| l.energy).sum(),
+                time: loads
+                    .iter()
+                    .map(|l| l.time.max(0.0))
+                    .filter(|t| t.is_finite())
+                    .sum(),
+                volume,
+                height,
+                perimeter: valid().map(|l| l.perimeter).sum(),
+            }]
+        })
+        .collect()
+}
+
+/// [`predict_tree`] on the columns given, and whether every step was
+/// solved to its tolerance.
+fn predict_on(
+    material: Material,
+    plate: Plate,
+    columns: &Columns,
+    layers: &[Vec<Load>],
+    orders: &[Vec<usize>],
+    base: &impl Fn(usize) -> f64,
+    budget: Option<Budget<'_>>,
+) -> (Result<Vec<LayerPrediction>, Overheat>, bool) {
     let mut build = Build::new(material, plate);
     // The plate is set up under every column's first layer that lays
     // metal.
     if let Some(firsts) = columns.firsts(layers) {
-        build.plant(&columns.stands, &firsts);
+        build.plant_merged(&columns.stands, &columns.joins, &firsts);
     }
+    let predicted = predict_built(build.clone(), columns, layers, orders, base, budget);
+    (predicted, build.solved())
+}
+
+/// [`predict_tree`] from `build`, set up.
+fn predict_built(
+    mut build: Build,
+    columns: &Columns,
+    layers: &[Vec<Load>],
+    orders: &[Vec<usize>],
+    base: &impl Fn(usize) -> f64,
+    budget: Option<Budget<'_>>,
+) -> Result<Vec<LayerPrediction>, Overheat> {
     let layers: Vec<Vec<Isle>> = layers
         .iter()
         .enumerate()
@@ -409,7 +491,7 @@ pub fn predict_tree(
         let declared = if i == 0 { 0.0 } else { base(i).max(0.0) };
         let (order, wait, power) = match budget {
             Some(b) => {
-                let then = base_after(&base, i, layers.len()).map(|wait| Then {
+                let then = base_after(base, i, layers.len()).map(|wait| Then {
                     laying: Laying {
                         loads: &layers[i + 1],
                         order: &orders[i + 1],

@@ -619,6 +619,7 @@ fn a_fork_starts_on_its_stem() {
     of.extend(vec![vec![1, 2]; 5]);
     let columns = Columns {
         stands: vec![Stand::Plate, Stand::On(0), Stand::On(0)],
+        joins: Vec::new(),
         of,
     };
     let orders: Vec<Vec<usize>> = layers.iter().map(|l| (0..l.len()).collect()).collect();
@@ -703,4 +704,312 @@ fn a_boss_that_appears_later_starts_on_the_plate() {
     }
     let first_interpass: Vec<f64> = p.iter().map(|l| l.layer.interpass).collect();
     assert!(first_interpass.windows(2).take(7).all(|w| w[1] > w[0]));
+}
+
+/// Each layer's islands `(column, load)`.
+type LaidOn = Vec<Vec<(usize, Load)>>;
+
+/// Two pillars (columns 0 and 1, on the plate) joined at layer 6 by a
+/// bridge (column 2, on column 0's top and joined to column 1's) as wide
+/// as both with the gap between, and a boss (column 3) beside them from
+/// layer 2: the stands, the joins and each layer's islands `(column,
+/// load)`.
+fn bridge() -> (Vec<Stand>, Vec<(usize, usize)>, LaidOn) {
+    let stands = vec![Stand::Plate, Stand::Plate, Stand::On(0), Stand::Plate];
+    let layers = (0..12)
+        .map(|i| {
+            let mut l = if i < 6 {
+                vec![(0, pillar(10.0, 800.0, 4.0)), (1, pillar(8.0, 600.0, 3.0))]
+            } else {
+                vec![(2, pillar(20.0, 2500.0, 10.0))]
+            };
+            if i >= 2 {
+                l.push((3, pillar(6.0, 400.0, 2.0)));
+            }
+            l
+        })
+        .collect();
+    (stands, vec![(2, 1)], layers)
+}
+
+/// A build of [`bridge`] with `m`, set up.
+fn bridge_build(m: Material) -> (Build, LaidOn) {
+    let (stands, joins, layers) = bridge();
+    let mut b = Build::new(m, plate());
+    b.plant_merged(&stands, &joins, &forest_firsts(&layers, stands.len()));
+    assert_eq!(b.columns(), 4);
+    (b, layers)
+}
+
+/// Islands that merge: every step's solve of the graph (conjugate
+/// gradients preconditioned by the tree's solve) against the same
+/// implicit system solved densely, to 1e-10, through deposits and
+/// cooling; after the merge the tree's solve alone (the join left out)
+/// is not it, so the join is in the system.
+#[test]
+fn a_merge_is_the_dense_solve() {
+    let (mut b, layers) = bridge_build(steel());
+    let mut apart = 0.0f64;
+    for (i, layer) in layers.iter().enumerate() {
+        for (c, load) in layer {
+            b.lay_on(*c, load);
+        }
+        let into = layer[i % layer.len()].0;
+        for power in [300.0, 0.0] {
+            let (mut dense, mut tree) = (b.clone(), b.clone());
+            b.step_once(0.4, power, into);
+            dense.dense_step(0.4, power, into);
+            tree.tree_once(0.4, power, into);
+            for ((x, y), z) in b
+                .temperatures()
+                .iter()
+                .zip(dense.temperatures())
+                .zip(tree.temperatures())
+            {
+                assert!((x - y).abs() <= 1e-10 * x.abs().max(1.0), "{x} vs {y}");
+                if i >= 6 {
+                    apart = apart.max((y - z).abs());
+                }
+            }
+        }
+        b.cool(1.5);
+    }
+    assert!(b.solved());
+    assert!(apart > 1e-3, "the join changes the step by {apart} K");
+}
+
+/// Without losses the heat a graph of merged columns holds is what the
+/// laser put in, to 1e-9: the joins pass heat between the tops and the
+/// bridge and neither make nor lose any.
+#[test]
+fn a_merge_keeps_the_energy_it_takes() {
+    let m = Material {
+        emissivity: 0.0,
+        heat_transfer: 0.0,
+        ..steel()
+    };
+    let (mut b, layers) = bridge_build(m);
+    holds_what_it_took(&mut b, m.absorptivity, &layers);
+    assert!(b.solved());
+}
+
+/// A bridge's first layer starts between the tops of the pillars it
+/// joins (the mean of the two by the areas it stands on), and its heat
+/// reaches both: the pillars' tops, once it is laid, are hotter than
+/// with the bridge standing on the first alone (no join).
+#[test]
+fn a_bridge_starts_between_its_pillars_and_warms_both() {
+    let (stands, joins, layers) = bridge();
+    let firsts = forest_firsts(&layers, stands.len());
+    let build = |joins: &[(usize, usize)]| {
+        let mut b = Build::new(steel(), plate());
+        b.plant_merged(&stands, joins, &firsts);
+        for layer in &layers[..6] {
+            for (c, load) in layer {
+                b.lay_on(*c, load);
+            }
+            b.cool(2.0);
+        }
+        b
+    };
+    let (mut joined, mut alone) = (build(&joins), build(&[]));
+    let (a, c) = (joined.top_of(0), joined.top_of(1));
+    let t = joined.top_of(2);
+    assert!(a.min(c) < t && t < a.max(c), "{t} between {a} and {c}");
+    assert_eq!(alone.top_of(2), a);
+    for b in [&mut joined, &mut alone] {
+        b.lay_on(2, &layers[6][0].1);
+        b.cool(5.0);
+    }
+    assert!(joined.top_of(1) > alone.top_of(1) + 1.0);
+    assert!(joined.top_of(0) < alone.top_of(0));
+}
+
+/// Random bridges (pillars of random sizes and powers, the bridge at a
+/// random layer, two or three pillars joined): the graph's step is the
+/// dense solve to 1e-10 and converges, a few seeds.
+#[test]
+fn random_merges_are_the_dense_solve() {
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for _ in 0..6 {
+        let n = 2 + (next() * 2.0) as usize;
+        let at = 2 + (next() * 5.0) as usize;
+        let pillars: Vec<Load> = (0..n)
+            .map(|_| {
+                pillar(
+                    4.0 + 10.0 * next(),
+                    200.0 + 900.0 * next(),
+                    1.0 + 4.0 * next(),
+                )
+            })
+            .collect();
+        let top = pillar(20.0 + 10.0 * next(), 3000.0 * next(), 2.0 + 8.0 * next());
+        let mut stands = vec![Stand::Plate; n];
+        stands.push(Stand::On(0));
+        let joins: Vec<(usize, usize)> = (1..n).map(|p| (n, p)).collect();
+        let mut firsts = pillars.clone();
+        firsts.push(top);
+        let mut b = Build::new(steel(), plate());
+        b.plant_merged(&stands, &joins, &firsts);
+        for i in 0..at + 4 {
+            let layer: Vec<(usize, Load)> = if i < at {
+                pillars.iter().copied().enumerate().collect()
+            } else {
+                vec![(n, top)]
+            };
+            for (c, load) in &layer {
+                b.lay_on(*c, load);
+            }
+            let mut dense = b.clone();
+            let into = layer[0].0;
+            b.step_once(0.3, 250.0, into);
+            dense.dense_step(0.3, 250.0, into);
+            for (x, y) in b.temperatures().iter().zip(dense.temperatures()) {
+                assert!((x - y).abs() <= 1e-10 * x.abs().max(1.0), "{x} vs {y}");
+            }
+            b.cool(0.5 + 3.0 * next());
+        }
+        assert!(b.solved());
+    }
+}
+
+/// Islands that merge through the prediction: up to the bridge the
+/// pillars start every layer as they do with no bridge after them (the
+/// same build cut before it), and the bridge's first layer starts
+/// between them; each layer's islands are laid on their columns.
+#[test]
+fn a_bridge_through_the_prediction() {
+    let (stands, joins, layers) = bridge();
+    let loads: Vec<Vec<Load>> = layers
+        .iter()
+        .map(|l| l.iter().map(|(_, l)| *l).collect())
+        .collect();
+    let of: Vec<Vec<usize>> = layers
+        .iter()
+        .map(|l| l.iter().map(|(c, _)| *c).collect())
+        .collect();
+    let orders: Vec<Vec<usize>> = loads.iter().map(|l| (0..l.len()).collect()).collect();
+    let columns = Columns { stands, joins, of };
+    let p = predict_tree(steel(), plate(), &columns, &loads, &orders, |_| 2.0, None).unwrap();
+    let cut = Columns {
+        stands: columns.stands[..2]
+            .iter()
+            .copied()
+            .chain([Stand::Plate])
+            .collect(),
+        joins: Vec::new(),
+        of: vec![
+            vec![0, 1],
+            vec![0, 1],
+            vec![0, 1, 2],
+            vec![0, 1, 2],
+            vec![0, 1, 2],
+            vec![0, 1, 2],
+        ],
+    };
+    let before = predict_tree(
+        steel(),
+        plate(),
+        &cut,
+        &loads[..6],
+        &orders[..6],
+        |_| 2.0,
+        None,
+    );
+    for (a, b) in p.iter().zip(&before.unwrap()) {
+        for (x, y) in a.islands.iter().zip(&b.islands) {
+            assert!((x.interpass - y.interpass).abs() < 1e-9, "{x:?} vs {y:?}");
+        }
+    }
+    let (last, first) = (&p[5].islands, p[6].islands[0]);
+    let peaks = last[0].peak.max(last[1].peak);
+    assert!(
+        first.interpass > 25.0 && first.interpass < peaks,
+        "{first:?}"
+    );
+    assert!(p
+        .iter()
+        .all(|l| l.layer.interpass.is_finite() && l.layer.peak.is_finite()));
+}
+
+/// The conjugate gradients on their own: a small symmetric positive
+/// definite system (a chain with a cycle) preconditioned by its diagonal
+/// is solved to its tolerance; a diagonal one of 200 spread eigenvalues,
+/// unpreconditioned, is not within the iterations allowed, and says so
+/// (what makes a prediction fall back to one column), its iterate finite.
+#[test]
+fn conjugate_gradients_converge_or_say_they_did_not() {
+    use super::cg::{solve, MAX_ITERATIONS, TOLERANCE};
+    let n = 12;
+    let apply = |x: &[f64]| {
+        let mut y: Vec<f64> = x
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (3.0 + i as f64) * v)
+            .collect();
+        for i in 0..n {
+            let j = (i + 1) % n;
+            y[i] -= x[j];
+            y[j] -= x[i];
+        }
+        y
+    };
+    let b: Vec<f64> = (0..n).map(|i| (i as f64).sin() + 2.0).collect();
+    let diag = |r: &[f64]| -> Vec<f64> {
+        r.iter()
+            .enumerate()
+            .map(|(i, v)| v / (3.0 + i as f64))
+            .collect()
+    };
+    let (x, converged) = solve(&b, diag, apply);
+    assert!(converged);
+    let r: f64 = apply(&x)
+        .iter()
+        .zip(&b)
+        .map(|(a, b)| (a - b).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    let norm = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+    assert!(r <= TOLERANCE * norm * 1.01, "residual {r}");
+    let m = 200;
+    let spread = |x: &[f64]| -> Vec<f64> {
+        x.iter()
+            .enumerate()
+            .map(|(i, v)| 10f64.powf(8.0 * i as f64 / m as f64) * v)
+            .collect()
+    };
+    let (x, converged) = solve(&vec![1.0; m], |r| r.to_vec(), spread);
+    assert!(m > MAX_ITERATIONS && !converged);
+    assert!(x.iter().all(|v| v.is_finite()));
+}
+
+/// The fallback of a graph not solved: each layer's islands as one load
+/// keeps their energy, time, metal, outline and footprint (the height
+/// the one that keeps it), an island without metal only its time; the
+/// one column it makes predicts a finite build.
+#[test]
+fn islands_as_one_load_keep_what_they_lay() {
+    let (a, b) = (pillar(10.0, 800.0, 4.0), pillar(6.0, 500.0, 2.5));
+    let empty = Load {
+        volume: 0.0,
+        ..pillar(4.0, 100.0, 1.0)
+    };
+    let layers = vec![vec![a, b, empty]; 8];
+    let one = one_column(&layers);
+    let l = one[0][0];
+    assert_eq!(one.len(), 8);
+    assert!((l.energy - 1300.0).abs() < 1e-9 && (l.time - 7.5).abs() < 1e-12);
+    assert!((l.volume - a.volume - b.volume).abs() < 1e-18);
+    assert!((l.footprint() - a.footprint() - b.footprint()).abs() < 1e-15);
+    assert!((l.perimeter - a.perimeter - b.perimeter).abs() < 1e-15);
+    let p = predict(steel(), plate(), &vec![l; 8], |_| 1.0, None).unwrap();
+    assert!(p
+        .iter()
+        .all(|q| q.interpass.is_finite() && q.peak > q.interpass));
 }
