@@ -14,6 +14,7 @@ mod follow;
 mod lean;
 mod target;
 mod tilted;
+mod tiltlevel;
 
 /// A worn face: flat at `face` mm, a trough `depth` deep at `(cx, cy)`,
 /// `sx` and `sy` wide (Gaussian).

@@ -187,8 +187,10 @@ fn build(
             scan,
             n,
         };
-        let process =
-            emit::Process::of(model, bead, base).following(follow::limit(model, bead, slicing));
+        let process = emit::Process::of(model, bead, base).following(
+            follow::limit(model, bead, slicing),
+            follow::part_vertical(ex),
+        );
         let (layers, warnings) = finish(model, bead, ex, slicing, &tracks, &process)?;
         return Ok(Built::new(layers, warnings, scan, lines));
     }
