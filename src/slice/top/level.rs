@@ -18,6 +18,10 @@
 //! solid's do ([`super::build`] over [`Base::Level`]), on the same track
 //! lines; the first of them lies on the levelled part, partly on the scan,
 //! so `lmd::stacking` does not look for the pass below it (`on_plate`).
+//!
+//! Along a tilted build direction (module `tilted`) all of this runs in
+//! the part turned so the direction is up: the level is the plane square
+//! to it at its height along it, and the messages name the part's points.
 
 use super::emit::{self, Process};
 use super::footprint::{spaced, Footprint};

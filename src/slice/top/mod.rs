@@ -72,6 +72,18 @@ pub fn slice(
             return tilted;
         }
     }
+    plan(model, bead, ex, slicing)
+}
+
+/// `ex`'s layers planned from above: its scan levelled first when
+/// `level = …`, else from its base. A tilted fill's, in the part turned
+/// so its direction is up.
+fn plan(
+    model: &Model,
+    bead: &Bead,
+    ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     match (&ex.base, slicing.level) {
         (Some(scan), Level::Auto(_) | Level::At(..)) => {
             level::slice(model, bead, ex, slicing, scan)

@@ -23,10 +23,12 @@
 //! the layer's frame, whose `z` is then `d`. A point's layer height and
 //! pitch are along and across `d`, as they were along and across the
 //! turned vertical: `lmd::stacking`, deposit and the bead's tilt read them
-//! as a tilted nozzle's.
+//! as a tilted nozzle's. In the turned part a level (`level = …`) is a
+//! height along `d`, so it is levelled to a plane square to `d`; and
+//! `follow = surface` follows the turned scan, its nozzle's whole tilt
+//! from the part's vertical held to the machines' (module `follow`).
 
 use super::direction::{Direction, MAX_TILT, TILT_STEP};
-use super::surface::Base;
 use crate::diag::message::top::Untilted;
 use crate::diag::{message, Diagnostics};
 use crate::geometry::outline;
@@ -35,7 +37,7 @@ use crate::geometry::shape::{Outline, Segment, Shape};
 use crate::geometry::target::{Inner, Target, Turned};
 use crate::ir::{Frame, Kinematics, Layer, Machine};
 use crate::sema::model::{
-    Bead, Level, Model, ScanBase, Top, TopExtrusion, TopSolid, TurnedFrame, VariableSlicing,
+    Bead, Model, ScanBase, Top, TopExtrusion, TopSolid, TurnedFrame, VariableSlicing,
 };
 use crate::span::Span;
 use crate::units::Length;
@@ -381,14 +383,7 @@ fn plan(
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     let rot = up(d.vector());
     let turned = turn(ex, lines, rot)?;
-    let planned = match (&turned.base, slicing.level) {
-        (Some(scan), Level::Auto(_) | Level::At(..)) => {
-            super::level::slice(model, bead, &turned, slicing, scan)
-        }
-        _ => super::build(model, bead, &turned, slicing, Base::of(&turned, None))
-            .map(|b| (b.layers, b.warnings)),
-    };
-    let (layers, warnings) = planned.map_err(|e| {
+    let (layers, warnings) = super::plan(model, bead, &turned, slicing).map_err(|e| {
         let mut out = Diagnostics::new();
         for x in e.into_vec() {
             out.push(message::top::in_turned_frame(x, d.pair()));
