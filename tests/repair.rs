@@ -15,6 +15,7 @@ mod lean;
 mod lean_finish;
 mod target;
 mod tilted;
+mod tiltlevel;
 
 /// A worn face: flat at `face` mm, a trough `depth` deep at `(cx, cy)`,
 /// `sx` and `sy` wide (Gaussian).

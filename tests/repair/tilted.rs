@@ -253,17 +253,35 @@ fn a_head_that_tilts_too_little_is_refused_with_the_tilt_needed() {
     assert!(help.contains("machine `mill5`'s tilt axis"), "{help}");
 }
 
-/// Levelling is not planned along a tilted direction yet: refused at
-/// `level`, naming the direction chosen, rather than levelled from above.
+/// Levelled along the lean, the level is a plane square to it (the worn
+/// pad's highest point along the lean): the slab's face, level in the
+/// part, stands under it toward −x. Refused at `level`, the point named
+/// on the slab's face (13.5 mm high) in the part, the heights along the
+/// lean.
 #[test]
-fn levelling_along_a_tilted_direction_is_refused_at_the_field() {
+fn levelling_the_slab_square_to_its_lean_is_refused_where_its_face_is_below() {
     let c = slab(35.0, "direction = auto\n  level = auto");
     assert!(c.program.is_none());
     let m = messages(&c);
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code.as_str() == "lmd::repair-level")
+        .unwrap_or_else(|| panic!("{m}"));
     assert!(
-        m.contains("lmd::top-height: the target is built along a direction tilted 30° toward 0° (`direction = auto`), and `level` is not planned along a tilted direction yet"),
-        "{m}"
+        d.message
+            .contains("planned along the build direction tilted 30° toward 0° from +x"),
+        "{}",
+        d.message
     );
+    let point: Vec<f64> = d
+        .message
+        .split_once(" at (")
+        .and_then(|(_, r)| r.split_once(") mm"))
+        .map(|(p, _)| p.split(", ").map(|v| v.parse().unwrap()).collect())
+        .unwrap_or_else(|| panic!("{}", d.message));
+    assert!((point[2] - (10.0 + HEIGHT)).abs() < 0.01, "{point:?}");
+    assert!(point[0] < shift(), "{point:?}");
 }
 
 /// Where vertical builds the target, `direction = auto` plans exactly

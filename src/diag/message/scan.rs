@@ -163,19 +163,25 @@ pub fn level_without_scan(at: Span, solid: Span) -> Diagnostic {
 
 /// The scan rises above the level by more than a levelling pass may leave
 /// (`slack`) at `at_point`.
+///
+/// Planned `turned` (along a tilted build direction), the point is the
+/// part's on the scan and the heights are along the direction.
 pub fn above_level(
     at_point: [f64; 2],
     surface: f64,
     level: f64,
     slack: f64,
-    at: Span,
-    scan: Span,
+    [at, scan]: [Span; 2],
+    turned: Option<&TurnedFrame>,
 ) -> Diagnostic {
+    let place = match turned {
+        None => p2(at_point),
+        Some(_) => super::top::height(turned, at_point, surface),
+    };
     Diagnostic::error(
         Code::RepairLevel,
         format!(
-            "the scanned surface at {} is at {} mm, {} mm above the level {} mm: the regular layers would run into the part there",
-            p2(at_point),
+            "the scanned surface at {place} is at {} mm, {} mm above the level {} mm: the regular layers would run into the part there",
             short(surface),
             short(surface - level),
             short(level),
@@ -192,19 +198,26 @@ pub fn above_level(
 
 /// The top is `gap` mm above the level at `at_point`, less than one
 /// regular layer of `h_min`.
+///
+/// Planned `turned`, the point is the part's on the top and the heights
+/// are along the build direction.
 pub fn top_near_level(
     at_point: [f64; 2],
     top: f64,
     level: f64,
     h_min: f64,
     at: Span,
+    turned: Option<&TurnedFrame>,
 ) -> Diagnostic {
+    let place = match turned {
+        None => p2(at_point),
+        Some(_) => super::top::height(turned, at_point, top),
+    };
     Diagnostic::error(
         Code::RepairLevel,
         format!(
-            "the top ({} mm) at {} is {} mm above the level {} mm: a regular layer lays at least {} mm",
+            "the top ({} mm) at {place} is {} mm above the level {} mm: a regular layer lays at least {} mm",
             short(top),
-            p2(at_point),
             short(top - level),
             short(level),
             short(h_min)

@@ -771,27 +771,6 @@ pub fn untilted(u: &Untilted<'_>) -> Diagnostic {
     .help(help)
 }
 
-/// `direction = auto` chose a tilted direction, and `level` or `follow`
-/// asks for layers it does not plan along one yet.
-pub fn tilted_with(
-    field: &str,
-    [tilt, azimuth]: [f64; 2],
-    at: Span,
-    direction: Span,
-) -> Diagnostic {
-    Diagnostic::error(
-        Code::TopHeight,
-        format!(
-            "the target is built along a direction tilted {}° toward {}° (`direction = auto`), and `{field}` is not planned along a tilted direction yet",
-            short(tilt),
-            short(azimuth)
-        ),
-    )
-    .label(at, format!("`{field}`"))
-    .label(direction, "the tilted build direction")
-    .help(format!("leave `{field}` out for the tilted fill (docs/repair.md, *Undercuts*), or build the overhang apart"))
-}
-
 /// A diagnostic of a fill planned along a tilted direction, in the frame
 /// turned so the direction is up: its points are named in the part (by
 /// the message that names them), its heights, `over` and `under` are

@@ -49,9 +49,11 @@ impl<'m> Process<'m> {
     /// This process with the nozzle along the scan's normal up to `max`
     /// rad from vertical, when given and the layers start on the scan (a
     /// level's layers are flat: vertical).
-    pub fn following(mut self, max: Option<f64>) -> Self {
+    /// Planned turned, `up` is the part's vertical in the planning frame:
+    /// the nozzle's tilt from it is held to `max` too.
+    pub fn following(mut self, max: Option<f64>, up: Option<[f64; 3]>) -> Self {
         self.follow = match (max, self.base) {
-            (Some(m), Base::Scan(s)) => Some(Follow::new(s, m, self.width)),
+            (Some(m), Base::Scan(s)) => Some(Follow::new(s, m, self.width).turned(up)),
             _ => None,
         };
         self

@@ -30,7 +30,7 @@
 use crate::diag::{message, Diagnostics};
 use crate::geometry::scan::HeightField;
 use crate::ir::{Kinematics, Machine};
-use crate::sema::model::{Axis, Bead, Model, VariableSlicing};
+use crate::sema::model::{Axis, Bead, Model, TopExtrusion, VariableSlicing};
 use nalgebra::{Matrix3, Vector3};
 
 /// The most cells either way the slope is fitted over: a coarse scan's
@@ -43,8 +43,13 @@ pub struct Follow<'m> {
     surface: &'m HeightField,
     /// How far either way the slope is fitted over, mm: a bead's width.
     reach: f64,
-    /// `tan` of the largest tilt from vertical.
+    /// `tan` of the largest tilt from the planning frame's vertical.
     max_tan: f64,
+    /// Planned turned (along a tilted build direction): the part's
+    /// vertical in the planning frame, and `cos` of the largest tilt from
+    /// it. What the head reaches is the nozzle's whole tilt in the part,
+    /// the direction's and the surface's together.
+    part: Option<([f64; 3], f64)>,
 }
 
 /// What a tilted point lays: its build direction and the factors its
@@ -124,6 +129,15 @@ pub fn limit(model: &Model, bead: &Bead, slicing: &VariableSlicing) -> Option<f6
     Some(most.clamp(0.0, 89.0_f64.to_radians()))
 }
 
+/// The part's vertical in the frame `ex` is planned in, when it is planned
+/// turned (along a tilted build direction): what [`Follow::turned`] holds
+/// the nozzle's whole tilt from.
+pub fn part_vertical(ex: &TopExtrusion) -> Option<[f64; 3]> {
+    let t = ex.turned.as_ref()?;
+    let up = t.back.inverse() * Vector3::z();
+    Some([up.x, up.y, up.z])
+}
+
 impl<'m> Follow<'m> {
     /// Following `surface` up to `max` rad from vertical, its slope
     /// fitted over `reach` mm either way (a bead's width).
@@ -132,7 +146,47 @@ impl<'m> Follow<'m> {
             surface,
             reach,
             max_tan: max.tan(),
+            part: None,
         }
+    }
+
+    /// This following planned turned, the part's vertical `up` (a unit
+    /// vector in the planning frame): the nozzle's tilt from it held to
+    /// the same largest tilt.
+    pub fn turned(mut self, up: Option<[f64; 3]>) -> Self {
+        let max = self.max_tan.atan();
+        self.part = up.map(|u| (u, max.cos()));
+        self
+    }
+
+    /// The slope `g` scaled down, its direction kept, until the nozzle
+    /// tilts at most the largest tilt from the part's vertical (planned
+    /// turned). Unscaled, the nozzle is along the build direction, which
+    /// the direction's search holds within the same tilt; the scale is
+    /// bisected between the two (the tilt need not grow with it: a slope
+    /// toward the part's vertical first brings the nozzle nearer it).
+    fn within_reach(&self, g: [f64; 2]) -> [f64; 2] {
+        let Some((up, min_cos)) = self.part else {
+            return g;
+        };
+        let cos = |s: f64| {
+            let n = [-s * g[0], -s * g[1], 1.0];
+            let len = (n[0] * n[0] + n[1] * n[1] + 1.0).sqrt();
+            (n[0] * up[0] + n[1] * up[1] + n[2] * up[2]) / len
+        };
+        if cos(1.0) >= min_cos {
+            return g;
+        }
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if cos(mid) >= min_cos {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        g.map(|v| v * lo)
     }
 
     /// The scan's slope at `p`: the least-squares plane through its
@@ -175,11 +229,11 @@ impl<'m> Follow<'m> {
         let g = self.gradient(p).map(|v| v * weight.clamp(0.0, 1.0));
         let t = g[0].hypot(g[1]);
         // Capped: the slope's direction kept, its tilt the most allowed.
-        let g = if t > self.max_tan {
+        let g = self.within_reach(if t > self.max_tan {
             g.map(|v| v * self.max_tan / t)
         } else {
             g
-        };
+        });
         let len = (1.0 + g[0] * g[0] + g[1] * g[1]).sqrt();
         let along = match scan {
             Axis::X => g[0],

@@ -18,6 +18,10 @@
 //! solid's do ([`super::build`] over [`Base::Level`]), on the same track
 //! lines; the first of them lies on the levelled part, partly on the scan,
 //! so `lmd::stacking` does not look for the pass below it (`on_plate`).
+//!
+//! Along a tilted build direction (module `tilted`) all of this runs in
+//! the part turned so the direction is up: the level is the plane square
+//! to it at its height along it, and the messages name the part's points.
 
 use super::emit::{self, Process};
 use super::footprint::{spaced, Footprint};
@@ -90,7 +94,8 @@ pub(super) fn slice(
         let all = pieces.len() + failures.len();
         return Err(too_short::report(&failures, all, regular.scan, bead, slicing, ex, min).into());
     }
-    let tilt = super::follow::limit(model, bead, slicing);
+    let tilt =
+        super::follow::limit(model, bead, slicing).map(|t| (t, super::follow::part_vertical(ex)));
     let mut layers = passes_laid(model, bead, &pieces, &regular.lines, &on, tilt)?;
     let first = layers.len();
     let mut rest = regular.layers;
@@ -138,7 +143,7 @@ impl NoLevel {
                 scan.surface.extent(),
                 ex.shape_span,
                 scan.span,
-                None,
+                ex.turned.as_ref(),
             )
             .into(),
             NoLevel::Above {
@@ -148,7 +153,9 @@ impl NoLevel {
                 slack,
             } => {
                 let span = slicing.level.span().unwrap_or(slicing.span);
-                message::scan::above_level(at, surface, level, slack, span, scan.span).into()
+                let turned = ex.turned.as_ref();
+                message::scan::above_level(at, surface, level, slack, [span, scan.span], turned)
+                    .into()
             }
         }
     }
@@ -232,7 +239,8 @@ fn top_clear(
     match worst {
         Some((p, h)) if h - z < lowest * (1.0 - crate::slice::variable::SLACK) => {
             let span = slicing.level.span().unwrap_or(slicing.span);
-            Err(message::scan::top_near_level(p, h, z, lowest, span).into())
+            let turned = ex.turned.as_ref();
+            Err(message::scan::top_near_level(p, h, z, lowest, span, turned).into())
         }
         _ => Ok(()),
     }
@@ -367,17 +375,19 @@ fn mean_heights(track: &mut Track) {
 
 /// The levelling passes as layers: pass `k` lays every piece of more than
 /// `k` passes, line after line, the lines alternating direction; the nozzle
-/// along the scan's normal up to `tilt` rad when given (`follow = surface`).
+/// along the scan's normal up to `tilt` rad when given (`follow = surface`;
+/// planned turned, with the part's vertical its whole tilt is held from).
 fn passes_laid(
     model: &Model,
     bead: &Bead,
     pieces: &[Piece],
     lines: &Layout,
     on: &Line<'_>,
-    tilt: Option<f64>,
+    tilt: Option<(f64, Option<[f64; 3]>)>,
 ) -> Result<Vec<Layer>, Diagnostics> {
     let count = pieces.iter().map(|p| p.n).max().unwrap_or(0);
-    let process = Process::of(model, bead, Base::Scan(on.surface)).following(tilt);
+    let process = Process::of(model, bead, Base::Scan(on.surface))
+        .following(tilt.map(|t| t.0), tilt.and_then(|t| t.1));
     let maps = lines
         .pitches
         .iter()

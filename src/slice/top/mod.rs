@@ -72,6 +72,18 @@ pub fn slice(
             return tilted;
         }
     }
+    plan(model, bead, ex, slicing)
+}
+
+/// `ex`'s layers planned from above: its scan levelled first when
+/// `level = …`, else from its base. A tilted fill's, in the part turned
+/// so its direction is up.
+fn plan(
+    model: &Model,
+    bead: &Bead,
+    ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     match (&ex.base, slicing.level) {
         (Some(scan), Level::Auto(_) | Level::At(..)) => {
             level::slice(model, bead, ex, slicing, scan)
@@ -187,8 +199,7 @@ fn build(
             scan,
             n,
         };
-        let process =
-            emit::Process::of(model, bead, base).following(follow::limit(model, bead, slicing));
+        let process = process(model, bead, ex, slicing, base);
         let (layers, warnings) = finish(model, bead, ex, slicing, &tracks, &process)?;
         return Ok(Built::new(layers, warnings, scan, lines));
     }
@@ -198,6 +209,22 @@ fn build(
     Err(internal(
         "the top's range over the tracks did not settle".into(),
     ))
+}
+
+/// The process of `ex`'s layers from `base`: following the scan when
+/// `follow = surface`, the nozzle's whole tilt in the part held to the
+/// limit when planned turned.
+fn process<'m>(
+    model: &Model,
+    bead: &Bead,
+    ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+    base: Base<'m>,
+) -> emit::Process<'m> {
+    emit::Process::of(model, bead, base).following(
+        follow::limit(model, bead, slicing),
+        follow::part_vertical(ex),
+    )
 }
 
 /// The tracks whose height tolerance needs segments too short, as the error.

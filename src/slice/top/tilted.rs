@@ -23,10 +23,12 @@
 //! the layer's frame, whose `z` is then `d`. A point's layer height and
 //! pitch are along and across `d`, as they were along and across the
 //! turned vertical: `lmd::stacking`, deposit and the bead's tilt read them
-//! as a tilted nozzle's.
+//! as a tilted nozzle's. In the turned part a level (`level = …`) is a
+//! height along `d`, so it is levelled to a plane square to `d`; and
+//! `follow = surface` follows the turned scan, its nozzle's whole tilt
+//! from the part's vertical held to the machines' (module `follow`).
 
 use super::direction::{Direction, MAX_TILT, TILT_STEP};
-use super::surface::Base;
 use crate::diag::message::top::Untilted;
 use crate::diag::{message, Diagnostics};
 use crate::geometry::outline;
@@ -218,7 +220,7 @@ pub(super) fn slice(
     let Some(d) = lines.least(0.0, limit, true, &mut witness) else {
         return Some(Err(untilted(&lines, ex, at, (limit, &by), witness).into()));
     };
-    Some(plan(model, bead, ex, slicing, at, &lines, d))
+    Some(plan(model, bead, ex, slicing, &lines, d))
 }
 
 /// The lines over `ex`'s footprint (every eighth of a bead, or wider to
@@ -367,27 +369,21 @@ fn untilted(
 }
 
 /// The fill planned along `d` in the part turned so that `d` is up, and
-/// turned back.
+/// turned back. `level` is a plane square to `d` (its height along `d`,
+/// as the turned frame's `z`), levelled as a vertical fill's level is;
+/// `follow = surface` follows the turned scan's normal, its tilt from the
+/// part's vertical held to the machines' (module `follow`).
 fn plan(
     model: &Model,
     bead: &Bead,
     ex: &TopExtrusion,
     slicing: &VariableSlicing,
-    at: Span,
     lines: &Lines<'_>,
     d: Direction,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
-    let tilted = |field: &str, span: Span| message::top::tilted_with(field, d.pair(), span, at);
-    if let Some(span) = slicing.level.span() {
-        return Err(tilted("level", span).into());
-    }
-    if let Some(span) = slicing.follow {
-        return Err(tilted("follow", span).into());
-    }
     let rot = up(d.vector());
     let turned = turn(ex, lines, rot)?;
-    let base = Base::of(&turned, None);
-    let built = super::build(model, bead, &turned, slicing, base).map_err(|e| {
+    let (layers, warnings) = super::plan(model, bead, &turned, slicing).map_err(|e| {
         let mut out = Diagnostics::new();
         for x in e.into_vec() {
             out.push(message::top::in_turned_frame(x, d.pair()));
@@ -395,12 +391,8 @@ fn plan(
         out
     })?;
     let back = rot.inverse();
-    let layers = built
-        .layers
-        .into_iter()
-        .map(|l| turn_back(l, &back))
-        .collect();
-    Ok((layers, built.warnings))
+    let layers = layers.into_iter().map(|l| turn_back(l, &back)).collect();
+    Ok((layers, warnings))
 }
 
 /// The rotation that turns `d` (a unit vector) up.
