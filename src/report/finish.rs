@@ -15,7 +15,7 @@
 //! predicted in the part turned so that `d` is up, as its planner laid it:
 //! its tracks run along that frame's x or y, its layers rise along `d`,
 //! the scan and the target are the ones it was planned on
-//! ([`crate::slice::top::seen_along`]), and every place is named back in
+//! (`slice::top::seen_along`), and every place is named back in
 //! the part, its departure measured along `d`.
 
 use super::design::linear_top;
