@@ -2,8 +2,7 @@
 //! (docs/repair.md, *The report*): the leaning slab of
 //! [`super::tilted`], its finished face predicted along its lean.
 
-use super::messages;
-use super::tilted::{shift, slab_input, worn, BASE, HEIGHT, LEAN};
+use super::tilted::{shift, slab_and_model, worn, BASE, HEIGHT, LEAN};
 use lmdc::ir::{Point, Program};
 
 /// The distance between the line through `p` along the unit `d` and the
@@ -82,16 +81,8 @@ fn raised(p: &Program, at: [f64; 3], d: [f64; 3]) -> [f64; 2] {
 /// are under 0.35 mm, a third of a layer.
 #[test]
 fn a_tilted_fills_finish_is_predicted_along_its_lean() {
-    let (src, files) = slab_input(
-        35.0,
-        "direction = auto",
-        include_str!("../../examples/worn_pad.lmd"),
-    );
-    let (c, model) = crate::support::data::compile_with_files_and_model(&src, files);
-    let m = messages(&c);
-    let program = c.program.unwrap_or_else(|| panic!("{m}"));
+    let (program, model) = slab_and_model();
     let p = program.ir();
-    let model = model.unwrap();
     let (f, samples) = lmdc::report::finish::sampled(p, &model).expect("a tilted fill's finish");
     let lean = LEAN.to_radians();
     let d = [lean.sin(), 0.0, lean.cos()];

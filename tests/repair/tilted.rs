@@ -127,6 +127,20 @@ pub(super) fn slab_input(
     (src, files)
 }
 
+/// The slab on a head that turns 35° either way, `direction = auto`,
+/// planned, with its checked model (for the report).
+pub(super) fn slab_and_model() -> (lmdc::verify::Verified, lmdc::sema::model::Model) {
+    let (src, files) = slab_input(
+        35.0,
+        "direction = auto",
+        include_str!("../../examples/worn_pad.lmd"),
+    );
+    let (c, model) = crate::support::data::compile_with_files_and_model(&src, files);
+    let m = messages(&c);
+    let p = c.program.unwrap_or_else(|| panic!("{m}"));
+    (p, model.unwrap())
+}
+
 /// Planned along the least tilt that builds it: 30° toward +x (the slab's
 /// lean, to the degree; its faces leave the lines at the footprint's edge
 /// less tilted); every point's nozzle and every layer's frame along it;
@@ -398,15 +412,8 @@ fn depths_at(label: &str) -> Vec<(f64, [f64; 3])> {
 /// the trough's depth is paired with other places: 1.3 % more.
 #[test]
 fn the_report_integrates_the_design_volume_along_the_lean() {
-    let (src, files) = slab_input(
-        35.0,
-        "direction = auto",
-        include_str!("../../examples/worn_pad.lmd"),
-    );
-    let (c, model) = crate::support::data::compile_with_files_and_model(&src, files);
-    let m = messages(&c);
-    let p = c.program.unwrap_or_else(|| panic!("{m}"));
-    let r = lmdc::report::Report::new(p.machines().next().unwrap(), &model.unwrap(), None);
+    let (p, model) = slab_and_model();
+    let r = lmdc::report::Report::new(p.machines().next().unwrap(), &model, None);
     let v = r.design_volume().expect("the design volume along the lean");
     let face = [BASE[0] + shift(), BASE[1] + shift()];
     let fill = fill_along(face, [-10.0, 10.0]);
