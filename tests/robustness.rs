@@ -720,3 +720,25 @@ fn a_huge_plate_is_checked_in_bounded_memory() {
     assert!(stderr.contains("lmd::axis-limit"), "{stderr}");
     assert!(!stderr.contains("memory allocation"), "{stderr}");
 }
+
+/// A robot's head left with no solids (its `nozzle` and `body` lines
+/// commented out, as a mutation once did): refused for the missing
+/// nozzle, and the arm's check, which still runs to report every error
+/// together, measures no body of none (it indexed past the links).
+#[test]
+fn a_robot_head_without_solids_is_refused_not_a_panic() {
+    let src = std::fs::read_to_string("examples/twisted_duct.lmd")
+        .unwrap()
+        .replace("points = 360", "points = 24")
+        .replace("    nozzle = frustum(", "    // nozzle = frustum(")
+        .replace("    body = cylinder(", "    // body = cylinder(");
+    let c = compile(&src, &mut ());
+    assert!(c.program.is_none());
+    assert!(
+        c.diagnostics
+            .iter()
+            .any(|d| d.message.contains("`head` needs `nozzle`")),
+        "{:?}",
+        c.diagnostics.iter().map(|d| &d.message).collect::<Vec<_>>()
+    );
+}

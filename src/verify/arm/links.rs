@@ -309,7 +309,10 @@ impl<'p> Links<'p> {
     /// Keeps `d` as `who`'s closest approach to target `k`, and a hit
     /// where it is within the gap; whether it is.
     fn record(&mut self, k: usize, who: usize, d: f64, place: Place, focus: [f64; 3]) -> bool {
-        let slot = &mut self.closest[k][who];
+        // A head of no bodies (only a standoff) names body 0 of none.
+        let Some(slot) = self.closest.get_mut(k).and_then(|c| c.get_mut(who)) else {
+            return false;
+        };
         if slot.is_none_or(|c| d < c.0) {
             *slot = Some((d, place, focus));
         }
@@ -324,7 +327,9 @@ impl<'p> Links<'p> {
     /// The closest `who` came to target `k` so far (what a pose farther
     /// than it cannot change, unless within the gap).
     fn beyond(&self, k: usize, who: usize) -> f64 {
-        self.closest[k][who]
+        self.closest
+            .get(k)
+            .and_then(|c| c.get(who).copied().flatten())
             .map_or(f64::INFINITY, |c| c.0)
             .max(self.gap)
     }
