@@ -167,6 +167,13 @@ impl TurnedFrame {
         [q.x, q.y, q.z]
     }
 
+    /// The planning frame's point (or direction) at the part's `p`: what
+    /// [`TurnedFrame::point`] turns back.
+    pub fn planned(&self, p: [f64; 3]) -> [f64; 3] {
+        let q = self.back.inverse() * nalgebra::Vector3::from(p);
+        [q.x, q.y, q.z]
+    }
+
     /// The part's point that the planning frame's footprint point `p`
     /// (mm) stands for: where its vertical line, the build direction's
     /// line in the part, crosses the finished face's height.

@@ -248,10 +248,7 @@ impl Turn {
     /// `p` (mm, or a direction) of the part in the planning frame.
     fn planned(&self, p: [f64; 3]) -> [f64; 3] {
         match &self.frame {
-            Some(f) => {
-                let q = f.back.inverse() * nalgebra::Vector3::from(p);
-                [q.x, q.y, q.z]
-            }
+            Some(f) => f.planned(p),
             None => p,
         }
     }

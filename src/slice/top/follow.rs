@@ -133,9 +133,7 @@ pub fn limit(model: &Model, bead: &Bead, slicing: &VariableSlicing) -> Option<f6
 /// turned (along a tilted build direction): what [`Follow::turned`] holds
 /// the nozzle's whole tilt from.
 pub fn part_vertical(ex: &TopExtrusion) -> Option<[f64; 3]> {
-    let t = ex.turned.as_ref()?;
-    let up = t.back.inverse() * Vector3::z();
-    Some([up.x, up.y, up.z])
+    Some(ex.turned.as_ref()?.planned([0.0, 0.0, 1.0]))
 }
 
 impl<'m> Follow<'m> {
