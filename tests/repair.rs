@@ -13,6 +13,7 @@ mod blade;
 mod follow;
 mod lean;
 mod lean_finish;
+mod overhung;
 mod target;
 mod tilted;
 mod tiltlevel;

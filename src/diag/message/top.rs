@@ -709,9 +709,8 @@ pub struct Untilted<'a> {
     /// direction allowed meets the target in more than one piece, and the
     /// height along that line where its upper piece starts.
     pub at: [f64; 3],
-    /// Whether that line enters the target again (else it meets none of
-    /// it above the scan, or runs off the scan).
-    pub again: bool,
+    /// What that line meets.
+    pub meets: LineFault,
     /// The most tilt allowed (deg) and what holds it there.
     pub limit: (f64, &'a str),
     /// The least tilt (deg) and its azimuth (deg from +x) that builds
@@ -721,6 +720,18 @@ pub struct Untilted<'a> {
     pub direction: Span,
     /// `top = …`.
     pub top: Span,
+}
+
+/// What a line along a build direction meets that does not build it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LineFault {
+    /// The target, left and entered again above the scan.
+    Again,
+    /// The scan on a flank steeper than the line: under the edge of a
+    /// part that may overhang itself.
+    Flank,
+    /// None of the target above the scan, or no scan.
+    Nothing,
 }
 
 /// `direction = auto` finds no build direction within the machines' tilt
@@ -744,10 +755,10 @@ pub fn untilted(u: &Untilted<'_>) -> Diagnostic {
         ),
         None => "no one direction builds every point of the footprint (a ledge over a gap, or overhangs leaning different ways): build the part in steps, first up to the overhangs' undersides, then each overhang along its own direction, with its own footprint".to_string(),
     };
-    let meets = if u.again {
-        "leaves the target and enters it again above the scan"
-    } else {
-        "meets none of the target above the scan, or runs off the scan"
+    let meets = match u.meets {
+        LineFault::Again => "leaves the target and enters it again above the scan",
+        LineFault::Flank => "meets the scan on a flank steeper than itself, below the flank's top edge: the scan, seen from above, does not show whether the part is there or overhangs itself with the line passing under it",
+        LineFault::Nothing => "meets none of the target above the scan, or runs off the scan",
     };
     let within = if limit < 1.0 {
         format!("the target's overhangs need a tilted build direction, and {by} holds the nozzle vertical: down it")

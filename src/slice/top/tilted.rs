@@ -6,7 +6,10 @@
 //! piece, from the scan up, or its upper piece is laid on nothing. The
 //! lines are the footprint's points at the finished face's height (the
 //! profile is the face's outline seen from above), followed down along
-//! `−d` to the scan. The directions tried are [`Direction::tried`]'s
+//! `−d` to the scan, which they must meet through its top: the scan is a
+//! height field seen from above, and a line that comes under it up a
+//! flank steeper than itself may be passing under a part that overhangs
+//! itself (`Meets::Flank`). The directions tried are [`Direction::tried`]'s
 //! (a degree of arc apart), up to the most the bead and the machines
 //! tilt; the first that builds every line is the least tilt. Along a
 //! tilted direction the outermost lines run [`SLACK`] of a bead inside the
@@ -29,7 +32,7 @@
 //! from the part's vertical held to the machines' (module `follow`).
 
 use super::direction::{Direction, MAX_TILT, TILT_STEP};
-use crate::diag::message::top::Untilted;
+use crate::diag::message::top::{LineFault, Untilted};
 use crate::diag::{message, Diagnostics};
 use crate::geometry::outline;
 use crate::geometry::scan::HeightField;
@@ -74,6 +77,10 @@ enum Meets {
     OnePiece,
     /// The target again above the scan after leaving it, at this point.
     Again([f64; 3]),
+    /// The scan on a flank steeper than the line, at this point: seen from
+    /// above, the scan cannot tell such a flank from the hidden underside
+    /// of a part that overhangs itself, under whose edge the line passes.
+    Flank([f64; 3]),
     /// No scan under it, or no target over the scan.
     Nothing,
 }
@@ -106,7 +113,12 @@ impl Lines<'_> {
     }
 
     /// What the line through footprint point `p` along `d` meets, walked
-    /// down from above the target to the scan.
+    /// down from above the target to the scan. It meets the scan through
+    /// the scan's top, where the surface under it rose less than it fell
+    /// since the last step; where the surface rose more (a flank steeper
+    /// than the line, or the scan's edge, reached from beside), the line
+    /// may be passing under a part that overhangs itself, which a height
+    /// field seen from above shows as a cliff: nothing known to stand on.
     fn meets(&self, p: [f64; 2], d: [f64; 3]) -> Meets {
         let at = |s: f64| [p[0] + s * d[0], p[1] + s * d[1], self.face + s * d[2]];
         let top = (self.z[1] - self.face) / d[2];
@@ -117,21 +129,28 @@ impl Lines<'_> {
             .ceil()
             .clamp(1.0, crate::geometry::target::MAX_LINE_SAMPLES) as usize;
         let (mut was, mut pieces) = (false, 0);
+        // The last step's height and the scan's under it (none: off it).
+        let mut last: Option<(f64, Option<f64>)> = None;
         for i in 0..=n {
             let q = at(top - (top - bottom) * i as f64 / n as f64);
-            match self.scan.at([q[0], q[1]]) {
+            let under = self.scan.at([q[0], q[1]]);
+            match under {
                 Some(b) if q[2] <= b => {
-                    return if pieces > 0 {
-                        Meets::OnePiece
-                    } else {
-                        Meets::Nothing
-                    }
+                    // A rounding's worth of rise is no flank.
+                    let through_top =
+                        matches!(last, Some((z, Some(was_b))) if b - was_b <= z - q[2] + 1e-9);
+                    return match (pieces, through_top) {
+                        (0, _) => Meets::Nothing,
+                        (_, true) => Meets::OnePiece,
+                        (_, false) => Meets::Flank(q),
+                    };
                 }
                 // Off the scan below its highest point: nothing known to
                 // stand on.
                 None if q[2] <= self.scan.stats.z_range[1] => return Meets::Nothing,
                 _ => {}
             }
+            last = Some((q[2], under));
             let is = self.top.contains(q);
             if is && !was {
                 pieces += 1;
@@ -347,20 +366,21 @@ fn untilted(
         azimuth: needs.map_or(0.0, |d| d.azimuth),
     };
     let points = lines.points(true);
-    let (point, again) = match lines.fails(best, witness, true, true) {
-        Some((_, Meets::Again(q))) => (q, true),
+    let (point, meets) = match lines.fails(best, witness, true, true) {
+        Some((_, Meets::Again(q))) => (q, LineFault::Again),
+        Some((_, Meets::Flank(q))) => (q, LineFault::Flank),
         Some((k, _)) => {
             let p = points[k];
-            ([p[0], p[1], lines.face], false)
+            ([p[0], p[1], lines.face], LineFault::Nothing)
         }
         None => {
             let p = points[witness % points.len()];
-            ([p[0], p[1], lines.face], true)
+            ([p[0], p[1], lines.face], LineFault::Again)
         }
     };
     message::top::untilted(&Untilted {
         at: point,
-        again,
+        meets,
         limit,
         needs: needs.map(Direction::pair),
         direction: at,
