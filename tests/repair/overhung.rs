@@ -40,23 +40,32 @@ fn section(top: f64, plate: f64) -> Vec<[f64; 2]> {
 }
 
 /// The file of [`super::tilted`]'s slab with the boss's scan and target:
-/// a head whose A axis turns `a` either way, the footprint the finished
-/// end seen from above. The part as designed stands on a flange 0.5 mm
-/// proud of the plate's scanned face, so that vertical lines past the
-/// worn end leave the boss and meet the flange again: an overhang.
+/// a head whose A axis turns `a` either way, `direction` as given, the
+/// footprint the finished end seen from above. The part as designed
+/// stands on a flange 0.5 mm proud of the plate's scanned face, so that
+/// vertical lines past the worn end leave the boss and meet the flange
+/// again: an overhang.
 fn boss(a: f64) -> lmdc::pipeline::Compiled {
+    boss_on(a, "direction = auto", 0.5)
+}
+
+/// [`boss`] with `direction` as given, the plate as designed at `plate`.
+fn boss_on(a: f64, direction: &str, plate: f64) -> lmdc::pipeline::Compiled {
     let src = include_str!("../../examples/worn_pad.lmd").replace(
         "scan(file = \"repair/worn_pad.ply\", units = mm, cell = 1 mm)",
         "scan(file = \"boss.stl\", units = mm, cell = 0.5 mm)",
     );
-    let (src, mut files) = slab_input(a, "direction = auto", &src);
+    let (src, mut files) = slab_input(a, direction, &src);
     let src = src.replace(
         &format!("at = [{} mm, 0 mm]", shift()),
         &format!("at = [{} mm, 0 mm]", lean(TOP)),
     );
     let stl = super::target::extruded_stl;
     files.insert("boss.stl".into(), stl(&section(WORN, 0.0), [-20.0, 20.0]));
-    files.insert("target.stl".into(), stl(&section(TOP, 0.5), [-20.0, 20.0]));
+    files.insert(
+        "target.stl".into(),
+        stl(&section(TOP, plate), [-20.0, 20.0]),
+    );
     compile(&src, files)
 }
 
@@ -67,7 +76,12 @@ fn boss(a: f64) -> lmdc::pipeline::Compiled {
 /// first layer ran over the air beside the boss.)
 #[test]
 fn a_boss_that_overhangs_its_own_scan_is_filled_along_its_lean() {
-    let c = boss(35.0);
+    check_along_the_lean(boss(35.0));
+}
+
+/// What [`a_boss_that_overhangs_its_own_scan_is_filled_along_its_lean`]
+/// holds of `c`.
+fn check_along_the_lean(c: lmdc::pipeline::Compiled) {
     let m = messages(&c);
     let v = c.program.unwrap_or_else(|| panic!("{m}"));
     let p = v.ir();
@@ -123,4 +137,39 @@ fn under_the_edge_of_its_own_scan_is_no_ground_to_build_on() {
     // Under the end's edge, in the air beside the boss.
     assert!(at[2] < WORN && at[0] > 12.0 + lean(at[2]), "{at:?}");
     assert!(at[0] < 12.0 + lean(WORN) + 0.5, "{at:?}");
+}
+
+/// With the part as designed on the plate as scanned, a vertical line past
+/// the worn end leaves the boss and meets the plate 12 mm lower: the
+/// target holds the scanned boss, so that gap is air beside it, not wear
+/// under added metal. Laid from above, refused as an overhang, the point
+/// past the end's edge and the underside on the boss's leaning face
+/// named (before, the layers stood on the plate beside the boss); along
+/// the lean, built as over the flange.
+#[test]
+fn air_under_the_boss_as_designed_is_no_wear_to_fill() {
+    let c = boss_on(35.0, "", 0.0);
+    assert!(c.program.is_none());
+    let m = messages(&c);
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.message.contains("has an overhang over ("))
+        .unwrap_or_else(|| panic!("{m}"));
+    let number = |after: &str, until: char| -> f64 {
+        let from = d.message.find(after).unwrap_or_else(|| panic!("{m}")) + after.len();
+        d.message[from..]
+            .split(until)
+            .next()
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap()
+    };
+    let x = number("overhang over (", ',');
+    let under = number("a face of it runs at", 'm');
+    assert!(x > 12.0 + lean(WORN), "{m}");
+    // The boss's leaning face over x, to the target's sampling.
+    assert!((under - (x - 12.0) / lean(1.0)).abs() < 0.05, "{m}");
+    check_along_the_lean(boss_on(35.0, "direction = auto", 0.0));
 }

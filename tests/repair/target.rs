@@ -115,6 +115,24 @@ fn a_wedges_sloped_top_plans_what_the_plane_plans() {
     same(m.ir(), p.ir());
 }
 
+/// A target of the added metal alone, a slab from the pad's nominal face
+/// (10 mm) to 13 mm: its underside stands over the wear, which it does
+/// not hold, so the gap is filled down to the scan, and it plans exactly
+/// what `top = 13 mm` plans. (A target that holds the scanned part is the
+/// part as designed, and a gap under it is air: `repair::overhung`.)
+#[test]
+fn a_target_of_the_added_metal_alone_is_filled_down_over_the_wear() {
+    let slab = solid_stl([-40.0, -20.0, 10.0], [40.0, 20.0, 13.0], |_, _| 13.0);
+    let by_mesh = pad("top = mesh(file = \"target.stl\")", slab.clone());
+    let by_height = pad("top = 13 mm", slab);
+    let (m, h) = (messages(&by_mesh), messages(&by_height));
+    let (m, h) = (
+        by_mesh.program.unwrap_or_else(|| panic!("{m}")),
+        by_height.program.unwrap_or_else(|| panic!("{h}")),
+    );
+    same(m.ir(), h.ir());
+}
+
 #[test]
 fn a_target_that_misses_part_of_the_footprint_is_refused_with_where() {
     // The pad is 60 mm long; the target stops at x = 20 mm.

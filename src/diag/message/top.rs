@@ -727,6 +727,9 @@ pub struct Untilted<'a> {
 pub enum LineFault {
     /// The target, left and entered again above the scan.
     Again,
+    /// The scan only below a gap under the target, which holds the
+    /// scanned part elsewhere: air beside the part as designed.
+    Gap,
     /// The scan on a flank steeper than the line: under the edge of a
     /// part that may overhang itself.
     Flank,
@@ -758,6 +761,7 @@ pub fn untilted(u: &Untilted<'_>) -> Diagnostic {
     let meets = match u.meets {
         LineFault::Again => "leaves the target and enters it again above the scan",
         LineFault::Flank => "meets the scan on a flank steeper than itself, below the flank's top edge: the scan, seen from above, does not show whether the part is there or overhangs itself with the line passing under it",
+        LineFault::Gap => "leaves the target there and meets the scan only below, through air beside the part as designed (the target holds the scanned part elsewhere, so a gap under it is no wear)",
         LineFault::Nothing => "meets none of the target above the scan, or runs off the scan",
     };
     let within = if limit < 1.0 {

@@ -37,6 +37,7 @@ mod tilted;
 mod too_short;
 mod tracks;
 mod undercut;
+mod underside;
 
 use crate::diag::{message, Diagnostics};
 use crate::ir::Layer;

@@ -22,12 +22,20 @@ use crate::sema::TopHeights;
 /// makes ([`Surface::most_samples`]): some seconds.
 pub const LINE_WORK: f64 = 1e7;
 
+/// How far off a sampled point a gap under the target is tested, mm.
+const NUDGE: f64 = 1e-4;
+
 /// The top, ready to evaluate, over its base.
 pub struct Surface<'m> {
     /// The top's form.
     pub form: Form<'m>,
     /// What the layers start on.
     base: Base<'m>,
+    /// The extrusion, read for whether its target holds the scan.
+    ex: &'m TopExtrusion,
+    /// Whether its target holds the scan (the part as designed), once
+    /// asked ([`super::underside::holds_scan`]).
+    holds: Option<bool>,
 }
 
 /// What a variable solid's layers start on.
@@ -90,6 +98,8 @@ impl<'m> Surface<'m> {
         Surface {
             form: Form::new(ex, extent),
             base,
+            ex,
+            holds: None,
         }
     }
 
@@ -131,9 +141,17 @@ impl<'m> Surface<'m> {
         };
         // Down from the top the ray leaves the part and enters it again
         // above the base: an overhang (or a cavity) the layers, laid from
-        // above, would fill. (Two crossings are a target whose underside
-        // stands over the wear: filled down to the scan, as meant.)
-        if let [_, under, _, ..] = crossings[..] {
+        // above, would fill. Two crossings are a target whose underside
+        // stands over the scan: over the wear, for a target of the added
+        // metal alone, filled down to the scan as meant; over air beside
+        // the part, for a target that holds the scanned part (module
+        // `underside`), an overhang too.
+        let overhang = match crossings[..] {
+            [_, under, _, ..] => Some(under),
+            [_, under] if self.holds() && self.air([p[0], p[1], (under + b) / 2.0]) => Some(under),
+            _ => None,
+        };
+        if let Some(under) = overhang {
             return Err(Bad::new(
                 p,
                 Why::Undercut {
@@ -148,6 +166,27 @@ impl<'m> Surface<'m> {
         } else {
             Err(Bad::new(p, Why::Below { top: h, surface: b }))
         }
+    }
+}
+
+impl Surface<'_> {
+    /// Whether `q` (mm), in a gap the crossings over it show, is outside
+    /// the target, tested a hair off it: a line through the corner where
+    /// one face of the target meets another (a wall on a block) counts the
+    /// corner once, a gap that is not there.
+    fn air(&self, q: [f64; 3]) -> bool {
+        !self
+            .ex
+            .top
+            .contains([q[0] + NUDGE, q[1] + NUDGE * 0.618, q[2]])
+    }
+
+    /// Whether the target holds the scanned part, read once.
+    fn holds(&mut self) -> bool {
+        let ex = self.ex;
+        *self
+            .holds
+            .get_or_insert_with(|| super::underside::holds_scan(ex).is_some())
     }
 }
 

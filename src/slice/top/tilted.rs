@@ -77,6 +77,10 @@ enum Meets {
     OnePiece,
     /// The target again above the scan after leaving it, at this point.
     Again([f64; 3]),
+    /// The scan only below a gap under the target, which it left at this
+    /// point, when the target holds the scanned part (the part as
+    /// designed, module `underside`): air beside the part.
+    Gap([f64; 3]),
     /// The scan on a flank steeper than the line, at this point: seen from
     /// above, the scan cannot tell such a flank from the hidden underside
     /// of a part that overhangs itself, under whose edge the line passes.
@@ -99,6 +103,8 @@ struct Lines<'a> {
     z: [f64; 2],
     scan: &'a HeightField,
     top: &'a Top,
+    /// Whether the target holds the scanned part: a gap under it is air.
+    holds: bool,
 }
 
 impl Lines<'_> {
@@ -129,8 +135,10 @@ impl Lines<'_> {
             .ceil()
             .clamp(1.0, crate::geometry::target::MAX_LINE_SAMPLES) as usize;
         let (mut was, mut pieces) = (false, 0);
-        // The last step's height and the scan's under it (none: off it).
+        // The last step's height and the scan's under it (none: off it);
+        // where the line last left the target.
         let mut last: Option<(f64, Option<f64>)> = None;
+        let mut left = None;
         for i in 0..=n {
             let q = at(top - (top - bottom) * i as f64 / n as f64);
             let under = self.scan.at([q[0], q[1]]);
@@ -139,10 +147,11 @@ impl Lines<'_> {
                     // A rounding's worth of rise is no flank.
                     let through_top =
                         matches!(last, Some((z, Some(was_b))) if b - was_b <= z - q[2] + 1e-9);
-                    return match (pieces, through_top) {
-                        (0, _) => Meets::Nothing,
-                        (_, true) => Meets::OnePiece,
-                        (_, false) => Meets::Flank(q),
+                    return match (pieces, through_top, left) {
+                        (0, _, _) => Meets::Nothing,
+                        (_, false, _) => Meets::Flank(q),
+                        (_, true, Some(u)) if !was && self.holds => Meets::Gap(u),
+                        (_, true, _) => Meets::OnePiece,
                     };
                 }
                 // Off the scan below its highest point: nothing known to
@@ -157,6 +166,9 @@ impl Lines<'_> {
                 if pieces > 1 {
                     return Meets::Again(q);
                 }
+            }
+            if was && !is {
+                left = Some(q);
             }
             was = is;
         }
@@ -277,6 +289,7 @@ fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
         z,
         scan,
         top: &ex.top,
+        holds: super::underside::holds_scan(ex).is_some(),
     })
 }
 
@@ -369,6 +382,7 @@ fn untilted(
     let (point, meets) = match lines.fails(best, witness, true, true) {
         Some((_, Meets::Again(q))) => (q, LineFault::Again),
         Some((_, Meets::Flank(q))) => (q, LineFault::Flank),
+        Some((_, Meets::Gap(q))) => (q, LineFault::Gap),
         Some((k, _)) => {
             let p = points[k];
             ([p[0], p[1], lines.face], LineFault::Nothing)
