@@ -104,17 +104,19 @@ impl HeadShape {
         }
     }
 
-    /// The distance from `p` to the head at `pose`, mm, and the body
-    /// nearest it (0 inside one).
-    pub fn distance(&self, pose: &Pose, p: [f64; 3]) -> (f64, usize) {
+    /// The distance from `p` to the head at `pose`, mm (0 inside a body),
+    /// and the body nearest it; `None` for a head of no bodies (only a
+    /// standoff: refused by the checker, but the verifier runs on to
+    /// report every error together).
+    pub fn distance(&self, pose: &Pose, p: [f64; 3]) -> Option<(f64, usize)> {
         let v = sub(p, pose.focus);
         let s = dot(v, pose.up);
         let rho = (dot(v, v) - s * s).max(0.0).sqrt();
-        let mut best = (f64::INFINITY, 0);
+        let mut best = None;
         for (i, b) in self.bodies.iter().enumerate() {
             let d = b.distance(s, rho);
-            if d < best.0 {
-                best = (d, i);
+            if best.is_none_or(|(low, _)| d < low) {
+                best = Some((d, i));
             }
         }
         best
@@ -123,21 +125,33 @@ impl HeadShape {
     /// The lowest the head reaches along the unit direction `n` (the least
     /// `x·n` of its points) at `pose`, and the body that reaches it: on one
     /// of a body's end circles, the one whose centre is lowest, on the side
-    /// the beam leans away from `n`.
-    pub fn lowest(&self, pose: &Pose, n: [f64; 3]) -> (f64, usize) {
+    /// the beam leans away from `n`. `None` for a head of no bodies.
+    pub fn lowest(&self, pose: &Pose, n: [f64; 3]) -> Option<(f64, usize)> {
         let c = dot(pose.up, n);
         let across = (1.0 - c * c).max(0.0).sqrt();
         let base = dot(pose.focus, n);
-        let mut best = (f64::INFINITY, 0);
+        let mut best = None;
         for (i, b) in self.bodies.iter().enumerate() {
             for k in 0..2 {
                 let low = base + b.s[k] * c - b.r[k] * across;
-                if low < best.0 {
-                    best = (low, i);
+                if best.is_none_or(|(l, _)| low < l) {
+                    best = Some((low, i));
                 }
             }
         }
         best
+    }
+
+    /// The lowest the head reaches along `n` at `pose` ([`Self::lowest`]),
+    /// mm; never, for a head of no bodies.
+    pub fn lowest_along(&self, pose: &Pose, n: [f64; 3]) -> f64 {
+        self.lowest(pose, n).map_or(f64::INFINITY, |l| l.0)
+    }
+
+    /// The distance from `p` to the head at `pose` ([`Self::distance`]),
+    /// mm; none, for a head of no bodies.
+    pub fn distance_to(&self, pose: &Pose, p: [f64; 3]) -> f64 {
+        self.distance(pose, p).map_or(f64::INFINITY, |d| d.0)
     }
 
     /// A sphere round the head at `pose`: its centre and radius, mm.
@@ -244,7 +258,7 @@ mod tests {
                 focus: [0.0; 3],
                 up,
             };
-            assert!((h.lowest(&pose, [0.0, 0.0, 1.0]).0 - plan_low).abs() < 1e-9);
+            assert!((h.lowest_along(&pose, [0.0, 0.0, 1.0]) - plan_low).abs() < 1e-9);
             let spread = typical.spread(up[2]);
             assert!(spread >= wide - 1e-9, "{deg}°: {spread} vs {wide}");
             assert!(spread <= wide + 31.0, "{deg}°: {spread} vs {wide}");
@@ -259,13 +273,13 @@ mod tests {
             up: [0.0, 0.0, 1.0],
         };
         // Straight below the tip: the standoff less the point's height.
-        assert!((h.distance(&pose, [0.0, 0.0, 5.0]).0 - 10.0).abs() < 1e-12);
+        assert!((h.distance_to(&pose, [0.0, 0.0, 5.0]) - 10.0).abs() < 1e-12);
         // Inside the body.
-        assert_eq!(h.distance(&pose, [10.0, 0.0, 100.0]), (0.0, 1));
+        assert_eq!(h.distance(&pose, [10.0, 0.0, 100.0]), Some((0.0, 1)));
         // Beside the body, 10 mm out from its side.
-        assert!((h.distance(&pose, [40.0, 0.0, 100.0]).0 - 10.0).abs() < 1e-12);
+        assert!((h.distance_to(&pose, [40.0, 0.0, 100.0]) - 10.0).abs() < 1e-12);
         // The lowest point along +Z is the tip.
-        assert!((h.lowest(&pose, [0.0, 0.0, 1.0]).0 - 15.0).abs() < 1e-12);
+        assert!((h.lowest_along(&pose, [0.0, 0.0, 1.0]) - 15.0).abs() < 1e-12);
     }
 
     proptest! {
@@ -292,7 +306,7 @@ mod tests {
             let side = [tilt.cos() * turn.cos(), turn.sin(), -tilt.sin() * turn.cos()];
             let pose = Pose { focus: [1.0, 2.0, 3.0], up };
             let p = add(add(pose.focus, scale(up, s)), scale(side, rho));
-            let got = h.distance(&pose, p).0;
+            let got = h.distance_to(&pose, p);
             // The body above may be nearer near the top edge.
             prop_assert!(got <= d + 1e-9, "{got} vs {d}");
             if t < 0.9 && d < 5.0 {

@@ -403,8 +403,11 @@ impl Material {
     /// surface distance; a lower bound of it where a cell keeps only its
     /// box), with the head's body it is nearest and the lump (a box's:
     /// its centre, and the last group put in) standing for it; `None`
-    /// where none is.
+    /// where none is, or the head has no bodies.
     pub fn nearest(&self, head: &HeadShape, pose: &Pose, cap: f64) -> Option<(f64, usize, Lump)> {
+        if head.bodies.is_empty() {
+            return None;
+        }
         let (centre, radius) = head.bound(pose);
         let reach = radius + cap + self.r_max.max(self.cell * 3f64.sqrt());
         let big = self.cell * COARSE as f64;
@@ -419,7 +422,7 @@ impl Material {
             // The coarse cell's material lies within its
             // half-diagonal (and a lump's radius) of its centre.
             let c = key.map(|q| (q as f64 + 0.5) * big);
-            let far = head.distance(pose, c).0 - big * 0.5 * 3f64.sqrt() - self.r_max;
+            let far = head.distance_to(pose, c) - big * 0.5 * 3f64.sqrt() - self.r_max;
             if far >= limit(&best) && far > 0.0 {
                 return;
             }
@@ -451,7 +454,9 @@ impl Material {
                     Cell::Lumps { lumps, .. } => {
                         for s in lumps {
                             let l = s.lump();
-                            let (d, body) = head.distance(pose, l.at);
+                            let Some((d, body)) = head.distance(pose, l.at) else {
+                                continue;
+                            };
                             let d = d - l.r;
                             if d < limit(&best) {
                                 best = Some((d, body, l));
@@ -508,7 +513,7 @@ fn planes(head: &HeadShape, pose: &Pose) -> [([f64; 3], f64); PLANES] {
         let len = dot(v, v).sqrt();
         // A beam pointing straight down: Z's plane is as good as its own.
         let n = if len > 1e-9 { v.map(|c| c / len) } else { z };
-        (n, head.lowest(pose, n).0)
+        (n, head.lowest_along(pose, n))
     })
 }
 
@@ -548,7 +553,7 @@ fn box_bound(
 fn near_box(head: &HeadShape, pose: &Pose, (lo, hi): ([f64; 3], [f64; 3])) -> f64 {
     let c = [0, 1, 2].map(|a| (lo[a] + hi[a]) / 2.0);
     let half = [0, 1, 2].map(|a| (hi[a] - lo[a]) / 2.0);
-    (head.distance(pose, c).0 - dot(half, half).sqrt()).max(0.0)
+    (head.distance_to(pose, c) - dot(half, half).sqrt()).max(0.0)
 }
 
 fn min3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -671,7 +676,7 @@ mod tests {
             if boxed {
                 m.box_all();
             }
-            let want = pts.iter().map(|p| head.distance(&pose, *p).0 - 1.0).fold(f64::INFINITY, f64::min);
+            let want = pts.iter().map(|p| head.distance_to(&pose, *p) - 1.0).fold(f64::INFINITY, f64::min);
             let cap = 25.0;
             match m.nearest(&head, &pose, cap) {
                 Some((d, ..)) if boxed => prop_assert!(d <= want.max(0.0) + 1e-6, "{d} vs {want}"),
@@ -696,7 +701,7 @@ mod tests {
             let hi = add(p, size);
             let inside = [0, 1, 2].map(|a| p[a] + t[a] * size[a]);
             let b = box_bound(&planes(&head, &pose), head.bound(&pose), (p, hi));
-            prop_assert!(b <= head.distance(&pose, inside).0 + 1e-9);
+            prop_assert!(b <= head.distance_to(&pose, inside) + 1e-9);
         }
     }
 }

@@ -260,8 +260,9 @@ impl Visit for Collision<'_> {
         }
         // The plate's distance is linear along a move that keeps its beam:
         // its ends give the closest approach.
-        let (plate, body) = self.head.lowest(&pose, [0.0, 0.0, 1.0]);
-        self.near(body, Obstacle::Plate, plate, (m.at, 1.0, pose.focus));
+        if let Some((plate, body)) = self.head.lowest(&pose, [0.0, 0.0, 1.0]) {
+            self.near(body, Obstacle::Plate, plate, (m.at, 1.0, pose.focus));
+        }
         self.last = Some(pose);
         self.follow_fixed(m, pose);
         if m.deposits() && self.only.is_none() {
@@ -354,9 +355,9 @@ impl Collision<'_> {
         // The last move ended at `a`: its lows are known.
         let (pa, la) = match self.lows {
             Some((p, lows)) if p == *a => lows,
-            _ => (self.head.lowest(a, z).0, self.head.lowest(a, up).0),
+            _ => (self.head.lowest_along(a, z), self.head.lowest_along(a, up)),
         };
-        let lows_b = (self.head.lowest(b, z).0, self.head.lowest(b, up).0);
+        let lows_b = (self.head.lowest_along(b, z), self.head.lowest_along(b, up));
         self.lows = Some((*b, lows_b));
         let plate = pa.min(lows_b.0);
         let low = la.min(lows_b.1);
@@ -380,7 +381,7 @@ impl Collision<'_> {
         let gap = self.head.gap;
         let mut d = self.check_plate(pose, (at, way));
         if !self.material.is_empty() {
-            let (low, _) = self.head.lowest(pose, pose.up);
+            let low = self.head.lowest_along(pose, pose.up);
             let clear = low - self.highest(pose.up);
             if clear >= gap {
                 // Everything lies below the plane through the tip.
@@ -401,14 +402,16 @@ impl Collision<'_> {
             }
         }
         self.cert = Some((*pose, d));
-        self.low = self.head.lowest(pose, pose.up).0;
+        self.low = self.head.lowest_along(pose, pose.up);
     }
 
     /// Checks the head at `pose` against the plate (its lowest point: a
     /// few operations, so every pose is checked); returns its distance.
     fn check_plate(&mut self, pose: &Pose, (at, way): (Where, f64)) -> f64 {
         let gap = self.head.gap;
-        let (plate, body) = self.head.lowest(pose, [0.0, 0.0, 1.0]);
+        let Some((plate, body)) = self.head.lowest(pose, [0.0, 0.0, 1.0]) else {
+            return f64::INFINITY;
+        };
         self.near(body, Obstacle::Plate, plate, (at, way, pose.focus));
         if plate < gap {
             let close = Close {
@@ -547,7 +550,7 @@ impl Collision<'_> {
                 focus: add(pose.focus, scale(pose.up, raise)),
                 up: pose.up,
             };
-            self.head.distance(&p, lump.at).0 - lump.r >= self.head.gap
+            self.head.distance_to(&p, lump.at) - lump.r >= self.head.gap
         };
         let mut hi = self.head.gap + lump.r;
         while !clear(hi) {
@@ -585,7 +588,7 @@ impl Collision<'_> {
             let v = sub(l.at, p.focus);
             let near = self.head.reach + *d + l.r;
             if below < *d && dot(v, v) < near * near {
-                *d = d.min(self.head.distance(p, l.at).0 - l.r);
+                *d = d.min(self.head.distance_to(p, l.at) - l.r);
             }
         }
         if grid {

@@ -309,10 +309,7 @@ impl<'p> Links<'p> {
     /// Keeps `d` as `who`'s closest approach to target `k`, and a hit
     /// where it is within the gap; whether it is.
     fn record(&mut self, k: usize, who: usize, d: f64, place: Place, focus: [f64; 3]) -> bool {
-        // A head of no bodies (only a standoff) names body 0 of none.
-        let Some(slot) = self.closest.get_mut(k).and_then(|c| c.get_mut(who)) else {
-            return false;
-        };
+        let slot = &mut self.closest[k][who];
         if slot.is_none_or(|c| d < c.0) {
             *slot = Some((d, place, focus));
         }
@@ -327,9 +324,7 @@ impl<'p> Links<'p> {
     /// The closest `who` came to target `k` so far (what a pose farther
     /// than it cannot change, unless within the gap).
     fn beyond(&self, k: usize, who: usize) -> f64 {
-        self.closest
-            .get(k)
-            .and_then(|c| c.get(who).copied().flatten())
+        self.closest[k][who]
             .map_or(f64::INFINITY, |c| c.0)
             .max(self.gap)
     }
@@ -463,7 +458,10 @@ impl<'p> Links<'p> {
         focus: [f64; 3],
     ) {
         let plate = self.slot(Target::Plate);
-        let (d, body) = self.head.lowest(pose, [0.0, 0.0, 1.0]);
+        // A head of no bodies (only a standoff) has nothing to check.
+        let Some((d, body)) = self.head.lowest(pose, [0.0, 0.0, 1.0]) else {
+            return;
+        };
         self.record(plate, LINKS.len() + body, d, place, focus);
         let on_plate = match &self.material {
             Some((m, _)) => m.nearest(&self.head, pose, CAP_MM),
