@@ -29,6 +29,8 @@ pub mod span;
 pub mod style;
 pub mod syntax;
 pub mod target;
+#[cfg(test)]
+mod test_random;
 pub mod thermal;
 pub mod units;
 pub mod verify;

@@ -472,13 +472,7 @@ mod tests {
     #[test]
     fn streaming_plans_what_the_whole_plan_would() {
         // Random walks of short and long moves, turns and speeds.
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::test_random::uniform(0x2545_f491_4f6c_dd1d);
         for _ in 0..40 {
             let moves: Vec<_> = (0..300)
                 .map(|_| {

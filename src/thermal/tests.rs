@@ -830,13 +830,7 @@ fn a_bridge_starts_between_its_pillars_and_warms_both() {
 /// dense solve to 1e-10 and converges, a few seeds.
 #[test]
 fn random_merges_are_the_dense_solve() {
-    let mut seed = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = crate::test_random::uniform(0x2545_f491_4f6c_dd1d);
     for _ in 0..6 {
         let n = 2 + (next() * 2.0) as usize;
         let at = 2 + (next() * 5.0) as usize;

@@ -122,18 +122,13 @@ fn check_along_the_lean(c: lmdc::pipeline::Compiled) {
 fn under_the_edge_of_its_own_scan_is_no_ground_to_build_on() {
     let c = boss(20.0);
     assert!(c.program.is_none());
-    let m = messages(&c);
+    let (m, at) = super::refused_at(&c, "lmd::top-height", "the line through (");
     assert!(
         m.contains("no build direction within 20° of vertical builds the target's overhangs")
             && m.contains("meets the scan on a flank steeper than itself")
             && m.contains("the least tilt that builds every point is 29° toward 0°"),
         "{m}"
     );
-    let at: Vec<f64> = m
-        .split_once("the line through (")
-        .and_then(|(_, r)| r.split_once(") mm"))
-        .map(|(p, _)| p.split(", ").map(|v| v.parse().unwrap()).collect())
-        .unwrap_or_else(|| panic!("{m}"));
     // Under the end's edge, in the air beside the boss.
     assert!(at[2] < WORN && at[0] > 12.0 + lean(at[2]), "{at:?}");
     assert!(at[0] < 12.0 + lean(WORN) + 0.5, "{at:?}");

@@ -276,24 +276,11 @@ fn a_head_that_tilts_too_little_is_refused_with_the_tilt_needed() {
 fn levelling_the_slab_square_to_its_lean_is_refused_where_its_face_is_below() {
     let c = slab(35.0, "direction = auto\n  level = auto");
     assert!(c.program.is_none());
-    let m = messages(&c);
-    let d = c
-        .diagnostics
-        .iter()
-        .find(|d| d.code.as_str() == "lmd::repair-level")
-        .unwrap_or_else(|| panic!("{m}"));
+    let (m, point) = super::refused_at(&c, "lmd::repair-level", " at (");
     assert!(
-        d.message
-            .contains("planned along the build direction tilted 30° toward 0° from +x"),
-        "{}",
-        d.message
+        m.contains("planned along the build direction tilted 30° toward 0° from +x"),
+        "{m}"
     );
-    let point: Vec<f64> = d
-        .message
-        .split_once(" at (")
-        .and_then(|(_, r)| r.split_once(") mm"))
-        .map(|(p, _)| p.split(", ").map(|v| v.parse().unwrap()).collect())
-        .unwrap_or_else(|| panic!("{}", d.message));
     assert!((point[2] - (10.0 + HEIGHT)).abs() < 0.01, "{point:?}");
     assert!(point[0] < shift(), "{point:?}");
 }

@@ -317,29 +317,12 @@ fn fill(layer: &lmdc::ir::Layer) -> f64 {
 fn a_level_under_the_worn_end_is_refused_at_a_point_of_the_part() {
     let c = compile_boss("level = 9 mm");
     assert!(c.program.is_none());
-    let m = messages(&c);
-    let d = c
-        .diagnostics
-        .iter()
-        .find(|d| d.code.as_str() == "lmd::repair-level")
-        .unwrap_or_else(|| panic!("{m}"));
+    let (m, point) = super::refused_at(&c, "lmd::repair-level", "the scanned surface at (");
     assert!(
-        d.message
-            .contains("planned along the build direction tilted 30° toward 0° from +x")
-            && d.message.contains("above the level 9 mm"),
-        "{}",
-        d.message
+        m.contains("planned along the build direction tilted 30° toward 0° from +x")
+            && m.contains("above the level 9 mm"),
+        "{m}"
     );
-    let point = d
-        .message
-        .split_once("the scanned surface at (")
-        .and_then(|(_, r)| r.split_once(") mm"))
-        .map(|(p, _)| {
-            p.split(", ")
-                .map(|v| v.parse::<f64>().unwrap())
-                .collect::<Vec<_>>()
-        })
-        .unwrap_or_else(|| panic!("{}", d.message));
     let [a, y, u] = boss([point[0], point[1], point[2]]);
     assert!(a.abs() <= HALF && y.abs() <= 8.0, "{point:?}");
     assert!(
