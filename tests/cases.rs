@@ -218,12 +218,13 @@ fn every_case_produces_its_files() {
         let produced = produce(case);
         // The input and its data files (measurement sheets, meshes, scans,
         // a folder of them) are the case's; a sheet `lmdc calibrate` writes
-        // (`*.coupons.csv`) is an output.
+        // (`*.coupons.csv`) is an output; a script that writes the data files.
         let p = expected::check_dir(case, &produced, |f| {
             f == INPUT
                 || (f.ends_with(".csv") && !f.ends_with(".coupons.csv"))
                 || f.ends_with(".stl")
                 || f.ends_with(".ply")
+                || f.ends_with(".py")
                 || case.join(f).is_dir()
         });
         if !p.is_empty() {
