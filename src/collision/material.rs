@@ -123,6 +123,18 @@ impl Group {
     }
 
     /// An upper bound of `x·u` over the group.
+    /// How far `p` lies from the group's box, mm (0 inside it).
+    fn distance(&self, p: [f64; 3]) -> f64 {
+        let v = sub(p, self.o);
+        (0..3)
+            .map(|k| {
+                let q = dot(v, self.axes[k]);
+                (self.lo[k] - q).max(q - self.hi[k]).max(0.0).powi(2)
+            })
+            .sum::<f64>()
+            .sqrt()
+    }
+
     fn highest(&self, u: [f64; 3]) -> f64 {
         let mut h = dot(self.o, u);
         for k in 0..3 {
@@ -200,6 +212,14 @@ impl std::hash::Hasher for CellHasher {
 /// Maps keyed by cells.
 type CellMap<V> = HashMap<[i32; 3], V, std::hash::BuildHasherDefault<CellHasher>>;
 
+/// A coarse cell: its occupied cells, and the largest lump radius among
+/// them (mm), so that one vast lump widens the search only round itself.
+#[derive(Debug, Default)]
+struct Coarse {
+    fine: Vec<[i32; 3]>,
+    r_max: f64,
+}
+
 /// The material index: lumps by group and by cell.
 #[derive(Debug)]
 pub struct Material {
@@ -210,7 +230,7 @@ pub struct Material {
     last: Option<(u32, usize)>,
     cells: CellMap<Cell>,
     /// The occupied cells of each coarse cell ([`COARSE`] cells a side).
-    coarse: CellMap<Vec<[i32; 3]>>,
+    coarse: CellMap<Coarse>,
     cell: f64,
     /// The largest lump radius, mm.
     r_max: f64,
@@ -300,12 +320,13 @@ impl Material {
         let key = self.key(l.at);
         let (lo, hi) = (sub(l.at, [l.r; 3]), add(l.at, [l.r; 3]));
         let boxed = self.boxed;
-        let coarse = &mut self.coarse;
+        let coarse = self
+            .coarse
+            .entry(key.map(|k| k.div_euclid(COARSE)))
+            .or_default();
+        coarse.r_max = coarse.r_max.max(l.r);
         let cell = self.cells.entry(key).or_insert_with(|| {
-            coarse
-                .entry(key.map(|k| k.div_euclid(COARSE)))
-                .or_default()
-                .push(key);
+            coarse.fine.push(key);
             if boxed {
                 Cell::Box {
                     lo,
@@ -341,6 +362,7 @@ impl Material {
                 if let Some(s) = lumps.last_mut().filter(|_| crowded) {
                     if s.take_in(&l) {
                         self.r_max = self.r_max.max(f64::from(s.r));
+                        coarse.r_max = coarse.r_max.max(f64::from(s.r));
                         return;
                     }
                 }
@@ -399,6 +421,17 @@ impl Material {
             .fold(f64::NEG_INFINITY, f64::max)
     }
 
+    /// [`Material::highest`] of the groups whose box comes within
+    /// `radius` of `centre` (mm): a fixture metres away, high along a
+    /// tilted `u`, does not hide the plane through the tip from the part.
+    pub fn highest_near(&self, u: [f64; 3], centre: [f64; 3], radius: f64) -> f64 {
+        self.groups
+            .iter()
+            .filter(|g| g.distance(centre) <= radius)
+            .map(|g| g.highest(u))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
     /// The nearest material to the head at `pose` nearer than `cap` (its
     /// surface distance; a lower bound of it where a cell keeps only its
     /// box), with the head's body it is nearest and the lump (a box's:
@@ -418,15 +451,15 @@ impl Material {
         let bounding = std::cell::OnceCell::new();
         let mut best: Option<(f64, usize, Lump)> = None;
         let limit = |b: &Option<(f64, usize, Lump)>| b.map_or(cap, |b| b.0.min(cap));
-        let mut visit = |key: [i32; 3], fine: &Vec<[i32; 3]>| {
+        let mut visit = |key: [i32; 3], coarse: &Coarse| {
             // The coarse cell's material lies within its
-            // half-diagonal (and a lump's radius) of its centre.
+            // half-diagonal (and its largest lump's radius) of its centre.
             let c = key.map(|q| (q as f64 + 0.5) * big);
-            let far = head.distance_to(pose, c) - big * 0.5 * 3f64.sqrt() - self.r_max;
+            let far = head.distance_to(pose, c) - big * 0.5 * 3f64.sqrt() - coarse.r_max;
             if far >= limit(&best) && far > 0.0 {
                 return;
             }
-            for key in fine {
+            for key in &coarse.fine {
                 let cell = &self.cells[key];
                 let (clo, chi) = cell.bounds();
                 let planes = bounding.get_or_init(|| planes(head, pose));
@@ -475,8 +508,8 @@ impl Material {
             for i in lo[0]..=hi[0] {
                 for j in lo[1]..=hi[1] {
                     for k in lo[2]..=hi[2] {
-                        if let Some(fine) = self.coarse.get(&[i, j, k]) {
-                            visit([i, j, k], fine);
+                        if let Some(coarse) = self.coarse.get(&[i, j, k]) {
+                            visit([i, j, k], coarse);
                         }
                     }
                 }

@@ -382,7 +382,14 @@ impl Collision<'_> {
         let mut d = self.check_plate(pose, (at, way));
         if !self.material.is_empty() {
             let low = self.head.lowest_along(pose, pose.up);
-            let clear = low - self.highest(pose.up);
+            let mut clear = low - self.highest(pose.up);
+            if clear < gap {
+                // Groups beyond the cap from every point of the head
+                // (within its reach of the focus) are at least that far.
+                let far = self.head.reach + CAP_MM;
+                let near = self.material.highest_near(pose.up, pose.focus, far);
+                clear = (low - near).min(CAP_MM);
+            }
             if clear >= gap {
                 // Everything lies below the plane through the tip.
                 d = d.min(clear);
