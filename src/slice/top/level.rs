@@ -93,7 +93,7 @@ pub(super) fn slice(
         follow: tilt.map(|(max, up)| Follow::new(&scan.surface, max, w).turned(up)),
     };
     if let Some(steep) = on.unlayable(&regular.lines)? {
-        return Err(steep.report(bead, slicing, ex).into());
+        return Err(steep.report(bead, slicing, ex));
     }
     let (pieces, failures) = on.pieces(&regular.lines)?;
     if !failures.is_empty() {
