@@ -276,3 +276,55 @@ fn a_steep_wear_levelled_along_its_normal_keeps_the_beads_heights() {
     // The plane fitted over ±3 mm flattens the steepest flank a little.
     assert!(steepest > 12.0, "{steepest}°");
 }
+
+/// The steep wear with a bead of a narrow range (8.6 to 8.7 mm/s): the
+/// thinnest pass along the normal, the bead's lowest over `cos α`, is more
+/// than its tallest where the wear slopes more than `acos(lo/hi)` along
+/// the tracks (12.2°, from the bead's areas here), so no pass can be laid
+/// there: refused before planning, at `follow`, with the tilt that would
+/// do. (The top 12.75 mm and the pad 20.4 mm across keep the regular
+/// layers' count and spacing within the narrow bead.)
+#[test]
+fn a_pass_no_thickness_lays_along_the_normal_is_refused() {
+    let wear = Wear {
+        face: 10.0,
+        depth: 2.5,
+        c: [0.0, 0.0],
+        s: [7.0, 14.0],
+    };
+    let pts = scan(|x, y| wear.z(x, y), 0.0, 1);
+    let src = SRC
+        .replace("repair/worn_pad.ply", "s.ply")
+        .replace("speed = 4 mm/s .. 8.7 mm/s", "speed = 8.6 mm/s .. 8.7 mm/s")
+        .replace("top = 13 mm", "top = 12.75 mm")
+        .replace("height = 20 mm)", "height = 20.4 mm)")
+        .replace(
+            "  follow = surface\n",
+            "  follow = surface\n  segments {\n    tolerance = 0.3 mm\n  }\n",
+        );
+    let c = compile(&src, BTreeMap::from([("s.ply".to_string(), ply(&pts))]));
+    let m = messages(&c);
+    assert!(c.program.is_none(), "{m}");
+    assert!(
+        m.starts_with(
+            "lmd::follow-surface: the levelling passes cannot be laid along the scan's normal at ("
+        ),
+        "{m}"
+    );
+    let most = (segment_area(WIDTH, bead_height(8.7)) / segment_area(WIDTH, bead_height(8.6)))
+        .acos()
+        .to_degrees();
+    assert!((12.0..12.5).contains(&most), "{most}");
+    let help = c
+        .diagnostics
+        .iter()
+        .next()
+        .unwrap()
+        .help
+        .as_deref()
+        .unwrap();
+    assert!(
+        help.starts_with(&format!("let the nozzle tilt at most {}°", most.floor())),
+        "{help}"
+    );
+}
