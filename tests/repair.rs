@@ -13,6 +13,7 @@ mod blade;
 mod follow;
 mod lean;
 mod lean_finish;
+mod levelfollow;
 mod overhung;
 mod target;
 mod tilted;

@@ -480,3 +480,56 @@ pub fn follow_on_vertical_machine(machine: &str, at: Span, axes: Span) -> Diagno
         "build it on a machine that tilts the nozzle or the part (a 5-axis CNC: `axes = 5` with `kinematics = head_ac`, `head_bc`, `table_ac` or `table_bc`; a robot), take machine `{machine}` out of this file, or leave `follow` out (the nozzle vertical on every machine)"
     ))
 }
+
+/// Where a levelling pass followed along the scan's normal cannot be laid:
+/// the place, the scan's height there, the slope along the tracks (rad),
+/// and the bead's lowest and highest heights over the track's strip (mm).
+pub struct SteepPass {
+    /// The place, in the frame the layers are planned in.
+    pub at: [f64; 2],
+    /// The scan's height there.
+    pub surface: f64,
+    /// The first pass's slope along the tracks, rad.
+    pub alpha: f64,
+    /// The bead's lowest height over the strip, mm.
+    pub lo: f64,
+    /// Its highest, mm.
+    pub hi: f64,
+}
+
+/// `level = …` with `follow = surface`: where the first pass's surface
+/// slopes `α` along the tracks, a pass laid along its normal is at least
+/// `lo / cos α` thick (vertically), more than the `hi` the bead lays.
+///
+/// Planned `turned`, the point is the part's on the scan and the heights
+/// are along the build direction.
+pub fn level_follow_too_steep(
+    s: SteepPass,
+    [follow, bead]: [Span; 2],
+    turned: Option<&TurnedFrame>,
+) -> Diagnostic {
+    let place = match turned {
+        None => p2(s.at),
+        Some(_) => super::top::height(turned, s.at, s.surface),
+    };
+    let deg = s.alpha.to_degrees();
+    // The tilt along the tracks at which the thinnest pass is the tallest.
+    let most = (s.lo / s.hi).clamp(-1.0, 1.0).acos().to_degrees();
+    Diagnostic::error(
+        Code::FollowSurface,
+        format!(
+            "the levelling passes cannot be laid along the scan's normal at {place}: the scan slopes {}° along the tracks there, so a pass laid along its normal lays at least the bead's lowest {} mm over cos {}°, {} mm of height, more than the {} mm it lays at most",
+            short(deg),
+            short(s.lo),
+            short(deg),
+            short(s.lo / s.alpha.cos()),
+            short(s.hi)
+        ),
+    )
+    .label(follow, "the nozzle along the scan's normal")
+    .label(bead, "the bead")
+    .help(format!(
+        "let the nozzle tilt at most {}° (the upper end of the bead's `tilt`, or the machine's tilt axis), lay the tracks across the slope (`scan`), give a bead measured over a wider range of heights, or leave `follow` out to level with the nozzle vertical",
+        short(most.floor().max(0.0))
+    ))
+}

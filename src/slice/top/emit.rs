@@ -134,7 +134,7 @@ pub(super) fn track(
             .map(|p| f.at([p[0], p[1]], 1.0 - frac, scan))
             .collect()
     });
-    let speeds = segment_speeds(tr, &pos, tilts.as_deref(), map, process.speeds, n);
+    let segments = segment_speeds(tr, &pos, tilts.as_deref(), map, process.speeds, n);
     let m = pos.len();
     // Move j runs from point j to j + 1 in the track's own direction.
     let order: Vec<usize> = if reverse {
@@ -160,32 +160,44 @@ pub(super) fn track(
             ];
             let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-12);
             let tilt = tilts.as_ref().map_or(Tilted::VERTICAL, |t| t[j]);
+            let (speed, strip) = segments[tr.seg[mv.min(tr.seg.len() - 1)]];
             Point {
                 pos: pos[j],
                 normal: tilt.normal.map(|v| v as f32),
                 tangent: d.map(|v| (v / len) as f32),
                 layer_height: (tr.h[j] / n * tilt.along_normal) as f32,
-                speed: speeds[tr.seg[mv.min(tr.seg.len() - 1)]] as f32,
+                speed: speed as f32,
                 power,
                 powder: process.powder,
                 defocus: process.defocus,
                 laser_on: k + 1 < m,
                 style: 0,
-                pitch: tilt.pitch(tr.pitch) as f32,
+                pitch: strip as f32,
                 rise: 0.0,
             }
         })
         .collect()
 }
 
-/// Each segment's path speed on this layer: the map's horizontal speed for
-/// `H_seg/N`, times `√(1 + s²)` with `s` the slope of the segment's chord
-/// on this layer's path; kept where every move of the segment crosses the
-/// ground within the bead's speed range (on a curved top the moves' slopes
-/// differ a little from the chord's). With the nozzle tilted (`tilts`), the
-/// speed across its axis is the map's for `H_seg/N·cos α` (module
-/// `follow`), and the path speed that speed over the chord's share across
-/// the segment's mean normal.
+/// Each segment's path speed on this layer and the strip its points fill:
+/// the map's horizontal speed for `H_seg/N`, times `√(1 + s²)` with `s`
+/// the slope of the segment's chord on this layer's path, over the track's
+/// own pitch; kept where every move of the segment crosses the ground
+/// within the bead's speed range (on a curved top the moves' slopes differ
+/// a little from the chord's).
+///
+/// With the nozzle tilted (`tilts`, module `follow`) each point fills its
+/// own strip `p·cos α / cos θ`, which changes a little along a segment.
+/// A segment is laid at one speed: its points all carry one strip, the
+/// widest of theirs (so none of them plans a layer thinner than the bead
+/// lays over the strip it is said to fill), and the speed across the
+/// nozzle is the one that lays the segment's mean thickness along the
+/// nozzle, `H_seg/N·cos θ̄`, over that strip: the bead map's at the pitch
+/// `p` for `H_seg/N·cos θ̄·(strip/p)` (the same metal per length). One
+/// speed over one strip is what `lmd::deposit` holds to the mean of what
+/// its points plan; a strip differing in the last digits from point to
+/// point would hold each point alone to it. The path speed is that speed
+/// over the chord's share across the segment's mean normal.
 fn segment_speeds(
     tr: &Track,
     pos: &[[f64; 3]],
@@ -193,15 +205,16 @@ fn segment_speeds(
     map: &impl HeightMap,
     [v_lo, v_hi]: [f64; 2],
     n: f64,
-) -> Vec<f64> {
+) -> Vec<(f64, f64)> {
     let q_count = tr.heights.len();
     // Per segment: first and last point, and the steepest and flattest move;
-    // with a tilted nozzle, its mean normal and slope along the track.
+    // with a tilted nozzle, its mean normal, its length-weighted mean `cos θ`
+    // and its widest strip.
     let mut first = vec![usize::MAX; q_count];
     let mut last = vec![0usize; q_count];
     let mut steep = vec![1.0f64; q_count];
     let mut flat = vec![f64::INFINITY; q_count];
-    let mut tilt_sum = vec![([0.0f64; 3], 0.0f64, 0usize); q_count];
+    let mut tilt_sum = vec![([0.0f64; 3], 0.0f64, 0.0f64, 0.0f64); q_count];
     for (j, &q) in tr.seg.iter().enumerate() {
         first[q] = first[q].min(j);
         last[q] = j + 1;
@@ -212,8 +225,10 @@ fn segment_speeds(
                 for (a, v) in s.0.iter_mut().zip(t[j].normal) {
                     *a += v;
                 }
-                s.1 += t[j].along_track;
-                s.2 += 1;
+                let len = (tr.t[j + 1] - tr.t[j]).abs();
+                s.1 += len * 0.5 * (t[j].along_normal + t[j + 1].along_normal);
+                s.2 += len;
+                s.3 = s.3.max(t[j].pitch(tr.pitch)).max(t[j + 1].pitch(tr.pitch));
                 climb_across(pos[j], pos[j + 1], t[j].normal)
             }
         };
@@ -222,10 +237,13 @@ fn segment_speeds(
     }
     (0..q_count)
         .map(|q| {
-            let (normal, along, count) = tilt_sum[q];
-            let h = match count {
-                0 => tr.heights[q] / n,
-                c => tr.heights[q] / n * along / c as f64,
+            let (normal, cos_len, len, strip) = tilt_sum[q];
+            let tilted = tilts.is_some() && strip > 0.0;
+            let (h, strip) = if tilted {
+                let cos = if len > 0.0 { cos_len / len } else { 1.0 };
+                (tr.heights[q] / n * cos * strip / tr.pitch, strip)
+            } else {
+                (tr.heights[q] / n, tr.pitch)
             };
             let h = Length(h);
             // The layer count keeps every height in the map's range.
@@ -234,10 +252,10 @@ fn segment_speeds(
                 map.speed_within(Length(h.0.clamp(r.low().0, r.high().0)))
             });
             if first[q] == usize::MAX {
-                return v_h.0;
+                return (v_h.0, strip);
             }
             let (a, b) = (pos[first[q]], pos[last[q]]);
-            let v = if count > 0 {
+            let v = if tilted {
                 v_h.0 * climb_across(a, b, normal)
             } else {
                 let run = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
@@ -245,11 +263,7 @@ fn segment_speeds(
                 path_speed(v_h, slope).map_or(v_h.0, |v: Speed| v.0)
             };
             let (lo, hi) = (v_lo * steep[q], v_hi * flat[q]);
-            if lo <= hi {
-                v.clamp(lo, hi)
-            } else {
-                v
-            }
+            (if lo <= hi { v.clamp(lo, hi) } else { v }, strip)
         })
         .collect()
 }

@@ -24,6 +24,7 @@
 //! to it at its height along it, and the messages name the part's points.
 
 use super::emit::{self, Process};
+use super::follow::Follow;
 use super::footprint::{spaced, Footprint};
 use super::layout::Layout;
 use super::surface::{Base, Surface};
@@ -35,7 +36,7 @@ use crate::ir::{Frame, Layer, Path, PathKind};
 use crate::sema::model::{Axis, Bead, Level, Model, ScanBase, TopExtrusion, VariableSlicing};
 use crate::slice::variable::segments::SegmentSpec;
 use crate::slice::variable::speed::{BeadMap, HeightMap};
-use crate::slice::variable::{ceil_slack, Positive};
+use crate::slice::variable::{ceil_slack, Positive, SLACK};
 use crate::units::Length;
 
 /// Most samples of the scan taken to find the level and check the top.
@@ -80,6 +81,8 @@ pub(super) fn slice(
         tolerance: positive("tolerance", slicing.tolerance)?,
         min_length: positive("min_length", slicing.min_length.unwrap_or(bead.width))?,
     };
+    let tilt =
+        super::follow::limit(model, bead, slicing).map(|t| (t, super::follow::part_vertical(ex)));
     let on = Line {
         fp: &fp,
         scan: regular.scan,
@@ -87,15 +90,17 @@ pub(super) fn slice(
         z,
         bead,
         spec,
+        follow: tilt.map(|(max, up)| Follow::new(&scan.surface, max, w).turned(up)),
     };
+    if let Some(steep) = on.unlayable(&regular.lines)? {
+        return Err(steep.report(bead, slicing, ex));
+    }
     let (pieces, failures) = on.pieces(&regular.lines)?;
     if !failures.is_empty() {
         let min = spec.min_length;
         let all = pieces.len() + failures.len();
         return Err(too_short::report(&failures, all, regular.scan, bead, slicing, ex, min).into());
     }
-    let tilt =
-        super::follow::limit(model, bead, slicing).map(|t| (t, super::follow::part_vertical(ex)));
     let mut layers = passes_laid(model, bead, &pieces, &regular.lines, &on, tilt)?;
     let first = layers.len();
     let mut rest = regular.layers;
@@ -254,6 +259,38 @@ struct Line<'a> {
     z: f64,
     bead: &'a Bead,
     spec: SegmentSpec,
+    /// `follow = surface`: the passes laid along the scan's normal.
+    follow: Option<Follow<'a>>,
+}
+
+/// A place where no levelling pass can be laid along the scan's normal:
+/// the first pass's surface slopes `alpha` rad along the tracks there, so
+/// the thinnest pass the bead lays along it, `lo / cos α` mm thick
+/// vertically, is more than its tallest `hi`.
+struct Steep {
+    at: [f64; 2],
+    surface: f64,
+    alpha: f64,
+    lo: f64,
+    hi: f64,
+}
+
+impl Steep {
+    fn report(&self, bead: &Bead, slicing: &VariableSlicing, ex: &TopExtrusion) -> Diagnostics {
+        let follow = slicing.follow.unwrap_or(slicing.span);
+        message::scan::level_follow_too_steep(
+            message::scan::SteepPass {
+                at: self.at,
+                surface: self.surface,
+                alpha: self.alpha,
+                lo: self.lo,
+                hi: self.hi,
+            },
+            [follow, bead.span],
+            ex.turned.as_ref(),
+        )
+        .into()
+    }
 }
 
 impl Line<'_> {
@@ -269,6 +306,50 @@ impl Line<'_> {
             BeadMap::new(self.bead, Some(Length(pitch))).map_err(|e| internal(e.to_string()))?;
         let r = map.heights();
         Ok([r.low().0, r.high().0])
+    }
+
+    /// The heights a pass at `t` along the line at `c` may lay, measured
+    /// vertically, for a track whose strip lays `range`: followed, a pass
+    /// along the normal of a surface sloping `α` along the track lays
+    /// `h·cos α` by the bead map at its pitch (module `follow`), so it is at
+    /// least `lo / cos α` thick, the first pass's `α` (the scan's, the
+    /// steepest) for them all.
+    fn range_at(&self, t: f64, c: f64, [lo, hi]: [f64; 2]) -> [f64; 2] {
+        match self.follow {
+            Some(f) => {
+                let tilt = f.at(Footprint::point(self.scan, t, c), 1.0, self.scan);
+                [lo / tilt.along_track, hi]
+            }
+            None => [lo, hi],
+        }
+    }
+
+    /// The first place of the lines where the wear needs a pass but none
+    /// can be laid along the scan's normal (see [`Steep`]).
+    fn unlayable(&self, lines: &Layout) -> Result<Option<Steep>, Diagnostics> {
+        if self.follow.is_none() {
+            return Ok(None);
+        }
+        let step = self.bead.width.0 / 8.0;
+        let intervals = self.fp.intervals(self.scan, &lines.centres);
+        for ((&c, &pitch), intervals) in lines.centres.iter().zip(&lines.pitches).zip(intervals) {
+            let range = self.heights(pitch)?;
+            for t in intervals.into_iter().flat_map(|[a, b]| spaced(a, b, step)) {
+                let Some(g) = self.gap(t, c) else { continue };
+                let [lo, hi] = self.range_at(t, c, range);
+                if lo > hi * (1.0 + SLACK) && g >= lo / 2.0 {
+                    let at = Footprint::point(self.scan, t, c);
+                    return Ok(Some(Steep {
+                        at,
+                        surface: self.z - g,
+                        alpha: (range[0] / lo).clamp(-1.0, 1.0).acos(),
+                        lo: range[0],
+                        hi,
+                    }));
+                }
+            }
+        }
+        Ok(None)
     }
 
     /// Every line's stretches of one pass count, as tracks; and those whose
@@ -289,8 +370,9 @@ impl Line<'_> {
             for [a, b] in intervals {
                 for (n, [t0, t1]) in self.runs(a, b, c, step, range) {
                     let h = |t: f64| {
+                        let [lo, hi] = self.range_at(t, c, range);
                         self.gap(t, c)
-                            .map(|g| g.clamp(n as f64 * range[0], n as f64 * range[1]))
+                            .map(|g| g.clamp(n as f64 * lo, n as f64 * hi))
                     };
                     let samples: Vec<(f64, f64)> = spaced(t0, t1, step)
                         .into_iter()
@@ -318,7 +400,10 @@ impl Line<'_> {
     /// halving (to a millionth of the step) and both stretches end there,
     /// so a stretch holds no point more than that from its own count.
     fn runs(&self, a: f64, b: f64, c: f64, step: f64, range: [f64; 2]) -> Vec<(u32, [f64; 2])> {
-        let count = |t: f64| self.gap(t, c).map_or(0, |g| passes(g, range).0);
+        let count = |t: f64| {
+            self.gap(t, c)
+                .map_or(0, |g| passes(g, self.range_at(t, c, range)).0)
+        };
         let ts = spaced(a, b, step);
         let counts: Vec<u32> = ts.iter().map(|&t| count(t)).collect();
         let mut out = Vec::new();
