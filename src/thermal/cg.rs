@@ -15,6 +15,21 @@ pub const TOLERANCE: f64 = 1e-12;
 /// prediction falls back to one column (docs/thermal.md, *Islands*).
 pub const MAX_ITERATIONS: usize = 64;
 
+#[cfg(test)]
+thread_local! {
+    /// The most iterations, lowered by a test to reach the fallback.
+    pub static ITERATIONS: std::cell::Cell<usize> = const { std::cell::Cell::new(MAX_ITERATIONS) };
+}
+
+/// The most iterations a step takes here ([`MAX_ITERATIONS`]; a test's
+/// own limit under test).
+fn most() -> usize {
+    #[cfg(test)]
+    return ITERATIONS.with(|c| c.get());
+    #[cfg(not(test))]
+    MAX_ITERATIONS
+}
+
 /// Solves `A·x = b` for a symmetric positive definite `A` (`apply`: `x ↦
 /// A·x`) by conjugate gradients preconditioned by `precondition` (`r ↦
 /// M⁻¹·r`, `M` symmetric positive definite), from `M⁻¹·b`. Returns the
@@ -36,7 +51,7 @@ pub fn solve(
     let mut p = z.clone();
     let mut rz = dot(&r, &z);
     let start = x.clone();
-    for _ in 0..MAX_ITERATIONS {
+    for _ in 0..most() {
         let ap = apply(&p);
         let pap = dot(&p, &ap);
         // A breakdown (rounding past convergence, or a matrix not as

@@ -932,6 +932,52 @@ fn a_bridge_through_the_prediction() {
         .all(|l| l.layer.interpass.is_finite() && l.layer.peak.is_finite()));
 }
 
+/// A bridge whose step is not solved (the iterations held to none, as a
+/// graph too hard for 64 would be): the prediction falls back to each
+/// layer's islands as one load on one column, the same as predicting
+/// that column outright, and still finite; with the iterations back, the
+/// graph's own prediction, which differs from it.
+#[test]
+fn an_unsolved_bridge_is_predicted_as_one_column() {
+    let (stands, joins, layers) = bridge();
+    let loads: Vec<Vec<Load>> = layers
+        .iter()
+        .map(|l| l.iter().map(|(_, l)| *l).collect())
+        .collect();
+    let of: Vec<Vec<usize>> = layers
+        .iter()
+        .map(|l| l.iter().map(|(c, _)| *c).collect())
+        .collect();
+    let orders: Vec<Vec<usize>> = loads.iter().map(|l| (0..l.len()).collect()).collect();
+    let columns = Columns { stands, joins, of };
+    let predict_all = || predict_tree(steel(), plate(), &columns, &loads, &orders, |_| 2.0, None);
+    super::cg::ITERATIONS.with(|c| c.set(0));
+    let fallen = predict_all();
+    super::cg::ITERATIONS.with(|c| c.set(super::cg::MAX_ITERATIONS));
+    let fallen = fallen.unwrap();
+    let one = one_column(&loads);
+    let single = vec![vec![0]; one.len()];
+    let column = predict_tree(
+        steel(),
+        plate(),
+        &Columns::one(one.len()),
+        &one,
+        &single,
+        |_| 2.0,
+        None,
+    )
+    .unwrap();
+    assert_eq!(fallen, column);
+    assert!(fallen
+        .iter()
+        .all(|l| l.layer.interpass.is_finite() && l.layer.peak.is_finite()));
+    let graph = predict_all().unwrap();
+    assert!(graph
+        .iter()
+        .zip(&fallen)
+        .any(|(a, b)| (a.layer.interpass - b.layer.interpass).abs() > 1.0));
+}
+
 /// The conjugate gradients on their own: a small symmetric positive
 /// definite system (a chain with a cycle) preconditioned by its diagonal
 /// is solved to its tolerance; a diagonal one of 200 spread eigenvalues,
