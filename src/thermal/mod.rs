@@ -498,7 +498,14 @@ fn predict_built(
                     },
                     wait,
                 });
-                levers(&build, loads, &orders[i], declared, b, i, then)?
+                let layer = Choosing {
+                    build: &build,
+                    plan: &orders[i],
+                    declared,
+                    b,
+                    layer: i,
+                };
+                levers(&layer, loads, then)?
             }
             None => (orders[i].clone(), declared, 1.0),
         };
@@ -529,11 +536,23 @@ struct Then<'a> {
     wait: f64,
 }
 
+/// A layer whose cooling is being chosen: the build before the wait
+/// before it, the slicer's order of its islands, the declared wait, the
+/// budget and its index.
+#[derive(Clone, Copy)]
+struct Choosing<'a> {
+    build: &'a Build,
+    plan: &'a [usize],
+    declared: f64,
+    b: Budget<'a>,
+    layer: usize,
+}
+
 /// How many times [`levers`] settles a layer's wait against its power.
 const SETTLE: usize = 8;
 
-/// Layer `layer`'s order, the wait before it and the share of its power
-/// it is laid at, as `b`'s levers allow, on `build` before the wait. The
+/// Layer `c`'s order, the wait before it and the share of its power it
+/// is laid at, as its budget's levers allow, on its build. The
 /// wait is found with the layer at full power, then the power that keeps
 /// the layer after it (`then`) in, then the wait again with the layer at
 /// that power (laying its first islands cooler lets its later ones start
@@ -542,18 +561,17 @@ const SETTLE: usize = 8;
 /// against a power no lower than the one laid, so the pair kept always
 /// keeps the limit. Refuses where a layer starts above it after all.
 fn levers(
-    build: &Build,
+    c: &Choosing<'_>,
     loads: &[Isle],
-    plan: &[usize],
-    declared: f64,
-    b: Budget<'_>,
-    layer: usize,
     then: Option<Then<'_>>,
 ) -> Result<(Vec<usize>, f64, f64), Overheat> {
-    let (mut order, mut wait) = order_and_wait(build, loads, plan, declared, b, layer)?;
+    let Choosing {
+        build, b, layer, ..
+    } = *c;
+    let (mut order, mut wait) = order_and_wait(c, loads)?;
     let mut power = 1.0;
     let Some(then) = then.filter(|_| b.levers.power.is_some()) else {
-        return kept(build, loads, order, wait, power, b, layer);
+        return kept(c, loads, order, wait, power);
     };
     let least = b.levers.power.and_then(|l| l.get(layer)).copied();
     for round in 0..SETTLE {
@@ -577,34 +595,37 @@ fn levers(
         if settled || power >= 1.0 || b.levers.dwell.is_none() || round + 1 == SETTLE {
             break;
         }
-        let (o, w) = order_and_wait(build, &at_share(loads, power), plan, declared, b, layer)?;
+        let (o, w) = order_and_wait(c, &at_share(loads, power))?;
         if w >= wait && o == order {
             break;
         }
         (order, wait) = (o, w);
     }
-    kept(build, loads, order, wait, power, b, layer)
+    kept(c, loads, order, wait, power)
 }
 
-/// `order`, `wait` and `power` for layer `layer` on `build`, or its
+/// `order`, `wait` and `power` for layer `c` on its build, or its
 /// refusal where an island starts above the limit after all (a wait found
 /// to a thousandth of its step may land a rounding above).
 fn kept(
-    build: &Build,
+    c: &Choosing<'_>,
     loads: &[Isle],
     order: Vec<usize>,
     wait: f64,
     power: f64,
-    b: Budget<'_>,
-    layer: usize,
 ) -> Result<(Vec<usize>, f64, f64), Overheat> {
+    let Choosing {
+        build, b, layer, ..
+    } = *c;
     let mut after = build.clone();
     after.cool(wait);
     let scaled = at_share(loads, power);
-    let (hottest, c) = starts(&after, &scaled, &order);
+    let (hottest, island) = starts(&after, &scaled, &order);
     if hottest > b.max_interpass + 1e-9 {
         let limit = b.max_interpass;
-        return Err(overheat(&after, &scaled, &order, layer, c, hottest, limit));
+        return Err(overheat(
+            &after, &scaled, &order, layer, island, hottest, limit,
+        ));
     }
     Ok((order, wait, power))
 }
@@ -623,19 +644,19 @@ fn at_share(loads: &[Isle], power: f64) -> Vec<Isle> {
         .collect()
 }
 
-/// The order layer `layer`'s islands are laid in on `build` and the wait
-/// before it, as `b`'s levers allow: the order that starts each the
-/// coolest, then the least wait (at least `declared`) after which every
+/// The order layer `c`'s islands are laid in on its build and the wait
+/// before it, as its budget's levers allow: the order that starts each
+/// the coolest, then the least wait (at least the declared) after which every
 /// island starts within the limit. With both, the plan's own order where
 /// it needs a shorter wait (a tie keeps the coolest first).
-fn order_and_wait(
-    build: &Build,
-    loads: &[Isle],
-    plan: &[usize],
-    declared: f64,
-    b: Budget<'_>,
-    layer: usize,
-) -> Result<(Vec<usize>, f64), Overheat> {
+fn order_and_wait(c: &Choosing<'_>, loads: &[Isle]) -> Result<(Vec<usize>, f64), Overheat> {
+    let Choosing {
+        build,
+        plan,
+        declared,
+        b,
+        layer,
+    } = *c;
     let mut candidates = vec![plan.to_vec()];
     if b.levers.order {
         let best = coolest_first(build, loads, plan);
