@@ -155,6 +155,17 @@ fn refused_at(c: &Compiled, code: &str, after: &str) -> (String, Vec<f64>) {
     (d.message.clone(), point)
 }
 
+/// The number in `m` after `after`, up to `until` (a panic with `m` where
+/// there is none).
+fn number_after(m: &str, after: &str, until: char) -> f64 {
+    let from = m.find(after).unwrap_or_else(|| panic!("{after}: {m}")) + after.len();
+    m[from..]
+        .split(until)
+        .next()
+        .and_then(|v| v.trim().parse().ok())
+        .unwrap_or_else(|| panic!("{after}: {m}"))
+}
+
 /// The laser-on moves: (start, end, layer height, pitch) of each.
 fn moves(p: &Program) -> Vec<([f64; 3], [f64; 3], f64, f64)> {
     let mut out = Vec::new();

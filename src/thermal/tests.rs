@@ -873,12 +873,9 @@ fn random_merges_are_the_dense_solve() {
     }
 }
 
-/// Islands that merge through the prediction: up to the bridge the
-/// pillars start every layer as they do with no bridge after them (the
-/// same build cut before it), and the bridge's first layer starts
-/// between them; each layer's islands are laid on their columns.
-#[test]
-fn a_bridge_through_the_prediction() {
+/// [`bridge`] as the prediction takes it: its columns, each layer's loads
+/// and their order as laid.
+fn bridge_as_planned() -> (Columns, Vec<Vec<Load>>, Vec<Vec<usize>>) {
     let (stands, joins, layers) = bridge();
     let loads: Vec<Vec<Load>> = layers
         .iter()
@@ -889,7 +886,16 @@ fn a_bridge_through_the_prediction() {
         .map(|l| l.iter().map(|(c, _)| *c).collect())
         .collect();
     let orders: Vec<Vec<usize>> = loads.iter().map(|l| (0..l.len()).collect()).collect();
-    let columns = Columns { stands, joins, of };
+    (Columns { stands, joins, of }, loads, orders)
+}
+
+/// Islands that merge through the prediction: up to the bridge the
+/// pillars start every layer as they do with no bridge after them (the
+/// same build cut before it), and the bridge's first layer starts
+/// between them; each layer's islands are laid on their columns.
+#[test]
+fn a_bridge_through_the_prediction() {
+    let (columns, loads, orders) = bridge_as_planned();
     let p = predict_tree(steel(), plate(), &columns, &loads, &orders, |_| 2.0, None).unwrap();
     let cut = Columns {
         stands: columns.stands[..2]
@@ -939,17 +945,7 @@ fn a_bridge_through_the_prediction() {
 /// graph's own prediction, which differs from it.
 #[test]
 fn an_unsolved_bridge_is_predicted_as_one_column() {
-    let (stands, joins, layers) = bridge();
-    let loads: Vec<Vec<Load>> = layers
-        .iter()
-        .map(|l| l.iter().map(|(_, l)| *l).collect())
-        .collect();
-    let of: Vec<Vec<usize>> = layers
-        .iter()
-        .map(|l| l.iter().map(|(c, _)| *c).collect())
-        .collect();
-    let orders: Vec<Vec<usize>> = loads.iter().map(|l| (0..l.len()).collect()).collect();
-    let columns = Columns { stands, joins, of };
+    let (columns, loads, orders) = bridge_as_planned();
     let predict_all = || predict_tree(steel(), plate(), &columns, &loads, &orders, |_| 2.0, None);
     super::cg::ITERATIONS.with(|c| c.set(0));
     let fallen = predict_all();

@@ -151,16 +151,7 @@ fn air_under_the_boss_as_designed_is_no_wear_to_fill() {
         .iter()
         .find(|d| d.message.contains("has an overhang over ("))
         .unwrap_or_else(|| panic!("{m}"));
-    let number = |after: &str, until: char| -> f64 {
-        let from = d.message.find(after).unwrap_or_else(|| panic!("{m}")) + after.len();
-        d.message[from..]
-            .split(until)
-            .next()
-            .unwrap()
-            .trim()
-            .parse()
-            .unwrap()
-    };
+    let number = |after: &str, until: char| super::number_after(&d.message, after, until);
     let x = number("overhang over (", ',');
     let under = number("a face of it runs at", 'm');
     assert!(x > 12.0 + lean(WORN), "{m}");

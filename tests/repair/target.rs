@@ -199,16 +199,7 @@ fn a_leaning_overhang_is_refused_with_the_tilt_that_builds_it() {
     );
     assert!(c.program.is_none());
     let m = messages(&c);
-    let number = |after: &str, until: char| -> f64 {
-        let from = m.find(after).unwrap_or_else(|| panic!("{after}: {m}")) + after.len();
-        m[from..]
-            .split(until)
-            .next()
-            .unwrap()
-            .trim()
-            .parse()
-            .unwrap()
-    };
+    let number = |after: &str, until: char| super::number_after(&m, after, until);
     let x = number("overhang over (", ',');
     assert!(x > 0.0 && x < lean, "{m}");
     assert_eq!(number("tilted ", '°'), 41.0, "{m}");
