@@ -705,9 +705,11 @@ pub fn undercut(
 /// Why no build direction within the machines' tilt builds a target's
 /// overhang (`direction = auto`, docs/repair.md, *Undercuts*).
 pub struct Untilted<'a> {
-    /// The footprint's point (mm, in the part) whose line along the best
-    /// direction allowed meets the target in more than one piece, and the
-    /// height along that line where its upper piece starts.
+    /// A point (mm, in the part) of the line along the best direction
+    /// allowed that does not build: where its upper piece starts
+    /// ([`LineFault::Again`]), where it leaves the target over a gap
+    /// ([`LineFault::Gap`]), where it meets a flank ([`LineFault::Flank`]),
+    /// or where it crosses the finished face ([`LineFault::Nothing`]).
     pub at: [f64; 3],
     /// What that line meets.
     pub meets: LineFault,
