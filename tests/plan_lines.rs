@@ -133,3 +133,42 @@ fn the_lines_are_the_plan_with_its_laser_and_cell_states() {
     assert!(mv.iter().any(|m| m.axes.tilt.abs() > 1.0), "the duct tilts");
     check(&text, &mv, Some("A"));
 }
+
+/// A visitor that has seen what it needs (`Visit::done`, a help's probe
+/// that met what refuses it) stops the walk before the next path: the
+/// thin wall's walk stopped once its first deposit is told ends with the
+/// moves of the first path, every one of them as the whole walk tells it.
+#[test]
+fn a_visitor_that_is_done_stops_the_walk_before_the_next_path() {
+    use lmdc::plan::{MoveKind, Visit, Where};
+    struct Until {
+        moves: Vec<Move>,
+    }
+    impl Visit for Until {
+        fn motion(&mut self, m: &Move) {
+            self.moves.push(*m);
+        }
+        fn done(&self) -> bool {
+            self.moves.iter().any(|m| m.kind == MoveKind::Deposit)
+        }
+    }
+    let src = std::fs::read_to_string("examples/thin_wall.lmd").unwrap();
+    let p = lmdc::compile(&src, &lmdc::Options::default()).unwrap();
+    let m = p.machines().next().unwrap();
+    let mut until = Until { moves: Vec::new() };
+    m.plan().walk(&mut until);
+    let mut all = Vec::new();
+    m.plan().walk(&mut |mv: &Move| all.push(*mv));
+    let n = until.moves.len();
+    assert!(n > 1 && n < all.len() / 4, "{n} of {}", all.len());
+    assert_eq!(until.moves[..], all[..n]);
+    let path = |m: &Move| match m.at {
+        Where::Point { layer, path, .. } => Some((layer, path)),
+        _ => None,
+    };
+    let seen: Vec<_> = until.moves.iter().filter_map(path).collect();
+    assert!(seen.iter().all(|&p| p == seen[0]), "{seen:?}");
+    // The next move of the whole walk belongs to another path, or is none
+    // of one (a travel to it).
+    assert!(all[n..].iter().filter_map(path).all(|p| p != seen[0]));
+}

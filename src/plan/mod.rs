@@ -332,6 +332,12 @@ pub trait Visit {
     fn io(&mut self, _event: Io) {}
     /// A ring's segment ends with the next move.
     fn segment_end(&mut self, _end: SegmentEnd) {}
+    /// Whether it has seen what it needs (a help's probe that has met what
+    /// refuses it): the walk then stops before the next path, without the
+    /// plan's end.
+    fn done(&self) -> bool {
+        false
+    }
 }
 
 /// A closure told every move (and nothing else): the shortest walker.
@@ -372,6 +378,9 @@ impl<A: Visit, B: Visit> Visit for (A, B) {
     fn segment_end(&mut self, end: SegmentEnd) {
         self.0.segment_end(end);
         self.1.segment_end(end);
+    }
+    fn done(&self) -> bool {
+        self.0.done() && self.1.done()
     }
 }
 
@@ -619,6 +628,9 @@ impl<'a> Plan<'a> {
             for (pi, path) in layer.paths.iter().enumerate() {
                 if path.points.is_empty() {
                     continue;
+                }
+                if w.v.done() {
+                    return;
                 }
                 // The path after it in the layer, where a gap may end.
                 let after = layer.paths[pi + 1..]

@@ -59,6 +59,10 @@ pub(super) struct ArmRule<'p> {
     first: Option<(ptp::End, crate::plan::Where, [f64; 3])>,
     /// The last pose solved: its axes and focus.
     end: Option<(ptp::End, [f64; 3])>,
+    /// A help's probe: the fixture whose first hit by a link ends the walk.
+    stop_at: Option<usize>,
+    /// The moves told so far.
+    moves: usize,
 }
 
 impl<'p> PlanRule<'p> for ArmRule<'p> {
@@ -90,6 +94,8 @@ impl<'p> PlanRule<'p> for ArmRule<'p> {
             ),
             first: None,
             end: None,
+            stop_at: None,
+            moves: 0,
         })
     }
 
@@ -214,6 +220,7 @@ impl ArmRule<'_> {
 
 impl Visit for ArmRule<'_> {
     fn motion(&mut self, m: &Move) {
+        self.moves += 1;
         if self.quick.is_some() {
             return;
         }
@@ -231,6 +238,11 @@ impl Visit for ArmRule<'_> {
         if let Some(done) = self.follow.push(m) {
             self.follow_up(done);
         }
+    }
+
+    fn done(&self) -> bool {
+        self.stop_at
+            .is_some_and(|i| self.links.as_ref().is_some_and(|l| l.fixture_hit(i)))
     }
 }
 

@@ -18,6 +18,10 @@
 //!
 //! A probe makes the whole plan again: the searches stop once they have
 //! made [`BUDGET`] points again in all, and the help then names no number.
+//! A fixture's probe stops following the arm at the path after a link
+//! first meets the fixture (the probe is refused whatever follows), and
+//! is charged the moves it followed; a probe starts only where a whole
+//! plan's worth is left.
 
 use super::ArmRule;
 use crate::diag::message::collision::{LinkFix, Moved};
@@ -36,8 +40,8 @@ const DIRECTIONS: [(usize, f64, &str); 4] = [
     (1, 1.0, "+y"),
 ];
 
-/// What is left of the budget, and what one probe costs (the plan's
-/// points).
+/// What is left of the budget, and what one probe costs at most (the
+/// plan's points).
 struct Budget {
     left: usize,
     each: usize,
@@ -57,10 +61,16 @@ impl Budget {
 
     /// Takes one probe's worth: whether there was.
     fn take(&mut self) -> bool {
+        self.spend(self.each)
+    }
+
+    /// Takes `points`' worth where a probe's whole worth is left: whether
+    /// it was.
+    fn spend(&mut self, points: usize) -> bool {
         if self.left < self.each {
             return false;
         }
-        self.left -= self.each;
+        self.left -= points.min(self.left);
         true
     }
 }
@@ -102,6 +112,16 @@ fn least(
 /// `cx`'s machine's arm rule in `program` (a changed copy of `cx`'s),
 /// having followed the plan made again.
 fn follow<'p>(program: &'p Program, cx: &MachineCx<'p>) -> Option<ArmRule<'p>> {
+    follow_until(program, cx, None)
+}
+
+/// [`follow`], stopped at the path after a link first meets fixture
+/// `stop_at` where given (a probe that has met what refuses it).
+fn follow_until<'p>(
+    program: &'p Program,
+    cx: &MachineCx<'p>,
+    stop_at: Option<usize>,
+) -> Option<ArmRule<'p>> {
     let name = cx.machine.name();
     let machine = program.machines.iter().find(|m| m.name() == name)?;
     let there = MachineCx {
@@ -110,6 +130,7 @@ fn follow<'p>(program: &'p Program, cx: &MachineCx<'p>) -> Option<ArmRule<'p>> {
         origin: cx.origin,
     };
     let mut rule = ArmRule::new(&there)?;
+    rule.stop_at = stop_at;
     Plan::new(program, machine).walk(&mut rule);
     rule.flush();
     Some(rule)
@@ -145,12 +166,14 @@ fn fixture_moved(cx: &MachineCx<'_>, i: usize, budget: &mut Budget) -> Option<Mo
             .as_ref()
             .map_or(20_000, |b| ((b.by * 10.0).round() as u32).saturating_sub(1));
         let clear = |n: u32| {
-            if !budget.take() {
+            if budget.left < budget.each {
                 return None;
             }
             let mut program = cx.program.clone();
             program.fixtures[i].at = place(n);
-            Some(fixture_clear(cx, &program, i))
+            let (clear, walked) = fixture_clear(cx, &program, i);
+            budget.spend(walked);
+            Some(clear)
         };
         let found = least((100, most, best.is_some()), |n| n * 2, clear);
         if let Some(n) = found {
@@ -168,24 +191,26 @@ fn fixture_moved(cx: &MachineCx<'_>, i: usize, budget: &mut Budget) -> Option<Mo
 }
 
 /// Whether fixture `i` of `program` is clear of the arm's links and the
-/// head at every pose of its plan.
-fn fixture_clear(cx: &MachineCx<'_>, program: &Program, i: usize) -> bool {
-    let Some(rule) = follow(program, cx) else {
-        return false;
+/// head at every pose of its plan, and the moves followed to find out
+/// (the walk stops at the path after a link first meets it).
+fn fixture_clear(cx: &MachineCx<'_>, program: &Program, i: usize) -> (bool, usize) {
+    let Some(rule) = follow_until(program, cx, Some(i)) else {
+        return (false, usize::MAX);
     };
+    let walked = rule.moves;
     if rule.links.as_ref().is_some_and(|l| l.fixture_hit(i)) {
-        return false;
+        return (false, walked);
     }
     let name = cx.machine.name();
     let Some(machine) = program.machines.iter().find(|m| m.name() == name) else {
-        return false;
+        return (false, walked);
     };
     let there = MachineCx {
         program,
         machine,
         origin: cx.origin,
     };
-    crate::verify::collision::head_clear_of(&there, i)
+    (crate::verify::collision::head_clear_of(&there, i), walked)
 }
 
 /// A base farther from the arm's foot along the horizontal line to it
@@ -311,6 +336,25 @@ impl Searches {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A probe is charged what it followed, and none starts once less
+    /// than a whole plan's worth is left.
+    #[test]
+    fn a_probe_is_charged_what_it_followed() {
+        let mut b = Budget {
+            left: 1000,
+            each: 300,
+        };
+        assert!(b.spend(40) && b.left == 960);
+        assert!(b.take() && b.left == 660);
+        assert!(b.spend(usize::MAX) && b.left == 0);
+        assert!(!b.spend(1) && !b.take());
+        let mut short = Budget {
+            left: 299,
+            each: 300,
+        };
+        assert!(!short.spend(10) && short.left == 299);
+    }
 
     /// The least clear count, found by growing and halving: the one before
     /// it refused; none past `most`, and none once the budget is out.
