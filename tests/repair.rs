@@ -166,6 +166,23 @@ fn number_after(m: &str, after: &str, until: char) -> f64 {
         .unwrap_or_else(|| panic!("{after}: {m}"))
 }
 
+/// The least-squares plane's slopes through `z` every 1 mm (the scan's
+/// cell) over 3 cells (a 2.4 mm bead's width) either way about `(x, y)`:
+/// on the full symmetric window, `Σ i·z / Σ i²` each way. What
+/// `follow = surface` fits to the scan (docs/repair.md, *Following the
+/// surface*), computed from a formula.
+fn fitted_slope(z: &impl Fn(f64, f64) -> f64, x: f64, y: f64) -> [f64; 2] {
+    let (mut gx, mut gy) = (0.0, 0.0);
+    for i in -3..=3 {
+        for j in -3..=3 {
+            let w = z(x + i as f64, y + j as f64);
+            gx += i as f64 * w;
+            gy += j as f64 * w;
+        }
+    }
+    [gx / 196.0, gy / 196.0]
+}
+
 /// The laser-on moves: (start, end, layer height, pitch) of each.
 fn moves(p: &Program) -> Vec<([f64; 3], [f64; 3], f64, f64)> {
     let mut out = Vec::new();

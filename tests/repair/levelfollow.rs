@@ -35,21 +35,6 @@ fn segment_area(w: f64, h: f64) -> f64 {
     0.5 * r * r * theta - half * (r - h)
 }
 
-/// The least-squares plane's slopes through `z` every 1 mm (the scan's
-/// cell) over 3 cells (a 2.4 mm bead's width) either way about `(x, y)`:
-/// on the full symmetric window, `Σ i·z / Σ i²` each way.
-fn fitted_slope(z: &impl Fn(f64, f64) -> f64, x: f64, y: f64) -> [f64; 2] {
-    let (mut gx, mut gy) = (0.0, 0.0);
-    for i in -3..=3 {
-        for j in -3..=3 {
-            let w = z(x + i as f64, y + j as f64);
-            gx += i as f64 * w;
-            gy += j as f64 * w;
-        }
-    }
-    [gx / 196.0, gy / 196.0]
-}
-
 fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
     let dot: f64 = (0..3).map(|i| a[i] * b[i]).sum();
     dot.clamp(-1.0, 1.0).acos().to_degrees()
@@ -163,7 +148,7 @@ fn check(
             "first pass at ({x}, {y}): {b} on {}",
             z(x, y)
         );
-        let g = fitted_slope(&z, x, y);
+        let g = super::fitted_slope(&z, x, y);
         for (k, d) in stack.iter().enumerate() {
             assert!(
                 (d.vertical() - t).abs() < 1e-4,

@@ -63,15 +63,7 @@ fn worn(a: f64, y: f64) -> f64 {
 /// width (2.4 mm, so 3 cells) either way, about `(a, y)`. On a full
 /// symmetric window its slopes are `Σ i·w / Σ i²` each way.
 fn fitted_slope(a: f64, y: f64) -> [f64; 2] {
-    let (mut ga, mut gy) = (0.0, 0.0);
-    for i in -3..=3 {
-        for j in -3..=3 {
-            let w = worn(a + i as f64, y + j as f64);
-            ga += i as f64 * w;
-            gy += j as f64 * w;
-        }
-    }
-    [ga / 196.0, gy / 196.0]
+    super::fitted_slope(&worn, a, y)
 }
 
 /// The part as designed in x–z (counter-clockwise): the block to its
