@@ -380,8 +380,8 @@ impl Collision<'_> {
     fn check(&mut self, pose: &Pose, (at, way): (Where, f64)) {
         let gap = self.head.gap;
         let mut d = self.check_plate(pose, (at, way));
+        let low = self.head.lowest_along(pose, pose.up);
         if !self.material.is_empty() {
-            let low = self.head.lowest_along(pose, pose.up);
             let mut clear = low - self.highest(pose.up);
             if clear < gap {
                 // Groups beyond the cap from every point of the head
@@ -409,7 +409,7 @@ impl Collision<'_> {
             }
         }
         self.cert = Some((*pose, d));
-        self.low = self.head.lowest_along(pose, pose.up);
+        self.low = low;
     }
 
     /// Checks the head at `pose` against the plate (its lowest point: a

@@ -231,6 +231,21 @@ fn the_worn_pad_levelled_along_its_normal_then_built_up() {
     assert!((6.5..8.5).contains(&steepest), "{steepest}°");
 }
 
+/// The steeper wear of the tests below, 2.5 mm deep and 7 mm wide along
+/// the tracks, and its scan. No noise: the surface estimate on its 1 mm
+/// cells rounds the trough's bottom (curving 2·2.5/7² = 0.1 /mm) by up to
+/// 0.06 mm.
+fn steep_wear() -> (Wear, Vec<[f64; 3]>) {
+    let wear = Wear {
+        face: 10.0,
+        depth: 2.5,
+        c: [0.0, 0.0],
+        s: [7.0, 14.0],
+    };
+    let pts = scan(|x, y| wear.z(x, y), 0.0, 1);
+    (wear, pts)
+}
+
 /// A steeper wear (2.5 mm deep, 7 mm wide along the tracks): its flanks
 /// slope up to 17° along them, so the thinnest pass laid along the
 /// normal there is the bead's over cos 17°, thicker than a vertical one. A pass carries the gap's whole slope: the segments'
@@ -238,15 +253,7 @@ fn the_worn_pad_levelled_along_its_normal_then_built_up() {
 /// a bead, `lmd::segments-too-short`, followed or not).
 #[test]
 fn a_steep_wear_levelled_along_its_normal_keeps_the_beads_heights() {
-    let wear = Wear {
-        face: 10.0,
-        depth: 2.5,
-        c: [0.0, 0.0],
-        s: [7.0, 14.0],
-    };
-    // No noise: the surface estimate on its 1 mm cells rounds the trough's
-    // bottom (curving 2·2.5/7² = 0.1 /mm) by up to 0.06 mm.
-    let pts = scan(|x, y| wear.z(x, y), 0.0, 1);
+    let (wear, pts) = steep_wear();
     let src = SRC.replace("repair/worn_pad.ply", "s.ply").replace(
         "  follow = surface\n",
         "  follow = surface\n  segments {\n    tolerance = 0.3 mm\n  }\n",
@@ -271,13 +278,7 @@ fn a_steep_wear_levelled_along_its_normal_keeps_the_beads_heights() {
 /// layers' count and spacing within the narrow bead.)
 #[test]
 fn a_pass_no_thickness_lays_along_the_normal_is_refused() {
-    let wear = Wear {
-        face: 10.0,
-        depth: 2.5,
-        c: [0.0, 0.0],
-        s: [7.0, 14.0],
-    };
-    let pts = scan(|x, y| wear.z(x, y), 0.0, 1);
+    let (_, pts) = steep_wear();
     let src = SRC
         .replace("repair/worn_pad.ply", "s.ply")
         .replace("speed = 4 mm/s .. 8.7 mm/s", "speed = 8.6 mm/s .. 8.7 mm/s")

@@ -518,11 +518,12 @@ pub fn level_follow_too_steep(
     Diagnostic::error(
         Code::FollowSurface,
         format!(
-            "the levelling passes cannot be laid along the scan's normal at {place}: the scan slopes {}° along the tracks there, so a pass laid along its normal lays at least the bead's lowest {} mm over cos {}°, {} mm of height, more than the {} mm it lays at most",
+            "the levelling passes cannot be laid along the scan's normal at {place}: the scan slopes {}° along the tracks there, and a bead laid along the normal is at least {} mm thick along it, so the thinnest pass is {} mm high ({} mm / cos {}°), more than the {} mm the bead lays at most",
             short(deg),
             short(s.lo),
-            short(deg),
             short(s.lo / s.alpha.cos()),
+            short(s.lo),
+            short(deg),
             short(s.hi)
         ),
     )

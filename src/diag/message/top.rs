@@ -762,7 +762,7 @@ pub fn untilted(u: &Untilted<'_>) -> Diagnostic {
     };
     let meets = match u.meets {
         LineFault::Again => "leaves the target and enters it again above the scan",
-        LineFault::Flank => "meets the scan on a flank steeper than itself, below the flank's top edge: the scan, seen from above, does not show whether the part is there or overhangs itself with the line passing under it",
+        LineFault::Flank => "meets the scan on a flank steeper than itself (a face of the scanned part steeper than the build direction), below the flank's top edge: the scan, seen from above, does not show whether the part is there or leans out over the line, which would then pass under it",
         LineFault::Gap => "leaves the target there and meets the scan only below, through air beside the part as designed (the target holds the scanned part elsewhere, so a gap under it is no wear)",
         LineFault::Nothing => "meets none of the target above the scan, or runs off the scan",
     };

@@ -179,6 +179,18 @@ pub(super) fn track(
         .collect()
 }
 
+/// What a segment's moves add up with the nozzle tilted.
+#[derive(Clone, Copy, Default)]
+struct SegmentTilt {
+    /// The sum of its points' normals (its mean's direction).
+    normal: [f64; 3],
+    /// `cos θ` integrated along it, and its length along the track.
+    cos_len: f64,
+    len: f64,
+    /// The widest strip of its points.
+    strip: f64,
+}
+
 /// Each segment's path speed on this layer and the strip its points fill:
 /// the map's horizontal speed for `H_seg/N`, times `√(1 + s²)` with `s`
 /// the slope of the segment's chord on this layer's path, over the track's
@@ -208,13 +220,12 @@ fn segment_speeds(
 ) -> Vec<(f64, f64)> {
     let q_count = tr.heights.len();
     // Per segment: first and last point, and the steepest and flattest move;
-    // with a tilted nozzle, its mean normal, its length-weighted mean `cos θ`
-    // and its widest strip.
+    // with a tilted nozzle, its [`SegmentTilt`].
     let mut first = vec![usize::MAX; q_count];
     let mut last = vec![0usize; q_count];
     let mut steep = vec![1.0f64; q_count];
     let mut flat = vec![f64::INFINITY; q_count];
-    let mut tilt_sum = vec![([0.0f64; 3], 0.0f64, 0.0f64, 0.0f64); q_count];
+    let mut tilt_sum = vec![SegmentTilt::default(); q_count];
     for (j, &q) in tr.seg.iter().enumerate() {
         first[q] = first[q].min(j);
         last[q] = j + 1;
@@ -222,13 +233,15 @@ fn segment_speeds(
             None => climb(pos[j], pos[j + 1]),
             Some(t) => {
                 let s = &mut tilt_sum[q];
-                for (a, v) in s.0.iter_mut().zip(t[j].normal) {
+                for (a, v) in s.normal.iter_mut().zip(t[j].normal) {
                     *a += v;
                 }
                 let len = (tr.t[j + 1] - tr.t[j]).abs();
-                s.1 += len * 0.5 * (t[j].along_normal + t[j + 1].along_normal);
-                s.2 += len;
-                s.3 = s.3.max(t[j].pitch(tr.pitch)).max(t[j + 1].pitch(tr.pitch));
+                s.cos_len += len * 0.5 * (t[j].along_normal + t[j + 1].along_normal);
+                s.len += len;
+                s.strip = (s.strip)
+                    .max(t[j].pitch(tr.pitch))
+                    .max(t[j + 1].pitch(tr.pitch));
                 climb_across(pos[j], pos[j + 1], t[j].normal)
             }
         };
@@ -237,7 +250,12 @@ fn segment_speeds(
     }
     (0..q_count)
         .map(|q| {
-            let (normal, cos_len, len, strip) = tilt_sum[q];
+            let SegmentTilt {
+                normal,
+                cos_len,
+                len,
+                strip,
+            } = tilt_sum[q];
             let tilted = tilts.is_some() && strip > 0.0;
             let (h, strip) = if tilted {
                 let cos = if len > 0.0 { cos_len / len } else { 1.0 };
