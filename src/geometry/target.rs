@@ -150,14 +150,18 @@ pub fn mesh_contains(m: &Highest, q: [f64; 3]) -> bool {
 /// (`direction = auto`, docs/repair.md, *Undercuts*): what a process
 /// engineer reads in a refusal is the part's coordinates, so the
 /// planner's points are named back in the part.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct TurnedFrame {
     /// From the planning frame back into the part.
     pub back: nalgebra::Rotation3<f64>,
-    /// The finished face's height in the part, mm: the footprint the file
-    /// draws lies there, and each point of the turned footprint is the
-    /// line along the direction through one of its points.
+    /// The finished face's highest point over the footprint in the part,
+    /// mm: a line that meets no target is named where it crosses this
+    /// height.
     pub face: f64,
+    /// The target as planned (turned so the build direction is up): each
+    /// point of the turned footprint is the line along the direction
+    /// through a point of the finished face, where it enters the target.
+    pub target: std::sync::Arc<Target>,
 }
 
 impl TurnedFrame {
@@ -176,8 +180,13 @@ impl TurnedFrame {
 
     /// The part's point that the planning frame's footprint point `p`
     /// (mm) stands for: where its vertical line, the build direction's
-    /// line in the part, crosses the finished face's height.
+    /// line in the part, enters the target from above (the finished face
+    /// the file's footprint is drawn on), or crosses the face's highest
+    /// point's height where it meets no target.
     pub fn footprint(&self, p: [f64; 2]) -> [f64; 3] {
+        if let Some(h) = self.target.at(p).filter(|h| h.is_finite()) {
+            return self.point([p[0], p[1], h]);
+        }
         // The part's z along the turned vertical through p is
         // r₂₀·x + r₂₁·y + r₂₂·z, r₂₂ the direction's z (> 0 within 85°).
         let r = self.back.matrix();

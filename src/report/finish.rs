@@ -156,7 +156,7 @@ pub fn sampled(program: &Program, model: &Model) -> Option<(Finish, Vec<Sample>)
         None => (ex, Turn::default()),
         Some(d) => {
             seen = crate::slice::top::seen_along(ex, model.bead.as_ref()?, d)?;
-            let frame = seen.turned?;
+            let frame = seen.turned.clone()?;
             (&seen, Turn { frame: Some(frame) })
         }
     };

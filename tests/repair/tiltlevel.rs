@@ -126,15 +126,12 @@ fn ply() -> Vec<u8> {
 }
 
 /// The boss on the leaning slab's 5-axis head (A ±35°, the bead measured
-/// to 35°), its profile the lines along the lean through its end seen at
-/// the end's highest point, 16 mm across y; `extra` added to the slicing.
+/// to 35°), its profile its end seen from above, 16 mm across y; `extra`
+/// added to the slicing.
 fn compile_boss(extra: &str) -> lmdc::pipeline::Compiled {
     let src = include_str!("../../examples/leaning_slab.lmd");
     let src = &src[..src.find("machine kr30").unwrap()];
-    let (s, c) = LEAN.to_radians().sin_cos();
-    let face = at(-HALF, TOP)[1];
-    // The line along the lean through (x, face) is `c·x − s·face` across.
-    let x = [-HALF, HALF].map(|a| (a + s * face) / c);
+    let x = [-HALF, HALF].map(|a| at(a, TOP)[0]);
     let src = src
         .replace(
             "place(rectangle(width = 24 mm, height = 20 mm), at = [2.0207 mm, 0 mm])",
@@ -267,6 +264,44 @@ fn a_worn_leaning_boss_is_levelled_square_to_its_lean() {
     );
 }
 
+/// The footprint is the boss's end seen from above (20.78 by 16 mm, its
+/// end square to the lean): seen along the lean, the lines through it are
+/// the boss's whole section, 24 by 16 mm. Every regular layer's tracks end
+/// half a bead inside its flanks across the lean, and the outermost lie
+/// half a bead (less the tracks' spacing's rounding) inside its sides.
+#[test]
+fn the_end_seen_from_above_is_the_boss_s_section_along_its_lean() {
+    let p = program("level = auto");
+    let half_bead = 1.2;
+    for l in p.layers.iter().filter(|l| l.on_plate) {
+        let (mut a, mut y) = (
+            [f64::INFINITY, f64::NEG_INFINITY],
+            [f64::INFINITY, f64::NEG_INFINITY],
+        );
+        for q in l
+            .paths
+            .iter()
+            .flat_map(|p| &p.points)
+            .filter(|q| q.laser_on)
+        {
+            let [across, along_y, _] = boss(q.pos);
+            a = [a[0].min(across), a[1].max(across)];
+            y = [y[0].min(along_y), y[1].max(along_y)];
+        }
+        for (end, want) in a.into_iter().zip([-HALF + half_bead, HALF - half_bead]) {
+            assert!(
+                (end - want).abs() < 0.01,
+                "tracks end at {a:?} across the lean"
+            );
+        }
+        // Tracks 2 mm apart over 16 mm less a bead: ±6.8 mm.
+        assert!(
+            (y[0] + 6.8).abs() < 1e-6 && (y[1] - 6.8).abs() < 1e-6,
+            "outermost tracks at {y:?}"
+        );
+    }
+}
+
 /// The fill over the tracks of `layer`: across the lean from the tracks'
 /// first to last point, along y over their strips, from the worn face to
 /// the target's (on a 0.05 mm grid).
@@ -373,4 +408,15 @@ fn following_the_worn_end_along_the_lean_keeps_to_the_head_s_tilt() {
     }
     assert!(free > 20 && held > 20, "{free} followed, {held} held");
     assert!(most > 35.0 - 1e-3, "the steepest {most}°");
+}
+
+/// A track that a refusal names is named where its line along the lean
+/// enters the boss: on the end, its middle across the lean (not at the
+/// height of the end's highest point, 6 mm higher there).
+#[test]
+fn a_refused_track_is_named_on_the_boss_s_sloping_end() {
+    let c = compile_boss("segments {\n    tolerance = 0.0001 mm\n    min_length = 20 mm\n  }");
+    let (m, q) = super::refused_at(&c, "lmd::segments-too-short", "mm track through (");
+    let [a, _, u] = boss([q[0], q[1], q[2]]);
+    assert!((u - TOP).abs() < 1e-3 && a.abs() < 0.05, "{q:?}: {m}");
 }

@@ -41,14 +41,14 @@ pub(crate) fn height(turned: Option<&TurnedFrame>, p: [f64; 2], z: f64) -> Strin
 
 /// The spans a top's messages point at, and the frame its points are in.
 #[derive(Clone, Copy)]
-pub struct TopAt {
+pub struct TopAt<'a> {
     /// The top.
     pub top: Span,
     /// The footprint.
     pub shape: Span,
     /// Set when the fill is planned turned: its points go back into the
     /// part.
-    pub turned: Option<TurnedFrame>,
+    pub turned: Option<&'a TurnedFrame>,
 }
 
 /// The top needs more than [`MAX_LAYERS`] layers of at most `h_max`.
@@ -452,8 +452,8 @@ pub enum BadTop {
 
 /// The top is not a positive height at `p` (and at `more` other points);
 /// `inner` holds what failed when it could not be computed.
-pub fn bad_top(p: [f64; 2], more: usize, bad: BadTop, inner: bool, at: TopAt) -> Diagnostic {
-    let p = spot(at.turned.as_ref(), p);
+pub fn bad_top(p: [f64; 2], more: usize, bad: BadTop, inner: bool, at: TopAt<'_>) -> Diagnostic {
+    let p = spot(at.turned, p);
     let others = match more {
         0 => String::new(),
         1 => " (and at 1 other point sampled)".to_string(),
@@ -729,7 +729,7 @@ pub struct Untilted<'a> {
 pub enum LineFault {
     /// The target, left and entered again above the scan.
     Again,
-    /// The scan only below a gap under the target, which holds the
+    /// The scan only below a gap under the target, which contains the
     /// scanned part elsewhere: air beside the part as designed.
     Gap,
     /// The scan on a flank steeper than the line: under the edge of a
@@ -763,7 +763,7 @@ pub fn untilted(u: &Untilted<'_>) -> Diagnostic {
     let meets = match u.meets {
         LineFault::Again => "leaves the target and enters it again above the scan",
         LineFault::Flank => "meets the scan on a flank steeper than itself (a face of the scanned part steeper than the build direction), below the flank's top edge: the scan, seen from above, does not show whether the part is there or leans out over the line, which would then pass under it",
-        LineFault::Gap => "leaves the target there and meets the scan only below, through air beside the part as designed (the target holds the scanned part elsewhere, so a gap under it is no wear)",
+        LineFault::Gap => "leaves the target there and meets the scan only below, through air beside the part as designed (the target contains the scanned part elsewhere, so a gap under it is no wear)",
         LineFault::Nothing => "meets none of the target above the scan, or runs off the scan",
     };
     let within = if limit < 1.0 {

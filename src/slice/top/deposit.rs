@@ -94,6 +94,7 @@ pub fn report(
 ) -> Diagnostic {
     let through = ex
         .turned
+        .as_ref()
         .map(|f| f.footprint(Footprint::point(scan, miss.along, miss.across)));
     crate::diag::message::top::unfillable(&Unfillable {
         through,

@@ -31,9 +31,9 @@ pub struct Surface<'m> {
     pub form: Form<'m>,
     /// What the layers start on.
     base: Base<'m>,
-    /// The extrusion, read for whether its target holds the scan.
+    /// The extrusion, read for whether its target contains the scan.
     ex: &'m TopExtrusion,
-    /// Whether its target holds the scan (the part as designed), once
+    /// Whether its target contains the scan (the part as designed), once
     /// asked ([`super::underside::holds_scan`]).
     holds: Option<bool>,
 }
@@ -144,7 +144,7 @@ impl<'m> Surface<'m> {
         // above, would fill. Two crossings are a target whose underside
         // stands over the scan: over the wear, for a target of the added
         // metal alone, filled down to the scan as meant; over air beside
-        // the part, for a target that holds the scanned part (module
+        // the part, for a target that contains the scanned part (module
         // `underside`), an overhang too.
         let overhang = match crossings[..] {
             [_, under, _, ..] => Some(under),
@@ -181,7 +181,7 @@ impl Surface<'_> {
             .contains([q[0] + NUDGE, q[1] + NUDGE * 0.618, q[2]])
     }
 
-    /// Whether the target holds the scanned part, read once.
+    /// Whether the target contains the scanned part, read once.
     fn holds(&mut self) -> bool {
         let ex = self.ex;
         *self
@@ -369,7 +369,7 @@ impl Bad {
         let at = TopAt {
             top: ex.top_span,
             shape: ex.shape_span,
-            turned: ex.turned,
+            turned: ex.turned.as_ref(),
         };
         out.push(message::top::bad_top(
             self.at,

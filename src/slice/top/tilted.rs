@@ -4,8 +4,9 @@
 //! Layers laid along `d` stand on each other along `d`: every line along
 //! `d` over the footprint must meet the target above the scan in one
 //! piece, from the scan up, or its upper piece is laid on nothing. The
-//! lines are the footprint's points at the finished face's height (the
-//! profile is the face's outline seen from above), followed down along
+//! lines go through the finished face: the footprint's points, each at
+//! the target's highest point over it (the profile is the face's outline
+//! seen from above, whatever its slope), followed down along
 //! `−d` to the scan, which they must meet through its top: the scan is a
 //! height field seen from above, and a line that comes under it up a
 //! flank steeper than itself may be passing under a part that overhangs
@@ -21,7 +22,8 @@
 //! that `d` is up: the scan's surface turned and rastered again (what it
 //! hides from `d`'s side is no surface: `lmd::scan-coverage`), the target
 //! turned (its inside test turned back into the part), the footprint the
-//! profile at the face's height projected along `d`. Its layers are
+//! finished face (the profile lifted as the lines are) seen along `d`.
+//! Its layers are
 //! turned back: each point's position, nozzle and travel direction, and
 //! the layer's frame, whose `z` is then `d`. A point's layer height and
 //! pitch are along and across `d`, as they were along and across the
@@ -35,6 +37,7 @@ use super::direction::{Direction, MAX_TILT, TILT_STEP};
 use crate::diag::message::top::{LineFault, Untilted};
 use crate::diag::{message, Diagnostics};
 use crate::geometry::outline;
+use crate::geometry::profile::Profile;
 use crate::geometry::scan::HeightField;
 use crate::geometry::shape::{Outline, Segment, Shape};
 use crate::geometry::target::{Inner, Target, Turned};
@@ -78,7 +81,7 @@ enum Meets {
     /// The target again above the scan after leaving it, at this point.
     Again([f64; 3]),
     /// The scan only below a gap under the target, which it left at this
-    /// point, when the target holds the scanned part (the part as
+    /// point, when the target contains the scanned part (the part as
     /// designed, module `underside`): air beside the part.
     Gap([f64; 3]),
     /// The scan on a flank steeper than the line, at this point: seen from
@@ -91,26 +94,27 @@ enum Meets {
 
 /// The lines over the footprint and what they are tested against.
 struct Lines<'a> {
-    /// The footprint's points, mm, the outermost [`EDGE`] inside its edge:
+    /// The footprint's points on the finished face (each at the target's
+    /// highest point over it), mm, the outermost [`EDGE`] inside its edge:
     /// the vertical lines.
-    from: Vec<[f64; 2]>,
+    from: Vec<[f64; 3]>,
     /// The same, the outermost [`SLACK`] bead widths inside: the tilted
     /// lines.
-    slack: Vec<[f64; 2]>,
-    /// The finished face's height the lines pass through, mm.
+    slack: Vec<[f64; 3]>,
+    /// The finished face's highest point over the footprint, mm.
     face: f64,
     /// Above the target and below the scan, mm.
     z: [f64; 2],
     scan: &'a HeightField,
     top: &'a Top,
-    /// Whether the target holds the scanned part: a gap under it is air.
+    /// Whether the target contains the scanned part: a gap under it is air.
     holds: bool,
 }
 
 impl Lines<'_> {
     /// The footprint points of the lines, the outermost [`SLACK`] of a
     /// bead inside the edge when `slack`.
-    fn points(&self, slack: bool) -> &[[f64; 2]] {
+    fn points(&self, slack: bool) -> &[[f64; 3]] {
         if slack {
             &self.slack
         } else {
@@ -125,10 +129,10 @@ impl Lines<'_> {
     /// than the line, or the scan's edge, reached from beside), the line
     /// may be passing under a part that overhangs itself, which a height
     /// field seen from above shows as a cliff: nothing known to stand on.
-    fn meets(&self, p: [f64; 2], d: [f64; 3]) -> Meets {
-        let at = |s: f64| [p[0] + s * d[0], p[1] + s * d[1], self.face + s * d[2]];
-        let top = (self.z[1] - self.face) / d[2];
-        let bottom = (self.z[0] - self.face) / d[2];
+    fn meets(&self, p: [f64; 3], d: [f64; 3]) -> Meets {
+        let at = |s: f64| [p[0] + s * d[0], p[1] + s * d[1], p[2] + s * d[2]];
+        let top = (self.z[1] - p[2]) / d[2];
+        let bottom = (self.z[0] - p[2]) / d[2];
         // As a loft's vertical lines: a tall target is walked more coarsely,
         // so each line costs a bounded time.
         let n = ((top - bottom) / STEP)
@@ -270,13 +274,25 @@ fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
     if !(spacing.is_finite() && spacing > 0.0) {
         return None;
     }
-    let from = footprint(&profile, [lo, hi], spacing, EDGE);
-    let slack = footprint(&profile, [lo, hi], spacing, SLACK * bead.width.0);
-    // The finished face: the target's highest point over the footprint.
+    let heights = |pts: Vec<[f64; 2]>| -> Vec<([f64; 2], Option<f64>)> {
+        pts.into_iter()
+            .map(|p| (p, ex.top.mesh_at(p).flatten()))
+            .collect()
+    };
+    let from = heights(footprint(&profile, [lo, hi], spacing, EDGE));
+    let slack = heights(footprint(&profile, [lo, hi], spacing, SLACK * bead.width.0));
+    // The finished face's highest point over the footprint: where a point
+    // has no target over it, its line passes there (and meets nothing).
     let face = from
         .iter()
-        .filter_map(|&p| ex.top.mesh_at(p).flatten())
+        .filter_map(|&(_, h)| h)
         .fold(f64::NEG_INFINITY, f64::max);
+    let lift = |pts: Vec<([f64; 2], Option<f64>)>| -> Vec<[f64; 3]> {
+        pts.into_iter()
+            .map(|(p, h)| [p[0], p[1], h.unwrap_or(face)])
+            .collect()
+    };
+    let (from, slack) = (lift(from), lift(slack));
     let z = [scan.stats.z_range[0] - 1.0, bounds[1][2] + 1.0];
     let usable = !from.is_empty()
         && !slack.is_empty()
@@ -383,14 +399,8 @@ fn untilted(
         Some((_, Meets::Again(q))) => (q, LineFault::Again),
         Some((_, Meets::Flank(q))) => (q, LineFault::Flank),
         Some((_, Meets::Gap(q))) => (q, LineFault::Gap),
-        Some((k, _)) => {
-            let p = points[k];
-            ([p[0], p[1], lines.face], LineFault::Nothing)
-        }
-        None => {
-            let p = points[witness % points.len()];
-            ([p[0], p[1], lines.face], LineFault::Again)
-        }
+        Some((k, _)) => (points[k], LineFault::Nothing),
+        None => (points[witness % points.len()], LineFault::Again),
     };
     message::top::untilted(&Untilted {
         at: point,
@@ -437,7 +447,7 @@ fn up(d: [f64; 3]) -> Rotation3<f64> {
 
 /// `ex` seen along `d` (a unit vector, tilted less than 85°) as a fill
 /// along it is planned with `bead`: turned so `d` is up, its scan, target
-/// and footprint (the profile at the finished face's height) with it.
+/// and footprint (the finished face seen along `d`) with it.
 /// `None` when its top is no target on a scan or does not turn. What the
 /// report integrates a tilted fill's design volume over.
 pub(crate) fn seen_along(ex: &TopExtrusion, bead: &Bead, d: [f64; 3]) -> Option<TopExtrusion> {
@@ -449,7 +459,8 @@ pub(crate) fn seen_along(ex: &TopExtrusion, bead: &Bead, d: [f64; 3]) -> Option<
 }
 
 /// `ex` turned by `rot`: its scan turned and rastered again, its
-/// target turned, its footprint the profile at the face's height turned,
+/// target turned, its footprint the finished face turned (the profile,
+/// each point at the target's highest point over it),
 /// and the way back into the part for the points its messages name.
 fn turn(
     ex: &TopExtrusion,
@@ -470,12 +481,19 @@ fn turn(
         Top::Solid(s) => (Inner::Solid(s.surface.clone()), s.name.clone()),
         _ => return Err(internal("a tilted fill of a top that is no target")),
     };
-    let target =
-        Turned::new(inner, rot).ok_or_else(|| internal("the target has no finite extent"))?;
+    let target = Arc::new(Target::Turned(
+        Turned::new(inner, rot).ok_or_else(|| internal("the target has no finite extent"))?,
+    ));
     let profile = outline::profile(&ex.shape, CHORD_ERROR);
+    let ring = profile.polyline(CHORD_ERROR);
     let mut pts: Vec<[Length; 2]> = Vec::new();
-    for p in profile.polyline(CHORD_ERROR) {
-        let q = rot * Vector3::new(p[0], p[1], lines.face);
+    for (k, &p) in ring.iter().enumerate() {
+        let [a, b] = [
+            ring[(k + ring.len() - 1) % ring.len()],
+            ring[(k + 1) % ring.len()],
+        ];
+        let h = edge_height(&ex.top, &profile, [a, p, b]).unwrap_or(lines.face);
+        let q = rot * Vector3::new(p[0], p[1], h);
         let q = [Length(q.x), Length(q.y)];
         if pts.last() != Some(&q) {
             pts.push(q);
@@ -495,7 +513,7 @@ fn turn(
         shape,
         top: Top::Solid(TopSolid {
             name,
-            surface: Arc::new(Target::Turned(target)),
+            surface: target.clone(),
         }),
         base: Some(ScanBase {
             surface: Arc::new(surface),
@@ -504,9 +522,38 @@ fn turn(
         turned: Some(TurnedFrame {
             back: rot.inverse(),
             face: lines.face,
+            target,
         }),
         ..ex.clone()
     })
+}
+
+/// The finished face's height at `p`, a point of the footprint's edge
+/// between `a` and `b`: the target's highest point [`EDGE`] inside the
+/// edge, where the outermost lines run (on the edge itself the target's
+/// side may or may not be over it). `None` where no target is there.
+fn edge_height(top: &Top, profile: &Profile, [a, p, b]: [[f64; 2]; 3]) -> Option<f64> {
+    let normal = |u: [f64; 2], v: [f64; 2]| {
+        let (dx, dy) = (v[0] - u[0], v[1] - u[1]);
+        let l = dx.hypot(dy);
+        if l > 0.0 {
+            [-dy / l, dx / l]
+        } else {
+            [0.0, 0.0]
+        }
+    };
+    let [n, m] = [normal(a, p), normal(p, b)];
+    let bisector = [n[0] + m[0], n[1] + m[1]];
+    let l = bisector[0].hypot(bisector[1]);
+    // Either side of the edge: the one inside the profile.
+    [1.0, -1.0]
+        .into_iter()
+        .map(|s| {
+            let k = if l > 1e-12 { s * EDGE / l } else { 0.0 };
+            [p[0] + k * bisector[0], p[1] + k * bisector[1]]
+        })
+        .find(|&q| profile.contains(q))
+        .and_then(|q| top.mesh_at(q).flatten())
 }
 
 /// A layer planned in the turned frame, turned back into the part by

@@ -72,6 +72,7 @@ pub fn report(
         place: (tracks > 1).then(|| (scan.across().name(), worst.c)),
         through: ex
             .turned
+            .as_ref()
             .map(|f| f.footprint(Footprint::point(scan, worst.middle, worst.c))),
         failing: failures.len(),
         tracks,
