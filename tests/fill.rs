@@ -543,7 +543,9 @@ proptest! {
 
     /// Every track lies within the outline grown by the extension (raster) or
     /// the chord error (contours); contour i lies at inset + i·offset; raster
-    /// lines sit whole offsets apart.
+    /// lines sit whole offsets apart, but for the closing line on the far
+    /// extreme and closing tracks on the region's edges within a degree of
+    /// the lines.
     #[test]
     fn tracks_stay_inside_the_outline(
         w in 4.0f64..60.0,
@@ -596,7 +598,15 @@ proptest! {
                     for q in [a, b] {
                         prop_assert!(p.distance_to_boundary(q) >= region_depth - extend - 1e-7 || !p.contains(q));
                     }
-                    across.push(-a[0] * s + a[1] * c);
+                    // A closing track along an edge within a degree of the
+                    // lines lies on the raster region's edge, off the
+                    // lines' spacing.
+                    let on_edge = [a, b].iter().all(|q| (p.distance_to_boundary(*q) - region_depth).abs() < 1e-7);
+                    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                    let off = ((dx * c + dy * s).abs() / dx.hypot(dy)).min(1.0).acos().to_degrees();
+                    if !(on_edge && off <= 1.0 + 1e-9) {
+                        across.push(-a[0] * s + a[1] * c);
+                    }
                 }
             }
         }
@@ -712,5 +722,140 @@ proptest! {
         if contours > 0 && w.min(h) - 2.0 * inset > 2.0 * (contours as f64 * d + 2.0 * bead) {
             prop_assert!(lmdc::fill::gap(&p, inset, &walls, bead, lmdc::fill::MAX_SAMPLES).is_some());
         }
+    }
+}
+
+/// A 60 × 40 mm U whose notch's walls run along a 90° raster's lines, one
+/// contour (offset 1.4 mm, bead 2 mm, inset 1 mm): the raster's region is
+/// the U 2.4 mm in, its notch walls at x = 17.9 and 42.7 mm. The lines,
+/// 1.4 mm apart from x = 57.6, pass 0.9 mm beside each wall (at 17.0 and
+/// 43.6), so with the contour 1.4 mm beyond the wall a strip 2.3 mm wide
+/// lay between line and contour, wider than the bead. A closing track runs
+/// on each wall, from the arc round the notch's corner (y = 15) to the top
+/// (y = 37.6), and no two neighbours are left farther apart than the bead.
+fn notched_u(notch: [f64; 2]) -> Profile {
+    Profile::new(
+        [
+            (0.0, 0.0),
+            (60.0, 0.0),
+            (60.0, 40.0),
+            (notch[1], 40.0),
+            (notch[1], 15.0),
+            (notch[0], 15.0),
+            (notch[0], 40.0),
+            (0.0, 40.0),
+        ]
+        .iter()
+        .map(|&(x, y)| Vertex::line(x, y))
+        .collect(),
+    )
+}
+
+/// One contour and a raster at `angle`, `d` apart, for a bead `w` wide
+/// (inset half a bead, the closing threshold `w − d`), laser-on links or
+/// none.
+fn contour_and_raster(angle: f64, d: f64, w: f64, link: Linking) -> FillSpec {
+    FillSpec {
+        inset: w / 2.0,
+        contours: 1,
+        offset: d,
+        raster: Some(RasterSpec {
+            angle_deg: angle,
+            offset: d,
+            pattern: Pattern::Serpentine,
+            extend: d,
+            link,
+            closing: w - d,
+        }),
+        seam: Seam::Lowest,
+    }
+}
+
+/// The widest gap between neighbouring deposits of `tracks`, if any are
+/// farther apart than `w` (lmd::fill-gap's measure).
+fn apart(p: &Profile, tracks: &[Track], [w, d]: [f64; 2]) -> Option<lmdc::fill::pitch::Apart> {
+    let strands: Vec<_> = tracks
+        .iter()
+        .enumerate()
+        .map(|(chain, t)| lmdc::fill::pitch::Strand {
+            points: &t.points,
+            chain,
+        })
+        .collect();
+    lmdc::fill::pitch::strips(&strands, [w, d], 50_000, |q| p.contains(q)).apart
+}
+
+#[test]
+fn walls_along_the_lines_get_a_closing_track() {
+    let u = notched_u([20.3, 40.3]);
+    let (w, d) = (2.0, 1.4);
+    let tracks = fill(&u, &contour_and_raster(90.0, d, w, Linking::None), 0.01).unwrap();
+    let on = |x: f64| {
+        infill(&tracks)
+            .into_iter()
+            .filter(|[a, b]| close(a[0], x, 1e-9) && close(b[0], x, 1e-9))
+            .map(|[a, b]| (a[1].min(b[1]), a[1].max(b[1])))
+            .collect::<Vec<_>>()
+    };
+    for x in [17.9, 42.7] {
+        let got = on(x);
+        assert_eq!(got.len(), 1, "x = {x}: {got:?}");
+        assert!(
+            close(got[0].0, 15.0, 1e-9) && close(got[0].1, 37.6, 1e-9),
+            "x = {x}: {got:?}"
+        );
+    }
+    // The lines beside them are where the spacing puts them.
+    assert_eq!(on(17.0).len(), 1);
+    assert_eq!(on(43.6).len(), 1);
+    assert_eq!(apart(&u, &tracks, [w, d]), None);
+    // Without them the strips are left: what the closing tracks are for.
+    let without: Vec<Track> = tracks
+        .iter()
+        .filter(|t| !(close(t.points[0][0], 17.9, 1e-9) || close(t.points[0][0], 42.7, 1e-9)))
+        .cloned()
+        .collect();
+    let gap = apart(&u, &without, [w, d]).expect("a strip wider than the bead");
+    assert!(close(gap.apart, 2.3, 1e-6), "{gap:?}");
+}
+
+/// A wall whose line beside it lies within the closing threshold (the bead
+/// less the offset, 0.6 mm) gets none: the notch from x = 19.9 puts the
+/// left wall at 17.5, 0.5 mm from the line at 17.0; the right wall, 0.9 mm
+/// from its line, still gets one.
+#[test]
+fn a_closing_track_only_where_the_line_beside_is_too_far() {
+    let u = notched_u([19.9, 40.3]);
+    let tracks = fill(&u, &contour_and_raster(90.0, 1.4, 2.0, Linking::None), 0.01).unwrap();
+    let at = |x: f64| {
+        infill(&tracks)
+            .iter()
+            .filter(|[a, b]| close(a[0], x, 1e-9) && close(b[0], x, 1e-9))
+            .count()
+    };
+    assert_eq!(at(17.5), 0);
+    assert_eq!(at(17.0), 1);
+    assert_eq!(at(42.7), 1);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Notched plates at any raster angle, the lines any distance from the
+    /// notch's walls and the plate's sides (angles within a hundredth of a
+    /// degree of them among the cases), linked or not: no two neighbouring
+    /// deposits are left farther apart than the bead.
+    #[test]
+    fn no_strip_is_left_beside_an_edge_along_the_lines(
+        left in 12.0f64..25.0,
+        width in 8.0f64..20.0,
+        angle in prop_oneof![0.0f64..180.0, (0usize..4, -0.02f64..0.02).prop_map(|(k, e)| k as f64 * 90.0 + e)],
+        d in 1.2f64..1.9,
+        link in prop_oneof![Just(Linking::None), Just(Linking::LaserOn), Just(Linking::LaserOff)],
+    ) {
+        let (w, u) = (2.2, notched_u([left, left + width]));
+        let tracks = fill(&u, &contour_and_raster(angle, d, w, link), 0.01)
+            .map_err(|e| TestCaseError::fail(format!("{e}")))?;
+        prop_assert_eq!(apart(&u, &tracks, [w, d]), None);
     }
 }

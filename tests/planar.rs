@@ -676,3 +676,21 @@ fn a_fin_that_overlaps_itself_builds_with_a_bead_over_a_speed_range() {
         assert!(v > 10.0 || pitch > 2.9, "{pitch}: {v} mm/s");
     }
 }
+
+/// The planar benchmark (README, *Speed*) builds all its 400 layers: its
+/// raster, turned 67° a layer, runs along the notch's sides on some (90°,
+/// 270° …), where the line beside a side fell 4 mm from the contour and
+/// the layer was refused (lmd::fill-gap) until those sides got closing
+/// tracks.
+#[test]
+fn the_plate_benchmark_builds_every_layer() {
+    let src = std::fs::read_to_string("examples/bench/big_plate.lmd").unwrap();
+    let c = compile(&src, &mut ());
+    assert!(
+        with_code(&c.diagnostics, "lmd::fill-gap").is_empty(),
+        "{:?}",
+        c.diagnostics
+    );
+    let p = c.program.unwrap_or_else(|| panic!("{:?}", c.diagnostics));
+    assert_eq!(p.ir().layers.len(), 400);
+}

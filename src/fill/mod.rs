@@ -30,7 +30,11 @@
 //!   line — seed 001's `X_n`. When more than half an offset
 //!   ([`CLOSING`]; less where [`RasterSpec::closing`] says) is left between
 //!   the last such line and `s_max`, a closing line sits on `s_max`, so the
-//!   far edge is not short by up to an offset.
+//!   far edge is not short by up to an offset. An edge between the
+//!   extremes that runs within a degree of the lines (a notch's side, a
+//!   step of the outline, an edge a hair off the lines' direction) gets a
+//!   closing track on it by the same rule, where the nearest line beside it
+//!   is farther: module `edge`, after the raster's own tracks.
 //! - **Clipping** is exact, against the region's lines and true arcs (not a
 //!   flattened polygon), and the region is closed: a line lying along a
 //!   straight edge yields that edge, a line touching an arc yields the touch
@@ -90,6 +94,7 @@ mod clamp;
 mod clip;
 mod contour;
 mod coverage;
+mod edge;
 mod error;
 mod extend;
 mod inside;

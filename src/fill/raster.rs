@@ -51,6 +51,18 @@ pub(super) fn tracks(
         let keep = Pieces::new(cx.keep_out.iter().map(|p| (p, true)), &frame);
         clamp::clamp(&mut grown, &lines, &line_s, &keep.items);
     }
+    // Beside an edge, what the tracks lay: their intervals as extended.
+    let laid: Vec<Vec<[f64; 2]>> = grown
+        .iter()
+        .map(|l| l.iter().map(|&(_, iv)| iv).collect())
+        .collect();
+    let closings = super::edge::closings(
+        region,
+        (&pieces, &frame),
+        (&line_s, &laid),
+        spec.closing.min(CLOSING * spec.offset),
+        spec.offset,
+    );
 
     if let Some((within, laser)) = cx.link {
         let chains = link::chains(
@@ -65,7 +77,9 @@ pub(super) fn tracks(
             &Pieces::new(within.loops(), &frame),
             laser,
         );
-        return link::tracks(&chains, &grown, &line_s, &frame, points_left);
+        let mut out = link::tracks(&chains, &grown, &line_s, &frame, points_left)?;
+        closing_tracks(&closings, &mut out, points_left)?;
+        return Ok(out);
     }
 
     let mut out = Vec::new();
@@ -90,7 +104,24 @@ pub(super) fn tracks(
             forward = !forward;
         }
     }
+    closing_tracks(&closings, &mut out, points_left)?;
     Ok(out)
+}
+
+/// Appends the closing tracks along edges that run with the lines
+/// (module `edge`), after the raster's own.
+fn closing_tracks(
+    closings: &[[[f64; 2]; 2]],
+    out: &mut Vec<Track>,
+    points_left: &mut u64,
+) -> Result<(), FillError> {
+    spend(points_left, 2 * closings.len())?;
+    out.extend(closings.iter().map(|&[a, b]| Track {
+        kind: TrackKind::Infill,
+        points: vec![a, b],
+        link: None,
+    }));
+    Ok(())
 }
 
 /// Each raster line's `s` over the extent `(s_min, s_max)`, `d` apart,

@@ -1,0 +1,125 @@
+//! Closing tracks along the raster region's edges that run with the lines.
+//!
+//! The raster's lines are spaced from the region's near extreme and closed
+//! at its far one ([`super::raster::CLOSING`]), but an edge inside that
+//! range running along the lines — a notch's side, a step of the outline,
+//! a straight hole's side, or any edge within a degree of the lines — is
+//! wherever the spacing leaves it: the nearest line beside it may lie up to
+//! an offset away, and with the contour another offset beyond, the strip
+//! between them is wider than the bead (`lmd::fill-gap`). Lines crossing
+//! an edge at a steeper angle end at it and are extended into the
+//! staircase; these do not cross it.
+//!
+//! So along every straight edge within [`PARALLEL_DEG`] of the lines, the
+//! nearest line on the region's side is looked up every quarter offset;
+//! where it runs alongside (its clipped interval covers that place) farther
+//! than the closing threshold from the edge, over at least
+//! [`MIN_LENGTH`] offsets, a track is laid on the edge, as the closing line
+//! is laid on the far extreme. Linear in the edges' length.
+
+use super::clip::{Frame, Pieces};
+use crate::geometry::region::Region;
+
+/// Edges within this of the lines' direction (deg) may need a closing
+/// track: lines crossing a steeper edge end at it every
+/// `offset / sin(angle)` and their extension fills the staircase. The
+/// gap check takes neighbours within a degree for parallel.
+pub const PARALLEL_DEG: f64 = 1.0;
+
+/// A stretch shorter than this many offsets gets no track (a laser on for
+/// less than a bead lays a blob; the gap check looks along two beads).
+const MIN_LENGTH: f64 = 2.0;
+
+/// A line this many offsets outside an edge, alongside it, lays along the
+/// edge.
+const HAIR: f64 = 0.1;
+
+/// Most places an edge is sampled at.
+const MAX_SAMPLES: f64 = 100_000.0;
+
+/// How far off the edge (mm) its region side is tested.
+const SIDE_PROBE: f64 = 1e-4;
+
+/// The closing tracks (start and end, in the world frame) along `region`'s
+/// straight edges that run within [`PARALLEL_DEG`] of the lines at
+/// `line_s` (their clipped intervals `lines`), where the nearest line on
+/// the region's side lies more than `threshold` from the edge; `offset`
+/// the lines' spacing. In the order of the edges along the loops.
+pub(super) fn closings(
+    region: &Region,
+    (pieces, frame): (&Pieces, &Frame),
+    (line_s, lines): (&[f64], &[Vec<[f64; 2]>]),
+    threshold: f64,
+    offset: f64,
+) -> Vec<[[f64; 2]; 2]> {
+    let mut out = Vec::new();
+    let usable = offset.is_finite() && offset > 0.0 && threshold.is_finite();
+    if line_s.is_empty() || !usable {
+        return out;
+    }
+    let tan = PARALLEL_DEG.to_radians().tan();
+    for p in pieces.items.iter().filter(|p| p.arc.is_none()) {
+        let (dt, du) = (p.hi[0] - p.lo[0], p.hi[1] - p.lo[1]);
+        let len = dt.hypot(du);
+        let long = len.is_finite() && len >= MIN_LENGTH * offset;
+        if !long || du > tan * dt.abs() {
+            continue;
+        }
+        let at = |f: f64| [p.lo[0] + f * dt, p.lo[1] + f * du];
+        let mid = at(0.5);
+        let inside = |du: f64| region.contains(frame.world([mid[0], mid[1] + du]));
+        let side = match (inside(SIDE_PROBE), inside(-SIDE_PROBE)) {
+            (true, false) => 1.0,
+            (false, true) => -1.0,
+            // A slit or a sliver: the region on both sides or neither.
+            _ => continue,
+        };
+        // Every quarter offset, but a bounded count an edge.
+        let n = (len / (offset / 4.0)).ceil().min(MAX_SAMPLES) as usize;
+        let far = |q: [f64; 2]| {
+            // A line a hair outside the edge (an edge off the lines'
+            // direction, touched at its end by the extreme line) lays along
+            // it too.
+            let hair = gap_beside(q, -side, line_s, lines).is_some_and(|g| g <= HAIR * offset);
+            !hair && gap_beside(q, side, line_s, lines).is_some_and(|g| g > threshold)
+        };
+        // Each sample stands for 1/n of the edge, around its middle.
+        let mut run: Option<usize> = None;
+        for k in 0..=n {
+            let open = k < n && far(at((k as f64 + 0.5) / n as f64));
+            match (open, run) {
+                (true, None) => run = Some(k),
+                (false, Some(first)) => {
+                    run = None;
+                    let (a, b) = (first as f64 / n as f64, k as f64 / n as f64);
+                    if (b - a) * len >= MIN_LENGTH * offset {
+                        out.push([frame.world(at(a)), frame.world(at(b))]);
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    out
+}
+
+/// How far from `q` (frame coordinates, on an edge) the nearest line on
+/// the region's `side` (+1: higher `u`) lies, when that line runs alongside
+/// `q` (one of its intervals covers `q`'s `t`); `None` when none does.
+fn gap_beside(q: [f64; 2], side: f64, line_s: &[f64], lines: &[Vec<[f64; 2]>]) -> Option<f64> {
+    // A line on the edge, to rounding, is beside it.
+    let slack = 1e-9 * (1.0 + q[1].abs());
+    let k = if side > 0.0 {
+        line_s.partition_point(|&s| s < q[1] - slack)
+    } else {
+        line_s
+            .partition_point(|&s| s <= q[1] + slack)
+            .checked_sub(1)?
+    };
+    let s = *line_s.get(k)?;
+    let alongside = lines
+        .get(k)?
+        .iter()
+        .any(|&[a, b]| a - slack <= q[0] && q[0] <= b + slack);
+    alongside.then_some((s - q[1]).abs())
+}
