@@ -544,8 +544,8 @@ proptest! {
     /// Every track lies within the outline grown by the extension (raster) or
     /// the chord error (contours); contour i lies at inset + i·offset; raster
     /// lines sit whole offsets apart, but for the closing line on the far
-    /// extreme and closing tracks on the region's edges within a degree of
-    /// the lines.
+    /// extreme and closing tracks on the region's edges within
+    /// `PARALLEL_DEG` of the lines.
     #[test]
     fn tracks_stay_inside_the_outline(
         w in 4.0f64..60.0,
@@ -598,13 +598,13 @@ proptest! {
                     for q in [a, b] {
                         prop_assert!(p.distance_to_boundary(q) >= region_depth - extend - 1e-7 || !p.contains(q));
                     }
-                    // A closing track along an edge within a degree of the
+                    // A closing track along an edge within PARALLEL_DEG of the
                     // lines lies on the raster region's edge, off the
                     // lines' spacing.
                     let on_edge = [a, b].iter().all(|q| (p.distance_to_boundary(*q) - region_depth).abs() < 1e-7);
                     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
                     let off = ((dx * c + dy * s).abs() / dx.hypot(dy)).min(1.0).acos().to_degrees();
-                    if !(on_edge && off <= 1.0 + 1e-9) {
+                    if !(on_edge && off <= lmdc::fill::PARALLEL_DEG + 1e-9) {
                         across.push(-a[0] * s + a[1] * c);
                     }
                 }

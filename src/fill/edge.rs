@@ -3,7 +3,7 @@
 //! The raster's lines are spaced from the region's near extreme and closed
 //! at its far one ([`super::raster::CLOSING`]), but an edge inside that
 //! range running along the lines — a notch's side, a step of the outline,
-//! a straight hole's side, or any edge within a degree of the lines — is
+//! a straight hole's side, or any edge a few degrees off the lines — is
 //! wherever the spacing leaves it: the nearest line beside it may lie up to
 //! an offset away, and with the contour another offset beyond, the strip
 //! between them is wider than the bead (`lmd::fill-gap`). Lines crossing
@@ -21,10 +21,11 @@ use super::clip::{Frame, Pieces};
 use crate::geometry::region::Region;
 
 /// Edges within this of the lines' direction (deg) may need a closing
-/// track: lines crossing a steeper edge end at it every
-/// `offset / sin(angle)` and their extension fills the staircase. The
-/// gap check takes neighbours within a degree for parallel.
-pub const PARALLEL_DEG: f64 = 1.0;
+/// track: between two lines that cross such an edge (every
+/// `offset / sin(angle)`, 24 mm at 5° for a 2.1 mm offset) the wedge
+/// beside it is wider than the bead over more than two offsets; across a
+/// steeper edge the lines' ends, extended, fill the staircase.
+pub const PARALLEL_DEG: f64 = 5.0;
 
 /// A stretch shorter than this many offsets gets no track (a laser on for
 /// less than a bead lays a blob; the gap check looks along two beads).

@@ -31,7 +31,7 @@
 //!   ([`CLOSING`]; less where [`RasterSpec::closing`] says) is left between
 //!   the last such line and `s_max`, a closing line sits on `s_max`, so the
 //!   far edge is not short by up to an offset. An edge between the
-//!   extremes that runs within a degree of the lines (a notch's side, a
+//!   extremes that runs within 5° of the lines (a notch's side, a
 //!   step of the outline, an edge a hair off the lines' direction) gets a
 //!   closing track on it by the same rule, where the nearest line beside it
 //!   is farther: module `edge`, after the raster's own tracks.
@@ -103,6 +103,7 @@ pub mod pitch;
 mod raster;
 
 pub use coverage::{gap, gap_in, Gap, MAX_SAMPLES};
+pub use edge::PARALLEL_DEG;
 pub use error::{BadValue, Count, FillError};
 pub use raster::{intervals_at, CLOSING};
 
