@@ -27,7 +27,7 @@ fn flange() -> Region {
 }
 
 /// `size = outer` with bead width `w`: inset w/2, tracks `d` apart.
-fn spec(w: f64, d: f64, contours: usize, angle: f64, link: Linking) -> FillSpec {
+pub(super) fn spec(w: f64, d: f64, contours: usize, angle: f64, link: Linking) -> FillSpec {
     FillSpec {
         inset: w / 2.0,
         contours,

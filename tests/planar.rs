@@ -677,7 +677,7 @@ fn a_fin_that_overlaps_itself_builds_with_a_bead_over_a_speed_range() {
     }
 }
 
-/// The planar benchmark (README, *Speed*) builds all its 400 layers: its
+/// The planar benchmark (README, *Benchmark*) builds all its 400 layers: its
 /// raster, turned 67° a layer, runs along the notch's sides on some (90°,
 /// 270° …), where the line beside a side fell 4 mm from the contour and
 /// the layer was refused (lmd::fill-gap) until those sides got closing

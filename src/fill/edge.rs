@@ -8,14 +8,17 @@
 //! an offset away, and with the contour another offset beyond, the strip
 //! between them is wider than the bead (`lmd::fill-gap`). Lines crossing
 //! an edge at a steeper angle end at it and are extended into the
-//! staircase; these do not cross it.
+//! staircase; these cross it seldom (every `offset / sin(angle)`), and
+//! between two crossings the wedge beside it is the gap.
 //!
 //! So along every straight edge within [`PARALLEL_DEG`] of the lines, the
 //! nearest line on the region's side is looked up every quarter offset;
-//! where it runs alongside (its clipped interval covers that place) farther
+//! where it runs alongside (its interval as laid covers that place) farther
 //! than the closing threshold from the edge, over at least
 //! [`MIN_LENGTH`] offsets, a track is laid on the edge, as the closing line
-//! is laid on the far extreme. Linear in the edges' length.
+//! is laid on the far extreme. Linear in the edges' length, plus two
+//! inside tests (each linear in the region's vertices) for each edge near
+//! the lines' direction.
 
 use super::clip::{Frame, Pieces};
 use crate::geometry::region::Region;
@@ -43,21 +46,26 @@ const SIDE_PROBE: f64 = 1e-4;
 
 /// The closing tracks (start and end, in the world frame) along `region`'s
 /// straight edges that run within [`PARALLEL_DEG`] of the lines at
-/// `line_s` (their clipped intervals `lines`), where the nearest line on
-/// the region's side lies more than `threshold` from the edge; `offset`
-/// the lines' spacing. In the order of the edges along the loops.
+/// `line_s` (their intervals as laid, `lines`), where the nearest line on
+/// the region's side lies more than `threshold` from the edge (at least
+/// [`HAIR`] offsets: a bead no wider than the offset would put the track
+/// on the line); `offset` the lines' spacing, `extend` the most their ends
+/// grow. In the order of the edges along the loops.
 pub(super) fn closings(
     region: &Region,
     (pieces, frame): (&Pieces, &Frame),
     (line_s, lines): (&[f64], &[Vec<[f64; 2]>]),
-    threshold: f64,
-    offset: f64,
+    [threshold, offset, extend]: [f64; 3],
 ) -> Vec<[[f64; 2]; 2]> {
     let mut out = Vec::new();
     let usable = offset.is_finite() && offset > 0.0 && threshold.is_finite();
     if line_s.is_empty() || !usable {
         return out;
     }
+    let threshold = threshold.max(HAIR * offset);
+    // A line outside the edge, alongside it, lays along it within this: a
+    // hair, or as far as an end grown along an edge off the lines gets.
+    let hair = (HAIR * offset).max(extend * PARALLEL_DEG.to_radians().sin());
     let tan = PARALLEL_DEG.to_radians().tan();
     for p in pieces.items.iter().filter(|p| p.arc.is_none()) {
         let (dt, du) = (p.hi[0] - p.lo[0], p.hi[1] - p.lo[1]);
@@ -81,8 +89,8 @@ pub(super) fn closings(
             // A line a hair outside the edge (an edge off the lines'
             // direction, touched at its end by the extreme line) lays along
             // it too.
-            let hair = gap_beside(q, -side, line_s, lines).is_some_and(|g| g <= HAIR * offset);
-            !hair && gap_beside(q, side, line_s, lines).is_some_and(|g| g > threshold)
+            let along = gap_beside(q, -side, line_s, lines).is_some_and(|g| g <= hair);
+            !along && gap_beside(q, side, line_s, lines).is_some_and(|g| g > threshold)
         };
         // Each sample stands for 1/n of the edge, around its middle.
         let mut run: Option<usize> = None;

@@ -30,11 +30,12 @@
 //!   line — seed 001's `X_n`. When more than half an offset
 //!   ([`CLOSING`]; less where [`RasterSpec::closing`] says) is left between
 //!   the last such line and `s_max`, a closing line sits on `s_max`, so the
-//!   far edge is not short by up to an offset. An edge between the
-//!   extremes that runs within 5° of the lines (a notch's side, a
-//!   step of the outline, an edge a hair off the lines' direction) gets a
-//!   closing track on it by the same rule, where the nearest line beside it
-//!   is farther: module `edge`, after the raster's own tracks.
+//!   far edge is not short by up to an offset. A straight edge between the
+//!   extremes that runs within [`PARALLEL_DEG`] of the lines (a notch's
+//!   side, a step of the outline, an edge a hair off the lines' direction)
+//!   gets a closing track on it by the same rule, where the nearest line
+//!   beside it is farther than that threshold: module `edge`, laid after
+//!   the raster track (or linked run) whose end is nearest it.
 //! - **Clipping** is exact, against the region's lines and true arcs (not a
 //!   flattened polygon), and the region is closed: a line lying along a
 //!   straight edge yields that edge, a line touching an arc yields the touch

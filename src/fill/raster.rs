@@ -60,8 +60,11 @@ pub(super) fn tracks(
         region,
         (&pieces, &frame),
         (&line_s, &laid),
-        spec.closing.min(CLOSING * spec.offset),
-        spec.offset,
+        [
+            spec.closing.min(CLOSING * spec.offset),
+            spec.offset,
+            spec.extend,
+        ],
     );
 
     if let Some((within, laser)) = cx.link {
@@ -108,19 +111,46 @@ pub(super) fn tracks(
     Ok(out)
 }
 
-/// Appends the closing tracks along edges that run with the lines
-/// (module `edge`), after the raster's own.
+/// Adds the closing tracks along edges that run with the lines (module
+/// `edge`) to the raster's: each after the end of a run of tracks (a track
+/// not linked on) nearest one of its ends, laid from that end, so the
+/// nozzle lays it on its way rather than coming back for it.
 fn closing_tracks(
     closings: &[[[f64; 2]; 2]],
     out: &mut Vec<Track>,
     points_left: &mut u64,
 ) -> Result<(), FillError> {
+    if closings.is_empty() {
+        return Ok(());
+    }
     spend(points_left, 2 * closings.len())?;
-    out.extend(closings.iter().map(|&[a, b]| Track {
-        kind: TrackKind::Infill,
-        points: vec![a, b],
-        link: None,
-    }));
+    let dist = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+    // For each closing track, the run end it follows and its way round.
+    let mut after: Vec<Vec<Track>> = vec![Vec::new(); out.len() + 1];
+    for &[a, b] in closings {
+        let best = out
+            .iter()
+            .enumerate()
+            .filter(|(_, t)| t.link.is_none())
+            .filter_map(|(i, t)| t.points.last().map(|&e| (i, dist(e, a).min(dist(e, b)), e)))
+            .min_by(|x, y| x.1.total_cmp(&y.1));
+        let (slot, points) = match best {
+            Some((i, _, e)) if dist(e, b) < dist(e, a) => (i + 1, vec![b, a]),
+            Some((i, _, _)) => (i + 1, vec![a, b]),
+            None => (out.len(), vec![a, b]),
+        };
+        after[slot].push(Track {
+            kind: TrackKind::Infill,
+            points,
+            link: None,
+        });
+    }
+    let tracks = std::mem::take(out);
+    for (i, t) in tracks.into_iter().enumerate() {
+        out.append(&mut after[i]);
+        out.push(t);
+    }
+    out.extend(after.pop().into_iter().flatten());
     Ok(())
 }
 

@@ -268,26 +268,19 @@ fn a_worn_leaning_boss_is_levelled_square_to_its_lean() {
 /// end square to the lean): seen along the lean, the lines through it are
 /// the boss's whole section, 24 by 16 mm. Every regular layer's tracks end
 /// half a bead inside its flanks across the lean, and the outermost lie
-/// half a bead (less the tracks' spacing's rounding) inside its sides.
+/// at ±6.8 mm, 2 mm apart from the middle of a 16 mm stretch of it.
 #[test]
 fn the_end_seen_from_above_is_the_boss_s_section_along_its_lean() {
     let p = program("level = auto");
     let half_bead = 1.2;
-    for l in p.layers.iter().filter(|l| l.on_plate) {
-        let (mut a, mut y) = (
-            [f64::INFINITY, f64::NEG_INFINITY],
-            [f64::INFINITY, f64::NEG_INFINITY],
-        );
-        for q in l
-            .paths
-            .iter()
-            .flat_map(|p| &p.points)
-            .filter(|q| q.laser_on)
-        {
-            let [across, along_y, _] = boss(q.pos);
-            a = [a[0].min(across), a[1].max(across)];
-            y = [y[0].min(along_y), y[1].max(along_y)];
-        }
+    let first = p
+        .layers
+        .iter()
+        .position(|l| l.on_plate)
+        .expect("levelling passes, then the regular layers");
+    assert!(p.layers.len() - first >= 2, "{} layers", p.layers.len());
+    for l in &p.layers[first..] {
+        let [a, y] = extent(l, |_| 0.0);
         for (end, want) in a.into_iter().zip([-HALF + half_bead, HALF - half_bead]) {
             assert!(
                 (end - want).abs() < 0.01,
@@ -302,10 +295,9 @@ fn the_end_seen_from_above_is_the_boss_s_section_along_its_lean() {
     }
 }
 
-/// The fill over the tracks of `layer`: across the lean from the tracks'
-/// first to last point, along y over their strips, from the worn face to
-/// the target's (on a 0.05 mm grid).
-fn fill(layer: &lmdc::ir::Layer) -> f64 {
+/// The extent of `layer`'s laser-on points across the lean and along y,
+/// each point's `y` widened by `half(point)` either way.
+fn extent(layer: &lmdc::ir::Layer, half: impl Fn(&lmdc::ir::Point) -> f64) -> [[f64; 2]; 2] {
     let (mut a, mut y) = (
         [f64::INFINITY, f64::NEG_INFINITY],
         [f64::INFINITY, f64::NEG_INFINITY],
@@ -317,10 +309,18 @@ fn fill(layer: &lmdc::ir::Layer) -> f64 {
         .filter(|q| q.laser_on)
     {
         let [qa, qy, _] = boss(q.pos);
-        let half = f64::from(q.pitch) / 2.0;
+        let h = half(q);
         a = [a[0].min(qa), a[1].max(qa)];
-        y = [y[0].min(qy - half), y[1].max(qy + half)];
+        y = [y[0].min(qy - h), y[1].max(qy + h)];
     }
+    [a, y]
+}
+
+/// The fill over the tracks of `layer`: across the lean from the tracks'
+/// first to last point, along y over their strips, from the worn face to
+/// the target's (on a 0.05 mm grid).
+fn fill(layer: &lmdc::ir::Layer) -> f64 {
+    let [a, y] = extent(layer, |q| f64::from(q.pitch) / 2.0);
     let cell = 0.05;
     let (na, ny) = (
         ((a[1] - a[0]) / cell) as usize,

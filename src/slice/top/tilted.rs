@@ -101,6 +101,8 @@ struct Lines<'a> {
     /// The same, the outermost [`SLACK`] bead widths inside: the tilted
     /// lines.
     slack: Vec<[f64; 3]>,
+    /// The lines' spacing over the footprint, mm.
+    spacing: f64,
     /// The finished face's highest point over the footprint, mm.
     face: f64,
     /// Above the target and below the scan, mm.
@@ -276,7 +278,7 @@ fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
     }
     let heights = |pts: Vec<[f64; 2]>| -> Vec<([f64; 2], Option<f64>)> {
         pts.into_iter()
-            .map(|p| (p, ex.top.mesh_at(p).flatten()))
+            .map(|p| (p, ex.top.mesh_at(p).flatten().filter(|h| h.is_finite())))
             .collect()
     };
     let from = heights(footprint(&profile, [lo, hi], spacing, EDGE));
@@ -301,6 +303,7 @@ fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
     usable.then_some(Lines {
         from,
         slack,
+        spacing,
         face,
         z,
         scan,
@@ -333,19 +336,26 @@ fn footprint(
         }
     }
     for ring in profile.offset_inward(edge) {
-        let ring = ring.polyline(CHORD_ERROR);
-        for (k, &a) in ring.iter().enumerate() {
-            let b = ring[(k + 1) % ring.len()];
-            let n = ((b[0] - a[0]).hypot(b[1] - a[1]) / spacing)
-                .ceil()
-                .clamp(1.0, 1e4) as usize;
-            from.extend((0..n).map(|i| {
-                let t = i as f64 / n as f64;
-                [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
-            }));
-        }
+        from.extend(subdivided(&ring.polyline(CHORD_ERROR), spacing));
     }
     from
+}
+
+/// The closed polyline `ring` with a point at least every `spacing` along
+/// each of its sides (at most 10 000 a side).
+fn subdivided(ring: &[[f64; 2]], spacing: f64) -> Vec<[f64; 2]> {
+    let mut out = Vec::new();
+    for (k, &a) in ring.iter().enumerate() {
+        let b = ring[(k + 1) % ring.len()];
+        let n = ((b[0] - a[0]).hypot(b[1] - a[1]) / spacing)
+            .ceil()
+            .clamp(1.0, 1e4) as usize;
+        out.extend((0..n).map(|i| {
+            let t = i as f64 / n as f64;
+            [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+        }));
+    }
+    out
 }
 
 /// The most tilt from vertical (deg) the bead and the machines allow, and
@@ -485,7 +495,9 @@ fn turn(
         Turned::new(inner, rot).ok_or_else(|| internal("the target has no finite extent"))?,
     ));
     let profile = outline::profile(&ex.shape, CHORD_ERROR);
-    let ring = profile.polyline(CHORD_ERROR);
+    // Lifted as the lines are, every `spacing` along the outline: a face
+    // that is not flat is followed between its corners too.
+    let ring = subdivided(&profile.polyline(CHORD_ERROR), lines.spacing);
     let mut pts: Vec<[Length; 2]> = Vec::new();
     for (k, &p) in ring.iter().enumerate() {
         let [a, b] = [
@@ -544,16 +556,18 @@ fn edge_height(top: &Top, profile: &Profile, [a, p, b]: [[f64; 2]; 3]) -> Option
     };
     let [n, m] = [normal(a, p), normal(p, b)];
     let bisector = [n[0] + m[0], n[1] + m[1]];
-    let l = bisector[0].hypot(bisector[1]);
-    // Either side of the edge: the one inside the profile.
+    let l2 = bisector[0] * bisector[0] + bisector[1] * bisector[1];
+    // Either side of the edge: the one inside the profile. Along the sum of
+    // the sides' unit normals (length l), k·l²/2 off each side.
     [1.0, -1.0]
         .into_iter()
         .map(|s| {
-            let k = if l > 1e-12 { s * EDGE / l } else { 0.0 };
+            let k = if l2 > 1e-12 { s * 2.0 * EDGE / l2 } else { 0.0 };
             [p[0] + k * bisector[0], p[1] + k * bisector[1]]
         })
         .find(|&q| profile.contains(q))
         .and_then(|q| top.mesh_at(q).flatten())
+        .filter(|h| h.is_finite())
 }
 
 /// A layer planned in the turned frame, turned back into the part by
