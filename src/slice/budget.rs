@@ -1,14 +1,18 @@
-//! The points a planar plan's raster lays, bounded from below before any
-//! layer is filled: from each layer's shape at its raster angle, in the
-//! time it takes to turn the shape once (a fixed profile once per angle).
+//! The points a planar plan's raster and contours lay, bounded from below
+//! before any layer is filled: the raster from each layer's shape at its
+//! raster angle, in the time it takes to turn the shape once (a fixed
+//! profile once per angle); a fixed profile's contours from its first
+//! layer's, filled once.
 //! A plan the bound puts past the points a plan may hold
 //! ([`super::MAX_TOTAL_POINTS`]) is refused before the fill, which would
 //! otherwise lay, check and hold every layer until its count passed the
-//! limit (a 2 m plate in 10 000 layers: minutes and gigabytes). A mesh's
+//! limit (a 2 m plate in 10 000 layers: minutes and gigabytes; the flange
+//! with one contour in 100 000 layers: 100 s and 2.6 GB). A mesh's
 //! sections are bounded the same way as they are cut ([`super::mesh`]).
 
 use super::MAX_TOTAL_POINTS;
 use crate::diag::{message, Diagnostics};
+use crate::fill::{self, FillSpec, Seam};
 use crate::geometry::outline;
 use crate::geometry::region::Region;
 use crate::sema::model::{Extrusion, LayerProfile, PlanarSlicing, Shape};
@@ -102,29 +106,105 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 /// clipped and checked, so the work (and the profiles kept) grows with it.
 pub const MAX_PROFILE_WORK: usize = 20_000_000;
 
+/// The points one layer's contour passes lay, for a plan whose layers are
+/// all `shape`: its passes filled once, as the slicer keeps them (points
+/// closer than [`super::DISTINCT`] are one), one a pass less (a
+/// pass that starts at another seam may split an edge).
+fn contour_points(shape: &Shape, slicing: &PlanarSlicing, inset: f64) -> f64 {
+    if slicing.contours == 0 {
+        return 0.0;
+    }
+    let chord = slicing.chord_error.0;
+    let parts = match shape {
+        Shape::Islands(parts) => parts.iter().collect(),
+        one => vec![one],
+    };
+    let spec = FillSpec {
+        inset,
+        contours: slicing.contours,
+        offset: slicing.offset.0,
+        raster: None,
+        seam: Seam::Lowest,
+    };
+    parts
+        .into_iter()
+        .map(
+            |s| match fill::fill_region(&outline::region(s, chord), &spec, chord) {
+                Ok(tracks) => tracks.iter().map(distinct_points).sum::<usize>() as f64,
+                Err(_) => 0.0,
+            },
+        )
+        .sum()
+}
+
+/// `track`'s points that stand apart, less one.
+fn distinct_points(track: &fill::Track) -> usize {
+    let mut kept = 0usize;
+    let mut last: Option<[f64; 2]> = None;
+    for &p in &track.points {
+        if last.is_none_or(|q| dist(p, q) > super::DISTINCT) {
+            kept += 1;
+            last = Some(p);
+        }
+    }
+    kept.saturating_sub(1)
+}
+
 /// Refuses, before any layer is filled, a drawn profile's plan (the
-/// layers' `shapes`, `fixed` where they are all one) whose raster lays
-/// more points than a plan may hold by [`least_raster_points`] on every
-/// layer (a fixed profile measured once per raster angle). A
-/// mesh's layers were bounded as they were cut.
+/// layers' `shapes`, `fixed` where they are all one) whose raster and
+/// contours lay more points than a plan may hold: the raster by
+/// [`least_raster_points`] on every layer (a fixed profile measured once
+/// per raster angle), the contours of a fixed profile as its first
+/// layer's ([`contour_points`]; a profile that changes from layer to
+/// layer is bounded by its raster alone). A mesh's layers were bounded as
+/// they were cut.
 pub fn planar(
     (shapes, fixed): (&[Shape], bool),
     extrusion: &Extrusion,
     slicing: &PlanarSlicing,
-    band: f64,
+    [band, inset]: [f64; 2],
     diags: &mut Diagnostics,
 ) -> Option<()> {
-    let Some(raster) = slicing.infill else {
-        return Some(());
-    };
     if matches!(extrusion.profile, LayerProfile::Mesh(_)) {
         return Some(());
     }
+    let contours = match (fixed, shapes.first()) {
+        (true, Some(shape)) => shapes.len() as f64 * contour_points(shape, slicing, inset),
+        _ => 0.0,
+    };
+    let raster = slicing.infill.map_or(0.0, |r| {
+        least_raster(shapes, fixed, slicing, [r.angle.0, r.rotate.0, band])
+    });
+    let least = raster + contours;
+    if least <= MAX_TOTAL_POINTS as f64 {
+        return Some(());
+    }
+    diags.push(message::slicing::too_many_raster_points(
+        message::slicing::RasterBudget {
+            layers: shapes.len(),
+            offset: slicing.offset,
+            least,
+            contours,
+            max: MAX_TOTAL_POINTS,
+        },
+        slicing.span,
+    ));
+    None
+}
+
+/// [`least_raster_points`] over every layer, its lines at `angle` turned
+/// by `rotate` a layer (rad), leaving `band` along the outlines.
+fn least_raster(
+    shapes: &[Shape],
+    fixed: bool,
+    slicing: &PlanarSlicing,
+    [angle, rotate, band]: [f64; 3],
+) -> f64 {
     let chord = slicing.chord_error.0;
     let mut by_angle: HashMap<u64, f64> = HashMap::new();
     let mut least = 0.0;
     for (k, shape) in shapes.iter().enumerate() {
-        let angle = (raster.angle.0 + raster.rotate.0 * k as f64).rem_euclid(std::f64::consts::PI);
+        let angle = (angle + rotate * k as f64).rem_euclid(std::f64::consts::PI);
         let measure = || {
             islands(shape, angle, chord)
                 .iter()
@@ -136,17 +216,5 @@ pub fn planar(
             false => measure(),
         };
     }
-    if least <= MAX_TOTAL_POINTS as f64 {
-        return Some(());
-    }
-    diags.push(message::slicing::too_many_raster_points(
-        message::slicing::RasterBudget {
-            layers: shapes.len(),
-            offset: slicing.offset,
-            least,
-            max: MAX_TOTAL_POINTS,
-        },
-        slicing.span,
-    ));
-    None
+    least
 }

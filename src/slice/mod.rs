@@ -32,6 +32,9 @@ use section_points::Spacing;
 /// input.
 pub const MAX_TOTAL_POINTS: usize = 20_000_000;
 
+/// Points of a planar track closer than this (mm) are one point.
+pub const DISTINCT: f64 = 1e-6;
+
 /// Slices the model's solid. Returns the layers and their diagnostics
 /// (warnings, and errors that leave every layer made, such as a spot left
 /// unfilled), or the errors when there are no layers to go on with.

@@ -17,6 +17,7 @@ use super::holes;
 use super::layers::{self, Layers};
 use super::spiral;
 use super::styling::{self, Styler};
+use super::DISTINCT;
 use super::MAX_TOTAL_POINTS;
 use crate::bead::MIN_OFFSET_RATIO;
 use crate::diag::{message, Diagnostic, Diagnostics, Worst};
@@ -63,7 +64,7 @@ pub fn slice(
         (&plan.shapes, !plan.varies()),
         extrusion,
         slicing,
-        band,
+        [band, inset],
         &mut diags,
     )
     .is_none()
@@ -570,9 +571,6 @@ fn distinct_tracks(tracks: Vec<Track>) -> Vec<Track> {
     }
     out
 }
-
-/// Points closer than this (mm) are one point.
-const DISTINCT: f64 = 1e-6;
 
 /// Area enclosed by a closed polyline (shoelace), unsigned.
 fn loop_area(p: &[[f64; 2]]) -> f64 {

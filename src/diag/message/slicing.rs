@@ -33,8 +33,10 @@ pub struct RasterBudget {
     pub layers: usize,
     /// The raster lines' spacing.
     pub offset: Length,
-    /// The fewest points the raster lays over all layers.
+    /// The fewest points the raster and the contours lay over all layers.
     pub least: f64,
+    /// The contours' part of it.
+    pub contours: f64,
     /// The most a plan may hold.
     pub max: usize,
 }
@@ -44,18 +46,33 @@ pub struct RasterBudget {
 pub fn too_many_raster_points(b: RasterBudget, slicing: Span) -> Diagnostic {
     let share = b.max as f64 / b.least;
     let layers = (b.layers as f64 * share).floor();
-    Diagnostic::error(
-        Code::TooManyPoints,
+    let message = if b.contours > 0.0 {
+        format!(
+            "the contours and raster of these {} layers, lines {} apart, lay at least {:.0} points ({:.0} of them the contours'), more than the {} a plan may hold",
+            b.layers, b.offset, b.least, b.contours, b.max
+        )
+    } else {
         format!(
             "the raster of these {} layers, lines {} apart, lays at least {:.0} points, more than the {} a plan may hold",
             b.layers, b.offset, b.least, b.max
-        ),
-    )
-    .label(slicing, "slicing")
-    .help(format!(
-        "at most {layers:.0} layers of this profile fit, or lines about {} apart (`offset`); or a smaller profile",
-        Length(b.offset.0 / share)
-    ))
+        )
+    };
+    // The raster's points go as one over its spacing; the contours' do not.
+    let raster = b.least - b.contours;
+    let room = b.max as f64 - b.contours;
+    let spacing = if raster > 0.0 && room > 0.0 {
+        format!(
+            ", or lines about {} apart (`offset`)",
+            Length(b.offset.0 * raster / room)
+        )
+    } else {
+        ", or fewer contours or a larger chord error".to_string()
+    };
+    Diagnostic::error(Code::TooManyPoints, message)
+        .label(slicing, "slicing")
+        .help(format!(
+            "at most {layers:.0} layers of this profile fit{spacing}; or a smaller profile"
+        ))
 }
 
 /// The spans a fill's findings point at: the extruded shape and the slicing.
