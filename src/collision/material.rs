@@ -122,7 +122,6 @@ impl Group {
         }
     }
 
-    /// An upper bound of `x·u` over the group.
     /// How far `p` lies from the group's box, mm (0 inside it).
     fn distance(&self, p: [f64; 3]) -> f64 {
         let v = sub(p, self.o);
@@ -135,6 +134,7 @@ impl Group {
             .sqrt()
     }
 
+    /// An upper bound of `x·u` over the group.
     fn highest(&self, u: [f64; 3]) -> f64 {
         let mut h = dot(self.o, u);
         for k in 0..3 {

@@ -30,6 +30,10 @@ use crate::geometry::region::Region;
 /// steeper edge the lines' ends, extended, fill the staircase.
 pub const PARALLEL_DEG: f64 = 5.0;
 
+/// One raster line's intervals as laid (extended), each with the index of
+/// the clipped interval it grew from (`extend::extend_kept`).
+type Laid = Vec<(usize, [f64; 2])>;
+
 /// A stretch shorter than this many offsets gets no track (a laser on for
 /// less than a bead lays a blob; the gap check looks along two beads).
 const MIN_LENGTH: f64 = 2.0;
@@ -46,7 +50,8 @@ const SIDE_PROBE: f64 = 1e-4;
 
 /// The closing tracks (start and end, in the world frame) along `region`'s
 /// straight edges that run within [`PARALLEL_DEG`] of the lines at
-/// `line_s` (their intervals as laid, `lines`), where the nearest line on
+/// `line_s` (their intervals as laid, `lines`, each with the interval it
+/// grew from), where the nearest line on
 /// the region's side lies more than `threshold` from the edge (at least
 /// [`HAIR`] offsets: a bead no wider than the offset would put the track
 /// on the line); `offset` the lines' spacing, `extend` the most their ends
@@ -54,7 +59,7 @@ const SIDE_PROBE: f64 = 1e-4;
 pub(super) fn closings(
     region: &Region,
     (pieces, frame): (&Pieces, &Frame),
-    (line_s, lines): (&[f64], &[Vec<[f64; 2]>]),
+    (line_s, lines): (&[f64], &[Laid]),
     [threshold, offset, extend]: [f64; 3],
 ) -> Vec<[[f64; 2]; 2]> {
     let mut out = Vec::new();
@@ -115,7 +120,7 @@ pub(super) fn closings(
 /// How far from `q` (frame coordinates, on an edge) the nearest line on
 /// the region's `side` (+1: higher `u`) lies, when that line runs alongside
 /// `q` (one of its intervals covers `q`'s `t`); `None` when none does.
-fn gap_beside(q: [f64; 2], side: f64, line_s: &[f64], lines: &[Vec<[f64; 2]>]) -> Option<f64> {
+fn gap_beside(q: [f64; 2], side: f64, line_s: &[f64], lines: &[Laid]) -> Option<f64> {
     // A line on the edge, to rounding, is beside it.
     let slack = 1e-9 * (1.0 + q[1].abs());
     let k = if side > 0.0 {
@@ -129,6 +134,6 @@ fn gap_beside(q: [f64; 2], side: f64, line_s: &[f64], lines: &[Vec<[f64; 2]>]) -
     let alongside = lines
         .get(k)?
         .iter()
-        .any(|&[a, b]| a - slack <= q[0] && q[0] <= b + slack);
+        .any(|&(_, [a, b])| a - slack <= q[0] && q[0] <= b + slack);
     alongside.then_some((s - q[1]).abs())
 }

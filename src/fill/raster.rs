@@ -52,14 +52,10 @@ pub(super) fn tracks(
         clamp::clamp(&mut grown, &lines, &line_s, &keep.items);
     }
     // Beside an edge, what the tracks lay: their intervals as extended.
-    let laid: Vec<Vec<[f64; 2]>> = grown
-        .iter()
-        .map(|l| l.iter().map(|&(_, iv)| iv).collect())
-        .collect();
     let closings = super::edge::closings(
         region,
         (&pieces, &frame),
-        (&line_s, &laid),
+        (&line_s, &grown),
         [
             spec.closing.min(CLOSING * spec.offset),
             spec.offset,

@@ -108,7 +108,7 @@ pub const MAX_PROFILE_WORK: usize = 20_000_000;
 
 /// The points one layer's contour passes lay, for a plan whose layers are
 /// all `shape`: its passes filled once, as the slicer keeps them (points
-/// closer than [`super::DISTINCT`] are one), one a pass less (a
+/// closer than [`super::DISTINCT`] are one, [`super::dedup_points`]), one a pass less (a
 /// pass that starts at another seam may split an edge).
 fn contour_points(shape: &Shape, slicing: &PlanarSlicing, inset: f64) -> f64 {
     if slicing.contours == 0 {
@@ -130,24 +130,17 @@ fn contour_points(shape: &Shape, slicing: &PlanarSlicing, inset: f64) -> f64 {
         .into_iter()
         .map(
             |s| match fill::fill_region(&outline::region(s, chord), &spec, chord) {
-                Ok(tracks) => tracks.iter().map(distinct_points).sum::<usize>() as f64,
+                Ok(tracks) => tracks
+                    .into_iter()
+                    .map(|mut t| {
+                        super::dedup_points(&mut t.points);
+                        t.points.len().saturating_sub(1)
+                    })
+                    .sum::<usize>() as f64,
                 Err(_) => 0.0,
             },
         )
         .sum()
-}
-
-/// `track`'s points that stand apart, less one.
-fn distinct_points(track: &fill::Track) -> usize {
-    let mut kept = 0usize;
-    let mut last: Option<[f64; 2]> = None;
-    for &p in &track.points {
-        if last.is_none_or(|q| dist(p, q) > super::DISTINCT) {
-            kept += 1;
-            last = Some(p);
-        }
-    }
-    kept.saturating_sub(1)
 }
 
 /// Refuses, before any layer is filled, a drawn profile's plan (the
@@ -179,8 +172,8 @@ pub fn planar(
     if least <= MAX_TOTAL_POINTS as f64 {
         return Some(());
     }
-    diags.push(message::slicing::too_many_raster_points(
-        message::slicing::RasterBudget {
+    diags.push(message::slicing::too_many_planned_points(
+        message::slicing::PointBudget {
             layers: shapes.len(),
             offset: slicing.offset,
             least,

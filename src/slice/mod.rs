@@ -35,6 +35,12 @@ pub const MAX_TOTAL_POINTS: usize = 20_000_000;
 /// Points of a planar track closer than this (mm) are one point.
 pub const DISTINCT: f64 = 1e-6;
 
+/// `points` with each run of points closer than [`DISTINCT`] kept as its
+/// first: what a planar track keeps.
+pub fn dedup_points(points: &mut Vec<[f64; 2]>) {
+    points.dedup_by(|b, a| (b[0] - a[0]).hypot(b[1] - a[1]) <= DISTINCT);
+}
+
 /// Slices the model's solid. Returns the layers and their diagnostics
 /// (warnings, and errors that leave every layer made, such as a spot left
 /// unfilled), or the errors when there are no layers to go on with.

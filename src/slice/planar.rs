@@ -17,7 +17,6 @@ use super::holes;
 use super::layers::{self, Layers};
 use super::spiral;
 use super::styling::{self, Styler};
-use super::DISTINCT;
 use super::MAX_TOTAL_POINTS;
 use crate::bead::MIN_OFFSET_RATIO;
 use crate::diag::{message, Diagnostic, Diagnostics, Worst};
@@ -541,8 +540,7 @@ impl Findings {
 /// distinct points, a closed contour three. Sub-micron profiles flatten to such
 /// points, and a direction of travel needs a distance.
 fn distinct(mut t: Track) -> Option<Track> {
-    t.points
-        .dedup_by(|b, a| (b[0] - a[0]).hypot(b[1] - a[1]) <= DISTINCT);
+    super::dedup_points(&mut t.points);
     let need = match t.kind {
         TrackKind::Contour { .. } => 4,
         TrackKind::Infill => 2,
@@ -857,7 +855,7 @@ fn link_points(t: &Track, via: &[[f64; 2]], next: &Track) -> Vec<[f64; 2]> {
     points.extend(t.points.last().copied());
     points.extend_from_slice(via);
     points.extend(next.points.first().copied());
-    points.dedup_by(|b, a| (b[0] - a[0]).hypot(b[1] - a[1]) <= DISTINCT);
+    super::dedup_points(&mut points);
     points
 }
 

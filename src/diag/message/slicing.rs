@@ -26,9 +26,9 @@ pub fn too_many_fill_points(max: usize, slicing: Span) -> Diagnostic {
     .help("use fewer layers or a larger chord error")
 }
 
-/// What [`too_many_raster_points`] says: a planar plan's layers, the
-/// raster's spacing and the fewest points it lays.
-pub struct RasterBudget {
+/// What [`too_many_planned_points`] says: a planar plan's layers, the
+/// raster's spacing and the fewest points its raster and contours lay.
+pub struct PointBudget {
     /// How many layers.
     pub layers: usize,
     /// The raster lines' spacing.
@@ -41,9 +41,9 @@ pub struct RasterBudget {
     pub max: usize,
 }
 
-/// A planar plan whose raster lays at least `b.least` points, more than
-/// a plan may hold, found before any layer is filled.
-pub fn too_many_raster_points(b: RasterBudget, slicing: Span) -> Diagnostic {
+/// A planar plan whose raster and contours lay at least `b.least` points,
+/// more than a plan may hold, found before any layer is filled.
+pub fn too_many_planned_points(b: PointBudget, slicing: Span) -> Diagnostic {
     let share = b.max as f64 / b.least;
     let layers = (b.layers as f64 * share).floor();
     let message = if b.contours > 0.0 {

@@ -48,6 +48,7 @@ use crate::sema::model::{
 use crate::span::Span;
 use crate::units::Length;
 use nalgebra::{Rotation3, Vector3};
+use std::collections::HashMap;
 use std::sync::Arc;
 
 /// The step along a line, mm: a piece of the target thinner than this
@@ -276,9 +277,17 @@ fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
     if !(spacing.is_finite() && spacing > 0.0) {
         return None;
     }
-    let heights = |pts: Vec<[f64; 2]>| -> Vec<([f64; 2], Option<f64>)> {
+    // The two sets share most of their grid: each point's height once (a
+    // turned target or a loft walks a line for it).
+    let mut known: HashMap<[u64; 2], Option<f64>> = HashMap::new();
+    let mut heights = |pts: Vec<[f64; 2]>| -> Vec<([f64; 2], Option<f64>)> {
         pts.into_iter()
-            .map(|p| (p, ex.top.mesh_at(p).flatten().filter(|h| h.is_finite())))
+            .map(|p| {
+                let h = *known
+                    .entry(p.map(f64::to_bits))
+                    .or_insert_with(|| ex.top.mesh_at(p).flatten().filter(|h| h.is_finite()));
+                (p, h)
+            })
             .collect()
     };
     let from = heights(footprint(&profile, [lo, hi], spacing, EDGE));
