@@ -351,3 +351,54 @@ proptest! {
         }
     }
 }
+
+/// The error case of a contour laid as a lone bead beside a hole's crest
+/// (one contour, a narrow speed range): the message says why and what
+/// builds it, and both fixes it names do build the plate.
+#[test]
+fn a_lone_contour_beside_a_hole_is_explained_and_both_fixes_build() {
+    let path = std::path::Path::new("tests/cases/errors/holes/lone_contour_at_a_hole/input.lmd");
+    let src = std::fs::read_to_string(path).expect("the case's input");
+    let c = crate::support::example::compile_file(path, &src);
+    let d = c
+        .diagnostics
+        .iter()
+        .find(|d| d.code == lmdc::diag::Code::PointSpeed)
+        .expect("the contour is refused as too slow");
+    let help = d.help.as_deref().expect("a help");
+    assert!(
+        help.contains("lone bead") && help.contains("3 mm wide"),
+        "{help}"
+    );
+    // The speed the help names is what the lone bead needs: a range that
+    // reaches it builds the plate, one that stops short of it does not.
+    let needs: f64 = help
+        .split("down to ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .expect("a speed in the help");
+    assert!(needs < 6.0 && needs > 4.0, "{needs}");
+    for fix in [
+        src.replace("contours = 1", "contours = 2"),
+        src.replace(
+            "speed = 6 mm/s .. 14 mm/s",
+            &format!("speed = {:.2} mm/s .. 14 mm/s", needs - 0.01),
+        ),
+    ] {
+        let c = crate::support::example::compile_file(path, &fix);
+        let errors: Vec<String> = c
+            .diagnostics
+            .iter()
+            .filter(|d| d.is_error())
+            .map(|d| d.to_string())
+            .collect();
+        assert!(errors.is_empty(), "{errors:?}");
+    }
+    let short = src.replace(
+        "speed = 6 mm/s .. 14 mm/s",
+        &format!("speed = {:.2} mm/s .. 14 mm/s", needs + 0.02),
+    );
+    let c = crate::support::example::compile_file(path, &short);
+    assert!(c.diagnostics.has_errors());
+}

@@ -4,8 +4,9 @@
 
 use super::rule::{ProgramCx, ProgramRule, Worst};
 use crate::diag::message::{self, verify::Layering, verify::PointQuantity, verify::Side};
+use crate::diag::Diagnostic;
 use crate::diag::Diagnostics;
-use crate::ir::{Point, Program};
+use crate::ir::{PathKind, Point, Program};
 use crate::plan::Where;
 use crate::span::Span;
 use crate::units::in_range;
@@ -105,17 +106,37 @@ impl Range {
     /// One diagnostic per side that was passed, labelled at `spans` (the first
     /// declares the limit, the others produce the value).
     pub fn report(self, spans: &[Option<Span>], out: &mut Diagnostics) {
+        self.report_with(spans, out, |_, _, d| d);
+    }
+
+    /// [`Range::report`], each diagnostic passed through `amend` with its
+    /// side and worst point (to say more about why it is off).
+    pub fn report_with(
+        self,
+        spans: &[Option<Span>],
+        out: &mut Diagnostics,
+        amend: impl Fn(Side, &Worst, Diagnostic) -> Diagnostic,
+    ) {
         for (w, side) in [(self.low, Side::Below), (self.high, Side::Above)] {
             if let Some(w) = w {
-                out.push(message::verify::point_out_of_range(
-                    self.quantity,
-                    side,
-                    &w,
-                    spans,
-                ));
+                let d = message::verify::point_out_of_range(self.quantity, side, &w, spans);
+                out.push(amend(side, &w, d));
             }
         }
     }
+}
+
+/// The bead's width, if the point at `at` is a contour's laid as a lone
+/// bead: filling a strip the bead's width (to 1 %), no neighbour within a
+/// bead on either side.
+fn lone_contour(p: &Program, at: Where) -> Option<f64> {
+    let Where::Point { layer, path, point } = at else {
+        return None;
+    };
+    let width = p.bead.as_ref()?.width;
+    let path = p.layers.get(layer)?.paths.get(path)?;
+    let pitch = f64::from(path.points.get(point)?.pitch);
+    (path.kind == PathKind::Contour && pitch >= 0.99 * width).then_some(width)
 }
 
 /// How the plan's layers get their height, which decides what fixes a layer
@@ -199,7 +220,15 @@ impl ProcessRules {
         self.units.report(out);
         self.height
             .report(&[o.bead_height, o.spine, o.top, o.slicing], out);
-        self.speed.report(&[o.bead_speed], out);
+        let planar = layering(p) == Layering::Planar;
+        self.speed.report_with(&[o.bead_speed], out, |side, w, d| {
+            match lone_contour(p, w.at) {
+                Some(width) if planar && side == Side::Below => {
+                    message::verify::lone_contour(d, width, w.value)
+                }
+                _ => d,
+            }
+        });
         self.power.report(&[o.power], out);
     }
 }

@@ -158,6 +158,22 @@ pub fn point_out_of_range(
     d
 }
 
+/// The help of a planar contour laid too slow because it is laid as a lone
+/// bead (it fills a strip the bead's `width` wide): no raster track lies
+/// within a bead of it there; `speed` is what it needs, mm/s.
+pub fn lone_contour(d: Diagnostic, width: f64, speed: f64) -> Diagnostic {
+    d.help(format!(
+        "there the contour is laid as a lone bead (it fills a strip {} mm wide, the bead's width): \
+         no raster track lies within a bead of it. This happens with one contour where a curved \
+         edge (a round hole's or a rounded tongue's crest or flank, a rounded inner corner) runs \
+         with the raster lines and the nearest line stops up to an offset short of it. A second \
+         contour (`contours = 2`) usually closes that strip; so does a bead speed range down to {} mm/s, \
+         if the process allows",
+        short(width),
+        short(speed)
+    ))
+}
+
 /// What would land the worst deposit of a stacking error on the layer
 /// below.
 #[derive(Clone, Copy, Debug, PartialEq)]
