@@ -816,6 +816,48 @@ fn walls_along_the_lines_get_a_closing_track() {
     assert!(close(gap.apart, 2.3, 1e-6), "{gap:?}");
 }
 
+/// The same U with its walls split into collinear pieces 1 mm long, as a
+/// mesh's section or a drawing with points along a side gives them, each
+/// shorter than the two offsets a closing track needs: the walls get the
+/// same tracks, one each, as whole walls do.
+#[test]
+fn walls_split_into_short_collinear_pieces_get_the_same_closing_track() {
+    let whole = notched_u([20.3, 40.3]);
+    let mut v: Vec<(f64, f64)> = vec![(0.0, 0.0), (60.0, 0.0), (60.0, 40.0)];
+    v.extend((0..=25).map(|k| (40.3, 40.0 - k as f64)));
+    v.extend((0..=25).map(|k| (20.3, 15.0 + k as f64)));
+    v.push((0.0, 40.0));
+    let split = Profile::new(v.iter().map(|&(x, y)| Vertex::line(x, y)).collect());
+    let spec = contour_and_raster(90.0, 1.4, 2.0, Linking::None);
+    let closing = |p: &Profile| {
+        let tracks = fill(p, &spec, 0.01).unwrap();
+        let mut on: Vec<[[f64; 2]; 2]> = infill(&tracks)
+            .into_iter()
+            .filter(|[a, b]| {
+                [17.9, 42.7]
+                    .iter()
+                    .any(|&x| close(a[0], x, 1e-9) && close(b[0], x, 1e-9))
+            })
+            .collect();
+        on.sort_by(|a, b| a[0][0].total_cmp(&b[0][0]));
+        on
+    };
+    let want = closing(&whole);
+    assert_eq!(want.len(), 2, "{want:?}");
+    let got = closing(&split);
+    assert_eq!(got.len(), 2, "{got:?}");
+    for (g, w) in got.iter().zip(&want) {
+        let (gy, wy) = (
+            [g[0][1].min(g[1][1]), g[0][1].max(g[1][1])],
+            [w[0][1].min(w[1][1]), w[0][1].max(w[1][1])],
+        );
+        assert!(
+            close(gy[0], wy[0], 1e-6) && close(gy[1], wy[1], 1e-6),
+            "{g:?} against {w:?}"
+        );
+    }
+}
+
 /// A wall whose line beside it lies within the closing threshold (the bead
 /// less the offset, 0.6 mm) gets none: the notch from x = 19.9 puts the
 /// left wall at 17.5, 0.5 mm from the line at 17.0; the right wall, 0.9 mm

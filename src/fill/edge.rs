@@ -11,7 +11,8 @@
 //! staircase; these cross it seldom (every `offset / sin(angle)`), and
 //! between two crossings the wedge beside it is the gap.
 //!
-//! So along every straight edge within [`PARALLEL_DEG`] of the lines, the
+//! So along every straight edge within [`PARALLEL_DEG`] of the lines (a run
+//! of pieces along one line counting as one edge), the
 //! nearest line on the region's side is looked up every quarter offset;
 //! where it runs alongside (its interval as laid covers that place) farther
 //! than the closing threshold from the edge, over at least
@@ -72,7 +73,7 @@ pub(super) fn closings(
     // hair, or as far as an end grown along an edge off the lines gets.
     let hair = (HAIR * offset).max(extend * PARALLEL_DEG.to_radians().sin());
     let tan = PARALLEL_DEG.to_radians().tan();
-    for p in pieces.items.iter().filter(|p| p.arc.is_none()) {
+    for p in straight_edges(pieces) {
         let (dt, du) = (p.hi[0] - p.lo[0], p.hi[1] - p.lo[1]);
         let len = dt.hypot(du);
         let long = len.is_finite() && len >= MIN_LENGTH * offset;
@@ -112,6 +113,69 @@ pub(super) fn closings(
                 }
                 _ => {}
             }
+        }
+    }
+    out
+}
+
+/// A straight edge of the region in the frame: its ends with the lower and
+/// the higher `u`.
+struct Edge {
+    lo: [f64; 2],
+    hi: [f64; 2],
+}
+
+/// Pieces this close to the line of the run before them (mm, and as a sine
+/// of the angle between them) go on along it.
+const COLLINEAR: f64 = 1e-6;
+
+/// The region's straight edges: each run of consecutive straight pieces of
+/// a loop that lie along one line, as one edge (a side drawn with points
+/// along it, or a mesh's section, comes in pieces each shorter than the
+/// [`MIN_LENGTH`] a closing track needs).
+fn straight_edges(pieces: &Pieces) -> Vec<Edge> {
+    let mut out = Vec::new();
+    for &(a, b) in &pieces.loops {
+        let items = &pieces.items[a..b];
+        let n = items.len();
+        let travel = |k: usize| {
+            let p = &items[k % n];
+            let ends = if p.rising { (p.lo, p.hi) } else { (p.hi, p.lo) };
+            p.arc.is_none().then_some(ends)
+        };
+        let along = |run: ([f64; 2], [f64; 2]), k: usize| {
+            travel(k).is_some_and(|(from, to)| {
+                let (dx, dy) = (run.1[0] - run.0[0], run.1[1] - run.0[1]);
+                let len = dx.hypot(dy);
+                let off = |q: [f64; 2]| ((q[0] - run.0[0]) * dy - (q[1] - run.0[1]) * dx) / len;
+                let ahead = (to[0] - from[0]) * dx + (to[1] - from[1]) * dy > 0.0;
+                len > 0.0 && ahead && off(from).abs() <= COLLINEAR && off(to).abs() <= COLLINEAR
+            })
+        };
+        // Start where a run starts: after a piece the one at `k` does not
+        // go on from (a loop all along one line is degenerate: none).
+        let Some(start) = (0..n).find(|&k| {
+            travel(k).is_some() && !travel(k + n - 1).is_some_and(|prev| along(prev, k))
+        }) else {
+            continue;
+        };
+        let mut k = start;
+        while k < start + n {
+            let Some(mut run) = travel(k) else {
+                k += 1;
+                continue;
+            };
+            k += 1;
+            while k < start + n && along(run, k) {
+                run.1 = travel(k).map_or(run.1, |t| t.1);
+                k += 1;
+            }
+            let (lo, hi) = if run.0[1] <= run.1[1] {
+                run
+            } else {
+                (run.1, run.0)
+            };
+            out.push(Edge { lo, hi });
         }
     }
     out
