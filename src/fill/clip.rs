@@ -140,6 +140,9 @@ pub(super) struct Pieces {
     pub items: Vec<Piece>,
     /// `items[loops[i].0 .. loops[i].1]` are loop `i`'s pieces.
     pub loops: Vec<(usize, usize)>,
+    /// Whether loop `i` is a hole (the region on its right: every loop
+    /// runs counter-clockwise).
+    pub holes: Vec<bool>,
 }
 
 impl Pieces {
@@ -163,6 +166,7 @@ impl Pieces {
                 }
             }
             out.loops.push((start, out.items.len()));
+            out.holes.push(hole);
         }
         out
     }

@@ -35,7 +35,12 @@
 //!   side, a step of the outline, an edge a hair off the lines' direction)
 //!   gets a closing track on it by the same rule, where the nearest line
 //!   beside it is farther than that threshold: module `edge`, laid after
-//!   the raster track (or linked run) whose end is nearest it.
+//!   the raster track (or linked run) whose end is nearest it. With
+//!   contours, where the innermost one would be left with no raster track
+//!   within its reach (the offset and that threshold) over at least that
+//!   length — beside a curved edge that runs through the lines' direction,
+//!   which the lines run past — a closing track runs along the raster
+//!   region's margin there: module `margin`, laid the same way.
 //! - **Clipping** is exact, against the region's lines and true arcs (not a
 //!   flattened polygon), and the region is closed: a line lying along a
 //!   straight edge yields that edge, a line touching an arc yields the touch
@@ -100,6 +105,7 @@ mod error;
 mod extend;
 mod inside;
 pub mod link;
+mod margin;
 pub mod pitch;
 mod raster;
 

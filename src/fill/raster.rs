@@ -2,6 +2,7 @@ use super::clamp;
 use super::clip::{sweep, Frame, Pieces, Scratch};
 use super::extend::extend_kept;
 use super::link::{self, Chains};
+use super::margin;
 use super::{
     spend, too_many_points, Count, FillError, Link, Pattern, RasterSpec, Track, TrackKind,
     MAX_LINES,
@@ -52,16 +53,30 @@ pub(super) fn tracks(
         clamp::clamp(&mut grown, &lines, &line_s, &keep.items);
     }
     // Beside an edge, what the tracks lay: their intervals as extended.
-    let closings = super::edge::closings(
+    let threshold = spec.closing.min(CLOSING * spec.offset);
+    let edges = super::edge::closings(
         region,
         (&pieces, &frame),
         (&line_s, &grown),
-        [
-            spec.closing.min(CLOSING * spec.offset),
-            spec.offset,
-            spec.extend,
-        ],
+        [threshold, spec.offset, spec.extend],
     );
+    let laid = margin::Tracks {
+        line_s: &line_s,
+        lines: &grown,
+        edges: edges.iter().map(|e| e.map(|p| frame.local(p))).collect(),
+    };
+    // With contours, where the innermost would be left without a track
+    // beside it (without, the raster's ends are the layer's edge).
+    let margins = if spec.closing.is_finite() {
+        margin::closings(
+            (&pieces, &frame),
+            &laid,
+            [spec.offset, threshold, spec.offset, cx.chord_error],
+        )
+    } else {
+        Vec::new()
+    };
+    let closings: Vec<Vec<[f64; 2]>> = edges.into_iter().map(Vec::from).chain(margins).collect();
 
     if let Some((within, laser)) = cx.link {
         let chains = link::chains(
@@ -108,32 +123,41 @@ pub(super) fn tracks(
 }
 
 /// Adds the closing tracks along edges that run with the lines (module
-/// `edge`) to the raster's: each after the end of a run of tracks (a track
-/// not linked on) nearest one of its ends, laid from that end, so the
-/// nozzle lays it on its way rather than coming back for it.
+/// `edge`) and along the margin where the contour has no track within reach (module
+/// `margin`) to the raster's:
+/// each after the end of a run of tracks (a track not linked on) nearest
+/// one of its ends, laid from that end, so the nozzle lays it on its way
+/// rather than coming back for it.
 fn closing_tracks(
-    closings: &[[[f64; 2]; 2]],
+    closings: &[Vec<[f64; 2]>],
     out: &mut Vec<Track>,
     points_left: &mut u64,
 ) -> Result<(), FillError> {
     if closings.is_empty() {
         return Ok(());
     }
-    spend(points_left, 2 * closings.len())?;
+    spend(points_left, closings.iter().map(Vec::len).sum())?;
     let dist = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
     // For each closing track, the run end it follows and its way round.
     let mut after: Vec<Vec<Track>> = vec![Vec::new(); out.len() + 1];
-    for &[a, b] in closings {
+    for track in closings {
+        let (Some(&a), Some(&b)) = (track.first(), track.last()) else {
+            continue;
+        };
         let best = out
             .iter()
             .enumerate()
             .filter(|(_, t)| t.link.is_none())
             .filter_map(|(i, t)| t.points.last().map(|&e| (i, dist(e, a).min(dist(e, b)), e)))
             .min_by(|x, y| x.1.total_cmp(&y.1));
-        let (slot, points) = match best {
-            Some((i, _, e)) if dist(e, b) < dist(e, a) => (i + 1, vec![b, a]),
-            Some((i, _, _)) => (i + 1, vec![a, b]),
-            None => (out.len(), vec![a, b]),
+        let mut points = track.clone();
+        let slot = match best {
+            Some((i, _, e)) if dist(e, b) < dist(e, a) => {
+                points.reverse();
+                i + 1
+            }
+            Some((i, _, _)) => i + 1,
+            None => out.len(),
         };
         after[slot].push(Track {
             kind: TrackKind::Infill,

@@ -1,0 +1,307 @@
+//! Closing tracks along the raster region's margin where the contour
+//! beyond it would have no raster track within reach over a bead or more.
+//!
+//! The raster's lines are spaced from the region's near extreme and closed
+//! at its far one ([`super::raster::CLOSING`]); in between, an edge lies
+//! wherever the spacing leaves it. Where it runs with the lines, module
+//! `edge` closes it. Where it curves through their direction (a rounded
+//! tongue's crest, a round hole's crest and flanks, a rounded notch's
+//! floor, at any raster angle), the lines ending at it come seldom near
+//! the crest, and their ends are extended along the lines, never across:
+//! the contour beyond the margin can be left with no track within a bead
+//! over a stretch, and the strip between is left unfilled.
+//!
+//! So every loop of the raster region is walked, every quarter offset. At
+//! each place the contour's place is probed: an offset out of the region
+//! along the margin's normal (for an arc the region lies outside of, at
+//! most to its centre); without contours the raster's ends are the
+//! layer's edge, and nothing is laid. Where no
+//! raster track as laid (nor a closing track of `edge`) lies within that
+//! distance and the closing threshold of it, as the far extreme's rule
+//! has it, the place is open. Along each stretch of open places at least
+//! that reach long (a bead, with contours), a track is laid on the margin;
+//! two stretches shut for less than two offsets between them are one. A
+//! shorter stretch is left to the melt pool: a track there would be
+//! shorter than a bead, a blob rather than a bead. Linear in the margin's
+//! length, with a binary search a line near each place.
+
+use super::clip::{Frame, Piece, Pieces};
+use std::f64::consts::{PI, TAU};
+
+/// One raster line's intervals as laid (extended), each with the index of
+/// the clipped interval it grew from, sorted along the line.
+type Laid = Vec<(usize, [f64; 2])>;
+
+/// Most places a layer's margin is probed at: the step grows beyond it.
+const MAX_SAMPLES: f64 = 200_000.0;
+
+/// A place on the margin, with the contour's place beyond it.
+#[derive(Clone, Copy)]
+struct Place {
+    /// On the margin (frame coordinates).
+    at: [f64; 2],
+    /// Where the contour runs, an offset out.
+    probe: [f64; 2],
+}
+
+/// What the margin's places are probed against: the raster tracks as laid
+/// and the edges' closing tracks, all in the frame.
+pub(super) struct Tracks<'a> {
+    /// Each line's `s`, sorted.
+    pub line_s: &'a [f64],
+    /// Each line's intervals as laid.
+    pub lines: &'a [Laid],
+    /// The closing tracks along edges (module `edge`), frame coordinates.
+    pub edges: Vec<[[f64; 2]; 2]>,
+}
+
+/// The closing tracks (polylines, world frame) along the margin of the
+/// raster region (`pieces`, in `frame`) where the contour `beyond` it would
+/// lie farther than
+/// `beyond + threshold` from every track of `laid`, over at least that
+/// much; `offset` the lines' spacing, arcs kept within `chord_error`. In
+/// the order of the loops.
+pub(super) fn closings(
+    (pieces, frame): (&Pieces, &Frame),
+    laid: &Tracks<'_>,
+    [beyond, threshold, offset, chord_error]: [f64; 4],
+) -> Vec<Vec<[f64; 2]>> {
+    let mut out = Vec::new();
+    let usable = [threshold, offset, chord_error]
+        .iter()
+        .all(|v| v.is_finite() && *v > 0.0)
+        && beyond.is_finite()
+        && beyond > 0.0;
+    if !usable || laid.line_s.is_empty() {
+        return out;
+    }
+    let total: f64 = pieces.items.iter().map(length).sum();
+    let step = (offset / 4.0).max(total / MAX_SAMPLES);
+    if !(step.is_finite() && step > 0.0) {
+        return out;
+    }
+    let reach = beyond + threshold;
+    // Shut for less than two offsets between two open stretches: one.
+    let bridge = (2.0 * offset / step).ceil() as usize;
+    for (l, &(a, b)) in pieces.loops.iter().enumerate() {
+        let hole = pieces.holes.get(l).copied().unwrap_or(false);
+        let places: Vec<Place> = pieces.items[a..b]
+            .iter()
+            .flat_map(|p| sample(p, step, beyond, hole))
+            .collect();
+        let open: Vec<bool> = places
+            .iter()
+            .map(|p| nearest(p.probe, reach, laid) > reach)
+            .collect();
+        for run in stretches(&open, bridge) {
+            let track = stretch(&places, run);
+            if polyline_length(&track) >= reach {
+                let track = simplify(&track, chord_error / 4.0);
+                out.push(track.into_iter().map(|q| frame.world(q)).collect());
+            }
+        }
+    }
+    out
+}
+
+/// The length of a polyline (mm).
+fn polyline_length(points: &[[f64; 2]]) -> f64 {
+    points
+        .windows(2)
+        .map(|w| (w[0][0] - w[1][0]).hypot(w[0][1] - w[1][1]))
+        .sum()
+}
+
+/// A piece's length (mm).
+fn length(p: &Piece) -> f64 {
+    match p.arc {
+        None => (p.hi[0] - p.lo[0]).hypot(p.hi[1] - p.lo[1]),
+        Some((c, r, _)) => r * span(p, c).abs(),
+    }
+}
+
+/// The angles (rad) of an arc piece's `lo` and `hi` about its centre `c`,
+/// on the piece's side of the centre, and their difference `hi − lo`.
+fn angles(p: &Piece, c: [f64; 2]) -> (f64, f64) {
+    let side = p.arc.map_or(1.0, |(_, _, s)| s);
+    let angle = |q: [f64; 2]| {
+        let a = (q[1] - c[1]).atan2(q[0] - c[0]);
+        // The left half runs through ±π: keep it in (0, 2π) there.
+        if side < 0.0 && a < 0.0 {
+            a + TAU
+        } else {
+            a
+        }
+    };
+    (angle(p.lo), angle(p.hi))
+}
+
+/// The signed angle an arc piece sweeps from `lo` to `hi`.
+fn span(p: &Piece, c: [f64; 2]) -> f64 {
+    let (a, b) = angles(p, c);
+    (b - a).clamp(-PI, PI)
+}
+
+/// The piece's places every `step` or less, in the loop's direction of
+/// travel, its far end left to the next piece; each with its probe an
+/// `offset` out of the region (a loop that is a `hole` has the region on
+/// its right).
+fn sample(p: &Piece, step: f64, offset: f64, hole: bool) -> Vec<Place> {
+    let n = (length(p) / step).ceil().max(1.0) as usize;
+    let (from, to) = if p.rising { (p.lo, p.hi) } else { (p.hi, p.lo) };
+    (0..n)
+        .map(|k| {
+            let f = k as f64 / n as f64;
+            match p.arc {
+                None => {
+                    let at = [
+                        from[0] + f * (to[0] - from[0]),
+                        from[1] + f * (to[1] - from[1]),
+                    ];
+                    let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+                    let len = dx.hypot(dy).max(f64::MIN_POSITIVE);
+                    // Out of the region: right of travel round an outer
+                    // loop, left round a hole.
+                    let sign = if hole { -1.0 } else { 1.0 };
+                    let normal = [sign * dy / len, -sign * dx / len];
+                    Place {
+                        at,
+                        probe: [at[0] + offset * normal[0], at[1] + offset * normal[1]],
+                    }
+                }
+                Some((c, r, _)) => {
+                    let (lo, hi) = angles(p, c);
+                    let (a0, a1) = if p.rising { (lo, hi) } else { (hi, lo) };
+                    let phi = a0 + f * (a1 - a0);
+                    let radial = [phi.cos(), phi.sin()];
+                    let at = [c[0] + r * radial[0], c[1] + r * radial[1]];
+                    // Out of the region: away from the centre of a convex
+                    // arc, toward it (at most to it) of a concave one.
+                    let out = if p.convex { offset } else { -offset.min(r) };
+                    Place {
+                        at,
+                        probe: [at[0] + out * radial[0], at[1] + out * radial[1]],
+                    }
+                }
+            }
+        })
+        .collect()
+}
+
+/// The runs of `open` places (first and last index, the last possibly
+/// before the first where a run wraps round the loop's start), two runs
+/// with at most `bridge` shut places between them made one. A loop open
+/// everywhere has no raster near it at all: nothing to close against.
+fn stretches(open: &[bool], bridge: usize) -> Vec<(usize, usize)> {
+    let n = open.len();
+    let Some(shut) = open.iter().position(|o| !o) else {
+        return Vec::new();
+    };
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    let mut run: Option<usize> = None;
+    for k in 1..=n {
+        let i = (shut + k) % n;
+        match (open[i], run) {
+            (true, None) => run = Some(i),
+            (false, Some(first)) => {
+                runs.push((first, (i + n - 1) % n));
+                run = None;
+            }
+            _ => {}
+        }
+    }
+    // Runs come in order from `shut`; join across short shut gaps (the
+    // last and the first too, round the loop).
+    let gap = |a: (usize, usize), b: (usize, usize)| (b.0 + n - a.1) % n - 1;
+    let mut out: Vec<(usize, usize)> = Vec::new();
+    for r in runs {
+        match out.last_mut() {
+            Some(last) if gap(*last, r) <= bridge => last.1 = r.1,
+            _ => out.push(r),
+        }
+    }
+    if out.len() >= 2 && gap(out[out.len() - 1], out[0]) <= bridge {
+        let last = out.pop().expect("two runs");
+        out[0].0 = last.0;
+    }
+    out
+}
+
+/// The margin's places from `run.0` to `run.1` (wrapping round the loop).
+fn stretch(places: &[Place], (first, last): (usize, usize)) -> Vec<[f64; 2]> {
+    let n = places.len();
+    let count = (last + n - first) % n + 1;
+    (0..count).map(|k| places[(first + k) % n].at).collect()
+}
+
+/// Most places one move of a margin track stands for (bounds the work of
+/// [`simplify`]).
+const MAX_SKIPPED: usize = 64;
+
+/// `points` without the ones that lie within `tolerance` of the move
+/// between their kept neighbours: a straight run becomes one move, an arc
+/// stays within the chord error.
+fn simplify(points: &[[f64; 2]], tolerance: f64) -> Vec<[f64; 2]> {
+    let Some(&first) = points.first() else {
+        return Vec::new();
+    };
+    let mut out = vec![first];
+    let mut anchor = 0;
+    for j in 2..points.len() {
+        let a = points[anchor];
+        let fits = j - anchor <= MAX_SKIPPED
+            && points[anchor + 1..j]
+                .iter()
+                .all(|&p| off_line(p, a, points[j]) <= tolerance);
+        if !fits {
+            anchor = j - 1;
+            out.push(points[anchor]);
+        }
+    }
+    if points.len() >= 2 {
+        out.push(points[points.len() - 1]);
+    }
+    out
+}
+
+/// The distance from `q` (frame coordinates) to the nearest track of
+/// `laid`, looked for up to `within` away (farther reads as infinite).
+/// Each line's intervals are sorted: a binary search a line.
+fn nearest(q: [f64; 2], within: f64, laid: &Tracks<'_>) -> f64 {
+    let dist = |p: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+    let mut best = f64::INFINITY;
+    let lo = laid.line_s.partition_point(|&s| s < q[1] - within);
+    let hi = laid.line_s.partition_point(|&s| s <= q[1] + within);
+    for k in lo..hi.min(laid.lines.len()) {
+        let s = laid.line_s[k];
+        let line = &laid.lines[k];
+        let i = line.partition_point(|&(_, [_, b])| b < q[0]);
+        for j in [i.checked_sub(1), Some(i)].into_iter().flatten() {
+            if let Some(&(_, [a, b])) = line.get(j) {
+                best = best.min(dist([q[0].clamp(a, b), s]));
+            }
+        }
+    }
+    for &[a, b] in &laid.edges {
+        best = best.min(dist(closest(q, a, b)));
+    }
+    best
+}
+
+/// The point of the segment `a`–`b` closest to `p`.
+fn closest(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let f = if len2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    [a[0] + f * dx, a[1] + f * dy]
+}
+
+/// The distance from `p` to the segment `a`–`b`.
+fn off_line(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let c = closest(p, a, b);
+    (p[0] - c[0]).hypot(p[1] - c[1])
+}
