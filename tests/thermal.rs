@@ -78,11 +78,7 @@ proptest! {
         let loads = heat::loads(&p);
         let waits: Vec<f64> = t.layers.iter().map(|l| l.wait).collect();
         for (i, l) in t.layers.iter().enumerate().filter(|(_, l)| l.added > 0.0) {
-            let shorter = |j: usize| match j == i {
-        true if waits[j] < 1e-3 => 0.0,
-        true => 0.9 * waits[j],
-        false => waits[j],
-    };
+            let shorter = |j: usize| if j == i { cut(waits[j]) } else { waits[j] };
             let q = predict(material, cell, &loads[..=i], shorter, None).unwrap();
             prop_assert!(q[i].interpass > limit, "layer {i} with 90 % of {}: {}", l.wait, q[i].interpass);
         }
@@ -300,22 +296,30 @@ fn added(t: &lmdc::ir::Thermal) -> f64 {
     t.layers.iter().map(|l| l.added).sum()
 }
 
+/// A wait the budget chose, cut to what must break the limit if it is the
+/// least: 90 % of it; a wait under a millisecond to none instead (it is
+/// found to a thousandth of the model's first time step, 50 µs, so 90 %
+/// of it may still keep the limit, and no controller times a dwell that
+/// finely): for those only that the wait was needed is checked, not that
+/// it was the least.
+fn cut(wait: f64) -> f64 {
+    if wait < 1e-3 {
+        0.0
+    } else {
+        0.9 * wait
+    }
+}
+
 /// Layer `i`'s hottest island start when the plan `p` is run again with
-/// the waits it planned, the one before layer `i` cut to 90 %: the wait
+/// the waits it planned, the one before layer `i` cut ([`cut`]): the wait
 /// the budget chose is the least that keeps the limit where this is above
-/// it. A wait under a millisecond is cut to none instead: it is found to a
-/// thousandth of the model's first time step (50 µs), so 90 % of it may
-/// still keep the limit, and no controller times a dwell that finely.
+/// it.
 fn hottest_with_a_shorter_wait(p: &lmdc::ir::Program, i: usize) -> f64 {
     let t = p.thermal.as_ref().unwrap();
     let (material, cell) = heat::cell(t);
     let (loads, orders, columns) = heat::island_loads(p);
     let waits: Vec<f64> = t.layers.iter().map(|l| l.wait).collect();
-    let shorter = |j: usize| match j == i {
-        true if waits[j] < 1e-3 => 0.0,
-        true => 0.9 * waits[j],
-        false => waits[j],
-    };
+    let shorter = |j: usize| if j == i { cut(waits[j]) } else { waits[j] };
     let (loads, orders) = (&loads[..=i], &orders[..=i]);
     let q = lmdc::thermal::predict_tree(material, cell, &columns, loads, orders, shorter, None)
         .unwrap();

@@ -22,6 +22,7 @@
 //! the lines' direction.
 
 use super::clip::{Frame, Pieces};
+use super::extend::Laid;
 use crate::geometry::region::Region;
 
 /// Edges within this of the lines' direction (deg) may need a closing
@@ -30,10 +31,6 @@ use crate::geometry::region::Region;
 /// beside it is wider than the bead over more than two offsets; across a
 /// steeper edge the lines' ends, extended, fill the staircase.
 pub const PARALLEL_DEG: f64 = 5.0;
-
-/// One raster line's intervals as laid (extended), each with the index of
-/// the clipped interval it grew from (`extend::extend_kept`).
-type Laid = Vec<(usize, [f64; 2])>;
 
 /// A stretch shorter than this many offsets gets no track (a laser on for
 /// less than a bead lays a blob; the gap check looks along two beads).
@@ -125,8 +122,8 @@ struct Edge {
     hi: [f64; 2],
 }
 
-/// Pieces this close to the line of the run before them (mm, and as a sine
-/// of the angle between them) go on along it.
+/// Pieces whose ends lie this close (mm) to the line of the run before
+/// them, and that go on the same way, go on along it.
 const COLLINEAR: f64 = 1e-6;
 
 /// The region's straight edges: each run of consecutive straight pieces of

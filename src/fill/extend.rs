@@ -3,6 +3,10 @@
 
 use crate::geometry::profile::TOLERANCE;
 
+/// One raster line's intervals as laid (extended), each with the index of
+/// the clipped interval it grew from, sorted along the line and disjoint.
+pub(super) type Laid = Vec<(usize, [f64; 2])>;
+
 /// Each line's intervals with their ends extended by at most `limit`;
 /// `lines[n]` are line `n`'s clipped intervals, sorted and disjoint.
 #[cfg(test)]
@@ -15,7 +19,7 @@ pub(super) fn extend(lines: &[Vec<[f64; 2]>], limit: f64) -> Vec<Vec<[f64; 2]>> 
 
 /// [`extend`], each interval kept with its index among the line's clipped
 /// ones (an interval that stays a point is dropped, so they may differ).
-pub(super) fn extend_kept(lines: &[Vec<[f64; 2]>], limit: f64) -> Vec<Vec<(usize, [f64; 2])>> {
+pub(super) fn extend_kept(lines: &[Vec<[f64; 2]>], limit: f64) -> Vec<Laid> {
     let grow = |reach: f64| {
         if reach > TOLERANCE {
             reach.min(limit)

@@ -23,17 +23,17 @@
 //! two stretches shut for less than two offsets between them are one. A
 //! shorter stretch is left to the melt pool: a track there would be
 //! shorter than a bead, a blob rather than a bead. Linear in the margin's
-//! length, with a binary search a line near each place.
+//! length and its arcs' chords (as many as the contour's), with a binary
+//! search a line near each place and the edges' tracks looked up by cell.
 
 use super::clip::{Frame, Piece, Pieces};
+use super::extend::Laid;
+use crate::geometry::profile::MAX_ARC_CHORDS;
+use std::collections::HashMap;
 use std::f64::consts::{PI, TAU};
 
-/// One raster line's intervals as laid (extended), each with the index of
-/// the clipped interval it grew from, sorted along the line.
-type Laid = Vec<(usize, [f64; 2])>;
-
 /// Most places a layer's margin is probed at: the step grows beyond it.
-const MAX_SAMPLES: f64 = 200_000.0;
+const MAX_PLACES: f64 = 200_000.0;
 
 /// A place on the margin, with the contour's place beyond it.
 #[derive(Clone, Copy)]
@@ -76,40 +76,39 @@ pub(super) fn closings(
         return out;
     }
     let total: f64 = pieces.items.iter().map(length).sum();
-    let step = (offset / 4.0).max(total / MAX_SAMPLES);
+    let step = (offset / 4.0).max(total / MAX_PLACES);
     if !(step.is_finite() && step > 0.0) {
         return out;
     }
     let reach = beyond + threshold;
-    // Shut for less than two offsets between two open stretches: one.
-    let bridge = (2.0 * offset / step).ceil() as usize;
+    let edges = EdgeCells::new(&laid.edges, reach);
     for (l, &(a, b)) in pieces.loops.iter().enumerate() {
         let hole = pieces.holes.get(l).copied().unwrap_or(false);
         let places: Vec<Place> = pieces.items[a..b]
             .iter()
-            .flat_map(|p| sample(p, step, beyond, hole))
+            .flat_map(|p| sample(p, [step, beyond, chord_error], hole))
             .collect();
         let open: Vec<bool> = places
             .iter()
-            .map(|p| nearest(p.probe, reach, laid) > reach)
+            .map(|p| nearest(p.probe, reach, laid, &edges) > reach)
             .collect();
-        for run in stretches(&open, bridge) {
+        let mut along = Vec::with_capacity(places.len());
+        let mut walked = 0.0;
+        for (k, p) in places.iter().enumerate() {
+            along.push(walked);
+            let next = places[(k + 1) % places.len()].at;
+            walked += (next[0] - p.at[0]).hypot(next[1] - p.at[1]);
+        }
+        // Shut for less than two offsets between two open stretches: one.
+        for run in stretches(&open, &along, walked, 2.0 * offset) {
             let track = stretch(&places, run);
-            if polyline_length(&track) >= reach {
+            if super::pitch::length(&track) >= reach {
                 let track = simplify(&track, chord_error / 4.0);
                 out.push(track.into_iter().map(|q| frame.world(q)).collect());
             }
         }
     }
     out
-}
-
-/// The length of a polyline (mm).
-fn polyline_length(points: &[[f64; 2]]) -> f64 {
-    points
-        .windows(2)
-        .map(|w| (w[0][0] - w[1][0]).hypot(w[0][1] - w[1][1]))
-        .sum()
 }
 
 /// A piece's length (mm).
@@ -142,12 +141,26 @@ fn span(p: &Piece, c: [f64; 2]) -> f64 {
     (b - a).clamp(-PI, PI)
 }
 
-/// The piece's places every `step` or less, in the loop's direction of
-/// travel, its far end left to the next piece; each with its probe an
-/// `offset` out of the region (a loop that is a `hole` has the region on
-/// its right).
-fn sample(p: &Piece, step: f64, offset: f64, hole: bool) -> Vec<Place> {
-    let n = (length(p) / step).ceil().max(1.0) as usize;
+/// The piece's places every `step` or less (an arc's within the chord
+/// error of it), in the loop's direction of travel, its far end left to
+/// the next piece; each with its probe an `offset` out of the region (a
+/// loop that is a `hole` has the region on its right).
+fn sample(p: &Piece, [step, offset, chord_error]: [f64; 3], hole: bool) -> Vec<Place> {
+    // An arc's places close enough that its chords stay within the chord
+    // error (the track follows them).
+    let turn = match p.arc {
+        Some((c, r, _)) if chord_error < r => {
+            span(p, c).abs() / (2.0 * (1.0 - chord_error / r).acos())
+        }
+        _ => 0.0,
+    };
+    if p.arc.is_none() && length(p) <= 0.0 {
+        // A point: no direction to probe out of.
+        return Vec::new();
+    }
+    // As many as the contour's own flattening takes at most.
+    let turn = turn.min(MAX_ARC_CHORDS as f64);
+    let n = (length(p) / step).max(turn).ceil().max(1.0) as usize;
     let (from, to) = if p.rising { (p.lo, p.hi) } else { (p.hi, p.lo) };
     (0..n)
         .map(|k| {
@@ -190,9 +203,11 @@ fn sample(p: &Piece, step: f64, offset: f64, hole: bool) -> Vec<Place> {
 
 /// The runs of `open` places (first and last index, the last possibly
 /// before the first where a run wraps round the loop's start), two runs
-/// with at most `bridge` shut places between them made one. A loop open
-/// everywhere has no raster near it at all: nothing to close against.
-fn stretches(open: &[bool], bridge: usize) -> Vec<(usize, usize)> {
+/// with at most `bridge` mm of shut margin between them made one (`along`:
+/// each place's distance along the loop, `round` the loop's length). A
+/// loop open everywhere has no raster near it at all: nothing to close
+/// against.
+fn stretches(open: &[bool], along: &[f64], round: f64, bridge: f64) -> Vec<(usize, usize)> {
     let n = open.len();
     let Some(shut) = open.iter().position(|o| !o) else {
         return Vec::new();
@@ -212,7 +227,7 @@ fn stretches(open: &[bool], bridge: usize) -> Vec<(usize, usize)> {
     }
     // Runs come in order from `shut`; join across short shut gaps (the
     // last and the first too, round the loop).
-    let gap = |a: (usize, usize), b: (usize, usize)| (b.0 + n - a.1) % n - 1;
+    let gap = |a: (usize, usize), b: (usize, usize)| (along[b.0] - along[a.1]).rem_euclid(round);
     let mut out: Vec<(usize, usize)> = Vec::new();
     for r in runs {
         match out.last_mut() {
@@ -264,10 +279,46 @@ fn simplify(points: &[[f64; 2]], tolerance: f64) -> Vec<[f64; 2]> {
     out
 }
 
+/// The edges' closing tracks by the cells of `u` they span (cells as tall
+/// as the reach looked within), so a place looks only at those near it:
+/// each track is in as many cells as its `u` range spans, a few for an
+/// edge within 5° of the lines.
+struct EdgeCells<'a> {
+    edges: &'a [[[f64; 2]; 2]],
+    cell: f64,
+    cells: HashMap<i64, Vec<usize>>,
+}
+
+impl<'a> EdgeCells<'a> {
+    fn new(edges: &'a [[[f64; 2]; 2]], cell: f64) -> Self {
+        let mut cells: HashMap<i64, Vec<usize>> = HashMap::new();
+        for (i, [a, b]) in edges.iter().enumerate() {
+            let (lo, hi) = (a[1].min(b[1]) / cell, a[1].max(b[1]) / cell);
+            if !(lo.is_finite() && hi.is_finite()) {
+                continue;
+            }
+            for k in lo.floor() as i64..=hi.floor() as i64 {
+                cells.entry(k).or_default().push(i);
+            }
+        }
+        EdgeCells { edges, cell, cells }
+    }
+
+    /// The tracks in the cells within one of `u`'s.
+    fn near(&self, u: f64) -> impl Iterator<Item = [[f64; 2]; 2]> + '_ {
+        let k = (u / self.cell).floor() as i64;
+        (k - 1..=k + 1)
+            .filter_map(|k| self.cells.get(&k))
+            .flatten()
+            .map(|&i| self.edges[i])
+    }
+}
+
 /// The distance from `q` (frame coordinates) to the nearest track of
-/// `laid`, looked for up to `within` away (farther reads as infinite).
-/// Each line's intervals are sorted: a binary search a line.
-fn nearest(q: [f64; 2], within: f64, laid: &Tracks<'_>) -> f64 {
+/// `laid` (its edges' tracks by `edges`), looked for up to `within` away
+/// (farther reads as infinite). Each line's intervals are sorted: a binary
+/// search a line.
+fn nearest(q: [f64; 2], within: f64, laid: &Tracks<'_>, edges: &EdgeCells<'_>) -> f64 {
     let dist = |p: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
     let mut best = f64::INFINITY;
     let lo = laid.line_s.partition_point(|&s| s < q[1] - within);
@@ -282,7 +333,7 @@ fn nearest(q: [f64; 2], within: f64, laid: &Tracks<'_>) -> f64 {
             }
         }
     }
-    for &[a, b] in &laid.edges {
+    for [a, b] in edges.near(q[1]) {
         best = best.min(dist(closest(q, a, b)));
     }
     best

@@ -224,7 +224,8 @@ pub fn strips(
     }
 }
 
-fn length(points: &[[f64; 2]]) -> f64 {
+/// The length of a polyline (mm).
+pub(crate) fn length(points: &[[f64; 2]]) -> f64 {
     points
         .windows(2)
         .map(|m| (m[1][0] - m[0][0]).hypot(m[1][1] - m[0][1]))
