@@ -46,7 +46,7 @@ const MAX_SAMPLES: f64 = 100_000.0;
 /// How far off the edge (mm) its region side is tested.
 const SIDE_PROBE: f64 = 1e-4;
 
-/// The closing tracks (start and end, in the world frame) along `region`'s
+/// The closing tracks (start and end, in the raster's frame) along `region`'s
 /// straight edges that run within [`PARALLEL_DEG`] of the lines at
 /// `line_s` (their intervals as laid, `lines`, each with the interval it
 /// grew from), where the nearest line on
@@ -105,7 +105,7 @@ pub(super) fn closings(
                     run = None;
                     let (a, b) = (first as f64 / n as f64, k as f64 / n as f64);
                     if (b - a) * len >= MIN_LENGTH * offset {
-                        out.push([frame.world(at(a)), frame.world(at(b))]);
+                        out.push([at(a), at(b)]);
                     }
                 }
                 _ => {}

@@ -26,7 +26,8 @@
 //! length and its arcs' chords (as many as the contour's), with a binary
 //! search a line near each place and the edges' tracks looked up by cell.
 
-use super::clip::{Frame, Piece, Pieces};
+use super::clip::{Piece, Pieces};
+use super::coverage::distance2;
 use super::extend::Laid;
 use crate::geometry::profile::MAX_ARC_CHORDS;
 use std::collections::HashMap;
@@ -51,27 +52,24 @@ pub(super) struct Tracks<'a> {
     pub line_s: &'a [f64],
     /// Each line's intervals as laid.
     pub lines: &'a [Laid],
-    /// The closing tracks along edges (module `edge`), frame coordinates.
-    pub edges: Vec<[[f64; 2]; 2]>,
+    /// The closing tracks along edges (module `edge`).
+    pub edges: &'a [[[f64; 2]; 2]],
 }
 
-/// The closing tracks (polylines, world frame) along the margin of the
-/// raster region (`pieces`, in `frame`) where the contour `beyond` it would
-/// lie farther than
-/// `beyond + threshold` from every track of `laid`, over at least that
-/// much; `offset` the lines' spacing, arcs kept within `chord_error`. In
-/// the order of the loops.
+/// The closing tracks (polylines, in the raster's frame) along the margin
+/// of the raster region (`pieces`) where the contour an `offset` beyond it
+/// would lie farther than `offset + threshold` from every track of `laid`,
+/// over at least that much; `offset` the lines' spacing and the contours',
+/// arcs kept within `chord_error`. In the order of the loops.
 pub(super) fn closings(
-    (pieces, frame): (&Pieces, &Frame),
+    pieces: &Pieces,
     laid: &Tracks<'_>,
-    [beyond, threshold, offset, chord_error]: [f64; 4],
+    [threshold, offset, chord_error]: [f64; 3],
 ) -> Vec<Vec<[f64; 2]>> {
     let mut out = Vec::new();
     let usable = [threshold, offset, chord_error]
         .iter()
-        .all(|v| v.is_finite() && *v > 0.0)
-        && beyond.is_finite()
-        && beyond > 0.0;
+        .all(|v| v.is_finite() && *v > 0.0);
     if !usable || laid.line_s.is_empty() {
         return out;
     }
@@ -80,13 +78,13 @@ pub(super) fn closings(
     if !(step.is_finite() && step > 0.0) {
         return out;
     }
-    let reach = beyond + threshold;
-    let edges = EdgeCells::new(&laid.edges, reach);
+    let reach = offset + threshold;
+    let edges = EdgeCells::new(laid.edges, reach);
     for (l, &(a, b)) in pieces.loops.iter().enumerate() {
         let hole = pieces.holes.get(l).copied().unwrap_or(false);
         let places: Vec<Place> = pieces.items[a..b]
             .iter()
-            .flat_map(|p| sample(p, [step, beyond, chord_error], hole))
+            .flat_map(|p| sample(p, [step, offset, chord_error], hole))
             .collect();
         let open: Vec<bool> = places
             .iter()
@@ -103,8 +101,7 @@ pub(super) fn closings(
         for run in stretches(&open, &along, walked, 2.0 * offset) {
             let track = stretch(&places, run);
             if super::pitch::length(&track) >= reach {
-                let track = simplify(&track, chord_error / 4.0);
-                out.push(track.into_iter().map(|q| frame.world(q)).collect());
+                out.push(simplify(&track, chord_error / 4.0));
             }
         }
     }
@@ -120,7 +117,7 @@ fn length(p: &Piece) -> f64 {
 }
 
 /// The angles (rad) of an arc piece's `lo` and `hi` about its centre `c`,
-/// on the piece's side of the centre, and their difference `hi − lo`.
+/// on the piece's side of the centre.
 fn angles(p: &Piece, c: [f64; 2]) -> (f64, f64) {
     let side = p.arc.map_or(1.0, |(_, _, s)| s);
     let angle = |q: [f64; 2]| {
@@ -146,56 +143,52 @@ fn span(p: &Piece, c: [f64; 2]) -> f64 {
 /// the next piece; each with its probe an `offset` out of the region (a
 /// loop that is a `hole` has the region on its right).
 fn sample(p: &Piece, [step, offset, chord_error]: [f64; 3], hole: bool) -> Vec<Place> {
-    // An arc's places close enough that its chords stay within the chord
-    // error (the track follows them).
-    let turn = match p.arc {
-        Some((c, r, _)) if chord_error < r => {
-            span(p, c).abs() / (2.0 * (1.0 - chord_error / r).acos())
-        }
-        _ => 0.0,
-    };
-    if p.arc.is_none() && length(p) <= 0.0 {
-        // A point: no direction to probe out of.
-        return Vec::new();
-    }
-    // As many as the contour's own flattening takes at most.
-    let turn = turn.min(MAX_ARC_CHORDS as f64);
-    let n = (length(p) / step).max(turn).ceil().max(1.0) as usize;
+    let length = length(p);
     let (from, to) = if p.rising { (p.lo, p.hi) } else { (p.hi, p.lo) };
+    let Some((c, r, _)) = p.arc else {
+        if length <= 0.0 {
+            // A point: no direction to probe out of.
+            return Vec::new();
+        }
+        let n = (length / step).ceil().max(1.0) as usize;
+        let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+        // Out of the region: right of travel round an outer loop, left
+        // round a hole.
+        let out = if hole { -offset } else { offset } / length;
+        let normal = [out * dy, -out * dx];
+        return (0..n)
+            .map(|k| {
+                let f = k as f64 / n as f64;
+                let at = [from[0] + f * dx, from[1] + f * dy];
+                Place {
+                    at,
+                    probe: [at[0] + normal[0], at[1] + normal[1]],
+                }
+            })
+            .collect();
+    };
+    let (lo, hi) = angles(p, c);
+    let (a0, a1) = if p.rising { (lo, hi) } else { (hi, lo) };
+    // Places close enough that the chords between them stay within the
+    // chord error (the track follows them), as many as the contour's own
+    // flattening takes at most.
+    let turn = if chord_error < r {
+        ((a1 - a0).abs() / (2.0 * (1.0 - chord_error / r).acos())).min(MAX_ARC_CHORDS as f64)
+    } else {
+        0.0
+    };
+    let n = (length / step).max(turn).ceil().max(1.0) as usize;
+    // Out of the region: away from the centre of a convex arc, toward it
+    // (at most to it) of a concave one.
+    let out = if p.convex { offset } else { -offset.min(r) };
     (0..n)
         .map(|k| {
-            let f = k as f64 / n as f64;
-            match p.arc {
-                None => {
-                    let at = [
-                        from[0] + f * (to[0] - from[0]),
-                        from[1] + f * (to[1] - from[1]),
-                    ];
-                    let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
-                    let len = dx.hypot(dy).max(f64::MIN_POSITIVE);
-                    // Out of the region: right of travel round an outer
-                    // loop, left round a hole.
-                    let sign = if hole { -1.0 } else { 1.0 };
-                    let normal = [sign * dy / len, -sign * dx / len];
-                    Place {
-                        at,
-                        probe: [at[0] + offset * normal[0], at[1] + offset * normal[1]],
-                    }
-                }
-                Some((c, r, _)) => {
-                    let (lo, hi) = angles(p, c);
-                    let (a0, a1) = if p.rising { (lo, hi) } else { (hi, lo) };
-                    let phi = a0 + f * (a1 - a0);
-                    let radial = [phi.cos(), phi.sin()];
-                    let at = [c[0] + r * radial[0], c[1] + r * radial[1]];
-                    // Out of the region: away from the centre of a convex
-                    // arc, toward it (at most to it) of a concave one.
-                    let out = if p.convex { offset } else { -offset.min(r) };
-                    Place {
-                        at,
-                        probe: [at[0] + out * radial[0], at[1] + out * radial[1]],
-                    }
-                }
+            let phi = a0 + k as f64 / n as f64 * (a1 - a0);
+            let radial = [phi.cos(), phi.sin()];
+            let at = [c[0] + r * radial[0], c[1] + r * radial[1]];
+            Place {
+                at,
+                probe: [at[0] + out * radial[0], at[1] + out * radial[1]],
             }
         })
         .collect()
@@ -267,7 +260,7 @@ fn simplify(points: &[[f64; 2]], tolerance: f64) -> Vec<[f64; 2]> {
         let fits = j - anchor <= MAX_SKIPPED
             && points[anchor + 1..j]
                 .iter()
-                .all(|&p| off_line(p, a, points[j]) <= tolerance);
+                .all(|&p| distance2(p, &[a, points[j]]) <= tolerance * tolerance);
         if !fits {
             anchor = j - 1;
             out.push(points[anchor]);
@@ -334,25 +327,7 @@ fn nearest(q: [f64; 2], within: f64, laid: &Tracks<'_>, edges: &EdgeCells<'_>) -
         }
     }
     for [a, b] in edges.near(q[1]) {
-        best = best.min(dist(closest(q, a, b)));
+        best = best.min(distance2(q, &[a, b]).sqrt());
     }
     best
-}
-
-/// The point of the segment `a`–`b` closest to `p`.
-fn closest(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len2 = dx * dx + dy * dy;
-    let f = if len2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    [a[0] + f * dx, a[1] + f * dy]
-}
-
-/// The distance from `p` to the segment `a`–`b`.
-fn off_line(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let c = closest(p, a, b);
-    (p[0] - c[0]).hypot(p[1] - c[1])
 }

@@ -63,20 +63,25 @@ pub(super) fn tracks(
     let laid = margin::Tracks {
         line_s: &line_s,
         lines: &grown,
-        edges: edges.iter().map(|e| e.map(|p| frame.local(p))).collect(),
+        edges: &edges,
     };
     // With contours, where the innermost would be left without a track
     // beside it (without, the raster's ends are the layer's edge).
     let margins = if spec.closing.is_finite() {
-        margin::closings(
-            (&pieces, &frame),
-            &laid,
-            [spec.offset, threshold, spec.offset, cx.chord_error],
-        )
+        margin::closings(&pieces, &laid, [threshold, spec.offset, cx.chord_error])
     } else {
         Vec::new()
     };
-    let closings: Vec<Vec<[f64; 2]>> = edges.into_iter().map(Vec::from).chain(margins).collect();
+    // Both found in the raster's frame; laid in the world's.
+    let closings: Vec<Vec<[f64; 2]>> = edges
+        .iter()
+        .map(|e| e.iter().map(|&q| frame.world(q)).collect())
+        .chain(
+            margins
+                .into_iter()
+                .map(|m| m.into_iter().map(|q| frame.world(q)).collect()),
+        )
+        .collect();
 
     if let Some((within, laser)) = cx.link {
         let chains = link::chains(
@@ -92,7 +97,7 @@ pub(super) fn tracks(
             laser,
         );
         let mut out = link::tracks(&chains, &grown, &line_s, &frame, points_left)?;
-        closing_tracks(&closings, &mut out, points_left)?;
+        closing_tracks(closings, &mut out, points_left)?;
         return Ok(out);
     }
 
@@ -118,18 +123,17 @@ pub(super) fn tracks(
             forward = !forward;
         }
     }
-    closing_tracks(&closings, &mut out, points_left)?;
+    closing_tracks(closings, &mut out, points_left)?;
     Ok(out)
 }
 
-/// Adds the closing tracks along edges that run with the lines (module
-/// `edge`) and along the margin where the contour has no track within reach (module
-/// `margin`) to the raster's:
-/// each after the end of a run of tracks (a track not linked on) nearest
-/// one of its ends, laid from that end, so the nozzle lays it on its way
-/// rather than coming back for it.
+/// Adds the closing tracks (module `edge`'s along edges that run with the
+/// lines, module `margin`'s where the contour has no track within reach)
+/// to the raster's: each after the end of a run of tracks (a track not
+/// linked on) nearest one of its ends, laid from that end, so the nozzle
+/// lays it on its way rather than coming back for it.
 fn closing_tracks(
-    closings: &[Vec<[f64; 2]>],
+    closings: Vec<Vec<[f64; 2]>>,
     out: &mut Vec<Track>,
     points_left: &mut u64,
 ) -> Result<(), FillError> {
@@ -150,7 +154,7 @@ fn closing_tracks(
             .filter(|(_, t)| t.link.is_none())
             .filter_map(|(i, t)| t.points.last().map(|&e| (i, dist(e, a).min(dist(e, b)), e)))
             .min_by(|x, y| x.1.total_cmp(&y.1));
-        let mut points = track.clone();
+        let mut points = track;
         let slot = match best {
             Some((i, _, e)) if dist(e, b) < dist(e, a) => {
                 points.reverse();

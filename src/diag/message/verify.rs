@@ -164,11 +164,11 @@ pub fn point_out_of_range(
 pub fn lone_contour(d: Diagnostic, width: f64, speed: f64) -> Diagnostic {
     d.help(format!(
         "there the contour is laid as a lone bead (it fills a strip {} mm wide, the bead's width): \
-         no raster track lies within a bead of it. This happens where a curved \
-         edge (a round hole's or a rounded tongue's crest or flank, a rounded inner corner) runs \
-         with the raster lines and the nearest line stops up to an offset short of it. One more \
-         contour (`contours = 2` where there is one) usually closes that strip; so does a bead speed range down to {} mm/s, \
-         if the process allows",
+         no raster track lies within a bead of it. This happens where a curved edge (a round \
+         hole's or a rounded tongue's crest or flank, a rounded inner corner) runs with the \
+         raster lines and the nearest line stops up to an offset short of it. One contour more \
+         than the slicing's `contours` usually closes that strip; so does a bead speed range \
+         down to {} mm/s, if the process allows",
         short(width),
         // Rounded down: a range down to the printed speed reaches it.
         short((speed * 1e3).floor() / 1e3)
