@@ -15,6 +15,7 @@ mod lean;
 mod lean_finish;
 mod levelfollow;
 mod overhung;
+mod steps;
 mod target;
 mod tilted;
 mod tiltlevel;

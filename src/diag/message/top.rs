@@ -722,6 +722,11 @@ pub struct Untilted<'a> {
     pub direction: Span,
     /// `top = …`.
     pub top: Span,
+    /// Whether the scan's faces were asked what a line meets at a flank
+    /// (a mesh scan): without them a real step reads as a flank too.
+    pub faces: bool,
+    /// Whether a line failed at a flank in the search.
+    pub flanked: bool,
 }
 
 /// What a line along a build direction meets that does not build it.
@@ -758,10 +763,17 @@ pub fn untilted(u: &Untilted<'_>) -> Diagnostic {
             "layers laid along a direction stand on each other only where each line along it meets the target in one piece from the scan up; the tilt is held to {}° by {by}: a machine that tilts the nozzle or the part farther (its tilt axis's limits), with the bead's `tilt` measured that far, would build it; or build the part to the overhang's underside and the overhang in a later step with the part tilted",
             short(limit)
         ),
-        None => "no one direction builds every point of the footprint (a ledge over a gap, or overhangs leaning different ways): build the part in steps, first up to the overhangs' undersides, then each overhang along its own direction, with its own footprint".to_string(),
+        None => "no one direction builds every point of the footprint (a ledge over a gap, or overhangs leaning different ways): build the part in steps, first up to the overhangs' undersides, then each overhang along its own direction, with its own footprint, on a scan of the part as the steps before left it (docs/repair.md, *Repairs in steps*)".to_string(),
+    };
+    // Only where a step could be what stops it.
+    let help = if u.faces || !u.flanked {
+        help
+    } else {
+        format!("{help}; this scan has no faces, so a face of the part steeper than the build direction reads as a flank that may hide an overhang: a scan with faces (a PLY with faces, an STL or a 3MF) shows a step the lines meet, and lmdc builds on it")
     };
     let meets = match u.meets {
         LineFault::Again => "leaves the target and enters it again above the scan",
+        LineFault::Flank if u.faces => "comes under the scanned part where, seen from above, it rises steeper than the line: the scan's faces show no step there that the line meets in the open, so the part leans out over the line (or the scan has a hole there)",
         LineFault::Flank => "meets the scan on a flank steeper than itself (a face of the scanned part steeper than the build direction), below the flank's top edge: the scan, seen from above, does not show whether the part is there or leans out over the line, which would then pass under it",
         LineFault::Gap => "leaves the target there and meets the scan only below, through air beside the part as designed (the target contains the scanned part elsewhere, so a gap under it is no wear)",
         LineFault::Nothing => "meets none of the target above the scan, or runs off the scan",

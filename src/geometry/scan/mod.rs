@@ -100,6 +100,49 @@ impl Raw {
     }
 }
 
+/// Most faces a scan's [`Faces::tree`] builds a tree of (about
+/// 150 bytes each): more, and the faces are not consulted (a height
+/// field's rule stands).
+pub const MAX_TREE_FACES: usize = 4_000_000;
+
+/// A scan's faces as read and where they go: what tells a real step of
+/// the part (a face there) from the cliff its height field draws under a
+/// part that overhangs itself (air there) (docs/repair.md, *Under the
+/// scan's own edge*).
+#[derive(Debug)]
+pub struct Faces {
+    raw: Raw,
+    pose: Pose,
+}
+
+impl Faces {
+    /// The faces of `raw` placed by `pose`; `None` for a point cloud.
+    pub fn new(raw: Raw, pose: Pose) -> Option<Faces> {
+        (!raw.triangles.is_empty()).then_some(Faces { raw, pose })
+    }
+
+    /// The placed faces as a tree; `None` when there are more than
+    /// [`MAX_TREE_FACES`].
+    pub fn tree(&self) -> Option<nearest::TriangleTree> {
+        if self.raw.triangles.len() > MAX_TREE_FACES {
+            return None;
+        }
+        let placed: Vec<[f64; 3]> = self
+            .raw
+            .vertices
+            .iter()
+            .map(|v| self.pose.apply(v))
+            .collect();
+        let tris: Vec<nearest::Tri> = self
+            .raw
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| placed[i as usize]))
+            .collect();
+        Some(nearest::TriangleTree::new(&tris))
+    }
+}
+
 /// Why a scan file cannot be read.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ScanError {

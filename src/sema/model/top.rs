@@ -165,6 +165,9 @@ pub struct ScanBase {
     /// Its best fit to its nominal, when it was registered to one (boxed:
     /// most scans have none).
     pub registration: Option<Box<crate::ir::Registration>>,
+    /// Its faces, placed as the surface is, when it has faces (a mesh):
+    /// `direction = auto` asks them what a line meets beside a flank.
+    pub faces: Option<std::sync::Arc<crate::geometry::scan::Faces>>,
     /// Where `scan(…)` is written.
     pub span: Span,
 }

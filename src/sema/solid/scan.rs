@@ -89,6 +89,7 @@ pub fn read(
         path,
         surface: std::sync::Arc::new(surface),
         registration,
+        faces: scan::Faces::new(raw, pose).map(std::sync::Arc::new),
         span: at,
     };
     Some((base, cut))

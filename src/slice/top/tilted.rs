@@ -38,7 +38,8 @@ use crate::diag::message::top::{LineFault, Untilted};
 use crate::diag::{message, Diagnostics};
 use crate::geometry::outline;
 use crate::geometry::profile::Profile;
-use crate::geometry::scan::HeightField;
+use crate::geometry::scan::nearest::TriangleTree;
+use crate::geometry::scan::{Faces, HeightField};
 use crate::geometry::shape::{Outline, Segment, Shape};
 use crate::geometry::target::{Inner, Target, Turned};
 use crate::ir::{Frame, Kinematics, Layer, Machine};
@@ -48,6 +49,7 @@ use crate::sema::model::{
 use crate::span::Span;
 use crate::units::Length;
 use nalgebra::{Rotation3, Vector3};
+use std::cell::{Cell, OnceCell};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -112,6 +114,12 @@ struct Lines<'a> {
     top: &'a Top,
     /// Whether the target contains the scanned part: a gap under it is air.
     holds: bool,
+    /// The scan's faces, when it has them, as a tree made at the first
+    /// flank ([`Lines::real_face`]); `None` inside: too many faces.
+    faces: Option<(&'a Faces, OnceCell<Option<TriangleTree>>)>,
+    /// Whether a line failed at a flank: where the scan has no faces, a
+    /// step of the part may be what stops it.
+    flanked: Cell<bool>,
 }
 
 impl Lines<'_> {
@@ -151,12 +159,19 @@ impl Lines<'_> {
             let under = self.scan.at([q[0], q[1]]);
             match under {
                 Some(b) if q[2] <= b => {
-                    // A rounding's worth of rise is no flank.
-                    let through_top =
-                        matches!(last, Some((z, Some(was_b))) if b - was_b <= z - q[2] + 1e-9);
+                    // A rounding's worth of rise is no flank; nor is a
+                    // face of a scan with faces.
+                    let through_top = match last {
+                        Some((z, Some(was_b))) if b - was_b <= z - q[2] + 1e-9 => true,
+                        Some(_) => self.real_face(at(top), q, d),
+                        None => false,
+                    };
                     return match (pieces, through_top, left) {
                         (0, _, _) => Meets::Nothing,
-                        (_, false, _) => Meets::Flank(q),
+                        (_, false, _) => {
+                            self.flanked.set(true);
+                            Meets::Flank(q)
+                        }
                         (_, true, Some(u)) if !was && self.holds => Meets::Gap(u),
                         (_, true, _) => Meets::OnePiece,
                     };
@@ -180,6 +195,19 @@ impl Lines<'_> {
             was = is;
         }
         Meets::Nothing
+    }
+
+    /// Whether the line along `d` from `start` (above the target), which
+    /// comes under the height field at `to` up a flank, meets a real step
+    /// of the scanned part there ([`steps_onto`]); `false` for a scan
+    /// without faces, or with too many to ask.
+    fn real_face(&self, start: [f64; 3], to: [f64; 3], d: [f64; 3]) -> bool {
+        let Some((faces, tree)) = &self.faces else {
+            return false;
+        };
+        tree.get_or_init(|| faces.tree())
+            .as_ref()
+            .is_some_and(|tree| steps_onto(tree, self.scan.cell(), [start, to], d))
     }
 
     /// The first line (the one at `first` tried first) along `d` that does
@@ -318,7 +346,44 @@ fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
         scan,
         top: &ex.top,
         holds: super::underside::holds_scan(ex).is_some(),
+        faces: ex
+            .base
+            .as_ref()
+            .and_then(|b| b.faces.as_deref())
+            .map(|f| (f, OnceCell::new())),
+        flanked: Cell::new(false),
     })
+}
+
+/// Whether the line along `d` from `start` (in the air over the part),
+/// which comes under a height field of cells `cell` wide at `to` up a
+/// flank, meets a real step of the part whose faces are `tree` there:
+/// the first face it crosses lies no farther on than the flank (a cell's
+/// diagonal and a half across `d` past `to`: the height field's cliff
+/// stands where the cells' centres say, and a rim cell takes the height of
+/// a face over part of it), and no face of the part is over the line just
+/// before it, so that the height field, which the fill is planned on, has
+/// the step where it is. Under a part that overhangs itself the line
+/// meets no face at the cliff, or one with the overhang over it: no step.
+fn steps_onto(tree: &TriangleTree, cell: f64, [start, to]: [[f64; 3]; 2], d: [f64; 3]) -> bool {
+    let across = (1.0 - d[2] * d[2]).max(0.0).sqrt();
+    if across < 1e-9 {
+        return false;
+    }
+    let down = d.map(|c| -c);
+    let to_len = (0..3)
+        .map(|k| (to[k] - start[k]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    let past = 1.5 * std::f64::consts::SQRT_2 * cell / across;
+    let Some(t) = tree.first_hit(start, down, to_len + past) else {
+        return false;
+    };
+    // A hundredth of a millimetre back along the line: in the air the
+    // step stands in, open to the sky.
+    let before = (t - 0.01).max(0.0);
+    let p = [0, 1, 2].map(|k| start[k] + before * down[k]);
+    tree.first_hit(p, [0.0, 0.0, 1.0], f64::INFINITY).is_none()
 }
 
 /// The points of `profile` (within `bounds`) every `spacing` at least
@@ -428,6 +493,8 @@ fn untilted(
         needs: needs.map(Direction::pair),
         direction: at,
         top: ex.top_span,
+        faces: lines.faces.is_some(),
+        flanked: lines.flanked.get(),
     })
 }
 
@@ -538,6 +605,8 @@ fn turn(
         }),
         base: Some(ScanBase {
             surface: Arc::new(surface),
+            // In the part's frame: the lines' alone.
+            faces: None,
             ..scan.clone()
         }),
         turned: Some(TurnedFrame {
@@ -603,4 +672,45 @@ fn turn_back(mut layer: Layer, back: &Rotation3<f64>) -> Layer {
         z: turn(f.z),
     };
     layer
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::scan::nearest::block;
+
+    /// A plate, and on it a post 20 mm wide and 30 mm high, with a cap
+    /// 24 mm wide over its top 4 mm when `capped`.
+    fn part(capped: bool) -> TriangleTree {
+        let mut tris = block([-40.0, -20.0, -10.0], [40.0, 20.0, 0.0]);
+        tris.extend(block([-10.0, -20.0, 0.0], [10.0, 20.0, 30.0]));
+        if capped {
+            tris.extend(block([-12.0, -20.0, 26.0], [12.0, 20.0, 30.0]));
+        }
+        TriangleTree::new(&tris)
+    }
+
+    #[test]
+    fn a_side_in_the_open_is_a_step_and_one_under_a_cap_is_not() {
+        // 30° toward -x: the line runs down toward +x, onto the post's -x
+        // side 0.5 mm below where it crosses x = -12; a height field of
+        // 0.5 mm cells draws the cliff there (the cap's edge) or at the side.
+        let (s, c) = (0.5, 30f64.to_radians().cos());
+        let d = [-s, 0.0, c];
+        let start = [-16.0, 0.0, 25.0];
+        let on = |x: f64| [x, 0.0, start[2] - (x - start[0]) * c / s];
+        assert!(steps_onto(&part(false), 0.5, [start, on(-10.25)], d));
+        // Under the cap the side is as near, but the cap is over it.
+        assert!(!steps_onto(&part(true), 0.5, [start, on(-11.75)], d));
+        // A face farther on than the flank is no step: the side from 4 mm
+        // off, on cells of 0.5 mm.
+        assert!(!steps_onto(&part(false), 0.5, [start, on(-14.0)], d));
+        // A vertical line never comes up a flank.
+        assert!(!steps_onto(
+            &part(false),
+            0.5,
+            [start, start],
+            [0.0, 0.0, 1.0]
+        ));
+    }
 }
