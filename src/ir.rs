@@ -726,7 +726,8 @@ impl Levers {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Thermal {
-    /// The alloy, as `material = …` names it.
+    /// The alloy, as `material = …` names it (`KEY, with declared
+    /// properties` over it; `declared material`: no alloy).
     pub material: String,
     /// Thermal conductivity, W/(m·K).
     pub conductivity: f64,

@@ -67,6 +67,23 @@ impl Dim {
         k: -1,
     };
 
+    /// g·mm/(s³·°C), scaled: a thermal conductivity (W/(m·°C)).
+    pub const CONDUCTIVITY: Dim = Dim {
+        l: 1,
+        m: 1,
+        t: -3,
+        a: 0,
+        k: -1,
+    };
+    /// mm²/(s²·°C): a specific heat capacity (J/(kg·°C)).
+    pub const HEAT_CAPACITY: Dim = Dim {
+        l: 2,
+        m: 0,
+        t: -2,
+        a: 0,
+        k: -1,
+    };
+
     /// Builds a dimension from exponents.
     pub const fn new(l: i8, m: i8, t: i8, a: i8) -> Dim {
         Dim { l, m, t, a, k: 0 }
@@ -123,6 +140,8 @@ impl Dim {
                 Dim::HEAT_TRANSFER,
                 "a heat transfer coefficient (W/m^2/degC)",
             ),
+            (Dim::CONDUCTIVITY, "a thermal conductivity (W/m/degC)"),
+            (Dim::HEAT_CAPACITY, "a specific heat capacity (J/kg/degC)"),
         ];
         for (d, name) in known {
             if d == self {

@@ -859,3 +859,106 @@ proptest! {
         prop_assert!(t.layers.iter().all(|l| l.interpass.is_finite() && l.peak.is_finite()));
     }
 }
+
+/// A material declared property by property: the same numbers as an
+/// alloy's give its prediction to the bit; one property over an alloy's
+/// changes only what it should (a plate that holds twice the heat per
+/// kelvin warms the first layer's start less); one left out without
+/// `material` is named, as are a wrong unit and an emissivity above 1.
+#[test]
+fn a_material_declared_property_by_property() {
+    let ss316l = "conductivity = 20 W/m/degC  density = 7950 kg/m^3  heat_capacity = 560 J/kg/degC  emissivity = 0.5  absorptivity = 0.35";
+    let temps = |thermal: &str| -> (String, Vec<f64>) {
+        let c = compile(&plate(20.0, 6, "", thermal), &mut ());
+        let p = c
+            .program
+            .unwrap_or_else(|| panic!("{thermal}: {:?}", c.diagnostics));
+        let t = p.ir().thermal.clone().unwrap();
+        (t.material, t.layers.iter().map(|l| l.interpass).collect())
+    };
+    let (name, alloy) = temps("material = ss316l");
+    assert_eq!(name, "ss316l");
+    let (name, declared) = temps(ss316l);
+    assert_eq!(name, "declared material");
+    assert_eq!(declared, alloy);
+    assert!(alloy[1] > alloy[0] + 5.0, "{alloy:?}");
+    let (name, heavy) = temps("material = ss316l  heat_capacity = 1120 J/kg/degC");
+    assert_eq!(name, "ss316l, with declared properties");
+    for (h, a) in heavy.iter().zip(&alloy).skip(1) {
+        assert!(h < a, "{heavy:?} vs {alloy:?}");
+    }
+    let errors = |thermal: &str| -> Vec<(String, String)> {
+        compile(&plate(20.0, 6, "", thermal), &mut ())
+            .diagnostics
+            .iter()
+            .map(|d| (d.code.as_str().to_string(), d.message.clone()))
+            .collect()
+    };
+    let e = errors("conductivity = 20 W/m/degC  density = 7950 kg/m^3  emissivity = 0.5");
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert_eq!(e[0].0, "lmd::missing-field");
+    assert!(
+        e[0].1.ends_with("`heat_capacity`, `absorptivity` missing"),
+        "{e:?}"
+    );
+    let e = errors(&ss316l.replace("20 W/m/degC", "20 W/m^2/degC"));
+    assert!(
+        e.iter()
+            .any(|(_, m)| m.contains("conductivity")
+                && m.contains("a thermal conductivity (W/m/degC)")),
+        "{e:?}"
+    );
+    let e = errors(&ss316l.replace("emissivity = 0.5", "emissivity = 1.5"));
+    assert!(
+        e.iter()
+            .any(|(c, m)| c == "lmd::out-of-range" && m.starts_with("`emissivity` is a share")),
+        "{e:?}"
+    );
+}
+
+/// `lmdc fit` over a plan whose material is declared prints the
+/// properties to paste, not an alloy's word: the block it prints, pasted
+/// into the plan, compiles to the same material.
+#[test]
+fn fit_prints_a_declared_material_to_paste() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = include_str!("../examples/thin_wall.lmd").replace(
+        "material = ss316l",
+        "conductivity = 40 W/m/degC  density = 7850 kg/m^3  heat_capacity = 600 J/kg/degC  emissivity = 0.7  absorptivity = 0.3",
+    );
+    let plan = dir.path().join("wall.lmd");
+    std::fs::write(&plan, &src).unwrap();
+    let sheet = dir.path().join("t.csv");
+    std::fs::write(&sheet, "layer, interpass (degC)\n2, 60\n6, 120\n10, 160\n").unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lmdc"))
+        .arg("fit")
+        .arg(&sheet)
+        .arg("--plan")
+        .arg(&plan)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{text}");
+    let block = text
+        .split_once("in the process block:\n")
+        .map(|(_, b)| b.split_once("  }").unwrap().0)
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(!block.contains("material"), "{block}");
+    for line in [
+        "conductivity = 40 W/m/degC",
+        "density = 7850 kg/m^3",
+        "heat_capacity = 600 J/kg/degC",
+        "emissivity = 0.7",
+    ] {
+        assert!(block.contains(line), "{block}");
+    }
+    let pasted = include_str!("../examples/thin_wall.lmd")
+        .replace("  thermal {\n    material = ss316l\n", block);
+    let t = |s: &str| {
+        let c = compile(s, &mut ());
+        let p = c.program.unwrap_or_else(|| panic!("{:?}", c.diagnostics));
+        let t = p.ir().thermal.clone().unwrap();
+        [t.conductivity, t.density, t.heat_capacity, t.emissivity]
+    };
+    assert_eq!(t(&pasted), t(&src));
+}

@@ -34,6 +34,28 @@ struct Report {
     /// Which ended at the edge of the range searched (absorptivity, heat
     /// transfer): the data do not settle it.
     at_edge: [bool; 2],
+    /// The material's lines of the `thermal` block to paste.
+    #[serde(skip)]
+    material_lines: String,
+}
+
+/// The lines of a `thermal` block that give `t`'s material: its alloy,
+/// and the properties declared over it or instead of one (all four, as
+/// the plan took them).
+fn material_lines(t: &lmdc::ir::Thermal) -> String {
+    let key = t.material.split(',').next().unwrap_or_default();
+    let mut out = String::new();
+    if lmdc::thermal::alloy(key).is_some() {
+        out.push_str(&format!("    material = {key}\n"));
+        if key == t.material {
+            return out;
+        }
+    }
+    out.push_str(&format!(
+        "    conductivity = {} W/m/degC\n    density = {} kg/m^3\n    heat_capacity = {} J/kg/degC\n    emissivity = {}\n",
+        t.conductivity, t.density, t.heat_capacity, t.emissivity
+    ));
+    out
 }
 
 /// Runs the fit of `sheet` over the plan of `plan`; returns the exit code.
@@ -110,6 +132,7 @@ pub fn run(sheet: &Path, plan: &Path, json: bool, (color, format): (bool, Messag
         islands,
         layers: [first, last],
         at_edge: f.at_edge,
+        material_lines: material_lines(t),
     };
     if json {
         println!("{}", serde_json::to_string(&r).expect("plain data"));
@@ -203,8 +226,8 @@ fn text_of(r: &Report, layers: usize, sheet: &str) -> String {
     }
     let _ = writeln!(
         out,
-        "\nin the process block:\n  thermal {{\n    material = {}\n    absorptivity = {:.3}\n    heat_transfer = {:.1} W/m^2/degC\n  }}",
-        r.material, r.absorptivity, r.heat_transfer
+        "\nin the process block:\n  thermal {{\n{}    absorptivity = {:.3}\n    heat_transfer = {:.1} W/m^2/degC\n  }}",
+        r.material_lines, r.absorptivity, r.heat_transfer
     );
     if r.layers[1] < layers {
         let _ = writeln!(

@@ -17,14 +17,41 @@ pub fn temperature_range(key: &str, value: f64, max: f64, at: Span) -> Diagnosti
     .help("temperatures are written in degC, e.g. `max_interpass = 200 degC`")
 }
 
-/// `absorptivity` not above 0 or above 1.
-pub fn absorptivity_range(value: f64, at: Span) -> Diagnostic {
+/// A share `key` (`absorptivity`, `emissivity`) not above 0 or above 1.
+pub fn share_range(key: &str, value: f64, at: Span) -> Diagnostic {
+    let (what, help) = if key == "emissivity" {
+        (
+            "a share of a black body's radiation",
+            "an oxidised metal gives off 0.4–0.6 of it, e.g. `emissivity = 0.5`",
+        )
+    } else {
+        (
+            "a share of the laser's power",
+            "blown-powder DED takes up 0.3–0.5 of the power, e.g. `absorptivity = 0.35`",
+        )
+    };
     Diagnostic::error(
         Code::OutOfRange,
-        "`absorptivity` is a share of the laser's power: above 0 and at most 1",
+        format!("`{key}` is {what}: above 0 and at most 1"),
     )
     .label(at, format!("this is {}", short(value)))
-    .help("blown-powder DED takes up 0.3–0.5 of the power, e.g. `absorptivity = 0.35`")
+    .help(help)
+}
+
+/// A `thermal` block with no `material` that does not declare every
+/// property the model takes.
+pub fn no_material(missing: &[&str], at: Span) -> Diagnostic {
+    let list = missing
+        .iter()
+        .map(|k| format!("`{k}`"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    Diagnostic::error(
+        Code::MissingField,
+        format!("`thermal` without `material` must declare the alloy's properties itself: {list} missing"),
+    )
+    .label(at, "no `material` here")
+    .help("name one of lmdc's alloys (`material = ss316l`, `ti64`, `in718` or `ph17_4`), its properties overridden by any declared here; or declare `conductivity`, `density`, `heat_capacity`, `emissivity` and `absorptivity` (docs/thermal.md, *Alloys*)")
 }
 
 /// `plate` is not three lengths above zero.

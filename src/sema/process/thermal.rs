@@ -18,6 +18,12 @@ pub const AMBIENT: f64 = 25.0;
 pub const PLATE: [f64; 3] = [200.0, 200.0, 20.0];
 /// `heat_transfer`'s canonical units (g/(s³·°C)) per W/(m²·K).
 const HEAT_TRANSFER_SI: f64 = 1e3;
+/// `conductivity`'s canonical units (g·mm/(s³·°C)) per W/(m·K).
+const CONDUCTIVITY_SI: f64 = 1e6;
+/// `density`'s canonical units (g/mm³) per kg/m³.
+const DENSITY_SI: f64 = 1e-6;
+/// `heat_capacity`'s canonical units (mm²/(s²·°C)) per J/(kg·K).
+const HEAT_CAPACITY_SI: f64 = 1e6;
 
 /// The thermal block of the process block `f` and where it is written:
 /// `Some(None)` when there is none, `None` when it is written wrong
@@ -31,21 +37,20 @@ pub fn read<'a>(
         return Some(None);
     };
     let b = Fields::block(env, stmts, &THERMAL, "`thermal`".into(), span, diags);
-    let material = b.word(&t::MATERIAL, diags).map(|w| w.0);
-    let absorptivity = b.optional(
-        &t::ABSORPTIVITY,
-        b.bounded(
-            &t::ABSORPTIVITY,
-            message::thermal::absorptivity_range,
-            diags,
-        )
-        .map(|q| q.0),
-    );
-    let heat_transfer = b.optional(
-        &t::HEAT_TRANSFER,
-        b.quantity(&t::HEAT_TRANSFER, diags)
-            .map(|q| q.0 / HEAT_TRANSFER_SI),
-    );
+    let material = b.optional(&t::MATERIAL, b.word(&t::MATERIAL, diags).map(|w| w.0));
+    let share = |f: &'static crate::sema::schema::Field, diags: &mut Diagnostics| {
+        let out = |v, at| message::thermal::share_range(f.key, v, at);
+        b.optional(f, b.bounded(f, out, diags).map(|q| q.0))
+    };
+    let absorptivity = share(&t::ABSORPTIVITY, diags);
+    let emissivity = share(&t::EMISSIVITY, diags);
+    let mut si = |f: &'static crate::sema::schema::Field, per: f64| {
+        b.optional(f, b.quantity(f, diags).map(|q| significant(q.0 / per)))
+    };
+    let heat_transfer = si(&t::HEAT_TRANSFER, HEAT_TRANSFER_SI);
+    let conductivity = si(&t::CONDUCTIVITY, CONDUCTIVITY_SI);
+    let density = si(&t::DENSITY, DENSITY_SI);
+    let heat_capacity = si(&t::HEAT_CAPACITY, HEAT_CAPACITY_SI);
     let plate = plate(&b, diags);
     let mut temperature = |field: &'static crate::sema::schema::Field| {
         b.optional(
@@ -60,17 +65,23 @@ pub fn read<'a>(
     let preheat = temperature(&t::PREHEAT);
     let max_interpass = temperature(&t::MAX_INTERPASS);
     let cooling = cooling(&b, diags);
-    let alloy = crate::thermal::alloy(material?)?;
-    let m = alloy.material;
+    let declared = Declared {
+        conductivity: conductivity?,
+        density: density?,
+        heat_capacity: heat_capacity?,
+        emissivity: emissivity?,
+        absorptivity: absorptivity?,
+    };
+    let (name, m) = material_of(material?, &declared, span, diags)?;
     let at = max_interpass.flatten().map_or(span, |(_, at)| at);
     Some(Some((
         Thermal {
-            material: alloy.key.to_string(),
+            material: name,
             conductivity: m.conductivity,
             density: m.density,
             heat_capacity: m.heat_capacity,
             emissivity: m.emissivity,
-            absorptivity: absorptivity?.unwrap_or(m.absorptivity),
+            absorptivity: m.absorptivity,
             heat_transfer: heat_transfer?.unwrap_or(m.heat_transfer),
             plate: plate?,
             preheat: preheat?.map_or(AMBIENT, |q| q.0),
@@ -82,6 +93,95 @@ pub fn read<'a>(
         },
         at,
     )))
+}
+
+/// `x` to 12 significant digits: a value as written, not the units'
+/// conversion's last bits (7950 kg/m³, not 7950.000000000001).
+fn significant(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let scale = 10f64.powi(11 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
+}
+
+/// The properties a `thermal` block declares itself (SI units), each
+/// overriding its alloy's.
+struct Declared {
+    conductivity: Option<f64>,
+    density: Option<f64>,
+    heat_capacity: Option<f64>,
+    emissivity: Option<f64>,
+    absorptivity: Option<f64>,
+}
+
+/// The material the model takes and its name for the report: the alloy
+/// `material` names with what the block declares over it, or, without
+/// one, what the block declares, which must then be every property
+/// (the missing ones reported at the block `at`).
+fn material_of(
+    material: Option<&str>,
+    d: &Declared,
+    at: Span,
+    diags: &mut Diagnostics,
+) -> Option<(String, crate::thermal::Material)> {
+    let own = [
+        d.conductivity,
+        d.density,
+        d.heat_capacity,
+        d.emissivity,
+        d.absorptivity,
+    ];
+    let (name, base) = match material {
+        Some(key) => {
+            let a = crate::thermal::alloy(key)?;
+            let name = if own.iter().any(Option::is_some) {
+                format!("{key}, with declared properties")
+            } else {
+                key.to_string()
+            };
+            (name, a.material)
+        }
+        None => {
+            let keys = [
+                t::CONDUCTIVITY.key,
+                t::DENSITY.key,
+                t::HEAT_CAPACITY.key,
+                t::EMISSIVITY.key,
+                t::ABSORPTIVITY.key,
+            ];
+            let missing: Vec<&str> = keys
+                .iter()
+                .zip(own)
+                .filter(|(_, v)| v.is_none())
+                .map(|(k, _)| *k)
+                .collect();
+            if !missing.is_empty() {
+                diags.push(message::thermal::no_material(&missing, at));
+                return None;
+            }
+            let m = crate::thermal::Material {
+                conductivity: 0.0,
+                density: 0.0,
+                heat_capacity: 0.0,
+                emissivity: 0.0,
+                absorptivity: 0.0,
+                heat_transfer: crate::thermal::alloy::HEAT_TRANSFER,
+            };
+            ("declared material".to_string(), m)
+        }
+    };
+    Some((
+        name,
+        crate::thermal::Material {
+            conductivity: d.conductivity.unwrap_or(base.conductivity),
+            density: d.density.unwrap_or(base.density),
+            heat_capacity: d.heat_capacity.unwrap_or(base.heat_capacity),
+            emissivity: d.emissivity.unwrap_or(base.emissivity),
+            absorptivity: d.absorptivity.unwrap_or(base.absorptivity),
+            heat_transfer: base.heat_transfer,
+        },
+    ))
 }
 
 /// `cooling = order` or `cooling = [order, dwell]`, or the default: each

@@ -5,7 +5,7 @@
 use super::Bound::{Any, Positive, PositiveUpTo, Within, ZeroUpTo};
 use super::DefaultValue::{Described, Quantity as DefaultQuantity, Word as DefaultWord};
 use super::Kind::{Block as Nested, Call, Count, Either, List, Quantity, Range, Word};
-use super::Need::{Default, Optional, Required};
+use super::Need::{Default, Optional, Required, RequiredUnless};
 use super::{Block, Field, Len};
 use crate::units::Dim;
 
@@ -101,6 +101,10 @@ pub static THERMAL: Block = Block::new(
     "the thermal model's data and the interpass temperature the plan keeps (docs/thermal.md)",
     &[
         &thermal::MATERIAL,
+        &thermal::CONDUCTIVITY,
+        &thermal::DENSITY,
+        &thermal::HEAT_CAPACITY,
+        &thermal::EMISSIVITY,
         &thermal::ABSORPTIVITY,
         &thermal::HEAT_TRANSFER,
         &thermal::PLATE,
@@ -122,8 +126,39 @@ pub mod thermal {
     pub static MATERIAL: Field = Field::new(
         "material",
         Word(crate::thermal::alloy::KEYS),
-        Required("ss316l"),
-        "the alloy, whose conductivity, density, heat capacity, emissivity and absorptivity the model takes (docs/thermal.md, *Alloys*)",
+        RequiredUnless(
+            "ss316l",
+            "`conductivity`, `density`, `heat_capacity`, `emissivity` and `absorptivity` are all given",
+        ),
+        "the alloy, whose conductivity, density, heat capacity, emissivity and absorptivity the model takes (docs/thermal.md, *Alloys*); each field of these that is given overrides the alloy's",
+    );
+    /// `conductivity = 45 W/m/degC`.
+    pub static CONDUCTIVITY: Field = Field::new(
+        "conductivity",
+        Quantity(Dim::CONDUCTIVITY, Positive),
+        Default(Described("the alloy's")),
+        "the thermal conductivity of the part and the plate (the mean over 20–800 °C)",
+    );
+    /// `density = 7850 kg/m^3`.
+    pub static DENSITY: Field = Field::new(
+        "density",
+        Quantity(Dim::DENSITY, Positive),
+        Default(Described("the alloy's")),
+        "the density of the part and the plate",
+    );
+    /// `heat_capacity = 600 J/kg/degC`.
+    pub static HEAT_CAPACITY: Field = Field::new(
+        "heat_capacity",
+        Quantity(Dim::HEAT_CAPACITY, Positive),
+        Default(Described("the alloy's")),
+        "the specific heat capacity of the part and the plate (the mean over 20–800 °C)",
+    );
+    /// `emissivity = 0.5`.
+    pub static EMISSIVITY: Field = Field::new(
+        "emissivity",
+        Quantity(Dim::NONE, Within(1.0)),
+        Default(Described("the alloy's")),
+        "the share of a black body's radiation the part's surface gives off (0.4–0.6 oxidised)",
     );
     /// `absorptivity = 0.35`.
     pub static ABSORPTIVITY: Field = Field::new(
