@@ -496,7 +496,7 @@ fn a_level_the_scan_stands_above_or_the_top_too_near_is_refused() {
 }
 
 #[test]
-fn ply_and_xyz_text_give_the_same_plan() {
+fn ply_xyz_text_and_e57_give_the_same_plan() {
     let wear = Wear {
         face: 10.0,
         depth: 1.2,
@@ -519,7 +519,33 @@ fn ply_and_xyz_text_give_the_same_plan() {
         }
         serde_json::to_string(&ir).unwrap()
     };
-    assert!(plan("s.ply", ply(&pts)) == plan("s.xyz", xyz(&pts)));
+    let ply_plan = plan("s.ply", ply(&pts));
+    assert!(ply_plan == plan("s.xyz", xyz(&pts)));
+    // An E57's numbers are metres, whatever `units` says.
+    let metres: Vec<[f64; 3]> = pts.iter().map(|p| p.map(|c| c / 1000.0)).collect();
+    assert!(ply_plan == plan("s.e57", e57(&metres)));
+}
+
+/// An E57 of `points` (metres) in one cloud, written with the `e57`
+/// crate as a scanner's software would.
+fn e57(points: &[[f64; 3]]) -> Vec<u8> {
+    use e57::{E57Writer, Record, RecordValue};
+    let mut buf = std::io::Cursor::new(Vec::new());
+    let mut w = E57Writer::new(&mut buf, "lmdc-test").unwrap();
+    let proto = vec![
+        Record::CARTESIAN_X_F64,
+        Record::CARTESIAN_Y_F64,
+        Record::CARTESIAN_Z_F64,
+    ];
+    let mut pc = w.add_pointcloud("scan", proto).unwrap();
+    for p in points {
+        pc.add_point(p.iter().map(|&c| RecordValue::Double(c)).collect())
+            .unwrap();
+    }
+    pc.finalize().unwrap();
+    w.finalize().unwrap();
+    drop(w);
+    buf.into_inner()
 }
 
 #[test]

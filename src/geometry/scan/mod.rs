@@ -1,16 +1,18 @@
 //! A measured part to build on: a scan as points or a triangle mesh (PLY,
-//! ASCII XYZ/CSV, STL, 3MF), placed in the part's coordinates, and the
+//! ASCII XYZ/CSV, STL, 3MF, E57), placed in the part's coordinates, and the
 //! surface seen from above as a height field on a square grid
 //! ([`HeightField`]), the base a repair's first layer lies on
 //! (docs/repair.md).
 //!
 //! The readers return [`Raw`]: the file's vertices in its own units and its
 //! faces as triangles of vertex indices. [`HeightField::new`] places them
-//! and estimates the surface robustly (the median of each cell's points,
-//! then cells that stand out from their neighbours by more than a declared
-//! height replaced by the neighbours' median). Before that, a scan may be
+//! and estimates the surface robustly (each cell's height a plane fitted
+//! through the points of its 3 × 3 cells, the wild ones left out; a mesh's
+//! faces rastered; then cells that stand out from their neighbours by more
+//! than a declared height replaced by the neighbours' median). Before that, a scan may be
 //! moved onto its nominal by a best fit ([`register`]).
 
+pub mod e57;
 mod grid;
 pub mod nearest;
 pub mod ply;
@@ -148,6 +150,8 @@ impl Faces {
 pub enum ScanError {
     /// A PLY whose header or body the reader refused (its words).
     Ply(String),
+    /// An E57 the `e57` crate refused (its words).
+    E57(String),
     /// A PLY with no `vertex` element, or one without `x`, `y` and `z`.
     NoVertices,
     /// A face naming a vertex the file does not have.
@@ -186,6 +190,7 @@ impl std::fmt::Display for ScanError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             ScanError::Ply(why) => write!(f, "the PLY reader stopped: {why}"),
+            ScanError::E57(why) => write!(f, "the E57 reader stopped: {why}"),
             ScanError::NoVertices => write!(
                 f,
                 "it has no `vertex` element with `x`, `y` and `z` properties"
@@ -218,13 +223,15 @@ pub enum Format {
     Stl,
     /// A 3MF package.
     ThreeMf,
+    /// An E57 (ASTM E2807) scan: points, in metres.
+    E57,
     /// Text: a point a line, `x y z` or `x,y,z` (more columns ignored).
     Xyz,
 }
 
 impl Format {
     /// The format of `path` with contents `bytes`: the magic words first
-    /// (`ply`, a ZIP's `PK`, an STL's `solid` or binary length), then the
+    /// (`ply`, `ASTM-E57`, a ZIP's `PK`, an STL's `solid` or binary length), then the
     /// extension; anything else is read as XYZ text.
     pub fn of(path: &str, bytes: &[u8]) -> Format {
         let ext = path
@@ -233,6 +240,8 @@ impl Format {
             .unwrap_or_default();
         if bytes.starts_with(b"ply") {
             Format::Ply
+        } else if bytes.starts_with(b"ASTM-E57") || ext == "e57" {
+            Format::E57
         } else if bytes.starts_with(b"PK") || ext == "3mf" {
             Format::ThreeMf
         } else if ext == "stl" {

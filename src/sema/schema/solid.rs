@@ -272,14 +272,14 @@ pub mod scan {
         "file",
         Text,
         Required("\"worn.ply\""),
-        "the scan: PLY (points or faces), XYZ/CSV text (a point a line), STL or 3MF, a path relative to the .lmd file",
+        "the scan: PLY (points or faces), XYZ/CSV text (a point a line), STL, 3MF or E57, a path relative to the .lmd file",
     );
     /// `scan(units = …)`.
     pub static UNITS: Field = Field::new(
         "units",
         Word(crate::geometry::mesh::UNITS),
         Default(DefaultWord("mm")),
-        "what one unit of the scan's coordinates is (a 3MF says its own)",
+        "what one unit of the scan's coordinates is (a 3MF says its own; an E57 is in metres)",
     );
     /// `scan(at = [x, y, z])`.
     pub static AT: Field = Field::new(

@@ -109,6 +109,7 @@ fn raw(
             scan::ply::read(bytes).map_err(|e| ("PLY", e)),
             mm_per(units),
         ),
+        Format::E57 => (scan::e57::read(bytes).map_err(|e| ("E57", e)), 1.0),
         Format::Xyz => (
             scan::xyz::read(bytes).map_err(|e| ("XYZ text", e)),
             mm_per(units),
