@@ -233,9 +233,12 @@ fn check_plan(p: &Program, z: impl Fn(f64, f64) -> f64, top: f64, w: f64, h: f64
     let mut half_pitch: f64 = 0.0;
     for (a, b, lh, pitch) in &mv {
         for q in [a, b] {
+            // The strip a deposit fills, across, and the bead's rounded
+            // end (half a pitch), along: inside the footprint.
             assert!(
-                q[0].abs() <= w / 2.0 + 1e-6 && q[1].abs() <= h / 2.0 + 1e-6,
-                "{q:?} outside"
+                q[0].abs() + pitch / 2.0 <= w / 2.0 + 1e-6
+                    && q[1].abs() + pitch / 2.0 <= h / 2.0 + 1e-6,
+                "{q:?}: its strip, {pitch} mm wide, is outside"
             );
             for k in 0..2 {
                 lo[k] = lo[k].min(q[k]);
@@ -590,8 +593,9 @@ proptest! {
     /// Random worn faces: every plan lmdc accepts starts on the surface
     /// (within the scan's noise and the grid's fit, which a sharp trough's
     /// curvature biases), ends at the top, lays
-    /// nothing outside the footprint and stacks ∫(top − surface) within
-    /// 3 %; the ones it refuses are refused for the layer count or the
+    /// nothing outside the footprint (each deposit's strip within it),
+    /// stacks ∫(top − surface) within 3 %, and its predicted finish (the
+    /// report's) is within the documented tolerance of the top; the ones it refuses are refused for the layer count or the
     /// bead's rise (never a panic, never a plan off the surface).
     #[test]
     fn plans_on_random_worn_faces_start_on_the_scan_and_end_at_the_top(
@@ -607,7 +611,7 @@ proptest! {
         let wear = Wear { face: 10.0, depth, c: [cx, cy], s: [sx, sy] };
         let top = 10.0 + build_up;
         let pts = scan(|x, y| wear.z(x, y), noise, seed);
-        let c = compile(
+        let (c, model) = crate::support::data::compile_with_files_and_model(
             &source("s.ply", top, 60.0, 20.0),
             BTreeMap::from([("s.ply".to_string(), ply(&pts))]),
         );
@@ -615,7 +619,17 @@ proptest! {
         match c.program {
             Some(p) => {
                 let tol = 0.05 + 3.0 * noise;
-                check_plan(p.ir(), |x, y| wear.z(x, y), top, 60.0, 20.0, [tol + wear.fit(), tol])
+                check_plan(p.ir(), |x, y| wear.z(x, y), top, 60.0, 20.0, [tol + wear.fit(), tol]);
+                let r = lmdc::report::Report::new(p.machines().next().unwrap(), &model.unwrap(), None);
+                let f = r.finish.expect("a repair's finish");
+                // docs/repair.md, *The report*: RMS within twice the
+                // segments' tolerance (0.1 mm), no place farther than half
+                // the bead's highest layer (1.28 mm) and the tolerance.
+                let far = 1.28 / 2.0 + 0.1;
+                prop_assert!(
+                    f.rms_mm <= 0.2 && f.below_mm <= far && f.above_mm <= far,
+                    "the finish: {f:?}"
+                );
             }
             // A trough too sharp for the layers' constant-speed
             // segments is refused by the deposit rule (seed 003's limit,

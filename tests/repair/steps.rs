@@ -229,3 +229,36 @@ fn a_scan_without_faces_cannot_show_the_step() {
         "{help}"
     );
 }
+
+/// The rescan as a 3MF (in millimetres, its unit its own) plans the lip as
+/// the STL of the same faces does.
+#[test]
+fn a_3mf_scan_plans_as_its_stl() {
+    let scan = scanned(TOP, &[]);
+    let (mut vertices, mut tris) = (Vec::new(), Vec::new());
+    for (k, a) in scan.iter().enumerate() {
+        let b = scan[(k + 1) % scan.len()];
+        let n = vertices.len();
+        vertices.extend([
+            [a[0], -20.0, a[1]],
+            [b[0], -20.0, b[1]],
+            [b[0], 20.0, b[1]],
+            [a[0], 20.0, a[1]],
+        ]);
+        tris.extend([[n, n + 1, n + 2], [n, n + 2, n + 3]]);
+    }
+    let three_mf = crate::support::three_mf::package(&vertices, &tris, "millimeter", &[None]);
+    let stl = super::target::extruded_stl(&scan, [-20.0, 20.0]);
+    let ir = |bytes: Vec<u8>, file: &str| {
+        let c = step(-rim(TOP), -HALF, bytes, file);
+        let m = messages(&c);
+        let mut ir = c.program.unwrap_or_else(|| panic!("{file}: {m}")).ir().clone();
+        for f in &mut ir.fixtures {
+            if let lmdc::ir::FixtureShape::Mesh { file, .. } = &mut f.shape {
+                *file = "scan".into();
+            }
+        }
+        serde_json::to_string(&ir).unwrap()
+    };
+    assert!(ir(three_mf, "built.3mf") == ir(stl, "built.stl"));
+}
