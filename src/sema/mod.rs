@@ -147,6 +147,17 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         b.feed = process.powder.map(|(p, _)| p);
         b
     });
+    // A mesh scan's faces serve `direction = auto` alone (what a line
+    // meets at a flank); otherwise they are let go here, not held through
+    // the slicing.
+    let build = build.map(|mut b| {
+        if let model::Build::Variable { extrusion, slicing } = &mut b {
+            if let (Some(base), None) = (&mut extrusion.base, slicing.direction) {
+                base.faces = None;
+            }
+        }
+        b
+    });
     Some(Model {
         part: part?,
         build: build?,

@@ -252,7 +252,11 @@ fn a_3mf_scan_plans_as_its_stl() {
     let ir = |bytes: Vec<u8>, file: &str| {
         let c = step(-rim(TOP), -HALF, bytes, file);
         let m = messages(&c);
-        let mut ir = c.program.unwrap_or_else(|| panic!("{file}: {m}")).ir().clone();
+        let mut ir = c
+            .program
+            .unwrap_or_else(|| panic!("{file}: {m}"))
+            .ir()
+            .clone();
         for f in &mut ir.fixtures {
             if let lmdc::ir::FixtureShape::Mesh { file, .. } = &mut f.shape {
                 *file = "scan".into();
