@@ -39,6 +39,19 @@ fn section(top: f64, plate: f64) -> Vec<[f64; 2]> {
     ]
 }
 
+/// The boss as scanned, a closed mesh (its faces show where it is): the
+/// plate, and on it the boss up to its worn end.
+fn scanned_boss() -> Vec<u8> {
+    let plate = vec![[-40.0, -1.0], [40.0, -1.0], [40.0, 0.0], [-40.0, 0.0]];
+    let boss = vec![
+        [-12.0, 0.0],
+        [12.0, 0.0],
+        [12.0 + lean(WORN), WORN],
+        [-12.0 + lean(WORN), WORN],
+    ];
+    super::target::prisms_stl(&[plate, boss], [-20.0, 20.0])
+}
+
 /// The file of [`super::tilted`]'s slab with the boss's scan and target:
 /// a head whose A axis turns `a` either way, `direction` as given, the
 /// footprint the finished end seen from above. The part as designed
@@ -61,7 +74,7 @@ fn boss_on(a: f64, direction: &str, plate: f64) -> lmdc::pipeline::Compiled {
         &format!("at = [{} mm, 0 mm]", lean(TOP)),
     );
     let stl = super::target::extruded_stl;
-    files.insert("boss.stl".into(), stl(&section(WORN, 0.0), [-20.0, 20.0]));
+    files.insert("boss.stl".into(), scanned_boss());
     files.insert(
         "target.stl".into(),
         stl(&section(TOP, plate), [-20.0, 20.0]),

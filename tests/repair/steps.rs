@@ -65,6 +65,36 @@ fn scanned(top: f64, lips: &[i32]) -> Vec<[f64; 2]> {
     s
 }
 
+/// [`scanned`] as convex pieces: the plate, the post up to `top`, the
+/// lips already built.
+fn scanned_pieces(top: f64, lips: &[i32]) -> Vec<Vec<[f64; 2]>> {
+    let mut p = vec![
+        vec![[-40.0, -10.0], [40.0, -10.0], [40.0, 0.0], [-40.0, 0.0]],
+        vec![[-HALF, 0.0], [HALF, 0.0], [HALF, top], [-HALF, top]],
+    ];
+    for &side in lips {
+        let s = f64::from(side);
+        // A thousandth into the post: two closed pieces that overlap, as
+        // one solid (sharing the post's corner, its edge would have four
+        // faces).
+        let inner = HALF - 1e-3;
+        let lip = vec![[s * inner, WORN], [s * rim(TOP), TOP], [s * inner, TOP]];
+        // Counter-clockwise in x–z, as every piece.
+        p.push(if side > 0 {
+            lip
+        } else {
+            lip.into_iter().rev().collect()
+        });
+    }
+    p
+}
+
+/// The scan of the part after the steps that built up to `top` and
+/// `lips`: a closed mesh, as a scan whose faces show a step must be.
+fn scan_stl(top: f64, lips: &[i32]) -> Vec<u8> {
+    super::target::prisms_stl(&scanned_pieces(top, lips), [-20.0, 20.0])
+}
+
 /// The case's file with its footprint from `x0` to `x1` (the top seen
 /// from above), on `scan` (its bytes), the part as designed as its target.
 fn step(x0: f64, x1: f64, scan: Vec<u8>, file: &str) -> lmdc::pipeline::Compiled {
@@ -126,18 +156,22 @@ fn check_beads(p: &Program, scan: &[[f64; 2]], side: i32, tol: f64) {
     }
 }
 
+/// `c`'s refusal for the target's overhangs (`lmd::top-height`): it must
+/// be refused, and for that.
+fn untilted(c: &lmdc::pipeline::Compiled) -> &lmdc::diag::Diagnostic {
+    assert!(c.program.is_none());
+    c.diagnostics
+        .iter()
+        .find(|d| d.code.as_str() == "lmd::top-height")
+        .unwrap_or_else(|| panic!("{}", messages(c)))
+}
+
 /// Laid whole on the worn post, no direction builds the cap: the help
 /// says to build it in steps, on a scan of what the steps before left.
 #[test]
 fn a_cap_flaring_both_ways_is_refused_whole_with_the_steps_help() {
-    let worn = super::target::extruded_stl(&scanned(WORN, &[]), [-20.0, 20.0]);
-    let c = step(-rim(TOP), rim(TOP), worn, "worn.stl");
-    assert!(c.program.is_none());
-    let d = c
-        .diagnostics
-        .iter()
-        .find(|d| d.code.as_str() == "lmd::top-height")
-        .unwrap_or_else(|| panic!("{}", messages(&c)));
+    let c = step(-rim(TOP), rim(TOP), scan_stl(WORN, &[]), "worn.stl");
+    let d = untilted(&c);
     assert!(
         d.message
             .contains("no direction within 85° of vertical builds every point"),
@@ -148,7 +182,7 @@ fn a_cap_flaring_both_ways_is_refused_whole_with_the_steps_help() {
     assert!(
         help.contains("build the part in steps")
             && help.contains("on a scan of the part as the steps before left it")
-            && !help.contains("this scan has no faces"),
+            && !help.contains("close no solid"),
         "{help}"
     );
 }
@@ -159,9 +193,8 @@ fn a_cap_flaring_both_ways_is_refused_whole_with_the_steps_help() {
 /// own side of the post; each lip's first layer on the middle's side.
 #[test]
 fn the_middle_then_each_lip_on_a_scan_of_what_the_steps_before_left() {
-    let stl = super::target::extruded_stl;
     let worn = scanned(WORN, &[]);
-    let c = step(-HALF, HALF, stl(&worn, [-20.0, 20.0]), "worn.stl");
+    let c = step(-HALF, HALF, scan_stl(WORN, &[]), "worn.stl");
     let m = messages(&c);
     let middle = c.program.unwrap_or_else(|| panic!("{m}"));
     assert_eq!(direction(middle.ir())[0], 0.0);
@@ -173,7 +206,7 @@ fn the_middle_then_each_lip_on_a_scan_of_what_the_steps_before_left() {
         } else {
             (HALF, rim(TOP))
         };
-        let c = step(x0, x1, stl(&scan, [-20.0, 20.0]), "built.stl");
+        let c = step(x0, x1, scan_stl(TOP, &lips), "built.stl");
         let m = messages(&c);
         let lip = c.program.unwrap_or_else(|| panic!("lip {side}: {m}"));
         let [tilt, az] = direction(lip.ir());
@@ -205,9 +238,9 @@ fn the_middle_then_each_lip_on_a_scan_of_what_the_steps_before_left() {
 
 /// The same scan as points only: seen from above, the middle's side is a
 /// cliff that may hide an overhang, so no direction builds the lip, and
-/// the help says a scan with faces would show the step.
+/// the help says a closed mesh would show the step.
 #[test]
-fn a_scan_without_faces_cannot_show_the_step() {
+fn a_scan_of_points_cannot_show_the_step() {
     let mut points = Vec::new();
     for i in 0..=160 {
         for j in 0..=80 {
@@ -216,39 +249,42 @@ fn a_scan_without_faces_cannot_show_the_step() {
         }
     }
     let c = step(-rim(TOP), -HALF, super::ply(&points), "built.ply");
-    assert!(c.program.is_none());
-    let d = c
-        .diagnostics
-        .iter()
-        .find(|d| d.code.as_str() == "lmd::top-height")
-        .unwrap_or_else(|| panic!("{}", messages(&c)));
+    let d = untilted(&c);
     let help = d.help.as_deref().unwrap_or_default();
     assert!(
-        help.contains("this scan has no faces")
-            && help.contains("a scan with faces (a PLY with faces, an STL or a 3MF) shows a step"),
+        help.contains("this scan's faces close no solid (or it has none)")
+            && help.contains(
+                "a closed mesh of the part (a watertight STL, 3MF or PLY with faces) shows a step"
+            ),
         "{help}"
     );
+}
+
+/// The rescan as an open surface, as a scanner sees the part from one
+/// side (its faces the section's outline drawn along y, no ends): where
+/// its faces close no solid they may join an overhang's edge to the floor
+/// through air, so they are not asked, and the lip is refused as from
+/// points.
+#[test]
+fn an_open_mesh_scan_cannot_show_the_step() {
+    let open = super::target::extruded_stl(&scanned(TOP, &[]), [-20.0, 20.0]);
+    let c = step(-rim(TOP), -HALF, open, "built.stl");
+    let help = untilted(&c).help.as_deref().unwrap_or_default();
+    assert!(help.contains("this scan's faces close no solid"), "{help}");
 }
 
 /// The rescan as a 3MF (in millimetres, its unit its own) plans the lip as
 /// the STL of the same faces does.
 #[test]
 fn a_3mf_scan_plans_as_its_stl() {
-    let scan = scanned(TOP, &[]);
     let (mut vertices, mut tris) = (Vec::new(), Vec::new());
-    for (k, a) in scan.iter().enumerate() {
-        let b = scan[(k + 1) % scan.len()];
+    for t in super::target::prisms(&scanned_pieces(TOP, &[]), [-20.0, 20.0]) {
         let n = vertices.len();
-        vertices.extend([
-            [a[0], -20.0, a[1]],
-            [b[0], -20.0, b[1]],
-            [b[0], 20.0, b[1]],
-            [a[0], 20.0, a[1]],
-        ]);
-        tris.extend([[n, n + 1, n + 2], [n, n + 2, n + 3]]);
+        vertices.extend(t.map(|c| c.map(f64::from)));
+        tris.push([n, n + 1, n + 2]);
     }
     let three_mf = crate::support::three_mf::package(&vertices, &tris, "millimeter", &[None]);
-    let stl = super::target::extruded_stl(&scan, [-20.0, 20.0]);
+    let stl = scan_stl(TOP, &[]);
     let ir = |bytes: Vec<u8>, file: &str| {
         let c = step(-rim(TOP), -HALF, bytes, file);
         let m = messages(&c);

@@ -236,6 +236,45 @@ pub(super) fn extruded_stl(section: &[[f64; 2]], y: [f64; 2]) -> Vec<u8> {
     out
 }
 
+/// The triangles of convex x–z `pieces` (counter-clockwise) extruded
+/// along `y` and closed at both ends: a solid, every edge shared by two
+/// faces running it opposite ways (what a scan's faces must be to show a
+/// step).
+pub(super) fn prisms(pieces: &[Vec<[f64; 2]>], y: [f64; 2]) -> Vec<[[f32; 3]; 3]> {
+    let c = |p: [f64; 2], y: f64| [p[0] as f32, y as f32, p[1] as f32];
+    let mut tris = Vec::new();
+    for section in pieces {
+        for (k, a) in section.iter().enumerate() {
+            let b = section[(k + 1) % section.len()];
+            let q = [c(*a, y[0]), c(b, y[0]), c(b, y[1]), c(*a, y[1])];
+            tris.push([q[0], q[1], q[2]]);
+            tris.push([q[0], q[2], q[3]]);
+        }
+        // The ends, fanned (the pieces are convex).
+        for k in 1..section.len() - 1 {
+            let [a, b, d] = [section[0], section[k], section[k + 1]];
+            tris.push([c(a, y[0]), c(d, y[0]), c(b, y[0])]);
+            tris.push([c(a, y[1]), c(b, y[1]), c(d, y[1])]);
+        }
+    }
+    tris
+}
+
+/// [`prisms`] as a binary STL.
+pub(super) fn prisms_stl(pieces: &[Vec<[f64; 2]>], y: [f64; 2]) -> Vec<u8> {
+    let tris = prisms(pieces, y);
+    let mut out = vec![b' '; 80];
+    out.extend((tris.len() as u32).to_le_bytes());
+    for t in tris {
+        out.extend([0u8; 12]);
+        for v in t.iter().flatten() {
+            out.extend(v.to_le_bytes());
+        }
+        out.extend([0u8; 2]);
+    }
+    out
+}
+
 // A target given as a solid of the file (`top = NAME`, docs/repair.md, *A
 // target solid*): the solid is not built, its highest surface over each
 // point is the finished surface.

@@ -722,8 +722,8 @@ pub struct Untilted<'a> {
     pub direction: Span,
     /// `top = …`.
     pub top: Span,
-    /// Whether the scan's faces were asked what a line meets at a flank
-    /// (a mesh scan): without them a real step reads as a flank too.
+    /// Whether the scan's faces close a solid, asked what a line meets at
+    /// a flank: without that a real step reads as a flank too.
     pub faces: bool,
     /// Whether a line failed at a flank in the search.
     pub flanked: bool,
@@ -769,7 +769,7 @@ pub fn untilted(u: &Untilted<'_>) -> Diagnostic {
     let help = if u.faces || !u.flanked {
         help
     } else {
-        format!("{help}; this scan has no faces, so a face of the part steeper than the build direction reads as a flank that may hide an overhang: a scan with faces (a PLY with faces, an STL or a 3MF) shows a step the lines meet, and lmdc builds on it")
+        format!("{help}; this scan's faces close no solid (or it has none), so a face of the part steeper than the build direction reads as a flank that may hide an overhang: a closed mesh of the part (a watertight STL, 3MF or PLY with faces) shows a step the lines meet, and lmdc builds on it")
     };
     let meets = match u.meets {
         LineFault::Again => "leaves the target and enters it again above the scan",

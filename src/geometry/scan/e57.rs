@@ -3,7 +3,10 @@
 //! cloud's own pose applied and spherical coordinates converted (the
 //! crate's simple reader), in mm. The standard's unit is the metre, so an
 //! E57's numbers are metres whatever `units` says (as a 3MF's unit is its
-//! own). A scan's points only: E57 holds no faces.
+//! own). A scan's points only: E57 holds no faces. Like every scan's,
+//! its points are kept as `f32` in mm: to a micrometre within 10 m of the
+//! file's origin, 0.06 mm at 1 km; a georeferenced scan far from its
+//! origin loses that much before `at` moves it.
 
 use super::{Raw, ScanError, MAX_POINTS};
 use e57::{CartesianCoordinate, E57Reader};
@@ -29,7 +32,9 @@ pub fn read(bytes: &[u8]) -> Result<Raw, ScanError> {
             max: MAX_POINTS,
         });
     }
-    let mut vertices = Vec::with_capacity(count as usize);
+    // A header may claim more than the file holds: reserve no more than
+    // its bytes could.
+    let mut vertices = Vec::with_capacity((count as usize).min(bytes.len() / 12));
     for pc in &clouds {
         for p in reader.pointcloud_simple(pc).map_err(why)? {
             if let CartesianCoordinate::Valid { x, y, z } = p.map_err(why)?.cartesian {

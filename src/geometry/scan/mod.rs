@@ -102,47 +102,110 @@ impl Raw {
     }
 }
 
-/// Most faces a scan's [`Faces::tree`] builds a tree of (about
-/// 150 bytes each): more, and the faces are not consulted (a height
-/// field's rule stands).
+/// Most faces a scan's [`Faces::solid`] builds a tree of: more, and the
+/// faces are not kept nor consulted (a height field's rule stands).
 pub const MAX_TREE_FACES: usize = 4_000_000;
 
-/// A scan's faces as read and where they go: what tells a real step of
-/// the part (a face there) from the cliff its height field draws under a
-/// part that overhangs itself (air there) (docs/repair.md, *Under the
-/// scan's own edge*).
+/// A scan's faces as read and where they go: where they close a solid,
+/// what tells a real step of the part (a face there) from the cliff its
+/// height field draws under a part that overhangs itself (air there)
+/// (docs/repair.md, *A scan with faces tells a step*). A scan's open
+/// surface tells nothing: seen from one side, a scanner's mesh joins an
+/// overhang's edge to the floor under it by faces where there is air.
 #[derive(Debug)]
 pub struct Faces {
     raw: Raw,
     pose: Pose,
+    solid: std::sync::OnceLock<Option<nearest::TriangleTree>>,
 }
 
 impl Faces {
-    /// The faces of `raw` placed by `pose`; `None` for a point cloud.
+    /// The faces of `raw` placed by `pose`; `None` for a point cloud, or
+    /// more than [`MAX_TREE_FACES`] faces (not asked: none kept).
     pub fn new(raw: Raw, pose: Pose) -> Option<Faces> {
-        (!raw.triangles.is_empty()).then_some(Faces { raw, pose })
+        let n = raw.triangles.len();
+        (n > 0 && n <= MAX_TREE_FACES).then(|| Faces {
+            raw,
+            pose,
+            solid: std::sync::OnceLock::new(),
+        })
     }
 
-    /// The placed faces as a tree; `None` when there are more than
-    /// [`MAX_TREE_FACES`].
-    pub fn tree(&self) -> Option<nearest::TriangleTree> {
-        if self.raw.triangles.len() > MAX_TREE_FACES {
-            return None;
-        }
-        let placed: Vec<[f64; 3]> = self
-            .raw
-            .vertices
-            .iter()
-            .map(|v| self.pose.apply(v))
-            .collect();
-        let tris: Vec<nearest::Tri> = self
-            .raw
-            .triangles
-            .iter()
-            .map(|t| t.map(|i| placed[i as usize]))
-            .collect();
-        Some(nearest::TriangleTree::new(&tris))
+    /// The placed faces as a tree, each turned to face out of the solid
+    /// they close, made once; `None` when they close none: some edge (its
+    /// corners joined where their coordinates are equal) is not shared by
+    /// exactly two faces running it opposite ways.
+    pub fn solid(&self) -> Option<&nearest::TriangleTree> {
+        self.solid
+            .get_or_init(|| {
+                let tris = closed(&self.raw)?;
+                let placed =
+                    |t: [u32; 3]| t.map(|i| self.pose.apply(&self.raw.vertices[i as usize]));
+                let tris: Vec<nearest::Tri> = tris.into_iter().map(placed).collect();
+                Some(nearest::TriangleTree::new(&tris))
+            })
+            .as_ref()
     }
+}
+
+/// The triangles of `raw` turned out of the solid they close (its signed
+/// volume positive), if they close one (see [`Faces::solid`]); triangles
+/// whose corners are joined into fewer than three are left out.
+fn closed(raw: &Raw) -> Option<Vec<[u32; 3]>> {
+    use std::collections::HashMap;
+    let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
+    let id: Vec<u32> = raw
+        .vertices
+        .iter()
+        .map(|v| {
+            let n = weld.len() as u32;
+            *weld.entry(v.map(f32::to_bits)).or_insert(n)
+        })
+        .collect();
+    let tris: Vec<[u32; 3]> = raw
+        .triangles
+        .iter()
+        .map(|t| t.map(|i| id[i as usize]))
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
+        .collect();
+    // Each undirected edge: how often it is run, and its runs' balance.
+    let mut edges: HashMap<(u32, u32), (u32, i32)> = HashMap::new();
+    for t in &tris {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let e = edges.entry((a.min(b), a.max(b))).or_default();
+            e.0 += 1;
+            e.1 += if a < b { 1 } else { -1 };
+        }
+    }
+    if tris.is_empty() || edges.values().any(|&(n, s)| n != 2 || s != 0) {
+        return None;
+    }
+    // Each welded corner's first vertex: the triangles in the file's
+    // indices again.
+    let mut first = vec![0u32; weld.len()];
+    for (k, &i) in id.iter().enumerate().rev() {
+        first[i as usize] = k as u32;
+    }
+    let tris: Vec<[u32; 3]> = tris
+        .into_iter()
+        .map(|t| t.map(|i| first[i as usize]))
+        .collect();
+    // The signed volume (six times it): positive when they face out.
+    let corner = |i: u32| raw.vertices[i as usize].map(f64::from);
+    let volume: f64 = tris
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(corner);
+            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0])
+        })
+        .sum();
+    Some(if volume < 0.0 {
+        tris.into_iter().map(|[a, b, c]| [a, c, b]).collect()
+    } else {
+        tris
+    })
 }
 
 /// Why a scan file cannot be read.
@@ -265,4 +328,50 @@ pub(crate) fn check_points(raw: &Raw) -> Result<(), ScanError> {
         return Err(ScanError::NotFinite { vertex: v });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A block's 12 triangles as a scan's faces, three corners each (as
+    /// an STL gives them), turned inside out when `inward`.
+    fn block_raw(inward: bool) -> Raw {
+        let tris: Vec<nearest::Tri> = nearest::block([0.0; 3], [10.0, 4.0, 2.0]);
+        let mut raw = Raw::default();
+        for t in tris {
+            let t = if inward { [t[0], t[2], t[1]] } else { t };
+            let i = raw.vertices.len() as u32;
+            raw.vertices.extend(t.map(|c| c.map(|v| v as f32)));
+            raw.triangles.push([i, i + 1, i + 2]);
+        }
+        raw
+    }
+
+    #[test]
+    fn faces_that_close_a_solid_face_out_and_an_open_surface_is_none() {
+        let pose = Pose {
+            scale: 1.0,
+            rot: Rotation3::identity(),
+            at: Vector3::zeros(),
+        };
+        for inward in [false, true] {
+            let f = Faces::new(block_raw(inward), pose).unwrap();
+            let tree = f.solid().expect("a closed block");
+            // Down onto the top: its normal up, whichever way the file ran.
+            let (t, n) = tree
+                .first_hit([3.0, 1.0, 5.0], [0.0, 0.0, -1.0], 9.0)
+                .unwrap();
+            assert!((t - 3.0).abs() < 1e-9 && n == [0.0, 0.0, 1.0], "{t} {n:?}");
+        }
+        // A face left out: an open box, no solid.
+        let mut open = block_raw(false);
+        open.triangles.pop();
+        assert!(Faces::new(open, pose).unwrap().solid().is_none());
+        // One face turned against its neighbours: no solid either.
+        let mut twisted = block_raw(false);
+        twisted.triangles[0].swap(1, 2);
+        assert!(Faces::new(twisted, pose).unwrap().solid().is_none());
+        assert!(Faces::new(Raw::default(), pose).is_none());
+    }
 }

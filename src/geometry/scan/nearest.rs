@@ -174,26 +174,26 @@ impl TriangleTree {
 
 impl TriangleTree {
     /// How far along the segment from `from` along the unit vector `dir`,
-    /// up to `len` mm, it first crosses a triangle (either side: a scan's
-    /// faces may face either way), if it does.
-    pub fn first_hit(&self, from: [f64; 3], dir: [f64; 3], len: f64) -> Option<f64> {
+    /// up to `len` mm, it first crosses a triangle (from either side), and
+    /// that triangle's unit normal (by its corners' order), if it does.
+    pub fn first_hit(&self, from: [f64; 3], dir: [f64; 3], len: f64) -> Option<(f64, [f64; 3])> {
         if self.nodes.is_empty() || len.is_nan() || len < 0.0 {
             return None;
         }
         let inv = dir.map(|c| 1.0 / c);
-        let mut best: Option<f64> = None;
+        let mut best: Option<(f64, u32)> = None;
         let mut stack = vec![0u32];
         while let Some(i) = stack.pop() {
             let node = self.nodes[i as usize];
-            let reach = best.unwrap_or(len);
+            let reach = best.map_or(len, |b| b.0);
             if !slab(node.lo, node.hi, from, inv, reach) {
                 continue;
             }
             if node.kids == [0, 0] {
                 for k in node.run[0]..node.run[1] {
                     if let Some(t) = crossing(&self.tris[k as usize], from, dir) {
-                        if t <= best.unwrap_or(len) {
-                            best = Some(t);
+                        if t <= best.map_or(len, |b| b.0) {
+                            best = Some((t, k));
                         }
                     }
                 }
@@ -201,7 +201,7 @@ impl TriangleTree {
                 stack.extend(node.kids);
             }
         }
-        best
+        best.map(|(t, k)| (t, self.normals[k as usize]))
     }
 }
 
@@ -410,18 +410,20 @@ mod tests {
         let tree = TriangleTree::new(&block([0.0; 3], [10.0, 4.0, 2.0]));
         // Down onto the top from 3 mm over it; not when 2 mm is all it goes.
         let down = [0.0, 0.0, -1.0];
-        let t = tree.first_hit([3.0, 1.0, 5.0], down, 10.0).unwrap();
+        let (t, n) = tree.first_hit([3.0, 1.0, 5.0], down, 10.0).unwrap();
         assert!((t - 3.0).abs() < 1e-12, "{t}");
+        assert_eq!(n, [0.0, 0.0, 1.0]);
         assert!(tree.first_hit([3.0, 1.0, 5.0], down, 2.0).is_none());
         // Slanting onto the +x side from beside it: 45° down toward -x.
         let s = std::f64::consts::FRAC_1_SQRT_2;
-        let t = tree
+        let (t, n) = tree
             .first_hit([12.0, 2.0, 3.5], [-s, 0.0, -s], 10.0)
             .unwrap();
         assert!((t - 2.0 / s).abs() < 1e-9, "{t}");
+        assert_eq!(n, [1.0, 0.0, 0.0]);
         // From inside, the face it leaves by; along an axis past the block,
         // none (its direction's other components are zero).
-        let t = tree
+        let (t, _) = tree
             .first_hit([5.0, 2.0, 1.0], [1.0, 0.0, 0.0], 100.0)
             .unwrap();
         assert!((t - 5.0).abs() < 1e-12, "{t}");

@@ -102,6 +102,10 @@ fn significant(x: f64) -> f64 {
         return x;
     }
     let scale = 10f64.powi(11 - x.abs().log10().floor() as i32);
+    // Past f64's range (a value below about 1e-297): as it is.
+    if !scale.is_finite() || scale == 0.0 {
+        return x;
+    }
     (x * scale).round() / scale
 }
 

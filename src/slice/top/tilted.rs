@@ -49,7 +49,7 @@ use crate::sema::model::{
 use crate::span::Span;
 use crate::units::Length;
 use nalgebra::{Rotation3, Vector3};
-use std::cell::{Cell, OnceCell};
+use std::cell::Cell;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -114,9 +114,9 @@ struct Lines<'a> {
     top: &'a Top,
     /// Whether the target contains the scanned part: a gap under it is air.
     holds: bool,
-    /// The scan's faces, when it has them, as a tree made at the first
-    /// flank ([`Lines::real_face`]); `None` inside: too many faces.
-    faces: Option<(&'a Faces, OnceCell<Option<TriangleTree>>)>,
+    /// The scan's faces, when it has them: where they close a solid,
+    /// [`Lines::real_face`] asks them at a flank.
+    faces: Option<&'a Faces>,
     /// Whether a line failed at a flank: where the scan has no faces, a
     /// step of the part may be what stops it.
     flanked: Cell<bool>,
@@ -163,7 +163,7 @@ impl Lines<'_> {
                     // face of a scan with faces.
                     let through_top = match last {
                         Some((z, Some(was_b))) if b - was_b <= z - q[2] + 1e-9 => true,
-                        Some(_) => self.real_face(at(top), q, d),
+                        Some(_) => self.real_face(at(top), q, d, (top - bottom) / n as f64),
                         None => false,
                     };
                     return match (pieces, through_top, left) {
@@ -198,16 +198,19 @@ impl Lines<'_> {
     }
 
     /// Whether the line along `d` from `start` (above the target), which
-    /// comes under the height field at `to` up a flank, meets a real step
-    /// of the scanned part there ([`steps_onto`]); `false` for a scan
-    /// without faces, or with too many to ask.
-    fn real_face(&self, start: [f64; 3], to: [f64; 3], d: [f64; 3]) -> bool {
-        let Some((faces, tree)) = &self.faces else {
-            return false;
-        };
-        tree.get_or_init(|| faces.tree())
-            .as_ref()
-            .is_some_and(|tree| steps_onto(tree, self.scan.cell(), [start, to], d))
+    /// comes under the height field at `to` up a flank (the walk's steps
+    /// `step` mm apart), meets a real step of the scanned part there
+    /// ([`steps_onto`]); `false` for a scan without faces, or whose faces
+    /// close no solid.
+    fn real_face(&self, start: [f64; 3], to: [f64; 3], d: [f64; 3], step: f64) -> bool {
+        self.faces
+            .and_then(Faces::solid)
+            .is_some_and(|tree| steps_onto(tree, [self.scan.cell(), step], [start, to], d))
+    }
+
+    /// Whether the scan's faces close a solid, once a flank asked them.
+    fn solid_faces(&self) -> bool {
+        self.flanked.get() && self.faces.and_then(Faces::solid).is_some()
     }
 
     /// The first line (the one at `first` tried first) along `d` that does
@@ -346,26 +349,30 @@ fn lines<'a>(ex: &'a TopExtrusion, bead: &Bead) -> Option<Lines<'a>> {
         scan,
         top: &ex.top,
         holds: super::underside::holds_scan(ex).is_some(),
-        faces: ex
-            .base
-            .as_ref()
-            .and_then(|b| b.faces.as_deref())
-            .map(|f| (f, OnceCell::new())),
+        faces: ex.base.as_ref().and_then(|b| b.faces.as_deref()),
         flanked: Cell::new(false),
     })
 }
 
 /// Whether the line along `d` from `start` (in the air over the part),
 /// which comes under a height field of cells `cell` wide at `to` up a
-/// flank, meets a real step of the part whose faces are `tree` there:
-/// the first face it crosses lies no farther on than the flank (a cell's
-/// diagonal and a half across `d` past `to`: the height field's cliff
-/// stands where the cells' centres say, and a rim cell takes the height of
-/// a face over part of it), and no face of the part is over the line just
-/// before it, so that the height field, which the fill is planned on, has
-/// the step where it is. Under a part that overhangs itself the line
-/// meets no face at the cliff, or one with the overhang over it: no step.
-fn steps_onto(tree: &TriangleTree, cell: f64, [start, to]: [[f64; 3]; 2], d: [f64; 3]) -> bool {
+/// flank (the walk's steps `step` mm apart), meets a real step of the
+/// solid whose outward faces are `tree` there: the first face it crosses
+/// lies where the height field rose (no farther on than the flank, nor
+/// before the walk's last step, by a cell's diagonal and a half across
+/// `d`: the height field's cliff stands where the cells' centres say, and
+/// a rim cell takes the height of a face over part of it); the line enters
+/// the solid through it (the face looks toward the line); and no face of
+/// the part is over the line just before it, so that the height field,
+/// which the fill is planned on, has the step where it is. Under a part
+/// that overhangs itself the line meets no face at the cliff, or one with
+/// the overhang over it: no step.
+fn steps_onto(
+    tree: &TriangleTree,
+    [cell, step]: [f64; 2],
+    [start, to]: [[f64; 3]; 2],
+    d: [f64; 3],
+) -> bool {
     let across = (1.0 - d[2] * d[2]).max(0.0).sqrt();
     if across < 1e-9 {
         return false;
@@ -376,9 +383,13 @@ fn steps_onto(tree: &TriangleTree, cell: f64, [start, to]: [[f64; 3]; 2], d: [f6
         .sum::<f64>()
         .sqrt();
     let past = 1.5 * std::f64::consts::SQRT_2 * cell / across;
-    let Some(t) = tree.first_hit(start, down, to_len + past) else {
+    let Some((t, normal)) = tree.first_hit(start, down, to_len + past) else {
         return false;
     };
+    let facing = (0..3).map(|k| normal[k] * down[k]).sum::<f64>() < 0.0;
+    if t < to_len - step - past || !facing {
+        return false;
+    }
     // A hundredth of a millimetre back along the line: in the air the
     // step stands in, open to the sky.
     let before = (t - 0.01).max(0.0);
@@ -493,7 +504,7 @@ fn untilted(
         needs: needs.map(Direction::pair),
         direction: at,
         top: ex.top_span,
-        faces: lines.faces.is_some(),
+        faces: lines.solid_faces(),
         flanked: lines.flanked.get(),
     })
 }
@@ -699,18 +710,27 @@ mod tests {
         let d = [-s, 0.0, c];
         let start = [-16.0, 0.0, 25.0];
         let on = |x: f64| [x, 0.0, start[2] - (x - start[0]) * c / s];
-        assert!(steps_onto(&part(false), 0.5, [start, on(-10.25)], d));
-        // Under the cap the side is as near, but the cap is over it.
-        assert!(!steps_onto(&part(true), 0.5, [start, on(-11.75)], d));
+        let cs = [0.5, 0.05];
+        assert!(steps_onto(&part(false), cs, [start, on(-10.25)], d));
+        // Under the cap the side is as near, but the cap is over it: from
+        // the cap's edge (where a height field draws the cliff) or as near
+        // the side.
+        assert!(!steps_onto(&part(true), cs, [start, on(-11.75)], d));
+        assert!(!steps_onto(&part(true), cs, [start, on(-10.25)], d));
         // A face farther on than the flank is no step: the side from 4 mm
-        // off, on cells of 0.5 mm.
-        assert!(!steps_onto(&part(false), 0.5, [start, on(-14.0)], d));
+        // off, on cells of 0.5 mm; nor one the line met well before it.
+        assert!(!steps_onto(&part(false), cs, [start, on(-14.0)], d));
+        assert!(!steps_onto(&part(false), cs, [start, on(-6.0)], d));
+        // A face the line leaves the solid by is no step: the same side
+        // turned inward (its normal away from the line).
+        let inward: Vec<_> = block([-10.0, -20.0, 0.0], [10.0, 20.0, 30.0])
+            .into_iter()
+            .map(|[a, b, c]| [a, c, b])
+            .collect();
+        let inward = TriangleTree::new(&inward);
+        assert!(!steps_onto(&inward, cs, [start, on(-10.25)], d));
         // A vertical line never comes up a flank.
-        assert!(!steps_onto(
-            &part(false),
-            0.5,
-            [start, start],
-            [0.0, 0.0, 1.0]
-        ));
+        let up = [0.0, 0.0, 1.0];
+        assert!(!steps_onto(&part(false), cs, [start, start], up));
     }
 }
