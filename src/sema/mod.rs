@@ -147,17 +147,7 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         b.feed = process.powder.map(|(p, _)| p);
         b
     });
-    // A mesh scan's faces serve `direction = auto` alone (what a line
-    // meets at a flank); otherwise they are let go here, not held through
-    // the slicing.
-    let build = build.map(|mut b| {
-        if let model::Build::Variable { extrusion, slicing } = &mut b {
-            if let (Some(base), None) = (&mut extrusion.base, slicing.direction) {
-                base.faces = None;
-            }
-        }
-        b
-    });
+    let build = build.map(without_unasked_faces);
     Some(Model {
         part: part?,
         build: build?,
@@ -168,6 +158,18 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         styles: styles?,
         tolerance,
     })
+}
+
+/// `b` without its scan's faces unless `direction = auto` may ask them
+/// (what a line meets at a flank): a mesh scan's faces are let go here,
+/// not held through the slicing.
+fn without_unasked_faces(mut b: model::Build) -> model::Build {
+    if let model::Build::Variable { extrusion, slicing } = &mut b {
+        if let (Some(base), None) = (&mut extrusion.base, slicing.direction) {
+            base.faces = None;
+        }
+    }
+    b
 }
 
 /// Warns where the process or a style runs `b` at a power or feed it was
