@@ -212,18 +212,22 @@ fn a_leaning_overhang_is_refused_with_the_tilt_that_builds_it() {
     );
 }
 
-/// The faces of a section in x–z (a closed polygon) extruded along y over
-/// `y`: a binary STL of its sides (the end caps, seen edge-on from above,
-/// are left out: a target mesh need not be closed).
-pub(super) fn extruded_stl(section: &[[f64; 2]], y: [f64; 2]) -> Vec<u8> {
+/// The sides of a section in x–z (a closed polygon) extruded along y over
+/// `y`, as triangles.
+fn sides(section: &[[f64; 2]], y: [f64; 2]) -> Vec<[[f32; 3]; 3]> {
+    let c = |p: [f64; 2], y: f64| [p[0] as f32, y as f32, p[1] as f32];
     let mut tris = Vec::new();
     for (k, a) in section.iter().enumerate() {
         let b = section[(k + 1) % section.len()];
-        let c = |p: [f64; 2], y: f64| [p[0] as f32, y as f32, p[1] as f32];
         let q = [c(*a, y[0]), c(b, y[0]), c(b, y[1]), c(*a, y[1])];
         tris.push([q[0], q[1], q[2]]);
         tris.push([q[0], q[2], q[3]]);
     }
+    tris
+}
+
+/// Triangles as a binary STL.
+fn stl_bytes(tris: &[[[f32; 3]; 3]]) -> Vec<u8> {
     let mut out = vec![b' '; 80];
     out.extend((tris.len() as u32).to_le_bytes());
     for t in tris {
@@ -236,6 +240,13 @@ pub(super) fn extruded_stl(section: &[[f64; 2]], y: [f64; 2]) -> Vec<u8> {
     out
 }
 
+/// The faces of a section in x–z (a closed polygon) extruded along y over
+/// `y`: a binary STL of its sides (the end caps, seen edge-on from above,
+/// are left out: a target mesh need not be closed).
+pub(super) fn extruded_stl(section: &[[f64; 2]], y: [f64; 2]) -> Vec<u8> {
+    stl_bytes(&sides(section, y))
+}
+
 /// The triangles of convex x–z `pieces` (counter-clockwise) extruded
 /// along `y` and closed at both ends: a solid, every edge shared by two
 /// faces running it opposite ways (what a scan's faces must be to show a
@@ -244,12 +255,7 @@ pub(super) fn prisms(pieces: &[Vec<[f64; 2]>], y: [f64; 2]) -> Vec<[[f32; 3]; 3]
     let c = |p: [f64; 2], y: f64| [p[0] as f32, y as f32, p[1] as f32];
     let mut tris = Vec::new();
     for section in pieces {
-        for (k, a) in section.iter().enumerate() {
-            let b = section[(k + 1) % section.len()];
-            let q = [c(*a, y[0]), c(b, y[0]), c(b, y[1]), c(*a, y[1])];
-            tris.push([q[0], q[1], q[2]]);
-            tris.push([q[0], q[2], q[3]]);
-        }
+        tris.extend(sides(section, y));
         // The ends, fanned (the pieces are convex).
         for k in 1..section.len() - 1 {
             let [a, b, d] = [section[0], section[k], section[k + 1]];
@@ -262,17 +268,7 @@ pub(super) fn prisms(pieces: &[Vec<[f64; 2]>], y: [f64; 2]) -> Vec<[[f32; 3]; 3]
 
 /// [`prisms`] as a binary STL.
 pub(super) fn prisms_stl(pieces: &[Vec<[f64; 2]>], y: [f64; 2]) -> Vec<u8> {
-    let tris = prisms(pieces, y);
-    let mut out = vec![b' '; 80];
-    out.extend((tris.len() as u32).to_le_bytes());
-    for t in tris {
-        out.extend([0u8; 12]);
-        for v in t.iter().flatten() {
-            out.extend(v.to_le_bytes());
-        }
-        out.extend([0u8; 2]);
-    }
-    out
+    stl_bytes(&prisms(pieces, y))
 }
 
 // A target given as a solid of the file (`top = NAME`, docs/repair.md, *A
