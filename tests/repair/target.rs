@@ -423,3 +423,37 @@ fn names_that_are_no_target_are_refused_with_what_works() {
         "{m}"
     );
 }
+
+/// A top written with `sin` (docs/language.md, *Values, units and
+/// expressions*): the worn pad built up to
+/// `13 mm + 0.3 mm · sin(x / 30 mm · 180°)`, its last
+/// layer ending on that formula (computed here) at every point; `sin` of
+/// a plain number is refused for its units, where it is written.
+#[test]
+fn a_top_written_with_sin_ends_on_its_formula() {
+    let src = |top: &str| {
+        include_str!("../../examples/worn_pad.lmd").replace(
+            "top = 13 mm                                         // the finished face",
+            &format!("top = {top}  // the finished face"),
+        )
+    };
+    let files = || super::example_files(&["worn_pad.ply"]);
+    let c = compile(&src("13 mm + 0.3 mm * sin(x / 30 mm * 180 deg)"), files());
+    let m = messages(&c);
+    let p = c.program.unwrap_or_else(|| panic!("{m}"));
+    let last = p.ir().layers.last().unwrap();
+    let mut n = 0;
+    for q in last.paths.iter().flat_map(|p| &p.points) {
+        let end = q.pos[2] + f64::from(q.layer_height);
+        let f = 13.0 + 0.3 * (q.pos[0] / 30.0 * std::f64::consts::PI).sin();
+        assert!((end - f).abs() < 1e-4, "{:?} ends at {end}, not {f}", q.pos);
+        n += 1;
+    }
+    assert!(n > 20, "{n}");
+    let c = compile(&src("13 mm + 0.3 mm * sin(x / 30 mm)"), files());
+    let m = messages(&c);
+    assert!(
+        m.contains("lmd::unit-mismatch: `sin` takes an angle (deg), not a plain number"),
+        "{m}"
+    );
+}
