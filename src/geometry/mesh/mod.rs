@@ -248,6 +248,13 @@ impl Mesh {
         self.triangles.len()
     }
 
+    /// Its triangles' corners (mm, placed), each triangle facing out.
+    pub fn triangles(&self) -> impl Iterator<Item = [[f64; 3]; 3]> + '_ {
+        self.triangles
+            .iter()
+            .map(|t| t.map(|i| self.vertices[i as usize]))
+    }
+
     /// The file's number of kept triangle `t`.
     fn file_number(&self, t: u32) -> usize {
         self.file_index[t as usize] as usize

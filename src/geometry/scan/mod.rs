@@ -23,7 +23,7 @@ pub mod xyz;
 pub use grid::{Estimate, GridFault, HeightField, Stats, MAX_CELLS};
 pub use register::{Fit, FitFault, Freedom, Rigid};
 
-use crate::geometry::mesh::Placement;
+use crate::geometry::mesh::{Mesh, Placement};
 use nalgebra::{Rotation3, Vector3};
 
 /// Where a scan's points go in the part's coordinates: scaled, turned,
@@ -131,81 +131,31 @@ impl Faces {
         })
     }
 
-    /// The placed faces as a tree, each turned to face out of the solid
-    /// they close, made once; `None` when they close none: some edge (its
-    /// corners joined where their coordinates are equal) is not shared by
-    /// exactly two faces running it opposite ways.
+    /// The placed faces as a tree, each facing out of the solid they
+    /// close, made once; `None` when they close none (a mesh solid's rule,
+    /// [`Mesh::new`]: corners with the same coordinates are one, and every
+    /// edge is shared by exactly two faces running it opposite ways).
     pub fn solid(&self) -> Option<&nearest::TriangleTree> {
         self.solid
             .get_or_init(|| {
-                let tris = closed(&self.raw)?;
-                let placed =
-                    |t: [u32; 3]| t.map(|i| self.pose.apply(&self.raw.vertices[i as usize]));
-                let tris: Vec<nearest::Tri> = tris.into_iter().map(placed).collect();
-                Some(nearest::TriangleTree::new(&tris))
+                let tris: Vec<crate::geometry::mesh::stl::Triangle> = self
+                    .raw
+                    .triangles
+                    .iter()
+                    .map(|t| t.map(|i| self.raw.vertices[i as usize]))
+                    .collect();
+                let (x, y, z) = self.pose.rot.euler_angles();
+                let place = Placement {
+                    scale: self.pose.scale,
+                    turn: [x, y, z],
+                    at: self.pose.at.into(),
+                };
+                let mesh = Mesh::new(&tris, place).ok()?;
+                let placed: Vec<nearest::Tri> = mesh.triangles().collect();
+                Some(nearest::TriangleTree::new(&placed))
             })
             .as_ref()
     }
-}
-
-/// The triangles of `raw` turned out of the solid they close (its signed
-/// volume positive), if they close one (see [`Faces::solid`]); triangles
-/// whose corners are joined into fewer than three are left out.
-fn closed(raw: &Raw) -> Option<Vec<[u32; 3]>> {
-    use std::collections::HashMap;
-    let mut weld: HashMap<[u32; 3], u32> = HashMap::new();
-    let id: Vec<u32> = raw
-        .vertices
-        .iter()
-        .map(|v| {
-            let n = weld.len() as u32;
-            *weld.entry(v.map(f32::to_bits)).or_insert(n)
-        })
-        .collect();
-    let tris: Vec<[u32; 3]> = raw
-        .triangles
-        .iter()
-        .map(|t| t.map(|i| id[i as usize]))
-        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
-        .collect();
-    // Each undirected edge: how often it is run, and its runs' balance.
-    let mut edges: HashMap<(u32, u32), (u32, i32)> = HashMap::new();
-    for t in &tris {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            let e = edges.entry((a.min(b), a.max(b))).or_default();
-            e.0 += 1;
-            e.1 += if a < b { 1 } else { -1 };
-        }
-    }
-    if tris.is_empty() || edges.values().any(|&(n, s)| n != 2 || s != 0) {
-        return None;
-    }
-    // Each welded corner's first vertex: the triangles in the file's
-    // indices again.
-    let mut first = vec![0u32; weld.len()];
-    for (k, &i) in id.iter().enumerate().rev() {
-        first[i as usize] = k as u32;
-    }
-    let tris: Vec<[u32; 3]> = tris
-        .into_iter()
-        .map(|t| t.map(|i| first[i as usize]))
-        .collect();
-    // The signed volume (six times it): positive when they face out.
-    let corner = |i: u32| raw.vertices[i as usize].map(f64::from);
-    let volume: f64 = tris
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(corner);
-            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
-                + a[2] * (b[0] * c[1] - b[1] * c[0])
-        })
-        .sum();
-    Some(if volume < 0.0 {
-        tris.into_iter().map(|[a, b, c]| [a, c, b]).collect()
-    } else {
-        tris
-    })
 }
 
 /// Why a scan file cannot be read.

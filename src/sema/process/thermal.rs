@@ -130,50 +130,37 @@ fn material_of(
     diags: &mut Diagnostics,
 ) -> Option<(String, crate::thermal::Material)> {
     let own = [
-        d.conductivity,
-        d.density,
-        d.heat_capacity,
-        d.emissivity,
-        d.absorptivity,
+        (t::CONDUCTIVITY.key, d.conductivity),
+        (t::DENSITY.key, d.density),
+        (t::HEAT_CAPACITY.key, d.heat_capacity),
+        (t::EMISSIVITY.key, d.emissivity),
+        (t::ABSORPTIVITY.key, d.absorptivity),
     ];
-    let (name, base) = match material {
-        Some(key) => {
-            let a = crate::thermal::alloy(key)?;
-            let name = if own.iter().any(Option::is_some) {
-                format!("{key}, with declared properties")
-            } else {
-                key.to_string()
-            };
-            (name, a.material)
+    let Some(key) = material else {
+        let missing: Vec<&str> = own
+            .iter()
+            .filter(|(_, v)| v.is_none())
+            .map(|(k, _)| *k)
+            .collect();
+        if !missing.is_empty() {
+            diags.push(message::thermal::no_material(&missing, at));
+            return None;
         }
-        None => {
-            let keys = [
-                t::CONDUCTIVITY.key,
-                t::DENSITY.key,
-                t::HEAT_CAPACITY.key,
-                t::EMISSIVITY.key,
-                t::ABSORPTIVITY.key,
-            ];
-            let missing: Vec<&str> = keys
-                .iter()
-                .zip(own)
-                .filter(|(_, v)| v.is_none())
-                .map(|(k, _)| *k)
-                .collect();
-            if !missing.is_empty() {
-                diags.push(message::thermal::no_material(&missing, at));
-                return None;
-            }
-            let m = crate::thermal::Material {
-                conductivity: 0.0,
-                density: 0.0,
-                heat_capacity: 0.0,
-                emissivity: 0.0,
-                absorptivity: 0.0,
-                heat_transfer: crate::thermal::alloy::HEAT_TRANSFER,
-            };
-            ("declared material".to_string(), m)
-        }
+        let m = crate::thermal::Material {
+            conductivity: d.conductivity?,
+            density: d.density?,
+            heat_capacity: d.heat_capacity?,
+            emissivity: d.emissivity?,
+            absorptivity: d.absorptivity?,
+            heat_transfer: crate::thermal::alloy::HEAT_TRANSFER,
+        };
+        return Some(("declared material".to_string(), m));
+    };
+    let base = crate::thermal::alloy(key)?.material;
+    let name = if own.iter().any(|(_, v)| v.is_some()) {
+        format!("{key}, with declared properties")
+    } else {
+        key.to_string()
     };
     Some((
         name,

@@ -377,24 +377,21 @@ fn steps_onto(
     if across < 1e-9 {
         return false;
     }
-    let down = d.map(|c| -c);
-    let to_len = (0..3)
-        .map(|k| (to[k] - start[k]).powi(2))
-        .sum::<f64>()
-        .sqrt();
+    let down = -Vector3::from(d);
+    let to_len = (Vector3::from(to) - Vector3::from(start)).norm();
     let past = 1.5 * std::f64::consts::SQRT_2 * cell / across;
-    let Some((t, normal)) = tree.first_hit(start, down, to_len + past) else {
+    let Some((t, normal)) = tree.first_hit(start, down.into(), to_len + past) else {
         return false;
     };
-    let facing = (0..3).map(|k| normal[k] * down[k]).sum::<f64>() < 0.0;
+    let facing = Vector3::from(normal).dot(&down) < 0.0;
     if t < to_len - step - past || !facing {
         return false;
     }
     // A hundredth of a millimetre back along the line: in the air the
     // step stands in, open to the sky.
-    let before = (t - 0.01).max(0.0);
-    let p = [0, 1, 2].map(|k| start[k] + before * down[k]);
-    tree.first_hit(p, [0.0, 0.0, 1.0], f64::INFINITY).is_none()
+    let p = Vector3::from(start) + (t - 0.01).max(0.0) * down;
+    tree.first_hit(p.into(), [0.0, 0.0, 1.0], f64::INFINITY)
+        .is_none()
 }
 
 /// The points of `profile` (within `bounds`) every `spacing` at least
