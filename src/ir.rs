@@ -1182,7 +1182,8 @@ pub struct Fixture {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[cfg_attr(feature = "json-schema", derive(schemars::JsonSchema))]
 pub struct Registration {
-    /// The nominal's file, as the source names it.
+    /// The nominal's file, or the name of the solid of the file it is
+    /// (`register = NAME`), as the source writes it.
     pub nominal: String,
     /// The shift the fit found after the declared placement, mm (with
     /// `turned`, about the part's origin: `p ↦ R·p + moved`).

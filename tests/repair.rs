@@ -14,6 +14,7 @@ mod follow;
 mod lean;
 mod lean_finish;
 mod levelfollow;
+mod nominal;
 mod overhung;
 mod steps;
 mod target;

@@ -156,7 +156,7 @@ codes! {
     ExpectedShape = "expected-shape", Values,
         "a value that is not a shape where one belongs: a section, a profile, a loft's `from`/`to`, a `spine`";
     TargetSolid = "target-solid", Values,
-        "a `top = NAME` whose solid cannot be a repair's target: the extrusion itself, a `ring` or a `wall`, a bead, section or profile where a solid belongs, or a target that is no part standing on the plate (a `top` or `on` of its own, a profile that follows `layer` or cuts a scan, a `size = centre`, no `height`, a loft bent round its own sections)";
+        "a `top = NAME` or `scan(register = NAME)` whose solid cannot be a repair's target or a scan's nominal: the extrusion itself, a `ring` or a `wall`, a bead, section or profile where a solid belongs, or a target that is no part standing on the plate (a `top` or `on` of its own, a profile that follows `layer` or cuts a scan, a `size = centre`, no `height`, a loft bent round its own sections)";
     ExpectedPoint = "expected-point", Values,
         "an outline piece that is not a point `[x, y]` or `arc(…)`, or a point that is not two lengths";
     ExpectedName = "expected-name", Values,

@@ -27,6 +27,8 @@ use super::spine::Spine;
 use super::LoftGeometry;
 use nalgebra::Point3;
 
+mod tessellate;
+
 /// How far apart (mm) a vertical line is tested against a loft before
 /// its changes are bisected.
 pub const STEP: f64 = 0.05;

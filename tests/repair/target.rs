@@ -227,7 +227,7 @@ fn sides(section: &[[f64; 2]], y: [f64; 2]) -> Vec<[[f32; 3]; 3]> {
 }
 
 /// Triangles as a binary STL.
-fn stl_bytes(tris: &[[[f32; 3]; 3]]) -> Vec<u8> {
+pub(super) fn stl_bytes(tris: &[[[f32; 3]; 3]]) -> Vec<u8> {
     let mut out = vec![b' '; 80];
     out.extend((tris.len() as u32).to_le_bytes());
     for t in tris {

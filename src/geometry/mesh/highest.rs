@@ -7,11 +7,17 @@
 /// Most bucket entries per face, on average, before the buckets grow.
 const ENTRIES_PER_FACE: usize = 8;
 
+/// A face's corners, mm.
+type Face = [[f64; 3]; 3];
+
 /// A triangle soup's upper surface.
 #[derive(Debug)]
 pub struct Highest {
     /// The faces that are not upright (mm, placed).
     faces: Vec<[[f64; 3]; 3]>,
+    /// The upright faces, not asked from above but kept for the whole
+    /// mesh ([`Highest::faces`]): a best fit's nominal needs its sides.
+    upright: Vec<[[f64; 3]; 3]>,
     origin: [f64; 2],
     cell: f64,
     n: [usize; 2],
@@ -25,10 +31,10 @@ impl Highest {
     /// The upper surface of `faces` (placed, mm); faces seen edge-on from
     /// above are left out. `None` when none is left.
     pub fn new(faces: Vec<[[f64; 3]; 3]>) -> Option<Highest> {
-        let faces: Vec<[[f64; 3]; 3]> = faces
+        let (faces, upright): (Vec<Face>, Vec<Face>) = faces
             .into_iter()
-            .filter(|t| det(t).abs() > 1e-12 && t.iter().flatten().all(|v| v.is_finite()))
-            .collect();
+            .filter(|t| t.iter().flatten().all(|v| v.is_finite()))
+            .partition(|t| det(t).abs() > 1e-12);
         if faces.is_empty() {
             return None;
         }
@@ -50,6 +56,7 @@ impl Highest {
             ];
             let h = Highest {
                 faces: Vec::new(),
+                upright: Vec::new(),
                 origin: lo,
                 cell,
                 n,
@@ -59,7 +66,10 @@ impl Highest {
             let count: usize = faces.iter().map(|t| h.cells(t).count()).sum();
             let buckets = n[0].saturating_mul(n[1]);
             if count <= ENTRIES_PER_FACE * faces.len() + 1024 && buckets <= 4 * faces.len() + 1024 {
-                return Some(h.fill(faces));
+                return Some(Highest {
+                    upright,
+                    ..h.fill(faces)
+                });
             }
             cell *= 2.0;
         }
@@ -101,6 +111,11 @@ impl Highest {
         self.entries = entries;
         self.faces = faces;
         self
+    }
+
+    /// Every finite face of the mesh, the upright ones after the others.
+    pub fn faces(&self) -> impl Iterator<Item = &[[f64; 3]; 3]> + '_ {
+        self.faces.iter().chain(&self.upright)
     }
 
     /// The box its faces lie within (mm): lowest corner, highest.

@@ -302,12 +302,12 @@ pub mod scan {
         Default(DefaultQuantity(0.5)),
         "how far a cell may stand out of its neighbours' median before it is taken for a spike and replaced by it",
     );
-    /// `scan(register = mesh(…))`.
+    /// `scan(register = mesh(…))` or `scan(register = NAME)`.
     pub static REGISTER: Field = Field::new(
         "register",
-        Call(&[&MESH]),
+        Either(&[Call(&[&MESH]), Name("solid")]),
         Optional,
-        "the nominal: the part as designed, placed in the part's coordinates by its own `turn` and `at` (it need not be closed nor stand on the plate); the scan is moved onto it by a best fit that leaves the worn region out, starting from where the scan's `turn` and `at` put it (docs/repair.md, *Registration*)",
+        "the nominal: the part as designed, a `mesh(…)` placed in the part's coordinates by its own `turn` and `at` (it need not be closed nor stand on the plate), or the name of an `extrude` or `loft` of the file, which is then not built; the scan is moved onto it by a best fit that leaves the worn region out, starting from where the scan's `turn` and `at` put it (docs/repair.md, *Registration*)",
     );
     /// `scan(fit_tolerance = …)`.
     pub static FIT_TOLERANCE: Field = Field::new(

@@ -95,7 +95,10 @@ pub fn read<'a>(
     let data = env.data.clone();
     // A section of the scan is cut while the scan is read.
     let cut = profile.and_then(|v| scan_section(v, diags));
-    let on = on(&f, data.as_ref(), cut.flatten(), diags);
+    let mut solid = |n: &str, at: Span, diags: &mut Diagnostics| {
+        crate::sema::solid::target::nominal(env, n, at, name, scope, diags)
+    };
+    let on = on(&f, (data.as_ref(), &mut solid), cut.flatten(), diags);
     let mut source = match (profile, cut) {
         (Some(v), Some(z)) => z.and_then(|z| from_scan(v.span, z, on.as_ref(), diags)),
         _ => profile.and_then(|v| source(v, scope, data.as_ref(), diags)),
@@ -161,7 +164,10 @@ pub fn read<'a>(
 /// `Some(None)` when not written, `None` when written wrong (reported).
 fn on(
     f: &Fields<'_>,
-    data: Option<&crate::sema::DataReader>,
+    read: (
+        Option<&crate::sema::DataReader>,
+        crate::sema::solid::scan::SolidNamed<'_>,
+    ),
     z: Option<f64>,
     diags: &mut Diagnostics,
 ) -> Option<Option<(ScanBase, Cut)>> {
@@ -169,7 +175,7 @@ fn on(
         return (!f.has(&extrude::ON)).then_some(None);
     };
     match &v.value {
-        Value::Call(c) => crate::sema::solid::scan::read(c, v.span, data, z, diags).map(Some),
+        Value::Call(c) => crate::sema::solid::scan::read(c, v.span, read, z, diags).map(Some),
         _ => None,
     }
 }

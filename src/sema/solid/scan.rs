@@ -2,7 +2,8 @@
 //! the measured surface a repair is built on, read through the program's
 //! data reader in any of the formats [`crate::geometry::scan`] reads,
 //! placed in the part's coordinates — as declared, or moved from there
-//! onto its nominal by a best fit ([`crate::geometry::scan::register`]) —
+//! onto its nominal (a mesh, or a solid of the file cut into triangles)
+//! by a best fit ([`crate::geometry::scan::register`]) —
 //! and estimated on a grid (docs/repair.md).
 
 use crate::diag::{message, Diagnostics};
@@ -10,6 +11,7 @@ use crate::geometry::mesh::{Placement, Section};
 use crate::geometry::scan::register::{register, Nominal};
 use crate::geometry::scan::section::{self, CutFault};
 use crate::geometry::scan::{self, Estimate, Format, HeightField, Pose, Raw};
+use crate::geometry::target::Target;
 use crate::sema::data::Data;
 use crate::sema::fields::Fields;
 use crate::sema::model::ScanBase;
@@ -20,18 +22,25 @@ use crate::sema::DataReader;
 use crate::span::Span;
 use crate::units::mm_per;
 use crate::units::Dim;
+use std::sync::Arc;
 
 /// The section of a scan a profile asks for (`scan_section(z)`), when
 /// asked: the islands or why there are none.
 pub type Cut = Option<Result<Vec<Section>, CutFault>>;
 
+/// How `register = NAME` finds the solid `NAME` of the file (written at
+/// the span): the part as designed, or `None` after reporting why it
+/// cannot be.
+pub type SolidNamed<'s> = &'s mut dyn FnMut(&str, Span, &mut Diagnostics) -> Option<Arc<Target>>;
+
 /// Reads `scan(…)` (the call `c` at `at`), its file through `data`, and
 /// its section at `z` when a profile asks for one (cut where the scan is
-/// placed, after any best fit).
+/// placed, after any best fit); a nominal named as a solid through
+/// `solid`.
 pub fn read(
     c: &Call,
     at: Span,
-    data: Option<&DataReader>,
+    (data, solid): (Option<&DataReader>, SolidNamed<'_>),
     z: Option<f64>,
     diags: &mut Diagnostics,
 ) -> Option<(ScanBase, Cut)> {
@@ -42,7 +51,7 @@ pub fn read(
     let place = triple(&f, &field::AT, Dim::LENGTH, diags);
     let cell = f.quantity_or_default(&field::CELL, diags);
     let outlier = f.quantity_or_default(&field::OUTLIER, diags);
-    let nominal = nominal(&f, data, diags);
+    let nominal = nominal(&f, data, solid, diags);
     let tolerance = f.quantity_or_default(&field::FIT_TOLERANCE, diags);
     let ((path, file_at), units, turn, place, cell, outlier, nominal, tolerance) = (
         file?, units?, turn?, place?, cell?, outlier?, nominal?, tolerance?,
@@ -126,22 +135,34 @@ fn raw(
     Some((raw, scale))
 }
 
-/// The nominal of `register = mesh(…)`, placed, with its file and where
-/// it is written: `Some(None)` when not written, `None` when written wrong
-/// (reported).
+/// The nominal of `register = mesh(…)`, placed, or of `register = NAME`,
+/// a solid of the file cut into triangles, with its file or name and
+/// where it is written: `Some(None)` when not written, `None` when
+/// written wrong (reported).
 fn nominal(
     f: &Fields<'_>,
     data: Option<&DataReader>,
+    solid: SolidNamed<'_>,
     diags: &mut Diagnostics,
 ) -> Option<Option<(Nominal, String, Span)>> {
     let Some(v) = f.value(&field::REGISTER, diags) else {
         return (!f.has(&field::REGISTER)).then_some(None);
     };
-    let Value::Call(c) = &v.value else {
-        return None;
-    };
-    let (placed, path) = crate::sema::solid::mesh::placed(c, data, diags)?;
-    Some(Some((Nominal::new(&placed), path, v.span)))
+    match &v.value {
+        Value::Call(c) => {
+            let (placed, path) = crate::sema::solid::mesh::placed(c, data, diags)?;
+            Some(Some((Nominal::new(&placed), path, v.span)))
+        }
+        Value::Symbol(name) => {
+            let target = solid(name, v.span, diags)?;
+            Some(Some((
+                Nominal::new(&target.triangles()),
+                name.clone(),
+                v.span,
+            )))
+        }
+        _ => None,
+    }
 }
 
 /// What a best fit is asked: the scan's points, their declared placement,

@@ -1,20 +1,21 @@
 //! `top = NAME`: a repair's target given as a solid of the file, the part
-//! as designed (docs/repair.md, *A target solid*). A solid a `top` names
-//! is taken out of the build ([`named`]) and read here as a target: an
+//! as designed (docs/repair.md, *A target solid*), and `scan(register =
+//! NAME)`: a scan's nominal given so (*Registration*). A solid either
+//! names is taken out of the build ([`named`]) and read here: an
 //! `extrude` of a shape up to its `height`, an `extrude` of a `mesh(…)`,
 //! or a `loft`, its shapes its faces. What builds a solid — its bead, its
 //! tracks' `size` — is not needed; what would make it anything but a part
 //! standing on the plate (a `top` or `on` of its own, a profile that
 //! follows `layer`) is refused, as is a name that is no such solid.
 
-use crate::diag::message::target::{self, Fault};
+use crate::diag::message::target::{self, Fault, Role};
 use crate::diag::Diagnostics;
 use crate::geometry::mesh::highest::Highest;
 use crate::geometry::target::{LoftFault, LoftTarget, Target};
 use crate::sema::eval::{unknown_name, Env, LAYER, POSITION, Z};
 use crate::sema::fields::Fields;
 use crate::sema::model::{Top, TopSolid};
-use crate::sema::schema::solid::{extrude, loft, EXTRUDE, LOFT, SCAN_SECTION};
+use crate::sema::schema::solid::{extrude, loft, scan, EXTRUDE, LOFT, SCAN, SCAN_SECTION};
 use crate::sema::solid::extrude::{Scope, Source};
 use crate::sema::solid::profile;
 use crate::sema::suggest::did_you_mean;
@@ -32,11 +33,12 @@ const CHORD: f64 = 0.001;
 /// The statement kinds that are solids.
 pub const SOLIDS: [&str; 4] = ["loft", "extrude", "ring", "wall"];
 
-/// The solids some extrusion's `top` names (not itself, not a constant):
-/// they are targets, not built. A name no solid has, which is no constant
-/// or position either, is taken for the solid its "did you mean" offers:
-/// the typo is reported where the target is read, and that solid stays
-/// out of the build rather than being read as a second part to build.
+/// The solids some extrusion's `top` or its scan's `register` names (not
+/// itself, not a constant): they are the part as designed, not built. A
+/// name no solid has, which is no constant or position either, is taken
+/// for the solid its "did you mean" offers: the typo is reported where
+/// the name is read, and that solid stays out of the build rather than
+/// being read as a second part to build.
 pub fn named<'a>(
     solids: &[&'a Stmt],
     constants: &[(String, Span, crate::syntax::ast::Expr)],
@@ -48,26 +50,49 @@ pub fn named<'a>(
         let Body::Block(stmts, _) = &s.body else {
             continue;
         };
-        for f in stmts.iter().filter(|f| f.kind.node == extrude::TOP.key) {
-            if let Body::Assign(e) = &f.body {
-                if let ExprKind::Ident(n) = &e.kind {
-                    let constant = constants.iter().any(|(c, _, _)| c == n);
-                    let builtin = POSITION.contains(&n.as_str()) || n == LAYER || n == Z;
-                    if constant || builtin || name_of(s) == Some(n) {
-                        continue;
-                    }
-                    let others = names.iter().copied().filter(|m| Some(*m) != name_of(s));
-                    match names.get(n.as_str()) {
-                        Some(m) => {
-                            out.insert(*m);
-                        }
-                        None => out.extend(did_you_mean(n, others)),
-                    }
+        for n in stmts.iter().filter_map(|f| part_named(f)) {
+            let constant = constants.iter().any(|(c, _, _)| c == n);
+            let builtin = POSITION.contains(&n) || n == LAYER || n == Z;
+            if constant || builtin || name_of(s) == Some(n) {
+                continue;
+            }
+            let others = names.iter().copied().filter(|m| Some(*m) != name_of(s));
+            match names.get(n) {
+                Some(m) => {
+                    out.insert(*m);
                 }
+                None => out.extend(did_you_mean(n, others)),
             }
         }
     }
     out
+}
+
+/// The name a field of an extrude block gives the part as designed:
+/// `top = NAME`, or `on = scan(…, register = NAME)`.
+fn part_named(f: &Stmt) -> Option<&str> {
+    let Body::Assign(e) = &f.body else {
+        return None;
+    };
+    fn ident(e: &crate::syntax::ast::Expr) -> Option<&str> {
+        match &e.kind {
+            ExprKind::Ident(n) => Some(n.as_str()),
+            _ => None,
+        }
+    }
+    match (f.kind.node.as_str(), &e.kind) {
+        (k, _) if k == extrude::TOP.key => ident(e),
+        (k, ExprKind::Call { func, args }) if k == extrude::ON.key && func.node == SCAN.name => {
+            args.iter()
+                .find(|a| {
+                    a.name
+                        .as_ref()
+                        .is_some_and(|n| n.node == scan::REGISTER.key)
+                })
+                .and_then(|a| ident(&a.value))
+        }
+        _ => None,
+    }
 }
 
 /// `top = NAME` in the extrusion `own`, written at `at`: the target when
@@ -86,6 +111,40 @@ pub fn read<'a>(
     if builtin || scope.constants.iter().any(|(c, _, _)| c == name) {
         return None;
     }
+    let surface = solid(env, (name, Role::Top), at, own, scope, diags);
+    Some(surface.map(|surface| {
+        Top::Solid(TopSolid {
+            name: name.to_string(),
+            surface,
+        })
+    }))
+}
+
+/// `scan(register = NAME)` in the extrusion `own`, written at `at`: the
+/// solid `name` of the file as the scan's nominal, `None` after reporting
+/// why it cannot be one (a constant is no solid either).
+pub fn nominal<'a>(
+    env: &mut Env<'a>,
+    name: &str,
+    at: Span,
+    own: &str,
+    scope: &Scope<'_, 'a>,
+    diags: &mut Diagnostics,
+) -> Option<Arc<Target>> {
+    solid(env, (name, Role::Nominal), at, own, scope, diags)
+}
+
+/// The solid `name` of the file as the part as designed, named for
+/// `role` at `at` from the extrusion `own`; `None` after reporting why it
+/// cannot be (or is no solid).
+fn solid<'a>(
+    env: &mut Env<'a>,
+    (name, role): (&str, Role),
+    at: Span,
+    own: &str,
+    scope: &Scope<'_, 'a>,
+    diags: &mut Diagnostics,
+) -> Option<Arc<Target>> {
     let decl = scope
         .statements
         .iter()
@@ -93,25 +152,26 @@ pub fn read<'a>(
     let Some(s) = decl else {
         let known: Vec<&str> = solid_names(scope, own);
         diags.push(unknown_name(name, at, "solid", &known));
-        return Some(None);
+        return None;
     };
     let kind = s.kind.node.as_str();
     let decl_span = s.name.as_ref().map_or(s.span, |n| n.span);
     if !SOLIDS.contains(&kind) {
         let known = solid_names(scope, own);
-        diags.push(target::not_a_solid(name, kind, at, decl_span, &known));
-        return Some(None);
+        diags.push(target::not_a_solid(name, kind, role, at, decl_span, &known));
+        return None;
     }
     if name == own {
-        diags.push(target::cannot(name, Fault::Itself, at, decl_span));
-        return Some(None);
+        diags.push(target::cannot(name, Fault::Itself, role, at, decl_span));
+        return None;
     }
     let Body::Block(stmts, _) = &s.body else {
         // Its shape is reported where the file's solids are read.
-        return Some(None);
+        return None;
     };
     let cx = Cx {
         name,
+        role,
         at,
         decl: decl_span,
         span: s.span,
@@ -121,12 +181,7 @@ pub fn read<'a>(
         "loft" => lofted(env, stmts, &cx, scope, diags),
         _ => cx.refuse(Fault::Kind(kind), diags),
     };
-    Some(surface.map(|t| {
-        Top::Solid(TopSolid {
-            name: name.to_string(),
-            surface: Arc::new(t),
-        })
-    }))
+    surface.map(Arc::new)
 }
 
 /// The solids a top may name: every one but `own`.
@@ -143,7 +198,9 @@ fn solid_names<'s>(scope: &'s Scope<'_, '_>, own: &str) -> Vec<&'s str> {
 /// Where a target is named and declared.
 struct Cx<'n> {
     name: &'n str,
-    /// The `top = NAME`.
+    /// What names it.
+    role: Role,
+    /// The `top = NAME` or `register = NAME`.
     at: Span,
     /// The target's name in its declaration.
     decl: Span,
@@ -153,7 +210,9 @@ struct Cx<'n> {
 
 impl Cx<'_> {
     fn refuse<T>(&self, fault: Fault<'_>, diags: &mut Diagnostics) -> Option<T> {
-        diags.push(target::cannot(self.name, fault, self.at, self.decl));
+        diags.push(target::cannot(
+            self.name, fault, self.role, self.at, self.decl,
+        ));
         None
     }
 }
@@ -169,13 +228,19 @@ fn refused(
     let mut ok = true;
     for key in keys {
         if let Some(at) = f.span(key) {
-            diags.push(target::cannot(cx.name, Fault::Field(key.key), cx.at, at));
+            diags.push(target::cannot(
+                cx.name,
+                Fault::Field(key.key),
+                cx.role,
+                cx.at,
+                at,
+            ));
             ok = false;
         }
     }
     if let Some((w, at)) = f.word(size, diags) {
         if w != "outer" {
-            diags.push(target::cannot(cx.name, Fault::Centre, cx.at, at));
+            diags.push(target::cannot(cx.name, Fault::Centre, cx.role, cx.at, at));
             ok = false;
         }
     }
