@@ -292,6 +292,9 @@ fn run<R>(
             return Ok(Ran::none());
         }
     };
+    if let Some(d) = held_finish(&program, &model) {
+        diagnostics.push(d);
+    }
     // Only the report keeps the model; a build frees it before verifying.
     match keep {
         Some(k) => *k = Some(model),
@@ -526,4 +529,25 @@ pub fn repair_overlay(
         (out.below, out.above) = (f.below_mm, f.above_mm);
     }
     Some(out)
+}
+
+/// A repair's predicted finish off its top by more than the
+/// `finish_tolerance` its slicing declares (`lmd::finish`); `None` when
+/// it declares none or the finish is within it. Here because it joins
+/// the plan with the model's top, which the verifier does not read.
+fn held_finish(program: &crate::ir::Program, model: &Model) -> Option<crate::diag::Diagnostic> {
+    let crate::sema::model::Build::Variable { slicing, extrusion } = &model.build else {
+        return None;
+    };
+    let (tolerance, at) = slicing.finish_tolerance?;
+    let f = crate::report::finish::of(program, model)?;
+    let off = crate::diag::message::top::FinishOff {
+        below: (f.below_mm, f.below_at),
+        above: (f.above_mm, f.above_at),
+        rms: f.rms_mm,
+        points: f.points,
+        tolerance: tolerance.0,
+    };
+    (f.below_mm > tolerance.0 || f.above_mm > tolerance.0)
+        .then(|| crate::diag::message::top::finish_off(&off, at, extrusion.top_span))
 }

@@ -397,6 +397,9 @@ loft duct { from = circle(diameter = 12 mm)  to = square(side = 12 mm)  spine = 
     // The flat scan of tests/codes/short.xyz (z = 2 mm) levelled at 1 mm.
     repair_level: RepairLevel, WALL,
         "extrude wall { profile = rectangle(width = 16 mm, height = 2.4 mm)  size = outer  bead = b316  on = scan(\"short.xyz\")  top = 12 mm }\nslicing variable { layers = auto  scan = x  level = 1 mm }";
+    // The wall's finish held to a micrometre: its last layer's beads are
+    // rounded, and its tracks' ends lay less.
+    finish: Finish, WALL, "slicing variable { layers = auto  finish_tolerance = 0.001 mm }";
     // The wall, built on the plate, asked to follow a scanned surface.
     follow_surface: FollowSurface, WALL, "slicing variable { layers = auto  follow = surface }";
     // The flat scan of tests/codes/short.xyz registered to the top of a

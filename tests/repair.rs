@@ -842,3 +842,25 @@ fn a_wrong_nominal_or_a_tolerance_alone_is_refused() {
 fn block_stl(lo: [f64; 3], hi: [f64; 3]) -> Vec<u8> {
     target::solid_stl(lo, hi, |_, _| hi[2])
 }
+
+/// The worn pad's finish held (`finish_tolerance`): 0.3257 mm below its
+/// top and 0.3398 mm above at worst, so 0.3 mm refuses it on both sides
+/// (each named with where) and 0.35 mm holds it.
+#[test]
+fn a_finish_tolerance_names_both_sides_it_breaks() {
+    let src = |t: &str| {
+        include_str!("../examples/worn_pad.lmd").replace(
+            "  offset = 2 mm\n",
+            &format!("  offset = 2 mm\n  finish_tolerance = {t}\n"),
+        )
+    };
+    let tight = compile(&src("0.3 mm"), example_files(&["worn_pad.ply"]));
+    let m = messages(&tight);
+    assert!(tight.program.is_none(), "{m}");
+    assert!(
+        m.contains("lmd::finish: the finished face this plan lays falls 0.3257 mm below the top at (-4.2, -2.8) mm and stands 0.3398 mm above it at (-9.6, 5.2) mm, more than the `finish_tolerance` of 0.3 mm"),
+        "{m}"
+    );
+    let held = compile(&src("0.35 mm"), example_files(&["worn_pad.ply"]));
+    assert!(held.program.is_some(), "{}", messages(&held));
+}

@@ -151,3 +151,51 @@ fn the_blade_tip_is_levelled_then_built_past_its_tip() {
     assert!(passes >= 2, "{passes}");
     assert!(laid > 0.0);
 }
+
+/// The blade tip's finish held (`finish_tolerance`, docs/repair.md, *The
+/// finish held*): its trailing edge, 1.17 mm short, is refused at
+/// 0.5 mm with the report's own worst place and the stock that would
+/// cover it; at 1.2 mm the plan is the one without a tolerance.
+#[test]
+fn the_blade_tips_short_trailing_edge_breaks_a_finish_tolerance() {
+    let files = super::example_files(&["blade_tip.ply"]);
+    let src = include_str!("../../examples/blade_tip.lmd");
+    let held = |t: &str| {
+        src.replace(
+            "level = auto  // fill the wear up to the tip's highest point first\n",
+            &format!("level = auto\n  finish_tolerance = {t}\n"),
+        )
+    };
+    let (free, model) = crate::support::data::compile_with_files_and_model(src, files.clone());
+    let m = messages(&free);
+    let plan = free.program.unwrap_or_else(|| panic!("{m}"));
+    let report = lmdc::report::Report::new(plan.machines().next().unwrap(), &model.unwrap(), None);
+    let f = report.finish.as_ref().unwrap();
+    assert!(f.below_mm > 1.1 && f.below_mm < 1.2, "{f:?}");
+    let tight = compile(&held("0.5 mm"), files.clone());
+    assert!(tight.program.is_none());
+    let d = tight
+        .diagnostics
+        .iter()
+        .find(|d| d.code.as_str() == "lmd::finish")
+        .unwrap_or_else(|| panic!("{}", messages(&tight)));
+    let short = lmdc::units::short;
+    let expected = format!(
+        "falls {} mm below the top at ({}, {}) mm, more than the `finish_tolerance` of 0.5 mm",
+        short(f.below_mm),
+        short(f.below_at[0]),
+        short(f.below_at[1])
+    );
+    assert!(d.message.contains(&expected), "{}\n{expected}", d.message);
+    // The worst place is at the trailing edge, past 19 mm of the chord.
+    assert!(f.below_at[0] > 19.0, "{f:?}");
+    let stock = format!("a top about {} mm higher", short(f.below_mm - 0.5));
+    assert!(d.help.as_deref().unwrap().contains(&stock), "{:?}", d.help);
+    let loose = compile(&held("1.2 mm"), files);
+    let m = messages(&loose);
+    let loose = loose.program.unwrap_or_else(|| panic!("{m}"));
+    assert_eq!(
+        serde_json::to_string(loose.ir()).unwrap(),
+        serde_json::to_string(plan.ir()).unwrap()
+    );
+}

@@ -812,3 +812,65 @@ pub fn in_turned_frame(mut d: Diagnostic, [tilt, azimuth]: [f64; 2]) -> Diagnost
     ));
     d
 }
+
+/// A repair's predicted finish against its top (`lmd::finish`): the worst
+/// place below and above it (mm, and where), its RMS, how many places,
+/// and the `finish_tolerance` it is held to.
+#[derive(Clone, Copy, Debug)]
+pub struct FinishOff {
+    /// How far below the top it lies at worst, and where, mm.
+    pub below: (f64, [f64; 2]),
+    /// How far above it it stands at worst, and where, mm.
+    pub above: (f64, [f64; 2]),
+    /// The RMS of its departure, mm.
+    pub rms: f64,
+    /// The places it is predicted at.
+    pub points: usize,
+    /// `finish_tolerance`, mm.
+    pub tolerance: f64,
+}
+
+/// The predicted finish off the top by more than `finish_tolerance`
+/// (written at `at`; the top at `top`).
+pub fn finish_off(f: &FinishOff, at: Span, top: Span) -> Diagnostic {
+    let place = |p: [f64; 2]| format!("({}, {}) mm", short(p[0]), short(p[1]));
+    let mut off = Vec::new();
+    if f.below.0 > f.tolerance {
+        off.push(format!(
+            "falls {} mm below the top at {}",
+            short(f.below.0),
+            place(f.below.1)
+        ));
+    }
+    if f.above.0 > f.tolerance {
+        off.push(format!(
+            "stands {} mm above it at {}",
+            short(f.above.0),
+            place(f.above.1)
+        ));
+    }
+    let mut help = vec!["the face departs from the top where a segment holds one speed over heights that differ along it (a smaller `segments { tolerance }` cuts shorter ones) and where tracks shorter than the bead lay less at their rounded ends (`lmd::short-track`; a narrower bead lays them)".to_string()];
+    if f.below.0 > f.tolerance {
+        help.push(format!(
+            "to finish by machining, leave stock: a top about {} mm higher",
+            short(f.below.0 - f.tolerance)
+        ));
+    }
+    help.push(
+        "`lmdc preview` colours the face by its departure; a larger `finish_tolerance` allows more"
+            .to_string(),
+    );
+    Diagnostic::error(
+        Code::Finish,
+        format!(
+            "the finished face this plan lays {}, more than the `finish_tolerance` of {} mm (its bead model's surface at {} places along the last layer's tracks, RMS {} mm)",
+            off.join(" and "),
+            short(f.tolerance),
+            f.points,
+            short(f.rms)
+        ),
+    )
+    .label(at, "the tolerance")
+    .label(top, "the top")
+    .help(help.join("; "))
+}

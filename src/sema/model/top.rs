@@ -200,6 +200,10 @@ pub struct VariableSlicing {
     pub tolerance: Length,
     /// The shortest constant-speed segment; `None`: the bead width.
     pub min_length: Option<Length>,
+    /// `finish_tolerance = …` and where: the most the predicted finished
+    /// face may depart from the top (`lmd::finish`); `None`: reported,
+    /// not held.
+    pub finish_tolerance: Option<(Length, Span)>,
     /// The slicing block.
     pub span: Span,
     /// `tolerance = …`, if written.

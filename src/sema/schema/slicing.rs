@@ -376,6 +376,13 @@ pub mod variable {
         Default(DefaultWord("vertical")),
         "on a scan, toward a target mesh or solid that overhangs it: `auto` plans the fill along the least tilted build direction (within the bead's measured `tilt` and the machines' tilt axes) along which every line over the footprint meets the target in one piece above the scan (the footprint, the finished face's outline, projected along it), the nozzle or the part tilted by it; `vertical`: the layers laid from above",
     );
+    /// `finish_tolerance = …`.
+    pub static FINISH_TOLERANCE: Field = Field::new(
+        "finish_tolerance",
+        Quantity(Dim::LENGTH, Positive),
+        Optional,
+        "the most the finished face the plan lays, as its bead model predicts it (`lmdc report`'s finish), may lie below or above the top anywhere; more is refused (`lmd::finish`); without it the finish is reported, not held",
+    );
     /// `segments { … }`.
     pub static SEGMENTS: Field = Field::new(
         "segments",
@@ -413,6 +420,7 @@ pub static VARIABLE: Block = Block::new(
         &variable::DIRECTION,
         &RISE_TOLERANCE,
         &MAX_DRIFT,
+        &variable::FINISH_TOLERANCE,
         &variable::SEGMENTS,
     ],
 );
@@ -491,6 +499,7 @@ pub static ANY: Block = Block::new(
         &variable::LEVEL,
         &variable::FOLLOW,
         &variable::DIRECTION,
+        &variable::FINISH_TOLERANCE,
         &continuous::STEP,
         &variable::SEGMENTS,
     ],

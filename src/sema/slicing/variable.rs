@@ -88,38 +88,26 @@ pub fn read<'a>(
             .map(|(z, sp)| Level::At(Length(z), sp)),
     };
     let follow = chosen(&f, &variable::FOLLOW, "surface", diags);
+    let finish = f.quantity(&variable::FINISH_TOLERANCE, diags);
+    let finish = f.optional(&variable::FINISH_TOLERANCE, finish);
     let direction = chosen(&f, &variable::DIRECTION, "auto", diags);
-    let segments = match f.nested(&variable::SEGMENTS) {
-        Some((inner, at)) => {
-            let s = Fields::block(
-                env,
-                inner,
-                &SEGMENTS,
-                "the `segments` block".into(),
-                at,
-                diags,
-            );
-            let tolerance = s.quantity(&variable::TOLERANCE, diags);
-            let min_length = s.quantity(&variable::MIN_LENGTH, diags);
-            match (
-                s.optional(&variable::TOLERANCE, tolerance),
-                s.optional(&variable::MIN_LENGTH, min_length),
-            ) {
-                (Some(t), Some(m)) => Some((t, m)),
-                _ => None,
-            }
-        }
-        None => Some((None, None)),
-    };
+    let segments = segments(env, &f, diags);
     let declared = offset.flatten();
-    let slicing = match (segments, layers, scan, offset, level, (follow, direction)) {
+    let slicing = match (
+        segments,
+        layers,
+        scan,
+        offset,
+        level,
+        (follow, direction, finish),
+    ) {
         (
             Some((tolerance, min_length)),
             Some(layers),
             Some(scan),
             Some(offset),
             Some(level),
-            (Some(follow), Some(direction)),
+            (Some(follow), Some(direction), Some(finish)),
         ) => Some(VariableSlicing {
             layers,
             scan,
@@ -129,6 +117,7 @@ pub fn read<'a>(
             direction,
             tolerance: tolerance.map_or(DEFAULT_TOLERANCE, |t| Length(t.0)),
             min_length: min_length.map(|m| Length(m.0)),
+            finish_tolerance: finish.map(|(t, at)| (Length(t), at)),
             span,
             tolerance_span: tolerance.map(|t| t.1),
             min_length_span: min_length.map(|m| m.1),
@@ -139,6 +128,33 @@ pub fn read<'a>(
         slicing,
         offset: declared,
         tolerance: super::shared::tolerance(&f, diags).unwrap_or_default(),
+    }
+}
+
+/// The `segments { tolerance, min_length }` block: each field and where,
+/// `None` where not written; `None` when either is wrong (reported).
+type Segments = (Option<(f64, Span)>, Option<(f64, Span)>);
+
+fn segments<'a>(env: &mut Env<'a>, f: &Fields<'a>, diags: &mut Diagnostics) -> Option<Segments> {
+    let Some((inner, at)) = f.nested(&variable::SEGMENTS) else {
+        return Some((None, None));
+    };
+    let s = Fields::block(
+        env,
+        inner,
+        &SEGMENTS,
+        "the `segments` block".into(),
+        at,
+        diags,
+    );
+    let tolerance = s.quantity(&variable::TOLERANCE, diags);
+    let min_length = s.quantity(&variable::MIN_LENGTH, diags);
+    match (
+        s.optional(&variable::TOLERANCE, tolerance),
+        s.optional(&variable::MIN_LENGTH, min_length),
+    ) {
+        (Some(t), Some(m)) => Some((t, m)),
+        _ => None,
     }
 }
 
