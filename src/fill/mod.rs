@@ -101,6 +101,7 @@ mod clip;
 mod contour;
 mod coverage;
 mod edge;
+mod ends;
 mod error;
 mod extend;
 mod inside;

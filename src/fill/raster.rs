@@ -1,5 +1,6 @@
 use super::clamp;
 use super::clip::{sweep, Frame, Pieces, Scratch};
+use super::ends::Ends;
 use super::extend::extend_kept;
 use super::link::{self, Chains};
 use super::margin;
@@ -142,18 +143,23 @@ fn closing_tracks(
     }
     spend(points_left, closings.iter().map(Vec::len).sum())?;
     let dist = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
-    // For each closing track, the run end it follows and its way round.
+    // For each closing track, the run end it follows and its way round:
+    // the end nearest either of its own, the first of those equally near.
+    let ends = Ends::new(
+        out.iter()
+            .enumerate()
+            .filter(|(_, t)| t.link.is_none())
+            .filter_map(|(i, t)| t.points.last().map(|&e| (i, e))),
+    );
     let mut after: Vec<Vec<Track>> = vec![Vec::new(); out.len() + 1];
     for track in closings {
         let (Some(&a), Some(&b)) = (track.first(), track.last()) else {
             continue;
         };
-        let best = out
-            .iter()
-            .enumerate()
-            .filter(|(_, t)| t.link.is_none())
-            .filter_map(|(i, t)| t.points.last().map(|&e| (i, dist(e, a).min(dist(e, b)), e)))
-            .min_by(|x, y| x.1.total_cmp(&y.1));
+        let best = match (ends.nearest(a), ends.nearest(b)) {
+            (Some(x), Some(y)) => Some(if (y.1, y.0) < (x.1, x.0) { y } else { x }),
+            (x, y) => x.or(y),
+        };
         let mut points = track;
         let slot = match best {
             Some((i, _, e)) if dist(e, b) < dist(e, a) => {
