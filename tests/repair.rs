@@ -858,7 +858,7 @@ fn a_finish_tolerance_names_both_sides_it_breaks() {
     let m = messages(&tight);
     assert!(tight.program.is_none(), "{m}");
     assert!(
-        m.contains("lmd::finish: the finished face this plan lays falls 0.3257 mm below the top at (-4.2, -2.8) mm and stands 0.3398 mm above it at (-9.6, 5.2) mm, more than the `finish_tolerance` of 0.3 mm"),
+        m.contains("lmd::finish: the finished face this plan lays falls 0.3257 mm below the top at (-4.2, -2.8) mm and stands 0.3398 mm above the top at (-9.6, 5.2) mm, more than the `finish_tolerance` of 0.3 mm"),
         "{m}"
     );
     let held = compile(&src("0.35 mm"), example_files(&["worn_pad.ply"]));

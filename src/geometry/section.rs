@@ -221,6 +221,15 @@ impl Blend {
         }
     }
 
+    /// Whether every station is a rectangle: a superellipse morph between
+    /// two rectangles (its corners move with the half-sides).
+    pub fn rectangular(&self) -> bool {
+        matches!(
+            (self.kind, family(&self.from), family(&self.to)),
+            (Morph::Superellipse, Some((_, _, q0)), Some((_, _, q1))) if q0 == 0.0 && q1 == 0.0
+        )
+    }
+
     /// The largest radius of either end section (a bound for every station,
     /// since both morphs interpolate between the ends).
     pub fn max_radius(&self) -> f64 {

@@ -155,7 +155,8 @@ fn the_blade_tip_is_levelled_then_built_past_its_tip() {
 /// The blade tip's finish held (`finish_tolerance`, docs/repair.md, *The
 /// finish held*): its trailing edge, 1.17 mm short, is refused at
 /// 0.5 mm with the report's own worst place and the stock that would
-/// cover it; at 1.2 mm the plan is the one without a tolerance.
+/// keep the face above the design; at 1.2 mm the plan is the one without
+/// a tolerance.
 #[test]
 fn the_blade_tips_short_trailing_edge_breaks_a_finish_tolerance() {
     let files = super::example_files(&["blade_tip.ply"]);
@@ -189,7 +190,10 @@ fn the_blade_tips_short_trailing_edge_breaks_a_finish_tolerance() {
     assert!(d.message.contains(&expected), "{}\n{expected}", d.message);
     // The worst place is at the trailing edge, past 19 mm of the chord.
     assert!(f.below_at[0] > 19.0, "{f:?}");
-    let stock = format!("a top about {} mm higher", short(f.below_mm - 0.5));
+    let stock = format!(
+        "build to a `top` at least {} mm above the designed face",
+        short(f.below_mm)
+    );
     assert!(d.help.as_deref().unwrap().contains(&stock), "{:?}", d.help);
     let loose = compile(&held("1.2 mm"), files);
     let m = messages(&loose);

@@ -201,7 +201,8 @@ fn a_scan_registered_to_a_loft_of_the_file_plans_as_placed() {
 
 /// What `register = NAME` cannot name, each said with what would work:
 /// the extrusion the scan is in, a bead, a name no solid has (with the
-/// solid it may mean), and a solid that builds on something of its own.
+/// solid it may mean), a number, and a solid that builds on something of
+/// its own.
 #[test]
 fn a_nominal_that_is_no_solid_of_the_part_is_refused() {
     let with = |name: &str| TO_SOLID.replace("register = design", &format!("register = {name}"));
@@ -229,6 +230,12 @@ fn a_nominal_that_is_no_solid_of_the_part_is_refused() {
         d[0].help.as_deref().unwrap_or("").contains("`design`"),
         "{:?}",
         d[0].help
+    );
+    let number = build(&with("5 mm"), "design", true);
+    let m = messages(&number);
+    assert!(
+        m.contains("lmd::target-solid: `register` must be the part as designed: a `mesh(…)` or the name of a solid of the file"),
+        "{m}"
     );
     let src = source(TO_SOLID, "14.3 mm").replace(
         "spine = line(length = 12 mm)\n}",

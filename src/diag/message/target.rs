@@ -180,3 +180,14 @@ pub fn not_a_solid(
         "{who} given by a name is a solid of the file, the part as designed: {known}"
     ))
 }
+
+/// `register = …` given what is neither a mesh nor a name (a number, a
+/// text, a constant's value).
+pub fn not_a_nominal(got: crate::diag::message::value::Got<'_>, at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::TargetSolid,
+        "`register` must be the part as designed: a `mesh(…)` or the name of a solid of the file",
+    )
+    .label(at, format!("this is {}", got.describe()))
+    .help("write `register = mesh(file = \"nominal.stl\")`, or `register = NAME` for an `extrude` or `loft` of the file (it is then not built)")
+}

@@ -844,7 +844,7 @@ pub fn finish_off(f: &FinishOff, at: Span, top: Span) -> Diagnostic {
     }
     if f.above.0 > f.tolerance {
         off.push(format!(
-            "stands {} mm above it at {}",
+            "stands {} mm above the top at {}",
             short(f.above.0),
             place(f.above.1)
         ));
@@ -852,12 +852,12 @@ pub fn finish_off(f: &FinishOff, at: Span, top: Span) -> Diagnostic {
     let mut help = vec!["the face departs from the top where a segment holds one speed over heights that differ along it (a smaller `segments { tolerance }` cuts shorter ones) and where tracks shorter than the bead lay less at their rounded ends (`lmd::short-track`; a narrower bead lays them)".to_string()];
     if f.below.0 > f.tolerance {
         help.push(format!(
-            "to finish by machining, leave stock: a top about {} mm higher",
-            short(f.below.0 - f.tolerance)
+            "to machine it back to the design, build to a `top` at least {} mm above the designed face and hold the finish to that stock (`finish_tolerance`): the face then stays above the design everywhere",
+            short(f.below.0)
         ));
     }
     help.push(
-        "`lmdc preview` colours the face by its departure; a larger `finish_tolerance` allows more"
+        "`lmdc report` without `finish_tolerance` gives the finish, and `lmdc preview` colours the face by its departure; a larger `finish_tolerance` allows more"
             .to_string(),
     );
     Diagnostic::error(

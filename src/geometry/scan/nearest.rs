@@ -286,7 +286,7 @@ fn at(a: [f64; 3], u: [f64; 3], s: f64, v: [f64; 3], t: f64) -> [f64; 3] {
 /// The point of triangle `t` nearest `p`: by the region of the triangle's
 /// plane `p` projects into (its corners', its edges' or its inside;
 /// Ericson, *Real-Time Collision Detection*, 5.1.5).
-fn closest(t: &Tri, p: [f64; 3]) -> [f64; 3] {
+pub(crate) fn closest(t: &Tri, p: [f64; 3]) -> [f64; 3] {
     let [a, b, c] = *t;
     let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
     let (d1, d2) = (dot(ab, ap), dot(ac, ap));

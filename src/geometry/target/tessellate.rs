@@ -8,11 +8,11 @@
 //!   top and bottom cut by earcut (its holes bridged in);
 //! - **an extrusion of a mesh**: the mesh's own faces, upright ones too;
 //! - **a loft**: its outline sampled at angles and stations, each pair of
-//!   neighbours two triangles, and its end sections fanned from the
-//!   spine (every section lmdc knows is convex and centred). The angles
-//!   are the end sections' corners and an even spread, doubled until
-//!   the chord between two neighbours strays at most [`CHORD`] from the
-//!   outline at five stations; the stations are doubled until the chord
+//!   neighbours two triangles, and its end sections cut in rings toward
+//!   the spine (every section lmdc knows is convex and centred). The
+//!   angles are the end sections' corners and an even spread, each gap
+//!   halved while its chord strays more than [`CHORD`] from the outline
+//!   at one of 33 stations; the stations are doubled until the chord
 //!   between two neighbours strays at most [`CHORD`] from the loft along
 //!   it (a straight, untwisted loft's radial blend is straight between
 //!   its ends: one interval). At most [`MAX_QUADS`] pieces: a loft so
@@ -24,13 +24,14 @@
 
 use super::{Inner, Target, Turned};
 use crate::geometry::region::Region;
-use crate::geometry::scan::nearest::Tri;
+use crate::geometry::scan::nearest::{closest, Tri};
 use crate::geometry::{LoftGeometry, SectionFrame};
 use nalgebra::Vector3;
 use std::f64::consts::TAU;
 
-/// How far (mm) the triangles may stray from the solid's faces: the
-/// programs' resolution, a tenth of the fit's finest limit.
+/// How far (mm) a chord may stray from the solid's faces where the cut
+/// is refined: the programs' resolution, a tenth of the fit's finest
+/// limit (the triangles between chords stay within twice it).
 pub const CHORD: f64 = 0.001;
 
 /// Most quadrilaterals a loft's side is cut into (two triangles each,
@@ -46,13 +47,14 @@ const MIN_ANGLES: usize = 64;
 /// The most angles round a loft's outline.
 const MAX_ANGLES: usize = 8192;
 
-/// The stations a loft's outline is checked at while its angles are
-/// chosen.
-const PROBES: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
+/// How many stations, evenly spread from end to end, a loft's outline is
+/// checked at while its angles are chosen (a superellipse morph's bends
+/// sharpen toward a rectangle's end).
+const PROBES: usize = 33;
 
 impl Target {
     /// The solid's faces as triangles (mm, in the target's frame), within
-    /// 0.001 mm of them (module docs).
+    /// 0.002 mm of them (module docs).
     pub fn triangles(&self) -> Vec<Tri> {
         match self {
             Target::Prism { region, height } => prism(region, *height),
@@ -129,16 +131,41 @@ fn prism(region: &Region, h: f64) -> Vec<Tri> {
 
 /// A loft's side and end sections (module docs).
 fn loft(g: &LoftGeometry) -> Vec<Tri> {
-    let angles = angles(g);
-    let stations = stations(g, &angles);
-    let rings: Vec<Vec<Vector3<f64>>> = stations
-        .iter()
-        .map(|&s| ring(g, &g.frame(s), s, &angles))
-        .collect();
+    // An untwisted loft whose stations are all rectangles is its corners,
+    // wherever they move: its sides are ruled between them.
+    let corners = g.twist == 0.0 && g.blend.rectangular();
+    let angles = if corners { Vec::new() } else { angles(g) };
+    let ring_at = |s: f64| {
+        let f = g.frame(s);
+        if corners {
+            ring(g, &f, s, &g.blend.corners(s))
+        } else {
+            ring(g, &f, s, &angles)
+        }
+    };
+    let m = if corners { 4 } else { angles.len() };
+    let stations = if corners {
+        let mid_at = |s: f64| halves(&ring_at(s));
+        stations(&ring_at, &mid_at, MAX_QUADS / 4)
+    } else {
+        let every = angles.len().div_ceil(512).max(1);
+        let probe: Vec<f64> = angles.iter().step_by(every).copied().collect();
+        let mids: Vec<f64> = (0..probe.len())
+            .map(|j| 0.5 * (probe[j] + probe.get(j + 1).copied().unwrap_or(probe[0] + TAU)))
+            .collect();
+        let probe_at = |s: f64| ring(g, &g.frame(s), s, &probe);
+        let mid_at = |s: f64| ring(g, &g.frame(s), s, &mids);
+        stations(&probe_at, &mid_at, (MAX_QUADS / m).max(1))
+    };
+    let rings: Vec<Vec<Vector3<f64>>> = stations.iter().map(|&s| ring_at(s)).collect();
     // Between twisted stations a side's points are not on the plane of
     // its corners: a twisted loft keeps every angle.
-    let rings = if g.twist == 0.0 {
-        straightened(rings)
+    let rings = if g.twist == 0.0 && !corners {
+        let mids: Vec<Vec<Vector3<f64>>> = stations
+            .windows(2)
+            .map(|w| ring_at(0.5 * (w[0] + w[1])))
+            .collect();
+        straightened(rings, &mids)
     } else {
         rings
     };
@@ -160,6 +187,14 @@ fn loft(g: &LoftGeometry) -> Vec<Tri> {
     out
 }
 
+/// The middle of each side of a closed polygon (from each point to the
+/// next).
+fn halves(r: &[Vector3<f64>]) -> Vec<Vector3<f64>> {
+    (0..r.len())
+        .map(|j| 0.5 * (r[j] + r[(j + 1) % r.len()]))
+        .collect()
+}
+
 /// An end section: rings of its outline shrunk toward its centre `c`
 /// (about as far apart as the outline's points, at most [`CAP_RINGS`]),
 /// so the triangles are not the slivers a fan from the centre would be,
@@ -174,7 +209,9 @@ fn cap(c: Vector3<f64>, outline: &[Vector3<f64>], up: bool, out: &mut Vec<Tri>) 
         .map(|j| (outline[(j + 1) % m] - outline[j]).norm())
         .sum::<f64>()
         / m as f64;
-    let rings = ((reach / edge.max(1e-9)).ceil() as usize).clamp(1, CAP_RINGS);
+    // Within the side's budget too: m points round, rings of them.
+    let most = (MAX_QUADS / (4 * m.max(1))).clamp(1, CAP_RINGS);
+    let rings = ((reach / edge.max(1e-9)).ceil() as usize).clamp(1, most);
     let at = |k: usize, j: usize| {
         if k == rings {
             outline[j]
@@ -200,9 +237,13 @@ fn cap(c: Vector3<f64>, outline: &[Vector3<f64>], up: bool, out: &mut Vec<Tri>) 
 }
 
 /// The rings of an untwisted loft without the points that lie on the
-/// chord of their neighbours at every station (within a nanometre): a
-/// rectangle's or a polygon's sides need only their corners.
-fn straightened(rings: Vec<Vec<Vector3<f64>>>) -> Vec<Vec<Vector3<f64>>> {
+/// chord of their neighbours at every station and halfway between
+/// stations (`mids`, within a nanometre): a polygon's sides need only
+/// their corners, where they stay straight along the loft.
+fn straightened(
+    rings: Vec<Vec<Vector3<f64>>>,
+    mids: &[Vec<Vector3<f64>>],
+) -> Vec<Vec<Vector3<f64>>> {
     let m = rings[0].len();
     let mut keep: Vec<usize> = Vec::with_capacity(m);
     for j in 0..m {
@@ -210,6 +251,7 @@ fn straightened(rings: Vec<Vec<Vector3<f64>>>) -> Vec<Vec<Vector3<f64>>> {
         let next = (j + 1) % m;
         let straight = rings
             .iter()
+            .chain(mids)
             .all(|r| off_chord(r[j], r[prev], r[next]) <= 1e-9);
         if !straight {
             keep.push(j);
@@ -229,56 +271,82 @@ fn ring(g: &LoftGeometry, f: &SectionFrame, s: f64, angles: &[f64]) -> Vec<Vecto
     angles.iter().map(|&a| g.point(f, s, a).0.coords).collect()
 }
 
-/// The angles round the outline, sorted in `[0, 2π)`: the sharp corners
-/// and `n` spread evenly, `n` doubled until every chord is within
-/// [`CHORD`] at the [`PROBES`].
+/// The angles round the outline, sorted in `[0, 2π)`: the ends' corners
+/// and [`MIN_ANGLES`] spread evenly, each gap halved while the chord
+/// across it strays more than [`CHORD`] from the outline at one of the
+/// [`PROBES`] stations (so a bend that sharpens is followed closely and
+/// the rest stays coarse), up to [`MAX_ANGLES`].
 fn angles(g: &LoftGeometry) -> Vec<f64> {
     // A superellipse morph's corners move between its ends' (where a
-    // rectangle's is); the even spread's doubling takes the rest.
+    // rectangle's is); the halving takes the rest.
     let mut corners = g.blend.corners(0.0);
     corners.extend(g.blend.corners(1.0));
-    let frames: Vec<(f64, SectionFrame)> = PROBES.iter().map(|&s| (s, g.frame(s))).collect();
-    let mut n = MIN_ANGLES;
-    loop {
-        let mut a: Vec<f64> = (0..n).map(|k| TAU * k as f64 / n as f64).collect();
-        a.extend(corners.iter().map(|c| c.rem_euclid(TAU)));
-        a.sort_by(f64::total_cmp);
-        a.dedup_by(|x, y| (*x - *y).abs() < 1e-12);
-        let stray = frames
+    let frames: Vec<(f64, SectionFrame)> = (0..PROBES)
+        .map(|k| k as f64 / (PROBES - 1) as f64)
+        .map(|s| (s, g.frame(s)))
+        .collect();
+    let stray = |x: f64, y: f64| {
+        frames
             .iter()
             .map(|(s, f)| {
                 let at = |t: f64| g.point(f, *s, t).0.coords;
-                (0..a.len())
-                    .map(|j| {
-                        let (x, y) = (a[j], a.get(j + 1).copied().unwrap_or(a[0] + TAU));
-                        off_chord(at(0.5 * (x + y)), at(x), at(y))
-                    })
-                    .fold(0.0, f64::max)
+                off_chord(at(0.5 * (x + y)), at(x), at(y))
             })
-            .fold(0.0, f64::max);
-        if stray <= CHORD || n >= MAX_ANGLES {
+            .fold(0.0, f64::max)
+    };
+    let mut a: Vec<f64> = (0..MIN_ANGLES)
+        .map(|k| TAU * k as f64 / MIN_ANGLES as f64)
+        .collect();
+    a.extend(corners.iter().map(|c| c.rem_euclid(TAU)));
+    loop {
+        a.sort_by(f64::total_cmp);
+        a.dedup_by(|x, y| (*x - *y).abs() < 1e-12);
+        let mut added = Vec::new();
+        for j in 0..a.len() {
+            let (x, y) = (a[j], a.get(j + 1).copied().unwrap_or(a[0] + TAU));
+            if a.len() + added.len() < MAX_ANGLES && y - x > 1e-9 && stray(x, y) > CHORD {
+                added.push((0.5 * (x + y)).rem_euclid(TAU));
+            }
+        }
+        if added.is_empty() {
             return a;
         }
-        n *= 2;
+        a.extend(added);
     }
 }
 
 /// The stations from 0 to 1, evenly spread: one interval, doubled until
-/// the loft strays at most [`CHORD`] from the chord between neighbours at
-/// up to 512 of `angles`, or until [`MAX_QUADS`] would be passed.
-fn stations(g: &LoftGeometry, angles: &[f64]) -> Vec<f64> {
-    let every = angles.len().div_ceil(512).max(1);
-    let probe: Vec<f64> = angles.iter().step_by(every).copied().collect();
-    let most = (MAX_QUADS / angles.len()).max(1);
-    let at = |s: f64| ring(g, &g.frame(s), s, &probe);
+/// between each two neighbours the loft strays at most [`CHORD`] from
+/// the chord of each point of `ring_at` and from the two triangles of
+/// each pair of neighbouring points (their true middle, `mid_at`), or
+/// until `most` intervals would be passed.
+fn stations(
+    ring_at: &dyn Fn(f64) -> Vec<Vector3<f64>>,
+    mid_at: &dyn Fn(f64) -> Vec<Vector3<f64>>,
+    most: usize,
+) -> Vec<f64> {
     let mut n = 1;
     loop {
         let stray = (0..n)
             .map(|i| {
                 let (a, b) = (i as f64 / n as f64, (i + 1) as f64 / n as f64);
-                let (ra, rb, rm) = (at(a), at(b), at(0.5 * (a + b)));
-                (0..probe.len())
-                    .map(|j| off_chord(rm[j], ra[j], rb[j]))
+                let m = 0.5 * (a + b);
+                let (ra, rb, rm, mid) = (ring_at(a), ring_at(b), ring_at(m), mid_at(m));
+                let k = ra.len();
+                (0..k)
+                    .map(|j| {
+                        let l = (j + 1) % k;
+                        let p = |v: Vector3<f64>| [v.x, v.y, v.z];
+                        let q = p(mid[j]);
+                        let off = [[ra[j], ra[l], rb[l]], [ra[j], rb[l], rb[j]]]
+                            .map(|t| {
+                                let c = closest(&t.map(p), q);
+                                (Vector3::from(c) - mid[j]).norm()
+                            })
+                            .into_iter()
+                            .fold(f64::INFINITY, f64::min);
+                        off.max(off_chord(rm[j], ra[j], rb[j]))
+                    })
                     .fold(0.0, f64::max)
             })
             .fold(0.0, f64::max);

@@ -161,7 +161,10 @@ fn nominal(
                 v.span,
             )))
         }
-        _ => None,
+        other => {
+            diags.push(message::target::not_a_nominal(other.got(), v.span));
+            None
+        }
     }
 }
 
