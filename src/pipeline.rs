@@ -532,15 +532,20 @@ pub fn repair_overlay(
 }
 
 /// A repair's predicted finish off its top by more than the
-/// `finish_tolerance` its slicing declares (`lmd::finish`); `None` when
-/// it declares none or the finish is within it. Here because it joins
+/// `finish_tolerance` its slicing declares, or not predicted at all
+/// (`lmd::finish`); `None` when it declares none or the finish is
+/// within it. Here because it joins
 /// the plan with the model's top, which the verifier does not read.
 fn held_finish(program: &crate::ir::Program, model: &Model) -> Option<crate::diag::Diagnostic> {
     let crate::sema::model::Build::Variable { slicing, extrusion } = &model.build else {
         return None;
     };
     let (tolerance, at) = slicing.finish_tolerance?;
-    let f = crate::report::finish::of(program, model)?;
+    // Before the positioner's and the spin's angles are chosen: they turn
+    // the nozzle about its point, which the finish does not read.
+    let Some(f) = crate::report::finish::of(program, model) else {
+        return Some(crate::diag::message::top::finish_unknown(at));
+    };
     let off = crate::diag::message::top::FinishOff {
         below: (f.below_mm, f.below_at),
         above: (f.above_mm, f.above_at),

@@ -280,7 +280,7 @@ codes! {
     ScanCoverage = "scan-coverage", Feasibility,
         "a repair's footprint reaches where the scan has no point (with the first such place and how many), or its top lies below the scanned surface somewhere in it (with where and by how much): nothing to build on, or nothing to add";
     Finish = "finish", Feasibility,
-        "a repair's finished face, as the plan's own bead model predicts it (`lmdc report`'s finish), departing from the top by more than `finish_tolerance` (`slicing variable`, docs/repair.md): names the worst place below or above the top, by how much, and what would hold it";
+        "a repair's finished face, as the plan's own bead model predicts it (`lmdc report`'s finish), departing from the top by more than `finish_tolerance` (`slicing variable`, docs/repair.md): names the worst place below or above the top, by how much, and what would hold it; or a plan whose finish cannot be predicted, which no tolerance holds";
     RepairLevel = "repair-level", Feasibility,
         "a levelled repair's `level` (`slicing variable`, docs/repair.md) lies below the scanned surface by more than a levelling pass may leave (with where, and the level that works), or the top stands less than a regular layer's lowest bead above it";
     ScanRegistration = "scan-registration", Feasibility,

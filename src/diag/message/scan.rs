@@ -375,7 +375,7 @@ pub fn tolerance_without_nominal(at: Span) -> Diagnostic {
         "`fit_tolerance` bounds a best fit to a nominal, and this scan has none (`register`)",
     )
     .label(at, "a tolerance for no fit")
-    .help("add `register = mesh(file = \"nominal.stl\")` (the part as designed), or leave `fit_tolerance` out")
+    .help("add `register = mesh(file = \"nominal.stl\")` or `register = NAME` (an `extrude` or `loft` of the file: the part as designed), or leave `fit_tolerance` out")
 }
 
 /// `profile = scan_section(…)` on an extrusion without `on = scan(…)`.

@@ -104,7 +104,10 @@ pub fn cannot(name: &str, fault: Fault<'_>, role: Role, at: Span, decl: Span) ->
         ),
         Fault::Field(field) => (
             format!("the {noun} `{name}` has its own `{field}`"),
-            format!("{}: write its height, or {}", role.what_works(), role.instead()),
+            match field {
+                "on" => format!("{}: leave its `on` out, or {}", role.what_works(), role.instead()),
+                _ => format!("{}: write its height, or {}", role.what_works(), role.instead()),
+            },
         ),
         Fault::FollowsLayer => (
             format!("the {noun} `{name}`'s profile follows `layer`"),

@@ -874,3 +874,14 @@ pub fn finish_off(f: &FinishOff, at: Span, top: Span) -> Diagnostic {
     .label(top, "the top")
     .help(help.join("; "))
 }
+
+/// `finish_tolerance` on a plan whose finish cannot be predicted (no
+/// track the prediction reads): it cannot be held.
+pub fn finish_unknown(at: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::Finish,
+        "this plan's finish cannot be predicted (no straight track of its last layer to predict it along), so `finish_tolerance` cannot be held",
+    )
+    .label(at, "the tolerance")
+    .help("`lmdc report` gives no finish for this plan either: leave `finish_tolerance` out and check the finished face on the part")
+}
