@@ -151,25 +151,7 @@ fn a_twisted_square_keeps_its_corners_and_volume() {
 /// top: a box's twelve.
 #[test]
 fn a_mesh_target_gives_every_face_upright_ones_too() {
-    let c = |i: usize| {
-        [
-            if i & 1 == 0 { 0.0 } else { 5.0 },
-            if i & 2 == 0 { 0.0 } else { 3.0 },
-            if i & 4 == 0 { 0.0 } else { 2.0 },
-        ]
-    };
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let faces: Vec<Tri> = quads
-        .iter()
-        .flat_map(|q| [[c(q[0]), c(q[1]), c(q[2])], [c(q[0]), c(q[2]), c(q[3])]])
-        .collect();
+    let faces = crate::geometry::scan::nearest::block([0.0; 3], [5.0, 3.0, 2.0]);
     let t = Target::Mesh(crate::geometry::mesh::highest::Highest::new(faces).unwrap());
     let tris = t.triangles();
     assert_eq!(tris.len(), 12);
