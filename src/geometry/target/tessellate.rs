@@ -143,7 +143,6 @@ fn loft(g: &LoftGeometry) -> Vec<Tri> {
             ring(g, &f, s, &angles)
         }
     };
-    let m = if corners { 4 } else { angles.len() };
     let stations = if corners {
         let mid_at = |s: f64| halves(&ring_at(s));
         stations(&ring_at, &mid_at, MAX_QUADS / 4)
@@ -155,7 +154,7 @@ fn loft(g: &LoftGeometry) -> Vec<Tri> {
             .collect();
         let probe_at = |s: f64| ring(g, &g.frame(s), s, &probe);
         let mid_at = |s: f64| ring(g, &g.frame(s), s, &mids);
-        stations(&probe_at, &mid_at, (MAX_QUADS / m).max(1))
+        stations(&probe_at, &mid_at, (MAX_QUADS / angles.len()).max(1))
     };
     let rings: Vec<Vec<Vector3<f64>>> = stations.iter().map(|&s| ring_at(s)).collect();
     // Between twisted stations a side's points are not on the plane of
