@@ -105,12 +105,13 @@ fn origins(model: &Model, bead_height: Option<Span>, bead_speed: Option<Span>) -
         },
         top: match &model.build {
             Build::Variable { extrusion, .. } => Some(extrusion.top_span),
+            Build::ScanWall { on, .. } => Some(on.top_span),
             _ => None,
         },
         slicing: Some(match &model.build {
             Build::Duct { slicing, .. } => slicing.span,
             Build::Block { slicing, .. } | Build::Wall { slicing, .. } => slicing.span,
-            Build::Variable { slicing, .. } => slicing.span,
+            Build::Variable { slicing, .. } | Build::ScanWall { slicing, .. } => slicing.span,
             Build::Ring(r) => r.origins.layers,
             Build::Calibration(c) => c.span,
         }),
@@ -249,6 +250,7 @@ fn layer_heights(build: &Build, bead: &crate::sema::model::Bead, layers: &[Layer
         Build::Block { slicing, .. } | Build::Wall { slicing, .. } if slicing.overlapped() => {
             slicing.offset
         }
+        Build::ScanWall { pitch, .. } => *pitch,
         Build::Variable { .. } => {
             let Some([narrow, wide]) = pitches(layers) else {
                 return bead.height.map(|h| h.0);

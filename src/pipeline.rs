@@ -498,11 +498,14 @@ pub fn repair_overlay(
     model: &Model,
 ) -> Option<crate::preview::repair::Overlay> {
     use crate::preview::repair::{Overlay, MAX_FINISH, MAX_SCAN};
-    let crate::sema::model::Build::Variable { extrusion, .. } = &model.build else {
-        return None;
+    use crate::sema::model::Build;
+    let base = match &model.build {
+        Build::Variable { extrusion, .. } => extrusion.base.as_ref(),
+        Build::ScanWall { on, .. } => Some(&on.base),
+        _ => return None,
     };
     let mut out = Overlay::default();
-    if let Some(base) = &extrusion.base {
+    if let Some(base) = base {
         let s = &base.surface;
         let ([x0, y0], [x1, y1]) = s.extent();
         let area = ((x1 - x0) * (y1 - y0)).abs();

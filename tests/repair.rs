@@ -20,6 +20,7 @@ mod steps;
 mod target;
 mod tilted;
 mod tiltlevel;
+mod wall;
 
 /// A worn face: flat at `face` mm, a trough `depth` deep at `(cx, cy)`,
 /// `sx` and `sy` wide (Gaussian).

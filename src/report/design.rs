@@ -14,6 +14,11 @@
 //! - a footprint up to a top: `∫ top dA` over the footprint (a
 //!   plane or edges top: the area times the top at the centroid; an
 //!   expression: sampled on a 256 × 256 grid);
+//! - a wall on a scan: `∫ (top − B) dA` over the band the wall covers,
+//!   from its right face to its left: the sum over 64 parallel offsets
+//!   of the path of `∫ (top − B) ds` along each, times their spacing
+//!   (parallel curves' lengths take the bends' stretch), sampled every
+//!   0.1 mm;
 //! - a footprint filled along a tilted build direction `d`
 //!   (`direction = auto`): the same integral in the part turned so `d` is
 //!   up, as the fill is planned — over the footprint seen along `d`, of
@@ -23,7 +28,9 @@
 use crate::diag::Diagnostics;
 use crate::geometry::outline::{profile, region};
 use crate::geometry::profile::Profile;
-use crate::sema::model::{Build, Loft, Measure, Model, Shape, Spine, Top, TopExtrusion};
+use crate::sema::model::{
+    Build, Loft, Measure, Model, OpenWall, Shape, Spine, Top, TopExtrusion, WallOnScan,
+};
 use serde::Serialize;
 
 /// Stations along a loft's spine and angles round its section summed over.
@@ -33,6 +40,10 @@ const ANGLES: usize = 720;
 const CHORD: f64 = 0.005;
 /// Samples a side of an expression top's grid.
 const GRID: usize = 256;
+/// Offsets of a wall's path across its band, and the spacing along each
+/// its gap is sampled at, mm.
+const BAND: usize = 64;
+const ALONG: f64 = 0.1;
 /// Samples a side of the grid along a tilted build direction, whose
 /// points each walk a line through the target.
 const GRID_ALONG: usize = 64;
@@ -91,6 +102,7 @@ pub fn volume(model: &Model, along: Option<[f64; 3]>) -> Design {
                     (v, "the footprint seen along the build direction: its integral, along it, of the target less the scanned surface".to_string())
                 }),
         },
+        Build::ScanWall { wall, on, pitch, .. } => Ok(scan_wall(wall, on, w, pitch.0)),
         #[allow(unreachable_patterns)]
         _ => Err("lmdc does not measure this kind of solid yet".into()),
     };
@@ -104,6 +116,41 @@ pub fn volume(model: &Model, along: Option<[f64; 3]>) -> Design {
         },
         Err(why) => Design::Unknown { why },
     }
+}
+
+/// The volume between the scan under a wall's band and its top, for beads
+/// `w` wide `pitch` apart. Where the scan has no surface the plan was
+/// refused: such points add nothing here.
+fn scan_wall(wall: &OpenWall, on: &WallOnScan, w: f64, pitch: f64) -> (f64, String) {
+    let [left, right] = wall.reach(w, pitch);
+    let step = (left + right) / BAND as f64;
+    let mut sum = 0.0;
+    for k in 0..BAND {
+        let d = -right + (k as f64 + 0.5) * step;
+        let Some(path) = wall.path.offset(d) else {
+            continue;
+        };
+        for piece in path.flatten(CHORD).windows(2) {
+            let [a, b] = [piece[0], piece[1]];
+            let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+            let n = (len / ALONG).ceil().max(1.0) as usize;
+            for i in 0..n {
+                let f = (i as f64 + 0.5) / n as f64;
+                let p = [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])];
+                let gap = on
+                    .base
+                    .surface
+                    .at(p)
+                    .map_or(0.0, |z| (on.top.0 - z).max(0.0));
+                sum += gap * len / n as f64;
+            }
+        }
+    }
+    (
+        sum * step,
+        "the band the wall covers, face to face: its integral of the top less the scanned surface"
+            .into(),
+    )
 }
 
 fn loft_wall(loft: &Loft, w: f64) -> Result<(f64, String), String> {

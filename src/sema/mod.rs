@@ -127,7 +127,7 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
         &inheritance,
         &style::Context {
             loft: solid_kind == Some(solid::Kind::Loft),
-            wall: solid_kind == Some(solid::Kind::Wall),
+            wall: matches!(solid_kind, Some(solid::Kind::Wall | solid::Kind::ScanWall)),
             variable,
             ring,
             planar: planar.as_ref(),
@@ -164,10 +164,14 @@ fn check_into(file: &File, data: Option<DataReader>, diags: &mut Diagnostics) ->
 /// (what a line meets at a flank): a mesh scan's faces are let go here,
 /// not held through the slicing.
 fn without_unasked_faces(mut b: model::Build) -> model::Build {
-    if let model::Build::Variable { extrusion, slicing } = &mut b {
-        if let (Some(base), None) = (&mut extrusion.base, slicing.direction) {
-            base.faces = None;
+    match &mut b {
+        model::Build::Variable { extrusion, slicing } => {
+            if let (Some(base), None) = (&mut extrusion.base, slicing.direction) {
+                base.faces = None;
+            }
         }
+        model::Build::ScanWall { on, .. } => on.base.faces = None,
+        _ => {}
     }
     b
 }

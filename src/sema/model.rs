@@ -21,7 +21,7 @@ pub use top::{
     Axis, Level, ScanBase, Top, TopExpr, TopExtrusion, TopMesh, TopSolid, TurnedFrame,
     VariableSlicing, DEFAULT_TOLERANCE,
 };
-pub use wall::{OpenWall, WallEnds, WallSide};
+pub use wall::{OpenWall, WallEnds, WallOnScan, WallSide};
 
 /// A whole checked `.lmd` file.
 #[derive(Clone, Debug)]
@@ -445,9 +445,23 @@ pub enum Build {
     Wall {
         /// The wall and its path.
         wall: OpenWall,
+        /// How tall: a layer count or a height.
+        extent: Extent,
         /// Planar slicing: the layer height, the beads' offset, the chord
         /// error.
         slicing: PlanarSlicing,
+    },
+    /// A wall along an open path built on a scanned part, in layers of
+    /// variable thickness from the scan up to its top.
+    ScanWall {
+        /// The wall and its path.
+        wall: OpenWall,
+        /// The scanned part and the top.
+        on: WallOnScan,
+        /// Variable slicing: the layer count, the segments' tolerance.
+        slicing: VariableSlicing,
+        /// The beads' pitch across the wall (the strip each fills).
+        pitch: Length,
     },
 }
 

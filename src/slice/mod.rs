@@ -58,7 +58,17 @@ pub fn slice(model: &Model) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
         Build::Variable { extrusion, slicing } => top::slice(model, bead, extrusion, slicing),
         Build::Ring(r) => segmented_ring::build(r).map(|(layers, _)| (layers, Diagnostics::new())),
         Build::Calibration(c) => Ok((calibration::build(c, &model.process), Diagnostics::new())),
-        Build::Wall { wall, slicing } => wall::slice(model, bead, wall, slicing),
+        Build::Wall {
+            wall,
+            extent,
+            slicing,
+        } => wall::slice(model, bead, wall, *extent, slicing),
+        Build::ScanWall {
+            wall,
+            on,
+            slicing,
+            pitch,
+        } => wall::slice_on_scan(model, bead, wall, on, slicing, *pitch),
     }
 }
 

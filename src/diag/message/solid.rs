@@ -44,6 +44,8 @@ pub enum SlicingMismatch<'a> {
     Continuous,
     /// A wall along a path sliced with the named strategy (not `planar`).
     Wall(&'a str),
+    /// A wall on a scan sliced other than `variable`.
+    ScanWall(&'a str),
 }
 
 /// The solid and the slicing strategy (written at `at`) do not go together.
@@ -75,7 +77,11 @@ pub fn slicing_mismatch(m: SlicingMismatch<'_>, at: Span) -> Diagnostic {
         ),
         SlicingMismatch::Wall(s) => (
             format!("{s} slicing does not build a wall along a path"),
-            "slice a wall along a path with `slicing planar { … }`: flat layers, one bead height apart",
+            "slice a wall along a path with `slicing planar { … }`: flat layers, one bead height apart (or, built on a scan with `on = scan(…)`, `slicing variable { … }`)",
+        ),
+        SlicingMismatch::ScanWall(s) => (
+            format!("{s} slicing does not build a wall on a scan"),
+            "slice a wall on a scan with `slicing variable { … }`: its layers start on the scanned surface and each lays the same share of the height left to its top",
         ),
         SlicingMismatch::TopExtrusionPlanar => (
             "planar slicing lays flat layers of one height, and this extrusion has a `top`".to_string(),

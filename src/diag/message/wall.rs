@@ -157,6 +157,28 @@ pub fn slicing_field(key: &str, at: Span, wall: Span) -> Diagnostic {
     ))
 }
 
+/// A wall's `top` without `on = scan(…)`.
+pub fn top_without_scan(top: Span, wall: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConflictingFields,
+        "`top` is the finished height of a wall built on a scan, and this wall is not built on one",
+    )
+    .label(top, "`top`")
+    .label(wall, "built on the plate")
+    .help("give a wall on the plate its `height = …` (or `layers` in the slicing block), or build it on a part with `on = scan(file = …)`")
+}
+
+/// A wall on a scan given `height` (or `layers`) as well as, or instead of, `top`.
+pub fn height_on_scan(height: Span, on: Span) -> Diagnostic {
+    Diagnostic::error(
+        Code::ConflictingFields,
+        "a wall on a scan rises to its `top`: its height differs along it, from the scanned surface up",
+    )
+    .label(height, "a height")
+    .label(on, "built on a scan")
+    .help("drop `height` and write `top = …`: the finished top above the part's z = 0 (the layer count goes in the slicing block's `layers`)")
+}
+
 /// Neither a layer count nor the wall's height is given.
 pub fn no_height(at: Span) -> Diagnostic {
     Diagnostic::error(Code::MissingField, "how tall is the wall?")
@@ -180,4 +202,71 @@ pub fn too_many_plan_points(
     )
     .label(at, "this wall")
     .help("a coarser `chord_error`, fewer beads or a lower wall")
+}
+
+/// No whole number of layers lays a wall on a scan: what the count needs.
+pub struct NoCountOnScan<'a> {
+    /// The gaps' range, the bead's heights and the counts each end allows.
+    pub e: &'a crate::slice::variable::layers::NoLayerCount,
+    /// Where along the wall the gap is least and where greatest.
+    pub at: [[f64; 2]; 2],
+    /// The wall's top, mm.
+    pub top: f64,
+    /// The flat tops nearest it that a count lays (`[lowest, highest]` mm)
+    /// and that count, if any.
+    pub fix: Option<([f64; 2], u32)>,
+    /// The bead's name and where its heights are declared.
+    pub bead: (&'a str, Span),
+    /// Where the top and the scan are written.
+    pub spans: [Span; 2],
+}
+
+/// No whole number of layers lays every gap between a wall's scan and its
+/// top within the bead's heights (`lmd::no-layer-count`).
+pub fn no_count_on_scan(c: &NoCountOnScan<'_>) -> Diagnostic {
+    use super::top::spot;
+    let e = c.e;
+    let (lo, hi) = (e.top.low(), e.top.high());
+    let (h_lo, h_hi) = (e.bead.low(), e.bead.high());
+    let name = c.bead.0;
+    let gaps = format!("along the wall the scanned part lies {lo} .. {hi} below its top");
+    let message = if e.most == 0 {
+        format!("{gaps}; the least is thinner than the thinnest layer bead `{name}` lays ({h_lo})")
+    } else if e.ratio_needed() > e.ratio_available() {
+        format!(
+            "{gaps} (ratio {}); bead `{name}` lays {h_lo} .. {h_hi} a layer (ratio {}): no number of layers lays both",
+            short(e.ratio_needed()),
+            short(e.ratio_available())
+        )
+    } else {
+        format!(
+            "{gaps}; bead `{name}` lays {h_lo} .. {h_hi} a layer, but no whole number of layers fits both: the deepest needs at least {}, the shallowest allows at most {}",
+            e.fewest, e.most
+        )
+    };
+    let fix = match c.fix {
+        Some(([a, b], n)) if a == b => format!("`top = {} mm` ({n} layers); or ", short(a)),
+        Some(([a, b], n)) => format!(
+            "a top from {} to {} mm ({n} layers); or ",
+            short(a),
+            short(b)
+        ),
+        None => String::new(),
+    };
+    let [low_at, high_at] = c.at;
+    Diagnostic::error(crate::diag::Code::NoLayerCount, message)
+        .label(
+            c.spans[0],
+            format!(
+                "{} mm: {hi} to add at {}, {lo} at {}",
+                short(c.top),
+                spot(None, high_at),
+                spot(None, low_at)
+            ),
+        )
+        .label(c.spans[1], "the scan")
+        .label(c.bead.1, format!("the bead lays {h_lo} .. {h_hi}"))
+        .help(format!(
+            "this would work: {fix}a bead whose heights span more; a wall is not levelled first (`level` levels under an extrusion's footprint)"
+        ))
 }

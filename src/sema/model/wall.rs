@@ -1,9 +1,10 @@
 //! A wall along an open path (`wall NAME { … }`), as checked: the path,
-//! how many beads lie side by side and on which side, how tall it is, how
-//! its beads start and end and which way they run.
+//! how many beads lie side by side and on which side, how its beads start
+//! and end and which way they run; and, built on a scan, the scanned part
+//! and the top.
 
 use crate::geometry::open_path::OpenPath;
-use crate::sema::model::Extent;
+use crate::sema::model::ScanBase;
 use crate::span::Span;
 use crate::units::Length;
 
@@ -29,6 +30,19 @@ pub enum WallEnds {
     Lead(Length),
 }
 
+/// A wall built on a scanned part (`on = scan(…)`, `top = …`): its layers
+/// start on the scanned surface under its beads and rise to a flat top
+/// (docs/repair.md, *A wall on a scan*).
+#[derive(Clone, Debug)]
+pub struct WallOnScan {
+    /// The scanned part.
+    pub base: ScanBase,
+    /// The finished wall's top, above the part's z = 0.
+    pub top: Length,
+    /// The `top = …` field.
+    pub top_span: Span,
+}
+
 /// A wall along an open path.
 #[derive(Clone, Debug)]
 pub struct OpenWall {
@@ -45,8 +59,6 @@ pub struct OpenWall {
     pub beads: usize,
     /// Where it lies relative to the path.
     pub side: WallSide,
-    /// How tall: a layer count or a height.
-    pub extent: Extent,
     /// How each bead starts and ends.
     pub ends: WallEnds,
     /// Every bead runs from the path's start (a travel back between them),

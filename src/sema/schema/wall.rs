@@ -63,6 +63,20 @@ pub mod fields {
         Default(DefaultWord("stop")),
         "how each bead starts and ends: `stop`, the laser on and off at the path's ends; `lead(length)`, the nozzle running on past them with the laser off",
     );
+    /// `on = …`.
+    pub static ON: Field = Field::new(
+        "on",
+        Call(&[&crate::sema::schema::solid::SCAN]),
+        Optional,
+        "the measured part the wall is built on, `scan(file = …)`: its layers start on the scanned surface and rise to `top` (docs/repair.md, *A wall on a scan*)",
+    );
+    /// `top = …`.
+    pub static TOP: Field = Field::new(
+        "top",
+        Quantity(Dim::LENGTH, Positive),
+        Optional,
+        "with `on`: the finished wall's top, a height above the part's z = 0 (then there is no `height`)",
+    );
     /// `direction = …`.
     pub static DIRECTION: Field = Field::new(
         "direction",
@@ -76,7 +90,7 @@ pub mod fields {
 pub static WALL: Block = Block::new(
     "open_wall",
     "wall NAME { … }",
-    "a wall laid along an open path, built in flat layers",
+    "a wall laid along an open path, built in flat layers (or, on a scan, in layers that level it)",
     &[
         &fields::ALONG,
         &fields::BEADS,
@@ -85,6 +99,8 @@ pub static WALL: Block = Block::new(
         &fields::BEAD,
         &fields::ENDS,
         &fields::DIRECTION,
+        &fields::ON,
+        &fields::TOP,
     ],
 );
 

@@ -40,6 +40,11 @@ impl VariableSpec {
     pub fn offset(&self) -> Option<(Length, Span)> {
         self.offset
     }
+
+    /// The slicing, when every field of it is right.
+    pub fn into_slicing(self) -> Option<VariableSlicing> {
+        self.slicing
+    }
 }
 
 /// Reads a `slicing variable { … }` block.

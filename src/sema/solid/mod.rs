@@ -38,6 +38,8 @@ pub enum Kind {
     Ring,
     /// `wall NAME { … }`, a wall along an open path in flat layers.
     Wall,
+    /// `wall` with `on = scan(…)`.
+    ScanWall,
 }
 
 /// The solid as read: its kind when the file has one, the solid when its
@@ -64,6 +66,7 @@ impl Read<'_> {
     pub fn scan(&self) -> Option<&crate::sema::model::ScanBase> {
         match &self.solid {
             Some(Solid::Extrude(w)) => w.base.as_ref(),
+            Some(Solid::Wall(w)) => w.scan(),
             _ => None,
         }
     }
@@ -119,14 +122,7 @@ pub fn read<'a>(
             (Kind::Loft, l.map(Solid::Loft), b)
         }
         ("extrude", Some(n), Body::Block(stmts, _)) => {
-            let scope = extrude::Scope {
-                sections: &decl.sections,
-                profiles: &decl.profiles,
-                beads: &decl.beads,
-                declared: &decl.names,
-                constants: &decl.constants,
-                statements: &statements,
-            };
+            let scope = extrude_scope(decl, &statements);
             let (w, b) = extrude::read(env, &n.node, stmts, s.span, &scope, diags);
             // Whether it has a top decides its slicing, even when the top is wrong.
             let kind = if stmts.iter().any(|s| s.kind.node == "top") {
@@ -141,9 +137,15 @@ pub fn read<'a>(
             (Kind::Ring, Some(Solid::Ring(w)), None)
         }
         ("wall", Some(n), Body::Block(stmts, _)) => {
-            let beads = (&decl.beads, decl.names.as_slice());
-            let (w, b) = wall::read(env, &n.node, stmts, s.span, beads, diags);
-            (Kind::Wall, w.map(Solid::Wall), b)
+            let scope = extrude_scope(decl, &statements);
+            let (w, b) = wall::read(env, &n.node, stmts, s.span, &scope, diags);
+            // Whether it is on a scan decides its slicing, even when the scan is wrong.
+            let kind = if stmts.iter().any(|s| s.kind.node == "on") {
+                Kind::ScanWall
+            } else {
+                Kind::Wall
+            };
+            (kind, w.map(Solid::Wall), b)
         }
         ("wall", _, _) => {
             diags.push(shape_error(
@@ -182,6 +184,21 @@ pub fn read<'a>(
         kind: Some(kind),
         solid,
         bead,
+    }
+}
+
+/// What an extrusion (or a wall on a scan naming its nominal) may refer to.
+fn extrude_scope<'s, 'a>(
+    decl: &'s Declared<'a>,
+    statements: &'s [&'a Stmt],
+) -> extrude::Scope<'s, 'a> {
+    extrude::Scope {
+        sections: &decl.sections,
+        profiles: &decl.profiles,
+        beads: &decl.beads,
+        declared: &decl.names,
+        constants: &decl.constants,
+        statements,
     }
 }
 
@@ -252,9 +269,24 @@ pub fn build(
                 .filter(|_| side_ok)
                 .map(|(extrusion, slicing)| Build::Variable { extrusion, slicing })
         }
-        (Some(Solid::Wall(w)), Some(Spec::Planar(spec)), Some(b)) => {
-            wall::assemble(w, b, spec, (slicing.stmt, speed), diags)
-                .map(|(wall, slicing)| Build::Wall { wall, slicing })
+        (Some(Solid::Wall(w)), Some(Spec::Planar(spec)), Some(b)) if w.scan().is_none() => {
+            wall::assemble(w, b, spec, (slicing.stmt, speed), diags).map(
+                |(wall, extent, slicing)| Build::Wall {
+                    wall,
+                    extent,
+                    slicing,
+                },
+            )
+        }
+        (Some(Solid::Wall(w)), Some(Spec::Variable(spec)), Some(b)) if w.scan().is_some() => {
+            wall::assemble_on_scan(w, b, spec, slicing.stmt, diags)
+                .filter(|_| side_ok)
+                .map(|(wall, on, slicing, pitch)| Build::ScanWall {
+                    wall,
+                    on,
+                    slicing,
+                    pitch,
+                })
         }
         (Some(Solid::Ring(w)), Some(Spec::Continuous(spec)), _) => {
             segmented_ring::assemble(w, spec, ring_cx.control, ring_cx.powder, diags)
@@ -288,6 +320,9 @@ fn mismatch(
         (Some(Kind::TopExtrude), Some("planar")) => SlicingMismatch::TopExtrusionPlanar,
         (Some(Kind::Wall), Some(s @ ("normal" | "variable" | "continuous"))) => {
             SlicingMismatch::Wall(s)
+        }
+        (Some(Kind::ScanWall), Some(s @ ("normal" | "planar" | "continuous"))) => {
+            SlicingMismatch::ScanWall(s)
         }
         _ => return false,
     };

@@ -15,17 +15,20 @@ use crate::geometry::open_path::OpenPath;
 use crate::geometry::profile::Vertex;
 use crate::sema::eval::Env;
 use crate::sema::fields::Fields;
-use crate::sema::model::{Bead, Extent, OpenWall, PlanarSlicing, WallEnds, WallSide};
+use crate::sema::model::{
+    Bead, Extent, OpenWall, PlanarSlicing, ScanBase, VariableSlicing, WallEnds, WallOnScan,
+    WallSide,
+};
 use crate::sema::schema::wall::{
     fields as wall, path, CHAIN, LEAD, MAX_PATH_POINTS, POLYLINE, WALL,
 };
 use crate::sema::slicing::planar::PlanarSpec;
+use crate::sema::solid::extrude::Scope;
 use crate::sema::solid::profile::point;
 use crate::sema::value::{Call, Spanned, Value};
 use crate::span::Span;
 use crate::syntax::ast::{Body, Stmt};
 use crate::units::{Length, Speed};
-use std::collections::BTreeMap;
 
 /// Pieces of a chain this far apart (mm) meet.
 const MEET: f64 = 1e-3;
@@ -39,9 +42,20 @@ pub struct Written {
     beads: usize,
     side: WallSide,
     height: Option<(Length, Span)>,
+    /// `on = scan(…)` and where, if written.
+    on: Option<(ScanBase, Span)>,
+    /// `top = …` and where, if written.
+    top: Option<(Length, Span)>,
     ends: WallEnds,
     one_way: bool,
     span: Span,
+}
+
+impl Written {
+    /// The scanned part it is built on, when it is read.
+    pub fn scan(&self) -> Option<&ScanBase> {
+        self.on.as_ref().map(|(b, _)| b)
+    }
 }
 
 /// Reads a wall block; returns it and its bead model, each when it is
@@ -51,10 +65,15 @@ pub fn read<'a>(
     name: &str,
     stmts: &'a [Stmt],
     span: Span,
-    beads: (&BTreeMap<String, Bead>, &[String]),
+    scope: &Scope<'_, 'a>,
     diags: &mut Diagnostics,
 ) -> (Option<Written>, Option<Bead>) {
     let f = Fields::block(env, stmts, &WALL, format!("wall `{name}`"), span, diags);
+    let on = on(env, &f, (name, scope), diags);
+    let top = f.optional(
+        &wall::TOP,
+        f.quantity(&wall::TOP, diags).map(|(h, sp)| (Length(h), sp)),
+    );
     let along = f.value(&wall::ALONG, diags).and_then(|v| {
         let (points, pieces) = path_value(v, diags)?;
         match OpenPath::new(&points) {
@@ -101,16 +120,17 @@ pub fn read<'a>(
         f.value(&wall::BEAD, diags),
         wall::BEAD.key,
         "the wall",
-        beads.0,
-        beads.1,
+        scope.beads,
+        scope.declared,
         diags,
     );
-    let written = match (along, count, side, height, ends, one_way) {
+    let rise = rise(height, on, top, span, diags);
+    let written = match (along, count, side, rise, ends, one_way) {
         (
             Some((path, pieces, along_span)),
             Some(beads),
             Some(side),
-            Some(height),
+            Some((height, on, top)),
             Some(ends),
             Some(one_way),
         ) => Some(Written {
@@ -121,6 +141,8 @@ pub fn read<'a>(
             beads,
             side,
             height,
+            on,
+            top,
             ends,
             one_way,
             span,
@@ -128,6 +150,64 @@ pub fn read<'a>(
         _ => None,
     };
     (written, bead)
+}
+
+/// How a wall rises, as written.
+type Rise = (
+    Option<(Length, Span)>,
+    Option<(ScanBase, Span)>,
+    Option<(Length, Span)>,
+);
+
+/// `height`, `on` and `top` (each `Some(None)` when not written, `None`
+/// when wrong), when they go together: a wall on a scan rises to its
+/// `top`, one on the plate by its `height` (or the slicing's `layers`).
+fn rise(
+    height: Option<Option<(Length, Span)>>,
+    on: Option<Option<(ScanBase, Span)>>,
+    top: Option<Option<(Length, Span)>>,
+    span: Span,
+    diags: &mut Diagnostics,
+) -> Option<Rise> {
+    let (height, on, top) = (height?, on?, top?);
+    match (&height, &on, &top) {
+        (Some((_, h)), Some((_, o)), _) => {
+            diags.push(message::wall::height_on_scan(*h, *o));
+            None
+        }
+        (_, None, Some((_, t))) => {
+            diags.push(message::wall::top_without_scan(*t, span));
+            None
+        }
+        (_, Some((_, o)), None) => {
+            diags.push(message::scan::needs_top(*o));
+            None
+        }
+        _ => Some((height, on, top)),
+    }
+}
+
+/// `on = scan(…)` and where: `Some(None)` when not written, `None` when
+/// written wrong (reported). A nominal named as a solid is read through
+/// the extrusions' scope, as an extrusion's is.
+fn on<'a>(
+    env: &mut Env<'a>,
+    f: &Fields<'_>,
+    (own, scope): (&str, &Scope<'_, 'a>),
+    diags: &mut Diagnostics,
+) -> Option<Option<(ScanBase, Span)>> {
+    let Some(v) = f.value(&wall::ON, diags) else {
+        return (!f.has(&wall::ON)).then_some(None);
+    };
+    let Value::Call(c) = &v.value else {
+        return None;
+    };
+    let data = env.data.clone();
+    let mut solid = |n: &str, at: Span, diags: &mut Diagnostics| {
+        crate::sema::solid::target::nominal(env, n, at, own, scope, diags)
+    };
+    crate::sema::solid::scan::read(c, v.span, (data.as_ref(), &mut solid), None, diags)
+        .map(|(base, _)| Some((base, v.span)))
 }
 
 /// `ends = stop | lead(length)`.
@@ -340,21 +420,8 @@ pub fn assemble(
     spec: PlanarSpec,
     (slicing, speed): Context<'_>,
     diags: &mut Diagnostics,
-) -> Option<(OpenWall, PlanarSlicing)> {
-    let mut ok = true;
-    if let Some(Body::Block(stmts, _)) = slicing.map(|s| &s.body) {
-        for s in stmts
-            .iter()
-            .filter(|s| NOT_FOR_A_WALL.contains(&s.kind.node.as_str()))
-        {
-            diags.push(message::wall::slicing_field(
-                &s.kind.node,
-                s.kind.span,
-                w.span,
-            ));
-            ok = false;
-        }
-    }
+) -> Option<(OpenWall, Extent, PlanarSlicing)> {
+    let ok = no_fields(NOT_FOR_A_WALL, slicing, w.span, diags);
     let extent = extent(&w, &spec, diags);
     let width = bead.width;
     let v = speed.and_then(|s| super::extrude::scan_speed(s, bead, spec.span, diags));
@@ -370,31 +437,12 @@ pub fn assemble(
         Some((d, _)) => (d, false),
         None => (flat, true),
     };
-    let wall = OpenWall {
-        name: w.name,
-        path: w.path,
-        pieces: w.pieces,
-        along_span: w.along_span,
-        beads: w.beads,
-        side: w.side,
-        extent: extent?,
-        ends: w.ends,
-        one_way: w.one_way,
-        span: w.span,
-    };
-    let [left, right] = wall.reach(width.0, offset.0);
-    if let Some(fault) = wall.path.wall_fault(left, right) {
-        let spans = PathSpans {
-            along: wall.along_span,
-            pieces: &wall.pieces,
-        };
-        diags.push(message::wall::path_fault(fault, &spans));
-        return None;
-    }
+    let extent = extent?;
+    let wall = open_wall(w, width, offset, diags)?.0;
     let slicing = PlanarSlicing {
         // One contour a bead: a wall one bead wide rises A/w, beads side
         // by side A/offset ([`PlanarSlicing::overlapped`]).
-        contours: w.beads,
+        contours: wall.beads,
         offset,
         offset_derived,
         infill: None,
@@ -409,5 +457,107 @@ pub fn assemble(
         layer_change: spec.layer_change,
         layer_change_span: spec.layer_change_span,
     };
-    Some((wall, slicing))
+    Some((wall, extent, slicing))
+}
+
+/// The variable slicing fields a wall on a scan does not plan: `scan` (its
+/// beads follow the path), and the levelling, the nozzle following the
+/// surface, the tilted build and the held finish, which lmdc plans under an
+/// extrusion's footprint only.
+const NOT_FOR_A_SCAN_WALL: &[&str] = &["scan", "level", "follow", "direction", "finish_tolerance"];
+
+/// Joins a wall on a scan with its variable slicing (whose side checks
+/// were made) and its bead: the beads' pitch (the declared `offset`, else
+/// the flat-top offset at the middle of the bead's speeds) and the path
+/// checked against the wall's width.
+pub fn assemble_on_scan(
+    w: Written,
+    bead: &Bead,
+    spec: crate::sema::slicing::variable::VariableSpec,
+    slicing: Option<&Stmt>,
+    diags: &mut Diagnostics,
+) -> Option<(OpenWall, WallOnScan, VariableSlicing, Length)> {
+    let ok = no_fields(NOT_FOR_A_SCAN_WALL, slicing, w.span, diags);
+    let declared = spec.offset();
+    let (Some(variable), true) = (spec.into_slicing(), ok) else {
+        return None;
+    };
+    let width = bead.width;
+    let pitch = match declared {
+        Some((d, _)) if w.beads > 1 => d,
+        _ => {
+            let mid = Speed((bead.speed[0].0 + bead.speed[1].0) / 2.0);
+            crate::bead::flat_top_offset(width, bead.model.height_at(mid, width))
+        }
+    };
+    let (wall, (on, top)) = open_wall(w, width, pitch, diags)?;
+    // Both are there: `rise` refused a wall on a scan without its top.
+    let (Some((base, _)), Some((top, top_span))) = (on, top) else {
+        return None;
+    };
+    Some((
+        wall,
+        WallOnScan {
+            base,
+            top,
+            top_span,
+        },
+        variable,
+        pitch,
+    ))
+}
+
+/// What a wall rises on and to: `on` and `top`, as read.
+type OnTop = (Option<(ScanBase, Span)>, Option<(Length, Span)>);
+
+/// The wall `w` with beads `width` wide `pitch` apart, its path checked
+/// against the wall's reach, and what it rises on and to.
+fn open_wall(
+    w: Written,
+    width: Length,
+    pitch: Length,
+    diags: &mut Diagnostics,
+) -> Option<(OpenWall, OnTop)> {
+    let wall = OpenWall {
+        name: w.name,
+        path: w.path,
+        pieces: w.pieces,
+        along_span: w.along_span,
+        beads: w.beads,
+        side: w.side,
+        ends: w.ends,
+        one_way: w.one_way,
+        span: w.span,
+    };
+    let [left, right] = wall.reach(width.0, pitch.0);
+    if let Some(fault) = wall.path.wall_fault(left, right) {
+        let spans = PathSpans {
+            along: wall.along_span,
+            pieces: &wall.pieces,
+        };
+        diags.push(message::wall::path_fault(fault, &spans));
+        return None;
+    }
+    Some((wall, (w.on, w.top)))
+}
+
+/// Reports each of `keys` written in the slicing statement `slicing` of
+/// the wall at `wall`; whether none is.
+fn no_fields(keys: &[&str], slicing: Option<&Stmt>, wall: Span, diags: &mut Diagnostics) -> bool {
+    let Some(Body::Block(stmts, _)) = slicing.map(|s| &s.body) else {
+        return true;
+    };
+    let mut ok = true;
+    for s in stmts
+        .iter()
+        .filter(|s| keys.contains(&s.kind.node.as_str()))
+    {
+        diags.push(message::wall::slicing_field(
+            &s.kind.node,
+            s.kind.span,
+            wall,
+        ));
+        ok = false;
+    }
+    ok
 }

@@ -118,22 +118,44 @@ pub(super) fn track(
     power: f32,
     reverse: bool,
 ) -> Vec<Point> {
-    let frac = i as f64 / n;
-    let pos: Vec<[f64; 3]> =
+    let xy: Vec<[f64; 2]> =
         tr.t.iter()
-            .zip(&tr.h)
-            .map(|(&t, &h)| {
-                let [x, y] = super::footprint::Footprint::point(scan, t, tr.c);
-                [x, y, process.base(x, y) + frac * h]
-            })
+            .map(|&t| super::footprint::Footprint::point(scan, t, tr.c))
             .collect();
+    along(tr, &xy, map, process, Some(scan), (i, n), power, reverse)
+}
+
+/// The points of one track on layer `i` of `n`, through `xy` (a point
+/// for each of its `t`), backwards when `reverse`. `scan` is the axis its
+/// line runs along, which a nozzle following the surface leans along; a
+/// track along a path (`None`) is laid vertical.
+#[allow(clippy::too_many_arguments)]
+pub(in crate::slice) fn along(
+    tr: &Track,
+    xy: &[[f64; 2]],
+    map: &impl HeightMap,
+    process: &Process<'_>,
+    scan: Option<Axis>,
+    (i, n): (u32, f64),
+    power: f32,
+    reverse: bool,
+) -> Vec<Point> {
+    let frac = i as f64 / n;
+    let pos: Vec<[f64; 3]> = xy
+        .iter()
+        .zip(&tr.h)
+        .map(|(&[x, y], &h)| [x, y, process.base(x, y) + frac * h])
+        .collect();
     // Layer `i` lies on `B + (i/N)·(top − B)`: its slope is `1 − i/N` of the
     // scan's where the top is flat (module `follow`).
-    let tilts: Option<Vec<Tilted>> = process.follow.map(|f| {
-        pos.iter()
-            .map(|p| f.at([p[0], p[1]], 1.0 - frac, scan))
-            .collect()
-    });
+    let tilts: Option<Vec<Tilted>> = match (process.follow, scan) {
+        (Some(f), Some(scan)) => Some(
+            pos.iter()
+                .map(|p| f.at([p[0], p[1]], 1.0 - frac, scan))
+                .collect(),
+        ),
+        _ => None,
+    };
     let segments = segment_speeds(tr, &pos, tilts.as_deref(), map, process.speeds, n);
     let m = pos.len();
     // Move j runs from point j to j + 1 in the track's own direction.

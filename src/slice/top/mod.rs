@@ -50,7 +50,15 @@ use crate::units::Length;
 use count::TopRange;
 use footprint::{sample, Footprint, Sampled};
 use std::num::NonZeroU32;
-use surface::{Base, Surface};
+use surface::Surface;
+
+// What a wall on a scan lays its beads with (`crate::slice::wall`): the
+// same layers of the same fraction of the gap, on the same process.
+pub(in crate::slice) use emit::{along, Process};
+pub(in crate::slice) use footprint::spaced;
+pub(in crate::slice) use surface::Base;
+pub(in crate::slice) use too_short::report_at as segments_too_short;
+pub(in crate::slice) use tracks::{Failure, Track};
 
 /// Rounds of count → layout → tracks before the range must have settled.
 const MAX_ROUNDS: usize = 6;

@@ -39,6 +39,33 @@ pub fn report(
     ex: &TopExtrusion,
     min: Positive,
 ) -> Diagnostic {
+    let locate = |worst: &Failure| {
+        let place = (tracks > 1).then(|| (scan.across().name(), worst.c));
+        let through = ex
+            .turned
+            .as_ref()
+            .map(|f| f.footprint(Footprint::point(scan, worst.middle, worst.c)));
+        (place, through)
+    };
+    let at = (tracks, ex.top_span);
+    report_at(failures, at, bead, slicing, min, locate)
+}
+
+/// What places a failing track in the error: its line across and the
+/// axis, or a point of the part it runs through.
+pub type Place = (Option<(&'static str, f64)>, Option<[f64; 3]>);
+
+/// The diagnostic for `failures` (at least one) of `tracks` laid with
+/// segments at least `min` long, up to the top written at `top`; `locate`
+/// places the worst.
+pub fn report_at(
+    failures: &[Failure],
+    (tracks, top): (usize, crate::span::Span),
+    bead: &Bead,
+    slicing: &VariableSlicing,
+    min: Positive,
+    locate: impl Fn(&Failure) -> Place,
+) -> Diagnostic {
     // The tolerance that works on every track: the largest of the least
     // errors the failing tracks can reach.
     let workable = |f: &Failure| match f.error {
@@ -64,16 +91,14 @@ pub fn report(
             .ok()
             .map(|s| s.segments.len())
         });
+    let (place, through) = locate(worst);
     message::top::segments_too_short(&TooShortSegments {
         tolerance: slicing.tolerance,
         min_length: slicing.min_length.unwrap_or(bead.width),
         min_declared: slicing.min_length.is_some(),
         length,
-        place: (tracks > 1).then(|| (scan.across().name(), worst.c)),
-        through: ex
-            .turned
-            .as_ref()
-            .map(|f| f.footprint(Footprint::point(scan, worst.middle, worst.c))),
+        place,
+        through,
         failing: failures.len(),
         tracks,
         error: worst.error,
@@ -82,7 +107,7 @@ pub fn report(
         spans: [
             slicing.tolerance_span.unwrap_or(slicing.span),
             slicing.min_length_span.unwrap_or(bead.span),
-            ex.top_span,
+            top,
         ],
     })
 }

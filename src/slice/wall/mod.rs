@@ -13,6 +13,13 @@
 //! after it ([`PathKind::Lead`]): straight on along the bead's direction at
 //! its ends, `length` long, laser off, at the bead's speed, so the nozzle
 //! is at speed where the laser switches ([`crate::plan`]).
+//!
+//! A wall on a scan is laid the same way in layers of variable thickness
+//! (module `on_scan`).
+
+mod on_scan;
+
+pub use on_scan::slice as slice_on_scan;
 
 use super::layers;
 use super::MAX_TOTAL_POINTS;
@@ -68,27 +75,24 @@ pub fn slice(
     model: &Model,
     bead: &Bead,
     wall: &OpenWall,
+    extent: Extent,
     slicing: &PlanarSlicing,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
     let mut diags = Diagnostics::new();
     let Some((lift, pitch, _)) = layers::lift(bead, slicing, &mut diags) else {
         return Err(diags);
     };
-    let n = match wall.extent {
+    let n = match extent {
         Extent::Layers(n, _) => Some(n),
         Extent::Height(h, at) => layers::whole_layers(h, at, lift, &mut diags),
     };
     let Some(n) = n else {
         return Err(diags);
     };
-    let tracks = match tracks(wall, bead, slicing) {
+    let tracks = match tracks(wall, bead.width.0, slicing.offset.0, slicing.chord_error.0) {
         Ok(t) => t,
         Err(fault) => {
-            let spans = PathSpans {
-                along: wall.along_span,
-                pieces: &wall.pieces,
-            };
-            diags.push(message::wall::path_fault(fault, &spans));
+            diags.push(fault_at(wall, fault));
             return Err(diags);
         }
     };
@@ -118,16 +122,34 @@ pub fn slice(
             powder: model.process.powder.g_min() as f32,
             defocus: model.process.defocus.0 as f32,
         };
-        out.push(layer(wall, &tracks, k, n, &laid));
+        let paths = beads(wall, &tracks, k, |_, _, t| {
+            path(PathKind::Wall, &t.points, &laid).points
+        });
+        let frame = Frame {
+            origin: [0.0, 0.0, laid.z],
+            x: [1.0, 0.0, 0.0],
+            y: [0.0, 1.0, 0.0],
+            z: [0.0, 0.0, 1.0],
+        };
+        out.push(layer(k, n, paths, frame));
     }
     Ok((out, diags))
 }
 
-/// Each bead's centre line, left to right across the wall.
-fn tracks(wall: &OpenWall, bead: &Bead, slicing: &PlanarSlicing) -> Result<Vec<Track>, PathFault> {
-    let w = bead.width.0;
-    let ce = slicing.chord_error.0;
-    wall.offsets(w, slicing.offset.0)
+/// The path fault `fault` of `wall`, as the error.
+fn fault_at(wall: &OpenWall, fault: PathFault) -> crate::diag::Diagnostic {
+    let spans = PathSpans {
+        along: wall.along_span,
+        pieces: &wall.pieces,
+    };
+    message::wall::path_fault(fault, &spans)
+}
+
+/// Each bead's centre line, left to right across the wall, for beads `w`
+/// wide `pitch` apart, flattened within `chord_error`.
+fn tracks(wall: &OpenWall, w: f64, pitch: f64, chord_error: f64) -> Result<Vec<Track>, PathFault> {
+    let ce = chord_error;
+    wall.offsets(w, pitch)
         .into_iter()
         .map(|d| match wall.path.offset(d) {
             Some(p) => Ok(Track::of(&p, ce)),
@@ -142,9 +164,16 @@ fn tracks(wall: &OpenWall, bead: &Bead, slicing: &PlanarSlicing) -> Result<Vec<T
         .collect()
 }
 
-/// Layer `k` of `n`: its beads in the order laid, each way the wall's
-/// direction gives, with their leads.
-fn layer(wall: &OpenWall, tracks: &[Track], k: usize, n: usize, laid: &Laid) -> Layer {
+/// The beads of layer `k` in the order laid, each the way the wall's
+/// direction gives, with their leads: `lay(j, forward, t)` gives the
+/// points of the bead on track `j`, forward or not, `t` that track run the
+/// way it is laid.
+fn beads(
+    wall: &OpenWall,
+    tracks: &[Track],
+    k: usize,
+    lay: impl Fn(usize, bool, &Track) -> Vec<Point>,
+) -> Vec<Path> {
     let m = tracks.len();
     let mut paths = Vec::with_capacity(m * 3);
     for i in 0..m {
@@ -163,29 +192,58 @@ fn layer(wall: &OpenWall, tracks: &[Track], k: usize, n: usize, laid: &Laid) -> 
             Some(tracks[j].reversed())
         };
         let t = track.as_ref().unwrap_or(&tracks[j]);
+        let points = lay(j, forward, t);
         let ends = match wall.ends {
             WallEnds::Lead(l) => Some(l.0),
             WallEnds::Stop => None,
         };
-        if let (Some(l), Some(&first)) = (ends, t.points.first()) {
-            let from = [first[0] - l * t.start[0], first[1] - l * t.start[1]];
-            paths.push(path(PathKind::Lead, &[from, first], laid));
+        if let (Some(l), Some(first)) = (ends, points.first()) {
+            let p = first.pos;
+            let from = [p[0] - l * t.start[0], p[1] - l * t.start[1], p[2]];
+            paths.push(lead(from, first));
         }
-        paths.push(path(PathKind::Wall, &t.points, laid));
-        if let (Some(l), Some(&last)) = (ends, t.points.last()) {
-            let to = [last[0] + l * t.end[0], last[1] + l * t.end[1]];
-            paths.push(path(PathKind::Lead, &[last, to], laid));
+        let last = points.last().copied();
+        paths.push(Path {
+            kind: PathKind::Wall,
+            points,
+        });
+        if let (Some(l), Some(last)) = (ends, last) {
+            let p = last.pos;
+            let to = [p[0] + l * t.end[0], p[1] + l * t.end[1], p[2]];
+            paths.push(lead(to, &last));
         }
     }
+    paths
+}
+
+/// A lead between `at` and the bead's end point `end`, laser off, laid as
+/// that point is: into it from `at` before a bead, out of it to `at`
+/// after one (`end`'s laser is on only at a bead's start).
+fn lead(at: [f64; 3], end: &Point) -> Path {
+    let into = end.laser_on;
+    let (a, b) = if into { (at, end.pos) } else { (end.pos, at) };
+    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    // As a flat bead's own points: `hypot` over the ground, exactly.
+    let len = d[0].hypot(d[1]).hypot(d[2]).max(1e-12);
+    let tangent = d.map(|v| (v / len) as f32);
+    let point = |pos| Point {
+        pos,
+        tangent,
+        laser_on: false,
+        ..*end
+    };
+    Path {
+        kind: PathKind::Lead,
+        points: vec![point(a), point(b)],
+    }
+}
+
+/// Layer `k` of `n` in `frame`.
+fn layer(k: usize, n: usize, paths: Vec<Path>, frame: Frame) -> Layer {
     Layer {
         index: k,
         station: k as f64 / n as f64,
-        frame: Frame {
-            origin: [0.0, 0.0, laid.z],
-            x: [1.0, 0.0, 0.0],
-            y: [0.0, 1.0, 0.0],
-            z: [0.0, 0.0, 1.0],
-        },
+        frame,
         paths,
         label: String::new(),
         on_plate: false,
