@@ -540,8 +540,11 @@ pub fn repair_overlay(
 /// within it. Here because it joins
 /// the plan with the model's top, which the verifier does not read.
 fn held_finish(program: &crate::ir::Program, model: &Model) -> Option<crate::diag::Diagnostic> {
-    let crate::sema::model::Build::Variable { slicing, extrusion } = &model.build else {
-        return None;
+    use crate::sema::model::Build;
+    let (slicing, top) = match &model.build {
+        Build::Variable { slicing, extrusion } => (slicing, extrusion.top_span),
+        Build::ScanWall { slicing, on, .. } => (slicing, on.top_span),
+        _ => return None,
     };
     let (tolerance, at) = slicing.finish_tolerance?;
     // Before the positioner's and the spin's angles are chosen: they turn
@@ -557,5 +560,5 @@ fn held_finish(program: &crate::ir::Program, model: &Model) -> Option<crate::dia
         tolerance: tolerance.0,
     };
     (f.below_mm > tolerance.0 || f.above_mm > tolerance.0)
-        .then(|| crate::diag::message::top::finish_off(&off, at, extrusion.top_span))
+        .then(|| crate::diag::message::top::finish_off(&off, at, top))
 }

@@ -17,6 +17,9 @@
 //! the scan and the target are the ones it was planned on
 //! (`slice::top::seen_along`), and every place is named back in
 //! the part, its departure measured along `d`.
+//!
+//! A wall on a scan is predicted at its last layer's moves' middles
+//! (module `wall`).
 
 use super::design::linear_top;
 use crate::deposit::Deposit;
@@ -26,6 +29,8 @@ use crate::ir::{Layer, Program};
 use crate::sema::model::{Build, Model, Top, TopExtrusion, TurnedFrame};
 use serde::Serialize;
 use std::collections::BTreeMap;
+
+mod wall;
 
 /// Chord error of the footprint's outline, mm (as the design volume's).
 const CHORD: f64 = 0.005;
@@ -125,8 +130,9 @@ fn rise_at(m: &Moves, t: f64) -> f64 {
         .map_or(0.0, |&(.., r)| r)
 }
 
-/// The finished surface `model`'s variable top is predicted at, from
-/// `program`'s layers; `None` for another build or a plan without a bead.
+/// The finished surface `model`'s variable top (or its wall on a scan) is
+/// predicted at, from `program`'s layers; `None` for another build or a
+/// plan without a bead.
 pub fn of(program: &Program, model: &Model) -> Option<Finish> {
     sampled(program, model).map(|(f, _)| f)
 }
@@ -145,9 +151,15 @@ pub struct Sample {
 
 /// [`of`], with every place it looked at.
 pub fn sampled(program: &Program, model: &Model) -> Option<(Finish, Vec<Sample>)> {
-    let Build::Variable { extrusion: ex, .. } = &model.build else {
-        return None;
-    };
+    match &model.build {
+        Build::Variable { extrusion, .. } => of_fill(program, model, extrusion),
+        Build::ScanWall { on, .. } => wall::sampled(program, on),
+        _ => None,
+    }
+}
+
+/// The finish of a footprint filled up to its top.
+fn of_fill(program: &Program, model: &Model, ex: &TopExtrusion) -> Option<(Finish, Vec<Sample>)> {
     // A fill along a tilted direction is predicted where it was planned:
     // in the part turned so the direction is up.
     let along = tilted(program);

@@ -241,7 +241,7 @@ fn the_fields_a_wall_on_a_scan_does_not_take_are_refused() {
         "level = auto",
         "scan = x",
         "follow = surface",
-        "finish_tolerance = 0.2 mm",
+        "direction = auto",
     ] {
         let with = src.replace("layers = auto", &format!("layers = auto\n  {field}"));
         let key = field.split(' ').next().unwrap();
@@ -251,4 +251,60 @@ fn the_fields_a_wall_on_a_scan_does_not_take_are_refused() {
             "{field}: {m}"
         );
     }
+}
+
+/// The rib's finish (docs/repair.md, *A wall on a scan*): the bead
+/// model's face at the middle of every move of the last layer, the scan
+/// there plus what each layer's move over it raises it by. Its segments
+/// each keep the mean of `|G − G_seg|` within the tolerance (0.1 mm), and
+/// every layer lays `G_seg/N` where `G/N` was asked: the face departs
+/// from the top by `G_seg − G` on the mean within that tolerance (and the
+/// bead model's rises, held within 3 % of each layer's 1.12 mm at most).
+/// `finish_tolerance` below its worst departure is refused with it; at
+/// the worst, the plan is the one without it, byte for byte.
+#[test]
+fn a_ribs_finish_is_predicted_from_its_moves_and_held() {
+    let src = include_str!("../../examples/pad_rib.lmd");
+    let files = || example_files(&["worn_pad.ply"]);
+    let (c, model) = crate::support::data::compile_with_files_and_model(src, files());
+    let p = c.program.unwrap().into_ir();
+    let (f, samples) = lmdc::report::finish::sampled(&p, &model.unwrap()).unwrap();
+    assert_eq!(f.points, samples.len());
+    let moves = p.layers[p.layers.len() - 1]
+        .paths
+        .iter()
+        .filter(|path| path.kind == PathKind::Wall)
+        .map(|path| path.points.len() - 1)
+        .sum::<usize>();
+    assert_eq!(f.points, moves);
+    let mean = samples.iter().map(|s| s.off.abs()).sum::<f64>() / samples.len() as f64;
+    assert!(mean <= 0.1 + 0.03 * 1.12, "mean departure {mean}");
+    assert!(samples.iter().all(|s| s.top == 13.0));
+    let worst = f.below_mm.max(f.above_mm);
+    assert!(worst > 0.1, "{f:?}");
+    let held = |t: f64| {
+        let with = src.replace(
+            "layers = auto",
+            &format!("layers = auto\n  finish_tolerance = {t} mm"),
+        );
+        compile(&with, files())
+    };
+    let refused = held(0.1);
+    let m = messages(&refused);
+    assert!(m.contains("lmd::finish"), "{m}");
+    assert!(
+        m.contains(&format!("falls {} mm below the top", short(f.below_mm))),
+        "{m}"
+    );
+    let kept = held((worst * 1e4).ceil() / 1e4);
+    let plain = compile(src, files());
+    let ir = |c: &lmdc::pipeline::Compiled| {
+        serde_json::to_string(c.program.as_ref().expect("built").ir()).unwrap()
+    };
+    assert_eq!(ir(&kept), ir(&plain));
+}
+
+/// A length as lmdc prints it (four significant digits).
+fn short(v: f64) -> String {
+    lmdc::units::short(v)
 }
