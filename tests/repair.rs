@@ -817,7 +817,8 @@ fn a_displaced_scan_registered_plans_the_layers_of_the_undisplaced_one() {
 }
 
 /// A nominal that is not this part (a 40 × 40 mm block under the 66 × 26
-/// mm pad) is refused, and so is a tolerance without a nominal.
+/// mm pad) is refused, so is one a metre from the scan (no face near it),
+/// and a tolerance without a nominal.
 #[test]
 fn a_wrong_nominal_or_a_tolerance_alone_is_refused() {
     let mut files = example_files(&["worn_pad_displaced.ply"]);
@@ -829,6 +830,19 @@ fn a_wrong_nominal_or_a_tolerance_alone_is_refused() {
     let m = messages(&c);
     assert!(c.program.is_none(), "{m}");
     assert!(m.starts_with("lmd::scan-registration: "), "{m}");
+    // A nominal a metre off: no face within the fit's reach (half the
+    // scan's diagonal, some 50 mm) of the scan as placed.
+    let mut files = example_files(&["worn_pad_displaced.ply"]);
+    files.insert(
+        "repair/pad_nominal.stl".into(),
+        block_stl([980.0, -20.0, 0.0], [1020.0, 20.0, 10.0]),
+    );
+    let c = compile(include_str!("../examples/worn_pad_registered.lmd"), files);
+    let m = messages(&c);
+    assert!(
+        m.starts_with("lmd::scan-registration: no face of the nominal `repair/pad_nominal.stl` lies near the scan"),
+        "{m}"
+    );
     let alone = include_str!("../examples/worn_pad.lmd")
         .replace("cell = 1 mm)", "cell = 1 mm, fit_tolerance = 0.1 mm)");
     let c = compile(&alone, example_files(&["worn_pad.ply"]));

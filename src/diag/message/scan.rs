@@ -297,6 +297,15 @@ pub fn fit_refused(r: &Registering<'_>, fault: &FitFault) -> Diagnostic {
             format!("the nominal `{}` has no triangle with an area", r.nominal),
             "export the part as designed as a mesh of its faces (STL or 3MF)".to_string(),
         ),
+        FitFault::NoneNear => (
+            format!(
+                "no face of the nominal `{}` lies near the scan `{}` as placed: the fit looks within half the scan's size round it (at least {} mm)",
+                r.nominal,
+                r.scan,
+                short(crate::geometry::scan::register::NEAR_LEAST)
+            ),
+            "place the scan near the part as designed with `turn` and `at` (the fit starts there), or check that the nominal is in the part's coordinates".to_string(),
+        ),
         FitFault::TooFewInliers {
             inliers,
             points,

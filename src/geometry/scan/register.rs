@@ -36,7 +36,7 @@
 //! than [`MIN_INLIERS`] points, or when the kept points leave a motion free
 //! (a flat nominal lets the scan slide along it and turn about its normal).
 
-use super::nearest::{Tri, TriangleTree};
+use super::nearest::{cross, dot, sub, Tri, TriangleTree};
 use super::{Pose, Raw};
 use nalgebra::{Matrix6, Rotation3, SymmetricEigen, Vector3, Vector6};
 
@@ -151,6 +151,9 @@ pub enum Freedom {
 pub enum FitFault {
     /// The nominal has no triangle with an area.
     NoNominal,
+    /// No face of the nominal lies near the scan as placed (within the
+    /// reach [`Nominal::near`] looks).
+    NoneNear,
     /// Fewer than [`MIN_INLIERS`] points lie within the limit.
     TooFewInliers {
         /// The points kept.
@@ -176,30 +179,112 @@ pub enum FitFault {
     },
 }
 
-/// The nominal's triangles, placed in the part's coordinates, ready for
-/// nearest-point queries.
-#[derive(Clone, Debug)]
+/// The nominal's triangles, placed in the part's coordinates. The fit
+/// asks its faces near the scan ([`Nominal::near`]).
+#[derive(Clone, Debug, Default)]
 pub struct Nominal {
-    tree: TriangleTree,
+    tris: Vec<Tri>,
 }
+
+/// How far round the scan's points the fit looks for the nominal's faces:
+/// half the points' box's diagonal, and at least this, mm.
+pub const NEAR_LEAST: f64 = 10.0;
+
+/// Most faces the fit's tree holds once the nominal is cut near the scan:
+/// past it the faces are kept as they are (a slower search, not more
+/// memory).
+pub const MAX_NEAR_FACES: usize = 1_000_000;
 
 impl Nominal {
     /// The nominal of `tris` (mm, placed); triangles without area left out.
     pub fn new(tris: &[Tri]) -> Nominal {
-        Nominal {
-            tree: TriangleTree::new(tris),
-        }
+        let tris = tris
+            .iter()
+            .filter(|t| {
+                let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+                let len = dot(n, n).sqrt();
+                len.is_finite() && len > 1e-12
+            })
+            .copied()
+            .collect();
+        Nominal { tris }
     }
 
     /// How many triangles it holds.
     pub fn len(&self) -> usize {
-        self.tree.len()
+        self.tris.len()
     }
 
     /// Whether it holds none.
     pub fn is_empty(&self) -> bool {
-        self.tree.is_empty()
+        self.tris.is_empty()
     }
+
+    /// Its faces near `pts`, in a tree: those whose box meets the points'
+    /// box grown by its reach (half its diagonal, at least [`NEAR_LEAST`]),
+    /// each cut in two across its longest edge until no edge is longer
+    /// than half the reach or the piece leaves the box. A long thin face
+    /// (a plate's cap cut by earcut between far holes) has a box that
+    /// overlaps every other's and slows every search; cut and clipped,
+    /// the faces about a point are the few that pass near it, and a
+    /// nominal far larger than the scan costs what the part of it round
+    /// the scan does. The fit moves the scan by far less than the reach,
+    /// and a point farther than that from every face is no inlier.
+    pub fn near(&self, pts: &[[f64; 3]]) -> TriangleTree {
+        let Some((lo, hi, reach)) = near_box(pts) else {
+            return TriangleTree::default();
+        };
+        let longest = reach / 2.0;
+        let meets = |t: &Tri| {
+            (0..3).all(|k| t.iter().any(|p| p[k] >= lo[k]) && t.iter().any(|p| p[k] <= hi[k]))
+        };
+        let mut todo: Vec<Tri> = self.tris.iter().filter(|t| meets(t)).copied().collect();
+        let mut out = Vec::with_capacity(todo.len());
+        while let Some(t) = todo.pop() {
+            let (k, len) = longest_edge(&t);
+            // Across its longest edge a sliver is narrower than an eighth of it.
+            let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+            let sliver = dot(n, n).sqrt() < len * len / 8.0;
+            if !sliver || len <= longest || out.len() + todo.len() >= MAX_NEAR_FACES {
+                out.push(t);
+                continue;
+            }
+            let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+            let m = [0, 1, 2].map(|i| (a[i] + b[i]) / 2.0);
+            todo.extend([[a, m, c], [m, b, c]].into_iter().filter(|t| meets(t)));
+        }
+        TriangleTree::new(&out)
+    }
+}
+
+/// The box round `pts` the fit looks for the nominal's faces in: theirs
+/// grown by half its diagonal (at least [`NEAR_LEAST`]), and that reach.
+pub fn near_box(pts: &[[f64; 3]]) -> Option<([f64; 3], [f64; 3], f64)> {
+    let (lo, hi) = bounds(pts)?;
+    let diagonal = dot(sub(hi, lo), sub(hi, lo)).sqrt();
+    let reach = (diagonal / 2.0).max(NEAR_LEAST);
+    Some((lo.map(|c| c - reach), hi.map(|c| c + reach), reach))
+}
+
+/// The box of `pts`, if any.
+fn bounds(pts: &[[f64; 3]]) -> Option<([f64; 3], [f64; 3])> {
+    let first = *pts.first()?;
+    Some(pts.iter().fold((first, first), |(lo, hi), p| {
+        (
+            [0, 1, 2].map(|k| lo[k].min(p[k])),
+            [0, 1, 2].map(|k| hi[k].max(p[k])),
+        )
+    }))
+}
+
+/// The longest edge of `t`: the corner it starts at and its length.
+fn longest_edge(t: &Tri) -> (usize, f64) {
+    (0..3)
+        .map(|k| {
+            let d = sub(t[(k + 1) % 3], t[k]);
+            (k, dot(d, d).sqrt())
+        })
+        .fold((0, f64::NEG_INFINITY), |a, b| if b.1 > a.1 { b } else { a })
 }
 
 /// Each point's distance to the nominal, its nearest point and normal.
@@ -229,8 +314,12 @@ fn register_within(
         .step_by(stride)
         .map(|v| pose.apply(v))
         .collect();
+    let tree = nominal.near(&pts);
+    if tree.is_empty() {
+        return Err(FitFault::NoneNear);
+    }
     let mut moved = Rigid::identity();
-    let mut m = matches(&pts, nominal);
+    let mut m = matches(&pts, &tree);
     let mut start = quantile(&m, 0.9, f64::INFINITY);
     let mut limit = f64::INFINITY;
     let (mut settled, mut iterations, mut step) = (false, 0, f64::INFINITY);
@@ -246,7 +335,7 @@ fn register_within(
             *p = inc.apply(*p);
         }
         moved = moved.then(&inc);
-        m = matches(&pts, nominal);
+        m = matches(&pts, &tree);
         if step <= SETTLED && rule >= start {
             settled = true;
             break;
@@ -289,12 +378,10 @@ fn register_within(
 
 /// Every point's match on the nominal (a point with none, an empty
 /// nominal's, lies infinitely far).
-fn matches(pts: &[[f64; 3]], nominal: &Nominal) -> Matches {
+fn matches(pts: &[[f64; 3]], tree: &TriangleTree) -> Matches {
     pts.iter()
         .map(|p| {
-            nominal
-                .tree
-                .nearest(*p)
+            tree.nearest(*p)
                 .map_or((f64::INFINITY, *p, [0.0, 0.0, 1.0]), |n| {
                     (n.distance, n.point, n.normal)
                 })

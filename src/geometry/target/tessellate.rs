@@ -56,8 +56,19 @@ impl Target {
     /// The solid's faces as triangles (mm, in the target's frame), within
     /// 0.002 mm of them (module docs).
     pub fn triangles(&self) -> Vec<Tri> {
+        self.triangles_near(None)
+    }
+
+    /// [`Target::triangles`], or, given a box seen from above (`[lo, hi]`,
+    /// mm), a prism's without the loops whose own box lies outside it: a
+    /// best fit looks for faces near the scan only, and a plate's
+    /// thousand holes far from it would cost the cutting of its caps
+    /// (earcut bridges every hole into the outline) for nothing. The caps
+    /// within the box are the same: every loop that reaches into it is
+    /// kept.
+    pub fn triangles_near(&self, near: Option<[[f64; 2]; 2]>) -> Vec<Tri> {
         match self {
-            Target::Prism { region, height } => prism(region, *height),
+            Target::Prism { region, height } => prism(region, *height, near),
             Target::Mesh(m) => m.faces().copied().collect(),
             Target::Loft(l) => loft(&l.geometry),
             Target::Turned(t) => t.triangles(),
@@ -80,11 +91,30 @@ impl Turned {
     }
 }
 
-/// A prism of `region` from z = 0 to `h`: its sides, top and bottom.
-fn prism(region: &Region, h: f64) -> Vec<Tri> {
+/// Whether the box of the polyline `pts` meets `near` (or there is none).
+fn reaches(pts: &[[f64; 2]], near: Option<[[f64; 2]; 2]>) -> bool {
+    let Some([lo, hi]) = near else {
+        return true;
+    };
+    let (mut a, mut b) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in pts {
+        for k in 0..2 {
+            a[k] = a[k].min(p[k]);
+            b[k] = b[k].max(p[k]);
+        }
+    }
+    (0..2).all(|k| a[k] <= hi[k] && b[k] >= lo[k])
+}
+
+/// A prism of `region` from z = 0 to `h`: its sides, top and bottom;
+/// without the loops whose box lies outside `near` ([`Target::triangles_near`]).
+fn prism(region: &Region, h: f64, near: Option<[[f64; 2]; 2]>) -> Vec<Tri> {
     let mut out = Vec::new();
     for (l, hole) in region.loops() {
         let mut pts = l.polyline(CHORD);
+        if !reaches(&pts, near) {
+            continue;
+        }
         // Every loop is stored counter-clockwise: a hole's is turned so
         // its sides face into it, out of the solid.
         if hole {
@@ -102,11 +132,17 @@ fn prism(region: &Region, h: f64) -> Vec<Tri> {
     let mut idx: Vec<u32> = Vec::new();
     for outer in region.outer() {
         let mut pts = outer.polyline(CHORD);
+        if !reaches(&pts, near) {
+            continue;
+        }
         let mut holes: Vec<u32> = Vec::new();
         // A hole is the outer loop's that holds it (an island in a hole
         // holds none of the hole's points).
         for hole in region.holes() {
             let hp = hole.polyline(CHORD);
+            if !reaches(&hp, near) {
+                continue;
+            }
             if hp.first().is_some_and(|p| outer.contains(*p)) {
                 holes.push(pts.len() as u32);
                 pts.extend(hp);

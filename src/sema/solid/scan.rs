@@ -8,7 +8,7 @@
 
 use crate::diag::{message, Diagnostics};
 use crate::geometry::mesh::{Placement, Section};
-use crate::geometry::scan::register::{register, Nominal};
+use crate::geometry::scan::register::{near_box, register, Nominal};
 use crate::geometry::scan::section::{self, CutFault};
 use crate::geometry::scan::{self, Estimate, Format, HeightField, Pose, Raw};
 use crate::geometry::target::Target;
@@ -144,28 +144,31 @@ fn nominal(
     data: Option<&DataReader>,
     solid: SolidNamed<'_>,
     diags: &mut Diagnostics,
-) -> Option<Option<(Nominal, String, Span)>> {
+) -> Option<Option<(Named, String, Span)>> {
     let Some(v) = f.value(&field::REGISTER, diags) else {
         return (!f.has(&field::REGISTER)).then_some(None);
     };
     match &v.value {
         Value::Call(c) => {
             let (placed, path) = crate::sema::solid::mesh::placed(c, data, diags)?;
-            Some(Some((Nominal::new(&placed), path, v.span)))
+            Some(Some((Named::Mesh(Nominal::new(&placed)), path, v.span)))
         }
         Value::Symbol(name) => {
             let target = solid(name, v.span, diags)?;
-            Some(Some((
-                Nominal::new(&target.triangles()),
-                name.clone(),
-                v.span,
-            )))
+            Some(Some((Named::Solid(target), name.clone(), v.span)))
         }
         other => {
             diags.push(message::target::not_a_nominal(other.got(), v.span));
             None
         }
     }
+}
+
+/// The part as designed a scan is registered to: a mesh's triangles, or a
+/// solid of the file, cut into triangles near the scan when it is fitted.
+enum Named {
+    Mesh(Nominal),
+    Solid(Arc<Target>),
 }
 
 /// What a best fit is asked: the scan's points, their declared placement,
@@ -182,9 +185,24 @@ struct Fit<'a> {
 /// fit; `None` when refused (reported).
 fn fit(
     ask: &Fit<'_>,
-    (nominal, nominal_path, register_at): &(Nominal, String, Span),
+    (nominal, nominal_path, register_at): &(Named, String, Span),
     diags: &mut Diagnostics,
 ) -> Option<(Pose, crate::ir::Registration)> {
+    let cut;
+    let nominal = match nominal {
+        Named::Mesh(n) => n,
+        Named::Solid(target) => {
+            let placed: Vec<[f64; 3]> = ask
+                .raw
+                .vertices
+                .iter()
+                .map(|v| ask.declared.apply(v))
+                .collect();
+            let near = near_box(&placed).map(|(lo, hi, _)| [[lo[0], lo[1]], [hi[0], hi[1]]]);
+            cut = Nominal::new(&target.triangles_near(near));
+            &cut
+        }
+    };
     let names = message::scan::Registering {
         scan: ask.scan.0,
         nominal: nominal_path,

@@ -248,3 +248,52 @@ fn the_fit_is_the_same_every_run() {
     let b = register(&r, &PLACE.into(), &nominal()).unwrap();
     assert_eq!(a, b);
 }
+
+/// The faces the fit looks at: a sliver 100 m long (what earcut leaves
+/// between far holes of a plate) is cut, across its longest edge, into
+/// pieces no longer than half the reach where it passes the scan, and
+/// the rest of it dropped. Nearest points over the scan lie at the exact
+/// distances, which the whole sliver's, in floating point, need not (one
+/// point 0.5 mm over it came out 7.2 mm away).
+#[test]
+fn a_long_sliver_is_cut_near_the_scan_and_dropped_away_from_it() {
+    let sliver: Tri = [[-5e4, -0.02, 0.0], [5e4, 0.0, 0.0], [5e4, 0.04, 0.0]];
+    // Over the sliver, the height; beside it, across to its nearer long
+    // edge (the lines from its far corner, a cross product over a length).
+    let exact = |p: [f64; 3]| {
+        let [a, b, c] = sliver;
+        let off = |u: [f64; 3]| {
+            let (dx, dy) = (u[0] - a[0], u[1] - a[1]);
+            (dx * (p[1] - a[1]) - dy * (p[0] - a[0])) / dx.hypot(dy)
+        };
+        let (right, left) = (off(b), off(c));
+        let across = if right >= 0.0 && left <= 0.0 {
+            0.0
+        } else {
+            right.abs().min(left.abs())
+        };
+        across.hypot(p[2])
+    };
+    let pts: Vec<[f64; 3]> = (0..100)
+        .map(|i| [-20.0 + 0.4 * i as f64, 0.01 * (i % 3) as f64, 0.5])
+        .collect();
+    let (lo, hi, reach) = near_box(&pts).unwrap();
+    // The points' box is 39.6 × 0.02 mm: half its diagonal.
+    assert!((reach - 39.6f64.hypot(0.02) / 2.0).abs() < 1e-9, "{reach}");
+    let tree = Nominal::new(&[sliver]).near(&pts);
+    // Some hundreds of needles along the box's 119 mm, not the sliver's
+    // 100 m.
+    assert!(tree.len() > 1 && tree.len() < 1000, "{} pieces", tree.len());
+    let (a, b) = tree.bounds();
+    assert!(
+        a[0] >= lo[0] - reach && b[0] <= hi[0] + reach,
+        "{a:?} {b:?}"
+    );
+    for p in &pts {
+        let n = tree.nearest(*p).unwrap().distance;
+        assert!((n - exact(*p)).abs() < 1e-9, "{p:?}: {n} vs {}", exact(*p));
+    }
+    // A scan nowhere near it finds no face.
+    let far: Vec<[f64; 3]> = pts.iter().map(|p| [p[0], p[1] + 1000.0, p[2]]).collect();
+    assert!(Nominal::new(&[sliver]).near(&far).is_empty());
+}

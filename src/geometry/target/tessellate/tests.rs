@@ -275,3 +275,58 @@ fn a_circle_sharpening_into_a_square_strays_near_its_corner() {
     assert!(strays_within(&t, 2.0 * CHORD).is_err());
     strays_within(&t, 0.01).unwrap();
 }
+
+/// Near a box, a plate keeps the loops that reach into it: a metre-wide
+/// plate with a hole in the box and two far from it gives the same top
+/// over the box (every point of a grid over it under one top face, or
+/// under none in the hole, as the whole plate's), without the far holes'
+/// sides or their bridges into the outline.
+#[test]
+fn a_prism_near_a_box_keeps_its_faces_there_and_drops_far_loops() {
+    let holes = vec![
+        Profile::circle(5.0).placed(0.0, [10.0, 0.0]),
+        Profile::circle(20.0).placed(0.0, [400.0, 300.0]),
+        Profile::circle(20.0).placed(0.0, [-400.0, -300.0]),
+    ];
+    let plate = Target::Prism {
+        region: Region::new(
+            Profile::rectangle(1000.0, 800.0).placed(0.0, [-500.0, -400.0]),
+            holes,
+        ),
+        height: 10.0,
+    };
+    let whole = plate.triangles();
+    let near = plate.triangles_near(Some([[-30.0, -30.0], [30.0, 30.0]]));
+    assert!(
+        near.len() < whole.len(),
+        "{} of {}",
+        near.len(),
+        whole.len()
+    );
+    // The far holes' sides are gone.
+    assert!(near.iter().all(|t| t
+        .iter()
+        .all(|p| p[0].abs() < 380.0 || p[2] == 0.0 || p[2] == 10.0)));
+    let under = |tris: &[Tri], q: [f64; 2]| {
+        tris.iter()
+            .filter(|t| t.iter().all(|p| p[2] == 10.0))
+            .filter(|[a, b, c]| {
+                let side = |u: [f64; 3], v: [f64; 3]| {
+                    (v[0] - u[0]) * (q[1] - u[1]) - (q[0] - u[0]) * (v[1] - u[1])
+                };
+                let s = [side(*a, *b), side(*b, *c), side(*c, *a)];
+                s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0)
+            })
+            .count()
+    };
+    for i in 0..24 {
+        for j in 0..24 {
+            // Off the hole's chords' corners: a point on an edge is under two.
+            let q = [-29.3 + 2.5 * i as f64, -29.1 + 2.5 * j as f64];
+            let inside_hole = (q[0] - 10.0).hypot(q[1]) < 5.0;
+            let (a, b) = (under(&whole, q), under(&near, q));
+            assert_eq!(a, b, "{q:?}");
+            assert_eq!(a, usize::from(!inside_hole), "{q:?}");
+        }
+    }
+}
