@@ -29,6 +29,9 @@ pub struct Declared<'a> {
     /// Every `let`: name, where it is declared, its expression (a profile
     /// that follows the layer is evaluated with them again, layer by layer).
     pub constants: Vec<(String, Span, Expr)>,
+    /// The solids read as the part as designed, once each
+    /// ([`crate::sema::solid::extrude::Scope::targets`]).
+    pub targets: crate::sema::solid::extrude::Targets,
 }
 
 /// Declares and evaluates every constant (so errors in unused ones are
@@ -48,6 +51,7 @@ pub fn read<'a>(env: &mut Env<'a>, st: &Statements<'a>, diags: &mut Diagnostics)
         profiles,
         beads,
         names,
+        targets: Default::default(),
         constants,
     }
 }

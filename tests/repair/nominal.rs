@@ -202,7 +202,8 @@ fn a_scan_registered_to_a_loft_of_the_file_plans_as_placed() {
 /// What `register = NAME` cannot name, each said with what would work:
 /// the extrusion the scan is in, a bead, a name no solid has (with the
 /// solid it may mean), a number, and a solid that builds on something of
-/// its own.
+/// its own (once, when both `top` and `register` name it), and a region
+/// whose hole lies outside its outline.
 #[test]
 fn a_nominal_that_is_no_solid_of_the_part_is_refused() {
     let with = |name: &str| TO_SOLID.replace("register = design", &format!("register = {name}"));
@@ -246,6 +247,30 @@ fn a_nominal_that_is_no_solid_of_the_part_is_refused() {
     let m = messages(&centre);
     assert!(
         m.contains("lmd::target-solid: the nominal `design` says `size = centre`"),
+        "{m}"
+    );
+    // Named by `top` and by `register` both, it is read once: its
+    // mistake is reported once, for the first field that names it.
+    let src = source(TO_SOLID, "design").replace(
+        "spine = line(length = 12 mm)\n}",
+        "spine = line(length = 12 mm)\n  size = centre\n}",
+    );
+    let files = BTreeMap::from([("worn.ply".to_string(), ply(&scan(true)))]);
+    let both = compile(&src, files);
+    let m = messages(&both);
+    assert_eq!(m.matches("says `size = centre`").count(), 1, "{m}");
+    // A region whose hole lies outside its outline is refused as a built
+    // extrusion's is: its faces would not be the part.
+    let src = source(TO_SOLID, "14.3 mm").replace(
+        DESIGN,
+        "extrude design {\n  profile = region(outline = rectangle(width = 44 mm, height = 28 mm), holes = [place(circle(diameter = 4 mm), at = [60 mm, 0 mm])])\n  height = 12 mm\n}",
+    );
+    let files = BTreeMap::from([("worn.ply".to_string(), ply(&scan(true)))]);
+    let holed = compile(&src, files);
+    let m = messages(&holed);
+    assert!(holed.program.is_none(), "{m}");
+    assert!(
+        m.contains("lmd::hole: hole 1 lies outside the outline"),
         "{m}"
     );
 }

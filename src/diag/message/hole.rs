@@ -2,9 +2,44 @@
 //! outline. Holes are numbered from 1 in the order written.
 
 use crate::diag::{Code, Diagnostic};
-use crate::geometry::region::{Fault, MAX_FAULTS};
+use crate::geometry::region::{Fault, Region, MAX_FAULTS};
+use crate::sema::model::{RegionShape, Shape};
 use crate::span::Span;
 use crate::units::short;
+
+/// The `region(…)` a shape is written as, placed or not.
+pub fn written_region(s: &Shape) -> Option<&RegionShape> {
+    match s {
+        Shape::Region(r) => Some(r),
+        Shape::Placed(p) => written_region(&p.shape),
+        _ => None,
+    }
+}
+
+/// The diagnostics for the faults of `region` (made from `shape`) that
+/// concern its holes, on layer `k` when `varies`; the outline's own
+/// crossing is the fill's to report.
+pub fn region_faults(region: &Region, shape: &Shape, k: usize, varies: bool) -> Vec<Diagnostic> {
+    let Some(written) = written_region(shape) else {
+        return Vec::new();
+    };
+    if written.holes.is_empty() {
+        return Vec::new();
+    }
+    let faults = region.faults();
+    let capped = faults.len() >= MAX_FAULTS;
+    let mut out: Vec<Diagnostic> = faults
+        .into_iter()
+        .filter_map(|f| {
+            let span = |h: usize| written.holes.get(h).map(|h| h.span);
+            fault(f, span, written.outline_span, k, varies)
+        })
+        .collect();
+    if capped {
+        out.push(more_faults(written.outline_span));
+    }
+    out
+}
 
 /// More faults than are reported one by one.
 pub fn more_faults(outline: Span) -> Diagnostic {

@@ -44,7 +44,15 @@ pub struct Scope<'s, 'a> {
     /// The file's named statements a `top = NAME` may name (solids) or
     /// mistake for one (sections, profiles, beads).
     pub statements: &'s [&'a Stmt],
+    /// The solids already read as the part as designed, by name: a solid
+    /// named by both `top` and `register` is read once, its mistakes
+    /// reported once.
+    pub targets: &'s Targets,
 }
+
+/// The solids read as the part as designed, by name (`None`: refused).
+pub type Targets =
+    std::cell::RefCell<BTreeMap<String, Option<std::sync::Arc<crate::geometry::target::Target>>>>;
 
 /// Where an extrusion's shape comes from.
 #[derive(Clone, Debug)]

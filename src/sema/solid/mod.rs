@@ -199,6 +199,7 @@ fn extrude_scope<'s, 'a>(
         declared: &decl.names,
         constants: &decl.constants,
         statements,
+        targets: &decl.targets,
     }
 }
 

@@ -11,9 +11,11 @@
 use crate::diag::message::target::{self, Fault, Role};
 use crate::diag::Diagnostics;
 use crate::geometry::mesh::highest::Highest;
+use crate::geometry::region::Region;
 use crate::geometry::target::{LoftFault, LoftTarget, Target};
 use crate::sema::eval::{unknown_name, Env, LAYER, POSITION, Z};
 use crate::sema::fields::Fields;
+use crate::sema::model::Shape;
 use crate::sema::model::{Top, TopSolid};
 use crate::sema::schema::solid::{extrude, loft, scan, EXTRUDE, LOFT, SCAN, SCAN_SECTION};
 use crate::sema::solid::extrude::{Scope, Source};
@@ -178,6 +180,9 @@ fn solid<'a>(
         // Its shape is reported where the file's solids are read.
         return None;
     };
+    if let Some(read) = scope.targets.borrow().get(name) {
+        return read.clone();
+    }
     let cx = Cx {
         name,
         role,
@@ -190,7 +195,12 @@ fn solid<'a>(
         "loft" => lofted(env, stmts, &cx, scope, diags),
         _ => cx.refuse(Fault::Kind(kind), diags),
     };
-    surface.map(Arc::new)
+    let surface = surface.map(Arc::new);
+    scope
+        .targets
+        .borrow_mut()
+        .insert(name.to_string(), surface.clone());
+    surface
 }
 
 /// The solids a top may name: every one but `own`.
@@ -332,7 +342,21 @@ fn extrusion<'a>(
         return None;
     };
     let region = crate::geometry::outline::region(&shape, CHORD);
-    ok.then_some(Target::Prism { region, height })
+    let holes_ok = holes_checked(&region, &shape, diags);
+    (ok && holes_ok).then_some(Target::Prism { region, height })
+}
+
+/// Reports the faults of `region`'s holes (made from `shape`) as a built
+/// extrusion's are reported (`lmd::hole`): a hole outside the outline or
+/// inside another would add faces that are not the part. Whether there
+/// are none.
+fn holes_checked(region: &Region, shape: &Shape, diags: &mut Diagnostics) -> bool {
+    let found = crate::diag::message::hole::region_faults(region, shape, 0, false);
+    let ok = found.is_empty();
+    for d in found {
+        diags.push(d);
+    }
+    ok
 }
 
 /// A loft block as a target: its sections as written are its faces.
