@@ -274,3 +274,23 @@ fn a_nominal_that_is_no_solid_of_the_part_is_refused() {
         "{m}"
     );
 }
+
+/// Two extrusions that name each other as the part as designed (`register
+/// = NAME` both ways) leave nothing to build, and the error says so, with
+/// both names, rather than that the file has no solid.
+#[test]
+fn solids_that_name_each_other_as_designed_are_named_in_the_error() {
+    let src = r#"part p
+bead b { width = 2 mm  speed = 4 mm/s .. 8 mm/s  model = linear(slope = -0.1 mm / (1 mm/s), intercept = 1.8 mm) }
+extrude a { profile = rectangle(width = 10 mm, height = 10 mm)  bead = b  on = scan(file = "s.xyz", register = c)  top = 5 mm }
+extrude c { profile = rectangle(width = 10 mm, height = 10 mm)  bead = b  on = scan(file = "s.xyz", register = a)  top = 5 mm }
+slicing variable { layers = auto }
+"#;
+    let c = compile(src, BTreeMap::new());
+    let m = messages(&c);
+    assert!(
+        m.contains("lmd::missing-solid: every solid of the file is named by another as the part as designed (`a`, `c`), so none is left to build"),
+        "{m}"
+    );
+    assert!(!m.contains("does not describe a solid"), "{m}");
+}

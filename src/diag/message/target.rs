@@ -194,3 +194,21 @@ pub fn not_a_nominal(got: crate::diag::message::value::Got<'_>, at: Span) -> Dia
     .label(at, format!("this is {}", got.describe()))
     .help("write `register = mesh(file = \"nominal.stl\")`, or `register = NAME` for an `extrude` or `loft` of the file (it is then not built)")
 }
+
+/// Every solid of the file is named by another as the part as designed
+/// (`top = NAME`, `register = NAME`), so none is left to build: the
+/// solids, each with its name's span.
+pub fn every_solid_named(solids: &[(&str, Span)]) -> Diagnostic {
+    let names: Vec<String> = solids.iter().map(|(n, _)| format!("`{n}`")).collect();
+    let mut d = Diagnostic::error(
+        Code::MissingSolid,
+        format!(
+            "every solid of the file is named by another as the part as designed ({}), so none is left to build",
+            names.join(", ")
+        ),
+    );
+    for (_, at) in solids {
+        d = d.label(*at, "named as the part as designed");
+    }
+    d.help("a solid that `top = NAME` or `register = NAME` names is the part as designed and is not built: the part to build names it, and no solid names the part to build")
+}

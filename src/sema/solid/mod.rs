@@ -101,7 +101,7 @@ pub fn read<'a>(
 ) -> Read<'a> {
     let (solids, statements) = to_build(st, decl);
     let Some((s, rest)) = solids.split_first() else {
-        diags.push(message::solid::missing_solid());
+        diags.push(none_to_build(&statements));
         return Read {
             kind: None,
             solid: None,
@@ -227,6 +227,21 @@ fn to_build<'a>(st: &Statements<'a>, decl: &Declared<'a>) -> (Vec<&'a Stmt>, Vec
             .is_none_or(|n| !targets.contains(n.node.as_str()))
     });
     (solids, statements)
+}
+
+/// Why there is no solid to build: none written, or every one named by
+/// another as the part as designed (a cycle of `register`s or `top`s).
+fn none_to_build(statements: &[&Stmt]) -> crate::diag::Diagnostic {
+    let named: Vec<(&str, Span)> = statements
+        .iter()
+        .filter(|s| target::SOLIDS.contains(&s.kind.node.as_str()))
+        .filter_map(|s| s.name.as_ref().map(|n| (n.node.as_str(), n.span)))
+        .collect();
+    if named.is_empty() {
+        message::solid::missing_solid()
+    } else {
+        message::target::every_solid_named(&named)
+    }
 }
 
 /// Pairs the solid with its slicing: a loft is sliced normal to its spine,
