@@ -3,7 +3,9 @@
 //! (examples/repair/worn_pad.ply, whose surface is `example_z`) starts on
 //! the scanned surface under each bead and ends level at its top, in the
 //! fewest layers the bead's heights allow, and lays the volume between the
-//! scan and the top; what cannot be built is refused with where and why.
+//! scan and the top; what cannot be built is refused with where and why;
+//! its finish is predicted and held; and every travel across the scan, of
+//! the rib and of the worn pad, clears it.
 
 use super::{compile, example_files, example_z, messages, number_after};
 use lmdc::ir::{PathKind, Program};
@@ -307,4 +309,46 @@ fn a_ribs_finish_is_predicted_from_its_moves_and_held() {
 /// A length as lmdc prints it (four significant digits).
 fn short(v: f64) -> String {
     lmdc::units::short(v)
+}
+
+/// Every travel that moves across the scanned part keeps the focus at
+/// least the machine's clearance above the scanned surface (the pad's,
+/// from its formula, within the scan's 0.1 mm of noise and fit), on both
+/// machines of the rib and of the worn pad: the first travels, before
+/// any bead is laid, have only the scan below them.
+#[test]
+fn every_travel_across_the_scan_clears_it_by_the_clearance() {
+    use lmdc::plan::{Move, MoveKind, Plan};
+    for example in ["examples/pad_rib.lmd", "examples/worn_pad.lmd"] {
+        let src = std::fs::read_to_string(example).unwrap();
+        let p = built(&src);
+        let mut travels = 0;
+        for m in &p.machines {
+            let clearance = m.common().clearance;
+            let mut last: Option<[f64; 3]> = None;
+            Plan::new(&p, m).walk(&mut |mv: &Move| {
+                if let (Some(a), MoveKind::Travel) = (last, mv.kind) {
+                    let b = mv.to;
+                    let run = (b[0] - a[0]).hypot(b[1] - a[1]);
+                    if run > 1e-6 {
+                        travels += 1;
+                        let n = (run / 0.5).ceil() as usize;
+                        for i in 0..=n {
+                            let f = i as f64 / n as f64;
+                            let q = [0, 1, 2].map(|k| a[k] + f * (b[k] - a[k]));
+                            let on_scan = q[0].abs() <= 33.0 && q[1].abs() <= 13.0;
+                            let floor = example_z(q[0], q[1]) + clearance - 0.1;
+                            assert!(
+                                !on_scan || q[2] >= floor,
+                                "{example} on {}: a travel at {q:?} under {floor}",
+                                m.name()
+                            );
+                        }
+                    }
+                }
+                last = Some(mv.to);
+            });
+        }
+        assert!(travels >= 8, "{example}: {travels} travels");
+    }
 }
