@@ -214,7 +214,7 @@ fn a_rib_off_its_scan_below_it_or_between_counts_is_refused_with_where() {
 /// The fields that do not go with a wall on a scan, each refused where it
 /// is written: planar slicing, `height` beside `on`, `top` without `on`,
 /// `on` without `top`, and the variable slicing's fields lmdc plans under
-/// an extrusion only.
+/// an extrusion only (`scan`, `follow`, `direction`).
 #[test]
 fn the_fields_a_wall_on_a_scan_does_not_take_are_refused() {
     let files = || example_files(&["worn_pad.ply"]);
@@ -239,12 +239,7 @@ fn the_fields_a_wall_on_a_scan_does_not_take_are_refused() {
     assert!(codes(&no_scan).contains("`top` is the finished height of a wall built on a scan"));
     let no_top = src.replace("top = 13 mm", "");
     assert!(codes(&no_top).contains("`on = scan(…)` needs a `top`"));
-    for field in [
-        "level = auto",
-        "scan = x",
-        "follow = surface",
-        "direction = auto",
-    ] {
+    for field in ["scan = x", "follow = surface", "direction = auto"] {
         let with = src.replace("layers = auto", &format!("layers = auto\n  {field}"));
         let key = field.split(' ').next().unwrap();
         let m = codes(&with);
@@ -351,4 +346,94 @@ fn every_travel_across_the_scan_clears_it_by_the_clearance() {
         }
         assert!(travels >= 8, "{example}: {travels} travels");
     }
+}
+
+/// Levelled first (`level = auto`): the straight rib's passes fill the
+/// trough under its beads up to the level, the scan's highest point under
+/// them (the formula's within the 0.1 mm of noise and fit), in as many
+/// passes as the deepest place needs of the bead's tallest layer, none
+/// standing more than half the lowest layer proud of the level; then the
+/// fewest flat layers that reach 13 mm, each at `z_L + i·(13 − z_L)/N`,
+/// the first of them on the levelled part (`on_plate`). The layers stack
+/// the integral of `13 − z` over the beads' band within 3 %, and the
+/// finish is within the segments' tolerance on the mean, as unlevelled.
+/// A declared level the scan stands above by more than half a bead is
+/// refused.
+#[test]
+fn a_rib_levelled_first_fills_the_trough_then_rises_flat() {
+    let src = rib(STRAIGHT, 13.0, 2).replace("layers = auto", "layers = auto\n  level = auto");
+    let (c, model) =
+        crate::support::data::compile_with_files_and_model(&src, example_files(&["worn_pad.ply"]));
+    let m = messages(&c);
+    let p = c.program.unwrap_or_else(|| panic!("{m}")).into_ir();
+    let [lo, hi] = p.limits.layer_height;
+    let pitch = f64::from(bead_points(&p, 0)[0].pitch);
+    let lines = [-pitch / 2.0, pitch / 2.0];
+    let along = || (0..=450).map(|k| -25.0 + 0.1 * k as f64);
+    let (mut highest, mut deepest) = (f64::NEG_INFINITY, f64::INFINITY);
+    for x in along() {
+        for y in lines {
+            highest = highest.max(example_z(x, y));
+            deepest = deepest.min(example_z(x, y));
+        }
+    }
+    let first = p
+        .layers
+        .iter()
+        .position(|l| l.on_plate)
+        .expect("a regular layer on the level");
+    let level = bead_points(&p, first)[0].pos[2];
+    assert!(
+        (level - highest).abs() < 0.1,
+        "level {level}, scan's highest {highest}"
+    );
+    assert_eq!(first as f64, ((level - deepest) / hi).ceil(), "passes");
+    for i in 0..first {
+        for q in bead_points(&p, i) {
+            let top = q.pos[2] + f64::from(q.layer_height);
+            assert!(top <= level + lo / 2.0 + 0.1, "pass {i}: {q:?} tops {top}");
+        }
+    }
+    let n = p.layers.len() - first;
+    assert_eq!(n as f64, ((13.0 - level) / hi).ceil(), "regular layers");
+    let h = (13.0 - level) / n as f64;
+    for i in 0..n {
+        for q in bead_points(&p, first + i) {
+            assert!((q.pos[2] - (level + i as f64 * h)).abs() < 1e-4, "{q:?}");
+            assert!((f64::from(q.layer_height) - h).abs() < 1e-4, "{q:?}");
+        }
+    }
+    let mut stacked = 0.0;
+    for path in p.layers.iter().flat_map(|l| &l.paths) {
+        for w in path.points.windows(2).filter(|w| w[0].laser_on) {
+            let run = (w[1].pos[0] - w[0].pos[0]).hypot(w[1].pos[1] - w[0].pos[1]);
+            stacked += f64::from(w[0].layer_height) * f64::from(w[0].pitch) * run;
+        }
+    }
+    let (nx, ny) = (900, 100);
+    let (dx, dy) = (45.0 / nx as f64, 2.0 * pitch / ny as f64);
+    let mut integral = 0.0;
+    for i in 0..nx {
+        for j in 0..ny {
+            let (x, y) = (
+                -25.0 + (i as f64 + 0.5) * dx,
+                -pitch + (j as f64 + 0.5) * dy,
+            );
+            integral += (13.0 - example_z(x, y)) * dx * dy;
+        }
+    }
+    assert!(
+        (stacked / integral - 1.0).abs() < 0.03,
+        "stacked {stacked} mm³ vs ∫ {integral} mm³"
+    );
+    let (_, samples) = lmdc::report::finish::sampled(&p, &model.unwrap()).unwrap();
+    let mean = samples.iter().map(|s| s.off.abs()).sum::<f64>() / samples.len() as f64;
+    assert!(mean <= 0.1 + 0.03 * hi, "mean departure {mean}");
+    let low = rib(STRAIGHT, 13.0, 2).replace("layers = auto", "layers = auto\n  level = 9 mm");
+    let m = messages(&compile(&low, example_files(&["worn_pad.ply"])));
+    assert!(
+        m.contains("lmd::repair-level: the scanned surface at (-25, "),
+        "{m}"
+    );
+    assert!(m.contains("above the level 9 mm"), "{m}");
 }

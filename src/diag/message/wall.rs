@@ -267,6 +267,6 @@ pub fn no_count_on_scan(c: &NoCountOnScan<'_>) -> Diagnostic {
         .label(c.spans[1], "the scan")
         .label(c.bead.1, format!("the bead lays {h_lo} .. {h_hi}"))
         .help(format!(
-            "this would work: {fix}a bead whose heights span more; a wall is not levelled first (`level` levels under an extrusion's footprint)"
+            "this would work: {fix}a bead whose heights span more; or `level = auto` in the slicing block, which fills the wear up to the scan's highest point under the wall first"
         ))
 }

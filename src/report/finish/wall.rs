@@ -1,34 +1,97 @@
 //! The finish of a wall on a scan (docs/repair.md, *A wall on a scan*):
-//! its beads run through the same points on every layer (each lays the
-//! same share of the gap), so every laser-on move of the last layer has a
-//! move under it on each layer below, with the same middle. At each such
-//! middle the predicted face is the scanned surface there plus what every
-//! layer's move raises it by (`A/pitch` at the move's speed,
+//! every bead of a line runs along the same polyline on every layer (its
+//! levelling passes through their own points on it), so at the middle of
+//! each laser-on move of the last layer the predicted face is the scanned
+//! surface there plus what each layer's move through that place raises it
+//! by (`A/pitch` at the move's speed,
 //! [`crate::ir::Point::predicted_rise`]), against the wall's flat top.
+//! The moves are found through a grid of cells half a bead wide: linear
+//! in the moves.
 
 use super::{first_layer, Finish, Sample};
 use crate::ir::Program;
 use crate::sema::model::WallOnScan;
 use std::collections::BTreeMap;
 
-/// A move's middle, to a nanometre: the same on every layer, whichever
-/// way the bead runs (`(a + b)/2` is `(b + a)/2` in floating point).
-fn key(a: [f64; 3], b: [f64; 3]) -> ([i64; 2], [f64; 2]) {
-    let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
-    (m.map(|c| (c * 1e6).round() as i64), m)
+/// Every laser-on move of the plan, seen from above, in a grid of square
+/// cells: each move is listed in every cell its box covers.
+struct Moves {
+    cell: f64,
+    /// Per move: its ends (x, y) and the rise it lays.
+    moves: Vec<([f64; 2], [f64; 2], f64, usize)>,
+    cells: BTreeMap<[i64; 2], Vec<usize>>,
+}
+
+impl Moves {
+    fn new(program: &Program, d: &crate::deposit::Deposit, cell: f64) -> Moves {
+        let mut out = Moves {
+            cell,
+            moves: Vec::new(),
+            cells: BTreeMap::new(),
+        };
+        for (li, layer) in program.layers.iter().enumerate() {
+            for path in &layer.paths {
+                for w in path.points.windows(2).filter(|w| w[0].laser_on) {
+                    let (a, b) = ([w[0].pos[0], w[0].pos[1]], [w[1].pos[0], w[1].pos[1]]);
+                    let rise = w[0].predicted_rise(d, Some(&w[1]));
+                    let k = out.moves.len();
+                    out.moves.push((a, b, rise, li));
+                    let [i0, j0] = out.key([a[0].min(b[0]), a[1].min(b[1])]);
+                    let [i1, j1] = out.key([a[0].max(b[0]), a[1].max(b[1])]);
+                    for i in i0..=i1 {
+                        for j in j0..=j1 {
+                            out.cells.entry([i, j]).or_default().push(k);
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    fn key(&self, p: [f64; 2]) -> [i64; 2] {
+        p.map(|c| (c / self.cell).floor() as i64)
+    }
+
+    /// What every layer raises the place `p` by: on each layer, the first
+    /// move through it (within a micrometre: the beads of one line run
+    /// through the same points, and the lines are a pitch apart).
+    fn raised(&self, p: [f64; 2]) -> f64 {
+        let Some(list) = self.cells.get(&self.key(p)) else {
+            return 0.0;
+        };
+        let mut seen: Vec<usize> = Vec::new();
+        let mut sum = 0.0;
+        for &k in list {
+            let (a, b, rise, layer) = self.moves[k];
+            if seen.contains(&layer) || distance(p, a, b) > 1e-3 {
+                continue;
+            }
+            seen.push(layer);
+            sum += rise;
+        }
+        sum
+    }
+}
+
+/// The distance from `p` to the segment `a`–`b`, mm.
+fn distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
 }
 
 /// The finish of `program`, the plan of the wall `on`, with every place
 /// it looked at; `None` for a plan without a bead or a layer.
 pub(super) fn sampled(program: &Program, on: &WallOnScan) -> Option<(Finish, Vec<Sample>)> {
     let d = program.bead.as_ref()?.deposit();
-    let mut raised: BTreeMap<[i64; 2], f64> = BTreeMap::new();
-    for path in program.layers.iter().flat_map(|l| &l.paths) {
-        for w in path.points.windows(2).filter(|w| w[0].laser_on) {
-            let (k, _) = key(w[0].pos, w[1].pos);
-            *raised.entry(k).or_default() += w[0].predicted_rise(&d, Some(&w[1]));
-        }
-    }
+    let cell = (program.limits.bead_width / 2.0).max(0.1);
+    let moves = Moves::new(program, &d, cell);
     let last = program.layers.last()?;
     let top = on.top.0;
     let mut f = Finish {
@@ -45,11 +108,14 @@ pub(super) fn sampled(program: &Program, on: &WallOnScan) -> Option<(Finish, Vec
     let mut samples = Vec::new();
     for path in &last.paths {
         for w in path.points.windows(2).filter(|w| w[0].laser_on) {
-            let (k, at) = key(w[0].pos, w[1].pos);
+            let at = [
+                (w[0].pos[0] + w[1].pos[0]) / 2.0,
+                (w[0].pos[1] + w[1].pos[1]) / 2.0,
+            ];
             let Some(base) = on.base.surface.at(at) else {
                 continue;
             };
-            let off = base + raised.get(&k).copied().unwrap_or(0.0) - top;
+            let off = base + moves.raised(at) - top;
             samples.push(Sample { at, top, off });
             f.points += 1;
             squares += off * off;

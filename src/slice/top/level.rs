@@ -444,7 +444,7 @@ impl Line<'_> {
 /// holds a stretch of one speed to. The best height for the finished
 /// surface (the segmentation's) is not: one pass carries a gap's whole
 /// slope, where a variable layer carries a share of it.
-fn mean_heights(track: &mut Track) {
+pub(in crate::slice) fn mean_heights(track: &mut Track) {
     let mut sums = vec![(0.0f64, 0.0f64); track.heights.len()];
     for (j, &q) in track.seg.iter().enumerate() {
         let len = track.t[j + 1] - track.t[j];

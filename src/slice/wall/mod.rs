@@ -17,6 +17,7 @@
 //! A wall on a scan is laid the same way in layers of variable thickness
 //! (module `on_scan`).
 
+mod level;
 mod on_scan;
 
 pub use on_scan::slice as slice_on_scan;
@@ -174,18 +175,8 @@ fn beads(
     k: usize,
     lay: impl Fn(usize, bool, &Track) -> Vec<Point>,
 ) -> Vec<Path> {
-    let m = tracks.len();
-    let mut paths = Vec::with_capacity(m * 3);
-    for i in 0..m {
-        // Alternating: every other layer across the wall the other way,
-        // and every other bead laid the other way (so each bead runs the
-        // other way from the one below it).
-        let (j, forward) = if wall.one_way {
-            (i, true)
-        } else {
-            let j = if k.is_multiple_of(2) { i } else { m - 1 - i };
-            (j, (k * m + i).is_multiple_of(2))
-        };
+    let mut paths = Vec::with_capacity(tracks.len() * 3);
+    for (j, forward) in order(wall, tracks.len(), k) {
         let track = if forward {
             None
         } else {
@@ -214,6 +205,23 @@ fn beads(
         }
     }
     paths
+}
+
+/// The beads of layer `k` of a wall of `m` in the order laid: each one's
+/// track and whether it runs forward. Alternating: every other layer
+/// across the wall the other way, and every other bead laid the other way
+/// (so each bead runs the other way from the one below it).
+fn order(wall: &OpenWall, m: usize, k: usize) -> Vec<(usize, bool)> {
+    (0..m)
+        .map(|i| {
+            if wall.one_way {
+                (i, true)
+            } else {
+                let j = if k.is_multiple_of(2) { i } else { m - 1 - i };
+                (j, (k * m + i).is_multiple_of(2))
+            }
+        })
+        .collect()
 }
 
 /// A lead between `at` and the bead's end point `end`, laser off, laid as

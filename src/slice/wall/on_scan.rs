@@ -18,8 +18,9 @@ use crate::diag::message::{self, top::CountOutside};
 use crate::diag::Diagnostics;
 use crate::geometry::scan::HeightField;
 use crate::ir::{Frame, Layer};
-use crate::sema::model::{Bead, Model, OpenWall, VariableSlicing, WallOnScan};
-use crate::slice::top::{along, segments_too_short, spaced, Base, Failure, Process, Track};
+use crate::sema::model::{Bead, Level, Model, OpenWall, VariableSlicing, WallOnScan};
+pub(super) use crate::slice::top::Failure;
+use crate::slice::top::{along, segments_too_short, spaced, Base, Process, Track};
 use crate::slice::variable::layers::{choose_layers, LayerCount, LayerError};
 use crate::slice::variable::profile::TrackProfile;
 use crate::slice::variable::segments::Segment;
@@ -39,10 +40,13 @@ const MAX_SAMPLES: f64 = 1e6;
 
 /// One bead's centre line sampled: the length along it, the point and the
 /// gap to fill there.
-struct Sampled {
-    s: Vec<f64>,
-    xy: Vec<[f64; 2]>,
-    gap: Vec<f64>,
+#[derive(Clone)]
+pub(super) struct Sampled {
+    pub s: Vec<f64>,
+    pub xy: Vec<[f64; 2]>,
+    pub gap: Vec<f64>,
+    /// The scanned surface there, mm.
+    pub base: Vec<f64>,
 }
 
 /// The first place the scan cannot be built on, and how many more.
@@ -52,8 +56,9 @@ struct Unbuildable {
     below: Option<([f64; 2], f64, usize)>,
 }
 
-/// Slices a wall on a scan into layers of variable thickness. Returns the
-/// layers and any warnings, or every diagnostic found.
+/// Slices a wall on a scan into layers of variable thickness (levelling
+/// its scan first when `level = …`, module `level`). Returns the layers
+/// and any warnings, or every diagnostic found.
 pub fn slice(
     model: &Model,
     bead: &Bead,
@@ -72,23 +77,69 @@ pub fn slice(
         .iter()
         .map(|l| sample(&l.points, step, on.top.0, surface, &mut bad))
         .collect();
-    unbuildable(&bad, wall, on)?;
-    let range = gap_range(&sampled).ok_or_else(|| internal("the wall has no point"))?;
-    let n = count(&range, &map, bead, on, slicing)?;
+    let levelled = slicing.level != Level::None;
+    unbuildable(&bad, wall, on, !levelled)?;
     let spec = SegmentSpec {
         tolerance: Positive::new("tolerance", slicing.tolerance)
             .map_err(|e| internal(&e.to_string()))?,
         min_length: Positive::new("minimum segment", slicing.min_length.unwrap_or(bead.width))
             .map_err(|e| internal(&e.to_string()))?,
     };
-    let planned = match segmented(&sampled, spec)? {
+    let cx = Cx {
+        model,
+        bead,
+        wall,
+        on,
+        slicing,
+        lines: &lines,
+        map,
+        spec,
+        pitch: pitch.0,
+    };
+    if levelled {
+        return super::level::slice(&cx, &sampled).map(|l| (l, Diagnostics::new()));
+    }
+    let top = on.top.0;
+    let gap = |p: [f64; 2]| surface.at(p).map(|b| top - b).filter(|&g| g > 0.0);
+    let layers = regular(&cx, &sampled, Base::Scan(surface), &gap)?;
+    Ok((layers, Diagnostics::new()))
+}
+
+/// What a wall on a scan's layers are planned from.
+pub(super) struct Cx<'a> {
+    pub model: &'a Model,
+    pub bead: &'a Bead,
+    pub wall: &'a OpenWall,
+    pub on: &'a WallOnScan,
+    pub slicing: &'a VariableSlicing,
+    /// Each bead's centre line, across the wall.
+    pub lines: &'a [Line],
+    /// The bead's heights and speeds at the beads' pitch.
+    pub map: BeadMap<'a>,
+    pub spec: SegmentSpec,
+    /// The beads' pitch, mm.
+    pub pitch: f64,
+}
+
+/// The layers that each lay the same share of every sample's gap, on
+/// `base`; `gap(p)` is the gap where a segment starts between samples.
+pub(super) fn regular(
+    cx: &Cx<'_>,
+    sampled: &[Sampled],
+    base: Base<'_>,
+    gap: &dyn Fn([f64; 2]) -> Option<f64>,
+) -> Result<Vec<Layer>, Diagnostics> {
+    let (model, bead, on, slicing) = (cx.model, cx.bead, cx.on, cx.slicing);
+    let range = gap_range(sampled).ok_or_else(|| internal("the wall has no point"))?;
+    let n = count(&range, &cx.map, bead, on, slicing)?;
+    let planned = match segmented(sampled, cx.spec)? {
         Ok(segments) => sampled
             .iter()
             .zip(&segments)
-            .map(|(line, s)| on_samples(line, pitch.0, s, (surface, on.top.0)))
+            .map(|(line, s)| on_samples(line, cx.pitch, s, gap))
             .collect::<Vec<_>>(),
         Err(failures) => {
-            return Err(too_short(&failures, &sampled, bead, on, slicing, spec).into());
+            return Err(too_short(&failures, sampled, bead, on, slicing, cx.spec).into());
         }
     };
     let per_layer: usize = planned.iter().map(|(t, _)| t.t.len() + 4).sum();
@@ -101,20 +152,20 @@ pub fn slice(
         )
         .into());
     }
-    let process = Process::of(model, bead, Base::Scan(surface));
+    let process = Process::of(model, bead, base);
     let layers = (0..n.get())
         .map(|i| {
             let power = model.process.power.at(i as usize).watts() as f32;
             let k = i as usize;
-            let paths = beads(wall, &lines, k, |j, forward, _: &Line| {
+            let paths = beads(cx.wall, cx.lines, k, |j, forward, _: &Line| {
                 let (track, xy) = &planned[j];
                 let lay = (i, n.get() as f64);
-                along(track, xy, &map, &process, None, lay, power, !forward)
+                along(track, xy, &cx.map, &process, None, lay, power, !forward)
             });
             layer(k, n.get() as usize, paths, Frame::PART)
         })
         .collect();
-    Ok((layers, Diagnostics::new()))
+    Ok(layers)
 }
 
 /// The length of a polyline, mm.
@@ -139,13 +190,15 @@ fn sample(
         s: Vec::new(),
         xy: Vec::new(),
         gap: Vec::new(),
+        base: Vec::new(),
     };
     let mut at = 0.0;
     let mut push = |p: [f64; 2], s: f64, out: &mut Sampled| {
         if out.s.last().is_some_and(|&last| s <= last) {
             return;
         }
-        let gap = match surface.at(p) {
+        let b = surface.at(p);
+        let gap = match b {
             None => {
                 note(&mut bad.uncovered, p);
                 f64::NAN
@@ -162,6 +215,7 @@ fn sample(
         out.s.push(s);
         out.xy.push(p);
         out.gap.push(gap);
+        out.base.push(b.unwrap_or(f64::NAN));
     };
     for w in points.windows(2) {
         let [a, b] = [w[0], w[1]];
@@ -188,8 +242,15 @@ fn note(first: &mut Option<([f64; 2], usize)>, p: [f64; 2]) {
     }
 }
 
-/// The error for where the wall cannot be built on the scan, if anywhere.
-fn unbuildable(bad: &Unbuildable, wall: &OpenWall, on: &WallOnScan) -> Result<(), Diagnostics> {
+/// The error for where the wall cannot be built on the scan, if anywhere:
+/// where it has no surface, and (`below`: not levelled first) where the
+/// top is not above it.
+fn unbuildable(
+    bad: &Unbuildable,
+    wall: &OpenWall,
+    on: &WallOnScan,
+    below: bool,
+) -> Result<(), Diagnostics> {
     let mut diags = Diagnostics::new();
     let spans = [wall.along_span, on.base.span];
     if let Some((p, more)) = bad.uncovered {
@@ -198,7 +259,7 @@ fn unbuildable(bad: &Unbuildable, wall: &OpenWall, on: &WallOnScan) -> Result<()
             p, more, extent, spans[0], spans[1], None,
         ));
     }
-    if let Some((p, b, more)) = bad.below {
+    if let Some((p, b, more)) = bad.below.filter(|_| below) {
         let at = [on.top_span, on.base.span];
         diags.push(message::scan::top_below(p, on.top.0, b, more, at, None));
     }
@@ -303,7 +364,7 @@ fn top_fix(
 
 /// Each bead's fewest constant-speed segments within `spec` over its
 /// samples; or the beads that cannot be segmented.
-fn segmented(
+pub(super) fn segmented(
     sampled: &[Sampled],
     spec: SegmentSpec,
 ) -> Result<Result<Vec<Vec<Segment>>, Vec<Failure>>, Diagnostics> {
@@ -338,13 +399,13 @@ fn segmented(
 /// The track of `line` filling a strip `pitch` wide, through every sample
 /// (a path's corners are among them) and a point where each segment
 /// starts, so each speed holds over its own segment: between two samples
-/// the path is straight, and the gap there is the scan's under `top`.
+/// the path is straight, and `gap` gives the gap there.
 /// Each move belongs to the segment its middle lies in. Also the points.
-fn on_samples(
+pub(super) fn on_samples(
     line: &Sampled,
     pitch: f64,
     segments: &[Segment],
-    (surface, top): (&HeightField, f64),
+    gap: &dyn Fn([f64; 2]) -> Option<f64>,
 ) -> (Track, Vec<[f64; 2]>) {
     let (mut t, mut h, mut xy) = (Vec::new(), Vec::new(), Vec::new());
     let mut starts = segments.iter().skip(1).map(|g| g.start.0).peekable();
@@ -360,9 +421,9 @@ fn on_samples(
                 let [p, q] = [line.xy[k - 1], line.xy[k]];
                 let at = [p[0] + f * (q[0] - p[0]), p[1] + f * (q[1] - p[1])];
                 let inside = c - a > 1e-9 * b.abs().max(1.0);
-                if let Some(base) = surface.at(at).filter(|&z| inside && top - z > 0.0) {
+                if let Some(g) = gap(at).filter(|_| inside) {
                     t.push(c);
-                    h.push(top - base);
+                    h.push(g);
                     xy.push(at);
                 }
             }
@@ -394,7 +455,7 @@ fn on_samples(
 }
 
 /// The error for beads whose tolerance needs segments too short.
-fn too_short(
+pub(super) fn too_short(
     failures: &[Failure],
     sampled: &[Sampled],
     bead: &Bead,
@@ -417,6 +478,6 @@ fn too_short(
 }
 
 /// An error that is lmdc's, not the file's.
-fn internal(what: &str) -> Diagnostics {
+pub(super) fn internal(what: &str) -> Diagnostics {
     message::top::internal(what)
 }

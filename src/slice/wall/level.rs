@@ -1,0 +1,260 @@
+//! A wall on a scan levelled first (`level = auto | HEIGHT` in `slicing
+//! variable`, docs/repair.md, *A wall on a scan*), as an extrusion's wear
+//! is (`crate::slice::top`'s levelling): the gap `G = z_L − B` between
+//! the level `z_L` and the scanned surface under each bead is filled
+//! first, each place in the fewest passes that keep a bead's height
+//! (`n = ⌈G/h_max⌉`, each laying `G/n` kept within the bead's range at
+//! the beads' pitch), nothing where the gap is thinner than half the
+//! lowest bead. Pass `k` lays every stretch of a bead's line that needs
+//! more than `k` passes, each stretch at least a bead long, so each pass
+//! lies on the one before. The regular layers then rise from the level to
+//! the top as the wall's layers do, flat; the first of them lies partly on
+//! the scan, so `lmd::stacking` does not look for the pass below it.
+//!
+//! `level = auto` is the scan's highest point under the beads; a declared
+//! level may stand below it by at most half the lowest bead (where the
+//! scan stands above it, nothing is laid). The top must stand at least the
+//! lowest bead above the level.
+
+use super::on_scan::{internal, on_samples, regular, segmented, too_short, Cx, Sampled};
+use super::{layer, order};
+use crate::diag::{message, Diagnostics};
+use crate::ir::{Frame, Layer, Path, PathKind};
+use crate::sema::model::Level;
+use crate::slice::top::{along, mean_heights, passes, Base, Process, Track};
+use crate::slice::variable::speed::HeightMap;
+use crate::slice::variable::SLACK;
+
+/// A stretch of one bead's line that takes `n` passes: its samples.
+struct Piece {
+    line: usize,
+    n: u32,
+    track: Track,
+    xy: Vec<[f64; 2]>,
+}
+
+/// The levelling passes, then the regular layers from the level to the
+/// top.
+pub(super) fn slice(cx: &Cx<'_>, sampled: &[Sampled]) -> Result<Vec<Layer>, Diagnostics> {
+    let [lo, hi] = {
+        let r = cx.map.heights();
+        [r.low().0, r.high().0]
+    };
+    let z = height(cx, sampled, lo / 2.0)?;
+    let top = cx.on.top.0;
+    if top - z < lo * (1.0 - SLACK) {
+        let at = cx.slicing.level.span().unwrap_or(cx.slicing.span);
+        let p = sampled.first().and_then(|l| l.xy.first()).copied();
+        let d = message::scan::top_near_level(p.unwrap_or([0.0; 2]), top, z, lo, at, None);
+        return Err(d.into());
+    }
+    let pieces = pieces(cx, sampled, z, [lo, hi])?;
+    let mut layers = laid(cx, &pieces)?;
+    let levelled: Vec<Sampled> = sampled
+        .iter()
+        .map(|l| Sampled {
+            s: l.s.clone(),
+            xy: l.xy.clone(),
+            gap: vec![top - z; l.s.len()],
+            base: vec![z; l.s.len()],
+        })
+        .collect();
+    let flat = |_: [f64; 2]| Some(top - z);
+    let mut rest = regular(cx, &levelled, Base::Level(z), &flat)?;
+    let first = layers.len();
+    for (i, layer) in rest.iter_mut().enumerate() {
+        let power = cx.model.process.power.at(first + i).watts() as f32;
+        for p in layer.paths.iter_mut().flat_map(|p| &mut p.points) {
+            p.power = power;
+        }
+        layer.on_plate = first > 0 && i == 0;
+    }
+    layers.extend(rest);
+    let total = layers.len() as f64;
+    for (i, layer) in layers.iter_mut().enumerate() {
+        layer.index = i;
+        layer.station = i as f64 / total;
+    }
+    Ok(layers)
+}
+
+/// The level: declared, or the scan's highest point under the beads; the
+/// scan may stand at most `slack` above a declared one.
+fn height(cx: &Cx<'_>, sampled: &[Sampled], slack: f64) -> Result<f64, Diagnostics> {
+    let highest = sampled.iter().flat_map(|l| l.xy.iter().zip(&l.base)).fold(
+        None,
+        |best: Option<([f64; 2], f64)>, (&p, &b)| match best {
+            Some((_, h)) if h >= b => best,
+            _ => Some((p, b)),
+        },
+    );
+    let Some((at, b)) = highest else {
+        return Err(internal("the wall has no point"));
+    };
+    match cx.slicing.level {
+        Level::At(z, span) if b > z.0 + slack => {
+            Err(message::scan::above_level(at, b, z.0, slack, [span, cx.on.base.span], None).into())
+        }
+        Level::At(z, _) => Ok(z.0),
+        _ => Ok(b),
+    }
+}
+
+/// Every line's stretches of one pass count (at least one, at least a
+/// bead long), each in the fewest constant-speed segments; or the error
+/// of those whose tolerance needs segments too short.
+fn pieces(
+    cx: &Cx<'_>,
+    sampled: &[Sampled],
+    z: f64,
+    range: [f64; 2],
+) -> Result<Vec<Piece>, Diagnostics> {
+    let surface = &cx.on.base.surface;
+    let count = |p: [f64; 2]| surface.at(p).map_or(0, |b| passes(z - b, range).0);
+    let mut stretches: Vec<(usize, u32, Sampled)> = Vec::new();
+    for (line, l) in sampled.iter().enumerate() {
+        for (n, run) in runs(l, &count, cx.bead.width.0) {
+            // Each point's scan and what the run's `n` passes lay there
+            // together, the gap kept within their range (a point the
+            // bisection found off the scan is left out).
+            let mut piece = Sampled {
+                s: Vec::new(),
+                xy: Vec::new(),
+                gap: Vec::new(),
+                base: Vec::new(),
+            };
+            for (&s, &p) in run.s.iter().zip(&run.xy) {
+                if let Some(b) = surface.at(p) {
+                    piece.s.push(s);
+                    piece.xy.push(p);
+                    piece.gap.push(within(z - b, n, range));
+                    piece.base.push(b);
+                }
+            }
+            if piece.s.len() >= 2 {
+                stretches.push((line, n, piece));
+            }
+        }
+    }
+    let samples: Vec<Sampled> = stretches.iter().map(|(.., s)| s.clone()).collect();
+    let segments = match segmented(&samples, cx.spec)? {
+        Ok(s) => s,
+        Err(failures) => {
+            let (bead, on, slicing) = (cx.bead, cx.on, cx.slicing);
+            return Err(too_short(&failures, &samples, bead, on, slicing, cx.spec).into());
+        }
+    };
+    Ok(stretches
+        .into_iter()
+        .zip(segments)
+        .map(|((line, n, s), segs)| {
+            let gap = |p: [f64; 2]| surface.at(p).map(|b| within(z - b, n, range));
+            let (mut track, xy) = on_samples(&s, cx.pitch, &segs, &gap);
+            mean_heights(&mut track);
+            Piece { line, n, track, xy }
+        })
+        .collect())
+}
+
+/// What `n` passes of `lo .. hi` each lay of a gap `g` together: `g`,
+/// kept within `n·lo .. n·hi`.
+fn within(g: f64, n: u32, [lo, hi]: [f64; 2]) -> f64 {
+    g.clamp(n as f64 * lo, n as f64 * hi)
+}
+
+/// The stretches of `l` that take the same number of passes (`count` at a
+/// point), at least one and at least `least` long, as samples; where the
+/// count changes between two samples, the place is found by halving along
+/// the straight piece between them and both stretches end there.
+fn runs(l: &Sampled, count: &dyn Fn([f64; 2]) -> u32, least: f64) -> Vec<(u32, Sampled)> {
+    let counts: Vec<u32> = l.xy.iter().map(|&p| count(p)).collect();
+    let mut out = Vec::new();
+    let m = l.s.len();
+    let mut start = 0;
+    // The run's first point: a sample, or where the count changed.
+    let mut from: ([f64; 2], f64) = (l.xy[0], l.s[0]);
+    for i in 1..=m {
+        if i < m && counts[i] == counts[start] {
+            continue;
+        }
+        let to = if i == m {
+            (l.xy[m - 1], l.s[m - 1])
+        } else {
+            let (a, b) = ((l.xy[i - 1], l.s[i - 1]), (l.xy[i], l.s[i]));
+            let at = |f: f64| {
+                let p = [
+                    a.0[0] + f * (b.0[0] - a.0[0]),
+                    a.0[1] + f * (b.0[1] - a.0[1]),
+                ];
+                (p, a.1 + f * (b.1 - a.1))
+            };
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..20 {
+                let mid = 0.5 * (lo + hi);
+                if count(at(mid).0) == counts[start] {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            at(0.5 * (lo + hi))
+        };
+        if counts[start] > 0 && to.1 - from.1 >= least {
+            let mut run = Sampled {
+                s: vec![from.1],
+                xy: vec![from.0],
+                gap: Vec::new(),
+                base: Vec::new(),
+            };
+            for k in start..i {
+                if l.s[k] > from.1 && l.s[k] < to.1 {
+                    run.s.push(l.s[k]);
+                    run.xy.push(l.xy[k]);
+                }
+            }
+            run.s.push(to.1);
+            run.xy.push(to.0);
+            out.push((counts[start], run));
+        }
+        start = i;
+        from = to;
+    }
+    out
+}
+
+/// The passes as layers: pass `k` lays the pieces of more than `k`
+/// passes, bead by bead in the wall's order and direction for that layer.
+fn laid(cx: &Cx<'_>, pieces: &[Piece]) -> Result<Vec<Layer>, Diagnostics> {
+    let count = pieces.iter().map(|p| p.n).max().unwrap_or(0) as usize;
+    let process = Process::of(cx.model, cx.bead, Base::Scan(&cx.on.base.surface));
+    let layers = (0..count)
+        .map(|k| {
+            let power = cx.model.process.power.at(k).watts() as f32;
+            let mut paths = Vec::new();
+            for (j, forward) in order(cx.wall, cx.lines.len(), k) {
+                let mut here: Vec<&Piece> = pieces
+                    .iter()
+                    .filter(|p| p.line == j && p.n as usize > k)
+                    .collect();
+                if !forward {
+                    here.reverse();
+                }
+                paths.extend(here.into_iter().map(|p| Path {
+                    kind: PathKind::Wall,
+                    points: along(
+                        &p.track,
+                        &p.xy,
+                        &cx.map,
+                        &process,
+                        None,
+                        (k as u32, p.n as f64),
+                        power,
+                        !forward,
+                    ),
+                }));
+            }
+            layer(k, count, paths, Frame::PART)
+        })
+        .collect();
+    Ok(layers)
+}
