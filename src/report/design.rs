@@ -18,7 +18,7 @@
 //!   from its right face to its left: the sum over 64 parallel offsets
 //!   of the path of `∫ (top − B) ds` along each, times their spacing
 //!   (parallel curves' lengths take the bends' stretch), sampled every
-//!   0.1 mm;
+//!   0.1 mm (at most 100 000 places an offset);
 //! - a footprint filled along a tilted build direction `d`
 //!   (`direction = auto`): the same integral in the part turned so `d` is
 //!   up, as the fill is planned — over the footprint seen along `d`, of
@@ -130,10 +130,17 @@ fn scan_wall(wall: &OpenWall, on: &WallOnScan, w: f64, pitch: f64) -> (f64, Stri
         let Some(path) = wall.path.offset(d) else {
             continue;
         };
-        for piece in path.flatten(CHORD).windows(2) {
+        let line = path.flatten(CHORD);
+        let length: f64 = line
+            .windows(2)
+            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+            .sum();
+        // A long wall sampled more coarsely: at most 1e5 places an offset.
+        let along = ALONG.max(length / 1e5);
+        for piece in line.windows(2) {
             let [a, b] = [piece[0], piece[1]];
             let len = (b[0] - a[0]).hypot(b[1] - a[1]);
-            let n = (len / ALONG).ceil().max(1.0) as usize;
+            let n = (len / along).ceil().max(1.0) as usize;
             for i in 0..n {
                 let f = (i as f64 + 0.5) / n as f64;
                 let p = [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])];

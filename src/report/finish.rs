@@ -176,18 +176,7 @@ fn of_fill(program: &Program, model: &Model, ex: &TopExtrusion) -> Option<(Finis
     let last = program.layers.last()?;
     let by_line = moves(&program.layers, &d, &turn);
     let mut top = Target::new(ex)?;
-    let mut f = Finish {
-        points: 0,
-        below_mm: 0.0,
-        below_at: [0.0; 2],
-        above_mm: 0.0,
-        above_at: [0.0; 2],
-        rms_mm: 0.0,
-        first_layer_mm: first_layer(&program.layers[0])?,
-        along,
-    };
-    let mut squares = 0.0;
-    let mut samples = Vec::new();
+    let mut tally = Tally::new(first_layer(&program.layers[0])?, along);
     // Every eighth of a bead along the last layer's tracks.
     let step = program.limits.bead_width / 8.0;
     if !(step.is_finite() && step > 0.0) {
@@ -221,25 +210,60 @@ fn of_fill(program: &Program, model: &Model, ex: &TopExtrusion) -> Option<(Finis
             let off = base + per.iter().map(|m| rise_at(m, t)).sum::<f64>() - want;
             // The place on the target, named in the part.
             let at = turn.back([x, y, want]);
-            samples.push(Sample {
-                at: [at[0], at[1]],
-                top: at[2],
-                off,
-            });
-            f.points += 1;
-            squares += off * off;
-            if -off > f.below_mm {
-                (f.below_mm, f.below_at) = (-off, [at[0], at[1]]);
-            }
-            if off > f.above_mm {
-                (f.above_mm, f.above_at) = (off, [at[0], at[1]]);
-            }
+            tally.add([at[0], at[1]], at[2], off);
         }
     }
-    (f.points > 0).then(|| {
-        f.rms_mm = (squares / f.points as f64).sqrt();
-        (f, samples)
-    })
+    tally.done()
+}
+
+/// The finish as its places are added: the worst each way, the squares,
+/// every place.
+struct Tally {
+    f: Finish,
+    squares: f64,
+    samples: Vec<Sample>,
+}
+
+impl Tally {
+    fn new(first_layer_mm: [f64; 2], along: Option<[f64; 3]>) -> Self {
+        Tally {
+            f: Finish {
+                points: 0,
+                below_mm: 0.0,
+                below_at: [0.0; 2],
+                above_mm: 0.0,
+                above_at: [0.0; 2],
+                rms_mm: 0.0,
+                first_layer_mm,
+                along,
+            },
+            squares: 0.0,
+            samples: Vec::new(),
+        }
+    }
+
+    /// The face departs from the top `top` by `off` at `at` (above:
+    /// positive).
+    fn add(&mut self, at: [f64; 2], top: f64, off: f64) {
+        let f = &mut self.f;
+        self.samples.push(Sample { at, top, off });
+        f.points += 1;
+        self.squares += off * off;
+        if -off > f.below_mm {
+            (f.below_mm, f.below_at) = (-off, at);
+        }
+        if off > f.above_mm {
+            (f.above_mm, f.above_at) = (off, at);
+        }
+    }
+
+    /// The finish and its places, if any was added.
+    fn done(mut self) -> Option<(Finish, Vec<Sample>)> {
+        (self.f.points > 0).then(|| {
+            self.f.rms_mm = (self.squares / self.f.points as f64).sqrt();
+            (self.f, self.samples)
+        })
+    }
 }
 
 /// The build direction of a plan laid along a tilted one (`direction =

@@ -62,11 +62,34 @@ fn a_rib_on_the_worn_pad_starts_on_its_scan_and_ends_level_at_its_top() {
         assert!((-25.0 - 1e-9..=20.0 + 1e-9).contains(&x), "{x}");
         assert!((z - example_z(x, y)).abs() < 0.1, "({x}, {y}): {z}");
     }
-    for i in 0..n {
-        for (q, q0) in bead_points(&p, i).iter().zip(&bead_points(&p, i % 2)) {
-            // Layers alternate: layer i runs as layer i mod 2 does.
-            assert_eq!(q.pos[..2], q0.pos[..2]);
+    // Each bead runs the other way from the one below it, and the layers
+    // take the beads in turn across the wall.
+    let runs = |i: usize| -> Vec<(bool, bool)> {
+        p.layers[i]
+            .paths
+            .iter()
+            .filter(|path| path.kind == PathKind::Wall)
+            .map(|path| {
+                let (a, b) = (path.points[0].pos, path.points[path.points.len() - 1].pos);
+                (a[1] > 0.0, b[0] > a[0])
+            })
+            .collect()
+    };
+    for i in 1..n {
+        let (below, here) = (runs(i - 1), runs(i));
+        assert_eq!(here.len(), 2);
+        assert_eq!(
+            here[0].0,
+            below[1].0,
+            "layer {i} starts where {} ended",
+            i - 1
+        );
+        for (side, forward) in &here {
+            let under = below.iter().find(|b| b.0 == *side).unwrap();
+            assert_ne!(*forward, under.1, "layer {i}: a bead runs as the one below");
         }
+    }
+    for i in 0..n {
         for q in bead_points(&p, i) {
             let h = f64::from(q.layer_height);
             let want = 13.0 - (n - i) as f64 * h;
@@ -310,7 +333,10 @@ fn short(v: f64) -> String {
 /// least the machine's clearance above the scanned surface (the pad's,
 /// from its formula, within the scan's 0.1 mm of noise and fit), on both
 /// machines of the rib and of the worn pad: the first travels, before
-/// any bead is laid, have only the scan below them.
+/// any bead is laid, have only the scan below them. And no move at all
+/// (an approach, a lead, a bead) takes the focus under the scanned
+/// surface: a lead on the first layer runs on at the bead's height above
+/// the scan, where the scan rises past the path's end.
 #[test]
 fn every_travel_across_the_scan_clears_it_by_the_clearance() {
     use lmdc::plan::{Move, MoveKind, Plan};
@@ -322,29 +348,54 @@ fn every_travel_across_the_scan_clears_it_by_the_clearance() {
             let clearance = m.common().clearance;
             let mut last: Option<[f64; 3]> = None;
             Plan::new(&p, m).walk(&mut |mv: &Move| {
-                if let (Some(a), MoveKind::Travel) = (last, mv.kind) {
+                if let Some(a) = last {
                     let b = mv.to;
                     let run = (b[0] - a[0]).hypot(b[1] - a[1]);
-                    if run > 1e-6 {
-                        travels += 1;
-                        let n = (run / 0.5).ceil() as usize;
-                        for i in 0..=n {
-                            let f = i as f64 / n as f64;
-                            let q = [0, 1, 2].map(|k| a[k] + f * (b[k] - a[k]));
-                            let on_scan = q[0].abs() <= 33.0 && q[1].abs() <= 13.0;
-                            let floor = example_z(q[0], q[1]) + clearance - 0.1;
-                            assert!(
-                                !on_scan || q[2] >= floor,
-                                "{example} on {}: a travel at {q:?} under {floor}",
-                                m.name()
-                            );
-                        }
+                    let across = mv.kind == MoveKind::Travel && run > 1e-6;
+                    travels += usize::from(across);
+                    let n = (run / 0.5).ceil().max(1.0) as usize;
+                    for i in 0..=n {
+                        let f = i as f64 / n as f64;
+                        let q = [0, 1, 2].map(|k| a[k] + f * (b[k] - a[k]));
+                        let on_scan = q[0].abs() <= 33.0 && q[1].abs() <= 13.0;
+                        let surface = example_z(q[0], q[1]) - 0.1;
+                        let floor = if across { surface + clearance } else { surface };
+                        assert!(
+                            !on_scan || q[2] >= floor,
+                            "{example} on {}: a {:?} move at {q:?} under {floor}",
+                            m.name(),
+                            mv.kind
+                        );
                     }
                 }
                 last = Some(mv.to);
             });
         }
         assert!(travels >= 8, "{example}: {travels} travels");
+    }
+}
+
+/// Each bead of a straight rib (on `y < 0` or `y > 0`) runs the other way
+/// from every bead under it on its line, passes and layers alike.
+fn alternates(p: &Program) {
+    let dirs = |i: usize| -> Vec<(bool, bool)> {
+        p.layers[i]
+            .paths
+            .iter()
+            .filter(|path| path.kind == PathKind::Wall)
+            .map(|path| {
+                let (a, b) = (path.points[0].pos, path.points[path.points.len() - 1].pos);
+                (a[1] > 0.0, b[0] > a[0])
+            })
+            .collect()
+    };
+    for i in 1..p.layers.len() {
+        let below = dirs(i - 1);
+        for (side, forward) in dirs(i) {
+            for under in below.iter().filter(|b| b.0 == side) {
+                assert_ne!(forward, under.1, "layer {i}: a bead runs as the one below");
+            }
+        }
     }
 }
 
@@ -357,8 +408,9 @@ fn every_travel_across_the_scan_clears_it_by_the_clearance() {
 /// the first of them on the levelled part (`on_plate`). The layers stack
 /// the integral of `13 − z` over the beads' band within 3 %, and the
 /// finish is within the segments' tolerance on the mean, as unlevelled.
-/// A declared level the scan stands above by more than half a bead is
-/// refused.
+/// The beads alternate across the passes and on past them, after two
+/// passes or one. A declared level the scan stands above by more than
+/// half a bead is refused.
 #[test]
 fn a_rib_levelled_first_fills_the_trough_then_rises_flat() {
     let src = rib(STRAIGHT, 13.0, 2).replace("layers = auto", "layers = auto\n  level = auto");
@@ -382,6 +434,7 @@ fn a_rib_levelled_first_fills_the_trough_then_rises_flat() {
         .iter()
         .position(|l| l.on_plate)
         .expect("a regular layer on the level");
+    alternates(&p);
     let level = bead_points(&p, first)[0].pos[2];
     assert!(
         (level - highest).abs() < 0.1,
@@ -429,6 +482,13 @@ fn a_rib_levelled_first_fills_the_trough_then_rises_flat() {
     let (_, samples) = lmdc::report::finish::sampled(&p, &model.unwrap()).unwrap();
     let mean = samples.iter().map(|s| s.off.abs()).sum::<f64>() / samples.len() as f64;
     assert!(mean <= 0.1 + 0.03 * hi, "mean departure {mean}");
+    // One pass (odd): the beads still alternate from it to the first
+    // regular layer.
+    let odd = rib(STRAIGHT, 13.0, 2).replace("layers = auto", "layers = auto\n  level = 9.7 mm");
+    let p = built(&odd);
+    let first = p.layers.iter().position(|l| l.on_plate).unwrap();
+    assert_eq!(first, 1, "one pass up to 9.7 mm");
+    alternates(&p);
     let low = rib(STRAIGHT, 13.0, 2).replace("layers = auto", "layers = auto\n  level = 9 mm");
     let m = messages(&compile(&low, example_files(&["worn_pad.ply"])));
     assert!(

@@ -3,7 +3,7 @@
 
 use crate::diag::{Code, Diagnostic};
 use crate::geometry::region::{Fault, Region, MAX_FAULTS};
-use crate::sema::model::{RegionShape, Shape};
+use crate::geometry::shape::{RegionShape, Shape};
 use crate::span::Span;
 use crate::units::short;
 

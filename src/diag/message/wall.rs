@@ -168,7 +168,8 @@ pub fn top_without_scan(top: Span, wall: Span) -> Diagnostic {
     .help("give a wall on the plate its `height = …` (or `layers` in the slicing block), or build it on a part with `on = scan(file = …)`")
 }
 
-/// A wall on a scan given `height` (or `layers`) as well as, or instead of, `top`.
+/// A wall on a scan given `height` (its layer count is the slicing's
+/// `layers`).
 pub fn height_on_scan(height: Span, on: Span) -> Diagnostic {
     Diagnostic::error(
         Code::ConflictingFields,
@@ -217,6 +218,8 @@ pub struct NoCountOnScan<'a> {
     pub fix: Option<([f64; 2], u32)>,
     /// The bead's name and where its heights are declared.
     pub bead: (&'a str, Span),
+    /// The beads' pitch (the strip each fills), mm.
+    pub pitch: f64,
     /// Where the top and the scan are written.
     pub spans: [Span; 2],
 }
@@ -244,13 +247,10 @@ pub fn no_count_on_scan(c: &NoCountOnScan<'_>) -> Diagnostic {
             e.fewest, e.most
         )
     };
+    // The ends are hundredths, rounded inward: printed as they are.
     let fix = match c.fix {
-        Some(([a, b], n)) if a == b => format!("`top = {} mm` ({n} layers); or ", short(a)),
-        Some(([a, b], n)) => format!(
-            "a top from {} to {} mm ({n} layers); or ",
-            short(a),
-            short(b)
-        ),
+        Some(([a, b], n)) if a == b => format!("`top = {a} mm` ({n} layers); or "),
+        Some(([a, b], n)) => format!("a top from {a} to {b} mm ({n} layers); or "),
         None => String::new(),
     };
     let [low_at, high_at] = c.at;
@@ -265,7 +265,13 @@ pub fn no_count_on_scan(c: &NoCountOnScan<'_>) -> Diagnostic {
             ),
         )
         .label(c.spans[1], "the scan")
-        .label(c.bead.1, format!("the bead lays {h_lo} .. {h_hi}"))
+        .label(
+            c.bead.1,
+            format!(
+                "the bead lays {h_lo} .. {h_hi} a layer at the beads' pitch, {}",
+                Length(c.pitch)
+            ),
+        )
         .help(format!(
             "this would work: {fix}a bead whose heights span more; or `level = auto` in the slicing block, which fills the wear up to the scan's highest point under the wall first"
         ))

@@ -8,7 +8,7 @@
 //! The moves are found through a grid of cells half a bead wide: linear
 //! in the moves.
 
-use super::{first_layer, Finish, Sample};
+use super::{first_layer, Finish, Sample, Tally};
 use crate::ir::Program;
 use crate::sema::model::WallOnScan;
 use std::collections::BTreeMap;
@@ -94,18 +94,7 @@ pub(super) fn sampled(program: &Program, on: &WallOnScan) -> Option<(Finish, Vec
     let moves = Moves::new(program, &d, cell);
     let last = program.layers.last()?;
     let top = on.top.0;
-    let mut f = Finish {
-        points: 0,
-        below_mm: 0.0,
-        below_at: [0.0; 2],
-        above_mm: 0.0,
-        above_at: [0.0; 2],
-        rms_mm: 0.0,
-        first_layer_mm: first_layer(&program.layers[0])?,
-        along: None,
-    };
-    let mut squares = 0.0;
-    let mut samples = Vec::new();
+    let mut tally = Tally::new(first_layer(&program.layers[0])?, None);
     for path in &last.paths {
         for w in path.points.windows(2).filter(|w| w[0].laser_on) {
             let at = [
@@ -115,20 +104,8 @@ pub(super) fn sampled(program: &Program, on: &WallOnScan) -> Option<(Finish, Vec
             let Some(base) = on.base.surface.at(at) else {
                 continue;
             };
-            let off = base + moves.raised(at) - top;
-            samples.push(Sample { at, top, off });
-            f.points += 1;
-            squares += off * off;
-            if -off > f.below_mm {
-                (f.below_mm, f.below_at) = (-off, at);
-            }
-            if off > f.above_mm {
-                (f.above_mm, f.above_at) = (off, at);
-            }
+            tally.add(at, top, base + moves.raised(at) - top);
         }
     }
-    (f.points > 0).then(|| {
-        f.rms_mm = (squares / f.points as f64).sqrt();
-        (f, samples)
-    })
+    tally.done()
 }

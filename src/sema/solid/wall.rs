@@ -466,9 +466,9 @@ pub fn assemble(
 const NOT_FOR_A_SCAN_WALL: &[&str] = &["scan", "follow", "direction"];
 
 /// Joins a wall on a scan with its variable slicing (whose side checks
-/// were made) and its bead: the beads' pitch (the declared `offset`, else
-/// the flat-top offset at the middle of the bead's speeds) and the path
-/// checked against the wall's width.
+/// were made) and its bead: the beads' pitch (one bead: its width; more:
+/// the declared `offset`, else the flat-top offset at the middle of the
+/// bead's speeds) and the path checked against the wall's width.
 pub fn assemble_on_scan(
     w: Written,
     bead: &Bead,
@@ -482,9 +482,12 @@ pub fn assemble_on_scan(
         return None;
     };
     let width = bead.width;
+    // One bead fills the wall's width, as a flat wall's rises `A/w`; beads
+    // side by side fill their pitch.
     let pitch = match declared {
-        Some((d, _)) if w.beads > 1 => d,
-        _ => {
+        _ if w.beads == 1 => width,
+        Some((d, _)) => d,
+        None => {
             let mid = Speed((bead.speed[0].0 + bead.speed[1].0) / 2.0);
             crate::bead::flat_top_offset(width, bead.model.height_at(mid, width))
         }

@@ -22,8 +22,10 @@ use crate::diag::{message, Diagnostics};
 use crate::ir::{Frame, Layer, Path, PathKind};
 use crate::sema::model::Level;
 use crate::slice::top::{along, mean_heights, passes, Base, Process, Track};
+use crate::slice::variable::layers::MAX_LAYERS;
 use crate::slice::variable::speed::HeightMap;
 use crate::slice::variable::SLACK;
+use crate::slice::MAX_TOTAL_POINTS;
 
 /// A stretch of one bead's line that takes `n` passes: its samples.
 struct Piece {
@@ -49,6 +51,17 @@ pub(super) fn slice(cx: &Cx<'_>, sampled: &[Sampled]) -> Result<Vec<Layer>, Diag
         return Err(d.into());
     }
     let pieces = pieces(cx, sampled, z, [lo, hi])?;
+    let points: usize = pieces
+        .iter()
+        .map(|p| (p.n as usize).saturating_mul(p.track.t.len()))
+        .fold(0, usize::saturating_add);
+    let count = pieces.iter().map(|p| p.n).max().unwrap_or(0);
+    if points > MAX_TOTAL_POINTS || count > MAX_LAYERS {
+        let per_layer = pieces.iter().map(|p| p.track.t.len()).sum();
+        let at = cx.slicing.level.span().unwrap_or(cx.slicing.span);
+        let d = message::top::too_many_points(count, per_layer, MAX_TOTAL_POINTS, at);
+        return Err(d.into());
+    }
     let mut layers = laid(cx, &pieces)?;
     let levelled: Vec<Sampled> = sampled
         .iter()
@@ -60,8 +73,8 @@ pub(super) fn slice(cx: &Cx<'_>, sampled: &[Sampled]) -> Result<Vec<Layer>, Diag
         })
         .collect();
     let flat = |_: [f64; 2]| Some(top - z);
-    let mut rest = regular(cx, &levelled, Base::Level(z), &flat)?;
     let first = layers.len();
+    let mut rest = regular(cx, &levelled, (Base::Level(z), first), &flat)?;
     for (i, layer) in rest.iter_mut().enumerate() {
         let power = cx.model.process.power.at(first + i).watts() as f32;
         for p in layer.paths.iter_mut().flat_map(|p| &mut p.points) {

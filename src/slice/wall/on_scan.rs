@@ -17,7 +17,7 @@ use super::{beads, fault_at, layer, tracks, Track as Line};
 use crate::diag::message::{self, top::CountOutside};
 use crate::diag::Diagnostics;
 use crate::geometry::scan::HeightField;
-use crate::ir::{Frame, Layer};
+use crate::ir::{Frame, Layer, Path, PathKind};
 use crate::sema::model::{Bead, Level, Model, OpenWall, VariableSlicing, WallOnScan};
 pub(super) use crate::slice::top::Failure;
 use crate::slice::top::{along, segments_too_short, spaced, Base, Process, Track};
@@ -34,9 +34,11 @@ use std::num::NonZeroU32;
 /// How closely the path's arcs are flattened, mm: planar slicing's default.
 const CHORD: f64 = 0.05;
 
-/// Most samples of the scan over all beads: a long wall is sampled more
-/// coarsely rather than without bound.
+/// Most samples of the scan over all beads, and along one: a long wall is
+/// sampled more coarsely rather than without bound (a bead's segmentation
+/// tries up to a thousand counts over its samples).
 const MAX_SAMPLES: f64 = 1e6;
+const MAX_LINE_SAMPLES: f64 = 1e5;
 
 /// One bead's centre line sampled: the length along it, the point and the
 /// gap to fill there.
@@ -70,8 +72,12 @@ pub fn slice(
     let lines = tracks(wall, bead.width.0, pitch.0, CHORD).map_err(|f| fault_at(wall, f))?;
     let map = BeadMap::new(bead, Some(pitch)).map_err(|e| internal(&e.to_string()))?;
     let surface = &on.base.surface;
-    let length: f64 = lines.iter().map(|l| polyline_length(&l.points)).sum();
-    let step = surface.cell().max(length / MAX_SAMPLES);
+    let lengths: Vec<f64> = lines.iter().map(|l| polyline_length(&l.points)).collect();
+    let longest = lengths.iter().fold(0.0f64, |a, &b| a.max(b));
+    let step = surface
+        .cell()
+        .max(lengths.iter().sum::<f64>() / MAX_SAMPLES)
+        .max(longest / MAX_LINE_SAMPLES);
     let mut bad = Unbuildable::default();
     let sampled: Vec<Sampled> = lines
         .iter()
@@ -101,7 +107,7 @@ pub fn slice(
     }
     let top = on.top.0;
     let gap = |p: [f64; 2]| surface.at(p).map(|b| top - b).filter(|&g| g > 0.0);
-    let layers = regular(&cx, &sampled, Base::Scan(surface), &gap)?;
+    let layers = regular(&cx, &sampled, (Base::Scan(surface), 0), &gap)?;
     Ok((layers, Diagnostics::new()))
 }
 
@@ -122,16 +128,18 @@ pub(super) struct Cx<'a> {
 }
 
 /// The layers that each lay the same share of every sample's gap, on
-/// `base`; `gap(p)` is the gap where a segment starts between samples.
+/// `base`, after `below` layers (the levelling passes: the beads' order
+/// and directions go on alternating from them); `gap(p)` is the gap
+/// where a segment starts between samples.
 pub(super) fn regular(
     cx: &Cx<'_>,
     sampled: &[Sampled],
-    base: Base<'_>,
+    (base, below): (Base<'_>, usize),
     gap: &dyn Fn([f64; 2]) -> Option<f64>,
 ) -> Result<Vec<Layer>, Diagnostics> {
     let (model, bead, on, slicing) = (cx.model, cx.bead, cx.on, cx.slicing);
     let range = gap_range(sampled).ok_or_else(|| internal("the wall has no point"))?;
-    let n = count(&range, &cx.map, bead, on, slicing)?;
+    let n = count(&range, (&cx.map, cx.pitch), bead, on, slicing)?;
     let planned = match segmented(sampled, cx.spec)? {
         Ok(segments) => sampled
             .iter()
@@ -157,15 +165,46 @@ pub(super) fn regular(
         .map(|i| {
             let power = model.process.power.at(i as usize).watts() as f32;
             let k = i as usize;
-            let paths = beads(cx.wall, cx.lines, k, |j, forward, _: &Line| {
+            let mut paths = beads(cx.wall, cx.lines, below + k, |j, forward, _: &Line| {
                 let (track, xy) = &planned[j];
                 let lay = (i, n.get() as f64);
                 along(track, xy, &cx.map, &process, None, lay, power, !forward)
             });
+            above_scan(&mut paths, &on.base.surface);
             layer(k, n.get() as usize, paths, Frame::PART)
         })
         .collect();
     Ok(layers)
+}
+
+/// Each lead of `paths` raised where the scan under its far end stands
+/// higher than under the bead's end: a lead runs on at the bead's height
+/// above the scan there, so on a rising scan it does not run into the
+/// part (on the first layer the bead's end lies on the scan).
+fn above_scan(paths: &mut [Path], surface: &HeightField) {
+    for i in 0..paths.len() {
+        if paths[i].kind != PathKind::Lead {
+            continue;
+        }
+        // The bead's end is the lead's last point before a bead, its first
+        // after one.
+        let into = paths.get(i + 1).is_some_and(|p| p.kind == PathKind::Wall);
+        let (end, far) = if into { (1, 0) } else { (0, 1) };
+        let lead = &mut paths[i].points;
+        let (e, f) = (lead[end].pos, lead[far].pos);
+        let (Some(be), Some(bf)) = (surface.at([e[0], e[1]]), surface.at([f[0], f[1]])) else {
+            continue;
+        };
+        let z = e[2].max(bf + (e[2] - be));
+        if z > f[2] {
+            lead[far].pos[2] = z;
+            let (a, b) = (lead[0].pos, lead[1].pos);
+            let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let len = d[0].hypot(d[1]).hypot(d[2]).max(1e-12);
+            let tangent = d.map(|v| (v / len) as f32);
+            lead.iter_mut().for_each(|p| p.tangent = tangent);
+        }
+    }
 }
 
 /// The length of a polyline, mm.
@@ -291,7 +330,7 @@ fn gap_range(sampled: &[Sampled]) -> Option<(HeightRange, [[f64; 2]; 2])> {
 /// heights at the pitch, or the declared one if it does; else the error.
 fn count(
     (range, at): &(HeightRange, [[f64; 2]; 2]),
-    map: &BeadMap<'_>,
+    (map, pitch): (&BeadMap<'_>, f64),
     bead: &Bead,
     on: &WallOnScan,
     slicing: &VariableSlicing,
@@ -312,6 +351,7 @@ fn count(
                     top: on.top.0,
                     fix,
                     bead: (&bead.name, bead.height_span),
+                    pitch,
                     spans: [on.top_span, on.base.span],
                 })
             }
@@ -471,7 +511,7 @@ pub(super) fn too_short(
             .partition_point(|&s| s < f.middle)
             .min(line.s.len() - 1);
         let [x, y] = line.xy[k];
-        (None, Some([x, y, on.top.0 - line.gap[k]]))
+        (None, Some([x, y, line.base[k]]))
     };
     let at = (sampled.len(), on.top_span);
     segments_too_short(failures, at, bead, slicing, spec.min_length, locate)
