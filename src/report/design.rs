@@ -125,9 +125,11 @@ fn scan_wall(wall: &OpenWall, on: &WallOnScan, w: f64, pitch: f64) -> (f64, Stri
     let [left, right] = wall.reach(w, pitch);
     let step = (left + right) / BAND as f64;
     let mut sum = 0.0;
+    let mut collapsed = 0;
     for k in 0..BAND {
         let d = -right + (k as f64 + 0.5) * step;
         let Some(path) = wall.path.offset(d) else {
+            collapsed += 1;
             continue;
         };
         let line = path.flatten(CHORD);
@@ -153,11 +155,13 @@ fn scan_wall(wall: &OpenWall, on: &WallOnScan, w: f64, pitch: f64) -> (f64, Stri
             }
         }
     }
-    (
-        sum * step,
+    let mut what =
         "the band the wall covers, face to face: its integral of the top less the scanned surface"
-            .into(),
-    )
+            .to_string();
+    if collapsed > 0 {
+        what += &format!(", without {collapsed} of its {BAND} offsets, which collapse on a bend");
+    }
+    (sum * step, what)
 }
 
 fn loft_wall(loft: &Loft, w: f64) -> Result<(f64, String), String> {

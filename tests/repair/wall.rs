@@ -41,6 +41,35 @@ fn bead_points(p: &Program, i: usize) -> Vec<lmdc::ir::Point> {
         .collect()
 }
 
+/// The volume the plan's laser-on moves stack: layer height × pitch ×
+/// run.
+fn stacked(p: &Program) -> f64 {
+    let mut sum = 0.0;
+    for path in p.layers.iter().flat_map(|l| &l.paths) {
+        for w in path.points.windows(2).filter(|w| w[0].laser_on) {
+            let run = (w[1].pos[0] - w[0].pos[0]).hypot(w[1].pos[1] - w[0].pos[1]);
+            sum += f64::from(w[0].layer_height) * f64::from(w[0].pitch) * run;
+        }
+    }
+    sum
+}
+
+/// `∫ (13 − z)` over the straight rib's band, x −25..20 mm and two
+/// pitches across, from the pad's formula (900 × 100 cells).
+fn band_integral(pitch: f64) -> f64 {
+    let (nx, ny) = (900, 100);
+    let (dx, dy) = (45.0 / nx as f64, 2.0 * pitch / ny as f64);
+    let mut integral = 0.0;
+    for i in 0..nx {
+        for j in 0..ny {
+            let x = -25.0 + (i as f64 + 0.5) * dx;
+            let y = -pitch + (j as f64 + 0.5) * dy;
+            integral += (13.0 - example_z(x, y)) * dx * dy;
+        }
+    }
+    integral
+}
+
 /// A straight rib two beads wide across the pad's trough, to 13 mm: its
 /// beads run on the lines `y = ±p/2` (`p` their pitch) from x = −25 to 20
 /// mm; the first layer lies on the scanned surface within the scanner's
@@ -115,25 +144,7 @@ fn a_rib_on_the_worn_pad_starts_on_its_scan_and_ends_level_at_its_top() {
     assert_eq!(n as f64, fewest, "gaps {g_lo} .. {g_hi}, bead {lo} .. {hi}");
     assert!(g_lo / fewest >= lo, "{g_lo} / {fewest} < {lo}");
     // The volume: stacked by the plan, and between the scan and the top.
-    let mut stacked = 0.0;
-    for path in p.layers.iter().flat_map(|l| &l.paths) {
-        for w in path.points.windows(2).filter(|w| w[0].laser_on) {
-            let run = (w[1].pos[0] - w[0].pos[0]).hypot(w[1].pos[1] - w[0].pos[1]);
-            stacked += f64::from(w[0].layer_height) * f64::from(w[0].pitch) * run;
-        }
-    }
-    let (nx, ny) = (900, 100);
-    let (dx, dy) = (45.0 / nx as f64, 2.0 * pitch / ny as f64);
-    let mut integral = 0.0;
-    for i in 0..nx {
-        for j in 0..ny {
-            let (x, y) = (
-                -25.0 + (i as f64 + 0.5) * dx,
-                -pitch + (j as f64 + 0.5) * dy,
-            );
-            integral += (13.0 - example_z(x, y)) * dx * dy;
-        }
-    }
+    let (stacked, integral) = (stacked(&p), band_integral(pitch));
     assert!(
         (stacked / integral - 1.0).abs() < 0.02,
         "stacked {stacked} mm³ vs ∫ {integral} mm³"
@@ -456,25 +467,7 @@ fn a_rib_levelled_first_fills_the_trough_then_rises_flat() {
             assert!((f64::from(q.layer_height) - h).abs() < 1e-4, "{q:?}");
         }
     }
-    let mut stacked = 0.0;
-    for path in p.layers.iter().flat_map(|l| &l.paths) {
-        for w in path.points.windows(2).filter(|w| w[0].laser_on) {
-            let run = (w[1].pos[0] - w[0].pos[0]).hypot(w[1].pos[1] - w[0].pos[1]);
-            stacked += f64::from(w[0].layer_height) * f64::from(w[0].pitch) * run;
-        }
-    }
-    let (nx, ny) = (900, 100);
-    let (dx, dy) = (45.0 / nx as f64, 2.0 * pitch / ny as f64);
-    let mut integral = 0.0;
-    for i in 0..nx {
-        for j in 0..ny {
-            let (x, y) = (
-                -25.0 + (i as f64 + 0.5) * dx,
-                -pitch + (j as f64 + 0.5) * dy,
-            );
-            integral += (13.0 - example_z(x, y)) * dx * dy;
-        }
-    }
+    let (stacked, integral) = (stacked(&p), band_integral(pitch));
     assert!(
         (stacked / integral - 1.0).abs() < 0.03,
         "stacked {stacked} mm³ vs ∫ {integral} mm³"
