@@ -93,17 +93,7 @@ fn a_rib_on_the_worn_pad_starts_on_its_scan_and_ends_level_at_its_top() {
     }
     // Each bead runs the other way from the one below it, and the layers
     // take the beads in turn across the wall.
-    let runs = |i: usize| -> Vec<(bool, bool)> {
-        p.layers[i]
-            .paths
-            .iter()
-            .filter(|path| path.kind == PathKind::Wall)
-            .map(|path| {
-                let (a, b) = (path.points[0].pos, path.points[path.points.len() - 1].pos);
-                (a[1] > 0.0, b[0] > a[0])
-            })
-            .collect()
-    };
+    let runs = |i: usize| runs(&p, i);
     for i in 1..n {
         let (below, here) = (runs(i - 1), runs(i));
         assert_eq!(here.len(), 2);
@@ -386,20 +376,24 @@ fn every_travel_across_the_scan_clears_it_by_the_clearance() {
     }
 }
 
+/// The beads of a straight rib's layer `i` in the order laid: each one's
+/// side of the path (`y > 0`) and whether it runs toward +x.
+fn runs(p: &Program, i: usize) -> Vec<(bool, bool)> {
+    p.layers[i]
+        .paths
+        .iter()
+        .filter(|path| path.kind == PathKind::Wall)
+        .map(|path| {
+            let (a, b) = (path.points[0].pos, path.points[path.points.len() - 1].pos);
+            (a[1] > 0.0, b[0] > a[0])
+        })
+        .collect()
+}
+
 /// Each bead of a straight rib (on `y < 0` or `y > 0`) runs the other way
 /// from every bead under it on its line, passes and layers alike.
 fn alternates(p: &Program) {
-    let dirs = |i: usize| -> Vec<(bool, bool)> {
-        p.layers[i]
-            .paths
-            .iter()
-            .filter(|path| path.kind == PathKind::Wall)
-            .map(|path| {
-                let (a, b) = (path.points[0].pos, path.points[path.points.len() - 1].pos);
-                (a[1] > 0.0, b[0] > a[0])
-            })
-            .collect()
-    };
+    let dirs = |i: usize| runs(p, i);
     for i in 1..p.layers.len() {
         let below = dirs(i - 1);
         for (side, forward) in dirs(i) {

@@ -152,9 +152,15 @@ pub fn slicing_field(key: &str, at: Span, wall: Span) -> Diagnostic {
     )
     .label(at, format!("`{key}`"))
     .label(wall, "a wall along a path: its beads follow the path")
-    .help(format!(
-        "drop `{key}`: the wall's beads are set by its `beads`, `side`, `ends` and `direction`"
-    ))
+    .help(match key {
+        // Planned under an extrusion's footprint, not along a path.
+        "follow" | "direction" => format!(
+            "drop `{key}`: lmdc tilts the nozzle to the scan (`follow`) or fills along a tilted direction (`direction`) under an extrusion's footprint only; a lip that needs it can be drawn as a thin `outline(…)` extruded on the scan"
+        ),
+        _ => format!(
+            "drop `{key}`: the wall's beads are set by its `beads`, `side`, `ends` and `direction`"
+        ),
+    })
 }
 
 /// A wall's `top` without `on = scan(…)`.

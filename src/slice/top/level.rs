@@ -101,25 +101,36 @@ pub(super) fn slice(
         let all = pieces.len() + failures.len();
         return Err(too_short::report(&failures, all, regular.scan, bead, slicing, ex, min).into());
     }
-    let mut layers = passes_laid(model, bead, &pieces, &regular.lines, &on, tilt)?;
-    let first = layers.len();
-    let mut rest = regular.layers;
-    for (i, layer) in rest.iter_mut().enumerate() {
+    let passes = passes_laid(model, bead, &pieces, &regular.lines, &on, tilt)?;
+    let layers = stacked(model, passes, regular.layers);
+    Ok((layers, regular.warnings))
+}
+
+/// The levelling `passes`, then the `regular` layers: each regular layer
+/// at the power of its place in the whole, the first of them marked as
+/// lying on the levelled part (`on_plate`: partly on the scan, so
+/// `lmd::stacking` does not look for the pass below it), every layer
+/// numbered and placed by its station in the whole.
+pub(in crate::slice) fn stacked(
+    model: &Model,
+    mut passes: Vec<Layer>,
+    mut regular: Vec<Layer>,
+) -> Vec<Layer> {
+    let first = passes.len();
+    for (i, layer) in regular.iter_mut().enumerate() {
         let power = model.process.power.at(first + i).watts() as f32;
-        layer
-            .paths
-            .iter_mut()
-            .flat_map(|p| &mut p.points)
-            .for_each(|p| p.power = power);
+        for p in layer.paths.iter_mut().flat_map(|p| &mut p.points) {
+            p.power = power;
+        }
         layer.on_plate = first > 0 && i == 0;
     }
-    layers.extend(rest);
-    let total = layers.len() as f64;
-    for (i, layer) in layers.iter_mut().enumerate() {
+    passes.extend(regular);
+    let total = passes.len() as f64;
+    for (i, layer) in passes.iter_mut().enumerate() {
         layer.index = i;
         layer.station = i as f64 / total;
     }
-    Ok((layers, regular.warnings))
+    passes
 }
 
 fn positive(what: &'static str, l: Length) -> Result<Positive, Diagnostics> {

@@ -56,7 +56,7 @@ use surface::Surface;
 // same layers of the same fraction of the gap, on the same process.
 pub(in crate::slice) use emit::{along, Process};
 pub(in crate::slice) use footprint::spaced;
-pub(in crate::slice) use level::{mean_heights, passes};
+pub(in crate::slice) use level::{mean_heights, passes, stacked};
 pub(in crate::slice) use surface::Base;
 pub(in crate::slice) use too_short::report_at as segments_too_short;
 pub(in crate::slice) use tracks::{Failure, Track};

@@ -21,7 +21,7 @@ use super::{layer, order};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Frame, Layer, Path, PathKind};
 use crate::sema::model::Level;
-use crate::slice::top::{along, mean_heights, passes, Base, Process, Track};
+use crate::slice::top::{along, mean_heights, passes, stacked, Base, Process, Track};
 use crate::slice::variable::layers::MAX_LAYERS;
 use crate::slice::variable::speed::HeightMap;
 use crate::slice::variable::SLACK;
@@ -62,7 +62,7 @@ pub(super) fn slice(cx: &Cx<'_>, sampled: &[Sampled]) -> Result<Vec<Layer>, Diag
         let d = message::top::too_many_points(count, per_layer, MAX_TOTAL_POINTS, at);
         return Err(d.into());
     }
-    let mut layers = laid(cx, &pieces)?;
+    let passes = laid(cx, &pieces);
     let levelled: Vec<Sampled> = sampled
         .iter()
         .map(|l| Sampled {
@@ -73,22 +73,8 @@ pub(super) fn slice(cx: &Cx<'_>, sampled: &[Sampled]) -> Result<Vec<Layer>, Diag
         })
         .collect();
     let flat = |_: [f64; 2]| Some(top - z);
-    let first = layers.len();
-    let mut rest = regular(cx, &levelled, (Base::Level(z), first), &flat)?;
-    for (i, layer) in rest.iter_mut().enumerate() {
-        let power = cx.model.process.power.at(first + i).watts() as f32;
-        for p in layer.paths.iter_mut().flat_map(|p| &mut p.points) {
-            p.power = power;
-        }
-        layer.on_plate = first > 0 && i == 0;
-    }
-    layers.extend(rest);
-    let total = layers.len() as f64;
-    for (i, layer) in layers.iter_mut().enumerate() {
-        layer.index = i;
-        layer.station = i as f64 / total;
-    }
-    Ok(layers)
+    let rest = regular(cx, &levelled, (Base::Level(z), passes.len()), &flat)?;
+    Ok(stacked(cx.model, passes, rest))
 }
 
 /// The level: declared, or the scan's highest point under the beads; the
@@ -237,10 +223,10 @@ fn runs(l: &Sampled, count: &dyn Fn([f64; 2]) -> u32, least: f64) -> Vec<(u32, S
 
 /// The passes as layers: pass `k` lays the pieces of more than `k`
 /// passes, bead by bead in the wall's order and direction for that layer.
-fn laid(cx: &Cx<'_>, pieces: &[Piece]) -> Result<Vec<Layer>, Diagnostics> {
+fn laid(cx: &Cx<'_>, pieces: &[Piece]) -> Vec<Layer> {
     let count = pieces.iter().map(|p| p.n).max().unwrap_or(0) as usize;
     let process = Process::of(cx.model, cx.bead, Base::Scan(&cx.on.base.surface));
-    let layers = (0..count)
+    (0..count)
         .map(|k| {
             let power = cx.model.process.power.at(k).watts() as f32;
             let mut paths = Vec::new();
@@ -268,6 +254,5 @@ fn laid(cx: &Cx<'_>, pieces: &[Piece]) -> Result<Vec<Layer>, Diagnostics> {
             }
             layer(k, count, paths, Frame::PART)
         })
-        .collect();
-    Ok(layers)
+        .collect()
 }
