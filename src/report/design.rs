@@ -126,6 +126,7 @@ fn scan_wall(wall: &OpenWall, on: &WallOnScan, w: f64, pitch: f64) -> (f64, Stri
     let step = (left + right) / BAND as f64;
     let mut sum = 0.0;
     let mut collapsed = 0;
+    let mut top = crate::slice::wall::top_form(wall, on);
     for k in 0..BAND {
         let d = -right + (k as f64 + 0.5) * step;
         let Some(path) = wall.path.offset(d) else {
@@ -146,11 +147,10 @@ fn scan_wall(wall: &OpenWall, on: &WallOnScan, w: f64, pitch: f64) -> (f64, Stri
             for i in 0..n {
                 let f = (i as f64 + 0.5) / n as f64;
                 let p = [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])];
-                let gap = on
-                    .base
-                    .surface
-                    .at(p)
-                    .map_or(0.0, |z| (on.top.0 - z).max(0.0));
+                let gap = match (on.base.surface.at(p), top.at(p)) {
+                    (Some(z), Ok(t)) => (t - z).max(0.0),
+                    _ => 0.0,
+                };
                 sum += gap * len / n as f64;
             }
         }

@@ -153,7 +153,7 @@ pub struct Sample {
 pub fn sampled(program: &Program, model: &Model) -> Option<(Finish, Vec<Sample>)> {
     match &model.build {
         Build::Variable { extrusion, .. } => of_fill(program, model, extrusion),
-        Build::ScanWall { on, .. } => wall::sampled(program, on),
+        Build::ScanWall { wall, on, .. } => wall::sampled(program, wall, on),
         _ => None,
     }
 }

@@ -12,18 +12,24 @@ use lmdc::ir::{PathKind, Program};
 
 /// examples/pad_rib.lmd with its `along`, `top` and `beads` replaced.
 fn rib(along: &str, top: f64, beads: usize) -> String {
+    rib_to(along, &format!("{top} mm"), beads)
+}
+
+/// examples/pad_rib.lmd with its `along`, `top` (as written) and `beads`
+/// replaced.
+pub(super) fn rib_to(along: &str, top: &str, beads: usize) -> String {
     let example = include_str!("../../examples/pad_rib.lmd");
     let from = example.find("  along = chain(").unwrap();
     let to = example.find("  beads = 2").unwrap();
     let mut src = example.to_string();
     src.replace_range(from..to, &format!("  along = {along}\n"));
-    src.replace("top = 13 mm", &format!("top = {top} mm"))
+    src.replace("top = 13 mm", &format!("top = {top}"))
         .replace("beads = 2", &format!("beads = {beads}"))
 }
 
-const STRAIGHT: &str = "polyline(points = [[-25 mm, 0 mm], [20 mm, 0 mm]])";
+pub(super) const STRAIGHT: &str = "polyline(points = [[-25 mm, 0 mm], [20 mm, 0 mm]])";
 
-fn built(src: &str) -> Program {
+pub(super) fn built(src: &str) -> Program {
     let c = compile(src, example_files(&["worn_pad.ply"]));
     match c.program {
         Some(p) => p.into_ir(),
@@ -32,7 +38,7 @@ fn built(src: &str) -> Program {
 }
 
 /// The laser-on points of the beads (not the leads) of layer `i`.
-fn bead_points(p: &Program, i: usize) -> Vec<lmdc::ir::Point> {
+pub(super) fn bead_points(p: &Program, i: usize) -> Vec<lmdc::ir::Point> {
     p.layers[i]
         .paths
         .iter()
@@ -43,7 +49,7 @@ fn bead_points(p: &Program, i: usize) -> Vec<lmdc::ir::Point> {
 
 /// The volume the plan's laser-on moves stack: layer height × pitch ×
 /// run.
-fn stacked(p: &Program) -> f64 {
+pub(super) fn stacked(p: &Program) -> f64 {
     let mut sum = 0.0;
     for path in p.layers.iter().flat_map(|l| &l.paths) {
         for w in path.points.windows(2).filter(|w| w[0].laser_on) {
@@ -483,4 +489,51 @@ fn a_rib_levelled_first_fills_the_trough_then_rises_flat() {
         "{m}"
     );
     assert!(m.contains("above the level 9 mm"), "{m}");
+}
+
+/// Levelled first with `ends = lead(3 mm)`: every stretch of a levelling
+/// pass starts and stops as a regular layer's bead does, with a lead
+/// before and after it, laser off, 3 mm over the ground straight on from
+/// the stretch's end at its speed; a lead stands at least the bead's
+/// height above the scan at its far end, and nowhere along it below the
+/// scanned surface (the pad's formula, less the scan's 0.1 mm).
+#[test]
+fn a_levelled_ribs_passes_run_their_leads_over_the_scan() {
+    let src = rib(STRAIGHT, 13.0, 2).replace("layers = auto", "layers = auto\n  level = auto");
+    let p = built(&src);
+    let first = p.layers.iter().position(|l| l.on_plate).unwrap();
+    assert!(first >= 2, "{first} passes");
+    let mut stretches = 0;
+    for layer in &p.layers[..first] {
+        let paths = &layer.paths;
+        assert_eq!(paths.len() % 3, 0);
+        for k in (0..paths.len()).step_by(3) {
+            let (into, bead, out) = (&paths[k], &paths[k + 1], &paths[k + 2]);
+            assert_eq!(
+                [into.kind, bead.kind, out.kind],
+                [PathKind::Lead, PathKind::Wall, PathKind::Lead]
+            );
+            stretches += 1;
+            let (start, end) = (bead.points[0], bead.points[bead.points.len() - 1]);
+            for (lead, at, far) in [(into, start, into.points[0]), (out, end, out.points[1])] {
+                assert!(lead.points.iter().all(|q| !q.laser_on));
+                assert!(lead.points.iter().any(|q| q.pos == at.pos));
+                assert_eq!(far.speed, at.speed);
+                let ground = (far.pos[0] - at.pos[0]).hypot(far.pos[1] - at.pos[1]);
+                assert!((ground - 3.0).abs() < 1e-9, "{ground}");
+                // Straight on along the line (y stays on the bead's line).
+                assert!((far.pos[1] - at.pos[1]).abs() < 1e-9);
+                let above = |q: [f64; 3]| q[2] - example_z(q[0], q[1]);
+                assert!(above(far.pos) >= above(at.pos) - 0.2, "{far:?} vs {at:?}");
+                assert!(far.pos[2] >= at.pos[2] - 1e-9);
+                for s in 0..=20 {
+                    let f = s as f64 / 20.0;
+                    let q = [0, 1, 2].map(|c| at.pos[c] + f * (far.pos[c] - at.pos[c]));
+                    assert!(above(q) > -0.1, "{q:?} under the scan");
+                }
+            }
+        }
+    }
+    // The trough's passes: the first in three stretches (counts 1, 2, 1).
+    assert!(stretches >= 4, "{stretches} stretches");
 }

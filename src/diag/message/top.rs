@@ -44,8 +44,10 @@ pub(crate) fn height(turned: Option<&TurnedFrame>, p: [f64; 2], z: f64) -> Strin
 pub struct TopAt<'a> {
     /// The top.
     pub top: Span,
-    /// The footprint.
+    /// The footprint, or the wall's path.
     pub shape: Span,
+    /// What `shape` is: `footprint` or `path`.
+    pub what: &'static str,
     /// Set when the fill is planned turned: its points go back into the
     /// part.
     pub turned: Option<&'a TurnedFrame>,
@@ -473,18 +475,19 @@ pub fn bad_top(p: [f64; 2], more: usize, bad: BadTop, inner: bool, at: TopAt<'_>
             "the target solid `{name}` has no part over {p}, where a track runs{others}"
         ),
     };
+    let what = at.what;
     let help = if matches!(bad, BadTop::OffTarget) {
-        "a target mesh is the part as designed, and its faces must cover the footprint seen from above: check its `at` and `turn`, or keep the footprint within it"
+        format!("a target mesh is the part as designed, and its faces must cover the {what} seen from above: check its `at` and `turn`, or keep the {what} within it")
     } else if matches!(bad, BadTop::OffSolid(_)) {
-        "a target solid is the part as designed, and seen from above it must cover the footprint: make its shape reach over the footprint, or keep the footprint within it"
+        format!("a target solid is the part as designed, and seen from above it must cover the {what}: make its shape reach over the {what}, or keep the {what} within it")
     } else if inner {
-        "the top is the finished part's height above the substrate, computed at every point a track runs through: the error below says what failed there"
+        "the top is the finished part's height above the substrate, computed at every point a track runs through: the error below says what failed there".to_string()
     } else {
-        "the top is the finished part's height above the substrate: make it positive over the whole footprint"
+        format!("the top is the finished part's height above the substrate: make it positive over the whole {what}")
     };
     Diagnostic::error(Code::TopHeight, message)
         .label(at.top, "the top")
-        .label(at.shape, "the footprint")
+        .label(at.shape, format!("the {what}"))
         .help(help)
 }
 

@@ -217,8 +217,8 @@ pub struct NoCountOnScan<'a> {
     pub e: &'a crate::slice::variable::layers::NoLayerCount,
     /// Where along the wall the gap is least and where greatest.
     pub at: [[f64; 2]; 2],
-    /// The wall's top, mm.
-    pub top: f64,
+    /// The wall's top, mm, when it is flat.
+    pub top: Option<f64>,
     /// The flat tops nearest it that a count lays (`[lowest, highest]` mm)
     /// and that count, if any.
     pub fix: Option<([f64; 2], u32)>,
@@ -264,8 +264,8 @@ pub fn no_count_on_scan(c: &NoCountOnScan<'_>) -> Diagnostic {
         .label(
             c.spans[0],
             format!(
-                "{} mm: {hi} to add at {}, {lo} at {}",
-                short(c.top),
+                "{}: {hi} to add at {}, {lo} at {}",
+                c.top.map_or("the top".to_string(), |t| format!("{} mm", short(t))),
                 spot(None, high_at),
                 spot(None, low_at)
             ),

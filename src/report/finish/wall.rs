@@ -4,13 +4,13 @@
 //! each laser-on move of the last layer the predicted face is the scanned
 //! surface there plus what each layer's move through that place raises it
 //! by (`A/pitch` at the move's speed,
-//! [`crate::ir::Point::predicted_rise`]), against the wall's flat top.
+//! [`crate::ir::Point::predicted_rise`]), against the wall's top there.
 //! The moves are found through a grid of cells half a bead wide: linear
 //! in the moves.
 
 use super::{first_layer, Finish, Sample, Tally};
 use crate::ir::Program;
-use crate::sema::model::WallOnScan;
+use crate::sema::model::{OpenWall, WallOnScan};
 use std::collections::BTreeMap;
 
 /// Every laser-on move of the plan, seen from above, in a grid of square
@@ -88,12 +88,16 @@ fn distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// The finish of `program`, the plan of the wall `on`, with every place
 /// it looked at; `None` for a plan without a bead or a layer.
-pub(super) fn sampled(program: &Program, on: &WallOnScan) -> Option<(Finish, Vec<Sample>)> {
+pub(super) fn sampled(
+    program: &Program,
+    wall: &OpenWall,
+    on: &WallOnScan,
+) -> Option<(Finish, Vec<Sample>)> {
     let d = program.bead.as_ref()?.deposit();
     let cell = (program.limits.bead_width / 2.0).max(0.1);
     let moves = Moves::new(program, &d, cell);
     let last = program.layers.last()?;
-    let top = on.top.0;
+    let mut top = crate::slice::wall::top_form(wall, on);
     let mut tally = Tally::new(first_layer(&program.layers[0])?, None);
     for path in &last.paths {
         for w in path.points.windows(2).filter(|w| w[0].laser_on) {
@@ -102,6 +106,9 @@ pub(super) fn sampled(program: &Program, on: &WallOnScan) -> Option<(Finish, Vec
                 (w[0].pos[1] + w[1].pos[1]) / 2.0,
             ];
             let Some(base) = on.base.surface.at(at) else {
+                continue;
+            };
+            let Ok(top) = top.at(at) else {
                 continue;
             };
             tally.add(at, top, base + moves.raised(at) - top);

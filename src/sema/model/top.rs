@@ -92,6 +92,16 @@ pub struct TopMesh {
 }
 
 impl Top {
+    /// Its one height, mm, when it is flat: a plane without slope, or
+    /// `edges(…)` from and to the same height.
+    pub fn flat(&self) -> Option<f64> {
+        match self {
+            Top::Plane { height, slope, .. } if *slope == [0.0; 2] => Some(height.0),
+            Top::Edges { from, to, .. } if from == to => Some(from.0),
+            _ => None,
+        }
+    }
+
     /// The top at `p` (mm) when it is a mesh or a solid: `Some(None)`
     /// where none of it is over `p`; `None` for any other top.
     pub fn mesh_at(&self, p: [f64; 2]) -> Option<Option<f64>> {

@@ -4,7 +4,7 @@
 //! and the top.
 
 use crate::geometry::open_path::OpenPath;
-use crate::sema::model::ScanBase;
+use crate::sema::model::{ScanBase, Top};
 use crate::span::Span;
 use crate::units::Length;
 
@@ -31,14 +31,16 @@ pub enum WallEnds {
 }
 
 /// A wall built on a scanned part (`on = scan(…)`, `top = …`): its layers
-/// start on the scanned surface under its beads and rise to a flat top
+/// start on the scanned surface under its beads and rise to its top
 /// (docs/repair.md, *A wall on a scan*).
 #[derive(Clone, Debug)]
 pub struct WallOnScan {
     /// The scanned part.
     pub base: ScanBase,
-    /// The finished wall's top, above the part's z = 0.
-    pub top: Length,
+    /// The finished wall's top, above the part's z = 0: any top an
+    /// extrusion takes (a height, `plane(…)`, `edges(…)` over the path's
+    /// extent, an expression of `x` and `y`, a target mesh or solid).
+    pub top: Top,
     /// The `top = …` field.
     pub top_span: Span,
 }

@@ -3,7 +3,7 @@
 
 use super::Bound::{Any, Positive};
 use super::DefaultValue::{Count as DefaultCount, Word as DefaultWord};
-use super::Kind::{Call, Count, Either, List, Name, Point, Quantity, Word};
+use super::Kind::{Call, Count, Deferred, Either, List, Name, Point, Quantity, Word};
 use super::Need::{Default, Optional, Required};
 use super::{Block, Field, Kind, Len};
 use crate::units::Dim;
@@ -73,9 +73,17 @@ pub mod fields {
     /// `top = …`.
     pub static TOP: Field = Field::new(
         "top",
-        Quantity(Dim::LENGTH, Positive),
+        Deferred(&Either(&[
+            Quantity(Dim::LENGTH, Positive),
+            Call(&[
+                &crate::sema::schema::solid::EDGES,
+                &crate::sema::schema::solid::PLANE,
+                &crate::sema::schema::solid::MESH,
+            ]),
+            Name("solid"),
+        ])),
         Optional,
-        "with `on`: the finished wall's top, a height above the part's z = 0 (then there is no `height`)",
+        "with `on`: the finished wall's top above the part's z = 0 at every point of its path: a height, an expression of `x` and `y`, `plane(…)`, `edges(…)` over the path's extent, or the part as designed (`mesh(…)`, a solid's name) (then there is no `height`)",
     );
     /// `direction = …`.
     pub static DIRECTION: Field = Field::new(

@@ -48,20 +48,14 @@ pub fn named<'a>(
     let name_of = |s: &'a Stmt| s.name.as_ref().map(|n| n.node.as_str());
     let names: BTreeSet<&str> = solids.iter().filter_map(|s| name_of(s)).collect();
     let mut out = BTreeSet::new();
-    // A wall's `top` is a height: only its `on = scan(…, register = NAME)`
-    // names a solid.
     for s in solids
         .iter()
         .filter(|s| matches!(s.kind.node.as_str(), "extrude" | "wall"))
     {
-        let wall = s.kind.node == "wall";
         let Body::Block(stmts, _) = &s.body else {
             continue;
         };
-        let fields = stmts
-            .iter()
-            .filter(|f| !(wall && f.kind.node == extrude::TOP.key));
-        for n in fields.filter_map(part_named) {
+        for n in stmts.iter().filter_map(part_named) {
             let constant = constants.iter().any(|(c, _, _)| c == n);
             let builtin = POSITION.contains(&n) || n == LAYER || n == Z;
             if constant || builtin || name_of(s) == Some(n) {

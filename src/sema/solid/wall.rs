@@ -16,7 +16,7 @@ use crate::geometry::profile::Vertex;
 use crate::sema::eval::Env;
 use crate::sema::fields::Fields;
 use crate::sema::model::{
-    Bead, Extent, OpenWall, PlanarSlicing, ScanBase, VariableSlicing, WallEnds, WallOnScan,
+    Bead, Extent, OpenWall, PlanarSlicing, ScanBase, Top, VariableSlicing, WallEnds, WallOnScan,
     WallSide,
 };
 use crate::sema::schema::wall::{
@@ -27,7 +27,7 @@ use crate::sema::solid::extrude::Scope;
 use crate::sema::solid::profile::point;
 use crate::sema::value::{Call, Spanned, Value};
 use crate::span::Span;
-use crate::syntax::ast::{Body, Stmt};
+use crate::syntax::ast::{Body, Expr, ExprKind, Stmt};
 use crate::units::{Length, Speed};
 
 /// Pieces of a chain this far apart (mm) meet.
@@ -45,7 +45,7 @@ pub struct Written {
     /// `on = scan(…)` and where, if written.
     on: Option<(ScanBase, Span)>,
     /// `top = …` and where, if written.
-    top: Option<(Length, Span)>,
+    top: Option<(Top, Span)>,
     ends: WallEnds,
     one_way: bool,
     span: Span,
@@ -70,10 +70,6 @@ pub fn read<'a>(
 ) -> (Option<Written>, Option<Bead>) {
     let f = Fields::block(env, stmts, &WALL, format!("wall `{name}`"), span, diags);
     let on = on(env, &f, (name, scope), diags);
-    let top = f.optional(
-        &wall::TOP,
-        f.quantity(&wall::TOP, diags).map(|(h, sp)| (Length(h), sp)),
-    );
     let along = f.value(&wall::ALONG, diags).and_then(|v| {
         let (points, pieces) = path_value(v, diags)?;
         match OpenPath::new(&points) {
@@ -101,6 +97,14 @@ pub fn read<'a>(
             }
         }
     });
+    // `top` is a function of the position, tried at the path's start.
+    let top = match f.expr(&wall::TOP) {
+        None => Some(None),
+        Some(e) => {
+            let at = along.as_ref().map_or([0.0; 2], |(p, _, _)| p.start());
+            read_top(env, e, (name, at), scope, diags).map(|t| Some((t, e.span)))
+        }
+    };
     let count = f.count_or_default(&wall::BEADS, diags);
     let side = f.word_or_default(&wall::SIDE, diags).map(|w| match w {
         "left" => WallSide::Left,
@@ -156,8 +160,39 @@ pub fn read<'a>(
 type Rise = (
     Option<(Length, Span)>,
     Option<(ScanBase, Span)>,
-    Option<(Length, Span)>,
+    Option<(Top, Span)>,
 );
+
+/// `top = e` of the wall `own`, tried at `at` (mm), a point of its path:
+/// any top an extrusion takes, a solid of the file named too. A top that
+/// does not depend on the position is read as the flat height it is.
+fn read_top<'a>(
+    env: &mut Env<'a>,
+    e: &Expr,
+    (own, at): (&str, [f64; 2]),
+    scope: &Scope<'_, 'a>,
+    diags: &mut Diagnostics,
+) -> Option<Top> {
+    if let ExprKind::Ident(n) = &e.kind {
+        if let Some(t) = crate::sema::solid::target::read(env, n, e.span, own, scope, diags) {
+            return t;
+        }
+    }
+    let reads = env.position_reads();
+    let top = crate::sema::solid::top::read(env, e, at, scope.constants, diags)?;
+    match top {
+        Top::Expr(x) if env.position_reads() == reads => {
+            // A constant: its value, so the help can name flat tops.
+            let h = x.evaluator().at(at[0], at[1], &mut Diagnostics::new())?;
+            Some(Top::Plane {
+                at: [Length(0.0); 2],
+                height: h,
+                slope: [0.0; 2],
+            })
+        }
+        t => Some(t),
+    }
+}
 
 /// `height`, `on` and `top` (each `Some(None)` when not written, `None`
 /// when wrong), when they go together: a wall on a scan rises to its
@@ -165,7 +200,7 @@ type Rise = (
 fn rise(
     height: Option<Option<(Length, Span)>>,
     on: Option<Option<(ScanBase, Span)>>,
-    top: Option<Option<(Length, Span)>>,
+    top: Option<Option<(Top, Span)>>,
     span: Span,
     diags: &mut Diagnostics,
 ) -> Option<Rise> {
@@ -510,7 +545,7 @@ pub fn assemble_on_scan(
 }
 
 /// What a wall rises on and to: `on` and `top`, as read.
-type OnTop = (Option<(ScanBase, Span)>, Option<(Length, Span)>);
+type OnTop = (Option<(ScanBase, Span)>, Option<(Top, Span)>);
 
 /// The wall `w` with beads `width` wide `pitch` apart, its path checked
 /// against the wall's reach, and what it rises on and to.

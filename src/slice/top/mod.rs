@@ -58,6 +58,7 @@ pub(in crate::slice) use emit::{along, Process};
 pub(in crate::slice) use footprint::spaced;
 pub(in crate::slice) use level::{mean_heights, passes, stacked};
 pub(in crate::slice) use surface::Base;
+pub(crate) use surface::{Bad as TopFault, Form as TopForm};
 pub(in crate::slice) use too_short::report_at as segments_too_short;
 pub(in crate::slice) use tracks::{Failure, Track};
 

@@ -96,7 +96,7 @@ impl<'m> Surface<'m> {
     /// The top of `ex` over `base`.
     pub fn over(ex: &'m TopExtrusion, extent: impl Fn(Axis) -> [f64; 2], base: Base<'m>) -> Self {
         Surface {
-            form: Form::new(ex, extent),
+            form: Form::of(&ex.top, extent),
             base,
             ex,
             holds: None,
@@ -191,8 +191,11 @@ impl Surface<'_> {
 }
 
 impl<'m> Form<'m> {
-    fn new(ex: &'m TopExtrusion, extent: impl Fn(Axis) -> [f64; 2]) -> Self {
-        match &ex.top {
+    /// `top` ready to evaluate, over a footprint or path whose written
+    /// extent along an axis is `extent(axis)` (the extreme edges
+    /// `edges(…)` refers to).
+    pub fn of(top: &'m Top, extent: impl Fn(Axis) -> [f64; 2]) -> Self {
+        match top {
             Top::Plane { at, height, slope } => Form::Plane {
                 h0: height.0 - slope[0] * at[0].0 - slope[1] * at[1].0,
                 slope: *slope,
@@ -220,7 +223,7 @@ impl<'m> Form<'m> {
     }
 
     /// The top at `p`: a positive, finite height, or why not.
-    fn at(&mut self, p: [f64; 2]) -> Result<f64, Bad> {
+    pub fn at(&mut self, p: [f64; 2]) -> Result<f64, Bad> {
         let (h, inner) = match self {
             Form::Plane { h0, slope } => (Some(*h0 + slope[0] * p[0] + slope[1] * p[1]), None),
             Form::Expr(e) => {
@@ -320,7 +323,7 @@ impl Bad {
                     self.at,
                     [top, under, surface],
                     more,
-                    solid_name(ex),
+                    solid_name(&ex.top),
                     ex.top_span,
                     reach,
                     ex.turned.as_ref(),
@@ -356,36 +359,68 @@ impl Bad {
                 return out;
             }
         };
-        let bad = match (value, &inner) {
-            (Some(h), _) if h.is_finite() => BadTop::NotPositive(h),
-            (Some(_), _) => BadTop::NotFinite,
-            (None, Some(_)) => BadTop::Failed,
-            (None, None) => match solid_name(ex) {
-                Some(name) => BadTop::OffSolid(name.to_string()),
-                None => BadTop::OffTarget,
-            },
-        };
-        let inner = inner.unwrap_or_default();
         let at = TopAt {
             top: ex.top_span,
             shape: ex.shape_span,
+            what: "footprint",
             turned: ex.turned.as_ref(),
         };
-        out.push(message::top::bad_top(
+        out.extend(top_fault(
             self.at,
+            (value, inner),
             more,
-            bad,
-            inner.has_errors(),
+            solid_name(&ex.top),
             at,
         ));
-        out.extend(inner);
         out
+    }
+
+    /// The diagnostics of a point where the top itself has no height (the
+    /// faults of [`Form::at`]), `more` other points counted; `None` for a
+    /// fault of the base.
+    pub fn top_fault(self, more: usize, top: &Top, at: TopAt<'_>) -> Option<Diagnostics> {
+        let (value, inner) = match self.why {
+            Why::Top { value, inner } => (value, Some(inner)),
+            Why::OffTarget => (None, None),
+            _ => return None,
+        };
+        Some(top_fault(
+            self.at,
+            (value, inner),
+            more,
+            solid_name(top),
+            at,
+        ))
     }
 }
 
+/// The diagnostics of the top's value (or what failed) at `p`.
+fn top_fault(
+    p: [f64; 2],
+    (value, inner): (Option<f64>, Option<Diagnostics>),
+    more: usize,
+    solid: Option<&str>,
+    at: TopAt<'_>,
+) -> Diagnostics {
+    let bad = match (value, &inner) {
+        (Some(h), _) if h.is_finite() => BadTop::NotPositive(h),
+        (Some(_), _) => BadTop::NotFinite,
+        (None, Some(_)) => BadTop::Failed,
+        (None, None) => match solid {
+            Some(name) => BadTop::OffSolid(name.to_string()),
+            None => BadTop::OffTarget,
+        },
+    };
+    let inner = inner.unwrap_or_default();
+    let mut out = Diagnostics::new();
+    out.push(message::top::bad_top(p, more, bad, inner.has_errors(), at));
+    out.extend(inner);
+    out
+}
+
 /// The target solid's name, when the top is one.
-fn solid_name(ex: &TopExtrusion) -> Option<&str> {
-    match &ex.top {
+fn solid_name(top: &Top) -> Option<&str> {
+    match top {
         Top::Solid(t) => Some(&t.name),
         _ => None,
     }

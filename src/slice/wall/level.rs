@@ -16,10 +16,12 @@
 //! scan stands above it, nothing is laid). The top must stand at least the
 //! lowest bead above the level.
 
-use super::on_scan::{internal, on_samples, regular, segmented, too_short, Cx, Sampled};
-use super::{layer, order};
+use super::on_scan::{
+    above_scan, internal, on_samples, regular, segmented, too_short, Cx, Sampled,
+};
+use super::{layer, order, with_leads};
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Frame, Layer, Path, PathKind};
+use crate::ir::{Frame, Layer, Point};
 use crate::sema::model::Level;
 use crate::slice::top::{along, mean_heights, passes, stacked, Base, Process, Track};
 use crate::slice::variable::layers::MAX_LAYERS;
@@ -43,11 +45,21 @@ pub(super) fn slice(cx: &Cx<'_>, sampled: &[Sampled]) -> Result<Vec<Layer>, Diag
         [r.low().0, r.high().0]
     };
     let z = height(cx, sampled, lo / 2.0)?;
-    let top = cx.on.top.0;
+    // The lowest top over the beads (the form gave each sample one: a
+    // sample without was refused).
+    let (p, top) = sampled.iter().flat_map(|l| l.xy.iter().zip(&l.top)).fold(
+        ([0.0; 2], f64::INFINITY),
+        |best, (&p, &t)| {
+            if t < best.1 {
+                (p, t)
+            } else {
+                best
+            }
+        },
+    );
     if top - z < lo * (1.0 - SLACK) {
         let at = cx.slicing.level.span().unwrap_or(cx.slicing.span);
-        let p = sampled.first().and_then(|l| l.xy.first()).copied();
-        let d = message::scan::top_near_level(p.unwrap_or([0.0; 2]), top, z, lo, at, None);
+        let d = message::scan::top_near_level(p, top, z, lo, at, None);
         return Err(d.into());
     }
     let pieces = pieces(cx, sampled, z, [lo, hi])?;
@@ -68,12 +80,13 @@ pub(super) fn slice(cx: &Cx<'_>, sampled: &[Sampled]) -> Result<Vec<Layer>, Diag
         .map(|l| Sampled {
             s: l.s.clone(),
             xy: l.xy.clone(),
-            gap: vec![top - z; l.s.len()],
+            gap: l.top.iter().map(|t| t - z).collect(),
             base: vec![z; l.s.len()],
+            top: l.top.clone(),
         })
         .collect();
-    let flat = |_: [f64; 2]| Some(top - z);
-    let rest = regular(cx, &levelled, (Base::Level(z), passes.len()), &flat)?;
+    let above = |p: [f64; 2]| (cx.top)(p).map(|t| t - z);
+    let rest = regular(cx, &levelled, (Base::Level(z), passes.len()), &above)?;
     Ok(stacked(cx.model, passes, rest))
 }
 
@@ -116,12 +129,7 @@ fn pieces(
             // Each point's scan and what the run's `n` passes lay there
             // together, the gap kept within their range (a point the
             // bisection found off the scan is left out).
-            let mut piece = Sampled {
-                s: Vec::new(),
-                xy: Vec::new(),
-                gap: Vec::new(),
-                base: Vec::new(),
-            };
+            let mut piece = Sampled::default();
             for (&s, &p) in run.s.iter().zip(&run.xy) {
                 if let Some(b) = surface.at(p) {
                     piece.s.push(s);
@@ -202,8 +210,7 @@ fn runs(l: &Sampled, count: &dyn Fn([f64; 2]) -> u32, least: f64) -> Vec<(u32, S
             let mut run = Sampled {
                 s: vec![from.1],
                 xy: vec![from.0],
-                gap: Vec::new(),
-                base: Vec::new(),
+                ..Sampled::default()
             };
             for k in start..i {
                 if l.s[k] > from.1 && l.s[k] < to.1 {
@@ -222,7 +229,9 @@ fn runs(l: &Sampled, count: &dyn Fn([f64; 2]) -> u32, least: f64) -> Vec<(u32, S
 }
 
 /// The passes as layers: pass `k` lays the pieces of more than `k`
-/// passes, bead by bead in the wall's order and direction for that layer.
+/// passes, bead by bead in the wall's order and direction for that layer,
+/// each stretch with its leads as a bead's (a stretch starts and stops
+/// where the laser does, mid-line too), raised over the scan.
 fn laid(cx: &Cx<'_>, pieces: &[Piece]) -> Vec<Layer> {
     let count = pieces.iter().map(|p| p.n).max().unwrap_or(0) as usize;
     let process = Process::of(cx.model, cx.bead, Base::Scan(&cx.on.base.surface));
@@ -238,21 +247,35 @@ fn laid(cx: &Cx<'_>, pieces: &[Piece]) -> Vec<Layer> {
                 if !forward {
                     here.reverse();
                 }
-                paths.extend(here.into_iter().map(|p| Path {
-                    kind: PathKind::Wall,
-                    points: along(
-                        &p.track,
-                        &p.xy,
-                        &cx.map,
-                        &process,
-                        None,
-                        (k as u32, p.n as f64),
-                        power,
-                        !forward,
-                    ),
-                }));
+                for p in here {
+                    let lay = (k as u32, p.n as f64);
+                    let points = along(
+                        &p.track, &p.xy, &cx.map, &process, None, lay, power, !forward,
+                    );
+                    let ends = [ends_of(&points, 0), ends_of(&points, 1)];
+                    with_leads(cx.wall.ends, points, ends, &mut paths);
+                }
             }
+            above_scan(&mut paths, &cx.on.base.surface);
             layer(k, count, paths, Frame::PART)
         })
         .collect()
+}
+
+/// The direction (unit, x–y) of the bead through `points` at its start
+/// (`end` 0) or its end (1): its first or last move's.
+fn ends_of(points: &[Point], end: usize) -> [f64; 2] {
+    let m = points.len();
+    if m < 2 {
+        return [0.0; 2];
+    }
+    let (a, b) = if end == 0 { (0, 1) } else { (m - 2, m - 1) };
+    let (a, b) = (points[a].pos, points[b].pos);
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let len = dx.hypot(dy);
+    if len > 0.0 {
+        [dx / len, dy / len]
+    } else {
+        [0.0; 2]
+    }
 }

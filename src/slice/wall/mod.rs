@@ -20,7 +20,7 @@
 mod level;
 mod on_scan;
 
-pub use on_scan::slice as slice_on_scan;
+pub use on_scan::{slice as slice_on_scan, top_form};
 
 use super::layers;
 use super::MAX_TOTAL_POINTS;
@@ -184,27 +184,39 @@ fn beads(
         };
         let t = track.as_ref().unwrap_or(&tracks[j]);
         let points = lay(j, forward, t);
-        let ends = match wall.ends {
-            WallEnds::Lead(l) => Some(l.0),
-            WallEnds::Stop => None,
-        };
-        if let (Some(l), Some(first)) = (ends, points.first()) {
-            let p = first.pos;
-            let from = [p[0] - l * t.start[0], p[1] - l * t.start[1], p[2]];
-            paths.push(lead(from, first));
-        }
-        let last = points.last().copied();
-        paths.push(Path {
-            kind: PathKind::Wall,
-            points,
-        });
-        if let (Some(l), Some(last)) = (ends, last) {
-            let p = last.pos;
-            let to = [p[0] + l * t.end[0], p[1] + l * t.end[1], p[2]];
-            paths.push(lead(to, &last));
-        }
+        with_leads(wall.ends, points, [t.start, t.end], &mut paths);
     }
     paths
+}
+
+/// The bead through `points` onto `paths`, with a lead before and after it
+/// when the wall's `ends` ask for them: straight on from its ends along
+/// its directions there, `[start, end]` (unit, in x–y).
+fn with_leads(
+    ends: WallEnds,
+    points: Vec<Point>,
+    [start, end]: [[f64; 2]; 2],
+    paths: &mut Vec<Path>,
+) {
+    let ends = match ends {
+        WallEnds::Lead(l) => Some(l.0),
+        WallEnds::Stop => None,
+    };
+    if let (Some(l), Some(first)) = (ends, points.first()) {
+        let p = first.pos;
+        let from = [p[0] - l * start[0], p[1] - l * start[1], p[2]];
+        paths.push(lead(from, first));
+    }
+    let last = points.last().copied();
+    paths.push(Path {
+        kind: PathKind::Wall,
+        points,
+    });
+    if let (Some(l), Some(last)) = (ends, last) {
+        let p = last.pos;
+        let to = [p[0] + l * end[0], p[1] + l * end[1], p[2]];
+        paths.push(lead(to, &last));
+    }
 }
 
 /// The beads of layer `k` of a wall of `m` in the order laid: each one's

@@ -14,13 +14,14 @@
 //! emitter). The beads run as a flat wall's do: `direction`, `ends`.
 
 use super::{beads, fault_at, layer, tracks, Track as Line};
-use crate::diag::message::{self, top::CountOutside};
+use crate::diag::message::{self, top::CountOutside, top::TopAt};
 use crate::diag::Diagnostics;
 use crate::geometry::scan::HeightField;
 use crate::ir::{Frame, Layer, Path, PathKind};
-use crate::sema::model::{Bead, Level, Model, OpenWall, VariableSlicing, WallOnScan};
+use crate::sema::model::{Axis, Bead, Level, Model, OpenWall, VariableSlicing, WallOnScan};
 pub(super) use crate::slice::top::Failure;
 use crate::slice::top::{along, segments_too_short, spaced, Base, Process, Track};
+use crate::slice::top::{TopFault, TopForm};
 use crate::slice::variable::layers::{choose_layers, LayerCount, LayerError};
 use crate::slice::variable::profile::TrackProfile;
 use crate::slice::variable::segments::Segment;
@@ -29,6 +30,7 @@ use crate::slice::variable::speed::{BeadMap, HeightMap};
 use crate::slice::variable::{HeightRange, Positive};
 use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
+use std::cell::RefCell;
 use std::num::NonZeroU32;
 
 /// How closely the path's arcs are flattened, mm: planar slicing's default.
@@ -42,20 +44,43 @@ const MAX_LINE_SAMPLES: f64 = 1e5;
 
 /// One bead's centre line sampled: the length along it, the point and the
 /// gap to fill there.
-#[derive(Clone)]
+#[derive(Clone, Default)]
 pub(super) struct Sampled {
     pub s: Vec<f64>,
     pub xy: Vec<[f64; 2]>,
     pub gap: Vec<f64>,
     /// The scanned surface there, mm.
     pub base: Vec<f64>,
+    /// The top there, mm (NaN where it has none).
+    pub top: Vec<f64>,
 }
 
 /// The first place the scan cannot be built on, and how many more.
 #[derive(Default)]
 struct Unbuildable {
     uncovered: Option<([f64; 2], usize)>,
-    below: Option<([f64; 2], f64, usize)>,
+    below: Option<([f64; 2], [f64; 2], usize)>,
+    /// Where the top itself has no height (an expression that fails, a
+    /// target with nothing over the path).
+    top: Option<(TopFault, usize)>,
+}
+
+/// The top of the wall `on`, ready to evaluate along `wall`'s path (whose
+/// box is the extent `edges(…)` refers to).
+pub fn top_form<'m>(wall: &OpenWall, on: &'m WallOnScan) -> TopForm<'m> {
+    let points = wall.path.flatten(CHORD);
+    let range = |k: usize| {
+        points
+            .iter()
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], p| {
+                [lo.min(p[k]), hi.max(p[k])]
+            })
+    };
+    let [x, y] = [range(0), range(1)];
+    TopForm::of(&on.top, |a| match a {
+        Axis::X => x,
+        Axis::Y => y,
+    })
 }
 
 /// Slices a wall on a scan into layers of variable thickness (levelling
@@ -79,23 +104,26 @@ pub fn slice(
         .max(lengths.iter().sum::<f64>() / MAX_SAMPLES)
         .max(longest / MAX_LINE_SAMPLES);
     let mut bad = Unbuildable::default();
+    let top = RefCell::new(top_form(wall, on));
     let sampled: Vec<Sampled> = lines
         .iter()
-        .map(|l| sample(&l.points, step, on.top.0, surface, &mut bad))
+        .map(|l| sample(&l.points, step, &top, surface, &mut bad))
         .collect();
     let levelled = slicing.level != Level::None;
-    unbuildable(&bad, wall, on, !levelled)?;
+    unbuildable(bad, wall, on, !levelled)?;
     let spec = SegmentSpec {
         tolerance: Positive::new("tolerance", slicing.tolerance)
             .map_err(|e| internal(&e.to_string()))?,
         min_length: Positive::new("minimum segment", slicing.min_length.unwrap_or(bead.width))
             .map_err(|e| internal(&e.to_string()))?,
     };
+    let top_at = |p: [f64; 2]| top.borrow_mut().at(p).ok();
     let cx = Cx {
         model,
         bead,
         wall,
         on,
+        top: &top_at,
         slicing,
         lines: &lines,
         map,
@@ -105,8 +133,10 @@ pub fn slice(
     if levelled {
         return super::level::slice(&cx, &sampled).map(|l| (l, Diagnostics::new()));
     }
-    let top = on.top.0;
-    let gap = |p: [f64; 2]| surface.at(p).map(|b| top - b).filter(|&g| g > 0.0);
+    let gap = |p: [f64; 2]| {
+        let t = top_at(p)?;
+        surface.at(p).map(|b| t - b).filter(|&g| g > 0.0)
+    };
     let layers = regular(&cx, &sampled, (Base::Scan(surface), 0), &gap)?;
     Ok((layers, Diagnostics::new()))
 }
@@ -117,6 +147,8 @@ pub(super) struct Cx<'a> {
     pub bead: &'a Bead,
     pub wall: &'a OpenWall,
     pub on: &'a WallOnScan,
+    /// The top at a point, mm, where it has one.
+    pub top: &'a dyn Fn([f64; 2]) -> Option<f64>,
     pub slicing: &'a VariableSlicing,
     /// Each bead's centre line, across the wall.
     pub lines: &'a [Line],
@@ -181,7 +213,7 @@ pub(super) fn regular(
 /// higher than under the bead's end: a lead runs on at the bead's height
 /// above the scan there, so on a rising scan it does not run into the
 /// part (on the first layer the bead's end lies on the scan).
-fn above_scan(paths: &mut [Path], surface: &HeightField) {
+pub(super) fn above_scan(paths: &mut [Path], surface: &HeightField) {
     for i in 0..paths.len() {
         if paths[i].kind != PathKind::Lead {
             continue;
@@ -217,44 +249,52 @@ fn polyline_length(points: &[[f64; 2]]) -> f64 {
 
 /// The line through `points` sampled at most `step` apart (at every point
 /// of it too), the gap from the scan `surface` up to `top` at each; where
-/// the scan has no surface or the top is not above it is noted in `bad`.
+/// the scan has no surface, the top no height, or the top is not above the
+/// scan is noted in `bad`.
 fn sample(
     points: &[[f64; 2]],
     step: f64,
-    top: f64,
+    top: &RefCell<TopForm<'_>>,
     surface: &HeightField,
     bad: &mut Unbuildable,
 ) -> Sampled {
-    let mut out = Sampled {
-        s: Vec::new(),
-        xy: Vec::new(),
-        gap: Vec::new(),
-        base: Vec::new(),
-    };
+    let mut out = Sampled::default();
     let mut at = 0.0;
     let mut push = |p: [f64; 2], s: f64, out: &mut Sampled| {
         if out.s.last().is_some_and(|&last| s <= last) {
             return;
         }
         let b = surface.at(p);
-        let gap = match b {
-            None => {
+        let t = match top.borrow_mut().at(p) {
+            Ok(t) => Some(t),
+            Err(fault) => {
+                match &mut bad.top {
+                    Some((_, more)) => *more += 1,
+                    None => bad.top = Some((fault, 0)),
+                }
+                None
+            }
+        };
+        let gap = match (b, t) {
+            (None, _) => {
                 note(&mut bad.uncovered, p);
                 f64::NAN
             }
-            Some(b) if top - b <= 0.0 => {
+            (_, None) => f64::NAN,
+            (Some(b), Some(t)) if t - b <= 0.0 => {
                 match &mut bad.below {
                     Some((_, _, more)) => *more += 1,
-                    None => bad.below = Some((p, b, 0)),
+                    None => bad.below = Some((p, [t, b], 0)),
                 }
                 f64::NAN
             }
-            Some(b) => top - b,
+            (Some(b), Some(t)) => t - b,
         };
         out.s.push(s);
         out.xy.push(p);
         out.gap.push(gap);
         out.base.push(b.unwrap_or(f64::NAN));
+        out.top.push(t.unwrap_or(f64::NAN));
     };
     for w in points.windows(2) {
         let [a, b] = [w[0], w[1]];
@@ -282,25 +322,34 @@ fn note(first: &mut Option<([f64; 2], usize)>, p: [f64; 2]) {
 }
 
 /// The error for where the wall cannot be built on the scan, if anywhere:
-/// where it has no surface, and (`below`: not levelled first) where the
-/// top is not above it.
+/// where the top has no height, where the scan has no surface, and
+/// (`below`: not levelled first) where the top is not above it.
 fn unbuildable(
-    bad: &Unbuildable,
+    bad: Unbuildable,
     wall: &OpenWall,
     on: &WallOnScan,
     below: bool,
 ) -> Result<(), Diagnostics> {
     let mut diags = Diagnostics::new();
     let spans = [wall.along_span, on.base.span];
+    if let Some((fault, more)) = bad.top {
+        let at = TopAt {
+            top: on.top_span,
+            shape: wall.along_span,
+            what: "path",
+            turned: None,
+        };
+        diags.extend(fault.top_fault(more, &on.top, at).unwrap_or_default());
+    }
     if let Some((p, more)) = bad.uncovered {
         let extent = on.base.surface.extent();
         diags.push(message::scan::uncovered(
             p, more, extent, spans[0], spans[1], None,
         ));
     }
-    if let Some((p, b, more)) = bad.below.filter(|_| below) {
+    if let Some((p, [t, b], more)) = bad.below.filter(|_| below) {
         let at = [on.top_span, on.base.span];
-        diags.push(message::scan::top_below(p, on.top.0, b, more, at, None));
+        diags.push(message::scan::top_below(p, t, b, more, at, None));
     }
     if diags.has_errors() {
         return Err(diags);
@@ -344,11 +393,12 @@ fn count(
     choose_layers(*range, beads, count).map_err(|e| {
         let d = match e {
             LayerError::NoCount(e) => {
-                let fix = top_fix(on.top.0, &e, declared.map(|n| n.get()));
+                let flat = on.top.flat();
+                let fix = flat.and_then(|t| top_fix(t, &e, declared.map(|n| n.get())));
                 message::wall::no_count_on_scan(&message::wall::NoCountOnScan {
                     e: &e,
                     at: *at,
-                    top: on.top.0,
+                    top: flat,
                     fix,
                     bead: (&bead.name, bead.height_span),
                     pitch,
