@@ -21,6 +21,7 @@ mod target;
 mod tilted;
 mod tiltlevel;
 mod wall;
+mod wall_follow;
 mod wall_top;
 
 /// A worn face: flat at `face` mm, a trough `depth` deep at `(cx, cy)`,

@@ -244,7 +244,8 @@ fn a_rib_off_its_scan_below_it_or_between_counts_is_refused_with_where() {
 /// The fields that do not go with a wall on a scan, each refused where it
 /// is written: planar slicing, `height` beside `on`, `top` without `on`,
 /// `on` without `top`, and the variable slicing's fields lmdc plans under
-/// an extrusion only (`scan`, `follow`, `direction`).
+/// an extrusion only (`scan`, `direction`); `follow = surface` without a
+/// tilted bead or a tilting machine.
 #[test]
 fn the_fields_a_wall_on_a_scan_does_not_take_are_refused() {
     let files = || example_files(&["worn_pad.ply"]);
@@ -269,7 +270,7 @@ fn the_fields_a_wall_on_a_scan_does_not_take_are_refused() {
     assert!(codes(&no_scan).contains("`top` is the finished height of a wall built on a scan"));
     let no_top = src.replace("top = 13 mm", "");
     assert!(codes(&no_top).contains("`on = scan(…)` needs a `top`"));
-    for field in ["scan = x", "follow = surface", "direction = auto"] {
+    for field in ["scan = x", "direction = auto"] {
         let with = src.replace("layers = auto", &format!("layers = auto\n  {field}"));
         let key = field.split(' ').next().unwrap();
         let m = codes(&with);
@@ -278,6 +279,15 @@ fn the_fields_a_wall_on_a_scan_does_not_take_are_refused() {
             "{field}: {m}"
         );
     }
+    // The nozzle along the scan's normal needs a bead measured tilted and
+    // a machine that tilts: the example's bead and mill3 are neither.
+    let follow = src.replace("layers = auto", "layers = auto\n  follow = surface");
+    let m = codes(&follow);
+    assert!(
+        m.contains("bead `b316` was measured with the nozzle vertical only"),
+        "{m}"
+    );
+    assert!(m.contains("machine `mill3` moves X Y Z only"), "{m}");
 }
 
 /// The rib's finish (docs/repair.md, *A wall on a scan*): the bead

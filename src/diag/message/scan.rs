@@ -504,6 +504,9 @@ pub struct SteepPass {
     pub lo: f64,
     /// Its highest, mm.
     pub hi: f64,
+    /// Whether the tracks' direction is the slicing's to choose (`scan`):
+    /// an extrusion's, not a wall's (its tracks follow its path).
+    pub turnable: bool,
 }
 
 /// `level = …` with `follow = surface`: where the first pass's surface
@@ -539,7 +542,8 @@ pub fn level_follow_too_steep(
     .label(follow, "the nozzle along the scan's normal")
     .label(bead, "the bead")
     .help(format!(
-        "let the nozzle tilt at most {}° (the upper end of the bead's `tilt`, or the machine's tilt axis), lay the tracks across the slope (`scan`), give a bead measured over a wider range of heights, or leave `follow` out to level with the nozzle vertical",
-        short(most.floor().max(0.0))
+        "let the nozzle tilt at most {}° (the upper end of the bead's `tilt`, or the machine's tilt axis), {}give a bead measured over a wider range of heights, or leave `follow` out to level with the nozzle vertical",
+        short(most.floor().max(0.0)),
+        if s.turnable { "lay the tracks across the slope (`scan`), " } else { "" }
     ))
 }

@@ -154,9 +154,7 @@ pub fn slicing_field(key: &str, at: Span, wall: Span) -> Diagnostic {
     .label(wall, "a wall along a path: its beads follow the path")
     .help(match key {
         // Planned under an extrusion's footprint, not along a path.
-        "follow" | "direction" => format!(
-            "drop `{key}`: lmdc tilts the nozzle to the scan (`follow`) or fills along a tilted direction (`direction`) under an extrusion's footprint only; a lip that needs it can be drawn as a thin `outline(…)` extruded on the scan"
-        ),
+        "direction" => "drop `direction`: lmdc fills along a tilted build direction under an extrusion's footprint only; a lip over an overhang can be drawn as a thin `outline(…)` extruded on the scan".to_string(),
         _ => format!(
             "drop `{key}`: the wall's beads are set by its `beads`, `side`, `ends` and `direction`"
         ),
@@ -219,6 +217,9 @@ pub struct NoCountOnScan<'a> {
     pub at: [[f64; 2]; 2],
     /// The wall's top, mm, when it is flat.
     pub top: Option<f64>,
+    /// The level the regular layers rise from, mm, when the wear under
+    /// the wall was levelled first (`level = …`): the gaps are from it.
+    pub level: Option<f64>,
     /// The flat tops nearest it that a count lays (`[lowest, highest]` mm)
     /// and that count, if any.
     pub fix: Option<([f64; 2], u32)>,
@@ -238,7 +239,13 @@ pub fn no_count_on_scan(c: &NoCountOnScan<'_>) -> Diagnostic {
     let (lo, hi) = (e.top.low(), e.top.high());
     let (h_lo, h_hi) = (e.bead.low(), e.bead.high());
     let name = c.bead.0;
-    let gaps = format!("along the wall the scanned part lies {lo} .. {hi} below its top");
+    let gaps = match c.level {
+        None => format!("along the wall the scanned part lies {lo} .. {hi} below its top"),
+        Some(z) => format!(
+            "from the level {} mm the wall's regular layers rise {lo} .. {hi} to its top",
+            short(z)
+        ),
+    };
     let message = if e.most == 0 {
         format!("{gaps}; the least is thinner than the thinnest layer bead `{name}` lays ({h_lo})")
     } else if e.ratio_needed() > e.ratio_available() {
@@ -278,7 +285,12 @@ pub fn no_count_on_scan(c: &NoCountOnScan<'_>) -> Diagnostic {
                 Length(c.pitch)
             ),
         )
-        .help(format!(
-            "this would work: {fix}a bead whose heights span more; or `level = auto` in the slicing block, which fills the wear up to the scan's highest point under the wall first"
-        ))
+        .help(match c.level {
+            None => format!(
+                "this would work: {fix}a bead whose heights span more; or `level = auto` in the slicing block, which fills the wear up to the scan's highest point under the wall first"
+            ),
+            Some(_) => format!(
+                "this would work: {fix}a bead whose heights span more; or another level, from which a whole number of the bead's layers reaches the top"
+            ),
+        })
 }

@@ -28,6 +28,14 @@ impl Axis {
         }
     }
 
+    /// Its unit direction in the plane.
+    pub fn unit(self) -> [f64; 2] {
+        match self {
+            Axis::X => [1.0, 0.0],
+            Axis::Y => [0.0, 1.0],
+        }
+    }
+
     /// The other axis of the plane.
     pub fn across(self) -> Axis {
         match self {

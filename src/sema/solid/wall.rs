@@ -496,9 +496,9 @@ pub fn assemble(
 }
 
 /// The variable slicing fields a wall on a scan does not plan: `scan` (its
-/// beads follow the path), and the nozzle following the surface and the
-/// tilted build, which lmdc plans under an extrusion's footprint only.
-const NOT_FOR_A_SCAN_WALL: &[&str] = &["scan", "follow", "direction"];
+/// beads follow the path) and the tilted build, which lmdc plans under an
+/// extrusion's footprint only.
+const NOT_FOR_A_SCAN_WALL: &[&str] = &["scan", "direction"];
 
 /// Joins a wall on a scan with its variable slicing (whose side checks
 /// were made) and its bead: the beads' pitch (one bead: its width; more:

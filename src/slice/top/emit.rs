@@ -125,10 +125,27 @@ pub(super) fn track(
     along(tr, &xy, map, process, Some(scan), (i, n), power, reverse)
 }
 
+/// The unit direction (x–y) of the line through `xy` at point `j`: of the
+/// move from it, or into it at the last point.
+pub(in crate::slice) fn direction(xy: &[[f64; 2]], j: usize) -> [f64; 2] {
+    let (a, b) = if j + 1 < xy.len() {
+        (j, j + 1)
+    } else {
+        (j.saturating_sub(1), j)
+    };
+    let (dx, dy) = (xy[b][0] - xy[a][0], xy[b][1] - xy[a][1]);
+    let len = dx.hypot(dy);
+    if len > 0.0 {
+        [dx / len, dy / len]
+    } else {
+        [0.0; 2]
+    }
+}
+
 /// The points of one track on layer `i` of `n`, through `xy` (a point
 /// for each of its `t`), backwards when `reverse`. `scan` is the axis its
 /// line runs along, which a nozzle following the surface leans along; a
-/// track along a path (`None`) is laid vertical.
+/// track along a path (`None`) leans along its own direction.
 #[allow(clippy::too_many_arguments)]
 pub(in crate::slice) fn along(
     tr: &Track,
@@ -147,15 +164,16 @@ pub(in crate::slice) fn along(
         .map(|(&[x, y], &h)| [x, y, process.base(x, y) + frac * h])
         .collect();
     // Layer `i` lies on `B + (i/N)·(top − B)`: its slope is `1 − i/N` of the
-    // scan's where the top is flat (module `follow`).
-    let tilts: Option<Vec<Tilted>> = match (process.follow, scan) {
-        (Some(f), Some(scan)) => Some(
-            pos.iter()
-                .map(|p| f.at([p[0], p[1]], 1.0 - frac, scan))
-                .collect(),
-        ),
-        _ => None,
-    };
+    // scan's where the top is flat (module `follow`). A track along a path
+    // leans along its own direction at each point.
+    let tilts: Option<Vec<Tilted>> = process.follow.map(|f| {
+        (0..pos.len())
+            .map(|j| {
+                let along = scan.map_or_else(|| direction(xy, j), Axis::unit);
+                f.at([pos[j][0], pos[j][1]], 1.0 - frac, along)
+            })
+            .collect()
+    });
     let segments = segment_speeds(tr, &pos, tilts.as_deref(), map, process.speeds, n);
     let m = pos.len();
     // Move j runs from point j to j + 1 in the track's own direction.

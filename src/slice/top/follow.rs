@@ -30,7 +30,7 @@
 use crate::diag::{message, Diagnostics};
 use crate::geometry::scan::HeightField;
 use crate::ir::{Kinematics, Machine};
-use crate::sema::model::{Axis, Bead, Model, TopExtrusion, VariableSlicing};
+use crate::sema::model::{Bead, Model, TopExtrusion, VariableSlicing};
 use nalgebra::{Matrix3, Vector3};
 
 /// The most cells either way the slope is fitted over: a coarse scan's
@@ -222,8 +222,9 @@ impl<'m> Follow<'m> {
     }
 
     /// The point at `p` on a layer whose slope is `weight` of the scan's
-    /// (`1 − i/N`), its tracks along `scan`.
-    pub fn at(&self, p: [f64; 2], weight: f64, scan: Axis) -> Tilted {
+    /// (`1 − i/N`), its track running along the unit direction `along`
+    /// (x–y; either way).
+    pub fn at(&self, p: [f64; 2], weight: f64, along: [f64; 2]) -> Tilted {
         let g = self.gradient(p).map(|v| v * weight.clamp(0.0, 1.0));
         let t = g[0].hypot(g[1]);
         // Capped: the slope's direction kept, its tilt the most allowed.
@@ -233,10 +234,8 @@ impl<'m> Follow<'m> {
             g
         });
         let len = (1.0 + g[0] * g[0] + g[1] * g[1]).sqrt();
-        let along = match scan {
-            Axis::X => g[0],
-            Axis::Y => g[1],
-        };
+        // Along an axis, that slope alone, exactly (the other times 0).
+        let along = g[0] * along[0] + g[1] * along[1];
         Tilted {
             normal: [-g[0] / len, -g[1] / len, 1.0 / len],
             along_normal: 1.0 / len,

@@ -296,6 +296,7 @@ impl Steep {
                 alpha: self.alpha,
                 lo: self.lo,
                 hi: self.hi,
+                turnable: true,
             },
             [follow, bead.span],
             ex.turned.as_ref(),
@@ -328,7 +329,7 @@ impl Line<'_> {
     fn range_at(&self, t: f64, c: f64, [lo, hi]: [f64; 2]) -> [f64; 2] {
         match self.follow {
             Some(f) => {
-                let tilt = f.at(Footprint::point(self.scan, t, c), 1.0, self.scan);
+                let tilt = f.at(Footprint::point(self.scan, t, c), 1.0, self.scan.unit());
                 [lo / tilt.along_track, hi]
             }
             None => [lo, hi],

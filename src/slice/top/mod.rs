@@ -54,7 +54,9 @@ use surface::Surface;
 
 // What a wall on a scan lays its beads with (`crate::slice::wall`): the
 // same layers of the same fraction of the gap, on the same process.
+pub(in crate::slice) use emit::direction;
 pub(in crate::slice) use emit::{along, Process};
+pub(in crate::slice) use follow::{check as follow_check, limit as follow_limit, Follow};
 pub(in crate::slice) use footprint::spaced;
 pub(in crate::slice) use level::{mean_heights, passes, stacked};
 pub(in crate::slice) use surface::Base;

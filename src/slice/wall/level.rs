@@ -23,7 +23,9 @@ use super::{layer, order, with_leads};
 use crate::diag::{message, Diagnostics};
 use crate::ir::{Frame, Layer, Point};
 use crate::sema::model::Level;
-use crate::slice::top::{along, mean_heights, passes, stacked, Base, Process, Track};
+use crate::slice::top::{
+    along, direction, mean_heights, passes, stacked, Base, Follow, Process, Track,
+};
 use crate::slice::variable::layers::MAX_LAYERS;
 use crate::slice::variable::speed::HeightMap;
 use crate::slice::variable::SLACK;
@@ -122,7 +124,17 @@ fn pieces(
     range: [f64; 2],
 ) -> Result<Vec<Piece>, Diagnostics> {
     let surface = &cx.on.base.surface;
-    let count = |p: [f64; 2]| surface.at(p).map_or(0, |b| passes(z - b, range).0);
+    let follow = cx.tilt.map(|t| Follow::new(surface, t, cx.bead.width.0));
+    let range_at = |p: [f64; 2], along: [f64; 2]| match follow {
+        Some(f) => [range[0] / f.at(p, 1.0, along).along_track, range[1]],
+        None => range,
+    };
+    steep(cx, sampled, z, &range_at)?;
+    let count = |p: [f64; 2], along: [f64; 2]| {
+        surface
+            .at(p)
+            .map_or(0, |b| passes(z - b, range_at(p, along)).0)
+    };
     let mut stretches: Vec<(usize, u32, Sampled)> = Vec::new();
     for (line, l) in sampled.iter().enumerate() {
         for (n, run) in runs(l, &count, cx.bead.width.0) {
@@ -130,11 +142,13 @@ fn pieces(
             // together, the gap kept within their range (a point the
             // bisection found off the scan is left out).
             let mut piece = Sampled::default();
-            for (&s, &p) in run.s.iter().zip(&run.xy) {
+            for (k, (&s, &p)) in run.s.iter().zip(&run.xy).enumerate() {
                 if let Some(b) = surface.at(p) {
                     piece.s.push(s);
                     piece.xy.push(p);
-                    piece.gap.push(within(z - b, n, range));
+                    piece
+                        .gap
+                        .push(within(z - b, n, range_at(p, direction(&run.xy, k))));
                     piece.base.push(b);
                 }
             }
@@ -155,7 +169,14 @@ fn pieces(
         .into_iter()
         .zip(segments)
         .map(|((line, n, s), segs)| {
-            let gap = |p: [f64; 2]| surface.at(p).map(|b| within(z - b, n, range));
+            // A segment's start lies on a straight piece of the line: the
+            // nearest sample's direction is that piece's.
+            let gap = |p: [f64; 2]| {
+                let k = nearest(&s.xy, p);
+                surface
+                    .at(p)
+                    .map(|b| within(z - b, n, range_at(p, direction(&s.xy, k))))
+            };
             let (mut track, xy) = on_samples(&s, cx.pitch, &segs, &gap);
             mean_heights(&mut track);
             Piece { line, n, track, xy }
@@ -173,8 +194,10 @@ fn within(g: f64, n: u32, [lo, hi]: [f64; 2]) -> f64 {
 /// point), at least one and at least `least` long, as samples; where the
 /// count changes between two samples, the place is found by halving along
 /// the straight piece between them and both stretches end there.
-fn runs(l: &Sampled, count: &dyn Fn([f64; 2]) -> u32, least: f64) -> Vec<(u32, Sampled)> {
-    let counts: Vec<u32> = l.xy.iter().map(|&p| count(p)).collect();
+fn runs(l: &Sampled, count: &dyn Fn([f64; 2], [f64; 2]) -> u32, least: f64) -> Vec<(u32, Sampled)> {
+    let counts: Vec<u32> = (0..l.xy.len())
+        .map(|k| count(l.xy[k], direction(&l.xy, k)))
+        .collect();
     let mut out = Vec::new();
     let m = l.s.len();
     let mut start = 0;
@@ -195,10 +218,11 @@ fn runs(l: &Sampled, count: &dyn Fn([f64; 2]) -> u32, least: f64) -> Vec<(u32, S
                 ];
                 (p, a.1 + f * (b.1 - a.1))
             };
+            let along = direction(&[a.0, b.0], 0);
             let (mut lo, mut hi) = (0.0, 1.0);
             for _ in 0..20 {
                 let mid = 0.5 * (lo + hi);
-                if count(at(mid).0) == counts[start] {
+                if count(at(mid).0, along) == counts[start] {
                     lo = mid;
                 } else {
                     hi = mid;
@@ -234,7 +258,8 @@ fn runs(l: &Sampled, count: &dyn Fn([f64; 2]) -> u32, least: f64) -> Vec<(u32, S
 /// where the laser does, mid-line too), raised over the scan.
 fn laid(cx: &Cx<'_>, pieces: &[Piece]) -> Vec<Layer> {
     let count = pieces.iter().map(|p| p.n).max().unwrap_or(0) as usize;
-    let process = Process::of(cx.model, cx.bead, Base::Scan(&cx.on.base.surface));
+    let process =
+        Process::of(cx.model, cx.bead, Base::Scan(&cx.on.base.surface)).following(cx.tilt, None);
     (0..count)
         .map(|k| {
             let power = cx.model.process.power.at(k).watts() as f32;
@@ -278,4 +303,48 @@ fn ends_of(points: &[Point], end: usize) -> [f64; 2] {
     } else {
         [0.0; 2]
     }
+}
+
+/// The sample of `xy` nearest `p`.
+fn nearest(xy: &[[f64; 2]], p: [f64; 2]) -> usize {
+    let d = |q: &[f64; 2]| (q[0] - p[0]).hypot(q[1] - p[1]);
+    (0..xy.len())
+        .min_by(|&a, &b| d(&xy[a]).total_cmp(&d(&xy[b])))
+        .unwrap_or(0)
+}
+
+/// With the nozzle along the scan's normal (`follow = surface`), the
+/// first place where the wear needs a pass but none can be laid: the
+/// scan slopes so steeply along the line that the thinnest pass laid
+/// along its normal, `lo / cos α` high, is taller than the bead lays
+/// (`range_at` gives a place's heights for a track along a direction).
+fn steep(
+    cx: &Cx<'_>,
+    sampled: &[Sampled],
+    z: f64,
+    range_at: &dyn Fn([f64; 2], [f64; 2]) -> [f64; 2],
+) -> Result<(), Diagnostics> {
+    let Some(follow) = cx.slicing.follow.filter(|_| cx.tilt.is_some()) else {
+        return Ok(());
+    };
+    let r = cx.map.heights();
+    let (lo0, hi0) = (r.low().0, r.high().0);
+    for l in sampled {
+        for (k, (&p, &b)) in l.xy.iter().zip(&l.base).enumerate() {
+            let [lo, hi] = range_at(p, direction(&l.xy, k));
+            if b.is_finite() && lo > hi * (1.0 + SLACK) && z - b >= lo / 2.0 {
+                let s = message::scan::SteepPass {
+                    at: p,
+                    surface: b,
+                    alpha: (lo0 / lo).clamp(-1.0, 1.0).acos(),
+                    lo: lo0,
+                    hi: hi0,
+                    turnable: false,
+                };
+                let d = message::scan::level_follow_too_steep(s, [follow, cx.bead.span], None);
+                return Err(d.into());
+            }
+        }
+    }
+    Ok(())
 }

@@ -21,7 +21,7 @@ use crate::ir::{Frame, Layer, Path, PathKind};
 use crate::sema::model::{Axis, Bead, Level, Model, OpenWall, VariableSlicing, WallOnScan};
 pub(super) use crate::slice::top::Failure;
 use crate::slice::top::{along, segments_too_short, spaced, Base, Process, Track};
-use crate::slice::top::{TopFault, TopForm};
+use crate::slice::top::{follow_check, follow_limit, TopFault, TopForm};
 use crate::slice::variable::layers::{choose_layers, LayerCount, LayerError};
 use crate::slice::variable::profile::TrackProfile;
 use crate::slice::variable::segments::Segment;
@@ -94,6 +94,7 @@ pub fn slice(
     slicing: &VariableSlicing,
     pitch: Length,
 ) -> Result<(Vec<Layer>, Diagnostics), Diagnostics> {
+    follow_check(model, bead, slicing)?;
     let lines = tracks(wall, bead.width.0, pitch.0, CHORD).map_err(|f| fault_at(wall, f))?;
     let map = BeadMap::new(bead, Some(pitch)).map_err(|e| internal(&e.to_string()))?;
     let surface = &on.base.surface;
@@ -124,6 +125,7 @@ pub fn slice(
         wall,
         on,
         top: &top_at,
+        tilt: follow_limit(model, bead, slicing),
         slicing,
         lines: &lines,
         map,
@@ -149,6 +151,9 @@ pub(super) struct Cx<'a> {
     pub on: &'a WallOnScan,
     /// The top at a point, mm, where it has one.
     pub top: &'a dyn Fn([f64; 2]) -> Option<f64>,
+    /// `follow = surface`: the largest tilt of the nozzle from vertical,
+    /// rad (the layers on the scan laid along its normal).
+    pub tilt: Option<f64>,
     pub slicing: &'a VariableSlicing,
     /// Each bead's centre line, across the wall.
     pub lines: &'a [Line],
@@ -171,7 +176,11 @@ pub(super) fn regular(
 ) -> Result<Vec<Layer>, Diagnostics> {
     let (model, bead, on, slicing) = (cx.model, cx.bead, cx.on, cx.slicing);
     let range = gap_range(sampled).ok_or_else(|| internal("the wall has no point"))?;
-    let n = count(&range, (&cx.map, cx.pitch), bead, on, slicing)?;
+    let level = match base {
+        Base::Level(z) => Some(z),
+        _ => None,
+    };
+    let n = count(&range, (&cx.map, cx.pitch), bead, (on, level), slicing)?;
     let planned = match segmented(sampled, cx.spec)? {
         Ok(segments) => sampled
             .iter()
@@ -192,7 +201,7 @@ pub(super) fn regular(
         )
         .into());
     }
-    let process = Process::of(model, bead, base);
+    let process = Process::of(model, bead, base).following(cx.tilt, None);
     let layers = (0..n.get())
         .map(|i| {
             let power = model.process.power.at(i as usize).watts() as f32;
@@ -381,7 +390,7 @@ fn count(
     (range, at): &(HeightRange, [[f64; 2]; 2]),
     (map, pitch): (&BeadMap<'_>, f64),
     bead: &Bead,
-    on: &WallOnScan,
+    (on, level): (&WallOnScan, Option<f64>),
     slicing: &VariableSlicing,
 ) -> Result<NonZeroU32, Diagnostics> {
     let beads = map.heights();
@@ -399,6 +408,7 @@ fn count(
                     e: &e,
                     at: *at,
                     top: flat,
+                    level,
                     fix,
                     bead: (&bead.name, bead.height_span),
                     pitch,
