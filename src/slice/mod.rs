@@ -24,6 +24,7 @@ use crate::sema::model::MAX_POINTS;
 use crate::sema::model::{
     Bead, Build, LayerChange, Loft, Model, Resolution, SeamRule, Slicing, Spine,
 };
+use crate::span::Span;
 use crate::units::short;
 use section_points::Spacing;
 
@@ -31,6 +32,17 @@ use section_points::Spacing;
 /// 20 M is over five times the dense benchmark duct, and bounds memory for any
 /// input.
 pub const MAX_TOTAL_POINTS: usize = 20_000_000;
+
+/// `Ok` when `layers` of `per_layer` points each are within the plan's
+/// point budget ([`MAX_TOTAL_POINTS`]); else the error, at `span` (the
+/// slicing, or the field that asks for the points).
+pub(crate) fn within_points(per_layer: usize, layers: u32, span: Span) -> Result<(), Diagnostics> {
+    if per_layer.saturating_mul(layers as usize) > MAX_TOTAL_POINTS {
+        let d = message::top::too_many_points(layers, per_layer, MAX_TOTAL_POINTS, span);
+        return Err(d.into());
+    }
+    Ok(())
+}
 
 /// Points of a planar track closer than this (mm) are one point.
 pub const DISTINCT: f64 = 1e-6;

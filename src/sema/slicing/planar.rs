@@ -5,15 +5,15 @@
 use crate::diag::{message, Diagnostics};
 use crate::sema::eval::Env;
 use crate::sema::fields::Fields;
-use crate::sema::model::Tolerance;
 use crate::sema::model::{LayerChange, LinkMode, Pattern, Raster, SeamRule};
+use crate::sema::model::{PlanarSlicing, Tolerance};
 use crate::sema::schema::slicing::{normal, planar, raster, PLANAR, RASTER};
 use crate::sema::schema::Field;
 use crate::sema::slicing::seam;
 use crate::sema::value::{Call, Spanned as SpannedValue, Value};
 use crate::span::Span;
 use crate::syntax::ast::Stmt;
-use crate::units::{Angle, Length};
+use crate::units::{Angle, Length, Speed};
 
 /// `slicing planar { … }` as written: the lift and offset may be `auto`, to be
 /// derived from the bead model.
@@ -50,6 +50,37 @@ impl PlanarSpec {
     /// rather than `A/w`.
     pub fn overlapped(&self) -> bool {
         self.infill.is_some() || self.contours > 1
+    }
+
+    /// The slicing with its `auto`s settled: the tracks `offset` apart
+    /// (`derived` when it was `auto`), at `speed`, `contours` of them and
+    /// `infill`, whose rasters' `extend` defaults to the offset.
+    pub fn into_slicing(
+        self,
+        (offset, derived): (Length, bool),
+        speed: Speed,
+        contours: usize,
+        infill: Option<(Raster, Option<Length>)>,
+    ) -> PlanarSlicing {
+        PlanarSlicing {
+            contours,
+            offset,
+            offset_derived: derived,
+            infill: infill.map(|(mut r, extend)| {
+                r.extend = extend.unwrap_or(offset);
+                r
+            }),
+            chord_error: self.chord_error,
+            seam: self.seam,
+            speed,
+            lift: self.lift,
+            span: self.span,
+            offset_span: self.offset.map(|o| o.1),
+            tolerance: self.tolerance,
+            max_overhang: self.max_overhang,
+            layer_change: self.layer_change,
+            layer_change_span: self.layer_change_span,
+        }
     }
 }
 

@@ -431,24 +431,9 @@ pub fn assemble(
             profile_span: w.profile_span,
             shape_span,
         },
-        PlanarSlicing {
-            contours: spec.contours,
-            offset,
-            offset_derived,
-            infill: spec.infill.map(|(mut r, extend)| {
-                r.extend = extend.unwrap_or(offset);
-                r
-            }),
-            chord_error: spec.chord_error,
-            seam: spec.seam,
-            speed: v,
-            lift: spec.lift,
-            span: spec.span,
-            offset_span: spec.offset.map(|o| o.1),
-            tolerance: spec.tolerance,
-            max_overhang: spec.max_overhang,
-            layer_change: spec.layer_change,
-            layer_change_span: spec.layer_change_span,
+        {
+            let (contours, infill) = (spec.contours, spec.infill.clone());
+            spec.into_slicing((offset, offset_derived), v, contours, infill)
         },
     ))
 }

@@ -474,24 +474,9 @@ pub fn assemble(
     };
     let extent = extent?;
     let wall = open_wall(w, width, offset, diags)?.0;
-    let slicing = PlanarSlicing {
-        // One contour a bead: a wall one bead wide rises A/w, beads side
-        // by side A/offset ([`PlanarSlicing::overlapped`]).
-        contours: wall.beads,
-        offset,
-        offset_derived,
-        infill: None,
-        chord_error: spec.chord_error,
-        seam: spec.seam,
-        speed: v,
-        lift: spec.lift,
-        span: spec.span,
-        offset_span: spec.offset.map(|o| o.1),
-        tolerance: spec.tolerance,
-        max_overhang: spec.max_overhang,
-        layer_change: spec.layer_change,
-        layer_change_span: spec.layer_change_span,
-    };
+    // One contour a bead: a wall one bead wide rises A/w, beads side by
+    // side A/offset ([`PlanarSlicing::overlapped`]).
+    let slicing = spec.into_slicing((offset, offset_derived), v, wall.beads, None);
     Some((wall, extent, slicing))
 }
 

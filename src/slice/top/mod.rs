@@ -45,7 +45,6 @@ use crate::sema::model::{Axis, Bead, Level, Model, TopExtrusion, VariableSlicing
 use crate::slice::variable::segments::SegmentSpec;
 use crate::slice::variable::speed::BeadMap;
 use crate::slice::variable::Positive;
-use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
 use count::TopRange;
 use footprint::{sample, Footprint, Sampled};
@@ -289,15 +288,7 @@ fn finish(
     }
     short_tracks(p.tracks, bead.width.0, slicing, &mut warnings);
     let per_layer: usize = p.tracks.iter().map(|t| t.t.len()).sum();
-    if per_layer.saturating_mul(n.get() as usize) > MAX_TOTAL_POINTS {
-        return Err(message::top::too_many_points(
-            n.get(),
-            per_layer,
-            MAX_TOTAL_POINTS,
-            slicing.span,
-        )
-        .into());
-    }
+    crate::slice::within_points(per_layer, n.get(), slicing.span)?;
     // Each track's speeds raise the layer by its height over the strip it
     // fills.
     let maps = p

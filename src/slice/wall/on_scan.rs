@@ -28,7 +28,6 @@ use crate::slice::variable::segments::Segment;
 use crate::slice::variable::segments::{segment, SegmentSpec};
 use crate::slice::variable::speed::{BeadMap, HeightMap};
 use crate::slice::variable::{HeightRange, Positive};
-use crate::slice::MAX_TOTAL_POINTS;
 use crate::units::Length;
 use std::cell::RefCell;
 use std::num::NonZeroU32;
@@ -192,15 +191,7 @@ pub(super) fn regular(
         }
     };
     let per_layer: usize = planned.iter().map(|(t, _)| t.t.len() + 4).sum();
-    if per_layer.saturating_mul(n.get() as usize) > MAX_TOTAL_POINTS {
-        return Err(message::top::too_many_points(
-            n.get(),
-            per_layer,
-            MAX_TOTAL_POINTS,
-            slicing.span,
-        )
-        .into());
-    }
+    crate::slice::within_points(per_layer, n.get(), slicing.span)?;
     let process = Process::of(model, bead, base).following(cx.tilt, None);
     let layers = (0..n.get())
         .map(|i| {
