@@ -181,6 +181,24 @@ pub enum ScanError {
         /// What it holds (shortened).
         text: String,
     },
+    /// A line of an XYZ/CSV file with another count of numbers than the
+    /// first data line's.
+    Columns {
+        /// The line, from 1.
+        line: usize,
+        /// How many numbers it holds.
+        count: usize,
+        /// The first data line, from 1.
+        first: usize,
+        /// How many that holds.
+        expected: usize,
+    },
+    /// An XYZ/CSV file whose first column counts the lines from `from`:
+    /// an index, not x.
+    Index {
+        /// Its first value.
+        from: f64,
+    },
     /// A coordinate that is no finite number.
     NotFinite {
         /// The vertex, from 0.
@@ -215,6 +233,16 @@ impl std::fmt::Display for ScanError {
             ScanError::Line { line, text } => write!(
                 f,
                 "line {line} (`{text}`) is not three numbers x, y, z (separated by spaces, commas or semicolons)"
+            ),
+            ScanError::Columns { line, count, first, expected } => write!(
+                f,
+                "line {line} holds {count} numbers, line {first} {expected}: a point a line, every line the same columns (a decimal comma inside comma-separated fields splits a number in two; separate such fields by semicolons or tabs)"
+            ),
+            ScanError::Index { from } => write!(
+                f,
+                "its first column counts the lines ({from}, {}, {}, …): an index, not x; export the points without it, x y z first",
+                from + 1.0,
+                from + 2.0
             ),
             ScanError::NotFinite { vertex } => {
                 write!(f, "point {vertex} has a coordinate that is no finite number")
