@@ -10,6 +10,7 @@ use proptest::prelude::*;
 use std::collections::BTreeMap;
 
 mod blade;
+mod coverage;
 mod follow;
 mod lean;
 mod lean_finish;

@@ -89,16 +89,41 @@ pub fn needs_top(at: Span) -> Diagnostic {
 pub fn uncovered(
     at_point: [f64; 2],
     more: usize,
-    extent: ([f64; 2], [f64; 2]),
+    surface: &crate::geometry::scan::HeightField,
     at: Span,
     scan: Span,
     turned: Option<&TurnedFrame>,
 ) -> Diagnostic {
     let others = others(more);
+    let extent = surface.extent();
+    let inside = (0..2).all(|k| (extent.0[k]..=extent.1[k]).contains(&at_point[k]));
     // Turned, the extent is the turned scan's: no place in the part.
-    let help = match turned {
-        Some(_) => "scan the part there too, or keep the footprint within what the scan covers seen along the build direction (what a steep flank hides from its side is not covered); a coarser `cell` bridges small gaps".to_string(),
-        None => format!(
+    let help = match (turned, surface.sparse()) {
+        (None, Some((share, spacing))) if inside => {
+            let span = format!(
+                "the scan spans x {} .. {} mm, y {} .. {} mm",
+                short(extent.0[0]),
+                short(extent.1[0]),
+                short(extent.0[1]),
+                short(extent.1[1])
+            );
+            let cell = short((spacing * 1.5 * 10.0).ceil() / 10.0);
+            // Points far apart against the cell: more likely read in the
+            // wrong units than scanned that coarsely.
+            let fix = if spacing > 4.0 * surface.cell() {
+                format!("check its `units` first: {span}, is that the part's size? If it is, take a `cell` of at least {cell} mm in `scan(…)`")
+            } else {
+                format!("take a `cell` of at least {cell} mm in `scan(…)`, or check its `units` ({span})")
+            };
+            format!(
+                "the scan's points fill only {} % of its {} mm cells: they lie about {} mm apart, so most cells hold none: {fix}",
+                short(share * 100.0),
+                short(surface.cell()),
+                short(spacing),
+            )
+        }
+        (Some(_), _) => "scan the part there too, or keep the footprint within what the scan covers seen along the build direction (what a steep flank hides from its side is not covered); a coarser `cell` bridges small gaps".to_string(),
+        (None, _) => format!(
             "scan the part there too, or keep the footprint within what the scan covers (it spans x {} .. {} mm, y {} .. {} mm, with gaps where it has no point); a coarser `cell` bridges small gaps",
             short(extent.0[0]),
             short(extent.1[0]),

@@ -79,6 +79,8 @@ pub struct Stats {
     pub z_range: [f64; 2],
     /// The scan's lowest and highest x and y, placed (mm).
     pub xy_range: ([f64; 2], [f64; 2]),
+    /// Whether it was read from faces (a mesh), not points.
+    pub faces: bool,
 }
 
 impl HeightField {
@@ -115,6 +117,7 @@ impl HeightField {
             stats: Stats {
                 points: raw.vertices.len(),
                 xy_range: (lo, hi),
+                faces: !raw.triangles.is_empty(),
                 ..Stats::default()
             },
         };
@@ -452,6 +455,20 @@ impl HeightField {
     /// The cells' side, mm.
     pub fn cell(&self) -> f64 {
         self.cell
+    }
+
+    /// When a cloud of points leaves most cells of its box empty: the
+    /// share filled and the points' mean spacing over the box, mm (an
+    /// upper bound where the scan does not fill its box). Why a place
+    /// inside the scan's span has no surface: a `cell` finer than the
+    /// points' spacing, or `units` that spread the points apart.
+    pub fn sparse(&self) -> Option<(f64, f64)> {
+        let cells = (self.nx * self.ny) as f64;
+        let share = self.stats.filled as f64 / cells.max(1.0);
+        let (lo, hi) = self.stats.xy_range;
+        let area = (hi[0] - lo[0]) * (hi[1] - lo[1]);
+        let spacing = (area / self.stats.points.max(1) as f64).sqrt();
+        (!self.stats.faces && share < 0.5 && spacing.is_finite()).then_some((share, spacing))
     }
 
     /// The surface as spheres `[x, y, z, radius]` (mm) that hold it, for

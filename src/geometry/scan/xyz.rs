@@ -107,7 +107,8 @@ mod tests {
 
     #[test]
     fn spaces_commas_semicolons_and_a_header() {
-        let raw = read(b"x,y,z,intensity\n1,2,3,99\n\n# a comment\n4 5 6 98\n7;8;9.5;97\n").unwrap();
+        let raw =
+            read(b"x,y,z,intensity\n1,2,3,99\n\n# a comment\n4 5 6 98\n7;8;9.5;97\n").unwrap();
         assert_eq!(
             raw.vertices,
             vec![[1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [7.0, 8.0, 9.5]]

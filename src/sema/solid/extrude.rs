@@ -432,7 +432,7 @@ pub fn assemble(
             shape_span,
         },
         {
-            let (contours, infill) = (spec.contours, spec.infill.clone());
+            let (contours, infill) = (spec.contours, spec.infill);
             spec.into_slicing((offset, offset_derived), v, contours, infill)
         },
     ))

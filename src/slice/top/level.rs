@@ -156,7 +156,7 @@ impl NoLevel {
             NoLevel::Uncovered(at, more) => message::scan::uncovered(
                 at,
                 more,
-                scan.surface.extent(),
+                &scan.surface,
                 ex.shape_span,
                 scan.span,
                 ex.turned.as_ref(),

@@ -333,11 +333,10 @@ impl Bad {
             Why::OffTarget => (None, None),
             Why::Uncovered => {
                 if let Some(b) = &ex.base {
-                    let extent = b.surface.extent();
                     out.push(message::scan::uncovered(
                         self.at,
                         more,
-                        extent,
+                        &b.surface,
                         ex.shape_span,
                         b.span,
                         ex.turned.as_ref(),

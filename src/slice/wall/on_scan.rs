@@ -342,9 +342,9 @@ fn unbuildable(
         diags.extend(fault.top_fault(more, &on.top, at).unwrap_or_default());
     }
     if let Some((p, more)) = bad.uncovered {
-        let extent = on.base.surface.extent();
+        let surface = &on.base.surface;
         diags.push(message::scan::uncovered(
-            p, more, extent, spans[0], spans[1], None,
+            p, more, surface, spans[0], spans[1], None,
         ));
     }
     if let Some((p, [t, b], more)) = bad.below.filter(|_| below) {
