@@ -11,6 +11,7 @@ use std::collections::BTreeMap;
 
 mod blade;
 mod coverage;
+mod flat_top;
 mod follow;
 mod lean;
 mod lean_finish;

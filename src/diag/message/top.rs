@@ -128,6 +128,16 @@ pub enum TopFix {
         /// The layer count.
         layers: u32,
     },
+    /// A flat top on a scan from `from` to `to`, mm, each laid in
+    /// `layers` layers.
+    Flat {
+        /// The lowest, mm.
+        from: Decimal,
+        /// The highest, mm.
+        to: Decimal,
+        /// The layer count.
+        layers: u32,
+    },
     /// At least this high where the tracks run lowest (its highest kept), mm.
     Low {
         /// The height, mm.
@@ -169,6 +179,12 @@ impl TopFix {
             TopFix::High { at_most, layers } => format!(
                 "a top at most {at_most} mm high where the tracks run highest ({layers} layers)"
             ),
+            TopFix::Flat { from, to, layers } if from.value == to.value => {
+                format!("`top = {from} mm` ({})", count(layers))
+            }
+            TopFix::Flat { from, to, layers } => {
+                format!("a top from {from} to {to} mm ({})", count(layers))
+            }
             TopFix::Low { at_least, layers } => {
                 format!("at least {at_least} mm where they run lowest ({layers} layers)")
             }

@@ -85,6 +85,10 @@ pub struct Probe<'a> {
     /// Whether the tracks of a layer count can lay their layers (the
     /// layout, the tracks and their speeds, as the slicer lays them).
     pub builds: &'a mut dyn FnMut(NonZeroU32) -> bool,
+    /// Whether `ex` with another top plans (its tracks laid as the slicer
+    /// lays them); `None` while trying one, so that no help is looked for
+    /// within a help.
+    pub plans: Option<&'a dyn Fn(&Top) -> bool>,
 }
 
 /// The layer count: the fewest that lay every point of `top` within the
@@ -136,6 +140,14 @@ fn no_count(
                 .collect()
         }
         Top::Expr(_) | Top::Mesh(_) | Top::Solid(_) => expr_fixes(e, slicing),
+    };
+    // A flat top on a scan moves as one: its fixes are the flat tops a
+    // count lays, not a reshaped top.
+    let fixes = match flat_on_scan(ex, probe) {
+        Some(t) => flat_fix(t, e, ex, bead, slicing, probe)
+            .into_iter()
+            .collect(),
+        None => fixes,
     };
     let fit = |b: HeightRange| fits(e.top, b, slicing).is_some();
     // Millimetres to a tenth of a micrometre below 1 mm, as lengths print.
@@ -378,6 +390,113 @@ fn sugar_fix(
     candidates(p * scale, [l * scale, r * scale], 1).find_map(|d| {
         let top = param.set(&ex.top, d.value / scale)?;
         counts(ex, &top, bead, slicing, probe).map(|n| param.fix(d, n))
+    })
+}
+
+/// The height of `ex`'s top when it is built on a scan and is flat: the
+/// same at every track end and at the footprint's middle.
+fn flat_on_scan(ex: &TopExtrusion, probe: &Probe<'_>) -> Option<f64> {
+    ex.base.as_ref()?;
+    let mut form = Form::of(&ex.top, |axis| probe.fp.written_extent(axis));
+    let mut points = track_ends(probe);
+    let n = points.len() as f64;
+    let mid = points
+        .iter()
+        .fold([0.0; 2], |a, p| [a[0] + p[0] / n, a[1] + p[1] / n]);
+    points.push(mid);
+    let mut heights = points.iter().map(|&p| form.at(p).ok());
+    let first = heights.next()??;
+    heights.all(|h| h == Some(first)).then_some(first)
+}
+
+/// The flat tops nearest `top` (mm) that a count lays over the scan, as
+/// the count's own steps find them: with the gaps `g_lo .. g_hi` under
+/// `top` and `N` layers of the bead's `h_lo .. h_hi`, `T` must lie within
+/// `B_hi + N·h_lo .. B_lo + N·h_hi` (`B` the scan, `top − g`). That window
+/// is the widest a count allows; the tracks' own strips may narrow it, so
+/// the window is sampled and the run that plans nearest `top` (as the
+/// slicer plans it, up to its tracks) is found and its ends halved. The
+/// declared count only, if any.
+fn flat_fix(
+    top: f64,
+    e: &NoLayerCount,
+    ex: &TopExtrusion,
+    bead: &Bead,
+    slicing: &VariableSlicing,
+    probe: &Probe<'_>,
+) -> Option<TopFix> {
+    let (b_lo, b_hi) = (top - e.top.high().0, top - e.top.low().0);
+    let (h_lo, h_hi) = (e.bead.low().0, e.bead.high().0);
+    let flat = |t: f64| Top::Plane {
+        at: [Length(0.0); 2],
+        height: Length(t),
+        slope: [0.0; 2],
+    };
+    let plans = probe.plans?;
+    // The count's steps first (cheap), then the plan's up to its tracks.
+    let builds = |t: f64| {
+        let top = flat(t);
+        counts(ex, &top, bead, slicing, probe).filter(|_| plans(&top))
+    };
+    let windows = |n: u32| {
+        let nf = n as f64;
+        let (lo, hi) = (b_hi + nf * h_lo, b_lo + nf * h_hi);
+        (lo <= hi && lo > b_hi).then_some((n, [lo, hi]))
+    };
+    let distance = |[lo, hi]: [f64; 2]| (lo - top).max(top - hi).max(0.0);
+    let mut tried: Vec<(u32, [f64; 2])> = match slicing.layers {
+        Some((n, _)) => windows(n.get()).into_iter().collect(),
+        None => (1..=MAX_LAYERS.min(10_000)).filter_map(windows).collect(),
+    };
+    tried.sort_by(|a, b| distance(a.1).total_cmp(&distance(b.1)));
+    // The few windows nearest the top: each costs the count's steps.
+    tried.into_iter().take(4).find_map(|(_, [lo, hi])| {
+        const SAMPLES: usize = 8;
+        let at = |k: usize| lo + (hi - lo) * k as f64 / SAMPLES as f64;
+        let good: Vec<usize> = (0..=SAMPLES).filter(|&k| builds(at(k)).is_some()).collect();
+        let near = |k: &usize| (at(*k) - top).abs();
+        let k = *good.iter().min_by(|a, b| near(a).total_cmp(&near(b)))?;
+        // The run of samples that build around `k`, its ends halved out.
+        let (mut a, mut b) = (k, k);
+        while a > 0 && good.contains(&(a - 1)) {
+            a -= 1;
+        }
+        while b < SAMPLES && good.contains(&(b + 1)) {
+            b += 1;
+        }
+        let edge = |inside: f64, outside: f64| {
+            let (mut i, mut o) = (inside, outside);
+            for _ in 0..8 {
+                let m = 0.5 * (i + o);
+                if builds(m).is_some() {
+                    i = m;
+                } else {
+                    o = m;
+                }
+            }
+            i
+        };
+        let lo = if a > 0 { edge(at(a), at(a - 1)) } else { at(a) };
+        let hi = if b < SAMPLES {
+            edge(at(b), at(b + 1))
+        } else {
+            at(b)
+        };
+        // Printed to a hundredth, inward, and each end checked.
+        let (lo, hi) = ((lo * 100.0).ceil() / 100.0, (hi * 100.0).floor() / 100.0);
+        let n_lo = builds(lo)?;
+        let n_hi = builds(hi)?;
+        (lo <= hi && n_lo == n_hi).then_some(TopFix::Flat {
+            from: Decimal {
+                value: lo,
+                decimals: 2,
+            },
+            to: Decimal {
+                value: hi,
+                decimals: 2,
+            },
+            layers: n_lo,
+        })
     })
 }
 

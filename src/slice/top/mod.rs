@@ -41,7 +41,7 @@ mod underside;
 
 use crate::diag::{message, Diagnostics};
 use crate::ir::Layer;
-use crate::sema::model::{Axis, Bead, Level, Model, TopExtrusion, VariableSlicing};
+use crate::sema::model::{Axis, Bead, Level, Model, Top, TopExtrusion, VariableSlicing};
 use crate::slice::variable::segments::SegmentSpec;
 use crate::slice::variable::speed::BeadMap;
 use crate::slice::variable::Positive;
@@ -131,6 +131,41 @@ fn build(
     slicing: &VariableSlicing,
     base: Base<'_>,
 ) -> Result<Built, Diagnostics> {
+    // A layer count's help names only tops that plan: each is tried by
+    // the same steps, up to its tracks (not their layers, nor a help).
+    let plans = |t: &Top| {
+        let mut tried = ex.clone();
+        tried.top = t.clone();
+        let base = match base {
+            Base::Scan(_) => Base::of(&tried, None),
+            b => b,
+        };
+        build_with(model, bead, &tried, slicing, base, None).is_ok()
+    };
+    build_with(model, bead, ex, slicing, base, Some(&plans))
+}
+
+/// The constant-speed segments' tolerance and shortest length (the
+/// bead's width unless declared).
+fn segment_spec(bead: &Bead, slicing: &VariableSlicing) -> Result<SegmentSpec, Diagnostics> {
+    let positive = |what, l: Length| Positive::new(what, l).map_err(|e| internal(e.to_string()));
+    Ok(SegmentSpec {
+        tolerance: positive("tolerance", slicing.tolerance)?,
+        min_length: positive("min_length", slicing.min_length.unwrap_or(bead.width))?,
+    })
+}
+
+/// [`build`], its layers laid when `plans` is given (the count's help tries
+/// its tops by it); without, only up to the tracks, the layers left empty:
+/// whether `ex` plans at all.
+fn build_with(
+    model: &Model,
+    bead: &Bead,
+    ex: &TopExtrusion,
+    slicing: &VariableSlicing,
+    base: Base<'_>,
+    plans: Option<&dyn Fn(&Top) -> bool>,
+) -> Result<Built, Diagnostics> {
     let w = bead.width.0;
     let fp = Footprint::new(ex, w)?;
     let mut top = Surface::over(ex, |axis| fp.written_extent(axis), base);
@@ -145,11 +180,7 @@ fn build(
         range,
     } = count_input(&fp, &mut top, pitch, ex, bead, slicing)?;
     let mut range = range;
-    let positive = |what, l: Length| Positive::new(what, l).map_err(|e| internal(e.to_string()));
-    let spec = SegmentSpec {
-        tolerance: positive("tolerance", slicing.tolerance)?,
-        min_length: positive("min_length", slicing.min_length.unwrap_or(bead.width))?,
-    };
+    let spec = segment_spec(bead, slicing)?;
     // More layers than the fewest, when the tracks' spacing needs speeds
     // outside the bead's range at the fewest (count → layout → tracks again).
     let mut instead: Option<NonZeroU32> = None;
@@ -169,6 +200,7 @@ fn build(
             scan,
             pitch,
             builds: &mut builds,
+            plans,
         };
         let fewest = count::layers(&range, bead, &map, ex, slicing, probe)?;
         let n = instead.unwrap_or(fewest);
@@ -204,6 +236,9 @@ fn build(
                 }
                 None => break,
             }
+        }
+        if plans.is_none() {
+            return Ok(Built::new(Vec::new(), Diagnostics::new(), scan, lines));
         }
         let tracks = Planned {
             lines: &lines,
