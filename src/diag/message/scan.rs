@@ -464,6 +464,30 @@ pub fn section(path: &str, z: f64, fault: &CutFault, at: Span, scan: Span) -> Di
         .help(help)
 }
 
+/// The section at `z` is much smaller than the one `below` mm lower
+/// (`[here, there]` mm²): the cut may pass through the wear.
+pub fn section_worn(
+    path: &str,
+    z: f64,
+    [here, there]: [f64; 2],
+    below: f64,
+    scan: Span,
+) -> Diagnostic {
+    Diagnostic::warning(
+        Code::Scan,
+        format!(
+            "the section of `{path}` at z = {} mm is {} % smaller than {} mm lower ({} against {} mm²): the cut may pass through the worn part, and the footprint leave out what wore away",
+            short(z),
+            short((1.0 - here / there) * 100.0),
+            short(below),
+            short(here),
+            short(there)
+        ),
+    )
+    .label(scan, "this scan")
+    .help("cut where the part is whole, below the wear (a lower `scan_section(z = …)`); a part that narrows this fast upward by design may stay as it is")
+}
+
 fn islands(f: &SectionFault) -> String {
     match f {
         SectionFault::Empty => "it is empty".to_string(),

@@ -94,6 +94,11 @@ pub fn read(
         .map_err(|e| diags.push(message::scan::grid(&path, &e, cell, at)))
         .ok()?;
     let cut = z.map(|z| section::cut(&raw, &pose, z));
+    if let (Some(z), Some(Ok(sections))) = (z, &cut) {
+        if let Some(d) = worn_at(&raw, &pose, z, sections, (&path, at)) {
+            diags.push(d);
+        }
+    }
     let base = ScanBase {
         path,
         surface: std::sync::Arc::new(surface),
@@ -102,6 +107,27 @@ pub fn read(
         span: at,
     };
     Some((base, cut))
+}
+
+/// How far below a section the part is cut again to see whether the
+/// section is whole, mm.
+const BELOW: f64 = 1.0;
+
+/// A warning when the section at `z` is much smaller than the one
+/// [`BELOW`] lower: a cut through the worn part (a blade's tip worn
+/// aslant), whose footprint would leave out what wore away. A part that
+/// narrows upward by design a few per cent a millimetre is no warning.
+fn worn_at(
+    raw: &Raw,
+    pose: &Pose,
+    z: f64,
+    sections: &[Section],
+    (path, at): (&str, Span),
+) -> Option<crate::diag::Diagnostic> {
+    let area = |s: &[Section]| s.iter().map(Section::area).sum::<f64>();
+    let below = section::cut(raw, pose, z - BELOW).ok()?;
+    let (here, there) = (area(sections), area(&below));
+    (here < 0.95 * there).then(|| message::scan::section_worn(path, z, [here, there], BELOW, at))
 }
 
 /// The scan's points and faces as its format reads them, with the mm per
