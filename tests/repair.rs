@@ -820,6 +820,44 @@ fn a_displaced_scan_registered_plans_the_layers_of_the_undisplaced_one() {
     );
 }
 
+/// Declared turned 150° about z, the displaced scan of the symmetric pad
+/// is fitted onto the pad turned 180°, 28.5° from its declared placement
+/// (the residual is as small as the right way round): planned, with a
+/// warning that names the turn and the `turn` the fit found. The example,
+/// a degree and a half off, is not warned of.
+#[test]
+fn a_fit_that_turns_the_scan_far_is_warned_of() {
+    let files = || example_files(&["worn_pad_displaced.ply", "pad_nominal.stl"]);
+    let src = include_str!("../examples/worn_pad_registered.lmd");
+    let warned = |c: &Compiled| {
+        c.diagnostics
+            .iter()
+            .find(|d| d.message.contains("the best fit turned the scan"))
+            .map(|d| (d.message.clone(), d.help.clone().unwrap_or_default()))
+    };
+    assert_eq!(warned(&compile(src, files())), None);
+    let turned = src.replace(
+        "register = mesh(",
+        "turn = [0 deg, 0 deg, 150 deg],\n    register = mesh(",
+    );
+    let c = compile(&turned, files());
+    let (m, help) = warned(&c).expect("warned");
+    let reg = c.program.as_ref().expect("planned");
+    let scan = reg.ir().fixtures.iter().find(|f| f.is_scan()).unwrap();
+    let r = scan.registration.as_ref().unwrap();
+    let angle = nalgebra::Rotation3::from_euler_angles(
+        r.turned[0].to_radians(),
+        r.turned[1].to_radians(),
+        r.turned[2].to_radians(),
+    )
+    .angle()
+    .to_degrees();
+    assert!((angle - 28.5).abs() < 0.1, "{angle}");
+    let said = number_after(&m, "the scan `repair/worn_pad_displaced.ply` ", '°');
+    assert!((said - angle).abs() < 0.01, "{m}");
+    assert!(help.contains("`turn = ["), "{help}");
+}
+
 /// A nominal that is not this part (a 40 × 40 mm block under the 66 × 26
 /// mm pad) is refused, so is one a metre from the scan (no face near it),
 /// and a tolerance without a nominal.

@@ -281,6 +281,27 @@ pub struct Registering<'a> {
     pub register: Span,
 }
 
+/// A best fit that turned the scan `turned`° from its declared placement,
+/// to the whole `turn` (deg, about x, y, z).
+pub fn fit_turned_far(n: &Registering<'_>, turned: f64, turn: [f64; 3]) -> Diagnostic {
+    let t = turn.map(short);
+    Diagnostic::warning(
+        Code::ScanRegistration,
+        format!(
+            "the best fit turned the scan `{}` {}° from its declared placement onto `{}`: more than a placement is usually off, and a part that looks alike turned (a symmetric pad, a blade's two sides) may have been fitted the wrong way round",
+            n.scan,
+            short(turned),
+            n.nominal
+        ),
+    )
+    .label(n.at, "the scan")
+    .label(n.register, "the nominal")
+    .help(format!(
+        "check the plan's place against the part; declare the turn the fit found, `turn = [{}, {}, {}] deg`, if it is right, or the right one nearer the part's if not",
+        t[0], t[1], t[2]
+    ))
+}
+
 /// What every refused fit's help says the fit needs.
 const FIT_NEEDS: &str = "the best fit starts from the scan's `turn` and `at` and finds the nominal only from within a few mm and degrees of it: place the scan nearer";
 

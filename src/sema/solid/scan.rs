@@ -109,6 +109,10 @@ pub fn read(
     Some((base, cut))
 }
 
+/// The turn (deg) past which a best fit's correction of the declared
+/// placement is warned of: a scan's placement is known to a few degrees.
+const FAR_TURN: f64 = 10.0;
+
 /// How far below a section the part is cut again to see whether the
 /// section is whole, mm.
 const BELOW: f64 = 1.0;
@@ -257,6 +261,12 @@ fn fit(
         iterations: found.iterations,
         tolerance: ask.tolerance,
     };
+    // A fit that turned the scan far from where it was declared may have
+    // found a part that looks alike turned (a symmetric pad).
+    let turned = found.moved.rot.angle().to_degrees();
+    if turned > FAR_TURN && found.rms <= ask.tolerance {
+        diags.push(message::scan::fit_turned_far(&names, turned, record.turn));
+    }
     if found.rms > ask.tolerance {
         diags.push(message::scan::fit_too_loose(
             &names,
