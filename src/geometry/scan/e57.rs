@@ -100,6 +100,58 @@ mod tests {
         }
     }
 
+    /// A scanner's own frame: points written as range, azimuth and
+    /// elevation, the cloud's pose 90° about z and 1, 2, 3 m along x, y,
+    /// z. Each is read at `R·p + t`, in mm, with
+    /// `p = r·(cos e·cos a, cos e·sin a, sin e)`.
+    #[test]
+    fn spherical_points_under_a_pose_are_placed() {
+        let spherical = [[0.5f64, 0.0, 0.0], [0.25, 1.0, 0.3], [0.1, -2.0, -0.7]];
+        let mut buf = Cursor::new(Vec::new());
+        {
+            let mut w = E57Writer::new(&mut buf, "lmdc-test").unwrap();
+            let proto = vec![
+                Record::SPHERICAL_RANGE_F64,
+                Record::SPHERICAL_AZIMUTH_F64,
+                Record::SPHERICAL_ELEVATION_F64,
+            ];
+            let mut pc = w.add_pointcloud("cloud", proto).unwrap();
+            let h = std::f64::consts::FRAC_PI_4;
+            pc.set_transform(Some(e57::Transform {
+                rotation: e57::Quaternion {
+                    w: h.cos(),
+                    x: 0.0,
+                    y: 0.0,
+                    z: h.sin(),
+                },
+                translation: e57::Translation {
+                    x: 1.0,
+                    y: 2.0,
+                    z: 3.0,
+                },
+            }));
+            for p in spherical {
+                pc.add_point(p.iter().map(|&c| RecordValue::Double(c)).collect())
+                    .unwrap();
+            }
+            pc.finalize().unwrap();
+            w.finalize().unwrap();
+        }
+        let raw = read(&buf.into_inner()).unwrap();
+        assert_eq!(raw.vertices.len(), 3);
+        for (v, [r, a, e]) in raw.vertices.iter().zip(spherical) {
+            let p = [r * e.cos() * a.cos(), r * e.cos() * a.sin(), r * e.sin()];
+            // 90° about z: (x, y) → (−y, x).
+            let want = [-p[1] + 1.0, p[0] + 2.0, p[2] + 3.0].map(|c| c * 1000.0);
+            for k in 0..3 {
+                assert!(
+                    (f64::from(v[k]) - want[k]).abs() < 1e-3,
+                    "{v:?} vs {want:?}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn broken_files_are_errors_not_panics() {
         let good = e57_of(&[[0.0, 0.0, 0.01]; 50]);

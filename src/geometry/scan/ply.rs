@@ -234,6 +234,59 @@ property double y\nproperty double z\nend_header\n"
         }
     }
 
+    /// A binary mesh as scanner software writes one: float vertices, a
+    /// uchar-counted list of int indices per face (a quad and a
+    /// triangle), little-endian and big-endian.
+    #[test]
+    fn binary_faces_either_byte_order() {
+        for big in [false, true] {
+            let fmt = if big {
+                "binary_big_endian"
+            } else {
+                "binary_little_endian"
+            };
+            let mut b = format!(
+                "ply\nformat {fmt} 1.0\nelement vertex 5\nproperty float x\n\
+property float y\nproperty float z\nelement face 2\n\
+property list uchar int vertex_indices\nend_header\n"
+            )
+            .into_bytes();
+            let f32s = |v: f32| {
+                if big {
+                    v.to_be_bytes()
+                } else {
+                    v.to_le_bytes()
+                }
+            };
+            let i32s = |v: i32| {
+                if big {
+                    v.to_be_bytes()
+                } else {
+                    v.to_le_bytes()
+                }
+            };
+            for v in [
+                [0.0f32, 0.0, 1.0],
+                [10.0, 0.0, 1.5],
+                [10.0, 10.0, 2.0],
+                [0.0, 10.0, 1.25],
+                [5.0, 15.0, 1.0],
+            ] {
+                v.iter().for_each(|&c| b.extend(f32s(c)));
+            }
+            for face in [&[0, 1, 2, 3][..], &[3, 2, 4]] {
+                b.push(face.len() as u8);
+                face.iter().for_each(|&i| b.extend(i32s(i)));
+            }
+            let raw = read(&b).unwrap();
+            assert_eq!(raw.vertices.len(), 5);
+            assert_eq!(raw.vertices[4], [5.0, 15.0, 1.0]);
+            assert_eq!(raw.triangles, vec![[0, 1, 2], [0, 2, 3], [3, 2, 4]]);
+            // Cut short in the faces: an error, not a panic.
+            assert!(read(&b[..b.len() - 3]).is_err());
+        }
+    }
+
     #[test]
     fn malformed_files_are_errors_not_panics() {
         // Truncated body.
