@@ -539,6 +539,25 @@ pub fn repair_overlay(
 /// (`lmd::finish`); `None` when it declares none or the finish is
 /// within it. Here because it joins
 /// the plan with the model's top, which the verifier does not read.
+/// Without `finish_tolerance`, a repair on a scan whose finished face is
+/// predicted to fall short of its top by more than the thinnest layer the
+/// bead lays (an edge narrower than a bead, a gap too thin to fill) is
+/// warned of: held to nothing, it would be found only in the report.
+fn short_finish(
+    program: &crate::ir::Program,
+    model: &Model,
+    top: crate::span::Span,
+) -> Option<crate::diag::Diagnostic> {
+    use crate::sema::model::Build;
+    if matches!(&model.build, Build::Variable { extrusion, .. } if extrusion.base.is_none()) {
+        return None;
+    }
+    let f = crate::report::finish::of(program, model)?;
+    let thinnest = program.limits.layer_height[0];
+    (f.below_mm > thinnest)
+        .then(|| crate::diag::message::top::finish_short(f.below_mm, f.below_at, thinnest, top))
+}
+
 fn held_finish(program: &crate::ir::Program, model: &Model) -> Option<crate::diag::Diagnostic> {
     use crate::sema::model::Build;
     let (slicing, top) = match &model.build {
@@ -546,7 +565,9 @@ fn held_finish(program: &crate::ir::Program, model: &Model) -> Option<crate::dia
         Build::ScanWall { slicing, on, .. } => (slicing, on.top_span),
         _ => return None,
     };
-    let (tolerance, at) = slicing.finish_tolerance?;
+    let Some((tolerance, at)) = slicing.finish_tolerance else {
+        return short_finish(program, model, top);
+    };
     // Before the positioner's and the spin's angles are chosen: they turn
     // the nozzle about its point, which the finish does not read.
     let Some(f) = crate::report::finish::of(program, model) else {

@@ -156,7 +156,7 @@ fn the_blade_tip_is_levelled_then_built_past_its_tip() {
 /// finish held*): its trailing edge, 1.17 mm short, is refused at
 /// 0.5 mm with the report's own worst place and the stock that would
 /// keep the face above the design; at 1.2 mm the plan is the one without
-/// a tolerance.
+/// a tolerance. Without one, it is a warning with the same place.
 #[test]
 fn the_blade_tips_short_trailing_edge_breaks_a_finish_tolerance() {
     let files = super::example_files(&["blade_tip.ply"]);
@@ -173,6 +173,28 @@ fn the_blade_tips_short_trailing_edge_breaks_a_finish_tolerance() {
     let report = lmdc::report::Report::new(plan.machines().next().unwrap(), &model.unwrap(), None);
     let f = report.finish.as_ref().unwrap();
     assert!(f.below_mm > 1.1 && f.below_mm < 1.2, "{f:?}");
+    // Without a tolerance, a warning gives the same place, short by more
+    // than the bead's thinnest layer.
+    let short = lmdc::units::short;
+    let warned = free
+        .diagnostics
+        .iter()
+        .find(|d| d.code.as_str() == "lmd::finish")
+        .unwrap_or_else(|| panic!("{m}"));
+    assert_eq!(warned.severity, lmdc::diag::Severity::Warning);
+    let thinnest = plan.ir().limits.layer_height[0];
+    assert!(f.below_mm > thinnest);
+    assert!(
+        warned.message.contains(&format!(
+            "fall {} mm below the top at ({}, {}) mm, more than the thinnest layer the bead lays ({} mm)",
+            short(f.below_mm),
+            short(f.below_at[0]),
+            short(f.below_at[1]),
+            short(thinnest)
+        )),
+        "{}",
+        warned.message
+    );
     let tight = compile(&held("0.5 mm"), files.clone());
     assert!(tight.program.is_none());
     let d = tight
@@ -180,7 +202,6 @@ fn the_blade_tips_short_trailing_edge_breaks_a_finish_tolerance() {
         .iter()
         .find(|d| d.code.as_str() == "lmd::finish")
         .unwrap_or_else(|| panic!("{}", messages(&tight)));
-    let short = lmdc::units::short;
     let expected = format!(
         "falls {} mm below the top at ({}, {}) mm, more than the `finish_tolerance` of 0.5 mm",
         short(f.below_mm),

@@ -849,6 +849,23 @@ pub struct FinishOff {
     pub tolerance: f64,
 }
 
+/// Without `finish_tolerance`: the predicted finish falls `below` mm short
+/// of the top at `p`, more than the `thinnest` layer the bead lays.
+pub fn finish_short(below: f64, p: [f64; 2], thinnest: f64, top: Span) -> Diagnostic {
+    Diagnostic::warning(
+        Code::Finish,
+        format!(
+            "the finished face this plan lays is predicted to fall {} mm below the top at ({}, {}) mm, more than the thinnest layer the bead lays ({} mm): the part is left short there",
+            short(below),
+            short(p[0]),
+            short(p[1]),
+            short(thinnest)
+        ),
+    )
+    .label(top, "the top")
+    .help("where a footprint narrows under a bead's width, or a gap is thinner than a layer, the beads lay less than the top asks: a narrower bead lays it, or leave it as stock; `lmdc report` gives the finish and `lmdc preview` colours it; `finish_tolerance = …` in the slicing refuses such a plan")
+}
+
 /// The predicted finish off the top by more than `finish_tolerance`
 /// (written at `at`; the top at `top`).
 pub fn finish_off(f: &FinishOff, at: Span, top: Span) -> Diagnostic {
