@@ -77,6 +77,9 @@ pub const ALSO_WARNINGS: &[Code] = &[
     Code::Overhang,
     Code::UnstableLoop,
     Code::SlowLoop,
+    Code::Scan,
+    Code::ScanRegistration,
+    Code::Finish,
 ];
 
 /// Whether `code` is ever a warning.

@@ -79,12 +79,9 @@ fn inside(l: &[[f64; 2]], p: [f64; 2]) -> bool {
     odd
 }
 
-/// The scan's section 36 mm up is the blade's outline: one island, no
-/// holes, every point within the scan's noise (0.02 mm a coordinate) and
-/// the sides' polygon (0.5 mm chords) of the outline, the same area
-/// within 0.5 %.
-#[test]
-fn the_scanned_blades_section_is_its_outline() {
+/// The example's scan of the blade, read, and placed where it was
+/// scanned.
+fn scanned() -> (scan::Raw, scan::Pose) {
     let bytes = std::fs::read("examples/repair/blade_tip.ply").unwrap();
     let raw = scan::ply::read(&bytes).unwrap();
     let pose = scan::Pose::from(Placement {
@@ -92,6 +89,16 @@ fn the_scanned_blades_section_is_its_outline() {
         turn: [0.0; 3],
         at: [0.0; 3],
     });
+    (raw, pose)
+}
+
+/// The scan's section 36 mm up is the blade's outline: one island, no
+/// holes, every point within the scan's noise (0.02 mm a coordinate) and
+/// the sides' polygon (0.5 mm chords) of the outline, the same area
+/// within 0.5 %.
+#[test]
+fn the_scanned_blades_section_is_its_outline() {
+    let (raw, pose) = scanned();
     let cut = section::cut(&raw, &pose, 36.0).unwrap();
     assert_eq!(cut.len(), 1);
     assert!(cut[0].holes.is_empty());
@@ -232,13 +239,7 @@ fn the_blade_tips_short_trailing_edge_breaks_a_finish_tolerance() {
 /// below the wear, is not warned of.
 #[test]
 fn a_section_cut_through_the_wear_is_warned_of() {
-    let bytes = std::fs::read("examples/repair/blade_tip.ply").unwrap();
-    let raw = scan::ply::read(&bytes).unwrap();
-    let pose = scan::Pose::from(Placement {
-        scale: 1.0,
-        turn: [0.0; 3],
-        at: [0.0; 3],
-    });
+    let (raw, pose) = scanned();
     let area = |z: f64| -> f64 {
         let cut = section::cut(&raw, &pose, z).unwrap();
         cut.iter().map(|s| s.area()).sum()

@@ -25,7 +25,7 @@ use crate::sema::solid::scan::Cut;
 use crate::sema::solid::top;
 use crate::sema::value::{Spanned, Value};
 use crate::span::Span;
-use crate::syntax::ast::{Body, Expr, ExprKind, Stmt};
+use crate::syntax::ast::{Body, Expr, Stmt};
 use crate::units::{Length, Speed};
 use std::collections::BTreeMap;
 
@@ -235,10 +235,8 @@ fn read_top<'a>(
     diags: &mut Diagnostics,
 ) -> Option<Top> {
     // `top = NAME`: a solid of the file as the target.
-    if let ExprKind::Ident(n) = &e.kind {
-        if let Some(t) = crate::sema::solid::target::read(env, n, e.span, own, scope, diags) {
-            return t;
-        }
+    if let Some(t) = crate::sema::solid::target::named_top(env, e, own, scope, diags) {
+        return t;
     }
     let shape = match source {
         Some(Source::Fixed(s)) => Some(s.clone()),

@@ -125,6 +125,22 @@ pub fn read<'a>(
     }))
 }
 
+/// `top = e` when `e` names a solid of the file (`top = NAME`): the
+/// target, or `None` inside after reporting why it cannot be one; `None`
+/// when `e` is no name of a solid (an expression to read as one).
+pub fn named_top<'a>(
+    env: &mut Env<'a>,
+    e: &crate::syntax::ast::Expr,
+    own: &str,
+    scope: &Scope<'_, 'a>,
+    diags: &mut Diagnostics,
+) -> Option<Option<Top>> {
+    match &e.kind {
+        ExprKind::Ident(n) => read(env, n, e.span, own, scope, diags),
+        _ => None,
+    }
+}
+
 /// `scan(register = NAME)` in the extrusion `own`, written at `at`: the
 /// solid `name` of the file as the scan's nominal, `None` after reporting
 /// why it cannot be one (a constant is no solid either).

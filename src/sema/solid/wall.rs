@@ -27,7 +27,7 @@ use crate::sema::solid::extrude::Scope;
 use crate::sema::solid::profile::point;
 use crate::sema::value::{Call, Spanned, Value};
 use crate::span::Span;
-use crate::syntax::ast::{Body, Expr, ExprKind, Stmt};
+use crate::syntax::ast::{Body, Expr, Stmt};
 use crate::units::{Length, Speed};
 
 /// Pieces of a chain this far apart (mm) meet.
@@ -173,10 +173,9 @@ fn read_top<'a>(
     scope: &Scope<'_, 'a>,
     diags: &mut Diagnostics,
 ) -> Option<Top> {
-    if let ExprKind::Ident(n) = &e.kind {
-        if let Some(t) = crate::sema::solid::target::read(env, n, e.span, own, scope, diags) {
-            return t;
-        }
+    // `top = NAME`: a solid of the file as the target.
+    if let Some(t) = crate::sema::solid::target::named_top(env, e, own, scope, diags) {
+        return t;
     }
     let reads = env.position_reads();
     let top = crate::sema::solid::top::read(env, e, at, scope.constants, diags)?;
