@@ -143,6 +143,15 @@ fn messages(c: &Compiled) -> String {
         .join("\n")
 }
 
+/// `c`'s first diagnostic of `code` (a panic with every message when
+/// there is none).
+fn diagnostic<'c>(c: &'c Compiled, code: &str) -> &'c lmdc::diag::Diagnostic {
+    c.diagnostics
+        .iter()
+        .find(|d| d.code.as_str() == code)
+        .unwrap_or_else(|| panic!("{}", messages(c)))
+}
+
 /// The message of `c`'s first diagnostic of `code` (a panic with every
 /// message when there is none), and the point it names after `after`
 /// ("… (x, y, z) mm": its coordinates).

@@ -283,7 +283,7 @@ impl Grid {
 }
 
 /// Squared distance from `p` to the segment `s`.
-pub(super) fn distance2(p: [f64; 2], s: &[[f64; 2]; 2]) -> f64 {
+pub(crate) fn distance2(p: [f64; 2], s: &[[f64; 2]; 2]) -> f64 {
     let [a, b] = *s;
     let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
     let len2 = ux * ux + uy * uy;

@@ -99,7 +99,7 @@
 mod clamp;
 mod clip;
 mod contour;
-mod coverage;
+pub(crate) mod coverage;
 mod edge;
 mod ends;
 mod error;

@@ -14,11 +14,7 @@ fn worn_pad(scan: &str) -> String {
 
 fn help(src: &str) -> String {
     let c = compile(src, example_files(&["worn_pad.ply"]));
-    let d = c
-        .diagnostics
-        .iter()
-        .find(|d| d.code.as_str() == "lmd::scan-coverage")
-        .unwrap_or_else(|| panic!("{}", messages(&c)));
+    let d = super::diagnostic(&c, "lmd::scan-coverage");
     d.help.clone().unwrap()
 }
 

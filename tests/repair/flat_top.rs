@@ -18,11 +18,7 @@ fn a_flat_top_no_count_lays_is_told_the_flat_tops_that_plan() {
     let mut named = Vec::new();
     for top in [10.3, 11.1] {
         let c = compile(&worn_pad(top), example_files(&["worn_pad.ply"]));
-        let d = c
-            .diagnostics
-            .iter()
-            .find(|d| d.code.as_str() == "lmd::no-layer-count")
-            .unwrap_or_else(|| panic!("{}", messages(&c)));
+        let d = super::diagnostic(&c, "lmd::no-layer-count");
         let help = d.help.clone().unwrap();
         assert!(!help.contains("where the tracks run"), "{help}");
         let lo = number_after(&help, "a top from ", ' ');

@@ -60,9 +60,10 @@ pub(super) fn stacked(p: &Program) -> f64 {
     sum
 }
 
-/// `∫ (13 − z)` over the straight rib's band, x −25..20 mm and two
-/// pitches across, from the pad's formula (900 × 100 cells).
-fn band_integral(pitch: f64) -> f64 {
+/// `∫ (top − z)` over the straight rib's band, x −25..20 mm and two
+/// pitches across, from the pad's formula (900 × 100 cells); `top` a
+/// function of x.
+pub(super) fn band_integral_to(pitch: f64, top: impl Fn(f64) -> f64) -> f64 {
     let (nx, ny) = (900, 100);
     let (dx, dy) = (45.0 / nx as f64, 2.0 * pitch / ny as f64);
     let mut integral = 0.0;
@@ -70,10 +71,15 @@ fn band_integral(pitch: f64) -> f64 {
         for j in 0..ny {
             let x = -25.0 + (i as f64 + 0.5) * dx;
             let y = -pitch + (j as f64 + 0.5) * dy;
-            integral += (13.0 - example_z(x, y)) * dx * dy;
+            integral += (top(x) - example_z(x, y)) * dx * dy;
         }
     }
     integral
+}
+
+/// `∫ (13 − z)` over the straight rib's band.
+fn band_integral(pitch: f64) -> f64 {
+    band_integral_to(pitch, |_| 13.0)
 }
 
 /// A straight rib two beads wide across the pad's trough, to 13 mm: its
@@ -225,12 +231,7 @@ fn a_rib_off_its_scan_below_it_or_between_counts_is_refused_with_where() {
     assert!(m.contains("is not above the scanned surface"), "{m}");
     // 0.3 .. 1.8 mm to add: no count lays both with a bead of ratio 2.
     let between = compile(&rib(STRAIGHT, 10.3, 1), files());
-    let m = messages(&between);
-    let d = between
-        .diagnostics
-        .iter()
-        .find(|d| d.code.as_str() == "lmd::no-layer-count")
-        .unwrap_or_else(|| panic!("{m}"));
+    let d = super::diagnostic(&between, "lmd::no-layer-count");
     let help = d.help.clone().unwrap();
     let lo = number_after(&help, "a top from ", ' ');
     let hi = number_after(&help, &format!("a top from {} to ", lo), ' ');

@@ -166,11 +166,7 @@ fn a_levelled_rib_too_steep_for_its_bead_along_the_normal_is_refused_where() {
     let bytes = std::fs::read("examples/repair/shaft_pad.ply").unwrap();
     let files = BTreeMap::from([("repair/shaft_pad.ply".to_string(), bytes)]);
     let c = compile(&src, files);
-    let d = c
-        .diagnostics
-        .iter()
-        .find(|d| d.code.as_str() == "lmd::follow-surface")
-        .unwrap_or_else(|| panic!("{}", messages(&c)));
+    let d = super::diagnostic(&c, "lmd::follow-surface");
     let m = &d.message;
     assert!(m.contains("along the scan's normal at (0, 10) mm"), "{m}");
     // The slope fitted to the scan, within 0.25° of the shaft's 14.48°.
@@ -204,11 +200,7 @@ fn a_levelled_rib_whose_rise_no_count_reaches_is_told_from_its_level() {
         BTreeMap::from([("repair/shaft_pad.ply".to_string(), bytes)])
     };
     let c = compile(&src("43 mm"), files());
-    let d = c
-        .diagnostics
-        .iter()
-        .find(|d| d.code.as_str() == "lmd::no-layer-count")
-        .unwrap_or_else(|| panic!("{}", messages(&c)));
+    let d = super::diagnostic(&c, "lmd::no-layer-count");
     assert!(
         d.message
             .starts_with("from the level 40.5 mm the wall's regular layers rise 2.5 mm .. 2.5 mm"),

@@ -4,7 +4,7 @@
 //! at that point; up to the pad as designed, a solid of the file; and the
 //! tops that have no height over the path, refused with where.
 
-use super::wall::{bead_points, built, rib_to, stacked, STRAIGHT};
+use super::wall::{band_integral_to, bead_points, built, rib_to, stacked, STRAIGHT};
 use super::{compile, example_files, example_z, messages};
 use lmdc::ir::Program;
 
@@ -62,16 +62,7 @@ fn a_rib_up_to_a_sloped_plane_ends_on_it_however_its_top_is_written() {
         }
     }
     let pitch = f64::from(bead_points(&p, 0)[0].pitch);
-    let (nx, ny) = (900, 100);
-    let (dx, dy) = (45.0 / nx as f64, 2.0 * pitch / ny as f64);
-    let mut integral = 0.0;
-    for i in 0..nx {
-        for j in 0..ny {
-            let x = -25.0 + (i as f64 + 0.5) * dx;
-            let y = -pitch + (j as f64 + 0.5) * dy;
-            integral += (sloped(x) - example_z(x, y)) * dx * dy;
-        }
-    }
+    let integral = band_integral_to(pitch, sloped);
     let stacked = stacked(&p);
     assert!(
         (stacked / integral - 1.0).abs() < 0.02,
@@ -158,11 +149,7 @@ fn a_top_without_a_height_over_the_path_is_refused_with_where() {
         &rib_to(STRAIGHT, "10.3 mm + 0.004 * (x + 25 mm)", 1),
         example_files(&["worn_pad.ply"]),
     );
-    let d = c
-        .diagnostics
-        .iter()
-        .find(|d| d.code.as_str() == "lmd::no-layer-count")
-        .unwrap_or_else(|| panic!("{}", messages(&c)));
+    let d = super::diagnostic(&c, "lmd::no-layer-count");
     let help = d.help.clone().unwrap();
     assert!(!help.contains("top"), "{help}");
     assert!(help.contains("level = auto"), "{help}");

@@ -236,7 +236,7 @@ impl std::fmt::Display for ScanError {
             ),
             ScanError::Columns { line, count, first, expected } => write!(
                 f,
-                "line {line} holds {count} numbers, line {first} {expected}: a point a line, every line the same columns (a decimal comma inside comma-separated fields splits a number in two; separate such fields by semicolons or tabs)"
+                "line {line} holds {count} numbers where line {first} holds {expected}: a point file has one point a line, every line with the same columns (a decimal comma in a comma-separated file splits a number in two: separate its fields by semicolons or tabs)"
             ),
             ScanError::Index { from } => write!(
                 f,

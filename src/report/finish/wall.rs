@@ -64,7 +64,7 @@ impl Moves {
         let mut sum = 0.0;
         for &k in list {
             let (a, b, rise, layer) = self.moves[k];
-            if seen.contains(&layer) || distance(p, a, b) > 1e-3 {
+            if seen.contains(&layer) || crate::fill::coverage::distance2(p, &[a, b]) > 1e-6 {
                 continue;
             }
             seen.push(layer);
@@ -72,18 +72,6 @@ impl Moves {
         }
         sum
     }
-}
-
-/// The distance from `p` to the segment `a`–`b`, mm.
-fn distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p[0] - a[0] - t * dx).hypot(p[1] - a[1] - t * dy)
 }
 
 /// The finish of `program`, the plan of the wall `on`, with every place

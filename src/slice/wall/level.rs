@@ -21,7 +21,7 @@ use super::on_scan::{
 };
 use super::{layer, order, with_leads};
 use crate::diag::{message, Diagnostics};
-use crate::ir::{Frame, Layer, Point};
+use crate::ir::{Frame, Layer};
 use crate::sema::model::Level;
 use crate::slice::top::{
     along, direction, mean_heights, passes, stacked, Base, Follow, Process, Track,
@@ -277,7 +277,11 @@ fn laid(cx: &Cx<'_>, pieces: &[Piece]) -> Vec<Layer> {
                     let points = along(
                         &p.track, &p.xy, &cx.map, &process, None, lay, power, !forward,
                     );
-                    let ends = [ends_of(&points, 0), ends_of(&points, 1)];
+                    let xy: Vec<[f64; 2]> = points.iter().map(|q| [q.pos[0], q.pos[1]]).collect();
+                    let ends = [
+                        direction(&xy, 0),
+                        direction(&xy, xy.len().saturating_sub(1)),
+                    ];
                     with_leads(cx.wall.ends, points, ends, &mut paths);
                 }
             }
@@ -285,24 +289,6 @@ fn laid(cx: &Cx<'_>, pieces: &[Piece]) -> Vec<Layer> {
             layer(k, count, paths, Frame::PART)
         })
         .collect()
-}
-
-/// The direction (unit, x–y) of the bead through `points` at its start
-/// (`end` 0) or its end (1): its first or last move's.
-fn ends_of(points: &[Point], end: usize) -> [f64; 2] {
-    let m = points.len();
-    if m < 2 {
-        return [0.0; 2];
-    }
-    let (a, b) = if end == 0 { (0, 1) } else { (m - 2, m - 1) };
-    let (a, b) = (points[a].pos, points[b].pos);
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len = dx.hypot(dy);
-    if len > 0.0 {
-        [dx / len, dy / len]
-    } else {
-        [0.0; 2]
-    }
 }
 
 /// The sample of `xy` nearest `p`.

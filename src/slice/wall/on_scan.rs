@@ -54,11 +54,17 @@ pub(super) struct Sampled {
     pub top: Vec<f64>,
 }
 
+/// A place where the top is not above the scan: where, and the top and
+/// the scan there (mm).
+type Below = ([f64; 2], [f64; 2]);
+
 /// The first place the scan cannot be built on, and how many more.
 #[derive(Default)]
 struct Unbuildable {
     uncovered: Option<([f64; 2], usize)>,
-    below: Option<([f64; 2], [f64; 2], usize)>,
+    /// Where the top is not above the scan: the place, the top and the
+    /// scan there.
+    below: Option<(Below, usize)>,
     /// Where the top itself has no height (an expression that fails, a
     /// target with nothing over the path).
     top: Option<(TopFault, usize)>,
@@ -268,10 +274,7 @@ fn sample(
         let t = match top.borrow_mut().at(p) {
             Ok(t) => Some(t),
             Err(fault) => {
-                match &mut bad.top {
-                    Some((_, more)) => *more += 1,
-                    None => bad.top = Some((fault, 0)),
-                }
+                note(&mut bad.top, fault);
                 None
             }
         };
@@ -282,10 +285,7 @@ fn sample(
             }
             (_, None) => f64::NAN,
             (Some(b), Some(t)) if t - b <= 0.0 => {
-                match &mut bad.below {
-                    Some((_, _, more)) => *more += 1,
-                    None => bad.below = Some((p, [t, b], 0)),
-                }
+                note(&mut bad.below, (p, [t, b]));
                 f64::NAN
             }
             (Some(b), Some(t)) => t - b,
@@ -313,11 +313,11 @@ fn sample(
     out
 }
 
-/// Counts a place in `first`: the first one kept, the rest counted.
-fn note(first: &mut Option<([f64; 2], usize)>, p: [f64; 2]) {
+/// Notes `what` in `first`: the first one found kept, the rest counted.
+fn note<T>(first: &mut Option<(T, usize)>, what: T) {
     match first {
         Some((_, more)) => *more += 1,
-        None => *first = Some((p, 0)),
+        None => *first = Some((what, 0)),
     }
 }
 
@@ -347,7 +347,7 @@ fn unbuildable(
             p, more, surface, spans[0], spans[1], None,
         ));
     }
-    if let Some((p, [t, b], more)) = bad.below.filter(|_| below) {
+    if let Some(((p, [t, b]), more)) = bad.below.filter(|_| below) {
         let at = [on.top_span, on.base.span];
         diags.push(message::scan::top_below(p, t, b, more, at, None));
     }
